@@ -1,0 +1,2 @@
+# Empty dependencies file for nocdyn.
+# This may be replaced when dependencies are built.

@@ -1,0 +1,41 @@
+// Helpers shared by the YAML readers: strict maps (unknown keys are errors) and numbers
+// with the file, line and field named in every error.
+#pragma once
+
+#include <yaml-cpp/yaml.h>
+
+#include <initializer_list>
+#include <string>
+
+namespace nocdyn::io::detail {
+
+/// Where a field sits: source (file) name and dotted path, e.g. "geometry.link_length".
+struct Context {
+    const std::string& source;
+    std::string field;
+    [[nodiscard]] Context operator/(const std::string& key) const {
+        return {source, field.empty() ? key : field + "." + key};
+    }
+};
+
+/// Throws nocdyn::Error "SOURCE:LINE: FIELD: reason" (LINE 1-based, omitted when unknown).
+[[noreturn]] void fail(const Context& context, const YAML::Node& node, const std::string& reason);
+
+/// Loads YAML text, turning parser errors into nocdyn::Error with the line.
+[[nodiscard]] YAML::Node loadDocument(const std::string& text, const std::string& source);
+
+/// Requires a mapping whose keys are all in `allowed`.
+void requireMap(const Context& context, const YAML::Node& node,
+                std::initializer_list<const char*> allowed);
+
+/// A required finite number at node[key].
+[[nodiscard]] double requireNumber(const Context& context, const YAML::Node& map, const char* key);
+
+/// An optional finite number at node[key], else `fallback`.
+[[nodiscard]] double optionalNumber(const Context& context, const YAML::Node& map, const char* key,
+                                    double fallback);
+
+/// Reads a whole file; throws nocdyn::Error when it cannot.
+[[nodiscard]] std::string readFile(const std::string& path, const char* what);
+
+}  // namespace nocdyn::io::detail

@@ -1,0 +1,56 @@
+// Human-readable descriptions of per-sample failures.
+#include "nocdyn/status.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "nocdyn/robot.hpp"
+
+namespace nocdyn {
+
+std::string describe(const Status& status, const RobotParameters& robot) {
+    std::ostringstream out;
+    out.precision(6);
+    const int j = status.limb + 1;  // the paper numbers limbs 1..3
+    switch (status.code) {
+        case StatusCode::ok:
+            return "ok";
+        case StatusCode::outside_workspace:
+            if (status.value <= 0.0) {
+                out << "pose outside the workspace: limb " << j << ": platform vertex M_" << j
+                    << " is " << -status.value * 1e3 << " mm on or beyond its rail line L_" << j
+                    << " (d_" << j << "^M = " << status.value << " m must be > 0)";
+            } else {
+                out << "pose outside the workspace: limb " << j << ": platform vertex M_" << j
+                    << " is " << status.value << " m from rail line L_" << j
+                    << ", beyond the link length l = " << robot.link_length << " m by "
+                    << (status.value - robot.link_length) * 1e3 << " mm";
+            }
+            return out.str();
+        case StatusCode::singular_forward_jacobian:
+            out << "singular posture: the forward Jacobian H has condition number " << status.value
+                << " (limit " << robot.max_condition << ")";
+            return out.str();
+        case StatusCode::singular_inverse_jacobian:
+            out << "singular posture: limb " << j << ": link A_" << j << "M_" << j
+                << " is nearly normal to its rail; D has condition number " << status.value
+                << " (limit " << robot.max_condition << ")";
+            return out.str();
+        case StatusCode::stroke_exceeded:
+            out << "actuator stroke exceeded: limb " << j << ": u_" << j << " = "
+                << status.value * 1e3 << " mm, but the stroke allows +-" << robot.stroke * 0.5e3
+                << " mm about the reference posture";
+            return out.str();
+        case StatusCode::force_exceeded:
+            out << "actuator peak force exceeded: limb " << j << ": tau_" << j << " = "
+                << status.value << " N, peak force " << robot.peak_force << " N";
+            return out.str();
+        case StatusCode::assembly_mode_lost:
+            out << "direct kinematics lost the assembly mode (residual " << status.value
+                << " m): a singularity was crossed";
+            return out.str();
+    }
+    return "unknown status";
+}
+
+}  // namespace nocdyn
