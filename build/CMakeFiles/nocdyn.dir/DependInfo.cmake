@@ -15,6 +15,7 @@ set(CMAKE_DEPENDS_DEPENDENCY_FILES
   "/work/main/src/prr3/dynamics.cpp" "CMakeFiles/nocdyn.dir/src/prr3/dynamics.cpp.o" "gcc" "CMakeFiles/nocdyn.dir/src/prr3/dynamics.cpp.o.d"
   "/work/main/src/prr3/kinematics.cpp" "CMakeFiles/nocdyn.dir/src/prr3/kinematics.cpp.o" "gcc" "CMakeFiles/nocdyn.dir/src/prr3/kinematics.cpp.o.d"
   "/work/main/src/prr3/model.cpp" "CMakeFiles/nocdyn.dir/src/prr3/model.cpp.o" "gcc" "CMakeFiles/nocdyn.dir/src/prr3/model.cpp.o.d"
+  "/work/main/src/prr3/sampling.cpp" "CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o" "gcc" "CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o.d"
   "/work/main/src/robot.cpp" "CMakeFiles/nocdyn.dir/src/robot.cpp.o" "gcc" "CMakeFiles/nocdyn.dir/src/robot.cpp.o.d"
   "/work/main/src/status.cpp" "CMakeFiles/nocdyn.dir/src/status.cpp.o" "gcc" "CMakeFiles/nocdyn.dir/src/status.cpp.o.d"
   "/work/main/src/trajectory.cpp" "CMakeFiles/nocdyn.dir/src/trajectory.cpp.o" "gcc" "CMakeFiles/nocdyn.dir/src/trajectory.cpp.o.d"

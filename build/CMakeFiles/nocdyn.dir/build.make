@@ -153,10 +153,24 @@ CMakeFiles/nocdyn.dir/src/prr3/dynamics.cpp.s: cmake_force
 	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Compiling CXX source to assembly CMakeFiles/nocdyn.dir/src/prr3/dynamics.cpp.s"
 	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -S /work/main/src/prr3/dynamics.cpp -o CMakeFiles/nocdyn.dir/src/prr3/dynamics.cpp.s
 
+CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o: CMakeFiles/nocdyn.dir/flags.make
+CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o: /work/main/src/prr3/sampling.cpp
+CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o: CMakeFiles/nocdyn.dir/compiler_depend.ts
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_7) "Building CXX object CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -MD -MT CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o -MF CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o.d -o CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o -c /work/main/src/prr3/sampling.cpp
+
+CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.i: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Preprocessing CXX source to CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.i"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -E /work/main/src/prr3/sampling.cpp > CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.i
+
+CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.s: cmake_force
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green "Compiling CXX source to assembly CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.s"
+	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -S /work/main/src/prr3/sampling.cpp -o CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.s
+
 CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o: CMakeFiles/nocdyn.dir/flags.make
 CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o: /work/main/src/io/robot_yaml.cpp
 CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o: CMakeFiles/nocdyn.dir/compiler_depend.ts
-	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_7) "Building CXX object CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o"
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_8) "Building CXX object CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o"
 	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -MD -MT CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o -MF CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o.d -o CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o -c /work/main/src/io/robot_yaml.cpp
 
 CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.i: cmake_force
@@ -170,7 +184,7 @@ CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.s: cmake_force
 CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o: CMakeFiles/nocdyn.dir/flags.make
 CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o: /work/main/src/io/trajectory_yaml.cpp
 CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o: CMakeFiles/nocdyn.dir/compiler_depend.ts
-	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_8) "Building CXX object CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o"
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_9) "Building CXX object CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o"
 	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -MD -MT CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o -MF CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o.d -o CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o -c /work/main/src/io/trajectory_yaml.cpp
 
 CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.i: cmake_force
@@ -184,7 +198,7 @@ CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.s: cmake_force
 CMakeFiles/nocdyn.dir/src/io/csv.cpp.o: CMakeFiles/nocdyn.dir/flags.make
 CMakeFiles/nocdyn.dir/src/io/csv.cpp.o: /work/main/src/io/csv.cpp
 CMakeFiles/nocdyn.dir/src/io/csv.cpp.o: CMakeFiles/nocdyn.dir/compiler_depend.ts
-	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_9) "Building CXX object CMakeFiles/nocdyn.dir/src/io/csv.cpp.o"
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_10) "Building CXX object CMakeFiles/nocdyn.dir/src/io/csv.cpp.o"
 	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -MD -MT CMakeFiles/nocdyn.dir/src/io/csv.cpp.o -MF CMakeFiles/nocdyn.dir/src/io/csv.cpp.o.d -o CMakeFiles/nocdyn.dir/src/io/csv.cpp.o -c /work/main/src/io/csv.cpp
 
 CMakeFiles/nocdyn.dir/src/io/csv.cpp.i: cmake_force
@@ -198,7 +212,7 @@ CMakeFiles/nocdyn.dir/src/io/csv.cpp.s: cmake_force
 CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.o: CMakeFiles/nocdyn.dir/flags.make
 CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.o: /work/main/src/io/yaml_util.cpp
 CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.o: CMakeFiles/nocdyn.dir/compiler_depend.ts
-	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_10) "Building CXX object CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.o"
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_11) "Building CXX object CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.o"
 	/usr/bin/c++ $(CXX_DEFINES) $(CXX_INCLUDES) $(CXX_FLAGS) -MD -MT CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.o -MF CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.o.d -o CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.o -c /work/main/src/io/yaml_util.cpp
 
 CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.i: cmake_force
@@ -217,6 +231,7 @@ nocdyn_OBJECTS = \
 "CMakeFiles/nocdyn.dir/src/prr3/model.cpp.o" \
 "CMakeFiles/nocdyn.dir/src/prr3/kinematics.cpp.o" \
 "CMakeFiles/nocdyn.dir/src/prr3/dynamics.cpp.o" \
+"CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o" \
 "CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o" \
 "CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o" \
 "CMakeFiles/nocdyn.dir/src/io/csv.cpp.o" \
@@ -231,13 +246,14 @@ libnocdyn.a: CMakeFiles/nocdyn.dir/src/trajectory.cpp.o
 libnocdyn.a: CMakeFiles/nocdyn.dir/src/prr3/model.cpp.o
 libnocdyn.a: CMakeFiles/nocdyn.dir/src/prr3/kinematics.cpp.o
 libnocdyn.a: CMakeFiles/nocdyn.dir/src/prr3/dynamics.cpp.o
+libnocdyn.a: CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o
 libnocdyn.a: CMakeFiles/nocdyn.dir/src/io/robot_yaml.cpp.o
 libnocdyn.a: CMakeFiles/nocdyn.dir/src/io/trajectory_yaml.cpp.o
 libnocdyn.a: CMakeFiles/nocdyn.dir/src/io/csv.cpp.o
 libnocdyn.a: CMakeFiles/nocdyn.dir/src/io/yaml_util.cpp.o
 libnocdyn.a: CMakeFiles/nocdyn.dir/build.make
 libnocdyn.a: CMakeFiles/nocdyn.dir/link.txt
-	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --bold --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_11) "Linking CXX static library libnocdyn.a"
+	@$(CMAKE_COMMAND) -E cmake_echo_color --switch=$(COLOR) --green --bold --progress-dir=/work/main/build/CMakeFiles --progress-num=$(CMAKE_PROGRESS_12) "Linking CXX static library libnocdyn.a"
 	$(CMAKE_COMMAND) -P CMakeFiles/nocdyn.dir/cmake_clean_target.cmake
 	$(CMAKE_COMMAND) -E cmake_link_script CMakeFiles/nocdyn.dir/link.txt --verbose=$(VERBOSE)
 

@@ -13,6 +13,8 @@ file(REMOVE_RECURSE
   "CMakeFiles/nocdyn.dir/src/prr3/kinematics.cpp.o.d"
   "CMakeFiles/nocdyn.dir/src/prr3/model.cpp.o"
   "CMakeFiles/nocdyn.dir/src/prr3/model.cpp.o.d"
+  "CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o"
+  "CMakeFiles/nocdyn.dir/src/prr3/sampling.cpp.o.d"
   "CMakeFiles/nocdyn.dir/src/robot.cpp.o"
   "CMakeFiles/nocdyn.dir/src/robot.cpp.o.d"
   "CMakeFiles/nocdyn.dir/src/status.cpp.o"

@@ -1,0 +1,13 @@
+// Sub-commands of `nocdyn`. Each adds itself to the application; its callback runs the
+// command and throws nocdyn::Error for anything the user must be told about.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+namespace nocdyn::cli {
+
+void addPoseCommand(CLI::App& app);
+void addInverseDynamicsCommand(CLI::App& app);
+void addReproduceCommand(CLI::App& app);
+
+}  // namespace nocdyn::cli

@@ -1,0 +1,39 @@
+// What several sub-commands share: loading the robot and trajectory named on the command
+// line, choosing the sampling, writing a table to a file or stdout.
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/robot.hpp"
+#include "nocdyn/trajectory.hpp"
+
+namespace nocdyn::cli {
+
+/// Options every trajectory-driven command takes.
+struct TrajectoryOptions {
+    std::string trajectory;
+    std::string robot;
+    std::optional<double> duration;
+    double rate = 10000.0;
+    std::string output;
+};
+
+/// Adds --robot to a command (empty = the paper's prototype).
+void addRobotOption(CLI::App& command, std::string& robot_path);
+/// Adds --trajectory (required), --robot, --duration, --rate and --output.
+void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options);
+
+/// The robot file's parameters, or the paper's prototype when the path is empty.
+[[nodiscard]] RobotParameters loadRobotOrDefault(const std::string& path);
+
+/// --duration if given, else the trajectory's own duration, else 0.2 s.
+[[nodiscard]] double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory);
+
+/// Writes the table to `path`, or to stdout when the path is empty.
+void writeTable(const io::Table& table, const std::string& path);
+
+}  // namespace nocdyn::cli

@@ -1,0 +1,33 @@
+// nocdyn: kinematics and dynamics of the paper's 3-PRR planar parallel robot by the
+// natural orthogonal complement. Every sub-command is in its own cmd_*.cpp file.
+#include <CLI/CLI.hpp>
+
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+#include "nocdyn/error.hpp"
+
+int main(int argc, char** argv) {
+    CLI::App app{
+        "nocdyn: kinematics and dynamics of planar parallel robots by the natural orthogonal complement.\n"
+        "The robot is the 3-PRR vibration generator of the paper (SI units throughout: m, kg, s, rad, N).\n"
+        "Run `nocdyn <command> --help` for the options of a command.",
+        "nocdyn"};
+    app.require_subcommand(1);
+    nocdyn::cli::addPoseCommand(app);
+    nocdyn::cli::addInverseDynamicsCommand(app);
+    nocdyn::cli::addReproduceCommand(app);
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e);
+    } catch (const nocdyn::Error& e) {
+        std::cerr << "nocdyn: error: " << e.what() << "\n";
+        return 1;
+    } catch (const std::exception& e) {
+        std::cerr << "nocdyn: error: " << e.what() << "\n";
+        return 1;
+    }
+    return 0;
+}

@@ -1,0 +1,31 @@
+// Figures drawn by gnuplot (from Debian's gnuplot-nox): the CLI writes a gnuplot script
+// with the data inline and runs gnuplot on it, once for PNG (pngcairo) and once for SVG.
+#pragma once
+
+#include <string>
+#include <vector>
+
+namespace nocdyn::cli {
+
+struct PlotSeries {
+    std::string label;
+    std::vector<double> x, y;
+    std::string style = "lines";  ///< gnuplot style, e.g. "lines dt 2 lw 2"
+};
+
+struct PlotPanel {
+    std::string title, xlabel, ylabel;
+    std::vector<PlotSeries> series;
+    bool log_x = false, log_y = false;
+};
+
+struct Figure {
+    std::string title;
+    std::vector<PlotPanel> panels;  ///< stacked top to bottom
+    int width = 1000, height = 0;   ///< pixels; height 0 = 380 per panel
+};
+
+/// Writes `stem`.png and `stem`.svg. Throws nocdyn::Error when gnuplot is missing or fails.
+void renderFigure(const Figure& figure, const std::string& stem);
+
+}  // namespace nocdyn::cli
