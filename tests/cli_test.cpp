@@ -1,0 +1,222 @@
+// The `nocdyn` binary end to end: what it writes, and how it refuses bad input
+// (one-line error on stderr, non-zero exit, no partial CSV).
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/prr3/dynamics.hpp"
+#include "nocdyn/trajectory.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+    int exit_code = -1;
+    std::string out, err;
+};
+
+std::string slurp(const fs::path& path) {
+    std::ifstream in(path);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+CliRun run(const std::string& arguments) {
+    const fs::path err_file = fs::path(testing::TempDir()) / "nocdyn_stderr.txt";
+    const std::string command = std::string(NOCDYN_CLI) + " " + arguments + " 2>" + err_file.string();
+    CliRun result;
+    FILE* pipe = popen(command.c_str(), "r");
+    if (!pipe) return result;
+    char buffer[4096];
+    std::size_t n = 0;
+    while ((n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0) result.out.append(buffer, n);
+    const int status = pclose(pipe);
+    result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    result.err = slurp(err_file);
+    return result;
+}
+
+fs::path scratch(const std::string& name) {
+    const fs::path dir = fs::path(testing::TempDir()) / "nocdyn_cli_test";
+    fs::create_directories(dir);
+    return dir / name;
+}
+
+io::Table parseCsv(const std::string& text) {
+    const fs::path path = scratch("parsed.csv");
+    std::ofstream(path) << text;
+    return io::readCsvFile(path.string());
+}
+
+TEST(Cli, InverseDynamicsWritesTheDocumentedColumnsAndTheLibrarysNumbers) {
+    const CliRun r = run("inverse-dynamics --trajectory paper1 --duration 0.01 --rate 1000");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Table table = parseCsv(r.out);
+    const std::vector<std::string> expected = {"t",   "x",    "y",    "theta", "u1",   "u2",   "u3",   "du1", "du2",
+                                               "du3", "ddu1", "ddu2", "ddu3",  "tau1", "tau2", "tau3"};
+    for (const auto& column : expected) EXPECT_TRUE(table.has(column)) << column;
+    ASSERT_EQ(table.rows.size(), 10u);
+    const prr3::Model model;
+    prr3::Data data;
+    Pose p, dp, ddp;
+    const auto& last = table.rows.back();
+    EXPECT_EQ(last[table.column("t")], 9.0 / 1000.0);
+    paperTrajectory1().evaluate(last[table.column("t")], p, dp, ddp);
+    ASSERT_TRUE(prr3::inverseDynamics(model, data, p, dp, ddp).ok());
+    for (int j = 0; j < 3; ++j) {
+        // 17 significant digits: the CSV holds the library's doubles exactly.
+        EXPECT_EQ(last[table.column("tau" + std::to_string(j + 1))], data.tau(j));
+        EXPECT_EQ(last[table.column("u" + std::to_string(j + 1))], data.u(j));
+    }
+}
+
+TEST(Cli, DefaultSamplingIsTheFilesDurationAtTenKilohertz) {
+    const fs::path trajectory = scratch("short.yaml");
+    std::ofstream(trajectory) << "duration: 0.05\nx: {harmonics: [{amplitude: 0.001, frequency: 20}]}\n";
+    const fs::path output = scratch("short.csv");
+    const CliRun r = run("inverse-dynamics --trajectory " + trajectory.string() + " --output " + output.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(r.out.empty());
+    const io::Table table = io::readCsvFile(output.string());
+    EXPECT_EQ(table.rows.size(), 500u);
+    const CliRun paper = run("inverse-dynamics --trajectory paper2");
+    ASSERT_EQ(paper.exit_code, 0) << paper.err;
+    EXPECT_EQ(parseCsv(paper.out).rows.size(), 2000u);  // 0.2 s at 10 kHz
+}
+
+TEST(Cli, RobotFileChangesTheForces) {
+    const fs::path robot = scratch("heavy.yaml");
+    std::ifstream in(std::string(NOCDYN_SOURCE_DIR) + "/robots/paper-3prr.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    text.replace(text.find("mass: 1.75257"), 13, "mass: 3.50514");
+    std::ofstream(robot) << text;
+    const CliRun light = run("inverse-dynamics --trajectory paper1 --duration 0.003 --rate 1000");
+    const CliRun heavy = run("inverse-dynamics --trajectory paper1 --duration 0.003 --rate 1000 --robot " + robot.string());
+    ASSERT_EQ(light.exit_code, 0) << light.err;
+    ASSERT_EQ(heavy.exit_code, 0) << heavy.err;
+    const io::Table a = parseCsv(light.out), b = parseCsv(heavy.out);
+    EXPECT_GT(std::abs(b.rows[1][b.column("tau1")]), 1.2 * std::abs(a.rows[1][a.column("tau1")]));
+}
+
+TEST(Cli, BadArgumentsExitNonZeroWithAMessage) {
+    for (const char* args : {"", "inverse-dynamics", "inverse-dynamics --trajectory paper1 --rate -5",
+                             "inverse-dynamics --trajectory paper1 --duration abc", "fly-to-the-moon",
+                             "pose 0 0", "pose 0 0 0 --robot /nonexistent.yaml"}) {
+        const CliRun r = run(args);
+        EXPECT_NE(r.exit_code, 0) << args;
+        EXPECT_FALSE(r.err.empty()) << args;
+    }
+}
+
+TEST(Cli, InvalidFilesAreNamedInOneLine) {
+    const fs::path robot = scratch("bad-robot.yaml");
+    std::ofstream(robot) << "geometry: {base_side: 0.4, platform_side: 0.11, link_length: 0.15915, link_com: 0.08}\n"
+                            "slider: {mass: 1}\nlink: {mass: -1, inertia: 1}\nplatform: {mass: 1, inertia: 1}\n"
+                            "actuator: {stroke: 0.02, peak_force: 100}\n";
+    const CliRun r = run("pose 0 0 0 --robot " + robot.string());
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("link.mass"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+
+    const CliRun missing = run("inverse-dynamics --trajectory /nonexistent/traj.yaml");
+    EXPECT_NE(missing.exit_code, 0);
+    EXPECT_NE(missing.err.find("/nonexistent/traj.yaml"), std::string::npos) << missing.err;
+}
+
+TEST(Cli, SampleOutsideTheWorkspaceNamesTimeAndLimbAndLeavesNoCsv) {
+    const fs::path trajectory = scratch("far.yaml");
+    std::ofstream(trajectory) << "duration: 0.1\ny: {harmonics: [{amplitude: 0.2, frequency: 5}]}\n";
+    const fs::path output = scratch("far.csv");
+    fs::remove(output);
+    // --allow-limits tolerates stroke and force, never a pose outside the workspace.
+    const CliRun r =
+        run("inverse-dynamics --allow-limits --trajectory " + trajectory.string() + " --output " + output.string());
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("t = "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("outside the workspace: limb"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(output));
+    EXPECT_FALSE(fs::exists(output.string() + ".partial"));
+}
+
+TEST(Cli, StrokeBeyondTheActuatorIsAnErrorUnlessAllowed) {
+    const fs::path trajectory = scratch("wide.yaml");
+    std::ofstream(trajectory) << "duration: 0.1\nx: {harmonics: [{amplitude: 0.03, frequency: 2}]}\n";
+    const fs::path output = scratch("wide.csv");
+    fs::remove(output);
+    const CliRun strict = run("inverse-dynamics --trajectory " + trajectory.string() + " --output " + output.string());
+    EXPECT_EQ(strict.exit_code, 1);
+    EXPECT_NE(strict.err.find("stroke exceeded: limb"), std::string::npos) << strict.err;
+    EXPECT_FALSE(fs::exists(output));
+    const CliRun allowed =
+        run("inverse-dynamics --allow-limits --trajectory " + trajectory.string() + " --output " + output.string());
+    EXPECT_EQ(allowed.exit_code, 0) << allowed.err;
+    EXPECT_NE(allowed.err.find("warning"), std::string::npos);
+    EXPECT_TRUE(fs::exists(output));
+}
+
+TEST(Cli, PoseJsonCarriesJointsJacobiansAndInertia) {
+    const CliRun r = run("pose 0.02 0.001 -0.003 --json");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    const prr3::Model model;
+    prr3::Data data;
+    ASSERT_TRUE(prr3::inverseDynamics(model, data, Pose(0.02, 0.001, -0.003), Twist::Zero(), Twist::Zero()).ok());
+    ASSERT_EQ(json["limbs"].size(), 3u);
+    for (int j = 0; j < 3; ++j) EXPECT_DOUBLE_EQ(json["limbs"][j]["u"].get<double>(), data.u(j));
+    EXPECT_DOUBLE_EQ(json["I"][1][2].get<double>(), data.I(1, 2));
+    EXPECT_DOUBLE_EQ(json["H"][0][0].get<double>(), data.H(0, 0));
+    EXPECT_DOUBLE_EQ(json["cond_H"].get<double>(), data.cond_H);
+    EXPECT_TRUE(json["within_stroke"].get<bool>());
+    const CliRun text = run("pose 0 0 0");
+    ASSERT_EQ(text.exit_code, 0);
+    EXPECT_NE(text.out.find("joint-space inertia"), std::string::npos);
+    const CliRun outside = run("pose 0 0 -0.09");
+    EXPECT_EQ(outside.exit_code, 1);
+    EXPECT_NE(outside.err.find("limb 1"), std::string::npos) << outside.err;
+}
+
+TEST(Cli, HelpExplainsEveryCommand) {
+    const CliRun r = run("--help");
+    EXPECT_EQ(r.exit_code, 0);
+    for (const char* command : {"pose", "inverse-dynamics", "reproduce"}) {
+        EXPECT_NE(r.out.find(command), std::string::npos) << command;
+    }
+}
+
+TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
+    const fs::path out = scratch("reproduce");
+    fs::remove_all(out);
+    const CliRun r = run("reproduce --out " + out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    for (const char* file : {"paper1.csv", "paper2.csv", "paper1_displacements.png", "paper1_displacements.svg",
+                             "paper1_forces.png", "paper2_forces.svg", "summary.md"}) {
+        ASSERT_TRUE(fs::exists(out / file)) << file;
+        EXPECT_GT(fs::file_size(out / file), 1000u) << file;
+    }
+    const io::Table paper1 = io::readCsvFile((out / "paper1.csv").string());
+    EXPECT_EQ(paper1.rows.size(), 2000u);
+    // Figure 5b peaks: every force stays well under the 262 N peak force.
+    double peak = 0.0;
+    for (const auto& row : paper1.rows) {
+        for (const char* c : {"tau1", "tau2", "tau3"}) peak = std::max(peak, std::abs(row[paper1.column(c)]));
+    }
+    EXPECT_GT(peak, 20.0);
+    EXPECT_LT(peak, 262.0);
+    const std::string summary = slurp(out / "summary.md");
+    EXPECT_NE(summary.find("| paper1 | 1 |"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("262"), std::string::npos);
+    EXPECT_NE(slurp(out / "paper1_forces.svg").find("<svg"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace nocdyn::test

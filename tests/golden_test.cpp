@@ -1,0 +1,68 @@
+// The paper's trajectories against the independent golden values in ../shared/golden
+// (virtual power with 50-digit finite differences, no NOC).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+
+#include "nocdyn/trajectory.hpp"
+#include "support.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+struct GoldenCase {
+    const char* file;
+    PoseTrajectory (*trajectory)();
+};
+
+class GoldenTrajectory : public ::testing::TestWithParam<GoldenCase> {};
+
+// Relative 1e-9, with an absolute floor of 1e-12 of the column's peak for values that pass
+// through zero (u is ~1e-19 m at t = 0 in the golden file).
+constexpr double kRelative = 1e-9;
+constexpr double kFloorOfPeak = 1e-12;
+
+TEST_P(GoldenTrajectory, ReproducesGoldenJointMotionForcesAndEnergyTo1e9Relative) {
+    const GoldenCase& golden = GetParam();
+    const io::Table table = io::readCsvFile(goldenPath(golden.file));
+    ASSERT_EQ(table.rows.size(), 20u);
+    const PoseTrajectory trajectory = golden.trajectory();
+    const prr3::Model model;
+    prr3::Data data;
+    const std::vector<std::string> columns = {"u1",   "u2",   "u3",   "du1",  "du2",  "du3",    "ddu1", "ddu2",
+                                              "ddu3", "tau1", "tau2", "tau3", "kinetic"};
+    std::vector<double> peak(columns.size(), 0.0);
+    for (const auto& row : table.rows) {
+        for (std::size_t c = 0; c < columns.size(); ++c) peak[c] = std::max(peak[c], std::abs(row[table.column(columns[c])]));
+    }
+    double worst = 0.0;
+    for (const auto& row : table.rows) {
+        const double t = row[table.column("t")];
+        Pose p, dp, ddp;
+        trajectory.evaluate(t, p, dp, ddp);
+        EXPECT_NEAR(p(1), row[table.column("x")], 1e-15);
+        EXPECT_NEAR(p(2), row[table.column("y")], 1e-15);
+        EXPECT_NEAR(p(0), row[table.column("theta")], 1e-15);
+        solve(model, data, p, dp, ddp);
+        const double ours[] = {data.u(0),   data.u(1),   data.u(2),   data.du(0),  data.du(1),
+                               data.du(2),  data.ddu(0), data.ddu(1), data.ddu(2), data.tau(0),
+                               data.tau(1), data.tau(2), prr3::kineticEnergy(model, data)};
+        for (std::size_t c = 0; c < columns.size(); ++c) {
+            const double expected = row[table.column(columns[c])];
+            const Tolerance tolerance{kFloorOfPeak * peak[c], kRelative};
+            EXPECT_TRUE(tolerance.accepts(ours[c], expected))
+                << golden.file << " t = " << t << " " << columns[c] << ": ours " << ours[c] << ", golden " << expected;
+            worst = std::max(worst, std::abs(ours[c] - expected) / std::max(std::abs(expected), kFloorOfPeak * peak[c]));
+        }
+    }
+    RecordProperty("largest_relative_error", std::to_string(worst));
+    std::printf("%s: largest relative error %.3g\n", golden.file, worst);
+}
+
+INSTANTIATE_TEST_SUITE_P(Paper, GoldenTrajectory,
+                         ::testing::Values(GoldenCase{"paper_trajectory1.csv", &paperTrajectory1},
+                                           GoldenCase{"paper_trajectory2.csv", &paperTrajectory2}),
+                         [](const auto& info) { return std::string(info.param.file).substr(0, 17); });
+
+}  // namespace
+}  // namespace nocdyn::test

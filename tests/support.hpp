@@ -1,0 +1,72 @@
+// Shared test helpers: named tolerances, random poses across the workspace, golden files.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/prr3/dynamics.hpp"
+#include "nocdyn/prr3/kinematics.hpp"
+
+namespace nocdyn::test {
+
+/// |a - b| <= abs + rel * |b|
+struct Tolerance {
+    double abs;
+    double rel;
+    [[nodiscard]] bool accepts(double a, double b) const { return std::abs(a - b) <= abs + rel * std::abs(b); }
+};
+
+inline std::string describePose(const Pose& p) {
+    std::ostringstream out;
+    out.precision(17);
+    out << "pose [theta, x, y] = [" << p(0) << ", " << p(1) << ", " << p(2) << "]";
+    return out.str();
+}
+
+/// Random poses spread across the reachable workspace of `model` (rotation up to +-0.35 rad,
+/// centre within +-60 mm), with H and D conditioned better than 1e3; deterministic per seed.
+class WorkspaceSampler {
+public:
+    explicit WorkspaceSampler(const prr3::Model& model, unsigned seed = 2024) : model_(model), rng_(seed) {}
+
+    /// Next pose accepted by the position and velocity stages.
+    Pose next() {
+        std::uniform_real_distribution<double> angle(-0.35, 0.35), position(-0.06, 0.06);
+        prr3::Data data;
+        for (;;) {
+            const Pose p(angle(rng_), position(rng_), position(rng_));
+            if (!prr3::inverseDisplacement(model_, data, p)) continue;
+            if (!prr3::velocityFromPlatformTwist(model_, data, Twist::Zero())) continue;
+            if (data.cond_H > 1e3 || data.cond_D > 1e3) continue;
+            return p;
+        }
+    }
+
+    /// A random platform twist: up to +-5 rad/s and +-1 m/s.
+    Twist twist() {
+        std::uniform_real_distribution<double> w(-5.0, 5.0), v(-1.0, 1.0);
+        return {w(rng_), v(rng_), v(rng_)};
+    }
+
+    std::mt19937& rng() { return rng_; }
+
+private:
+    const prr3::Model& model_;
+    std::mt19937 rng_;
+};
+
+/// Runs the whole per-sample path; fails the test (with the pose) when it does not succeed.
+inline void solve(const prr3::Model& model, prr3::Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
+    const Status status = prr3::inverseDynamics(model, data, p, dp, ddp);
+    ASSERT_TRUE(status.ok()) << describePose(p) << ": " << describe(status, model.parameters);
+}
+
+inline std::string goldenPath(const std::string& file) { return std::string(NOCDYN_GOLDEN_DIR) + "/" + file; }
+
+}  // namespace nocdyn::test
