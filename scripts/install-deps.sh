@@ -1,0 +1,27 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package nocdyn needs to build, test, validate, benchmark and plot.
+# Run as root (or with sudo). Safe to run again: apt-get skips what is already installed.
+set -euo pipefail
+packages=(
+  g++ make cmake pkg-config            # toolchain (CMake >= 3.25)
+  libeigen3-dev                        # linear algebra
+  libyaml-cpp-dev                      # robot and trajectory files
+  libcli11-dev                         # command line
+  nlohmann-json3-dev                   # `nocdyn pose --json`
+  libboost-dev                         # Boost.Odeint (forward dynamics)
+  libsimbody-dev                       # reference multibody engine (validation)
+  libmujoco-dev libqhull-dev           # second multibody engine (validation)
+  libgtest-dev libgmock-dev            # tests
+  libbenchmark-dev                     # benchmarks
+  gnuplot-nox                          # figures (PNG via pngcairo, SVG)
+)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]})); then
+  echo "install-deps: installing ${missing[*]}"
+  export DEBIAN_FRONTEND=noninteractive
+  apt-get update -qq
+  apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
