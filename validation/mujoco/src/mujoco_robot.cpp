@@ -4,6 +4,19 @@
 // The reference posture below is computed here from the robot's definition (model notes:
 // R = b/sqrt3, r = a/sqrt3, d^M = (R - r)/2, phi_A = asin(d^M / l)); every other posture,
 // velocity and acceleration of the joints, and every force, comes from MuJoCo.
+//
+// Rigid inverse dynamics per sample (mj_inverse is not used: its soft constraints drop the
+// dJ/dt qvel term and report spurious constraint forces for prescribed closed-loop motion):
+//  1. platform qpos = pose; the six other joint positions by Newton on the connect residuals
+//     efc_pos (x, y rows) with the constraint Jacobian efc_J, each iterate evaluated by
+//     mj_kinematics + mj_comPos + mj_makeConstraint (the position stage of mj_fwdPosition
+//     that the result depends on); seed = previous solution + first-order predictor;
+//  2. qvel from efc_J qvel = 0 with the platform rates prescribed; mj_comVel;
+//  3. qacc from efc_J qacc = -dJ/dt qvel, the bias being the relative acceleration of the
+//     connect anchors at qacc = 0 (MuJoCo's cdof_dot recursion for cacc, then
+//     mj_objectAcceleration, which adds the omega x v term);
+//  4. mj_rne(flg_acc = 1) gives M qacc + c; M qacc + c = B tau + efc_J^T lambda is solved for
+//     lambda from the six non-actuated rows and then tau from the slider rows.
 #include "nocdyn/validation/mujoco_robot.hpp"
 
 #include <mujoco/mujoco.h>

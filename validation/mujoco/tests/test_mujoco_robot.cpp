@@ -12,8 +12,41 @@
 #include <string>
 #include <vector>
 
+#include <mujoco/mujoco.h>
+
+#include <atomic>
+#include <cstdlib>
+#include <new>
+
 #include "nocdyn/error.hpp"
 #include "nocdyn/validation/mujoco_robot.hpp"
+
+// Allocation counting for the allocation-free test: every C++ allocation in this program,
+// and MuJoCo's own (mju_malloc goes through mju_user_malloc when it is set).
+namespace {
+std::atomic<long> g_allocations{0};
+void* countingMujocoMalloc(std::size_t size) {
+    ++g_allocations;
+    return std::malloc(size);
+}
+}  // namespace
+
+void* operator new(std::size_t size) {
+    ++g_allocations;
+    if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+    throw std::bad_alloc();
+}
+// GCC flags free() in a replacement operator delete as mismatched with operator new, though
+// the replacement pair above allocates with malloc by construction.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+#endif
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif
 
 #ifndef NOCDYN_GOLDEN_DIR
 #error "NOCDYN_GOLDEN_DIR must be defined by the build"
@@ -166,6 +199,36 @@ TEST(MujocoRobot, PowerBalance) {
     }
 }
 
+// A robot other than the prototype: heavier, off-centre link c.o.m., longer links.
+TEST(MujocoRobot, PowerBalanceOtherRobot) {
+    RobotParameters robot;
+    robot.name = "other";
+    robot.base_side = 0.45;
+    robot.platform_side = 0.12;
+    robot.link_length = 0.2;
+    robot.link_com = 0.06;
+    robot.slider_mass = 2.1;
+    robot.link_mass = 0.9;
+    robot.link_inertia = 3.1e-3;
+    robot.platform_mass = 2.4;
+    robot.platform_inertia = 9.7e-3;
+    MujocoRobot model(robot);
+    const PoseTrajectory traj = nocdyn::paperTrajectory1();
+    const double h = 1e-4;
+    double peak = 0.0, worst = 0.0;
+    for (int k = 0; k < 50; ++k) {
+        const double t = 0.0013 + 0.0019 * k;
+        const auto s = model.inverseDynamics(traj, {t - 2 * h, t - h, t, t + h, t + 2 * h});
+        const double dT =
+            (s[0].kinetic - 8 * s[1].kinetic + 8 * s[3].kinetic - s[4].kinetic) / (12 * h);
+        const double power = s[2].tau.dot(s[2].du);
+        peak = std::max(peak, std::abs(power));
+        worst = std::max(worst, std::abs(power - dT));
+        EXPECT_LT(s[2].closure_residual, 1e-12);
+    }
+    EXPECT_LE(worst, 1e-7 * peak);
+}
+
 TEST(MujocoRobot, MjcfIsGeneratedFromParameters) {
     RobotParameters p;
     p.link_length = 0.17;
@@ -190,6 +253,34 @@ TEST(MujocoRobot, RejectsPoseOutsideWorkspace) {
     EXPECT_THROW(robot.inverseDynamicsSample(Eigen::Vector3d(0.0, 0.0, 0.2), Eigen::Vector3d::Zero(),
                                              Eigen::Vector3d::Zero(), u, du, ddu, tau),
                  nocdyn::Error);
+}
+
+TEST(MujocoRobot, SampleIsAllocationFree) {
+    MujocoRobot robot(RobotParameters{});
+    const PoseTrajectory traj = nocdyn::paperTrajectory2();
+    constexpr int n = 200;
+    std::vector<Eigen::Vector3d> P(n), DP(n), DDP(n);
+    for (int k = 0; k < n; ++k) {
+        nocdyn::Pose p, dp, ddp;
+        traj.evaluate(1e-3 * k, p, dp, ddp);
+        P[k] = p;
+        DP[k] = dp;
+        DDP[k] = ddp;
+    }
+    Eigen::Vector3d u, du, ddu, tau;
+    robot.inverseDynamicsSample(P[0], DP[0], DDP[0], u, du, ddu, tau);
+    mju_user_malloc = countingMujocoMalloc;
+    const long before = g_allocations.load();
+    for (int k = 0; k < n; ++k) robot.inverseDynamicsSample(P[k], DP[k], DDP[k], u, du, ddu, tau);
+    const long after = g_allocations.load();
+    // the counter does see allocations: a string copy and a MuJoCo allocation
+    { const std::string copy = robot.mjcf(); }
+    void* block = mju_malloc(64);
+    mju_free(block);
+    const long check = g_allocations.load();
+    mju_user_malloc = nullptr;
+    EXPECT_EQ(after - before, 0);
+    EXPECT_GE(check - after, 2);
 }
 
 // Rough per-sample time (reported, never asserted).

@@ -1,7 +1,8 @@
 // Independent MuJoCo model of the 3-PRR robot (validation issue): the same robot built from
 // the same RobotParameters as MJCF, its loops closed with <equality><connect>, and its inverse
-// dynamics computed by MuJoCo's rigid multibody building blocks (mj_fwdPosition, mj_fwdVelocity,
-// mj_rne, the constraint Jacobian efc_J) plus a small linear solve for the slider forces.
+// dynamics computed by MuJoCo's rigid multibody building blocks (the position stage
+// mj_kinematics/mj_comPos/mj_makeConstraint, mj_comVel, mj_rne, the constraint Jacobian efc_J)
+// plus small Eigen solves for the loop closure and the slider forces (see the .cpp).
 //
 // Nothing here calls nocdyn's kinematics or dynamics: only RobotParameters and PoseTrajectory
 // are shared with the NOC model. MuJoCo's headers stay in the implementation (pimpl).
