@@ -97,10 +97,10 @@ std::string buildMjcf(const RobotParameters& robot) {
     std::ostringstream x;
     x << std::setprecision(17);
     x << "<mujoco model=\"nocdyn-3prr-" << robot.name << "\">\n"
-      << "  <compiler angle=\"radian\" inertiafromgeom=\"false\" coordinate=\"local\"/>\n"
+      << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
       << "  <option gravity=\"0 0 0\" timestep=\"0.0001\" jacobian=\"dense\" integrator=\"Euler\">\n"
       << "    <flag contact=\"disable\" gravity=\"disable\" frictionloss=\"disable\""
-         " limit=\"disable\" passive=\"disable\"/>\n"
+         " limit=\"disable\"/>\n"
       << "  </option>\n"
       << "  <default>\n"
       << "    <joint damping=\"0\" armature=\"0\" frictionloss=\"0\" limited=\"false\"/>\n"
