@@ -216,8 +216,16 @@ public:
     /// Assembles pose_driven at time t for the platform pose the Motion prescribes, which
     /// must equal `expected`; projects q and u. Throws nocdyn::Error on failure.
     void assemblePoseDriven(double t, const Eigen::Vector3d& expected, const Seed& seed);
-    /// One attempt; returns an empty string on success, else why it failed.
-    std::string tryAssemble(const Eigen::Vector3d& expected);
+    /// Sets the prescribed q and u, then Newton-projects the free q and u onto the
+    /// constraint manifolds, with one extra forced iteration each so that the constraint
+    /// errors end at round-off level rather than just below the required accuracy.
+    void projectTight(SimTK::State& s) const;
+    /// One attempt (Newton projection only, or the Assembler then a projection); returns an
+    /// empty string on success, else why it failed.
+    std::string tryAssemble(const Eigen::Vector3d& expected, bool use_assembler);
+
+    // How the assemblies were obtained (diagnostics).
+    long by_projection = 0, by_assembler = 0, by_analytic_seed = 0;
 };
 
 SimbodyRobot::Impl::Impl(const RobotParameters& p)
@@ -315,12 +323,29 @@ Eigen::Vector3d SimbodyRobot::Impl::readPose(const SimTK::State& s) const {
     return {q[i], q[i + 1], q[i + 2]};
 }
 
-std::string SimbodyRobot::Impl::tryAssemble(const Eigen::Vector3d& expected) {
+void SimbodyRobot::Impl::projectTight(SimTK::State& s) const {
+    using SimTK::ProjectOptions;
+    ProjectOptions options(kProjectAccuracy);
+    options.setOption(ProjectOptions::ForceFullNewton);
+    ProjectOptions forced(options);
+    forced.setOption(ProjectOptions::ForceProjection);
+    SimTK::Vector no_error_estimate;
+    SimTK::ProjectResults results;
+    system.realize(s, SimTK::Stage::Time);
+    system.prescribeQ(s);
+    system.realize(s, SimTK::Stage::Position);
+    system.projectQ(s, no_error_estimate, options, results);  // throws if it cannot converge
+    system.projectQ(s, no_error_estimate, forced, results);
+    system.prescribeU(s);
+    system.realize(s, SimTK::Stage::Velocity);
+    // Velocity constraints are linear in u: one full Newton step solves them to round-off.
+    system.projectU(s, no_error_estimate, forced, results);
+}
+
+std::string SimbodyRobot::Impl::tryAssemble(const Eigen::Vector3d& expected, bool use_assembler) {
     try {
-        assembler->assemble(pose_driven);
-        // Polish q to the project accuracy, set the prescribed platform rate and solve
-        // the free u's from the velocity constraints.
-        system.project(pose_driven, kProjectAccuracy);
+        if (use_assembler) assembler->assemble(pose_driven);
+        projectTight(pose_driven);
     } catch (const std::exception& ex) {
         return std::string("Simbody assembly failed: ") + ex.what();
     }
@@ -348,18 +373,31 @@ void SimbodyRobot::Impl::assemblePoseDriven(double t, const Eigen::Vector3d& exp
                                             const Seed& seed) {
     // Checks the workspace first (clear error naming the limb).
     const Seed analytic = analyticSeed(geo, expected, t);
+    // 1) Newton projection from the continuation seed (cheap; enough between close samples),
+    // 2) the Assembler from the same seed, 3) the Assembler seeded on the intended branch.
     pose_driven.setTime(t);
     writeSeed(pose_driven, seed);
-    std::string why = tryAssemble(expected);
-    if (!why.empty()) {
+    std::string why = tryAssemble(expected, false);
+    if (why.empty()) {
+        ++by_projection;
+    } else {
         pose_driven.setTime(t);
-        writeSeed(pose_driven, analytic);
-        const std::string why2 = tryAssemble(expected);
-        if (!why2.empty()) {
-            std::ostringstream msg;
-            msg << "Simbody model: cannot assemble at t=" << t << " s, pose [" << expected.transpose()
-                << "]: " << why << "; re-seeded on the intended branch: " << why2;
-            throw Error(msg.str());
+        writeSeed(pose_driven, seed);
+        const std::string why1 = tryAssemble(expected, true);
+        if (why1.empty()) {
+            ++by_assembler;
+        } else {
+            pose_driven.setTime(t);
+            writeSeed(pose_driven, analytic);
+            const std::string why2 = tryAssemble(expected, true);
+            if (!why2.empty()) {
+                std::ostringstream msg;
+                msg << "Simbody model: cannot assemble at t=" << t << " s, pose ["
+                    << expected.transpose() << "]: " << why1
+                    << "; re-seeded on the intended branch: " << why2;
+                throw Error(msg.str());
+            }
+            ++by_analytic_seed;
         }
     }
     last_solution = readSeed(pose_driven);
@@ -389,16 +427,36 @@ std::vector<EngineSample> SimbodyRobot::inverseDynamics(const PoseTrajectory& tr
         ~Reset() { motion->trajectory = nullptr; }
     } reset{m.platform_motion};
 
-    Seed seed = referenceSeed(m.geo);
+    // Continuation: each assembly starts from the previous solution, extrapolated to second
+    // order in time (the first from the reference posture).
+    Seed q_prev = referenceSeed(m.geo), u_prev, a_prev;
+    double t_prev = 0.0;
+    bool have_prev = false;
     Vector motion_forces;
     for (double t : times) {
         Eigen::Vector3d p, dp, ddp;
         trajectory.evaluate(t, p, dp, ddp);
 
         // Pass 1: platform prescribed; Simbody finds the sliders' q, u and udot.
+        Seed seed = q_prev;
+        if (have_prev) {
+            const double h = t - t_prev;
+            for (int j = 0; j < 3; ++j) {
+                seed.slider[j] += h * u_prev.slider[j] + 0.5 * h * h * a_prev.slider[j];
+                seed.pin[j] += h * u_prev.pin[j] + 0.5 * h * h * a_prev.pin[j];
+            }
+        }
         m.assemblePoseDriven(t, p, seed);
-        seed = m.last_solution;
         m.system.realize(m.pose_driven, Stage::Acceleration);
+        q_prev = m.last_solution;
+        for (int j = 0; j < 3; ++j) {
+            u_prev.slider[j] = m.sliders[j].getOneU(m.pose_driven, 0);
+            u_prev.pin[j] = m.links[j].getOneU(m.pose_driven, 0);
+            a_prev.slider[j] = m.sliders[j].getOneUDot(m.pose_driven, 0);
+            a_prev.pin[j] = m.links[j].getOneUDot(m.pose_driven, 0);
+        }
+        t_prev = t;
+        have_prev = true;
 
         EngineSample s;
         s.t = t;

@@ -278,6 +278,28 @@ TEST(SimbodyRobot, PlantAcceleratesAsInverseDynamicsPredicts) {
     }
 }
 
+TEST(SimbodyRobot, LargeStepsBetweenSamplesStayOnTheIntendedBranch) {
+    // Large rotations sampled coarsely: the continuation seed is far off, so the fallbacks
+    // (Assembler, then a seed on the intended branch) must give the same answer as a fine,
+    // continuous sampling.
+    PoseTrajectory tr;
+    tr.theta.harmonics = {{0.8, 3.0, 1.5707963267948966}};  // first sample at -> 0.8 rad
+    tr.x.harmonics = {{0.01, 2.0, 0.0}};
+    tr.y.harmonics = {{-0.008, 4.0, 1.0}};
+    const std::vector<double> coarse = {0.0, 0.16, 0.02, 0.17, 0.31};
+    SimbodyRobot robot{RobotParameters{}};
+    const auto a = robot.inverseDynamics(tr, coarse);
+    for (std::size_t k = 0; k < coarse.size(); ++k) {
+        // Fine sampling up to the same instant.
+        const auto b = robot.inverseDynamics(tr, linspace(0.0, coarse[k], 400));
+        const EngineSample& fine = b.back();
+        EXPECT_LT((a[k].u - fine.u).cwiseAbs().maxCoeff(), 1e-13) << "t = " << coarse[k];
+        EXPECT_LT((a[k].tau - fine.tau).cwiseAbs().maxCoeff(),
+                  1e-11 * (1.0 + fine.tau.cwiseAbs().maxCoeff()))
+            << "t = " << coarse[k];
+    }
+}
+
 TEST(SimbodyRobot, PoseOutsideWorkspaceIsRejected) {
     SimbodyRobot robot{RobotParameters{}};
     PoseTrajectory far;
