@@ -1,0 +1,9 @@
+# Tests of issue 4 (direct kinematics, forward dynamics, control, operating envelope),
+# included by tests/CMakeLists.txt.
+nocdyn_add_test(direct_kinematics_test direct_kinematics_test.cpp)
+nocdyn_add_test(forward_dynamics_test forward_dynamics_test.cpp)
+foreach(source control_test envelope_test)
+  if(EXISTS ${CMAKE_CURRENT_LIST_DIR}/${source}.cpp)
+    nocdyn_add_test(${source} ${source}.cpp)
+  endif()
+endforeach()
