@@ -45,9 +45,10 @@ public:
     SimbodyRobot& operator=(const SimbodyRobot&) = delete;
 
     /// Inverse dynamics with the platform pose prescribed from the trajectory (custom Motion
-    /// on the Planar mobilizer). Pass 1: Simbody assembles the sliders and links (Assembler,
-    /// seeded from the previous sample), projects the velocities and solves the constrained
-    /// accelerations. Pass 2: the sliders' accelerations are prescribed instead (platform
+    /// on the Planar mobilizer). Pass 1: Simbody assembles the sliders and links (Newton
+    /// projection from the previous sample extrapolated in time; the Assembler, then a seed
+    /// on the intended branch, as fallbacks), projects the velocities and solves the
+    /// constrained accelerations. Pass 2: the sliders' accelerations are prescribed instead (platform
     /// free) and the actuator forces are minus the findMotionForces entries. One sample per
     /// time. Throws nocdyn::Error if a pose is outside the workspace, assembly fails, or the
     /// assembly lands on the wrong branch.
