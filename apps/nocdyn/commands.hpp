@@ -9,5 +9,7 @@ namespace nocdyn::cli {
 void addPoseCommand(CLI::App& app);
 void addInverseDynamicsCommand(CLI::App& app);
 void addReproduceCommand(CLI::App& app);
+void addForwardKinematicsCommand(CLI::App& app);
+void addSimulateCommand(CLI::App& app);
 
 }  // namespace nocdyn::cli

@@ -18,6 +18,8 @@ int main(int argc, char** argv) {
     nocdyn::cli::addPoseCommand(app);
     nocdyn::cli::addInverseDynamicsCommand(app);
     nocdyn::cli::addReproduceCommand(app);
+    nocdyn::cli::addForwardKinematicsCommand(app);
+    nocdyn::cli::addSimulateCommand(app);
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

@@ -4,10 +4,12 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <sstream>
 
 #include <Eigen/Cholesky>
 #include <boost/numeric/odeint.hpp>
 
+#include "nocdyn/error.hpp"
 #include "nocdyn/prr3/dynamics.hpp"
 #include "nocdyn/prr3/kinematics.hpp"
 
@@ -201,5 +203,98 @@ std::size_t Simulator::rejectedSteps() const { return impl_->rejected; }
 const Data& Simulator::data() const { return impl_->data; }
 const Model& Simulator::model() const { return impl_->model; }
 const SimulatorOptions& Simulator::options() const { return impl_->options; }
+
+// ---- batch layer ------------------------------------------------------------------
+
+JointVector ForceSeries::at(double time) const {
+    if (t.empty()) return JointVector::Zero();
+    if (time <= t.front()) return tau.front();
+    if (time >= t.back()) return tau.back();
+    const auto upper = std::upper_bound(t.begin(), t.end(), time);
+    const std::size_t k = static_cast<std::size_t>(upper - t.begin());
+    const double s = (time - t[k - 1]) / (t[k] - t[k - 1]);
+    return tau[k - 1] + s * (tau[k] - tau[k - 1]);
+}
+
+namespace {
+
+std::string atTime(double t, const Status& status, const RobotParameters& robot) {
+    std::ostringstream out;
+    out.precision(9);
+    out << "t = " << t << " s: " << describe(status, robot);
+    return out.str();
+}
+
+void record(const Simulator& simulator, SimulationSeries& series) {
+    series.t.push_back(simulator.time());
+    series.p.push_back(simulator.pose());
+    series.dp.push_back(simulator.poseRate());
+    series.u.push_back(simulator.u());
+    series.du.push_back(simulator.du());
+    series.tau.push_back(simulator.data().tau);
+    series.kinetic.push_back(simulator.kineticEnergy());
+}
+
+}  // namespace
+
+SimulationSeries simulateForces(Simulator& simulator, const ForceSeries& forces, const std::vector<double>& output_times) {
+    SimulationSeries series;
+    const RobotParameters& robot = simulator.model().parameters;
+    std::size_t next_force = 0;
+    for (const double t_out : output_times) {
+        if (t_out < simulator.time() - 1e-12) throw Error("simulation output times must increase");
+        // integrate to t_out, stopping at every force sample on the way
+        while (simulator.time() < t_out - 1e-15 * std::max(1.0, std::abs(t_out))) {
+            const double now = simulator.time();
+            while (next_force < forces.t.size() && forces.t[next_force] <= now + 1e-15) ++next_force;
+            const double stop = next_force < forces.t.size() ? std::min(t_out, forces.t[next_force]) : t_out;
+            const Status status = simulator.advance(stop - now, forces.at(now), forces.at(stop));
+            if (!status) throw Error(atTime(simulator.time(), status, robot));
+        }
+        if (series.t.empty() || t_out > series.t.back()) {
+            // refresh the forces stage at exactly t_out (the last segment ended here)
+            record(simulator, series);
+            series.tau.back() = forces.at(t_out);
+        }
+    }
+    return series;
+}
+
+ForceSeries forcesFromTable(const io::Table& table, const std::string& source) {
+    ForceSeries forces;
+    std::array<std::size_t, 4> column{};
+    const char* names[] = {"t", "tau1", "tau2", "tau3"};
+    for (int c = 0; c < 4; ++c) {
+        if (!table.has(names[c])) throw Error(source + ": missing column '" + names[c] + "'");
+        column[c] = table.column(names[c]);
+    }
+    if (table.rows.empty()) throw Error(source + ": no rows");
+    for (std::size_t r = 0; r < table.rows.size(); ++r) {
+        const auto& row = table.rows[r];
+        const double t = row[column[0]];
+        if (!forces.t.empty() && !(t > forces.t.back())) {
+            std::ostringstream out;
+            out.precision(17);
+            out << source << ": row " << r + 2 << ": t = " << t << " does not increase";
+            throw Error(out.str());
+        }
+        forces.t.push_back(t);
+        forces.tau.emplace_back(row[column[1]], row[column[2]], row[column[3]]);
+    }
+    return forces;
+}
+
+io::Table toTable(const SimulationSeries& series) {
+    io::Table table;
+    table.columns = {"t", "x", "y", "theta", "u1", "u2", "u3", "du1", "du2", "du3", "tau1", "tau2", "tau3", "kinetic"};
+    table.rows.reserve(series.t.size());
+    for (std::size_t k = 0; k < series.t.size(); ++k) {
+        const Pose& p = series.p[k];
+        table.rows.push_back({series.t[k], p(1), p(2), p(0), series.u[k](0), series.u[k](1), series.u[k](2),
+                              series.du[k](0), series.du[k](1), series.du[k](2), series.tau[k](0), series.tau[k](1),
+                              series.tau[k](2), series.kinetic[k]});
+    }
+    return table;
+}
 
 }  // namespace nocdyn::prr3

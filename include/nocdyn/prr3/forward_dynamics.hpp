@@ -16,6 +16,9 @@
 
 #include <cstddef>
 #include <memory>
+#include <vector>
+
+#include "nocdyn/io/csv.hpp"
 
 #include "nocdyn/prr3/direct_kinematics.hpp"
 #include "nocdyn/prr3/model.hpp"
@@ -98,5 +101,40 @@ private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
+
+// ---- batch layer (allocates, throws nocdyn::Error) ------------------------------------
+
+/// Actuator forces given at increasing sample times, linear in between, held constant
+/// before the first and after the last sample.
+struct ForceSeries {
+    std::vector<double> t;         ///< [s], strictly increasing
+    std::vector<JointVector> tau;  ///< [N]
+
+    /// Forces at `time` (linear interpolation). Allocation-free.
+    [[nodiscard]] JointVector at(double time) const;
+};
+
+/// A simulated run, one row per output instant.
+struct SimulationSeries {
+    std::vector<double> t;
+    std::vector<Pose> p;
+    std::vector<Twist> dp;
+    std::vector<JointVector> u, du, tau;
+    std::vector<double> kinetic;  ///< [J]
+};
+
+/// Runs `simulator` from its current state through every output time (increasing, not
+/// before the simulator's time), with forces from `forces`; the integration restarts at every
+/// force sample so that the forces are smooth within each integration segment. Throws
+/// nocdyn::Error "t = ... s: reason" when the state leaves the workspace or the mode is lost.
+[[nodiscard]] SimulationSeries simulateForces(Simulator& simulator, const ForceSeries& forces,
+                                              const std::vector<double>& output_times);
+
+/// Forces from a CSV table with columns t,tau1,tau2,tau3 (extra columns ignored). Throws
+/// nocdyn::Error naming the missing column or the row whose time does not increase.
+[[nodiscard]] ForceSeries forcesFromTable(const io::Table& table, const std::string& source);
+
+/// CSV table: t,x,y,theta,u1..u3,du1..du3,tau1..tau3,kinetic (SI).
+[[nodiscard]] io::Table toTable(const SimulationSeries& series);
 
 }  // namespace nocdyn::prr3
