@@ -11,5 +11,8 @@ void addInverseDynamicsCommand(CLI::App& app);
 void addReproduceCommand(CLI::App& app);
 void addForwardKinematicsCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
+#ifdef NOCDYN_HAS_ENGINES
+void addValidateCommand(CLI::App& app);
+#endif
 
 }  // namespace nocdyn::cli

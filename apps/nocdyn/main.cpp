@@ -20,6 +20,9 @@ int main(int argc, char** argv) {
     nocdyn::cli::addReproduceCommand(app);
     nocdyn::cli::addForwardKinematicsCommand(app);
     nocdyn::cli::addSimulateCommand(app);
+#ifdef NOCDYN_HAS_ENGINES
+    nocdyn::cli::addValidateCommand(app);
+#endif
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
