@@ -39,12 +39,34 @@ template <int N>
     return out;
 }
 
+/// Adds one body's term of eq. 23 to I: I += T_i^T M_i T_i. With M_i = diag(I_i, m_i, m_i)
+/// (eq. 9) entry (a, b) gains I_i T_i(0,a) T_i(0,b) + m_i (T_i(1,a) T_i(1,b) + T_i(2,a) T_i(2,b));
+/// only the upper triangle is computed, then mirrored (I is symmetric).
+template <int N>
+void addInertia(const InertiaDyad& M, const ShapingMatrix<N>& T, JointMatrix<N>& I) {
+    const ShapingMatrix<N> W = applyInertia(M, T);
+    for (int b = 0; b < N; ++b) {
+        for (int a = 0; a <= b; ++a) {
+            I(a, b) += T(0, a) * W(0, b) + T(1, a) * W(1, b) + T(2, a) * W(2, b);
+            I(b, a) = I(a, b);
+        }
+    }
+}
+
+/// Adds one body's term of eq. 23 to C: C += T_i^T M_i dT_i.
+template <int N>
+void addCoriolis(const InertiaDyad& M, const ShapingMatrix<N>& T, const ShapingMatrix<N>& T_dot,
+                 JointMatrix<N>& C) {
+    const ShapingMatrix<N> W = applyInertia(M, T);
+    C.noalias() += W.transpose() * T_dot;
+}
+
 /// eq. 23: I = sum_i T_i^T M_i T_i. Joint-space inertia [kg], N x N, symmetric.
 template <int N, std::size_t B>
 void inertia(const std::array<InertiaDyad, B>& M, const std::array<ShapingMatrix<N>, B>& T,
              JointMatrix<N>& I) {
     I.setZero();
-    for (std::size_t i = 0; i < B; ++i) I.noalias() += T[i].transpose() * applyInertia(M[i], T[i]);
+    for (std::size_t i = 0; i < B; ++i) addInertia(M[i], T[i], I);
 }
 
 /// eq. 23: C = sum_i T_i^T M_i dT_i. Coriolis and centrifugal matrix [kg/s], N x N.
@@ -52,7 +74,7 @@ template <int N, std::size_t B>
 void coriolis(const std::array<InertiaDyad, B>& M, const std::array<ShapingMatrix<N>, B>& T,
               const std::array<ShapingMatrix<N>, B>& T_dot, JointMatrix<N>& C) {
     C.setZero();
-    for (std::size_t i = 0; i < B; ++i) C.noalias() += T[i].transpose() * applyInertia(M[i], T_dot[i]);
+    for (std::size_t i = 0; i < B; ++i) addCoriolis(M[i], T[i], T_dot[i], C);
 }
 
 /// eq. 20: tau = I ddu + C du. Actuator forces (or torques) [N].

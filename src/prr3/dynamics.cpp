@@ -42,35 +42,44 @@ void twistShaping(const Model& model, Data& data) {
 
         // eq. 29: gamma_dot_j = J_j^{-1} H^{-1} D du = X du
         const Matrix3 X = data.J_inv[j] * T_7;
-        // d/dt J_j: only its lower rows move, E dp_Aj and E dp_Mj
+        // d/dt J_j: only its lower rows move, E dp_Aj (column 1) and E dp_Mj (column 2), so
+        // dX = J_j^{-1} (dT_7 - dJ_j X) with dJ_j X = [0; E dp_Aj X(1,:) + E dp_Mj X(2,:)]
         const Vector2 p_A_dot = c_dot - data.du(j) * model.e[j];
         const Vector2 p_M_dot = omega * perp(data.p_M[j]);
-        Matrix3 J_dot = Matrix3::Zero();
-        J_dot.block<2, 1>(1, 1) = perp(p_A_dot);
-        J_dot.block<2, 1>(1, 2) = perp(p_M_dot);
         Matrix3 X_rhs = T_7_dot;
-        X_rhs.noalias() -= J_dot * X;
+        X_rhs.bottomRows<2>().noalias() -= perp(p_A_dot) * X.row(1);
+        X_rhs.bottomRows<2>().noalias() -= perp(p_M_dot) * X.row(2);
         const Matrix3 X_dot = data.J_inv[j] * X_rhs;
 
-        // eq. 28b: U_{j+3} = [0 1 0; e_j (l_c/l) E m_j 0]
-        Matrix3 U = Matrix3::Zero();
-        U.col(0) = prismaticTwist(model.e[j]);
-        U(0, 1) = 1.0;
-        U.block<2, 1>(1, 1) = ratio * perp(data.m[j]);
-        // d/dt U_{j+3}: m_j turns at dphi_Aj
-        Matrix3 U_dot = Matrix3::Zero();
-        U_dot.block<2, 1>(1, 1) = ratio * data.gamma_dot[j](1) * perp(perp(data.m[j]));
-
-        // eq. 30: T_{j+3} = U_{j+3} J_j^{-1} H^{-1} D
-        data.T[linkBody(j)].noalias() = U * X;
-        data.T_dot[linkBody(j)].noalias() = U_dot * X;
-        data.T_dot[linkBody(j)].noalias() += U * X_dot;
+        // eq. 30: T_{j+3} = U_{j+3} X with eq. 28b, U_{j+3} = [0 1 0; e_j (l_c/l) E m_j 0]:
+        // row 0 is X(1,:), rows 1-2 are e_j X(0,:) + (l_c/l) E m_j X(1,:)
+        const Vector2 k = ratio * perp(data.m[j]);
+        ShapingMatrix& T_link = data.T[linkBody(j)];
+        T_link.row(0) = X.row(1);
+        T_link.bottomRows<2>().noalias() = model.e[j] * X.row(0);
+        T_link.bottomRows<2>().noalias() += k * X.row(1);
+        // dT_{j+3} = dU_{j+3} X + U_{j+3} dX, where m_j turns at dphi_Aj, so the only moving
+        // column of U_{j+3} has rate (l_c/l) dphi_Aj E E m_j = -(l_c/l) dphi_Aj m_j
+        const Vector2 k_dot = -ratio * data.gamma_dot[j](1) * data.m[j];
+        ShapingMatrix& T_link_dot = data.T_dot[linkBody(j)];
+        T_link_dot.row(0) = X_dot.row(1);
+        T_link_dot.bottomRows<2>().noalias() = model.e[j] * X_dot.row(0);
+        T_link_dot.bottomRows<2>().noalias() += k * X_dot.row(1);
+        T_link_dot.bottomRows<2>().noalias() += k_dot * X.row(1);
     }
 }
 
 void jointSpaceDynamics(const Model& model, Data& data) {
-    noc::inertia(model.M, data.T, data.I);            // eq. 23
-    noc::coriolis(model.M, data.T, data.T_dot, data.C);  // eq. 23
+    // eq. 23, sliders (eqs. 25-27): T_j is [0; e_j] in column j alone, so its term of I is
+    // m_j e_j . e_j = m_j at (j, j); dT_j = 0 adds nothing to C.
+    data.I.setZero();
+    data.C.setZero();
+    for (int j = 0; j < kLimbs; ++j) data.I(j, j) = model.M[sliderBody(j)].mass * model.e[j].squaredNorm();
+    // eq. 23, links and platform: the general NOC terms T_i^T M_i T_i and T_i^T M_i dT_i
+    for (int i = linkBody(0); i < kBodies; ++i) {
+        noc::addInertia(model.M[i], data.T[i], data.I);
+        noc::addCoriolis(model.M[i], data.T[i], data.T_dot[i], data.C);
+    }
 }
 
 void actuatorForces(Data& data) { noc::inverseDynamics(data.I, data.C, data.du, data.ddu, data.tau); }
