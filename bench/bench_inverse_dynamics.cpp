@@ -146,4 +146,4 @@ void stageForces(benchmark::State& state) {
 }  // namespace
 }  // namespace nocdyn::bench
 
-BENCHMARK_MAIN();
+BENCHMARK_MAIN();  // one main for both translation units

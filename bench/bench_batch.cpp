@@ -1,0 +1,176 @@
+// Batch inverse dynamics (batch.hpp), forward dynamics and simulation, and the machine's
+// arithmetic peak that the bound in README.md is measured against.
+#include <benchmark/benchmark.h>
+
+#include <cstddef>
+#include <vector>
+
+#include "fixture.hpp"
+#include "nocdyn/prr3/batch.hpp"
+#include "nocdyn/prr3/forward_dynamics.hpp"
+
+namespace nocdyn::bench {
+namespace {
+
+void perSample(benchmark::State& state, double samples_per_iteration) {
+    state.counters["per_sample"] = benchmark::Counter(
+        samples_per_iteration, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+/// The fixture's cycle repeated `cycles` times as a structure-of-arrays batch.
+prr3::SampleBatch batchOf(std::size_t cycles) {
+    const Fixture& f = fixture();
+    prr3::SampleBatch batch(static_cast<Eigen::Index>(cycles * f.samples.size()));
+    Eigen::Index row = 0;
+    for (std::size_t c = 0; c < cycles; ++c) {
+        for (const Sample& s : f.samples) {
+            batch.p.row(row) = s.p.transpose();
+            batch.dp.row(row) = s.dp.transpose();
+            batch.ddp.row(row) = s.ddp.transpose();
+            ++row;
+        }
+    }
+    return batch;
+}
+
+/// One cycle (1000 samples, 152 kB of inputs and outputs: cache-resident) on one thread.
+void batchCycle(benchmark::State& state) {
+    const Fixture& f = fixture();
+    prr3::SampleBatch batch = batchOf(1);
+    for (auto _ : state) {
+        const prr3::BatchStatus status = prr3::inverseDynamicsBatch(f.model, batch);
+        benchmark::DoNotOptimize(status);
+        benchmark::DoNotOptimize(batch.tau.data());
+        benchmark::ClobberMemory();
+    }
+    perSample(state, static_cast<double>(batch.size()));
+}
+
+/// 100 cycles (100 000 samples) over state.range(0) threads; wall-clock time.
+void batchThreads(benchmark::State& state) {
+    const Fixture& f = fixture();
+    prr3::SampleBatch batch = batchOf(100);
+    const auto threads = static_cast<unsigned>(state.range(0));
+    for (auto _ : state) {
+        const prr3::BatchStatus status = prr3::inverseDynamicsBatchParallel(f.model, batch, threads);
+        benchmark::DoNotOptimize(status);
+        benchmark::DoNotOptimize(batch.tau.data());
+        benchmark::ClobberMemory();
+    }
+    perSample(state, static_cast<double>(batch.size()));
+}
+
+/// One evaluation of ddu from the state (u, du) and the forces: pose tracking from the
+/// previous sample's pose, velocity stage, shaping, I and C, and the solve of eq. 20.
+void forwardDynamics(benchmark::State& state) {
+    const Fixture& f = fixture();
+    prr3::Data data;
+    std::size_t k = 0;
+    Pose pose = f.samples.back().p;
+    for (auto _ : state) {
+        const Sample& s = f.samples[k];
+        const Status status = prr3::forwardDynamicsFromState(f.model, data, s.u, s.du, s.tau, pose);
+        benchmark::DoNotOptimize(status);
+        benchmark::DoNotOptimize(data.ddu);
+        if (++k == f.samples.size()) k = 0;
+    }
+    perSample(state, 1);
+}
+
+/// One simulated second of the paper's trajectory 1 at the simulator's default tolerance,
+/// driven by the inverse-dynamics forces at 10 kHz (linear between ticks).
+void simulateSecond(benchmark::State& state) {
+    const Fixture& f = fixture();
+    const PoseTrajectory trajectory = paperTrajectory1();
+    constexpr int kTicks = 10000;
+    std::vector<prr3::JointVector> tau(kTicks + 1);
+    prr3::Data data;
+    Pose p0, dp0, ddp;
+    for (int i = 0; i <= kTicks; ++i) {
+        Pose p, dp;
+        trajectory.evaluate(i / kRate, p, dp, ddp);
+        if (i == 0) p0 = p, dp0 = dp;
+        (void)prr3::inverseDynamics(f.model, data, p, dp, ddp);
+        tau[static_cast<std::size_t>(i)] = data.tau;
+    }
+    prr3::Simulator simulator(f.model);
+    for (auto _ : state) {
+        (void)simulator.reset(p0, dp0, 0.0);
+        for (int i = 0; i < kTicks; ++i) {
+            const Status status = simulator.advance(1.0 / kRate, tau[static_cast<std::size_t>(i)],
+                                                    tau[static_cast<std::size_t>(i) + 1]);
+            benchmark::DoNotOptimize(status);
+        }
+        benchmark::DoNotOptimize(simulator.u());
+    }
+    state.counters["steps"] = static_cast<double>(simulator.acceptedSteps()) / static_cast<double>(state.iterations());
+}
+
+// ---- the machine's arithmetic peak on one core ------------------------------------------
+// 4-lane double vectors (GCC vector extension), AVX2+FMA code. Each benchmark reports
+// `per_lane_op`: seconds per scalar (lane) operation at full throughput.
+using V4 = double __attribute__((vector_size(32)));
+
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__)
+#define NOCDYN_AVX2 __attribute__((target("avx2,fma")))
+#else
+#define NOCDYN_AVX2
+#endif
+
+constexpr int kChains = 12;  // independent dependency chains: covers latency x throughput
+
+NOCDYN_AVX2 void peakAddMul(benchmark::State& state) {
+    // half multiplies, half adds, all independent: the mix of the batch kernel
+    V4 acc[kChains];
+    for (int i = 0; i < kChains; ++i) acc[i] = V4{1.0 + i, 1.0, 1.0, 1.0};
+    const V4 m = {0.999999, 0.999999, 0.999999, 0.999999}, a = {1e-9, 1e-9, 1e-9, 1e-9};
+    constexpr int kRounds = 1000;
+    for (auto _ : state) {
+        for (int r = 0; r < kRounds; ++r) {
+            for (int i = 0; i < kChains; i += 2) {
+                acc[i] = acc[i] * m;
+                acc[i + 1] = acc[i + 1] + a;
+            }
+            benchmark::DoNotOptimize(acc);
+        }
+    }
+    state.counters["per_lane_op"] = benchmark::Counter(
+        4.0 * kRounds * kChains, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+template <int Op>
+NOCDYN_AVX2 void peakDivSqrt(benchmark::State& state) {
+    V4 acc[kChains];
+    for (int i = 0; i < kChains; ++i) acc[i] = V4{2.0 + i, 2.0, 2.0, 2.0};
+    const V4 one = {1.0, 1.0, 1.0, 1.0};
+    constexpr int kRounds = 200;
+    for (auto _ : state) {
+        for (int r = 0; r < kRounds; ++r) {
+            for (int i = 0; i < kChains; ++i) {
+                if constexpr (Op == 0) {
+                    acc[i] = one / acc[i];  // 1 / (1 / x) = x: stays bounded
+                } else {
+                    acc[i] = __builtin_ia32_sqrtpd256(acc[i]) + one;  // converges to ~2.6
+                }
+            }
+            benchmark::DoNotOptimize(acc);
+        }
+    }
+    state.counters["per_lane_op"] = benchmark::Counter(
+        4.0 * kRounds * kChains, benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+[[maybe_unused]] const bool registered = [] {
+    benchmark::RegisterBenchmark("BM_Batch/nocdyn/cycle_1thread", batchCycle);
+    benchmark::RegisterBenchmark("BM_Batch/nocdyn/100k_samples", batchThreads)
+        ->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("BM_ForwardDynamics/nocdyn", forwardDynamics);
+    benchmark::RegisterBenchmark("BM_SimulateSecond/nocdyn", simulateSecond)->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("BM_Peak/add_mul_avx2", peakAddMul);
+    benchmark::RegisterBenchmark("BM_Peak/div_avx2", peakDivSqrt<0>);
+    benchmark::RegisterBenchmark("BM_Peak/sqrt_avx2", peakDivSqrt<1>);
+    return true;
+}();
+
+}  // namespace
+}  // namespace nocdyn::bench
