@@ -11,6 +11,8 @@ void addInverseDynamicsCommand(CLI::App& app);
 void addReproduceCommand(CLI::App& app);
 void addForwardKinematicsCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
+void addControlCommand(CLI::App& app);
+void addEnvelopeCommand(CLI::App& app);
 #ifdef NOCDYN_HAS_ENGINES
 void addValidateCommand(CLI::App& app);
 #endif

@@ -20,6 +20,8 @@ int main(int argc, char** argv) {
     nocdyn::cli::addReproduceCommand(app);
     nocdyn::cli::addForwardKinematicsCommand(app);
     nocdyn::cli::addSimulateCommand(app);
+    nocdyn::cli::addControlCommand(app);
+    nocdyn::cli::addEnvelopeCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif

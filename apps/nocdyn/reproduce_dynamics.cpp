@@ -1,0 +1,259 @@
+// Issue 4's results for `nocdyn reproduce`: round trip, closed-loop control, operating envelope.
+#include "reproduce_dynamics.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <ostream>
+
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/prr3/dynamics.hpp"
+#include "nocdyn/prr3/forward_dynamics.hpp"
+#include "nocdyn/prr3/sampling.hpp"
+#ifdef NOCDYN_HAS_SIMBODY
+#include "simbody_plant.hpp"
+#endif
+
+namespace nocdyn::cli {
+
+std::string defaultPlantName() {
+#ifdef NOCDYN_HAS_SIMBODY
+    return "simbody";
+#else
+    return "nocdyn";
+#endif
+}
+
+std::unique_ptr<control::Plant> makePlant(const std::string& name, const RobotParameters& robot) {
+    if (name == "nocdyn") return std::make_unique<control::SimulatorPlant>(prr3::Model(robot));
+    if (name == "simbody") {
+#ifdef NOCDYN_HAS_SIMBODY
+        return std::make_unique<SimbodyPlant>(robot);
+#else
+        throw Error("plant 'simbody': this nocdyn was built without the Simbody model (NOCDYN_BUILD_VALIDATION=ON)");
+#endif
+    }
+    throw Error("unknown plant '" + name + "' (expected simbody or nocdyn)");
+}
+
+control::ClosedLoopResult runControlCase(const prr3::Model& model, const PoseTrajectory& trajectory,
+                                         const ControlCase& options) {
+    const control::Gains gains = control::criticallyDamped(options.natural_frequency);
+    std::unique_ptr<control::Controller> controller;
+    if (options.controller == "computed-torque") {
+        controller = std::make_unique<control::ComputedTorqueController>(model, gains);
+    } else if (options.controller == "pd") {
+        controller = std::make_unique<control::PdController>(control::equivalentPdGains(model, gains));
+    } else {
+        throw Error("unknown controller '" + options.controller + "' (expected computed-torque or pd)");
+    }
+    const RobotParameters plant_robot =
+        control::withPayload(model.parameters, options.payload_mass, options.payload_inertia);
+    const std::unique_ptr<control::Plant> plant = makePlant(options.plant, plant_robot);
+    return control::runClosedLoop(*controller, model, *plant, trajectory, options.loop);
+}
+
+Figure trackingErrorFigure(const std::string& title, const std::vector<control::ClosedLoopResult>& runs) {
+    Figure figure;
+    figure.title = title;
+    for (const auto& run : runs) {
+        PlotPanel panel;
+        char heading[200];
+        std::snprintf(heading, sizeof heading, "%s on the %s plant: RMS error %.3g um", run.controller.c_str(),
+                      run.plant.c_str(), run.rms_error.maxCoeff() * 1e6);
+        panel.title = heading;
+        panel.xlabel = "t [s]";
+        panel.ylabel = "u_{d,j} - u_j [{/Symbol m}m]";
+        for (int j = 0; j < 3; ++j) {
+            PlotSeries line;
+            line.label = "e_" + std::to_string(j + 1);
+            line.x = run.t;
+            for (std::size_t k = 0; k < run.t.size(); ++k) line.y.push_back((run.u_d[k](j) - run.u[k](j)) * 1e6);
+            line.style = "lines lw 2";
+            panel.series.push_back(std::move(line));
+        }
+        figure.panels.push_back(std::move(panel));
+    }
+    return figure;
+}
+
+io::Table envelopeTable(const std::vector<prr3::EnvelopePoint>& points) {
+    io::Table table;
+    table.columns = {"axis", "frequency", "amplitude", "limit", "limb", "kinematic_amplitude", "peak_force", "peak_stroke"};
+    for (const auto& p : points) {
+        table.rows.push_back({static_cast<double>(p.axis), p.frequency, p.amplitude, static_cast<double>(p.limit),
+                              static_cast<double>(p.limb + 1), p.kinematic_amplitude, p.peak_force, p.peak_stroke});
+    }
+    return table;
+}
+
+Figure envelopeFigure(const std::vector<prr3::EnvelopePoint>& points, const std::string& robot) {
+    PlotPanel translation{"Translation along x and y", "frequency [Hz]", "largest amplitude [mm]", {}, true, true};
+    PlotPanel rotation{"Rotation theta", "frequency [Hz]", "largest amplitude [deg]", {}, true, true};
+    for (const prr3::Axis axis : {prr3::Axis::x, prr3::Axis::y, prr3::Axis::theta}) {
+        PlotSeries line;
+        line.label = prr3::axisName(axis);
+        line.style = "linespoints lw 2 pt 7 ps 0.6";
+        for (const auto& p : points) {
+            if (p.axis != axis) continue;
+            line.x.push_back(p.frequency);
+            line.y.push_back(axis == prr3::Axis::theta ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3);
+        }
+        (axis == prr3::Axis::theta ? rotation : translation).series.push_back(std::move(line));
+    }
+    Figure figure;
+    figure.title = "Operating envelope of " + robot + ": flat = stroke-bound, slope -2 = peak-force-bound";
+    figure.panels = {translation, rotation};
+    return figure;
+}
+
+namespace {
+
+const char* kTrajectories[] = {"paper1", "paper2"};
+
+PoseTrajectory paperTrajectory(int k) { return k == 0 ? paperTrajectory1() : paperTrajectory2(); }
+
+}  // namespace
+
+void reproduceControl(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary) {
+    const ControlCase base;
+    summary << "## Model-based control (closed loop)\n\n"
+            << "Controller at " << base.loop.rate / 1000 << " kHz with zero-order hold, error dynamics critically damped at "
+            << base.natural_frequency << " Hz, actuator saturation at " << model.parameters.peak_force
+            << " N, plant: " << (base.plant == "simbody" ? "the independent Simbody model" : "nocdyn's forward dynamics")
+            << ". Computed torque: tau = I(u)(ddu_d + K_d e' + K_p e) + C(u, du) du (eq. 20); PD: the same gains times "
+               "diag(I) at the reference posture. The payload case adds 0.5 kg and 1e-3 kg m^2 to the plant's platform only.\n\n"
+            << "| trajectory | controller | payload unknown to the controller | RMS error u1, u2, u3 [um] | peak error [um] | "
+               "peak pose error x, y [um], theta [urad] | saturated ticks |\n"
+            << "| --- | --- | --- | --- | --- | --- | --- |\n";
+    for (int k = 0; k < 2; ++k) {
+        const PoseTrajectory trajectory = paperTrajectory(k);
+        std::vector<control::ClosedLoopResult> runs;
+        for (const auto& [controller, payload] :
+             {std::pair<const char*, double>{"computed-torque", 0.0}, {"pd", 0.0}, {"computed-torque", 0.5}}) {
+            ControlCase c = base;
+            c.controller = controller;
+            c.payload_mass = payload;
+            c.payload_inertia = payload > 0.0 ? 1e-3 : 0.0;
+            runs.push_back(runControlCase(model, trajectory, c));
+            const auto& r = runs.back();
+            char row[400];
+            std::snprintf(row, sizeof row, "| %s | %s | %s | %.4g, %.4g, %.4g | %.4g | %.4g, %.4g, %.4g | %zu |\n",
+                          kTrajectories[k], controller, payload > 0.0 ? "0.5 kg" : "none", r.rms_error(0) * 1e6,
+                          r.rms_error(1) * 1e6, r.rms_error(2) * 1e6, r.peak_error.maxCoeff() * 1e6,
+                          r.pose_peak_error(1) * 1e6, r.pose_peak_error(2) * 1e6, r.pose_peak_error(0) * 1e6,
+                          r.saturated_ticks);
+            summary << row;
+        }
+        const std::string stem = std::string("control_") + kTrajectories[k];
+        io::writeCsvFile((out / (stem + ".csv")).string(), control::toTable(runs[0]));
+        renderFigure(trackingErrorFigure(std::string(kTrajectories[k]) + ": actuator tracking errors", runs),
+                     (out / (stem + "_errors")).string());
+    }
+    summary << "\nFigures: `control_paper1_errors.png`, `control_paper2_errors.png` (panels: computed torque, PD, "
+               "computed torque with the unknown payload); CSV of the computed-torque runs: `control_paper{1,2}.csv`.\n\n";
+}
+
+void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary) {
+    const auto points = prr3::operatingEnvelope(model);
+    io::writeCsvFile((out / "envelope.csv").string(), envelopeTable(points));
+    renderFigure(envelopeFigure(points, model.parameters.name), (out / "envelope").string());
+
+    summary << "## Operating envelope\n\n"
+            << "Largest amplitude A of p(t) = A sin(2 pi f t) along one axis about the reference posture, within the stroke (+-"
+            << model.parameters.stroke * 0.5e3 << " mm), the workspace and the peak force (" << model.parameters.peak_force
+            << " N), from the inverse dynamics over one period (256 samples), f = 1..100 Hz log-spaced "
+               "(`envelope.csv`, `envelope.png`).\n\n"
+            << "| axis | stroke-bound amplitude | stroke binds up to [Hz] | force binds from [Hz] | amplitude at 100 Hz | "
+               "A(50 Hz) / A(100 Hz) |\n| --- | --- | --- | --- | --- | --- |\n";
+    for (const prr3::Axis axis : {prr3::Axis::x, prr3::Axis::y, prr3::Axis::theta}) {
+        double last_stroke = 0.0, first_force = 0.0, kinematic = 0.0, at100 = 0.0;
+        for (const auto& p : points) {
+            if (p.axis != axis) continue;
+            kinematic = p.kinematic_amplitude;
+            if (p.limit != prr3::BindingLimit::force) last_stroke = p.frequency;
+            if (p.limit == prr3::BindingLimit::force && first_force == 0.0) first_force = p.frequency;
+            at100 = p.amplitude;
+        }
+        const double ratio = prr3::maximumAmplitude(model, axis, 50.0).amplitude /
+                             prr3::maximumAmplitude(model, axis, 100.0).amplitude;
+        const bool angle = axis == prr3::Axis::theta;
+        const double scale = angle ? 180.0 / std::numbers::pi : 1e3;
+        const char* unit = angle ? "deg" : "mm";
+        char row[300];
+        std::snprintf(row, sizeof row, "| %s | %.4g %s | %.3g | %.3g | %.4g %s | %.3f |\n", prr3::axisName(axis),
+                      kinematic * scale, unit, last_stroke, first_force, at100 * scale, unit, ratio);
+        summary << row;
+    }
+    summary << "\nBelow the crossover the stroke binds (amplitude independent of f); above it the peak force binds and "
+               "the amplitude falls as 1/f^2 (ratio 4 per octave).\n\n"
+            << "Paper trajectories against the envelope (each harmonic's amplitude over the envelope at its frequency; "
+               "the combined motion's peak stroke and force from the inverse dynamics over 0.2 s):\n\n"
+            << "| trajectory | axis | amplitude | frequency [Hz] | envelope | fraction of envelope |\n"
+            << "| --- | --- | --- | --- | --- | --- |\n";
+    for (int k = 0; k < 2; ++k) {
+        const PoseTrajectory trajectory = paperTrajectory(k);
+        const AxisMotion* motions[] = {&trajectory.theta, &trajectory.x, &trajectory.y};
+        for (const prr3::Axis axis : {prr3::Axis::x, prr3::Axis::y, prr3::Axis::theta}) {
+            const bool angle = axis == prr3::Axis::theta;
+            const double scale = angle ? 180.0 / std::numbers::pi : 1e3;
+            for (const Harmonic& h : motions[static_cast<int>(axis)]->harmonics) {
+                const auto p = prr3::maximumAmplitude(model, axis, h.frequency);
+                char row[300];
+                std::snprintf(row, sizeof row, "| %s | %s | %.4g %s | %.4g | %.4g %s (%s-bound) | %.1f %% |\n",
+                              kTrajectories[k], prr3::axisName(axis), std::abs(h.amplitude) * scale,
+                              angle ? "deg" : "mm", h.frequency, p.amplitude * scale, angle ? "deg" : "mm",
+                              prr3::limitName(p.limit), 100.0 * std::abs(h.amplitude) / p.amplitude);
+                summary << row;
+            }
+        }
+        const auto series = prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.2, 10000.0),
+                                                        prr3::LimitPolicy::record);
+        double stroke = 0.0, force = 0.0;
+        for (int j = 0; j < 3; ++j) {
+            stroke = std::max(stroke, series.peak_stroke[j]);
+            force = std::max(force, series.peak_force[j]);
+        }
+        char row[300];
+        std::snprintf(row, sizeof row, "| %s | combined | peak abs(u) %.3f mm = %.1f %% of half stroke | | peak abs(tau) %.2f N | %.1f %% of peak force |\n",
+                      kTrajectories[k], stroke * 1e3, 100.0 * stroke / (0.5 * model.parameters.stroke), force,
+                      100.0 * force / model.parameters.peak_force);
+        summary << row;
+    }
+    summary << "\n";
+}
+
+void reproduceRoundTrip(const prr3::Model& model, std::ostream& summary) {
+    summary << "## Forward dynamics round trip\n\n"
+            << "Inverse-dynamics forces of each paper trajectory sampled at 10 kHz (linear in between) drive the forward "
+               "dynamics (Boost.Odeint Dormand-Prince 5(4), tolerances 1e-12 abs, 1e-10 rel) from the trajectory's initial "
+               "state for 0.2 s.\n\n"
+            << "| trajectory | max abs(u - u_d) [m] | max pose error x, y [m] | max theta error [rad] | steps |\n"
+            << "| --- | --- | --- | --- | --- |\n";
+    for (int k = 0; k < 2; ++k) {
+        const PoseTrajectory trajectory = paperTrajectory(k);
+        const auto series = prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.2, 10000.0),
+                                                        prr3::LimitPolicy::record);
+        prr3::ForceSeries forces{series.t, series.tau};
+        prr3::Simulator simulator(model);
+        if (const Status status = simulator.reset(series.p[0], series.dp[0]); !status) {
+            throw Error("round trip: " + describe(status, model.parameters));
+        }
+        const auto sim = prr3::simulateForces(simulator, forces, series.t);
+        double u_error = 0.0, xy_error = 0.0, theta_error = 0.0;
+        for (std::size_t i = 0; i < sim.t.size(); ++i) {
+            u_error = std::max(u_error, (sim.u[i] - series.u[i]).cwiseAbs().maxCoeff());
+            xy_error = std::max(xy_error, (sim.p[i] - series.p[i]).tail<2>().cwiseAbs().maxCoeff());
+            theta_error = std::max(theta_error, std::abs(sim.p[i](0) - series.p[i](0)));
+        }
+        char row[300];
+        std::snprintf(row, sizeof row, "| %s | %.3g | %.3g | %.3g | %zu |\n", kTrajectories[k], u_error, xy_error,
+                      theta_error, simulator.acceptedSteps());
+        summary << row;
+    }
+    summary << "\nThe error comes from the linear interpolation of the forces; it shrinks as the square of the sampling "
+               "interval (test ForwardDynamics.RoundTripErrorIsSecondOrderInForceSampling).\n\n";
+}
+
+}  // namespace nocdyn::cli

@@ -1,0 +1,60 @@
+// Issue 4's results for `nocdyn reproduce` and the helpers that `control`, `envelope` and
+// `simulate` share: plants, closed-loop cases, figures, markdown sections.
+#pragma once
+
+#include <filesystem>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "nocdyn/control.hpp"
+#include "nocdyn/prr3/envelope.hpp"
+#include "plot.hpp"
+
+namespace nocdyn::cli {
+
+/// "simbody" (when built with the Simbody model) or "nocdyn" (our forward dynamics).
+[[nodiscard]] std::string defaultPlantName();
+/// A plant built from `robot`. Throws nocdyn::Error for an unknown name or a plant not built in.
+[[nodiscard]] std::unique_ptr<control::Plant> makePlant(const std::string& name, const RobotParameters& robot);
+
+/// One closed-loop case.
+struct ControlCase {
+    std::string controller = "computed-torque";  ///< "computed-torque" or "pd"
+    double natural_frequency = 50.0;             ///< f_n of the error dynamics [Hz]
+    std::string plant = defaultPlantName();
+    double payload_mass = 0.0;     ///< [kg], on the plant's platform only (model mismatch)
+    double payload_inertia = 0.0;  ///< [kg m^2]
+    control::ClosedLoopOptions loop;
+};
+
+/// Runs one case of `trajectory` with `model` as the controller's model.
+[[nodiscard]] control::ClosedLoopResult runControlCase(const prr3::Model& model, const PoseTrajectory& trajectory,
+                                                       const ControlCase& options);
+
+/// Tracking errors u_d - u per actuator [um] versus time, one panel per run.
+[[nodiscard]] Figure trackingErrorFigure(const std::string& title, const std::vector<control::ClosedLoopResult>& runs);
+
+/// Envelope as CSV: axis,frequency,amplitude,limit,limb,kinematic_amplitude,peak_force,peak_stroke
+/// (axis 0 theta, 1 x, 2 y; limit 0 stroke, 1 force, 2 workspace; limb 1..3).
+[[nodiscard]] io::Table envelopeTable(const std::vector<prr3::EnvelopePoint>& points);
+/// Amplitude versus frequency, log axes: one panel for x and y [mm], one for theta [deg].
+[[nodiscard]] Figure envelopeFigure(const std::vector<prr3::EnvelopePoint>& points, const std::string& robot);
+
+/// Section "Model-based control": for paper1 and paper2, computed torque and PD on the
+/// default plant (Simbody when built in), plus computed torque with an unknown 0.5 kg payload;
+/// control_<trajectory>.csv and control_<trajectory>_errors.png/.svg in `out`; a markdown table
+/// of RMS and peak errors in `summary`.
+void reproduceControl(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary);
+
+/// Section "Operating envelope": envelope.csv and envelope.png/.svg in `out`; a markdown table
+/// of the binding limits, and the paper trajectories checked against it (per-axis amplitude
+/// versus the envelope at its frequency, and the combined peak stroke and force).
+void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary);
+
+/// Section "Forward dynamics round trip": the inverse-dynamics forces of paper1 and paper2
+/// (10 kHz, linear in between) fed to the forward dynamics; max |u - u_d| and pose error.
+void reproduceRoundTrip(const prr3::Model& model, std::ostream& summary);
+
+}  // namespace nocdyn::cli
