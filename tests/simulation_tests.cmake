@@ -7,3 +7,11 @@ foreach(source control_test envelope_test)
     nocdyn_add_test(${source} ${source}.cpp)
   endif()
 endforeach()
+
+# Against the independent Simbody model (issue 3), when it is built.
+if(TARGET nocdyn_simbody)
+  nocdyn_add_test(simbody_simulation_test simbody_simulation_test.cpp
+    ${PROJECT_SOURCE_DIR}/apps/nocdyn/simbody_plant.cpp
+    LABELS validation LIBRARIES nocdyn_simbody)
+  target_include_directories(simbody_simulation_test PRIVATE ${PROJECT_SOURCE_DIR}/apps/nocdyn)
+endif()
