@@ -40,17 +40,11 @@ template <int N>
 }
 
 /// Adds one body's term of eq. 23 to I: I += T_i^T M_i T_i. With M_i = diag(I_i, m_i, m_i)
-/// (eq. 9) entry (a, b) gains I_i T_i(0,a) T_i(0,b) + m_i (T_i(1,a) T_i(1,b) + T_i(2,a) T_i(2,b));
-/// only the upper triangle is computed, then mirrored (I is symmetric).
+/// (eq. 9), M_i T_i only scales rows: W = M_i T_i, then I += T_i^T W (fully unrolled).
 template <int N>
 void addInertia(const InertiaDyad& M, const ShapingMatrix<N>& T, JointMatrix<N>& I) {
     const ShapingMatrix<N> W = applyInertia(M, T);
-    for (int b = 0; b < N; ++b) {
-        for (int a = 0; a <= b; ++a) {
-            I(a, b) += T(0, a) * W(0, b) + T(1, a) * W(1, b) + T(2, a) * W(2, b);
-            I(b, a) = I(a, b);
-        }
-    }
+    I += T.transpose().lazyProduct(W);
 }
 
 /// Adds one body's term of eq. 23 to C: C += T_i^T M_i dT_i.
@@ -58,7 +52,7 @@ template <int N>
 void addCoriolis(const InertiaDyad& M, const ShapingMatrix<N>& T, const ShapingMatrix<N>& T_dot,
                  JointMatrix<N>& C) {
     const ShapingMatrix<N> W = applyInertia(M, T);
-    C.noalias() += W.transpose() * T_dot;
+    C += W.transpose().lazyProduct(T_dot);
 }
 
 /// eq. 23: I = sum_i T_i^T M_i T_i. Joint-space inertia [kg], N x N, symmetric.
