@@ -181,8 +181,10 @@ void addReproduceCommand(CLI::App& app) {
         "reproduce",
         "The main job: reproduce the paper's results for its prototype. Both paper trajectories over\n"
         "0.2 s at 10 kHz: one CSV each, figures like the paper's Figs. 5 and 6 (motor displacements and\n"
-        "forces, PNG and SVG, drawn by gnuplot) and summary.md with peak stroke and force per actuator\n"
-        "against the actuator limits.");
+        "forces, PNG and SVG, drawn by gnuplot, with the Simbody curves overlaid and their difference\n"
+        "plotted), and summary.md with: peak stroke and force per actuator against the actuator limits;\n"
+        "the measured agreement with Simbody and MuJoCo; the forward-dynamics round trip; closed-loop\n"
+        "computed-torque and PD control on the Simbody plant; the operating envelope (stroke and force).");
     command->add_option("--out", options->out, "Output folder (created if missing)")->capture_default_str();
     command->callback([options] { run(*options); });
 }
