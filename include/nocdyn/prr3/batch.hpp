@@ -135,15 +135,15 @@ NOCDYN_KERNEL_INLINE void sinCos(const S& x, S& s, S& c) {
     c = select((m == 1.0) | (m == 2.0), -c0, c0);
 }
 
-/// One sample: in = [p, dp, ddp] (9), out = [u, du, ddu, tau] (12). Returns false when the
-/// per-sample path would fail (pose out of reach, D or H too ill-conditioned).
+/// One sample given s = sin theta and c = cos theta: in = [p, dp, ddp] (9, in[0] = theta is
+/// not read), out = [u, du, ddu, tau] (12). Returns false when the per-sample path would fail
+/// (pose out of reach, D or H too ill-conditioned). The one kernel of the batch (through
+/// sample() below) and of the lean per-sample entry (fast.hpp, with libm's sin and cos).
 template <class S>
-NOCDYN_KERNEL_INLINE bool sample(const Constants& k, const S* in, S* out) {
-    const S &theta = in[0], &x = in[1], &y = in[2];
+NOCDYN_KERNEL_INLINE bool sampleGivenSinCos(const Constants& k, const S& s, const S& c, const S* in, S* out) {
+    const S &x = in[1], &y = in[2];
     const S &omega = in[3], &vx = in[4], &vy = in[5];
     const S &alpha = in[6], &ax = in[7], &ay = in[8];
-    S s, c;
-    sinCos(theta, s, c);
     bool valid = true;
 
     S h[kLimbs][3];       // rows of H (eq. 7): [a_j x f_j, f_j]
@@ -237,6 +237,15 @@ NOCDYN_KERNEL_INLINE bool sample(const Constants& k, const S* in, S* out) {
     }
     valid = valid & (norm_H * norm_inv <= k.max_condition * absOf(det));
     return valid;
+}
+
+/// One sample: in = [p, dp, ddp] (9), out = [u, du, ddu, tau] (12), with the branch-free
+/// sinCos above (exact for |theta| < 1.6e6). Returns false as sampleGivenSinCos.
+template <class S>
+NOCDYN_KERNEL_INLINE bool sample(const Constants& k, const S* in, S* out) {
+    S s, c;
+    sinCos(in[0], s, c);
+    return sampleGivenSinCos(k, s, c, in, out);
 }
 
 }  // namespace nocdyn::prr3::batch_detail
