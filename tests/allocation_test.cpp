@@ -2,28 +2,13 @@
 // in this test binary, and the whole inverse dynamics runs over a trajectory.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
+#include "allocation_counter.hpp"
+
 
 #include "nocdyn/prr3/dynamics.hpp"
 #include "nocdyn/prr3/kinematics.hpp"
 #include "nocdyn/trajectory.hpp"
 
-namespace {
-std::atomic<long> allocations{0};
-}
-
-void* operator new(std::size_t size) {
-    ++allocations;
-    if (void* p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace nocdyn::test {
 namespace {
@@ -33,7 +18,7 @@ TEST(RealTime, PerSamplePathAllocatesNothing) {
     prr3::Data data;
     const PoseTrajectory trajectory = paperTrajectory1();
     Pose p, dp, ddp;
-    const long before = allocations.load();
+    const long before = allocationCount();
     double checksum = 0.0;
     for (int k = 0; k < 2000; ++k) {
         trajectory.evaluate(k * 1e-4, p, dp, ddp);
@@ -44,17 +29,17 @@ TEST(RealTime, PerSamplePathAllocatesNothing) {
     }
     // Failure statuses take the same path: no allocation either.
     checksum += prr3::inverseDisplacement(model, data, Pose(0.0, 0.0, -0.2)).ok();
-    const long after = allocations.load();
+    const long after = allocationCount();
     EXPECT_EQ(after - before, 0);
     EXPECT_TRUE(std::isfinite(checksum));
 }
 
 TEST(RealTime, CountingAllocatorSeesAllocations) {
     // Proves the counter works, so that the test above can fail.
-    const long before = allocations.load();
+    const long before = allocationCount();
     auto* p = new std::vector<double>(100);
     delete p;
-    EXPECT_GE(allocations.load() - before, 2);
+    EXPECT_GE(allocationCount() - before, 2);
 }
 
 }  // namespace

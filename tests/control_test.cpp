@@ -4,28 +4,13 @@
 // controller tick allocates nothing.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
+#include "allocation_counter.hpp"
+
 
 #include "nocdyn/control.hpp"
 #include "nocdyn/prr3/kinematics.hpp"
 #include "support.hpp"
 
-namespace {
-std::atomic<long> allocations{0};
-}
-
-void* operator new(std::size_t size) {
-    ++allocations;
-    if (void* p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace nocdyn::test {
 namespace {
@@ -141,14 +126,14 @@ TEST(Control, ControllerTickAllocatesNothing) {
     JointVector tau;
     ASSERT_TRUE(control::desiredMotion(model, data, trajectory, 0.0, reference).ok());
     controller.reset(reference.p);
-    const long before = allocations.load();
+    const long before = allocationCount();
     double checksum = 0.0;
     for (int k = 0; k < 1000; ++k) {
         checksum += control::desiredMotion(model, data, trajectory, k * 1e-4, reference).ok();
         checksum += controller.compute(reference.u + JointVector::Constant(1e-6), reference.du, reference, tau).ok();
         checksum += tau.sum();
     }
-    EXPECT_EQ(allocations.load() - before, 0);
+    EXPECT_EQ(allocationCount() - before, 0);
     EXPECT_TRUE(std::isfinite(checksum));
 }
 

@@ -3,9 +3,8 @@
 // optional loads do what they say; one evaluation and one integration step allocate nothing.
 #include <gtest/gtest.h>
 
-#include <atomic>
-#include <cstdlib>
-#include <new>
+#include "allocation_counter.hpp"
+
 
 #include "nocdyn/prr3/dynamics.hpp"
 #include "nocdyn/prr3/forward_dynamics.hpp"
@@ -13,20 +12,6 @@
 #include "nocdyn/trajectory.hpp"
 #include "support.hpp"
 
-namespace {
-std::atomic<long> allocations{0};
-}
-
-void* operator new(std::size_t size) {
-    ++allocations;
-    if (void* p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace nocdyn::test {
 namespace {
@@ -175,7 +160,7 @@ TEST(ForwardDynamics, EvaluationAndIntegrationAllocateNothing) {
     prr3::Simulator simulator(model);
     ASSERT_TRUE(simulator.reset(Pose(0.01, 0.002, -0.001), Twist(0.5, 0.05, -0.03)).ok());
     Pose pose(0.0, 0.0, 0.0);
-    const long before = allocations.load();
+    const long before = allocationCount();
     double checksum = 0.0;
     for (int k = 0; k < 100; ++k) {
         const Status status = prr3::forwardDynamicsFromState(model, data, JointVector(1e-3, -2e-3, 5e-4),
@@ -183,7 +168,7 @@ TEST(ForwardDynamics, EvaluationAndIntegrationAllocateNothing) {
         checksum += status.ok() ? data.ddu.sum() : 1e9;
         checksum += simulator.advance(1e-4, JointVector(1.0, -1.0, 0.5)).ok();
     }
-    EXPECT_EQ(allocations.load() - before, 0);
+    EXPECT_EQ(allocationCount() - before, 0);
     EXPECT_TRUE(std::isfinite(checksum));
 }
 
