@@ -1,6 +1,7 @@
 // Inverse dynamics per sample: nocdyn against Simbody and MuJoCo, and nocdyn's stages.
 //
-// Every BM_InverseDynamics/<engine> runs the same cycle of 1000 samples (fixture.hpp) per
+// BM_InverseDynamics/nocdyn times the lean entry (prr3::inverseDynamicsFast), /nocdyn_full the
+// full path (prr3::inverseDynamics). Every BM_InverseDynamics/<engine> runs the same cycle of 1000 samples (fixture.hpp) per
 // iteration, in the same order, and reports `per_sample` = time / 1000 (seconds; the
 // console prints it with an SI prefix). The BM_Stage/... benchmarks run one stage of one
 // sample per iteration, on Data prepared by the earlier stages outside the timed loop.
@@ -11,6 +12,7 @@
 
 #include "fixture.hpp"
 #include "nocdyn/noc.hpp"
+#include "nocdyn/prr3/fast.hpp"
 #include "nocdyn/validation/mujoco_robot.hpp"
 #include "nocdyn/validation/simbody_robot.hpp"
 
@@ -25,7 +27,23 @@ void perSample(benchmark::State& state, std::size_t samples_per_iteration) {
 
 // ---- the whole per-sample path, three engines -----------------------------------------
 
+// The lean per-sample entry (fast.hpp): pose-space sample -> u, du, ddu, tau and a Status.
 void inverseDynamicsNocdyn(benchmark::State& state) {
+    const Fixture& f = fixture();
+    prr3::FastData data(f.model);
+    for (auto _ : state) {
+        for (const Sample& s : f.samples) {
+            const Status status = prr3::inverseDynamicsFast(f.model, data, s.p, s.dp, s.ddp);
+            benchmark::DoNotOptimize(status);
+            benchmark::DoNotOptimize(data.tau);
+        }
+        benchmark::ClobberMemory();
+    }
+    perSample(state, f.samples.size());
+}
+
+// The full per-sample path (dynamics.hpp): also stores T_i, dT_i, J_j^-1, H^-1, I, C, phi_A, ...
+void inverseDynamicsNocdynFull(benchmark::State& state) {
     const Fixture& f = fixture();
     prr3::Data data;
     for (auto _ : state) {
@@ -129,6 +147,7 @@ void stageForces(benchmark::State& state) {
 
 [[maybe_unused]] const bool registered = [] {
     benchmark::RegisterBenchmark("BM_InverseDynamics/nocdyn", inverseDynamicsNocdyn);
+    benchmark::RegisterBenchmark("BM_InverseDynamics/nocdyn_full", inverseDynamicsNocdynFull);
     benchmark::RegisterBenchmark("BM_InverseDynamics/mujoco", inverseDynamicsMujoco);
     benchmark::RegisterBenchmark("BM_InverseDynamics/simbody", inverseDynamicsSimbody)
         ->Unit(benchmark::kMillisecond);

@@ -18,20 +18,20 @@ def main(path):
         return None if b is None else b.get("per_sample", None)
     print(f"machine: {run['context'].get('host_name', '?')}, {run['context']['num_cpus']} cpus, "
           f"{run['context']['mhz_per_cpu']} MHz, load {run['context'].get('load_avg')}")
-    print("| benchmark | median per sample | ratio to nocdyn |")
-    print("| --- | --- | --- |")
-    ref = per_sample("BM_InverseDynamics/nocdyn")
+    print("| benchmark | median per sample | this / nocdyn | this / nocdyn_full |")
+    print("| --- | --- | --- | --- |")
+    refs = [per_sample("BM_InverseDynamics/nocdyn"), per_sample("BM_InverseDynamics/nocdyn_full")]
     for name in sorted(med):
         t = per_sample(name)
         if t is None:
             continue
-        ratio = f"{t / ref:.1f}x" if name.startswith("BM_InverseDynamics/") else ""
+        ratios = [f"{t / r:.1f}x" if r and name.startswith("BM_InverseDynamics/") else "" for r in refs]
         unit, scale = ("us", 1e6) if t >= 1e-6 else ("ns", 1e9)
-        print(f"| {name} | {t * scale:.1f} {unit} | {ratio} |")
+        print(f"| {name} | {t * scale:.1f} {unit} | {ratios[0]} | {ratios[1]} |")
     for name in sorted(med):
         if per_sample(name) is None:
             b = med[name]
-            print(f"| {name} | {b['real_time']:.1f} {b['time_unit']} per iteration (wall) | |")
+            print(f"| {name} | {b['real_time']:.1f} {b['time_unit']} per iteration (wall) | | |")
 
 
 if __name__ == "__main__":

@@ -45,6 +45,9 @@ void FastData::bind(const Model& m) {
     model = &m;
 }
 
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+#endif
 Status inverseDynamicsFast(const Model& model, FastData& data, const Pose& p, const Twist& dp,
                            const Twist& ddp) noexcept {
     if (data.model != &model) [[unlikely]] data.bind(model);
