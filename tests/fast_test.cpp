@@ -3,11 +3,8 @@
 // the workspace, and it allocates nothing (global operator new is counted in this binary).
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
-#include <new>
 #include <numbers>
 #include <random>
 #include <vector>
@@ -16,25 +13,8 @@
 #include "nocdyn/prr3/fast.hpp"
 #include "nocdyn/prr3/kinematics.hpp"
 #include "nocdyn/trajectory.hpp"
+#include "allocation_counter.hpp"
 #include "support.hpp"
-
-namespace {
-std::atomic<long> allocations{0};
-}
-
-#if defined(__GNUC__) && !defined(__clang__)
-#pragma GCC diagnostic ignored "-Wmismatched-new-delete"  // malloc/free behind new/delete, on purpose
-#endif
-void* operator new(std::size_t size) {
-    ++allocations;
-    if (void* p = std::malloc(size ? size : 1)) return p;
-    throw std::bad_alloc();
-}
-void* operator new[](std::size_t size) { return operator new(size); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 
 namespace nocdyn::test {
 namespace {
@@ -250,7 +230,7 @@ TEST(Fast, AllocatesNothingIncludingFailures) {
     prr3::FastData fast(model);
     const PoseTrajectory trajectory = paperTrajectory1();
     Pose p, dp, ddp;
-    const long before = allocations.load();
+    const long before = allocationCount();
     double checksum = 0.0;
     for (int k = 0; k < 2000; ++k) {
         trajectory.evaluate(k * 1e-4, p, dp, ddp);
@@ -265,18 +245,18 @@ TEST(Fast, AllocatesNothingIncludingFailures) {
     // A first use binds the constants: no allocation either.
     prr3::FastData unbound;
     checksum += prr3::inverseDynamicsFast(model, unbound, Pose::Zero(), dp, ddp).ok();
-    const long after = allocations.load();
+    const long after = allocationCount();
     EXPECT_EQ(after - before, 0);
     EXPECT_TRUE(std::isfinite(checksum));
 }
 
 TEST(Fast, CountingAllocatorSeesAllocations) {
     // Proves the counter works, so that the test above can fail (volatile: not elided).
-    const long before = allocations.load();
+    const long before = allocationCount();
     std::vector<double>* volatile v = new std::vector<double>(100);
     (*v)[0] = 1.0;
     delete v;
-    EXPECT_GE(allocations.load() - before, 2);
+    EXPECT_GE(allocationCount() - before, 2);
 }
 
 }  // namespace
