@@ -31,8 +31,13 @@ std::string slurp(const fs::path& path) {
     return text.str();
 }
 
+/// A file name private to the running test: ctest runs the tests in parallel processes.
+std::string testUnique(const std::string& name) {
+    return std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" + name;
+}
+
 CliRun run(const std::string& arguments) {
-    const fs::path err_file = fs::path(testing::TempDir()) / "nocdyn_stderr.txt";
+    const fs::path err_file = fs::path(testing::TempDir()) / testUnique("stderr.txt");
     const std::string command = std::string(NOCDYN_CLI) + " " + arguments + " 2>" + err_file.string();
     CliRun result;
     FILE* pipe = popen(command.c_str(), "r");
@@ -49,7 +54,7 @@ CliRun run(const std::string& arguments) {
 fs::path scratch(const std::string& name) {
     const fs::path dir = fs::path(testing::TempDir()) / "nocdyn_cli_test";
     fs::create_directories(dir);
-    return dir / name;
+    return dir / testUnique(name);
 }
 
 io::Table parseCsv(const std::string& text) {
@@ -73,10 +78,12 @@ TEST(Cli, InverseDynamicsWritesTheDocumentedColumnsAndTheLibrarysNumbers) {
     EXPECT_EQ(last[table.column("t")], 9.0 / 1000.0);
     paperTrajectory1().evaluate(last[table.column("t")], p, dp, ddp);
     ASSERT_TRUE(prr3::inverseDynamics(model, data, p, dp, ddp).ok());
+    // 17 significant digits: the CSV holds the library's doubles exactly.
+    const char* tau_columns[] = {"tau1", "tau2", "tau3"};
+    const char* u_columns[] = {"u1", "u2", "u3"};
     for (int j = 0; j < 3; ++j) {
-        // 17 significant digits: the CSV holds the library's doubles exactly.
-        EXPECT_EQ(last[table.column("tau" + std::to_string(j + 1))], data.tau(j));
-        EXPECT_EQ(last[table.column("u" + std::to_string(j + 1))], data.u(j));
+        EXPECT_EQ(last[table.column(tau_columns[j])], data.tau(j));
+        EXPECT_EQ(last[table.column(u_columns[j])], data.u(j));
     }
 }
 
