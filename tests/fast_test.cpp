@@ -188,21 +188,7 @@ TEST(Fast, LinkNormalToItsRailIsTheSameSingularity) {
 
 TEST(Fast, ConcurrentLinkLinesAreTheSameForwardSingularity) {
     // As kinematics_test: the rotation about O where h_j1 = 0 (the link lines meet at C).
-    RobotParameters permissive;
-    permissive.max_condition = 1e300;
-    const prr3::Model probe(permissive);
-    prr3::Data data;
-    auto h11 = [&](double theta) {
-        EXPECT_TRUE(prr3::inverseDisplacement(probe, data, Pose(theta, 0.0, 0.0)).ok());
-        (void)prr3::velocityFromPlatformTwist(probe, data, Twist::Zero());
-        return data.H(0, 0);
-    };
-    double lo = -2.6, hi = -1.5;
-    ASSERT_LT(h11(lo) * h11(hi), 0.0);
-    for (int k = 0; k < 200 && hi - lo > 1e-15; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (h11(lo) * h11(mid) <= 0.0 ? hi : lo) = mid;
-    }
+    const double lo = concurrentLinkLinesRotation();
     const prr3::Model model;
     prr3::FastData fast;
     const Status status = prr3::inverseDynamicsFast(model, fast, Pose(lo, 0.0, 0.0), Twist(1.0, 0.0, 0.0), Twist::Zero());

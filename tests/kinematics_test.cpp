@@ -145,22 +145,9 @@ TEST(Workspace, LinkNormalToItsRailIsASingularPostureNotANaN) {
 TEST(Workspace, ConcurrentLinkLinesAreAForwardSingularity) {
     // Rotating the platform about O, the three link lines meet at C when h_j1 = 0 (eq. 7):
     // the first column of H vanishes (near theta = -2.08 rad for the paper's robot, where
-    // phi_Mj = pi/6). Locate that rotation by bisection.
-    RobotParameters permissive;
-    permissive.max_condition = 1e300;
-    const prr3::Model probe(permissive);
+    // phi_Mj = pi/6).
     prr3::Data data;
-    auto h11 = [&](double theta) {
-        EXPECT_TRUE(prr3::inverseDisplacement(probe, data, Pose(theta, 0.0, 0.0)).ok());
-        (void)prr3::velocityFromPlatformTwist(probe, data, Twist::Zero());
-        return data.H(0, 0);
-    };
-    double lo = -2.6, hi = -1.5;
-    ASSERT_LT(h11(lo) * h11(hi), 0.0);
-    for (int k = 0; k < 200 && hi - lo > 1e-15; ++k) {
-        const double mid = 0.5 * (lo + hi);
-        (h11(lo) * h11(mid) <= 0.0 ? hi : lo) = mid;
-    }
+    const double lo = concurrentLinkLinesRotation();
     const prr3::Model model;
     ASSERT_TRUE(prr3::inverseDisplacement(model, data, Pose(lo, 0.0, 0.0)).ok());
     const Status status = prr3::velocityFromPlatformTwist(model, data, Twist(1.0, 0.0, 0.0));

@@ -67,6 +67,28 @@ inline void solve(const prr3::Model& model, prr3::Data& data, const Pose& p, con
     ASSERT_TRUE(status.ok()) << describePose(p) << ": " << describe(status, model.parameters);
 }
 
+/// The platform rotation about O (C = O) at which the three link lines meet at C, so that
+/// h_j1 = 0 (eq. 7) and H is singular: near theta = -2.08 rad for the paper's robot, where
+/// phi_Mj = pi/6. Found by bisection on h_11 with a model that accepts any conditioning.
+inline double concurrentLinkLinesRotation() {
+    RobotParameters permissive;
+    permissive.max_condition = 1e300;
+    const prr3::Model probe(permissive);
+    prr3::Data data;
+    auto h11 = [&](double theta) {
+        EXPECT_TRUE(prr3::inverseDisplacement(probe, data, Pose(theta, 0.0, 0.0)).ok());
+        (void)prr3::velocityFromPlatformTwist(probe, data, Twist::Zero());
+        return data.H(0, 0);
+    };
+    double lo = -2.6, hi = -1.5;
+    EXPECT_LT(h11(lo) * h11(hi), 0.0);
+    for (int k = 0; k < 200 && hi - lo > 1e-15; ++k) {
+        const double mid = 0.5 * (lo + hi);
+        (h11(lo) * h11(mid) <= 0.0 ? hi : lo) = mid;
+    }
+    return lo;
+}
+
 inline std::string goldenPath(const std::string& file) { return std::string(NOCDYN_GOLDEN_DIR) + "/" + file; }
 
 }  // namespace nocdyn::test
