@@ -1,0 +1,109 @@
+// A planar parallel robot as described in a robot file, general form: a rigid platform
+// joined to the base by two or more limbs, each a serial chain of three 1-DOF joints (R or P)
+// with two moving bodies between them. Everything is given at a home posture at which every
+// joint variable is zero (product of exponentials): points and directions in the base frame,
+// SI units, radians.
+//
+// Joint variable q: R, the counter-clockwise angle of the outboard body relative to the
+// inboard one; P, the displacement of the outboard body along the joint direction (which
+// turns with the body that carries the joint). Actuators are numbered in file order (limbs in
+// order, joints in chain order). The friction force of a joint on its outboard body is
+// -(damping q' + friction sign q').
+//
+// The symmetric 3-PRR of the paper (RobotParameters, the short form) expands to this form
+// (expand()). Nothing here computes kinematics beyond the home posture.
+#pragma once
+
+#include <array>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "nocdyn/robot.hpp"
+
+namespace nocdyn {
+
+enum class JointType { revolute, prismatic };
+
+/// Limits of one joint; absent ones are infinite.
+struct JointLimits {
+    double lower = -std::numeric_limits<double>::infinity();  ///< smallest q [m or rad]
+    double upper = std::numeric_limits<double>::infinity();   ///< largest q [m or rad]
+    double effort = std::numeric_limits<double>::infinity();  ///< peak |force| or |torque| [N, N m]
+    double velocity = std::numeric_limits<double>::infinity();  ///< peak |q'| [m/s, rad/s]
+};
+
+struct JointDescription {
+    JointType type = JointType::revolute;
+    Eigen::Vector2d point = Eigen::Vector2d::Zero();      ///< R: axis at home, base frame [m]
+    Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  ///< P: direction at home (unit after validation)
+    bool actuated = false;
+    JointLimits limits;
+    double damping = 0.0;   ///< viscous coefficient [N s/m or N m s/rad]
+    double friction = 0.0;  ///< Coulomb force or torque [N or N m]
+    int line = 0;           ///< line in the robot file (0 when not read from a file)
+};
+
+/// A moving body: mass, moment of inertia about its c.o.m., c.o.m. at home (base frame).
+struct BodyDescription {
+    double mass = 0.0;                              ///< [kg]
+    double inertia = 0.0;                           ///< about the c.o.m. [kg m^2]
+    Eigen::Vector2d com = Eigen::Vector2d::Zero();  ///< base frame, at home [m]
+    int line = 0;
+};
+
+struct LimbDescription {
+    std::string name;                        ///< e.g. "limb1"
+    std::array<JointDescription, 3> joints;  ///< base to platform
+    std::array<BodyDescription, 2> bodies;   ///< body 1 between joints 1 and 2, body 2 between 2 and 3
+    int line = 0;
+
+    /// "RRR", "PRR", ...: the joint types, base to platform.
+    [[nodiscard]] std::string type() const;
+};
+
+struct PlatformDescription {
+    double mass = 0.0;                              ///< [kg]
+    double inertia = 0.0;                           ///< about its c.o.m. [kg m^2]
+    Eigen::Vector2d com = Eigen::Vector2d::Zero();  ///< in the platform frame (origin C) [m]
+    int line = 0;
+};
+
+struct RobotDescription {
+    std::string name = "robot";
+    std::string source;                                  ///< the file it came from, for messages
+    Eigen::Vector2d gravity = Eigen::Vector2d::Zero();   ///< base frame [m/s^2]
+    Eigen::Vector3d home = Eigen::Vector3d::Zero();      ///< platform pose [theta, x, y] at home
+    double max_condition = 1.0e4;                        ///< largest condition number accepted
+    PlatformDescription platform;
+    std::vector<LimbDescription> limbs;
+
+    /// Number of actuated joints.
+    [[nodiscard]] int actuatorCount() const;
+};
+
+/// Largest number of limbs and actuators a model holds (fixed-capacity storage).
+inline constexpr int kMaxLimbs = 6;
+inline constexpr int kMaxActuators = 3 * kMaxLimbs;
+
+/// The paper's symmetric 3-PRR (short form) as a general description: limb j has a P joint
+/// along e_j through A_j's reference position (actuated; limits +-stroke/2, peak force), an R
+/// joint at A_j and an R joint at M_j; body 1 is the slider (c.o.m. at A_j, no rotational
+/// inertia: it only translates), body 2 the link (c.o.m. l_c from A_j); home is the reference
+/// posture (theta = 0, C = O).
+[[nodiscard]] RobotDescription expand(const RobotParameters& robot);
+
+/// Throws nocdyn::Error, naming the source file, line, limb, joint and field, when the
+/// description is not a robot nocdyn can model: fewer than 2 or more than kMaxLimbs limbs,
+/// fewer than 3 actuated joints, a zero P direction, non-finite numbers, negative or
+/// implausible masses and inertias, a zero-mass robot, inconsistent limits, a limb of three
+/// prismatic joints. Normalises P directions to unit length. The posture checks (every limb
+/// closes and is regular at home) are made by the Model.
+void validate(RobotDescription& robot);
+
+/// "SOURCE:LINE: " (or "SOURCE: " or "" when unknown), to prefix messages.
+[[nodiscard]] std::string where(const RobotDescription& robot, int line);
+
+}  // namespace nocdyn

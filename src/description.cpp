@@ -1,0 +1,187 @@
+// General robot descriptions: the 3-PRR short form's expansion and validation (description.hpp).
+#include "nocdyn/description.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <sstream>
+
+#include "nocdyn/error.hpp"
+
+namespace nocdyn {
+
+std::string LimbDescription::type() const {
+    std::string out;
+    for (const JointDescription& joint : joints) out += joint.type == JointType::revolute ? 'R' : 'P';
+    return out;
+}
+
+int RobotDescription::actuatorCount() const {
+    int count = 0;
+    for (const LimbDescription& limb : limbs) {
+        for (const JointDescription& joint : limb.joints) count += joint.actuated ? 1 : 0;
+    }
+    return count;
+}
+
+std::string where(const RobotDescription& robot, int line) {
+    if (robot.source.empty()) return "";
+    if (line <= 0) return robot.source + ": ";
+    return robot.source + ":" + std::to_string(line) + ": ";
+}
+
+RobotDescription expand(const RobotParameters& robot) {
+    validate(robot);
+    RobotDescription out;
+    out.name = robot.name;
+    out.max_condition = robot.max_condition;
+    out.platform.mass = robot.platform_mass;
+    out.platform.inertia = robot.platform_inertia;
+    const double R = robot.baseCircumradius();
+    const double r = robot.platformCircumradius();
+    const double l = robot.link_length;
+    // Reference posture (theta = 0, C = O): M_j - B_j has inward distance d = (R - r) / 2 from
+    // rail L_j (eqs. 37-38), so phi_Aj = asin(d / l) and A_j = M_j - m_j (eqs. 39-40).
+    const double d = 0.5 * (R - r);
+    const double sin_A = d / l;
+    const double cos_A = std::sqrt((1.0 - sin_A) * (1.0 + sin_A));
+    for (int j = 0; j < 3; ++j) {
+        const double phi = (j == 0 ? 0.0 : (j == 1 ? 2.0 : -2.0)) * std::numbers::pi / 3.0;  // eq. 8
+        const Eigen::Vector2d e(std::cos(phi), std::sin(phi));
+        const Eigen::Vector2d n(-e.y(), e.x());
+        const double angle = phi - std::numbers::pi / 6.0;
+        const Eigen::Vector2d M = r * Eigen::Vector2d(std::cos(angle), std::sin(angle));  // eq. 41
+        const Eigen::Vector2d m = l * (cos_A * e + sin_A * n);                             // eq. 40
+        const Eigen::Vector2d A = M - m;
+        LimbDescription limb;
+        limb.name = "limb" + std::to_string(j + 1);
+        JointDescription& rail = limb.joints[0];
+        rail.type = JointType::prismatic;
+        rail.direction = e;
+        rail.point = A;
+        rail.actuated = true;
+        rail.limits.lower = -0.5 * robot.stroke;
+        rail.limits.upper = 0.5 * robot.stroke;
+        rail.limits.effort = robot.peak_force;
+        limb.joints[1].type = JointType::revolute;
+        limb.joints[1].point = A;
+        limb.joints[2].type = JointType::revolute;
+        limb.joints[2].point = M;
+        limb.bodies[0] = {robot.slider_mass, 0.0, A, 0};
+        limb.bodies[1] = {robot.link_mass, robot.link_inertia, A + (robot.link_com / l) * m, 0};
+        out.limbs.push_back(limb);
+    }
+    validate(out);
+    return out;
+}
+
+namespace {
+
+// Plausibility ranges: beyond them products of the values overflow or lose all precision.
+constexpr double kMaxLength = 1.0e3;    // [m]
+constexpr double kMaxMass = 1.0e6;      // [kg]
+constexpr double kMaxInertia = 1.0e9;   // [kg m^2]
+constexpr double kMaxGravity = 1.0e4;   // [m/s^2]
+constexpr double kMaxCoefficient = 1.0e9;
+
+class Checker {
+public:
+    explicit Checker(const RobotDescription& robot) : robot_(robot) {}
+
+    [[noreturn]] void fail(int line, const std::string& field, const std::string& reason) const {
+        std::ostringstream msg;
+        msg << where(robot_, line) << field << ": " << reason;
+        throw Error(msg.str());
+    }
+
+    void finiteIn(double value, double lo, double hi, int line, const std::string& field,
+                  const char* unit) const {
+        if (!std::isfinite(value) || value < lo || value > hi) {
+            std::ostringstream msg;
+            msg << "must be a finite number in [" << lo << ", " << hi << "] " << unit << ", got " << value;
+            fail(line, field, msg.str());
+        }
+    }
+
+    void point(const Eigen::Vector2d& v, int line, const std::string& field) const {
+        finiteIn(v.x(), -kMaxLength, kMaxLength, line, field + "[0]", "m");
+        finiteIn(v.y(), -kMaxLength, kMaxLength, line, field + "[1]", "m");
+    }
+
+private:
+    const RobotDescription& robot_;
+};
+
+}  // namespace
+
+void validate(RobotDescription& robot) {
+    const Checker check(robot);
+    const int limbs = static_cast<int>(robot.limbs.size());
+    if (limbs < 2 || limbs > kMaxLimbs) {
+        check.fail(0, "limbs", "a robot has 2 to " + std::to_string(kMaxLimbs) + " limbs, got " +
+                                   std::to_string(limbs));
+    }
+    check.finiteIn(robot.gravity.x(), -kMaxGravity, kMaxGravity, 0, "gravity[0]", "m/s^2");
+    check.finiteIn(robot.gravity.y(), -kMaxGravity, kMaxGravity, 0, "gravity[1]", "m/s^2");
+    check.finiteIn(robot.home(0), -std::numbers::pi, std::numbers::pi, 0, "home[0]", "rad");
+    check.finiteIn(robot.home(1), -kMaxLength, kMaxLength, 0, "home[1]", "m");
+    check.finiteIn(robot.home(2), -kMaxLength, kMaxLength, 0, "home[2]", "m");
+    if (!std::isfinite(robot.max_condition) || robot.max_condition <= 1.0 || robot.max_condition > 1.0e12) {
+        check.fail(0, "max_condition", "must be a finite number in (1, 1e12]");
+    }
+    const PlatformDescription& platform = robot.platform;
+    check.finiteIn(platform.mass, 0.0, kMaxMass, platform.line, "platform.mass", "kg");
+    check.finiteIn(platform.inertia, 0.0, kMaxInertia, platform.line, "platform.inertia", "kg m^2");
+    check.point(platform.com, platform.line, "platform.com");
+    double total_mass = platform.mass;
+    for (int j = 0; j < limbs; ++j) {
+        LimbDescription& limb = robot.limbs[static_cast<std::size_t>(j)];
+        if (limb.name.empty()) limb.name = "limb" + std::to_string(j + 1);
+        const std::string prefix = "limbs[" + std::to_string(j) + "] (" + limb.name + ")";
+        if (limb.type() == "PPP") {
+            check.fail(limb.line, prefix, "a limb of three prismatic joints cannot carry the platform's rotation");
+        }
+        for (int k = 0; k < 3; ++k) {
+            JointDescription& joint = limb.joints[static_cast<std::size_t>(k)];
+            const std::string field = prefix + ".joints[" + std::to_string(k) + "]";
+            if (joint.type == JointType::revolute) {
+                check.point(joint.point, joint.line, field + ".point");
+            } else {
+                check.finiteIn(joint.direction.x(), -kMaxLength, kMaxLength, joint.line, field + ".direction[0]", "");
+                check.finiteIn(joint.direction.y(), -kMaxLength, kMaxLength, joint.line, field + ".direction[1]", "");
+                const double norm = joint.direction.norm();
+                if (!(norm > 1e-9)) check.fail(joint.line, field + ".direction", "must be a non-zero vector");
+                joint.direction /= norm;
+            }
+            const JointLimits& lim = joint.limits;
+            if (std::isnan(lim.lower) || std::isnan(lim.upper) || !(lim.lower < lim.upper) ||
+                lim.lower > 0.0 || lim.upper < 0.0) {
+                check.fail(joint.line, field + ".limits",
+                           "need lower < upper with the home value 0 inside [lower, upper]");
+            }
+            if (std::isnan(lim.effort) || !(lim.effort > 0.0)) {
+                check.fail(joint.line, field + ".limits.effort", "must be a positive number");
+            }
+            if (std::isnan(lim.velocity) || !(lim.velocity > 0.0)) {
+                check.fail(joint.line, field + ".limits.velocity", "must be a positive number");
+            }
+            check.finiteIn(joint.damping, 0.0, kMaxCoefficient, joint.line, field + ".damping", "");
+            check.finiteIn(joint.friction, 0.0, kMaxCoefficient, joint.line, field + ".friction", "");
+        }
+        for (int b = 0; b < 2; ++b) {
+            const BodyDescription& body = limb.bodies[static_cast<std::size_t>(b)];
+            const std::string field = prefix + ".bodies[" + std::to_string(b) + "]";
+            check.finiteIn(body.mass, 0.0, kMaxMass, body.line, field + ".mass", "kg");
+            check.finiteIn(body.inertia, 0.0, kMaxInertia, body.line, field + ".inertia", "kg m^2");
+            check.point(body.com, body.line, field + ".com");
+            total_mass += body.mass;
+        }
+    }
+    if (!(total_mass > 0.0)) check.fail(0, "platform.mass", "the robot has no mass at all");
+    const int actuators = robot.actuatorCount();
+    if (actuators < 3) {
+        check.fail(0, "limbs", "a planar platform needs at least 3 actuated joints, got " +
+                                   std::to_string(actuators));
+    }
+}
+
+}  // namespace nocdyn
