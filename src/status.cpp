@@ -49,6 +49,8 @@ std::string describe(const Status& status, const RobotParameters& robot) {
             out << "direct kinematics lost the assembly mode (residual " << status.value
                 << " m): a singularity was crossed";
             return out.str();
+        default:  // codes of the general model (see describe(Status, Model))
+            break;
     }
     return "unknown status";
 }

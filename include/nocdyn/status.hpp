@@ -20,21 +20,44 @@ enum class StatusCode {
     force_exceeded,
     /// A direct-kinematics tracker lost its assembly mode: value = residual [m].
     assembly_mode_lost,
+    /// General model: a limb cannot reach the pose on its home branch. value = how far the
+    /// pose is out of the limb's reach [m].
+    unreachable,
+    /// General model: a limb Jacobian J_j (eq. 4a) is ill-conditioned. value = its scaled
+    /// condition number.
+    singular_limb,
+    /// General model: the map from the platform twist to the actuator rates (eq. 5) is
+    /// ill-conditioned (actuation singularity). value = its scaled condition number.
+    singular_actuation,
+    /// General model: joint `joint` of limb `limb` is outside [lower, upper]. value = q.
+    joint_limit_exceeded,
+    /// General model: actuator at (limb, joint) needs more than its effort limit. value = tau.
+    effort_exceeded,
+    /// General model: joint (limb, joint) moves faster than its velocity limit. value = q'.
+    velocity_exceeded,
+    /// An input (pose, rate, acceleration) is not a finite number. value = the input.
+    not_finite,
 };
 
 struct Status {
     StatusCode code = StatusCode::ok;
     int limb = -1;       ///< 0-based limb (paper's j - 1), or -1 when not limb-specific
     double value = 0.0;  ///< the offending quantity, see StatusCode
+    int joint = -1;      ///< 0-based joint in the limb (chain order), or -1
 
     [[nodiscard]] bool ok() const { return code == StatusCode::ok; }
     explicit operator bool() const { return ok(); }
 };
 
 struct RobotParameters;
+class Model;
 
 /// One-line human-readable explanation, naming the limb as the paper does (1..3).
 /// Not for the real-time path (it allocates).
 [[nodiscard]] std::string describe(const Status& status, const RobotParameters& robot);
+
+/// The same for the general model: names the limb (by its name and 1-based number), the
+/// joint and the limit.
+[[nodiscard]] std::string describe(const Status& status, const Model& model);
 
 }  // namespace nocdyn

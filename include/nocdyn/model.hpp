@@ -1,0 +1,167 @@
+// The general planar parallel robot: constant Model and per-sample Data.
+//
+// Every limb j is a serial chain of three joints (R or P) from the base to the platform
+// with two moving bodies (the paper's slider and link are the bodies of a PRR limb). Twists
+// are planar screws referred to the base origin O unless a name says otherwise:
+//   xi = [omega; v_O],  v_O the velocity of the body point passing through O,
+// so that a joint's screw is constant in the base frame while the joint does not move:
+//   R at point r: s = [1; r_y; -r_x],   P along unit d: s = [0; d].
+// The platform twist of the paper, t_M = dp/dt = [omega; dc/dt] (eq. 2), is referred to the
+// moving point C; the two are related by xi_P = S(c) t_M (see kinematics.hpp).
+// A body's twist at its own c.o.m., t_i = [omega; dx_i/dt] (eq. 10), is Ad(x_i) xi.
+//
+// Model: everything constant (home geometry, inertia dyads, limits), validated once.
+// Data: every per-sample quantity, fixed capacity (kMaxLimbs limbs), filled by the stages of
+// kinematics.hpp and dynamics.hpp in order:
+//   position  (inverseDisplacement)          q, joint screws s_jk, body c.o.m. x_i, u
+//   velocity  (velocityFromPlatformTwist /
+//              velocityFromActuatorRates)    J_j, J_j^-1, A, xi_P, gamma_dot_j, body twists, du
+//   shaping   (twistShaping)                 T_i, dT_i                       (eqs. 22-31)
+//   accel.    (accelerationFromPlatform /
+//              accelerationFromActuators)    xi_P_dot, gamma_ddot_j, ddu
+//   dynamics  (jointSpaceDynamics)           I, C, Q_gf                      (eq. 23)
+//   forces    (actuatorForces)               tau                             (eq. 20)
+//
+// Independent coordinates: with exactly three actuators they are the actuator variables u
+// (the paper's choice, eq. 16); with more (redundant actuation) they are the platform pose p,
+// and the actuator forces are the minimum-norm solution of A_p^T tau = Q.
+//
+// Body numbering follows the paper: body b (0 = first, 1 = second) of limb j is
+// i = b * limbs + j, the platform is i = 2 * limbs (for the 3-PRR: sliders 0..2, links 3..5,
+// platform 6).
+#pragma once
+
+#include <array>
+#include <string>
+
+#include "nocdyn/description.hpp"
+#include "nocdyn/noc.hpp"
+#include "nocdyn/planar.hpp"
+
+namespace nocdyn {
+
+inline constexpr int kMaxBodies = 2 * kMaxLimbs + 1;
+
+/// What the dynamics are written in (see above).
+enum class Coordinates { actuators, platform };
+
+/// Joint-space (independent-coordinate) quantities: always 3 of them in the plane.
+using ShapingMatrix3 = noc::ShapingMatrix<3>;
+/// A vector over the actuators (n <= kMaxActuators): u, du, ddu, tau. Never allocates.
+using ActuatorVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators, 1>;
+/// n x 3 map from the platform twist to the actuator rates.
+using ActuationMatrix = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxActuators, 3>;
+
+/// Constant description of one limb, prepared for the per-sample algorithms.
+struct LimbModel {
+    std::array<JointType, 3> type{};  ///< base to platform
+    /// R joints: axis at home relative to the home position of C, base axes [m].
+    std::array<Vector2, 3> point{};
+    /// R joints: axis at home in the base frame [m].
+    std::array<Vector2, 3> point_home{};
+    /// P joints: unit direction at home, base frame.
+    std::array<Vector2, 3> direction{};
+    /// Home screws s_k(0) = [1; r_y; -r_x] or [0; d], referred to O.
+    std::array<Twist, 3> screw_home{};
+    std::array<InertiaDyad, 2> M{};        ///< bodies 1 and 2 (eq. 9)
+    std::array<Vector2, 2> com_home{};     ///< c.o.m. at home, base frame [m]
+    std::array<int, 3> actuator{-1, -1, -1};  ///< actuator index of each joint, or -1
+    std::array<JointLimits, 3> limits{};
+    std::array<double, 3> damping{};
+    std::array<double, 3> friction{};
+    /// Inverse-kinematics branch kept from home: +1 or -1 for limbs with two solutions
+    /// (a circle meeting a circle or a line), 0 for limbs with one.
+    int branch = 0;
+    /// Lengths used by the closed forms (|r2 - r1|, |r3 - r2|, ...) [m].
+    double length1 = 0.0, length2 = 0.0;
+};
+
+/// Constant parameters of a planar parallel robot. Immutable after construction.
+class Model {
+public:
+    /// Validates the description (throws nocdyn::Error naming file, line, limb and field),
+    /// prepares the limbs, and checks that every limb closes on its home branch and is
+    /// regular at home (so that the home branch is well defined), as is the actuation.
+    explicit Model(RobotDescription description);
+    /// The paper's 3-PRR (short form).
+    explicit Model(const RobotParameters& parameters = RobotParameters{});
+
+    RobotDescription description;  ///< as validated (P directions unit)
+    int limbs = 0;                 ///< number of limbs
+    int actuators = 0;             ///< n, number of actuated joints
+    int bodies = 0;                ///< 2 * limbs + 1
+    Coordinates coordinates = Coordinates::actuators;
+    std::array<LimbModel, kMaxLimbs> limb{};
+    std::array<int, kMaxActuators> actuator_limb{};   ///< limb of actuator a
+    std::array<int, kMaxActuators> actuator_joint{};  ///< joint (0..2) of actuator a
+    InertiaDyad platform_M{};                 ///< platform inertia dyad (eq. 9)
+    Vector2 platform_com = Vector2::Zero();   ///< c.o.m. in the platform frame (origin C) [m]
+    Vector2 gravity = Vector2::Zero();        ///< [m/s^2]
+    Pose home = Pose::Zero();                 ///< platform pose at home
+    double cos_home = 1.0, sin_home = 0.0;    ///< of home(0)
+    /// Length scale of the condition numbers: the largest distance of a revolute axis from
+    /// C at home [m] (1 m when there is none).
+    double length_scale = 1.0;
+    double max_condition = 1.0e4;
+
+    /// Body index of body b (0, 1) of limb j, and of the platform.
+    [[nodiscard]] int body(int j, int b) const { return b * limbs + j; }
+    [[nodiscard]] int platformBody() const { return 2 * limbs; }
+    /// Inertia dyad of body i.
+    [[nodiscard]] const InertiaDyad& inertia(int i) const {
+        return i == platformBody() ? platform_M : limb[static_cast<std::size_t>(i % limbs)].M[static_cast<std::size_t>(i / limbs)];
+    }
+    /// "limb 2 (left)" style name for messages (1-based).
+    [[nodiscard]] std::string limbName(int j) const;
+};
+
+/// Per-limb workspace.
+struct LimbData {
+    Vector3 q = Vector3::Zero();        ///< joint variables [rad or m]
+    Vector3 cos_q = Vector3::Ones();    ///< cos q for R joints (1 for P)
+    Vector3 sin_q = Vector3::Zero();    ///< sin q for R joints (0 for P)
+    std::array<Twist, 3> s{};           ///< current joint screws, referred to O (columns of J_j)
+    std::array<Vector2, 2> x{};         ///< body c.o.m. positions [m]
+    Matrix3 J = Matrix3::Zero();        ///< J_j = [s_1 s_2 s_3]: xi_P = J_j gamma_dot_j (eq. 3)
+    Matrix3 J_inv = Matrix3::Zero();    ///< J_j^-1
+    double cond = 0.0;                  ///< scaled 1-norm condition number of J_j
+    Vector3 gamma_dot = Vector3::Zero();   ///< joint rates (eq. 4b generalised)
+    Vector3 gamma_ddot = Vector3::Zero();  ///< joint accelerations
+    std::array<Twist, 2> xi{};          ///< body twists referred to O
+    std::array<Twist, 3> s_dot{};       ///< ds_k/dt = [xi of the body carrying joint k, s_k]
+};
+
+/// Per-sample workspace. Fixed capacity; sized once by the Model it is constructed for.
+struct Data {
+    explicit Data(const Model& model);
+    Data() = default;
+
+    Pose p = Pose::Zero();              ///< [theta, x_c, y_c] (eq. 1)
+    Twist t_M = Twist::Zero();          ///< dp/dt (eq. 2)
+    Twist t_M_dot = Twist::Zero();      ///< d2p/dt2
+    Twist xi_P = Twist::Zero();         ///< platform twist referred to O
+    Twist xi_P_dot = Twist::Zero();     ///< its time derivative
+    Vector2 x_P = Vector2::Zero();      ///< platform c.o.m. [m]
+    std::array<LimbData, kMaxLimbs> limb{};
+
+    ActuatorVector u;     ///< actuator variables (the actuated q) [m or rad]
+    ActuatorVector du;    ///< actuator rates
+    ActuatorVector ddu;   ///< actuator accelerations
+    ActuatorVector tau;   ///< actuator forces (torques) on the outboard bodies [N, N m]
+    ActuationMatrix A;    ///< du = A xi_P: the actuated rows of the J_j^-1 (eq. 5 generalised)
+    double cond_A = 0.0;  ///< scaled condition number of A
+
+    /// Independent coordinates: xi_P = Xi v (v = du, or dp/dt when redundant), and dXi/dt.
+    Matrix3 Xi = Matrix3::Identity();
+    Matrix3 Xi_dot = Matrix3::Zero();
+    std::array<ShapingMatrix3, kMaxBodies> T{};      ///< T_i: t_i = T_i v (eq. 22)
+    std::array<ShapingMatrix3, kMaxBodies> T_dot{};  ///< dT_i/dt
+    Matrix3 I = Matrix3::Zero();   ///< inertia in the independent coordinates (eq. 23)
+    Matrix3 C = Matrix3::Zero();   ///< Coriolis matrix (eq. 23), dI/dt = C + C^T
+    Vector3 Q_gf = Vector3::Zero();  ///< generalized gravity and friction force to supply
+    Vector3 Q = Vector3::Zero();     ///< I dv + C v + Q_gf: the generalized force to supply
+    /// Platform wrench referred to O that the limbs must supply (lean path), [N m; N].
+    Wrench W_P = Wrench::Zero();
+};
+
+}  // namespace nocdyn

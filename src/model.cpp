@@ -1,0 +1,168 @@
+// Construction of the general Model from a robot description (model.hpp).
+#include "nocdyn/model.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "nocdyn/error.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/limb_ik.hpp"
+
+namespace nocdyn {
+
+namespace {
+
+[[nodiscard]] Twist homeScrew(const LimbModel& limb, int k) {
+    const auto kk = static_cast<std::size_t>(k);
+    return limb.type[kk] == JointType::revolute ? revoluteTwist(-limb.point_home[kk])
+                                                : prismaticTwist(limb.direction[kk]);
+}
+
+}  // namespace
+
+Model::Model(const RobotParameters& parameters) : Model(expand(parameters)) {}
+
+Model::Model(RobotDescription d) : description(std::move(d)) {
+    validate(description);
+    const RobotDescription& robot = description;
+    limbs = static_cast<int>(robot.limbs.size());
+    bodies = 2 * limbs + 1;
+    actuators = robot.actuatorCount();
+    coordinates = actuators == 3 ? Coordinates::actuators : Coordinates::platform;
+    max_condition = robot.max_condition;
+    gravity = robot.gravity;
+    home = robot.home;
+    cos_home = std::cos(home(0));
+    sin_home = std::sin(home(0));
+    platform_M = {robot.platform.inertia, robot.platform.mass};
+    platform_com = robot.platform.com;
+    const Vector2 C_home = home.tail<2>();
+
+    int a = 0;
+    double scale = 0.0;
+    for (int j = 0; j < limbs; ++j) {
+        const LimbDescription& in = robot.limbs[static_cast<std::size_t>(j)];
+        LimbModel& out = limb[static_cast<std::size_t>(j)];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const JointDescription& joint = in.joints[k];
+            out.type[k] = joint.type;
+            out.point_home[k] = joint.point;
+            out.point[k] = joint.point - C_home;
+            out.direction[k] = joint.direction;
+            out.limits[k] = joint.limits;
+            out.damping[k] = joint.damping;
+            out.friction[k] = joint.friction;
+            if (joint.actuated) {
+                out.actuator[k] = a;
+                actuator_limb[static_cast<std::size_t>(a)] = j;
+                actuator_joint[static_cast<std::size_t>(a)] = static_cast<int>(k);
+                ++a;
+            }
+            if (joint.type == JointType::revolute) scale = std::max(scale, out.point[k].norm());
+        }
+        for (int k = 0; k < 3; ++k) out.screw_home[static_cast<std::size_t>(k)] = homeScrew(out, k);
+        for (std::size_t b = 0; b < 2; ++b) {
+            out.M[b] = {in.bodies[b].inertia, in.bodies[b].mass};
+            out.com_home[b] = in.bodies[b].com;
+        }
+        // Lengths of the closed forms: the links between consecutive revolute axes.
+        out.length1 = (out.point_home[1] - out.point_home[0]).norm();
+        out.length2 = (out.point_home[2] - out.point_home[1]).norm();
+        out.branch = homeBranch(out);
+        const std::string type = in.type();
+        const bool two_solutions = type == "RRR" || type == "PRR" || type == "RPR" || type == "RRP";
+        if (two_solutions && out.branch == 0) {
+            throw Error(where(robot, in.line) + "limbs[" + std::to_string(j) + "] (" + in.name +
+                        "): singular at home: the " + type +
+                        " limb is at the boundary of its reach (its two assembly branches meet)");
+        }
+    }
+    length_scale = scale > 0.0 ? scale : 1.0;
+
+    // The home posture must be regular and reproduce q = 0 on every limb.
+    Data data(*this);
+    Status status = inverseDisplacement(*this, data, home);
+    if (status) status = velocityFromPlatformTwist(*this, data, Twist::Zero());
+    if (!status) {
+        throw Error(where(robot, 0) + "the robot is not regular at its home posture: " + describe(status, *this));
+    }
+    for (int j = 0; j < limbs; ++j) {
+        for (int k = 0; k < 3; ++k) {
+            const double q = data.limb[static_cast<std::size_t>(j)].q(k);
+            if (!(std::abs(q) <= 1e-9 * std::max(1.0, length_scale))) {
+                std::ostringstream msg;
+                msg << where(robot, robot.limbs[static_cast<std::size_t>(j)].line) << limbName(j)
+                    << ": the closed-form inverse displacement gives q_" << k + 1 << " = " << q
+                    << " at home instead of 0";
+                throw Error(msg.str());
+            }
+        }
+    }
+}
+
+std::string Model::limbName(int j) const {
+    const std::string& name = description.limbs[static_cast<std::size_t>(j)].name;
+    const std::string number = "limb " + std::to_string(j + 1);
+    return name == "limb" + std::to_string(j + 1) ? number : number + " (" + name + ")";
+}
+
+Data::Data(const Model& model)
+    : u(ActuatorVector::Zero(model.actuators)),
+      du(ActuatorVector::Zero(model.actuators)),
+      ddu(ActuatorVector::Zero(model.actuators)),
+      tau(ActuatorVector::Zero(model.actuators)),
+      A(ActuationMatrix::Zero(model.actuators, 3)) {
+    for (auto& T_i : T) T_i.setZero();
+    for (auto& T_i : T_dot) T_i.setZero();
+}
+
+}  // namespace nocdyn
+
+namespace nocdyn {
+
+std::string describe(const Status& status, const Model& model) {
+    std::ostringstream out;
+    out.precision(6);
+    const std::string limb = status.limb >= 0 ? model.limbName(status.limb) : std::string("the robot");
+    const std::string joint = status.joint >= 0 ? ", joint " + std::to_string(status.joint + 1) : std::string();
+    const JointLimits* limits = nullptr;
+    if (status.limb >= 0 && status.joint >= 0) {
+        limits = &model.limb[static_cast<std::size_t>(status.limb)].limits[static_cast<std::size_t>(status.joint)];
+    }
+    switch (status.code) {
+        case StatusCode::ok:
+            return "ok";
+        case StatusCode::unreachable:
+            out << "pose out of reach: " << limb << " cannot close on its home branch; the pose is "
+                << status.value * 1e3 << " mm beyond its reach";
+            return out.str();
+        case StatusCode::singular_limb:
+            out << "singular posture: " << limb << ": its Jacobian J has condition number " << status.value
+                << " (limit " << model.max_condition << ")";
+            return out.str();
+        case StatusCode::singular_actuation:
+            if (status.value == 0.0) return "the actuator rates cannot be given independently: the robot is redundantly actuated";
+            out << "actuation singularity: the map from the platform twist to the actuator rates has condition number "
+                << status.value << " (limit " << model.max_condition << ")";
+            return out.str();
+        case StatusCode::joint_limit_exceeded:
+            out << "joint range exceeded: " << limb << joint << ": q = " << status.value << ", range ["
+                << (limits ? limits->lower : 0.0) << ", " << (limits ? limits->upper : 0.0) << "]";
+            return out.str();
+        case StatusCode::velocity_exceeded:
+            out << "joint velocity limit exceeded: " << limb << joint << ": q' = " << status.value << ", limit "
+                << (limits ? limits->velocity : 0.0);
+            return out.str();
+        case StatusCode::effort_exceeded:
+            out << "actuator effort limit exceeded: " << limb << joint << ": tau = " << status.value << ", limit "
+                << (limits ? limits->effort : 0.0);
+            return out.str();
+        case StatusCode::not_finite:
+            out << "input is not a finite number (" << status.value << ")";
+            return out.str();
+        default:
+            return describe(status, RobotParameters{});
+    }
+}
+
+}  // namespace nocdyn
