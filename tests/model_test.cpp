@@ -1,0 +1,310 @@
+// The general model on the paper's robot (against the hand-derived 3-PRR model) and on random
+// robots of every limb type and actuation choice: inverse displacement against the product
+// of exponentials, rates and T_i against finite differences, I SPD, dI/dt = C + C^T, the
+// power balance with gravity and friction, the lean path against the full path, and the
+// minimum-norm forces of redundantly actuated robots.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/QR>
+
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/limb_ik.hpp"
+#include "random_robots.hpp"
+#include "support.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+constexpr double kFiniteDifferenceStep = 1e-6;  // [s]
+constexpr double kFiniteDifferenceTolerance = 1e-6;  // relative to the quantity's scale
+constexpr double kRoundOff = 1e-10;               // relative
+
+/// Platform pose from one limb's joint variables by the product of exponentials
+/// exp(s_1 q_1) exp(s_2 q_2) exp(s_3 q_3) applied to the home pose (independent of the model).
+Pose productOfExponentials(const RobotDescription& robot, int j, const Vector3& q) {
+    double angle = 0.0;
+    Vector2 t = Vector2::Zero();
+    const auto rotate = [](double a, const Vector2& v) {
+        return Vector2(std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y());
+    };
+    for (int k = 0; k < 3; ++k) {
+        const JointDescription& joint = robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(k)];
+        double a = 0.0;
+        Vector2 d = Vector2::Zero();
+        if (joint.type == JointType::revolute) {
+            a = q(k);
+            d = joint.point - rotate(a, joint.point);
+        } else {
+            d = q(k) * joint.direction;
+        }
+        t = rotate(angle, d) + t;  // g o e
+        angle += a;
+    }
+    const Vector2 c = rotate(angle, robot.home.tail<2>()) + t;
+    return {robot.home(0) + angle, c.x(), c.y()};
+}
+
+struct Sample {
+    Pose p, dp, ddp;
+};
+
+Sample at(const PoseTrajectory& trajectory, double t) {
+    Sample s;
+    trajectory.evaluate(t, s.p, s.dp, s.ddp);
+    return s;
+}
+
+/// Random robots of every limb type (all limbs alike, then mixed), with and without gravity
+/// and friction, three actuators or more.
+std::vector<RandomRobotSpec> specs() {
+    std::vector<RandomRobotSpec> out;
+    for (const std::string& type : limbTypes()) {
+        out.push_back({{type, type, type}, 3, false, false});
+        out.push_back({{type, type, type}, 3, true, true});
+        out.push_back({{type, type, type, type}, 4, true, true});
+    }
+    out.push_back({{"RRR", "PRR", "RPR"}, 3, true, false});
+    out.push_back({{"RRP", "PRP", "RPP", "PPR"}, 5, false, true});
+    out.push_back({{"PRR", "RRR", "RPR", "RRR", "PRR"}, 6, true, true});
+    return out;
+}
+
+std::string label(const RandomRobotSpec& spec) {
+    std::string s;
+    for (const auto& type : spec.limb_types) s += type + "-";
+    return s + std::to_string(spec.actuators) + (spec.gravity ? "-gravity" : "") + (spec.friction ? "-friction" : "");
+}
+
+class RandomRobots : public ::testing::TestWithParam<RandomRobotSpec> {
+protected:
+    /// The first few random robots of the spec that are regular along a random trajectory.
+    void forEachRobot(const std::function<void(const Model&, const PoseTrajectory&)>& check) {
+        std::mt19937 rng(7);
+        int kept = 0, tried = 0;
+        while (kept < kRobots && tried < 200) {
+            ++tried;
+            const auto description = randomRobot(GetParam(), rng);
+            if (!description) continue;
+            const Model model(*description);
+            const PoseTrajectory trajectory = trajectoryAround(description->home, rng, 0.5);
+            Data data(model);
+            bool regular = true;
+            for (int k = 0; k <= kSamples && regular; ++k) {
+                const Sample s = at(trajectory, k * kDuration / kSamples);
+                regular = inverseDynamics(model, data, s.p, s.dp, s.ddp).ok() && data.cond_A < 1e3;
+                for (int j = 0; j < model.limbs; ++j) regular = regular && data.limb[static_cast<std::size_t>(j)].cond < 1e3;
+            }
+            if (!regular) continue;
+            ++kept;
+            check(model, trajectory);
+        }
+        EXPECT_EQ(kept, kRobots) << label(GetParam()) << ": only " << kept << " regular robots in " << tried;
+    }
+
+    static constexpr int kRobots = 3;
+    static constexpr int kSamples = 12;
+    static constexpr double kDuration = 0.3;
+};
+
+TEST_P(RandomRobots, InverseDisplacementInvertsTheProductOfExponentials) {
+    forEachRobot([](const Model& model, const PoseTrajectory& trajectory) {
+        Data data(model);
+        for (int k = 0; k <= kSamples; ++k) {
+            const Sample s = at(trajectory, k * kDuration / kSamples);
+            ASSERT_TRUE(inverseDisplacement(model, data, s.p).ok());
+            for (int j = 0; j < model.limbs; ++j) {
+                const Pose back = productOfExponentials(model.description, j, data.limb[static_cast<std::size_t>(j)].q);
+                EXPECT_NEAR(back(0), s.p(0), 1e-13) << model.limbName(j);
+                EXPECT_NEAR(back(1), s.p(1), 1e-13) << model.limbName(j);
+                EXPECT_NEAR(back(2), s.p(2), 1e-13) << model.limbName(j);
+            }
+        }
+    });
+}
+
+TEST_P(RandomRobots, RatesAndAccelerationsMatchFiniteDifferences) {
+    forEachRobot([](const Model& model, const PoseTrajectory& trajectory) {
+        Data data(model), minus(model), plus(model);
+        const double h = kFiniteDifferenceStep;
+        for (int k = 1; k < kSamples; ++k) {
+            const double t = k * kDuration / kSamples;
+            const Sample s = at(trajectory, t), sm = at(trajectory, t - h), sp = at(trajectory, t + h);
+            ASSERT_TRUE(inverseDynamics(model, data, s.p, s.dp, s.ddp).ok());
+            ASSERT_TRUE(inverseDynamics(model, minus, sm.p, sm.dp, sm.ddp).ok());
+            ASSERT_TRUE(inverseDynamics(model, plus, sp.p, sp.dp, sp.ddp).ok());
+            for (int j = 0; j < model.limbs; ++j) {
+                const auto jj = static_cast<std::size_t>(j);
+                for (int q = 0; q < 3; ++q) {
+                    double dq = plus.limb[jj].q(q) - minus.limb[jj].q(q);
+                    dq = std::remainder(dq, 2.0 * std::numbers::pi);  // angles wrap
+                    const double fd = dq / (2 * h);
+                    const double fd2 = (plus.limb[jj].gamma_dot(q) - minus.limb[jj].gamma_dot(q)) / (2 * h);
+                    const double scale_v = 1.0 + data.limb[jj].gamma_dot.cwiseAbs().maxCoeff();
+                    const double scale_a = 1.0 + data.limb[jj].gamma_ddot.cwiseAbs().maxCoeff();
+                    EXPECT_NEAR(data.limb[jj].gamma_dot(q), fd, kFiniteDifferenceTolerance * scale_v) << model.limbName(j) << " joint " << q + 1;
+                    EXPECT_NEAR(data.limb[jj].gamma_ddot(q), fd2, 1e-5 * scale_a) << model.limbName(j) << " joint " << q + 1;
+                }
+            }
+            // T_i v is the body twist: its c.o.m. velocity against finite differences of x_i
+            for (int j = 0; j < model.limbs; ++j) {
+                const auto jj = static_cast<std::size_t>(j);
+                for (int b = 0; b < 2; ++b) {
+                    const auto bb = static_cast<std::size_t>(b);
+                    const Vector2 fd = (plus.limb[jj].x[bb] - minus.limb[jj].x[bb]) / (2 * h);
+                    const Vector3 v = model.coordinates == Coordinates::actuators ? Vector3(data.du) : Vector3(data.t_M);
+                    const Twist t_i = data.T[static_cast<std::size_t>(model.body(j, b))] * v;
+                    EXPECT_NEAR(t_i(1), fd.x(), kFiniteDifferenceTolerance * (1.0 + fd.norm()));
+                    EXPECT_NEAR(t_i(2), fd.y(), kFiniteDifferenceTolerance * (1.0 + fd.norm()));
+                }
+            }
+            // dT_i against finite differences of T_i
+            for (int i = 0; i < model.bodies; ++i) {
+                const auto ii = static_cast<std::size_t>(i);
+                const Matrix3 fd = (plus.T[ii] - minus.T[ii]) / (2 * h);
+                const double scale = 1.0 + data.T_dot[ii].cwiseAbs().maxCoeff() + data.T[ii].cwiseAbs().maxCoeff();
+                EXPECT_LT((fd - data.T_dot[ii]).cwiseAbs().maxCoeff(), 1e-5 * scale) << "body " << i;
+            }
+        }
+    });
+}
+
+TEST_P(RandomRobots, InertiaIsSymmetricPositiveDefiniteAndItsRateIsCPlusCTranspose) {
+    forEachRobot([](const Model& model, const PoseTrajectory& trajectory) {
+        Data data(model), minus(model), plus(model);
+        const double h = kFiniteDifferenceStep;
+        for (int k = 1; k < kSamples; ++k) {
+            const double t = k * kDuration / kSamples;
+            const Sample s = at(trajectory, t), sm = at(trajectory, t - h), sp = at(trajectory, t + h);
+            ASSERT_TRUE(inverseDynamics(model, data, s.p, s.dp, s.ddp).ok());
+            ASSERT_TRUE(inverseDynamics(model, minus, sm.p, sm.dp, sm.ddp).ok());
+            ASSERT_TRUE(inverseDynamics(model, plus, sp.p, sp.dp, sp.ddp).ok());
+            const double scale = data.I.cwiseAbs().maxCoeff();
+            EXPECT_LT((data.I - data.I.transpose()).cwiseAbs().maxCoeff(), kRoundOff * scale);
+            const Eigen::SelfAdjointEigenSolver<Matrix3> eig(data.I);
+            EXPECT_GT(eig.eigenvalues().minCoeff(), 0.0);
+            const Matrix3 I_dot = (plus.I - minus.I) / (2 * h);
+            const Matrix3 CC = data.C + data.C.transpose();
+            EXPECT_LT((I_dot - CC).cwiseAbs().maxCoeff(), 1e-5 * (1.0 + CC.cwiseAbs().maxCoeff() + scale));
+        }
+    });
+}
+
+TEST_P(RandomRobots, PowerBalanceHoldsWithGravityAndFriction) {
+    forEachRobot([](const Model& model, const PoseTrajectory& trajectory) {
+        Data data(model), minus(model), plus(model);
+        const double h = kFiniteDifferenceStep;
+        for (int k = 1; k < kSamples; ++k) {
+            const double t = k * kDuration / kSamples;
+            const Sample s = at(trajectory, t), sm = at(trajectory, t - h), sp = at(trajectory, t + h);
+            ASSERT_TRUE(inverseDynamics(model, data, s.p, s.dp, s.ddp).ok());
+            ASSERT_TRUE(inverseDynamics(model, minus, sm.p, sm.dp, sm.ddp).ok());
+            ASSERT_TRUE(inverseDynamics(model, plus, sp.p, sp.dp, sp.ddp).ok());
+            const double energy_rate = (kineticEnergy(model, plus) + potentialEnergy(model, plus) -
+                                        kineticEnergy(model, minus) - potentialEnergy(model, minus)) /
+                                       (2 * h);
+            const double power = data.tau.dot(data.du);
+            const double scale = 1.0 + (data.tau.cwiseAbs().array() * data.du.cwiseAbs().array()).sum();
+            EXPECT_NEAR(power, energy_rate + frictionPower(model, data), 1e-6 * scale) << "t = " << t;
+        }
+    });
+}
+
+TEST_P(RandomRobots, LeanPathEqualsFullPath) {
+    forEachRobot([](const Model& model, const PoseTrajectory& trajectory) {
+        Data full(model), lean(model);
+        for (int k = 0; k <= kSamples; ++k) {
+            const Sample s = at(trajectory, k * kDuration / kSamples);
+            ASSERT_TRUE(inverseDynamics(model, full, s.p, s.dp, s.ddp).ok());
+            ASSERT_TRUE(inverseDynamicsFast(model, lean, s.p, s.dp, s.ddp).ok());
+            const double scale = 1.0 + full.tau.cwiseAbs().maxCoeff();
+            for (int a = 0; a < model.actuators; ++a) {
+                EXPECT_NEAR(lean.u(a), full.u(a), 1e-14);
+                EXPECT_NEAR(lean.du(a), full.du(a), 1e-12 * (1.0 + std::abs(full.du(a))));
+                EXPECT_NEAR(lean.ddu(a), full.ddu(a), 1e-11 * (1.0 + std::abs(full.ddu(a))));
+                EXPECT_NEAR(lean.tau(a), full.tau(a), kRoundOff * scale) << "actuator " << a + 1;
+            }
+        }
+    });
+}
+
+TEST_P(RandomRobots, RedundantForcesAreTheMinimumNormSolution) {
+    forEachRobot([](const Model& model, const PoseTrajectory& trajectory) {
+        Data data(model);
+        for (int k = 0; k <= kSamples; ++k) {
+            const Sample s = at(trajectory, k * kDuration / kSamples);
+            ASSERT_TRUE(inverseDynamics(model, data, s.p, s.dp, s.ddp).ok());
+            // A_p^T tau = Q, and tau lies in the range of A_p (no component in its null space)
+            const Eigen::MatrixXd A_p = Eigen::MatrixXd(data.A) * data.Xi;
+            const Eigen::VectorXd tau = data.tau;
+            const double scale = 1.0 + tau.cwiseAbs().maxCoeff() * A_p.cwiseAbs().maxCoeff();
+            EXPECT_LT((A_p.transpose() * tau - data.Q).cwiseAbs().maxCoeff(), kRoundOff * scale);
+            const Eigen::VectorXd projected = A_p * A_p.colPivHouseholderQr().solve(tau);
+            EXPECT_LT((projected - tau).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + tau.cwiseAbs().maxCoeff()));
+        }
+    });
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobots, ::testing::ValuesIn(specs()),
+                         [](const auto& info) {
+                             std::string name = label(info.param);
+                             for (char& c : name) c = c == '-' ? '_' : c;
+                             return name;
+                         });
+
+TEST(PaperRobot, GeneralModelEqualsTheThreePrrModelAtRandomPoses) {
+    const prr3::Model special;
+    const Model general{RobotParameters{}};
+    prr3::Data a;
+    Data b(general);
+    WorkspaceSampler sampler(special, 11);
+    for (int n = 0; n < 300; ++n) {
+        const Pose p = sampler.next();
+        const Twist dp = sampler.twist(), ddp = 100.0 * sampler.twist();
+        ASSERT_TRUE(prr3::inverseDynamics(special, a, p, dp, ddp).ok());
+        const Status status = inverseDynamics(general, b, p, dp, ddp);
+        ASSERT_TRUE(status.ok()) << describePose(p) << ": " << describe(status, general);
+        const double tau_scale = a.tau.cwiseAbs().maxCoeff();
+        for (int j = 0; j < 3; ++j) {
+            EXPECT_NEAR(b.u(j), a.u(j), 1e-15) << describePose(p);
+            EXPECT_NEAR(b.du(j), a.du(j), kRoundOff * (1.0 + std::abs(a.du(j))));
+            EXPECT_NEAR(b.ddu(j), a.ddu(j), kRoundOff * (1.0 + std::abs(a.ddu(j))));
+            EXPECT_NEAR(b.tau(j), a.tau(j), kRoundOff * tau_scale) << describePose(p);
+        }
+        EXPECT_LT((b.I - a.I).cwiseAbs().maxCoeff(), kRoundOff * a.I.cwiseAbs().maxCoeff());
+        EXPECT_LT((b.C - a.C).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + a.C.cwiseAbs().maxCoeff()));
+        for (int i = 0; i < 7; ++i) {
+            const auto ii = static_cast<std::size_t>(i);
+            EXPECT_LT((b.T[ii] - a.T[ii]).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + a.T[ii].cwiseAbs().maxCoeff())) << "T_" << i + 1;
+            EXPECT_LT((b.T_dot[ii] - a.T_dot[ii]).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + a.T_dot[ii].cwiseAbs().maxCoeff()))
+                << "dT_" << i + 1;
+        }
+    }
+}
+
+TEST(PaperRobot, PoseOutOfReachNamesTheLimbAndTheDistance) {
+    const Model model{RobotParameters{}};
+    Data data(model);
+    // far to the right: limb 2 (rail along 120 degrees) cannot reach
+    const Status status = inverseDisplacement(model, data, Pose(0.0, 0.3, 0.0));
+    ASSERT_EQ(status.code, StatusCode::unreachable);
+    EXPECT_GE(status.limb, 0);
+    EXPECT_GT(status.value, 0.0);
+    const std::string message = describe(status, model);
+    EXPECT_NE(message.find("limb " + std::to_string(status.limb + 1)), std::string::npos) << message;
+}
+
+TEST(PaperRobot, NonFiniteInputIsAStatusNotANaN) {
+    const Model model{RobotParameters{}};
+    Data data(model);
+    EXPECT_EQ(inverseDynamics(model, data, Pose(std::nan(""), 0, 0), Twist::Zero(), Twist::Zero()).code,
+              StatusCode::not_finite);
+    EXPECT_EQ(inverseDynamicsFast(model, data, Pose::Zero(), Twist(0, INFINITY, 0), Twist::Zero()).code,
+              StatusCode::not_finite);
+}
+
+}  // namespace
+}  // namespace nocdyn::test
