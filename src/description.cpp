@@ -2,6 +2,7 @@
 #include "nocdyn/description.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 
@@ -150,7 +151,9 @@ void validate(RobotDescription& robot) {
                 check.finiteIn(joint.direction.y(), -kMaxLength, kMaxLength, joint.line, field + ".direction[1]", "");
                 const double norm = joint.direction.norm();
                 if (!(norm > 1e-9)) check.fail(joint.line, field + ".direction", "must be a non-zero vector");
-                joint.direction /= norm;
+                // unit length; a direction already unit to round-off is kept as written, so that
+                // a file written by `convert` reads back bit for bit
+                if (std::abs(norm - 1.0) > 4.0 * std::numeric_limits<double>::epsilon()) joint.direction /= norm;
             }
             const JointLimits& lim = joint.limits;
             if (std::isnan(lim.lower) || std::isnan(lim.upper) || !(lim.lower < lim.upper) ||

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
     nocdyn::cli::addSimulateCommand(app);
     nocdyn::cli::addControlCommand(app);
     nocdyn::cli::addEnvelopeCommand(app);
+    nocdyn::cli::addConvertCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif

@@ -43,8 +43,6 @@ void requireMap(const Context& context, const YAML::Node& node,
     }
 }
 
-namespace {
-
 double toNumber(const Context& context, const YAML::Node& node) {
     if (!node.IsScalar()) fail(context, node, "expected a number");
     double value = 0.0;
@@ -56,8 +54,6 @@ double toNumber(const Context& context, const YAML::Node& node) {
     if (!std::isfinite(value)) fail(context, node, "expected a finite number, got '" + node.Scalar() + "'");
     return value;
 }
-
-}  // namespace
 
 double requireNumber(const Context& context, const YAML::Node& map, const char* key) {
     const YAML::Node node = map[key];

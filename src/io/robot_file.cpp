@@ -1,0 +1,211 @@
+// Robot files of either form (robot_file.hpp).
+#include "nocdyn/io/robot_file.hpp"
+
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/robot_yaml.hpp"
+#include "yaml_util.hpp"
+
+namespace nocdyn::io {
+
+using detail::Context;
+
+namespace {
+
+int lineOf(const YAML::Node& node) { return node.IsDefined() && node.Mark().line >= 0 ? node.Mark().line + 1 : 0; }
+
+Eigen::Vector2d vector2(const Context& context, const YAML::Node& map, const char* key) {
+    const YAML::Node node = map[key];
+    if (!node.IsDefined() || node.IsNull()) detail::fail(context / key, map, "required [x, y] is missing");
+    if (!node.IsSequence() || node.size() != 2) detail::fail(context / key, node, "expected a list of 2 numbers [x, y]");
+    return {detail::toNumber(context / key, node[0]), detail::toNumber(context / key, node[1])};
+}
+
+bool flag(const Context& context, const YAML::Node& map, const char* key) {
+    const YAML::Node node = map[key];
+    if (!node.IsDefined()) return false;
+    if (node.IsScalar()) {
+        const std::string& s = node.Scalar();
+        if (s == "true") return true;
+        if (s == "false") return false;
+    }
+    detail::fail(context / key, node, "expected true or false");
+}
+
+JointDescription parseJoint(const Context& context, const YAML::Node& node) {
+    detail::requireMap(context, node, {"type", "point", "direction", "actuated", "limits", "damping", "friction"});
+    JointDescription joint;
+    joint.line = lineOf(node);
+    const YAML::Node type = node["type"];
+    if (!type.IsDefined()) detail::fail(context / "type", node, "required joint type is missing (R or P)");
+    if (!type.IsScalar() || (type.Scalar() != "R" && type.Scalar() != "P")) {
+        detail::fail(context / "type", type, "unknown joint type '" + (type.IsScalar() ? type.Scalar() : std::string("?")) +
+                                                 "' (expected R or P)");
+    }
+    if (type.Scalar() == "R") {
+        joint.type = JointType::revolute;
+        if (node["direction"].IsDefined()) detail::fail(context / "direction", node["direction"], "an R joint takes a point, not a direction");
+        joint.point = vector2(context, node, "point");
+    } else {
+        joint.type = JointType::prismatic;
+        if (node["point"].IsDefined()) detail::fail(context / "point", node["point"], "a P joint takes a direction, not a point");
+        joint.direction = vector2(context, node, "direction");
+    }
+    joint.actuated = flag(context, node, "actuated");
+    if (const YAML::Node limits = node["limits"]; limits.IsDefined()) {
+        const Context here = context / "limits";
+        detail::requireMap(here, limits, {"lower", "upper", "effort", "velocity"});
+        joint.limits.lower = detail::optionalNumber(here, limits, "lower", joint.limits.lower);
+        joint.limits.upper = detail::optionalNumber(here, limits, "upper", joint.limits.upper);
+        joint.limits.effort = detail::optionalNumber(here, limits, "effort", joint.limits.effort);
+        joint.limits.velocity = detail::optionalNumber(here, limits, "velocity", joint.limits.velocity);
+    }
+    joint.damping = detail::optionalNumber(context, node, "damping", 0.0);
+    joint.friction = detail::optionalNumber(context, node, "friction", 0.0);
+    return joint;
+}
+
+BodyDescription parseBody(const Context& context, const YAML::Node& node) {
+    detail::requireMap(context, node, {"mass", "inertia", "com"});
+    BodyDescription body;
+    body.line = lineOf(node);
+    body.mass = detail::requireNumber(context, node, "mass");
+    body.inertia = detail::requireNumber(context, node, "inertia");
+    body.com = vector2(context, node, "com");
+    return body;
+}
+
+RobotDescription parseGeneral(const YAML::Node& root, const std::string& source) {
+    const Context top{source, ""};
+    detail::requireMap(top, root, {"name", "gravity", "home", "max_condition", "platform", "limbs"});
+    RobotDescription robot;
+    robot.source = source;
+    robot.name = std::filesystem::path(source).stem().string();
+    if (const YAML::Node name = root["name"]; name.IsDefined()) {
+        if (!name.IsScalar() || name.Scalar().empty()) detail::fail(top / "name", name, "expected a non-empty string");
+        robot.name = name.Scalar();
+    }
+    if (root["gravity"].IsDefined()) robot.gravity = vector2(top, root, "gravity");
+    if (const YAML::Node home = root["home"]; home.IsDefined()) {
+        if (!home.IsSequence() || home.size() != 3) detail::fail(top / "home", home, "expected [theta, x, y]");
+        for (std::size_t i = 0; i < 3; ++i) robot.home(static_cast<Eigen::Index>(i)) = detail::toNumber(top / "home", home[i]);
+    }
+    robot.max_condition = detail::optionalNumber(top, root, "max_condition", robot.max_condition);
+    const YAML::Node platform = root["platform"];
+    if (!platform.IsDefined()) detail::fail(top / "platform", root, "required section is missing");
+    detail::requireMap(top / "platform", platform, {"mass", "inertia", "com"});
+    robot.platform.line = lineOf(platform);
+    robot.platform.mass = detail::requireNumber(top / "platform", platform, "mass");
+    robot.platform.inertia = detail::requireNumber(top / "platform", platform, "inertia");
+    if (platform["com"].IsDefined()) robot.platform.com = vector2(top / "platform", platform, "com");
+    const YAML::Node limbs = root["limbs"];
+    if (!limbs.IsSequence()) detail::fail(top / "limbs", limbs, "expected a list of limbs");
+    if (limbs.size() < 2 || limbs.size() > static_cast<std::size_t>(kMaxLimbs)) {
+        detail::fail(top / "limbs", limbs, "a robot has 2 to " + std::to_string(kMaxLimbs) + " limbs, got " +
+                                               std::to_string(limbs.size()));
+    }
+    for (std::size_t j = 0; j < limbs.size(); ++j) {
+        const YAML::Node node = limbs[j];
+        const Context limb_context = top / ("limbs[" + std::to_string(j) + "]");
+        detail::requireMap(limb_context, node, {"name", "joints", "bodies"});
+        LimbDescription limb;
+        limb.line = lineOf(node);
+        limb.name = "limb" + std::to_string(j + 1);
+        if (const YAML::Node name = node["name"]; name.IsDefined()) {
+            if (!name.IsScalar() || name.Scalar().empty()) detail::fail(limb_context / "name", name, "expected a non-empty string");
+            limb.name = name.Scalar();
+        }
+        const YAML::Node joints = node["joints"];
+        if (!joints.IsSequence() || joints.size() != 3) {
+            detail::fail(limb_context / "joints", joints.IsDefined() ? joints : node,
+                         "a limb has exactly 3 joints, base to platform");
+        }
+        for (std::size_t k = 0; k < 3; ++k) {
+            limb.joints[k] = parseJoint(limb_context / ("joints[" + std::to_string(k) + "]"), joints[k]);
+        }
+        const YAML::Node bodies = node["bodies"];
+        if (!bodies.IsSequence() || bodies.size() != 2) {
+            detail::fail(limb_context / "bodies", bodies.IsDefined() ? bodies : node,
+                         "a limb has exactly 2 moving bodies (between joints 1-2 and 2-3)");
+        }
+        for (std::size_t b = 0; b < 2; ++b) {
+            limb.bodies[b] = parseBody(limb_context / ("bodies[" + std::to_string(b) + "]"), bodies[b]);
+        }
+        robot.limbs.push_back(limb);
+    }
+    validate(robot);
+    return robot;
+}
+
+/// Shortest decimal that reads back as the same double.
+std::string number(double value) {
+    char buffer[64];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return {buffer, result.ptr};
+}
+
+std::string pair(const Eigen::Vector2d& v) {
+    std::string out("[");
+    out.append(number(v.x())).append(", ").append(number(v.y())).append("]");
+    return out;
+}
+
+}  // namespace
+
+RobotDescription parseRobotDescription(const std::string& text, const std::string& source) {
+    const YAML::Node root = detail::loadDocument(text, source);
+    if (root.IsMap() && root["limbs"].IsDefined()) return parseGeneral(root, source);
+    RobotDescription robot = expand(parseRobot(text, source));
+    robot.source = source;
+    return robot;
+}
+
+RobotDescription loadRobotDescription(const std::string& path) {
+    return parseRobotDescription(detail::readFile(path, "robot file"), path);
+}
+
+std::string descriptionToYaml(const RobotDescription& robot) {
+    std::ostringstream out;
+    out << "name: " << robot.name << "\n";
+    if (!robot.gravity.isZero()) out << "gravity: " << pair(robot.gravity) << "  # [m/s^2]\n";
+    if (!robot.home.isZero()) {
+        out << "home: [" << number(robot.home(0)) << ", " << number(robot.home(1)) << ", " << number(robot.home(2))
+            << "]  # [theta, x, y] at home\n";
+    }
+    out << "max_condition: " << number(robot.max_condition) << "\n";
+    out << "platform: {mass: " << number(robot.platform.mass) << ", inertia: " << number(robot.platform.inertia)
+        << ", com: " << pair(robot.platform.com) << "}\n";
+    out << "limbs:\n";
+    for (const LimbDescription& limb : robot.limbs) {
+        out << "  - name: " << limb.name << "\n    joints:\n";
+        for (const JointDescription& joint : limb.joints) {
+            out << "      - {type: " << (joint.type == JointType::revolute ? "R, point: " + pair(joint.point)
+                                                                             : "P, direction: " + pair(joint.direction));
+            if (joint.actuated) out << ", actuated: true";
+            std::string limits;
+            const auto add = [&](const char* key, double value) {
+                if (std::isfinite(value)) limits += (limits.empty() ? "" : ", ") + std::string(key) + ": " + number(value);
+            };
+            add("lower", joint.limits.lower);
+            add("upper", joint.limits.upper);
+            add("effort", joint.limits.effort);
+            add("velocity", joint.limits.velocity);
+            if (!limits.empty()) out << ", limits: {" << limits << "}";
+            if (joint.damping != 0.0) out << ", damping: " << number(joint.damping);
+            if (joint.friction != 0.0) out << ", friction: " << number(joint.friction);
+            out << "}\n";
+        }
+        out << "    bodies:\n";
+        for (const BodyDescription& body : limb.bodies) {
+            out << "      - {mass: " << number(body.mass) << ", inertia: " << number(body.inertia)
+                << ", com: " << pair(body.com) << "}\n";
+        }
+    }
+    return out.str();
+}
+
+}  // namespace nocdyn::io
