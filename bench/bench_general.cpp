@@ -1,0 +1,80 @@
+// Inverse dynamics per sample of the general model, for every example robot:
+// BM_InverseDynamics/<robot>/<engine>, robot in paper-3prr, 3-rrr, 3-rpr, 4-rrr; engine
+// nocdyn (the lean path inverseDynamicsFast), nocdyn_full (T_i, I and C stored), and for
+// the paper's robot `baseline`, the hand-specialised 3-PRR path the general one must match.
+// Each runs the paper's trajectory 1 plus a second harmonic per axis, a cycle of 1000
+// samples (fixture.hpp), and reports `per_sample`.
+#include <benchmark/benchmark.h>
+
+#include <string>
+#include <vector>
+
+#include "fixture.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/prr3/fast.hpp"
+
+namespace nocdyn::bench {
+namespace {
+
+void perSample(benchmark::State& state, std::size_t samples) {
+    state.counters["per_sample"] = benchmark::Counter(static_cast<double>(samples),
+                                                      benchmark::Counter::kIsIterationInvariantRate |
+                                                          benchmark::Counter::kInvert);
+}
+
+Model loadExample(const std::string& robot) {
+    return Model(io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
+}
+
+template <bool kLean>
+void generalModel(benchmark::State& state, const std::string& robot) {
+    const Fixture& f = fixture();
+    const Model model = loadExample(robot);
+    Data data(model);
+    for (const Sample& s : f.samples) {
+        if (!inverseDynamics(model, data, s.p, s.dp, s.ddp)) {
+            state.SkipWithError(("the benchmark trajectory leaves the workspace of " + robot).c_str());
+            return;
+        }
+    }
+    for (auto _ : state) {
+        for (const Sample& s : f.samples) {
+            const Status status = kLean ? inverseDynamicsFast(model, data, s.p, s.dp, s.ddp)
+                                        : inverseDynamics(model, data, s.p, s.dp, s.ddp);
+            benchmark::DoNotOptimize(status);
+            benchmark::DoNotOptimize(data.tau.data());
+        }
+        benchmark::ClobberMemory();
+    }
+    perSample(state, f.samples.size());
+}
+
+// The hand-specialised 3-PRR lean path, kept frozen as the baseline.
+void baseline(benchmark::State& state) {
+    const Fixture& f = fixture();
+    prr3::FastData data(f.model);
+    for (auto _ : state) {
+        for (const Sample& s : f.samples) {
+            const Status status = prr3::inverseDynamicsFast(f.model, data, s.p, s.dp, s.ddp);
+            benchmark::DoNotOptimize(status);
+            benchmark::DoNotOptimize(data.tau);
+        }
+        benchmark::ClobberMemory();
+    }
+    perSample(state, f.samples.size());
+}
+
+[[maybe_unused]] const bool registered = [] {
+    benchmark::RegisterBenchmark("BM_InverseDynamics/paper-3prr/baseline", baseline);
+    for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn").c_str(),
+                                     [robot](benchmark::State& s) { generalModel<true>(s, robot); });
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn_full").c_str(),
+                                     [robot](benchmark::State& s) { generalModel<false>(s, robot); });
+    }
+    return true;
+}();
+
+}  // namespace
+}  // namespace nocdyn::bench
