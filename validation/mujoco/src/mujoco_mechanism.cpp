@@ -417,7 +417,8 @@ std::vector<MechanismSample> MujocoMechanism::inverseDynamics(const PoseTrajecto
         mj_rne(m, d, 1, h.data());
         const Eigen::VectorXd qvel = Eigen::Map<const Eigen::VectorXd>(d->qvel, nv);
         const Eigen::VectorXd qacc = Eigen::Map<const Eigen::VectorXd>(d->qacc, nv);
-        const detail::ForceDistribution forces = detail::distributeForces(s.robot, s.tree, G, s.rows, qvel, h, t, "MuJoCo");
+        const detail::ForceDistribution forces = detail::distributeForces(s.robot, s.tree, G, s.rows, qvel, h, t, "MuJoCo",
+                                                                                detail::Friction::fromRows);
 
         MechanismSample sample;
         sample.t = t;

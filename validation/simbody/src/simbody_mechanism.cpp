@@ -54,6 +54,50 @@ public:
     }
 };
 
+/// Joint friction -(damping q' + friction sign q') of every joint as Simbody forces: a mobility
+/// force on a tree joint's mobilizer (mobility = sign q), equal and opposite body torques on
+/// the two links of a closure joint (q' = their relative angular velocity).
+class JointFriction final : public SimTK::Force::Custom::Implementation {
+public:
+    struct Joint {
+        const JointDescription* joint = nullptr;
+        SimTK::MobilizedBody mobilizer;  // tree joint
+        double sign = 1.0;
+        SimTK::MobilizedBody inboard, outboard;  // closure joint
+        bool closure = false;
+    };
+    std::vector<Joint> joints;
+
+    /// Rate q' of a joint at a state realized to Velocity.
+    static double rate(const Joint& j, const SimTK::State& s) {
+        if (!j.closure) return j.sign * j.mobilizer.getOneU(s, SimTK::MobilizerUIndex(0));
+        return j.outboard.getBodyAngularVelocity(s)[2] - j.inboard.getBodyAngularVelocity(s)[2];
+    }
+    /// Power lost in friction at a state realized to Velocity [W].
+    double dissipation(const SimTK::State& s) const {
+        double P = 0.0;
+        for (const Joint& j : joints) {
+            const double qd = rate(j, s);
+            P += qd * detail::jointFriction(*j.joint, qd);
+        }
+        return -P;
+    }
+    void calcForce(const SimTK::State& s, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                   SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
+        for (const Joint& j : joints) {
+            const double f = detail::jointFriction(*j.joint, rate(j, s));
+            if (f == 0.0) continue;
+            if (!j.closure) {
+                j.mobilizer.applyOneMobilityForce(s, 0, j.sign * f, mobility_forces);
+            } else {
+                j.outboard.applyBodyTorque(s, SimTK::Vec3(0, 0, f), body_forces);
+                j.inboard.applyBodyTorque(s, SimTK::Vec3(0, 0, -f), body_forces);
+            }
+        }
+    }
+    SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }
+};
+
 Eigen::VectorXd toEigen(const SimTK::Vector& v) {
     Eigen::VectorXd out(v.size());
     for (int i = 0; i < v.size(); ++i) out[i] = v[i];
@@ -71,6 +115,7 @@ public:
     SimTK::SimbodyMatterSubsystem matter;
     SimTK::GeneralForceSubsystem forces;
     SimTK::MobilizedBody::Planar platform;
+    JointFriction* friction = nullptr;  // owned by the force subsystem
     PlatformMotion* motion = nullptr;  // owned by motion_handle
     SimTK::Motion::Custom motion_handle;
     SimTK::State state;
@@ -103,6 +148,7 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description)
         Transform(c_home));
 
     const int L = static_cast<int>(robot.limbs.size());
+    friction = new JointFriction();
     std::vector<std::array<MobilizedBody, 4>> links(static_cast<std::size_t>(L));
     std::vector<std::array<MobilizedBody, 3>> mobilizers(static_cast<std::size_t>(L));
     for (int j = 0; j < L; ++j) {
@@ -134,8 +180,22 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description)
         const Vec3 axis = toVec3(limb.joints[static_cast<std::size_t>(c)].point);
         Constraint::PointOnLine(link[static_cast<std::size_t>(c)], UnitVec3(ZAxis), axis,
                                 link[static_cast<std::size_t>(c + 1)], axis);
+        for (int k = 0; k < 3; ++k) {
+            JointFriction::Joint f;
+            f.joint = &robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(k)];
+            if (k == c) {
+                f.closure = true;
+                f.inboard = link[static_cast<std::size_t>(c)];
+                f.outboard = link[static_cast<std::size_t>(c + 1)];
+            } else {
+                f.mobilizer = mobilizers[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
+                f.sign = k < c ? 1.0 : -1.0;
+            }
+            friction->joints.push_back(f);
+        }
     }
     Force::UniformGravity(forces, matter, Vec3(robot.gravity.x(), robot.gravity.y(), 0.0));
+    Force::Custom(forces, friction);
 
     motion = new PlatformMotion();
     motion_handle = Motion::Custom(platform, motion);
@@ -251,7 +311,6 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
     bool have_prev = false;
     Matrix G;
     Vector h;
-    const Vector no_mobility_forces;
     for (const double t : times) {
         Pose p, dp, ddp;
         trajectory.evaluate(t, p, dp, ddp);
@@ -284,16 +343,17 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
         const Eigen::VectorXd q = toEigen(m.state.getQ());
         const Eigen::VectorXd u = toEigen(m.state.getU());
         const Eigen::VectorXd udot = toEigen(m.state.getUDot());
-        // h = M u' + c - Q_gravity; G the closure Jacobian.
+        // h = M u' + c - Q_applied (gravity and joint friction); G the closure Jacobian.
         m.matter.calcResidualForceIgnoringConstraints(
-            m.state, no_mobility_forces, m.system.getRigidBodyForces(m.state, Stage::Dynamics),
-            m.state.getUDot(), h);
+            m.state, m.system.getMobilityForces(m.state, Stage::Dynamics),
+            m.system.getRigidBodyForces(m.state, Stage::Dynamics), m.state.getUDot(), h);
         m.matter.calcG(m.state, G);
         Eigen::MatrixXd Ge(G.nrow(), G.ncol());
         for (int r = 0; r < G.nrow(); ++r)
             for (int c = 0; c < G.ncol(); ++c) Ge(r, c) = G(r, c);
         const detail::ForceDistribution forces =
-            detail::distributeForces(m.robot, m.tree, Ge, m.rows, u, toEigen(h), t, "Simbody");
+            detail::distributeForces(m.robot, m.tree, Ge, m.rows, u, toEigen(h), t, "Simbody",
+                                     detail::Friction::inApplied);
 
         MechanismSample s;
         s.t = t;
@@ -314,7 +374,7 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
             }
         }
         s.tau = forces.tau;
-        s.dissipation = forces.dissipation;
+        s.dissipation = m.friction->dissipation(m.state);
         s.condition = forces.condition;
         s.kinetic = m.matter.calcKineticEnergy(m.state);
         s.potential = m.system.calcPotentialEnergy(m.state) - m.potential_home;

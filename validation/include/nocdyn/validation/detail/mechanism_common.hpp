@@ -16,7 +16,8 @@
 // Inverse dynamics by virtual work. With v the engine's generalized speeds, the platform
 // speeds v_p = dp/dt (pose order [theta, x, y]) independent and G the closure Jacobian
 // (G v = 0), v = N dp with N = [-G_f^{-1} G_p; I]. Each joint rate is q'_k = r_k v (r_k a
-// constant row). With h = M v' + c - Q_gravity from the engine and the friction forces f_k:
+// constant row). With h = M v' + c - Q_gravity from the engine and the friction forces f_k
+// (added here from the rows, or already among the engine's applied forces):
 //   N^T (h - sum_k r_k^T f_k) = A^T tau,   A = [r_k N] over the actuated joints (n x 3),
 // and tau = the minimum-norm solution of this 3 x n system (unique when n = 3).
 #pragma once
@@ -122,20 +123,25 @@ inline double jointFriction(const JointDescription& joint, double rate) {
     return -(joint.damping * rate + joint.friction * sign);
 }
 
+/// Whether the engine's h already contains the joint friction forces (as applied forces) or
+/// distributeForces adds them from the joint rows.
+enum class Friction { inApplied, fromRows };
+
 /// Result of distributeForces.
 struct ForceDistribution {
     Eigen::VectorXd tau;       ///< actuator forces, file order
-    double dissipation = 0.0;  ///< power lost in joint friction [W]
+    double dissipation = 0.0;  ///< power lost in joint friction [W] (Friction::fromRows only)
     double condition = 0.0;    ///< max(cond G_f, cond A)
 };
 
 /// The platform-force balance of the header: G (2 L x nv) the closure Jacobian, R the joint
-/// rows, v the generalized speeds, h = M v' + c - Q_gravity. Throws nocdyn::Error naming the
+/// rows, v the generalized speeds, h = M v' + c - Q_gravity (- Q_friction with
+/// Friction::inApplied). Throws nocdyn::Error naming the
 /// time when G_f or A is singular beyond robot.max_condition.
 inline ForceDistribution distributeForces(const RobotDescription& robot, const TreeIndices& tree,
                                           const Eigen::MatrixXd& G, const Eigen::MatrixXd& R,
                                           const Eigen::VectorXd& v, const Eigen::VectorXd& h,
-                                          double t, const char* engine) {
+                                          double t, const char* engine, Friction friction) {
     const int nv = tree.nv;
     const int nc = static_cast<int>(G.rows());
     // Free (passive tree) speeds: every speed but the platform's.
@@ -167,9 +173,11 @@ inline ForceDistribution distributeForces(const RobotDescription& robot, const T
             const JointDescription& joint = robot.limbs[j].joints[k];
             const auto row = R.row(static_cast<Eigen::Index>(3 * j + k));
             const double rate = row.dot(v);
-            const double f = jointFriction(joint, rate);
-            Q_friction += f * row.transpose();
-            out.dissipation -= f * rate;
+            if (friction == Friction::fromRows) {
+                const double f = jointFriction(joint, rate);
+                Q_friction += f * row.transpose();
+                out.dissipation -= f * rate;
+            }
             if (joint.actuated) A.row(a++) = row * N;
         }
     }

@@ -6,7 +6,9 @@
 // from Ground, the joints after it Pin/Slider mobilizers hanging from the platform (reversed),
 // and the closure is a Constraint::PointOnLine (a z-line through the joint axis on one link,
 // followed by the axis point on the other: two equations). The platform is on a Planar
-// mobilizer from Ground whose motion is prescribed. Gravity is a Force::UniformGravity.
+// mobilizer from Ground whose motion is prescribed. Gravity is a Force::UniformGravity; joint
+// friction a Force::Custom (mobility forces on tree joints, opposite body torques across a
+// closure joint), so that Simbody's applied forces hold both.
 // See nocdyn/validation/detail/mechanism_common.hpp for how the actuator forces follow.
 // Shares only description.hpp and trajectory.hpp with nocdyn; Simbody stays private (pimpl).
 #pragma once
@@ -36,7 +38,7 @@ public:
     /// the samples (the previous solution extrapolated; subdivided in pose space when a step
     /// fails or jumps), so every limb stays on its home branch; velocities by projectU,
     /// accelerations by realize(Acceleration) with the platform's Motion; then
-    /// h = M u' + c - Q_gravity (calcResidualForceIgnoringConstraints) and the constraint
+    /// h = M u' + c - Q_applied (calcResidualForceIgnoringConstraints) and the constraint
     /// Jacobian calcG give the actuator forces (minimum norm when redundant). Throws
     /// nocdyn::Error naming the time when a pose cannot be assembled or is singular.
     std::vector<MechanismSample> inverseDynamics(const PoseTrajectory& trajectory,
