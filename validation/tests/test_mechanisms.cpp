@@ -440,17 +440,28 @@ TEST(GeneralMechanism, ReportsTheTimeOfAnUnreachablePose) {
 // Per-sample cost of each engine on the paper robot (reported, never asserted).
 TEST(GeneralMechanism, PerSampleTiming) {
     const std::vector<double> times = linspace(0.0, 0.2, 2001);
-    const auto run = [&](auto& engine, const char* name) {
-        (void)engine.inverseDynamics(nocdyn::paperTrajectory1(), {0.0});
+    const auto run = [&](auto& engine, const char* name, const PoseTrajectory& trajectory) {
+        (void)engine.inverseDynamics(trajectory, {0.0});
         const auto t0 = std::chrono::steady_clock::now();
-        const auto s = engine.inverseDynamics(nocdyn::paperTrajectory1(), times);
+        const auto s = engine.inverseDynamics(trajectory, times);
         const auto t1 = std::chrono::steady_clock::now();
         std::printf("[timing] %s: %.1f us per sample (%zu samples)\n", name,
                     std::chrono::duration<double, std::micro>(t1 - t0).count() / static_cast<double>(s.size()), s.size());
     };
     SimbodyMechanism simbody(nocdyn::expand(RobotParameters{}));
     MujocoMechanism mujoco(nocdyn::expand(RobotParameters{}));
-    run(simbody, "SimbodyMechanism");
-    run(mujoco, "MujocoMechanism");
+    run(simbody, "SimbodyMechanism paper 3-PRR", nocdyn::paperTrajectory1());
+    run(mujoco, "MujocoMechanism paper 3-PRR", nocdyn::paperTrajectory1());
+    // A random 4-RRR with its four base joints actuated (redundant), gravity and friction.
+    RandomRobots random(11u);
+    PoseTrajectory trajectory;
+    int rejected = 0;
+    RobotDescription r = reachableGeometry(random, "RRR", 4, trajectory, rejected);
+    for (auto& limb : r.limbs) limb.joints[0].actuated = true;
+    random.physics(r, true, true);
+    SimbodyMechanism simbody4(r);
+    MujocoMechanism mujoco4(r);
+    run(simbody4, "SimbodyMechanism random 4-RRR", trajectory);
+    run(mujoco4, "MujocoMechanism random 4-RRR", trajectory);
     SUCCEED();
 }
