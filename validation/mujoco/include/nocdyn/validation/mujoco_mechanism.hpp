@@ -1,0 +1,61 @@
+// Independent MuJoCo model of any planar parallel robot of the general form
+// (RobotDescription: limbs of three R/P joints, any actuated joints, gravity, joint friction).
+//
+// MJCF generated from the description at home (every body frame at the world origin, joints
+// at their home points and directions): each limb is a tree plus one <connect> equality at one
+// of its revolute joints (the first unactuated R joint, else the first R joint): the joints
+// before it hang from the world, the joints after it from the platform (reversed); the platform
+// is on slide x, slide y and a hinge at C. Gravity is MuJoCo's option/gravity.
+//
+// mj_inverse is not used (its soft constraints are wrong for prescribed closed loops): per
+// sample, Newton on the connect residuals efc_pos with efc_J for the passive joints
+// (mj_kinematics, mj_comPos, mj_makeConstraint), velocities from efc_J qvel = 0,
+// accelerations from efc_J qacc = -dJ/dt qvel (the anchors' relative acceleration at
+// qacc = 0 from MuJoCo's cdof_dot and mj_objectAcceleration), h = M qacc + c - Q_gravity by
+// mj_rne; the actuator forces then follow from the platform-force balance of
+// nocdyn/validation/detail/mechanism_common.hpp (minimum norm when redundant).
+// Shares only description.hpp and trajectory.hpp with nocdyn; MuJoCo stays private (pimpl).
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "nocdyn/description.hpp"
+#include "nocdyn/trajectory.hpp"
+#include "nocdyn/validation/mechanism_sample.hpp"
+
+namespace nocdyn::validation {
+
+class MujocoMechanism {
+public:
+    /// Builds and compiles the model (the description validated by nocdyn::validate on a
+    /// copy). Throws nocdyn::Error if a limb has no revolute joint, MuJoCo rejects the model,
+    /// or the home posture is not assembled.
+    explicit MujocoMechanism(const RobotDescription& robot);
+    ~MujocoMechanism();
+    MujocoMechanism(MujocoMechanism&&) noexcept;
+    MujocoMechanism& operator=(MujocoMechanism&&) noexcept;
+    MujocoMechanism(const MujocoMechanism&) = delete;
+    MujocoMechanism& operator=(const MujocoMechanism&) = delete;
+
+    /// The generated MJCF text.
+    [[nodiscard]] std::string mjcf() const;
+
+    /// Inverse dynamics with the platform pose prescribed from the trajectory, one sample per
+    /// time, the joints continued from home along the samples (the previous solution moved
+    /// along the previous velocity map; subdivided in pose space when a step fails or jumps),
+    /// so every limb stays on its home branch. Throws nocdyn::Error naming the time when a
+    /// pose cannot be assembled or is singular.
+    std::vector<MechanismSample> inverseDynamics(const PoseTrajectory& trajectory,
+                                                 const std::vector<double>& times);
+
+    /// Number of actuated joints n.
+    [[nodiscard]] int actuatorCount() const;
+
+private:
+    struct Impl;
+    std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace nocdyn::validation

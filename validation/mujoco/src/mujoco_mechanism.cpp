@@ -1,0 +1,456 @@
+// MuJoCo model of a general planar parallel robot and its rigid inverse dynamics (see
+// mujoco_mechanism.hpp and nocdyn/validation/detail/mechanism_common.hpp).
+//
+// Only the description's home data and PoseTrajectory are taken from nocdyn; every posture,
+// velocity and acceleration of the joints, and every force, comes from MuJoCo.
+#include "nocdyn/validation/mujoco_mechanism.hpp"
+
+#include <mujoco/mujoco.h>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstring>
+#include <iomanip>
+#include <sstream>
+
+#include <Eigen/Dense>
+
+#include "nocdyn/error.hpp"
+#include "nocdyn/validation/detail/mechanism_common.hpp"
+
+namespace nocdyn::validation {
+
+namespace {
+
+constexpr int kNewtonMaxIter = 30;
+// Largest change of a passive joint [rad or m] between the predicted seed and the solution
+// accepted as the continuation of the same branch; a larger step is subdivided.
+constexpr double kMaxJump = 0.05;
+constexpr int kMaxHalvings = 8;
+// Out-of-plane principal inertias never enter planar motion; they only make the tensor
+// physical (positive, triangle inequality).
+constexpr double kOutOfPlaneInertia = 1e-6;
+// MuJoCo rejects a moving body without rotational inertia (a slider's, given as 0): it gets
+// this token value, whose torque (1e-12 times an angular acceleration) is far below the
+// accuracy of any comparison.
+constexpr double kMinInertia = 1e-12;
+
+std::string bodyName(int limb, int link) {
+    return "limb" + std::to_string(limb + 1) + "_body" + std::to_string(link);
+}
+std::string jointName(int limb, int joint) {
+    return "limb" + std::to_string(limb + 1) + "_joint" + std::to_string(joint + 1);
+}
+
+void writeInertial(std::ostringstream& x, const std::string& indent, double mass, double inertia,
+                   const Eigen::Vector2d& com) {
+    const double side = std::max(kOutOfPlaneInertia, inertia);
+    x << indent << "<inertial pos=\"" << com.x() << " " << com.y() << " 0\" mass=\"" << mass
+      << "\" diaginertia=\"" << side << " " << side << " " << std::max(kMinInertia, inertia) << "\"/>\n";
+}
+
+void writeJoint(std::ostringstream& x, const std::string& indent, const std::string& name,
+                const JointDescription& joint) {
+    if (joint.type == JointType::revolute) {
+        x << indent << "<joint name=\"" << name << "\" type=\"hinge\" pos=\"" << joint.point.x()
+          << " " << joint.point.y() << " 0\" axis=\"0 0 1\"/>\n";
+    } else {
+        x << indent << "<joint name=\"" << name << "\" type=\"slide\" axis=\"" << joint.direction.x()
+          << " " << joint.direction.y() << " 0\"/>\n";
+    }
+}
+
+std::string anchorSite(int limb, bool outboard) {
+    return "limb" + std::to_string(limb + 1) + (outboard ? "_closure_out" : "_closure_in");
+}
+
+/// One limb body (link 1 or 2) with its joint, nesting the next body of the chain.
+void writeChain(std::ostringstream& x, const RobotDescription& robot, int j, int c,
+                const std::vector<int>& links_in_order, const std::string& indent, std::size_t i) {
+    if (i == links_in_order.size()) return;
+    const LimbDescription& limb = robot.limbs[static_cast<std::size_t>(j)];
+    const int link = links_in_order[i];
+    // Forward link k is carried by joint k-1; reversed link k by joint k (0-based joints).
+    const int joint = link <= c ? link - 1 : link;
+    const BodyDescription& body = limb.bodies[static_cast<std::size_t>(link - 1)];
+    const JointDescription& jd = limb.joints[static_cast<std::size_t>(joint)];
+    x << indent << "<body name=\"" << bodyName(j, link) << "\" pos=\"0 0 0\">\n";
+    writeJoint(x, indent + "  ", jointName(j, joint), jd);
+    writeInertial(x, indent + "  ", body.mass, body.inertia, body.com);
+    const Eigen::Vector2d& p = limb.joints[static_cast<std::size_t>(c)].point;
+    if (link == c) x << indent << "  <site name=\"" << anchorSite(j, false) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
+    if (link == c + 1) x << indent << "  <site name=\"" << anchorSite(j, true) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
+    writeChain(x, robot, j, c, links_in_order, indent + "  ", i + 1);
+    x << indent << "</body>\n";
+}
+
+std::string buildMjcf(const RobotDescription& robot, const std::vector<int>& closure) {
+    const int L = static_cast<int>(robot.limbs.size());
+    const Eigen::Vector3d& home = robot.home;
+    const Eigen::Vector2d C(home[1], home[2]);
+    const Eigen::Vector2d com = C + Eigen::Rotation2Dd(home[0]).toRotationMatrix() * robot.platform.com;
+    const bool gravity = robot.gravity.squaredNorm() > 0.0;
+    std::ostringstream x;
+    x << std::setprecision(17);
+    x << "<mujoco model=\"nocdyn-" << "mechanism" << "\">\n"
+      << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
+      << "  <option gravity=\"" << robot.gravity.x() << " " << robot.gravity.y()
+      << " 0\" timestep=\"0.0001\" jacobian=\"dense\" integrator=\"Euler\">\n"
+      << "    <flag contact=\"disable\" frictionloss=\"disable\" limit=\"disable\""
+      << (gravity ? "" : " gravity=\"disable\"") << "/>\n"
+      << "  </option>\n"
+      << "  <default>\n"
+      << "    <joint damping=\"0\" armature=\"0\" frictionloss=\"0\" limited=\"false\"/>\n"
+      << "  </default>\n"
+      << "  <worldbody>\n";
+    for (int j = 0; j < L; ++j) {
+        const int c = closure[static_cast<std::size_t>(j)];
+        const Eigen::Vector2d& p = robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(c)].point;
+        if (c == 0) x << "    <site name=\"" << anchorSite(j, false) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
+        std::vector<int> forward;  // links 1..c from the world
+        for (int k = 1; k <= c; ++k) forward.push_back(k);
+        writeChain(x, robot, j, c, forward, "    ", 0);
+    }
+    x << "    <body name=\"platform\" pos=\"0 0 0\">\n"
+      << "      <joint name=\"platform_x\" type=\"slide\" axis=\"1 0 0\"/>\n"
+      << "      <joint name=\"platform_y\" type=\"slide\" axis=\"0 1 0\"/>\n"
+      << "      <joint name=\"platform_theta\" type=\"hinge\" pos=\"" << C.x() << " " << C.y()
+      << " 0\" axis=\"0 0 1\"/>\n";
+    writeInertial(x, "      ", robot.platform.mass, robot.platform.inertia, com);
+    for (int j = 0; j < L; ++j) {
+        const int c = closure[static_cast<std::size_t>(j)];
+        const Eigen::Vector2d& p = robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(c)].point;
+        if (c == 2) x << "      <site name=\"" << anchorSite(j, true) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
+        std::vector<int> reversed;  // links 2..c+1 from the platform
+        for (int k = 2; k >= c + 1; --k) reversed.push_back(k);
+        writeChain(x, robot, j, c, reversed, "      ", 0);
+    }
+    x << "    </body>\n"
+      << "  </worldbody>\n"
+      << "  <equality>\n";
+    for (int j = 0; j < L; ++j) {
+        const int c = closure[static_cast<std::size_t>(j)];
+        const Eigen::Vector2d& p = robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(c)].point;
+        const std::string out = c == 2 ? std::string("platform") : bodyName(j, c + 1);
+        x << "    <connect name=\"loop" << j + 1 << "\" body1=\"" << out << "\"";
+        if (c > 0) x << " body2=\"" << bodyName(j, c) << "\"";
+        x << " anchor=\"" << p.x() << " " << p.y() << " 0\"/>\n";
+    }
+    x << "  </equality>\n"
+      << "</mujoco>\n";
+    return x.str();
+}
+
+mjModel* compileFromMemory(const std::string& xml, const std::string& robot_name) {
+    // MuJoCo 2.2.2 loads from a virtual file system: one in-memory file, no disk access.
+    auto vfs = std::make_unique<mjVFS>();  // ~2 MB: keep it off the stack
+    mj_defaultVFS(vfs.get());
+    const char* filename = "nocdyn_mechanism.xml";
+    if (mj_makeEmptyFileVFS(vfs.get(), filename, static_cast<int>(xml.size())) != 0) {
+        throw Error("MuJoCo model of robot '" + robot_name + "': cannot create the in-memory file");
+    }
+    const int id = mj_findFileVFS(vfs.get(), filename);
+    if (id < 0) {
+        mj_deleteVFS(vfs.get());
+        throw Error("MuJoCo model of robot '" + robot_name + "': in-memory file not found");
+    }
+    std::memcpy(vfs->filedata[id], xml.data(), xml.size());
+    std::array<char, 1024> err{};
+    mjModel* m = mj_loadXML(filename, vfs.get(), err.data(), static_cast<int>(err.size()));
+    mj_deleteVFS(vfs.get());
+    if (m == nullptr) {
+        throw Error("MuJoCo could not compile the model of robot '" + robot_name + "': " + std::string(err.data()));
+    }
+    return m;
+}
+
+}  // namespace
+
+struct MujocoMechanism::Impl {
+    RobotDescription robot;
+    std::vector<int> closure;
+    std::string xml;
+    mjModel* m = nullptr;
+    mjData* d = nullptr;
+
+    detail::TreeIndices tree;
+    Eigen::MatrixXd rows;
+    std::vector<int> free_v;                 // passive dofs (= qpos addresses)
+    std::vector<int> eq_row;                 // first efc row of connect j
+    std::vector<std::array<int, 2>> anchor;  // sites: inboard, outboard
+    double tol = 0.0;
+    double potential_home = 0.0;
+
+    ~Impl() {
+        if (d != nullptr) mj_deleteData(d);
+        if (m != nullptr) mj_deleteModel(m);
+    }
+
+    int id(mjtObj type, const std::string& name) const {
+        const int i = mj_name2id(m, type, name.c_str());
+        if (i < 0) throw Error("MuJoCo model: '" + name + "' missing");
+        return i;
+    }
+    int dof(const std::string& joint) const {
+        const int jid = id(mjOBJ_JOINT, joint);
+        if (m->jnt_qposadr[jid] != m->jnt_dofadr[jid]) throw Error("MuJoCo model: qpos/dof order");
+        return m->jnt_dofadr[jid];
+    }
+
+    void init() {
+        const int L = static_cast<int>(robot.limbs.size());
+        if (m->nq != m->nv || m->neq != L) throw Error("MuJoCo model: unexpected sizes");
+        tree.nv = m->nv;
+        tree.platform_v = {dof("platform_theta"), dof("platform_x"), dof("platform_y")};
+        for (int j = 0; j < L; ++j) {
+            std::array<int, 3> v{-1, -1, -1};
+            for (int k = 0; k < 3; ++k) {
+                if (k == closure[static_cast<std::size_t>(j)]) continue;
+                v[static_cast<std::size_t>(k)] = dof(jointName(j, k));
+            }
+            tree.joint_v.push_back(v);
+            anchor.push_back({id(mjOBJ_SITE, anchorSite(j, false)), id(mjOBJ_SITE, anchorSite(j, true))});
+        }
+        for (int i = 0; i < m->nv; ++i) {
+            if (i != tree.platform_v[0] && i != tree.platform_v[1] && i != tree.platform_v[2]) free_v.push_back(i);
+        }
+        rows = detail::jointRateRows(robot, closure, tree);
+        double scale = 1.0;
+        for (const auto& limb : robot.limbs)
+            for (const auto& joint : limb.joints) scale = std::max(scale, joint.point.cwiseAbs().maxCoeff());
+        tol = 1e-14 * scale;
+
+        mj_resetData(m, d);
+        positionStage();
+        if (d->nefc != 3 * L) throw Error("MuJoCo model: expected " + std::to_string(3 * L) + " constraint rows");
+        eq_row.assign(static_cast<std::size_t>(L), -1);
+        for (int i = 0; i < d->nefc; ++i) {
+            if (d->efc_type[i] != mjCNSTR_EQUALITY) throw Error("MuJoCo model: non-equality constraint");
+            auto& row = eq_row[static_cast<std::size_t>(d->efc_id[i])];
+            if (row < 0) row = i;
+        }
+        const double r0 = residual().cwiseAbs().maxCoeff();
+        if (!(r0 < 1e-12)) {
+            std::ostringstream msg;
+            msg << where(robot, 0) << "MuJoCo model: the home posture is not assembled (loop error " << r0 << " m)";
+            throw Error(msg.str());
+        }
+        potential_home = potential();
+    }
+
+    void positionStage() {
+        mj_kinematics(m, d);
+        mj_comPos(m, d);
+        mj_makeConstraint(m, d);
+    }
+    // x, y rows of every connect: residual and Jacobian (dense efc_J).
+    Eigen::VectorXd residual() const {
+        const int L = static_cast<int>(eq_row.size());
+        Eigen::VectorXd r(2 * L);
+        for (int j = 0; j < L; ++j) {
+            r(2 * j) = d->efc_pos[eq_row[static_cast<std::size_t>(j)]];
+            r(2 * j + 1) = d->efc_pos[eq_row[static_cast<std::size_t>(j)] + 1];
+        }
+        return r;
+    }
+    Eigen::MatrixXd jacobian() const {
+        const int L = static_cast<int>(eq_row.size());
+        Eigen::MatrixXd G(2 * L, m->nv);
+        for (int j = 0; j < L; ++j) {
+            for (int c = 0; c < 2; ++c) {
+                const mjtNum* row = d->efc_J + static_cast<std::ptrdiff_t>(eq_row[static_cast<std::size_t>(j)] + c) * m->nv;
+                for (int i = 0; i < m->nv; ++i) G(2 * j + c, i) = row[i];
+            }
+        }
+        return G;
+    }
+    Eigen::MatrixXd freeColumns(const Eigen::MatrixXd& G) const {
+        Eigen::MatrixXd Gf(G.rows(), static_cast<Eigen::Index>(free_v.size()));
+        for (std::size_t c = 0; c < free_v.size(); ++c) Gf.col(static_cast<Eigen::Index>(c)) = G.col(free_v[c]);
+        return Gf;
+    }
+    Eigen::MatrixXd platformColumns(const Eigen::MatrixXd& G) const {
+        Eigen::MatrixXd Gp(G.rows(), 3);
+        for (int c = 0; c < 3; ++c) Gp.col(c) = G.col(tree.platform_v[static_cast<std::size_t>(c)]);
+        return Gp;
+    }
+    Eigen::VectorXd qpos() const { return Eigen::Map<const Eigen::VectorXd>(d->qpos, m->nq); }
+    void setPose(const Eigen::Vector3d& p) {
+        const Eigen::Vector3d q = p - robot.home;
+        for (int i = 0; i < 3; ++i) d->qpos[tree.platform_v[static_cast<std::size_t>(i)]] = q[i];
+    }
+    double potential() const {
+        // -sum m g . c over the bodies (world excluded), from MuJoCo's body c.o.m. positions.
+        double V = 0.0;
+        for (int b = 1; b < m->nbody; ++b) {
+            V -= m->body_mass[b] * (robot.gravity.x() * d->xipos[3 * b] + robot.gravity.y() * d->xipos[3 * b + 1]);
+        }
+        return V;
+    }
+
+    /// Newton for the passive joints at pose p from `seed` (qpos); true when converged within
+    /// kMaxJump of the seed. Leaves the position stage evaluated at the solution.
+    bool newton(const Eigen::Vector3d& p, const Eigen::VectorXd& seed) {
+        for (int i = 0; i < m->nq; ++i) d->qpos[i] = seed[i];
+        setPose(p);
+        for (int it = 0; it < kNewtonMaxIter; ++it) {
+            positionStage();
+            const Eigen::VectorXd r = residual();
+            if (!r.allFinite()) return false;
+            if (r.cwiseAbs().maxCoeff() <= tol) {
+                double jump = 0.0;
+                for (int i : free_v) jump = std::max(jump, std::abs(d->qpos[i] - seed[i]));
+                return jump <= kMaxJump;
+            }
+            const Eigen::VectorXd step = freeColumns(jacobian()).partialPivLu().solve(r);
+            if (!step.allFinite()) return false;
+            for (std::size_t c = 0; c < free_v.size(); ++c) d->qpos[free_v[c]] -= step[static_cast<Eigen::Index>(c)];
+        }
+        return false;
+    }
+
+    void assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed,
+                  const Eigen::Vector3d& p_from, const Eigen::VectorXd& q_from) {
+        if (newton(p, seed)) return;
+        for (int halvings = 1; halvings <= kMaxHalvings; ++halvings) {
+            const int pieces = 1 << halvings;
+            Eigen::VectorXd q = q_from;
+            bool ok = true;
+            for (int s = 1; s <= pieces && ok; ++s) {
+                ok = newton(p_from + (p - p_from) * (static_cast<double>(s) / pieces), q);
+                if (ok) q = qpos();
+            }
+            if (ok) return;
+        }
+        std::ostringstream msg;
+        msg << "MuJoCo model: cannot assemble the pose [theta=" << p[0] << " rad, x=" << p[1]
+            << " m, y=" << p[2] << " m] at t=" << t << " s on the home branch (out of reach or singular)";
+        throw Error(msg.str());
+    }
+
+    // Body accelerations at qacc = 0 without gravity (the velocity-product part only):
+    // cacc_b = cacc_parent + sum cdof_dot qvel, the forward pass of mj_rnePostConstraint.
+    void velocityProductAccelerations() {
+        mju_zero(d->cacc, 6);
+        for (int b = 1; b < m->nbody; ++b) {
+            mjtNum* acc = d->cacc + 6 * b;
+            mju_copy(acc, d->cacc + 6 * m->body_parentid[b], 6);
+            const int adr = m->body_dofadr[b];
+            for (int k = 0; k < m->body_dofnum[b]; ++k) mju_addToScl(acc, d->cdof_dot + 6 * (adr + k), d->qvel[adr + k], 6);
+        }
+    }
+};
+
+MujocoMechanism::MujocoMechanism(const RobotDescription& robot) : impl_(std::make_unique<Impl>()) {
+    Impl& s = *impl_;
+    s.robot = robot;
+    validate(s.robot);
+    for (int j = 0; j < static_cast<int>(s.robot.limbs.size()); ++j) s.closure.push_back(detail::closureJoint(s.robot, j, false));
+    s.xml = buildMjcf(s.robot, s.closure);
+    s.m = compileFromMemory(s.xml, s.robot.name);
+    s.d = mj_makeData(s.m);
+    if (s.d == nullptr) throw Error("MuJoCo: mj_makeData failed for robot '" + s.robot.name + "'");
+    s.init();
+}
+
+MujocoMechanism::~MujocoMechanism() = default;
+MujocoMechanism::MujocoMechanism(MujocoMechanism&&) noexcept = default;
+MujocoMechanism& MujocoMechanism::operator=(MujocoMechanism&&) noexcept = default;
+
+std::string MujocoMechanism::mjcf() const { return impl_->xml; }
+int MujocoMechanism::actuatorCount() const { return impl_->robot.actuatorCount(); }
+
+std::vector<MechanismSample> MujocoMechanism::inverseDynamics(const PoseTrajectory& trajectory,
+                                                              const std::vector<double>& times) {
+    Impl& s = *impl_;
+    const mjModel* m = s.m;
+    mjData* d = s.d;
+    const int nv = m->nv;
+    const int n = s.robot.actuatorCount();
+    const int L = static_cast<int>(s.robot.limbs.size());
+    std::vector<MechanismSample> out;
+    out.reserve(times.size());
+
+    // Continuation from home; the seed is the previous solution moved along the previous
+    // velocity map S (qvel_free = S dp) to first order.
+    Eigen::VectorXd q_prev = Eigen::VectorXd::Zero(nv);
+    Eigen::Vector3d p_prev = s.robot.home;
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(s.free_v.size()), 3);
+    Eigen::VectorXd h(nv), mv(nv);
+    for (const double t : times) {
+        Pose p, dp, ddp;
+        trajectory.evaluate(t, p, dp, ddp);
+        Eigen::VectorXd seed = q_prev;
+        const Eigen::VectorXd step = S * (p - p_prev);
+        for (std::size_t c = 0; c < s.free_v.size(); ++c) seed[s.free_v[c]] += step[static_cast<Eigen::Index>(c)];
+        s.assemble(t, p, seed, p_prev, q_prev);
+        // mjData holds the position stage at the solution.
+        const Eigen::VectorXd q = s.qpos();
+        const Eigen::MatrixXd G = s.jacobian();
+        const Eigen::MatrixXd Gp = s.platformColumns(G);
+        const Eigen::PartialPivLU<Eigen::MatrixXd> lu(s.freeColumns(G));
+        S = lu.solve(-Gp);
+
+        // Velocities: G qvel = 0 with the platform rates prescribed.
+        const Eigen::VectorXd qvel_free = S * dp;
+        for (std::size_t c = 0; c < s.free_v.size(); ++c) d->qvel[s.free_v[c]] = qvel_free[static_cast<Eigen::Index>(c)];
+        for (int i = 0; i < 3; ++i) d->qvel[s.tree.platform_v[static_cast<std::size_t>(i)]] = dp[i];
+        mj_comVel(m, d);
+
+        // Accelerations: G qacc + dG/dt qvel = 0, the bias being the connect anchors' relative
+        // acceleration at qacc = 0 (outboard minus inboard, as efc_pos).
+        s.velocityProductAccelerations();
+        Eigen::VectorXd bias(2 * L);
+        for (int j = 0; j < L; ++j) {
+            mjtNum a_in[6], a_out[6];
+            mj_objectAcceleration(m, d, mjOBJ_SITE, s.anchor[static_cast<std::size_t>(j)][0], a_in, 0);
+            mj_objectAcceleration(m, d, mjOBJ_SITE, s.anchor[static_cast<std::size_t>(j)][1], a_out, 0);
+            bias(2 * j) = a_out[3] - a_in[3];
+            bias(2 * j + 1) = a_out[4] - a_in[4];
+        }
+        const Eigen::VectorXd qacc_free = lu.solve(-(Gp * ddp) - bias);
+        for (std::size_t c = 0; c < s.free_v.size(); ++c) d->qacc[s.free_v[c]] = qacc_free[static_cast<Eigen::Index>(c)];
+        for (int i = 0; i < 3; ++i) d->qacc[s.tree.platform_v[static_cast<std::size_t>(i)]] = ddp[i];
+
+        // h = M qacc + c - Q_gravity (mj_rne's bias includes gravity).
+        mj_rne(m, d, 1, h.data());
+        const Eigen::VectorXd qvel = Eigen::Map<const Eigen::VectorXd>(d->qvel, nv);
+        const Eigen::VectorXd qacc = Eigen::Map<const Eigen::VectorXd>(d->qacc, nv);
+        const detail::ForceDistribution forces = detail::distributeForces(s.robot, s.tree, G, s.rows, qvel, h, t, "MuJoCo",
+                                                                                detail::Friction::fromRows);
+
+        MechanismSample sample;
+        sample.t = t;
+        sample.pose = Eigen::Vector3d(q[s.tree.platform_v[0]], q[s.tree.platform_v[1]], q[s.tree.platform_v[2]]) + s.robot.home;
+        sample.u.resize(n);
+        sample.du.resize(n);
+        sample.ddu.resize(n);
+        int a = 0;
+        for (std::size_t j = 0; j < s.robot.limbs.size(); ++j) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                if (!s.robot.limbs[j].joints[k].actuated) continue;
+                const auto row = s.rows.row(static_cast<Eigen::Index>(3 * j + k));
+                sample.u[a] = row.dot(q);
+                sample.du[a] = row.dot(qvel);
+                sample.ddu[a] = row.dot(qacc);
+                ++a;
+            }
+        }
+        sample.tau = forces.tau;
+        sample.dissipation = forces.dissipation;
+        sample.condition = forces.condition;
+        // 0.5 qvel^T M qvel with MuJoCo's joint-space inertia (mj_crb, mj_mulM).
+        mj_crb(m, d);
+        mj_mulM(m, d, mv.data(), d->qvel);
+        sample.kinetic = 0.5 * qvel.dot(mv);
+        sample.potential = s.potential() - s.potential_home;
+        out.push_back(std::move(sample));
+
+        q_prev = q;
+        p_prev = p;
+    }
+    return out;
+}
+
+}  // namespace nocdyn::validation

@@ -1,0 +1,393 @@
+// Independent Simbody model of a general planar parallel robot. See the header for the model
+// and nocdyn/validation/detail/mechanism_common.hpp for the tree layout and force balance.
+//
+// Nothing from nocdyn's kinematics or dynamics is used: the model is built from the home
+// posture of the description, where every body frame coincides with Ground's.
+#include "nocdyn/validation/simbody_mechanism.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <string>
+
+#include <Eigen/Dense>
+#include <Simbody.h>
+
+#include "nocdyn/error.hpp"
+#include "nocdyn/validation/detail/mechanism_common.hpp"
+
+namespace nocdyn::validation {
+namespace {
+
+// Constraint errors are lengths [m]: far below the 1e-9 relative accuracy of the comparisons.
+constexpr double kProjectAccuracy = 1e-14;
+// Largest change of a passive coordinate [rad or m] between the extrapolated seed and the
+// solution accepted as the continuation of the same branch; a larger step is subdivided.
+constexpr double kMaxJump = 0.05;
+// Subdivision of a failed step into up to 2^kMaxHalvings pieces in pose space.
+constexpr int kMaxHalvings = 8;
+
+SimTK::Vec3 toVec3(const Eigen::Vector2d& v) { return {v.x(), v.y(), 0.0}; }
+
+/// Body whose frame coincides with Ground's at home: c.o.m. and central inertia given there.
+SimTK::Body::Rigid rigidBody(double mass, double inertia, const Eigen::Vector2d& com) {
+    using namespace SimTK;
+    const Vec3 c = toVec3(com);
+    return Body::Rigid(MassProperties(mass, c, Inertia(inertia).shiftFromMassCenter(-c, mass)));
+}
+
+/// The platform's Planar coordinates [theta, x, y] - home, prescribed (values set from outside).
+class PlatformMotion final : public SimTK::Motion::Custom::Implementation {
+public:
+    Eigen::Vector3d q = Eigen::Vector3d::Zero();
+    Eigen::Vector3d qdot = Eigen::Vector3d::Zero();
+    Eigen::Vector3d qdotdot = Eigen::Vector3d::Zero();
+
+    SimTK::Motion::Level getLevel(const SimTK::State&) const override { return SimTK::Motion::Position; }
+    void calcPrescribedPosition(const SimTK::State&, int nq, SimTK::Real* out) const override {
+        for (int i = 0; i < nq && i < 3; ++i) out[i] = q[i];
+    }
+    void calcPrescribedPositionDot(const SimTK::State&, int nq, SimTK::Real* out) const override {
+        for (int i = 0; i < nq && i < 3; ++i) out[i] = qdot[i];
+    }
+    void calcPrescribedPositionDotDot(const SimTK::State&, int nq, SimTK::Real* out) const override {
+        for (int i = 0; i < nq && i < 3; ++i) out[i] = qdotdot[i];
+    }
+};
+
+/// Joint friction -(damping q' + friction sign q') of every joint as Simbody forces: a mobility
+/// force on a tree joint's mobilizer (mobility = sign q), equal and opposite body torques on
+/// the two links of a closure joint (q' = their relative angular velocity).
+class JointFriction final : public SimTK::Force::Custom::Implementation {
+public:
+    struct Joint {
+        const JointDescription* joint = nullptr;
+        SimTK::MobilizedBody mobilizer;  // tree joint
+        double sign = 1.0;
+        SimTK::MobilizedBody inboard, outboard;  // closure joint
+        bool closure = false;
+    };
+    std::vector<Joint> joints;
+
+    /// Rate q' of a joint at a state realized to Velocity.
+    static double rate(const Joint& j, const SimTK::State& s) {
+        if (!j.closure) return j.sign * j.mobilizer.getOneU(s, SimTK::MobilizerUIndex(0));
+        return j.outboard.getBodyAngularVelocity(s)[2] - j.inboard.getBodyAngularVelocity(s)[2];
+    }
+    /// Power lost in friction at a state realized to Velocity [W].
+    double dissipation(const SimTK::State& s) const {
+        double P = 0.0;
+        for (const Joint& j : joints) {
+            const double qd = rate(j, s);
+            P += qd * detail::jointFriction(*j.joint, qd);
+        }
+        return -P;
+    }
+    void calcForce(const SimTK::State& s, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
+                   SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
+        for (const Joint& j : joints) {
+            const double f = detail::jointFriction(*j.joint, rate(j, s));
+            if (f == 0.0) continue;
+            if (!j.closure) {
+                j.mobilizer.applyOneMobilityForce(s, 0, j.sign * f, mobility_forces);
+            } else {
+                j.outboard.applyBodyTorque(s, SimTK::Vec3(0, 0, f), body_forces);
+                j.inboard.applyBodyTorque(s, SimTK::Vec3(0, 0, -f), body_forces);
+            }
+        }
+    }
+    SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }
+};
+
+Eigen::VectorXd toEigen(const SimTK::Vector& v) {
+    Eigen::VectorXd out(v.size());
+    for (int i = 0; i < v.size(); ++i) out[i] = v[i];
+    return out;
+}
+
+}  // namespace
+
+class SimbodyMechanism::Impl {
+public:
+    explicit Impl(const RobotDescription& description);
+
+    RobotDescription robot;
+    SimTK::MultibodySystem system;
+    SimTK::SimbodyMatterSubsystem matter;
+    SimTK::GeneralForceSubsystem forces;
+    SimTK::MobilizedBody::Planar platform;
+    JointFriction* friction = nullptr;  // owned by the force subsystem
+    PlatformMotion* motion = nullptr;  // owned by motion_handle
+    SimTK::Motion::Custom motion_handle;
+    SimTK::State state;
+
+    std::vector<int> closure;
+    detail::TreeIndices tree;
+    Eigen::MatrixXd rows;        // joint rate rows (3 L x nu)
+    std::vector<int> free_q;     // the passive tree coordinates
+    double potential_home = 0.0;
+
+    /// Newton projection of the passive coordinates from `seed` with the platform at pose p;
+    /// true when it converged within kMaxJump of the seed.
+    bool tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed);
+    /// Assembles at pose p: from `seed`, else by subdividing the way from (p_from, q_from).
+    void assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed,
+                  const Eigen::Vector3d& p_from, const Eigen::VectorXd& q_from);
+};
+
+SimbodyMechanism::Impl::Impl(const RobotDescription& description)
+    : robot(description), matter(system), forces(system) {
+    using namespace SimTK;
+    validate(robot);
+    const Eigen::Vector3d& home = robot.home;
+    const Eigen::Vector2d C(home[1], home[2]);
+    const Eigen::Matrix2d Rh = Eigen::Rotation2Dd(home[0]).toRotationMatrix();
+    const Vec3 c_home(home[1], home[2], 0.0);
+    platform = MobilizedBody::Planar(
+        matter.Ground(), Transform(c_home),
+        rigidBody(robot.platform.mass, robot.platform.inertia, C + Rh * robot.platform.com),
+        Transform(c_home));
+
+    const int L = static_cast<int>(robot.limbs.size());
+    friction = new JointFriction();
+    std::vector<std::array<MobilizedBody, 4>> links(static_cast<std::size_t>(L));
+    std::vector<std::array<MobilizedBody, 3>> mobilizers(static_cast<std::size_t>(L));
+    for (int j = 0; j < L; ++j) {
+        const LimbDescription& limb = robot.limbs[static_cast<std::size_t>(j)];
+        const int c = detail::closureJoint(robot, j, true);
+        closure.push_back(c);
+        auto& link = links[static_cast<std::size_t>(j)];
+        link[0] = matter.Ground();
+        link[3] = platform;
+        // A mobilizer for joint k between `parent` and the new link `child_index`.
+        auto mobilize = [&](int k, MobilizedBody& parent, int child_index) {
+            const JointDescription& joint = limb.joints[static_cast<std::size_t>(k)];
+            const BodyDescription& body = limb.bodies[static_cast<std::size_t>(child_index - 1)];
+            const Body::Rigid info = rigidBody(body.mass, body.inertia, body.com);
+            MobilizedBody mob;
+            if (joint.type == JointType::revolute) {
+                const Transform X(toVec3(joint.point));
+                mob = MobilizedBody::Pin(parent, X, info, X);
+            } else {
+                const double angle = std::atan2(joint.direction.y(), joint.direction.x());
+                const Transform X(Rotation(angle, ZAxis), toVec3(joint.point));
+                mob = MobilizedBody::Slider(parent, X, info, X);
+            }
+            link[static_cast<std::size_t>(child_index)] = mob;
+            mobilizers[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)] = mob;
+        };
+        for (int k = 0; k < c; ++k) mobilize(k, link[static_cast<std::size_t>(k)], k + 1);
+        for (int k = 2; k > c; --k) mobilize(k, link[static_cast<std::size_t>(k + 1)], k);
+        const Vec3 axis = toVec3(limb.joints[static_cast<std::size_t>(c)].point);
+        Constraint::PointOnLine(link[static_cast<std::size_t>(c)], UnitVec3(ZAxis), axis,
+                                link[static_cast<std::size_t>(c + 1)], axis);
+        for (int k = 0; k < 3; ++k) {
+            JointFriction::Joint f;
+            f.joint = &robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(k)];
+            if (k == c) {
+                f.closure = true;
+                f.inboard = link[static_cast<std::size_t>(c)];
+                f.outboard = link[static_cast<std::size_t>(c + 1)];
+            } else {
+                f.mobilizer = mobilizers[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
+                f.sign = k < c ? 1.0 : -1.0;
+            }
+            friction->joints.push_back(f);
+        }
+    }
+    Force::UniformGravity(forces, matter, Vec3(robot.gravity.x(), robot.gravity.y(), 0.0));
+    Force::Custom(forces, friction);
+
+    motion = new PlatformMotion();
+    motion_handle = Motion::Custom(platform, motion);
+
+    system.realizeTopology();
+    state = system.getDefaultState();
+    system.realize(state, Stage::Instance);
+    if (state.getNQ() != state.getNU()) throw Error("Simbody model: nq != nu");
+
+    tree.nv = state.getNU();
+    for (int i = 0; i < 3; ++i) tree.platform_v[static_cast<std::size_t>(i)] = platform.getFirstUIndex(state) + i;
+    if (platform.getFirstQIndex(state) != platform.getFirstUIndex(state)) throw Error("Simbody model: q/u order");
+    for (int j = 0; j < L; ++j) {
+        std::array<int, 3> v{-1, -1, -1};
+        for (int k = 0; k < 3; ++k) {
+            if (k == closure[static_cast<std::size_t>(j)]) continue;
+            const MobilizedBody& mob = mobilizers[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
+            v[static_cast<std::size_t>(k)] = mob.getFirstUIndex(state);
+            if (mob.getFirstQIndex(state) != v[static_cast<std::size_t>(k)]) throw Error("Simbody model: q/u order");
+            free_q.push_back(v[static_cast<std::size_t>(k)]);
+        }
+        tree.joint_v.push_back(v);
+    }
+    rows = detail::jointRateRows(robot, closure, tree);
+
+    // Home is assembled with every coordinate 0.
+    system.realize(state, Stage::Position);
+    const double err = state.getQErr().size() > 0 ? SimTK::max(SimTK::abs(state.getQErr())) : 0.0;
+    if (!(err < 1e-12)) {
+        std::ostringstream msg;
+        msg << where(robot, 0) << "Simbody model: the home posture is not assembled (loop error " << err
+            << " m)";
+        throw Error(msg.str());
+    }
+    potential_home = system.calcPotentialEnergy(state);
+}
+
+bool SimbodyMechanism::Impl::tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed) {
+    using namespace SimTK;
+    motion->q = p - robot.home;
+    // The prescribed q are evaluated when the Time stage is realized: invalidate it, since
+    // the pose changed behind the state's back.
+    state.invalidateAll(SimTK::Stage::Time);
+    for (int i = 0; i < seed.size(); ++i) state.updQ()[i] = seed[i];
+    try {
+        ProjectOptions options(kProjectAccuracy);
+        options.setOption(ProjectOptions::ForceFullNewton);
+        ProjectOptions forced(options);
+        forced.setOption(ProjectOptions::ForceProjection);
+        Vector no_error_estimate;
+        ProjectResults results;
+        system.realize(state, Stage::Time);
+        system.prescribeQ(state);
+        system.realize(state, Stage::Position);
+        system.projectQ(state, no_error_estimate, options, results);
+        // One more full Newton step leaves the constraint errors at round-off level.
+        system.projectQ(state, no_error_estimate, forced, results);
+    } catch (const std::exception&) {
+        return false;
+    }
+    double jump = 0.0;
+    for (int i : free_q) {
+        const double qi = state.getQ()[i];
+        if (!std::isfinite(qi)) return false;
+        jump = std::max(jump, std::abs(qi - seed[i]));
+    }
+    const double err = SimTK::max(SimTK::abs(state.getQErr()));
+    return jump <= kMaxJump && err < 1e-10;
+}
+
+void SimbodyMechanism::Impl::assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed,
+                                      const Eigen::Vector3d& p_from, const Eigen::VectorXd& q_from) {
+    if (tryAssemble(p, seed)) return;
+    for (int halvings = 1; halvings <= kMaxHalvings; ++halvings) {
+        const int pieces = 1 << halvings;
+        Eigen::VectorXd q = q_from;
+        bool ok = true;
+        for (int s = 1; s <= pieces && ok; ++s) {
+            const Eigen::Vector3d ps = p_from + (p - p_from) * (static_cast<double>(s) / pieces);
+            ok = tryAssemble(ps, q);
+            if (ok) q = toEigen(state.getQ());
+        }
+        if (ok) return;
+    }
+    std::ostringstream msg;
+    msg << "Simbody model: cannot assemble the pose [theta=" << p[0] << " rad, x=" << p[1]
+        << " m, y=" << p[2] << " m] at t=" << t
+        << " s on the home branch (out of reach or singular)";
+    throw Error(msg.str());
+}
+
+SimbodyMechanism::SimbodyMechanism(const RobotDescription& robot)
+    : impl_(std::make_unique<Impl>(robot)) {}
+SimbodyMechanism::~SimbodyMechanism() = default;
+SimbodyMechanism::SimbodyMechanism(SimbodyMechanism&&) noexcept = default;
+SimbodyMechanism& SimbodyMechanism::operator=(SimbodyMechanism&&) noexcept = default;
+
+int SimbodyMechanism::actuatorCount() const { return impl_->robot.actuatorCount(); }
+
+std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTrajectory& trajectory,
+                                                               const std::vector<double>& times) {
+    using namespace SimTK;
+    Impl& m = *impl_;
+    const int nv = m.tree.nv;
+    const int n = m.robot.actuatorCount();
+    std::vector<MechanismSample> out;
+    out.reserve(times.size());
+
+    // Continuation from home: the previous solution, extrapolated to second order in time.
+    Eigen::VectorXd q_prev = Eigen::VectorXd::Zero(nv), u_prev = q_prev, a_prev = q_prev;
+    Eigen::Vector3d p_prev = m.robot.home;
+    double t_prev = 0.0;
+    bool have_prev = false;
+    Matrix G;
+    Vector h;
+    for (const double t : times) {
+        Pose p, dp, ddp;
+        trajectory.evaluate(t, p, dp, ddp);
+        Eigen::VectorXd seed = q_prev;
+        if (have_prev) {
+            const double dt = t - t_prev;
+            seed += dt * u_prev + 0.5 * dt * dt * a_prev;
+        }
+        // Simbody evaluates the Motion's rate at the Position stage and its acceleration at
+        // the Velocity stage: both are set before the assembly realizes them.
+        m.motion->qdot = dp;
+        m.motion->qdotdot = ddp;
+        m.state.setTime(t);
+        m.assemble(t, p, seed, p_prev, q_prev);
+
+        // Velocities and accelerations with the platform's rate and acceleration prescribed.
+        {
+            ProjectOptions forced(kProjectAccuracy);
+            forced.setOption(ProjectOptions::ForceFullNewton);
+            forced.setOption(ProjectOptions::ForceProjection);
+            Vector no_error_estimate;
+            ProjectResults results;
+            m.system.prescribeU(m.state);
+            m.system.realize(m.state, Stage::Velocity);
+            // The velocity constraints are linear in u: one full Newton step solves them.
+            m.system.projectU(m.state, no_error_estimate, forced, results);
+        }
+        m.system.realize(m.state, Stage::Acceleration);
+
+        const Eigen::VectorXd q = toEigen(m.state.getQ());
+        const Eigen::VectorXd u = toEigen(m.state.getU());
+        const Eigen::VectorXd udot = toEigen(m.state.getUDot());
+        // h = M u' + c - Q_applied (gravity and joint friction); G the closure Jacobian.
+        m.matter.calcResidualForceIgnoringConstraints(
+            m.state, m.system.getMobilityForces(m.state, Stage::Dynamics),
+            m.system.getRigidBodyForces(m.state, Stage::Dynamics), m.state.getUDot(), h);
+        m.matter.calcG(m.state, G);
+        Eigen::MatrixXd Ge(G.nrow(), G.ncol());
+        for (int r = 0; r < G.nrow(); ++r)
+            for (int c = 0; c < G.ncol(); ++c) Ge(r, c) = G(r, c);
+        const detail::ForceDistribution forces =
+            detail::distributeForces(m.robot, m.tree, Ge, m.rows, u, toEigen(h), t, "Simbody",
+                                     detail::Friction::inApplied);
+
+        MechanismSample s;
+        s.t = t;
+        s.pose = Eigen::Vector3d(q[m.tree.platform_v[0]], q[m.tree.platform_v[1]], q[m.tree.platform_v[2]]) +
+                 m.robot.home;
+        s.u.resize(n);
+        s.du.resize(n);
+        s.ddu.resize(n);
+        int a = 0;
+        for (std::size_t j = 0; j < m.robot.limbs.size(); ++j) {
+            for (std::size_t k = 0; k < 3; ++k) {
+                if (!m.robot.limbs[j].joints[k].actuated) continue;
+                const auto row = m.rows.row(static_cast<Eigen::Index>(3 * j + k));
+                s.u[a] = row.dot(q);
+                s.du[a] = row.dot(u);
+                s.ddu[a] = row.dot(udot);
+                ++a;
+            }
+        }
+        s.tau = forces.tau;
+        s.dissipation = m.friction->dissipation(m.state);
+        s.condition = forces.condition;
+        s.kinetic = m.matter.calcKineticEnergy(m.state);
+        s.potential = m.system.calcPotentialEnergy(m.state) - m.potential_home;
+        out.push_back(std::move(s));
+
+        q_prev = q;
+        u_prev = u;
+        a_prev = udot;
+        p_prev = p;
+        t_prev = t;
+        have_prev = true;
+    }
+    return out;
+}
+
+}  // namespace nocdyn::validation
