@@ -1,0 +1,135 @@
+// The general NOC model against the independent Simbody and MuJoCo models generated from the
+// same robot description: the example robots along the paper's trajectories, and random
+// robots of every limb type and actuation choice with gravity, friction and redundancy.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <random>
+
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/validation/mujoco_mechanism.hpp"
+#include "nocdyn/validation/simbody_mechanism.hpp"
+#include "random_robots.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+constexpr double kForceOfPeak = 1e-9;  // largest force difference, relative to the peak force
+constexpr double kMotion = 1e-10;      // u, du, ddu, relative to their peaks
+
+struct Agreement {
+    double force = 0.0;  ///< largest |tau_ours - tau_engine| / peak |tau|
+    double motion = 0.0;
+};
+
+/// Our series against one engine's along a trajectory.
+template <typename Engine>
+Agreement compare(const Model& model, Engine& engine, const PoseTrajectory& trajectory, const std::vector<double>& times) {
+    const auto samples = engine.inverseDynamics(trajectory, times);
+    EXPECT_EQ(samples.size(), times.size());
+    Data data(model);
+    double peak_tau = 0.0, peak_u = 0.0, peak_du = 0.0, peak_ddu = 0.0;
+    double d_tau = 0.0, d_u = 0.0, d_du = 0.0, d_ddu = 0.0;
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        Pose p, dp, ddp;
+        trajectory.evaluate(times[k], p, dp, ddp);
+        const Status status = inverseDynamics(model, data, p, dp, ddp);
+        EXPECT_TRUE(status.ok()) << describe(status, model);
+        if (!status) return {1.0, 1.0};
+        const auto& s = samples[k];
+        for (int a = 0; a < model.actuators; ++a) {
+            peak_tau = std::max(peak_tau, std::abs(s.tau(a)));
+            peak_u = std::max(peak_u, std::abs(s.u(a)));
+            peak_du = std::max(peak_du, std::abs(s.du(a)));
+            peak_ddu = std::max(peak_ddu, std::abs(s.ddu(a)));
+            d_tau = std::max(d_tau, std::abs(data.tau(a) - s.tau(a)));
+            d_u = std::max(d_u, std::abs(data.u(a) - s.u(a)));
+            d_du = std::max(d_du, std::abs(data.du(a) - s.du(a)));
+            d_ddu = std::max(d_ddu, std::abs(data.ddu(a) - s.ddu(a)));
+        }
+    }
+    return {d_tau / peak_tau, std::max({d_u / peak_u, d_du / peak_du, d_ddu / peak_ddu})};
+}
+
+std::vector<double> sampleTimes(double duration, int count) {
+    std::vector<double> times(static_cast<std::size_t>(count));
+    for (int k = 0; k < count; ++k) times[static_cast<std::size_t>(k)] = duration * k / count;
+    return times;
+}
+
+class ExampleRobot : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ExampleRobot, AgreesWithSimbodyAndMujocoAlongThePaperTrajectories) {
+    const RobotDescription robot = io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + GetParam());
+    const Model model(robot);
+    validation::SimbodyMechanism simbody(robot);
+    validation::MujocoMechanism mujoco(robot);
+    for (const PoseTrajectory& trajectory : {paperTrajectory1(), paperTrajectory2()}) {
+        const auto times = sampleTimes(0.2, 200);
+        const Agreement s = compare(model, simbody, trajectory, times);
+        const Agreement m = compare(model, mujoco, trajectory, times);
+        EXPECT_LT(s.force, kForceOfPeak) << GetParam() << " " << trajectory.name << " Simbody";
+        EXPECT_LT(m.force, kForceOfPeak) << GetParam() << " " << trajectory.name << " MuJoCo";
+        EXPECT_LT(s.motion, kMotion) << GetParam() << " " << trajectory.name << " Simbody";
+        EXPECT_LT(m.motion, kMotion) << GetParam() << " " << trajectory.name << " MuJoCo";
+        std::printf("%s %s: difference / peak: forces Simbody %.2g, MuJoCo %.2g; motion Simbody %.2g, MuJoCo %.2g\n",
+                    GetParam().c_str(), trajectory.name.c_str(), s.force, m.force, s.motion, m.motion);
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Robots, ExampleRobot,
+                         ::testing::Values("paper-3prr.yaml", "3-rrr.yaml", "3-rpr.yaml", "4-rrr.yaml"),
+                         [](const auto& info) {
+                             std::string name = info.param.substr(0, info.param.find('.'));
+                             std::replace(name.begin(), name.end(), '-', '_');
+                             return name;
+                         });
+
+class RandomRobotOfType : public ::testing::TestWithParam<std::string> {};
+
+// Per limb type: three-actuator robots with gravity and friction, and a redundant one.
+TEST_P(RandomRobotOfType, AgreesWithSimbodyAndMujocoWithGravityFrictionAndRedundancy) {
+    std::mt19937 rng(31);
+    const std::string type = GetParam();
+    const std::vector<RandomRobotSpec> specs{{{type, type, type}, 3, true, true},
+                                             {{type, type, type}, 3, false, false},
+                                             {{type, type, type, type}, 5, true, true}};
+    for (const RandomRobotSpec& spec : specs) {
+        int kept = 0;
+        for (int attempt = 0; attempt < 100 && kept < 1; ++attempt) {
+            const auto robot = randomRobot(spec, rng);
+            if (!robot) continue;
+            const Model model(*robot);
+            const PoseTrajectory trajectory = trajectoryAround(robot->home, rng, 0.5);
+            const auto times = sampleTimes(0.1, 60);
+            // regular along the whole trajectory (our model's test, the engines' is theirs)
+            Data data(model);
+            bool regular = true;
+            for (double t : times) {
+                Pose p, dp, ddp;
+                trajectory.evaluate(t, p, dp, ddp);
+                regular = regular && inverseDynamics(model, data, p, dp, ddp).ok() && data.cond_A < 1e3;
+            }
+            if (!regular) continue;
+            ++kept;
+            validation::SimbodyMechanism simbody(*robot);
+            validation::MujocoMechanism mujoco(*robot);
+            const Agreement s = compare(model, simbody, trajectory, times);
+            const Agreement m = compare(model, mujoco, trajectory, times);
+            EXPECT_LT(s.force, kForceOfPeak) << type << " x" << spec.limb_types.size() << " Simbody";
+            EXPECT_LT(m.force, kForceOfPeak) << type << " x" << spec.limb_types.size() << " MuJoCo";
+            EXPECT_LT(s.motion, 1e-9) << type << " Simbody";
+            EXPECT_LT(m.motion, 1e-9) << type << " MuJoCo";
+            std::printf("%s x%zu, %d actuators%s: force difference / peak: Simbody %.2g, MuJoCo %.2g\n", type.c_str(),
+                        spec.limb_types.size(), spec.actuators, spec.gravity ? ", gravity, friction" : "", s.force,
+                        m.force);
+        }
+        EXPECT_EQ(kept, 1) << type << ": no regular random robot";
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobotOfType, ::testing::ValuesIn(limbTypes()));
+
+}  // namespace
+}  // namespace nocdyn::test
