@@ -3,9 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -57,6 +60,17 @@ TEST(RobotFile, ExampleRobotsFollowThePaperTrajectoriesWithinTheirLimits) {
             }
         }
     }
+}
+
+TEST(RobotFile, CompiledInExamplesAreTheShippedFiles) {
+    ASSERT_EQ(io::exampleRobotNames().size(), kExamples.size());
+    for (const std::string& name : io::exampleRobotNames()) {
+        std::ifstream in(robotPath(name + ".yaml"));
+        const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+        EXPECT_EQ(io::exampleRobotText(name), text) << name;
+        EXPECT_EQ(io::exampleRobot(name).limbs.size(), name == "4-rrr" ? 4u : 3u);
+    }
+    EXPECT_THROW((void)io::exampleRobot("5-rrr"), Error);
 }
 
 /// The error message of a robot text, or "" when it loads.
