@@ -2,6 +2,7 @@
 #include "nocdyn/io/csv.hpp"
 
 #include <cerrno>
+#include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -28,54 +29,70 @@ bool Table::has(const std::string& name) const {
     return false;
 }
 
+namespace {
+
+/// Shortest decimal form that reads back as the same double (std::to_chars, no precision).
+std::size_t formatNumber(char* first, char* last, double value) {
+    const auto result = std::to_chars(first, last, value);
+    return static_cast<std::size_t>(result.ptr - first);
+}
+
+}  // namespace
+
 void writeCsv(std::ostream& out, const Table& table) {
     for (std::size_t k = 0; k < table.columns.size(); ++k) out << (k ? "," : "") << table.columns[k];
     out << '\n';
-    char cell[32];
+    char cell[kMaxNumberChars];
     for (const auto& row : table.rows) {
         for (std::size_t k = 0; k < row.size(); ++k) {
-            std::snprintf(cell, sizeof cell, "%.17g", row[k]);
             if (k) out << ',';
-            out << cell;
+            out.write(cell, static_cast<std::streamsize>(formatNumber(cell, cell + sizeof cell, row[k])));
         }
         out << '\n';
     }
 }
 
-namespace {
-
-template <typename Writer>
-void writeAtomically(const std::string& path, Writer&& write) {
-    const std::filesystem::path target(path);
-    const std::filesystem::path temporary = target.string() + ".partial";
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error("cannot write '" + path + "'");
-        write(out);
-        out.flush();
-        if (!out) {
-            out.close();
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw Error("cannot write '" + path + "'");
-        }
-    }
-    std::error_code error;
-    std::filesystem::rename(temporary, target, error);
-    if (error) {
-        std::filesystem::remove(temporary, error);
-        throw Error("cannot write '" + path + "'");
-    }
+CsvWriter::CsvWriter(OutputFile& out, std::vector<std::string> columns) : out_(out), columns_(std::move(columns)) {
+    std::string header;
+    for (std::size_t k = 0; k < columns_.size(); ++k) header += (k ? "," : "") + columns_[k];
+    out_.write(header + "\n");
 }
 
-}  // namespace
+void CsvWriter::row(std::span<const double> values) {
+    ++rows_;
+    if (values.size() != columns_.size()) {
+        throw Error("cannot write '" + out_.path() + "': row " + std::to_string(rows_) + " has " +
+                    std::to_string(values.size()) + " values for " + std::to_string(columns_.size()) + " columns");
+    }
+    char* const start = out_.reserve(values.size() * (kMaxNumberChars + 1));
+    char* cursor = start;
+    for (std::size_t k = 0; k < values.size(); ++k) {
+        if (!std::isfinite(values[k])) {
+            throw Error("cannot write '" + out_.path() + "': row " + std::to_string(rows_) + ", column '" +
+                        columns_[k] + "' is not a finite number");
+        }
+        if (k) *cursor++ = ',';
+        cursor += formatNumber(cursor, cursor + kMaxNumberChars, values[k]);
+    }
+    *cursor++ = '\n';
+    out_.commitReserved(static_cast<std::size_t>(cursor - start));
+}
 
 void writeCsvFile(const std::string& path, const Table& table) {
-    writeAtomically(path, [&](std::ostream& out) { writeCsv(out, table); });
+    OutputFile out(path);
+    writeCsv(out, table);
+    out.commit();
+}
+
+void writeCsv(OutputFile& out, const Table& table) {
+    CsvWriter csv(out, table.columns);
+    for (const auto& row : table.rows) csv.row(row);
 }
 
 void writeTextFile(const std::string& path, const std::string& text) {
-    writeAtomically(path, [&](std::ostream& out) { out << text; });
+    OutputFile out(path);
+    out.write(text);
+    out.commit();
 }
 
 namespace {
