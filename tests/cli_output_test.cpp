@@ -1,0 +1,168 @@
+// The `nocdyn` binary's outputs: figures whose texts come from files never run anything, files
+// are replaced safely (never through a planted link, never half written), special files and
+// stdout are written straight through and every write is checked.
+#include <gtest/gtest.h>
+
+#include <sys/stat.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "cli_support.hpp"
+#include "nocdyn/io/csv.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+fs::path scratchDirectory() { return freshScratchDirectory("nocdyn_cli_output_test"); }
+
+/// `text` as a double-quoted YAML scalar.
+std::string yamlQuoted(const std::string& text) {
+    std::string out = "\"";
+    for (const char c : text) {
+        if (c == '\n') {
+            out += "\\n";
+        } else {
+            if (c == '"' || c == '\\') out += '\\';
+            out += c;
+        }
+    }
+    return out + "\"";
+}
+
+/// Names that would run `touch DIR/PWNED` if they reached gnuplot as code.
+std::vector<std::string> hostileNames(const fs::path& dir) {
+    const std::string touch = "touch " + (dir / "PWNED").string();
+    return {"x\n!" + touch + " #",
+            "x`" + touch + "`y",
+            "x\" . system(\"" + touch + "\") . \"",
+            "x' . system('" + touch + "') . '",
+            "a = '" + touch + "'\n@a",
+            "back\\slash\\ \"quote\" 'single' \\n @macro `" + touch + "`\\"};
+}
+
+std::string robotNamed(const std::string& name) {
+    std::ifstream in(std::string(NOCDYN_SOURCE_DIR) + "/robots/paper-3prr.yaml");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    return "name: " + yamlQuoted(name) + "\n" + text.substr(text.find("geometry:"));
+}
+
+void expectFigureDrawn(const fs::path& stem) {
+    const fs::path png = stem.string() + ".png", svg = stem.string() + ".svg";
+    ASSERT_TRUE(fs::is_regular_file(png)) << png;
+    EXPECT_GT(fs::file_size(png), 1000u);
+    const std::string drawing = readWhole(svg);
+    EXPECT_NE(drawing.find("<svg"), std::string::npos);
+    EXPECT_NE(drawing.find("</svg>"), std::string::npos);
+}
+
+TEST(CliOutput, RobotNameInAFigureIsShownNeverRun) {
+    const fs::path dir = scratchDirectory();
+    int index = 0;
+    for (const std::string& name : hostileNames(dir)) {
+        const fs::path robot = dir / ("robot" + std::to_string(index) + ".yaml");
+        std::ofstream(robot) << robotNamed(name);
+        const fs::path stem = dir / ("envelope" + std::to_string(index++));
+        const CliResult r = runCli("envelope --points 2 --robot " + robot.string() + " --figure " + stem.string() +
+                                   " -o " + (dir / "envelope.csv").string());
+        ASSERT_EQ(r.exit_code, 0) << name << "\n" << r.err;
+        EXPECT_FALSE(fs::exists(dir / "PWNED")) << name;
+        expectFigureDrawn(stem);
+        // The title carries the name's text (newlines shown as '?').
+        EXPECT_NE(readWhole(stem.string() + ".svg").find("touch " + (dir / "PWNED").string()), std::string::npos)
+            << name;
+    }
+}
+
+TEST(CliOutput, TrajectoryNameInAFigureIsShownNeverRun) {
+    const fs::path dir = scratchDirectory();
+    int index = 0;
+    for (const std::string& name : hostileNames(dir)) {
+        const fs::path trajectory = dir / ("trajectory" + std::to_string(index) + ".yaml");
+        std::ofstream(trajectory) << "name: " << yamlQuoted(name)
+                                  << "\nduration: 0.01\nx: {harmonics: [{amplitude: 0.001, frequency: 10}]}\n";
+        const fs::path stem = dir / ("control" + std::to_string(index++));
+        const CliResult r = runCli("control --plant nocdyn --trajectory " + trajectory.string() + " --figure " +
+                                   stem.string());
+        ASSERT_EQ(r.exit_code, 0) << name << "\n" << r.err;
+        EXPECT_FALSE(fs::exists(dir / "PWNED")) << name;
+        expectFigureDrawn(stem);
+        EXPECT_NE(readWhole(stem.string() + ".svg").find("touch " + (dir / "PWNED").string()), std::string::npos)
+            << name;
+    }
+}
+
+TEST(CliOutput, PlantedLinksNeverRedirectAWrite) {
+    const fs::path dir = scratchDirectory();
+    std::ofstream(dir / "victim.txt") << "keep";
+    for (const char* planted : {"out.csv.partial", "envelope.gp", "envelope.png.partial"}) {
+        fs::create_symlink(dir / "victim.txt", dir / planted);
+    }
+    const CliResult r = runCli("inverse-dynamics --trajectory paper1 --duration 0.01 --rate 1000 -o " +
+                               (dir / "out.csv").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const CliResult figure = runCli("envelope --points 2 --figure " + (dir / "envelope").string());
+    ASSERT_EQ(figure.exit_code, 0) << figure.err;
+    EXPECT_EQ(readWhole(dir / "victim.txt"), "keep");
+    EXPECT_EQ(io::readCsvFile((dir / "out.csv").string()).rows.size(), 10u);
+    expectFigureDrawn(dir / "envelope");
+    // Only what was planted and what was asked for: no temporary file is left.
+    std::size_t count = 0;
+    for (const auto& entry : fs::directory_iterator(dir)) {
+        EXPECT_NE(entry.path().extension(), ".tmp") << entry.path();
+        ++count;
+    }
+    EXPECT_EQ(count, 7u);
+}
+
+TEST(CliOutput, OutputThatIsAFifoIsWrittenThroughAndStaysAFifo) {
+    const fs::path dir = scratchDirectory();
+    const fs::path fifo = dir / "pipe.csv";
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    std::string received;
+    std::thread reader([&] { received = readWhole(fifo); });
+    const CliResult r = runCli("inverse-dynamics --trajectory paper1 --duration 0.01 --rate 1000 -o " + fifo.string());
+    reader.join();
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(fs::is_fifo(fifo));
+    std::ofstream(dir / "copy.csv") << received;
+    EXPECT_EQ(io::readCsvFile((dir / "copy.csv").string()).rows.size(), 10u);
+}
+
+TEST(CliOutput, FullDeviceFailsWithOneLineAndExitOne) {
+    if (!fs::is_character_file("/dev/full")) GTEST_SKIP() << "no /dev/full";
+    for (const char* redirect : {"> /dev/full", "-o /dev/full"}) {
+        const CliResult r = runCli(std::string("inverse-dynamics --trajectory paper1 ") + redirect);
+        EXPECT_EQ(r.exit_code, 1) << redirect;
+        EXPECT_NE(r.err.find("No space left on device"), std::string::npos) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    }
+    const CliResult pose = runCli("pose 0 0 0 > /dev/full");
+    EXPECT_EQ(pose.exit_code, 1);
+    EXPECT_NE(pose.err.find("standard output"), std::string::npos) << pose.err;
+    EXPECT_TRUE(fs::is_character_file("/dev/full"));
+}
+
+TEST(CliOutput, ConcurrentRunsOnOneOutputEachLeaveACompleteCsv) {
+    const fs::path dir = scratchDirectory();
+    const fs::path out = dir / "same.csv";
+    const std::string one = std::string(NOCDYN_CLI) + " inverse-dynamics --trajectory paper1 --rate 50000 -o " +
+                            out.string() + " 2>/dev/null";
+    for (int round = 0; round < 3; ++round) {
+        const std::string both = "(" + one + " & " + one + " & " + one + " & wait) && test -s " + out.string();
+        ASSERT_EQ(std::system(both.c_str()), 0) << both;
+        const io::Table table = io::readCsvFile(out.string());
+        EXPECT_EQ(table.rows.size(), 10000u);
+        EXPECT_EQ(table.rows.back()[0], 9999.0 / 50000.0);
+        std::size_t count = 0;
+        for ([[maybe_unused]] const auto& entry : fs::directory_iterator(dir)) ++count;
+        EXPECT_EQ(count, 1u);
+    }
+}
+
+}  // namespace
+}  // namespace nocdyn::test
