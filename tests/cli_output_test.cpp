@@ -164,5 +164,69 @@ TEST(CliOutput, ConcurrentRunsOnOneOutputEachLeaveACompleteCsv) {
     }
 }
 
+/// A trajectory file with one harmonic on x.
+fs::path harmonicFile(const fs::path& dir, const std::string& name, const std::string& harmonic) {
+    const fs::path path = dir / name;
+    std::ofstream(path) << "x: {harmonics: [" << harmonic << "]}\n";
+    return path;
+}
+
+TEST(CliOutput, AliasingRateIsRefusedNamingTheRateNeeded) {
+    const fs::path dir = scratchDirectory();
+    const fs::path trajectory = harmonicFile(dir, "fast.yaml", "{amplitude: 1.0e-3, frequency: 1000}");
+    const CliResult r = runCli("inverse-dynamics --trajectory " + trajectory.string() +
+                               " --duration 0.01 --rate 1000 -o " + (dir / "out.csv").string());
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("use a rate above 2000 Hz"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_TRUE(r.out.empty());
+    const CliResult control = runCli("control --plant nocdyn --trajectory " + trajectory.string() +
+                                     " --duration 0.01 --rate 1000");
+    EXPECT_EQ(control.exit_code, 1);
+    EXPECT_NE(control.err.find("use a rate above 2000 Hz"), std::string::npos) << control.err;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST(CliOutput, ForcePeakBetweenOutputSamplesIsAnErrorAndLeavesNoFile) {
+    const fs::path dir = scratchDirectory();
+    // 250 Hz at 1 kHz, 45 degrees of phase: every output sample is within the 262 N.
+    const fs::path trajectory =
+        harmonicFile(dir, "between.yaml", "{amplitude: 4.5e-5, frequency: 250, phase: 0.7853981633974483}");
+    const CliResult r = runCli("inverse-dynamics --trajectory " + trajectory.string() +
+                               " --duration 0.02 --rate 1000 -o " + (dir / "out.csv").string());
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_NE(r.err.find("peak force exceeded"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("between output samples"), std::string::npos) << r.err;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+}
+
+TEST(CliOutput, AllowLimitsNeverWritesANonFiniteNumber) {
+    const fs::path dir = scratchDirectory();
+    const fs::path trajectory = harmonicFile(dir, "overflow.yaml", "{amplitude: 1.0e-3, frequency: 1.0e160}");
+    const std::string args = "inverse-dynamics --allow-limits --trajectory " + trajectory.string() +
+                             " --duration 1e-157 --rate 3e160";
+    const CliResult file = runCli(args + " -o " + (dir / "out.csv").string());
+    EXPECT_EQ(file.exit_code, 1);
+    EXPECT_NE(file.err.find("not finite"), std::string::npos) << file.err;
+    EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
+    const CliResult out = runCli(args);
+    EXPECT_EQ(out.exit_code, 1);
+    EXPECT_EQ(out.out.find("nan"), std::string::npos) << out.out;
+    EXPECT_EQ(out.out.find("inf"), std::string::npos) << out.out;
+}
+
+TEST(CliOutput, StreamedCsvOnStdoutEqualsTheFileAndReadsBack) {
+    const fs::path dir = scratchDirectory();
+    const std::string args = "inverse-dynamics --trajectory paper2 --duration 0.05 --rate 20000";
+    const CliResult out = runCli(args);
+    const CliResult file = runCli(args + " -o " + (dir / "out.csv").string());
+    ASSERT_EQ(out.exit_code, 0) << out.err;
+    ASSERT_EQ(file.exit_code, 0) << file.err;
+    EXPECT_EQ(out.out, readWhole(dir / "out.csv"));
+    const io::Table table = io::readCsvFile((dir / "out.csv").string());
+    ASSERT_EQ(table.rows.size(), 1000u);
+    EXPECT_EQ(table.rows[999][table.column("t")], 999.0 / 20000.0);
+}
+
 }  // namespace
 }  // namespace nocdyn::test
