@@ -37,13 +37,15 @@ void BM_WriteCsv(benchmark::State& state) {
     for (auto _ : state) {
         for (const auto& row : rows) csv.row(row);
     }
+    csv.finish();
     out.commit();
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * rows.size()));
 }
 BENCHMARK(BM_WriteCsv)->Unit(benchmark::kMillisecond);
 
 /// `nocdyn inverse-dynamics --trajectory paper1 --duration D --rate 1e6 -o /dev/null` without
-/// the process: D = samples / 1e6 s; items/s = samples per second.
+/// the process: D = samples / 1e6 s; items/s = samples per second. Second argument: 1 =
+/// formatting on a second thread (as the command does), 0 = on the calling thread.
 void BM_StreamInverseDynamics(benchmark::State& state) {
     const prr3::Model model;
     const PoseTrajectory trajectory = paperTrajectory1();
@@ -51,16 +53,17 @@ void BM_StreamInverseDynamics(benchmark::State& state) {
     const prr3::SampleGrid grid{1e6, samples};
     for (auto _ : state) {
         io::OutputFile out("/dev/null");
-        io::CsvWriter csv(out, prr3::inverseDynamicsColumns());
+        io::CsvWriter csv(out, prr3::inverseDynamicsColumns(), state.range(1) != 0);
         const auto summary = prr3::streamInverseDynamics(
             model, trajectory, grid, prr3::LimitPolicy::error,
             [&](const prr3::InverseDynamicsSample& sample) { csv.row(prr3::toRow(sample)); });
+        csv.finish();
         out.commit();
         benchmark::DoNotOptimize(summary.peak_force);
     }
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * samples));
 }
-BENCHMARK(BM_StreamInverseDynamics)->Arg(1000000)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StreamInverseDynamics)->Args({1000000, 0})->Args({1000000, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
 
 }  // namespace
 }  // namespace nocdyn::bench

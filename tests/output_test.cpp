@@ -160,5 +160,52 @@ TEST(CsvWriter, NonFiniteNumberIsRefusedNamingRowAndColumnAndNoFileIsLeft) {
     }
 }
 
+std::vector<std::vector<double>> sampleRows(std::size_t count) {
+    std::vector<std::vector<double>> rows;
+    for (std::size_t k = 0; k < count; ++k) {
+        const double t = static_cast<double>(k) * 1e-4;
+        rows.push_back({t, std::sin(t), std::cos(3.0 * t) * 1e-7, 1.0 / (1.0 + t)});
+    }
+    return rows;
+}
+
+TEST(CsvWriter, SecondThreadWritesTheSameBytes) {
+    const fs::path dir = freshDirectory();
+    const auto rows = sampleRows(5000);  // several blocks and a partial one
+    for (const bool background : {false, true}) {
+        io::OutputFile out((dir / (background ? "background.csv" : "direct.csv")).string());
+        io::CsvWriter csv(out, {"t", "a", "b", "c"}, background);
+        for (const auto& row : rows) csv.row(row);
+        csv.finish();
+        out.commit();
+    }
+    const std::string direct = slurp(dir / "direct.csv");
+    EXPECT_EQ(slurp(dir / "background.csv"), direct);
+    EXPECT_EQ(std::count(direct.begin(), direct.end(), '\n'), 5001);
+}
+
+TEST(CsvWriter, SecondThreadsFailedWriteReachesTheCaller) {
+    if (!fs::is_character_file("/dev/full")) GTEST_SKIP() << "no /dev/full";
+    io::OutputFile out("/dev/full");
+    try {
+        io::CsvWriter csv(out, {"t", "a", "b", "c"}, true);
+        for (const auto& row : sampleRows(50000)) csv.row(row);
+        csv.finish();
+        ADD_FAILURE() << "50000 rows went to /dev/full";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("No space left"), std::string::npos) << e.what();
+    }
+}
+
+TEST(CsvWriter, DroppedWithoutFinishLeavesNoFile) {
+    const fs::path dir = freshDirectory();
+    {
+        io::OutputFile out((dir / "out.csv").string());
+        io::CsvWriter csv(out, {"t", "a", "b", "c"}, true);
+        for (const auto& row : sampleRows(5000)) csv.row(row);
+    }
+    EXPECT_EQ(entries(dir), 0u);
+}
+
 }  // namespace
 }  // namespace nocdyn::test

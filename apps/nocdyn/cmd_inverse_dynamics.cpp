@@ -24,9 +24,10 @@ void run(const InverseDynamicsOptions& options) {
     prr3::requireRateAboveNyquist(trajectory, grid.rate);
     const auto policy = options.allow_limits ? prr3::LimitPolicy::record : prr3::LimitPolicy::error;
     io::OutputFile out = openOutput(options.output);
-    io::CsvWriter csv(out, prr3::inverseDynamicsColumns());
+    io::CsvWriter csv(out, prr3::inverseDynamicsColumns(), /*background=*/true);  // formats while we compute
     const prr3::LimitSummary summary = prr3::streamInverseDynamics(
         model, trajectory, grid, policy, [&](const prr3::InverseDynamicsSample& sample) { csv.row(prr3::toRow(sample)); });
+    csv.finish();
     out.commit();
     for (const std::string& violation : summary.limit_violations) std::cerr << "nocdyn: warning: " << violation << "\n";
 }

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <iosfwd>
+#include <memory>
 #include <span>
 #include <string>
 #include <vector>
@@ -34,20 +35,36 @@ void writeCsv(std::ostream& out, const Table& table);
 void writeCsv(OutputFile& out, const Table& table);
 
 /// Streams a CSV table row by row: the header when constructed, then one line per row().
-/// Memory does not grow with the number of rows; row() does not allocate.
+/// Memory does not grow with the number of rows; row() does not allocate. With `background`,
+/// rows are formatted and written by a second thread, a block of 1024 rows at a time, while
+/// the caller computes the next ones. Call finish() before committing the output; a
+/// CsvWriter dropped without it (an exception on the way) just stops.
 class CsvWriter {
 public:
-    CsvWriter(OutputFile& out, std::vector<std::string> columns);
+    CsvWriter(OutputFile& out, std::vector<std::string> columns, bool background = false);
+    ~CsvWriter();
+    CsvWriter(const CsvWriter&) = delete;
+    CsvWriter& operator=(const CsvWriter&) = delete;
+
     /// Appends a row. Throws nocdyn::Error naming the row and column for a value that is not
-    /// finite (nothing non-finite is ever written), or for a wrong number of values.
+    /// finite (nothing non-finite is ever written), for a wrong number of values, or (with
+    /// `background`) for the second thread's failure to write an earlier block.
     void row(std::span<const double> values);
-    /// Rows written so far.
+    /// Writes out every row appended so far; throws nocdyn::Error when a write failed.
+    void finish();
+    /// Rows appended so far.
     [[nodiscard]] std::size_t rows() const { return rows_; }
 
 private:
+    struct Worker;
+    void format(const std::vector<double>& values);  ///< whole rows, into out_
+    void handOff();
+
     OutputFile& out_;
     std::vector<std::string> columns_;
     std::size_t rows_ = 0;
+    std::vector<double> row_;  ///< the row being formatted, without `background`
+    std::unique_ptr<Worker> worker_;
 };
 
 /// Writes a table to a file atomically (OutputFile: exclusive temporary file, then rename): on
