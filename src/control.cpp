@@ -87,6 +87,9 @@ void SimulatorPlant::advance(double dt) {
 ClosedLoopResult runClosedLoop(Controller& controller, const prr3::Model& controller_model, Plant& plant,
                                const PoseTrajectory& trajectory, const ClosedLoopOptions& options) {
     const std::vector<double> times = prr3::sampleTimes(options.duration, options.rate);
+    // The reference must not alias at the controller rate, nor leave the workspace between ticks.
+    prr3::requireRateAboveNyquist(trajectory, options.rate);
+    prr3::requireReachable(controller_model, trajectory, times.back());
     const double dt = 1.0 / options.rate;
     ClosedLoopResult result;
     result.controller = controller.name();

@@ -181,7 +181,7 @@ TEST(TrajectoryFile, BadInputsNameFieldAndLine) {
     expectTrajectoryError("x: {harmonics: 3}\n", {"x.harmonics", "list"});
 }
 
-TEST(Csv, WritesSeventeenDigitsAndReadsThemBack) {
+TEST(Csv, WritesDoublesThatReadBackExactly) {
     const std::string path = testing::TempDir() + "/roundtrip.csv";
     io::Table table{{"t", "value"}, {{0.1, 1.0 / 3.0}, {0.2, -2.5e-300}}};
     io::writeCsvFile(path, table);

@@ -28,7 +28,7 @@ void run(ControlOptions options) {
     const control::ClosedLoopResult result = runControlCase(model, trajectory, options.c);
     if (!options.output.empty()) writeTable(control::toTable(result), options.output);
     if (!options.figure.empty()) {
-        renderFigure(trackingErrorFigure(trajectory.name + ": actuator tracking errors", {result}), options.figure);
+        renderFigure(trackingErrorFigure(literalText(trajectory.name) + ": actuator tracking errors", {result}), options.figure);
     }
     std::printf("%s on the %s plant, %s, %g s at %g Hz (f_n = %g Hz)%s\n", result.controller.c_str(),
                 result.plant.c_str(), trajectory.name.c_str(), options.c.loop.duration, options.c.loop.rate,

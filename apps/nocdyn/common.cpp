@@ -1,7 +1,5 @@
 #include "common.hpp"
 
-#include <iostream>
-
 #include "nocdyn/io/robot_yaml.hpp"
 
 namespace nocdyn::cli {
@@ -32,13 +30,14 @@ double chooseDuration(const std::optional<double>& requested, const PoseTrajecto
     return 0.2;
 }
 
+io::OutputFile openOutput(const std::string& path) {
+    return path.empty() ? io::OutputFile::standardOutput() : io::OutputFile(path);
+}
+
 void writeTable(const io::Table& table, const std::string& path) {
-    if (path.empty()) {
-        io::writeCsv(std::cout, table);
-        std::cout.flush();
-    } else {
-        io::writeCsvFile(path, table);
-    }
+    io::OutputFile out = openOutput(path);
+    io::writeCsv(out, table);
+    out.commit();
 }
 
 }  // namespace nocdyn::cli

@@ -33,6 +33,9 @@ void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options);
 /// --duration if given, else the trajectory's own duration, else 0.2 s.
 [[nodiscard]] double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory);
 
+/// The output named by --output: a file written safely (io::OutputFile), or stdout when empty.
+[[nodiscard]] io::OutputFile openOutput(const std::string& path);
+
 /// Writes the table to `path`, or to stdout when the path is empty.
 void writeTable(const io::Table& table, const std::string& path);
 

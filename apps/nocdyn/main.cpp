@@ -2,6 +2,9 @@
 // natural orthogonal complement. Every sub-command is in its own cmd_*.cpp file.
 #include <CLI/CLI.hpp>
 
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <exception>
 #include <iostream>
 
@@ -35,6 +38,11 @@ int main(int argc, char** argv) {
         return 1;
     } catch (const std::exception& e) {
         std::cerr << "nocdyn: error: " << e.what() << "\n";
+        return 1;
+    }
+    // What went to stdout through stdio (tables of pose, control, envelope) is checked too.
+    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
+        std::cerr << "nocdyn: error: cannot write standard output: " << std::strerror(errno) << "\n";
         return 1;
     }
     return 0;

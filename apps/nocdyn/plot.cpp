@@ -1,14 +1,17 @@
 #include "plot.hpp"
 
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
+#include <cerrno>
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <cstring>
 #include <sstream>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/io/output.hpp"
 
 extern char** environ;
 
@@ -16,20 +19,51 @@ namespace nocdyn::cli {
 
 namespace {
 
-std::string quoted(const std::string& text) {
-    std::string out = "\"";
-    for (char c : text) {
-        if (c == '"' || c == '\\') out += '\\';
-        out += c;
+// Every text in the script is a single-quoted gnuplot string: there gnuplot performs no
+// backslash processing, no backquote (command) substitution and no @macro expansion, and a
+// quote is written twice. Only printable characters are kept (any other byte, such as a
+// newline that would end the command, becomes '?'), so a text can never leave its string.
+
+/// Length of the well-formed UTF-8 sequence of a printable character (U+00A0 and up) at
+/// text[at], or 0.
+std::size_t printableUtf8Length(const std::string& text, std::size_t at) {
+    const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
+    const unsigned lead = byte(at);
+    const std::size_t length = lead >= 0xF0 && lead <= 0xF4 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC2 && lead < 0xE0 ? 2 : 0;
+    if (length == 0 || at + length > text.size()) return 0;
+    unsigned code = lead & (0x7Fu >> length);
+    for (std::size_t k = 1; k < length; ++k) {
+        if ((byte(at + k) & 0xC0) != 0x80) return 0;
+        code = (code << 6) | (byte(at + k) & 0x3F);
     }
-    return out + "\"";
+    const unsigned smallest[] = {0, 0, 0x80, 0x800, 0x10000};
+    if (code < smallest[length] || code < 0xA0 || code > 0x10FFFF || (code >= 0xD800 && code <= 0xDFFF)) return 0;
+    return length;
 }
 
-std::string script(const Figure& figure, const std::string& terminal, const std::string& output) {
+std::string quoted(const std::string& text) {
+    std::string out = "'";
+    for (std::size_t k = 0; k < text.size();) {
+        const char c = text[k];
+        if (c >= 0x20 && c < 0x7F) {
+            out += c == '\'' ? "''" : std::string(1, c);
+            ++k;
+        } else if (const std::size_t n = printableUtf8Length(text, k); n > 0) {
+            out.append(text, k, n);
+            k += n;
+        } else {
+            out += '?';
+            ++k;
+        }
+    }
+    return out + "'";
+}
+
+/// The script; gnuplot writes the figure to its standard output (no file name reaches it).
+std::string script(const Figure& figure, const std::string& terminal) {
     std::ostringstream gp;
     const int height = figure.height > 0 ? figure.height : 380 * static_cast<int>(figure.panels.size()) + 60;
     gp << "set terminal " << terminal << " size " << figure.width << "," << height << "\n";
-    gp << "set output " << quoted(output) << "\n";
     gp << "set grid\nset key outside right top\nset tics nomirror\n";
     char number[64];
     for (std::size_t p = 0; p < figure.panels.size(); ++p) {
@@ -57,40 +91,66 @@ std::string script(const Figure& figure, const std::string& terminal, const std:
         }
         gp << "\n";
     }
-    gp << "unset multiplot\nset output\n";
+    gp << "unset multiplot\n";
     return gp.str();
 }
 
-void runGnuplot(const std::string& script_path) {
+/// Runs `gnuplot -d` (no initialisation files) with the script on its standard input (an
+/// anonymous memory file, never a path) and its standard output writing `out`.
+void runGnuplot(const std::string& text, io::OutputFile& out) {
+    const int script_fd = memfd_create("nocdyn-figure.gp", MFD_CLOEXEC);
+    if (script_fd < 0) throw Error(std::string("cannot hold the gnuplot script: ") + std::strerror(errno));
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } closer{script_fd};
+    for (std::size_t done = 0; done < text.size();) {
+        const ssize_t n = ::write(script_fd, text.data() + done, text.size() - done);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) throw Error(std::string("cannot hold the gnuplot script: ") + std::strerror(errno));
+        done += static_cast<std::size_t>(n);
+    }
+    if (::lseek(script_fd, 0, SEEK_SET) != 0) throw Error("cannot rewind the gnuplot script");
+
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_adddup2(&actions, script_fd, STDIN_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, out.descriptor(), STDOUT_FILENO);
     char program[] = "gnuplot";
-    std::string path_copy = script_path;
-    char* argv[] = {program, path_copy.data(), nullptr};
+    char defaults[] = "-d";
+    char* argv[] = {program, defaults, nullptr};
     pid_t pid = 0;
-    if (posix_spawnp(&pid, "gnuplot", nullptr, nullptr, argv, environ) != 0) {
+    const int spawned = posix_spawnp(&pid, "gnuplot", &actions, nullptr, argv, environ);
+    posix_spawn_file_actions_destroy(&actions);
+    if (spawned != 0) {
         throw Error("cannot run gnuplot to draw figures: install it (apt-get install gnuplot-nox)");
     }
     int status = 0;
-    if (waitpid(pid, &status, 0) < 0 || !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-        throw Error("gnuplot failed on " + script_path);
+    while (waitpid(pid, &status, 0) < 0) {
+        if (errno != EINTR) throw Error("gnuplot failed on '" + out.path() + "'");
     }
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw Error("gnuplot failed on '" + out.path() + "'");
 }
 
 }  // namespace
 
+std::string literalText(const std::string& text) {
+    std::string out;
+    for (const char c : text) {
+        if (std::strchr("\\@_^{}&~", c) != nullptr && c != '\0') out += '\\';
+        out += c;
+    }
+    return out;
+}
+
 void renderFigure(const Figure& figure, const std::string& stem) {
-    const std::string script_path = stem + ".gp";
     for (const auto& [terminal, extension] :
          {std::pair<std::string, std::string>{"pngcairo enhanced font 'Sans,11'", ".png"},
           std::pair<std::string, std::string>{"svg enhanced dynamic font 'Sans,11'", ".svg"}}) {
-        {
-            std::ofstream out(script_path);
-            if (!out) throw Error("cannot write '" + script_path + "'");
-            out << script(figure, terminal, stem + extension);
-        }
-        runGnuplot(script_path);
+        io::OutputFile out(stem + extension);
+        runGnuplot(script(figure, terminal), out);
+        out.commit();
     }
-    std::error_code ignored;
-    std::filesystem::remove(script_path, ignored);
 }
 
 }  // namespace nocdyn::cli

@@ -1,5 +1,6 @@
-// Figures drawn by gnuplot (from Debian's gnuplot-nox): the CLI writes a gnuplot script
-// with the data inline and runs gnuplot on it, once for PNG (pngcairo) and once for SVG.
+// Figures drawn by gnuplot (from Debian's gnuplot-nox): the CLI builds a gnuplot script with
+// the data inline and pipes it to gnuplot, once for PNG (pngcairo) and once for SVG. Texts
+// (titles, labels) reach gnuplot only as data: printable characters in single-quoted strings.
 #pragma once
 
 #include <string>
@@ -25,7 +26,12 @@ struct Figure {
     int width = 1000, height = 0;   ///< pixels; height 0 = 380 per panel
 };
 
-/// Writes `stem`.png and `stem`.svg. Throws nocdyn::Error when gnuplot is missing or fails.
+/// `text` (e.g. a robot or trajectory name from a file) marked up to be shown as it is by the
+/// enhanced-text terminals: `\ @ _ ^ { } & ~` are escaped.
+[[nodiscard]] std::string literalText(const std::string& text);
+
+/// Writes `stem`.png and `stem`.svg, each safely (io::OutputFile: all or nothing). Throws
+/// nocdyn::Error when gnuplot is missing or fails.
 void renderFigure(const Figure& figure, const std::string& stem);
 
 }  // namespace nocdyn::cli

@@ -103,7 +103,7 @@ Figure envelopeFigure(const std::vector<prr3::EnvelopePoint>& points, const std:
         (axis == prr3::Axis::theta ? rotation : translation).series.push_back(std::move(line));
     }
     Figure figure;
-    figure.title = "Operating envelope of " + robot + ": flat = stroke-bound, slope -2 = peak-force-bound";
+    figure.title = "Operating envelope of " + literalText(robot) + ": flat = stroke-bound, slope -2 = peak-force-bound";
     figure.panels = {translation, rotation};
     return figure;
 }

@@ -163,7 +163,9 @@ struct ClosedLoopResult {
 /// Runs `controller` on `plant` along `trajectory`: the plant starts on the trajectory
 /// (p_d(0), dp_d(0)); each tick measures (u, du) (+ noise), computes the reference on
 /// `controller_model`, the forces, clips them at the peak force, holds them for 1 / rate.
-/// Throws nocdyn::Error "t = ... s: reason" when the reference or the controller fails.
+/// Throws nocdyn::Error "t = ... s: reason" when the reference or the controller fails, and
+/// before the first tick when the rate is not above twice the trajectory's highest frequency
+/// or the reference leaves the workspace between ticks (prr3::requireReachable).
 [[nodiscard]] ClosedLoopResult runClosedLoop(Controller& controller, const prr3::Model& controller_model, Plant& plant,
                                              const PoseTrajectory& trajectory, const ClosedLoopOptions& options);
 

@@ -2,6 +2,11 @@
 #include "nocdyn/io/csv.hpp"
 
 #include <cerrno>
+#include <charconv>
+#include <condition_variable>
+#include <exception>
+#include <mutex>
+#include <thread>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -28,54 +33,149 @@ bool Table::has(const std::string& name) const {
     return false;
 }
 
+namespace {
+
+/// Shortest decimal form that reads back as the same double (std::to_chars, no precision).
+std::size_t formatNumber(char* first, char* last, double value) {
+    const auto result = std::to_chars(first, last, value);
+    return static_cast<std::size_t>(result.ptr - first);
+}
+
+}  // namespace
+
 void writeCsv(std::ostream& out, const Table& table) {
     for (std::size_t k = 0; k < table.columns.size(); ++k) out << (k ? "," : "") << table.columns[k];
     out << '\n';
-    char cell[32];
+    char cell[kMaxNumberChars];
     for (const auto& row : table.rows) {
         for (std::size_t k = 0; k < row.size(); ++k) {
-            std::snprintf(cell, sizeof cell, "%.17g", row[k]);
             if (k) out << ',';
-            out << cell;
+            out.write(cell, static_cast<std::streamsize>(formatNumber(cell, cell + sizeof cell, row[k])));
         }
         out << '\n';
     }
 }
 
-namespace {
+/// The second thread of a background CsvWriter and the blocks of rows handed to it.
+struct CsvWriter::Worker {
+    static constexpr std::size_t kBlockRows = 1024;
+    std::thread thread;
+    std::mutex mutex;
+    std::condition_variable changed;
+    std::vector<double> filling;  ///< rows being added by the caller
+    std::vector<double> pending;  ///< rows being formatted by the worker
+    bool has_work = false;        ///< `pending` holds rows not yet written
+    bool stop = false;
+    std::exception_ptr error;     ///< the worker's first failure, rethrown to the caller
+};
 
-template <typename Writer>
-void writeAtomically(const std::string& path, Writer&& write) {
-    const std::filesystem::path target(path);
-    const std::filesystem::path temporary = target.string() + ".partial";
-    {
-        std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-        if (!out) throw Error("cannot write '" + path + "'");
-        write(out);
-        out.flush();
-        if (!out) {
-            out.close();
-            std::error_code ignored;
-            std::filesystem::remove(temporary, ignored);
-            throw Error("cannot write '" + path + "'");
+CsvWriter::CsvWriter(OutputFile& out, std::vector<std::string> columns, bool background)
+    : out_(out), columns_(std::move(columns)) {
+    std::string header;
+    for (std::size_t k = 0; k < columns_.size(); ++k) header += (k ? "," : "") + columns_[k];
+    out_.write(header + "\n");
+    if (!background) return;
+    worker_ = std::make_unique<Worker>();
+    worker_->filling.reserve(Worker::kBlockRows * columns_.size());
+    worker_->pending.reserve(Worker::kBlockRows * columns_.size());
+    worker_->thread = std::thread([this] {
+        Worker& w = *worker_;
+        std::unique_lock lock(w.mutex);
+        while (true) {
+            w.changed.wait(lock, [&] { return w.has_work || w.stop; });
+            if (!w.has_work) return;
+            lock.unlock();
+            try {
+                if (!w.error) format(w.pending);
+            } catch (...) {
+                w.error = std::current_exception();
+            }
+            lock.lock();
+            w.pending.clear();
+            w.has_work = false;
+            w.changed.notify_all();
         }
+    });
+}
+
+CsvWriter::~CsvWriter() {
+    if (!worker_) return;
+    {
+        const std::lock_guard lock(worker_->mutex);
+        worker_->stop = true;
     }
-    std::error_code error;
-    std::filesystem::rename(temporary, target, error);
-    if (error) {
-        std::filesystem::remove(temporary, error);
-        throw Error("cannot write '" + path + "'");
+    worker_->changed.notify_all();
+    worker_->thread.join();
+}
+
+void CsvWriter::format(const std::vector<double>& values) {
+    const std::size_t n = columns_.size();
+    for (std::size_t first = 0; first < values.size(); first += n) {
+        char* const start = out_.reserve(n * (kMaxNumberChars + 1));
+        char* cursor = start;
+        for (std::size_t k = 0; k < n; ++k) {
+            if (k) *cursor++ = ',';
+            cursor += formatNumber(cursor, cursor + kMaxNumberChars, values[first + k]);
+        }
+        *cursor++ = '\n';
+        out_.commitReserved(static_cast<std::size_t>(cursor - start));
     }
 }
 
-}  // namespace
+void CsvWriter::handOff() {
+    Worker& w = *worker_;
+    std::unique_lock lock(w.mutex);
+    w.changed.wait(lock, [&] { return !w.has_work; });
+    if (w.error) std::rethrow_exception(w.error);
+    std::swap(w.filling, w.pending);
+    w.has_work = !w.pending.empty();
+    lock.unlock();
+    w.changed.notify_all();
+}
+
+void CsvWriter::row(std::span<const double> values) {
+    ++rows_;
+    if (values.size() != columns_.size()) {
+        throw Error("cannot write '" + out_.path() + "': row " + std::to_string(rows_) + " has " +
+                    std::to_string(values.size()) + " values for " + std::to_string(columns_.size()) + " columns");
+    }
+    for (std::size_t k = 0; k < values.size(); ++k) {
+        if (!std::isfinite(values[k])) {
+            throw Error("cannot write '" + out_.path() + "': row " + std::to_string(rows_) + ", column '" +
+                        columns_[k] + "' is not a finite number");
+        }
+    }
+    if (!worker_) {
+        row_.assign(values.begin(), values.end());
+        format(row_);
+        return;
+    }
+    worker_->filling.insert(worker_->filling.end(), values.begin(), values.end());
+    if (worker_->filling.size() == Worker::kBlockRows * columns_.size()) handOff();
+}
+
+void CsvWriter::finish() {
+    if (!worker_) return;
+    handOff();  // the last, partial block
+    handOff();  // waits until it is written; rethrows the worker's failure
+}
 
 void writeCsvFile(const std::string& path, const Table& table) {
-    writeAtomically(path, [&](std::ostream& out) { writeCsv(out, table); });
+    OutputFile out(path);
+    writeCsv(out, table);
+    out.commit();
+}
+
+void writeCsv(OutputFile& out, const Table& table) {
+    CsvWriter csv(out, table.columns);
+    for (const auto& row : table.rows) csv.row(row);
+    csv.finish();
 }
 
 void writeTextFile(const std::string& path, const std::string& text) {
-    writeAtomically(path, [&](std::ostream& out) { out << text; });
+    OutputFile out(path);
+    out.write(text);
+    out.commit();
 }
 
 namespace {

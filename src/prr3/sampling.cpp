@@ -1,6 +1,8 @@
-// Trajectory sampling through the per-sample inverse dynamics (see sampling.hpp).
+// Trajectory sampling through the per-sample inverse dynamics, with the limits checked
+// between output samples as well (see sampling.hpp).
 #include "nocdyn/prr3/sampling.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -10,7 +12,7 @@
 
 namespace nocdyn::prr3 {
 
-std::vector<double> sampleTimes(double duration, double rate) {
+SampleGrid sampleGrid(double duration, double rate) {
     if (!std::isfinite(duration) || duration <= 0.0) {
         throw Error("duration must be a positive number of seconds, got " + std::to_string(duration));
     }
@@ -20,9 +22,24 @@ std::vector<double> sampleTimes(double duration, double rate) {
     const double count = std::round(duration * rate);
     if (count < 1.0) throw Error("duration * rate rounds to zero samples");
     if (count > 1e8) throw Error("duration * rate asks for more than 10^8 samples");
-    std::vector<double> times(static_cast<std::size_t>(count));
-    for (std::size_t k = 0; k < times.size(); ++k) times[k] = static_cast<double>(k) / rate;
+    return {rate, static_cast<std::size_t>(count)};
+}
+
+std::vector<double> sampleTimes(double duration, double rate) {
+    const SampleGrid grid = sampleGrid(duration, rate);
+    std::vector<double> times(grid.count);
+    for (std::size_t k = 0; k < times.size(); ++k) times[k] = grid.time(k);
     return times;
+}
+
+double highestFrequency(const PoseTrajectory& trajectory) {
+    double highest = 0.0;
+    for (const AxisMotion* axis : {&trajectory.theta, &trajectory.x, &trajectory.y}) {
+        for (const Harmonic& h : axis->harmonics) {
+            if (h.amplitude != 0.0) highest = std::max(highest, std::abs(h.frequency));
+        }
+    }
+    return highest;
 }
 
 namespace {
@@ -34,56 +51,187 @@ std::string atTime(double t, const std::string& reason) {
     return out.str();
 }
 
+std::string number(double value) {
+    std::ostringstream out;
+    out.precision(10);
+    out << value;
+    return out.str();
+}
+
+bool finite(const Eigen::Vector3d& v) { return v.allFinite(); }
+
+/// The per-sample path with every check; holds the scratch Data, the peaks and violations.
+class Sampler {
+public:
+    Sampler(const Model& model, const PoseTrajectory& trajectory, LimitPolicy policy)
+        : model_(model), trajectory_(trajectory), policy_(policy) {
+        const double f = highestFrequency(trajectory);
+        spacing_ = f > 0.0 ? 1.0 / (kLimitChecksPerPeriod * f) : 0.0;
+    }
+
+    /// Sample at t: inverse dynamics, finiteness, workspace, stroke and force.
+    void evaluate(double t, InverseDynamicsSample& s, bool between) {
+        const char* where = between ? " (between output samples)" : "";
+        s.t = t;
+        trajectory_.evaluate(t, s.p, s.dp, s.ddp);
+        if (!finite(s.p) || !finite(s.dp) || !finite(s.ddp)) {
+            throw Error(atTime(t, std::string("the trajectory's pose or its derivatives are not finite") + where));
+        }
+        if (const Status status = inverseDynamics(model_, data_, s.p, s.dp, s.ddp); !status) {
+            throw Error(atTime(t, describe(status, model_.parameters) + where));
+        }
+        for (int j = 0; j < kLimbs; ++j) {
+            if (!std::isfinite(data_.u(j)) || !std::isfinite(data_.du(j)) || !std::isfinite(data_.ddu(j)) ||
+                !std::isfinite(data_.tau(j))) {
+                throw Error(atTime(t, "limb " + std::to_string(j + 1) + ": the inverse dynamics is not finite (u = " +
+                                          number(data_.u(j)) + " m, tau = " + number(data_.tau(j)) + " N)" + where));
+            }
+        }
+        for (const Status limit : {checkStroke(model_, data_), checkForce(model_, data_)}) {
+            if (limit) continue;
+            const std::string message = atTime(t, describe(limit, model_.parameters) + where);
+            if (policy_ == LimitPolicy::error) throw Error(message);
+            if (summary.limit_violations.size() < 10) summary.limit_violations.push_back(message);
+        }
+        for (int j = 0; j < kLimbs; ++j) {
+            summary.peak_stroke[j] = std::max(summary.peak_stroke[j], std::abs(data_.u(j)));
+            summary.peak_force[j] = std::max(summary.peak_force[j], std::abs(data_.tau(j)));
+        }
+        s.u = data_.u;
+        s.du = data_.du;
+        s.ddu = data_.ddu;
+        s.tau = data_.tau;
+        if (!between) {
+            s.kinetic = kineticEnergy(model_, data_);
+            if (!std::isfinite(s.kinetic)) throw Error(atTime(t, "the kinetic energy is not finite"));
+        }
+    }
+
+    /// Every point strictly between t0 and t1 of a grid no coarser than the check spacing.
+    void checkBetween(double t0, double t1) {
+        if (spacing_ <= 0.0 || t1 - t0 <= spacing_) return;
+        const double pieces = std::ceil((t1 - t0) / spacing_);
+        for (double i = 1.0; i < pieces; i += 1.0) {
+            evaluate(t0 + (t1 - t0) * (i / pieces), scratch_, true);
+            ++summary.checks_between_samples;
+        }
+    }
+
+    LimitSummary summary;
+
+private:
+    const Model& model_;
+    const PoseTrajectory& trajectory_;
+    LimitPolicy policy_;
+    double spacing_ = 0.0;  ///< largest interval between checked points [s]; 0: constant pose
+    Data data_;
+    InverseDynamicsSample scratch_;
+};
+
 }  // namespace
+
+void requireRateAboveNyquist(const PoseTrajectory& trajectory, double rate) {
+    const double f = highestFrequency(trajectory);
+    if (f > 0.0 && !(rate > 2.0 * f)) {
+        throw Error("sampling rate " + number(rate) + " Hz is not above twice the highest frequency of trajectory '" +
+                    trajectory.name + "' (" + number(f) + " Hz), so its samples would alias: use a rate above " +
+                    number(2.0 * f) + " Hz");
+    }
+}
+
+void requireReachable(const Model& model, const PoseTrajectory& trajectory, double duration) {
+    const double f = highestFrequency(trajectory);
+    const double pieces = f > 0.0 ? std::ceil(duration * kLimitChecksPerPeriod * f) : 1.0;
+    Data data;
+    Pose p, dp, ddp;
+    for (double i = 0.0; i <= pieces; i += 1.0) {
+        const double t = duration * (i / pieces);
+        trajectory.evaluate(t, p, dp, ddp);
+        if (!finite(p) || !finite(dp) || !finite(ddp)) {
+            throw Error(atTime(t, "the trajectory's pose or its derivatives are not finite"));
+        }
+        if (const Status status = inverseDynamics(model, data, p, dp, ddp); !status) {
+            throw Error(atTime(t, describe(status, model.parameters)));
+        }
+        if (!data.u.allFinite() || !data.du.allFinite() || !data.ddu.allFinite() || !data.tau.allFinite()) {
+            throw Error(atTime(t, "the inverse dynamics is not finite"));
+        }
+    }
+}
+
+LimitSummary streamInverseDynamics(const Model& model, const PoseTrajectory& trajectory, const SampleGrid& grid,
+                                   LimitPolicy policy, const std::function<void(const InverseDynamicsSample&)>& sink) {
+    requireRateAboveNyquist(trajectory, grid.rate);
+    Sampler sampler(model, trajectory, policy);
+    InverseDynamicsSample sample;
+    for (std::size_t k = 0; k < grid.count; ++k) {
+        const double t = grid.time(k);
+        if (k > 0) sampler.checkBetween(grid.time(k - 1), t);
+        sampler.evaluate(t, sample, false);
+        sink(sample);
+    }
+    return std::move(sampler.summary);
+}
 
 InverseDynamicsSeries sampleInverseDynamics(const Model& model, const PoseTrajectory& trajectory,
                                             const std::vector<double>& times, LimitPolicy policy) {
+    for (std::size_t k = 1; k < times.size(); ++k) {
+        const double interval = times[k] - times[k - 1];
+        if (!(interval > 0.0)) throw Error(atTime(times[k], "sampling times must increase"));
+        if (2.0 * highestFrequency(trajectory) * interval >= 1.0) requireRateAboveNyquist(trajectory, 1.0 / interval);
+    }
     InverseDynamicsSeries series;
     const std::size_t n = times.size();
-    series.t = times;
-    series.p.resize(n);
-    series.dp.resize(n);
-    series.ddp.resize(n);
-    series.u.resize(n);
-    series.du.resize(n);
-    series.ddu.resize(n);
-    series.tau.resize(n);
-    series.kinetic.resize(n);
-    Data data;
+    series.t.reserve(n);
+    for (auto* v : {&series.p, &series.dp, &series.ddp}) v->reserve(n);
+    for (auto* v : {&series.u, &series.du, &series.ddu, &series.tau}) v->reserve(n);
+    series.kinetic.reserve(n);
+    Sampler sampler(model, trajectory, policy);
+    InverseDynamicsSample s;
     for (std::size_t k = 0; k < n; ++k) {
-        trajectory.evaluate(times[k], series.p[k], series.dp[k], series.ddp[k]);
-        const Status status = inverseDynamics(model, data, series.p[k], series.dp[k], series.ddp[k]);
-        if (!status) throw Error(atTime(times[k], describe(status, model.parameters)));
-        for (const Status limit : {checkStroke(model, data), checkForce(model, data)}) {
-            if (limit) continue;
-            const std::string message = atTime(times[k], describe(limit, model.parameters));
-            if (policy == LimitPolicy::error) throw Error(message);
-            if (series.limit_violations.size() < 10) series.limit_violations.push_back(message);
-        }
-        series.u[k] = data.u;
-        series.du[k] = data.du;
-        series.ddu[k] = data.ddu;
-        series.tau[k] = data.tau;
-        series.kinetic[k] = kineticEnergy(model, data);
-        for (int j = 0; j < kLimbs; ++j) {
-            series.peak_stroke[j] = std::max(series.peak_stroke[j], std::abs(data.u(j)));
-            series.peak_force[j] = std::max(series.peak_force[j], std::abs(data.tau(j)));
-        }
+        if (k > 0) sampler.checkBetween(times[k - 1], times[k]);
+        sampler.evaluate(times[k], s, false);
+        series.t.push_back(s.t);
+        series.p.push_back(s.p);
+        series.dp.push_back(s.dp);
+        series.ddp.push_back(s.ddp);
+        series.u.push_back(s.u);
+        series.du.push_back(s.du);
+        series.ddu.push_back(s.ddu);
+        series.tau.push_back(s.tau);
+        series.kinetic.push_back(s.kinetic);
     }
+    series.peak_stroke = sampler.summary.peak_stroke;
+    series.peak_force = sampler.summary.peak_force;
+    series.limit_violations = std::move(sampler.summary.limit_violations);
     return series;
+}
+
+std::vector<std::string> inverseDynamicsColumns() {
+    return {"t",   "x",    "y",    "theta", "u1",   "u2",   "u3",   "du1",    "du2",
+            "du3", "ddu1", "ddu2", "ddu3",  "tau1", "tau2", "tau3", "kinetic"};
+}
+
+std::array<double, 17> toRow(const InverseDynamicsSample& s) {
+    return {s.t,     s.p(1),   s.p(2),   s.p(0),   s.u(0),   s.u(1),   s.u(2),   s.du(0), s.du(1),
+            s.du(2), s.ddu(0), s.ddu(1), s.ddu(2), s.tau(0), s.tau(1), s.tau(2), s.kinetic};
 }
 
 io::Table toTable(const InverseDynamicsSeries& series) {
     io::Table table;
-    table.columns = {"t",   "x",   "y",    "theta", "u1",   "u2",   "u3",   "du1",     "du2",
-                     "du3", "ddu1", "ddu2", "ddu3", "tau1", "tau2", "tau3", "kinetic"};
+    table.columns = inverseDynamicsColumns();
     table.rows.reserve(series.t.size());
+    InverseDynamicsSample s;
     for (std::size_t k = 0; k < series.t.size(); ++k) {
-        const Pose& p = series.p[k];
-        table.rows.push_back({series.t[k], p(1), p(2), p(0), series.u[k](0), series.u[k](1), series.u[k](2),
-                              series.du[k](0), series.du[k](1), series.du[k](2), series.ddu[k](0),
-                              series.ddu[k](1), series.ddu[k](2), series.tau[k](0), series.tau[k](1),
-                              series.tau[k](2), series.kinetic[k]});
+        s.t = series.t[k];
+        s.p = series.p[k];
+        s.u = series.u[k];
+        s.du = series.du[k];
+        s.ddu = series.ddu[k];
+        s.tau = series.tau[k];
+        s.kinetic = series.kinetic[k];
+        const auto row = toRow(s);
+        table.rows.emplace_back(row.begin(), row.end());
     }
     return table;
 }

@@ -1,10 +1,16 @@
-// CSV tables of numbers: header line of column names, then rows written with 17
-// significant digits so that doubles round-trip.
+// CSV tables of numbers: header line of column names, then rows of numbers, each written in
+// the shortest decimal form that reads back as the same double (std::to_chars), so that doubles
+// round-trip. Files are written through io::OutputFile (output.hpp): all or nothing.
 #pragma once
 
+#include <cstddef>
 #include <iosfwd>
+#include <memory>
+#include <span>
 #include <string>
 #include <vector>
+
+#include "nocdyn/io/output.hpp"
 
 namespace nocdyn::io {
 
@@ -18,18 +24,58 @@ struct Table {
     [[nodiscard]] bool has(const std::string& name) const;
 };
 
+/// Room for one number: the shortest form of a double takes at most 24 characters
+/// ("-2.2250738585072014e-308").
+inline constexpr std::size_t kMaxNumberChars = 32;
+
 /// Writes a table to a stream.
 void writeCsv(std::ostream& out, const Table& table);
 
-/// Writes a table to a file atomically (temporary file, then rename): on failure no
-/// partial file is left behind. Throws nocdyn::Error.
+/// Writes a table to an output (throws nocdyn::Error for a non-finite number or a failed write).
+void writeCsv(OutputFile& out, const Table& table);
+
+/// Streams a CSV table row by row: the header when constructed, then one line per row().
+/// Memory does not grow with the number of rows; row() does not allocate. With `background`,
+/// rows are formatted and written by a second thread, a block of 1024 rows at a time, while
+/// the caller computes the next ones. Call finish() before committing the output; a
+/// CsvWriter dropped without it (an exception on the way) just stops.
+class CsvWriter {
+public:
+    CsvWriter(OutputFile& out, std::vector<std::string> columns, bool background = false);
+    ~CsvWriter();
+    CsvWriter(const CsvWriter&) = delete;
+    CsvWriter& operator=(const CsvWriter&) = delete;
+
+    /// Appends a row. Throws nocdyn::Error naming the row and column for a value that is not
+    /// finite (nothing non-finite is ever written), for a wrong number of values, or (with
+    /// `background`) for the second thread's failure to write an earlier block.
+    void row(std::span<const double> values);
+    /// Writes out every row appended so far; throws nocdyn::Error when a write failed.
+    void finish();
+    /// Rows appended so far.
+    [[nodiscard]] std::size_t rows() const { return rows_; }
+
+private:
+    struct Worker;
+    void format(const std::vector<double>& values);  ///< whole rows, into out_
+    void handOff();
+
+    OutputFile& out_;
+    std::vector<std::string> columns_;
+    std::size_t rows_ = 0;
+    std::vector<double> row_;  ///< the row being formatted, without `background`
+    std::unique_ptr<Worker> worker_;
+};
+
+/// Writes a table to a file atomically (OutputFile: exclusive temporary file, then rename): on
+/// failure no partial file is left behind. Throws nocdyn::Error.
 void writeCsvFile(const std::string& path, const Table& table);
 
 /// Reads a numeric CSV table. Throws nocdyn::Error "FILE:LINE: reason" for a missing
 /// file, a ragged row, or a cell that is not a finite number.
 [[nodiscard]] Table readCsvFile(const std::string& path);
 
-/// Writes text to a file atomically. Throws nocdyn::Error.
+/// Writes text to a file atomically (OutputFile). Throws nocdyn::Error.
 void writeTextFile(const std::string& path, const std::string& text);
 
 }  // namespace nocdyn::io

@@ -1,9 +1,19 @@
 // Sampling a pose trajectory through the 3-PRR inverse dynamics: the batch layer above the
 // per-sample path. Turns a failing sample's Status into a nocdyn::Error that names the
 // sample time and the limb.
+//
+// Limits are checked on the motion, not only at the output samples: between two output
+// samples the stroke, the peak force and the workspace are also checked at points spaced at
+// most 1 / (kLimitChecksPerPeriod f_max) apart, f_max being the trajectory's highest harmonic
+// (so a harmonic's peak is seen within 1 - cos(pi / 40) = 0.3 % of its amplitude), whatever
+// the output rate. An output rate at or below 2 f_max (which would alias) is refused, and no
+// non-finite number is ever produced: a workspace exit, a singular posture or a non-finite
+// value stays an error under either LimitPolicy.
 #pragma once
 
 #include <array>
+#include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -13,13 +23,67 @@
 
 namespace nocdyn::prr3 {
 
-/// Sampling instants t_k = k / rate, k = 0..n-1, n = round(duration * rate).
-/// Throws nocdyn::Error for a non-positive or non-finite duration or rate, or when fewer
-/// than one or more than 10^8 samples would result.
+/// Output sampling instants t_k = k / rate, k = 0..count-1, without storing them.
+struct SampleGrid {
+    double rate = 0.0;       ///< [Hz]
+    std::size_t count = 0;   ///< number of samples
+    [[nodiscard]] double time(std::size_t k) const { return static_cast<double>(k) / rate; }
+};
+
+/// The grid of n = round(duration * rate) samples. Throws nocdyn::Error for a non-positive or
+/// non-finite duration or rate, or when fewer than one or more than 10^8 samples would result.
+[[nodiscard]] SampleGrid sampleGrid(double duration, double rate);
+
+/// Sampling instants t_k = k / rate, k = 0..n-1, n = round(duration * rate) (as sampleGrid).
 [[nodiscard]] std::vector<double> sampleTimes(double duration, double rate);
+
+/// Points per period of the highest harmonic at which limits are checked between samples.
+inline constexpr int kLimitChecksPerPeriod = 40;
+
+/// Highest harmonic frequency of any axis [Hz]; 0 for a constant pose.
+[[nodiscard]] double highestFrequency(const PoseTrajectory& trajectory);
+
+/// Throws nocdyn::Error naming the rate needed unless `rate` > 2 f_max (Nyquist).
+void requireRateAboveNyquist(const PoseTrajectory& trajectory, double rate);
+
+/// Throws nocdyn::Error "t = ... s: <reason>" at the first point of [0, duration] where the
+/// pose is outside the workspace, singular, or gives a non-finite value, checked every
+/// 1 / (kLimitChecksPerPeriod f_max) s and at both ends; stroke and force are not checked.
+void requireReachable(const Model& model, const PoseTrajectory& trajectory, double duration);
 
 /// What to do when a sample exceeds the actuator stroke or peak force.
 enum class LimitPolicy { error, record };
+
+/// One output sample of the inverse dynamics.
+struct InverseDynamicsSample {
+    double t = 0.0;                      ///< [s]
+    Pose p = Pose::Zero();               ///< pose [theta, x, y] [rad, m, m]
+    Twist dp = Twist::Zero();            ///< its first time derivative
+    Twist ddp = Twist::Zero();           ///< its second time derivative
+    JointVector u = JointVector::Zero();    ///< actuator displacements [m]
+    JointVector du = JointVector::Zero();   ///< rates [m/s]
+    JointVector ddu = JointVector::Zero();  ///< accelerations [m/s^2]
+    JointVector tau = JointVector::Zero();  ///< forces [N]
+    double kinetic = 0.0;                ///< kinetic energy [J]
+};
+
+/// Peaks and violations over a whole run, between-sample checks included.
+struct LimitSummary {
+    std::array<double, kLimbs> peak_stroke{};  ///< max |u_j| [m]
+    std::array<double, kLimbs> peak_force{};   ///< max |tau_j| [N]
+    /// The first (at most 10) limit violations met when the policy is `record`.
+    std::vector<std::string> limit_violations;
+    std::size_t checks_between_samples = 0;    ///< points checked between output samples
+};
+
+/// Runs the per-sample path at each instant of `grid` and hands each sample to `sink` as it
+/// is computed (memory does not grow with the sample count). Refuses a rate at or below
+/// 2 f_max before computing anything. Throws nocdyn::Error "t = ... s: <reason>" for a pose
+/// outside the workspace, a singular posture or a non-finite value at a sample or between
+/// samples, and (policy `error`) for a stroke or force beyond the limits; with `record`,
+/// violations are listed instead. Allocates nothing per sample (`sink` aside).
+LimitSummary streamInverseDynamics(const Model& model, const PoseTrajectory& trajectory, const SampleGrid& grid,
+                                   LimitPolicy policy, const std::function<void(const InverseDynamicsSample&)>& sink);
 
 /// Inverse dynamics along a trajectory, one row per sample.
 struct InverseDynamicsSeries {
@@ -33,12 +97,17 @@ struct InverseDynamicsSeries {
     std::vector<std::string> limit_violations;
 };
 
-/// Runs the per-sample path at each time. Throws nocdyn::Error "t = ... s: <reason>" for a
-/// pose outside the workspace or a singular posture, and (policy `error`) for a sample
-/// beyond the stroke or the peak force; with `record`, violations are listed instead.
+/// As streamInverseDynamics at increasing `times`, stored. Refuses a sampling interval of
+/// 1 / (2 f_max) or more.
 [[nodiscard]] InverseDynamicsSeries sampleInverseDynamics(const Model& model, const PoseTrajectory& trajectory,
                                                           const std::vector<double>& times,
                                                           LimitPolicy policy = LimitPolicy::error);
+
+/// Column names of the inverse-dynamics CSV: t,x,y,theta,u1..u3,du1..du3,ddu1..ddu3,tau1..tau3,kinetic (SI).
+[[nodiscard]] std::vector<std::string> inverseDynamicsColumns();
+
+/// One CSV row of a sample, in the order of inverseDynamicsColumns().
+[[nodiscard]] std::array<double, 17> toRow(const InverseDynamicsSample& sample);
 
 /// CSV table: t,x,y,theta,u1..u3,du1..du3,ddu1..ddu3,tau1..tau3,kinetic (SI).
 [[nodiscard]] io::Table toTable(const InverseDynamicsSeries& series);

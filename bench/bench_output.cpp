@@ -1,0 +1,70 @@
+// Writing results: the streaming CSV writer (shortest round-trip numbers, std::to_chars) and
+// the whole streaming inverse dynamics of `nocdyn inverse-dynamics` (sample, check, format,
+// write), both into /dev/null through io::OutputFile so that no disk time is counted.
+#include <benchmark/benchmark.h>
+
+#include <array>
+#include <cstddef>
+
+#include "fixture.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/output.hpp"
+#include "nocdyn/prr3/sampling.hpp"
+
+namespace nocdyn::bench {
+namespace {
+
+/// Rows of 17 numbers (the inverse-dynamics columns) from the fixture's cycle, formatted and
+/// written; items/s = rows per second.
+void BM_WriteCsv(benchmark::State& state) {
+    const Fixture& f = fixture();
+    std::vector<std::array<double, 17>> rows;
+    for (const Sample& s : f.samples) {
+        prr3::InverseDynamicsSample sample;
+        sample.t = s.t;
+        sample.p = s.p;
+        prr3::Data data;
+        (void)prr3::inverseDynamics(f.model, data, s.p, s.dp, s.ddp);
+        sample.u = data.u;
+        sample.du = data.du;
+        sample.ddu = data.ddu;
+        sample.tau = data.tau;
+        sample.kinetic = prr3::kineticEnergy(f.model, data);
+        rows.push_back(prr3::toRow(sample));
+    }
+    io::OutputFile out("/dev/null");
+    io::CsvWriter csv(out, prr3::inverseDynamicsColumns());
+    for (auto _ : state) {
+        for (const auto& row : rows) csv.row(row);
+    }
+    csv.finish();
+    out.commit();
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * rows.size()));
+}
+BENCHMARK(BM_WriteCsv)->Unit(benchmark::kMillisecond);
+
+/// `nocdyn inverse-dynamics --trajectory paper1 --duration D --rate 1e6 -o /dev/null` without
+/// the process: D = samples / 1e6 s; items/s = samples per second. Second argument: 1 =
+/// formatting on a second thread (as the command does), 0 = on the calling thread.
+void BM_StreamInverseDynamics(benchmark::State& state) {
+    const prr3::Model model;
+    const PoseTrajectory trajectory = paperTrajectory1();
+    const auto samples = static_cast<std::size_t>(state.range(0));
+    const prr3::SampleGrid grid{1e6, samples};
+    for (auto _ : state) {
+        io::OutputFile out("/dev/null");
+        io::CsvWriter csv(out, prr3::inverseDynamicsColumns(), state.range(1) != 0);
+        const auto summary = prr3::streamInverseDynamics(
+            model, trajectory, grid, prr3::LimitPolicy::error,
+            [&](const prr3::InverseDynamicsSample& sample) { csv.row(prr3::toRow(sample)); });
+        csv.finish();
+        out.commit();
+        benchmark::DoNotOptimize(summary.peak_force);
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * samples));
+}
+BENCHMARK(BM_StreamInverseDynamics)->Args({1000000, 0})->Args({1000000, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace nocdyn::bench
+BENCHMARK_MAIN();
