@@ -1,0 +1,25 @@
+// CSV layouts of the results (column names and rows), kept out of the physics.
+#pragma once
+
+#include <span>
+#include <string>
+#include <vector>
+
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/sampling.hpp"
+
+namespace nocdyn::io {
+
+/// t,x,y,theta,u1..un,du1..dun,ddu1..ddun,tau1..taun,kinetic (SI; n actuators).
+[[nodiscard]] std::vector<std::string> inverseDynamicsColumns(int actuators);
+
+/// `prefix`1..`prefix`n, e.g. "tau1".."tau4".
+[[nodiscard]] std::vector<std::string> numbered(const std::string& prefix, int count);
+
+/// One row of a sample in the order of inverseDynamicsColumns, into `row` (resized).
+void inverseDynamicsRow(const InverseDynamicsSample& sample, std::vector<double>& row);
+
+/// The whole series as a table.
+[[nodiscard]] Table toTable(const InverseDynamicsSeries& series, int actuators);
+
+}  // namespace nocdyn::io
