@@ -2,59 +2,13 @@
 // (kinematics.hpp), written once for every limb type with planar screws.
 #include "nocdyn/kinematics.hpp"
 
+#include <array>
 #include <cmath>
-
-#include <Eigen/LU>
 
 #include "nocdyn/limb_ik.hpp"
 #include "stages.hpp"
 
 namespace nocdyn {
-
-namespace {
-
-/// A planar rigid displacement x -> R(c, s) x + t.
-struct Displacement {
-    double c = 1.0, s = 0.0;
-    Vector2 t = Vector2::Zero();
-
-    [[nodiscard]] Vector2 rotate(const Vector2& v) const { return {c * v.x() - s * v.y(), s * v.x() + c * v.y()}; }
-    [[nodiscard]] Vector2 apply(const Vector2& v) const { return rotate(v) + t; }
-    /// this o other
-    [[nodiscard]] Displacement then(const Displacement& other) const {
-        return {c * other.c - s * other.s, s * other.c + c * other.s, rotate(other.t) + t};
-    }
-};
-
-/// exp of joint k's home screw times q_k: a rotation about r_k or a translation along d_k.
-[[nodiscard]] Displacement jointDisplacement(const LimbModel& limb, const LimbData& ld, int k) {
-    const auto kk = static_cast<std::size_t>(k);
-    if (limb.type[kk] == JointType::prismatic) return {1.0, 0.0, ld.q(k) * limb.direction[kk]};
-    Displacement g{ld.cos_q(k), ld.sin_q(k), Vector2::Zero()};
-    g.t = limb.point_home[kk] - g.rotate(limb.point_home[kk]);
-    return g;
-}
-
-/// Current screw of joint k carried by the body displaced by g (referred to O).
-[[nodiscard]] Twist currentScrew(const LimbModel& limb, const Displacement& g, int k) {
-    const auto kk = static_cast<std::size_t>(k);
-    return limb.type[kk] == JointType::revolute ? revoluteTwist(-g.apply(limb.point_home[kk]))
-                                                : prismaticTwist(g.rotate(limb.direction[kk]));
-}
-
-/// Column sums' maximum: the matrix 1-norm.
-template <typename Derived>
-[[nodiscard]] double norm1(const Eigen::MatrixBase<Derived>& m) {
-    return m.cwiseAbs().colwise().sum().maxCoeff();
-}
-
-/// Joint-variable scale: 1 for R (rad), L for P (m), so that J diag(c) diag(1, 1/L, 1/L) is
-/// dimensionless.
-[[nodiscard]] double jointScale(const Model& model, const LimbModel& limb, int k) {
-    return limb.type[static_cast<std::size_t>(k)] == JointType::revolute ? 1.0 : model.length_scale;
-}
-
-}  // namespace
 
 namespace detail {
 
@@ -72,58 +26,63 @@ Status positionStage(const Model& model, Data& data, const Pose& p, bool angles)
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
         if (const Status status = solveLimb(limb, j, G, angles, ld); !status) return status;
-        const Displacement g1 = jointDisplacement(limb, ld, 0);
-        const Displacement g2 = g1.then(jointDisplacement(limb, ld, 1));
-        ld.s[0] = limb.screw_home[0];
-        ld.s[1] = currentScrew(limb, g1, 1);
-        ld.s[2] = currentScrew(limb, g2, 2);
-        ld.x[0] = g1.apply(limb.com_home[0]);
-        ld.x[1] = g2.apply(limb.com_home[1]);
+        limbScrews(limb, ld);
         for (int k = 0; k < 3; ++k) {
             if (const int a = limb.actuator[static_cast<std::size_t>(k)]; a >= 0) data.u(a) = ld.q(k);
         }
     }
-    const double c = std::cos(p(0));
-    const double s = std::sin(p(0));
-    data.x_P = G.C + Vector2(c * model.platform_com.x() - s * model.platform_com.y(),
-                             s * model.platform_com.x() + c * model.platform_com.y());
+    // the platform's c.o.m. turns with it from home: no second sine and cosine
+    data.x_P = G.apply(model.platform_com_home);
     return {};
 }
 
 Status jacobianStage(const Model& model, Data& data) {
     const double L = model.length_scale;
-    const Vector3 row_scale(1.0, 1.0 / L, 1.0 / L);
+    const double inv_L = 1.0 / L;
     for (int j = 0; j < model.limbs; ++j) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
         // eq. 4a generalised: the columns of J_j are the joints' planar Pluecker arrays
         for (int k = 0; k < 3; ++k) ld.J.col(k) = ld.s[static_cast<std::size_t>(k)];
-        ld.J_inv = ld.J.inverse();
-        Vector3 col_scale;
-        for (int k = 0; k < 3; ++k) col_scale(k) = jointScale(model, limb, k);
-        const Matrix3 Js = row_scale.asDiagonal() * ld.J * col_scale.asDiagonal();
-        const Matrix3 Js_inv = col_scale.cwiseInverse().asDiagonal() * ld.J_inv * row_scale.cwiseInverse().asDiagonal();
-        ld.cond = norm1(Js) * norm1(Js_inv);
+        Matrix3 adj;
+        const double det = adjugateOfColumns(ld.s[0], ld.s[1], ld.s[2], adj);
+        ld.J_inv = adj / det;
+        // scaled 1-norm condition number of J_j (joint variables in rad and L, twists in
+        // rad/s and L rad/s): ||R J diag(c)||_1 ||diag(1/c) J^-1 R^-1||_1, R = diag(1, 1/L, 1/L)
+        const ConditionNorms norms = limbConditionNorms(limb, L, inv_L, ld.J, adj);
+        ld.cond = norms.norm * norms.adj_norm / std::abs(det);
         if (!(ld.cond <= model.max_condition)) return {StatusCode::singular_limb, j, ld.cond};
     }
     // eq. 5 generalised: du_a = (row k of J_j^-1) xi_P for actuator a at joint k of limb j
     const int n = model.actuators;
-    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators, 1> w(n);
+    std::array<Vector3, kMaxActuators> rows;
+    std::array<double, kMaxActuators> w{};
     for (int a = 0; a < n; ++a) {
-        const int j = model.actuator_limb[static_cast<std::size_t>(a)];
-        const int k = model.actuator_joint[static_cast<std::size_t>(a)];
-        data.A.row(a) = data.limb[static_cast<std::size_t>(j)].J_inv.row(k);
-        w(a) = 1.0 / jointScale(model, model.limb[static_cast<std::size_t>(j)], k);
+        const auto aa = static_cast<std::size_t>(a);
+        const auto j = static_cast<std::size_t>(model.actuator_limb[aa]);
+        const int k = model.actuator_joint[aa];
+        rows[aa] = data.limb[j].J_inv.row(k).transpose();
+        data.A.row(a) = rows[aa].transpose();
+        w[aa] = model.limb[j].inv_joint_scale[static_cast<std::size_t>(k)];
     }
-    const ActuationMatrix As = w.asDiagonal() * data.A * row_scale.cwiseInverse().asDiagonal();
     if (model.coordinates == Coordinates::actuators) {
-        const Matrix3 A3 = data.A;
-        data.Xi = A3.inverse();
-        const Matrix3 As_inv = row_scale.asDiagonal() * data.Xi * w.cwiseInverse().asDiagonal();
-        data.cond_A = norm1(As) * norm1(As_inv);
+        Matrix3 adj;
+        const double det = actuationAdjugate(rows.data(), adj);
+        data.Xi = adj / det;
+        const ConditionNorms norms = actuationConditionNorms(rows.data(), w.data(), L, inv_L, adj);
+        data.cond_A = norms.norm * norms.adj_norm / std::abs(det);
     } else {
-        const Matrix3 B = As.transpose() * As;
-        data.cond_A = std::sqrt(norm1(B) * norm1(Matrix3(B.inverse())));
+        // B = As^T As, As = diag(w) A diag(1, L, L): cond_A = sqrt(cond_1 B)
+        Matrix3 B = Matrix3::Zero();
+        const Vector3 col_scale(1.0, L, L);
+        for (int a = 0; a < n; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            const Vector3 r = w[aa] * rows[aa].cwiseProduct(col_scale);
+            B.noalias() += r * r.transpose();
+        }
+        Matrix3 adj;
+        const double det = symmetricAdjugate(B, adj);
+        data.cond_A = std::sqrt(norm1(B) * norm1(adj) / std::abs(det));
     }
     if (!(data.cond_A <= model.max_condition)) return {StatusCode::singular_actuation, -1, data.cond_A};
     return {};

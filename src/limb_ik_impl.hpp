@@ -1,0 +1,195 @@
+// The closed-form inverse displacement of one limb per type (limb_ik.hpp), on plain arrays
+// so that the lean path (dynamics.cpp) inlines it; solveLimb wraps it for LimbData.
+// Internal (not installed).
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "nocdyn/limb_ik.hpp"
+
+// The lean kernel must be inlined into the loops that call it (and into their AVX2 clones).
+#if defined(__GNUC__)
+#define NOCDYN_ALWAYS_INLINE inline __attribute__((always_inline))
+#else
+#define NOCDYN_ALWAYS_INLINE inline
+#endif
+
+namespace nocdyn::detail {
+
+/// Joint variables of one limb: q (P joints, and R joints once their angle is wanted), and
+/// cos q, sin q (R joints; 1 and 0 for P).
+struct JointSolution {
+    double q_[3] = {0.0, 0.0, 0.0};
+    double c_[3] = {1.0, 1.0, 1.0};
+    double s_[3] = {0.0, 0.0, 0.0};
+    double& q(int k) { return q_[k]; }
+    double& c(int k) { return c_[k]; }
+    double& s(int k) { return s_[k]; }
+    [[nodiscard]] double q(int k) const { return q_[k]; }
+    [[nodiscard]] double c(int k) const { return c_[k]; }
+    [[nodiscard]] double s(int k) const { return s_[k]; }
+};
+
+namespace ik {
+
+
+constexpr double kTiny = 1e-300;
+
+[[nodiscard]] inline double dot(const Vector2& a, const Vector2& b) { return a.dot(b); }
+
+/// cos and sin of the angle from a to b, both of squared length n2.
+inline void angleBetween(const Vector2& a, const Vector2& b, double n2, double& c, double& s) {
+    c = dot(a, b) / n2;
+    s = cross(a, b) / n2;
+}
+
+/// cos and sin of dtheta - (angles already found) for the joint that closes the rotation.
+inline void remainingAngle(const PlatformDisplacement& G, JointSolution& out, int skip) {
+    double c = G.cos_dtheta;
+    double s = G.sin_dtheta;
+    for (int k = 0; k < 3; ++k) {
+        if (k == skip) continue;
+        const double ck = out.c(k);
+        const double sk = out.s(k);
+        const double c_new = c * ck + s * sk;  // rotate by -q_k
+        s = s * ck - c * sk;
+        c = c_new;
+    }
+    out.c(skip) = c;
+    out.s(skip) = s;
+}
+
+inline Status unreachable(int j, double by) { return {StatusCode::unreachable, j, by}; }
+inline Status singular(int j) { return {StatusCode::singular_limb, j, std::numeric_limits<double>::infinity()}; }
+
+/// RRR: the elbow P_2 where circle (r_1, L_1) meets circle (P_3 = G(r_3), L_2).
+inline Status solveRRR(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+    const Vector2& r1 = limb.point_home[0];
+    const Vector2 P3 = G.apply(limb.point[2]);
+    const Vector2 D = P3 - r1;
+    const double d2 = D.squaredNorm();
+    const double d = std::sqrt(d2);
+    const double L1 = limb.length1;
+    const double L2 = limb.length2;
+    if (!(d > kTiny)) return singular(j);
+    const double a = (L1 * L1 - L2 * L2 + d2) / (2.0 * d);
+    const double h2 = (L1 - a) * (L1 + a);
+    if (!(h2 >= 0.0)) return unreachable(j, d > L1 + L2 ? d - (L1 + L2) : std::abs(L1 - L2) - d);
+    const double h = std::sqrt(h2);
+    const Vector2 P2 = r1 + (a / d) * D + (limb.branch * h / d) * perp(D);
+    angleBetween(limb.point_home[1] - r1, P2 - r1, L1 * L1, out.c(0), out.s(0));
+    const Vector2 link = limb.point_home[2] - limb.point_home[1];
+    const Vector2 turned(out.c(0) * link.x() - out.s(0) * link.y(),
+                         out.s(0) * link.x() + out.c(0) * link.y());
+    angleBetween(turned, P3 - P2, L2 * L2, out.c(1), out.s(1));
+    remainingAngle(G, out, 2);
+    return {};
+}
+
+/// PRR: the slider point P_2 = r_2 + q_1 d_1 at distance L_2 from P_3 = G(r_3) (the paper's limb).
+inline Status solvePRR(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+    const Vector2& d1 = limb.direction[0];
+    const Vector2& r2 = limb.point_home[1];
+    const Vector2 P3 = G.apply(limb.point[2]);
+    const Vector2 w = P3 - r2;
+    const double foot = dot(d1, w);
+    const double delta = cross(d1, w);
+    const double L2 = limb.length2;
+    const double h2 = (L2 - delta) * (L2 + delta);
+    if (!(h2 >= 0.0)) return unreachable(j, std::abs(delta) - L2);
+    out.q(0) = foot - limb.branch * std::sqrt(h2);
+    const Vector2 P2 = r2 + out.q(0) * d1;
+    angleBetween(limb.point_home[2] - r2, P3 - P2, L2 * L2, out.c(1), out.s(1));
+    remainingAngle(G, out, 2);
+    return {};
+}
+
+/// RPR: in the first body's frame, r_3 slides along d_2 to distance |G(r_3) - r_1| from r_1.
+inline Status solveRPR(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+    const Vector2& r1 = limb.point_home[0];
+    const Vector2& d2 = limb.direction[1];
+    const Vector2 a = limb.point_home[2] - r1;
+    const Vector2 W = G.apply(limb.point[2]) - r1;
+    const double rho2 = W.squaredNorm();
+    const double delta = cross(d2, a);
+    const double h2 = rho2 - delta * delta;
+    if (!(h2 >= 0.0)) return unreachable(j, std::abs(delta) - std::sqrt(rho2));
+    if (!(rho2 > kTiny)) return singular(j);
+    out.q(1) = -dot(a, d2) + limb.branch * std::sqrt(h2);
+    angleBetween(a + out.q(1) * d2, W, rho2, out.c(0), out.s(0));
+    remainingAngle(G, out, 2);
+    return {};
+}
+
+/// RRP: the elbow P_2 = G(r_2) - q_3 Rot(dtheta) d_3 on the circle (r_1, L_1).
+inline Status solveRRP(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+    const Vector2& r1 = limb.point_home[0];
+    const Vector2 Gr2 = G.apply(limb.point[1]);
+    const Vector2 w = -G.rotate(limb.direction[2]);
+    const double foot = dot(w, r1 - Gr2);
+    const double delta = cross(w, Gr2 - r1);
+    const double L1 = limb.length1;
+    const double h2 = (L1 - delta) * (L1 + delta);
+    if (!(h2 >= 0.0)) return unreachable(j, std::abs(delta) - L1);
+    out.q(2) = foot + limb.branch * std::sqrt(h2);
+    const Vector2 P2 = Gr2 + out.q(2) * w;
+    angleBetween(limb.point_home[1] - r1, P2 - r1, L1 * L1, out.c(0), out.s(0));
+    remainingAngle(G, out, 1);
+    return {};
+}
+
+/// Two prismatic joints and one revolute: the angle is dtheta, q_a a + q_b b = rhs.
+inline Status solveLinear(int j, const Vector2& a, const Vector2& b, const Vector2& rhs, double& qa, double& qb) {
+    const double det = cross(a, b);
+    if (!(std::abs(det) > 1e-12)) return singular(j);
+    qa = cross(rhs, b) / det;
+    qb = cross(a, rhs) / det;
+    return {};
+}
+
+inline Status solvePRP(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+    out.c(1) = G.cos_dtheta;
+    out.s(1) = G.sin_dtheta;
+    // G(r_2 - q_3 d_3) = r_2 + q_1 d_1
+    return solveLinear(j, limb.direction[0], G.rotate(limb.direction[2]),
+                       G.apply(limb.point[1]) - limb.point_home[1], out.q(0), out.q(2));
+}
+
+inline Status solveRPP(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+    out.c(0) = G.cos_dtheta;
+    out.s(0) = G.sin_dtheta;
+    // G(r_1) = r_1 + Rot(dtheta) (q_2 d_2 + q_3 d_3)
+    const Vector2 back = G.apply(limb.point[0]) - limb.point_home[0];
+    const Vector2 rhs(G.cos_dtheta * back.x() + G.sin_dtheta * back.y(),
+                      -G.sin_dtheta * back.x() + G.cos_dtheta * back.y());
+    return solveLinear(j, limb.direction[1], limb.direction[2], rhs, out.q(1), out.q(2));
+}
+
+inline Status solvePPR(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+    out.c(2) = G.cos_dtheta;
+    out.s(2) = G.sin_dtheta;
+    // G(r_3) = r_3 + q_1 d_1 + q_2 d_2
+    return solveLinear(j, limb.direction[0], limb.direction[1],
+                       G.apply(limb.point[2]) - limb.point_home[2], out.q(0), out.q(1));
+}
+
+}  // namespace ik
+
+/// Solves limb `j` for its joint variables on its home branch (angles of R joints not
+/// computed: only their cos and sin). Fails with unreachable or singular_limb.
+NOCDYN_ALWAYS_INLINE Status solveJoints(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+    using namespace ik;
+    switch (limb.kind) {
+        case LimbKind::RRR: return solveRRR(limb, j, G, out);
+        case LimbKind::PRR: return solvePRR(limb, j, G, out);
+        case LimbKind::RPR: return solveRPR(limb, j, G, out);
+        case LimbKind::RRP: return solveRRP(limb, j, G, out);
+        case LimbKind::PRP: return solvePRP(limb, j, G, out);
+        case LimbKind::RPP: return solveRPP(limb, j, G, out);
+        case LimbKind::PPR: return solvePPR(limb, j, G, out);
+        default: return singular(j);  // PPP is rejected by validate()
+    }
+}
+
+}  // namespace nocdyn::detail
