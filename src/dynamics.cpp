@@ -153,19 +153,14 @@ Status inverseDynamicsFast(const Model& model, Data& data, const Pose& p, const 
         s = std::sin(dtheta);
         c = std::cos(dtheta);
     }
-    detail::lean::Result r;
-    if (!detail::lean::sample(model, c, s, p.data(), dp.data(), ddp.data(), r))
-        [[unlikely]] return rejected(model, data, p, dp, ddp);
-    for (int a = 0; a < model.actuators; ++a) {
-        data.u(a) = r.u[a];
-        data.du(a) = r.du[a];
-        data.ddu(a) = r.ddu[a];
-        data.tau(a) = r.tau[a];
-    }
+    const detail::lean::Out out{data.u.data(), data.du.data(), data.ddu.data(), data.tau.data(), 1};
+    detail::lean::V3 W;
+    if (!detail::lean::sample(model, c, s, p.data(), dp.data(), ddp.data(), out, W)) [[unlikely]]
+        return rejected(model, data, p, dp, ddp);
     data.p = p;
     data.t_M = dp;
     data.t_M_dot = ddp;
-    data.W_P = Wrench(r.W.w, r.W.x, r.W.y);
+    data.W_P = Wrench(W.w, W.x, W.y);
     return {};
 }
 

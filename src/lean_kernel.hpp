@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 
 #include "limb_ik_impl.hpp"
 #include "nocdyn/model.hpp"
@@ -108,13 +109,14 @@ inline V3 bodyWrench(double I, double m, double gx, double gy, double px, double
 
 inline double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 
-/// Outputs of one sample: n actuators' u, du, ddu, tau, and W_P.
-struct Result {
-    double u[kMaxActuators];
-    double du[kMaxActuators];
-    double ddu[kMaxActuators];
-    double tau[kMaxActuators];
-    V3 W;
+/// Where one sample's outputs go: actuator a's u at u[a * stride], and so on (stride 1 for
+/// a vector, the number of samples for the columns of a column-major array).
+struct Out {
+    double* u;
+    double* du;
+    double* ddu;
+    double* tau;
+    std::ptrdiff_t stride;
 };
 
 /// The constants of a sample shared by every limb.
@@ -125,10 +127,10 @@ struct Frame {
 };
 
 /// One limb of kind K: its joint rates and accelerations, its bodies' share of W_P (into
-/// r.W), and its actuators' u, du, ddu and rows of A. False when the limb cannot close or
+/// W), and its actuators' u, du, ddu and rows of A. False when the limb cannot close or
 /// its J_j is too ill-conditioned.
 template <LimbKind K>
-NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f, Result& r, V3* rows, double* weight, double* scale) {
+NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows, double* weight, double* scale) {
     const PlatformDisplacement& G = f.G;
     const V3& xi_P = f.xi_P;
     const V3& xi_P_dot = f.xi_P_dot;
@@ -181,7 +183,7 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
         f1 += limb.damping[1] * gd1 + limb.friction[1] * sign(gd1);
         f2 += limb.damping[2] * gd2 + limb.friction[2] * sign(gd2);
     }
-    r.W = r.W + f0 * j0 + f1 * j1 + f2 * j2;
+    W = W + f0 * j0 + f1 * j1 + f2 * j2;
 
     const double q[3] = {js.q(0), js.q(1), js.q(2)};
     const double gd[3] = {gd0, gd1, gd2};
@@ -192,9 +194,10 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
         const int a = limb.actuator[kk];
         if (a < 0) continue;
         // an actuated R joint's angle: the one atan2 the lean path needs
-        r.u[a] = revolute<K>(k) ? std::atan2(js.s(k), js.c(k)) : q[k];
-        r.du[a] = gd[k];
-        r.ddu[a] = gdd[k];
+        const std::ptrdiff_t at = a * out.stride;
+        out.u[at] = revolute<K>(k) ? std::atan2(js.s(k), js.c(k)) : q[k];
+        out.du[at] = gd[k];
+        out.ddu[at] = gdd[k];
         rows[a] = jr[k];
         weight[a] = ic[kk];
         scale[a] = cs[kk];
@@ -205,7 +208,7 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
 /// One sample given cos and sin of dtheta = theta - home(0); p, dp, ddp finite.
 /// Returns false when the per-sample path would fail (or is within rounding of a threshold).
 NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p, const double* dp,
-                   const double* ddp, Result& r) {
+                   const double* ddp, const Out& out, V3& W) {
     PlatformDisplacement G;
     G.cos_dtheta = cos_dtheta;
     G.sin_dtheta = sin_dtheta;
@@ -227,20 +230,20 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
         const Vector2& com = model.platform_com_home;
         const double px = cx + G.cos_dtheta * com.x() - G.sin_dtheta * com.y();
         const double py = cy + G.sin_dtheta * com.x() + G.cos_dtheta * com.y();
-        r.W = bodyWrench(model.platform_M.inertia, model.platform_M.mass, gx, gy, px, py, xi_P, xi_P_dot);
+        W = bodyWrench(model.platform_M.inertia, model.platform_M.mass, gx, gy, px, py, xi_P, xi_P_dot);
     }
     const Frame frame{G, xi_P, xi_P_dot, gx, gy, L, inv_L, max_condition};
     for (int j = 0; j < model.limbs; ++j) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         bool ok = false;
         switch (limb.kind) {
-            case LimbKind::RRR: ok = limbTerms<LimbKind::RRR>(limb, j, frame, r, rows, weight, scale); break;
-            case LimbKind::PRR: ok = limbTerms<LimbKind::PRR>(limb, j, frame, r, rows, weight, scale); break;
-            case LimbKind::RPR: ok = limbTerms<LimbKind::RPR>(limb, j, frame, r, rows, weight, scale); break;
-            case LimbKind::RRP: ok = limbTerms<LimbKind::RRP>(limb, j, frame, r, rows, weight, scale); break;
-            case LimbKind::PRP: ok = limbTerms<LimbKind::PRP>(limb, j, frame, r, rows, weight, scale); break;
-            case LimbKind::RPP: ok = limbTerms<LimbKind::RPP>(limb, j, frame, r, rows, weight, scale); break;
-            case LimbKind::PPR: ok = limbTerms<LimbKind::PPR>(limb, j, frame, r, rows, weight, scale); break;
+            case LimbKind::RRR: ok = limbTerms<LimbKind::RRR>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::PRR: ok = limbTerms<LimbKind::PRR>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::RPR: ok = limbTerms<LimbKind::RPR>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::RRP: ok = limbTerms<LimbKind::RRP>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::PRP: ok = limbTerms<LimbKind::PRP>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::RPP: ok = limbTerms<LimbKind::RPP>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::PPR: ok = limbTerms<LimbKind::PPR>(limb, j, frame, out, W, rows, weight, scale); break;
             case LimbKind::PPP: break;  // rejected by validate()
         }
         if (!ok) return false;
@@ -263,9 +266,9 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
         if (!(n_A * n_adj <= max_condition * std::abs(det))) return false;
         // tau = A^-T W_P: A^-1 has columns b_a / det
         const double inv_det = 1.0 / det;
-        r.tau[0] = dot(b0, r.W) * inv_det;
-        r.tau[1] = dot(b1, r.W) * inv_det;
-        r.tau[2] = dot(b2, r.W) * inv_det;
+        out.tau[0] = dot(b0, W) * inv_det;
+        out.tau[out.stride] = dot(b1, W) * inv_det;
+        out.tau[2 * out.stride] = dot(b2, W) * inv_det;
         return true;
     }
     // redundant: cond_A^2 = cond_1(B), B = As^T As, As = diag(w) A diag(1, L, L); and the
@@ -298,10 +301,10 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
     if (!(norm1(B) * norm1(adj_B) <= max_condition * max_condition * std::abs(det_B))) return false;
     const double det_N = adjugate(N, adj_N);
     const double inv_det = 1.0 / det_N;
-    const V3 lambda{(adj_N[0] * r.W.w + adj_N[1] * r.W.x + adj_N[2] * r.W.y) * inv_det,
-                    (adj_N[1] * r.W.w + adj_N[3] * r.W.x + adj_N[4] * r.W.y) * inv_det,
-                    (adj_N[2] * r.W.w + adj_N[4] * r.W.x + adj_N[5] * r.W.y) * inv_det};
-    for (int a = 0; a < n; ++a) r.tau[a] = dot(rows[a], lambda);
+    const V3 lambda{(adj_N[0] * W.w + adj_N[1] * W.x + adj_N[2] * W.y) * inv_det,
+                    (adj_N[1] * W.w + adj_N[3] * W.x + adj_N[4] * W.y) * inv_det,
+                    (adj_N[2] * W.w + adj_N[4] * W.x + adj_N[5] * W.y) * inv_det};
+    for (int a = 0; a < n; ++a) out.tau[a * out.stride] = dot(rows[a], lambda);
     return true;
 }
 
