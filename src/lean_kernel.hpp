@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <limits>
 
 #include "limb_ik_impl.hpp"
 #include "nocdyn/model.hpp"
@@ -29,27 +30,73 @@ struct V3 {
     double w, x, y;
 };
 
-inline V3 operator+(const V3& a, const V3& b) { return {a.w + b.w, a.x + b.x, a.y + b.y}; }
-inline V3 operator-(const V3& a, const V3& b) { return {a.w - b.w, a.x - b.x, a.y - b.y}; }
-inline V3 operator*(double k, const V3& a) { return {k * a.w, k * a.x, k * a.y}; }
-inline double dot(const V3& a, const V3& b) { return a.w * b.w + a.x * b.x + a.y * b.y; }
+NOCDYN_ALWAYS_INLINE V3 operator+(const V3& a, const V3& b) { return {a.w + b.w, a.x + b.x, a.y + b.y}; }
+NOCDYN_ALWAYS_INLINE V3 operator-(const V3& a, const V3& b) { return {a.w - b.w, a.x - b.x, a.y - b.y}; }
+NOCDYN_ALWAYS_INLINE V3 operator*(double k, const V3& a) { return {k * a.w, k * a.x, k * a.y}; }
+NOCDYN_ALWAYS_INLINE double dot(const V3& a, const V3& b) { return a.w * b.w + a.x * b.x + a.y * b.y; }
 /// The cross product of 3-arrays: the cofactors of a 3 x 3 matrix.
-inline V3 cross(const V3& a, const V3& b) {
+NOCDYN_ALWAYS_INLINE V3 cross(const V3& a, const V3& b) {
     return {a.x * b.y - a.y * b.x, a.y * b.w - a.w * b.y, a.w * b.x - a.x * b.w};
 }
 /// Lie bracket of planar twists referred to O (kinematics.hpp, bracket).
-inline V3 bracket(const V3& a, const V3& b) { return {0.0, -a.w * b.y + b.w * a.y, a.w * b.x - b.w * a.x}; }
-inline double sum1(const V3& a) { return std::abs(a.w) + std::abs(a.x) + std::abs(a.y); }
+NOCDYN_ALWAYS_INLINE V3 bracket(const V3& a, const V3& b) { return {0.0, -a.w * b.y + b.w * a.y, a.w * b.x - b.w * a.x}; }
 
 /// A planar rigid displacement x -> R(c, s) x + t.
 struct Move {
     double c, s, tx, ty;
-    [[nodiscard]] double rx(double x, double y) const { return c * x - s * y; }
-    [[nodiscard]] double ry(double x, double y) const { return s * x + c * y; }
-    [[nodiscard]] Move then(const Move& o) const {
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE double rx(double x, double y) const { return c * x - s * y; }
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE double ry(double x, double y) const { return s * x + c * y; }
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE Move then(const Move& o) const {
         return {c * o.c - s * o.s, s * o.c + c * o.s, rx(o.tx, o.ty) + tx, ry(o.tx, o.ty) + ty};
     }
 };
+
+/// atan2(y, x) without a call: fdlibm's atan (argument reduction to |t| < 7/16 around
+/// atan(1/2), atan(1), atan(3/2), the 11-term minimax polynomial, hi + lo constants) and its
+/// atan2 quadrant rules. Error below 1 ulp as libm's; inlined, it costs a third of the call.
+/// Finite arguments only (the lean kernel's joint angles). Kept out of line: it is long and
+/// needed once per actuated revolute joint.
+#if defined(__GNUC__)
+__attribute__((noinline))
+#endif
+inline double atan2Of(double y, double x) {
+    constexpr double atanhi[4] = {4.63647609000806093515e-01, 7.85398163397448278999e-01, 9.82793723247329054082e-01,
+                                  1.57079632679489655800e+00};
+    constexpr double atanlo[4] = {2.26987774529616870924e-17, 3.06161699786838301793e-17, 1.39033110312309984516e-17,
+                                  6.12323399573676603587e-17};
+    constexpr double aT[11] = {3.33333333333329318027e-01,  -1.99999999998764832476e-01, 1.42857142725034663711e-01,
+                               -1.11111104054623557880e-01, 9.09088713343650656196e-02,  -7.69187620504482999495e-02,
+                               6.66107313738753120669e-02,  -5.83357013379057348645e-02, 4.97687799461593236017e-02,
+                               -3.65315727442169155270e-02, 1.62858201153657823623e-02};
+    constexpr double pi = 3.1415926535897931160e+00, pi_lo = 1.2246467991473531772e-16;
+    const double ax = std::abs(x), ay = std::abs(y);
+    if (ay == 0.0) return x >= 0.0 && !std::signbit(x) ? y : std::copysign(pi, y);  // as atan2
+    // z = atan(|y / x|), |y / x| reduced to |t| < 7/16
+    double t = ax == 0.0 ? std::numeric_limits<double>::infinity() : ay / ax;
+    int id;
+    if (t < 0.4375) {
+        id = -1;
+    } else if (t < 0.6875) {
+        id = 0;
+        t = (2.0 * t - 1.0) / (2.0 + t);
+    } else if (t < 1.1875) {
+        id = 1;
+        t = (t - 1.0) / (t + 1.0);
+    } else if (t < 2.4375) {
+        id = 2;
+        t = (t - 1.5) / (1.0 + 1.5 * t);
+    } else {
+        id = 3;
+        t = -1.0 / t;
+    }
+    const double z2 = t * t;
+    const double w = z2 * z2;
+    const double s1 = z2 * (aT[0] + w * (aT[2] + w * (aT[4] + w * (aT[6] + w * (aT[8] + w * aT[10])))));
+    const double s2 = w * (aT[1] + w * (aT[3] + w * (aT[5] + w * (aT[7] + w * aT[9]))));
+    const double z = id < 0 ? t - t * (s1 + s2) : atanhi[id] - ((t * (s1 + s2) - atanlo[id]) - t);
+    if (!(x < 0.0) && !std::signbit(x)) return y < 0.0 ? -z : z;
+    return y < 0.0 ? (z - pi_lo) - pi : pi - (z - pi_lo);
+}
 
 /// Whether joint k of a limb of kind K is revolute (known at compile time, so that the
 /// kernel below is specialised per limb type: one template, no hand-written copy).
@@ -99,7 +146,7 @@ NOCDYN_ALWAYS_INLINE Status solveKind(const LimbModel& limb, int j, const Platfo
 
 /// Inertia wrench, less gravity, of a body (inertia I, mass m, c.o.m. x) with twist xi and
 /// twist rate alpha referred to O, itself referred to O (dynamics.cpp, bodyWrench).
-inline V3 bodyWrench(double I, double m, double gx, double gy, double px, double py, const V3& xi, const V3& alpha) {
+NOCDYN_ALWAYS_INLINE V3 bodyWrench(double I, double m, double gx, double gy, double px, double py, const V3& xi, const V3& alpha) {
     const double w = xi.w;
     const double vx = xi.x - w * py, vy = xi.y + w * px;
     const double ax = alpha.x - alpha.w * py - w * vy, ay = alpha.y + alpha.w * px + w * vx;
@@ -107,7 +154,7 @@ inline V3 bodyWrench(double I, double m, double gx, double gy, double px, double
     return {I * alpha.w + (px * fy - py * fx), fx, fy};
 }
 
-inline double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+NOCDYN_ALWAYS_INLINE double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
 
 /// Where one sample's outputs go: actuator a's u at u[a * stride], and so on (stride 1 for
 /// a vector, the number of samples for the columns of a column-major array).
@@ -195,7 +242,7 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
         if (a < 0) continue;
         // an actuated R joint's angle: the one atan2 the lean path needs
         const std::ptrdiff_t at = a * out.stride;
-        out.u[at] = revolute<K>(k) ? std::atan2(js.s(k), js.c(k)) : q[k];
+        out.u[at] = revolute<K>(k) ? atan2Of(js.s(k), js.c(k)) : q[k];
         out.du[at] = gd[k];
         out.ddu[at] = gdd[k];
         rows[a] = jr[k];
