@@ -16,7 +16,7 @@ Status solveLimb(const LimbModel& limb, int j, const PlatformDisplacement& G, bo
         out.sin_q(k) = solution.s(k);
         if (limb.type[static_cast<std::size_t>(k)] != JointType::revolute) continue;
         if (angles || limb.actuator[static_cast<std::size_t>(k)] >= 0) {
-            out.q(k) = std::atan2(out.sin_q(k), out.cos_q(k));
+            out.q(k) = detail::atan2Of(out.sin_q(k), out.cos_q(k));
         }
     }
     return {};

@@ -85,6 +85,8 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
         // Lengths of the closed forms: the links between consecutive revolute axes.
         out.length1 = (out.point_home[1] - out.point_home[0]).norm();
         out.length2 = (out.point_home[2] - out.point_home[1]).norm();
+        out.inv_length1_sq = out.length1 > 0.0 ? 1.0 / (out.length1 * out.length1) : 0.0;
+        out.inv_length2_sq = out.length2 > 0.0 ? 1.0 / (out.length2 * out.length2) : 0.0;
         out.branch = homeBranch(out);
         const std::string type = in.type();
         const bool two_solutions = type == "RRR" || type == "PRR" || type == "RPR" || type == "RRP";

@@ -78,6 +78,7 @@ struct LimbModel {
     int branch = 0;
     /// Lengths used by the closed forms (|r2 - r1|, |r3 - r2|, ...) [m].
     double length1 = 0.0, length2 = 0.0;
+    double inv_length1_sq = 0.0, inv_length2_sq = 0.0;  ///< 1 / length^2 (0 when the length is 0)
     /// Scale of each joint variable in the condition numbers: 1 for R (rad), the model's
     /// length_scale for P (m); and its inverse.
     std::array<double, 3> joint_scale{1.0, 1.0, 1.0};
