@@ -24,29 +24,73 @@
 
 namespace nocdyn::detail::lean {
 
-/// A planar twist or wrench referred to O, [w; x; y].
-struct V3 {
-    double w, x, y;
+/// A compile-time zero: the angular part of a prismatic joint's screw and of the twist of a
+/// body that only translates. Terms with it vanish when the kernel is compiled (a double 0.0
+/// cannot make a product vanish: 0 * inf is NaN), so that the one kernel written for every
+/// limb type does no arithmetic on the zeros of P joints.
+struct Zero {};
+NOCDYN_ALWAYS_INLINE constexpr Zero operator*(Zero, double) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator*(double, Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator*(Zero, Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator+(Zero, Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr double operator+(double a, Zero) { return a; }
+NOCDYN_ALWAYS_INLINE constexpr double operator+(Zero, double b) { return b; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator-(Zero, Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr double operator-(double a, Zero) { return a; }
+NOCDYN_ALWAYS_INLINE constexpr double operator-(Zero, double b) { return -b; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator-(Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr double value(double a) { return a; }
+NOCDYN_ALWAYS_INLINE constexpr double value(Zero) { return 0.0; }
+NOCDYN_ALWAYS_INLINE double absOf(double a) { return std::abs(a); }
+NOCDYN_ALWAYS_INLINE constexpr Zero absOf(Zero) { return {}; }
+
+/// A planar twist or wrench referred to O, [w; x; y]; W = Zero when w is known to vanish.
+template <class W>
+struct Tw {
+    W w;
+    double x, y;
 };
+using V3 = Tw<double>;
 
-NOCDYN_ALWAYS_INLINE V3 operator+(const V3& a, const V3& b) { return {a.w + b.w, a.x + b.x, a.y + b.y}; }
-NOCDYN_ALWAYS_INLINE V3 operator-(const V3& a, const V3& b) { return {a.w - b.w, a.x - b.x, a.y - b.y}; }
-NOCDYN_ALWAYS_INLINE V3 operator*(double k, const V3& a) { return {k * a.w, k * a.x, k * a.y}; }
-NOCDYN_ALWAYS_INLINE double dot(const V3& a, const V3& b) { return a.w * b.w + a.x * b.x + a.y * b.y; }
-/// The cross product of 3-arrays: the cofactors of a 3 x 3 matrix.
-NOCDYN_ALWAYS_INLINE V3 cross(const V3& a, const V3& b) {
-    return {a.x * b.y - a.y * b.x, a.y * b.w - a.w * b.y, a.w * b.x - a.x * b.w};
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE auto operator+(const Tw<A>& a, const Tw<B>& b) {
+    return Tw<decltype(a.w + b.w)>{a.w + b.w, a.x + b.x, a.y + b.y};
 }
-/// Lie bracket of planar twists referred to O (kinematics.hpp, bracket).
-NOCDYN_ALWAYS_INLINE V3 bracket(const V3& a, const V3& b) { return {0.0, -a.w * b.y + b.w * a.y, a.w * b.x - b.w * a.x}; }
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE auto operator-(const Tw<A>& a, const Tw<B>& b) {
+    return Tw<decltype(a.w - b.w)>{a.w - b.w, a.x - b.x, a.y - b.y};
+}
+template <class A>
+NOCDYN_ALWAYS_INLINE Tw<A> operator*(double k, const Tw<A>& a) {
+    return {k * a.w, k * a.x, k * a.y};
+}
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE double dot(const Tw<A>& a, const Tw<B>& b) {
+    return a.w * b.w + a.x * b.x + a.y * b.y;
+}
+/// The cross product of 3-arrays: the cofactors of a 3 x 3 matrix.
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE V3 cross(const Tw<A>& a, const Tw<B>& b) {
+    return {a.x * b.y - a.y * b.x, value(a.y * b.w - a.w * b.y), value(a.w * b.x - a.x * b.w)};
+}
+/// Lie bracket of planar twists referred to O (kinematics.hpp, bracket): a pure translation.
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE Tw<Zero> bracket(const Tw<A>& a, const Tw<B>& b) {
+    return {{}, value(-a.w * b.y + b.w * a.y), value(a.w * b.x - b.w * a.x)};
+}
 
-/// A planar rigid displacement x -> R(c, s) x + t.
+/// A planar rigid displacement x -> R(c, s) x + t; S = Zero for a translation (c = 1).
+template <class S>
 struct Move {
-    double c, s, tx, ty;
+    double c;
+    S s;
+    double tx, ty;
     [[nodiscard]] NOCDYN_ALWAYS_INLINE double rx(double x, double y) const { return c * x - s * y; }
     [[nodiscard]] NOCDYN_ALWAYS_INLINE double ry(double x, double y) const { return s * x + c * y; }
-    [[nodiscard]] NOCDYN_ALWAYS_INLINE Move then(const Move& o) const {
-        return {c * o.c - s * o.s, s * o.c + c * o.s, rx(o.tx, o.ty) + tx, ry(o.tx, o.ty) + ty};
+    template <class T>
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE auto then(const Move<T>& o) const {
+        return Move<decltype(s * o.c + c * o.s)>{c * o.c - s * o.s, s * o.c + c * o.s, rx(o.tx, o.ty) + tx,
+                                                 ry(o.tx, o.ty) + ty};
     }
 };
 
@@ -60,27 +104,37 @@ constexpr bool revolute(int k) {
 
 /// exp of joint k's home screw times q_k.
 template <bool kRevolute>
-NOCDYN_ALWAYS_INLINE Move jointMove(const LimbModel& limb, const JointSolution& js, int k) {
+NOCDYN_ALWAYS_INLINE auto jointMove(const LimbModel& limb, const JointSolution& js, int k) {
     const auto kk = static_cast<std::size_t>(k);
     if constexpr (!kRevolute) {
-        return {1.0, 0.0, js.q(k) * limb.direction[kk].x(), js.q(k) * limb.direction[kk].y()};
+        return Move<Zero>{1.0, {}, js.q(k) * limb.direction[kk].x(), js.q(k) * limb.direction[kk].y()};
     } else {
         const double c = js.c(k), s = js.s(k);
         const double px = limb.point_home[kk].x(), py = limb.point_home[kk].y();
-        return {c, s, px - (c * px - s * py), py - (s * px + c * py)};
+        return Move<double>{c, s, px - (c * px - s * py), py - (s * px + c * py)};
+    }
+}
+
+/// Home screw of the first joint (referred to O).
+template <bool kRevolute>
+NOCDYN_ALWAYS_INLINE auto homeScrew(const LimbModel& limb) {
+    if constexpr (kRevolute) {
+        return V3{1.0, limb.screw_home[0](1), limb.screw_home[0](2)};
+    } else {
+        return Tw<Zero>{{}, limb.screw_home[0](1), limb.screw_home[0](2)};
     }
 }
 
 /// Current screw of joint k carried by the body displaced by g.
-template <bool kRevolute>
-NOCDYN_ALWAYS_INLINE V3 jointScrew(const LimbModel& limb, const Move& g, int k) {
+template <bool kRevolute, class S>
+NOCDYN_ALWAYS_INLINE auto jointScrew(const LimbModel& limb, const Move<S>& g, int k) {
     const auto kk = static_cast<std::size_t>(k);
     if constexpr (kRevolute) {
         const double px = limb.point_home[kk].x(), py = limb.point_home[kk].y();
-        return {1.0, g.ry(px, py) + g.ty, -(g.rx(px, py) + g.tx)};
+        return V3{1.0, g.ry(px, py) + g.ty, -(g.rx(px, py) + g.tx)};
     } else {
         const double dx = limb.direction[kk].x(), dy = limb.direction[kk].y();
-        return {0.0, g.rx(dx, dy), g.ry(dx, dy)};
+        return Tw<Zero>{{}, g.rx(dx, dy), g.ry(dx, dy)};
     }
 }
 
@@ -98,8 +152,10 @@ NOCDYN_ALWAYS_INLINE Status solveKind(const LimbModel& limb, int j, const Platfo
 
 /// Inertia wrench, less gravity, of a body (inertia I, mass m, c.o.m. x) with twist xi and
 /// twist rate alpha referred to O, itself referred to O (dynamics.cpp, bodyWrench).
-NOCDYN_ALWAYS_INLINE V3 bodyWrench(double I, double m, double gx, double gy, double px, double py, const V3& xi, const V3& alpha) {
-    const double w = xi.w;
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE V3 bodyWrench(double I, double m, double gx, double gy, double px, double py, const Tw<A>& xi,
+                                   const Tw<B>& alpha) {
+    const A w = xi.w;
     const double vx = xi.x - w * py, vy = xi.y + w * px;
     const double ax = alpha.x - alpha.w * py - w * vy, ay = alpha.y + alpha.w * px + w * vx;
     const double fx = m * (ax - gx), fy = m * (ay - gy);
@@ -137,11 +193,11 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
     JointSolution js;
     if (!solveKind<K>(limb, j, G, js)) return false;
     // screws by the product of exponentials, c.o.m. of the two bodies
-    const Move g1 = jointMove<revolute<K>(0)>(limb, js, 0);
-    const Move g2 = g1.then(jointMove<revolute<K>(1)>(limb, js, 1));
-    const V3 s0{revolute<K>(0) ? 1.0 : 0.0, limb.screw_home[0](1), limb.screw_home[0](2)};
-    const V3 s1 = jointScrew<revolute<K>(1)>(limb, g1, 1);
-    const V3 s2 = jointScrew<revolute<K>(2)>(limb, g2, 2);
+    const auto g1 = jointMove<revolute<K>(0)>(limb, js, 0);
+    const auto g2 = g1.then(jointMove<revolute<K>(1)>(limb, js, 1));
+    const auto s0 = homeScrew<revolute<K>(0)>(limb);
+    const auto s1 = jointScrew<revolute<K>(1)>(limb, g1, 1);
+    const auto s2 = jointScrew<revolute<K>(2)>(limb, g2, 2);
     const Vector2& c0 = limb.com_home[0];
     const Vector2& c1 = limb.com_home[1];
     const double x0 = g1.rx(c0.x(), c0.y()) + g1.tx, y0 = g1.ry(c0.x(), c0.y()) + g1.ty;
@@ -153,9 +209,9 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
     // scaled 1-norm condition number (stages.hpp, limbConditionNorms), times |det|
     const auto& cs = limb.joint_scale;
     const auto& ic = limb.inv_joint_scale;
-    const double n_J = std::max({cs[0] * (std::abs(s0.w) + (std::abs(s0.x) + std::abs(s0.y)) * inv_L),
-                                 cs[1] * (std::abs(s1.w) + (std::abs(s1.x) + std::abs(s1.y)) * inv_L),
-                                 cs[2] * (std::abs(s2.w) + (std::abs(s2.x) + std::abs(s2.y)) * inv_L)});
+    const double n_J = std::max({cs[0] * (absOf(s0.w) + (std::abs(s0.x) + std::abs(s0.y)) * inv_L),
+                                 cs[1] * (absOf(s1.w) + (std::abs(s1.x) + std::abs(s1.y)) * inv_L),
+                                 cs[2] * (absOf(s2.w) + (std::abs(s2.x) + std::abs(s2.y)) * inv_L)});
     const double n_adj =
         std::max(std::abs(a0.w) * ic[0] + std::abs(a1.w) * ic[1] + std::abs(a2.w) * ic[2],
                  L * std::max(std::abs(a0.x) * ic[0] + std::abs(a1.x) * ic[1] + std::abs(a2.x) * ic[2],
@@ -166,13 +222,13 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
 
     // rates (eq. 3), body twists, screw rates, accelerations
     const double gd0 = dot(j0, xi_P), gd1 = dot(j1, xi_P), gd2 = dot(j2, xi_P);
-    const V3 xi0 = gd0 * s0;
-    const V3 xi1 = xi0 + gd1 * s1;
-    const V3 sd1_gd1 = gd1 * bracket(xi0, s1);
+    const auto xi0 = gd0 * s0;
+    const auto xi1 = xi0 + gd1 * s1;
+    const auto sd1_gd1 = gd1 * bracket(xi0, s1);
     const V3 rhs = xi_P_dot - sd1_gd1 - gd2 * bracket(xi1, s2);
     const double gdd0 = dot(j0, rhs), gdd1 = dot(j1, rhs), gdd2 = dot(j2, rhs);
-    const V3 alpha0 = gdd0 * s0;
-    const V3 alpha1 = alpha0 + gdd1 * s1 + sd1_gd1;
+    const auto alpha0 = gdd0 * s0;
+    const auto alpha1 = alpha0 + gdd1 * s1 + sd1_gd1;
     const V3 W0 = bodyWrench(limb.M[0].inertia, limb.M[0].mass, gx, gy, x0, y0, xi0, alpha0);
     const V3 W1 = bodyWrench(limb.M[1].inertia, limb.M[1].mass, gx, gy, x1, y1, xi1, alpha1);
     // joint efforts: joint k carries every body outboard of it in the limb, plus friction
