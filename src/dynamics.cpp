@@ -48,26 +48,40 @@ void distribute(const Model& model, Data& data, const Vector3& W) {
 
 }  // namespace
 
+NOCDYN_TARGET_CLONES
 void jointSpaceDynamics(const Model& model, Data& data) {
-    // eq. 23 over every body
+    // eq. 23 over every body, with W_i = M_i T_i formed once per body
     data.I.setZero();
     data.C.setZero();
     data.Q_gf.setZero();
-    for (int i = 0; i < model.bodies; ++i) {
-        const auto ii = static_cast<std::size_t>(i);
-        const InertiaDyad& M = model.inertia(i);
-        noc::addInertia(M, data.T[ii], data.I);
-        noc::addCoriolis(M, data.T[ii], data.T_dot[ii], data.C);
+    const bool gravity = !model.gravity.isZero();
+    const auto add = [&](const InertiaDyad& M, const ShapingMatrix3& T, const ShapingMatrix3& T_dot) NOCDYN_INLINE_LAMBDA {
+        const ShapingMatrix3 W = noc::applyInertia(M, T);
+        data.I.noalias() += T.transpose().lazyProduct(W);
+        data.C.noalias() += W.transpose().lazyProduct(T_dot);
         // gravity: the generalized force of the weight [0; m g] is T_i^T [0; m g]
-        data.Q_gf.noalias() -= data.T[ii].bottomRows<2>().transpose() * (M.mass * model.gravity);
+        if (gravity) data.Q_gf.noalias() -= W.bottomRows<2>().transpose() * model.gravity;
+    };
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        for (int b = 0; b < 2; ++b) {
+            const auto i = static_cast<std::size_t>(model.body(j, b));
+            add(limb.M[static_cast<std::size_t>(b)], data.T[i], data.T_dot[i]);
+        }
     }
+    const auto platform = static_cast<std::size_t>(model.platformBody());
+    add(model.platform_M, data.T[platform], data.T_dot[platform]);
     // friction: joint rates are gamma_dot_j = J_j^-1 Xi v
     Vector3 W = Vector3::Zero();
+    bool friction = false;
     for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        if (limb.frictionless) continue;
         const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        W.noalias() += ld.J_inv.transpose() * frictionEffort(model.limb[static_cast<std::size_t>(j)], ld);
+        W.noalias() += ld.J_inv.transpose() * frictionEffort(limb, ld);
+        friction = true;
     }
-    data.Q_gf.noalias() += data.Xi.transpose() * W;
+    if (friction) data.Q_gf.noalias() += data.Xi.transpose() * W;
 }
 
 void actuatorForces(const Model& model, Data& data) {

@@ -5,13 +5,14 @@
 #include <array>
 #include <cmath>
 
-#include "nocdyn/limb_ik.hpp"
+#include "limb_ik_impl.hpp"
 #include "stages.hpp"
 
 namespace nocdyn {
 
 namespace detail {
 
+NOCDYN_TARGET_CLONES
 Status positionStage(const Model& model, Data& data, const Pose& p, bool angles) {
     for (int i = 0; i < 3; ++i) {
         if (!std::isfinite(p(i))) return {StatusCode::not_finite, -1, p(i)};
@@ -25,7 +26,7 @@ Status positionStage(const Model& model, Data& data, const Pose& p, bool angles)
     for (int j = 0; j < model.limbs; ++j) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        if (const Status status = solveLimb(limb, j, G, angles, ld); !status) return status;
+        if (const Status status = solveLimbData(limb, j, G, angles, ld); !status) return status;
         limbScrews(limb, ld);
         for (int k = 0; k < 3; ++k) {
             if (const int a = limb.actuator[static_cast<std::size_t>(k)]; a >= 0) data.u(a) = ld.q(k);
@@ -36,6 +37,7 @@ Status positionStage(const Model& model, Data& data, const Pose& p, bool angles)
     return {};
 }
 
+NOCDYN_TARGET_CLONES
 Status jacobianStage(const Model& model, Data& data) {
     const double L = model.length_scale;
     const double inv_L = 1.0 / L;
@@ -88,6 +90,7 @@ Status jacobianStage(const Model& model, Data& data) {
     return {};
 }
 
+NOCDYN_TARGET_CLONES
 void rateStage(const Model& model, Data& data) {
     for (int j = 0; j < model.limbs; ++j) {
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
@@ -182,59 +185,60 @@ void accelerationFromActuators(const Model& model, Data& data, const ActuatorVec
     detail::jointAccelerations(model, data);
 }
 
+NOCDYN_TARGET_CLONES
 void twistShaping(const Model& model, Data& data) {
-    // dXi/dt: Xi = A^-1 (dXi = -Xi dA Xi, dA the actuated rows of d(J_j^-1)), or Xi = S(c)
-    std::array<Matrix3, kMaxLimbs> J_inv_dot;
-    for (int j = 0; j < model.limbs; ++j) {
-        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        Matrix3 J_dot;
-        for (int k = 0; k < 3; ++k) J_dot.col(k) = ld.s_dot[static_cast<std::size_t>(k)];
-        J_inv_dot[static_cast<std::size_t>(j)].noalias() = -ld.J_inv * J_dot * ld.J_inv;
-    }
+    // dXi/dt: Xi = A^-1 (dXi = -Xi dA Xi, dA the actuated rows of d(J_j^-1) = -J_j^-1 dJ_j J_j^-1,
+    // dJ_j = [0 ds_2 ds_3]), or Xi = S(c)
     if (model.coordinates == Coordinates::actuators) {
         Matrix3 A_dot;
         for (int a = 0; a < 3; ++a) {
-            A_dot.row(a) = J_inv_dot[static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)])]
-                               .row(model.actuator_joint[static_cast<std::size_t>(a)]);
+            const LimbData& ld = data.limb[static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)])];
+            const auto r = ld.J_inv.row(model.actuator_joint[static_cast<std::size_t>(a)]);
+            const Eigen::RowVector3d r_J_dot(0.0, r.dot(ld.s_dot[1]), r.dot(ld.s_dot[2]));
+            A_dot.row(a).noalias() = -r_J_dot * ld.J_inv;
         }
         data.Xi_dot.noalias() = -data.Xi * A_dot * data.Xi;
     } else {
         data.Xi_dot << 0.0, 0.0, 0.0, data.t_M(2), 0.0, 0.0, -data.t_M(1), 0.0, 0.0;
     }
 
-    // T_i = Ad(x_i) U_i J_j^-1 Xi (eqs. 28-30 generalised), dT_i by the product rule
-    const auto shape = [&](const Matrix3& X, const Matrix3& X_dot, const Vector2& x, const Vector2& x_dot,
-                           ShapingMatrix3& T, ShapingMatrix3& T_dot) {
-        // rows of Ad(x) X: [X_0; X_12 + E x X_0], and d/dt adds E dx X_0
-        Matrix3 TX = X;
-        TX.row(1) -= x.y() * X.row(0);
-        TX.row(2) += x.x() * X.row(0);
-        Matrix3 TX_dot = X_dot;
-        TX_dot.row(1) -= x.y() * X_dot.row(0) + x_dot.y() * X.row(0);
-        TX_dot.row(2) += x.x() * X_dot.row(0) + x_dot.x() * X.row(0);
-        T.noalias() = TX * data.Xi;
-        T_dot.noalias() = TX_dot * data.Xi;
-        T_dot.noalias() += TX * data.Xi_dot;
+    // T_i = Ad(x_i) Y, Y = U_i J_j^-1 Xi (eqs. 28-30 generalised); dT_i = Ad(x_i) dY + dAd(x_i) Y.
+    // Rows of Ad(x) Y: [Y_0; Y_12 + E x Y_0], and d/dt adds E dx Y_0.
+    const auto shape = [](const Matrix3& Y, const Matrix3& Y_dot, const Vector2& x, const Vector2& x_dot,
+                          ShapingMatrix3& T, ShapingMatrix3& T_dot) NOCDYN_INLINE_LAMBDA {
+        T = Y;
+        T.row(1) -= x.y() * Y.row(0);
+        T.row(2) += x.x() * Y.row(0);
+        T_dot = Y_dot;
+        T_dot.row(1) -= x.y() * Y_dot.row(0) + x_dot.y() * Y.row(0);
+        T_dot.row(2) += x.x() * Y_dot.row(0) + x_dot.x() * Y.row(0);
     };
     for (int j = 0; j < model.limbs; ++j) {
         const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        const Matrix3& Ji = ld.J_inv;
-        const Matrix3& Ji_dot = J_inv_dot[static_cast<std::size_t>(j)];
-        // U_1 J^-1 = s_1 (J^-1)_0 ; U_2 J^-1 = s_1 (J^-1)_0 + s_2 (J^-1)_1
-        Matrix3 X = ld.s[0] * Ji.row(0);
-        Matrix3 X_dot = ld.s[0] * Ji_dot.row(0);
+        // R = J_j^-1 Xi (joint rates per independent rate) and dR = J_j^-1 (dXi - dJ_j R)
+        Matrix3 R;
+        R.noalias() = ld.J_inv * data.Xi;
+        Matrix3 rhs = data.Xi_dot;
+        rhs.noalias() -= ld.s_dot[1] * R.row(1);
+        rhs.noalias() -= ld.s_dot[2] * R.row(2);
+        Matrix3 R_dot;
+        R_dot.noalias() = ld.J_inv * rhs;
+        // U_1 R = s_1 R_0 ; U_2 R = s_1 R_0 + s_2 R_1 (ds_1 = 0)
+        Matrix3 Y = ld.s[0] * R.row(0);
+        Matrix3 Y_dot = ld.s[0] * R_dot.row(0);
         const Vector2 x0_dot = twistAt(ld.xi[0], ld.x[0]).tail<2>();
-        shape(X, X_dot, ld.x[0], x0_dot, data.T[static_cast<std::size_t>(model.body(j, 0))],
+        shape(Y, Y_dot, ld.x[0], x0_dot, data.T[static_cast<std::size_t>(model.body(j, 0))],
               data.T_dot[static_cast<std::size_t>(model.body(j, 0))]);
-        X.noalias() += ld.s[1] * Ji.row(1);
-        X_dot.noalias() += ld.s[1] * Ji_dot.row(1) + ld.s_dot[1] * Ji.row(1);
+        Y.noalias() += ld.s[1] * R.row(1);
+        Y_dot.noalias() += ld.s[1] * R_dot.row(1);
+        Y_dot.noalias() += ld.s_dot[1] * R.row(1);
         const Vector2 x1_dot = twistAt(ld.xi[1], ld.x[1]).tail<2>();
-        shape(X, X_dot, ld.x[1], x1_dot, data.T[static_cast<std::size_t>(model.body(j, 1))],
+        shape(Y, Y_dot, ld.x[1], x1_dot, data.T[static_cast<std::size_t>(model.body(j, 1))],
               data.T_dot[static_cast<std::size_t>(model.body(j, 1))]);
     }
-    // eq. 31 generalised: the platform, t_7 = Ad(x_P) xi_P
+    // eq. 31 generalised: the platform, t_7 = Ad(x_P) xi_P = Ad(x_P) Xi v
     const Vector2 xP_dot = twistAt(data.xi_P, data.x_P).tail<2>();
-    shape(Matrix3::Identity(), Matrix3::Zero(), data.x_P, xP_dot, data.T[static_cast<std::size_t>(model.platformBody())],
+    shape(data.Xi, data.Xi_dot, data.x_P, xP_dot, data.T[static_cast<std::size_t>(model.platformBody())],
           data.T_dot[static_cast<std::size_t>(model.platformBody())]);
 }
 

@@ -8,18 +8,7 @@
 namespace nocdyn {
 
 Status solveLimb(const LimbModel& limb, int j, const PlatformDisplacement& G, bool angles, LimbData& out) {
-    detail::JointSolution solution;
-    if (const Status status = detail::solveJoints(limb, j, G, solution); !status) return status;
-    for (int k = 0; k < 3; ++k) {
-        out.q(k) = solution.q(k);
-        out.cos_q(k) = solution.c(k);
-        out.sin_q(k) = solution.s(k);
-        if (limb.type[static_cast<std::size_t>(k)] != JointType::revolute) continue;
-        if (angles || limb.actuator[static_cast<std::size_t>(k)] >= 0) {
-            out.q(k) = detail::atan2Of(out.sin_q(k), out.cos_q(k));
-        }
-    }
-    return {};
+    return detail::solveLimbData(limb, j, G, angles, out);
 }
 
 int homeBranch(const LimbModel& limb) {

@@ -242,4 +242,19 @@ NOCDYN_ALWAYS_INLINE Status solveJoints(const LimbModel& limb, int j, const Plat
     }
 }
 
+/// solveLimb (limb_ik.hpp), inlined into the position stage.
+NOCDYN_ALWAYS_INLINE Status solveLimbData(const LimbModel& limb, int j, const PlatformDisplacement& G, bool angles,
+                                          LimbData& out) {
+    JointSolution solution;
+    if (const Status status = solveJoints(limb, j, G, solution); !status) return status;
+    for (int k = 0; k < 3; ++k) {
+        out.q(k) = solution.q(k);
+        out.cos_q(k) = solution.c(k);
+        out.sin_q(k) = solution.s(k);
+        if (limb.type[static_cast<std::size_t>(k)] != JointType::revolute) continue;
+        if (angles || limb.actuator[static_cast<std::size_t>(k)] >= 0) out.q(k) = atan2Of(out.sin_q(k), out.cos_q(k));
+    }
+    return {};
+}
+
 }  // namespace nocdyn::detail
