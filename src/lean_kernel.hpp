@@ -232,13 +232,15 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
     const V3 W0 = bodyWrench(limb.M[0].inertia, limb.M[0].mass, gx, gy, x0, y0, xi0, alpha0);
     const V3 W1 = bodyWrench(limb.M[1].inertia, limb.M[1].mass, gx, gy, x1, y1, xi1, alpha1);
     // joint efforts: joint k carries every body outboard of it in the limb, plus friction
-    double f0 = dot(s0, W0 + W1), f1 = dot(s1, W1), f2 = 0.0;
-    if (!limb.frictionless) {
+    double f0 = dot(s0, W0 + W1), f1 = dot(s1, W1);
+    if (limb.frictionless) [[likely]] {
+        W = W + f0 * j0 + f1 * j1;
+    } else {
         f0 += limb.damping[0] * gd0 + limb.friction[0] * sign(gd0);
         f1 += limb.damping[1] * gd1 + limb.friction[1] * sign(gd1);
-        f2 += limb.damping[2] * gd2 + limb.friction[2] * sign(gd2);
+        const double f2 = limb.damping[2] * gd2 + limb.friction[2] * sign(gd2);
+        W = W + f0 * j0 + f1 * j1 + f2 * j2;
     }
-    W = W + f0 * j0 + f1 * j1 + f2 * j2;
 
     const double q[3] = {js.q(0), js.q(1), js.q(2)};
     const double gd[3] = {gd0, gd1, gd2};
