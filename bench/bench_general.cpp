@@ -4,12 +4,16 @@
 // the paper's robot `baseline`, the hand-specialised 3-PRR path the general one must match.
 // Each runs the paper's trajectory 1 plus a second harmonic per axis, a cycle of 1000
 // samples (fixture.hpp), and reports `per_sample`.
+// BM_Batch/<robot>/nocdyn: the general batch (batch.hpp) over the same cycle on one thread,
+// next to prr3's BM_Batch/nocdyn/cycle_1thread; BM_Batch/<robot>/nocdyn_100k: 100 cycles over
+// 1 and 2 threads, wall-clock time.
 #include <benchmark/benchmark.h>
 
 #include <string>
 #include <vector>
 
 #include "fixture.hpp"
+#include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/prr3/fast.hpp"
@@ -65,6 +69,33 @@ void baseline(benchmark::State& state) {
     perSample(state, f.samples.size());
 }
 
+/// The general batch over `cycles` repetitions of the cycle, on `threads` threads.
+void generalBatch(benchmark::State& state, const std::string& robot, std::size_t cycles, unsigned threads) {
+    const Fixture& f = fixture();
+    const Model model = loadExample(robot);
+    const auto N = static_cast<Eigen::Index>(cycles * f.samples.size());
+    Eigen::ArrayX3d p(N, 3), dp(N, 3), ddp(N, 3);
+    for (Eigen::Index k = 0; k < N; ++k) {
+        const Sample& s = f.samples[static_cast<std::size_t>(k) % f.samples.size()];
+        p.row(k) = s.p.transpose();
+        dp.row(k) = s.dp.transpose();
+        ddp.row(k) = s.ddp.transpose();
+    }
+    const int n = model.actuators;
+    Eigen::ArrayXXd u(N, n), du(N, n), ddu(N, n), tau(N, n);
+    if (!inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, 1).ok()) {
+        state.SkipWithError(("the benchmark trajectory leaves the workspace of " + robot).c_str());
+        return;
+    }
+    for (auto _ : state) {
+        const BatchResult result = inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, threads);
+        benchmark::DoNotOptimize(result);
+        benchmark::DoNotOptimize(tau.data());
+        benchmark::ClobberMemory();
+    }
+    perSample(state, static_cast<std::size_t>(N));
+}
+
 [[maybe_unused]] const bool registered = [] {
     benchmark::RegisterBenchmark("BM_InverseDynamics/paper-3prr/baseline", baseline);
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
@@ -72,6 +103,15 @@ void baseline(benchmark::State& state) {
                                      [robot](benchmark::State& s) { generalModel<true>(s, robot); });
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn_full").c_str(),
                                      [robot](benchmark::State& s) { generalModel<false>(s, robot); });
+    }
+    for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
+        benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn").c_str(),
+                                     [robot](benchmark::State& s) { generalBatch(s, robot, 1, 1); });
+        benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn_100k").c_str(),
+                                     [robot](benchmark::State& s) {
+                                         generalBatch(s, robot, 100, static_cast<unsigned>(s.range(0)));
+                                     })
+            ->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
     }
     return true;
 }();

@@ -1,11 +1,11 @@
 // NOC dynamics of the general planar parallel robot (dynamics.hpp): full and lean paths.
 #include "nocdyn/dynamics.hpp"
 
+#include <array>
 #include <cmath>
 
-#include <Eigen/Cholesky>
-#include <Eigen/LU>
-
+#include "lean_kernel.hpp"
+#include "nocdyn/prr3/batch.hpp"
 #include "stages.hpp"
 
 namespace nocdyn {
@@ -24,51 +24,64 @@ namespace {
     return phi;
 }
 
+/// Minimum-norm solution of A^T tau = W for n > 3 actuators with rows a_a of A:
+/// tau = A (A^T A)^-1 W, the 3 x 3 system solved by cofactors.
+void minimumNorm(const Vector3* rows, int n, const Vector3& W, ActuatorVector& tau) {
+    Matrix3 AtA = Matrix3::Zero();
+    for (int a = 0; a < n; ++a) AtA.noalias() += rows[a] * rows[a].transpose();
+    Matrix3 adj;
+    const double det = detail::symmetricAdjugate(AtA, adj);
+    const Vector3 lambda = (adj * W) / det;
+    for (int a = 0; a < n; ++a) tau(a) = rows[a].dot(lambda);
+}
+
 /// tau from A^T tau = W (xi-coordinates): A^-T W, or the minimum-norm A (A^T A)^-1 W.
 void distribute(const Model& model, Data& data, const Vector3& W) {
     if (model.coordinates == Coordinates::actuators) {
         data.tau.noalias() = data.Xi.transpose() * W;
     } else {
-        const Matrix3 AtA = data.A.transpose() * data.A;
-        const Vector3 lambda = AtA.ldlt().solve(W);
-        data.tau.noalias() = data.A * lambda;
+        std::array<Vector3, kMaxActuators> rows;
+        for (int a = 0; a < model.actuators; ++a) rows[static_cast<std::size_t>(a)] = data.A.row(a).transpose();
+        minimumNorm(rows.data(), model.actuators, W, data.tau);
     }
-}
-
-/// Inertia wrench, less gravity, of a body with dyad M, c.o.m. x, twist xi and twist rate
-/// alpha (both referred to O), itself referred to O: [n + x x f; f] (eqs. 11-12).
-[[nodiscard]] Wrench bodyWrench(const InertiaDyad& M, const Vector2& gravity, const Vector2& x, const Twist& xi,
-                                const Twist& alpha) {
-    const double w = xi(0);
-    const Vector2 x_dot(xi(1) - w * x.y(), xi(2) + w * x.x());
-    // c.o.m. acceleration: d/dt (v_O + w E x) = dv_O + dw E x + w E dx
-    const Vector2 a(alpha(1) - alpha(0) * x.y() - w * x_dot.y(), alpha(2) + alpha(0) * x.x() + w * x_dot.x());
-    const Vector2 f = M.mass * (a - gravity);
-    return {M.inertia * alpha(0) + cross(x, f), f.x(), f.y()};
 }
 
 }  // namespace
 
+NOCDYN_TARGET_CLONES
 void jointSpaceDynamics(const Model& model, Data& data) {
-    // eq. 23 over every body
+    // eq. 23 over every body, with W_i = M_i T_i formed once per body
     data.I.setZero();
     data.C.setZero();
     data.Q_gf.setZero();
-    for (int i = 0; i < model.bodies; ++i) {
-        const auto ii = static_cast<std::size_t>(i);
-        const InertiaDyad& M = model.inertia(i);
-        noc::addInertia(M, data.T[ii], data.I);
-        noc::addCoriolis(M, data.T[ii], data.T_dot[ii], data.C);
+    const bool gravity = !model.gravity.isZero();
+    const auto add = [&](const InertiaDyad& M, const ShapingMatrix3& T, const ShapingMatrix3& T_dot) NOCDYN_INLINE_LAMBDA {
+        const ShapingMatrix3 W = noc::applyInertia(M, T);
+        data.I.noalias() += T.transpose().lazyProduct(W);
+        data.C.noalias() += W.transpose().lazyProduct(T_dot);
         // gravity: the generalized force of the weight [0; m g] is T_i^T [0; m g]
-        data.Q_gf.noalias() -= data.T[ii].bottomRows<2>().transpose() * (M.mass * model.gravity);
+        if (gravity) data.Q_gf.noalias() -= W.bottomRows<2>().transpose() * model.gravity;
+    };
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        for (int b = 0; b < 2; ++b) {
+            const auto i = static_cast<std::size_t>(model.body(j, b));
+            add(limb.M[static_cast<std::size_t>(b)], data.T[i], data.T_dot[i]);
+        }
     }
+    const auto platform = static_cast<std::size_t>(model.platformBody());
+    add(model.platform_M, data.T[platform], data.T_dot[platform]);
     // friction: joint rates are gamma_dot_j = J_j^-1 Xi v
     Vector3 W = Vector3::Zero();
+    bool friction = false;
     for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        if (limb.frictionless) continue;
         const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        W.noalias() += ld.J_inv.transpose() * frictionEffort(model.limb[static_cast<std::size_t>(j)], ld);
+        W.noalias() += ld.J_inv.transpose() * frictionEffort(limb, ld);
+        friction = true;
     }
-    data.Q_gf.noalias() += data.Xi.transpose() * W;
+    if (friction) data.Q_gf.noalias() += data.Xi.transpose() * W;
 }
 
 void actuatorForces(const Model& model, Data& data) {
@@ -84,9 +97,10 @@ void actuatorForces(const Model& model, Data& data) {
         data.Q.noalias() = data.I * data.t_M_dot;
         data.Q.noalias() += data.C * data.t_M;
         data.Q += data.Q_gf;
-        // minimum-norm tau with A_p^T tau = Q, A_p = A Xi; as Xi is invertible this is
-        // A (A^T A)^-1 Xi^-T Q
-        const Vector3 W = data.Xi.transpose().partialPivLu().solve(data.Q);
+        // minimum-norm tau with A_p^T tau = Q, A_p = A Xi; as Xi = S(c) is invertible this is
+        // A (A^T A)^-1 Xi^-T Q, with S(c)^-T Q = [Q_0 - c_y Q_1 + c_x Q_2; Q_1; Q_2]
+        const Vector2 c = data.p.tail<2>();
+        const Vector3 W(data.Q(0) - c.y() * data.Q(1) + c.x() * data.Q(2), data.Q(1), data.Q(2));
         distribute(model, data, W);
     }
 }
@@ -118,30 +132,49 @@ Status inverseDynamicsFromActuators(const Model& model, Data& data, const Pose& 
     return {};
 }
 
+namespace {
+
+/// A sample the lean path rejected (non-finite input, out of reach, or a condition number
+/// beyond the limit by its division-free test): the full path gives its exact Status, and
+/// its values should it accept the sample (within rounding of a threshold). Out of line, so
+/// that the common path stays short.
+#if defined(__GNUC__)
+__attribute__((noinline, cold))
+#endif
+Status rejected(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
+    const Status status = inverseDynamics(model, data, p, dp, ddp);
+    if (status) data.W_P.noalias() = data.A.transpose() * data.tau;
+    return status;
+}
+
+}  // namespace
+
+// On x86-64 with GCC an AVX2+FMA clone is built beside the baseline one and chosen at load
+// time when the CPU has it (three-operand instructions and 16 more registers' worth of
+// fewer spills for the kernel's many scalars), as for the 3-PRR kernel (prr3/fast.cpp).
+#if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
+__attribute__((target_clones("arch=x86-64-v3", "default")))
+#endif
 Status inverseDynamicsFast(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
-    if (const Status status = detail::positionStage(model, data, p, false); !status) return status;
-    if (const Status status = velocityFromPlatformTwist(model, data, dp); !status) return status;
-    for (int i = 0; i < 3; ++i) {
-        if (!std::isfinite(ddp(i))) return {StatusCode::not_finite, -1, ddp(i)};
+    bool finite = true;
+    for (int i = 0; i < 3; ++i) finite = finite & std::isfinite(p(i)) & std::isfinite(dp(i)) & std::isfinite(ddp(i));
+    if (!finite) [[unlikely]] return rejected(model, data, p, dp, ddp);
+    const double dtheta = p(0) - model.home(0);
+    double s, c;
+    if (std::abs(dtheta) < 1.0e6) [[likely]] {
+        prr3::batch_detail::sinCos(dtheta, s, c);  // branch-free, exact below 1.6e6 rad
+    } else {
+        s = std::sin(dtheta);
+        c = std::cos(dtheta);
     }
-    accelerationFromPlatform(model, data, ddp);
-    // W_P = sum_i T_i^{xi T} w_i: each limb's bodies through J_j^-T, the platform directly
-    Wrench W = bodyWrench(model.platform_M, model.gravity, data.x_P, data.xi_P, data.xi_P_dot);
-    for (int j = 0; j < model.limbs; ++j) {
-        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
-        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        const Twist alpha0 = ld.s[0] * ld.gamma_ddot(0);
-        const Twist alpha1 = alpha0 + ld.s[1] * ld.gamma_ddot(1) + ld.s_dot[1] * ld.gamma_dot(1);
-        const Wrench W0 = bodyWrench(limb.M[0], model.gravity, ld.x[0], ld.xi[0], alpha0);
-        const Wrench W1 = bodyWrench(limb.M[1], model.gravity, ld.x[1], ld.xi[1], alpha1);
-        // joint efforts: joint k carries every body outboard of it in the limb
-        Vector3 f = frictionEffort(limb, ld);
-        f(0) += ld.s[0].dot(W0 + W1);
-        f(1) += ld.s[1].dot(W1);
-        W.noalias() += ld.J_inv.transpose() * f;
-    }
-    data.W_P = W;
-    distribute(model, data, W);
+    const detail::lean::Out out{data.u.data(), data.du.data(), data.ddu.data(), data.tau.data(), 1};
+    detail::lean::V3 W;
+    if (!detail::lean::sample(model, c, s, p.data(), dp.data(), ddp.data(), out, W)) [[unlikely]]
+        return rejected(model, data, p, dp, ddp);
+    data.p = p;
+    data.t_M = dp;
+    data.t_M_dot = ddp;
+    data.W_P = Wrench(W.w, W.x, W.y);
     return {};
 }
 

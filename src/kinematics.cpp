@@ -2,62 +2,17 @@
 // (kinematics.hpp), written once for every limb type with planar screws.
 #include "nocdyn/kinematics.hpp"
 
+#include <array>
 #include <cmath>
 
-#include <Eigen/LU>
-
-#include "nocdyn/limb_ik.hpp"
+#include "limb_ik_impl.hpp"
 #include "stages.hpp"
 
 namespace nocdyn {
 
-namespace {
-
-/// A planar rigid displacement x -> R(c, s) x + t.
-struct Displacement {
-    double c = 1.0, s = 0.0;
-    Vector2 t = Vector2::Zero();
-
-    [[nodiscard]] Vector2 rotate(const Vector2& v) const { return {c * v.x() - s * v.y(), s * v.x() + c * v.y()}; }
-    [[nodiscard]] Vector2 apply(const Vector2& v) const { return rotate(v) + t; }
-    /// this o other
-    [[nodiscard]] Displacement then(const Displacement& other) const {
-        return {c * other.c - s * other.s, s * other.c + c * other.s, rotate(other.t) + t};
-    }
-};
-
-/// exp of joint k's home screw times q_k: a rotation about r_k or a translation along d_k.
-[[nodiscard]] Displacement jointDisplacement(const LimbModel& limb, const LimbData& ld, int k) {
-    const auto kk = static_cast<std::size_t>(k);
-    if (limb.type[kk] == JointType::prismatic) return {1.0, 0.0, ld.q(k) * limb.direction[kk]};
-    Displacement g{ld.cos_q(k), ld.sin_q(k), Vector2::Zero()};
-    g.t = limb.point_home[kk] - g.rotate(limb.point_home[kk]);
-    return g;
-}
-
-/// Current screw of joint k carried by the body displaced by g (referred to O).
-[[nodiscard]] Twist currentScrew(const LimbModel& limb, const Displacement& g, int k) {
-    const auto kk = static_cast<std::size_t>(k);
-    return limb.type[kk] == JointType::revolute ? revoluteTwist(-g.apply(limb.point_home[kk]))
-                                                : prismaticTwist(g.rotate(limb.direction[kk]));
-}
-
-/// Column sums' maximum: the matrix 1-norm.
-template <typename Derived>
-[[nodiscard]] double norm1(const Eigen::MatrixBase<Derived>& m) {
-    return m.cwiseAbs().colwise().sum().maxCoeff();
-}
-
-/// Joint-variable scale: 1 for R (rad), L for P (m), so that J diag(c) diag(1, 1/L, 1/L) is
-/// dimensionless.
-[[nodiscard]] double jointScale(const Model& model, const LimbModel& limb, int k) {
-    return limb.type[static_cast<std::size_t>(k)] == JointType::revolute ? 1.0 : model.length_scale;
-}
-
-}  // namespace
-
 namespace detail {
 
+NOCDYN_TARGET_CLONES
 Status positionStage(const Model& model, Data& data, const Pose& p, bool angles) {
     for (int i = 0; i < 3; ++i) {
         if (!std::isfinite(p(i))) return {StatusCode::not_finite, -1, p(i)};
@@ -71,64 +26,71 @@ Status positionStage(const Model& model, Data& data, const Pose& p, bool angles)
     for (int j = 0; j < model.limbs; ++j) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        if (const Status status = solveLimb(limb, j, G, angles, ld); !status) return status;
-        const Displacement g1 = jointDisplacement(limb, ld, 0);
-        const Displacement g2 = g1.then(jointDisplacement(limb, ld, 1));
-        ld.s[0] = limb.screw_home[0];
-        ld.s[1] = currentScrew(limb, g1, 1);
-        ld.s[2] = currentScrew(limb, g2, 2);
-        ld.x[0] = g1.apply(limb.com_home[0]);
-        ld.x[1] = g2.apply(limb.com_home[1]);
+        if (const Status status = solveLimbData(limb, j, G, angles, ld); !status) return status;
+        limbScrews(limb, ld);
         for (int k = 0; k < 3; ++k) {
             if (const int a = limb.actuator[static_cast<std::size_t>(k)]; a >= 0) data.u(a) = ld.q(k);
         }
     }
-    const double c = std::cos(p(0));
-    const double s = std::sin(p(0));
-    data.x_P = G.C + Vector2(c * model.platform_com.x() - s * model.platform_com.y(),
-                             s * model.platform_com.x() + c * model.platform_com.y());
+    // the platform's c.o.m. turns with it from home: no second sine and cosine
+    data.x_P = G.apply(model.platform_com_home);
     return {};
 }
 
+NOCDYN_TARGET_CLONES
 Status jacobianStage(const Model& model, Data& data) {
     const double L = model.length_scale;
-    const Vector3 row_scale(1.0, 1.0 / L, 1.0 / L);
+    const double inv_L = 1.0 / L;
     for (int j = 0; j < model.limbs; ++j) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
         // eq. 4a generalised: the columns of J_j are the joints' planar Pluecker arrays
         for (int k = 0; k < 3; ++k) ld.J.col(k) = ld.s[static_cast<std::size_t>(k)];
-        ld.J_inv = ld.J.inverse();
-        Vector3 col_scale;
-        for (int k = 0; k < 3; ++k) col_scale(k) = jointScale(model, limb, k);
-        const Matrix3 Js = row_scale.asDiagonal() * ld.J * col_scale.asDiagonal();
-        const Matrix3 Js_inv = col_scale.cwiseInverse().asDiagonal() * ld.J_inv * row_scale.cwiseInverse().asDiagonal();
-        ld.cond = norm1(Js) * norm1(Js_inv);
+        Matrix3 adj;
+        const double det = adjugateOfColumns(ld.s[0], ld.s[1], ld.s[2], adj);
+        ld.J_inv = adj / det;
+        // scaled 1-norm condition number of J_j (joint variables in rad and L, twists in
+        // rad/s and L rad/s): ||R J diag(c)||_1 ||diag(1/c) J^-1 R^-1||_1, R = diag(1, 1/L, 1/L)
+        const ConditionNorms norms = limbConditionNorms(limb, L, inv_L, ld.J, adj);
+        ld.cond = norms.norm * norms.adj_norm / std::abs(det);
         if (!(ld.cond <= model.max_condition)) return {StatusCode::singular_limb, j, ld.cond};
     }
     // eq. 5 generalised: du_a = (row k of J_j^-1) xi_P for actuator a at joint k of limb j
     const int n = model.actuators;
-    Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators, 1> w(n);
+    std::array<Vector3, kMaxActuators> rows;
+    std::array<double, kMaxActuators> w{};
     for (int a = 0; a < n; ++a) {
-        const int j = model.actuator_limb[static_cast<std::size_t>(a)];
-        const int k = model.actuator_joint[static_cast<std::size_t>(a)];
-        data.A.row(a) = data.limb[static_cast<std::size_t>(j)].J_inv.row(k);
-        w(a) = 1.0 / jointScale(model, model.limb[static_cast<std::size_t>(j)], k);
+        const auto aa = static_cast<std::size_t>(a);
+        const auto j = static_cast<std::size_t>(model.actuator_limb[aa]);
+        const int k = model.actuator_joint[aa];
+        rows[aa] = data.limb[j].J_inv.row(k).transpose();
+        data.A.row(a) = rows[aa].transpose();
+        w[aa] = model.limb[j].inv_joint_scale[static_cast<std::size_t>(k)];
     }
-    const ActuationMatrix As = w.asDiagonal() * data.A * row_scale.cwiseInverse().asDiagonal();
     if (model.coordinates == Coordinates::actuators) {
-        const Matrix3 A3 = data.A;
-        data.Xi = A3.inverse();
-        const Matrix3 As_inv = row_scale.asDiagonal() * data.Xi * w.cwiseInverse().asDiagonal();
-        data.cond_A = norm1(As) * norm1(As_inv);
+        Matrix3 adj;
+        const double det = actuationAdjugate(rows.data(), adj);
+        data.Xi = adj / det;
+        const ConditionNorms norms = actuationConditionNorms(rows.data(), w.data(), L, inv_L, adj);
+        data.cond_A = norms.norm * norms.adj_norm / std::abs(det);
     } else {
-        const Matrix3 B = As.transpose() * As;
-        data.cond_A = std::sqrt(norm1(B) * norm1(Matrix3(B.inverse())));
+        // B = As^T As, As = diag(w) A diag(1, L, L): cond_A = sqrt(cond_1 B)
+        Matrix3 B = Matrix3::Zero();
+        const Vector3 col_scale(1.0, L, L);
+        for (int a = 0; a < n; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            const Vector3 r = w[aa] * rows[aa].cwiseProduct(col_scale);
+            B.noalias() += r * r.transpose();
+        }
+        Matrix3 adj;
+        const double det = symmetricAdjugate(B, adj);
+        data.cond_A = std::sqrt(norm1(B) * norm1(adj) / std::abs(det));
     }
     if (!(data.cond_A <= model.max_condition)) return {StatusCode::singular_actuation, -1, data.cond_A};
     return {};
 }
 
+NOCDYN_TARGET_CLONES
 void rateStage(const Model& model, Data& data) {
     for (int j = 0; j < model.limbs; ++j) {
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
@@ -223,59 +185,60 @@ void accelerationFromActuators(const Model& model, Data& data, const ActuatorVec
     detail::jointAccelerations(model, data);
 }
 
+NOCDYN_TARGET_CLONES
 void twistShaping(const Model& model, Data& data) {
-    // dXi/dt: Xi = A^-1 (dXi = -Xi dA Xi, dA the actuated rows of d(J_j^-1)), or Xi = S(c)
-    std::array<Matrix3, kMaxLimbs> J_inv_dot;
-    for (int j = 0; j < model.limbs; ++j) {
-        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        Matrix3 J_dot;
-        for (int k = 0; k < 3; ++k) J_dot.col(k) = ld.s_dot[static_cast<std::size_t>(k)];
-        J_inv_dot[static_cast<std::size_t>(j)].noalias() = -ld.J_inv * J_dot * ld.J_inv;
-    }
+    // dXi/dt: Xi = A^-1 (dXi = -Xi dA Xi, dA the actuated rows of d(J_j^-1) = -J_j^-1 dJ_j J_j^-1,
+    // dJ_j = [0 ds_2 ds_3]), or Xi = S(c)
     if (model.coordinates == Coordinates::actuators) {
         Matrix3 A_dot;
         for (int a = 0; a < 3; ++a) {
-            A_dot.row(a) = J_inv_dot[static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)])]
-                               .row(model.actuator_joint[static_cast<std::size_t>(a)]);
+            const LimbData& ld = data.limb[static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)])];
+            const auto r = ld.J_inv.row(model.actuator_joint[static_cast<std::size_t>(a)]);
+            const Eigen::RowVector3d r_J_dot(0.0, r.dot(ld.s_dot[1]), r.dot(ld.s_dot[2]));
+            A_dot.row(a).noalias() = -r_J_dot * ld.J_inv;
         }
         data.Xi_dot.noalias() = -data.Xi * A_dot * data.Xi;
     } else {
         data.Xi_dot << 0.0, 0.0, 0.0, data.t_M(2), 0.0, 0.0, -data.t_M(1), 0.0, 0.0;
     }
 
-    // T_i = Ad(x_i) U_i J_j^-1 Xi (eqs. 28-30 generalised), dT_i by the product rule
-    const auto shape = [&](const Matrix3& X, const Matrix3& X_dot, const Vector2& x, const Vector2& x_dot,
-                           ShapingMatrix3& T, ShapingMatrix3& T_dot) {
-        // rows of Ad(x) X: [X_0; X_12 + E x X_0], and d/dt adds E dx X_0
-        Matrix3 TX = X;
-        TX.row(1) -= x.y() * X.row(0);
-        TX.row(2) += x.x() * X.row(0);
-        Matrix3 TX_dot = X_dot;
-        TX_dot.row(1) -= x.y() * X_dot.row(0) + x_dot.y() * X.row(0);
-        TX_dot.row(2) += x.x() * X_dot.row(0) + x_dot.x() * X.row(0);
-        T.noalias() = TX * data.Xi;
-        T_dot.noalias() = TX_dot * data.Xi;
-        T_dot.noalias() += TX * data.Xi_dot;
+    // T_i = Ad(x_i) Y, Y = U_i J_j^-1 Xi (eqs. 28-30 generalised); dT_i = Ad(x_i) dY + dAd(x_i) Y.
+    // Rows of Ad(x) Y: [Y_0; Y_12 + E x Y_0], and d/dt adds E dx Y_0.
+    const auto shape = [](const Matrix3& Y, const Matrix3& Y_dot, const Vector2& x, const Vector2& x_dot,
+                          ShapingMatrix3& T, ShapingMatrix3& T_dot) NOCDYN_INLINE_LAMBDA {
+        T = Y;
+        T.row(1) -= x.y() * Y.row(0);
+        T.row(2) += x.x() * Y.row(0);
+        T_dot = Y_dot;
+        T_dot.row(1) -= x.y() * Y_dot.row(0) + x_dot.y() * Y.row(0);
+        T_dot.row(2) += x.x() * Y_dot.row(0) + x_dot.x() * Y.row(0);
     };
     for (int j = 0; j < model.limbs; ++j) {
         const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        const Matrix3& Ji = ld.J_inv;
-        const Matrix3& Ji_dot = J_inv_dot[static_cast<std::size_t>(j)];
-        // U_1 J^-1 = s_1 (J^-1)_0 ; U_2 J^-1 = s_1 (J^-1)_0 + s_2 (J^-1)_1
-        Matrix3 X = ld.s[0] * Ji.row(0);
-        Matrix3 X_dot = ld.s[0] * Ji_dot.row(0);
+        // R = J_j^-1 Xi (joint rates per independent rate) and dR = J_j^-1 (dXi - dJ_j R)
+        Matrix3 R;
+        R.noalias() = ld.J_inv * data.Xi;
+        Matrix3 rhs = data.Xi_dot;
+        rhs.noalias() -= ld.s_dot[1] * R.row(1);
+        rhs.noalias() -= ld.s_dot[2] * R.row(2);
+        Matrix3 R_dot;
+        R_dot.noalias() = ld.J_inv * rhs;
+        // U_1 R = s_1 R_0 ; U_2 R = s_1 R_0 + s_2 R_1 (ds_1 = 0)
+        Matrix3 Y = ld.s[0] * R.row(0);
+        Matrix3 Y_dot = ld.s[0] * R_dot.row(0);
         const Vector2 x0_dot = twistAt(ld.xi[0], ld.x[0]).tail<2>();
-        shape(X, X_dot, ld.x[0], x0_dot, data.T[static_cast<std::size_t>(model.body(j, 0))],
+        shape(Y, Y_dot, ld.x[0], x0_dot, data.T[static_cast<std::size_t>(model.body(j, 0))],
               data.T_dot[static_cast<std::size_t>(model.body(j, 0))]);
-        X.noalias() += ld.s[1] * Ji.row(1);
-        X_dot.noalias() += ld.s[1] * Ji_dot.row(1) + ld.s_dot[1] * Ji.row(1);
+        Y.noalias() += ld.s[1] * R.row(1);
+        Y_dot.noalias() += ld.s[1] * R_dot.row(1);
+        Y_dot.noalias() += ld.s_dot[1] * R.row(1);
         const Vector2 x1_dot = twistAt(ld.xi[1], ld.x[1]).tail<2>();
-        shape(X, X_dot, ld.x[1], x1_dot, data.T[static_cast<std::size_t>(model.body(j, 1))],
+        shape(Y, Y_dot, ld.x[1], x1_dot, data.T[static_cast<std::size_t>(model.body(j, 1))],
               data.T_dot[static_cast<std::size_t>(model.body(j, 1))]);
     }
-    // eq. 31 generalised: the platform, t_7 = Ad(x_P) xi_P
+    // eq. 31 generalised: the platform, t_7 = Ad(x_P) xi_P = Ad(x_P) Xi v
     const Vector2 xP_dot = twistAt(data.xi_P, data.x_P).tail<2>();
-    shape(Matrix3::Identity(), Matrix3::Zero(), data.x_P, xP_dot, data.T[static_cast<std::size_t>(model.platformBody())],
+    shape(data.Xi, data.Xi_dot, data.x_P, xP_dot, data.T[static_cast<std::size_t>(model.platformBody())],
           data.T_dot[static_cast<std::size_t>(model.platformBody())]);
 }
 

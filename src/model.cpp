@@ -18,6 +18,20 @@ namespace {
                                                 : prismaticTwist(limb.direction[kk]);
 }
 
+[[nodiscard]] LimbKind limbKind(const std::array<JointType, 3>& type) {
+    const bool r1 = type[0] == JointType::revolute;
+    const bool r2 = type[1] == JointType::revolute;
+    const bool r3 = type[2] == JointType::revolute;
+    if (r1 && r2 && r3) return LimbKind::RRR;
+    if (!r1 && r2 && r3) return LimbKind::PRR;
+    if (r1 && !r2 && r3) return LimbKind::RPR;
+    if (r1 && r2 && !r3) return LimbKind::RRP;
+    if (!r1 && r2 && !r3) return LimbKind::PRP;
+    if (r1 && !r2 && !r3) return LimbKind::RPP;
+    if (!r1 && !r2 && r3) return LimbKind::PPR;
+    return LimbKind::PPP;
+}
+
 }  // namespace
 
 Model::Model(const RobotParameters& parameters) : Model(expand(parameters)) {}
@@ -36,6 +50,8 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
     sin_home = std::sin(home(0));
     platform_M = {robot.platform.inertia, robot.platform.mass};
     platform_com = robot.platform.com;
+    platform_com_home = {cos_home * platform_com.x() - sin_home * platform_com.y(),
+                         sin_home * platform_com.x() + cos_home * platform_com.y()};
     const Vector2 C_home = home.tail<2>();
 
     int a = 0;
@@ -61,6 +77,7 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
             if (joint.type == JointType::revolute) scale = std::max(scale, out.point[k].norm());
         }
         for (int k = 0; k < 3; ++k) out.screw_home[static_cast<std::size_t>(k)] = homeScrew(out, k);
+        out.kind = limbKind(out.type);
         for (std::size_t b = 0; b < 2; ++b) {
             out.M[b] = {in.bodies[b].inertia, in.bodies[b].mass};
             out.com_home[b] = in.bodies[b].com;
@@ -68,6 +85,8 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
         // Lengths of the closed forms: the links between consecutive revolute axes.
         out.length1 = (out.point_home[1] - out.point_home[0]).norm();
         out.length2 = (out.point_home[2] - out.point_home[1]).norm();
+        out.inv_length1_sq = out.length1 > 0.0 ? 1.0 / (out.length1 * out.length1) : 0.0;
+        out.inv_length2_sq = out.length2 > 0.0 ? 1.0 / (out.length2 * out.length2) : 0.0;
         out.branch = homeBranch(out);
         const std::string type = in.type();
         const bool two_solutions = type == "RRR" || type == "PRR" || type == "RPR" || type == "RRP";
@@ -78,6 +97,14 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
         }
     }
     length_scale = scale > 0.0 ? scale : 1.0;
+    for (int j = 0; j < limbs; ++j) {
+        LimbModel& out = limb[static_cast<std::size_t>(j)];
+        for (std::size_t k = 0; k < 3; ++k) {
+            out.joint_scale[k] = out.type[k] == JointType::revolute ? 1.0 : length_scale;
+            out.inv_joint_scale[k] = 1.0 / out.joint_scale[k];
+            if (out.damping[k] != 0.0 || out.friction[k] != 0.0) out.frictionless = false;
+        }
+    }
 
     // The home posture must be regular and reproduce q = 0 on every limb.
     Data data(*this);

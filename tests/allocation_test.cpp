@@ -5,6 +5,12 @@
 #include "allocation_counter.hpp"
 
 
+#include <cmath>
+#include <string>
+
+#include "nocdyn/batch.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/prr3/dynamics.hpp"
 #include "nocdyn/prr3/kinematics.hpp"
 #include "nocdyn/trajectory.hpp"
@@ -32,6 +38,42 @@ TEST(RealTime, PerSamplePathAllocatesNothing) {
     const long after = allocationCount();
     EXPECT_EQ(after - before, 0);
     EXPECT_TRUE(std::isfinite(checksum));
+}
+
+TEST(RealTime, GeneralModelAllocatesNothingPerSample) {
+    for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
+        const Model model(io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
+        Data data(model);
+        const PoseTrajectory trajectory = paperTrajectory1();
+        const Eigen::Index N = 500;
+        Eigen::ArrayX3d P(N, 3), dP(N, 3), ddP(N, 3);
+        Eigen::ArrayXXd u(N, model.actuators), du(N, model.actuators), ddu(N, model.actuators),
+            tau(N, model.actuators);
+        Pose p, dp, ddp;
+        for (Eigen::Index k = 0; k < N; ++k) {
+            trajectory.evaluate(static_cast<double>(k) * 2e-4, p, dp, ddp);
+            P.row(k) = p.transpose();
+            dP.row(k) = dp.transpose();
+            ddP.row(k) = ddp.transpose();
+        }
+        P(N / 2, 1) = std::nan("");  // a failing sample takes the full path, without allocating either
+        const long before = allocationCount();
+        double checksum = 0.0;
+        for (Eigen::Index k = 0; k < N; ++k) {
+            const Status lean = inverseDynamicsFast(model, data, P.row(k).transpose(), dP.row(k).transpose(),
+                                                    ddP.row(k).transpose());
+            checksum += lean.ok() ? data.tau.sum() : 1.0;
+            const Status full = inverseDynamics(model, data, P.row(k).transpose(), dP.row(k).transpose(),
+                                                ddP.row(k).transpose());
+            checksum += full.ok() ? data.tau.sum() + data.I.trace() : 1.0;
+        }
+        const BatchResult batch = inverseDynamicsBatch(model, P, dP, ddP, u, du, ddu, tau, 1);
+        checksum += static_cast<double>(batch.failed);
+        const long after = allocationCount();
+        EXPECT_EQ(after - before, 0) << robot;
+        EXPECT_EQ(batch.failed, 1) << robot;
+        EXPECT_TRUE(std::isfinite(checksum)) << robot;
+    }
 }
 
 TEST(RealTime, CountingAllocatorSeesAllocations) {

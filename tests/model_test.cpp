@@ -11,6 +11,7 @@
 #include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
+#include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/limb_ik.hpp"
 #include "random_robots.hpp"
@@ -227,6 +228,51 @@ TEST_P(RandomRobots, LeanPathEqualsFullPath) {
                 EXPECT_NEAR(lean.ddu(a), full.ddu(a), 1e-11 * (1.0 + std::abs(full.ddu(a))));
                 EXPECT_NEAR(lean.tau(a), full.tau(a), kRoundOff * scale) << "actuator " << a + 1;
             }
+        }
+    });
+}
+
+TEST_P(RandomRobots, BatchEqualsThePerSamplePath) {
+    forEachRobot([](const Model& model, const PoseTrajectory& trajectory) {
+        // the trajectory's samples, and one pose out of reach in the middle
+        const Eigen::Index N = kSamples + 2;
+        Eigen::ArrayX3d p(N, 3), dp(N, 3), ddp(N, 3);
+        for (Eigen::Index k = 0; k < N; ++k) {
+            const Sample s = at(trajectory, static_cast<double>(k) * kDuration / kSamples);
+            p.row(k) = s.p.transpose();
+            dp.row(k) = s.dp.transpose();
+            ddp.row(k) = s.ddp.transpose();
+        }
+        p(N / 2, 1) += 100.0;  // out of reach unless the limbs' P joints can follow
+        const int n = model.actuators;
+        for (const unsigned threads : {1u, 3u}) {
+            Eigen::ArrayXXd u(N, n), du(N, n), ddu(N, n), tau(N, n);
+            const BatchResult result = inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, threads);
+            Data data(model);
+            Eigen::Index failed = 0;
+            for (Eigen::Index k = 0; k < N; ++k) {
+                const Status status = inverseDynamicsFast(model, data, p.row(k).transpose(), dp.row(k).transpose(),
+                                                          ddp.row(k).transpose());
+                if (!status) {
+                    if (failed++ == 0) {
+                        EXPECT_EQ(result.first_failure, k);
+                        EXPECT_EQ(result.status.code, status.code);
+                        EXPECT_EQ(result.status.limb, status.limb);
+                        EXPECT_EQ(result.status.value, status.value);
+                    }
+                    for (int a = 0; a < n; ++a) EXPECT_TRUE(std::isnan(tau(k, a)));
+                    continue;
+                }
+                const double scale = 1.0 + data.tau.cwiseAbs().maxCoeff();
+                for (int a = 0; a < n; ++a) {
+                    // the same kernel, inlined elsewhere: equal to rounding
+                    EXPECT_NEAR(u(k, a), data.u(a), 1e-14 * (1.0 + std::abs(data.u(a))));
+                    EXPECT_NEAR(du(k, a), data.du(a), 1e-12 * (1.0 + std::abs(data.du(a))));
+                    EXPECT_NEAR(ddu(k, a), data.ddu(a), 1e-12 * (1.0 + std::abs(data.ddu(a))));
+                    EXPECT_NEAR(tau(k, a), data.tau(a), kRoundOff * scale) << "sample " << k << ", actuator " << a + 1;
+                }
+            }
+            EXPECT_EQ(result.failed, failed);
         }
     });
 }

@@ -33,8 +33,11 @@ Status inverseDynamics(const Model& model, Data& data, const Pose& p, const Twis
 Status inverseDynamicsFromActuators(const Model& model, Data& data, const Pose& p, const ActuatorVector& du,
                                     const ActuatorVector& ddu);
 
-/// The lean per-sample path: u, du, ddu and tau only (also data.W_P). Same numbers as
-/// inverseDynamics. Allocation-free.
+/// The lean per-sample path: u, du, ddu and tau only (also data.W_P, p, t_M and t_M_dot; the
+/// other fields of data are left as they were). Same numbers as inverseDynamics, and its
+/// Status: a sample the lean kernel rejects is handed to the full path, which gives the exact
+/// Status (only a sample whose condition number equals max_condition to rounding can be
+/// judged differently, the kernel's test being division-free). Allocation-free.
 Status inverseDynamicsFast(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp);
 
 /// Kinetic energy sum_i t_i^T M_i t_i / 2 [J] (velocity stage needed).

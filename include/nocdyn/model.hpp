@@ -52,9 +52,13 @@ using ActuatorVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators
 /// n x 3 map from the platform twist to the actuator rates.
 using ActuationMatrix = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxActuators, 3>;
 
+/// The joint types of a limb, base to platform (the closed form of its inverse displacement).
+enum class LimbKind { RRR, PRR, RPR, RRP, PRP, RPP, PPR, PPP };
+
 /// Constant description of one limb, prepared for the per-sample algorithms.
 struct LimbModel {
     std::array<JointType, 3> type{};  ///< base to platform
+    LimbKind kind = LimbKind::RRR;    ///< the same as one value
     /// R joints: axis at home relative to the home position of C, base axes [m].
     std::array<Vector2, 3> point{};
     /// R joints: axis at home in the base frame [m].
@@ -74,6 +78,13 @@ struct LimbModel {
     int branch = 0;
     /// Lengths used by the closed forms (|r2 - r1|, |r3 - r2|, ...) [m].
     double length1 = 0.0, length2 = 0.0;
+    double inv_length1_sq = 0.0, inv_length2_sq = 0.0;  ///< 1 / length^2 (0 when the length is 0)
+    /// Scale of each joint variable in the condition numbers: 1 for R (rad), the model's
+    /// length_scale for P (m); and its inverse.
+    std::array<double, 3> joint_scale{1.0, 1.0, 1.0};
+    std::array<double, 3> inv_joint_scale{1.0, 1.0, 1.0};
+    /// No damping and no Coulomb friction at any joint of the limb.
+    bool frictionless = true;
 };
 
 /// Constant parameters of a planar parallel robot. Immutable after construction.
@@ -96,6 +107,8 @@ public:
     std::array<int, kMaxActuators> actuator_joint{};  ///< joint (0..2) of actuator a
     InertiaDyad platform_M{};                 ///< platform inertia dyad (eq. 9)
     Vector2 platform_com = Vector2::Zero();   ///< c.o.m. in the platform frame (origin C) [m]
+    /// The same at home in base axes, Rot(home(0)) platform_com: x_P = C + Rot(dtheta) of it.
+    Vector2 platform_com_home = Vector2::Zero();
     Vector2 gravity = Vector2::Zero();        ///< [m/s^2]
     Pose home = Pose::Zero();                 ///< platform pose at home
     double cos_home = 1.0, sin_home = 0.0;    ///< of home(0)

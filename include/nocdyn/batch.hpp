@@ -1,0 +1,45 @@
+// Batch inverse dynamics of the general model: many pose-space samples of any planar
+// parallel robot at once, the lean per-sample kernel (inverseDynamicsFast) in one loop,
+// optionally split over std::threads.
+//
+// Layout: inputs are N x 3 arrays, row k = sample k ([theta, x_c, y_c], its rate, its
+// acceleration); outputs are N x n arrays (n = model.actuators), row k = sample k's u, du,
+// ddu and tau. Eigen's default column-major storage makes each column one coordinate of every
+// sample (structure of arrays); any Eigen::Ref-compatible block works.
+//
+// Values equal inverseDynamicsFast's (the same kernel). A sample the kernel rejects takes the
+// full path, which gives its exact Status; a failed sample's outputs are NaN. Nothing is
+// allocated per sample; the threaded variant starts its threads on every call (tens of
+// microseconds), worth it for large batches.
+#pragma once
+
+#include <limits>
+
+#include <Eigen/Core>
+
+#include "nocdyn/model.hpp"
+#include "nocdyn/status.hpp"
+
+namespace nocdyn {
+
+/// Outcome of a batch: how many samples failed, the first of them and its Status (exactly
+/// what inverseDynamics returns for that sample).
+struct BatchResult {
+    static constexpr Eigen::Index npos = std::numeric_limits<Eigen::Index>::max();
+    Eigen::Index failed = 0;
+    Eigen::Index first_failure = npos;
+    Status status;  ///< of sample first_failure; ok when failed == 0
+    [[nodiscard]] bool ok() const { return failed == 0; }
+};
+
+/// Inverse dynamics of N samples: (p, dp, ddp), N x 3 each -> u, du, ddu, tau, N x n each.
+/// `threads`: 1 runs on the calling thread; 0 uses one per hardware thread; more splits the
+/// samples into that many contiguous chunks (the calling thread runs one).
+/// Throws nocdyn::Error when the arrays' sizes disagree (before any sample is computed).
+BatchResult inverseDynamicsBatch(const Model& model, const Eigen::Ref<const Eigen::ArrayXXd>& p,
+                                 const Eigen::Ref<const Eigen::ArrayXXd>& dp,
+                                 const Eigen::Ref<const Eigen::ArrayXXd>& ddp, Eigen::Ref<Eigen::ArrayXXd> u,
+                                 Eigen::Ref<Eigen::ArrayXXd> du, Eigen::Ref<Eigen::ArrayXXd> ddu,
+                                 Eigen::Ref<Eigen::ArrayXXd> tau, unsigned threads = 1);
+
+}  // namespace nocdyn

@@ -1,0 +1,368 @@
+// The lean inverse dynamics of one sample of the general model (dynamics.hpp,
+// inverseDynamicsFast), on plain scalars so that it stays in registers and inlines into the
+// per-sample entry and the batch loop. Internal (not installed).
+//
+// The same physics as the stages (kinematics.cpp, dynamics.cpp), one limb at a time:
+//   position   closed-form joint variables (limb_ik_impl.hpp), screws by the product of
+//              exponentials, body c.o.m.
+//   velocity   J_j = [s_1 s_2 s_3] inverted by cofactors, gamma_dot_j = J_j^-1 xi_P,
+//              body twists xi_1 = s_1 gd_1, xi_2 = xi_1 + s_2 gd_2, screw rates [xi, s]
+//   accel.     gamma_ddot_j = J_j^-1 (dxi_P - ds_2 gd_2 - ds_3 gd_3), body twist rates
+//   forces     body inertia wrenches less gravity, joint efforts, W_P += J_j^-T f_j;
+//              then A^T tau = W_P (A^-T W_P, or the minimum-norm solution)
+// and the conditioning tests of jacobianStage in division-free form. It does not form T_i,
+// I or C. A rejected sample (unreachable, or a condition number beyond the limit) returns
+// false; the caller then asks the full path for the exact Status.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+
+#include "limb_ik_impl.hpp"
+#include "nocdyn/model.hpp"
+
+namespace nocdyn::detail::lean {
+
+/// A compile-time zero: the angular part of a prismatic joint's screw and of the twist of a
+/// body that only translates. Terms with it vanish when the kernel is compiled (a double 0.0
+/// cannot make a product vanish: 0 * inf is NaN), so that the one kernel written for every
+/// limb type does no arithmetic on the zeros of P joints.
+struct Zero {};
+NOCDYN_ALWAYS_INLINE constexpr Zero operator*(Zero, double) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator*(double, Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator*(Zero, Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator+(Zero, Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr double operator+(double a, Zero) { return a; }
+NOCDYN_ALWAYS_INLINE constexpr double operator+(Zero, double b) { return b; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator-(Zero, Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr double operator-(double a, Zero) { return a; }
+NOCDYN_ALWAYS_INLINE constexpr double operator-(Zero, double b) { return -b; }
+NOCDYN_ALWAYS_INLINE constexpr Zero operator-(Zero) { return {}; }
+NOCDYN_ALWAYS_INLINE constexpr double value(double a) { return a; }
+NOCDYN_ALWAYS_INLINE constexpr double value(Zero) { return 0.0; }
+NOCDYN_ALWAYS_INLINE double absOf(double a) { return std::abs(a); }
+NOCDYN_ALWAYS_INLINE constexpr Zero absOf(Zero) { return {}; }
+
+/// A planar twist or wrench referred to O, [w; x; y]; W = Zero when w is known to vanish.
+template <class W>
+struct Tw {
+    W w;
+    double x, y;
+};
+using V3 = Tw<double>;
+
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE auto operator+(const Tw<A>& a, const Tw<B>& b) {
+    return Tw<decltype(a.w + b.w)>{a.w + b.w, a.x + b.x, a.y + b.y};
+}
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE auto operator-(const Tw<A>& a, const Tw<B>& b) {
+    return Tw<decltype(a.w - b.w)>{a.w - b.w, a.x - b.x, a.y - b.y};
+}
+template <class A>
+NOCDYN_ALWAYS_INLINE Tw<A> operator*(double k, const Tw<A>& a) {
+    return {k * a.w, k * a.x, k * a.y};
+}
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE double dot(const Tw<A>& a, const Tw<B>& b) {
+    return a.w * b.w + a.x * b.x + a.y * b.y;
+}
+/// The cross product of 3-arrays: the cofactors of a 3 x 3 matrix.
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE V3 cross(const Tw<A>& a, const Tw<B>& b) {
+    return {a.x * b.y - a.y * b.x, value(a.y * b.w - a.w * b.y), value(a.w * b.x - a.x * b.w)};
+}
+/// Lie bracket of planar twists referred to O (kinematics.hpp, bracket): a pure translation.
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE Tw<Zero> bracket(const Tw<A>& a, const Tw<B>& b) {
+    return {{}, value(-a.w * b.y + b.w * a.y), value(a.w * b.x - b.w * a.x)};
+}
+
+/// A planar rigid displacement x -> R(c, s) x + t; S = Zero for a translation (c = 1).
+template <class S>
+struct Move {
+    double c;
+    S s;
+    double tx, ty;
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE double rx(double x, double y) const { return c * x - s * y; }
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE double ry(double x, double y) const { return s * x + c * y; }
+    template <class T>
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE auto then(const Move<T>& o) const {
+        return Move<decltype(s * o.c + c * o.s)>{c * o.c - s * o.s, s * o.c + c * o.s, rx(o.tx, o.ty) + tx,
+                                                 ry(o.tx, o.ty) + ty};
+    }
+};
+
+/// Whether joint k of a limb of kind K is revolute (known at compile time, so that the
+/// kernel below is specialised per limb type: one template, no hand-written copy).
+template <LimbKind K>
+constexpr bool revolute(int k) {
+    constexpr const char* kNames[] = {"RRR", "PRR", "RPR", "RRP", "PRP", "RPP", "PPR", "PPP"};
+    return kNames[static_cast<int>(K)][k] == 'R';
+}
+
+/// exp of joint k's home screw times q_k.
+template <bool kRevolute>
+NOCDYN_ALWAYS_INLINE auto jointMove(const LimbModel& limb, const JointSolution& js, int k) {
+    const auto kk = static_cast<std::size_t>(k);
+    if constexpr (!kRevolute) {
+        return Move<Zero>{1.0, {}, js.q(k) * limb.direction[kk].x(), js.q(k) * limb.direction[kk].y()};
+    } else {
+        const double c = js.c(k), s = js.s(k);
+        const double px = limb.point_home[kk].x(), py = limb.point_home[kk].y();
+        return Move<double>{c, s, px - (c * px - s * py), py - (s * px + c * py)};
+    }
+}
+
+/// Home screw of the first joint (referred to O).
+template <bool kRevolute>
+NOCDYN_ALWAYS_INLINE auto homeScrew(const LimbModel& limb) {
+    if constexpr (kRevolute) {
+        return V3{1.0, limb.screw_home[0](1), limb.screw_home[0](2)};
+    } else {
+        return Tw<Zero>{{}, limb.screw_home[0](1), limb.screw_home[0](2)};
+    }
+}
+
+/// Current screw of joint k carried by the body displaced by g.
+template <bool kRevolute, class S>
+NOCDYN_ALWAYS_INLINE auto jointScrew(const LimbModel& limb, const Move<S>& g, int k) {
+    const auto kk = static_cast<std::size_t>(k);
+    if constexpr (kRevolute) {
+        const double px = limb.point_home[kk].x(), py = limb.point_home[kk].y();
+        return V3{1.0, g.ry(px, py) + g.ty, -(g.rx(px, py) + g.tx)};
+    } else {
+        const double dx = limb.direction[kk].x(), dy = limb.direction[kk].y();
+        return Tw<Zero>{{}, g.rx(dx, dy), g.ry(dx, dy)};
+    }
+}
+
+/// The closed form of limb kind K (limb_ik_impl.hpp).
+template <LimbKind K>
+NOCDYN_ALWAYS_INLINE Status solveKind(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& js) {
+    if constexpr (K == LimbKind::RRR) return ik::solveRRR(limb, j, G, js);
+    else if constexpr (K == LimbKind::PRR) return ik::solvePRR(limb, j, G, js);
+    else if constexpr (K == LimbKind::RPR) return ik::solveRPR(limb, j, G, js);
+    else if constexpr (K == LimbKind::RRP) return ik::solveRRP(limb, j, G, js);
+    else if constexpr (K == LimbKind::PRP) return ik::solvePRP(limb, j, G, js);
+    else if constexpr (K == LimbKind::RPP) return ik::solveRPP(limb, j, G, js);
+    else return ik::solvePPR(limb, j, G, js);
+}
+
+/// Inertia wrench, less gravity, of a body (inertia I, mass m, c.o.m. x) with twist xi and
+/// twist rate alpha referred to O, itself referred to O (dynamics.cpp, bodyWrench).
+template <class A, class B>
+NOCDYN_ALWAYS_INLINE V3 bodyWrench(double I, double m, double gx, double gy, double px, double py, const Tw<A>& xi,
+                                   const Tw<B>& alpha) {
+    const A w = xi.w;
+    const double vx = xi.x - w * py, vy = xi.y + w * px;
+    const double ax = alpha.x - alpha.w * py - w * vy, ay = alpha.y + alpha.w * px + w * vx;
+    const double fx = m * (ax - gx), fy = m * (ay - gy);
+    return {I * alpha.w + (px * fy - py * fx), fx, fy};
+}
+
+NOCDYN_ALWAYS_INLINE double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+
+/// Where one sample's outputs go: actuator a's u at u[a * stride], and so on (stride 1 for
+/// a vector, the number of samples for the columns of a column-major array).
+struct Out {
+    double* u;
+    double* du;
+    double* ddu;
+    double* tau;
+    std::ptrdiff_t stride;
+};
+
+/// The constants of a sample shared by every limb.
+struct Frame {
+    PlatformDisplacement G;
+    V3 xi_P, xi_P_dot;
+    double gx, gy, L, inv_L, max_condition;
+};
+
+/// One limb of kind K: its joint rates and accelerations, its bodies' share of W_P (into
+/// W), and its actuators' u, du, ddu and rows of A. False when the limb cannot close or
+/// its J_j is too ill-conditioned.
+template <LimbKind K>
+NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows, double* weight, double* scale) {
+    const PlatformDisplacement& G = f.G;
+    const V3& xi_P = f.xi_P;
+    const V3& xi_P_dot = f.xi_P_dot;
+    const double gx = f.gx, gy = f.gy, L = f.L, inv_L = f.inv_L, max_condition = f.max_condition;
+    JointSolution js;
+    if (!solveKind<K>(limb, j, G, js)) return false;
+    // screws by the product of exponentials, c.o.m. of the two bodies
+    const auto g1 = jointMove<revolute<K>(0)>(limb, js, 0);
+    const auto g2 = g1.then(jointMove<revolute<K>(1)>(limb, js, 1));
+    const auto s0 = homeScrew<revolute<K>(0)>(limb);
+    const auto s1 = jointScrew<revolute<K>(1)>(limb, g1, 1);
+    const auto s2 = jointScrew<revolute<K>(2)>(limb, g2, 2);
+    const Vector2& c0 = limb.com_home[0];
+    const Vector2& c1 = limb.com_home[1];
+    const double x0 = g1.rx(c0.x(), c0.y()) + g1.tx, y0 = g1.ry(c0.x(), c0.y()) + g1.ty;
+    const double x1 = g2.rx(c1.x(), c1.y()) + g2.tx, y1 = g2.ry(c1.x(), c1.y()) + g2.ty;
+
+    // J_j^-1 = adj / det, rows a_k of adj: s_2 x s_3, s_3 x s_1, s_1 x s_2
+    const V3 a0 = cross(s1, s2), a1 = cross(s2, s0), a2 = cross(s0, s1);
+    const double det = dot(s0, a0);
+    // scaled 1-norm condition number (stages.hpp, limbConditionNorms), times |det|
+    const auto& cs = limb.joint_scale;
+    const auto& ic = limb.inv_joint_scale;
+    const double n_J = std::max({cs[0] * (absOf(s0.w) + (std::abs(s0.x) + std::abs(s0.y)) * inv_L),
+                                 cs[1] * (absOf(s1.w) + (std::abs(s1.x) + std::abs(s1.y)) * inv_L),
+                                 cs[2] * (absOf(s2.w) + (std::abs(s2.x) + std::abs(s2.y)) * inv_L)});
+    const double n_adj =
+        std::max(std::abs(a0.w) * ic[0] + std::abs(a1.w) * ic[1] + std::abs(a2.w) * ic[2],
+                 L * std::max(std::abs(a0.x) * ic[0] + std::abs(a1.x) * ic[1] + std::abs(a2.x) * ic[2],
+                              std::abs(a0.y) * ic[0] + std::abs(a1.y) * ic[1] + std::abs(a2.y) * ic[2]));
+    if (!(n_J * n_adj <= max_condition * std::abs(det))) return false;
+    const double inv_det = 1.0 / det;
+    const V3 j0 = inv_det * a0, j1 = inv_det * a1, j2 = inv_det * a2;  // rows of J_j^-1
+
+    // rates (eq. 3), body twists, screw rates, accelerations
+    const double gd0 = dot(j0, xi_P), gd1 = dot(j1, xi_P), gd2 = dot(j2, xi_P);
+    const auto xi0 = gd0 * s0;
+    const auto xi1 = xi0 + gd1 * s1;
+    const auto sd1_gd1 = gd1 * bracket(xi0, s1);
+    const V3 rhs = xi_P_dot - sd1_gd1 - gd2 * bracket(xi1, s2);
+    const double gdd0 = dot(j0, rhs), gdd1 = dot(j1, rhs), gdd2 = dot(j2, rhs);
+    const auto alpha0 = gdd0 * s0;
+    const auto alpha1 = alpha0 + gdd1 * s1 + sd1_gd1;
+    const V3 W0 = bodyWrench(limb.M[0].inertia, limb.M[0].mass, gx, gy, x0, y0, xi0, alpha0);
+    const V3 W1 = bodyWrench(limb.M[1].inertia, limb.M[1].mass, gx, gy, x1, y1, xi1, alpha1);
+    // joint efforts: joint k carries every body outboard of it in the limb, plus friction
+    double f0 = dot(s0, W0 + W1), f1 = dot(s1, W1);
+    if (limb.frictionless) [[likely]] {
+        W = W + f0 * j0 + f1 * j1;
+    } else {
+        f0 += limb.damping[0] * gd0 + limb.friction[0] * sign(gd0);
+        f1 += limb.damping[1] * gd1 + limb.friction[1] * sign(gd1);
+        const double f2 = limb.damping[2] * gd2 + limb.friction[2] * sign(gd2);
+        W = W + f0 * j0 + f1 * j1 + f2 * j2;
+    }
+
+    const double q[3] = {js.q(0), js.q(1), js.q(2)};
+    const double gd[3] = {gd0, gd1, gd2};
+    const double gdd[3] = {gdd0, gdd1, gdd2};
+    const V3 jr[3] = {j0, j1, j2};
+    for (int k = 0; k < 3; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        const int a = limb.actuator[kk];
+        if (a < 0) continue;
+        // an actuated R joint's angle: the one atan2 the lean path needs
+        const std::ptrdiff_t at = a * out.stride;
+        out.u[at] = revolute<K>(k) ? atan2Of(js.s(k), js.c(k)) : q[k];
+        out.du[at] = gd[k];
+        out.ddu[at] = gdd[k];
+        rows[a] = jr[k];
+        weight[a] = ic[kk];
+        scale[a] = cs[kk];
+    }
+    return true;
+}
+
+/// One sample given cos and sin of dtheta = theta - home(0); p, dp, ddp finite.
+/// Returns false when the per-sample path would fail (or is within rounding of a threshold).
+NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p, const double* dp,
+                   const double* ddp, const Out& out, V3& W) {
+    PlatformDisplacement G;
+    G.cos_dtheta = cos_dtheta;
+    G.sin_dtheta = sin_dtheta;
+    G.C = Vector2(p[1], p[2]);
+    // xi_P = S(c) t_M and its derivative
+    const double cx = p[1], cy = p[2], w = dp[0];
+    const V3 xi_P{w, dp[1] + w * cy, dp[2] - w * cx};
+    const V3 xi_P_dot{ddp[0], ddp[1] + ddp[0] * cy + w * dp[2], ddp[2] - ddp[0] * cx - w * dp[1]};
+    const double gx = model.gravity.x(), gy = model.gravity.y();
+    const double L = model.length_scale;
+    const double inv_L = 1.0 / L;
+    const double max_condition = model.max_condition;
+
+    V3 rows[kMaxActuators];  // rows of A: the actuated rows of the J_j^-1
+    double weight[kMaxActuators];  // 1 / joint scale of each actuator, and the scale
+    double scale[kMaxActuators];
+    // W_P = sum_i T_i^{xi T} w_i: each limb's bodies through J_j^-T, the platform directly
+    {
+        const Vector2& com = model.platform_com_home;
+        const double px = cx + G.cos_dtheta * com.x() - G.sin_dtheta * com.y();
+        const double py = cy + G.sin_dtheta * com.x() + G.cos_dtheta * com.y();
+        W = bodyWrench(model.platform_M.inertia, model.platform_M.mass, gx, gy, px, py, xi_P, xi_P_dot);
+    }
+    const Frame frame{G, xi_P, xi_P_dot, gx, gy, L, inv_L, max_condition};
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        bool ok = false;
+        switch (limb.kind) {
+            case LimbKind::RRR: ok = limbTerms<LimbKind::RRR>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::PRR: ok = limbTerms<LimbKind::PRR>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::RPR: ok = limbTerms<LimbKind::RPR>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::RRP: ok = limbTerms<LimbKind::RRP>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::PRP: ok = limbTerms<LimbKind::PRP>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::RPP: ok = limbTerms<LimbKind::RPP>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::PPR: ok = limbTerms<LimbKind::PPR>(limb, j, frame, out, W, rows, weight, scale); break;
+            case LimbKind::PPP: break;  // rejected by validate()
+        }
+        if (!ok) return false;
+    }
+
+    // A^T tau = W_P; the actuation conditioning of jacobianStage, division-free
+    const int n = model.actuators;
+    if (model.coordinates == Coordinates::actuators) {
+        const V3 b0 = cross(rows[1], rows[2]), b1 = cross(rows[2], rows[0]), b2 = cross(rows[0], rows[1]);
+        const double det = dot(rows[0], b0);
+        const double n_A =
+            std::max(weight[0] * std::abs(rows[0].w) + weight[1] * std::abs(rows[1].w) + weight[2] * std::abs(rows[2].w),
+                     L * std::max(weight[0] * std::abs(rows[0].x) + weight[1] * std::abs(rows[1].x) +
+                                      weight[2] * std::abs(rows[2].x),
+                                  weight[0] * std::abs(rows[0].y) + weight[1] * std::abs(rows[1].y) +
+                                      weight[2] * std::abs(rows[2].y)));
+        const double n_adj = std::max({(std::abs(b0.w) + (std::abs(b0.x) + std::abs(b0.y)) * inv_L) * scale[0],
+                                       (std::abs(b1.w) + (std::abs(b1.x) + std::abs(b1.y)) * inv_L) * scale[1],
+                                       (std::abs(b2.w) + (std::abs(b2.x) + std::abs(b2.y)) * inv_L) * scale[2]});
+        if (!(n_A * n_adj <= max_condition * std::abs(det))) return false;
+        // tau = A^-T W_P: A^-1 has columns b_a / det
+        const double inv_det = 1.0 / det;
+        out.tau[0] = dot(b0, W) * inv_det;
+        out.tau[out.stride] = dot(b1, W) * inv_det;
+        out.tau[2 * out.stride] = dot(b2, W) * inv_det;
+        return true;
+    }
+    // redundant: cond_A^2 = cond_1(B), B = As^T As, As = diag(w) A diag(1, L, L); and the
+    // minimum-norm tau = A (A^T A)^-1 W_P
+    double B[6] = {0, 0, 0, 0, 0, 0}, N[6] = {0, 0, 0, 0, 0, 0};  // upper triangles 00 01 02 11 12 22
+    for (int a = 0; a < n; ++a) {
+        const V3& ra = rows[a];
+        const double w2 = weight[a] * weight[a];
+        N[0] += ra.w * ra.w, N[1] += ra.w * ra.x, N[2] += ra.w * ra.y;
+        N[3] += ra.x * ra.x, N[4] += ra.x * ra.y, N[5] += ra.y * ra.y;
+        B[0] += w2 * ra.w * ra.w, B[1] += w2 * ra.w * ra.x, B[2] += w2 * ra.w * ra.y;
+        B[3] += w2 * ra.x * ra.x, B[4] += w2 * ra.x * ra.y, B[5] += w2 * ra.y * ra.y;
+    }
+    B[1] *= L, B[2] *= L, B[3] *= L * L, B[4] *= L * L, B[5] *= L * L;
+    const auto adjugate = [](const double* m, double* adj) {
+        adj[0] = m[3] * m[5] - m[4] * m[4];
+        adj[1] = m[2] * m[4] - m[1] * m[5];
+        adj[2] = m[1] * m[4] - m[2] * m[3];
+        adj[3] = m[0] * m[5] - m[2] * m[2];
+        adj[4] = m[1] * m[2] - m[0] * m[4];
+        adj[5] = m[0] * m[3] - m[1] * m[1];
+        return m[0] * adj[0] + m[1] * adj[1] + m[2] * adj[2];
+    };
+    const auto norm1 = [](const double* m) {
+        return std::max({std::abs(m[0]) + std::abs(m[1]) + std::abs(m[2]), std::abs(m[1]) + std::abs(m[3]) + std::abs(m[4]),
+                         std::abs(m[2]) + std::abs(m[4]) + std::abs(m[5])});
+    };
+    double adj_B[6], adj_N[6];
+    const double det_B = adjugate(B, adj_B);
+    if (!(norm1(B) * norm1(adj_B) <= max_condition * max_condition * std::abs(det_B))) return false;
+    const double det_N = adjugate(N, adj_N);
+    const double inv_det = 1.0 / det_N;
+    const V3 lambda{(adj_N[0] * W.w + adj_N[1] * W.x + adj_N[2] * W.y) * inv_det,
+                    (adj_N[1] * W.w + adj_N[3] * W.x + adj_N[4] * W.y) * inv_det,
+                    (adj_N[2] * W.w + adj_N[4] * W.x + adj_N[5] * W.y) * inv_det};
+    for (int a = 0; a < n; ++a) out.tau[a * out.stride] = dot(rows[a], lambda);
+    return true;
+}
+
+}  // namespace nocdyn::detail::lean
