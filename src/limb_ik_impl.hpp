@@ -33,52 +33,8 @@ struct JointSolution {
 
 namespace ik {
 
-/// atan2(y, x) by an own copy of fdlibm's atan (argument reduction to |t| < 7/16 around
-/// atan(1/2), atan(1), atan(3/2), the 11-term minimax polynomial, hi + lo constants) and its
-/// atan2 quadrant rules. Error below 1 ulp as libm's, at a third of the cost of
-/// the call (no errno wrapper). Finite arguments only (joint angles from cos and sin).
-#if defined(__GNUC__)
-__attribute__((noinline))
-#endif
-inline double atan2Of(double y, double x) {
-    static constexpr double atanhi[4] = {4.63647609000806093515e-01, 7.85398163397448278999e-01, 9.82793723247329054082e-01,
-                                  1.57079632679489655800e+00};
-    static constexpr double atanlo[4] = {2.26987774529616870924e-17, 3.06161699786838301793e-17, 1.39033110312309984516e-17,
-                                  6.12323399573676603587e-17};
-    static constexpr double aT[11] = {3.33333333333329318027e-01,  -1.99999999998764832476e-01, 1.42857142725034663711e-01,
-                               -1.11111104054623557880e-01, 9.09088713343650656196e-02,  -7.69187620504482999495e-02,
-                               6.66107313738753120669e-02,  -5.83357013379057348645e-02, 4.97687799461593236017e-02,
-                               -3.65315727442169155270e-02, 1.62858201153657823623e-02};
-    constexpr double pi = 3.1415926535897931160e+00, pi_lo = 1.2246467991473531772e-16;
-    const double ax = std::abs(x), ay = std::abs(y);
-    if (ay == 0.0) return x >= 0.0 && !std::signbit(x) ? y : std::copysign(pi, y);  // as atan2
-    // z = atan(|y / x|), |y / x| reduced to |t| < 7/16
-    double t = ax == 0.0 ? std::numeric_limits<double>::infinity() : ay / ax;
-    int id;
-    if (t < 0.4375) {
-        id = -1;
-    } else if (t < 0.6875) {
-        id = 0;
-        t = (2.0 * t - 1.0) / (2.0 + t);
-    } else if (t < 1.1875) {
-        id = 1;
-        t = (t - 1.0) / (t + 1.0);
-    } else if (t < 2.4375) {
-        id = 2;
-        t = (t - 1.5) / (1.0 + 1.5 * t);
-    } else {
-        id = 3;
-        t = -1.0 / t;
-    }
-    const double z2 = t * t;
-    const double w = z2 * z2;
-    const double s1 = z2 * (aT[0] + w * (aT[2] + w * (aT[4] + w * (aT[6] + w * (aT[8] + w * aT[10])))));
-    const double s2 = w * (aT[1] + w * (aT[3] + w * (aT[5] + w * (aT[7] + w * aT[9]))));
-    const double z = id < 0 ? t - t * (s1 + s2) : atanhi[id] - ((t * (s1 + s2) - atanlo[id]) - t);
-    if (!(x < 0.0) && !std::signbit(x)) return y < 0.0 ? -z : z;
-    return y < 0.0 ? (z - pi_lo) - pi : pi - (z - pi_lo);
-}
-
+/// The joint angle from its cosine and sine (libm's atan2).
+[[nodiscard]] inline double atan2Of(double y, double x) { return std::atan2(y, x); }
 
 
 constexpr double kTiny = 1e-300;
