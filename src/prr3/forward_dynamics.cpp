@@ -275,7 +275,10 @@ ForceSeries forcesFromTable(const io::Table& table, const std::string& source) {
         if (!forces.t.empty() && !(t > forces.t.back())) {
             std::ostringstream out;
             out.precision(17);
-            out << source << ": row " << r + 2 << ": t = " << t << " does not increase";
+            out << source << ":";
+            if (r < table.lines.size()) out << table.lines[r] << ": column 't'";
+            else out << " row " << r + 1 << ": column 't'";
+            out << ": t = " << t << " s does not increase (previous row: " << forces.t.back() << " s)";
             throw Error(out.str());
         }
         forces.t.push_back(t);
