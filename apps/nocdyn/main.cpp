@@ -28,7 +28,9 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help and --version exit 0; every malformed argument exits 2 (README, "Command line").
+        const int code = app.exit(e);
+        return code == static_cast<int>(CLI::ExitCodes::Success) ? 0 : 2;
     } catch (const nocdyn::Error& e) {
         std::cerr << "nocdyn: error: " << e.what() << "\n";
         return 1;
