@@ -135,7 +135,7 @@ TEST(RobotFile, DuplicateKeysSectionsAndDocumentsAreErrors) {
     expectRobotError(replaced(kRobot, "  link_com: 0.079575\n", "  link_com: 0.079575\n  link_com: 0.05\n"),
                      {"robot.yaml:7", "geometry.link_com", "duplicate key", "line 6"});
     expectRobotError(kRobot + "slider: {mass: 3}\n", {"robot.yaml:11", "slider", "duplicate key", "line 7"});
-    expectRobotError(kRobot + "---\nname: second\n", {"robot.yaml:12", "second YAML document"});
+    expectRobotError(kRobot + "---\nname: second\n", {"robot.yaml:11", "second YAML document"});
 }
 
 TEST(RobotFile, OnlyDecimalNumbersAreAccepted) {
@@ -345,7 +345,9 @@ TEST(TrajectoryFile, DuplicatesRangesAndSecondDocumentsAreErrors) {
     expectTrajectoryError("x: {offset: 0}\nx: {offset: 1}\n", {"t.yaml:2", "x", "duplicate key"});
     expectTrajectoryError("x: {harmonics: [{amplitude: 1, frequency: 1e300}]}\n", {"x.harmonics[0].frequency", "[0, 1e+06] Hz"});
     expectTrajectoryError("x: {harmonics: [{amplitude: 0x10, frequency: 1}]}\n", {"x.harmonics[0].amplitude", "'0x10'"});
-    expectTrajectoryError("duration: 0.2\n---\nduration: 0.3\n", {"t.yaml:3", "second YAML document"});
+    expectTrajectoryError("duration: 0.2\n---\nduration: 0.3\n", {"t.yaml:2", "second YAML document"});
+    // yaml-cpp 0.7 LoadAll never returns on a lone comma: refused, at once
+    expectTrajectoryError(",", {"t.yaml:1", "second YAML document"});
     EXPECT_EQ(*io::parseTrajectory("\xEF\xBB\xBF" "duration: 0.25\n", "t.yaml").duration, 0.25);
 }
 

@@ -1,5 +1,8 @@
 #include "yaml_util.hpp"
 
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
+
 #include <sstream>
 #include <string_view>
 #include <vector>
@@ -19,26 +22,58 @@ void fail(const Context& context, const YAML::Node& node, const std::string& rea
     throw Error(msg.str());
 }
 
+namespace {
+
+/// Parser events that only note where each document starts.
+class DocumentStarts : public YAML::EventHandler {
+public:
+    std::vector<YAML::Mark> starts;
+    void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+    void OnSequenceEnd() override {}
+    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+    void OnMapEnd() override {}
+};
+
+[[noreturn]] void failParse(const std::string& source, const YAML::ParserException& e) {
+    std::ostringstream msg;
+    msg << source << ":" << e.mark.line + 1 << ": not valid YAML: " << e.msg;
+    throw Error(msg.str());
+}
+
+}  // namespace
+
 YAML::Node loadDocument(const std::string& text, const std::string& source) {
     std::string_view body = text;
     detail::stripByteOrderMark(body);
-    std::vector<YAML::Node> documents;
+    const std::string yaml(body);
+    YAML::Node root;
     try {
-        documents = YAML::LoadAll(std::string(body));
+        root = YAML::Load(yaml);  // the first document only
     } catch (const YAML::ParserException& e) {
-        std::ostringstream msg;
-        msg << source << ":" << e.mark.line + 1 << ": not valid YAML: " << e.msg;
-        throw Error(msg.str());
+        failParse(source, e);
     }
-    if (documents.empty()) return YAML::Node();
-    if (documents.size() > 1) {
-        std::ostringstream msg;
-        msg << source;
-        if (documents[1].Mark().line >= 0) msg << ":" << documents[1].Mark().line + 1;
-        msg << ": a second YAML document (after '---'); the file must hold exactly one";
-        throw Error(msg.str());
+    // Whatever follows the first document is an error, not ignored. The parser is asked for
+    // two documents at most: yaml-cpp 0.7's LoadAll loops forever on some input (a lone ',').
+    std::istringstream stream(yaml);
+    YAML::Parser parser(stream);
+    DocumentStarts events;
+    try {
+        if (parser.HandleNextDocument(events) && parser.HandleNextDocument(events)) {
+            std::ostringstream msg;
+            msg << source;
+            if (events.starts.size() > 1 && events.starts[1].line >= 0) msg << ":" << events.starts[1].line + 1;
+            msg << ": a second YAML document, or content after the first; the file must hold exactly one";
+            throw Error(msg.str());
+        }
+    } catch (const YAML::ParserException& e) {
+        failParse(source, e);
     }
-    return documents.front();
+    return root;
 }
 
 void requireMap(const Context& context, const YAML::Node& node,
