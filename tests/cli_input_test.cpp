@@ -5,6 +5,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -59,6 +60,7 @@ void expectRefused(const std::string& arguments, int code, std::initializer_list
     const CliRun r = run(arguments);
     EXPECT_EQ(r.exit_code, code) << arguments << "\n" << r.err;
     EXPECT_FALSE(r.err.empty()) << arguments;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << arguments << ": one line\n" << r.err;
     for (const char* fragment : fragments) {
         EXPECT_NE(r.err.find(fragment), std::string::npos) << arguments << "\n" << r.err << "missing: " << fragment;
     }
