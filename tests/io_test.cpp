@@ -141,7 +141,8 @@ TEST(RobotFile, DuplicateKeysSectionsAndDocumentsAreErrors) {
 TEST(RobotFile, OnlyDecimalNumbersAreAccepted) {
     expectRobotError(replaced(kRobot, "0.15915", "0x1p-3"), {"robot.yaml:5", "geometry.link_length", "'0x1p-3'"});
     expectRobotError(replaced(kRobot, "0.15915", ".inf"), {"geometry.link_length", "finite"});
-    expectRobotError(replaced(kRobot, "0.15915", "1e999"), {"geometry.link_length", "'1e999'"});
+    expectRobotError(replaced(kRobot, "0.15915", "1e999"), {"geometry.link_length", "'1e999'", "beyond the range"});
+    expectRobotError(replaced(kRobot, "0.15915", "1e-400"), {"geometry.link_length", "'1e-400'", "beyond the range"});
 }
 
 TEST(RobotFile, ByteOrderMarkIsAccepted) {

@@ -138,8 +138,8 @@ Table parseCsv(std::string_view text, const std::string& source) {
         for (std::size_t k = 0; k < cells.size(); ++k) {
             const std::optional<double> value = detail::parseDecimal(cells[k]);
             if (!value) {
-                throw Error(at(line_number) + "column '" + table.columns[k] + "': '" + std::string(cells[k]) +
-                            "' is not a finite decimal number");
+                throw Error(at(line_number) + "column '" + table.columns[k] + "': '" + std::string(cells[k]) + "' " +
+                            detail::numberProblem(cells[k]));
             }
             row[k] = *value;
         }

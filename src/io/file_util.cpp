@@ -76,8 +76,8 @@ bool stripByteOrderMark(std::string_view& text) {
     return true;
 }
 
-std::optional<double> parseDecimal(std::string_view text) {
-    if (text.empty()) return std::nullopt;
+bool isDecimal(std::string_view text) {
+    if (text.empty()) return false;
     std::string_view body = text;
     if (body.front() == '+' || body.front() == '-') body.remove_prefix(1);
     // digits, at most one '.', then optionally e/E, a sign and digits
@@ -87,16 +87,22 @@ std::optional<double> parseDecimal(std::string_view text) {
         ++k;
         while (k < body.size() && body[k] >= '0' && body[k] <= '9') ++k, ++digits;
     }
-    if (digits == 0) return std::nullopt;
+    if (digits == 0) return false;
     if (k < body.size() && (body[k] == 'e' || body[k] == 'E')) {
         ++k;
         if (k < body.size() && (body[k] == '+' || body[k] == '-')) ++k;
         const std::size_t exponent_start = k;
         while (k < body.size() && body[k] >= '0' && body[k] <= '9') ++k;
-        if (k == exponent_start) return std::nullopt;
+        if (k == exponent_start) return false;
     }
-    if (k != body.size()) return std::nullopt;
-    // from_chars takes no '+'; the grammar above admits only what chars_format::general reads.
+    return k == body.size();
+}
+
+std::optional<double> parseDecimal(std::string_view text) {
+    if (!isDecimal(text)) return std::nullopt;
+    std::string_view body = text;
+    if (body.front() == '+' || body.front() == '-') body.remove_prefix(1);
+    // from_chars takes no sign; isDecimal admits only what chars_format::general reads.
     const bool negative = text.front() == '-';
     double value = 0.0;
     const auto result = std::from_chars(body.data(), body.data() + body.size(), value, std::chars_format::general);
@@ -105,6 +111,11 @@ std::optional<double> parseDecimal(std::string_view text) {
     if (result.ec != std::errc{}) return std::nullopt;
     if (!std::isfinite(value)) return std::nullopt;
     return negative ? -value : value;
+}
+
+std::string numberProblem(std::string_view text) {
+    if (isDecimal(text)) return "is beyond the range of a double (magnitude 4.9e-324 to 1.8e308, or 0)";
+    return "is not a finite decimal number (e.g. 0.25 or -2.5e-3; no hex, inf or nan)";
 }
 
 }  // namespace nocdyn::io::detail

@@ -28,4 +28,11 @@ bool stripByteOrderMark(std::string_view& text);
 /// below the smallest subnormal, 4.9e-324). Subnormal values are kept.
 [[nodiscard]] std::optional<double> parseDecimal(std::string_view text);
 
+/// Whether `text` follows parseDecimal's grammar (whatever its magnitude).
+[[nodiscard]] bool isDecimal(std::string_view text);
+
+/// Why parseDecimal refused `text`, for messages: "is not a finite decimal number (...)" or
+/// "is beyond the range of a double (...)".
+[[nodiscard]] std::string numberProblem(std::string_view text);
+
 }  // namespace nocdyn::io::detail

@@ -106,7 +106,7 @@ double toNumber(const Context& context, const YAML::Node& node) {
     if (!node.IsScalar()) fail(context, node, "expected a number");
     const std::optional<double> value = parseDecimal(node.Scalar());
     if (!value) {
-        fail(context, node, "expected a finite decimal number (e.g. 0.25 or 2.5e-3), got '" + node.Scalar() + "'");
+        fail(context, node, "'" + node.Scalar() + "' " + numberProblem(node.Scalar()));
     }
     return *value;
 }
