@@ -100,8 +100,6 @@ void requireMap(const Context& context, const YAML::Node& node,
     }
 }
 
-namespace {
-
 double toNumber(const Context& context, const YAML::Node& node) {
     if (!node.IsScalar()) fail(context, node, "expected a number");
     const std::optional<double> value = parseDecimal(node.Scalar());
@@ -110,8 +108,6 @@ double toNumber(const Context& context, const YAML::Node& node) {
     }
     return *value;
 }
-
-}  // namespace
 
 double requireNumber(const Context& context, const YAML::Node& map, const char* key) {
     const YAML::Node node = map[key];

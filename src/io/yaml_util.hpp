@@ -28,6 +28,9 @@ struct Context {
 void requireMap(const Context& context, const YAML::Node& node,
                 std::initializer_list<const char*> allowed);
 
+/// The finite number a scalar node holds.
+[[nodiscard]] double toNumber(const Context& context, const YAML::Node& node);
+
 /// A required finite number at node[key].
 [[nodiscard]] double requireNumber(const Context& context, const YAML::Node& map, const char* key);
 
