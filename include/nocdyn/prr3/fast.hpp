@@ -29,6 +29,11 @@ namespace nocdyn::prr3 {
 /// Outputs of the lean entry. Holds no model constants (those live in Model::kernel), so one
 /// FastData serves any number of models.
 struct FastData {
+    FastData() = default;
+    /// Same as FastData(): kept so that code written when FastData cached a model's constants
+    /// still compiles; the argument is not stored.
+    explicit FastData(const Model& /*model*/) {}
+
     JointVector u = JointVector::Zero();    ///< actuator displacements [m]
     JointVector du = JointVector::Zero();   ///< actuator rates [m/s]
     JointVector ddu = JointVector::Zero();  ///< actuator accelerations [m/s^2]
