@@ -30,7 +30,7 @@ void perSample(benchmark::State& state, std::size_t samples_per_iteration) {
 // The lean per-sample entry (fast.hpp): pose-space sample -> u, du, ddu, tau and a Status.
 void inverseDynamicsNocdyn(benchmark::State& state) {
     const Fixture& f = fixture();
-    prr3::FastData data(f.model);
+    prr3::FastData data;
     for (auto _ : state) {
         for (const Sample& s : f.samples) {
             const Status status = prr3::inverseDynamicsFast(f.model, data, s.p, s.dp, s.ddp);

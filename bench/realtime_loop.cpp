@@ -36,7 +36,7 @@ int main(int argc, char** argv) {
 
     const nocdyn::prr3::Model model;
     nocdyn::prr3::Data data;
-    nocdyn::prr3::FastData fast(model);
+    nocdyn::prr3::FastData fast;
     const nocdyn::PoseTrajectory trajectory = nocdyn::bench::benchmarkTrajectory();
     std::vector<float> latency_ns(static_cast<std::size_t>(ticks));  // allocated before the loop
     std::vector<float> clock_ns(static_cast<std::size_t>(ticks));

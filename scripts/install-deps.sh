@@ -14,6 +14,7 @@ packages=(
   libgtest-dev libgmock-dev            # tests
   libbenchmark-dev                     # benchmarks
   gnuplot-nox                          # figures (PNG via pngcairo, SVG)
+  clang libclang-rt-dev                # libFuzzer harnesses of the file readers (fuzz/)
 )
 missing=()
 for p in "${packages[@]}"; do

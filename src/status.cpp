@@ -16,7 +16,11 @@ std::string describe(const Status& status, const RobotParameters& robot) {
         case StatusCode::ok:
             return "ok";
         case StatusCode::outside_workspace:
-            if (status.value <= 0.0) {
+            if (std::isnan(status.value)) {
+                out << "pose outside the workspace: limb " << j << ": the distance d_" << j
+                    << "^M from platform vertex M_" << j << " to rail line L_" << j
+                    << " is not a number (a non-finite pose or input)";
+            } else if (status.value <= 0.0) {
                 out << "pose outside the workspace: limb " << j << ": platform vertex M_" << j
                     << " is " << -status.value * 1e3 << " mm on or beyond its rail line L_" << j
                     << " (d_" << j << "^M = " << status.value << " m must be > 0)";
@@ -37,13 +41,37 @@ std::string describe(const Status& status, const RobotParameters& robot) {
                 << " (limit " << robot.max_condition << ")";
             return out.str();
         case StatusCode::stroke_exceeded:
+            if (!std::isfinite(status.value)) {
+                out << "actuator displacement not finite: limb " << j << ": u_" << j << " = " << status.value << " m";
+                return out.str();
+            }
             out << "actuator stroke exceeded: limb " << j << ": u_" << j << " = "
                 << status.value * 1e3 << " mm, but the stroke allows +-" << robot.stroke * 0.5e3
                 << " mm about the reference posture";
             return out.str();
         case StatusCode::force_exceeded:
+            if (!std::isfinite(status.value)) {
+                out << "actuator force not finite: limb " << j << ": tau_" << j << " = " << status.value
+                    << " N (a non-finite pose, velocity or acceleration)";
+                return out.str();
+            }
             out << "actuator peak force exceeded: limb " << j << ": tau_" << j << " = "
                 << status.value << " N, peak force " << robot.peak_force << " N";
+            return out.str();
+        case StatusCode::integration_step_too_small:
+            out << "the integrator's step fell to " << status.value
+                << " s, below its minimum: the tolerances are too tight for double precision or the motion too"
+                   " violent (loosen --atol/--rtol)";
+            return out.str();
+        case StatusCode::integration_too_many_steps:
+            out << "the integrator took " << status.value
+                << " steps over one interval without reaching its end (tolerances too tight?)";
+            return out.str();
+        case StatusCode::workspace_edge:
+            out << "the motion reached the edge of the workspace: limb " << j << ": link A_" << j << "M_" << j
+                << (status.value > 0.5 * robot.link_length ? " is normal to its rail" : " lies along its rail")
+                << " (d_" << j << "^M = " << status.value << " m, l = " << robot.link_length
+                << " m), so no pose has u_" << j << " further out";
             return out.str();
         case StatusCode::assembly_mode_lost:
             out << "direct kinematics lost the assembly mode (residual " << status.value

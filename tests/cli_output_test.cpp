@@ -215,12 +215,14 @@ TEST(CliOutput, AllowLimitsNeverWritesANonFiniteNumber) {
     const fs::path trajectory = harmonicFile(dir, "overflow.yaml", "{amplitude: 1.0e-3, frequency: 1.0e160}");
     const std::string args = "inverse-dynamics --allow-limits --trajectory " + trajectory.string() +
                              " --duration 1e-157 --rate 3e160";
+    // refused before anything is computed (the duration and rate are outside their accepted
+    // ranges) or, were they accepted, when the motion overflows: never a file, never a NaN
     const CliResult file = runCli(args + " -o " + (dir / "out.csv").string());
-    EXPECT_EQ(file.exit_code, 1);
-    EXPECT_NE(file.err.find("not finite"), std::string::npos) << file.err;
+    EXPECT_NE(file.exit_code, 0);
+    EXPECT_NE(file.err.find("finite"), std::string::npos) << file.err;
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
     const CliResult out = runCli(args);
-    EXPECT_EQ(out.exit_code, 1);
+    EXPECT_NE(out.exit_code, 0);
     EXPECT_EQ(out.out.find("nan"), std::string::npos) << out.out;
     EXPECT_EQ(out.out.find("inf"), std::string::npos) << out.out;
 }

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 
+#include "nocdyn/error.hpp"
 #include "nocdyn/prr3/envelope.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "support.hpp"
@@ -121,6 +123,25 @@ TEST(Envelope, SweepIsLogSpacedOverEveryAxis) {
             EXPECT_LE(points[k].amplitude, points[k - 1].amplitude * (1 + 1e-9));
         }
     }
+}
+
+TEST(Envelope, FrequenciesAndCountsOutsideTheirRangeAreRefusedNotIterated) {
+    // 1e300 Hz used to bisect without end; 10^8 points to run for days.
+    const prr3::Model model;
+    prr3::EnvelopeOptions options;
+    options.max_frequency = 1e300;
+    EXPECT_THROW((void)prr3::operatingEnvelope(model, options), Error);
+    options = {};
+    options.frequencies = 100000000;
+    EXPECT_THROW((void)prr3::operatingEnvelope(model, options), Error);
+    options = {};
+    options.min_frequency = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_THROW((void)prr3::operatingEnvelope(model, options), Error);
+    EXPECT_THROW((void)prr3::maximumAmplitude(model, prr3::Axis::x, 1e300, {}), Error);
+    // the top of the accepted range finishes, force-bound
+    const prr3::EnvelopePoint top = prr3::maximumAmplitude(model, prr3::Axis::x, prr3::kEnvelopeMaxFrequency, {});
+    EXPECT_EQ(top.limit, prr3::BindingLimit::force);
+    EXPECT_GT(top.amplitude, 0.0);
 }
 
 }  // namespace

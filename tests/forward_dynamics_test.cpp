@@ -172,5 +172,47 @@ TEST(ForwardDynamics, EvaluationAndIntegrationAllocateNothing) {
     EXPECT_TRUE(std::isfinite(checksum));
 }
 
+TEST(Simulator, PushedPastTheWorkspaceEdgeNamesTheEdgeAndTheLimb) {
+    // 2000 N on slider 1 alone drives u_1 until link 1 stands normal to its rail, where u_1
+    // turns back: the simulation stops there naming limb 1 and the edge, not a lost mode.
+    const prr3::Model model;
+    prr3::Simulator simulator(model);
+    ASSERT_TRUE(simulator.reset(Pose::Zero()).ok());
+    Status status;
+    for (int k = 0; k < 1000 && status.ok(); ++k) status = simulator.advance(1e-3, prr3::JointVector(2000.0, 0.0, 0.0));
+    ASSERT_FALSE(status.ok());
+    EXPECT_EQ(status.code, StatusCode::workspace_edge) << describe(status, model.parameters);
+    EXPECT_EQ(status.limb, 0);
+    EXPECT_NE(describe(status, model.parameters).find("edge of the workspace: limb 1"), std::string::npos);
+}
+
+TEST(Simulator, ImpossibleTolerancesEndWithAnErrorInsteadOfCrawling) {
+    // Tolerances at the limit of double precision shrink the step without end (until t + h
+    // equals t): the minimum step and the step budget stop it with an error naming the cause.
+    const prr3::Model model;
+    auto advanceWith = [&](const prr3::SimulatorOptions& options) {
+        prr3::Simulator simulator(model, options);
+        EXPECT_TRUE(simulator.reset(Pose::Zero(), Twist(0.1, 0.01, 0.0)).ok());
+        return simulator.advance(1e-3, prr3::JointVector(10.0, -5.0, 3.0));
+    };
+    prr3::SimulatorOptions tight;
+    tight.absolute_tolerance = 1e-22;
+    tight.relative_tolerance = 1e-22;
+    ASSERT_TRUE(advanceWith(prr3::SimulatorOptions{}).ok());
+
+    prr3::SimulatorOptions budget = tight;
+    budget.max_steps = 1000;
+    const Status steps = advanceWith(budget);
+    EXPECT_EQ(steps.code, StatusCode::integration_too_many_steps) << describe(steps, model.parameters);
+    EXPECT_NE(describe(steps, model.parameters).find("integrator took 1000 steps"), std::string::npos);
+
+    prr3::SimulatorOptions floor = tight;
+    floor.min_step = 1e-6;
+    const Status small = advanceWith(floor);
+    EXPECT_EQ(small.code, StatusCode::integration_step_too_small) << describe(small, model.parameters);
+    EXPECT_LT(small.value, 1e-6);
+    EXPECT_NE(describe(small, model.parameters).find("below its minimum"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace nocdyn::test

@@ -2,13 +2,18 @@
 // input with the field and line named in the error.
 #include <gtest/gtest.h>
 
+#include <sys/stat.h>
+
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
+#include "nocdyn/prr3/forward_dynamics.hpp"
 #include "nocdyn/prr3/model.hpp"
 
 namespace nocdyn::test {
@@ -126,6 +131,131 @@ TEST(RobotModel, InvalidParametersThroughTheLibraryThrow) {
     EXPECT_THROW(prr3::Model{robot}, Error);
 }
 
+TEST(RobotFile, DuplicateKeysSectionsAndDocumentsAreErrors) {
+    expectRobotError(replaced(kRobot, "  link_com: 0.079575\n", "  link_com: 0.079575\n  link_com: 0.05\n"),
+                     {"robot.yaml:7", "geometry.link_com", "duplicate key", "line 6"});
+    expectRobotError(kRobot + "slider: {mass: 3}\n", {"robot.yaml:11", "slider", "duplicate key", "line 7"});
+    expectRobotError(kRobot + "---\nname: second\n", {"robot.yaml:11", "second YAML document"});
+}
+
+TEST(RobotFile, OnlyDecimalNumbersAreAccepted) {
+    expectRobotError(replaced(kRobot, "0.15915", "0x1p-3"), {"robot.yaml:5", "geometry.link_length", "'0x1p-3'"});
+    expectRobotError(replaced(kRobot, "0.15915", ".inf"), {"geometry.link_length", "finite"});
+    expectRobotError(replaced(kRobot, "0.15915", "1e999"), {"geometry.link_length", "'1e999'", "beyond the range"});
+    expectRobotError(replaced(kRobot, "0.15915", "1e-400"), {"geometry.link_length", "'1e-400'", "beyond the range"});
+}
+
+TEST(RobotFile, ByteOrderMarkIsAccepted) {
+    const RobotParameters robot = io::parseRobot("\xEF\xBB\xBF" + kRobot, "robot.yaml");
+    EXPECT_EQ(robot.name, "test-robot");
+    EXPECT_EQ(robot.link_length, 0.15915);
+}
+
+TEST(RobotFile, RangeErrorsNameTheLineAndTheAcceptedRange) {
+    // 1e308 is finite but its products overflow: refused by the plausibility range, on its line
+    expectRobotError(replaced(kRobot, "inertia: 6.17311382e-3", "inertia: 1e308"),
+                     {"robot.yaml:9", "platform.inertia", "[1e-15, 1e+12] kg m^2", "got 1e+308"});
+    // a subnormal value is a number, only too small
+    expectRobotError(replaced(kRobot, "{mass: 1.46966}", "{mass: 1e-310}"), {"robot.yaml:7", "slider.mass", "got 1e-310"});
+    try {
+        (void)io::parseRobot(replaced(kRobot, "{mass: 1.46966}", "{mass: 1e-310}"), "robot.yaml");
+    } catch (const Error& e) {
+        EXPECT_EQ(std::string(e.what()).find("finite"), std::string::npos) << e.what();
+    }
+    expectRobotError(replaced(kRobot, "link_com: 0.079575", "link_com: 0.2"), {"robot.yaml:6", "geometry.link_com"});
+    expectRobotError(replaced(kRobot, "link_length: 0.15915", "link_length: 0.08"),
+                     {"robot.yaml:5", "geometry.link_length", "cannot be assembled"});
+    expectRobotError(kRobot + "limits: {max_condition: 1}\n", {"robot.yaml:11", "limits.max_condition"});
+}
+
+TEST(RobotModel, EveryRangeHoldsInTheLibraryToo) {
+    RobotParameters robot;
+    robot.platform_inertia = 1e308;
+    try {
+        prr3::Model model{robot};
+        ADD_FAILURE() << "accepted platform.inertia = 1e308";
+    } catch (const ParameterError& e) {
+        EXPECT_EQ(e.field(), "platform.inertia");
+    }
+    robot = RobotParameters{};
+    robot.link_mass = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_THROW(prr3::Model{robot}, ParameterError);
+}
+
+/// A scratch file of this test binary's temporary folder with the given content.
+std::string scratchFile(const std::string& name, const std::string& content) {
+    const std::string path = testing::TempDir() + "/" + name;
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << content;
+    return path;
+}
+
+void expectFileError(const std::function<void()>& read, std::initializer_list<const char*> fragments) {
+    try {
+        read();
+        ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+        for (const char* fragment : fragments) {
+            EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what() << "\nmissing: " << fragment;
+        }
+    }
+}
+
+TEST(InputFiles, SpecialFilesAreRefusedWithoutReading) {
+    // /dev/zero never ends and a FIFO without writer blocks: both are refused at once.
+    expectFileError([] { (void)io::readCsvFile("/dev/zero"); }, {"/dev/zero", "not a regular file"});
+    expectFileError([] { (void)io::loadTrajectory("/dev/urandom"); }, {"/dev/urandom", "not a regular file"});
+    expectFileError([] { (void)io::loadRobot("/dev/null"); }, {"not a regular file"});
+    const std::string fifo = testing::TempDir() + "/reader_fifo";
+    std::filesystem::remove(fifo);
+    ASSERT_EQ(::mkfifo(fifo.c_str(), 0600), 0);
+    expectFileError([&] { (void)io::readCsvFile(fifo); }, {"reader_fifo", "not a regular file"});
+    std::filesystem::remove(fifo);
+    expectFileError([] { (void)io::loadRobot(testing::TempDir()); }, {"not a regular file"});
+}
+
+TEST(InputFiles, OversizedFilesAreRefusedWithTheCap) {
+    // sparse files: the size is refused before anything is read
+    const std::string yaml = scratchFile("big.yaml", "");
+    std::filesystem::resize_file(yaml, (std::uintmax_t{4} << 20) + 1);
+    expectFileError([&] { (void)io::loadRobot(yaml); }, {"big.yaml", "larger than the 4 MiB accepted"});
+    const std::string csv = scratchFile("big.csv", "");
+    std::filesystem::resize_file(csv, (std::uintmax_t{256} << 20) + 1);
+    expectFileError([&] { (void)io::readCsvFile(csv); }, {"big.csv", "larger than the 256 MiB accepted"});
+    std::filesystem::remove(yaml);
+    std::filesystem::remove(csv);
+}
+
+TEST(Csv, DuplicateColumnsHexFloatsAndNonFiniteCellsAreErrors) {
+    expectFileError([] { (void)io::parseCsv("t,tau1,tau1\n0,1,2\n", "f.csv"); }, {"f.csv:1", "'tau1' appears twice"});
+    expectFileError([] { (void)io::parseCsv("t,tau1\n0,0x1p3\n", "f.csv"); }, {"f.csv:2", "column 'tau1'", "'0x1p3'"});
+    expectFileError([] { (void)io::parseCsv("t,tau1\n0,nan\n", "f.csv"); }, {"f.csv:2", "'nan'"});
+    expectFileError([] { (void)io::parseCsv("t,tau1\n0,inf\n", "f.csv"); }, {"f.csv:2", "'inf'"});
+    expectFileError([] { (void)io::parseCsv("t,,x\n0,1,2\n", "f.csv"); }, {"f.csv:1", "empty column name"});
+}
+
+TEST(Csv, ByteOrderMarkIsSkipped) {
+    const io::Table table = io::parseCsv("\xEF\xBB\xBFt,tau1\n0,1\n", "f.csv");
+    ASSERT_EQ(table.columns.size(), 2u);
+    EXPECT_EQ(table.columns[0], "t");
+    EXPECT_TRUE(table.has("t"));
+}
+
+TEST(Csv, ErrorsNameTheRealLineAfterBlankLines) {
+    expectFileError([] { (void)io::parseCsv("\nt,tau1\n\n0,1\n\n\n0.1,x\n", "f.csv"); }, {"f.csv:7:", "column 'tau1'"});
+    // forcesFromTable reports the file's line of a time that does not increase
+    const io::Table table = io::parseCsv("t,tau1,tau2,tau3\n\n0,1,2,3\n\n0.1,1,2,3\n0.1,1,2,3\n", "f.csv");
+    EXPECT_EQ(table.lines, (std::vector<std::size_t>{3, 5, 6}));
+    expectFileError([&] { (void)prr3::forcesFromTable(table, "f.csv"); }, {"f.csv:6:", "column 't'", "does not increase"});
+}
+
+TEST(Csv, RowAndColumnCountsAreBounded) {
+    std::string wide;
+    for (std::size_t k = 0; k <= io::kMaxCsvColumns; ++k) wide += (k ? ",c" : "c") + std::to_string(k);
+    expectFileError([&] { (void)io::parseCsv(wide + "\n", "f.csv"); }, {"f.csv:1", "columns, at most 256"});
+    const std::string long_line = "t\n" + std::string(io::kMaxCsvLineBytes + 1, '1') + "\n";
+    expectFileError([&] { (void)io::parseCsv(long_line, "f.csv"); }, {"f.csv:2", "line longer than"});
+}
+
 const std::string kTrajectory = R"(duration: 0.3
 x:     {offset: 0.001, harmonics: [{amplitude: -0.002, frequency: 10, phase: 0.5235987755982988}]}
 theta: {harmonics: [{amplitude: 0.05, frequency: 5}, {amplitude: 0.01, frequency: 20, phase: 1}]}
@@ -175,7 +305,7 @@ TEST(TrajectoryFile, BadInputsNameFieldAndLine) {
     expectTrajectoryError("duration: -1\n", {"duration", "> 0"});
     expectTrajectoryError("duration: soon\n", {"duration", "'soon'"});
     expectTrajectoryError("x: {harmonics: [{frequency: 3}]}\n", {"x.harmonics[0].amplitude", "missing"});
-    expectTrajectoryError("x: {harmonics: [{amplitude: 1, frequency: -3}]}\n", {"x.harmonics[0].frequency", ">= 0"});
+    expectTrajectoryError("x: {harmonics: [{amplitude: 1, frequency: -3}]}\n", {"x.harmonics[0].frequency", "[0, 1e+06] Hz"});
     expectTrajectoryError("x:\n  harmonics:\n    - {amplitude: 1, frequency: 3, phse: 1}\n",
                           {"t.yaml:3", "x.harmonics[0].phse", "unknown key"});
     expectTrajectoryError("x: {harmonics: 3}\n", {"x.harmonics", "list"});
@@ -209,6 +339,17 @@ TEST(Csv, RaggedRowsAndNonNumbersAreErrorsWithTheLine) {
 
 TEST(Csv, UnwritablePathLeavesNothingBehind) {
     EXPECT_THROW(io::writeCsvFile("/nonexistent-dir/x.csv", io::Table{{"t"}, {{1.0}}}), Error);
+}
+
+TEST(TrajectoryFile, DuplicatesRangesAndSecondDocumentsAreErrors) {
+    expectTrajectoryError("duration: 0.2\nduration: 0.3\n", {"t.yaml:2", "duration", "duplicate key"});
+    expectTrajectoryError("x: {offset: 0}\nx: {offset: 1}\n", {"t.yaml:2", "x", "duplicate key"});
+    expectTrajectoryError("x: {harmonics: [{amplitude: 1, frequency: 1e300}]}\n", {"x.harmonics[0].frequency", "[0, 1e+06] Hz"});
+    expectTrajectoryError("x: {harmonics: [{amplitude: 0x10, frequency: 1}]}\n", {"x.harmonics[0].amplitude", "'0x10'"});
+    expectTrajectoryError("duration: 0.2\n---\nduration: 0.3\n", {"t.yaml:2", "second YAML document"});
+    // yaml-cpp 0.7 LoadAll never returns on a lone comma: refused, at once
+    expectTrajectoryError(",", {"t.yaml:1", "second YAML document"});
+    EXPECT_EQ(*io::parseTrajectory("\xEF\xBB\xBF" "duration: 0.25\n", "t.yaml").duration, 0.25);
 }
 
 }  // namespace

@@ -2,8 +2,12 @@
 // geometry, by the paper's literal formulas and by finite differences.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <limits>
 #include <numbers>
+#include <string>
 
+#include "nocdyn/prr3/dynamics.hpp"
 #include "support.hpp"
 
 namespace nocdyn::test {
@@ -108,6 +112,28 @@ TEST(VelocityKinematics, PlatformTwistFromActuatorRatesInvertsEquation5) {
         ASSERT_TRUE(prr3::velocityFromActuatorRates(model, data, du).ok());
         EXPECT_LT((data.t_M - t).norm(), 1e-12 * (1 + t.norm())) << describePose(p);
     }
+}
+
+TEST(Messages, NonFiniteValuesAreNotCalledMeasurements) {
+    // A NaN pose is not "beyond the link length by nan mm", a NaN force not "peak force exceeded".
+    const prr3::Model model;
+    prr3::Data data;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const Status pose = prr3::inverseDisplacement(model, data, Pose(nan, 0.0, 0.0));
+    ASSERT_FALSE(pose.ok());
+    const std::string pose_message = describe(pose, model.parameters);
+    EXPECT_EQ(pose_message.find("nan mm"), std::string::npos) << pose_message;
+    EXPECT_EQ(pose_message.find("beyond the link length"), std::string::npos) << pose_message;
+    EXPECT_NE(pose_message.find("not a number"), std::string::npos) << pose_message;
+
+    ASSERT_TRUE(prr3::inverseDynamics(model, data, Pose::Zero(), Twist::Zero(), Twist::Zero()).ok());
+    data.tau(1) = nan;
+    const Status force = prr3::checkForce(model, data);
+    ASSERT_EQ(force.code, StatusCode::force_exceeded);
+    EXPECT_EQ(force.limb, 1);
+    const std::string force_message = describe(force, model.parameters);
+    EXPECT_EQ(force_message.find("peak force exceeded"), std::string::npos) << force_message;
+    EXPECT_NE(force_message.find("not finite: limb 2"), std::string::npos) << force_message;
 }
 
 TEST(Workspace, PoseBeyondARailIsRejectedNamingTheLimb) {

@@ -24,6 +24,14 @@ void run(ControlOptions options) {
     const prr3::Model model(loadRobotOrDefault(options.robot));
     const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
     options.c.loop.duration = chooseDuration(options.duration, trajectory);
+    if (!(options.c.loop.duration <= kMaxSimulatedDuration)) {
+        throw Error(options.trajectory + ": duration " + std::to_string(options.c.loop.duration) +
+                    " s; control accepts at most " + std::to_string(kMaxSimulatedDuration) + " s (give --duration)");
+    }
+    if (!(options.c.loop.duration * options.c.loop.rate <= kMaxSimulatedSamples)) {
+        throw Error("duration " + std::to_string(options.c.loop.duration) + " s at --rate " +
+                    std::to_string(options.c.loop.rate) + " Hz gives more than 1e7 ticks, the most control accepts");
+    }
     options.c.loop.peak_force = options.no_saturation ? 0.0 : model.parameters.peak_force;
     const control::ClosedLoopResult result = runControlCase(model, trajectory, options.c);
     if (!options.output.empty()) writeTable(control::toTable(result), options.output);
@@ -62,22 +70,22 @@ void addControlCommand(CLI::App& app) {
     command->add_option("--plant", options->c.plant, "simbody (the independent model) or nocdyn (our forward dynamics)")
         ->check(CLI::IsMember({"simbody", "nocdyn"}))
         ->capture_default_str();
-    command->add_option("--rate", options->c.loop.rate, "Controller rate [Hz]")->check(CLI::PositiveNumber)->capture_default_str();
+    command->add_option("--rate", options->c.loop.rate, "Controller rate [Hz]")->check(finiteIn(kMinRate, 1e7, "Hz"))->capture_default_str();
     command->add_option("--duration", options->duration, "Seconds [default: the file's duration, else 0.2]")
-        ->check(CLI::PositiveNumber);
+        ->check(finiteIn(kMinDuration, kMaxSimulatedDuration, "s"));
     command->add_option("--natural-frequency", options->c.natural_frequency, "f_n of the error dynamics [Hz]")
-        ->check(CLI::PositiveNumber)
+        ->check(finiteIn(1e-3, 1e4, "Hz"))
         ->capture_default_str();
     command->add_option("--payload-mass", options->c.payload_mass,
                         "Model mismatch: mass added to the plant's platform only [kg]")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finiteIn(0.0, 1e6, "kg"));
     command->add_option("--payload-inertia", options->c.payload_inertia,
                         "Model mismatch: inertia about C added to the plant's platform only [kg m^2]")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finiteIn(0.0, 1e12, "kg m^2"));
     command->add_option("--noise-u", options->c.loop.noise_u, "Std. dev. of the u measurement noise [m]")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finiteIn(0.0, 1.0, "m"));
     command->add_option("--noise-du", options->c.loop.noise_du, "Std. dev. of the du measurement noise [m/s]")
-        ->check(CLI::NonNegativeNumber);
+        ->check(finiteIn(0.0, 1e3, "m/s"));
     command->add_option("--seed", options->c.loop.seed, "Noise seed")->capture_default_str();
     command->add_flag("--no-saturation", options->no_saturation, "Do not clip the forces at the peak force");
     command->add_option("--output,-o", options->output,

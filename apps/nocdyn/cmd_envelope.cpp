@@ -19,6 +19,9 @@ struct EnvelopeOptions {
 };
 
 void run(const EnvelopeOptions& options) {
+    if (options.envelope.max_frequency < options.envelope.min_frequency) {
+        throw CLI::ValidationError("--max-frequency", "must be at least --min-frequency");
+    }
     const prr3::Model model(loadRobotOrDefault(options.robot));
     const auto points = prr3::operatingEnvelope(model, options.envelope);
     if (!options.output.empty()) writeTable(envelopeTable(points), options.output);
@@ -47,10 +50,14 @@ void addEnvelopeCommand(CLI::App& app) {
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]");
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")->capture_default_str();
-    command->add_option("--min-frequency", options->envelope.min_frequency, "[Hz]")->check(CLI::PositiveNumber)->capture_default_str();
-    command->add_option("--max-frequency", options->envelope.max_frequency, "[Hz]")->check(CLI::PositiveNumber)->capture_default_str();
+    command->add_option("--min-frequency", options->envelope.min_frequency, "[Hz]")
+        ->check(finiteIn(prr3::kEnvelopeMinFrequency, prr3::kEnvelopeMaxFrequency, "Hz"))
+        ->capture_default_str();
+    command->add_option("--max-frequency", options->envelope.max_frequency, "[Hz], at least --min-frequency")
+        ->check(finiteIn(prr3::kEnvelopeMinFrequency, prr3::kEnvelopeMaxFrequency, "Hz"))
+        ->capture_default_str();
     command->add_option("--points", options->envelope.frequencies, "Frequencies per axis")
-        ->check(CLI::PositiveNumber)
+        ->check(CLI::Range(1, prr3::kEnvelopeMaxPoints))
         ->capture_default_str();
     command->callback([options] { run(*options); });
 }

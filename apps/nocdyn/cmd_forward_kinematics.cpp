@@ -81,7 +81,8 @@ void addForwardKinematicsCommand(CLI::App& app) {
         "Exact: the loop closures reduce to one polynomial in tan(theta/2) solved by its companion matrix; each\n"
         "root is polished by Newton and checked by inverse displacement to 1e-12 m. By default only the poses\n"
         "with every limb on its working branch (phi_A in (0, pi/2)) are listed.");
-    command->add_option("U", options->u, "Actuator displacements u1 u2 u3 [m]")->required()->expected(3)->allow_extra_args(false);
+    command->add_option("U", options->u, "Actuator displacements u1 u2 u3 [m]")->required()->expected(3)->allow_extra_args(false)
+        ->check(finiteIn(-1e3, 1e3, "m"));
     addRobotOption(*command, options->robot);
     command->add_flag("--json", options->json, "Print JSON");
     command->add_flag("--all-branches", options->all_branches, "Also list the poses with a limb off its working branch");

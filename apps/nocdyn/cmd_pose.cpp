@@ -110,9 +110,11 @@ void addPoseCommand(CLI::App& app) {
         "Joint variables (u, phi_A, phi_M), joint centres A_j and M_j, the Jacobians H and D, their\n"
         "condition numbers, the joint-space inertia I and the stroke used, at one platform pose.\n"
         "Example: nocdyn pose 0.05 0.001 -0.002   (theta in rad, x and y in m)");
-    command->add_option("THETA", options->theta, "Platform rotation from the reference posture [rad]")->required();
-    command->add_option("X", options->x, "x of the platform centroid C [m]")->required();
-    command->add_option("Y", options->y, "y of the platform centroid C [m]")->required();
+    command->add_option("THETA", options->theta, "Platform rotation from the reference posture [rad]")
+        ->required()
+        ->check(finiteIn(-1e6, 1e6, "rad"));
+    command->add_option("X", options->x, "x of the platform centroid C [m]")->required()->check(finiteIn(-1e3, 1e3, "m"));
+    command->add_option("Y", options->y, "y of the platform centroid C [m]")->required()->check(finiteIn(-1e3, 1e3, "m"));
     addRobotOption(*command, options->robot);
     command->add_flag("--json", options->json, "Write JSON instead of text");
     command->callback([options] { run(*options); });

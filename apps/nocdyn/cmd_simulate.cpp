@@ -52,6 +52,14 @@ void run(const SimulateOptions& options) {
 
     const double duration = options.duration ? *options.duration : forces.t.back() - t0;
     if (!(duration > 0.0)) throw Error(options.forces + ": a single force sample: give --duration");
+    if (!(duration <= kMaxSimulatedDuration)) {
+        throw Error(options.forces + ": spans " + std::to_string(duration) + " s; simulate accepts at most " +
+                    std::to_string(kMaxSimulatedDuration) + " s (give a shorter --duration)");
+    }
+    if (!(duration * options.rate <= kMaxSimulatedSamples)) {
+        throw Error("--duration " + std::to_string(duration) + " s at --rate " + std::to_string(options.rate) +
+                    " Hz gives more than 1e7 output samples, the most simulate accepts");
+    }
     std::vector<double> times = prr3::sampleTimes(duration, options.rate);
     times.push_back(duration);  // include the end point
     for (double& t : times) t += t0;
@@ -77,16 +85,16 @@ void addSimulateCommand(CLI::App& app) {
         ->required()
         ->check(CLI::ExistingFile);
     command->add_option("--duration", options->duration, "Seconds to simulate [default: the span of the force file]")
-        ->check(CLI::PositiveNumber);
+        ->check(finiteIn(kMinDuration, kMaxSimulatedDuration, "s"));
     command->add_option("--rate", options->rate, "Output samples per second")
-        ->check(CLI::PositiveNumber)
+        ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
         ->capture_default_str();
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]");
     command->add_option("--atol", options->absolute_tolerance, "Integrator absolute tolerance on u [m] and du [m/s]")
-        ->check(CLI::PositiveNumber)
+        ->check(finiteIn(1e-15, 1e-2, ""))
         ->capture_default_str();
     command->add_option("--rtol", options->relative_tolerance, "Integrator relative tolerance")
-        ->check(CLI::PositiveNumber)
+        ->check(finiteIn(1e-14, 1e-2, ""))
         ->capture_default_str();
     command->callback([options] { run(*options); });
 }

@@ -13,6 +13,13 @@
 
 namespace nocdyn::cli {
 
+/// Accepted ranges of the sampling options (README, "Command line").
+inline constexpr double kMinRate = 1.0, kMaxRate = 1e8;             // --rate [Hz]
+inline constexpr double kMinDuration = 1e-6, kMaxDuration = 1e6;    // --duration [s]
+/// simulate and control integrate over time and hold every output sample in memory.
+inline constexpr double kMaxSimulatedDuration = 1e3;                 // [s]
+inline constexpr double kMaxSimulatedSamples = 1e7;
+
 /// Options every trajectory-driven command takes.
 struct TrajectoryOptions {
     std::string trajectory;
@@ -21,6 +28,10 @@ struct TrajectoryOptions {
     double rate = 10000.0;
     std::string output;
 };
+
+/// A CLI11 check: the argument is a finite decimal number in [lo, hi] (unit named in the
+/// message, e.g. "Hz"); nan, inf and hex are refused. Any failure exits with status 2.
+[[nodiscard]] CLI::Validator finiteIn(double lo, double hi, const std::string& unit);
 
 /// Adds --robot to a command (empty = the paper's prototype).
 void addRobotOption(CLI::App& command, std::string& robot_path);

@@ -32,7 +32,11 @@ int main(int argc, char** argv) {
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
-        return app.exit(e);
+        // --help and --version exit 0; a malformed argument is one line on stderr and exit 2
+        // (README, "Command line").
+        if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+        std::cerr << "nocdyn: error: " << e.what() << " (see --help)\n";
+        return 2;
     } catch (const nocdyn::Error& e) {
         std::cerr << "nocdyn: error: " << e.what() << "\n";
         return 1;

@@ -4,6 +4,9 @@
 #pragma once
 
 #include <string>
+#include <utility>
+
+#include "nocdyn/error.hpp"
 
 namespace nocdyn {
 
@@ -34,10 +37,40 @@ struct RobotParameters {
     [[nodiscard]] double platformCircumradius() const;
 };
 
-/// Throws nocdyn::Error naming the field and the reason when the parameters are not
-/// physical: a non-positive (or non-finite) length, mass, inertia, stroke or force,
-/// link_com outside [0, link_length], max_condition <= 1, or a robot that cannot be
-/// assembled at its reference posture (0 < d_j^M < l must hold there).
+/// A robot parameter out of its accepted range. field() is its dotted name in the robot file
+/// (e.g. "geometry.link_com"), reason() the message without the robot's name, so that a
+/// reader can prefix the file and line of that field.
+class ParameterError : public Error {
+public:
+    ParameterError(const std::string& robot, std::string field, std::string reason)
+        : Error("robot '" + robot + "': " + field + ": " + reason), field_(std::move(field)), reason_(std::move(reason)) {}
+    [[nodiscard]] const std::string& field() const { return field_; }
+    [[nodiscard]] const std::string& reason() const { return reason_; }
+
+private:
+    std::string field_, reason_;
+};
+
+/// Plausibility range of the positive parameters (SI), so that no product in the model
+/// overflows or loses all precision:
+///   lengths (base_side, platform_side, link_length, stroke)  [1e-6, 1e3] m
+///   masses                                                   [1e-6, 1e6] kg
+///   moments of inertia                                       [1e-15, 1e12] kg m^2
+///   peak_force                                               [1e-3, 1e9] N
+///   max_condition                                            (1, 1e300]
+/// link_com lies in [0, link_length].
+namespace parameter_limits {
+inline constexpr double kMinLength = 1e-6, kMaxLength = 1e3;
+inline constexpr double kMinMass = 1e-6, kMaxMass = 1e6;
+inline constexpr double kMinInertia = 1e-15, kMaxInertia = 1e12;
+inline constexpr double kMinForce = 1e-3, kMaxForce = 1e9;
+inline constexpr double kMaxCondition = 1e300;
+}  // namespace parameter_limits
+
+/// Throws nocdyn::ParameterError naming the field and the reason when the parameters are not
+/// physical: a value outside its plausibility range above (NaN included), link_com outside
+/// [0, link_length], or a robot that cannot be assembled at its reference posture
+/// (0 < d_j^M < l must hold there).
 void validate(const RobotParameters& robot);
 
 }  // namespace nocdyn

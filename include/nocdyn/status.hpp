@@ -20,6 +20,14 @@ enum class StatusCode {
     force_exceeded,
     /// A direct-kinematics tracker lost its assembly mode: value = residual [m].
     assembly_mode_lost,
+    /// Actuator displacements beyond the edge of the workspace: limb j's link is (nearly)
+    /// normal to its rail, or along it, where u_j turns back; value = d_j^M [m].
+    workspace_edge,
+    /// The integrator's step fell below its minimum (tolerances too tight for double
+    /// precision, or a motion too violent): value = the step it needed [s].
+    integration_step_too_small,
+    /// The integrator took more steps than allowed over one interval: value = the steps.
+    integration_too_many_steps,
     /// General model: a limb cannot reach the pose on its home branch. value = how far the
     /// pose is out of the limb's reach [m].
     unreachable,

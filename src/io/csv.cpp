@@ -9,12 +9,12 @@
 #include <thread>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <ostream>
 #include <sstream>
 
+#include "file_util.hpp"
 #include "nocdyn/error.hpp"
 
 namespace nocdyn::io {
@@ -180,60 +180,81 @@ void writeTextFile(const std::string& path, const std::string& text) {
 
 namespace {
 
-std::vector<std::string> splitLine(const std::string& line) {
-    std::vector<std::string> cells;
-    std::string cell;
-    std::istringstream in(line);
-    while (std::getline(in, cell, ',')) cells.push_back(cell);
-    if (!line.empty() && line.back() == ',') cells.emplace_back();
-    return cells;
-}
-
-std::string trim(const std::string& s) {
+std::string_view trim(std::string_view s) {
     const auto first = s.find_first_not_of(" \t\r");
-    if (first == std::string::npos) return {};
+    if (first == std::string_view::npos) return {};
     const auto last = s.find_last_not_of(" \t\r");
     return s.substr(first, last - first + 1);
 }
 
+/// The cells of one line, split at every comma (a trailing comma makes an empty last cell).
+void splitLine(std::string_view line, std::vector<std::string_view>& cells) {
+    cells.clear();
+    for (;;) {
+        const auto comma = line.find(',');
+        cells.push_back(trim(line.substr(0, comma)));
+        if (comma == std::string_view::npos) return;
+        line.remove_prefix(comma + 1);
+    }
+}
+
 }  // namespace
 
-Table readCsvFile(const std::string& path) {
-    std::ifstream in(path);
-    if (!in) throw Error("cannot open CSV file '" + path + "'");
+Table parseCsv(std::string_view text, const std::string& source) {
+    detail::stripByteOrderMark(text);
     Table table;
-    std::string line;
+    std::vector<std::string_view> cells;
     std::size_t line_number = 0;
-    while (std::getline(in, line)) {
+    auto at = [&](std::size_t line) { return source + ":" + std::to_string(line) + ": "; };
+    while (!text.empty()) {
+        const auto newline = text.find('\n');
+        const std::string_view line = text.substr(0, newline);
+        text.remove_prefix(newline == std::string_view::npos ? text.size() : newline + 1);
         ++line_number;
+        if (line.size() > kMaxCsvLineBytes) {
+            throw Error(at(line_number) + "line longer than " + std::to_string(kMaxCsvLineBytes) + " bytes");
+        }
         if (trim(line).empty()) continue;
-        std::vector<std::string> cells = splitLine(line);
+        splitLine(line, cells);
         if (table.columns.empty()) {
-            for (auto& c : cells) table.columns.push_back(trim(c));
+            if (cells.size() > kMaxCsvColumns) {
+                throw Error(at(line_number) + std::to_string(cells.size()) + " columns, at most " +
+                            std::to_string(kMaxCsvColumns) + " accepted");
+            }
+            for (const std::string_view c : cells) {
+                const std::string name(c);
+                if (name.empty()) throw Error(at(line_number) + "empty column name in the header");
+                if (table.has(name)) throw Error(at(line_number) + "column '" + name + "' appears twice in the header");
+                table.columns.push_back(name);
+            }
             continue;
         }
         if (cells.size() != table.columns.size()) {
-            throw Error(path + ":" + std::to_string(line_number) + ": expected " +
-                        std::to_string(table.columns.size()) + " values, found " +
+            throw Error(at(line_number) + "expected " + std::to_string(table.columns.size()) + " values, found " +
                         std::to_string(cells.size()));
         }
-        std::vector<double> row;
-        row.reserve(cells.size());
+        if (table.rows.size() >= kMaxCsvRows) {
+            throw Error(at(line_number) + "more than " + std::to_string(kMaxCsvRows) + " rows");
+        }
+        std::vector<double> row(cells.size());
         for (std::size_t k = 0; k < cells.size(); ++k) {
-            const std::string text = trim(cells[k]);
-            char* end = nullptr;
-            errno = 0;
-            const double value = std::strtod(text.c_str(), &end);
-            if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE || !std::isfinite(value)) {
-                throw Error(path + ":" + std::to_string(line_number) + ": column '" + table.columns[k] +
-                            "': '" + text + "' is not a finite number");
+            const std::optional<double> value = detail::parseDecimal(cells[k]);
+            if (!value) {
+                throw Error(at(line_number) + "column '" + table.columns[k] + "': '" + std::string(cells[k]) + "' " +
+                            detail::numberProblem(cells[k]));
             }
-            row.push_back(value);
+            row[k] = *value;
         }
         table.rows.push_back(std::move(row));
+        table.lines.push_back(line_number);
     }
-    if (table.columns.empty()) throw Error("CSV file '" + path + "' is empty");
+    if (table.columns.empty()) throw Error("CSV file '" + source + "' is empty");
     return table;
+}
+
+Table readCsvFile(const std::string& path) {
+    const std::string text = detail::readRegularFile(path, "CSV file", detail::kMaxCsvBytes);
+    return parseCsv(text, path);
 }
 
 }  // namespace nocdyn::io

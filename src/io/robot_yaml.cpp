@@ -50,8 +50,12 @@ RobotParameters parseRobot(const std::string& text, const std::string& source) {
     }
     try {
         validate(robot);
-    } catch (const Error& e) {
-        throw Error(source + ": " + e.what());
+    } catch (const ParameterError& e) {
+        // name the file's line of the field at fault: "geometry.link_com" -> root[geometry][link_com]
+        const std::string& field = e.field();
+        const auto dot = field.find('.');
+        const YAML::Node node = root[field.substr(0, dot)][field.substr(dot + 1)];
+        detail::fail(top / field, node, e.reason());
     }
     return robot;
 }

@@ -1,9 +1,13 @@
 #include "yaml_util.hpp"
 
-#include <cmath>
-#include <fstream>
-#include <sstream>
+#include <yaml-cpp/eventhandler.h>
+#include <yaml-cpp/parser.h>
 
+#include <sstream>
+#include <string_view>
+#include <vector>
+
+#include "file_util.hpp"
 #include "nocdyn/error.hpp"
 
 namespace nocdyn::io::detail {
@@ -18,21 +22,74 @@ void fail(const Context& context, const YAML::Node& node, const std::string& rea
     throw Error(msg.str());
 }
 
+namespace {
+
+/// Parser events that only note where each document starts.
+class DocumentStarts : public YAML::EventHandler {
+public:
+    std::vector<YAML::Mark> starts;
+    void OnDocumentStart(const YAML::Mark& mark) override { starts.push_back(mark); }
+    void OnDocumentEnd() override {}
+    void OnNull(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnAlias(const YAML::Mark&, YAML::anchor_t) override {}
+    void OnScalar(const YAML::Mark&, const std::string&, YAML::anchor_t, const std::string&) override {}
+    void OnSequenceStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+    void OnSequenceEnd() override {}
+    void OnMapStart(const YAML::Mark&, const std::string&, YAML::anchor_t, YAML::EmitterStyle::value) override {}
+    void OnMapEnd() override {}
+};
+
+[[noreturn]] void failParse(const std::string& source, const YAML::ParserException& e) {
+    std::ostringstream msg;
+    msg << source << ":" << e.mark.line + 1 << ": not valid YAML: " << e.msg;
+    throw Error(msg.str());
+}
+
+}  // namespace
+
 YAML::Node loadDocument(const std::string& text, const std::string& source) {
+    std::string_view body = text;
+    detail::stripByteOrderMark(body);
+    const std::string yaml(body);
+    YAML::Node root;
     try {
-        return YAML::Load(text);
+        root = YAML::Load(yaml);  // the first document only
     } catch (const YAML::ParserException& e) {
-        std::ostringstream msg;
-        msg << source << ":" << e.mark.line + 1 << ": not valid YAML: " << e.msg;
-        throw Error(msg.str());
+        failParse(source, e);
     }
+    // Whatever follows the first document is an error, not ignored. The parser is asked for
+    // two documents at most: yaml-cpp 0.7's LoadAll loops forever on some input (a lone ',').
+    std::istringstream stream(yaml);
+    YAML::Parser parser(stream);
+    DocumentStarts events;
+    try {
+        if (parser.HandleNextDocument(events) && parser.HandleNextDocument(events)) {
+            std::ostringstream msg;
+            msg << source;
+            if (events.starts.size() > 1 && events.starts[1].line >= 0) msg << ":" << events.starts[1].line + 1;
+            msg << ": a second YAML document, or content after the first; the file must hold exactly one";
+            throw Error(msg.str());
+        }
+    } catch (const YAML::ParserException& e) {
+        failParse(source, e);
+    }
+    return root;
 }
 
 void requireMap(const Context& context, const YAML::Node& node,
                 std::initializer_list<const char*> allowed) {
     if (!node.IsMap()) fail(context, node, "expected a mapping of keys to values");
+    std::vector<std::pair<std::string, int>> seen;  // key, 1-based line
     for (const auto& entry : node) {
+        if (!entry.first.IsScalar()) fail(context, entry.first, "expected a plain key");
         const std::string key = entry.first.Scalar();
+        for (const auto& [other, line] : seen) {
+            if (other == key) {
+                fail(context / key, entry.first,
+                     "duplicate key (first given on line " + std::to_string(line) + ")");
+            }
+        }
+        seen.emplace_back(key, entry.first.Mark().line + 1);
         bool known = false;
         for (const char* name : allowed) known = known || key == name;
         if (!known) {
@@ -45,14 +102,11 @@ void requireMap(const Context& context, const YAML::Node& node,
 
 double toNumber(const Context& context, const YAML::Node& node) {
     if (!node.IsScalar()) fail(context, node, "expected a number");
-    double value = 0.0;
-    try {
-        value = node.as<double>();
-    } catch (const YAML::Exception&) {
-        fail(context, node, "expected a number, got '" + node.Scalar() + "'");
+    const std::optional<double> value = parseDecimal(node.Scalar());
+    if (!value) {
+        fail(context, node, "'" + node.Scalar() + "' " + numberProblem(node.Scalar()));
     }
-    if (!std::isfinite(value)) fail(context, node, "expected a finite number, got '" + node.Scalar() + "'");
-    return value;
+    return *value;
 }
 
 double requireNumber(const Context& context, const YAML::Node& map, const char* key) {
@@ -68,13 +122,23 @@ double optionalNumber(const Context& context, const YAML::Node& map, const char*
     return toNumber(context / key, node);
 }
 
+void requireRange(const Context& context, const YAML::Node& map, const char* key, double value, double lo,
+                  double hi, const char* unit) {
+    if (value >= lo && value <= hi) return;
+    const YAML::Node node = map[key];
+    fail(context / key, node.IsDefined() ? node : map,
+         "must be in [" + formatted(lo) + ", " + formatted(hi) + "] " + unit + ", got " + formatted(value));
+}
+
+std::string formatted(double value) {
+    std::ostringstream out;
+    out.precision(6);
+    out << value;
+    return out.str();
+}
+
 std::string readFile(const std::string& path, const char* what) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error(std::string("cannot open ") + what + " '" + path + "'");
-    std::ostringstream text;
-    text << in.rdbuf();
-    if (in.bad()) throw Error(std::string("cannot read ") + what + " '" + path + "'");
-    return text.str();
+    return readRegularFile(path, what, kMaxYamlBytes);
 }
 
 }  // namespace nocdyn::io::detail

@@ -105,7 +105,7 @@ void kernelLoop(const batch_detail::Constants& constants, const Columns& c, Eige
 }  // namespace
 
 BatchStatus inverseDynamicsBatch(const Model& model, SampleBatch& batch, Eigen::Index begin, Eigen::Index end) {
-    const batch_detail::Constants k = batch_detail::constants(model);
+    const batch_detail::Constants& k = model.kernel;
     const Columns c = columns(batch);
     kernelLoop(k, c, begin, end);
 

@@ -227,23 +227,44 @@ AssemblyModeCount countAssemblyModes(const Model& model, const JointVector& u) {
     return count;
 }
 
+namespace {
+
+/// Why the tracker found no pose, from the position stage of its last iterate: a limb whose
+/// link lies (nearly) normal to its rail, or along it, is at the edge of the workspace, where
+/// u_j turns back and no pose has u_j further out; otherwise the assembly mode is lost.
+Status notTracked(const Model& model, const Data& data, int worst, double residual) {
+    constexpr double kEdge = 0.01;  // d_j^M within 1 % of l (link normal to rail) or of 0 (along it)
+    int limb = -1;
+    double margin = kEdge;
+    for (int j = 0; j < kLimbs; ++j) {
+        const double to_edge = std::min(1.0 - data.d_M(j) / model.l, data.d_M(j) / model.l);
+        if (to_edge < margin) {
+            margin = to_edge;
+            limb = j;
+        }
+    }
+    if (limb >= 0) return {StatusCode::workspace_edge, limb, data.d_M(limb)};
+    return {StatusCode::assembly_mode_lost, worst, residual};
+}
+
+}  // namespace
+
 Status trackPose(const Model& model, Data& data, const JointVector& u, Pose& p, const TrackerOptions& options) {
     double residual = std::numeric_limits<double>::infinity();
     int worst = -1;
     for (int it = 0; it <= options.max_iterations; ++it) {
-        if (!inverseDisplacement(model, data, p)) return {StatusCode::assembly_mode_lost, worst, residual};
+        // A Newton iterate out of reach or singular: report that (limb and value), not a lost mode.
+        if (const Status status = inverseDisplacement(model, data, p); !status) return status;
         const JointVector r = u - data.u;
         residual = r.cwiseAbs().maxCoeff(&worst);
         if (residual <= options.tolerance) return {};
         if (it == options.max_iterations) break;
         // eq. 5 as a Newton step: dp = H^{-1} D du
-        if (!velocityFromActuatorRates(model, data, r)) return {StatusCode::assembly_mode_lost, worst, residual};
-        if (!(data.t_M.cwiseAbs().maxCoeff() <= options.max_step)) {
-            return {StatusCode::assembly_mode_lost, worst, residual};
-        }
+        if (const Status status = velocityFromActuatorRates(model, data, r); !status) return status;
+        if (!(data.t_M.cwiseAbs().maxCoeff() <= options.max_step)) return notTracked(model, data, worst, residual);
         p += data.t_M;
     }
-    return {StatusCode::assembly_mode_lost, worst, residual};
+    return notTracked(model, data, worst, residual);
 }
 
 }  // namespace nocdyn::prr3

@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
+#include <string>
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/prr3/dynamics.hpp"
@@ -30,6 +32,18 @@ const char* limitName(BindingLimit limit) {
 }
 
 namespace {
+
+/// Bisection passes at most (2^-200 of the initial interval is far below any tolerance).
+constexpr int kMaxBisections = 200;
+
+/// Requires a frequency in [kEnvelopeMinFrequency, kEnvelopeMaxFrequency].
+void checkFrequency(double frequency, const char* what) {
+    if (frequency >= kEnvelopeMinFrequency && frequency <= kEnvelopeMaxFrequency) return;
+    std::ostringstream msg;
+    msg << "envelope: " << what << " must be in [" << kEnvelopeMinFrequency << ", " << kEnvelopeMaxFrequency
+        << "] Hz, got " << frequency;
+    throw Error(msg.str());
+}
 
 /// One period of A sin(2 pi f t) along `axis`. With `forces`, the inverse dynamics and the
 /// force check; else positions (and conditioning) and the stroke check only. Returns the
@@ -60,7 +74,8 @@ Status checkPeriod(const Model& model, Data& data, Axis axis, double frequency, 
 double bisect(const Model& model, Data& data, Axis axis, double frequency, double lo, double hi, bool forces,
               const EnvelopeOptions& options, Status& failure) {
     double stroke = 0.0, force = 0.0;
-    while (hi - lo > options.relative_tolerance * hi) {
+    // Each pass halves [lo, hi]: kMaxBisections passes end any interval of doubles.
+    for (int pass = 0; pass < kMaxBisections && hi - lo > options.relative_tolerance * hi; ++pass) {
         const double mid = 0.5 * (lo + hi);
         const Status status = checkPeriod(model, data, axis, frequency, mid, options.samples_per_period, forces, stroke, force);
         if (status) {
@@ -76,8 +91,13 @@ double bisect(const Model& model, Data& data, Axis axis, double frequency, doubl
 }  // namespace
 
 EnvelopePoint maximumAmplitude(const Model& model, Axis axis, double frequency, const EnvelopeOptions& options) {
-    if (!(frequency > 0.0) || !std::isfinite(frequency)) throw Error("envelope: frequency must be positive");
-    if (options.samples_per_period < 8) throw Error("envelope: samples_per_period must be >= 8");
+    checkFrequency(frequency, "frequency");
+    if (options.samples_per_period < 8 || options.samples_per_period > 65536) {
+        throw Error("envelope: samples_per_period must be in [8, 65536]");
+    }
+    if (!(options.relative_tolerance >= 1e-15 && options.relative_tolerance <= 0.5)) {
+        throw Error("envelope: relative_tolerance must be in [1e-15, 0.5]");
+    }
     Data data;
     EnvelopePoint point;
     point.axis = axis;
@@ -108,8 +128,12 @@ EnvelopePoint maximumAmplitude(const Model& model, Axis axis, double frequency, 
 }
 
 std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeOptions& options) {
-    if (!(options.min_frequency > 0.0 && options.max_frequency >= options.min_frequency) || options.frequencies < 1) {
-        throw Error("envelope: need 0 < min_frequency <= max_frequency and at least one frequency");
+    checkFrequency(options.min_frequency, "min_frequency");
+    checkFrequency(options.max_frequency, "max_frequency");
+    if (options.max_frequency < options.min_frequency) throw Error("envelope: max_frequency is below min_frequency");
+    if (options.frequencies < 1 || options.frequencies > kEnvelopeMaxPoints) {
+        throw Error("envelope: the number of frequencies must be in [1, " + std::to_string(kEnvelopeMaxPoints) + "], got " +
+                    std::to_string(options.frequencies));
     }
     std::vector<EnvelopePoint> points;
     for (const Axis axis : {Axis::theta, Axis::x, Axis::y}) {

@@ -40,17 +40,11 @@ Status rejected(const Model& model, FastData& out, const Pose& p, const Twist& d
 
 }  // namespace
 
-void FastData::bind(const Model& m) {
-    constants = batch_detail::constants(m);
-    model = &m;
-}
-
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 Status inverseDynamicsFast(const Model& model, FastData& data, const Pose& p, const Twist& dp,
                            const Twist& ddp) noexcept {
-    if (data.model != &model) [[unlikely]] data.bind(model);
     const double in[9] = {p(0), p(1), p(2), dp(0), dp(1), dp(2), ddp(0), ddp(1), ddp(2)};
     double s, c;
     if (std::abs(p(0)) < kTrigLimit) [[likely]] {
@@ -62,7 +56,7 @@ Status inverseDynamicsFast(const Model& model, FastData& data, const Pose& p, co
     double out[12];
     // u (eqs. 37-42), du (eq. 5), ddu (its derivative), tau (eqs. 16, 20-21, 28-31) and the
     // workspace and conditioning checks of the full path: batch.hpp, sampleGivenSinCos
-    if (!batch_detail::sampleGivenSinCos(data.constants, s, c, in, out)) [[unlikely]]
+    if (!batch_detail::sampleGivenSinCos(model.kernel, s, c, in, out)) [[unlikely]]
         return rejected(model, data, p, dp, ddp);
     for (int j = 0; j < kLimbs; ++j) {
         data.u(j) = out[j];

@@ -113,7 +113,11 @@ struct Simulator::Impl {
         const double t_end = t + span;
         stepper.reset();  // the FSAL derivative of the last segment used other forces
         const double eps = 1e-13 * std::max(1.0, std::abs(t_end));
+        std::size_t steps = 0;
         while (t_end - t > eps) {
+            if (++steps > options.max_steps) {
+                return {StatusCode::integration_too_many_steps, -1, static_cast<double>(steps - 1)};
+            }
             const double remaining = t_end - t;
             const bool clipped = std::min(step, options.max_step) >= remaining;
             double h = clipped ? remaining : std::min(step, options.max_step);
@@ -140,6 +144,10 @@ struct Simulator::Impl {
             } else {
                 ++rejected;
                 step = h;  // reduced by the controller
+                // (a step clipped to a tiny remainder of the interval is not the controller's doing)
+                if (step < options.min_step && remaining > options.min_step) {
+                    return {StatusCode::integration_step_too_small, -1, step};
+                }
             }
         }
         t = t_end;
@@ -275,7 +283,10 @@ ForceSeries forcesFromTable(const io::Table& table, const std::string& source) {
         if (!forces.t.empty() && !(t > forces.t.back())) {
             std::ostringstream out;
             out.precision(17);
-            out << source << ": row " << r + 2 << ": t = " << t << " does not increase";
+            out << source << ":";
+            if (r < table.lines.size()) out << table.lines[r] << ": column 't'";
+            else out << " row " << r + 1 << ": column 't'";
+            out << ": t = " << t << " s does not increase (previous row: " << forces.t.back() << " s)";
             throw Error(out.str());
         }
         forces.t.push_back(t);

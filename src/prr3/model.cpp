@@ -3,6 +3,7 @@
 
 #include <numbers>
 
+#include "nocdyn/prr3/batch.hpp"
 #include "nocdyn/prr3/kinematics.hpp"
 
 namespace nocdyn::prr3 {
@@ -32,6 +33,7 @@ Model::Model(const RobotParameters& robot) : parameters(robot) {
     // validate() has checked that the reference posture is assembled.
     (void)inverseDisplacement(*this, reference, Pose::Zero());
     for (int j = 0; j < kLimbs; ++j) s_ref[j] = reference.u(j);
+    kernel = batch_detail::constants(*this);
 }
 
 }  // namespace nocdyn::prr3

@@ -22,9 +22,11 @@
 //
 // Fast tracker (trackPose): Newton in actuator space from the previous pose,
 //   p <- p + H^{-1} D (u - u(p))                                          (eq. 5)
-// with u(p) from inverseDisplacement, so it cannot leave the working branch of any limb; it
-// reports assembly_mode_lost when it leaves the workspace, meets a singular H or D, or does
-// not converge.
+// with u(p) from inverseDisplacement, so it cannot leave the working branch of any limb. An
+// iterate outside the workspace or at a singular H or D is reported as such (the status of
+// inverseDisplacement or velocityFromActuatorRates: limb and value), no convergence next to the
+// edge of the workspace as workspace_edge; otherwise a Newton step too large or no
+// convergence is assembly_mode_lost.
 #pragma once
 
 #include <array>
@@ -88,9 +90,11 @@ struct TrackerOptions {
 
 /// Tracker. p holds the previous pose on entry and the pose with actuator displacements u on
 /// success. On success `data` holds the position stage at p (velocity stage: NOT valid; call
-/// velocityFromActuatorRates next). Allocation-free. Fails with assembly_mode_lost (value:
-/// the residual max_j |u_j(p) - u_j| [m], limb: the worst limb or -1); p is then left at the
-/// last iterate.
+/// velocityFromActuatorRates next). Allocation-free. Fails with outside_workspace or a
+/// singular status when an iterate is out of reach or singular; with workspace_edge when it
+/// does not converge next to the edge of the workspace (a link within 1 % of normal to, or
+/// along, its rail: no pose has such u); else with assembly_mode_lost (value: the residual
+/// max_j |u_j(p) - u_j| [m], limb: the worst limb or -1). p is then left at the last iterate.
 Status trackPose(const Model& model, Data& data, const JointVector& u, Pose& p, const TrackerOptions& options = {});
 
 }  // namespace nocdyn::prr3

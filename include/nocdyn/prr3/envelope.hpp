@@ -27,6 +27,11 @@ enum class Axis { theta = 0, x = 1, y = 2 };
 enum class BindingLimit { stroke, force, workspace };
 [[nodiscard]] const char* limitName(BindingLimit limit);
 
+/// Accepted frequency range [Hz] and largest number of frequencies per axis.
+inline constexpr double kEnvelopeMinFrequency = 1e-3;
+inline constexpr double kEnvelopeMaxFrequency = 1e4;
+inline constexpr int kEnvelopeMaxPoints = 1000;
+
 struct EnvelopeOptions {
     double min_frequency = 1.0;     ///< [Hz]
     double max_frequency = 100.0;   ///< [Hz]

@@ -26,22 +26,18 @@
 
 namespace nocdyn::prr3 {
 
-/// Outputs of the lean entry, and the model's constants in the kernel's layout.
+/// Outputs of the lean entry. Holds no model constants (those live in Model::kernel), so one
+/// FastData serves any number of models.
 struct FastData {
     FastData() = default;
-    /// Gathers the constants of `model` (also done on first use with a model).
-    explicit FastData(const Model& model) { bind(model); }
-    /// (Re)gathers the constants of `model`. inverseDynamicsFast calls it when handed a model
-    /// at another address than the last one; call it yourself if a Model is replaced in place.
-    void bind(const Model& model);
+    /// Same as FastData(): kept so that code written when FastData cached a model's constants
+    /// still compiles; the argument is not stored.
+    explicit FastData(const Model& /*model*/) {}
 
     JointVector u = JointVector::Zero();    ///< actuator displacements [m]
     JointVector du = JointVector::Zero();   ///< actuator rates [m/s]
     JointVector ddu = JointVector::Zero();  ///< actuator accelerations [m/s^2]
     JointVector tau = JointVector::Zero();  ///< actuator forces on the sliders (eq. 20) [N]
-
-    const Model* model = nullptr;             ///< the model `constants` were gathered from
-    batch_detail::Constants constants{};      ///< batch_detail::constants(*model)
 };
 
 /// The lean per-sample path: (p, dp, ddp) -> u, du, ddu, tau (equal to inverseDynamics's).

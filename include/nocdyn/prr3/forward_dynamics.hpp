@@ -53,6 +53,11 @@ struct SimulatorOptions {
     double relative_tolerance = 1e-10;
     double initial_step = 1e-5;         ///< [s]
     double max_step = 1e-3;             ///< [s]
+    /// Smallest step the controller may take [s]: below it advance() fails with
+    /// integration_step_too_small instead of crawling forever.
+    double min_step = 1e-10;
+    /// Most steps (accepted and rejected) over one advance(): beyond it integration_too_many_steps.
+    std::size_t max_steps = 1'000'000;
     ExternalLoads loads;
     TrackerOptions tracker;
 };

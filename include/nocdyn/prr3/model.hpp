@@ -17,12 +17,12 @@
 #include <array>
 
 #include "nocdyn/noc.hpp"
+#include "nocdyn/prr3/kernel_constants.hpp"
 #include "nocdyn/planar.hpp"
 #include "nocdyn/robot.hpp"
 
 namespace nocdyn::prr3 {
 
-inline constexpr int kLimbs = 3;
 inline constexpr int kBodies = 7;
 inline constexpr int kDof = 3;
 
@@ -57,6 +57,9 @@ public:
     std::array<double, kLimbs> s_ref{};
     /// Inertia dyads M_i (eq. 9), bodies 0..6 (sliders, links, platform).
     std::array<InertiaDyad, kBodies> M{};
+    /// The constants above in the layout of the lean and batch kernels (batch.hpp, fast.hpp),
+    /// computed last by the constructor: a Model always carries its own.
+    batch_detail::Constants kernel{};
 };
 
 /// Per-sample workspace. Fixed-size members only; sized once, reused for every sample.
