@@ -181,7 +181,9 @@ std::string describe(const Status& status, const Model& model) {
                 << (limits ? limits->velocity : 0.0);
             return out.str();
         case StatusCode::effort_exceeded:
-            out << "actuator effort limit exceeded: " << limb << joint << ": tau = " << status.value << ", limit "
+            out << "actuator effort limit exceeded: actuator "
+                << model.limb[static_cast<std::size_t>(status.limb)].actuator[static_cast<std::size_t>(status.joint)] + 1
+                << " (" << limb << joint << "): tau = " << status.value << ", limit "
                 << (limits ? limits->effort : 0.0);
             return out.str();
         case StatusCode::not_finite:

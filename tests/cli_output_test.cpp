@@ -205,7 +205,7 @@ TEST(CliOutput, ForcePeakBetweenOutputSamplesIsAnErrorAndLeavesNoFile) {
     const CliResult r = runCli("inverse-dynamics --trajectory " + trajectory.string() +
                                " --duration 0.02 --rate 1000 -o " + (dir / "out.csv").string());
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_NE(r.err.find("peak force exceeded"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("effort limit exceeded"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("between output samples"), std::string::npos) << r.err;
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
 }

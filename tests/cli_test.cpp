@@ -1,6 +1,8 @@
 // The `nocdyn` binary end to end: what it writes, and how it refuses bad input
 // (one-line error on stderr, non-zero exit, no partial CSV).
 #include <gtest/gtest.h>
+
+#include "nocdyn/dynamics.hpp"
 #include <nlohmann/json.hpp>
 
 #include <sys/wait.h>
@@ -71,14 +73,14 @@ TEST(Cli, InverseDynamicsWritesTheDocumentedColumnsAndTheLibrarysNumbers) {
                                                "du3", "ddu1", "ddu2", "ddu3",  "tau1", "tau2", "tau3"};
     for (const auto& column : expected) EXPECT_TRUE(table.has(column)) << column;
     ASSERT_EQ(table.rows.size(), 10u);
-    const prr3::Model model;
-    prr3::Data data;
+    const Model model{RobotParameters{}};
+    Data data(model);
     Pose p, dp, ddp;
     const auto& last = table.rows.back();
     EXPECT_EQ(last[table.column("t")], 9.0 / 1000.0);
     paperTrajectory1().evaluate(last[table.column("t")], p, dp, ddp);
-    ASSERT_TRUE(prr3::inverseDynamics(model, data, p, dp, ddp).ok());
-    // 17 significant digits: the CSV holds the library's doubles exactly.
+    ASSERT_TRUE(inverseDynamics(model, data, p, dp, ddp).ok());
+    // shortest round-trip digits: the CSV holds the library's doubles exactly.
     const char* tau_columns[] = {"tau1", "tau2", "tau3"};
     const char* u_columns[] = {"u1", "u2", "u3"};
     for (int j = 0; j < 3; ++j) {
@@ -150,7 +152,7 @@ TEST(Cli, SampleOutsideTheWorkspaceNamesTimeAndLimbAndLeavesNoCsv) {
         run("inverse-dynamics --allow-limits --trajectory " + trajectory.string() + " --output " + output.string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.err.find("t = "), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("outside the workspace: limb"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("pose out of reach: limb"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(output));
     EXPECT_FALSE(fs::exists(output.string() + ".partial"));
 }
@@ -162,7 +164,7 @@ TEST(Cli, StrokeBeyondTheActuatorIsAnErrorUnlessAllowed) {
     fs::remove(output);
     const CliRun strict = run("inverse-dynamics --trajectory " + trajectory.string() + " --output " + output.string());
     EXPECT_EQ(strict.exit_code, 1);
-    EXPECT_NE(strict.err.find("stroke exceeded: limb"), std::string::npos) << strict.err;
+    EXPECT_NE(strict.err.find("joint range exceeded: limb"), std::string::npos) << strict.err;
     EXPECT_FALSE(fs::exists(output));
     const CliRun allowed =
         run("inverse-dynamics --allow-limits --trajectory " + trajectory.string() + " --output " + output.string());
@@ -171,25 +173,45 @@ TEST(Cli, StrokeBeyondTheActuatorIsAnErrorUnlessAllowed) {
     EXPECT_TRUE(fs::exists(output));
 }
 
-TEST(Cli, PoseJsonCarriesJointsJacobiansAndInertia) {
+TEST(Cli, PoseJsonCarriesJointsActuationMapAndInertia) {
     const CliRun r = run("pose 0.02 0.001 -0.003 --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
+    // the hand-derived 3-PRR model gives the same joint variables and inertia
     const prr3::Model model;
     prr3::Data data;
     ASSERT_TRUE(prr3::inverseDynamics(model, data, Pose(0.02, 0.001, -0.003), Twist::Zero(), Twist::Zero()).ok());
     ASSERT_EQ(json["limbs"].size(), 3u);
-    for (int j = 0; j < 3; ++j) EXPECT_DOUBLE_EQ(json["limbs"][j]["u"].get<double>(), data.u(j));
-    EXPECT_DOUBLE_EQ(json["I"][1][2].get<double>(), data.I(1, 2));
-    EXPECT_DOUBLE_EQ(json["H"][0][0].get<double>(), data.H(0, 0));
-    EXPECT_DOUBLE_EQ(json["cond_H"].get<double>(), data.cond_H);
-    EXPECT_TRUE(json["within_stroke"].get<bool>());
+    ASSERT_EQ(json["actuators"].size(), 3u);
+    for (int j = 0; j < 3; ++j) EXPECT_NEAR(json["actuators"][j]["u"].get<double>(), data.u(j), 1e-16);
+    EXPECT_NEAR(json["I"][1][2].get<double>(), data.I(1, 2), 1e-12);
+    // du = A dp/dt: A = D^-1 H (eq. 5)
+    EXPECT_NEAR(json["A"][0][0].get<double>(), data.H(0, 0) / data.D(0), 1e-12);
+    EXPECT_EQ(json["limbs"][0]["type"].get<std::string>(), "PRR");
+    EXPECT_TRUE(json["within_limits"].get<bool>());
     const CliRun text = run("pose 0 0 0");
     ASSERT_EQ(text.exit_code, 0);
     EXPECT_NE(text.out.find("joint-space inertia"), std::string::npos);
-    const CliRun outside = run("pose 0 0 -0.09");
+    const CliRun outside = run("pose 0 0 -0.3");
     EXPECT_EQ(outside.exit_code, 1);
-    EXPECT_NE(outside.err.find("limb 1"), std::string::npos) << outside.err;
+    EXPECT_NE(outside.err.find("out of reach: limb 1"), std::string::npos) << outside.err;
+    // any robot: the redundant 4-RRR
+    const CliRun rrr = run("pose 0.02 0.001 -0.003 --json --robot " + std::string(NOCDYN_SOURCE_DIR) + "/robots/4-rrr.yaml");
+    ASSERT_EQ(rrr.exit_code, 0) << rrr.err;
+    const auto four = nlohmann::json::parse(rrr.out);
+    EXPECT_EQ(four["actuators"].size(), 4u);
+    EXPECT_EQ(four["coordinates"].get<std::string>(), "platform");
+}
+
+TEST(Cli, GeneralRobotFilesRunInverseDynamicsAndAreRefusedWhereOnlyThe3PrrIsModelled) {
+    const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/3-rpr.yaml";
+    const CliRun r = run("inverse-dynamics --trajectory paper1 --duration 0.01 --robot " + robot);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out.substr(0, r.out.find('\n')),
+              "t,x,y,theta,u1,u2,u3,du1,du2,du3,ddu1,ddu2,ddu3,tau1,tau2,tau3,kinetic");
+    const CliRun envelope = run("envelope --robot " + robot);
+    EXPECT_EQ(envelope.exit_code, 1);
+    EXPECT_NE(envelope.err.find("3-PRR"), std::string::npos) << envelope.err;
 }
 
 TEST(Cli, HelpExplainsEveryCommand) {

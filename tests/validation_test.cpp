@@ -138,7 +138,7 @@ int runCli(const std::string& arguments, std::string& err) {
     return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-TEST(Validation, ValidateCommandReportsAgreementAndRejectsPosesOutsideTheWorkspace) {
+TEST(Validation, ValidateCommandReportsAgreementAndRejectsPosesOutOfReach) {
     std::string err;
     const std::string csv = testing::TempDir() + "/validate.csv";
     ASSERT_EQ(runCli("validate --trajectory paper2 --duration 0.05 --rate 1000 --output " + csv, err), 0) << err;
@@ -154,7 +154,7 @@ TEST(Validation, ValidateCommandReportsAgreementAndRejectsPosesOutsideTheWorkspa
     const std::string far = testing::TempDir() + "/far.yaml";
     std::ofstream(far) << "duration: 0.1\ny: {harmonics: [{amplitude: 0.2, frequency: 5}]}\n";
     EXPECT_EQ(runCli("validate --trajectory " + far, err), 1);
-    EXPECT_NE(err.find("outside the workspace: limb"), std::string::npos) << err;
+    EXPECT_NE(err.find("pose out of reach: limb"), std::string::npos) << err;
 }
 
 }  // namespace

@@ -21,7 +21,7 @@ struct ControlOptions {
 };
 
 void run(ControlOptions options) {
-    const prr3::Model model(loadRobotOrDefault(options.robot));
+    const prr3::Model model(loadRobotOrDefault(options.robot, "control"));
     const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
     options.c.loop.duration = chooseDuration(options.duration, trajectory);
     if (!(options.c.loop.duration <= kMaxSimulatedDuration)) {

@@ -22,7 +22,7 @@ void run(const EnvelopeOptions& options) {
     if (options.envelope.max_frequency < options.envelope.min_frequency) {
         throw CLI::ValidationError("--max-frequency", "must be at least --min-frequency");
     }
-    const prr3::Model model(loadRobotOrDefault(options.robot));
+    const prr3::Model model(loadRobotOrDefault(options.robot, "envelope"));
     const auto points = prr3::operatingEnvelope(model, options.envelope);
     if (!options.output.empty()) writeTable(envelopeTable(points), options.output);
     if (!options.figure.empty()) renderFigure(envelopeFigure(points, model.parameters.name), options.figure);

@@ -23,7 +23,7 @@ struct ForwardKinematicsOptions {
 };
 
 void run(const ForwardKinematicsOptions& options) {
-    const prr3::Model model(loadRobotOrDefault(options.robot));
+    const prr3::Model model(loadRobotOrDefault(options.robot, "forward-kinematics"));
     const prr3::JointVector u(options.u[0], options.u[1], options.u[2]);
     const auto all = prr3::directDisplacement(model, u, {.working_branch_only = false});
     std::vector<prr3::AssemblyMode> shown;

@@ -1,6 +1,7 @@
-// nocdyn pose: everything the model knows at one platform pose, as text or JSON.
+// nocdyn pose: everything the model knows at one platform pose, for any robot, as text or JSON.
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -9,9 +10,8 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/prr3/dynamics.hpp"
-#include "nocdyn/prr3/kinematics.hpp"
 
 namespace nocdyn::cli {
 
@@ -28,77 +28,113 @@ nlohmann::json toJson(const Eigen::Ref<const Eigen::MatrixXd>& m) {
     for (Eigen::Index i = 0; i < m.rows(); ++i) {
         nlohmann::json row = nlohmann::json::array();
         for (Eigen::Index k = 0; k < m.cols(); ++k) row.push_back(m(i, k));
-        rows.push_back(m.cols() == 1 ? row[0] : row);
+        rows.push_back(row);
     }
     return rows;
 }
 
-std::string formatMatrix(const Matrix3& m, const char* indent) {
+std::string formatMatrix(const Eigen::Ref<const Eigen::MatrixXd>& m, const char* indent) {
     std::ostringstream out;
-    char line[160];
-    for (int i = 0; i < 3; ++i) {
-        std::snprintf(line, sizeof line, "%s[% .9e  % .9e  % .9e]\n", indent, m(i, 0), m(i, 1), m(i, 2));
-        out << line;
+    char cell[40];
+    for (Eigen::Index i = 0; i < m.rows(); ++i) {
+        out << indent << "[";
+        for (Eigen::Index k = 0; k < m.cols(); ++k) {
+            std::snprintf(cell, sizeof cell, "%s% .9e", k ? "  " : "", m(i, k));
+            out << cell;
+        }
+        out << "]\n";
     }
     return out.str();
 }
 
+bool revolute(const Model& model, int j, int k) {
+    return model.limb[static_cast<std::size_t>(j)].type[static_cast<std::size_t>(k)] == JointType::revolute;
+}
+
+/// Fraction of the joint's range [lower, upper] used on the side q is on (0 when unlimited).
+double rangeUsed(const JointLimits& limits, double q) {
+    const double bound = q >= 0.0 ? limits.upper : -limits.lower;
+    return std::isfinite(bound) && bound > 0.0 ? std::abs(q) / bound : 0.0;
+}
+
 void run(const PoseOptions& options) {
-    const prr3::Model model(loadRobotOrDefault(options.robot));
-    prr3::Data data;
+    const Model model(loadRobotDescriptionOrDefault(options.robot));
+    Data data(model);
     const Pose p(options.theta, options.x, options.y);
-    if (const Status status = prr3::inverseDisplacement(model, data, p); !status) {
-        throw Error(describe(status, model.parameters));
+    if (const Status status = inverseDynamics(model, data, p, Twist::Zero(), Twist::Zero()); !status) {
+        throw Error(describe(status, model));
     }
-    if (const Status status = prr3::velocityFromPlatformTwist(model, data, Twist::Zero()); !status) {
-        throw Error(describe(status, model.parameters));
-    }
-    prr3::twistShaping(model, data);
-    prr3::jointSpaceDynamics(model, data);
-    const double half_stroke = 0.5 * model.parameters.stroke;
-    const Status stroke = prr3::checkStroke(model, data);
-    const Matrix3 D = data.D.asDiagonal();
+    const Status limits = checkJointLimits(model, data);
+    // du = A xi_P = A S(c) dp/dt: the actuation map in the pose's own rates (eq. 5 generalised)
+    const Matrix3 S = (Matrix3() << 1.0, 0.0, 0.0, p(2), 1.0, 0.0, -p(1), 0.0, 1.0).finished();
+    const Eigen::MatrixXd A_pose = Eigen::MatrixXd(data.A) * S;
+    const char* coordinates = model.coordinates == Coordinates::actuators ? "actuators" : "platform";
 
     if (options.json) {
         nlohmann::json out;
-        out["robot"] = model.parameters.name;
+        out["robot"] = model.description.name;
         out["pose"] = {{"theta", p(0)}, {"x", p(1)}, {"y", p(2)}};
         nlohmann::json limbs = nlohmann::json::array();
-        for (int j = 0; j < prr3::kLimbs; ++j) {
+        for (int j = 0; j < model.limbs; ++j) {
+            const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
             limbs.push_back({{"limb", j + 1},
-                             {"u", data.u(j)},
-                             {"phi_A", data.phi_A(j)},
-                             {"phi_M", data.phi_M(j)},
-                             {"d_M", data.d_M(j)},
-                             {"A", {data.A[j].x(), data.A[j].y()}},
-                             {"M", {data.Mj[j].x(), data.Mj[j].y()}},
-                             {"stroke_used", std::abs(data.u(j)) / half_stroke}});
+                             {"name", model.description.limbs[static_cast<std::size_t>(j)].name},
+                             {"type", model.description.limbs[static_cast<std::size_t>(j)].type()},
+                             {"q", {ld.q(0), ld.q(1), ld.q(2)}},
+                             {"cond_J", ld.cond}});
         }
         out["limbs"] = limbs;
-        out["H"] = toJson(data.H);
-        out["D"] = toJson(D);
+        nlohmann::json actuators = nlohmann::json::array();
+        for (int a = 0; a < model.actuators; ++a) {
+            const int j = model.actuator_limb[static_cast<std::size_t>(a)];
+            const int k = model.actuator_joint[static_cast<std::size_t>(a)];
+            actuators.push_back({{"actuator", a + 1},
+                                 {"limb", j + 1},
+                                 {"joint", k + 1},
+                                 {"u", data.u(a)},
+                                 {"range_used", rangeUsed(model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)], data.u(a))}});
+        }
+        out["actuators"] = actuators;
+        out["A"] = toJson(A_pose);
+        out["cond_A"] = data.cond_A;
+        out["coordinates"] = coordinates;
         out["I"] = toJson(data.I);
-        out["cond_H"] = data.cond_H;
-        out["cond_D"] = data.cond_D;
-        out["within_stroke"] = stroke.ok();
+        out["within_limits"] = limits.ok();
         std::cout << out.dump(2) << "\n";
         return;
     }
     constexpr double deg = 180.0 / std::numbers::pi;
-    std::printf("robot %s, pose theta = %.9g rad (%.6g deg), x = %.9g m, y = %.9g m\n\n", model.parameters.name.c_str(),
-                p(0), p(0) * deg, p(1), p(2));
-    std::printf("limb  u_j [mm]     stroke used  phi_A [deg]  phi_M [deg]  A_j [m]                    M_j [m]\n");
-    for (int j = 0; j < prr3::kLimbs; ++j) {
-        std::printf("%-4d  %+11.6f  %9.2f %%  %11.6f  %11.6f  (%+.6f, %+.6f)  (%+.6f, %+.6f)\n", j + 1, data.u(j) * 1e3,
-                    100.0 * std::abs(data.u(j)) / half_stroke, data.phi_A(j) * deg, data.phi_M(j) * deg, data.A[j].x(),
-                    data.A[j].y(), data.Mj[j].x(), data.Mj[j].y());
+    std::printf("robot %s, pose theta = %.9g rad (%.6g deg), x = %.9g m, y = %.9g m\n\n",
+                model.description.name.c_str(), p(0), p(0) * deg, p(1), p(2));
+    std::printf("limb  type  q1                q2                q3                cond J_j\n");
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+        std::printf("%-4d  %s  ", j + 1, model.description.limbs[static_cast<std::size_t>(j)].type().c_str());
+        for (int k = 0; k < 3; ++k) {
+            if (revolute(model, j, k)) std::printf("%+11.6f deg   ", ld.q(k) * deg);
+            else std::printf("%+11.6f mm    ", ld.q(k) * 1e3);
+        }
+        std::printf("%.4g\n", ld.cond);
     }
-    std::printf("\nforward Jacobian H (eq. 7; first column in m):\n%s", formatMatrix(data.H, "  ").c_str());
-    std::printf("inverse Jacobian D (eq. 6):\n%s", formatMatrix(D, "  ").c_str());
-    std::printf("condition numbers: H diag(1/r,1,1): %.6g, D: %.6g (limit %.6g)\n", data.cond_H, data.cond_D,
-                model.parameters.max_condition);
-    std::printf("joint-space inertia I (eq. 23) [kg]:\n%s", formatMatrix(data.I, "  ").c_str());
-    if (!stroke) std::printf("\nwarning: %s\n", describe(stroke, model.parameters).c_str());
+    std::printf("\nactuator  limb  joint  u                 range used\n");
+    for (int a = 0; a < model.actuators; ++a) {
+        const int j = model.actuator_limb[static_cast<std::size_t>(a)];
+        const int k = model.actuator_joint[static_cast<std::size_t>(a)];
+        const double used = rangeUsed(model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)], data.u(a));
+        std::printf("%-8d  %-4d  %-5d  %+11.6f %-4s  %6.2f %%\n", a + 1, j + 1, k + 1,
+                    revolute(model, j, k) ? data.u(a) * deg : data.u(a) * 1e3, revolute(model, j, k) ? "deg" : "mm",
+                    100.0 * used);
+    }
+    std::printf("\nactuation map du = A dp/dt (eq. 5 generalised; rows: actuators, columns: theta, x, y):\n%s",
+                formatMatrix(A_pose, "  ").c_str());
+    std::printf("condition numbers (scaled, limit %.6g): actuation %.6g\n", model.max_condition, data.cond_A);
+    if (model.coordinates == Coordinates::actuators) {
+        std::printf("joint-space inertia I (eq. 23), in the actuator variables:\n%s", formatMatrix(data.I, "  ").c_str());
+    } else {
+        std::printf("inertia I (eq. 23) in the platform pose (redundant actuation):\n%s",
+                    formatMatrix(data.I, "  ").c_str());
+    }
+    if (!limits) std::printf("\nwarning: %s\n", describe(limits, model).c_str());
 }
 
 }  // namespace
@@ -107,14 +143,15 @@ void addPoseCommand(CLI::App& app) {
     auto options = std::make_shared<PoseOptions>();
     CLI::App* command = app.add_subcommand(
         "pose",
-        "Joint variables (u, phi_A, phi_M), joint centres A_j and M_j, the Jacobians H and D, their\n"
-        "condition numbers, the joint-space inertia I and the stroke used, at one platform pose.\n"
-        "Example: nocdyn pose 0.05 0.001 -0.002   (theta in rad, x and y in m)");
-    command->add_option("THETA", options->theta, "Platform rotation from the reference posture [rad]")
+        "At one platform pose of any robot: every limb's joint variables and the condition number of\n"
+        "its Jacobian, the actuator variables and how much of their range they use, the actuation map\n"
+        "du = A dp/dt and its condition number, and the inertia I (eq. 23).\n"
+        "Example: nocdyn pose 0.05 0.001 -0.002 --robot robots/3-rrr.yaml   (theta in rad, x and y in m)");
+    command->add_option("THETA", options->theta, "Platform rotation [rad]")
         ->required()
         ->check(finiteIn(-1e6, 1e6, "rad"));
-    command->add_option("X", options->x, "x of the platform centroid C [m]")->required()->check(finiteIn(-1e3, 1e3, "m"));
-    command->add_option("Y", options->y, "y of the platform centroid C [m]")->required()->check(finiteIn(-1e3, 1e3, "m"));
+    command->add_option("X", options->x, "x of the platform's operation point C [m]")->required()->check(finiteIn(-1e3, 1e3, "m"));
+    command->add_option("Y", options->y, "y of the platform's operation point C [m]")->required()->check(finiteIn(-1e3, 1e3, "m"));
     addRobotOption(*command, options->robot);
     command->add_flag("--json", options->json, "Write JSON instead of text");
     command->callback([options] { run(*options); });

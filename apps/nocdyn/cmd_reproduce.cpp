@@ -14,6 +14,11 @@
 #include "reproduce_dynamics.hpp"
 #ifdef NOCDYN_HAS_ENGINES
 #include "engine_comparison.hpp"
+#include "nocdyn/io/examples.hpp"
+#include "nocdyn/sampling.hpp"
+#ifdef NOCDYN_HAS_ENGINES
+#include "nocdyn/validation/agreement.hpp"
+#endif
 #endif
 
 namespace nocdyn::cli {
@@ -155,6 +160,37 @@ void reproduceTrajectories(const prr3::Model& model, const std::filesystem::path
 #endif
 }
 
+#ifdef NOCDYN_HAS_ENGINES
+/// The example robots of other architectures along the paper's trajectory 1, our general
+/// model against both engines built from the same file.
+void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summary) {
+    constexpr double kExampleRate = 2000.0;  // [Hz]: both engines assemble every sample
+    const auto times = sampleTimes(kDuration, kExampleRate);
+    summary << "## Other architectures: the example robots against both engines\n\n"
+            << "The general model (any limbs of three R/P joints, any actuated joints) on the example robots of"
+            << " `robots/`, along the paper's trajectory 1 over " << kDuration << " s at " << kExampleRate / 1000
+            << " kHz; Simbody and MuJoCo models generated from the same files (loops closed at a revolute joint)."
+            << " The 4-RRR has four actuators: its forces are the minimum-norm ones.\n\n"
+            << "| robot | limbs | actuators | peak abs(tau) [N or N m] | Simbody: max diff / peak | MuJoCo: max diff / peak |\n"
+            << "| --- | --- | --- | --- | --- | --- |\n";
+    char line[256];
+    for (const char* name : {"3-rrr", "3-rpr", "4-rrr"}) {
+        const RobotDescription robot = io::exampleRobot(name);
+        const validation::EngineComparison c = validation::compareWithEngines(robot, paperTrajectory1(), times);
+        io::writeCsvFile((out / (std::string("example_") + name + "_validation.csv")).string(), validation::toTable(c));
+        std::string types;
+        for (const LimbDescription& limb : robot.limbs) types += (types.empty() ? "" : " ") + limb.type();
+        double peak = 0.0;
+        for (double v : c.ours.summary.peak_tau) peak = std::max(peak, v);
+        std::snprintf(line, sizeof line, "| %s | %s | %d | %.4g | %.2e | %.2e |\n", name, types.c_str(), c.actuators, peak,
+                      c.simbody_agreement.worstRelative(), c.mujoco_agreement.worstRelative());
+        summary << line;
+    }
+    summary << "\nFiles: `example_{3-rrr,3-rpr,4-rrr}_validation.csv` (ours and both engines' u and tau at every"
+            << " sample).\n\n";
+}
+#endif
+
 void run(const ReproduceOptions& options) {
     const std::filesystem::path out(options.out);
     std::error_code error;
@@ -168,6 +204,9 @@ void run(const ReproduceOptions& options) {
     reproduceRoundTrip(model, summary);
     reproduceControl(model, out, summary);
     reproduceEnvelope(model, out, summary);
+#ifdef NOCDYN_HAS_ENGINES
+    reproduceExampleRobots(out, summary);
+#endif
     io::writeTextFile((out / "summary.md").string(), summary.str());
     std::cout << "nocdyn reproduce: wrote " << (out / "summary.md").string() << ", CSV files and figures in "
               << out.string() << "/\n";
@@ -184,7 +223,8 @@ void addReproduceCommand(CLI::App& app) {
         "forces, PNG and SVG, drawn by gnuplot, with the Simbody curves overlaid and their difference\n"
         "plotted), and summary.md with: peak stroke and force per actuator against the actuator limits;\n"
         "the measured agreement with Simbody and MuJoCo; the forward-dynamics round trip; closed-loop\n"
-        "computed-torque and PD control on the Simbody plant; the operating envelope (stroke and force).");
+        "computed-torque and PD control on the Simbody plant; the operating envelope (stroke and force);\n"
+        "and the example robots of other architectures (3-RRR, 3-RPR, redundant 4-RRR) against both engines.");
     command->add_option("--out", options->out, "Output folder (created if missing)")->capture_default_str();
     command->callback([options] { run(*options); });
 }

@@ -24,7 +24,7 @@ struct SimulateOptions {
 };
 
 void run(const SimulateOptions& options) {
-    const prr3::Model model(loadRobotOrDefault(options.robot));
+    const prr3::Model model(loadRobotOrDefault(options.robot, "simulate"));
     const io::Table table = io::readCsvFile(options.forces);
     const prr3::ForceSeries forces = prr3::forcesFromTable(table, options.forces);
 

@@ -1,24 +1,24 @@
-// nocdyn validate: our inverse dynamics against Simbody and MuJoCo on one trajectory.
+// nocdyn validate: our inverse dynamics of any robot against Simbody and MuJoCo on one trajectory.
 #include <iostream>
 #include <memory>
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "engine_comparison.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
+#include "nocdyn/validation/agreement.hpp"
 
 namespace nocdyn::cli {
 
 namespace {
 
 void run(const TrajectoryOptions& options) {
-    const RobotParameters robot = loadRobotOrDefault(options.robot);
+    const RobotDescription robot = loadRobotDescriptionOrDefault(options.robot);
     const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
-    const auto times = prr3::sampleTimes(chooseDuration(options.duration, trajectory), options.rate);
-    const EngineComparison comparison = compareWithEngines(robot, trajectory, times);
-    writeTable(toTable(comparison), options.output);
-    std::cerr << "nocdyn validate: " << trajectory.name << ", " << times.size() << " samples\n"
-              << agreementTable(comparison);
+    const auto times = sampleTimes(chooseDuration(options.duration, trajectory), options.rate);
+    const validation::EngineComparison comparison = validation::compareWithEngines(robot, trajectory, times);
+    writeTable(validation::toTable(comparison), options.output);
+    std::cerr << "nocdyn validate: " << robot.name << ", " << trajectory.name << ", " << times.size() << " samples\n"
+              << validation::agreementTable(comparison);
 }
 
 }  // namespace
@@ -28,10 +28,11 @@ void addValidateCommand(CLI::App& app) {
     options->rate = 1000.0;
     CLI::App* command = app.add_subcommand(
         "validate",
-        "Actuator forces of our NOC model against two independent multibody engines (Simbody, the\n"
-        "reference, and MuJoCo), built from the same robot file and driven by the same platform\n"
-        "trajectory. Writes CSV with the columns t,u1..u3,tau1..tau3,simbody_u1..3,simbody_tau1..3,\n"
-        "mujoco_u1..3,mujoco_tau1..3,simbody_dtau1..3,mujoco_dtau1..3 and prints on stderr the largest\n"
+        "Actuator forces of our NOC model of any robot against two independent multibody engines\n"
+        "(Simbody, the reference, and MuJoCo), each built from the same robot file (loops closed at a\n"
+        "revolute joint; gravity and joint friction included) and driven by the same platform\n"
+        "trajectory. Writes CSV with the columns t,u1..un,tau1..taun,simbody_u1..n,simbody_tau1..n,\n"
+        "mujoco_u1..n,mujoco_tau1..n,simbody_dtau1..n,mujoco_dtau1..n and prints on stderr the largest\n"
         "absolute and relative difference per actuator and engine.");
     addTrajectoryOptions(*command, *options);
     command->callback([options] { run(*options); });

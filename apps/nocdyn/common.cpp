@@ -6,6 +6,8 @@
 #include <sstream>
 #include <string_view>
 
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 
 namespace nocdyn::cli {
@@ -46,9 +48,20 @@ void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options) {
     command.add_option("--output,-o", options.output, "CSV file to write [default: stdout]");
 }
 
-RobotParameters loadRobotOrDefault(const std::string& path) {
+RobotParameters loadRobotOrDefault(const std::string& path, const std::string& command) {
     if (path.empty()) return RobotParameters{};
-    return io::loadRobot(path);
+    const std::string text = io::readRobotFileText(path);
+    if (io::isGeneralForm(text, path)) {
+        throw Error(path + ": `nocdyn " + command +
+                    "` models the paper's symmetric 3-PRR (the short robot form) only so far; pose, "
+                    "inverse-dynamics, validate and convert take any robot");
+    }
+    return io::parseRobot(text, path);
+}
+
+RobotDescription loadRobotDescriptionOrDefault(const std::string& path) {
+    if (path.empty()) return expand(RobotParameters{});
+    return io::loadRobotDescription(path);
 }
 
 double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/description.hpp"
 #include "nocdyn/robot.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -38,8 +39,13 @@ void addRobotOption(CLI::App& command, std::string& robot_path);
 /// Adds --trajectory (required), --robot, --duration, --rate and --output.
 void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options);
 
-/// The robot file's parameters, or the paper's prototype when the path is empty.
-[[nodiscard]] RobotParameters loadRobotOrDefault(const std::string& path);
+/// The robot file's parameters (the paper's symmetric 3-PRR short form), or the paper's
+/// prototype when the path is empty, for the commands that model only that robot so far.
+/// A general-form file is refused with a message naming `command` and what takes it.
+[[nodiscard]] RobotParameters loadRobotOrDefault(const std::string& path, const std::string& command);
+
+/// Any robot file (either form), or the paper's prototype when the path is empty.
+[[nodiscard]] RobotDescription loadRobotDescriptionOrDefault(const std::string& path);
 
 /// --duration if given, else the trajectory's own duration, else 0.2 s.
 [[nodiscard]] double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory);

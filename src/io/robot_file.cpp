@@ -156,6 +156,13 @@ std::string pair(const Eigen::Vector2d& v) {
 
 }  // namespace
 
+std::string readRobotFileText(const std::string& path) { return detail::readFile(path, "robot file"); }
+
+bool isGeneralForm(const std::string& text, const std::string& source) {
+    const YAML::Node root = detail::loadDocument(text, source);
+    return root.IsMap() && root["limbs"].IsDefined();
+}
+
 RobotDescription parseRobotDescription(const std::string& text, const std::string& source) {
     const YAML::Node root = detail::loadDocument(text, source);
     if (root.IsMap() && root["limbs"].IsDefined()) return parseGeneral(root, source);
@@ -165,7 +172,7 @@ RobotDescription parseRobotDescription(const std::string& text, const std::strin
 }
 
 RobotDescription loadRobotDescription(const std::string& path) {
-    return parseRobotDescription(detail::readFile(path, "robot file"), path);
+    return parseRobotDescription(readRobotFileText(path), path);
 }
 
 std::string descriptionToYaml(const RobotDescription& robot) {

@@ -33,6 +33,12 @@ namespace nocdyn::io {
 /// Parses robot YAML text of either form; `source` names it in messages.
 [[nodiscard]] RobotDescription parseRobotDescription(const std::string& text, const std::string& source);
 
+/// The text of a robot file, read as every reader reads (a regular file, size-capped).
+[[nodiscard]] std::string readRobotFileText(const std::string& path);
+
+/// Whether robot YAML text is of the general form (it has `limbs`) rather than the short form.
+[[nodiscard]] bool isGeneralForm(const std::string& text, const std::string& source);
+
 /// The robot in the general form, numbers in their shortest round-trip decimal form
 /// (parseRobotDescription reads back the same doubles).
 [[nodiscard]] std::string descriptionToYaml(const RobotDescription& robot);
