@@ -157,7 +157,7 @@ __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 Status inverseDynamicsFast(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
     bool finite = true;
-    for (int i = 0; i < 3; ++i) finite = finite & std::isfinite(p(i)) & std::isfinite(dp(i)) & std::isfinite(ddp(i));
+    for (int i = 0; i < 3; ++i) finite = finite && std::isfinite(p(i)) && std::isfinite(dp(i)) && std::isfinite(ddp(i));
     if (!finite) [[unlikely]] return rejected(model, data, p, dp, ddp);
     const double dtheta = p(0) - model.home(0);
     double s, c;

@@ -124,6 +124,9 @@ TEST(RobotFile, BadInputNamesFileLineLimbJointAndField) {
          {"bad.yaml:2:", "home", "[theta, x, y]"}},
         {"platform: {mass: 1.0, inertia: 1.0}\nlimbs:\n  - joints: []\n    bodies: []\n  - joints: []\n    bodies: []\n",
          {"bad.yaml:3:", "limbs[0].joints", "exactly 3 joints"}},
+        // found by fuzzing: a limb without `joints` (an invalid yaml-cpp node, not an exception of ours)
+        {"platform: {mass: 1.0, inertia: 1.0}\nlimbs:\n  - name: a\n  - name: b\n", {"bad.yaml:3:", "limbs[0].joints", "exactly 3 joints"}},
+        {"platform: {mass: 1.0, inertia: 1.0}\nname: x\nlimbs: 3\n", {"bad.yaml", "limbs", "list of limbs"}},
     };
     for (const Case& c : cases) {
         const std::string message = errorOf(c.text);

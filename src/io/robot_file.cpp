@@ -103,7 +103,8 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
     robot.platform.inertia = detail::requireNumber(top / "platform", platform, "inertia");
     if (platform["com"].IsDefined()) robot.platform.com = vector2(top / "platform", platform, "com");
     const YAML::Node limbs = root["limbs"];
-    if (!limbs.IsSequence()) detail::fail(top / "limbs", limbs, "expected a list of limbs");
+    // (a missing key of a const node is invalid: IsDefined first, before any other question)
+    if (!limbs.IsDefined() || !limbs.IsSequence()) detail::fail(top / "limbs", root, "expected a list of limbs");
     if (limbs.size() < 2 || limbs.size() > static_cast<std::size_t>(kMaxLimbs)) {
         detail::fail(top / "limbs", limbs, "a robot has 2 to " + std::to_string(kMaxLimbs) + " limbs, got " +
                                                std::to_string(limbs.size()));
@@ -120,7 +121,7 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
             limb.name = name.Scalar();
         }
         const YAML::Node joints = node["joints"];
-        if (!joints.IsSequence() || joints.size() != 3) {
+        if (!joints.IsDefined() || !joints.IsSequence() || joints.size() != 3) {
             detail::fail(limb_context / "joints", joints.IsDefined() ? joints : node,
                          "a limb has exactly 3 joints, base to platform");
         }
@@ -128,7 +129,7 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
             limb.joints[k] = parseJoint(limb_context / ("joints[" + std::to_string(k) + "]"), joints[k]);
         }
         const YAML::Node bodies = node["bodies"];
-        if (!bodies.IsSequence() || bodies.size() != 2) {
+        if (!bodies.IsDefined() || !bodies.IsSequence() || bodies.size() != 2) {
             detail::fail(limb_context / "bodies", bodies.IsDefined() ? bodies : node,
                          "a limb has exactly 2 moving bodies (between joints 1-2 and 2-3)");
         }
