@@ -12,36 +12,6 @@
 
 namespace nocdyn::prr3 {
 
-SampleGrid sampleGrid(double duration, double rate) {
-    if (!std::isfinite(duration) || duration <= 0.0) {
-        throw Error("duration must be a positive number of seconds, got " + std::to_string(duration));
-    }
-    if (!std::isfinite(rate) || rate <= 0.0) {
-        throw Error("rate must be a positive number of samples per second, got " + std::to_string(rate));
-    }
-    const double count = std::round(duration * rate);
-    if (count < 1.0) throw Error("duration * rate rounds to zero samples");
-    if (count > 1e8) throw Error("duration * rate asks for more than 10^8 samples");
-    return {rate, static_cast<std::size_t>(count)};
-}
-
-std::vector<double> sampleTimes(double duration, double rate) {
-    const SampleGrid grid = sampleGrid(duration, rate);
-    std::vector<double> times(grid.count);
-    for (std::size_t k = 0; k < times.size(); ++k) times[k] = grid.time(k);
-    return times;
-}
-
-double highestFrequency(const PoseTrajectory& trajectory) {
-    double highest = 0.0;
-    for (const AxisMotion* axis : {&trajectory.theta, &trajectory.x, &trajectory.y}) {
-        for (const Harmonic& h : axis->harmonics) {
-            if (h.amplitude != 0.0) highest = std::max(highest, std::abs(h.frequency));
-        }
-    }
-    return highest;
-}
-
 namespace {
 
 std::string atTime(double t, const std::string& reason) {
@@ -129,15 +99,6 @@ private:
 };
 
 }  // namespace
-
-void requireRateAboveNyquist(const PoseTrajectory& trajectory, double rate) {
-    const double f = highestFrequency(trajectory);
-    if (f > 0.0 && !(rate > 2.0 * f)) {
-        throw Error("sampling rate " + number(rate) + " Hz is not above twice the highest frequency of trajectory '" +
-                    trajectory.name + "' (" + number(f) + " Hz), so its samples would alias: use a rate above " +
-                    number(2.0 * f) + " Hz");
-    }
-}
 
 void requireReachable(const Model& model, const PoseTrajectory& trajectory, double duration) {
     const double f = highestFrequency(trajectory);

@@ -19,40 +19,24 @@
 
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/prr3/model.hpp"
+#include "nocdyn/sampling.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::prr3 {
 
-/// Output sampling instants t_k = k / rate, k = 0..count-1, without storing them.
-struct SampleGrid {
-    double rate = 0.0;       ///< [Hz]
-    std::size_t count = 0;   ///< number of samples
-    [[nodiscard]] double time(std::size_t k) const { return static_cast<double>(k) / rate; }
-};
-
-/// The grid of n = round(duration * rate) samples. Throws nocdyn::Error for a non-positive or
-/// non-finite duration or rate, or when fewer than one or more than 10^8 samples would result.
-[[nodiscard]] SampleGrid sampleGrid(double duration, double rate);
-
-/// Sampling instants t_k = k / rate, k = 0..n-1, n = round(duration * rate) (as sampleGrid).
-[[nodiscard]] std::vector<double> sampleTimes(double duration, double rate);
-
-/// Points per period of the highest harmonic at which limits are checked between samples.
-inline constexpr int kLimitChecksPerPeriod = 40;
-
-/// Highest harmonic frequency of any axis [Hz]; 0 for a constant pose.
-[[nodiscard]] double highestFrequency(const PoseTrajectory& trajectory);
-
-/// Throws nocdyn::Error naming the rate needed unless `rate` > 2 f_max (Nyquist).
-void requireRateAboveNyquist(const PoseTrajectory& trajectory, double rate);
+// The sampling grid, the Nyquist check and the limit policy are the robot-independent ones.
+using nocdyn::highestFrequency;
+using nocdyn::kLimitChecksPerPeriod;
+using nocdyn::LimitPolicy;
+using nocdyn::requireRateAboveNyquist;
+using nocdyn::SampleGrid;
+using nocdyn::sampleGrid;
+using nocdyn::sampleTimes;
 
 /// Throws nocdyn::Error "t = ... s: <reason>" at the first point of [0, duration] where the
 /// pose is outside the workspace, singular, or gives a non-finite value, checked every
 /// 1 / (kLimitChecksPerPeriod f_max) s and at both ends; stroke and force are not checked.
 void requireReachable(const Model& model, const PoseTrajectory& trajectory, double duration);
-
-/// What to do when a sample exceeds the actuator stroke or peak force.
-enum class LimitPolicy { error, record };
 
 /// One output sample of the inverse dynamics.
 struct InverseDynamicsSample {
