@@ -97,8 +97,8 @@ void simulateSecond(benchmark::State& state) {
     for (auto _ : state) {
         (void)simulator.reset(p0, dp0, 0.0);
         for (int i = 0; i < kTicks; ++i) {
-            const Status status = simulator.advance(1.0 / kRate, tau[static_cast<std::size_t>(i)],
-                                                    tau[static_cast<std::size_t>(i) + 1]);
+            const Status status =
+                simulator.advance(1.0 / kRate, tau[static_cast<std::size_t>(i)], tau[static_cast<std::size_t>(i) + 1]);
             benchmark::DoNotOptimize(status);
         }
         benchmark::DoNotOptimize(simulator.u());
@@ -163,7 +163,11 @@ NOCDYN_AVX2 void peakDivSqrt(benchmark::State& state) {
 [[maybe_unused]] const bool registered = [] {
     benchmark::RegisterBenchmark("BM_Batch/nocdyn/cycle_1thread", batchCycle);
     benchmark::RegisterBenchmark("BM_Batch/nocdyn/100k_samples", batchThreads)
-        ->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+        ->ArgName("threads")
+        ->Arg(1)
+        ->Arg(2)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("BM_ForwardDynamics/nocdyn", forwardDynamics);
     benchmark::RegisterBenchmark("BM_SimulateSecond/nocdyn", simulateSecond)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("BM_Peak/add_mul_avx2", peakAddMul);

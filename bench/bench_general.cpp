@@ -22,9 +22,8 @@ namespace nocdyn::bench {
 namespace {
 
 void perSample(benchmark::State& state, std::size_t samples) {
-    state.counters["per_sample"] = benchmark::Counter(static_cast<double>(samples),
-                                                      benchmark::Counter::kIsIterationInvariantRate |
-                                                          benchmark::Counter::kInvert);
+    state.counters["per_sample"] = benchmark::Counter(
+        static_cast<double>(samples), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 Model loadExample(const std::string& robot) {
@@ -107,11 +106,14 @@ void generalBatch(benchmark::State& state, const std::string& robot, std::size_t
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
         benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn").c_str(),
                                      [robot](benchmark::State& s) { generalBatch(s, robot, 1, 1); });
-        benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn_100k").c_str(),
-                                     [robot](benchmark::State& s) {
-                                         generalBatch(s, robot, 100, static_cast<unsigned>(s.range(0)));
-                                     })
-            ->ArgName("threads")->Arg(1)->Arg(2)->UseRealTime()->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(
+            ("BM_Batch/" + robot + "/nocdyn_100k").c_str(),
+            [robot](benchmark::State& s) { generalBatch(s, robot, 100, static_cast<unsigned>(s.range(0))); })
+            ->ArgName("threads")
+            ->Arg(1)
+            ->Arg(2)
+            ->UseRealTime()
+            ->Unit(benchmark::kMillisecond);
     }
     return true;
 }();

@@ -23,19 +23,20 @@ void engine(benchmark::State& state, const std::string& robot) {
         auto out = mechanism.inverseDynamics(f.trajectory, f.times);
         benchmark::DoNotOptimize(out.data());
     }
-    state.counters["per_sample"] = benchmark::Counter(static_cast<double>(f.times.size()),
-                                                      benchmark::Counter::kIsIterationInvariantRate |
-                                                          benchmark::Counter::kInvert);
+    state.counters["per_sample"] =
+        benchmark::Counter(static_cast<double>(f.times.size()),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 [[maybe_unused]] const bool registered = [] {
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
-        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/mujoco").c_str(),
-                                     [robot](benchmark::State& s) { engine<validation::MujocoMechanism>(s, robot); })
-            ->Unit(benchmark::kMillisecond);
-        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/simbody").c_str(),
-                                     [robot](benchmark::State& s) { engine<validation::SimbodyMechanism>(s, robot); })
-            ->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/mujoco").c_str(), [robot](benchmark::State& s) {
+            engine<validation::MujocoMechanism>(s, robot);
+        })->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/simbody").c_str(), [robot](
+                                                                                               benchmark::State& s) {
+            engine<validation::SimbodyMechanism>(s, robot);
+        })->Unit(benchmark::kMillisecond);
     }
     return true;
 }();

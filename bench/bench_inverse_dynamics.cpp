@@ -1,10 +1,10 @@
 // Inverse dynamics per sample: nocdyn against Simbody and MuJoCo, and nocdyn's stages.
 //
 // BM_InverseDynamics/nocdyn times the lean entry (prr3::inverseDynamicsFast), /nocdyn_full the
-// full path (prr3::inverseDynamics). Every BM_InverseDynamics/<engine> runs the same cycle of 1000 samples (fixture.hpp) per
-// iteration, in the same order, and reports `per_sample` = time / 1000 (seconds; the
-// console prints it with an SI prefix). The BM_Stage/... benchmarks run one stage of one
-// sample per iteration, on Data prepared by the earlier stages outside the timed loop.
+// full path (prr3::inverseDynamics). Every BM_InverseDynamics/<engine> runs the same cycle of 1000 samples
+// (fixture.hpp) per iteration, in the same order, and reports `per_sample` = time / 1000 (seconds; the console prints
+// it with an SI prefix). The BM_Stage/... benchmarks run one stage of one sample per iteration, on Data prepared by the
+// earlier stages outside the timed loop.
 #include <benchmark/benchmark.h>
 
 #include <cstddef>
@@ -20,9 +20,9 @@ namespace nocdyn::bench {
 namespace {
 
 void perSample(benchmark::State& state, std::size_t samples_per_iteration) {
-    state.counters["per_sample"] = benchmark::Counter(
-        static_cast<double>(samples_per_iteration),
-        benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    state.counters["per_sample"] =
+        benchmark::Counter(static_cast<double>(samples_per_iteration),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 // ---- the whole per-sample path, three engines -----------------------------------------
@@ -134,9 +134,7 @@ void stageInertia(benchmark::State& state) {
     stage(state, [](const Fixture& f, const Sample&, prr3::Data& d) { noc::inertia(f.model.M, d.T, d.I); });
 }
 void stageCoriolis(benchmark::State& state) {
-    stage(state, [](const Fixture& f, const Sample&, prr3::Data& d) {
-        noc::coriolis(f.model.M, d.T, d.T_dot, d.C);
-    });
+    stage(state, [](const Fixture& f, const Sample&, prr3::Data& d) { noc::coriolis(f.model.M, d.T, d.T_dot, d.C); });
 }
 void stageDynamics(benchmark::State& state) {
     stage(state, [](const Fixture& f, const Sample&, prr3::Data& d) { prr3::jointSpaceDynamics(f.model, d); });
@@ -149,8 +147,7 @@ void stageForces(benchmark::State& state) {
     benchmark::RegisterBenchmark("BM_InverseDynamics/nocdyn", inverseDynamicsNocdyn);
     benchmark::RegisterBenchmark("BM_InverseDynamics/nocdyn_full", inverseDynamicsNocdynFull);
     benchmark::RegisterBenchmark("BM_InverseDynamics/mujoco", inverseDynamicsMujoco);
-    benchmark::RegisterBenchmark("BM_InverseDynamics/simbody", inverseDynamicsSimbody)
-        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("BM_InverseDynamics/simbody", inverseDynamicsSimbody)->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark("BM_Stage/inverse_displacement", stageInverseDisplacement);
     benchmark::RegisterBenchmark("BM_Stage/jacobians_velocity", stageVelocity);
     benchmark::RegisterBenchmark("BM_Stage/twist_shaping_T_dT", stageTwistShaping);

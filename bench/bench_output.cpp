@@ -63,7 +63,11 @@ void BM_StreamInverseDynamics(benchmark::State& state) {
     }
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * samples));
 }
-BENCHMARK(BM_StreamInverseDynamics)->Args({1000000, 0})->Args({1000000, 1})->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StreamInverseDynamics)
+    ->Args({1000000, 0})
+    ->Args({1000000, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 }  // namespace nocdyn::bench

@@ -62,8 +62,7 @@ struct Fixture {
             trajectory.evaluate(s.t, s.p, s.dp, s.ddp);
             const Status status = prr3::inverseDynamics(model, data, s.p, s.dp, s.ddp);
             if (!status || !prr3::checkStroke(model, data) || !prr3::checkForce(model, data)) {
-                throw std::runtime_error("benchmark trajectory leaves the workspace at t = " +
-                                         std::to_string(s.t));
+                throw std::runtime_error("benchmark trajectory leaves the workspace at t = " + std::to_string(s.t));
             }
             s.u = data.u;
             s.du = data.du;

@@ -18,19 +18,58 @@ struct Counted {
     Counted() = default;
     Counted(double x) : v(x) {}  // NOLINT: constants mix freely, as with double
 };
-inline Counted operator+(Counted a, Counted b) { ++counts.add; return a.v + b.v; }
-inline Counted operator-(Counted a, Counted b) { ++counts.add; return a.v - b.v; }
-inline Counted operator*(Counted a, Counted b) { ++counts.mul; return a.v * b.v; }
-inline Counted operator/(Counted a, Counted b) { ++counts.div; return a.v / b.v; }
-inline Counted operator-(Counted a) { ++counts.neg; return -a.v; }
-inline bool operator<(Counted a, Counted b) { ++counts.cmp; return a.v < b.v; }
-inline bool operator>(Counted a, Counted b) { ++counts.cmp; return a.v > b.v; }
-inline bool operator<=(Counted a, Counted b) { ++counts.cmp; return a.v <= b.v; }
-inline bool operator>=(Counted a, Counted b) { ++counts.cmp; return a.v >= b.v; }
-inline bool operator==(Counted a, Counted b) { ++counts.cmp; return a.v == b.v; }
-inline Counted sqrtOf(Counted a) { ++counts.sqrt; return std::sqrt(a.v); }
-inline Counted absOf(Counted a) { ++counts.abs; return std::abs(a.v); }
-inline Counted select(bool c, Counted a, Counted b) { ++counts.select; return c ? a : b; }
+inline Counted operator+(Counted a, Counted b) {
+    ++counts.add;
+    return a.v + b.v;
+}
+inline Counted operator-(Counted a, Counted b) {
+    ++counts.add;
+    return a.v - b.v;
+}
+inline Counted operator*(Counted a, Counted b) {
+    ++counts.mul;
+    return a.v * b.v;
+}
+inline Counted operator/(Counted a, Counted b) {
+    ++counts.div;
+    return a.v / b.v;
+}
+inline Counted operator-(Counted a) {
+    ++counts.neg;
+    return -a.v;
+}
+inline bool operator<(Counted a, Counted b) {
+    ++counts.cmp;
+    return a.v < b.v;
+}
+inline bool operator>(Counted a, Counted b) {
+    ++counts.cmp;
+    return a.v > b.v;
+}
+inline bool operator<=(Counted a, Counted b) {
+    ++counts.cmp;
+    return a.v <= b.v;
+}
+inline bool operator>=(Counted a, Counted b) {
+    ++counts.cmp;
+    return a.v >= b.v;
+}
+inline bool operator==(Counted a, Counted b) {
+    ++counts.cmp;
+    return a.v == b.v;
+}
+inline Counted sqrtOf(Counted a) {
+    ++counts.sqrt;
+    return std::sqrt(a.v);
+}
+inline Counted absOf(Counted a) {
+    ++counts.abs;
+    return std::abs(a.v);
+}
+inline Counted select(bool c, Counted a, Counted b) {
+    ++counts.select;
+    return c ? a : b;
+}
 
 }  // namespace counting
 
@@ -44,10 +83,10 @@ int main() {
     counting::counts = {};
     const bool ok = nocdyn::prr3::batch_detail::sample(k, in, out);
     const auto& c = counting::counts;
-    std::printf("one sample of the batch kernel (valid=%d, tau_1 = %.6f N, per-sample path %.6f N)\n", ok,
-                out[9].v, s.tau(0));
-    std::printf("  add/sub %ld, mul %ld, div %ld, sqrt %ld, neg %ld, abs %ld, compare %ld, select %ld\n", c.add,
-                c.mul, c.div, c.sqrt, c.neg, c.abs, c.cmp, c.select);
+    std::printf("one sample of the batch kernel (valid=%d, tau_1 = %.6f N, per-sample path %.6f N)\n", ok, out[9].v,
+                s.tau(0));
+    std::printf("  add/sub %ld, mul %ld, div %ld, sqrt %ld, neg %ld, abs %ld, compare %ld, select %ld\n", c.add, c.mul,
+                c.div, c.sqrt, c.neg, c.abs, c.cmp, c.select);
     std::printf("  of which sin+cos (one call each, polynomial): see README; no other transcendental\n");
     const long arith = c.add + c.mul + c.neg + c.abs + c.cmp + c.select;
     std::printf("  arithmetic (add, mul, neg, abs, compare, select) %ld + div %ld + sqrt %ld\n", arith, c.div, c.sqrt);

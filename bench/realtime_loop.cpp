@@ -24,9 +24,12 @@ int main(int argc, char** argv) {
     bool paced = false;
     bool full = false;
     for (int i = 1; i < argc; ++i) {
-        if (std::strcmp(argv[i], "--ticks") == 0 && i + 1 < argc) ticks = std::atol(argv[++i]);
-        else if (std::strcmp(argv[i], "--paced") == 0) paced = true;
-        else if (std::strcmp(argv[i], "--full") == 0) full = true;
+        if (std::strcmp(argv[i], "--ticks") == 0 && i + 1 < argc)
+            ticks = std::atol(argv[++i]);
+        else if (std::strcmp(argv[i], "--paced") == 0)
+            paced = true;
+        else if (std::strcmp(argv[i], "--full") == 0)
+            full = true;
     }
     using Clock = std::chrono::steady_clock;
     const bool locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;
@@ -58,8 +61,10 @@ int main(int argc, char** argv) {
         const auto t2 = Clock::now();  // the cost of one clock read, measured alongside
         failures += status.ok() ? 0 : 1;
         checksum += full ? data.tau(0) : fast.tau(0);
-        latency_ns[static_cast<std::size_t>(k)] = static_cast<float>(std::chrono::duration<double, std::nano>(t1 - t0).count());
-        clock_ns[static_cast<std::size_t>(k)] = static_cast<float>(std::chrono::duration<double, std::nano>(t2 - t1).count());
+        latency_ns[static_cast<std::size_t>(k)] =
+            static_cast<float>(std::chrono::duration<double, std::nano>(t1 - t0).count());
+        clock_ns[static_cast<std::size_t>(k)] =
+            static_cast<float>(std::chrono::duration<double, std::nano>(t2 - t1).count());
     }
     auto percentile = [](std::vector<float> v, double q) {
         const auto i = static_cast<std::size_t>(q * static_cast<double>(v.size() - 1));

@@ -23,9 +23,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     // Accepted parameters must give a model (validate() has passed) with finite dynamics.
     const nocdyn::prr3::Model model(robot);
     nocdyn::prr3::Data data;
-    const nocdyn::Status status = nocdyn::prr3::inverseDynamics(model, data, nocdyn::Pose::Zero(),
-                                                                nocdyn::Twist(0.1, 0.01, -0.01),
-                                                                nocdyn::Twist(1.0, 0.1, 0.1));
+    const nocdyn::Status status = nocdyn::prr3::inverseDynamics(
+        model, data, nocdyn::Pose::Zero(), nocdyn::Twist(0.1, 0.01, -0.01), nocdyn::Twist(1.0, 0.1, 0.1));
     if (status && !(data.I.allFinite() && data.C.allFinite() && data.tau.allFinite())) std::abort();
     // The file written back reads back to the same numbers.
     if (nocdyn::io::parseRobot(nocdyn::io::robotToYaml(robot), "back.yaml").link_length != robot.link_length) {

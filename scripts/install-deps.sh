@@ -15,6 +15,7 @@ packages=(
   libbenchmark-dev                     # benchmarks
   gnuplot-nox                          # figures (PNG via pngcairo, SVG)
   clang libclang-rt-dev                # libFuzzer harnesses of the file readers (fuzz/)
+  clang-format clang-tidy              # style and static checks (ctest -L lint)
 )
 missing=()
 for p in "${packages[@]}"; do

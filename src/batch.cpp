@@ -34,9 +34,10 @@ struct Arrays {
 #if defined(__GNUC__)
 __attribute__((noinline, cold))
 #endif
-Status fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
-    const Status status = inverseDynamics(model, data, a.p.row(k).transpose(), a.dp.row(k).transpose(),
-                                          a.ddp.row(k).transpose());
+Status
+fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
+    const Status status =
+        inverseDynamics(model, data, a.p.row(k).transpose(), a.dp.row(k).transpose(), a.ddp.row(k).transpose());
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (int i = 0; i < model.actuators; ++i) {
         a.u(k, i) = status ? data.u(i) : nan;
@@ -52,7 +53,8 @@ Status fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k)
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
-BatchResult chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
+BatchResult
+chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
     BatchResult result;
     Data data;  // for rejected samples only: fixed capacity, no allocation
     const std::ptrdiff_t stride = a.u.outerStride();
@@ -61,7 +63,8 @@ BatchResult chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen
         const double dp[3] = {a.dp(k, 0), a.dp(k, 1), a.dp(k, 2)};
         const double ddp[3] = {a.ddp(k, 0), a.ddp(k, 1), a.ddp(k, 2)};
         bool finite = true;
-        for (int i = 0; i < 3; ++i) finite = finite & std::isfinite(p[i]) & std::isfinite(dp[i]) & std::isfinite(ddp[i]);
+        for (int i = 0; i < 3; ++i)
+            finite = finite & std::isfinite(p[i]) & std::isfinite(dp[i]) & std::isfinite(ddp[i]);
         const double dtheta = p[0] - model.home(0);
         bool ok = false;
         if (finite && std::abs(dtheta) < 1.0e6) [[likely]] {
@@ -71,7 +74,8 @@ BatchResult chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen
             detail::lean::V3 W;
             ok = detail::lean::sample(model, c, s, p, dp, ddp, out, W);
         }
-        if (ok) [[likely]] continue;
+        if (ok) [[likely]]
+            continue;
         if (const Status status = fullPath(model, data, a, k); !status && result.failed++ == 0) {
             result.first_failure = k;
             result.status = status;

@@ -52,8 +52,8 @@ Status ComputedTorqueController::compute(const JointVector& u, const JointVector
     prr3::twistShaping(model_, data_);
     prr3::jointSpaceDynamics(model_, data_);
     // tau = I (ddu_d + K_d e' + K_p e) + C du   (eq. 20 with the servo acceleration)
-    const JointVector servo = reference.ddu + gains_.kd.cwiseProduct(reference.du - du) +
-                              gains_.kp.cwiseProduct(reference.u - u);
+    const JointVector servo =
+        reference.ddu + gains_.kd.cwiseProduct(reference.du - du) + gains_.kp.cwiseProduct(reference.u - u);
     tau.noalias() = data_.I * servo;
     tau.noalias() += data_.C * du;
     return {};
@@ -161,8 +161,8 @@ ClosedLoopResult runClosedLoop(Controller& controller, const prr3::Model& contro
 
 io::Table toTable(const ClosedLoopResult& result) {
     io::Table table;
-    table.columns = {"t",  "x",    "y",    "theta", "x_d", "y_d", "theta_d", "u1",   "u2",   "u3",
-                     "u1_d", "u2_d", "u3_d", "e1",  "e2",  "e3",  "tau1",    "tau2", "tau3"};
+    table.columns = {"t",    "x",    "y",    "theta", "x_d", "y_d", "theta_d", "u1",   "u2",  "u3",
+                     "u1_d", "u2_d", "u3_d", "e1",    "e2",  "e3",  "tau1",    "tau2", "tau3"};
     table.rows.reserve(result.t.size());
     for (std::size_t k = 0; k < result.t.size(); ++k) {
         const Pose& p = result.p[k];

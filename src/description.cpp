@@ -51,7 +51,7 @@ RobotDescription expand(const RobotParameters& robot) {
         const Eigen::Vector2d n(-e.y(), e.x());
         const double angle = phi - std::numbers::pi / 6.0;
         const Eigen::Vector2d M = r * Eigen::Vector2d(std::cos(angle), std::sin(angle));  // eq. 41
-        const Eigen::Vector2d m = l * (cos_A * e + sin_A * n);                             // eq. 40
+        const Eigen::Vector2d m = l * (cos_A * e + sin_A * n);                            // eq. 40
         const Eigen::Vector2d A = M - m;
         LimbDescription limb;
         limb.name = "limb" + std::to_string(j + 1);
@@ -78,10 +78,10 @@ RobotDescription expand(const RobotParameters& robot) {
 namespace {
 
 // Plausibility ranges: beyond them products of the values overflow or lose all precision.
-constexpr double kMaxLength = 1.0e3;    // [m]
-constexpr double kMaxMass = 1.0e6;      // [kg]
-constexpr double kMaxInertia = 1.0e9;   // [kg m^2]
-constexpr double kMaxGravity = 1.0e4;   // [m/s^2]
+constexpr double kMaxLength = 1.0e3;   // [m]
+constexpr double kMaxMass = 1.0e6;     // [kg]
+constexpr double kMaxInertia = 1.0e9;  // [kg m^2]
+constexpr double kMaxGravity = 1.0e4;  // [m/s^2]
 constexpr double kMaxCoefficient = 1.0e9;
 
 class Checker {
@@ -94,8 +94,7 @@ public:
         throw Error(msg.str());
     }
 
-    void finiteIn(double value, double lo, double hi, int line, const std::string& field,
-                  const char* unit) const {
+    void finiteIn(double value, double lo, double hi, int line, const std::string& field, const char* unit) const {
         if (!std::isfinite(value) || value < lo || value > hi) {
             std::ostringstream msg;
             msg << "must be a finite number in [" << lo << ", " << hi << "] " << unit << ", got " << value;
@@ -118,8 +117,8 @@ void validate(RobotDescription& robot) {
     const Checker check(robot);
     const int limbs = static_cast<int>(robot.limbs.size());
     if (limbs < 2 || limbs > kMaxLimbs) {
-        check.fail(0, "limbs", "a robot has 2 to " + std::to_string(kMaxLimbs) + " limbs, got " +
-                                   std::to_string(limbs));
+        check.fail(0, "limbs",
+                   "a robot has 2 to " + std::to_string(kMaxLimbs) + " limbs, got " + std::to_string(limbs));
     }
     check.finiteIn(robot.gravity.x(), -kMaxGravity, kMaxGravity, 0, "gravity[0]", "m/s^2");
     check.finiteIn(robot.gravity.y(), -kMaxGravity, kMaxGravity, 0, "gravity[1]", "m/s^2");
@@ -156,8 +155,8 @@ void validate(RobotDescription& robot) {
                 if (std::abs(norm - 1.0) > 4.0 * std::numeric_limits<double>::epsilon()) joint.direction /= norm;
             }
             const JointLimits& lim = joint.limits;
-            if (std::isnan(lim.lower) || std::isnan(lim.upper) || !(lim.lower < lim.upper) ||
-                lim.lower > 0.0 || lim.upper < 0.0) {
+            if (std::isnan(lim.lower) || std::isnan(lim.upper) || !(lim.lower < lim.upper) || lim.lower > 0.0 ||
+                lim.upper < 0.0) {
                 check.fail(joint.line, field + ".limits",
                            "need lower < upper with the home value 0 inside [lower, upper]");
             }
@@ -182,8 +181,7 @@ void validate(RobotDescription& robot) {
     if (!(total_mass > 0.0)) check.fail(0, "platform.mass", "the robot has no mass at all");
     const int actuators = robot.actuatorCount();
     if (actuators < 3) {
-        check.fail(0, "limbs", "a planar platform needs at least 3 actuated joints, got " +
-                                   std::to_string(actuators));
+        check.fail(0, "limbs", "a planar platform needs at least 3 actuated joints, got " + std::to_string(actuators));
     }
 }
 

@@ -55,13 +55,14 @@ void jointSpaceDynamics(const Model& model, Data& data) {
     data.C.setZero();
     data.Q_gf.setZero();
     const bool gravity = !model.gravity.isZero();
-    const auto add = [&](const InertiaDyad& M, const ShapingMatrix3& T, const ShapingMatrix3& T_dot) NOCDYN_INLINE_LAMBDA {
-        const ShapingMatrix3 W = noc::applyInertia(M, T);
-        data.I.noalias() += T.transpose().lazyProduct(W);
-        data.C.noalias() += W.transpose().lazyProduct(T_dot);
-        // gravity: the generalized force of the weight [0; m g] is T_i^T [0; m g]
-        if (gravity) data.Q_gf.noalias() -= W.bottomRows<2>().transpose() * model.gravity;
-    };
+    const auto add = [&](const InertiaDyad& M, const ShapingMatrix3& T, const ShapingMatrix3& T_dot)
+                         NOCDYN_INLINE_LAMBDA {
+                             const ShapingMatrix3 W = noc::applyInertia(M, T);
+                             data.I.noalias() += T.transpose().lazyProduct(W);
+                             data.C.noalias() += W.transpose().lazyProduct(T_dot);
+                             // gravity: the generalized force of the weight [0; m g] is T_i^T [0; m g]
+                             if (gravity) data.Q_gf.noalias() -= W.bottomRows<2>().transpose() * model.gravity;
+                         };
     for (int j = 0; j < model.limbs; ++j) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         for (int b = 0; b < 2; ++b) {
@@ -141,7 +142,8 @@ namespace {
 #if defined(__GNUC__)
 __attribute__((noinline, cold))
 #endif
-Status rejected(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
+Status
+rejected(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
     const Status status = inverseDynamics(model, data, p, dp, ddp);
     if (status) data.W_P.noalias() = data.A.transpose() * data.tau;
     return status;
@@ -155,10 +157,12 @@ Status rejected(const Model& model, Data& data, const Pose& p, const Twist& dp, 
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
-Status inverseDynamicsFast(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
+Status
+inverseDynamicsFast(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
     bool finite = true;
     for (int i = 0; i < 3; ++i) finite = finite && std::isfinite(p(i)) && std::isfinite(dp(i)) && std::isfinite(ddp(i));
-    if (!finite) [[unlikely]] return rejected(model, data, p, dp, ddp);
+    if (!finite) [[unlikely]]
+        return rejected(model, data, p, dp, ddp);
     const double dtheta = p(0) - model.home(0);
     double s, c;
     if (std::abs(dtheta) < 1.0e6) [[likely]] {

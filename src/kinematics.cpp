@@ -118,8 +118,8 @@ void jointAccelerations(const Model& model, Data& data) {
         ld.gamma_ddot.noalias() = ld.J_inv * (data.xi_P_dot - jacobianRateTimesRates(ld));
     }
     for (int a = 0; a < model.actuators; ++a) {
-        data.ddu(a) = data.limb[static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)])]
-                          .gamma_ddot(model.actuator_joint[static_cast<std::size_t>(a)]);
+        data.ddu(a) = data.limb[static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)])].gamma_ddot(
+            model.actuator_joint[static_cast<std::size_t>(a)]);
     }
 }
 

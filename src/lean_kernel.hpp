@@ -141,13 +141,20 @@ NOCDYN_ALWAYS_INLINE auto jointScrew(const LimbModel& limb, const Move<S>& g, in
 /// The closed form of limb kind K (limb_ik_impl.hpp).
 template <LimbKind K>
 NOCDYN_ALWAYS_INLINE Status solveKind(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& js) {
-    if constexpr (K == LimbKind::RRR) return ik::solveRRR(limb, j, G, js);
-    else if constexpr (K == LimbKind::PRR) return ik::solvePRR(limb, j, G, js);
-    else if constexpr (K == LimbKind::RPR) return ik::solveRPR(limb, j, G, js);
-    else if constexpr (K == LimbKind::RRP) return ik::solveRRP(limb, j, G, js);
-    else if constexpr (K == LimbKind::PRP) return ik::solvePRP(limb, j, G, js);
-    else if constexpr (K == LimbKind::RPP) return ik::solveRPP(limb, j, G, js);
-    else return ik::solvePPR(limb, j, G, js);
+    if constexpr (K == LimbKind::RRR)
+        return ik::solveRRR(limb, j, G, js);
+    else if constexpr (K == LimbKind::PRR)
+        return ik::solvePRR(limb, j, G, js);
+    else if constexpr (K == LimbKind::RPR)
+        return ik::solveRPR(limb, j, G, js);
+    else if constexpr (K == LimbKind::RRP)
+        return ik::solveRRP(limb, j, G, js);
+    else if constexpr (K == LimbKind::PRP)
+        return ik::solvePRP(limb, j, G, js);
+    else if constexpr (K == LimbKind::RPP)
+        return ik::solveRPP(limb, j, G, js);
+    else
+        return ik::solvePPR(limb, j, G, js);
 }
 
 /// Inertia wrench, less gravity, of a body (inertia I, mass m, c.o.m. x) with twist xi and
@@ -185,7 +192,8 @@ struct Frame {
 /// W), and its actuators' u, du, ddu and rows of A. False when the limb cannot close or
 /// its J_j is too ill-conditioned.
 template <LimbKind K>
-NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows, double* weight, double* scale) {
+NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows,
+                                    double* weight, double* scale) {
     const PlatformDisplacement& G = f.G;
     const V3& xi_P = f.xi_P;
     const V3& xi_P_dot = f.xi_P_dot;
@@ -264,8 +272,8 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
 
 /// One sample given cos and sin of dtheta = theta - home(0); p, dp, ddp finite.
 /// Returns false when the per-sample path would fail (or is within rounding of a threshold).
-NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p, const double* dp,
-                   const double* ddp, const Out& out, V3& W) {
+NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
+                                 const double* dp, const double* ddp, const Out& out, V3& W) {
     PlatformDisplacement G;
     G.cos_dtheta = cos_dtheta;
     G.sin_dtheta = sin_dtheta;
@@ -279,7 +287,7 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
     const double inv_L = 1.0 / L;
     const double max_condition = model.max_condition;
 
-    V3 rows[kMaxActuators];  // rows of A: the actuated rows of the J_j^-1
+    V3 rows[kMaxActuators];        // rows of A: the actuated rows of the J_j^-1
     double weight[kMaxActuators];  // 1 / joint scale of each actuator, and the scale
     double scale[kMaxActuators];
     // W_P = sum_i T_i^{xi T} w_i: each limb's bodies through J_j^-T, the platform directly
@@ -294,14 +302,29 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         bool ok = false;
         switch (limb.kind) {
-            case LimbKind::RRR: ok = limbTerms<LimbKind::RRR>(limb, j, frame, out, W, rows, weight, scale); break;
-            case LimbKind::PRR: ok = limbTerms<LimbKind::PRR>(limb, j, frame, out, W, rows, weight, scale); break;
-            case LimbKind::RPR: ok = limbTerms<LimbKind::RPR>(limb, j, frame, out, W, rows, weight, scale); break;
-            case LimbKind::RRP: ok = limbTerms<LimbKind::RRP>(limb, j, frame, out, W, rows, weight, scale); break;
-            case LimbKind::PRP: ok = limbTerms<LimbKind::PRP>(limb, j, frame, out, W, rows, weight, scale); break;
-            case LimbKind::RPP: ok = limbTerms<LimbKind::RPP>(limb, j, frame, out, W, rows, weight, scale); break;
-            case LimbKind::PPR: ok = limbTerms<LimbKind::PPR>(limb, j, frame, out, W, rows, weight, scale); break;
-            case LimbKind::PPP: break;  // rejected by validate()
+            case LimbKind::RRR:
+                ok = limbTerms<LimbKind::RRR>(limb, j, frame, out, W, rows, weight, scale);
+                break;
+            case LimbKind::PRR:
+                ok = limbTerms<LimbKind::PRR>(limb, j, frame, out, W, rows, weight, scale);
+                break;
+            case LimbKind::RPR:
+                ok = limbTerms<LimbKind::RPR>(limb, j, frame, out, W, rows, weight, scale);
+                break;
+            case LimbKind::RRP:
+                ok = limbTerms<LimbKind::RRP>(limb, j, frame, out, W, rows, weight, scale);
+                break;
+            case LimbKind::PRP:
+                ok = limbTerms<LimbKind::PRP>(limb, j, frame, out, W, rows, weight, scale);
+                break;
+            case LimbKind::RPP:
+                ok = limbTerms<LimbKind::RPP>(limb, j, frame, out, W, rows, weight, scale);
+                break;
+            case LimbKind::PPR:
+                ok = limbTerms<LimbKind::PPR>(limb, j, frame, out, W, rows, weight, scale);
+                break;
+            case LimbKind::PPP:
+                break;  // rejected by validate()
         }
         if (!ok) return false;
     }
@@ -311,12 +334,12 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
     if (model.coordinates == Coordinates::actuators) {
         const V3 b0 = cross(rows[1], rows[2]), b1 = cross(rows[2], rows[0]), b2 = cross(rows[0], rows[1]);
         const double det = dot(rows[0], b0);
-        const double n_A =
-            std::max(weight[0] * std::abs(rows[0].w) + weight[1] * std::abs(rows[1].w) + weight[2] * std::abs(rows[2].w),
-                     L * std::max(weight[0] * std::abs(rows[0].x) + weight[1] * std::abs(rows[1].x) +
-                                      weight[2] * std::abs(rows[2].x),
-                                  weight[0] * std::abs(rows[0].y) + weight[1] * std::abs(rows[1].y) +
-                                      weight[2] * std::abs(rows[2].y)));
+        const double n_A = std::max(
+            weight[0] * std::abs(rows[0].w) + weight[1] * std::abs(rows[1].w) + weight[2] * std::abs(rows[2].w),
+            L * std::max(
+                    weight[0] * std::abs(rows[0].x) + weight[1] * std::abs(rows[1].x) + weight[2] * std::abs(rows[2].x),
+                    weight[0] * std::abs(rows[0].y) + weight[1] * std::abs(rows[1].y) +
+                        weight[2] * std::abs(rows[2].y)));
         const double n_adj = std::max({(std::abs(b0.w) + (std::abs(b0.x) + std::abs(b0.y)) * inv_L) * scale[0],
                                        (std::abs(b1.w) + (std::abs(b1.x) + std::abs(b1.y)) * inv_L) * scale[1],
                                        (std::abs(b2.w) + (std::abs(b2.x) + std::abs(b2.y)) * inv_L) * scale[2]});
@@ -350,7 +373,8 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
         return m[0] * adj[0] + m[1] * adj[1] + m[2] * adj[2];
     };
     const auto norm1 = [](const double* m) {
-        return std::max({std::abs(m[0]) + std::abs(m[1]) + std::abs(m[2]), std::abs(m[1]) + std::abs(m[3]) + std::abs(m[4]),
+        return std::max({std::abs(m[0]) + std::abs(m[1]) + std::abs(m[2]),
+                         std::abs(m[1]) + std::abs(m[3]) + std::abs(m[4]),
                          std::abs(m[2]) + std::abs(m[4]) + std::abs(m[5])});
     };
     double adj_B[6], adj_N[6];

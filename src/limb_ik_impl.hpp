@@ -36,7 +36,6 @@ namespace ik {
 /// The joint angle from its cosine and sine (libm's atan2).
 [[nodiscard]] inline double atan2Of(double y, double x) { return std::atan2(y, x); }
 
-
 constexpr double kTiny = 1e-300;
 
 [[nodiscard]] inline double dot(const Vector2& a, const Vector2& b) { return a.dot(b); }
@@ -84,8 +83,7 @@ inline Status solveRRR(const LimbModel& limb, int j, const PlatformDisplacement&
     const Vector2 P2 = r1 + (a * inv_d) * D + (limb.branch * h * inv_d) * perp(D);
     angleBetween(limb.point_home[1] - r1, P2 - r1, limb.inv_length1_sq, out.c(0), out.s(0));
     const Vector2 link = limb.point_home[2] - limb.point_home[1];
-    const Vector2 turned(out.c(0) * link.x() - out.s(0) * link.y(),
-                         out.s(0) * link.x() + out.c(0) * link.y());
+    const Vector2 turned(out.c(0) * link.x() - out.s(0) * link.y(), out.s(0) * link.x() + out.c(0) * link.y());
     angleBetween(turned, P3 - P2, limb.inv_length2_sq, out.c(1), out.s(1));
     remainingAngle(G, out, 2);
     return {};
@@ -156,8 +154,8 @@ inline Status solvePRP(const LimbModel& limb, int j, const PlatformDisplacement&
     out.c(1) = G.cos_dtheta;
     out.s(1) = G.sin_dtheta;
     // G(r_2 - q_3 d_3) = r_2 + q_1 d_1
-    return solveLinear(j, limb.direction[0], G.rotate(limb.direction[2]),
-                       G.apply(limb.point[1]) - limb.point_home[1], out.q(0), out.q(2));
+    return solveLinear(j, limb.direction[0], G.rotate(limb.direction[2]), G.apply(limb.point[1]) - limb.point_home[1],
+                       out.q(0), out.q(2));
 }
 
 inline Status solveRPP(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
@@ -174,8 +172,8 @@ inline Status solvePPR(const LimbModel& limb, int j, const PlatformDisplacement&
     out.c(2) = G.cos_dtheta;
     out.s(2) = G.sin_dtheta;
     // G(r_3) = r_3 + q_1 d_1 + q_2 d_2
-    return solveLinear(j, limb.direction[0], limb.direction[1],
-                       G.apply(limb.point[2]) - limb.point_home[2], out.q(0), out.q(1));
+    return solveLinear(j, limb.direction[0], limb.direction[1], G.apply(limb.point[2]) - limb.point_home[2], out.q(0),
+                       out.q(1));
 }
 
 }  // namespace ik
@@ -184,17 +182,26 @@ using ik::atan2Of;
 
 /// Solves limb `j` for its joint variables on its home branch (angles of R joints not
 /// computed: only their cos and sin). Fails with unreachable or singular_limb.
-NOCDYN_ALWAYS_INLINE Status solveJoints(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+NOCDYN_ALWAYS_INLINE Status solveJoints(const LimbModel& limb, int j, const PlatformDisplacement& G,
+                                        JointSolution& out) {
     using namespace ik;
     switch (limb.kind) {
-        case LimbKind::RRR: return solveRRR(limb, j, G, out);
-        case LimbKind::PRR: return solvePRR(limb, j, G, out);
-        case LimbKind::RPR: return solveRPR(limb, j, G, out);
-        case LimbKind::RRP: return solveRRP(limb, j, G, out);
-        case LimbKind::PRP: return solvePRP(limb, j, G, out);
-        case LimbKind::RPP: return solveRPP(limb, j, G, out);
-        case LimbKind::PPR: return solvePPR(limb, j, G, out);
-        default: return singular(j);  // PPP is rejected by validate()
+        case LimbKind::RRR:
+            return solveRRR(limb, j, G, out);
+        case LimbKind::PRR:
+            return solvePRR(limb, j, G, out);
+        case LimbKind::RPR:
+            return solveRPR(limb, j, G, out);
+        case LimbKind::RRP:
+            return solveRRP(limb, j, G, out);
+        case LimbKind::PRP:
+            return solvePRP(limb, j, G, out);
+        case LimbKind::RPP:
+            return solveRPP(limb, j, G, out);
+        case LimbKind::PPR:
+            return solvePPR(limb, j, G, out);
+        default:
+            return singular(j);  // PPP is rejected by validate()
     }
 }
 

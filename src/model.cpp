@@ -168,7 +168,8 @@ std::string describe(const Status& status, const Model& model) {
                 << " (limit " << model.max_condition << ")";
             return out.str();
         case StatusCode::singular_actuation:
-            if (status.value == 0.0) return "the actuator rates cannot be given independently: the robot is redundantly actuated";
+            if (status.value == 0.0)
+                return "the actuator rates cannot be given independently: the robot is redundantly actuated";
             out << "actuation singularity: the map from the platform twist to the actuator rates has condition number "
                 << status.value << " (limit " << model.max_condition << ")";
             return out.str();
@@ -182,7 +183,8 @@ std::string describe(const Status& status, const Model& model) {
             return out.str();
         case StatusCode::effort_exceeded:
             out << "actuator effort limit exceeded: actuator "
-                << model.limb[static_cast<std::size_t>(status.limb)].actuator[static_cast<std::size_t>(status.joint)] + 1
+                << model.limb[static_cast<std::size_t>(status.limb)].actuator[static_cast<std::size_t>(status.joint)] +
+                       1
                 << " (" << limb << joint << "): tau = " << status.value << ", limit "
                 << (limits ? limits->effort : 0.0);
             return out.str();

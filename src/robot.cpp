@@ -23,9 +23,9 @@ std::string formatted(double value) {
 /// Requires lo <= value <= hi (NaN fails): "must be positive, in [lo, hi] UNIT; got V".
 void requireIn(double value, double lo, double hi, const char* unit, const char* field, const std::string& robot) {
     if (value >= lo && value <= hi) return;
-    throw ParameterError(robot, field,
-                         "must be positive, in [" + formatted(lo) + ", " + formatted(hi) + "] " + unit + "; got " +
-                             formatted(value));
+    throw ParameterError(
+        robot, field,
+        "must be positive, in [" + formatted(lo) + ", " + formatted(hi) + "] " + unit + "; got " + formatted(value));
 }
 
 }  // namespace
@@ -37,9 +37,9 @@ void validate(const RobotParameters& robot) {
     requireIn(robot.platform_side, kMinLength, kMaxLength, "m", "geometry.platform_side", name);
     requireIn(robot.link_length, kMinLength, kMaxLength, "m", "geometry.link_length", name);
     if (!(robot.link_com >= 0.0 && robot.link_com <= robot.link_length)) {
-        throw ParameterError(name, "geometry.link_com",
-                             "must lie in [0, link_length = " + formatted(robot.link_length) + "] m; got " +
-                                 formatted(robot.link_com));
+        throw ParameterError(
+            name, "geometry.link_com",
+            "must lie in [0, link_length = " + formatted(robot.link_length) + "] m; got " + formatted(robot.link_com));
     }
     requireIn(robot.slider_mass, kMinMass, kMaxMass, "kg", "slider.mass", name);
     requireIn(robot.link_mass, kMinMass, kMaxMass, "kg", "link.mass", name);
@@ -49,9 +49,9 @@ void validate(const RobotParameters& robot) {
     requireIn(robot.stroke, kMinLength, kMaxLength, "m", "actuator.stroke", name);
     requireIn(robot.peak_force, kMinForce, kMaxForce, "N", "actuator.peak_force", name);
     if (!(robot.max_condition > 1.0 && robot.max_condition <= kMaxCondition)) {
-        throw ParameterError(name, "limits.max_condition",
-                             "must be a number in (1, " + formatted(kMaxCondition) + "]; got " +
-                                 formatted(robot.max_condition));
+        throw ParameterError(
+            name, "limits.max_condition",
+            "must be a number in (1, " + formatted(kMaxCondition) + "]; got " + formatted(robot.max_condition));
     }
     // Reference posture (theta = 0, C = O): every M_j lies (R - r) / 2 from its rail line
     // (eqs. 37-38); the limb closes only when 0 < d_j^M < l (eq. 39).

@@ -77,8 +77,9 @@ public:
         for (int a = 0; a < model_.actuators; ++a) {
             if (!std::isfinite(data_.u(a)) || !std::isfinite(data_.du(a)) || !std::isfinite(data_.ddu(a)) ||
                 !std::isfinite(data_.tau(a))) {
-                throw Error(atTime(t, "actuator " + std::to_string(a + 1) + ": the inverse dynamics is not finite (u = " +
-                                          number(data_.u(a)) + ", tau = " + number(data_.tau(a)) + ")" + where));
+                throw Error(atTime(t, "actuator " + std::to_string(a + 1) +
+                                          ": the inverse dynamics is not finite (u = " + number(data_.u(a)) +
+                                          ", tau = " + number(data_.tau(a)) + ")" + where));
             }
         }
         for (const Status limit : {checkJointLimits(model_, data_), checkEffort(model_, data_)}) {

@@ -21,33 +21,31 @@ std::string describe(const Status& status, const RobotParameters& robot) {
                     << "^M from platform vertex M_" << j << " to rail line L_" << j
                     << " is not a number (a non-finite pose or input)";
             } else if (status.value <= 0.0) {
-                out << "pose outside the workspace: limb " << j << ": platform vertex M_" << j
-                    << " is " << -status.value * 1e3 << " mm on or beyond its rail line L_" << j
-                    << " (d_" << j << "^M = " << status.value << " m must be > 0)";
+                out << "pose outside the workspace: limb " << j << ": platform vertex M_" << j << " is "
+                    << -status.value * 1e3 << " mm on or beyond its rail line L_" << j << " (d_" << j
+                    << "^M = " << status.value << " m must be > 0)";
             } else {
-                out << "pose outside the workspace: limb " << j << ": platform vertex M_" << j
-                    << " is " << status.value << " m from rail line L_" << j
-                    << ", beyond the link length l = " << robot.link_length << " m by "
+                out << "pose outside the workspace: limb " << j << ": platform vertex M_" << j << " is " << status.value
+                    << " m from rail line L_" << j << ", beyond the link length l = " << robot.link_length << " m by "
                     << (status.value - robot.link_length) * 1e3 << " mm";
             }
             return out.str();
         case StatusCode::singular_forward_jacobian:
-            out << "singular posture: the forward Jacobian H has condition number " << status.value
-                << " (limit " << robot.max_condition << ")";
+            out << "singular posture: the forward Jacobian H has condition number " << status.value << " (limit "
+                << robot.max_condition << ")";
             return out.str();
         case StatusCode::singular_inverse_jacobian:
             out << "singular posture: limb " << j << ": link A_" << j << "M_" << j
-                << " is nearly normal to its rail; D has condition number " << status.value
-                << " (limit " << robot.max_condition << ")";
+                << " is nearly normal to its rail; D has condition number " << status.value << " (limit "
+                << robot.max_condition << ")";
             return out.str();
         case StatusCode::stroke_exceeded:
             if (!std::isfinite(status.value)) {
                 out << "actuator displacement not finite: limb " << j << ": u_" << j << " = " << status.value << " m";
                 return out.str();
             }
-            out << "actuator stroke exceeded: limb " << j << ": u_" << j << " = "
-                << status.value * 1e3 << " mm, but the stroke allows +-" << robot.stroke * 0.5e3
-                << " mm about the reference posture";
+            out << "actuator stroke exceeded: limb " << j << ": u_" << j << " = " << status.value * 1e3
+                << " mm, but the stroke allows +-" << robot.stroke * 0.5e3 << " mm about the reference posture";
             return out.str();
         case StatusCode::force_exceeded:
             if (!std::isfinite(status.value)) {
@@ -55,8 +53,8 @@ std::string describe(const Status& status, const RobotParameters& robot) {
                     << " N (a non-finite pose, velocity or acceleration)";
                 return out.str();
             }
-            out << "actuator peak force exceeded: limb " << j << ": tau_" << j << " = "
-                << status.value << " N, peak force " << robot.peak_force << " N";
+            out << "actuator peak force exceeded: limb " << j << ": tau_" << j << " = " << status.value
+                << " N, peak force " << robot.peak_force << " N";
             return out.str();
         case StatusCode::integration_step_too_small:
             out << "the integrator's step fell to " << status.value
@@ -70,8 +68,8 @@ std::string describe(const Status& status, const RobotParameters& robot) {
         case StatusCode::workspace_edge:
             out << "the motion reached the edge of the workspace: limb " << j << ": link A_" << j << "M_" << j
                 << (status.value > 0.5 * robot.link_length ? " is normal to its rail" : " lies along its rail")
-                << " (d_" << j << "^M = " << status.value << " m, l = " << robot.link_length
-                << " m), so no pose has u_" << j << " further out";
+                << " (d_" << j << "^M = " << status.value << " m, l = " << robot.link_length << " m), so no pose has u_"
+                << j << " further out";
             return out.str();
         case StatusCode::assembly_mode_lost:
             out << "direct kinematics lost the assembly mode (residual " << status.value

@@ -4,7 +4,6 @@
 
 #include "allocation_counter.hpp"
 
-
 #include <cmath>
 #include <string>
 
@@ -14,7 +13,6 @@
 #include "nocdyn/prr3/dynamics.hpp"
 #include "nocdyn/prr3/kinematics.hpp"
 #include "nocdyn/trajectory.hpp"
-
 
 namespace nocdyn::test {
 namespace {
@@ -47,8 +45,7 @@ TEST(RealTime, GeneralModelAllocatesNothingPerSample) {
         const PoseTrajectory trajectory = paperTrajectory1();
         const Eigen::Index N = 500;
         Eigen::ArrayX3d P(N, 3), dP(N, 3), ddP(N, 3);
-        Eigen::ArrayXXd u(N, model.actuators), du(N, model.actuators), ddu(N, model.actuators),
-            tau(N, model.actuators);
+        Eigen::ArrayXXd u(N, model.actuators), du(N, model.actuators), ddu(N, model.actuators), tau(N, model.actuators);
         Pose p, dp, ddp;
         for (Eigen::Index k = 0; k < N; ++k) {
             trajectory.evaluate(static_cast<double>(k) * 2e-4, p, dp, ddp);
@@ -60,11 +57,11 @@ TEST(RealTime, GeneralModelAllocatesNothingPerSample) {
         const long before = allocationCount();
         double checksum = 0.0;
         for (Eigen::Index k = 0; k < N; ++k) {
-            const Status lean = inverseDynamicsFast(model, data, P.row(k).transpose(), dP.row(k).transpose(),
-                                                    ddP.row(k).transpose());
+            const Status lean =
+                inverseDynamicsFast(model, data, P.row(k).transpose(), dP.row(k).transpose(), ddP.row(k).transpose());
             checksum += lean.ok() ? data.tau.sum() : 1.0;
-            const Status full = inverseDynamics(model, data, P.row(k).transpose(), dP.row(k).transpose(),
-                                                ddP.row(k).transpose());
+            const Status full =
+                inverseDynamics(model, data, P.row(k).transpose(), dP.row(k).transpose(), ddP.row(k).transpose());
             checksum += full.ok() ? data.tau.sum() + data.I.trace() : 1.0;
         }
         const BatchResult batch = inverseDynamicsBatch(model, P, dP, ddP, u, du, ddu, tau, 1);

@@ -53,8 +53,8 @@ void expectEqualsPerSample(const prr3::Model& model, const prr3::SampleBatch& ba
                 const double w = (*want[a])(j), g = (*got[a])(k, j);
                 const double scale = std::abs(w) + peak(a, j);
                 EXPECT_LE(std::abs(g - w), kRelativeTolerance * scale)
-                    << names[a] << "_" << j + 1 << " of sample " << k << " at pose "
-                    << batch.p.row(k) << ": batch " << g << ", per-sample " << w;
+                    << names[a] << "_" << j + 1 << " of sample " << k << " at pose " << batch.p.row(k) << ": batch "
+                    << g << ", per-sample " << w;
             }
         }
     }

@@ -87,8 +87,8 @@ TEST(CliOutput, TrajectoryNameInAFigureIsShownNeverRun) {
         std::ofstream(trajectory) << "name: " << yamlQuoted(name)
                                   << "\nduration: 0.01\nx: {harmonics: [{amplitude: 0.001, frequency: 10}]}\n";
         const fs::path stem = dir / ("control" + std::to_string(index++));
-        const CliResult r = runCli("control --plant nocdyn --trajectory " + trajectory.string() + " --figure " +
-                                   stem.string());
+        const CliResult r =
+            runCli("control --plant nocdyn --trajectory " + trajectory.string() + " --figure " + stem.string());
         ASSERT_EQ(r.exit_code, 0) << name << "\n" << r.err;
         EXPECT_FALSE(fs::exists(dir / "PWNED")) << name;
         expectFigureDrawn(stem);
@@ -103,8 +103,8 @@ TEST(CliOutput, PlantedLinksNeverRedirectAWrite) {
     for (const char* planted : {"out.csv.partial", "envelope.gp", "envelope.png.partial"}) {
         fs::create_symlink(dir / "victim.txt", dir / planted);
     }
-    const CliResult r = runCli("inverse-dynamics --trajectory paper1 --duration 0.01 --rate 1000 -o " +
-                               (dir / "out.csv").string());
+    const CliResult r =
+        runCli("inverse-dynamics --trajectory paper1 --duration 0.01 --rate 1000 -o " + (dir / "out.csv").string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const CliResult figure = runCli("envelope --points 2 --figure " + (dir / "envelope").string());
     ASSERT_EQ(figure.exit_code, 0) << figure.err;
@@ -131,7 +131,8 @@ TEST(CliOutput, OutputThatIsAFifoIsWrittenThroughAndStaysAFifo) {
     const CliResult r = runCli("inverse-dynamics --trajectory paper1 --duration 0.01 --rate 1000 -o " + fifo.string());
     std::string received;
     char buffer[4096];
-    for (ssize_t n = 0; (n = ::read(fd, buffer, sizeof buffer)) > 0;) received.append(buffer, static_cast<std::size_t>(n));
+    for (ssize_t n = 0; (n = ::read(fd, buffer, sizeof buffer)) > 0;)
+        received.append(buffer, static_cast<std::size_t>(n));
     ::close(fd);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(fs::is_fifo(fifo));
@@ -190,8 +191,8 @@ TEST(CliOutput, AliasingRateIsRefusedNamingTheRateNeeded) {
     EXPECT_NE(r.err.find("use a rate above 2000 Hz"), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
     EXPECT_TRUE(r.out.empty());
-    const CliResult control = runCli("control --plant nocdyn --trajectory " + trajectory.string() +
-                                     " --duration 0.01 --rate 1000");
+    const CliResult control =
+        runCli("control --plant nocdyn --trajectory " + trajectory.string() + " --duration 0.01 --rate 1000");
     EXPECT_EQ(control.exit_code, 1);
     EXPECT_NE(control.err.find("use a rate above 2000 Hz"), std::string::npos) << control.err;
     EXPECT_EQ(std::distance(fs::directory_iterator(dir), fs::directory_iterator()), 1);
@@ -213,8 +214,8 @@ TEST(CliOutput, ForcePeakBetweenOutputSamplesIsAnErrorAndLeavesNoFile) {
 TEST(CliOutput, AllowLimitsNeverWritesANonFiniteNumber) {
     const fs::path dir = scratchDirectory();
     const fs::path trajectory = harmonicFile(dir, "overflow.yaml", "{amplitude: 1.0e-3, frequency: 1.0e160}");
-    const std::string args = "inverse-dynamics --allow-limits --trajectory " + trajectory.string() +
-                             " --duration 1e-157 --rate 3e160";
+    const std::string args =
+        "inverse-dynamics --allow-limits --trajectory " + trajectory.string() + " --duration 1e-157 --rate 3e160";
     // refused before anything is computed (the duration and rate are outside their accepted
     // ranges) or, were they accepted, when the motion overflows: never a file, never a NaN
     const CliResult file = runCli(args + " -o " + (dir / "out.csv").string());

@@ -69,8 +69,8 @@ TEST(Cli, InverseDynamicsWritesTheDocumentedColumnsAndTheLibrarysNumbers) {
     const CliRun r = run("inverse-dynamics --trajectory paper1 --duration 0.01 --rate 1000");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Table table = parseCsv(r.out);
-    const std::vector<std::string> expected = {"t",   "x",    "y",    "theta", "u1",   "u2",   "u3",   "du1", "du2",
-                                               "du3", "ddu1", "ddu2", "ddu3",  "tau1", "tau2", "tau3"};
+    const std::vector<std::string> expected = {"t",   "x",   "y",    "theta", "u1",   "u2",   "u3",   "du1",
+                                               "du2", "du3", "ddu1", "ddu2",  "ddu3", "tau1", "tau2", "tau3"};
     for (const auto& column : expected) EXPECT_TRUE(table.has(column)) << column;
     ASSERT_EQ(table.rows.size(), 10u);
     const Model model{RobotParameters{}};
@@ -110,7 +110,8 @@ TEST(Cli, RobotFileChangesTheForces) {
     text.replace(text.find("mass: 1.75257"), 13, "mass: 3.50514");
     std::ofstream(robot) << text;
     const CliRun light = run("inverse-dynamics --trajectory paper1 --duration 0.003 --rate 1000");
-    const CliRun heavy = run("inverse-dynamics --trajectory paper1 --duration 0.003 --rate 1000 --robot " + robot.string());
+    const CliRun heavy =
+        run("inverse-dynamics --trajectory paper1 --duration 0.003 --rate 1000 --robot " + robot.string());
     ASSERT_EQ(light.exit_code, 0) << light.err;
     ASSERT_EQ(heavy.exit_code, 0) << heavy.err;
     const io::Table a = parseCsv(light.out), b = parseCsv(heavy.out);
@@ -119,8 +120,8 @@ TEST(Cli, RobotFileChangesTheForces) {
 
 TEST(Cli, BadArgumentsExitNonZeroWithAMessage) {
     for (const char* args : {"", "inverse-dynamics", "inverse-dynamics --trajectory paper1 --rate -5",
-                             "inverse-dynamics --trajectory paper1 --duration abc", "fly-to-the-moon",
-                             "pose 0 0", "pose 0 0 0 --robot /nonexistent.yaml"}) {
+                             "inverse-dynamics --trajectory paper1 --duration abc", "fly-to-the-moon", "pose 0 0",
+                             "pose 0 0 0 --robot /nonexistent.yaml"}) {
         const CliRun r = run(args);
         EXPECT_NE(r.exit_code, 0) << args;
         EXPECT_FALSE(r.err.empty()) << args;
@@ -196,7 +197,8 @@ TEST(Cli, PoseJsonCarriesJointsActuationMapAndInertia) {
     EXPECT_EQ(outside.exit_code, 1);
     EXPECT_NE(outside.err.find("out of reach: limb 1"), std::string::npos) << outside.err;
     // any robot: the redundant 4-RRR
-    const CliRun rrr = run("pose 0.02 0.001 -0.003 --json --robot " + std::string(NOCDYN_SOURCE_DIR) + "/robots/4-rrr.yaml");
+    const CliRun rrr =
+        run("pose 0.02 0.001 -0.003 --json --robot " + std::string(NOCDYN_SOURCE_DIR) + "/robots/4-rrr.yaml");
     ASSERT_EQ(rrr.exit_code, 0) << rrr.err;
     const auto four = nlohmann::json::parse(rrr.out);
     EXPECT_EQ(four["actuators"].size(), 4u);

@@ -6,11 +6,9 @@
 
 #include "allocation_counter.hpp"
 
-
 #include "nocdyn/control.hpp"
 #include "nocdyn/prr3/kinematics.hpp"
 #include "support.hpp"
-
 
 namespace nocdyn::test {
 namespace {
@@ -112,8 +110,7 @@ TEST(Control, ComputedTorqueReproducesInverseDynamicsOnTheTrajectory) {
         controller.reset(reference.p);
         ASSERT_TRUE(controller.compute(reference.u, reference.du, reference, tau).ok());
         solve(model, data, reference.p, reference.dp, reference.ddp);
-        EXPECT_LE((tau - data.tau).cwiseAbs().maxCoeff(), 1e-9 * (1.0 + data.tau.cwiseAbs().maxCoeff()))
-            << "t = " << t;
+        EXPECT_LE((tau - data.tau).cwiseAbs().maxCoeff(), 1e-9 * (1.0 + data.tau.cwiseAbs().maxCoeff())) << "t = " << t;
     }
 }
 

@@ -100,8 +100,7 @@ TEST(DirectKinematics, EverySolutionIsVerifiedAndNoneIsMissed) {
         const JointVector u(range(rng), range(rng), range(rng));
         const auto modes = prr3::directDisplacement(model, u, {.working_branch_only = false});
         for (const AssemblyMode& mode : modes) expectVerified(model, u, mode, true);
-        EXPECT_EQ(static_cast<int>(modes.size()), countByScan(model, u))
-            << "u = [" << u.transpose() << "]";
+        EXPECT_EQ(static_cast<int>(modes.size()), countByScan(model, u)) << "u = [" << u.transpose() << "]";
         most = std::max(most, static_cast<int>(modes.size()));
     }
     EXPECT_EQ(most, 6) << "the 3-PRR has up to six assembly modes";

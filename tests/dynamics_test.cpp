@@ -33,8 +33,8 @@ Matrix18x21 constraintMatrix(const prr3::Model& model, const prr3::Data& data) {
         const int s = 3 * prr3::sliderBody(j), k = 3 * prr3::linkBody(j), p = 3 * prr3::kPlatformBody;
         const Vector2 G = data.A[j] + (model.l_c / model.l) * (data.Mj[j] - data.A[j]);
         const int row = 6 * j;
-        K(row, s) = 1.0;                                            // slider does not turn
-        K.block<1, 2>(row + 1, s + 1) = model.n[j].transpose();     // nor leave L_j
+        K(row, s) = 1.0;                                         // slider does not turn
+        K.block<1, 2>(row + 1, s + 1) = model.n[j].transpose();  // nor leave L_j
         // pin at A_j: v_G + omega_link E (A - G) - v_slider = 0
         K.block<2, 2>(row + 2, k + 1) = identity;
         K.block<2, 1>(row + 2, k) = perp(data.A[j] - G);

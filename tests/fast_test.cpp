@@ -3,7 +3,6 @@
 // the workspace, and it allocates nothing (global operator new is counted in this binary).
 #include <gtest/gtest.h>
 
-
 #include <cmath>
 #include <cstdio>
 #include <numbers>
@@ -62,8 +61,8 @@ void expectEqualToFullPath(const prr3::Model& model, const std::vector<Input>& i
                 const double scale = std::abs(w) + peak;
                 worst = std::max(worst, std::abs(g - w) / scale);
                 EXPECT_LE(std::abs(g - w), kRelativeTolerance * scale)
-                    << names[a] << "_" << j + 1 << " of sample " << k << ", " << describePose(inputs[k].p)
-                    << ": lean " << g << ", full " << w;
+                    << names[a] << "_" << j + 1 << " of sample " << k << ", " << describePose(inputs[k].p) << ": lean "
+                    << g << ", full " << w;
             }
         }
     }
@@ -225,7 +224,8 @@ TEST(Fast, ConcurrentLinkLinesAreTheSameForwardSingularity) {
     const double lo = concurrentLinkLinesRotation();
     const prr3::Model model;
     prr3::FastData fast;
-    const Status status = prr3::inverseDynamicsFast(model, fast, Pose(lo, 0.0, 0.0), Twist(1.0, 0.0, 0.0), Twist::Zero());
+    const Status status =
+        prr3::inverseDynamicsFast(model, fast, Pose(lo, 0.0, 0.0), Twist(1.0, 0.0, 0.0), Twist::Zero());
     EXPECT_EQ(status.code, StatusCode::singular_forward_jacobian) << "theta = " << lo;
     EXPECT_EQ(status.limb, -1);
     expectSameStatus(model, fast, Pose(lo, 0.0, 0.0), Twist(1.0, 0.0, 0.0), Twist::Zero());
@@ -240,9 +240,8 @@ TEST(Fast, ConcurrentLinkLinesAreTheSameForwardSingularity) {
     }
     EXPECT_GT(singular, 0);
     EXPECT_GT(accepted, 0);
-    ASSERT_TRUE(prr3::inverseDynamicsFast(model, fast, Pose(lo + 0.3, 0.0, 0.0), Twist(1.0, 0.0, 0.0),
-                                          Twist::Zero())
-                    .ok());
+    ASSERT_TRUE(
+        prr3::inverseDynamicsFast(model, fast, Pose(lo + 0.3, 0.0, 0.0), Twist(1.0, 0.0, 0.0), Twist::Zero()).ok());
 }
 
 TEST(Fast, AllocatesNothingIncludingFailures) {
@@ -259,8 +258,8 @@ TEST(Fast, AllocatesNothingIncludingFailures) {
     }
     // Rejected samples take the full path's stages for their Status: no allocation either.
     checksum += prr3::inverseDynamicsFast(model, fast, Pose(0.0, 0.0, -0.2), dp, ddp).ok();
-    checksum += prr3::inverseDynamicsFast(model, fast, Pose(0.0, 0.0, model.l * (1 - 1e-10) - 0.5 * (model.R - model.r)),
-                                          dp, ddp)
+    checksum += prr3::inverseDynamicsFast(model, fast,
+                                          Pose(0.0, 0.0, model.l * (1 - 1e-10) - 0.5 * (model.R - model.r)), dp, ddp)
                     .ok();
     // A fresh FastData needs no set-up: no allocation either.
     prr3::FastData fresh;

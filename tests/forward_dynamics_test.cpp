@@ -5,13 +5,11 @@
 
 #include "allocation_counter.hpp"
 
-
 #include "nocdyn/prr3/dynamics.hpp"
 #include "nocdyn/prr3/forward_dynamics.hpp"
 #include "nocdyn/prr3/kinematics.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "support.hpp"
-
 
 namespace nocdyn::test {
 namespace {
@@ -144,8 +142,9 @@ TEST(ForwardDynamics, ViscousFrictionDissipatesWhatItsPowerSays) {
         ASSERT_TRUE(simulator.advance(dt, JointVector::Zero()).ok());
         const JointVector du_end = simulator.du();
         // trapezoidal rule on the dissipated power sum_j b_j du_j^2
-        dissipated += 0.5 * dt * (options.loads.viscous_friction.dot(du.cwiseAbs2()) +
-                                  options.loads.viscous_friction.dot(du_end.cwiseAbs2()));
+        dissipated += 0.5 * dt *
+                      (options.loads.viscous_friction.dot(du.cwiseAbs2()) +
+                       options.loads.viscous_friction.dot(du_end.cwiseAbs2()));
         const double now = simulator.kineticEnergy();
         EXPECT_LT(now, energy);
         energy = now;
@@ -163,8 +162,8 @@ TEST(ForwardDynamics, EvaluationAndIntegrationAllocateNothing) {
     const long before = allocationCount();
     double checksum = 0.0;
     for (int k = 0; k < 100; ++k) {
-        const Status status = prr3::forwardDynamicsFromState(model, data, JointVector(1e-3, -2e-3, 5e-4),
-                                                             JointVector(0.1, 0.2, -0.1), JointVector(10, 20, 30), pose);
+        const Status status = prr3::forwardDynamicsFromState(
+            model, data, JointVector(1e-3, -2e-3, 5e-4), JointVector(0.1, 0.2, -0.1), JointVector(10, 20, 30), pose);
         checksum += status.ok() ? data.ddu.sum() : 1e9;
         checksum += simulator.advance(1e-4, JointVector(1.0, -1.0, 0.5)).ok();
     }

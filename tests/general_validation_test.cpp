@@ -25,7 +25,8 @@ struct Agreement {
 
 /// Our series against one engine's along a trajectory.
 template <typename Engine>
-Agreement compare(const Model& model, Engine& engine, const PoseTrajectory& trajectory, const std::vector<double>& times) {
+Agreement compare(const Model& model, Engine& engine, const PoseTrajectory& trajectory,
+                  const std::vector<double>& times) {
     const auto samples = engine.inverseDynamics(trajectory, times);
     EXPECT_EQ(samples.size(), times.size());
     Data data(model);

@@ -34,11 +34,12 @@ void compareWithGolden(const GoldenCase& golden, Evaluate evaluate) {
     const io::Table table = io::readCsvFile(goldenPath(golden.file));
     ASSERT_EQ(table.rows.size(), 20u);
     const PoseTrajectory trajectory = golden.trajectory();
-    const std::vector<std::string> columns = {"u1",   "u2",   "u3",   "du1",  "du2",  "du3",    "ddu1", "ddu2",
-                                              "ddu3", "tau1", "tau2", "tau3", "kinetic"};
+    const std::vector<std::string> columns = {"u1",   "u2",   "u3",   "du1",  "du2",  "du3",    "ddu1",
+                                              "ddu2", "ddu3", "tau1", "tau2", "tau3", "kinetic"};
     std::vector<double> peak(columns.size(), 0.0);
     for (const auto& row : table.rows) {
-        for (std::size_t c = 0; c < columns.size(); ++c) peak[c] = std::max(peak[c], std::abs(row[table.column(columns[c])]));
+        for (std::size_t c = 0; c < columns.size(); ++c)
+            peak[c] = std::max(peak[c], std::abs(row[table.column(columns[c])]));
     }
     double worst = 0.0;          // relative to the value, where it is above 1e-6 of the peak
     double worst_of_peak = 0.0;  // relative to the column's peak
@@ -70,9 +71,19 @@ TEST_P(GoldenTrajectory, ReproducesGoldenJointMotionForcesAndEnergyTo1e9Relative
     prr3::Data data;
     compareWithGolden(GetParam(), [&](const Pose& p, const Twist& dp, const Twist& ddp) {
         solve(model, data, p, dp, ddp);
-        return Evaluation{data.u(0),   data.u(1),   data.u(2),   data.du(0),  data.du(1),
-                          data.du(2),  data.ddu(0), data.ddu(1), data.ddu(2), data.tau(0),
-                          data.tau(1), data.tau(2), prr3::kineticEnergy(model, data)};
+        return Evaluation{data.u(0),
+                          data.u(1),
+                          data.u(2),
+                          data.du(0),
+                          data.du(1),
+                          data.du(2),
+                          data.ddu(0),
+                          data.ddu(1),
+                          data.ddu(2),
+                          data.tau(0),
+                          data.tau(1),
+                          data.tau(2),
+                          prr3::kineticEnergy(model, data)};
     });
 }
 
@@ -86,9 +97,19 @@ TEST_P(GoldenTrajectory, GeneralModelReproducesGoldenValuesOnBothPaths) {
         const Status fast = inverseDynamicsFast(model, lean, p, dp, ddp);
         EXPECT_TRUE(fast.ok()) << describe(fast, model);
         for (int a = 0; a < 3; ++a) EXPECT_NEAR(lean.tau(a), full.tau(a), 1e-12 * (1.0 + std::abs(full.tau(a))));
-        return Evaluation{full.u(0),   full.u(1),   full.u(2),   full.du(0),  full.du(1),
-                          full.du(2),  full.ddu(0), full.ddu(1), full.ddu(2), full.tau(0),
-                          full.tau(1), full.tau(2), kineticEnergy(model, full)};
+        return Evaluation{full.u(0),
+                          full.u(1),
+                          full.u(2),
+                          full.du(0),
+                          full.du(1),
+                          full.du(2),
+                          full.ddu(0),
+                          full.ddu(1),
+                          full.ddu(2),
+                          full.tau(0),
+                          full.tau(1),
+                          full.tau(2),
+                          kineticEnergy(model, full)};
     });
 }
 

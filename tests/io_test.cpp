@@ -109,8 +109,10 @@ TEST(RobotFile, UnphysicalValuesAreRejectedWithTheField) {
 }
 
 TEST(RobotFile, RobotThatCannotBeAssembledIsRejected) {
-    expectRobotError(replaced(kRobot, "link_length: 0.15915", "link_length: 0.08"), {"cannot be assembled", "link_length"});
-    expectRobotError(replaced(kRobot, "platform_side: 0.110", "platform_side: 0.5"), {"cannot be assembled", "platform"});
+    expectRobotError(replaced(kRobot, "link_length: 0.15915", "link_length: 0.08"),
+                     {"cannot be assembled", "link_length"});
+    expectRobotError(replaced(kRobot, "platform_side: 0.110", "platform_side: 0.5"),
+                     {"cannot be assembled", "platform"});
 }
 
 TEST(RobotFile, MalformedYamlNamesTheLine) {
@@ -118,9 +120,7 @@ TEST(RobotFile, MalformedYamlNamesTheLine) {
     expectRobotError("- just\n- a list\n", {"robot.yaml", "mapping"});
 }
 
-TEST(RobotFile, MissingFileIsAnError) {
-    EXPECT_THROW((void)io::loadRobot("/nonexistent/robot.yaml"), Error);
-}
+TEST(RobotFile, MissingFileIsAnError) { EXPECT_THROW((void)io::loadRobot("/nonexistent/robot.yaml"), Error); }
 
 TEST(RobotModel, InvalidParametersThroughTheLibraryThrow) {
     RobotParameters robot;
@@ -156,7 +156,8 @@ TEST(RobotFile, RangeErrorsNameTheLineAndTheAcceptedRange) {
     expectRobotError(replaced(kRobot, "inertia: 6.17311382e-3", "inertia: 1e308"),
                      {"robot.yaml:9", "platform.inertia", "[1e-15, 1e+12] kg m^2", "got 1e+308"});
     // a subnormal value is a number, only too small
-    expectRobotError(replaced(kRobot, "{mass: 1.46966}", "{mass: 1e-310}"), {"robot.yaml:7", "slider.mass", "got 1e-310"});
+    expectRobotError(replaced(kRobot, "{mass: 1.46966}", "{mass: 1e-310}"),
+                     {"robot.yaml:7", "slider.mass", "got 1e-310"});
     try {
         (void)io::parseRobot(replaced(kRobot, "{mass: 1.46966}", "{mass: 1e-310}"), "robot.yaml");
     } catch (const Error& e) {
@@ -245,7 +246,8 @@ TEST(Csv, ErrorsNameTheRealLineAfterBlankLines) {
     // forcesFromTable reports the file's line of a time that does not increase
     const io::Table table = io::parseCsv("t,tau1,tau2,tau3\n\n0,1,2,3\n\n0.1,1,2,3\n0.1,1,2,3\n", "f.csv");
     EXPECT_EQ(table.lines, (std::vector<std::size_t>{3, 5, 6}));
-    expectFileError([&] { (void)prr3::forcesFromTable(table, "f.csv"); }, {"f.csv:6:", "column 't'", "does not increase"});
+    expectFileError([&] { (void)prr3::forcesFromTable(table, "f.csv"); },
+                    {"f.csv:6:", "column 't'", "does not increase"});
 }
 
 TEST(Csv, RowAndColumnCountsAreBounded) {
@@ -278,7 +280,8 @@ TEST(TrajectoryFile, ParsesAxesHarmonicsAndDefaults) {
 
 TEST(TrajectoryFile, ShippedPaperFilesEqualTheBuiltIns) {
     for (const char* name : {"paper1", "paper2"}) {
-        const PoseTrajectory file = io::loadTrajectory(std::string(NOCDYN_SOURCE_DIR) + "/trajectories/" + name + ".yaml");
+        const PoseTrajectory file =
+            io::loadTrajectory(std::string(NOCDYN_SOURCE_DIR) + "/trajectories/" + name + ".yaml");
         const PoseTrajectory builtin = io::trajectoryByNameOrFile(name);
         for (double t : {0.0, 0.0123, 0.1, 0.17}) {
             Pose a, da, dda, b, db, ddb;
@@ -305,7 +308,8 @@ TEST(TrajectoryFile, BadInputsNameFieldAndLine) {
     expectTrajectoryError("duration: -1\n", {"duration", "> 0"});
     expectTrajectoryError("duration: soon\n", {"duration", "'soon'"});
     expectTrajectoryError("x: {harmonics: [{frequency: 3}]}\n", {"x.harmonics[0].amplitude", "missing"});
-    expectTrajectoryError("x: {harmonics: [{amplitude: 1, frequency: -3}]}\n", {"x.harmonics[0].frequency", "[0, 1e+06] Hz"});
+    expectTrajectoryError("x: {harmonics: [{amplitude: 1, frequency: -3}]}\n",
+                          {"x.harmonics[0].frequency", "[0, 1e+06] Hz"});
     expectTrajectoryError("x:\n  harmonics:\n    - {amplitude: 1, frequency: 3, phse: 1}\n",
                           {"t.yaml:3", "x.harmonics[0].phse", "unknown key"});
     expectTrajectoryError("x: {harmonics: 3}\n", {"x.harmonics", "list"});
@@ -344,12 +348,18 @@ TEST(Csv, UnwritablePathLeavesNothingBehind) {
 TEST(TrajectoryFile, DuplicatesRangesAndSecondDocumentsAreErrors) {
     expectTrajectoryError("duration: 0.2\nduration: 0.3\n", {"t.yaml:2", "duration", "duplicate key"});
     expectTrajectoryError("x: {offset: 0}\nx: {offset: 1}\n", {"t.yaml:2", "x", "duplicate key"});
-    expectTrajectoryError("x: {harmonics: [{amplitude: 1, frequency: 1e300}]}\n", {"x.harmonics[0].frequency", "[0, 1e+06] Hz"});
-    expectTrajectoryError("x: {harmonics: [{amplitude: 0x10, frequency: 1}]}\n", {"x.harmonics[0].amplitude", "'0x10'"});
+    expectTrajectoryError("x: {harmonics: [{amplitude: 1, frequency: 1e300}]}\n",
+                          {"x.harmonics[0].frequency", "[0, 1e+06] Hz"});
+    expectTrajectoryError("x: {harmonics: [{amplitude: 0x10, frequency: 1}]}\n",
+                          {"x.harmonics[0].amplitude", "'0x10'"});
     expectTrajectoryError("duration: 0.2\n---\nduration: 0.3\n", {"t.yaml:2", "second YAML document"});
     // yaml-cpp 0.7 LoadAll never returns on a lone comma: refused, at once
     expectTrajectoryError(",", {"t.yaml:1", "second YAML document"});
-    EXPECT_EQ(*io::parseTrajectory("\xEF\xBB\xBF" "duration: 0.25\n", "t.yaml").duration, 0.25);
+    EXPECT_EQ(*io::parseTrajectory("\xEF\xBB\xBF"
+                                   "duration: 0.25\n",
+                                   "t.yaml")
+                   .duration,
+              0.25);
 }
 
 }  // namespace

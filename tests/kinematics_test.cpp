@@ -42,9 +42,9 @@ TEST(InverseDisplacement, ClosesEveryLoopAcrossTheWorkspace) {
         const Vector2 C = p.tail<2>();
         for (int j = 0; j < 3; ++j) {
             SCOPED_TRACE(describePose(p) + ", limb " + std::to_string(j + 1));
-            EXPECT_NEAR((data.Mj[j] - data.A[j]).norm(), model.l, 1e-15);          // |A_j M_j| = l
-            EXPECT_NEAR(model.n[j].dot(data.A[j] - model.B[j]), 0.0, 1e-15);        // A_j on L_j
-            EXPECT_NEAR((data.Mj[j] - C).norm(), model.r, 1e-15);                   // M_j on the MP
+            EXPECT_NEAR((data.Mj[j] - data.A[j]).norm(), model.l, 1e-15);     // |A_j M_j| = l
+            EXPECT_NEAR(model.n[j].dot(data.A[j] - model.B[j]), 0.0, 1e-15);  // A_j on L_j
+            EXPECT_NEAR((data.Mj[j] - C).norm(), model.r, 1e-15);             // M_j on the MP
             EXPECT_NEAR(model.e[j].dot(data.A[j] - model.B[j]) - model.s_ref[j], data.u(j), 1e-15);
             EXPECT_GT(data.phi_A(j), 0.0);
             EXPECT_LT(data.phi_A(j), pi / 2);

@@ -20,9 +20,9 @@
 namespace nocdyn::test {
 namespace {
 
-constexpr double kFiniteDifferenceStep = 1e-6;  // [s]
+constexpr double kFiniteDifferenceStep = 1e-6;       // [s]
 constexpr double kFiniteDifferenceTolerance = 1e-6;  // relative to the quantity's scale
-constexpr double kRoundOff = 1e-10;               // relative
+constexpr double kRoundOff = 1e-10;                  // relative
 
 /// Platform pose from one limb's joint variables by the product of exponentials
 /// exp(s_1 q_1) exp(s_2 q_2) exp(s_3 q_3) applied to the home pose (independent of the model).
@@ -97,7 +97,8 @@ protected:
             for (int k = 0; k <= kSamples && regular; ++k) {
                 const Sample s = at(trajectory, k * kDuration / kSamples);
                 regular = inverseDynamics(model, data, s.p, s.dp, s.ddp).ok() && data.cond_A < 1e3;
-                for (int j = 0; j < model.limbs; ++j) regular = regular && data.limb[static_cast<std::size_t>(j)].cond < 1e3;
+                for (int j = 0; j < model.limbs; ++j)
+                    regular = regular && data.limb[static_cast<std::size_t>(j)].cond < 1e3;
             }
             if (!regular) continue;
             ++kept;
@@ -146,8 +147,10 @@ TEST_P(RandomRobots, RatesAndAccelerationsMatchFiniteDifferences) {
                     const double fd2 = (plus.limb[jj].gamma_dot(q) - minus.limb[jj].gamma_dot(q)) / (2 * h);
                     const double scale_v = 1.0 + data.limb[jj].gamma_dot.cwiseAbs().maxCoeff();
                     const double scale_a = 1.0 + data.limb[jj].gamma_ddot.cwiseAbs().maxCoeff();
-                    EXPECT_NEAR(data.limb[jj].gamma_dot(q), fd, kFiniteDifferenceTolerance * scale_v) << model.limbName(j) << " joint " << q + 1;
-                    EXPECT_NEAR(data.limb[jj].gamma_ddot(q), fd2, 1e-5 * scale_a) << model.limbName(j) << " joint " << q + 1;
+                    EXPECT_NEAR(data.limb[jj].gamma_dot(q), fd, kFiniteDifferenceTolerance * scale_v)
+                        << model.limbName(j) << " joint " << q + 1;
+                    EXPECT_NEAR(data.limb[jj].gamma_ddot(q), fd2, 1e-5 * scale_a)
+                        << model.limbName(j) << " joint " << q + 1;
                 }
             }
             // T_i v is the body twist: its c.o.m. velocity against finite differences of x_i
@@ -156,7 +159,8 @@ TEST_P(RandomRobots, RatesAndAccelerationsMatchFiniteDifferences) {
                 for (int b = 0; b < 2; ++b) {
                     const auto bb = static_cast<std::size_t>(b);
                     const Vector2 fd = (plus.limb[jj].x[bb] - minus.limb[jj].x[bb]) / (2 * h);
-                    const Vector3 v = model.coordinates == Coordinates::actuators ? Vector3(data.du) : Vector3(data.t_M);
+                    const Vector3 v =
+                        model.coordinates == Coordinates::actuators ? Vector3(data.du) : Vector3(data.t_M);
                     const Twist t_i = data.T[static_cast<std::size_t>(model.body(j, b))] * v;
                     EXPECT_NEAR(t_i(1), fd.x(), kFiniteDifferenceTolerance * (1.0 + fd.norm()));
                     EXPECT_NEAR(t_i(2), fd.y(), kFiniteDifferenceTolerance * (1.0 + fd.norm()));
@@ -294,12 +298,11 @@ TEST_P(RandomRobots, RedundantForcesAreTheMinimumNormSolution) {
     });
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobots, ::testing::ValuesIn(specs()),
-                         [](const auto& info) {
-                             std::string name = label(info.param);
-                             for (char& c : name) c = c == '-' ? '_' : c;
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobots, ::testing::ValuesIn(specs()), [](const auto& info) {
+    std::string name = label(info.param);
+    for (char& c : name) c = c == '-' ? '_' : c;
+    return name;
+});
 
 TEST(PaperRobot, GeneralModelEqualsTheThreePrrModelAtRandomPoses) {
     const prr3::Model special;
@@ -324,8 +327,10 @@ TEST(PaperRobot, GeneralModelEqualsTheThreePrrModelAtRandomPoses) {
         EXPECT_LT((b.C - a.C).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + a.C.cwiseAbs().maxCoeff()));
         for (int i = 0; i < 7; ++i) {
             const auto ii = static_cast<std::size_t>(i);
-            EXPECT_LT((b.T[ii] - a.T[ii]).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + a.T[ii].cwiseAbs().maxCoeff())) << "T_" << i + 1;
-            EXPECT_LT((b.T_dot[ii] - a.T_dot[ii]).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + a.T_dot[ii].cwiseAbs().maxCoeff()))
+            EXPECT_LT((b.T[ii] - a.T[ii]).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + a.T[ii].cwiseAbs().maxCoeff()))
+                << "T_" << i + 1;
+            EXPECT_LT((b.T_dot[ii] - a.T_dot[ii]).cwiseAbs().maxCoeff(),
+                      kRoundOff * (1.0 + a.T_dot[ii].cwiseAbs().maxCoeff()))
                 << "dT_" << i + 1;
         }
     }

@@ -49,16 +49,18 @@ inline std::optional<RobotDescription> randomRobot(const RandomRobotSpec& spec, 
         const double phi = 2.0 * std::numbers::pi * j / n + 0.2 * unit(rng);
         const Eigen::Vector2d radial(std::cos(phi), std::sin(phi));
         const Eigen::Vector2d base = (0.25 + 0.03 * unit(rng)) * radial;
-        const Eigen::Vector2d anchor = C0 + rot(robot.home(0), (0.06 + 0.01 * unit(rng)) * rot(0.3 * unit(rng), radial));
+        const Eigen::Vector2d anchor =
+            C0 + rot(robot.home(0), (0.06 + 0.01 * unit(rng)) * rot(0.3 * unit(rng), radial));
         // elbow off the base-anchor line so that no limb starts at the edge of its reach
         const Eigen::Vector2d mid = 0.5 * (base + anchor) + (0.04 + 0.02 * unit(rng)) * (unit(rng) > 0 ? 1.0 : -1.0) *
-                                                               Eigen::Vector2d(-radial.y(), radial.x());
+                                                                Eigen::Vector2d(-radial.y(), radial.x());
         const std::array<Eigen::Vector2d, 3> points{base, mid, anchor};
         LimbDescription limb;
         limb.name = "limb" + std::to_string(j + 1);
         for (std::size_t k = 0; k < 3; ++k) {
             JointDescription& joint = limb.joints[k];
-            joint.type = spec.limb_types[static_cast<std::size_t>(j)][k] == 'R' ? JointType::revolute : JointType::prismatic;
+            joint.type =
+                spec.limb_types[static_cast<std::size_t>(j)][k] == 'R' ? JointType::revolute : JointType::prismatic;
             joint.point = points[k];
             // a prismatic joint runs roughly along its segment of the chain, turned at random
             const Eigen::Vector2d along = k < 2 ? points[k + 1] - points[k] : points[k] - points[k - 1];
@@ -68,8 +70,10 @@ inline std::optional<RobotDescription> randomRobot(const RandomRobotSpec& spec, 
                 joint.friction = 0.5 * (unit(rng) + 1.0);
             }
         }
-        limb.bodies[0] = {mass(rng), inertia(rng), 0.5 * (base + mid) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0};
-        limb.bodies[1] = {mass(rng), inertia(rng), 0.5 * (mid + anchor) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0};
+        limb.bodies[0] = {mass(rng), inertia(rng),
+                          0.5 * (base + mid) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0};
+        limb.bodies[1] = {mass(rng), inertia(rng),
+                          0.5 * (mid + anchor) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0};
         robot.limbs.push_back(limb);
     }
     // actuators: a random choice among all joints

@@ -93,10 +93,12 @@ std::string rrr(const std::string& joint1 = "{type: R, point: [0.0, -0.2], actua
                                 {"[-0.173205, 0.1]", "[-0.154099, -0.00340703]", "[-0.0549926, 0.03175]"}};
     for (int j = 0; j < 3; ++j) {
         limbs += "  - joints:\n";
-        limbs += "      - " + (j == 0 ? joint1 : "{type: R, point: " + std::string(points[j][0]) + ", actuated: true}") + "\n";
+        limbs += "      - " +
+                 (j == 0 ? joint1 : "{type: R, point: " + std::string(points[j][0]) + ", actuated: true}") + "\n";
         limbs += "      - {type: R, point: " + std::string(points[j][1]) + "}\n";
         limbs += "      - {type: R, point: " + std::string(points[j][2]) + "}\n";
-        limbs += "    bodies:\n      - " + (j == 0 ? body1 : std::string("{mass: 0.3, inertia: 2.7e-4, com: [0.1, 0.1]}")) +
+        limbs += "    bodies:\n      - " +
+                 (j == 0 ? body1 : std::string("{mass: 0.3, inertia: 2.7e-4, com: [0.1, 0.1]}")) +
                  "\n      - {mass: 0.25, inertia: 2.3e-4, com: [0.05, 0.05]}\n";
     }
     return "name: test\n" + extra + "platform: {mass: 1.75, inertia: 6.2e-3}\nlimbs:\n" + limbs;
@@ -110,8 +112,10 @@ TEST(RobotFile, BadInputNamesFileLineLimbJointAndField) {
         std::vector<std::string> expected;
     };
     const std::vector<Case> cases{
-        {rrr("{type: X, point: [0.0, -0.2], actuated: true}"), {"bad.yaml:5:", "limbs[0].joints[0].type", "unknown joint type"}},
-        {rrr("{type: P, direction: [0.0, 0.0], actuated: true}"), {"bad.yaml:5:", "limbs[0]", "joints[0].direction", "non-zero"}},
+        {rrr("{type: X, point: [0.0, -0.2], actuated: true}"),
+         {"bad.yaml:5:", "limbs[0].joints[0].type", "unknown joint type"}},
+        {rrr("{type: P, direction: [0.0, 0.0], actuated: true}"),
+         {"bad.yaml:5:", "limbs[0]", "joints[0].direction", "non-zero"}},
         {rrr("{type: R, point: [0.0, -0.2], actuated: true}", "{mass: -1.0, inertia: 2.7e-4, com: [0.04, -0.166]}"),
          {"bad.yaml:9:", "limbs[0]", "bodies[0].mass"}},
         {rrr("{type: R, point: [0.0, -0.2], actuated: true, colour: red}"), {"bad.yaml:5:", "colour", "unknown key"}},
@@ -122,17 +126,20 @@ TEST(RobotFile, BadInputNamesFileLineLimbJointAndField) {
         {rrr("{type: R, point: [0.0, -0.2], actuated: true}", "{mass: 0.3, inertia: 2.7e-4, com: [0.04, -0.166]}",
              "home: [0.0, 0.0]\n"),
          {"bad.yaml:2:", "home", "[theta, x, y]"}},
-        {"platform: {mass: 1.0, inertia: 1.0}\nlimbs:\n  - joints: []\n    bodies: []\n  - joints: []\n    bodies: []\n",
+        {"platform: {mass: 1.0, inertia: 1.0}\nlimbs:\n  - joints: []\n    bodies: []\n  - joints: []\n    bodies: "
+         "[]\n",
          {"bad.yaml:3:", "limbs[0].joints", "exactly 3 joints"}},
         // found by fuzzing: a limb without `joints` (an invalid yaml-cpp node, not an exception of ours)
-        {"platform: {mass: 1.0, inertia: 1.0}\nlimbs:\n  - name: a\n  - name: b\n", {"bad.yaml:3:", "limbs[0].joints", "exactly 3 joints"}},
+        {"platform: {mass: 1.0, inertia: 1.0}\nlimbs:\n  - name: a\n  - name: b\n",
+         {"bad.yaml:3:", "limbs[0].joints", "exactly 3 joints"}},
         {"platform: {mass: 1.0, inertia: 1.0}\nname: x\nlimbs: 3\n", {"bad.yaml", "limbs", "list of limbs"}},
     };
     for (const Case& c : cases) {
         const std::string message = errorOf(c.text);
         ASSERT_FALSE(message.empty()) << c.text;
         EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-        for (const std::string& part : c.expected) EXPECT_NE(message.find(part), std::string::npos) << message << "\n  lacks: " << part;
+        for (const std::string& part : c.expected)
+            EXPECT_NE(message.find(part), std::string::npos) << message << "\n  lacks: " << part;
     }
 }
 

@@ -69,7 +69,8 @@ TEST(Sampling, RateAtOrBelowTwiceTheHighestFrequencyIsRefusedNamingTheRateNeeded
     PoseTrajectory trajectory = harmonicX(1e-3, 10.0, 0.0);
     trajectory.theta.harmonics.push_back({1e-3, 1000.0, 0.0});
     for (const double rate : {1000.0, 2000.0}) {
-        const std::string message = errorOf([&] { (void)stream(model, trajectory, 0.01, rate, prr3::LimitPolicy::record); });
+        const std::string message =
+            errorOf([&] { (void)stream(model, trajectory, 0.01, rate, prr3::LimitPolicy::record); });
         EXPECT_NE(message.find("above 2000 Hz"), std::string::npos) << rate << ": " << message;
         EXPECT_NE(message.find("alias"), std::string::npos) << message;
     }
@@ -83,7 +84,8 @@ TEST(Sampling, ForcePeakBetweenOutputSamplesIsAnError) {
     const prr3::Model model;
     const PoseTrajectory trajectory = harmonicX(4.5e-5, 250.0, kQuarterPi);
     ASSERT_TRUE(samplesAloneAreWithinLimits(model, trajectory, 0.02, 1000.0));
-    const std::string message = errorOf([&] { (void)stream(model, trajectory, 0.02, 1000.0, prr3::LimitPolicy::error); });
+    const std::string message =
+        errorOf([&] { (void)stream(model, trajectory, 0.02, 1000.0, prr3::LimitPolicy::error); });
     EXPECT_NE(message.find("peak force exceeded"), std::string::npos) << message;
     EXPECT_NE(message.find("between output samples"), std::string::npos) << message;
     const prr3::LimitSummary recorded = stream(model, trajectory, 0.02, 1000.0, prr3::LimitPolicy::record);
@@ -102,7 +104,8 @@ TEST(Sampling, StrokeBetweenOutputSamplesIsAnError) {
     // A rate that resolves the motion gives the same peak within the grid's 0.3 %.
     const prr3::LimitSummary coarse = stream(model, trajectory, 0.4, 20.0, prr3::LimitPolicy::record);
     const prr3::LimitSummary fine = stream(model, trajectory, 0.4, 100000.0, prr3::LimitPolicy::record);
-    for (int j = 0; j < prr3::kLimbs; ++j) EXPECT_NEAR(coarse.peak_stroke[j], fine.peak_stroke[j], 3e-3 * fine.peak_stroke[j]);
+    for (int j = 0; j < prr3::kLimbs; ++j)
+        EXPECT_NEAR(coarse.peak_stroke[j], fine.peak_stroke[j], 3e-3 * fine.peak_stroke[j]);
 }
 
 TEST(Sampling, WorkspaceExitBetweenSamplesIsAnErrorEvenWhenLimitsAreAllowed) {
@@ -127,7 +130,8 @@ TEST(Sampling, NonFiniteValueIsAnErrorEvenWhenLimitsAreAllowed) {
     // (2 pi f)^2 a overflows: the acceleration, and with it every force, is infinite.
     const prr3::Model model;
     const PoseTrajectory trajectory = harmonicX(1e-3, 1e160, 0.0);
-    const std::string message = errorOf([&] { (void)stream(model, trajectory, 1e-157, 3e160, prr3::LimitPolicy::record); });
+    const std::string message =
+        errorOf([&] { (void)stream(model, trajectory, 1e-157, 3e160, prr3::LimitPolicy::record); });
     EXPECT_NE(message.find("not finite"), std::string::npos) << message;
     EXPECT_NE(message.find("t = 0 s"), std::string::npos) << message;
 }
@@ -135,17 +139,19 @@ TEST(Sampling, NonFiniteValueIsAnErrorEvenWhenLimitsAreAllowed) {
 TEST(Sampling, StreamedSamplesEqualTheStoredSeries) {
     const prr3::Model model;
     const PoseTrajectory trajectory = paperTrajectory1();
-    const prr3::InverseDynamicsSeries series = prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.05, 2000.0));
+    const prr3::InverseDynamicsSeries series =
+        prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.05, 2000.0));
     const io::Table table = prr3::toTable(series);
     std::size_t k = 0;
-    const prr3::LimitSummary summary = prr3::streamInverseDynamics(
-        model, trajectory, prr3::sampleGrid(0.05, 2000.0), prr3::LimitPolicy::error,
-        [&](const prr3::InverseDynamicsSample& sample) {
-            const auto row = prr3::toRow(sample);
-            ASSERT_LT(k, table.rows.size());
-            for (std::size_t c = 0; c < row.size(); ++c) EXPECT_EQ(row[c], table.rows[k][c]) << "row " << k << " column " << c;
-            ++k;
-        });
+    const prr3::LimitSummary summary =
+        prr3::streamInverseDynamics(model, trajectory, prr3::sampleGrid(0.05, 2000.0), prr3::LimitPolicy::error,
+                                    [&](const prr3::InverseDynamicsSample& sample) {
+                                        const auto row = prr3::toRow(sample);
+                                        ASSERT_LT(k, table.rows.size());
+                                        for (std::size_t c = 0; c < row.size(); ++c)
+                                            EXPECT_EQ(row[c], table.rows[k][c]) << "row " << k << " column " << c;
+                                        ++k;
+                                    });
     EXPECT_EQ(k, 100u);
     EXPECT_EQ(table.columns, prr3::inverseDynamicsColumns());
     for (int j = 0; j < prr3::kLimbs; ++j) EXPECT_EQ(summary.peak_force[j], series.peak_force[j]);

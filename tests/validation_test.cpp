@@ -45,8 +45,8 @@ RobotParameters randomRobot(std::mt19937& rng) {
     robot.link_mass = uniform(0.2, 1.5);
     robot.link_inertia = robot.link_mass * robot.link_length * robot.link_length * uniform(0.02, 0.15);
     robot.platform_mass = uniform(0.5, 4.0);
-    robot.platform_inertia = robot.platform_mass * robot.platformCircumradius() * robot.platformCircumradius() *
-                             uniform(0.2, 1.0);
+    robot.platform_inertia =
+        robot.platform_mass * robot.platformCircumradius() * robot.platformCircumradius() * uniform(0.2, 1.0);
     robot.stroke = 1.0;  // limits are not what this test is about
     robot.peak_force = 1e6;
     return robot;
@@ -95,8 +95,8 @@ TEST(Validation, RandomRobotsOnRandomTrajectoriesAgreeWithSimbodyAndMujoco) {
         for (double t : times) {
             Pose p, dp, ddp;
             trajectory.evaluate(t, p, dp, ddp);
-            inside = inside && prr3::inverseDynamics(model, data, p, dp, ddp).ok() && data.cond_H < 100 &&
-                     data.cond_D < 100;
+            inside =
+                inside && prr3::inverseDynamics(model, data, p, dp, ddp).ok() && data.cond_H < 100 && data.cond_D < 100;
         }
         if (!inside) continue;
         ++compared;

@@ -36,12 +36,13 @@ void run(ControlOptions options) {
     const control::ClosedLoopResult result = runControlCase(model, trajectory, options.c);
     if (!options.output.empty()) writeTable(control::toTable(result), options.output);
     if (!options.figure.empty()) {
-        renderFigure(trackingErrorFigure(literalText(trajectory.name) + ": actuator tracking errors", {result}), options.figure);
+        renderFigure(trackingErrorFigure(literalText(trajectory.name) + ": actuator tracking errors", {result}),
+                     options.figure);
     }
-    std::printf("%s on the %s plant, %s, %g s at %g Hz (f_n = %g Hz)%s\n", result.controller.c_str(),
-                result.plant.c_str(), trajectory.name.c_str(), options.c.loop.duration, options.c.loop.rate,
-                options.c.natural_frequency,
-                options.c.payload_mass > 0.0 || options.c.payload_inertia > 0.0 ? ", payload unknown to the controller" : "");
+    std::printf(
+        "%s on the %s plant, %s, %g s at %g Hz (f_n = %g Hz)%s\n", result.controller.c_str(), result.plant.c_str(),
+        trajectory.name.c_str(), options.c.loop.duration, options.c.loop.rate, options.c.natural_frequency,
+        options.c.payload_mass > 0.0 || options.c.payload_inertia > 0.0 ? ", payload unknown to the controller" : "");
     for (int j = 0; j < 3; ++j) {
         std::printf("actuator %d: RMS error %.4g um, peak error %.4g um\n", j + 1, result.rms_error(j) * 1e6,
                     result.peak_error(j) * 1e6);
@@ -58,7 +59,8 @@ void addControlCommand(CLI::App& app) {
     auto options = std::make_shared<ControlOptions>();
     CLI::App* command = app.add_subcommand(
         "control",
-        "Closed-loop tracking of a platform trajectory. computed-torque: tau = I(u)(ddu_d + Kd e' + Kp e) + C(u,du) du\n"
+        "Closed-loop tracking of a platform trajectory. computed-torque: tau = I(u)(ddu_d + Kd e' + Kp e) + C(u,du) "
+        "du\n"
         "(eq. 20), Kp = w^2, Kd = 2w, w = 2 pi f_n; pd: tau = Kp' e + Kd' e' with the same gains times diag(I) at the\n"
         "reference posture. Forces held between ticks, clipped at the peak force. Prints RMS and peak errors.");
     command->add_option("--trajectory", options->trajectory, "paper1, paper2 (eqs. 33-34) or a trajectory file (YAML)")
@@ -70,17 +72,21 @@ void addControlCommand(CLI::App& app) {
     command->add_option("--plant", options->c.plant, "simbody (the independent model) or nocdyn (our forward dynamics)")
         ->check(CLI::IsMember({"simbody", "nocdyn"}))
         ->capture_default_str();
-    command->add_option("--rate", options->c.loop.rate, "Controller rate [Hz]")->check(finiteIn(kMinRate, 1e7, "Hz"))->capture_default_str();
+    command->add_option("--rate", options->c.loop.rate, "Controller rate [Hz]")
+        ->check(finiteIn(kMinRate, 1e7, "Hz"))
+        ->capture_default_str();
     command->add_option("--duration", options->duration, "Seconds [default: the file's duration, else 0.2]")
         ->check(finiteIn(kMinDuration, kMaxSimulatedDuration, "s"));
     command->add_option("--natural-frequency", options->c.natural_frequency, "f_n of the error dynamics [Hz]")
         ->check(finiteIn(1e-3, 1e4, "Hz"))
         ->capture_default_str();
-    command->add_option("--payload-mass", options->c.payload_mass,
-                        "Model mismatch: mass added to the plant's platform only [kg]")
+    command
+        ->add_option("--payload-mass", options->c.payload_mass,
+                     "Model mismatch: mass added to the plant's platform only [kg]")
         ->check(finiteIn(0.0, 1e6, "kg"));
-    command->add_option("--payload-inertia", options->c.payload_inertia,
-                        "Model mismatch: inertia about C added to the plant's platform only [kg m^2]")
+    command
+        ->add_option("--payload-inertia", options->c.payload_inertia,
+                     "Model mismatch: inertia about C added to the plant's platform only [kg m^2]")
         ->check(finiteIn(0.0, 1e12, "kg m^2"));
     command->add_option("--noise-u", options->c.loop.noise_u, "Std. dev. of the u measurement noise [m]")
         ->check(finiteIn(0.0, 1.0, "m"));

@@ -37,11 +37,11 @@ void run(const ConvertOptions& options) {
 
 void addConvertCommand(CLI::App& app) {
     auto options = std::make_shared<ConvertOptions>();
-    CLI::App* command = app.add_subcommand(
-        "convert",
-        "Print a robot file in the general per-limb form (the paper's 3-PRR short form expanded:\n"
-        "its stroke and peak force become each P joint's limits). Numbers are written in their\n"
-        "shortest round-trip form, so reading the output back gives the same robot exactly.");
+    CLI::App* command =
+        app.add_subcommand("convert",
+                           "Print a robot file in the general per-limb form (the paper's 3-PRR short form expanded:\n"
+                           "its stroke and peak force become each P joint's limits). Numbers are written in their\n"
+                           "shortest round-trip form, so reading the output back gives the same robot exactly.");
     command->add_option("robot", options->robot, "Robot file (YAML), short or general form")
         ->required()
         ->check(CLI::ExistingFile);

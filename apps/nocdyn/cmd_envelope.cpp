@@ -30,9 +30,9 @@ void run(const EnvelopeOptions& options) {
         std::printf("axis   f [Hz]   amplitude        limit      limb  peak |tau| [N]  peak |u| [mm]\n");
         for (const auto& p : points) {
             const bool angle = p.axis == prr3::Axis::theta;
-            std::printf("%-5s  %7.3f  %10.5g %-4s  %-9s  %d     %8.2f        %7.4f\n", prr3::axisName(p.axis), p.frequency,
-                        angle ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3, angle ? "deg" : "mm",
-                        prr3::limitName(p.limit), p.limb + 1, p.peak_force, p.peak_stroke * 1e3);
+            std::printf("%-5s  %7.3f  %10.5g %-4s  %-9s  %d     %8.2f        %7.4f\n", prr3::axisName(p.axis),
+                        p.frequency, angle ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3,
+                        angle ? "deg" : "mm", prr3::limitName(p.limit), p.limb + 1, p.peak_force, p.peak_stroke * 1e3);
         }
     }
 }
@@ -49,7 +49,8 @@ void addEnvelopeCommand(CLI::App& app) {
         "1 force, 2 workspace) and a figure (amplitude versus frequency, log axes).");
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]");
-    command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")->capture_default_str();
+    command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")
+        ->capture_default_str();
     command->add_option("--min-frequency", options->envelope.min_frequency, "[Hz]")
         ->check(finiteIn(prr3::kEnvelopeMinFrequency, prr3::kEnvelopeMaxFrequency, "Hz"))
         ->capture_default_str();

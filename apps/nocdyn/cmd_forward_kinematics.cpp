@@ -57,9 +57,10 @@ void run(const ForwardKinematicsOptions& options) {
     }
     std::printf("robot %s, u = [%+.6f, %+.6f, %+.6f] mm%s\n", model.parameters.name.c_str(), u(0) * 1e3, u(1) * 1e3,
                 u(2) * 1e3, in_stroke ? "" : " (beyond the actuator stroke)");
-    std::printf("real solutions: %zu on any limb branches, %d with every limb on its working branch "
-                "(phi_A in (0, pi/2))\n",
-                all.size(), working);
+    std::printf(
+        "real solutions: %zu on any limb branches, %d with every limb on its working branch "
+        "(phi_A in (0, pi/2))\n",
+        all.size(), working);
     int index = 0;
     for (const auto& mode : shown) {
         std::printf("%d. theta = %+.12f rad (%+.6f deg), x = %+.9f mm, y = %+.9f mm%s\n", ++index, mode.p(0),
@@ -68,7 +69,8 @@ void run(const ForwardKinematicsOptions& options) {
         std::printf("   closure residual %.1e m, u recomputed from the pose within %.1e m, cond(H) %.3g\n",
                     mode.closure_residual, mode.u_error, mode.cond_H);
     }
-    if (shown.empty()) std::printf("no pose closes the three loops on the %s branches\n", options.all_branches ? "any" : "working");
+    if (shown.empty())
+        std::printf("no pose closes the three loops on the %s branches\n", options.all_branches ? "any" : "working");
 }
 
 }  // namespace
@@ -81,11 +83,15 @@ void addForwardKinematicsCommand(CLI::App& app) {
         "Exact: the loop closures reduce to one polynomial in tan(theta/2) solved by its companion matrix; each\n"
         "root is polished by Newton and checked by inverse displacement to 1e-12 m. By default only the poses\n"
         "with every limb on its working branch (phi_A in (0, pi/2)) are listed.");
-    command->add_option("U", options->u, "Actuator displacements u1 u2 u3 [m]")->required()->expected(3)->allow_extra_args(false)
+    command->add_option("U", options->u, "Actuator displacements u1 u2 u3 [m]")
+        ->required()
+        ->expected(3)
+        ->allow_extra_args(false)
         ->check(finiteIn(-1e3, 1e3, "m"));
     addRobotOption(*command, options->robot);
     command->add_flag("--json", options->json, "Print JSON");
-    command->add_flag("--all-branches", options->all_branches, "Also list the poses with a limb off its working branch");
+    command->add_flag("--all-branches", options->all_branches,
+                      "Also list the poses with a limb off its working branch");
     command->callback([options] { run(*options); });
 }
 

@@ -25,12 +25,14 @@ void run(const InverseDynamicsOptions& options) {
     requireRateAboveNyquist(trajectory, grid.rate);
     const auto policy = options.allow_limits ? LimitPolicy::record : LimitPolicy::error;
     io::OutputFile out = openOutput(options.output);
-    io::CsvWriter csv(out, io::inverseDynamicsColumns(model.actuators), /*background=*/true);  // formats while we compute
+    io::CsvWriter csv(out, io::inverseDynamicsColumns(model.actuators),
+                      /*background=*/true);  // formats while we compute
     std::vector<double> row;
-    const LimitSummary summary = streamInverseDynamics(model, trajectory, grid, policy, [&](const InverseDynamicsSample& sample) {
-        io::inverseDynamicsRow(sample, row);
-        csv.row(row);
-    });
+    const LimitSummary summary =
+        streamInverseDynamics(model, trajectory, grid, policy, [&](const InverseDynamicsSample& sample) {
+            io::inverseDynamicsRow(sample, row);
+            csv.row(row);
+        });
     csv.finish();
     out.commit();
     for (const std::string& violation : summary.limit_violations) std::cerr << "nocdyn: warning: " << violation << "\n";

@@ -88,11 +88,13 @@ void run(const PoseOptions& options) {
         for (int a = 0; a < model.actuators; ++a) {
             const int j = model.actuator_limb[static_cast<std::size_t>(a)];
             const int k = model.actuator_joint[static_cast<std::size_t>(a)];
-            actuators.push_back({{"actuator", a + 1},
-                                 {"limb", j + 1},
-                                 {"joint", k + 1},
-                                 {"u", data.u(a)},
-                                 {"range_used", rangeUsed(model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)], data.u(a))}});
+            actuators.push_back(
+                {{"actuator", a + 1},
+                 {"limb", j + 1},
+                 {"joint", k + 1},
+                 {"u", data.u(a)},
+                 {"range_used",
+                  rangeUsed(model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)], data.u(a))}});
         }
         out["actuators"] = actuators;
         out["A"] = toJson(A_pose);
@@ -111,8 +113,10 @@ void run(const PoseOptions& options) {
         const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
         std::printf("%-4d  %s  ", j + 1, model.description.limbs[static_cast<std::size_t>(j)].type().c_str());
         for (int k = 0; k < 3; ++k) {
-            if (revolute(model, j, k)) std::printf("%+11.6f deg   ", ld.q(k) * deg);
-            else std::printf("%+11.6f mm    ", ld.q(k) * 1e3);
+            if (revolute(model, j, k))
+                std::printf("%+11.6f deg   ", ld.q(k) * deg);
+            else
+                std::printf("%+11.6f mm    ", ld.q(k) * 1e3);
         }
         std::printf("%.4g\n", ld.cond);
     }
@@ -120,7 +124,8 @@ void run(const PoseOptions& options) {
     for (int a = 0; a < model.actuators; ++a) {
         const int j = model.actuator_limb[static_cast<std::size_t>(a)];
         const int k = model.actuator_joint[static_cast<std::size_t>(a)];
-        const double used = rangeUsed(model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)], data.u(a));
+        const double used =
+            rangeUsed(model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)], data.u(a));
         std::printf("%-8d  %-4d  %-5d  %+11.6f %-4s  %6.2f %%\n", a + 1, j + 1, k + 1,
                     revolute(model, j, k) ? data.u(a) * deg : data.u(a) * 1e3, revolute(model, j, k) ? "deg" : "mm",
                     100.0 * used);
@@ -129,7 +134,8 @@ void run(const PoseOptions& options) {
                 formatMatrix(A_pose, "  ").c_str());
     std::printf("condition numbers (scaled, limit %.6g): actuation %.6g\n", model.max_condition, data.cond_A);
     if (model.coordinates == Coordinates::actuators) {
-        std::printf("joint-space inertia I (eq. 23), in the actuator variables:\n%s", formatMatrix(data.I, "  ").c_str());
+        std::printf("joint-space inertia I (eq. 23), in the actuator variables:\n%s",
+                    formatMatrix(data.I, "  ").c_str());
     } else {
         std::printf("inertia I (eq. 23) in the platform pose (redundant actuation):\n%s",
                     formatMatrix(data.I, "  ").c_str());
@@ -150,8 +156,12 @@ void addPoseCommand(CLI::App& app) {
     command->add_option("THETA", options->theta, "Platform rotation [rad]")
         ->required()
         ->check(finiteIn(-1e6, 1e6, "rad"));
-    command->add_option("X", options->x, "x of the platform's operation point C [m]")->required()->check(finiteIn(-1e3, 1e3, "m"));
-    command->add_option("Y", options->y, "y of the platform's operation point C [m]")->required()->check(finiteIn(-1e3, 1e3, "m"));
+    command->add_option("X", options->x, "x of the platform's operation point C [m]")
+        ->required()
+        ->check(finiteIn(-1e3, 1e3, "m"));
+    command->add_option("Y", options->y, "y of the platform's operation point C [m]")
+        ->required()
+        ->check(finiteIn(-1e3, 1e3, "m"));
     addRobotOption(*command, options->robot);
     command->add_flag("--json", options->json, "Write JSON instead of text");
     command->callback([options] { run(*options); });

@@ -25,8 +25,8 @@ namespace nocdyn::cli {
 
 namespace {
 
-constexpr double kDuration = 0.2;   // s, as in the paper's figures
-constexpr double kRate = 10000.0;   // Hz
+constexpr double kDuration = 0.2;  // s, as in the paper's figures
+constexpr double kRate = 10000.0;  // Hz
 
 struct ReproduceOptions {
     std::string out = "results";
@@ -46,7 +46,8 @@ PlotPanel jointPanel(const prr3::InverseDynamicsSeries& series, bool forces, con
         PlotSeries line;
         line.label = symbol + std::to_string(j + 1) + (engine_values ? " model" : "");
         line.x = series.t;
-        for (std::size_t k = 0; k < series.t.size(); ++k) line.y.push_back(scale * (forces ? series.tau[k](j) : series.u[k](j)));
+        for (std::size_t k = 0; k < series.t.size(); ++k)
+            line.y.push_back(scale * (forces ? series.tau[k](j) : series.u[k](j)));
         line.style = "lines lw 2 lc " + std::to_string(j + 1);
         panel.series.push_back(std::move(line));
         if (!engine_values) continue;
@@ -87,9 +88,10 @@ void reproduceTrajectories(const prr3::Model& model, const std::filesystem::path
     const RobotParameters& robot = model.parameters;
     summary << "## Paper trajectories 1 and 2 (eqs. 33-34): inverse dynamics\n\n"
             << "Sampled over " << kDuration << " s at " << kRate / 1000 << " kHz. Actuator limits: total stroke "
-            << robot.stroke * 1e3 << " mm (+-" << robot.stroke * 0.5e3 << " mm about the reference posture), peak force "
-            << robot.peak_force << " N.\n\n"
-            << "| trajectory | actuator | u range [mm] | peak abs(u) / half stroke | peak abs(tau) [N] | peak abs(tau) / peak force |\n"
+            << robot.stroke * 1e3 << " mm (+-" << robot.stroke * 0.5e3
+            << " mm about the reference posture), peak force " << robot.peak_force << " N.\n\n"
+            << "| trajectory | actuator | u range [mm] | peak abs(u) / half stroke | peak abs(tau) [N] | peak abs(tau) "
+               "/ peak force |\n"
             << "| --- | --- | --- | --- | --- | --- |\n";
     const auto times = prr3::sampleTimes(kDuration, kRate);
 #ifdef NOCDYN_HAS_ENGINES
@@ -139,10 +141,12 @@ void reproduceTrajectories(const prr3::Model& model, const std::filesystem::path
                           series.peak_force[j], 100.0 * series.peak_force[j] / robot.peak_force);
             summary << row;
         }
-        for (const std::string& violation : series.limit_violations) summary << "\nLimit exceeded: " << violation << "\n";
+        for (const std::string& violation : series.limit_violations)
+            summary << "\nLimit exceeded: " << violation << "\n";
     }
-    summary << "\nFiles: `paper1.csv`, `paper2.csv` (columns t,x,y,theta,u1..u3,du1..du3,ddu1..ddu3,tau1..tau3,kinetic);"
-            << " figures `paper{1,2}_displacements.{png,svg}` and `paper{1,2}_forces.{png,svg}`.\n\n";
+    summary
+        << "\nFiles: `paper1.csv`, `paper2.csv` (columns t,x,y,theta,u1..u3,du1..du3,ddu1..ddu3,tau1..tau3,kinetic);"
+        << " figures `paper{1,2}_displacements.{png,svg}` and `paper{1,2}_forces.{png,svg}`.\n\n";
 #ifdef NOCDYN_HAS_ENGINES
     char line[256];
     std::snprintf(line, sizeof line,
@@ -171,7 +175,8 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
             << " `robots/`, along the paper's trajectory 1 over " << kDuration << " s at " << kExampleRate / 1000
             << " kHz; Simbody and MuJoCo models generated from the same files (loops closed at a revolute joint)."
             << " The 4-RRR has four actuators: its forces are the minimum-norm ones.\n\n"
-            << "| robot | limbs | actuators | peak abs(tau) [N or N m] | Simbody: max diff / peak | MuJoCo: max diff / peak |\n"
+            << "| robot | limbs | actuators | peak abs(tau) [N or N m] | Simbody: max diff / peak | MuJoCo: max diff / "
+               "peak |\n"
             << "| --- | --- | --- | --- | --- | --- |\n";
     char line[256];
     for (const char* name : {"3-rrr", "3-rpr", "4-rrr"}) {
@@ -182,8 +187,8 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
         for (const LimbDescription& limb : robot.limbs) types += (types.empty() ? "" : " ") + limb.type();
         double peak = 0.0;
         for (double v : c.ours.summary.peak_tau) peak = std::max(peak, v);
-        std::snprintf(line, sizeof line, "| %s | %s | %d | %.4g | %.2e | %.2e |\n", name, types.c_str(), c.actuators, peak,
-                      c.simbody_agreement.worstRelative(), c.mujoco_agreement.worstRelative());
+        std::snprintf(line, sizeof line, "| %s | %s | %d | %.4g | %.2e | %.2e |\n", name, types.c_str(), c.actuators,
+                      peak, c.simbody_agreement.worstRelative(), c.mujoco_agreement.worstRelative());
         summary << line;
     }
     summary << "\nFiles: `example_{3-rrr,3-rpr,4-rrr}_validation.csv` (ours and both engines' u and tau at every"

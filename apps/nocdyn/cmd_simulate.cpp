@@ -42,7 +42,8 @@ void run(const SimulateOptions& options) {
     if (table.has("u1") && table.has("u2") && table.has("u3") && table.has("du1") && table.has("du2") &&
         table.has("du3")) {
         Pose guess = Pose::Zero();
-        if (table.has("theta") && table.has("x") && table.has("y")) guess = Pose(value("theta"), value("x"), value("y"));
+        if (table.has("theta") && table.has("x") && table.has("y"))
+            guess = Pose(value("theta"), value("x"), value("y"));
         status = simulator.resetActuators(prr3::JointVector(value("u1"), value("u2"), value("u3")),
                                           prr3::JointVector(value("du1"), value("du2"), value("du3")), guess, t0);
     } else {

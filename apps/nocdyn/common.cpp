@@ -22,8 +22,8 @@ CLI::Validator finiteIn(double lo, double hi, const std::string& unit) {
             std::string_view text = input;
             if (!text.empty() && text.front() == '+') text.remove_prefix(1);
             double value = 0.0;
-            const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value,
-                                                      std::chars_format::general);
+            const auto [end, error] =
+                std::from_chars(text.data(), text.data() + text.size(), value, std::chars_format::general);
             const bool number = !text.empty() && error == std::errc{} && end == text.data() + text.size();
             if (!number || !std::isfinite(value) || value < lo || value > hi) {
                 return "must be a finite number in " + accepted + ", got '" + input + "'";
@@ -34,7 +34,8 @@ CLI::Validator finiteIn(double lo, double hi, const std::string& unit) {
 }
 
 void addRobotOption(CLI::App& command, std::string& robot_path) {
-    command.add_option("--robot", robot_path, "Robot file (YAML); default: the paper's prototype (robots/paper-3prr.yaml)")
+    command
+        .add_option("--robot", robot_path, "Robot file (YAML); default: the paper's prototype (robots/paper-3prr.yaml)")
         ->check(CLI::ExistingFile);
 }
 
@@ -44,7 +45,9 @@ void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options) {
     addRobotOption(command, options.robot);
     command.add_option("--duration", options.duration, "Seconds to sample [default: the file's duration, else 0.2]")
         ->check(finiteIn(kMinDuration, kMaxDuration, "s"));
-    command.add_option("--rate", options.rate, "Samples per second")->check(finiteIn(kMinRate, kMaxRate, "Hz"))->capture_default_str();
+    command.add_option("--rate", options.rate, "Samples per second")
+        ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
+        ->capture_default_str();
     command.add_option("--output,-o", options.output, "CSV file to write [default: stdout]");
 }
 

@@ -15,10 +15,10 @@
 namespace nocdyn::cli {
 
 /// Accepted ranges of the sampling options (README, "Command line").
-inline constexpr double kMinRate = 1.0, kMaxRate = 1e8;             // --rate [Hz]
-inline constexpr double kMinDuration = 1e-6, kMaxDuration = 1e6;    // --duration [s]
+inline constexpr double kMinRate = 1.0, kMaxRate = 1e8;           // --rate [Hz]
+inline constexpr double kMinDuration = 1e-6, kMaxDuration = 1e6;  // --duration [s]
 /// simulate and control integrate over time and hold every output sample in memory.
-inline constexpr double kMaxSimulatedDuration = 1e3;                 // [s]
+inline constexpr double kMaxSimulatedDuration = 1e3;  // [s]
 inline constexpr double kMaxSimulatedSamples = 1e7;
 
 /// Options every trajectory-driven command takes.

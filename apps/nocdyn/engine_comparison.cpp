@@ -80,7 +80,8 @@ io::Table toTable(const EngineComparison& c) {
 
 std::string agreementTable(const EngineComparison& c) {
     std::string text =
-        "| engine | actuator | max abs(tau - tau_engine) [N] | relative to our peak abs(tau) |\n| --- | --- | --- | --- |\n";
+        "| engine | actuator | max abs(tau - tau_engine) [N] | relative to our peak abs(tau) |\n| --- | --- | --- | "
+        "--- |\n";
     char row[160];
     for (const EngineAgreement* a : {&c.simbody, &c.mujoco}) {
         for (int j = 0; j < 3; ++j) {

@@ -29,7 +29,10 @@ namespace {
 std::size_t printableUtf8Length(const std::string& text, std::size_t at) {
     const auto byte = [&](std::size_t k) { return static_cast<unsigned char>(text[k]); };
     const unsigned lead = byte(at);
-    const std::size_t length = lead >= 0xF0 && lead <= 0xF4 ? 4 : lead >= 0xE0 ? 3 : lead >= 0xC2 && lead < 0xE0 ? 2 : 0;
+    const std::size_t length = lead >= 0xF0 && lead <= 0xF4  ? 4
+                               : lead >= 0xE0                ? 3
+                               : lead >= 0xC2 && lead < 0xE0 ? 2
+                                                             : 0;
     if (length == 0 || at + length > text.size()) return 0;
     unsigned code = lead & (0x7Fu >> length);
     for (std::size_t k = 1; k < length; ++k) {
@@ -86,8 +89,8 @@ std::string script(const Figure& figure, const std::string& terminal) {
         gp << (panel.log_y ? "set logscale y\n" : "unset logscale y\n");
         gp << "plot ";
         for (std::size_t s = 0; s < panel.series.size(); ++s) {
-            gp << (s ? ", " : "") << "$d" << p << "_" << s << " using 1:2 with " << panel.series[s].style
-               << " title " << quoted(panel.series[s].label);
+            gp << (s ? ", " : "") << "$d" << p << "_" << s << " using 1:2 with " << panel.series[s].style << " title "
+               << quoted(panel.series[s].label);
         }
         gp << "\n";
     }

@@ -80,7 +80,8 @@ Figure trackingErrorFigure(const std::string& title, const std::vector<control::
 
 io::Table envelopeTable(const std::vector<prr3::EnvelopePoint>& points) {
     io::Table table;
-    table.columns = {"axis", "frequency", "amplitude", "limit", "limb", "kinematic_amplitude", "peak_force", "peak_stroke"};
+    table.columns = {"axis", "frequency",           "amplitude",  "limit",
+                     "limb", "kinematic_amplitude", "peak_force", "peak_stroke"};
     for (const auto& p : points) {
         table.rows.push_back({static_cast<double>(p.axis), p.frequency, p.amplitude, static_cast<double>(p.limit),
                               static_cast<double>(p.limb + 1), p.kinematic_amplitude, p.peak_force, p.peak_stroke});
@@ -119,12 +120,15 @@ PoseTrajectory paperTrajectory(int k) { return k == 0 ? paperTrajectory1() : pap
 void reproduceControl(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary) {
     const ControlCase base;
     summary << "## Model-based control (closed loop)\n\n"
-            << "Controller at " << base.loop.rate / 1000 << " kHz with zero-order hold, error dynamics critically damped at "
-            << base.natural_frequency << " Hz, actuator saturation at " << model.parameters.peak_force
-            << " N, plant: " << (base.plant == "simbody" ? "the independent Simbody model" : "nocdyn's forward dynamics")
+            << "Controller at " << base.loop.rate / 1000
+            << " kHz with zero-order hold, error dynamics critically damped at " << base.natural_frequency
+            << " Hz, actuator saturation at " << model.parameters.peak_force << " N, plant: "
+            << (base.plant == "simbody" ? "the independent Simbody model" : "nocdyn's forward dynamics")
             << ". Computed torque: tau = I(u)(ddu_d + K_d e' + K_p e) + C(u, du) du (eq. 20); PD: the same gains times "
-               "diag(I) at the reference posture. The payload case adds 0.5 kg and 1e-3 kg m^2 to the plant's platform only.\n\n"
-            << "| trajectory | controller | payload unknown to the controller | RMS error u1, u2, u3 [um] | peak error [um] | "
+               "diag(I) at the reference posture. The payload case adds 0.5 kg and 1e-3 kg m^2 to the plant's platform "
+               "only.\n\n"
+            << "| trajectory | controller | payload unknown to the controller | RMS error u1, u2, u3 [um] | peak error "
+               "[um] | "
                "peak pose error x, y [um], theta [urad] | saturated ticks |\n"
             << "| --- | --- | --- | --- | --- | --- | --- |\n";
     for (int k = 0; k < 2; ++k) {
@@ -151,8 +155,9 @@ void reproduceControl(const prr3::Model& model, const std::filesystem::path& out
         renderFigure(trackingErrorFigure(std::string(kTrajectories[k]) + ": actuator tracking errors", runs),
                      (out / (stem + "_errors")).string());
     }
-    summary << "\nFigures: `control_paper1_errors.png`, `control_paper2_errors.png` (panels: computed torque, PD, "
-               "computed torque with the unknown payload); CSV of the computed-torque runs: `control_paper{1,2}.csv`.\n\n";
+    summary
+        << "\nFigures: `control_paper1_errors.png`, `control_paper2_errors.png` (panels: computed torque, PD, "
+           "computed torque with the unknown payload); CSV of the computed-torque runs: `control_paper{1,2}.csv`.\n\n";
 }
 
 void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary) {
@@ -160,13 +165,15 @@ void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& ou
     io::writeCsvFile((out / "envelope.csv").string(), envelopeTable(points));
     renderFigure(envelopeFigure(points, model.parameters.name), (out / "envelope").string());
 
-    summary << "## Operating envelope\n\n"
-            << "Largest amplitude A of p(t) = A sin(2 pi f t) along one axis about the reference posture, within the stroke (+-"
-            << model.parameters.stroke * 0.5e3 << " mm), the workspace and the peak force (" << model.parameters.peak_force
-            << " N), from the inverse dynamics over one period (256 samples), f = 1..100 Hz log-spaced "
-               "(`envelope.csv`, `envelope.png`).\n\n"
-            << "| axis | stroke-bound amplitude | stroke binds up to [Hz] | force binds from [Hz] | amplitude at 100 Hz | "
-               "A(50 Hz) / A(100 Hz) |\n| --- | --- | --- | --- | --- | --- |\n";
+    summary
+        << "## Operating envelope\n\n"
+        << "Largest amplitude A of p(t) = A sin(2 pi f t) along one axis about the reference posture, within the "
+           "stroke (+-"
+        << model.parameters.stroke * 0.5e3 << " mm), the workspace and the peak force (" << model.parameters.peak_force
+        << " N), from the inverse dynamics over one period (256 samples), f = 1..100 Hz log-spaced "
+           "(`envelope.csv`, `envelope.png`).\n\n"
+        << "| axis | stroke-bound amplitude | stroke binds up to [Hz] | force binds from [Hz] | amplitude at 100 Hz | "
+           "A(50 Hz) / A(100 Hz) |\n| --- | --- | --- | --- | --- | --- |\n";
     for (const prr3::Axis axis : {prr3::Axis::x, prr3::Axis::y, prr3::Axis::theta}) {
         double last_stroke = 0.0, first_force = 0.0, kinematic = 0.0, at100 = 0.0;
         for (const auto& p : points) {
@@ -176,8 +183,8 @@ void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& ou
             if (p.limit == prr3::BindingLimit::force && first_force == 0.0) first_force = p.frequency;
             at100 = p.amplitude;
         }
-        const double ratio = prr3::maximumAmplitude(model, axis, 50.0).amplitude /
-                             prr3::maximumAmplitude(model, axis, 100.0).amplitude;
+        const double ratio =
+            prr3::maximumAmplitude(model, axis, 50.0).amplitude / prr3::maximumAmplitude(model, axis, 100.0).amplitude;
         const bool angle = axis == prr3::Axis::theta;
         const double scale = angle ? 180.0 / std::numbers::pi : 1e3;
         const char* unit = angle ? "deg" : "mm";
@@ -208,15 +215,17 @@ void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& ou
                 summary << row;
             }
         }
-        const auto series = prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.2, 10000.0),
-                                                        prr3::LimitPolicy::record);
+        const auto series =
+            prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.2, 10000.0), prr3::LimitPolicy::record);
         double stroke = 0.0, force = 0.0;
         for (int j = 0; j < 3; ++j) {
             stroke = std::max(stroke, series.peak_stroke[j]);
             force = std::max(force, series.peak_force[j]);
         }
         char row[300];
-        std::snprintf(row, sizeof row, "| %s | combined | peak abs(u) %.3f mm = %.1f %% of half stroke | | peak abs(tau) %.2f N | %.1f %% of peak force |\n",
+        std::snprintf(row, sizeof row,
+                      "| %s | combined | peak abs(u) %.3f mm = %.1f %% of half stroke | | peak abs(tau) %.2f N | %.1f "
+                      "%% of peak force |\n",
                       kTrajectories[k], stroke * 1e3, 100.0 * stroke / (0.5 * model.parameters.stroke), force,
                       100.0 * force / model.parameters.peak_force);
         summary << row;
@@ -225,16 +234,17 @@ void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& ou
 }
 
 void reproduceRoundTrip(const prr3::Model& model, std::ostream& summary) {
-    summary << "## Forward dynamics round trip\n\n"
-            << "Inverse-dynamics forces of each paper trajectory sampled at 10 kHz (linear in between) drive the forward "
-               "dynamics (Boost.Odeint Dormand-Prince 5(4), tolerances 1e-12 abs, 1e-10 rel) from the trajectory's initial "
-               "state for 0.2 s.\n\n"
-            << "| trajectory | max abs(u - u_d) [m] | max pose error x, y [m] | max theta error [rad] | steps |\n"
-            << "| --- | --- | --- | --- | --- |\n";
+    summary
+        << "## Forward dynamics round trip\n\n"
+        << "Inverse-dynamics forces of each paper trajectory sampled at 10 kHz (linear in between) drive the forward "
+           "dynamics (Boost.Odeint Dormand-Prince 5(4), tolerances 1e-12 abs, 1e-10 rel) from the trajectory's initial "
+           "state for 0.2 s.\n\n"
+        << "| trajectory | max abs(u - u_d) [m] | max pose error x, y [m] | max theta error [rad] | steps |\n"
+        << "| --- | --- | --- | --- | --- |\n";
     for (int k = 0; k < 2; ++k) {
         const PoseTrajectory trajectory = paperTrajectory(k);
-        const auto series = prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.2, 10000.0),
-                                                        prr3::LimitPolicy::record);
+        const auto series =
+            prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.2, 10000.0), prr3::LimitPolicy::record);
         prr3::ForceSeries forces{series.t, series.tau};
         prr3::Simulator simulator(model);
         if (const Status status = simulator.reset(series.p[0], series.dp[0]); !status) {
@@ -252,8 +262,9 @@ void reproduceRoundTrip(const prr3::Model& model, std::ostream& summary) {
                       theta_error, simulator.acceptedSteps());
         summary << row;
     }
-    summary << "\nThe error comes from the linear interpolation of the forces; it shrinks as the square of the sampling "
-               "interval (test ForwardDynamics.RoundTripErrorIsSecondOrderInForceSampling).\n\n";
+    summary
+        << "\nThe error comes from the linear interpolation of the forces; it shrinks as the square of the sampling "
+           "interval (test ForwardDynamics.RoundTripErrorIsSecondOrderInForceSampling).\n\n";
 }
 
 }  // namespace nocdyn::cli

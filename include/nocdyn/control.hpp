@@ -139,12 +139,12 @@ private:
 };
 
 struct ClosedLoopOptions {
-    double rate = 10000.0;       ///< controller ticks per second [Hz]
-    double duration = 0.2;       ///< [s]
-    double peak_force = 262.0;   ///< actuator saturation |tau_j| <= peak_force [N]; <= 0: none
-    double noise_u = 0.0;        ///< standard deviation of the u measurement noise [m]
-    double noise_du = 0.0;       ///< standard deviation of the du measurement noise [m/s]
-    unsigned seed = 1;           ///< noise generator seed
+    double rate = 10000.0;      ///< controller ticks per second [Hz]
+    double duration = 0.2;      ///< [s]
+    double peak_force = 262.0;  ///< actuator saturation |tau_j| <= peak_force [N]; <= 0: none
+    double noise_u = 0.0;       ///< standard deviation of the u measurement noise [m]
+    double noise_du = 0.0;      ///< standard deviation of the du measurement noise [m/s]
+    unsigned seed = 1;          ///< noise generator seed
 };
 
 /// One closed-loop run, one row per controller tick (state at the tick, before the forces act).

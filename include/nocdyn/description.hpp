@@ -29,15 +29,15 @@ enum class JointType { revolute, prismatic };
 
 /// Limits of one joint; absent ones are infinite.
 struct JointLimits {
-    double lower = -std::numeric_limits<double>::infinity();  ///< smallest q [m or rad]
-    double upper = std::numeric_limits<double>::infinity();   ///< largest q [m or rad]
-    double effort = std::numeric_limits<double>::infinity();  ///< peak |force| or |torque| [N, N m]
+    double lower = -std::numeric_limits<double>::infinity();    ///< smallest q [m or rad]
+    double upper = std::numeric_limits<double>::infinity();     ///< largest q [m or rad]
+    double effort = std::numeric_limits<double>::infinity();    ///< peak |force| or |torque| [N, N m]
     double velocity = std::numeric_limits<double>::infinity();  ///< peak |q'| [m/s, rad/s]
 };
 
 struct JointDescription {
     JointType type = JointType::revolute;
-    Eigen::Vector2d point = Eigen::Vector2d::Zero();      ///< R: axis at home, base frame [m]
+    Eigen::Vector2d point = Eigen::Vector2d::Zero();       ///< R: axis at home, base frame [m]
     Eigen::Vector2d direction = Eigen::Vector2d::UnitX();  ///< P: direction at home (unit after validation)
     bool actuated = false;
     JointLimits limits;
@@ -73,10 +73,10 @@ struct PlatformDescription {
 
 struct RobotDescription {
     std::string name = "robot";
-    std::string source;                                  ///< the file it came from, for messages
-    Eigen::Vector2d gravity = Eigen::Vector2d::Zero();   ///< base frame [m/s^2]
-    Eigen::Vector3d home = Eigen::Vector3d::Zero();      ///< platform pose [theta, x, y] at home
-    double max_condition = 1.0e4;                        ///< largest condition number accepted
+    std::string source;                                 ///< the file it came from, for messages
+    Eigen::Vector2d gravity = Eigen::Vector2d::Zero();  ///< base frame [m/s^2]
+    Eigen::Vector3d home = Eigen::Vector3d::Zero();     ///< platform pose [theta, x, y] at home
+    double max_condition = 1.0e4;                       ///< largest condition number accepted
     PlatformDescription platform;
     std::vector<LimbDescription> limbs;
 

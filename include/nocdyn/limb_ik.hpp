@@ -33,8 +33,7 @@ struct PlatformDisplacement {
 /// Solves limb `j` for q, cos q and sin q (R joints). Angles of R joints are computed only
 /// when `angles` is set or the joint is actuated (the rest of the model needs only cos and
 /// sin). Fails with unreachable (value: distance out of reach [m]) or singular_limb.
-Status solveLimb(const LimbModel& limb, int j, const PlatformDisplacement& G, bool angles,
-                 LimbData& out);
+Status solveLimb(const LimbModel& limb, int j, const PlatformDisplacement& G, bool angles, LimbData& out);
 
 /// The branch (+1 / -1, 0 for single-solution types) a limb has at home; 0 also when the
 /// home posture is a branch point (then the Model reports the limb singular at home).

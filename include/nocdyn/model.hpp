@@ -67,8 +67,8 @@ struct LimbModel {
     std::array<Vector2, 3> direction{};
     /// Home screws s_k(0) = [1; r_y; -r_x] or [0; d], referred to O.
     std::array<Twist, 3> screw_home{};
-    std::array<InertiaDyad, 2> M{};        ///< bodies 1 and 2 (eq. 9)
-    std::array<Vector2, 2> com_home{};     ///< c.o.m. at home, base frame [m]
+    std::array<InertiaDyad, 2> M{};           ///< bodies 1 and 2 (eq. 9)
+    std::array<Vector2, 2> com_home{};        ///< c.o.m. at home, base frame [m]
     std::array<int, 3> actuator{-1, -1, -1};  ///< actuator index of each joint, or -1
     std::array<JointLimits, 3> limits{};
     std::array<double, 3> damping{};
@@ -105,13 +105,13 @@ public:
     std::array<LimbModel, kMaxLimbs> limb{};
     std::array<int, kMaxActuators> actuator_limb{};   ///< limb of actuator a
     std::array<int, kMaxActuators> actuator_joint{};  ///< joint (0..2) of actuator a
-    InertiaDyad platform_M{};                 ///< platform inertia dyad (eq. 9)
-    Vector2 platform_com = Vector2::Zero();   ///< c.o.m. in the platform frame (origin C) [m]
+    InertiaDyad platform_M{};                         ///< platform inertia dyad (eq. 9)
+    Vector2 platform_com = Vector2::Zero();           ///< c.o.m. in the platform frame (origin C) [m]
     /// The same at home in base axes, Rot(home(0)) platform_com: x_P = C + Rot(dtheta) of it.
     Vector2 platform_com_home = Vector2::Zero();
-    Vector2 gravity = Vector2::Zero();        ///< [m/s^2]
-    Pose home = Pose::Zero();                 ///< platform pose at home
-    double cos_home = 1.0, sin_home = 0.0;    ///< of home(0)
+    Vector2 gravity = Vector2::Zero();      ///< [m/s^2]
+    Pose home = Pose::Zero();               ///< platform pose at home
+    double cos_home = 1.0, sin_home = 0.0;  ///< of home(0)
     /// Length scale of the condition numbers: the largest distance of a revolute axis from
     /// C at home [m] (1 m when there is none).
     double length_scale = 1.0;
@@ -122,7 +122,8 @@ public:
     [[nodiscard]] int platformBody() const { return 2 * limbs; }
     /// Inertia dyad of body i.
     [[nodiscard]] const InertiaDyad& inertia(int i) const {
-        return i == platformBody() ? platform_M : limb[static_cast<std::size_t>(i % limbs)].M[static_cast<std::size_t>(i / limbs)];
+        return i == platformBody() ? platform_M
+                                   : limb[static_cast<std::size_t>(i % limbs)].M[static_cast<std::size_t>(i / limbs)];
     }
     /// "limb 2 (left)" style name for messages (1-based).
     [[nodiscard]] std::string limbName(int j) const;
@@ -130,18 +131,18 @@ public:
 
 /// Per-limb workspace.
 struct LimbData {
-    Vector3 q = Vector3::Zero();        ///< joint variables [rad or m]
-    Vector3 cos_q = Vector3::Ones();    ///< cos q for R joints (1 for P)
-    Vector3 sin_q = Vector3::Zero();    ///< sin q for R joints (0 for P)
-    std::array<Twist, 3> s{};           ///< current joint screws, referred to O (columns of J_j)
-    std::array<Vector2, 2> x{};         ///< body c.o.m. positions [m]
-    Matrix3 J = Matrix3::Zero();        ///< J_j = [s_1 s_2 s_3]: xi_P = J_j gamma_dot_j (eq. 3)
-    Matrix3 J_inv = Matrix3::Zero();    ///< J_j^-1
-    double cond = 0.0;                  ///< scaled 1-norm condition number of J_j
+    Vector3 q = Vector3::Zero();           ///< joint variables [rad or m]
+    Vector3 cos_q = Vector3::Ones();       ///< cos q for R joints (1 for P)
+    Vector3 sin_q = Vector3::Zero();       ///< sin q for R joints (0 for P)
+    std::array<Twist, 3> s{};              ///< current joint screws, referred to O (columns of J_j)
+    std::array<Vector2, 2> x{};            ///< body c.o.m. positions [m]
+    Matrix3 J = Matrix3::Zero();           ///< J_j = [s_1 s_2 s_3]: xi_P = J_j gamma_dot_j (eq. 3)
+    Matrix3 J_inv = Matrix3::Zero();       ///< J_j^-1
+    double cond = 0.0;                     ///< scaled 1-norm condition number of J_j
     Vector3 gamma_dot = Vector3::Zero();   ///< joint rates (eq. 4b generalised)
     Vector3 gamma_ddot = Vector3::Zero();  ///< joint accelerations
-    std::array<Twist, 2> xi{};          ///< body twists referred to O
-    std::array<Twist, 3> s_dot{};       ///< ds_k/dt = [xi of the body carrying joint k, s_k]
+    std::array<Twist, 2> xi{};             ///< body twists referred to O
+    std::array<Twist, 3> s_dot{};          ///< ds_k/dt = [xi of the body carrying joint k, s_k]
 };
 
 /// Per-sample workspace. Fixed capacity; sized once by the Model it is constructed for.
@@ -149,12 +150,12 @@ struct Data {
     explicit Data(const Model& model);
     Data() = default;
 
-    Pose p = Pose::Zero();              ///< [theta, x_c, y_c] (eq. 1)
-    Twist t_M = Twist::Zero();          ///< dp/dt (eq. 2)
-    Twist t_M_dot = Twist::Zero();      ///< d2p/dt2
-    Twist xi_P = Twist::Zero();         ///< platform twist referred to O
-    Twist xi_P_dot = Twist::Zero();     ///< its time derivative
-    Vector2 x_P = Vector2::Zero();      ///< platform c.o.m. [m]
+    Pose p = Pose::Zero();           ///< [theta, x_c, y_c] (eq. 1)
+    Twist t_M = Twist::Zero();       ///< dp/dt (eq. 2)
+    Twist t_M_dot = Twist::Zero();   ///< d2p/dt2
+    Twist xi_P = Twist::Zero();      ///< platform twist referred to O
+    Twist xi_P_dot = Twist::Zero();  ///< its time derivative
+    Vector2 x_P = Vector2::Zero();   ///< platform c.o.m. [m]
     std::array<LimbData, kMaxLimbs> limb{};
 
     ActuatorVector u;     ///< actuator variables (the actuated q) [m or rad]
@@ -169,10 +170,10 @@ struct Data {
     Matrix3 Xi_dot = Matrix3::Zero();
     std::array<ShapingMatrix3, kMaxBodies> T{};      ///< T_i: t_i = T_i v (eq. 22)
     std::array<ShapingMatrix3, kMaxBodies> T_dot{};  ///< dT_i/dt
-    Matrix3 I = Matrix3::Zero();   ///< inertia in the independent coordinates (eq. 23)
-    Matrix3 C = Matrix3::Zero();   ///< Coriolis matrix (eq. 23), dI/dt = C + C^T
-    Vector3 Q_gf = Vector3::Zero();  ///< generalized gravity and friction force to supply
-    Vector3 Q = Vector3::Zero();     ///< I dv + C v + Q_gf: the generalized force to supply
+    Matrix3 I = Matrix3::Zero();                     ///< inertia in the independent coordinates (eq. 23)
+    Matrix3 C = Matrix3::Zero();                     ///< Coriolis matrix (eq. 23), dI/dt = C + C^T
+    Vector3 Q_gf = Vector3::Zero();                  ///< generalized gravity and friction force to supply
+    Vector3 Q = Vector3::Zero();                     ///< I dv + C v + Q_gf: the generalized force to supply
     /// Platform wrench referred to O that the limbs must supply (lean path), [N m; N].
     Wrench W_P = Wrench::Zero();
 };

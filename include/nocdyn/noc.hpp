@@ -49,16 +49,14 @@ void addInertia(const InertiaDyad& M, const ShapingMatrix<N>& T, JointMatrix<N>&
 
 /// Adds one body's term of eq. 23 to C: C += T_i^T M_i dT_i.
 template <int N>
-void addCoriolis(const InertiaDyad& M, const ShapingMatrix<N>& T, const ShapingMatrix<N>& T_dot,
-                 JointMatrix<N>& C) {
+void addCoriolis(const InertiaDyad& M, const ShapingMatrix<N>& T, const ShapingMatrix<N>& T_dot, JointMatrix<N>& C) {
     const ShapingMatrix<N> W = applyInertia(M, T);
     C += W.transpose().lazyProduct(T_dot);
 }
 
 /// eq. 23: I = sum_i T_i^T M_i T_i. Joint-space inertia [kg], N x N, symmetric.
 template <int N, std::size_t B>
-void inertia(const std::array<InertiaDyad, B>& M, const std::array<ShapingMatrix<N>, B>& T,
-             JointMatrix<N>& I) {
+void inertia(const std::array<InertiaDyad, B>& M, const std::array<ShapingMatrix<N>, B>& T, JointMatrix<N>& I) {
     I.setZero();
     for (std::size_t i = 0; i < B; ++i) addInertia(M[i], T[i], I);
 }

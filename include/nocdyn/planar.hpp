@@ -33,27 +33,21 @@ struct InertiaDyad {
     double mass = 0.0;     ///< m_i [kg]
 
     /// The full 3x3 matrix diag(I, m, m) of eq. 9.
-    [[nodiscard]] Matrix3 matrix() const {
-        return Eigen::Vector3d(inertia, mass, mass).asDiagonal();
-    }
+    [[nodiscard]] Matrix3 matrix() const { return Eigen::Vector3d(inertia, mass, mass).asDiagonal(); }
 };
 
 /// E v: v rotated through +90 degrees about Z (eq. 4a, E = [0 -1; 1 0]).
 [[nodiscard]] inline Vector2 perp(const Vector2& v) { return {-v.y(), v.x()}; }
 
 /// The scalar planar cross product a x b = a_x b_y - a_y b_x = (E a) . b.
-[[nodiscard]] inline double cross(const Vector2& a, const Vector2& b) {
-    return a.x() * b.y() - a.y() * b.x();
-}
+[[nodiscard]] inline double cross(const Vector2& a, const Vector2& b) { return a.x() * b.y() - a.y() * b.x(); }
 
 /// Unit vector at angle phi from the X axis.
 [[nodiscard]] inline Vector2 unitVector(double phi) { return {std::cos(phi), std::sin(phi)}; }
 
 /// Planar Pluecker array of a revolute axis through point a, expressed at reference point c:
 /// [1; E (c - a)] (the columns of J_j in eq. 4a).
-[[nodiscard]] inline Twist revoluteTwist(const Vector2& c_minus_a) {
-    return {1.0, -c_minus_a.y(), c_minus_a.x()};
-}
+[[nodiscard]] inline Twist revoluteTwist(const Vector2& c_minus_a) { return {1.0, -c_minus_a.y(), c_minus_a.x()}; }
 
 /// Planar Pluecker array of a prismatic joint along unit vector e: [0; e] (eq. 24).
 [[nodiscard]] inline Twist prismaticTwist(const Vector2& e) { return {0.0, e.x(), e.y()}; }
@@ -64,4 +58,3 @@ struct InertiaDyad {
 }
 
 }  // namespace nocdyn
-

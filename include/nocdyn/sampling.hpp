@@ -54,12 +54,12 @@ enum class LimitPolicy { error, record };
 
 /// One output sample of the inverse dynamics (n = model.actuators).
 struct InverseDynamicsSample {
-    double t = 0.0;             ///< [s]
-    Pose p = Pose::Zero();      ///< pose [theta, x, y] [rad, m, m]
-    Twist dp = Twist::Zero();   ///< its first time derivative
-    Twist ddp = Twist::Zero();  ///< its second time derivative
+    double t = 0.0;                  ///< [s]
+    Pose p = Pose::Zero();           ///< pose [theta, x, y] [rad, m, m]
+    Twist dp = Twist::Zero();        ///< its first time derivative
+    Twist ddp = Twist::Zero();       ///< its second time derivative
     ActuatorVector u, du, ddu, tau;  ///< actuator variables, rates, accelerations, forces
-    double kinetic = 0.0;       ///< kinetic energy [J]
+    double kinetic = 0.0;            ///< kinetic energy [J]
 };
 
 /// Peaks and violations over a whole run, between-sample checks included.

@@ -30,9 +30,9 @@ struct AxisMotion {
 /// A platform pose trajectory p(t) = [theta(t), x(t), y(t)].
 struct PoseTrajectory {
     std::string name;
-    AxisMotion theta;  ///< [rad]
-    AxisMotion x;      ///< [m]
-    AxisMotion y;      ///< [m]
+    AxisMotion theta;                ///< [rad]
+    AxisMotion x;                    ///< [m]
+    AxisMotion y;                    ///< [m]
     std::optional<double> duration;  ///< [s], when the description gives one
 
     /// p, dp/dt and d2p/dt2 at time t (pose order [theta, x, y], eq. 1). Allocation-free.

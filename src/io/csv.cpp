@@ -66,7 +66,7 @@ struct CsvWriter::Worker {
     std::vector<double> pending;  ///< rows being formatted by the worker
     bool has_work = false;        ///< `pending` holds rows not yet written
     bool stop = false;
-    std::exception_ptr error;     ///< the worker's first failure, rethrown to the caller
+    std::exception_ptr error;  ///< the worker's first failure, rethrown to the caller
 };
 
 CsvWriter::CsvWriter(OutputFile& out, std::vector<std::string> columns, bool background)

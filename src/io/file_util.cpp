@@ -58,7 +58,7 @@ std::string readRegularFile(const std::string& path, const char* what, std::size
         }
         if (got == 0) break;
         if (into == &probe) {
-            if (text.size() >= max_bytes) throw Error(name + " is " + limit);
+            if (text.size() >= max_bytes) throw Error(std::string(name).append(" is ").append(limit));
             text.push_back(probe);
             ++used;
             continue;

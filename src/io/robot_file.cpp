@@ -21,7 +21,8 @@ int lineOf(const YAML::Node& node) { return node.IsDefined() && node.Mark().line
 Eigen::Vector2d vector2(const Context& context, const YAML::Node& map, const char* key) {
     const YAML::Node node = map[key];
     if (!node.IsDefined() || node.IsNull()) detail::fail(context / key, map, "required [x, y] is missing");
-    if (!node.IsSequence() || node.size() != 2) detail::fail(context / key, node, "expected a list of 2 numbers [x, y]");
+    if (!node.IsSequence() || node.size() != 2)
+        detail::fail(context / key, node, "expected a list of 2 numbers [x, y]");
     return {detail::toNumber(context / key, node[0]), detail::toNumber(context / key, node[1])};
 }
 
@@ -43,16 +44,19 @@ JointDescription parseJoint(const Context& context, const YAML::Node& node) {
     const YAML::Node type = node["type"];
     if (!type.IsDefined()) detail::fail(context / "type", node, "required joint type is missing (R or P)");
     if (!type.IsScalar() || (type.Scalar() != "R" && type.Scalar() != "P")) {
-        detail::fail(context / "type", type, "unknown joint type '" + (type.IsScalar() ? type.Scalar() : std::string("?")) +
-                                                 "' (expected R or P)");
+        detail::fail(
+            context / "type", type,
+            "unknown joint type '" + (type.IsScalar() ? type.Scalar() : std::string("?")) + "' (expected R or P)");
     }
     if (type.Scalar() == "R") {
         joint.type = JointType::revolute;
-        if (node["direction"].IsDefined()) detail::fail(context / "direction", node["direction"], "an R joint takes a point, not a direction");
+        if (node["direction"].IsDefined())
+            detail::fail(context / "direction", node["direction"], "an R joint takes a point, not a direction");
         joint.point = vector2(context, node, "point");
     } else {
         joint.type = JointType::prismatic;
-        if (node["point"].IsDefined()) detail::fail(context / "point", node["point"], "a P joint takes a direction, not a point");
+        if (node["point"].IsDefined())
+            detail::fail(context / "point", node["point"], "a P joint takes a direction, not a point");
         joint.direction = vector2(context, node, "direction");
     }
     joint.actuated = flag(context, node, "actuated");
@@ -92,7 +96,8 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
     if (root["gravity"].IsDefined()) robot.gravity = vector2(top, root, "gravity");
     if (const YAML::Node home = root["home"]; home.IsDefined()) {
         if (!home.IsSequence() || home.size() != 3) detail::fail(top / "home", home, "expected [theta, x, y]");
-        for (std::size_t i = 0; i < 3; ++i) robot.home(static_cast<Eigen::Index>(i)) = detail::toNumber(top / "home", home[i]);
+        for (std::size_t i = 0; i < 3; ++i)
+            robot.home(static_cast<Eigen::Index>(i)) = detail::toNumber(top / "home", home[i]);
     }
     robot.max_condition = detail::optionalNumber(top, root, "max_condition", robot.max_condition);
     const YAML::Node platform = root["platform"];
@@ -106,8 +111,8 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
     // (a missing key of a const node is invalid: IsDefined first, before any other question)
     if (!limbs.IsDefined() || !limbs.IsSequence()) detail::fail(top / "limbs", root, "expected a list of limbs");
     if (limbs.size() < 2 || limbs.size() > static_cast<std::size_t>(kMaxLimbs)) {
-        detail::fail(top / "limbs", limbs, "a robot has 2 to " + std::to_string(kMaxLimbs) + " limbs, got " +
-                                               std::to_string(limbs.size()));
+        detail::fail(top / "limbs", limbs,
+                     "a robot has 2 to " + std::to_string(kMaxLimbs) + " limbs, got " + std::to_string(limbs.size()));
     }
     for (std::size_t j = 0; j < limbs.size(); ++j) {
         const YAML::Node node = limbs[j];
@@ -117,7 +122,8 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
         limb.line = lineOf(node);
         limb.name = "limb" + std::to_string(j + 1);
         if (const YAML::Node name = node["name"]; name.IsDefined()) {
-            if (!name.IsScalar() || name.Scalar().empty()) detail::fail(limb_context / "name", name, "expected a non-empty string");
+            if (!name.IsScalar() || name.Scalar().empty())
+                detail::fail(limb_context / "name", name, "expected a non-empty string");
             limb.name = name.Scalar();
         }
         const YAML::Node joints = node["joints"];
@@ -191,12 +197,14 @@ std::string descriptionToYaml(const RobotDescription& robot) {
     for (const LimbDescription& limb : robot.limbs) {
         out << "  - name: " << limb.name << "\n    joints:\n";
         for (const JointDescription& joint : limb.joints) {
-            out << "      - {type: " << (joint.type == JointType::revolute ? "R, point: " + pair(joint.point)
-                                                                             : "P, direction: " + pair(joint.direction));
+            out << "      - {type: "
+                << (joint.type == JointType::revolute ? "R, point: " + pair(joint.point)
+                                                      : "P, direction: " + pair(joint.direction));
             if (joint.actuated) out << ", actuated: true";
             std::string limits;
             const auto add = [&](const char* key, double value) {
-                if (std::isfinite(value)) limits += (limits.empty() ? "" : ", ") + std::string(key) + ": " + number(value);
+                if (std::isfinite(value))
+                    limits += (limits.empty() ? "" : ", ") + std::string(key) + ": " + number(value);
             };
             add("lower", joint.limits.lower);
             add("upper", joint.limits.upper);

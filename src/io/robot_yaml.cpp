@@ -60,9 +60,7 @@ RobotParameters parseRobot(const std::string& text, const std::string& source) {
     return robot;
 }
 
-RobotParameters loadRobot(const std::string& path) {
-    return parseRobot(detail::readFile(path, "robot file"), path);
-}
+RobotParameters loadRobot(const std::string& path) { return parseRobot(detail::readFile(path, "robot file"), path); }
 
 std::string robotToYaml(const RobotParameters& robot) {
     std::ostringstream out;

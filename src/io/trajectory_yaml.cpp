@@ -13,10 +13,10 @@ using detail::Context;
 namespace {
 
 // Plausibility limits of a trajectory file (README, "Files").
-constexpr double kMaxAmplitude = 1e3;   // |offset|, |amplitude| [m or rad]
-constexpr double kMaxFrequency = 1e6;   // [Hz]
-constexpr double kMaxPhase = 1e6;       // |phase| [rad]
-constexpr double kMaxDuration = 1e6;    // [s]
+constexpr double kMaxAmplitude = 1e3;         // |offset|, |amplitude| [m or rad]
+constexpr double kMaxFrequency = 1e6;         // [Hz]
+constexpr double kMaxPhase = 1e6;             // |phase| [rad]
+constexpr double kMaxDuration = 1e6;          // [s]
 constexpr std::size_t kMaxHarmonics = 10000;  // per axis
 
 AxisMotion parseAxis(const Context& context, const YAML::Node& node) {
@@ -28,8 +28,9 @@ AxisMotion parseAxis(const Context& context, const YAML::Node& node) {
     if (!list.IsDefined() || list.IsNull()) return axis;
     if (!list.IsSequence()) detail::fail(context / "harmonics", list, "expected a list of harmonics");
     if (list.size() > kMaxHarmonics) {
-        detail::fail(context / "harmonics", list,
-                     "at most " + std::to_string(kMaxHarmonics) + " harmonics per axis, got " + std::to_string(list.size()));
+        detail::fail(
+            context / "harmonics", list,
+            "at most " + std::to_string(kMaxHarmonics) + " harmonics per axis, got " + std::to_string(list.size()));
     }
     for (std::size_t k = 0; k < list.size(); ++k) {
         const Context item = context / ("harmonics[" + std::to_string(k) + "]");
@@ -63,7 +64,8 @@ PoseTrajectory parseTrajectory(const std::string& text, const std::string& sourc
         const double duration = detail::requireNumber(top, root, "duration");
         if (!(duration > 0.0 && duration <= kMaxDuration)) {
             detail::fail(top / "duration", root["duration"],
-                         "must be > 0 s and at most " + detail::formatted(kMaxDuration) + " s, got " + detail::formatted(duration));
+                         "must be > 0 s and at most " + detail::formatted(kMaxDuration) + " s, got " +
+                             detail::formatted(duration));
         }
         traj.duration = duration;
     }

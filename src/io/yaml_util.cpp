@@ -76,8 +76,7 @@ YAML::Node loadDocument(const std::string& text, const std::string& source) {
     return root;
 }
 
-void requireMap(const Context& context, const YAML::Node& node,
-                std::initializer_list<const char*> allowed) {
+void requireMap(const Context& context, const YAML::Node& node, std::initializer_list<const char*> allowed) {
     if (!node.IsMap()) fail(context, node, "expected a mapping of keys to values");
     std::vector<std::pair<std::string, int>> seen;  // key, 1-based line
     for (const auto& entry : node) {
@@ -85,8 +84,7 @@ void requireMap(const Context& context, const YAML::Node& node,
         const std::string key = entry.first.Scalar();
         for (const auto& [other, line] : seen) {
             if (other == key) {
-                fail(context / key, entry.first,
-                     "duplicate key (first given on line " + std::to_string(line) + ")");
+                fail(context / key, entry.first, "duplicate key (first given on line " + std::to_string(line) + ")");
             }
         }
         seen.emplace_back(key, entry.first.Mark().line + 1);
@@ -115,15 +113,14 @@ double requireNumber(const Context& context, const YAML::Node& map, const char* 
     return toNumber(context / key, node);
 }
 
-double optionalNumber(const Context& context, const YAML::Node& map, const char* key,
-                      double fallback) {
+double optionalNumber(const Context& context, const YAML::Node& map, const char* key, double fallback) {
     const YAML::Node node = map[key];
     if (!node.IsDefined()) return fallback;
     return toNumber(context / key, node);
 }
 
-void requireRange(const Context& context, const YAML::Node& map, const char* key, double value, double lo,
-                  double hi, const char* unit) {
+void requireRange(const Context& context, const YAML::Node& map, const char* key, double value, double lo, double hi,
+                  const char* unit) {
     if (value >= lo && value <= hi) return;
     const YAML::Node node = map[key];
     fail(context / key, node.IsDefined() ? node : map,
@@ -137,8 +134,6 @@ std::string formatted(double value) {
     return out.str();
 }
 
-std::string readFile(const std::string& path, const char* what) {
-    return readRegularFile(path, what, kMaxYamlBytes);
-}
+std::string readFile(const std::string& path, const char* what) { return readRegularFile(path, what, kMaxYamlBytes); }
 
 }  // namespace nocdyn::io::detail

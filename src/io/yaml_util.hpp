@@ -25,8 +25,7 @@ struct Context {
 [[nodiscard]] YAML::Node loadDocument(const std::string& text, const std::string& source);
 
 /// Requires a mapping whose keys are all in `allowed`.
-void requireMap(const Context& context, const YAML::Node& node,
-                std::initializer_list<const char*> allowed);
+void requireMap(const Context& context, const YAML::Node& node, std::initializer_list<const char*> allowed);
 
 /// The finite number a scalar node holds.
 [[nodiscard]] double toNumber(const Context& context, const YAML::Node& node);
@@ -35,12 +34,11 @@ void requireMap(const Context& context, const YAML::Node& node,
 [[nodiscard]] double requireNumber(const Context& context, const YAML::Node& map, const char* key);
 
 /// An optional finite number at node[key], else `fallback`.
-[[nodiscard]] double optionalNumber(const Context& context, const YAML::Node& map, const char* key,
-                                    double fallback);
+[[nodiscard]] double optionalNumber(const Context& context, const YAML::Node& map, const char* key, double fallback);
 
 /// Fails "FIELD: must be in [lo, hi] UNIT, got V" at map[key] unless lo <= value <= hi.
-void requireRange(const Context& context, const YAML::Node& map, const char* key, double value, double lo,
-                  double hi, const char* unit);
+void requireRange(const Context& context, const YAML::Node& map, const char* key, double value, double lo, double hi,
+                  const char* unit);
 
 /// A number in 6 significant digits, for messages.
 [[nodiscard]] std::string formatted(double value);

@@ -79,10 +79,18 @@ void kernelLoop(const batch_detail::Constants& constants, const Columns& c, Eige
     const double* __restrict in8 = c.in[8];
     double* __restrict o[12];
     for (int i = 0; i < 12; ++i) o[i] = c.out[i];
-    double* __restrict o0 = o[0]; double* __restrict o1 = o[1]; double* __restrict o2 = o[2];
-    double* __restrict o3 = o[3]; double* __restrict o4 = o[4]; double* __restrict o5 = o[5];
-    double* __restrict o6 = o[6]; double* __restrict o7 = o[7]; double* __restrict o8 = o[8];
-    double* __restrict o9 = o[9]; double* __restrict o10 = o[10]; double* __restrict o11 = o[11];
+    double* __restrict o0 = o[0];
+    double* __restrict o1 = o[1];
+    double* __restrict o2 = o[2];
+    double* __restrict o3 = o[3];
+    double* __restrict o4 = o[4];
+    double* __restrict o5 = o[5];
+    double* __restrict o6 = o[6];
+    double* __restrict o7 = o[7];
+    double* __restrict o8 = o[8];
+    double* __restrict o9 = o[9];
+    double* __restrict o10 = o[10];
+    double* __restrict o11 = o[11];
     const double nan = std::numeric_limits<double>::quiet_NaN();
     // the columns are distinct arrays: no sample reads what another writes
 #if defined(__GNUC__) && !defined(__clang__)
@@ -93,9 +101,15 @@ void kernelLoop(const batch_detail::Constants& constants, const Columns& c, Eige
         double out[12];
         const bool valid = batch_detail::sample(k, in, out);
         // a failed sample's tau is NaN, so that the fix-up pass below finds it
-        o0[s] = out[0]; o1[s] = out[1]; o2[s] = out[2];
-        o3[s] = out[3]; o4[s] = out[4]; o5[s] = out[5];
-        o6[s] = out[6]; o7[s] = out[7]; o8[s] = out[8];
+        o0[s] = out[0];
+        o1[s] = out[1];
+        o2[s] = out[2];
+        o3[s] = out[3];
+        o4[s] = out[4];
+        o5[s] = out[5];
+        o6[s] = out[6];
+        o7[s] = out[7];
+        o8[s] = out[8];
         o9[s] = valid ? out[9] : nan;
         o10[s] = out[10];
         o11[s] = out[11];
@@ -117,8 +131,8 @@ BatchStatus inverseDynamicsBatch(const Model& model, SampleBatch& batch, Eigen::
     const double* tau_0 = c.out[9];
     for (Eigen::Index s = begin; s < end; ++s) {
         if (!std::isnan(tau_0[s]) && std::abs(theta[s]) < kTrigLimit) continue;
-        const Status status = inverseDynamics(model, data, batch.p.row(s).transpose(),
-                                              batch.dp.row(s).transpose(), batch.ddp.row(s).transpose());
+        const Status status = inverseDynamics(model, data, batch.p.row(s).transpose(), batch.dp.row(s).transpose(),
+                                              batch.ddp.row(s).transpose());
         if (status) {
             batch.u.row(s) = data.u.transpose();
             batch.du.row(s) = data.du.transpose();

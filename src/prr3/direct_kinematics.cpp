@@ -206,9 +206,9 @@ std::vector<AssemblyMode> directDisplacement(const Model& model, const JointVect
         }
         // 1-norm condition number, as kinematics.cpp computes cond_H
         const Eigen::FullPivLU<Matrix3> lu(H);
-        mode.cond_H = lu.isInvertible() ? H.cwiseAbs().colwise().sum().maxCoeff() *
-                                              lu.inverse().cwiseAbs().colwise().sum().maxCoeff()
-                                        : std::numeric_limits<double>::infinity();
+        mode.cond_H = lu.isInvertible()
+                          ? H.cwiseAbs().colwise().sum().maxCoeff() * lu.inverse().cwiseAbs().colwise().sum().maxCoeff()
+                          : std::numeric_limits<double>::infinity();
 
         const bool duplicate = std::any_of(modes.begin(), modes.end(), [&](const AssemblyMode& other) {
             return std::abs(wrapAngle(other.p(0) - p(0))) <= 1e-9 && (other.p.tail<2>() - p.tail<2>()).norm() <= 1e-9;
@@ -223,7 +223,8 @@ AssemblyModeCount countAssemblyModes(const Model& model, const JointVector& u) {
     const auto all = directDisplacement(model, u, {.working_branch_only = false});
     AssemblyModeCount count;
     count.all = static_cast<int>(all.size());
-    count.working = static_cast<int>(std::count_if(all.begin(), all.end(), [](const AssemblyMode& m) { return m.working; }));
+    count.working =
+        static_cast<int>(std::count_if(all.begin(), all.end(), [](const AssemblyMode& m) { return m.working; }));
     return count;
 }
 

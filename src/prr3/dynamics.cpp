@@ -17,12 +17,12 @@ void twistShaping(const Model& model, Data& data) {
     for (int j = 0; j < kLimbs; ++j) {
         const double phi_A_dot = data.gamma_dot[j](1);
         const Vector2 f = data.m[j] / model.l;
-        const Vector2 f_dot = phi_A_dot * perp(f);           // f_j turns at dphi_Aj
-        const Vector2 a = -data.p_M[j];                      // M_j - C
-        const Vector2 a_dot = omega * perp(a);               // M_j - C turns with the MP
+        const Vector2 f_dot = phi_A_dot * perp(f);  // f_j turns at dphi_Aj
+        const Vector2 a = -data.p_M[j];             // M_j - C
+        const Vector2 a_dot = omega * perp(a);      // M_j - C turns with the MP
         data.H_dot(j, 0) = cross(a_dot, f) + cross(a, f_dot);
         data.H_dot.block<1, 2>(j, 1) = f_dot.transpose();
-        data.D_dot(j) = -data.sin_phi_A(j) * phi_A_dot;      // d/dt cos phi_Aj
+        data.D_dot(j) = -data.sin_phi_A(j) * phi_A_dot;  // d/dt cos phi_Aj
     }
 
     // eq. 31: T_7 = H^{-1} D, and dT_7 = H^{-1} (dD - dH T_7)
@@ -84,8 +84,7 @@ void jointSpaceDynamics(const Model& model, Data& data) {
 
 void actuatorForces(Data& data) { noc::inverseDynamics(data.I, data.C, data.du, data.ddu, data.tau); }
 
-Status inverseDynamics(const Model& model, Data& data, const Pose& p, const Twist& dp,
-                       const Twist& ddp) {
+Status inverseDynamics(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
     if (const Status status = inverseDisplacement(model, data, p); !status) return status;
     if (const Status status = velocityFromPlatformTwist(model, data, dp); !status) return status;
     twistShaping(model, data);

@@ -15,18 +15,24 @@ namespace nocdyn::prr3 {
 
 const char* axisName(Axis axis) {
     switch (axis) {
-        case Axis::theta: return "theta";
-        case Axis::x: return "x";
-        case Axis::y: return "y";
+        case Axis::theta:
+            return "theta";
+        case Axis::x:
+            return "x";
+        case Axis::y:
+            return "y";
     }
     return "?";
 }
 
 const char* limitName(BindingLimit limit) {
     switch (limit) {
-        case BindingLimit::stroke: return "stroke";
-        case BindingLimit::force: return "force";
-        case BindingLimit::workspace: return "workspace";
+        case BindingLimit::stroke:
+            return "stroke";
+        case BindingLimit::force:
+            return "force";
+        case BindingLimit::workspace:
+            return "workspace";
     }
     return "?";
 }
@@ -77,7 +83,8 @@ double bisect(const Model& model, Data& data, Axis axis, double frequency, doubl
     // Each pass halves [lo, hi]: kMaxBisections passes end any interval of doubles.
     for (int pass = 0; pass < kMaxBisections && hi - lo > options.relative_tolerance * hi; ++pass) {
         const double mid = 0.5 * (lo + hi);
-        const Status status = checkPeriod(model, data, axis, frequency, mid, options.samples_per_period, forces, stroke, force);
+        const Status status =
+            checkPeriod(model, data, axis, frequency, mid, options.samples_per_period, forces, stroke, force);
         if (status) {
             lo = mid;
         } else {
@@ -106,24 +113,28 @@ EnvelopePoint maximumAmplitude(const Model& model, Axis axis, double frequency, 
 
     // Kinematic limit: an amplitude far beyond any stroke must fail (1 rad, or the link length).
     const double upper = axis == Axis::theta ? 1.0 : model.l;
-    Status kinematic = checkPeriod(model, data, axis, frequency, upper, options.samples_per_period, false, stroke, force);
-    if (kinematic) throw Error(std::string("envelope: amplitude ") + std::to_string(upper) + " along " + axisName(axis) + " is not limited by the stroke");
+    Status kinematic =
+        checkPeriod(model, data, axis, frequency, upper, options.samples_per_period, false, stroke, force);
+    if (kinematic)
+        throw Error(std::string("envelope: amplitude ") + std::to_string(upper) + " along " + axisName(axis) +
+                    " is not limited by the stroke");
     point.kinematic_amplitude = bisect(model, data, axis, frequency, 0.0, upper, false, options, kinematic);
 
     Status failure;
-    if (checkPeriod(model, data, axis, frequency, point.kinematic_amplitude, options.samples_per_period, true, stroke, force)) {
+    if (checkPeriod(model, data, axis, frequency, point.kinematic_amplitude, options.samples_per_period, true, stroke,
+                    force)) {
         point.amplitude = point.kinematic_amplitude;
         failure = kinematic;
         point.limit = kinematic.code == StatusCode::stroke_exceeded ? BindingLimit::stroke : BindingLimit::workspace;
     } else {
         point.amplitude = bisect(model, data, axis, frequency, 0.0, point.kinematic_amplitude, true, options, failure);
-        point.limit = failure.code == StatusCode::force_exceeded     ? BindingLimit::force
+        point.limit = failure.code == StatusCode::force_exceeded    ? BindingLimit::force
                       : failure.code == StatusCode::stroke_exceeded ? BindingLimit::stroke
                                                                     : BindingLimit::workspace;
     }
     point.limb = failure.limb;
-    (void)checkPeriod(model, data, axis, frequency, point.amplitude, options.samples_per_period, true, point.peak_stroke,
-                      point.peak_force);
+    (void)checkPeriod(model, data, axis, frequency, point.amplitude, options.samples_per_period, true,
+                      point.peak_stroke, point.peak_force);
     return point;
 }
 
@@ -132,8 +143,8 @@ std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeO
     checkFrequency(options.max_frequency, "max_frequency");
     if (options.max_frequency < options.min_frequency) throw Error("envelope: max_frequency is below min_frequency");
     if (options.frequencies < 1 || options.frequencies > kEnvelopeMaxPoints) {
-        throw Error("envelope: the number of frequencies must be in [1, " + std::to_string(kEnvelopeMaxPoints) + "], got " +
-                    std::to_string(options.frequencies));
+        throw Error("envelope: the number of frequencies must be in [1, " + std::to_string(kEnvelopeMaxPoints) +
+                    "], got " + std::to_string(options.frequencies));
     }
     std::vector<EnvelopePoint> points;
     for (const Axis axis : {Axis::theta, Axis::x, Axis::y}) {

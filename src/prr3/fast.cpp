@@ -23,7 +23,8 @@ constexpr double kTrigLimit = 1.0e6;
 #if defined(__GNUC__)
 __attribute__((noinline, cold))
 #endif
-Status rejected(const Model& model, FastData& out, const Pose& p, const Twist& dp, const Twist& ddp) noexcept {
+Status
+rejected(const Model& model, FastData& out, const Pose& p, const Twist& dp, const Twist& ddp) noexcept {
     Data data;  // fixed size, on the stack: no allocation
     Status status = inverseDynamics(model, data, p, dp, ddp);
     if (status) {
@@ -43,8 +44,8 @@ Status rejected(const Model& model, FastData& out, const Pose& p, const Twist& d
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
-Status inverseDynamicsFast(const Model& model, FastData& data, const Pose& p, const Twist& dp,
-                           const Twist& ddp) noexcept {
+Status
+inverseDynamicsFast(const Model& model, FastData& data, const Pose& p, const Twist& dp, const Twist& ddp) noexcept {
     const double in[9] = {p(0), p(1), p(2), dp(0), dp(1), dp(2), ddp(0), ddp(1), ddp(2)};
     double s, c;
     if (std::abs(p(0)) < kTrigLimit) [[likely]] {

@@ -63,9 +63,9 @@ struct Simulator::Impl {
     Data scratch;  ///< right-hand-side evaluations
     State x{};
     double t = 0.0;
-    double step;             ///< step size proposed by the controller [s]
-    Pose pose = Pose::Zero();  ///< pose at the accepted state
-    Pose trial = Pose::Zero(); ///< pose found at the last right-hand-side evaluation
+    double step;                ///< step size proposed by the controller [s]
+    Pose pose = Pose::Zero();   ///< pose at the accepted state
+    Pose trial = Pose::Zero();  ///< pose found at the last right-hand-side evaluation
     // force profile of the current segment: tau(t) linear from tau_0 at t_0 to tau_1 at t_0 + dt
     JointVector tau_0 = JointVector::Zero(), tau_1 = JointVector::Zero();
     double t_0 = 0.0, dt = 0.0;
@@ -82,10 +82,12 @@ struct Simulator::Impl {
         const JointVector u(xs[0], xs[1], xs[2]);
         const JointVector du(xs[3], xs[4], xs[5]);
         Pose guess = trial;
-        Status status = forwardDynamicsFromState(model, scratch, u, du, forceAt(time), guess, options.loads, options.tracker);
+        Status status =
+            forwardDynamicsFromState(model, scratch, u, du, forceAt(time), guess, options.loads, options.tracker);
         if (!status) {
             guess = pose;  // retry from the last accepted pose
-            status = forwardDynamicsFromState(model, scratch, u, du, forceAt(time), guess, options.loads, options.tracker);
+            status =
+                forwardDynamicsFromState(model, scratch, u, du, forceAt(time), guess, options.loads, options.tracker);
         }
         for (int j = 0; j < 3; ++j) dxdt[j] = xs[3 + j];
         if (!status) {
@@ -102,7 +104,8 @@ struct Simulator::Impl {
         const JointVector u(x[0], x[1], x[2]);
         const JointVector du(x[3], x[4], x[5]);
         Pose p = pose;
-        const Status status = forwardDynamicsFromState(model, data, u, du, forceAt(t), p, options.loads, options.tracker);
+        const Status status =
+            forwardDynamicsFromState(model, data, u, du, forceAt(t), p, options.loads, options.tracker);
         if (status) pose = trial = p;
         return status;
     }
@@ -124,8 +127,8 @@ struct Simulator::Impl {
             const State x_saved = x;
             const double t_saved = t;
             failure = {};
-            const auto result = stepper.try_step([this](const State& xs, State& d, double time) { rhs(xs, d, time); },
-                                                 x, t, h);
+            const auto result =
+                stepper.try_step([this](const State& xs, State& d, double time) { rhs(xs, d, time); }, x, t, h);
             if (!failure.ok()) {
                 // The tracker failed at a trial state: retry with a much smaller step.
                 x = x_saved;
@@ -245,7 +248,8 @@ void record(const Simulator& simulator, SimulationSeries& series) {
 
 }  // namespace
 
-SimulationSeries simulateForces(Simulator& simulator, const ForceSeries& forces, const std::vector<double>& output_times) {
+SimulationSeries simulateForces(Simulator& simulator, const ForceSeries& forces,
+                                const std::vector<double>& output_times) {
     SimulationSeries series;
     const RobotParameters& robot = simulator.model().parameters;
     std::size_t next_force = 0;
@@ -284,8 +288,10 @@ ForceSeries forcesFromTable(const io::Table& table, const std::string& source) {
             std::ostringstream out;
             out.precision(17);
             out << source << ":";
-            if (r < table.lines.size()) out << table.lines[r] << ": column 't'";
-            else out << " row " << r + 1 << ": column 't'";
+            if (r < table.lines.size())
+                out << table.lines[r] << ": column 't'";
+            else
+                out << " row " << r + 1 << ": column 't'";
             out << ": t = " << t << " s does not increase (previous row: " << forces.t.back() << " s)";
             throw Error(out.str());
         }

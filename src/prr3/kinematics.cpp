@@ -70,8 +70,7 @@ Status jacobians(const Model& model, Data& data) {
     data.H_inv = data.H.inverse();
     const Vector3 scale(1.0 / model.r, 1.0, 1.0);
     const double norm_H = (data.H * scale.asDiagonal()).cwiseAbs().colwise().sum().maxCoeff();
-    const double norm_H_inv =
-        (scale.cwiseInverse().asDiagonal() * data.H_inv).cwiseAbs().colwise().sum().maxCoeff();
+    const double norm_H_inv = (scale.cwiseInverse().asDiagonal() * data.H_inv).cwiseAbs().colwise().sum().maxCoeff();
     data.cond_H = norm_H * norm_H_inv;
     if (!(data.cond_H <= model.parameters.max_condition)) {
         return {StatusCode::singular_forward_jacobian, -1, data.cond_H};
@@ -108,15 +107,14 @@ Status velocityFromActuatorRates(const Model& model, Data& data, const JointVect
 void actuatorAccelerations(Data& data, const Twist& t_M_dot) {
     data.t_M_dot = t_M_dot;
     // d/dt of eq. 5: D ddu = H dt_M + dH t_M - dD du
-    data.ddu = (data.H * t_M_dot + data.H_dot * data.t_M - data.D_dot.cwiseProduct(data.du))
-                   .cwiseQuotient(data.D);
+    data.ddu = (data.H * t_M_dot + data.H_dot * data.t_M - data.D_dot.cwiseProduct(data.du)).cwiseQuotient(data.D);
 }
 
 void platformAcceleration(Data& data, const JointVector& ddu) {
     data.ddu = ddu;
     // d/dt of eq. 5: H dt_M = D ddu + dD du - dH t_M
-    data.t_M_dot.noalias() = data.H_inv * (data.D.cwiseProduct(ddu) +
-                                           data.D_dot.cwiseProduct(data.du) - data.H_dot * data.t_M);
+    data.t_M_dot.noalias() =
+        data.H_inv * (data.D.cwiseProduct(ddu) + data.D_dot.cwiseProduct(data.du) - data.H_dot * data.t_M);
 }
 
 Status checkStroke(const Model& model, const Data& data) {

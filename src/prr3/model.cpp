@@ -18,10 +18,10 @@ Model::Model(const RobotParameters& robot) : parameters(robot) {
     // eq. 8
     phi = {0.0, 2.0 * pi / 3.0, -2.0 * pi / 3.0};
     for (int j = 0; j < kLimbs; ++j) {
-        e[j] = unitVector(phi[j]);                   // eq. 40
-        n[j] = perp(e[j]);                           // points into the base triangle
-        B[j] = R * unitVector(phi[j] - pi / 6.0);    // eq. 35
-        M_local[j] = r * unitVector(phi[j] - pi / 6.0);  // M_j - C at theta = 0 (eq. 41)
+        e[j] = unitVector(phi[j]);                         // eq. 40
+        n[j] = perp(e[j]);                                 // points into the base triangle
+        B[j] = R * unitVector(phi[j] - pi / 6.0);          // eq. 35
+        M_local[j] = r * unitVector(phi[j] - pi / 6.0);    // M_j - C at theta = 0 (eq. 41)
         M[sliderBody(j)] = {0.0, parameters.slider_mass};  // sliders only translate
         M[linkBody(j)] = {parameters.link_inertia, parameters.link_mass};
     }

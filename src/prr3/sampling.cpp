@@ -174,7 +174,7 @@ std::vector<std::string> inverseDynamicsColumns() {
 }
 
 std::array<double, 17> toRow(const InverseDynamicsSample& s) {
-    return {s.t,     s.p(1),   s.p(2),   s.p(0),   s.u(0),   s.u(1),   s.u(2),   s.du(0), s.du(1),
+    return {s.t,     s.p(1),   s.p(2),   s.p(0),   s.u(0),   s.u(1),   s.u(2),   s.du(0),  s.du(1),
             s.du(2), s.ddu(0), s.ddu(1), s.ddu(2), s.tau(0), s.tau(1), s.tau(2), s.kinetic};
 }
 

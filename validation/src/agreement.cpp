@@ -31,7 +31,8 @@ EngineAgreement agreement(const std::string& engine, const EngineComparison& c,
             result.max_u_abs = std::max(result.max_u_abs, std::abs(theirs[k].u(i) - ours.u(i)));
         }
     }
-    for (std::size_t a = 0; a < n; ++a) result.max_rel_peak[a] = peak[a] > 0 ? result.max_abs[a] / peak[a] : result.max_abs[a];
+    for (std::size_t a = 0; a < n; ++a)
+        result.max_rel_peak[a] = peak[a] > 0 ? result.max_abs[a] / peak[a] : result.max_abs[a];
     return result;
 }
 
@@ -60,11 +61,13 @@ io::Table toTable(const EngineComparison& c) {
     table.columns = {"t"};
     for (const char* prefix : {"", "simbody_", "mujoco_"}) {
         for (const char* quantity : {"u", "tau"}) {
-            for (std::string& name : io::numbered(std::string(prefix) + quantity, n)) table.columns.push_back(std::move(name));
+            for (std::string& name : io::numbered(std::string(prefix) + quantity, n))
+                table.columns.push_back(std::move(name));
         }
     }
     for (const char* prefix : {"simbody_", "mujoco_"}) {
-        for (std::string& name : io::numbered(std::string(prefix) + "dtau", n)) table.columns.push_back(std::move(name));
+        for (std::string& name : io::numbered(std::string(prefix) + "dtau", n))
+            table.columns.push_back(std::move(name));
     }
     for (std::size_t k = 0; k < c.ours.samples.size(); ++k) {
         const InverseDynamicsSample& ours = c.ours.samples[k];

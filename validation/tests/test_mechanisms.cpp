@@ -80,7 +80,8 @@ double peakAbs(const std::vector<MechanismSample>& s, Eigen::VectorXd MechanismS
 double maxDiff(const std::vector<MechanismSample>& a, const std::vector<MechanismSample>& b,
                Eigen::VectorXd MechanismSample::*field) {
     double err = 0.0;
-    for (std::size_t k = 0; k < a.size(); ++k) err = std::max(err, ((a[k].*field) - (b[k].*field)).cwiseAbs().maxCoeff());
+    for (std::size_t k = 0; k < a.size(); ++k)
+        err = std::max(err, ((a[k].*field) - (b[k].*field)).cwiseAbs().maxCoeff());
     return err;
 }
 
@@ -93,7 +94,10 @@ void checkGolden(const char* engine, const std::string& file, const PoseTrajecto
     const std::vector<MechanismSample> s = model.inverseDynamics(trajectory, times);
     ASSERT_EQ(s.size(), times.size());
     const std::array<std::pair<const char*, Eigen::VectorXd MechanismSample::*>, 4> fields = {
-        {{"u", &MechanismSample::u}, {"du", &MechanismSample::du}, {"ddu", &MechanismSample::ddu}, {"tau", &MechanismSample::tau}}};
+        {{"u", &MechanismSample::u},
+         {"du", &MechanismSample::du},
+         {"ddu", &MechanismSample::ddu},
+         {"tau", &MechanismSample::tau}}};
     for (const auto& [name, field] : fields) {
         for (int j = 0; j < 3; ++j) {
             const std::size_t c = g.col(name + std::to_string(j + 1));
@@ -102,8 +106,8 @@ void checkGolden(const char* engine, const std::string& file, const PoseTrajecto
                 peak = std::max(peak, std::abs(g.rows[k][c]));
                 err = std::max(err, std::abs((s[k].*field)[j] - g.rows[k][c]));
             }
-            std::printf("[%s %s] %s%d max |err| = %.3e (peak %.6g, rel %.3e)\n", engine, file.c_str(), name, j + 1,
-                        err, peak, err / peak);
+            std::printf("[%s %s] %s%d max |err| = %.3e (peak %.6g, rel %.3e)\n", engine, file.c_str(), name, j + 1, err,
+                        peak, err / peak);
             EXPECT_LE(err, kRelativeTolerance * peak) << engine << " " << file << " " << name << j + 1;
         }
     }
@@ -175,7 +179,8 @@ public:
                 auto& body = limb.bodies[b];
                 body.mass = uniform(0.1, 2.0);
                 body.inertia = uniform(1e-4, 1e-2);
-                body.com = 0.5 * (points[b] + points[b + 1]) + Eigen::Vector2d(uniform(-0.02, 0.02), uniform(-0.02, 0.02));
+                body.com =
+                    0.5 * (points[b] + points[b + 1]) + Eigen::Vector2d(uniform(-0.02, 0.02), uniform(-0.02, 0.02));
             }
             r.limbs.push_back(limb);
         }
@@ -200,7 +205,9 @@ public:
         t.name = "random";
         const auto axis = [&](nocdyn::AxisMotion& a, double offset, double amplitude) {
             a.offset = offset;
-            for (int h = 0; h < 2; ++h) a.harmonics.push_back({uniform(0.3, 1.0) * amplitude, uniform(2.0, 20.0), uniform(0.0, 2.0 * std::numbers::pi)});
+            for (int h = 0; h < 2; ++h)
+                a.harmonics.push_back(
+                    {uniform(0.3, 1.0) * amplitude, uniform(2.0, 20.0), uniform(0.0, 2.0 * std::numbers::pi)});
         };
         axis(t.theta, r.home[0], 0.03);
         axis(t.x, r.home[1], 0.003);
@@ -271,7 +278,8 @@ bool compareEngines(const RobotDescription& r, const PoseTrajectory& trajectory,
             const double h = 1e-4;
             for (const double t : {0.023, 0.071}) {
                 const std::vector<double> around = {t - 2 * h, t - h, t, t + h, t + 2 * h};
-                for (const auto& s : {simbody.inverseDynamics(trajectory, around), mujoco.inverseDynamics(trajectory, around)}) {
+                for (const auto& s :
+                     {simbody.inverseDynamics(trajectory, around), mujoco.inverseDynamics(trajectory, around)}) {
                     double scale = 0.0;
                     const double res = powerResidual(s, h, scale);
                     report.max_power = std::max(report.max_power, std::abs(res) / scale);
@@ -287,7 +295,8 @@ bool compareEngines(const RobotDescription& r, const PoseTrajectory& trajectory,
     const double err = maxDiff(a, b, &MechanismSample::tau);
     report.max_abs = std::max(report.max_abs, err);
     report.max_rel = std::max(report.max_rel, err / peak);
-    EXPECT_LE(err, kRelativeTolerance * peak) << describe(r) << ": |tau_simbody - tau_mujoco| = " << err << " N, peak " << peak;
+    EXPECT_LE(err, kRelativeTolerance * peak)
+        << describe(r) << ": |tau_simbody - tau_mujoco| = " << err << " N, peak " << peak;
     for (auto field : {&MechanismSample::u, &MechanismSample::du, &MechanismSample::ddu}) {
         const double p = std::max(peakAbs(a, field), 1e-12);
         EXPECT_LE(maxDiff(a, b, field), kRelativeTolerance * p) << describe(r);
@@ -331,9 +340,10 @@ TEST(GeneralMechanism, PaperRobotAgreesWith3PrrEngineModels) {
             EXPECT_LE((Eigen::Vector3d(a[k].u) - c[k].u).cwiseAbs().maxCoeff(), 1e-13);
             EXPECT_LE((Eigen::Vector3d(b[k].u) - d[k].u).cwiseAbs().maxCoeff(), 1e-13);
         }
-        std::printf("[paper %s] peak %.3f N; |general simbody - mujoco| %.3e N (%.2e), "
-                    "|general - 3-PRR| simbody %.3e N, mujoco %.3e N\n",
-                    trajectory.name.c_str(), peak, err_ab, err_ab / peak, err_ac, err_bd);
+        std::printf(
+            "[paper %s] peak %.3f N; |general simbody - mujoco| %.3e N (%.2e), "
+            "|general - 3-PRR| simbody %.3e N, mujoco %.3e N\n",
+            trajectory.name.c_str(), peak, err_ab, err_ab / peak, err_ac, err_bd);
         EXPECT_LE(err_ab, kRelativeTolerance * peak);
         EXPECT_LE(err_ac, kRelativeTolerance * peak);
         EXPECT_LE(err_bd, kRelativeTolerance * peak);
@@ -356,7 +366,8 @@ TEST_P(RandomRobotsOfLimbType, EnginesAgreeAndPowerBalanceHolds) {
         for (int b = a + 1; b < 9; ++b) {
             for (int c = b + 1; c < 9; ++c) {
                 RobotDescription r = base;
-                for (int k : {a, b, c}) r.limbs[static_cast<std::size_t>(k / 3)].joints[static_cast<std::size_t>(k % 3)].actuated = true;
+                for (int k : {a, b, c})
+                    r.limbs[static_cast<std::size_t>(k / 3)].joints[static_cast<std::size_t>(k % 3)].actuated = true;
                 random.physics(r, case_index % 2 == 0, case_index % 3 != 2);
                 ++report.robots;
                 if (compareEngines(r, trajectory, case_index % 6 == 0, report)) ++report.kept;
@@ -367,7 +378,8 @@ TEST_P(RandomRobotsOfLimbType, EnginesAgreeAndPowerBalanceHolds) {
     for (int i = 0; i < 4; ++i) {
         const bool four = i % 2 == 0;
         PoseTrajectory redundant_trajectory;
-        RobotDescription r = reachableGeometry(random, type, four ? 4 : 3, redundant_trajectory, report.geometries_rejected);
+        RobotDescription r =
+            reachableGeometry(random, type, four ? 4 : 3, redundant_trajectory, report.geometries_rejected);
         const int joints = 3 * static_cast<int>(r.limbs.size());
         std::vector<int> order(static_cast<std::size_t>(joints));
         for (int k = 0; k < joints; ++k) order[static_cast<std::size_t>(k)] = k;
@@ -382,14 +394,16 @@ TEST_P(RandomRobotsOfLimbType, EnginesAgreeAndPowerBalanceHolds) {
         if (compareEngines(r, redundant_trajectory, true, report)) ++report.kept;
         ++case_index;
     }
-    std::printf("[random %s] %d robots (%d redundant), %d kept, %d skipped as singular; %d geometries out of "
-                "reach rejected; max |tau_simbody - tau_mujoco| = %.3e N, rel. to peak %.3e; max power residual %.3e\n",
-                type.c_str(), report.robots, report.redundant, report.kept, report.robots - report.kept,
-                report.geometries_rejected, report.max_abs, report.max_rel, report.max_power);
+    std::printf(
+        "[random %s] %d robots (%d redundant), %d kept, %d skipped as singular; %d geometries out of "
+        "reach rejected; max |tau_simbody - tau_mujoco| = %.3e N, rel. to peak %.3e; max power residual %.3e\n",
+        type.c_str(), report.robots, report.redundant, report.kept, report.robots - report.kept,
+        report.geometries_rejected, report.max_abs, report.max_rel, report.max_power);
     EXPECT_GE(report.kept, report.robots / 2) << type << ": too many random robots skipped";
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobotsOfLimbType, ::testing::Range(0, static_cast<int>(kLimbTypes.size())),
+INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobotsOfLimbType,
+                         ::testing::Range(0, static_cast<int>(kLimbTypes.size())),
                          [](const ::testing::TestParamInfo<int>& info) {
                              return std::string(kLimbTypes[static_cast<std::size_t>(info.param)]);
                          });
@@ -428,8 +442,10 @@ TEST(GeneralMechanism, ReportsTheTimeOfAnUnreachablePose) {
     const std::vector<double> times = linspace(0.0, 0.25, 6);
     for (int engine = 0; engine < 2; ++engine) {
         try {
-            if (engine == 0) SimbodyMechanism(r).inverseDynamics(far, times);
-            else MujocoMechanism(r).inverseDynamics(far, times);
+            if (engine == 0)
+                SimbodyMechanism(r).inverseDynamics(far, times);
+            else
+                MujocoMechanism(r).inverseDynamics(far, times);
             ADD_FAILURE() << "no error";
         } catch (const nocdyn::Error& e) {
             EXPECT_NE(std::string(e.what()).find("t="), std::string::npos) << e.what();
@@ -446,7 +462,8 @@ TEST(GeneralMechanism, PerSampleTiming) {
         const auto s = engine.inverseDynamics(trajectory, times);
         const auto t1 = std::chrono::steady_clock::now();
         std::printf("[timing] %s: %.1f us per sample (%zu samples)\n", name,
-                    std::chrono::duration<double, std::micro>(t1 - t0).count() / static_cast<double>(s.size()), s.size());
+                    std::chrono::duration<double, std::micro>(t1 - t0).count() / static_cast<double>(s.size()),
+                    s.size());
     };
     SimbodyMechanism simbody(nocdyn::expand(RobotParameters{}));
     MujocoMechanism mujoco(nocdyn::expand(RobotParameters{}));

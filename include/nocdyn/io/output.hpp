@@ -58,7 +58,7 @@ private:
     std::string path_;       ///< the target
     std::string temporary_;  ///< the temporary file renamed over the target; empty when written through
     int fd_ = -1;
-    bool owns_fd_ = false;   ///< false for standard output
+    bool owns_fd_ = false;  ///< false for standard output
     bool committed_ = false;
     std::string buffer_;
     std::size_t used_ = 0;

@@ -19,8 +19,7 @@ void actuatorForces(Data& data);
 
 /// The whole per-sample path in pose space: (p, dp, ddp) -> u, du, ddu, T, dT, I, C, tau.
 /// Allocation-free; the Status reports unreachable or singular poses.
-Status inverseDynamics(const Model& model, Data& data, const Pose& p, const Twist& dp,
-                       const Twist& ddp);
+Status inverseDynamics(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp);
 
 /// Checks |tau_j| <= peak force for every limb (forces stage needed).
 [[nodiscard]] Status checkForce(const Model& model, const Data& data);

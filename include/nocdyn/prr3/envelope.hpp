@@ -33,23 +33,23 @@ inline constexpr double kEnvelopeMaxFrequency = 1e4;
 inline constexpr int kEnvelopeMaxPoints = 1000;
 
 struct EnvelopeOptions {
-    double min_frequency = 1.0;     ///< [Hz]
-    double max_frequency = 100.0;   ///< [Hz]
-    int frequencies = 41;           ///< log-spaced, both ends included
-    int samples_per_period = 256;   ///< a multiple of 4 puts samples on the sinusoid's peaks
+    double min_frequency = 1.0;        ///< [Hz]
+    double max_frequency = 100.0;      ///< [Hz]
+    int frequencies = 41;              ///< log-spaced, both ends included
+    int samples_per_period = 256;      ///< a multiple of 4 puts samples on the sinusoid's peaks
     double relative_tolerance = 1e-6;  ///< bisection stops when (hi - lo) <= tol * hi
 };
 
 /// The largest amplitude at one frequency along one axis.
 struct EnvelopePoint {
     Axis axis = Axis::x;
-    double frequency = 0.0;     ///< [Hz]
-    double amplitude = 0.0;     ///< [rad] for theta, [m] for x and y
+    double frequency = 0.0;  ///< [Hz]
+    double amplitude = 0.0;  ///< [rad] for theta, [m] for x and y
     BindingLimit limit = BindingLimit::stroke;
-    int limb = -1;              ///< 0-based limb that hits the limit first
+    int limb = -1;                     ///< 0-based limb that hits the limit first
     double kinematic_amplitude = 0.0;  ///< largest amplitude allowed by stroke and workspace alone
-    double peak_force = 0.0;    ///< max_j,t |tau_j| at `amplitude` [N]
-    double peak_stroke = 0.0;   ///< max_j,t |u_j| at `amplitude` [m]
+    double peak_force = 0.0;           ///< max_j,t |tau_j| at `amplitude` [N]
+    double peak_stroke = 0.0;          ///< max_j,t |u_j| at `amplitude` [m]
 };
 
 /// Largest amplitude along `axis` at `frequency` (see the file header).

@@ -51,8 +51,8 @@ Status forwardDynamicsFromState(const Model& model, Data& data, const JointVecto
 struct SimulatorOptions {
     double absolute_tolerance = 1e-12;  ///< per component of (u [m], du [m/s])
     double relative_tolerance = 1e-10;
-    double initial_step = 1e-5;         ///< [s]
-    double max_step = 1e-3;             ///< [s]
+    double initial_step = 1e-5;  ///< [s]
+    double max_step = 1e-3;      ///< [s]
     /// Smallest step the controller may take [s]: below it advance() fails with
     /// integration_step_too_small instead of crawling forever.
     double min_step = 1e-10;

@@ -79,29 +79,29 @@ struct Data {
     std::array<Vector2, kLimbs> p_M{};    ///< p_Mj = M_j C (eq. 41) [m]
 
     // --- velocity stage ---
-    std::array<Matrix3, kLimbs> J{};      ///< J_j, limb Jacobian (eq. 4a)
-    std::array<Matrix3, kLimbs> J_inv{};  ///< J_j^{-1}
-    Matrix3 H = Matrix3::Zero();          ///< forward Jacobian (eq. 7), rows [h_j1 h_j2 h_j3]
-    Matrix3 H_inv = Matrix3::Zero();      ///< H^{-1}
-    Vector3 D = Vector3::Zero();          ///< diagonal of the inverse Jacobian D (eq. 6)
-    double cond_H = 0.0;  ///< 1-norm condition number of H diag(1/r, 1, 1) (dimensionless)
-    double cond_D = 0.0;  ///< condition number of D: max d_j / min d_j
-    Twist t_M = Twist::Zero();              ///< platform twist dp/dt (eq. 2)
-    JointVector du = JointVector::Zero();   ///< actuator rates [m/s]
+    std::array<Matrix3, kLimbs> J{};          ///< J_j, limb Jacobian (eq. 4a)
+    std::array<Matrix3, kLimbs> J_inv{};      ///< J_j^{-1}
+    Matrix3 H = Matrix3::Zero();              ///< forward Jacobian (eq. 7), rows [h_j1 h_j2 h_j3]
+    Matrix3 H_inv = Matrix3::Zero();          ///< H^{-1}
+    Vector3 D = Vector3::Zero();              ///< diagonal of the inverse Jacobian D (eq. 6)
+    double cond_H = 0.0;                      ///< 1-norm condition number of H diag(1/r, 1, 1) (dimensionless)
+    double cond_D = 0.0;                      ///< condition number of D: max d_j / min d_j
+    Twist t_M = Twist::Zero();                ///< platform twist dp/dt (eq. 2)
+    JointVector du = JointVector::Zero();     ///< actuator rates [m/s]
     std::array<Vector3, kLimbs> gamma_dot{};  ///< [du_j, dphi_Aj, dphi_Mj] (eq. 4b, 29)
 
     // --- shaping stage (twistShaping) ---
-    Matrix3 H_dot = Matrix3::Zero();   ///< dH/dt
-    Vector3 D_dot = Vector3::Zero();   ///< dD/dt (diagonal)
+    Matrix3 H_dot = Matrix3::Zero();             ///< dH/dt
+    Vector3 D_dot = Vector3::Zero();             ///< dD/dt (diagonal)
     std::array<ShapingMatrix, kBodies> T{};      ///< T_i (eqs. 25-31), t_i = T_i du
     std::array<ShapingMatrix, kBodies> T_dot{};  ///< dT_i/dt
 
     // --- acceleration, dynamics and forces ---
-    Twist t_M_dot = Twist::Zero();            ///< d2p/dt2
-    JointVector ddu = JointVector::Zero();    ///< actuator accelerations [m/s^2]
-    JointMatrix I = JointMatrix::Zero();      ///< joint-space inertia (eq. 23) [kg]
-    JointMatrix C = JointMatrix::Zero();      ///< Coriolis matrix (eq. 23) [kg/s]
-    JointVector tau = JointVector::Zero();    ///< actuator forces on the sliders (eq. 20) [N]
+    Twist t_M_dot = Twist::Zero();          ///< d2p/dt2
+    JointVector ddu = JointVector::Zero();  ///< actuator accelerations [m/s^2]
+    JointMatrix I = JointMatrix::Zero();    ///< joint-space inertia (eq. 23) [kg]
+    JointMatrix C = JointMatrix::Zero();    ///< Coriolis matrix (eq. 23) [kg/s]
+    JointVector tau = JointVector::Zero();  ///< actuator forces on the sliders (eq. 20) [N]
 };
 
 }  // namespace nocdyn::prr3

@@ -40,15 +40,15 @@ void requireReachable(const Model& model, const PoseTrajectory& trajectory, doub
 
 /// One output sample of the inverse dynamics.
 struct InverseDynamicsSample {
-    double t = 0.0;                      ///< [s]
-    Pose p = Pose::Zero();               ///< pose [theta, x, y] [rad, m, m]
-    Twist dp = Twist::Zero();            ///< its first time derivative
-    Twist ddp = Twist::Zero();           ///< its second time derivative
+    double t = 0.0;                         ///< [s]
+    Pose p = Pose::Zero();                  ///< pose [theta, x, y] [rad, m, m]
+    Twist dp = Twist::Zero();               ///< its first time derivative
+    Twist ddp = Twist::Zero();              ///< its second time derivative
     JointVector u = JointVector::Zero();    ///< actuator displacements [m]
     JointVector du = JointVector::Zero();   ///< rates [m/s]
     JointVector ddu = JointVector::Zero();  ///< accelerations [m/s^2]
     JointVector tau = JointVector::Zero();  ///< forces [N]
-    double kinetic = 0.0;                ///< kinetic energy [J]
+    double kinetic = 0.0;                   ///< kinetic energy [J]
 };
 
 /// Peaks and violations over a whole run, between-sample checks included.
@@ -57,7 +57,7 @@ struct LimitSummary {
     std::array<double, kLimbs> peak_force{};   ///< max |tau_j| [N]
     /// The first (at most 10) limit violations met when the policy is `record`.
     std::vector<std::string> limit_violations;
-    std::size_t checks_between_samples = 0;    ///< points checked between output samples
+    std::size_t checks_between_samples = 0;  ///< points checked between output samples
 };
 
 /// Runs the per-sample path at each instant of `grid` and hands each sample to `sink` as it
@@ -74,7 +74,7 @@ struct InverseDynamicsSeries {
     std::vector<double> t;
     std::vector<Pose> p, dp, ddp;
     std::vector<JointVector> u, du, ddu, tau;
-    std::vector<double> kinetic;  ///< kinetic energy [J]
+    std::vector<double> kinetic;               ///< kinetic energy [J]
     std::array<double, kLimbs> peak_stroke{};  ///< max |u_j| [m]
     std::array<double, kLimbs> peak_force{};   ///< max |tau_j| [N]
     /// First limit violation met (when the policy is `record`), else empty.

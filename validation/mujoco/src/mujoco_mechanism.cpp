@@ -36,9 +36,7 @@ constexpr double kOutOfPlaneInertia = 1e-6;
 // accuracy of any comparison.
 constexpr double kMinInertia = 1e-12;
 
-std::string bodyName(int limb, int link) {
-    return "limb" + std::to_string(limb + 1) + "_body" + std::to_string(link);
-}
+std::string bodyName(int limb, int link) { return "limb" + std::to_string(limb + 1) + "_body" + std::to_string(link); }
 std::string jointName(int limb, int joint) {
     return "limb" + std::to_string(limb + 1) + "_joint" + std::to_string(joint + 1);
 }
@@ -46,18 +44,18 @@ std::string jointName(int limb, int joint) {
 void writeInertial(std::ostringstream& x, const std::string& indent, double mass, double inertia,
                    const Eigen::Vector2d& com) {
     const double side = std::max(kOutOfPlaneInertia, inertia);
-    x << indent << "<inertial pos=\"" << com.x() << " " << com.y() << " 0\" mass=\"" << mass
-      << "\" diaginertia=\"" << side << " " << side << " " << std::max(kMinInertia, inertia) << "\"/>\n";
+    x << indent << "<inertial pos=\"" << com.x() << " " << com.y() << " 0\" mass=\"" << mass << "\" diaginertia=\""
+      << side << " " << side << " " << std::max(kMinInertia, inertia) << "\"/>\n";
 }
 
 void writeJoint(std::ostringstream& x, const std::string& indent, const std::string& name,
                 const JointDescription& joint) {
     if (joint.type == JointType::revolute) {
-        x << indent << "<joint name=\"" << name << "\" type=\"hinge\" pos=\"" << joint.point.x()
-          << " " << joint.point.y() << " 0\" axis=\"0 0 1\"/>\n";
+        x << indent << "<joint name=\"" << name << "\" type=\"hinge\" pos=\"" << joint.point.x() << " "
+          << joint.point.y() << " 0\" axis=\"0 0 1\"/>\n";
     } else {
-        x << indent << "<joint name=\"" << name << "\" type=\"slide\" axis=\"" << joint.direction.x()
-          << " " << joint.direction.y() << " 0\"/>\n";
+        x << indent << "<joint name=\"" << name << "\" type=\"slide\" axis=\"" << joint.direction.x() << " "
+          << joint.direction.y() << " 0\"/>\n";
     }
 }
 
@@ -79,8 +77,10 @@ void writeChain(std::ostringstream& x, const RobotDescription& robot, int j, int
     writeJoint(x, indent + "  ", jointName(j, joint), jd);
     writeInertial(x, indent + "  ", body.mass, body.inertia, body.com);
     const Eigen::Vector2d& p = limb.joints[static_cast<std::size_t>(c)].point;
-    if (link == c) x << indent << "  <site name=\"" << anchorSite(j, false) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
-    if (link == c + 1) x << indent << "  <site name=\"" << anchorSite(j, true) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
+    if (link == c)
+        x << indent << "  <site name=\"" << anchorSite(j, false) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
+    if (link == c + 1)
+        x << indent << "  <site name=\"" << anchorSite(j, true) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
     writeChain(x, robot, j, c, links_in_order, indent + "  ", i + 1);
     x << indent << "</body>\n";
 }
@@ -93,7 +93,9 @@ std::string buildMjcf(const RobotDescription& robot, const std::vector<int>& clo
     const bool gravity = robot.gravity.squaredNorm() > 0.0;
     std::ostringstream x;
     x << std::setprecision(17);
-    x << "<mujoco model=\"nocdyn-" << "mechanism" << "\">\n"
+    x << "<mujoco model=\"nocdyn-"
+      << "mechanism"
+      << "\">\n"
       << "  <compiler angle=\"radian\" inertiafromgeom=\"false\"/>\n"
       << "  <option gravity=\"" << robot.gravity.x() << " " << robot.gravity.y()
       << " 0\" timestep=\"0.0001\" jacobian=\"dense\" integrator=\"Euler\">\n"
@@ -107,7 +109,8 @@ std::string buildMjcf(const RobotDescription& robot, const std::vector<int>& clo
     for (int j = 0; j < L; ++j) {
         const int c = closure[static_cast<std::size_t>(j)];
         const Eigen::Vector2d& p = robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(c)].point;
-        if (c == 0) x << "    <site name=\"" << anchorSite(j, false) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
+        if (c == 0)
+            x << "    <site name=\"" << anchorSite(j, false) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
         std::vector<int> forward;  // links 1..c from the world
         for (int k = 1; k <= c; ++k) forward.push_back(k);
         writeChain(x, robot, j, c, forward, "    ", 0);
@@ -121,7 +124,8 @@ std::string buildMjcf(const RobotDescription& robot, const std::vector<int>& clo
     for (int j = 0; j < L; ++j) {
         const int c = closure[static_cast<std::size_t>(j)];
         const Eigen::Vector2d& p = robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(c)].point;
-        if (c == 2) x << "      <site name=\"" << anchorSite(j, true) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
+        if (c == 2)
+            x << "      <site name=\"" << anchorSite(j, true) << "\" pos=\"" << p.x() << " " << p.y() << " 0\"/>\n";
         std::vector<int> reversed;  // links 2..c+1 from the platform
         for (int k = 2; k >= c + 1; --k) reversed.push_back(k);
         writeChain(x, robot, j, c, reversed, "      ", 0);
@@ -259,7 +263,8 @@ struct MujocoMechanism::Impl {
         Eigen::MatrixXd G(2 * L, m->nv);
         for (int j = 0; j < L; ++j) {
             for (int c = 0; c < 2; ++c) {
-                const mjtNum* row = d->efc_J + static_cast<std::ptrdiff_t>(eq_row[static_cast<std::size_t>(j)] + c) * m->nv;
+                const mjtNum* row =
+                    d->efc_J + static_cast<std::ptrdiff_t>(eq_row[static_cast<std::size_t>(j)] + c) * m->nv;
                 for (int i = 0; i < m->nv; ++i) G(2 * j + c, i) = row[i];
             }
         }
@@ -310,8 +315,8 @@ struct MujocoMechanism::Impl {
         return false;
     }
 
-    void assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed,
-                  const Eigen::Vector3d& p_from, const Eigen::VectorXd& q_from) {
+    void assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed, const Eigen::Vector3d& p_from,
+                  const Eigen::VectorXd& q_from) {
         if (newton(p, seed)) return;
         for (int halvings = 1; halvings <= kMaxHalvings; ++halvings) {
             const int pieces = 1 << halvings;
@@ -324,8 +329,8 @@ struct MujocoMechanism::Impl {
             if (ok) return;
         }
         std::ostringstream msg;
-        msg << "MuJoCo model: cannot assemble the pose [theta=" << p[0] << " rad, x=" << p[1]
-            << " m, y=" << p[2] << " m] at t=" << t << " s on the home branch (out of reach or singular)";
+        msg << "MuJoCo model: cannot assemble the pose [theta=" << p[0] << " rad, x=" << p[1] << " m, y=" << p[2]
+            << " m] at t=" << t << " s on the home branch (out of reach or singular)";
         throw Error(msg.str());
     }
 
@@ -337,7 +342,8 @@ struct MujocoMechanism::Impl {
             mjtNum* acc = d->cacc + 6 * b;
             mju_copy(acc, d->cacc + 6 * m->body_parentid[b], 6);
             const int adr = m->body_dofadr[b];
-            for (int k = 0; k < m->body_dofnum[b]; ++k) mju_addToScl(acc, d->cdof_dot + 6 * (adr + k), d->qvel[adr + k], 6);
+            for (int k = 0; k < m->body_dofnum[b]; ++k)
+                mju_addToScl(acc, d->cdof_dot + 6 * (adr + k), d->qvel[adr + k], 6);
         }
     }
 };
@@ -346,7 +352,8 @@ MujocoMechanism::MujocoMechanism(const RobotDescription& robot) : impl_(std::mak
     Impl& s = *impl_;
     s.robot = robot;
     validate(s.robot);
-    for (int j = 0; j < static_cast<int>(s.robot.limbs.size()); ++j) s.closure.push_back(detail::closureJoint(s.robot, j, false));
+    for (int j = 0; j < static_cast<int>(s.robot.limbs.size()); ++j)
+        s.closure.push_back(detail::closureJoint(s.robot, j, false));
     s.xml = buildMjcf(s.robot, s.closure);
     s.m = compileFromMemory(s.xml, s.robot.name);
     s.d = mj_makeData(s.m);
@@ -394,7 +401,8 @@ std::vector<MechanismSample> MujocoMechanism::inverseDynamics(const PoseTrajecto
 
         // Velocities: G qvel = 0 with the platform rates prescribed.
         const Eigen::VectorXd qvel_free = S * dp;
-        for (std::size_t c = 0; c < s.free_v.size(); ++c) d->qvel[s.free_v[c]] = qvel_free[static_cast<Eigen::Index>(c)];
+        for (std::size_t c = 0; c < s.free_v.size(); ++c)
+            d->qvel[s.free_v[c]] = qvel_free[static_cast<Eigen::Index>(c)];
         for (int i = 0; i < 3; ++i) d->qvel[s.tree.platform_v[static_cast<std::size_t>(i)]] = dp[i];
         mj_comVel(m, d);
 
@@ -410,19 +418,21 @@ std::vector<MechanismSample> MujocoMechanism::inverseDynamics(const PoseTrajecto
             bias(2 * j + 1) = a_out[4] - a_in[4];
         }
         const Eigen::VectorXd qacc_free = lu.solve(-(Gp * ddp) - bias);
-        for (std::size_t c = 0; c < s.free_v.size(); ++c) d->qacc[s.free_v[c]] = qacc_free[static_cast<Eigen::Index>(c)];
+        for (std::size_t c = 0; c < s.free_v.size(); ++c)
+            d->qacc[s.free_v[c]] = qacc_free[static_cast<Eigen::Index>(c)];
         for (int i = 0; i < 3; ++i) d->qacc[s.tree.platform_v[static_cast<std::size_t>(i)]] = ddp[i];
 
         // h = M qacc + c - Q_gravity (mj_rne's bias includes gravity).
         mj_rne(m, d, 1, h.data());
         const Eigen::VectorXd qvel = Eigen::Map<const Eigen::VectorXd>(d->qvel, nv);
         const Eigen::VectorXd qacc = Eigen::Map<const Eigen::VectorXd>(d->qacc, nv);
-        const detail::ForceDistribution forces = detail::distributeForces(s.robot, s.tree, G, s.rows, qvel, h, t, "MuJoCo",
-                                                                                detail::Friction::fromRows);
+        const detail::ForceDistribution forces =
+            detail::distributeForces(s.robot, s.tree, G, s.rows, qvel, h, t, "MuJoCo", detail::Friction::fromRows);
 
         MechanismSample sample;
         sample.t = t;
-        sample.pose = Eigen::Vector3d(q[s.tree.platform_v[0]], q[s.tree.platform_v[1]], q[s.tree.platform_v[2]]) + s.robot.home;
+        sample.pose =
+            Eigen::Vector3d(q[s.tree.platform_v[0]], q[s.tree.platform_v[1]], q[s.tree.platform_v[2]]) + s.robot.home;
         sample.u.resize(n);
         sample.du.resize(n);
         sample.ddu.resize(n);

@@ -40,7 +40,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 constexpr int kLimbs = 3;
-constexpr int kNv = 9;              // 3 sliders + 3 link hinges + platform (x, y, theta)
+constexpr int kNv = 9;  // 3 sliders + 3 link hinges + platform (x, y, theta)
 constexpr int kNewtonMaxIter = 30;
 constexpr int kHomotopySteps = 16;
 
@@ -51,10 +51,10 @@ using Matrix63 = Eigen::Matrix<double, 6, 3>;
 
 /// Reference geometry of limb j, computed from the robot's definition only.
 struct LimbReference {
-    Eigen::Vector2d e;       // rail direction e_j
-    Eigen::Vector2d a_ref;   // A_j at the reference posture
-    Eigen::Vector2d m_ref;   // M_j at the reference posture (platform vertex, C = O)
-    double link_angle = 0;   // angle of A_j -> M_j from the X axis at the reference
+    Eigen::Vector2d e;      // rail direction e_j
+    Eigen::Vector2d a_ref;  // A_j at the reference posture
+    Eigen::Vector2d m_ref;  // M_j at the reference posture (platform vertex, C = O)
+    double link_angle = 0;  // angle of A_j -> M_j from the X axis at the reference
 };
 
 std::array<LimbReference, kLimbs> referenceGeometry(const RobotParameters& robot) {
@@ -70,8 +70,7 @@ std::array<LimbReference, kLimbs> referenceGeometry(const RobotParameters& robot
         L.e = {std::cos(ph), std::sin(ph)};
         L.m_ref = r * Eigen::Vector2d(std::cos(ph - kPi / 6.0), std::sin(ph - kPi / 6.0));
         L.link_angle = ph + phiA;
-        L.a_ref = L.m_ref - robot.link_length *
-                                Eigen::Vector2d(std::cos(L.link_angle), std::sin(L.link_angle));
+        L.a_ref = L.m_ref - robot.link_length * Eigen::Vector2d(std::cos(L.link_angle), std::sin(L.link_angle));
     }
     return limbs;
 }
@@ -112,18 +111,15 @@ std::string buildMjcf(const RobotParameters& robot) {
         const double h = 0.5 * L.link_angle;
         x << "    <!-- limb " << k << ": slider at A_" << k << "'s reference position, "
           << "qpos = u_" << k << " -->\n"
-          << "    <body name=\"slider" << k << "\" pos=\"" << L.a_ref.x() << " " << L.a_ref.y()
-          << " 0\">\n"
-          << "      <joint name=\"u" << k << "\" type=\"slide\" axis=\"" << L.e.x() << " "
-          << L.e.y() << " 0\"/>\n"
-          << "      <inertial pos=\"0 0 0\" mass=\"" << robot.slider_mass << "\" diaginertia=\""
-          << slider_inertia << " " << slider_inertia << " " << slider_inertia << "\"/>\n"
-          << "      <body name=\"link" << k << "\" pos=\"0 0 0\" quat=\"" << std::cos(h)
-          << " 0 0 " << std::sin(h) << "\">\n"
+          << "    <body name=\"slider" << k << "\" pos=\"" << L.a_ref.x() << " " << L.a_ref.y() << " 0\">\n"
+          << "      <joint name=\"u" << k << "\" type=\"slide\" axis=\"" << L.e.x() << " " << L.e.y() << " 0\"/>\n"
+          << "      <inertial pos=\"0 0 0\" mass=\"" << robot.slider_mass << "\" diaginertia=\"" << slider_inertia
+          << " " << slider_inertia << " " << slider_inertia << "\"/>\n"
+          << "      <body name=\"link" << k << "\" pos=\"0 0 0\" quat=\"" << std::cos(h) << " 0 0 " << std::sin(h)
+          << "\">\n"
           << "        <joint name=\"hinge" << k << "\" type=\"hinge\" axis=\"0 0 1\"/>\n"
-          << "        <inertial pos=\"" << robot.link_com << " 0 0\" mass=\"" << robot.link_mass
-          << "\" diaginertia=\"" << robot.link_inertia << " " << robot.link_inertia << " "
-          << robot.link_inertia << "\"/>\n"
+          << "        <inertial pos=\"" << robot.link_com << " 0 0\" mass=\"" << robot.link_mass << "\" diaginertia=\""
+          << robot.link_inertia << " " << robot.link_inertia << " " << robot.link_inertia << "\"/>\n"
           << "        <site name=\"tip" << k << "\" pos=\"" << robot.link_length << " 0 0\"/>\n"
           << "      </body>\n"
           << "    </body>\n";
@@ -133,20 +129,18 @@ std::string buildMjcf(const RobotParameters& robot) {
       << "      <joint name=\"x\" type=\"slide\" axis=\"1 0 0\"/>\n"
       << "      <joint name=\"y\" type=\"slide\" axis=\"0 1 0\"/>\n"
       << "      <joint name=\"theta\" type=\"hinge\" axis=\"0 0 1\"/>\n"
-      << "      <inertial pos=\"0 0 0\" mass=\"" << robot.platform_mass << "\" diaginertia=\""
-      << robot.platform_inertia << " " << robot.platform_inertia << " "
-      << robot.platform_inertia << "\"/>\n";
+      << "      <inertial pos=\"0 0 0\" mass=\"" << robot.platform_mass << "\" diaginertia=\"" << robot.platform_inertia
+      << " " << robot.platform_inertia << " " << robot.platform_inertia << "\"/>\n";
     for (int j = 0; j < kLimbs; ++j) {
         const LimbReference& L = limbs[static_cast<std::size_t>(j)];
-        x << "      <site name=\"M" << j + 1 << "\" pos=\"" << L.m_ref.x() << " " << L.m_ref.y()
-          << " 0\"/>\n";
+        x << "      <site name=\"M" << j + 1 << "\" pos=\"" << L.m_ref.x() << " " << L.m_ref.y() << " 0\"/>\n";
     }
     x << "    </body>\n"
       << "  </worldbody>\n"
       << "  <equality>\n";
     for (int j = 0; j < kLimbs; ++j) {
-        x << "    <connect name=\"loop" << j + 1 << "\" body1=\"link" << j + 1
-          << "\" body2=\"platform\" anchor=\"" << robot.link_length << " 0 0\"/>\n";
+        x << "    <connect name=\"loop" << j + 1 << "\" body1=\"link" << j + 1 << "\" body2=\"platform\" anchor=\""
+          << robot.link_length << " 0 0\"/>\n";
     }
     x << "  </equality>\n"
       << "</mujoco>\n";
@@ -171,8 +165,7 @@ mjModel* compileFromMemory(const std::string& xml, const std::string& robot_name
     mjModel* m = mj_loadXML(filename, vfs.get(), err.data(), static_cast<int>(err.size()));
     mj_deleteVFS(vfs.get());
     if (m == nullptr) {
-        throw Error("MuJoCo could not compile the model of robot '" + robot_name +
-                    "': " + std::string(err.data()));
+        throw Error("MuJoCo could not compile the model of robot '" + robot_name + "': " + std::string(err.data()));
     }
     return m;
 }
@@ -187,9 +180,9 @@ struct MujocoRobot::Impl {
     std::array<LimbReference, kLimbs> limbs{};
 
     // dof addresses (nv index) and qpos addresses
-    std::array<int, 6> dof_u{};       // sliders 1..3, hinges 1..3 (the unknowns)
+    std::array<int, 6> dof_u{};  // sliders 1..3, hinges 1..3 (the unknowns)
     std::array<int, 6> qpos_u{};
-    std::array<int, 3> dof_p{};       // platform, in pose order [theta, x, y]
+    std::array<int, 3> dof_p{};  // platform, in pose order [theta, x, y]
     std::array<int, 3> qpos_p{};
     std::array<int, kLimbs> tip_site{};
     std::array<int, kLimbs> vertex_site{};
@@ -226,8 +219,8 @@ struct MujocoRobot::Impl {
 
     void init() {
         if (m->nv != kNv || m->nq != kNv || m->neq != kLimbs) {
-            throw Error("MuJoCo model: unexpected sizes nq=" + std::to_string(m->nq) +
-                        " nv=" + std::to_string(m->nv) + " neq=" + std::to_string(m->neq));
+            throw Error("MuJoCo model: unexpected sizes nq=" + std::to_string(m->nq) + " nv=" + std::to_string(m->nv) +
+                        " neq=" + std::to_string(m->neq));
         }
         const std::array<const char*, 6> unknown = {"u1", "u2", "u3", "hinge1", "hinge2", "hinge3"};
         for (std::size_t i = 0; i < unknown.size(); ++i) {
@@ -264,8 +257,8 @@ struct MujocoRobot::Impl {
         // The model is drawn assembled: qpos0 = 0 must close every loop.
         const double r0 = closureResidual();
         if (!(r0 < 1e-12)) {
-            throw Error("MuJoCo model of robot '" + robot.name +
-                        "' is not assembled at qpos0: loop residual " + num(r0) + " m");
+            throw Error("MuJoCo model of robot '" + robot.name + "' is not assembled at qpos0: loop residual " +
+                        num(r0) + " m");
         }
     }
 
@@ -291,7 +284,8 @@ struct MujocoRobot::Impl {
     void jacobians(Matrix6& Ju, Matrix63& Jp) const {
         for (int j = 0; j < kLimbs; ++j) {
             for (int c = 0; c < 2; ++c) {
-                const mjtNum* row = d->efc_J + static_cast<std::ptrdiff_t>(eq_row[static_cast<std::size_t>(j)] + c) * m->nv;
+                const mjtNum* row =
+                    d->efc_J + static_cast<std::ptrdiff_t>(eq_row[static_cast<std::size_t>(j)] + c) * m->nv;
                 for (int i = 0; i < 6; ++i) Ju(2 * j + c, i) = row[dof_u[static_cast<std::size_t>(i)]];
                 for (int i = 0; i < 3; ++i) Jp(2 * j + c, i) = row[dof_p[static_cast<std::size_t>(i)]];
             }
@@ -360,8 +354,7 @@ struct MujocoRobot::Impl {
             if (!newton(ps, q)) {
                 std::ostringstream msg;
                 msg << std::setprecision(10) << "MuJoCo model of robot '" << robot.name
-                    << "': cannot assemble the pose theta=" << p(0) << " rad, x=" << p(1)
-                    << " m, y=" << p(2)
+                    << "': cannot assemble the pose theta=" << p(0) << " rad, x=" << p(1) << " m, y=" << p(2)
                     << " m on the working branch (outside the workspace or singular)";
                 throw Error(msg.str());
             }
@@ -384,9 +377,8 @@ struct MujocoRobot::Impl {
         }
     }
 
-    void sample(const Eigen::Vector3d& p, const Eigen::Vector3d& dp, const Eigen::Vector3d& ddp,
-                Eigen::Vector3d& u, Eigen::Vector3d& du, Eigen::Vector3d& ddu,
-                Eigen::Vector3d& tau) {
+    void sample(const Eigen::Vector3d& p, const Eigen::Vector3d& dp, const Eigen::Vector3d& ddp, Eigen::Vector3d& u,
+                Eigen::Vector3d& du, Eigen::Vector3d& ddu, Eigen::Vector3d& tau) {
         // 1. positions: loop closure by Newton on MuJoCo's connect residuals. The seed is the
         // previous solution moved to first order along the previous velocity map.
         const Vector6 predicted = have_previous ? Vector6(seed + S * (p - p_previous)) : seed;
@@ -492,9 +484,8 @@ void MujocoRobot::resetSeed() {
     impl_->have_previous = false;
 }
 
-void MujocoRobot::inverseDynamicsSample(const Eigen::Vector3d& p, const Eigen::Vector3d& dp,
-                                        const Eigen::Vector3d& ddp, Eigen::Vector3d& u,
-                                        Eigen::Vector3d& du, Eigen::Vector3d& ddu,
+void MujocoRobot::inverseDynamicsSample(const Eigen::Vector3d& p, const Eigen::Vector3d& dp, const Eigen::Vector3d& ddp,
+                                        Eigen::Vector3d& u, Eigen::Vector3d& du, Eigen::Vector3d& ddu,
                                         Eigen::Vector3d& tau) {
     impl_->sample(p, dp, ddp, u, du, ddu, tau);
 }

@@ -124,8 +124,8 @@ void compareWithGolden(const std::string& file, const PoseTrajectory& trajectory
                 err.max_abs = std::max(err.max_abs, std::abs(mine - ref));
             }
             ::testing::Test::RecordProperty(file + ":" + name + "_max_abs_error", std::to_string(err.max_abs));
-            std::printf("%s %-5s peak %.6e  max |err| %.3e  relative %.3e\n", file.c_str(),
-                        name.c_str(), err.peak, err.max_abs, err.max_abs / err.peak);
+            std::printf("%s %-5s peak %.6e  max |err| %.3e  relative %.3e\n", file.c_str(), name.c_str(), err.peak,
+                        err.max_abs, err.max_abs / err.peak);
             EXPECT_LE(err.max_abs, 1e-9 * err.peak) << file << " column " << name;
         }
     }
@@ -136,26 +136,21 @@ void compareWithGolden(const std::string& file, const PoseTrajectory& trajectory
         kpeak = std::max(kpeak, std::abs(g.rows[k][kcol]));
         kerr = std::max(kerr, std::abs(samples[k].kinetic - g.rows[k][kcol]));
     }
-    std::printf("%s kinetic peak %.6e  max |err| %.3e  relative %.3e\n", file.c_str(), kpeak, kerr,
-                kerr / kpeak);
+    std::printf("%s kinetic peak %.6e  max |err| %.3e  relative %.3e\n", file.c_str(), kpeak, kerr, kerr / kpeak);
     EXPECT_LE(kerr, 1e-9 * kpeak) << file << " kinetic energy";
 }
 
 }  // namespace
 
-TEST(MujocoRobot, GoldenPaperTrajectory1) {
-    compareWithGolden("paper_trajectory1.csv", nocdyn::paperTrajectory1());
-}
+TEST(MujocoRobot, GoldenPaperTrajectory1) { compareWithGolden("paper_trajectory1.csv", nocdyn::paperTrajectory1()); }
 
-TEST(MujocoRobot, GoldenPaperTrajectory2) {
-    compareWithGolden("paper_trajectory2.csv", nocdyn::paperTrajectory2());
-}
+TEST(MujocoRobot, GoldenPaperTrajectory2) { compareWithGolden("paper_trajectory2.csv", nocdyn::paperTrajectory2()); }
 
 TEST(MujocoRobot, ReferencePostureHasZeroSliderPositions) {
     MujocoRobot robot(RobotParameters{});
     Eigen::Vector3d u, du, ddu, tau;
-    robot.inverseDynamicsSample(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(),
-                                Eigen::Vector3d::Zero(), u, du, ddu, tau);
+    robot.inverseDynamicsSample(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero(), u, du, ddu,
+                                tau);
     EXPECT_LT(u.cwiseAbs().maxCoeff(), 1e-15);
     EXPECT_LT(du.cwiseAbs().maxCoeff(), 1e-15);
     EXPECT_LT(ddu.cwiseAbs().maxCoeff(), 1e-15);
@@ -187,14 +182,12 @@ TEST(MujocoRobot, PowerBalance) {
             const double t = 0.001 + 0.00197 * k;
             const std::vector<double> times = {t - 2 * h, t - h, t, t + h, t + 2 * h};
             const auto s = robot.inverseDynamics(traj, times);
-            const double dT = (s[0].kinetic - 8 * s[1].kinetic + 8 * s[3].kinetic - s[4].kinetic) /
-                              (12 * h);
+            const double dT = (s[0].kinetic - 8 * s[1].kinetic + 8 * s[3].kinetic - s[4].kinetic) / (12 * h);
             const double power = s[2].tau.dot(s[2].du);
             peak = std::max(peak, std::abs(power));
             worst = std::max(worst, std::abs(power - dT));
         }
-        std::printf("%s: power peak %.6e W, max |tau.du - dT/dt| %.3e W\n", traj.name.c_str(), peak,
-                    worst);
+        std::printf("%s: power peak %.6e W, max |tau.du - dT/dt| %.3e W\n", traj.name.c_str(), peak, worst);
         EXPECT_LE(worst, 1e-7 * peak) << traj.name;
     }
 }
@@ -219,8 +212,7 @@ TEST(MujocoRobot, PowerBalanceOtherRobot) {
     for (int k = 0; k < 50; ++k) {
         const double t = 0.0013 + 0.0019 * k;
         const auto s = model.inverseDynamics(traj, {t - 2 * h, t - h, t, t + h, t + 2 * h});
-        const double dT =
-            (s[0].kinetic - 8 * s[1].kinetic + 8 * s[3].kinetic - s[4].kinetic) / (12 * h);
+        const double dT = (s[0].kinetic - 8 * s[1].kinetic + 8 * s[3].kinetic - s[4].kinetic) / (12 * h);
         const double power = s[2].tau.dot(s[2].du);
         peak = std::max(peak, std::abs(power));
         worst = std::max(worst, std::abs(power - dT));

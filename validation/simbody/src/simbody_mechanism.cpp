@@ -82,8 +82,8 @@ public:
         }
         return -P;
     }
-    void calcForce(const SimTK::State& s, SimTK::Vector_<SimTK::SpatialVec>& body_forces,
-                   SimTK::Vector_<SimTK::Vec3>&, SimTK::Vector& mobility_forces) const override {
+    void calcForce(const SimTK::State& s, SimTK::Vector_<SimTK::SpatialVec>& body_forces, SimTK::Vector_<SimTK::Vec3>&,
+                   SimTK::Vector& mobility_forces) const override {
         for (const Joint& j : joints) {
             const double f = detail::jointFriction(*j.joint, rate(j, s));
             if (f == 0.0) continue;
@@ -116,26 +116,25 @@ public:
     SimTK::GeneralForceSubsystem forces;
     SimTK::MobilizedBody::Planar platform;
     JointFriction* friction = nullptr;  // owned by the force subsystem
-    PlatformMotion* motion = nullptr;  // owned by motion_handle
+    PlatformMotion* motion = nullptr;   // owned by motion_handle
     SimTK::Motion::Custom motion_handle;
     SimTK::State state;
 
     std::vector<int> closure;
     detail::TreeIndices tree;
-    Eigen::MatrixXd rows;        // joint rate rows (3 L x nu)
-    std::vector<int> free_q;     // the passive tree coordinates
+    Eigen::MatrixXd rows;     // joint rate rows (3 L x nu)
+    std::vector<int> free_q;  // the passive tree coordinates
     double potential_home = 0.0;
 
     /// Newton projection of the passive coordinates from `seed` with the platform at pose p;
     /// true when it converged within kMaxJump of the seed.
     bool tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed);
     /// Assembles at pose p: from `seed`, else by subdividing the way from (p_from, q_from).
-    void assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed,
-                  const Eigen::Vector3d& p_from, const Eigen::VectorXd& q_from);
+    void assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed, const Eigen::Vector3d& p_from,
+                  const Eigen::VectorXd& q_from);
 };
 
-SimbodyMechanism::Impl::Impl(const RobotDescription& description)
-    : robot(description), matter(system), forces(system) {
+SimbodyMechanism::Impl::Impl(const RobotDescription& description) : robot(description), matter(system), forces(system) {
     using namespace SimTK;
     validate(robot);
     const Eigen::Vector3d& home = robot.home;
@@ -144,8 +143,7 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description)
     const Vec3 c_home(home[1], home[2], 0.0);
     platform = MobilizedBody::Planar(
         matter.Ground(), Transform(c_home),
-        rigidBody(robot.platform.mass, robot.platform.inertia, C + Rh * robot.platform.com),
-        Transform(c_home));
+        rigidBody(robot.platform.mass, robot.platform.inertia, C + Rh * robot.platform.com), Transform(c_home));
 
     const int L = static_cast<int>(robot.limbs.size());
     friction = new JointFriction();
@@ -226,8 +224,7 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description)
     const double err = state.getQErr().size() > 0 ? SimTK::max(SimTK::abs(state.getQErr())) : 0.0;
     if (!(err < 1e-12)) {
         std::ostringstream msg;
-        msg << where(robot, 0) << "Simbody model: the home posture is not assembled (loop error " << err
-            << " m)";
+        msg << where(robot, 0) << "Simbody model: the home posture is not assembled (loop error " << err << " m)";
         throw Error(msg.str());
     }
     potential_home = system.calcPotentialEnergy(state);
@@ -281,14 +278,12 @@ void SimbodyMechanism::Impl::assemble(double t, const Eigen::Vector3d& p, const 
         if (ok) return;
     }
     std::ostringstream msg;
-    msg << "Simbody model: cannot assemble the pose [theta=" << p[0] << " rad, x=" << p[1]
-        << " m, y=" << p[2] << " m] at t=" << t
-        << " s on the home branch (out of reach or singular)";
+    msg << "Simbody model: cannot assemble the pose [theta=" << p[0] << " rad, x=" << p[1] << " m, y=" << p[2]
+        << " m] at t=" << t << " s on the home branch (out of reach or singular)";
     throw Error(msg.str());
 }
 
-SimbodyMechanism::SimbodyMechanism(const RobotDescription& robot)
-    : impl_(std::make_unique<Impl>(robot)) {}
+SimbodyMechanism::SimbodyMechanism(const RobotDescription& robot) : impl_(std::make_unique<Impl>(robot)) {}
 SimbodyMechanism::~SimbodyMechanism() = default;
 SimbodyMechanism::SimbodyMechanism(SimbodyMechanism&&) noexcept = default;
 SimbodyMechanism& SimbodyMechanism::operator=(SimbodyMechanism&&) noexcept = default;
@@ -344,21 +339,20 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
         const Eigen::VectorXd u = toEigen(m.state.getU());
         const Eigen::VectorXd udot = toEigen(m.state.getUDot());
         // h = M u' + c - Q_applied (gravity and joint friction); G the closure Jacobian.
-        m.matter.calcResidualForceIgnoringConstraints(
-            m.state, m.system.getMobilityForces(m.state, Stage::Dynamics),
-            m.system.getRigidBodyForces(m.state, Stage::Dynamics), m.state.getUDot(), h);
+        m.matter.calcResidualForceIgnoringConstraints(m.state, m.system.getMobilityForces(m.state, Stage::Dynamics),
+                                                      m.system.getRigidBodyForces(m.state, Stage::Dynamics),
+                                                      m.state.getUDot(), h);
         m.matter.calcG(m.state, G);
         Eigen::MatrixXd Ge(G.nrow(), G.ncol());
         for (int r = 0; r < G.nrow(); ++r)
             for (int c = 0; c < G.ncol(); ++c) Ge(r, c) = G(r, c);
-        const detail::ForceDistribution forces =
-            detail::distributeForces(m.robot, m.tree, Ge, m.rows, u, toEigen(h), t, "Simbody",
-                                     detail::Friction::inApplied);
+        const detail::ForceDistribution forces = detail::distributeForces(m.robot, m.tree, Ge, m.rows, u, toEigen(h), t,
+                                                                          "Simbody", detail::Friction::inApplied);
 
         MechanismSample s;
         s.t = t;
-        s.pose = Eigen::Vector3d(q[m.tree.platform_v[0]], q[m.tree.platform_v[1]], q[m.tree.platform_v[2]]) +
-                 m.robot.home;
+        s.pose =
+            Eigen::Vector3d(q[m.tree.platform_v[0]], q[m.tree.platform_v[1]], q[m.tree.platform_v[2]]) + m.robot.home;
         s.u.resize(n);
         s.du.resize(n);
         s.ddu.resize(n);

@@ -31,16 +31,16 @@ constexpr double kProjectAccuracy = 1e-14;
 // Geometry (shared/model-notes.md), computed here from the robot parameters only.
 // ---------------------------------------------------------------------------------
 struct Geometry {
-    double R = 0.0;  // base circumradius b/sqrt3
-    double r = 0.0;  // platform circumradius a/sqrt3
-    double l = 0.0;  // link length
-    double phi_a_ref = 0.0;                  // link angle from e_j at the reference posture
-    std::array<double, 3> phi{};             // slider directions
-    std::array<Eigen::Vector2d, 3> e;        // e_j
-    std::array<Eigen::Vector2d, 3> n;        // E e_j: inward normal of L_j
-    std::array<Eigen::Vector2d, 3> B;        // B_j
-    std::array<Eigen::Vector2d, 3> A_ref;    // A_j at the reference posture
-    std::array<Eigen::Vector2d, 3> M_plat;   // M_j in the platform frame (origin C)
+    double R = 0.0;                         // base circumradius b/sqrt3
+    double r = 0.0;                         // platform circumradius a/sqrt3
+    double l = 0.0;                         // link length
+    double phi_a_ref = 0.0;                 // link angle from e_j at the reference posture
+    std::array<double, 3> phi{};            // slider directions
+    std::array<Eigen::Vector2d, 3> e;       // e_j
+    std::array<Eigen::Vector2d, 3> n;       // E e_j: inward normal of L_j
+    std::array<Eigen::Vector2d, 3> B;       // B_j
+    std::array<Eigen::Vector2d, 3> A_ref;   // A_j at the reference posture
+    std::array<Eigen::Vector2d, 3> M_plat;  // M_j in the platform frame (origin C)
 };
 
 Geometry makeGeometry(const RobotParameters& p) {
@@ -95,15 +95,13 @@ Seed analyticSeed(const Geometry& g, const Eigen::Vector3d& pose, double t) {
         const double d = g.n[j].dot(M - g.B[j]);
         if (!(d > 0.0 && d < g.l)) {
             std::ostringstream msg;
-            msg << "Simbody model: pose [theta=" << pose[0] << " rad, x=" << pose[1]
-                << " m, y=" << pose[2] << " m] at t=" << t
-                << " s is outside the workspace: limb " << (j + 1)
+            msg << "Simbody model: pose [theta=" << pose[0] << " rad, x=" << pose[1] << " m, y=" << pose[2]
+                << " m] at t=" << t << " s is outside the workspace: limb " << (j + 1)
                 << " needs 0 < d^M < l but d^M = " << d << " m (l = " << g.l << " m)";
             throw Error(msg.str());
         }
         const double phi_a = std::asin(d / g.l);
-        const Eigen::Vector2d A =
-            M - g.l * Eigen::Vector2d(std::cos(phi_a + g.phi[j]), std::sin(phi_a + g.phi[j]));
+        const Eigen::Vector2d A = M - g.l * Eigen::Vector2d(std::cos(phi_a + g.phi[j]), std::sin(phi_a + g.phi[j]));
         s.slider[j] = g.e[j].dot(A - g.A_ref[j]);
         s.pin[j] = phi_a;
     }
@@ -125,19 +123,15 @@ public:
     Eigen::Vector3d rate = Eigen::Vector3d::Zero();
     Eigen::Vector3d acceleration = Eigen::Vector3d::Zero();
 
-    SimTK::Motion::Level getLevel(const SimTK::State&) const override {
-        return SimTK::Motion::Position;
-    }
+    SimTK::Motion::Level getLevel(const SimTK::State&) const override { return SimTK::Motion::Position; }
     // The Planar mobilizer's q are [rotation about z, x, y] = [theta, x, y], qdot = u.
     void calcPrescribedPosition(const SimTK::State& s, int nq, SimTK::Real* q) const override {
         write(s.getTime(), 0, nq, q);
     }
-    void calcPrescribedPositionDot(const SimTK::State& s, int nq,
-                                   SimTK::Real* qdot) const override {
+    void calcPrescribedPositionDot(const SimTK::State& s, int nq, SimTK::Real* qdot) const override {
         write(s.getTime(), 1, nq, qdot);
     }
-    void calcPrescribedPositionDotDot(const SimTK::State& s, int nq,
-                                      SimTK::Real* qdotdot) const override {
+    void calcPrescribedPositionDotDot(const SimTK::State& s, int nq, SimTK::Real* qdotdot) const override {
         write(s.getTime(), 2, nq, qdotdot);
     }
 
@@ -157,11 +151,8 @@ class SliderAcceleration final : public SimTK::Motion::Custom::Implementation {
 public:
     double udot = 0.0;
 
-    SimTK::Motion::Level getLevel(const SimTK::State&) const override {
-        return SimTK::Motion::Acceleration;
-    }
-    void calcPrescribedAcceleration(const SimTK::State&, int nu,
-                                    SimTK::Real* out) const override {
+    SimTK::Motion::Level getLevel(const SimTK::State&) const override { return SimTK::Motion::Acceleration; }
+    void calcPrescribedAcceleration(const SimTK::State&, int nu, SimTK::Real* out) const override {
         for (int i = 0; i < nu; ++i) out[i] = udot;
     }
 };
@@ -229,19 +220,17 @@ public:
 };
 
 SimbodyRobot::Impl::Impl(const RobotParameters& p)
-    : params(p), geo(makeGeometry(p)), matter(system), forces(system),
-      actuators(forces, matter) {
+    : params(p), geo(makeGeometry(p)), matter(system), forces(system), actuators(forces, matter) {
     using namespace SimTK;
     // Sliders translate only: mass, no rotational inertia.
     const Body::Rigid slider_body(MassProperties(p.slider_mass, Vec3(0), Inertia(0)));
     // Link frame: origin A_j, x along A_j -> M_j; c.o.m. at l_c on x. Central inertia
     // (isotropic; only the z component matters in the plane) shifted to the origin A_j.
     const Vec3 link_com(p.link_com, 0, 0);
-    const Body::Rigid link_body(MassProperties(
-        p.link_mass, link_com, Inertia(p.link_inertia).shiftFromMassCenter(-link_com, p.link_mass)));
+    const Body::Rigid link_body(
+        MassProperties(p.link_mass, link_com, Inertia(p.link_inertia).shiftFromMassCenter(-link_com, p.link_mass)));
     // Platform frame: origin C (its c.o.m.), x rotated by theta.
-    const Body::Rigid platform_body(
-        MassProperties(p.platform_mass, Vec3(0), Inertia(p.platform_inertia)));
+    const Body::Rigid platform_body(MassProperties(p.platform_mass, Vec3(0), Inertia(p.platform_inertia)));
 
     for (int j = 0; j < 3; ++j) {
         // F frame on Ground at A_j(ref), x along e_j: slider q = displacement of A_j along
@@ -256,8 +245,7 @@ SimbodyRobot::Impl::Impl(const RobotParameters& p)
 
     // Loop closures: M_j on the platform stays on the z-line through the link tip.
     for (int j = 0; j < 3; ++j) {
-        Constraint::PointOnLine(links[j], UnitVec3(ZAxis), Vec3(geo.l, 0, 0), platform,
-                                toVec3(geo.M_plat[j]));
+        Constraint::PointOnLine(links[j], UnitVec3(ZAxis), Vec3(geo.l, 0, 0), platform, toVec3(geo.M_plat[j]));
     }
 
     platform_motion = new PlatformMotion();
@@ -361,16 +349,15 @@ std::string SimbodyRobot::Impl::tryAssemble(const Eigen::Vector3d& expected, boo
         const double phi_a = wrapAngle(links[j].getOneQ(pose_driven, 0));
         if (!(phi_a > 0.0 && phi_a < 0.5 * kPi)) {
             std::ostringstream msg;
-            msg << "assembly landed on the wrong branch: limb " << (j + 1) << " has phi_A = "
-                << phi_a << " rad, outside (0, pi/2)";
+            msg << "assembly landed on the wrong branch: limb " << (j + 1) << " has phi_A = " << phi_a
+                << " rad, outside (0, pi/2)";
             return msg.str();
         }
     }
     return {};
 }
 
-void SimbodyRobot::Impl::assemblePoseDriven(double t, const Eigen::Vector3d& expected,
-                                            const Seed& seed) {
+void SimbodyRobot::Impl::assemblePoseDriven(double t, const Eigen::Vector3d& expected, const Seed& seed) {
     // Checks the workspace first (clear error naming the limb).
     const Seed analytic = analyticSeed(geo, expected, t);
     // 1) Newton projection from the continuation seed (cheap; enough between close samples),
@@ -392,9 +379,8 @@ void SimbodyRobot::Impl::assemblePoseDriven(double t, const Eigen::Vector3d& exp
             const std::string why2 = tryAssemble(expected, true);
             if (!why2.empty()) {
                 std::ostringstream msg;
-                msg << "Simbody model: cannot assemble at t=" << t << " s, pose ["
-                    << expected.transpose() << "]: " << why1
-                    << "; re-seeded on the intended branch: " << why2;
+                msg << "Simbody model: cannot assemble at t=" << t << " s, pose [" << expected.transpose()
+                    << "]: " << why1 << "; re-seeded on the intended branch: " << why2;
                 throw Error(msg.str());
             }
             ++by_analytic_seed;
@@ -480,13 +466,11 @@ std::vector<EngineSample> SimbodyRobot::inverseDynamics(const PoseTrajectory& tr
 
         // Consistency: pass 2 must reproduce the prescribed platform acceleration.
         const Vector& udot = m.slider_driven.getUDot();
-        const Eigen::Vector3d ddp2(udot[m.platform_u], udot[m.platform_u + 1],
-                                   udot[m.platform_u + 2]);
+        const Eigen::Vector3d ddp2(udot[m.platform_u], udot[m.platform_u + 1], udot[m.platform_u + 2]);
         if ((ddp2 - ddp).norm() > 1e-6 * (1.0 + ddp.norm())) {
             std::ostringstream msg;
             msg << "Simbody model: at t=" << t << " s the slider-driven pass gives platform "
-                << "acceleration [" << ddp2.transpose() << "] instead of [" << ddp.transpose()
-                << "]";
+                << "acceleration [" << ddp2.transpose() << "] instead of [" << ddp.transpose() << "]";
             throw Error(msg.str());
         }
         out.push_back(s);
@@ -598,15 +582,13 @@ double SimbodyRobot::time() const { return impl_->plant.getTime(); }
 
 Eigen::Vector3d SimbodyRobot::u() const {
     Eigen::Vector3d v;
-    for (int j = 0; j < 3; ++j)
-        v[j] = impl_->sliders[j].getOneQ(impl_->plant, 0);
+    for (int j = 0; j < 3; ++j) v[j] = impl_->sliders[j].getOneQ(impl_->plant, 0);
     return v;
 }
 
 Eigen::Vector3d SimbodyRobot::du() const {
     Eigen::Vector3d v;
-    for (int j = 0; j < 3; ++j)
-        v[j] = impl_->sliders[j].getOneU(impl_->plant, 0);
+    for (int j = 0; j < 3; ++j) v[j] = impl_->sliders[j].getOneU(impl_->plant, 0);
     return v;
 }
 

@@ -90,10 +90,8 @@ void compareWithGolden(const std::string& file, const PoseTrajectory& trajectory
         const char* name;
         Eigen::Vector3d EngineSample::*field;
     };
-    const Quantity quantities[] = {{"u", &EngineSample::u},
-                                   {"du", &EngineSample::du},
-                                   {"ddu", &EngineSample::ddu},
-                                   {"tau", &EngineSample::tau}};
+    const Quantity quantities[] = {
+        {"u", &EngineSample::u}, {"du", &EngineSample::du}, {"ddu", &EngineSample::ddu}, {"tau", &EngineSample::tau}};
     for (const Quantity& q : quantities) {
         for (int j = 0; j < 3; ++j) {
             const std::string name = std::string(q.name) + std::to_string(j + 1);
@@ -106,8 +104,8 @@ void compareWithGolden(const std::string& file, const PoseTrajectory& trajectory
                 peak = std::max(peak, std::abs(ref));
                 err = std::max(err, std::abs((s[k].*(q.field))[j] - ref));
             }
-            std::printf("[golden %s] %-5s max |err| = %.3e  peak = %.6g  rel = %.3e\n",
-                        file.c_str(), name.c_str(), err, peak, err / peak);
+            std::printf("[golden %s] %-5s max |err| = %.3e  peak = %.6g  rel = %.3e\n", file.c_str(), name.c_str(), err,
+                        peak, err / peak);
             EXPECT_LE(err, 1e-9 * peak) << file << " " << name;
         }
     }
@@ -129,8 +127,7 @@ void compareWithGolden(const std::string& file, const PoseTrajectory& trajectory
         peak = std::max(peak, std::abs(ref));
         err = std::max(err, std::abs(s[k].kinetic - ref));
     }
-    std::printf("[golden %s] kinetic max |err| = %.3e  peak = %.6g  rel = %.3e\n", file.c_str(),
-                err, peak, err / peak);
+    std::printf("[golden %s] kinetic max |err| = %.3e  peak = %.6g  rel = %.3e\n", file.c_str(), err, peak, err / peak);
     EXPECT_LE(err, 1e-9 * peak);
 }
 
@@ -191,8 +188,7 @@ TEST(SimbodyRobot, ActuatorForcesSatisfyPowerBalance) {
     double err = 0.0;
     for (double t : linspace(0.003, 0.097, 19)) {
         const auto s = robot.inverseDynamics(tr, {t - 2 * h, t - h, t, t + h, t + 2 * h});
-        const double dT = (s[0].kinetic - 8 * s[1].kinetic + 8 * s[3].kinetic - s[4].kinetic) /
-                          (12 * h);
+        const double dT = (s[0].kinetic - 8 * s[1].kinetic + 8 * s[3].kinetic - s[4].kinetic) / (12 * h);
         const double power = s[2].tau.dot(s[2].du);
         peak = std::max(peak, std::abs(power));
         err = std::max(err, std::abs(power - dT));
@@ -233,13 +229,9 @@ TEST(SimbodyRobot, InertiaTimesAccelerationEqualsForceAtRest) {
     EXPECT_GT(s[0].tau.cwiseAbs().maxCoeff(), 1.0);
 }
 
-TEST(SimbodyRobot, MatchesGoldenTrajectory1) {
-    compareWithGolden("paper_trajectory1.csv", nocdyn::paperTrajectory1());
-}
+TEST(SimbodyRobot, MatchesGoldenTrajectory1) { compareWithGolden("paper_trajectory1.csv", nocdyn::paperTrajectory1()); }
 
-TEST(SimbodyRobot, MatchesGoldenTrajectory2) {
-    compareWithGolden("paper_trajectory2.csv", nocdyn::paperTrajectory2());
-}
+TEST(SimbodyRobot, MatchesGoldenTrajectory2) { compareWithGolden("paper_trajectory2.csv", nocdyn::paperTrajectory2()); }
 
 TEST(SimbodyRobot, PlantConservesKineticEnergyWithoutForces) {
     SimbodyRobot robot{RobotParameters{}};
@@ -294,8 +286,7 @@ TEST(SimbodyRobot, LargeStepsBetweenSamplesStayOnTheIntendedBranch) {
         const auto b = robot.inverseDynamics(tr, linspace(0.0, coarse[k], 400));
         const EngineSample& fine = b.back();
         EXPECT_LT((a[k].u - fine.u).cwiseAbs().maxCoeff(), 1e-13) << "t = " << coarse[k];
-        EXPECT_LT((a[k].tau - fine.tau).cwiseAbs().maxCoeff(),
-                  1e-11 * (1.0 + fine.tau.cwiseAbs().maxCoeff()))
+        EXPECT_LT((a[k].tau - fine.tau).cwiseAbs().maxCoeff(), 1e-11 * (1.0 + fine.tau.cwiseAbs().maxCoeff()))
             << "t = " << coarse[k];
     }
 }
@@ -308,8 +299,7 @@ TEST(SimbodyRobot, PoseOutsideWorkspaceIsRejected) {
         (void)robot.inverseDynamics(far, {0.0});
         FAIL() << "expected nocdyn::Error";
     } catch (const nocdyn::Error& e) {
-        EXPECT_NE(std::string(e.what()).find("outside the workspace"), std::string::npos)
-            << e.what();
+        EXPECT_NE(std::string(e.what()).find("outside the workspace"), std::string::npos) << e.what();
     }
     EXPECT_THROW((void)robot.jointSpaceInertia(Eigen::Vector3d(0.0, 0.3, 0.0)), nocdyn::Error);
 }

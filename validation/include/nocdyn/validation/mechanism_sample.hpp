@@ -9,11 +9,11 @@ namespace nocdyn::validation {
 /// Inverse dynamics at one time, SI units. n = number of actuated joints, in file order
 /// (limbs in order, joints in chain order).
 struct MechanismSample {
-    double t = 0.0;                              ///< [s]
+    double t = 0.0;                                  ///< [s]
     Eigen::Vector3d pose = Eigen::Vector3d::Zero();  ///< platform pose [theta, x, y] as assembled [rad, m]
-    Eigen::VectorXd u;    ///< actuated joint variables q (0 at home) [m or rad], size n
-    Eigen::VectorXd du;   ///< their rates [m/s or rad/s], size n
-    Eigen::VectorXd ddu;  ///< their accelerations [m/s^2 or rad/s^2], size n
+    Eigen::VectorXd u;                               ///< actuated joint variables q (0 at home) [m or rad], size n
+    Eigen::VectorXd du;                              ///< their rates [m/s or rad/s], size n
+    Eigen::VectorXd ddu;                             ///< their accelerations [m/s^2 or rad/s^2], size n
     /// Actuator forces (torques) along the joint variables on the outboard bodies, including
     /// gravity and joint friction; with n > 3 the minimum-norm solution [N or N m], size n.
     Eigen::VectorXd tau;

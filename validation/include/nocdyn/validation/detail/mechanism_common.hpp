@@ -73,8 +73,8 @@ struct TreeIndices {
 /// displacement integrated from home, also q_k = r_k q. A tree joint's row is +-1 at its
 /// mobility; the closure joint's row is the angle row of its outboard link minus its inboard
 /// link's, a link's angle being the sum of the revolute mobilities on its path from ground.
-inline Eigen::MatrixXd jointRateRows(const RobotDescription& robot,
-                                     const std::vector<int>& closure, const TreeIndices& tree) {
+inline Eigen::MatrixXd jointRateRows(const RobotDescription& robot, const std::vector<int>& closure,
+                                     const TreeIndices& tree) {
     const int L = static_cast<int>(robot.limbs.size());
     Eigen::MatrixXd R = Eigen::MatrixXd::Zero(3 * L, tree.nv);
     for (int j = 0; j < L; ++j) {
@@ -139,9 +139,8 @@ struct ForceDistribution {
 /// Friction::inApplied). Throws nocdyn::Error naming the
 /// time when G_f or A is singular beyond robot.max_condition.
 inline ForceDistribution distributeForces(const RobotDescription& robot, const TreeIndices& tree,
-                                          const Eigen::MatrixXd& G, const Eigen::MatrixXd& R,
-                                          const Eigen::VectorXd& v, const Eigen::VectorXd& h,
-                                          double t, const char* engine, Friction friction) {
+                                          const Eigen::MatrixXd& G, const Eigen::MatrixXd& R, const Eigen::VectorXd& v,
+                                          const Eigen::VectorXd& h, double t, const char* engine, Friction friction) {
     const int nv = tree.nv;
     const int nc = static_cast<int>(G.rows());
     // Free (passive tree) speeds: every speed but the platform's.
@@ -190,8 +189,8 @@ inline ForceDistribution distributeForces(const RobotDescription& robot, const T
     if (!(out.condition <= robot.max_condition)) {
         std::ostringstream msg;
         msg << engine << " model: singular at t=" << t << " s: condition number of the "
-            << (cond_G >= cond_A ? "loop closure" : "actuation map") << " is "
-            << out.condition << " > " << robot.max_condition;
+            << (cond_G >= cond_A ? "loop closure" : "actuation map") << " is " << out.condition << " > "
+            << robot.max_condition;
         throw Error(msg.str());
     }
     out.tau = svd.solve(F);

@@ -47,8 +47,7 @@ public:
     /// along the previous velocity map; subdivided in pose space when a step fails or jumps),
     /// so every limb stays on its home branch. Throws nocdyn::Error naming the time when a
     /// pose cannot be assembled or is singular.
-    std::vector<MechanismSample> inverseDynamics(const PoseTrajectory& trajectory,
-                                                 const std::vector<double>& times);
+    std::vector<MechanismSample> inverseDynamics(const PoseTrajectory& trajectory, const std::vector<double>& times);
 
     /// Number of actuated joints n.
     [[nodiscard]] int actuatorCount() const;

@@ -21,13 +21,13 @@ namespace nocdyn::validation {
 
 /// One inverse-dynamics sample computed by MuJoCo (SI units).
 struct MujocoSample {
-    double t = 0.0;              ///< [s]
-    Eigen::Vector3d pose;        ///< prescribed platform pose [theta, x, y] [rad, m, m]
-    Eigen::Vector3d u;           ///< slider displacements from the reference posture [m]
-    Eigen::Vector3d du;          ///< [m/s]
-    Eigen::Vector3d ddu;         ///< [m/s^2]
-    Eigen::Vector3d tau;         ///< force actuator j exerts on slider j along e_j [N]
-    double kinetic = 0.0;        ///< kinetic energy 0.5 qvel^T M qvel from MuJoCo [J]
+    double t = 0.0;                 ///< [s]
+    Eigen::Vector3d pose;           ///< prescribed platform pose [theta, x, y] [rad, m, m]
+    Eigen::Vector3d u;              ///< slider displacements from the reference posture [m]
+    Eigen::Vector3d du;             ///< [m/s]
+    Eigen::Vector3d ddu;            ///< [m/s^2]
+    Eigen::Vector3d tau;            ///< force actuator j exerts on slider j along e_j [N]
+    double kinetic = 0.0;           ///< kinetic energy 0.5 qvel^T M qvel from MuJoCo [J]
     double closure_residual = 0.0;  ///< largest loop-closure position error after the solve [m]
 };
 
@@ -55,16 +55,14 @@ public:
     /// sample's joint solve starts from the reference posture, each later one from the
     /// previous sample. Throws nocdyn::Error (naming the time) when a pose cannot be
     /// assembled on the robot's working branch.
-    std::vector<MujocoSample> inverseDynamics(const PoseTrajectory& trajectory,
-                                              const std::vector<double>& times);
+    std::vector<MujocoSample> inverseDynamics(const PoseTrajectory& trajectory, const std::vector<double>& times);
 
     /// Single sample: pose p = [theta, x, y], its rate and acceleration -> u, du, ddu, tau.
     /// The Newton solve for the joint positions starts from the previous call's solution.
     /// Allocation-free (fixed-size Eigen, MuJoCo's preallocated mjData). Throws nocdyn::Error
     /// when the closure cannot be solved on the working branch.
-    void inverseDynamicsSample(const Eigen::Vector3d& p, const Eigen::Vector3d& dp,
-                               const Eigen::Vector3d& ddp, Eigen::Vector3d& u,
-                               Eigen::Vector3d& du, Eigen::Vector3d& ddu, Eigen::Vector3d& tau);
+    void inverseDynamicsSample(const Eigen::Vector3d& p, const Eigen::Vector3d& dp, const Eigen::Vector3d& ddp,
+                               Eigen::Vector3d& u, Eigen::Vector3d& du, Eigen::Vector3d& ddu, Eigen::Vector3d& tau);
 
     /// Kinetic energy 0.5 qvel^T M qvel of the last sample (MuJoCo's mj_energyVel) [J].
     [[nodiscard]] double lastKineticEnergy() const;

@@ -41,8 +41,7 @@ public:
     /// h = M u' + c - Q_applied (calcResidualForceIgnoringConstraints) and the constraint
     /// Jacobian calcG give the actuator forces (minimum norm when redundant). Throws
     /// nocdyn::Error naming the time when a pose cannot be assembled or is singular.
-    std::vector<MechanismSample> inverseDynamics(const PoseTrajectory& trajectory,
-                                                 const std::vector<double>& times);
+    std::vector<MechanismSample> inverseDynamics(const PoseTrajectory& trajectory, const std::vector<double>& times);
 
     /// Number of actuated joints n.
     [[nodiscard]] int actuatorCount() const;

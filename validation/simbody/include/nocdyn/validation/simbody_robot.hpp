@@ -23,13 +23,13 @@ namespace nocdyn::validation {
 
 /// One inverse-dynamics sample computed by Simbody.
 struct EngineSample {
-    double t = 0.0;          ///< [s]
-    Eigen::Vector3d pose;    ///< platform pose [theta, x, y] as assembled by Simbody [rad, m]
-    Eigen::Vector3d u;       ///< slider displacements [m]
-    Eigen::Vector3d du;      ///< slider velocities [m/s]
-    Eigen::Vector3d ddu;     ///< slider accelerations [m/s^2]
-    Eigen::Vector3d tau;     ///< actuator forces along e_j [N]
-    double kinetic = 0.0;    ///< kinetic energy of the whole robot (calcKineticEnergy) [J]
+    double t = 0.0;        ///< [s]
+    Eigen::Vector3d pose;  ///< platform pose [theta, x, y] as assembled by Simbody [rad, m]
+    Eigen::Vector3d u;     ///< slider displacements [m]
+    Eigen::Vector3d du;    ///< slider velocities [m/s]
+    Eigen::Vector3d ddu;   ///< slider accelerations [m/s^2]
+    Eigen::Vector3d tau;   ///< actuator forces along e_j [N]
+    double kinetic = 0.0;  ///< kinetic energy of the whole robot (calcKineticEnergy) [J]
 };
 
 /// The 3-PRR robot as a Simbody multibody system.
@@ -52,8 +52,7 @@ public:
     /// free) and the actuator forces are minus the findMotionForces entries. One sample per
     /// time. Throws nocdyn::Error if a pose is outside the workspace, assembly fails, or the
     /// assembly lands on the wrong branch.
-    std::vector<EngineSample> inverseDynamics(const PoseTrajectory& trajectory,
-                                              const std::vector<double>& times);
+    std::vector<EngineSample> inverseDynamics(const PoseTrajectory& trajectory, const std::vector<double>& times);
 
     /// Joint-space inertia at a platform pose: N^T M N with M Simbody's mass matrix and N
     /// mapping du to Simbody's mobilities (from Simbody's constraint Jacobian G) [kg].
@@ -62,8 +61,7 @@ public:
     // ---- forward-dynamics plant (constraints enforced by the integrator) -------------
     /// Assembles the robot at `pose` with platform twist `pose_rate` [rad/s, m/s, m/s],
     /// time 0, zero actuator forces.
-    void resetPlant(const Eigen::Vector3d& pose,
-                    const Eigen::Vector3d& pose_rate = Eigen::Vector3d::Zero());
+    void resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d& pose_rate = Eigen::Vector3d::Zero());
     /// Actuator forces [N], held constant until changed (zero-order hold).
     void setActuatorForces(const Eigen::Vector3d& tau);
     /// Integrates forward dt seconds (Runge-Kutta-Merson, error-controlled).
