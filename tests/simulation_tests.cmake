@@ -1,4 +1,4 @@
-# Tests of issue 4 (direct kinematics, forward dynamics, control, operating envelope),
+# Tests of the 3-PRR in motion (direct kinematics, forward dynamics, control, operating envelope),
 # included by tests/CMakeLists.txt.
 nocdyn_add_test(direct_kinematics_test direct_kinematics_test.cpp)
 nocdyn_add_test(forward_dynamics_test forward_dynamics_test.cpp)
@@ -8,7 +8,7 @@ foreach(source control_test envelope_test)
   endif()
 endforeach()
 
-# Against the independent Simbody model (issue 3), when it is built.
+# Against the independent Simbody model, when it is built.
 if(TARGET nocdyn_simbody)
   nocdyn_add_test(simbody_simulation_test simbody_simulation_test.cpp
     ${PROJECT_SOURCE_DIR}/apps/nocdyn/simbody_plant.cpp

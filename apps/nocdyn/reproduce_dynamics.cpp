@@ -1,4 +1,4 @@
-// Issue 4's results for `nocdyn reproduce`: round trip, closed-loop control, operating envelope.
+// The 3-PRR's dynamics results for `nocdyn reproduce`: round trip, closed-loop control, operating envelope.
 #include "reproduce_dynamics.hpp"
 
 #include <cmath>

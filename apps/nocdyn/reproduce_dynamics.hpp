@@ -1,4 +1,4 @@
-// Issue 4's results for `nocdyn reproduce` and the helpers that `control`, `envelope` and
+// The 3-PRR's dynamics results for `nocdyn reproduce` and the helpers that `control`, `envelope` and
 // `simulate` share: plants, closed-loop cases, figures, markdown sections.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Independent MuJoCo model of the 3-PRR robot (validation issue): the same robot built from
+// Independent MuJoCo model of the 3-PRR robot: the same robot built from
 // the same RobotParameters as MJCF, its loops closed with <equality><connect>, and its inverse
 // dynamics computed by MuJoCo's rigid multibody building blocks (the position stage
 // mj_kinematics/mj_comPos/mj_makeConstraint, mj_comVel, mj_rne, the constraint Jacobian efc_J)

@@ -1,4 +1,4 @@
-// Independent Simbody model of the 3-PRR planar parallel robot (issue 3).
+// Independent Simbody model of the 3-PRR planar parallel robot.
 //
 // Ground; three MobilizedBody::Slider along the base sides (line L_j through B_j along e_j);
 // a Pin per link at A_j; the platform on a Planar mobilizer from Ground; each loop closed by a
