@@ -56,7 +56,7 @@ __attribute__((target_clones("arch=x86-64-v3", "default")))
 BatchResult
 chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
     BatchResult result;
-    Data data;  // for rejected samples only: fixed capacity, no allocation
+    Data data(model);  // for rejected samples only: fixed capacity, no allocation
     const std::ptrdiff_t stride = a.u.outerStride();
     for (Eigen::Index k = begin; k < end; ++k) {
         const double p[3] = {a.p(k, 0), a.p(k, 1), a.p(k, 2)};

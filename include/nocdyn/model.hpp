@@ -148,7 +148,6 @@ struct LimbData {
 /// Per-sample workspace. Fixed capacity; sized once by the Model it is constructed for.
 struct Data {
     explicit Data(const Model& model);
-    Data() = default;
 
     Pose p = Pose::Zero();           ///< [theta, x_c, y_c] (eq. 1)
     Twist t_M = Twist::Zero();       ///< dp/dt (eq. 2)
