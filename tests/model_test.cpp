@@ -59,6 +59,17 @@ Sample at(const PoseTrajectory& trajectory, double t) {
     return s;
 }
 
+/// The full path at t - h, t and t + h, for central differences; false when a sample fails.
+bool solveAround(const Model& model, const PoseTrajectory& trajectory, double t, double h, Data& minus, Data& data,
+                 Data& plus) {
+    bool ok = true;
+    for (auto [time, out] : {std::pair{t - h, &minus}, std::pair{t, &data}, std::pair{t + h, &plus}}) {
+        const Sample s = at(trajectory, time);
+        ok = ok && inverseDynamics(model, *out, s.p, s.dp, s.ddp).ok();
+    }
+    return ok;
+}
+
 /// Random robots of every limb type (all limbs alike, then mixed), with and without gravity
 /// and friction, three actuators or more.
 std::vector<RandomRobotSpec> specs() {
@@ -134,10 +145,7 @@ TEST_P(RandomRobots, RatesAndAccelerationsMatchFiniteDifferences) {
         const double h = kFiniteDifferenceStep;
         for (int k = 1; k < kSamples; ++k) {
             const double t = k * kDuration / kSamples;
-            const Sample s = at(trajectory, t), sm = at(trajectory, t - h), sp = at(trajectory, t + h);
-            ASSERT_TRUE(inverseDynamics(model, data, s.p, s.dp, s.ddp).ok());
-            ASSERT_TRUE(inverseDynamics(model, minus, sm.p, sm.dp, sm.ddp).ok());
-            ASSERT_TRUE(inverseDynamics(model, plus, sp.p, sp.dp, sp.ddp).ok());
+            ASSERT_TRUE(solveAround(model, trajectory, t, h, minus, data, plus)) << "t = " << t;
             for (int j = 0; j < model.limbs; ++j) {
                 const auto jj = static_cast<std::size_t>(j);
                 for (int q = 0; q < 3; ++q) {
@@ -183,10 +191,7 @@ TEST_P(RandomRobots, InertiaIsSymmetricPositiveDefiniteAndItsRateIsCPlusCTranspo
         const double h = kFiniteDifferenceStep;
         for (int k = 1; k < kSamples; ++k) {
             const double t = k * kDuration / kSamples;
-            const Sample s = at(trajectory, t), sm = at(trajectory, t - h), sp = at(trajectory, t + h);
-            ASSERT_TRUE(inverseDynamics(model, data, s.p, s.dp, s.ddp).ok());
-            ASSERT_TRUE(inverseDynamics(model, minus, sm.p, sm.dp, sm.ddp).ok());
-            ASSERT_TRUE(inverseDynamics(model, plus, sp.p, sp.dp, sp.ddp).ok());
+            ASSERT_TRUE(solveAround(model, trajectory, t, h, minus, data, plus)) << "t = " << t;
             const double scale = data.I.cwiseAbs().maxCoeff();
             EXPECT_LT((data.I - data.I.transpose()).cwiseAbs().maxCoeff(), kRoundOff * scale);
             const Eigen::SelfAdjointEigenSolver<Matrix3> eig(data.I);
@@ -204,10 +209,7 @@ TEST_P(RandomRobots, PowerBalanceHoldsWithGravityAndFriction) {
         const double h = kFiniteDifferenceStep;
         for (int k = 1; k < kSamples; ++k) {
             const double t = k * kDuration / kSamples;
-            const Sample s = at(trajectory, t), sm = at(trajectory, t - h), sp = at(trajectory, t + h);
-            ASSERT_TRUE(inverseDynamics(model, data, s.p, s.dp, s.ddp).ok());
-            ASSERT_TRUE(inverseDynamics(model, minus, sm.p, sm.dp, sm.ddp).ok());
-            ASSERT_TRUE(inverseDynamics(model, plus, sp.p, sp.dp, sp.ddp).ok());
+            ASSERT_TRUE(solveAround(model, trajectory, t, h, minus, data, plus)) << "t = " << t;
             const double energy_rate = (kineticEnergy(model, plus) + potentialEnergy(model, plus) -
                                         kineticEnergy(model, minus) - potentialEnergy(model, minus)) /
                                        (2 * h);
