@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <utility>
 
 #include "limb_ik_impl.hpp"
 #include "nocdyn/model.hpp"
@@ -191,7 +192,11 @@ struct Frame {
 /// One limb of kind K: its joint rates and accelerations, its bodies' share of W_P (into
 /// W), and its actuators' u, du, ddu and rows of A. False when the limb cannot close or
 /// its J_j is too ill-conditioned.
-template <LimbKind K>
+/// kAct: the one actuated joint of the limb (0..2), known at compile time, or kAnyActuation
+/// (read from limb.actuator).
+inline constexpr int kAnyActuation = -1;
+
+template <LimbKind K, int kAct>
 NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows,
                                     double* weight, double* scale) {
     const PlatformDisplacement& G = f.G;
@@ -250,30 +255,73 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
         W = W + f0 * j0 + f1 * j1 + f2 * j2;
     }
 
-    const double q[3] = {js.q(0), js.q(1), js.q(2)};
     const double gd[3] = {gd0, gd1, gd2};
     const double gdd[3] = {gdd0, gdd1, gdd2};
     const V3 jr[3] = {j0, j1, j2};
-    for (int k = 0; k < 3; ++k) {
+    const auto actuated = [&](int k) {
         const auto kk = static_cast<std::size_t>(k);
         const int a = limb.actuator[kk];
-        if (a < 0) continue;
         // an actuated R joint's angle: the one atan2 the lean path needs
         const std::ptrdiff_t at = a * out.stride;
-        out.u[at] = revolute<K>(k) ? atan2Of(js.s(k), js.c(k)) : q[k];
+        out.u[at] = revolute<K>(k) ? atan2Of(js.s(k), js.c(k)) : js.q(k);
         out.du[at] = gd[k];
         out.ddu[at] = gdd[k];
         rows[a] = jr[k];
         weight[a] = ic[kk];
         scale[a] = cs[kk];
+    };
+    if constexpr (kAct == kAnyActuation) {
+        for (int k = 0; k < 3; ++k) {
+            if (limb.actuator[static_cast<std::size_t>(k)] >= 0) actuated(k);
+        }
+    } else {
+        actuated(kAct);
     }
     return true;
 }
 
-/// One sample given cos and sin of dtheta = theta - home(0); p, dp, ddp finite.
+/// Every limb by its kind read at run time, its actuated joints from limb.actuator.
+struct AnyLimb {
+    NOCDYN_ALWAYS_INLINE bool operator()(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows,
+                                         double* weight, double* scale) const {
+        switch (limb.kind) {
+            case LimbKind::RRR:
+                return limbTerms<LimbKind::RRR, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+            case LimbKind::PRR:
+                return limbTerms<LimbKind::PRR, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+            case LimbKind::RPR:
+                return limbTerms<LimbKind::RPR, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+            case LimbKind::RRP:
+                return limbTerms<LimbKind::RRP, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+            case LimbKind::PRP:
+                return limbTerms<LimbKind::PRP, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+            case LimbKind::RPP:
+                return limbTerms<LimbKind::RPP, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+            case LimbKind::PPR:
+                return limbTerms<LimbKind::PPR, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+            case LimbKind::PPP:
+                break;  // rejected by validate()
+        }
+        return false;
+    }
+};
+
+/// Every limb of kind K with joint kAct its one actuator (Model::uniform_limbs): no dispatch
+/// and no search for the actuated joint in the limb loop.
+template <int kCode>
+struct UniformLimb {
+    NOCDYN_ALWAYS_INLINE bool operator()(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows,
+                                         double* weight, double* scale) const {
+        return limbTerms<static_cast<LimbKind>(kCode / 3), kCode % 3>(limb, j, f, out, W, rows, weight, scale);
+    }
+};
+
+/// One sample given cos and sin of dtheta = theta - home(0); p, dp, ddp finite; the limbs'
+/// terms by `terms` (AnyLimb or UniformLimb).
 /// Returns false when the per-sample path would fail (or is within rounding of a threshold).
-NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
-                                 const double* dp, const double* ddp, const Out& out, V3& W) {
+template <class Terms>
+NOCDYN_ALWAYS_INLINE bool sampleWith(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
+                                     const double* dp, const double* ddp, const Out& out, V3& W, Terms terms) {
     PlatformDisplacement G;
     G.cos_dtheta = cos_dtheta;
     G.sin_dtheta = sin_dtheta;
@@ -299,33 +347,7 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
     }
     const Frame frame{G, xi_P, xi_P_dot, gx, gy, L, inv_L, max_condition};
     for (int j = 0; j < model.limbs; ++j) {
-        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
-        bool ok = false;
-        switch (limb.kind) {
-            case LimbKind::RRR:
-                ok = limbTerms<LimbKind::RRR>(limb, j, frame, out, W, rows, weight, scale);
-                break;
-            case LimbKind::PRR:
-                ok = limbTerms<LimbKind::PRR>(limb, j, frame, out, W, rows, weight, scale);
-                break;
-            case LimbKind::RPR:
-                ok = limbTerms<LimbKind::RPR>(limb, j, frame, out, W, rows, weight, scale);
-                break;
-            case LimbKind::RRP:
-                ok = limbTerms<LimbKind::RRP>(limb, j, frame, out, W, rows, weight, scale);
-                break;
-            case LimbKind::PRP:
-                ok = limbTerms<LimbKind::PRP>(limb, j, frame, out, W, rows, weight, scale);
-                break;
-            case LimbKind::RPP:
-                ok = limbTerms<LimbKind::RPP>(limb, j, frame, out, W, rows, weight, scale);
-                break;
-            case LimbKind::PPR:
-                ok = limbTerms<LimbKind::PPR>(limb, j, frame, out, W, rows, weight, scale);
-                break;
-            case LimbKind::PPP:
-                break;  // rejected by validate()
-        }
+        const bool ok = terms(model.limb[static_cast<std::size_t>(j)], j, frame, out, W, rows, weight, scale);
         if (!ok) return false;
     }
 
@@ -387,6 +409,26 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
                     (adj_N[2] * W.w + adj_N[4] * W.x + adj_N[5] * W.y) * inv_det};
     for (int a = 0; a < n; ++a) out.tau[a * out.stride] = dot(rows[a], lambda);
     return true;
+}
+
+template <int... kCodes>
+NOCDYN_ALWAYS_INLINE bool sampleUniform(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
+                                        const double* dp, const double* ddp, const Out& out, V3& W, bool& ok,
+                                        std::integer_sequence<int, kCodes...> /*codes*/) {
+    return ((model.uniform_limbs == kCodes &&
+             (ok = sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, UniformLimb<kCodes>{}), true)) ||
+            ...);
+}
+
+/// One sample (sampleWith), compiled for the robot's limbs when they are uniform.
+NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
+                                 const double* dp, const double* ddp, const Out& out, V3& W) {
+    bool ok = false;
+    // kind * 3 + actuated joint for the seven kinds with a closed form (PPP excluded)
+    if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
+                      std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
+        return ok;
+    return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
 }
 
 }  // namespace nocdyn::detail::lean

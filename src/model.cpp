@@ -32,6 +32,22 @@ namespace {
     return LimbKind::PPP;
 }
 
+/// Model::uniform_limbs: kind * 3 + the one actuated joint shared by every limb, or -1.
+[[nodiscard]] int uniformLimbs(const Model& model) {
+    int code = -1;
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        int actuated = -1, count = 0;
+        for (int k = 0; k < 3; ++k) {
+            if (limb.actuator[static_cast<std::size_t>(k)] >= 0) actuated = k, ++count;
+        }
+        const int mine = count == 1 ? static_cast<int>(limb.kind) * 3 + actuated : -1;
+        if (mine < 0 || (j > 0 && mine != code)) return -1;
+        code = mine;
+    }
+    return code;
+}
+
 }  // namespace
 
 Model::Model(const RobotParameters& parameters) : Model(expand(parameters)) {}
@@ -105,6 +121,7 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
             if (out.damping[k] != 0.0 || out.friction[k] != 0.0) out.frictionless = false;
         }
     }
+    uniform_limbs = uniformLimbs(*this);
 
     // The home posture must be regular and reproduce q = 0 on every limb.
     Data data(*this);

@@ -13,6 +13,7 @@
 
 #include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
+#include "limb_ik_impl.hpp"
 #include "nocdyn/limb_ik.hpp"
 #include "random_robots.hpp"
 #include "support.hpp"
@@ -305,6 +306,33 @@ INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobots, ::testing::ValuesIn(specs(
     for (char& c : name) c = c == '-' ? '_' : c;
     return name;
 });
+
+// The branch-free atan2 of the actuated angles against libm's, over every octant, near
+// the breakpoints of its reduction, tiny and large angles, and unnormalised (c, s).
+TEST(Atan2Of, IsWithinTwoUlpOfLibm) {
+    std::mt19937_64 rng(7);
+    std::uniform_real_distribution<double> angle(-M_PI, M_PI), scale(0.25, 4.0);
+    const double breakpoints[] = {std::atan(0.4375), std::atan(0.6875), std::atan(1.1875), std::atan(2.4375)};
+    double worst = 0.0;
+    for (int i = 0; i < 400000; ++i) {
+        double a = angle(rng);
+        if (i % 5 == 1) a = std::ldexp(a, -(i % 64));  // tiny
+        if (i % 5 == 2) a = breakpoints[i % 4] * (1.0 + std::ldexp(a, -40)) * ((i & 8) ? -1.0 : 1.0);
+        if (i % 5 == 3) a = std::copysign(M_PI, a) - std::ldexp(a, -(i % 50));  // next to +-pi
+        const double k = i % 3 == 0 ? scale(rng) : 1.0;
+        const double y = k * std::sin(a), x = k * std::cos(a);
+        const double expected = std::atan2(y, x);
+        const double ulp = std::nextafter(std::abs(expected), INFINITY) - std::abs(expected);
+        worst = std::max(worst, std::abs(nocdyn::detail::ik::atan2Of(y, x) - expected) / ulp);
+    }
+    EXPECT_LE(worst, 2.0);
+    EXPECT_GT(worst, 0.0);  // not libm itself
+    EXPECT_EQ(nocdyn::detail::ik::atan2Of(0.0, 1.0), 0.0);
+    EXPECT_EQ(nocdyn::detail::ik::atan2Of(0.0, -1.0), M_PI);
+    EXPECT_EQ(nocdyn::detail::ik::atan2Of(-0.0, -1.0), -M_PI);
+    EXPECT_EQ(nocdyn::detail::ik::atan2Of(1.0, 0.0), M_PI / 2);
+    EXPECT_EQ(nocdyn::detail::ik::atan2Of(-1.0, 0.0), -M_PI / 2);
+}
 
 TEST(PaperRobot, GeneralModelEqualsTheThreePrrModelAtRandomPoses) {
     const prr3::Model special;

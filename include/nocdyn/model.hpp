@@ -116,6 +116,9 @@ public:
     /// C at home [m] (1 m when there is none).
     double length_scale = 1.0;
     double max_condition = 1.0e4;
+    /// When every limb has the same kind and exactly one actuated joint, at the same place
+    /// in the chain: kind * 3 + that joint (the lean kernel is then compiled for it); else -1.
+    int uniform_limbs = -1;
 
     /// Body index of body b (0, 1) of limb j, and of the platform.
     [[nodiscard]] int body(int j, int b) const { return b * limbs + j; }
