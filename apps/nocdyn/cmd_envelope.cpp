@@ -1,38 +1,88 @@
-// nocdyn envelope: the largest sinusoidal amplitude per axis and frequency within the
-// actuator stroke and peak force (prr3/envelope.hpp), as CSV and a figure.
+// nocdyn envelope: the largest sinusoidal amplitude per axis and frequency within every
+// joint's range, velocity and effort limits and the workspace (envelope.hpp), for any robot,
+// as CSV and a figure.
 #include <cstdio>
 #include <iostream>
 #include <memory>
 #include <numbers>
+#include <string>
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "reproduce_dynamics.hpp"
+#include "nocdyn/envelope.hpp"
+#include "plot.hpp"
 
 namespace nocdyn::cli {
 
 namespace {
 
-struct EnvelopeOptions {
+struct Options {
     std::string robot, output, figure = "envelope";
-    prr3::EnvelopeOptions envelope;
+    EnvelopeOptions envelope;
 };
 
-void run(const EnvelopeOptions& options) {
+io::Table table(const std::vector<EnvelopePoint>& points) {
+    io::Table t;
+    t.columns = {"axis",     "frequency",           "amplitude",        "limit", "limb", "joint",
+                 "actuator", "kinematic_amplitude", "peak_effort_ratio"};
+    for (const auto& p : points) {
+        t.rows.push_back({static_cast<double>(p.axis), p.frequency, p.amplitude, static_cast<double>(p.limit),
+                          static_cast<double>(p.limb + 1), static_cast<double>(p.joint + 1),
+                          static_cast<double>(p.actuator + 1), p.kinematic_amplitude, p.peak_effort_ratio});
+    }
+    return t;
+}
+
+Figure figure(const std::vector<EnvelopePoint>& points, const std::string& robot) {
+    PlotPanel translation{"Translation along x and y", "frequency [Hz]", "largest amplitude [mm]", {}, true, true};
+    PlotPanel rotation{"Rotation theta", "frequency [Hz]", "largest amplitude [deg]", {}, true, true};
+    for (const EnvelopeAxis axis : {EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta}) {
+        PlotSeries line;
+        line.label = axisName(axis);
+        line.style = "linespoints lw 2 pt 7 ps 0.6";
+        for (const auto& p : points) {
+            if (p.axis != axis) continue;
+            line.x.push_back(p.frequency);
+            line.y.push_back(axis == EnvelopeAxis::theta ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3);
+        }
+        (axis == EnvelopeAxis::theta ? rotation : translation).series.push_back(std::move(line));
+    }
+    Figure f;
+    f.title = "Operating envelope of " + literalText(robot) +
+              ": flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound";
+    f.panels = {translation, rotation};
+    return f;
+}
+
+/// "actuator 2 (limb 2, joint 1)", "limb 3, joint 2 (passive)", "limb 1", or "-".
+std::string where(const EnvelopePoint& p) {
+    if (p.limb < 0) return "-";
+    std::string s;
+    if (p.actuator >= 0) s = "actuator " + std::to_string(p.actuator + 1) + " (";
+    s += "limb " + std::to_string(p.limb + 1);
+    if (p.joint >= 0) s += ", joint " + std::to_string(p.joint + 1);
+    if (p.actuator >= 0)
+        s += ")";
+    else if (p.joint >= 0)
+        s += " (passive)";
+    return s;
+}
+
+void run(const Options& options) {
     if (options.envelope.max_frequency < options.envelope.min_frequency) {
         throw CLI::ValidationError("--max-frequency", "must be at least --min-frequency");
     }
-    const prr3::Model model(loadRobotOrDefault(options.robot, "envelope"));
-    const auto points = prr3::operatingEnvelope(model, options.envelope);
-    if (!options.output.empty()) writeTable(envelopeTable(points), options.output);
-    if (!options.figure.empty()) renderFigure(envelopeFigure(points, model.parameters.name), options.figure);
+    const Model model(loadRobotDescriptionOrDefault(options.robot));
+    const auto points = operatingEnvelope(model, options.envelope);
+    if (!options.output.empty()) writeTable(table(points), options.output);
+    if (!options.figure.empty()) renderFigure(figure(points, model.description.name), options.figure);
     if (options.output.empty()) {
-        std::printf("axis   f [Hz]   amplitude        limit      limb  peak |tau| [N]  peak |u| [mm]\n");
+        std::printf("axis   f [Hz]    amplitude        limit      peak |tau|/effort  where\n");
         for (const auto& p : points) {
-            const bool angle = p.axis == prr3::Axis::theta;
-            std::printf("%-5s  %7.3f  %10.5g %-4s  %-9s  %d     %8.2f        %7.4f\n", prr3::axisName(p.axis),
-                        p.frequency, angle ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3,
-                        angle ? "deg" : "mm", prr3::limitName(p.limit), p.limb + 1, p.peak_force, p.peak_stroke * 1e3);
+            const bool angle = p.axis == EnvelopeAxis::theta;
+            std::printf("%-5s  %8.3f  %10.5g %-4s  %-9s  %8.3f           %s\n", axisName(p.axis), p.frequency,
+                        angle ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3, angle ? "deg" : "mm",
+                        limitName(p.limit), p.peak_effort_ratio, where(p).c_str());
         }
     }
 }
@@ -40,25 +90,28 @@ void run(const EnvelopeOptions& options) {
 }  // namespace
 
 void addEnvelopeCommand(CLI::App& app) {
-    auto options = std::make_shared<EnvelopeOptions>();
+    auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "envelope",
-        "Operating envelope: for each axis (theta, x, y) and log-spaced frequencies, the largest amplitude A of\n"
-        "A sin(2 pi f t) about the reference posture within the stroke, the workspace and the peak force (inverse\n"
-        "dynamics over one period), and which limit binds. Writes CSV (axis 0 theta, 1 x, 2 y; limit 0 stroke,\n"
-        "1 force, 2 workspace) and a figure (amplitude versus frequency, log axes).");
+        "Operating envelope of any robot: for each axis (theta, x, y) and log-spaced frequencies, the largest\n"
+        "amplitude A of A sin(2 pi f t) about the home posture within every joint's range and velocity limits,\n"
+        "every actuator's effort (inverse dynamics over one period, gravity and friction included) and the\n"
+        "workspace (reach, limb and actuation singularities), and which limit binds, named with its actuator.\n"
+        "Writes CSV (axis 0 theta, 1 x, 2 y; limit 0 range, 1 velocity, 2 effort, 3 workspace, 4 none up to\n"
+        "the search bound; limb, joint, actuator 1-based, 0 when not applicable; peak_effort_ratio =\n"
+        "max |tau|/effort at that amplitude) and a figure (amplitude versus frequency, log axes).");
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]");
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")
         ->capture_default_str();
     command->add_option("--min-frequency", options->envelope.min_frequency, "[Hz]")
-        ->check(finiteIn(prr3::kEnvelopeMinFrequency, prr3::kEnvelopeMaxFrequency, "Hz"))
+        ->check(finiteIn(kEnvelopeMinFrequency, kEnvelopeMaxFrequency, "Hz"))
         ->capture_default_str();
     command->add_option("--max-frequency", options->envelope.max_frequency, "[Hz], at least --min-frequency")
-        ->check(finiteIn(prr3::kEnvelopeMinFrequency, prr3::kEnvelopeMaxFrequency, "Hz"))
+        ->check(finiteIn(kEnvelopeMinFrequency, kEnvelopeMaxFrequency, "Hz"))
         ->capture_default_str();
     command->add_option("--points", options->envelope.frequencies, "Frequencies per axis")
-        ->check(CLI::Range(1, prr3::kEnvelopeMaxPoints))
+        ->check(CLI::Range(1, kEnvelopeMaxPoints))
         ->capture_default_str();
     command->callback([options] { run(*options); });
 }

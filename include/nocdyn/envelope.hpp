@@ -1,0 +1,69 @@
+// Operating envelope of any planar parallel robot (model.hpp): for a sinusoid along one pose
+// axis about the home posture,
+//   p(t) = home + A sin(2 pi f t) e_axis        (axis theta, x or y; the others stay at home)
+// the largest amplitude A at frequency f for which, over one period sampled finely, every pose
+// is reachable and regular (no limb or actuation singularity), every joint stays within its
+// range and velocity limits and every actuator within its effort (inverse dynamics, eq. 20,
+// with gravity and friction when the robot file sets them).
+//
+// The range and workspace limits are kinematic and do not depend on f; the velocity limit
+// scales as A ~ 1 / f and the effort limit as A ~ 1 / f^2 once the inertia forces dominate.
+// Each is found by bisection on A: first the kinematic one (the period at rest, dp = ddp = 0),
+// then the dynamic one below it; the smaller binds, and is named with its limb, joint and
+// actuator.
+#pragma once
+
+#include <vector>
+
+#include "nocdyn/model.hpp"
+#include "nocdyn/status.hpp"
+
+namespace nocdyn {
+
+/// Pose axis, numbered as in the pose p = [theta, x, y] (eq. 1).
+enum class EnvelopeAxis { theta = 0, x = 1, y = 2 };
+[[nodiscard]] const char* axisName(EnvelopeAxis axis);
+
+/// Which limit stops a larger amplitude. `none`: nothing up to the search bound (the robot's
+/// joints are unlimited along this axis).
+enum class EnvelopeLimit { range = 0, velocity = 1, effort = 2, workspace = 3, none = 4 };
+[[nodiscard]] const char* limitName(EnvelopeLimit limit);
+
+/// Accepted frequency range [Hz] and largest number of frequencies per axis.
+inline constexpr double kEnvelopeMinFrequency = 1e-3;
+inline constexpr double kEnvelopeMaxFrequency = 1e4;
+inline constexpr int kEnvelopeMaxPoints = 1000;
+
+struct EnvelopeOptions {
+    double min_frequency = 1.0;        ///< [Hz]
+    double max_frequency = 100.0;      ///< [Hz]
+    int frequencies = 41;              ///< log-spaced, both ends included
+    int samples_per_period = 256;      ///< a multiple of 4 puts samples on the sinusoid's peaks
+    double relative_tolerance = 1e-6;  ///< bisection stops when (hi - lo) <= tol * hi
+};
+
+/// The largest amplitude at one frequency along one axis.
+struct EnvelopePoint {
+    EnvelopeAxis axis = EnvelopeAxis::x;
+    double frequency = 0.0;  ///< [Hz]
+    double amplitude = 0.0;  ///< [rad] for theta, [m] for x and y
+    EnvelopeLimit limit = EnvelopeLimit::none;
+    int limb = -1;      ///< 0-based limb that reaches the limit first (-1: none)
+    int joint = -1;     ///< 0-based joint of that limb (-1: not joint-specific)
+    int actuator = -1;  ///< 0-based actuator at that joint (-1: a passive joint or none)
+    /// Largest amplitude allowed by the ranges and the workspace alone.
+    double kinematic_amplitude = 0.0;
+    /// max over actuators with an effort limit and over the period of |tau_a| / effort_a at
+    /// `amplitude` (0 when no actuator has one).
+    double peak_effort_ratio = 0.0;
+};
+
+/// Largest amplitude along `axis` at `frequency` (see the file header). Throws nocdyn::Error
+/// for a frequency or option out of range, or a home posture that is not feasible.
+[[nodiscard]] EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double frequency,
+                                             const EnvelopeOptions& options = {});
+
+/// The whole envelope: for each axis (theta, x, y), each log-spaced frequency.
+[[nodiscard]] std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeOptions& options = {});
+
+}  // namespace nocdyn

@@ -1,0 +1,149 @@
+// Operating envelope of any robot (envelope.hpp): on the paper's 3-PRR it equals the 3-PRR
+// envelope (the P joints' range is the stroke, their effort the peak force); each kind of
+// limit binds where it should (range flat in f, velocity ~ 1/f, effort ~ 1/f^2) and is reached
+// at the envelope; every example robot has an envelope whose limits name their actuator.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <string>
+
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/envelope.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/prr3/envelope.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+constexpr EnvelopeAxis kAxes[] = {EnvelopeAxis::theta, EnvelopeAxis::x, EnvelopeAxis::y};
+
+RobotDescription example(const std::string& robot) {
+    return io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
+}
+
+TEST(GeneralEnvelope, EqualsThe3PrrEnvelopeOnThePaperRobot) {
+    const Model model{RobotParameters{}};
+    const prr3::Model paper;
+    for (const EnvelopeAxis axis : kAxes) {
+        for (const double f : {1.0, 20.0, 100.0}) {
+            const EnvelopePoint general = maximumAmplitude(model, axis, f);
+            const prr3::EnvelopePoint reference = prr3::maximumAmplitude(paper, static_cast<prr3::Axis>(axis), f);
+            EXPECT_NEAR(general.amplitude, reference.amplitude, 4e-6 * reference.amplitude)
+                << axisName(axis) << " at " << f << " Hz";
+            const EnvelopeLimit expected = reference.limit == prr3::BindingLimit::stroke  ? EnvelopeLimit::range
+                                           : reference.limit == prr3::BindingLimit::force ? EnvelopeLimit::effort
+                                                                                          : EnvelopeLimit::workspace;
+            EXPECT_EQ(general.limit, expected) << axisName(axis) << " at " << f << " Hz";
+            EXPECT_EQ(general.limb, reference.limb);
+            if (expected != EnvelopeLimit::workspace) {
+                EXPECT_EQ(general.joint, 0);
+                EXPECT_EQ(general.actuator, general.limb);  // one slider per limb, in order
+            }
+        }
+    }
+}
+
+/// Peak over one period (finely sampled, off the envelope's grid) of max_j |q_j| / range and
+/// max_j |q'_j| / velocity limit over the limited joints, and of |tau_a| / effort.
+struct Peaks {
+    double range = 0.0, velocity = 0.0, effort = 0.0;
+};
+Peaks peaks(const Model& model, EnvelopeAxis axis, double f, double amplitude) {
+    Data data(model);
+    Peaks out;
+    const double w = 2.0 * std::numbers::pi * f;
+    const int index = static_cast<int>(axis);
+    for (int k = 0; k < 4096; ++k) {
+        const double phase = 2.0 * std::numbers::pi * (k + 0.37) / 4096;
+        Pose p = model.home;
+        Twist dp = Twist::Zero(), ddp = Twist::Zero();
+        p(index) += amplitude * std::sin(phase);
+        dp(index) = amplitude * w * std::cos(phase);
+        ddp(index) = -amplitude * w * w * std::sin(phase);
+        EXPECT_TRUE(inverseDynamics(model, data, p, dp, ddp).ok());
+        for (int j = 0; j < model.limbs; ++j) {
+            const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+            for (std::size_t k2 = 0; k2 < 3; ++k2) {
+                const JointLimits& lim = limb.limits[k2];
+                const double q = data.limb[static_cast<std::size_t>(j)].q(static_cast<int>(k2));
+                const double qd = data.limb[static_cast<std::size_t>(j)].gamma_dot(static_cast<int>(k2));
+                if (std::isfinite(lim.upper)) out.range = std::max(out.range, q / lim.upper);
+                if (std::isfinite(lim.lower)) out.range = std::max(out.range, q / lim.lower);
+                if (std::isfinite(lim.velocity)) out.velocity = std::max(out.velocity, std::abs(qd) / lim.velocity);
+                if (limb.actuator[k2] >= 0 && std::isfinite(lim.effort)) {
+                    out.effort = std::max(out.effort, std::abs(data.tau(limb.actuator[k2])) / lim.effort);
+                }
+            }
+        }
+    }
+    return out;
+}
+
+TEST(GeneralEnvelope, RangeVelocityAndEffortEachBindWithTheirSlopeAndAreReached) {
+    // the paper's robot with a velocity limit on its sliders (symmetric ranges about home)
+    RobotDescription robot = expand(RobotParameters{});
+    for (auto& limb : robot.limbs) limb.joints[0].limits.velocity = 0.5;  // [m/s]
+    const Model model(robot);
+    const EnvelopeAxis axis = EnvelopeAxis::x;
+    const EnvelopePoint low = maximumAmplitude(model, axis, 1.0);
+    const EnvelopePoint mid1 = maximumAmplitude(model, axis, 12.0);
+    const EnvelopePoint mid2 = maximumAmplitude(model, axis, 16.0);
+    const EnvelopePoint high1 = maximumAmplitude(model, axis, 200.0);
+    const EnvelopePoint high2 = maximumAmplitude(model, axis, 400.0);
+    ASSERT_EQ(low.limit, EnvelopeLimit::range);
+    ASSERT_EQ(mid1.limit, EnvelopeLimit::velocity);
+    ASSERT_EQ(mid2.limit, EnvelopeLimit::velocity);
+    ASSERT_EQ(high1.limit, EnvelopeLimit::effort);
+    ASSERT_EQ(high2.limit, EnvelopeLimit::effort);
+    // A ~ 1 / f, up to the change of the velocity gain du/dp with the amplitude itself
+    EXPECT_NEAR(mid1.amplitude / mid2.amplitude, 16.0 / 12.0, 2e-3);
+    EXPECT_NEAR(high1.amplitude / high2.amplitude, 4.0, 0.02);  // A ~ 1 / f^2 (gravity-free)
+    for (const EnvelopePoint* p : {&low, &mid1, &high1}) {
+        EXPECT_GE(p->actuator, 0);
+        const Peaks at = peaks(model, axis, p->frequency, p->amplitude);
+        const double reached = p->limit == EnvelopeLimit::range      ? at.range
+                               : p->limit == EnvelopeLimit::velocity ? at.velocity
+                                                                     : at.effort;
+        // reached at the envelope, to the bisection tolerance and the 256-sample grid
+        EXPECT_NEAR(reached, 1.0, 2e-3) << limitName(p->limit);
+        EXPECT_LE(at.range, 1.0 + 1e-9);
+        EXPECT_LE(at.velocity, 1.0 + 2e-3);
+        EXPECT_LE(at.effort, 1.0 + 2e-3);
+    }
+    EXPECT_NEAR(high1.peak_effort_ratio, 1.0, 1e-5);
+}
+
+TEST(GeneralEnvelope, EveryExampleRobotHasAnEnvelopeNamingItsLimits) {
+    EnvelopeOptions options;
+    options.frequencies = 3;
+    options.min_frequency = 1.0;
+    options.max_frequency = 100.0;
+    for (const char* name : {"3-rrr", "3-rpr", "4-rrr"}) {
+        const Model model(example(name));
+        const auto points = operatingEnvelope(model, options);
+        ASSERT_EQ(points.size(), 9u);
+        for (const EnvelopePoint& p : points) {
+            EXPECT_GT(p.amplitude, 0.0) << name << " " << axisName(p.axis) << " " << p.frequency;
+            EXPECT_LE(p.amplitude, p.kinematic_amplitude);
+            EXPECT_NE(p.limit, EnvelopeLimit::none) << name;
+            EXPECT_GE(p.limb, 0) << name;
+            if (p.limit == EnvelopeLimit::effort) {
+                EXPECT_GE(p.actuator, 0) << name;
+            }
+        }
+    }
+}
+
+TEST(GeneralEnvelope, RefusesFrequenciesOutOfRange) {
+    const Model model{RobotParameters{}};
+    EXPECT_THROW((void)maximumAmplitude(model, EnvelopeAxis::x, 0.0), Error);
+    EXPECT_THROW((void)maximumAmplitude(model, EnvelopeAxis::x, 1e5), Error);
+    EnvelopeOptions options;
+    options.frequencies = 0;
+    EXPECT_THROW((void)operatingEnvelope(model, options), Error);
+}
+
+}  // namespace
+}  // namespace nocdyn::test
