@@ -13,6 +13,7 @@ void addForwardKinematicsCommand(CLI::App& app);
 void addSimulateCommand(CLI::App& app);
 void addControlCommand(CLI::App& app);
 void addEnvelopeCommand(CLI::App& app);
+void addWorkspaceCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
 #ifdef NOCDYN_HAS_ENGINES
 void addValidateCommand(CLI::App& app);

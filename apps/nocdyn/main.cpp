@@ -25,6 +25,7 @@ int main(int argc, char** argv) {
     nocdyn::cli::addSimulateCommand(app);
     nocdyn::cli::addControlCommand(app);
     nocdyn::cli::addEnvelopeCommand(app);
+    nocdyn::cli::addWorkspaceCommand(app);
     nocdyn::cli::addConvertCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);

@@ -87,6 +87,8 @@ std::string script(const Figure& figure, const std::string& terminal) {
         gp << "set xlabel " << quoted(panel.xlabel) << "\nset ylabel " << quoted(panel.ylabel) << "\n";
         gp << (panel.log_x ? "set logscale x\n" : "unset logscale x\n");
         gp << (panel.log_y ? "set logscale y\n" : "unset logscale y\n");
+        gp << (panel.equal_axes ? "set size ratio -1\nset key below\n"
+                                : "set size noratio\nset key outside right top\n");
         gp << "plot ";
         for (std::size_t s = 0; s < panel.series.size(); ++s) {
             gp << (s ? ", " : "") << "$d" << p << "_" << s << " using 1:2 with " << panel.series[s].style << " title "

@@ -18,6 +18,7 @@ struct PlotPanel {
     std::string title, xlabel, ylabel;
     std::vector<PlotSeries> series;
     bool log_x = false, log_y = false;
+    bool equal_axes = false;  ///< one unit as long on both axes (a map)
 };
 
 struct Figure {

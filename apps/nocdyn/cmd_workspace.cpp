@@ -1,0 +1,70 @@
+// nocdyn workspace: the feasible region of C at one orientation with both kinds of
+// singularity curves (workspace.hpp), as a figure, a summary line and optionally CSV.
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "nocdyn/workspace.hpp"
+#include "workspace_figure.hpp"
+
+namespace nocdyn::cli {
+
+namespace {
+
+struct Options {
+    std::string robot, output, figure = "workspace";
+    double theta = 0.0;
+    bool theta_given = false;
+    int resolution = 201;
+};
+
+void run(const Options& options) {
+    const Model model(loadRobotDescriptionOrDefault(options.robot));
+    WorkspaceOptions ws;
+    ws.theta = options.theta_given ? options.theta : model.home(0);
+    ws.resolution = options.resolution;
+    const WorkspaceMap map = workspaceMap(model, ws);
+    if (!options.output.empty()) {
+        io::Table table;
+        table.columns = {"x", "y", "cell"};
+        for (int i = 0; i < map.n; ++i) {
+            for (int k = 0; k < map.n; ++k) {
+                table.rows.push_back(
+                    {map.x0 + i * map.step, map.y0 + k * map.step, static_cast<double>(map.cell(i, k))});
+            }
+        }
+        writeTable(table, options.output);
+    }
+    if (!options.figure.empty()) renderFigure(workspaceFigure(map, model, {}), options.figure);
+    std::printf("%s\n", workspaceSummary(map).c_str());
+}
+
+}  // namespace
+
+void addWorkspaceCommand(CLI::App& app) {
+    auto options = std::make_shared<Options>();
+    CLI::App* command = app.add_subcommand(
+        "workspace",
+        "Workspace of any robot at one platform orientation: the region of C reachable with every limb on its\n"
+        "home branch, within every joint's range and away from singularities (condition numbers within the\n"
+        "robot's max_condition), with the limb singularities (type 1: a limb at the edge of its reach) and the\n"
+        "actuation singularities (type 2: det A = 0) drawn as curves (STEM.png, STEM.svg), and its area.\n"
+        "The grid is fitted to the feasible region. CSV: x, y [m] and cell (0 feasible, 1 out of reach, 2 a\n"
+        "joint out of range, 3 singular).\n"
+        "Example: nocdyn workspace --robot robots/3-rrr.yaml --theta 0.1");
+    addRobotOption(*command, options->robot);
+    command->add_option("--theta", options->theta, "Platform orientation [rad] [default: the robot's home]")
+        ->check(finiteIn(-1e3, 1e3, "rad"))
+        ->each([options](const std::string&) { options->theta_given = true; });
+    command->add_option("--resolution", options->resolution, "Grid points per side")
+        ->check(CLI::Range(11, 2001))
+        ->capture_default_str();
+    command->add_option("--output,-o", options->output, "CSV of the grid [default: none]");
+    command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")
+        ->capture_default_str();
+    command->callback([options] { run(*options); });
+}
+
+}  // namespace nocdyn::cli

@@ -1,0 +1,78 @@
+// The workspace figure: the feasible region's outline (grid edges where feasibility changes)
+// and the singularity curves as dots, so that the SVG stays small at any resolution.
+#include "workspace_figure.hpp"
+
+#include <cstdio>
+#include <numbers>
+
+namespace nocdyn::cli {
+
+Figure workspaceFigure(const WorkspaceMap& map, const Model& model, const std::vector<PlotSeries>& paths) {
+    PlotSeries outline{"feasible region (outline)", {}, {}, "points pt 7 ps 0.25 lc rgb '#1f77b4'"};
+    for (int i = 0; i < map.n; ++i) {
+        for (int k = 0; k < map.n; ++k) {
+            const bool in = map.cell(i, k) == WorkspaceCell::feasible;
+            const bool right = i + 1 < map.n && (map.cell(i + 1, k) == WorkspaceCell::feasible) != in;
+            const bool up = k + 1 < map.n && (map.cell(i, k + 1) == WorkspaceCell::feasible) != in;
+            if (right) {
+                outline.x.push_back((map.x0 + (i + 0.5) * map.step) * 1e3);
+                outline.y.push_back((map.y0 + k * map.step) * 1e3);
+            }
+            if (up) {
+                outline.x.push_back((map.x0 + i * map.step) * 1e3);
+                outline.y.push_back((map.y0 + (k + 0.5) * map.step) * 1e3);
+            }
+        }
+    }
+    PlotSeries limb{"limb singularity (type 1: edge of a limb's reach)", {}, {}, "points pt 7 ps 0.3 lc rgb '#d62728'"};
+    for (const Vector2& c : map.limb_singular) {
+        limb.x.push_back(c.x() * 1e3);
+        limb.y.push_back(c.y() * 1e3);
+    }
+    PlotSeries actuation{"actuation singularity (type 2)", {}, {}, "points pt 7 ps 0.3 lc rgb '#ff7f0e'"};
+    for (const Vector2& c : map.actuation_singular) {
+        actuation.x.push_back(c.x() * 1e3);
+        actuation.y.push_back(c.y() * 1e3);
+    }
+    PlotSeries home{
+        "home position of C", {model.home(1) * 1e3}, {model.home(2) * 1e3}, "points pt 2 ps 2 lc rgb 'black'"};
+    char theta[64];
+    std::snprintf(theta, sizeof theta, "%.4g deg", map.theta * 180.0 / std::numbers::pi);
+    PlotPanel panel{
+        "C at theta = " + std::string(theta) + " (grid " + std::to_string(map.n) + " x " + std::to_string(map.n) + ")",
+        "x [mm]",
+        "y [mm]",
+        {},
+        false,
+        false};
+    panel.equal_axes = true;
+    for (PlotSeries* s : {&outline, &limb, &actuation, &home}) {
+        if (!s->x.empty()) panel.series.push_back(std::move(*s));  // gnuplot refuses an empty block
+    }
+    for (PlotSeries s : paths) {
+        for (double& v : s.x) v *= 1e3;
+        for (double& v : s.y) v *= 1e3;
+        if (!s.x.empty()) panel.series.push_back(std::move(s));
+    }
+    Figure figure;
+    figure.title = "Workspace of " + literalText(model.description.name);
+    figure.panels = {panel};
+    figure.width = 820;
+    figure.height = 900;
+    return figure;
+}
+
+std::string workspaceSummary(const WorkspaceMap& map) {
+    char text[512];
+    std::snprintf(text, sizeof text,
+                  "At theta = %.6g rad the feasible region of C (reachable on the home branches, within every "
+                  "joint range, regular) has an area of %.6g mm^2 (%d x %d grid, step %.4g mm, over x in "
+                  "[%.4g, %.4g] mm and y in [%.4g, %.4g] mm); %zu points on limb-singularity curves and %zu on "
+                  "actuation-singularity curves.",
+                  map.theta, map.area * 1e6, map.n, map.n, map.step * 1e3, map.x0 * 1e3,
+                  (map.x0 + (map.n - 1) * map.step) * 1e3, map.y0 * 1e3, (map.y0 + (map.n - 1) * map.step) * 1e3,
+                  map.limb_singular.size(), map.actuation_singular.size());
+    return text;
+}
+
+}  // namespace nocdyn::cli
