@@ -114,6 +114,7 @@ public:
     SimTK::MultibodySystem system;
     SimTK::SimbodyMatterSubsystem matter;
     SimTK::GeneralForceSubsystem forces;
+    SimTK::Force::DiscreteForces actuation;  // the plant's actuator forces (held in its State)
     SimTK::MobilizedBody::Planar platform;
     JointFriction* friction = nullptr;  // owned by the force subsystem
     PlatformMotion* motion = nullptr;   // owned by motion_handle
@@ -126,15 +127,27 @@ public:
     std::vector<int> free_q;  // the passive tree coordinates
     double potential_home = 0.0;
 
+    // forward-dynamics plant
+    SimTK::State plant;                 // the platform's Motion disabled
+    std::vector<std::size_t> actuated;  // per actuator (file order): its joint 3 j + k
+    std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
+    bool integrator_stale = true;
+    bool integrator_started = false;
+    long steps_before = 0;  // steps of the integrator's earlier runs since resetPlant
+    double integrator_accuracy = 1e-10;
+
     /// Newton projection of the passive coordinates from `seed` with the platform at pose p;
     /// true when it converged within kMaxJump of the seed.
     bool tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed);
     /// Assembles at pose p: from `seed`, else by subdividing the way from (p_from, q_from).
     void assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed, const Eigen::Vector3d& p_from,
                   const Eigen::VectorXd& q_from);
+    /// Velocities with the platform's rate prescribed (the Motion's qdot), after assemble().
+    void projectVelocities();
 };
 
-SimbodyMechanism::Impl::Impl(const RobotDescription& description) : robot(description), matter(system), forces(system) {
+SimbodyMechanism::Impl::Impl(const RobotDescription& description)
+    : robot(description), matter(system), forces(system), actuation(forces, matter) {
     using namespace SimTK;
     validate(robot);
     const Eigen::Vector3d& home = robot.home;
@@ -228,6 +241,17 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description) : robot(descri
         throw Error(msg.str());
     }
     potential_home = system.calcPotentialEnergy(state);
+
+    plant = system.getDefaultState();
+    motion_handle.disable(plant);
+    system.realize(plant, Stage::Instance);
+    for (int j = 0; j < L; ++j) {
+        for (int k = 0; k < 3; ++k) {
+            if (robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(k)].actuated)
+                actuated.push_back(static_cast<std::size_t>(3 * j + k));
+        }
+    }
+    integrator = std::make_unique<RungeKuttaMersonIntegrator>(system);
 }
 
 bool SimbodyMechanism::Impl::tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed) {
@@ -283,6 +307,19 @@ void SimbodyMechanism::Impl::assemble(double t, const Eigen::Vector3d& p, const 
     throw Error(msg.str());
 }
 
+void SimbodyMechanism::Impl::projectVelocities() {
+    using namespace SimTK;
+    ProjectOptions forced(kProjectAccuracy);
+    forced.setOption(ProjectOptions::ForceFullNewton);
+    forced.setOption(ProjectOptions::ForceProjection);
+    Vector no_error_estimate;
+    ProjectResults results;
+    system.prescribeU(state);
+    system.realize(state, Stage::Velocity);
+    // The velocity constraints are linear in u: one full Newton step solves them.
+    system.projectU(state, no_error_estimate, forced, results);
+}
+
 SimbodyMechanism::SimbodyMechanism(const RobotDescription& robot) : impl_(std::make_unique<Impl>(robot)) {}
 SimbodyMechanism::~SimbodyMechanism() = default;
 SimbodyMechanism::SimbodyMechanism(SimbodyMechanism&&) noexcept = default;
@@ -322,17 +359,7 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
         m.assemble(t, p, seed, p_prev, q_prev);
 
         // Velocities and accelerations with the platform's rate and acceleration prescribed.
-        {
-            ProjectOptions forced(kProjectAccuracy);
-            forced.setOption(ProjectOptions::ForceFullNewton);
-            forced.setOption(ProjectOptions::ForceProjection);
-            Vector no_error_estimate;
-            ProjectResults results;
-            m.system.prescribeU(m.state);
-            m.system.realize(m.state, Stage::Velocity);
-            // The velocity constraints are linear in u: one full Newton step solves them.
-            m.system.projectU(m.state, no_error_estimate, forced, results);
-        }
+        m.projectVelocities();
         m.system.realize(m.state, Stage::Acceleration);
 
         const Eigen::VectorXd q = toEigen(m.state.getQ());
@@ -382,6 +409,137 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
         have_prev = true;
     }
     return out;
+}
+
+}  // namespace nocdyn::validation
+
+namespace nocdyn::validation {
+
+void SimbodyMechanism::resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d& pose_rate, double t) {
+    using namespace SimTK;
+    Impl& m = *impl_;
+    // assembled with the platform prescribed (the inverse-dynamics State), then copied over
+    m.motion->qdot = pose_rate;
+    m.motion->qdotdot.setZero();
+    m.state.setTime(t);
+    const Eigen::VectorXd home_q = Eigen::VectorXd::Zero(m.tree.nv);
+    m.assemble(t, pose, home_q, m.robot.home, home_q);
+    m.projectVelocities();
+    m.plant.setTime(t);
+    m.plant.updQ() = m.state.getQ();
+    m.plant.updU() = m.state.getU();
+    m.actuation.clearAllForces(m.plant);
+    m.integrator_stale = true;
+    m.integrator_started = false;
+    m.steps_before = 0;
+    m.system.realize(m.plant, Stage::Velocity);
+}
+
+void SimbodyMechanism::setActuatorForces(const Eigen::VectorXd& tau) {
+    using namespace SimTK;
+    Impl& m = *impl_;
+    if (tau.size() != static_cast<Eigen::Index>(m.actuated.size())) {
+        throw Error("Simbody plant: " + std::to_string(tau.size()) + " actuator forces for " +
+                    std::to_string(m.actuated.size()) + " actuators");
+    }
+    // the same application as the joint friction's: a mobility force along a tree joint's
+    // mobility (sign: reversed joints), equal and opposite torques across a closure joint
+    Vector mobility(m.plant.getNU(), 0.0);
+    Vector_<SpatialVec> body(m.matter.getNumBodies(), SpatialVec(Vec3(0), Vec3(0)));
+    for (std::size_t a = 0; a < m.actuated.size(); ++a) {
+        const JointFriction::Joint& j = m.friction->joints[m.actuated[a]];
+        const double f = tau[static_cast<Eigen::Index>(a)];
+        if (!j.closure) {
+            j.mobilizer.applyOneMobilityForce(m.plant, 0, j.sign * f, mobility);
+        } else {
+            j.outboard.applyBodyTorque(m.plant, Vec3(0, 0, f), body);
+            j.inboard.applyBodyTorque(m.plant, Vec3(0, 0, -f), body);
+        }
+    }
+    m.actuation.setAllMobilityForces(m.plant, mobility);
+    m.actuation.setAllBodyForces(m.plant, body);
+    m.integrator_stale = true;
+}
+
+void SimbodyMechanism::setIntegratorAccuracy(double accuracy) {
+    if (!(accuracy > 0.0 && accuracy < 1.0)) throw Error("Simbody plant: integrator accuracy must lie in (0, 1)");
+    impl_->integrator_accuracy = accuracy;
+    impl_->integrator_stale = true;
+}
+
+void SimbodyMechanism::advance(double dt) {
+    Impl& m = *impl_;
+    if (!(dt >= 0.0) || !std::isfinite(dt)) {
+        throw Error("Simbody plant: advance() needs a finite dt >= 0, got " + std::to_string(dt));
+    }
+    if (dt == 0.0) return;
+    if (m.integrator_stale) {
+        if (m.integrator_started) m.steps_before += m.integrator->getNumStepsTaken();
+        m.integrator_started = true;
+        m.integrator->setAccuracy(m.integrator_accuracy);
+        m.integrator->setConstraintTolerance(0.01 * m.integrator_accuracy);
+        m.integrator->setProjectInterpolatedStates(true);
+        m.integrator->initialize(m.plant);
+        m.integrator_stale = false;
+    }
+    const double target = m.plant.getTime() + dt;
+    // stepTo returns at the target unless an event or report interrupts it: bounded retries
+    constexpr int kMaxCalls = 1000;
+    try {
+        for (int call = 0; call < kMaxCalls && m.integrator->getTime() < target; ++call) m.integrator->stepTo(target);
+    } catch (const std::exception& ex) {
+        m.integrator_stale = true;
+        std::ostringstream msg;
+        msg << "Simbody plant: integration failed at t = " << m.integrator->getTime() << " s: " << ex.what();
+        throw Error(msg.str());
+    }
+    if (m.integrator->getTime() < target) throw Error("Simbody plant: the integrator did not reach its target");
+    m.plant = m.integrator->getState();
+    m.system.realize(m.plant, SimTK::Stage::Velocity);
+}
+
+double SimbodyMechanism::time() const { return impl_->plant.getTime(); }
+
+Eigen::VectorXd SimbodyMechanism::u() const {
+    const Eigen::VectorXd q = toEigen(impl_->plant.getQ());
+    Eigen::VectorXd out(static_cast<Eigen::Index>(impl_->actuated.size()));
+    for (std::size_t a = 0; a < impl_->actuated.size(); ++a)
+        out[static_cast<Eigen::Index>(a)] = impl_->rows.row(static_cast<Eigen::Index>(impl_->actuated[a])).dot(q);
+    return out;
+}
+
+Eigen::VectorXd SimbodyMechanism::du() const {
+    const Eigen::VectorXd v = toEigen(impl_->plant.getU());
+    Eigen::VectorXd out(static_cast<Eigen::Index>(impl_->actuated.size()));
+    for (std::size_t a = 0; a < impl_->actuated.size(); ++a)
+        out[static_cast<Eigen::Index>(a)] = impl_->rows.row(static_cast<Eigen::Index>(impl_->actuated[a])).dot(v);
+    return out;
+}
+
+Eigen::Vector3d SimbodyMechanism::pose() const {
+    const auto& i = impl_->tree.platform_v;
+    const SimTK::Vector& q = impl_->plant.getQ();
+    return Eigen::Vector3d(q[i[0]], q[i[1]], q[i[2]]) + impl_->robot.home;
+}
+
+Eigen::Vector3d SimbodyMechanism::poseRate() const {
+    const auto& i = impl_->tree.platform_v;
+    const SimTK::Vector& u = impl_->plant.getU();
+    return {u[i[0]], u[i[1]], u[i[2]]};
+}
+
+double SimbodyMechanism::kineticEnergy() const {
+    impl_->system.realize(impl_->plant, SimTK::Stage::Velocity);
+    return impl_->matter.calcKineticEnergy(impl_->plant);
+}
+
+double SimbodyMechanism::potentialEnergy() const {
+    impl_->system.realize(impl_->plant, SimTK::Stage::Dynamics);
+    return impl_->system.calcPotentialEnergy(impl_->plant) - impl_->potential_home;
+}
+
+long SimbodyMechanism::plantSteps() const {
+    return impl_->steps_before + (impl_->integrator_started ? impl_->integrator->getNumStepsTaken() : 0);
 }
 
 }  // namespace nocdyn::validation
