@@ -232,12 +232,13 @@ TEST(Cli, SimulateReplaysTheInverseDynamicsOfAnyRobot) {
         const int n = name == "4-rrr" ? 4 : 3;
         std::string header = "t,x,y,theta";
         for (const char* prefix : {"u", "du", "tau"}) {
-            for (int a = 1; a <= n; ++a) header += std::string(",") + prefix + std::to_string(a);
+            for (int a = 1; a <= n; ++a) header.append(",").append(prefix).append(std::to_string(a));
         }
         EXPECT_EQ(slurp(motion).substr(0, slurp(motion).find('\n')), header + ",kinetic");
         ASSERT_EQ(out.rows.size(), in.rows.size());
         for (int a = 1; a <= n; ++a) {
-            const std::size_t ci = in.column("u" + std::to_string(a)), co = out.column("u" + std::to_string(a));
+            const std::string column = std::string("u").append(std::to_string(a));
+            const std::size_t ci = in.column(column), co = out.column(column);
             double peak = 0.0, error = 0.0;
             for (std::size_t k = 0; k < in.rows.size(); ++k) {
                 EXPECT_DOUBLE_EQ(out.rows[k][0], in.rows[k][0]);

@@ -14,6 +14,7 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/validation/detail/mechanism_common.hpp"
+#include "plant_integration.hpp"
 
 namespace nocdyn::validation {
 namespace {
@@ -131,10 +132,7 @@ public:
     SimTK::State plant;                 // the platform's Motion disabled
     std::vector<std::size_t> actuated;  // per actuator (file order): its joint 3 j + k
     std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
-    bool integrator_stale = true;
-    bool integrator_started = false;
-    long steps_before = 0;  // steps of the integrator's earlier runs since resetPlant
-    double integrator_accuracy = 1e-10;
+    detail::PlantIntegration run;
 
     /// Newton projection of the passive coordinates from `seed` with the platform at pose p;
     /// true when it converged within kMaxJump of the seed.
@@ -429,9 +427,7 @@ void SimbodyMechanism::resetPlant(const Eigen::Vector3d& pose, const Eigen::Vect
     m.plant.updQ() = m.state.getQ();
     m.plant.updU() = m.state.getU();
     m.actuation.clearAllForces(m.plant);
-    m.integrator_stale = true;
-    m.integrator_started = false;
-    m.steps_before = 0;
+    m.run.reset();
     m.system.realize(m.plant, Stage::Velocity);
 }
 
@@ -458,44 +454,14 @@ void SimbodyMechanism::setActuatorForces(const Eigen::VectorXd& tau) {
     }
     m.actuation.setAllMobilityForces(m.plant, mobility);
     m.actuation.setAllBodyForces(m.plant, body);
-    m.integrator_stale = true;
+    m.run.stale = true;
 }
 
-void SimbodyMechanism::setIntegratorAccuracy(double accuracy) {
-    if (!(accuracy > 0.0 && accuracy < 1.0)) throw Error("Simbody plant: integrator accuracy must lie in (0, 1)");
-    impl_->integrator_accuracy = accuracy;
-    impl_->integrator_stale = true;
-}
+void SimbodyMechanism::setIntegratorAccuracy(double accuracy) { impl_->run.setAccuracy(accuracy); }
 
 void SimbodyMechanism::advance(double dt) {
     Impl& m = *impl_;
-    if (!(dt >= 0.0) || !std::isfinite(dt)) {
-        throw Error("Simbody plant: advance() needs a finite dt >= 0, got " + std::to_string(dt));
-    }
-    if (dt == 0.0) return;
-    if (m.integrator_stale) {
-        if (m.integrator_started) m.steps_before += m.integrator->getNumStepsTaken();
-        m.integrator_started = true;
-        m.integrator->setAccuracy(m.integrator_accuracy);
-        m.integrator->setConstraintTolerance(0.01 * m.integrator_accuracy);
-        m.integrator->setProjectInterpolatedStates(true);
-        m.integrator->initialize(m.plant);
-        m.integrator_stale = false;
-    }
-    const double target = m.plant.getTime() + dt;
-    // stepTo returns at the target unless an event or report interrupts it: bounded retries
-    constexpr int kMaxCalls = 1000;
-    try {
-        for (int call = 0; call < kMaxCalls && m.integrator->getTime() < target; ++call) m.integrator->stepTo(target);
-    } catch (const std::exception& ex) {
-        m.integrator_stale = true;
-        std::ostringstream msg;
-        msg << "Simbody plant: integration failed at t = " << m.integrator->getTime() << " s: " << ex.what();
-        throw Error(msg.str());
-    }
-    if (m.integrator->getTime() < target) throw Error("Simbody plant: the integrator did not reach its target");
-    m.plant = m.integrator->getState();
-    m.system.realize(m.plant, SimTK::Stage::Velocity);
+    detail::advancePlant(m.system, *m.integrator, m.plant, m.run, dt);
 }
 
 double SimbodyMechanism::time() const { return impl_->plant.getTime(); }
@@ -538,8 +504,6 @@ double SimbodyMechanism::potentialEnergy() const {
     return impl_->system.calcPotentialEnergy(impl_->plant) - impl_->potential_home;
 }
 
-long SimbodyMechanism::plantSteps() const {
-    return impl_->steps_before + (impl_->integrator_started ? impl_->integrator->getNumStepsTaken() : 0);
-}
+long SimbodyMechanism::plantSteps() const { return impl_->run.steps(*impl_->integrator); }
 
 }  // namespace nocdyn::validation
