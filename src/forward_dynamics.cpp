@@ -205,8 +205,10 @@ ForceSignal forcesFromTable(const io::Table& table, int actuators, Interpolation
     for (int a = 0; a <= actuators; ++a) {
         const std::string name = a == 0 ? std::string("t") : "tau" + std::to_string(a);
         if (!table.has(name)) {
-            throw Error(source + ": missing column '" + name + "' (the robot has " + std::to_string(actuators) +
-                        " actuators: t,tau1..tau" + std::to_string(actuators) + ")");
+            std::ostringstream out;
+            out << source << ": missing column '" << name << "' (the robot has " << actuators
+                << " actuators: t,tau1..tau" << actuators << ")";
+            throw Error(out.str());
         }
         column.push_back(table.column(name));
     }
@@ -231,7 +233,7 @@ ForceSignal forcesFromTable(const io::Table& table, int actuators, Interpolation
         }
         times.push_back(t);
         ActuatorVector f(actuators);
-        for (int a = 0; a < actuators; ++a) f(a) = row[column[static_cast<std::size_t>(a + 1)]];
+        for (int a = 0; a < actuators; ++a) f(a) = row[column[static_cast<std::size_t>(a) + 1]];
         tau.push_back(f);
     }
     return {std::move(times), tau, interpolation, source};
@@ -300,13 +302,13 @@ struct Simulator::Impl {
         ++evaluations;
         forcesAt(time, piece, force);
         const Status status = forwardDynamics(model, scratch, poseOf(xs), rateOf(xs), force);
-        for (int i = 0; i < 3; ++i) dxdt[static_cast<std::size_t>(i)] = xs[static_cast<std::size_t>(3 + i)];
+        for (std::size_t i = 0; i < 3; ++i) dxdt[i] = xs[i + 3];
         if (!status) {
             if (failure.ok()) failure = status;
             for (std::size_t i = 3; i < 6; ++i) dxdt[i] = 0.0;
             return;
         }
-        for (int i = 0; i < 3; ++i) dxdt[static_cast<std::size_t>(3 + i)] = scratch.t_M_dot(i);
+        for (std::size_t i = 0; i < 3; ++i) dxdt[i + 3] = scratch.t_M_dot(static_cast<Eigen::Index>(i));
     }
 
     [[nodiscard]] std::size_t pieceAt(double time) const { return signal ? signal->piece(time) : 0; }
