@@ -3,11 +3,14 @@
 // (bench_general.cpp). Neither engine has a per-sample inverse-dynamics entry for a closed
 // loop: each call covers the cycle, assembling every sample from the previous one, and
 // `per_sample` is the time per sample.
+// BM_Simulate/<robot>/simbody: the Simbody plant (SimbodyMechanism::advance, accuracy 1e-10)
+// under the forces of BM_Simulate/<robot>/nocdyn (bench_simulate.cpp), held for 1 ms each.
 #include <benchmark/benchmark.h>
 
 #include <string>
 
 #include "fixture.hpp"
+#include "simulate_fixture.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"
@@ -28,6 +31,24 @@ void engine(benchmark::State& state, const std::string& robot) {
                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+void simbodyPlant(benchmark::State& state, const std::string& name) {
+    const SimulateFixture f(name);
+    validation::SimbodyMechanism plant(f.robot);
+    long steps = 0;
+    for (auto _ : state) {
+        plant.resetPlant(f.p0, f.dp0);
+        for (const ActuatorVector& tau : f.tau) {
+            plant.setActuatorForces(Eigen::VectorXd(tau));
+            plant.advance(kHoldPeriod);
+        }
+        steps += plant.plantSteps();
+        benchmark::DoNotOptimize(plant.time());
+    }
+    state.counters["simulated_per_cpu_s"] =
+        benchmark::Counter(kHoldPeriods * kHoldPeriod, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["steps"] = static_cast<double>(steps) / static_cast<double>(state.iterations());
+}
+
 [[maybe_unused]] const bool registered = [] {
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/mujoco").c_str(), [robot](benchmark::State& s) {
@@ -36,6 +57,9 @@ void engine(benchmark::State& state, const std::string& robot) {
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/simbody").c_str(), [robot](
                                                                                                benchmark::State& s) {
             engine<validation::SimbodyMechanism>(s, robot);
+        })->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("BM_Simulate/" + robot + "/simbody").c_str(), [robot](benchmark::State& s) {
+            simbodyPlant(s, robot);
         })->Unit(benchmark::kMillisecond);
     }
     return true;

@@ -138,9 +138,7 @@ Status velocityFromPlatformTwist(const Model& model, Data& data, const Twist& t_
     // xi_P = S(c) t_M: the velocity of the platform point at O is dc/dt + omega E (O - C)
     const Vector2 c = data.p.tail<2>();
     data.xi_P = Twist(t_M(0), t_M(1) + t_M(0) * c.y(), t_M(2) - t_M(0) * c.x());
-    if (model.coordinates == Coordinates::platform) {
-        data.Xi << 1.0, 0.0, 0.0, c.y(), 1.0, 0.0, -c.x(), 0.0, 1.0;
-    }
+    if (model.coordinates == Coordinates::platform) detail::platformCoordinates(data);
     detail::rateStage(model, data);
     return {};
 }
@@ -199,9 +197,15 @@ void twistShaping(const Model& model, Data& data) {
         }
         data.Xi_dot.noalias() = -data.Xi * A_dot * data.Xi;
     } else {
-        data.Xi_dot << 0.0, 0.0, 0.0, data.t_M(2), 0.0, 0.0, -data.t_M(1), 0.0, 0.0;
+        detail::platformCoordinates(data);
     }
+    detail::shapeBodies(model, data);
+}
 
+namespace detail {
+
+NOCDYN_TARGET_CLONES
+void shapeBodies(const Model& model, Data& data) {
     // T_i = Ad(x_i) Y, Y = U_i J_j^-1 Xi (eqs. 28-30 generalised); dT_i = Ad(x_i) dY + dAd(x_i) Y.
     // Rows of Ad(x) Y: [Y_0; Y_12 + E x Y_0], and d/dt adds E dx Y_0.
     const auto shape = [](const Matrix3& Y, const Matrix3& Y_dot, const Vector2& x, const Vector2& x_dot,
@@ -241,6 +245,8 @@ void twistShaping(const Model& model, Data& data) {
     shape(data.Xi, data.Xi_dot, data.x_P, xP_dot, data.T[static_cast<std::size_t>(model.platformBody())],
           data.T_dot[static_cast<std::size_t>(model.platformBody())]);
 }
+
+}  // namespace detail
 
 Status checkJointLimits(const Model& model, const Data& data) {
     for (int j = 0; j < model.limbs; ++j) {

@@ -29,6 +29,16 @@ Status positionStage(const Model& model, Data& data, const Pose& p, bool angles)
 Status jacobianStage(const Model& model, Data& data);
 /// Joint rates, body twists, screw rates and du from xi_P.
 void rateStage(const Model& model, Data& data);
+/// T_i and dT_i of every body (eqs. 28-31 generalised) for the independent coordinates whose
+/// map data.Xi (xi_P = Xi v) and its rate data.Xi_dot are set. Needs the velocity stage.
+void shapeBodies(const Model& model, Data& data);
+
+/// Xi = S(c) and dXi/dt for the platform coordinates v = dp/dt (xi_P = S(c) t_M).
+inline void platformCoordinates(Data& data) {
+    const Vector2 c = data.p.tail<2>();
+    data.Xi << 1.0, 0.0, 0.0, c.y(), 1.0, 0.0, -c.x(), 0.0, 1.0;
+    data.Xi_dot << 0.0, 0.0, 0.0, data.t_M(2), 0.0, 0.0, -data.t_M(1), 0.0, 0.0;
+}
 
 /// A planar rigid displacement x -> R(c, s) x + t.
 struct Displacement {

@@ -7,6 +7,7 @@
 
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -216,6 +217,80 @@ TEST(Cli, GeneralRobotFilesRunInverseDynamicsAndTheEnvelope) {
     EXPECT_EQ(envelope.out.substr(0, envelope.out.find('\n')),
               "axis   f [Hz]    amplitude        limit      peak |tau|/effort  where");
     EXPECT_NE(envelope.out.find("actuator "), std::string::npos) << envelope.out;
+}
+
+TEST(Cli, SimulateReplaysTheInverseDynamicsOfAnyRobot) {
+    // inverse-dynamics -> simulate (cubic forces): each actuator back within 1e-6 of its peak travel
+    for (const std::string name : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
+        const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/" + name + ".yaml";
+        const fs::path forces = scratch(name + "-forces.csv"), motion = scratch(name + "-motion.csv");
+        ASSERT_EQ(run("inverse-dynamics --trajectory paper1 --duration 0.1 --robot " + robot + " -o " + forces.string())
+                      .exit_code,
+                  0);
+        const CliRun r = run("simulate --forces " + forces.string() + " --robot " + robot + " -o " + motion.string());
+        ASSERT_EQ(r.exit_code, 0) << r.err;
+        const io::Table in = io::readCsvFile(forces.string());
+        const io::Table out = io::readCsvFile(motion.string());
+        const int n = name == "4-rrr" ? 4 : 3;
+        std::string header = "t,x,y,theta";
+        for (const char* prefix : {"u", "du", "tau"}) {
+            for (int a = 1; a <= n; ++a) header.append(",").append(prefix).append(std::to_string(a));
+        }
+        EXPECT_EQ(slurp(motion).substr(0, slurp(motion).find('\n')), header + ",kinetic");
+        ASSERT_EQ(out.rows.size(), in.rows.size());
+        for (int a = 1; a <= n; ++a) {
+            const std::string column = std::string("u").append(std::to_string(a));
+            const std::size_t ci = in.column(column), co = out.column(column);
+            double peak = 0.0, error = 0.0;
+            for (std::size_t k = 0; k < in.rows.size(); ++k) {
+                EXPECT_DOUBLE_EQ(out.rows[k][0], in.rows[k][0]);
+                peak = std::max(peak, std::abs(in.rows[k][ci] - in.rows[0][ci]));
+                error = std::max(error, std::abs(out.rows[k][co] - in.rows[k][ci]));
+            }
+            EXPECT_LT(error, 1e-6 * peak) << name << " u" << a;
+        }
+    }
+}
+
+TEST(Cli, SimulateStopsAtASingularityNamingTimeAndLimbAndWritesOnlyWhenAskedTo) {
+    const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/3-rrr.yaml";
+    const fs::path forces = scratch("push.csv"), motion = scratch("motion.csv");
+    std::ofstream(forces) << "t,tau1,tau2,tau3\n0,1,0,0\n1,1,0,0\n";
+    fs::remove(motion);
+    const CliRun r = run("simulate --forces " + forces.string() + " --robot " + robot + " -o " + motion.string());
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    EXPECT_NE(r.err.find("t = 0.17"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("limb 1"), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(motion));
+    const CliRun partial =
+        run("simulate --partial --forces " + forces.string() + " --robot " + robot + " -o " + motion.string());
+    EXPECT_EQ(partial.exit_code, 1);
+    ASSERT_TRUE(fs::exists(motion));
+    EXPECT_GT(io::readCsvFile(motion.string()).rows.size(), 1000u);
+}
+
+TEST(Cli, SimulateNamesWhatItCannotUse) {
+    const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/4-rrr.yaml";
+    const fs::path forces = scratch("uneven.csv");
+    std::ofstream(forces) << "t,tau1,tau2,tau3,tau4\n0,0,0,0,0\n0.1,0,0,0,0\n0.2,0,0,0,0\n0.35,0,0,0,0\n"
+                             "0.4,0,0,0,0\n0.5,0,0,0,0\n";
+    const CliRun cubic = run("simulate --forces " + forces.string() + " --robot " + robot);
+    EXPECT_EQ(cubic.exit_code, 1);
+    EXPECT_NE(cubic.err.find("uneven.csv: sample 4"), std::string::npos) << cubic.err;
+    EXPECT_EQ(
+        run("simulate --interpolation hold --rate 100 --forces " + forces.string() + " --robot " + robot).exit_code, 0);
+    const fs::path three = scratch("three.csv");
+    std::ofstream(three) << "t,tau1,tau2,tau3\n0,0,0,0\n1,0,0,0\n";
+    const CliRun missing = run("simulate --forces " + three.string() + " --robot " + robot);
+    EXPECT_EQ(missing.exit_code, 1);
+    EXPECT_NE(missing.err.find("'tau4'"), std::string::npos) << missing.err;
+    const fs::path u_only = scratch("u_only.csv");
+    std::ofstream(u_only) << "t,tau1,tau2,tau3,tau4,u1,u2,u3,u4\n0,0,0,0,0,0,0,0,0\n1,0,0,0,0,0,0,0,0\n";
+    const CliRun no_pose = run("simulate --forces " + u_only.string() + " --robot " + robot);
+    EXPECT_EQ(no_pose.exit_code, 1);
+    EXPECT_NE(no_pose.err.find("theta,x,y"), std::string::npos) << no_pose.err;
+    EXPECT_EQ(run("simulate --interpolation spline --forces " + three.string()).exit_code, 2);
 }
 
 TEST(Cli, HelpExplainsEveryCommand) {

@@ -14,4 +14,6 @@ if(TARGET nocdyn_simbody)
     ${PROJECT_SOURCE_DIR}/apps/nocdyn/simbody_plant.cpp
     LABELS validation LIBRARIES nocdyn_simbody)
   target_include_directories(simbody_simulation_test PRIVATE ${PROJECT_SOURCE_DIR}/apps/nocdyn)
+  nocdyn_add_test(general_simbody_plant_test general_simbody_plant_test.cpp LABELS validation LIBRARIES nocdyn_simbody)
 endif()
+nocdyn_add_test(general_forward_dynamics_test general_forward_dynamics_test.cpp)

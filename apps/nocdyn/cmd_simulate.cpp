@@ -1,15 +1,23 @@
-// nocdyn simulate: actuator forces from a CSV file -> platform motion (forward dynamics,
-// eq. 20 solved for ddu, integrated by Boost.Odeint's Dormand-Prince 5(4)).
+// nocdyn simulate: actuator forces from a CSV file -> platform motion of any robot (forward
+// dynamics in the platform coordinates, M_p d2p/dt2 = A_p^T tau - h_p, integrated by
+// Boost.Odeint's Dormand-Prince 5(4); forward_dynamics.hpp).
 #include <cmath>
 #include <iostream>
+#include <map>
 #include <memory>
+#include <sstream>
+
+#include <Eigen/QR>
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/prr3/forward_dynamics.hpp"
-#include "nocdyn/prr3/sampling.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/io/robot_yaml.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/prr3/direct_kinematics.hpp"
 
 namespace nocdyn::cli {
 
@@ -21,37 +29,144 @@ struct SimulateOptions {
     double rate = 10000.0;
     double absolute_tolerance = 1e-12;
     double relative_tolerance = 1e-10;
+    std::string interpolation = "cubic";
+    bool partial = false;
 };
 
-void run(const SimulateOptions& options) {
-    const prr3::Model model(loadRobotOrDefault(options.robot, "simulate"));
-    const io::Table table = io::readCsvFile(options.forces);
-    const prr3::ForceSeries forces = prr3::forcesFromTable(table, options.forces);
+/// Largest accepted difference between a first row's u1..un and the u of its pose [m or rad],
+/// and between its du1..dun and the rates of the pose rate found from them (relative).
+constexpr double kInitialStateTolerance = 1e-9;
 
-    prr3::SimulatorOptions simulator_options;
-    simulator_options.absolute_tolerance = options.absolute_tolerance;
-    simulator_options.relative_tolerance = options.relative_tolerance;
-    prr3::Simulator simulator(model, simulator_options);
+struct InitialState {
+    Pose p = Pose::Zero();
+    Twist dp = Twist::Zero();
+    std::string origin;  ///< for the summary line
+};
 
-    // Initial state: the first row's u, du when present (the CSV of `inverse-dynamics`),
-    // the pose columns as the tracker's starting guess; else rest at the reference posture.
-    const double t0 = forces.t.front();
-    const auto& first = table.rows.front();
-    auto value = [&](const char* name) { return first[table.column(name)]; };
-    Status status;
-    if (table.has("u1") && table.has("u2") && table.has("u3") && table.has("du1") && table.has("du2") &&
-        table.has("du3")) {
-        Pose guess = Pose::Zero();
-        if (table.has("theta") && table.has("x") && table.has("y"))
-            guess = Pose(value("theta"), value("x"), value("y"));
-        status = simulator.resetActuators(prr3::JointVector(value("u1"), value("u2"), value("u3")),
-                                          prr3::JointVector(value("du1"), value("du2"), value("du3")), guess, t0);
-    } else {
-        status = simulator.reset(Pose::Zero(), Twist::Zero(), t0);
+std::string columnList(const char* prefix, int n) { return std::string(prefix) + "1.." + prefix + std::to_string(n); }
+
+/// True when the robot is the paper's 3-PRR in the short form (or the default prototype).
+bool isShortForm(const std::string& path) {
+    if (path.empty()) return true;
+    return !io::isGeneralForm(io::readRobotFileText(path), path);
+}
+
+/// The platform rate dp/dt whose actuator rates are du: A_p dp = du (least squares; exact for a
+/// consistent du). Needs the position stage at the pose in `data`.
+Twist poseRateFromActuatorRates(const Model& model, Data& data, const ActuatorVector& du, const std::string& where) {
+    if (const Status status = velocityFromPlatformTwist(model, data, Twist::Zero()); !status)
+        throw Error(where + ": " + describe(status, model));
+    const Vector2 c = data.p.tail<2>();
+    Matrix3 S;
+    S << 1.0, 0.0, 0.0, c.y(), 1.0, 0.0, -c.x(), 0.0, 1.0;
+    const Eigen::MatrixXd A_p = Eigen::MatrixXd(data.A) * S;
+    const Twist dp = A_p.colPivHouseholderQr().solve(Eigen::VectorXd(du));
+    const double residual = (A_p * dp - Eigen::VectorXd(du)).cwiseAbs().maxCoeff();
+    if (!(residual <= kInitialStateTolerance * (1.0 + du.cwiseAbs().maxCoeff()))) {
+        std::ostringstream out;
+        out << where << ": du1..du" << model.actuators << " are not the rates of any platform motion at this pose ("
+            << "off by " << residual << ")";
+        throw Error(out.str());
     }
-    if (!status) throw Error(options.forces + ": initial state: " + describe(status, model.parameters));
+    return dp;
+}
 
-    const double duration = options.duration ? *options.duration : forces.t.back() - t0;
+/// The initial state from the first row of the forces file: the pose columns theta,x,y (with
+/// dtheta,dx,dy, else du1..dun, else at rest); else, for the 3-PRR in the short form, u1..u3
+/// and du1..du3 (the pose by the 3-PRR's direct kinematics from the reference posture); else
+/// the robot's home at rest.
+InitialState initialState(const Model& model, const io::Table& table, const SimulateOptions& options) {
+    const int n = model.actuators;
+    const auto& first = table.rows.front();
+    const std::string where =
+        options.forces + (table.lines.empty() ? std::string(": first row") : ":" + std::to_string(table.lines.front()));
+    auto value = [&](const std::string& name) { return first[table.column(name)]; };
+    auto hasAll = [&](const char* prefix) {
+        for (int a = 1; a <= n; ++a) {
+            if (!table.has(prefix + std::to_string(a))) return false;
+        }
+        return true;
+    };
+    auto actuatorColumns = [&](const char* prefix) {
+        ActuatorVector v(n);
+        for (int a = 0; a < n; ++a) v(a) = value(prefix + std::to_string(a + 1));
+        return v;
+    };
+    const bool has_u = hasAll("u"), has_du = hasAll("du");
+    InitialState state;
+    Data data(model);
+    if (table.has("theta") && table.has("x") && table.has("y")) {
+        state.p = Pose(value("theta"), value("x"), value("y"));
+        if (const Status status = inverseDisplacement(model, data, state.p); !status)
+            throw Error(where + ": initial pose: " + describe(status, model));
+        if (has_u) {
+            const ActuatorVector u = actuatorColumns("u");
+            for (int a = 0; a < n; ++a) {
+                if (!(std::abs(u(a) - data.u(a)) <= kInitialStateTolerance)) {
+                    std::ostringstream out;
+                    out.precision(12);
+                    out << where << ": column 'u" << a + 1 << "': " << u(a) << " but the pose theta,x,y gives "
+                        << data.u(a);
+                    throw Error(out.str());
+                }
+            }
+        }
+        if (table.has("dtheta") && table.has("dx") && table.has("dy")) {
+            state.dp = Twist(value("dtheta"), value("dx"), value("dy"));
+            state.origin = "first row's theta,x,y,dtheta,dx,dy";
+        } else if (has_du) {
+            state.dp = poseRateFromActuatorRates(model, data, actuatorColumns("du"), where);
+            state.origin = "first row's theta,x,y and " + columnList("du", n);
+        } else {
+            state.origin = "first row's theta,x,y, at rest";
+        }
+        return state;
+    }
+    if (has_u) {
+        if (n != 3 || !isShortForm(options.robot)) {
+            throw Error(where + ": the first row gives " + columnList("u", n) +
+                        " but no pose: add the columns theta,x,y (and dtheta,dx,dy) for the initial state of this "
+                        "robot (its direct kinematics is not available yet)");
+        }
+        // the 3-PRR's direct kinematics, tracked from the reference posture
+        const prr3::Model special(options.robot.empty() ? RobotParameters{} : loadRobotOrDefault(options.robot, ""));
+        prr3::Data special_data;
+        const ActuatorVector u = actuatorColumns("u");
+        Pose p = Pose::Zero();
+        if (const Status status = prr3::trackPose(special, special_data, prr3::JointVector(u(0), u(1), u(2)), p);
+            !status)
+            throw Error(where + ": initial state from u1..u3: " + describe(status, special.parameters));
+        state.p = p;
+        if (const Status status = inverseDisplacement(model, data, p); !status)
+            throw Error(where + ": initial pose: " + describe(status, model));
+        if (has_du) state.dp = poseRateFromActuatorRates(model, data, actuatorColumns("du"), where);
+        state.origin = "first row's u1..u3" + std::string(has_du ? ",du1..du3" : ", at rest") +
+                       " (3-PRR direct kinematics from the reference posture)";
+        return state;
+    }
+    state.p = model.home;
+    state.origin = "home, at rest";
+    return state;
+}
+
+std::vector<std::string> outputColumns(int n) {
+    std::vector<std::string> columns{"t", "x", "y", "theta"};
+    for (const char* prefix : {"u", "du", "tau"}) {
+        for (int a = 1; a <= n; ++a) columns.push_back(prefix + std::to_string(a));
+    }
+    columns.emplace_back("kinetic");
+    return columns;
+}
+
+void run(const SimulateOptions& options) {
+    const Model model(loadRobotDescriptionOrDefault(options.robot));
+    const int n = model.actuators;
+    const io::Table table = io::readCsvFile(options.forces);
+    const std::map<std::string, Interpolation> interpolations{
+        {"hold", Interpolation::hold}, {"linear", Interpolation::linear}, {"cubic", Interpolation::cubic}};
+    ForceSignal forces = forcesFromTable(table, n, interpolations.at(options.interpolation), options.forces);
+    const double t0 = forces.firstTime();
+    const double duration = options.duration ? *options.duration : forces.lastTime() - t0;
     if (!(duration > 0.0)) throw Error(options.forces + ": a single force sample: give --duration");
     if (!(duration <= kMaxSimulatedDuration)) {
         throw Error(options.forces + ": spans " + std::to_string(duration) + " s; simulate accepts at most " +
@@ -61,13 +176,52 @@ void run(const SimulateOptions& options) {
         throw Error("--duration " + std::to_string(duration) + " s at --rate " + std::to_string(options.rate) +
                     " Hz gives more than 1e7 output samples, the most simulate accepts");
     }
-    std::vector<double> times = prr3::sampleTimes(duration, options.rate);
-    times.push_back(duration);  // include the end point
-    for (double& t : times) t += t0;
-    const prr3::SimulationSeries series = prr3::simulateForces(simulator, forces, times);
-    writeTable(prr3::toTable(series), options.output);
-    std::cerr << "nocdyn: simulated " << duration << " s: " << simulator.acceptedSteps() << " steps accepted, "
-              << simulator.rejectedSteps() << " rejected\n";
+
+    SimulatorOptions simulator_options;
+    simulator_options.absolute_tolerance = options.absolute_tolerance;
+    simulator_options.relative_tolerance = options.relative_tolerance;
+    Simulator simulator(model, simulator_options);
+    const InitialState initial = initialState(model, table, options);
+    if (const Status status = simulator.reset(initial.p, initial.dp, t0); !status)
+        throw Error(options.forces + ": initial state (" + initial.origin + "): " + describe(status, model));
+    const Interpolation interpolation = forces.interpolation();
+    simulator.setForces(std::move(forces));
+
+    // rows at t0 + k / rate, k = 0..count-1, and at t0 + duration
+    const auto count = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(duration * options.rate)));
+    io::OutputFile out = openOutput(options.output);
+    io::CsvWriter csv(out, outputColumns(n), /*background=*/true);
+    std::vector<double> row(static_cast<std::size_t>(4 + 3 * n + 1));
+    for (std::size_t k = 0; k <= count; ++k) {
+        const double t = k < count ? t0 + static_cast<double>(k) / options.rate : t0 + duration;
+        if (const Status status = simulator.advance(std::max(0.0, t - simulator.time())); !status) {
+            if (options.partial) {
+                csv.finish();
+                out.commit();
+            }
+            std::ostringstream message;
+            message.precision(9);
+            message << "t = " << simulator.time() << " s: " << describe(status, model);
+            if (options.partial && !options.output.empty()) message << " (" << csv.rows() << " rows written)";
+            throw Error(message.str());
+        }
+        const Pose& p = simulator.pose();
+        std::size_t c = 0;
+        row[c++] = simulator.time();
+        row[c++] = p(1);
+        row[c++] = p(2);
+        row[c++] = p(0);
+        for (int a = 0; a < n; ++a) row[c++] = simulator.u()(a);
+        for (int a = 0; a < n; ++a) row[c++] = simulator.du()(a);
+        for (int a = 0; a < n; ++a) row[c++] = simulator.tau()(a);
+        row[c] = simulator.kineticEnergy();
+        csv.row(row);
+    }
+    csv.finish();
+    out.commit();
+    std::cerr << "nocdyn: simulated " << duration << " s from the " << initial.origin << " (" << name(interpolation)
+              << " forces): " << simulator.acceptedSteps() << " steps accepted, " << simulator.rejectedSteps()
+              << " rejected, " << simulator.evaluations() << " evaluations\n";
 }
 
 }  // namespace
@@ -76,27 +230,39 @@ void addSimulateCommand(CLI::App& app) {
     auto options = std::make_shared<SimulateOptions>();
     CLI::App* command = app.add_subcommand(
         "simulate",
-        "Forward dynamics: integrates I(u) ddu = tau - C(u, du) du (eq. 20) under actuator forces read from a CSV\n"
-        "with columns t,tau1,tau2,tau3 (linear in between, held after the last row). The initial state is the\n"
-        "first row's u1..u3, du1..du3 when present (so the CSV of `inverse-dynamics` can be fed straight back),\n"
-        "else rest at the reference posture. Writes t,x,y,theta,u1..u3,du1..du3,tau1..tau3,kinetic (SI) at\n"
-        "t0 + k / rate up to t0 + duration.");
+        "Forward dynamics of any robot: integrates M_p(p) d2p/dt2 = A_p^T tau - h_p(p, dp/dt) (eq. 23 in the\n"
+        "platform coordinates, gravity and joint friction from the robot file) under actuator forces read from a\n"
+        "CSV with columns t,tau1..taun. The initial state is the first row's theta,x,y with dtheta,dx,dy (else\n"
+        "du1..dun, else at rest), so that the CSV of `inverse-dynamics` can be fed straight back; for the 3-PRR\n"
+        "in the short form, u1..u3,du1..du3 alone also do; else the robot's home at rest. Writes\n"
+        "t,x,y,theta,u1..un,du1..dun,tau1..taun,kinetic (SI) at t0 + k / rate up to t0 + duration. A pose out of\n"
+        "reach or singular stops it with the time and the limb, and no file unless --partial.");
     addRobotOption(*command, options->robot);
-    command->add_option("--forces", options->forces, "CSV file with columns t,tau1,tau2,tau3 [s, N]")
+    command->add_option("--forces", options->forces, "CSV file with columns t,tau1..taun [s, N or N m]")
         ->required()
         ->check(CLI::ExistingFile);
+    command
+        ->add_option("--interpolation", options->interpolation,
+                     "Forces between samples: hold (zero-order, as a DAC), linear, or cubic (C2 spline through\n"
+                     "uniformly spaced samples; fewer than 5 samples are interpolated linearly)")
+        ->check(CLI::IsMember({"hold", "linear", "cubic"}))
+        ->capture_default_str();
     command->add_option("--duration", options->duration, "Seconds to simulate [default: the span of the force file]")
         ->check(finiteIn(kMinDuration, kMaxSimulatedDuration, "s"));
     command->add_option("--rate", options->rate, "Output samples per second")
         ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
         ->capture_default_str();
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]");
-    command->add_option("--atol", options->absolute_tolerance, "Integrator absolute tolerance on u [m] and du [m/s]")
+    command
+        ->add_option("--atol", options->absolute_tolerance,
+                     "Integrator absolute tolerance on the pose [rad, m] and its rate [rad/s, m/s]")
         ->check(finiteIn(1e-15, 1e-2, ""))
         ->capture_default_str();
     command->add_option("--rtol", options->relative_tolerance, "Integrator relative tolerance")
         ->check(finiteIn(1e-14, 1e-2, ""))
         ->capture_default_str();
+    command->add_flag("--partial", options->partial,
+                      "When the simulation stops early (singularity, out of reach), keep the rows before it");
     command->callback([options] { run(*options); });
 }
 

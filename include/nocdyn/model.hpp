@@ -178,6 +178,11 @@ struct Data {
     Vector3 Q = Vector3::Zero();                     ///< I dv + C v + Q_gf: the generalized force to supply
     /// Platform wrench referred to O that the limbs must supply (lean path), [N m; N].
     Wrench W_P = Wrench::Zero();
+    /// Equations of motion in the platform coordinates, M_p d2p/dt2 + h_p = A_p^T tau for every n
+    /// (forward_dynamics.hpp): M_p = sum_i T_i^T M_i T_i and h_p = C_p dp/dt + Q_gf with
+    /// xi_P = S(c) dp/dt.
+    Matrix3 M_p = Matrix3::Identity();
+    Vector3 h_p = Vector3::Zero();
 };
 
 }  // namespace nocdyn

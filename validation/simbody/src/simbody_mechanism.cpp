@@ -14,6 +14,7 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/validation/detail/mechanism_common.hpp"
+#include "plant_integration.hpp"
 
 namespace nocdyn::validation {
 namespace {
@@ -114,6 +115,7 @@ public:
     SimTK::MultibodySystem system;
     SimTK::SimbodyMatterSubsystem matter;
     SimTK::GeneralForceSubsystem forces;
+    SimTK::Force::DiscreteForces actuation;  // the plant's actuator forces (held in its State)
     SimTK::MobilizedBody::Planar platform;
     JointFriction* friction = nullptr;  // owned by the force subsystem
     PlatformMotion* motion = nullptr;   // owned by motion_handle
@@ -126,15 +128,24 @@ public:
     std::vector<int> free_q;  // the passive tree coordinates
     double potential_home = 0.0;
 
+    // forward-dynamics plant
+    SimTK::State plant;                 // the platform's Motion disabled
+    std::vector<std::size_t> actuated;  // per actuator (file order): its joint 3 j + k
+    std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
+    detail::PlantIntegration run;
+
     /// Newton projection of the passive coordinates from `seed` with the platform at pose p;
     /// true when it converged within kMaxJump of the seed.
     bool tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed);
     /// Assembles at pose p: from `seed`, else by subdividing the way from (p_from, q_from).
     void assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed, const Eigen::Vector3d& p_from,
                   const Eigen::VectorXd& q_from);
+    /// Velocities with the platform's rate prescribed (the Motion's qdot), after assemble().
+    void projectVelocities();
 };
 
-SimbodyMechanism::Impl::Impl(const RobotDescription& description) : robot(description), matter(system), forces(system) {
+SimbodyMechanism::Impl::Impl(const RobotDescription& description)
+    : robot(description), matter(system), forces(system), actuation(forces, matter) {
     using namespace SimTK;
     validate(robot);
     const Eigen::Vector3d& home = robot.home;
@@ -228,6 +239,17 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description) : robot(descri
         throw Error(msg.str());
     }
     potential_home = system.calcPotentialEnergy(state);
+
+    plant = system.getDefaultState();
+    motion_handle.disable(plant);
+    system.realize(plant, Stage::Instance);
+    for (int j = 0; j < L; ++j) {
+        for (int k = 0; k < 3; ++k) {
+            if (robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(k)].actuated)
+                actuated.push_back(static_cast<std::size_t>(3 * j + k));
+        }
+    }
+    integrator = std::make_unique<RungeKuttaMersonIntegrator>(system);
 }
 
 bool SimbodyMechanism::Impl::tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed) {
@@ -283,6 +305,19 @@ void SimbodyMechanism::Impl::assemble(double t, const Eigen::Vector3d& p, const 
     throw Error(msg.str());
 }
 
+void SimbodyMechanism::Impl::projectVelocities() {
+    using namespace SimTK;
+    ProjectOptions forced(kProjectAccuracy);
+    forced.setOption(ProjectOptions::ForceFullNewton);
+    forced.setOption(ProjectOptions::ForceProjection);
+    Vector no_error_estimate;
+    ProjectResults results;
+    system.prescribeU(state);
+    system.realize(state, Stage::Velocity);
+    // The velocity constraints are linear in u: one full Newton step solves them.
+    system.projectU(state, no_error_estimate, forced, results);
+}
+
 SimbodyMechanism::SimbodyMechanism(const RobotDescription& robot) : impl_(std::make_unique<Impl>(robot)) {}
 SimbodyMechanism::~SimbodyMechanism() = default;
 SimbodyMechanism::SimbodyMechanism(SimbodyMechanism&&) noexcept = default;
@@ -322,17 +357,7 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
         m.assemble(t, p, seed, p_prev, q_prev);
 
         // Velocities and accelerations with the platform's rate and acceleration prescribed.
-        {
-            ProjectOptions forced(kProjectAccuracy);
-            forced.setOption(ProjectOptions::ForceFullNewton);
-            forced.setOption(ProjectOptions::ForceProjection);
-            Vector no_error_estimate;
-            ProjectResults results;
-            m.system.prescribeU(m.state);
-            m.system.realize(m.state, Stage::Velocity);
-            // The velocity constraints are linear in u: one full Newton step solves them.
-            m.system.projectU(m.state, no_error_estimate, forced, results);
-        }
+        m.projectVelocities();
         m.system.realize(m.state, Stage::Acceleration);
 
         const Eigen::VectorXd q = toEigen(m.state.getQ());
@@ -383,5 +408,102 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
     }
     return out;
 }
+
+}  // namespace nocdyn::validation
+
+namespace nocdyn::validation {
+
+void SimbodyMechanism::resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d& pose_rate, double t) {
+    using namespace SimTK;
+    Impl& m = *impl_;
+    // assembled with the platform prescribed (the inverse-dynamics State), then copied over
+    m.motion->qdot = pose_rate;
+    m.motion->qdotdot.setZero();
+    m.state.setTime(t);
+    const Eigen::VectorXd home_q = Eigen::VectorXd::Zero(m.tree.nv);
+    m.assemble(t, pose, home_q, m.robot.home, home_q);
+    m.projectVelocities();
+    m.plant.setTime(t);
+    m.plant.updQ() = m.state.getQ();
+    m.plant.updU() = m.state.getU();
+    m.actuation.clearAllForces(m.plant);
+    m.run.reset();
+    m.system.realize(m.plant, Stage::Velocity);
+}
+
+void SimbodyMechanism::setActuatorForces(const Eigen::VectorXd& tau) {
+    using namespace SimTK;
+    Impl& m = *impl_;
+    if (tau.size() != static_cast<Eigen::Index>(m.actuated.size())) {
+        throw Error("Simbody plant: " + std::to_string(tau.size()) + " actuator forces for " +
+                    std::to_string(m.actuated.size()) + " actuators");
+    }
+    // the same application as the joint friction's: a mobility force along a tree joint's
+    // mobility (sign: reversed joints), equal and opposite torques across a closure joint
+    Vector mobility(m.plant.getNU(), 0.0);
+    Vector_<SpatialVec> body(m.matter.getNumBodies(), SpatialVec(Vec3(0), Vec3(0)));
+    for (std::size_t a = 0; a < m.actuated.size(); ++a) {
+        const JointFriction::Joint& j = m.friction->joints[m.actuated[a]];
+        const double f = tau[static_cast<Eigen::Index>(a)];
+        if (!j.closure) {
+            j.mobilizer.applyOneMobilityForce(m.plant, 0, j.sign * f, mobility);
+        } else {
+            j.outboard.applyBodyTorque(m.plant, Vec3(0, 0, f), body);
+            j.inboard.applyBodyTorque(m.plant, Vec3(0, 0, -f), body);
+        }
+    }
+    m.actuation.setAllMobilityForces(m.plant, mobility);
+    m.actuation.setAllBodyForces(m.plant, body);
+    m.run.stale = true;
+}
+
+void SimbodyMechanism::setIntegratorAccuracy(double accuracy) { impl_->run.setAccuracy(accuracy); }
+
+void SimbodyMechanism::advance(double dt) {
+    Impl& m = *impl_;
+    detail::advancePlant(m.system, *m.integrator, m.plant, m.run, dt);
+}
+
+double SimbodyMechanism::time() const { return impl_->plant.getTime(); }
+
+Eigen::VectorXd SimbodyMechanism::u() const {
+    const Eigen::VectorXd q = toEigen(impl_->plant.getQ());
+    Eigen::VectorXd out(static_cast<Eigen::Index>(impl_->actuated.size()));
+    for (std::size_t a = 0; a < impl_->actuated.size(); ++a)
+        out[static_cast<Eigen::Index>(a)] = impl_->rows.row(static_cast<Eigen::Index>(impl_->actuated[a])).dot(q);
+    return out;
+}
+
+Eigen::VectorXd SimbodyMechanism::du() const {
+    const Eigen::VectorXd v = toEigen(impl_->plant.getU());
+    Eigen::VectorXd out(static_cast<Eigen::Index>(impl_->actuated.size()));
+    for (std::size_t a = 0; a < impl_->actuated.size(); ++a)
+        out[static_cast<Eigen::Index>(a)] = impl_->rows.row(static_cast<Eigen::Index>(impl_->actuated[a])).dot(v);
+    return out;
+}
+
+Eigen::Vector3d SimbodyMechanism::pose() const {
+    const auto& i = impl_->tree.platform_v;
+    const SimTK::Vector& q = impl_->plant.getQ();
+    return Eigen::Vector3d(q[i[0]], q[i[1]], q[i[2]]) + impl_->robot.home;
+}
+
+Eigen::Vector3d SimbodyMechanism::poseRate() const {
+    const auto& i = impl_->tree.platform_v;
+    const SimTK::Vector& u = impl_->plant.getU();
+    return {u[i[0]], u[i[1]], u[i[2]]};
+}
+
+double SimbodyMechanism::kineticEnergy() const {
+    impl_->system.realize(impl_->plant, SimTK::Stage::Velocity);
+    return impl_->matter.calcKineticEnergy(impl_->plant);
+}
+
+double SimbodyMechanism::potentialEnergy() const {
+    impl_->system.realize(impl_->plant, SimTK::Stage::Dynamics);
+    return impl_->system.calcPotentialEnergy(impl_->plant) - impl_->potential_home;
+}
+
+long SimbodyMechanism::plantSteps() const { return impl_->run.steps(*impl_->integrator); }
 
 }  // namespace nocdyn::validation

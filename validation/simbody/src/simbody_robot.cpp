@@ -15,6 +15,7 @@
 #include <Simbody.h>
 
 #include "nocdyn/error.hpp"
+#include "plant_integration.hpp"
 
 namespace nocdyn::validation {
 namespace {
@@ -190,8 +191,7 @@ public:
     SimTK::State plant;          // no prescribed motion, actuator forces applied
     std::unique_ptr<SimTK::Assembler> assembler;
     std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
-    bool integrator_stale = true;
-    double integrator_accuracy = 1e-10;
+    detail::PlantIntegration run;
 
     Seed last_solution;  // continuation seed for the next assembly
 
@@ -531,7 +531,7 @@ void SimbodyRobot::resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d
     m.plant.updQ() = m.pose_driven.getQ();
     m.plant.updU() = m.pose_driven.getU();
     m.actuators.clearAllMobilityForces(m.plant);
-    m.integrator_stale = true;
+    m.run.stale = true;
     m.system.realize(m.plant, Stage::Velocity);
 }
 
@@ -541,41 +541,14 @@ void SimbodyRobot::setActuatorForces(const Eigen::Vector3d& tau) {
     for (int j = 0; j < 3; ++j) {
         m.actuators.setOneMobilityForce(m.plant, m.sliders[j], SimTK::MobilizerUIndex(0), tau[j]);
     }
-    m.integrator_stale = true;
+    m.run.stale = true;
 }
 
-void SimbodyRobot::setIntegratorAccuracy(double accuracy) {
-    if (!(accuracy > 0.0 && accuracy < 1.0)) {
-        throw Error("Simbody plant: integrator accuracy must lie in (0, 1)");
-    }
-    impl_->integrator_accuracy = accuracy;
-    impl_->integrator_stale = true;
-}
+void SimbodyRobot::setIntegratorAccuracy(double accuracy) { impl_->run.setAccuracy(accuracy); }
 
 void SimbodyRobot::advance(double dt) {
     Impl& m = *impl_;
-    if (!(dt >= 0.0) || !std::isfinite(dt)) {
-        throw Error("Simbody plant: advance() needs a finite dt >= 0, got " + std::to_string(dt));
-    }
-    if (dt == 0.0) return;
-    if (m.integrator_stale) {
-        m.integrator->setAccuracy(m.integrator_accuracy);
-        m.integrator->setConstraintTolerance(0.01 * m.integrator_accuracy);
-        m.integrator->setProjectInterpolatedStates(true);
-        m.integrator->initialize(m.plant);
-        m.integrator_stale = false;
-    }
-    const double target = m.plant.getTime() + dt;
-    try {
-        while (m.integrator->getTime() < target) {
-            m.integrator->stepTo(target);
-        }
-    } catch (const std::exception& ex) {
-        m.integrator_stale = true;
-        throw Error(std::string("Simbody plant: integration failed: ") + ex.what());
-    }
-    m.plant = m.integrator->getState();
-    m.system.realize(m.plant, SimTK::Stage::Velocity);
+    detail::advancePlant(m.system, *m.integrator, m.plant, m.run, dt);
 }
 
 double SimbodyRobot::time() const { return impl_->plant.getTime(); }

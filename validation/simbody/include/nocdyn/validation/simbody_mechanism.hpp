@@ -10,6 +10,10 @@
 // friction a Force::Custom (mobility forces on tree joints, opposite body torques across a
 // closure joint), so that Simbody's applied forces hold both.
 // See nocdyn/validation/detail/mechanism_common.hpp for how the actuator forces follow.
+// The same model is also a forward-dynamics plant (resetPlant, setActuatorForces, advance): a
+// second State in which the platform's Motion is disabled, the actuator forces held in a
+// Force::DiscreteForces (mobility forces on tree joints, opposite body torques across a closure
+// joint, as for friction), integrated by Simbody's Runge-Kutta-Merson integrator.
 // Shares only description.hpp and trajectory.hpp with nocdyn; Simbody stays private (pimpl).
 #pragma once
 
@@ -45,6 +49,34 @@ public:
 
     /// Number of actuated joints n.
     [[nodiscard]] int actuatorCount() const;
+
+    // ---- forward-dynamics plant (the platform free, the loops closed by the constraints,
+    // enforced by Simbody's integrator with projection). Independent of inverseDynamics. ----
+
+    /// Assembles the robot at `pose` with platform twist `pose_rate` = dp/dt [rad/s, m/s, m/s]
+    /// (the passive coordinates continued from home, as inverseDynamics does), at time t, with
+    /// zero actuator forces. Throws nocdyn::Error when the pose cannot be assembled.
+    void resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d& pose_rate = Eigen::Vector3d::Zero(),
+                    double t = 0.0);
+    /// Actuator forces (torques) along the actuated joint variables, on their outboard bodies,
+    /// file order, size n; held until changed (zero-order hold). Throws for a wrong size.
+    void setActuatorForces(const Eigen::VectorXd& tau);
+    /// Integrates forward dt >= 0 seconds (Runge-Kutta-Merson, error-controlled, constraints
+    /// projected). Throws nocdyn::Error naming the time when Simbody's integration fails.
+    void advance(double dt);
+    /// Integrator accuracy in (0, 1) (default 1e-10); the constraint tolerance is 1 % of it.
+    void setIntegratorAccuracy(double accuracy);
+
+    [[nodiscard]] double time() const;
+    [[nodiscard]] Eigen::VectorXd u() const;         ///< actuated joint variables, 0 at home [m or rad]
+    [[nodiscard]] Eigen::VectorXd du() const;        ///< their rates
+    [[nodiscard]] Eigen::Vector3d pose() const;      ///< [theta, x, y]
+    [[nodiscard]] Eigen::Vector3d poseRate() const;  ///< dp/dt
+    [[nodiscard]] double kineticEnergy() const;      ///< [J]
+    /// Gravity potential energy relative to the home posture [J].
+    [[nodiscard]] double potentialEnergy() const;
+    /// Integration steps Simbody took since the last resetPlant.
+    [[nodiscard]] long plantSteps() const;
 
 private:
     class Impl;
