@@ -307,7 +307,7 @@ TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
     const CliRun r = run("reproduce --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* file : {"paper1.csv", "paper2.csv", "paper1_displacements.png", "paper1_displacements.svg",
-                             "paper1_forces.png", "paper2_forces.svg", "summary.md"}) {
+                             "paper1_forces.png", "paper2_forces.svg", "workspace.png", "workspace.svg", "summary.md"}) {
         ASSERT_TRUE(fs::exists(out / file)) << file;
         EXPECT_GT(fs::file_size(out / file), 1000u) << file;
     }
@@ -323,6 +323,8 @@ TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
     const std::string summary = slurp(out / "summary.md");
     EXPECT_NE(summary.find("| paper1 | 1 |"), std::string::npos) << summary;
     EXPECT_NE(summary.find("262"), std::string::npos);
+    EXPECT_NE(summary.find("## Workspace"), std::string::npos);
+    EXPECT_NE(summary.find("has an area of"), std::string::npos);
     EXPECT_NE(slurp(out / "paper1_forces.svg").find("<svg"), std::string::npos);
 }
 

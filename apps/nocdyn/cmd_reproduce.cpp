@@ -1,24 +1,27 @@
 // nocdyn reproduce: the paper's results (Section V, Figs. 5 and 6) and the project's own
 // checks on them, written to one folder with a summary.md.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <memory>
+#include <numbers>
 #include <sstream>
 
 #include "commands.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/prr3/sampling.hpp"
+#include "nocdyn/sampling.hpp"
+#include "nocdyn/workspace.hpp"
 #include "plot.hpp"
 #include "reproduce_dynamics.hpp"
+#include "workspace_figure.hpp"
 #ifdef NOCDYN_HAS_ENGINES
 #include "engine_comparison.hpp"
 #include "nocdyn/io/examples.hpp"
-#include "nocdyn/sampling.hpp"
-#ifdef NOCDYN_HAS_ENGINES
 #include "nocdyn/validation/agreement.hpp"
-#endif
 #endif
 
 namespace nocdyn::cli {
@@ -196,6 +199,35 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
 }
 #endif
 
+/// The prototype's workspace at theta = 0 with the paper's trajectories' paths of C over it.
+void reproduceWorkspace(const std::filesystem::path& out, std::ostream& summary) {
+    const Model model{RobotParameters{}};
+    const WorkspaceMap map = workspaceMap(model, {0.0, 301});
+    std::vector<PlotSeries> paths;
+    const char* styles[] = {"lines lw 2 lc rgb '#2ca02c'", "lines lw 2 lc rgb '#9467bd'"};
+    double peak_theta = 0.0;
+    for (int k = 0; k < 2; ++k) {
+        const PoseTrajectory trajectory = k == 0 ? paperTrajectory1() : paperTrajectory2();
+        PlotSeries path{std::string("C along trajectory ") + (k == 0 ? "1" : "2") + " (theta varies)", {}, {},
+                        styles[k]};
+        for (const double t : sampleTimes(kDuration, 2000.0)) {
+            Pose p, dp, ddp;
+            trajectory.evaluate(t, p, dp, ddp);
+            path.x.push_back(p(1));
+            path.y.push_back(p(2));
+            peak_theta = std::max(peak_theta, std::abs(p(0)));
+        }
+        paths.push_back(std::move(path));
+    }
+    renderFigure(workspaceFigure(map, model, paths), (out / "workspace").string());
+    char line[160];
+    std::snprintf(line, sizeof line, " The trajectories turn the platform by up to %.3g deg as they go.\n\n",
+                  peak_theta * 180.0 / std::numbers::pi);
+    summary << "## Workspace\n\n" << workspaceSummary(map) << line
+            << "`workspace.{png,svg}`: the outline of that region, the singularity curves where they fall in the"
+            << " picture, and the paths of C along the paper's trajectories.\n\n";
+}
+
 void run(const ReproduceOptions& options) {
     const std::filesystem::path out(options.out);
     std::error_code error;
@@ -209,6 +241,7 @@ void run(const ReproduceOptions& options) {
     reproduceRoundTrip(model, summary);
     reproduceControl(model, out, summary);
     reproduceEnvelope(model, out, summary);
+    reproduceWorkspace(out, summary);
 #ifdef NOCDYN_HAS_ENGINES
     reproduceExampleRobots(out, summary);
 #endif
