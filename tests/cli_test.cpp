@@ -306,8 +306,9 @@ TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
     fs::remove_all(out);
     const CliRun r = run("reproduce --out " + out.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
-    for (const char* file : {"paper1.csv", "paper2.csv", "paper1_displacements.png", "paper1_displacements.svg",
-                             "paper1_forces.png", "paper2_forces.svg", "workspace.png", "workspace.svg", "summary.md"}) {
+    for (const char* file :
+         {"paper1.csv", "paper2.csv", "paper1_displacements.png", "paper1_displacements.svg", "paper1_forces.png",
+          "paper2_forces.svg", "workspace.png", "workspace.svg", "summary.md"}) {
         ASSERT_TRUE(fs::exists(out / file)) << file;
         EXPECT_GT(fs::file_size(out / file), 1000u) << file;
     }

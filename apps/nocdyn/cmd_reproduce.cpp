@@ -208,8 +208,8 @@ void reproduceWorkspace(const std::filesystem::path& out, std::ostream& summary)
     double peak_theta = 0.0;
     for (int k = 0; k < 2; ++k) {
         const PoseTrajectory trajectory = k == 0 ? paperTrajectory1() : paperTrajectory2();
-        PlotSeries path{std::string("C along trajectory ") + (k == 0 ? "1" : "2") + " (theta varies)", {}, {},
-                        styles[k]};
+        PlotSeries path{
+            std::string("C along trajectory ") + (k == 0 ? "1" : "2") + " (theta varies)", {}, {}, styles[k]};
         for (const double t : sampleTimes(kDuration, 2000.0)) {
             Pose p, dp, ddp;
             trajectory.evaluate(t, p, dp, ddp);
@@ -223,7 +223,8 @@ void reproduceWorkspace(const std::filesystem::path& out, std::ostream& summary)
     char line[160];
     std::snprintf(line, sizeof line, " The trajectories turn the platform by up to %.3g deg as they go.\n\n",
                   peak_theta * 180.0 / std::numbers::pi);
-    summary << "## Workspace\n\n" << workspaceSummary(map) << line
+    summary << "## Workspace\n\n"
+            << workspaceSummary(map) << line
             << "`workspace.{png,svg}`: the outline of that region, the singularity curves where they fall in the"
             << " picture, and the paths of C along the paper's trajectories.\n\n";
 }
