@@ -10,7 +10,8 @@
 #include <numbers>
 #include <utility>
 
-#include <Eigen/QR>
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <unsupported/Eigen/Polynomials>
 
 #include "nocdyn/limb_ik.hpp"
@@ -415,8 +416,16 @@ Centres centresAt(const Equations& eqs, double phi) {
     return out;
 }
 
-/// Gauss-Newton on every equation from z = (phi, C). Returns the final max |residual|.
-double polish(const Equations& eqs, Vector3& z) {
+/// Outcome of Gauss-Newton on the equations.
+struct NewtonResult {
+    double residual = std::numeric_limits<double>::infinity();  ///< final max |F_i|
+    int iterations = 0;
+    bool step_too_large = false;  ///< a step beyond max_step (phi [rad], C over L)
+    bool singular = false;        ///< rank-deficient Jacobian
+};
+
+/// Gauss-Newton on every equation from z = (phi, C), until the step is round-off.
+NewtonResult newton(const Equations& eqs, Vector3& z, int max_iterations, double max_step) {
     using Jacobian = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxActuators, 3>;
     using Residual = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators, 1>;
     Jacobian J(eqs.count, 3);
@@ -438,17 +447,39 @@ double polish(const Equations& eqs, Vector3& z) {
         }
         return F.cwiseAbs().maxCoeff();
     };
-    double residual = evaluate();
-    Eigen::ColPivHouseholderQR<Jacobian> qr(eqs.count, 3);
-    for (int it = 0; it < 30 && std::isfinite(residual); ++it) {
-        qr.compute(J);
-        if (qr.rank() < 3) break;
-        const Vector3 step = qr.solve(F);
+    NewtonResult out;
+    out.residual = evaluate();
+    // the equations are O(1) (lengths over L): a residual at round-off needs no further step
+    constexpr double kRoundOff = 1e-15;
+    for (; out.iterations < max_iterations && out.residual > kRoundOff && std::isfinite(out.residual);
+         ++out.iterations) {
+        Vector3 step;
+        if (eqs.count == 3) {
+            const Eigen::PartialPivLU<Matrix3> lu(J.topRows<3>());
+            step = lu.solve(F.head<3>());
+        } else {
+            // normal equations of the least-squares step (J^T J is 3 x 3)
+            const Matrix3 JtJ = J.transpose() * J;
+            const Eigen::LDLT<Matrix3> ldlt(JtJ);
+            if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().cwiseAbs().minCoeff() > 1e-14 * JtJ.norm())) {
+                out.singular = true;
+                break;
+            }
+            step = ldlt.solve(J.transpose() * F);
+        }
+        if (!(step.cwiseAbs().maxCoeff() <= max_step)) {
+            out.step_too_large = true;
+            break;
+        }
         z -= step;
-        residual = evaluate();
-        if (!(step.cwiseAbs().maxCoeff() > 1e-15 * (1.0 + z.cwiseAbs().maxCoeff()))) break;
+        out.residual = evaluate();
+        if (!(step.cwiseAbs().maxCoeff() > 1e-15 * (1.0 + z.cwiseAbs().maxCoeff()))) {
+            ++out.iterations;
+            break;
+        }
     }
-    return std::isfinite(residual) ? residual : std::numeric_limits<double>::infinity();
+    if (!std::isfinite(out.residual)) out.residual = std::numeric_limits<double>::infinity();
+    return out;
 }
 
 /// |u_a(p) - u_a| over the actuators of one limb solved on `branch`, scaled by the joint
@@ -553,7 +584,7 @@ Status directKinematics(const Model& model, Data& data, const ActuatorVector& u,
             Vector3 z(phi, centres.C[static_cast<std::size_t>(c)].x(), centres.C[static_cast<std::size_t>(c)].y());
             // three equations hold exactly at a mode; more (redundant actuation) may be
             // inconsistent, and the verification against `tolerance` decides
-            const double residual = polish(eqs, z);
+            const double residual = newton(eqs, z, 30, std::numeric_limits<double>::infinity()).residual;
             if (!(eqs.count == 3 ? residual <= 1e-8 : std::isfinite(residual))) continue;
             const Pose p(model.home(0) + z(0), L * z(1), L * z(2));
             AssemblyMode mode;
@@ -575,9 +606,12 @@ Status directKinematics(const Model& model, Data& data, const ActuatorVector& u,
 
 namespace {
 
-/// Why the tracker found no pose: next to a limb singularity (the edge of the workspace,
-/// where u turns back) or, otherwise, a lost mode.
-Status notTracked(const Model& model, const Data& data, int worst, double residual) {
+/// Why the tracker found no pose, from the velocity stage at its last iterate: a singular
+/// limb or actuation, or next to a limb singularity (the edge of the workspace, where u turns
+/// back), or otherwise a lost mode.
+Status notTracked(const Model& model, Data& data, const Pose& p, int worst, double residual) {
+    if (const Status status = inverseDisplacement(model, data, p); !status) return status;
+    if (const Status status = velocityFromPlatformTwist(model, data, Twist::Zero()); !status) return status;
     int limb = -1;
     double largest = 0.1 * model.max_condition;
     for (int j = 0; j < model.limbs; ++j) {
@@ -602,58 +636,40 @@ Status trackPose(const Model& model, Data& data, const ActuatorVector& u, Pose& 
         if (!std::isfinite(u(a)))
             return {StatusCode::not_finite, model.actuator_limb[static_cast<std::size_t>(a)], u(a)};
     }
+    for (int i = 0; i < 3; ++i) {
+        if (!std::isfinite(p(i))) return {StatusCode::not_finite, -1, p(i)};
+    }
+    // Newton on the locked limbs' equations (F(p) = 0 exactly where u(p) = u on some branches)
+    Equations eqs;
+    lockedLimbEquations(model, u, eqs);
     const double L = model.length_scale;
-    ActuatorVector r(n);  // u - u(p), scaled by the joint scales
-    ActuatorVector w(n);  // 1 / joint scale
+    Vector3 z(p(0) - model.home(0), p(1) / L, p(2) / L);
+    const NewtonResult newton_result = newton(eqs, z, options.max_iterations, options.max_step);
+    out.iterations = newton_result.iterations;
+    const Pose next(model.home(0) + z(0), L * z(1), L * z(2));
+    if (newton_result.step_too_large || newton_result.singular || !next.allFinite()) {
+        return notTracked(model, data, p, -1, newton_result.residual);
+    }
+    p = next;
+    // inverse displacement on the home branches: the pose is the working mode's if it gives u back
+    // (the angles of passive R joints are left to their cos and sin, all the later stages use)
+    if (const Status status = detail::positionStage(model, data, p, false); !status) return status;
+    int worst = -1;
+    out.residual = 0.0;
     for (int a = 0; a < n; ++a) {
         const auto aa = static_cast<std::size_t>(a);
-        w(a) = model.limb[static_cast<std::size_t>(model.actuator_limb[aa])]
-                   .inv_joint_scale[static_cast<std::size_t>(model.actuator_joint[aa])];
-    }
-    using Actuation = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxActuators, 3>;
-    Eigen::ColPivHouseholderQR<Actuation> qr(n, 3);
-    int worst = -1;
-    for (int it = 0;; ++it) {
-        if (const Status status = detail::positionStage(model, data, p, true); !status) return status;
-        for (int a = 0; a < n; ++a) {
-            const auto aa = static_cast<std::size_t>(a);
-            double d = u(a) - data.u(a);
-            if (model.limb[static_cast<std::size_t>(model.actuator_limb[aa])]
-                    .type[static_cast<std::size_t>(model.actuator_joint[aa])] == JointType::revolute) {
-                d = wrapAngle(d);
-            }
-            r(a) = d;
-        }
-        Eigen::Index worst_a = 0;
-        out.residual = (r.cwiseProduct(w)).cwiseAbs().maxCoeff(&worst_a);
-        worst = model.actuator_limb[static_cast<std::size_t>(worst_a)];
-        if (out.residual <= options.tolerance) return {};
-        if (it == options.max_iterations) break;
-        if (const Status status = detail::jacobianStage(model, data); !status) return status;
-        // du = A xi_P: xi_P = A^-1 r (three actuators) or the weighted least-squares solution
-        Twist xi;
-        if (model.coordinates == Coordinates::actuators) {
-            xi.noalias() = data.Xi * r;
-        } else {
-            const Actuation As = w.asDiagonal() * data.A;
-            qr.compute(As);
-            xi = qr.solve(r.cwiseProduct(w));
-        }
-        // xi_P = S(c) dp: dp = [omega; v_O + omega E c]
-        const Vector2 c = p.tail<2>();
-        const Pose dp(xi(0), xi(1) - xi(0) * c.y(), xi(2) + xi(0) * c.x());
-        const double size = std::max(std::abs(dp(0)), dp.tail<2>().cwiseAbs().maxCoeff() / L);
-        if (!(size <= options.max_step)) return notTracked(model, data, worst, out.residual);
-        p += dp;
-        ++out.iterations;
-        // least squares (redundant, inconsistent u): stationary once the step is round-off
-        if (model.coordinates == Coordinates::platform && size <= 1e-14) {
-            if (const Status status = detail::positionStage(model, data, p, true); !status) return status;
-            return out.residual <= options.max_residual ? Status{}
-                                                        : Status{StatusCode::assembly_mode_lost, worst, out.residual};
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(model.actuator_limb[aa])];
+        const auto k = static_cast<std::size_t>(model.actuator_joint[aa]);
+        double d = data.u(a) - u(a);
+        if (limb.type[k] == JointType::revolute) d = wrapAngle(d);
+        if (const double e = std::abs(d) * limb.inv_joint_scale[k]; worst < 0 || e > out.residual) {
+            out.residual = e;
+            worst = model.actuator_limb[aa];
         }
     }
-    return notTracked(model, data, worst, out.residual);
+    const double accepted = model.coordinates == Coordinates::platform ? options.max_residual : options.tolerance;
+    if (out.residual <= accepted) return {};
+    return notTracked(model, data, p, worst, out.residual);
 }
 
 }  // namespace nocdyn

@@ -209,8 +209,10 @@ void compareWithSearch(const Model& model, const Pose& p0, const std::string& wh
     for (const AssemblyMode& m : modes) tally.non_working += m.working ? 0 : 1;
 }
 
-/// Random robots of the given limb types; `per_robot` poses near home each.
-void randomRobots(const std::vector<std::string>& types, int actuators, int robots, Tally& tally, unsigned seed) {
+/// Random robots of the given limb types, each at one random pose within `reach` times
+/// (0.05 rad, 3 mm) of home.
+void randomRobots(const std::vector<std::string>& types, int actuators, int robots, Tally& tally, unsigned seed,
+                  double reach = 1.0) {
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     int made = 0;
@@ -223,7 +225,7 @@ void randomRobots(const std::vector<std::string>& types, int actuators, int robo
         const auto description = randomRobot(spec, rng);
         if (!description) continue;
         const Model model(*description);
-        const Pose p0 = model.home + Pose(0.05 * unit(rng), 0.003 * unit(rng), 0.003 * unit(rng));
+        const Pose p0 = model.home + reach * Pose(0.05 * unit(rng), 0.003 * unit(rng), 0.003 * unit(rng));
         Data data(model);
         if (!inverseDisplacement(model, data, p0) || !velocityFromPlatformTwist(model, data, Twist::Zero())) continue;
         ++made;
@@ -245,6 +247,9 @@ TEST(GeneralDirectKinematics, RandomRobotsOfEveryTypeMatchTheSearch) {
     unsigned seed = 100;
     for (const std::string& type : limbTypes()) randomRobots({type, type, type}, 3, 6, tally, seed++);
     randomRobots({"*", "*", "*"}, 3, 20, tally, seed++);
+    // farther from home: more modes, more of them off the home branches
+    for (const std::string& type : limbTypes()) randomRobots({type, type, type}, 3, 4, tally, seed++, 6.0);
+    randomRobots({"*", "*", "*"}, 3, 20, tally, seed++, 6.0);
     std::printf("%d robots, %d problems: %d modes (%d off the home branches), search %d, at most %d\n", tally.robots,
                 tally.problems, tally.modes, tally.non_working, tally.brute, tally.max_modes);
     EXPECT_GE(tally.modes, tally.brute);

@@ -38,10 +38,12 @@
 // it is reported on its home branch when it reaches the pose on it (its other branch is then
 // another assembly of that limb alone).
 //
-// Tracker (trackPose): Newton in pose space from the previous pose of the working mode,
-//   dp from  A S(c) dp = u - u(p)       (Gauss-Newton, in joint-scaled units, when n > 3)
-// with u(p) by inverseDisplacement on the home branches, so that it cannot jump to another
-// mode's branches.
+// Tracker (trackPose): Newton from the previous pose of the working mode on the same locked-limb
+// equations (Gauss-Newton when n > 3), which hold exactly where u(p) = u on some branches, then
+// inverse displacement on the home branches at the converged pose: the pose is accepted only
+// if it gives u back there, so that the tracker never jumps to another mode's branches. (The
+// equations cost a few flops per limb; Newton on u(p) through inverse displacement and the
+// actuation map A would cost a position and a velocity stage per step.)
 #pragma once
 
 #include <array>
@@ -98,8 +100,8 @@ Status directKinematics(const Model& model, Data& data, const ActuatorVector& u,
 
 struct TrackerOptions {
     int max_iterations = 20;
-    /// Converged when max_a |u_a(p) - u_a| / joint_scale_a <= tolerance (1 rad or
-    /// model.length_scale m per unit).
+    /// Accepted when max_a |u_a(p) - u_a| / joint_scale_a <= tolerance (1 rad or
+    /// model.length_scale m per unit), u(p) on the home branches.
     double tolerance = 1e-13;
     /// A Newton step larger than this (theta [rad], or C over model.length_scale, infinity
     /// norm) means the previous pose was too far away: the mode is considered lost.
@@ -116,14 +118,16 @@ struct TrackerReport {
 };
 
 /// Tracker of the working mode. p holds the previous pose on entry and the pose with actuator
-/// values u on success; `data` then holds the position stage at p (home branches) and the
-/// Jacobians of the last Newton step (not of p). Allocation-free, at most
-/// options.max_iterations steps. Fails with not_finite; with unreachable or singular_limb when
-/// an iterate is out of reach or a limb singular; with singular_actuation at a singular A;
-/// with workspace_edge when it does not converge next to a limb singularity (a limb's
-/// condition number within a factor 10 of model.max_condition: u out of the workspace there);
-/// else with assembly_mode_lost (value: the scaled residual). p is then left at the last
-/// iterate.
+/// values u on success; `data` then holds the position stage at p on the home branches, as
+/// inverseDisplacement leaves it except that passive R joints have cos q and sin q but not q.
+/// Allocation-free, at most options.max_iterations Newton steps. Fails with not_finite; with
+/// unreachable or singular_limb when the pose reached is out of reach of a limb on its home
+/// branch or a limb is singular there; with singular_actuation at a singular A; with
+/// workspace_edge when it does not converge next to a limb singularity (a limb's condition
+/// number within a factor 10 of model.max_condition: u beyond the workspace there); else with
+/// assembly_mode_lost (value: the scaled residual; e.g. Newton converged onto another branch).
+/// p is then left at the previous pose, or at the pose reached when that was verified and
+/// rejected.
 Status trackPose(const Model& model, Data& data, const ActuatorVector& u, Pose& p, const TrackerOptions& options = {},
                  TrackerReport* report = nullptr);
 
