@@ -198,10 +198,11 @@ Poly fromTrig(const Trig& f) { return {{f.k + f.c, 2.0 * f.s, f.k - f.c}, 3}; }
 Poly operator*(const Poly& a, const Poly& b) {
     Poly out;
     out.size = std::min(a.size + b.size - 1, Poly::kCapacity);
-    for (int i = 0; i < a.size; ++i)
-        for (int k = 0; k < b.size && i + k < Poly::kCapacity; ++k)
-            out.c[static_cast<std::size_t>(i + k)] +=
-                a.c[static_cast<std::size_t>(i)] * b.c[static_cast<std::size_t>(k)];
+    for (std::size_t i = 0; i < static_cast<std::size_t>(a.size); ++i) {
+        for (std::size_t k = 0; k < static_cast<std::size_t>(b.size) && i + k < out.c.size(); ++k) {
+            out.c[i + k] += a.c[i] * b.c[k];
+        }
+    }
     return out;
 }
 
