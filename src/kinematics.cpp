@@ -13,7 +13,7 @@ namespace nocdyn {
 namespace detail {
 
 NOCDYN_TARGET_CLONES
-Status positionStage(const Model& model, Data& data, const Pose& p, bool angles) {
+Status positionStage(const Model& model, Data& data, const Pose& p, bool angles, const int* branches) {
     for (int i = 0; i < 3; ++i) {
         if (!std::isfinite(p(i))) return {StatusCode::not_finite, -1, p(i)};
     }
@@ -26,7 +26,8 @@ Status positionStage(const Model& model, Data& data, const Pose& p, bool angles)
     for (int j = 0; j < model.limbs; ++j) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        if (const Status status = solveLimbData(limb, j, G, angles, ld); !status) return status;
+        const int branch = branches != nullptr ? branches[j] : limb.branch;
+        if (const Status status = solveLimbData(limb, j, G, branch, angles, ld); !status) return status;
         limbScrews(limb, ld);
         for (int k = 0; k < 3; ++k) {
             if (const int a = limb.actuator[static_cast<std::size_t>(k)]; a >= 0) data.u(a) = ld.q(k);
@@ -127,6 +128,10 @@ void jointAccelerations(const Model& model, Data& data) {
 
 Status inverseDisplacement(const Model& model, Data& data, const Pose& p) {
     return detail::positionStage(model, data, p, true);
+}
+
+Status inverseDisplacement(const Model& model, Data& data, const Pose& p, const LimbBranches& branches) {
+    return detail::positionStage(model, data, p, true, branches.data());
 }
 
 Status velocityFromPlatformTwist(const Model& model, Data& data, const Twist& t_M) {

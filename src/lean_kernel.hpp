@@ -143,13 +143,13 @@ NOCDYN_ALWAYS_INLINE auto jointScrew(const LimbModel& limb, const Move<S>& g, in
 template <LimbKind K>
 NOCDYN_ALWAYS_INLINE Status solveKind(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& js) {
     if constexpr (K == LimbKind::RRR)
-        return ik::solveRRR(limb, j, G, js);
+        return ik::solveRRR(limb, j, G, limb.branch, js);
     else if constexpr (K == LimbKind::PRR)
-        return ik::solvePRR(limb, j, G, js);
+        return ik::solvePRR(limb, j, G, limb.branch, js);
     else if constexpr (K == LimbKind::RPR)
-        return ik::solveRPR(limb, j, G, js);
+        return ik::solveRPR(limb, j, G, limb.branch, js);
     else if constexpr (K == LimbKind::RRP)
-        return ik::solveRRP(limb, j, G, js);
+        return ik::solveRRP(limb, j, G, limb.branch, js);
     else if constexpr (K == LimbKind::PRP)
         return ik::solvePRP(limb, j, G, js);
     else if constexpr (K == LimbKind::RPP)

@@ -8,7 +8,11 @@
 namespace nocdyn {
 
 Status solveLimb(const LimbModel& limb, int j, const PlatformDisplacement& G, bool angles, LimbData& out) {
-    return detail::solveLimbData(limb, j, G, angles, out);
+    return detail::solveLimbData(limb, j, G, limb.branch, angles, out);
+}
+
+Status solveLimb(const LimbModel& limb, int j, int branch, const PlatformDisplacement& G, bool angles, LimbData& out) {
+    return detail::solveLimbData(limb, j, G, branch, angles, out);
 }
 
 int homeBranch(const LimbModel& limb) {

@@ -101,7 +101,7 @@ inline Status unreachable(int j, double by) { return {StatusCode::unreachable, j
 inline Status singular(int j) { return {StatusCode::singular_limb, j, std::numeric_limits<double>::infinity()}; }
 
 /// RRR: the elbow P_2 where circle (r_1, L_1) meets circle (P_3 = G(r_3), L_2).
-inline Status solveRRR(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+inline Status solveRRR(const LimbModel& limb, int j, const PlatformDisplacement& G, int branch, JointSolution& out) {
     const Vector2& r1 = limb.point_home[0];
     const Vector2 P3 = G.apply(limb.point[2]);
     const Vector2 D = P3 - r1;
@@ -115,7 +115,7 @@ inline Status solveRRR(const LimbModel& limb, int j, const PlatformDisplacement&
     const double h2 = (L1 - a) * (L1 + a);
     if (!(h2 >= 0.0)) return unreachable(j, d > L1 + L2 ? d - (L1 + L2) : std::abs(L1 - L2) - d);
     const double h = std::sqrt(h2);
-    const Vector2 P2 = r1 + (a * inv_d) * D + (limb.branch * h * inv_d) * perp(D);
+    const Vector2 P2 = r1 + (a * inv_d) * D + (branch * h * inv_d) * perp(D);
     angleBetween(limb.point_home[1] - r1, P2 - r1, limb.inv_length1_sq, out.c(0), out.s(0));
     const Vector2 link = limb.point_home[2] - limb.point_home[1];
     const Vector2 turned(out.c(0) * link.x() - out.s(0) * link.y(), out.s(0) * link.x() + out.c(0) * link.y());
@@ -125,7 +125,7 @@ inline Status solveRRR(const LimbModel& limb, int j, const PlatformDisplacement&
 }
 
 /// PRR: the slider point P_2 = r_2 + q_1 d_1 at distance L_2 from P_3 = G(r_3) (the paper's limb).
-inline Status solvePRR(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+inline Status solvePRR(const LimbModel& limb, int j, const PlatformDisplacement& G, int branch, JointSolution& out) {
     const Vector2& d1 = limb.direction[0];
     const Vector2& r2 = limb.point_home[1];
     const Vector2 P3 = G.apply(limb.point[2]);
@@ -135,7 +135,7 @@ inline Status solvePRR(const LimbModel& limb, int j, const PlatformDisplacement&
     const double L2 = limb.length2;
     const double h2 = (L2 - delta) * (L2 + delta);
     if (!(h2 >= 0.0)) return unreachable(j, std::abs(delta) - L2);
-    out.q(0) = foot - limb.branch * std::sqrt(h2);
+    out.q(0) = foot - branch * std::sqrt(h2);
     const Vector2 P2 = r2 + out.q(0) * d1;
     angleBetween(limb.point_home[2] - r2, P3 - P2, limb.inv_length2_sq, out.c(1), out.s(1));
     remainingAngle(G, out, 2);
@@ -143,7 +143,7 @@ inline Status solvePRR(const LimbModel& limb, int j, const PlatformDisplacement&
 }
 
 /// RPR: in the first body's frame, r_3 slides along d_2 to distance |G(r_3) - r_1| from r_1.
-inline Status solveRPR(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+inline Status solveRPR(const LimbModel& limb, int j, const PlatformDisplacement& G, int branch, JointSolution& out) {
     const Vector2& r1 = limb.point_home[0];
     const Vector2& d2 = limb.direction[1];
     const Vector2 a = limb.point_home[2] - r1;
@@ -153,14 +153,14 @@ inline Status solveRPR(const LimbModel& limb, int j, const PlatformDisplacement&
     const double h2 = rho2 - delta * delta;
     if (!(h2 >= 0.0)) return unreachable(j, std::abs(delta) - std::sqrt(rho2));
     if (!(rho2 > kTiny)) return singular(j);
-    out.q(1) = -dot(a, d2) + limb.branch * std::sqrt(h2);
+    out.q(1) = -dot(a, d2) + branch * std::sqrt(h2);
     angleBetween(a + out.q(1) * d2, W, 1.0 / rho2, out.c(0), out.s(0));
     remainingAngle(G, out, 2);
     return {};
 }
 
 /// RRP: the elbow P_2 = G(r_2) - q_3 Rot(dtheta) d_3 on the circle (r_1, L_1).
-inline Status solveRRP(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& out) {
+inline Status solveRRP(const LimbModel& limb, int j, const PlatformDisplacement& G, int branch, JointSolution& out) {
     const Vector2& r1 = limb.point_home[0];
     const Vector2 Gr2 = G.apply(limb.point[1]);
     const Vector2 w = -G.rotate(limb.direction[2]);
@@ -169,7 +169,7 @@ inline Status solveRRP(const LimbModel& limb, int j, const PlatformDisplacement&
     const double L1 = limb.length1;
     const double h2 = (L1 - delta) * (L1 + delta);
     if (!(h2 >= 0.0)) return unreachable(j, std::abs(delta) - L1);
-    out.q(2) = foot + limb.branch * std::sqrt(h2);
+    out.q(2) = foot + branch * std::sqrt(h2);
     const Vector2 P2 = Gr2 + out.q(2) * w;
     angleBetween(limb.point_home[1] - r1, P2 - r1, limb.inv_length1_sq, out.c(0), out.s(0));
     remainingAngle(G, out, 1);
@@ -215,20 +215,21 @@ inline Status solvePPR(const LimbModel& limb, int j, const PlatformDisplacement&
 
 using ik::atan2Of;
 
-/// Solves limb `j` for its joint variables on its home branch (angles of R joints not
-/// computed: only their cos and sin). Fails with unreachable or singular_limb.
-NOCDYN_ALWAYS_INLINE Status solveJoints(const LimbModel& limb, int j, const PlatformDisplacement& G,
+/// Solves limb `j` for its joint variables on `branch` (+1 or -1; ignored by the types with
+/// one solution; limb.branch is the home branch). Angles of R joints are not computed: only
+/// their cos and sin. Fails with unreachable or singular_limb.
+NOCDYN_ALWAYS_INLINE Status solveJoints(const LimbModel& limb, int j, const PlatformDisplacement& G, int branch,
                                         JointSolution& out) {
     using namespace ik;
     switch (limb.kind) {
         case LimbKind::RRR:
-            return solveRRR(limb, j, G, out);
+            return solveRRR(limb, j, G, branch, out);
         case LimbKind::PRR:
-            return solvePRR(limb, j, G, out);
+            return solvePRR(limb, j, G, branch, out);
         case LimbKind::RPR:
-            return solveRPR(limb, j, G, out);
+            return solveRPR(limb, j, G, branch, out);
         case LimbKind::RRP:
-            return solveRRP(limb, j, G, out);
+            return solveRRP(limb, j, G, branch, out);
         case LimbKind::PRP:
             return solvePRP(limb, j, G, out);
         case LimbKind::RPP:
@@ -241,10 +242,10 @@ NOCDYN_ALWAYS_INLINE Status solveJoints(const LimbModel& limb, int j, const Plat
 }
 
 /// solveLimb (limb_ik.hpp), inlined into the position stage.
-NOCDYN_ALWAYS_INLINE Status solveLimbData(const LimbModel& limb, int j, const PlatformDisplacement& G, bool angles,
-                                          LimbData& out) {
+NOCDYN_ALWAYS_INLINE Status solveLimbData(const LimbModel& limb, int j, const PlatformDisplacement& G, int branch,
+                                          bool angles, LimbData& out) {
     JointSolution solution;
-    if (const Status status = solveJoints(limb, j, G, solution); !status) return status;
+    if (const Status status = solveJoints(limb, j, G, branch, solution); !status) return status;
     for (int k = 0; k < 3; ++k) {
         out.q(k) = solution.q(k);
         out.cos_q(k) = solution.c(k);

@@ -23,8 +23,9 @@
 
 namespace nocdyn::detail {
 
-/// Position stage; R angles are computed only when `angles` (or the joint is actuated).
-Status positionStage(const Model& model, Data& data, const Pose& p, bool angles);
+/// Position stage; R angles are computed only when `angles` (or the joint is actuated). Limb j
+/// is solved on branches[j], or on its home branch when `branches` is null.
+Status positionStage(const Model& model, Data& data, const Pose& p, bool angles, const int* branches = nullptr);
 /// J_j, J_j^-1, their conditioning, A, Xi (actuator coordinates) and cond_A.
 Status jacobianStage(const Model& model, Data& data);
 /// Joint rates, body twists, screw rates and du from xi_P.

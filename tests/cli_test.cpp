@@ -8,6 +8,7 @@
 #include <sys/wait.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -327,6 +328,39 @@ TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
     EXPECT_NE(summary.find("## Workspace"), std::string::npos);
     EXPECT_NE(summary.find("has an area of"), std::string::npos);
     EXPECT_NE(slurp(out / "paper1_forces.svg").find("<svg"), std::string::npos);
+}
+
+TEST(Cli, ForwardKinematicsTakesAnyRobotFile) {
+    const std::string robots = std::string(NOCDYN_SOURCE_DIR) + "/robots/";
+    // the 3-RRR at u(home) = 0: home is a working mode, every pose with its limbs' branches
+    CliRun r = run("forward-kinematics 0 0 0 --all-branches --json --robot " + robots + "3-rrr.yaml");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto json = nlohmann::json::parse(r.out);
+    ASSERT_GE(json["solutions"].size(), 1U);
+    EXPECT_EQ(json["solutions_all_branches"].get<int>(), static_cast<int>(json["solutions"].size()));
+    bool home = false;
+    for (const auto& s : json["solutions"]) {
+        EXPECT_EQ(s["branch"].size(), 3U);
+        EXPECT_LE(s["u_error"].get<double>(), 1e-12);
+        home =
+            home || (std::abs(s["pose"]["theta"].get<double>()) < 1e-12 &&
+                     std::abs(s["pose"]["x"].get<double>()) < 1e-12 && std::abs(s["pose"]["y"].get<double>()) < 1e-12);
+    }
+    EXPECT_TRUE(home) << r.out;
+    // four values for the redundant 4-RRR
+    r = run("forward-kinematics 0 0 0 0 --robot " + robots + "4-rrr.yaml");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("1. theta = "), std::string::npos) << r.out;
+    // the wrong number of values: one line, exit 2
+    r = run("forward-kinematics 0 0 --robot " + robots + "3-rpr.yaml");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("has 3 actuators: give 3 values"), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+    // legs a metre longer: no assembly is not an error
+    r = run("forward-kinematics 1 1 1 --robot " + robots + "3-rpr.yaml");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("real solutions: 0"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("cannot assemble"), std::string::npos) << r.out;
 }
 
 }  // namespace

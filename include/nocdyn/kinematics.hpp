@@ -10,6 +10,8 @@
 // None of these functions allocates, throws or logs; failures are a Status naming the limb.
 #pragma once
 
+#include <array>
+
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 
@@ -30,6 +32,14 @@ namespace nocdyn {
 /// Fails with unreachable (limb, by how much) or singular_limb (a limb with a unique
 /// solution whose equations are singular), or not_finite.
 Status inverseDisplacement(const Model& model, Data& data, const Pose& p);
+
+/// Inverse-kinematics branch of every limb (as LimbModel::branch: +1 or -1, 0 for limbs with
+/// one solution), for the assembly modes other than the working one.
+using LimbBranches = std::array<int, kMaxLimbs>;
+
+/// The position stage with limb j on branches[j] instead of its home branch. The velocity and
+/// later stages then hold for that assembly mode.
+Status inverseDisplacement(const Model& model, Data& data, const Pose& p, const LimbBranches& branches);
 
 /// Velocity stage from the platform twist t_M = dp/dt: J_j, J_j^-1 and their conditioning,
 /// A, xi_P, joint rates, body twists, screw rates and du = A xi_P.

@@ -34,6 +34,9 @@ struct PlatformDisplacement {
 /// when `angles` is set or the joint is actuated (the rest of the model needs only cos and
 /// sin). Fails with unreachable (value: distance out of reach [m]) or singular_limb.
 Status solveLimb(const LimbModel& limb, int j, const PlatformDisplacement& G, bool angles, LimbData& out);
+/// The same on a chosen branch (+1 or -1; limb.branch is the home branch, and the types with
+/// one solution ignore it): the limb's other assembly for the same platform pose.
+Status solveLimb(const LimbModel& limb, int j, int branch, const PlatformDisplacement& G, bool angles, LimbData& out);
 
 /// The branch (+1 / -1, 0 for single-solution types) a limb has at home; 0 also when the
 /// home posture is a branch point (then the Model reports the limb singular at home).

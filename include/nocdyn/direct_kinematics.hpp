@@ -1,0 +1,134 @@
+// Direct kinematics of the general planar parallel robot (model.hpp): actuator values u ->
+// every platform pose p = [theta, x, y] the robot assembles in, with every limb's branch.
+//
+// Constraints. With its actuated joints locked, limb j (product of exponentials from home,
+// D = E_1(q_1) E_2(q_2) E_3(q_3), D the platform's displacement from home) is a chain of
+// 3 - a_j passive joints and restricts D by a_j scalar equations. Moving the locked motions
+// to the ends of the chain (E_a F E_b = E_a (F E_b F^-1) F), the passive joints a < b leave:
+//   R R   a platform point at a fixed distance from a base point            (circle)
+//   P R   a platform point on a base-fixed line                            (linear in C)
+//   R P   a platform-fixed line through a base point                        (linear in C)
+//   P P   the platform's orientation                                       (theta fixed)
+//   R     a platform point on a base point (two linear equations)
+//   P     the orientation and a platform point on a base-fixed line
+//   none  the whole pose (a_j = 3).
+// For a fixed angle phi = theta - theta_home every equation reads
+//   kappa |C|^2 + a(phi) . C + b(phi) = 0,   kappa in {0, 1},
+// with a and b linear in cos phi and sin phi: the circles share |C|^2, so their pairwise
+// differences are linear in C.
+//
+// Elimination (no orientation equation). Two linear equations (or circle differences) give
+// C = N(t) / Delta(t) by Cramer's rule, t = tan(phi / 2), after multiplying through by
+// w = 1 + t^2; substituting into a third (a circle, or a linear equation) leaves one
+// polynomial in t of degree <= 10 (<= 6 for three linear ones). Its roots are the eigenvalues
+// of the balanced companion matrix (Eigen's PolynomialSolver, fixed size: no allocation); the
+// real ones, and phi = pi (t = oo), are candidates. With an orientation equation, phi is known
+// and C solves the rest (two lines, or a line and a circle). Each candidate's C comes from the
+// best-conditioned pair of linear equations at its phi (or a line meeting a circle when only
+// one is independent there), is polished by Gauss-Newton on every equation, and is kept only
+// if inverse displacement, on the branch of each limb that reproduces the limb's actuator
+// values, gives back u to `tolerance`. Redundant actuation (n > 3): three equations are
+// eliminated and the rest are checked by the same verification (the residual is reported).
+//
+// Degenerate cases: when every choice of three equations leaves a polynomial that vanishes
+// identically (the pose is not isolated: an architecture singularity, e.g. a 3-RRR whose base
+// and platform triangles are similar with equal legs, or a limb of two parallel P joints),
+// `degenerate` is set and only the isolated candidates found at phi = pi and at the orientation
+// fixed by a P P limb are returned. A limb without actuated joints does not restrict the pose;
+// it is reported on its home branch when it reaches the pose on it (its other branch is then
+// another assembly of that limb alone).
+//
+// Tracker (trackPose): Newton from the previous pose of the working mode on the same locked-limb
+// equations (Gauss-Newton when n > 3), which hold exactly where u(p) = u on some branches, then
+// inverse displacement on the home branches at the converged pose: the pose is accepted only
+// if it gives u back there, so that the tracker never jumps to another mode's branches. (The
+// equations cost a few flops per limb; Newton on u(p) through inverse displacement and the
+// actuation map A would cost a position and a velocity stage per step.)
+#pragma once
+
+#include <array>
+
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/status.hpp"
+
+namespace nocdyn {
+
+/// Capacity of AssemblyModes: the degree-10 elimination polynomial has at most 10 real roots,
+/// and t = oo is one more candidate.
+inline constexpr int kMaxAssemblyModes = 12;
+
+/// One real solution of the direct kinematics.
+struct AssemblyMode {
+    Pose p = Pose::Zero();  ///< [theta in (-pi, pi], x, y]
+    LimbBranches branch{};  ///< each limb's inverse-kinematics branch (as LimbModel::branch)
+    bool working = false;   ///< every limb on its home branch (the mode of inverseDisplacement)
+    /// max over the actuators of |u_a(p) - u_a| by inverseDisplacement on `branch`, R joints
+    /// modulo 2 pi [m or rad].
+    double u_error = 0.0;
+    /// Largest scaled condition number of the limb Jacobians J_j and of the actuation map at p
+    /// (large next to a singularity, where a mode is sensitive to u).
+    double condition = 0.0;
+};
+
+/// Every assembly mode (fixed capacity, sorted by theta).
+struct AssemblyModes {
+    std::array<AssemblyMode, kMaxAssemblyModes> mode{};
+    int count = 0;
+    /// The elimination polynomial vanished identically for every choice of equations (see the
+    /// header): the modes listed may be incomplete, or the pose not isolated.
+    bool degenerate = false;
+    /// More modes were found than the capacity holds (not expected; the extra ones are dropped).
+    bool truncated = false;
+
+    [[nodiscard]] const AssemblyMode* begin() const { return mode.data(); }
+    [[nodiscard]] const AssemblyMode* end() const { return mode.data() + count; }
+};
+
+struct DirectKinematicsOptions {
+    /// Largest accepted |u_a(p) - u_a| of a mode [m or rad] (its round-off is ~1e-15 times
+    /// the conditioning; redundant robots: how far from consistent u may be).
+    double tolerance = 1e-9;
+};
+
+/// Every platform pose with actuator values u (model.actuators of them, file order), each
+/// verified by inverse displacement on its limbs' branches. `data` is workspace (on return it
+/// holds the position stage of the last candidate checked). Allocation-free. Fails only with
+/// not_finite (an input u not finite); no assembly is ok with modes.count = 0.
+Status directKinematics(const Model& model, Data& data, const ActuatorVector& u, AssemblyModes& modes,
+                        const DirectKinematicsOptions& options = {});
+
+struct TrackerOptions {
+    int max_iterations = 20;
+    /// Accepted when max_a |u_a(p) - u_a| / joint_scale_a <= tolerance (1 rad or
+    /// model.length_scale m per unit), u(p) on the home branches.
+    double tolerance = 1e-13;
+    /// A Newton step larger than this (theta [rad], or C over model.length_scale, infinity
+    /// norm) means the previous pose was too far away: the mode is considered lost.
+    double max_step = 0.05;
+    /// Redundant robots: the least-squares pose is accepted when the remaining scaled residual
+    /// is at most this (inconsistent u beyond it is reported as assembly_mode_lost).
+    double max_residual = 1e-6;
+};
+
+/// What one call of trackPose did.
+struct TrackerReport {
+    int iterations = 0;     ///< Newton steps taken
+    double residual = 0.0;  ///< final max_a |u_a(p) - u_a| / joint_scale_a
+};
+
+/// Tracker of the working mode. p holds the previous pose on entry and the pose with actuator
+/// values u on success; `data` then holds the position stage at p on the home branches, as
+/// inverseDisplacement leaves it except that passive R joints have cos q and sin q but not q.
+/// Allocation-free, at most options.max_iterations Newton steps. Fails with not_finite; with
+/// unreachable or singular_limb when the pose reached is out of reach of a limb on its home
+/// branch or a limb is singular there; with singular_actuation at a singular A; with
+/// workspace_edge when it does not converge next to a limb singularity (a limb's condition
+/// number within a factor 10 of model.max_condition: u beyond the workspace there); else with
+/// assembly_mode_lost (value: the scaled residual; e.g. Newton converged onto another branch).
+/// p is then left at the previous pose, or at the pose reached when that was verified and
+/// rejected.
+Status trackPose(const Model& model, Data& data, const ActuatorVector& u, Pose& p, const TrackerOptions& options = {},
+                 TrackerReport* report = nullptr);
+
+}  // namespace nocdyn

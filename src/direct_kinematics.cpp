@@ -1,0 +1,676 @@
+// Direct kinematics of the general model: constraints of the locked limbs, elimination to a
+// polynomial in tan(phi / 2), polishing, verification by inverse displacement on each limb's
+// branch; and the Newton tracker of the working mode (see the header).
+#include "nocdyn/direct_kinematics.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+#include <limits>
+#include <numbers>
+#include <utility>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <unsupported/Eigen/Polynomials>
+
+#include "nocdyn/limb_ik.hpp"
+#include "stages.hpp"
+
+namespace nocdyn {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+using detail::Displacement;
+
+/// Angle in (-pi, pi].
+double wrapAngle(double a) {
+    a = std::remainder(a, 2.0 * kPi);
+    return a <= -kPi ? a + 2.0 * kPi : a;
+}
+
+/// g^-1: x -> Rot^T (x - t).
+Displacement inverse(const Displacement& g) {
+    const Displacement back{g.c, -g.s, Vector2::Zero()};
+    return {g.c, -g.s, -back.rotate(g.t)};
+}
+
+/// exp of joint k's home screw times q: a rotation about r_k or a translation along d_k.
+Displacement jointMotion(const LimbModel& limb, int k, double q) {
+    const auto kk = static_cast<std::size_t>(k);
+    if (limb.type[kk] == JointType::prismatic) return {1.0, 0.0, q * limb.direction[kk]};
+    Displacement g{std::cos(q), std::sin(q), Vector2::Zero()};
+    g.t = limb.point_home[kk] - g.rotate(limb.point_home[kk]);
+    return g;
+}
+
+/// k + c cos(phi) + s sin(phi).
+struct Trig {
+    double k = 0.0, c = 0.0, s = 0.0;
+    [[nodiscard]] double at(double cs, double sn) const { return k + c * cs + s * sn; }
+    [[nodiscard]] double derivative(double cs, double sn) const { return s * cs - c * sn; }
+    Trig operator-(const Trig& o) const { return {k - o.k, c - o.c, s - o.s}; }
+};
+
+/// kappa |C|^2 + a(phi) . C + b(phi) = 0 (C over the length scale), or phi = phi0.
+struct Equation {
+    bool orientation = false;
+    double phi0 = 0.0;
+    double kappa = 0.0;
+    Trig ax, ay, b;
+
+    Equation operator-(const Equation& o) const { return {false, 0.0, kappa - o.kappa, ax - o.ax, ay - o.ay, b - o.b}; }
+};
+
+/// Every locked limb gives one equation per actuated joint.
+struct Equations {
+    std::array<Equation, kMaxActuators> eq{};
+    int count = 0;
+    void add(const Equation& e) {
+        if (count < kMaxActuators) eq[static_cast<std::size_t>(count++)] = e;
+    }
+};
+
+/// Platform point P (from C, home axes) on the base line through B normal to n:
+/// n . (Rot(phi) P + C - B) = 0.
+Equation pointOnLine(const Vector2& n, const Vector2& P, const Vector2& B) {
+    return {false, 0.0, 0.0, {n.x(), 0.0, 0.0}, {n.y(), 0.0, 0.0}, {-n.dot(B), n.dot(P), cross(P, n)}};
+}
+
+/// Base point B on the platform line through P (from C, home axes) normal to m (home axes):
+/// (Rot(phi) m) . (B - C) - m . P = 0.
+Equation lineThroughPoint(const Vector2& m, const Vector2& P, const Vector2& B) {
+    return {false, 0.0, 0.0, {0.0, -m.x(), m.y()}, {0.0, -m.y(), -m.x()}, {-m.dot(P), m.dot(B), cross(m, B)}};
+}
+
+/// Platform point P at distance rho from base point B: |Rot(phi) P + C - B|^2 = rho^2.
+Equation circle(const Vector2& P, const Vector2& B, double rho) {
+    return {false,
+            0.0,
+            1.0,
+            {-2.0 * B.x(), 2.0 * P.x(), -2.0 * P.y()},
+            {-2.0 * B.y(), 2.0 * P.y(), 2.0 * P.x()},
+            {P.squaredNorm() + B.squaredNorm() - rho * rho, -2.0 * B.dot(P), -2.0 * cross(P, B)}};
+}
+
+Equation orientation(const Displacement& g) {
+    Equation e;
+    e.orientation = true;
+    e.phi0 = std::atan2(g.s, g.c);
+    return e;
+}
+
+/// The equations of every locked limb (see the header), lengths over L.
+void lockedLimbEquations(const Model& model, const ActuatorVector& u, Equations& out) {
+    const double inv_L = 1.0 / model.length_scale;
+    const Vector2 C_home = model.home.tail<2>();
+    const Vector2 ex = Vector2::UnitX(), ey = Vector2::UnitY();
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        std::array<Displacement, 3> F{};
+        std::array<int, 3> passive{};
+        int n_passive = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int a = limb.actuator[static_cast<std::size_t>(k)];
+            if (a >= 0) {
+                F[static_cast<std::size_t>(k)] = jointMotion(limb, k, u(a));
+            } else {
+                passive[static_cast<std::size_t>(n_passive++)] = k;
+            }
+        }
+        // the locked motions before, between and after the passive joints
+        const auto product = [&](int from, int to) {
+            Displacement g;
+            for (int k = from; k < to; ++k) g = g.then(F[static_cast<std::size_t>(k)]);
+            return g;
+        };
+        const auto type = [&](int k) { return limb.type[static_cast<std::size_t>(k)]; };
+        const auto point = [&](int k) { return limb.point_home[static_cast<std::size_t>(k)]; };
+        const auto direction = [&](int k) { return limb.direction[static_cast<std::size_t>(k)]; };
+        const auto scaled = [&](const Vector2& x) -> Vector2 { return inv_L * x; };
+        if (n_passive == 3) continue;
+        if (n_passive == 0) {
+            // D = F_1 F_2 F_3: the orientation and C = D(C_home)
+            const Displacement L = product(0, 3);
+            out.add(orientation(L));
+            out.add(pointOnLine(ex, Vector2::Zero(), scaled(L.apply(C_home))));
+            out.add(pointOnLine(ey, Vector2::Zero(), scaled(L.apply(C_home))));
+            continue;
+        }
+        if (n_passive == 1) {
+            // D = Lf exp(s_a q) Rf
+            const int a = passive[0];
+            const Displacement Lf = product(0, a), Rf = product(a + 1, 3);
+            if (type(a) == JointType::revolute) {
+                // the platform point on the joint's axis stays on its base position Lf(r_a)
+                const Vector2 P = scaled(inverse(Rf).apply(point(a)) - C_home);
+                const Vector2 B = scaled(Lf.apply(point(a)));
+                out.add(pointOnLine(ex, P, B));
+                out.add(pointOnLine(ey, P, B));
+            } else {
+                // a translation along Rot(Lf) d_a: the orientation of Lf Rf, C_home on a line
+                const Displacement LR = Lf.then(Rf);
+                out.add(orientation(LR));
+                out.add(pointOnLine(perp(Lf.rotate(direction(a))), Vector2::Zero(), scaled(LR.apply(C_home))));
+            }
+            continue;
+        }
+        // two passive joints a < b: D = Lf exp(s_a q_a) exp(s_b' q_b) Rt, s_b' = Mf s_b
+        const int a = passive[0], b = passive[1];
+        const Displacement Lf = product(0, a), Mf = product(a + 1, b), Rt = Mf.then(product(b + 1, 3));
+        const Displacement Rt_inv = inverse(Rt);
+        const bool ra = type(a) == JointType::revolute, rb = type(b) == JointType::revolute;
+        if (ra && rb) {
+            const Vector2 beta = Mf.apply(point(b));
+            out.add(circle(scaled(Rt_inv.apply(beta) - C_home), scaled(Lf.apply(point(a))),
+                           inv_L * (beta - point(a)).norm()));
+        } else if (!ra && rb) {
+            const Vector2 beta = Mf.apply(point(b));
+            out.add(pointOnLine(perp(Lf.rotate(direction(a))), scaled(Rt_inv.apply(beta) - C_home),
+                                scaled(Lf.apply(beta))));
+        } else if (ra && !rb) {
+            const Vector2 e = Rt_inv.rotate(Mf.rotate(direction(b)));
+            out.add(lineThroughPoint(perp(e), scaled(Rt_inv.apply(point(a)) - C_home), scaled(Lf.apply(point(a)))));
+        } else {
+            out.add(orientation(Lf.then(Rt)));
+        }
+    }
+}
+
+/// Polynomial in t, ascending powers, degree <= 10.
+struct Poly {
+    static constexpr int kCapacity = 11;
+    std::array<double, kCapacity> c{};
+    int size = 0;
+
+    [[nodiscard]] double maxAbs() const {
+        double m = 0.0;
+        for (int i = 0; i < size; ++i) m = std::max(m, std::abs(c[static_cast<std::size_t>(i)]));
+        return m;
+    }
+};
+
+/// w (k + c cos + s sin), w = 1 + t^2: cos = (1 - t^2) / w, sin = 2 t / w.
+Poly fromTrig(const Trig& f) { return {{f.k + f.c, 2.0 * f.s, f.k - f.c}, 3}; }
+
+Poly operator*(const Poly& a, const Poly& b) {
+    Poly out;
+    out.size = std::min(a.size + b.size - 1, Poly::kCapacity);
+    for (std::size_t i = 0; i < static_cast<std::size_t>(a.size); ++i) {
+        for (std::size_t k = 0; k < static_cast<std::size_t>(b.size) && i + k < out.c.size(); ++k) {
+            out.c[i + k] += a.c[i] * b.c[k];
+        }
+    }
+    return out;
+}
+
+Poly combine(const Poly& a, double sb, const Poly& b) {
+    Poly out;
+    out.size = std::max(a.size, b.size);
+    for (int i = 0; i < a.size; ++i) out.c[static_cast<std::size_t>(i)] += a.c[static_cast<std::size_t>(i)];
+    for (int i = 0; i < b.size; ++i) out.c[static_cast<std::size_t>(i)] += sb * b.c[static_cast<std::size_t>(i)];
+    return out;
+}
+
+Poly operator+(const Poly& a, const Poly& b) { return combine(a, 1.0, b); }
+Poly operator-(const Poly& a, const Poly& b) { return combine(a, -1.0, b); }
+
+/// Candidate angles phi: at most kCapacity roots plus pi.
+struct Angles {
+    std::array<double, Poly::kCapacity + 1> phi{};
+    int count = 0;
+    void add(double a) {
+        if (count < static_cast<int>(phi.size())) phi[static_cast<std::size_t>(count++)] = a;
+    }
+};
+
+/// Divides out the factors w = 1 + t^2 (roots +-i, which the circles bring) while the
+/// remainder is round-off: fewer eigenvalues to compute, none of them spurious.
+void deflateImaginaryUnit(Poly& f) {
+    while (f.size > 3) {
+        const double scale = f.maxAbs();
+        // f = (t^2 + 1) q + r, synthetic division from the top
+        Poly q;
+        q.size = f.size - 2;
+        std::array<double, Poly::kCapacity> rem = f.c;
+        for (int i = f.size - 1; i >= 2; --i) {
+            const double qi = rem[static_cast<std::size_t>(i)];
+            q.c[static_cast<std::size_t>(i - 2)] = qi;
+            rem[static_cast<std::size_t>(i)] = 0.0;
+            rem[static_cast<std::size_t>(i - 2)] -= qi;
+        }
+        if (std::abs(rem[0]) + std::abs(rem[1]) > 1e-12 * scale) return;
+        f = q;
+    }
+}
+
+template <int Deg>
+void realRootsOfDegree(const Poly& f, Angles& out) {
+    Eigen::Matrix<double, Deg + 1, 1> coefficients;
+    for (int i = 0; i <= Deg; ++i) coefficients(i) = f.c[static_cast<std::size_t>(i)];
+    Eigen::PolynomialSolver<double, Deg> solver;
+    solver.compute(coefficients);
+    for (int i = 0; i < Deg; ++i) {
+        const std::complex<double> z = solver.roots()(i);
+        // generous: a double root splits off the real axis by ~sqrt(eps); Newton and the
+        // verification reject the spurious candidates
+        if (std::abs(z.imag()) <= 1e-4 * (1.0 + std::abs(z))) out.add(2.0 * std::atan(z.real()));
+    }
+}
+
+template <int... Degs>
+void realRootsDispatch(const Poly& f, Angles& out, std::integer_sequence<int, Degs...> /*unused*/) {
+    const int degree = f.size - 1;
+    ((degree == Degs + 1 ? realRootsOfDegree<Degs + 1>(f, out) : void()), ...);
+}
+
+/// Real roots of f as angles phi = 2 atan t (leading coefficients that are round-off are
+/// dropped: their roots are near t = oo, i.e. phi = pi, which is tried anyway).
+void realRoots(Poly f, Angles& out) {
+    const double scale = f.maxAbs();
+    while (f.size > 1 && std::abs(f.c[static_cast<std::size_t>(f.size - 1)]) <= 1e-13 * scale) --f.size;
+    deflateImaginaryUnit(f);
+    if (f.size < 2) return;
+    realRootsDispatch(f, out, std::make_integer_sequence<int, Poly::kCapacity - 1>{});
+}
+
+/// Linear equation (times w) a~ . C + b~ = 0 in polynomial form.
+struct LinearPoly {
+    Poly ax, ay, b;
+};
+
+LinearPoly linearPoly(const Equation& e) { return {fromTrig(e.ax), fromTrig(e.ay), fromTrig(e.b)}; }
+
+/// Eliminates C from L1, L2 (linear) and E (circle or linear): C = N / Delta by Cramer's rule,
+/// substituted into E times Delta^2 (or Delta when E is linear). Returns false when Delta or
+/// the result vanishes identically (a dependent choice of equations).
+bool eliminate(const Equation& e1, const Equation& e2, const Equation& e3, Angles& out) {
+    const LinearPoly l1 = linearPoly(e1), l2 = linearPoly(e2), l3 = linearPoly(e3);
+    const Poly delta = l1.ax * l2.ay - l1.ay * l2.ax;
+    const double delta_scale = (l1.ax * l2.ay).maxAbs() + (l1.ay * l2.ax).maxAbs();
+    if (!(delta.maxAbs() > 1e-10 * delta_scale)) return false;
+    const Poly Nx = l1.ay * l2.b - l1.b * l2.ay;
+    const Poly Ny = l1.b * l2.ax - l1.ax * l2.b;
+    Poly f;
+    double scale = 0.0;
+    const Poly linear = l3.ax * Nx + l3.ay * Ny;
+    if (e3.kappa != 0.0) {
+        const Poly w{{1.0, 0.0, 1.0}, 3};
+        const Poly quadratic = w * (Nx * Nx + Ny * Ny);
+        const Poly first = delta * linear, last = (delta * delta) * l3.b;
+        f = quadratic + first + last;
+        scale = std::max({quadratic.maxAbs(), first.maxAbs(), last.maxAbs()});
+    } else {
+        const Poly last = delta * l3.b;
+        f = linear + last;
+        scale = std::max(linear.maxAbs(), last.maxAbs());
+    }
+    if (!(f.maxAbs() > 1e-10 * scale)) return false;
+    realRoots(f, out);
+    return true;
+}
+
+/// Candidate angles when no equation fixes the orientation: the first choice of three
+/// equations whose elimination does not vanish identically (the circles of a choice enter as
+/// differences from one of them, which is kept as the third equation).
+bool eliminationAngles(const Equations& eqs, Angles& out) {
+    const int m = eqs.count;
+    const auto& e = eqs.eq;
+    for (int i = 0; i < m; ++i) {
+        for (int j = i + 1; j < m; ++j) {
+            for (int k = j + 1; k < m; ++k) {
+                const std::array<int, 3> idx{i, j, k};
+                // each member of the triple in turn as the third equation
+                for (int r = 0; r < 3; ++r) {
+                    const Equation& third = e[static_cast<std::size_t>(idx[static_cast<std::size_t>(r)])];
+                    const Equation& first = e[static_cast<std::size_t>(idx[static_cast<std::size_t>((r + 1) % 3)])];
+                    const Equation& second = e[static_cast<std::size_t>(idx[static_cast<std::size_t>((r + 2) % 3)])];
+                    if (third.kappa == 0.0 && (first.kappa != 0.0 || second.kappa != 0.0)) continue;
+                    const Equation l1 = first.kappa != 0.0 ? first - third : first;
+                    const Equation l2 = second.kappa != 0.0 ? second - third : second;
+                    if (eliminate(l1, l2, third, out)) return true;
+                }
+            }
+        }
+    }
+    return false;
+}
+
+/// Up to two centres C at a fixed phi: the best-conditioned pair of linear equations (circles
+/// as differences from the first), else a line meeting the first circle.
+struct Centres {
+    std::array<Vector2, 2> C{};
+    int count = 0;
+};
+
+Centres centresAt(const Equations& eqs, double phi) {
+    const double cs = std::cos(phi), sn = std::sin(phi);
+    std::array<Vector2, kMaxActuators> a{};
+    std::array<double, kMaxActuators> b{};
+    int lines = 0;
+    int first_circle = -1;
+    for (int i = 0; i < eqs.count; ++i) {
+        const Equation& e = eqs.eq[static_cast<std::size_t>(i)];
+        if (e.orientation) continue;
+        Equation lin = e;
+        if (e.kappa != 0.0) {
+            if (first_circle < 0) {
+                first_circle = i;
+                continue;
+            }
+            lin = e - eqs.eq[static_cast<std::size_t>(first_circle)];
+        }
+        a[static_cast<std::size_t>(lines)] = Vector2(lin.ax.at(cs, sn), lin.ay.at(cs, sn));
+        b[static_cast<std::size_t>(lines++)] = lin.b.at(cs, sn);
+    }
+    Centres out;
+    double best = 0.0;
+    int bi = -1, bj = -1;
+    for (int i = 0; i < lines; ++i) {
+        for (int j = i + 1; j < lines; ++j) {
+            const auto ii = static_cast<std::size_t>(i), jj = static_cast<std::size_t>(j);
+            const double norms = a[ii].norm() * a[jj].norm();
+            const double sine = norms > 0.0 ? std::abs(cross(a[ii], a[jj])) / norms : 0.0;
+            if (sine > best) {
+                best = sine;
+                bi = i;
+                bj = j;
+            }
+        }
+    }
+    if (best > 1e-8) {
+        const auto ii = static_cast<std::size_t>(bi), jj = static_cast<std::size_t>(bj);
+        const double det = cross(a[ii], a[jj]);
+        // a_i . C = -b_i, a_j . C = -b_j
+        out.C[0] = Vector2(-b[ii] * a[jj].y() + b[jj] * a[ii].y(), -a[ii].x() * b[jj] + a[jj].x() * b[ii]) / det;
+        out.count = 1;
+        return out;
+    }
+    if (first_circle < 0) return out;
+    // the longest line normal meets the circle |C|^2 + a0 . C + b0 = 0: C = C0 + tau e
+    int li = -1;
+    double longest = 0.0;
+    for (int i = 0; i < lines; ++i) {
+        if (a[static_cast<std::size_t>(i)].norm() > longest) {
+            longest = a[static_cast<std::size_t>(i)].norm();
+            li = i;
+        }
+    }
+    if (li < 0 || !(longest > 1e-12)) return out;
+    const Equation& c0 = eqs.eq[static_cast<std::size_t>(first_circle)];
+    const Vector2 a0(c0.ax.at(cs, sn), c0.ay.at(cs, sn));
+    const double b0 = c0.b.at(cs, sn);
+    const Vector2& n = a[static_cast<std::size_t>(li)];
+    const Vector2 C0 = -b[static_cast<std::size_t>(li)] / n.squaredNorm() * n;
+    const Vector2 e = perp(n) / n.norm();
+    const double half_p = C0.dot(e) + 0.5 * a0.dot(e);
+    const double q = C0.squaredNorm() + a0.dot(C0) + b0;
+    const double disc = half_p * half_p - q;
+    // a slightly negative discriminant (a tangency in round-off) still gives a candidate
+    if (disc < -1e-8 * (1.0 + half_p * half_p + std::abs(q))) return out;
+    const double root = std::sqrt(std::max(disc, 0.0));
+    out.C[0] = C0 + (-half_p + root) * e;
+    out.C[1] = C0 + (-half_p - root) * e;
+    out.count = root > 0.0 ? 2 : 1;
+    return out;
+}
+
+/// Outcome of Gauss-Newton on the equations.
+struct NewtonResult {
+    double residual = std::numeric_limits<double>::infinity();  ///< final max |F_i|
+    int iterations = 0;
+    bool step_too_large = false;  ///< a step beyond max_step (phi [rad], C over L)
+    bool singular = false;        ///< rank-deficient Jacobian
+};
+
+/// Gauss-Newton on every equation from z = (phi, C), until the step is round-off.
+NewtonResult newton(const Equations& eqs, Vector3& z, int max_iterations, double max_step) {
+    using Jacobian = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, kMaxActuators, 3>;
+    using Residual = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators, 1>;
+    Jacobian J(eqs.count, 3);
+    Residual F(eqs.count);
+    const auto evaluate = [&] {
+        const double cs = std::cos(z(0)), sn = std::sin(z(0));
+        const double x = z(1), y = z(2);
+        for (int i = 0; i < eqs.count; ++i) {
+            const Equation& e = eqs.eq[static_cast<std::size_t>(i)];
+            if (e.orientation) {
+                F(i) = wrapAngle(z(0) - e.phi0);
+                J.row(i) << 1.0, 0.0, 0.0;
+                continue;
+            }
+            F(i) = e.kappa * (x * x + y * y) + e.ax.at(cs, sn) * x + e.ay.at(cs, sn) * y + e.b.at(cs, sn);
+            J(i, 0) = e.ax.derivative(cs, sn) * x + e.ay.derivative(cs, sn) * y + e.b.derivative(cs, sn);
+            J(i, 1) = 2.0 * e.kappa * x + e.ax.at(cs, sn);
+            J(i, 2) = 2.0 * e.kappa * y + e.ay.at(cs, sn);
+        }
+        return F.cwiseAbs().maxCoeff();
+    };
+    NewtonResult out;
+    out.residual = evaluate();
+    // the equations are O(1) (lengths over L): a residual at round-off needs no further step
+    constexpr double kRoundOff = 1e-15;
+    for (; out.iterations < max_iterations && out.residual > kRoundOff && std::isfinite(out.residual);
+         ++out.iterations) {
+        Vector3 step;
+        if (eqs.count == 3) {
+            const Eigen::PartialPivLU<Matrix3> lu(J.topRows<3>());
+            step = lu.solve(F.head<3>());
+        } else {
+            // normal equations of the least-squares step (J^T J is 3 x 3)
+            const Matrix3 JtJ = J.transpose() * J;
+            const Eigen::LDLT<Matrix3> ldlt(JtJ);
+            if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().cwiseAbs().minCoeff() > 1e-14 * JtJ.norm())) {
+                out.singular = true;
+                break;
+            }
+            step = ldlt.solve(J.transpose() * F);
+        }
+        if (!(step.cwiseAbs().maxCoeff() <= max_step)) {
+            out.step_too_large = true;
+            break;
+        }
+        z -= step;
+        out.residual = evaluate();
+        if (!(step.cwiseAbs().maxCoeff() > 1e-15 * (1.0 + z.cwiseAbs().maxCoeff()))) {
+            ++out.iterations;
+            break;
+        }
+    }
+    if (!std::isfinite(out.residual)) out.residual = std::numeric_limits<double>::infinity();
+    return out;
+}
+
+/// |u_a(p) - u_a| over the actuators of one limb solved on `branch`, scaled by the joint
+/// scales; infinity when the limb does not reach p on that branch.
+double limbActuatorError(const LimbModel& limb, int j, int branch, const PlatformDisplacement& G,
+                         const ActuatorVector& u, LimbData& ld) {
+    if (!solveLimb(limb, j, branch, G, false, ld)) return std::numeric_limits<double>::infinity();
+    double err = 0.0;
+    for (int k = 0; k < 3; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        const int a = limb.actuator[kk];
+        if (a < 0) continue;
+        double d = ld.q(k) - u(a);
+        if (limb.type[kk] == JointType::revolute) d = wrapAngle(d);
+        err = std::max(err, std::abs(d) * limb.inv_joint_scale[kk]);
+    }
+    return err;
+}
+
+/// max_a |u_a(p) - u_a| of the position stage, R joints modulo 2 pi (raw units).
+double actuatorError(const Model& model, const Data& data, const ActuatorVector& u) {
+    double err = 0.0;
+    for (int a = 0; a < model.actuators; ++a) {
+        const auto aa = static_cast<std::size_t>(a);
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(model.actuator_limb[aa])];
+        double d = data.u(a) - u(a);
+        if (limb.type[static_cast<std::size_t>(model.actuator_joint[aa])] == JointType::revolute) d = wrapAngle(d);
+        err = std::max(err, std::abs(d));
+    }
+    return err;
+}
+
+/// Verifies a polished candidate pose: each limb's branch from its own actuator values (the
+/// home branch when both fit, e.g. for a limb without actuators), then inverse displacement
+/// on those branches. Returns false when no branch of some limb fits.
+bool verify(const Model& model, Data& data, const ActuatorVector& u, const Pose& p, double tolerance,
+            AssemblyMode& mode) {
+    PlatformDisplacement G;
+    G.dtheta = p(0) - model.home(0);
+    G.cos_dtheta = std::cos(G.dtheta);
+    G.sin_dtheta = std::sin(G.dtheta);
+    G.C = p.tail<2>();
+    LimbData ld;
+    mode.working = true;
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        int branch = limb.branch;
+        const double home_error = limbActuatorError(limb, j, branch, G, u, ld);
+        if (limb.branch != 0 && !(home_error <= tolerance)) {
+            const double other_error = limbActuatorError(limb, j, -branch, G, u, ld);
+            if (other_error < home_error) branch = -branch;
+        }
+        mode.branch[static_cast<std::size_t>(j)] = branch;
+        mode.working = mode.working && branch == limb.branch;
+    }
+    mode.p = Pose(wrapAngle(p(0)), p(1), p(2));
+    if (!inverseDisplacement(model, data, mode.p, mode.branch)) return false;
+    mode.u_error = actuatorError(model, data, u);
+    if (!(mode.u_error <= tolerance)) return false;
+    const Status status = velocityFromPlatformTwist(model, data, Twist::Zero());
+    mode.condition = data.cond_A;
+    for (int j = 0; j < model.limbs; ++j)
+        mode.condition = std::max(mode.condition, data.limb[static_cast<std::size_t>(j)].cond);
+    if (!status) mode.condition = status.value;
+    return true;
+}
+
+bool sameMode(const AssemblyMode& a, const AssemblyMode& b, double length_scale) {
+    return a.branch == b.branch && std::abs(wrapAngle(a.p(0) - b.p(0))) <= 1e-8 &&
+           (a.p.tail<2>() - b.p.tail<2>()).cwiseAbs().maxCoeff() <= 1e-8 * length_scale;
+}
+
+}  // namespace
+
+Status directKinematics(const Model& model, Data& data, const ActuatorVector& u, AssemblyModes& modes,
+                        const DirectKinematicsOptions& options) {
+    modes.count = 0;
+    modes.degenerate = false;
+    modes.truncated = false;
+    for (int a = 0; a < model.actuators; ++a) {
+        if (!std::isfinite(u(a)))
+            return {StatusCode::not_finite, model.actuator_limb[static_cast<std::size_t>(a)], u(a)};
+    }
+    Equations eqs;
+    lockedLimbEquations(model, u, eqs);
+
+    Angles angles;
+    const auto orient =
+        std::find_if(eqs.eq.begin(), eqs.eq.begin() + eqs.count, [](const Equation& e) { return e.orientation; });
+    if (orient != eqs.eq.begin() + eqs.count) {
+        angles.add(orient->phi0);
+    } else {
+        angles.add(kPi);
+        modes.degenerate = !eliminationAngles(eqs, angles);
+    }
+
+    const double L = model.length_scale;
+    for (int i = 0; i < angles.count; ++i) {
+        const double phi = angles.phi[static_cast<std::size_t>(i)];
+        const Centres centres = centresAt(eqs, phi);
+        for (int c = 0; c < centres.count; ++c) {
+            Vector3 z(phi, centres.C[static_cast<std::size_t>(c)].x(), centres.C[static_cast<std::size_t>(c)].y());
+            // three equations hold exactly at a mode; more (redundant actuation) may be
+            // inconsistent, and the verification against `tolerance` decides
+            const double residual = newton(eqs, z, 30, std::numeric_limits<double>::infinity()).residual;
+            if (!(eqs.count == 3 ? residual <= 1e-8 : std::isfinite(residual))) continue;
+            const Pose p(model.home(0) + z(0), L * z(1), L * z(2));
+            AssemblyMode mode;
+            if (!verify(model, data, u, p, options.tolerance, mode)) continue;
+            const bool duplicate = std::any_of(modes.begin(), modes.end(),
+                                               [&](const AssemblyMode& other) { return sameMode(other, mode, L); });
+            if (duplicate) continue;
+            if (modes.count == kMaxAssemblyModes) {
+                modes.truncated = true;
+                continue;
+            }
+            modes.mode[static_cast<std::size_t>(modes.count++)] = mode;
+        }
+    }
+    std::sort(modes.mode.begin(), modes.mode.begin() + modes.count,
+              [](const AssemblyMode& a, const AssemblyMode& b) { return a.p(0) < b.p(0); });
+    return {};
+}
+
+namespace {
+
+/// Why the tracker found no pose, from the velocity stage at its last iterate: a singular
+/// limb or actuation, or next to a limb singularity (the edge of the workspace, where u turns
+/// back), or otherwise a lost mode.
+Status notTracked(const Model& model, Data& data, const Pose& p, int worst, double residual) {
+    if (const Status status = inverseDisplacement(model, data, p); !status) return status;
+    if (const Status status = velocityFromPlatformTwist(model, data, Twist::Zero()); !status) return status;
+    int limb = -1;
+    double largest = 0.1 * model.max_condition;
+    for (int j = 0; j < model.limbs; ++j) {
+        if (data.limb[static_cast<std::size_t>(j)].cond > largest) {
+            largest = data.limb[static_cast<std::size_t>(j)].cond;
+            limb = j;
+        }
+    }
+    if (limb >= 0) return {StatusCode::workspace_edge, limb, largest};
+    return {StatusCode::assembly_mode_lost, worst, residual};
+}
+
+}  // namespace
+
+Status trackPose(const Model& model, Data& data, const ActuatorVector& u, Pose& p, const TrackerOptions& options,
+                 TrackerReport* report) {
+    TrackerReport local;
+    TrackerReport& out = report != nullptr ? *report : local;
+    out = {};
+    const int n = model.actuators;
+    for (int a = 0; a < n; ++a) {
+        if (!std::isfinite(u(a)))
+            return {StatusCode::not_finite, model.actuator_limb[static_cast<std::size_t>(a)], u(a)};
+    }
+    for (int i = 0; i < 3; ++i) {
+        if (!std::isfinite(p(i))) return {StatusCode::not_finite, -1, p(i)};
+    }
+    // Newton on the locked limbs' equations (F(p) = 0 exactly where u(p) = u on some branches)
+    Equations eqs;
+    lockedLimbEquations(model, u, eqs);
+    const double L = model.length_scale;
+    Vector3 z(p(0) - model.home(0), p(1) / L, p(2) / L);
+    const NewtonResult newton_result = newton(eqs, z, options.max_iterations, options.max_step);
+    out.iterations = newton_result.iterations;
+    const Pose next(model.home(0) + z(0), L * z(1), L * z(2));
+    if (newton_result.step_too_large || newton_result.singular || !next.allFinite()) {
+        return notTracked(model, data, p, -1, newton_result.residual);
+    }
+    p = next;
+    // inverse displacement on the home branches: the pose is the working mode's if it gives u back
+    // (the angles of passive R joints are left to their cos and sin, all the later stages use)
+    if (const Status status = detail::positionStage(model, data, p, false); !status) return status;
+    int worst = -1;
+    out.residual = 0.0;
+    for (int a = 0; a < n; ++a) {
+        const auto aa = static_cast<std::size_t>(a);
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(model.actuator_limb[aa])];
+        const auto k = static_cast<std::size_t>(model.actuator_joint[aa]);
+        double d = data.u(a) - u(a);
+        if (limb.type[k] == JointType::revolute) d = wrapAngle(d);
+        if (const double e = std::abs(d) * limb.inv_joint_scale[k]; worst < 0 || e > out.residual) {
+            out.residual = e;
+            worst = model.actuator_limb[aa];
+        }
+    }
+    const double accepted = model.coordinates == Coordinates::platform ? options.max_residual : options.tolerance;
+    if (out.residual <= accepted) return {};
+    return notTracked(model, data, p, worst, out.residual);
+}
+
+}  // namespace nocdyn
