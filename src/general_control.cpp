@@ -188,6 +188,7 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
         reference.ddp = (next_dp - reference.dp) / dt;
         const Pose p = plant.pose();
         const Twist dp = plant.poseRate();
+        if (!p.allFinite() || !dp.allFinite()) fail(t, {StatusCode::not_finite, -1, 0.0}, "plant state");
         Pose p_measured = p;
         Twist dp_measured = dp;
         for (int i = 0; i < 3; ++i) {
