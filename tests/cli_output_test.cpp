@@ -7,6 +7,8 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -239,6 +241,40 @@ TEST(CliOutput, StreamedCsvOnStdoutEqualsTheFileAndReadsBack) {
     const io::Table table = io::readCsvFile((dir / "out.csv").string());
     ASSERT_EQ(table.rows.size(), 1000u);
     EXPECT_EQ(table.rows[999][table.column("t")], 999.0 / 20000.0);
+}
+
+// Any robot file: task-space control on nocdyn's forward dynamics, n actuators in the CSV and
+// the summary; the 3-PRR-only options are refused with one line naming their replacement.
+TEST(CliOutput, ControlTakesAnyRobotFile) {
+    const fs::path dir = scratchDirectory();
+    const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/4-rrr.yaml";
+    const fs::path out = dir / "control.csv";
+    const CliResult r = runCli("control --plant nocdyn --robot " + robot +
+                               " --trajectory paper1 --duration 0.02 --payload-mass 0.3 --payload-com 0.01 -0.005"
+                               " -o " +
+                               out.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("computed-torque on the nocdyn forward dynamics plant, 4-rrr, paper1"), std::string::npos)
+        << r.out;
+    EXPECT_NE(r.out.find("payload unknown to the controller"), std::string::npos);
+    EXPECT_NE(r.out.find("actuator 4 (limb 4): RMS error"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("saturated ticks: 0 of 200"), std::string::npos) << r.out;
+    const io::Table table = io::readCsvFile(out.string());
+    ASSERT_EQ(table.rows.size(), 200U);
+    ASSERT_EQ(table.columns.size(), 22U);
+    EXPECT_EQ(table.columns[7], "e_theta");
+    EXPECT_EQ(table.columns.back(), "tau4");
+    for (const auto& row : table.rows) {
+        for (const double v : row) EXPECT_TRUE(std::isfinite(v));
+        for (std::size_t a = 18; a < 22; ++a) EXPECT_LE(std::abs(row[a]), 12.0);  // effort [N m]
+    }
+    const CliResult noise_u = runCli("control --plant nocdyn --robot " + robot + " --trajectory paper1 --noise-u 1e-6");
+    EXPECT_EQ(noise_u.exit_code, 1);
+    EXPECT_NE(noise_u.err.find("use --noise-pose and --noise-rate"), std::string::npos) << noise_u.err;
+    EXPECT_EQ(std::count(noise_u.err.begin(), noise_u.err.end(), '\n'), 1) << noise_u.err;
+    const CliResult short_form = runCli("control --plant nocdyn --trajectory paper1 --noise-pose 1e-6");
+    EXPECT_EQ(short_form.exit_code, 1);
+    EXPECT_NE(short_form.err.find("are for general robot files"), std::string::npos) << short_form.err;
 }
 
 }  // namespace

@@ -7,11 +7,13 @@
 #include <memory>
 
 #include "nocdyn/control.hpp"
+#include "nocdyn/general_control.hpp"
 #include "nocdyn/robot.hpp"
 
 namespace nocdyn::validation {
 class SimbodyRobot;
-}
+class SimbodyMechanism;
+}  // namespace nocdyn::validation
 
 namespace nocdyn::cli {
 
@@ -32,6 +34,27 @@ public:
 
 private:
     std::unique_ptr<validation::SimbodyRobot> robot_;
+};
+
+/// The independent Simbody model of any robot file (validation::SimbodyMechanism) as a
+/// RobotPlant: the plant of task-space control for every robot (general_control.hpp).
+class SimbodyMechanismPlant final : public RobotPlant {
+public:
+    /// accuracy: Simbody's integrator accuracy (its constraint tolerance follows it).
+    explicit SimbodyMechanismPlant(const RobotDescription& robot, double accuracy = 1e-10);
+    ~SimbodyMechanismPlant() override;
+    SimbodyMechanismPlant(const SimbodyMechanismPlant&) = delete;
+    SimbodyMechanismPlant& operator=(const SimbodyMechanismPlant&) = delete;
+    void reset(const Pose& p, const Twist& dp) override;
+    void setForces(const ActuatorVector& tau) override;
+    void advance(double dt) override;
+    [[nodiscard]] Pose pose() const override;
+    [[nodiscard]] Twist poseRate() const override;
+    [[nodiscard]] ActuatorVector u() const override;
+    [[nodiscard]] std::string name() const override { return "Simbody"; }
+
+private:
+    std::unique_ptr<validation::SimbodyMechanism> mechanism_;
 };
 
 }  // namespace nocdyn::cli

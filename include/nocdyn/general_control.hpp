@@ -1,0 +1,184 @@
+// Model-based control of any planar parallel robot (model.hpp) in the platform coordinates,
+// and its closed-loop simulation on any plant.
+//
+// The controller measures the platform pose p = [theta, x_c, y_c] (eq. 1) and its rate
+// dp/dt = t_M (eq. 2), as a plant's pose sensor (or a direct kinematics) gives them, and
+// tracks a pose trajectory p_d(t):
+//
+// Computed torque (inverse-dynamics control in the task space):
+//   ddp_cmd = ddp_d + K_d (dp_d - dp) + K_p (p_d - p)
+//   tau     = inverse dynamics at the measured (p, dp) with d2p/dt2 = ddp_cmd,
+// i.e. A_p^T tau = M_p(p) ddp_cmd + h_p(p, dp) (forward_dynamics.hpp), tau the minimum-norm
+// solution when the robot is redundantly actuated (n > 3: the actuators share the load and no
+// internal force is commanded). With a perfect model and no saturation the pose error
+// e = p_d - p obeys e'' + K_d e' + K_p e = 0 per coordinate; taskCriticallyDamped(f_n) gives
+// K_p = w^2, K_d = 2 w, w = 2 pi f_n (critically damped).
+//
+// PD (no dynamic model, for comparison): a task-space PD wrench mapped to the actuators,
+//   A_p(p)^T tau = M_p(home) (K_p (p_d - p) + K_d (dp_d - dp)),
+// tau minimum-norm again. The constant M_p(home) scales the gains so that the error dynamics
+// would match computed torque if the inertia were constant and there were no velocity,
+// gravity or friction terms; only the kinematics A_p at the measured pose is used.
+//
+// Every actuator force is clipped at its joint's effort limit (when finite). compute() is
+// allocation-free. A payload the controller does not know is a plant built from another
+// description (withPayload); the controller keeps the nominal model.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/status.hpp"
+#include "nocdyn/trajectory.hpp"
+
+namespace nocdyn {
+
+/// Desired motion at one instant: pose, rate and acceleration from the trajectory, and the
+/// actuator variables and rates the controller's model gives for them (inverse displacement).
+struct PoseReference {
+    Pose p = Pose::Zero();
+    Twist dp = Twist::Zero();
+    Twist ddp = Twist::Zero();
+    ActuatorVector u;   ///< u_d [m or rad]
+    ActuatorVector du;  ///< du_d [m/s or rad/s]
+};
+
+/// Reference at time t on `model` (data: the model's workspace). Fails as inverseDisplacement
+/// and velocityFromPlatformTwist do. Allocation-free.
+Status poseReference(const Model& model, Data& data, const PoseTrajectory& trajectory, double t,
+                     PoseReference& reference);
+
+/// Diagonal task-space gains on [theta, x, y].
+struct TaskGains {
+    Vector3 kp = Vector3::Zero();  ///< [1/s^2]
+    Vector3 kd = Vector3::Zero();  ///< [1/s]
+};
+
+/// K_p = (2 pi f_n)^2, K_d = 2 (2 pi f_n): a critically damped pose error, f_n [Hz].
+[[nodiscard]] TaskGains taskCriticallyDamped(double natural_frequency);
+
+enum class ControlLaw { computed_torque, pd };
+
+/// "computed-torque" or "pd".
+[[nodiscard]] const char* name(ControlLaw law);
+
+/// Task-space controller of one robot (see the header comment). Holds a copy of the model.
+class PoseController {
+public:
+    /// Throws nocdyn::Error when the model is singular at home (PD needs M_p there).
+    PoseController(const Model& model, ControlLaw law, const TaskGains& gains);
+
+    /// Actuator forces (n values, not yet clipped) from the measured pose and rate and the
+    /// reference. Fails as inverseDisplacement / velocityFromPlatformTwist at the measured
+    /// pose. Allocation-free.
+    Status compute(const Pose& p, const Twist& dp, const PoseReference& reference, ActuatorVector& tau);
+
+    /// Clips tau at each actuator's effort limit; true when some force was clipped.
+    bool saturate(ActuatorVector& tau) const;
+
+    [[nodiscard]] ControlLaw law() const { return law_; }
+    [[nodiscard]] const Model& model() const { return model_; }
+    /// Effort limit of each actuator (+infinity when the file gives none) [N or N m].
+    [[nodiscard]] const ActuatorVector& effort() const { return effort_; }
+
+private:
+    Model model_;
+    Data data_;
+    ControlLaw law_;
+    TaskGains gains_;
+    Matrix3 M_home_ = Matrix3::Identity();
+    ActuatorVector effort_;
+};
+
+/// The robot being controlled, measured by its platform pose and rate (and actuator
+/// variables, recorded). Not real-time: methods may throw nocdyn::Error.
+class RobotPlant {
+public:
+    virtual ~RobotPlant() = default;
+    /// Assembles the robot at pose p with rate dp, time 0, zero forces.
+    virtual void reset(const Pose& p, const Twist& dp) = 0;
+    /// Actuator forces (n values) [N, N m], held until changed.
+    virtual void setForces(const ActuatorVector& tau) = 0;
+    /// Integrates dt seconds forward.
+    virtual void advance(double dt) = 0;
+    [[nodiscard]] virtual Pose pose() const = 0;
+    [[nodiscard]] virtual Twist poseRate() const = 0;
+    [[nodiscard]] virtual ActuatorVector u() const = 0;
+    [[nodiscard]] virtual std::string name() const = 0;
+};
+
+/// Plant on nocdyn's own forward dynamics (Simulator) of a model (possibly with a payload).
+class SimulatorRobotPlant final : public RobotPlant {
+public:
+    explicit SimulatorRobotPlant(const Model& model, const SimulatorOptions& options = {});
+    void reset(const Pose& p, const Twist& dp) override;
+    void setForces(const ActuatorVector& tau) override { simulator_.setForces(tau); }
+    void advance(double dt) override;
+    [[nodiscard]] Pose pose() const override { return simulator_.pose(); }
+    [[nodiscard]] Twist poseRate() const override { return simulator_.poseRate(); }
+    [[nodiscard]] ActuatorVector u() const override { return simulator_.u(); }
+    [[nodiscard]] std::string name() const override { return "nocdyn forward dynamics"; }
+
+private:
+    Simulator simulator_;
+};
+
+/// A rigid payload fixed on the platform.
+struct Payload {
+    double mass = 0.0;              ///< [kg]
+    double inertia = 0.0;           ///< about its own c.o.m. [kg m^2]
+    Vector2 com = Vector2::Zero();  ///< its c.o.m. in the platform frame (origin C) [m]
+};
+
+/// The robot with the payload merged into the platform (mass, c.o.m. and inertia about the
+/// combined c.o.m. by the parallel-axis theorem). Throws nocdyn::Error for negative or
+/// non-finite values.
+[[nodiscard]] RobotDescription withPayload(RobotDescription robot, const Payload& payload);
+
+struct PoseLoopOptions {
+    double rate = 10000.0;        ///< controller ticks per second [Hz]
+    double duration = 0.2;        ///< [s]
+    bool saturation = true;       ///< clip at each actuator's effort
+    double noise_angle = 0.0;     ///< std. dev. of the theta measurement noise [rad]
+    double noise_position = 0.0;  ///< of x_c and y_c [m]
+    double noise_rate = 0.0;      ///< of each component of dp/dt [rad/s, m/s]
+    unsigned seed = 1;            ///< noise generator seed
+};
+
+/// One closed-loop run, one row per controller tick (state at the tick, before its forces act).
+struct PoseLoopResult {
+    std::string controller, plant;
+    int actuators = 0;
+    std::vector<double> t;
+    std::vector<Pose> p, p_d;
+    std::vector<ActuatorVector> u, u_d, tau;
+    Vector3 pose_rms_error = Vector3::Zero();   ///< RMS of p_d - p [rad, m, m]
+    Vector3 pose_peak_error = Vector3::Zero();  ///< max |p_d - p|
+    /// The same over the second half of the run (after the transients).
+    Vector3 pose_late_peak_error = Vector3::Zero();
+    std::vector<double> rms_error, peak_error;  ///< of u_d - u per actuator [m or rad]
+    std::vector<double> peak_tau;               ///< max |tau| per actuator (after clipping)
+    std::size_t saturated_ticks = 0;            ///< ticks where some force was clipped
+};
+
+/// Runs `controller` on `plant` along `trajectory`: the plant starts at (p_d(0), dp_d(0)) (or
+/// at `start` when given, to see the error decay); each tick measures (p, dp) (+ noise),
+/// computes the forces, clips them, holds them for dt = 1 / rate. The feedforward acceleration
+/// is the reference's mean over the hold, (dp_d(t + dt) - dp_d(t)) / dt: the acceleration at t
+/// would lag by half a tick, a steady error of about |d3p_d/dt3| dt / (2 K_p) (6 urad for
+/// trajectory 1 at 10 kHz and f_n = 50 Hz). Throws nocdyn::Error "t = ... s:
+/// reason" when the reference or the controller fails, and before the first tick when the
+/// rate is not above twice the trajectory's highest frequency or the reference leaves the
+/// workspace (requireReachable).
+[[nodiscard]] PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant,
+                                         const PoseTrajectory& trajectory, const PoseLoopOptions& options,
+                                         const Pose* start = nullptr);
+
+/// CSV: t, theta_d, x_d, y_d, theta, x, y, e_theta, e_x, e_y, u1..un, u1_d..un_d, tau1..taun (SI).
+[[nodiscard]] io::Table toTable(const PoseLoopResult& result);
+
+}  // namespace nocdyn

@@ -1,0 +1,257 @@
+// Task-space computed-torque and PD control of any robot, plants, closed-loop simulation
+// (see the header).
+#include "nocdyn/general_control.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <sstream>
+
+#include <Eigen/Cholesky>
+
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/sampling.hpp"
+
+namespace nocdyn {
+
+namespace {
+
+/// tau = minimum-norm solution of A_p^T tau = Q with A_p = A S(c) (n x 3, full column rank at
+/// a regular pose): A_p (A_p^T A_p)^-1 Q, which is A_p^-T Q for n = 3. Needs the velocity stage.
+void minimumNormForces(const Model& model, const Data& data, const Vector3& Q, ActuatorVector& tau) {
+    const double cx = data.p(1), cy = data.p(2);
+    Matrix3 G = Matrix3::Zero();  // A_p^T A_p
+    for (int a = 0; a < model.actuators; ++a) {
+        const Vector3 row = data.A.row(a).transpose();
+        // row of A_p = row of A times S(c), S(c) = [1 0 0; c_y 1 0; -c_x 0 1]
+        const Vector3 r(row(0) + cy * row(1) - cx * row(2), row(1), row(2));
+        G.noalias() += r * r.transpose();
+    }
+    const Vector3 lambda = G.ldlt().solve(Q);
+    tau.resize(model.actuators);
+    for (int a = 0; a < model.actuators; ++a) {
+        const Vector3 row = data.A.row(a).transpose();
+        tau(a) = (row(0) + cy * row(1) - cx * row(2)) * lambda(0) + row(1) * lambda(1) + row(2) * lambda(2);
+    }
+}
+
+}  // namespace
+
+Status poseReference(const Model& model, Data& data, const PoseTrajectory& trajectory, double t,
+                     PoseReference& reference) {
+    trajectory.evaluate(t, reference.p, reference.dp, reference.ddp);
+    if (const Status status = inverseDisplacement(model, data, reference.p); !status) return status;
+    if (const Status status = velocityFromPlatformTwist(model, data, reference.dp); !status) return status;
+    reference.u = data.u;
+    reference.du = data.du;
+    return {};
+}
+
+TaskGains taskCriticallyDamped(double natural_frequency) {
+    const double w = 2.0 * std::numbers::pi * natural_frequency;
+    return {Vector3::Constant(w * w), Vector3::Constant(2.0 * w)};
+}
+
+const char* name(ControlLaw law) { return law == ControlLaw::computed_torque ? "computed-torque" : "pd"; }
+
+PoseController::PoseController(const Model& model, ControlLaw law, const TaskGains& gains)
+    : model_(model), data_(model_), law_(law), gains_(gains) {
+    effort_.resize(model_.actuators);
+    for (int a = 0; a < model_.actuators; ++a) {
+        const auto limb = static_cast<std::size_t>(model_.actuator_limb[static_cast<std::size_t>(a)]);
+        const auto joint = static_cast<std::size_t>(model_.actuator_joint[static_cast<std::size_t>(a)]);
+        effort_(a) = model_.limb[limb].limits[joint].effort;
+    }
+    // M_p at home, the constant inertia that scales the PD gains
+    Status status = inverseDisplacement(model_, data_, model_.home);
+    if (status) status = velocityFromPlatformTwist(model_, data_, Twist::Zero());
+    if (!status) throw Error("controller: home pose: " + describe(status, model_));
+    platformDynamics(model_, data_);
+    M_home_ = data_.M_p;
+}
+
+Status PoseController::compute(const Pose& p, const Twist& dp, const PoseReference& reference, ActuatorVector& tau) {
+    const Vector3 servo = gains_.kp.cwiseProduct(reference.p - p) + gains_.kd.cwiseProduct(reference.dp - dp);
+    if (law_ == ControlLaw::computed_torque) {
+        // A_p^T tau = M_p ddp_cmd + h_p: the inverse dynamics at the measured state (eq. 20,
+        // minimum norm when redundant)
+        const Twist ddp_cmd = reference.ddp + servo;
+        if (const Status status = inverseDynamicsFast(model_, data_, p, dp, ddp_cmd); !status) return status;
+        tau = data_.tau;
+        return {};
+    }
+    if (const Status status = inverseDisplacement(model_, data_, p); !status) return status;
+    if (const Status status = velocityFromPlatformTwist(model_, data_, dp); !status) return status;
+    const Vector3 Q = M_home_ * servo;
+    minimumNormForces(model_, data_, Q, tau);
+    return {};
+}
+
+bool PoseController::saturate(ActuatorVector& tau) const {
+    bool clipped = false;
+    for (int a = 0; a < model_.actuators; ++a) {
+        const double limit = effort_(a);
+        if (!std::isfinite(limit)) continue;
+        if (tau(a) > limit) {
+            tau(a) = limit;
+            clipped = true;
+        } else if (tau(a) < -limit) {
+            tau(a) = -limit;
+            clipped = true;
+        }
+    }
+    return clipped;
+}
+
+SimulatorRobotPlant::SimulatorRobotPlant(const Model& model, const SimulatorOptions& options)
+    : simulator_(model, options) {}
+
+void SimulatorRobotPlant::reset(const Pose& p, const Twist& dp) {
+    if (const Status status = simulator_.reset(p, dp); !status) {
+        throw Error("plant reset: " + describe(status, simulator_.model()));
+    }
+}
+
+void SimulatorRobotPlant::advance(double dt) {
+    if (const Status status = simulator_.advance(dt); !status) {
+        std::ostringstream out;
+        out.precision(9);
+        out << "plant: t = " << simulator_.time() << " s: " << describe(status, simulator_.model());
+        throw Error(out.str());
+    }
+}
+
+RobotDescription withPayload(RobotDescription robot, const Payload& payload) {
+    if (!std::isfinite(payload.mass) || !std::isfinite(payload.inertia) || !payload.com.allFinite() ||
+        payload.mass < 0.0 || payload.inertia < 0.0) {
+        throw Error("payload: mass and inertia must be finite and >= 0, the c.o.m. finite");
+    }
+    if (payload.mass == 0.0 && payload.inertia == 0.0) return robot;
+    PlatformDescription& platform = robot.platform;
+    const double mass = platform.mass + payload.mass;
+    const Vector2 com = mass > 0.0 ? Vector2((platform.mass * platform.com + payload.mass * payload.com) / mass)
+                                   : Vector2(platform.com);
+    // inertia about the combined c.o.m. (parallel-axis theorem)
+    platform.inertia += platform.mass * (platform.com - com).squaredNorm() + payload.inertia +
+                        payload.mass * (payload.com - com).squaredNorm();
+    platform.mass = mass;
+    platform.com = com;
+    robot.name += " + payload";
+    return robot;
+}
+
+PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const PoseTrajectory& trajectory,
+                           const PoseLoopOptions& options, const Pose* start) {
+    const Model& model = controller.model();
+    const std::vector<double> times = sampleTimes(options.duration, options.rate);
+    requireRateAboveNyquist(trajectory, options.rate);
+    requireReachable(model, trajectory, times.back());
+    const double dt = 1.0 / options.rate;
+    const int n = model.actuators;
+    PoseLoopResult result;
+    result.controller = name(controller.law());
+    result.plant = plant.name();
+    result.actuators = n;
+    for (auto* v : {&result.p, &result.p_d}) v->reserve(times.size());
+    for (auto* v : {&result.u, &result.u_d, &result.tau}) v->reserve(times.size());
+    result.t.reserve(times.size());
+
+    Data data(model);
+    PoseReference reference;
+    auto fail = [&](double t, const Status& status, const char* what) {
+        std::ostringstream out;
+        out.precision(9);
+        out << "t = " << t << " s: " << what << ": " << describe(status, model);
+        throw Error(out.str());
+    };
+    if (const Status status = poseReference(model, data, trajectory, 0.0, reference); !status) {
+        fail(0.0, status, "reference");
+    }
+    plant.reset(start != nullptr ? *start : reference.p, reference.dp);
+
+    std::mt19937 rng(options.seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    const Vector3 noise(options.noise_angle, options.noise_position, options.noise_position);
+    ActuatorVector tau(n);
+    Pose next_p, next_dp, next_ddp;
+    for (const double t : times) {
+        if (const Status status = poseReference(model, data, trajectory, t, reference); !status) {
+            fail(t, status, "reference");
+        }
+        // feedforward: the mean reference acceleration over the hold, so that the held force
+        // gives the reference's change of rate over the tick
+        trajectory.evaluate(t + dt, next_p, next_dp, next_ddp);
+        reference.ddp = (next_dp - reference.dp) / dt;
+        const Pose p = plant.pose();
+        const Twist dp = plant.poseRate();
+        if (!p.allFinite() || !dp.allFinite()) fail(t, {StatusCode::not_finite, -1, 0.0}, "plant state");
+        Pose p_measured = p;
+        Twist dp_measured = dp;
+        for (int i = 0; i < 3; ++i) {
+            if (noise(i) > 0.0) p_measured(i) += noise(i) * normal(rng);
+            if (options.noise_rate > 0.0) dp_measured(i) += options.noise_rate * normal(rng);
+        }
+        if (const Status status = controller.compute(p_measured, dp_measured, reference, tau); !status) {
+            fail(t, status, "controller");
+        }
+        if (options.saturation && controller.saturate(tau)) ++result.saturated_ticks;
+        result.t.push_back(t);
+        result.p.push_back(p);
+        result.p_d.push_back(reference.p);
+        result.u.push_back(plant.u());
+        result.u_d.push_back(reference.u);
+        result.tau.push_back(tau);
+        plant.setForces(tau);
+        plant.advance(dt);
+    }
+
+    const auto un = static_cast<std::size_t>(n);
+    result.rms_error.assign(un, 0.0);
+    result.peak_error.assign(un, 0.0);
+    result.peak_tau.assign(un, 0.0);
+    const std::size_t half = result.t.size() / 2;
+    for (std::size_t k = 0; k < result.t.size(); ++k) {
+        const Vector3 e_p = (result.p_d[k] - result.p[k]).cwiseAbs();
+        result.pose_rms_error += e_p.cwiseAbs2();
+        result.pose_peak_error = result.pose_peak_error.cwiseMax(e_p);
+        if (k >= half) result.pose_late_peak_error = result.pose_late_peak_error.cwiseMax(e_p);
+        for (std::size_t a = 0; a < un; ++a) {
+            const auto ai = static_cast<Eigen::Index>(a);
+            const double e = std::abs(result.u_d[k](ai) - result.u[k](ai));
+            result.rms_error[a] += e * e;
+            result.peak_error[a] = std::max(result.peak_error[a], e);
+            result.peak_tau[a] = std::max(result.peak_tau[a], std::abs(result.tau[k](ai)));
+        }
+    }
+    const double count = static_cast<double>(result.t.size());
+    result.pose_rms_error = (result.pose_rms_error / count).cwiseSqrt();
+    for (double& e : result.rms_error) e = std::sqrt(e / count);
+    return result;
+}
+
+io::Table toTable(const PoseLoopResult& result) {
+    io::Table table;
+    table.columns = {"t", "theta_d", "x_d", "y_d", "theta", "x", "y", "e_theta", "e_x", "e_y"};
+    for (const char* suffix : {"", "_d"}) {
+        for (int a = 1; a <= result.actuators; ++a)
+            table.columns.push_back(std::string("u").append(std::to_string(a)).append(suffix));
+    }
+    for (int a = 1; a <= result.actuators; ++a) table.columns.push_back(std::string("tau").append(std::to_string(a)));
+    table.rows.reserve(result.t.size());
+    for (std::size_t k = 0; k < result.t.size(); ++k) {
+        const Pose& d = result.p_d[k];
+        const Pose& p = result.p[k];
+        std::vector<double> row{result.t[k], d(0), d(1), d(2), p(0), p(1), p(2), d(0) - p(0), d(1) - p(1), d(2) - p(2)};
+        for (const auto* v : {&result.u, &result.u_d, &result.tau}) {
+            for (int a = 0; a < result.actuators; ++a) row.push_back((*v)[k](a));
+        }
+        table.rows.push_back(std::move(row));
+    }
+    return table;
+}
+
+}  // namespace nocdyn
