@@ -13,8 +13,10 @@
 #include "fixture.hpp"
 #include "nocdyn/noc.hpp"
 #include "nocdyn/prr3/fast.hpp"
+#ifdef NOCDYN_HAS_ENGINES
 #include "nocdyn/validation/mujoco_robot.hpp"
 #include "nocdyn/validation/simbody_robot.hpp"
+#endif
 
 namespace nocdyn::bench {
 namespace {
@@ -57,6 +59,8 @@ void inverseDynamicsNocdynFull(benchmark::State& state) {
     perSample(state, f.samples.size());
 }
 
+#ifdef NOCDYN_HAS_ENGINES
+// the same cycle on the engines (built with NOCDYN_BUILD_VALIDATION)
 void inverseDynamicsMujoco(benchmark::State& state) {
     const Fixture& f = fixture();
     validation::MujocoRobot robot(f.model.parameters);
@@ -84,6 +88,7 @@ void inverseDynamicsSimbody(benchmark::State& state) {
     }
     perSample(state, f.times.size());
 }
+#endif
 
 // ---- stages of nocdyn's per-sample path ----------------------------------------------
 
@@ -146,8 +151,10 @@ void stageForces(benchmark::State& state) {
 [[maybe_unused]] const bool registered = [] {
     benchmark::RegisterBenchmark("BM_InverseDynamics/nocdyn", inverseDynamicsNocdyn);
     benchmark::RegisterBenchmark("BM_InverseDynamics/nocdyn_full", inverseDynamicsNocdynFull);
+#ifdef NOCDYN_HAS_ENGINES
     benchmark::RegisterBenchmark("BM_InverseDynamics/mujoco", inverseDynamicsMujoco);
     benchmark::RegisterBenchmark("BM_InverseDynamics/simbody", inverseDynamicsSimbody)->Unit(benchmark::kMillisecond);
+#endif
     benchmark::RegisterBenchmark("BM_Stage/inverse_displacement", stageInverseDisplacement);
     benchmark::RegisterBenchmark("BM_Stage/jacobians_velocity", stageVelocity);
     benchmark::RegisterBenchmark("BM_Stage/twist_shaping_T_dT", stageTwistShaping);

@@ -213,6 +213,7 @@ void compareWithSearch(const Model& model, const Pose& p0, const std::string& wh
 /// (0.05 rad, 3 mm) of home.
 void randomRobots(const std::vector<std::string>& types, int actuators, int robots, Tally& tally, unsigned seed,
                   double reach = 1.0) {
+    robots = sweepSize(robots);
     std::mt19937 rng(seed);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     int made = 0;

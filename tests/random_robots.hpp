@@ -3,6 +3,7 @@
 // Shared by the model and engine tests.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -16,6 +17,18 @@
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::test {
+
+#if defined(__SANITIZE_ADDRESS__)
+inline constexpr bool kSanitized = true;
+#else
+inline constexpr bool kSanitized = false;
+#endif
+
+/// How many random robots a sweep runs: all `n` in the release build, a third (at least one,
+/// the same first robots of the same seeds) under AddressSanitizer, where each costs 10-20x
+/// more. The release build checks every robot; the sanitizer build checks the same code paths
+/// for memory and undefined-behaviour errors on a sample of them.
+inline int sweepSize(int n) { return kSanitized ? std::max(1, n / 3) : n; }
 
 inline const std::vector<std::string>& limbTypes() {
     static const std::vector<std::string> types{"RRR", "PRR", "RPR", "RRP", "PRP", "RPP", "PPR"};
