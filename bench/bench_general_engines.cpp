@@ -5,12 +5,18 @@
 // `per_sample` is the time per sample.
 // BM_Simulate/<robot>/simbody: the Simbody plant (SimbodyMechanism::advance, accuracy 1e-10)
 // under the forces of BM_Simulate/<robot>/nocdyn (bench_simulate.cpp), held for 1 ms each.
+// BM_Simulate/<robot>/mujoco: MuJoCo's plant (MujocoMechanism::advance: mj_step at 0.1 ms,
+// soft loop closures) under the same forces. Both report `end_error_um`: the largest
+// difference of the final x, y [um] (theta [urad]) from nocdyn's forward dynamics at tight
+// tolerances, and MuJoCo `loop_error_um`, its final loop-closure error.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <string>
 
 #include "fixture.hpp"
 #include "simulate_fixture.hpp"
+#include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"
@@ -31,6 +37,45 @@ void engine(benchmark::State& state, const std::string& robot) {
                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+/// nocdyn's final pose under the fixture's held forces, at tolerances far below the engines'.
+Pose referenceEndPose(const SimulateFixture& f) {
+    const Model model(f.robot);
+    SimulatorOptions options;
+    options.absolute_tolerance = 1e-14;
+    options.relative_tolerance = 1e-13;
+    Simulator simulator(model, options);
+    if (!simulator.reset(f.p0, f.dp0)) throw std::runtime_error("reference simulation: reset failed");
+    for (const ActuatorVector& tau : f.tau) {
+        if (!simulator.advance(kHoldPeriod, tau)) throw std::runtime_error("reference simulation failed");
+    }
+    return simulator.pose();
+}
+
+/// max(|dx|, |dy|, |dtheta|) of a final pose from the reference, in um (urad).
+double endErrorMicro(const Eigen::Vector3d& p, const Pose& reference) {
+    return 1e6 * (p - reference).cwiseAbs().maxCoeff();
+}
+
+void mujocoPlant(benchmark::State& state, const std::string& name) {
+    const SimulateFixture f(name);
+    validation::MujocoMechanism plant(f.robot);
+    long steps = 0;
+    for (auto _ : state) {
+        plant.resetPlant(f.p0, f.dp0);
+        for (const ActuatorVector& tau : f.tau) {
+            plant.setActuatorForces(Eigen::VectorXd(tau));
+            plant.advance(kHoldPeriod);
+        }
+        steps += plant.plantSteps();
+        benchmark::DoNotOptimize(plant.time());
+    }
+    state.counters["simulated_per_cpu_s"] =
+        benchmark::Counter(kHoldPeriods * kHoldPeriod, benchmark::Counter::kIsIterationInvariantRate);
+    state.counters["steps"] = static_cast<double>(steps) / static_cast<double>(std::max<long>(1, state.iterations()));
+    state.counters["end_error_um"] = endErrorMicro(plant.pose(), referenceEndPose(f));
+    state.counters["loop_error_um"] = 1e6 * plant.loopError();
+}
+
 void simbodyPlant(benchmark::State& state, const std::string& name) {
     const SimulateFixture f(name);
     validation::SimbodyMechanism plant(f.robot);
@@ -47,6 +92,7 @@ void simbodyPlant(benchmark::State& state, const std::string& name) {
     state.counters["simulated_per_cpu_s"] =
         benchmark::Counter(kHoldPeriods * kHoldPeriod, benchmark::Counter::kIsIterationInvariantRate);
     state.counters["steps"] = static_cast<double>(steps) / static_cast<double>(state.iterations());
+    state.counters["end_error_um"] = endErrorMicro(plant.pose(), referenceEndPose(f));
 }
 
 [[maybe_unused]] const bool registered = [] {
@@ -60,6 +106,9 @@ void simbodyPlant(benchmark::State& state, const std::string& name) {
         })->Unit(benchmark::kMillisecond);
         benchmark::RegisterBenchmark(("BM_Simulate/" + robot + "/simbody").c_str(), [robot](benchmark::State& s) {
             simbodyPlant(s, robot);
+        })->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("BM_Simulate/" + robot + "/mujoco").c_str(), [robot](benchmark::State& s) {
+            mujocoPlant(s, robot);
         })->Unit(benchmark::kMillisecond);
     }
     return true;

@@ -185,6 +185,7 @@ struct MujocoMechanism::Impl {
     std::vector<std::array<int, 2>> anchor;  // sites: inboard, outboard
     double tol = 0.0;
     double potential_home = 0.0;
+    long plant_steps = 0;
 
     ~Impl() {
         if (d != nullptr) mj_deleteData(d);
@@ -462,5 +463,91 @@ std::vector<MechanismSample> MujocoMechanism::inverseDynamics(const PoseTrajecto
     }
     return out;
 }
+
+}  // namespace nocdyn::validation
+
+namespace nocdyn::validation {
+
+void MujocoMechanism::resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d& pose_rate, double t) {
+    Impl& s = *impl_;
+    mjModel* m = s.m;
+    mjData* d = s.d;
+    for (std::size_t j = 0; j < s.robot.limbs.size(); ++j) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            const JointDescription& joint = s.robot.limbs[j].joints[k];
+            if (joint.damping != 0.0 || joint.friction != 0.0)
+                throw Error(where(s.robot, 0) + "limb " + std::to_string(j + 1) + ", joint " + std::to_string(k + 1) +
+                            ": the MuJoCo plant does not model joint friction");
+        }
+    }
+    if (!pose.allFinite() || !pose_rate.allFinite() || !std::isfinite(t))
+        throw Error("MuJoCo plant: the initial state is not finite");
+    // the stiffest soft constraint MuJoCo recommends: time constant two steps, critically damped
+    for (int i = 0; i < m->neq; ++i) {
+        m->eq_solref[mjNREF * i] = 2.0 * m->opt.timestep;
+        m->eq_solref[mjNREF * i + 1] = 1.0;
+    }
+    mj_resetData(m, d);
+    s.assemble(t, pose, Eigen::VectorXd::Zero(m->nq), s.robot.home, Eigen::VectorXd::Zero(m->nq));
+    // G qvel = 0 with the platform rates given
+    const Eigen::MatrixXd G = s.jacobian();
+    const Eigen::VectorXd qvel_free = s.freeColumns(G).partialPivLu().solve(-(s.platformColumns(G) * pose_rate));
+    for (int i = 0; i < m->nv; ++i) d->qvel[i] = 0.0;
+    for (std::size_t c = 0; c < s.free_v.size(); ++c) d->qvel[s.free_v[c]] = qvel_free[static_cast<Eigen::Index>(c)];
+    for (int i = 0; i < 3; ++i) d->qvel[s.tree.platform_v[static_cast<std::size_t>(i)]] = pose_rate[i];
+    mju_zero(d->qfrc_applied, m->nv);
+    d->time = t;
+    s.plant_steps = 0;
+}
+
+void MujocoMechanism::setActuatorForces(const Eigen::VectorXd& tau) {
+    Impl& s = *impl_;
+    const int n = s.robot.actuatorCount();
+    if (tau.size() != n)
+        throw Error("MuJoCo plant: " + std::to_string(tau.size()) + " actuator forces for " + std::to_string(n) +
+                    " actuators");
+    // generalised force Q = sum_a tau_a r_a, r_a the row giving u_a from the tree coordinates
+    Eigen::Map<Eigen::VectorXd> Q(s.d->qfrc_applied, s.m->nv);
+    Q.setZero();
+    int a = 0;
+    for (std::size_t j = 0; j < s.robot.limbs.size(); ++j) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            if (!s.robot.limbs[j].joints[k].actuated) continue;
+            Q += tau[a++] * s.rows.row(static_cast<Eigen::Index>(3 * j + k)).transpose();
+        }
+    }
+}
+
+void MujocoMechanism::advance(double dt) {
+    Impl& s = *impl_;
+    const double h = s.m->opt.timestep;
+    if (!(dt >= 0.0) || !(dt / h < 1e9)) throw Error("MuJoCo plant: cannot advance by " + std::to_string(dt) + " s");
+    const long steps = std::lround(dt / h);
+    for (long k = 0; k < steps; ++k) {
+        mj_step(s.m, s.d);
+        if (s.d->warning[mjWARN_BADQACC].number > 0) {
+            std::ostringstream msg;
+            msg << "MuJoCo plant: unstable acceleration at t=" << s.d->time << " s";
+            throw Error(msg.str());
+        }
+    }
+    s.plant_steps += steps;
+}
+
+double MujocoMechanism::time() const { return impl_->d->time; }
+
+Eigen::Vector3d MujocoMechanism::pose() const {
+    const Impl& s = *impl_;
+    const auto& v = s.tree.platform_v;
+    return Eigen::Vector3d(s.d->qpos[v[0]], s.d->qpos[v[1]], s.d->qpos[v[2]]) + s.robot.home;
+}
+
+double MujocoMechanism::loopError() const {
+    Impl& s = *impl_;
+    s.positionStage();
+    return s.residual().cwiseAbs().maxCoeff();
+}
+
+long MujocoMechanism::plantSteps() const { return impl_->plant_steps; }
 
 }  // namespace nocdyn::validation

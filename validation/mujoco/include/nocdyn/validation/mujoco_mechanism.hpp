@@ -21,6 +21,8 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "nocdyn/description.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "nocdyn/validation/mechanism_sample.hpp"
@@ -51,6 +53,28 @@ public:
 
     /// Number of actuated joints n.
     [[nodiscard]] int actuatorCount() const;
+
+    // ---- forward-dynamics plant: mj_step (semi-implicit Euler at the model's 0.1 ms step),
+    // the loops closed by MuJoCo's soft connect constraints with time constant 2 steps (solref
+    // [2 dt, 1], the smallest MuJoCo recommends). Independent of inverseDynamics. ----
+
+    /// Assembles the robot at `pose` with platform twist `pose_rate` (the passive joints
+    /// continued from home, as inverseDynamics does) at time t, with zero actuator forces.
+    /// Throws nocdyn::Error when the pose cannot be assembled or a joint has friction (the
+    /// plant does not model it).
+    void resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d& pose_rate = Eigen::Vector3d::Zero(),
+                    double t = 0.0);
+    /// Actuator forces along the actuated joint variables, file order, size n; held until changed.
+    void setActuatorForces(const Eigen::VectorXd& tau);
+    /// Advances by the whole number of model steps nearest to dt >= 0. Throws nocdyn::Error
+    /// naming the time when MuJoCo reports an unstable acceleration.
+    void advance(double dt);
+    [[nodiscard]] double time() const;
+    [[nodiscard]] Eigen::Vector3d pose() const;  ///< [theta, x, y]
+    /// Largest loop-closure error of the soft constraints now [m].
+    [[nodiscard]] double loopError() const;
+    /// mj_step calls since the last resetPlant.
+    [[nodiscard]] long plantSteps() const;
 
 private:
     struct Impl;
