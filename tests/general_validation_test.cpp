@@ -84,8 +84,8 @@ TEST_P(ExampleRobot, AgreesWithSimbodyAndMujocoAlongThePaperTrajectories) {
 // MuJoCo's plant (semi-implicit Euler at 0.1 ms, soft loop closures) under the inverse-dynamics
 // forces of trajectory 1, held per 1 ms, against our forward dynamics: its loops stay closed to
 // well under 1 um, and its pose follows ours to its step's error (about 21 um, 0.35 % of the
-// 6 mm peak motion, over these 50 ms; 2 % bounds it, while a wrong actuator direction, mass or
-// inertia gives 10 % or more).
+// 6 mm peak motion, over these 50 ms; 2 % bounds it, while a reversed actuator drives the
+// platform the wrong way, a difference of the order of the motion itself).
 TEST_P(ExampleRobot, MujocoPlantFollowsOurForwardDynamicsToItsStepError) {
     const RobotDescription robot = io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + GetParam());
     const Model model(robot);
