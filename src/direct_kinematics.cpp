@@ -456,17 +456,19 @@ NewtonResult newton(const Equations& eqs, Vector3& z, int max_iterations, double
          ++out.iterations) {
         Vector3 step;
         if (eqs.count == 3) {
-            const Eigen::PartialPivLU<Matrix3> lu(J.topRows<3>());
-            step = lu.solve(F.head<3>());
+            // 3 x 3 by cofactors (a singular J gives a non-finite step: the mode is lost)
+            step = J.topRows<3>().inverse() * F.head<3>();
         } else {
-            // normal equations of the least-squares step (J^T J is 3 x 3)
+            // normal equations of the least-squares step (J^T J is 3 x 3, symmetric positive
+            // definite unless J loses rank: its determinant against the cube of its scale,
+            // then the inverse by cofactors)
             const Matrix3 JtJ = J.transpose() * J;
-            const Eigen::LDLT<Matrix3> ldlt(JtJ);
-            if (ldlt.info() != Eigen::Success || !(ldlt.vectorD().cwiseAbs().minCoeff() > 1e-14 * JtJ.norm())) {
+            const double scale = JtJ.norm();
+            if (!(JtJ.determinant() > 1e-14 * scale * scale * scale)) {
                 out.singular = true;
                 break;
             }
-            step = ldlt.solve(J.transpose() * F);
+            step = JtJ.inverse() * (J.transpose() * F);
         }
         if (!(step.cwiseAbs().maxCoeff() <= max_step)) {
             out.step_too_large = true;
