@@ -8,7 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
-#include <chrono>
+#include <ctime>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -125,11 +125,22 @@ py::array_t<double> toArray(const Matrix3& m) {
     return a;
 }
 
-/// The robot: a validated Model, shared by the Python objects that use it.
+/// The robot: a validated Model, shared by the Python objects that use it, and the Data of the
+/// per-sample calls (used only while the GIL is held, so by one thread at a time).
 struct Robot {
     std::shared_ptr<const Model> model;
-    explicit Robot(RobotDescription description) : model(std::make_shared<const Model>(std::move(description))) {}
+    std::shared_ptr<Data> data;
+    explicit Robot(RobotDescription description)
+        : model(std::make_shared<const Model>(std::move(description))), data(std::make_shared<Data>(*model)) {}
 };
+
+/// CPU time of the calling thread [s] (the batch runs on it: wall time would count the
+/// other processes of a shared machine).
+double threadCpuSeconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 // --- inverse dynamics ---------------------------------------------------------------
 
@@ -178,7 +189,8 @@ py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, con
 }
 
 /// The C++ batch over Eigen's own column-major arrays, timed from C++ (the reference the
-/// Python batch is compared with in bench/python_batch.py): seconds per call, best of `repeat`.
+/// Python batch is compared with in bench/python_batch.py): CPU seconds of the calling thread
+/// per call, best of `repeat`.
 double timeCppBatch(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp, int repeat) {
     const Model& model = *robot.model;
     const ArrayView vp = viewOf(p, "p", -1, 3, false);
@@ -189,11 +201,11 @@ double timeCppBatch(const Robot& robot, const py::array& p, const py::array& dp,
     const py::gil_scoped_release release;
     double best = INFINITY;
     for (int r = 0; r < repeat; ++r) {
-        const auto start = std::chrono::steady_clock::now();
+        const double start = threadCpuSeconds();
         const BatchResult result = inverseDynamicsBatch(model, P, dP, ddP, u, du, ddu, tau, 1);
-        const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;
+        const double elapsed = threadCpuSeconds() - start;
         if (!result.ok()) throw Error(describe(result.status, model));
-        best = std::min(best, elapsed.count());
+        best = std::min(best, elapsed);
     }
     return best;
 }
@@ -510,6 +522,7 @@ PYBIND11_MODULE(_nocdyn, m) {
         .def("_inverse_dynamics_batch", &inverseDynamicsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"),
              py::arg("u"), py::arg("du"), py::arg("ddu"), py::arg("tau"), py::arg("threads") = 1)
         .def("_time_cpp_batch", &timeCppBatch, py::arg("p"), py::arg("dp"), py::arg("ddp"), py::arg("repeat") = 1)
+        .def_static("_thread_cpu_seconds", &threadCpuSeconds)
         .def("_sample_trajectory", &sampleTrajectory, py::arg("trajectory"), py::arg("rate"),
              py::arg("duration") = std::nullopt, py::arg("allow_limits") = false)
         .def("_forward_kinematics", &forwardKinematics, py::arg("u"), py::arg("tolerance") = 1e-9)

@@ -2,7 +2,10 @@
 errors with the CLI's messages."""
 
 import csv
+import os
 import pydoc
+import subprocess
+import sys
 
 import numpy as np
 import pytest
@@ -37,20 +40,26 @@ def test_robots_load_from_files_text_and_the_examples(source_dir):
 
 
 @pytest.mark.parametrize("contents", [
-    None,  # a file that does not exist
     "name: bad\nlimbs: []\n",
     "name: bad\ngeometry: {base_side: -1}\n",
 ])
 def test_robot_file_errors_are_nocdyn_errors_with_the_cli_message(tmp_path, cli, contents):
     path = tmp_path / "robot.yaml"
-    if contents is not None:
-        path.write_text(contents)
+    path.write_text(contents)
     code, _, err = cli("inverse-dynamics", "--robot", path, "--trajectory", "paper1", "--duration", 0.001)
     assert code != 0
     with pytest.raises(nocdyn.Error) as error:
         nocdyn.Robot.load(path)
     assert str(error.value) == cli_error(err)
     assert isinstance(error.value, ValueError)
+
+
+def test_a_missing_robot_file_is_a_nocdyn_error_naming_it(tmp_path):
+    # (the CLI refuses it before reading, with its option parser's message)
+    with pytest.raises(nocdyn.Error, match=r"^cannot open robot file '.*nothere.yaml': No such file"):
+        nocdyn.Robot.load(tmp_path / "nothere.yaml")
+    with pytest.raises(nocdyn.Error, match=r"robot file"):
+        nocdyn.Robot.load(tmp_path)
 
 
 def test_trajectory_errors_have_the_cli_message(tmp_path, cli, paper_robot):
@@ -157,3 +166,12 @@ def test_help_documents_units_and_shapes():
         assert phrase in text, phrase
     assert "SI units" in nocdyn.__doc__
     assert nocdyn.Trajectory.evaluate.__doc__ and nocdyn.Robot.simulate.__doc__
+
+
+def test_quickstart_example_writes_its_png(tmp_path, source_dir):
+    out = tmp_path / "quickstart.png"
+    done = subprocess.run([sys.executable, str(source_dir / "examples" / "quickstart.py"), "--out", str(out)],
+                          capture_output=True, text=True, timeout=120, env=dict(os.environ, MPLBACKEND="Agg"))
+    assert done.returncode == 0, done.stderr
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 10_000
+    assert "peak |tau| per actuator [N]" in done.stdout
