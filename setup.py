@@ -21,8 +21,9 @@ class CMakeBuild(build_py):
     def run(self):
         build_dir = pathlib.Path(os.environ.get("NOCDYN_BUILD_DIR", ROOT / "build")).resolve()
         jobs = os.environ.get("NOCDYN_BUILD_JOBS", str(os.cpu_count() or 1))
+        # the interpreter itself, not a virtual environment's link to it (the same ABI)
         subprocess.run(["cmake", "-S", str(ROOT), "-B", str(build_dir), "-DCMAKE_BUILD_TYPE=Release",
-                        "-DNOCDYN_BUILD_PYTHON=ON", f"-DPython3_EXECUTABLE={sys.executable}"], check=True)
+                        "-DNOCDYN_BUILD_PYTHON=ON", f"-DPython3_EXECUTABLE={os.path.realpath(sys.executable)}"], check=True)
         subprocess.run(["cmake", "--build", str(build_dir), "-j", jobs, "--target", "nocdyn_python"], check=True)
         package = build_dir / "python" / "nocdyn"
         target = pathlib.Path(self.build_lib) / "nocdyn"

@@ -7,7 +7,8 @@
    axis) through `robot.inverse_dynamics(P, dP, ddP)` from Python, with C-ordered inputs and new
    outputs, with F-ordered inputs, and into preallocated outputs (`out=`), against the C++
    batch `nocdyn::inverseDynamicsBatch` over Eigen's own column-major arrays, timed inside C++
-   (`Robot._core._time_cpp_batch`, the same kernel on one thread). CPU time of the calling
+   (`Robot._core._time_cpp_batch`, the same kernel on one thread, its outputs allocated and
+   written once before it is timed). CPU time of the calling
    thread (CLOCK_THREAD_CPUTIME_ID on both sides), best of R interleaved repetitions of each
    (the machine may be shared: interleaving gives each the same load).
 2. Per-sample call: `robot.inverse_dynamics(p, dp, ddp)` on (3,) arrays, and the compiled entry

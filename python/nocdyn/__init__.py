@@ -34,6 +34,7 @@ from ._nocdyn import Error
 __all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMatrices"]
 __version__ = "0.1.0"
 
+Error.__module__ = "nocdyn"
 Error.__doc__ = """An error nocdyn reports: one line naming the problem (file, line, field, limb,
 sample time as they apply), the same text as the command line's. A subclass of ValueError."""
 
