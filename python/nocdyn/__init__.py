@@ -244,6 +244,9 @@ class Robot:
         [Hz] (as `nocdyn envelope`), within every joint range, velocity and effort limit and away
         from singularities.
 
+        axes selects the axes returned ('theta', 'x', 'y'); all three are computed, by the same
+        call as the command line's, so that the numbers are the same.
+
         Returns a list of dicts: axis, frequency [Hz], amplitude [rad or m], limit ('range',
         'velocity', 'effort', 'workspace', 'none'), limb, joint, actuator (0-based, -1 when not
         applicable), kinematic_amplitude, peak_effort_ratio."""
