@@ -16,6 +16,8 @@ packages=(
   gnuplot-nox                          # figures (PNG via pngcairo, SVG)
   clang libclang-rt-dev                # libFuzzer harnesses of the file readers (fuzz/)
   clang-format clang-tidy              # style and static checks (ctest -L lint)
+  python3-dev python3-pybind11 python3-numpy   # the Python package (python/), /usr/bin/python3
+  python3-pytest python3-matplotlib            # its tests (ctest -L python) and examples/quickstart.py
 )
 missing=()
 for p in "${packages[@]}"; do

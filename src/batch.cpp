@@ -16,8 +16,8 @@ namespace nocdyn {
 
 namespace {
 
-using ConstRef = Eigen::Ref<const Eigen::ArrayXXd>;
-using Ref = Eigen::Ref<Eigen::ArrayXXd>;
+using ConstRef = BatchInput;
+using Ref = BatchOutput;
 
 struct Arrays {
     const ConstRef& p;

@@ -5,7 +5,8 @@
 // Layout: inputs are N x 3 arrays, row k = sample k ([theta, x_c, y_c], its rate, its
 // acceleration); outputs are N x n arrays (n = model.actuators), row k = sample k's u, du,
 // ddu and tau. Eigen's default column-major storage makes each column one coordinate of every
-// sample (structure of arrays); any Eigen::Ref-compatible block works.
+// sample (structure of arrays); any strides work, row-major included (NumPy's C- and
+// F-ordered arrays and their strided views map onto these Refs without a copy).
 //
 // Values equal inverseDynamicsFast's (the same kernel). A sample the kernel rejects takes the
 // full path, which gives its exact Status; a failed sample's outputs are NaN. Nothing is
@@ -32,14 +33,17 @@ struct BatchResult {
     [[nodiscard]] bool ok() const { return failed == 0; }
 };
 
+/// An N x m array of any (non-negative) strides: Eigen's default layout, a row-major one or a
+/// strided view of either, referred to without a copy.
+using BatchInput = Eigen::Ref<const Eigen::ArrayXXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+using BatchOutput = Eigen::Ref<Eigen::ArrayXXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+
 /// Inverse dynamics of N samples: (p, dp, ddp), N x 3 each -> u, du, ddu, tau, N x n each.
 /// `threads`: 1 runs on the calling thread; 0 uses one per hardware thread; more splits the
 /// samples into that many contiguous chunks (the calling thread runs one).
+/// The four outputs must have the same stride from one actuator to the next.
 /// Throws nocdyn::Error when the arrays' sizes disagree (before any sample is computed).
-BatchResult inverseDynamicsBatch(const Model& model, const Eigen::Ref<const Eigen::ArrayXXd>& p,
-                                 const Eigen::Ref<const Eigen::ArrayXXd>& dp,
-                                 const Eigen::Ref<const Eigen::ArrayXXd>& ddp, Eigen::Ref<Eigen::ArrayXXd> u,
-                                 Eigen::Ref<Eigen::ArrayXXd> du, Eigen::Ref<Eigen::ArrayXXd> ddu,
-                                 Eigen::Ref<Eigen::ArrayXXd> tau, unsigned threads = 1);
+BatchResult inverseDynamicsBatch(const Model& model, const BatchInput& p, const BatchInput& dp, const BatchInput& ddp,
+                                 BatchOutput u, BatchOutput du, BatchOutput ddu, BatchOutput tau, unsigned threads = 1);
 
 }  // namespace nocdyn

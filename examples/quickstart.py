@@ -1,0 +1,53 @@
+#!/usr/bin/python3
+"""nocdyn from Python: the paper's robot along its trajectory 1, forces plotted to a PNG.
+
+  PYTHONPATH=build/python /usr/bin/python3 examples/quickstart.py [--out quickstart.png]
+"""
+
+import argparse
+import pathlib
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+import nocdyn  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parents[1]
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    parser.add_argument("--robot", default=str(ROOT / "robots" / "paper-3prr.yaml"), help="robot file (YAML)")
+    parser.add_argument("--out", default="quickstart.png", help="PNG to write")
+    args = parser.parse_args()
+
+    robot = nocdyn.Robot.load(args.robot)
+    trajectory = nocdyn.Trajectory.paper(1)  # eq. 33: 10 Hz in x, y and theta
+    t = np.arange(2000) / 10000.0  # 0.2 s at 10 kHz
+    P, dP, ddP = trajectory.evaluate(t)  # (N, 3) each: [theta, x, y] and derivatives
+    u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)  # (N, n) each
+
+    peak = robot.actuator_info()[0]["effort"]
+    print(f"{robot!r}: peak |tau| per actuator [N]: {np.round(np.max(np.abs(tau), axis=0), 2)} "
+          f"(limit {peak:g} N)")
+
+    fig, (ax_u, ax_tau) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 5.5), constrained_layout=True)
+    for i in range(robot.actuators):
+        ax_u.plot(t * 1e3, u[:, i] * 1e3, label=f"u{i + 1}")
+        ax_tau.plot(t * 1e3, tau[:, i], label=f"tau{i + 1}")
+    ax_u.set_ylabel("actuator displacement [mm]")
+    ax_tau.set_ylabel("actuator force [N]")
+    ax_tau.set_xlabel("time [ms]")
+    ax_u.set_title(f"{robot.name}, trajectory 1 of the paper (eq. 33): inverse dynamics")
+    for ax in (ax_u, ax_tau):
+        ax.grid(True, alpha=0.3)
+        ax.legend(loc="center left", bbox_to_anchor=(1.01, 0.5), fontsize="small")
+    fig.savefig(args.out, dpi=120)
+    print(f"wrote {args.out}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,567 @@
+// The compiled part of the Python package `nocdyn` (pybind11): the general model (model.hpp)
+// and its algorithms over NumPy arrays. The Pythonic layer and the docstrings users read are in
+// ../nocdyn/__init__.py; this file converts arrays, checks them, releases the GIL around long
+// computations, and turns nocdyn::Error (and failing Status values) into nocdyn.Error with the
+// CLI's messages.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <algorithm>
+#include <ctime>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "nocdyn/batch.hpp"
+#include "nocdyn/direct_kinematics.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/envelope.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/io/trajectory_yaml.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/sampling.hpp"
+#include "nocdyn/trajectory.hpp"
+
+namespace py = pybind11;
+
+namespace nocdyn::python {
+
+namespace {
+
+using StridedMap = Eigen::Map<Eigen::ArrayXXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+using ConstStridedMap = Eigen::Map<const Eigen::ArrayXXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
+using RowArray = py::array_t<double, py::array::c_style>;
+
+/// A float64 array of shape (rows, cols) (rows = -1: any), viewed in place whatever its strides
+/// (C- or F-ordered, or a strided view of either). Throws TypeError for another dtype and
+/// nocdyn::Error for another shape, or strides that are negative or not whole elements.
+struct ArrayView {
+    double* data = nullptr;
+    Eigen::Index rows = 0, cols = 0;
+    Eigen::Index row_stride = 0, col_stride = 0;  // in elements
+};
+
+ArrayView viewOf(const py::array& a, const char* name, py::ssize_t rows, py::ssize_t cols, bool writeable) {
+    if (!a.dtype().is(py::dtype::of<double>())) {
+        throw py::type_error(std::string(name) + ": expected an array of float64, got dtype " +
+                             std::string(py::str(a.dtype())) + " (convert it with numpy.asarray(x, dtype=float))");
+    }
+    if (a.ndim() != 2 || (rows >= 0 && a.shape(0) != rows) || a.shape(1) != cols) {
+        std::string shape = "(";
+        for (py::ssize_t i = 0; i < a.ndim(); ++i) {
+            if (i > 0) shape += ", ";
+            shape += std::to_string(a.shape(i));
+        }
+        shape += a.ndim() == 1 ? ",)" : ")";
+        throw Error(std::string(name) + ": expected shape (" + (rows >= 0 ? std::to_string(rows) : std::string("N")) +
+                    ", " + std::to_string(cols) + "), got " + shape);
+    }
+    if (writeable && !a.writeable()) throw Error(std::string(name) + ": the output array is read-only");
+    constexpr auto item = static_cast<py::ssize_t>(sizeof(double));
+    const py::ssize_t s0 = a.strides(0), s1 = a.strides(1);
+    if (s0 < 0 || s1 < 0 || s0 % item != 0 || s1 % item != 0) {
+        throw Error(std::string(name) + ": strides (" + std::to_string(s0) + ", " + std::to_string(s1) +
+                    ") bytes are not supported (negative or not whole elements); pass numpy.ascontiguousarray(" + name +
+                    ")");
+    }
+    ArrayView v;
+    v.data = static_cast<double*>(const_cast<void*>(a.data()));
+    v.rows = a.shape(0);
+    v.cols = a.shape(1);
+    v.row_stride = s0 / item;
+    v.col_stride = s1 / item;
+    return v;
+}
+
+// Eigen's Stride is (outer, inner): for its column-major ArrayXXd, outer runs across columns
+// and inner down a column (from one row to the next).
+ConstStridedMap constMap(const ArrayView& v) {
+    return {v.data, v.rows, v.cols, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(v.col_stride, v.row_stride)};
+}
+StridedMap map(const ArrayView& v) {
+    return {v.data, v.rows, v.cols, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(v.col_stride, v.row_stride)};
+}
+
+/// A 3-vector from anything NumPy reads as three floats.
+Eigen::Vector3d vector3(const py::handle& x, const char* name) {
+    const auto a = py::array_t<double, py::array::forcecast>::ensure(x);
+    if (!a || a.ndim() != 1 || a.shape(0) != 3) throw Error(std::string(name) + ": expected 3 values [theta, x, y]");
+    return {a.at(0), a.at(1), a.at(2)};
+}
+
+ActuatorVector actuatorVector(const Model& model, const py::handle& x, const char* name) {
+    const auto a = py::array_t<double, py::array::forcecast>::ensure(x);
+    if (!a || a.ndim() != 1 || a.shape(0) != model.actuators) {
+        throw Error(std::string(name) + ": expected " + std::to_string(model.actuators) + " values (one per actuator)");
+    }
+    ActuatorVector v(model.actuators);
+    for (int i = 0; i < model.actuators; ++i) v(i) = a.at(i);
+    return v;
+}
+
+py::array_t<double> toArray(const ActuatorVector& v) {
+    py::array_t<double> a(v.size());
+    for (Eigen::Index i = 0; i < v.size(); ++i) a.mutable_at(i) = v(i);
+    return a;
+}
+
+py::array_t<double> toArray(const Eigen::Vector3d& v) {
+    py::array_t<double> a(3);
+    for (int i = 0; i < 3; ++i) a.mutable_at(i) = v(i);
+    return a;
+}
+
+py::array_t<double> toArray(const Matrix3& m) {
+    py::array_t<double> a({3, 3});
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) a.mutable_at(i, j) = m(i, j);
+    return a;
+}
+
+/// The robot: a validated Model, shared by the Python objects that use it, and the Data of the
+/// per-sample calls (used only while the GIL is held, so by one thread at a time).
+struct Robot {
+    std::shared_ptr<const Model> model;
+    std::shared_ptr<Data> data;
+    explicit Robot(RobotDescription description)
+        : model(std::make_shared<const Model>(std::move(description))), data(std::make_shared<Data>(*model)) {}
+};
+
+/// CPU time of the calling thread [s] (the batch runs on it: wall time would count the
+/// other processes of a shared machine).
+double threadCpuSeconds() {
+    timespec ts{};
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
+// --- inverse dynamics ---------------------------------------------------------------
+
+py::tuple inverseDynamicsSample(const Robot& robot, const py::handle& p, const py::handle& dp, const py::handle& ddp,
+                                bool matrices) {
+    const Model& model = *robot.model;
+    const Pose p3 = vector3(p, "p");
+    const Twist dp3 = vector3(dp, "dp"), ddp3 = vector3(ddp, "ddp");
+    Data data(model);
+    const Status status =
+        matrices ? inverseDynamics(model, data, p3, dp3, ddp3) : inverseDynamicsFast(model, data, p3, dp3, ddp3);
+    if (!status) throw Error(describe(status, model));
+    if (!matrices) return py::make_tuple(toArray(data.u), toArray(data.du), toArray(data.ddu), toArray(data.tau));
+    py::array_t<double> T({static_cast<py::ssize_t>(model.bodies), py::ssize_t{3}, py::ssize_t{3}});
+    for (int i = 0; i < model.bodies; ++i)
+        for (int r = 0; r < 3; ++r)
+            for (int c = 0; c < 3; ++c) T.mutable_at(i, r, c) = data.T[static_cast<std::size_t>(i)](r, c);
+    return py::make_tuple(toArray(data.u), toArray(data.du), toArray(data.ddu), toArray(data.tau), toArray(data.I),
+                          toArray(data.C), T);
+}
+
+/// The batch over arrays viewed in place, the GIL released while it runs. Returns
+/// (failed, first_failure, message of the first failure or "").
+py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp,
+                                     const py::array& u, const py::array& du, const py::array& ddu,
+                                     const py::array& tau, unsigned threads) {
+    const Model& model = *robot.model;
+    const ArrayView vp = viewOf(p, "p", -1, 3, false);
+    const py::ssize_t n = vp.rows;
+    const ArrayView vdp = viewOf(dp, "dp", n, 3, false), vddp = viewOf(ddp, "ddp", n, 3, false);
+    const ArrayView vu = viewOf(u, "u", n, model.actuators, true), vdu = viewOf(du, "du", n, model.actuators, true);
+    const ArrayView vddu = viewOf(ddu, "ddu", n, model.actuators, true),
+                    vtau = viewOf(tau, "tau", n, model.actuators, true);
+    if (vu.col_stride != vdu.col_stride || vu.col_stride != vddu.col_stride || vu.col_stride != vtau.col_stride) {
+        throw Error("out: u, du, ddu and tau must have the same memory order (all C- or all F-ordered)");
+    }
+    BatchResult result;
+    {
+        const py::gil_scoped_release release;
+        result = inverseDynamicsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vu), map(vdu), map(vddu),
+                                      map(vtau), threads);
+    }
+    const std::string message = result.ok() ? std::string() : describe(result.status, model);
+    return py::make_tuple(static_cast<std::int64_t>(result.failed),
+                          result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message);
+}
+
+/// The C++ batch over Eigen's own column-major arrays, timed from C++ (the reference the
+/// Python batch is compared with in bench/python_batch.py): CPU seconds of the calling thread
+/// per call, best of `repeat` after one untimed call (outputs allocated and touched once, as
+/// with preallocated outputs).
+double timeCppBatch(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp, int repeat) {
+    const Model& model = *robot.model;
+    const ArrayView vp = viewOf(p, "p", -1, 3, false);
+    const Eigen::ArrayXXd P = constMap(vp), dP = constMap(viewOf(dp, "dp", vp.rows, 3, false)),
+                          ddP = constMap(viewOf(ddp, "ddp", vp.rows, 3, false));
+    Eigen::ArrayXXd u(P.rows(), model.actuators), du(u.rows(), u.cols()), ddu(u.rows(), u.cols()),
+        tau(u.rows(), u.cols());
+    const py::gil_scoped_release release;
+    inverseDynamicsBatch(model, P, dP, ddP, u, du, ddu, tau, 1);  // untimed: the outputs' pages mapped
+    double best = INFINITY;
+    for (int r = 0; r < repeat; ++r) {
+        const double start = threadCpuSeconds();
+        const BatchResult result = inverseDynamicsBatch(model, P, dP, ddP, u, du, ddu, tau, 1);
+        const double elapsed = threadCpuSeconds() - start;
+        if (!result.ok()) throw Error(describe(result.status, model));
+        best = std::min(best, elapsed);
+    }
+    return best;
+}
+
+// --- trajectories -----------------------------------------------------------------------
+
+AxisMotion axisMotion(double offset, const std::vector<std::array<double, 3>>& harmonics) {
+    AxisMotion m;
+    m.offset = offset;
+    for (const auto& h : harmonics) m.harmonics.push_back({h[0], h[1], h[2]});
+    return m;
+}
+
+std::vector<std::array<double, 3>> harmonicsOf(const AxisMotion& m) {
+    std::vector<std::array<double, 3>> out;
+    for (const Harmonic& h : m.harmonics) out.push_back({h.amplitude, h.frequency, h.phase});
+    return out;
+}
+
+/// p, dp/dt and d2p/dt2 at each time of t, three (N, 3) arrays.
+py::tuple evaluateTrajectory(const PoseTrajectory& trajectory, const py::array_t<double, py::array::forcecast>& t) {
+    if (t.ndim() != 1) throw Error("t: expected a one-dimensional array of times");
+    const py::ssize_t n = t.shape(0);
+    RowArray P({n, py::ssize_t{3}}), dP({n, py::ssize_t{3}}), ddP({n, py::ssize_t{3}});
+    auto tp = t.unchecked<1>();
+    auto a = P.mutable_unchecked<2>(), b = dP.mutable_unchecked<2>(), c = ddP.mutable_unchecked<2>();
+    for (py::ssize_t k = 0; k < n; ++k) {
+        Pose p, dp, ddp;
+        trajectory.evaluate(tp(k), p, dp, ddp);
+        for (int i = 0; i < 3; ++i) {
+            a(k, i) = p(i);
+            b(k, i) = dp(i);
+            c(k, i) = ddp(i);
+        }
+    }
+    return py::make_tuple(P, dP, ddP);
+}
+
+/// The CLI's `inverse-dynamics`: sampleInverseDynamics at the grid of (duration, rate), with
+/// the same checks and messages. Returns a dict of arrays named as the CSV's columns.
+py::dict sampleTrajectory(const Robot& robot, const PoseTrajectory& trajectory, double rate,
+                          std::optional<double> duration, bool allow_limits) {
+    const Model& model = *robot.model;
+    const double d = duration ? *duration : (trajectory.duration ? *trajectory.duration : 0.2);
+    const SampleGrid grid = sampleGrid(d, rate);
+    requireRateAboveNyquist(trajectory, grid.rate);
+    const auto n = static_cast<py::ssize_t>(grid.count);
+    const auto m = static_cast<py::ssize_t>(model.actuators);
+    py::array_t<double> t(n), kinetic(n);
+    RowArray P({n, py::ssize_t{3}}), dP({n, py::ssize_t{3}}), ddP({n, py::ssize_t{3}});
+    RowArray u({n, m}), du({n, m}), ddu({n, m}), tau({n, m});
+    double* tt = t.mutable_data();
+    double* kk = kinetic.mutable_data();
+    double *pp = P.mutable_data(), *dpp = dP.mutable_data(), *ddpp = ddP.mutable_data();
+    double *uu = u.mutable_data(), *duu = du.mutable_data(), *dduu = ddu.mutable_data(), *taup = tau.mutable_data();
+    py::ssize_t k = 0;
+    LimitSummary summary;
+    {
+        const py::gil_scoped_release release;
+        summary =
+            streamInverseDynamics(model, trajectory, grid, allow_limits ? LimitPolicy::record : LimitPolicy::error,
+                                  [&](const InverseDynamicsSample& s) {
+                                      tt[k] = s.t;
+                                      kk[k] = s.kinetic;
+                                      for (int i = 0; i < 3; ++i) {
+                                          pp[3 * k + i] = s.p(i);
+                                          dpp[3 * k + i] = s.dp(i);
+                                          ddpp[3 * k + i] = s.ddp(i);
+                                      }
+                                      for (py::ssize_t i = 0; i < m; ++i) {
+                                          uu[m * k + i] = s.u(i);
+                                          duu[m * k + i] = s.du(i);
+                                          dduu[m * k + i] = s.ddu(i);
+                                          taup[m * k + i] = s.tau(i);
+                                      }
+                                      ++k;
+                                  });
+    }
+    py::dict out;
+    out["t"] = t;
+    out["p"] = P;
+    out["dp"] = dP;
+    out["ddp"] = ddP;
+    out["u"] = u;
+    out["du"] = du;
+    out["ddu"] = ddu;
+    out["tau"] = tau;
+    out["kinetic"] = kinetic;
+    out["warnings"] = summary.limit_violations;
+    return out;
+}
+
+// --- direct kinematics, forward dynamics, envelope ----------------------------------------
+
+py::dict forwardKinematics(const Robot& robot, const py::handle& u, double tolerance) {
+    const Model& model = *robot.model;
+    const ActuatorVector uu = actuatorVector(model, u, "u");
+    Data data(model);
+    AssemblyModes modes;
+    DirectKinematicsOptions options;
+    options.tolerance = tolerance;
+    const Status status = directKinematics(model, data, uu, modes, options);
+    if (!status) throw Error(describe(status, model));
+    py::list list;
+    for (const AssemblyMode& mode : modes) {
+        py::dict d;
+        d["pose"] = toArray(Eigen::Vector3d(mode.p));
+        std::vector<int> branch(mode.branch.begin(), mode.branch.begin() + model.limbs);
+        d["branch"] = branch;
+        d["working"] = mode.working;
+        d["u_error"] = mode.u_error;
+        d["condition"] = mode.condition;
+        list.append(d);
+    }
+    py::dict out;
+    out["modes"] = list;
+    out["degenerate"] = modes.degenerate;
+    out["truncated"] = modes.truncated;
+    return out;
+}
+
+Interpolation interpolationOf(const std::string& name) {
+    if (name == "hold") return Interpolation::hold;
+    if (name == "linear") return Interpolation::linear;
+    if (name == "cubic") return Interpolation::cubic;
+    throw Error("interpolation: '" + name + "' is not one of hold, linear, cubic");
+}
+
+/// Forward dynamics from (p0, dp0) under forces tau(times) (interpolated), the state read at
+/// `t_out` (increasing, >= 0). Stops with nocdyn.Error "t = ... s: <reason>" on failure.
+py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp0,
+                  const py::array_t<double, py::array::forcecast>& force_times,
+                  const py::array_t<double, py::array::forcecast>& forces, const std::string& interpolation,
+                  const py::array_t<double, py::array::forcecast>& t_out, double rtol, double atol, double max_step) {
+    const Model& model = *robot.model;
+    const int n = model.actuators;
+    if (force_times.ndim() != 1 || forces.ndim() != 2 || forces.shape(0) != force_times.shape(0) ||
+        forces.shape(1) != n) {
+        throw Error("forces: expected shape (len(force_times), " + std::to_string(n) + ")");
+    }
+    if (t_out.ndim() != 1 || t_out.shape(0) < 1) throw Error("t: expected a non-empty one-dimensional array of times");
+    std::vector<double> times(force_times.data(), force_times.data() + force_times.shape(0));
+    std::vector<ActuatorVector> tau(times.size(), ActuatorVector(n));
+    auto f = forces.unchecked<2>();
+    for (std::size_t s = 0; s < times.size(); ++s)
+        for (int i = 0; i < n; ++i) tau[s](i) = f(static_cast<py::ssize_t>(s), i);
+    ForceSignal signal(std::move(times), tau, interpolationOf(interpolation), "forces");
+    SimulatorOptions options;
+    options.relative_tolerance = rtol;
+    options.absolute_tolerance = atol;
+    options.max_step = max_step;
+    Simulator simulator(model, options);
+    const auto to = t_out.unchecked<1>();
+    const py::ssize_t count = to.shape(0);
+    for (py::ssize_t k = 0; k < count; ++k) {
+        if (!std::isfinite(to(k)) || to(k) < 0.0 || (k > 0 && to(k) <= to(k - 1))) {
+            throw Error("t: times must be finite, non-negative and increasing (t[" + std::to_string(k) + "])");
+        }
+    }
+    if (const Status s = simulator.reset(vector3(p0, "p0"), vector3(dp0, "dp0"), 0.0); !s) {
+        throw Error("t = 0 s: " + describe(s, model));
+    }
+    simulator.setForces(std::move(signal));
+    const auto m = static_cast<py::ssize_t>(n);
+    RowArray P({count, py::ssize_t{3}}), dP({count, py::ssize_t{3}}), U({count, m}), dU({count, m}), Tau({count, m});
+    auto pp = P.mutable_unchecked<2>(), dpp = dP.mutable_unchecked<2>(), uu = U.mutable_unchecked<2>(),
+         duu = dU.mutable_unchecked<2>(), tt = Tau.mutable_unchecked<2>();
+    Status failure;
+    {
+        const py::gil_scoped_release release;
+        for (py::ssize_t k = 0; k < count && failure.ok(); ++k) {
+            failure = simulator.advance(to(k) - simulator.time());
+            if (!failure) break;
+            for (int i = 0; i < 3; ++i) {
+                pp(k, i) = simulator.pose()(i);
+                dpp(k, i) = simulator.poseRate()(i);
+            }
+            for (int i = 0; i < n; ++i) {
+                uu(k, i) = simulator.u()(i);
+                duu(k, i) = simulator.du()(i);
+                tt(k, i) = simulator.tau()(i);
+            }
+        }
+    }
+    if (!failure) throw Error("t = " + std::to_string(simulator.time()) + " s: " + describe(failure, model));
+    py::dict out;
+    out["t"] = t_out;
+    out["p"] = P;
+    out["dp"] = dP;
+    out["u"] = U;
+    out["du"] = dU;
+    out["tau"] = Tau;
+    return out;
+}
+
+py::list envelope(const Robot& robot, const std::vector<std::string>& axes, double min_frequency, double max_frequency,
+                  int frequencies, int samples_per_period, double relative_tolerance) {
+    const Model& model = *robot.model;
+    EnvelopeOptions options;
+    options.min_frequency = min_frequency;
+    options.max_frequency = max_frequency;
+    options.frequencies = frequencies;
+    options.samples_per_period = samples_per_period;
+    options.relative_tolerance = relative_tolerance;
+    std::vector<EnvelopeAxis> which;
+    for (const std::string& a : axes) {
+        if (a == "theta")
+            which.push_back(EnvelopeAxis::theta);
+        else if (a == "x")
+            which.push_back(EnvelopeAxis::x);
+        else if (a == "y")
+            which.push_back(EnvelopeAxis::y);
+        else
+            throw Error("axis: '" + a + "' is not one of theta, x, y");
+    }
+    std::vector<EnvelopePoint> points;
+    {
+        const py::gil_scoped_release release;
+        points = operatingEnvelope(model, options);  // as `nocdyn envelope` computes it
+    }
+    py::list out;
+    for (const EnvelopePoint& e : points) {
+        if (std::find(which.begin(), which.end(), e.axis) == which.end()) continue;
+        py::dict d;
+        d["axis"] = axisName(e.axis);
+        d["frequency"] = e.frequency;
+        d["amplitude"] = e.amplitude;
+        d["limit"] = limitName(e.limit);
+        d["limb"] = e.limb;
+        d["joint"] = e.joint;
+        d["actuator"] = e.actuator;
+        d["kinematic_amplitude"] = e.kinematic_amplitude;
+        d["peak_effort_ratio"] = e.peak_effort_ratio;
+        out.append(d);
+    }
+    return out;
+}
+
+}  // namespace
+
+}  // namespace nocdyn::python
+
+PYBIND11_MODULE(_nocdyn, m) {
+    using namespace nocdyn;
+    using namespace nocdyn::python;
+    m.doc() = "Compiled core of the nocdyn package (use `import nocdyn`).";
+    py::register_exception<Error>(m, "Error", PyExc_ValueError);
+
+    py::class_<Robot>(m, "Robot")
+        .def_static(
+            "load", [](const std::string& path) { return Robot(io::loadRobotDescription(path)); }, py::arg("path"))
+        .def_static(
+            "from_yaml",
+            [](const std::string& text, const std::string& source) {
+                return Robot(io::parseRobotDescription(text, source));
+            },
+            py::arg("text"), py::arg("source") = "<string>")
+        .def_static(
+            "example", [](const std::string& name) { return Robot(io::exampleRobot(name)); }, py::arg("name"))
+        .def_static("paper", [] { return Robot(expand(RobotParameters{})); })
+        .def_static("example_names", [] { return io::exampleRobotNames(); })
+        .def_property_readonly("name", [](const Robot& r) { return r.model->description.name; })
+        .def_property_readonly("source", [](const Robot& r) { return r.model->description.source; })
+        .def_property_readonly("actuator_count", [](const Robot& r) { return r.model->actuators; })
+        .def_property_readonly("limb_count", [](const Robot& r) { return r.model->limbs; })
+        .def_property_readonly("bodies", [](const Robot& r) { return r.model->bodies; })
+        .def_property_readonly("home", [](const Robot& r) { return toArray(Eigen::Vector3d(r.model->home)); })
+        .def_property_readonly("gravity",
+                               [](const Robot& r) {
+                                   return std::array{r.model->gravity(0), r.model->gravity(1)};
+                               })
+        .def_property_readonly("redundant",
+                               [](const Robot& r) { return r.model->coordinates == Coordinates::platform; })
+        .def("limb_info",
+             [](const Robot& r) {
+                 py::list out;
+                 const Model& model = *r.model;
+                 for (int j = 0; j < model.limbs; ++j) {
+                     const LimbDescription& limb = model.description.limbs[static_cast<std::size_t>(j)];
+                     py::dict d;
+                     d["name"] = limb.name;
+                     d["type"] = limb.type();
+                     py::list joints;
+                     for (const JointDescription& joint : limb.joints) joints.append(joint.actuated);
+                     d["actuated"] = joints;
+                     out.append(d);
+                 }
+                 return out;
+             })
+        .def("actuator_info",
+             [](const Robot& r) {
+                 py::list out;
+                 const Model& model = *r.model;
+                 for (int a = 0; a < model.actuators; ++a) {
+                     const auto j = static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)]);
+                     const auto k = static_cast<std::size_t>(model.actuator_joint[static_cast<std::size_t>(a)]);
+                     const JointDescription& joint = model.description.limbs[j].joints[k];
+                     py::dict d;
+                     d["limb"] = static_cast<int>(j);
+                     d["limb_name"] = model.description.limbs[j].name;
+                     d["joint"] = static_cast<int>(k);
+                     d["type"] = joint.type == JointType::prismatic ? "P" : "R";
+                     d["lower"] = joint.limits.lower;
+                     d["upper"] = joint.limits.upper;
+                     d["effort"] = joint.limits.effort;
+                     d["velocity"] = joint.limits.velocity;
+                     out.append(d);
+                 }
+                 return out;
+             })
+        .def("to_yaml", [](const Robot& r) { return io::descriptionToYaml(r.model->description); })
+        .def("_inverse_dynamics_sample", &inverseDynamicsSample, py::arg("p"), py::arg("dp"), py::arg("ddp"),
+             py::arg("matrices") = false)
+        .def("_inverse_dynamics_batch", &inverseDynamicsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"),
+             py::arg("u"), py::arg("du"), py::arg("ddu"), py::arg("tau"), py::arg("threads") = 1)
+        .def("_time_cpp_batch", &timeCppBatch, py::arg("p"), py::arg("dp"), py::arg("ddp"), py::arg("repeat") = 1)
+        .def_static("_thread_cpu_seconds", &threadCpuSeconds)
+        .def("_sample_trajectory", &sampleTrajectory, py::arg("trajectory"), py::arg("rate"),
+             py::arg("duration") = std::nullopt, py::arg("allow_limits") = false)
+        .def("_forward_kinematics", &forwardKinematics, py::arg("u"), py::arg("tolerance") = 1e-9)
+        .def("_simulate", &simulate, py::arg("p0"), py::arg("dp0"), py::arg("force_times"), py::arg("forces"),
+             py::arg("interpolation"), py::arg("t"), py::arg("rtol"), py::arg("atol"), py::arg("max_step"))
+        .def("_envelope", &envelope, py::arg("axes"), py::arg("min_frequency"), py::arg("max_frequency"),
+             py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"));
+
+    py::class_<PoseTrajectory>(m, "Trajectory")
+        .def(py::init([](const std::string& name, double theta_offset, const std::vector<std::array<double, 3>>& theta,
+                         double x_offset, const std::vector<std::array<double, 3>>& x, double y_offset,
+                         const std::vector<std::array<double, 3>>& y, std::optional<double> duration) {
+                 PoseTrajectory t;
+                 t.name = name;
+                 t.theta = axisMotion(theta_offset, theta);
+                 t.x = axisMotion(x_offset, x);
+                 t.y = axisMotion(y_offset, y);
+                 t.duration = duration;
+                 return t;
+             }),
+             py::arg("name"), py::arg("theta_offset"), py::arg("theta"), py::arg("x_offset"), py::arg("x"),
+             py::arg("y_offset"), py::arg("y"), py::arg("duration"))
+        .def_static(
+            "load", [](const std::string& path) { return io::loadTrajectory(path); }, py::arg("path"))
+        .def_static(
+            "from_yaml",
+            [](const std::string& text, const std::string& source) { return io::parseTrajectory(text, source); },
+            py::arg("text"), py::arg("source") = "<string>")
+        .def_static("paper1", &paperTrajectory1)
+        .def_static("paper2", &paperTrajectory2)
+        .def_readonly("name", &PoseTrajectory::name)
+        .def_readonly("duration", &PoseTrajectory::duration)
+        .def_property_readonly("highest_frequency", [](const PoseTrajectory& t) { return highestFrequency(t); })
+        .def("_axis",
+             [](const PoseTrajectory& t, const std::string& axis) {
+                 const AxisMotion& a = axis == "theta" ? t.theta : axis == "x" ? t.x : t.y;
+                 return py::make_tuple(a.offset, harmonicsOf(a));
+             })
+        .def("_evaluate", &evaluateTrajectory, py::arg("t"));
+}
