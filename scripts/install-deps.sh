@@ -16,6 +16,7 @@ packages=(
   gnuplot-nox                          # figures (PNG via pngcairo, SVG)
   clang libclang-rt-dev                # libFuzzer harnesses of the file readers (fuzz/)
   clang-format clang-tidy              # style and static checks (ctest -L lint)
+  chromium nodejs                      # browser tests of the animation page (ctest -L browser; npm ci)
 )
 missing=()
 for p in "${packages[@]}"; do

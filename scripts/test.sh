@@ -13,6 +13,8 @@ jobs="$(nproc)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
   -DNOCDYN_BUILD_BENCHMARKS=ON -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=OFF
 cmake --build build -j"$jobs"
+# playwright-core (the driver only; the browser is Debian's chromium) for ctest -L browser
+npm ci --prefix tests/browser --no-audit --no-fund
 ctest --test-dir build --output-on-failure --no-tests=error -j"$jobs"
 
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
