@@ -13,6 +13,7 @@ packages=(
   libmujoco-dev libqhull-dev           # second multibody engine (validation)
   libgtest-dev libgmock-dev            # tests
   libbenchmark-dev                     # benchmarks
+  chromium nodejs                      # browser tests of the animation page (ctest -L browser; npm ci)
   gnuplot-nox                          # figures (PNG via pngcairo, SVG)
   clang libclang-rt-dev                # libFuzzer harnesses of the file readers (fuzz/)
   clang-format clang-tidy              # style and static checks (ctest -L lint)

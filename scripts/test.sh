@@ -13,6 +13,8 @@ jobs="$(nproc)"
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
   -DNOCDYN_BUILD_BENCHMARKS=ON -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=ON
 cmake --build build -j"$jobs"
+# playwright-core (the driver only; the browser is Debian's chromium) for ctest -L browser
+npm ci --prefix tests/browser --no-audit --no-fund
 ctest --test-dir build --output-on-failure --no-tests=error -j"$jobs"
 
 # The Python package is not built here: an interpreter cannot load an ASan-instrumented module

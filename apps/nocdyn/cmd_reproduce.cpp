@@ -9,6 +9,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "animation.hpp"
 #include "commands.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -276,6 +277,7 @@ void run(const ReproduceOptions& options) {
     summary << "# nocdyn reproduce: the paper's 3-PRR results\n\n"
             << "Robot: the paper's prototype (`robots/paper-3prr.yaml`, eq. 32 and Table I, SI units).\n\n";
     reproduceTrajectories(model, out, summary);
+    reproduceAnimations(out, summary);
     reproduceRoundTrip(model, summary);
     reproduceControl(model, out, summary);
     reproduceEnvelope(model, out, summary);

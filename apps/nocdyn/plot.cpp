@@ -149,10 +149,15 @@ std::string literalText(const std::string& text) {
 }
 
 void renderFigure(const Figure& figure, const std::string& stem) {
-    for (const auto& [terminal, extension] :
-         {std::pair<std::string, std::string>{"pngcairo enhanced font 'Sans,11'", ".png"},
-          std::pair<std::string, std::string>{"svg enhanced dynamic font 'Sans,11'", ".svg"}}) {
-        io::OutputFile out(stem + extension);
+    renderFigureFiles(figure, stem + ".png", stem + ".svg");
+}
+
+void renderFigureFiles(const Figure& figure, const std::string& png, const std::string& svg) {
+    for (const auto& [terminal, path] :
+         {std::pair<std::string, std::string>{"pngcairo enhanced font 'Sans,11'", png},
+          std::pair<std::string, std::string>{"svg enhanced dynamic font 'Sans,11'", svg}}) {
+        if (path.empty()) continue;
+        io::OutputFile out(path);
         runGnuplot(script(figure, terminal), out);
         out.commit();
     }

@@ -34,5 +34,7 @@ struct Figure {
 /// Writes `stem`.png and `stem`.svg, each safely (io::OutputFile: all or nothing). Throws
 /// nocdyn::Error when gnuplot is missing or fails.
 void renderFigure(const Figure& figure, const std::string& stem);
+/// The same to the paths given (an empty path: that format is not written).
+void renderFigureFiles(const Figure& figure, const std::string& png, const std::string& svg);
 
 }  // namespace nocdyn::cli

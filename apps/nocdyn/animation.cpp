@@ -1,0 +1,588 @@
+// The animation page and static frames (animation.hpp).
+#include "animation.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <ostream>
+#include <sstream>
+
+#include <nlohmann/json.hpp>
+
+#include "nocdyn/drawing.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/sampling.hpp"
+
+namespace nocdyn::cli {
+
+namespace {
+
+std::string secondsText(double t) {
+    char text[40];
+    std::snprintf(text, sizeof text, "%.9g", t);
+    return text;
+}
+
+/// "t = ... s: reason" for a pose that cannot be drawn.
+Error poseError(const std::string& where, double t, const Status& status, const Model& model) {
+    return Error(where + "t = " + secondsText(t) + " s: " + describe(status, model));
+}
+
+/// The drawable points of one frame, flattened: per limb, per joint, its position and (P) its
+/// rail ends; then C. Integers in micrometres keep the page small and exact to well under a pixel.
+void appendPoints(const RobotDrawing& d, std::vector<long long>& out) {
+    const auto um = [&](const Vector2& x) {
+        out.push_back(std::llround(x.x() * 1e6));
+        out.push_back(std::llround(x.y() * 1e6));
+    };
+    for (int j = 0; j < d.limbs; ++j) {
+        for (const JointDrawing& joint : d.limb[static_cast<std::size_t>(j)].joint) {
+            um(joint.position);
+            if (joint.type == JointType::prismatic) {
+                um(joint.rail_start);
+                um(joint.rail_end);
+            }
+        }
+    }
+    um(d.C);
+}
+
+/// Writes a JSON array of numbers in the shortest %g form of `digits` significant digits.
+template <class Range>
+void appendArray(std::string& out, const Range& values, int digits) {
+    out += '[';
+    char number[40];
+    bool first = true;
+    for (const auto v : values) {
+        if (!first) out += ',';
+        first = false;
+        if constexpr (std::is_integral_v<std::decay_t<decltype(v)>>) {
+            std::snprintf(number, sizeof number, "%lld", static_cast<long long>(v));
+        } else {
+            std::snprintf(number, sizeof number, "%.*g", digits, static_cast<double>(v));
+        }
+        out += number;
+    }
+    out += ']';
+}
+
+/// JSON text safe inside a <script> element: '<', '>' and '&' only occur in JSON strings,
+/// where their \u escapes mean the same, so no "</script>" or "<!--" can appear.
+std::string scriptSafe(const std::string& json) {
+    std::string out;
+    out.reserve(json.size());
+    for (const char c : json) {
+        if (c == '<') {
+            out += "\\u003c";
+        } else if (c == '>') {
+            out += "\\u003e";
+        } else if (c == '&') {
+            out += "\\u0026";
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
+const char* kPageHead = R"HTML(<!DOCTYPE html>
+<html lang="en">
+<head>
+<meta charset="utf-8">
+<meta http-equiv="Content-Security-Policy" content="default-src 'none'; script-src 'unsafe-inline'; style-src 'unsafe-inline'; img-src data:">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>nocdyn animation</title>
+<style>
+body { font: 14px sans-serif; margin: 12px; color: #222; }
+#main { display: flex; flex-wrap: wrap; gap: 16px; }
+canvas { border: 1px solid #ccc; background: #fff; display: block; }
+#controls { margin: 8px 0; display: flex; flex-wrap: wrap; gap: 12px; align-items: center; }
+#slider { width: 560px; }
+.note { color: #555; font-size: 12px; max-width: 560px; }
+h1 { font-size: 18px; margin: 0 0 4px 0; }
+</style>
+</head>
+<body>
+<h1 id="title">nocdyn animation</h1>
+<div class="note" id="subtitle" style="max-width:none"></div>
+<div id="controls">
+<button id="play" type="button">Play</button>
+<input id="slider" type="range" min="0" max="0" step="1" value="0">
+<span>t = <span id="time">0</span> s</span>
+<label>speed <select id="speed"><option>0.25</option><option>0.5</option><option selected>1</option><option>2</option><option>4</option></select></label>
+<label>slow motion &times;<input id="slow" type="number" min="1" max="1000000" step="any" style="width:6em"></label>
+<label>magnify &times;<input id="magnify" type="number" min="0" max="10000" step="any" style="width:5em"></label>
+</div>
+<div class="note" id="factors" style="max-width:none"></div>
+<div id="main">
+<div><canvas id="robot" width="560" height="480"></canvas><div class="note" id="legend">blue: links; circles: R joints, squares: P joints (filled: actuated); grey: rails (stroke from the joint limits); orange: platform; red: operation point C</div></div>
+<div><canvas id="bars" width="380" height="40"></canvas>
+<canvas id="plot-u" width="560" height="190"></canvas>
+<canvas id="plot-tau" width="560" height="190"></canvas></div>
+</div>
+<div class="note" id="warnings"></div>
+<script type="application/json" id="nocdyn-data">)HTML";
+
+const char* kPageTail = R"HTML(</script>
+<script>
+(function () {
+'use strict';
+const D = JSON.parse(document.getElementById('nocdyn-data').textContent);
+const $ = (id) => document.getElementById(id);
+const T = D.frames.t, F = T.length, P = D.frames.points, S = D.stride, REF = D.reference;
+const n = D.actuators.length, TAU = D.frames.tau;
+const COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf', '#7f7f7f'];
+const C_COLOR = '#ff0000';
+const view = {
+  frame: 0, time: T[0], playing: false, speed: 1, slowMotion: D.slowMotion, magnify: D.magnify,
+  scale: 1, ox: 0, oy: 0, drawnC: [0, 0], draws: 0, cColor: C_COLOR,
+  toPixel(x, y) { return [this.ox + this.scale * x, this.oy - this.scale * y]; },
+  setFrame(i) { setFrame(i); },
+};
+window.nocdynView = view;
+document.title = 'nocdyn: ' + D.robot + ' - ' + D.source;
+$('title').textContent = D.robot + ': ' + D.source;
+$('subtitle').textContent = D.samples + ' samples over ' + D.duration.toPrecision(4) + ' s; ' + F +
+  ' frames shown, the plots keep every sample\'s extremes (min and max per ' + D.plots.t.length + ' buckets)';
+if (D.warnings.length) $('warnings').textContent = 'Limits exceeded: ' + D.warnings.join('; ');
+// point o of frame i [m], displacements from the mean pose magnified
+function pt(i, o) {
+  const M = view.magnify, b = i * S + o;
+  return [(REF[o] + M * (P[b] - REF[o])) * 1e-6, (REF[o + 1] + M * (P[b + 1] - REF[o + 1])) * 1e-6];
+}
+const canvas = $('robot'), ctx = canvas.getContext('2d');
+function fit() {
+  let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
+  for (let i = 0; i < F; ++i) {
+    for (let o = 0; o < S; o += 2) {
+      const p = pt(i, o);
+      x0 = Math.min(x0, p[0]); x1 = Math.max(x1, p[0]); y0 = Math.min(y0, p[1]); y1 = Math.max(y1, p[1]);
+    }
+  }
+  const m = 24, W = canvas.width - 2 * m, H = canvas.height - 2 * m;
+  const w = Math.max(x1 - x0, 1e-9), h = Math.max(y1 - y0, 1e-9);
+  view.scale = Math.min(W / w, H / h);
+  view.ox = m + (W - view.scale * w) / 2 - view.scale * x0;
+  view.oy = canvas.height - m - (H - view.scale * h) / 2 + view.scale * y0;
+}
+function line(a, b, color, width) {
+  const p = view.toPixel(a[0], a[1]), q = view.toPixel(b[0], b[1]);
+  ctx.strokeStyle = color; ctx.lineWidth = width; ctx.beginPath(); ctx.moveTo(p[0], p[1]); ctx.lineTo(q[0], q[1]); ctx.stroke();
+}
+function dot(a, r, fill, stroke) {
+  const p = view.toPixel(a[0], a[1]);
+  ctx.beginPath(); ctx.arc(p[0], p[1], r, 0, 2 * Math.PI); ctx.fillStyle = fill; ctx.fill();
+  if (stroke) { ctx.strokeStyle = stroke; ctx.lineWidth = 1.5; ctx.stroke(); }
+  return p;
+}
+function drawRobot() {
+  const i = view.frame;
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  // scale bar
+  const decade = Math.pow(10, Math.floor(Math.log10(150 / view.scale)));
+  const bar = [5, 2, 1].map((f) => f * decade).find((b) => b * view.scale <= 150);
+  ctx.fillStyle = '#444'; ctx.font = '12px sans-serif';
+  ctx.fillRect(10, canvas.height - 12, bar * view.scale, 3);
+  ctx.fillText(String(Number((bar * 1000).toPrecision(3))) + ' mm', 14 + bar * view.scale, canvas.height - 8);
+  // platform polygon
+  ctx.beginPath();
+  D.layout.forEach((limb, j) => {
+    const p = pt(i, limb[2].pos), q = view.toPixel(p[0], p[1]);
+    if (j === 0) ctx.moveTo(q[0], q[1]); else ctx.lineTo(q[0], q[1]);
+  });
+  ctx.closePath(); ctx.fillStyle = 'rgba(255,165,0,0.35)'; ctx.fill(); ctx.strokeStyle = '#c77800'; ctx.lineWidth = 2; ctx.stroke();
+  for (const limb of D.layout) {
+    for (const joint of limb) if (joint.rail >= 0) line(pt(i, joint.rail), pt(i, joint.rail + 2), '#999', 7);
+    line(pt(i, limb[0].pos), pt(i, limb[1].pos), '#1f4e9c', 4);
+    line(pt(i, limb[1].pos), pt(i, limb[2].pos), '#1f4e9c', 4);
+    limb.forEach((joint, k) => {
+      const p = pt(i, joint.pos);
+      if (joint.rail >= 0) {
+        const q = view.toPixel(p[0], p[1]);
+        ctx.fillStyle = joint.actuator >= 0 ? '#333' : '#777'; ctx.fillRect(q[0] - 6, q[1] - 6, 12, 12);
+      } else {
+        dot(p, k === 0 ? 6 : 4.5, joint.actuator >= 0 ? '#333' : '#fff', '#1f4e9c');
+      }
+    });
+  }
+  view.drawnC = dot(pt(i, S - 2), 4, C_COLOR);
+  view.draws += 1;
+}
+// actuator forces as bars, coloured by the fraction of the effort limit
+const bars = $('bars'), bctx = bars.getContext('2d');
+bars.height = 26 * n + 8;
+function drawBars() {
+  bctx.clearRect(0, 0, bars.width, bars.height);
+  bctx.font = '12px sans-serif';
+  D.actuators.forEach((a, k) => {
+    const tau = TAU[view.frame * n + k], limit = a.effort !== null ? a.effort : a.peakTau;
+    const f = limit > 0 ? Math.min(Math.abs(tau) / limit, 1) : 0, y = 4 + 26 * k, w = 160;
+    bctx.fillStyle = '#eee'; bctx.fillRect(0, y, w, 20);
+    bctx.fillStyle = 'hsl(' + Math.round(120 * (1 - f)) + ',80%,45%)'; bctx.fillRect(0, y, w * f, 20);
+    bctx.fillStyle = '#222';
+    const pct = a.effort !== null ? (100 * Math.abs(tau) / a.effort).toFixed(0) + '% of ' + a.effort.toPrecision(4) + ' ' + a.forceUnit : 'no effort limit';
+    bctx.fillText('tau' + (k + 1) + ' = ' + tau.toPrecision(4) + ' ' + a.forceUnit + ' (' + pct + ')', w + 6, y + 14);
+  });
+}
+// plots of u and tau: every bucket's min and max, a cursor at the current time
+function plot(id, series, label, units) {
+  const c = $(id), g = c.getContext('2d'), tb = D.plots.t, B = tb.length, m = {l: 52, r: 8, t: 16, b: 22};
+  let lo = Infinity, hi = -Infinity;
+  for (const s of series) for (let b = 0; b < B; ++b) { lo = Math.min(lo, s.lo[b]); hi = Math.max(hi, s.hi[b]); }
+  if (!(hi > lo)) { hi = lo + 1; lo -= 1; }
+  const t0 = T[0], t1 = D.tEnd > t0 ? D.tEnd : t0 + 1;
+  const X = (t) => m.l + (c.width - m.l - m.r) * (t - t0) / (t1 - t0);
+  const Y = (v) => c.height - m.b - (c.height - m.t - m.b) * (v - lo) / (hi - lo);
+  return function draw() {
+    g.clearRect(0, 0, c.width, c.height);
+    g.font = '11px sans-serif'; g.fillStyle = '#222';
+    g.fillText(label + ' [' + units + ']', m.l, 11);
+    g.fillText(hi.toPrecision(3), 2, m.t + 8); g.fillText(lo.toPrecision(3), 2, c.height - m.b);
+    g.fillText(t0.toPrecision(3) + ' s', m.l, c.height - 6); g.fillText(t1.toPrecision(3) + ' s', c.width - 50, c.height - 6);
+    g.strokeStyle = '#ddd'; g.strokeRect(m.l, m.t, c.width - m.l - m.r, c.height - m.t - m.b);
+    series.forEach((s, k) => {
+      g.strokeStyle = COLORS[k % COLORS.length]; g.lineWidth = 1.2; g.beginPath();
+      for (let b = 0; b < B; ++b) {
+        const x = X(tb[b]);
+        if (b === 0) g.moveTo(x, Y(s.lo[b])); else g.lineTo(x, Y(s.lo[b]));
+        g.lineTo(x, Y(s.hi[b]));
+      }
+      g.stroke();
+      g.fillStyle = COLORS[k % COLORS.length]; g.fillText(s.name, c.width - m.r - 40 * (series.length - k), 11);
+    });
+    g.strokeStyle = '#000'; g.lineWidth = 1; g.beginPath(); g.moveTo(X(view.time), m.t); g.lineTo(X(view.time), c.height - m.b); g.stroke();
+  };
+}
+const uUnits = D.actuators.map((a) => a.unit).filter((v, k, all) => all.indexOf(v) === k).join(', ');
+const fUnits = D.actuators.map((a) => a.forceUnit).filter((v, k, all) => all.indexOf(v) === k).join(', ');
+const drawU = plot('plot-u', D.plots.u, 'actuator variables u', uUnits);
+const drawTau = plot('plot-tau', D.plots.tau, 'actuator forces tau', fUnits);
+function draw() { drawRobot(); drawBars(); drawU(); drawTau(); }
+function showFactors() {
+  $('factors').textContent = 'slow motion x' + view.slowMotion + ' (1 s of motion plays in ' + view.slowMotion +
+    ' s) at speed x' + view.speed + '; displacements about the mean pose magnified x' + view.magnify;
+}
+function setFrame(i) {
+  view.frame = Math.max(0, Math.min(F - 1, Math.round(i)));
+  view.time = T[view.frame];
+  $('slider').value = String(view.frame);
+  $('time').textContent = view.time.toFixed(5);
+  draw();
+}
+function frameAt(t) {
+  let a = 0, b = F - 1;
+  while (a < b) { const mid = (a + b + 1) >> 1; if (T[mid] <= t) a = mid; else b = mid - 1; }
+  return a;
+}
+let last = null, simTime = T[0];
+function tick(now) {
+  if (!view.playing) { last = null; return; }
+  if (last !== null) {
+    simTime += (now - last) / 1000 * view.speed / view.slowMotion;
+    if (simTime > D.tEnd) simTime = T[0] + (simTime - D.tEnd) % Math.max(D.tEnd - T[0], 1e-9);
+    setFrame(frameAt(simTime));
+  }
+  last = now;
+  requestAnimationFrame(tick);
+}
+$('play').addEventListener('click', () => {
+  view.playing = !view.playing;
+  $('play').textContent = view.playing ? 'Pause' : 'Play';
+  if (view.playing) { simTime = view.time; requestAnimationFrame(tick); }
+});
+$('slider').max = String(F - 1);
+$('slider').addEventListener('input', () => { setFrame(Number($('slider').value)); simTime = view.time; });
+$('speed').addEventListener('change', () => { view.speed = Number($('speed').value); showFactors(); });
+$('slow').value = String(view.slowMotion);
+$('slow').addEventListener('change', () => {
+  const k = Number($('slow').value);
+  if (k >= 1 && isFinite(k)) view.slowMotion = k; else $('slow').value = String(view.slowMotion);
+  showFactors();
+});
+$('magnify').value = String(view.magnify);
+$('magnify').addEventListener('change', () => {
+  const m = Number($('magnify').value);
+  if (m >= 0 && isFinite(m)) { view.magnify = m; fit(); draw(); } else $('magnify').value = String(view.magnify);
+  showFactors();
+});
+fit();
+showFactors();
+setFrame(0);
+})();
+</script>
+</body>
+</html>
+)HTML";
+
+}  // namespace
+
+MotionSamples motionFromTrajectory(const Model& model, const PoseTrajectory& trajectory, double duration, double rate) {
+    const SampleGrid grid = sampleGrid(duration, rate);
+    if (grid.count > kMaxAnimationSamples) {
+        throw Error("--duration " + secondsText(duration) + " s at --rate " + secondsText(rate) + " Hz gives " +
+                    std::to_string(grid.count) + " samples; animate holds at most " +
+                    std::to_string(kMaxAnimationSamples));
+    }
+    requireRateAboveNyquist(trajectory, grid.rate);
+    MotionSamples motion;
+    motion.source = trajectory.name.empty() ? "trajectory" : trajectory.name;
+    const int n = model.actuators;
+    motion.actuators = n;
+    motion.t.reserve(grid.count);
+    motion.p.reserve(grid.count);
+    motion.u.reserve(grid.count * static_cast<std::size_t>(n));
+    motion.tau.reserve(grid.count * static_cast<std::size_t>(n));
+    const LimitSummary summary =
+        streamInverseDynamics(model, trajectory, grid, LimitPolicy::record, [&](const InverseDynamicsSample& s) {
+            motion.t.push_back(s.t);
+            motion.p.push_back(s.p);
+            for (int a = 0; a < n; ++a) {
+                motion.u.push_back(s.u(a));
+                motion.tau.push_back(s.tau(a));
+            }
+        });
+    motion.warnings = summary.limit_violations;
+    return motion;
+}
+
+MotionSamples motionFromCsv(const Model& model, const std::string& path) {
+    const io::Table table = io::readCsvFile(path);
+    if (table.rows.empty()) throw Error(path + ": no rows");
+    if (table.rows.size() > kMaxAnimationSamples) {
+        throw Error(path + ": " + std::to_string(table.rows.size()) + " rows; animate holds at most " +
+                    std::to_string(kMaxAnimationSamples));
+    }
+    const int n = model.actuators;
+    const std::size_t ct = table.column("t"), ctheta = table.column("theta"), cx = table.column("x"),
+                      cy = table.column("y");
+    std::vector<std::size_t> ctau;
+    for (int a = 1; a <= n; ++a) {
+        const std::string name = "tau" + std::to_string(a);
+        if (!table.has(name)) {
+            throw Error(path + ": no column '" + name + "' (the robot has " + std::to_string(n) +
+                        " actuators; animate reads t,theta,x,y,tau1..tau" + std::to_string(n) + ")");
+        }
+        ctau.push_back(table.column(name));
+    }
+    MotionSamples motion;
+    motion.source = std::filesystem::path(path).filename().string();
+    motion.actuators = n;
+    Data data(model);
+    RobotDrawing drawing;
+    for (std::size_t k = 0; k < table.rows.size(); ++k) {
+        const auto& row = table.rows[k];
+        const std::string where = path + ":" + std::to_string(k < table.lines.size() ? table.lines[k] : k + 2) + ": ";
+        const double t = row[ct];
+        if (!motion.t.empty() && !(t > motion.t.back())) {
+            throw Error(where + "t = " + secondsText(t) + " s does not follow the previous row's " +
+                        secondsText(motion.t.back()) + " s");
+        }
+        const Pose p(row[ctheta], row[cx], row[cy]);
+        if (const Status status = drawRobot(model, data, p, drawing); !status) throw poseError(where, t, status, model);
+        motion.t.push_back(t);
+        motion.p.push_back(p);
+        for (int a = 0; a < n; ++a) {
+            motion.u.push_back(data.u(a));
+            motion.tau.push_back(row[ctau[static_cast<std::size_t>(a)]]);
+        }
+    }
+    return motion;
+}
+
+std::string animationPage(const Model& model, const MotionSamples& motion, const AnimationOptions& options) {
+    const std::size_t N = motion.t.size();
+    if (N == 0) throw Error("no samples to animate");
+    const int n = motion.actuators;
+    const auto nn = static_cast<std::size_t>(n);
+    const double t_end = motion.t.back();
+    const double duration = N > 1 ? t_end - motion.t.front() : 0.0;
+    double slow = options.slow_motion;
+    if (!(slow > 0.0)) slow = std::max(1.0, std::round(10.0 / std::max(duration, 1e-9)));
+
+    // frames: evenly spread samples, the first and the last included
+    const std::size_t F = std::min(N, kMaxAnimationFrames);
+    std::vector<std::size_t> frame_sample(F);
+    for (std::size_t i = 0; i < F; ++i) frame_sample[i] = F > 1 ? (i * (N - 1) + (F - 1) / 2) / (F - 1) : 0;
+    Data data(model);
+    RobotDrawing drawing;
+    std::vector<long long> points;
+    std::vector<double> frame_t, frame_tau;
+    for (const std::size_t k : frame_sample) {
+        if (const Status status = drawRobot(model, data, motion.p[k], drawing); !status) {
+            throw poseError(motion.source + ": ", motion.t[k], status, model);
+        }
+        appendPoints(drawing, points);
+        frame_t.push_back(motion.t[k]);
+        for (std::size_t a = 0; a < nn; ++a) frame_tau.push_back(motion.tau[k * nn + a]);
+    }
+    const std::size_t stride = points.size() / F;
+
+    // the mean pose: the centre of the magnified displacements (the first frame if out of reach)
+    Pose mean = Pose::Zero();
+    for (const Pose& p : motion.p) mean += p / static_cast<double>(N);
+    std::vector<long long> reference;
+    if (drawRobot(model, data, mean, drawing)) {
+        appendPoints(drawing, reference);
+    } else {
+        reference.assign(points.begin(), points.begin() + static_cast<std::ptrdiff_t>(stride));
+    }
+
+    // plots: min and max of every bucket of samples, so that no peak is lost
+    const std::size_t B = std::min(N, kMaxPlotBuckets);
+    std::vector<double> bucket_t(B);
+    std::vector<std::vector<double>> u_lo(nn), u_hi(nn), f_lo(nn), f_hi(nn);
+    std::vector<double> peak_tau(nn, 0.0);
+    for (std::size_t b = 0; b < B; ++b) {
+        const std::size_t k0 = b * N / B, k1 = (b + 1) * N / B;
+        bucket_t[b] = motion.t[k0];
+        for (std::size_t a = 0; a < nn; ++a) {
+            double ul = std::numeric_limits<double>::infinity(), uh = -ul, fl = ul, fh = -ul;
+            for (std::size_t k = k0; k < k1; ++k) {
+                ul = std::min(ul, motion.u[k * nn + a]);
+                uh = std::max(uh, motion.u[k * nn + a]);
+                fl = std::min(fl, motion.tau[k * nn + a]);
+                fh = std::max(fh, motion.tau[k * nn + a]);
+            }
+            u_lo[a].push_back(ul);
+            u_hi[a].push_back(uh);
+            f_lo[a].push_back(fl);
+            f_hi[a].push_back(fh);
+            peak_tau[a] = std::max({peak_tau[a], std::abs(fl), std::abs(fh)});
+        }
+    }
+
+    // what comes from files (names) goes through nlohmann::json, then scriptSafe
+    nlohmann::json meta;
+    meta["robot"] = model.description.name;
+    meta["source"] = motion.source;
+    meta["samples"] = N;
+    meta["duration"] = duration;
+    meta["tEnd"] = t_end;
+    meta["slowMotion"] = slow;
+    meta["magnify"] = options.magnify;
+    meta["warnings"] = motion.warnings;
+    nlohmann::json layout = nlohmann::json::array(), actuators = nlohmann::json::array();
+    std::size_t offset = 0;
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        nlohmann::json joints = nlohmann::json::array();
+        for (int k = 0; k < 3; ++k) {
+            const bool prismatic = limb.type[static_cast<std::size_t>(k)] == JointType::prismatic;
+            joints.push_back({{"pos", offset},
+                              {"rail", prismatic ? static_cast<long long>(offset + 2) : -1LL},
+                              {"actuator", limb.actuator[static_cast<std::size_t>(k)]}});
+            offset += prismatic ? 6 : 2;
+        }
+        layout.push_back(joints);
+    }
+    for (int a = 0; a < n; ++a) {
+        const auto j = static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)]);
+        const auto k = static_cast<std::size_t>(model.actuator_joint[static_cast<std::size_t>(a)]);
+        const bool prismatic = model.limb[j].type[k] == JointType::prismatic;
+        const double effort = model.limb[j].limits[k].effort;
+        nlohmann::json entry = {{"limb", model.description.limbs[j].name},
+                                {"joint", k + 1},
+                                {"unit", prismatic ? "m" : "rad"},
+                                {"forceUnit", prismatic ? "N" : "N m"},
+                                {"peakTau", peak_tau[static_cast<std::size_t>(a)]}};
+        entry["effort"] = std::isfinite(effort) ? nlohmann::json(effort) : nlohmann::json(nullptr);
+        actuators.push_back(entry);
+    }
+    meta["layout"] = layout;
+    meta["actuators"] = actuators;
+    meta["stride"] = stride;
+
+    std::string json = scriptSafe(meta.dump(-1, ' ', /*ensure_ascii=*/true, nlohmann::json::error_handler_t::replace));
+    json.pop_back();  // the closing brace: the numeric arrays follow
+    json += ",\"reference\":";
+    appendArray(json, reference, 0);
+    json += ",\"frames\":{\"t\":";
+    appendArray(json, frame_t, 9);
+    json += ",\"points\":";
+    appendArray(json, points, 0);
+    json += ",\"tau\":";
+    appendArray(json, frame_tau, 6);
+    json += "},\"plots\":{\"t\":";
+    appendArray(json, bucket_t, 9);
+    for (const bool forces : {false, true}) {
+        json += forces ? ",\"tau\":[" : ",\"u\":[";
+        for (std::size_t a = 0; a < nn; ++a) {
+            json += (a ? ",{\"name\":\"" : "{\"name\":\"") + std::string(forces ? "tau" : "u") + std::to_string(a + 1) +
+                    "\",\"lo\":";
+            appendArray(json, forces ? f_lo[a] : u_lo[a], 6);
+            json += ",\"hi\":";
+            appendArray(json, forces ? f_hi[a] : u_hi[a], 6);
+            json += '}';
+        }
+        json += ']';
+    }
+    json += "}}";
+    return std::string(kPageHead) + json + kPageTail;
+}
+
+Figure frameFigure(const Model& model, const MotionSamples& motion, double t) {
+    if (motion.t.empty()) throw Error("no samples to draw");
+    const auto at = std::lower_bound(motion.t.begin(), motion.t.end(), t);
+    std::size_t k = static_cast<std::size_t>(at - motion.t.begin());
+    if (k == motion.t.size() || (k > 0 && t - motion.t[k - 1] < motion.t[k] - t)) --k;
+    Data data(model);
+    RobotDrawing d;
+    if (const Status status = drawRobot(model, data, motion.p[k], d); !status) {
+        throw poseError(motion.source + ": ", motion.t[k], status, model);
+    }
+    PlotPanel panel;
+    panel.title = literalText(model.description.name + " at t = " + secondsText(motion.t[k]) + " s");
+    panel.xlabel = "x [m]";
+    panel.ylabel = "y [m]";
+    panel.equal_axes = true;
+    PlotSeries rails{"rails (stroke)", {}, {}, "lines lw 6 lc rgb '#999999'"};
+    PlotSeries links{"links", {}, {}, "linespoints lw 3 pt 7 ps 0.8 lc rgb '#1f4e9c'"};
+    PlotSeries platform{"platform", {}, {}, "lines lw 2 lc rgb '#c77800'"};
+    PlotSeries c{"C", {}, {}, "points pt 7 ps 1.5 lc rgb '#ff0000'"};
+    const auto add = [](PlotSeries& s, const Vector2& x) {
+        s.x.push_back(x.x());
+        s.y.push_back(x.y());
+    };
+    const auto gap = [](PlotSeries& s) {  // a blank row: gnuplot breaks the line there
+        s.x.push_back(std::numeric_limits<double>::quiet_NaN());
+        s.y.push_back(std::numeric_limits<double>::quiet_NaN());
+    };
+    for (int j = 0; j < d.limbs; ++j) {
+        const LimbDrawing& limb = d.limb[static_cast<std::size_t>(j)];
+        for (const JointDrawing& joint : limb.joint) {
+            if (joint.type != JointType::prismatic) continue;
+            add(rails, joint.rail_start);
+            add(rails, joint.rail_end);
+            gap(rails);
+        }
+        for (const JointDrawing& joint : limb.joint) add(links, joint.position);
+        gap(links);
+        add(platform, d.platform[static_cast<std::size_t>(j)]);
+    }
+    add(platform, d.platform[0]);
+    add(c, d.C);
+    if (!rails.x.empty()) panel.series.push_back(rails);
+    panel.series.push_back(links);
+    panel.series.push_back(platform);
+    panel.series.push_back(c);
+    Figure figure{literalText("nocdyn: " + model.description.name), {panel}, 800, 760};
+    return figure;
+}
+
+void reproduceAnimations(const std::filesystem::path& out, std::ostream& summary) {
+    const Model model{RobotParameters{}};
+    summary << "## Animations\n\n";
+    for (const auto& [name, trajectory] :
+         {std::pair<std::string, PoseTrajectory>{"paper1", paperTrajectory1()}, {"paper2", paperTrajectory2()}}) {
+        const MotionSamples motion = motionFromTrajectory(model, trajectory, 0.2, 10000.0);
+        const std::string file = name + "_animation.html";
+        io::writeTextFile((out / file).string(), animationPage(model, motion, AnimationOptions{}));
+        summary << "- `" << file << "`: the robot along trajectory " << name.back()
+                << " (0.2 s at 10 kHz), with its actuator forces and the plots of u and tau; open it in any browser.\n";
+    }
+    summary << "\n`nocdyn animate --trajectory paper1 --out paper1_animation.html` writes the same page.\n\n";
+}
+
+}  // namespace nocdyn::cli

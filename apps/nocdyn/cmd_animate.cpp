@@ -1,0 +1,103 @@
+// nocdyn animate: the robot moving along a trajectory or a recorded motion, as one
+// self-contained HTML page, and static frames as PNG and SVG.
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "animation.hpp"
+#include "commands.hpp"
+#include "common.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/trajectory_yaml.hpp"
+
+namespace nocdyn::cli {
+
+namespace {
+
+struct AnimateOptions {
+    std::string robot, trajectory, motion;
+    std::optional<double> duration;
+    double rate = 10000.0;
+    double slow_motion = 0.0;
+    double magnify = 1.0;
+    std::string out = "robot.html";
+    std::optional<double> frame;
+    std::string png, svg;
+};
+
+void run(const AnimateOptions& options, bool out_given) {
+    const Model model(loadRobotDescriptionOrDefault(options.robot));
+    MotionSamples motion;
+    if (!options.motion.empty()) {
+        motion = motionFromCsv(model, options.motion);
+    } else {
+        const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
+        motion = motionFromTrajectory(model, trajectory, chooseDuration(options.duration, trajectory), options.rate);
+    }
+    for (const std::string& warning : motion.warnings) std::cerr << "nocdyn: warning: " << warning << "\n";
+    if (options.frame) {
+        renderFigureFiles(frameFigure(model, motion, *options.frame), options.png, options.svg);
+        if (!out_given) return;
+    }
+    io::writeTextFile(options.out, animationPage(model, motion, {options.slow_motion, options.magnify}));
+}
+
+}  // namespace
+
+void addAnimateCommand(CLI::App& app) {
+    auto options = std::make_shared<AnimateOptions>();
+    CLI::App* command = app.add_subcommand(
+        "animate",
+        "The robot in motion as one self-contained HTML page (inline script and canvas; nothing is fetched\n"
+        "when it is viewed): every limb, joint and rail (its stroke from the joint limits), the platform and\n"
+        "its operation point C drawn to scale, with play, pause, a time slider, speed, slow-motion and\n"
+        "magnification controls, each actuator's force as a bar coloured by its fraction of the effort limit,\n"
+        "and the plots of u and tau (min and max of every bucket of samples) with a cursor at the current\n"
+        "time. The motion is a trajectory (inverse dynamics at --rate over --duration) or a CSV written by\n"
+        "simulate, control or inverse-dynamics (--motion). At most 2000 frames are embedded; 0.2 s at 10 kHz\n"
+        "gives a page of about 0.4 MB. --frame T draws the sample nearest to T with gnuplot instead (--png,\n"
+        "--svg); the page is then written only when --out is given.");
+    addRobotOption(*command, options->robot);
+    auto* trajectory = command->add_option("--trajectory", options->trajectory,
+                                           "paper1, paper2 (eqs. 33-34) or a trajectory file (YAML)");
+    auto* motion = command->add_option("--motion", options->motion,
+                                       "CSV with columns t,theta,x,y,tau1..taun (SI), as written by simulate, "
+                                       "control or inverse-dynamics; u is recomputed from the pose");
+    trajectory->excludes(motion);
+    command
+        ->add_option("--duration", options->duration,
+                     "With --trajectory: seconds to sample [default: the file's duration, else 0.2]")
+        ->check(finiteIn(kMinDuration, kMaxDuration, "s"))
+        ->excludes(motion);
+    command->add_option("--rate", options->rate, "With --trajectory: samples per second")
+        ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
+        ->capture_default_str()
+        ->excludes(motion);
+    command
+        ->add_option("--slow-motion", options->slow_motion,
+                     "Slow-motion factor K: 1 s of motion plays in K s (changeable on the page) [default: so "
+                     "that the whole motion plays in about 10 s]")
+        ->check(finiteIn(1.0, 1e6, ""));
+    command
+        ->add_option("--magnify", options->magnify,
+                     "Displacements about the mean pose drawn this many times larger (changeable on the page)")
+        ->check(finiteIn(0.0, 1e4, ""))
+        ->capture_default_str();
+    auto* out = command->add_option("--out,-o", options->out, "HTML file to write")->capture_default_str();
+    auto* frame = command->add_option("--frame", options->frame, "Draw the robot at this time [s] (nearest sample)")
+                      ->check(finiteIn(-1e6, 1e6, "s"));
+    command->add_option("--png", options->png, "With --frame: PNG file to write")->needs(frame);
+    command->add_option("--svg", options->svg, "With --frame: SVG file to write")->needs(frame);
+    command->callback([options, command, out] {
+        if (options->trajectory.empty() && options->motion.empty()) {
+            throw Error("animate: give --trajectory or --motion");
+        }
+        if (options->frame && options->png.empty() && options->svg.empty()) {
+            throw Error("animate: --frame needs --png or --svg");
+        }
+        (void)command;
+        run(*options, out->count() > 0);
+    });
+}
+
+}  // namespace nocdyn::cli
