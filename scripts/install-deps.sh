@@ -20,6 +20,9 @@ packages=(
   python3-dev python3-pybind11 python3-numpy   # the Python package (python/), /usr/bin/python3
   python3-pytest python3-matplotlib            # its tests (ctest -L python) and examples/quickstart.py
 )
+# npm fetches playwright-core for the browser tests: Debian's package, unless the installed
+# Node.js already brings its own (NodeSource's nodejs provides and conflicts with Debian's npm)
+command -v npm >/dev/null 2>&1 || packages+=(npm)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
