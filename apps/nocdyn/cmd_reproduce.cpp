@@ -17,6 +17,7 @@
 #include "nocdyn/workspace.hpp"
 #include "plot.hpp"
 #include "reproduce_dynamics.hpp"
+#include "shake_replay.hpp"
 #include "workspace_figure.hpp"
 #ifdef NOCDYN_HAS_ENGINES
 #include "engine_comparison.hpp"
@@ -280,6 +281,7 @@ void run(const ReproduceOptions& options) {
     reproduceControl(model, out, summary);
     reproduceEnvelope(model, out, summary);
     reproduceWorkspace(out, summary);
+    reproduceShake(out.string(), summary);
 #ifdef NOCDYN_HAS_ENGINES
     reproduceExampleRobots(out, summary);
 #endif

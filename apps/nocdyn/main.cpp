@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
     nocdyn::cli::addEnvelopeCommand(app);
     nocdyn::cli::addWorkspaceCommand(app);
     nocdyn::cli::addConvertCommand(app);
+    nocdyn::cli::addShakeCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif
