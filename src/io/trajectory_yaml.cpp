@@ -116,7 +116,11 @@ PoseTrajectory parseTrajectoryCsv(const std::string& text, const std::string& so
     static constexpr std::array<const char*, 7> known = {"t", "x", "y", "theta", "ax", "ay", "alpha"};
     for (const std::string& c : table.columns) {
         if (std::find_if(known.begin(), known.end(), [&](const char* k) { return c == k; }) == known.end()) {
-            throw Error(header + "column '" + c + "': unknown (expected t and any of x, y, theta or ax, ay, alpha)");
+            std::string message = header;
+            message.append("column '")
+                .append(c)
+                .append("': unknown (expected t and any of x, y, theta or ax, ay, alpha)");
+            throw Error(message);
         }
     }
     if (!table.has("t")) throw Error(header + "column 't': missing (the sample times, s)");
