@@ -256,15 +256,15 @@ void reproduceShake(const std::string& out_dir, std::ostream& summary) {
             << " Hz (zero-phase Butterworth, order " << kHighPassOrder
             << " run forward and backward), scaled in time to fit the actuators with a " << 100.0 * settings.fit.margin
             << " % margin, then tracked by computed torque at " << settings.rate / 1000.0
-            << " kHz (f_n = " << settings.natural_frequency << " Hz) on the Simbody plant (integrator accuracy "
-            << settings.accuracy << ") carrying a " << settings.payload.mass
+            << " kHz (f_n = " << settings.natural_frequency
+            << " Hz) on nocdyn's own forward dynamics (`--plant nocdyn`; `nocdyn shake` plays on the Simbody plant by"
+            << " default) carrying a " << settings.payload.mass
             << " kg payload the controller does not know, with pose noise " << settings.noise_pose
             << " m (rad) and rate noise " << settings.noise_rate << " m/s (rad/s):\n\n```\n"
             << text.str() << "```\n\n"
             << "Files: `elcentro/shake.csv`, `elcentro/shake.json`, `elcentro/shake_acceleration.{png,svg}`,"
             << " `elcentro/shake_spectrum.{png,svg}`. `nocdyn shake --robot robots/paper-3prr-general.yaml --record"
-            << " data/elcentro_1940_ns.AT2 --window " << kWindow << " --accuracy " << settings.accuracy
-            << "` reproduces them.\n\n";
+            << " data/elcentro_1940_ns.AT2 --window " << kWindow << " --plant nocdyn` reproduces them.\n\n";
 }
 
 }  // namespace nocdyn::cli

@@ -18,13 +18,13 @@ struct ShakeSettings {
     FitOptions fit;
     std::string plant = "simbody";               ///< or "nocdyn"
     double rate = 10000.0;                       ///< controller ticks per second [Hz]
-    double natural_frequency = 100.0;            ///< f_n of the error dynamics [Hz]
+    double natural_frequency = 50.0;             ///< f_n of the error dynamics [Hz]
     Payload payload{0.5, 0.0, Vector2::Zero()};  ///< on the plant only
     double noise_pose = 1e-6;                    ///< [m, rad]
     double noise_rate = 1e-5;                    ///< [m/s, rad/s]
     unsigned seed = 1;
     double accuracy = 1e-10;   ///< Simbody's integrator accuracy
-    int difference_span = 10;  ///< ticks of the achieved-acceleration difference
+    int difference_span = 5;   ///< ticks of the achieved-acceleration difference
 };
 
 struct ShakeOutcome {
