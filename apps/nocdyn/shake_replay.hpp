@@ -23,8 +23,8 @@ struct ShakeSettings {
     double noise_pose = 1e-6;                    ///< [m, rad]
     double noise_rate = 1e-5;                    ///< [m/s, rad/s]
     unsigned seed = 1;
-    double accuracy = 1e-10;   ///< Simbody's integrator accuracy
-    int difference_span = 5;   ///< ticks of the achieved-acceleration difference
+    double accuracy = 1e-10;  ///< Simbody's integrator accuracy
+    int difference_span = 5;  ///< ticks of the achieved-acceleration difference
 };
 
 struct ShakeOutcome {
