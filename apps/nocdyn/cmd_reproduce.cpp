@@ -18,6 +18,7 @@
 #include "nocdyn/workspace.hpp"
 #include "plot.hpp"
 #include "reproduce_dynamics.hpp"
+#include "shake_replay.hpp"
 #include "workspace_figure.hpp"
 #ifdef NOCDYN_HAS_ENGINES
 #include "engine_comparison.hpp"
@@ -282,6 +283,7 @@ void run(const ReproduceOptions& options) {
     reproduceControl(model, out, summary);
     reproduceEnvelope(model, out, summary);
     reproduceWorkspace(out, summary);
+    reproduceShake(out.string(), summary);
 #ifdef NOCDYN_HAS_ENGINES
     reproduceExampleRobots(out, summary);
 #endif

@@ -16,6 +16,7 @@ void addEnvelopeCommand(CLI::App& app);
 void addWorkspaceCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
 void addAnimateCommand(CLI::App& app);
+void addShakeCommand(CLI::App& app);
 #ifdef NOCDYN_HAS_ENGINES
 void addValidateCommand(CLI::App& app);
 #endif

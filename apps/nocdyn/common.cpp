@@ -40,7 +40,10 @@ void addRobotOption(CLI::App& command, std::string& robot_path) {
 }
 
 void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options) {
-    command.add_option("--trajectory", options.trajectory, "paper1, paper2 (eqs. 33-34) or a trajectory file (YAML)")
+    command
+        .add_option("--trajectory", options.trajectory,
+                    "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or samples (.csv: t and "
+                    "x,y,theta or ax,ay,alpha)")
         ->required();
     addRobotOption(command, options.robot);
     command.add_option("--duration", options.duration, "Seconds to sample [default: the file's duration, else 0.2]")

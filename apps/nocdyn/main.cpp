@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
     nocdyn::cli::addWorkspaceCommand(app);
     nocdyn::cli::addConvertCommand(app);
     nocdyn::cli::addAnimateCommand(app);
+    nocdyn::cli::addShakeCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif

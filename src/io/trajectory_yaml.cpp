@@ -1,9 +1,18 @@
 // Trajectory files (see trajectory_yaml.hpp).
 #include "nocdyn/io/trajectory_yaml.hpp"
 
+#include <algorithm>
+#include <array>
+#include <cctype>
+#include <cmath>
 #include <filesystem>
+#include <memory>
+#include <sstream>
+
+#include "nocdyn/io/csv.hpp"
 
 #include "nocdyn/error.hpp"
+#include "file_util.hpp"
 #include "yaml_util.hpp"
 
 namespace nocdyn::io {
@@ -79,9 +88,103 @@ PoseTrajectory loadTrajectory(const std::string& path) {
     return parseTrajectory(detail::readFile(path, "trajectory file"), path);
 }
 
+namespace {
+
+std::string shortNumber(double value) {
+    std::ostringstream out;
+    out.precision(10);
+    out << value;
+    return out.str();
+}
+
+bool endsWithCsv(const std::string& path) {
+    const std::string ext = std::filesystem::path(path).extension().string();
+    if (ext.size() != 4) return false;
+    std::string lower;
+    for (const char c : ext) lower += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    return lower == ".csv";
+}
+
+}  // namespace
+
+PoseTrajectory parseTrajectoryCsv(const std::string& text, const std::string& source) {
+    const Table table = parseCsv(text, source);
+    const auto lineOf = [&](std::size_t row) -> std::string {
+        return source + ":" + std::to_string(row < table.lines.size() ? table.lines[row] : row + 2) + ": ";
+    };
+    const std::string header = source + ":1: ";
+    static constexpr std::array<const char*, 7> known = {"t", "x", "y", "theta", "ax", "ay", "alpha"};
+    for (const std::string& c : table.columns) {
+        if (std::find_if(known.begin(), known.end(), [&](const char* k) { return c == k; }) == known.end()) {
+            std::string message = header;
+            message.append("column '")
+                .append(c)
+                .append("': unknown (expected t and any of x, y, theta or ax, ay, alpha)");
+            throw Error(message);
+        }
+    }
+    if (!table.has("t")) throw Error(header + "column 't': missing (the sample times, s)");
+    const std::size_t n = table.rows.size();
+    if (n < 2) throw Error(header + "column 't': at least 2 samples are needed, found " + std::to_string(n));
+    const std::size_t ct = table.column("t");
+    std::vector<double> t(n);
+    for (std::size_t i = 0; i < n; ++i) t[i] = table.rows[i][ct];
+    for (std::size_t i = 1; i < n; ++i) {
+        if (!(t[i] > t[i - 1])) {
+            throw Error(lineOf(i) + "column 't': time " + shortNumber(t[i]) + " s is not after the previous " +
+                        shortNumber(t[i - 1]) + " s (times must increase)");
+        }
+    }
+    std::vector<double> steps(n - 1);
+    for (std::size_t i = 0; i + 1 < n; ++i) steps[i] = t[i + 1] - t[i];
+    std::vector<double> sorted = steps;
+    std::nth_element(sorted.begin(), sorted.begin() + static_cast<std::ptrdiff_t>(sorted.size() / 2), sorted.end());
+    const double median = sorted[sorted.size() / 2];
+    for (std::size_t i = 0; i + 1 < n; ++i) {
+        if (steps[i] > kMaxTimeStepRatio * median) {
+            throw Error(lineOf(i + 1) + "column 't': gap of " + shortNumber(steps[i]) + " s after " +
+                        shortNumber(t[i]) + " s (more than " + shortNumber(kMaxTimeStepRatio) +
+                        " times the median step " + shortNumber(median) + " s)");
+        }
+    }
+    const auto column = [&](const char* name) {
+        std::vector<double> v(n);
+        const std::size_t c = table.column(name);
+        for (std::size_t i = 0; i < n; ++i) v[i] = table.rows[i][c];
+        return v;
+    };
+    auto sampled = std::make_shared<SampledPose>();
+    const auto axis = [&](const char* position, const char* acceleration, std::optional<SampledAxis>& out) {
+        const bool p = table.has(position);
+        const bool a = table.has(acceleration);
+        if (p && a) {
+            throw Error(header + "column '" + acceleration + "': axis already given by its position column '" +
+                        position + "' (give one of the two)");
+        }
+        if (p) out = splineOfPositions(t, column(position));
+        if (a) out = splineOfAccelerations(t, column(acceleration));
+    };
+    axis("theta", "alpha", sampled->theta);
+    axis("x", "ax", sampled->x);
+    axis("y", "ay", sampled->y);
+    if (!sampled->theta && !sampled->x && !sampled->y) {
+        throw Error(header + "missing columns: at least one of x, y, theta, ax, ay, alpha besides t");
+    }
+    PoseTrajectory traj;
+    traj.name = std::filesystem::path(source).stem().string();
+    traj.duration = t.back();
+    traj.sampled = std::move(sampled);
+    return traj;
+}
+
+PoseTrajectory loadTrajectoryCsv(const std::string& path) {
+    return parseTrajectoryCsv(detail::readRegularFile(path, "trajectory file", detail::kMaxCsvBytes), path);
+}
+
 PoseTrajectory trajectoryByNameOrFile(const std::string& name_or_path) {
     if (name_or_path == "paper1") return paperTrajectory1();
     if (name_or_path == "paper2") return paperTrajectory2();
+    if (endsWithCsv(name_or_path)) return loadTrajectoryCsv(name_or_path);
     return loadTrajectory(name_or_path);
 }
 

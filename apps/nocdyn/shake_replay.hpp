@@ -1,0 +1,56 @@
+// Playing a ground-motion record on a robot (nocdyn shake, and its section of nocdyn reproduce):
+// fit (shake.hpp), closed-loop computed torque on a plant with an unknown payload and sensor
+// noise (general_control.hpp), then the scores, shake.csv, shake.json and the figures.
+#pragma once
+
+#include <array>
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "nocdyn/description.hpp"
+#include "nocdyn/general_control.hpp"
+#include "nocdyn/shake.hpp"
+
+namespace nocdyn::cli {
+
+struct ShakeSettings {
+    FitOptions fit;
+    std::string plant = "simbody";               ///< or "nocdyn"
+    double rate = 10000.0;                       ///< controller ticks per second [Hz]
+    double natural_frequency = 50.0;             ///< f_n of the error dynamics [Hz]
+    Payload payload{0.5, 0.0, Vector2::Zero()};  ///< on the plant only
+    double noise_pose = 1e-6;                    ///< [m, rad]
+    double noise_rate = 1e-5;                    ///< [m/s, rad/s]
+    unsigned seed = 1;
+    double accuracy = 1e-10;  ///< Simbody's integrator accuracy
+    int difference_span = 5;  ///< ticks of the achieved-acceleration difference
+};
+
+struct ShakeOutcome {
+    FittedRecord fit;
+    PoseLoopResult loop;
+    std::array<std::vector<double>, 3> achieved;  ///< [alpha, ax, ay] at fit.t
+    std::array<bool, 3> driven{};                 ///< [theta, x, y]
+    std::array<ShakeScore, 3> score;              ///< of the driven axes
+    double period_min = 0.0, period_max = 0.0;    ///< the passband's periods [s]
+    LimitUse achieved_use;                        ///< of the limits (no margin), from the forces and u
+    double seconds = 0.0;                         ///< wall time of the closed loop [s]
+    double margin = 0.0;                          ///< the fit's margin
+};
+
+/// Fits and plays `record` on `robot`. Throws nocdyn::Error.
+[[nodiscard]] ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
+                                    const ShakeSettings& settings);
+
+/// DIR/shake.csv, DIR/shake.json, DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}.
+void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const std::string& dir,
+                       const std::string& title);
+
+/// One line per driven axis: RMS error, peak error, share outside the band.
+void printShakeSummary(const ShakeOutcome& outcome, std::ostream& out);
+
+/// The El Centro replay on the paper's prototype, for summary.md of nocdyn reproduce.
+void reproduceShake(const std::string& out_dir, std::ostream& summary);
+
+}  // namespace nocdyn::cli

@@ -1,0 +1,43 @@
+// Ground-motion records in the PEER AT2 format (NGA strong-motion database):
+//
+//   line 1-3  free text (title, event, units: the values are in g)
+//   line 4    the number of points and the time step, in one of the three forms found in the
+//             database:  "NPTS=  3000, DT=   .0100 SEC",  "NPTS=   1451, dt=  .02000"  or
+//             "3930 0.00500 NPTS, DT"  (keys in any case)
+//   line 5-   the accelerations in g, any number of values per line separated by blanks
+//
+// A file with fewer values than NPTS is refused; values after the NPTS-th are ignored (some
+// files pad their last line). Reads are bounded: at most kMaxAt2Bytes and kMaxAt2Points.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+namespace nocdyn::io {
+
+inline constexpr std::size_t kMaxAt2Bytes = std::size_t{64} << 20;  // 64 MiB
+inline constexpr std::size_t kMaxAt2Points = 10'000'000;
+/// Standard gravity [m/s^2] that converts the record's g to SI.
+inline constexpr double kStandardGravity = 9.80665;
+
+/// One component of a ground-motion record, uniformly sampled from t = 0.
+struct GroundMotionRecord {
+    std::string source;                ///< file it was read from
+    std::string title;                 ///< the first header line
+    double dt = 0.0;                   ///< time step [s]
+    std::vector<double> acceleration;  ///< [m/s^2] (the file's g times kStandardGravity)
+
+    /// Duration (n - 1) dt [s].
+    [[nodiscard]] double duration() const;
+};
+
+/// Parses AT2 text; `source` names it in errors. Throws nocdyn::Error "SOURCE:LINE: reason"
+/// for a short or malformed header, a bad NPTS or DT, a value that is not a finite decimal
+/// number, or fewer values than NPTS (naming the last line read).
+[[nodiscard]] GroundMotionRecord parseAt2(const std::string& text, const std::string& source);
+
+/// Reads an AT2 file (a regular file of at most kMaxAt2Bytes). Throws nocdyn::Error.
+[[nodiscard]] GroundMotionRecord readAt2File(const std::string& path);
+
+}  // namespace nocdyn::io

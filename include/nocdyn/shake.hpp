@@ -1,0 +1,116 @@
+// Recorded ground motion on a robot: baseline correction, similitude scaling within the
+// robot's limits, and the scores of shake-table practice.
+//
+// Baseline correction (highPassZeroPhase): Butterworth high-pass of order kHighPassOrder
+// (kHighPassOrder / 2 second-order sections, the bilinear transform of
+// H(s) = s^2 / (s^2 + s w_c / Q_k + w_c^2) with w_c prewarped, Q_k = 1 / (2 cos((2k+1) pi / (2N)))),
+// run forward then backward: zero phase, magnitude |H|^2 (order 2N, -6 dB at the cutoff).
+// Each end is padded with the odd reflection x(-k) = 2 x(0) - x(k) of min(n - 1, 3 fs / f_c)
+// samples, the filter starting from rest on the padded signal; the padding is then dropped.
+//
+// Similitude scaling (fitRecord): time compressed by L, accelerations kept,
+//   a_model(t) = A a_record(L t),  v_model = A v / L,  d_model = A d / L^2,
+// frequencies times L. The motion is p(t) = home + d_model(t) on each recorded axis,
+// d_model the exact double integral of the acceleration spline (trajectory.hpp) from rest,
+// centred so that its extremes are symmetric about home. L is the least time compression
+// (L >= 1, the slowest replay) at which every actuator stays within (1 - margin) of its
+// range, velocity and effort limits (inverse dynamics of the nominal model over the fitted
+// motion); feasibility is taken to be monotonic in L (displacement and velocity shrink as L
+// grows, inertial forces stay) and L is found by doubling then bisection to 0.1 %. When no
+// L up to max_time_scale fits, the amplitude A < 1 is lowered (bisection) at that L.
+//
+// Scores (scoreShake): RMS of (achieved - target) over RMS of target; (peak |achieved| - peak
+// |target|) / peak |target|; the 5 %-damped pseudo-acceleration spectra of both
+// (responseSpectrum) and the share of the periods of the record's passband where they differ
+// by more than 10 %.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "nocdyn/model.hpp"
+#include "nocdyn/trajectory.hpp"
+
+namespace nocdyn {
+
+inline constexpr int kHighPassOrder = 4;
+
+/// Zero-phase Butterworth high-pass (see the header comment); x sampled every dt [s],
+/// cutoff [Hz] below the Nyquist frequency. Throws nocdyn::Error for bad dt or cutoff.
+[[nodiscard]] std::vector<double> highPassZeroPhase(std::span<const double> x, double dt, double cutoff);
+
+/// A record: accelerations of each axis on one uniform grid (an empty axis is not driven).
+struct GroundRecord {
+    double dt = 0.0;             ///< [s]
+    std::vector<double> ax, ay;  ///< [m/s^2]
+    std::vector<double> alpha;   ///< [rad/s^2]
+};
+
+struct FitOptions {
+    double highpass = 0.1;             ///< cutoff [Hz] (record time); 0: no filter
+    std::optional<double> time_scale;  ///< L given; otherwise chosen
+    double margin = 0.1;               ///< share of each limit kept in reserve
+    double max_time_scale = 100.0;     ///< largest L tried
+};
+
+/// The worst use of any limit over a motion: ratio = used / allowed ((1 - margin) limit).
+struct LimitUse {
+    double ratio = 0.0;
+    std::string what;  ///< "actuator 2 (limb2) stroke" etc., empty when ratio is 0
+    double t = 0.0;    ///< where [s]
+};
+
+/// Inverse dynamics of `trajectory` at `step` intervals over [0, duration]; the worst ratio
+/// of |u - centre| / ((1 - margin) half-range), |du| / ((1 - margin) velocity limit) and
+/// |tau| / ((1 - margin) effort). A pose out of reach or singular gives ratio +infinity.
+[[nodiscard]] LimitUse limitUse(const Model& model, const PoseTrajectory& trajectory, double duration, double step,
+                                double margin);
+
+struct FittedRecord {
+    double time_scale = 1.0;            ///< L
+    double amplitude_scale = 1.0;       ///< A
+    double dt = 0.0;                    ///< record step over L [s]
+    std::vector<double> t;              ///< target instants i dt [s]
+    std::vector<double> ax, ay, alpha;  ///< target accelerations at t (empty: axis not driven)
+    PoseTrajectory trajectory;          ///< home + d_model (sampled)
+    LimitUse use;                       ///< of the fitted motion
+};
+
+/// Filters, scales and integrates `record` (see the header comment). Throws nocdyn::Error for
+/// an empty record, axes of different lengths, or a motion that fits at no amplitude above
+/// 1e-4 (naming the limit and by how much it is exceeded).
+[[nodiscard]] FittedRecord fitRecord(const Model& model, const GroundRecord& record, const FitOptions& options);
+
+/// Peak |u| of the SDOF oscillator u'' + 2 zeta w u' + w^2 u = -a(t), from rest, a linear
+/// between samples: the exact recurrence of Nigam and Jennings (1969). Times w^2 it is the
+/// pseudo-acceleration S_a(T) at T = 2 pi / w.
+[[nodiscard]] double peakOscillatorDisplacement(std::span<const double> a, double dt, double period, double zeta);
+
+/// S_a(T) = (2 pi / T)^2 peak |u| at each period.
+[[nodiscard]] std::vector<double> responseSpectrum(std::span<const double> a, double dt,
+                                                   std::span<const double> periods, double zeta = 0.05);
+
+struct ShakeScore {
+    double rms_error = 0.0;                               ///< RMS(achieved - target) / RMS(target)
+    double peak_error = 0.0;                              ///< (peak |achieved| - peak |target|) / peak |target|
+    std::vector<double> periods, target_sa, achieved_sa;  ///< [s], [m/s^2]
+    double share_outside = 0.0;                           ///< of periods with |S_a ratio - 1| > 0.1
+};
+
+/// Acceleration of each pose coordinate [theta, x, y] at `times` from poses recorded every
+/// `tick` seconds from t = 0: the central second difference over +-`span` ticks,
+/// (p(t + h) - 2 p(t) + p(t - h)) / h^2, h = span tick (at the ends, the nearest full difference), linearly
+/// interpolated between ticks. A difference over a span rather than one tick keeps the
+/// integrator's error (divided by h^2) below the signal, as an accelerometer's bandwidth would.
+[[nodiscard]] std::array<std::vector<double>, 3> poseAcceleration(const std::vector<Pose>& p, double tick,
+                                                                  std::span<const double> times, int span);
+
+/// Scores one axis; periods: n_periods log-spaced over [t_min, t_max] [s].
+[[nodiscard]] ShakeScore scoreShake(std::span<const double> target, std::span<const double> achieved, double dt,
+                                    double t_min, double t_max, int n_periods = 50);
+
+}  // namespace nocdyn

@@ -1,0 +1,150 @@
+// PEER AT2 ground-motion records (see at2.hpp).
+#include "nocdyn/io/at2.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <sstream>
+#include <string_view>
+
+#include "file_util.hpp"
+#include "nocdyn/error.hpp"
+
+namespace nocdyn::io {
+
+namespace {
+
+// Plausible time steps of a record [s].
+constexpr double kMinDt = 1e-6;
+constexpr double kMaxDt = 1.0;
+// Largest |acceleration| accepted [g].
+constexpr double kMaxG = 100.0;
+
+std::string at(const std::string& source, std::size_t line) { return source + ":" + std::to_string(line) + ": "; }
+
+/// Splits on blanks (space, tab, CR); the pieces view `text`.
+std::vector<std::string_view> words(std::string_view text) {
+    std::vector<std::string_view> out;
+    std::size_t k = 0;
+    while (k < text.size()) {
+        while (k < text.size() && (text[k] == ' ' || text[k] == '\t' || text[k] == '\r')) ++k;
+        const std::size_t start = k;
+        while (k < text.size() && text[k] != ' ' && text[k] != '\t' && text[k] != '\r') ++k;
+        if (k > start) out.push_back(text.substr(start, k - start));
+    }
+    return out;
+}
+
+std::string upper(std::string_view text) {
+    std::string out(text);
+    for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    return out;
+}
+
+struct Header {
+    std::string npts, dt;  ///< the two numbers as written
+};
+
+/// The fourth line in one of its three forms; std::nullopt-like empty strings when unknown.
+bool parseHeaderLine(std::string_view line, Header& header) {
+    std::string text = upper(line);
+    // "NPTS= 3000, DT= .0100 SEC" and "NPTS= 1451, dt= .02000": make '=' and ',' blanks
+    if (text.find('=') != std::string::npos) {
+        std::replace(text.begin(), text.end(), '=', ' ');
+        std::replace(text.begin(), text.end(), ',', ' ');
+        const std::vector<std::string_view> w = words(text);
+        if ((w.size() == 4 || (w.size() == 5 && w[4] == "SEC")) && w[0] == "NPTS" && w[2] == "DT") {
+            header = {std::string(w[1]), std::string(w[3])};
+            return true;
+        }
+        return false;
+    }
+    // "3930 0.00500 NPTS, DT"
+    std::replace(text.begin(), text.end(), ',', ' ');
+    const std::vector<std::string_view> w = words(text);
+    if (w.size() == 4 && w[2] == "NPTS" && w[3] == "DT") {
+        header = {std::string(w[0]), std::string(w[1])};
+        return true;
+    }
+    return false;
+}
+
+}  // namespace
+
+double GroundMotionRecord::duration() const {
+    return acceleration.empty() ? 0.0 : dt * static_cast<double>(acceleration.size() - 1);
+}
+
+GroundMotionRecord parseAt2(const std::string& text, const std::string& source) {
+    std::string_view rest(text);
+    detail::stripByteOrderMark(rest);
+    std::size_t line_number = 0;
+    const auto nextLine = [&](std::string_view& line) {
+        if (rest.empty()) return false;
+        const std::size_t end = rest.find('\n');
+        line = rest.substr(0, end);
+        rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
+        ++line_number;
+        return true;
+    };
+    GroundMotionRecord record;
+    record.source = source;
+    std::string_view line;
+    for (int k = 0; k < 4; ++k) {
+        if (!nextLine(line)) {
+            throw Error(at(source, line_number) + "AT2 header cut short: 4 header lines expected, found " +
+                        std::to_string(line_number));
+        }
+        if (k == 0) {
+            const std::vector<std::string_view> w = words(line);
+            for (std::size_t i = 0; i < w.size(); ++i) {
+                if (i > 0) record.title += ' ';
+                record.title += w[i];
+            }
+        }
+    }
+    Header header;
+    if (!parseHeaderLine(line, header)) {
+        throw Error(at(source, 4) +
+                    "expected 'NPTS= N, DT= STEP [SEC]' or 'N STEP NPTS, DT' (the number of points and the time step)");
+    }
+    const auto npts_value = detail::parseDecimal(header.npts);
+    if (!npts_value || *npts_value < 1.0 || *npts_value > static_cast<double>(kMaxAt2Points) ||
+        *npts_value != static_cast<double>(static_cast<std::size_t>(*npts_value))) {
+        throw Error(at(source, 4) + "NPTS '" + header.npts + "' is not a whole number from 1 to " +
+                    std::to_string(kMaxAt2Points));
+    }
+    const auto npts = static_cast<std::size_t>(*npts_value);
+    const auto dt = detail::parseDecimal(header.dt);
+    if (!dt || !(*dt >= kMinDt && *dt <= kMaxDt)) {
+        throw Error(at(source, 4) + "DT '" + header.dt + "' is not a time step from 1e-06 to 1 s");
+    }
+    record.dt = *dt;
+    record.acceleration.reserve(npts);
+    while (record.acceleration.size() < npts && nextLine(line)) {
+        for (const std::string_view word : words(line)) {
+            if (record.acceleration.size() == npts) break;  // extra values are ignored
+            const auto value = detail::parseDecimal(word);
+            if (!value) {
+                throw Error(at(source, line_number) + "value " + std::to_string(record.acceleration.size() + 1) + " '" +
+                            std::string(word.substr(0, 32)) + "' " + detail::numberProblem(word.substr(0, 32)));
+            }
+            if (!(std::abs(*value) <= kMaxG)) {
+                throw Error(at(source, line_number) + "value " + std::to_string(record.acceleration.size() + 1) +
+                            " is " + std::string(word) + " g, beyond +-100 g");
+            }
+            record.acceleration.push_back(*value * kStandardGravity);
+        }
+    }
+    if (record.acceleration.size() < npts) {
+        throw Error(at(source, line_number) + "the record ends after " + std::to_string(record.acceleration.size()) +
+                    " of the NPTS = " + std::to_string(npts) + " values");
+    }
+    return record;
+}
+
+GroundMotionRecord readAt2File(const std::string& path) {
+    return parseAt2(detail::readRegularFile(path, "AT2 record", kMaxAt2Bytes), path);
+}
+
+}  // namespace nocdyn::io

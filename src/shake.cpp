@@ -1,0 +1,340 @@
+// Recorded ground motion on a robot (see shake.hpp).
+#include "nocdyn/shake.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <numbers>
+#include <sstream>
+
+#include <unsupported/Eigen/MatrixFunctions>
+
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/error.hpp"
+
+namespace nocdyn {
+
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::string num(double value) {
+    std::ostringstream out;
+    out.precision(6);
+    out << value;
+    return out.str();
+}
+
+/// One second-order section y = (b0 + b1 z^-1 + b2 z^-2) / (1 + a1 z^-1 + a2 z^-2) x.
+struct Biquad {
+    double b0, b1, b2, a1, a2;
+    /// Runs over x in place from rest (direct form II transposed).
+    void run(std::vector<double>& x) const {
+        double s1 = 0.0, s2 = 0.0;
+        for (double& v : x) {
+            const double y = b0 * v + s1;
+            s1 = b1 * v - a1 * y + s2;
+            s2 = b2 * v - a2 * y;
+            v = y;
+        }
+    }
+};
+
+}  // namespace
+
+std::vector<double> highPassZeroPhase(std::span<const double> x, double dt, double cutoff) {
+    if (!(dt > 0.0 && std::isfinite(dt))) throw Error("high-pass: the time step must be positive, got " + num(dt));
+    const double fs = 1.0 / dt;
+    if (!(cutoff > 0.0 && cutoff < 0.5 * fs)) {
+        throw Error("high-pass: cutoff " + num(cutoff) + " Hz must be above 0 and below the Nyquist frequency " +
+                    num(0.5 * fs) + " Hz");
+    }
+    const std::size_t n = x.size();
+    if (n < 2) return {x.begin(), x.end()};
+    // bilinear transform with the cutoff prewarped: K = tan(w_c dt / 2)
+    const double k = std::tan(kPi * cutoff * dt);
+    std::vector<Biquad> sections;
+    for (int s = 0; s < kHighPassOrder / 2; ++s) {
+        const double q = 1.0 / (2.0 * std::cos((2.0 * s + 1.0) * kPi / (2.0 * kHighPassOrder)));
+        const double norm = 1.0 + k / q + k * k;
+        const double b0 = 1.0 / norm;
+        sections.push_back({b0, -2.0 * b0, b0, 2.0 * (k * k - 1.0) / norm, (1.0 - k / q + k * k) / norm});
+    }
+    // odd reflection padding at both ends
+    const auto pad =
+        static_cast<std::size_t>(std::min<double>(static_cast<double>(n - 1), std::ceil(3.0 * fs / cutoff)));
+    std::vector<double> y(n + 2 * pad);
+    for (std::size_t i = 0; i < pad; ++i) {
+        y[i] = 2.0 * x[0] - x[pad - i];
+        y[n + pad + i] = 2.0 * x[n - 1] - x[n - 2 - i];
+    }
+    std::copy(x.begin(), x.end(), y.begin() + static_cast<std::ptrdiff_t>(pad));
+    for (const Biquad& b : sections) b.run(y);
+    std::reverse(y.begin(), y.end());
+    for (const Biquad& b : sections) b.run(y);
+    std::reverse(y.begin(), y.end());
+    return {y.begin() + static_cast<std::ptrdiff_t>(pad), y.begin() + static_cast<std::ptrdiff_t>(pad + n)};
+}
+
+LimitUse limitUse(const Model& model, const PoseTrajectory& trajectory, double duration, double step, double margin) {
+    Data data(model);
+    LimitUse worst;
+    const double keep = 1.0 - margin;
+    const auto steps = static_cast<std::size_t>(std::ceil(duration / step));
+    Pose p;
+    Twist dp, ddp;
+    for (std::size_t k = 0; k <= steps; ++k) {
+        const double t = std::min(duration, static_cast<double>(k) * step);
+        trajectory.evaluate(t, p, dp, ddp);
+        const Status status = inverseDynamicsFast(model, data, p, dp, ddp);
+        if (!status.ok() && status.code != StatusCode::joint_limit_exceeded &&
+            status.code != StatusCode::effort_exceeded && status.code != StatusCode::velocity_exceeded) {
+            return {std::numeric_limits<double>::infinity(), describe(status, model), t};
+        }
+        for (int a = 0; a < model.actuators; ++a) {
+            const auto ia = static_cast<std::size_t>(a);
+            const int limb = model.actuator_limb[ia];
+            const JointLimits& lim =
+                model.limb[static_cast<std::size_t>(limb)].limits[static_cast<std::size_t>(model.actuator_joint[ia])];
+            const auto consider = [&](double ratio, const char* which) {
+                if (ratio > worst.ratio) {
+                    worst = {ratio, "actuator " + std::to_string(a + 1) + " (" + model.limbName(limb) + ") " + which,
+                             t};
+                }
+            };
+            if (std::isfinite(lim.lower) && std::isfinite(lim.upper)) {
+                const double centre = 0.5 * (lim.lower + lim.upper);
+                const double half = 0.5 * (lim.upper - lim.lower);
+                consider(std::abs(data.u(a) - centre) / (keep * half), "range");
+            }
+            if (std::isfinite(lim.velocity)) consider(std::abs(data.du(a)) / (keep * lim.velocity), "velocity");
+            if (std::isfinite(lim.effort)) consider(std::abs(data.tau(a)) / (keep * lim.effort), "effort");
+        }
+    }
+    return worst;
+}
+
+namespace {
+
+/// The motion of the filtered record at scales (L, A).
+struct Scaled {
+    std::vector<double> t, ax, ay, alpha;
+    PoseTrajectory trajectory;
+};
+
+/// A displacement axis from accelerations: integrated from rest, then shifted so that its
+/// extremes are symmetric about `home`.
+SampledAxis centredAxis(const std::vector<double>& t, const std::vector<double>& a, double home) {
+    SampledAxis axis = splineOfAccelerations(t, a);
+    double lo = 0.0, hi = 0.0;
+    for (const auto& c : axis.pieces) {
+        lo = std::min(lo, c[0]);
+        hi = std::max(hi, c[0]);
+    }
+    const double shift = home - 0.5 * (lo + hi);
+    for (auto& c : axis.pieces) c[0] += shift;
+    return axis;
+}
+
+Scaled scaleRecord(const Model& model, const GroundRecord& filtered, double L, double A) {
+    Scaled s;
+    const std::size_t n = std::max({filtered.ax.size(), filtered.ay.size(), filtered.alpha.size()});
+    s.t.resize(n);
+    for (std::size_t i = 0; i < n; ++i) s.t[i] = static_cast<double>(i) * filtered.dt / L;
+    auto sampled = std::make_shared<SampledPose>();
+    const auto axis = [&](const std::vector<double>& a, std::vector<double>& out, std::optional<SampledAxis>& slot,
+                          double home) {
+        if (a.empty()) return;
+        out.resize(n);
+        for (std::size_t i = 0; i < n; ++i) out[i] = A * a[i];
+        slot = centredAxis(s.t, out, home);
+    };
+    axis(filtered.alpha, s.alpha, sampled->theta, model.home(0));
+    axis(filtered.ax, s.ax, sampled->x, model.home(1));
+    axis(filtered.ay, s.ay, sampled->y, model.home(2));
+    // axes not driven stay at home
+    s.trajectory.theta.offset = model.home(0);
+    s.trajectory.x.offset = model.home(1);
+    s.trajectory.y.offset = model.home(2);
+    s.trajectory.name = "record";
+    s.trajectory.duration = s.t.back();
+    s.trajectory.sampled = std::move(sampled);
+    return s;
+}
+
+LimitUse useAt(const Model& model, const Scaled& s, double dt, double margin) {
+    // two checks per sample interval
+    return limitUse(model, s.trajectory, s.t.back(), 0.5 * dt, margin);
+}
+
+}  // namespace
+
+FittedRecord fitRecord(const Model& model, const GroundRecord& record, const FitOptions& options) {
+    const std::size_t n = std::max({record.ax.size(), record.ay.size(), record.alpha.size()});
+    if (n < 4) throw Error("record: at least 4 samples of some axis are needed");
+    for (const auto* a : {&record.ax, &record.ay, &record.alpha}) {
+        if (!a->empty() && a->size() != n) {
+            throw Error("record: the axes have different lengths (" + std::to_string(a->size()) + " and " +
+                        std::to_string(n) + " samples)");
+        }
+        for (double v : *a) {
+            if (!std::isfinite(v)) throw Error("record: an acceleration is not finite");
+        }
+    }
+    if (!(options.margin >= 0.0 && options.margin < 1.0)) throw Error("record: margin must be in [0, 1)");
+    if (!(options.max_time_scale >= 1.0)) throw Error("record: the largest time scale must be at least 1");
+    GroundRecord filtered = record;
+    if (options.highpass > 0.0) {
+        for (auto* a : {&filtered.ax, &filtered.ay, &filtered.alpha}) {
+            if (!a->empty()) *a = highPassZeroPhase(*a, record.dt, options.highpass);
+        }
+    }
+    const auto fits = [&](double L, double A, LimitUse* use = nullptr) {
+        const Scaled s = scaleRecord(model, filtered, L, A);
+        const LimitUse u = useAt(model, s, record.dt / L, options.margin);
+        if (use) *use = u;
+        return u.ratio <= 1.0;
+    };
+    double L = options.time_scale.value_or(1.0);
+    double A = 1.0;
+    if (options.time_scale) {
+        if (!(L >= 1e-3 && L <= 1e4)) throw Error("record: time scale " + num(L) + " outside [0.001, 10000]");
+    } else if (!fits(1.0, 1.0)) {
+        double lo = 1.0, hi = 2.0;
+        while (hi < options.max_time_scale && !fits(hi, 1.0)) {
+            lo = hi;
+            hi *= 2.0;
+        }
+        hi = std::min(hi, options.max_time_scale);
+        if (fits(hi, 1.0)) {
+            for (int k = 0; k < 60 && hi - lo > 1e-3 * hi; ++k) {
+                const double mid = 0.5 * (lo + hi);
+                (fits(mid, 1.0) ? hi : lo) = mid;
+            }
+        }
+        L = hi;
+    }
+    LimitUse use;
+    if (!fits(L, 1.0, &use)) {
+        // amplitude fallback at L: the largest A that fits
+        LimitUse smallest;
+        constexpr double kMinAmplitude = 1e-4;
+        if (!fits(L, kMinAmplitude, &smallest)) {
+            throw Error("record: cannot be fitted even at amplitude " + num(kMinAmplitude) + " and time scale " +
+                        num(L) + ": " + smallest.what + " at " + num(100.0 * smallest.ratio) +
+                        " % of its limit (with " + num(100.0 * options.margin) +
+                        " % margin) at t = " + num(smallest.t) + " s");
+        }
+        double lo = kMinAmplitude, hi = 1.0;
+        for (int k = 0; k < 60 && hi - lo > 1e-3 * lo; ++k) {
+            const double mid = std::sqrt(lo * hi);
+            (fits(L, mid) ? lo : hi) = mid;
+        }
+        A = lo;
+    }
+    Scaled s = scaleRecord(model, filtered, L, A);
+    FittedRecord fit;
+    fit.time_scale = L;
+    fit.amplitude_scale = A;
+    fit.dt = record.dt / L;
+    fit.use = useAt(model, s, fit.dt, options.margin);
+    fit.t = std::move(s.t);
+    fit.ax = std::move(s.ax);
+    fit.ay = std::move(s.ay);
+    fit.alpha = std::move(s.alpha);
+    fit.trajectory = std::move(s.trajectory);
+    return fit;
+}
+
+double peakOscillatorDisplacement(std::span<const double> a, double dt, double period, double zeta) {
+    if (!(period > 0.0 && dt > 0.0 && zeta >= 0.0 && zeta < 1.0)) {
+        throw Error("response spectrum: period and time step must be positive, damping in [0, 1)");
+    }
+    const double w = 2.0 * kPi / period;
+    // Exact recurrence for an excitation linear between samples (Nigam-Jennings): the state
+    // z = [u, u', a, a'] obeys z' = M z over a step, so z(t + dt) = exp(M dt) z(t).
+    Eigen::Matrix4d m = Eigen::Matrix4d::Zero();
+    m(0, 1) = 1.0;
+    m(1, 0) = -w * w;
+    m(1, 1) = -2.0 * zeta * w;
+    m(1, 2) = -1.0;
+    m(2, 3) = 1.0;
+    const Eigen::Matrix4d phi = (m * dt).exp();
+    double u = 0.0, v = 0.0, peak = 0.0;
+    for (std::size_t i = 0; i + 1 < a.size(); ++i) {
+        const double slope = (a[i + 1] - a[i]) / dt;
+        const double un = phi(0, 0) * u + phi(0, 1) * v + phi(0, 2) * a[i] + phi(0, 3) * slope;
+        const double vn = phi(1, 0) * u + phi(1, 1) * v + phi(1, 2) * a[i] + phi(1, 3) * slope;
+        u = un;
+        v = vn;
+        peak = std::max(peak, std::abs(u));
+    }
+    return peak;
+}
+
+std::vector<double> responseSpectrum(std::span<const double> a, double dt, std::span<const double> periods,
+                                     double zeta) {
+    std::vector<double> sa;
+    sa.reserve(periods.size());
+    for (double T : periods) {
+        const double w = 2.0 * kPi / T;
+        sa.push_back(w * w * peakOscillatorDisplacement(a, dt, T, zeta));
+    }
+    return sa;
+}
+
+std::array<std::vector<double>, 3> poseAcceleration(const std::vector<Pose>& p, double tick,
+                                                    std::span<const double> times, int span) {
+    if (p.size() < 3 || !(tick > 0.0) || span < 1) throw Error("pose acceleration: too few poses or a bad step");
+    const auto n = static_cast<std::ptrdiff_t>(p.size());
+    const std::ptrdiff_t m = std::min<std::ptrdiff_t>(span, (n - 1) / 2);
+    const double h = static_cast<double>(m) * tick;
+    const auto at = [&](std::ptrdiff_t k, int axis) {
+        const std::ptrdiff_t c = std::clamp(k, m, n - 1 - m);
+        const auto i = [&](std::ptrdiff_t j) { return p[static_cast<std::size_t>(j)](axis); };
+        return (i(c + m) - 2.0 * i(c) + i(c - m)) / (h * h);
+    };
+    std::array<std::vector<double>, 3> out;
+    for (int axis = 0; axis < 3; ++axis) {
+        auto& v = out[static_cast<std::size_t>(axis)];
+        v.reserve(times.size());
+        for (double t : times) {
+            const double x = std::clamp(t / tick, 0.0, static_cast<double>(n - 1));
+            const auto k = static_cast<std::ptrdiff_t>(std::floor(x));
+            const std::ptrdiff_t k1 = std::min(k + 1, n - 1);
+            const double w = x - static_cast<double>(k);
+            v.push_back((1.0 - w) * at(k, axis) + w * at(k1, axis));
+        }
+    }
+    return out;
+}
+
+ShakeScore scoreShake(std::span<const double> target, std::span<const double> achieved, double dt, double t_min,
+                      double t_max, int n_periods) {
+    if (target.size() != achieved.size() || target.empty()) throw Error("score: target and achieved differ in length");
+    if (!(t_min > 0.0 && t_max > t_min && n_periods >= 2)) throw Error("score: bad period range");
+    ShakeScore score;
+    double se = 0.0, st = 0.0, pt = 0.0, pa = 0.0;
+    for (std::size_t i = 0; i < target.size(); ++i) {
+        se += (achieved[i] - target[i]) * (achieved[i] - target[i]);
+        st += target[i] * target[i];
+        pt = std::max(pt, std::abs(target[i]));
+        pa = std::max(pa, std::abs(achieved[i]));
+    }
+    score.rms_error = st > 0.0 ? std::sqrt(se / st) : 0.0;
+    score.peak_error = pt > 0.0 ? (pa - pt) / pt : 0.0;
+    for (int k = 0; k < n_periods; ++k) {
+        score.periods.push_back(t_min * std::pow(t_max / t_min, static_cast<double>(k) / (n_periods - 1)));
+    }
+    score.target_sa = responseSpectrum(target, dt, score.periods);
+    score.achieved_sa = responseSpectrum(achieved, dt, score.periods);
+    int outside = 0;
+    for (std::size_t k = 0; k < score.periods.size(); ++k) {
+        if (score.target_sa[k] > 0.0 && std::abs(score.achieved_sa[k] / score.target_sa[k] - 1.0) > 0.1) ++outside;
+    }
+    score.share_outside = static_cast<double>(outside) / n_periods;
+    return score;
+}
+
+}  // namespace nocdyn

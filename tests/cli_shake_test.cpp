@@ -1,0 +1,72 @@
+// nocdyn shake and sampled trajectories through the command line: outputs with the documented
+// columns and numbers, and one-line errors for bad records and bad sampled trajectories.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+#include "nocdyn/io/csv.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+const std::string kRecord = std::string(NOCDYN_SOURCE_DIR) + "/data/elcentro_1940_ns.AT2";
+const std::string kRobot = std::string(NOCDYN_SOURCE_DIR) + "/robots/paper-3prr-general.yaml";
+
+TEST(CliShake, WritesTheTargetAndAchievedAccelerationAndTheScales) {
+    const auto dir = freshScratchDirectory("cli_shake");
+    // a short window on nocdyn's own plant at 2 kHz keeps the test fast
+    const CliResult r = runCli("shake --robot " + kRobot + " --record " + kRecord +
+                               " --window 3 --plant nocdyn --rate 2000 --out " + dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("time scale L = "), std::string::npos) << r.out;
+    const io::Table table = io::readCsvFile((dir / "shake.csv").string());
+    for (const char* c : {"t", "x", "y", "theta", "ax", "ay", "alpha", "ax_achieved", "ay_achieved", "alpha_achieved",
+                          "u1", "u3", "tau1", "tau3"}) {
+        EXPECT_TRUE(table.has(c)) << c;
+    }
+    const nlohmann::json json = nlohmann::json::parse(readWhole(dir / "shake.json"));
+    const double L = json["time_scale"].get<double>();
+    EXPECT_GT(L, 1.0);
+    EXPECT_EQ(json["amplitude_scale"].get<double>(), 1.0);
+    EXPECT_LE(json["fitted_limit_use"]["ratio"].get<double>(), 1.0);
+    // the fitted motion keeps the record's accelerations (after the high-pass) at t / L
+    const std::size_t ax = table.column("ax");
+    double peak = 0.0;
+    for (const auto& row : table.rows) peak = std::max(peak, std::abs(row[ax]));
+    EXPECT_GT(peak, 0.2 * 9.80665);  // El Centro's first 3 s peak near 0.28 g
+    EXPECT_LT(peak, 0.33 * 9.80665);
+    EXPECT_LT(json["metrics"]["ax"]["rms_error"].get<double>(), 0.5);
+    EXPECT_TRUE(std::filesystem::exists(dir / "shake_spectrum.svg"));
+    EXPECT_TRUE(std::filesystem::exists(dir / "shake_acceleration.png"));
+}
+
+TEST(CliShake, RefusesATruncatedRecordNamingTheLine) {
+    const auto dir = freshScratchDirectory("cli_shake");
+    const std::filesystem::path bad = dir / "short.AT2";
+    std::ofstream(bad) << "title\nevent\nunits g\nNPTS=  10, DT= .02 SEC\n0.1 0.2\n0.3\n";
+    const CliResult r = runCli("shake --record " + bad.string() + " --out " + (dir / "o").string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("short.AT2:6:"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "o" / "shake.csv"));
+}
+
+TEST(CliShake, InverseDynamicsTakesASampledTrajectory) {
+    const auto dir = freshScratchDirectory("cli_shake");
+    const std::filesystem::path csv = dir / "motion.csv";
+    std::ofstream(csv) << "t,ax,ay\n0,0,0\n0.01,1,0\n0.02,2,-1\n0.03,1,0\n0.04,0,1\n0.05,0,0\n";
+    const CliResult r = runCli("inverse-dynamics --robot " + kRobot + " --trajectory " + csv.string() + " --rate 1000");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("tau1"), std::string::npos);
+    std::ofstream(csv) << "t,ax\n0,0\n0.02,1\n0.01,2\n";
+    const CliResult bad = runCli("inverse-dynamics --trajectory " + csv.string());
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.err.find("motion.csv:4: column 't'"), std::string::npos) << bad.err;
+}
+
+}  // namespace
+}  // namespace nocdyn::test

@@ -1,0 +1,140 @@
+// Recorded motion: the zero-phase high-pass on tones, the Nigam-Jennings spectrum against the
+// closed-form response of an oscillator to a harmonic, and the similitude fit of a record to
+// the paper's prototype (stroke-limited, then amplitude-limited).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+#include <vector>
+
+#include "nocdyn/io/examples.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/shake.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+constexpr double kPi = std::numbers::pi;
+
+std::vector<double> tone(double f, double fs, double seconds, double offset = 0.0) {
+    std::vector<double> x;
+    for (int i = 0; i < static_cast<int>(seconds * fs); ++i) x.push_back(offset + std::sin(2 * kPi * f * i / fs));
+    return x;
+}
+
+TEST(HighPass, PassesAToneFarAboveTheCutoffUnchangedAndInPhaseAndRemovesAnOffset) {
+    const std::vector<double> x = tone(5.0, 100.0, 20.0, 0.7);
+    const std::vector<double> y = highPassZeroPhase(x, 0.01, 0.5);
+    for (std::size_t i = 500; i < 1500; ++i) EXPECT_NEAR(y[i], x[i] - 0.7, 2e-3) << i;
+}
+
+TEST(HighPass, ForwardBackwardButterworthHalvesAToneAtTheCutoff) {
+    // |H(f_c)|^2 = 1/2 for a Butterworth with the cutoff prewarped; zero phase
+    const std::vector<double> x = tone(1.0, 100.0, 40.0);
+    const std::vector<double> y = highPassZeroPhase(x, 0.01, 1.0);
+    for (std::size_t i = 1500; i < 2500; ++i) EXPECT_NEAR(y[i], 0.5 * x[i], 2e-3) << i;
+}
+
+TEST(HighPass, RefusesACutoffAtOrAboveNyquist) {
+    const std::vector<double> x = tone(1.0, 100.0, 1.0);
+    EXPECT_ANY_THROW((void)highPassZeroPhase(x, 0.01, 50.0));
+    EXPECT_ANY_THROW((void)highPassZeroPhase(x, 0.0, 1.0));
+}
+
+/// u'' + 2 z w u' + w^2 u = -sin(W t) from rest, in closed form.
+double harmonicResponse(double t, double w, double z, double W) {
+    const double k = w * w - W * W, c = 2 * z * w * W;
+    const double C = -k / (k * k + c * c), D = c / (k * k + c * c);  // u_p = C sin + D cos
+    const double wd = w * std::sqrt(1 - z * z);
+    const double E = -D, F = (z * w * E - W * C) / wd;
+    return C * std::sin(W * t) + D * std::cos(W * t) +
+           std::exp(-z * w * t) * (E * std::cos(wd * t) + F * std::sin(wd * t));
+}
+
+TEST(ResponseSpectrum, PeakMatchesTheClosedFormResponseToAHarmonic) {
+    const double dt = 0.001, W = 2 * kPi * 3.0, z = 0.05;
+    std::vector<double> a;
+    for (int i = 0; i <= 4000; ++i) a.push_back(std::sin(W * i * dt));
+    for (double T : {0.1, 0.33, 1.0, 2.5}) {
+        const double w = 2 * kPi / T;
+        double peak = 0.0;
+        for (int i = 0; i <= 4000; ++i) peak = std::max(peak, std::abs(harmonicResponse(i * dt, w, z, W)));
+        // the recurrence is exact for the piecewise-linear excitation; the sine differs from
+        // it by (W dt)^2 / 8 of its amplitude
+        EXPECT_NEAR(peakOscillatorDisplacement(a, dt, T, z), peak, 2e-4 * peak) << T;
+    }
+}
+
+TEST(ResponseSpectrum, IsExactForARampExcitation) {
+    // a = t (linear: the recurrence is exact): u = -(t/w^2 - 2 z / w^3) + transient
+    const double dt = 0.01, T = 0.5, z = 0.05, w = 2 * kPi / T, wd = w * std::sqrt(1 - z * z);
+    std::vector<double> a;
+    for (int i = 0; i <= 200; ++i) a.push_back(i * dt);
+    double peak = 0.0;
+    for (int i = 0; i <= 200; ++i) {
+        const double t = i * dt;
+        const double E = -2 * z / (w * w * w), F = (z * w * E + 1.0 / (w * w)) / wd;
+        const double u =
+            -(t / (w * w) - 2 * z / (w * w * w)) + std::exp(-z * w * t) * (E * std::cos(wd * t) + F * std::sin(wd * t));
+        peak = std::max(peak, std::abs(u));
+    }
+    EXPECT_NEAR(peakOscillatorDisplacement(a, dt, T, z), peak, 1e-12);
+}
+
+TEST(ScoreShake, IdenticalMotionsScoreZeroAndAScaledOneItsScale) {
+    const std::vector<double> a = tone(2.0, 200.0, 3.0);
+    std::vector<double> b;
+    for (double v : a) b.push_back(1.2 * v);
+    const ShakeScore same = scoreShake(a, a, 0.005, 0.05, 2.0);
+    EXPECT_EQ(same.rms_error, 0.0);
+    EXPECT_EQ(same.share_outside, 0.0);
+    const ShakeScore more = scoreShake(a, b, 0.005, 0.05, 2.0);
+    EXPECT_NEAR(more.rms_error, 0.2, 1e-12);
+    EXPECT_NEAR(more.peak_error, 0.2, 1e-12);
+    EXPECT_EQ(more.share_outside, 1.0);  // every S_a 20 % above
+}
+
+class FitRecord : public ::testing::Test {
+protected:
+    Model model{io::exampleRobot("paper-3prr-general")};
+    GroundRecord record() const {
+        // 2 Hz, 3 m/s^2 along x: displacement 19 mm, beyond the +-12.45 mm stroke
+        GroundRecord r;
+        r.dt = 0.01;
+        for (int i = 0; i < 400; ++i) r.ax.push_back(3.0 * std::sin(2 * kPi * 2.0 * i * r.dt));
+        return r;
+    }
+};
+
+TEST_F(FitRecord, ChoosesTheLeastTimeCompressionThatKeepsEveryActuatorWithinItsLimits) {
+    FitOptions options;
+    options.highpass = 0.0;
+    const FittedRecord fit = fitRecord(model, record(), options);
+    EXPECT_GT(fit.time_scale, 1.0);
+    EXPECT_DOUBLE_EQ(fit.amplitude_scale, 1.0);
+    EXPECT_LE(fit.use.ratio, 1.0);
+    EXPECT_GT(fit.use.ratio, 0.99);  // at the limit: a little less compression would not fit
+    // similitude: accelerations kept, time compressed by L
+    EXPECT_DOUBLE_EQ(fit.dt, 0.01 / fit.time_scale);
+    Pose p, dp, ddp;
+    for (std::size_t i = 10; i < fit.t.size(); i += 37) {
+        fit.trajectory.evaluate(fit.t[i], p, dp, ddp);
+        EXPECT_NEAR(ddp(1), 3.0 * std::sin(2 * kPi * 2.0 * i * 0.01), 1e-9);
+        EXPECT_NEAR(ddp(2), 0.0, 1e-15);
+    }
+}
+
+TEST_F(FitRecord, FallsBackToAmplitudeScalingWhenTheTimeScaleIsFixed) {
+    FitOptions options;
+    options.highpass = 0.0;
+    options.time_scale = 1.0;
+    const FittedRecord fit = fitRecord(model, record(), options);
+    EXPECT_DOUBLE_EQ(fit.time_scale, 1.0);
+    EXPECT_LT(fit.amplitude_scale, 1.0);
+    EXPECT_GT(fit.use.ratio, 0.99);
+    EXPECT_LE(fit.use.ratio, 1.0);
+    EXPECT_NEAR(fit.ax[5], fit.amplitude_scale * 3.0 * std::sin(0.2 * kPi), 1e-12);
+}
+
+}  // namespace
+}  // namespace nocdyn::test
