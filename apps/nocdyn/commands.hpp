@@ -15,6 +15,8 @@ void addControlCommand(CLI::App& app);
 void addEnvelopeCommand(CLI::App& app);
 void addWorkspaceCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
+void addRegressorCommand(CLI::App& app);
+void addIdentifyCommand(CLI::App& app);
 #ifdef NOCDYN_HAS_ENGINES
 void addValidateCommand(CLI::App& app);
 #endif

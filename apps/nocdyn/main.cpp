@@ -27,6 +27,8 @@ int main(int argc, char** argv) {
     nocdyn::cli::addEnvelopeCommand(app);
     nocdyn::cli::addWorkspaceCommand(app);
     nocdyn::cli::addConvertCommand(app);
+    nocdyn::cli::addRegressorCommand(app);
+    nocdyn::cli::addIdentifyCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif
