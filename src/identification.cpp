@@ -387,6 +387,10 @@ Motion reconstructMotion(const Model& model, const Measurements& measured, const
     const bool given = measured.du.size() > 0 && measured.ddu.size() > 0;
     Eigen::MatrixXd u = measured.u, tau = measured.tau, du, ddu;
     Eigen::Index first = 0, last = N;
+    if (options.held_forces) {
+        for (Eigen::Index k = N - 1; k > 0; --k) tau.row(k) = 0.5 * (tau.row(k - 1) + tau.row(k));
+        first = 1;
+    }
     if (given) {
         du = measured.du;
         ddu = measured.ddu;
@@ -412,7 +416,7 @@ Motion reconstructMotion(const Model& model, const Measurements& measured, const
         ddu = differentiate(du, measured.t);
         // the filter's start and end transients: drop two periods of the cut-off at each end
         const auto trim = static_cast<Eigen::Index>(std::ceil(2.0 * rate / cutoff));
-        first = std::min(trim, N / 4);
+        first = std::max(first, std::min(trim, N / 4));
         last = N - first;
     }
     Motion motion;

@@ -207,6 +207,9 @@ void addIdentifyCommand(CLI::App& app) {
     command->add_flag("--base", options->base, "Identify the robot's base parameters (calibration, no payload)");
     command->add_flag("--friction", options->identification.friction,
                       "With --payload: identify the actuated joints' damping and Coulomb friction alongside");
+    command->add_flag("--held-forces", options->identification.held_forces,
+                      "The logged forces are commands held until the next sample (zero-order hold, as `nocdyn "
+                      "control --log` writes them): each sample's force is taken as the mean of the holds around it");
     command
         ->add_option("--cutoff", options->identification.cutoff,
                      "Low-pass cut-off when du, ddu are not given [Hz] (default: rate/10, at most 50)")

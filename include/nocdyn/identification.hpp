@@ -110,6 +110,10 @@ struct IdentificationOptions {
     double holdout = 0.2;
     /// Identify the actuated joints' damping and Coulomb friction alongside the payload.
     bool friction = false;
+    /// The logged forces are commands held until the next sample (zero-order hold, as `nocdyn
+    /// control` logs them): the force at t_k is then the mean of the two holds around it,
+    /// (tau_(k-1) + tau_k) / 2, so that it matches the accelerations the differences of u give.
+    bool held_forces = false;
 };
 
 /// One identified value with its standard deviation (from the residuals).
