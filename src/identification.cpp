@@ -497,7 +497,7 @@ LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const E
             bw(r) = w * b(r);
         }
         const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Aw.transpose() * Aw);
-        const Eigen::VectorXd sv = svd.singularValues();
+        const Eigen::VectorXd& sv = svd.singularValues();
         result.condition = std::sqrt(sv(0) / sv(k - 1));
         if (!(result.condition < 1e7)) {
             // the weakest direction names the parameter(s) it involves
@@ -606,7 +606,7 @@ Eigen::Index fitSamples(const Motion& motion, const IdentificationOptions& optio
     if (!(options.holdout >= 0.0 && options.holdout < 1.0))
         throw Error("identification: the held-out fraction must be in [0, 1)");
     const auto fit = static_cast<Eigen::Index>(std::floor((1.0 - options.holdout) * static_cast<double>(N)));
-    if (fit * n < 3 * parameters) {
+    if (fit * n < static_cast<Eigen::Index>(3) * parameters) {
         throw Error("identification: " + std::to_string(fit) + " samples to fit " + std::to_string(parameters) +
                     " parameters with " + std::to_string(n) + " forces each: too few (need at least " +
                     std::to_string((3 * parameters + n - 1) / n) + ")");
@@ -622,6 +622,7 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
     std::vector<std::string> names{"payload mass", "payload c.o.m. x (mass times)", "payload c.o.m. y (mass times)",
                                    "payload inertia"};
     const int platform = bodyParameterIndex(model.platformBody());
+    columns.reserve(static_cast<std::size_t>(kBodyParameters) + 2 * static_cast<std::size_t>(n));
     for (int c = 0; c < kBodyParameters; ++c) columns.push_back(platform + c);
     if (options.friction) {
         for (int a = 0; a < n; ++a) {

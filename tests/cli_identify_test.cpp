@@ -109,5 +109,24 @@ TEST(CliIdentify, RefusesTooFewSamples) {
     EXPECT_NE(r.err.find("too few"), std::string::npos) << r.err;
 }
 
+TEST(CliIdentify, RecoversThePayloadFromANoisySimulatedControlLog) {
+    // the experiment: computed-torque control along trajectory 1 with the payload unknown to the
+    // controller, 1 um encoder noise and 0.5 N force noise, 1 s at 10 kHz
+    const fs::path dir = scratch();
+    const CliResult control =
+        runCli("control --robot " + kRobot +
+               " --trajectory paper1 --plant nocdyn --duration 1 --rate 10000 --payload-mass 0.5 --payload-com 0.012 "
+               "-0.007 --payload-inertia 8e-4 --noise-u 1e-6 --noise-tau 0.5 --log " +
+               (dir / "log.csv").string());
+    ASSERT_EQ(control.exit_code, 0) << control.err;
+    const CliResult r =
+        runCli("identify --robot " + kRobot + " --data " + (dir / "log.csv").string() + " --held-forces");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    // one second (kept short for the sanitizer run): about twice the 5 s run's errors (README)
+    EXPECT_NEAR(after(r.out, "payload: {mass: "), kPayload.mass, 0.01 * kPayload.mass) << r.out;
+    EXPECT_NEAR(after(r.out, "com: ["), kPayload.com.x(), 5e-4) << r.out;
+    EXPECT_NEAR(after(r.out, "], inertia: "), kPayload.inertia, 0.03 * kPayload.inertia) << r.out;
+}
+
 }  // namespace
 }  // namespace nocdyn::test
