@@ -65,7 +65,9 @@ void runGeneral(ControlOptions options) {
             "(--noise-u is the encoder noise of --log)");
     }
     if (options.c.loop.noise_u > 0.0 && options.log.empty()) {
-        throw Error("--noise-u on a general robot file is the encoder noise of the log: give --log");
+        throw Error(
+            "--noise-u on a general robot file is the encoder noise of --log (give --log); the controller "
+            "measures the pose: use --noise-pose and --noise-rate");
     }
     if (!options.figure.empty())
         throw Error("--figure is for the 3-PRR short form; use --output for a general robot file");
