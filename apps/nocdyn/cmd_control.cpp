@@ -12,6 +12,8 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/general_control.hpp"
+#include "nocdyn/identification.hpp"
+#include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "reproduce_dynamics.hpp"
@@ -32,6 +34,8 @@ struct ControlOptions {
     std::vector<double> payload_com;  ///< [x, y] in the platform frame [m]
     double noise_pose = 0.0;          ///< [m and rad]
     double noise_rate = 0.0;          ///< [m/s and rad/s]
+    double noise_tau = 0.0;           ///< force measurement noise in the log [N or N m]
+    std::string log;                  ///< the sensors' log t,u1..un,tau1..taun
 };
 
 void checkDuration(const ControlOptions& options, const std::string& trajectory) {
@@ -55,10 +59,15 @@ std::unique_ptr<RobotPlant> makeRobotPlant(const std::string& name, const RobotD
 
 /// Any robot file: task-space computed torque or PD on the pose measured from the plant.
 void runGeneral(ControlOptions options) {
-    if (options.c.loop.noise_u > 0.0 || options.c.loop.noise_du > 0.0) {
+    if (options.c.loop.noise_du > 0.0) {
         throw Error(
-            "--noise-u and --noise-du are for the 3-PRR short form; a general robot file measures the pose: "
-            "use --noise-pose and --noise-rate");
+            "--noise-du is for the 3-PRR short form; a general robot file measures the pose: use --noise-rate "
+            "(--noise-u is the encoder noise of --log)");
+    }
+    if (options.c.loop.noise_u > 0.0 && options.log.empty()) {
+        throw Error(
+            "--noise-u on a general robot file is the encoder noise of --log (give --log); the controller "
+            "measures the pose: use --noise-pose and --noise-rate");
     }
     if (!options.figure.empty())
         throw Error("--figure is for the 3-PRR short form; use --output for a general robot file");
@@ -84,6 +93,10 @@ void runGeneral(ControlOptions options) {
     loop.seed = options.c.loop.seed;
     const PoseLoopResult result = runPoseLoop(controller, *plant, trajectory, loop);
     if (!options.output.empty()) writeTable(toTable(result), options.output);
+    if (!options.log.empty()) {
+        io::writeCsvFile(options.log, toTable(sensorLog(result, options.c.loop.noise_u, options.noise_tau,
+                                                        options.c.loop.seed + 1)));
+    }
     std::printf("%s on the %s plant, %s, %s, %g s at %g Hz (f_n = %g Hz)%s\n", result.controller.c_str(),
                 result.plant.c_str(), robot.name.c_str(), trajectory.name.c_str(), loop.duration, loop.rate,
                 options.c.natural_frequency,
@@ -113,10 +126,11 @@ void run(ControlOptions options) {
         runGeneral(std::move(options));
         return;
     }
-    if (!options.payload_com.empty() || options.noise_pose > 0.0 || options.noise_rate > 0.0) {
+    if (!options.payload_com.empty() || options.noise_pose > 0.0 || options.noise_rate > 0.0 ||
+        options.noise_tau > 0.0 || !options.log.empty()) {
         throw Error(
-            "--payload-com, --noise-pose and --noise-rate are for general robot files; the 3-PRR short form "
-            "measures u (use --noise-u and --noise-du)");
+            "--payload-com, --noise-pose, --noise-rate, --noise-tau and --log are for general robot files (convert "
+            "the short form with `nocdyn convert`); the 3-PRR short form measures u (use --noise-u and --noise-du)");
     }
     const prr3::Model model(loadRobotOrDefault(options.robot, "control"));
     const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
@@ -198,7 +212,17 @@ void addControlCommand(CLI::App& app) {
         ->add_option("--noise-rate", options->noise_rate,
                      "General robot file: std. dev. of the dp/dt measurement noise [m/s, rad/s]")
         ->check(finiteIn(0.0, 1e3, "m/s"));
-    command->add_option("--noise-u", options->c.loop.noise_u, "Std. dev. of the u measurement noise [m]")
+    command
+        ->add_option("--noise-tau", options->noise_tau,
+                     "General robot file: std. dev. of the force measurement noise in --log [N or N m]")
+        ->check(finiteIn(0.0, 1e6, "N"));
+    command->add_option("--log", options->log,
+                        "General robot file: the experiment's log as the sensors see it, CSV t,u1..un,tau1..taun "
+                        "(u with --noise-u, tau the applied force with --noise-tau), ready for `nocdyn identify`");
+    command
+        ->add_option("--noise-u", options->c.loop.noise_u,
+                     "Std. dev. of the u measurement noise [m] (general robot file: the encoder noise in --log "
+                     "[m or rad])")
         ->check(finiteIn(0.0, 1.0, "m"));
     command->add_option("--noise-du", options->c.loop.noise_du, "Std. dev. of the du measurement noise [m/s]")
         ->check(finiteIn(0.0, 1e3, "m/s"));

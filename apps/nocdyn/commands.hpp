@@ -17,6 +17,8 @@ void addWorkspaceCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
 void addAnimateCommand(CLI::App& app);
 void addShakeCommand(CLI::App& app);
+void addRegressorCommand(CLI::App& app);
+void addIdentifyCommand(CLI::App& app);
 #ifdef NOCDYN_HAS_ENGINES
 void addValidateCommand(CLI::App& app);
 #endif

@@ -29,6 +29,8 @@ int main(int argc, char** argv) {
     nocdyn::cli::addConvertCommand(app);
     nocdyn::cli::addAnimateCommand(app);
     nocdyn::cli::addShakeCommand(app);
+    nocdyn::cli::addRegressorCommand(app);
+    nocdyn::cli::addIdentifyCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif

@@ -1,0 +1,228 @@
+// nocdyn identify: a payload's mass, c.o.m. and inertia (or the robot's base parameters) from
+// a log of actuator positions and forces (t,u1..un,tau1..taun[,du1..dun,ddu1..ddun]).
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+#include <string>
+
+#include "commands.hpp"
+#include "common.hpp"
+#include "nocdyn/general_control.hpp"
+#include "nocdyn/identification.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "plot.hpp"
+
+namespace nocdyn::cli {
+
+namespace {
+
+struct IdentifyOptions {
+    std::string robot, data, output, figure;
+    bool payload = false, base = false;
+    IdentificationOptions identification;
+};
+
+std::string number(double v) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.12g", v);
+    return buffer;
+}
+
+/// The measurements of the CSV file: named columns, time increasing (errors name the line).
+Measurements readMeasurements(const std::string& path, int n) {
+    const io::Table table = io::readCsvFile(path);
+    const auto need = [&](const std::string& name) {
+        if (!table.has(name)) {
+            throw Error(path + ": no column '" + name + "' (the log needs t, u1..u" + std::to_string(n) +
+                        ", tau1..tau" + std::to_string(n) + " for this robot's " + std::to_string(n) + " actuators)");
+        }
+        return table.column(name);
+    };
+    const std::size_t t_col = need("t");
+    std::vector<std::size_t> u_col, tau_col, du_col, ddu_col;
+    for (int a = 1; a <= n; ++a) {
+        u_col.push_back(need("u" + std::to_string(a)));
+        tau_col.push_back(need("tau" + std::to_string(a)));
+    }
+    const bool has_du = table.has("du1"), has_ddu = table.has("ddu1");
+    if (has_du != has_ddu)
+        throw Error(path + ": give both du1..du" + std::to_string(n) + " and ddu1..ddu" + std::to_string(n) +
+                    ", or neither");
+    if (has_du) {
+        for (int a = 1; a <= n; ++a) {
+            du_col.push_back(need("du" + std::to_string(a)));
+            ddu_col.push_back(need("ddu" + std::to_string(a)));
+        }
+    }
+    const auto N = static_cast<Eigen::Index>(table.rows.size());
+    Measurements m;
+    m.u.resize(N, n);
+    m.tau.resize(N, n);
+    if (has_du) {
+        m.du.resize(N, n);
+        m.ddu.resize(N, n);
+    }
+    for (Eigen::Index k = 0; k < N; ++k) {
+        const std::vector<double>& row = table.rows[static_cast<std::size_t>(k)];
+        if (k > 0 && !(row[t_col] > m.t.back())) {
+            throw Error(path + ":" + std::to_string(table.lines[static_cast<std::size_t>(k)]) +
+                        ": column 't': " + number(row[t_col]) + " s is not after the previous sample's " +
+                        number(m.t.back()) + " s (time must increase)");
+        }
+        m.t.push_back(row[t_col]);
+        for (int a = 0; a < n; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            m.u(k, a) = row[u_col[aa]];
+            m.tau(k, a) = row[tau_col[aa]];
+            if (has_du) {
+                m.du(k, a) = row[du_col[aa]];
+                m.ddu(k, a) = row[ddu_col[aa]];
+            }
+        }
+    }
+    return m;
+}
+
+std::string fitText(const Model& model, const FitReport& fit) {
+    std::string text = "# fit: " + std::to_string(fit.fit_samples) +
+                       " samples, held out: " + std::to_string(fit.holdout_samples) +
+                       ", condition number of the scaled regressor " + number(fit.condition) + "\n";
+    for (int a = 0; a < model.actuators; ++a) {
+        const auto aa = static_cast<std::size_t>(a);
+        char line[200];
+        std::snprintf(line, sizeof line,
+                      "# actuator %d: rms residual %.4g (fit), %.4g held out, of rms force %.4g held out (%.3g %%)\n",
+                      a + 1, fit.rms_fit[aa], fit.rms_holdout[aa], fit.rms_measured[aa],
+                      fit.rms_measured[aa] > 0.0 ? 100.0 * fit.rms_holdout[aa] / fit.rms_measured[aa] : 0.0);
+        text += line;
+    }
+    return text;
+}
+
+void figure(const Model& model, const FitReport& fit, const std::string& stem) {
+    Figure f;
+    f.title = literalText(model.description.name) + ": measured and predicted actuator forces (held-out data)";
+    for (int a = 0; a < model.actuators; ++a) {
+        PlotPanel panel;
+        panel.title = "actuator " + std::to_string(a + 1);
+        panel.xlabel = "t [s]";
+        panel.ylabel = "tau [N or N m]";
+        PlotSeries measured{"measured", fit.t, {}, "lines lw 1"};
+        PlotSeries predicted{"predicted", fit.t, {}, "lines dt 2 lw 2"};
+        for (Eigen::Index k = 0; k < fit.measured.rows(); ++k) {
+            measured.y.push_back(fit.measured(k, a));
+            predicted.y.push_back(fit.predicted(k, a));
+        }
+        panel.series = {measured, predicted};
+        f.panels.push_back(panel);
+    }
+    renderFigure(f, stem);
+}
+
+void run(const IdentifyOptions& options) {
+    if (options.payload && options.base) throw Error("give --payload or --base, not both");
+    const RobotDescription robot = loadRobotDescriptionOrDefault(options.robot);
+    const Model model(robot);
+    const Measurements measured = readMeasurements(options.data, model.actuators);
+    const Motion motion = reconstructMotion(model, measured, options.identification);
+    std::string text, file;
+    FitReport fit;
+    if (options.base) {
+        const BaseResult result = identifyBase(model, motion, options.identification);
+        text = "# " + robot.name + ": base parameters from " + options.data + " (see nocdyn regressor)\n";
+        text += fitText(model, result.fit);
+        text += "base_parameters:\n";
+        for (const Estimate& e : result.beta) {
+            text += "  - {name: '" + e.name + "', value: " + number(e.value) + ", stddev: " + number(e.stddev) +
+                    ", robot_file: " + number(e.prior) + ", unit: '" + e.unit + "'}\n";
+        }
+        file = text;
+        fit = result.fit;
+    } else {
+        const PayloadResult r = identifyPayload(model, motion, options.identification);
+        text = "# " + robot.name + ": payload from " + options.data + "\n" + fitText(model, r.fit);
+        if (r.inertia_constrained) {
+            text += "# the unconstrained inertia about the c.o.m. came out negative (" +
+                    number(r.inertia_unconstrained) + " kg m^2): the physically consistent solution has 0\n";
+        }
+        text += "payload: {mass: " + number(r.mass) + ", com: [" + number(r.com.x()) + ", " + number(r.com.y()) +
+                "], inertia: " + number(r.inertia) + "}\n";
+        text += "standard_deviation: {mass: " + number(r.mass_sd) + ", com: [" + number(r.com_sd.x()) + ", " +
+                number(r.com_sd.y()) + "], inertia: " + number(r.inertia_sd) + "}\n";
+        if (!r.friction.empty()) {
+            text += "friction:\n";
+            for (const Estimate& e : r.friction) {
+                text += "  - {name: '" + e.name + "', value: " + number(e.value) + ", stddev: " + number(e.stddev) +
+                        ", unit: '" + e.unit + "'}\n";
+            }
+        }
+        RobotDescription merged = withPayload(robot, Payload{r.mass, r.inertia, r.com});
+        for (const Estimate& e : r.friction) {
+            // "limbJ.jointK.damping": write the identified value into the robot file
+            for (LimbDescription& limb : merged.limbs) {
+                for (std::size_t k = 0; k < 3; ++k) {
+                    const std::string prefix = limb.name + ".joint" + std::to_string(k + 1) + ".";
+                    if (e.name == prefix + "damping") limb.joints[k].damping = std::max(e.value, 0.0);
+                    if (e.name == prefix + "friction") limb.joints[k].friction = std::max(e.value, 0.0);
+                }
+            }
+        }
+        file = "# " + robot.name + " with the payload identified from " + options.data + " merged into the platform\n";
+        file += "# payload: {mass: " + number(r.mass) + ", com: [" + number(r.com.x()) + ", " + number(r.com.y()) +
+                "], inertia: " + number(r.inertia) + "}\n";
+        file += io::descriptionToYaml(merged);
+        fit = r.fit;
+    }
+    std::cout << text;
+    std::cout.flush();
+    if (!std::cout) throw Error("cannot write to standard output");
+    if (!options.output.empty()) io::writeTextFile(options.output, file);
+    if (!options.figure.empty()) {
+        figure(model, fit, options.figure);
+    }
+}
+
+}  // namespace
+
+void addIdentifyCommand(CLI::App& app) {
+    auto options = std::make_shared<IdentifyOptions>();
+    CLI::App* command = app.add_subcommand(
+        "identify",
+        "Identify a payload fixed to the platform (mass, c.o.m. [x, y] in the platform frame, moment of inertia\n"
+        "about its own c.o.m.; the robot's own parameters from the robot file) or the robot's base parameters\n"
+        "(--base; see `nocdyn regressor`) from a log of actuator positions and forces. The CSV holds\n"
+        "t,u1..un,tau1..taun (other columns ignored); with du1..dun,ddu1..ddun they are used as given, else u and\n"
+        "tau are low-pass filtered (zero phase) and u differentiated. The platform pose comes from the\n"
+        "direct-kinematics tracker; weighted least squares (weights from each actuator's residual), then the\n"
+        "physically consistent solution (mass > 0, inertia about the c.o.m. >= 0); standard deviations from the\n"
+        "residuals; the last --holdout of the samples is held out to check the fit. Prints YAML.");
+    addRobotOption(*command, options->robot);
+    command->add_option("--data", options->data, "Measured CSV: t,u1..un,tau1..taun[,du1..dun,ddu1..ddun]")
+        ->required()
+        ->check(CLI::ExistingFile);
+    command->add_flag("--payload", options->payload, "Identify a payload (the default)");
+    command->add_flag("--base", options->base, "Identify the robot's base parameters (calibration, no payload)");
+    command->add_flag("--friction", options->identification.friction,
+                      "With --payload: identify the actuated joints' damping and Coulomb friction alongside");
+    command->add_flag("--held-forces", options->identification.held_forces,
+                      "The logged forces are commands held until the next sample (zero-order hold, as `nocdyn "
+                      "control --log` writes them): each sample's force is taken as the mean of the holds around it");
+    command
+        ->add_option("--cutoff", options->identification.cutoff,
+                     "Low-pass cut-off when du, ddu are not given [Hz] (default: rate/10, at most 50)")
+        ->check(finiteIn(1e-3, 1e6, "Hz"));
+    command->add_option("--holdout", options->identification.holdout, "Fraction of the samples (the last) held out")
+        ->check(finiteIn(0.0, 0.9, ""))
+        ->capture_default_str();
+    command->add_option("--output,-o", options->output,
+                        "YAML to write: the robot file with the payload merged into the platform (--payload), or "
+                        "the base parameters (--base)");
+    command->add_option("--figure", options->figure,
+                        "Measured against predicted forces on the held-out samples: writes STEM.png and STEM.svg");
+    command->callback([options] { run(*options); });
+}
+
+}  // namespace nocdyn::cli

@@ -1,0 +1,795 @@
+// Regressor, base parameters and least-squares identification (identification.hpp).
+#include "nocdyn/identification.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <sstream>
+#include <utility>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/QR>
+#include <Eigen/SVD>
+
+#include "nocdyn/direct_kinematics.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/kinematics.hpp"
+
+namespace nocdyn {
+
+namespace {
+
+using WrenchRegressor = Eigen::Matrix<double, 3, kBodyParameters>;
+using PlatformRegressor = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxParameters>;
+
+[[nodiscard]] double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+
+[[nodiscard]] std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+/// Y_w of one body (see the header): frame at r turned by phi (cos, sin), body twist referred to
+/// O xi = [omega; v_O] and its rate, gravity g.
+[[nodiscard]] WrenchRegressor bodyWrenchRegressor(double cos_phi, double sin_phi, const Vector2& r, const Twist& xi,
+                                                  const Twist& xi_dot, const Vector2& g) {
+    const double w = xi(0), dw = xi_dot(0);
+    // acceleration of the body point at r: dv_O + domega E r + omega E v_O - omega^2 r
+    const Vector2 a = xi_dot.tail<2>() + dw * perp(r) + w * perp(xi.tail<2>()) - w * w * r;
+    const Vector2 a_bar = a - g;
+    WrenchRegressor Yw;
+    Yw.col(0) << cross(r, a_bar), a_bar;
+    const Vector2 e[2] = {Vector2(cos_phi, sin_phi), Vector2(-sin_phi, cos_phi)};
+    for (int k = 0; k < 2; ++k) {
+        const Vector2 f = dw * perp(e[k]) - w * w * e[k];
+        Yw.col(1 + k) << cross(e[k], a_bar) + cross(r, f), f;
+    }
+    Yw.col(3) << dw, 0.0, 0.0;
+    return Yw;
+}
+
+}  // namespace
+
+int parameterCount(const Model& model) { return kBodyParameters * model.bodies + kJointParameters * 3 * model.limbs; }
+
+int bodyParameterIndex(int body) { return kBodyParameters * body; }
+
+int jointParameterIndex(const Model& model, int limb, int joint) {
+    return kBodyParameters * model.bodies + kJointParameters * (3 * limb + joint);
+}
+
+namespace {
+
+[[nodiscard]] std::string bodyName(const Model& model, int i) {
+    if (i == model.platformBody()) return "platform";
+    return model.description.limbs[at(i % model.limbs)].name + ".body" + std::to_string(i / model.limbs + 1);
+}
+
+}  // namespace
+
+std::string parameterName(const Model& model, int index) {
+    static const char* const body_names[kBodyParameters] = {"m", "mc_x", "mc_y", "I_O"};
+    const int body_end = kBodyParameters * model.bodies;
+    if (index < body_end) return bodyName(model, index / kBodyParameters) + "." + body_names[index % kBodyParameters];
+    const int joint = (index - body_end) / kJointParameters;
+    return model.description.limbs[at(joint / 3)].name + ".joint" + std::to_string(joint % 3 + 1) +
+           ((index - body_end) % kJointParameters == 0 ? ".damping" : ".friction");
+}
+
+std::string parameterUnit(const Model& model, int index) {
+    static const char* const body_units[kBodyParameters] = {"kg", "kg m", "kg m", "kg m^2"};
+    const int body_end = kBodyParameters * model.bodies;
+    if (index < body_end) return body_units[index % kBodyParameters];
+    const int joint = (index - body_end) / kJointParameters;
+    const bool prismatic = model.limb[at(joint / 3)].type[at(joint % 3)] == JointType::prismatic;
+    if ((index - body_end) % kJointParameters == 0) return prismatic ? "N s/m" : "N m s/rad";
+    return prismatic ? "N" : "N m";
+}
+
+Eigen::Vector4d inertialParameters(double mass, const Vector2& com, double inertia) {
+    return {mass, mass * com.x(), mass * com.y(), inertia + mass * com.squaredNorm()};
+}
+
+ParameterVector standardParameters(const Model& model) {
+    ParameterVector pi(parameterCount(model));
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[at(j)];
+        for (int b = 0; b < 2; ++b) {
+            pi.segment<kBodyParameters>(bodyParameterIndex(model.body(j, b))) =
+                inertialParameters(limb.M[at(b)].mass, limb.com_home[at(b)], limb.M[at(b)].inertia);
+        }
+        for (int k = 0; k < 3; ++k) {
+            pi(jointParameterIndex(model, j, k)) = limb.damping[at(k)];
+            pi(jointParameterIndex(model, j, k) + 1) = limb.friction[at(k)];
+        }
+    }
+    pi.segment<kBodyParameters>(bodyParameterIndex(model.platformBody())) =
+        inertialParameters(model.platform_M.mass, model.platform_com, model.platform_M.inertia);
+    return pi;
+}
+
+void regressor(const Model& model, const Data& data, RegressorMatrix& Y) {
+    const int P = parameterCount(model);
+    // W: the generalized force on xi_P per parameter (the lean path's W_P, column by column)
+    PlatformRegressor W = PlatformRegressor::Zero(3, P);
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[at(j)];
+        const LimbData& ld = data.limb[at(j)];
+        // body twists xi_b and rates: xi_1 = s_1 q'_1, xi_2 = xi_1 + s_2 q'_2 (ds_1/dt = 0)
+        const Twist xi_dot0 = ld.s[0] * ld.gamma_ddot(0);
+        const Twist xi_dot1 = xi_dot0 + ld.s_dot[1] * ld.gamma_dot(1) + ld.s[1] * ld.gamma_ddot(1);
+        // frame rotations: the R joint angles before each body
+        const double c0 = ld.cos_q(0), s0 = ld.sin_q(0);
+        const double c1 = c0 * ld.cos_q(1) - s0 * ld.sin_q(1), s1 = s0 * ld.cos_q(1) + c0 * ld.sin_q(1);
+        const Vector2 r0 = ld.x[0] - Vector2(c0 * limb.com_home[0].x() - s0 * limb.com_home[0].y(),
+                                             s0 * limb.com_home[0].x() + c0 * limb.com_home[0].y());
+        const Vector2 r1 = ld.x[1] - Vector2(c1 * limb.com_home[1].x() - s1 * limb.com_home[1].y(),
+                                             s1 * limb.com_home[1].x() + c1 * limb.com_home[1].y());
+        const WrenchRegressor Y0 = bodyWrenchRegressor(c0, s0, r0, ld.xi[0], xi_dot0, model.gravity);
+        const WrenchRegressor Y1 = bodyWrenchRegressor(c1, s1, r1, ld.xi[1], xi_dot1, model.gravity);
+        // U_i^T Y_w,i with U_1 = s_1 e_1^T J_j^-1, U_2 = (s_1 e_1^T + s_2 e_2^T) J_j^-1
+        const Vector3 row0 = ld.J_inv.row(0).transpose(), row1 = ld.J_inv.row(1).transpose();
+        W.middleCols<kBodyParameters>(bodyParameterIndex(model.body(j, 0))) = row0 * (ld.s[0].transpose() * Y0);
+        W.middleCols<kBodyParameters>(bodyParameterIndex(model.body(j, 1))) =
+            row0 * (ld.s[0].transpose() * Y1) + row1 * (ld.s[1].transpose() * Y1);
+        // joint friction to overcome: J_j^-T e_k (damping q'_k + friction sign q'_k)
+        for (int k = 0; k < 3; ++k) {
+            const int index = jointParameterIndex(model, j, k);
+            W.col(index) = ld.J_inv.row(k).transpose() * ld.gamma_dot(k);
+            W.col(index + 1) = ld.J_inv.row(k).transpose() * sign(ld.gamma_dot(k));
+        }
+    }
+    W.middleCols<kBodyParameters>(bodyParameterIndex(model.platformBody())) = bodyWrenchRegressor(
+        std::cos(data.p(0)), std::sin(data.p(0)), data.p.tail<2>(), data.xi_P, data.xi_P_dot, model.gravity);
+    // tau from A^T tau = W: A^-T W = Xi^T W, or the minimum-norm A (A^T A)^-1 W
+    Y.resize(model.actuators, P);
+    if (model.coordinates == Coordinates::actuators) {
+        Y.noalias() = data.Xi.transpose() * W;
+    } else {
+        const Matrix3 AtA = data.A.transpose() * data.A;
+        const Matrix3 AtA_inv = AtA.inverse();
+        PlatformRegressor L = AtA_inv * W;
+        Y.noalias() = data.A * L;
+    }
+}
+
+Status inverseDynamicsRegressor(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
+                                RegressorMatrix& Y) {
+    if (const Status status = inverseDisplacement(model, data, p); !status) return status;
+    if (const Status status = velocityFromPlatformTwist(model, data, dp); !status) return status;
+    for (int i = 0; i < 3; ++i) {
+        if (!std::isfinite(ddp(i))) return {StatusCode::not_finite, -1, ddp(i)};
+    }
+    accelerationFromPlatform(model, data, ddp);
+    regressor(model, data, Y);
+    return {};
+}
+
+// ---------------------------------------------------------------------------------------------
+// Base parameters
+
+namespace {
+
+/// Random motions around home (poses, rates, accelerations), each accepted by the stages.
+struct RandomMotion {
+    Pose p;
+    Twist dp, ddp;
+};
+
+std::vector<RandomMotion> randomMotions(const Model& model, int count, unsigned seed, double scale) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    std::vector<RandomMotion> motions;
+    Data data(model);
+    const double L = model.length_scale;
+    for (int attempt = 0; attempt < 50 * count && static_cast<int>(motions.size()) < count; ++attempt) {
+        RandomMotion m;
+        m.p = model.home + scale * Pose(0.05 * unit(rng), 0.05 * L * unit(rng), 0.05 * L * unit(rng));
+        m.dp = Twist(unit(rng), L * unit(rng), L * unit(rng));
+        m.ddp = 20.0 * Twist(unit(rng), L * unit(rng), L * unit(rng));
+        if (!inverseDynamics(model, data, m.p, m.dp, m.ddp)) continue;
+        motions.push_back(m);
+    }
+    return motions;
+}
+
+}  // namespace
+
+BaseParameters baseParameters(const Model& model, const BaseParameterOptions& options) {
+    const std::vector<RandomMotion> motions = randomMotions(model, options.samples, options.seed, options.pose_scale);
+    const int P = parameterCount(model);
+    const int n = model.actuators;
+    if (static_cast<int>(motions.size()) * n < 2 * P) {
+        throw Error("base parameters: only " + std::to_string(motions.size()) +
+                    " random motions around home are valid; the robot may be singular at home");
+    }
+    Eigen::MatrixXd stacked(static_cast<Eigen::Index>(motions.size()) * n, P);
+    Data data(model);
+    RegressorMatrix Y;
+    for (std::size_t s = 0; s < motions.size(); ++s) {
+        (void)inverseDynamicsRegressor(model, data, motions[s].p, motions[s].dp, motions[s].ddp, Y);
+        stacked.middleRows(static_cast<Eigen::Index>(s) * n, n) = Y;
+    }
+    // columns scaled to unit norm; those with no effect on tau are unidentifiable
+    const Eigen::VectorXd norms = stacked.colwise().norm();
+    const double largest = norms.maxCoeff();
+    BaseParameters base;
+    std::vector<int> active;
+    for (int c = 0; c < P; ++c) {
+        if (norms(c) <= options.tolerance * largest) {
+            base.unidentifiable.push_back(c);
+        } else {
+            active.push_back(c);
+        }
+    }
+    const auto m = static_cast<Eigen::Index>(active.size());
+    Eigen::MatrixXd scaled(stacked.rows(), m);
+    for (Eigen::Index c = 0; c < m; ++c)
+        scaled.col(c) = stacked.col(active[at(static_cast<int>(c))]) / norms(active[at(static_cast<int>(c))]);
+    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
+    qr.setThreshold(options.tolerance);
+    const auto r = static_cast<Eigen::Index>(qr.rank());
+    base.rank = static_cast<int>(r);
+    const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(r, m).template triangularView<Eigen::Upper>();
+    const Eigen::MatrixXd R1 = R.leftCols(r);
+    // dependent scaled columns = independent ones X_s: X_s = R1^-1 R2
+    const Eigen::MatrixXd X_s = R1.triangularView<Eigen::Upper>().solve(R.rightCols(m - r));
+    const auto& perm = qr.colsPermutation().indices();
+    base.K = Eigen::MatrixXd::Zero(r, P);
+    for (Eigen::Index k = 0; k < r; ++k) {
+        const int ik = active[at(perm(k))];
+        base.independent.push_back(ik);
+        base.K(k, ik) = 1.0;
+        for (Eigen::Index l = 0; l < m - r; ++l) {
+            const int il = active[at(perm(r + l))];
+            // unscaled: X = D1^-1 X_s D2
+            const double x = X_s(k, l) * norms(il) / norms(ik);
+            if (std::abs(x) > 1e-10) base.K(k, il) = x;
+        }
+    }
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(R1);
+    base.condition = svd.singularValues()(0) / svd.singularValues()(r - 1);
+    return base;
+}
+
+std::string describeBaseParameters(const Model& model, const BaseParameters& base) {
+    std::ostringstream out;
+    const ParameterVector pi = standardParameters(model);
+    const int P = parameterCount(model);
+    out << "# " << model.description.name << ": " << P << " standard parameters, " << base.rank
+        << " identifiable combinations (base parameters), condition number " << base.condition << "\n";
+    out << "# Standard parameters per body (body frame): m, mc_x, mc_y = m * c.o.m., I_O = inertia about the\n"
+           "# frame origin (limb bodies: the base frame at home; platform: C, turning with theta);\n"
+           "# per joint: damping and Coulomb friction.\n";
+    const Eigen::VectorXd beta = base.K * pi;
+    char buffer[64];
+    for (int k = 0; k < base.rank; ++k) {
+        out << "beta_" << (k + 1) << " = " << parameterName(model, base.independent[at(k)]);
+        for (int c = 0; c < P; ++c) {
+            const double x = base.K(k, c);
+            if (c == base.independent[at(k)] || x == 0.0) continue;
+            std::snprintf(buffer, sizeof buffer, " %c %.6g ", x < 0.0 ? '-' : '+', std::abs(x));
+            out << buffer << parameterName(model, c);
+        }
+        std::snprintf(buffer, sizeof buffer, "%.9g", beta(k));
+        out << "   (robot file: " << buffer << " " << parameterUnit(model, base.independent[at(k)]) << ")\n";
+    }
+    if (base.unidentifiable.empty()) {
+        out << "unidentifiable (no effect on the actuator forces): none\n";
+    } else {
+        out << "unidentifiable (no effect on the actuator forces):";
+        for (const int c : base.unidentifiable) out << " " << parameterName(model, c);
+        out << "\n";
+    }
+    // standard parameters only identifiable in combination
+    std::vector<int> combined;
+    for (int c = 0; c < P; ++c) {
+        if (std::find(base.independent.begin(), base.independent.end(), c) != base.independent.end()) continue;
+        if (std::find(base.unidentifiable.begin(), base.unidentifiable.end(), c) != base.unidentifiable.end()) continue;
+        combined.push_back(c);
+    }
+    out << "identifiable only in the combinations above:";
+    if (combined.empty()) out << " none";
+    for (const int c : combined) out << " " << parameterName(model, c);
+    out << "\n";
+    return out.str();
+}
+
+// ---------------------------------------------------------------------------------------------
+// Motion from measurements
+
+namespace {
+
+[[nodiscard]] std::string timeText(double t) {
+    char buffer[48];
+    std::snprintf(buffer, sizeof buffer, "t = %.9g s", t);
+    return buffer;
+}
+
+/// Zero-phase low-pass: a second-order Butterworth section run forward then backward, started
+/// at the steady state of the end values (unit gain at DC).
+void filtfilt(Eigen::Ref<Eigen::VectorXd> x, double cutoff, double rate) {
+    const double K = std::tan(std::numbers::pi * cutoff / rate);
+    const double norm = 1.0 / (1.0 + std::numbers::sqrt2 * K + K * K);
+    const double b0 = K * K * norm, b1 = 2.0 * b0, b2 = b0;
+    const double a1 = 2.0 * (K * K - 1.0) * norm, a2 = (1.0 - std::numbers::sqrt2 * K + K * K) * norm;
+    const Eigen::Index N = x.size();
+    const auto pass = [&](auto index) {
+        double x1 = x(index(0)), x2 = x1, y1 = x1, y2 = x1;
+        for (Eigen::Index k = 0; k < N; ++k) {
+            const double xk = x(index(k));
+            const double yk = b0 * xk + b1 * x1 + b2 * x2 - a1 * y1 - a2 * y2;
+            x2 = x1;
+            x1 = xk;
+            y2 = y1;
+            y1 = yk;
+            x(index(k)) = yk;
+        }
+    };
+    pass([](Eigen::Index k) { return k; });
+    pass([N](Eigen::Index k) { return N - 1 - k; });
+}
+
+/// Central differences (one-sided at the ends) of the columns of x over times t.
+Eigen::MatrixXd differentiate(const Eigen::MatrixXd& x, const std::vector<double>& t) {
+    const Eigen::Index N = x.rows();
+    Eigen::MatrixXd dx(N, x.cols());
+    for (Eigen::Index k = 0; k < N; ++k) {
+        const Eigen::Index a = k == 0 ? 0 : k - 1, b = k == N - 1 ? N - 1 : k + 1;
+        dx.row(k) = (x.row(b) - x.row(a)) / (t[at(static_cast<int>(b))] - t[at(static_cast<int>(a))]);
+    }
+    return dx;
+}
+
+/// The platform rates from the actuator rates and accelerations at the pose in `data` (position
+/// and Jacobian stages done): least squares on du = A xi_P and ddu = A dxi_P - (rows of
+/// J_j^-1 dJ_j gamma_dot_j), exact with three actuators.
+Status platformRates(const Model& model, Data& data, const Eigen::VectorXd& du, const Eigen::VectorXd& ddu) {
+    if (const Status status = velocityFromPlatformTwist(model, data, Twist::Zero()); !status) return status;
+    const Eigen::MatrixXd A = data.A;
+    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
+    const Twist xi_P = qr.solve(du);
+    const Vector2 c = data.p.tail<2>();
+    const Twist t_M(xi_P(0), xi_P(1) - xi_P(0) * c.y(), xi_P(2) + xi_P(0) * c.x());
+    if (const Status status = velocityFromPlatformTwist(model, data, t_M); !status) return status;
+    Eigen::VectorXd rhs = ddu;
+    for (int a = 0; a < model.actuators; ++a) {
+        const LimbData& ld = data.limb[at(model.actuator_limb[at(a)])];
+        const Twist dJ = ld.s_dot[1] * ld.gamma_dot(1) + ld.s_dot[2] * ld.gamma_dot(2);
+        rhs(a) += ld.J_inv.row(model.actuator_joint[at(a)]).dot(dJ);
+    }
+    const Twist xi_P_dot = qr.solve(rhs);
+    const double w = t_M(0);
+    const Twist t_M_dot(xi_P_dot(0), xi_P_dot(1) - xi_P_dot(0) * c.y() - w * t_M(2),
+                        xi_P_dot(2) + xi_P_dot(0) * c.x() + w * t_M(1));
+    accelerationFromPlatform(model, data, t_M_dot);
+    return {};
+}
+
+}  // namespace
+
+Motion reconstructMotion(const Model& model, const Measurements& measured, const IdentificationOptions& options) {
+    const auto N = static_cast<Eigen::Index>(measured.t.size());
+    const int n = model.actuators;
+    if (measured.u.rows() != N || measured.tau.rows() != N || measured.u.cols() != n || measured.tau.cols() != n) {
+        throw Error("measurements: expected " + std::to_string(n) + " actuator positions and forces per sample");
+    }
+    if (N < 10) throw Error("measurements: " + std::to_string(N) + " samples, too few to identify anything");
+    for (Eigen::Index k = 1; k < N; ++k) {
+        if (!(measured.t[at(static_cast<int>(k))] > measured.t[at(static_cast<int>(k - 1))])) {
+            throw Error("measurements: time is not increasing at sample " + std::to_string(k + 1) + " (" +
+                        timeText(measured.t[at(static_cast<int>(k))]) + " after " +
+                        timeText(measured.t[at(static_cast<int>(k - 1))]) + ")");
+        }
+    }
+    const bool given = measured.du.size() > 0 && measured.ddu.size() > 0;
+    Eigen::MatrixXd u = measured.u, tau = measured.tau, du, ddu;
+    Eigen::Index first = 0, last = N;
+    if (options.held_forces) {
+        for (Eigen::Index k = N - 1; k > 0; --k) tau.row(k) = 0.5 * (tau.row(k - 1) + tau.row(k));
+        first = 1;
+    }
+    if (given) {
+        du = measured.du;
+        ddu = measured.ddu;
+    } else {
+        // zero-phase low-pass of u and tau alike (no lag between them), then differences
+        const double duration = measured.t.back() - measured.t.front();
+        const double rate = static_cast<double>(N - 1) / duration;
+        for (Eigen::Index k = 1; k < N; ++k) {
+            const double dt = measured.t[at(static_cast<int>(k))] - measured.t[at(static_cast<int>(k - 1))];
+            if (std::abs(dt * rate - 1.0) > 0.01) {
+                throw Error("measurements: sampling is not uniform at " +
+                            timeText(measured.t[at(static_cast<int>(k))]) +
+                            " (needed to filter u; give du and ddu columns instead)");
+            }
+        }
+        const double cutoff = options.cutoff > 0.0 ? options.cutoff : std::min(50.0, 0.1 * rate);
+        if (!(cutoff < 0.5 * rate)) throw Error("measurements: the cut-off must be below half the sampling rate");
+        for (Eigen::Index c = 0; c < n; ++c) {
+            filtfilt(u.col(c), cutoff, rate);
+            filtfilt(tau.col(c), cutoff, rate);
+        }
+        du = differentiate(u, measured.t);
+        ddu = differentiate(du, measured.t);
+        // the filter's start and end transients: drop two periods of the cut-off at each end
+        const auto trim = static_cast<Eigen::Index>(std::ceil(2.0 * rate / cutoff));
+        first = std::max(first, std::min(trim, N / 4));
+        last = N - first;
+    }
+    Motion motion;
+    Data data(model);
+    Pose p = model.home;
+    bool started = false;
+    for (Eigen::Index k = first; k < last; ++k) {
+        const double t = measured.t[at(static_cast<int>(k))];
+        const ActuatorVector uk = u.row(k).transpose();
+        Status status;
+        if (started) {
+            status = trackPose(model, data, uk, p);
+        } else {
+            // first sample: the working assembly mode nearest home
+            AssemblyModes modes;
+            status = directKinematics(model, data, uk, modes);
+            double best = std::numeric_limits<double>::infinity();
+            bool found = false;
+            for (const AssemblyMode& mode : modes) {
+                const double d = (mode.p - model.home).norm();
+                if (mode.working && d < best) {
+                    best = d;
+                    p = mode.p;
+                    found = true;
+                }
+            }
+            if (status && !found) {
+                throw Error(
+                    "measurements: no assembly of the robot on its working branches has the actuator "
+                    "positions at " +
+                    timeText(t));
+            }
+            started = true;
+        }
+        if (status) status = inverseDisplacement(model, data, p);
+        if (status) status = platformRates(model, data, du.row(k).transpose(), ddu.row(k).transpose());
+        if (!status) throw Error("measurements at " + timeText(t) + ": " + describe(status, model));
+        motion.t.push_back(t);
+        motion.p.push_back(p);
+        motion.dp.push_back(data.t_M);
+        motion.ddp.push_back(data.t_M_dot);
+    }
+    motion.tau = tau.middleRows(first, last - first);
+    return motion;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Least squares
+
+namespace {
+
+/// Weighted least squares x of b = A x on the fit rows, with per-actuator weights from the
+/// residuals of a first unweighted fit; the covariance from the weighted residuals.
+struct LeastSquares {
+    Eigen::VectorXd x;
+    Eigen::MatrixXd covariance;
+    double condition = 0.0;
+};
+
+LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int n,
+                           const std::vector<std::string>& names) {
+    const Eigen::Index rows = A.rows(), k = A.cols();
+    const Eigen::VectorXd norms = A.colwise().norm();
+    for (Eigen::Index c = 0; c < k; ++c) {
+        if (!(norms(c) > 0.0)) {
+            throw Error("identification: " + names[at(static_cast<int>(c))] +
+                        " has no effect on the actuator forces along this motion: it cannot be identified");
+        }
+    }
+    Eigen::VectorXd weight = Eigen::VectorXd::Ones(n);
+    LeastSquares result;
+    for (int pass = 0; pass < 2; ++pass) {
+        Eigen::MatrixXd Aw(rows, k);
+        Eigen::VectorXd bw(rows);
+        for (Eigen::Index r = 0; r < rows; ++r) {
+            const double w = weight(r % n);
+            Aw.row(r) = w * A.row(r).cwiseQuotient(norms.transpose());
+            bw(r) = w * b(r);
+        }
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Aw.transpose() * Aw);
+        const Eigen::VectorXd& sv = svd.singularValues();
+        result.condition = std::sqrt(sv(0) / sv(k - 1));
+        if (!(result.condition < 1e7)) {
+            // the weakest direction names the parameter(s) it involves
+            const Eigen::VectorXd v = svd.matrixV().col(k - 1);
+            Eigen::Index worst = 0;
+            v.cwiseAbs().maxCoeff(&worst);
+            throw Error("identification: " + names[at(static_cast<int>(worst))] +
+                        " is not identifiable from this motion (condition number of the regressor " +
+                        std::to_string(result.condition) + ", above 1e7): excite the robot more");
+        }
+        const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(Aw);
+        const Eigen::VectorXd xs = qr.solve(bw);
+        result.x = xs.cwiseQuotient(norms);
+        const Eigen::VectorXd residual = b - A * result.x;
+        if (pass == 0) {
+            // per-actuator rms residual: weights 1/sigma_a
+            for (int a = 0; a < n; ++a) {
+                double sum = 0.0;
+                Eigen::Index count = 0;
+                for (Eigen::Index r = a; r < rows; r += n, ++count) sum += residual(r) * residual(r);
+                const double sigma = std::sqrt(sum / static_cast<double>(std::max<Eigen::Index>(count, 1)));
+                weight(a) = sigma > 0.0 ? 1.0 / sigma : 1.0;
+            }
+            // equal weights when the data are exact (no residual to weigh by)
+            if (!(weight.maxCoeff() < 1e300) || residual.norm() <= 1e-12 * b.norm()) weight.setOnes();
+            weight /= weight.maxCoeff();
+        } else {
+            Eigen::VectorXd rw(rows);
+            for (Eigen::Index r = 0; r < rows; ++r) rw(r) = weight(r % n) * residual(r);
+            const double dof = static_cast<double>(std::max<Eigen::Index>(rows - k, 1));
+            const double s2 = rw.squaredNorm() / dof;
+            const Eigen::MatrixXd N = Aw.transpose() * Aw;
+            const Eigen::MatrixXd N_inv = N.ldlt().solve(Eigen::MatrixXd::Identity(k, k));
+            const Eigen::VectorXd inv_norms = norms.cwiseInverse();
+            result.covariance = s2 * inv_norms.asDiagonal() * N_inv * inv_norms.asDiagonal();
+        }
+    }
+    (void)model;
+    return result;
+}
+
+/// rms per actuator of rows [begin, end) of a stacked residual.
+std::vector<double> rmsPerActuator(const Eigen::VectorXd& r, int n) {
+    std::vector<double> rms(at(n), 0.0);
+    const Eigen::Index samples = r.size() / n;
+    if (samples == 0) return rms;
+    for (int a = 0; a < n; ++a) {
+        double sum = 0.0;
+        for (Eigen::Index s = 0; s < samples; ++s) sum += r(s * n + a) * r(s * n + a);
+        rms[at(a)] = std::sqrt(sum / static_cast<double>(samples));
+    }
+    return rms;
+}
+
+/// Stacked regressor columns `columns` and the known part Y pi_known over the motion.
+struct Stacked {
+    Eigen::MatrixXd A;
+    Eigen::VectorXd known, tau;
+};
+
+Stacked stack(const Model& model, const Motion& motion, const std::vector<int>& columns, bool subtract_known) {
+    const int n = model.actuators;
+    const auto N = static_cast<Eigen::Index>(motion.t.size());
+    Stacked s;
+    s.A.resize(N * n, static_cast<Eigen::Index>(columns.size()));
+    s.known = Eigen::VectorXd::Zero(N * n);
+    s.tau.resize(N * n);
+    ParameterVector pi = standardParameters(model);
+    for (const int c : columns) pi(c) = 0.0;
+    Data data(model);
+    RegressorMatrix Y;
+    for (Eigen::Index k = 0; k < N; ++k) {
+        const std::size_t kk = at(static_cast<int>(k));
+        const Status status = inverseDynamicsRegressor(model, data, motion.p[kk], motion.dp[kk], motion.ddp[kk], Y);
+        if (!status) throw Error("identification at " + timeText(motion.t[kk]) + ": " + describe(status, model));
+        for (std::size_t c = 0; c < columns.size(); ++c)
+            s.A.block(k * n, static_cast<Eigen::Index>(c), n, 1) = Y.col(columns[c]);
+        if (subtract_known) s.known.segment(k * n, n) = Y * pi;
+        s.tau.segment(k * n, n) = motion.tau.row(k).transpose();
+    }
+    return s;
+}
+
+void fillFit(const Model& model, const Motion& motion, const Stacked& s, const Eigen::VectorXd& x,
+             Eigen::Index fit_samples, FitReport& fit) {
+    const int n = model.actuators;
+    const Eigen::Index N = static_cast<Eigen::Index>(motion.t.size());
+    const Eigen::VectorXd predicted = s.known + s.A * x;
+    const Eigen::VectorXd residual = s.tau - predicted;
+    fit.fit_samples = static_cast<int>(fit_samples);
+    fit.holdout_samples = static_cast<int>(N - fit_samples);
+    fit.rms_fit = rmsPerActuator(residual.head(fit_samples * n), n);
+    fit.rms_holdout = rmsPerActuator(residual.tail((N - fit_samples) * n), n);
+    fit.rms_measured = rmsPerActuator(s.tau.tail((N - fit_samples) * n), n);
+    fit.t.assign(motion.t.begin() + fit_samples, motion.t.end());
+    fit.measured.resize(N - fit_samples, n);
+    fit.predicted.resize(N - fit_samples, n);
+    for (Eigen::Index k = fit_samples; k < N; ++k) {
+        fit.measured.row(k - fit_samples) = s.tau.segment(k * n, n).transpose();
+        fit.predicted.row(k - fit_samples) = predicted.segment(k * n, n).transpose();
+    }
+}
+
+Eigen::Index fitSamples(const Motion& motion, const IdentificationOptions& options, int parameters, int n) {
+    const auto N = static_cast<Eigen::Index>(motion.t.size());
+    if (!(options.holdout >= 0.0 && options.holdout < 1.0))
+        throw Error("identification: the held-out fraction must be in [0, 1)");
+    const auto fit = static_cast<Eigen::Index>(std::floor((1.0 - options.holdout) * static_cast<double>(N)));
+    if (fit * n < static_cast<Eigen::Index>(3) * parameters) {
+        throw Error("identification: " + std::to_string(fit) + " samples to fit " + std::to_string(parameters) +
+                    " parameters with " + std::to_string(n) + " forces each: too few (need at least " +
+                    std::to_string((3 * parameters + n - 1) / n) + ")");
+    }
+    return fit;
+}
+
+}  // namespace
+
+PayloadResult identifyPayload(const Model& model, const Motion& motion, const IdentificationOptions& options) {
+    const int n = model.actuators;
+    std::vector<int> columns;
+    std::vector<std::string> names{"payload mass", "payload c.o.m. x (mass times)", "payload c.o.m. y (mass times)",
+                                   "payload inertia"};
+    const int platform = bodyParameterIndex(model.platformBody());
+    columns.reserve(static_cast<std::size_t>(kBodyParameters) + 2 * static_cast<std::size_t>(n));
+    for (int c = 0; c < kBodyParameters; ++c) columns.push_back(platform + c);
+    if (options.friction) {
+        for (int a = 0; a < n; ++a) {
+            const int index = jointParameterIndex(model, model.actuator_limb[at(a)], model.actuator_joint[at(a)]);
+            columns.push_back(index);
+            columns.push_back(index + 1);
+            names.push_back(parameterName(model, index));
+            names.push_back(parameterName(model, index + 1));
+        }
+    }
+    const auto k = static_cast<Eigen::Index>(columns.size());
+    const Eigen::Index fit = fitSamples(motion, options, static_cast<int>(k), n);
+    Stacked s = stack(model, motion, columns, true);
+    // the platform's own parameters stay in the known part: the unknowns are the payload's
+    const ParameterVector pi = standardParameters(model);
+    const Eigen::Vector4d platform_pi = pi.segment<kBodyParameters>(platform);
+    for (int c = 0; c < kBodyParameters; ++c) s.known += s.A.col(c) * platform_pi(c);
+    const Eigen::VectorXd b = (s.tau - s.known).head(fit * n);
+    const LeastSquares ls = solveWeighted(model, s.A.topRows(fit * n), b, n, names);
+    Eigen::VectorXd x = ls.x;
+    PayloadResult result;
+    const double m = x(0);
+    if (!(m > 0.0)) {
+        char buffer[256];
+        std::snprintf(buffer, sizeof buffer,
+                      "identification: the payload mass comes out as %.6g kg (standard deviation %.3g kg), not "
+                      "positive: no payload, or the robot file's parameters do not match the robot",
+                      m, std::sqrt(ls.covariance(0, 0)));
+        throw Error(buffer);
+    }
+    const Vector2 h = x.segment<2>(1);
+    double inertia = x(3) - h.squaredNorm() / m;
+    result.inertia_unconstrained = inertia;
+    if (inertia < 0.0) {
+        // physically consistent: minimise the weighted residual on the boundary I = 0, that is
+        // over (m, c, friction) with pi = [m, m c, m |c|^2, friction] (Gauss-Newton on the
+        // quadratic form of the normal equations around the unconstrained solution)
+        result.inertia_constrained = true;
+        const Eigen::MatrixXd H = ls.covariance.ldlt().solve(Eigen::MatrixXd::Identity(k, k));
+        const Eigen::LLT<Eigen::MatrixXd> llt(H);
+        const Eigen::MatrixXd U = llt.matrixU();
+        Eigen::VectorXd z(k - 1);
+        z(0) = m;
+        z.segment<2>(1) = h / m;
+        z.tail(k - 4) = x.tail(k - 4);
+        for (int iteration = 0; iteration < 30; ++iteration) {
+            Eigen::VectorXd d(k);
+            d << z(0), z(0) * z(1), z(0) * z(2), z(0) * z.segment<2>(1).squaredNorm(), z.tail(k - 4);
+            Eigen::MatrixXd J = Eigen::MatrixXd::Zero(k, k - 1);
+            J.col(0).head<4>() << 1.0, z(1), z(2), z.segment<2>(1).squaredNorm();
+            J.col(1).head<4>() << 0.0, z(0), 0.0, 2.0 * z(0) * z(1);
+            J.col(2).head<4>() << 0.0, 0.0, z(0), 2.0 * z(0) * z(2);
+            for (Eigen::Index c = 3; c < k - 1; ++c) J(c + 1, c) = 1.0;
+            const Eigen::VectorXd step = (U * J).colPivHouseholderQr().solve(-(U * (d - ls.x)));
+            z += step;
+            if (step.norm() <= 1e-14 * z.norm()) break;
+        }
+        x << z(0), z(0) * z(1), z(0) * z(2), z(0) * z.segment<2>(1).squaredNorm(), z.tail(k - 4);
+        inertia = 0.0;
+    }
+    result.mass = x(0);
+    result.com = x.segment<2>(1) / x(0);
+    result.inertia = std::max(inertia, 0.0);
+    // standard deviations of (m, c, I) from those of pi by the first-order map
+    Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
+    const double mm = x(0);
+    const Vector2 hh = x.segment<2>(1);
+    G.row(0) << 1.0, 0.0, 0.0, 0.0;
+    G.row(1) << -hh.x() / (mm * mm), 1.0 / mm, 0.0, 0.0;
+    G.row(2) << -hh.y() / (mm * mm), 0.0, 1.0 / mm, 0.0;
+    G.row(3) << hh.squaredNorm() / (mm * mm), -2.0 * hh.x() / mm, -2.0 * hh.y() / mm, 1.0;
+    const Eigen::Matrix4d cov = G * ls.covariance.topLeftCorner<4, 4>() * G.transpose();
+    result.mass_sd = std::sqrt(cov(0, 0));
+    result.com_sd = Vector2(std::sqrt(cov(1, 1)), std::sqrt(cov(2, 2)));
+    result.inertia_sd = std::sqrt(cov(3, 3));
+    for (Eigen::Index c = 4; c < k; ++c) {
+        Estimate e;
+        e.name = names[at(static_cast<int>(c))];
+        e.unit = parameterUnit(model, columns[at(static_cast<int>(c))]);
+        e.value = x(c);
+        e.stddev = std::sqrt(ls.covariance(c, c));
+        e.prior = pi(columns[at(static_cast<int>(c))]);
+        result.friction.push_back(e);
+    }
+    // the held-out check uses the platform's own parameters in the known part
+    fillFit(model, motion, s, x, fit, result.fit);
+    result.fit.condition = ls.condition;
+    return result;
+}
+
+BaseResult identifyBase(const Model& model, const Motion& motion, const IdentificationOptions& options) {
+    const BaseParameters base = baseParameters(model);
+    const int n = model.actuators;
+    const Eigen::Index fit = fitSamples(motion, options, base.rank, n);
+    Stacked s = stack(model, motion, base.independent, false);
+    std::vector<std::string> names;
+    for (const int c : base.independent) names.push_back(parameterName(model, c));
+    const LeastSquares ls = solveWeighted(model, s.A.topRows(fit * n), s.tau.head(fit * n), n, names);
+    const Eigen::VectorXd prior = base.K * standardParameters(model);
+    BaseResult result;
+    for (int k = 0; k < base.rank; ++k) {
+        Estimate e;
+        e.name = "beta_" + std::to_string(k + 1) + " (" + names[at(k)] + " + ...)";
+        e.unit = parameterUnit(model, base.independent[at(k)]);
+        e.value = ls.x(k);
+        e.stddev = std::sqrt(ls.covariance(k, k));
+        e.prior = prior(k);
+        result.beta.push_back(e);
+    }
+    fillFit(model, motion, s, ls.x, fit, result.fit);
+    result.fit.condition = ls.condition;
+    return result;
+}
+
+Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_tau, unsigned seed) {
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    const auto N = static_cast<Eigen::Index>(run.t.size());
+    const int n = run.actuators;
+    Measurements m;
+    m.t = run.t;
+    m.u.resize(N, n);
+    m.tau.resize(N, n);
+    for (Eigen::Index k = 0; k < N; ++k) {
+        const std::size_t kk = at(static_cast<int>(k));
+        for (int a = 0; a < n; ++a) {
+            m.u(k, a) = run.u[kk](a) + (noise_u > 0.0 ? noise_u * normal(rng) : 0.0);
+            m.tau(k, a) = run.tau[kk](a) + (noise_tau > 0.0 ? noise_tau * normal(rng) : 0.0);
+        }
+    }
+    return m;
+}
+
+namespace {
+
+/// "u3": a column name (built by appending: GCC 12 warns falsely on "u" + std::to_string).
+std::string indexed(const char* prefix, Eigen::Index a) {
+    std::string name(prefix);
+    name += std::to_string(a);
+    return name;
+}
+
+}  // namespace
+
+io::Table toTable(const Measurements& measurements) {
+    io::Table table;
+    const auto n = measurements.u.cols();
+    const bool rates = measurements.du.size() > 0 && measurements.ddu.size() > 0;
+    table.columns.emplace_back("t");
+    for (Eigen::Index a = 1; a <= n; ++a) table.columns.push_back(indexed("u", a));
+    for (Eigen::Index a = 1; a <= n; ++a) table.columns.push_back(indexed("tau", a));
+    if (rates) {
+        for (Eigen::Index a = 1; a <= n; ++a) table.columns.push_back(indexed("du", a));
+        for (Eigen::Index a = 1; a <= n; ++a) table.columns.push_back(indexed("ddu", a));
+    }
+    for (std::size_t k = 0; k < measurements.t.size(); ++k) {
+        const auto kk = static_cast<Eigen::Index>(k);
+        std::vector<double> row{measurements.t[k]};
+        for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.u(kk, a));
+        for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.tau(kk, a));
+        if (rates) {
+            for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.du(kk, a));
+            for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.ddu(kk, a));
+        }
+        table.rows.push_back(std::move(row));
+    }
+    return table;
+}
+
+}  // namespace nocdyn
