@@ -31,5 +31,5 @@ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=
   -DNOCDYN_BUILD_TESTS=OFF -DNOCDYN_BUILD_VALIDATION=OFF -DNOCDYN_BUILD_BENCHMARKS=OFF \
   -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=ON -DNOCDYN_BUILD_PYTHON=OFF
 cmake --build build-fuzz -j"$jobs" --target nocdyn_fuzzers
-ctest --test-dir build-fuzz --output-on-failure --no-tests=error -L fuzz
+ctest --test-dir build-fuzz --output-on-failure --no-tests=error -L fuzz -j"$jobs"
 echo "test.sh: all tests passed (release, sanitizer and fuzz builds)"
