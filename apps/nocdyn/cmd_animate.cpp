@@ -59,7 +59,8 @@ void addAnimateCommand(CLI::App& app) {
         "--svg); the page is then written only when --out is given.");
     addRobotOption(*command, options->robot);
     auto* trajectory = command->add_option("--trajectory", options->trajectory,
-                                           "paper1, paper2 (eqs. 33-34) or a trajectory file (YAML)");
+                                           "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or "
+                                           "samples (.csv: t and x,y,theta or ax,ay,alpha)");
     auto* motion = command->add_option("--motion", options->motion,
                                        "CSV with columns t,theta,x,y,tau1..taun (SI), as written by simulate, "
                                        "control or inverse-dynamics; u is recomputed from the pose");

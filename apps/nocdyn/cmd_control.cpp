@@ -173,7 +173,10 @@ void addControlCommand(CLI::App& app) {
         "pd: A_p^T tau = M_p(home) (Kp e + Kd e'), e = p_d - p, tau minimum-norm when redundant; each force clipped "
         "at\n"
         "its joint's effort. CSV: t,theta_d,x_d,y_d,theta,x,y,e_theta,e_x,e_y,u1..un,u1_d..un_d,tau1..taun.");
-    command->add_option("--trajectory", options->trajectory, "paper1, paper2 (eqs. 33-34) or a trajectory file (YAML)")
+    command
+        ->add_option("--trajectory", options->trajectory,
+                     "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or samples (.csv: t and "
+                     "x,y,theta or ax,ay,alpha)")
         ->required();
     addRobotOption(*command, options->robot);
     command->add_option("--controller", options->c.controller, "computed-torque or pd")

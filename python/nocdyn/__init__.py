@@ -284,8 +284,16 @@ class Trajectory:
 
     @classmethod
     def load(cls, path):
-        """Reads a trajectory file (YAML); errors name the file, line and field."""
+        """Reads a trajectory file: harmonics (YAML), or samples when the name ends in .csv
+        (a column t [s] and any of x, y, theta (positions, C2 spline) or ax, ay, alpha
+        (accelerations, integrated from rest)). Errors name the file, line and field or column."""
         return cls(_nocdyn.Trajectory.load(str(path)))
+
+    @classmethod
+    def from_csv(cls, text, source="<string>"):
+        """A sampled trajectory from CSV text (the format of Trajectory.load's .csv files);
+        `source` names it in error messages."""
+        return cls(_nocdyn.Trajectory.from_csv(text, source))
 
     @classmethod
     def from_yaml(cls, text, source="<string>"):

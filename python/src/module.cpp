@@ -8,6 +8,7 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <cctype>
 #include <ctime>
 #include <cmath>
 #include <cstdint>
@@ -548,7 +549,18 @@ PYBIND11_MODULE(_nocdyn, m) {
              py::arg("name"), py::arg("theta_offset"), py::arg("theta"), py::arg("x_offset"), py::arg("x"),
              py::arg("y_offset"), py::arg("y"), py::arg("duration"))
         .def_static(
-            "load", [](const std::string& path) { return io::loadTrajectory(path); }, py::arg("path"))
+            "load",
+            [](const std::string& path) {
+                // samples (.csv, any case) or the harmonic YAML format, as --trajectory takes them
+                std::string ext = path.size() >= 4 ? path.substr(path.size() - 4) : std::string();
+                for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+                return ext == ".csv" ? io::loadTrajectoryCsv(path) : io::loadTrajectory(path);
+            },
+            py::arg("path"))
+        .def_static(
+            "from_csv",
+            [](const std::string& text, const std::string& source) { return io::parseTrajectoryCsv(text, source); },
+            py::arg("text"), py::arg("source") = "<string>")
         .def_static(
             "from_yaml",
             [](const std::string& text, const std::string& source) { return io::parseTrajectory(text, source); },

@@ -102,6 +102,26 @@ def test_paper_trajectories_equal_their_files_and_have_exact_derivatives(source_
         nocdyn.Trajectory.paper(3)
 
 
+def test_sampled_trajectories_pass_through_their_samples_and_name_bad_lines(tmp_path):
+    # positions of trajectory 1 at 2 kHz: the spline passes through every sample
+    t = np.arange(0, 401) / 2000.0
+    p, _, _ = nocdyn.Trajectory.paper(1).evaluate(t)
+    path = tmp_path / "samples.CSV"
+    rows = ["t,theta,x,y"] + [f"{a!r},{b!r},{c!r},{d!r}" for a, (b, c, d) in zip(t, p)]
+    path.write_text("\n".join(rows) + "\n")
+    sampled = nocdyn.Trajectory.load(path)
+    q, _, _ = sampled.evaluate(t)
+    np.testing.assert_allclose(q, p, rtol=0, atol=1e-15)
+    same = nocdyn.Trajectory.from_csv(path.read_text())
+    np.testing.assert_array_equal(same.evaluate(t)[0], q)
+    # and between the samples it follows the harmonic to the spline's error, O(h^4)
+    mid = t[:-1] + 0.25e-3
+    np.testing.assert_allclose(sampled.evaluate(mid)[0], nocdyn.Trajectory.paper(1).evaluate(mid)[0], rtol=0,
+                               atol=1e-9)
+    with pytest.raises(nocdyn.Error, match=r"bad\.csv:3: .*t"):
+        nocdyn.Trajectory.from_csv("t,x\n0.1,0\n0.05,0\n", "bad.csv")
+
+
 @pytest.mark.parametrize("name", ["paper-3prr", "3-rrr", "4-rrr"])
 def test_forward_kinematics_finds_the_pose_that_gave_u_in_the_working_mode(name):
     robot = nocdyn.Robot.example(name)
