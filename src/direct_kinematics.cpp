@@ -11,6 +11,7 @@
 #include <utility>
 
 #include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <unsupported/Eigen/Polynomials>
 
@@ -246,24 +247,44 @@ void deflateImaginaryUnit(Poly& f) {
     }
 }
 
+/// The companion matrix of f: one storage type for every degree (fixed capacity, no
+/// allocation), so that a single eigenvalue solver serves them all.
+using Companion = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, Poly::kCapacity - 1, Poly::kCapacity - 1>;
+
+/// Eigen's companion matrix of f (degree Deg >= 2), balanced (Parlett and Reinsch), as
+/// PolynomialSolver builds it; only this small step depends on the degree.
 template <int Deg>
-void realRootsOfDegree(const Poly& f, Angles& out) {
+void balancedCompanion(const Poly& f, Companion& out) {
     Eigen::Matrix<double, Deg + 1, 1> coefficients;
     for (int i = 0; i <= Deg; ++i) coefficients(i) = f.c[static_cast<std::size_t>(i)];
-    Eigen::PolynomialSolver<double, Deg> solver;
-    solver.compute(coefficients);
-    for (int i = 0; i < Deg; ++i) {
-        const std::complex<double> z = solver.roots()(i);
-        // generous: a double root splits off the real axis by ~sqrt(eps); Newton and the
-        // verification reject the spurious candidates
-        if (std::abs(z.imag()) <= 1e-4 * (1.0 + std::abs(z))) out.add(2.0 * std::atan(z.real()));
-    }
+    Eigen::internal::companion<double, Deg> companion(coefficients);
+    companion.balance();
+    out = companion.denseMatrix();
 }
 
 template <int... Degs>
-void realRootsDispatch(const Poly& f, Angles& out, std::integer_sequence<int, Degs...> /*unused*/) {
+void companionDispatch(const Poly& f, Companion& out, std::integer_sequence<int, Degs...> /*unused*/) {
     const int degree = f.size - 1;
-    ((degree == Degs + 1 ? realRootsOfDegree<Degs + 1>(f, out) : void()), ...);
+    ((degree == Degs + 2 ? balancedCompanion<Degs + 2>(f, out) : void()), ...);
+}
+
+/// Real roots t of f (degree >= 1), as angles phi = 2 atan t: the eigenvalues of the balanced
+/// companion matrix (what PolynomialSolver computes, with one solver for every degree).
+void realRootsOfPolynomial(const Poly& f, Angles& out) {
+    const auto add = [&out](std::complex<double> z) {
+        // generous: a double root splits off the real axis by ~sqrt(eps); Newton and the
+        // verification reject the spurious candidates
+        if (std::abs(z.imag()) <= 1e-4 * (1.0 + std::abs(z))) out.add(2.0 * std::atan(z.real()));
+    };
+    if (f.size == 2) {
+        add(-f.c[0] / f.c[1]);
+        return;
+    }
+    Companion companion;
+    companionDispatch(f, companion, std::make_integer_sequence<int, Poly::kCapacity - 2>{});
+    Eigen::EigenSolver<Companion> solver;
+    solver.compute(companion, /*computeEigenvectors=*/false);
+    for (Eigen::Index i = 0; i < solver.eigenvalues().size(); ++i) add(solver.eigenvalues()(i));
 }
 
 /// Real roots of f as angles phi = 2 atan t (leading coefficients that are round-off are
@@ -273,7 +294,7 @@ void realRoots(Poly f, Angles& out) {
     while (f.size > 1 && std::abs(f.c[static_cast<std::size_t>(f.size - 1)]) <= 1e-13 * scale) --f.size;
     deflateImaginaryUnit(f);
     if (f.size < 2) return;
-    realRootsDispatch(f, out, std::make_integer_sequence<int, Poly::kCapacity - 1>{});
+    realRootsOfPolynomial(f, out);
 }
 
 /// Linear equation (times w) a~ . C + b~ = 0 in polynomial form.

@@ -21,7 +21,8 @@
 // C = N(t) / Delta(t) by Cramer's rule, t = tan(phi / 2), after multiplying through by
 // w = 1 + t^2; substituting into a third (a circle, or a linear equation) leaves one
 // polynomial in t of degree <= 10 (<= 6 for three linear ones). Its roots are the eigenvalues
-// of the balanced companion matrix (Eigen's PolynomialSolver, fixed size: no allocation); the
+// of the balanced companion matrix (Eigen: its companion balancing and EigenSolver, as its
+// PolynomialSolver does, in fixed-capacity storage: no allocation); the
 // real ones, and phi = pi (t = oo), are candidates. With an orientation equation, phi is known
 // and C solves the rest (two lines, or a line and a circle). Each candidate's C comes from the
 // best-conditioned pair of linear equations at its phi (or a line meeting a circle when only
