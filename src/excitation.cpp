@@ -323,6 +323,7 @@ std::vector<int> excitedColumns(const Model& model, const ExcitationOptions& opt
         return baseParameters(model).independent;
     }
     const int platform = bodyParameterIndex(model.platformBody());
+    columns.reserve(static_cast<std::size_t>(kBodyParameters) + 2 * static_cast<std::size_t>(model.actuators));
     for (int c = 0; c < kBodyParameters; ++c) columns.push_back(platform + c);
     if (options.friction) {
         for (int a = 0; a < model.actuators; ++a) {
@@ -366,7 +367,7 @@ ExcitationResult designExcitation(const Model& model, double duration, const Exc
                         (home.failure.empty() ? "" : " (" + home.failure + ")"));
         }
     }
-    const Eigen::Index d = 3 * freePerAxis(H);
+    const auto d = static_cast<Eigen::Index>(3) * freePerAxis(H);
     // objective: log of the condition number at the largest scale within the limits
     double best_scale = 0.0;
     const auto objective = [&](const Eigen::VectorXd& z, double* scale, int check) {
