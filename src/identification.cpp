@@ -558,7 +558,8 @@ struct Stacked {
     Eigen::VectorXd known, tau;
 };
 
-Stacked stack(const Model& model, const Motion& motion, const std::vector<int>& columns, bool subtract_known) {
+Stacked stack(const Model& model, const Motion& motion, const std::vector<int>& columns, bool subtract_known,
+              const Calibration* calibration = nullptr) {
     const int n = model.actuators;
     const auto N = static_cast<Eigen::Index>(motion.t.size());
     Stacked s;
@@ -575,7 +576,14 @@ Stacked stack(const Model& model, const Motion& motion, const std::vector<int>& 
         if (!status) throw Error("identification at " + timeText(motion.t[kk]) + ": " + describe(status, model));
         for (std::size_t c = 0; c < columns.size(); ++c)
             s.A.block(k * n, static_cast<Eigen::Index>(c), n, 1) = Y.col(columns[c]);
-        if (subtract_known) s.known.segment(k * n, n) = Y * pi;
+        if (subtract_known && calibration) {
+            // Y pi = Y_b beta: the calibrated robot
+            for (std::size_t c = 0; c < calibration->independent.size(); ++c)
+                s.known.segment(k * n, n) +=
+                    Y.col(calibration->independent[c]) * calibration->beta(static_cast<Eigen::Index>(c));
+        } else if (subtract_known) {
+            s.known.segment(k * n, n) = Y * pi;
+        }
         s.tau.segment(k * n, n) = motion.tau.row(k).transpose();
     }
     return s;
@@ -600,6 +608,33 @@ void fillFit(const Model& model, const Motion& motion, const Stacked& s, const E
         fit.predicted.row(k - fit_samples) = predicted.segment(k * n, n).transpose();
     }
 }
+
+}  // namespace
+
+void checkCalibration(const Model& model, const Calibration& calibration) {
+    const BaseParameters base = baseParameters(model);
+    if (calibration.beta.size() != static_cast<Eigen::Index>(calibration.independent.size()) ||
+        calibration.independent != base.independent) {
+        std::string which = "its number of base parameters";
+        for (std::size_t c = 0; c < std::min(calibration.independent.size(), base.independent.size()); ++c) {
+            if (calibration.independent[c] != base.independent[c]) {
+                which = "base parameter " + std::to_string(c + 1) + " (" +
+                        parameterName(model, calibration.independent[c]) + ", this robot's is " +
+                        parameterName(model, base.independent[c]) + ")";
+                break;
+            }
+        }
+        throw Error("identification: the calibration was not made for this robot: " + which + " differs (" +
+                    std::to_string(calibration.independent.size()) + " base parameters, this robot has " +
+                    std::to_string(base.rank) + ")");
+    }
+    for (Eigen::Index c = 0; c < calibration.beta.size(); ++c) {
+        if (!std::isfinite(calibration.beta(c)))
+            throw Error("identification: calibrated base parameter " + std::to_string(c + 1) + " is not finite");
+    }
+}
+
+namespace {
 
 Eigen::Index fitSamples(const Motion& motion, const IdentificationOptions& options, int parameters, int n) {
     const auto N = static_cast<Eigen::Index>(motion.t.size());
@@ -635,11 +670,21 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
     }
     const auto k = static_cast<Eigen::Index>(columns.size());
     const Eigen::Index fit = fitSamples(motion, options, static_cast<int>(k), n);
-    Stacked s = stack(model, motion, columns, true);
+    const Calibration* calibration = options.calibration ? &*options.calibration : nullptr;
+    if (calibration && options.friction) {
+        throw Error(
+            "identification: a calibration holds the joints' friction already; identify the payload "
+            "against it without friction");
+    }
+    if (calibration) checkCalibration(model, *calibration);
+    Stacked s = stack(model, motion, columns, true, calibration);
     // the platform's own parameters stay in the known part: the unknowns are the payload's
+    // (a calibration's known part holds them already, within its base parameters)
     const ParameterVector pi = standardParameters(model);
     const Eigen::Vector4d platform_pi = pi.segment<kBodyParameters>(platform);
-    for (int c = 0; c < kBodyParameters; ++c) s.known += s.A.col(c) * platform_pi(c);
+    if (!calibration) {
+        for (int c = 0; c < kBodyParameters; ++c) s.known += s.A.col(c) * platform_pi(c);
+    }
     const Eigen::VectorXd b = (s.tau - s.known).head(fit * n);
     const LeastSquares ls = solveWeighted(model, s.A.topRows(fit * n), b, n, names);
     Eigen::VectorXd x = ls.x;
@@ -732,6 +777,8 @@ BaseResult identifyBase(const Model& model, const Motion& motion, const Identifi
         e.prior = prior(k);
         result.beta.push_back(e);
     }
+    result.calibration.independent = base.independent;
+    result.calibration.beta = ls.x;
     fillFit(model, motion, s, ls.x, fit, result.fit);
     result.fit.condition = ls.condition;
     return result;

@@ -11,6 +11,7 @@
 #include "common.hpp"
 #include "nocdyn/general_control.hpp"
 #include "nocdyn/identification.hpp"
+#include "nocdyn/io/calibration.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "plot.hpp"
@@ -20,7 +21,7 @@ namespace nocdyn::cli {
 namespace {
 
 struct IdentifyOptions {
-    std::string robot, data, output, figure;
+    std::string robot, data, output, figure, calibration;
     bool payload = false, base = false;
     IdentificationOptions identification;
 };
@@ -124,14 +125,25 @@ void figure(const Model& model, const FitReport& fit, const std::string& stem) {
 
 void run(const IdentifyOptions& options) {
     if (options.payload && options.base) throw Error("give --payload or --base, not both");
+    if (options.base && !options.calibration.empty())
+        throw Error("--calibration is for identifying a payload against the calibrated robot, not with --base");
     const RobotDescription robot = loadRobotDescriptionOrDefault(options.robot);
     const Model model(robot);
+    IdentificationOptions identification = options.identification;
+    if (!options.calibration.empty()) {
+        identification.calibration = io::loadCalibration(options.calibration, model);
+        try {
+            checkCalibration(model, *identification.calibration);
+        } catch (const Error& e) {
+            throw Error(options.calibration + ": " + e.what());
+        }
+    }
     const Measurements measured = readMeasurements(options.data, model.actuators);
-    const Motion motion = reconstructMotion(model, measured, options.identification);
+    const Motion motion = reconstructMotion(model, measured, identification);
     std::string text, file;
     FitReport fit;
     if (options.base) {
-        const BaseResult result = identifyBase(model, motion, options.identification);
+        const BaseResult result = identifyBase(model, motion, identification);
         text = "# " + robot.name + ": base parameters from " + options.data + " (see nocdyn regressor)\n";
         text += fitText(model, result.fit);
         text += "base_parameters:\n";
@@ -139,11 +151,16 @@ void run(const IdentifyOptions& options) {
             text += "  - {name: '" + e.name + "', value: " + number(e.value) + ", stddev: " + number(e.stddev) +
                     ", robot_file: " + number(e.prior) + ", unit: '" + e.unit + "'}\n";
         }
-        file = text;
+        std::string comment = "# " + robot.name + ": calibration (base parameters) identified from " + options.data +
+                              "; use with nocdyn identify --payload --calibration\n";
+        comment += fitText(model, result.fit);
+        file = io::calibrationToYaml(model, result, comment);
         fit = result.fit;
     } else {
-        const PayloadResult r = identifyPayload(model, motion, options.identification);
-        text = "# " + robot.name + ": payload from " + options.data + "\n" + fitText(model, r.fit);
+        const PayloadResult r = identifyPayload(model, motion, identification);
+        text = "# " + robot.name + ": payload from " + options.data +
+               (options.calibration.empty() ? "" : ", against the calibration " + options.calibration) + "\n" +
+               fitText(model, r.fit);
         if (r.inertia_constrained) {
             text += "# the unconstrained inertia about the c.o.m. came out negative (" +
                     number(r.inertia_unconstrained) + " kg m^2): the physically consistent solution has 0\n";
@@ -219,7 +236,13 @@ void addIdentifyCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--output,-o", options->output,
                         "YAML to write: the robot file with the payload merged into the platform (--payload), or "
-                        "the base parameters (--base)");
+                        "the calibration file of the base parameters (--base)");
+    command
+        ->add_option("--calibration", options->calibration,
+                     "With --payload: a calibration file (identify --base --output on data without payload) whose "
+                     "base parameters replace the robot file's own parameters (the robot file still gives the "
+                     "geometry)")
+        ->check(CLI::ExistingFile);
     command->add_option("--figure", options->figure,
                         "Measured against predicted forces on the held-out samples: writes STEM.png and STEM.svg");
     command->callback([options] { run(*options); });

@@ -19,6 +19,7 @@ void addAnimateCommand(CLI::App& app);
 void addShakeCommand(CLI::App& app);
 void addRegressorCommand(CLI::App& app);
 void addIdentifyCommand(CLI::App& app);
+void addExciteCommand(CLI::App& app);
 #ifdef NOCDYN_HAS_ENGINES
 void addValidateCommand(CLI::App& app);
 #endif

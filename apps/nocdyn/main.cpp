@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     nocdyn::cli::addShakeCommand(app);
     nocdyn::cli::addRegressorCommand(app);
     nocdyn::cli::addIdentifyCommand(app);
+    nocdyn::cli::addExciteCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif

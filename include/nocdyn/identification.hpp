@@ -22,6 +22,7 @@
 // minimum-norm A (A^T A)^-1 W (redundant), exactly as inverse dynamics applies them.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -102,6 +103,17 @@ struct Measurements {
     Eigen::MatrixXd u, tau, du, ddu;
 };
 
+/// The robot's own base parameters as identified on it (identifyBase on data without payload):
+/// they replace the robot file's in the known part of a payload identification.
+struct Calibration {
+    std::vector<int> independent;  ///< standard-parameter indices of the base columns
+    Eigen::VectorXd beta;          ///< the identified base parameters
+};
+
+/// Throws nocdyn::Error unless the calibration has this model's base columns (was made for this
+/// robot) and finite values.
+void checkCalibration(const Model& model, const Calibration& calibration);
+
 struct IdentificationOptions {
     /// Zero-phase low-pass cut-off when du and ddu are derived from u [Hz] (0: a tenth of the
     /// sampling rate, at most 50 Hz).
@@ -114,6 +126,10 @@ struct IdentificationOptions {
     /// control` logs them): the force at t_k is then the mean of the two holds around it,
     /// (tau_(k-1) + tau_k) / 2, so that it matches the accelerations the differences of u give.
     bool held_forces = false;
+    /// With a payload: the robot's calibrated base parameters in place of the robot file's
+    /// (its base columns must be those baseParameters(model) finds). Not with `friction`: the
+    /// calibration holds the joints' friction already.
+    std::optional<Calibration> calibration;
 };
 
 /// One identified value with its standard deviation (from the residuals).
@@ -149,6 +165,7 @@ struct PayloadResult {
 
 struct BaseResult {
     std::vector<Estimate> beta;
+    Calibration calibration;  ///< the same values, with their base columns
     FitReport fit;
 };
 

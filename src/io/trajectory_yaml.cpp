@@ -5,6 +5,7 @@
 #include <array>
 #include <cctype>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <memory>
 #include <sstream>
@@ -186,6 +187,38 @@ PoseTrajectory trajectoryByNameOrFile(const std::string& name_or_path) {
     if (name_or_path == "paper2") return paperTrajectory2();
     if (endsWithCsv(name_or_path)) return loadTrajectoryCsv(name_or_path);
     return loadTrajectory(name_or_path);
+}
+
+namespace {
+
+std::string roundTrip(double v) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.17g", v);
+    return buffer;
+}
+
+std::string axisYaml(const char* name, const AxisMotion& axis) {
+    std::string text = std::string(name) + ": {offset: " + roundTrip(axis.offset) + ", harmonics: [";
+    for (std::size_t k = 0; k < axis.harmonics.size(); ++k) {
+        const Harmonic& h = axis.harmonics[k];
+        text += (k == 0 ? "\n    " : ",\n    ");
+        text += "{amplitude: " + roundTrip(h.amplitude) + ", frequency: " + roundTrip(h.frequency) +
+                ", phase: " + roundTrip(h.phase) + "}";
+    }
+    return text + "]}\n";
+}
+
+}  // namespace
+
+std::string trajectoryToYaml(const PoseTrajectory& trajectory) {
+    if (trajectory.sampled) throw Error("trajectory '" + trajectory.name + "' is sampled: no harmonic YAML form");
+    // the name as a single-quoted YAML scalar (a quote doubled)
+    std::string name;
+    for (const char c : trajectory.name) name += c == '\'' ? std::string("''") : std::string(1, c);
+    std::string text = "name: '" + name + "'\n";
+    if (trajectory.duration) text += "duration: " + roundTrip(*trajectory.duration) + "   # [s]\n";
+    text += axisYaml("theta", trajectory.theta) + axisYaml("x", trajectory.x) + axisYaml("y", trajectory.y);
+    return text;
 }
 
 }  // namespace nocdyn::io

@@ -21,6 +21,10 @@ namespace nocdyn::io {
 /// Parses trajectory YAML text; `source` names it in error messages.
 [[nodiscard]] PoseTrajectory parseTrajectory(const std::string& text, const std::string& source);
 
+/// A harmonic trajectory as trajectory-file YAML (name, duration when set, offsets, harmonics;
+/// every number to round-trip precision). Throws nocdyn::Error for a sampled trajectory.
+[[nodiscard]] std::string trajectoryToYaml(const PoseTrajectory& trajectory);
+
 /// Sampled trajectory (CSV, io/csv.hpp): a column `t` [s] and any of `x,y,theta` (positions,
 /// m and rad) or `ax,ay,alpha` (accelerations, m/s^2 and rad/s^2), at most one of the two per
 /// axis; an axis left out stays at zero. Times strictly increasing, uniform or not, at least 2

@@ -1,0 +1,92 @@
+// Excitation design for identification: a periodic multi-harmonic platform trajectory (the
+// trajectory file's form, common base frequency f0) along which the stacked regressor of the
+// parameters to identify is as well conditioned as possible, within the robot's limits.
+//
+// Each pose axis q in {theta, x, y} (a Fourier series, omega = 2 pi f0):
+//   q(t) = q_home + s sum_{k=1..H} (a_k sin(k omega t) + b_k cos(k omega t))
+// with the coefficients tied so that the motion starts (and every period returns) at home at
+// rest: sum b_k = 0 (q(0) = home), sum k a_k = 0 (dq(0) = 0), sum k^2 b_k = 0 (ddq(0) = 0).
+// The free coefficients (2H - 3 per axis) give the shape; for each shape the scale s is the
+// largest for which, at every sample of one period,
+//   - every joint is within its range, |q - mid| <= (1 - margin) half-range,
+//   - every joint within its velocity limit, every actuator within its effort (inverse dynamics
+//     with the guessed payload, eq. 20), both with the same margin,
+//   - every limb Jacobian J_j and the actuation map A have a scaled condition number at most
+//     max_condition (away from singularities, as kinematics.hpp measures them),
+// found by bisection on log s (the envelope's approach, envelope.hpp). The objective is the
+// condition number of the column-scaled stacked regressor at that largest scale (the number
+// `identify` reports): a seeded random search over shapes, then Nelder-Mead from the best,
+// bounded by a number of evaluations, deterministic for a seed.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "nocdyn/model.hpp"
+#include "nocdyn/trajectory.hpp"
+
+namespace nocdyn {
+
+/// Which regressor columns the excitation is designed for.
+enum class ExcitedParameters {
+    payload,  ///< the four payload parameters [m, m c_x, m c_y, I_O] (the platform's columns)
+    base,     ///< the robot's base parameters (calibration; identification.hpp)
+};
+
+struct ExcitationOptions {
+    ExcitedParameters parameters = ExcitedParameters::payload;
+    bool friction = false;         ///< with payload: the actuated joints' damping and friction too
+    double base_frequency = 5.0;   ///< f0 [Hz] (the period of the paper's trajectory 2)
+    int harmonics = 4;             ///< H per axis (at least 3)
+    double margin = 0.1;           ///< fraction of each range, velocity and effort limit kept free
+    double max_condition = 100.0;  ///< largest scaled condition number of J_j and A
+    int samples = 0;               ///< per period in the design (0: 25 H)
+    int check_samples = 2000;      ///< per period in the final check of the limits
+    int evaluations = 400;         ///< objective evaluations in all (random search and Nelder-Mead)
+    int random_shapes = 60;        ///< of them, random shapes before Nelder-Mead
+    unsigned seed = 1;
+};
+
+/// How much of each limit a trajectory uses at its worst sample, as a fraction of the allowed
+/// value (the limit less the margin; condition: of max_condition); 0 where a limit is absent.
+struct LimitUse {
+    double range = 0.0, velocity = 0.0, effort = 0.0, condition = 0.0;
+    std::string binding;  ///< "effort of actuator 2 (limb2)": the largest of the four
+    [[nodiscard]] double worst() const;
+};
+
+/// A trajectory judged: feasible (every sample computed and within the limits), its limit use
+/// and the condition number of the column-scaled stacked regressor (infinite when a column
+/// vanishes). `failure` says why an infeasible one is (pose unreachable, singular, ...).
+struct ExcitationAssessment {
+    bool feasible = false;
+    double condition = 0.0;
+    LimitUse use;
+    std::string failure;
+};
+
+/// The regressor columns (standard-parameter indices) the options designate.
+[[nodiscard]] std::vector<int> excitedColumns(const Model& model, const ExcitationOptions& options);
+
+/// Judges `trajectory` on [0, period) at `samples` evenly spaced times. `model` carries the
+/// guessed payload (its effort is what the actuators must supply).
+[[nodiscard]] ExcitationAssessment assessExcitation(const Model& model, const PoseTrajectory& trajectory, double period,
+                                                    int samples, const ExcitationOptions& options);
+
+struct ExcitationResult {
+    PoseTrajectory trajectory;        ///< offset at home, harmonics k f0; duration as asked
+    ExcitationAssessment assessment;  ///< at options.check_samples per period
+    int evaluations = 0;              ///< objective evaluations made
+};
+
+/// Designs the excitation (see the file header) for `duration` seconds (a whole number of base
+/// periods). Throws nocdyn::Error on options out of range, a home posture that violates the
+/// limits, or no feasible shape found.
+[[nodiscard]] ExcitationResult designExcitation(const Model& model, double duration,
+                                                const ExcitationOptions& options = {});
+
+/// The trajectory moved so that its offsets are relative to the robot's home (the paper's
+/// trajectories were written about the paper robot's home, the origin).
+[[nodiscard]] PoseTrajectory aboutHome(const Model& model, PoseTrajectory trajectory);
+
+}  // namespace nocdyn

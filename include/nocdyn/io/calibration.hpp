@@ -1,0 +1,28 @@
+// Calibration files: the robot's base parameters identified on the robot itself (`nocdyn identify
+// --base --output cal.yaml`), read back to identify a payload against the calibrated robot.
+//
+//   robot: paper-3prr
+//   base_parameters:
+//     - {parameter: 'platform.m', value: 3.1, stddev: 0.002, robot_file: 3.0, unit: 'kg', name: '...'}
+//
+// One item per base parameter, in the order `nocdyn regressor` lists them; `parameter` names the
+// standard parameter heading the combination (its column of the regressor), `value` its
+// identified value; the other keys are for the reader. Unknown keys are errors.
+#pragma once
+
+#include <string>
+
+#include "nocdyn/identification.hpp"
+#include "nocdyn/model.hpp"
+
+namespace nocdyn::io {
+
+/// The calibration file text (as above) of identified base parameters.
+[[nodiscard]] std::string calibrationToYaml(const Model& model, const BaseResult& result, const std::string& comment);
+
+/// Parses calibration YAML for `model`. Throws nocdyn::Error "SOURCE:LINE: field: reason" for a
+/// malformed file or a parameter name the model does not have.
+[[nodiscard]] Calibration parseCalibration(const std::string& text, const std::string& source, const Model& model);
+[[nodiscard]] Calibration loadCalibration(const std::string& path, const Model& model);
+
+}  // namespace nocdyn::io

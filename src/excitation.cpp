@@ -1,0 +1,427 @@
+// Excitation design (excitation.hpp): Fourier shapes scaled to the robot's limits, the
+// condition number of the stacked regressor minimised by random search and Nelder-Mead.
+#include "nocdyn/excitation.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <utility>
+
+#include <Eigen/Eigenvalues>
+
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/identification.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/status.hpp"
+
+namespace nocdyn {
+
+double LimitUse::worst() const { return std::max({range, velocity, effort, condition}); }
+
+namespace {
+
+constexpr double kInfeasible = std::numeric_limits<double>::infinity();
+/// Geometric bisection passes on the scale: (1e4)^(2^-14), a step of 0.06 %.
+constexpr int kScalePasses = 14;
+constexpr double kScaleBracket = 1e-4;
+
+[[nodiscard]] std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+std::string formatted(const char* format, double value) {
+    char buffer[64];
+    std::snprintf(buffer, sizeof buffer, format, value);
+    return buffer;
+}
+
+/// Samples of the pose excursion from home, its rate and acceleration (at scale 1).
+struct UnitMotion {
+    std::vector<Twist> p, dp, ddp;
+};
+
+UnitMotion sampleTrajectory(const Model& model, const PoseTrajectory& trajectory, double period, int samples) {
+    UnitMotion m;
+    for (int i = 0; i < samples; ++i) {
+        Pose p, dp, ddp;
+        trajectory.evaluate(period * i / samples, p, dp, ddp);
+        m.p.push_back(p - model.home);
+        m.dp.push_back(dp);
+        m.ddp.push_back(ddp);
+    }
+    return m;
+}
+
+/// Limit use and the stacked regressor's normal matrix along sampled motions (see the header).
+class Judge {
+public:
+    Judge(const Model& model, const ExcitationOptions& options, std::vector<int> columns)
+        : model_(model), options_(options), columns_(std::move(columns)), data_(model) {
+        if (const Status status = inverseDisplacement(model, data_, model.home); !status) {
+            throw Error("excitation: the home posture is not valid: " + describe(status, model));
+        }
+        for (int j = 0; j < model.limbs; ++j) q_home_[at(j)] = data_.limb[at(j)].q;
+        allowed_ = 1.0 - options.margin;
+    }
+
+    /// Worst limit use over the samples of excursion m at scale s (infinite when a sample
+    /// cannot be computed); stops at the first sample beyond 1 when `early`. With `detail`,
+    /// fills the use per limit, the binding one and the failure.
+    double use(const UnitMotion& m, double s, bool early, ExcitationAssessment* detail = nullptr) {
+        double worst = 0.0;
+        for (std::size_t i = 0; i < m.p.size(); ++i) {
+            const Status status = inverseDynamics(model_, data_, model_.home + s * m.p[i], s * m.dp[i], s * m.ddp[i]);
+            if (!status) {
+                if (detail) detail->failure = describe(status, model_);
+                return kInfeasible;
+            }
+            worst = std::max(worst, sampleUse(detail ? &detail->use : nullptr));
+            if (early && worst > 1.0) return worst;
+        }
+        return worst;
+    }
+
+    /// Condition number of the column-scaled stacked regressor of m at scale s.
+    double condition(const UnitMotion& m, double s) {
+        const auto k = static_cast<Eigen::Index>(columns_.size());
+        Eigen::MatrixXd N = Eigen::MatrixXd::Zero(k, k);
+        for (std::size_t i = 0; i < m.p.size(); ++i) {
+            if (!inverseDynamicsRegressor(model_, data_, model_.home + s * m.p[i], s * m.dp[i], s * m.ddp[i], Y_))
+                return kInfeasible;
+            for (Eigen::Index a = 0; a < k; ++a) {
+                for (Eigen::Index b = 0; b <= a; ++b)
+                    N(a, b) += Y_.col(columns_[at(static_cast<int>(a))]).dot(Y_.col(columns_[at(static_cast<int>(b))]));
+            }
+        }
+        const Eigen::VectorXd d = N.diagonal();
+        if (!(d.minCoeff() > 1e-24 * d.maxCoeff())) return kInfeasible;
+        const Eigen::VectorXd inv = d.cwiseSqrt().cwiseInverse();
+        const Eigen::MatrixXd full = N.selfadjointView<Eigen::Lower>();
+        const Eigen::MatrixXd S = inv.asDiagonal() * full * inv.asDiagonal();
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(S, Eigen::EigenvaluesOnly);
+        const double lo = eigen.eigenvalues()(0), hi = eigen.eigenvalues()(k - 1);
+        return lo > 0.0 ? std::sqrt(hi / lo) : kInfeasible;
+    }
+
+    /// Largest scale in (0, cap] within the limits (0: none from kScaleBracket cap up).
+    double largestScale(const UnitMotion& m, double cap) {
+        if (use(m, cap, true) <= 1.0) return cap;
+        double lo = kScaleBracket * cap, hi = cap;
+        if (!(use(m, lo, true) <= 1.0)) return 0.0;
+        for (int pass = 0; pass < kScalePasses; ++pass) {
+            const double mid = std::sqrt(lo * hi);
+            (use(m, mid, true) <= 1.0 ? lo : hi) = mid;
+        }
+        return lo;
+    }
+
+private:
+    /// Use of the limits at the computed sample (data_), the largest returned.
+    double sampleUse(LimitUse* detail) {
+        double worst = 0.0;
+        for (int j = 0; j < model_.limbs; ++j) {
+            const LimbModel& limb = model_.limb[at(j)];
+            const LimbData& ld = data_.limb[at(j)];
+            for (int k = 0; k < 3; ++k) {
+                const JointLimits& lim = limb.limits[at(k)];
+                const double q = ld.q(k), q0 = q_home_[at(j)](k);
+                // range: the distance from home towards the limit met, of the allowed part
+                const double room = q >= q0 ? lim.upper - q0 : q0 - lim.lower;
+                if (std::isfinite(room)) {
+                    const double r = room > 0.0 ? std::abs(q - q0) / (allowed_ * room) : kInfeasible;
+                    note(detail, &LimitUse::range, r, worst, "range of " + model_.limbName(j), k);
+                }
+                if (std::isfinite(lim.velocity)) {
+                    note(detail, &LimitUse::velocity, std::abs(ld.gamma_dot(k)) / (allowed_ * lim.velocity), worst,
+                         "velocity of " + model_.limbName(j), k);
+                }
+            }
+            note(detail, &LimitUse::condition, ld.cond / options_.max_condition, worst,
+                 "condition number of the Jacobian of " + model_.limbName(j), -1);
+        }
+        for (int a = 0; a < model_.actuators; ++a) {
+            const double effort =
+                model_.limb[at(model_.actuator_limb[at(a)])].limits[at(model_.actuator_joint[at(a)])].effort;
+            if (std::isfinite(effort)) {
+                note(detail, &LimitUse::effort, std::abs(data_.tau(a)) / (allowed_ * effort), worst,
+                     "effort of actuator " + std::to_string(a + 1) + " (" +
+                         model_.limbName(model_.actuator_limb[at(a)]) + ")",
+                     -1);
+            }
+        }
+        note(detail, &LimitUse::condition, data_.cond_A / options_.max_condition, worst,
+             "condition number of the actuation (A)", -1);
+        return worst;
+    }
+
+    /// Keeps the largest use; names it in `detail` (only then is the name built).
+    template <typename Name>
+    static void note(LimitUse* detail, double LimitUse::*field, double value, double& worst, const Name& name,
+                     int joint) {
+        worst = std::max(worst, value);
+        if (!detail) return;
+        if (value > detail->worst()) {
+            detail->binding = name;
+            if (joint >= 0) detail->binding += ", joint " + std::to_string(joint + 1);
+        }
+        detail->*field = std::max(detail->*field, value);
+    }
+
+    const Model& model_;
+    const ExcitationOptions& options_;
+    std::vector<int> columns_;
+    Data data_;
+    RegressorMatrix Y_;
+    std::array<Vector3, kMaxLimbs> q_home_{};
+    double allowed_ = 1.0;
+};
+
+/// Free Fourier coefficients (see the header) per axis: a_2..a_H, then b_3..b_H.
+int freePerAxis(int H) { return 2 * H - 3; }
+
+/// The coefficients a_k, b_k (k = 1..H) of axis `axis` from the free ones, in the axis's unit
+/// (theta: rad; x, y: the model's length scale), tied so that q(0) = home, dq(0) = ddq(0) = 0.
+void coefficients(const Eigen::VectorXd& z, int axis, int H, double unit, std::vector<double>& a,
+                  std::vector<double>& b) {
+    const int F = freePerAxis(H);
+    a.assign(at(H + 1), 0.0);
+    b.assign(at(H + 1), 0.0);
+    double ka = 0.0, s0 = 0.0, s2 = 0.0;
+    for (int k = 2; k <= H; ++k) {
+        a[at(k)] = unit * z(axis * F + k - 2);
+        ka += k * a[at(k)];
+    }
+    for (int k = 3; k <= H; ++k) {
+        b[at(k)] = unit * z(axis * F + (H - 1) + k - 3);
+        s0 += b[at(k)];
+        s2 += k * k * b[at(k)];
+    }
+    a[1] = -ka;              // sum k a_k = 0
+    b[2] = (s0 - s2) / 3.0;  // b_1 + b_2 = -s0, b_1 + 4 b_2 = -s2
+    b[1] = -s0 - b[2];
+}
+
+/// The shape z as a trajectory at scale s: offsets at home, harmonics k f0 as a sin(. + phase).
+PoseTrajectory trajectoryOf(const Model& model, const Eigen::VectorXd& z, double s, const ExcitationOptions& options,
+                            double duration) {
+    PoseTrajectory trajectory;
+    trajectory.name = "excitation";
+    trajectory.duration = duration;
+    AxisMotion* axes[3] = {&trajectory.theta, &trajectory.x, &trajectory.y};
+    std::vector<double> a, b;
+    for (int axis = 0; axis < 3; ++axis) {
+        coefficients(z, axis, options.harmonics, axis == 0 ? 1.0 : model.length_scale, a, b);
+        axes[axis]->offset = model.home(axis);
+        for (int k = 1; k <= options.harmonics; ++k) {
+            const double amplitude = s * std::hypot(a[at(k)], b[at(k)]);
+            if (amplitude == 0.0) continue;
+            // a sin x + b cos x = sqrt(a^2 + b^2) sin(x + atan2(b, a))
+            axes[axis]->harmonics.push_back({amplitude, k * options.base_frequency, std::atan2(b[at(k)], a[at(k)])});
+        }
+    }
+    return trajectory;
+}
+
+/// Peak excursion of a unit motion in the axes' units (rad, length scale).
+double peakExcursion(const Model& model, const UnitMotion& m) {
+    double peak = 0.0;
+    for (const Twist& p : m.p)
+        peak =
+            std::max({peak, std::abs(p(0)), std::abs(p(1)) / model.length_scale, std::abs(p(2)) / model.length_scale});
+    return peak;
+}
+
+void checkOptions(const ExcitationOptions& o, double duration) {
+    const auto require = [](bool ok, const std::string& what) {
+        if (!ok) throw Error("excitation: " + what);
+    };
+    require(o.base_frequency >= 1e-3 && o.base_frequency <= 1e3, "the base frequency must be in [0.001, 1000] Hz");
+    require(o.harmonics >= 3 && o.harmonics <= 20, "the number of harmonics per axis must be in [3, 20]");
+    require(o.margin >= 0.0 && o.margin <= 0.9, "the margin must be in [0, 0.9]");
+    require(o.max_condition > 1.0 && o.max_condition <= 1e8, "the largest condition number must be in (1, 1e8]");
+    require(o.samples == 0 || (o.samples >= 8 * o.harmonics && o.samples <= 100000),
+            "the design samples per period must be 0 (automatic) or in [8 harmonics, 100000]");
+    require(o.check_samples >= 8 * o.harmonics && o.check_samples <= 1000000,
+            "the check samples per period must be in [8 harmonics, 1000000]");
+    require(o.evaluations >= 1 && o.evaluations <= 1000000, "the evaluations must be in [1, 1000000]");
+    require(o.random_shapes >= 1 && o.random_shapes <= o.evaluations,
+            "the random shapes must be at least 1 and at most the evaluations");
+    require(std::isfinite(duration) && duration > 0.0 && duration <= 1e6, "the duration must be in (0, 1e6] s");
+    const double periods = duration * o.base_frequency;
+    require(periods >= 1.0 - 1e-9 && std::abs(periods - std::round(periods)) <= 1e-6 * std::max(1.0, periods),
+            "the duration " + formatted("%.9g", duration) + " s is not a whole number of base periods (" +
+                formatted("%.9g", 1.0 / o.base_frequency) + " s at " + formatted("%.9g", o.base_frequency) + " Hz)");
+}
+
+/// Nelder-Mead on f from x0 (standard coefficients), at most `budget` evaluations.
+template <typename F>
+std::pair<Eigen::VectorXd, double> nelderMead(F&& f, const Eigen::VectorXd& x0, double f0, double step, int budget,
+                                              int& used) {
+    const auto d = x0.size();
+    std::vector<Eigen::VectorXd> x(at(static_cast<int>(d) + 1), x0);
+    std::vector<double> fx(x.size(), f0);
+    for (Eigen::Index i = 0; i < d && used < budget; ++i) {
+        x[at(static_cast<int>(i) + 1)](i) += step;
+        fx[at(static_cast<int>(i) + 1)] = f(x[at(static_cast<int>(i) + 1)]);
+        ++used;
+    }
+    std::vector<std::size_t> order(x.size());
+    while (used < budget) {
+        for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+        std::sort(order.begin(), order.end(), [&](std::size_t l, std::size_t r) { return fx[l] < fx[r]; });
+        const std::size_t best = order.front(), worst = order.back(), second = order[order.size() - 2];
+        Eigen::VectorXd centroid = Eigen::VectorXd::Zero(d);
+        for (std::size_t i = 0; i + 1 < order.size(); ++i) centroid += x[order[i]];
+        centroid /= static_cast<double>(d);
+        const Eigen::VectorXd reflected = centroid + (centroid - x[worst]);
+        const double fr = f(reflected);
+        ++used;
+        if (fr < fx[best] && used < budget) {
+            const Eigen::VectorXd expanded = centroid + 2.0 * (centroid - x[worst]);
+            const double fe = f(expanded);
+            ++used;
+            if (fe < fr) {
+                x[worst] = expanded;
+                fx[worst] = fe;
+            } else {
+                x[worst] = reflected;
+                fx[worst] = fr;
+            }
+        } else if (fr < fx[second]) {
+            x[worst] = reflected;
+            fx[worst] = fr;
+        } else if (used < budget) {
+            const Eigen::VectorXd contracted = centroid + 0.5 * (x[worst] - centroid);
+            const double fc = f(contracted);
+            ++used;
+            if (fc < fx[worst]) {
+                x[worst] = contracted;
+                fx[worst] = fc;
+            } else {
+                // shrink towards the best
+                for (std::size_t i = 0; i < x.size() && used < budget; ++i) {
+                    if (i == best) continue;
+                    x[i] = x[best] + 0.5 * (x[i] - x[best]);
+                    fx[i] = f(x[i]);
+                    ++used;
+                }
+            }
+        }
+    }
+    const auto best = static_cast<std::size_t>(std::min_element(fx.begin(), fx.end()) - fx.begin());
+    return {x[best], fx[best]};
+}
+
+}  // namespace
+
+std::vector<int> excitedColumns(const Model& model, const ExcitationOptions& options) {
+    std::vector<int> columns;
+    if (options.parameters == ExcitedParameters::base) {
+        return baseParameters(model).independent;
+    }
+    const int platform = bodyParameterIndex(model.platformBody());
+    columns.reserve(static_cast<std::size_t>(kBodyParameters) + 2 * static_cast<std::size_t>(model.actuators));
+    for (int c = 0; c < kBodyParameters; ++c) columns.push_back(platform + c);
+    if (options.friction) {
+        for (int a = 0; a < model.actuators; ++a) {
+            const int index = jointParameterIndex(model, model.actuator_limb[at(a)], model.actuator_joint[at(a)]);
+            columns.push_back(index);
+            columns.push_back(index + 1);
+        }
+    }
+    return columns;
+}
+
+ExcitationAssessment assessExcitation(const Model& model, const PoseTrajectory& trajectory, double period, int samples,
+                                      const ExcitationOptions& options) {
+    if (!(period > 0.0 && std::isfinite(period)) || samples < 1 || samples > 10000000)
+        throw Error("excitation: the period must be positive and the samples in [1, 1e7]");
+    Judge judge(model, options, excitedColumns(model, options));
+    const UnitMotion m = sampleTrajectory(model, trajectory, period, samples);
+    ExcitationAssessment result;
+    const double worst = judge.use(m, 1.0, false, &result);
+    result.feasible = worst <= 1.0;
+    if (!result.feasible && result.failure.empty()) {
+        result.failure = result.use.binding + " at " + formatted("%.3g", 100.0 * worst) + " % of its allowed value";
+    }
+    result.condition = std::isfinite(worst) ? judge.condition(m, 1.0) : kInfeasible;
+    return result;
+}
+
+ExcitationResult designExcitation(const Model& model, double duration, const ExcitationOptions& options) {
+    checkOptions(options, duration);
+    const int H = options.harmonics;
+    const int samples = options.samples > 0 ? options.samples : 25 * H;
+    const double period = 1.0 / options.base_frequency;
+    Judge judge(model, options, excitedColumns(model, options));
+    {
+        // the robot at rest at home must be within the limits
+        ExcitationAssessment home;
+        UnitMotion rest{{Twist::Zero()}, {Twist::Zero()}, {Twist::Zero()}};
+        if (!(judge.use(rest, 0.0, false, &home) <= 1.0)) {
+            throw Error("excitation: at rest at home the robot already uses " +
+                        formatted("%.3g", 100.0 * home.use.worst()) + " % of the allowed " + home.use.binding +
+                        (home.failure.empty() ? "" : " (" + home.failure + ")"));
+        }
+    }
+    const auto d = static_cast<Eigen::Index>(3) * freePerAxis(H);
+    // objective: log of the condition number at the largest scale within the limits
+    double best_scale = 0.0;
+    const auto objective = [&](const Eigen::VectorXd& z, double* scale, int check) {
+        const PoseTrajectory unit = trajectoryOf(model, z, 1.0, options, duration);
+        const UnitMotion m = sampleTrajectory(model, unit, period, check);
+        const double peak = peakExcursion(model, m);
+        if (!(peak > 0.0)) return kInfeasible;
+        const double s = judge.largestScale(m, 1.0 / peak);
+        if (scale) *scale = s;
+        if (!(s > 0.0)) return kInfeasible;
+        return std::log(judge.condition(m, s));
+    };
+    const auto f = [&](const Eigen::VectorXd& z) { return objective(z, nullptr, samples); };
+    std::mt19937 rng(options.seed);
+    std::uniform_real_distribution<double> unit(-1.0, 1.0);
+    Eigen::VectorXd best_z(d);
+    double best_f = kInfeasible;
+    int used = 0;
+    for (; used < options.random_shapes; ++used) {
+        Eigen::VectorXd z(d);
+        for (Eigen::Index i = 0; i < d; ++i) z(i) = unit(rng);
+        const double fz = f(z);
+        if (fz < best_f || used == 0) {
+            best_f = fz;
+            best_z = z;
+        }
+    }
+    if (used < options.evaluations && std::isfinite(best_f)) {
+        auto [z, fz] = nelderMead(f, best_z, best_f, 0.25, options.evaluations, used);
+        if (fz < best_f) {
+            best_z = z;
+            best_f = fz;
+        }
+    }
+    if (!std::isfinite(best_f)) {
+        throw Error("excitation: none of the " + std::to_string(used) +
+                    " shapes tried stays within the limits with a usable regressor (raise the evaluations, "
+                    "lower the base frequency or the margin)");
+    }
+    // the final scale from the finely sampled period (peaks between the design samples)
+    (void)objective(best_z, &best_scale, options.check_samples);
+    if (!(best_scale > 0.0)) throw Error("excitation: the designed shape leaves the limits between design samples");
+    ExcitationResult result;
+    result.trajectory = trajectoryOf(model, best_z, best_scale * (1.0 - 1e-6), options, duration);
+    result.assessment = assessExcitation(model, result.trajectory, period, options.check_samples, options);
+    result.evaluations = used;
+    return result;
+}
+
+PoseTrajectory aboutHome(const Model& model, PoseTrajectory trajectory) {
+    trajectory.theta.offset += model.home(0);
+    trajectory.x.offset += model.home(1);
+    trajectory.y.offset += model.home(2);
+    return trajectory;
+}
+
+}  // namespace nocdyn
