@@ -48,8 +48,8 @@ void directKinematicsBench(benchmark::State& state, const std::string& robot) {
     AssemblyModes modes;
     Pose p = poses.back();
     // the cycle wraps around continuously: the tracker enters it from its last samples
-    PoseTracker tracker(poses[poses.size() - 3]);
-    for (std::size_t k = poses.size() - 2; k < poses.size(); ++k) (void)tracker.step(model, data, u[k]);
+    PoseTracker tracker(poses[poses.size() - 4]);
+    for (std::size_t k = poses.size() - 3; k < poses.size(); ++k) (void)tracker.step(model, data, u[k]);
     long modes_found = 0;
     for (auto _ : state) {
         for (const ActuatorVector& uk : u) {

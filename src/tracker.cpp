@@ -212,10 +212,17 @@ void PoseTracker::reset(const Pose& p) {
 }
 
 Pose PoseTracker::prediction() const {
-    // the polynomial through the last poses at equal steps, evaluated one step ahead
-    if (known_ >= 3) return 3.0 * (last_[0] - last_[1]) + last_[2];
-    if (known_ == 2) return 2.0 * last_[0] - last_[1];
-    return last_[0];
+    // the polynomial through the last poses at equal steps, one step ahead (finite differences)
+    switch (known_) {
+        case 1:
+            return last_[0];
+        case 2:
+            return 2.0 * last_[0] - last_[1];
+        case 3:
+            return 3.0 * (last_[0] - last_[1]) + last_[2];
+        default:
+            return 4.0 * (last_[0] + last_[2]) - 6.0 * last_[1] - last_[3];
+    }
 }
 
 Status PoseTracker::step(const Model& model, Data& data, const ActuatorVector& u, const TrackerOptions& options,
@@ -237,10 +244,9 @@ Status PoseTracker::step(const Model& model, Data& data, const ActuatorVector& u
         known_ = 1;
         return status;
     }
-    last_[2] = last_[1];
-    last_[1] = last_[0];
+    for (std::size_t i = last_.size() - 1; i > 0; --i) last_[i] = last_[i - 1];
     last_[0] = p;
-    known_ = std::min(known_ + 1, 3);
+    known_ = std::min(known_ + 1, static_cast<int>(last_.size()));
     return {};
 }
 

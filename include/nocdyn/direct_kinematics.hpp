@@ -135,12 +135,13 @@ struct TrackerReport {
 Status trackPose(const Model& model, Data& data, const ActuatorVector& u, Pose& p, const TrackerOptions& options = {},
                  TrackerReport* report = nullptr);
 
-/// The tracker along a motion sampled at a constant rate: it remembers the last three poses it
-/// found and starts Newton from the quadratic through them one sample ahead,
-/// p_k ~ 3 (p_{k-1} - p_{k-2}) + p_{k-3} (error about h^3 |d3p/dt3|, against h |dp/dt| from the
-/// previous pose alone), so that one Newton step usually reaches round-off. Uneven samples only
-/// cost more steps. When Newton from the prediction fails, it retries from the previous pose
-/// (as trackPose) before reporting. Allocation-free.
+/// The tracker along a motion sampled at a constant rate: it remembers the last four poses it
+/// found and starts Newton from the cubic through them one sample ahead,
+/// p_k ~ 4 p_{k-1} - 6 p_{k-2} + 4 p_{k-3} - p_{k-4} (error about h^4 |d4p/dt4|, 2e-9 rad at
+/// 10 kHz on the benchmark's 30 Hz harmonic, against h |dp/dt| from the previous pose alone),
+/// so that one Newton step reaches round-off. Uneven samples, noisy u or a restart (fewer poses
+/// known: a lower degree) only cost more steps. When Newton from the prediction fails, it
+/// retries from the previous pose (as trackPose) before reporting. Allocation-free.
 class PoseTracker {
 public:
     explicit PoseTracker(const Pose& start = Pose::Zero()) { reset(start); }
@@ -156,7 +157,7 @@ public:
     [[nodiscard]] Pose prediction() const;
 
 private:
-    std::array<Pose, 3> last_{};  ///< the last poses found, newest first
+    std::array<Pose, 4> last_{};  ///< the last poses found, newest first
     int known_ = 1;               ///< how many of them belong to the current motion
 };
 
