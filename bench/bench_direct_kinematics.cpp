@@ -1,8 +1,10 @@
 // Direct kinematics of the general model for every example robot:
 // BM_DirectKinematics/<robot>/all_modes: every assembly mode for the actuator values of one
 // sample of the benchmark cycle (fixture.hpp), the cycle's 1000 samples in turn;
-// BM_DirectKinematics/<robot>/tracker: one tracker call per sample, from the previous pose
-// along the cycle (10 kHz). Both report `per_call`.
+// BM_DirectKinematics/<robot>/tracker: one PoseTracker step per sample along the cycle
+// (10 kHz), Newton from the poses extrapolated along the motion;
+// BM_DirectKinematics/<robot>/tracker_from_previous: one trackPose call per sample, Newton from
+// the previous pose. All report `per_call`.
 #include <benchmark/benchmark.h>
 
 #include <string>
@@ -31,7 +33,9 @@ void perCall(benchmark::State& state, std::size_t calls) {
         static_cast<double>(calls), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-template <bool kTracker>
+enum class Solver { all_modes, tracker, tracker_from_previous };
+
+template <Solver kSolver>
 void directKinematicsBench(benchmark::State& state, const std::string& robot) {
     const Model model(io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
     std::vector<ActuatorVector> u;
@@ -43,10 +47,17 @@ void directKinematicsBench(benchmark::State& state, const std::string& robot) {
     Data data(model);
     AssemblyModes modes;
     Pose p = poses.back();
+    // the cycle wraps around continuously: the tracker enters it from its last samples
+    PoseTracker tracker(poses[poses.size() - 4]);
+    for (std::size_t k = poses.size() - 3; k < poses.size(); ++k) (void)tracker.step(model, data, u[k]);
     long modes_found = 0;
     for (auto _ : state) {
         for (const ActuatorVector& uk : u) {
-            if constexpr (kTracker) {
+            if constexpr (kSolver == Solver::tracker) {
+                const Status status = tracker.step(model, data, uk);
+                benchmark::DoNotOptimize(status);
+                benchmark::DoNotOptimize(tracker.pose().data());
+            } else if constexpr (kSolver == Solver::tracker_from_previous) {
                 const Status status = trackPose(model, data, uk, p);
                 benchmark::DoNotOptimize(status);
                 benchmark::DoNotOptimize(p.data());
@@ -60,7 +71,7 @@ void directKinematicsBench(benchmark::State& state, const std::string& robot) {
         benchmark::ClobberMemory();
     }
     perCall(state, u.size());
-    if (!kTracker && state.iterations() > 0) {
+    if (kSolver == Solver::all_modes && state.iterations() > 0) {
         state.counters["modes"] = static_cast<double>(modes_found) /
                                   (static_cast<double>(state.iterations()) * static_cast<double>(u.size()));
     }
@@ -68,10 +79,15 @@ void directKinematicsBench(benchmark::State& state, const std::string& robot) {
 
 [[maybe_unused]] const bool registered = [] {
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
-        benchmark::RegisterBenchmark(("BM_DirectKinematics/" + robot + "/all_modes").c_str(),
-                                     [robot](benchmark::State& s) { directKinematicsBench<false>(s, robot); });
-        benchmark::RegisterBenchmark(("BM_DirectKinematics/" + robot + "/tracker").c_str(),
-                                     [robot](benchmark::State& s) { directKinematicsBench<true>(s, robot); });
+        benchmark::RegisterBenchmark(
+            ("BM_DirectKinematics/" + robot + "/all_modes").c_str(),
+            [robot](benchmark::State& s) { directKinematicsBench<Solver::all_modes>(s, robot); });
+        benchmark::RegisterBenchmark(
+            ("BM_DirectKinematics/" + robot + "/tracker").c_str(),
+            [robot](benchmark::State& s) { directKinematicsBench<Solver::tracker>(s, robot); });
+        benchmark::RegisterBenchmark(
+            ("BM_DirectKinematics/" + robot + "/tracker_from_previous").c_str(),
+            [robot](benchmark::State& s) { directKinematicsBench<Solver::tracker_from_previous>(s, robot); });
     }
     return true;
 }();

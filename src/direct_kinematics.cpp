@@ -1,6 +1,6 @@
-// Direct kinematics of the general model: constraints of the locked limbs, elimination to a
-// polynomial in tan(phi / 2), polishing, verification by inverse displacement on each limb's
-// branch; and the Newton tracker of the working mode (see the header).
+// Direct kinematics of the general model: constraints of the locked limbs (locked_limbs.hpp),
+// elimination to a polynomial in tan(phi / 2), polishing, verification by inverse displacement
+// on each limb's branch (see the header; the tracker is in tracker.cpp).
 #include "nocdyn/direct_kinematics.hpp"
 
 #include <algorithm>
@@ -16,169 +16,14 @@
 #include <unsupported/Eigen/Polynomials>
 
 #include "nocdyn/limb_ik.hpp"
+#include "locked_limbs.hpp"
 #include "stages.hpp"
 
 namespace nocdyn {
 
 namespace {
 
-constexpr double kPi = std::numbers::pi;
-
-using detail::Displacement;
-
-/// Angle in (-pi, pi].
-double wrapAngle(double a) {
-    a = std::remainder(a, 2.0 * kPi);
-    return a <= -kPi ? a + 2.0 * kPi : a;
-}
-
-/// g^-1: x -> Rot^T (x - t).
-Displacement inverse(const Displacement& g) {
-    const Displacement back{g.c, -g.s, Vector2::Zero()};
-    return {g.c, -g.s, -back.rotate(g.t)};
-}
-
-/// exp of joint k's home screw times q: a rotation about r_k or a translation along d_k.
-Displacement jointMotion(const LimbModel& limb, int k, double q) {
-    const auto kk = static_cast<std::size_t>(k);
-    if (limb.type[kk] == JointType::prismatic) return {1.0, 0.0, q * limb.direction[kk]};
-    Displacement g{std::cos(q), std::sin(q), Vector2::Zero()};
-    g.t = limb.point_home[kk] - g.rotate(limb.point_home[kk]);
-    return g;
-}
-
-/// k + c cos(phi) + s sin(phi).
-struct Trig {
-    double k = 0.0, c = 0.0, s = 0.0;
-    [[nodiscard]] double at(double cs, double sn) const { return k + c * cs + s * sn; }
-    [[nodiscard]] double derivative(double cs, double sn) const { return s * cs - c * sn; }
-    Trig operator-(const Trig& o) const { return {k - o.k, c - o.c, s - o.s}; }
-};
-
-/// kappa |C|^2 + a(phi) . C + b(phi) = 0 (C over the length scale), or phi = phi0.
-struct Equation {
-    bool orientation = false;
-    double phi0 = 0.0;
-    double kappa = 0.0;
-    Trig ax, ay, b;
-
-    Equation operator-(const Equation& o) const { return {false, 0.0, kappa - o.kappa, ax - o.ax, ay - o.ay, b - o.b}; }
-};
-
-/// Every locked limb gives one equation per actuated joint.
-struct Equations {
-    std::array<Equation, kMaxActuators> eq{};
-    int count = 0;
-    void add(const Equation& e) {
-        if (count < kMaxActuators) eq[static_cast<std::size_t>(count++)] = e;
-    }
-};
-
-/// Platform point P (from C, home axes) on the base line through B normal to n:
-/// n . (Rot(phi) P + C - B) = 0.
-Equation pointOnLine(const Vector2& n, const Vector2& P, const Vector2& B) {
-    return {false, 0.0, 0.0, {n.x(), 0.0, 0.0}, {n.y(), 0.0, 0.0}, {-n.dot(B), n.dot(P), cross(P, n)}};
-}
-
-/// Base point B on the platform line through P (from C, home axes) normal to m (home axes):
-/// (Rot(phi) m) . (B - C) - m . P = 0.
-Equation lineThroughPoint(const Vector2& m, const Vector2& P, const Vector2& B) {
-    return {false, 0.0, 0.0, {0.0, -m.x(), m.y()}, {0.0, -m.y(), -m.x()}, {-m.dot(P), m.dot(B), cross(m, B)}};
-}
-
-/// Platform point P at distance rho from base point B: |Rot(phi) P + C - B|^2 = rho^2.
-Equation circle(const Vector2& P, const Vector2& B, double rho) {
-    return {false,
-            0.0,
-            1.0,
-            {-2.0 * B.x(), 2.0 * P.x(), -2.0 * P.y()},
-            {-2.0 * B.y(), 2.0 * P.y(), 2.0 * P.x()},
-            {P.squaredNorm() + B.squaredNorm() - rho * rho, -2.0 * B.dot(P), -2.0 * cross(P, B)}};
-}
-
-Equation orientation(const Displacement& g) {
-    Equation e;
-    e.orientation = true;
-    e.phi0 = std::atan2(g.s, g.c);
-    return e;
-}
-
-/// The equations of every locked limb (see the header), lengths over L.
-void lockedLimbEquations(const Model& model, const ActuatorVector& u, Equations& out) {
-    const double inv_L = 1.0 / model.length_scale;
-    const Vector2 C_home = model.home.tail<2>();
-    const Vector2 ex = Vector2::UnitX(), ey = Vector2::UnitY();
-    for (int j = 0; j < model.limbs; ++j) {
-        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
-        std::array<Displacement, 3> F{};
-        std::array<int, 3> passive{};
-        int n_passive = 0;
-        for (int k = 0; k < 3; ++k) {
-            const int a = limb.actuator[static_cast<std::size_t>(k)];
-            if (a >= 0) {
-                F[static_cast<std::size_t>(k)] = jointMotion(limb, k, u(a));
-            } else {
-                passive[static_cast<std::size_t>(n_passive++)] = k;
-            }
-        }
-        // the locked motions before, between and after the passive joints
-        const auto product = [&](int from, int to) {
-            Displacement g;
-            for (int k = from; k < to; ++k) g = g.then(F[static_cast<std::size_t>(k)]);
-            return g;
-        };
-        const auto type = [&](int k) { return limb.type[static_cast<std::size_t>(k)]; };
-        const auto point = [&](int k) { return limb.point_home[static_cast<std::size_t>(k)]; };
-        const auto direction = [&](int k) { return limb.direction[static_cast<std::size_t>(k)]; };
-        const auto scaled = [&](const Vector2& x) -> Vector2 { return inv_L * x; };
-        if (n_passive == 3) continue;
-        if (n_passive == 0) {
-            // D = F_1 F_2 F_3: the orientation and C = D(C_home)
-            const Displacement L = product(0, 3);
-            out.add(orientation(L));
-            out.add(pointOnLine(ex, Vector2::Zero(), scaled(L.apply(C_home))));
-            out.add(pointOnLine(ey, Vector2::Zero(), scaled(L.apply(C_home))));
-            continue;
-        }
-        if (n_passive == 1) {
-            // D = Lf exp(s_a q) Rf
-            const int a = passive[0];
-            const Displacement Lf = product(0, a), Rf = product(a + 1, 3);
-            if (type(a) == JointType::revolute) {
-                // the platform point on the joint's axis stays on its base position Lf(r_a)
-                const Vector2 P = scaled(inverse(Rf).apply(point(a)) - C_home);
-                const Vector2 B = scaled(Lf.apply(point(a)));
-                out.add(pointOnLine(ex, P, B));
-                out.add(pointOnLine(ey, P, B));
-            } else {
-                // a translation along Rot(Lf) d_a: the orientation of Lf Rf, C_home on a line
-                const Displacement LR = Lf.then(Rf);
-                out.add(orientation(LR));
-                out.add(pointOnLine(perp(Lf.rotate(direction(a))), Vector2::Zero(), scaled(LR.apply(C_home))));
-            }
-            continue;
-        }
-        // two passive joints a < b: D = Lf exp(s_a q_a) exp(s_b' q_b) Rt, s_b' = Mf s_b
-        const int a = passive[0], b = passive[1];
-        const Displacement Lf = product(0, a), Mf = product(a + 1, b), Rt = Mf.then(product(b + 1, 3));
-        const Displacement Rt_inv = inverse(Rt);
-        const bool ra = type(a) == JointType::revolute, rb = type(b) == JointType::revolute;
-        if (ra && rb) {
-            const Vector2 beta = Mf.apply(point(b));
-            out.add(circle(scaled(Rt_inv.apply(beta) - C_home), scaled(Lf.apply(point(a))),
-                           inv_L * (beta - point(a)).norm()));
-        } else if (!ra && rb) {
-            const Vector2 beta = Mf.apply(point(b));
-            out.add(pointOnLine(perp(Lf.rotate(direction(a))), scaled(Rt_inv.apply(beta) - C_home),
-                                scaled(Lf.apply(beta))));
-        } else if (ra && !rb) {
-            const Vector2 e = Rt_inv.rotate(Mf.rotate(direction(b)));
-            out.add(lineThroughPoint(perp(e), scaled(Rt_inv.apply(point(a)) - C_home), scaled(Lf.apply(point(a)))));
-        } else {
-            out.add(orientation(Lf.then(Rt)));
-        }
-    }
-}
+using namespace detail::locked;
 
 /// Polynomial in t, ascending powers, degree <= 10.
 struct Poly {
@@ -626,74 +471,6 @@ Status directKinematics(const Model& model, Data& data, const ActuatorVector& u,
     std::sort(modes.mode.begin(), modes.mode.begin() + modes.count,
               [](const AssemblyMode& a, const AssemblyMode& b) { return a.p(0) < b.p(0); });
     return {};
-}
-
-namespace {
-
-/// Why the tracker found no pose, from the velocity stage at its last iterate: a singular
-/// limb or actuation, or next to a limb singularity (the edge of the workspace, where u turns
-/// back), or otherwise a lost mode.
-Status notTracked(const Model& model, Data& data, const Pose& p, int worst, double residual) {
-    if (const Status status = inverseDisplacement(model, data, p); !status) return status;
-    if (const Status status = velocityFromPlatformTwist(model, data, Twist::Zero()); !status) return status;
-    int limb = -1;
-    double largest = 0.1 * model.max_condition;
-    for (int j = 0; j < model.limbs; ++j) {
-        if (data.limb[static_cast<std::size_t>(j)].cond > largest) {
-            largest = data.limb[static_cast<std::size_t>(j)].cond;
-            limb = j;
-        }
-    }
-    if (limb >= 0) return {StatusCode::workspace_edge, limb, largest};
-    return {StatusCode::assembly_mode_lost, worst, residual};
-}
-
-}  // namespace
-
-Status trackPose(const Model& model, Data& data, const ActuatorVector& u, Pose& p, const TrackerOptions& options,
-                 TrackerReport* report) {
-    TrackerReport local;
-    TrackerReport& out = report != nullptr ? *report : local;
-    out = {};
-    const int n = model.actuators;
-    for (int a = 0; a < n; ++a) {
-        if (!std::isfinite(u(a)))
-            return {StatusCode::not_finite, model.actuator_limb[static_cast<std::size_t>(a)], u(a)};
-    }
-    for (int i = 0; i < 3; ++i) {
-        if (!std::isfinite(p(i))) return {StatusCode::not_finite, -1, p(i)};
-    }
-    // Newton on the locked limbs' equations (F(p) = 0 exactly where u(p) = u on some branches)
-    Equations eqs;
-    lockedLimbEquations(model, u, eqs);
-    const double L = model.length_scale;
-    Vector3 z(p(0) - model.home(0), p(1) / L, p(2) / L);
-    const NewtonResult newton_result = newton(eqs, z, options.max_iterations, options.max_step);
-    out.iterations = newton_result.iterations;
-    const Pose next(model.home(0) + z(0), L * z(1), L * z(2));
-    if (newton_result.step_too_large || newton_result.singular || !next.allFinite()) {
-        return notTracked(model, data, p, -1, newton_result.residual);
-    }
-    p = next;
-    // inverse displacement on the home branches: the pose is the working mode's if it gives u back
-    // (the angles of passive R joints are left to their cos and sin, all the later stages use)
-    if (const Status status = detail::positionStage(model, data, p, false); !status) return status;
-    int worst = -1;
-    out.residual = 0.0;
-    for (int a = 0; a < n; ++a) {
-        const auto aa = static_cast<std::size_t>(a);
-        const LimbModel& limb = model.limb[static_cast<std::size_t>(model.actuator_limb[aa])];
-        const auto k = static_cast<std::size_t>(model.actuator_joint[aa]);
-        double d = data.u(a) - u(a);
-        if (limb.type[k] == JointType::revolute) d = wrapAngle(d);
-        if (const double e = std::abs(d) * limb.inv_joint_scale[k]; worst < 0 || e > out.residual) {
-            out.residual = e;
-            worst = model.actuator_limb[aa];
-        }
-    }
-    const double accepted = model.coordinates == Coordinates::platform ? options.max_residual : options.tolerance;
-    if (out.residual <= accepted) return {};
-    return notTracked(model, data, p, worst, out.residual);
 }
 
 }  // namespace nocdyn

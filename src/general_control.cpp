@@ -11,6 +11,7 @@
 
 #include <Eigen/Cholesky>
 
+#include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
@@ -37,6 +38,49 @@ void minimumNormForces(const Model& model, const Data& data, const Vector3& Q, A
         const Vector3 row = data.A.row(a).transpose();
         tau(a) = (row(0) + cy * row(1) - cx * row(2)) * lambda(0) + row(1) * lambda(1) + row(2) * lambda(2);
     }
+}
+
+/// The pose and its rate as a robot without a pose sensor measures them: u and du of the
+/// plant's encoders (du from its pose rate at its pose, as a tachometer gives it) plus noise,
+/// the pose by the tracker, dp/dt from A_p(p) dp/dt = du by the normal equations. Throws
+/// nocdyn::Error "t = ... s: ..." when the tracker loses the mode.
+void measureThroughEncoders(const Model& model, Data& sensor, PoseTracker& tracker,
+                            const TrackerOptions& tracker_options, const RobotPlant& plant, const Pose& p,
+                            const Twist& dp, const PoseLoopOptions& options, std::mt19937& rng,
+                            std::normal_distribution<double>& normal, double t, Pose& p_measured, Twist& dp_measured,
+                            int& max_iterations) {
+    const int n = model.actuators;
+    const auto fail = [&](const Status& status, const char* what) {
+        std::ostringstream out;
+        out.precision(9);
+        out << "t = " << t << " s: " << what << ": " << describe(status, model);
+        throw Error(out.str());
+    };
+    // the encoder rates: du = A xi_P at the plant's pose
+    if (const Status status = inverseDisplacement(model, sensor, p); !status) fail(status, "plant pose");
+    if (const Status status = velocityFromPlatformTwist(model, sensor, dp); !status) fail(status, "plant pose");
+    ActuatorVector du = sensor.du;
+    ActuatorVector u = plant.u();
+    for (int a = 0; a < n; ++a) {
+        if (options.noise_u > 0.0) u(a) += options.noise_u * normal(rng);
+        if (options.noise_du > 0.0) du(a) += options.noise_du * normal(rng);
+    }
+    TrackerReport report;
+    if (const Status status = tracker.step(model, sensor, u, tracker_options, &report); !status) {
+        fail(status, "direct kinematics of the encoders (tracker)");
+    }
+    max_iterations = std::max(max_iterations, report.iterations);
+    p_measured = tracker.pose();
+    // A_p = A S(c) (du = A xi_P, xi_P = S(c) dp/dt); A_p^T A_p dp/dt = A_p^T du
+    if (const Status status = velocityFromPlatformTwist(model, sensor, Twist::Zero()); !status) {
+        fail(status, "measured pose");
+    }
+    const Vector2 c = p_measured.tail<2>();
+    Matrix3 S;
+    S << 1.0, 0.0, 0.0, c.y(), 1.0, 0.0, -c.x(), 0.0, 1.0;
+    const ActuationMatrix A_p = sensor.A * S;
+    const Matrix3 normal_matrix = A_p.transpose() * A_p;
+    dp_measured = normal_matrix.ldlt().solve(A_p.transpose() * du);
 }
 
 }  // namespace
@@ -177,6 +221,21 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
     std::normal_distribution<double> normal(0.0, 1.0);
     const Vector3 noise(options.noise_angle, options.noise_position, options.noise_position);
     ActuatorVector tau(n);
+    // encoders: the tracker from the reference's start (the working mode the plant starts in)
+    Data sensor(model);
+    PoseTracker tracker(start != nullptr ? *start : reference.p);
+    TrackerOptions tracker_options;
+    if (options.encoders) {
+        // redundant robots: noisy encoders are inconsistent by about noise_u (scaled)
+        double inv_scale = 0.0;
+        for (int a = 0; a < n; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            inv_scale = std::max(inv_scale, model.limb[static_cast<std::size_t>(model.actuator_limb[aa])]
+                                                .inv_joint_scale[static_cast<std::size_t>(model.actuator_joint[aa])]);
+        }
+        tracker_options.max_residual = std::max(tracker_options.max_residual, 10.0 * options.noise_u * inv_scale);
+    }
+    Vector3 measurement_sq = Vector3::Zero();
     Pose next_p, next_dp, next_ddp;
     for (const double t : times) {
         if (const Status status = poseReference(model, data, trajectory, t, reference); !status) {
@@ -191,10 +250,18 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
         if (!p.allFinite() || !dp.allFinite()) fail(t, {StatusCode::not_finite, -1, 0.0}, "plant state");
         Pose p_measured = p;
         Twist dp_measured = dp;
-        for (int i = 0; i < 3; ++i) {
-            if (noise(i) > 0.0) p_measured(i) += noise(i) * normal(rng);
-            if (options.noise_rate > 0.0) dp_measured(i) += options.noise_rate * normal(rng);
+        if (options.encoders) {
+            measureThroughEncoders(model, sensor, tracker, tracker_options, plant, p, dp, options, rng, normal, t,
+                                   p_measured, dp_measured, result.tracker_max_iterations);
+        } else {
+            for (int i = 0; i < 3; ++i) {
+                if (noise(i) > 0.0) p_measured(i) += noise(i) * normal(rng);
+                if (options.noise_rate > 0.0) dp_measured(i) += options.noise_rate * normal(rng);
+            }
         }
+        const Vector3 e_measured = (p_measured - p).cwiseAbs();
+        measurement_sq += e_measured.cwiseAbs2();
+        result.measurement_peak_error = result.measurement_peak_error.cwiseMax(e_measured);
         if (const Status status = controller.compute(p_measured, dp_measured, reference, tau); !status) {
             fail(t, status, "controller");
         }
@@ -229,6 +296,7 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
     }
     const double count = static_cast<double>(result.t.size());
     result.pose_rms_error = (result.pose_rms_error / count).cwiseSqrt();
+    result.measurement_rms_error = (measurement_sq / count).cwiseSqrt();
     for (double& e : result.rms_error) e = std::sqrt(e / count);
     return result;
 }

@@ -396,6 +396,82 @@ TEST(GeneralDirectKinematics, TrackerFollowsThePaperTrajectory) {
     for (const std::string& name : io::exampleRobotNames()) trackTrajectory(name);
 }
 
+/// The pose of trajectory 1 (about home) at t.
+Pose trajectoryPose(const Model& model, double t) {
+    Pose p, dp, ddp;
+    paperTrajectory1().evaluate(t, p, dp, ddp);
+    return p + model.home;
+}
+
+TEST(GeneralDirectKinematics, TrackerStopsAfterARoundOffStepWithoutAnotherEvaluation) {
+    // one Newton step of 1e-10 from the exact pose leaves round-off: the tracker verifies it by
+    // inverse displacement without evaluating the equations again (one step, not two)
+    for (const std::string& name : io::exampleRobotNames()) {
+        const Model model(io::exampleRobot(name));
+        Data data(model);
+        const Pose target = trajectoryPose(model, 0.013);
+        const ActuatorVector u = actuatorsAt(model, target);
+        Pose p = target + Pose(1e-10, -1e-10 * model.length_scale, 1e-10 * model.length_scale);
+        TrackerReport report;
+        ASSERT_TRUE(trackPose(model, data, u, p, {}, &report).ok()) << name;
+        EXPECT_EQ(report.iterations, 1) << name;
+        EXPECT_LE(report.residual, 1e-13) << name;
+        EXPECT_LE(std::abs(p(0) - target(0)), 1e-14) << name;
+        EXPECT_LE((p.tail<2>() - target.tail<2>()).cwiseAbs().maxCoeff(), 1e-14 * model.length_scale) << name;
+        // from 1e-3 away it iterates to the same pose
+        p = target + Pose(1e-3, 1e-3 * model.length_scale, 0.0);
+        ASSERT_TRUE(trackPose(model, data, u, p, {}, &report).ok()) << name;
+        EXPECT_GE(report.iterations, 2) << name;
+        EXPECT_LE((p - target).cwiseAbs().maxCoeff(), 1e-14 * std::max(1.0, model.length_scale)) << name;
+    }
+}
+
+TEST(GeneralDirectKinematics, PoseTrackerTakesOneNewtonStepPerSampleAt10kHz) {
+    // the extrapolated start is within h^4 |d4p/dt4| ~ 1e-11 of the pose: one step each, to
+    // round-off, where trackPose from the previous pose takes two
+    for (const std::string& name : io::exampleRobotNames()) {
+        const Model model(io::exampleRobot(name));
+        Data data(model);
+        PoseTracker tracker(trajectoryPose(model, 0.0));
+        Pose previous = tracker.pose();
+        double worst = 0.0;
+        int most = 0, most_from_previous = 0;
+        for (int k = 1; k <= 200; ++k) {
+            const Pose target = trajectoryPose(model, 1e-4 * k);
+            const ActuatorVector u = actuatorsAt(model, target);
+            TrackerReport report;
+            ASSERT_TRUE(tracker.step(model, data, u, {}, &report).ok()) << name << " k = " << k;
+            if (k > 4) most = std::max(most, report.iterations);
+            worst = std::max(worst, (tracker.pose() - target).cwiseAbs().maxCoeff());
+            ASSERT_TRUE(trackPose(model, data, u, previous, {}, &report).ok()) << name << " k = " << k;
+            most_from_previous = std::max(most_from_previous, report.iterations);
+        }
+        EXPECT_EQ(most, 1) << name;
+        EXPECT_GE(most_from_previous, 2) << name;
+        EXPECT_LE(worst, 1e-13) << name;
+    }
+}
+
+TEST(GeneralDirectKinematics, PoseTrackerRecoversFromAJumpAndSaysWhenTheModeIsLost) {
+    const Model model(io::exampleRobot("3-rrr"));
+    Data data(model);
+    PoseTracker tracker(trajectoryPose(model, 0.0));
+    for (int k = 1; k <= 5; ++k)
+        ASSERT_TRUE(tracker.step(model, data, actuatorsAt(model, trajectoryPose(model, 1e-4 * k))).ok());
+    // u jumps 10 ms ahead, far from the extrapolation: still tracked
+    const Pose ahead = trajectoryPose(model, 0.0105);
+    ASSERT_TRUE(tracker.step(model, data, actuatorsAt(model, ahead)).ok());
+    EXPECT_LE((tracker.pose() - ahead).cwiseAbs().maxCoeff(), 1e-13);
+    // far beyond the workspace: not tracked, the last pose kept
+    ActuatorVector u = actuatorsAt(model, ahead);
+    u(0) += 1.0;
+    const Status lost = tracker.step(model, data, u);
+    EXPECT_FALSE(lost.ok());
+    EXPECT_NE(lost.code, StatusCode::not_finite);
+    EXPECT_LE((tracker.pose() - ahead).cwiseAbs().maxCoeff(), 1e-13);
+    EXPECT_EQ(tracker.prediction(), tracker.pose()) << "the motion is forgotten after a failure";
+}
+
 TEST(GeneralDirectKinematics, TrackerReportsWhatStopsIt) {
     const Model model(io::exampleRobot("3-rpr"));
     Data data(model);
@@ -423,8 +499,10 @@ TEST(GeneralDirectKinematics, AllocationFree) {
         const long before = allocationCount();
         const Status all = directKinematics(model, data, u, modes);
         const Status tracked = trackPose(model, data, u, p);
+        PoseTracker tracker(model.home);
+        const Status stepped = tracker.step(model, data, u);
         const long after = allocationCount();
-        EXPECT_TRUE(all.ok() && tracked.ok()) << name;
+        EXPECT_TRUE(all.ok() && tracked.ok() && stepped.ok()) << name;
         if (kCountsMalloc) {
             EXPECT_EQ(after - before, 0) << name;
         }

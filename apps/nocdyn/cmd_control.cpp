@@ -36,6 +36,7 @@ struct ControlOptions {
     double noise_rate = 0.0;          ///< [m/s and rad/s]
     double noise_tau = 0.0;           ///< force measurement noise in the log [N or N m]
     std::string log;                  ///< the sensors' log t,u1..un,tau1..taun
+    std::string measure = "pose";     ///< pose (a pose sensor) or encoders (u, du and the tracker)
 };
 
 void checkDuration(const ControlOptions& options, const std::string& trajectory) {
@@ -59,12 +60,18 @@ std::unique_ptr<RobotPlant> makeRobotPlant(const std::string& name, const RobotD
 
 /// Any robot file: task-space computed torque or PD on the pose measured from the plant.
 void runGeneral(ControlOptions options) {
-    if (options.c.loop.noise_du > 0.0) {
+    const bool encoders = options.measure == "encoders";
+    if (encoders && (options.noise_pose > 0.0 || options.noise_rate > 0.0)) {
+        throw Error(
+            "--measure encoders measures u and du: use --noise-u and --noise-du, not --noise-pose and "
+            "--noise-rate");
+    }
+    if (options.c.loop.noise_du > 0.0 && !encoders) {
         throw Error(
             "--noise-du is for the 3-PRR short form; a general robot file measures the pose: use --noise-rate "
             "(--noise-u is the encoder noise of --log)");
     }
-    if (options.c.loop.noise_u > 0.0 && options.log.empty()) {
+    if (options.c.loop.noise_u > 0.0 && options.log.empty() && !encoders) {
         throw Error(
             "--noise-u on a general robot file is the encoder noise of --log (give --log); the controller "
             "measures the pose: use --noise-pose and --noise-rate");
@@ -91,6 +98,9 @@ void runGeneral(ControlOptions options) {
     loop.noise_position = options.noise_pose;
     loop.noise_rate = options.noise_rate;
     loop.seed = options.c.loop.seed;
+    loop.encoders = encoders;
+    loop.noise_u = encoders ? options.c.loop.noise_u : 0.0;
+    loop.noise_du = options.c.loop.noise_du;
     const PoseLoopResult result = runPoseLoop(controller, *plant, trajectory, loop);
     if (!options.output.empty()) writeTable(toTable(result), options.output);
     if (!options.log.empty()) {
@@ -119,6 +129,15 @@ void runGeneral(ControlOptions options) {
                     result.peak_tau[ia], revolute ? "N m" : "N", limit);
     }
     std::printf("saturated ticks: %zu of %zu\n", result.saturated_ticks, result.t.size());
+    if (encoders) {
+        std::printf(
+            "measured through the encoders and the tracker: pose error RMS x %.4g um, y %.4g um, theta %.4g urad; "
+            "peak x %.4g um, y %.4g um, theta %.4g urad; at most %d Newton steps per tick\n",
+            result.measurement_rms_error(1) * 1e6, result.measurement_rms_error(2) * 1e6,
+            result.measurement_rms_error(0) * 1e6, result.measurement_peak_error(1) * 1e6,
+            result.measurement_peak_error(2) * 1e6, result.measurement_peak_error(0) * 1e6,
+            result.tracker_max_iterations);
+    }
 }
 
 void run(ControlOptions options) {
@@ -127,9 +146,10 @@ void run(ControlOptions options) {
         return;
     }
     if (!options.payload_com.empty() || options.noise_pose > 0.0 || options.noise_rate > 0.0 ||
-        options.noise_tau > 0.0 || !options.log.empty()) {
+        options.noise_tau > 0.0 || !options.log.empty() || options.measure != "pose") {
         throw Error(
-            "--payload-com, --noise-pose, --noise-rate, --noise-tau and --log are for general robot files (convert "
+            "--payload-com, --noise-pose, --noise-rate, --noise-tau, --log and --measure are for general robot files "
+            "(convert "
             "the short form with `nocdyn convert`); the 3-PRR short form measures u (use --noise-u and --noise-du)");
     }
     const prr3::Model model(loadRobotOrDefault(options.robot, "control"));
@@ -219,15 +239,26 @@ void addControlCommand(CLI::App& app) {
         ->add_option("--noise-tau", options->noise_tau,
                      "General robot file: std. dev. of the force measurement noise in --log [N or N m]")
         ->check(finiteIn(0.0, 1e6, "N"));
+    command
+        ->add_option("--measure", options->measure,
+                     "General robot file: what the controller measures. pose: the plant's pose and rate (a pose\n"
+                     "sensor, + --noise-pose, --noise-rate); encoders: u and du (+ --noise-u, --noise-du) as a robot\n"
+                     "without a pose sensor, the pose by the direct-kinematics tracker (the working mode, from the\n"
+                     "reference's start) and dp/dt from A_p dp/dt = du (least squares when redundant)")
+        ->check(CLI::IsMember({"pose", "encoders"}))
+        ->capture_default_str();
     command->add_option("--log", options->log,
                         "General robot file: the experiment's log as the sensors see it, CSV t,u1..un,tau1..taun "
                         "(u with --noise-u, tau the applied force with --noise-tau), ready for `nocdyn identify`");
     command
         ->add_option("--noise-u", options->c.loop.noise_u,
                      "Std. dev. of the u measurement noise [m] (general robot file: the encoder noise in --log "
-                     "[m or rad])")
+                     "and, with --measure encoders, of the controller's encoders [m or rad])")
         ->check(finiteIn(0.0, 1.0, "m"));
-    command->add_option("--noise-du", options->c.loop.noise_du, "Std. dev. of the du measurement noise [m/s]")
+    command
+        ->add_option("--noise-du", options->c.loop.noise_du,
+                     "Std. dev. of the du measurement noise [m/s] (general robot file: with --measure encoders "
+                     "[m/s or rad/s])")
         ->check(finiteIn(0.0, 1e3, "m/s"));
     command->add_option("--seed", options->c.loop.seed, "Noise seed")->capture_default_str();
     command->add_flag("--no-saturation", options->no_saturation,

@@ -1,16 +1,21 @@
 // nocdyn simulate: actuator forces from a CSV file -> platform motion of any robot (forward
 // dynamics in the platform coordinates, M_p d2p/dt2 = A_p^T tau - h_p, integrated by
 // Boost.Odeint's Dormand-Prince 5(4); forward_dynamics.hpp).
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <map>
 #include <memory>
+#include <limits>
+#include <numbers>
 #include <sstream>
+#include <vector>
 
 #include <Eigen/QR>
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -31,6 +36,9 @@ struct SimulateOptions {
     double relative_tolerance = 1e-10;
     std::string interpolation = "cubic";
     bool partial = false;
+    /// Which working assembly mode of the first row's u (1-based, as forward-kinematics lists
+    /// them); 0: the one nearest home.
+    int assembly_mode = 0;
 };
 
 /// Largest accepted difference between a first row's u1..un and the u of its pose [m or rad],
@@ -71,10 +79,64 @@ Twist poseRateFromActuatorRates(const Model& model, Data& data, const ActuatorVe
     return dp;
 }
 
+/// The pose of a working assembly mode (every limb on its home branch, the branches the
+/// simulation follows) with actuator values u: the `choice`-th as forward-kinematics lists them
+/// (sorted by theta), or the one nearest home (0). Leaves the position stage there in `data`;
+/// `origin` says which mode was taken.
+Pose assemblyFromActuators(const Model& model, Data& data, const ActuatorVector& u, int choice,
+                           const std::string& where, std::string& origin) {
+    const int n = model.actuators;
+    AssemblyModes modes;
+    if (const Status status = directKinematics(model, data, u, modes); !status)
+        throw Error(where + ": " + columnList("u", n) + ": " + describe(status, model));
+    std::vector<const AssemblyMode*> working;
+    for (const AssemblyMode& mode : modes) {
+        if (mode.working) working.push_back(&mode);
+    }
+    const auto count = static_cast<int>(working.size());
+    if (count == 0) {
+        throw Error(
+            where + ": no pose with every limb on its home branch has the actuator values " + columnList("u", n) +
+            " (" + std::to_string(modes.count) +
+            " on other branches): the robot cannot start there (give the pose columns theta,x,y; forward-kinematics "
+            "--all-branches lists the others)");
+    }
+    if (choice > count) {
+        throw Error(where + ": --assembly-mode " + std::to_string(choice) + ", but " + columnList("u", n) + " give " +
+                    std::to_string(count) + " working assembly mode" + (count == 1 ? "" : "s") +
+                    " (forward-kinematics lists them)");
+    }
+    int chosen = choice - 1;
+    if (choice == 0) {
+        // nearest home: max(|theta - theta_home|, |C - C_home| / L)
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int i = 0; i < count; ++i) {
+            const Pose d = working[static_cast<std::size_t>(i)]->p - model.home;
+            const double distance = std::max(std::abs(std::remainder(d(0), 2.0 * std::numbers::pi)),
+                                             d.tail<2>().cwiseAbs().maxCoeff() / model.length_scale);
+            if (distance < nearest) {
+                nearest = distance;
+                chosen = i;
+            }
+        }
+    }
+    const AssemblyMode& mode = *working[static_cast<std::size_t>(chosen)];
+    if (const Status status = inverseDisplacement(model, data, mode.p); !status)
+        throw Error(where + ": initial pose: " + describe(status, model));
+    std::ostringstream out;
+    out.precision(9);
+    out << "assembly mode " << chosen + 1 << " of " << count << " with every limb on its home branch"
+        << (choice == 0 ? ", the nearest home" : ", as --assembly-mode chose") << ": theta = " << mode.p(0)
+        << " rad, x = " << mode.p(1) << " m, y = " << mode.p(2) << " m";
+    origin = out.str();
+    return mode.p;
+}
+
 /// The initial state from the first row of the forces file: the pose columns theta,x,y (with
-/// dtheta,dx,dy, else du1..dun, else at rest); else, for the 3-PRR in the short form, u1..u3
-/// and du1..du3 (the pose by the 3-PRR's direct kinematics from the reference posture); else
-/// the robot's home at rest.
+/// dtheta,dx,dy, else du1..dun, else at rest); else u1..un (and du1..dun): the pose of a working
+/// assembly mode by directKinematics (for the 3-PRR in the short form without --assembly-mode,
+/// the 3-PRR's direct kinematics tracked from the reference posture); else the robot's home at
+/// rest.
 InitialState initialState(const Model& model, const io::Table& table, const SimulateOptions& options) {
     const int n = model.actuators;
     const auto& first = table.rows.front();
@@ -95,7 +157,13 @@ InitialState initialState(const Model& model, const io::Table& table, const Simu
     const bool has_u = hasAll("u"), has_du = hasAll("du");
     InitialState state;
     Data data(model);
-    if (table.has("theta") && table.has("x") && table.has("y")) {
+    const bool has_pose = table.has("theta") && table.has("x") && table.has("y");
+    if (options.assembly_mode > 0 && (has_pose || !has_u)) {
+        throw Error(where + ": --assembly-mode " + std::to_string(options.assembly_mode) +
+                    " chooses among the poses of the first row's " + columnList("u", n) + ", but the row gives " +
+                    (has_pose ? "the pose theta,x,y" : "no " + columnList("u", n)));
+    }
+    if (has_pose) {
         state.p = Pose(value("theta"), value("x"), value("y"));
         if (const Status status = inverseDisplacement(model, data, state.p); !status)
             throw Error(where + ": initial pose: " + describe(status, model));
@@ -122,12 +190,15 @@ InitialState initialState(const Model& model, const io::Table& table, const Simu
         }
         return state;
     }
+    if (has_u && (n != 3 || !isShortForm(options.robot) || options.assembly_mode > 0)) {
+        const ActuatorVector u = actuatorColumns("u");
+        state.p = assemblyFromActuators(model, data, u, options.assembly_mode, where, state.origin);
+        if (has_du) state.dp = poseRateFromActuatorRates(model, data, actuatorColumns("du"), where);
+        state.origin = "first row's " + columnList("u", n) +
+                       (has_du ? "," + columnList("du", n) : std::string(", at rest")) + " (" + state.origin + ")";
+        return state;
+    }
     if (has_u) {
-        if (n != 3 || !isShortForm(options.robot)) {
-            throw Error(where + ": the first row gives " + columnList("u", n) +
-                        " but no pose: add the columns theta,x,y (and dtheta,dx,dy) for the initial state of this "
-                        "robot (its direct kinematics is not available yet)");
-        }
         // the 3-PRR's direct kinematics, tracked from the reference posture
         const prr3::Model special(options.robot.empty() ? RobotParameters{} : loadRobotOrDefault(options.robot, ""));
         prr3::Data special_data;
@@ -233,8 +304,10 @@ void addSimulateCommand(CLI::App& app) {
         "Forward dynamics of any robot: integrates M_p(p) d2p/dt2 = A_p^T tau - h_p(p, dp/dt) (eq. 23 in the\n"
         "platform coordinates, gravity and joint friction from the robot file) under actuator forces read from a\n"
         "CSV with columns t,tau1..taun. The initial state is the first row's theta,x,y with dtheta,dx,dy (else\n"
-        "du1..dun, else at rest), so that the CSV of `inverse-dynamics` can be fed straight back; for the 3-PRR\n"
-        "in the short form, u1..u3,du1..du3 alone also do; else the robot's home at rest. Writes\n"
+        "du1..dun, else at rest), so that the CSV of `inverse-dynamics` can be fed straight back; else its\n"
+        "u1..un (with du1..dun, else at rest): the pose by direct kinematics, among the assembly modes with\n"
+        "every limb on its home branch the one nearest home unless --assembly-mode picks another (the 3-PRR in\n"
+        "the short form: tracked from the reference posture); else the robot's home at rest. Writes\n"
         "t,x,y,theta,u1..un,du1..dun,tau1..taun,kinetic (SI) at t0 + k / rate up to t0 + duration. A pose out of\n"
         "reach or singular stops it with the time and the limb, and no file unless --partial.");
     addRobotOption(*command, options->robot);
@@ -261,6 +334,12 @@ void addSimulateCommand(CLI::App& app) {
     command->add_option("--rtol", options->relative_tolerance, "Integrator relative tolerance")
         ->check(finiteIn(1e-14, 1e-2, ""))
         ->capture_default_str();
+    command
+        ->add_option("--assembly-mode", options->assembly_mode,
+                     "When the first row gives u1..un but no pose: start in the K-th assembly mode with every limb\n"
+                     "on its home branch, numbered as `forward-kinematics --robot F U1 .. Un` lists them (by theta)\n"
+                     "[default: the one nearest home; the summary on stderr names the mode taken]")
+        ->check(CLI::Range(1, kMaxAssemblyModes));
     command->add_flag("--partial", options->partial,
                       "When the simulation stops early (singularity, out of reach), keep the rows before it");
     command->callback([options] { run(*options); });

@@ -44,7 +44,11 @@
 // inverse displacement on the home branches at the converged pose: the pose is accepted only
 // if it gives u back there, so that the tracker never jumps to another mode's branches. (The
 // equations cost a few flops per limb; Newton on u(p) through inverse displacement and the
-// actuation map A would cost a position and a velocity stage per step.)
+// actuation map A would cost a position and a velocity stage per step.) Newton converges
+// quadratically, so a step below 1e-8 (phi [rad], C over L) leaves round-off: the iterate is
+// verified without evaluating the equations again, and Newton resumes if the verification
+// rejects it. PoseTracker starts Newton from the poses extrapolated along the motion: one
+// Newton step per sample at 10 kHz.
 #pragma once
 
 #include <array>
@@ -131,5 +135,31 @@ struct TrackerReport {
 /// rejected.
 Status trackPose(const Model& model, Data& data, const ActuatorVector& u, Pose& p, const TrackerOptions& options = {},
                  TrackerReport* report = nullptr);
+
+/// The tracker along a motion sampled at a constant rate: it remembers the last four poses it
+/// found and starts Newton from the cubic through them one sample ahead,
+/// p_k ~ 4 p_{k-1} - 6 p_{k-2} + 4 p_{k-3} - p_{k-4} (error about h^4 |d4p/dt4|, 2e-9 rad at
+/// 10 kHz on the benchmark's 30 Hz harmonic, against h |dp/dt| from the previous pose alone),
+/// so that one Newton step reaches round-off. Uneven samples, noisy u or a restart (fewer poses
+/// known: a lower degree) only cost more steps. When Newton from the prediction fails, it
+/// retries from the previous pose (as trackPose) before reporting. Allocation-free.
+class PoseTracker {
+public:
+    explicit PoseTracker(const Pose& start = Pose::Zero()) { reset(start); }
+    /// Forgets the motion: the next step starts from p (the previous pose of trackPose).
+    void reset(const Pose& p);
+    /// The pose with actuator values u, as trackPose does from the predicted pose; on success
+    /// pose() is that pose, else it stays the last pose found and the motion is forgotten.
+    Status step(const Model& model, Data& data, const ActuatorVector& u, const TrackerOptions& options = {},
+                TrackerReport* report = nullptr);
+    /// The last pose found (or given to reset).
+    [[nodiscard]] const Pose& pose() const { return last_[0]; }
+    /// Where the next step's Newton starts.
+    [[nodiscard]] Pose prediction() const;
+
+private:
+    std::array<Pose, 4> last_{};  ///< the last poses found, newest first
+    int known_ = 1;               ///< how many of them belong to the current motion
+};
 
 }  // namespace nocdyn

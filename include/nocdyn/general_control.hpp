@@ -147,6 +147,13 @@ struct PoseLoopOptions {
     double noise_position = 0.0;  ///< of x_c and y_c [m]
     double noise_rate = 0.0;      ///< of each component of dp/dt [rad/s, m/s]
     unsigned seed = 1;            ///< noise generator seed
+    /// Measure as a robot without a pose sensor does: its encoders' u (+ noise_u) and their
+    /// rates du (+ noise_du), the pose p by the direct-kinematics tracker (PoseTracker, the
+    /// working mode from the reference's start) and dp/dt from A_p(p) dp/dt = du (least
+    /// squares when redundant). noise_angle, noise_position and noise_rate are then unused.
+    bool encoders = false;
+    double noise_u = 0.0;   ///< std. dev. of each encoder [m or rad]
+    double noise_du = 0.0;  ///< of each encoder rate [m/s or rad/s]
 };
 
 /// One closed-loop run, one row per controller tick (state at the tick, before its forces act).
@@ -163,17 +170,24 @@ struct PoseLoopResult {
     std::vector<double> rms_error, peak_error;  ///< of u_d - u per actuator [m or rad]
     std::vector<double> peak_tau;               ///< max |tau| per actuator (after clipping)
     std::size_t saturated_ticks = 0;            ///< ticks where some force was clipped
+    /// RMS and max over the ticks of |p_measured - p| (the sensor's error as the controller
+    /// saw it) [rad, m, m].
+    Vector3 measurement_rms_error = Vector3::Zero();
+    Vector3 measurement_peak_error = Vector3::Zero();
+    int tracker_max_iterations = 0;  ///< encoders: most Newton steps of a tracker step
 };
 
 /// Runs `controller` on `plant` along `trajectory`: the plant starts at (p_d(0), dp_d(0)) (or
-/// at `start` when given, to see the error decay); each tick measures (p, dp) (+ noise),
+/// at `start` when given, to see the error decay); each tick measures (p, dp) (+ noise; or
+/// through the encoders and the tracker, options.encoders),
 /// computes the forces, clips them, holds them for dt = 1 / rate. The feedforward acceleration
 /// is the reference's mean over the hold, (dp_d(t + dt) - dp_d(t)) / dt: the acceleration at t
 /// would lag by half a tick, a steady error of about |d3p_d/dt3| dt / (2 K_p) (6 urad for
 /// trajectory 1 at 10 kHz and f_n = 50 Hz). Throws nocdyn::Error "t = ... s:
 /// reason" when the reference or the controller fails, and before the first tick when the
 /// rate is not above twice the trajectory's highest frequency or the reference leaves the
-/// workspace (requireReachable).
+/// workspace (requireReachable). With encoders, a tick where the tracker loses the working mode
+/// (or the measured pose is singular) stops the run the same way, naming the limb.
 [[nodiscard]] PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant,
                                          const PoseTrajectory& trajectory, const PoseLoopOptions& options,
                                          const Pose* start = nullptr);

@@ -1,0 +1,173 @@
+// The constraints of the locked limbs (direct_kinematics.hpp): with its actuated joints
+// locked, each limb restricts the platform's displacement by a_j scalar equations
+// kappa |C|^2 + a(phi) . C + b(phi) = 0, or phi = phi0. Shared by the all-modes solver and
+// the tracker. Internal (not installed).
+#pragma once
+
+#include <array>
+#include <cmath>
+#include <numbers>
+
+#include "nocdyn/model.hpp"
+#include "stages.hpp"
+
+namespace nocdyn::detail::locked {
+
+inline constexpr double kPi = std::numbers::pi;
+
+/// Angle in (-pi, pi].
+inline double wrapAngle(double a) {
+    a = std::remainder(a, 2.0 * kPi);
+    return a <= -kPi ? a + 2.0 * kPi : a;
+}
+
+/// g^-1: x -> Rot^T (x - t).
+inline Displacement inverse(const Displacement& g) {
+    const Displacement back{g.c, -g.s, Vector2::Zero()};
+    return {g.c, -g.s, -back.rotate(g.t)};
+}
+
+/// exp of joint k's home screw times q: a rotation about r_k or a translation along d_k.
+inline Displacement jointMotion(const LimbModel& limb, int k, double q) {
+    const auto kk = static_cast<std::size_t>(k);
+    if (limb.type[kk] == JointType::prismatic) return {1.0, 0.0, q * limb.direction[kk]};
+    Displacement g{std::cos(q), std::sin(q), Vector2::Zero()};
+    g.t = limb.point_home[kk] - g.rotate(limb.point_home[kk]);
+    return g;
+}
+
+/// k + c cos(phi) + s sin(phi). Trivial (not zeroed unless value-initialized): the tracker
+/// builds a set of equations per step.
+struct Trig {
+    double k, c, s;
+    [[nodiscard]] double at(double cs, double sn) const { return k + c * cs + s * sn; }
+    [[nodiscard]] double derivative(double cs, double sn) const { return s * cs - c * sn; }
+    Trig operator-(const Trig& o) const { return {k - o.k, c - o.c, s - o.s}; }
+};
+
+/// kappa |C|^2 + a(phi) . C + b(phi) = 0 (C over the length scale), or phi = phi0.
+struct Equation {
+    bool orientation;
+    double phi0;
+    double kappa;
+    Trig ax, ay, b;
+
+    Equation operator-(const Equation& o) const { return {false, 0.0, kappa - o.kappa, ax - o.ax, ay - o.ay, b - o.b}; }
+};
+
+/// Every locked limb gives one equation per actuated joint.
+struct Equations {
+    std::array<Equation, kMaxActuators> eq;  ///< the first `count` are set
+    int count = 0;
+    void add(const Equation& e) {
+        if (count < kMaxActuators) eq[static_cast<std::size_t>(count++)] = e;
+    }
+};
+
+/// Platform point P (from C, home axes) on the base line through B normal to n:
+/// n . (Rot(phi) P + C - B) = 0.
+inline Equation pointOnLine(const Vector2& n, const Vector2& P, const Vector2& B) {
+    return {false, 0.0, 0.0, {n.x(), 0.0, 0.0}, {n.y(), 0.0, 0.0}, {-n.dot(B), n.dot(P), cross(P, n)}};
+}
+
+/// Base point B on the platform line through P (from C, home axes) normal to m (home axes):
+/// (Rot(phi) m) . (B - C) - m . P = 0.
+inline Equation lineThroughPoint(const Vector2& m, const Vector2& P, const Vector2& B) {
+    return {false, 0.0, 0.0, {0.0, -m.x(), m.y()}, {0.0, -m.y(), -m.x()}, {-m.dot(P), m.dot(B), cross(m, B)}};
+}
+
+/// Platform point P at distance rho from base point B: |Rot(phi) P + C - B|^2 = rho^2.
+inline Equation circle(const Vector2& P, const Vector2& B, double rho) {
+    return {false,
+            0.0,
+            1.0,
+            {-2.0 * B.x(), 2.0 * P.x(), -2.0 * P.y()},
+            {-2.0 * B.y(), 2.0 * P.y(), 2.0 * P.x()},
+            {P.squaredNorm() + B.squaredNorm() - rho * rho, -2.0 * B.dot(P), -2.0 * cross(P, B)}};
+}
+
+inline Equation orientation(const Displacement& g) {
+    Equation e{};
+    e.orientation = true;
+    e.phi0 = std::atan2(g.s, g.c);
+    return e;
+}
+
+/// The equations of every locked limb (see the header), lengths over L.
+inline void lockedLimbEquations(const Model& model, const ActuatorVector& u, Equations& out) {
+    const double inv_L = 1.0 / model.length_scale;
+    const Vector2 C_home = model.home.tail<2>();
+    const Vector2 ex = Vector2::UnitX(), ey = Vector2::UnitY();
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        std::array<Displacement, 3> F{};
+        std::array<int, 3> passive{};
+        int n_passive = 0;
+        for (int k = 0; k < 3; ++k) {
+            const int a = limb.actuator[static_cast<std::size_t>(k)];
+            if (a >= 0) {
+                F[static_cast<std::size_t>(k)] = jointMotion(limb, k, u(a));
+            } else {
+                passive[static_cast<std::size_t>(n_passive++)] = k;
+            }
+        }
+        // the locked motions before, between and after the passive joints
+        const auto product = [&](int from, int to) {
+            Displacement g;
+            for (int k = from; k < to; ++k) g = g.then(F[static_cast<std::size_t>(k)]);
+            return g;
+        };
+        const auto type = [&](int k) { return limb.type[static_cast<std::size_t>(k)]; };
+        const auto point = [&](int k) { return limb.point_home[static_cast<std::size_t>(k)]; };
+        const auto direction = [&](int k) { return limb.direction[static_cast<std::size_t>(k)]; };
+        const auto scaled = [&](const Vector2& x) -> Vector2 { return inv_L * x; };
+        if (n_passive == 3) continue;
+        if (n_passive == 0) {
+            // D = F_1 F_2 F_3: the orientation and C = D(C_home)
+            const Displacement L = product(0, 3);
+            out.add(orientation(L));
+            out.add(pointOnLine(ex, Vector2::Zero(), scaled(L.apply(C_home))));
+            out.add(pointOnLine(ey, Vector2::Zero(), scaled(L.apply(C_home))));
+            continue;
+        }
+        if (n_passive == 1) {
+            // D = Lf exp(s_a q) Rf
+            const int a = passive[0];
+            const Displacement Lf = product(0, a), Rf = product(a + 1, 3);
+            if (type(a) == JointType::revolute) {
+                // the platform point on the joint's axis stays on its base position Lf(r_a)
+                const Vector2 P = scaled(inverse(Rf).apply(point(a)) - C_home);
+                const Vector2 B = scaled(Lf.apply(point(a)));
+                out.add(pointOnLine(ex, P, B));
+                out.add(pointOnLine(ey, P, B));
+            } else {
+                // a translation along Rot(Lf) d_a: the orientation of Lf Rf, C_home on a line
+                const Displacement LR = Lf.then(Rf);
+                out.add(orientation(LR));
+                out.add(pointOnLine(perp(Lf.rotate(direction(a))), Vector2::Zero(), scaled(LR.apply(C_home))));
+            }
+            continue;
+        }
+        // two passive joints a < b: D = Lf exp(s_a q_a) exp(s_b' q_b) Rt, s_b' = Mf s_b
+        const int a = passive[0], b = passive[1];
+        const Displacement Lf = product(0, a), Mf = product(a + 1, b), Rt = Mf.then(product(b + 1, 3));
+        const Displacement Rt_inv = inverse(Rt);
+        const bool ra = type(a) == JointType::revolute, rb = type(b) == JointType::revolute;
+        if (ra && rb) {
+            const Vector2 beta = Mf.apply(point(b));
+            out.add(circle(scaled(Rt_inv.apply(beta) - C_home), scaled(Lf.apply(point(a))),
+                           inv_L * (beta - point(a)).norm()));
+        } else if (!ra && rb) {
+            const Vector2 beta = Mf.apply(point(b));
+            out.add(pointOnLine(perp(Lf.rotate(direction(a))), scaled(Rt_inv.apply(beta) - C_home),
+                                scaled(Lf.apply(beta))));
+        } else if (ra && !rb) {
+            const Vector2 e = Rt_inv.rotate(Mf.rotate(direction(b)));
+            out.add(lineThroughPoint(perp(e), scaled(Rt_inv.apply(point(a)) - C_home), scaled(Lf.apply(point(a)))));
+        } else {
+            out.add(orientation(Lf.then(Rt)));
+        }
+    }
+}
+
+}  // namespace nocdyn::detail::locked
