@@ -33,6 +33,7 @@ constexpr std::array<const char*, 3> kAxisNames = {"alpha", "ax", "ay"};
 
 std::unique_ptr<RobotPlant> makePlant(const std::string& name, const RobotDescription& robot, double accuracy) {
     if (name == "nocdyn") return std::make_unique<SimulatorRobotPlant>(Model(robot));
+    if (name == "nocdyn-rk4") return std::make_unique<RungeKuttaRobotPlant>(Model(robot));
 #ifdef NOCDYN_HAS_SIMBODY
     if (name == "simbody") return std::make_unique<SimbodyMechanismPlant>(robot, accuracy);
 #endif

@@ -16,7 +16,7 @@ namespace nocdyn::cli {
 
 struct ShakeSettings {
     FitOptions fit;
-    std::string plant = "simbody";  ///< or "nocdyn"
+    std::string plant = "simbody";  ///< or "nocdyn", "nocdyn-rk4"
     double rate = 10000.0;          ///< controller ticks per second [Hz]
     /// f_n of the error dynamics [Hz]: the sensor noise moves the platform by about K_p = (2 pi
     /// f_n)^2 times it, the unknown payload by (f / f_n)^2 of the acceleration at frequency f;
