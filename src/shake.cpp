@@ -12,6 +12,8 @@
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/kinematics.hpp"
 
 namespace nocdyn {
 
@@ -77,10 +79,34 @@ std::vector<double> highPassZeroPhase(std::span<const double> x, double dt, doub
     return {y.begin() + static_cast<std::ptrdiff_t>(pad), y.begin() + static_cast<std::ptrdiff_t>(pad + n)};
 }
 
+void accumulateLimitUse(const Model& model, double t, const ActuatorVector& u, const ActuatorVector* du,
+                        const ActuatorVector& tau, double margin, LimitUse& worst) {
+    const double keep = 1.0 - margin;
+    for (int a = 0; a < model.actuators; ++a) {
+        const auto ia = static_cast<std::size_t>(a);
+        const int limb = model.actuator_limb[ia];
+        const JointLimits& lim =
+            model.limb[static_cast<std::size_t>(limb)].limits[static_cast<std::size_t>(model.actuator_joint[ia])];
+        const auto consider = [&](double ratio, const char* which) {
+            if (ratio > worst.ratio) {
+                worst = {ratio, "actuator " + std::to_string(a + 1) + " (" + model.limbName(limb) + ") " + which, t};
+            }
+        };
+        if (std::isfinite(lim.lower) && std::isfinite(lim.upper)) {
+            const double centre = 0.5 * (lim.lower + lim.upper);
+            const double half = 0.5 * (lim.upper - lim.lower);
+            consider(std::abs(u(a) - centre) / (keep * half), "range");
+        }
+        if (du != nullptr && std::isfinite(lim.velocity)) {
+            consider(std::abs((*du)(a)) / (keep * lim.velocity), "velocity");
+        }
+        if (std::isfinite(lim.effort)) consider(std::abs(tau(a)) / (keep * lim.effort), "effort");
+    }
+}
+
 LimitUse limitUse(const Model& model, const PoseTrajectory& trajectory, double duration, double step, double margin) {
     Data data(model);
     LimitUse worst;
-    const double keep = 1.0 - margin;
     const auto steps = static_cast<std::size_t>(std::ceil(duration / step));
     Pose p;
     Twist dp, ddp;
@@ -92,25 +118,7 @@ LimitUse limitUse(const Model& model, const PoseTrajectory& trajectory, double d
             status.code != StatusCode::effort_exceeded && status.code != StatusCode::velocity_exceeded) {
             return {std::numeric_limits<double>::infinity(), describe(status, model), t};
         }
-        for (int a = 0; a < model.actuators; ++a) {
-            const auto ia = static_cast<std::size_t>(a);
-            const int limb = model.actuator_limb[ia];
-            const JointLimits& lim =
-                model.limb[static_cast<std::size_t>(limb)].limits[static_cast<std::size_t>(model.actuator_joint[ia])];
-            const auto consider = [&](double ratio, const char* which) {
-                if (ratio > worst.ratio) {
-                    worst = {ratio, "actuator " + std::to_string(a + 1) + " (" + model.limbName(limb) + ") " + which,
-                             t};
-                }
-            };
-            if (std::isfinite(lim.lower) && std::isfinite(lim.upper)) {
-                const double centre = 0.5 * (lim.lower + lim.upper);
-                const double half = 0.5 * (lim.upper - lim.lower);
-                consider(std::abs(data.u(a) - centre) / (keep * half), "range");
-            }
-            if (std::isfinite(lim.velocity)) consider(std::abs(data.du(a)) / (keep * lim.velocity), "velocity");
-            if (std::isfinite(lim.effort)) consider(std::abs(data.tau(a)) / (keep * lim.effort), "effort");
-        }
+        accumulateLimitUse(model, t, data.u, &data.du, data.tau, margin, worst);
     }
     return worst;
 }
@@ -123,18 +131,56 @@ struct Scaled {
     PoseTrajectory trajectory;
 };
 
-/// A displacement axis from accelerations: integrated from rest, then shifted so that its
-/// extremes are symmetric about `home`.
-SampledAxis centredAxis(const std::vector<double>& t, const std::vector<double>& a, double home) {
-    SampledAxis axis = splineOfAccelerations(t, a);
-    double lo = 0.0, hi = 0.0;
-    for (const auto& c : axis.pieces) {
-        lo = std::min(lo, c[0]);
-        hi = std::max(hi, c[0]);
+/// max_i (d_i + v t_i) - min_i (d_i + v t_i): the stroke of the displacement d + v t.
+double strokeWithRate(const std::vector<double>& t, const std::vector<double>& d, double v) {
+    double lo = std::numeric_limits<double>::infinity(), hi = -lo;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        lo = std::min(lo, d[i] + v * (t[i] - t.front()));
+        hi = std::max(hi, d[i] + v * (t[i] - t.front()));
     }
-    const double shift = home - 0.5 * (lo + hi);
-    for (auto& c : axis.pieces) c[0] += shift;
-    return axis;
+    return hi - lo;
+}
+
+/// A displacement axis from accelerations: the exact double integral of their spline with the
+/// two constants of integration chosen as the baseline correction (see shake.hpp): the initial
+/// rate v0 that gives the least stroke, then the offset that centres the extremes on `home`.
+SampledAxis centredAxis(const std::vector<double>& t, const std::vector<double>& a, double home) {
+    const SampledAxis rest = splineOfAccelerations(t, a);
+    std::vector<double> d(t.size());
+    double dq = 0.0, ddq = 0.0;
+    for (std::size_t i = 0; i < t.size(); ++i) rest.evaluate(t[i], d[i], dq, ddq);
+    // the stroke is convex in v0 (a maximum minus a minimum of functions linear in v0); a v0
+    // that does not widen it obeys |v0| <= 2 stroke(0) / T: golden-section search there
+    const double T = t.back() - t.front();
+    const double bound = T > 0.0 ? 2.0 * strokeWithRate(t, d, 0.0) / T : 0.0;
+    double lo = -bound, hi = bound;
+    const double g = 0.5 * (std::sqrt(5.0) - 1.0);
+    double x1 = hi - g * (hi - lo), x2 = lo + g * (hi - lo);
+    double f1 = strokeWithRate(t, d, x1), f2 = strokeWithRate(t, d, x2);
+    for (int k = 0; k < 200 && hi - lo > 1e-12 * bound; ++k) {
+        if (f1 <= f2) {
+            hi = x2;
+            x2 = x1;
+            f2 = f1;
+            x1 = hi - g * (hi - lo);
+            f1 = strokeWithRate(t, d, x1);
+        } else {
+            lo = x1;
+            x1 = x2;
+            f1 = f2;
+            x2 = lo + g * (hi - lo);
+            f2 = strokeWithRate(t, d, x2);
+        }
+    }
+    // keep v0 = 0 (the motion from rest) unless a rate strictly narrows the stroke
+    double v0 = 0.5 * (lo + hi);
+    if (!(strokeWithRate(t, d, v0) < strokeWithRate(t, d, 0.0))) v0 = 0.0;
+    double d_lo = std::numeric_limits<double>::infinity(), d_hi = -d_lo;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+        d_lo = std::min(d_lo, d[i] + v0 * (t[i] - t.front()));
+        d_hi = std::max(d_hi, d[i] + v0 * (t[i] - t.front()));
+    }
+    return splineOfAccelerations(t, a, v0, home - 0.5 * (d_lo + d_hi));
 }
 
 Scaled scaleRecord(const Model& model, const GroundRecord& filtered, double L, double A) {
@@ -335,6 +381,55 @@ ShakeScore scoreShake(std::span<const double> target, std::span<const double> ac
     }
     score.share_outside = static_cast<double>(outside) / n_periods;
     return score;
+}
+
+RungeKuttaRobotPlant::RungeKuttaRobotPlant(const Model& model)
+    : model_(model), data_(model_), pose_data_(model_), tau_(ActuatorVector::Zero(model.actuators)) {
+    reset(model_.home, Twist::Zero());
+}
+
+void RungeKuttaRobotPlant::reset(const Pose& p, const Twist& dp) {
+    if (const Status status = forwardDynamics(model_, data_, p, dp, ActuatorVector::Zero(model_.actuators)); !status) {
+        throw Error("plant reset: " + describe(status, model_));
+    }
+    p_ = p;
+    dp_ = dp;
+    tau_.setZero(model_.actuators);
+    t_ = 0.0;
+}
+
+void RungeKuttaRobotPlant::acceleration(const Pose& p, const Twist& dp, Twist& a) {
+    if (const Status status = forwardDynamics(model_, data_, p, dp, tau_); !status) {
+        std::ostringstream out;
+        out.precision(9);
+        out << "plant: t = " << t_ << " s: " << describe(status, model_);
+        throw Error(out.str());
+    }
+    a = data_.t_M_dot;
+}
+
+void RungeKuttaRobotPlant::advance(double h) {
+    if (!(h >= 0.0) || !std::isfinite(h)) throw Error("plant: advance() needs a finite dt >= 0");
+    // x = (p, dp), x' = (dp, a(p, dp)): k_i = (v_i, a_i)
+    Twist a1, a2, a3, a4;
+    acceleration(p_, dp_, a1);
+    const Twist v2 = dp_ + 0.5 * h * a1;
+    acceleration(p_ + 0.5 * h * dp_, v2, a2);
+    const Twist v3 = dp_ + 0.5 * h * a2;
+    acceleration(p_ + 0.5 * h * v2, v3, a3);
+    const Twist v4 = dp_ + h * a3;
+    acceleration(p_ + h * v3, v4, a4);
+    p_ += h / 6.0 * (dp_ + 2.0 * v2 + 2.0 * v3 + v4);
+    dp_ += h / 6.0 * (a1 + 2.0 * a2 + 2.0 * a3 + a4);
+    t_ += h;
+}
+
+ActuatorVector RungeKuttaRobotPlant::u() const {
+    // the actuator variables of the current pose (inverse displacement)
+    if (const Status status = inverseDisplacement(model_, pose_data_, p_); !status) {
+        throw Error("plant: t = " + num(t_) + " s: " + describe(status, model_));
+    }
+    return pose_data_.u;
 }
 
 }  // namespace nocdyn

@@ -9,6 +9,7 @@
 
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/general_control.hpp"
 #include "nocdyn/shake.hpp"
 
 namespace nocdyn::test {
@@ -134,6 +135,76 @@ TEST_F(FitRecord, FallsBackToAmplitudeScalingWhenTheTimeScaleIsFixed) {
     EXPECT_GT(fit.use.ratio, 0.99);
     EXPECT_LE(fit.use.ratio, 1.0);
     EXPECT_NEAR(fit.ax[5], fit.amplitude_scale * 3.0 * std::sin(0.2 * kPi), 1e-12);
+}
+
+TEST_F(FitRecord, BaselineCorrectionRemovesTheLinearDriftAndKeepsTheAcceleration) {
+    // a = 3 sin(w t) over 8 whole periods: integrated from rest, d = 3 t / w - 3 sin(w t) / w^2
+    // drifts by 0.95 m; the least stroke is that of -3 sin(w t) / w^2, reached with v0 = -3 / w
+    FitOptions options;
+    options.highpass = 0.0;
+    options.time_scale = 2.0;
+    GroundRecord r = record();
+    r.ax.resize(401);
+    for (int i = 0; i < 401; ++i) r.ax[static_cast<std::size_t>(i)] = 3.0 * std::sin(2 * kPi * 2.0 * i * r.dt);
+    const FittedRecord fit = fitRecord(model, r, options);
+    ASSERT_DOUBLE_EQ(fit.amplitude_scale, 1.0);
+    const double w = 2 * kPi * 2.0 * fit.time_scale;  // in replay time
+    Pose p, dp, ddp;
+    fit.trajectory.evaluate(0.0, p, dp, ddp);
+    EXPECT_NEAR(dp(1), -3.0 / w, 2e-3 * 3.0 / w);
+    double lo = 1e9, hi = -1e9;
+    for (std::size_t i = 0; i < fit.t.size(); ++i) {
+        fit.trajectory.evaluate(fit.t[i], p, dp, ddp);
+        lo = std::min(lo, p(1));
+        hi = std::max(hi, p(1));
+        // the target acceleration is the second derivative of the target displacement
+        EXPECT_NEAR(ddp(1), fit.ax[i], 1e-9);
+    }
+    EXPECT_NEAR(hi - lo, 2.0 * 3.0 / (w * w), 0.01 * 2.0 * 3.0 / (w * w));
+    EXPECT_NEAR(0.5 * (hi + lo), model.home(1), 1e-12);
+}
+
+TEST_F(FitRecord, BaselineCorrectionAddsNoRateToAMotionThatDoesNotDrift) {
+    // a = 3 cos(w t) over whole periods: from rest d = 3 (1 - cos(w t)) / w^2, no drift; any v0
+    // would widen the stroke (beyond the samples' round-off of the extremes)
+    FitOptions options;
+    options.highpass = 0.0;
+    options.time_scale = 2.0;
+    GroundRecord r = record();
+    for (std::size_t i = 0; i < r.ax.size(); ++i)
+        r.ax[i] = 3.0 * std::cos(2 * kPi * 2.0 * static_cast<double>(i) * r.dt);
+    const FittedRecord fit = fitRecord(model, r, options);
+    Pose p, dp, ddp;
+    fit.trajectory.evaluate(0.0, p, dp, ddp);
+    EXPECT_NEAR(dp(1), 0.0, 1e-5 * 3.0 / (2 * kPi * 2.0 * fit.time_scale));
+}
+
+TEST_F(FitRecord, RungeKuttaPlantFollowsTheErrorControlledSimulatorInTheShakeClosedLoop) {
+    // the replay's closed loop (computed torque, 10 kHz, unknown payload, noise) for 0.1 s on both
+    // plants: one RK4 step per tick against the Simulator at relative tolerance 1e-10
+    FitOptions options;
+    options.highpass = 0.0;
+    const FittedRecord fit = fitRecord(model, record(), options);
+    const Model loaded(withPayload(io::exampleRobot("paper-3prr-general"), {0.5, 0.0, Vector2::Zero()}));
+    PoseLoopOptions loop;
+    loop.duration = 0.1;
+    loop.noise_angle = loop.noise_position = 1e-6;
+    loop.noise_rate = 1e-5;
+    PoseController c1(model, ControlLaw::computed_torque, taskCriticallyDamped(30.0));
+    PoseController c2(model, ControlLaw::computed_torque, taskCriticallyDamped(30.0));
+    SimulatorRobotPlant reference(loaded);
+    RungeKuttaRobotPlant rk4(loaded);
+    const PoseLoopResult a = runPoseLoop(c1, reference, fit.trajectory, loop);
+    const PoseLoopResult b = runPoseLoop(c2, rk4, fit.trajectory, loop);
+    ASSERT_EQ(a.p.size(), b.p.size());
+    double peak = 0.0, motion = 0.0;
+    for (std::size_t k = 0; k < a.p.size(); ++k) {
+        peak = std::max(peak, (a.p[k] - b.p[k]).cwiseAbs().maxCoeff());
+        motion = std::max(motion, std::abs(a.p[k](1) - model.home(1)));
+        EXPECT_LT((a.u[k] - b.u[k]).cwiseAbs().maxCoeff(), 1e-9);
+    }
+    EXPECT_GT(motion, 1e-3);  // the platform did move by millimetres
+    EXPECT_LT(peak, 1e-11);   // [m, rad]; measured 1e-12
 }
 
 }  // namespace
