@@ -37,6 +37,7 @@ constexpr double kRate = 10000.0;  // Hz
 
 struct ReproduceOptions {
     std::string out = "results";
+    double closed_loop_duration = kDuration;  ///< [s] of each closed-loop run on a Simbody plant
 };
 
 /// Motor displacements [mm] or forces [N] of our model, with an engine's curves overlaid
@@ -174,7 +175,7 @@ void reproduceTrajectories(const prr3::Model& model, const std::filesystem::path
 #ifdef NOCDYN_HAS_ENGINES
 /// The example robots of other architectures along the paper's trajectory 1, our general
 /// model against both engines built from the same file.
-void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summary) {
+void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summary, double closed_loop_duration) {
     constexpr double kExampleRate = 2000.0;  // [Hz]: both engines assemble every sample
     const auto times = sampleTimes(kDuration, kExampleRate);
     summary << "## Other architectures: the example robots against both engines\n\n"
@@ -206,14 +207,14 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
     const Payload payload{0.3, 2e-4, {0.01, -0.005}};
     summary
         << "### Closed-loop tracking of the example robots\n\n"
-        << "Task-space control along trajectory 1 for " << kDuration << " s at 10 kHz (forces held between"
+        << "Task-space control along trajectory 1 for " << closed_loop_duration << " s at 10 kHz (forces held between"
         << " ticks), error dynamics critically damped at " << kNaturalFrequency << " Hz, on the Simbody plant"
         << " generated from each robot file (pose and rate measured from it); forces clipped at each joint's"
         << " effort; minimum-norm forces on the 4-RRR. Peak pose error over the run, x and y [um], theta [urad]:\n\n"
         << "| robot | computed torque | PD | computed torque, unknown payload " << payload.mass
         << " kg at (10, -5) mm | saturated ticks |\n| --- | --- | --- | --- | --- |\n";
     PoseLoopOptions loop;
-    loop.duration = kDuration;
+    loop.duration = closed_loop_duration;
     for (const char* name : {"3-rrr", "3-rpr", "4-rrr"}) {
         const RobotDescription robot = io::exampleRobot(name);
         const Model model(robot);
@@ -280,12 +281,12 @@ void run(const ReproduceOptions& options) {
     reproduceTrajectories(model, out, summary);
     reproduceAnimations(out, summary);
     reproduceRoundTrip(model, summary);
-    reproduceControl(model, out, summary);
+    reproduceControl(model, out, summary, options.closed_loop_duration);
     reproduceEnvelope(model, out, summary);
     reproduceWorkspace(out, summary);
     reproduceShake(out.string(), summary);
 #ifdef NOCDYN_HAS_ENGINES
-    reproduceExampleRobots(out, summary);
+    reproduceExampleRobots(out, summary, options.closed_loop_duration);
 #endif
     io::writeTextFile((out / "summary.md").string(), summary.str());
     std::cout << "nocdyn reproduce: wrote " << (out / "summary.md").string() << ", CSV files and figures in "
@@ -306,6 +307,13 @@ void addReproduceCommand(CLI::App& app) {
         "computed-torque and PD control on the Simbody plant; the operating envelope (stroke and force);\n"
         "and the example robots of other architectures (3-RRR, 3-RPR, redundant 4-RRR) against both engines.");
     command->add_option("--out", options->out, "Output folder (created if missing)")->capture_default_str();
+    command
+        ->add_option("--closed-loop-duration", options->closed_loop_duration,
+                     "Seconds of each closed-loop run on a Simbody plant (the paper's trajectories and the\n"
+                     "example robots; about 2 ms of CPU per 10 kHz tick). A shorter run is a quick check of\n"
+                     "the same code, its peak errors over less of the trajectory")
+        ->check(CLI::Range(1e-3, 10.0))
+        ->capture_default_str();
     command->callback([options] { run(*options); });
 }
 

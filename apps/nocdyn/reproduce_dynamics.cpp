@@ -117,11 +117,13 @@ PoseTrajectory paperTrajectory(int k) { return k == 0 ? paperTrajectory1() : pap
 
 }  // namespace
 
-void reproduceControl(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary) {
-    const ControlCase base;
+void reproduceControl(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary,
+                      double duration) {
+    ControlCase base;
+    base.loop.duration = duration;
     summary << "## Model-based control (closed loop)\n\n"
-            << "Controller at " << base.loop.rate / 1000
-            << " kHz with zero-order hold, error dynamics critically damped at " << base.natural_frequency
+            << "Controller at " << base.loop.rate / 1000 << " kHz over " << duration
+            << " s, with zero-order hold, error dynamics critically damped at " << base.natural_frequency
             << " Hz, actuator saturation at " << model.parameters.peak_force << " N, plant: "
             << (base.plant == "simbody" ? "the independent Simbody model" : "nocdyn's forward dynamics")
             << ". Computed torque: tau = I(u)(ddu_d + K_d e' + K_p e) + C(u, du) du (eq. 20); PD: the same gains times "

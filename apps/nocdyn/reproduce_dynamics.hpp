@@ -46,7 +46,9 @@ struct ControlCase {
 /// default plant (Simbody when built in), plus computed torque with an unknown 0.5 kg payload;
 /// control_<trajectory>.csv and control_<trajectory>_errors.png/.svg in `out`; a markdown table
 /// of RMS and peak errors in `summary`.
-void reproduceControl(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary);
+/// duration: of each closed-loop run [s].
+void reproduceControl(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary,
+                      double duration);
 
 /// Section "Operating envelope": envelope.csv and envelope.png/.svg in `out`; a markdown table
 /// of the binding limits, and the paper trajectories checked against it (per-axis amplitude
