@@ -1,4 +1,4 @@
-// Identification of a payload from a 10 kHz log of 5 s (the experiment size): the
+// Identification of a payload from a 10 kHz log of 5 s: the
 // platform motion from the actuator positions (tracker and rates), the stacked regressor and the
 // weighted least squares. Two logs: with du, ddu columns (used as given) and without (u and tau
 // filtered at zero phase, u differentiated), as a real logger writes it. Reported per run.

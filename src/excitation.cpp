@@ -21,7 +21,7 @@
 
 namespace nocdyn {
 
-double LimitUse::worst() const { return std::max({range, velocity, effort, condition}); }
+double ExcitationLimitUse::worst() const { return std::max({range, velocity, effort, condition}); }
 
 namespace {
 
@@ -120,7 +120,7 @@ public:
 
 private:
     /// Use of the limits at the computed sample (data_), the largest returned.
-    double sampleUse(LimitUse* detail) {
+    double sampleUse(ExcitationLimitUse* detail) {
         double worst = 0.0;
         for (int j = 0; j < model_.limbs; ++j) {
             const LimbModel& limb = model_.limb[at(j)];
@@ -132,35 +132,35 @@ private:
                 const double room = q >= q0 ? lim.upper - q0 : q0 - lim.lower;
                 if (std::isfinite(room)) {
                     const double r = room > 0.0 ? std::abs(q - q0) / (allowed_ * room) : kInfeasible;
-                    note(detail, &LimitUse::range, r, worst, "range of " + model_.limbName(j), k);
+                    note(detail, &ExcitationLimitUse::range, r, worst, "range of " + model_.limbName(j), k);
                 }
                 if (std::isfinite(lim.velocity)) {
-                    note(detail, &LimitUse::velocity, std::abs(ld.gamma_dot(k)) / (allowed_ * lim.velocity), worst,
-                         "velocity of " + model_.limbName(j), k);
+                    note(detail, &ExcitationLimitUse::velocity, std::abs(ld.gamma_dot(k)) / (allowed_ * lim.velocity),
+                         worst, "velocity of " + model_.limbName(j), k);
                 }
             }
-            note(detail, &LimitUse::condition, ld.cond / options_.max_condition, worst,
+            note(detail, &ExcitationLimitUse::condition, ld.cond / options_.max_condition, worst,
                  "condition number of the Jacobian of " + model_.limbName(j), -1);
         }
         for (int a = 0; a < model_.actuators; ++a) {
             const double effort =
                 model_.limb[at(model_.actuator_limb[at(a)])].limits[at(model_.actuator_joint[at(a)])].effort;
             if (std::isfinite(effort)) {
-                note(detail, &LimitUse::effort, std::abs(data_.tau(a)) / (allowed_ * effort), worst,
+                note(detail, &ExcitationLimitUse::effort, std::abs(data_.tau(a)) / (allowed_ * effort), worst,
                      "effort of actuator " + std::to_string(a + 1) + " (" +
                          model_.limbName(model_.actuator_limb[at(a)]) + ")",
                      -1);
             }
         }
-        note(detail, &LimitUse::condition, data_.cond_A / options_.max_condition, worst,
+        note(detail, &ExcitationLimitUse::condition, data_.cond_A / options_.max_condition, worst,
              "condition number of the actuation (A)", -1);
         return worst;
     }
 
     /// Keeps the largest use; names it in `detail` (only then is the name built).
     template <typename Name>
-    static void note(LimitUse* detail, double LimitUse::*field, double value, double& worst, const Name& name,
-                     int joint) {
+    static void note(ExcitationLimitUse* detail, double ExcitationLimitUse::*field, double value, double& worst,
+                     const Name& name, int joint) {
         worst = std::max(worst, value);
         if (!detail) return;
         if (value > detail->worst()) {

@@ -38,7 +38,7 @@ std::string percent(double v) {
     return buffer;
 }
 
-std::string useText(const LimitUse& use) {
+std::string useText(const ExcitationLimitUse& use) {
     return "{range: " + percent(use.range) + ", velocity: " + percent(use.velocity) +
            ", effort: " + percent(use.effort) + ", condition: " + percent(use.condition) + ", binding: '" +
            use.binding + "'}";

@@ -49,7 +49,7 @@ struct ExcitationOptions {
 
 /// How much of each limit a trajectory uses at its worst sample, as a fraction of the allowed
 /// value (the limit less the margin; condition: of max_condition); 0 where a limit is absent.
-struct LimitUse {
+struct ExcitationLimitUse {
     double range = 0.0, velocity = 0.0, effort = 0.0, condition = 0.0;
     std::string binding;  ///< "effort of actuator 2 (limb2)": the largest of the four
     [[nodiscard]] double worst() const;
@@ -61,7 +61,7 @@ struct LimitUse {
 struct ExcitationAssessment {
     bool feasible = false;
     double condition = 0.0;
-    LimitUse use;
+    ExcitationLimitUse use;
     std::string failure;
 };
 
