@@ -14,31 +14,12 @@
 #include "nocdyn/io/calibration.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "random_robots.hpp"
+#include "identification_support.hpp"
 
 namespace nocdyn::test {
 namespace {
 
 constexpr double kExact = 1e-9;
-
-/// Exact samples of `robot` along a trajectory (tau by inverse dynamics).
-Motion exactMotion(const Model& robot, const PoseTrajectory& trajectory, int samples, double dt) {
-    Motion motion;
-    Data data(robot);
-    motion.tau.resize(samples, robot.actuators);
-    int k = 0;
-    for (int s = 0; s < samples; ++s) {
-        Pose p, dp, ddp;
-        trajectory.evaluate(dt * s, p, dp, ddp);
-        if (!inverseDynamics(robot, data, p, dp, ddp)) continue;
-        motion.t.push_back(dt * s);
-        motion.p.push_back(p);
-        motion.dp.push_back(dp);
-        motion.ddp.push_back(ddp);
-        motion.tau.row(k++) = data.tau.transpose();
-    }
-    motion.tau.conservativeResize(k, robot.actuators);
-    return motion;
-}
 
 /// The robot as built: heavier links, a platform c.o.m. off its centre, friction and damping at
 /// the sliders, none of which the file knows.

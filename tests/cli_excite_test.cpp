@@ -15,6 +15,7 @@
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "random_robots.hpp"
+#include "identification_support.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -65,29 +66,6 @@ TEST(CliExcite, RefusesADurationThatIsNotWholePeriodsAndAPayloadWithBase) {
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("payload-guess"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));
-}
-
-/// The exact log (u, du, ddu, tau) of `robot` along a random motion.
-Measurements exactLog(const Model& robot, unsigned seed, int samples) {
-    std::mt19937 rng(seed);
-    const PoseTrajectory trajectory = trajectoryAround(robot.home, rng);
-    Data data(robot);
-    Measurements m;
-    m.u.resize(samples, 3);
-    m.du.resize(samples, 3);
-    m.ddu.resize(samples, 3);
-    m.tau.resize(samples, 3);
-    for (int k = 0; k < samples; ++k) {
-        Pose p, dp, ddp;
-        trajectory.evaluate(0.004 * k, p, dp, ddp);
-        EXPECT_TRUE(inverseDynamics(robot, data, p, dp, ddp).ok());
-        m.t.push_back(0.004 * k);
-        m.u.row(k) = data.u.transpose();
-        m.du.row(k) = data.du.transpose();
-        m.ddu.row(k) = data.ddu.transpose();
-        m.tau.row(k) = data.tau.transpose();
-    }
-    return m;
 }
 
 TEST(CliIdentify, CalibratesTheRobotThenIdentifiesThePayloadAgainstIt) {

@@ -13,6 +13,7 @@
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
+#include "identification_support.hpp"
 #include "random_robots.hpp"
 
 namespace nocdyn::test {
@@ -25,29 +26,9 @@ const Payload kPayload{0.5, 8e-4, Vector2(0.012, -0.007)};
 
 fs::path scratch() { return freshScratchDirectory("nocdyn_cli_identify_test"); }
 
-/// The exact log (u, du, ddu, tau) of the robot carrying kPayload along a random motion.
+/// The exact log of the robot carrying kPayload along a random motion.
 Measurements exactLog(int samples) {
-    const RobotDescription robot = io::loadRobotDescription(kRobot);
-    const Model loaded(withPayload(robot, kPayload));
-    std::mt19937 rng(9);
-    const PoseTrajectory trajectory = trajectoryAround(loaded.home, rng);
-    Data data(loaded);
-    Measurements m;
-    m.u.resize(samples, 3);
-    m.du.resize(samples, 3);
-    m.ddu.resize(samples, 3);
-    m.tau.resize(samples, 3);
-    for (int k = 0; k < samples; ++k) {
-        Pose p, dp, ddp;
-        trajectory.evaluate(0.004 * k, p, dp, ddp);
-        EXPECT_TRUE(inverseDynamics(loaded, data, p, dp, ddp).ok());
-        m.t.push_back(0.004 * k);
-        m.u.row(k) = data.u.transpose();
-        m.du.row(k) = data.du.transpose();
-        m.ddu.row(k) = data.ddu.transpose();
-        m.tau.row(k) = data.tau.transpose();
-    }
-    return m;
+    return test::exactLog(Model(withPayload(io::loadRobotDescription(kRobot), kPayload)), 9, samples);
 }
 
 /// The number after `key` in the text.

@@ -11,6 +11,7 @@
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "random_robots.hpp"
+#include "identification_support.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -139,26 +140,6 @@ TEST(BaseParameters, ATranslatingSliderHasNoIdentifiableRotationalInertia) {
     const auto& u = base.unidentifiable;
     EXPECT_NE(std::find(u.begin(), u.end(), slider + 3), u.end()) << describeBaseParameters(model, base);
     EXPECT_NE(describeBaseParameters(model, base).find("limb1.body1.I_O"), std::string::npos);
-}
-
-/// Exact samples of the robot carrying `payload` along a trajectory (tau by inverse dynamics).
-Motion exactMotion(const Model& loaded, const PoseTrajectory& trajectory, int samples, double dt) {
-    Motion motion;
-    Data data(loaded);
-    motion.tau.resize(samples, loaded.actuators);
-    int k = 0;
-    for (int s = 0; s < samples; ++s) {
-        Pose p, dp, ddp;
-        trajectory.evaluate(dt * s, p, dp, ddp);
-        if (!inverseDynamics(loaded, data, p, dp, ddp)) continue;
-        motion.t.push_back(dt * s);
-        motion.p.push_back(p);
-        motion.dp.push_back(dp);
-        motion.ddp.push_back(ddp);
-        motion.tau.row(k++) = data.tau.transpose();
-    }
-    motion.tau.conservativeResize(k, loaded.actuators);
-    return motion;
 }
 
 TEST(PayloadIdentification, RecoversThePayloadExactlyFromExactMotion) {
