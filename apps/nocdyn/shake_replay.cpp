@@ -144,7 +144,6 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
         {"ratio", outcome.achieved_use.ratio}, {"what", outcome.achieved_use.what}, {"t", outcome.achieved_use.t}};
     json["passband_periods"] = {outcome.period_min, outcome.period_max};
     json["saturated_ticks"] = loop.saturated_ticks;
-    json["closed_loop_seconds"] = outcome.seconds;
     json["duration"] = loop.t.empty() ? 0.0 : loop.t.back();
     nlohmann::json metrics = nlohmann::json::object();
     for (std::size_t axis = 0; axis < 3; ++axis) {
