@@ -422,13 +422,16 @@ Motion reconstructMotion(const Model& model, const Measurements& measured, const
     Motion motion;
     Data data(model);
     Pose p = model.home;
+    // the tracker along the samples: Newton from the pose extrapolated along the motion
+    PoseTracker tracker(p);
     bool started = false;
     for (Eigen::Index k = first; k < last; ++k) {
         const double t = measured.t[at(static_cast<int>(k))];
         const ActuatorVector uk = u.row(k).transpose();
         Status status;
         if (started) {
-            status = trackPose(model, data, uk, p);
+            status = tracker.step(model, data, uk);
+            p = tracker.pose();
         } else {
             // first sample: the working assembly mode nearest home
             AssemblyModes modes;
@@ -449,6 +452,7 @@ Motion reconstructMotion(const Model& model, const Measurements& measured, const
                     "positions at " +
                     timeText(t));
             }
+            tracker.reset(p);
             started = true;
         }
         if (status) status = inverseDisplacement(model, data, p);

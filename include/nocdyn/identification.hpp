@@ -169,7 +169,7 @@ struct BaseResult {
     FitReport fit;
 };
 
-/// Motion from the measurements: the platform pose by the direct-kinematics tracker, its rates
+/// Motion from the measurements: the platform pose by the direct-kinematics tracker (PoseTracker), its rates
 /// from du (ddu) as given or by zero-phase low-pass filtering and differentiating u (tau is then
 /// filtered alike). Throws nocdyn::Error naming the sample time on a lost tracker or a singular
 /// posture, and on too few samples or a non-monotonic time.
