@@ -479,7 +479,7 @@ struct LeastSquares {
     Eigen::MatrixXd covariance;
     double condition = 0.0;
     /// The weighted residual's quadratic form about x: |W (b - A x')|^2 = |W (b - A x)|^2 +
-    /// |U (x' - x)|^2, U = R P^T D from the QR (A W D^-1) P = Q R of the scaled columns.
+    /// |U (x' - x)|^2, U = R P^T D from the QR (W A D^-1) P = Q R of the scaled columns.
     Eigen::MatrixXd U;
 };
 
