@@ -422,13 +422,16 @@ Motion reconstructMotion(const Model& model, const Measurements& measured, const
     Motion motion;
     Data data(model);
     Pose p = model.home;
+    // the tracker along the samples: Newton from the pose extrapolated along the motion
+    PoseTracker tracker(p);
     bool started = false;
     for (Eigen::Index k = first; k < last; ++k) {
         const double t = measured.t[at(static_cast<int>(k))];
         const ActuatorVector uk = u.row(k).transpose();
         Status status;
         if (started) {
-            status = trackPose(model, data, uk, p);
+            status = tracker.step(model, data, uk);
+            p = tracker.pose();
         } else {
             // first sample: the working assembly mode nearest home
             AssemblyModes modes;
@@ -449,6 +452,7 @@ Motion reconstructMotion(const Model& model, const Measurements& measured, const
                     "positions at " +
                     timeText(t));
             }
+            tracker.reset(p);
             started = true;
         }
         if (status) status = inverseDisplacement(model, data, p);
@@ -474,6 +478,9 @@ struct LeastSquares {
     Eigen::VectorXd x;
     Eigen::MatrixXd covariance;
     double condition = 0.0;
+    /// The weighted residual's quadratic form about x: |W (b - A x')|^2 = |W (b - A x)|^2 +
+    /// |U (x' - x)|^2, U = R P^T D from the QR (W A D^-1) P = Q R of the scaled columns.
+    Eigen::MatrixXd U;
 };
 
 LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int n,
@@ -533,6 +540,8 @@ LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const E
             const Eigen::MatrixXd N_inv = N.ldlt().solve(Eigen::MatrixXd::Identity(k, k));
             const Eigen::VectorXd inv_norms = norms.cwiseInverse();
             result.covariance = s2 * inv_norms.asDiagonal() * N_inv * inv_norms.asDiagonal();
+            const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(k, k).template triangularView<Eigen::Upper>();
+            result.U = (R * qr.colsPermutation().transpose()) * norms.asDiagonal();
         }
     }
     (void)model;
@@ -607,6 +616,109 @@ void fillFit(const Model& model, const Motion& motion, const Stacked& s, const E
         fit.measured.row(k - fit_samples) = s.tau.segment(k * n, n).transpose();
         fit.predicted.row(k - fit_samples) = predicted.segment(k * n, n).transpose();
     }
+}
+
+// Bounded payload. The bounds are on the physical parameters z = [m, c_x, c_y, I, friction..]
+// while the residual is quadratic in the linear ones x(z) = [m, m c_x, m c_y, I + m |c|^2,
+// friction..]: a box in z is no box in x (c = h / m, and I = I_O - |h|^2 / m <= I_max is not
+// even convex in x), so a box-constrained least squares in x would be wrong. Instead
+//   minimise |U (x(z) - x_ls)|^2 over z in the box,
+// which is the weighted residual up to a constant (LeastSquares::U), by Gauss-Newton in z:
+// each step solves the linearised problem |U (x(z) + J dz - x_ls)|^2 exactly within the box (a
+// convex quadratic: its minimiser is the unconstrained minimiser on one face of the box, so the
+// best feasible one of the 3^4 faces, each of m, c_x, c_y, I free or on either bound, is it),
+// then halves the step until the residual decreases. The friction parameters stay free.
+constexpr int kPhysical = 4;  // m, c_x, c_y, I
+
+using PhysicalBox = Eigen::Matrix<double, kPhysical, 1>;
+
+Eigen::VectorXd linearParameters(const Eigen::VectorXd& z) {
+    Eigen::VectorXd x = z;
+    x(1) = z(0) * z(1);
+    x(2) = z(0) * z(2);
+    x(3) = z(3) + z(0) * (z(1) * z(1) + z(2) * z(2));
+    return x;
+}
+
+Eigen::MatrixXd linearJacobian(const Eigen::VectorXd& z) {
+    const Eigen::Index k = z.size();
+    Eigen::MatrixXd J = Eigen::MatrixXd::Identity(k, k);
+    J.col(0).head<kPhysical>() << 1.0, z(1), z(2), z(1) * z(1) + z(2) * z(2);
+    J.col(1).head<kPhysical>() << 0.0, z(0), 0.0, 2.0 * z(0) * z(1);
+    J.col(2).head<kPhysical>() << 0.0, 0.0, z(0), 2.0 * z(0) * z(2);
+    return J;
+}
+
+/// min |M d - r|^2 with lo_i <= d_i <= hi_i for the physical entries (the rest free): the best
+/// feasible face minimiser (see above); `tol` the feasibility slack per entry.
+Eigen::VectorXd boxLeastSquares(const Eigen::MatrixXd& M, const Eigen::VectorXd& r, const PhysicalBox& lo,
+                                const PhysicalBox& hi, const PhysicalBox& tol) {
+    const Eigen::Index k = M.cols();
+    Eigen::VectorXd best = Eigen::VectorXd::Zero(k);
+    double best_cost = std::numeric_limits<double>::infinity();
+    constexpr int kFaces = 81;  // 3^kPhysical
+    for (int face = 0; face < kFaces; ++face) {
+        Eigen::VectorXd d = Eigen::VectorXd::Zero(k);
+        std::vector<Eigen::Index> free;
+        bool valid = true;
+        int code = face;
+        for (int i = 0; i < kPhysical; ++i, code /= 3) {
+            const int side = code % 3;  // 0 free, 1 on the lower bound, 2 on the upper
+            if (side == 0) {
+                free.push_back(i);
+                continue;
+            }
+            const double bound = side == 1 ? lo(i) : hi(i);
+            if (!std::isfinite(bound) || (side == 2 && hi(i) == lo(i))) valid = false;
+            d(i) = bound;
+        }
+        if (!valid) continue;
+        for (Eigen::Index i = kPhysical; i < k; ++i) free.push_back(i);
+        if (!free.empty()) {
+            Eigen::MatrixXd Mf(M.rows(), static_cast<Eigen::Index>(free.size()));
+            for (std::size_t j = 0; j < free.size(); ++j) Mf.col(static_cast<Eigen::Index>(j)) = M.col(free[j]);
+            const Eigen::VectorXd df = Mf.colPivHouseholderQr().solve(r - M * d);
+            for (std::size_t j = 0; j < free.size(); ++j) d(free[j]) = df(static_cast<Eigen::Index>(j));
+        }
+        for (int i = 0; i < kPhysical && valid; ++i) {
+            if (!(d(i) >= lo(i) - tol(i) && d(i) <= hi(i) + tol(i))) valid = false;
+            d(i) = std::clamp(d(i), lo(i), hi(i));
+        }
+        if (!valid) continue;
+        const double cost = (M * d - r).squaredNorm();
+        if (cost < best_cost) {
+            best_cost = cost;
+            best = d;
+        }
+    }
+    return best;
+}
+
+/// The z in [lo, hi] (physical entries) minimising |U (x(z) - x_ls)|^2, by Gauss-Newton from
+/// `start` (feasible); `scale` the size of each entry (steps below 1e-13 of it end the iteration).
+Eigen::VectorXd boundedPayload(const Eigen::MatrixXd& U, const Eigen::VectorXd& x_ls, const PhysicalBox& lo,
+                               const PhysicalBox& hi, const Eigen::VectorXd& scale, Eigen::VectorXd z) {
+    const auto cost = [&](const Eigen::VectorXd& zz) { return (U * (linearParameters(zz) - x_ls)).squaredNorm(); };
+    double f = cost(z);
+    for (int iteration = 0; iteration < 100 && f > 0.0; ++iteration) {
+        const Eigen::VectorXd r = U * (x_ls - linearParameters(z));
+        const Eigen::VectorXd d = boxLeastSquares(U * linearJacobian(z), r, lo - z.head<kPhysical>(),
+                                                  hi - z.head<kPhysical>(), 1e-12 * scale.head<kPhysical>());
+        double alpha = 1.0;
+        bool decreased = false;
+        for (int halving = 0; halving < 40 && !decreased; ++halving, alpha *= 0.5) {
+            Eigen::VectorXd trial = z + alpha * d;
+            trial.head<kPhysical>() = trial.head<kPhysical>().cwiseMax(lo).cwiseMin(hi);
+            const double f_trial = cost(trial);
+            if (f_trial < f) {
+                z = trial;
+                f = f_trial;
+                decreased = true;
+            }
+        }
+        if (!decreased || (alpha * d).cwiseQuotient(scale).cwiseAbs().maxCoeff() < 1e-13) break;
+    }
+    return z;
 }
 
 }  // namespace
@@ -689,8 +801,20 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
     const LeastSquares ls = solveWeighted(model, s.A.topRows(fit * n), b, n, names);
     Eigen::VectorXd x = ls.x;
     PayloadResult result;
+    // the box: the prior's bounds, mass > 0 and inertia about the c.o.m. >= 0
+    const PayloadPrior& prior = options.prior;
+    const char* const bound_names[kPhysical] = {"mass", "com_x", "com_y", "inertia"};
+    const Bounds bounds[kPhysical] = {prior.mass, prior.com_x, prior.com_y, prior.inertia};
+    for (int i = 0; i < kPhysical; ++i) {
+        if (std::isnan(bounds[i].lower) || std::isnan(bounds[i].upper) || bounds[i].lower > bounds[i].upper) {
+            throw Error(std::string("identification: the prior's bounds on the payload ") + bound_names[i] +
+                        " are not an interval [lower, upper]");
+        }
+    }
+    if (!(prior.mass.upper > 0.0))
+        throw Error("identification: the prior's upper bound on the payload mass is not positive");
     const double m = x(0);
-    if (!(m > 0.0)) {
+    if (!(m > 0.0) && !(prior.mass.lower > 0.0)) {
         char buffer[256];
         std::snprintf(buffer, sizeof buffer,
                       "identification: the payload mass comes out as %.6g kg (standard deviation %.3g kg), not "
@@ -698,39 +822,74 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
                       m, std::sqrt(ls.covariance(0, 0)));
         throw Error(buffer);
     }
-    const Vector2 h = x.segment<2>(1);
-    double inertia = x(3) - h.squaredNorm() / m;
-    result.inertia_unconstrained = inertia;
-    if (inertia < 0.0) {
-        // physically consistent: minimise the weighted residual on the boundary I = 0, that is
-        // over (m, c, friction) with pi = [m, m c, m |c|^2, friction] (Gauss-Newton on the
-        // quadratic form of the normal equations around the unconstrained solution)
-        result.inertia_constrained = true;
-        const Eigen::MatrixXd H = ls.covariance.ldlt().solve(Eigen::MatrixXd::Identity(k, k));
-        const Eigen::LLT<Eigen::MatrixXd> llt(H);
-        const Eigen::MatrixXd U = llt.matrixU();
-        Eigen::VectorXd z(k - 1);
-        z(0) = m;
-        z.segment<2>(1) = h / m;
-        z.tail(k - 4) = x.tail(k - 4);
-        for (int iteration = 0; iteration < 30; ++iteration) {
-            Eigen::VectorXd d(k);
-            d << z(0), z(0) * z(1), z(0) * z(2), z(0) * z.segment<2>(1).squaredNorm(), z.tail(k - 4);
-            Eigen::MatrixXd J = Eigen::MatrixXd::Zero(k, k - 1);
-            J.col(0).head<4>() << 1.0, z(1), z(2), z.segment<2>(1).squaredNorm();
-            J.col(1).head<4>() << 0.0, z(0), 0.0, 2.0 * z(0) * z(1);
-            J.col(2).head<4>() << 0.0, 0.0, z(0), 2.0 * z(0) * z(2);
-            for (Eigen::Index c = 3; c < k - 1; ++c) J(c + 1, c) = 1.0;
-            const Eigen::VectorXd step = (U * J).colPivHouseholderQr().solve(-(U * (d - ls.x)));
-            z += step;
-            if (step.norm() <= 1e-14 * z.norm()) break;
-        }
-        x << z(0), z(0) * z(1), z(0) * z(2), z(0) * z.segment<2>(1).squaredNorm(), z.tail(k - 4);
-        inertia = 0.0;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    Eigen::VectorXd z_ls = x;  // the unbounded solution's physical parameters (NaN without a mass)
+    if (m > 0.0) {
+        z_ls.segment<2>(1) = x.segment<2>(1) / m;
+        z_ls(3) = x(3) - x.segment<2>(1).squaredNorm() / m;
+    } else {
+        z_ls.segment<3>(1).setConstant(nan);
     }
-    result.mass = x(0);
-    result.com = x.segment<2>(1) / x(0);
-    result.inertia = std::max(inertia, 0.0);
+    result.inertia_unconstrained = z_ls(3);
+    PhysicalBox lo, hi;
+    for (int i = 0; i < kPhysical; ++i) {
+        lo(i) = bounds[i].lower;
+        hi(i) = bounds[i].upper;
+    }
+    // mass > 0: without a lower bound from the prior, a floor far below the estimate
+    const bool mass_floor = !(lo(0) > 0.0);
+    if (mass_floor) lo(0) = 1e-6 * m;
+    lo(3) = std::max(lo(3), 0.0);
+    Eigen::Vector4d physical = z_ls.head<kPhysical>();
+    bool inside = m > 0.0;
+    for (int i = 0; i < kPhysical; ++i) inside = inside && z_ls(i) >= lo(i) && z_ls(i) <= hi(i);
+    if (!inside) {
+        // sizes of the entries: the mass, the robot's length scale, m L^2, the friction values
+        double m_ref = std::abs(m);
+        for (const double v : {lo(0), hi(0)}) {
+            if (std::isfinite(v)) m_ref = std::max(m_ref, v);
+        }
+        const double L = model.length_scale;
+        Eigen::VectorXd scale = x.cwiseAbs().cwiseMax(1e-12);
+        scale.head<kPhysical>() << m_ref, L, L, m_ref * L * L;
+        // from the unbounded solution moved into the box, and from the box's middle
+        const auto inBox = [&](const Eigen::VectorXd& z) {
+            Eigen::VectorXd c = z;
+            for (int i = 0; i < kPhysical; ++i) {
+                if (!std::isfinite(c(i))) c(i) = i == 0 ? m_ref : 0.0;
+                c(i) = std::clamp(c(i), lo(i), hi(i));
+            }
+            return c;
+        };
+        Eigen::VectorXd middle = z_ls;
+        for (int i = 0; i < kPhysical; ++i) {
+            if (std::isfinite(lo(i)) && std::isfinite(hi(i))) middle(i) = 0.5 * (lo(i) + hi(i));
+        }
+        const auto cost = [&](const Eigen::VectorXd& z) { return (ls.U * (linearParameters(z) - x)).squaredNorm(); };
+        Eigen::VectorXd z = boundedPayload(ls.U, x, lo, hi, scale, inBox(z_ls));
+        const Eigen::VectorXd z_middle = boundedPayload(ls.U, x, lo, hi, scale, inBox(middle));
+        if (cost(z_middle) < cost(z)) z = z_middle;
+        for (int i = 0; i < kPhysical; ++i) {
+            const double tol = 1e-9 * scale(i);
+            const bool at_lower = z(i) - lo(i) <= tol, at_upper = hi(i) - z(i) <= tol;
+            if (!at_lower && !at_upper) continue;
+            if (i == 0 && at_lower && mass_floor) {
+                throw Error(
+                    "identification: within the prior's bounds the payload mass comes out as 0: no payload, or "
+                    "the robot file's parameters do not match the robot");
+            }
+            // equal bounds (a fixed parameter): the side the unbounded solution lies beyond
+            const bool upper = at_lower && at_upper ? z_ls(i) > hi(i) : at_upper;
+            z(i) = upper ? hi(i) : lo(i);
+            result.active_bounds.push_back({bound_names[i], upper, z(i), z_ls(i)});
+            if (i == 3 && at_lower && z(i) == 0.0) result.inertia_constrained = true;
+        }
+        x = linearParameters(z);
+        physical = z.head<kPhysical>();
+    }
+    result.mass = physical(0);
+    result.com = physical.segment<2>(1);
+    result.inertia = physical(3);
     // standard deviations of (m, c, I) from those of pi by the first-order map
     Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
     const double mm = x(0);

@@ -4,7 +4,9 @@
 // foreign one is refused; a negative inertia falls back to the best fit with none.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
+#include <utility>
 #include <string>
 
 #include "nocdyn/dynamics.hpp"
@@ -149,6 +151,47 @@ TEST(PhysicalConsistency, ANegativeInertiaFallsBackToTheBestFitWithNone) {
     clip = (naive.tau.topRows(rows) - motion.tau.topRows(rows)).squaredNorm() / static_cast<double>(rows);
     EXPECT_GT(fit, 0.0);
     EXPECT_LT(fit, clip);
+}
+
+TEST(PriorFile, ReadsBoundsWithOpenSidesAndLeavesAbsentOnesOpen) {
+    const PayloadPrior prior = io::parsePayloadPrior(
+        "# bounds\npayload:\n  mass: [0.4, 0.6]\n  com_x: [-0.02, ~]\n  inertia: [0, 2e-3]\n", "prior.yaml");
+    EXPECT_EQ(prior.mass.lower, 0.4);
+    EXPECT_EQ(prior.mass.upper, 0.6);
+    EXPECT_EQ(prior.com_x.lower, -0.02);
+    EXPECT_EQ(prior.com_x.upper, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(prior.com_y.lower, -std::numeric_limits<double>::infinity());
+    EXPECT_EQ(prior.com_y.upper, std::numeric_limits<double>::infinity());
+    EXPECT_EQ(prior.inertia.lower, 0.0);
+    EXPECT_EQ(prior.inertia.upper, 2e-3);
+    const PayloadPrior flow = io::parsePayloadPrior("payload: {mass: [0.5, 0.5]}", "p.yaml");
+    EXPECT_EQ(flow.mass.lower, 0.5);
+    EXPECT_EQ(flow.mass.upper, 0.5);
+}
+
+TEST(PriorFile, BadFilesNameTheLineAndTheField) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"payload:\n  mass: [0.4, 0.6]\n  density: [1, 2]\n", "prior.yaml:3: payload.density: unknown key"},
+        {"payload:\n  com_x: [0.02, -0.02]\n",
+         "prior.yaml:2: payload.com_x: lower bound 0.02 is above upper bound -0.02"},
+        {"payload:\n  mass: [0, 0.6]\n", "prior.yaml:2: payload.mass.lower: must be > 0 kg"},
+        {"payload:\n\n  inertia: [~, -1e-4]\n", "prior.yaml:3: payload.inertia.upper: must be >= 0 kg m^2"},
+        {"payload:\n  mass: 0.5\n", "prior.yaml:2: payload.mass: expected [lower, upper]"},
+        {"payload:\n  mass: [0.4, 0.6, 0.8]\n", "prior.yaml:2: payload.mass: expected [lower, upper]"},
+        {"payload:\n  com_y: [-0.01, abc]\n", "prior.yaml:2: payload.com_y.upper: 'abc'"},
+        {"robot: x\n", "prior.yaml:1: robot: unknown key"},
+        {"{}\n", "prior.yaml:1: payload: required"},
+    };
+    for (const auto& [text, expected] : cases) {
+        try {
+            (void)io::parsePayloadPrior(text, "prior.yaml");
+            ADD_FAILURE() << "accepted: " << text;
+        } catch (const Error& e) {
+            const std::string message = e.what();
+            EXPECT_EQ(message.rfind(expected, 0), 0u) << message;
+            EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+        }
+    }
 }
 
 }  // namespace

@@ -54,6 +54,38 @@ TEST(CliIdentify, RecoversThePayloadFromAnExactLogAndMergesItIntoTheRobotFile) {
     EXPECT_NEAR(merged.platform.com.x(), expected.platform.com.x(), 1e-11);
 }
 
+TEST(CliIdentify, APriorExcludingThePayloadGivesTheBoundedFitAndNamesTheActiveBound) {
+    const fs::path dir = scratch();
+    io::writeCsvFile((dir / "log.csv").string(), toTable(exactLog(120)));
+    {
+        std::ofstream prior(dir / "prior.yaml");
+        prior << "payload:\n  mass: [0.3, 0.45]\n  com_x: [-0.02, 0.02]\n";
+    }
+    const std::string command = "identify --robot " + kRobot + " --data " + (dir / "log.csv").string() + " --prior " +
+                                (dir / "prior.yaml").string();
+    const CliResult r = runCli(command);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("active_bounds: [{parameter: mass, side: upper, bound: 0.45}]"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("# mass is on its upper bound 0.45 kg (the unbounded fit gives 0.5"), std::string::npos)
+        << r.out;
+    EXPECT_EQ(after(r.out, "payload: {mass: "), 0.45) << r.out;
+    // a bad prior: one line naming the file, line and field; and not with --base
+    {
+        std::ofstream prior(dir / "prior.yaml");
+        prior << "payload:\n  mass: [0.3, 0.45]\n  inertia: [2e-3, 1e-3]\n";
+    }
+    const CliResult bad = runCli(command);
+    EXPECT_NE(bad.exit_code, 0);
+    EXPECT_NE(bad.err.find((dir / "prior.yaml").string() + ":3: payload.inertia: lower bound 0.002 is above upper "
+                                                           "bound 0.001"),
+              std::string::npos)
+        << bad.err;
+    EXPECT_EQ(bad.out, "");
+    const CliResult base = runCli(command + " --base");
+    EXPECT_NE(base.exit_code, 0);
+    EXPECT_NE(base.err.find("--prior"), std::string::npos) << base.err;
+}
+
 TEST(CliIdentify, RegressorPrintsTheBaseParametersAndWhatIsUnidentifiable) {
     const CliResult r = runCli("regressor --robot " + kRobot + " --samples 40");
     ASSERT_EQ(r.exit_code, 0) << r.err;

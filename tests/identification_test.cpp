@@ -3,6 +3,7 @@
 // parameters reproduce it too; a payload is recovered exactly from exact data.
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <random>
 #include <string>
 
@@ -287,6 +288,132 @@ TEST(PayloadIdentification, ARestingPlatformLeavesTheInertiaUnidentifiable) {
         FAIL() << "unidentifiable inertia accepted";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("payload inertia"), std::string::npos) << e.what();
+    }
+}
+
+/// The payload identification problem on exact data: the stacked platform columns Y_P of the
+/// regressor and b = tau - Y pi_robot, so that the residual of a payload is |b - Y_P x|^2.
+struct PayloadProblem {
+    Eigen::MatrixXd Y_P;
+    Eigen::VectorXd b;
+    [[nodiscard]] double residual(double mass, const Vector2& com, double inertia) const {
+        return (b - Y_P * inertialParameters(mass, com, inertia)).squaredNorm();
+    }
+};
+
+PayloadProblem payloadProblem(const Model& nominal, const Motion& motion) {
+    const int n = nominal.actuators;
+    const auto N = static_cast<Eigen::Index>(motion.t.size());
+    PayloadProblem problem;
+    problem.Y_P.resize(N * n, kBodyParameters);
+    problem.b.resize(N * n);
+    const ParameterVector pi = standardParameters(nominal);
+    Data data(nominal);
+    RegressorMatrix Y;
+    for (Eigen::Index k = 0; k < N; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        EXPECT_TRUE(inverseDynamicsRegressor(nominal, data, motion.p[kk], motion.dp[kk], motion.ddp[kk], Y).ok());
+        problem.Y_P.middleRows(k * n, n) = Y.middleCols<kBodyParameters>(bodyParameterIndex(nominal.platformBody()));
+        problem.b.segment(k * n, n) = motion.tau.row(k).transpose() - Y * pi;
+    }
+    return problem;
+}
+
+struct PriorCase {
+    const char* name;
+    PayloadPrior prior;
+    std::vector<std::pair<std::string, bool>> active;  // parameter, on its upper bound
+};
+
+TEST(PayloadPrior, ABoxHoldingTheTruthChangesNothingOnExactData) {
+    const RobotDescription robot = io::exampleRobot("paper-3prr-general");
+    const Payload payload{0.5, 8e-4, Vector2(0.012, -0.007)};
+    const Model nominal(robot);
+    std::mt19937 rng(31);
+    const Motion motion =
+        exactMotion(Model(withPayload(robot, payload)), trajectoryAround(nominal.home, rng), 80, 0.005);
+    IdentificationOptions options;
+    options.prior = PayloadPrior{{0.4, 0.6}, {-0.02, 0.02}, {-0.02, 0.02}, {0.0, 2e-3}};
+    const PayloadResult bounded = identifyPayload(nominal, motion, options);
+    const PayloadResult free = identifyPayload(nominal, motion);
+    EXPECT_TRUE(bounded.active_bounds.empty());
+    EXPECT_EQ(bounded.mass, free.mass);
+    EXPECT_EQ(bounded.com, free.com);
+    EXPECT_EQ(bounded.inertia, free.inertia);
+    EXPECT_NEAR(bounded.mass, payload.mass, kExactRecovery * payload.mass);
+    EXPECT_NEAR(bounded.com.x(), payload.com.x(), kExactRecovery * 0.012);
+    EXPECT_NEAR(bounded.inertia, payload.inertia, kExactRecovery * payload.inertia);
+}
+
+TEST(PayloadPrior, ABoxExcludingTheTruthGivesTheBestFitOnItsBound) {
+    // exact data (equal weights): the estimate's residual is no larger than that of any feasible
+    // payload, sampled at random over the box and next to the estimate along each free parameter
+    const RobotDescription robot = io::exampleRobot("paper-3prr-general");
+    const Payload payload{0.5, 8e-4, Vector2(0.012, -0.007)};
+    const Model nominal(robot);
+    std::mt19937 rng(32);
+    const Motion motion =
+        exactMotion(Model(withPayload(robot, payload)), trajectoryAround(nominal.home, rng), 80, 0.005);
+    const PayloadProblem problem = payloadProblem(nominal, motion);
+    const double inf = std::numeric_limits<double>::infinity();
+    const std::vector<PriorCase> cases = {
+        {"mass above", {{0.3, 0.45}, {}, {}, {}}, {{"mass", true}}},
+        {"c.o.m. x below", {{}, {0.0, 0.01}, {}, {}}, {{"com_x", true}}},
+        {"inertia above", {{}, {}, {}, {0.0, 5e-4}}, {{"inertia", true}}},
+        {"mass and inertia below",
+         {{0.55, inf}, {}, {-0.005, 0.005}, {1e-3, 2e-3}},
+         {{"mass", false}, {"com_y", false}, {"inertia", false}}},
+        {"mass known", {{0.48, 0.48}, {}, {}, {}}, {{"mass", true}}},  // the unbounded fit is above
+        {"mass known above", {{0.52, 0.52}, {}, {}, {}}, {{"mass", false}}},
+    };
+    for (const PriorCase& c : cases) {
+        IdentificationOptions options;
+        options.holdout = 0.0;
+        options.prior = c.prior;
+        const PayloadResult r = identifyPayload(nominal, motion, options);
+        ASSERT_EQ(r.active_bounds.size(), c.active.size()) << c.name;
+        for (std::size_t i = 0; i < c.active.size(); ++i) {
+            EXPECT_EQ(r.active_bounds[i].parameter, c.active[i].first) << c.name;
+            EXPECT_EQ(r.active_bounds[i].upper, c.active[i].second) << c.name;
+        }
+        const Bounds box[4] = {c.prior.mass, c.prior.com_x, c.prior.com_y, c.prior.inertia};
+        const double estimate[4] = {r.mass, r.com.x(), r.com.y(), r.inertia};
+        for (const ActiveBound& b : r.active_bounds) {
+            const int i = b.parameter == "mass" ? 0 : b.parameter == "com_x" ? 1 : b.parameter == "com_y" ? 2 : 3;
+            EXPECT_EQ(estimate[i], b.upper ? box[i].upper : box[i].lower) << c.name << " " << b.parameter;
+        }
+        for (int i = 0; i < 4; ++i) {
+            EXPECT_GE(estimate[i], box[i].lower) << c.name;
+            EXPECT_LE(estimate[i], box[i].upper) << c.name;
+        }
+        EXPECT_GE(r.inertia, 0.0);
+        const double best = problem.residual(r.mass, r.com, r.inertia);
+        EXPECT_GT(best, 0.0) << c.name;
+        // where a side is open, sample around the truth
+        const double around[4][2] = {{0.3, 0.7}, {-0.03, 0.03}, {-0.03, 0.03}, {0.0, 3e-3}};
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        const auto feasible = [&](int i, double v) {
+            return v >= box[i].lower && v <= box[i].upper && (i != 3 || v >= 0);
+        };
+        for (int s = 0; s < 200; ++s) {
+            double v[4];
+            for (int i = 0; i < 4; ++i) {
+                const double lo = std::isfinite(box[i].lower) ? box[i].lower : around[i][0];
+                const double hi = std::isfinite(box[i].upper) ? box[i].upper : around[i][1];
+                v[i] = lo + (hi - lo) * unit(rng);
+            }
+            EXPECT_LE(best, problem.residual(v[0], Vector2(v[1], v[2]), v[3])) << c.name << " sample " << s;
+        }
+        const double step[4] = {1e-5, 1e-6, 1e-6, 1e-7};
+        for (int i = 0; i < 4; ++i) {
+            for (const double sign : {-1.0, 1.0}) {
+                double v[4] = {r.mass, r.com.x(), r.com.y(), r.inertia};
+                v[i] += sign * step[i];
+                if (!feasible(i, v[i])) continue;
+                EXPECT_LE(best, problem.residual(v[0], Vector2(v[1], v[2]), v[3]) * (1.0 + 1e-12))
+                    << c.name << ": parameter " << i << " moved by " << sign * step[i];
+            }
+        }
     }
 }
 

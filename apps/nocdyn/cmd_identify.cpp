@@ -21,7 +21,7 @@ namespace nocdyn::cli {
 namespace {
 
 struct IdentifyOptions {
-    std::string robot, data, output, figure, calibration;
+    std::string robot, data, output, figure, calibration, prior;
     bool payload = false, base = false;
     IdentificationOptions identification;
 };
@@ -127,6 +127,8 @@ void run(const IdentifyOptions& options) {
     if (options.payload && options.base) throw Error("give --payload or --base, not both");
     if (options.base && !options.calibration.empty())
         throw Error("--calibration is for identifying a payload against the calibrated robot, not with --base");
+    if (options.base && !options.prior.empty())
+        throw Error("--prior bounds a payload's parameters: not with --base (base parameters have no bounds)");
     const RobotDescription robot = loadRobotDescriptionOrDefault(options.robot);
     const Model model(robot);
     IdentificationOptions identification = options.identification;
@@ -138,6 +140,7 @@ void run(const IdentifyOptions& options) {
             throw Error(options.calibration + ": " + e.what());
         }
     }
+    if (!options.prior.empty()) identification.prior = io::loadPayloadPrior(options.prior);
     const Measurements measured = readMeasurements(options.data, model.actuators);
     const Motion motion = reconstructMotion(model, measured, identification);
     std::string text, file;
@@ -164,6 +167,24 @@ void run(const IdentifyOptions& options) {
         if (r.inertia_constrained) {
             text += "# the unconstrained inertia about the c.o.m. came out negative (" +
                     number(r.inertia_unconstrained) + " kg m^2): the physically consistent solution has 0\n";
+        }
+        for (const ActiveBound& b : r.active_bounds) {
+            if (r.inertia_constrained && b.parameter == "inertia" && !b.upper) continue;  // said above
+            const std::string unit = b.parameter == "mass" ? " kg" : b.parameter == "inertia" ? " kg m^2" : " m";
+            text += "# " + b.parameter + " is on its " + (b.upper ? "upper" : "lower") + " bound " + number(b.bound) +
+                    unit +
+                    (std::isnan(b.unbounded) ? std::string(" (the unbounded fit has no positive mass)")
+                                             : " (the unbounded fit gives " + number(b.unbounded) + unit + ")") +
+                    "\n";
+        }
+        if (!options.prior.empty() || !r.active_bounds.empty()) {
+            text += "active_bounds: [";
+            for (std::size_t i = 0; i < r.active_bounds.size(); ++i) {
+                const ActiveBound& b = r.active_bounds[i];
+                text += std::string(i == 0 ? "" : ", ") + "{parameter: " + b.parameter +
+                        ", side: " + (b.upper ? "upper" : "lower") + ", bound: " + number(b.bound) + "}";
+            }
+            text += "]\n";
         }
         text += "payload: {mass: " + number(r.mass) + ", com: [" + number(r.com.x()) + ", " + number(r.com.y()) +
                 "], inertia: " + number(r.inertia) + "}\n";
@@ -214,8 +235,9 @@ void addIdentifyCommand(CLI::App& app) {
         "t,u1..un,tau1..taun (other columns ignored); with du1..dun,ddu1..ddun they are used as given, else u and\n"
         "tau are low-pass filtered (zero phase) and u differentiated. The platform pose comes from the\n"
         "direct-kinematics tracker; weighted least squares (weights from each actuator's residual), then the\n"
-        "physically consistent solution (mass > 0, inertia about the c.o.m. >= 0); standard deviations from the\n"
-        "residuals; the last --holdout of the samples is held out to check the fit. Prints YAML.");
+        "physically consistent solution (mass > 0, inertia about the c.o.m. >= 0, and the bounds of --prior: the\n"
+        "bounded least-squares solution, the bounds it lies on reported as active_bounds); standard deviations\n"
+        "from the residuals; the last --holdout of the samples is held out to check the fit. Prints YAML.");
     addRobotOption(*command, options->robot);
     command->add_option("--data", options->data, "Measured CSV: t,u1..un,tau1..taun[,du1..dun,ddu1..ddun]")
         ->required()
@@ -242,6 +264,14 @@ void addIdentifyCommand(CLI::App& app) {
                      "With --payload: a calibration file (identify --base --output on data without payload) whose "
                      "base parameters replace the robot file's own parameters (the robot file still gives the "
                      "geometry)")
+        ->check(CLI::ExistingFile);
+    command
+        ->add_option("--prior", options->prior,
+                     "With --payload: a YAML file of bounds on the payload's parameters, e.g. 'payload: {mass: [0.4, "
+                     "0.6], com_x: [-0.02, 0.02], com_y: [-0.02, 0.02], inertia: [0, 2e-3]}' (kg, m in the platform "
+                     "frame, kg m^2 about the payload's c.o.m.; every key optional, ~ for an open side, equal bounds "
+                     "fix a parameter). The estimate is the weighted least-squares solution within them. Not with "
+                     "--base: base parameters are combinations of the robot's parameters, which have no such bounds")
         ->check(CLI::ExistingFile);
     command->add_option("--figure", options->figure,
                         "Measured against predicted forces on the held-out samples: writes STEM.png and STEM.svg");

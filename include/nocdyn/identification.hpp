@@ -22,6 +22,7 @@
 // minimum-norm A (A^T A)^-1 W (redundant), exactly as inverse dynamics applies them.
 #pragma once
 
+#include <limits>
 #include <optional>
 #include <string>
 #include <vector>
@@ -114,6 +115,21 @@ struct Calibration {
 /// robot) and finite values.
 void checkCalibration(const Model& model, const Calibration& calibration);
 
+/// Bounds [lower, upper] on one parameter; an infinite side is open.
+struct Bounds {
+    double lower = -std::numeric_limits<double>::infinity();
+    double upper = std::numeric_limits<double>::infinity();
+};
+
+/// What is known of a payload beforehand (a prior file, io/calibration.hpp): bounds on its
+/// physical parameters. The estimate is then the weighted least-squares solution within them
+/// and within mass > 0, inertia about the c.o.m. >= 0 (which hold without a prior too).
+struct PayloadPrior {
+    Bounds mass;          ///< [kg], lower > 0 when given
+    Bounds com_x, com_y;  ///< the c.o.m. in the platform frame [m]
+    Bounds inertia;       ///< about the payload's own c.o.m. [kg m^2], lower >= 0 when given
+};
+
 struct IdentificationOptions {
     /// Zero-phase low-pass cut-off when du and ddu are derived from u [Hz] (0: a tenth of the
     /// sampling rate, at most 50 Hz).
@@ -130,6 +146,8 @@ struct IdentificationOptions {
     /// (its base columns must be those baseParameters(model) finds). Not with `friction`: the
     /// calibration holds the joints' friction already.
     std::optional<Calibration> calibration;
+    /// Bounds on the payload's parameters (payload identification only; unbounded by default).
+    PayloadPrior prior;
 };
 
 /// One identified value with its standard deviation (from the residuals).
@@ -151,6 +169,16 @@ struct FitReport {
     Eigen::MatrixXd measured, predicted;       ///< held-out forces (rows: samples)
 };
 
+/// A bound the payload estimate lies on: the unbounded least-squares solution violates it.
+struct ActiveBound {
+    std::string parameter;  ///< "mass", "com_x", "com_y" or "inertia"
+    bool upper = false;     ///< on the upper bound (else the lower)
+    double bound = 0.0;
+    /// The parameter in the unbounded solution (NaN when its mass is not positive, so that it
+    /// has no c.o.m. or inertia).
+    double unbounded = 0.0;
+};
+
 struct PayloadResult {
     double mass = 0.0;
     Vector2 com = Vector2::Zero();  ///< platform frame [m]
@@ -159,6 +187,9 @@ struct PayloadResult {
     Vector2 com_sd = Vector2::Zero();
     bool inertia_constrained = false;  ///< the unconstrained estimate was negative: set to 0
     double inertia_unconstrained = 0.0;
+    /// The bounds (the prior's, and inertia >= 0) the estimate lies on; standard deviations
+    /// stay those of the unbounded solution's linearisation at the estimate.
+    std::vector<ActiveBound> active_bounds;
     std::vector<Estimate> friction;  ///< actuated joints' damping and friction, when asked
     FitReport fit;
 };
@@ -169,7 +200,7 @@ struct BaseResult {
     FitReport fit;
 };
 
-/// Motion from the measurements: the platform pose by the direct-kinematics tracker, its rates
+/// Motion from the measurements: the platform pose by the direct-kinematics tracker (PoseTracker), its rates
 /// from du (ddu) as given or by zero-phase low-pass filtering and differentiating u (tau is then
 /// filtered alike). Throws nocdyn::Error naming the sample time on a lost tracker or a singular
 /// posture, and on too few samples or a non-monotonic time.
@@ -184,8 +215,10 @@ struct Motion {
 
 /// Payload [mass, com, inertia] fixed to the platform, the robot's own parameters taken from
 /// the model: weighted least squares on tau - Y pi_robot = Y_platform delta_pi, then the
-/// physically consistent solution. Throws nocdyn::Error when a parameter is unidentifiable
-/// (naming it and the condition number) or the mass is not positive.
+/// physically consistent solution within the prior's bounds (options.prior): when the
+/// unbounded solution is outside them, the bounded least-squares solution over the physical
+/// parameters (see identification.cpp). Throws nocdyn::Error when a parameter is unidentifiable
+/// (naming it and the condition number) or the mass is not positive (without a lower bound).
 [[nodiscard]] PayloadResult identifyPayload(const Model& model, const Motion& motion,
                                             const IdentificationOptions& options = {});
 

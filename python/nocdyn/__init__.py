@@ -31,7 +31,8 @@ import numpy as np
 from . import _nocdyn
 from ._nocdyn import Error
 
-__all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMatrices"]
+__all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMatrices", "PayloadEstimate",
+           "load_prior"]
 __version__ = "0.1.0"
 
 Error.__module__ = "nocdyn"
@@ -52,6 +53,46 @@ independent coordinates (the actuator variables for 3 actuators, the platform po
 redundant) [kg, kg m, kg m^2]; C: (3, 3) Coriolis matrix with dI/dt = C + C^T; T: (bodies, 3, 3)
 twist-shaping matrices T_i (t_i = T_i v, eq. 22), bodies numbered as the paper does (first
 bodies of limbs 1..m, second bodies, then the platform)."""
+
+
+_PRIOR_KEYS = ("mass", "com_x", "com_y", "inertia")
+
+
+def load_prior(path):
+    """Reads a prior file (the YAML of `nocdyn identify --prior`): a dict of the bounds it gives,
+    e.g. {"mass": (0.4, 0.6), "inertia": (0.0, None)} (None for an open side), ready for
+    Robot.identify_payload(prior=...). Errors name the file, line and field."""
+    return _nocdyn.Robot._load_prior(str(path))
+
+
+class PayloadEstimate:
+    """A payload identified by Robot.identify_payload.
+
+    mass [kg], com (2,) [m] (platform frame), inertia [kg m^2] (about the payload's own c.o.m.),
+    each with its standard deviation from the residuals (mass_sd, com_sd, inertia_sd);
+    active_bounds: the bounds the estimate lies on (list of dicts: parameter, side 'lower' or
+    'upper', bound, unbounded: the unbounded fit's value); inertia_constrained: the unbounded
+    inertia was negative (set to 0); friction: the actuated joints' damping and friction when
+    asked (list of dicts: name, value, stddev, unit); fit: dict of the fit on the held-out
+    samples (fit_samples, holdout_samples, rms_fit, rms_holdout, rms_measured (n,) [N or N m],
+    condition, t (M,), measured and predicted (M, n) forces).
+    """
+
+    __slots__ = ("mass", "com", "inertia", "mass_sd", "com_sd", "inertia_sd", "active_bounds",
+                 "inertia_constrained", "friction", "fit")
+
+    def __init__(self, values):
+        for key in self.__slots__:
+            setattr(self, key, values[key])
+
+    def as_dict(self):
+        """The estimate as a plain dict (numpy arrays kept)."""
+        return {key: getattr(self, key) for key in self.__slots__}
+
+    def __repr__(self):
+        return (f"<nocdyn.PayloadEstimate mass={self.mass:.6g} kg (sd {self.mass_sd:.2g}), "
+                f"com=[{self.com[0]:.6g}, {self.com[1]:.6g}] m, inertia={self.inertia:.6g} kg m^2 "
+                f"(sd {self.inertia_sd:.2g})>")
 
 
 class Robot:
@@ -200,6 +241,88 @@ class Robot:
         if not isinstance(trajectory, Trajectory):
             raise TypeError("trajectory: expected a nocdyn.Trajectory")
         return self._core._sample_trajectory(trajectory._core, float(rate), duration, allow_limits)
+
+    # --- identification -------------------------------------------------------------
+    def parameter_names(self):
+        """Names of the P standard parameters, the columns of the regressor: per body (first
+        bodies of the limbs, second bodies, the platform) m, mc_x, mc_y, I_O in the body's own
+        frame ('platform.m', 'limb1.body2.I_O', ...), then per joint damping and friction
+        ('limb1.joint1.damping', ...). See `nocdyn regressor`."""
+        return list(self._core._parameter_names())
+
+    def parameter_units(self):
+        """Units of the standard parameters ('kg', 'kg m', 'kg m^2', 'N s/m', 'N', ...)."""
+        return list(self._core._parameter_units())
+
+    def standard_parameters(self):
+        """The standard parameters pi of the robot file, shape (P,): tau = Y pi."""
+        return self._core._standard_parameters()
+
+    def with_payload(self, mass, com=(0.0, 0.0), inertia=0.0):
+        """This robot with a payload merged into its platform: mass [kg], c.o.m. [x, y] in the
+        platform frame [m], moment of inertia about its own c.o.m. [kg m^2]."""
+        com = [float(v) for v in com]
+        if len(com) != 2:
+            raise Error("com: expected 2 values [x, y]")
+        return Robot(self._core._with_payload(float(mass), com, float(inertia)))
+
+    def regressor(self, p, dp, ddp):
+        """The inverse-dynamics regressor Y, linear in the standard parameters: tau = Y pi.
+
+        One sample: p, dp, ddp of shape (3,) give Y of shape (n, P). A batch: (N, 3) float64
+        arrays (read in place, any memory order) give the stacked regressor of shape (N * n, P),
+        rows k * n .. k * n + n - 1 those of sample k (reshape(N, n, P) separates them). A
+        sample out of reach or singular raises nocdyn.Error ("sample K: <reason>")."""
+        p_arr = p if isinstance(p, np.ndarray) else np.asarray(p, dtype=float)
+        if p_arr.ndim == 1:
+            return self._core._regressor_sample(p_arr, dp, ddp)
+        if p_arr.ndim != 2:
+            raise Error(f"p: expected shape (3,) or (N, 3), got {p_arr.shape}")
+        dp_arr = dp if isinstance(dp, np.ndarray) else np.asarray(dp, dtype=float)
+        ddp_arr = ddp if isinstance(ddp, np.ndarray) else np.asarray(ddp, dtype=float)
+        return self._core._regressor_batch(p_arr, dp_arr, ddp_arr)
+
+    def identify_payload(self, t, u, tau, du=None, ddu=None, *, friction=False, held_forces=False, cutoff=None,
+                         holdout=0.2, prior=None):
+        """A payload fixed to the platform from a log, as `nocdyn identify --payload` does it.
+
+        t (N,) [s], increasing; u and tau (N, n): actuator positions [m or rad] and forces
+        [N or N m]; du, ddu (N, n): their rates and accelerations when known (used as given, so
+        that exact data identify exactly), else u and tau are low-pass filtered at `cutoff` [Hz]
+        (default: a tenth of the sampling rate, at most 50 Hz) at zero phase and u is
+        differentiated (uniform sampling needed). The robot's own parameters are this robot's.
+        friction=True identifies the actuated joints' damping and Coulomb friction alongside;
+        held_forces=True takes the forces as commands held until the next sample (as `nocdyn
+        control --log` writes them); the last `holdout` fraction of the samples is held out to
+        check the fit. prior: bounds on the payload, a dict {"mass": (lower, upper), "com_x":
+        ..., "com_y": ..., "inertia": ...} (None for an open side; see load_prior) or the path
+        of a prior file: the estimate is then the weighted least-squares solution within them.
+
+        Returns a PayloadEstimate. Raises nocdyn.Error as the command line does (too few
+        samples, time not increasing, a parameter the motion leaves unidentifiable, ...)."""
+        if isinstance(prior, (str, bytes)) or hasattr(prior, "__fspath__"):
+            prior = load_prior(prior)
+        bounds = []
+        prior = dict(prior or {})
+        unknown = sorted(set(prior) - set(_PRIOR_KEYS))
+        if unknown:
+            raise Error(f"prior: unknown key {unknown[0]!r} (expected one of: {', '.join(_PRIOR_KEYS)})")
+        for key in _PRIOR_KEYS:
+            pair = prior.get(key, (None, None))
+            if pair is None or len(pair) != 2:
+                raise Error(f"prior: {key}: expected (lower, upper), None for an open side")
+            lower = -np.inf if pair[0] is None else float(pair[0])
+            upper = np.inf if pair[1] is None else float(pair[1])
+            bounds.append((lower, upper))
+
+        def actuator_array(x):
+            return None if x is None else np.asarray(x, dtype=float)
+
+        result = self._core._identify_payload(np.asarray(t, dtype=float).reshape(-1), actuator_array(u),
+                                              actuator_array(tau), actuator_array(du), actuator_array(ddu),
+                                              bool(friction), bool(held_forces),
+                                              0.0 if cutoff is None else float(cutoff), float(holdout), bounds)
+        return PayloadEstimate(result)
 
     # --- direct kinematics ----------------------------------------------------------
     def forward_kinematics(self, u, *, tolerance=1e-9):

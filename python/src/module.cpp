@@ -8,12 +8,15 @@
 #include <pybind11/stl.h>
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <ctime>
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "nocdyn/batch.hpp"
@@ -22,6 +25,9 @@
 #include "nocdyn/envelope.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/general_control.hpp"
+#include "nocdyn/identification.hpp"
+#include "nocdyn/io/calibration.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
@@ -447,6 +453,175 @@ py::list envelope(const Robot& robot, const std::vector<std::string>& axes, doub
     return out;
 }
 
+// --- identification ----------------------------------------------------------------------
+
+/// Y of one sample: (n, P), tau = Y pi.
+RowArray regressorSample(const Robot& robot, const py::handle& p, const py::handle& dp, const py::handle& ddp) {
+    const Model& model = *robot.model;
+    Data data(model);
+    RegressorMatrix Y;
+    const Status status =
+        inverseDynamicsRegressor(model, data, vector3(p, "p"), vector3(dp, "dp"), vector3(ddp, "ddp"), Y);
+    if (!status) throw Error(describe(status, model));
+    RowArray out({static_cast<py::ssize_t>(Y.rows()), static_cast<py::ssize_t>(Y.cols())});
+    auto o = out.mutable_unchecked<2>();
+    for (Eigen::Index r = 0; r < Y.rows(); ++r)
+        for (Eigen::Index c = 0; c < Y.cols(); ++c) o(r, c) = Y(r, c);
+    return out;
+}
+
+/// The stacked regressor of N samples: (N n, P), rows k n .. k n + n - 1 those of sample k.
+/// Raises "sample K: <reason>" at the first sample out of reach or singular.
+RowArray regressorBatch(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp) {
+    const Model& model = *robot.model;
+    const ArrayView vp = viewOf(p, "p", -1, 3, false);
+    const ArrayView vdp = viewOf(dp, "dp", vp.rows, 3, false), vddp = viewOf(ddp, "ddp", vp.rows, 3, false);
+    const auto n = static_cast<py::ssize_t>(model.actuators), P = static_cast<py::ssize_t>(parameterCount(model));
+    RowArray out({static_cast<py::ssize_t>(vp.rows) * n, P});
+    double* o = out.mutable_data();
+    Eigen::Index failed = -1;
+    Status status;
+    {
+        const py::gil_scoped_release release;
+        const ConstStridedMap mp = constMap(vp), mdp = constMap(vdp), mddp = constMap(vddp);
+        Data data(model);
+        RegressorMatrix Y;
+        for (Eigen::Index k = 0; k < vp.rows && failed < 0; ++k) {
+            status = inverseDynamicsRegressor(model, data, mp.row(k).transpose().matrix(),
+                                              mdp.row(k).transpose().matrix(), mddp.row(k).transpose().matrix(), Y);
+            if (!status) {
+                failed = k;
+                break;
+            }
+            for (py::ssize_t a = 0; a < n; ++a)
+                for (py::ssize_t c = 0; c < P; ++c) o[(k * n + a) * P + c] = Y(a, c);
+        }
+    }
+    if (failed >= 0) throw Error("sample " + std::to_string(failed) + ": " + describe(status, model));
+    return out;
+}
+
+/// An (N, n) float64 array (any memory order) copied into an Eigen matrix.
+Eigen::MatrixXd actuatorColumns(const py::array& a, const char* name, py::ssize_t rows, int n) {
+    return constMap(viewOf(a, name, rows, n, false)).matrix();
+}
+
+py::array_t<double> toArray(const std::vector<double>& v) {
+    py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+    for (std::size_t i = 0; i < v.size(); ++i) a.mutable_at(static_cast<py::ssize_t>(i)) = v[i];
+    return a;
+}
+
+RowArray toArray(const Eigen::MatrixXd& m) {
+    RowArray a({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
+    auto o = a.mutable_unchecked<2>();
+    for (Eigen::Index r = 0; r < m.rows(); ++r)
+        for (Eigen::Index c = 0; c < m.cols(); ++c) o(r, c) = m(r, c);
+    return a;
+}
+
+/// identifyPayload on arrays: t (N,), u and tau (N, n), du and ddu (N, n) or None; prior: the
+/// bounds [mass, com_x, com_y, inertia] as (lower, upper) pairs, infinite where open. The GIL
+/// is released while the motion is reconstructed and the least squares solved.
+py::dict identifyPayloadArrays(const Robot& robot, const py::array_t<double, py::array::forcecast>& t,
+                               const py::array& u, const py::array& tau, const std::optional<py::array>& du,
+                               const std::optional<py::array>& ddu, bool friction, bool held_forces, double cutoff,
+                               double holdout, const std::array<std::array<double, 2>, 4>& prior) {
+    const Model& model = *robot.model;
+    if (t.ndim() != 1) throw Error("t: expected a one-dimensional array of times");
+    const py::ssize_t N = t.shape(0);
+    Measurements m;
+    m.t.assign(t.data(), t.data() + N);
+    m.u = actuatorColumns(u, "u", N, model.actuators);
+    m.tau = actuatorColumns(tau, "tau", N, model.actuators);
+    if (du.has_value() != ddu.has_value()) throw Error("du, ddu: give both or neither");
+    if (du) {
+        m.du = actuatorColumns(*du, "du", N, model.actuators);
+        m.ddu = actuatorColumns(*ddu, "ddu", N, model.actuators);
+    }
+    const auto finite = [](const Eigen::MatrixXd& x, const char* name) {
+        for (Eigen::Index r = 0; r < x.rows(); ++r)
+            for (Eigen::Index c = 0; c < x.cols(); ++c)
+                if (!std::isfinite(x(r, c)))
+                    throw Error(std::string(name) + "[" + std::to_string(r) + ", " + std::to_string(c) +
+                                "]: not a finite number");
+    };
+    for (py::ssize_t k = 0; k < N; ++k) {
+        if (!std::isfinite(m.t[static_cast<std::size_t>(k)]))
+            throw Error("t[" + std::to_string(k) + "]: not a finite number");
+    }
+    finite(m.u, "u");
+    finite(m.tau, "tau");
+    finite(m.du, "du");
+    finite(m.ddu, "ddu");
+    IdentificationOptions options;
+    options.friction = friction;
+    options.held_forces = held_forces;
+    options.cutoff = cutoff;
+    options.holdout = holdout;
+    Bounds* bounds[4] = {&options.prior.mass, &options.prior.com_x, &options.prior.com_y, &options.prior.inertia};
+    for (std::size_t i = 0; i < 4; ++i) *bounds[i] = Bounds{prior[i][0], prior[i][1]};
+    PayloadResult r;
+    {
+        const py::gil_scoped_release release;
+        const Motion motion = reconstructMotion(model, m, options);
+        r = identifyPayload(model, motion, options);
+    }
+    py::dict out;
+    out["mass"] = r.mass;
+    out["com"] = toArray(std::vector<double>{r.com.x(), r.com.y()});
+    out["inertia"] = r.inertia;
+    out["mass_sd"] = r.mass_sd;
+    out["com_sd"] = toArray(std::vector<double>{r.com_sd.x(), r.com_sd.y()});
+    out["inertia_sd"] = r.inertia_sd;
+    out["inertia_constrained"] = r.inertia_constrained;
+    py::list active;
+    for (const ActiveBound& b : r.active_bounds) {
+        py::dict d;
+        d["parameter"] = b.parameter;
+        d["side"] = b.upper ? "upper" : "lower";
+        d["bound"] = b.bound;
+        d["unbounded"] = b.unbounded;
+        active.append(d);
+    }
+    out["active_bounds"] = active;
+    py::list joints;
+    for (const Estimate& e : r.friction) {
+        py::dict d;
+        d["name"] = e.name;
+        d["value"] = e.value;
+        d["stddev"] = e.stddev;
+        d["unit"] = e.unit;
+        joints.append(d);
+    }
+    out["friction"] = joints;
+    py::dict fit;
+    fit["fit_samples"] = r.fit.fit_samples;
+    fit["holdout_samples"] = r.fit.holdout_samples;
+    fit["rms_fit"] = toArray(r.fit.rms_fit);
+    fit["rms_holdout"] = toArray(r.fit.rms_holdout);
+    fit["rms_measured"] = toArray(r.fit.rms_measured);
+    fit["condition"] = r.fit.condition;
+    fit["t"] = toArray(r.fit.t);
+    fit["measured"] = toArray(r.fit.measured);
+    fit["predicted"] = toArray(r.fit.predicted);
+    out["fit"] = fit;
+    return out;
+}
+
+py::dict loadPrior(const std::string& path) {
+    const PayloadPrior prior = io::loadPayloadPrior(path);
+    py::dict out;
+    const auto side = [](double v) -> py::object { return std::isfinite(v) ? py::object(py::float_(v)) : py::none(); };
+    const std::pair<const char*, const Bounds*> items[] = {
+        {"mass", &prior.mass}, {"com_x", &prior.com_x}, {"com_y", &prior.com_y}, {"inertia", &prior.inertia}};
+    for (const auto& [name, b] : items) {
+        if (std::isfinite(b->lower) || std::isfinite(b->upper))
+            out[name] = py::make_tuple(side(b->lower), side(b->upper));
+    }
+    return out;
+}
+
 }  // namespace
 
 }  // namespace nocdyn::python
@@ -531,6 +706,35 @@ PYBIND11_MODULE(_nocdyn, m) {
         .def("_forward_kinematics", &forwardKinematics, py::arg("u"), py::arg("tolerance") = 1e-9)
         .def("_simulate", &simulate, py::arg("p0"), py::arg("dp0"), py::arg("force_times"), py::arg("forces"),
              py::arg("interpolation"), py::arg("t"), py::arg("rtol"), py::arg("atol"), py::arg("max_step"))
+        .def("_parameter_names",
+             [](const Robot& r) {
+                 std::vector<std::string> names;
+                 for (int c = 0; c < parameterCount(*r.model); ++c) names.push_back(parameterName(*r.model, c));
+                 return names;
+             })
+        .def("_parameter_units",
+             [](const Robot& r) {
+                 std::vector<std::string> units;
+                 for (int c = 0; c < parameterCount(*r.model); ++c) units.push_back(parameterUnit(*r.model, c));
+                 return units;
+             })
+        .def("_standard_parameters",
+             [](const Robot& r) {
+                 const ParameterVector pi = standardParameters(*r.model);
+                 return toArray(std::vector<double>(pi.data(), pi.data() + pi.size()));
+             })
+        .def(
+            "_with_payload",
+            [](const Robot& r, double mass, const std::array<double, 2>& com, double inertia) {
+                return Robot(withPayload(r.model->description, Payload{mass, inertia, Vector2(com[0], com[1])}));
+            },
+            py::arg("mass"), py::arg("com"), py::arg("inertia"))
+        .def("_regressor_sample", &regressorSample, py::arg("p"), py::arg("dp"), py::arg("ddp"))
+        .def("_regressor_batch", &regressorBatch, py::arg("p"), py::arg("dp"), py::arg("ddp"))
+        .def("_identify_payload", &identifyPayloadArrays, py::arg("t"), py::arg("u"), py::arg("tau"), py::arg("du"),
+             py::arg("ddu"), py::arg("friction"), py::arg("held_forces"), py::arg("cutoff"), py::arg("holdout"),
+             py::arg("prior"))
+        .def_static("_load_prior", &loadPrior, py::arg("path"))
         .def("_envelope", &envelope, py::arg("axes"), py::arg("min_frequency"), py::arg("max_frequency"),
              py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"));
 

@@ -1,7 +1,9 @@
 // Calibration files (calibration.hpp).
 #include "nocdyn/io/calibration.hpp"
 
+#include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "nocdyn/error.hpp"
 #include "yaml_util.hpp"
@@ -76,6 +78,57 @@ Calibration parseCalibration(const std::string& text, const std::string& source,
 
 Calibration loadCalibration(const std::string& path, const Model& model) {
     return parseCalibration(detail::readFile(path, "calibration file"), path, model);
+}
+
+namespace {
+
+/// [lower, upper] at map[key] (absent: unbounded; ~ for an open side), lower >= `least` when
+/// given (strictly above it when `strict`).
+Bounds readBounds(const Context& context, const YAML::Node& map, const char* key, double least, bool strict,
+                  const char* unit) {
+    Bounds bounds;
+    const YAML::Node node = map[key];
+    if (!node.IsDefined()) return bounds;
+    const Context field = context / key;
+    if (!node.IsSequence() || node.size() != 2)
+        detail::fail(field, node, "expected [lower, upper] in " + std::string(unit) + " (~ for an open side)");
+    if (!node[0].IsNull()) bounds.lower = detail::toNumber(field / "lower", node[0]);
+    if (!node[1].IsNull()) bounds.upper = detail::toNumber(field / "upper", node[1]);
+    const auto allowed = [&](double v) { return strict ? v > least : v >= least; };
+    const std::string limit = std::string(strict ? "> " : ">= ") + detail::formatted(least) + " " + unit;
+    if (std::isfinite(bounds.lower) && !allowed(bounds.lower))
+        detail::fail(field / "lower", node[0], "must be " + limit + ", got " + detail::formatted(bounds.lower));
+    if (std::isfinite(bounds.upper) && !allowed(bounds.upper))
+        detail::fail(field / "upper", node[1], "must be " + limit + ", got " + detail::formatted(bounds.upper));
+    if (bounds.lower > bounds.upper) {
+        detail::fail(field, node,
+                     "lower bound " + detail::formatted(bounds.lower) + " is above upper bound " +
+                         detail::formatted(bounds.upper) + " " + unit);
+    }
+    return bounds;
+}
+
+}  // namespace
+
+PayloadPrior parsePayloadPrior(const std::string& text, const std::string& source) {
+    const YAML::Node root = detail::loadDocument(text, source);
+    const Context top{source, ""};
+    detail::requireMap(top, root, {"payload"});
+    const YAML::Node payload = root["payload"];
+    if (!payload.IsDefined()) detail::fail(top / "payload", root, "required: the bounds on the payload's parameters");
+    const Context context = top / "payload";
+    detail::requireMap(context, payload, {"mass", "com_x", "com_y", "inertia"});
+    PayloadPrior prior;
+    prior.mass = readBounds(context, payload, "mass", 0.0, true, "kg");
+    const double inf = std::numeric_limits<double>::infinity();
+    prior.com_x = readBounds(context, payload, "com_x", -inf, false, "m");
+    prior.com_y = readBounds(context, payload, "com_y", -inf, false, "m");
+    prior.inertia = readBounds(context, payload, "inertia", 0.0, false, "kg m^2");
+    return prior;
+}
+
+PayloadPrior loadPayloadPrior(const std::string& path) {
+    return parsePayloadPrior(detail::readFile(path, "prior file"), path);
 }
 
 }  // namespace nocdyn::io

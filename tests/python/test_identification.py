@@ -1,0 +1,103 @@
+"""The Python regressor and payload identification: Y pi equals the inverse dynamics, per sample
+and stacked; exact data identify a payload to 1e-9; a prior bounds the estimate; bad input
+raises nocdyn.Error."""
+
+import numpy as np
+import pytest
+
+import nocdyn
+
+PAYLOAD = dict(mass=0.5, com=(0.012, -0.007), inertia=8e-4)
+
+
+def motion(robot, samples, dt=0.004):
+    """Samples of a two-frequency platform motion about the robot's home."""
+    theta, x, y = robot.home
+    traj = nocdyn.Trajectory.harmonic(theta=[(0.04, 3.0, 0.3), (0.02, 7.0, 1.0)],
+                                      x=[(0.003, 2.0, 0.0), (0.001, 5.0, 1.2)],
+                                      y=[(0.003, 4.0, 0.7), (0.001, 9.0, 0.2)], offset=(theta, x, y))
+    t = np.arange(samples) * dt
+    return (t, *traj.evaluate(t))
+
+
+@pytest.mark.parametrize("name", ["paper-3prr-general", "3-rrr", "4-rrr"])
+def test_regressor_times_the_standard_parameters_equals_inverse_dynamics(name):
+    robot = nocdyn.Robot.example(name)
+    _, P, dP, ddP = motion(robot, 40)
+    pi = robot.standard_parameters()
+    Y = robot.regressor(P, dP, ddP)
+    n = robot.actuators
+    assert Y.shape == (40 * n, len(pi)) == (40 * n, len(robot.parameter_names()))
+    tau = robot.inverse_dynamics(P, dP, ddP).tau
+    scale = np.max(np.abs(tau))
+    assert np.max(np.abs((Y @ pi).reshape(40, n) - tau)) <= 1e-12 * scale
+    # the stacked rows are the per-sample regressors
+    for k in (0, 17, 39):
+        Yk = robot.regressor(P[k], dP[k], ddP[k])
+        assert Yk.shape == (n, len(pi))
+        np.testing.assert_array_equal(Yk, Y[k * n:(k + 1) * n])
+        assert np.max(np.abs(Yk @ pi - robot.inverse_dynamics(P[k], dP[k], ddP[k]).tau)) <= 1e-12 * scale
+    assert robot.parameter_names()[-1].endswith(".friction")
+    assert robot.parameter_units()[:4] == ["kg", "kg m", "kg m", "kg m^2"]
+
+
+@pytest.mark.parametrize("name", ["paper-3prr-general", "4-rrr"])
+def test_exact_data_identify_the_payload_to_1e_9(name):
+    robot = nocdyn.Robot.example(name)
+    loaded = robot.with_payload(**PAYLOAD)
+    t, P, dP, ddP = motion(robot, 200)
+    u, du, ddu, tau = loaded.inverse_dynamics(P, dP, ddP)
+    est = robot.identify_payload(t, u, tau, du, ddu)
+    assert isinstance(est, nocdyn.PayloadEstimate)
+    assert abs(est.mass - 0.5) <= 1e-9 * 0.5
+    assert np.all(np.abs(est.com - np.array(PAYLOAD["com"])) <= 1e-9 * 0.012)
+    assert abs(est.inertia - 8e-4) <= 1e-9 * 8e-4
+    assert est.mass_sd < 1e-9 and est.inertia_sd < 1e-12
+    assert est.active_bounds == [] and not est.inertia_constrained
+    fit = est.fit
+    assert fit["fit_samples"] + fit["holdout_samples"] == 200
+    assert fit["measured"].shape == fit["predicted"].shape == (fit["holdout_samples"], robot.actuators)
+    assert np.all(fit["rms_holdout"] <= 1e-9 * fit["rms_measured"])
+    assert set(est.as_dict()) >= {"mass", "com", "inertia", "mass_sd", "com_sd", "inertia_sd"}
+
+
+def test_a_prior_excluding_the_payload_puts_the_estimate_on_its_bound(tmp_path):
+    robot = nocdyn.Robot.example("paper-3prr-general")
+    t, P, dP, ddP = motion(robot, 120)
+    u, du, ddu, tau = robot.with_payload(**PAYLOAD).inverse_dynamics(P, dP, ddP)
+    est = robot.identify_payload(t, u, tau, du, ddu, prior={"mass": (0.3, 0.45), "com_x": (None, 0.05)})
+    assert est.mass == 0.45
+    assert [(b["parameter"], b["side"]) for b in est.active_bounds] == [("mass", "upper")]
+    assert abs(est.active_bounds[0]["unbounded"] - 0.5) <= 1e-9
+    # the same from a prior file
+    path = tmp_path / "prior.yaml"
+    path.write_text("payload:\n  mass: [0.3, 0.45]\n  com_x: [~, 0.05]\n")
+    assert nocdyn.load_prior(path) == {"mass": (0.3, 0.45), "com_x": (None, 0.05)}
+    assert robot.identify_payload(t, u, tau, du, ddu, prior=path).mass == 0.45
+    path.write_text("payload:\n  mass: [0.6, 0.45]\n")
+    with pytest.raises(nocdyn.Error, match=r"prior.yaml:2: payload.mass: lower bound 0.6 is above upper bound 0.45"):
+        robot.identify_payload(t, u, tau, du, ddu, prior=path)
+    with pytest.raises(nocdyn.Error, match="unknown key 'density'"):
+        robot.identify_payload(t, u, tau, du, ddu, prior={"density": (1, 2)})
+
+
+def test_bad_logs_raise_nocdyn_errors():
+    robot = nocdyn.Robot.example("paper-3prr-general")
+    t, P, dP, ddP = motion(robot, 60)
+    u, du, ddu, tau = robot.with_payload(**PAYLOAD).inverse_dynamics(P, dP, ddP)
+    with pytest.raises(nocdyn.Error, match=r"tau: expected shape \(60, 3\)"):
+        robot.identify_payload(t, u, tau[:, :2], du, ddu)
+    with pytest.raises(nocdyn.Error, match="du, ddu: give both"):
+        robot.identify_payload(t, u, tau, du)
+    bad = u.copy()
+    bad[7, 1] = np.nan
+    with pytest.raises(nocdyn.Error, match=r"u\[7, 1\]: not a finite number"):
+        robot.identify_payload(t, bad, tau, du, ddu)
+    back = t.copy()
+    back[5] = back[4]
+    with pytest.raises(nocdyn.Error, match="time is not increasing at sample 6"):
+        robot.identify_payload(back, u, tau, du, ddu)
+    with pytest.raises(nocdyn.Error, match="sample 1: "):
+        far = P.copy()
+        far[1, 1] += 10.0
+        robot.regressor(far, dP, ddP)
