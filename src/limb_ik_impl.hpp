@@ -19,10 +19,12 @@ namespace nocdyn::detail {
 
 /// Joint variables of one limb: q (P joints, and R joints once their angle is wanted), and
 /// cos q, sin q (R joints; 1 and 0 for P).
+/// Trivial: the lean kernel fills only what its limb kind has; home() is q = 0 everywhere.
 struct JointSolution {
-    double q_[3] = {0.0, 0.0, 0.0};
-    double c_[3] = {1.0, 1.0, 1.0};
-    double s_[3] = {0.0, 0.0, 0.0};
+    double q_[3];
+    double c_[3];
+    double s_[3];
+    [[nodiscard]] static JointSolution home() { return {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}}; }
     double& q(int k) { return q_[k]; }
     double& c(int k) { return c_[k]; }
     double& s(int k) { return s_[k]; }
@@ -246,7 +248,7 @@ NOCDYN_ALWAYS_INLINE Status solveJoints(const LimbModel& limb, int j, const Plat
 /// solveLimb (limb_ik.hpp), inlined into the position stage.
 NOCDYN_ALWAYS_INLINE Status solveLimbData(const LimbModel& limb, int j, const PlatformDisplacement& G, int branch,
                                           bool angles, LimbData& out) {
-    JointSolution solution;
+    JointSolution solution = JointSolution::home();
     if (const Status status = solveJoints(limb, j, G, branch, solution); !status) return status;
     for (int k = 0; k < 3; ++k) {
         out.q(k) = solution.q(k);

@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "nocdyn/model.hpp"
+#include "nocdyn/prr3/batch.hpp"
 #include "stages.hpp"
 
 namespace nocdyn::detail::locked {
@@ -21,6 +22,18 @@ inline double wrapAngle(double a) {
     return a <= -kPi ? a + 2.0 * kPi : a;
 }
 
+/// cos x and sin x: inline, without a call (batch.hpp, sinCos: within an ulp or so of libm's,
+/// its reduction exact for |x| < 1.6e6), libm's beyond. The equations need them only to
+/// round-off: the tracker verifies its pose by inverse displacement.
+inline void cosSin(double x, double& c, double& s) {
+    if (std::abs(x) < 1.0e6) [[likely]] {
+        prr3::batch_detail::sinCos(x, s, c);
+    } else {
+        c = std::cos(x);
+        s = std::sin(x);
+    }
+}
+
 /// g^-1: x -> Rot^T (x - t).
 inline Displacement inverse(const Displacement& g) {
     const Displacement back{g.c, -g.s, Vector2::Zero()};
@@ -31,7 +44,8 @@ inline Displacement inverse(const Displacement& g) {
 inline Displacement jointMotion(const LimbModel& limb, int k, double q) {
     const auto kk = static_cast<std::size_t>(k);
     if (limb.type[kk] == JointType::prismatic) return {1.0, 0.0, q * limb.direction[kk]};
-    Displacement g{std::cos(q), std::sin(q), Vector2::Zero()};
+    Displacement g;
+    cosSin(q, g.c, g.s);
     g.t = limb.point_home[kk] - g.rotate(limb.point_home[kk]);
     return g;
 }
@@ -107,18 +121,8 @@ inline void lockedLimbEquations(const Model& model, const ActuatorVector& u, Equ
         const auto type = [&](int k) { return limb.type[static_cast<std::size_t>(k)]; };
         const auto point = [&](int k) { return limb.point_home[static_cast<std::size_t>(k)]; };
         const auto direction = [&](int k) { return limb.direction[static_cast<std::size_t>(k)]; };
-        std::array<int, 3> passive{};
-        unsigned locked = 0;  // bit k: joint k actuated (locked)
-        int n_passive = 0;
-        for (int k = 0; k < 3; ++k) {
-            if (limb.actuator[static_cast<std::size_t>(k)] >= 0) {
-                locked |= 1U << static_cast<unsigned>(k);
-            } else {
-                passive[static_cast<std::size_t>(n_passive++)] = k;
-            }
-        }
-        if (n_passive == 3) continue;
-        if (locked == 1U && type(1) == JointType::revolute && type(2) == JointType::revolute) {
+        if (limb.actuator[0] >= 0 && limb.actuator[1] < 0 && limb.actuator[2] < 0 && type(1) == JointType::revolute &&
+            type(2) == JointType::revolute) {
             // the base joint alone locked (?RR, e.g. the paper's PRR and an RRR driven at the
             // base): the platform point r_3 (fixed to C) at the distance length2 from the
             // elbow B = F_1(r_2), whatever F_1 is; circle() with its constants worked out
@@ -126,7 +130,8 @@ inline void lockedLimbEquations(const Model& model, const ActuatorVector& u, Equ
             const Vector2& r2 = point(1);
             double Bx = 0.0, By = 0.0;
             if (type(0) == JointType::revolute) {
-                const double c = std::cos(q), sn = std::sin(q);
+                double c = 1.0, sn = 0.0;
+                cosSin(q, c, sn);
                 const Vector2& r1 = point(0);
                 const double dx = r2.x() - r1.x(), dy = r2.y() - r1.y();
                 Bx = r1.x() + c * dx - sn * dy;
@@ -150,6 +155,17 @@ inline void lockedLimbEquations(const Model& model, const ActuatorVector& u, Equ
             }
             continue;
         }
+        std::array<int, 3> passive{};
+        unsigned locked = 0;  // bit k: joint k actuated (locked)
+        int n_passive = 0;
+        for (int k = 0; k < 3; ++k) {
+            if (limb.actuator[static_cast<std::size_t>(k)] >= 0) {
+                locked |= 1U << static_cast<unsigned>(k);
+            } else {
+                passive[static_cast<std::size_t>(n_passive++)] = k;
+            }
+        }
+        if (n_passive == 3) continue;
         // the locked joints' motions; whether joints from..to-1 hold a locked one, and their product
         std::array<Displacement, 3> F;
         for (int k = 0; k < 3; ++k) {
