@@ -103,6 +103,18 @@ constexpr bool revolute(int k) {
     return kNames[static_cast<int>(K)][k] == 'R';
 }
 
+/// Scale of joint k's variable in the condition numbers and its inverse (model.hpp,
+/// LimbModel::joint_scale): 1 for an R joint, known at compile time so that its products
+/// vanish; the limb's value for a P joint.
+template <LimbKind K>
+NOCDYN_ALWAYS_INLINE double jointScale(const LimbModel& limb, int k) {
+    return revolute<K>(k) ? 1.0 : limb.joint_scale[static_cast<std::size_t>(k)];
+}
+template <LimbKind K>
+NOCDYN_ALWAYS_INLINE double invJointScale(const LimbModel& limb, int k) {
+    return revolute<K>(k) ? 1.0 : limb.inv_joint_scale[static_cast<std::size_t>(k)];
+}
+
 /// exp of joint k's home screw times q_k.
 template <bool kRevolute>
 NOCDYN_ALWAYS_INLINE auto jointMove(const LimbModel& limb, const JointSolution& js, int k) {
@@ -220,15 +232,15 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
     const V3 a0 = cross(s1, s2), a1 = cross(s2, s0), a2 = cross(s0, s1);
     const double det = dot(s0, a0);
     // scaled 1-norm condition number (stages.hpp, limbConditionNorms), times |det|
-    const auto& cs = limb.joint_scale;
-    const auto& ic = limb.inv_joint_scale;
-    const double n_J = std::max({cs[0] * (absOf(s0.w) + (std::abs(s0.x) + std::abs(s0.y)) * inv_L),
-                                 cs[1] * (absOf(s1.w) + (std::abs(s1.x) + std::abs(s1.y)) * inv_L),
-                                 cs[2] * (absOf(s2.w) + (std::abs(s2.x) + std::abs(s2.y)) * inv_L)});
+    const auto cs = [&limb](int k) { return jointScale<K>(limb, k); };
+    const auto ic = [&limb](int k) { return invJointScale<K>(limb, k); };
+    const double n_J = std::max({cs(0) * (absOf(s0.w) + (std::abs(s0.x) + std::abs(s0.y)) * inv_L),
+                                 cs(1) * (absOf(s1.w) + (std::abs(s1.x) + std::abs(s1.y)) * inv_L),
+                                 cs(2) * (absOf(s2.w) + (std::abs(s2.x) + std::abs(s2.y)) * inv_L)});
     const double n_adj =
-        std::max(std::abs(a0.w) * ic[0] + std::abs(a1.w) * ic[1] + std::abs(a2.w) * ic[2],
-                 L * std::max(std::abs(a0.x) * ic[0] + std::abs(a1.x) * ic[1] + std::abs(a2.x) * ic[2],
-                              std::abs(a0.y) * ic[0] + std::abs(a1.y) * ic[1] + std::abs(a2.y) * ic[2]));
+        std::max(std::abs(a0.w) * ic(0) + std::abs(a1.w) * ic(1) + std::abs(a2.w) * ic(2),
+                 L * std::max(std::abs(a0.x) * ic(0) + std::abs(a1.x) * ic(1) + std::abs(a2.x) * ic(2),
+                              std::abs(a0.y) * ic(0) + std::abs(a1.y) * ic(1) + std::abs(a2.y) * ic(2)));
     if (!(n_J * n_adj <= max_condition * std::abs(det))) return false;
     const double inv_det = 1.0 / det;
     const V3 j0 = inv_det * a0, j1 = inv_det * a1, j2 = inv_det * a2;  // rows of J_j^-1
@@ -267,8 +279,8 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
         out.du[at] = gd[k];
         out.ddu[at] = gdd[k];
         rows[a] = jr[k];
-        weight[a] = ic[kk];
-        scale[a] = cs[kk];
+        weight[a] = ic(k);
+        scale[a] = cs(k);
     };
     if constexpr (kAct == kAnyActuation) {
         for (int k = 0; k < 3; ++k) {
@@ -282,6 +294,7 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
 
 /// Every limb by its kind read at run time, its actuated joints from limb.actuator.
 struct AnyLimb {
+    static constexpr bool kUnitWeights = false;  ///< every actuated joint revolute (weight 1)
     NOCDYN_ALWAYS_INLINE bool operator()(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows,
                                          double* weight, double* scale) const {
         switch (limb.kind) {
@@ -310,6 +323,7 @@ struct AnyLimb {
 /// and no search for the actuated joint in the limb loop.
 template <int kCode>
 struct UniformLimb {
+    static constexpr bool kUnitWeights = revolute<static_cast<LimbKind>(kCode / 3)>(kCode % 3);
     NOCDYN_ALWAYS_INLINE bool operator()(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows,
                                          double* weight, double* scale) const {
         return limbTerms<static_cast<LimbKind>(kCode / 3), kCode % 3>(limb, j, f, out, W, rows, weight, scale);
@@ -353,6 +367,7 @@ NOCDYN_ALWAYS_INLINE bool sampleWith(const Model& model, double cos_dtheta, doub
 
     // A^T tau = W_P; the actuation conditioning of jacobianStage, division-free
     const int n = model.actuators;
+    if constexpr (Terms::kUnitWeights) std::fill(weight, weight + n, 1.0), std::fill(scale, scale + n, 1.0);
     if (model.coordinates == Coordinates::actuators) {
         const V3 b0 = cross(rows[1], rows[2]), b1 = cross(rows[2], rows[0]), b2 = cross(rows[0], rows[1]);
         const double det = dot(rows[0], b0);
@@ -378,12 +393,16 @@ NOCDYN_ALWAYS_INLINE bool sampleWith(const Model& model, double cos_dtheta, doub
     double B[6] = {0, 0, 0, 0, 0, 0}, N[6] = {0, 0, 0, 0, 0, 0};  // upper triangles 00 01 02 11 12 22
     for (int a = 0; a < n; ++a) {
         const V3& ra = rows[a];
-        const double w2 = weight[a] * weight[a];
         N[0] += ra.w * ra.w, N[1] += ra.w * ra.x, N[2] += ra.w * ra.y;
         N[3] += ra.x * ra.x, N[4] += ra.x * ra.y, N[5] += ra.y * ra.y;
-        B[0] += w2 * ra.w * ra.w, B[1] += w2 * ra.w * ra.x, B[2] += w2 * ra.w * ra.y;
-        B[3] += w2 * ra.x * ra.x, B[4] += w2 * ra.x * ra.y, B[5] += w2 * ra.y * ra.y;
+        if constexpr (!Terms::kUnitWeights) {
+            const double w2 = weight[a] * weight[a];
+            B[0] += w2 * ra.w * ra.w, B[1] += w2 * ra.w * ra.x, B[2] += w2 * ra.w * ra.y;
+            B[3] += w2 * ra.x * ra.x, B[4] += w2 * ra.x * ra.y, B[5] += w2 * ra.y * ra.y;
+        }
     }
+    // unit weights (R actuators): As^T As is A^T A itself, the same sums
+    if constexpr (Terms::kUnitWeights) std::copy(N, N + 6, B);
     B[1] *= L, B[2] *= L, B[3] *= L * L, B[4] *= L * L, B[5] *= L * L;
     const auto adjugate = [](const double* m, double* adj) {
         adj[0] = m[3] * m[5] - m[4] * m[4];

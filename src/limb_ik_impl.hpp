@@ -19,10 +19,12 @@ namespace nocdyn::detail {
 
 /// Joint variables of one limb: q (P joints, and R joints once their angle is wanted), and
 /// cos q, sin q (R joints; 1 and 0 for P).
+/// Trivial: the lean kernel fills only what its limb kind has; home() is q = 0 everywhere.
 struct JointSolution {
-    double q_[3] = {0.0, 0.0, 0.0};
-    double c_[3] = {1.0, 1.0, 1.0};
-    double s_[3] = {0.0, 0.0, 0.0};
+    double q_[3];
+    double c_[3];
+    double s_[3];
+    [[nodiscard]] static JointSolution home() { return {{0.0, 0.0, 0.0}, {1.0, 1.0, 1.0}, {0.0, 0.0, 0.0}}; }
     double& q(int k) { return q_[k]; }
     double& c(int k) { return c_[k]; }
     double& s(int k) { return s_[k]; }
@@ -81,18 +83,20 @@ inline void angleBetween(const Vector2& a, const Vector2& b, double inv_n2, doub
     s = cross(a, b) * inv_n2;
 }
 
-/// cos and sin of dtheta - (angles already found) for the joint that closes the rotation.
+/// cos and sin of dtheta - (the angles of the R joints kRevolute...) for the joint `skip`
+/// that closes the rotation (a P joint does not turn: nothing to take off for it).
+template <int... kRevolute>
 inline void remainingAngle(const PlatformDisplacement& G, JointSolution& out, int skip) {
     double c = G.cos_dtheta;
     double s = G.sin_dtheta;
-    for (int k = 0; k < 3; ++k) {
-        if (k == skip) continue;
+    const auto turnBack = [&](int k) {
         const double ck = out.c(k);
         const double sk = out.s(k);
         const double c_new = c * ck + s * sk;  // rotate by -q_k
         s = s * ck - c * sk;
         c = c_new;
-    }
+    };
+    (turnBack(kRevolute), ...);
     out.c(skip) = c;
     out.s(skip) = s;
 }
@@ -120,7 +124,7 @@ inline Status solveRRR(const LimbModel& limb, int j, const PlatformDisplacement&
     const Vector2 link = limb.point_home[2] - limb.point_home[1];
     const Vector2 turned(out.c(0) * link.x() - out.s(0) * link.y(), out.s(0) * link.x() + out.c(0) * link.y());
     angleBetween(turned, P3 - P2, limb.inv_length2_sq, out.c(1), out.s(1));
-    remainingAngle(G, out, 2);
+    remainingAngle<0, 1>(G, out, 2);
     return {};
 }
 
@@ -138,7 +142,7 @@ inline Status solvePRR(const LimbModel& limb, int j, const PlatformDisplacement&
     out.q(0) = foot - branch * std::sqrt(h2);
     const Vector2 P2 = r2 + out.q(0) * d1;
     angleBetween(limb.point_home[2] - r2, P3 - P2, limb.inv_length2_sq, out.c(1), out.s(1));
-    remainingAngle(G, out, 2);
+    remainingAngle<1>(G, out, 2);
     return {};
 }
 
@@ -155,7 +159,7 @@ inline Status solveRPR(const LimbModel& limb, int j, const PlatformDisplacement&
     if (!(rho2 > kTiny)) return singular(j);
     out.q(1) = -dot(a, d2) + branch * std::sqrt(h2);
     angleBetween(a + out.q(1) * d2, W, 1.0 / rho2, out.c(0), out.s(0));
-    remainingAngle(G, out, 2);
+    remainingAngle<0>(G, out, 2);
     return {};
 }
 
@@ -172,7 +176,7 @@ inline Status solveRRP(const LimbModel& limb, int j, const PlatformDisplacement&
     out.q(2) = foot + branch * std::sqrt(h2);
     const Vector2 P2 = Gr2 + out.q(2) * w;
     angleBetween(limb.point_home[1] - r1, P2 - r1, limb.inv_length1_sq, out.c(0), out.s(0));
-    remainingAngle(G, out, 1);
+    remainingAngle<0>(G, out, 1);
     return {};
 }
 
@@ -244,7 +248,7 @@ NOCDYN_ALWAYS_INLINE Status solveJoints(const LimbModel& limb, int j, const Plat
 /// solveLimb (limb_ik.hpp), inlined into the position stage.
 NOCDYN_ALWAYS_INLINE Status solveLimbData(const LimbModel& limb, int j, const PlatformDisplacement& G, int branch,
                                           bool angles, LimbData& out) {
-    JointSolution solution;
+    JointSolution solution = JointSolution::home();
     if (const Status status = solveJoints(limb, j, G, branch, solution); !status) return status;
     for (int k = 0; k < 3; ++k) {
         out.q(k) = solution.q(k);

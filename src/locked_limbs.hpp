@@ -9,6 +9,7 @@
 #include <numbers>
 
 #include "nocdyn/model.hpp"
+#include "nocdyn/prr3/batch.hpp"
 #include "stages.hpp"
 
 namespace nocdyn::detail::locked {
@@ -21,6 +22,18 @@ inline double wrapAngle(double a) {
     return a <= -kPi ? a + 2.0 * kPi : a;
 }
 
+/// cos x and sin x: inline, without a call (batch.hpp, sinCos: within an ulp or so of libm's,
+/// its reduction exact for |x| < 1.6e6), libm's beyond. The equations need them only to
+/// round-off: the tracker verifies its pose by inverse displacement.
+inline void cosSin(double x, double& c, double& s) {
+    if (std::abs(x) < 1.0e6) [[likely]] {
+        prr3::batch_detail::sinCos(x, s, c);
+    } else {
+        c = std::cos(x);
+        s = std::sin(x);
+    }
+}
+
 /// g^-1: x -> Rot^T (x - t).
 inline Displacement inverse(const Displacement& g) {
     const Displacement back{g.c, -g.s, Vector2::Zero()};
@@ -31,7 +44,8 @@ inline Displacement inverse(const Displacement& g) {
 inline Displacement jointMotion(const LimbModel& limb, int k, double q) {
     const auto kk = static_cast<std::size_t>(k);
     if (limb.type[kk] == JointType::prismatic) return {1.0, 0.0, q * limb.direction[kk]};
-    Displacement g{std::cos(q), std::sin(q), Vector2::Zero()};
+    Displacement g;
+    cosSin(q, g.c, g.s);
     g.t = limb.point_home[kk] - g.rotate(limb.point_home[kk]);
     return g;
 }
@@ -93,35 +107,86 @@ inline Equation orientation(const Displacement& g) {
     return e;
 }
 
-/// The equations of every locked limb (see the header), lengths over L.
+/// The equations of every locked limb (see the header), lengths over L. Only the actuated
+/// joints move in a locked limb: the products of the locked motions before, between and
+/// after the passive joints compose those alone (an empty product is the identity, applied
+/// as such), and a length between two passive R joints with no actuated joint between them
+/// is the limb's constant length1 or length2.
 inline void lockedLimbEquations(const Model& model, const ActuatorVector& u, Equations& out) {
     const double inv_L = 1.0 / model.length_scale;
     const Vector2 C_home = model.home.tail<2>();
     const Vector2 ex = Vector2::UnitX(), ey = Vector2::UnitY();
     for (int j = 0; j < model.limbs; ++j) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
-        std::array<Displacement, 3> F{};
+        const auto type = [&](int k) { return limb.type[static_cast<std::size_t>(k)]; };
+        const auto point = [&](int k) { return limb.point_home[static_cast<std::size_t>(k)]; };
+        const auto direction = [&](int k) { return limb.direction[static_cast<std::size_t>(k)]; };
+        if (limb.actuator[0] >= 0 && limb.actuator[1] < 0 && limb.actuator[2] < 0 && type(1) == JointType::revolute &&
+            type(2) == JointType::revolute) {
+            // the base joint alone locked (?RR, e.g. the paper's PRR and an RRR driven at the
+            // base): the platform point r_3 (fixed to C) at the distance length2 from the
+            // elbow B = F_1(r_2), whatever F_1 is; circle() with its constants worked out
+            const double q = u(limb.actuator[0]);
+            const Vector2& r2 = point(1);
+            double Bx = 0.0, By = 0.0;
+            if (type(0) == JointType::revolute) {
+                double c = 1.0, sn = 0.0;
+                cosSin(q, c, sn);
+                const Vector2& r1 = point(0);
+                const double dx = r2.x() - r1.x(), dy = r2.y() - r1.y();
+                Bx = r1.x() + c * dx - sn * dy;
+                By = r1.y() + sn * dx + c * dy;
+            } else {
+                Bx = r2.x() + q * direction(0).x();
+                By = r2.y() + q * direction(0).y();
+            }
+            Bx *= inv_L, By *= inv_L;
+            const double Px = (point(2).x() - C_home.x()) * inv_L, Py = (point(2).y() - C_home.y()) * inv_L;
+            const double rho = limb.length2 * inv_L;
+            if (out.count < kMaxActuators) {
+                out.eq[static_cast<std::size_t>(out.count++)] = {
+                    false,
+                    0.0,
+                    1.0,
+                    {-2.0 * Bx, 2.0 * Px, -2.0 * Py},
+                    {-2.0 * By, 2.0 * Py, 2.0 * Px},
+                    {(Px * Px + Py * Py) + (Bx * Bx + By * By) - rho * rho, -2.0 * (Bx * Px + By * Py),
+                     -2.0 * (Px * By - Py * Bx)}};
+            }
+            continue;
+        }
         std::array<int, 3> passive{};
+        unsigned locked = 0;  // bit k: joint k actuated (locked)
         int n_passive = 0;
         for (int k = 0; k < 3; ++k) {
-            const int a = limb.actuator[static_cast<std::size_t>(k)];
-            if (a >= 0) {
-                F[static_cast<std::size_t>(k)] = jointMotion(limb, k, u(a));
+            if (limb.actuator[static_cast<std::size_t>(k)] >= 0) {
+                locked |= 1U << static_cast<unsigned>(k);
             } else {
                 passive[static_cast<std::size_t>(n_passive++)] = k;
             }
         }
-        // the locked motions before, between and after the passive joints
+        if (n_passive == 3) continue;
+        // the locked joints' motions; whether joints from..to-1 hold a locked one, and their product
+        std::array<Displacement, 3> F;
+        for (int k = 0; k < 3; ++k) {
+            if (const int a = limb.actuator[static_cast<std::size_t>(k)]; a >= 0) {
+                F[static_cast<std::size_t>(k)] = jointMotion(limb, k, u(a));
+            }
+        }
+        const auto moves = [&](int from, int to) {
+            return (locked & ((1U << static_cast<unsigned>(to)) - (1U << static_cast<unsigned>(from)))) != 0U;
+        };
         const auto product = [&](int from, int to) {
             Displacement g;
-            for (int k = from; k < to; ++k) g = g.then(F[static_cast<std::size_t>(k)]);
+            bool first = true;
+            for (int k = from; k < to; ++k) {
+                if ((locked & (1U << static_cast<unsigned>(k))) == 0U) continue;
+                g = first ? F[static_cast<std::size_t>(k)] : g.then(F[static_cast<std::size_t>(k)]);
+                first = false;
+            }
             return g;
         };
-        const auto type = [&](int k) { return limb.type[static_cast<std::size_t>(k)]; };
-        const auto point = [&](int k) { return limb.point_home[static_cast<std::size_t>(k)]; };
-        const auto direction = [&](int k) { return limb.direction[static_cast<std::size_t>(k)]; };
         const auto scaled = [&](const Vector2& x) -> Vector2 { return inv_L * x; };
-        if (n_passive == 3) continue;
         if (n_passive == 0) {
             // D = F_1 F_2 F_3: the orientation and C = D(C_home)
             const Displacement L = product(0, 3);
@@ -148,15 +213,19 @@ inline void lockedLimbEquations(const Model& model, const ActuatorVector& u, Equ
             }
             continue;
         }
-        // two passive joints a < b: D = Lf exp(s_a q_a) exp(s_b' q_b) Rt, s_b' = Mf s_b
+        // two passive joints a < b: D = Lf exp(s_a q_a) exp(s_b' q_b) Rt, s_b' = Mf s_b; the one
+        // locked joint is before a (Lf), between a and b (Mf = Rt) or after b (Rt)
         const int a = passive[0], b = passive[1];
-        const Displacement Lf = product(0, a), Mf = product(a + 1, b), Rt = Mf.then(product(b + 1, 3));
+        const bool between = moves(a + 1, b);
+        const Displacement Lf = product(0, a), Rt = product(a + 1, 3);
         const Displacement Rt_inv = inverse(Rt);
+        const Displacement Mf = between ? Rt : Displacement{};
         const bool ra = type(a) == JointType::revolute, rb = type(b) == JointType::revolute;
         if (ra && rb) {
-            const Vector2 beta = Mf.apply(point(b));
-            out.add(circle(scaled(Rt_inv.apply(beta) - C_home), scaled(Lf.apply(point(a))),
-                           inv_L * (beta - point(a)).norm()));
+            const Vector2 beta = between ? Mf.apply(point(b)) : point(b);
+            // |r_b - r_a| of adjacent joints is the limb's length1 (0, 1) or length2 (1, 2)
+            const double rho = between ? (beta - point(a)).norm() : (a == 0 ? limb.length1 : limb.length2);
+            out.add(circle(scaled(Rt_inv.apply(beta) - C_home), scaled(Lf.apply(point(a))), inv_L * rho));
         } else if (!ra && rb) {
             const Vector2 beta = Mf.apply(point(b));
             out.add(pointOnLine(perp(Lf.rotate(direction(a))), scaled(Rt_inv.apply(beta) - C_home),

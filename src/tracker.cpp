@@ -59,7 +59,8 @@ NewtonResult newton(const Equations& eqs, Vector3& z, int max_iterations, double
     NewtonResult out;
     const int n = eqs.count;
     for (;;) {
-        const double cs = std::cos(z(0)), sn = std::sin(z(0));
+        double cs = 1.0, sn = 0.0;
+        cosSin(z(0), cs, sn);
         Vector3 step;
         double residual = 0.0;
         if (n == 3) {
