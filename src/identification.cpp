@@ -789,6 +789,9 @@ Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_t
     std::normal_distribution<double> normal(0.0, 1.0);
     const auto N = static_cast<Eigen::Index>(run.t.size());
     const int n = run.actuators;
+    const bool measured = !run.u_measured.empty();
+    if (measured && run.u_measured.size() != run.t.size())
+        throw Error("sensorLog: the run's encoder readings do not match its ticks");
     Measurements m;
     m.t = run.t;
     m.u.resize(N, n);
@@ -796,7 +799,11 @@ Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_t
     for (Eigen::Index k = 0; k < N; ++k) {
         const std::size_t kk = at(static_cast<int>(k));
         for (int a = 0; a < n; ++a) {
-            m.u(k, a) = run.u[kk](a) + (noise_u > 0.0 ? noise_u * normal(rng) : 0.0);
+            if (measured) {
+                m.u(k, a) = run.u_measured[kk](a);
+            } else {
+                m.u(k, a) = run.u[kk](a) + (noise_u > 0.0 ? noise_u * normal(rng) : 0.0);
+            }
             m.tau(k, a) = run.tau[kk](a) + (noise_tau > 0.0 ? noise_tau * normal(rng) : 0.0);
         }
     }

@@ -18,6 +18,9 @@
 
 namespace nocdyn::validation::detail {
 
+/// Shortest integrator step [s] (see advancePlant).
+inline constexpr double kMinStep = 1e-7;
+
 /// Integrator state of one plant.
 struct PlantIntegration {
     bool stale = true;        ///< the plant State changed since the integrator last started from it
@@ -74,6 +77,10 @@ inline void advancePlant(SimTK::Integrator& integrator, SimTK::State& plant, Pla
         integrator.setConstraintTolerance(0.01 * run.accuracy);
         // every tick ends on a step: the advanced State is the plant's state at the tick's end
         integrator.setAllowInterpolation(false);
+        // Coulomb friction's sign q' is discontinuous where a joint's rate changes sign: there
+        // the error control would shrink the step without end; at the floor, a step of 0.1 us
+        // is accepted (its error from the jump is ~ jump * h^2, far below the accuracy)
+        integrator.setMinimumStepSize(kMinStep);
         integrator.initialize(plant);
         run.stale = false;
     }

@@ -133,8 +133,8 @@ public:
     std::vector<std::size_t> actuated;  // per actuator (file order): its joint 3 j + k
     std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
     detail::PlantIntegration run;
-    SimTK::Vector mobility_forces;                      // setActuatorForces' workspace
-    SimTK::Vector_<SimTK::SpatialVec> body_forces;      // setActuatorForces' workspace
+    SimTK::Vector mobility_forces;                  // setActuatorForces' workspace
+    SimTK::Vector_<SimTK::SpatialVec> body_forces;  // setActuatorForces' workspace
 
     /// The plant's current state (the integrator's while it runs).
     [[nodiscard]] const SimTK::State& current() const;
