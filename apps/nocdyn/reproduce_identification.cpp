@@ -189,24 +189,36 @@ void caseTable(const Case& c, const Outcome& o, std::ostream& summary) {
 
 Figure forcesFigure(const Case& c, const FitReport& fit) {
     Figure f;
-    f.title = "Payload identification, " + c.title + ": measured and predicted actuator forces (held-out data)";
+    f.title = "Payload identification, " + c.title +
+              ": measured (force sensors, low-pass filtered as identify does) and predicted actuator forces, "
+              "held-out data";
+    PlotPanel residual;
+    residual.title = "measured minus predicted";
+    residual.xlabel = "t [s]";
+    residual.ylabel = "{/Symbol Dt}_j [N]";
     for (Eigen::Index a = 0; a < fit.measured.cols(); ++a) {
+        const std::string j = std::to_string(a + 1);
         PlotPanel panel;
-        panel.title = "actuator " + std::to_string(a + 1);
+        panel.title = "actuator " + j;
         panel.xlabel = "t [s]";
-        panel.ylabel = "{/Symbol t}_" + std::to_string(a + 1) + " [N]";
-        PlotSeries measured{"measured (force sensor, 0.5 N noise)", {}, {}, "lines lw 1 lc rgb '#9ecae1'"};
-        PlotSeries predicted{"predicted (identified payload)", {}, {}, "lines lw 2 lc rgb '#d62728'"};
+        panel.ylabel = "{/Symbol t}_" + j + " [N]";
+        PlotSeries measured{"measured (filtered)", {}, {}, "lines lw 4 lc rgb '#9ecae1'"};
+        PlotSeries predicted{"predicted", {}, {}, "lines dt 2 lw 2 lc rgb '#d62728'"};
+        PlotSeries difference{"actuator " + j, {}, {}, "lines lw 1 lc " + j};
         for (std::size_t k = 0; k < fit.t.size(); k += 2) {
             const auto kk = static_cast<Eigen::Index>(k);
             measured.x.push_back(fit.t[k]);
             measured.y.push_back(fit.measured(kk, a));
             predicted.x.push_back(fit.t[k]);
             predicted.y.push_back(fit.predicted(kk, a));
+            difference.x.push_back(fit.t[k]);
+            difference.y.push_back(fit.measured(kk, a) - fit.predicted(kk, a));
         }
         panel.series = {std::move(measured), std::move(predicted)};
         f.panels.push_back(std::move(panel));
+        residual.series.push_back(std::move(difference));
     }
+    f.panels.push_back(std::move(residual));
     return f;
 }
 
