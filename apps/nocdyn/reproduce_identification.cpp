@@ -239,6 +239,7 @@ void reproduceIdentification(const std::filesystem::path& out, std::ostream& sum
     ExcitationOptions design;
     design.seed = kSeed;
     std::vector<Case> cases;
+    cases.reserve(4);
     for (const bool friction : {false, true}) {
         design.friction = friction;
         const ExcitationResult excitation = designExcitation(guessed, kPeriod, design);
@@ -260,6 +261,7 @@ void reproduceIdentification(const std::filesystem::path& out, std::ostream& sum
     }
 
     std::vector<Outcome> outcomes;
+    outcomes.reserve(cases.size());
     for (const Case& c : cases) outcomes.push_back(runCase(robot, model, c, duration, folder));
     if (outcomes.front().result) {
         renderFigure(forcesFigure(cases.front(), outcomes.front().result->fit), (folder / "forces").string());

@@ -19,7 +19,7 @@
 namespace nocdyn::validation::detail {
 
 /// Shortest integrator step [s] (see advancePlant).
-inline constexpr double kMinStep = 1e-7;
+inline constexpr double kMinStep = 1e-6;
 
 /// Integrator state of one plant.
 struct PlantIntegration {
@@ -78,7 +78,7 @@ inline void advancePlant(SimTK::Integrator& integrator, SimTK::State& plant, Pla
         // every tick ends on a step: the advanced State is the plant's state at the tick's end
         integrator.setAllowInterpolation(false);
         // Coulomb friction's sign q' is discontinuous where a joint's rate changes sign: there
-        // the error control would shrink the step without end; at the floor, a step of 0.1 us
+        // the error control would shrink the step without end; at the floor, a step of 1 us
         // is accepted (its error from the jump is ~ jump * h^2, far below the accuracy)
         integrator.setMinimumStepSize(kMinStep);
         integrator.initialize(plant);
