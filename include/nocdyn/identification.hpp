@@ -178,6 +178,10 @@ struct Motion {
     std::vector<Pose> p;
     std::vector<Twist> dp, ddp;
     Eigen::MatrixXd tau;
+    /// The zero-phase low-pass u and tau went through [Hz] and the sampling rate [Hz]; 0 when
+    /// the rates were given. The regressor's Coulomb friction columns (sign q', a step at every
+    /// reversal) then go through the same filter, as the force's friction part did.
+    double cutoff = 0.0, rate = 0.0;
 };
 [[nodiscard]] Motion reconstructMotion(const Model& model, const Measurements& data,
                                        const IdentificationOptions& options = {});
