@@ -42,13 +42,14 @@ void minimumNormForces(const Model& model, const Data& data, const Vector3& Q, A
 
 /// The pose and its rate as a robot without a pose sensor measures them: u and du of the
 /// plant's encoders (du from its pose rate at its pose, as a tachometer gives it) plus noise,
-/// the pose by the tracker, dp/dt from A_p(p) dp/dt = du by the normal equations. Throws
+/// the pose by the tracker, dp/dt from A_p(p) dp/dt = du by the normal equations; u: the
+/// encoder readings (noise included). Throws
 /// nocdyn::Error "t = ... s: ..." when the tracker loses the mode.
 void measureThroughEncoders(const Model& model, Data& sensor, PoseTracker& tracker,
                             const TrackerOptions& tracker_options, const RobotPlant& plant, const Pose& p,
                             const Twist& dp, const PoseLoopOptions& options, std::mt19937& rng,
-                            std::normal_distribution<double>& normal, double t, Pose& p_measured, Twist& dp_measured,
-                            int& max_iterations) {
+                            std::normal_distribution<double>& normal, double t, ActuatorVector& u, Pose& p_measured,
+                            Twist& dp_measured, int& max_iterations) {
     const int n = model.actuators;
     const auto fail = [&](const Status& status, const char* what) {
         std::ostringstream out;
@@ -60,7 +61,7 @@ void measureThroughEncoders(const Model& model, Data& sensor, PoseTracker& track
     if (const Status status = inverseDisplacement(model, sensor, p); !status) fail(status, "plant pose");
     if (const Status status = velocityFromPlatformTwist(model, sensor, dp); !status) fail(status, "plant pose");
     ActuatorVector du = sensor.du;
-    ActuatorVector u = plant.u();
+    u = plant.u();
     for (int a = 0; a < n; ++a) {
         if (options.noise_u > 0.0) u(a) += options.noise_u * normal(rng);
         if (options.noise_du > 0.0) du(a) += options.noise_du * normal(rng);
@@ -202,6 +203,7 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
     result.actuators = n;
     for (auto* v : {&result.p, &result.p_d}) v->reserve(times.size());
     for (auto* v : {&result.u, &result.u_d, &result.tau}) v->reserve(times.size());
+    if (options.encoders) result.u_measured.reserve(times.size());
     result.t.reserve(times.size());
 
     Data data(model);
@@ -237,6 +239,7 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
     }
     Vector3 measurement_sq = Vector3::Zero();
     Pose next_p, next_dp, next_ddp;
+    ActuatorVector u_measured(n);
     for (const double t : times) {
         if (const Status status = poseReference(model, data, trajectory, t, reference); !status) {
             fail(t, status, "reference");
@@ -252,7 +255,7 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
         Twist dp_measured = dp;
         if (options.encoders) {
             measureThroughEncoders(model, sensor, tracker, tracker_options, plant, p, dp, options, rng, normal, t,
-                                   p_measured, dp_measured, result.tracker_max_iterations);
+                                   u_measured, p_measured, dp_measured, result.tracker_max_iterations);
         } else {
             for (int i = 0; i < 3; ++i) {
                 if (noise(i) > 0.0) p_measured(i) += noise(i) * normal(rng);
@@ -272,6 +275,7 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
         result.u.push_back(plant.u());
         result.u_d.push_back(reference.u);
         result.tau.push_back(tau);
+        if (options.encoders) result.u_measured.push_back(u_measured);
         plant.setForces(tau);
         plant.advance(dt);
     }

@@ -406,6 +406,10 @@ Motion reconstructMotion(const Model& model, const Measurements& measured, const
         motion.ddp.push_back(data.t_M_dot);
     }
     motion.tau = tau.middleRows(first, last - first);
+    if (!given) {
+        motion.rate = static_cast<double>(N - 1) / (measured.t.back() - measured.t.front());
+        motion.cutoff = options.cutoff > 0.0 ? options.cutoff : std::min(50.0, 0.1 * motion.rate);
+    }
     return motion;
 }
 
@@ -509,6 +513,66 @@ struct Stacked {
     Eigen::VectorXd known, tau;
 };
 
+/// True for a joint's Coulomb friction parameter (the regressor column sign q').
+bool isCoulomb(const Model& model, int index) {
+    const int body_end = kBodyParameters * model.bodies;
+    return index >= body_end && (index - body_end) % kJointParameters == 1;
+}
+
+/// Parallel filtering: the motion's tau went through the zero-phase low-pass, which smooths the
+/// step of each Coulomb force at a reversal, while sign q' of the filtered motion still steps.
+/// The Coulomb columns of s.A and the Coulomb part of s.known go through the same filter, per
+/// actuator along the samples, so that both sides of tau = Y pi are filtered alike (otherwise
+/// the friction comes out low and the difference leaks into the other parameters).
+void filterCoulombColumns(const Model& model, const Motion& motion, const std::vector<int>& columns,
+                          const ParameterVector& pi, bool subtract_known, const Calibration* calibration, Stacked& s) {
+    const int n = model.actuators;
+    const auto N = static_cast<Eigen::Index>(motion.t.size());
+    Eigen::VectorXd series(N);
+    const auto filterRows = [&](Eigen::VectorXd& x) {
+        for (int a = 0; a < n; ++a) {
+            for (Eigen::Index k = 0; k < N; ++k) series(k) = x(k * n + a);
+            filtfilt(series, motion.cutoff, motion.rate);
+            for (Eigen::Index k = 0; k < N; ++k) x(k * n + a) = series(k);
+        }
+    };
+    Eigen::VectorXd column(N * n);
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+        if (!isCoulomb(model, columns[c])) continue;
+        column = s.A.col(static_cast<Eigen::Index>(c));
+        filterRows(column);
+        s.A.col(static_cast<Eigen::Index>(c)) = column;
+    }
+    if (!subtract_known) return;
+    // the known Coulomb part, recomputed from the motion, replaced by its filtered self
+    Eigen::VectorXd coulomb = Eigen::VectorXd::Zero(N * n);
+    Data data(model);
+    RegressorMatrix Y;
+    bool any = false;
+    for (Eigen::Index k = 0; k < N; ++k) {
+        const std::size_t kk = at(static_cast<int>(k));
+        if (!inverseDynamicsRegressor(model, data, motion.p[kk], motion.dp[kk], motion.ddp[kk], Y)) continue;
+        if (calibration != nullptr) {
+            for (std::size_t c = 0; c < calibration->independent.size(); ++c) {
+                const int index = calibration->independent[c];
+                if (!isCoulomb(model, index)) continue;
+                coulomb.segment(k * n, n) += Y.col(index) * calibration->beta(static_cast<Eigen::Index>(c));
+                any = true;
+            }
+        } else {
+            for (int index = kBodyParameters * model.bodies; index < static_cast<int>(pi.size()); ++index) {
+                if (!isCoulomb(model, index) || pi(index) == 0.0) continue;
+                coulomb.segment(k * n, n) += Y.col(index) * pi(index);
+                any = true;
+            }
+        }
+    }
+    if (!any) return;
+    s.known -= coulomb;
+    filterRows(coulomb);
+    s.known += coulomb;
+}
+
 Stacked stack(const Model& model, const Motion& motion, const std::vector<int>& columns, bool subtract_known,
               const Calibration* calibration = nullptr) {
     const int n = model.actuators;
@@ -537,6 +601,7 @@ Stacked stack(const Model& model, const Motion& motion, const std::vector<int>& 
         }
         s.tau.segment(k * n, n) = motion.tau.row(k).transpose();
     }
+    if (motion.cutoff > 0.0) filterCoulombColumns(model, motion, columns, pi, subtract_known, calibration, s);
     return s;
 }
 
@@ -890,6 +955,9 @@ Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_t
     std::normal_distribution<double> normal(0.0, 1.0);
     const auto N = static_cast<Eigen::Index>(run.t.size());
     const int n = run.actuators;
+    const bool measured = !run.u_measured.empty();
+    if (measured && run.u_measured.size() != run.t.size())
+        throw Error("sensorLog: the run's encoder readings do not match its ticks");
     Measurements m;
     m.t = run.t;
     m.u.resize(N, n);
@@ -897,7 +965,11 @@ Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_t
     for (Eigen::Index k = 0; k < N; ++k) {
         const std::size_t kk = at(static_cast<int>(k));
         for (int a = 0; a < n; ++a) {
-            m.u(k, a) = run.u[kk](a) + (noise_u > 0.0 ? noise_u * normal(rng) : 0.0);
+            if (measured) {
+                m.u(k, a) = run.u_measured[kk](a);
+            } else {
+                m.u(k, a) = run.u[kk](a) + (noise_u > 0.0 ? noise_u * normal(rng) : 0.0);
+            }
             m.tau(k, a) = run.tau[kk](a) + (noise_tau > 0.0 ? noise_tau * normal(rng) : 0.0);
         }
     }

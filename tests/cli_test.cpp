@@ -304,11 +304,13 @@ TEST(Cli, HelpExplainsEveryCommand) {
 }
 
 #if defined(__SANITIZE_ADDRESS__)
-// Under the sanitizers (10-20x slower, and most of reproduce is Simbody's plant at ~2 ms per
-// tick) the closed loops run 0.02 s instead of 0.2 s: the same code, a tenth of the ticks.
-constexpr const char* kClosedLoop = " --closed-loop-duration 0.02";
+// Under the sanitizers (10-20x slower, and most of reproduce is Simbody's plant at ~0.3-0.6 ms
+// per tick in release) the closed loops run 0.02 s instead of 0.2 s and the identification
+// experiment 0.05 s of data instead of 5 s: the same code, fewer ticks.
+constexpr const char* kClosedLoop = " --closed-loop-duration 0.02 --identification-duration 0.05";
 #else
-constexpr const char* kClosedLoop = "";
+// the identification experiment over 0.5 s of data instead of 5 s
+constexpr const char* kClosedLoop = " --identification-duration 0.5";
 #endif
 
 TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
@@ -337,6 +339,32 @@ TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
     EXPECT_NE(summary.find("## Workspace"), std::string::npos);
     EXPECT_NE(summary.find("has an area of"), std::string::npos);
     EXPECT_NE(slurp(out / "paper1_forces.svg").find("<svg"), std::string::npos);
+    // the identification experiment: its files, and a table of finite estimates per case
+    for (const char* file : {"designed_log.csv", "designed_forces.csv", "designed_friction_log.csv", "paper1_log.csv",
+                             "paper2_log.csv", "forces.png", "forces.svg"}) {
+        EXPECT_TRUE(fs::exists(out / "identification" / file)) << file;
+    }
+    const io::Table forces = io::readCsvFile((out / "identification" / "designed_forces.csv").string());
+    ASSERT_FALSE(forces.rows.empty());
+    EXPECT_TRUE(forces.has("tau3_predicted"));
+    const std::size_t section = summary.find("## Identification experiment");
+    ASSERT_NE(section, std::string::npos) << summary;
+    int rows = 0;
+    const std::string mass_row = "| mass [kg] | ";
+    for (std::size_t at = summary.find(mass_row, section); at != std::string::npos;
+         at = summary.find(mass_row, at + 1)) {
+        // | mass [kg] | truth | value ± s.d. | error | ...
+        const std::size_t from = at + mass_row.size();
+        std::istringstream cells(summary.substr(from, summary.find('\n', at) - from));
+        double truth = 0.0, value = 0.0;
+        std::string bar, pm;
+        cells >> truth >> bar >> value >> pm;
+        EXPECT_EQ(truth, 0.5);
+        EXPECT_TRUE(std::isfinite(value) && value > 0.0) << summary.substr(at, 80);
+        ++rows;
+    }
+    EXPECT_GE(rows, 1) << summary.substr(section);
+    EXPECT_NE(summary.find("| designed excitation | "), std::string::npos);
 }
 
 TEST(Cli, ForwardKinematicsTakesAnyRobotFile) {

@@ -249,7 +249,8 @@ void addControlCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--log", options->log,
                         "General robot file: the experiment's log as the sensors see it, CSV t,u1..un,tau1..taun "
-                        "(u with --noise-u, tau the applied force with --noise-tau), ready for `nocdyn identify`");
+                        "(u with --noise-u: with --measure encoders the very readings the controller used; tau the "
+                        "applied force with --noise-tau, the force sensor's own noise), ready for `nocdyn identify`");
     command
         ->add_option("--noise-u", options->c.loop.noise_u,
                      "Std. dev. of the u measurement noise [m] (general robot file: the encoder noise in --log "

@@ -18,6 +18,7 @@
 #include "nocdyn/workspace.hpp"
 #include "plot.hpp"
 #include "reproduce_dynamics.hpp"
+#include "reproduce_identification.hpp"
 #include "shake_replay.hpp"
 #include "workspace_figure.hpp"
 #ifdef NOCDYN_HAS_ENGINES
@@ -38,6 +39,7 @@ constexpr double kRate = 10000.0;  // Hz
 struct ReproduceOptions {
     std::string out = "results";
     double closed_loop_duration = kDuration;  ///< [s] of each closed-loop run on a Simbody plant
+    double identification_duration = 5.0;     ///< [s] of data per identification experiment
 };
 
 /// Motor displacements [mm] or forces [N] of our model, with an engine's curves overlaid
@@ -288,6 +290,7 @@ void run(const ReproduceOptions& options) {
 #ifdef NOCDYN_HAS_ENGINES
     reproduceExampleRobots(out, summary, options.closed_loop_duration);
 #endif
+    reproduceIdentification(out, summary, options.identification_duration);
     io::writeTextFile((out / "summary.md").string(), summary.str());
     std::cout << "nocdyn reproduce: wrote " << (out / "summary.md").string() << ", CSV files and figures in "
               << out.string() << "/\n";
@@ -305,14 +308,22 @@ void addReproduceCommand(CLI::App& app) {
         "plotted), and summary.md with: peak stroke and force per actuator against the actuator limits;\n"
         "the measured agreement with Simbody and MuJoCo; the forward-dynamics round trip; closed-loop\n"
         "computed-torque and PD control on the Simbody plant; the operating envelope (stroke and force);\n"
-        "and the example robots of other architectures (3-RRR, 3-RPR, redundant 4-RRR) against both engines.");
+        "and the example robots of other architectures (3-RRR, 3-RPR, redundant 4-RRR) against both engines;\n"
+        "and the payload identification experiment, simulated on the Simbody plant (identification/).");
     command->add_option("--out", options->out, "Output folder (created if missing)")->capture_default_str();
     command
         ->add_option("--closed-loop-duration", options->closed_loop_duration,
                      "Seconds of each closed-loop run on a Simbody plant (the paper's trajectories and the\n"
-                     "example robots; about 2 ms of CPU per 10 kHz tick). A shorter run is a quick check of\n"
+                     "example robots; about 0.3-0.6 ms of CPU per 10 kHz tick). A shorter run is a quick check of\n"
                      "the same code, its peak errors over less of the trajectory")
         ->check(CLI::Range(1e-3, 10.0))
+        ->capture_default_str();
+    command
+        ->add_option("--identification-duration", options->identification_duration,
+                     "Seconds of data of each identification experiment (designed excitation with and without\n"
+                     "slider friction, paper trajectories 1 and 2; 10 kHz on the Simbody plant). A shorter run\n"
+                     "is a quick check of the same code, its estimates from less data")
+        ->check(CLI::Range(0.01, 60.0))
         ->capture_default_str();
     command->callback([options] { run(*options); });
 }

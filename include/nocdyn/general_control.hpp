@@ -163,6 +163,9 @@ struct PoseLoopResult {
     std::vector<double> t;
     std::vector<Pose> p, p_d;
     std::vector<ActuatorVector> u, u_d, tau;
+    /// Encoders (PoseLoopOptions::encoders): u as the encoders read it at each tick, noise_u
+    /// included, i.e. what the controller saw; empty otherwise.
+    std::vector<ActuatorVector> u_measured;
     Vector3 pose_rms_error = Vector3::Zero();   ///< RMS of p_d - p [rad, m, m]
     Vector3 pose_peak_error = Vector3::Zero();  ///< max |p_d - p|
     /// The same over the second half of the run (after the transients).

@@ -209,6 +209,10 @@ struct Motion {
     std::vector<Pose> p;
     std::vector<Twist> dp, ddp;
     Eigen::MatrixXd tau;
+    /// The zero-phase low-pass u and tau went through [Hz] and the sampling rate [Hz]; 0 when
+    /// the rates were given. The regressor's Coulomb friction columns (sign q', a step at every
+    /// reversal) then go through the same filter, as the force's friction part did.
+    double cutoff = 0.0, rate = 0.0;
 };
 [[nodiscard]] Motion reconstructMotion(const Model& model, const Measurements& data,
                                        const IdentificationOptions& options = {});
@@ -226,9 +230,11 @@ struct Motion {
 [[nodiscard]] BaseResult identifyBase(const Model& model, const Motion& motion,
                                       const IdentificationOptions& options = {});
 
-/// The experiment's log as the sensors see it: t, u and tau of a closed-loop run, with Gaussian
-/// encoder noise (std. dev. noise_u, each actuator's unit) and force-measurement noise
-/// (noise_tau) added; du and ddu left empty.
+/// The experiment's log as the sensors see it: t, u and tau of a closed-loop run, du and ddu
+/// left empty. u: when the run measured through its encoders (run.u_measured), their readings,
+/// the very draws the controller used (noise_u is then not drawn again); else the plant's u
+/// plus Gaussian encoder noise of std. dev. noise_u (each actuator's unit). tau: the applied
+/// force plus Gaussian force-measurement noise noise_tau (the force sensor's alone).
 [[nodiscard]] Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_tau, unsigned seed = 1);
 
 /// The log as a CSV table t,u1..un,tau1..taun (what identify reads).

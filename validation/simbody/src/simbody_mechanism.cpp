@@ -133,6 +133,18 @@ public:
     std::vector<std::size_t> actuated;  // per actuator (file order): its joint 3 j + k
     std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
     detail::PlantIntegration run;
+    SimTK::Vector mobility_forces;                  // setActuatorForces' workspace
+    SimTK::Vector_<SimTK::SpatialVec> body_forces;  // setActuatorForces' workspace
+
+    /// The plant's current state (the integrator's while it runs).
+    [[nodiscard]] const SimTK::State& current() const;
+    /// Actuator a's joint rate row applied to the tree coordinates or rates x: u_a or du_a.
+    [[nodiscard]] double actuatedRate(std::size_t a, const SimTK::Vector& x) const {
+        const auto row = rows.row(static_cast<Eigen::Index>(actuated[a]));
+        double sum = 0.0;
+        for (Eigen::Index i = 0; i < row.size(); ++i) sum += row[i] * x[static_cast<int>(i)];
+        return sum;
+    }
 
     /// Newton projection of the passive coordinates from `seed` with the platform at pose p;
     /// true when it converged within kMaxJump of the seed.
@@ -250,6 +262,8 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description)
         }
     }
     integrator = std::make_unique<RungeKuttaMersonIntegrator>(system);
+    mobility_forces.resize(plant.getNU());
+    body_forces.resize(matter.getNumBodies());
 }
 
 bool SimbodyMechanism::Impl::tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed) {
@@ -440,68 +454,75 @@ void SimbodyMechanism::setActuatorForces(const Eigen::VectorXd& tau) {
     }
     // the same application as the joint friction's: a mobility force along a tree joint's
     // mobility (sign: reversed joints), equal and opposite torques across a closure joint
-    Vector mobility(m.plant.getNU(), 0.0);
-    Vector_<SpatialVec> body(m.matter.getNumBodies(), SpatialVec(Vec3(0), Vec3(0)));
+    State& s = m.run.forceState(*m.integrator, m.plant);
+    m.mobility_forces = 0.0;
+    m.body_forces = SpatialVec(Vec3(0), Vec3(0));
     for (std::size_t a = 0; a < m.actuated.size(); ++a) {
         const JointFriction::Joint& j = m.friction->joints[m.actuated[a]];
         const double f = tau[static_cast<Eigen::Index>(a)];
         if (!j.closure) {
-            j.mobilizer.applyOneMobilityForce(m.plant, 0, j.sign * f, mobility);
+            j.mobilizer.applyOneMobilityForce(s, 0, j.sign * f, m.mobility_forces);
         } else {
-            j.outboard.applyBodyTorque(m.plant, Vec3(0, 0, f), body);
-            j.inboard.applyBodyTorque(m.plant, Vec3(0, 0, -f), body);
+            j.outboard.applyBodyTorque(s, Vec3(0, 0, f), m.body_forces);
+            j.inboard.applyBodyTorque(s, Vec3(0, 0, -f), m.body_forces);
         }
     }
-    m.actuation.setAllMobilityForces(m.plant, mobility);
-    m.actuation.setAllBodyForces(m.plant, body);
-    m.run.stale = true;
+    m.actuation.setAllMobilityForces(s, m.mobility_forces);
+    m.actuation.setAllBodyForces(s, m.body_forces);
+    m.run.forcesChanged(*m.integrator);
 }
 
-void SimbodyMechanism::setIntegratorAccuracy(double accuracy) { impl_->run.setAccuracy(accuracy); }
+void SimbodyMechanism::setIntegratorAccuracy(double accuracy) {
+    impl_->run.setAccuracy(accuracy, *impl_->integrator, impl_->plant);
+}
 
 void SimbodyMechanism::advance(double dt) {
     Impl& m = *impl_;
-    detail::advancePlant(m.system, *m.integrator, m.plant, m.run, dt);
+    detail::advancePlant(*m.integrator, m.plant, m.run, dt);
 }
 
-double SimbodyMechanism::time() const { return impl_->plant.getTime(); }
+const SimTK::State& SimbodyMechanism::Impl::current() const { return run.current(*integrator, plant); }
+
+double SimbodyMechanism::time() const { return impl_->current().getTime(); }
 
 Eigen::VectorXd SimbodyMechanism::u() const {
-    const Eigen::VectorXd q = toEigen(impl_->plant.getQ());
+    const SimTK::Vector& q = impl_->current().getQ();
     Eigen::VectorXd out(static_cast<Eigen::Index>(impl_->actuated.size()));
     for (std::size_t a = 0; a < impl_->actuated.size(); ++a)
-        out[static_cast<Eigen::Index>(a)] = impl_->rows.row(static_cast<Eigen::Index>(impl_->actuated[a])).dot(q);
+        out[static_cast<Eigen::Index>(a)] = impl_->actuatedRate(a, q);
     return out;
 }
 
 Eigen::VectorXd SimbodyMechanism::du() const {
-    const Eigen::VectorXd v = toEigen(impl_->plant.getU());
+    const SimTK::Vector& v = impl_->current().getU();
     Eigen::VectorXd out(static_cast<Eigen::Index>(impl_->actuated.size()));
     for (std::size_t a = 0; a < impl_->actuated.size(); ++a)
-        out[static_cast<Eigen::Index>(a)] = impl_->rows.row(static_cast<Eigen::Index>(impl_->actuated[a])).dot(v);
+        out[static_cast<Eigen::Index>(a)] = impl_->actuatedRate(a, v);
     return out;
 }
 
 Eigen::Vector3d SimbodyMechanism::pose() const {
     const auto& i = impl_->tree.platform_v;
-    const SimTK::Vector& q = impl_->plant.getQ();
+    const SimTK::Vector& q = impl_->current().getQ();
     return Eigen::Vector3d(q[i[0]], q[i[1]], q[i[2]]) + impl_->robot.home;
 }
 
 Eigen::Vector3d SimbodyMechanism::poseRate() const {
     const auto& i = impl_->tree.platform_v;
-    const SimTK::Vector& u = impl_->plant.getU();
+    const SimTK::Vector& u = impl_->current().getU();
     return {u[i[0]], u[i[1]], u[i[2]]};
 }
 
 double SimbodyMechanism::kineticEnergy() const {
-    impl_->system.realize(impl_->plant, SimTK::Stage::Velocity);
-    return impl_->matter.calcKineticEnergy(impl_->plant);
+    const SimTK::State& s = impl_->current();
+    impl_->system.realize(s, SimTK::Stage::Velocity);
+    return impl_->matter.calcKineticEnergy(s);
 }
 
 double SimbodyMechanism::potentialEnergy() const {
-    impl_->system.realize(impl_->plant, SimTK::Stage::Dynamics);
-    return impl_->system.calcPotentialEnergy(impl_->plant) - impl_->potential_home;
+    const SimTK::State& s = impl_->current();
+    impl_->system.realize(s, SimTK::Stage::Dynamics);
+    return impl_->system.calcPotentialEnergy(s) - impl_->potential_home;
 }
 
 long SimbodyMechanism::plantSteps() const { return impl_->run.steps(*impl_->integrator); }

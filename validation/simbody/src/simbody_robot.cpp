@@ -193,6 +193,9 @@ public:
     std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
     detail::PlantIntegration run;
 
+    /// The plant's current state (the integrator's while it runs).
+    [[nodiscard]] const SimTK::State& current() const;
+
     Seed last_solution;  // continuation seed for the next assembly
 
     // Indices of the mobilities in Simbody's u (and q) vectors.
@@ -531,51 +534,59 @@ void SimbodyRobot::resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d
     m.plant.updQ() = m.pose_driven.getQ();
     m.plant.updU() = m.pose_driven.getU();
     m.actuators.clearAllMobilityForces(m.plant);
-    m.run.stale = true;
+    m.run.reset();
     m.system.realize(m.plant, Stage::Velocity);
 }
 
 void SimbodyRobot::setActuatorForces(const Eigen::Vector3d& tau) {
     Impl& m = *impl_;
+    SimTK::State& s = m.run.forceState(*m.integrator, m.plant);
     // The slider's mobility force does power f u_j: it is the actuator force along e_j.
     for (int j = 0; j < 3; ++j) {
-        m.actuators.setOneMobilityForce(m.plant, m.sliders[j], SimTK::MobilizerUIndex(0), tau[j]);
+        m.actuators.setOneMobilityForce(s, m.sliders[j], SimTK::MobilizerUIndex(0), tau[j]);
     }
-    m.run.stale = true;
+    m.run.forcesChanged(*m.integrator);
 }
 
-void SimbodyRobot::setIntegratorAccuracy(double accuracy) { impl_->run.setAccuracy(accuracy); }
+void SimbodyRobot::setIntegratorAccuracy(double accuracy) {
+    impl_->run.setAccuracy(accuracy, *impl_->integrator, impl_->plant);
+}
 
 void SimbodyRobot::advance(double dt) {
     Impl& m = *impl_;
-    detail::advancePlant(m.system, *m.integrator, m.plant, m.run, dt);
+    detail::advancePlant(*m.integrator, m.plant, m.run, dt);
 }
 
-double SimbodyRobot::time() const { return impl_->plant.getTime(); }
+const SimTK::State& SimbodyRobot::Impl::current() const { return run.current(*integrator, plant); }
+
+double SimbodyRobot::time() const { return impl_->current().getTime(); }
 
 Eigen::Vector3d SimbodyRobot::u() const {
+    const SimTK::State& s = impl_->current();
     Eigen::Vector3d v;
-    for (int j = 0; j < 3; ++j) v[j] = impl_->sliders[j].getOneQ(impl_->plant, 0);
+    for (int j = 0; j < 3; ++j) v[j] = impl_->sliders[j].getOneQ(s, 0);
     return v;
 }
 
 Eigen::Vector3d SimbodyRobot::du() const {
+    const SimTK::State& s = impl_->current();
     Eigen::Vector3d v;
-    for (int j = 0; j < 3; ++j) v[j] = impl_->sliders[j].getOneU(impl_->plant, 0);
+    for (int j = 0; j < 3; ++j) v[j] = impl_->sliders[j].getOneU(s, 0);
     return v;
 }
 
-Eigen::Vector3d SimbodyRobot::pose() const { return impl_->readPose(impl_->plant); }
+Eigen::Vector3d SimbodyRobot::pose() const { return impl_->readPose(impl_->current()); }
 
 Eigen::Vector3d SimbodyRobot::poseRate() const {
-    const SimTK::Vector& u = impl_->plant.getU();
+    const SimTK::Vector& u = impl_->current().getU();
     const int i = impl_->platform_u;
     return {u[i], u[i + 1], u[i + 2]};
 }
 
 double SimbodyRobot::kineticEnergy() const {
-    impl_->system.realize(impl_->plant, SimTK::Stage::Velocity);
-    return impl_->matter.calcKineticEnergy(impl_->plant);
+    const SimTK::State& s = impl_->current();
+    impl_->system.realize(s, SimTK::Stage::Velocity);
+    return impl_->matter.calcKineticEnergy(s);
 }
 
 }  // namespace nocdyn::validation
