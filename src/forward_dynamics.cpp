@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include <Eigen/Cholesky>
@@ -288,6 +289,7 @@ struct Simulator::Impl {
     double step;                  ///< step size proposed by the controller [s]
     Status failure;
     std::size_t accepted = 0, rejected = 0, evaluations = 0;
+    std::size_t forced = 0;  ///< accepted steps taken at the floor without the error test
 
     void forcesAt(double time, std::size_t k, ActuatorVector& tau) const {
         if (signal) {
@@ -344,6 +346,7 @@ struct Simulator::Impl {
             }
             const double room = end - t_new;
             const bool clipped = std::min(step, options.max_step) >= room;
+            bool lands = clipped;  // the step ends on the piece's end
             double h = clipped ? room : std::min(step, options.max_step);
             double time = t_new;
             State x_next{}, d_next{};
@@ -360,18 +363,32 @@ struct Simulator::Impl {
             if (result != odeint::success) {
                 ++rejected;
                 step = h;  // reduced by the controller
-                if (step < options.min_step) return {StatusCode::integration_step_too_small, -1, step};
-                continue;
+                if (h < options.floor_step) {
+                    // at the floor (SimulatorOptions::floor_step): the step is taken untested
+                    lands = options.floor_step >= room;
+                    h = std::min(options.floor_step, room);
+                    time = t_new;
+                    failure = {};
+                    stepper.stepper().do_step([this](const State& xs, State& d, double tt) { rhs(xs, d, tt); }, x_new,
+                                              d_new, time, x_next, d_next, h);
+                    if (!failure.ok()) return failure;
+                    ++forced;
+                    time += h;
+                    step = options.floor_step;
+                } else {
+                    if (step < options.min_step) return {StatusCode::integration_step_too_small, -1, step};
+                    continue;
+                }
             }
             ++accepted;
-            if (!clipped) step = h;  // the controller's proposal for the next step
+            if (!clipped && result == odeint::success) step = h;  // the controller's proposal for the next step
             x_old = x_new;
             d_old = d_new;
             t_old = t_new;
             x_new = x_next;
             d_new = d_next;
             // land exactly on the end of a piece, so that the next piece starts there
-            t_new = clipped ? end : time;
+            t_new = lands ? end : time;
             return {};
         }
     }
@@ -470,5 +487,6 @@ const SimulatorOptions& Simulator::options() const { return impl_->options; }
 std::size_t Simulator::acceptedSteps() const { return impl_->accepted; }
 std::size_t Simulator::rejectedSteps() const { return impl_->rejected; }
 std::size_t Simulator::evaluations() const { return impl_->evaluations; }
+std::size_t Simulator::flooredSteps() const { return impl_->forced; }
 
 }  // namespace nocdyn

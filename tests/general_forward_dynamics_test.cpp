@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include <Eigen/Dense>
 
@@ -312,6 +313,37 @@ TEST(Simulator, AConstantPushEndsAtASingularityOrOutOfReachNamingTheLimb) {
     }
     EXPECT_GT(simulator.time(), 0.0);
     EXPECT_TRUE(simulator.pose().allFinite());
+}
+
+TEST(Simulator, ASlidingPlatformThatSticksUnderCoulombFrictionIsSimulatedInBoundedTime) {
+    // Coulomb friction only, at the paper robot's sliders, and no force: the platform coasts,
+    // stops, and sticks; from then on q' chatters about 0 and every step straddles friction's
+    // jump. The step floor keeps the work per tick bounded; without it the controller would
+    // shrink the step without end (here: max_steps per tick reached instead).
+    RobotDescription robot = conservative(io::exampleRobot("paper-3prr"));
+    for (LimbDescription& limb : robot.limbs) limb.joints[0].friction = 20.0;  // [N]
+    const Model model(robot);
+    SimulatorOptions options;
+    options.max_steps = 2000;  // per tick: far more than the floor ever needs (1e-4 / 1e-6)
+    Simulator simulator(model, options);
+    ASSERT_TRUE(simulator.reset(model.home, Twist(0.0, 0.005, 0.0)).ok());  // 5 mm/s along x
+    const ActuatorVector none = ActuatorVector::Zero(3);
+    Status status;
+    for (int k = 0; k < 50 && status.ok(); ++k) status = simulator.advance(1e-4, none);  // 10 kHz, 5 ms
+    ASSERT_TRUE(status.ok()) << describe(status, model);
+    std::printf("sticking: %zu accepted steps (%zu at the floor), %zu rejected over 50 ticks\n",
+                simulator.acceptedSteps(), simulator.flooredSteps(), simulator.rejectedSteps());
+    EXPECT_GT(simulator.flooredSteps(), 0U);                // it did stick
+    EXPECT_LT(simulator.du().cwiseAbs().maxCoeff(), 1e-4);  // and is at rest (5 mm/s before)
+    EXPECT_LT(simulator.acceptedSteps() + simulator.rejectedSteps(), 50U * 250U);
+    EXPECT_TRUE(simulator.pose().allFinite());
+    // with the floor off, the same run ends in integration_too_many_steps within one tick
+    options.floor_step = 0.0;
+    Simulator crawling(model, options);
+    ASSERT_TRUE(crawling.reset(model.home, Twist(0.0, 0.005, 0.0)).ok());
+    status = {};
+    for (int k = 0; k < 50 && status.ok(); ++k) status = crawling.advance(1e-4, none);
+    EXPECT_FALSE(status.ok());
 }
 
 TEST(Simulator, OneStepAllocatesNothing) {
