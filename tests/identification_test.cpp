@@ -325,13 +325,23 @@ struct PriorCase {
     std::vector<std::pair<std::string, bool>> active;  // parameter, on its upper bound
 };
 
+/// The paper's prototype carrying a known payload along a random motion, exactly measured.
+struct PriorSetup {
+    explicit PriorSetup(unsigned seed) : rng(seed) {
+        motion = exactMotion(Model(withPayload(robot, payload)), trajectoryAround(nominal.home, rng), 80, 0.005);
+    }
+    RobotDescription robot = io::exampleRobot("paper-3prr-general");
+    Payload payload{0.5, 8e-4, Vector2(0.012, -0.007)};
+    Model nominal{robot};
+    std::mt19937 rng;
+    Motion motion;
+};
+
 TEST(PayloadPrior, ABoxHoldingTheTruthChangesNothingOnExactData) {
-    const RobotDescription robot = io::exampleRobot("paper-3prr-general");
-    const Payload payload{0.5, 8e-4, Vector2(0.012, -0.007)};
-    const Model nominal(robot);
-    std::mt19937 rng(31);
-    const Motion motion =
-        exactMotion(Model(withPayload(robot, payload)), trajectoryAround(nominal.home, rng), 80, 0.005);
+    const PriorSetup setup(31);
+    const Payload& payload = setup.payload;
+    const Model& nominal = setup.nominal;
+    const Motion& motion = setup.motion;
     IdentificationOptions options;
     options.prior = PayloadPrior{{0.4, 0.6}, {-0.02, 0.02}, {-0.02, 0.02}, {0.0, 2e-3}};
     const PayloadResult bounded = identifyPayload(nominal, motion, options);
@@ -348,12 +358,10 @@ TEST(PayloadPrior, ABoxHoldingTheTruthChangesNothingOnExactData) {
 TEST(PayloadPrior, ABoxExcludingTheTruthGivesTheBestFitOnItsBound) {
     // exact data (equal weights): the estimate's residual is no larger than that of any feasible
     // payload, sampled at random over the box and next to the estimate along each free parameter
-    const RobotDescription robot = io::exampleRobot("paper-3prr-general");
-    const Payload payload{0.5, 8e-4, Vector2(0.012, -0.007)};
-    const Model nominal(robot);
-    std::mt19937 rng(32);
-    const Motion motion =
-        exactMotion(Model(withPayload(robot, payload)), trajectoryAround(nominal.home, rng), 80, 0.005);
+    PriorSetup setup(32);
+    const Model& nominal = setup.nominal;
+    const Motion& motion = setup.motion;
+    std::mt19937& rng = setup.rng;
     const PayloadProblem problem = payloadProblem(nominal, motion);
     const double inf = std::numeric_limits<double>::infinity();
     const std::vector<PriorCase> cases = {
