@@ -6,8 +6,10 @@
 #include <vector>
 
 #include "fixture.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/model.hpp"
 #include "nocdyn/prr3/batch.hpp"
-#include "nocdyn/prr3/forward_dynamics.hpp"
 
 namespace nocdyn::bench {
 namespace {
@@ -60,50 +62,64 @@ void batchThreads(benchmark::State& state) {
     perSample(state, static_cast<double>(batch.size()));
 }
 
-/// One evaluation of ddu from the state (u, du) and the forces: pose tracking from the
-/// previous sample's pose, velocity stage, shaping, I and C, and the solve of eq. 20.
+/// The paper's robot as the general model (the short form expanded), as the simulator runs it.
+const Model& generalModel() {
+    static const Model model{RobotParameters{}};
+    return model;
+}
+
+/// One evaluation of d2p/dt2 from the state (p, dp/dt) and the forces on the general model:
+/// position, velocity and shaping stages, M_p and h_p, and the solve of A_p^T tau = M_p d2p/dt2
+/// + h_p (the right-hand side the simulator integrates).
 void forwardDynamics(benchmark::State& state) {
     const Fixture& f = fixture();
-    prr3::Data data;
+    const Model& model = generalModel();
+    Data data(model);
+    std::vector<ActuatorVector> tau;
+    for (const Sample& s : f.samples) tau.emplace_back(s.tau);
     std::size_t k = 0;
-    Pose pose = f.samples.back().p;
     for (auto _ : state) {
         const Sample& s = f.samples[k];
-        const Status status = prr3::forwardDynamicsFromState(f.model, data, s.u, s.du, s.tau, pose);
+        const Status status = nocdyn::forwardDynamics(model, data, s.p, s.dp, tau[k]);
         benchmark::DoNotOptimize(status);
-        benchmark::DoNotOptimize(data.ddu);
+        benchmark::DoNotOptimize(data.t_M_dot);
         if (++k == f.samples.size()) k = 0;
     }
     perSample(state, 1);
 }
 
-/// One simulated second of the paper's trajectory 1 at the simulator's default tolerance,
-/// driven by the inverse-dynamics forces at 10 kHz (linear between ticks).
+/// One simulated second of the paper's trajectory 1 on the general model at the simulator's
+/// default tolerance, driven by the inverse-dynamics forces at 10 kHz (linear between ticks).
 void simulateSecond(benchmark::State& state) {
-    const Fixture& f = fixture();
+    const Model& model = generalModel();
     const PoseTrajectory trajectory = paperTrajectory1();
     constexpr int kTicks = 10000;
-    std::vector<prr3::JointVector> tau(kTicks + 1);
-    prr3::Data data;
+    std::vector<double> times(kTicks + 1);
+    std::vector<ActuatorVector> tau(kTicks + 1);
+    Data data(model);
     Pose p0, dp0, ddp;
     for (int i = 0; i <= kTicks; ++i) {
         Pose p, dp;
+        times[static_cast<std::size_t>(i)] = i / kRate;
         trajectory.evaluate(i / kRate, p, dp, ddp);
         if (i == 0) p0 = p, dp0 = dp;
-        (void)prr3::inverseDynamics(f.model, data, p, dp, ddp);
+        (void)inverseDynamics(model, data, p, dp, ddp);
         tau[static_cast<std::size_t>(i)] = data.tau;
     }
-    prr3::Simulator simulator(f.model);
+    Simulator simulator(model);
+    std::size_t steps = 0;
     for (auto _ : state) {
         (void)simulator.reset(p0, dp0, 0.0);
+        simulator.setForces(ForceSignal(times, tau, Interpolation::linear));
+        const std::size_t before = simulator.acceptedSteps();
         for (int i = 0; i < kTicks; ++i) {
-            const Status status =
-                simulator.advance(1.0 / kRate, tau[static_cast<std::size_t>(i)], tau[static_cast<std::size_t>(i) + 1]);
+            const Status status = simulator.advance(1.0 / kRate);
             benchmark::DoNotOptimize(status);
         }
+        steps += simulator.acceptedSteps() - before;
         benchmark::DoNotOptimize(simulator.u());
     }
-    state.counters["steps"] = static_cast<double>(simulator.acceptedSteps()) / static_cast<double>(state.iterations());
+    state.counters["steps"] = static_cast<double>(steps) / static_cast<double>(state.iterations());
 }
 
 // ---- the machine's arithmetic peak on one core ------------------------------------------

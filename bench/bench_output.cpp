@@ -3,13 +3,16 @@
 // write), both into /dev/null through io::OutputFile so that no disk time is counted.
 #include <benchmark/benchmark.h>
 
-#include <array>
+#include <vector>
 #include <cstddef>
 
 #include "fixture.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/output.hpp"
-#include "nocdyn/prr3/sampling.hpp"
+#include "nocdyn/io/tables.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/prr3/dynamics.hpp"
+#include "nocdyn/sampling.hpp"
 
 namespace nocdyn::bench {
 namespace {
@@ -18,9 +21,9 @@ namespace {
 /// written; items/s = rows per second.
 void BM_WriteCsv(benchmark::State& state) {
     const Fixture& f = fixture();
-    std::vector<std::array<double, 17>> rows;
+    std::vector<std::vector<double>> rows;
     for (const Sample& s : f.samples) {
-        prr3::InverseDynamicsSample sample;
+        InverseDynamicsSample sample;
         sample.t = s.t;
         sample.p = s.p;
         prr3::Data data;
@@ -30,10 +33,10 @@ void BM_WriteCsv(benchmark::State& state) {
         sample.ddu = data.ddu;
         sample.tau = data.tau;
         sample.kinetic = prr3::kineticEnergy(f.model, data);
-        rows.push_back(prr3::toRow(sample));
+        io::inverseDynamicsRow(sample, rows.emplace_back());
     }
     io::OutputFile out("/dev/null");
-    io::CsvWriter csv(out, prr3::inverseDynamicsColumns());
+    io::CsvWriter csv(out, io::inverseDynamicsColumns(3));
     for (auto _ : state) {
         for (const auto& row : rows) csv.row(row);
     }
@@ -44,22 +47,26 @@ void BM_WriteCsv(benchmark::State& state) {
 BENCHMARK(BM_WriteCsv)->Unit(benchmark::kMillisecond);
 
 /// `nocdyn inverse-dynamics --trajectory paper1 --duration D --rate 1e6 -o /dev/null` without
-/// the process: D = samples / 1e6 s; items/s = samples per second. Second argument: 1 =
-/// formatting on a second thread (as the command does), 0 = on the calling thread.
+/// the process, on the general model of the paper's robot as the command runs it: D = samples
+/// / 1e6 s; items/s = samples per second. Second argument: 1 = formatting on a second thread
+/// (as the command does), 0 = on the calling thread.
 void BM_StreamInverseDynamics(benchmark::State& state) {
-    const prr3::Model model;
+    const Model model{RobotParameters{}};
     const PoseTrajectory trajectory = paperTrajectory1();
     const auto samples = static_cast<std::size_t>(state.range(0));
-    const prr3::SampleGrid grid{1e6, samples};
+    const SampleGrid grid{1e6, samples};
+    std::vector<double> row;
     for (auto _ : state) {
         io::OutputFile out("/dev/null");
-        io::CsvWriter csv(out, prr3::inverseDynamicsColumns(), state.range(1) != 0);
-        const auto summary = prr3::streamInverseDynamics(
-            model, trajectory, grid, prr3::LimitPolicy::error,
-            [&](const prr3::InverseDynamicsSample& sample) { csv.row(prr3::toRow(sample)); });
+        io::CsvWriter csv(out, io::inverseDynamicsColumns(model.actuators), state.range(1) != 0);
+        const auto summary = streamInverseDynamics(model, trajectory, grid, LimitPolicy::error,
+                                                   [&](const InverseDynamicsSample& sample) {
+                                                       io::inverseDynamicsRow(sample, row);
+                                                       csv.row(row);
+                                                   });
         csv.finish();
         out.commit();
-        benchmark::DoNotOptimize(summary.peak_force);
+        benchmark::DoNotOptimize(summary.peak_tau);
     }
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * samples));
 }

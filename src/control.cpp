@@ -1,4 +1,4 @@
-// Computed-torque and PD control of the 3-PRR, plants, closed-loop simulation (see the header).
+// Computed-torque and PD control in actuator space, plants, closed-loop simulation (see the header).
 #include "nocdyn/control.hpp"
 
 #include <algorithm>
@@ -8,19 +8,31 @@
 #include <sstream>
 
 #include "nocdyn/error.hpp"
-#include "nocdyn/prr3/dynamics.hpp"
-#include "nocdyn/prr3/kinematics.hpp"
-#include "nocdyn/prr3/sampling.hpp"
+#include "nocdyn/direct_kinematics.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/sampling.hpp"
 
 namespace nocdyn::control {
 
-Status desiredMotion(const prr3::Model& model, prr3::Data& data, const PoseTrajectory& trajectory, double t,
-                     Reference& reference) {
+namespace {
+
+constexpr int kActuators = 3;
+
+void requireThreeActuators(const Model& model, const char* what) {
+    if (model.actuators != kActuators) {
+        throw Error(std::string(what) + ": actuator-space control needs three actuators, the robot has " +
+                    std::to_string(model.actuators) + " (use the task-space PoseController)");
+    }
+}
+
+}  // namespace
+
+Status desiredMotion(const Model& model, Data& data, const PoseTrajectory& trajectory, double t, Reference& reference) {
     trajectory.evaluate(t, reference.p, reference.dp, reference.ddp);
-    if (const Status status = prr3::inverseDisplacement(model, data, reference.p); !status) return status;
-    if (const Status status = prr3::velocityFromPlatformTwist(model, data, reference.dp); !status) return status;
-    prr3::twistShaping(model, data);
-    prr3::actuatorAccelerations(data, reference.ddp);  // d/dt of eq. 5
+    if (const Status status = inverseDisplacement(model, data, reference.p); !status) return status;
+    if (const Status status = velocityFromPlatformTwist(model, data, reference.dp); !status) return status;
+    accelerationFromPlatform(model, data, reference.ddp);  // d/dt of eq. 5
     reference.u = data.u;
     reference.du = data.du;
     reference.ddu = data.ddu;
@@ -32,25 +44,30 @@ Gains criticallyDamped(double natural_frequency) {
     return {JointVector::Constant(w * w), JointVector::Constant(2.0 * w)};
 }
 
-Gains equivalentPdGains(const prr3::Model& model, const Gains& computed_torque) {
-    prr3::Data data;
-    (void)prr3::inverseDynamics(model, data, Pose::Zero(), Twist::Zero(), Twist::Zero());
+Gains equivalentPdGains(const Model& model, const Gains& computed_torque) {
+    requireThreeActuators(model, "PD gains");
+    Data data(model);
+    (void)inverseDynamics(model, data, model.home, Twist::Zero(), Twist::Zero());
     const JointVector inertia = data.I.diagonal();
     return {inertia.cwiseProduct(computed_torque.kp), inertia.cwiseProduct(computed_torque.kd)};
 }
 
-ComputedTorqueController::ComputedTorqueController(const prr3::Model& model, const Gains& gains)
-    : model_(model), gains_(gains) {}
+ComputedTorqueController::ComputedTorqueController(const Model& model, const Gains& gains)
+    : model_(model), gains_(gains), data_(model_), u_(kActuators), du_(kActuators) {
+    requireThreeActuators(model_, "computed-torque controller");
+}
 
 void ComputedTorqueController::reset(const Pose& p) { pose_ = p; }
 
 Status ComputedTorqueController::compute(const JointVector& u, const JointVector& du, const Reference& reference,
                                          JointVector& tau) {
     // I(u), C(u, du): tracker -> velocity -> shaping -> dynamics stages
-    if (const Status status = prr3::trackPose(model_, data_, u, pose_); !status) return status;
-    if (const Status status = prr3::velocityFromActuatorRates(model_, data_, du); !status) return status;
-    prr3::twistShaping(model_, data_);
-    prr3::jointSpaceDynamics(model_, data_);
+    u_ = u;
+    du_ = du;
+    if (const Status status = trackPose(model_, data_, u_, pose_); !status) return status;
+    if (const Status status = velocityFromActuatorRates(model_, data_, du_); !status) return status;
+    twistShaping(model_, data_);
+    jointSpaceDynamics(model_, data_);
     // tau = I (ddu_d + K_d e' + K_p e) + C du   (eq. 20 with the servo acceleration)
     const JointVector servo =
         reference.ddu + gains_.kd.cwiseProduct(reference.du - du) + gains_.kp.cwiseProduct(reference.u - u);
@@ -65,31 +82,34 @@ Status PdController::compute(const JointVector& u, const JointVector& du, const 
     return {};
 }
 
-SimulatorPlant::SimulatorPlant(const prr3::Model& model, const prr3::SimulatorOptions& options)
-    : simulator_(model, options) {}
+SimulatorPlant::SimulatorPlant(const Model& model, const SimulatorOptions& options) : simulator_(model, options) {
+    requireThreeActuators(model, "plant");
+}
 
 void SimulatorPlant::reset(const Pose& p, const Twist& dp) {
     if (const Status status = simulator_.reset(p, dp); !status) {
-        throw Error("plant reset: " + describe(status, simulator_.model().parameters));
+        throw Error("plant reset: " + describe(status, simulator_.model()));
     }
     tau_.setZero();
 }
 
 void SimulatorPlant::advance(double dt) {
-    if (const Status status = simulator_.advance(dt, tau_); !status) {
+    const ActuatorVector tau = tau_;
+    if (const Status status = simulator_.advance(dt, tau); !status) {
         std::ostringstream out;
         out.precision(9);
-        out << "plant: t = " << simulator_.time() << " s: " << describe(status, simulator_.model().parameters);
+        out << "plant: t = " << simulator_.time() << " s: " << describe(status, simulator_.model());
         throw Error(out.str());
     }
 }
 
-ClosedLoopResult runClosedLoop(Controller& controller, const prr3::Model& controller_model, Plant& plant,
+ClosedLoopResult runClosedLoop(Controller& controller, const Model& controller_model, Plant& plant,
                                const PoseTrajectory& trajectory, const ClosedLoopOptions& options) {
-    const std::vector<double> times = prr3::sampleTimes(options.duration, options.rate);
+    requireThreeActuators(controller_model, "closed loop");
+    const std::vector<double> times = sampleTimes(options.duration, options.rate);
     // The reference must not alias at the controller rate, nor leave the workspace between ticks.
-    prr3::requireRateAboveNyquist(trajectory, options.rate);
-    prr3::requireReachable(controller_model, trajectory, times.back());
+    requireRateAboveNyquist(trajectory, options.rate);
+    requireReachable(controller_model, trajectory, times.back());
     const double dt = 1.0 / options.rate;
     ClosedLoopResult result;
     result.controller = controller.name();
@@ -98,12 +118,12 @@ ClosedLoopResult runClosedLoop(Controller& controller, const prr3::Model& contro
     for (auto* v : {&result.u, &result.u_d, &result.du, &result.tau}) v->reserve(times.size());
     result.t.reserve(times.size());
 
-    prr3::Data data;
+    Data data(controller_model);
     Reference reference;
     auto fail = [&](double t, const Status& status, const char* what) {
         std::ostringstream out;
         out.precision(9);
-        out << "t = " << t << " s: " << what << ": " << describe(status, controller_model.parameters);
+        out << "t = " << t << " s: " << what << ": " << describe(status, controller_model);
         throw Error(out.str());
     };
     if (const Status status = desiredMotion(controller_model, data, trajectory, 0.0, reference); !status) {
@@ -122,7 +142,7 @@ ClosedLoopResult runClosedLoop(Controller& controller, const prr3::Model& contro
         const JointVector u = plant.u();
         const JointVector du = plant.du();
         JointVector u_measured = u, du_measured = du;
-        for (int j = 0; j < prr3::kDof; ++j) {
+        for (int j = 0; j < kActuators; ++j) {
             if (options.noise_u > 0.0) u_measured(j) += options.noise_u * normal(rng);
             if (options.noise_du > 0.0) du_measured(j) += options.noise_du * normal(rng);
         }

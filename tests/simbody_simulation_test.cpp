@@ -3,8 +3,9 @@
 #include <gtest/gtest.h>
 
 #include "nocdyn/control.hpp"
-#include "nocdyn/prr3/dynamics.hpp"
-#include "nocdyn/prr3/forward_dynamics.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/model.hpp"
 #include "nocdyn/validation/simbody_robot.hpp"
 #include "simbody_plant.hpp"
 #include "support.hpp"
@@ -12,19 +13,18 @@
 namespace nocdyn::test {
 namespace {
 
-using prr3::JointVector;
-
 TEST(SimbodyForwardDynamics, SameForcesGiveTheSameMotionAsSimbody) {
     // Forces of the paper trajectories' inverse dynamics, held for 0.1 ms each (zero-order
     // hold, as Simbody's plant applies them), 0.1 s from the trajectory's initial state.
-    const prr3::Model model;
+    const RobotParameters robot;
+    const Model model(robot);  // the short form, expanded to the general model
     for (const PoseTrajectory& trajectory : {paperTrajectory1(), paperTrajectory2()}) {
-        prr3::Data data;
+        Data data(model);
         Pose p, dp, ddp;
         trajectory.evaluate(0.0, p, dp, ddp);
-        prr3::Simulator ours(model);
+        Simulator ours(model);
         ASSERT_TRUE(ours.reset(p, dp).ok());
-        validation::SimbodyRobot simbody(model.parameters);
+        validation::SimbodyRobot simbody(robot);
         simbody.setIntegratorAccuracy(1e-10);
         simbody.resetPlant(p, dp);
         EXPECT_LE((simbody.u() - ours.u()).cwiseAbs().maxCoeff(), 1e-12);
@@ -32,9 +32,9 @@ TEST(SimbodyForwardDynamics, SameForcesGiveTheSameMotionAsSimbody) {
         const double h = 1e-4;
         for (int k = 0; k < 1000; ++k) {
             trajectory.evaluate((k + 0.5) * h, p, dp, ddp);
-            ASSERT_TRUE(prr3::inverseDynamics(model, data, p, dp, ddp).ok());
+            ASSERT_TRUE(inverseDynamics(model, data, p, dp, ddp).ok());
             ASSERT_TRUE(ours.advance(h, data.tau).ok()) << "t = " << k * h;
-            simbody.setActuatorForces(data.tau);
+            simbody.setActuatorForces(Vector3(data.tau));
             simbody.advance(h);
             u_difference = std::max(u_difference, (simbody.u() - ours.u()).cwiseAbs().maxCoeff());
             pose_difference = std::max(pose_difference, (simbody.pose() - ours.pose()).cwiseAbs().maxCoeff());
@@ -47,13 +47,14 @@ TEST(SimbodyForwardDynamics, SameForcesGiveTheSameMotionAsSimbody) {
 }
 
 TEST(SimbodyForwardDynamics, ComputedTorqueOnTheSimbodyPlantBeatsPd) {
-    const prr3::Model model;
+    const RobotParameters robot;
+    const Model model(robot);
     const control::Gains gains = control::criticallyDamped(50.0);
     control::ComputedTorqueController computed_torque(model, gains);
     control::PdController pd(control::equivalentPdGains(model, gains));
     control::ClosedLoopOptions options;
     options.duration = 0.1;
-    cli::SimbodyPlant plant_a(model.parameters), plant_b(model.parameters);
+    cli::SimbodyPlant plant_a(robot), plant_b(robot);
     const auto ct = control::runClosedLoop(computed_torque, model, plant_a, paperTrajectory1(), options);
     const auto pd_result = control::runClosedLoop(pd, model, plant_b, paperTrajectory1(), options);
     EXPECT_LT(ct.rms_error.maxCoeff(), 1e-6);

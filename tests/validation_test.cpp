@@ -9,7 +9,8 @@
 #include <cstdio>
 #include <fstream>
 
-#include "nocdyn/prr3/sampling.hpp"
+#include "nocdyn/prr3/dynamics.hpp"
+#include "nocdyn/sampling.hpp"
 #include "nocdyn/validation/mujoco_robot.hpp"
 #include "nocdyn/validation/simbody_robot.hpp"
 #include "support.hpp"
@@ -20,9 +21,32 @@ namespace {
 constexpr double kForceOfPeak = 1e-9;
 constexpr double kInertiaRelative = 1e-10;
 
+/// The 3-PRR model's inverse dynamics at each time.
+struct Series {
+    std::vector<double> t;
+    std::vector<Pose> p;
+    std::vector<prr3::JointVector> u, tau;
+};
+Series inverseDynamicsAlong(const prr3::Model& model, const PoseTrajectory& trajectory,
+                            const std::vector<double>& times) {
+    Series series;
+    prr3::Data data;
+    for (const double t : times) {
+        Pose p, dp, ddp;
+        trajectory.evaluate(t, p, dp, ddp);
+        const Status status = prr3::inverseDynamics(model, data, p, dp, ddp);
+        EXPECT_TRUE(status.ok()) << "t = " << t << ": " << describe(status, model.parameters);
+        series.t.push_back(t);
+        series.p.push_back(p);
+        series.u.push_back(data.u);
+        series.tau.push_back(data.tau);
+    }
+    return series;
+}
+
 /// Largest |tau - tau_engine| over the peak |tau| of our model.
 template <typename Samples>
-double forceErrorOfPeak(const prr3::InverseDynamicsSeries& ours, const Samples& engine) {
+double forceErrorOfPeak(const Series& ours, const Samples& engine) {
     double peak = 0.0, worst = 0.0;
     for (std::size_t k = 0; k < ours.t.size(); ++k) {
         peak = std::max(peak, ours.tau[k].cwiseAbs().maxCoeff());
@@ -72,9 +96,9 @@ TEST(Validation, PaperTrajectoriesAgreeWithSimbodyAndMujoco) {
     const prr3::Model model(robot);
     validation::SimbodyRobot simbody(robot);
     validation::MujocoRobot mujoco(robot);
-    const auto times = prr3::sampleTimes(0.2, 2000.0);
+    const auto times = sampleTimes(0.2, 2000.0);
     for (const PoseTrajectory& trajectory : {paperTrajectory1(), paperTrajectory2()}) {
-        const auto ours = prr3::sampleInverseDynamics(model, trajectory, times);
+        const auto ours = inverseDynamicsAlong(model, trajectory, times);
         EXPECT_LT(forceErrorOfPeak(ours, simbody.inverseDynamics(trajectory, times)), kForceOfPeak) << trajectory.name;
         EXPECT_LT(forceErrorOfPeak(ours, mujoco.inverseDynamics(trajectory, times)), kForceOfPeak) << trajectory.name;
     }
@@ -82,7 +106,7 @@ TEST(Validation, PaperTrajectoriesAgreeWithSimbodyAndMujoco) {
 
 TEST(Validation, RandomRobotsOnRandomTrajectoriesAgreeWithSimbodyAndMujoco) {
     std::mt19937 rng(31);
-    const auto times = prr3::sampleTimes(0.25, 400.0);
+    const auto times = sampleTimes(0.25, 400.0);
     int tried = 0, compared = 0;
     while (compared < 12 && tried < 200) {
         ++tried;
@@ -100,7 +124,7 @@ TEST(Validation, RandomRobotsOnRandomTrajectoriesAgreeWithSimbodyAndMujoco) {
         }
         if (!inside) continue;
         ++compared;
-        const auto ours = prr3::sampleInverseDynamics(model, trajectory, times);
+        const auto ours = inverseDynamicsAlong(model, trajectory, times);
         validation::SimbodyRobot simbody(robot);
         validation::MujocoRobot mujoco(robot);
         const double simbody_error = forceErrorOfPeak(ours, simbody.inverseDynamics(trajectory, times));

@@ -1,7 +1,7 @@
 // nocdyn control: closed-loop tracking of a pose trajectory by computed torque or PD, on the
 // Simbody plant (when built in) or nocdyn's own forward dynamics. The paper's 3-PRR (short
-// form) is controlled in actuator space (control.hpp); any other robot file in the platform
-// coordinates (general_control.hpp).
+// form) is controlled in actuator space (control.hpp, on the general model it expands to); any
+// other robot file in the platform coordinates (general_control.hpp).
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -152,12 +152,12 @@ void run(ControlOptions options) {
             "(convert "
             "the short form with `nocdyn convert`); the 3-PRR short form measures u (use --noise-u and --noise-du)");
     }
-    const prr3::Model model(loadRobotOrDefault(options.robot, "control"));
+    const RobotParameters robot = loadRobotOrDefault(options.robot, "control");
     const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
     options.c.loop.duration = chooseDuration(options.duration, trajectory);
     checkDuration(options, options.trajectory);
-    options.c.loop.peak_force = options.no_saturation ? 0.0 : model.parameters.peak_force;
-    const control::ClosedLoopResult result = runControlCase(model, trajectory, options.c);
+    options.c.loop.peak_force = options.no_saturation ? 0.0 : robot.peak_force;
+    const control::ClosedLoopResult result = runControlCase(robot, trajectory, options.c);
     if (!options.output.empty()) writeTable(control::toTable(result), options.output);
     if (!options.figure.empty()) {
         renderFigure(trackingErrorFigure(literalText(trajectory.name) + ": actuator tracking errors", {result}),

@@ -1,7 +1,6 @@
-// nocdyn forward-kinematics: actuator values -> every platform pose that closes the loops.
-// The paper's 3-PRR (short form, or no --robot) keeps its hand-derived solver and output
-// (include/nocdyn/prr3/direct_kinematics.hpp); any other robot file goes to the general one
-// (include/nocdyn/direct_kinematics.hpp).
+// nocdyn forward-kinematics: actuator values -> every platform pose that closes the loops,
+// by the general solver (include/nocdyn/direct_kinematics.hpp) for any robot file (the 3-PRR
+// short form, or no --robot, expanded to the general robot).
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -15,9 +14,7 @@
 #include "common.hpp"
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/prr3/direct_kinematics.hpp"
 
 namespace nocdyn::cli {
 
@@ -38,12 +35,25 @@ void checkCount(const ForwardKinematicsOptions& options, const std::string& robo
                                         ", not " + std::to_string(options.u.size()));
 }
 
+/// 1-based number of the first actuator whose value is outside its joint's range, else 0.
+int outsideRange(const Model& model, const ActuatorVector& u) {
+    for (int a = 0; a < model.actuators; ++a) {
+        const auto ia = static_cast<std::size_t>(a);
+        const JointLimits& limits = model.limb[static_cast<std::size_t>(model.actuator_limb[ia])]
+                                        .limits[static_cast<std::size_t>(model.actuator_joint[ia])];
+        if (u(a) < limits.lower || u(a) > limits.upper) return a + 1;
+    }
+    return 0;
+}
+
 /// Any robot file: the general solver, every limb's branch.
 void runGeneral(const ForwardKinematicsOptions& options) {
     const Model model(loadRobotDescriptionOrDefault(options.robot));
-    checkCount(options, model.description.name + " (" + options.robot + ")", model.actuators);
+    checkCount(options, model.description.name + (options.robot.empty() ? "" : " (" + options.robot + ")"),
+               model.actuators);
     ActuatorVector u(model.actuators);
     for (int a = 0; a < model.actuators; ++a) u(a) = options.u[static_cast<std::size_t>(a)];
+    const int outside = outsideRange(model, u);
     Data data(model);
     AssemblyModes modes;
     if (const Status status = directKinematics(model, data, u, modes); !status) {
@@ -59,6 +69,7 @@ void runGeneral(const ForwardKinematicsOptions& options) {
         nlohmann::json out;
         out["robot"] = model.description.name;
         out["u"] = options.u;
+        out["within_limits"] = outside == 0;
         out["solutions_all_branches"] = modes.count;
         out["solutions_working_branches"] = working;
         out["degenerate"] = modes.degenerate;
@@ -82,7 +93,11 @@ void runGeneral(const ForwardKinematicsOptions& options) {
                               JointType::revolute;
         std::printf("%s %+.9g %s", a == 0 ? " [" : ",", u(a), revolute ? "rad" : "m");
     }
-    std::printf("]\n");
+    if (outside > 0) {
+        std::printf("] (u%d beyond its joint's range)\n", outside);
+    } else {
+        std::printf("]\n");
+    }
     std::printf("real solutions: %d on any limb branches, %d with every limb on its home branch (the working mode)\n",
                 modes.count, working);
     if (modes.degenerate) {
@@ -108,61 +123,7 @@ void runGeneral(const ForwardKinematicsOptions& options) {
     }
 }
 
-void run(const ForwardKinematicsOptions& options) {
-    if (!options.robot.empty() && io::isGeneralForm(io::readRobotFileText(options.robot), options.robot)) {
-        runGeneral(options);
-        return;
-    }
-    const prr3::Model model(loadRobotOrDefault(options.robot, "forward-kinematics"));
-    checkCount(options, model.parameters.name, 3);
-    const prr3::JointVector u(options.u[0], options.u[1], options.u[2]);
-    const auto all = prr3::directDisplacement(model, u, {.working_branch_only = false});
-    std::vector<prr3::AssemblyMode> shown;
-    int working = 0;
-    for (const auto& mode : all) {
-        working += mode.working;
-        if (options.all_branches || mode.working) shown.push_back(mode);
-    }
-    const double half = 0.5 * model.parameters.stroke;
-    const bool in_stroke = u.cwiseAbs().maxCoeff() <= half;
-    if (options.json) {
-        nlohmann::json out;
-        out["robot"] = model.parameters.name;
-        out["u"] = {u(0), u(1), u(2)};
-        out["within_stroke"] = in_stroke;
-        out["solutions_all_branches"] = all.size();
-        out["solutions_working_branches"] = working;
-        nlohmann::json list = nlohmann::json::array();
-        for (const auto& mode : shown) {
-            list.push_back({{"pose", {{"theta", mode.p(0)}, {"x", mode.p(1)}, {"y", mode.p(2)}}},
-                            {"working", mode.working},
-                            {"side", mode.side},
-                            {"ahead", mode.ahead},
-                            {"closure_residual", mode.closure_residual},
-                            {"u_error", mode.u_error},
-                            {"cond_H", mode.cond_H}});
-        }
-        out["solutions"] = list;
-        std::cout << out.dump(2) << "\n";
-        return;
-    }
-    std::printf("robot %s, u = [%+.6f, %+.6f, %+.6f] mm%s\n", model.parameters.name.c_str(), u(0) * 1e3, u(1) * 1e3,
-                u(2) * 1e3, in_stroke ? "" : " (beyond the actuator stroke)");
-    std::printf(
-        "real solutions: %zu on any limb branches, %d with every limb on its working branch "
-        "(phi_A in (0, pi/2))\n",
-        all.size(), working);
-    int index = 0;
-    for (const auto& mode : shown) {
-        std::printf("%d. theta = %+.12f rad (%+.6f deg), x = %+.9f mm, y = %+.9f mm%s\n", ++index, mode.p(0),
-                    mode.p(0) * 180.0 / std::numbers::pi, mode.p(1) * 1e3, mode.p(2) * 1e3,
-                    mode.working ? "" : "  [not on the working branches]");
-        std::printf("   closure residual %.1e m, u recomputed from the pose within %.1e m, cond(H) %.3g\n",
-                    mode.closure_residual, mode.u_error, mode.cond_H);
-    }
-    if (shown.empty())
-        std::printf("no pose closes the three loops on the %s branches\n", options.all_branches ? "any" : "working");
-}
+void run(const ForwardKinematicsOptions& options) { runGeneral(options); }
 
 }  // namespace
 
@@ -175,8 +136,9 @@ void addForwardKinematicsCommand(CLI::App& app) {
         "Exact: the loop closures reduce to one polynomial in tan(theta/2) solved by its companion matrix; each\n"
         "root is polished by Newton and checked by inverse displacement on each limb's branch (+1/-1, 0 for\n"
         "limbs with one solution) to round-off. By default only the working mode is listed: every limb on its\n"
-        "home branch (for the paper's 3-PRR, phi_A in (0, pi/2)); --all-branches lists every assembly mode.\n"
-        "Exit 0 also when no pose closes (zero solutions); exit 2 when the number of values is wrong.");
+        "home branch (the one it has at home, as the dynamics use); --all-branches lists every assembly mode.\n"
+        "Values beyond an actuated joint's range are flagged (JSON: within_limits); the poses are listed all the\n"
+        "same. Exit 0 also when no pose closes (zero solutions); exit 2 when the number of values is wrong.");
     command->add_option("U", options->u, "Actuator values u1 .. un [m or rad]")
         ->required()
         ->expected(1, kMaxActuators)

@@ -13,7 +13,9 @@
 #include "commands.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/prr3/sampling.hpp"
+#include "nocdyn/description.hpp"
+#include "nocdyn/io/tables.hpp"
+#include "nocdyn/model.hpp"
 #include "nocdyn/sampling.hpp"
 #include "nocdyn/workspace.hpp"
 #include "plot.hpp"
@@ -44,7 +46,7 @@ struct ReproduceOptions {
 
 /// Motor displacements [mm] or forces [N] of our model, with an engine's curves overlaid
 /// (dashed) when given.
-PlotPanel jointPanel(const prr3::InverseDynamicsSeries& series, bool forces, const std::string& engine = {},
+PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine = {},
                      const std::vector<Eigen::Vector3d>* engine_values = nullptr) {
     PlotPanel panel;
     panel.title = forces ? "(b) Motor forces" : "(a) Motor displacements";
@@ -52,18 +54,19 @@ PlotPanel jointPanel(const prr3::InverseDynamicsSeries& series, bool forces, con
     panel.ylabel = forces ? "{/Symbol t}_j [N]" : "u_j [mm]";
     const double scale = forces ? 1.0 : 1e3;
     const std::string symbol = forces ? "{/Symbol t}_" : "u_";
-    for (int j = 0; j < prr3::kLimbs; ++j) {
+    std::vector<double> t;
+    for (const InverseDynamicsSample& s : series.samples) t.push_back(s.t);
+    for (int j = 0; j < 3; ++j) {
         PlotSeries line;
         line.label = symbol + std::to_string(j + 1) + (engine_values ? " model" : "");
-        line.x = series.t;
-        for (std::size_t k = 0; k < series.t.size(); ++k)
-            line.y.push_back(scale * (forces ? series.tau[k](j) : series.u[k](j)));
+        line.x = t;
+        for (const InverseDynamicsSample& s : series.samples) line.y.push_back(scale * (forces ? s.tau(j) : s.u(j)));
         line.style = "lines lw 2 lc " + std::to_string(j + 1);
         panel.series.push_back(std::move(line));
         if (!engine_values) continue;
         PlotSeries other;
         other.label = symbol + std::to_string(j + 1) + " " + engine;
-        other.x = series.t;
+        other.x = t;
         for (const auto& value : *engine_values) other.y.push_back(scale * value(j));
         other.style = "lines dt 2 lw 3 lc " + std::to_string(j + 4);
         panel.series.push_back(std::move(other));
@@ -72,19 +75,19 @@ PlotPanel jointPanel(const prr3::InverseDynamicsSeries& series, bool forces, con
 }
 
 /// engine - model, per actuator, in nm or uN.
-PlotPanel differencePanel(const prr3::InverseDynamicsSeries& series, bool forces, const std::string& engine,
+PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine,
                           const std::vector<Eigen::Vector3d>& engine_values) {
     PlotPanel panel;
     panel.title = "(c) " + engine + " minus model";
     panel.xlabel = "t [s]";
     panel.ylabel = forces ? "{/Symbol Dt}_j [{/Symbol m}N]" : "{/Symbol D}u_j [nm]";
-    for (int j = 0; j < prr3::kLimbs; ++j) {
+    for (int j = 0; j < 3; ++j) {
         PlotSeries line;
         line.label = (forces ? "{/Symbol Dt}_" : "{/Symbol D}u_") + std::to_string(j + 1);
-        line.x = series.t;
-        for (std::size_t k = 0; k < series.t.size(); ++k) {
-            line.y.push_back(forces ? 1e6 * (engine_values[k](j) - series.tau[k](j))
-                                    : 1e9 * (engine_values[k](j) - series.u[k](j)));
+        for (std::size_t k = 0; k < series.samples.size(); ++k) {
+            const InverseDynamicsSample& s = series.samples[k];
+            line.x.push_back(s.t);
+            line.y.push_back(forces ? 1e6 * (engine_values[k](j) - s.tau(j)) : 1e9 * (engine_values[k](j) - s.u(j)));
         }
         line.style = "lines lw 1 lc " + std::to_string(j + 1);
         panel.series.push_back(std::move(line));
@@ -93,9 +96,9 @@ PlotPanel differencePanel(const prr3::InverseDynamicsSeries& series, bool forces
 }
 
 /// Both paper trajectories: CSV, figures in the spirit of Figs. 5 and 6, and the peak
-/// stroke and force against the actuator limits.
-void reproduceTrajectories(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary) {
-    const RobotParameters& robot = model.parameters;
+/// stroke and force against the actuator limits, on the general model the short form expands to.
+void reproduceTrajectories(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary) {
+    const Model model(expand(robot));
     summary << "## Paper trajectories 1 and 2 (eqs. 33-34): inverse dynamics\n\n"
             << "Sampled over " << kDuration << " s at " << kRate / 1000 << " kHz. Actuator limits: total stroke "
             << robot.stroke * 1e3 << " mm (+-" << robot.stroke * 0.5e3
@@ -103,7 +106,7 @@ void reproduceTrajectories(const prr3::Model& model, const std::filesystem::path
             << "| trajectory | actuator | u range [mm] | peak abs(u) / half stroke | peak abs(tau) [N] | peak abs(tau) "
                "/ peak force |\n"
             << "| --- | --- | --- | --- | --- | --- |\n";
-    const auto times = prr3::sampleTimes(kDuration, kRate);
+    const auto times = sampleTimes(kDuration, kRate);
 #ifdef NOCDYN_HAS_ENGINES
     std::ostringstream agreement;
     double worst_abs = 0.0, worst_rel = 0.0;
@@ -114,8 +117,8 @@ void reproduceTrajectories(const prr3::Model& model, const std::filesystem::path
         const char* figure;
     };
     for (const Case& c : {Case{"paper1", paperTrajectory1(), "Fig. 5"}, Case{"paper2", paperTrajectory2(), "Fig. 6"}}) {
-        const auto series = prr3::sampleInverseDynamics(model, c.trajectory, times, prr3::LimitPolicy::record);
-        io::writeCsvFile((out / (std::string(c.name) + ".csv")).string(), prr3::toTable(series));
+        const auto series = sampleInverseDynamics(model, c.trajectory, times, LimitPolicy::record);
+        io::writeCsvFile((out / (std::string(c.name) + ".csv")).string(), io::toTable(series, model.actuators));
         Figure displacements{std::string(c.name) + ": motor displacements (cf. the paper's " + c.figure + "a)", {}};
         Figure forces{std::string(c.name) + ": motor forces (cf. the paper's " + c.figure + "b)", {}};
 #ifdef NOCDYN_HAS_ENGINES
@@ -128,7 +131,7 @@ void reproduceTrajectories(const prr3::Model& model, const std::filesystem::path
                          differencePanel(series, true, "Simbody", comparison.simbody_tau)};
         agreement << "### " << c.name << "\n\n" << agreementTable(comparison) << "\n";
         for (const EngineAgreement* a : {&comparison.simbody, &comparison.mujoco}) {
-            for (int j = 0; j < prr3::kLimbs; ++j) {
+            for (int j = 0; j < 3; ++j) {
                 worst_abs = std::max(worst_abs, a->max_abs[j]);
                 worst_rel = std::max(worst_rel, a->max_rel_peak[j]);
             }
@@ -139,19 +142,21 @@ void reproduceTrajectories(const prr3::Model& model, const std::filesystem::path
 #endif
         renderFigure(displacements, (out / (std::string(c.name) + "_displacements")).string());
         renderFigure(forces, (out / (std::string(c.name) + "_forces")).string());
-        for (int j = 0; j < prr3::kLimbs; ++j) {
+        for (int j = 0; j < 3; ++j) {
             double lo = 0.0, hi = 0.0;
-            for (const auto& u : series.u) {
-                lo = std::min(lo, u(j));
-                hi = std::max(hi, u(j));
+            for (const InverseDynamicsSample& s : series.samples) {
+                lo = std::min(lo, s.u(j));
+                hi = std::max(hi, s.u(j));
             }
+            const double peak_stroke = series.summary.peak_u[static_cast<std::size_t>(j)];
+            const double peak_force = series.summary.peak_tau[static_cast<std::size_t>(j)];
             char row[256];
             std::snprintf(row, sizeof row, "| %s | %d | %+.3f .. %+.3f | %.1f %% | %.2f | %.1f %% |\n", c.name, j + 1,
-                          lo * 1e3, hi * 1e3, 100.0 * series.peak_stroke[j] / (0.5 * robot.stroke),
-                          series.peak_force[j], 100.0 * series.peak_force[j] / robot.peak_force);
+                          lo * 1e3, hi * 1e3, 100.0 * peak_stroke / (0.5 * robot.stroke), peak_force,
+                          100.0 * peak_force / robot.peak_force);
             summary << row;
         }
-        for (const std::string& violation : series.limit_violations)
+        for (const std::string& violation : series.summary.limit_violations)
             summary << "\nLimit exceeded: " << violation << "\n";
     }
     summary
@@ -276,15 +281,15 @@ void run(const ReproduceOptions& options) {
     std::error_code error;
     std::filesystem::create_directories(out, error);
     if (error || !std::filesystem::is_directory(out)) throw Error("cannot create output folder '" + options.out + "'");
-    const prr3::Model model{RobotParameters{}};
+    const RobotParameters robot{};  // the short form, expanded to the general model by each section
     std::ostringstream summary;
     summary << "# nocdyn reproduce: the paper's 3-PRR results\n\n"
             << "Robot: the paper's prototype (`robots/paper-3prr.yaml`, eq. 32 and Table I, SI units).\n\n";
-    reproduceTrajectories(model, out, summary);
+    reproduceTrajectories(robot, out, summary);
     reproduceAnimations(out, summary);
-    reproduceRoundTrip(model, summary);
-    reproduceControl(model, out, summary, options.closed_loop_duration);
-    reproduceEnvelope(model, out, summary);
+    reproduceRoundTrip(robot, summary);
+    reproduceControl(robot, out, summary, options.closed_loop_duration);
+    reproduceEnvelope(robot, out, summary);
     reproduceWorkspace(out, summary);
     reproduceShake(out.string(), summary);
 #ifdef NOCDYN_HAS_ENGINES

@@ -22,7 +22,6 @@
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/kinematics.hpp"
-#include "nocdyn/prr3/direct_kinematics.hpp"
 
 namespace nocdyn::cli {
 
@@ -199,14 +198,11 @@ InitialState initialState(const Model& model, const io::Table& table, const Simu
         return state;
     }
     if (has_u) {
-        // the 3-PRR's direct kinematics, tracked from the reference posture
-        const prr3::Model special(options.robot.empty() ? RobotParameters{} : loadRobotOrDefault(options.robot, ""));
-        prr3::Data special_data;
+        // the direct kinematics tracked from the reference posture (home)
         const ActuatorVector u = actuatorColumns("u");
-        Pose p = Pose::Zero();
-        if (const Status status = prr3::trackPose(special, special_data, prr3::JointVector(u(0), u(1), u(2)), p);
-            !status)
-            throw Error(where + ": initial state from u1..u3: " + describe(status, special.parameters));
+        Pose p = model.home;
+        if (const Status status = trackPose(model, data, u, p); !status)
+            throw Error(where + ": initial state from u1..u3: " + describe(status, model));
         state.p = p;
         if (const Status status = inverseDisplacement(model, data, p); !status)
             throw Error(where + ": initial pose: " + describe(status, model));

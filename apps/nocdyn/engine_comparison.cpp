@@ -4,7 +4,8 @@
 #include <cmath>
 #include <cstdio>
 
-#include "nocdyn/prr3/model.hpp"
+#include "nocdyn/description.hpp"
+#include "nocdyn/model.hpp"
 #include "nocdyn/validation/mujoco_robot.hpp"
 #include "nocdyn/validation/simbody_robot.hpp"
 
@@ -12,16 +13,17 @@ namespace nocdyn::cli {
 
 namespace {
 
-EngineAgreement agreement(const std::string& engine, const prr3::InverseDynamicsSeries& ours,
+EngineAgreement agreement(const std::string& engine, const InverseDynamicsSeries& ours,
                           const std::vector<Eigen::Vector3d>& u, const std::vector<Eigen::Vector3d>& tau) {
     EngineAgreement result;
     result.engine = engine;
     std::array<double, 3> peak{};
-    for (std::size_t k = 0; k < ours.t.size(); ++k) {
+    for (std::size_t k = 0; k < ours.samples.size(); ++k) {
+        const InverseDynamicsSample& s = ours.samples[k];
         for (int j = 0; j < 3; ++j) {
-            peak[j] = std::max(peak[j], std::abs(ours.tau[k](j)));
-            result.max_abs[j] = std::max(result.max_abs[j], std::abs(tau[k](j) - ours.tau[k](j)));
-            result.max_u_abs = std::max(result.max_u_abs, std::abs(u[k](j) - ours.u[k](j)));
+            peak[j] = std::max(peak[j], std::abs(s.tau(j)));
+            result.max_abs[j] = std::max(result.max_abs[j], std::abs(tau[k](j) - s.tau(j)));
+            result.max_u_abs = std::max(result.max_u_abs, std::abs(u[k](j) - s.u(j)));
         }
     }
     for (int j = 0; j < 3; ++j) result.max_rel_peak[j] = peak[j] > 0 ? result.max_abs[j] / peak[j] : result.max_abs[j];
@@ -33,8 +35,8 @@ EngineAgreement agreement(const std::string& engine, const prr3::InverseDynamics
 EngineComparison compareWithEngines(const RobotParameters& robot, const PoseTrajectory& trajectory,
                                     const std::vector<double>& times) {
     EngineComparison comparison;
-    const prr3::Model model(robot);
-    comparison.ours = prr3::sampleInverseDynamics(model, trajectory, times, prr3::LimitPolicy::record);
+    const Model model(expand(robot));
+    comparison.ours = sampleInverseDynamics(model, trajectory, times, LimitPolicy::record);
 
     validation::SimbodyRobot simbody(robot);
     for (const auto& sample : simbody.inverseDynamics(trajectory, times)) {
@@ -62,16 +64,17 @@ io::Table toTable(const EngineComparison& c) {
     for (const char* prefix : {"simbody_", "mujoco_"}) {
         for (int j = 1; j <= 3; ++j) table.columns.push_back(std::string(prefix) + "dtau" + std::to_string(j));
     }
-    for (std::size_t k = 0; k < c.ours.t.size(); ++k) {
-        std::vector<double> row{c.ours.t[k]};
-        for (const auto* set : {&c.ours.u, &c.ours.tau}) {
-            for (int j = 0; j < 3; ++j) row.push_back((*set)[k](j));
+    for (std::size_t k = 0; k < c.ours.samples.size(); ++k) {
+        const InverseDynamicsSample& s = c.ours.samples[k];
+        std::vector<double> row{s.t};
+        for (const ActuatorVector* set : {&s.u, &s.tau}) {
+            for (int j = 0; j < 3; ++j) row.push_back((*set)(j));
         }
         for (const auto* set : {&c.simbody_u, &c.simbody_tau, &c.mujoco_u, &c.mujoco_tau}) {
             for (int j = 0; j < 3; ++j) row.push_back((*set)[k](j));
         }
         for (const auto* set : {&c.simbody_tau, &c.mujoco_tau}) {
-            for (int j = 0; j < 3; ++j) row.push_back((*set)[k](j) - c.ours.tau[k](j));
+            for (int j = 0; j < 3; ++j) row.push_back((*set)[k](j) - s.tau(j));
         }
         table.rows.push_back(std::move(row));
     }

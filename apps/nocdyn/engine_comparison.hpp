@@ -7,7 +7,7 @@
 #include <vector>
 
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/prr3/sampling.hpp"
+#include "nocdyn/sampling.hpp"
 #include "nocdyn/robot.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -22,7 +22,7 @@ struct EngineAgreement {
 };
 
 struct EngineComparison {
-    prr3::InverseDynamicsSeries ours;
+    InverseDynamicsSeries ours;  ///< our model: the robot expanded to the general form
     std::vector<Eigen::Vector3d> simbody_u, simbody_tau, mujoco_u, mujoco_tau;
     EngineAgreement simbody, mujoco;
 };

@@ -8,9 +8,9 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/prr3/dynamics.hpp"
-#include "nocdyn/prr3/forward_dynamics.hpp"
-#include "nocdyn/prr3/sampling.hpp"
+#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/sampling.hpp"
 #ifdef NOCDYN_HAS_SIMBODY
 #include "simbody_plant.hpp"
 #endif
@@ -26,7 +26,7 @@ std::string defaultPlantName() {
 }
 
 std::unique_ptr<control::Plant> makePlant(const std::string& name, const RobotParameters& robot) {
-    if (name == "nocdyn") return std::make_unique<control::SimulatorPlant>(prr3::Model(robot));
+    if (name == "nocdyn") return std::make_unique<control::SimulatorPlant>(Model(robot));
     if (name == "simbody") {
 #ifdef NOCDYN_HAS_SIMBODY
         return std::make_unique<SimbodyPlant>(robot);
@@ -37,8 +37,9 @@ std::unique_ptr<control::Plant> makePlant(const std::string& name, const RobotPa
     throw Error("unknown plant '" + name + "' (expected simbody or nocdyn)");
 }
 
-control::ClosedLoopResult runControlCase(const prr3::Model& model, const PoseTrajectory& trajectory,
+control::ClosedLoopResult runControlCase(const RobotParameters& robot, const PoseTrajectory& trajectory,
                                          const ControlCase& options) {
+    const Model model(robot);
     const control::Gains gains = control::criticallyDamped(options.natural_frequency);
     std::unique_ptr<control::Controller> controller;
     if (options.controller == "computed-torque") {
@@ -48,8 +49,7 @@ control::ClosedLoopResult runControlCase(const prr3::Model& model, const PoseTra
     } else {
         throw Error("unknown controller '" + options.controller + "' (expected computed-torque or pd)");
     }
-    const RobotParameters plant_robot =
-        control::withPayload(model.parameters, options.payload_mass, options.payload_inertia);
+    const RobotParameters plant_robot = control::withPayload(robot, options.payload_mass, options.payload_inertia);
     const std::unique_ptr<control::Plant> plant = makePlant(options.plant, plant_robot);
     return control::runClosedLoop(*controller, model, *plant, trajectory, options.loop);
 }
@@ -78,30 +78,58 @@ Figure trackingErrorFigure(const std::string& title, const std::vector<control::
     return figure;
 }
 
-io::Table envelopeTable(const std::vector<prr3::EnvelopePoint>& points) {
+namespace {
+
+/// The short form's words for the limits: its actuated joints' range is the stroke and their
+/// effort the peak force. CSV code: 0 stroke, 1 force, 2 workspace.
+double limitCode(EnvelopeLimit limit) {
+    switch (limit) {
+        case EnvelopeLimit::effort:
+            return 1.0;
+        case EnvelopeLimit::workspace:
+            return 2.0;
+        default:
+            return 0.0;
+    }
+}
+
+const char* limitWord(EnvelopeLimit limit) {
+    switch (limit) {
+        case EnvelopeLimit::effort:
+            return "force";
+        case EnvelopeLimit::workspace:
+            return "workspace";
+        default:
+            return "stroke";
+    }
+}
+
+}  // namespace
+
+io::Table envelopeTable(const std::vector<EnvelopePoint>& points) {
     io::Table table;
     table.columns = {"axis", "frequency",           "amplitude",  "limit",
                      "limb", "kinematic_amplitude", "peak_force", "peak_stroke"};
     for (const auto& p : points) {
-        table.rows.push_back({static_cast<double>(p.axis), p.frequency, p.amplitude, static_cast<double>(p.limit),
-                              static_cast<double>(p.limb + 1), p.kinematic_amplitude, p.peak_force, p.peak_stroke});
+        table.rows.push_back({static_cast<double>(p.axis), p.frequency, p.amplitude, limitCode(p.limit),
+                              static_cast<double>(p.limb + 1), p.kinematic_amplitude, p.peak_tau, p.peak_u});
     }
     return table;
 }
 
-Figure envelopeFigure(const std::vector<prr3::EnvelopePoint>& points, const std::string& robot) {
+Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot) {
     PlotPanel translation{"Translation along x and y", "frequency [Hz]", "largest amplitude [mm]", {}, true, true};
     PlotPanel rotation{"Rotation theta", "frequency [Hz]", "largest amplitude [deg]", {}, true, true};
-    for (const prr3::Axis axis : {prr3::Axis::x, prr3::Axis::y, prr3::Axis::theta}) {
+    for (const EnvelopeAxis axis : {EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta}) {
         PlotSeries line;
-        line.label = prr3::axisName(axis);
+        line.label = axisName(axis);
         line.style = "linespoints lw 2 pt 7 ps 0.6";
         for (const auto& p : points) {
             if (p.axis != axis) continue;
             line.x.push_back(p.frequency);
-            line.y.push_back(axis == prr3::Axis::theta ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3);
+            line.y.push_back(axis == EnvelopeAxis::theta ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3);
         }
-        (axis == prr3::Axis::theta ? rotation : translation).series.push_back(std::move(line));
+        (axis == EnvelopeAxis::theta ? rotation : translation).series.push_back(std::move(line));
     }
     Figure figure;
     figure.title = "Operating envelope of " + literalText(robot) + ": flat = stroke-bound, slope -2 = peak-force-bound";
@@ -117,14 +145,14 @@ PoseTrajectory paperTrajectory(int k) { return k == 0 ? paperTrajectory1() : pap
 
 }  // namespace
 
-void reproduceControl(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary,
+void reproduceControl(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary,
                       double duration) {
     ControlCase base;
     base.loop.duration = duration;
     summary << "## Model-based control (closed loop)\n\n"
             << "Controller at " << base.loop.rate / 1000 << " kHz over " << duration
             << " s, with zero-order hold, error dynamics critically damped at " << base.natural_frequency
-            << " Hz, actuator saturation at " << model.parameters.peak_force << " N, plant: "
+            << " Hz, actuator saturation at " << robot.peak_force << " N, plant: "
             << (base.plant == "simbody" ? "the independent Simbody model" : "nocdyn's forward dynamics")
             << ". Computed torque: tau = I(u)(ddu_d + K_d e' + K_p e) + C(u, du) du (eq. 20); PD: the same gains times "
                "diag(I) at the reference posture. The payload case adds 0.5 kg and 1e-3 kg m^2 to the plant's platform "
@@ -142,7 +170,7 @@ void reproduceControl(const prr3::Model& model, const std::filesystem::path& out
             c.controller = controller;
             c.payload_mass = payload;
             c.payload_inertia = payload > 0.0 ? 1e-3 : 0.0;
-            runs.push_back(runControlCase(model, trajectory, c));
+            runs.push_back(runControlCase(robot, trajectory, c));
             const auto& r = runs.back();
             char row[400];
             std::snprintf(row, sizeof row, "| %s | %s | %s | %.4g, %.4g, %.4g | %.4g | %.4g, %.4g, %.4g | %zu |\n",
@@ -162,36 +190,37 @@ void reproduceControl(const prr3::Model& model, const std::filesystem::path& out
            "computed torque with the unknown payload); CSV of the computed-torque runs: `control_paper{1,2}.csv`.\n\n";
 }
 
-void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary) {
-    const auto points = prr3::operatingEnvelope(model);
+void reproduceEnvelope(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary) {
+    const Model model(robot);
+    const auto points = operatingEnvelope(model);
     io::writeCsvFile((out / "envelope.csv").string(), envelopeTable(points));
-    renderFigure(envelopeFigure(points, model.parameters.name), (out / "envelope").string());
+    renderFigure(envelopeFigure(points, robot.name), (out / "envelope").string());
 
     summary
         << "## Operating envelope\n\n"
         << "Largest amplitude A of p(t) = A sin(2 pi f t) along one axis about the reference posture, within the "
            "stroke (+-"
-        << model.parameters.stroke * 0.5e3 << " mm), the workspace and the peak force (" << model.parameters.peak_force
+        << robot.stroke * 0.5e3 << " mm), the workspace and the peak force (" << robot.peak_force
         << " N), from the inverse dynamics over one period (256 samples), f = 1..100 Hz log-spaced "
            "(`envelope.csv`, `envelope.png`).\n\n"
         << "| axis | stroke-bound amplitude | stroke binds up to [Hz] | force binds from [Hz] | amplitude at 100 Hz | "
            "A(50 Hz) / A(100 Hz) |\n| --- | --- | --- | --- | --- | --- |\n";
-    for (const prr3::Axis axis : {prr3::Axis::x, prr3::Axis::y, prr3::Axis::theta}) {
+    for (const EnvelopeAxis axis : {EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta}) {
         double last_stroke = 0.0, first_force = 0.0, kinematic = 0.0, at100 = 0.0;
         for (const auto& p : points) {
             if (p.axis != axis) continue;
             kinematic = p.kinematic_amplitude;
-            if (p.limit != prr3::BindingLimit::force) last_stroke = p.frequency;
-            if (p.limit == prr3::BindingLimit::force && first_force == 0.0) first_force = p.frequency;
+            if (p.limit != EnvelopeLimit::effort) last_stroke = p.frequency;
+            if (p.limit == EnvelopeLimit::effort && first_force == 0.0) first_force = p.frequency;
             at100 = p.amplitude;
         }
         const double ratio =
-            prr3::maximumAmplitude(model, axis, 50.0).amplitude / prr3::maximumAmplitude(model, axis, 100.0).amplitude;
-        const bool angle = axis == prr3::Axis::theta;
+            maximumAmplitude(model, axis, 50.0).amplitude / maximumAmplitude(model, axis, 100.0).amplitude;
+        const bool angle = axis == EnvelopeAxis::theta;
         const double scale = angle ? 180.0 / std::numbers::pi : 1e3;
         const char* unit = angle ? "deg" : "mm";
         char row[300];
-        std::snprintf(row, sizeof row, "| %s | %.4g %s | %.3g | %.3g | %.4g %s | %.3f |\n", prr3::axisName(axis),
+        std::snprintf(row, sizeof row, "| %s | %.4g %s | %.3g | %.3g | %.4g %s | %.3f |\n", axisName(axis),
                       kinematic * scale, unit, last_stroke, first_force, at100 * scale, unit, ratio);
         summary << row;
     }
@@ -204,38 +233,38 @@ void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& ou
     for (int k = 0; k < 2; ++k) {
         const PoseTrajectory trajectory = paperTrajectory(k);
         const AxisMotion* motions[] = {&trajectory.theta, &trajectory.x, &trajectory.y};
-        for (const prr3::Axis axis : {prr3::Axis::x, prr3::Axis::y, prr3::Axis::theta}) {
-            const bool angle = axis == prr3::Axis::theta;
+        for (const EnvelopeAxis axis : {EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta}) {
+            const bool angle = axis == EnvelopeAxis::theta;
             const double scale = angle ? 180.0 / std::numbers::pi : 1e3;
             for (const Harmonic& h : motions[static_cast<int>(axis)]->harmonics) {
-                const auto p = prr3::maximumAmplitude(model, axis, h.frequency);
+                const auto p = maximumAmplitude(model, axis, h.frequency);
                 char row[300];
                 std::snprintf(row, sizeof row, "| %s | %s | %.4g %s | %.4g | %.4g %s (%s-bound) | %.1f %% |\n",
-                              kTrajectories[k], prr3::axisName(axis), std::abs(h.amplitude) * scale,
-                              angle ? "deg" : "mm", h.frequency, p.amplitude * scale, angle ? "deg" : "mm",
-                              prr3::limitName(p.limit), 100.0 * std::abs(h.amplitude) / p.amplitude);
+                              kTrajectories[k], axisName(axis), std::abs(h.amplitude) * scale, angle ? "deg" : "mm",
+                              h.frequency, p.amplitude * scale, angle ? "deg" : "mm", limitWord(p.limit),
+                              100.0 * std::abs(h.amplitude) / p.amplitude);
                 summary << row;
             }
         }
-        const auto series =
-            prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.2, 10000.0), prr3::LimitPolicy::record);
+        const auto series = sampleInverseDynamics(model, trajectory, sampleTimes(0.2, 10000.0), LimitPolicy::record);
         double stroke = 0.0, force = 0.0;
-        for (int j = 0; j < 3; ++j) {
-            stroke = std::max(stroke, series.peak_stroke[j]);
-            force = std::max(force, series.peak_force[j]);
+        for (std::size_t a = 0; a < series.summary.peak_u.size(); ++a) {
+            stroke = std::max(stroke, series.summary.peak_u[a]);
+            force = std::max(force, series.summary.peak_tau[a]);
         }
         char row[300];
         std::snprintf(row, sizeof row,
                       "| %s | combined | peak abs(u) %.3f mm = %.1f %% of half stroke | | peak abs(tau) %.2f N | %.1f "
                       "%% of peak force |\n",
-                      kTrajectories[k], stroke * 1e3, 100.0 * stroke / (0.5 * model.parameters.stroke), force,
-                      100.0 * force / model.parameters.peak_force);
+                      kTrajectories[k], stroke * 1e3, 100.0 * stroke / (0.5 * robot.stroke), force,
+                      100.0 * force / robot.peak_force);
         summary << row;
     }
     summary << "\n";
 }
 
-void reproduceRoundTrip(const prr3::Model& model, std::ostream& summary) {
+void reproduceRoundTrip(const RobotParameters& robot, std::ostream& summary) {
+    const Model model(robot);
     summary
         << "## Forward dynamics round trip\n\n"
         << "Inverse-dynamics forces of each paper trajectory sampled at 10 kHz (linear in between) drive the forward "
@@ -245,19 +274,27 @@ void reproduceRoundTrip(const prr3::Model& model, std::ostream& summary) {
         << "| --- | --- | --- | --- | --- |\n";
     for (int k = 0; k < 2; ++k) {
         const PoseTrajectory trajectory = paperTrajectory(k);
-        const auto series =
-            prr3::sampleInverseDynamics(model, trajectory, prr3::sampleTimes(0.2, 10000.0), prr3::LimitPolicy::record);
-        prr3::ForceSeries forces{series.t, series.tau};
-        prr3::Simulator simulator(model);
-        if (const Status status = simulator.reset(series.p[0], series.dp[0]); !status) {
-            throw Error("round trip: " + describe(status, model.parameters));
+        const auto series = sampleInverseDynamics(model, trajectory, sampleTimes(0.2, 10000.0), LimitPolicy::record);
+        std::vector<double> times;
+        std::vector<ActuatorVector> tau;
+        for (const InverseDynamicsSample& s : series.samples) {
+            times.push_back(s.t);
+            tau.push_back(s.tau);
         }
-        const auto sim = prr3::simulateForces(simulator, forces, series.t);
+        Simulator simulator(model);
+        const InverseDynamicsSample& first = series.samples.front();
+        if (const Status status = simulator.reset(first.p, first.dp, first.t); !status) {
+            throw Error("round trip: " + describe(status, model));
+        }
+        simulator.setForces(ForceSignal(times, tau, Interpolation::linear, "round trip"));
         double u_error = 0.0, xy_error = 0.0, theta_error = 0.0;
-        for (std::size_t i = 0; i < sim.t.size(); ++i) {
-            u_error = std::max(u_error, (sim.u[i] - series.u[i]).cwiseAbs().maxCoeff());
-            xy_error = std::max(xy_error, (sim.p[i] - series.p[i]).tail<2>().cwiseAbs().maxCoeff());
-            theta_error = std::max(theta_error, std::abs(sim.p[i](0) - series.p[i](0)));
+        for (const InverseDynamicsSample& s : series.samples) {
+            if (const Status status = simulator.advance(s.t - simulator.time()); !status) {
+                throw Error("round trip: t = " + std::to_string(simulator.time()) + " s: " + describe(status, model));
+            }
+            u_error = std::max(u_error, (simulator.u() - s.u).cwiseAbs().maxCoeff());
+            xy_error = std::max(xy_error, (simulator.pose() - s.p).tail<2>().cwiseAbs().maxCoeff());
+            theta_error = std::max(theta_error, std::abs(simulator.pose()(0) - s.p(0)));
         }
         char row[300];
         std::snprintf(row, sizeof row, "| %s | %.3g | %.3g | %.3g | %zu |\n", kTrajectories[k], u_error, xy_error,

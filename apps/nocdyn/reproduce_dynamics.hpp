@@ -9,7 +9,8 @@
 #include <vector>
 
 #include "nocdyn/control.hpp"
-#include "nocdyn/prr3/envelope.hpp"
+#include "nocdyn/envelope.hpp"
+#include "nocdyn/robot.hpp"
 #include "plot.hpp"
 
 namespace nocdyn::cli {
@@ -29,34 +30,35 @@ struct ControlCase {
     control::ClosedLoopOptions loop;
 };
 
-/// Runs one case of `trajectory` with `model` as the controller's model.
-[[nodiscard]] control::ClosedLoopResult runControlCase(const prr3::Model& model, const PoseTrajectory& trajectory,
+/// Runs one case of `trajectory` with the general model of `robot` as the controller's model.
+[[nodiscard]] control::ClosedLoopResult runControlCase(const RobotParameters& robot, const PoseTrajectory& trajectory,
                                                        const ControlCase& options);
 
 /// Tracking errors u_d - u per actuator [um] versus time, one panel per run.
 [[nodiscard]] Figure trackingErrorFigure(const std::string& title, const std::vector<control::ClosedLoopResult>& runs);
 
 /// Envelope as CSV: axis,frequency,amplitude,limit,limb,kinematic_amplitude,peak_force,peak_stroke
-/// (axis 0 theta, 1 x, 2 y; limit 0 stroke, 1 force, 2 workspace; limb 1..3).
-[[nodiscard]] io::Table envelopeTable(const std::vector<prr3::EnvelopePoint>& points);
+/// (axis 0 theta, 1 x, 2 y; limit 0 stroke (a joint's range), 1 force (an actuator's effort),
+/// 2 workspace; limb 1..3): the envelope of the 3-PRR short form, whose actuators are its P joints.
+[[nodiscard]] io::Table envelopeTable(const std::vector<EnvelopePoint>& points);
 /// Amplitude versus frequency, log axes: one panel for x and y [mm], one for theta [deg].
-[[nodiscard]] Figure envelopeFigure(const std::vector<prr3::EnvelopePoint>& points, const std::string& robot);
+[[nodiscard]] Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot);
 
 /// Section "Model-based control": for paper1 and paper2, computed torque and PD on the
 /// default plant (Simbody when built in), plus computed torque with an unknown 0.5 kg payload;
 /// control_<trajectory>.csv and control_<trajectory>_errors.png/.svg in `out`; a markdown table
 /// of RMS and peak errors in `summary`.
 /// duration: of each closed-loop run [s].
-void reproduceControl(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary,
+void reproduceControl(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary,
                       double duration);
 
 /// Section "Operating envelope": envelope.csv and envelope.png/.svg in `out`; a markdown table
 /// of the binding limits, and the paper trajectories checked against it (per-axis amplitude
 /// versus the envelope at its frequency, and the combined peak stroke and force).
-void reproduceEnvelope(const prr3::Model& model, const std::filesystem::path& out, std::ostream& summary);
+void reproduceEnvelope(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary);
 
 /// Section "Forward dynamics round trip": the inverse-dynamics forces of paper1 and paper2
 /// (10 kHz, linear in between) fed to the forward dynamics; max |u - u_d| and pose error.
-void reproduceRoundTrip(const prr3::Model& model, std::ostream& summary);
+void reproduceRoundTrip(const RobotParameters& robot, std::ostream& summary);
 
 }  // namespace nocdyn::cli

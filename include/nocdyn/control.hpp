@@ -1,4 +1,6 @@
-// Model-based control of the 3-PRR in actuator space, and closed-loop simulation.
+// Model-based control in actuator space of any robot with three actuators (model.hpp), and
+// closed-loop simulation. (Task-space control of any robot, redundant ones included:
+// general_control.hpp.)
 //
 // Computed torque (inverse-dynamics control) on the NOC model of eq. 20:
 //   tau = I(u) (ddu_d + K_d (du_d - du) + K_p (u_d - u)) + C(u, du) du
@@ -9,10 +11,13 @@
 // model: inverse displacement, eq. 5 and its time derivative. The controller runs at a fixed
 // rate; its forces are held between ticks (zero-order hold). compute() is allocation-free.
 //
+// With three actuators the NOC's independent coordinates are the actuator rates (v = du,
+// dynamics.hpp), so I and C are the 3 x 3 actuator-space matrices of eq. 20.
+//
 // The plant is any Plant: our own forward dynamics (SimulatorPlant) or an independent engine
 // (the Simbody model, adapted in apps/nocdyn/simbody_plant.hpp). runClosedLoop adds actuator
 // saturation at the peak force and optional Gaussian sensor noise; a model mismatch is a
-// plant built from other RobotParameters than the controller's model.
+// plant built from another robot than the controller's model.
 #pragma once
 
 #include <cstddef>
@@ -20,15 +25,17 @@
 #include <string>
 #include <vector>
 
-#include "nocdyn/prr3/forward_dynamics.hpp"
-#include "nocdyn/prr3/model.hpp"
+#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/robot.hpp"
 #include "nocdyn/status.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::control {
 
-using prr3::JointMatrix;
-using prr3::JointVector;
+/// Actuator-space vector of a robot with three actuators [m or rad, N or N m].
+using JointVector = Vector3;
 
 /// Desired motion at one instant, in pose and actuator space.
 struct Reference {
@@ -41,9 +48,8 @@ struct Reference {
 };
 
 /// Reference at time t: p, dp, ddp from the trajectory, then u_d, du_d, ddu_d by inverse
-/// displacement, eq. 5 and its derivative on `model`. Allocation-free.
-Status desiredMotion(const prr3::Model& model, prr3::Data& data, const PoseTrajectory& trajectory, double t,
-                     Reference& reference);
+/// displacement, eq. 5 and its derivative on `model` (three actuators). Allocation-free.
+Status desiredMotion(const Model& model, Data& data, const PoseTrajectory& trajectory, double t, Reference& reference);
 
 /// Diagonal gains, one entry per actuator.
 struct Gains {
@@ -56,9 +62,9 @@ struct Gains {
 [[nodiscard]] Gains criticallyDamped(double natural_frequency);
 
 /// PD gains with the same error dynamics as `computed_torque` would have if the inertia were
-/// constant, diagonal and equal to diag(I) at the reference posture: K = diag(I_ref) K_ct
+/// constant, diagonal and equal to diag(I) at the reference posture (home): K = diag(I_ref) K_ct
 /// [N/m, N s/m].
-[[nodiscard]] Gains equivalentPdGains(const prr3::Model& model, const Gains& computed_torque);
+[[nodiscard]] Gains equivalentPdGains(const Model& model, const Gains& computed_torque);
 
 /// A controller ticking at a fixed rate. compute() must not allocate.
 class Controller {
@@ -74,18 +80,20 @@ public:
 
 /// tau = I(u) (ddu_d + K_d e' + K_p e) + C(u, du) du, with I and C (eq. 23) at the pose that
 /// the direct-kinematics tracker finds for the measured u, starting from its last pose.
+/// Holds a copy of the model; throws nocdyn::Error unless it has three actuators.
 class ComputedTorqueController final : public Controller {
 public:
-    ComputedTorqueController(const prr3::Model& model, const Gains& gains);
+    ComputedTorqueController(const Model& model, const Gains& gains);
     void reset(const Pose& p) override;
     Status compute(const JointVector& u, const JointVector& du, const Reference& reference, JointVector& tau) override;
     [[nodiscard]] std::string name() const override { return "computed-torque"; }
-    [[nodiscard]] const prr3::Data& data() const { return data_; }
+    [[nodiscard]] const Data& data() const { return data_; }
 
 private:
-    const prr3::Model& model_;
+    Model model_;
     Gains gains_;
-    prr3::Data data_;
+    Data data_;
+    ActuatorVector u_, du_;
     Pose pose_ = Pose::Zero();
 };
 
@@ -119,10 +127,11 @@ public:
     [[nodiscard]] virtual std::string name() const = 0;
 };
 
-/// Plant on nocdyn's own forward dynamics (prr3::Simulator).
+/// Plant on nocdyn's own forward dynamics (Simulator) of a robot with three actuators.
 class SimulatorPlant final : public Plant {
 public:
-    explicit SimulatorPlant(const prr3::Model& model, const prr3::SimulatorOptions& options = {});
+    /// Throws nocdyn::Error unless the model has three actuators.
+    explicit SimulatorPlant(const Model& model, const SimulatorOptions& options = {});
     void reset(const Pose& p, const Twist& dp) override;
     void setForces(const JointVector& tau) override { tau_ = tau; }
     void advance(double dt) override;
@@ -134,7 +143,7 @@ public:
     [[nodiscard]] std::string name() const override { return "nocdyn forward dynamics"; }
 
 private:
-    prr3::Simulator simulator_;
+    Simulator simulator_;
     JointVector tau_ = JointVector::Zero();
 };
 
@@ -165,14 +174,15 @@ struct ClosedLoopResult {
 /// `controller_model`, the forces, clips them at the peak force, holds them for 1 / rate.
 /// Throws nocdyn::Error "t = ... s: reason" when the reference or the controller fails, and
 /// before the first tick when the rate is not above twice the trajectory's highest frequency
-/// or the reference leaves the workspace between ticks (prr3::requireReachable).
-[[nodiscard]] ClosedLoopResult runClosedLoop(Controller& controller, const prr3::Model& controller_model, Plant& plant,
+/// or the reference leaves the workspace between ticks (requireReachable), and when the
+/// model does not have three actuators.
+[[nodiscard]] ClosedLoopResult runClosedLoop(Controller& controller, const Model& controller_model, Plant& plant,
                                              const PoseTrajectory& trajectory, const ClosedLoopOptions& options);
 
 /// CSV table: t, x, y, theta, x_d, y_d, theta_d, u1..u3, u1_d..u3_d, e1..e3, tau1..tau3 (SI).
 [[nodiscard]] io::Table toTable(const ClosedLoopResult& result);
 
-/// The robot with a payload rigidly fixed on the platform at C: platform mass and inertia
+/// The short-form robot with a payload rigidly fixed on the platform at C: platform mass and inertia
 /// increased by `mass` [kg] and `inertia` [kg m^2] (a model mismatch when only the plant
 /// gets it).
 [[nodiscard]] RobotParameters withPayload(RobotParameters robot, double mass, double inertia);

@@ -56,6 +56,8 @@ struct EnvelopePoint {
     /// max over actuators with an effort limit and over the period of |tau_a| / effort_a at
     /// `amplitude` (0 when no actuator has one).
     double peak_effort_ratio = 0.0;
+    double peak_u = 0.0;    ///< max over actuators and the period of |u_a| at `amplitude` [m or rad]
+    double peak_tau = 0.0;  ///< max over actuators and the period of |tau_a| at `amplitude` [N or N m]
 };
 
 /// Largest amplitude along `axis` at `frequency` (see the file header). Throws nocdyn::Error
