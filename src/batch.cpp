@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <thread>
 #include <vector>
 
@@ -68,13 +69,26 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
     BatchResult result;
     Data data(model);  // for rejected samples only: fixed capacity, no allocation
     const int n = model.actuators;
+    // Eigen's default (column-major) layout: a packet's samples are adjacent in each column
+    const bool contiguous_in = a.p.innerStride() == 1 && a.dp.innerStride() == 1 && a.ddp.innerStride() == 1;
+    const bool contiguous_out =
+        a.u.innerStride() == 1 && a.du.innerStride() == 1 && a.ddu.innerStride() == 1 && a.tau.innerStride() == 1;
     for (Eigen::Index k = begin; k < end; k += kLanes) {
         // lane l = sample k + l; past the end, the last sample again (not written)
         const int lanes = static_cast<int>(std::min<Eigen::Index>(kLanes, end - k));
         Pack p[3], dp[3], ddp[3];
-        for (int l = 0; l < kLanes; ++l) {
-            const Eigen::Index s = k + std::min(l, lanes - 1);
-            for (int i = 0; i < 3; ++i) p[i][l] = a.p(s, i), dp[i][l] = a.dp(s, i), ddp[i][l] = a.ddp(s, i);
+        if (lanes == kLanes && contiguous_in) [[likely]] {
+            // column i of each input holds the four samples side by side
+            for (int i = 0; i < 3; ++i) {
+                std::memcpy(&p[i], a.p.data() + k + i * a.p.outerStride(), sizeof(Pack));
+                std::memcpy(&dp[i], a.dp.data() + k + i * a.dp.outerStride(), sizeof(Pack));
+                std::memcpy(&ddp[i], a.ddp.data() + k + i * a.ddp.outerStride(), sizeof(Pack));
+            }
+        } else {
+            for (int l = 0; l < kLanes; ++l) {
+                const Eigen::Index s = k + std::min(l, lanes - 1);
+                for (int i = 0; i < 3; ++i) p[i][l] = a.p(s, i), dp[i][l] = a.dp(s, i), ddp[i][l] = a.ddp(s, i);
+            }
         }
         // x - x is 0 for a finite x and NaN otherwise: one test for the nine inputs; beyond
         // 1e6 rad the branch-free sinCos is no longer exact (the full path takes libm's)
@@ -86,8 +100,17 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
         Pack u[kMaxActuators], du[kMaxActuators], ddu[kMaxActuators], tau[kMaxActuators];
         const detail::lean::Out<Pack> out{u, du, ddu, tau, 1};
         detail::lean::V3<Pack> W;
-        const PackMask ok = (zero == 0.0) & (fastmath::absOf(dtheta) < 1.0e6) &
-                            detail::lean::samplePacket(model, c, s, p, dp, ddp, out, W);
+        const PackMask ok =
+            (zero == 0.0) & (fastmath::absOf(dtheta) < 1.0e6) & detail::lean::sample(model, c, s, p, dp, ddp, out, W);
+        if (lanes == kLanes && contiguous_out && fastmath::all(ok)) [[likely]] {
+            for (int i = 0; i < n; ++i) {
+                std::memcpy(&a.u(k, i), &u[i], sizeof(Pack));
+                std::memcpy(&a.du(k, i), &du[i], sizeof(Pack));
+                std::memcpy(&a.ddu(k, i), &ddu[i], sizeof(Pack));
+                std::memcpy(&a.tau(k, i), &tau[i], sizeof(Pack));
+            }
+            continue;
+        }
         for (int l = 0; l < lanes; ++l) {
             const Eigen::Index row = k + l;
             if (ok[l] != 0) [[likely]] {

@@ -494,31 +494,26 @@ NOCDYN_ALWAYS_INLINE Mask<S> sampleWith(const Model& model, const S& cos_dtheta,
     return ok;
 }
 
-template <int... kCodes>
-NOCDYN_ALWAYS_INLINE bool sampleUniform(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
-                                        const double* dp, const double* ddp, const Out<double>& out, V3<double>& W,
-                                        bool& ok, std::integer_sequence<int, kCodes...> /*codes*/) {
+template <class S, int... kCodes>
+NOCDYN_ALWAYS_INLINE bool sampleUniform(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
+                                        const S* dp, const S* ddp, const Out<S>& out, V3<S>& W, Mask<S>& ok,
+                                        std::integer_sequence<int, kCodes...> /*codes*/) {
     return ((model.uniform_limbs == kCodes &&
              (ok = sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, UniformLimb<kCodes>{}), true)) ||
             ...);
 }
 
-/// One sample (sampleWith), compiled for the robot's limbs when they are uniform.
-NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
-                                 const double* dp, const double* ddp, const Out<double>& out, V3<double>& W) {
-    bool ok = false;
+/// One sample, or one packet of four (each lane as one sample, to rounding): sampleWith,
+/// compiled for the robot's limbs when they are uniform, else with the per-limb dispatch
+/// (once per packet).
+template <class S>
+NOCDYN_ALWAYS_INLINE Mask<S> sample(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
+                                    const S* dp, const S* ddp, const Out<S>& out, V3<S>& W) {
+    Mask<S> ok{};
     // kind * 3 + actuated joint for the seven kinds with a closed form (PPP excluded)
     if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
                       std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
         return ok;
-    return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
-}
-
-/// One packet of four samples (sampleWith over AnyLimb: the per-limb dispatch costs once
-/// per packet); each lane as `sample` on its sample, to rounding.
-NOCDYN_ALWAYS_INLINE fastmath::PackMask samplePacket(const Model& model, const Pack& cos_dtheta, const Pack& sin_dtheta,
-                                                     const Pack* p, const Pack* dp, const Pack* ddp,
-                                                     const Out<Pack>& out, V3<Pack>& W) {
     return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
 }
 

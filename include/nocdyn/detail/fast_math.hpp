@@ -76,10 +76,13 @@ NOCDYN_ALWAYS_INLINE Pack sqrtOf(const Pack& x) {
 #endif
 }
 NOCDYN_ALWAYS_INLINE double absOf(double x) { return std::abs(x); }
-NOCDYN_ALWAYS_INLINE Pack absOf(const Pack& x) { return x < 0.0 ? -x : x; }
+/// |x|: the sign bit cleared (one AND).
+NOCDYN_ALWAYS_INLINE Pack absOf(const Pack& x) {
+    return std::bit_cast<Pack>(std::bit_cast<PackMask>(x) & (PackMask{} + INT64_MAX));
+}
 /// max and min as std::max and std::min (a NaN in b is ignored, in a is kept).
 NOCDYN_ALWAYS_INLINE double maxOf(double a, double b) { return a < b ? b : a; }
-NOCDYN_ALWAYS_INLINE Pack maxOf(const Pack& a, const Pack& b) { return a < b ? b : a; }
+NOCDYN_ALWAYS_INLINE Pack maxOf(const Pack& a, const Pack& b) { return b > a ? b : a; }
 /// copysign(x, y) for x >= 0.
 NOCDYN_ALWAYS_INLINE double withSignOf(double x, double y) { return std::copysign(x, y); }
 NOCDYN_ALWAYS_INLINE Pack withSignOf(const Pack& x, const Pack& y) {
