@@ -6,6 +6,7 @@
 
 #include <cmath>
 #include <limits>
+#include <type_traits>
 
 #include "nocdyn/detail/fast_math.hpp"
 #include "nocdyn/limb_ik.hpp"
@@ -40,68 +41,44 @@ struct JointSolution {
     [[nodiscard]] const S& s(int k) const { return s_[k]; }
 };
 
-/// A planar vector of S.
-template <class S>
-struct V2 {
-    S x, y;
+/// Four planar vectors, one per lane: x() and y() as Vector2's.
+struct PackVector2 {
+    fastmath::Pack x_, y_;
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE const fastmath::Pack& x() const { return x_; }
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE const fastmath::Pack& y() const { return y_; }
 };
+/// A planar vector of S: Eigen's Vector2 for one sample (its packed SSE arithmetic), a
+/// PackVector2 for a packet.
 template <class S>
-NOCDYN_ALWAYS_INLINE V2<S> operator+(const V2<S>& a, const V2<S>& b) {
-    return {a.x + b.x, a.y + b.y};
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE V2<S> operator-(const V2<S>& a, const V2<S>& b) {
-    return {a.x - b.x, a.y - b.y};
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE V2<S> operator-(const V2<S>& a, const Vector2& b) {
-    return {a.x - b.x(), a.y - b.y()};
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE V2<S> operator+(const Vector2& a, const V2<S>& b) {
-    return {a.x() + b.x, a.y() + b.y};
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE V2<S> operator*(const S& k, const V2<S>& a) {
-    return {k * a.x, k * a.y};
-}
-/// k a for a constant direction a.
-template <class S>
-NOCDYN_ALWAYS_INLINE V2<S> scaled(const S& k, const Vector2& a) {
-    return {k * a.x(), k * a.y()};
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE V2<S> operator-(const V2<S>& a) {
-    return {-a.x, -a.y};
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE S dot(const V2<S>& a, const V2<S>& b) {
-    return a.x * b.x + a.y * b.y;
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE S dot(const Vector2& a, const V2<S>& b) {
-    return a.x() * b.x + a.y() * b.y;
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE S cross(const V2<S>& a, const V2<S>& b) {
-    return a.x * b.y - a.y * b.x;
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE S cross(const Vector2& a, const V2<S>& b) {
-    return a.x() * b.y - a.y() * b.x;
-}
-template <class S>
-NOCDYN_ALWAYS_INLINE S cross(const V2<S>& a, const Vector2& b) {
-    return a.x * b.y() - a.y * b.x();
-}
+using V2 = std::conditional_t<std::is_same_v<S, double>, Vector2, PackVector2>;
+
+using PV = PackVector2;
+NOCDYN_ALWAYS_INLINE PV operator+(const PV& a, const PV& b) { return {a.x_ + b.x_, a.y_ + b.y_}; }
+NOCDYN_ALWAYS_INLINE PV operator-(const PV& a, const PV& b) { return {a.x_ - b.x_, a.y_ - b.y_}; }
+NOCDYN_ALWAYS_INLINE PV operator-(const PV& a, const Vector2& b) { return {a.x_ - b.x(), a.y_ - b.y()}; }
+NOCDYN_ALWAYS_INLINE PV operator+(const Vector2& a, const PV& b) { return {a.x() + b.x_, a.y() + b.y_}; }
+NOCDYN_ALWAYS_INLINE PV operator*(const fastmath::Pack& k, const PV& a) { return {k * a.x_, k * a.y_}; }
+NOCDYN_ALWAYS_INLINE PV operator-(const PV& a) { return {-a.x_, -a.y_}; }
+NOCDYN_ALWAYS_INLINE fastmath::Pack dot(const PV& a, const PV& b) { return a.x_ * b.x_ + a.y_ * b.y_; }
+NOCDYN_ALWAYS_INLINE fastmath::Pack dot(const Vector2& a, const PV& b) { return a.x() * b.x_ + a.y() * b.y_; }
+NOCDYN_ALWAYS_INLINE double dot(const Vector2& a, const Vector2& b) { return a.dot(b); }
+NOCDYN_ALWAYS_INLINE fastmath::Pack cross(const PV& a, const PV& b) { return a.x_ * b.y_ - a.y_ * b.x_; }
+NOCDYN_ALWAYS_INLINE fastmath::Pack cross(const Vector2& a, const PV& b) { return a.x() * b.y_ - a.y() * b.x_; }
+NOCDYN_ALWAYS_INLINE fastmath::Pack cross(const PV& a, const Vector2& b) { return a.x_ * b.y() - a.y_ * b.x(); }
 NOCDYN_ALWAYS_INLINE double cross(const Vector2& a, const Vector2& b) { return nocdyn::cross(a, b); }
-template <class S>
-NOCDYN_ALWAYS_INLINE V2<S> perp(const V2<S>& v) {
-    return {-v.y, v.x};
-}
+NOCDYN_ALWAYS_INLINE PV perp(const PV& v) { return {-v.y_, v.x_}; }
+NOCDYN_ALWAYS_INLINE Vector2 perp(const Vector2& v) { return nocdyn::perp(v); }
+/// k a for a constant direction a.
+NOCDYN_ALWAYS_INLINE Vector2 scaled(double k, const Vector2& a) { return k * a; }
+NOCDYN_ALWAYS_INLINE PV scaled(const fastmath::Pack& k, const Vector2& a) { return {k * a.x(), k * a.y()}; }
+/// A constant vector as a V2<S>.
 template <class S>
 NOCDYN_ALWAYS_INLINE V2<S> vec(const Vector2& v) {
-    return {splat<S>(v.x()), splat<S>(v.y())};
+    if constexpr (std::is_same_v<S, double>) {
+        return v;
+    } else {
+        return {splat<S>(v.x()), splat<S>(v.y())};
+    }
 }
 
 /// The platform's displacement from home on S (limb_ik.hpp, PlatformDisplacement):
@@ -279,7 +256,8 @@ NOCDYN_ALWAYS_INLINE Closure<S> solveRPP(const LimbModel& limb, const PlatformMo
     out.s(0) = G.sin_dtheta;
     // G(r_1) = r_1 + Rot(dtheta) (q_2 d_2 + q_3 d_3)
     const V2<S> back = G.apply(limb.point[0]) - limb.point_home[0];
-    const V2<S> rhs{G.cos_dtheta * back.x + G.sin_dtheta * back.y, -G.sin_dtheta * back.x + G.cos_dtheta * back.y};
+    const V2<S> rhs{G.cos_dtheta * back.x() + G.sin_dtheta * back.y(),
+                    -G.sin_dtheta * back.x() + G.cos_dtheta * back.y()};
     return solveLinear<S>(limb.direction[1], limb.direction[2], rhs, out.q(1), out.q(2));
 }
 
