@@ -90,10 +90,10 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
                 for (int i = 0; i < 3; ++i) p[i][l] = a.p(s, i), dp[i][l] = a.dp(s, i), ddp[i][l] = a.ddp(s, i);
             }
         }
-        // x - x is 0 for a finite x and NaN otherwise: one test for the nine inputs; beyond
+        // 0 x is 0 for a finite x and NaN otherwise: one test for the nine inputs; beyond
         // 1e6 rad the branch-free sinCos is no longer exact (the full path takes libm's)
         Pack zero = Pack{};
-        for (int i = 0; i < 3; ++i) zero += (p[i] - p[i]) + (dp[i] - dp[i]) + (ddp[i] - ddp[i]);
+        for (int i = 0; i < 3; ++i) zero += p[i] * 0.0 + dp[i] * 0.0 + ddp[i] * 0.0;
         const Pack dtheta = p[0] - model.home(0);
         Pack s, c;
         fastmath::sinCos(dtheta, s, c);
