@@ -4,7 +4,8 @@
 // the paper's robot `baseline`, the hand-specialised 3-PRR path the general one must match.
 // Each runs the paper's trajectory 1 plus a second harmonic per axis, a cycle of 1000
 // samples (fixture.hpp), and reports `per_sample`.
-// BM_Batch/<robot>/nocdyn: the general batch (batch.hpp) over the same cycle on one thread,
+// BM_Batch/<robot>/nocdyn: the general batch (batch.hpp, the lean kernel on packets of four
+// samples) over the same cycle on one thread,
 // next to prr3's BM_Batch/nocdyn/cycle_1thread; BM_Batch/<robot>/nocdyn_100k: 100 cycles over
 // 1 and 2 threads, wall-clock time.
 #include <benchmark/benchmark.h>

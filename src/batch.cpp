@@ -1,16 +1,24 @@
 // Batch inverse dynamics of the general model (batch.hpp): the lean kernel over a range of
-// samples, the full path for the rare samples it rejects, and a std::thread split.
+// samples, four at a time in the lanes of a packet (vectorised across samples, for any
+// robot), the full path for the rare samples it rejects, and a std::thread split.
 #include "nocdyn/batch.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <thread>
 #include <vector>
 
 #include "lean_kernel.hpp"
+#include "nocdyn/detail/fast_math.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/prr3/batch.hpp"
+
+// A packet lives in registers inside chunk (everything it calls is inlined): the note that a
+// 32-byte vector's ABI depends on AVX does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
 
 namespace nocdyn {
 
@@ -48,37 +56,74 @@ fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
     return status;
 }
 
-// On x86-64 with GCC an AVX2+FMA clone is built beside the baseline one (as for
-// inverseDynamicsFast).
+// On x86-64 with GCC an AVX2+FMA clone is built beside the baseline one (a packet is then
+// one register instead of two).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 BatchResult
 chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
+    using fastmath::Pack;
+    using fastmath::PackMask;
+    constexpr int kLanes = fastmath::kLanes;
     BatchResult result;
     Data data(model);  // for rejected samples only: fixed capacity, no allocation
-    const std::ptrdiff_t stride = a.u.outerStride();
-    for (Eigen::Index k = begin; k < end; ++k) {
-        const double p[3] = {a.p(k, 0), a.p(k, 1), a.p(k, 2)};
-        const double dp[3] = {a.dp(k, 0), a.dp(k, 1), a.dp(k, 2)};
-        const double ddp[3] = {a.ddp(k, 0), a.ddp(k, 1), a.ddp(k, 2)};
-        // x - x is 0 for a finite x and NaN otherwise: one test for the nine inputs
-        double zero = 0.0;
-        for (int i = 0; i < 3; ++i) zero += (p[i] - p[i]) + (dp[i] - dp[i]) + (ddp[i] - ddp[i]);
-        const double dtheta = p[0] - model.home(0);
-        bool ok = false;
-        if (zero == 0.0 && std::abs(dtheta) < 1.0e6) [[likely]] {
-            double s, c;
-            prr3::batch_detail::sinCos(dtheta, s, c);  // branch-free, exact below 1.6e6 rad
-            const detail::lean::Out out{&a.u(k, 0), &a.du(k, 0), &a.ddu(k, 0), &a.tau(k, 0), stride};
-            detail::lean::V3 W;
-            ok = detail::lean::sample(model, c, s, p, dp, ddp, out, W);
+    const int n = model.actuators;
+    // Eigen's default (column-major) layout: a packet's samples are adjacent in each column
+    const bool contiguous_in = a.p.innerStride() == 1 && a.dp.innerStride() == 1 && a.ddp.innerStride() == 1;
+    const bool contiguous_out =
+        a.u.innerStride() == 1 && a.du.innerStride() == 1 && a.ddu.innerStride() == 1 && a.tau.innerStride() == 1;
+    for (Eigen::Index k = begin; k < end; k += kLanes) {
+        // lane l = sample k + l; past the end, the last sample again (not written)
+        const int lanes = static_cast<int>(std::min<Eigen::Index>(kLanes, end - k));
+        Pack p[3], dp[3], ddp[3];
+        if (lanes == kLanes && contiguous_in) [[likely]] {
+            // column i of each input holds the four samples side by side
+            for (int i = 0; i < 3; ++i) {
+                std::memcpy(&p[i], a.p.data() + k + i * a.p.outerStride(), sizeof(Pack));
+                std::memcpy(&dp[i], a.dp.data() + k + i * a.dp.outerStride(), sizeof(Pack));
+                std::memcpy(&ddp[i], a.ddp.data() + k + i * a.ddp.outerStride(), sizeof(Pack));
+            }
+        } else {
+            for (int l = 0; l < kLanes; ++l) {
+                const Eigen::Index s = k + std::min(l, lanes - 1);
+                for (int i = 0; i < 3; ++i) p[i][l] = a.p(s, i), dp[i][l] = a.dp(s, i), ddp[i][l] = a.ddp(s, i);
+            }
         }
-        if (ok) [[likely]]
+        // 0 x is 0 for a finite x and NaN otherwise: one test for the nine inputs; beyond
+        // 1e6 rad the branch-free sinCos is no longer exact (the full path takes libm's)
+        Pack zero = Pack{};
+        for (int i = 0; i < 3; ++i) zero += p[i] * 0.0 + dp[i] * 0.0 + ddp[i] * 0.0;
+        const Pack dtheta = p[0] - model.home(0);
+        Pack s, c;
+        fastmath::sinCos(dtheta, s, c);
+        Pack u[kMaxActuators], du[kMaxActuators], ddu[kMaxActuators], tau[kMaxActuators];
+        const detail::lean::Out<Pack> out{u, du, ddu, tau, 1};
+        detail::lean::V3<Pack> W;
+        const PackMask ok =
+            (zero == 0.0) & (fastmath::absOf(dtheta) < 1.0e6) & detail::lean::sample(model, c, s, p, dp, ddp, out, W);
+        if (lanes == kLanes && contiguous_out && fastmath::all(ok)) [[likely]] {
+            for (int i = 0; i < n; ++i) {
+                std::memcpy(&a.u(k, i), &u[i], sizeof(Pack));
+                std::memcpy(&a.du(k, i), &du[i], sizeof(Pack));
+                std::memcpy(&a.ddu(k, i), &ddu[i], sizeof(Pack));
+                std::memcpy(&a.tau(k, i), &tau[i], sizeof(Pack));
+            }
             continue;
-        if (const Status status = fullPath(model, data, a, k); !status && result.failed++ == 0) {
-            result.first_failure = k;
-            result.status = status;
+        }
+        for (int l = 0; l < lanes; ++l) {
+            const Eigen::Index row = k + l;
+            if (ok[l] != 0) [[likely]] {
+                for (int i = 0; i < n; ++i) {
+                    a.u(row, i) = u[i][l];
+                    a.du(row, i) = du[i][l];
+                    a.ddu(row, i) = ddu[i][l];
+                    a.tau(row, i) = tau[i][l];
+                }
+            } else if (const Status status = fullPath(model, data, a, row); !status && result.failed++ == 0) {
+                result.first_failure = row;
+                result.status = status;
+            }
         }
     }
     return result;

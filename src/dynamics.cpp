@@ -5,7 +5,7 @@
 #include <cmath>
 
 #include "lean_kernel.hpp"
-#include "nocdyn/prr3/batch.hpp"
+#include "nocdyn/detail/fast_math.hpp"
 #include "stages.hpp"
 
 namespace nocdyn {
@@ -167,13 +167,13 @@ inverseDynamicsFast(const Model& model, Data& data, const Pose& p, const Twist& 
     const double dtheta = p(0) - model.home(0);
     double s, c;
     if (std::abs(dtheta) < 1.0e6) [[likely]] {
-        prr3::batch_detail::sinCos(dtheta, s, c);  // branch-free, exact below 1.6e6 rad
+        fastmath::sinCos(dtheta, s, c);  // branch-free, exact below 1.6e6 rad
     } else {
         s = std::sin(dtheta);
         c = std::cos(dtheta);
     }
-    const detail::lean::Out out{data.u.data(), data.du.data(), data.ddu.data(), data.tau.data(), 1};
-    detail::lean::V3 W;
+    const detail::lean::Out<double> out{data.u.data(), data.du.data(), data.ddu.data(), data.tau.data(), 1};
+    detail::lean::V3<double> W;
     if (!detail::lean::sample(model, c, s, p.data(), dp.data(), ddp.data(), out, W)) [[unlikely]]
         return rejected(model, data, p, dp, ddp);
     data.p = p;

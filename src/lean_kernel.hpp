@@ -1,6 +1,7 @@
 // The lean inverse dynamics of one sample of the general model (dynamics.hpp,
-// inverseDynamicsFast), on plain scalars so that it stays in registers and inlines into the
-// per-sample entry and the batch loop. Internal (not installed).
+// inverseDynamicsFast), on a scalar S that stays in registers and inlines into the
+// per-sample entry (S = double) and the batch loop (S = fastmath::Pack, four samples in the
+// lanes of one vector, the same arithmetic lane by lane). Internal (not installed).
 //
 // The same physics as the stages (kinematics.cpp, dynamics.cpp), one limb at a time:
 //   position   closed-form joint variables (limb_ik_impl.hpp), screws by the product of
@@ -11,87 +12,138 @@
 //   forces     body inertia wrenches less gravity, joint efforts, W_P += J_j^-T f_j;
 //              then A^T tau = W_P (A^-T W_P, or the minimum-norm solution)
 // and the conditioning tests of jacobianStage in division-free form. It does not form T_i,
-// I or C. A rejected sample (unreachable, or a condition number beyond the limit) returns
-// false; the caller then asks the full path for the exact Status.
+// I or C. A rejected sample (unreachable, or a condition number beyond the limit) is false
+// in the returned mask (on a double: false, returned as soon as known); the caller then
+// asks the full path for the exact Status. On a Pack every test is a lane mask: no branch
+// depends on a sample, only on the model (limb kinds, actuated joints).
 #pragma once
 
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <type_traits>
 #include <utility>
 
 #include "limb_ik_impl.hpp"
+#include "nocdyn/detail/fast_math.hpp"
 #include "nocdyn/model.hpp"
 
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 namespace nocdyn::detail::lean {
+
+using fastmath::absOf;
+using fastmath::Mask;
+using fastmath::maxOf;
+using fastmath::Pack;
+using fastmath::select;
+using fastmath::splat;
+
+/// The scalars of the kernel: one sample or a packet of them.
+template <class S>
+concept Real = std::is_same_v<S, double> || std::is_same_v<S, Pack>;
 
 /// A compile-time zero: the angular part of a prismatic joint's screw and of the twist of a
 /// body that only translates. Terms with it vanish when the kernel is compiled (a double 0.0
 /// cannot make a product vanish: 0 * inf is NaN), so that the one kernel written for every
 /// limb type does no arithmetic on the zeros of P joints.
 struct Zero {};
-NOCDYN_ALWAYS_INLINE constexpr Zero operator*(Zero, double) { return {}; }
-NOCDYN_ALWAYS_INLINE constexpr Zero operator*(double, Zero) { return {}; }
+template <Real S>
+NOCDYN_ALWAYS_INLINE constexpr Zero operator*(Zero, const S&) {
+    return {};
+}
+template <Real S>
+NOCDYN_ALWAYS_INLINE constexpr Zero operator*(const S&, Zero) {
+    return {};
+}
 NOCDYN_ALWAYS_INLINE constexpr Zero operator*(Zero, Zero) { return {}; }
 NOCDYN_ALWAYS_INLINE constexpr Zero operator+(Zero, Zero) { return {}; }
-NOCDYN_ALWAYS_INLINE constexpr double operator+(double a, Zero) { return a; }
-NOCDYN_ALWAYS_INLINE constexpr double operator+(Zero, double b) { return b; }
+template <Real S>
+NOCDYN_ALWAYS_INLINE constexpr S operator+(const S& a, Zero) {
+    return a;
+}
+template <Real S>
+NOCDYN_ALWAYS_INLINE constexpr S operator+(Zero, const S& b) {
+    return b;
+}
 NOCDYN_ALWAYS_INLINE constexpr Zero operator-(Zero, Zero) { return {}; }
-NOCDYN_ALWAYS_INLINE constexpr double operator-(double a, Zero) { return a; }
-NOCDYN_ALWAYS_INLINE constexpr double operator-(Zero, double b) { return -b; }
+template <Real S>
+NOCDYN_ALWAYS_INLINE constexpr S operator-(const S& a, Zero) {
+    return a;
+}
+template <Real S>
+NOCDYN_ALWAYS_INLINE constexpr S operator-(Zero, const S& b) {
+    return -b;
+}
 NOCDYN_ALWAYS_INLINE constexpr Zero operator-(Zero) { return {}; }
-NOCDYN_ALWAYS_INLINE constexpr double value(double a) { return a; }
-NOCDYN_ALWAYS_INLINE constexpr double value(Zero) { return 0.0; }
-NOCDYN_ALWAYS_INLINE double absOf(double a) { return std::abs(a); }
+/// An expression's value as an S (0 for Zero).
+template <class S>
+NOCDYN_ALWAYS_INLINE constexpr S value(const S& a) {
+    return a;
+}
+template <class S>
+NOCDYN_ALWAYS_INLINE constexpr S value(Zero) {
+    return S{};
+}
 NOCDYN_ALWAYS_INLINE constexpr Zero absOf(Zero) { return {}; }
 
 /// A planar twist or wrench referred to O, [w; x; y]; W = Zero when w is known to vanish.
-template <class W>
+template <class W, class S>
 struct Tw {
     W w;
-    double x, y;
+    S x, y;
 };
-using V3 = Tw<double>;
+template <class S>
+using V3 = Tw<S, S>;
 
-template <class A, class B>
-NOCDYN_ALWAYS_INLINE auto operator+(const Tw<A>& a, const Tw<B>& b) {
-    return Tw<decltype(a.w + b.w)>{a.w + b.w, a.x + b.x, a.y + b.y};
+template <class A, class B, class S>
+NOCDYN_ALWAYS_INLINE auto operator+(const Tw<A, S>& a, const Tw<B, S>& b) {
+    return Tw<decltype(a.w + b.w), S>{a.w + b.w, a.x + b.x, a.y + b.y};
 }
-template <class A, class B>
-NOCDYN_ALWAYS_INLINE auto operator-(const Tw<A>& a, const Tw<B>& b) {
-    return Tw<decltype(a.w - b.w)>{a.w - b.w, a.x - b.x, a.y - b.y};
+template <class A, class B, class S>
+NOCDYN_ALWAYS_INLINE auto operator-(const Tw<A, S>& a, const Tw<B, S>& b) {
+    return Tw<decltype(a.w - b.w), S>{a.w - b.w, a.x - b.x, a.y - b.y};
 }
-template <class A>
-NOCDYN_ALWAYS_INLINE Tw<A> operator*(double k, const Tw<A>& a) {
-    return {k * a.w, k * a.x, k * a.y};
+template <class A, class S>
+NOCDYN_ALWAYS_INLINE auto operator*(const S& k, const Tw<A, S>& a) {
+    return Tw<decltype(k * a.w), S>{k * a.w, k * a.x, k * a.y};
 }
-template <class A, class B>
-NOCDYN_ALWAYS_INLINE double dot(const Tw<A>& a, const Tw<B>& b) {
+template <class A, class B, class S>
+NOCDYN_ALWAYS_INLINE S dot(const Tw<A, S>& a, const Tw<B, S>& b) {
     return a.w * b.w + a.x * b.x + a.y * b.y;
 }
 /// The cross product of 3-arrays: the cofactors of a 3 x 3 matrix.
-template <class A, class B>
-NOCDYN_ALWAYS_INLINE V3 cross(const Tw<A>& a, const Tw<B>& b) {
-    return {a.x * b.y - a.y * b.x, value(a.y * b.w - a.w * b.y), value(a.w * b.x - a.x * b.w)};
+template <class A, class B, class S>
+NOCDYN_ALWAYS_INLINE V3<S> cross(const Tw<A, S>& a, const Tw<B, S>& b) {
+    return {a.x * b.y - a.y * b.x, value<S>(a.y * b.w - a.w * b.y), value<S>(a.w * b.x - a.x * b.w)};
 }
 /// Lie bracket of planar twists referred to O (kinematics.hpp, bracket): a pure translation.
-template <class A, class B>
-NOCDYN_ALWAYS_INLINE Tw<Zero> bracket(const Tw<A>& a, const Tw<B>& b) {
-    return {{}, value(-a.w * b.y + b.w * a.y), value(a.w * b.x - b.w * a.x)};
+template <class A, class B, class S>
+NOCDYN_ALWAYS_INLINE Tw<Zero, S> bracket(const Tw<A, S>& a, const Tw<B, S>& b) {
+    return {{}, value<S>(-a.w * b.y + b.w * a.y), value<S>(a.w * b.x - b.w * a.x)};
 }
 
-/// A planar rigid displacement x -> R(c, s) x + t; S = Zero for a translation (c = 1).
-template <class S>
+/// A planar rigid displacement x -> R(c, s) x + t; Sn = Zero for a translation (c = 1).
+template <class Sn, class S>
 struct Move {
-    double c;
-    S s;
-    double tx, ty;
-    [[nodiscard]] NOCDYN_ALWAYS_INLINE double rx(double x, double y) const { return c * x - s * y; }
-    [[nodiscard]] NOCDYN_ALWAYS_INLINE double ry(double x, double y) const { return s * x + c * y; }
+    S c;
+    Sn s;
+    S tx, ty;
+    template <class X>
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE S rx(const X& x, const X& y) const {
+        return c * x - s * y;
+    }
+    template <class X>
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE S ry(const X& x, const X& y) const {
+        return s * x + c * y;
+    }
     template <class T>
-    [[nodiscard]] NOCDYN_ALWAYS_INLINE auto then(const Move<T>& o) const {
-        return Move<decltype(s * o.c + c * o.s)>{c * o.c - s * o.s, s * o.c + c * o.s, rx(o.tx, o.ty) + tx,
-                                                 ry(o.tx, o.ty) + ty};
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE auto then(const Move<T, S>& o) const {
+        return Move<decltype(s * o.c + c * o.s), S>{c * o.c - s * o.s, s * o.c + c * o.s, rx(o.tx, o.ty) + tx,
+                                                    ry(o.tx, o.ty) + ty};
     }
 };
 
@@ -116,166 +168,172 @@ NOCDYN_ALWAYS_INLINE double invJointScale(const LimbModel& limb, int k) {
 }
 
 /// exp of joint k's home screw times q_k.
-template <bool kRevolute>
-NOCDYN_ALWAYS_INLINE auto jointMove(const LimbModel& limb, const JointSolution& js, int k) {
+template <bool kRevolute, class S>
+NOCDYN_ALWAYS_INLINE auto jointMove(const LimbModel& limb, const JointSolution<S>& js, int k) {
     const auto kk = static_cast<std::size_t>(k);
     if constexpr (!kRevolute) {
-        return Move<Zero>{1.0, {}, js.q(k) * limb.direction[kk].x(), js.q(k) * limb.direction[kk].y()};
+        return Move<Zero, S>{splat<S>(1.0), {}, js.q(k) * limb.direction[kk].x(), js.q(k) * limb.direction[kk].y()};
     } else {
-        const double c = js.c(k), s = js.s(k);
+        const S c = js.c(k), s = js.s(k);
         const double px = limb.point_home[kk].x(), py = limb.point_home[kk].y();
-        return Move<double>{c, s, px - (c * px - s * py), py - (s * px + c * py)};
+        return Move<S, S>{c, s, px - (c * px - s * py), py - (s * px + c * py)};
     }
 }
 
 /// Home screw of the first joint (referred to O).
-template <bool kRevolute>
+template <bool kRevolute, class S>
 NOCDYN_ALWAYS_INLINE auto homeScrew(const LimbModel& limb) {
     if constexpr (kRevolute) {
-        return V3{1.0, limb.screw_home[0](1), limb.screw_home[0](2)};
+        return V3<S>{splat<S>(1.0), splat<S>(limb.screw_home[0](1)), splat<S>(limb.screw_home[0](2))};
     } else {
-        return Tw<Zero>{{}, limb.screw_home[0](1), limb.screw_home[0](2)};
+        return Tw<Zero, S>{{}, splat<S>(limb.screw_home[0](1)), splat<S>(limb.screw_home[0](2))};
     }
 }
 
 /// Current screw of joint k carried by the body displaced by g.
-template <bool kRevolute, class S>
-NOCDYN_ALWAYS_INLINE auto jointScrew(const LimbModel& limb, const Move<S>& g, int k) {
+template <bool kRevolute, class Sn, class S>
+NOCDYN_ALWAYS_INLINE auto jointScrew(const LimbModel& limb, const Move<Sn, S>& g, int k) {
     const auto kk = static_cast<std::size_t>(k);
     if constexpr (kRevolute) {
         const double px = limb.point_home[kk].x(), py = limb.point_home[kk].y();
-        return V3{1.0, g.ry(px, py) + g.ty, -(g.rx(px, py) + g.tx)};
+        return V3<S>{splat<S>(1.0), g.ry(px, py) + g.ty, -(g.rx(px, py) + g.tx)};
     } else {
         const double dx = limb.direction[kk].x(), dy = limb.direction[kk].y();
-        return Tw<Zero>{{}, g.rx(dx, dy), g.ry(dx, dy)};
+        return Tw<Zero, S>{{}, g.rx(dx, dy), g.ry(dx, dy)};
     }
-}
-
-/// The closed form of limb kind K (limb_ik_impl.hpp).
-template <LimbKind K>
-NOCDYN_ALWAYS_INLINE Status solveKind(const LimbModel& limb, int j, const PlatformDisplacement& G, JointSolution& js) {
-    if constexpr (K == LimbKind::RRR)
-        return ik::solveRRR(limb, j, G, limb.branch, js);
-    else if constexpr (K == LimbKind::PRR)
-        return ik::solvePRR(limb, j, G, limb.branch, js);
-    else if constexpr (K == LimbKind::RPR)
-        return ik::solveRPR(limb, j, G, limb.branch, js);
-    else if constexpr (K == LimbKind::RRP)
-        return ik::solveRRP(limb, j, G, limb.branch, js);
-    else if constexpr (K == LimbKind::PRP)
-        return ik::solvePRP(limb, j, G, js);
-    else if constexpr (K == LimbKind::RPP)
-        return ik::solveRPP(limb, j, G, js);
-    else
-        return ik::solvePPR(limb, j, G, js);
 }
 
 /// Inertia wrench, less gravity, of a body (inertia I, mass m, c.o.m. x) with twist xi and
 /// twist rate alpha referred to O, itself referred to O (dynamics.cpp, bodyWrench).
-template <class A, class B>
-NOCDYN_ALWAYS_INLINE V3 bodyWrench(double I, double m, double gx, double gy, double px, double py, const Tw<A>& xi,
-                                   const Tw<B>& alpha) {
+template <class A, class B, class S>
+NOCDYN_ALWAYS_INLINE V3<S> bodyWrench(double I, double m, double gx, double gy, const S& px, const S& py,
+                                      const Tw<A, S>& xi, const Tw<B, S>& alpha) {
     const A w = xi.w;
-    const double vx = xi.x - w * py, vy = xi.y + w * px;
-    const double ax = alpha.x - alpha.w * py - w * vy, ay = alpha.y + alpha.w * px + w * vx;
-    const double fx = m * (ax - gx), fy = m * (ay - gy);
+    const S vx = xi.x - w * py, vy = xi.y + w * px;
+    const S ax = alpha.x - alpha.w * py - w * vy, ay = alpha.y + alpha.w * px + w * vx;
+    const S fx = m * (ax - gx), fy = m * (ay - gy);
     return {I * alpha.w + (px * fy - py * fx), fx, fy};
 }
 
-NOCDYN_ALWAYS_INLINE double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+template <class S>
+NOCDYN_ALWAYS_INLINE S sign(const S& v) {
+    return select(v > 0.0, splat<S>(1.0), select(v < 0.0, splat<S>(-1.0), splat<S>(0.0)));
+}
 
 /// Where one sample's outputs go: actuator a's u at u[a * stride], and so on (stride 1 for
 /// a vector, the number of samples for the columns of a column-major array).
+template <class S>
 struct Out {
-    double* u;
-    double* du;
-    double* ddu;
-    double* tau;
+    S* u;
+    S* du;
+    S* ddu;
+    S* tau;
     std::ptrdiff_t stride;
 };
 
 /// The constants of a sample shared by every limb.
+template <class S>
 struct Frame {
-    PlatformDisplacement G;
-    V3 xi_P, xi_P_dot;
+    PlatformMove<S> G;
+    V3<S> xi_P, xi_P_dot;
     double gx, gy, L, inv_L, max_condition;
 };
 
+/// ok & test, on a double as soon as known: `if (!reject(ok, test)) return ok;` leaves at
+/// the first failed test of one sample, never for a packet (its lanes go on together).
+template <class S>
+NOCDYN_ALWAYS_INLINE bool pass(Mask<S>& ok, const Mask<S>& test) {
+    if constexpr (std::is_same_v<S, double>) {
+        ok = test;
+        return test;
+    } else {
+        ok = ok & test;
+        return true;
+    }
+}
+
 /// One limb of kind K: its joint rates and accelerations, its bodies' share of W_P (into
-/// W), and its actuators' u, du, ddu and rows of A. False when the limb cannot close or
-/// its J_j is too ill-conditioned.
+/// W), and its actuators' u, du, ddu and rows of A. False (lane by lane) when the limb
+/// cannot close or its J_j is too ill-conditioned.
 /// kAct: the one actuated joint of the limb (0..2), known at compile time, or kAnyActuation
 /// (read from limb.actuator).
 inline constexpr int kAnyActuation = -1;
 
-template <LimbKind K, int kAct>
-NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows,
-                                    double* weight, double* scale) {
-    const PlatformDisplacement& G = f.G;
-    const V3& xi_P = f.xi_P;
-    const V3& xi_P_dot = f.xi_P_dot;
+template <LimbKind K, int kAct, class S>
+NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LimbModel& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W,
+                                       V3<S>* rows, double* weight, double* scale) {
+    const PlatformMove<S>& G = f.G;
+    const V3<S>& xi_P = f.xi_P;
+    const V3<S>& xi_P_dot = f.xi_P_dot;
     const double gx = f.gx, gy = f.gy, L = f.L, inv_L = f.inv_L, max_condition = f.max_condition;
-    JointSolution js;
-    if (!solveKind<K>(limb, j, G, js)) return false;
+    JointSolution<S> js;
+    Mask<S> ok = ik::yes<S>();
+    {
+        const Closure<S> closure = ik::solveKind<K>(limb, G, limb.branch, js);
+        if (!pass<S>(ok, static_cast<Mask<S>>(closure.regular & closure.reach))) return ok;
+    }
     // screws by the product of exponentials, c.o.m. of the two bodies
     const auto g1 = jointMove<revolute<K>(0)>(limb, js, 0);
     const auto g2 = g1.then(jointMove<revolute<K>(1)>(limb, js, 1));
-    const auto s0 = homeScrew<revolute<K>(0)>(limb);
+    const auto s0 = homeScrew<revolute<K>(0), S>(limb);
     const auto s1 = jointScrew<revolute<K>(1)>(limb, g1, 1);
     const auto s2 = jointScrew<revolute<K>(2)>(limb, g2, 2);
     const Vector2& c0 = limb.com_home[0];
     const Vector2& c1 = limb.com_home[1];
-    const double x0 = g1.rx(c0.x(), c0.y()) + g1.tx, y0 = g1.ry(c0.x(), c0.y()) + g1.ty;
-    const double x1 = g2.rx(c1.x(), c1.y()) + g2.tx, y1 = g2.ry(c1.x(), c1.y()) + g2.ty;
+    const S x0 = g1.rx(c0.x(), c0.y()) + g1.tx, y0 = g1.ry(c0.x(), c0.y()) + g1.ty;
+    const S x1 = g2.rx(c1.x(), c1.y()) + g2.tx, y1 = g2.ry(c1.x(), c1.y()) + g2.ty;
 
     // J_j^-1 = adj / det, rows a_k of adj: s_2 x s_3, s_3 x s_1, s_1 x s_2
-    const V3 a0 = cross(s1, s2), a1 = cross(s2, s0), a2 = cross(s0, s1);
-    const double det = dot(s0, a0);
+    const V3<S> a0 = cross(s1, s2), a1 = cross(s2, s0), a2 = cross(s0, s1);
+    const S det = dot(s0, a0);
     // scaled 1-norm condition number (stages.hpp, limbConditionNorms), times |det|
-    const auto cs = [&limb](int k) { return jointScale<K>(limb, k); };
-    const auto ic = [&limb](int k) { return invJointScale<K>(limb, k); };
-    const double n_J = std::max({cs(0) * (absOf(s0.w) + (std::abs(s0.x) + std::abs(s0.y)) * inv_L),
-                                 cs(1) * (absOf(s1.w) + (std::abs(s1.x) + std::abs(s1.y)) * inv_L),
-                                 cs(2) * (absOf(s2.w) + (std::abs(s2.x) + std::abs(s2.y)) * inv_L)});
-    const double n_adj =
-        std::max(std::abs(a0.w) * ic(0) + std::abs(a1.w) * ic(1) + std::abs(a2.w) * ic(2),
-                 L * std::max(std::abs(a0.x) * ic(0) + std::abs(a1.x) * ic(1) + std::abs(a2.x) * ic(2),
-                              std::abs(a0.y) * ic(0) + std::abs(a1.y) * ic(1) + std::abs(a2.y) * ic(2)));
-    if (!(n_J * n_adj <= max_condition * std::abs(det))) return false;
-    const double inv_det = 1.0 / det;
-    const V3 j0 = inv_det * a0, j1 = inv_det * a1, j2 = inv_det * a2;  // rows of J_j^-1
+    const auto cs = [&limb](int k) NOCDYN_INLINE_LAMBDA { return jointScale<K>(limb, k); };
+    const auto ic = [&limb](int k) NOCDYN_INLINE_LAMBDA { return invJointScale<K>(limb, k); };
+    const S n_J = maxOf(maxOf(cs(0) * (absOf(s0.w) + (absOf(s0.x) + absOf(s0.y)) * inv_L),
+                              cs(1) * (absOf(s1.w) + (absOf(s1.x) + absOf(s1.y)) * inv_L)),
+                        cs(2) * (absOf(s2.w) + (absOf(s2.x) + absOf(s2.y)) * inv_L));
+    const S n_adj = maxOf(absOf(a0.w) * ic(0) + absOf(a1.w) * ic(1) + absOf(a2.w) * ic(2),
+                          L * maxOf(absOf(a0.x) * ic(0) + absOf(a1.x) * ic(1) + absOf(a2.x) * ic(2),
+                                    absOf(a0.y) * ic(0) + absOf(a1.y) * ic(1) + absOf(a2.y) * ic(2)));
+    if (!pass<S>(ok, n_J * n_adj <= max_condition * absOf(det))) return ok;
+    const S inv_det = 1.0 / det;
+    const V3<S> j0 = inv_det * a0, j1 = inv_det * a1, j2 = inv_det * a2;  // rows of J_j^-1
 
     // rates (eq. 3), body twists, screw rates, accelerations
-    const double gd0 = dot(j0, xi_P), gd1 = dot(j1, xi_P), gd2 = dot(j2, xi_P);
+    const S gd0 = dot(j0, xi_P), gd1 = dot(j1, xi_P), gd2 = dot(j2, xi_P);
     const auto xi0 = gd0 * s0;
     const auto xi1 = xi0 + gd1 * s1;
     const auto sd1_gd1 = gd1 * bracket(xi0, s1);
-    const V3 rhs = xi_P_dot - sd1_gd1 - gd2 * bracket(xi1, s2);
-    const double gdd0 = dot(j0, rhs), gdd1 = dot(j1, rhs), gdd2 = dot(j2, rhs);
+    const V3<S> rhs = xi_P_dot - sd1_gd1 - gd2 * bracket(xi1, s2);
+    const S gdd0 = dot(j0, rhs), gdd1 = dot(j1, rhs), gdd2 = dot(j2, rhs);
     const auto alpha0 = gdd0 * s0;
     const auto alpha1 = alpha0 + gdd1 * s1 + sd1_gd1;
-    const V3 W0 = bodyWrench(limb.M[0].inertia, limb.M[0].mass, gx, gy, x0, y0, xi0, alpha0);
-    const V3 W1 = bodyWrench(limb.M[1].inertia, limb.M[1].mass, gx, gy, x1, y1, xi1, alpha1);
+    const V3<S> W0 = bodyWrench(limb.M[0].inertia, limb.M[0].mass, gx, gy, x0, y0, xi0, alpha0);
+    const V3<S> W1 = bodyWrench(limb.M[1].inertia, limb.M[1].mass, gx, gy, x1, y1, xi1, alpha1);
     // joint efforts: joint k carries every body outboard of it in the limb, plus friction
-    double f0 = dot(s0, W0 + W1), f1 = dot(s1, W1);
+    S f0 = dot(s0, W0 + W1), f1 = dot(s1, W1);
     if (limb.frictionless) [[likely]] {
         W = W + f0 * j0 + f1 * j1;
     } else {
         f0 += limb.damping[0] * gd0 + limb.friction[0] * sign(gd0);
         f1 += limb.damping[1] * gd1 + limb.friction[1] * sign(gd1);
-        const double f2 = limb.damping[2] * gd2 + limb.friction[2] * sign(gd2);
+        const S f2 = limb.damping[2] * gd2 + limb.friction[2] * sign(gd2);
         W = W + f0 * j0 + f1 * j1 + f2 * j2;
     }
 
-    const double gd[3] = {gd0, gd1, gd2};
-    const double gdd[3] = {gdd0, gdd1, gdd2};
-    const V3 jr[3] = {j0, j1, j2};
-    const auto actuated = [&](int k) {
+    const S gd[3] = {gd0, gd1, gd2};
+    const S gdd[3] = {gdd0, gdd1, gdd2};
+    const V3<S> jr[3] = {j0, j1, j2};
+    const auto actuated = [&](int k) NOCDYN_INLINE_LAMBDA {
         const auto kk = static_cast<std::size_t>(k);
         const int a = limb.actuator[kk];
         // an actuated R joint's angle: the one atan2 the lean path needs
         const std::ptrdiff_t at = a * out.stride;
-        out.u[at] = revolute<K>(k) ? atan2Of(js.s(k), js.c(k)) : js.q(k);
+        if (revolute<K>(k)) {
+            out.u[at] = fastmath::atan2Of(js.s(k), js.c(k));
+        } else {
+            out.u[at] = js.q(k);
+        }
         out.du[at] = gd[k];
         out.ddu[at] = gdd[k];
         rows[a] = jr[k];
@@ -289,33 +347,34 @@ NOCDYN_ALWAYS_INLINE bool limbTerms(const LimbModel& limb, int j, const Frame& f
     } else {
         actuated(kAct);
     }
-    return true;
+    return ok;
 }
 
 /// Every limb by its kind read at run time, its actuated joints from limb.actuator.
 struct AnyLimb {
     static constexpr bool kUnitWeights = false;  ///< every actuated joint revolute (weight 1)
-    NOCDYN_ALWAYS_INLINE bool operator()(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows,
-                                         double* weight, double* scale) const {
+    template <class S>
+    NOCDYN_ALWAYS_INLINE Mask<S> operator()(const LimbModel& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W,
+                                            V3<S>* rows, double* weight, double* scale) const {
         switch (limb.kind) {
             case LimbKind::RRR:
-                return limbTerms<LimbKind::RRR, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+                return limbTerms<LimbKind::RRR, kAnyActuation>(limb, f, out, W, rows, weight, scale);
             case LimbKind::PRR:
-                return limbTerms<LimbKind::PRR, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+                return limbTerms<LimbKind::PRR, kAnyActuation>(limb, f, out, W, rows, weight, scale);
             case LimbKind::RPR:
-                return limbTerms<LimbKind::RPR, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+                return limbTerms<LimbKind::RPR, kAnyActuation>(limb, f, out, W, rows, weight, scale);
             case LimbKind::RRP:
-                return limbTerms<LimbKind::RRP, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+                return limbTerms<LimbKind::RRP, kAnyActuation>(limb, f, out, W, rows, weight, scale);
             case LimbKind::PRP:
-                return limbTerms<LimbKind::PRP, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+                return limbTerms<LimbKind::PRP, kAnyActuation>(limb, f, out, W, rows, weight, scale);
             case LimbKind::RPP:
-                return limbTerms<LimbKind::RPP, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+                return limbTerms<LimbKind::RPP, kAnyActuation>(limb, f, out, W, rows, weight, scale);
             case LimbKind::PPR:
-                return limbTerms<LimbKind::PPR, kAnyActuation>(limb, j, f, out, W, rows, weight, scale);
+                return limbTerms<LimbKind::PPR, kAnyActuation>(limb, f, out, W, rows, weight, scale);
             case LimbKind::PPP:
                 break;  // rejected by validate()
         }
-        return false;
+        return splat<S>(0.0) != 0.0;
     }
 };
 
@@ -324,75 +383,93 @@ struct AnyLimb {
 template <int kCode>
 struct UniformLimb {
     static constexpr bool kUnitWeights = revolute<static_cast<LimbKind>(kCode / 3)>(kCode % 3);
-    NOCDYN_ALWAYS_INLINE bool operator()(const LimbModel& limb, int j, const Frame& f, const Out& out, V3& W, V3* rows,
-                                         double* weight, double* scale) const {
-        return limbTerms<static_cast<LimbKind>(kCode / 3), kCode % 3>(limb, j, f, out, W, rows, weight, scale);
+    template <class S>
+    NOCDYN_ALWAYS_INLINE Mask<S> operator()(const LimbModel& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W,
+                                            V3<S>* rows, double* weight, double* scale) const {
+        return limbTerms<static_cast<LimbKind>(kCode / 3), kCode % 3>(limb, f, out, W, rows, weight, scale);
     }
 };
 
-/// One sample given cos and sin of dtheta = theta - home(0); p, dp, ddp finite; the limbs'
-/// terms by `terms` (AnyLimb or UniformLimb).
-/// Returns false when the per-sample path would fail (or is within rounding of a threshold).
-template <class Terms>
-NOCDYN_ALWAYS_INLINE bool sampleWith(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
-                                     const double* dp, const double* ddp, const Out& out, V3& W, Terms terms) {
-    PlatformDisplacement G;
-    G.cos_dtheta = cos_dtheta;
-    G.sin_dtheta = sin_dtheta;
-    G.C = Vector2(p[1], p[2]);
+/// The adjugate of a symmetric 3 x 3 matrix by its upper triangle (00 01 02 11 12 22), and
+/// the determinant.
+template <class S>
+NOCDYN_ALWAYS_INLINE S symmetricAdjugate(const S* m, S* adj) {
+    adj[0] = m[3] * m[5] - m[4] * m[4];
+    adj[1] = m[2] * m[4] - m[1] * m[5];
+    adj[2] = m[1] * m[4] - m[2] * m[3];
+    adj[3] = m[0] * m[5] - m[2] * m[2];
+    adj[4] = m[1] * m[2] - m[0] * m[4];
+    adj[5] = m[0] * m[3] - m[1] * m[1];
+    return m[0] * adj[0] + m[1] * adj[1] + m[2] * adj[2];
+}
+/// The 1-norm of a symmetric 3 x 3 matrix by its upper triangle.
+template <class S>
+NOCDYN_ALWAYS_INLINE S symmetricNorm1(const S* m) {
+    return maxOf(maxOf(absOf(m[0]) + absOf(m[1]) + absOf(m[2]), absOf(m[1]) + absOf(m[3]) + absOf(m[4])),
+                 absOf(m[2]) + absOf(m[4]) + absOf(m[5]));
+}
+
+/// One sample (or packet) given cos and sin of dtheta = theta - home(0); p, dp, ddp finite;
+/// the limbs' terms by `terms` (AnyLimb or UniformLimb).
+/// False (lane by lane) where the per-sample path would fail (or is within rounding of a
+/// threshold).
+template <class Terms, class S>
+NOCDYN_ALWAYS_INLINE Mask<S> sampleWith(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
+                                        const S* dp, const S* ddp, const Out<S>& out, V3<S>& W, Terms terms) {
     // xi_P = S(c) t_M and its derivative
-    const double cx = p[1], cy = p[2], w = dp[0];
-    const V3 xi_P{w, dp[1] + w * cy, dp[2] - w * cx};
-    const V3 xi_P_dot{ddp[0], ddp[1] + ddp[0] * cy + w * dp[2], ddp[2] - ddp[0] * cx - w * dp[1]};
+    const S cx = p[1], cy = p[2], w = dp[0];
+    const PlatformMove<S> G{cos_dtheta, sin_dtheta, {cx, cy}};
+    const V3<S> xi_P{w, dp[1] + w * cy, dp[2] - w * cx};
+    const V3<S> xi_P_dot{ddp[0], ddp[1] + ddp[0] * cy + w * dp[2], ddp[2] - ddp[0] * cx - w * dp[1]};
     const double gx = model.gravity.x(), gy = model.gravity.y();
     const double L = model.length_scale;
     const double inv_L = 1.0 / L;
     const double max_condition = model.max_condition;
 
-    V3 rows[kMaxActuators];        // rows of A: the actuated rows of the J_j^-1
+    V3<S> rows[kMaxActuators];     // rows of A: the actuated rows of the J_j^-1
     double weight[kMaxActuators];  // 1 / joint scale of each actuator, and the scale
     double scale[kMaxActuators];
     // W_P = sum_i T_i^{xi T} w_i: each limb's bodies through J_j^-T, the platform directly
     {
         const Vector2& com = model.platform_com_home;
-        const double px = cx + G.cos_dtheta * com.x() - G.sin_dtheta * com.y();
-        const double py = cy + G.sin_dtheta * com.x() + G.cos_dtheta * com.y();
+        const S px = cx + G.cos_dtheta * com.x() - G.sin_dtheta * com.y();
+        const S py = cy + G.sin_dtheta * com.x() + G.cos_dtheta * com.y();
         W = bodyWrench(model.platform_M.inertia, model.platform_M.mass, gx, gy, px, py, xi_P, xi_P_dot);
     }
-    const Frame frame{G, xi_P, xi_P_dot, gx, gy, L, inv_L, max_condition};
+    const Frame<S> frame{G, xi_P, xi_P_dot, gx, gy, L, inv_L, max_condition};
+    Mask<S> ok = ik::yes<S>();
     for (int j = 0; j < model.limbs; ++j) {
-        const bool ok = terms(model.limb[static_cast<std::size_t>(j)], j, frame, out, W, rows, weight, scale);
-        if (!ok) return false;
+        if (!pass<S>(ok, terms(model.limb[static_cast<std::size_t>(j)], frame, out, W, rows, weight, scale))) return ok;
     }
 
     // A^T tau = W_P; the actuation conditioning of jacobianStage, division-free
     const int n = model.actuators;
     if constexpr (Terms::kUnitWeights) std::fill(weight, weight + n, 1.0), std::fill(scale, scale + n, 1.0);
     if (model.coordinates == Coordinates::actuators) {
-        const V3 b0 = cross(rows[1], rows[2]), b1 = cross(rows[2], rows[0]), b2 = cross(rows[0], rows[1]);
-        const double det = dot(rows[0], b0);
-        const double n_A = std::max(
-            weight[0] * std::abs(rows[0].w) + weight[1] * std::abs(rows[1].w) + weight[2] * std::abs(rows[2].w),
-            L * std::max(
-                    weight[0] * std::abs(rows[0].x) + weight[1] * std::abs(rows[1].x) + weight[2] * std::abs(rows[2].x),
-                    weight[0] * std::abs(rows[0].y) + weight[1] * std::abs(rows[1].y) +
-                        weight[2] * std::abs(rows[2].y)));
-        const double n_adj = std::max({(std::abs(b0.w) + (std::abs(b0.x) + std::abs(b0.y)) * inv_L) * scale[0],
-                                       (std::abs(b1.w) + (std::abs(b1.x) + std::abs(b1.y)) * inv_L) * scale[1],
-                                       (std::abs(b2.w) + (std::abs(b2.x) + std::abs(b2.y)) * inv_L) * scale[2]});
-        if (!(n_A * n_adj <= max_condition * std::abs(det))) return false;
+        const V3<S> b0 = cross(rows[1], rows[2]), b1 = cross(rows[2], rows[0]), b2 = cross(rows[0], rows[1]);
+        const S det = dot(rows[0], b0);
+        const S n_A = maxOf(
+            weight[0] * absOf(rows[0].w) + weight[1] * absOf(rows[1].w) + weight[2] * absOf(rows[2].w),
+            L * maxOf(weight[0] * absOf(rows[0].x) + weight[1] * absOf(rows[1].x) + weight[2] * absOf(rows[2].x),
+                      weight[0] * absOf(rows[0].y) + weight[1] * absOf(rows[1].y) + weight[2] * absOf(rows[2].y)));
+        const S n_adj = maxOf(maxOf((absOf(b0.w) + (absOf(b0.x) + absOf(b0.y)) * inv_L) * scale[0],
+                                    (absOf(b1.w) + (absOf(b1.x) + absOf(b1.y)) * inv_L) * scale[1]),
+                              (absOf(b2.w) + (absOf(b2.x) + absOf(b2.y)) * inv_L) * scale[2]);
+        if (!pass<S>(ok, n_A * n_adj <= max_condition * absOf(det))) return ok;
         // tau = A^-T W_P: A^-1 has columns b_a / det
-        const double inv_det = 1.0 / det;
+        const S inv_det = 1.0 / det;
         out.tau[0] = dot(b0, W) * inv_det;
         out.tau[out.stride] = dot(b1, W) * inv_det;
         out.tau[2 * out.stride] = dot(b2, W) * inv_det;
-        return true;
+        return ok;
     }
     // redundant: cond_A^2 = cond_1(B), B = As^T As, As = diag(w) A diag(1, L, L); and the
     // minimum-norm tau = A (A^T A)^-1 W_P
-    double B[6] = {0, 0, 0, 0, 0, 0}, N[6] = {0, 0, 0, 0, 0, 0};  // upper triangles 00 01 02 11 12 22
+    const S zero = splat<S>(0.0);
+    S B[6] = {zero, zero, zero, zero, zero, zero};  // upper triangles 00 01 02 11 12 22
+    S N[6] = {zero, zero, zero, zero, zero, zero};
     for (int a = 0; a < n; ++a) {
-        const V3& ra = rows[a];
+        const V3<S>& ra = rows[a];
         N[0] += ra.w * ra.w, N[1] += ra.w * ra.x, N[2] += ra.w * ra.y;
         N[3] += ra.x * ra.x, N[4] += ra.x * ra.y, N[5] += ra.y * ra.y;
         if constexpr (!Terms::kUnitWeights) {
@@ -404,50 +481,52 @@ NOCDYN_ALWAYS_INLINE bool sampleWith(const Model& model, double cos_dtheta, doub
     // unit weights (R actuators): As^T As is A^T A itself, the same sums
     if constexpr (Terms::kUnitWeights) std::copy(N, N + 6, B);
     B[1] *= L, B[2] *= L, B[3] *= L * L, B[4] *= L * L, B[5] *= L * L;
-    const auto adjugate = [](const double* m, double* adj) {
-        adj[0] = m[3] * m[5] - m[4] * m[4];
-        adj[1] = m[2] * m[4] - m[1] * m[5];
-        adj[2] = m[1] * m[4] - m[2] * m[3];
-        adj[3] = m[0] * m[5] - m[2] * m[2];
-        adj[4] = m[1] * m[2] - m[0] * m[4];
-        adj[5] = m[0] * m[3] - m[1] * m[1];
-        return m[0] * adj[0] + m[1] * adj[1] + m[2] * adj[2];
-    };
-    const auto norm1 = [](const double* m) {
-        return std::max({std::abs(m[0]) + std::abs(m[1]) + std::abs(m[2]),
-                         std::abs(m[1]) + std::abs(m[3]) + std::abs(m[4]),
-                         std::abs(m[2]) + std::abs(m[4]) + std::abs(m[5])});
-    };
-    double adj_B[6], adj_N[6];
-    const double det_B = adjugate(B, adj_B);
-    if (!(norm1(B) * norm1(adj_B) <= max_condition * max_condition * std::abs(det_B))) return false;
-    const double det_N = adjugate(N, adj_N);
-    const double inv_det = 1.0 / det_N;
-    const V3 lambda{(adj_N[0] * W.w + adj_N[1] * W.x + adj_N[2] * W.y) * inv_det,
-                    (adj_N[1] * W.w + adj_N[3] * W.x + adj_N[4] * W.y) * inv_det,
-                    (adj_N[2] * W.w + adj_N[4] * W.x + adj_N[5] * W.y) * inv_det};
+    S adj_B[6], adj_N[6];
+    const S det_B = symmetricAdjugate(B, adj_B);
+    if (!pass<S>(ok, symmetricNorm1(B) * symmetricNorm1(adj_B) <= max_condition * max_condition * absOf(det_B)))
+        return ok;
+    const S det_N = symmetricAdjugate(N, adj_N);
+    const S inv_det = 1.0 / det_N;
+    const V3<S> lambda{(adj_N[0] * W.w + adj_N[1] * W.x + adj_N[2] * W.y) * inv_det,
+                       (adj_N[1] * W.w + adj_N[3] * W.x + adj_N[4] * W.y) * inv_det,
+                       (adj_N[2] * W.w + adj_N[4] * W.x + adj_N[5] * W.y) * inv_det};
     for (int a = 0; a < n; ++a) out.tau[a * out.stride] = dot(rows[a], lambda);
-    return true;
+    return ok;
 }
 
-template <int... kCodes>
-NOCDYN_ALWAYS_INLINE bool sampleUniform(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
-                                        const double* dp, const double* ddp, const Out& out, V3& W, bool& ok,
+template <class S, int... kCodes>
+NOCDYN_ALWAYS_INLINE bool sampleUniform(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
+                                        const S* dp, const S* ddp, const Out<S>& out, V3<S>& W, Mask<S>& ok,
                                         std::integer_sequence<int, kCodes...> /*codes*/) {
     return ((model.uniform_limbs == kCodes &&
              (ok = sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, UniformLimb<kCodes>{}), true)) ||
             ...);
 }
 
-/// One sample (sampleWith), compiled for the robot's limbs when they are uniform.
-NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
-                                 const double* dp, const double* ddp, const Out& out, V3& W) {
-    bool ok = false;
-    // kind * 3 + actuated joint for the seven kinds with a closed form (PPP excluded)
-    if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
-                      std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
-        return ok;
+/// One sample, or one packet of four (each lane as one sample, to rounding): sampleWith,
+/// compiled for the robot's limbs when they are uniform, else with the per-limb dispatch
+/// (once per packet).
+template <class S>
+NOCDYN_ALWAYS_INLINE Mask<S> sample(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
+                                    const S* dp, const S* ddp, const Out<S>& out, V3<S>& W) {
+#if defined(__SANITIZE_ADDRESS__)
+    // under the sanitizers every robot takes the per-limb dispatch: the same template, a
+    // third of the instantiations (with all of them the instrumented compile takes minutes)
     return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
+#else
+    {
+        // kind * 3 + actuated joint for the seven kinds with a closed form (PPP excluded)
+        Mask<S> ok{};
+        if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
+                          std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
+            return ok;
+        return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
+    }
+#endif
 }
 
 }  // namespace nocdyn::detail::lean
+
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic pop
+#endif

@@ -9,7 +9,7 @@
 #include <numbers>
 
 #include "nocdyn/model.hpp"
-#include "nocdyn/prr3/batch.hpp"
+#include "nocdyn/detail/fast_math.hpp"
 #include "stages.hpp"
 
 namespace nocdyn::detail::locked {
@@ -22,12 +22,12 @@ inline double wrapAngle(double a) {
     return a <= -kPi ? a + 2.0 * kPi : a;
 }
 
-/// cos x and sin x: inline, without a call (batch.hpp, sinCos: within an ulp or so of libm's,
+/// cos x and sin x: inline, without a call (detail/fast_math.hpp, sinCos: within an ulp or so of libm's,
 /// its reduction exact for |x| < 1.6e6), libm's beyond. The equations need them only to
 /// round-off: the tracker verifies its pose by inverse displacement.
 inline void cosSin(double x, double& c, double& s) {
     if (std::abs(x) < 1.0e6) [[likely]] {
-        prr3::batch_detail::sinCos(x, s, c);
+        fastmath::sinCos(x, s, c);
     } else {
         c = std::cos(x);
         s = std::sin(x);

@@ -22,6 +22,7 @@
 
 #include <Eigen/Core>
 
+#include "nocdyn/detail/fast_math.hpp"
 #include "nocdyn/prr3/model.hpp"
 #include "nocdyn/status.hpp"
 
@@ -91,37 +92,8 @@ NOCDYN_KERNEL_INLINE double sqrtOf(double x) { return std::sqrt(x); }
 NOCDYN_KERNEL_INLINE double absOf(double x) { return std::abs(x); }
 NOCDYN_KERNEL_INLINE double select(bool c, double a, double b) { return c ? a : b; }
 
-/// sin x and cos x without branches or calls, so that a loop over samples vectorises:
-/// Cody-Waite reduction by pi/2 in three parts (exact for |x| < 1.6e6; the batch hands
-/// larger angles to the per-sample path) and the fdlibm minimax polynomials on [-pi/4, pi/4].
-template <class S>
-NOCDYN_KERNEL_INLINE void sinCos(const S& x, S& s, S& c) {
-    const double magic = 6755399441055744.0;                   // 1.5 * 2^52: (v + magic) - magic rounds v
-    const S q = (x * 0.63661977236758134308 + magic) - magic;  // nearest integer to x / (pi/2)
-    const S rr =
-        ((x - q * 1.57079632673412561417e+00) - q * 6.07710050630396597660e-11) - q * 2.02226624871116645580e-21;
-    const S z = rr * rr;
-    const S sin_r = rr + rr * z *
-                             (-1.66666666666666324348e-01 +
-                              z * (8.33333333332248946124e-03 +
-                                   z * (-1.98412698298579493134e-04 +
-                                        z * (2.75573137070700676789e-06 +
-                                             z * (-2.50507602534068634195e-08 + z * 1.58969099521155010221e-10)))));
-    const S cos_r =
-        (1.0 - 0.5 * z) + z * z *
-                              (4.16666666666666019037e-02 +
-                               z * (-1.38888888888741095749e-03 +
-                                    z * (2.48015872894767294178e-05 +
-                                         z * (-2.75573143513906633035e-07 +
-                                              z * (2.08757232129817482790e-09 + z * -1.13596475577881948265e-11)))));
-    // quadrant m = q mod 4 in {0, 1, 2, 3}: floor(q / 4) by the same rounding trick
-    const S m = q - 4.0 * ((q * 0.25 - 0.375 + magic) - magic);
-    const bool odd = (m == 1.0) | (m == 3.0);
-    const S s0 = select(odd, cos_r, sin_r);
-    const S c0 = select(odd, sin_r, cos_r);
-    s = select(m >= 2.0, -s0, s0);
-    c = select((m == 1.0) | (m == 2.0), -c0, c0);
-}
+/// sin x and cos x without branches or calls (detail/fast_math.hpp).
+using fastmath::sinCos;
 
 /// One sample given s = sin theta and c = cos theta: in = [p, dp, ddp] (9, in[0] = theta is
 /// not read), out = [u, du, ddu, tau] (12). Returns false when the per-sample path would fail
