@@ -91,8 +91,9 @@ def test_one_sample_equals_its_batch_row_and_the_full_path(name):
         full = robot.inverse_dynamics(P[k], dP[k], ddP[k], matrices=True)
         for field in ("u", "du", "ddu", "tau"):
             ref = getattr(one, field)
-            # the same kernel; the batch may run its AVX2/FMA clone: to rounding
-            np.testing.assert_allclose(getattr(batch, field)[k], ref, rtol=0, atol=1e-15 * np.max(np.abs(ref)))
+            # the same kernel, on packets of four samples in the batch (with its own FMA
+            # contractions): equal to rounding
+            np.testing.assert_allclose(getattr(batch, field)[k], ref, rtol=0, atol=1e-13 * np.max(np.abs(ref)))
             assert np.all(np.abs(getattr(full, field) - ref) <= 1e-12 * max(1.0, np.max(np.abs(ref)))), field
 
 
