@@ -8,6 +8,13 @@
 #include "nocdyn/detail/fast_math.hpp"
 #include "stages.hpp"
 
+// The lean kernel runs a uniform robot's limbs in the lanes of a packet that lives in
+// registers (everything it calls is inlined): the note that a 32-byte vector's ABI depends
+// on AVX does not apply.
+#if defined(__GNUC__) && !defined(__clang__)
+#pragma GCC diagnostic ignored "-Wpsabi"
+#endif
+
 namespace nocdyn {
 
 namespace {

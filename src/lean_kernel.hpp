@@ -158,55 +158,111 @@ constexpr bool revolute(int k) {
 /// Scale of joint k's variable in the condition numbers and its inverse (model.hpp,
 /// LimbModel::joint_scale): 1 for an R joint, known at compile time so that its products
 /// vanish; the limb's value for a P joint.
-template <LimbKind K>
-NOCDYN_ALWAYS_INLINE double jointScale(const LimbModel& limb, int k) {
-    return revolute<K>(k) ? 1.0 : limb.joint_scale[static_cast<std::size_t>(k)];
+template <LimbKind K, class LM>
+NOCDYN_ALWAYS_INLINE double jointScale(const LM& limb, int k) {
+    return revolute<K>(k) ? 1.0 : modelOf(limb).joint_scale[static_cast<std::size_t>(k)];
 }
-template <LimbKind K>
-NOCDYN_ALWAYS_INLINE double invJointScale(const LimbModel& limb, int k) {
-    return revolute<K>(k) ? 1.0 : limb.inv_joint_scale[static_cast<std::size_t>(k)];
+template <LimbKind K, class LM>
+NOCDYN_ALWAYS_INLINE double invJointScale(const LM& limb, int k) {
+    return revolute<K>(k) ? 1.0 : modelOf(limb).inv_joint_scale[static_cast<std::size_t>(k)];
+}
+
+/// A limb constant as an S: a double in every lane, or the packet of the limbs' values.
+template <class S>
+NOCDYN_ALWAYS_INLINE S asS(double x) {
+    return splat<S>(x);
+}
+template <class S>
+NOCDYN_ALWAYS_INLINE const Pack& asS(const Pack& x) {
+    return x;
+}
+
+NOCDYN_ALWAYS_INLINE double massOf(const LimbModel& limb, int b) { return limb.M[static_cast<std::size_t>(b)].mass; }
+NOCDYN_ALWAYS_INLINE Pack massOf(const LaneLimb& limb, int b) {
+    return lanesOf(limb.lanes.mass[static_cast<std::size_t>(b)]);
+}
+NOCDYN_ALWAYS_INLINE double inertiaOf(const LimbModel& limb, int b) {
+    return limb.M[static_cast<std::size_t>(b)].inertia;
+}
+NOCDYN_ALWAYS_INLINE Pack inertiaOf(const LaneLimb& limb, int b) {
+    return lanesOf(limb.lanes.inertia[static_cast<std::size_t>(b)]);
+}
+NOCDYN_ALWAYS_INLINE const Vector2& comHomeOf(const LimbModel& limb, int b) {
+    return limb.com_home[static_cast<std::size_t>(b)];
+}
+NOCDYN_ALWAYS_INLINE PackVector2 comHomeOf(const LaneLimb& limb, int b) {
+    const auto bb = static_cast<std::size_t>(b);
+    return {lanesOf(limb.lanes.com_x[bb]), lanesOf(limb.lanes.com_y[bb])};
+}
+NOCDYN_ALWAYS_INLINE double dampingOf(const LimbModel& limb, int k) {
+    return limb.damping[static_cast<std::size_t>(k)];
+}
+NOCDYN_ALWAYS_INLINE Pack dampingOf(const LaneLimb& limb, int k) {
+    return lanesOf(limb.lanes.damping[static_cast<std::size_t>(k)]);
+}
+NOCDYN_ALWAYS_INLINE double frictionOf(const LimbModel& limb, int k) {
+    return limb.friction[static_cast<std::size_t>(k)];
+}
+NOCDYN_ALWAYS_INLINE Pack frictionOf(const LaneLimb& limb, int k) {
+    return lanesOf(limb.lanes.friction[static_cast<std::size_t>(k)]);
+}
+/// The linear part of the first joint's home screw, s_1(0) = [w; x; y].
+NOCDYN_ALWAYS_INLINE Vector2 homeScrewLinearOf(const LimbModel& limb) {
+    return {limb.screw_home[0](1), limb.screw_home[0](2)};
+}
+NOCDYN_ALWAYS_INLINE PackVector2 homeScrewLinearOf(const LaneLimb& limb) {
+    return {lanesOf(limb.lanes.screw_x), lanesOf(limb.lanes.screw_y)};
+}
+/// Where joint k's actuator writes: its actuator index for one limb, -1 when the joint is
+/// passive; 0 for a LaneLimb, whose lane l is the actuator of limb l (one per limb).
+NOCDYN_ALWAYS_INLINE int actuatorOf(const LimbModel& limb, int k) { return limb.actuator[static_cast<std::size_t>(k)]; }
+NOCDYN_ALWAYS_INLINE int actuatorOf(const LaneLimb& limb, int k) {
+    return limb.first.actuator[static_cast<std::size_t>(k)] >= 0 ? 0 : -1;
 }
 
 /// exp of joint k's home screw times q_k.
-template <bool kRevolute, class S>
-NOCDYN_ALWAYS_INLINE auto jointMove(const LimbModel& limb, const JointSolution<S>& js, int k) {
-    const auto kk = static_cast<std::size_t>(k);
+template <bool kRevolute, class S, class LM>
+NOCDYN_ALWAYS_INLINE auto jointMove(const LM& limb, const JointSolution<S>& js, int k) {
     if constexpr (!kRevolute) {
-        return Move<Zero, S>{splat<S>(1.0), {}, js.q(k) * limb.direction[kk].x(), js.q(k) * limb.direction[kk].y()};
+        const auto& d = directionOf(limb, k);
+        return Move<Zero, S>{splat<S>(1.0), {}, js.q(k) * d.x(), js.q(k) * d.y()};
     } else {
         const S c = js.c(k), s = js.s(k);
-        const double px = limb.point_home[kk].x(), py = limb.point_home[kk].y();
+        const auto& r = pointHomeOf(limb, k);
+        const auto px = r.x(), py = r.y();
         return Move<S, S>{c, s, px - (c * px - s * py), py - (s * px + c * py)};
     }
 }
 
 /// Home screw of the first joint (referred to O).
-template <bool kRevolute, class S>
-NOCDYN_ALWAYS_INLINE auto homeScrew(const LimbModel& limb) {
+template <bool kRevolute, class S, class LM>
+NOCDYN_ALWAYS_INLINE auto homeScrew(const LM& limb) {
+    const auto& v = homeScrewLinearOf(limb);
     if constexpr (kRevolute) {
-        return V3<S>{splat<S>(1.0), splat<S>(limb.screw_home[0](1)), splat<S>(limb.screw_home[0](2))};
+        return V3<S>{splat<S>(1.0), asS<S>(v.x()), asS<S>(v.y())};
     } else {
-        return Tw<Zero, S>{{}, splat<S>(limb.screw_home[0](1)), splat<S>(limb.screw_home[0](2))};
+        return Tw<Zero, S>{{}, asS<S>(v.x()), asS<S>(v.y())};
     }
 }
 
 /// Current screw of joint k carried by the body displaced by g.
-template <bool kRevolute, class Sn, class S>
-NOCDYN_ALWAYS_INLINE auto jointScrew(const LimbModel& limb, const Move<Sn, S>& g, int k) {
-    const auto kk = static_cast<std::size_t>(k);
+template <bool kRevolute, class Sn, class S, class LM>
+NOCDYN_ALWAYS_INLINE auto jointScrew(const LM& limb, const Move<Sn, S>& g, int k) {
     if constexpr (kRevolute) {
-        const double px = limb.point_home[kk].x(), py = limb.point_home[kk].y();
+        const auto& r = pointHomeOf(limb, k);
+        const auto px = r.x(), py = r.y();
         return V3<S>{splat<S>(1.0), g.ry(px, py) + g.ty, -(g.rx(px, py) + g.tx)};
     } else {
-        const double dx = limb.direction[kk].x(), dy = limb.direction[kk].y();
+        const auto& d = directionOf(limb, k);
+        const auto dx = d.x(), dy = d.y();
         return Tw<Zero, S>{{}, g.rx(dx, dy), g.ry(dx, dy)};
     }
 }
 
 /// Inertia wrench, less gravity, of a body (inertia I, mass m, c.o.m. x) with twist xi and
 /// twist rate alpha referred to O, itself referred to O (dynamics.cpp, bodyWrench).
-template <class A, class B, class S>
-NOCDYN_ALWAYS_INLINE V3<S> bodyWrench(double I, double m, double gx, double gy, const S& px, const S& py,
+template <class A, class B, class S, class C>
+NOCDYN_ALWAYS_INLINE V3<S> bodyWrench(const C& I, const C& m, double gx, double gy, const S& px, const S& py,
                                       const Tw<A, S>& xi, const Tw<B, S>& alpha) {
     const A w = xi.w;
     const S vx = xi.x - w * py, vy = xi.y + w * px;
@@ -259,9 +315,9 @@ NOCDYN_ALWAYS_INLINE bool pass(Mask<S>& ok, const Mask<S>& test) {
 /// (read from limb.actuator).
 inline constexpr int kAnyActuation = -1;
 
-template <LimbKind K, int kAct, class S>
-NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LimbModel& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W,
-                                       V3<S>* rows, double* weight, double* scale) {
+template <LimbKind K, int kAct, class S, class LM>
+NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LM& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W, V3<S>* rows,
+                                       double* weight, double* scale) {
     const PlatformMove<S>& G = f.G;
     const V3<S>& xi_P = f.xi_P;
     const V3<S>& xi_P_dot = f.xi_P_dot;
@@ -269,7 +325,7 @@ NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LimbModel& limb, const Frame<S>& f,
     JointSolution<S> js;
     Mask<S> ok = ik::yes<S>();
     {
-        const Closure<S> closure = ik::solveKind<K>(limb, G, limb.branch, js);
+        const Closure<S> closure = ik::solveKind<K>(limb, G, branchOf(limb), js);
         if (!pass<S>(ok, static_cast<Mask<S>>(closure.regular & closure.reach))) return ok;
     }
     // screws by the product of exponentials, c.o.m. of the two bodies
@@ -278,8 +334,8 @@ NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LimbModel& limb, const Frame<S>& f,
     const auto s0 = homeScrew<revolute<K>(0), S>(limb);
     const auto s1 = jointScrew<revolute<K>(1)>(limb, g1, 1);
     const auto s2 = jointScrew<revolute<K>(2)>(limb, g2, 2);
-    const Vector2& c0 = limb.com_home[0];
-    const Vector2& c1 = limb.com_home[1];
+    const auto& c0 = comHomeOf(limb, 0);
+    const auto& c1 = comHomeOf(limb, 1);
     const S x0 = g1.rx(c0.x(), c0.y()) + g1.tx, y0 = g1.ry(c0.x(), c0.y()) + g1.ty;
     const S x1 = g2.rx(c1.x(), c1.y()) + g2.tx, y1 = g2.ry(c1.x(), c1.y()) + g2.ty;
 
@@ -308,16 +364,16 @@ NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LimbModel& limb, const Frame<S>& f,
     const S gdd0 = dot(j0, rhs), gdd1 = dot(j1, rhs), gdd2 = dot(j2, rhs);
     const auto alpha0 = gdd0 * s0;
     const auto alpha1 = alpha0 + gdd1 * s1 + sd1_gd1;
-    const V3<S> W0 = bodyWrench(limb.M[0].inertia, limb.M[0].mass, gx, gy, x0, y0, xi0, alpha0);
-    const V3<S> W1 = bodyWrench(limb.M[1].inertia, limb.M[1].mass, gx, gy, x1, y1, xi1, alpha1);
+    const V3<S> W0 = bodyWrench(inertiaOf(limb, 0), massOf(limb, 0), gx, gy, x0, y0, xi0, alpha0);
+    const V3<S> W1 = bodyWrench(inertiaOf(limb, 1), massOf(limb, 1), gx, gy, x1, y1, xi1, alpha1);
     // joint efforts: joint k carries every body outboard of it in the limb, plus friction
     S f0 = dot(s0, W0 + W1), f1 = dot(s1, W1);
-    if (limb.frictionless) [[likely]] {
+    if (modelOf(limb).frictionless) [[likely]] {
         W = W + f0 * j0 + f1 * j1;
     } else {
-        f0 += limb.damping[0] * gd0 + limb.friction[0] * sign(gd0);
-        f1 += limb.damping[1] * gd1 + limb.friction[1] * sign(gd1);
-        const S f2 = limb.damping[2] * gd2 + limb.friction[2] * sign(gd2);
+        f0 += dampingOf(limb, 0) * gd0 + frictionOf(limb, 0) * sign(gd0);
+        f1 += dampingOf(limb, 1) * gd1 + frictionOf(limb, 1) * sign(gd1);
+        const S f2 = dampingOf(limb, 2) * gd2 + frictionOf(limb, 2) * sign(gd2);
         W = W + f0 * j0 + f1 * j1 + f2 * j2;
     }
 
@@ -325,8 +381,7 @@ NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LimbModel& limb, const Frame<S>& f,
     const S gdd[3] = {gdd0, gdd1, gdd2};
     const V3<S> jr[3] = {j0, j1, j2};
     const auto actuated = [&](int k) NOCDYN_INLINE_LAMBDA {
-        const auto kk = static_cast<std::size_t>(k);
-        const int a = limb.actuator[kk];
+        const int a = actuatorOf(limb, k);
         // an actuated R joint's angle: the one atan2 the lean path needs
         const std::ptrdiff_t at = a * out.stride;
         if (revolute<K>(k)) {
@@ -342,7 +397,7 @@ NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LimbModel& limb, const Frame<S>& f,
     };
     if constexpr (kAct == kAnyActuation) {
         for (int k = 0; k < 3; ++k) {
-            if (limb.actuator[static_cast<std::size_t>(k)] >= 0) actuated(k);
+            if (actuatorOf(limb, k) >= 0) actuated(k);
         }
     } else {
         actuated(kAct);
@@ -409,6 +464,67 @@ NOCDYN_ALWAYS_INLINE S symmetricNorm1(const S* m) {
                  absOf(m[2]) + absOf(m[4]) + absOf(m[5]));
 }
 
+/// A^T tau = W_P for the rows of A (the actuated rows of the J_j^-1) with their weights and
+/// scales: A^-T W_P, or the minimum-norm solution; false (lane by lane) where the actuation
+/// conditioning of jacobianStage fails (division-free).
+template <bool kUnitWeights, class S>
+NOCDYN_ALWAYS_INLINE Mask<S> actuation(const Model& model, V3<S>* rows, double* weight, double* scale, const V3<S>& W,
+                                       const Out<S>& out) {
+    Mask<S> ok = ik::yes<S>();
+    const double L = model.length_scale;
+    const double inv_L = 1.0 / L;
+    const double max_condition = model.max_condition;
+    const int n = model.actuators;
+    if constexpr (kUnitWeights) std::fill(weight, weight + n, 1.0), std::fill(scale, scale + n, 1.0);
+    if (model.coordinates == Coordinates::actuators) {
+        const V3<S> b0 = cross(rows[1], rows[2]), b1 = cross(rows[2], rows[0]), b2 = cross(rows[0], rows[1]);
+        const S det = dot(rows[0], b0);
+        const S n_A = maxOf(
+            weight[0] * absOf(rows[0].w) + weight[1] * absOf(rows[1].w) + weight[2] * absOf(rows[2].w),
+            L * maxOf(weight[0] * absOf(rows[0].x) + weight[1] * absOf(rows[1].x) + weight[2] * absOf(rows[2].x),
+                      weight[0] * absOf(rows[0].y) + weight[1] * absOf(rows[1].y) + weight[2] * absOf(rows[2].y)));
+        const S n_adj = maxOf(maxOf((absOf(b0.w) + (absOf(b0.x) + absOf(b0.y)) * inv_L) * scale[0],
+                                    (absOf(b1.w) + (absOf(b1.x) + absOf(b1.y)) * inv_L) * scale[1]),
+                              (absOf(b2.w) + (absOf(b2.x) + absOf(b2.y)) * inv_L) * scale[2]);
+        if (!pass<S>(ok, n_A * n_adj <= max_condition * absOf(det))) return ok;
+        // tau = A^-T W_P: A^-1 has columns b_a / det
+        const S inv_det = 1.0 / det;
+        out.tau[0] = dot(b0, W) * inv_det;
+        out.tau[out.stride] = dot(b1, W) * inv_det;
+        out.tau[2 * out.stride] = dot(b2, W) * inv_det;
+        return ok;
+    }
+    // redundant: cond_A^2 = cond_1(B), B = As^T As, As = diag(w) A diag(1, L, L); and the
+    // minimum-norm tau = A (A^T A)^-1 W_P
+    const S zero = splat<S>(0.0);
+    S B[6] = {zero, zero, zero, zero, zero, zero};  // upper triangles 00 01 02 11 12 22
+    S N[6] = {zero, zero, zero, zero, zero, zero};
+    for (int a = 0; a < n; ++a) {
+        const V3<S>& ra = rows[a];
+        N[0] += ra.w * ra.w, N[1] += ra.w * ra.x, N[2] += ra.w * ra.y;
+        N[3] += ra.x * ra.x, N[4] += ra.x * ra.y, N[5] += ra.y * ra.y;
+        if constexpr (!kUnitWeights) {
+            const double w2 = weight[a] * weight[a];
+            B[0] += w2 * ra.w * ra.w, B[1] += w2 * ra.w * ra.x, B[2] += w2 * ra.w * ra.y;
+            B[3] += w2 * ra.x * ra.x, B[4] += w2 * ra.x * ra.y, B[5] += w2 * ra.y * ra.y;
+        }
+    }
+    // unit weights (R actuators): As^T As is A^T A itself, the same sums
+    if constexpr (kUnitWeights) std::copy(N, N + 6, B);
+    B[1] *= L, B[2] *= L, B[3] *= L * L, B[4] *= L * L, B[5] *= L * L;
+    S adj_B[6], adj_N[6];
+    const S det_B = symmetricAdjugate(B, adj_B);
+    if (!pass<S>(ok, symmetricNorm1(B) * symmetricNorm1(adj_B) <= max_condition * max_condition * absOf(det_B)))
+        return ok;
+    const S det_N = symmetricAdjugate(N, adj_N);
+    const S inv_det = 1.0 / det_N;
+    const V3<S> lambda{(adj_N[0] * W.w + adj_N[1] * W.x + adj_N[2] * W.y) * inv_det,
+                       (adj_N[1] * W.w + adj_N[3] * W.x + adj_N[4] * W.y) * inv_det,
+                       (adj_N[2] * W.w + adj_N[4] * W.x + adj_N[5] * W.y) * inv_det};
+    for (int a = 0; a < n; ++a) out.tau[a * out.stride] = dot(rows[a], lambda);
+    return ok;
+}
+
 /// One sample (or packet) given cos and sin of dtheta = theta - home(0); p, dp, ddp finite;
 /// the limbs' terms by `terms` (AnyLimb or UniformLimb).
 /// False (lane by lane) where the per-sample path would fail (or is within rounding of a
@@ -441,57 +557,65 @@ NOCDYN_ALWAYS_INLINE Mask<S> sampleWith(const Model& model, const S& cos_dtheta,
     for (int j = 0; j < model.limbs; ++j) {
         if (!pass<S>(ok, terms(model.limb[static_cast<std::size_t>(j)], frame, out, W, rows, weight, scale))) return ok;
     }
-
-    // A^T tau = W_P; the actuation conditioning of jacobianStage, division-free
-    const int n = model.actuators;
-    if constexpr (Terms::kUnitWeights) std::fill(weight, weight + n, 1.0), std::fill(scale, scale + n, 1.0);
-    if (model.coordinates == Coordinates::actuators) {
-        const V3<S> b0 = cross(rows[1], rows[2]), b1 = cross(rows[2], rows[0]), b2 = cross(rows[0], rows[1]);
-        const S det = dot(rows[0], b0);
-        const S n_A = maxOf(
-            weight[0] * absOf(rows[0].w) + weight[1] * absOf(rows[1].w) + weight[2] * absOf(rows[2].w),
-            L * maxOf(weight[0] * absOf(rows[0].x) + weight[1] * absOf(rows[1].x) + weight[2] * absOf(rows[2].x),
-                      weight[0] * absOf(rows[0].y) + weight[1] * absOf(rows[1].y) + weight[2] * absOf(rows[2].y)));
-        const S n_adj = maxOf(maxOf((absOf(b0.w) + (absOf(b0.x) + absOf(b0.y)) * inv_L) * scale[0],
-                                    (absOf(b1.w) + (absOf(b1.x) + absOf(b1.y)) * inv_L) * scale[1]),
-                              (absOf(b2.w) + (absOf(b2.x) + absOf(b2.y)) * inv_L) * scale[2]);
-        if (!pass<S>(ok, n_A * n_adj <= max_condition * absOf(det))) return ok;
-        // tau = A^-T W_P: A^-1 has columns b_a / det
-        const S inv_det = 1.0 / det;
-        out.tau[0] = dot(b0, W) * inv_det;
-        out.tau[out.stride] = dot(b1, W) * inv_det;
-        out.tau[2 * out.stride] = dot(b2, W) * inv_det;
-        return ok;
-    }
-    // redundant: cond_A^2 = cond_1(B), B = As^T As, As = diag(w) A diag(1, L, L); and the
-    // minimum-norm tau = A (A^T A)^-1 W_P
-    const S zero = splat<S>(0.0);
-    S B[6] = {zero, zero, zero, zero, zero, zero};  // upper triangles 00 01 02 11 12 22
-    S N[6] = {zero, zero, zero, zero, zero, zero};
-    for (int a = 0; a < n; ++a) {
-        const V3<S>& ra = rows[a];
-        N[0] += ra.w * ra.w, N[1] += ra.w * ra.x, N[2] += ra.w * ra.y;
-        N[3] += ra.x * ra.x, N[4] += ra.x * ra.y, N[5] += ra.y * ra.y;
-        if constexpr (!Terms::kUnitWeights) {
-            const double w2 = weight[a] * weight[a];
-            B[0] += w2 * ra.w * ra.w, B[1] += w2 * ra.w * ra.x, B[2] += w2 * ra.w * ra.y;
-            B[3] += w2 * ra.x * ra.x, B[4] += w2 * ra.x * ra.y, B[5] += w2 * ra.y * ra.y;
-        }
-    }
-    // unit weights (R actuators): As^T As is A^T A itself, the same sums
-    if constexpr (Terms::kUnitWeights) std::copy(N, N + 6, B);
-    B[1] *= L, B[2] *= L, B[3] *= L * L, B[4] *= L * L, B[5] *= L * L;
-    S adj_B[6], adj_N[6];
-    const S det_B = symmetricAdjugate(B, adj_B);
-    if (!pass<S>(ok, symmetricNorm1(B) * symmetricNorm1(adj_B) <= max_condition * max_condition * absOf(det_B)))
-        return ok;
-    const S det_N = symmetricAdjugate(N, adj_N);
-    const S inv_det = 1.0 / det_N;
-    const V3<S> lambda{(adj_N[0] * W.w + adj_N[1] * W.x + adj_N[2] * W.y) * inv_det,
-                       (adj_N[1] * W.w + adj_N[3] * W.x + adj_N[4] * W.y) * inv_det,
-                       (adj_N[2] * W.w + adj_N[4] * W.x + adj_N[5] * W.y) * inv_det};
-    for (int a = 0; a < n; ++a) out.tau[a * out.stride] = dot(rows[a], lambda);
+    if (!pass<S>(ok, actuation<Terms::kUnitWeights>(model, rows, weight, scale, W, out))) return ok;
     return ok;
+}
+
+/// The limbs of a uniform robot (Model::limbs_in_lanes) all at once, limb l in lane l of
+/// one packet: the same kernel (limbTerms) as one limb, its constants read lane by lane.
+/// One sample, given cos and sin of dtheta; false where sampleWith would be.
+template <int kCode>
+NOCDYN_ALWAYS_INLINE bool sampleLanes(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
+                                      const double* dp, const double* ddp, const Out<double>& out, V3<double>& W) {
+    constexpr auto K = static_cast<LimbKind>(kCode / 3);
+    constexpr int kAct = kCode % 3;
+    const double cx = p[1], cy = p[2], w = dp[0];
+    const V3<double> xi_P{w, dp[1] + w * cy, dp[2] - w * cx};
+    const V3<double> xi_P_dot{ddp[0], ddp[1] + ddp[0] * cy + w * dp[2], ddp[2] - ddp[0] * cx - w * dp[1]};
+    const double gx = model.gravity.x(), gy = model.gravity.y();
+    const double L = model.length_scale;
+    {
+        const Vector2& com = model.platform_com_home;
+        const double px = cx + cos_dtheta * com.x() - sin_dtheta * com.y();
+        const double py = cy + sin_dtheta * com.x() + cos_dtheta * com.y();
+        W = bodyWrench(model.platform_M.inertia, model.platform_M.mass, gx, gy, px, py, xi_P, xi_P_dot);
+    }
+    const auto wide = [](const V3<double>& v) NOCDYN_INLINE_LAMBDA {
+        return V3<Pack>{splat<Pack>(v.w), splat<Pack>(v.x), splat<Pack>(v.y)};
+    };
+    const Frame<Pack> frame{
+        PlatformMove<Pack>{splat<Pack>(cos_dtheta), splat<Pack>(sin_dtheta), {splat<Pack>(cx), splat<Pack>(cy)}},
+        wide(xi_P),
+        wide(xi_P_dot),
+        gx,
+        gy,
+        L,
+        1.0 / L,
+        model.max_condition};
+    Pack u, du, ddu;
+    V3<Pack> row;
+    V3<Pack> W_limbs{Pack{}, Pack{}, Pack{}};
+    double weight = 1.0, scale = 1.0;
+    const Out<Pack> lane_out{&u, &du, &ddu, nullptr, 0};
+    const Mask<Pack> ok =
+        limbTerms<K, kAct>(LaneLimb{model.lanes, model.limb[0]}, frame, lane_out, W_limbs, &row, &weight, &scale);
+    // lanes past the last limb repeat limb 0: neither their test nor their share counts
+    const int limbs = model.limbs;
+    for (int j = 0; j < limbs; ++j) {
+        if (ok[j] == 0) return false;
+    }
+    V3<double> rows[LimbLanes::kLanes];
+    double weights[LimbLanes::kLanes], scales[LimbLanes::kLanes];
+    for (int j = 0; j < limbs; ++j) {
+        W.w += W_limbs.w[j], W.x += W_limbs.x[j], W.y += W_limbs.y[j];
+        out.u[j * out.stride] = u[j];
+        out.du[j * out.stride] = du[j];
+        out.ddu[j * out.stride] = ddu[j];
+        rows[j] = {row.w[j], row.x[j], row.y[j]};
+        weights[j] = weight;
+        scales[j] = scale;
+    }
+    return actuation<UniformLimb<kCode>::kUnitWeights>(model, rows, weights, scales, W, out);
 }
 
 template <class S, int... kCodes>
@@ -503,9 +627,19 @@ NOCDYN_ALWAYS_INLINE bool sampleUniform(const Model& model, const S& cos_dtheta,
             ...);
 }
 
+template <int... kCodes>
+NOCDYN_ALWAYS_INLINE bool sampleInLanes(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
+                                        const double* dp, const double* ddp, const Out<double>& out, V3<double>& W,
+                                        bool& ok, std::integer_sequence<int, kCodes...> /*codes*/) {
+    return ((model.uniform_limbs == kCodes &&
+             (ok = sampleLanes<kCodes>(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W), true)) ||
+            ...);
+}
+
 /// One sample, or one packet of four (each lane as one sample, to rounding): sampleWith,
 /// compiled for the robot's limbs when they are uniform, else with the per-limb dispatch
-/// (once per packet).
+/// (once per packet). One sample of a robot with uniform limbs, at most four, runs its
+/// limbs in the lanes of a packet (sampleLanes).
 template <class S>
 NOCDYN_ALWAYS_INLINE Mask<S> sample(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
                                     const S* dp, const S* ddp, const Out<S>& out, V3<S>& W) {
@@ -516,10 +650,13 @@ NOCDYN_ALWAYS_INLINE Mask<S> sample(const Model& model, const S& cos_dtheta, con
 #else
     {
         // kind * 3 + actuated joint for the seven kinds with a closed form (PPP excluded)
+        using Codes = std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>;
         Mask<S> ok{};
-        if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
-                          std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
-            return ok;
+        if constexpr (std::is_same_v<S, double>) {
+            if (model.limbs_in_lanes && sampleInLanes(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok, Codes{}))
+                return ok;
+        }
+        if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok, Codes{})) return ok;
         return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
     }
 #endif

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <type_traits>
 
@@ -71,6 +72,10 @@ NOCDYN_ALWAYS_INLINE Vector2 perp(const Vector2& v) { return nocdyn::perp(v); }
 /// k a for a constant direction a.
 NOCDYN_ALWAYS_INLINE Vector2 scaled(double k, const Vector2& a) { return k * a; }
 NOCDYN_ALWAYS_INLINE PV scaled(const fastmath::Pack& k, const Vector2& a) { return {k * a.x(), k * a.y()}; }
+NOCDYN_ALWAYS_INLINE PV scaled(const fastmath::Pack& k, const PV& a) { return k * a; }
+/// a - b of two constant vectors (evaluated: not an Eigen expression).
+NOCDYN_ALWAYS_INLINE Vector2 minus(const Vector2& a, const Vector2& b) { return a - b; }
+NOCDYN_ALWAYS_INLINE PV minus(const PV& a, const PV& b) { return a - b; }
 /// A constant vector as a V2<S>.
 template <class S>
 NOCDYN_ALWAYS_INLINE V2<S> vec(const Vector2& v) {
@@ -80,6 +85,63 @@ NOCDYN_ALWAYS_INLINE V2<S> vec(const Vector2& v) {
         return {splat<S>(v.x()), splat<S>(v.y())};
     }
 }
+template <class S>
+NOCDYN_ALWAYS_INLINE PV vec(const PV& v) {
+    return v;
+}
+
+/// The limbs of a uniform robot lane by lane (Model::lanes, lane l = limb l). The kernels
+/// read a limb's constants through the accessors below: as doubles and Vector2's from a
+/// LimbModel, as packets from a LaneLimb, so that one kernel runs one limb or every limb
+/// of a sample at once.
+struct LaneLimb {
+    const LimbLanes& lanes;
+    const LimbModel& first;  ///< limb 0: kind, joint scales and actuated joints, shared by all
+};
+
+/// A lane array as a packet.
+NOCDYN_ALWAYS_INLINE fastmath::Pack lanesOf(const LimbLanes::Lane& a) {
+    fastmath::Pack v;
+    static_assert(sizeof v == sizeof a);
+    std::memcpy(&v, a.data(), sizeof v);
+    return v;
+}
+NOCDYN_ALWAYS_INLINE const LimbModel& modelOf(const LimbModel& limb) { return limb; }
+NOCDYN_ALWAYS_INLINE const LimbModel& modelOf(const LaneLimb& limb) { return limb.first; }
+NOCDYN_ALWAYS_INLINE const Vector2& pointOf(const LimbModel& limb, int k) {
+    return limb.point[static_cast<std::size_t>(k)];
+}
+NOCDYN_ALWAYS_INLINE PV pointOf(const LaneLimb& limb, int k) {
+    const auto kk = static_cast<std::size_t>(k);
+    return {lanesOf(limb.lanes.point_x[kk]), lanesOf(limb.lanes.point_y[kk])};
+}
+NOCDYN_ALWAYS_INLINE const Vector2& pointHomeOf(const LimbModel& limb, int k) {
+    return limb.point_home[static_cast<std::size_t>(k)];
+}
+NOCDYN_ALWAYS_INLINE PV pointHomeOf(const LaneLimb& limb, int k) {
+    const auto kk = static_cast<std::size_t>(k);
+    return {lanesOf(limb.lanes.point_home_x[kk]), lanesOf(limb.lanes.point_home_y[kk])};
+}
+NOCDYN_ALWAYS_INLINE const Vector2& directionOf(const LimbModel& limb, int k) {
+    return limb.direction[static_cast<std::size_t>(k)];
+}
+NOCDYN_ALWAYS_INLINE PV directionOf(const LaneLimb& limb, int k) {
+    const auto kk = static_cast<std::size_t>(k);
+    return {lanesOf(limb.lanes.direction_x[kk]), lanesOf(limb.lanes.direction_y[kk])};
+}
+NOCDYN_ALWAYS_INLINE double length1Of(const LimbModel& limb) { return limb.length1; }
+NOCDYN_ALWAYS_INLINE fastmath::Pack length1Of(const LaneLimb& limb) { return lanesOf(limb.lanes.length1); }
+NOCDYN_ALWAYS_INLINE double length2Of(const LimbModel& limb) { return limb.length2; }
+NOCDYN_ALWAYS_INLINE fastmath::Pack length2Of(const LaneLimb& limb) { return lanesOf(limb.lanes.length2); }
+NOCDYN_ALWAYS_INLINE double invLength1SqOf(const LimbModel& limb) { return limb.inv_length1_sq; }
+NOCDYN_ALWAYS_INLINE fastmath::Pack invLength1SqOf(const LaneLimb& limb) { return lanesOf(limb.lanes.inv_length1_sq); }
+NOCDYN_ALWAYS_INLINE double invLength2SqOf(const LimbModel& limb) { return limb.inv_length2_sq; }
+NOCDYN_ALWAYS_INLINE fastmath::Pack invLength2SqOf(const LaneLimb& limb) { return lanesOf(limb.lanes.inv_length2_sq); }
+/// The home branch, as the sign the closed forms take.
+NOCDYN_ALWAYS_INLINE int branchOf(const LimbModel& limb) { return limb.branch; }
+NOCDYN_ALWAYS_INLINE fastmath::Pack branchOf(const LaneLimb& limb) { return lanesOf(limb.lanes.branch); }
+NOCDYN_ALWAYS_INLINE double branchSign(int branch) { return static_cast<double>(branch); }
+NOCDYN_ALWAYS_INLINE const fastmath::Pack& branchSign(const fastmath::Pack& branch) { return branch; }
 
 /// The platform's displacement from home on S (limb_ik.hpp, PlatformDisplacement):
 /// x -> Rot(dtheta) x + C.
@@ -87,10 +149,14 @@ template <class S>
 struct PlatformMove {
     S cos_dtheta, sin_dtheta;
     V2<S> C;
-    [[nodiscard]] NOCDYN_ALWAYS_INLINE V2<S> rotate(const Vector2& v) const {
+    template <class V>
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE V2<S> rotate(const V& v) const {
         return {cos_dtheta * v.x() - sin_dtheta * v.y(), sin_dtheta * v.x() + cos_dtheta * v.y()};
     }
-    [[nodiscard]] NOCDYN_ALWAYS_INLINE V2<S> apply(const Vector2& x) const { return rotate(x) + C; }
+    template <class V>
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE V2<S> apply(const V& x) const {
+        return rotate(x) + C;
+    }
 };
 
 NOCDYN_ALWAYS_INLINE PlatformMove<double> displacement(const PlatformDisplacement& G) {
@@ -143,90 +209,90 @@ NOCDYN_ALWAYS_INLINE void remainingAngle(const PlatformMove<S>& G, JointSolution
 }
 
 /// RRR: the elbow P_2 where circle (r_1, L_1) meets circle (P_3 = G(r_3), L_2).
-template <class S>
-NOCDYN_ALWAYS_INLINE Closure<S> solveRRR(const LimbModel& limb, const PlatformMove<S>& G, int branch,
+template <class S, class LM, class B>
+NOCDYN_ALWAYS_INLINE Closure<S> solveRRR(const LM& limb, const PlatformMove<S>& G, const B& branch,
                                          JointSolution<S>& out) {
     using fastmath::absOf, fastmath::select, fastmath::sqrtOf;
-    const Vector2& r1 = limb.point_home[0];
-    const V2<S> P3 = G.apply(limb.point[2]);
+    const auto& r1 = pointHomeOf(limb, 0);
+    const V2<S> P3 = G.apply(pointOf(limb, 2));
     const V2<S> D = P3 - r1;
     const S d2 = dot(D, D);
     const S d = sqrtOf(d2);
-    const double L1 = limb.length1;
-    const double L2 = limb.length2;
+    const auto L1 = length1Of(limb);
+    const auto L2 = length2Of(limb);
     const S inv_d = 1.0 / d;
     const S a = 0.5 * (L1 * L1 - L2 * L2 + d2) * inv_d;
     const S h2 = (L1 - a) * (L1 + a);
-    const Closure<S> result{d > kTiny, h2 >= 0.0, select(d > L1 + L2, d - (L1 + L2), std::abs(L1 - L2) - d)};
+    const Closure<S> result{d > kTiny, h2 >= 0.0, select(d > L1 + L2, d - (L1 + L2), absOf(L1 - L2) - d)};
     const S h = sqrtOf(h2);
-    const V2<S> P2 = (r1 + (a * inv_d) * D) + (static_cast<double>(branch) * h * inv_d) * perp(D);
-    angleBetween<S>(Vector2(limb.point_home[1] - r1), P2 - r1, limb.inv_length1_sq, out.c(0), out.s(0));
-    const Vector2 link = limb.point_home[2] - limb.point_home[1];
+    const V2<S> P2 = (r1 + (a * inv_d) * D) + (branchSign(branch) * h * inv_d) * perp(D);
+    angleBetween<S>(minus(pointHomeOf(limb, 1), r1), P2 - r1, invLength1SqOf(limb), out.c(0), out.s(0));
+    const auto link = minus(pointHomeOf(limb, 2), pointHomeOf(limb, 1));
     const V2<S> turned{out.c(0) * link.x() - out.s(0) * link.y(), out.s(0) * link.x() + out.c(0) * link.y()};
-    angleBetween<S>(turned, P3 - P2, limb.inv_length2_sq, out.c(1), out.s(1));
+    angleBetween<S>(turned, P3 - P2, invLength2SqOf(limb), out.c(1), out.s(1));
     remainingAngle<0, 1>(G, out, 2);
     return result;
 }
 
 /// PRR: the slider point P_2 = r_2 + q_1 d_1 at distance L_2 from P_3 = G(r_3) (the paper's limb).
-template <class S>
-NOCDYN_ALWAYS_INLINE Closure<S> solvePRR(const LimbModel& limb, const PlatformMove<S>& G, int branch,
+template <class S, class LM, class B>
+NOCDYN_ALWAYS_INLINE Closure<S> solvePRR(const LM& limb, const PlatformMove<S>& G, const B& branch,
                                          JointSolution<S>& out) {
     using fastmath::absOf, fastmath::sqrtOf;
-    const Vector2& d1 = limb.direction[0];
-    const Vector2& r2 = limb.point_home[1];
-    const V2<S> P3 = G.apply(limb.point[2]);
+    const auto& d1 = directionOf(limb, 0);
+    const auto& r2 = pointHomeOf(limb, 1);
+    const V2<S> P3 = G.apply(pointOf(limb, 2));
     const V2<S> w = P3 - r2;
     const S foot = dot(d1, w);
     const S delta = cross(d1, w);
-    const double L2 = limb.length2;
+    const auto L2 = length2Of(limb);
     const S h2 = (L2 - delta) * (L2 + delta);
     const Closure<S> result{yes<S>(), h2 >= 0.0, absOf(delta) - L2};
-    out.q(0) = foot - static_cast<double>(branch) * sqrtOf(h2);
+    out.q(0) = foot - branchSign(branch) * sqrtOf(h2);
     const V2<S> P2 = r2 + scaled(out.q(0), d1);
-    angleBetween<S>(Vector2(limb.point_home[2] - r2), P3 - P2, limb.inv_length2_sq, out.c(1), out.s(1));
+    angleBetween<S>(minus(pointHomeOf(limb, 2), r2), P3 - P2, invLength2SqOf(limb), out.c(1), out.s(1));
     remainingAngle<1>(G, out, 2);
     return result;
 }
 
 /// RPR: in the first body's frame, r_3 slides along d_2 to distance |G(r_3) - r_1| from r_1.
-template <class S>
-NOCDYN_ALWAYS_INLINE Closure<S> solveRPR(const LimbModel& limb, const PlatformMove<S>& G, int branch,
+template <class S, class LM, class B>
+NOCDYN_ALWAYS_INLINE Closure<S> solveRPR(const LM& limb, const PlatformMove<S>& G, const B& branch,
                                          JointSolution<S>& out) {
     using fastmath::absOf, fastmath::sqrtOf;
-    const Vector2& r1 = limb.point_home[0];
-    const Vector2& d2 = limb.direction[1];
-    const Vector2 a = limb.point_home[2] - r1;
-    const V2<S> W = G.apply(limb.point[2]) - r1;
+    const auto& r1 = pointHomeOf(limb, 0);
+    const auto& d2 = directionOf(limb, 1);
+    const auto a = minus(pointHomeOf(limb, 2), r1);
+    const V2<S> W = G.apply(pointOf(limb, 2)) - r1;
     const S rho2 = dot(W, W);
-    const double delta = cross(d2, a);
+    const auto delta = cross(d2, a);
     const S h2 = rho2 - delta * delta;
     const auto reach = h2 >= 0.0;
     // out of reach is reported first: the limb is singular only where it reaches
     const Closure<S> result{static_cast<Mask<S>>((rho2 > kTiny) | fastmath::notOf(reach)), reach,
-                            std::abs(delta) - sqrtOf(rho2)};
-    out.q(1) = -a.dot(d2) + static_cast<double>(branch) * sqrtOf(h2);
+                            absOf(delta) - sqrtOf(rho2)};
+    out.q(1) = -dot(a, d2) + branchSign(branch) * sqrtOf(h2);
     angleBetween<S>(vec<S>(a) + scaled(out.q(1), d2), W, 1.0 / rho2, out.c(0), out.s(0));
     remainingAngle<0>(G, out, 2);
     return result;
 }
 
 /// RRP: the elbow P_2 = G(r_2) - q_3 Rot(dtheta) d_3 on the circle (r_1, L_1).
-template <class S>
-NOCDYN_ALWAYS_INLINE Closure<S> solveRRP(const LimbModel& limb, const PlatformMove<S>& G, int branch,
+template <class S, class LM, class B>
+NOCDYN_ALWAYS_INLINE Closure<S> solveRRP(const LM& limb, const PlatformMove<S>& G, const B& branch,
                                          JointSolution<S>& out) {
     using fastmath::absOf, fastmath::sqrtOf;
-    const Vector2& r1 = limb.point_home[0];
-    const V2<S> Gr2 = G.apply(limb.point[1]);
-    const V2<S> w = -G.rotate(limb.direction[2]);
+    const auto& r1 = pointHomeOf(limb, 0);
+    const V2<S> Gr2 = G.apply(pointOf(limb, 1));
+    const V2<S> w = -G.rotate(directionOf(limb, 2));
     const S foot = -dot(w, Gr2 - r1);
     const S delta = cross(w, Gr2 - r1);
-    const double L1 = limb.length1;
+    const auto L1 = length1Of(limb);
     const S h2 = (L1 - delta) * (L1 + delta);
     const Closure<S> result{yes<S>(), h2 >= 0.0, absOf(delta) - L1};
-    out.q(2) = foot + static_cast<double>(branch) * sqrtOf(h2);
+    out.q(2) = foot + branchSign(branch) * sqrtOf(h2);
     const V2<S> P2 = Gr2 + out.q(2) * w;
-    angleBetween<S>(Vector2(limb.point_home[1] - r1), P2 - r1, limb.inv_length1_sq, out.c(0), out.s(0));
+    angleBetween<S>(minus(pointHomeOf(limb, 1), r1), P2 - r1, invLength1SqOf(limb), out.c(0), out.s(0));
     remainingAngle<0>(G, out, 1);
     return result;
 }
@@ -241,38 +307,39 @@ NOCDYN_ALWAYS_INLINE Closure<S> solveLinear(const A& a, const B& b, const V2<S>&
     return {absOf(det) > 1e-12, yes<S>(), splat<S>(0.0)};
 }
 
-template <class S>
-NOCDYN_ALWAYS_INLINE Closure<S> solvePRP(const LimbModel& limb, const PlatformMove<S>& G, JointSolution<S>& out) {
+template <class S, class LM>
+NOCDYN_ALWAYS_INLINE Closure<S> solvePRP(const LM& limb, const PlatformMove<S>& G, JointSolution<S>& out) {
     out.c(1) = G.cos_dtheta;
     out.s(1) = G.sin_dtheta;
     // G(r_2 - q_3 d_3) = r_2 + q_1 d_1
-    return solveLinear<S>(limb.direction[0], G.rotate(limb.direction[2]), G.apply(limb.point[1]) - limb.point_home[1],
-                          out.q(0), out.q(2));
+    return solveLinear<S>(directionOf(limb, 0), G.rotate(directionOf(limb, 2)),
+                          G.apply(pointOf(limb, 1)) - pointHomeOf(limb, 1), out.q(0), out.q(2));
 }
 
-template <class S>
-NOCDYN_ALWAYS_INLINE Closure<S> solveRPP(const LimbModel& limb, const PlatformMove<S>& G, JointSolution<S>& out) {
+template <class S, class LM>
+NOCDYN_ALWAYS_INLINE Closure<S> solveRPP(const LM& limb, const PlatformMove<S>& G, JointSolution<S>& out) {
     out.c(0) = G.cos_dtheta;
     out.s(0) = G.sin_dtheta;
     // G(r_1) = r_1 + Rot(dtheta) (q_2 d_2 + q_3 d_3)
-    const V2<S> back = G.apply(limb.point[0]) - limb.point_home[0];
+    const V2<S> back = G.apply(pointOf(limb, 0)) - pointHomeOf(limb, 0);
     const V2<S> rhs{G.cos_dtheta * back.x() + G.sin_dtheta * back.y(),
                     -G.sin_dtheta * back.x() + G.cos_dtheta * back.y()};
-    return solveLinear<S>(limb.direction[1], limb.direction[2], rhs, out.q(1), out.q(2));
+    return solveLinear<S>(directionOf(limb, 1), directionOf(limb, 2), rhs, out.q(1), out.q(2));
 }
 
-template <class S>
-NOCDYN_ALWAYS_INLINE Closure<S> solvePPR(const LimbModel& limb, const PlatformMove<S>& G, JointSolution<S>& out) {
+template <class S, class LM>
+NOCDYN_ALWAYS_INLINE Closure<S> solvePPR(const LM& limb, const PlatformMove<S>& G, JointSolution<S>& out) {
     out.c(2) = G.cos_dtheta;
     out.s(2) = G.sin_dtheta;
     // G(r_3) = r_3 + q_1 d_1 + q_2 d_2
-    return solveLinear<S>(limb.direction[0], limb.direction[1], G.apply(limb.point[2]) - limb.point_home[2], out.q(0),
-                          out.q(1));
+    return solveLinear<S>(directionOf(limb, 0), directionOf(limb, 1), G.apply(pointOf(limb, 2)) - pointHomeOf(limb, 2),
+                          out.q(0), out.q(1));
 }
 
-/// The closed form of limb kind K on `branch`.
-template <LimbKind K, class S>
-NOCDYN_ALWAYS_INLINE Closure<S> solveKind(const LimbModel& limb, const PlatformMove<S>& G, int branch,
+/// The closed form of limb kind K on `branch` (of a LimbModel, or of every limb of a
+/// LaneLimb: then lane by lane).
+template <LimbKind K, class S, class LM, class B>
+NOCDYN_ALWAYS_INLINE Closure<S> solveKind(const LM& limb, const PlatformMove<S>& G, const B& branch,
                                           JointSolution<S>& js) {
     if constexpr (K == LimbKind::RRR)
         return solveRRR(limb, G, branch, js);

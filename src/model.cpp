@@ -48,6 +48,40 @@ namespace {
     return code;
 }
 
+/// Model::lanes and Model::limbs_in_lanes. Uniform limbs share their joint scales (1 for R,
+/// length_scale for P), which the kernel therefore reads from the first limb.
+void fillLanes(Model& model) {
+    model.limbs_in_lanes = false;
+    if (model.uniform_limbs < 0 || model.limbs > LimbLanes::kLanes) return;
+    bool any_friction = false, all_friction = true;
+    for (int j = 0; j < model.limbs; ++j) {
+        const bool frictionless = model.limb[static_cast<std::size_t>(j)].frictionless;
+        any_friction = any_friction || !frictionless;
+        all_friction = all_friction && !frictionless;
+    }
+    if (any_friction && !all_friction) return;
+    LimbLanes& l = model.lanes;
+    for (std::size_t lane = 0; lane < LimbLanes::kLanes; ++lane) {
+        const auto j = static_cast<int>(lane) < model.limbs ? lane : 0;
+        const LimbModel& limb = model.limb[j];
+        for (std::size_t k = 0; k < 3; ++k) {
+            l.point_x[k][lane] = limb.point[k].x(), l.point_y[k][lane] = limb.point[k].y();
+            l.point_home_x[k][lane] = limb.point_home[k].x(), l.point_home_y[k][lane] = limb.point_home[k].y();
+            l.direction_x[k][lane] = limb.direction[k].x(), l.direction_y[k][lane] = limb.direction[k].y();
+            l.damping[k][lane] = limb.damping[k], l.friction[k][lane] = limb.friction[k];
+        }
+        for (std::size_t b = 0; b < 2; ++b) {
+            l.com_x[b][lane] = limb.com_home[b].x(), l.com_y[b][lane] = limb.com_home[b].y();
+            l.mass[b][lane] = limb.M[b].mass, l.inertia[b][lane] = limb.M[b].inertia;
+        }
+        l.screw_x[lane] = limb.screw_home[0](1), l.screw_y[lane] = limb.screw_home[0](2);
+        l.length1[lane] = limb.length1, l.length2[lane] = limb.length2;
+        l.inv_length1_sq[lane] = limb.inv_length1_sq, l.inv_length2_sq[lane] = limb.inv_length2_sq;
+        l.branch[lane] = static_cast<double>(limb.branch);
+    }
+    model.limbs_in_lanes = true;
+}
+
 }  // namespace
 
 Model::Model(const RobotParameters& parameters) : Model(expand(parameters)) {}
@@ -122,6 +156,7 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
         }
     }
     uniform_limbs = uniformLimbs(*this);
+    fillLanes(*this);
 
     // The home posture must be regular and reproduce q = 0 on every limb.
     Data data(*this);

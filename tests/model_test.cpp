@@ -5,6 +5,7 @@
 // minimum-norm forces of redundantly actuated robots.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -97,7 +98,24 @@ std::vector<RandomRobotSpec> specs() {
 std::string label(const RandomRobotSpec& spec) {
     std::string s;
     for (const auto& type : spec.limb_types) s += type + "-";
+    if (spec.actuated_joint >= 0) s += "joint" + std::to_string(spec.actuated_joint + 1) + "-";
     return s + std::to_string(spec.actuators) + (spec.gravity ? "-gravity" : "") + (spec.friction ? "-friction" : "");
+}
+
+/// Robots whose limbs are alike and actuated at the same joint, which the lean path runs
+/// side by side in the lanes of a packet: every limb type and actuated joint, three limbs,
+/// and four with gravity and friction. A limb with one R joint, actuated there, only measures
+/// the platform's angle (three of them cannot actuate it): left out.
+std::vector<RandomRobotSpec> uniformSpecs() {
+    std::vector<RandomRobotSpec> out;
+    for (const std::string& type : limbTypes()) {
+        for (int k = 0; k < 3; ++k) {
+            if (type[static_cast<std::size_t>(k)] == 'R' && std::count(type.begin(), type.end(), 'R') == 1) continue;
+            out.push_back({{type, type, type}, 3, false, false, k});
+            out.push_back({{type, type, type, type}, 4, true, true, k});
+        }
+    }
+    return out;
 }
 
 class RandomRobots : public ::testing::TestWithParam<RandomRobotSpec> {
@@ -321,6 +339,48 @@ INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobots, ::testing::ValuesIn(specs(
     for (char& c : name) c = c == '-' ? '_' : c;
     return name;
 });
+
+using UniformRobots = RandomRobots;
+
+// The limbs in the lanes of one packet give what the full path gives, sample by sample, and
+// hand it every sample it must refuse (a pose out of reach) with the full path's Status.
+TEST_P(UniformRobots, LimbsInLanesEqualTheFullPath) {
+    forEachRobot([](const Model& model, const PoseTrajectory& trajectory) {
+        EXPECT_TRUE(model.limbs_in_lanes);
+        Data full(model), lean(model);
+        for (int k = 0; k <= kSamples; ++k) {
+            Sample s = at(trajectory, k * kDuration / kSamples);
+            if (k == kSamples / 2) s.p(1) += 100.0;  // out of reach unless every limb's P joints can follow
+            const Status expected = inverseDynamics(model, full, s.p, s.dp, s.ddp);
+            const Status status = inverseDynamicsFast(model, lean, s.p, s.dp, s.ddp);
+            ASSERT_EQ(status.code, expected.code) << "sample " << k;
+            EXPECT_EQ(status.limb, expected.limb);
+            if (!expected) {
+                EXPECT_EQ(status.value, expected.value);
+                continue;
+            }
+            const double scale = 1.0 + full.tau.cwiseAbs().maxCoeff();
+            for (int a = 0; a < model.actuators; ++a) {
+                EXPECT_NEAR(lean.u(a), full.u(a), 1e-14 * (1.0 + std::abs(full.u(a))))
+                    << "sample " << k << ", actuator " << a + 1;
+                EXPECT_NEAR(lean.du(a), full.du(a), 1e-12 * (1.0 + std::abs(full.du(a))));
+                EXPECT_NEAR(lean.ddu(a), full.ddu(a), 1e-11 * (1.0 + std::abs(full.ddu(a))));
+                EXPECT_NEAR(lean.tau(a), full.tau(a), kRoundOff * scale) << "sample " << k << ", actuator " << a + 1;
+            }
+            // W_P = A^T tau, to the round-off of that product
+            const Wrench W_P = full.A.transpose() * full.tau;
+            EXPECT_LT((lean.W_P - W_P).cwiseAbs().maxCoeff(),
+                      kRoundOff * (1.0 + full.A.cwiseAbs().maxCoeff() * full.tau.cwiseAbs().maxCoeff()));
+        }
+    });
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryLimbTypeAndActuatedJoint, UniformRobots, ::testing::ValuesIn(uniformSpecs()),
+                         [](const auto& info) {
+                             std::string name = label(info.param);
+                             for (char& c : name) c = c == '-' ? '_' : c;
+                             return name;
+                         });
 
 // The branch-free atan2 of the actuated angles against libm's, over every octant, near
 // the breakpoints of its reduction, tiny and large angles, and unnormalised (c, s).

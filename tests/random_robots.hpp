@@ -41,6 +41,7 @@ struct RandomRobotSpec {
     int actuators = 3;                    ///< actuated joints, chosen at random among all
     bool gravity = false;
     bool friction = false;
+    int actuated_joint = -1;  ///< when 0..2: that joint of every limb instead (actuators ignored)
 };
 
 /// A random robot of the given limb types: limbs spread around the base (anchors ~0.25 m from
@@ -93,9 +94,13 @@ inline std::optional<RobotDescription> randomRobot(const RandomRobotSpec& spec, 
     std::vector<int> all(static_cast<std::size_t>(3 * n));
     for (int i = 0; i < 3 * n; ++i) all[static_cast<std::size_t>(i)] = i;
     std::shuffle(all.begin(), all.end(), rng);
-    for (int a = 0; a < spec.actuators && a < 3 * n; ++a) {
+    for (int a = 0; a < spec.actuators && a < 3 * n && spec.actuated_joint < 0; ++a) {
         const int i = all[static_cast<std::size_t>(a)];
         robot.limbs[static_cast<std::size_t>(i / 3)].joints[static_cast<std::size_t>(i % 3)].actuated = true;
+    }
+    if (spec.actuated_joint >= 0) {
+        for (LimbDescription& limb : robot.limbs)
+            limb.joints[static_cast<std::size_t>(spec.actuated_joint)].actuated = true;
     }
     try {
         RobotDescription copy = robot;

@@ -87,6 +87,23 @@ struct LimbModel {
     bool frictionless = true;
 };
 
+/// The constants of up to four limbs side by side, lane l = limb l (lanes past the last
+/// limb repeat limb 0), for the lean per-sample kernel: on a robot whose limbs are uniform
+/// (Model::uniform_limbs) it runs every limb at once in the lanes of one vector.
+struct LimbLanes {
+    static constexpr int kLanes = 4;
+    using Lane = std::array<double, kLanes>;
+    std::array<Lane, 3> point_x{}, point_y{};            ///< LimbModel::point
+    std::array<Lane, 3> point_home_x{}, point_home_y{};  ///< LimbModel::point_home
+    std::array<Lane, 3> direction_x{}, direction_y{};    ///< LimbModel::direction
+    std::array<Lane, 2> com_x{}, com_y{};                ///< LimbModel::com_home
+    std::array<Lane, 2> mass{}, inertia{};               ///< LimbModel::M
+    std::array<Lane, 3> damping{}, friction{};
+    Lane screw_x{}, screw_y{};  ///< LimbModel::screw_home[0](1), (2)
+    Lane length1{}, length2{}, inv_length1_sq{}, inv_length2_sq{};
+    Lane branch{};  ///< LimbModel::branch
+};
+
 /// Constant parameters of a planar parallel robot. Immutable after construction.
 class Model {
 public:
@@ -119,6 +136,10 @@ public:
     /// When every limb has the same kind and exactly one actuated joint, at the same place
     /// in the chain: kind * 3 + that joint (the lean kernel is then compiled for it); else -1.
     int uniform_limbs = -1;
+    /// The limbs lane by lane; in use (limbs_in_lanes) when uniform_limbs >= 0 and there
+    /// are at most LimbLanes::kLanes limbs, all frictionless or none.
+    LimbLanes lanes{};
+    bool limbs_in_lanes = false;
 
     /// Body index of body b (0, 1) of limb j, and of the platform.
     [[nodiscard]] int body(int j, int b) const { return b * limbs + j; }
