@@ -563,12 +563,11 @@ NOCDYN_ALWAYS_INLINE Mask<S> sampleWith(const Model& model, const S& cos_dtheta,
 
 /// The limbs of a uniform robot (Model::limbs_in_lanes) all at once, limb l in lane l of
 /// one packet: the same kernel (limbTerms) as one limb, its constants read lane by lane.
-/// One sample, given cos and sin of dtheta; false where sampleWith would be.
-template <int kCode>
+/// One sample, given cos and sin of dtheta; false where sampleWith would be. Compiled per
+/// limb kind K (the actuated joint read from the first limb: a packet is worth one branch).
+template <LimbKind K>
 NOCDYN_ALWAYS_INLINE bool sampleLanes(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
                                       const double* dp, const double* ddp, const Out<double>& out, V3<double>& W) {
-    constexpr auto K = static_cast<LimbKind>(kCode / 3);
-    constexpr int kAct = kCode % 3;
     const double cx = p[1], cy = p[2], w = dp[0];
     const V3<double> xi_P{w, dp[1] + w * cy, dp[2] - w * cx};
     const V3<double> xi_P_dot{ddp[0], ddp[1] + ddp[0] * cy + w * dp[2], ddp[2] - ddp[0] * cx - w * dp[1]};
@@ -592,13 +591,14 @@ NOCDYN_ALWAYS_INLINE bool sampleLanes(const Model& model, double cos_dtheta, dou
         L,
         1.0 / L,
         model.max_condition};
-    Pack u, du, ddu;
-    V3<Pack> row;
+    // written by the limbs' one actuated joint each (Model::uniform_limbs)
+    Pack u{}, du{}, ddu{};
+    V3<Pack> row{Pack{}, Pack{}, Pack{}};
     V3<Pack> W_limbs{Pack{}, Pack{}, Pack{}};
     double weight = 1.0, scale = 1.0;
     const Out<Pack> lane_out{&u, &du, &ddu, nullptr, 0};
-    const Mask<Pack> ok =
-        limbTerms<K, kAct>(LaneLimb{model.lanes, model.limb[0]}, frame, lane_out, W_limbs, &row, &weight, &scale);
+    const Mask<Pack> ok = limbTerms<K, kAnyActuation>(LaneLimb{model.lanes, model.limb[0]}, frame, lane_out, W_limbs,
+                                                      &row, &weight, &scale);
     // lanes past the last limb repeat limb 0: neither their test nor their share counts
     const int limbs = model.limbs;
     for (int j = 0; j < limbs; ++j) {
@@ -615,7 +615,7 @@ NOCDYN_ALWAYS_INLINE bool sampleLanes(const Model& model, double cos_dtheta, dou
         weights[j] = weight;
         scales[j] = scale;
     }
-    return actuation<UniformLimb<kCode>::kUnitWeights>(model, rows, weights, scales, W, out);
+    return actuation<false>(model, rows, weights, scales, W, out);
 }
 
 template <class S, int... kCodes>
@@ -627,39 +627,42 @@ NOCDYN_ALWAYS_INLINE bool sampleUniform(const Model& model, const S& cos_dtheta,
             ...);
 }
 
-template <int... kCodes>
+template <int... kKinds>
 NOCDYN_ALWAYS_INLINE bool sampleInLanes(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
                                         const double* dp, const double* ddp, const Out<double>& out, V3<double>& W,
-                                        bool& ok, std::integer_sequence<int, kCodes...> /*codes*/) {
-    return ((model.uniform_limbs == kCodes &&
-             (ok = sampleLanes<kCodes>(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W), true)) ||
-            ...);
+                                        bool& ok, std::integer_sequence<int, kKinds...> /*kinds*/) {
+    const int kind = model.uniform_limbs / 3;
+    return (
+        (kind == kKinds &&
+         (ok = sampleLanes<static_cast<LimbKind>(kKinds)>(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W), true)) ||
+        ...);
 }
 
-/// One sample, or one packet of four (each lane as one sample, to rounding): sampleWith,
-/// compiled for the robot's limbs when they are uniform, else with the per-limb dispatch
-/// (once per packet). One sample of a robot with uniform limbs, at most four, runs its
-/// limbs in the lanes of a packet (sampleLanes).
+/// One sample, or one packet of four (each lane as one sample, to rounding). A packet:
+/// sampleWith, compiled for the robot's limbs when they are uniform, else with the per-limb
+/// dispatch (once per packet). One sample: a robot with uniform limbs, at most four, runs its
+/// limbs in the lanes of a packet (sampleLanes); any other, sampleWith with the dispatch.
 template <class S>
 NOCDYN_ALWAYS_INLINE Mask<S> sample(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
                                     const S* dp, const S* ddp, const Out<S>& out, V3<S>& W) {
-#if defined(__SANITIZE_ADDRESS__)
-    // under the sanitizers every robot takes the per-limb dispatch: the same template, a
-    // third of the instantiations (with all of them the instrumented compile takes minutes)
-    return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
-#else
-    {
-        // kind * 3 + actuated joint for the seven kinds with a closed form (PPP excluded)
-        using Codes = std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>;
-        Mask<S> ok{};
-        if constexpr (std::is_same_v<S, double>) {
-            if (model.limbs_in_lanes && sampleInLanes(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok, Codes{}))
-                return ok;
-        }
-        if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok, Codes{})) return ok;
-        return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
-    }
+    Mask<S> ok{};
+    if constexpr (std::is_same_v<S, double>) {
+        // one sample: the limbs in lanes, else the dispatch (the rare uniform robot with more
+        // than four limbs, or friction at some of its limbs only)
+        if (model.limbs_in_lanes && sampleInLanes(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
+                                                  std::make_integer_sequence<int, static_cast<int>(LimbKind::PPP)>{}))
+            return ok;
+    } else {
+#if !defined(__SANITIZE_ADDRESS__)
+        // a packet: kind * 3 + actuated joint for the seven kinds with a closed form (PPP
+        // excluded). Under the sanitizers a packet takes the dispatch: a third of the
+        // instantiations (with all of them the instrumented compile takes minutes).
+        if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
+                          std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
+            return ok;
 #endif
+    }
+    return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
 }
 
 }  // namespace nocdyn::detail::lean
