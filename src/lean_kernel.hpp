@@ -645,6 +645,9 @@ NOCDYN_ALWAYS_INLINE bool sampleInLanes(const Model& model, double cos_dtheta, d
 template <class S>
 NOCDYN_ALWAYS_INLINE Mask<S> sample(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
                                     const S* dp, const S* ddp, const Out<S>& out, V3<S>& W) {
+#if !defined(__SANITIZE_ADDRESS__)
+    // Under the sanitizers every robot takes the per-limb dispatch: the same template, the
+    // fewest instantiations (the instrumented compile of the others takes many minutes).
     Mask<S> ok{};
     if constexpr (std::is_same_v<S, double>) {
         // one sample: the limbs in lanes, else the dispatch (the rare uniform robot with more
@@ -653,15 +656,13 @@ NOCDYN_ALWAYS_INLINE Mask<S> sample(const Model& model, const S& cos_dtheta, con
                                                   std::make_integer_sequence<int, static_cast<int>(LimbKind::PPP)>{}))
             return ok;
     } else {
-#if !defined(__SANITIZE_ADDRESS__)
         // a packet: kind * 3 + actuated joint for the seven kinds with a closed form (PPP
-        // excluded). Under the sanitizers a packet takes the dispatch: a third of the
-        // instantiations (with all of them the instrumented compile takes minutes).
+        // excluded)
         if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
                           std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
             return ok;
-#endif
     }
+#endif
     return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
 }
 
