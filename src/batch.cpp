@@ -73,6 +73,13 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
     const bool contiguous_in = a.p.innerStride() == 1 && a.dp.innerStride() == 1 && a.ddp.innerStride() == 1;
     const bool contiguous_out =
         a.u.innerStride() == 1 && a.du.innerStride() == 1 && a.ddu.innerStride() == 1 && a.tau.innerStride() == 1;
+    // pointers and strides read once: a packet's stores (memcpy) may alias any object, and
+    // would make the compiler read them again from the arrays at every store
+    const double *const in_p = a.p.data(), *const in_dp = a.dp.data(), *const in_ddp = a.ddp.data();
+    const Eigen::Index stride_p = a.p.outerStride(), stride_dp = a.dp.outerStride(), stride_ddp = a.ddp.outerStride();
+    double *const out_u = a.u.data(), *const out_du = a.du.data(), *const out_ddu = a.ddu.data(),
+                  *const out_tau = a.tau.data();
+    const Eigen::Index stride_out = a.u.outerStride();  // the same for the four (checked)
     for (Eigen::Index k = begin; k < end; k += kLanes) {
         // lane l = sample k + l; past the end, the last sample again (not written)
         const int lanes = static_cast<int>(std::min<Eigen::Index>(kLanes, end - k));
@@ -80,9 +87,9 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
         if (lanes == kLanes && contiguous_in) [[likely]] {
             // column i of each input holds the four samples side by side
             for (int i = 0; i < 3; ++i) {
-                std::memcpy(&p[i], a.p.data() + k + i * a.p.outerStride(), sizeof(Pack));
-                std::memcpy(&dp[i], a.dp.data() + k + i * a.dp.outerStride(), sizeof(Pack));
-                std::memcpy(&ddp[i], a.ddp.data() + k + i * a.ddp.outerStride(), sizeof(Pack));
+                std::memcpy(&p[i], in_p + k + i * stride_p, sizeof(Pack));
+                std::memcpy(&dp[i], in_dp + k + i * stride_dp, sizeof(Pack));
+                std::memcpy(&ddp[i], in_ddp + k + i * stride_ddp, sizeof(Pack));
             }
         } else {
             for (int l = 0; l < kLanes; ++l) {
@@ -104,10 +111,11 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
             (zero == 0.0) & (fastmath::absOf(dtheta) < 1.0e6) & detail::lean::sample(model, c, s, p, dp, ddp, out, W);
         if (lanes == kLanes && contiguous_out && fastmath::all(ok)) [[likely]] {
             for (int i = 0; i < n; ++i) {
-                std::memcpy(&a.u(k, i), &u[i], sizeof(Pack));
-                std::memcpy(&a.du(k, i), &du[i], sizeof(Pack));
-                std::memcpy(&a.ddu(k, i), &ddu[i], sizeof(Pack));
-                std::memcpy(&a.tau(k, i), &tau[i], sizeof(Pack));
+                const Eigen::Index at = k + i * stride_out;
+                std::memcpy(out_u + at, &u[i], sizeof(Pack));
+                std::memcpy(out_du + at, &du[i], sizeof(Pack));
+                std::memcpy(out_ddu + at, &ddu[i], sizeof(Pack));
+                std::memcpy(out_tau + at, &tau[i], sizeof(Pack));
             }
             continue;
         }

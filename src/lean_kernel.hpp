@@ -377,9 +377,10 @@ NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LM& limb, const Frame<S>& f, const 
         W = W + f0 * j0 + f1 * j1 + f2 * j2;
     }
 
-    const S gd[3] = {gd0, gd1, gd2};
-    const S gdd[3] = {gdd0, gdd1, gdd2};
-    const V3<S> jr[3] = {j0, j1, j2};
+    // joint k's value of three (no array: the values stay in registers)
+    const auto pick = [](int k, const auto& x0, const auto& x1, const auto& x2) NOCDYN_INLINE_LAMBDA -> const auto& {
+        return k == 0 ? x0 : k == 1 ? x1 : x2;
+    };
     const auto actuated = [&](int k) NOCDYN_INLINE_LAMBDA {
         const int a = actuatorOf(limb, k);
         // an actuated R joint's angle: the one atan2 the lean path needs
@@ -389,9 +390,9 @@ NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LM& limb, const Frame<S>& f, const 
         } else {
             out.u[at] = js.q(k);
         }
-        out.du[at] = gd[k];
-        out.ddu[at] = gdd[k];
-        rows[a] = jr[k];
+        out.du[at] = pick(k, gd0, gd1, gd2);
+        out.ddu[at] = pick(k, gdd0, gdd1, gdd2);
+        rows[a] = pick(k, j0, j1, j2);
         weight[a] = ic(k);
         scale[a] = cs(k);
     };
