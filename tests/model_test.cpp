@@ -334,11 +334,14 @@ TEST_P(RandomRobots, RedundantForcesAreTheMinimumNormSolution) {
     });
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobots, ::testing::ValuesIn(specs()), [](const auto& info) {
+/// A test name from a robot's label (gtest names take no '-').
+std::string testName(const ::testing::TestParamInfo<RandomRobotSpec>& info) {
     std::string name = label(info.param);
     for (char& c : name) c = c == '-' ? '_' : c;
     return name;
-});
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryLimbType, RandomRobots, ::testing::ValuesIn(specs()), testName);
 
 using UniformRobots = RandomRobots;
 
@@ -375,12 +378,7 @@ TEST_P(UniformRobots, LimbsInLanesEqualTheFullPath) {
     });
 }
 
-INSTANTIATE_TEST_SUITE_P(EveryLimbTypeAndActuatedJoint, UniformRobots, ::testing::ValuesIn(uniformSpecs()),
-                         [](const auto& info) {
-                             std::string name = label(info.param);
-                             for (char& c : name) c = c == '-' ? '_' : c;
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(EveryLimbTypeAndActuatedJoint, UniformRobots, ::testing::ValuesIn(uniformSpecs()), testName);
 
 // The branch-free atan2 of the actuated angles against libm's, over every octant, near
 // the breakpoints of its reduction, tiny and large angles, and unnormalised (c, s).
