@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <system_error>
 #include <thread>
 #include <vector>
 
@@ -161,17 +162,26 @@ BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const Co
         throw Error("inverseDynamicsBatch: u, du, ddu and tau must have the same layout");
     }
     const Arrays a{p, dp, ddp, u, du, ddu, tau};
-    if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-    if (threads == 1 || n < 2) return chunk(model, a, 0, n);
+    // at most one thread per hardware thread and per chunk of 8 samples: more only adds start-up
+    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
+    const auto chunks = static_cast<unsigned>(std::min<Eigen::Index>((n + 7) / 8, hardware));
+    threads = threads == 0 ? chunks : std::min(threads, chunks);
+    if (threads <= 1 || n < 2) return chunk(model, a, 0, n);
 
     // contiguous chunks, multiples of 8 samples so that no two threads share a cache line
     const Eigen::Index per = ((n + threads - 1) / threads + 7) / 8 * 8;
     std::vector<BatchResult> results(threads);
     std::vector<std::thread> workers;
     workers.reserve(threads - 1);
-    for (unsigned t = 1; t < threads; ++t) {
-        const Eigen::Index begin = std::min(n, t * per), end = std::min(n, (t + 1) * per);
-        workers.emplace_back([&, t, begin, end] { results[t] = chunk(model, a, begin, end); });
+    try {
+        for (unsigned t = 1; t < threads; ++t) {
+            const Eigen::Index begin = std::min(n, t * per), end = std::min(n, (t + 1) * per);
+            workers.emplace_back([&, t, begin, end] { results[t] = chunk(model, a, begin, end); });
+        }
+    } catch (const std::system_error& e) {
+        // a thread that cannot start: join those that did, and say so
+        for (std::thread& w : workers) w.join();
+        throw Error(std::string("inverseDynamicsBatch: cannot start a worker thread: ") + e.what());
     }
     results[0] = chunk(model, a, 0, std::min(n, per));
     for (std::thread& w : workers) w.join();

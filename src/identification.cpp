@@ -449,7 +449,8 @@ LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const E
             Aw.row(r) = w * A.row(r).cwiseQuotient(norms.transpose());
             bw(r) = w * b(r);
         }
-        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Aw.transpose() * Aw);
+        // V names the weakest direction when the regressor is ill-conditioned
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(Aw.transpose() * Aw, Eigen::ComputeFullV);
         const Eigen::VectorXd& sv = svd.singularValues();
         result.condition = std::sqrt(sv(0) / sv(k - 1));
         if (!(result.condition < 1e7)) {

@@ -40,7 +40,8 @@ using BatchOutput = Eigen::Ref<Eigen::ArrayXXd, 0, Eigen::Stride<Eigen::Dynamic,
 
 /// Inverse dynamics of N samples: (p, dp, ddp), N x 3 each -> u, du, ddu, tau, N x n each.
 /// `threads`: 1 runs on the calling thread; 0 uses one per hardware thread; more splits the
-/// samples into that many contiguous chunks (the calling thread runs one).
+/// samples into that many contiguous chunks (the calling thread runs one), capped at the
+/// hardware threads and at one chunk per 8 samples.
 /// The four outputs must have the same stride from one actuator to the next.
 /// Throws nocdyn::Error when the arrays' sizes disagree (before any sample is computed).
 BatchResult inverseDynamicsBatch(const Model& model, const BatchInput& p, const BatchInput& dp, const BatchInput& ddp,

@@ -222,3 +222,12 @@ def test_threads_split_the_batch_with_the_same_numbers(paper_robot):
     ref = paper_robot.inverse_dynamics(P, dP, ddP)
     for a, b in zip(paper_robot.inverse_dynamics(P, dP, ddP, threads=2), ref):
         np.testing.assert_array_equal(a, b)
+
+
+def test_an_absurd_thread_count_is_capped_and_gives_the_one_thread_numbers(paper_robot):
+    """threads=100000 once aborted the interpreter (a thread that could not start): the count is
+    capped at the hardware and at one chunk per 8 samples."""
+    P, dP, ddP = random_motion(paper_robot, 50)
+    ref = paper_robot.inverse_dynamics(P, dP, ddP, threads=1)
+    for a, b in zip(paper_robot.inverse_dynamics(P, dP, ddP, threads=100000), ref):
+        np.testing.assert_array_equal(a, b)
