@@ -1,0 +1,50 @@
+// Joint reaction forces: the constraint wrenches the NOC eliminates (eq. 19), recovered limb by
+// limb from each body's Newton-Euler equations once the motion and tau are known.
+//
+// Every body b needs the net wrench w_b = M_b dt_b - [0; m_b g] (eqs. 9-12; planar, so no
+// gyroscopic term), referred here to O: [n_c + x_b x f; f] with f = m_b (a_b - g), n_c = I_b dw.
+// Let F_k be the wrench that joint k of a limb transmits from its inboard body to its outboard
+// body (the base to body 1 for k = 1, body 2 to the platform for k = 3), referred to O. The two
+// bodies' balances give F_2 = F_3 + w_2 and F_1 = F_2 + w_1, and each joint passes, along its
+// screw s_k, exactly its effort e_k (the actuator's force or torque tau, less the friction phi_k
+// to overcome): s_k^T F_k = e_k. Hence
+//   J_j^T F_3 = e - [s_1^T (w_1 + w_2); s_2^T w_2; 0],   F_3 = J_j^-T (...)
+// and then F_2, F_1 by back-substitution; no new unknowns. The platform's balance,
+// sum_j F_3 = w_P, holds when tau is the inverse dynamics' (a test checks it).
+//
+// Convention of the reported reaction (base frame; the wrench of the inboard body on the
+// outboard body, the joint's own effort and friction taken out):
+//   R joint: the force (fx, fy) at the joint axis, m = 0 (the moment about the axis is the effort);
+//   P joint: the force normal to the joint's current direction (fx, fy), and the couple m about
+//            the outboard body's c.o.m. (the effort is a force along the direction through it).
+#pragma once
+
+#include <array>
+
+#include "nocdyn/model.hpp"
+#include "nocdyn/status.hpp"
+
+namespace nocdyn {
+
+/// Reactions of every joint of one sample. Fixed capacity: never allocates.
+struct Reactions {
+    /// F_k: the whole wrench joint k of limb j transmits to its outboard body, referred to O,
+    /// [n_O; f_x; f_y] [N m; N; N], effort and friction included.
+    std::array<std::array<Wrench, 3>, kMaxLimbs> transmitted{};
+    /// The reaction in the convention above, [fx; fy; m] [N; N; N m], base frame.
+    std::array<std::array<Vector3, 3>, kMaxLimbs> joint{};
+    /// w_b: the net wrench body b needs (M_b dt_b - gravity), referred to O; platform last.
+    std::array<Wrench, kMaxBodies> body{};
+};
+
+/// The reactions at the state in `data`: needs the position, velocity and acceleration stages
+/// (kinematics.hpp) and data.tau (the forces actually applied: for a redundant robot, those
+/// of the inverse dynamics, the minimum-norm ones, or any others given). Allocation-free.
+void jointReactions(const Model& model, const Data& data, Reactions& reactions);
+
+/// Inverse dynamics (the full path) and the reactions that go with its forces. The same
+/// Status as inverseDynamics; `reactions` is left as it was when the sample fails.
+Status inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
+                                    Reactions& reactions);
+
+}  // namespace nocdyn

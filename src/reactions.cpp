@@ -1,0 +1,78 @@
+// Joint reaction forces by Newton-Euler back-substitution along each limb (reactions.hpp).
+#include "nocdyn/reactions.hpp"
+
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/kinematics.hpp"
+
+namespace nocdyn {
+
+namespace {
+
+[[nodiscard]] double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+
+/// w = M dt - [0; m g] of a body with c.o.m. x, twist xi and its rate xi_dot (both referred to
+/// O), returned referred to O: f = m (a_c - g), n_O = I dw + x x f.
+[[nodiscard]] Wrench netWrench(const InertiaDyad& M, const Vector2& gravity, const Vector2& x, const Twist& xi,
+                               const Twist& xi_dot) {
+    const double w = xi(0), dw = xi_dot(0);
+    // v_c = v_O + w E x;  a_c = d/dt v_c = a_O + dw E x + w E v_c
+    const Vector2 v_c = xi.tail<2>() + w * perp(x);
+    const Vector2 a_c = xi_dot.tail<2>() + dw * perp(x) + w * perp(v_c);
+    const Vector2 f = M.mass * (a_c - gravity);
+    return {M.inertia * dw + cross(x, f), f.x(), f.y()};
+}
+
+}  // namespace
+
+void jointReactions(const Model& model, const Data& data, Reactions& reactions) {
+    reactions.body[static_cast<std::size_t>(model.platformBody())] =
+        netWrench(model.platform_M, model.gravity, data.x_P, data.xi_P, data.xi_P_dot);
+    for (int j = 0; j < model.limbs; ++j) {
+        const auto jj = static_cast<std::size_t>(j);
+        const LimbModel& limb = model.limb[jj];
+        const LimbData& ld = data.limb[jj];
+        // body rates: dxi_1 = s_1 q1'' (s_1 is fixed to the base), dxi_2 = dxi_1 + s_2 q2'' + ds_2/dt q2'
+        const Twist xi_dot_1 = ld.s[0] * ld.gamma_ddot(0);
+        const Twist xi_dot_2 = xi_dot_1 + ld.s[1] * ld.gamma_ddot(1) + ld.s_dot[1] * ld.gamma_dot(1);
+        const Wrench w1 = netWrench(limb.M[0], model.gravity, ld.x[0], ld.xi[0], xi_dot_1);
+        const Wrench w2 = netWrench(limb.M[1], model.gravity, ld.x[1], ld.xi[1], xi_dot_2);
+        reactions.body[static_cast<std::size_t>(model.body(j, 0))] = w1;
+        reactions.body[static_cast<std::size_t>(model.body(j, 1))] = w2;
+
+        // e_k: actuator force or torque on the outboard body less the friction to overcome
+        Vector3 e;
+        for (std::size_t k = 0; k < 3; ++k) {
+            const double rate = ld.gamma_dot(static_cast<Eigen::Index>(k));
+            e(static_cast<Eigen::Index>(k)) = -(limb.damping[k] * rate + limb.friction[k] * sign(rate));
+            if (limb.actuator[k] >= 0) e(static_cast<Eigen::Index>(k)) += data.tau(limb.actuator[k]);
+        }
+        // J_j^T F_3 = e - [s_1^T (w_1 + w_2); s_2^T w_2; 0]
+        const Vector3 rhs(e(0) - ld.s[0].dot(w1 + w2), e(1) - ld.s[1].dot(w2), e(2));
+        std::array<Wrench, 3>& F = reactions.transmitted[jj];
+        F[2].noalias() = ld.J_inv.transpose() * rhs;
+        F[1] = F[2] + w2;
+        F[0] = F[1] + w1;
+
+        for (std::size_t k = 0; k < 3; ++k) {
+            const Vector2 f = F[k].tail<2>();
+            Vector3& r = reactions.joint[jj][k];
+            if (limb.type[k] == JointType::revolute) {
+                r << f, 0.0;
+            } else {
+                // the direction d of a P screw [0; d]; the couple about the outboard body's c.o.m.
+                const Vector2 d = ld.s[k].tail<2>();
+                const Vector2 x = k == 2 ? data.x_P : ld.x[k];
+                r << f - d.dot(f) * d, F[k](0) - cross(x, f);
+            }
+        }
+    }
+}
+
+Status inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
+                                    Reactions& reactions) {
+    const Status status = inverseDynamics(model, data, p, dp, ddp);
+    if (status) jointReactions(model, data, reactions);
+    return status;
+}
+
+}  // namespace nocdyn
