@@ -1,6 +1,8 @@
 // Joint reaction forces by Newton-Euler back-substitution along each limb (reactions.hpp).
 #include "nocdyn/reactions.hpp"
 
+#include <cmath>
+
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/kinematics.hpp"
 
@@ -64,6 +66,54 @@ void jointReactions(const Model& model, const Data& data, Reactions& reactions) 
                 const Vector2 x = k == 2 ? data.x_P : ld.x[k];
                 r << f - d.dot(f) * d, F[k](0) - cross(x, f);
             }
+        }
+    }
+}
+
+double JointLoad::rmsForce() const {
+    return samples > 0 ? std::sqrt(sum_squared_force / static_cast<double>(samples)) : 0.0;
+}
+
+void JointLoads::add(double t, const Pose& p, const Reactions& reactions) {
+    for (std::size_t j = 0; j < static_cast<std::size_t>(limbs); ++j) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            JointLoad& load = joint[j][k];
+            const Vector3& r = reactions.joint[j][k];
+            const double f = r.head<2>().norm(), m = std::abs(r(2));
+            if (load.samples == 0 || f > load.peak_force) {
+                load.peak_force = f;
+                load.peak_force_t = t;
+                load.peak_force_pose = p;
+            }
+            if (load.samples == 0 || m > load.peak_moment) {
+                load.peak_moment = m;
+                load.peak_moment_t = t;
+                load.peak_moment_pose = p;
+            }
+            load.sum_squared_force += f * f;
+            ++load.samples;
+        }
+    }
+}
+
+void JointLoads::merge(const JointLoads& other) {
+    for (std::size_t j = 0; j < static_cast<std::size_t>(limbs); ++j) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            JointLoad& load = joint[j][k];
+            const JointLoad& o = other.joint[j][k];
+            if (o.samples == 0) continue;
+            if (load.samples == 0 || o.peak_force > load.peak_force) {
+                load.peak_force = o.peak_force;
+                load.peak_force_t = o.peak_force_t;
+                load.peak_force_pose = o.peak_force_pose;
+            }
+            if (load.samples == 0 || o.peak_moment > load.peak_moment) {
+                load.peak_moment = o.peak_moment;
+                load.peak_moment_t = o.peak_moment_t;
+                load.peak_moment_pose = o.peak_moment_pose;
+            }
+            load.sum_squared_force += o.sum_squared_force;
+            load.samples += o.samples;
         }
     }
 }

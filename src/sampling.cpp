@@ -114,6 +114,8 @@ public:
     }
 
     LimitSummary summary;
+    /// The state of the last evaluate(), every stage computed.
+    [[nodiscard]] const Data& data() const { return data_; }
 
 private:
     const Model& model_;
@@ -165,6 +167,28 @@ LimitSummary streamInverseDynamics(const Model& model, const PoseTrajectory& tra
         if (k > 0) sampler.checkBetween(grid.time(k - 1), t);
         sampler.evaluate(t, sample, false);
         sink(sample);
+    }
+    return std::move(sampler.summary);
+}
+
+LimitSummary streamInverseDynamicsWithReactions(
+    const Model& model, const PoseTrajectory& trajectory, const SampleGrid& grid, LimitPolicy policy,
+    const std::function<void(const InverseDynamicsSample&, const Reactions&)>& sink) {
+    requireRateAboveNyquist(trajectory, grid.rate);
+    Sampler sampler(model, trajectory, policy);
+    InverseDynamicsSample sample;
+    Reactions reactions;
+    for (std::size_t k = 0; k < grid.count; ++k) {
+        const double t = grid.time(k);
+        if (k > 0) sampler.checkBetween(grid.time(k - 1), t);
+        sampler.evaluate(t, sample, false);
+        jointReactions(model, sampler.data(), reactions);
+        for (int j = 0; j < model.limbs; ++j) {
+            for (const Vector3& r : reactions.joint[static_cast<std::size_t>(j)]) {
+                if (!r.allFinite()) throw Error(atTime(t, model.limbName(j) + ": the joint reactions are not finite"));
+            }
+        }
+        sink(sample, reactions);
     }
     return std::move(sampler.summary);
 }

@@ -14,6 +14,7 @@ namespace {
 
 struct InverseDynamicsOptions : TrajectoryOptions {
     bool allow_limits = false;
+    bool reactions = false;
 };
 
 // Rows are written as they are computed (memory does not depend on the sample count); a file
@@ -25,14 +26,24 @@ void run(const InverseDynamicsOptions& options) {
     requireRateAboveNyquist(trajectory, grid.rate);
     const auto policy = options.allow_limits ? LimitPolicy::record : LimitPolicy::error;
     io::OutputFile out = openOutput(options.output);
-    io::CsvWriter csv(out, io::inverseDynamicsColumns(model.actuators),
-                      /*background=*/true);  // formats while we compute
+    std::vector<std::string> columns = io::inverseDynamicsColumns(model.actuators);
+    if (options.reactions) {
+        for (std::string& name : io::reactionColumns(model.limbs)) columns.push_back(std::move(name));
+    }
+    io::CsvWriter csv(out, columns, /*background=*/true);  // formats while we compute
     std::vector<double> row;
     const LimitSummary summary =
-        streamInverseDynamics(model, trajectory, grid, policy, [&](const InverseDynamicsSample& sample) {
-            io::inverseDynamicsRow(sample, row);
-            csv.row(row);
-        });
+        options.reactions
+            ? streamInverseDynamicsWithReactions(model, trajectory, grid, policy,
+                                                 [&](const InverseDynamicsSample& sample, const Reactions& r) {
+                                                     io::inverseDynamicsRow(sample, row);
+                                                     io::appendReactions(r, model.limbs, row);
+                                                     csv.row(row);
+                                                 })
+            : streamInverseDynamics(model, trajectory, grid, policy, [&](const InverseDynamicsSample& sample) {
+                  io::inverseDynamicsRow(sample, row);
+                  csv.row(row);
+              });
     csv.finish();
     out.commit();
     for (const std::string& violation : summary.limit_violations) std::cerr << "nocdyn: warning: " << violation << "\n";
@@ -57,6 +68,11 @@ void addInverseDynamicsCommand(CLI::App& app) {
     command->add_flag("--allow-limits", options->allow_limits,
                       "Write the CSV even when a joint range, joint velocity or effort limit is exceeded (warnings\n"
                       "on stderr); a pose out of reach, a singular posture or a non-finite value stays an error");
+    command->add_flag("--reactions", options->reactions,
+                      "Add every joint's reaction after the other columns: limb{i}_j{k}_fx, _fy [N] and _m [N m]\n"
+                      "for limb i and joint k (1-based, file order): the wrench of the joint's inboard body on its\n"
+                      "outboard body in the base frame, without the joint's own effort and friction (R: the force at\n"
+                      "the axis, m = 0; P: the force normal to the joint and the couple about the outboard c.o.m.)");
     command->callback([options] { run(*options); });
 }
 

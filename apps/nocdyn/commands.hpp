@@ -20,6 +20,7 @@ void addShakeCommand(CLI::App& app);
 void addRegressorCommand(CLI::App& app);
 void addIdentifyCommand(CLI::App& app);
 void addExciteCommand(CLI::App& app);
+void addLoadsCommand(CLI::App& app);
 #ifdef NOCDYN_HAS_ENGINES
 void addValidateCommand(CLI::App& app);
 #endif

@@ -32,6 +32,7 @@ int main(int argc, char** argv) {
     nocdyn::cli::addRegressorCommand(app);
     nocdyn::cli::addIdentifyCommand(app);
     nocdyn::cli::addExciteCommand(app);
+    nocdyn::cli::addLoadsCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif

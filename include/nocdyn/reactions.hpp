@@ -37,6 +37,31 @@ struct Reactions {
     std::array<Wrench, kMaxBodies> body{};
 };
 
+/// Design loads of one joint over a motion: the peak and RMS of its reaction force |(fx, fy)|,
+/// the peak of its couple |m|, each peak with the time and platform pose where it occurs.
+struct JointLoad {
+    double peak_force = 0.0;  ///< [N]
+    double peak_force_t = 0.0;
+    Pose peak_force_pose = Pose::Zero();
+    double peak_moment = 0.0;  ///< [N m]
+    double peak_moment_t = 0.0;
+    Pose peak_moment_pose = Pose::Zero();
+    double sum_squared_force = 0.0;  ///< sum of |f|^2 over the samples [N^2]
+    long samples = 0;
+    /// RMS of |f| over the samples [N].
+    [[nodiscard]] double rmsForce() const;
+};
+
+/// Every joint's design loads, accumulated sample by sample (allocation-free).
+struct JointLoads {
+    int limbs = 0;
+    std::array<std::array<JointLoad, 3>, kMaxLimbs> joint{};
+    /// Adds the reactions of the sample at time t and pose p.
+    void add(double t, const Pose& p, const Reactions& reactions);
+    /// Adds another run's loads: the larger peaks, the RMS over both runs' samples.
+    void merge(const JointLoads& other);
+};
+
 /// The reactions at the state in `data`: needs the position, velocity and acceleration stages
 /// (kinematics.hpp) and data.tau (the forces actually applied: for a redundant robot, those
 /// of the inverse dynamics, the minimum-norm ones, or any others given). Allocation-free.

@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "nocdyn/model.hpp"
+#include "nocdyn/reactions.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn {
@@ -79,6 +80,12 @@ struct LimitSummary {
 /// `record`, violations are listed instead. Allocates nothing per sample (`sink` aside).
 LimitSummary streamInverseDynamics(const Model& model, const PoseTrajectory& trajectory, const SampleGrid& grid,
                                    LimitPolicy policy, const std::function<void(const InverseDynamicsSample&)>& sink);
+
+/// As streamInverseDynamics, with every joint's reaction (reactions.hpp) at each sample, for
+/// the forces the inverse dynamics applies. Allocates nothing per sample (`sink` aside).
+LimitSummary streamInverseDynamicsWithReactions(
+    const Model& model, const PoseTrajectory& trajectory, const SampleGrid& grid, LimitPolicy policy,
+    const std::function<void(const InverseDynamicsSample&, const Reactions&)>& sink);
 
 /// Inverse dynamics along a trajectory, one entry per sample.
 struct InverseDynamicsSeries {

@@ -32,6 +32,23 @@ void inverseDynamicsRow(const InverseDynamicsSample& s, std::vector<double>& row
     row[c] = s.kinetic;
 }
 
+std::vector<std::string> reactionColumns(int limbs) {
+    std::vector<std::string> columns;
+    for (int i = 1; i <= limbs; ++i) {
+        for (int k = 1; k <= 3; ++k) {
+            const std::string stem = "limb" + std::to_string(i) + "_j" + std::to_string(k) + "_";
+            for (const char* part : {"fx", "fy", "m"}) columns.push_back(stem + part);
+        }
+    }
+    return columns;
+}
+
+void appendReactions(const Reactions& reactions, int limbs, std::vector<double>& row) {
+    for (int i = 0; i < limbs; ++i) {
+        for (const Vector3& r : reactions.joint[static_cast<std::size_t>(i)]) row.insert(row.end(), {r(0), r(1), r(2)});
+    }
+}
+
 Table toTable(const InverseDynamicsSeries& series, int actuators) {
     Table table;
     table.columns = inverseDynamicsColumns(actuators);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/reactions.hpp"
 #include "nocdyn/sampling.hpp"
 
 namespace nocdyn::io {
@@ -18,6 +19,13 @@ namespace nocdyn::io {
 
 /// One row of a sample in the order of inverseDynamicsColumns, into `row` (resized).
 void inverseDynamicsRow(const InverseDynamicsSample& sample, std::vector<double>& row);
+
+/// limb{i}_j{k}_fx, limb{i}_j{k}_fy, limb{i}_j{k}_m for every limb i and joint k (1-based,
+/// file order): the joint reactions of reactions.hpp [N, N, N m].
+[[nodiscard]] std::vector<std::string> reactionColumns(int limbs);
+
+/// The reactions appended to `row` in the order of reactionColumns.
+void appendReactions(const Reactions& reactions, int limbs, std::vector<double>& row);
 
 /// The whole series as a table.
 [[nodiscard]] Table toTable(const InverseDynamicsSeries& series, int actuators);
