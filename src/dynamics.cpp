@@ -42,6 +42,10 @@ void minimumNorm(const Vector3* rows, int n, const Vector3& W, ActuatorVector& t
     for (int a = 0; a < n; ++a) tau(a) = rows[a].dot(lambda);
 }
 
+}  // namespace
+
+namespace detail {
+
 /// tau from A^T tau = W (xi-coordinates): A^-T W, or the minimum-norm A (A^T A)^-1 W.
 void distribute(const Model& model, Data& data, const Vector3& W) {
     if (model.coordinates == Coordinates::actuators) {
@@ -53,7 +57,7 @@ void distribute(const Model& model, Data& data, const Vector3& W) {
     }
 }
 
-}  // namespace
+}  // namespace detail
 
 NOCDYN_TARGET_CLONES
 void jointSpaceDynamics(const Model& model, Data& data) {
@@ -109,7 +113,7 @@ void actuatorForces(const Model& model, Data& data) {
         // A (A^T A)^-1 Xi^-T Q, with S(c)^-T Q = [Q_0 - c_y Q_1 + c_x Q_2; Q_1; Q_2]
         const Vector2 c = data.p.tail<2>();
         const Vector3 W(data.Q(0) - c.y() * data.Q(1) + c.x() * data.Q(2), data.Q(1), data.Q(2));
-        distribute(model, data, W);
+        detail::distribute(model, data, W);
     }
 }
 

@@ -5,6 +5,7 @@
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "stages.hpp"
 
 namespace nocdyn {
 
@@ -24,34 +25,53 @@ namespace {
     return {M.inertia * dw + cross(x, f), f.x(), f.y()};
 }
 
-}  // namespace
-
-void jointReactions(const Model& model, const Data& data, Reactions& reactions) {
+/// w_1, w_2 of every limb and w_P into reactions.body (the velocity and acceleration stages done).
+void bodyWrenches(const Model& model, const Data& data, Reactions& reactions) {
     reactions.body[static_cast<std::size_t>(model.platformBody())] =
         netWrench(model.platform_M, model.gravity, data.x_P, data.xi_P, data.xi_P_dot);
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+        // body rates: dxi_1 = s_1 q1'' (s_1 is fixed to the base), dxi_2 = dxi_1 + s_2 q2'' + ds_2/dt q2'
+        const Twist xi_dot_1 = ld.s[0] * ld.gamma_ddot(0);
+        const Twist xi_dot_2 = xi_dot_1 + ld.s[1] * ld.gamma_ddot(1) + ld.s_dot[1] * ld.gamma_dot(1);
+        reactions.body[static_cast<std::size_t>(model.body(j, 0))] =
+            netWrench(limb.M[0], model.gravity, ld.x[0], ld.xi[0], xi_dot_1);
+        reactions.body[static_cast<std::size_t>(model.body(j, 1))] =
+            netWrench(limb.M[1], model.gravity, ld.x[1], ld.xi[1], xi_dot_2);
+    }
+}
+
+/// phi: the friction to overcome at each joint of a limb (damping q' + friction sign q').
+[[nodiscard]] Vector3 friction(const LimbModel& limb, const LimbData& ld) {
+    Vector3 phi;
+    for (std::size_t k = 0; k < 3; ++k) {
+        const double rate = ld.gamma_dot(static_cast<Eigen::Index>(k));
+        phi(static_cast<Eigen::Index>(k)) = limb.damping[k] * rate + limb.friction[k] * sign(rate);
+    }
+    return phi;
+}
+
+/// k_j = [s_1^T (w_1 + w_2); s_2^T w_2; 0]: what the limb's own bodies take of each joint's effort.
+[[nodiscard]] Vector3 bodiesShare(const LimbData& ld, const Wrench& w1, const Wrench& w2) {
+    return {ld.s[0].dot(w1 + w2), ld.s[1].dot(w2), 0.0};
+}
+
+/// F_3 = J_j^-T (e - k_j), F_2 = F_3 + w_2, F_1 = F_2 + w_1, and the reactions in the convention.
+void backSubstitute(const Model& model, const Data& data, Reactions& reactions) {
     for (int j = 0; j < model.limbs; ++j) {
         const auto jj = static_cast<std::size_t>(j);
         const LimbModel& limb = model.limb[jj];
         const LimbData& ld = data.limb[jj];
-        // body rates: dxi_1 = s_1 q1'' (s_1 is fixed to the base), dxi_2 = dxi_1 + s_2 q2'' + ds_2/dt q2'
-        const Twist xi_dot_1 = ld.s[0] * ld.gamma_ddot(0);
-        const Twist xi_dot_2 = xi_dot_1 + ld.s[1] * ld.gamma_ddot(1) + ld.s_dot[1] * ld.gamma_dot(1);
-        const Wrench w1 = netWrench(limb.M[0], model.gravity, ld.x[0], ld.xi[0], xi_dot_1);
-        const Wrench w2 = netWrench(limb.M[1], model.gravity, ld.x[1], ld.xi[1], xi_dot_2);
-        reactions.body[static_cast<std::size_t>(model.body(j, 0))] = w1;
-        reactions.body[static_cast<std::size_t>(model.body(j, 1))] = w2;
-
-        // e_k: actuator force or torque on the outboard body less the friction to overcome
-        Vector3 e;
+        const Wrench& w1 = reactions.body[static_cast<std::size_t>(model.body(j, 0))];
+        const Wrench& w2 = reactions.body[static_cast<std::size_t>(model.body(j, 1))];
+        // e_k: the actuator's force or torque on the outboard body less the friction to overcome
+        Vector3 e = -friction(limb, ld);
         for (std::size_t k = 0; k < 3; ++k) {
-            const double rate = ld.gamma_dot(static_cast<Eigen::Index>(k));
-            e(static_cast<Eigen::Index>(k)) = -(limb.damping[k] * rate + limb.friction[k] * sign(rate));
             if (limb.actuator[k] >= 0) e(static_cast<Eigen::Index>(k)) += data.tau(limb.actuator[k]);
         }
-        // J_j^T F_3 = e - [s_1^T (w_1 + w_2); s_2^T w_2; 0]
-        const Vector3 rhs(e(0) - ld.s[0].dot(w1 + w2), e(1) - ld.s[1].dot(w2), e(2));
         std::array<Wrench, 3>& F = reactions.transmitted[jj];
-        F[2].noalias() = ld.J_inv.transpose() * rhs;
+        F[2].noalias() = ld.J_inv.transpose() * (e - bodiesShare(ld, w1, w2));
         F[1] = F[2] + w2;
         F[0] = F[1] + w1;
 
@@ -68,6 +88,38 @@ void jointReactions(const Model& model, const Data& data, Reactions& reactions) 
             }
         }
     }
+}
+
+}  // namespace
+
+void jointReactions(const Model& model, const Data& data, Reactions& reactions) {
+    bodyWrenches(model, data, reactions);
+    backSubstitute(model, data, reactions);
+}
+
+Status inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
+                                    Reactions& reactions) {
+    if (const Status status = inverseDisplacement(model, data, p); !status) return status;
+    if (const Status status = velocityFromPlatformTwist(model, data, dp); !status) return status;
+    for (int i = 0; i < 3; ++i) {
+        if (!std::isfinite(ddp(i))) return {StatusCode::not_finite, -1, ddp(i)};
+    }
+    accelerationFromPlatform(model, data, ddp);
+    bodyWrenches(model, data, reactions);
+    // the platform's balance sum_j F_3j = w_P with F_3j = J_j^-T (E_j tau - phi_j - k_j) is
+    // A^T tau = W_P, W_P = w_P + sum_j J_j^-T (phi_j + k_j) (the NOC applied to the wrenches)
+    Wrench W = reactions.body[static_cast<std::size_t>(model.platformBody())];
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+        const Wrench& w1 = reactions.body[static_cast<std::size_t>(model.body(j, 0))];
+        const Wrench& w2 = reactions.body[static_cast<std::size_t>(model.body(j, 1))];
+        W.noalias() +=
+            ld.J_inv.transpose() * (friction(model.limb[static_cast<std::size_t>(j)], ld) + bodiesShare(ld, w1, w2));
+    }
+    data.W_P = W;
+    detail::distribute(model, data, W);
+    backSubstitute(model, data, reactions);
+    return {};
 }
 
 double JointLoad::rmsForce() const {
@@ -116,13 +168,6 @@ void JointLoads::merge(const JointLoads& other) {
             load.samples += o.samples;
         }
     }
-}
-
-Status inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
-                                    Reactions& reactions) {
-    const Status status = inverseDynamics(model, data, p, dp, ddp);
-    if (status) jointReactions(model, data, reactions);
-    return status;
 }
 
 }  // namespace nocdyn

@@ -30,6 +30,9 @@ Status positionStage(const Model& model, Data& data, const Pose& p, bool angles,
 Status jacobianStage(const Model& model, Data& data);
 /// Joint rates, body twists, screw rates and du from xi_P.
 void rateStage(const Model& model, Data& data);
+/// tau from A^T tau = W (W referred to O): Xi^T W = A^-T W with three actuators, else the
+/// minimum-norm A (A^T A)^-1 W. Needs the velocity stage.
+void distribute(const Model& model, Data& data, const Vector3& W);
 /// T_i and dT_i of every body (eqs. 28-31 generalised) for the independent coordinates whose
 /// map data.Xi (xi_P = Xi v) and its rate data.Xi_dot are set. Needs the velocity stage.
 void shapeBodies(const Model& model, Data& data);

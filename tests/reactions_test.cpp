@@ -20,8 +20,8 @@ namespace {
 constexpr double kAgreement = 1e-10;
 constexpr int kSamples = 8;
 
-/// The wrench body i needs, referred to O, from t_i = [w; dx_i/dt] = T_i v and its rate
-/// T_i dv + dT_i v (eq. 22): [I dw + x_i x f; f], f = m (d2x_i/dt2 - g).
+/// The wrench body i needs (the full path's T_i and dT_i in `data`), referred to O, from t_i = [w; dx_i/dt] = T_i v and
+/// its rate T_i dv + dT_i v (eq. 22): [I dw + x_i x f; f], f = m (d2x_i/dt2 - g).
 Wrench neededWrench(const Model& model, const Data& data, int i, const Vector2& x) {
     const bool actuators = model.coordinates == Coordinates::actuators;
     const Vector3 v = actuators ? Vector3(data.du) : Vector3(data.t_M);
@@ -115,7 +115,7 @@ TEST(JointReactions, EqualTheStackedNewtonEulerSolutionOnEveryRobot) {
     int checked = 0;
     for (const Case& c : cases()) {
         const Model model(c.robot);
-        Data data(model);
+        Data data(model), full(model);
         Reactions reactions;
         std::mt19937 rng(3);
         const PoseTrajectory trajectory = trajectoryAround(model.home, rng, 0.5);
@@ -123,7 +123,12 @@ TEST(JointReactions, EqualTheStackedNewtonEulerSolutionOnEveryRobot) {
             Pose p, dp, ddp;
             trajectory.evaluate(0.037 * s, p, dp, ddp);
             if (!inverseDynamicsWithReactions(model, data, p, dp, ddp, reactions)) continue;
-            const Stacked ref = solveStacked(model, data);
+            // the reference: the full path's T_i, dT_i and tau (eqs. 20-23)
+            ASSERT_TRUE(inverseDynamics(model, full, p, dp, ddp).ok());
+            const double tau_scale = 1.0 + full.tau.cwiseAbs().maxCoeff();
+            EXPECT_LT((data.tau - full.tau).cwiseAbs().maxCoeff(), 1e-12 * tau_scale)
+                << c.label << " t = " << 0.037 * s << ": tau differs from the full path's";
+            const Stacked ref = solveStacked(model, full);
             ASSERT_LT(ref.residual, 1e-9 * (1.0 + ref.scale))
                 << c.label << " t = " << 0.037 * s << ": the forces do not balance the bodies";
             double peak = 1.0;
@@ -154,6 +159,7 @@ TEST(JointReactions, PlatformBalanceHoldsOverAllLimbs) {
         Pose p, dp, ddp;
         trajectory.evaluate(0.11, p, dp, ddp);
         if (!inverseDynamicsWithReactions(model, data, p, dp, ddp, reactions)) continue;
+        ASSERT_TRUE(inverseDynamics(model, data, p, dp, ddp).ok());  // T_i and dT_i for w_P
         Wrench sum = Wrench::Zero();
         double peak = 1.0;
         for (int j = 0; j < model.limbs; ++j) {

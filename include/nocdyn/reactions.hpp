@@ -67,8 +67,11 @@ struct JointLoads {
 /// of the inverse dynamics, the minimum-norm ones, or any others given). Allocation-free.
 void jointReactions(const Model& model, const Data& data, Reactions& reactions);
 
-/// Inverse dynamics (the full path) and the reactions that go with its forces. The same
-/// Status as inverseDynamics; `reactions` is left as it was when the sample fails.
+/// Inverse dynamics and the reactions that go with its forces, without T, I or C: the
+/// position, velocity and acceleration stages, the bodies' wrenches, tau from the platform's
+/// balance A^T tau = w_P + sum_j J_j^-T (phi_j + k_j) (the lean path's W_P; minimum-norm with
+/// more than three actuators), then the back-substitution. The same tau and Status as
+/// inverseDynamics; data's T_i, I and C are left as they were. Allocation-free.
 Status inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
                                     Reactions& reactions);
 
