@@ -34,7 +34,7 @@ Series inverseDynamicsAlong(const prr3::Model& model, const PoseTrajectory& traj
     for (const double t : times) {
         Pose p, dp, ddp;
         trajectory.evaluate(t, p, dp, ddp);
-        const Status status = prr3::inverseDynamics(model, data, p, dp, ddp);
+        const auto status = prr3::inverseDynamics(model, data, p, dp, ddp);
         EXPECT_TRUE(status.ok()) << "t = " << t << ": " << describe(status, model.parameters);
         series.t.push_back(t);
         series.p.push_back(p);

@@ -50,7 +50,7 @@ private:
 /// Runs the baseline's whole per-sample path; fails the test (with the pose) when it does not
 /// succeed.
 inline void solve(const prr3::Model& model, prr3::Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
-    const Status status = prr3::inverseDynamics(model, data, p, dp, ddp);
+    const prr3::Status status = prr3::inverseDynamics(model, data, p, dp, ddp);
     ASSERT_TRUE(status.ok()) << describePose(p) << ": " << describe(status, model.parameters);
 }
 

@@ -20,6 +20,9 @@
 namespace nocdyn::test {
 namespace {
 
+using prr3::Status;  // the kernel's own outcomes
+using prr3::StatusCode;
+
 /// error <= 1e-12 (|value| + peak of its column), as batch_test and the golden test measure it.
 constexpr double kRelativeTolerance = 1e-12;
 
