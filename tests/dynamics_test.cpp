@@ -9,6 +9,8 @@
 #include <Eigen/SVD>
 
 #include <algorithm>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -93,66 +95,58 @@ Vector3 independentRates(const Model& model, const Data& data) {
 }
 
 TEST(NaturalOrthogonalComplement, KTimesTIsZeroAndTSpansItsNullSpace) {
-    int checked = 0;
-    for (const RobotCase& c : cases()) {
+    const int checked = forEachPose(cases(), kPoses, [](const RobotCase& c, const Pose& p, WorkspaceSampler&) {
         const Model& model = *c.model;
-        WorkspaceSampler sampler(model, 2024, c.angle, c.position);
         Data data(model);
-        for (int k = 0; k < kPoses; ++k) {
-            const Pose p = sampler.next();
-            solve(model, data, p, Twist::Zero(), Twist::Zero());
-            const Eigen::MatrixXd K = constraintMatrix(model, data);
-            const Eigen::MatrixXd T = stacked(model, data.T);
-            const double scale = T.cwiseAbs().maxCoeff() * std::max(1.0, K.cwiseAbs().maxCoeff());
-            EXPECT_LT((K * T).cwiseAbs().maxCoeff(), kKT * scale) << c.name << ", " << describePose(p);
-            // T spans the whole null space: K has full row rank 6 n and T rank 3.
-            const Eigen::JacobiSVD<Eigen::MatrixXd> svd_K(K);
-            EXPECT_GT(svd_K.singularValues()(6 * model.limbs - 1), 1e-6) << c.name << ", " << describePose(p);
-            const Eigen::JacobiSVD<Eigen::MatrixXd> svd_T(T);
-            EXPECT_GT(svd_T.singularValues()(2), 1e-3) << c.name << ", " << describePose(p);
-            ++checked;
-        }
-    }
+        solve(model, data, p, Twist::Zero(), Twist::Zero());
+        const Eigen::MatrixXd K = constraintMatrix(model, data);
+        const Eigen::MatrixXd T = stacked(model, data.T);
+        const double scale = T.cwiseAbs().maxCoeff() * std::max(1.0, K.cwiseAbs().maxCoeff());
+        EXPECT_LT((K * T).cwiseAbs().maxCoeff(), kKT * scale) << c.name << ", " << describePose(p);
+        // T spans the whole null space: K has full row rank 6 n and T rank 3.
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd_K(K);
+        EXPECT_GT(svd_K.singularValues()(6 * model.limbs - 1), 1e-6) << c.name << ", " << describePose(p);
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd_T(T);
+        EXPECT_GT(svd_T.singularValues()(2), 1e-3) << c.name << ", " << describePose(p);
+        return true;
+    });
     EXPECT_GE(checked, kPoses * (5 + 7 * kRandomPerType));
 }
 
-TEST(NaturalOrthogonalComplement, InertiaIsSymmetricPositiveDefiniteAndBoundedByTheFirstBodies) {
-    int checked = 0, bounded = 0;
-    for (const RobotCase& c : cases()) {
-        const Model& model = *c.model;
-        // When each actuator is the first joint of its own limb, that limb's first body moves with
-        // that actuator alone (t = s_1 du_a), so I >= min_a of the first body's inertia about the
-        // joint in every direction (the slider mass of the paper's robot).
-        double first_body = std::numeric_limits<double>::infinity();
-        bool first_joints = model.coordinates == Coordinates::actuators;
-        for (int a = 0; a < model.actuators && first_joints; ++a) {
-            const auto j = static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)]);
-            first_joints = model.actuator_joint[static_cast<std::size_t>(a)] == 0;
-            const InertiaDyad& M = model.limb[j].M[0];
-            const double about =
-                model.limb[j].type[0] == JointType::prismatic
-                    ? M.mass
-                    : M.inertia + M.mass * (model.limb[j].com_home[0] - model.limb[j].point_home[0]).squaredNorm();
-            first_body = std::min(first_body, about);
-        }
-        bounded += first_joints;
-        WorkspaceSampler sampler(model, 2024, c.angle, c.position);
-        Data data(model);
-        for (int k = 0; k < kPoses; ++k) {
-            const Pose p = sampler.next();
-            solve(model, data, p, Twist::Zero(), Twist::Zero());
-            EXPECT_LT((data.I - data.I.transpose()).cwiseAbs().maxCoeff(), kSymmetry * data.I.norm())
-                << c.name << ", " << describePose(p);
-            const Eigen::SelfAdjointEigenSolver<Matrix3> eigen(data.I);
-            EXPECT_GT(eigen.eigenvalues().minCoeff(), 0.0) << c.name << ", " << describePose(p);
-            if (first_joints) {
-                EXPECT_GT(eigen.eigenvalues().minCoeff(), first_body * (1 - 1e-12))
-                    << c.name << ", " << describePose(p);
-            }
-            ++checked;
-        }
+/// When each actuator is the first joint of its own limb, that limb's first body moves with that
+/// actuator alone (t = s_1 du_a), so I >= min_a of the first body's inertia about the joint in
+/// every direction (the slider mass of the paper's robot); otherwise nothing.
+std::optional<double> firstBodiesBound(const Model& model) {
+    if (model.coordinates != Coordinates::actuators) return std::nullopt;
+    double bound = std::numeric_limits<double>::infinity();
+    for (int a = 0; a < model.actuators; ++a) {
+        if (model.actuator_joint[static_cast<std::size_t>(a)] != 0) return std::nullopt;
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)])];
+        const InertiaDyad& M = limb.M[0];
+        bound = std::min(bound, limb.type[0] == JointType::prismatic
+                                    ? M.mass
+                                    : M.inertia + M.mass * (limb.com_home[0] - limb.point_home[0]).squaredNorm());
     }
+    return bound;
+}
+
+TEST(NaturalOrthogonalComplement, InertiaIsSymmetricPositiveDefiniteAndBoundedByTheFirstBodies) {
+    const int checked = forEachPose(cases(), kPoses, [](const RobotCase& c, const Pose& p, WorkspaceSampler&) {
+        const Model& model = *c.model;
+        Data data(model);
+        solve(model, data, p, Twist::Zero(), Twist::Zero());
+        EXPECT_LT((data.I - data.I.transpose()).cwiseAbs().maxCoeff(), kSymmetry * data.I.norm())
+            << c.name << ", " << describePose(p);
+        const Eigen::SelfAdjointEigenSolver<Matrix3> eigen(data.I);
+        EXPECT_GT(eigen.eigenvalues().minCoeff(), 0.0) << c.name << ", " << describePose(p);
+        if (const std::optional<double> bound = firstBodiesBound(model)) {
+            EXPECT_GT(eigen.eigenvalues().minCoeff(), *bound * (1 - 1e-12)) << c.name << ", " << describePose(p);
+        }
+        return true;
+    });
     EXPECT_GE(checked, kPoses * (5 + 7 * kRandomPerType));
+    const auto bounded = std::count_if(cases().begin(), cases().end(),
+                                       [](const RobotCase& c) { return firstBodiesBound(*c.model).has_value(); });
     EXPECT_GE(bounded, 2) << "the paper's robot in both forms at least";
 }
 
@@ -169,18 +163,15 @@ double bodyAngle(const Model& model, const Data& data, int j, int b) {
 
 TEST(NaturalOrthogonalComplement, InertiaEqualsKineticEnergyOfBodiesFromFiniteDifferences) {
     // Body velocities from central differences of positions along the motion (no T used).
-    constexpr double h = 1e-7;
-    int checked = 0;
-    for (const RobotCase& c : cases()) {
-        const Model& model = *c.model;
-        WorkspaceSampler sampler(model, 2024, c.angle, c.position);
-        Data data(model), plus(model), minus(model);
-        for (int k = 0; k < kPoses / 3; ++k) {
-            const Pose p = sampler.next();
+    static constexpr double h = 1e-7;
+    const int checked =
+        forEachPose(cases(), kPoses / 3, [](const RobotCase& c, const Pose& p, WorkspaceSampler& sampler) {
+            const Model& model = *c.model;
+            Data data(model), plus(model), minus(model);
             const Twist t = sampler.twist();
             solve(model, data, p, t, Twist::Zero());
-            ASSERT_TRUE(inverseDisplacement(model, plus, p + h * t).ok()) << c.name << ", " << describePose(p);
-            ASSERT_TRUE(inverseDisplacement(model, minus, p - h * t).ok()) << c.name << ", " << describePose(p);
+            EXPECT_TRUE(inverseDisplacement(model, plus, p + h * t).ok()) << c.name << ", " << describePose(p);
+            EXPECT_TRUE(inverseDisplacement(model, minus, p - h * t).ok()) << c.name << ", " << describePose(p);
             const Vector2 v_platform = (plus.x_P - minus.x_P) / (2 * h);
             double energy =
                 0.5 * model.platform_M.mass * v_platform.squaredNorm() + 0.5 * model.platform_M.inertia * t(0) * t(0);
@@ -196,46 +187,40 @@ TEST(NaturalOrthogonalComplement, InertiaEqualsKineticEnergyOfBodiesFromFiniteDi
             EXPECT_NEAR(noc::kineticEnergy<3>(data.I, v), energy, kEnergy * energy)
                 << c.name << ", " << describePose(p);
             EXPECT_NEAR(kineticEnergy(model, data), energy, kEnergy * energy) << c.name << ", " << describePose(p);
-            ++checked;
-        }
-    }
+            return true;
+        });
     EXPECT_GE(checked, kPoses / 3 * (5 + 7 * kRandomPerType));
 }
 
 TEST(NaturalOrthogonalComplement, TwistShapingDerivativeMatchesFiniteDifferences) {
     // fourth-order differences: T_i varies fast near the redundant 4-RRR's singularities
-    constexpr double h = 1e-6;
-    int checked = 0;
-    for (const RobotCase& c : cases()) {
+    static constexpr double h = 1e-6;
+    const int checked = forEachPose(cases(), kPoses, [](const RobotCase& c, const Pose& p, WorkspaceSampler& sampler) {
         const Model& model = *c.model;
-        WorkspaceSampler sampler(model, 2024, c.angle, c.position);
         Data data(model), moved(model);
-        for (int k = 0; k < kPoses; ++k) {
-            const Pose p = sampler.next();
-            const Twist t = sampler.twist();
-            solve(model, data, p, t, Twist::Zero());
-            const Eigen::MatrixXd fd = centralDifference(
-                [&](double s) {
-                    solve(model, moved, p + s * t, t, Twist::Zero());
-                    return stacked(model, moved.T);
-                },
-                h);
-            const Eigen::MatrixXd exact = stacked(model, data.T_dot);
-            EXPECT_LT((exact - fd).cwiseAbs().maxCoeff(), kDerivative * (1 + fd.cwiseAbs().maxCoeff()))
-                << c.name << ", " << describePose(p);
-            // dI/dt = C + C^T (eq. 23 with constant M_i)
-            const Matrix3 I_dot = centralDifference(
-                [&](double s) {
-                    solve(model, moved, p + s * t, t, Twist::Zero());
-                    return Matrix3(moved.I);
-                },
-                h);
-            EXPECT_LT((I_dot - data.C - data.C.transpose()).cwiseAbs().maxCoeff(),
-                      kDerivative * (1 + I_dot.cwiseAbs().maxCoeff()))
-                << c.name << ", " << describePose(p);
-            ++checked;
-        }
-    }
+        const Twist t = sampler.twist();
+        solve(model, data, p, t, Twist::Zero());
+        const Eigen::MatrixXd fd = centralDifference(
+            [&](double s) {
+                solve(model, moved, p + s * t, t, Twist::Zero());
+                return stacked(model, moved.T);
+            },
+            h);
+        const Eigen::MatrixXd exact = stacked(model, data.T_dot);
+        EXPECT_LT((exact - fd).cwiseAbs().maxCoeff(), kDerivative * (1 + fd.cwiseAbs().maxCoeff()))
+            << c.name << ", " << describePose(p);
+        // dI/dt = C + C^T (eq. 23 with constant M_i)
+        const Matrix3 I_dot = centralDifference(
+            [&](double s) {
+                solve(model, moved, p + s * t, t, Twist::Zero());
+                return Matrix3(moved.I);
+            },
+            h);
+        EXPECT_LT((I_dot - data.C - data.C.transpose()).cwiseAbs().maxCoeff(),
+                  kDerivative * (1 + I_dot.cwiseAbs().maxCoeff()))
+            << c.name << ", " << describePose(p);
+        return true;
+    });
     EXPECT_GE(checked, kPoses * (5 + 7 * kRandomPerType));
 }
 
@@ -243,7 +228,7 @@ TEST(NaturalOrthogonalComplement, TwistShapingDerivativeMatchesFiniteDifferences
 /// h = 1e-6 s; ddu against differences of du, too. Returns the samples checked.
 int expectPowerBalance(const Model& model, const PoseTrajectory& trajectory, const std::string& name) {
     Data data(model), plus(model), minus(model);
-    constexpr double h = 1e-6;
+    static constexpr double h = 1e-6;
     double peak_power = 0.0, worst = 0.0;
     int checked = 0;
     for (int k = 0; k < 200; ++k) {
@@ -316,23 +301,18 @@ TEST(NaturalOrthogonalComplement, PowerBalanceHoldsAlongRandomTrajectoriesOfRand
 }
 
 TEST(Accelerations, PlatformAccelerationFromActuatorAccelerationsInvertsTheirComputation) {
-    int checked = 0;
-    for (const RobotCase& c : cases()) {
+    const int checked = forEachPose(cases(), kPoses, [](const RobotCase& c, const Pose& p, WorkspaceSampler& sampler) {
         const Model& model = *c.model;
-        if (model.actuators != 3) continue;  // the platform acceleration needs exactly three
-        WorkspaceSampler sampler(model, 2024, c.angle, c.position);
+        if (model.actuators != 3) return false;  // the platform acceleration needs exactly three
         Data data(model);
-        for (int k = 0; k < kPoses; ++k) {
-            const Pose p = sampler.next();
-            const Twist t = sampler.twist();
-            const Twist a = 100.0 * sampler.twist();
-            solve(model, data, p, t, a);
-            const ActuatorVector ddu = data.ddu;
-            accelerationFromActuators(model, data, ddu);
-            EXPECT_LT((data.t_M_dot - a).norm(), kInverse * (1 + a.norm())) << c.name << ", " << describePose(p);
-            ++checked;
-        }
-    }
+        const Twist t = sampler.twist();
+        const Twist a = 100.0 * sampler.twist();
+        solve(model, data, p, t, a);
+        const ActuatorVector ddu = data.ddu;
+        accelerationFromActuators(model, data, ddu);
+        EXPECT_LT((data.t_M_dot - a).norm(), kInverse * (1 + a.norm())) << c.name << ", " << describePose(p);
+        return true;
+    });
     EXPECT_GE(checked, kPoses * (4 + 7 * kRandomPerType));
 }
 

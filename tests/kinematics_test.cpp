@@ -34,67 +34,57 @@ const std::vector<RobotCase>& cases() {
 TEST(VelocityKinematics, RatesMatchFiniteDifferencesOfInverseDisplacement) {
     // fourth-order differences: the random robots' rates reach ~300 rad/s near their limbs'
     // singularities (within the sampler's condition bound)
-    constexpr double h = 1e-6;
-    int checked = 0;
-    for (const RobotCase& c : cases()) {
+    static constexpr double h = 1e-6;
+    const int checked = forEachPose(cases(), kPoses, [](const RobotCase& c, const Pose& p, WorkspaceSampler& sampler) {
         const Model& model = *c.model;
-        WorkspaceSampler sampler(model, 2024, c.angle, c.position);
         Data data(model), moved(model);
-        for (int k = 0; k < kPoses; ++k) {
-            const Pose p = sampler.next();
-            const Twist t = sampler.twist();
-            ASSERT_TRUE(inverseDisplacement(model, data, p).ok()) << c.name << ", " << describePose(p);
-            ASSERT_TRUE(velocityFromPlatformTwist(model, data, t).ok()) << c.name << ", " << describePose(p);
-            // u, then every limb's joint variables q
-            const Eigen::VectorXd fd = centralDifference(
-                [&](double s) {
-                    EXPECT_TRUE(inverseDisplacement(model, moved, p + s * t).ok()) << c.name << ", " << describePose(p);
-                    Eigen::VectorXd out(model.actuators + 3 * model.limbs);
-                    out.head(model.actuators) = moved.u;
-                    for (int j = 0; j < model.limbs; ++j) {
-                        out.segment<3>(model.actuators + 3 * j) = moved.limb[static_cast<std::size_t>(j)].q;
-                    }
-                    return out;
-                },
-                h);
-            for (int a = 0; a < model.actuators; ++a) {
-                EXPECT_NEAR(data.du(a), fd(a), kFiniteDifference * (1 + std::abs(fd(a))))
-                    << c.name << ", " << describePose(p) << ", actuator " << a + 1;
-            }
-            for (int j = 0; j < model.limbs; ++j) {
-                SCOPED_TRACE(c.name + ", " + describePose(p) + ", limb " + std::to_string(j + 1));
-                const LimbData& limb = data.limb[static_cast<std::size_t>(j)];
-                for (int q = 0; q < 3; ++q) {
-                    const double q_fd = fd(model.actuators + 3 * j + q);
-                    EXPECT_NEAR(limb.gamma_dot(q), q_fd, kFiniteDifference * (1 + std::abs(q_fd))) << "joint " << q + 1;
+        const Twist t = sampler.twist();
+        EXPECT_TRUE(inverseDisplacement(model, data, p).ok()) << c.name << ", " << describePose(p);
+        EXPECT_TRUE(velocityFromPlatformTwist(model, data, t).ok()) << c.name << ", " << describePose(p);
+        // u, then every limb's joint variables q
+        const Eigen::VectorXd fd = centralDifference(
+            [&](double s) {
+                EXPECT_TRUE(inverseDisplacement(model, moved, p + s * t).ok()) << c.name << ", " << describePose(p);
+                Eigen::VectorXd out(model.actuators + 3 * model.limbs);
+                out.head(model.actuators) = moved.u;
+                for (int j = 0; j < model.limbs; ++j) {
+                    out.segment<3>(model.actuators + 3 * j) = moved.limb[static_cast<std::size_t>(j)].q;
                 }
-                // eq. 3: xi_P = J_j gamma_dot_j, the platform twist referred to O
-                EXPECT_LT((limb.J * limb.gamma_dot - data.xi_P).norm(), kRoundOff * (1 + data.xi_P.norm()));
-            }
-            ++checked;
+                return out;
+            },
+            h);
+        for (int a = 0; a < model.actuators; ++a) {
+            EXPECT_NEAR(data.du(a), fd(a), kFiniteDifference * (1 + std::abs(fd(a))))
+                << c.name << ", " << describePose(p) << ", actuator " << a + 1;
         }
-    }
+        for (int j = 0; j < model.limbs; ++j) {
+            SCOPED_TRACE(c.name + ", " + describePose(p) + ", limb " + std::to_string(j + 1));
+            const LimbData& limb = data.limb[static_cast<std::size_t>(j)];
+            for (int q = 0; q < 3; ++q) {
+                const double q_fd = fd(model.actuators + 3 * j + q);
+                EXPECT_NEAR(limb.gamma_dot(q), q_fd, kFiniteDifference * (1 + std::abs(q_fd))) << "joint " << q + 1;
+            }
+            // eq. 3: xi_P = J_j gamma_dot_j, the platform twist referred to O
+            EXPECT_LT((limb.J * limb.gamma_dot - data.xi_P).norm(), kRoundOff * (1 + data.xi_P.norm()));
+        }
+        return true;
+    });
     EXPECT_GE(checked, kPoses * (5 + 7 * 3));
 }
 
 TEST(VelocityKinematics, PlatformTwistFromActuatorRatesInvertsEquation5) {
-    int checked = 0;
-    for (const RobotCase& c : cases()) {
+    const int checked = forEachPose(cases(), kPoses, [](const RobotCase& c, const Pose& p, WorkspaceSampler& sampler) {
         const Model& model = *c.model;
-        if (model.actuators != 3) continue;  // the platform twist from the rates needs exactly three
-        WorkspaceSampler sampler(model, 2024, c.angle, c.position);
+        if (model.actuators != 3) return false;  // the platform twist from the rates needs exactly three
         Data data(model);
-        for (int k = 0; k < kPoses; ++k) {
-            const Pose p = sampler.next();
-            const Twist t = sampler.twist();
-            ASSERT_TRUE(inverseDisplacement(model, data, p).ok()) << c.name << ", " << describePose(p);
-            ASSERT_TRUE(velocityFromPlatformTwist(model, data, t).ok()) << c.name << ", " << describePose(p);
-            const ActuatorVector du = data.du;
-            ASSERT_TRUE(velocityFromActuatorRates(model, data, du).ok()) << c.name << ", " << describePose(p);
-            EXPECT_LT((data.t_M - t).norm(), kRoundOff * (1 + t.norm())) << c.name << ", " << describePose(p);
-            ++checked;
-        }
-    }
+        const Twist t = sampler.twist();
+        EXPECT_TRUE(inverseDisplacement(model, data, p).ok()) << c.name << ", " << describePose(p);
+        EXPECT_TRUE(velocityFromPlatformTwist(model, data, t).ok()) << c.name << ", " << describePose(p);
+        const ActuatorVector du = data.du;
+        EXPECT_TRUE(velocityFromActuatorRates(model, data, du).ok()) << c.name << ", " << describePose(p);
+        EXPECT_LT((data.t_M - t).norm(), kRoundOff * (1 + t.norm())) << c.name << ", " << describePose(p);
+        return true;
+    });
     EXPECT_GE(checked, kPoses * (4 + 7 * 3));
 }
 

@@ -115,6 +115,22 @@ inline std::vector<RobotCase> exampleAndRandomRobots(int per_type, unsigned seed
     return out;
 }
 
+/// Calls check(c, p, sampler) at `poses` regular poses p of every case (a WorkspaceSampler of
+/// the case's box, seeded with `seed`, which check may draw twists from); check returns whether
+/// it checked the pose (false: not applicable to this robot). Returns how many it checked.
+template <class Check>
+int forEachPose(const std::vector<RobotCase>& cases, int poses, Check check, unsigned seed = 2024) {
+    int checked = 0;
+    for (const RobotCase& c : cases) {
+        WorkspaceSampler sampler(*c.model, seed, c.angle, c.position);
+        for (int k = 0; k < poses; ++k) {
+            const Pose p = sampler.next();
+            checked += check(c, p, sampler) ? 1 : 0;
+        }
+    }
+    return checked;
+}
+
 /// Fourth-order central difference of f at 0, (8 (f(h) - f(-h)) - (f(2h) - f(-2h))) / (12 h):
 /// truncation O(h^4), for quantities whose second derivatives are large near singularities.
 template <class F>
