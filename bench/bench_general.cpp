@@ -60,7 +60,7 @@ void baseline(benchmark::State& state) {
     prr3::FastData data(f.model);
     for (auto _ : state) {
         for (const Sample& s : f.samples) {
-            const Status status = prr3::inverseDynamicsFast(f.model, data, s.p, s.dp, s.ddp);
+            const prr3::Status status = prr3::inverseDynamicsFast(f.model, data, s.p, s.dp, s.ddp);
             benchmark::DoNotOptimize(status);
             benchmark::DoNotOptimize(data.tau);
         }

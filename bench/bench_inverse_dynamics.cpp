@@ -35,7 +35,7 @@ void inverseDynamicsNocdyn(benchmark::State& state) {
     prr3::FastData data;
     for (auto _ : state) {
         for (const Sample& s : f.samples) {
-            const Status status = prr3::inverseDynamicsFast(f.model, data, s.p, s.dp, s.ddp);
+            const prr3::Status status = prr3::inverseDynamicsFast(f.model, data, s.p, s.dp, s.ddp);
             benchmark::DoNotOptimize(status);
             benchmark::DoNotOptimize(data.tau);
         }
@@ -50,7 +50,7 @@ void inverseDynamicsNocdynFull(benchmark::State& state) {
     prr3::Data data;
     for (auto _ : state) {
         for (const Sample& s : f.samples) {
-            const Status status = prr3::inverseDynamics(f.model, data, s.p, s.dp, s.ddp);
+            const prr3::Status status = prr3::inverseDynamics(f.model, data, s.p, s.dp, s.ddp);
             benchmark::DoNotOptimize(status);
             benchmark::DoNotOptimize(data.tau);
         }

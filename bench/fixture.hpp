@@ -60,7 +60,7 @@ struct Fixture {
             s.t = static_cast<double>(k) / kRate;
             times[k] = s.t;
             trajectory.evaluate(s.t, s.p, s.dp, s.ddp);
-            const Status status = prr3::inverseDynamics(model, data, s.p, s.dp, s.ddp);
+            const prr3::Status status = prr3::inverseDynamics(model, data, s.p, s.dp, s.ddp);
             if (!status || !prr3::checkStroke(model, data) || !prr3::checkForce(model, data)) {
                 throw std::runtime_error("benchmark trajectory leaves the workspace at t = " + std::to_string(s.t));
             }

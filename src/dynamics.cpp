@@ -164,7 +164,7 @@ rejected(const Model& model, Data& data, const Pose& p, const Twist& dp, const T
 
 // On x86-64 with GCC an AVX2+FMA clone is built beside the baseline one and chosen at load
 // time when the CPU has it (three-operand instructions and 16 more registers' worth of
-// fewer spills for the kernel's many scalars), as for the 3-PRR kernel (prr3/fast.cpp).
+// fewer spills for the kernel's many scalars), as for the 3-PRR kernel (bench/baseline/src/fast.cpp).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
 __attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif

@@ -226,6 +226,10 @@ std::string describe(const Status& status, const Model& model) {
                 << status.value << " (limit " << model.max_condition << ")";
             return out.str();
         case StatusCode::joint_limit_exceeded:
+            if (!std::isfinite(status.value)) {
+                out << "joint variable not finite: " << limb << joint << ": q = " << status.value;
+                return out.str();
+            }
             out << "joint range exceeded: " << limb << joint << ": q = " << status.value << ", range ["
                 << (limits ? limits->lower : 0.0) << ", " << (limits ? limits->upper : 0.0) << "]";
             return out.str();
@@ -234,6 +238,14 @@ std::string describe(const Status& status, const Model& model) {
                 << (limits ? limits->velocity : 0.0);
             return out.str();
         case StatusCode::effort_exceeded:
+            if (!std::isfinite(status.value)) {  // a non-finite input or state, not a measurement
+                out << "actuator effort not finite: actuator "
+                    << model.limb[static_cast<std::size_t>(status.limb)]
+                               .actuator[static_cast<std::size_t>(status.joint)] +
+                           1
+                    << " (" << limb << joint << "): tau = " << status.value;
+                return out.str();
+            }
             out << "actuator effort limit exceeded: actuator "
                 << model.limb[static_cast<std::size_t>(status.limb)].actuator[static_cast<std::size_t>(status.joint)] +
                        1

@@ -10,32 +10,38 @@
 #include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/io/robot_file.hpp"
-#include "nocdyn/prr3/dynamics.hpp"
-#include "nocdyn/prr3/kinematics.hpp"
+#include "nocdyn/io/examples.hpp"
+#include "nocdyn/kinematics.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::test {
 namespace {
 
-TEST(RealTime, PerSamplePathAllocatesNothing) {
-    const prr3::Model model;
-    prr3::Data data;
-    const PoseTrajectory trajectory = paperTrajectory1();
-    Pose p, dp, ddp;
-    const long before = allocationCount();
-    double checksum = 0.0;
-    for (int k = 0; k < 2000; ++k) {
-        trajectory.evaluate(k * 1e-4, p, dp, ddp);
-        const Status status = prr3::inverseDynamics(model, data, p, dp, ddp);
-        checksum += status.ok() ? data.tau.sum() + data.I.trace() + data.C.sum() : 1e9;
-        checksum += prr3::checkStroke(model, data).ok() + prr3::checkForce(model, data).ok();
-        checksum += prr3::kineticEnergy(model, data);
+TEST(RealTime, PerSamplePathWithItsChecksAllocatesNothing) {
+    for (const std::string& robot : io::exampleRobotNames()) {
+        const Model model(io::exampleRobot(robot));
+        Data data(model);
+        const PoseTrajectory trajectory = paperTrajectory1();
+        Pose p, dp, ddp;
+        const long before = allocationCount();
+        double checksum = 0.0;
+        int solved = 0;
+        for (int k = 0; k < 2000; ++k) {
+            trajectory.evaluate(k * 1e-4, p, dp, ddp);
+            const Status status = inverseDynamics(model, data, p, dp, ddp);
+            solved += status.ok();
+            checksum += status.ok() ? data.tau.sum() + data.I.trace() + data.C.sum() : 1e9;
+            checksum += checkJointLimits(model, data).ok() + checkEffort(model, data).ok();
+            checksum += kineticEnergy(model, data) + potentialEnergy(model, data) + frictionPower(model, data);
+        }
+        // Failure statuses take the same path: no allocation either.
+        checksum += inverseDisplacement(model, data, Pose(0.0, 0.0, -0.3)).ok();
+        checksum += inverseDisplacement(model, data, Pose(std::nan(""), 0.0, 0.0)).ok();
+        const long after = allocationCount();
+        EXPECT_EQ(after - before, 0) << robot;
+        EXPECT_EQ(solved, 2000) << robot;
+        EXPECT_TRUE(std::isfinite(checksum)) << robot;
     }
-    // Failure statuses take the same path: no allocation either.
-    checksum += prr3::inverseDisplacement(model, data, Pose(0.0, 0.0, -0.2)).ok();
-    const long after = allocationCount();
-    EXPECT_EQ(after - before, 0);
-    EXPECT_TRUE(std::isfinite(checksum));
 }
 
 TEST(RealTime, GeneralModelAllocatesNothingPerSample) {

@@ -15,7 +15,8 @@
 #include <sstream>
 
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/prr3/dynamics.hpp"
+#include "nocdyn/io/examples.hpp"
+#include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::test {
@@ -180,16 +181,25 @@ TEST(Cli, PoseJsonCarriesJointsActuationMapAndInertia) {
     const CliRun r = run("pose 0.02 0.001 -0.003 --json");
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
-    // the hand-derived 3-PRR model gives the same joint variables and inertia
-    const prr3::Model model;
-    prr3::Data data;
-    ASSERT_TRUE(prr3::inverseDynamics(model, data, Pose(0.02, 0.001, -0.003), Twist::Zero(), Twist::Zero()).ok());
+    // the library's general model of the default robot (the paper's, short form) gives the same
+    // joint variables, inertia and actuation map
+    const Model model(io::exampleRobot("paper-3prr"));
+    Data data(model);
+    ASSERT_TRUE(inverseDynamics(model, data, Pose(0.02, 0.001, -0.003), Twist::Zero(), Twist::Zero()).ok());
     ASSERT_EQ(json["limbs"].size(), 3u);
     ASSERT_EQ(json["actuators"].size(), 3u);
     for (int j = 0; j < 3; ++j) EXPECT_NEAR(json["actuators"][j]["u"].get<double>(), data.u(j), 1e-16);
     EXPECT_NEAR(json["I"][1][2].get<double>(), data.I(1, 2), 1e-12);
-    // du = A dp/dt: A = D^-1 H (eq. 5)
-    EXPECT_NEAR(json["A"][0][0].get<double>(), data.H(0, 0) / data.D(0), 1e-12);
+    // du = D^-1 H dp/dt (eqs. 5-7): row 1 of the map is [h_11, f_1x, f_1y] / d_1, with f_1 the
+    // unit vector from A_1 to M_1, h_11 = (M_1 - C) x f_1 and d_1 = e_1 . f_1 = cos phi_A1
+    const LimbData& limb = data.limb[0];
+    const auto axis = [](const Twist& s) { return Vector2(-s(2), s(1)); };  // R screw [1; r_y; -r_x]
+    const Vector2 e = limb.s[0].tail<2>(), A = axis(limb.s[1]), M = axis(limb.s[2]);
+    const Vector2 f = (M - A).normalized(), C(0.001, -0.003);
+    const double d = e.dot(f);
+    EXPECT_NEAR(json["A"][0][0].get<double>(), cross(M - C, f) / d, 1e-12);
+    EXPECT_NEAR(json["A"][0][1].get<double>(), f.x() / d, 1e-12);
+    EXPECT_NEAR(json["A"][0][2].get<double>(), f.y() / d, 1e-12);
     EXPECT_EQ(json["limbs"][0]["type"].get<std::string>(), "PRR");
     EXPECT_TRUE(json["within_limits"].get<bool>());
     const CliRun text = run("pose 0 0 0");

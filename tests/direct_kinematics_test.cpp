@@ -14,7 +14,7 @@
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/prr3/model.hpp"
+#include "nocdyn/io/examples.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "support.hpp"
 
@@ -23,11 +23,12 @@ namespace {
 
 constexpr double kVerify = 1e-12;  // [m]
 
-/// Independent count of the real roots, from the 3-PRR's geometry (not the general model):
+/// Independent count of the real roots, from the 3-PRR's geometry (the paper's equations, not
+/// the general model):
 /// sign changes of (circumradius of P_1 P_2 P_3)^2 - l^2 on a fine theta grid,
 /// P_j = A_j - Rot(theta) M_local_j, A_j = B_j + (s_ref_j + u_j) e_j: with the sliders locked
 /// each closure |C - P_j| = l is a circle of the same radius l, so C is the circumcentre.
-int countByScan(const prr3::Model& paper, const Vector3& u, int samples = 100000) {
+int countByScan(const PaperGeometry& paper, const Vector3& u, int samples = 100000) {
     auto f = [&](double theta) {
         std::array<Vector2, 3> P;
         for (int j = 0; j < 3; ++j) {
@@ -58,8 +59,8 @@ int countByScan(const prr3::Model& paper, const Vector3& u, int samples = 100000
 
 struct Paper {
     RobotParameters robot;
-    prr3::Model geometry{robot};
-    Model model{robot};  // the short form expanded
+    PaperGeometry geometry{robot};
+    Model model{io::exampleRobot("paper-3prr")};  // the short form expanded
 };
 
 AssemblyModes modesAt(const Model& model, const Vector3& u) {
@@ -131,7 +132,7 @@ TEST(DirectKinematics, EverySolutionIsVerifiedAndNoneIsMissed) {
 
 TEST(DirectKinematics, WorkingModesInvertTheInverseDisplacementAcrossTheWorkspace) {
     const Paper paper;
-    WorkspaceSampler sampler(paper.geometry);
+    WorkspaceSampler sampler(paper.model);
     Data data(paper.model);
     for (int k = 0; k < 300; ++k) {
         const Pose p = sampler.next();

@@ -14,7 +14,8 @@
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/forward_dynamics.hpp"
-#include "nocdyn/prr3/model.hpp"
+#include "nocdyn/description.hpp"
+#include "nocdyn/model.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -125,10 +126,10 @@ TEST(RobotFile, MissingFileIsAnError) { EXPECT_THROW((void)io::loadRobot("/nonex
 TEST(RobotModel, InvalidParametersThroughTheLibraryThrow) {
     RobotParameters robot;
     robot.link_inertia = -1.0;
-    EXPECT_THROW(prr3::Model{robot}, Error);
+    EXPECT_THROW((void)Model(expand(robot)), Error);
     robot = RobotParameters{};
     robot.max_condition = 0.5;
-    EXPECT_THROW(prr3::Model{robot}, Error);
+    EXPECT_THROW((void)Model(expand(robot)), Error);
 }
 
 TEST(RobotFile, DuplicateKeysSectionsAndDocumentsAreErrors) {
@@ -173,14 +174,14 @@ TEST(RobotModel, EveryRangeHoldsInTheLibraryToo) {
     RobotParameters robot;
     robot.platform_inertia = 1e308;
     try {
-        prr3::Model model{robot};
+        const Model model(expand(robot));
         ADD_FAILURE() << "accepted platform.inertia = 1e308";
     } catch (const ParameterError& e) {
         EXPECT_EQ(e.field(), "platform.inertia");
     }
     robot = RobotParameters{};
     robot.link_mass = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_THROW(prr3::Model{robot}, ParameterError);
+    EXPECT_THROW((void)Model(expand(robot)), ParameterError);
 }
 
 /// A scratch file of this test binary's temporary folder with the given content.

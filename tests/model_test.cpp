@@ -430,38 +430,6 @@ TEST(Atan2Of, IsWithinTwoUlpOfLibm) {
     EXPECT_EQ(nocdyn::detail::ik::atan2Of(-1.0, 0.0), -M_PI / 2);
 }
 
-TEST(PaperRobot, GeneralModelEqualsTheThreePrrModelAtRandomPoses) {
-    const prr3::Model special;
-    const Model general{RobotParameters{}};
-    prr3::Data a;
-    Data b(general);
-    WorkspaceSampler sampler(special, 11);
-    for (int n = 0; n < 300; ++n) {
-        const Pose p = sampler.next();
-        const Twist dp = sampler.twist(), ddp = 100.0 * sampler.twist();
-        ASSERT_TRUE(prr3::inverseDynamics(special, a, p, dp, ddp).ok());
-        const Status status = inverseDynamics(general, b, p, dp, ddp);
-        ASSERT_TRUE(status.ok()) << describePose(p) << ": " << describe(status, general);
-        const double tau_scale = a.tau.cwiseAbs().maxCoeff();
-        for (int j = 0; j < 3; ++j) {
-            EXPECT_NEAR(b.u(j), a.u(j), 1e-15) << describePose(p);
-            EXPECT_NEAR(b.du(j), a.du(j), kRoundOff * (1.0 + std::abs(a.du(j))));
-            EXPECT_NEAR(b.ddu(j), a.ddu(j), kRoundOff * (1.0 + std::abs(a.ddu(j))));
-            EXPECT_NEAR(b.tau(j), a.tau(j), kRoundOff * tau_scale) << describePose(p);
-        }
-        EXPECT_LT((b.I - a.I).cwiseAbs().maxCoeff(), kRoundOff * a.I.cwiseAbs().maxCoeff());
-        EXPECT_LT((b.C - a.C).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + a.C.cwiseAbs().maxCoeff()));
-        for (int i = 0; i < 7; ++i) {
-            const auto ii = static_cast<std::size_t>(i);
-            EXPECT_LT((b.T[ii] - a.T[ii]).cwiseAbs().maxCoeff(), kRoundOff * (1.0 + a.T[ii].cwiseAbs().maxCoeff()))
-                << "T_" << i + 1;
-            EXPECT_LT((b.T_dot[ii] - a.T_dot[ii]).cwiseAbs().maxCoeff(),
-                      kRoundOff * (1.0 + a.T_dot[ii].cwiseAbs().maxCoeff()))
-                << "dT_" << i + 1;
-        }
-    }
-}
-
 TEST(PaperRobot, PoseOutOfReachNamesTheLimbAndTheDistance) {
     const Model model{RobotParameters{}};
     Data data(model);

@@ -13,7 +13,7 @@
 #include "nocdyn/sampling.hpp"
 #include "nocdyn/validation/mujoco_robot.hpp"
 #include "nocdyn/validation/simbody_robot.hpp"
-#include "support.hpp"
+#include "baseline_support.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -34,7 +34,7 @@ Series inverseDynamicsAlong(const prr3::Model& model, const PoseTrajectory& traj
     for (const double t : times) {
         Pose p, dp, ddp;
         trajectory.evaluate(t, p, dp, ddp);
-        const Status status = prr3::inverseDynamics(model, data, p, dp, ddp);
+        const auto status = prr3::inverseDynamics(model, data, p, dp, ddp);
         EXPECT_TRUE(status.ok()) << "t = " << t << ": " << describe(status, model.parameters);
         series.t.push_back(t);
         series.p.push_back(p);
@@ -144,7 +144,7 @@ TEST(Validation, RandomRobotsOnRandomTrajectoriesAgreeWithSimbodyAndMujoco) {
 TEST(Validation, InertiaAgreesWithSimbodyAcrossTheWorkspace) {
     const prr3::Model model;
     validation::SimbodyRobot simbody(model.parameters);
-    WorkspaceSampler sampler(model, 99);
+    BaselineSampler sampler(model, 99);
     prr3::Data data;
     for (int k = 0; k < 100; ++k) {
         const Pose p = sampler.next();

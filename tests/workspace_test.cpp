@@ -1,5 +1,6 @@
 // Workspace map (workspace.hpp): the area of the paper's 3-PRR against an independent Monte
-// Carlo estimate on the 3-PRR model (prr3, its own kinematics and stroke check); the type-1
+// Carlo estimate from the paper's equations (support.hpp, PaperGeometry: Appendix A and the
+// stroke, no model code); the type-1
 // points of a 3-RRR lie where a limb is stretched or folded (|r_3 - r_1| = l_1 + l_2 or
 // |l_1 - l_2|), its type-2 points where A is singular; the area converges with the grid.
 #include <gtest/gtest.h>
@@ -12,10 +13,11 @@
 #include <Eigen/SVD>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
-#include "nocdyn/prr3/kinematics.hpp"
 #include "nocdyn/workspace.hpp"
+#include "support.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -25,25 +27,24 @@ Model example(const std::string& robot) {
 }
 
 TEST(Workspace, PaperRobotAreaAgreesWithAnIndependentMonteCarloEstimate) {
-    const Model model{RobotParameters{}};
-    const WorkspaceMap map = workspaceMap(model, {0.0, 301});
-    const prr3::Model paper;
-    prr3::Data data;
-    std::mt19937_64 rng(3);
-    const double side = (map.n - 1) * map.step;
-    std::uniform_real_distribution<double> ux(map.x0, map.x0 + side), uy(map.y0, map.y0 + side);
-    const int samples = 200000;
-    int inside = 0;
-    for (int s = 0; s < samples; ++s) {
-        const Pose p(0.0, ux(rng), uy(rng));
-        if (prr3::inverseDisplacement(paper, data, p).ok() &&
-            prr3::velocityFromPlatformTwist(paper, data, Twist::Zero()).ok() && prr3::checkStroke(paper, data).ok()) {
-            ++inside;
+    for (const std::string robot : {"paper-3prr", "paper-3prr-general"}) {
+        SCOPED_TRACE(robot);
+        const Model model(io::exampleRobot(robot));
+        const WorkspaceMap map = workspaceMap(model, {0.0, 301});
+        const PaperGeometry paper;
+        std::mt19937_64 rng(3);
+        const double side = (map.n - 1) * map.step;
+        std::uniform_real_distribution<double> ux(map.x0, map.x0 + side), uy(map.y0, map.y0 + side);
+        const int samples = 200000;
+        int inside = 0;
+        for (int s = 0; s < samples; ++s) {
+            const std::optional<Vector3> u = paper.actuators(Pose(0.0, ux(rng), uy(rng)));
+            if (u && u->cwiseAbs().maxCoeff() <= 0.5 * paper.stroke) ++inside;
         }
+        const double estimate = side * side * inside / samples;
+        EXPECT_GT(map.area, 1e-4);  // 100 mm^2 at least: the strokes are +-12.45 mm
+        EXPECT_NEAR(map.area, estimate, 0.015 * estimate);
     }
-    const double estimate = side * side * inside / samples;
-    EXPECT_GT(map.area, 1e-4);  // 100 mm^2 at least: the strokes are +-12.45 mm
-    EXPECT_NEAR(map.area, estimate, 0.015 * estimate);
 }
 
 TEST(Workspace, AreaConvergesWithTheGrid) {

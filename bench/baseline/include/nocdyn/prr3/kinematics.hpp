@@ -4,7 +4,7 @@
 #pragma once
 
 #include "nocdyn/prr3/model.hpp"
-#include "nocdyn/status.hpp"
+#include "nocdyn/prr3/status.hpp"
 
 namespace nocdyn::prr3 {
 

@@ -14,6 +14,8 @@
 namespace nocdyn::test {
 namespace {
 
+using prr3::Status;  // the kernel's own outcomes
+
 /// Relative agreement asked of the batch: error / (|value| + peak of its column), as the
 /// golden test reports it (u_j is a difference of lengths near l: its peak sets the scale).
 constexpr double kRelativeTolerance = 1e-12;

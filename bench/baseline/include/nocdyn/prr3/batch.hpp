@@ -24,7 +24,7 @@
 
 #include "nocdyn/detail/fast_math.hpp"
 #include "nocdyn/prr3/model.hpp"
-#include "nocdyn/status.hpp"
+#include "nocdyn/prr3/status.hpp"
 
 namespace nocdyn::prr3 {
 

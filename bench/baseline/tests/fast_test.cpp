@@ -15,10 +15,13 @@
 #include "nocdyn/prr3/kinematics.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "allocation_counter.hpp"
-#include "support.hpp"
+#include "baseline_support.hpp"
 
 namespace nocdyn::test {
 namespace {
+
+using prr3::Status;  // the kernel's own outcomes
+using prr3::StatusCode;
 
 /// error <= 1e-12 (|value| + peak of its column), as batch_test and the golden test measure it.
 constexpr double kRelativeTolerance = 1e-12;
@@ -93,7 +96,7 @@ void expectSameStatus(const prr3::Model& model, prr3::FastData& fast, const Pose
 
 TEST(Fast, EqualsFullPathOverRandomWorkspaceSamples) {
     const prr3::Model model;
-    WorkspaceSampler sampler(model, 7);
+    BaselineSampler sampler(model, 7);
     std::uniform_real_distribution<double> alpha(-200.0, 200.0), accel(-30.0, 30.0);
     std::vector<Input> inputs(2000);
     for (Input& in : inputs) {
@@ -122,7 +125,7 @@ TEST(Fast, EqualsFullPathAtLargeAnglesAndForAnotherModel) {
     // Whole turns added to theta reach every quadrant of the kernel's sin/cos; beyond 1e6 rad
     // the lean entry takes libm's sin and cos.
     const prr3::Model model;
-    WorkspaceSampler sampler(model, 11);
+    BaselineSampler sampler(model, 11);
     std::vector<Input> inputs;
     for (int k = 0; k < 400; ++k) {
         Input in{sampler.next(), sampler.twist(), sampler.twist()};
@@ -221,7 +224,7 @@ TEST(Fast, LinkNormalToItsRailIsTheSameSingularity) {
 
 TEST(Fast, ConcurrentLinkLinesAreTheSameForwardSingularity) {
     // As kinematics_test: the rotation about O where h_j1 = 0 (the link lines meet at C).
-    const double lo = concurrentLinkLinesRotation();
+    const double lo = baselineConcurrentLinkLinesRotation();
     const prr3::Model model;
     prr3::FastData fast;
     const Status status =

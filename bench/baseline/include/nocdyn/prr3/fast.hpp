@@ -22,7 +22,7 @@
 
 #include "nocdyn/prr3/batch.hpp"
 #include "nocdyn/prr3/model.hpp"
-#include "nocdyn/status.hpp"
+#include "nocdyn/prr3/status.hpp"
 
 namespace nocdyn::prr3 {
 
