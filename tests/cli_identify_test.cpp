@@ -122,23 +122,39 @@ TEST(CliIdentify, RefusesTooFewSamples) {
     EXPECT_NE(r.err.find("too few"), std::string::npos) << r.err;
 }
 
-TEST(CliIdentify, RecoversThePayloadFromANoisySimulatedControlLog) {
-    // the experiment: computed-torque control along trajectory 1 with the payload unknown to the
-    // controller, 1 um encoder noise and 0.5 N force noise, 1 s at 10 kHz
-    const fs::path dir = scratch();
+/// The experiment: computed-torque control along trajectory 1 with the payload unknown to the
+/// controller, 1 um encoder noise and 0.5 N force noise, 1 s at 10 kHz, then identify; `robot`
+/// is the --robot option (empty: the default robot). Returns identify's output.
+std::string identifyFromSimulatedControlLog(const fs::path& dir, const std::string& robot) {
     const CliResult control =
-        runCli("control --robot " + kRobot +
+        runCli("control" + robot +
                " --trajectory paper1 --plant nocdyn --duration 1 --rate 10000 --payload-mass 0.5 --payload-com 0.012 "
                "-0.007 --payload-inertia 8e-4 --noise-u 1e-6 --noise-tau 0.5 --log " +
                (dir / "log.csv").string());
-    ASSERT_EQ(control.exit_code, 0) << control.err;
-    const CliResult r =
-        runCli("identify --robot " + kRobot + " --data " + (dir / "log.csv").string() + " --held-forces");
-    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(control.exit_code, 0) << control.err;
+    const CliResult r = runCli("identify" + robot + " --data " + (dir / "log.csv").string() + " --held-forces");
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    return r.out;
+}
+
+TEST(CliIdentify, RecoversThePayloadFromANoisySimulatedControlLog) {
+    const std::string out = identifyFromSimulatedControlLog(scratch(), " --robot " + kRobot);
     // one second (kept short for the sanitizer run): about twice the 5 s run's errors (README)
-    EXPECT_NEAR(after(r.out, "payload: {mass: "), kPayload.mass, 0.01 * kPayload.mass) << r.out;
-    EXPECT_NEAR(after(r.out, "com: ["), kPayload.com.x(), 5e-4) << r.out;
-    EXPECT_NEAR(after(r.out, "], inertia: "), kPayload.inertia, 0.03 * kPayload.inertia) << r.out;
+    EXPECT_NEAR(after(out, "payload: {mass: "), kPayload.mass, 0.01 * kPayload.mass) << out;
+    EXPECT_NEAR(after(out, "com: ["), kPayload.com.x(), 5e-4) << out;
+    EXPECT_NEAR(after(out, "], inertia: "), kPayload.inertia, 0.03 * kPayload.inertia) << out;
+}
+
+// The default robot is the paper's prototype through the general model: the experiment without
+// --robot (the short form, expanded by io) identifies what it does with the general file.
+TEST(CliIdentify, TheDefaultRobotRunsTheExperimentAsTheGeneralFileDoes) {
+    const std::string general = identifyFromSimulatedControlLog(scratch(), " --robot " + kRobot);
+    const std::string fallback = identifyFromSimulatedControlLog(scratch(), "");
+    for (const char* field : {"payload: {mass: ", "com: [", "], inertia: "}) {
+        const double expected = after(general, field);
+        EXPECT_NEAR(after(fallback, field), expected, 1e-9 * std::abs(expected)) << field << "\n" << fallback;
+    }
+    EXPECT_NEAR(after(fallback, "payload: {mass: "), kPayload.mass, 0.01 * kPayload.mass) << fallback;
 }
 
 }  // namespace

@@ -19,10 +19,8 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/shake.hpp"
+#include "plants.hpp"
 #include "plot.hpp"
-#ifdef NOCDYN_HAS_SIMBODY
-#include "simbody_plant.hpp"
-#endif
 
 namespace nocdyn::cli {
 
@@ -58,14 +56,6 @@ struct Outcome {
     std::string plant;
     Vector3 peak_error = Vector3::Zero();  // tracking [rad, m, m]
 };
-
-std::unique_ptr<RobotPlant> makeExperimentPlant(const RobotDescription& robot) {
-#ifdef NOCDYN_HAS_SIMBODY
-    return std::make_unique<SimbodyMechanismPlant>(robot);
-#else
-    return std::make_unique<RungeKuttaRobotPlant>(Model(robot));
-#endif
-}
 
 io::Table decimated(const io::Table& table) {
     io::Table out;
@@ -108,7 +98,8 @@ Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c
         }
     }
     try {
-        const std::unique_ptr<RobotPlant> plant = makeExperimentPlant(plant_robot);
+        const std::unique_ptr<RobotPlant> plant =
+            makePlant(defaultPlantName() == "simbody" ? "simbody" : "nocdyn-rk4", plant_robot);
         PoseController controller(model, ControlLaw::computed_torque, taskCriticallyDamped(kNaturalFrequency));
         PoseLoopOptions loop;
         loop.rate = kRate;

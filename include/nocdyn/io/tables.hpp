@@ -5,6 +5,7 @@
 #include <string>
 #include <vector>
 
+#include "nocdyn/general_control.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/sampling.hpp"
 
@@ -21,5 +22,9 @@ void inverseDynamicsRow(const InverseDynamicsSample& sample, std::vector<double>
 
 /// The whole series as a table.
 [[nodiscard]] Table toTable(const InverseDynamicsSeries& series, int actuators);
+
+/// A closed-loop run: t, theta_d, x_d, y_d, theta, x, y, e_theta, e_x, e_y, u1..un, u1_d..un_d,
+/// tau1..taun (SI).
+[[nodiscard]] Table toTable(const PoseLoopResult& result);
 
 }  // namespace nocdyn::io
