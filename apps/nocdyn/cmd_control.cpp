@@ -99,7 +99,8 @@ void run(const ControlOptions& options) {
     const PoseLoopResult result = runPoseLoop(controller, *plant, trajectory, loop);
     if (!options.output.empty()) writeTable(io::toTable(result), options.output);
     if (!options.log.empty()) {
-        io::writeCsvFile(options.log, toTable(sensorLog(result, options.noise_u, options.noise_tau, options.seed + 1)));
+        io::writeCsvFile(options.log,
+                         io::toTable(sensorLog(result, options.noise_u, options.noise_tau, options.seed + 1)));
     }
     if (!options.figure.empty()) {
         renderFigure(trackingErrorFigure(literalText(trajectory.name) + ": actuator tracking errors", {result}),

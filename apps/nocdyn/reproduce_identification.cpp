@@ -18,6 +18,7 @@
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/tables.hpp"
 #include "nocdyn/shake.hpp"
 #include "plants.hpp"
 #include "plot.hpp"
@@ -112,7 +113,7 @@ Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c
         outcome.peak_error = run.pose_peak_error;
         // the encoders' readings the controller used; the force sensor's own noise
         const Measurements log = sensorLog(run, kNoiseU, kNoiseTau, kSeed + 1);
-        io::writeCsvFile((folder / (c.key + "_log.csv")).string(), decimated(toTable(log)));
+        io::writeCsvFile((folder / (c.key + "_log.csv")).string(), decimated(io::toTable(log)));
         IdentificationOptions options;
         options.held_forces = true;  // the log's forces are the commands held over each tick
         options.friction = c.friction;

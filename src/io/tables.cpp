@@ -65,4 +65,32 @@ Table toTable(const PoseLoopResult& result) {
     return table;
 }
 
+Table toTable(const Measurements& measurements) {
+    Table table;
+    const auto n = measurements.u.cols();
+    const bool rates = measurements.du.size() > 0 && measurements.ddu.size() > 0;
+    table.columns = {"t"};
+    const auto append = [&](const char* quantity) {
+        for (std::string& name : numbered(quantity, static_cast<int>(n))) table.columns.push_back(std::move(name));
+    };
+    append("u");
+    append("tau");
+    if (rates) {
+        append("du");
+        append("ddu");
+    }
+    for (std::size_t k = 0; k < measurements.t.size(); ++k) {
+        const auto kk = static_cast<Eigen::Index>(k);
+        std::vector<double> row{measurements.t[k]};
+        for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.u(kk, a));
+        for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.tau(kk, a));
+        if (rates) {
+            for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.du(kk, a));
+            for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.ddu(kk, a));
+        }
+        table.rows.push_back(std::move(row));
+    }
+    return table;
+}
+
 }  // namespace nocdyn::io
