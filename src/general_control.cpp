@@ -305,25 +305,4 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
     return result;
 }
 
-io::Table toTable(const PoseLoopResult& result) {
-    io::Table table;
-    table.columns = {"t", "theta_d", "x_d", "y_d", "theta", "x", "y", "e_theta", "e_x", "e_y"};
-    for (const char* suffix : {"", "_d"}) {
-        for (int a = 1; a <= result.actuators; ++a)
-            table.columns.push_back(std::string("u").append(std::to_string(a)).append(suffix));
-    }
-    for (int a = 1; a <= result.actuators; ++a) table.columns.push_back(std::string("tau").append(std::to_string(a)));
-    table.rows.reserve(result.t.size());
-    for (std::size_t k = 0; k < result.t.size(); ++k) {
-        const Pose& d = result.p_d[k];
-        const Pose& p = result.p[k];
-        std::vector<double> row{result.t[k], d(0), d(1), d(2), p(0), p(1), p(2), d(0) - p(0), d(1) - p(1), d(2) - p(2)};
-        for (const auto* v : {&result.u, &result.u_d, &result.tau}) {
-            for (int a = 0; a < result.actuators; ++a) row.push_back((*v)[k](a));
-        }
-        table.rows.push_back(std::move(row));
-    }
-    return table;
-}
-
 }  // namespace nocdyn

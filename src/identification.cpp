@@ -977,40 +977,4 @@ Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_t
     return m;
 }
 
-namespace {
-
-/// "u3": a column name (built by appending: GCC 12 warns falsely on "u" + std::to_string).
-std::string indexed(const char* prefix, Eigen::Index a) {
-    std::string name(prefix);
-    name += std::to_string(a);
-    return name;
-}
-
-}  // namespace
-
-io::Table toTable(const Measurements& measurements) {
-    io::Table table;
-    const auto n = measurements.u.cols();
-    const bool rates = measurements.du.size() > 0 && measurements.ddu.size() > 0;
-    table.columns.emplace_back("t");
-    for (Eigen::Index a = 1; a <= n; ++a) table.columns.push_back(indexed("u", a));
-    for (Eigen::Index a = 1; a <= n; ++a) table.columns.push_back(indexed("tau", a));
-    if (rates) {
-        for (Eigen::Index a = 1; a <= n; ++a) table.columns.push_back(indexed("du", a));
-        for (Eigen::Index a = 1; a <= n; ++a) table.columns.push_back(indexed("ddu", a));
-    }
-    for (std::size_t k = 0; k < measurements.t.size(); ++k) {
-        const auto kk = static_cast<Eigen::Index>(k);
-        std::vector<double> row{measurements.t[k]};
-        for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.u(kk, a));
-        for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.tau(kk, a));
-        if (rates) {
-            for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.du(kk, a));
-            for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.ddu(kk, a));
-        }
-        table.rows.push_back(std::move(row));
-    }
-    return table;
-}
-
 }  // namespace nocdyn

@@ -255,8 +255,27 @@ std::string describe(const Status& status, const Model& model) {
         case StatusCode::not_finite:
             out << "input is not a finite number (" << status.value << ")";
             return out.str();
-        default:
-            return describe(status, RobotParameters{});
+        case StatusCode::workspace_edge:
+            out << "the motion reached the edge of the workspace: " << limb << " is next to a singular posture (its "
+                << "Jacobian J has condition number " << status.value << "), so no pose has its actuator further out";
+            return out.str();
+        case StatusCode::assembly_mode_lost:
+            out << "direct kinematics lost the assembly mode (" << limb << ", scaled residual " << status.value
+                << "): a singularity was crossed";
+            return out.str();
+        case StatusCode::integration_step_too_small:
+            out << "the integrator's step fell to " << status.value
+                << " s, below its minimum: the tolerances are too tight for double precision or the motion too"
+                   " violent (loosen --atol/--rtol)";
+            return out.str();
+        case StatusCode::integration_too_many_steps:
+            out << "the integrator took " << status.value
+                << " steps over one interval without reaching its end (tolerances too tight?)";
+            return out.str();
+        default:  // the codes of the frozen 3-PRR kernel: describe(Status, RobotParameters)
+            out << "status " << static_cast<int>(status.code) << " of the 3-PRR kernel (" << limb << ", value "
+                << status.value << ")";
+            return out.str();
     }
 }
 

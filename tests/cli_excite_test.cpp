@@ -13,6 +13,7 @@
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/io/tables.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "random_robots.hpp"
 #include "identification_support.hpp"
@@ -74,8 +75,8 @@ TEST(CliIdentify, CalibratesTheRobotThenIdentifiesThePayloadAgainstIt) {
     RobotDescription built = io::loadRobotDescription(kRobot);
     built.platform.mass += 0.2;
     const Payload payload{0.5, 8e-4, Vector2(0.012, -0.007)};
-    io::writeCsvFile((dir / "tare.csv").string(), toTable(exactLog(Model(built), 3, 300)));
-    io::writeCsvFile((dir / "load.csv").string(), toTable(exactLog(Model(withPayload(built, payload)), 4, 300)));
+    io::writeCsvFile((dir / "tare.csv").string(), io::toTable(exactLog(Model(built), 3, 300)));
+    io::writeCsvFile((dir / "load.csv").string(), io::toTable(exactLog(Model(withPayload(built, payload)), 4, 300)));
     const std::string cal = (dir / "cal.yaml").string();
     const CliResult base =
         runCli("identify --robot " + kRobot + " --data " + (dir / "tare.csv").string() + " --base --output " + cal);

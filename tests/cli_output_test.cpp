@@ -244,7 +244,8 @@ TEST(CliOutput, StreamedCsvOnStdoutEqualsTheFileAndReadsBack) {
 }
 
 // Any robot file: task-space control on nocdyn's forward dynamics, n actuators in the CSV and
-// the summary; the 3-PRR-only options are refused with one line naming their replacement.
+// the summary; an encoder-noise option without the encoders is refused with one line naming
+// the replacement.
 TEST(CliOutput, ControlTakesAnyRobotFile) {
     const fs::path dir = scratchDirectory();
     const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/4-rrr.yaml";
@@ -272,9 +273,20 @@ TEST(CliOutput, ControlTakesAnyRobotFile) {
     EXPECT_EQ(noise_u.exit_code, 1);
     EXPECT_NE(noise_u.err.find("use --noise-pose and --noise-rate"), std::string::npos) << noise_u.err;
     EXPECT_EQ(std::count(noise_u.err.begin(), noise_u.err.end(), '\n'), 1) << noise_u.err;
-    const CliResult short_form = runCli("control --plant nocdyn --trajectory paper1 --noise-pose 1e-6");
-    EXPECT_EQ(short_form.exit_code, 1);
-    EXPECT_NE(short_form.err.find("are for general robot files"), std::string::npos) << short_form.err;
+    // The default robot (the short form, expanded) takes every option a general robot file takes.
+    const fs::path log = dir / "log.csv";
+    const CliResult fallback = runCli(
+        "control --plant nocdyn --trajectory paper1 --duration 0.02 --noise-pose 1e-6 --payload-mass 0.5 "
+        "--payload-com 0.012 -0.007 --noise-u 1e-6 --noise-tau 0.5 --log " +
+        log.string());
+    ASSERT_EQ(fallback.exit_code, 0) << fallback.err;
+    EXPECT_NE(fallback.out.find("computed-torque on the nocdyn forward dynamics plant, paper-3prr, paper1"),
+              std::string::npos)
+        << fallback.out;
+    EXPECT_NE(fallback.out.find("actuator 3 (limb 3): RMS error"), std::string::npos) << fallback.out;
+    const io::Table sensors = io::readCsvFile(log.string());
+    EXPECT_EQ(sensors.columns, (std::vector<std::string>{"t", "u1", "u2", "u3", "tau1", "tau2", "tau3"}));
+    EXPECT_EQ(sensors.rows.size(), 200U);
 }
 
 }  // namespace

@@ -13,6 +13,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/general_control.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/tables.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::test {
@@ -210,7 +211,7 @@ TEST(GeneralControl, TableHasEveryActuator) {
     PoseLoopOptions options;
     options.duration = 0.01;
     const PoseLoopResult result = track(robot, robot, ControlLaw::pd, options);
-    const io::Table table = toTable(result);
+    const io::Table table = io::toTable(result);
     ASSERT_EQ(table.columns.size(), 10U + 3U * 4U);
     EXPECT_EQ(table.columns[10], "u1");
     EXPECT_EQ(table.columns[14], "u1_d");

@@ -489,6 +489,18 @@ TEST(GeneralDirectKinematics, TrackerReportsWhatStopsIt) {
     EXPECT_EQ(trackPose(model, data, u, p).code, StatusCode::not_finite);
 }
 
+// What stops the tracker is described for the robot at hand: its limb and the condition number
+// or residual, not the 3-PRR's rail distance d_j^M.
+TEST(GeneralDirectKinematics, TrackerFailuresAreDescribedByLimb) {
+    const Model model(io::exampleRobot("3-rpr"));
+    const std::string edge = describe(Status{StatusCode::workspace_edge, 1, 5000.0}, model);
+    EXPECT_NE(edge.find("edge of the workspace: limb 2"), std::string::npos) << edge;
+    EXPECT_NE(edge.find("condition number 5000"), std::string::npos) << edge;
+    EXPECT_EQ(edge.find("d_"), std::string::npos) << edge;
+    const std::string lost = describe(Status{StatusCode::assembly_mode_lost, 0, 1e-3}, model);
+    EXPECT_NE(lost.find("lost the assembly mode (limb 1, scaled residual 0.001)"), std::string::npos) << lost;
+}
+
 TEST(GeneralDirectKinematics, AllocationFree) {
     for (const std::string& name : io::exampleRobotNames()) {
         const Model model(io::exampleRobot(name));

@@ -13,6 +13,7 @@
 #include "nocdyn/drawing.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/examples.hpp"
 #include "nocdyn/sampling.hpp"
 
 namespace nocdyn::cli {
@@ -572,7 +573,7 @@ Figure frameFigure(const Model& model, const MotionSamples& motion, double t) {
 }
 
 void reproduceAnimations(const std::filesystem::path& out, std::ostream& summary) {
-    const Model model{RobotParameters{}};
+    const Model model(io::exampleRobot("paper-3prr"));
     summary << "## Animations\n\n";
     for (const auto& [name, trajectory] :
          {std::pair<std::string, PoseTrajectory>{"paper1", paperTrajectory1()}, {"paper2", paperTrajectory2()}}) {

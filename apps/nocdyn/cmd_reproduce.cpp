@@ -11,6 +11,7 @@
 
 #include "animation.hpp"
 #include "commands.hpp"
+#include "common.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/description.hpp"
@@ -24,7 +25,6 @@
 #include "shake_replay.hpp"
 #include "workspace_figure.hpp"
 #ifdef NOCDYN_HAS_ENGINES
-#include "engine_comparison.hpp"
 #include "nocdyn/general_control.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/validation/agreement.hpp"
@@ -47,7 +47,7 @@ struct ReproduceOptions {
 /// Motor displacements [mm] or forces [N] of our model, with an engine's curves overlaid
 /// (dashed) when given.
 PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine = {},
-                     const std::vector<Eigen::Vector3d>* engine_values = nullptr) {
+                     const std::vector<Eigen::VectorXd>* engine_values = nullptr) {
     PlotPanel panel;
     panel.title = forces ? "(b) Motor forces" : "(a) Motor displacements";
     panel.xlabel = "t [s]";
@@ -76,7 +76,7 @@ PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std
 
 /// engine - model, per actuator, in nm or uN.
 PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine,
-                          const std::vector<Eigen::Vector3d>& engine_values) {
+                          const std::vector<Eigen::VectorXd>& engine_values) {
     PlotPanel panel;
     panel.title = "(c) " + engine + " minus model";
     panel.xlabel = "t [s]";
@@ -97,12 +97,13 @@ PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, cons
 
 /// Both paper trajectories: CSV, figures in the spirit of Figs. 5 and 6, and the peak
 /// stroke and force against the actuator limits, on the general model the short form expands to.
-void reproduceTrajectories(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary) {
-    const Model model(expand(robot));
+void reproduceTrajectories(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary) {
+    const Model model(robot);
+    const ActuatorLimits limits = actuatorLimits(robot);
     summary << "## Paper trajectories 1 and 2 (eqs. 33-34): inverse dynamics\n\n"
             << "Sampled over " << kDuration << " s at " << kRate / 1000 << " kHz. Actuator limits: total stroke "
-            << robot.stroke * 1e3 << " mm (+-" << robot.stroke * 0.5e3
-            << " mm about the reference posture), peak force " << robot.peak_force << " N.\n\n"
+            << limits.stroke * 1e3 << " mm (+-" << limits.stroke * 0.5e3
+            << " mm about the reference posture), peak force " << limits.peak_force << " N.\n\n"
             << "| trajectory | actuator | u range [mm] | peak abs(u) / half stroke | peak abs(tau) [N] | peak abs(tau) "
                "/ peak force |\n"
             << "| --- | --- | --- | --- | --- | --- |\n";
@@ -123,15 +124,20 @@ void reproduceTrajectories(const RobotParameters& robot, const std::filesystem::
         Figure forces{std::string(c.name) + ": motor forces (cf. the paper's " + c.figure + "b)", {}};
 #ifdef NOCDYN_HAS_ENGINES
         // The paper's figures overlay ADAMS; ours overlay Simbody, with their difference.
-        const EngineComparison comparison = compareWithEngines(robot, c.trajectory, times);
-        io::writeCsvFile((out / (std::string(c.name) + "_validation.csv")).string(), toTable(comparison));
-        displacements.panels = {jointPanel(series, false, "Simbody", &comparison.simbody_u),
-                                differencePanel(series, false, "Simbody", comparison.simbody_u)};
-        forces.panels = {jointPanel(series, true, "Simbody", &comparison.simbody_tau),
-                         differencePanel(series, true, "Simbody", comparison.simbody_tau)};
-        agreement << "### " << c.name << "\n\n" << agreementTable(comparison) << "\n";
-        for (const EngineAgreement* a : {&comparison.simbody, &comparison.mujoco}) {
-            for (int j = 0; j < 3; ++j) {
+        const validation::EngineComparison comparison = validation::compareWithEngines(robot, c.trajectory, times);
+        io::writeCsvFile((out / (std::string(c.name) + "_validation.csv")).string(), validation::toTable(comparison));
+        std::vector<Eigen::VectorXd> simbody_u, simbody_tau;
+        for (const validation::MechanismSample& s : comparison.simbody) {
+            simbody_u.push_back(s.u);
+            simbody_tau.push_back(s.tau);
+        }
+        displacements.panels = {jointPanel(series, false, "Simbody", &simbody_u),
+                                differencePanel(series, false, "Simbody", simbody_u)};
+        forces.panels = {jointPanel(series, true, "Simbody", &simbody_tau),
+                         differencePanel(series, true, "Simbody", simbody_tau)};
+        agreement << "### " << c.name << "\n\n" << validation::agreementTable(comparison) << "\n";
+        for (const validation::EngineAgreement* a : {&comparison.simbody_agreement, &comparison.mujoco_agreement}) {
+            for (std::size_t j = 0; j < a->max_abs.size(); ++j) {
                 worst_abs = std::max(worst_abs, a->max_abs[j]);
                 worst_rel = std::max(worst_rel, a->max_rel_peak[j]);
             }
@@ -152,8 +158,8 @@ void reproduceTrajectories(const RobotParameters& robot, const std::filesystem::
             const double peak_force = series.summary.peak_tau[static_cast<std::size_t>(j)];
             char row[256];
             std::snprintf(row, sizeof row, "| %s | %d | %+.3f .. %+.3f | %.1f %% | %.2f | %.1f %% |\n", c.name, j + 1,
-                          lo * 1e3, hi * 1e3, 100.0 * peak_stroke / (0.5 * robot.stroke), peak_force,
-                          100.0 * peak_force / robot.peak_force);
+                          lo * 1e3, hi * 1e3, 100.0 * peak_stroke / (0.5 * limits.stroke), peak_force,
+                          100.0 * peak_force / limits.peak_force);
             summary << row;
         }
         for (const std::string& violation : series.summary.limit_violations)
@@ -227,7 +233,7 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
         const Model model(robot);
         const auto peak = [&](ControlLaw law, bool with_payload, std::size_t& saturated) {
             PoseController controller(model, law, taskCriticallyDamped(kNaturalFrequency));
-            SimbodyMechanismPlant plant(with_payload ? withPayload(robot, payload) : robot);
+            SimbodyPlant plant(with_payload ? withPayload(robot, payload) : robot);
             const PoseLoopResult r = runPoseLoop(controller, plant, paperTrajectory1(), loop);
             saturated += r.saturated_ticks;
             char cell[96];
@@ -247,8 +253,8 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
 #endif
 
 /// The prototype's workspace at theta = 0 with the paper's trajectories' paths of C over it.
-void reproduceWorkspace(const std::filesystem::path& out, std::ostream& summary) {
-    const Model model{RobotParameters{}};
+void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary) {
+    const Model model(robot);
     const WorkspaceMap map = workspaceMap(model, {0.0, 301});
     std::vector<PlotSeries> paths;
     const char* styles[] = {"lines lw 2 lc rgb '#2ca02c'", "lines lw 2 lc rgb '#9467bd'"};
@@ -281,7 +287,7 @@ void run(const ReproduceOptions& options) {
     std::error_code error;
     std::filesystem::create_directories(out, error);
     if (error || !std::filesystem::is_directory(out)) throw Error("cannot create output folder '" + options.out + "'");
-    const RobotParameters robot{};  // the short form, expanded to the general model by each section
+    const RobotDescription robot = loadRobotDescriptionOrDefault("");  // the paper's prototype, expanded by io
     std::ostringstream summary;
     summary << "# nocdyn reproduce: the paper's 3-PRR results\n\n"
             << "Robot: the paper's prototype (`robots/paper-3prr.yaml`, eq. 32 and Table I, SI units).\n\n";
@@ -290,7 +296,7 @@ void run(const ReproduceOptions& options) {
     reproduceRoundTrip(robot, summary);
     reproduceControl(robot, out, summary, options.closed_loop_duration);
     reproduceEnvelope(robot, out, summary);
-    reproduceWorkspace(out, summary);
+    reproduceWorkspace(robot, out, summary);
     reproduceShake(out.string(), summary);
 #ifdef NOCDYN_HAS_ENGINES
     reproduceExampleRobots(out, summary, options.closed_loop_duration);

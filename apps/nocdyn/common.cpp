@@ -8,7 +8,7 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
-#include "nocdyn/io/robot_yaml.hpp"
+#include "nocdyn/io/examples.hpp"
 
 namespace nocdyn::cli {
 
@@ -54,19 +54,8 @@ void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options) {
     command.add_option("--output,-o", options.output, "CSV file to write [default: stdout]");
 }
 
-RobotParameters loadRobotOrDefault(const std::string& path, const std::string& command) {
-    if (path.empty()) return RobotParameters{};
-    const std::string text = io::readRobotFileText(path);
-    if (io::isGeneralForm(text, path)) {
-        throw Error(path + ": `nocdyn " + command +
-                    "` models the paper's symmetric 3-PRR (the short robot form) only so far; pose, "
-                    "inverse-dynamics, validate and convert take any robot");
-    }
-    return io::parseRobot(text, path);
-}
-
 RobotDescription loadRobotDescriptionOrDefault(const std::string& path) {
-    if (path.empty()) return expand(RobotParameters{});
+    if (path.empty()) return io::exampleRobot("paper-3prr");
     return io::loadRobotDescription(path);
 }
 

@@ -9,7 +9,6 @@
 
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/description.hpp"
-#include "nocdyn/robot.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::cli {
@@ -39,12 +38,8 @@ void addRobotOption(CLI::App& command, std::string& robot_path);
 /// Adds --trajectory (required), --robot, --duration, --rate and --output.
 void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options);
 
-/// The robot file's parameters (the paper's symmetric 3-PRR short form), or the paper's
-/// prototype when the path is empty, for the commands that model only that robot so far.
-/// A general-form file is refused with a message naming `command` and what takes it.
-[[nodiscard]] RobotParameters loadRobotOrDefault(const std::string& path, const std::string& command);
-
-/// Any robot file (either form), or the paper's prototype when the path is empty.
+/// Any robot file (either form), or the paper's prototype (robots/paper-3prr.yaml, built in)
+/// when the path is empty.
 [[nodiscard]] RobotDescription loadRobotDescriptionOrDefault(const std::string& path);
 
 /// --duration if given, else the trajectory's own duration, else 0.2 s.

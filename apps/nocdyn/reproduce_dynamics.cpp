@@ -1,71 +1,46 @@
-// The 3-PRR's dynamics results for `nocdyn reproduce`: round trip, closed-loop control, operating envelope.
+// The paper prototype's dynamics results for `nocdyn reproduce`: round trip, closed-loop control,
+// operating envelope, all on the general model.
 #include "reproduce_dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <memory>
 #include <numbers>
 #include <ostream>
+#include <utility>
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/io/tables.hpp"
 #include "nocdyn/sampling.hpp"
-#ifdef NOCDYN_HAS_SIMBODY
-#include "simbody_plant.hpp"
-#endif
+#include "plants.hpp"
 
 namespace nocdyn::cli {
 
-std::string defaultPlantName() {
-#ifdef NOCDYN_HAS_SIMBODY
-    return "simbody";
-#else
-    return "nocdyn";
-#endif
-}
-
-std::unique_ptr<control::Plant> makePlant(const std::string& name, const RobotParameters& robot) {
-    if (name == "nocdyn") return std::make_unique<control::SimulatorPlant>(Model(robot));
-    if (name == "simbody") {
-#ifdef NOCDYN_HAS_SIMBODY
-        return std::make_unique<SimbodyPlant>(robot);
-#else
-        throw Error("plant 'simbody': this nocdyn was built without the Simbody model (NOCDYN_BUILD_VALIDATION=ON)");
-#endif
+ActuatorLimits actuatorLimits(const RobotDescription& robot) {
+    for (const LimbDescription& limb : robot.limbs) {
+        for (const JointDescription& joint : limb.joints) {
+            if (joint.actuated) return {joint.limits.upper - joint.limits.lower, joint.limits.effort};
+        }
     }
-    throw Error("unknown plant '" + name + "' (expected simbody or nocdyn)");
+    throw Error("robot '" + robot.name + "' has no actuated joint");
 }
 
-control::ClosedLoopResult runControlCase(const RobotParameters& robot, const PoseTrajectory& trajectory,
-                                         const ControlCase& options) {
-    const Model model(robot);
-    const control::Gains gains = control::criticallyDamped(options.natural_frequency);
-    std::unique_ptr<control::Controller> controller;
-    if (options.controller == "computed-torque") {
-        controller = std::make_unique<control::ComputedTorqueController>(model, gains);
-    } else if (options.controller == "pd") {
-        controller = std::make_unique<control::PdController>(control::equivalentPdGains(model, gains));
-    } else {
-        throw Error("unknown controller '" + options.controller + "' (expected computed-torque or pd)");
-    }
-    const RobotParameters plant_robot = control::withPayload(robot, options.payload_mass, options.payload_inertia);
-    const std::unique_ptr<control::Plant> plant = makePlant(options.plant, plant_robot);
-    return control::runClosedLoop(*controller, model, *plant, trajectory, options.loop);
-}
-
-Figure trackingErrorFigure(const std::string& title, const std::vector<control::ClosedLoopResult>& runs) {
+Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopResult>& runs) {
     Figure figure;
     figure.title = title;
     for (const auto& run : runs) {
         PlotPanel panel;
         char heading[200];
         std::snprintf(heading, sizeof heading, "%s on the %s plant: RMS error %.3g um", run.controller.c_str(),
-                      run.plant.c_str(), run.rms_error.maxCoeff() * 1e6);
+                      run.plant.c_str(), *std::max_element(run.rms_error.begin(), run.rms_error.end()) * 1e6);
         panel.title = heading;
         panel.xlabel = "t [s]";
         panel.ylabel = "u_{d,j} - u_j [{/Symbol m}m]";
-        for (int j = 0; j < 3; ++j) {
+        for (int j = 0; j < run.actuators; ++j) {
             PlotSeries line;
             line.label = "e_" + std::to_string(j + 1);
             line.x = run.t;
@@ -145,53 +120,58 @@ PoseTrajectory paperTrajectory(int k) { return k == 0 ? paperTrajectory1() : pap
 
 }  // namespace
 
-void reproduceControl(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary,
+void reproduceControl(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary,
                       double duration) {
-    ControlCase base;
-    base.loop.duration = duration;
+    constexpr double kNaturalFrequency = 50.0;  // [Hz]
+    const Model model(robot);
+    const std::string plant_name = defaultPlantName();
+    PoseLoopOptions loop;
+    loop.duration = duration;
+    const Payload payload{0.5, 1e-3, Vector2::Zero()};
     summary << "## Model-based control (closed loop)\n\n"
-            << "Controller at " << base.loop.rate / 1000 << " kHz over " << duration
-            << " s, with zero-order hold, error dynamics critically damped at " << base.natural_frequency
-            << " Hz, actuator saturation at " << robot.peak_force << " N, plant: "
-            << (base.plant == "simbody" ? "the independent Simbody model" : "nocdyn's forward dynamics")
-            << ". Computed torque: tau = I(u)(ddu_d + K_d e' + K_p e) + C(u, du) du (eq. 20); PD: the same gains times "
-               "diag(I) at the reference posture. The payload case adds 0.5 kg and 1e-3 kg m^2 to the plant's platform "
-               "only.\n\n"
+            << "Task-space controller (as `nocdyn control`) at " << loop.rate / 1000 << " kHz over " << duration
+            << " s, with zero-order hold, pose error critically damped at " << kNaturalFrequency
+            << " Hz, each force clipped at its joint's effort (" << actuatorLimits(robot).peak_force << " N), plant: "
+            << (plant_name == "simbody" ? "the independent Simbody model" : "nocdyn's forward dynamics")
+            << ", pose and rate measured from it. Computed torque: A_p^T tau = M_p(p) (ddp_d + K_d e' + K_p e) + "
+               "h_p(p, dp); PD: A_p^T tau = M_p(home) (K_p e + K_d e'). The payload case adds "
+            << payload.mass << " kg and " << payload.inertia << " kg m^2 at C to the plant's platform only.\n\n"
             << "| trajectory | controller | payload unknown to the controller | RMS error u1, u2, u3 [um] | peak error "
-               "[um] | "
-               "peak pose error x, y [um], theta [urad] | saturated ticks |\n"
+               "[um] | peak pose error x, y [um], theta [urad] | saturated ticks |\n"
             << "| --- | --- | --- | --- | --- | --- | --- |\n";
     for (int k = 0; k < 2; ++k) {
         const PoseTrajectory trajectory = paperTrajectory(k);
-        std::vector<control::ClosedLoopResult> runs;
-        for (const auto& [controller, payload] :
-             {std::pair<const char*, double>{"computed-torque", 0.0}, {"pd", 0.0}, {"computed-torque", 0.5}}) {
-            ControlCase c = base;
-            c.controller = controller;
-            c.payload_mass = payload;
-            c.payload_inertia = payload > 0.0 ? 1e-3 : 0.0;
-            runs.push_back(runControlCase(robot, trajectory, c));
-            const auto& r = runs.back();
+        std::vector<PoseLoopResult> runs;
+        for (const auto& [law, loaded] : {std::pair<ControlLaw, bool>{ControlLaw::computed_torque, false},
+                                          {ControlLaw::pd, false},
+                                          {ControlLaw::computed_torque, true}}) {
+            PoseController controller(model, law, taskCriticallyDamped(kNaturalFrequency));
+            const std::unique_ptr<RobotPlant> plant =
+                makePlant(plant_name, loaded ? withPayload(robot, payload) : robot);
+            runs.push_back(runPoseLoop(controller, *plant, trajectory, loop));
+            const PoseLoopResult& r = runs.back();
             char row[400];
             std::snprintf(row, sizeof row, "| %s | %s | %s | %.4g, %.4g, %.4g | %.4g | %.4g, %.4g, %.4g | %zu |\n",
-                          kTrajectories[k], controller, payload > 0.0 ? "0.5 kg" : "none", r.rms_error(0) * 1e6,
-                          r.rms_error(1) * 1e6, r.rms_error(2) * 1e6, r.peak_error.maxCoeff() * 1e6,
-                          r.pose_peak_error(1) * 1e6, r.pose_peak_error(2) * 1e6, r.pose_peak_error(0) * 1e6,
-                          r.saturated_ticks);
+                          kTrajectories[k], name(law), loaded ? "0.5 kg" : "none", r.rms_error[0] * 1e6,
+                          r.rms_error[1] * 1e6, r.rms_error[2] * 1e6,
+                          *std::max_element(r.peak_error.begin(), r.peak_error.end()) * 1e6, r.pose_peak_error(1) * 1e6,
+                          r.pose_peak_error(2) * 1e6, r.pose_peak_error(0) * 1e6, r.saturated_ticks);
             summary << row;
         }
         const std::string stem = std::string("control_") + kTrajectories[k];
-        io::writeCsvFile((out / (stem + ".csv")).string(), control::toTable(runs[0]));
+        io::writeCsvFile((out / (stem + ".csv")).string(), io::toTable(runs[0]));
         renderFigure(trackingErrorFigure(std::string(kTrajectories[k]) + ": actuator tracking errors", runs),
                      (out / (stem + "_errors")).string());
     }
-    summary
-        << "\nFigures: `control_paper1_errors.png`, `control_paper2_errors.png` (panels: computed torque, PD, "
-           "computed torque with the unknown payload); CSV of the computed-torque runs: `control_paper{1,2}.csv`.\n\n";
+    summary << "\nFigures: `control_paper1_errors.png`, `control_paper2_errors.png` (panels: computed torque, PD, "
+               "computed torque with the unknown payload); CSV of the computed-torque runs: `control_paper{1,2}.csv`. "
+               "`nocdyn control --trajectory paper1 [--controller pd] [--payload-mass 0.5 --payload-inertia 1e-3]` "
+               "reproduces each row.\n\n";
 }
 
-void reproduceEnvelope(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary) {
+void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary) {
     const Model model(robot);
+    const ActuatorLimits limits = actuatorLimits(robot);
     const auto points = operatingEnvelope(model);
     io::writeCsvFile((out / "envelope.csv").string(), envelopeTable(points));
     renderFigure(envelopeFigure(points, robot.name), (out / "envelope").string());
@@ -200,7 +180,7 @@ void reproduceEnvelope(const RobotParameters& robot, const std::filesystem::path
         << "## Operating envelope\n\n"
         << "Largest amplitude A of p(t) = A sin(2 pi f t) along one axis about the reference posture, within the "
            "stroke (+-"
-        << robot.stroke * 0.5e3 << " mm), the workspace and the peak force (" << robot.peak_force
+        << limits.stroke * 0.5e3 << " mm), the workspace and the peak force (" << limits.peak_force
         << " N), from the inverse dynamics over one period (256 samples), f = 1..100 Hz log-spaced "
            "(`envelope.csv`, `envelope.png`).\n\n"
         << "| axis | stroke-bound amplitude | stroke binds up to [Hz] | force binds from [Hz] | amplitude at 100 Hz | "
@@ -256,14 +236,14 @@ void reproduceEnvelope(const RobotParameters& robot, const std::filesystem::path
         std::snprintf(row, sizeof row,
                       "| %s | combined | peak abs(u) %.3f mm = %.1f %% of half stroke | | peak abs(tau) %.2f N | %.1f "
                       "%% of peak force |\n",
-                      kTrajectories[k], stroke * 1e3, 100.0 * stroke / (0.5 * robot.stroke), force,
-                      100.0 * force / robot.peak_force);
+                      kTrajectories[k], stroke * 1e3, 100.0 * stroke / (0.5 * limits.stroke), force,
+                      100.0 * force / limits.peak_force);
         summary << row;
     }
     summary << "\n";
 }
 
-void reproduceRoundTrip(const RobotParameters& robot, std::ostream& summary) {
+void reproduceRoundTrip(const RobotDescription& robot, std::ostream& summary) {
     const Model model(robot);
     summary
         << "## Forward dynamics round trip\n\n"

@@ -1,5 +1,6 @@
-// The 3-PRR's dynamics results for `nocdyn reproduce` and the helpers that `control`, `envelope` and
-// `simulate` share: plants, closed-loop cases, figures, markdown sections.
+// The paper prototype's dynamics results for `nocdyn reproduce` and the helpers that `control`,
+// `envelope` and `simulate` share: figures, markdown sections. Every section runs the general
+// model (the short form expanded by io).
 #pragma once
 
 #include <filesystem>
@@ -8,34 +9,24 @@
 #include <string>
 #include <vector>
 
-#include "nocdyn/control.hpp"
+#include "nocdyn/description.hpp"
 #include "nocdyn/envelope.hpp"
-#include "nocdyn/robot.hpp"
+#include "nocdyn/general_control.hpp"
+#include "nocdyn/io/csv.hpp"
 #include "plot.hpp"
 
 namespace nocdyn::cli {
 
-/// "simbody" (when built with the Simbody model) or "nocdyn" (our forward dynamics).
-[[nodiscard]] std::string defaultPlantName();
-/// A plant built from `robot`. Throws nocdyn::Error for an unknown name or a plant not built in.
-[[nodiscard]] std::unique_ptr<control::Plant> makePlant(const std::string& name, const RobotParameters& robot);
-
-/// One closed-loop case.
-struct ControlCase {
-    std::string controller = "computed-torque";  ///< "computed-torque" or "pd"
-    double natural_frequency = 50.0;             ///< f_n of the error dynamics [Hz]
-    std::string plant = defaultPlantName();
-    double payload_mass = 0.0;     ///< [kg], on the plant's platform only (model mismatch)
-    double payload_inertia = 0.0;  ///< [kg m^2]
-    control::ClosedLoopOptions loop;
+/// The actuators' limits of a robot whose actuated joints share them (the paper's prototype):
+/// the first actuated joint's range (upper - lower, the total stroke) and effort (the peak force).
+struct ActuatorLimits {
+    double stroke = 0.0;      ///< [m or rad]
+    double peak_force = 0.0;  ///< [N or N m]
 };
-
-/// Runs one case of `trajectory` with the general model of `robot` as the controller's model.
-[[nodiscard]] control::ClosedLoopResult runControlCase(const RobotParameters& robot, const PoseTrajectory& trajectory,
-                                                       const ControlCase& options);
+[[nodiscard]] ActuatorLimits actuatorLimits(const RobotDescription& robot);
 
 /// Tracking errors u_d - u per actuator [um] versus time, one panel per run.
-[[nodiscard]] Figure trackingErrorFigure(const std::string& title, const std::vector<control::ClosedLoopResult>& runs);
+[[nodiscard]] Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopResult>& runs);
 
 /// Envelope as CSV: axis,frequency,amplitude,limit,limb,kinematic_amplitude,peak_force,peak_stroke
 /// (axis 0 theta, 1 x, 2 y; limit 0 stroke (a joint's range), 1 force (an actuator's effort),
@@ -44,21 +35,22 @@ struct ControlCase {
 /// Amplitude versus frequency, log axes: one panel for x and y [mm], one for theta [deg].
 [[nodiscard]] Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot);
 
-/// Section "Model-based control": for paper1 and paper2, computed torque and PD on the
-/// default plant (Simbody when built in), plus computed torque with an unknown 0.5 kg payload;
+/// Section "Model-based control": for paper1 and paper2, task-space computed torque and PD
+/// (general_control.hpp) on the default plant (Simbody when built in), plus computed torque with
+/// an unknown 0.5 kg payload;
 /// control_<trajectory>.csv and control_<trajectory>_errors.png/.svg in `out`; a markdown table
 /// of RMS and peak errors in `summary`.
 /// duration: of each closed-loop run [s].
-void reproduceControl(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary,
+void reproduceControl(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary,
                       double duration);
 
 /// Section "Operating envelope": envelope.csv and envelope.png/.svg in `out`; a markdown table
 /// of the binding limits, and the paper trajectories checked against it (per-axis amplitude
 /// versus the envelope at its frequency, and the combined peak stroke and force).
-void reproduceEnvelope(const RobotParameters& robot, const std::filesystem::path& out, std::ostream& summary);
+void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary);
 
 /// Section "Forward dynamics round trip": the inverse-dynamics forces of paper1 and paper2
 /// (10 kHz, linear in between) fed to the forward dynamics; max |u - u_d| and pose error.
-void reproduceRoundTrip(const RobotParameters& robot, std::ostream& summary);
+void reproduceRoundTrip(const RobotDescription& robot, std::ostream& summary);
 
 }  // namespace nocdyn::cli

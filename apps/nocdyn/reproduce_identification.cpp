@@ -18,11 +18,10 @@
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/tables.hpp"
 #include "nocdyn/shake.hpp"
+#include "plants.hpp"
 #include "plot.hpp"
-#ifdef NOCDYN_HAS_SIMBODY
-#include "simbody_plant.hpp"
-#endif
 
 namespace nocdyn::cli {
 
@@ -58,14 +57,6 @@ struct Outcome {
     std::string plant;
     Vector3 peak_error = Vector3::Zero();  // tracking [rad, m, m]
 };
-
-std::unique_ptr<RobotPlant> makeExperimentPlant(const RobotDescription& robot) {
-#ifdef NOCDYN_HAS_SIMBODY
-    return std::make_unique<SimbodyMechanismPlant>(robot);
-#else
-    return std::make_unique<RungeKuttaRobotPlant>(Model(robot));
-#endif
-}
 
 io::Table decimated(const io::Table& table) {
     io::Table out;
@@ -108,7 +99,8 @@ Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c
         }
     }
     try {
-        const std::unique_ptr<RobotPlant> plant = makeExperimentPlant(plant_robot);
+        const std::unique_ptr<RobotPlant> plant =
+            makePlant(defaultPlantName() == "simbody" ? "simbody" : "nocdyn-rk4", plant_robot);
         PoseController controller(model, ControlLaw::computed_torque, taskCriticallyDamped(kNaturalFrequency));
         PoseLoopOptions loop;
         loop.rate = kRate;
@@ -121,7 +113,7 @@ Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c
         outcome.peak_error = run.pose_peak_error;
         // the encoders' readings the controller used; the force sensor's own noise
         const Measurements log = sensorLog(run, kNoiseU, kNoiseTau, kSeed + 1);
-        io::writeCsvFile((folder / (c.key + "_log.csv")).string(), decimated(toTable(log)));
+        io::writeCsvFile((folder / (c.key + "_log.csv")).string(), decimated(io::toTable(log)));
         IdentificationOptions options;
         options.held_forces = true;  // the log's forces are the commands held over each tick
         options.friction = c.friction;

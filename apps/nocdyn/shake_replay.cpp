@@ -17,10 +17,8 @@
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "plants.hpp"
 #include "plot.hpp"
-#ifdef NOCDYN_HAS_SIMBODY
-#include "simbody_plant.hpp"
-#endif
 
 namespace nocdyn::cli {
 
@@ -30,16 +28,6 @@ extern const char* const kElCentroAt2;
 namespace {
 
 constexpr std::array<const char*, 3> kAxisNames = {"alpha", "ax", "ay"};
-
-std::unique_ptr<RobotPlant> makePlant(const std::string& name, const RobotDescription& robot, double accuracy) {
-    if (name == "nocdyn") return std::make_unique<SimulatorRobotPlant>(Model(robot));
-    if (name == "nocdyn-rk4") return std::make_unique<RungeKuttaRobotPlant>(Model(robot));
-#ifdef NOCDYN_HAS_SIMBODY
-    if (name == "simbody") return std::make_unique<SimbodyMechanismPlant>(robot, accuracy);
-#endif
-    (void)accuracy;
-    throw Error("--plant " + name + ": not built in (use --plant nocdyn)");
-}
 
 const std::vector<double>& target(const FittedRecord& fit, int axis) {
     return axis == 0 ? fit.alpha : axis == 1 ? fit.ax : fit.ay;

@@ -30,7 +30,6 @@
 #include <vector>
 
 #include "nocdyn/forward_dynamics.hpp"
-#include "nocdyn/io/csv.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 #include "nocdyn/trajectory.hpp"
@@ -194,8 +193,5 @@ struct PoseLoopResult {
 [[nodiscard]] PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant,
                                          const PoseTrajectory& trajectory, const PoseLoopOptions& options,
                                          const Pose* start = nullptr);
-
-/// CSV: t, theta_d, x_d, y_d, theta, x, y, e_theta, e_x, e_y, u1..un, u1_d..un_d, tau1..taun (SI).
-[[nodiscard]] io::Table toTable(const PoseLoopResult& result);
 
 }  // namespace nocdyn

@@ -237,7 +237,4 @@ struct Motion {
 /// force plus Gaussian force-measurement noise noise_tau (the force sensor's alone).
 [[nodiscard]] Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_tau, unsigned seed = 1);
 
-/// The log as a CSV table t,u1..un,tau1..taun (what identify reads).
-[[nodiscard]] io::Table toTable(const Measurements& measurements);
-
 }  // namespace nocdyn

@@ -643,7 +643,7 @@ PYBIND11_MODULE(_nocdyn, m) {
             py::arg("text"), py::arg("source") = "<string>")
         .def_static(
             "example", [](const std::string& name) { return Robot(io::exampleRobot(name)); }, py::arg("name"))
-        .def_static("paper", [] { return Robot(expand(RobotParameters{})); })
+        .def_static("paper", [] { return Robot(io::exampleRobot("paper-3prr")); })
         .def_static("example_names", [] { return io::exampleRobotNames(); })
         .def_property_readonly("name", [](const Robot& r) { return r.model->description.name; })
         .def_property_readonly("source", [](const Robot& r) { return r.model->description.source; })

@@ -61,4 +61,53 @@ Table toTable(const InverseDynamicsSeries& series, int actuators) {
     return table;
 }
 
+Table toTable(const PoseLoopResult& result) {
+    Table table;
+    table.columns = {"t", "theta_d", "x_d", "y_d", "theta", "x", "y", "e_theta", "e_x", "e_y"};
+    for (const char* suffix : {"", "_d"}) {
+        for (int a = 1; a <= result.actuators; ++a)
+            table.columns.push_back(std::string("u").append(std::to_string(a)).append(suffix));
+    }
+    for (int a = 1; a <= result.actuators; ++a) table.columns.push_back(std::string("tau").append(std::to_string(a)));
+    table.rows.reserve(result.t.size());
+    for (std::size_t k = 0; k < result.t.size(); ++k) {
+        const Pose& d = result.p_d[k];
+        const Pose& p = result.p[k];
+        std::vector<double> row{result.t[k], d(0), d(1), d(2), p(0), p(1), p(2), d(0) - p(0), d(1) - p(1), d(2) - p(2)};
+        for (const auto* v : {&result.u, &result.u_d, &result.tau}) {
+            for (int a = 0; a < result.actuators; ++a) row.push_back((*v)[k](a));
+        }
+        table.rows.push_back(std::move(row));
+    }
+    return table;
+}
+
+Table toTable(const Measurements& measurements) {
+    Table table;
+    const auto n = measurements.u.cols();
+    const bool rates = measurements.du.size() > 0 && measurements.ddu.size() > 0;
+    table.columns = {"t"};
+    const auto append = [&](const char* quantity) {
+        for (std::string& name : numbered(quantity, static_cast<int>(n))) table.columns.push_back(std::move(name));
+    };
+    append("u");
+    append("tau");
+    if (rates) {
+        append("du");
+        append("ddu");
+    }
+    for (std::size_t k = 0; k < measurements.t.size(); ++k) {
+        const auto kk = static_cast<Eigen::Index>(k);
+        std::vector<double> row{measurements.t[k]};
+        for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.u(kk, a));
+        for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.tau(kk, a));
+        if (rates) {
+            for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.du(kk, a));
+            for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.ddu(kk, a));
+        }
+        table.rows.push_back(std::move(row));
+    }
+    return table;
+}
+
 }  // namespace nocdyn::io

@@ -350,6 +350,107 @@ TEST(GeneralMechanism, PaperRobotAgreesWith3PrrEngineModels) {
     }
 }
 
+/// Both engines' inverse dynamics of the paper's prototype, one call per engine.
+template <class F>
+void forEachEngine(F&& f) {
+    SimbodyMechanism simbody(nocdyn::expand(RobotParameters{}));
+    MujocoMechanism mujoco(nocdyn::expand(RobotParameters{}));
+    f("simbody",
+      [&](const PoseTrajectory& t, const std::vector<double>& times) { return simbody.inverseDynamics(t, times); });
+    f("mujoco",
+      [&](const PoseTrajectory& t, const std::vector<double>& times) { return mujoco.inverseDynamics(t, times); });
+}
+
+TEST(GeneralMechanism, PaperRobotAtHomeHasZeroActuatorsAndNoForce) {
+    forEachEngine([](const char* engine, auto inverseDynamics) {
+        const PoseTrajectory still;  // every axis zero: held at home
+        for (const MechanismSample& s : inverseDynamics(still, {0.0, 0.5})) {
+            EXPECT_LT(s.u.cwiseAbs().maxCoeff(), 1e-14) << engine;
+            EXPECT_LT(s.tau.cwiseAbs().maxCoeff(), 1e-12) << engine;
+        }
+    });
+    SimbodyMechanism plant(nocdyn::expand(RobotParameters{}));
+    plant.resetPlant(Eigen::Vector3d::Zero());
+    EXPECT_LT(plant.u().cwiseAbs().maxCoeff(), 1e-14);
+    EXPECT_LT(plant.pose().cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_EQ(plant.kineticEnergy(), 0.0);
+}
+
+TEST(GeneralMechanism, PaperRobotAssemblesAtTheRequestedPose) {
+    const PoseTrajectory trajectory = nocdyn::paperTrajectory1();
+    const std::vector<double> times = linspace(0.0, 0.1, 41);
+    forEachEngine([&](const char* engine, auto inverseDynamics) {
+        const auto s = inverseDynamics(trajectory, times);
+        for (std::size_t k = 0; k < s.size(); ++k) {
+            nocdyn::Pose p, dp, ddp;
+            trajectory.evaluate(times[k], p, dp, ddp);
+            EXPECT_LT((s[k].pose - p).cwiseAbs().maxCoeff(), 1e-13) << engine << " t = " << times[k];
+        }
+    });
+    SimbodyMechanism plant(nocdyn::expand(RobotParameters{}));
+    const Eigen::Vector3d pose(0.05, 0.004, -0.003), rate(0.7, -0.02, 0.03);
+    plant.resetPlant(pose, rate);
+    EXPECT_LT((plant.pose() - pose).cwiseAbs().maxCoeff(), 1e-14);
+    EXPECT_LT((plant.poseRate() - rate).cwiseAbs().maxCoeff(), 1e-13);
+    EXPECT_GT(plant.u().cwiseAbs().maxCoeff(), 1e-3);  // the sliders moved
+}
+
+TEST(GeneralMechanism, PaperRobotLargeStepsBetweenSamplesStayOnTheHomeBranch) {
+    // Large rotations sampled coarsely: the continuation from the previous sample is far off,
+    // yet every sample equals the end of a fine, continuous sampling up to it.
+    PoseTrajectory trajectory;
+    trajectory.theta.harmonics = {{0.8, 3.0, std::numbers::pi / 2}};  // first sample at 0.8 rad
+    trajectory.x.harmonics = {{0.01, 2.0, 0.0}};
+    trajectory.y.harmonics = {{-0.008, 4.0, 1.0}};
+    const std::vector<double> coarse = {0.0, 0.16, 0.02, 0.17, 0.31};
+    forEachEngine([&](const char* engine, auto inverseDynamics) {
+        const auto a = inverseDynamics(trajectory, coarse);
+        for (std::size_t k = 0; k < coarse.size(); ++k) {
+            const MechanismSample fine = inverseDynamics(trajectory, linspace(0.0, coarse[k], 400)).back();
+            EXPECT_LT((a[k].u - fine.u).cwiseAbs().maxCoeff(), 1e-12) << engine << " t = " << coarse[k];
+            EXPECT_LT((a[k].tau - fine.tau).cwiseAbs().maxCoeff(), 1e-10 * (1.0 + fine.tau.cwiseAbs().maxCoeff()))
+                << engine << " t = " << coarse[k];
+        }
+    });
+}
+
+TEST(GeneralMechanism, SimbodyPlantConservesKineticEnergyWithoutForces) {
+    SimbodyMechanism plant(nocdyn::expand(RobotParameters{}));
+    plant.resetPlant(Eigen::Vector3d(0.01, 0.001, -0.002), Eigen::Vector3d(0.8, 0.03, -0.02));
+    const double T0 = plant.kineticEnergy();
+    ASSERT_GT(T0, 1e-4);
+    double worst = 0.0;
+    for (int k = 0; k < 10; ++k) {
+        plant.advance(0.01);
+        worst = std::max(worst, std::abs(plant.kineticEnergy() - T0) / T0);
+    }
+    std::printf("[plant] kinetic energy drift over 0.1 s: %.3e (relative)\n", worst);
+    EXPECT_NEAR(plant.time(), 0.1, 1e-14);
+    EXPECT_LT(worst, 1e-8);
+    EXPECT_GT(std::abs(plant.pose()[0] - 0.01), 0.01);  // it really moved
+}
+
+TEST(GeneralMechanism, SimbodyPlantAcceleratesAsInverseDynamicsPredicts) {
+    // Forward dynamics with the inverse-dynamics forces gives back the actuator accelerations:
+    // an independent check of the sign and size of tau.
+    SimbodyMechanism engine(nocdyn::expand(RobotParameters{}));
+    SimbodyMechanism plant(nocdyn::expand(RobotParameters{}));
+    const PoseTrajectory trajectory = nocdyn::paperTrajectory1();
+    for (double t0 : {0.0, 0.013, 0.042}) {
+        const MechanismSample s = engine.inverseDynamics(trajectory, linspace(0.0, t0, 20)).back();
+        nocdyn::Pose p, dp, ddp;
+        trajectory.evaluate(t0, p, dp, ddp);
+        plant.resetPlant(p, dp);
+        EXPECT_LT((plant.du() - s.du).cwiseAbs().maxCoeff(), 1e-12);
+        plant.setActuatorForces(s.tau);
+        const double h = 1e-6;
+        plant.advance(h);
+        const Eigen::VectorXd ddu = (plant.du() - s.du) / h;
+        EXPECT_LT((ddu - s.ddu).cwiseAbs().maxCoeff(), 1e-3 * s.ddu.cwiseAbs().maxCoeff())
+            << "t0 = " << t0 << " plant " << ddu.transpose() << " vs " << s.ddu.transpose();
+    }
+}
+
 /// Random robots whose limbs are all of one type (the parameter): one geometry with every
 /// choice of three actuated joints among the nine, and four redundant robots (four limbs with
 /// four actuators, three limbs with five); gravity and friction alternately on and off.

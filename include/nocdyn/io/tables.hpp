@@ -5,6 +5,8 @@
 #include <string>
 #include <vector>
 
+#include "nocdyn/general_control.hpp"
+#include "nocdyn/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/reactions.hpp"
 #include "nocdyn/sampling.hpp"
@@ -29,5 +31,13 @@ void appendReactions(const Reactions& reactions, int limbs, std::vector<double>&
 
 /// The whole series as a table.
 [[nodiscard]] Table toTable(const InverseDynamicsSeries& series, int actuators);
+
+/// A closed-loop run: t, theta_d, x_d, y_d, theta, x, y, e_theta, e_x, e_y, u1..un, u1_d..un_d,
+/// tau1..taun (SI).
+[[nodiscard]] Table toTable(const PoseLoopResult& result);
+
+/// An experiment's log: t,u1..un,tau1..taun, then du1..dun,ddu1..ddun when it has them (what
+/// identify reads).
+[[nodiscard]] Table toTable(const Measurements& measurements);
 
 }  // namespace nocdyn::io
