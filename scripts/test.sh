@@ -2,7 +2,8 @@
 # Every test from a fresh Debian 12 machine: install what is missing, build everything
 # (library, CLI, validation engines, benchmarks, tests), run the whole suite, then build
 # and run it again under AddressSanitizer and UndefinedBehaviorSanitizer, then a short
-# libFuzzer run of each file reader (clang).
+# libFuzzer run of each file reader (clang). Between the release and the sanitizer builds the
+# mutation check makes sure that the tests catch deliberate errors in the core formulas.
 # Every option is set explicitly: a cache left in build/ by scripts/reproduce.sh (tests off)
 # must not turn the tests off here, and ctest fails when it finds no test.
 set -euo pipefail
@@ -16,6 +17,10 @@ cmake --build build -j"$jobs"
 # playwright-core (the driver only; the browser is Debian's chromium) for ctest -L browser
 npm ci --prefix tests/browser --no-audit --no-fund
 ctest --test-dir build --output-on-failure --no-tests=error -j"$jobs"
+
+# The mutation check (scripts/mutation/): deliberate errors in the core formulas, each of which
+# some test must catch; its own -O1 build without Simbody and MuJoCo, one file rebuilt per error.
+python3 scripts/mutation/run.py --jobs "$jobs"
 
 # The Python package is not built here: an interpreter cannot load an ASan-instrumented module
 # without LD_PRELOAD of the ASan runtime (its tests run in the release build above).
@@ -32,4 +37,4 @@ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=
   -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=ON -DNOCDYN_BUILD_PYTHON=OFF
 cmake --build build-fuzz -j"$jobs" --target nocdyn_fuzzers
 ctest --test-dir build-fuzz --output-on-failure --no-tests=error -L fuzz -j"$jobs"
-echo "test.sh: all tests passed (release, sanitizer and fuzz builds)"
+echo "test.sh: all tests passed (release, mutation, sanitizer and fuzz builds)"

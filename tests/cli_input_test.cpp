@@ -109,18 +109,18 @@ TEST(CliInput, NonFinitePoseIsNotCalledAMeasurement) {
     EXPECT_EQ(r.err.find("by nan mm"), std::string::npos) << r.err;
 }
 
-TEST(CliInput, SimulationWithImpossibleTolerancesEndsWithAClearError) {
-    // the round-trip CSV of inverse-dynamics, replayed with the tightest accepted tolerances
+TEST(CliInput, SimulationWithTheTightestTolerancesFinishesInTime) {
+    // the round-trip CSV of inverse-dynamics, replayed with the tightest accepted tolerances: the
+    // integrator takes more and smaller steps (14 instead of 6 over 2 ms) and still finishes
     const fs::path forces = scratch("paper1.csv");
     const CliRun id = run("inverse-dynamics --trajectory paper1 --duration 0.002 -o " + forces.string());
     ASSERT_EQ(id.exit_code, 0) << id.err;
     const CliRun r = run("simulate --forces " + forces.string() + " --atol 1e-15 --rtol 1e-14");
     EXPECT_NE(r.exit_code, 124) << "simulate did not finish within " << kTimeLimit << " s";
-    if (r.exit_code != 0) {
-        EXPECT_EQ(r.exit_code, 1) << r.err;
-        EXPECT_NE(r.err.find("t = "), std::string::npos) << r.err;
-        EXPECT_NE(r.err.find("integrator"), std::string::npos) << r.err;
-    }
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("steps accepted"), std::string::npos) << r.err;
+    // a header and the 2 ms at the output rate (10 kHz)
+    EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 21) << r.out;
 }
 
 TEST(CliInput, LeavingTheWorkspaceInSimulationIsNamedAsSuch) {

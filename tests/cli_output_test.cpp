@@ -14,6 +14,7 @@
 #include <fstream>
 
 #include "cli_support.hpp"
+#include "skip.hpp"
 #include "nocdyn/io/csv.hpp"
 
 namespace nocdyn::test {
@@ -143,7 +144,7 @@ TEST(CliOutput, OutputThatIsAFifoIsWrittenThroughAndStaysAFifo) {
 }
 
 TEST(CliOutput, FullDeviceFailsWithOneLineAndExitOne) {
-    if (!fs::is_character_file("/dev/full")) GTEST_SKIP() << "no /dev/full";
+    if (!fs::is_character_file("/dev/full")) NOCDYN_SKIP_OR_FAIL_IN_CI("no /dev/full");
     for (const char* redirect : {"> /dev/full", "-o /dev/full"}) {
         const CliResult r = runCli(std::string("inverse-dynamics --trajectory paper1 ") + redirect);
         EXPECT_EQ(r.exit_code, 1) << redirect;

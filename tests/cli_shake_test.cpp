@@ -40,7 +40,8 @@ TEST(CliShake, WritesTheTargetAndAchievedAccelerationAndTheScales) {
     for (const auto& row : table.rows) peak = std::max(peak, std::abs(row[ax]));
     EXPECT_GT(peak, 0.2 * 9.80665);  // El Centro's first 3 s peak near 0.28 g
     EXPECT_LT(peak, 0.33 * 9.80665);
-    EXPECT_LT(json["metrics"]["ax"]["rms_error"].get<double>(), 0.5);
+    // measured: a relative RMS error of 0.015 between the achieved and the target acceleration
+    EXPECT_LT(json["metrics"]["ax"]["rms_error"].get<double>(), 0.15);
     EXPECT_TRUE(std::filesystem::exists(dir / "shake_spectrum.svg"));
     EXPECT_TRUE(std::filesystem::exists(dir / "shake_acceleration.png"));
 }

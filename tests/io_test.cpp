@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <limits>
 
 #include "nocdyn/error.hpp"
@@ -342,8 +343,31 @@ TEST(Csv, RaggedRowsAndNonNumbersAreErrorsWithTheLine) {
     EXPECT_THROW((void)io::readCsvFile("/nonexistent.csv"), Error);
 }
 
-TEST(Csv, UnwritablePathLeavesNothingBehind) {
-    EXPECT_THROW(io::writeCsvFile("/nonexistent-dir/x.csv", io::Table{{"t"}, {{1.0}}}), Error);
+TEST(Csv, UnwritablePathIsAnErrorNamingThePath) {
+    try {
+        io::writeCsvFile("/nonexistent-dir/x.csv", io::Table{{"t"}, {{1.0}}});
+        ADD_FAILURE() << "writing into a missing folder succeeded";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("/nonexistent-dir/x.csv"), std::string::npos) << e.what();
+    }
+}
+
+TEST(Csv, AFailedWriteLeavesNothingBehindAndTheOldFileAsItWas) {
+    // a row that cannot be written (not a finite number) fails the write after it has begun
+    const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "failed_write";
+    std::filesystem::remove_all(dir);
+    std::filesystem::create_directories(dir);
+    const io::Table bad{{"t"}, {{1.0}, {std::numeric_limits<double>::quiet_NaN()}}};
+    EXPECT_THROW(io::writeCsvFile((dir / "new.csv").string(), bad), Error);
+    EXPECT_TRUE(std::filesystem::is_empty(dir)) << "a failed write of a new file left a file in " << dir;
+    std::ofstream(dir / "old.csv") << "t\n2\n";
+    EXPECT_THROW(io::writeCsvFile((dir / "old.csv").string(), bad), Error);
+    std::ifstream in(dir / "old.csv");
+    const std::string old((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    EXPECT_EQ(old, "t\n2\n");
+    int files = 0;
+    for ([[maybe_unused]] const auto& entry : std::filesystem::directory_iterator(dir)) ++files;
+    EXPECT_EQ(files, 1) << "a failed write over an old file left another file in " << dir;
 }
 
 TEST(TrajectoryFile, DuplicatesRangesAndSecondDocumentsAreErrors) {

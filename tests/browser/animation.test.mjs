@@ -6,14 +6,17 @@
 //
 //   node animation.test.mjs --nocdyn BIN --source SOURCE_DIR --work DIR
 //
-// Exit status 77 (ctest SKIP_RETURN_CODE) with a message when chromium or playwright-core is absent.
+// Exit status 77 (ctest SKIP_RETURN_CODE) with a message when chromium or playwright-core is absent;
+// under CI=true (.ci/run) a missing tool fails the test instead (exit status 1), naming it.
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
 const CHROMIUM = '/usr/bin/chromium';
-const SKIP = 77;
+// In CI nothing is skipped: a missing browser must fail the run, not pass it unseen.
+const SKIP = process.env.CI === 'true' ? 1 : 77;
+const SKIPPED = SKIP === 77 ? 'SKIPPED' : 'FAILED (CI=true, nothing is skipped)';
 
 function option(name) {
   const i = process.argv.indexOf(name);
@@ -23,14 +26,14 @@ function option(name) {
 const nocdyn = option('--nocdyn'), source = option('--source'), work = option('--work');
 
 if (!fs.existsSync(CHROMIUM)) {
-  console.log(`SKIPPED: ${CHROMIUM} is absent (apt-get install chromium, see scripts/install-deps.sh)`);
+  console.log(`${SKIPPED}: ${CHROMIUM} is absent (apt-get install chromium, see scripts/install-deps.sh)`);
   process.exit(SKIP);
 }
 let chromium;
 try {
   ({ chromium } = await import('playwright-core'));
 } catch {
-  console.log('SKIPPED: playwright-core is not installed (npm ci --prefix tests/browser, as scripts/test.sh does)');
+  console.log(`${SKIPPED}: playwright-core is not installed (npm ci --prefix tests/browser, as scripts/test.sh does)`);
   process.exit(SKIP);
 }
 

@@ -13,6 +13,14 @@ import pytest
 
 import nocdyn
 
+def skip_or_fail_in_ci(reason):
+    """Skips the test for a missing tool or file; under CI=true (.ci/run) fails it instead, so
+    that CI cannot pass with tests that did not run."""
+    if os.environ.get("CI") == "true":
+        pytest.fail(f"{reason} (CI=true: a test that would skip fails instead)")
+    pytest.skip(reason)
+
+
 SOURCE_DIR = pathlib.Path(os.environ.get("NOCDYN_SOURCE_DIR", pathlib.Path(__file__).resolve().parents[2]))
 
 
@@ -31,7 +39,7 @@ def cli():
     """Runs the nocdyn CLI: returns (exit code, stdout, stderr)."""
     path = os.environ.get("NOCDYN_CLI")
     if not path or not os.path.exists(path):
-        pytest.skip("NOCDYN_CLI does not name the built nocdyn binary (ctest sets it)")
+        skip_or_fail_in_ci("NOCDYN_CLI does not name the built nocdyn binary (ctest sets it)")
 
     def run(*args):
         done = subprocess.run([path, *map(str, args)], capture_output=True, text=True, timeout=60)
@@ -44,5 +52,5 @@ def cli():
 def golden_dir():
     path = pathlib.Path(os.environ.get("NOCDYN_GOLDEN_DIR", SOURCE_DIR.parent / "shared" / "golden"))
     if not (path / "paper_trajectory1.csv").exists():
-        pytest.skip(f"no golden files in {path} (NOCDYN_GOLDEN_DIR)")
+        skip_or_fail_in_ci(f"no golden files in {path} (NOCDYN_GOLDEN_DIR)")
     return path

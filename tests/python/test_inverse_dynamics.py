@@ -73,6 +73,11 @@ def test_paper_trajectories_reproduce_the_golden_values_to_1e9(golden_dir, paper
         assert np.all(np.abs(getattr(result, name) - theirs) <= np.maximum(1e-9 * np.abs(theirs), 1e-12 * peak)), name
 
 
+# Measured: Lagrange's equations by central differences (h = 1e-6) hold to 4.8e-12 of the terms'
+# scale on the paper's robot.
+LAGRANGE_TOLERANCE = 5e-11
+
+
 def random_motion(robot, n, seed=1):
     rng = np.random.default_rng(seed)
     P = robot.home + rng.uniform(-1, 1, (n, 3)) * [0.02, 0.003, 0.003]
@@ -97,15 +102,43 @@ def test_one_sample_equals_its_batch_row_and_the_full_path(name):
             assert np.all(np.abs(getattr(full, field) - ref) <= 1e-12 * max(1.0, np.max(np.abs(ref)))), field
 
 
-def test_matrices_satisfy_the_noc_equations_of_motion(paper_robot):
-    """Three actuators, no gravity or friction: tau = I ddu + C du (eq. 20), I symmetric positive."""
+def test_forces_satisfy_lagranges_equations_with_the_inertia_by_finite_differences(paper_robot):
+    """Three actuators, no gravity or friction. With the kinetic energy du^T I(u) du / 2, Lagrange's
+    equations give tau = I ddu + (dI/dt) du - [du^T (dI/du_k) du / 2]_k: dI/dt by central
+    differences of I along the motion, dI/du_k along dp/du e_k (dp/du the inverse of A_p = du/dp,
+    itself by central differences of u). tau is computed as I ddu + C du (eq. 20): this sees every
+    component of C du, where C and C^T differ. I is symmetric positive-definite."""
     P, dP, ddP = random_motion(paper_robot, 5, seed=3)
+    h = 1e-6
+    zero = np.zeros(3)
+
+    def inertia(p):
+        return paper_robot.inverse_dynamics(p, zero, zero, matrices=True).I
+
+    def actuators(p):
+        return paper_robot.inverse_dynamics(p, zero, zero).u
+
+    worst = 0.0
     for k in range(5):
-        r = paper_robot.inverse_dynamics(P[k], dP[k], ddP[k], matrices=True)
+        p, dp, ddp = P[k], dP[k], ddP[k]
+        r = paper_robot.inverse_dynamics(p, dp, ddp, matrices=True)
         assert r.I.shape == (3, 3) and r.C.shape == (3, 3) and r.T.shape == (paper_robot.bodies, 3, 3)
         np.testing.assert_allclose(r.I, r.I.T, rtol=0, atol=1e-14 * np.max(np.abs(r.I)))
         assert np.all(np.linalg.eigvalsh(r.I) > 0)
-        np.testing.assert_allclose(r.I @ r.ddu + r.C @ r.du, r.tau, rtol=1e-11, atol=1e-11 * np.max(np.abs(r.tau)))
+        I_dot = (inertia(p + h * dp + 0.5 * h * h * ddp) - inertia(p - h * dp + 0.5 * h * h * ddp)) / (2 * h)
+        A_p = np.column_stack([(actuators(p + h * e) - actuators(p - h * e)) / (2 * h) for e in np.eye(3)])
+        dp_du = np.linalg.inv(A_p)
+        centrifugal = np.array(
+            [r.du @ (inertia(p + h * dp_du[:, j]) - inertia(p - h * dp_du[:, j])) @ r.du / (4 * h) for j in range(3)]
+        )
+        velocity_terms = I_dot @ r.du - centrifugal
+        lagrange = r.I @ r.ddu + velocity_terms
+        scale = np.max(np.abs(r.I @ r.ddu)) + np.max(np.abs(velocity_terms))
+        worst = max(worst, np.max(np.abs(lagrange - r.tau)) / scale)
+        # the velocity terms matter here: C in place of C^T would change tau by more than the bound
+        assert np.max(np.abs((r.C - r.C.T) @ r.du)) > 1e3 * LAGRANGE_TOLERANCE * scale
+        assert np.all(np.abs(lagrange - r.tau) <= LAGRANGE_TOLERANCE * scale), f"sample {k}: {lagrange} vs {r.tau}"
+    print(f"Lagrange's equations: largest error {worst:.3g} of the terms' scale")
 
 
 def test_outputs_have_the_documented_shapes_and_dtype():

@@ -1,0 +1,246 @@
+#!/usr/bin/env python3
+"""Mutation check: does the test suite catch deliberate errors in the core formulas?
+
+Each mutation of mutations.txt (a textual search and replace in one source file) is applied to
+a copy of the source tree, which is built once without Simbody and MuJoCo (-O1, one clone of
+the lean kernels: it is the tests' verdict that matters here, not the speed of the code), and
+rebuilt for each mutation (only what the changed file touches). The core test binaries then
+run in turn, each stopping at its first failing test: the first failing test (in the order of
+TESTS) caught the mutation, and the binaries that failed are listed. The check passes only when every mutation is caught, and when every searched text is
+found exactly once (a mutation whose code has moved must be updated, not skipped). The last
+line printed is "N/N mutations caught".
+
+Usage: scripts/mutation/run.py [--build-dir DIR] [--jobs N] [--only SUBSTRING] [--all]
+(--all also runs the extended mutations, of shared headers that rebuild many files: several
+minutes more; their searched texts are checked on every run.)
+"""
+
+import argparse
+import os
+import re
+import shutil
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+ROOT = Path(__file__).resolve().parents[2]
+LIST = Path(__file__).resolve().parent / "mutations.txt"
+
+# The core test binaries of the general model, each run until its first failing test
+# (--gtest_fail_fast): about 1 s for all of them unmutated at -O1. None needs Simbody, MuJoCo or
+# the CLI. (The tests of the hand-derived 3-PRR model, src/prr3, see none of the mutated files.)
+TESTS = [
+    "lagrange_test",
+    "golden_test",
+    "model_test",
+    "general_forward_dynamics_test",
+    "identification_test",
+]
+# A test binary that runs longer than this under a mutation (a loop that no longer converges)
+# counts as failing.
+TIMEOUT = 120
+
+# Folders of the repository the build needs (the copy leaves out build trees and the like).
+IGNORED = shutil.ignore_patterns("node_modules", "__pycache__")
+COPIED = ["CMakeLists.txt", "cmake", "include", "src", "apps", "tests", "robots", "trajectories", "data"]
+
+
+class Mutation:
+    def __init__(self, description, path):
+        self.description = description
+        self.path = path
+        self.pairs = []  # (search, replace)
+        self.extended = False  # run only with --all
+
+
+def parse(text):
+    mutations = []
+    for number, line in enumerate(text.splitlines(), 1):
+        if line.startswith("## "):
+            mutations.append(Mutation(line[3:].strip(), None))
+        elif line.startswith("file:"):
+            mutations[-1].path = line[5:].strip()
+        elif line.strip() == "run: extended":
+            mutations[-1].extended = True
+        elif line.startswith("- "):
+            mutations[-1].pairs.append([line[2:].strip(), None])
+        elif line.startswith("+ "):
+            if not mutations or not mutations[-1].pairs or mutations[-1].pairs[-1][1] is not None:
+                sys.exit(f"{LIST}:{number}: '+' without its '-'")
+            mutations[-1].pairs[-1][1] = line[2:].strip()
+        elif line.strip() and not line.startswith("#"):
+            sys.exit(f"{LIST}:{number}: unexpected line: {line}")
+    for m in mutations:
+        if not m.path or not m.pairs or any(r is None for _, r in m.pairs):
+            sys.exit(f"{LIST}: incomplete mutation '{m.description}'")
+    return mutations
+
+
+def run(command, cwd=None, log=None, timeout=None):
+    """Runs command; returns (exit code, output). A timeout is exit code None."""
+    try:
+        done = subprocess.run(command, cwd=cwd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True,
+                              timeout=timeout)
+    except subprocess.TimeoutExpired as e:
+        out = e.stdout if isinstance(e.stdout, str) else (e.stdout or b"").decode(errors="replace")
+        return None, out
+    if log is not None:
+        log.write(done.stdout)
+        log.flush()
+    return done.returncode, done.stdout
+
+
+def copy_tree(destination):
+    if destination.exists():
+        # keep timestamps of unchanged files so that a rebuild stays incremental
+        for name in COPIED:
+            source = ROOT / name
+            if source.is_dir():
+                shutil.copytree(source, destination / name, dirs_exist_ok=True, copy_function=copy_if_changed,
+                                ignore=IGNORED)
+            else:
+                copy_if_changed(source, destination / name)
+    else:
+        destination.mkdir(parents=True)
+        for name in COPIED:
+            source = ROOT / name
+            if source.is_dir():
+                shutil.copytree(source, destination / name, ignore=IGNORED)
+            else:
+                shutil.copy2(source, destination / name)
+
+
+def copy_if_changed(source, destination):
+    source, destination = Path(source), Path(destination)
+    if destination.exists() and destination.read_bytes() == source.read_bytes():
+        return destination
+    shutil.copy2(source, destination)
+    return destination
+
+
+def failing_test(output):
+    match = re.search(r"^\[  FAILED  \] ([^\s,]+)", output, re.MULTILINE)
+    return match.group(1) if match else None
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--build-dir", default=str(ROOT / "build-mutation"))
+    parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
+    parser.add_argument("--only", default=None, help="run only the mutations whose description contains this")
+    parser.add_argument("--all", action="store_true", help="run the extended mutations too (slower)")
+    args = parser.parse_args()
+
+    start = time.monotonic()
+    mutations = parse(LIST.read_text())
+    work = Path(args.build_dir).resolve()
+    source = work / "source"
+    build = work / "build"
+    copy_tree(source)
+    log = open(work / "mutation.log", "w")
+
+    # Every searched text must be found exactly once before anything is built.
+    problems = []
+    for m in mutations:
+        path = source / m.path
+        if not path.exists():
+            problems.append(f"'{m.description}': {m.path} does not exist")
+            continue
+        text = path.read_text()
+        for search, _ in m.pairs:
+            count = text.count(search)
+            if count != 1:
+                problems.append(f"'{m.description}': {m.path} has {count} occurrences of: {search}")
+    if problems:
+        for p in problems:
+            print(f"mutation: NOT APPLIED {p}")
+        print(f"0/{len(mutations)} mutations caught (the list no longer matches the code)")
+        return 1
+    # every text is checked above; only these are built and tested
+    left_out = [m for m in mutations if m.extended and not args.all]
+    mutations = [m for m in mutations if m not in left_out and (not args.only or args.only in m.description)]
+
+    generator = ["-G", "Ninja"] if shutil.which("ninja") else []
+    configure = ["cmake", "-S", str(source), "-B", str(build), *generator, "-DCMAKE_BUILD_TYPE=None",
+                 "-DCMAKE_CXX_FLAGS=-O1 -DNDEBUG -DNOCDYN_NO_TARGET_CLONES",
+                 "-DNOCDYN_BUILD_TESTS=ON", "-DNOCDYN_BUILD_VALIDATION=OFF", "-DNOCDYN_BUILD_BENCHMARKS=OFF",
+                 "-DNOCDYN_BUILD_PYTHON=OFF", "-DNOCDYN_SANITIZE=OFF", "-DNOCDYN_FUZZ=OFF",
+                 f"-DNOCDYN_GOLDEN_DIR={ROOT.parent / 'shared' / 'golden'}"]
+    build_command = ["cmake", "--build", str(build), "-j", str(args.jobs), "--target", *TESTS]
+    code, out = run(configure, log=log)
+    if code != 0:
+        print(out)
+        print(f"0/{len(mutations)} mutations caught (the configuration failed)")
+        return 1
+    code, out = run(build_command, log=log)
+    if code != 0:
+        print(out[-5000:])
+        print(f"0/{len(mutations)} mutations caught (the unmutated build failed)")
+        return 1
+    env_dir = build / "tests" / "scratch"
+    env_dir.mkdir(parents=True, exist_ok=True)
+    os.environ["TEST_TMPDIR"] = str(env_dir) + "/"
+
+    def run_tests():
+        """The first failing test of each binary that fails (binary -> test), in TESTS order."""
+        failures = {}
+        for test in TESTS:
+            code, out = run([str(build / "tests" / test), "--gtest_fail_fast", "--gtest_brief=1"],
+                            cwd=build / "tests", log=log, timeout=TIMEOUT)
+            if code is None:
+                failures[test] = f"{test} (timed out after {TIMEOUT} s)"
+            elif code != 0:
+                failures[test] = failing_test(out) or f"{test} (exit code {code})"
+        return failures
+
+    baseline = time.monotonic()
+    failures = run_tests()
+    if failures:
+        print(f"mutation: the unmutated source already fails {', '.join(failures.values())} "
+              f"(see {work / 'mutation.log'})")
+        print(f"0/{len(mutations)} mutations caught (the unmutated tests fail)")
+        return 1
+    print(f"mutation: build {baseline - start:.0f} s, unmutated tests {time.monotonic() - baseline:.0f} s", flush=True)
+
+    caught = 0
+    originals = {}
+    try:
+        for number, m in enumerate(mutations, 1):
+            t0 = time.monotonic()
+            path = source / m.path
+            original = originals.setdefault(m.path, path.read_text())
+            # the other files back as they were, this one mutated
+            for other, text in originals.items():
+                if other != m.path and (source / other).read_text() != text:
+                    (source / other).write_text(text)
+            log.write(f"\n=== mutation {number} [{m.path}]: {m.description}\n")
+            mutated = original
+            for search, replace in m.pairs:
+                mutated = mutated.replace(search, replace, 1)
+            path.write_text(mutated)
+            code, out = run(build_command, log=log)
+            if code != 0:
+                verdict = "DOES NOT COMPILE (fix the mutation)"
+            else:
+                failures = run_tests()
+                if failures:
+                    caught += 1
+                    first = next(iter(failures.values()))
+                    verdict = f"caught by {first} (failing: {', '.join(failures)})"
+                else:
+                    verdict = "NOT CAUGHT"
+            print(f"mutation {number:2d} [{m.path}] {m.description}: {verdict} ({time.monotonic() - t0:.0f} s)",
+                  flush=True)
+    finally:
+        for other, text in originals.items():
+            (source / other).write_text(text)
+    print(f"mutation: {time.monotonic() - start:.0f} s in all, log in {work / 'mutation.log'}")
+    if left_out:
+        print(f"mutation: {len(left_out)} extended mutations found in the code but not run (--all runs them)")
+    print(f"{caught}/{len(mutations)} mutations caught")
+    return 0 if caught == len(mutations) else 1
+
+
+if __name__ == "__main__":
+    sys.exit(main())
