@@ -454,8 +454,11 @@ Eigen::VectorXd plausibleSizes(const Model& model, const std::vector<int>& colum
 /// a friction column is scaled to the rms of the forces), so that it holds the forces such a
 /// value would cause. A combination of unknowns whose standard deviation, sigma / s_i (s_i a
 /// singular value, sigma the rms residual, at least 1e-9 of the rms force: the
-/// precision of exact data), exceeds 1 % of a plausible size is not determined. Scaling the
-/// columns to unit norm instead would make a column of rounding noise count as full size.
+/// precision of exact data), exceeds a plausible size is not determined; nor is one the motion
+/// excites a thousand times less than its best (s_i < 1e-3 s_1) unless it is still known to
+/// 0.1 % of a plausible size (exact data determine even a weak combination; a filtered log's
+/// noise, or a model error, does not). Scaling the columns to unit norm instead would make a
+/// column of rounding noise count as full size.
 /// Throws nocdyn::Error naming the unknowns such combinations involve, and the values of the
 /// others fitted alone.
 void requireDetermined(const Model& model, const Eigen::MatrixXd& Aw, const Eigen::VectorXd& bw,
@@ -482,7 +485,9 @@ void requireDetermined(const Model& model, const Eigen::MatrixXd& Aw, const Eige
     std::vector<bool> involved(at(static_cast<int>(k)), false);
     bool any = false;
     for (Eigen::Index i = 0; i < k; ++i) {
-        if (sv(i) > 0.0 && sigma / sv(i) <= 1e-2) continue;
+        const double relative_sd = sv(i) > 0.0 ? sigma / sv(i) : std::numeric_limits<double>::infinity();
+        const bool weak = sv(i) < 1e-3 * sv(0);
+        if (relative_sd <= 1.0 && !(weak && relative_sd > 1e-3)) continue;
         any = true;
         for (Eigen::Index c = 0; c < k; ++c)
             if (std::abs(svd.matrixV()(c, i)) > 0.1) involved[at(static_cast<int>(c))] = true;
@@ -510,7 +515,8 @@ void requireDetermined(const Model& model, const Eigen::MatrixXd& Aw, const Eige
     }
     throw Error("identification: " + unknown +
                 " not identifiable from this motion (its effect on the actuator forces is below the data's noise: "
-                "a standard deviation above 1 % of a plausible value); the motion determines " +
+                "a standard deviation above a plausible value, or a combination excited a thousand times less than the "
+                "best and not known to 0.1 %); the motion determines " +
                 (known.empty() ? std::string("nothing else") : known) +
                 ": excite the robot more (rotation, and translation along x and y)");
 }
