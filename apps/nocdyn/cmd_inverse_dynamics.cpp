@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/io/tables.hpp"
 #include "nocdyn/sampling.hpp"
@@ -28,14 +29,18 @@ void run(const InverseDynamicsOptions& options) {
     io::CsvWriter csv(out, io::inverseDynamicsColumns(model.actuators),
                       /*background=*/true);  // formats while we compute
     std::vector<double> row;
+    Progress progress(static_cast<double>(grid.count) / grid.rate);
     const LimitSummary summary =
         streamInverseDynamics(model, trajectory, grid, policy, [&](const InverseDynamicsSample& sample) {
             io::inverseDynamicsRow(sample, row);
             csv.row(row);
+            progress.update(sample.t);
         });
+    progress.finish();
     csv.finish();
     out.commit();
-    for (const std::string& violation : summary.limit_violations) std::cerr << "nocdyn: warning: " << violation << "\n";
+    for (const std::string& violation : summary.limit_violations)
+        std::cerr << "nocdyn: warning: " << io::terminalText(violation) << "\n";
 }
 
 }  // namespace
