@@ -107,6 +107,25 @@ TEST(HostileCli, ConvertWritesOddNamesThatReadBackTheSame) {
     }
 }
 
+TEST(HostileCli, IdentifyWritesARobotWithAnOddNameThatReadsBackTheSame) {
+    const fs::path dir = freshScratchDirectory("hostile_cli");
+    const std::string name = "two\nlines: # x \"q\" ]]>";
+    RobotDescription robot = io::loadRobotDescription(kRobot);
+    robot.name = name;
+    writeFile(dir / "odd.yaml", io::descriptionToYaml(robot));
+    writeFile(dir / "loaded.yaml",
+              io::descriptionToYaml(withPayload(robot, Payload{0.5, 8e-4, Vector2(0.012, -0.007)})));
+    const CliResult id = runCli("inverse-dynamics --robot " + (dir / "loaded.yaml").string() +
+                                " --trajectory paper1 --rate 1000 -o " + (dir / "log.csv").string());
+    ASSERT_EQ(id.exit_code, 0) << id.err;
+    const CliResult r = runCli("identify --robot " + (dir / "odd.yaml").string() + " --data " +
+                               (dir / "log.csv").string() + " -o " + (dir / "out.yaml").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const RobotDescription back = io::loadRobotDescription((dir / "out.yaml").string());
+    EXPECT_EQ(back.name, name + " + payload") << readWhole(dir / "out.yaml");  // as withPayload names it
+    EXPECT_NEAR(back.platform.mass, robot.platform.mass + 0.5, 1e-9);
+}
+
 TEST(HostileCli, ErrorMessagesShowControlBytesEscaped) {
     const fs::path dir = freshScratchDirectory("hostile_cli");
     // an unknown key holding ESC ] 0 ; ... BEL (a terminal's set-title sequence)
