@@ -63,6 +63,7 @@ _PRIOR_KEYS = ("mass", "com_x", "com_y", "inertia")
 # overlap nothing, threads within reason, results checked finite.
 
 _MAX_THREADS = 1024  # the compiled batch caps this further at the hardware and the work
+_MAX_SAMPLES = 1e7  # samples of trajectory_dynamics, all held in memory
 
 
 def _number(value, name, lower=-np.inf, upper=np.inf):
@@ -389,6 +390,11 @@ class Robot:
         rate = _number(rate, "rate", 1.0, 1e8)
         if duration is not None:
             duration = _number(duration, "duration", 1e-6, 1e6)
+        span = duration if duration is not None else (trajectory.duration or 0.2)
+        if span * rate > _MAX_SAMPLES:
+            # 19 arrays' worth of 8 bytes a sample: 1e7 samples are about 1.5 GB
+            raise Error(f"duration * rate = {span * rate:.6g} samples: at most {_MAX_SAMPLES:.0e} are held in "
+                        "memory (the command line's inverse-dynamics streams any number to a file)")
         return self._core._sample_trajectory(trajectory._core, rate, duration, bool(allow_limits))
 
     # --- identification -------------------------------------------------------------

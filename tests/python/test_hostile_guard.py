@@ -136,3 +136,13 @@ def test_identify_payload_on_a_translation_along_x_alone_names_what_it_cannot_id
     with pytest.raises(nocdyn.Error, match="payload inertia") as info:
         robot.identify_payload(t, u, tau, du, ddu)
     assert "payload c.o.m. x" in str(info.value) and "payload mass 0.5 kg" in str(info.value)
+
+
+def test_trajectory_dynamics_refuses_more_samples_than_memory_holds():
+    robot = nocdyn.Robot.example("paper-3prr-general")
+    with pytest.raises(nocdyn.Error, match="at most 1e\\+07"):
+        robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=1e8, duration=1.0)
+    with pytest.raises(nocdyn.Error, match="rate"):
+        robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=float("nan"))
+    out = robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=10000.0, duration=0.01)
+    assert out["tau"].shape == (100, 3) and np.all(np.isfinite(out["tau"]))
