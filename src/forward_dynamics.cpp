@@ -67,10 +67,16 @@ const char* name(Interpolation interpolation) {
 
 struct ForceSignal::Impl {
     std::vector<double> t;
-    std::vector<ActuatorVector> tau;
+    /// The forces sample by sample, n to a sample (flat: 8 n bytes a sample, nothing more).
+    std::vector<double> tau;
+    Eigen::Index n = 0;
     Interpolation interpolation = Interpolation::cubic;
     /// One spline per actuator (cubic only).
     std::vector<boost::math::interpolators::cardinal_cubic_b_spline<double>> spline;
+
+    [[nodiscard]] Eigen::Map<const Eigen::VectorXd> sample(std::size_t k) const {
+        return {tau.data() + k * static_cast<std::size_t>(n), n};
+    }
 };
 
 namespace {
@@ -80,15 +86,46 @@ constexpr std::size_t kMinSplineSamples = 5;
 /// Largest deviation of a sample time from the uniform grid accepted for the spline, in steps.
 constexpr double kUniformTolerance = 1e-6;
 
+std::vector<double> flatten(const std::vector<ActuatorVector>& tau) {
+    const auto n = static_cast<std::size_t>(tau.empty() ? 0 : tau.front().size());
+    std::vector<double> flat;
+    flat.reserve(n * tau.size());
+    for (const ActuatorVector& f : tau) {
+        if (static_cast<std::size_t>(f.size()) != n) break;  // refused by the constructor
+        flat.insert(flat.end(), f.data(), f.data() + n);
+    }
+    return flat;
+}
+
 }  // namespace
 
 ForceSignal::ForceSignal(std::vector<double> times, const std::vector<ActuatorVector>& tau, Interpolation interpolation,
                          const std::string& source)
     : impl_(std::make_unique<Impl>()) {
+    if (times.size() != tau.size()) throw Error(source + ": as many force samples as times are needed");
+    for (std::size_t k = 0; k < tau.size(); ++k) {
+        if (tau[k].size() != tau.front().size()) {
+            std::ostringstream out;
+            out.precision(17);
+            out << source << ": sample " << k + 1 << " (t = " << times[k] << " s): " << tau[k].size()
+                << " forces, not all finite (expected " << tau.front().size() << ")";
+            throw Error(out.str());
+        }
+    }
+    const int n = tau.empty() ? 0 : static_cast<int>(tau.front().size());
+    *this = ForceSignal(std::move(times), flatten(tau), n, interpolation, source);
+}
+
+ForceSignal::ForceSignal(std::vector<double> times, std::vector<double> tau, int actuators, Interpolation interpolation,
+                         const std::string& source)
+    : impl_(std::make_unique<Impl>()) {
     Impl& s = *impl_;
     if (times.empty()) throw Error(source + ": no force sample");
-    if (times.size() != tau.size()) throw Error(source + ": as many force samples as times are needed");
-    const auto n = tau.front().size();
+    const auto n = static_cast<Eigen::Index>(actuators);
+    if (n < 1 || n > kMaxActuators || tau.size() != times.size() * static_cast<std::size_t>(n))
+        throw Error(source + ": as many force samples as times are needed");
+    s.tau = std::move(tau);
+    s.n = n;
     for (std::size_t k = 0; k < times.size(); ++k) {
         std::ostringstream out;
         out.precision(17);
@@ -101,8 +138,8 @@ ForceSignal::ForceSignal(std::vector<double> times, const std::vector<ActuatorVe
                 << " s does not increase (previous: " << times[k - 1] << " s)";
             throw Error(out.str());
         }
-        if (tau[k].size() != n || !tau[k].allFinite()) {
-            out << source << ": sample " << k + 1 << " (t = " << times[k] << " s): " << tau[k].size()
+        if (!s.sample(k).allFinite()) {
+            out << source << ": sample " << k + 1 << " (t = " << times[k] << " s): " << n
                 << " forces, not all finite (expected " << n << ")";
             throw Error(out.str());
         }
@@ -110,7 +147,6 @@ ForceSignal::ForceSignal(std::vector<double> times, const std::vector<ActuatorVe
     if (interpolation == Interpolation::cubic && times.size() < kMinSplineSamples)
         interpolation = Interpolation::linear;
     s.t = std::move(times);
-    s.tau = tau;
     s.interpolation = interpolation;
     if (interpolation != Interpolation::cubic) return;
     // cardinal B-spline: uniform samples t_k = t_0 + k h
@@ -130,7 +166,7 @@ ForceSignal::ForceSignal(std::vector<double> times, const std::vector<ActuatorVe
     std::vector<double> f(N);
     s.spline.reserve(static_cast<std::size_t>(n));
     for (Eigen::Index a = 0; a < n; ++a) {
-        for (std::size_t k = 0; k < N; ++k) f[k] = s.tau[k](a);
+        for (std::size_t k = 0; k < N; ++k) f[k] = s.sample(k)(a);
         // endpoint slopes by the one-sided five-point differences, O(h^4); given here because
         // the estimate of the right one in Boost 1.74 mirrors the wrong samples (an O(1) slope
         // error, 4e-4 on x^3 sampled at h = 0.01: tested)
@@ -146,7 +182,7 @@ ForceSignal::~ForceSignal() = default;
 ForceSignal::ForceSignal(ForceSignal&&) noexcept = default;
 ForceSignal& ForceSignal::operator=(ForceSignal&&) noexcept = default;
 
-int ForceSignal::actuators() const { return static_cast<int>(impl_->tau.front().size()); }
+int ForceSignal::actuators() const { return static_cast<int>(impl_->n); }
 std::size_t ForceSignal::samples() const { return impl_->t.size(); }
 double ForceSignal::firstTime() const { return impl_->t.front(); }
 double ForceSignal::lastTime() const { return impl_->t.back(); }
@@ -168,20 +204,20 @@ void ForceSignal::evaluate(double time, std::size_t k, ActuatorVector& tau) cons
     const Impl& s = *impl_;
     const std::size_t N = s.t.size();
     if (k == 0 || N == 1) {
-        tau = s.tau.front();
+        tau = s.sample(0);
         return;
     }
     if (k >= N) {
-        tau = s.tau.back();
+        tau = s.sample(s.t.size() - 1);
         return;
     }
     switch (s.interpolation) {
         case Interpolation::hold:
-            tau = s.tau[k - 1];
+            tau = s.sample(k - 1);
             return;
         case Interpolation::linear: {
             const double r = std::clamp((time - s.t[k - 1]) / (s.t[k] - s.t[k - 1]), 0.0, 1.0);
-            tau = s.tau[k - 1] + r * (s.tau[k] - s.tau[k - 1]);
+            tau = s.sample(k - 1) + r * (s.sample(k) - s.sample(k - 1));
             return;
         }
         case Interpolation::cubic: {
@@ -199,6 +235,66 @@ ActuatorVector ForceSignal::at(double t) const {
     return tau;
 }
 
+namespace {
+
+/// A column tauK with K beyond the robot's actuators holds forces the robot would not apply:
+/// refused, never ignored.
+void requireNoExtraForces(const std::vector<std::string>& columns, int actuators, const std::string& source) {
+    for (const std::string& c : columns) {
+        if (c.size() < 4 || c.compare(0, 3, "tau") != 0) continue;
+        if (c.find_first_not_of("0123456789", 3) != std::string::npos || c[3] == '0') continue;
+        if (c.size() > 6 || std::stoi(c.substr(3)) > actuators) {
+            std::ostringstream out;
+            out << source << ": column '" << c << "': the robot has " << actuators << " actuators (forces tau1..tau"
+                << actuators << ")";
+            throw Error(out.str());
+        }
+    }
+}
+
+}  // namespace
+
+ForceSignal forcesFromCsvFile(const std::string& path, int actuators, Interpolation interpolation, io::Table& first) {
+    std::vector<std::size_t> column;
+    std::vector<double> times, tau;
+    first = io::Table{};
+    io::readCsvFileRows(
+        path,
+        [&](const std::vector<std::string>& columns) {
+            first.columns = columns;
+            for (int a = 0; a <= actuators; ++a) {
+                const std::string name = a == 0 ? std::string("t") : "tau" + std::to_string(a);
+                const auto it = std::find(columns.begin(), columns.end(), name);
+                if (it == columns.end()) {
+                    std::ostringstream out;
+                    out << path << ": missing column '" << name << "' (the robot has " << actuators
+                        << " actuators: t,tau1..tau" << actuators << ")";
+                    throw Error(out.str());
+                }
+                column.push_back(static_cast<std::size_t>(it - columns.begin()));
+            }
+            requireNoExtraForces(columns, actuators, path);
+        },
+        [&](std::span<const double> row, std::size_t line) {
+            if (first.rows.empty()) {
+                first.rows.emplace_back(row.begin(), row.end());
+                first.lines.push_back(line);
+            }
+            const double t = row[column[0]];
+            if (!times.empty() && !(t > times.back())) {
+                std::ostringstream out;
+                out.precision(17);
+                out << path << ":" << line << ": column 't': t = " << t
+                    << " s does not increase (previous row: " << times.back() << " s)";
+                throw Error(out.str());
+            }
+            times.push_back(t);
+            for (int a = 0; a < actuators; ++a) tau.push_back(row[column[static_cast<std::size_t>(a) + 1]]);
+        });
+    if (times.empty()) throw Error(path + ": no rows");
+    return {std::move(times), std::move(tau), actuators, interpolation, path};
+}
+
 ForceSignal forcesFromTable(const io::Table& table, int actuators, Interpolation interpolation,
                             const std::string& source) {
     std::vector<std::size_t> column;
@@ -212,6 +308,7 @@ ForceSignal forcesFromTable(const io::Table& table, int actuators, Interpolation
         }
         column.push_back(table.column(name));
     }
+    requireNoExtraForces(table.columns, actuators, source);
     if (table.rows.empty()) throw Error(source + ": no rows");
     std::vector<double> times;
     std::vector<ActuatorVector> tau;

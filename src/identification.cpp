@@ -429,9 +429,102 @@ struct LeastSquares {
     Eigen::MatrixXd U;
 };
 
+/// The plausible size of each unknown, the scale against which identifiability is judged:
+/// M, M L and M L^2 for a mass, a first and a second moment of mass (M the robot's moving
+/// mass, L its length scale); 0 (judged by the force it explains) for friction.
+Eigen::VectorXd plausibleSizes(const Model& model, const std::vector<int>& columns) {
+    double M = model.description.platform.mass;
+    for (const LimbDescription& limb : model.description.limbs)
+        for (const BodyDescription& body : limb.bodies) M += body.mass;
+    if (!(M > 0.0)) M = 1.0;
+    const double L = model.length_scale;
+    Eigen::VectorXd s(static_cast<Eigen::Index>(columns.size()));
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+        const std::string unit = parameterUnit(model, columns[c]);
+        s(static_cast<Eigen::Index>(c)) = unit == "kg"       ? M
+                                          : unit == "kg m"   ? M * L
+                                          : unit == "kg m^2" ? M * L * L
+                                                             : 0.0;
+    }
+    return s;
+}
+
+/// What the motion determines, decided on the unscaled regressor Aw against the
+/// data's own noise: each column is multiplied by its unknown's plausible size (plausibleSizes;
+/// a friction column is scaled to the rms of the forces), so that it holds the forces such a
+/// value would cause. A combination of unknowns whose standard deviation, sigma / s_i (s_i a
+/// singular value, sigma the rms residual, at least 1e-9 of the rms force: the
+/// precision of exact data), exceeds a plausible size is not determined; nor is one the motion
+/// excites a thousand times less than its best (s_i < 1e-3 s_1) unless it is still known to
+/// 0.1 % of a plausible size (exact data determine even a weak combination; a filtered log's
+/// noise, or a model error, does not). Scaling the columns to unit norm instead would make a
+/// column of rounding noise count as full size.
+/// Throws nocdyn::Error naming the unknowns such combinations involve, and the values of the
+/// others fitted alone.
+void requireDetermined(const Model& model, const Eigen::MatrixXd& Aw, const Eigen::VectorXd& bw,
+                       const Eigen::VectorXd& sizes, const std::vector<int>& columns,
+                       const std::vector<std::string>& names) {
+    const Eigen::Index rows = Aw.rows(), k = Aw.cols();
+    // the least-squares residual (a rank-revealing solve: columns without effect are fine here)
+    const Eigen::VectorXd residual_w = bw - Aw * Aw.colPivHouseholderQr().solve(bw);
+    const double force_rms = bw.norm() / std::sqrt(static_cast<double>(std::max<Eigen::Index>(rows, 1)));
+    Eigen::VectorXd scale = sizes;
+    for (Eigen::Index c = 0; c < k; ++c) {
+        if (!(scale(c) > 0.0)) {
+            const double column_rms = Aw.col(c).norm() / std::sqrt(static_cast<double>(rows));
+            scale(c) = column_rms > 0.0 ? force_rms / column_rms : 0.0;
+        }
+    }
+    const Eigen::MatrixXd As = Aw * scale.asDiagonal();
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(As);
+    const Eigen::MatrixXd R = qr.matrixQR().topLeftCorner(k, k).template triangularView<Eigen::Upper>();
+    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(R, Eigen::ComputeFullV);
+    const double dof = static_cast<double>(std::max<Eigen::Index>(rows - k, 1));
+    const double sigma = std::max(std::sqrt(residual_w.squaredNorm() / dof), 1e-9 * force_rms);
+    const Eigen::VectorXd& sv = svd.singularValues();
+    std::vector<bool> involved(at(static_cast<int>(k)), false);
+    bool any = false;
+    for (Eigen::Index i = 0; i < k; ++i) {
+        const double relative_sd = sv(i) > 0.0 ? sigma / sv(i) : std::numeric_limits<double>::infinity();
+        const bool weak = sv(i) < 1e-3 * sv(0);
+        if (relative_sd <= 1.0 && !(weak && relative_sd > 1e-3)) continue;
+        any = true;
+        for (Eigen::Index c = 0; c < k; ++c)
+            if (std::abs(svd.matrixV()(c, i)) > 0.1) involved[at(static_cast<int>(c))] = true;
+    }
+    if (!any) return;
+    std::string unknown, known;
+    std::vector<Eigen::Index> keep;
+    for (Eigen::Index c = 0; c < k; ++c) {
+        if (involved[at(static_cast<int>(c))]) {
+            unknown += (unknown.empty() ? "" : ", ") + names[at(static_cast<int>(c))];
+        } else {
+            keep.push_back(c);
+        }
+    }
+    if (!keep.empty()) {
+        Eigen::MatrixXd Ak(rows, static_cast<Eigen::Index>(keep.size()));
+        for (std::size_t j = 0; j < keep.size(); ++j) Ak.col(static_cast<Eigen::Index>(j)) = Aw.col(keep[j]);
+        const Eigen::VectorXd xk = Ak.colPivHouseholderQr().solve(bw);
+        for (std::size_t j = 0; j < keep.size(); ++j) {
+            char buffer[64];
+            std::snprintf(buffer, sizeof buffer, " %.6g ", xk(static_cast<Eigen::Index>(j)));
+            known += (known.empty() ? "" : ", ") + names[at(static_cast<int>(keep[j]))] + buffer +
+                     parameterUnit(model, columns[at(static_cast<int>(keep[j]))]);
+        }
+    }
+    throw Error("identification: " + unknown +
+                " not identifiable from this motion (its effect on the actuator forces is below the data's noise: "
+                "a standard deviation above a plausible value, or a combination excited a thousand times less than the "
+                "best and not known to 0.1 %); the motion determines " +
+                (known.empty() ? std::string("nothing else") : known) +
+                ": excite the robot more (rotation, and translation along x and y)");
+}
+
 LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int n,
-                           const std::vector<std::string>& names) {
+                           const std::vector<std::string>& names, const std::vector<int>* columns = nullptr) {
     const Eigen::Index rows = A.rows(), k = A.cols();
+    if (columns) requireDetermined(model, A, b, plausibleSizes(model, *columns), *columns, names);
     const Eigen::VectorXd norms = A.colwise().norm();
     for (Eigen::Index c = 0; c < k; ++c) {
         if (!(norms(c) > 0.0)) {
@@ -491,7 +584,6 @@ LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const E
             result.U = (R * qr.colsPermutation().transpose()) * norms.asDiagonal();
         }
     }
-    (void)model;
     return result;
 }
 
@@ -806,7 +898,7 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
         for (int c = 0; c < kBodyParameters; ++c) s.known += s.A.col(c) * platform_pi(c);
     }
     const Eigen::VectorXd b = (s.tau - s.known).head(fit * n);
-    const LeastSquares ls = solveWeighted(model, s.A.topRows(fit * n), b, n, names);
+    const LeastSquares ls = solveWeighted(model, s.A.topRows(fit * n), b, n, names, &columns);
     Eigen::VectorXd x = ls.x;
     PayloadResult result;
     // the box: the prior's bounds, mass > 0 and inertia about the c.o.m. >= 0

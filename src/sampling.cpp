@@ -128,6 +128,24 @@ private:
 
 }  // namespace
 
+void requireBoundedWork(const PoseTrajectory& trajectory, double duration, std::size_t samples) {
+    const double f = highestFrequency(trajectory);
+    const double points = std::max(static_cast<double>(samples), duration * kLimitChecksPerPeriod * f);
+    const double harmonics = static_cast<double>(trajectory.theta.harmonics.size() + trajectory.x.harmonics.size() +
+                                                 trajectory.y.harmonics.size());
+    const double work = points * std::max(harmonics, 1.0);
+    if (work > kMaxTrajectoryWork) {
+        // about 10 ns a harmonic term and its two derivatives, 1 us a point of inverse dynamics
+        const double hours = points * (1e-6 + 1e-8 * harmonics) / 3600.0;
+        throw Error("trajectory '" + trajectory.name + "': " + number(points) +
+                    " points (the samples, and the limit checks at " + std::to_string(kLimitChecksPerPeriod) +
+                    " a period of its highest harmonic, " + number(f) + " Hz) of " + number(harmonics) +
+                    " harmonics: " + number(work) + " harmonic terms, about " + number(hours) +
+                    " h of computing, more than the " + number(kMaxTrajectoryWork) +
+                    " accepted: shorten the duration, or use fewer or lower harmonics");
+    }
+}
+
 void requireRateAboveNyquist(const PoseTrajectory& trajectory, double rate) {
     const double f = highestFrequency(trajectory);
     if (f > 0.0 && !(rate > 2.0 * f)) {
@@ -139,6 +157,7 @@ void requireRateAboveNyquist(const PoseTrajectory& trajectory, double rate) {
 
 void requireReachable(const Model& model, const PoseTrajectory& trajectory, double duration) {
     const double f = highestFrequency(trajectory);
+    requireBoundedWork(trajectory, duration, 1);
     const double pieces = f > 0.0 ? std::ceil(duration * kLimitChecksPerPeriod * f) : 1.0;
     Data data(model);
     Pose p, dp, ddp;
@@ -160,6 +179,7 @@ void requireReachable(const Model& model, const PoseTrajectory& trajectory, doub
 LimitSummary streamInverseDynamics(const Model& model, const PoseTrajectory& trajectory, const SampleGrid& grid,
                                    LimitPolicy policy, const std::function<void(const InverseDynamicsSample&)>& sink) {
     requireRateAboveNyquist(trajectory, grid.rate);
+    requireBoundedWork(trajectory, static_cast<double>(grid.count) / grid.rate, grid.count);
     Sampler sampler(model, trajectory, policy);
     InverseDynamicsSample sample;
     for (std::size_t k = 0; k < grid.count; ++k) {
@@ -200,6 +220,7 @@ InverseDynamicsSeries sampleInverseDynamics(const Model& model, const PoseTrajec
         if (!(interval > 0.0)) throw Error(atTime(times[k], "sampling times must increase"));
         if (2.0 * highestFrequency(trajectory) * interval >= 1.0) requireRateAboveNyquist(trajectory, 1.0 / interval);
     }
+    if (!times.empty()) requireBoundedWork(trajectory, times.back() - times.front(), times.size());
     InverseDynamicsSeries series;
     series.samples.resize(times.size());
     Sampler sampler(model, trajectory, policy);

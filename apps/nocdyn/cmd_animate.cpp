@@ -1,5 +1,6 @@
 // nocdyn animate: the robot moving along a trajectory or a recorded motion, as one
 // self-contained HTML page, and static frames as PNG and SVG.
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -7,6 +8,7 @@
 #include "animation.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 
@@ -25,7 +27,25 @@ struct AnimateOptions {
     std::string png, svg;
 };
 
+/// Refuses an output that is one of the inputs (the same file by any path or link): writing it
+/// would replace the very data it is drawn from.
+void requireNotAnInput(const AnimateOptions& options, bool out_given) {
+    const std::string outputs[][2] = {
+        {"--png", options.png}, {"--svg", options.svg}, {"--out", out_given ? options.out : ""}};
+    for (const auto& [option, path] : outputs) {
+        if (path.empty()) continue;
+        for (const std::string& input : {options.robot, options.trajectory, options.motion}) {
+            std::error_code error;
+            if (!input.empty() && std::filesystem::equivalent(path, input, error)) {
+                throw Error("animate: " + option + " '" + path + "' is an input file (" + input +
+                            "): writing it would replace it");
+            }
+        }
+    }
+}
+
 void run(const AnimateOptions& options, bool out_given) {
+    requireNotAnInput(options, out_given);
     const Model model(loadRobotDescriptionOrDefault(options.robot));
     MotionSamples motion;
     if (!options.motion.empty()) {
@@ -34,7 +54,8 @@ void run(const AnimateOptions& options, bool out_given) {
         const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
         motion = motionFromTrajectory(model, trajectory, chooseDuration(options.duration, trajectory), options.rate);
     }
-    for (const std::string& warning : motion.warnings) std::cerr << "nocdyn: warning: " << warning << "\n";
+    for (const std::string& warning : motion.warnings)
+        std::cerr << "nocdyn: warning: " << io::terminalText(warning) << "\n";
     if (options.frame) {
         renderFigureFiles(frameFigure(model, motion, *options.frame), options.png, options.svg);
         if (!out_given) return;

@@ -3,8 +3,10 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "common.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/model.hpp"
 
@@ -20,9 +22,10 @@ struct ConvertOptions {
 void run(const ConvertOptions& options) {
     const RobotDescription robot = io::loadRobotDescription(options.robot);
     const Model model(robot);  // the home posture must be regular, as for every command
-    std::string text = "# " + robot.name + ": " + std::to_string(model.limbs) + " limbs (";
+    std::string text = "# " + io::terminalText(robot.name) + ": " + std::to_string(model.limbs) + " limbs (";
     for (int j = 0; j < model.limbs; ++j) text += (j ? " " : "") + robot.limbs[static_cast<std::size_t>(j)].type();
-    text += "), " + std::to_string(model.actuators) + " actuators; general form of " + options.robot + "\n";
+    text += "), " + std::to_string(model.actuators) + " actuators; general form of " + io::terminalText(options.robot) +
+            "\n";
     text += io::descriptionToYaml(robot);
     if (options.output.empty()) {
         std::cout << text;
@@ -45,7 +48,7 @@ void addConvertCommand(CLI::App& app) {
     command->add_option("robot", options->robot, "Robot file (YAML), short or general form")
         ->required()
         ->check(CLI::ExistingFile);
-    command->add_option("--output,-o", options->output, "File to write [default: stdout]");
+    command->add_option("--output,-o", options->output, "File to write [default: stdout]")->check(nonEmptyPath());
     command->callback([options] { run(*options); });
 }
 

@@ -101,7 +101,7 @@ void addEnvelopeCommand(CLI::App& app) {
         "the search bound; limb, joint, actuator 1-based, 0 when not applicable; peak_effort_ratio =\n"
         "max |tau|/effort at that amplitude) and a figure (amplitude versus frequency, log axes).");
     addRobotOption(*command, options->robot);
-    command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]");
+    command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]")->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")
         ->capture_default_str();
     command->add_option("--min-frequency", options->envelope.min_frequency, "[Hz]")

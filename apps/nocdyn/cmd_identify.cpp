@@ -13,6 +13,7 @@
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/calibration.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "plot.hpp"
 
@@ -147,23 +148,26 @@ void run(const IdentifyOptions& options) {
     FitReport fit;
     if (options.base) {
         const BaseResult result = identifyBase(model, motion, identification);
-        text = "# " + robot.name + ": base parameters from " + options.data + " (see nocdyn regressor)\n";
+        text = "# " + io::terminalText(robot.name) + ": base parameters from " + io::terminalText(options.data) +
+               " (see nocdyn regressor)\n";
         text += fitText(model, result.fit);
         text += "base_parameters:\n";
         for (const Estimate& e : result.beta) {
-            text += "  - {name: '" + e.name + "', value: " + number(e.value) + ", stddev: " + number(e.stddev) +
-                    ", robot_file: " + number(e.prior) + ", unit: '" + e.unit + "'}\n";
+            text += "  - {name: " + io::yamlQuoted(e.name) + ", value: " + number(e.value) +
+                    ", stddev: " + number(e.stddev) + ", robot_file: " + number(e.prior) +
+                    ", unit: " + io::yamlQuoted(e.unit) + "}\n";
         }
-        std::string comment = "# " + robot.name + ": calibration (base parameters) identified from " + options.data +
-                              "; use with nocdyn identify --payload --calibration\n";
+        std::string comment = "# " + io::terminalText(robot.name) + ": calibration (base parameters) identified from " +
+                              io::terminalText(options.data) + "; use with nocdyn identify --payload --calibration\n";
         comment += fitText(model, result.fit);
         file = io::calibrationToYaml(model, result, comment);
         fit = result.fit;
     } else {
         const PayloadResult r = identifyPayload(model, motion, identification);
-        text = "# " + robot.name + ": payload from " + options.data +
-               (options.calibration.empty() ? "" : ", against the calibration " + options.calibration) + "\n" +
-               fitText(model, r.fit);
+        text =
+            "# " + io::terminalText(robot.name) + ": payload from " + io::terminalText(options.data) +
+            (options.calibration.empty() ? "" : ", against the calibration " + io::terminalText(options.calibration)) +
+            "\n" + fitText(model, r.fit);
         if (r.inertia_constrained) {
             text += "# the unconstrained inertia about the c.o.m. came out negative (" +
                     number(r.inertia_unconstrained) + " kg m^2): the physically consistent solution has 0\n";
@@ -193,8 +197,8 @@ void run(const IdentifyOptions& options) {
         if (!r.friction.empty()) {
             text += "friction:\n";
             for (const Estimate& e : r.friction) {
-                text += "  - {name: '" + e.name + "', value: " + number(e.value) + ", stddev: " + number(e.stddev) +
-                        ", unit: '" + e.unit + "'}\n";
+                text += "  - {name: " + io::yamlQuoted(e.name) + ", value: " + number(e.value) +
+                        ", stddev: " + number(e.stddev) + ", unit: " + io::yamlQuoted(e.unit) + "}\n";
             }
         }
         RobotDescription merged = withPayload(robot, Payload{r.mass, r.inertia, r.com});
@@ -208,7 +212,8 @@ void run(const IdentifyOptions& options) {
                 }
             }
         }
-        file = "# " + robot.name + " with the payload identified from " + options.data + " merged into the platform\n";
+        file = "# " + io::terminalText(robot.name) + " with the payload identified from " +
+               io::terminalText(options.data) + " merged into the platform\n";
         file += "# payload: {mass: " + number(r.mass) + ", com: [" + number(r.com.x()) + ", " + number(r.com.y()) +
                 "], inertia: " + number(r.inertia) + "}\n";
         file += io::descriptionToYaml(merged);
@@ -256,9 +261,11 @@ void addIdentifyCommand(CLI::App& app) {
     command->add_option("--holdout", options->identification.holdout, "Fraction of the samples (the last) held out")
         ->check(finiteIn(0.0, 0.9, ""))
         ->capture_default_str();
-    command->add_option("--output,-o", options->output,
-                        "YAML to write: the robot file with the payload merged into the platform (--payload), or "
-                        "the calibration file of the base parameters (--base)");
+    command
+        ->add_option("--output,-o", options->output,
+                     "YAML to write: the robot file with the payload merged into the platform (--payload), or "
+                     "the calibration file of the base parameters (--base)")
+        ->check(nonEmptyPath());
     command
         ->add_option("--calibration", options->calibration,
                      "With --payload: a calibration file (identify --base --output on data without payload) whose "

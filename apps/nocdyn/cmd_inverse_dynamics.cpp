@@ -4,6 +4,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/io/tables.hpp"
 #include "nocdyn/sampling.hpp"
@@ -32,6 +33,7 @@ void run(const InverseDynamicsOptions& options) {
     }
     io::CsvWriter csv(out, columns, /*background=*/true);  // formats while we compute
     std::vector<double> row;
+    Progress progress(static_cast<double>(grid.count) / grid.rate);
     const LimitSummary summary =
         options.reactions
             ? streamInverseDynamicsWithReactions(model, trajectory, grid, policy,
@@ -39,14 +41,18 @@ void run(const InverseDynamicsOptions& options) {
                                                      io::inverseDynamicsRow(sample, row);
                                                      io::appendReactions(r, model.limbs, row);
                                                      csv.row(row);
+                                                     progress.update(sample.t);
                                                  })
             : streamInverseDynamics(model, trajectory, grid, policy, [&](const InverseDynamicsSample& sample) {
                   io::inverseDynamicsRow(sample, row);
                   csv.row(row);
+                  progress.update(sample.t);
               });
+    progress.finish();
     csv.finish();
     out.commit();
-    for (const std::string& violation : summary.limit_violations) std::cerr << "nocdyn: warning: " << violation << "\n";
+    for (const std::string& violation : summary.limit_violations)
+        std::cerr << "nocdyn: warning: " << io::terminalText(violation) << "\n";
 }
 
 }  // namespace

@@ -59,7 +59,7 @@ void addRegressorCommand(CLI::App& app) {
         ->check(CLI::Range(20, 100000))
         ->capture_default_str();
     command->add_option("--seed", options->seed, "Seed of the random motions")->capture_default_str();
-    command->add_option("--output,-o", options->output, "Text file to write [default: stdout]");
+    command->add_option("--output,-o", options->output, "Text file to write [default: stdout]")->check(nonEmptyPath());
     command->callback([options] { run(*options); });
 }
 

@@ -1,5 +1,6 @@
 // nocdyn shake: play a ground-motion record (PEER AT2) on a robot within its limits and score
 // the reproduction (shake_replay.hpp).
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -31,6 +32,11 @@ std::vector<double> readAxis(const std::string& path, double window, double& dt,
     dt = record.dt;
     std::vector<double> a = record.acceleration;
     if (window > 0.0) a.resize(std::min(a.size(), static_cast<std::size_t>(window / dt) + 1));
+    // nothing to replay: every score would be a perfect 0 % error of a motion that never moves
+    if (std::all_of(a.begin(), a.end(), [](double v) { return v == 0.0; })) {
+        throw Error(path + ": every acceleration" + (window > 0.0 ? " of the window" : std::string()) +
+                    " is zero: no ground motion to replay");
+    }
     if (angular) {
         for (double& v : a) v /= io::kStandardGravity;  // the file's numbers are rad/s^2
     }

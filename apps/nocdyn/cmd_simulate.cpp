@@ -228,10 +228,11 @@ std::vector<std::string> outputColumns(int n) {
 void run(const SimulateOptions& options) {
     const Model model(loadRobotDescriptionOrDefault(options.robot));
     const int n = model.actuators;
-    const io::Table table = io::readCsvFile(options.forces);
     const std::map<std::string, Interpolation> interpolations{
         {"hold", Interpolation::hold}, {"linear", Interpolation::linear}, {"cubic", Interpolation::cubic}};
-    ForceSignal forces = forcesFromTable(table, n, interpolations.at(options.interpolation), options.forces);
+    // read row by row into flat storage: the header and the first row (the initial state) kept
+    io::Table table;
+    ForceSignal forces = forcesFromCsvFile(options.forces, n, interpolations.at(options.interpolation), table);
     const double t0 = forces.firstTime();
     const double duration = options.duration ? *options.duration : forces.lastTime() - t0;
     if (!(duration > 0.0)) throw Error(options.forces + ": a single force sample: give --duration");
@@ -259,8 +260,10 @@ void run(const SimulateOptions& options) {
     io::OutputFile out = openOutput(options.output);
     io::CsvWriter csv(out, outputColumns(n), /*background=*/true);
     std::vector<double> row(static_cast<std::size_t>(4 + 3 * n + 1));
+    Progress progress(duration);
     for (std::size_t k = 0; k <= count; ++k) {
         const double t = k < count ? t0 + static_cast<double>(k) / options.rate : t0 + duration;
+        progress.update(t - t0);
         if (const Status status = simulator.advance(std::max(0.0, t - simulator.time())); !status) {
             if (options.partial) {
                 csv.finish();
@@ -284,6 +287,7 @@ void run(const SimulateOptions& options) {
         row[c] = simulator.kineticEnergy();
         csv.row(row);
     }
+    progress.finish();
     csv.finish();
     out.commit();
     std::cerr << "nocdyn: simulated " << duration << " s from the " << initial.origin << " (" << name(interpolation)
@@ -321,7 +325,7 @@ void addSimulateCommand(CLI::App& app) {
     command->add_option("--rate", options->rate, "Output samples per second")
         ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
         ->capture_default_str();
-    command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]");
+    command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
     command
         ->add_option("--atol", options->absolute_tolerance,
                      "Integrator absolute tolerance on the pose [rad, m] and its rate [rad/s, m/s]")

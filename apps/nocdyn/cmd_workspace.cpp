@@ -61,7 +61,7 @@ void addWorkspaceCommand(CLI::App& app) {
     command->add_option("--resolution", options->resolution, "Grid points per side")
         ->check(CLI::Range(11, 2001))
         ->capture_default_str();
-    command->add_option("--output,-o", options->output, "CSV of the grid [default: none]");
+    command->add_option("--output,-o", options->output, "CSV of the grid [default: none]")->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")
         ->capture_default_str();
     command->callback([options] { run(*options); });

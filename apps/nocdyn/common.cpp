@@ -1,5 +1,9 @@
 #include "common.hpp"
 
+#include <unistd.h>
+#include <cstdio>
+#include <algorithm>
+#include <chrono>
 #include <charconv>
 #include <cmath>
 #include <iostream>
@@ -11,6 +15,47 @@
 #include "nocdyn/io/examples.hpp"
 
 namespace nocdyn::cli {
+
+namespace {
+double secondsNow() {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+Progress::Progress(double total) : total_(total), terminal_(::isatty(STDERR_FILENO) == 1) {
+    start_ = last_ = secondsNow();
+}
+
+Progress::~Progress() { finish(); }
+
+void Progress::update(double done) {
+    if (!terminal_ || (++calls_ & 1023U) != 0) return;
+    const double now = secondsNow();
+    if (now - last_ < 1.0 || !(total_ > 0.0)) return;
+    last_ = now;
+    const double fraction = std::clamp(done / total_, 0.0, 1.0);
+    const double left = fraction > 0.0 ? (now - start_) * (1.0 - fraction) / fraction : 0.0;
+    std::fprintf(stderr, "\rnocdyn: t = %.4g of %.4g s (%.0f %%), about %.0f s left   ", done, total_, 100.0 * fraction,
+                 left);
+    std::fflush(stderr);
+    shown_ = true;
+}
+
+void Progress::finish() {
+    if (!shown_) return;
+    std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+    shown_ = false;
+}
+
+CLI::Validator nonEmptyPath() {
+    return CLI::Validator(
+        [](std::string& input) -> std::string {
+            return input.empty() ? std::string("an empty file name (leave the option out for standard output)")
+                                 : std::string();
+        },
+        "PATH", "non-empty path");
+}
 
 CLI::Validator finiteIn(double lo, double hi, const std::string& unit) {
     std::ostringstream range;
@@ -51,7 +96,7 @@ void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options) {
     command.add_option("--rate", options.rate, "Samples per second")
         ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
         ->capture_default_str();
-    command.add_option("--output,-o", options.output, "CSV file to write [default: stdout]");
+    command.add_option("--output,-o", options.output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
 }
 
 RobotDescription loadRobotDescriptionOrDefault(const std::string& path) {

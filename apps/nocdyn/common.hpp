@@ -33,6 +33,31 @@ struct TrajectoryOptions {
 /// message, e.g. "Hz"); nan, inf and hex are refused. Any failure exits with status 2.
 [[nodiscard]] CLI::Validator finiteIn(double lo, double hi, const std::string& unit);
 
+/// A CLI11 check for a file name given on the command line: an empty one is refused (it would
+/// otherwise mean standard output, the default when the option is absent).
+[[nodiscard]] CLI::Validator nonEmptyPath();
+
+/// Progress of a long job on a terminal: "t = 1.2 of 10 s (12 %), about 40 s left" on one
+/// line of standard error, rewritten at most once a second, only when standard error is a
+/// terminal (never into a redirected log); cleared by done() or when dropped.
+class Progress {
+public:
+    explicit Progress(double total);
+    ~Progress();
+    Progress(const Progress&) = delete;
+    Progress& operator=(const Progress&) = delete;
+    /// Reports reaching `done` of the total (cheap: the clock is read every 1024 calls).
+    void update(double done);
+    void finish();
+
+private:
+    double total_;
+    bool terminal_;
+    bool shown_ = false;
+    unsigned calls_ = 0;
+    double start_ = 0.0, last_ = 0.0;
+};
+
 /// Adds --robot to a command (empty = the paper's prototype).
 void addRobotOption(CLI::App& command, std::string& robot_path);
 /// Adds --trajectory (required), --robot, --duration, --rate and --output.

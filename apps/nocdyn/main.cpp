@@ -10,6 +10,8 @@
 
 #include "commands.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/io/escape.hpp"
+#include "nocdyn/io/output.hpp"
 
 int main(int argc, char** argv) {
     CLI::App app{
@@ -36,19 +38,20 @@ int main(int argc, char** argv) {
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif
+    nocdyn::io::removeTemporariesOnSignals();
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         // --help and --version exit 0; a malformed argument is one line on stderr and exit 2
         // (README, "Command line").
         if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
-        std::cerr << "nocdyn: error: " << e.what() << " (see --help)\n";
+        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << " (see --help)\n";
         return 2;
     } catch (const nocdyn::Error& e) {
-        std::cerr << "nocdyn: error: " << e.what() << "\n";
+        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << "\n";
         return 1;
     } catch (const std::exception& e) {
-        std::cerr << "nocdyn: error: " << e.what() << "\n";
+        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << "\n";
         return 1;
     }
     // What went to stdout through stdio (tables of pose, control, envelope) is checked too.

@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -102,7 +103,7 @@ std::string script(const Figure& figure, const std::string& terminal) {
 
 /// Runs `gnuplot -d` (no initialisation files) with the script on its standard input (an
 /// anonymous memory file, never a path) and its standard output writing `out`.
-void runGnuplot(const std::string& text, io::OutputFile& out) {
+void runGnuplot(const std::string& text, int out_fd, const std::string& out_path) {
     const int script_fd = memfd_create("nocdyn-figure.gp", MFD_CLOEXEC);
     if (script_fd < 0) throw Error(std::string("cannot hold the gnuplot script: ") + std::strerror(errno));
     struct Closer {
@@ -120,7 +121,7 @@ void runGnuplot(const std::string& text, io::OutputFile& out) {
     posix_spawn_file_actions_t actions;
     posix_spawn_file_actions_init(&actions);
     posix_spawn_file_actions_adddup2(&actions, script_fd, STDIN_FILENO);
-    posix_spawn_file_actions_adddup2(&actions, out.descriptor(), STDOUT_FILENO);
+    posix_spawn_file_actions_adddup2(&actions, out_fd, STDOUT_FILENO);
     char program[] = "gnuplot";
     char defaults[] = "-d";
     char* argv[] = {program, defaults, nullptr};
@@ -132,9 +133,9 @@ void runGnuplot(const std::string& text, io::OutputFile& out) {
     }
     int status = 0;
     while (waitpid(pid, &status, 0) < 0) {
-        if (errno != EINTR) throw Error("gnuplot failed on '" + out.path() + "'");
+        if (errno != EINTR) throw Error("gnuplot failed on '" + out_path + "'");
     }
-    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw Error("gnuplot failed on '" + out.path() + "'");
+    if (!WIFEXITED(status) || WEXITSTATUS(status) != 0) throw Error("gnuplot failed on '" + out_path + "'");
 }
 
 }  // namespace
@@ -152,13 +153,55 @@ void renderFigure(const Figure& figure, const std::string& stem) {
     renderFigureFiles(figure, stem + ".png", stem + ".svg");
 }
 
+std::string wellFormedSvg(std::string_view svg) {
+    std::string out;
+    out.reserve(svg.size());
+    for (std::size_t k = 0; k < svg.size(); ++k) {
+        const char c = svg[k];
+        if (c == '&') {
+            // an entity (&name; or &#digits;) stays; any other '&' is a character of text
+            std::size_t e = k + 1;
+            if (e < svg.size() && svg[e] == '#') ++e;
+            while (e < svg.size() && e - k <= 12 && std::isalnum(static_cast<unsigned char>(svg[e])) != 0) ++e;
+            const bool entity = e < svg.size() && svg[e] == ';' && e > k + 1;
+            out += entity ? "&" : "&amp;";
+        } else if (c == '>' && k >= 2 && svg[k - 1] == ']' && svg[k - 2] == ']') {
+            out += "&gt;";
+        } else {
+            out += c;
+        }
+    }
+    return out;
+}
+
 void renderFigureFiles(const Figure& figure, const std::string& png, const std::string& svg) {
-    for (const auto& [terminal, path] :
-         {std::pair<std::string, std::string>{"pngcairo enhanced font 'Sans,11'", png},
-          std::pair<std::string, std::string>{"svg enhanced dynamic font 'Sans,11'", svg}}) {
-        if (path.empty()) continue;
-        io::OutputFile out(path);
-        runGnuplot(script(figure, terminal), out);
+    if (!png.empty()) {
+        io::OutputFile out(png);
+        runGnuplot(script(figure, "pngcairo enhanced font 'Sans,11'"), out.descriptor(), out.path());
+        out.commit();
+    }
+    if (!svg.empty()) {
+        // gnuplot writes into an anonymous memory file; its SVG is then made well-formed
+        io::OutputFile out(svg);
+        const int fd = memfd_create("nocdyn-figure.svg", MFD_CLOEXEC);
+        if (fd < 0) throw Error(std::string("cannot hold the SVG figure: ") + std::strerror(errno));
+        struct Closer {
+            int fd;
+            ~Closer() { ::close(fd); }
+        } closer{fd};
+        runGnuplot(script(figure, "svg enhanced dynamic font 'Sans,11'"), fd, out.path());
+        std::string text;
+        if (::lseek(fd, 0, SEEK_SET) != 0) throw Error("cannot read the SVG figure back");
+        char buffer[65536];
+        for (;;) {
+            const ssize_t n = ::read(fd, buffer, sizeof buffer);
+            if (n < 0 && errno == EINTR) continue;
+            if (n < 0) throw Error(std::string("cannot read the SVG figure back: ") + std::strerror(errno));
+            if (n == 0) break;
+            text.append(buffer, static_cast<std::size_t>(n));
+            if (text.size() > (std::size_t{256} << 20)) throw Error("the SVG figure is larger than 256 MiB");
+        }
+        out.write(wellFormedSvg(text));
         out.commit();
     }
 }

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace nocdyn::cli {
@@ -30,6 +31,10 @@ struct Figure {
 /// `text` (e.g. a robot or trajectory name from a file) marked up to be shown as it is by the
 /// enhanced-text terminals: `\ @ _ ^ { } & ~` are escaped.
 [[nodiscard]] std::string literalText(const std::string& text);
+
+/// gnuplot's SVG made well-formed XML: gnuplot writes a title's '&' and "]]>" as they are;
+/// every '&' that does not begin an entity becomes "&amp;", the '>' of "]]>" "&gt;".
+[[nodiscard]] std::string wellFormedSvg(std::string_view svg);
 
 /// Writes `stem`.png and `stem`.svg, each safely (io::OutputFile: all or nothing). Throws
 /// nocdyn::Error when gnuplot is missing or fails.

@@ -74,6 +74,10 @@ public:
     /// samples (too few for the spline's endpoint slopes) cubic is taken as linear.
     ForceSignal(std::vector<double> times, const std::vector<ActuatorVector>& tau, Interpolation interpolation,
                 const std::string& source = "forces");
+    /// The same from flat storage: tau holds `actuators` forces a sample, sample after sample
+    /// (kept as given: 8 bytes a force, no per-sample overhead).
+    ForceSignal(std::vector<double> times, std::vector<double> tau, int actuators, Interpolation interpolation,
+                const std::string& source = "forces");
     ~ForceSignal();
     ForceSignal(ForceSignal&&) noexcept;
     ForceSignal& operator=(ForceSignal&&) noexcept;
@@ -107,6 +111,13 @@ private:
 /// non-uniform times for cubic).
 [[nodiscard]] ForceSignal forcesFromTable(const io::Table& table, int actuators, Interpolation interpolation,
                                           const std::string& source);
+
+/// Forces read from a CSV file row by row (io::readCsvFileRows) into flat storage: 8 bytes a
+/// force and a time, whatever the file's size. The same columns and errors as forcesFromTable,
+/// and a column tau(n+1) or beyond (forces for actuators the robot does not have) is an error
+/// naming it. `first` receives the header and the first row (for the initial state).
+[[nodiscard]] ForceSignal forcesFromCsvFile(const std::string& path, int actuators, Interpolation interpolation,
+                                            io::Table& first);
 
 struct SimulatorOptions {
     double absolute_tolerance = 1e-12;  ///< per component of (p [rad, m], dp/dt [rad/s, m/s])

@@ -38,6 +38,14 @@ struct SampleGrid {
 
 /// Points per period of the highest harmonic at which limits are checked between samples.
 inline constexpr int kLimitChecksPerPeriod = 40;
+/// Most harmonic terms a sampled trajectory may take to evaluate: points (samples or limit
+/// checks, whichever are more) times harmonics; about 3 minutes of computing.
+inline constexpr double kMaxTrajectoryWork = 2e10;
+
+/// Throws nocdyn::Error, with the estimate of the work and its time, when sampling `trajectory`
+/// over `duration` at `samples` points (and the limit checks between them) would evaluate more
+/// than kMaxTrajectoryWork harmonic terms.
+void requireBoundedWork(const PoseTrajectory& trajectory, double duration, std::size_t samples);
 
 /// Highest harmonic frequency of any axis [Hz]; 0 for a constant pose.
 [[nodiscard]] double highestFrequency(const PoseTrajectory& trajectory);

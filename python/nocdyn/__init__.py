@@ -24,6 +24,7 @@ raise TypeError.
 
 from __future__ import annotations
 
+import operator
 from collections import namedtuple
 
 import numpy as np
@@ -56,6 +57,144 @@ bodies of limbs 1..m, second bodies, then the platform)."""
 
 
 _PRIOR_KEYS = ("mass", "com_x", "com_y", "inertia")
+
+# --- the one guard of every entry: numbers as the command line checks them, arrays of any
+# memory order read correctly (copied when the compiled part cannot view them), outputs that
+# overlap nothing, threads within reason, results checked finite.
+
+_MAX_THREADS = 1024  # the compiled batch caps this further at the hardware and the work
+_MAX_SAMPLES = 1e7  # samples of trajectory_dynamics, all held in memory
+
+
+def _number(value, name, lower=-np.inf, upper=np.inf):
+    """A finite float in [lower, upper] (the command line's range for the option); TypeError
+    for what is not a real number, nocdyn.Error for NaN, inf or a value out of range."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(value, (int, float, np.integer, np.floating)):
+        raise TypeError(f"{name}: expected a number, got {type(value).__name__}")
+    try:
+        v = float(value)
+    except OverflowError:
+        raise Error(f"{name}: {value!r} is not a finite number") from None
+    if not np.isfinite(v) or not lower <= v <= upper:
+        raise Error(f"{name}: {value!r} is not a finite number in [{lower:g}, {upper:g}]")
+    return v
+
+
+def _integer(value, name, lower, upper):
+    """An int in [lower, upper]; TypeError for what is not an integer (bool included)."""
+    if isinstance(value, (bool, np.bool_)):
+        raise TypeError(f"{name}: expected an integer, got bool")
+    try:
+        v = operator.index(value)
+    except TypeError:
+        raise TypeError(f"{name}: expected an integer, got {type(value).__name__}") from None
+    if not lower <= v <= upper:
+        raise Error(f"{name}: {v} is not in [{lower}, {upper}]")
+    return v
+
+
+def _floats(x, name):
+    """x as a float64 array: a sequence is converted; an ndarray of another dtype raises
+    TypeError (no silent cast of the caller's data)."""
+    if isinstance(x, np.ndarray):
+        if x.dtype != np.float64:
+            raise TypeError(f"{name}: expected an array of float64, got dtype {x.dtype} "
+                            "(convert it with numpy.asarray(x, dtype=float))")
+        return x
+    try:
+        a = np.asarray(x, dtype=float)
+    except (TypeError, ValueError) as e:
+        raise TypeError(f"{name}: expected numbers: {e}") from None
+    return a
+
+
+def _viewable(a):
+    """True when the compiled part can read a in place: aligned, native byte order, strides
+    whole non-negative elements."""
+    item = a.itemsize
+    return (a.flags.aligned and a.dtype.isnative and
+            all(s >= 0 and s % item == 0 for s in a.strides))
+
+
+def _input(x, name, shape, finite=True):
+    """An input array of float64 of the given shape (None: any length), every value finite
+    (unless finite=False: the compiled part then reports the sample), read in place when
+    possible, else copied."""
+    a = _floats(x, name)
+    if a.ndim != len(shape) or any(want is not None and got != want for got, want in zip(a.shape, shape)):
+        want = ", ".join("N" if w is None else str(w) for w in shape)
+        raise Error(f"{name}: expected shape ({want}{',' if len(shape) == 1 else ''}), got {a.shape}")
+    if not _viewable(a):
+        a = np.ascontiguousarray(a)
+    if finite and a.size and not _all_finite(a):
+        bad = np.argwhere(~np.isfinite(a))[0]
+        raise Error(f"{name}[{', '.join(str(int(i)) for i in bad)}]: not a finite number")
+    return a
+
+
+def _all_finite(a):
+    """Whether every value is finite, without an array-sized temporary (min and max propagate
+    NaN and show an infinity)."""
+    return bool(np.isfinite(a.min()) and np.isfinite(a.max()))
+
+
+def _overlaps_itself(a):
+    """True when two elements of a 2-D array share memory (a zero stride, or strides that
+    interleave rows and columns)."""
+    dims = sorted((abs(s), n) for s, n in zip(a.strides, a.shape) if n > 1)
+    extent = a.itemsize
+    for stride, n in dims:
+        if stride < extent:
+            return True
+        extent = stride * n
+    return False
+
+
+def _shares(a, b):
+    try:
+        return np.shares_memory(a, b, max_work=1 << 20)
+    except np.exceptions.TooHardError if hasattr(np, "exceptions") else np.TooHardError:
+        return True
+
+
+def _outputs(out, names, shape, inputs):
+    """The caller's output arrays: float64, writeable, of `shape`, each overlapping neither
+    itself, another output nor an input (overlap would give wrong numbers, silently)."""
+    out = tuple(out)
+    if len(out) != len(names):
+        raise Error(f"out: expected a tuple of four arrays ({', '.join(names)})")
+    for a, name in zip(out, names):
+        if not isinstance(a, np.ndarray):
+            raise TypeError(f"{name}: expected a numpy array, got {type(a).__name__}")
+        if a.dtype != np.float64:
+            raise TypeError(f"{name}: expected an array of float64, got dtype {a.dtype}")
+        if a.shape != shape:
+            raise Error(f"{name}: expected shape {shape}, got {a.shape}")
+        if not a.flags.writeable:
+            raise Error(f"{name}: the output array is read-only")
+        if not _viewable(a):
+            raise Error(f"{name}: strides {a.strides} or alignment not supported (pass a C- or F-ordered array)")
+        if _overlaps_itself(a):
+            raise Error(f"out: {name}: its elements overlap one another (strides {a.strides})")
+    for i, a in enumerate(out):
+        for b, other in zip(out[i + 1:], names[i + 1:]):
+            if _shares(a, b):
+                raise Error(f"out: {names[i]} and {other} overlap in memory")
+        for b, other in inputs:
+            if _shares(a, b):
+                raise Error(f"out: {names[i]} overlaps the input {other} in memory")
+    return out
+
+
+def _require_finite(arrays, what):
+    """Raises nocdyn.Error naming the first sample (row) where one of the result arrays is not
+    finite: finite input that overflows (huge rates or accelerations)."""
+    for a in arrays:
+        a = np.asarray(a)
+        if a.size and not _all_finite(a):
+            rows = np.argwhere(~np.isfinite(a))
+            where = f"sample {int(rows[0][0])}: " if a.ndim > 1 else ""
+            raise Error(f"{where}{what} is not finite (the input is too large)")
 
 
 def load_prior(path):
@@ -196,38 +335,46 @@ class Robot:
 
         Batch: p, dp, ddp of shape (N, 3), float64, give u, du, ddu, tau of shape (N, n). The
         inputs are read in place, whatever their memory order (C, Fortran, or a strided view:
-        no copy); another dtype raises TypeError. The results are written into `out`, a tuple
-        of four (N, n) float64 arrays of the same memory order, when given (and returned), else
-        into new C-ordered arrays. The GIL is released during the computation, so other Python
-        threads run meanwhile. threads > 1 splits the samples over that many C++ threads (0:
-        one per hardware thread).
+        no copy; reversed, misaligned or byte-swapped arrays are copied); another dtype raises
+        TypeError, a NaN or infinite input nocdyn.Error. The results are written into `out`, a
+        tuple of four (N, n) float64 arrays of the same memory order, when given (and
+        returned), else into new C-ordered arrays; outputs that overlap one another, themselves
+        or an input are refused. The GIL is released during the computation, so other Python
+        threads run meanwhile. threads (0..1024) > 1 splits the samples over that many C++
+        threads, at most one per hardware thread and sample (0: one per hardware thread).
 
         A sample out of reach or singular raises nocdyn.Error "sample K: <reason>" (the first
-        such sample; its row, like every failed one, is NaN). check=False returns instead,
-        leaving NaN rows for the failed samples.
+        such sample; its row, like every failed one, is NaN), and so does a result that is not
+        finite (rates or accelerations so large that the forces overflow). check=False returns
+        instead, leaving NaN rows for the failed samples.
         """
-        p_arr = p if isinstance(p, np.ndarray) else np.asarray(p, dtype=float)
+        threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
+        p_arr = _floats(p, "p")
         if p_arr.ndim == 1:
             if out is not None:
                 raise Error("out: only for a batch of (N, 3) arrays")
-            result = self._core._inverse_dynamics_sample(p_arr, dp, ddp, matrices)
+            result = self._core._inverse_dynamics_sample(p_arr, dp, ddp, bool(matrices))
+            if check:
+                _require_finite(result, "the inverse dynamics")
             return InverseDynamicsMatrices(*result) if matrices else InverseDynamics(*result)
         if matrices:
             raise Error("matrices: only for one sample (p of shape (3,))")
-        dp_arr = dp if isinstance(dp, np.ndarray) else np.asarray(dp, dtype=float)
-        ddp_arr = ddp if isinstance(ddp, np.ndarray) else np.asarray(ddp, dtype=float)
         if p_arr.ndim != 2:
             raise Error(f"p: expected shape (3,) or (N, 3), got {p_arr.shape}")
         n = p_arr.shape[0]
+        p_arr = _input(p_arr, "p", (None, 3), finite=False)
+        dp_arr = _input(dp, "dp", (n, 3), finite=False)
+        ddp_arr = _input(ddp, "ddp", (n, 3), finite=False)
+        shape = (n, self.actuators)
         if out is None:
-            out = tuple(np.empty((n, self.actuators)) for _ in range(4))
+            out = tuple(np.empty(shape) for _ in range(4))
         else:
-            out = tuple(out)
-            if len(out) != 4:
-                raise Error("out: expected a tuple of four arrays (u, du, ddu, tau)")
+            out = _outputs(out, ("u", "du", "ddu", "tau"), shape, ((p_arr, "p"), (dp_arr, "dp"), (ddp_arr, "ddp")))
         failed, first, message = self._core._inverse_dynamics_batch(p_arr, dp_arr, ddp_arr, *out, threads=threads)
         if failed and check:
             raise Error(f"sample {first}: {message} ({failed} of {n} samples failed)")
+        if check:
+            _require_finite(out, "the inverse dynamics")
         return InverseDynamics(*out)
 
     def trajectory_dynamics(self, trajectory, rate=10000.0, duration=None, *, allow_limits=False):
@@ -240,7 +387,15 @@ class Robot:
         instead of raising)."""
         if not isinstance(trajectory, Trajectory):
             raise TypeError("trajectory: expected a nocdyn.Trajectory")
-        return self._core._sample_trajectory(trajectory._core, float(rate), duration, allow_limits)
+        rate = _number(rate, "rate", 1.0, 1e8)
+        if duration is not None:
+            duration = _number(duration, "duration", 1e-6, 1e6)
+        span = duration if duration is not None else (trajectory.duration or 0.2)
+        if span * rate > _MAX_SAMPLES:
+            # 19 arrays' worth of 8 bytes a sample: 1e7 samples are about 1.5 GB
+            raise Error(f"duration * rate = {span * rate:.6g} samples: at most {_MAX_SAMPLES:.0e} are held in "
+                        "memory (the command line's inverse-dynamics streams any number to a file)")
+        return self._core._sample_trajectory(trajectory._core, rate, duration, bool(allow_limits))
 
     # --- identification -------------------------------------------------------------
     def parameter_names(self):
@@ -261,10 +416,9 @@ class Robot:
     def with_payload(self, mass, com=(0.0, 0.0), inertia=0.0):
         """This robot with a payload merged into its platform: mass [kg], c.o.m. [x, y] in the
         platform frame [m], moment of inertia about its own c.o.m. [kg m^2]."""
-        com = [float(v) for v in com]
-        if len(com) != 2:
-            raise Error("com: expected 2 values [x, y]")
-        return Robot(self._core._with_payload(float(mass), com, float(inertia)))
+        com = _input(com, "com", (2,))
+        return Robot(self._core._with_payload(_number(mass, "mass"), [float(v) for v in com],
+                                              _number(inertia, "inertia")))
 
     def regressor(self, p, dp, ddp):
         """The inverse-dynamics regressor Y, linear in the standard parameters: tau = Y pi.
@@ -273,14 +427,20 @@ class Robot:
         arrays (read in place, any memory order) give the stacked regressor of shape (N * n, P),
         rows k * n .. k * n + n - 1 those of sample k (reshape(N, n, P) separates them). A
         sample out of reach or singular raises nocdyn.Error ("sample K: <reason>")."""
-        p_arr = p if isinstance(p, np.ndarray) else np.asarray(p, dtype=float)
+        p_arr = _floats(p, "p")
         if p_arr.ndim == 1:
-            return self._core._regressor_sample(p_arr, dp, ddp)
-        if p_arr.ndim != 2:
+            Y = self._core._regressor_sample(p_arr, dp, ddp)
+        elif p_arr.ndim == 2:
+            n = p_arr.shape[0]
+            Y = self._core._regressor_batch(_input(p_arr, "p", (None, 3), finite=False),
+                                            _input(dp, "dp", (n, 3), finite=False),
+                                            _input(ddp, "ddp", (n, 3), finite=False))
+        else:
             raise Error(f"p: expected shape (3,) or (N, 3), got {p_arr.shape}")
-        dp_arr = dp if isinstance(dp, np.ndarray) else np.asarray(dp, dtype=float)
-        ddp_arr = ddp if isinstance(ddp, np.ndarray) else np.asarray(ddp, dtype=float)
-        return self._core._regressor_batch(p_arr, dp_arr, ddp_arr)
+        if Y.size and not _all_finite(Y):
+            row = int(np.argwhere(~np.isfinite(Y))[0][0])
+            raise Error(f"sample {row // max(self.actuators, 1)}: the regressor is not finite (the input is too large)")
+        return Y
 
     def identify_payload(self, t, u, tau, du=None, ddu=None, *, friction=False, held_forces=False, cutoff=None,
                          holdout=0.2, prior=None):
@@ -311,17 +471,21 @@ class Robot:
             pair = prior.get(key, (None, None))
             if pair is None or len(pair) != 2:
                 raise Error(f"prior: {key}: expected (lower, upper), None for an open side")
-            lower = -np.inf if pair[0] is None else float(pair[0])
-            upper = np.inf if pair[1] is None else float(pair[1])
+            lower = -np.inf if pair[0] is None else _number(pair[0], f"prior: {key}: lower")
+            upper = np.inf if pair[1] is None else _number(pair[1], f"prior: {key}: upper")
             bounds.append((lower, upper))
 
-        def actuator_array(x):
-            return None if x is None else np.asarray(x, dtype=float)
+        t = _floats(t, "t").reshape(-1)
+        n = t.shape[0]
 
-        result = self._core._identify_payload(np.asarray(t, dtype=float).reshape(-1), actuator_array(u),
-                                              actuator_array(tau), actuator_array(du), actuator_array(ddu),
-                                              bool(friction), bool(held_forces),
-                                              0.0 if cutoff is None else float(cutoff), float(holdout), bounds)
+        def actuator_array(x, name):
+            return None if x is None else _input(x, name, (n, self.actuators))
+
+        cutoff = 0.0 if cutoff is None else _number(cutoff, "cutoff", 1e-3, 1e6)
+        result = self._core._identify_payload(_input(t, "t", (None,)), actuator_array(u, "u"),
+                                              actuator_array(tau, "tau"), actuator_array(du, "du"),
+                                              actuator_array(ddu, "ddu"), bool(friction), bool(held_forces), cutoff,
+                                              _number(holdout, "holdout", 0.0, 0.9), bounds)
         return PayloadEstimate(result)
 
     # --- direct kinematics ----------------------------------------------------------
@@ -333,7 +497,8 @@ class Robot:
         robot's working mode: every limb on its home branch), u_error (how well the pose gives
         back u) and condition (large next to a singularity). Empty when u does not assemble.
         """
-        result = self._core._forward_kinematics(u, tolerance)
+        result = self._core._forward_kinematics(_input(u, "u", (self.actuators,)),
+                                                _number(tolerance, "tolerance", 1e-15, 1e-3))
         modes = result["modes"]
         for mode in modes:
             mode["degenerate"] = result["degenerate"]
@@ -352,13 +517,19 @@ class Robot:
         Returns a dict of arrays at t: t, p, dp (len(t), 3), u, du, tau (len(t), n). Raises
         nocdyn.Error "t = ... s: <reason>" where the motion leaves the workspace or turns
         singular."""
-        t = np.asarray(t, dtype=float)
-        if force_times is None:
-            force_times = t
-        if p0 is None:
-            p0 = self.home
-        return self._core._simulate(p0, dp0, np.asarray(force_times, dtype=float), np.asarray(forces, dtype=float),
-                                    interpolation, t, rtol, atol, max_step)
+        t = _input(_floats(t, "t").reshape(-1), "t", (None,))
+        force_times = t if force_times is None else _input(_floats(force_times, "force_times").reshape(-1),
+                                                           "force_times", (None,))
+        forces = _input(forces, "forces", (force_times.shape[0], self.actuators))
+        p0 = _input(self.home if p0 is None else p0, "p0", (3,))
+        dp0 = _input(dp0, "dp0", (3,))
+        if not isinstance(interpolation, str):
+            raise TypeError("interpolation: expected 'hold', 'linear' or 'cubic'")
+        result = self._core._simulate(p0, dp0, force_times, forces, interpolation, t,
+                                      _number(rtol, "rtol", 1e-14, 1e-2), _number(atol, "atol", 1e-15, 1e-2),
+                                      _number(max_step, "max_step", 1e-9, 1e3))
+        _require_finite([result[k] for k in ("p", "dp", "u", "du", "tau")], "the simulated motion")
+        return result
 
     # --- operating envelope ---------------------------------------------------------
     def envelope(self, axes=("theta", "x", "y"), *, min_frequency=1.0, max_frequency=100.0, frequencies=41,
@@ -375,8 +546,11 @@ class Robot:
         applicable), kinematic_amplitude, peak_effort_ratio."""
         if isinstance(axes, str):
             axes = (axes,)
-        return self._core._envelope(list(axes), min_frequency, max_frequency, frequencies, samples_per_period,
-                                    relative_tolerance)
+        return self._core._envelope(list(axes), _number(min_frequency, "min_frequency", 1e-3, 1e4),
+                                    _number(max_frequency, "max_frequency", 1e-3, 1e4),
+                                    _integer(frequencies, "frequencies", 1, 1000),
+                                    _integer(samples_per_period, "samples_per_period", 8, 65536),
+                                    _number(relative_tolerance, "relative_tolerance", 1e-15, 0.5))
 
 
 class Trajectory:
@@ -470,7 +644,9 @@ class Trajectory:
     def evaluate(self, t):
         """p, dp/dt, d2p/dt2 at the times t [s] (any shape-(N,) sequence): three (N, 3) arrays
         with columns [theta, x, y] (exact derivatives)."""
-        return self._core._evaluate(np.asarray(t, dtype=float).reshape(-1))
+        result = self._core._evaluate(_input(_floats(t, "t").reshape(-1), "t", (None,)))
+        _require_finite(result, "the trajectory")
+        return result
 
     def __repr__(self):
         return f"<nocdyn.Trajectory {self.name!r}>"

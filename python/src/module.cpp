@@ -45,6 +45,9 @@ namespace {
 using StridedMap = Eigen::Map<Eigen::ArrayXXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
 using ConstStridedMap = Eigen::Map<const Eigen::ArrayXXd, 0, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>>;
 using RowArray = py::array_t<double, py::array::c_style>;
+/// An input read through data(): pybind11 copies any other memory order or dtype into a
+/// C-ordered float64 array (a strided view read as contiguous would give wrong numbers).
+using ContiguousInput = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 /// A float64 array of shape (rows, cols) (rows = -1: any), viewed in place whatever its strides
 /// (C- or F-ordered, or a strided view of either). Throws TypeError for another dtype and
@@ -235,7 +238,7 @@ std::vector<std::array<double, 3>> harmonicsOf(const AxisMotion& m) {
 }
 
 /// p, dp/dt and d2p/dt2 at each time of t, three (N, 3) arrays.
-py::tuple evaluateTrajectory(const PoseTrajectory& trajectory, const py::array_t<double, py::array::forcecast>& t) {
+py::tuple evaluateTrajectory(const PoseTrajectory& trajectory, const ContiguousInput& t) {
     if (t.ndim() != 1) throw Error("t: expected a one-dimensional array of times");
     const py::ssize_t n = t.shape(0);
     RowArray P({n, py::ssize_t{3}}), dP({n, py::ssize_t{3}}), ddP({n, py::ssize_t{3}});
@@ -345,10 +348,9 @@ Interpolation interpolationOf(const std::string& name) {
 
 /// Forward dynamics from (p0, dp0) under forces tau(times) (interpolated), the state read at
 /// `t_out` (increasing, >= 0). Stops with nocdyn.Error "t = ... s: <reason>" on failure.
-py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp0,
-                  const py::array_t<double, py::array::forcecast>& force_times,
-                  const py::array_t<double, py::array::forcecast>& forces, const std::string& interpolation,
-                  const py::array_t<double, py::array::forcecast>& t_out, double rtol, double atol, double max_step) {
+py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp0, const ContiguousInput& force_times,
+                  const ContiguousInput& forces, const std::string& interpolation, const ContiguousInput& t_out,
+                  double rtol, double atol, double max_step) {
     const Model& model = *robot.model;
     const int n = model.actuators;
     if (force_times.ndim() != 1 || forces.ndim() != 2 || forces.shape(0) != force_times.shape(0) ||
@@ -523,10 +525,10 @@ RowArray toArray(const Eigen::MatrixXd& m) {
 /// identifyPayload on arrays: t (N,), u and tau (N, n), du and ddu (N, n) or None; prior: the
 /// bounds [mass, com_x, com_y, inertia] as (lower, upper) pairs, infinite where open. The GIL
 /// is released while the motion is reconstructed and the least squares solved.
-py::dict identifyPayloadArrays(const Robot& robot, const py::array_t<double, py::array::forcecast>& t,
-                               const py::array& u, const py::array& tau, const std::optional<py::array>& du,
-                               const std::optional<py::array>& ddu, bool friction, bool held_forces, double cutoff,
-                               double holdout, const std::array<std::array<double, 2>, 4>& prior) {
+py::dict identifyPayloadArrays(const Robot& robot, const ContiguousInput& t, const py::array& u, const py::array& tau,
+                               const std::optional<py::array>& du, const std::optional<py::array>& ddu, bool friction,
+                               bool held_forces, double cutoff, double holdout,
+                               const std::array<std::array<double, 2>, 4>& prior) {
     const Model& model = *robot.model;
     if (t.ndim() != 1) throw Error("t: expected a one-dimensional array of times");
     const py::ssize_t N = t.shape(0);

@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/error.hpp"
 #include "yaml_util.hpp"
 
@@ -22,12 +23,7 @@ std::string roundTrip(double v) {
     return buffer;
 }
 
-/// A single-quoted YAML scalar (quotes doubled).
-std::string quoted(const std::string& text) {
-    std::string out = "'";
-    for (const char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
-    return out + "'";
-}
+std::string quoted(const std::string& text) { return yamlQuoted(text); }
 
 }  // namespace
 

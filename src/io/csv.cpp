@@ -1,6 +1,8 @@
 // CSV tables (see csv.hpp).
 #include "nocdyn/io/csv.hpp"
 
+#include <algorithm>
+
 #include <cerrno>
 #include <charconv>
 #include <condition_variable>
@@ -200,11 +202,14 @@ void splitLine(std::string_view line, std::vector<std::string_view>& cells) {
 
 }  // namespace
 
-Table parseCsv(std::string_view text, const std::string& source) {
+void parseCsvRows(std::string_view text, const std::string& source,
+                  const std::function<void(const std::vector<std::string>& columns)>& header,
+                  const CsvRowHandler& row_handler) {
     detail::stripByteOrderMark(text);
-    Table table;
+    std::vector<std::string> columns;
     std::vector<std::string_view> cells;
-    std::size_t line_number = 0;
+    std::vector<double> row;
+    std::size_t line_number = 0, rows = 0;
     auto at = [&](std::size_t line) { return source + ":" + std::to_string(line) + ": "; };
     while (!text.empty()) {
         const auto newline = text.find('\n');
@@ -216,7 +221,7 @@ Table parseCsv(std::string_view text, const std::string& source) {
         }
         if (trim(line).empty()) continue;
         splitLine(line, cells);
-        if (table.columns.empty()) {
+        if (columns.empty()) {
             if (cells.size() > kMaxCsvColumns) {
                 throw Error(at(line_number) + std::to_string(cells.size()) + " columns, at most " +
                             std::to_string(kMaxCsvColumns) + " accepted");
@@ -224,32 +229,51 @@ Table parseCsv(std::string_view text, const std::string& source) {
             for (const std::string_view c : cells) {
                 const std::string name(c);
                 if (name.empty()) throw Error(at(line_number) + "empty column name in the header");
-                if (table.has(name)) throw Error(at(line_number) + "column '" + name + "' appears twice in the header");
-                table.columns.push_back(name);
+                if (std::find(columns.begin(), columns.end(), name) != columns.end())
+                    throw Error(at(line_number) + "column '" + name + "' appears twice in the header");
+                columns.push_back(name);
             }
+            header(columns);
             continue;
         }
-        if (cells.size() != table.columns.size()) {
-            throw Error(at(line_number) + "expected " + std::to_string(table.columns.size()) + " values, found " +
+        if (cells.size() != columns.size()) {
+            throw Error(at(line_number) + "expected " + std::to_string(columns.size()) + " values, found " +
                         std::to_string(cells.size()));
         }
-        if (table.rows.size() >= kMaxCsvRows) {
+        if (rows >= kMaxCsvRows) {
             throw Error(at(line_number) + "more than " + std::to_string(kMaxCsvRows) + " rows");
         }
-        std::vector<double> row(cells.size());
+        row.resize(cells.size());
         for (std::size_t k = 0; k < cells.size(); ++k) {
             const std::optional<double> value = detail::parseDecimal(cells[k]);
             if (!value) {
-                throw Error(at(line_number) + "column '" + table.columns[k] + "': '" + std::string(cells[k]) + "' " +
+                throw Error(at(line_number) + "column '" + columns[k] + "': '" + std::string(cells[k]) + "' " +
                             detail::numberProblem(cells[k]));
             }
             row[k] = *value;
         }
-        table.rows.push_back(std::move(row));
-        table.lines.push_back(line_number);
+        ++rows;
+        row_handler(row, line_number);
     }
-    if (table.columns.empty()) throw Error("CSV file '" + source + "' is empty");
+    if (columns.empty()) throw Error("CSV file '" + source + "' is empty");
+}
+
+Table parseCsv(std::string_view text, const std::string& source) {
+    Table table;
+    parseCsvRows(
+        text, source, [&](const std::vector<std::string>& columns) { table.columns = columns; },
+        [&](std::span<const double> values, std::size_t line) {
+            table.rows.emplace_back(values.begin(), values.end());
+            table.lines.push_back(line);
+        });
     return table;
+}
+
+void readCsvFileRows(const std::string& path,
+                     const std::function<void(const std::vector<std::string>& columns)>& header,
+                     const CsvRowHandler& row) {
+    const std::string text = detail::readRegularFile(path, "CSV file", detail::kMaxCsvBytes);
+    parseCsvRows(text, path, header, row);
 }
 
 Table readCsvFile(const std::string& path) {

@@ -2,10 +2,14 @@
 #include "nocdyn/io/output.hpp"
 
 #include <fcntl.h>
+#include <limits.h>
+#include <signal.h>
 #include <sys/random.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <array>
+#include <atomic>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -24,6 +28,47 @@ constexpr std::size_t kBufferBytes = std::size_t{1} << 16;
 
 [[noreturn]] void fail(const std::string& what, const std::string& path, int error) {
     throw Error(what + " '" + path + "': " + std::strerror(error));
+}
+
+/// The temporaries in progress, for the signal handler: fixed storage (no allocation in the
+/// handler), each slot claimed by `used`, readable by the handler once `ready`.
+struct PendingSlot {
+    std::atomic<bool> used{false};
+    std::atomic<bool> ready{false};
+    std::array<char, PATH_MAX> path{};
+};
+constexpr int kPendingSlots = 64;
+std::array<PendingSlot, kPendingSlots> g_pending;
+
+/// Lists a temporary (its slot, or -1 when every slot is taken: then only the destructor
+/// removes it).
+int listPending(const std::string& path) {
+    if (path.size() >= PATH_MAX) return -1;
+    for (int i = 0; i < kPendingSlots; ++i) {
+        PendingSlot& slot = g_pending[static_cast<std::size_t>(i)];
+        bool expected = false;
+        if (!slot.used.compare_exchange_strong(expected, true)) continue;
+        std::memcpy(slot.path.data(), path.c_str(), path.size() + 1);
+        slot.ready.store(true);
+        return i;
+    }
+    return -1;
+}
+
+void unlistPending(int& index) noexcept {
+    if (index < 0) return;
+    PendingSlot& slot = g_pending[static_cast<std::size_t>(index)];
+    slot.ready.store(false);
+    slot.used.store(false);
+    index = -1;
+}
+
+extern "C" void removeTemporariesAndExit(int signal_number) {
+    for (PendingSlot& slot : g_pending) {
+        if (slot.ready.load()) (void)::unlink(slot.path.data());
+    }
+    ::signal(signal_number, SIG_DFL);
+    ::raise(signal_number);
 }
 
 /// 16 hexadecimal digits from the kernel's random source (std::random_device as a fallback).
@@ -95,6 +140,7 @@ OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
         if (error != EEXIST || attempt == 16) fail("cannot write", path_, error);
     }
     owns_fd_ = true;
+    pending_ = listPending(temporary_);
     // Replacing a regular file keeps its permission bits.
     if (S_ISREG(entry.st_mode)) (void)::fchmod(fd_, entry.st_mode & 07777);
 }
@@ -116,7 +162,8 @@ OutputFile::OutputFile(OutputFile&& other) noexcept
       owns_fd_(std::exchange(other.owns_fd_, false)),
       committed_(std::exchange(other.committed_, true)),
       buffer_(std::move(other.buffer_)),
-      used_(std::exchange(other.used_, 0)) {}
+      used_(std::exchange(other.used_, 0)),
+      pending_(std::exchange(other.pending_, -1)) {}
 
 OutputFile::~OutputFile() { discard(); }
 
@@ -126,6 +173,7 @@ void OutputFile::discard() noexcept {
     if (owns_fd_ && fd_ >= 0) ::close(fd_);
     fd_ = -1;
     if (!temporary_.empty()) ::unlink(temporary_.c_str());
+    unlistPending(pending_);
 }
 
 void OutputFile::flushBuffer() {
@@ -167,6 +215,7 @@ void OutputFile::commit() {
     if (!temporary_.empty()) {
         if (::rename(temporary_.c_str(), path_.c_str()) != 0) fail("cannot write", path_, errno);
         temporary_.clear();
+        unlistPending(pending_);
         // Make the rename itself durable (best effort: not every file system syncs directories).
         const std::filesystem::path parent = std::filesystem::path(path_).parent_path();
         const std::filesystem::path directory = parent.empty() ? std::filesystem::path(".") : parent;
@@ -176,6 +225,13 @@ void OutputFile::commit() {
         }
     }
     committed_ = true;
+}
+
+void removeTemporariesOnSignals() {
+    struct sigaction action {};
+    action.sa_handler = removeTemporariesAndExit;
+    sigemptyset(&action.sa_mask);
+    for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) ::sigaction(signal_number, &action, nullptr);
 }
 
 }  // namespace nocdyn::io

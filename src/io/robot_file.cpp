@@ -8,6 +8,7 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "yaml_util.hpp"
 
 namespace nocdyn::io {
@@ -184,7 +185,7 @@ RobotDescription loadRobotDescription(const std::string& path) {
 
 std::string descriptionToYaml(const RobotDescription& robot) {
     std::ostringstream out;
-    out << "name: " << robot.name << "\n";
+    out << "name: " << yamlQuoted(robot.name) << "\n";
     if (!robot.gravity.isZero()) out << "gravity: " << pair(robot.gravity) << "  # [m/s^2]\n";
     if (!robot.home.isZero()) {
         out << "home: [" << number(robot.home(0)) << ", " << number(robot.home(1)) << ", " << number(robot.home(2))
@@ -195,7 +196,7 @@ std::string descriptionToYaml(const RobotDescription& robot) {
         << ", com: " << pair(robot.platform.com) << "}\n";
     out << "limbs:\n";
     for (const LimbDescription& limb : robot.limbs) {
-        out << "  - name: " << limb.name << "\n    joints:\n";
+        out << "  - name: " << yamlQuoted(limb.name) << "\n    joints:\n";
         for (const JointDescription& joint : limb.joints) {
             out << "      - {type: "
                 << (joint.type == JointType::revolute ? "R, point: " + pair(joint.point)

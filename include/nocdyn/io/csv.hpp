@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <iosfwd>
 #include <memory>
 #include <span>
@@ -89,6 +90,21 @@ void writeCsvFile(const std::string& path, const Table& table);
 /// the text's real line. At most kMaxCsvColumns columns, kMaxCsvRows rows and lines of
 /// kMaxCsvLineBytes bytes. Throws nocdyn::Error "SOURCE:LINE: reason".
 [[nodiscard]] Table parseCsv(std::string_view text, const std::string& source);
+
+/// One row of a CSV file as the row-by-row reader hands it over: the values (valid during
+/// the call only) and the row's 1-based line in the file.
+using CsvRowHandler = std::function<void(std::span<const double> values, std::size_t line)>;
+
+/// parseCsv without the table: the header's columns go to `header` before the first row, then
+/// each row to `row`, so that the caller keeps only what it needs (memory does not grow with
+/// the rows here). The same checks and errors as parseCsv.
+void parseCsvRows(std::string_view text, const std::string& source,
+                  const std::function<void(const std::vector<std::string>& columns)>& header, const CsvRowHandler& row);
+
+/// parseCsvRows on a regular file of at most 256 MiB (as readCsvFile).
+void readCsvFileRows(const std::string& path,
+                     const std::function<void(const std::vector<std::string>& columns)>& header,
+                     const CsvRowHandler& row);
 
 /// Writes text to a file atomically (OutputFile). Throws nocdyn::Error.
 void writeTextFile(const std::string& path, const std::string& text);

@@ -62,7 +62,14 @@ private:
     bool committed_ = false;
     std::string buffer_;
     std::size_t used_ = 0;
+    int pending_ = -1;  ///< slot of the temporary in the signal handler's list, -1 when not listed
 };
+
+/// Installs handlers of SIGINT, SIGTERM and SIGHUP that remove the temporary files of every
+/// OutputFile not yet committed (so that an interrupted run leaves no hidden `.NAME.HEX.tmp`
+/// behind; the target is only ever created by the rename of a complete file), then end the
+/// process by the same signal. For programs (the command line), not for a library's host.
+void removeTemporariesOnSignals();
 
 /// Creates `path` as a new file, exclusively (O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode
 /// 0666 less the umask), and returns its descriptor. Throws nocdyn::Error when anything, even
