@@ -19,6 +19,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/forces.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/kinematics.hpp"
@@ -232,7 +233,7 @@ void run(const SimulateOptions& options) {
         {"hold", Interpolation::hold}, {"linear", Interpolation::linear}, {"cubic", Interpolation::cubic}};
     // read row by row into flat storage: the header and the first row (the initial state) kept
     io::Table table;
-    ForceSignal forces = forcesFromCsvFile(options.forces, n, interpolations.at(options.interpolation), table);
+    ForceSignal forces = io::forcesFromCsvFile(options.forces, n, interpolations.at(options.interpolation), table);
     const double t0 = forces.firstTime();
     const double duration = options.duration ? *options.duration : forces.lastTime() - t0;
     if (!(duration > 0.0)) throw Error(options.forces + ": a single force sample: give --duration");

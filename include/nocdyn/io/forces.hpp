@@ -1,0 +1,25 @@
+// Force signals from CSV files and tables: the columns t,tau1..taun (forward_dynamics.hpp's
+// ForceSignal), with errors naming the file, line and column.
+#pragma once
+
+#include <string>
+
+#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/io/csv.hpp"
+
+namespace nocdyn::io {
+
+/// Forces from a CSV table with columns t,tau1..taun (extra columns ignored). Throws
+/// nocdyn::Error "SOURCE:LINE: column 'NAME': reason" (missing column, time not increasing,
+/// non-uniform times for cubic).
+[[nodiscard]] ForceSignal forcesFromTable(const Table& table, int actuators, Interpolation interpolation,
+                                          const std::string& source);
+
+/// Forces read from a CSV file row by row (readCsvFileRows) into flat storage: 8 bytes a
+/// force and a time, whatever the file's size. The same columns and errors as forcesFromTable,
+/// and a column tau(n+1) or beyond (forces for actuators the robot does not have) is an error
+/// naming it. `first` receives the header and the first row (for the initial state).
+[[nodiscard]] ForceSignal forcesFromCsvFile(const std::string& path, int actuators, Interpolation interpolation,
+                                            Table& first);
+
+}  // namespace nocdyn::io
