@@ -202,10 +202,12 @@ void addControlCommand(CLI::App& app) {
                      "reference's start) and dp/dt from A_p dp/dt = du (least squares when redundant)")
         ->check(CLI::IsMember({"pose", "encoders"}))
         ->capture_default_str();
-    command->add_option("--log", options->log,
-                        "The experiment's log as the sensors see it, CSV t,u1..un,tau1..taun "
-                        "(u with --noise-u: with --measure encoders the very readings the controller used; tau the "
-                        "applied force with --noise-tau, the force sensor's own noise), ready for `nocdyn identify`");
+    command
+        ->add_option("--log", options->log,
+                     "The experiment's log as the sensors see it, CSV t,u1..un,tau1..taun "
+                     "(u with --noise-u: with --measure encoders the very readings the controller used; tau the "
+                     "applied force with --noise-tau, the force sensor's own noise), ready for `nocdyn identify`")
+        ->check(nonEmptyPath());
     command
         ->add_option("--noise-u", options->noise_u,
                      "Std. dev. of the encoder noise in --log and, with --measure encoders, of the controller's "
@@ -217,9 +219,12 @@ void addControlCommand(CLI::App& app) {
         ->check(finiteIn(0.0, 1e3, "m/s"));
     command->add_option("--seed", options->seed, "Noise seed")->capture_default_str();
     command->add_flag("--no-saturation", options->no_saturation, "Do not clip the forces at each joint's effort");
-    command->add_option("--output,-o", options->output,
-                        "CSV: t,theta_d,x_d,y_d,theta,x,y,e_theta,e_x,e_y,u1..un,u1_d..un_d,tau1..taun (SI)");
-    command->add_option("--figure", options->figure, "Tracking-error figure: writes STEM.png and STEM.svg");
+    command
+        ->add_option("--output,-o", options->output,
+                     "CSV: t,theta_d,x_d,y_d,theta,x,y,e_theta,e_x,e_y,u1..un,u1_d..un_d,tau1..taun (SI)")
+        ->check(nonEmptyPath());
+    command->add_option("--figure", options->figure, "Tracking-error figure: writes STEM.png and STEM.svg")
+        ->check(nonEmptyPath());
     command->callback([options] { run(*options); });
 }
 

@@ -234,8 +234,9 @@ void addLoadsCommand(CLI::App& app) {
     command->add_option("--rate", options->rate, "Samples per second")
         ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
         ->capture_default_str();
-    command->add_option("--output,-o", options->output, "CSV file to write [default: none]");
-    command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");
+    command->add_option("--output,-o", options->output, "CSV file to write [default: none]")->check(nonEmptyPath());
+    command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]")
+        ->check(nonEmptyPath());
     command->add_flag("--envelope", options->envelope, "Over the operating envelope's motions instead of a trajectory")
         ->excludes("--trajectory");
     command->add_option("--min-frequency", options->envelope_options.min_frequency, "--envelope: [Hz]")

@@ -74,6 +74,7 @@ PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std
     return panel;
 }
 
+#ifdef NOCDYN_HAS_ENGINES
 /// engine - model, per actuator, in nm or uN.
 PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine,
                           const std::vector<Eigen::VectorXd>& engine_values) {
@@ -94,6 +95,7 @@ PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, cons
     }
     return panel;
 }
+#endif  // NOCDYN_HAS_ENGINES
 
 /// Both paper trajectories: CSV, figures in the spirit of Figs. 5 and 6, and the peak
 /// stroke and force against the actuator limits, on the general model the short form expands to.
