@@ -138,6 +138,16 @@ TEST(HostileCli, ErrorMessagesShowControlBytesEscaped) {
     EXPECT_NE(r.err.find("\\x1B]0;owned\\x07"), std::string::npos) << r.err;
 }
 
+TEST(HostileCli, RobotAndTrajectoryNamesOnStdoutShowControlBytesEscaped) {
+    const fs::path dir = freshScratchDirectory("hostile_cli");
+    writeFile(dir / "odd.yaml", robotNamed("\"x\\e]0;owned\\a\""));
+    const CliResult r = runCli("forward-kinematics 0 0 0 --robot " + (dir / "odd.yaml").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find('\x07'), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("robot x\\x1B]0;owned\\x07"), std::string::npos) << r.out;
+}
+
 TEST(HostileCli, SvgOfARobotNamedWithACdataEndIsWellFormed) {
     const fs::path dir = freshScratchDirectory("hostile_cli");
     writeFile(dir / "odd.yaml", robotNamed("\"a]]>b <c> & d\""));

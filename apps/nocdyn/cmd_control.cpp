@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/general_control.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/tables.hpp"
@@ -107,8 +108,8 @@ void run(const ControlOptions& options) {
                      options.figure);
     }
     std::printf("%s on the %s plant, %s, %s, %g s at %g Hz (f_n = %g Hz)%s\n", result.controller.c_str(),
-                result.plant.c_str(), robot.name.c_str(), trajectory.name.c_str(), loop.duration, loop.rate,
-                options.natural_frequency,
+                result.plant.c_str(), io::terminalText(robot.name).c_str(), io::terminalText(trajectory.name).c_str(),
+                loop.duration, loop.rate, options.natural_frequency,
                 payload.mass > 0.0 || payload.inertia > 0.0 ? ", payload unknown to the controller" : "");
     std::printf("pose: RMS error x %.4g um, y %.4g um, theta %.4g urad; peak x %.4g um, y %.4g um, theta %.4g urad\n",
                 result.pose_rms_error(1) * 1e6, result.pose_rms_error(2) * 1e6, result.pose_rms_error(0) * 1e6,

@@ -12,6 +12,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/model.hpp"
@@ -86,7 +87,7 @@ void runGeneral(const ForwardKinematicsOptions& options) {
         std::cout << out.dump(2) << "\n";
         return;
     }
-    std::printf("robot %s, u =", model.description.name.c_str());
+    std::printf("robot %s, u =", io::terminalText(model.description.name).c_str());
     for (int a = 0; a < model.actuators; ++a) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)])];
         const bool revolute = limb.type[static_cast<std::size_t>(model.actuator_joint[static_cast<std::size_t>(a)])] ==
