@@ -14,8 +14,8 @@
 #include "nocdyn/noc.hpp"
 #include "nocdyn/prr3/fast.hpp"
 #ifdef NOCDYN_HAS_ENGINES
-#include "nocdyn/validation/mujoco_robot.hpp"
-#include "nocdyn/validation/simbody_robot.hpp"
+#include "nocdyn/prr3/mujoco_robot.hpp"
+#include "nocdyn/prr3/simbody_robot.hpp"
 #endif
 
 namespace nocdyn::bench {
@@ -63,7 +63,7 @@ void inverseDynamicsNocdynFull(benchmark::State& state) {
 // the same cycle on the engines (built with NOCDYN_BUILD_VALIDATION)
 void inverseDynamicsMujoco(benchmark::State& state) {
     const Fixture& f = fixture();
-    validation::MujocoRobot robot(f.model.parameters);
+    prr3::MujocoRobot robot(f.model.parameters);
     Eigen::Vector3d u, du, ddu, tau;
     // Warm start: the closure solve continues from the previous sample, as in a control loop.
     for (const Sample& s : f.samples) robot.inverseDynamicsSample(s.p, s.dp, s.ddp, u, du, ddu, tau);
@@ -79,7 +79,7 @@ void inverseDynamicsMujoco(benchmark::State& state) {
 
 void inverseDynamicsSimbody(benchmark::State& state) {
     const Fixture& f = fixture();
-    validation::SimbodyRobot robot(f.model.parameters);
+    prr3::SimbodyRobot robot(f.model.parameters);
     // SimbodyRobot has no per-sample entry: its batch call over the cycle is the fastest
     // correct use of its public API (each assembly continues from the previous sample).
     for (auto _ : state) {

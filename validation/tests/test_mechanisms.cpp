@@ -1,5 +1,5 @@
 // Tests of the general Simbody and MuJoCo models (ctest label: validation): the paper's 3-PRR
-// against the golden values and the 3-PRR engine models, and random robots of every limb type
+// against the golden values, and random robots of every limb type
 // and actuation choice (redundant ones too, with gravity and friction) where the two engines
 // must agree with each other and satisfy the power balance.
 #include <algorithm>
@@ -22,9 +22,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
-#include "nocdyn/validation/mujoco_robot.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"
-#include "nocdyn/validation/simbody_robot.hpp"
 
 using nocdyn::JointType;
 using nocdyn::PoseTrajectory;
@@ -317,37 +315,6 @@ TEST(GeneralMechanism, SimbodyMatchesGoldenPaperTrajectories) {
 TEST(GeneralMechanism, MujocoMatchesGoldenPaperTrajectories) {
     checkGolden<MujocoMechanism>("mujoco", "paper_trajectory1.csv", nocdyn::paperTrajectory1());
     checkGolden<MujocoMechanism>("mujoco", "paper_trajectory2.csv", nocdyn::paperTrajectory2());
-}
-
-TEST(GeneralMechanism, PaperRobotAgreesWith3PrrEngineModels) {
-    const std::vector<double> times = linspace(0.0, 0.2, 401);
-    for (const PoseTrajectory& trajectory : {nocdyn::paperTrajectory1(), nocdyn::paperTrajectory2()}) {
-        SimbodyMechanism simbody(nocdyn::expand(RobotParameters{}));
-        MujocoMechanism mujoco(nocdyn::expand(RobotParameters{}));
-        nocdyn::validation::SimbodyRobot simbody_3prr{RobotParameters{}};
-        nocdyn::validation::MujocoRobot mujoco_3prr{RobotParameters{}};
-        const auto a = simbody.inverseDynamics(trajectory, times);
-        const auto b = mujoco.inverseDynamics(trajectory, times);
-        const auto c = simbody_3prr.inverseDynamics(trajectory, times);
-        const auto d = mujoco_3prr.inverseDynamics(trajectory, times);
-        double peak = 0.0, err_ab = 0.0, err_ac = 0.0, err_bd = 0.0;
-        for (std::size_t k = 0; k < times.size(); ++k) {
-            const Eigen::Vector3d ta = a[k].tau, tb = b[k].tau;
-            peak = std::max(peak, c[k].tau.cwiseAbs().maxCoeff());
-            err_ab = std::max(err_ab, (ta - tb).cwiseAbs().maxCoeff());
-            err_ac = std::max(err_ac, (ta - c[k].tau).cwiseAbs().maxCoeff());
-            err_bd = std::max(err_bd, (tb - d[k].tau).cwiseAbs().maxCoeff());
-            EXPECT_LE((Eigen::Vector3d(a[k].u) - c[k].u).cwiseAbs().maxCoeff(), 1e-13);
-            EXPECT_LE((Eigen::Vector3d(b[k].u) - d[k].u).cwiseAbs().maxCoeff(), 1e-13);
-        }
-        std::printf(
-            "[paper %s] peak %.3f N; |general simbody - mujoco| %.3e N (%.2e), "
-            "|general - 3-PRR| simbody %.3e N, mujoco %.3e N\n",
-            trajectory.name.c_str(), peak, err_ab, err_ab / peak, err_ac, err_bd);
-        EXPECT_LE(err_ab, kRelativeTolerance * peak);
-        EXPECT_LE(err_ac, kRelativeTolerance * peak);
-        EXPECT_LE(err_bd, kRelativeTolerance * peak);
-    }
 }
 
 /// Both engines' inverse dynamics of the paper's prototype, one call per engine.

@@ -16,3 +16,8 @@ nocdyn_add_test(baseline_equals_general_model_test ${NOCDYN_BASELINE_TESTS}/equa
 # The paper's trajectories against the golden values, as tests/golden_test.cpp on the general model.
 nocdyn_add_test(baseline_golden_test ${NOCDYN_BASELINE_TESTS}/golden_test.cpp LABELS baseline
                 LIBRARIES nocdyn_prr3_baseline)
+# The baseline against its own 3-PRR engine models (Simbody, MuJoCo): forces and inertia.
+if(TARGET nocdyn_prr3_simbody AND TARGET nocdyn_prr3_mujoco)
+  nocdyn_add_test(baseline_engines_agreement_test ${NOCDYN_BASELINE_TESTS}/engines_agreement_test.cpp
+                  LABELS validation baseline LIBRARIES nocdyn_prr3_simbody nocdyn_prr3_mujoco nocdyn_prr3_baseline)
+endif()

@@ -3,7 +3,7 @@
 // Nothing from nocdyn's kinematics or dynamics is used here: the geometry of the reference
 // posture (and an analytic seed for the Assembler, used only when continuation from the
 // previous sample fails) is computed in this file from the robot parameters alone.
-#include "nocdyn/validation/simbody_robot.hpp"
+#include "nocdyn/prr3/simbody_robot.hpp"
 
 #include <array>
 #include <cmath>
@@ -17,7 +17,7 @@
 #include "nocdyn/error.hpp"
 #include "plant_integration.hpp"
 
-namespace nocdyn::validation {
+namespace nocdyn::prr3 {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
@@ -191,7 +191,7 @@ public:
     SimTK::State plant;          // no prescribed motion, actuator forces applied
     std::unique_ptr<SimTK::Assembler> assembler;
     std::unique_ptr<SimTK::RungeKuttaMersonIntegrator> integrator;
-    detail::PlantIntegration run;
+    validation::detail::PlantIntegration run;
 
     /// The plant's current state (the integrator's while it runs).
     [[nodiscard]] const SimTK::State& current() const;
@@ -554,7 +554,7 @@ void SimbodyRobot::setIntegratorAccuracy(double accuracy) {
 
 void SimbodyRobot::advance(double dt) {
     Impl& m = *impl_;
-    detail::advancePlant(*m.integrator, m.plant, m.run, dt);
+    validation::detail::advancePlant(*m.integrator, m.plant, m.run, dt);
 }
 
 const SimTK::State& SimbodyRobot::Impl::current() const { return run.current(*integrator, plant); }
@@ -589,4 +589,4 @@ double SimbodyRobot::kineticEnergy() const {
     return impl_->matter.calcKineticEnergy(s);
 }
 
-}  // namespace nocdyn::validation
+}  // namespace nocdyn::prr3

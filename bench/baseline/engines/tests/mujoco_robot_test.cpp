@@ -19,7 +19,7 @@
 #include <new>
 
 #include "nocdyn/error.hpp"
-#include "nocdyn/validation/mujoco_robot.hpp"
+#include "nocdyn/prr3/mujoco_robot.hpp"
 
 // Allocation counting for the allocation-free test: every C++ allocation in this program,
 // and MuJoCo's own (mju_malloc goes through mju_user_malloc when it is set).
@@ -56,8 +56,8 @@ namespace {
 
 using nocdyn::PoseTrajectory;
 using nocdyn::RobotParameters;
-using nocdyn::validation::MujocoRobot;
-using nocdyn::validation::MujocoSample;
+using nocdyn::prr3::MujocoRobot;
+using nocdyn::prr3::MujocoSample;
 
 struct Golden {
     std::vector<std::string> header;

@@ -4,10 +4,10 @@
 #include <cstdio>
 #include <vector>
 
-#include "nocdyn/validation/simbody_robot.hpp"
+#include "nocdyn/prr3/simbody_robot.hpp"
 
 int main() {
-    nocdyn::validation::SimbodyRobot robot{nocdyn::RobotParameters{}};
+    nocdyn::prr3::SimbodyRobot robot{nocdyn::RobotParameters{}};
     const auto trajectory = nocdyn::paperTrajectory1();
     const int n = 2000;
     std::vector<double> times(n);

@@ -1,18 +1,15 @@
-// Our NOC model against the independent engines: Simbody (reference) and MuJoCo, on the
+// The frozen 3-PRR kernel against its own 3-PRR engine models: Simbody (reference) and MuJoCo, on the
 // paper's trajectories and on random robots driven along random multi-harmonic
 // trajectories inside the workspace. Forces within 1e-9 of the peak force; the joint-space
 // inertia against Simbody's N^T M N to 1e-10.
 #include <gtest/gtest.h>
 
-#include <sys/wait.h>
-
 #include <cstdio>
-#include <fstream>
 
 #include "nocdyn/prr3/dynamics.hpp"
 #include "nocdyn/sampling.hpp"
-#include "nocdyn/validation/mujoco_robot.hpp"
-#include "nocdyn/validation/simbody_robot.hpp"
+#include "nocdyn/prr3/mujoco_robot.hpp"
+#include "nocdyn/prr3/simbody_robot.hpp"
 #include "baseline_support.hpp"
 
 namespace nocdyn::test {
@@ -94,8 +91,8 @@ PoseTrajectory randomTrajectory(std::mt19937& rng, double scale) {
 TEST(Validation, PaperTrajectoriesAgreeWithSimbodyAndMujoco) {
     const RobotParameters robot;
     const prr3::Model model(robot);
-    validation::SimbodyRobot simbody(robot);
-    validation::MujocoRobot mujoco(robot);
+    prr3::SimbodyRobot simbody(robot);
+    prr3::MujocoRobot mujoco(robot);
     const auto times = sampleTimes(0.2, 2000.0);
     for (const PoseTrajectory& trajectory : {paperTrajectory1(), paperTrajectory2()}) {
         const auto ours = inverseDynamicsAlong(model, trajectory, times);
@@ -125,8 +122,8 @@ TEST(Validation, RandomRobotsOnRandomTrajectoriesAgreeWithSimbodyAndMujoco) {
         if (!inside) continue;
         ++compared;
         const auto ours = inverseDynamicsAlong(model, trajectory, times);
-        validation::SimbodyRobot simbody(robot);
-        validation::MujocoRobot mujoco(robot);
+        prr3::SimbodyRobot simbody(robot);
+        prr3::MujocoRobot mujoco(robot);
         const double simbody_error = forceErrorOfPeak(ours, simbody.inverseDynamics(trajectory, times));
         const double mujoco_error = forceErrorOfPeak(ours, mujoco.inverseDynamics(trajectory, times));
         EXPECT_LT(simbody_error, kForceOfPeak) << "random robot " << compared << ", link_com " << robot.link_com;
@@ -143,7 +140,7 @@ TEST(Validation, RandomRobotsOnRandomTrajectoriesAgreeWithSimbodyAndMujoco) {
 
 TEST(Validation, InertiaAgreesWithSimbodyAcrossTheWorkspace) {
     const prr3::Model model;
-    validation::SimbodyRobot simbody(model.parameters);
+    prr3::SimbodyRobot simbody(model.parameters);
     BaselineSampler sampler(model, 99);
     prr3::Data data;
     for (int k = 0; k < 100; ++k) {
@@ -152,33 +149,6 @@ TEST(Validation, InertiaAgreesWithSimbodyAcrossTheWorkspace) {
         const Matrix3 reference = simbody.jointSpaceInertia(p);
         EXPECT_LT((data.I - reference).norm(), kInertiaRelative * reference.norm()) << describePose(p);
     }
-}
-
-int runCli(const std::string& arguments, std::string& err) {
-    const std::string err_file = testing::TempDir() + "/validate_stderr.txt";
-    const int status = std::system((std::string(NOCDYN_CLI) + " " + arguments + " >/dev/null 2>" + err_file).c_str());
-    std::ifstream in(err_file);
-    err.assign(std::istreambuf_iterator<char>(in), {});
-    return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-}
-
-TEST(Validation, ValidateCommandReportsAgreementAndRejectsPosesOutOfReach) {
-    std::string err;
-    const std::string csv = testing::TempDir() + "/validate.csv";
-    ASSERT_EQ(runCli("validate --trajectory paper2 --duration 0.05 --rate 1000 --output " + csv, err), 0) << err;
-    EXPECT_NE(err.find("| Simbody | 1 |"), std::string::npos) << err;
-    EXPECT_NE(err.find("| MuJoCo | 3 |"), std::string::npos) << err;
-    const io::Table table = io::readCsvFile(csv);
-    EXPECT_EQ(table.rows.size(), 50u);
-    for (const char* column : {"simbody_tau1", "mujoco_tau3", "tau2", "u1"}) EXPECT_TRUE(table.has(column)) << column;
-    for (const auto& row : table.rows) {
-        EXPECT_NEAR(row[table.column("simbody_tau2")], row[table.column("tau2")], 1e-9 * 262);
-    }
-
-    const std::string far = testing::TempDir() + "/far.yaml";
-    std::ofstream(far) << "duration: 0.1\ny: {harmonics: [{amplitude: 0.2, frequency: 5}]}\n";
-    EXPECT_EQ(runCli("validate --trajectory " + far, err), 1);
-    EXPECT_NE(err.find("pose out of reach: limb"), std::string::npos) << err;
 }
 
 }  // namespace

@@ -17,7 +17,7 @@
 //     mj_objectAcceleration, which adds the omega x v term);
 //  4. mj_rne(flg_acc = 1) gives M qacc + c; M qacc + c = B tau + efc_J^T lambda is solved for
 //     lambda from the six non-actuated rows and then tau from the slider rows.
-#include "nocdyn/validation/mujoco_robot.hpp"
+#include "nocdyn/prr3/mujoco_robot.hpp"
 
 #include <mujoco/mujoco.h>
 
@@ -34,7 +34,7 @@
 
 #include "nocdyn/error.hpp"
 
-namespace nocdyn::validation {
+namespace nocdyn::prr3 {
 
 namespace {
 
@@ -515,4 +515,4 @@ std::vector<MujocoSample> MujocoRobot::inverseDynamics(const PoseTrajectory& tra
     return out;
 }
 
-}  // namespace nocdyn::validation
+}  // namespace nocdyn::prr3

@@ -19,7 +19,7 @@
 #include "nocdyn/robot.hpp"
 #include "nocdyn/trajectory.hpp"
 
-namespace nocdyn::validation {
+namespace nocdyn::prr3 {
 
 /// One inverse-dynamics sample computed by Simbody.
 struct EngineSample {
@@ -82,4 +82,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace nocdyn::validation
+}  // namespace nocdyn::prr3

@@ -17,7 +17,7 @@
 #include "nocdyn/robot.hpp"
 #include "nocdyn/trajectory.hpp"
 
-namespace nocdyn::validation {
+namespace nocdyn::prr3 {
 
 /// One inverse-dynamics sample computed by MuJoCo (SI units).
 struct MujocoSample {
@@ -76,4 +76,4 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-}  // namespace nocdyn::validation
+}  // namespace nocdyn::prr3

@@ -14,12 +14,12 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/robot.hpp"
 #include "nocdyn/trajectory.hpp"
-#include "nocdyn/validation/simbody_robot.hpp"
+#include "nocdyn/prr3/simbody_robot.hpp"
 
 using nocdyn::PoseTrajectory;
 using nocdyn::RobotParameters;
-using nocdyn::validation::EngineSample;
-using nocdyn::validation::SimbodyRobot;
+using nocdyn::prr3::EngineSample;
+using nocdyn::prr3::SimbodyRobot;
 
 namespace {
 
