@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fixture.hpp"
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
@@ -64,7 +65,7 @@ void batchThreads(benchmark::State& state) {
 
 /// The paper's robot as the general model (the short form expanded), as the simulator runs it.
 const Model& generalModel() {
-    static const Model model{RobotParameters{}};
+    static const Model model{io::expand(io::RobotParameters{})};
     return model;
 }
 

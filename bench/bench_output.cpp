@@ -7,6 +7,7 @@
 #include <cstddef>
 
 #include "fixture.hpp"
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/output.hpp"
 #include "nocdyn/io/tables.hpp"
@@ -51,7 +52,7 @@ BENCHMARK(BM_WriteCsv)->Unit(benchmark::kMillisecond);
 /// / 1e6 s; items/s = samples per second. Second argument: 1 = formatting on a second thread
 /// (as the command does), 0 = on the calling thread.
 void BM_StreamInverseDynamics(benchmark::State& state) {
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     const PoseTrajectory trajectory = paperTrajectory1();
     const auto samples = static_cast<std::size_t>(state.range(0));
     const SampleGrid grid{1e6, samples};

@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "fixture.hpp"
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/prr3/fast.hpp"
@@ -43,8 +44,8 @@ int main(int argc, char** argv) {
         return 2;
     }
     // the general model of a robot file (loaded before the loop), or the paper's 3-PRR
-    const nocdyn::Model general =
-        robot ? nocdyn::Model(nocdyn::io::loadRobotDescription(robot)) : nocdyn::Model(nocdyn::RobotParameters{});
+    const nocdyn::Model general = robot ? nocdyn::Model(nocdyn::io::loadRobotDescription(robot))
+                                        : nocdyn::Model(nocdyn::io::expand(nocdyn::io::RobotParameters{}));
     nocdyn::Data general_data(general);
     using Clock = std::chrono::steady_clock;
     const bool locked = mlockall(MCL_CURRENT | MCL_FUTURE) == 0;

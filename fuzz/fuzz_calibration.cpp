@@ -9,10 +9,10 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/calibration.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/robot.hpp"
+#include "nocdyn/io/short_form.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t size) {
-    static const nocdyn::Model model{nocdyn::RobotParameters{}};
+    static const nocdyn::Model model{nocdyn::io::RobotParameters{}};
     const std::string text(reinterpret_cast<const char*>(bytes), size);
     nocdyn::Calibration calibration;
     try {

@@ -15,7 +15,7 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t size) {
     const std::string text(reinterpret_cast<const char*>(bytes), size);
-    nocdyn::RobotParameters robot;
+    nocdyn::io::RobotParameters robot;
     try {
         robot = nocdyn::io::parseRobot(text, "fuzz.yaml");
     } catch (const nocdyn::Error&) {
@@ -23,7 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     }
     // Accepted parameters must give a model (validate() has passed; a throw here is a finding)
     // with finite dynamics.
-    const nocdyn::Model model(nocdyn::expand(robot));
+    const nocdyn::Model model(nocdyn::io::expand(robot));
     nocdyn::Data data(model);
     const nocdyn::Status status =
         nocdyn::inverseDynamics(model, data, model.home, nocdyn::Twist(0.1, 0.01, -0.01), nocdyn::Twist(1.0, 0.1, 0.1));

@@ -30,51 +30,6 @@ std::string where(const RobotDescription& robot, int line) {
     return robot.source + ":" + std::to_string(line) + ": ";
 }
 
-RobotDescription expand(const RobotParameters& robot) {
-    validate(robot);
-    RobotDescription out;
-    out.name = robot.name;
-    out.max_condition = robot.max_condition;
-    out.platform.mass = robot.platform_mass;
-    out.platform.inertia = robot.platform_inertia;
-    const double R = robot.baseCircumradius();
-    const double r = robot.platformCircumradius();
-    const double l = robot.link_length;
-    // Reference posture (theta = 0, C = O): M_j - B_j has inward distance d = (R - r) / 2 from
-    // rail L_j (eqs. 37-38), so phi_Aj = asin(d / l) and A_j = M_j - m_j (eqs. 39-40).
-    const double d = 0.5 * (R - r);
-    const double sin_A = d / l;
-    const double cos_A = std::sqrt((1.0 - sin_A) * (1.0 + sin_A));
-    for (int j = 0; j < 3; ++j) {
-        const double phi = (j == 0 ? 0.0 : (j == 1 ? 2.0 : -2.0)) * std::numbers::pi / 3.0;  // eq. 8
-        const Eigen::Vector2d e(std::cos(phi), std::sin(phi));
-        const Eigen::Vector2d n(-e.y(), e.x());
-        const double angle = phi - std::numbers::pi / 6.0;
-        const Eigen::Vector2d M = r * Eigen::Vector2d(std::cos(angle), std::sin(angle));  // eq. 41
-        const Eigen::Vector2d m = l * (cos_A * e + sin_A * n);                            // eq. 40
-        const Eigen::Vector2d A = M - m;
-        LimbDescription limb;
-        limb.name = "limb" + std::to_string(j + 1);
-        JointDescription& rail = limb.joints[0];
-        rail.type = JointType::prismatic;
-        rail.direction = e;
-        rail.point = A;
-        rail.actuated = true;
-        rail.limits.lower = -0.5 * robot.stroke;
-        rail.limits.upper = 0.5 * robot.stroke;
-        rail.limits.effort = robot.peak_force;
-        limb.joints[1].type = JointType::revolute;
-        limb.joints[1].point = A;
-        limb.joints[2].type = JointType::revolute;
-        limb.joints[2].point = M;
-        limb.bodies[0] = {robot.slider_mass, 0.0, A, 0};
-        limb.bodies[1] = {robot.link_mass, robot.link_inertia, A + (robot.link_com / l) * m, 0};
-        out.limbs.push_back(limb);
-    }
-    validate(out);
-    return out;
-}
-
 namespace {
 
 // Plausibility ranges: beyond them products of the values overflow or lose all precision.

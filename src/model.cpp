@@ -84,8 +84,6 @@ void fillLanes(Model& model) {
 
 }  // namespace
 
-Model::Model(const RobotParameters& parameters) : Model(expand(parameters)) {}
-
 Model::Model(RobotDescription d) : description(std::move(d)) {
     validate(description);
     const RobotDescription& robot = description;
@@ -272,11 +270,8 @@ std::string describe(const Status& status, const Model& model) {
             out << "the integrator took " << status.value
                 << " steps over one interval without reaching its end (tolerances too tight?)";
             return out.str();
-        default:  // the codes of the frozen 3-PRR kernel: describe(Status, RobotParameters)
-            out << "status " << static_cast<int>(status.code) << " of the 3-PRR kernel (" << limb << ", value "
-                << status.value << ")";
-            return out.str();
     }
+    return "unknown status";
 }
 
 }  // namespace nocdyn

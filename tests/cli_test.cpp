@@ -2,6 +2,7 @@
 // (one-line error on stderr, non-zero exit, no partial CSV).
 #include <gtest/gtest.h>
 
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include <nlohmann/json.hpp>
 
@@ -76,7 +77,7 @@ TEST(Cli, InverseDynamicsWritesTheDocumentedColumnsAndTheLibrarysNumbers) {
                                                "du2", "du3", "ddu1", "ddu2",  "ddu3", "tau1", "tau2", "tau3"};
     for (const auto& column : expected) EXPECT_TRUE(table.has(column)) << column;
     ASSERT_EQ(table.rows.size(), 10u);
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     Data data(model);
     Pose p, dp, ddp;
     const auto& last = table.rows.back();

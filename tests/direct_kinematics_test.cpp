@@ -58,7 +58,7 @@ int countByScan(const PaperGeometry& paper, const Vector3& u, int samples = 1000
 }
 
 struct Paper {
-    RobotParameters robot;
+    io::RobotParameters robot;
     PaperGeometry geometry{robot};
     Model model{io::exampleRobot("paper-3prr")};  // the short form expanded
 };

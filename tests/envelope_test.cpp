@@ -9,6 +9,7 @@
 #include <limits>
 #include <numbers>
 
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/envelope.hpp"
 #include "nocdyn/error.hpp"
@@ -21,7 +22,7 @@ namespace {
 using Axis = EnvelopeAxis;
 
 constexpr Axis kAxes[] = {Axis::theta, Axis::x, Axis::y};
-const RobotParameters kPaper{};
+const io::RobotParameters kPaper{};
 
 /// Peak |u| and |tau| over one period of A sin(2 pi f t) along `axis`, sampled very finely.
 void peaks(const Model& model, Axis axis, double f, double amplitude, double& stroke, double& force) {
@@ -43,7 +44,7 @@ void peaks(const Model& model, Axis axis, double f, double amplitude, double& st
 }
 
 TEST(Envelope, LowFrequencyIsBoundByTheStrokeIndependentlyOfFrequency) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     for (const Axis axis : kAxes) {
         const auto at1 = maximumAmplitude(model, axis, 1.0);
         const auto at5 = maximumAmplitude(model, axis, 5.0);
@@ -56,7 +57,7 @@ TEST(Envelope, LowFrequencyIsBoundByTheStrokeIndependentlyOfFrequency) {
 }
 
 TEST(Envelope, HighFrequencyIsBoundByForceWithAmplitudeInverseSquareInFrequency) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     for (const Axis axis : kAxes) {
         const auto at50 = maximumAmplitude(model, axis, 50.0);
         const auto at100 = maximumAmplitude(model, axis, 100.0);
@@ -69,9 +70,9 @@ TEST(Envelope, HighFrequencyIsBoundByForceWithAmplitudeInverseSquareInFrequency)
 }
 
 TEST(Envelope, ForceBoundAmplitudeScalesWithThePeakForce) {
-    RobotParameters strong;
-    strong.peak_force = 2.0 * RobotParameters{}.peak_force;
-    const Model model{kPaper}, stronger(strong);
+    io::RobotParameters strong;
+    strong.peak_force = 2.0 * io::RobotParameters{}.peak_force;
+    const Model model{io::expand(kPaper)}, stronger(io::expand(strong));
     for (const Axis axis : kAxes) {
         const double a = maximumAmplitude(model, axis, 100.0).amplitude;
         const double b = maximumAmplitude(stronger, axis, 100.0).amplitude;
@@ -80,7 +81,7 @@ TEST(Envelope, ForceBoundAmplitudeScalesWithThePeakForce) {
 }
 
 TEST(Envelope, AtTheEnvelopeTheBindingLimitIsReachedAndOnePercentMoreExceedsIt) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     const double half = 0.5 * kPaper.stroke;
     const double peak = kPaper.peak_force;
     for (const Axis axis : kAxes) {
@@ -100,7 +101,7 @@ TEST(Envelope, AtTheEnvelopeTheBindingLimitIsReachedAndOnePercentMoreExceedsIt) 
 }
 
 TEST(Envelope, PaperTrajectoriesLieInsideTheEnvelope) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     for (const PoseTrajectory& trajectory : {paperTrajectory1(), paperTrajectory2()}) {
         const AxisMotion* motions[] = {&trajectory.theta, &trajectory.x, &trajectory.y};
         for (const Axis axis : kAxes) {
@@ -113,7 +114,7 @@ TEST(Envelope, PaperTrajectoriesLieInsideTheEnvelope) {
 }
 
 TEST(Envelope, SweepIsLogSpacedOverEveryAxis) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     EnvelopeOptions options;
     options.frequencies = 5;
     const auto points = operatingEnvelope(model, options);
@@ -130,7 +131,7 @@ TEST(Envelope, SweepIsLogSpacedOverEveryAxis) {
 
 TEST(Envelope, FrequenciesAndCountsOutsideTheirRangeAreRefusedNotIterated) {
     // 1e300 Hz used to bisect without end; 10^8 points to run for days.
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     EnvelopeOptions options;
     options.max_frequency = 1e300;
     EXPECT_THROW((void)operatingEnvelope(model, options), Error);

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <vector>
 
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
@@ -58,7 +59,7 @@ TEST(ForwardDynamics, RoundTripReturnsToPaperTrajectories) {
     // Forces from the inverse dynamics at 10 kHz, linear in between, over the paper's 0.2 s.
     // Measured: 3.1e-7 m (paper1), 1.7e-7 m (paper2), the error of the linear force
     // interpolation; bound 1e-6 m.
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     for (const PoseTrajectory& trajectory : {paperTrajectory1(), paperTrajectory2()}) {
         const RoundTrip result = roundTrip(model, trajectory, 0.2, 10000.0);
         EXPECT_LE(result.u_error, 1e-6) << trajectory.name;
@@ -69,7 +70,7 @@ TEST(ForwardDynamics, RoundTripReturnsToPaperTrajectories) {
 TEST(ForwardDynamics, RoundTripErrorIsSecondOrderInForceSampling) {
     // The only approximation is the linear interpolation of the forces (O(h^2)): sampling
     // four times finer must shrink the error about sixteen-fold.
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     const RoundTrip coarse = roundTrip(model, paperTrajectory1(), 0.1, 5000.0);
     const RoundTrip fine = roundTrip(model, paperTrajectory1(), 0.1, 20000.0);
     EXPECT_GT(coarse.u_error / fine.u_error, 10.0) << coarse.u_error << " vs " << fine.u_error;
@@ -79,7 +80,7 @@ TEST(ForwardDynamics, RoundTripErrorIsSecondOrderInForceSampling) {
 TEST(Simulator, PushedPastTheWorkspaceNamesTheLimb) {
     // 2000 N on slider 1 alone drives u_1 until link 1 stands normal to its rail: the
     // simulation stops there naming limb 1, not with a lost mode or a non-finite state.
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     Simulator simulator(model);
     ASSERT_TRUE(simulator.reset(Pose::Zero()).ok());
     const ActuatorVector push = Vector3(2000.0, 0.0, 0.0);
@@ -96,7 +97,7 @@ TEST(Simulator, PushedPastTheWorkspaceNamesTheLimb) {
 TEST(Simulator, ImpossibleTolerancesEndWithAnErrorInsteadOfCrawling) {
     // Tolerances at the limit of double precision shrink the step without end (until t + h
     // equals t): the minimum step and the step budget stop it with an error naming the cause.
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     const ActuatorVector tau = Vector3(10.0, -5.0, 3.0);
     auto advanceWith = [&](const SimulatorOptions& options) {
         Simulator simulator(model, options);

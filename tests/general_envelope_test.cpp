@@ -9,6 +9,7 @@
 #include <numbers>
 #include <string>
 
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/envelope.hpp"
 #include "nocdyn/io/robot_file.hpp"
@@ -43,7 +44,7 @@ TEST(GeneralEnvelope, EqualsThe3PrrEnvelopeOnThePaperRobot) {
         {EnvelopeAxis::y, 10.0, 0.010471151626110077, EnvelopeLimit::range, 3},
         {EnvelopeAxis::y, 100.0, 0.00018826531854093477, EnvelopeLimit::effort, 3},
     };
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     for (const Reference& r : references) {
         const EnvelopePoint general = maximumAmplitude(model, r.axis, r.frequency);
         // both bisect to 1e-6 of the amplitude
@@ -93,7 +94,7 @@ Peaks peaks(const Model& model, EnvelopeAxis axis, double f, double amplitude) {
 
 TEST(GeneralEnvelope, RangeVelocityAndEffortEachBindWithTheirSlopeAndAreReached) {
     // the paper's robot with a velocity limit on its sliders (symmetric ranges about home)
-    RobotDescription robot = expand(RobotParameters{});
+    RobotDescription robot = expand(io::RobotParameters{});
     for (auto& limb : robot.limbs) limb.joints[0].limits.velocity = 0.5;  // [m/s]
     const Model model(robot);
     const EnvelopeAxis axis = EnvelopeAxis::x;
@@ -147,7 +148,7 @@ TEST(GeneralEnvelope, EveryExampleRobotHasAnEnvelopeNamingItsLimits) {
 }
 
 TEST(GeneralEnvelope, RefusesFrequenciesOutOfRange) {
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     EXPECT_THROW((void)maximumAmplitude(model, EnvelopeAxis::x, 0.0), Error);
     EXPECT_THROW((void)maximumAmplitude(model, EnvelopeAxis::x, 1e5), Error);
     EnvelopeOptions options;

@@ -53,8 +53,8 @@ std::string replaced(std::string text, const std::string& from, const std::strin
 }
 
 TEST(RobotFile, ShippedPaperRobotEqualsTheBuiltInDefault) {
-    const RobotParameters file = io::loadRobot(std::string(NOCDYN_SOURCE_DIR) + "/robots/paper-3prr.yaml");
-    const RobotParameters builtin;
+    const io::RobotParameters file = io::loadRobot(std::string(NOCDYN_SOURCE_DIR) + "/robots/paper-3prr.yaml");
+    const io::RobotParameters builtin;
     EXPECT_EQ(file.name, "paper-3prr");
     EXPECT_EQ(file.base_side, builtin.base_side);
     EXPECT_EQ(file.platform_side, builtin.platform_side);
@@ -71,18 +71,18 @@ TEST(RobotFile, ShippedPaperRobotEqualsTheBuiltInDefault) {
 }
 
 TEST(RobotFile, RoundTripsThroughYaml) {
-    RobotParameters robot;
+    io::RobotParameters robot;
     robot.name = "odd";
     robot.link_mass = 0.123456789012345678;
     robot.max_condition = 5e3;
-    const RobotParameters back = io::parseRobot(io::robotToYaml(robot), "x.yaml");
+    const io::RobotParameters back = io::parseRobot(io::robotToYaml(robot), "x.yaml");
     EXPECT_EQ(back.name, "odd");
     EXPECT_EQ(back.link_mass, robot.link_mass);
     EXPECT_EQ(back.max_condition, robot.max_condition);
 }
 
 TEST(RobotFile, NameDefaultsToTheFileStem) {
-    const RobotParameters robot = io::parseRobot(replaced(kRobot, "name: test-robot\n", ""), "dir/my-robot.yaml");
+    const io::RobotParameters robot = io::parseRobot(replaced(kRobot, "name: test-robot\n", ""), "dir/my-robot.yaml");
     EXPECT_EQ(robot.name, "my-robot");
 }
 
@@ -126,10 +126,10 @@ TEST(RobotFile, MalformedYamlNamesTheLine) {
 TEST(RobotFile, MissingFileIsAnError) { EXPECT_THROW((void)io::loadRobot("/nonexistent/robot.yaml"), Error); }
 
 TEST(RobotModel, InvalidParametersThroughTheLibraryThrow) {
-    RobotParameters robot;
+    io::RobotParameters robot;
     robot.link_inertia = -1.0;
     EXPECT_THROW((void)Model(expand(robot)), Error);
-    robot = RobotParameters{};
+    robot = io::RobotParameters{};
     robot.max_condition = 0.5;
     EXPECT_THROW((void)Model(expand(robot)), Error);
 }
@@ -149,7 +149,7 @@ TEST(RobotFile, OnlyDecimalNumbersAreAccepted) {
 }
 
 TEST(RobotFile, ByteOrderMarkIsAccepted) {
-    const RobotParameters robot = io::parseRobot("\xEF\xBB\xBF" + kRobot, "robot.yaml");
+    const io::RobotParameters robot = io::parseRobot("\xEF\xBB\xBF" + kRobot, "robot.yaml");
     EXPECT_EQ(robot.name, "test-robot");
     EXPECT_EQ(robot.link_length, 0.15915);
 }
@@ -173,17 +173,17 @@ TEST(RobotFile, RangeErrorsNameTheLineAndTheAcceptedRange) {
 }
 
 TEST(RobotModel, EveryRangeHoldsInTheLibraryToo) {
-    RobotParameters robot;
+    io::RobotParameters robot;
     robot.platform_inertia = 1e308;
     try {
         const Model model(expand(robot));
         ADD_FAILURE() << "accepted platform.inertia = 1e308";
-    } catch (const ParameterError& e) {
+    } catch (const io::ParameterError& e) {
         EXPECT_EQ(e.field(), "platform.inertia");
     }
-    robot = RobotParameters{};
+    robot = io::RobotParameters{};
     robot.link_mass = std::numeric_limits<double>::quiet_NaN();
-    EXPECT_THROW((void)Model(expand(robot)), ParameterError);
+    EXPECT_THROW((void)Model(expand(robot)), io::ParameterError);
 }
 
 /// A scratch file of this test binary's temporary folder with the given content.

@@ -146,7 +146,7 @@ TEST(Workspace, LinkNormalToItsRailIsASingularPostureNotANaN) {
         const Model model(io::exampleRobot(name));
         Data data(model);
         // Raise C until d_1^M = l (1 - 1e-10): cos phi_A1 ~ 1.4e-5, det J_1 = l cos phi_A1.
-        const RobotParameters paper;
+        const io::RobotParameters paper;
         const double y =
             paper.link_length * (1 - 1e-10) - 0.5 * (paper.baseCircumradius() - paper.platformCircumradius());
         ASSERT_TRUE(inverseDisplacement(model, data, Pose(0.0, 0.0, y)).ok());
@@ -182,7 +182,7 @@ TEST(Workspace, StrokeBeyondTheActuatorIsReportedForTheRightLimb) {
         SCOPED_TRACE(name);
         const Model model(io::exampleRobot(name));
         Data data(model);
-        const double half_stroke = 0.5 * RobotParameters{}.stroke;
+        const double half_stroke = 0.5 * io::RobotParameters{}.stroke;
         ASSERT_TRUE(inverseDisplacement(model, data, Pose(0.0, 0.0, 0.0)).ok());
         EXPECT_TRUE(checkJointLimits(model, data).ok());
         ASSERT_TRUE(inverseDisplacement(model, data, Pose(0.0, 0.03, 0.0)).ok());

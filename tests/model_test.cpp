@@ -431,7 +431,7 @@ TEST(Atan2Of, IsWithinTwoUlpOfLibm) {
 }
 
 TEST(PaperRobot, PoseOutOfReachNamesTheLimbAndTheDistance) {
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     Data data(model);
     // far to the right: limb 2 (rail along 120 degrees) cannot reach
     const Status status = inverseDisplacement(model, data, Pose(0.0, 0.3, 0.0));
@@ -443,7 +443,7 @@ TEST(PaperRobot, PoseOutOfReachNamesTheLimbAndTheDistance) {
 }
 
 TEST(PaperRobot, NonFiniteInputIsAStatusNotANaN) {
-    const Model model{RobotParameters{}};
+    const Model model{io::expand(io::RobotParameters{})};
     Data data(model);
     EXPECT_EQ(inverseDynamics(model, data, Pose(std::nan(""), 0, 0), Twist::Zero(), Twist::Zero()).code,
               StatusCode::not_finite);

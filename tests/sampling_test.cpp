@@ -8,6 +8,7 @@
 #include <numbers>
 
 #include "allocation_counter.hpp"
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -44,7 +45,7 @@ std::string errorOf(F&& f) {
     return {};
 }
 
-const RobotParameters kPaper{};
+const io::RobotParameters kPaper{};
 
 LimitSummary stream(const Model& model, const PoseTrajectory& trajectory, double duration, double rate,
                     LimitPolicy policy) {
@@ -68,7 +69,7 @@ bool samplesAloneAreWithinLimits(const Model& model, const PoseTrajectory& traje
 constexpr double kQuarterPi = std::numbers::pi / 4.0;
 
 TEST(Sampling, RateAtOrBelowTwiceTheHighestFrequencyIsRefusedNamingTheRateNeeded) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     PoseTrajectory trajectory = harmonicX(1e-3, 10.0, 0.0);
     trajectory.theta.harmonics.push_back({1e-3, 1000.0, 0.0});
     for (const double rate : {1000.0, 2000.0}) {
@@ -83,7 +84,7 @@ TEST(Sampling, RateAtOrBelowTwiceTheHighestFrequencyIsRefusedNamingTheRateNeeded
 
 TEST(Sampling, ForcePeakBetweenOutputSamplesIsAnError) {
     // 250 Hz sampled at 1 kHz with a 45 degree phase: the samples see 0.71 of the peak only.
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     const PoseTrajectory trajectory = harmonicX(4.5e-5, 250.0, kQuarterPi);
     ASSERT_TRUE(samplesAloneAreWithinLimits(model, trajectory, 0.02, 1000.0));
     const std::string message = errorOf([&] { (void)stream(model, trajectory, 0.02, 1000.0, LimitPolicy::error); });
@@ -96,7 +97,7 @@ TEST(Sampling, ForcePeakBetweenOutputSamplesIsAnError) {
 }
 
 TEST(Sampling, StrokeBetweenOutputSamplesIsAnError) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     const PoseTrajectory trajectory = harmonicX(0.015, 5.0, kQuarterPi);
     ASSERT_TRUE(samplesAloneAreWithinLimits(model, trajectory, 0.4, 20.0));
     const std::string message = errorOf([&] { (void)stream(model, trajectory, 0.4, 20.0, LimitPolicy::error); });
@@ -110,7 +111,7 @@ TEST(Sampling, StrokeBetweenOutputSamplesIsAnError) {
 }
 
 TEST(Sampling, WorkspaceExitBetweenSamplesIsAnErrorEvenWhenLimitsAreAllowed) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     const PoseTrajectory trajectory = harmonicY(0.095, 5.0, kQuarterPi);
     Data data(model);
     Pose p, dp, ddp;
@@ -129,7 +130,7 @@ TEST(Sampling, WorkspaceExitBetweenSamplesIsAnErrorEvenWhenLimitsAreAllowed) {
 
 TEST(Sampling, NonFiniteValueIsAnErrorEvenWhenLimitsAreAllowed) {
     // (2 pi f)^2 a overflows: the acceleration, and with it every force, is infinite.
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     const PoseTrajectory trajectory = harmonicX(1e-3, 1e160, 0.0);
     const std::string message = errorOf([&] { (void)stream(model, trajectory, 1e-157, 3e160, LimitPolicy::record); });
     EXPECT_NE(message.find("not finite"), std::string::npos) << message;
@@ -137,7 +138,7 @@ TEST(Sampling, NonFiniteValueIsAnErrorEvenWhenLimitsAreAllowed) {
 }
 
 TEST(Sampling, StreamedSamplesEqualTheStoredSeries) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     const PoseTrajectory trajectory = paperTrajectory1();
     const InverseDynamicsSeries series = sampleInverseDynamics(model, trajectory, sampleTimes(0.05, 2000.0));
     const io::Table table = io::toTable(series, model.actuators);
@@ -157,7 +158,7 @@ TEST(Sampling, StreamedSamplesEqualTheStoredSeries) {
 }
 
 TEST(Sampling, StreamingAllocatesTheSameForTenAndTenThousandTimesTheSamples) {
-    const Model model{kPaper};
+    const Model model{io::expand(kPaper)};
     const PoseTrajectory trajectory = paperTrajectory1();
     auto allocationsFor = [&](double duration) {
         const SampleGrid grid = sampleGrid(duration, 10000.0);

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
@@ -177,7 +178,7 @@ inline double concurrentLinkLinesRotation() {
 /// model code: rail directions e_j and inward normals n_j = E e_j, base vertices B_j, platform
 /// vertices M_j - C at theta = 0, and the origin s_ref_j of u_j (the reference posture).
 struct PaperGeometry {
-    explicit PaperGeometry(const RobotParameters& robot = RobotParameters{})
+    explicit PaperGeometry(const io::RobotParameters& robot = io::RobotParameters{})
         : l(robot.link_length), stroke(robot.stroke), max_condition(robot.max_condition) {
         const double R = robot.base_side / std::sqrt(3.0), r = robot.platform_side / std::sqrt(3.0);
         for (std::size_t j = 0; j < 3; ++j) {

@@ -89,7 +89,7 @@ TEST(Workspace, RefusesBadOptionsAndAnOrientationWithNoWorkspace) {
     EXPECT_THROW((void)workspaceMap(model, {0.0, 5}), Error);
     EXPECT_THROW((void)workspaceMap(model, {std::nan(""), 101}), Error);
     // the paper's sliders (+-12.45 mm) cannot turn the platform by 1.5 rad
-    EXPECT_THROW((void)workspaceMap(Model{RobotParameters{}}, {1.5, 101}), Error);
+    EXPECT_THROW((void)workspaceMap(Model{io::expand(io::RobotParameters{})}, {1.5, 101}), Error);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include "animation.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"

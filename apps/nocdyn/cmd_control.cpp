@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/general_control.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/identification.hpp"

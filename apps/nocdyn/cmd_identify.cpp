@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/general_control.hpp"
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/calibration.hpp"

@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/drawing.hpp"
 #include "nocdyn/envelope.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"

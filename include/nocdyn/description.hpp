@@ -10,8 +10,8 @@
 // order, joints in chain order). The friction force of a joint on its outboard body is
 // -(damping q' + friction sign q').
 //
-// The symmetric 3-PRR of the paper (RobotParameters, the short form) expands to this form
-// (expand()). Nothing here computes kinematics beyond the home posture.
+// The symmetric 3-PRR of the paper (the short form of a robot file) expands to this form in io
+// (io/short_form.hpp). Nothing here computes kinematics beyond the home posture.
 #pragma once
 
 #include <array>
@@ -20,8 +20,6 @@
 #include <vector>
 
 #include <Eigen/Core>
-
-#include "nocdyn/robot.hpp"
 
 namespace nocdyn {
 
@@ -87,13 +85,6 @@ struct RobotDescription {
 /// Largest number of limbs and actuators a model holds (fixed-capacity storage).
 inline constexpr int kMaxLimbs = 6;
 inline constexpr int kMaxActuators = 3 * kMaxLimbs;
-
-/// The paper's symmetric 3-PRR (short form) as a general description: limb j has a P joint
-/// along e_j through A_j's reference position (actuated; limits +-stroke/2, peak force), an R
-/// joint at A_j and an R joint at M_j; body 1 is the slider (c.o.m. at A_j, no rotational
-/// inertia: it only translates), body 2 the link (c.o.m. l_c from A_j); home is the reference
-/// posture (theta = 0, C = O).
-[[nodiscard]] RobotDescription expand(const RobotParameters& robot);
 
 /// Throws nocdyn::Error, naming the source file, line, limb, joint and field, when the
 /// description is not a robot nocdyn can model: fewer than 2 or more than kMaxLimbs limbs,

@@ -111,8 +111,6 @@ public:
     /// prepares the limbs, and checks that every limb closes on its home branch and is
     /// regular at home (so that the home branch is well defined), as is the actuation.
     explicit Model(RobotDescription description);
-    /// The paper's 3-PRR (short form).
-    explicit Model(const RobotParameters& parameters = RobotParameters{});
 
     RobotDescription description;  ///< as validated (P directions unit)
     int limbs = 0;                 ///< number of limbs

@@ -8,40 +8,30 @@ namespace nocdyn {
 
 enum class StatusCode {
     ok,
-    /// A limb cannot reach the pose: the distance d_j^M from M_j to the rail line L_j is
-    /// not in (0, l). value = d_j^M [m].
-    outside_workspace,
-    /// H or D (eqs. 5-7) is too ill-conditioned: value = its condition number.
-    singular_forward_jacobian,
-    singular_inverse_jacobian,
-    /// The pose needs more than half the actuator stroke: value = u_j [m].
-    stroke_exceeded,
-    /// The actuator force exceeds its peak: value = tau_j [N].
-    force_exceeded,
-    /// A direct-kinematics tracker lost its assembly mode: value = residual [m].
+    /// A direct-kinematics tracker lost its assembly mode: value = its scaled residual.
     assembly_mode_lost,
-    /// Actuator displacements beyond the edge of the workspace: limb j's link is (nearly)
-    /// normal to its rail, or along it, where u_j turns back; value = d_j^M [m].
+    /// Actuator values beyond the edge of the workspace: limb `limb` is next to a singular
+    /// posture, where its actuator turns back; value = the scaled condition number of its J.
     workspace_edge,
     /// The integrator's step fell below its minimum (tolerances too tight for double
     /// precision, or a motion too violent): value = the step it needed [s].
     integration_step_too_small,
     /// The integrator took more steps than allowed over one interval: value = the steps.
     integration_too_many_steps,
-    /// General model: a limb cannot reach the pose on its home branch. value = how far the
+    /// A limb cannot reach the pose on its home branch. value = how far the
     /// pose is out of the limb's reach [m].
     unreachable,
-    /// General model: a limb Jacobian J_j (eq. 4a) is ill-conditioned. value = its scaled
+    /// A limb Jacobian J_j (eq. 4a) is ill-conditioned. value = its scaled
     /// condition number.
     singular_limb,
-    /// General model: the map from the platform twist to the actuator rates (eq. 5) is
+    /// The map from the platform twist to the actuator rates (eq. 5) is
     /// ill-conditioned (actuation singularity). value = its scaled condition number.
     singular_actuation,
-    /// General model: joint `joint` of limb `limb` is outside [lower, upper]. value = q.
+    /// Joint `joint` of limb `limb` is outside [lower, upper]. value = q.
     joint_limit_exceeded,
-    /// General model: actuator at (limb, joint) needs more than its effort limit. value = tau.
+    /// The actuator at (limb, joint) needs more than its effort limit. value = tau.
     effort_exceeded,
-    /// General model: joint (limb, joint) moves faster than its velocity limit. value = q'.
+    /// Joint (limb, joint) moves faster than its velocity limit. value = q'.
     velocity_exceeded,
     /// An input (pose, rate, acceleration) is not a finite number. value = the input.
     not_finite,
@@ -57,15 +47,10 @@ struct Status {
     explicit operator bool() const { return ok(); }
 };
 
-struct RobotParameters;
 class Model;
 
-/// One-line human-readable explanation, naming the limb as the paper does (1..3).
-/// Not for the real-time path (it allocates).
-[[nodiscard]] std::string describe(const Status& status, const RobotParameters& robot);
-
-/// The same for the general model: names the limb (by its name and 1-based number), the
-/// joint and the limit.
+/// One-line human-readable explanation: names the limb (by its name and 1-based number), the
+/// joint and the limit. Not for the real-time path (it allocates).
 [[nodiscard]] std::string describe(const Status& status, const Model& model);
 
 }  // namespace nocdyn

@@ -20,6 +20,7 @@
 
 #include "nocdyn/description.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"
@@ -27,7 +28,7 @@
 using nocdyn::JointType;
 using nocdyn::PoseTrajectory;
 using nocdyn::RobotDescription;
-using nocdyn::RobotParameters;
+using nocdyn::io::RobotParameters;
 using nocdyn::validation::MechanismSample;
 using nocdyn::validation::MujocoMechanism;
 using nocdyn::validation::SimbodyMechanism;
@@ -88,7 +89,7 @@ void checkGolden(const char* engine, const std::string& file, const PoseTrajecto
     const Table g = readTable(std::string(NOCDYN_GOLDEN_DIR) + "/" + file);
     std::vector<double> times;
     for (const auto& r : g.rows) times.push_back(r[g.col("t")]);
-    Engine model(nocdyn::expand(RobotParameters{}));
+    Engine model(nocdyn::io::expand(RobotParameters{}));
     const std::vector<MechanismSample> s = model.inverseDynamics(trajectory, times);
     ASSERT_EQ(s.size(), times.size());
     const std::array<std::pair<const char*, Eigen::VectorXd MechanismSample::*>, 4> fields = {
@@ -320,8 +321,8 @@ TEST(GeneralMechanism, MujocoMatchesGoldenPaperTrajectories) {
 /// Both engines' inverse dynamics of the paper's prototype, one call per engine.
 template <class F>
 void forEachEngine(F&& f) {
-    SimbodyMechanism simbody(nocdyn::expand(RobotParameters{}));
-    MujocoMechanism mujoco(nocdyn::expand(RobotParameters{}));
+    SimbodyMechanism simbody(nocdyn::io::expand(RobotParameters{}));
+    MujocoMechanism mujoco(nocdyn::io::expand(RobotParameters{}));
     f("simbody",
       [&](const PoseTrajectory& t, const std::vector<double>& times) { return simbody.inverseDynamics(t, times); });
     f("mujoco",
@@ -336,7 +337,7 @@ TEST(GeneralMechanism, PaperRobotAtHomeHasZeroActuatorsAndNoForce) {
             EXPECT_LT(s.tau.cwiseAbs().maxCoeff(), 1e-12) << engine;
         }
     });
-    SimbodyMechanism plant(nocdyn::expand(RobotParameters{}));
+    SimbodyMechanism plant(nocdyn::io::expand(RobotParameters{}));
     plant.resetPlant(Eigen::Vector3d::Zero());
     EXPECT_LT(plant.u().cwiseAbs().maxCoeff(), 1e-14);
     EXPECT_LT(plant.pose().cwiseAbs().maxCoeff(), 1e-15);
@@ -354,7 +355,7 @@ TEST(GeneralMechanism, PaperRobotAssemblesAtTheRequestedPose) {
             EXPECT_LT((s[k].pose - p).cwiseAbs().maxCoeff(), 1e-13) << engine << " t = " << times[k];
         }
     });
-    SimbodyMechanism plant(nocdyn::expand(RobotParameters{}));
+    SimbodyMechanism plant(nocdyn::io::expand(RobotParameters{}));
     const Eigen::Vector3d pose(0.05, 0.004, -0.003), rate(0.7, -0.02, 0.03);
     plant.resetPlant(pose, rate);
     EXPECT_LT((plant.pose() - pose).cwiseAbs().maxCoeff(), 1e-14);
@@ -382,7 +383,7 @@ TEST(GeneralMechanism, PaperRobotLargeStepsBetweenSamplesStayOnTheHomeBranch) {
 }
 
 TEST(GeneralMechanism, SimbodyPlantConservesKineticEnergyWithoutForces) {
-    SimbodyMechanism plant(nocdyn::expand(RobotParameters{}));
+    SimbodyMechanism plant(nocdyn::io::expand(RobotParameters{}));
     plant.resetPlant(Eigen::Vector3d(0.01, 0.001, -0.002), Eigen::Vector3d(0.8, 0.03, -0.02));
     const double T0 = plant.kineticEnergy();
     ASSERT_GT(T0, 1e-4);
@@ -400,8 +401,8 @@ TEST(GeneralMechanism, SimbodyPlantConservesKineticEnergyWithoutForces) {
 TEST(GeneralMechanism, SimbodyPlantAcceleratesAsInverseDynamicsPredicts) {
     // Forward dynamics with the inverse-dynamics forces gives back the actuator accelerations:
     // an independent check of the sign and size of tau.
-    SimbodyMechanism engine(nocdyn::expand(RobotParameters{}));
-    SimbodyMechanism plant(nocdyn::expand(RobotParameters{}));
+    SimbodyMechanism engine(nocdyn::io::expand(RobotParameters{}));
+    SimbodyMechanism plant(nocdyn::io::expand(RobotParameters{}));
     const PoseTrajectory trajectory = nocdyn::paperTrajectory1();
     for (double t0 : {0.0, 0.013, 0.042}) {
         const MechanismSample s = engine.inverseDynamics(trajectory, linspace(0.0, t0, 20)).back();
@@ -504,7 +505,7 @@ TEST(GeneralMechanism, RedundantForcesAreMinimumNorm) {
 }
 
 TEST(GeneralMechanism, ReportsTheTimeOfAnUnreachablePose) {
-    RobotDescription r = nocdyn::expand(RobotParameters{});
+    RobotDescription r = nocdyn::io::expand(RobotParameters{});
     PoseTrajectory far;
     far.x.harmonics = {{0.2, 1.0, 0.0}};  // 20 cm: far beyond the 3-PRR's workspace
     const std::vector<double> times = linspace(0.0, 0.25, 6);
@@ -533,8 +534,8 @@ TEST(GeneralMechanism, PerSampleTiming) {
                     std::chrono::duration<double, std::micro>(t1 - t0).count() / static_cast<double>(s.size()),
                     s.size());
     };
-    SimbodyMechanism simbody(nocdyn::expand(RobotParameters{}));
-    MujocoMechanism mujoco(nocdyn::expand(RobotParameters{}));
+    SimbodyMechanism simbody(nocdyn::io::expand(RobotParameters{}));
+    MujocoMechanism mujoco(nocdyn::io::expand(RobotParameters{}));
     run(simbody, "SimbodyMechanism paper 3-PRR", nocdyn::paperTrajectory1());
     run(mujoco, "MujocoMechanism paper 3-PRR", nocdyn::paperTrajectory1());
     // A random 4-RRR with its four base joints actuated (redundant), gravity and friction.

@@ -8,7 +8,7 @@
 
 namespace nocdyn::prr3 {
 
-Model::Model(const RobotParameters& robot) : parameters(robot) {
+Model::Model(const io::RobotParameters& robot) : parameters(robot) {
     validate(parameters);
     constexpr double pi = std::numbers::pi;
     R = parameters.baseCircumradius();

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "nocdyn/robot.hpp"
+#include "nocdyn/io/short_form.hpp"
 
 namespace nocdyn::prr3 {
 
-std::string describe(const Status& status, const RobotParameters& robot) {
+std::string describe(const Status& status, const io::RobotParameters& robot) {
     std::ostringstream out;
     out.precision(6);
     const int j = status.limb + 1;  // the paper numbers limbs 1..3

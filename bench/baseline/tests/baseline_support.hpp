@@ -58,7 +58,7 @@ inline void solve(const prr3::Model& model, prr3::Data& data, const Pose& p, con
 /// h_j1 = 0 (eq. 7) and H is singular: near theta = -2.08 rad for the paper's robot, where
 /// phi_Mj = pi/6. Found by bisection on h_11 with a model that accepts any conditioning.
 inline double baselineConcurrentLinkLinesRotation() {
-    RobotParameters permissive;
+    io::RobotParameters permissive;
     permissive.max_condition = 1e300;
     const prr3::Model probe(permissive);
     prr3::Data data;

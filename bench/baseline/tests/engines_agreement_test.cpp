@@ -53,9 +53,9 @@ double forceErrorOfPeak(const Series& ours, const Samples& engine) {
     return worst / peak;
 }
 
-RobotParameters randomRobot(std::mt19937& rng) {
+io::RobotParameters randomRobot(std::mt19937& rng) {
     auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
-    RobotParameters robot;
+    io::RobotParameters robot;
     robot.name = "random";
     robot.base_side = uniform(0.3, 0.5);
     robot.platform_side = uniform(0.05, 0.15);
@@ -89,7 +89,7 @@ PoseTrajectory randomTrajectory(std::mt19937& rng, double scale) {
 }
 
 TEST(Validation, PaperTrajectoriesAgreeWithSimbodyAndMujoco) {
-    const RobotParameters robot;
+    const io::RobotParameters robot;
     const prr3::Model model(robot);
     prr3::SimbodyRobot simbody(robot);
     prr3::MujocoRobot mujoco(robot);
@@ -107,7 +107,7 @@ TEST(Validation, RandomRobotsOnRandomTrajectoriesAgreeWithSimbodyAndMujoco) {
     int tried = 0, compared = 0;
     while (compared < 12 && tried < 200) {
         ++tried;
-        const RobotParameters robot = randomRobot(rng);
+        const io::RobotParameters robot = randomRobot(rng);
         const prr3::Model model(robot);
         const PoseTrajectory trajectory = randomTrajectory(rng, 0.15 * robot.link_length);
         // Keep trajectories that stay inside the workspace, well away from singularities.

@@ -136,7 +136,7 @@ TEST(Fast, EqualsFullPathAtLargeAnglesAndForAnotherModel) {
     expectEqualToFullPath(model, inputs);
 
     // One FastData used with another model gives that model's forces.
-    RobotParameters heavier;
+    io::RobotParameters heavier;
     heavier.platform_mass *= 2.0;
     const prr3::Model other(heavier);
     prr3::FastData fast;
@@ -161,7 +161,7 @@ TEST(Fast, ModelRebuiltInTheSameStorageGivesItsOwnForces) {
     ASSERT_TRUE(prr3::inverseDynamicsFast(*model, fast, p, dp, ddp).ok());
     const double light_tau_1 = fast.tau(0);
 
-    RobotParameters heavy;
+    io::RobotParameters heavy;
     heavy.platform_mass = 50.0;
     model.emplace(heavy);
     ASSERT_EQ(&*model, address) << "the test needs the same storage";

@@ -13,7 +13,7 @@
 
 #include <string>
 
-#include "nocdyn/robot.hpp"
+#include "nocdyn/io/short_form.hpp"
 
 namespace nocdyn::io {
 

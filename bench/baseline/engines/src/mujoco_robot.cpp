@@ -1,6 +1,6 @@
 // MuJoCo model of the 3-PRR robot and its rigid inverse dynamics (see mujoco_robot.hpp).
 //
-// Only RobotParameters (geometry, masses, inertias) and PoseTrajectory are taken from nocdyn.
+// Only io::RobotParameters (geometry, masses, inertias) and PoseTrajectory are taken from nocdyn.
 // The reference posture below is computed here from the robot's definition (model notes:
 // R = b/sqrt3, r = a/sqrt3, d^M = (R - r)/2, phi_A = asin(d^M / l)); every other posture,
 // velocity and acceleration of the joints, and every force, comes from MuJoCo.
@@ -57,7 +57,7 @@ struct LimbReference {
     double link_angle = 0;  // angle of A_j -> M_j from the X axis at the reference
 };
 
-std::array<LimbReference, kLimbs> referenceGeometry(const RobotParameters& robot) {
+std::array<LimbReference, kLimbs> referenceGeometry(const io::RobotParameters& robot) {
     const double R = robot.base_side / std::sqrt(3.0);
     const double r = robot.platform_side / std::sqrt(3.0);
     const double dM = 0.5 * (R - r);
@@ -87,7 +87,7 @@ std::string num(double v) {
     return s.str();
 }
 
-std::string buildMjcf(const RobotParameters& robot) {
+std::string buildMjcf(const io::RobotParameters& robot) {
     const auto limbs = referenceGeometry(robot);
     // Out-of-plane principal inertias never enter planar motion; they only have to make a
     // physical (positive, triangle-inequality-satisfying) tensor. Sliders translate only:
@@ -173,7 +173,7 @@ mjModel* compileFromMemory(const std::string& xml, const std::string& robot_name
 }  // namespace
 
 struct MujocoRobot::Impl {
-    RobotParameters robot;
+    io::RobotParameters robot;
     std::string xml;
     mjModel* m = nullptr;
     mjData* d = nullptr;
@@ -460,7 +460,7 @@ struct MujocoRobot::Impl {
     }
 };
 
-MujocoRobot::MujocoRobot(const RobotParameters& robot) : impl_(std::make_unique<Impl>()) {
+MujocoRobot::MujocoRobot(const io::RobotParameters& robot) : impl_(std::make_unique<Impl>()) {
     validate(robot);
     impl_->robot = robot;
     impl_->limbs = referenceGeometry(robot);

@@ -44,8 +44,8 @@ struct Geometry {
     std::array<Eigen::Vector2d, 3> M_plat;  // M_j in the platform frame (origin C)
 };
 
-Geometry makeGeometry(const RobotParameters& p) {
-    nocdyn::validate(p);
+Geometry makeGeometry(const io::RobotParameters& p) {
+    nocdyn::io::validate(p);
     Geometry g;
     g.R = p.base_side / std::sqrt(3.0);
     g.r = p.platform_side / std::sqrt(3.0);
@@ -167,9 +167,9 @@ double wrapAngle(double a) { return std::remainder(a, 2.0 * kPi); }
 // ---------------------------------------------------------------------------------
 class SimbodyRobot::Impl {
 public:
-    explicit Impl(const RobotParameters& p);
+    explicit Impl(const io::RobotParameters& p);
 
-    RobotParameters params;
+    io::RobotParameters params;
     Geometry geo;
 
     SimTK::MultibodySystem system;
@@ -222,7 +222,7 @@ public:
     long by_projection = 0, by_assembler = 0, by_analytic_seed = 0;
 };
 
-SimbodyRobot::Impl::Impl(const RobotParameters& p)
+SimbodyRobot::Impl::Impl(const io::RobotParameters& p)
     : params(p), geo(makeGeometry(p)), matter(system), forces(system), actuators(forces, matter) {
     using namespace SimTK;
     // Sliders translate only: mass, no rotational inertia.
@@ -395,7 +395,7 @@ void SimbodyRobot::Impl::assemblePoseDriven(double t, const Eigen::Vector3d& exp
 // ---------------------------------------------------------------------------------
 // Public interface
 // ---------------------------------------------------------------------------------
-SimbodyRobot::SimbodyRobot(const RobotParameters& robot) : impl_(std::make_unique<Impl>(robot)) {
+SimbodyRobot::SimbodyRobot(const io::RobotParameters& robot) : impl_(std::make_unique<Impl>(robot)) {
     // The model must assemble at the reference posture (and the plant starts there).
     resetPlant(Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero());
 }

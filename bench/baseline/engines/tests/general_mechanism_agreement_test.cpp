@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 #include <gtest/gtest.h>
 
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/description.hpp"
 #include "nocdyn/prr3/mujoco_robot.hpp"
 #include "nocdyn/prr3/simbody_robot.hpp"
@@ -15,7 +16,7 @@
 #include "nocdyn/validation/simbody_mechanism.hpp"
 
 using nocdyn::PoseTrajectory;
-using nocdyn::RobotParameters;
+using nocdyn::io::RobotParameters;
 using nocdyn::validation::MujocoMechanism;
 using nocdyn::validation::SimbodyMechanism;
 
@@ -33,8 +34,8 @@ std::vector<double> linspace(double t0, double t1, int n) {
 TEST(GeneralMechanism, PaperRobotAgreesWith3PrrEngineModels) {
     const std::vector<double> times = linspace(0.0, 0.2, 401);
     for (const PoseTrajectory& trajectory : {nocdyn::paperTrajectory1(), nocdyn::paperTrajectory2()}) {
-        SimbodyMechanism simbody(nocdyn::expand(RobotParameters{}));
-        MujocoMechanism mujoco(nocdyn::expand(RobotParameters{}));
+        SimbodyMechanism simbody(nocdyn::io::expand(RobotParameters{}));
+        MujocoMechanism mujoco(nocdyn::io::expand(RobotParameters{}));
         nocdyn::prr3::SimbodyRobot simbody_3prr{RobotParameters{}};
         nocdyn::prr3::MujocoRobot mujoco_3prr{RobotParameters{}};
         const auto a = simbody.inverseDynamics(trajectory, times);

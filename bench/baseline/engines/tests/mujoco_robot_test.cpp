@@ -55,7 +55,7 @@ void operator delete(void* p, std::size_t) noexcept { std::free(p); }
 namespace {
 
 using nocdyn::PoseTrajectory;
-using nocdyn::RobotParameters;
+using nocdyn::io::RobotParameters;
 using nocdyn::prr3::MujocoRobot;
 using nocdyn::prr3::MujocoSample;
 

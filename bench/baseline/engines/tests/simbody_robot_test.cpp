@@ -12,12 +12,12 @@
 #include <gtest/gtest.h>
 
 #include "nocdyn/error.hpp"
-#include "nocdyn/robot.hpp"
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "nocdyn/prr3/simbody_robot.hpp"
 
 using nocdyn::PoseTrajectory;
-using nocdyn::RobotParameters;
+using nocdyn::io::RobotParameters;
 using nocdyn::prr3::EngineSample;
 using nocdyn::prr3::SimbodyRobot;
 

@@ -7,7 +7,7 @@
 #include "nocdyn/prr3/simbody_robot.hpp"
 
 int main() {
-    nocdyn::prr3::SimbodyRobot robot{nocdyn::RobotParameters{}};
+    nocdyn::prr3::SimbodyRobot robot{nocdyn::io::RobotParameters{}};
     const auto trajectory = nocdyn::paperTrajectory1();
     const int n = 2000;
     std::vector<double> times(n);

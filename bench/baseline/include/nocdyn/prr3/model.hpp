@@ -19,7 +19,7 @@
 #include "nocdyn/noc.hpp"
 #include "nocdyn/prr3/kernel_constants.hpp"
 #include "nocdyn/planar.hpp"
-#include "nocdyn/robot.hpp"
+#include "nocdyn/io/short_form.hpp"
 
 namespace nocdyn::prr3 {
 
@@ -39,9 +39,9 @@ inline constexpr int kPlatformBody = 6;
 class Model {
 public:
     /// Validates the parameters (throws nocdyn::Error) and precomputes the geometry.
-    explicit Model(const RobotParameters& parameters = RobotParameters{});
+    explicit Model(const io::RobotParameters& parameters = io::RobotParameters{});
 
-    RobotParameters parameters;        ///< as given (SI)
+    io::RobotParameters parameters;    ///< as given (SI)
     double R = 0.0;                    ///< base circumradius b / sqrt(3) [m]
     double r = 0.0;                    ///< platform circumradius a / sqrt(3) [m]
     double l = 0.0;                    ///< link length [m]

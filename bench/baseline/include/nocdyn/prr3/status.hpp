@@ -5,7 +5,7 @@
 
 #include <string>
 
-namespace nocdyn {
+namespace nocdyn::io {
 struct RobotParameters;
 }
 
@@ -37,6 +37,6 @@ struct Status {
 
 /// One-line human-readable explanation, naming the limb as the paper does (1..3).
 /// Not for the real-time path (it allocates).
-[[nodiscard]] std::string describe(const Status& status, const RobotParameters& robot);
+[[nodiscard]] std::string describe(const Status& status, const io::RobotParameters& robot);
 
 }  // namespace nocdyn::prr3

@@ -1,10 +1,10 @@
 // Independent MuJoCo model of the 3-PRR robot: the same robot built from
-// the same RobotParameters as MJCF, its loops closed with <equality><connect>, and its inverse
+// the same io::RobotParameters as MJCF, its loops closed with <equality><connect>, and its inverse
 // dynamics computed by MuJoCo's rigid multibody building blocks (the position stage
 // mj_kinematics/mj_comPos/mj_makeConstraint, mj_comVel, mj_rne, the constraint Jacobian efc_J)
 // plus small Eigen solves for the loop closure and the slider forces (see the .cpp).
 //
-// Nothing here calls nocdyn's kinematics or dynamics: only RobotParameters and PoseTrajectory
+// Nothing here calls nocdyn's kinematics or dynamics: only io::RobotParameters and PoseTrajectory
 // are shared with the NOC model. MuJoCo's headers stay in the implementation (pimpl).
 #pragma once
 
@@ -14,7 +14,7 @@
 
 #include <Eigen/Core>
 
-#include "nocdyn/robot.hpp"
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::prr3 {
@@ -41,7 +41,7 @@ class MujocoRobot {
 public:
     /// Builds and compiles the model. Throws nocdyn::Error with a clear message when the
     /// parameters are not physical or MuJoCo rejects the model.
-    explicit MujocoRobot(const RobotParameters& robot);
+    explicit MujocoRobot(const io::RobotParameters& robot);
     ~MujocoRobot();
     MujocoRobot(MujocoRobot&&) noexcept;
     MujocoRobot& operator=(MujocoRobot&&) noexcept;

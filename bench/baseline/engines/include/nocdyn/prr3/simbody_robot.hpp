@@ -3,7 +3,7 @@
 // Ground; three MobilizedBody::Slider along the base sides (line L_j through B_j along e_j);
 // a Pin per link at A_j; the platform on a Planar mobilizer from Ground; each loop closed by a
 // Constraint::PointOnLine (a z-line through the link tip M_j, two equations per loop).
-// The model shares only RobotParameters and PoseTrajectory with nocdyn: it never calls
+// The model shares only io::RobotParameters and PoseTrajectory with nocdyn: it never calls
 // nocdyn's kinematics or dynamics. Simbody headers stay inside the implementation (pimpl).
 //
 // Conventions (see shared/model-notes.md): SI units, pose = [theta, x, y], slider coordinate
@@ -16,7 +16,7 @@
 
 #include <Eigen/Core>
 
-#include "nocdyn/robot.hpp"
+#include "nocdyn/io/short_form.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::prr3 {
@@ -37,7 +37,7 @@ class SimbodyRobot {
 public:
     /// Builds the model. Throws nocdyn::Error if the parameters are not physical
     /// (nocdyn::validate) or the robot cannot be assembled at its reference posture.
-    explicit SimbodyRobot(const RobotParameters& robot);
+    explicit SimbodyRobot(const io::RobotParameters& robot);
     ~SimbodyRobot();
     SimbodyRobot(SimbodyRobot&&) noexcept;
     SimbodyRobot& operator=(SimbodyRobot&&) noexcept;

@@ -1,14 +1,16 @@
-// Robot parameters: what a robot file holds (SI units), the paper's prototype as the
-// default, and their validation. See ../shared/model-notes.md for where each default
+// The short form of a robot file: the symmetric 3-PRR of the paper by its parameters (SI
+// units), the paper's prototype as the default, their validation, and their expansion to the
+// general description that every algorithm takes. See ../shared/model-notes.md for where each default
 // comes from (eq. 32, Table I, footnote 6).
 #pragma once
 
 #include <string>
 #include <utility>
 
+#include "nocdyn/description.hpp"
 #include "nocdyn/error.hpp"
 
-namespace nocdyn {
+namespace nocdyn::io {
 
 /// Parameters of a symmetric 3-limb planar parallel robot with prismatic actuators
 /// (3-PRR). All values in SI: m, kg, kg m^2, N.
@@ -75,4 +77,11 @@ inline constexpr double kMaxCondition = 1e300;
 /// (0 < d_j^M < l must hold there).
 void validate(const RobotParameters& robot);
 
-}  // namespace nocdyn
+/// The short form as a general description: limb j has a P joint
+/// along e_j through A_j's reference position (actuated; limits +-stroke/2, peak force), an R
+/// joint at A_j and an R joint at M_j; body 1 is the slider (c.o.m. at A_j, no rotational
+/// inertia: it only translates), body 2 the link (c.o.m. l_c from A_j); home is the reference
+/// posture (theta = 0, C = O). Validates the parameters first.
+[[nodiscard]] RobotDescription expand(const RobotParameters& robot);
+
+}  // namespace nocdyn::io
