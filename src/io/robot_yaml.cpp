@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "nocdyn/error.hpp"
+#include "expression.hpp"
 #include "yaml_util.hpp"
 
 namespace nocdyn::io {
@@ -13,6 +14,11 @@ using detail::Context;
 
 RobotParameters parseRobot(const std::string& text, const std::string& source) {
     const YAML::Node root = detail::loadDocument(text, source);
+    (void)detail::resolveExpressions(root, source, {});
+    return detail::parseShortForm(root, source);
+}
+
+RobotParameters detail::parseShortForm(const YAML::Node& root, const std::string& source) {
     const Context top{source, ""};
     detail::requireMap(top, root, {"name", "geometry", "slider", "link", "platform", "actuator", "limits"});
 
