@@ -292,6 +292,8 @@ def optimize(family, objectives, n_trials=100, seed=0, *, constraints=None, samp
     machines, as Optuna's distributed optimisation does. Returns (study, Designs of every trial
     in order)."""
     import optuna
+    optuna.logging.set_verbosity(optuna.logging.WARNING)
+    warnings.filterwarnings("ignore", category=optuna.exceptions.ExperimentalWarning)
     metrics = list(objectives)
     directions = [objectives[m] for m in metrics]
     cons = dict(constraints or {})
@@ -310,8 +312,6 @@ def optimize(family, objectives, n_trials=100, seed=0, *, constraints=None, samp
         chosen = optuna.samplers.NSGAIISampler(seed=seed, constraints_func=constraints_func)
     else:
         raise Error(f"sampler: {sampler!r} is not 'tpe' or 'nsga2'")
-    optuna.logging.set_verbosity(optuna.logging.WARNING)
-    warnings.filterwarnings("ignore", category=optuna.exceptions.ExperimentalWarning)
     study = optuna.create_study(directions=directions, sampler=chosen, storage=storage, study_name=study_name,
                                 load_if_exists=storage is not None)
     rows = []

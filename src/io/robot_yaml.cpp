@@ -10,8 +10,6 @@
 
 namespace nocdyn::io {
 
-using detail::Context;
-
 RobotParameters parseRobot(const std::string& text, const std::string& source) {
     const YAML::Node root = detail::loadDocument(text, source);
     (void)detail::resolveExpressions(root, source, {});
