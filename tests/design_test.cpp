@@ -2,6 +2,7 @@
 // (design.hpp, io/design.hpp): each metric is the number the single-robot computation gives.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -102,11 +103,15 @@ TEST(ParametricRobotFile, AnOverrideChangesTheParameterAndEveryValueDerivedFromI
 }
 
 TEST(ParametricRobotFile, AnErrorNamesFileLineFieldAndExpression) {
-    std::string yaml = kSmall;
-    yaml.replace(yaml.find("r * sin(theta0)"), 15, "r * sin(thet0) ");
+    std::string yaml = text("examples/design_3rrr/family.yaml");
+    const auto at = yaml.find("[ex1, ey1]");
+    yaml.replace(at, 10, "[ex1, ey1 + ey9]");
+    const auto line =
+        std::to_string(1 + std::count(yaml.begin(), yaml.begin() + static_cast<std::ptrdiff_t>(at), '\n'));
     const std::string message = errorOf(yaml);
-    EXPECT_NE(message.find("family.yaml:8: limbs[0].joints[0].point[1]: expression 'r * sin(thet0)': unknown name "
-                           "'thet0'"),
+    EXPECT_NE(message.find("family.yaml:" + line +
+                           ": limbs[0].joints[1].point: expression 'ey1 + ey9': unknown name "
+                           "'ey9'"),
               std::string::npos)
         << message;
 }

@@ -100,6 +100,8 @@ void ExpressionEvaluator::define(const std::string& name, double value) {
     if (inserted) impl_->parser.DefineVar(name, &it->second);
 }
 
+bool ExpressionEvaluator::defines(const std::string& name) const { return impl_->values.count(name) != 0; }
+
 double ExpressionEvaluator::evaluate(const std::string& text, std::string& problem) const {
     problem.clear();
     if (text.size() > kMaxExpressionLength) {
@@ -152,41 +154,24 @@ double ExpressionEvaluator::evaluate(const std::string& text, std::string& probl
 }
 
 namespace {
-
-/// Replaces every expression scalar below `node` by its value.
-void substitute(YAML::Node node, const Context& context, const ExpressionEvaluator& evaluator, int depth) {
-    if (depth > 64) fail(context, node, "nested too deeply");
-    if (node.IsMap()) {
-        for (auto entry : node) {
-            const std::string key = entry.first.IsScalar() ? entry.first.Scalar() : std::string("?");
-            if (key == "name" || key == "type") continue;
-            substitute(entry.second, context / key, evaluator, depth + 1);
-        }
-    } else if (node.IsSequence()) {
-        for (std::size_t i = 0; i < node.size(); ++i) {
-            substitute(node[i], Context{context.source, context.field + "[" + std::to_string(i) + "]"}, evaluator,
-                       depth + 1);
-        }
-    } else if (node.IsScalar()) {
-        const std::string text = node.Scalar();
-        if (isDecimal(text) || text == "true" || text == "false") return;
-        std::string problem;
-        const double value = evaluator.evaluate(text, problem);
-        if (!problem.empty()) {
-            // a lone word or malformed number (nan, inf, 0x10): the number reader says why
-            const bool one_word =
-                std::all_of(text.begin(), text.end(), [](char c) { return isNameChar(c) || c == '.'; });
-            if (one_word) return;
-            fail(context, node, "expression '" + text + "': " + problem);
-        }
-        node = shortest(value);
-    }
-}
-
+thread_local const ExpressionEvaluator* active_evaluator = nullptr;
 }  // namespace
 
-ParameterSet resolveExpressions(YAML::Node root, const std::string& source, const ParameterSet& overrides) {
-    ExpressionEvaluator evaluator;
+ExpressionScope::ExpressionScope(const ExpressionEvaluator& evaluator) : previous_(active_evaluator) {
+    active_evaluator = &evaluator;
+}
+
+ExpressionScope::~ExpressionScope() { active_evaluator = previous_; }
+
+const ExpressionEvaluator* activeExpressions() { return active_evaluator; }
+
+bool looksLikeExpression(const std::string& text) {
+    return !std::all_of(text.begin(), text.end(), [](char c) { return isNameChar(c) || c == '.'; }) ||
+           (active_evaluator != nullptr && active_evaluator->defines(text));
+}
+
+ParameterSet declareParameters(YAML::Node root, const std::string& source, const ParameterSet& overrides,
+                               ExpressionEvaluator& evaluator) {
     ParameterSet declared;
     const Context top{source, ""};
     if (root.IsMap()) {
@@ -236,7 +221,6 @@ ParameterSet resolveExpressions(YAML::Node root, const std::string& source, cons
         }
         if (!std::isfinite(o.value)) throw Error(source + ": parameter '" + o.name + "' is set to a non-finite value");
     }
-    substitute(root, top, evaluator, 0);
     return declared;
 }
 

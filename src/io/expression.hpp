@@ -29,6 +29,8 @@ public:
 
     /// Defines (or redefines) a named value.
     void define(const std::string& name, double value);
+    /// Whether `name` is defined.
+    [[nodiscard]] bool defines(const std::string& name) const;
     /// The value of `text`, or the reason it has none ("unknown name 'r'", "the result is not
     /// finite", muParser's message for a syntax error).
     [[nodiscard]] double evaluate(const std::string& text, std::string& problem) const;
@@ -38,13 +40,34 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-/// Evaluates the `parameters:` section of a robot file's root mapping (in order; a value may
-/// use the parameters above it), with `overrides` replacing declared values, removes the
-/// section, and replaces every scalar holding an expression by its value in shortest
-/// round-trip decimal form. Scalars under `name` and `type`, plain numbers, true and false
-/// are left alone, as is a single unknown word (the number reader reports it). Throws
-/// nocdyn::Error "SOURCE:LINE: FIELD: expression 'TEXT': reason". Returns the parameters with
-/// their final values (empty when the file declares none).
-ParameterSet resolveExpressions(YAML::Node root, const std::string& source, const ParameterSet& overrides);
+/// Evaluates the `parameters:` section of a robot file's root mapping into `evaluator` (in
+/// order; a value may use the parameters above it), with `overrides` replacing declared values,
+/// and removes the section. Throws nocdyn::Error "SOURCE:LINE: parameters.NAME: ..." and for an
+/// override of a name the file does not declare. Returns the parameters with their final
+/// values (empty when the file declares none).
+ParameterSet declareParameters(YAML::Node root, const std::string& source, const ParameterSet& overrides,
+                               ExpressionEvaluator& evaluator);
+
+/// While it lives, the number reader (toNumber) of this thread evaluates a scalar that is not a
+/// plain number as an expression over `evaluator`'s parameters; an error names the file, line,
+/// field and the expression. A single word or malformed number (nan, inf, 0x10) is left to the
+/// number reader's own message.
+class ExpressionScope {
+public:
+    explicit ExpressionScope(const ExpressionEvaluator& evaluator);
+    ~ExpressionScope();
+    ExpressionScope(const ExpressionScope&) = delete;
+    ExpressionScope& operator=(const ExpressionScope&) = delete;
+
+private:
+    const ExpressionEvaluator* previous_;
+};
+
+/// The evaluator of the innermost ExpressionScope of this thread, or nullptr.
+[[nodiscard]] const ExpressionEvaluator* activeExpressions();
+
+/// Whether the number reader should evaluate `text` as an expression (it is not one word or
+/// malformed number).
+[[nodiscard]] bool looksLikeExpression(const std::string& text);
 
 }  // namespace nocdyn::io::detail

@@ -176,7 +176,9 @@ bool isGeneralForm(const std::string& text, const std::string& source) {
 RobotDescription parseRobotDescription(const std::string& text, const std::string& source,
                                        const ParameterSet& overrides) {
     const YAML::Node root = detail::loadDocument(text, source);
-    (void)detail::resolveExpressions(root, source, overrides);
+    detail::ExpressionEvaluator evaluator;
+    (void)detail::declareParameters(root, source, overrides, evaluator);
+    const detail::ExpressionScope expressions(evaluator);
     if (root.IsMap() && root["limbs"].IsDefined()) return parseGeneral(root, source);
     RobotDescription robot = expand(detail::parseShortForm(root, source));
     robot.source = source;
@@ -188,7 +190,8 @@ RobotDescription loadRobotDescription(const std::string& path, const ParameterSe
 }
 
 ParameterSet robotFileParameters(const std::string& text, const std::string& source, const ParameterSet& overrides) {
-    return detail::resolveExpressions(detail::loadDocument(text, source), source, overrides);
+    detail::ExpressionEvaluator evaluator;
+    return detail::declareParameters(detail::loadDocument(text, source), source, overrides, evaluator);
 }
 
 Parameter parseParameterAssignment(const std::string& text) {

@@ -12,7 +12,9 @@ namespace nocdyn::io {
 
 RobotParameters parseRobot(const std::string& text, const std::string& source) {
     const YAML::Node root = detail::loadDocument(text, source);
-    (void)detail::resolveExpressions(root, source, {});
+    detail::ExpressionEvaluator evaluator;
+    (void)detail::declareParameters(root, source, {}, evaluator);
+    const detail::ExpressionScope expressions(evaluator);
     return detail::parseShortForm(root, source);
 }
 
