@@ -257,9 +257,10 @@ void addDesignCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "design",
-        "Sweep a family of robots: a parametric robot file (parameters: NAME: VALUE, numbers as expressions of\n"
-        "them) with the parameters given by --vary varied over their ranges, grid or random (seeded), each\n"
-        "design's metrics computed on every core as the single-robot commands compute them:\n"
+        "Sweep a family of robot designs on every core: metrics, Pareto front, figures. The family is a\n"
+        "parametric robot file (parameters: NAME: VALUE, numbers as expressions of them) with the parameters\n"
+        "given by --vary varied over their ranges, grid or random (seeded); each design's metrics are computed\n"
+        "as the single-robot commands compute them:\n"
         "  workspace_area [m^2], condition_median, condition_worst [-] (nocdyn workspace, --theta,\n"
         "  --resolution), envelope_x@F, envelope_y@F [m], envelope_theta@F [rad] (nocdyn envelope at F Hz),\n"
         "  moving_mass [kg], and along --trajectory (limits enforced): peak_force, rms_force [N or N m],\n"
