@@ -6,6 +6,7 @@ packages=(
   g++ make cmake pkg-config            # toolchain (CMake >= 3.25)
   libeigen3-dev                        # linear algebra
   libyaml-cpp-dev                      # robot and trajectory files
+  libmuparser-dev                      # arithmetic expressions in parametric robot files
   libcli11-dev                         # command line
   nlohmann-json3-dev                   # `nocdyn pose --json`
   libboost-dev                         # Boost.Odeint (forward dynamics)
@@ -20,6 +21,8 @@ packages=(
   python3-dev python3-pybind11 python3-numpy   # the Python package (python/), /usr/bin/python3
   python3-pytest python3-matplotlib            # its tests (ctest -L python) and examples/quickstart.py
   python3-hypothesis                           # the property-based tests of the Python surface
+  python3-scipy python3-optuna                 # design sweeps: Sobol/LHS (scipy.stats.qmc), NSGA-II/TPE
+  python3-dask python3-distributed             # design sweeps on a Dask cluster (nocdyn.design)
 )
 # npm fetches playwright-core for the browser tests: Debian's package, unless the installed
 # Node.js already brings its own (NodeSource's nodejs provides and conflicts with Debian's npm)

@@ -42,6 +42,7 @@ public:
     /// of reach or singular).
     WorkspaceCell classify(double x, double y, double& actuation) {
         actuation = std::nan("");
+        condition_ = std::nan("");
         const Pose p(theta_, x, y);
         if (const Status s = inverseDisplacement(model_, data_, p); !s) {
             return s.code == StatusCode::singular_limb ? WorkspaceCell::singular : WorkspaceCell::unreachable;
@@ -53,8 +54,12 @@ public:
         }
         if (!v) return WorkspaceCell::singular;
         if (!checkJointLimits(model_, data_)) return WorkspaceCell::range;
+        condition_ = data_.cond_A;
         return WorkspaceCell::feasible;
     }
+
+    /// The scaled condition number of A at the last point classified feasible, else NaN.
+    [[nodiscard]] double condition() const { return condition_; }
 
     double actuation(double x, double y) {
         double value = 0.0;
@@ -66,6 +71,7 @@ private:
     const Model& model_;
     Data data_;
     double theta_;
+    double condition_ = 0.0;
     PlatformDisplacement G_;
 };
 
@@ -99,6 +105,18 @@ double coarseHalfWidth(const Model& model) {
 }
 
 }  // namespace
+
+Dexterity dexterity(const WorkspaceMap& map) {
+    std::vector<double> values;
+    values.reserve(map.condition.size());
+    for (const double c : map.condition) {
+        if (!std::isnan(c)) values.push_back(c);
+    }
+    if (values.empty()) return {std::nan(""), std::nan("")};
+    const auto middle = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    return {*middle, *std::max_element(values.begin(), values.end())};
+}
 
 WorkspaceMap workspaceMap(const Model& model, const WorkspaceOptions& options) {
     if (!std::isfinite(options.theta) || std::abs(options.theta) > 1e3) {
@@ -140,6 +158,7 @@ WorkspaceMap workspaceMap(const Model& model, const WorkspaceOptions& options) {
     const auto at = [&](int i, int k) { return Vector2(map.x0 + i * map.step, map.y0 + k * map.step); };
     const auto count = static_cast<std::size_t>(map.n) * static_cast<std::size_t>(map.n);
     map.cells.resize(count);
+    map.condition.assign(count, std::nan(""));
     std::vector<double> act(count);
     std::vector<std::uint8_t> reach(count);  // bit j: limb j reaches
     for (int i = 0; i < map.n; ++i) {
@@ -148,7 +167,11 @@ WorkspaceMap workspaceMap(const Model& model, const WorkspaceOptions& options) {
                 static_cast<std::size_t>(i) * static_cast<std::size_t>(map.n) + static_cast<std::size_t>(k);
             const Vector2 c = at(i, k);
             map.cells[index] = probe.classify(c.x(), c.y(), act[index]);
-            if (map.cells[index] == WorkspaceCell::feasible) map.area += map.step * map.step;
+            if (map.cells[index] == WorkspaceCell::feasible) {
+                map.area += map.step * map.step;
+                map.condition[index] = probe.condition();
+            }
+            if (!options.curves) continue;
             for (int j = 0; j < model.limbs; ++j) {
                 if (probe.reaches(j, c.x(), c.y())) reach[index] |= static_cast<std::uint8_t>(1u << j);
             }
@@ -156,7 +179,7 @@ WorkspaceMap workspaceMap(const Model& model, const WorkspaceOptions& options) {
     }
 
     // the curves, on every grid edge that crosses one
-    for (int i = 0; i < map.n; ++i) {
+    for (int i = 0; i < (options.curves ? map.n : 0); ++i) {
         for (int k = 0; k < map.n; ++k) {
             const auto a_index =
                 static_cast<std::size_t>(i) * static_cast<std::size_t>(map.n) + static_cast<std::size_t>(k);

@@ -20,7 +20,7 @@ struct ConvertOptions {
 };
 
 void run(const ConvertOptions& options) {
-    const RobotDescription robot = io::loadRobotDescription(options.robot);
+    const RobotDescription robot = io::loadRobotDescription(options.robot, parameterOverrides());
     const Model model(robot);  // the home posture must be regular, as for every command
     std::string text = "# " + io::terminalText(robot.name) + ": " + std::to_string(model.limbs) + " limbs (";
     for (int j = 0; j < model.limbs; ++j) text += (j ? " " : "") + robot.limbs[static_cast<std::size_t>(j)].type();
@@ -44,11 +44,14 @@ void addConvertCommand(CLI::App& app) {
         app.add_subcommand("convert",
                            "Print a robot file in the general per-limb form (the paper's 3-PRR short form expanded:\n"
                            "its stroke and peak force become each P joint's limits). Numbers are written in their\n"
-                           "shortest round-trip form, so reading the output back gives the same robot exactly.");
+                           "shortest round-trip form, so reading the output back gives the same robot exactly.\n"
+                           "A parametric file's expressions are evaluated (--set NAME=VALUE overrides a parameter):\n"
+                           "the output is the plain robot file that parameter set means.");
     command->add_option("robot", options->robot, "Robot file (YAML), short or general form")
         ->required()
         ->check(CLI::ExistingFile);
     command->add_option("--output,-o", options->output, "File to write [default: stdout]")->check(nonEmptyPath());
+    addParameterOption(*command);
     command->callback([options] { run(*options); });
 }
 

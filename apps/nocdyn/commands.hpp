@@ -21,6 +21,7 @@ void addRegressorCommand(CLI::App& app);
 void addIdentifyCommand(CLI::App& app);
 void addExciteCommand(CLI::App& app);
 void addLoadsCommand(CLI::App& app);
+void addDesignCommand(CLI::App& app);
 #ifdef NOCDYN_HAS_ENGINES
 void addValidateCommand(CLI::App& app);
 #endif

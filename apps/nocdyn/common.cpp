@@ -78,10 +78,46 @@ CLI::Validator finiteIn(double lo, double hi, const std::string& unit) {
         accepted);
 }
 
+namespace {
+/// --set NAME=VALUE of the one command a process runs.
+io::ParameterSet& overrides() {
+    static io::ParameterSet set;
+    return set;
+}
+}  // namespace
+
+const io::ParameterSet& parameterOverrides() { return overrides(); }
+
+void addParameterOption(CLI::App& command) {
+    command
+        .add_option_function<std::vector<std::string>>(
+            "--set",
+            [](const std::vector<std::string>& assignments) {
+                for (const std::string& text : assignments) {
+                    io::Parameter p;
+                    try {
+                        p = io::parseParameterAssignment(text);
+                    } catch (const Error& e) {
+                        throw CLI::ValidationError("--set", e.what());
+                    }
+                    auto& set = overrides();
+                    const auto same =
+                        std::find_if(set.begin(), set.end(), [&](const io::Parameter& q) { return q.name == p.name; });
+                    if (same != set.end())
+                        same->value = p.value;
+                    else
+                        set.push_back(p);
+                }
+            },
+            "NAME=VALUE: a parameter the robot file declares (parameters:), overridden; repeatable")
+        ->type_name("NAME=VALUE");
+}
+
 void addRobotOption(CLI::App& command, std::string& robot_path) {
     command
         .add_option("--robot", robot_path, "Robot file (YAML); default: the paper's prototype (robots/paper-3prr.yaml)")
         ->check(CLI::ExistingFile);
+    addParameterOption(command);
 }
 
 void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options) {
@@ -100,8 +136,11 @@ void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options) {
 }
 
 RobotDescription loadRobotDescriptionOrDefault(const std::string& path) {
-    if (path.empty()) return io::exampleRobot("paper-3prr");
-    return io::loadRobotDescription(path);
+    if (path.empty()) {
+        if (!parameterOverrides().empty()) throw Error("--set needs --robot: the built-in prototype has no parameters");
+        return io::exampleRobot("paper-3prr");
+    }
+    return io::loadRobotDescription(path, parameterOverrides());
 }
 
 double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory) {

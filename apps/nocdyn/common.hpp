@@ -8,6 +8,7 @@
 #include <string>
 
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/description.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -58,13 +59,20 @@ private:
     double start_ = 0.0, last_ = 0.0;
 };
 
-/// Adds --robot to a command (empty = the paper's prototype).
+/// Adds --robot to a command (empty = the paper's prototype), and --set NAME=VALUE (any
+/// number of times) overriding a parameter the robot file declares.
 void addRobotOption(CLI::App& command, std::string& robot_path);
+
+/// Adds only --set NAME=VALUE to a command (for one naming its robot file otherwise).
+void addParameterOption(CLI::App& command);
+
+/// The parameters given with --set, in order (a later one for the same name wins).
+[[nodiscard]] const io::ParameterSet& parameterOverrides();
 /// Adds --trajectory (required), --robot, --duration, --rate and --output.
 void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options);
 
-/// Any robot file (either form), or the paper's prototype (robots/paper-3prr.yaml, built in)
-/// when the path is empty.
+/// Any robot file (either form) with the --set parameters, or the paper's prototype
+/// (robots/paper-3prr.yaml, built in) when the path is empty (then --set is refused).
 [[nodiscard]] RobotDescription loadRobotDescriptionOrDefault(const std::string& path);
 
 /// --duration if given, else the trajectory's own duration, else 0.2 s.

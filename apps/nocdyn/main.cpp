@@ -65,6 +65,7 @@ int main(int argc, char** argv) {
     nocdyn::cli::addIdentifyCommand(app);
     nocdyn::cli::addExciteCommand(app);
     nocdyn::cli::addLoadsCommand(app);
+    nocdyn::cli::addDesignCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     nocdyn::cli::addValidateCommand(app);
 #endif
@@ -76,7 +77,7 @@ int main(int argc, char** argv) {
         {"Model", {"pose", "inverse-dynamics", "forward-kinematics", "loads", "regressor"}},
         {"Motion", {"simulate", "envelope", "workspace", "animate"}},
         {"Control", {"control", "excite", "identify"}},
-        {"Purposes", {"shake", "reproduce", "validate"}},
+        {"Purposes", {"shake", "reproduce", "validate", "design"}},
         {"Files", {"convert"}},
     };
     for (CLI::App* command : app.get_subcommands({})) {

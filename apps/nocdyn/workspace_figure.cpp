@@ -63,15 +63,16 @@ Figure workspaceFigure(const WorkspaceMap& map, const Model& model, const std::v
 }
 
 std::string workspaceSummary(const WorkspaceMap& map) {
-    char text[512];
+    char text[768];
+    const Dexterity d = dexterity(map);
     std::snprintf(text, sizeof text,
                   "At theta = %.6g rad the feasible region of C (reachable on the home branches, within every "
                   "joint range, regular) has an area of %.6g mm^2 (%d x %d grid, step %.4g mm, over x in "
                   "[%.4g, %.4g] mm and y in [%.4g, %.4g] mm); %zu points on limb-singularity curves and %zu on "
-                  "actuation-singularity curves.",
+                  "actuation-singularity curves. Scaled condition number of A over it: median %.6g, worst %.6g.",
                   map.theta, map.area * 1e6, map.n, map.n, map.step * 1e3, map.x0 * 1e3,
                   (map.x0 + (map.n - 1) * map.step) * 1e3, map.y0 * 1e3, (map.y0 + (map.n - 1) * map.step) * 1e3,
-                  map.limb_singular.size(), map.actuation_singular.size());
+                  map.limb_singular.size(), map.actuation_singular.size(), d.median, d.worst);
     return text;
 }
 

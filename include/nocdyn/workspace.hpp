@@ -18,6 +18,7 @@ namespace nocdyn {
 struct WorkspaceOptions {
     double theta = 0.0;    ///< platform orientation [rad]
     int resolution = 201;  ///< grid points per side, in [11, 2001]
+    bool curves = true;    ///< trace the singularity curves (the area and conditions need none)
 };
 
 /// What limits each grid point.
@@ -37,10 +38,21 @@ struct WorkspaceMap {
     std::vector<Vector2> limb_singular;       ///< points on type-1 curves [m]
     std::vector<Vector2> actuation_singular;  ///< points on type-2 curves [m]
     double area = 0.0;                        ///< of the feasible points, step^2 each [m^2]
+    /// Per grid point (as `cells`): the scaled condition number of A at a feasible point, NaN
+    /// elsewhere.
+    std::vector<double> condition;
     [[nodiscard]] WorkspaceCell cell(int i, int k) const {
         return cells[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(k)];
     }
 };
+
+/// Dexterity over the feasible points of a map: the median and the largest (worst) scaled
+/// condition number of A (the upper median for an even count); NaN for a map with none.
+struct Dexterity {
+    double median = 0.0;
+    double worst = 0.0;
+};
+[[nodiscard]] Dexterity dexterity(const WorkspaceMap& map);
 
 /// The map at options.theta. The grid is fitted to the feasible region in two passes: a coarse
 /// one over a box that holds every limb's reach, then `resolution` points per side over the

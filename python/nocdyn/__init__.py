@@ -650,3 +650,4 @@ class Trajectory:
 
     def __repr__(self):
         return f"<nocdyn.Trajectory {self.name!r}>"
+from . import design  # noqa: E402,F401  (nocdyn.design: sweeps, optimisation, Dask)

@@ -782,4 +782,8 @@ PYBIND11_MODULE(_nocdyn, m) {
                  return py::make_tuple(a.offset, harmonicsOf(a));
              })
         .def("_evaluate", &evaluateTrajectory, py::arg("t"));
+
+    // --- design sweeps (python/src/design.cpp): chunks of designs evaluated with the GIL released
+    void nocdyn_python_bind_design(py::module_ & m);
+    nocdyn_python_bind_design(m);
 }

@@ -9,6 +9,8 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/io/escape.hpp"
+#include "expression.hpp"
+#include "file_util.hpp"
 #include "yaml_util.hpp"
 
 namespace nocdyn::io {
@@ -171,16 +173,37 @@ bool isGeneralForm(const std::string& text, const std::string& source) {
     return root.IsMap() && root["limbs"].IsDefined();
 }
 
-RobotDescription parseRobotDescription(const std::string& text, const std::string& source) {
+RobotDescription parseRobotDescription(const std::string& text, const std::string& source,
+                                       const ParameterSet& overrides) {
     const YAML::Node root = detail::loadDocument(text, source);
+    detail::ExpressionEvaluator evaluator;
+    (void)detail::declareParameters(root, source, overrides, evaluator);
+    const detail::ExpressionScope expressions(evaluator);
     if (root.IsMap() && root["limbs"].IsDefined()) return parseGeneral(root, source);
-    RobotDescription robot = expand(parseRobot(text, source));
+    RobotDescription robot = expand(detail::parseShortForm(root, source));
     robot.source = source;
     return robot;
 }
 
-RobotDescription loadRobotDescription(const std::string& path) {
-    return parseRobotDescription(readRobotFileText(path), path);
+RobotDescription loadRobotDescription(const std::string& path, const ParameterSet& overrides) {
+    return parseRobotDescription(readRobotFileText(path), path, overrides);
+}
+
+ParameterSet robotFileParameters(const std::string& text, const std::string& source, const ParameterSet& overrides) {
+    detail::ExpressionEvaluator evaluator;
+    return detail::declareParameters(detail::loadDocument(text, source), source, overrides, evaluator);
+}
+
+Parameter parseParameterAssignment(const std::string& text) {
+    const auto equals = text.find('=');
+    const std::string name = equals == std::string::npos ? text : text.substr(0, equals);
+    if (equals == std::string::npos || !detail::isParameterName(name)) {
+        throw Error("'" + terminalText(text) + "': expected NAME=VALUE, NAME a parameter's name");
+    }
+    const std::string value = text.substr(equals + 1);
+    const auto number = detail::parseDecimal(value);
+    if (!number) throw Error("'" + terminalText(text) + "': the value " + detail::numberProblem(value));
+    return {name, *number};
 }
 
 std::string descriptionToYaml(const RobotDescription& robot) {

@@ -5,14 +5,20 @@
 #include <sstream>
 
 #include "nocdyn/error.hpp"
+#include "expression.hpp"
 #include "yaml_util.hpp"
 
 namespace nocdyn::io {
 
-using detail::Context;
-
 RobotParameters parseRobot(const std::string& text, const std::string& source) {
     const YAML::Node root = detail::loadDocument(text, source);
+    detail::ExpressionEvaluator evaluator;
+    (void)detail::declareParameters(root, source, {}, evaluator);
+    const detail::ExpressionScope expressions(evaluator);
+    return detail::parseShortForm(root, source);
+}
+
+RobotParameters detail::parseShortForm(const YAML::Node& root, const std::string& source) {
     const Context top{source, ""};
     detail::requireMap(top, root, {"name", "geometry", "slider", "link", "platform", "actuator", "limits"});
 

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "expression.hpp"
 #include "file_util.hpp"
 #include "nocdyn/error.hpp"
 
@@ -102,6 +103,14 @@ double toNumber(const Context& context, const YAML::Node& node) {
     if (!node.IsScalar()) fail(context, node, "expected a number");
     const std::optional<double> value = parseDecimal(node.Scalar());
     if (!value) {
+        // in a parametric robot file, an expression of its parameters (expression.hpp)
+        if (const ExpressionEvaluator* expressions = activeExpressions();
+            expressions != nullptr && !isDecimal(node.Scalar()) && looksLikeExpression(node.Scalar())) {
+            std::string problem;
+            const double result = expressions->evaluate(node.Scalar(), problem);
+            if (!problem.empty()) fail(context, node, "expression '" + node.Scalar() + "': " + problem);
+            return result;
+        }
         fail(context, node, "'" + node.Scalar() + "' " + numberProblem(node.Scalar()));
     }
     return *value;

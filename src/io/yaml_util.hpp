@@ -7,6 +7,8 @@
 #include <initializer_list>
 #include <string>
 
+#include "nocdyn/robot.hpp"
+
 namespace nocdyn::io::detail {
 
 /// Where a field sits: source (file) name and dotted path, e.g. "geometry.link_length".
@@ -46,5 +48,8 @@ void requireRange(const Context& context, const YAML::Node& map, const char* key
 /// Reads a whole regular file of at most kMaxYamlBytes (4 MiB); throws nocdyn::Error when it
 /// cannot, naming the file and why (missing, not a regular file, too large).
 [[nodiscard]] std::string readFile(const std::string& path, const char* what);
+
+/// The paper's 3-PRR short form (robot_yaml.hpp) from its parsed root, expressions resolved.
+[[nodiscard]] RobotParameters parseShortForm(const YAML::Node& root, const std::string& source);
 
 }  // namespace nocdyn::io::detail

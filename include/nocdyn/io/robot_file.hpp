@@ -19,19 +19,50 @@
 //         - {mass: 0.63863, inertia: 1.5786066e-3, com: [-0.012676, -0.073612]}
 //
 // Every error names the file, line, limb, joint and field.
+//
+// Parametric files: either form may declare named parameters, and any number in it may be an
+// arithmetic expression of them (numbers, the parameters, + - * / ^, parentheses, sin cos tan
+// asin acos atan atan2 sqrt abs min max, pi; radians). A parameter may use those above it.
+//
+//   parameters: {r_b: 0.2, r_p: 0.5 * r_b}
+//   ...  - {type: R, point: [r_b * cos(7 * pi / 6), r_b * sin(7 * pi / 6)]}
+//
+// An expression with a comma (atan2, min, max) inside a YAML flow list is quoted:
+// ["atan2(y, x)", 0.0]. An error names the file, line, field and the expression.
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "nocdyn/description.hpp"
 
 namespace nocdyn::io {
 
-/// Reads a robot file of either form and validates it. Throws nocdyn::Error.
-[[nodiscard]] RobotDescription loadRobotDescription(const std::string& path);
+/// A named parameter of a robot file and its value.
+struct Parameter {
+    std::string name;
+    double value = 0.0;
+};
+/// Parameters in the order they are declared (or given).
+using ParameterSet = std::vector<Parameter>;
+
+/// Reads a robot file of either form and validates it, each parameter in `overrides`
+/// replacing the file's value (a name the file does not declare is an error). Throws
+/// nocdyn::Error.
+[[nodiscard]] RobotDescription loadRobotDescription(const std::string& path, const ParameterSet& overrides = {});
 
 /// Parses robot YAML text of either form; `source` names it in messages.
-[[nodiscard]] RobotDescription parseRobotDescription(const std::string& text, const std::string& source);
+[[nodiscard]] RobotDescription parseRobotDescription(const std::string& text, const std::string& source,
+                                                     const ParameterSet& overrides = {});
+
+/// The parameters robot YAML text declares, with their values after `overrides` (empty when it
+/// declares none). Throws nocdyn::Error as parseRobotDescription.
+[[nodiscard]] ParameterSet robotFileParameters(const std::string& text, const std::string& source,
+                                               const ParameterSet& overrides = {});
+
+/// "NAME=VALUE" (the value a finite decimal number) as a parameter; throws nocdyn::Error naming
+/// the text otherwise.
+[[nodiscard]] Parameter parseParameterAssignment(const std::string& text);
 
 /// The text of a robot file, read as every reader reads (a regular file, size-capped).
 [[nodiscard]] std::string readRobotFileText(const std::string& path);

@@ -1,0 +1,104 @@
+// Design sweeps (design.hpp): the envelope-and-workspace evaluation of one 3-RRR design of
+// examples/design_3rrr/family.yaml (parsed from the parametric file, as a sweep does), and
+// the throughput of two worker processes against one on the same designs.
+//   BM_DesignEvaluation/<resolution>: workspace_area, condition_median, envelope_x, _y and
+//     _theta at 50 Hz; the goal is <= 20 ms per design on one core.
+//   BM_DesignProcesses: one iteration evaluates 2 x kDesigns designs in one process, then the
+//     same designs split over two forked processes; counter `speedup` is the throughput ratio
+//     (the goal is >= 1.7 on two cores), read from one run.
+#include <benchmark/benchmark.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <string>
+#include <vector>
+
+#include "nocdyn/design.hpp"
+#include "nocdyn/io/design.hpp"
+
+namespace nocdyn::bench {
+namespace {
+
+constexpr std::size_t kDesigns = 6;
+
+io::DesignFamily family() {
+    io::DesignFamily f;
+    f.text = io::readRobotFileText(std::string(NOCDYN_SOURCE_DIR) + "/examples/design_3rrr/family.yaml");
+    f.source = "family.yaml";
+    f.ranges = {{"r_b", 0.15, 0.25}, {"l1", 0.09, 0.13}};
+    return f;
+}
+
+std::vector<DesignMetric> metrics() {
+    std::vector<DesignMetric> m;
+    for (const char* name :
+         {"workspace_area", "condition_median", "envelope_x@50", "envelope_y@50", "envelope_theta@50"})
+        m.push_back(parseDesignMetric(name));
+    return m;
+}
+
+void BM_DesignEvaluation(benchmark::State& state) {
+    const io::DesignFamily f = family();
+    const std::vector<DesignMetric> m = metrics();
+    DesignOptions options;
+    options.workspace.resolution = static_cast<int>(state.range(0));
+    const auto points = sweepPoints(f.ranges, SweepKind::random, 16, 1);
+    std::size_t k = 0;
+    for (auto _ : state) {
+        const DesignEvaluation e = io::evaluateFamilyDesign(f, points[k++ % points.size()], m, options);
+        benchmark::DoNotOptimize(e.values.data());
+    }
+    state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
+}
+BENCHMARK(BM_DesignEvaluation)->Arg(61)->Arg(101)->Arg(201)->Unit(benchmark::kMillisecond);
+
+/// Evaluates designs [first, first + count) of `points`.
+void evaluateRange(const io::DesignFamily& f, const std::vector<std::vector<double>>& points, std::size_t first,
+                   std::size_t count, const std::vector<DesignMetric>& m, const DesignOptions& options) {
+    for (std::size_t i = first; i < first + count; ++i) {
+        const DesignEvaluation e = io::evaluateFamilyDesign(f, points[i], m, options);
+        benchmark::DoNotOptimize(e.values.data());
+    }
+}
+
+/// Wall time [s] of the designs split over `processes` forked processes.
+double wallTime(int processes, const io::DesignFamily& f, const std::vector<std::vector<double>>& points,
+                const std::vector<DesignMetric>& m, const DesignOptions& options) {
+    const auto start = std::chrono::steady_clock::now();
+    const std::size_t share = points.size() / static_cast<std::size_t>(processes);
+    std::vector<pid_t> children;
+    for (int p = 0; p < processes; ++p) {
+        const pid_t pid = fork();
+        if (pid == 0) {
+            evaluateRange(f, points, static_cast<std::size_t>(p) * share, share, m, options);
+            _exit(0);
+        }
+        children.push_back(pid);
+    }
+    for (const pid_t pid : children) waitpid(pid, nullptr, 0);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+void BM_DesignProcesses(benchmark::State& state) {
+    const io::DesignFamily f = family();
+    const std::vector<DesignMetric> m = metrics();
+    DesignOptions options;
+    options.workspace.resolution = 101;
+    const auto points = sweepPoints(f.ranges, SweepKind::random, 2 * kDesigns, 2);
+    double one = 0.0, two = 0.0;
+    for (auto _ : state) {
+        one += wallTime(1, f, points, m, options);
+        two += wallTime(2, f, points, m, options);
+    }
+    state.counters["one_process_ms_per_design"] = 1e3 * one / static_cast<double>(state.iterations() * points.size());
+    state.counters["two_processes_ms_per_design"] = 1e3 * two / static_cast<double>(state.iterations() * points.size());
+    state.counters["speedup"] = one / two;
+}
+BENCHMARK(BM_DesignProcesses)->Iterations(3)->Unit(benchmark::kMillisecond)->UseRealTime();
+
+}  // namespace
+}  // namespace nocdyn::bench
+
+BENCHMARK_MAIN();

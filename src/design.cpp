@@ -1,0 +1,364 @@
+// Metrics of one design and the sweep machinery (design.hpp): each metric by the same
+// library call the single-robot command makes, failures of the design turned into reasons.
+#include "nocdyn/design.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <exception>
+#include <mutex>
+#include <random>
+#include <thread>
+
+#include "nocdyn/error.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/reactions.hpp"
+
+namespace nocdyn {
+
+namespace {
+
+std::string frequencyText(double f) {
+    std::string s = std::to_string(f);  // "50.000000" -> "50", "12.500000" -> "12.5"
+    s.erase(s.find_last_not_of('0') + 1);
+    if (!s.empty() && s.back() == '.') s.pop_back();
+    return s;
+}
+
+constexpr const char* kMetricNames =
+    "workspace_area, condition_median, condition_worst, envelope_x@F, envelope_y@F, envelope_theta@F (F in Hz), "
+    "moving_mass, peak_force, rms_force, stroke, peak_reaction";
+
+/// Peaks over a trajectory, accumulated sample by sample.
+struct TrajectoryPeaks {
+    std::vector<double> u_min, u_max, sum_tau2;
+    double peak_tau = 0.0, peak_reaction = 0.0;
+    std::size_t samples = 0;
+};
+
+}  // namespace
+
+std::string DesignMetric::name() const {
+    switch (kind) {
+        case DesignMetricKind::workspace_area:
+            return "workspace_area";
+        case DesignMetricKind::condition_median:
+            return "condition_median";
+        case DesignMetricKind::condition_worst:
+            return "condition_worst";
+        case DesignMetricKind::envelope:
+            return std::string("envelope_") + axisName(axis) + "@" + frequencyText(frequency);
+        case DesignMetricKind::moving_mass:
+            return "moving_mass";
+        case DesignMetricKind::peak_force:
+            return "peak_force";
+        case DesignMetricKind::rms_force:
+            return "rms_force";
+        case DesignMetricKind::stroke:
+            return "stroke";
+        case DesignMetricKind::peak_reaction:
+            return "peak_reaction";
+    }
+    return "?";
+}
+
+std::string DesignMetric::unit() const {
+    switch (kind) {
+        case DesignMetricKind::workspace_area:
+            return "m^2";
+        case DesignMetricKind::condition_median:
+        case DesignMetricKind::condition_worst:
+            return "-";
+        case DesignMetricKind::envelope:
+            return axis == EnvelopeAxis::theta ? "rad" : "m";
+        case DesignMetricKind::moving_mass:
+            return "kg";
+        case DesignMetricKind::peak_force:
+        case DesignMetricKind::rms_force:
+            return "N or N m";
+        case DesignMetricKind::stroke:
+            return "m or rad";
+        case DesignMetricKind::peak_reaction:
+            return "N";
+    }
+    return "?";
+}
+
+bool DesignMetric::larger_is_better() const {
+    return kind == DesignMetricKind::workspace_area || kind == DesignMetricKind::envelope;
+}
+
+bool DesignMetric::along_trajectory() const {
+    return kind == DesignMetricKind::peak_force || kind == DesignMetricKind::rms_force ||
+           kind == DesignMetricKind::stroke || kind == DesignMetricKind::peak_reaction;
+}
+
+DesignMetric parseDesignMetric(const std::string& text) {
+    DesignMetric m;
+    const std::pair<const char*, DesignMetricKind> plain[] = {{"workspace_area", DesignMetricKind::workspace_area},
+                                                              {"condition_median", DesignMetricKind::condition_median},
+                                                              {"condition_worst", DesignMetricKind::condition_worst},
+                                                              {"moving_mass", DesignMetricKind::moving_mass},
+                                                              {"peak_force", DesignMetricKind::peak_force},
+                                                              {"rms_force", DesignMetricKind::rms_force},
+                                                              {"stroke", DesignMetricKind::stroke},
+                                                              {"peak_reaction", DesignMetricKind::peak_reaction}};
+    for (const auto& [name, kind] : plain) {
+        if (text == name) {
+            m.kind = kind;
+            return m;
+        }
+    }
+    const std::string prefix = "envelope_";
+    const auto at = text.find('@');
+    if (text.rfind(prefix, 0) == 0 && at != std::string::npos) {
+        const std::string axis = text.substr(prefix.size(), at - prefix.size());
+        const std::string frequency = text.substr(at + 1);
+        m.kind = DesignMetricKind::envelope;
+        bool known_axis = true;
+        if (axis == "x")
+            m.axis = EnvelopeAxis::x;
+        else if (axis == "y")
+            m.axis = EnvelopeAxis::y;
+        else if (axis == "theta")
+            m.axis = EnvelopeAxis::theta;
+        else
+            known_axis = false;
+        std::size_t used = 0;
+        double f = 0.0;
+        try {
+            f = std::stod(frequency, &used);
+        } catch (const std::exception&) {
+            used = 0;
+        }
+        if (known_axis && used == frequency.size() && !frequency.empty() && f >= kEnvelopeMinFrequency &&
+            f <= kEnvelopeMaxFrequency) {
+            m.frequency = f;
+            return m;
+        }
+    }
+    throw Error("unknown design metric '" + text + "' (expected one of: " + kMetricNames + "; F in [0.001, 10000])");
+}
+
+DesignEvaluation evaluateDesign(const RobotDescription& robot, const std::vector<DesignMetric>& metrics,
+                                const DesignOptions& options) {
+    const bool trajectory =
+        std::any_of(metrics.begin(), metrics.end(), [](const DesignMetric& m) { return m.along_trajectory(); });
+    if (trajectory && !options.trajectory) throw Error("design: a trajectory metric needs a trajectory");
+    DesignEvaluation result;
+    result.values.assign(metrics.size(), std::nan(""));
+    // A reason for infeasibility is any error the model or a metric reports for this design.
+    try {
+        const Model model(robot);
+        std::optional<std::pair<double, Dexterity>> workspace;  // area [m^2], dexterity
+        std::optional<TrajectoryPeaks> peaks;
+        for (std::size_t i = 0; i < metrics.size(); ++i) {
+            const DesignMetric& m = metrics[i];
+            double& value = result.values[i];
+            switch (m.kind) {
+                case DesignMetricKind::workspace_area:
+                case DesignMetricKind::condition_median:
+                case DesignMetricKind::condition_worst:
+                    if (!workspace) {
+                        WorkspaceOptions ws = options.workspace;
+                        if (options.workspace_theta_at_home) ws.theta = model.home(0);
+                        const WorkspaceMap map = workspaceMap(model, ws);
+                        workspace.emplace(map.area, dexterity(map));
+                    }
+                    value = m.kind == DesignMetricKind::workspace_area     ? workspace.value().first
+                            : m.kind == DesignMetricKind::condition_median ? workspace.value().second.median
+                                                                           : workspace.value().second.worst;
+                    break;
+                case DesignMetricKind::envelope:
+                    value = maximumAmplitude(model, m.axis, m.frequency, options.envelope).amplitude;
+                    break;
+                case DesignMetricKind::moving_mass: {
+                    double mass = robot.platform.mass;
+                    for (const LimbDescription& limb : robot.limbs) {
+                        for (const BodyDescription& body : limb.bodies) mass += body.mass;
+                    }
+                    value = mass;
+                    break;
+                }
+                case DesignMetricKind::peak_force:
+                case DesignMetricKind::rms_force:
+                case DesignMetricKind::stroke:
+                case DesignMetricKind::peak_reaction: {
+                    if (!peaks) {
+                        TrajectoryPeaks& p = peaks.emplace();
+                        const auto n = static_cast<std::size_t>(model.actuators);
+                        p.u_min.assign(n, INFINITY);
+                        p.u_max.assign(n, -INFINITY);
+                        p.sum_tau2.assign(n, 0.0);
+                        (void)streamInverseDynamicsWithReactions(
+                            model, options.trajectory.value(), sampleGrid(options.duration, options.rate),
+                            LimitPolicy::error, [&](const InverseDynamicsSample& s, const Reactions& r) {
+                                for (std::size_t a = 0; a < n; ++a) {
+                                    const auto k = static_cast<Eigen::Index>(a);
+                                    p.u_min[a] = std::min(p.u_min[a], s.u(k));
+                                    p.u_max[a] = std::max(p.u_max[a], s.u(k));
+                                    p.sum_tau2[a] += s.tau(k) * s.tau(k);
+                                    p.peak_tau = std::max(p.peak_tau, std::abs(s.tau(k)));
+                                }
+                                for (int j = 0; j < model.limbs; ++j) {
+                                    for (std::size_t k = 0; k < 3; ++k) {
+                                        const Vector3& f = r.joint[static_cast<std::size_t>(j)][k];
+                                        p.peak_reaction = std::max(p.peak_reaction, std::hypot(f(0), f(1)));
+                                    }
+                                }
+                                ++p.samples;
+                            });
+                    }
+                    const TrajectoryPeaks& p = peaks.value();
+                    if (m.kind == DesignMetricKind::peak_force) {
+                        value = p.peak_tau;
+                    } else if (m.kind == DesignMetricKind::peak_reaction) {
+                        value = p.peak_reaction;
+                    } else if (m.kind == DesignMetricKind::rms_force) {
+                        value = 0.0;
+                        for (const double s2 : p.sum_tau2)
+                            value = std::max(value, std::sqrt(s2 / static_cast<double>(p.samples)));
+                    } else {
+                        value = 0.0;
+                        for (std::size_t a = 0; a < p.u_min.size(); ++a)
+                            value = std::max(value, p.u_max[a] - p.u_min[a]);
+                    }
+                    break;
+                }
+            }
+        }
+    } catch (const Error& e) {
+        result.feasible = false;
+        result.reason = e.what();
+        std::fill(result.values.begin(), result.values.end(), std::nan(""));
+        return result;
+    }
+    result.feasible = true;
+    return result;
+}
+
+std::vector<std::vector<double>> sweepPoints(const std::vector<DesignRange>& ranges, SweepKind kind,
+                                             std::size_t samples, std::uint64_t seed) {
+    if (ranges.empty()) throw Error("design: no parameter is varied");
+    for (const DesignRange& r : ranges) {
+        if (!std::isfinite(r.lower) || !std::isfinite(r.upper) || !(r.lower <= r.upper)) {
+            throw Error("design: the range of '" + r.name + "' must be finite with lower <= upper");
+        }
+    }
+    if (samples < 1 || samples > kMaxDesigns) {
+        throw Error("design: " + std::to_string(samples) + " designs asked; at most " + std::to_string(kMaxDesigns) +
+                    " are evaluated in one sweep");
+    }
+    const std::size_t d = ranges.size();
+    std::vector<std::vector<double>> points;
+    if (kind == SweepKind::random) {
+        std::mt19937_64 engine(seed);
+        std::uniform_real_distribution<double> unit(0.0, 1.0);
+        points.resize(samples, std::vector<double>(d));
+        for (auto& p : points) {
+            for (std::size_t k = 0; k < d; ++k)
+                p[k] = ranges[k].lower + unit(engine) * (ranges[k].upper - ranges[k].lower);
+        }
+        return points;
+    }
+    const auto n = std::max<std::size_t>(
+        2,
+        static_cast<std::size_t>(std::llround(std::pow(static_cast<double>(samples), 1.0 / static_cast<double>(d)))));
+    double total = 1.0;
+    for (std::size_t k = 0; k < d; ++k) total *= static_cast<double>(n);
+    if (total > static_cast<double>(kMaxDesigns)) {
+        throw Error("design: a grid of " + std::to_string(n) + " values per parameter holds more than " +
+                    std::to_string(kMaxDesigns) + " designs");
+    }
+    const auto count = static_cast<std::size_t>(total);
+    points.resize(count, std::vector<double>(d));
+    for (std::size_t i = 0; i < count; ++i) {
+        std::size_t rest = i;
+        for (std::size_t k = d; k-- > 0;) {
+            const std::size_t step = rest % n;
+            rest /= n;
+            const double s = static_cast<double>(step) / static_cast<double>(n - 1);
+            points[i][k] = step + 1 == n ? ranges[k].upper : ranges[k].lower + s * (ranges[k].upper - ranges[k].lower);
+        }
+    }
+    return points;
+}
+
+std::size_t evaluateInParallel(std::size_t count, int threads,
+                               const std::function<DesignEvaluation(std::size_t)>& evaluate,
+                               const std::function<void(std::size_t, const DesignEvaluation&)>& record,
+                               const std::function<bool()>& stop) {
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stopping{false};
+    std::mutex mutex;
+    std::size_t recorded = 0;
+    std::exception_ptr failure;
+    const auto worker = [&] {
+        for (;;) {
+            if (stopping.load()) return;
+            const std::size_t i = next.fetch_add(1);
+            if (i >= count) return;
+            try {
+                const DesignEvaluation result = evaluate(i);
+                const std::lock_guard<std::mutex> lock(mutex);
+                record(i, result);
+                ++recorded;
+                if (stop && stop()) stopping = true;
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(mutex);
+                if (!failure) failure = std::current_exception();
+                stopping = true;
+                return;
+            }
+        }
+    };
+    const int n = std::clamp(threads, 1, 256);
+    std::vector<std::thread> pool;
+    for (int t = 1; t < n; ++t) pool.emplace_back(worker);
+    worker();
+    for (std::thread& t : pool) t.join();
+    if (failure) std::rethrow_exception(failure);
+    return recorded;
+}
+
+std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& designs,
+                                     const std::vector<DesignMetric>& metrics) {
+    // a >= b in every metric's sense, and > in one
+    const auto dominates = [&](const DesignEvaluation& a, const DesignEvaluation& b) {
+        bool better = false;
+        for (std::size_t m = 0; m < metrics.size(); ++m) {
+            const double sa = metrics[m].larger_is_better() ? a.values[m] : -a.values[m];
+            const double sb = metrics[m].larger_is_better() ? b.values[m] : -b.values[m];
+            if (sa < sb) return false;
+            better = better || sa > sb;
+        }
+        return better;
+    };
+    // In decreasing lexicographic order of the metrics (each in its better-is-larger sense) a
+    // design's dominators all come before it, and one of them on the front when any does: each
+    // design is compared with the front found so far only.
+    const auto score = [&](std::size_t i, std::size_t m) {
+        return metrics[m].larger_is_better() ? designs[i].values[m] : -designs[i].values[m];
+    };
+    std::vector<std::size_t> order;
+    for (std::size_t i = 0; i < designs.size(); ++i) {
+        if (designs[i].feasible) order.push_back(i);
+    }
+    std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
+        for (std::size_t m = 0; m < metrics.size(); ++m) {
+            if (score(a, m) != score(b, m)) return score(a, m) > score(b, m);
+        }
+        return a < b;
+    });
+    std::vector<std::size_t> front;
+    for (const std::size_t i : order) {
+        bool dominated = false;
+        for (std::size_t k = 0; k < front.size() && !dominated; ++k)
+            dominated = dominates(designs[front[k]], designs[i]);
+        if (!dominated) front.push_back(i);
+    }
+    std::sort(front.begin(), front.end());
+    return front;
+}
+
+}  // namespace nocdyn

@@ -1,0 +1,227 @@
+// Arithmetic expressions in robot files (expression.hpp).
+#include "expression.hpp"
+
+#include <muParser.h>
+
+#include <algorithm>
+#include <array>
+#include <charconv>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <string_view>
+
+#include "file_util.hpp"
+#include "nocdyn/error.hpp"
+#include "yaml_util.hpp"
+
+namespace nocdyn::io::detail {
+
+namespace {
+
+constexpr std::size_t kMaxNameLength = 64;
+/// Longest expression accepted [characters].
+constexpr std::size_t kMaxExpressionLength = 4096;
+/// Most parameters a file may declare.
+constexpr std::size_t kMaxParameters = 1000;
+
+constexpr std::array<std::string_view, 13> kFunctions = {"sin",  "cos", "tan", "asin", "acos", "atan", "atan2",
+                                                         "sqrt", "abs", "min", "max",  "pi",   ""};
+
+bool isNameStart(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
+bool isNameChar(char c) { return isNameStart(c) || (c >= '0' && c <= '9'); }
+
+/// Shortest decimal that reads back as the same double.
+std::string shortest(double value) {
+    char buffer[64];
+    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
+    return {buffer, result.ptr};
+}
+
+}  // namespace
+
+bool isParameterName(const std::string& name) {
+    if (name.empty() || name.size() > kMaxNameLength || !isNameStart(name.front())) return false;
+    for (const char c : name) {
+        if (!isNameChar(c)) return false;
+    }
+    for (const std::string_view reserved : kFunctions) {
+        if (!reserved.empty() && name == reserved) return false;
+    }
+    return true;
+}
+
+struct ExpressionEvaluator::Impl {
+    mu::Parser parser;
+    std::map<std::string, double> values;  // node-based: the addresses muParser holds stay valid
+};
+
+ExpressionEvaluator::ExpressionEvaluator() : impl_(std::make_unique<Impl>()) {
+    mu::Parser& p = impl_->parser;
+    // muParser's defaults (exp, log, sum, _e, ...) out; only the documented set back in
+    p.ClearFun();
+    p.ClearConst();
+    p.ClearPostfixOprt();
+    p.ClearInfixOprt();
+    p.ClearOprt();
+    p.DefineInfixOprt(
+        "-", +[](double x) { return -x; });
+    p.DefineInfixOprt(
+        "+", +[](double x) { return x; });
+    p.DefineFun(
+        "sin", +[](double x) { return std::sin(x); });
+    p.DefineFun(
+        "cos", +[](double x) { return std::cos(x); });
+    p.DefineFun(
+        "tan", +[](double x) { return std::tan(x); });
+    p.DefineFun(
+        "asin", +[](double x) { return std::asin(x); });
+    p.DefineFun(
+        "acos", +[](double x) { return std::acos(x); });
+    p.DefineFun(
+        "atan", +[](double x) { return std::atan(x); });
+    p.DefineFun(
+        "atan2", +[](double y, double x) { return std::atan2(y, x); });
+    p.DefineFun(
+        "sqrt", +[](double x) { return std::sqrt(x); });
+    p.DefineFun(
+        "abs", +[](double x) { return std::abs(x); });
+    p.DefineFun(
+        "min", +[](double a, double b) { return std::min(a, b); });
+    p.DefineFun(
+        "max", +[](double a, double b) { return std::max(a, b); });
+    p.DefineConst("pi", std::numbers::pi);
+}
+
+ExpressionEvaluator::~ExpressionEvaluator() = default;
+
+void ExpressionEvaluator::define(const std::string& name, double value) {
+    auto [it, inserted] = impl_->values.insert_or_assign(name, value);
+    if (inserted) impl_->parser.DefineVar(name, &it->second);
+}
+
+bool ExpressionEvaluator::defines(const std::string& name) const { return impl_->values.count(name) != 0; }
+
+double ExpressionEvaluator::evaluate(const std::string& text, std::string& problem) const {
+    problem.clear();
+    if (text.size() > kMaxExpressionLength) {
+        problem = "longer than " + std::to_string(kMaxExpressionLength) + " characters";
+        return 0.0;
+    }
+    // Only the documented grammar reaches muParser: its comparison, logical, assignment and
+    // ternary operators (and any name not defined here) are refused first.
+    for (std::size_t i = 0; i < text.size();) {
+        const char c = text[i];
+        if (isNameStart(c)) {
+            std::size_t end = i;
+            while (end < text.size() && isNameChar(text[end])) ++end;
+            const std::string name = text.substr(i, end - i);
+            bool known = impl_->values.count(name) != 0;
+            for (const std::string_view f : kFunctions) known = known || (!f.empty() && name == f);
+            if (!known) {
+                problem = "unknown name '" + name +
+                          "' (not a parameter, pi or one of the functions sin cos tan "
+                          "asin acos atan atan2 sqrt abs min max)";
+                return 0.0;
+            }
+            i = end;
+            continue;
+        }
+        if (c >= '0' && c <= '9') {  // a number, its exponent included (1.5e-3)
+            while (i < text.size() &&
+                   (isNameChar(text[i]) || text[i] == '.' ||
+                    ((text[i] == '-' || text[i] == '+') && (text[i - 1] == 'e' || text[i - 1] == 'E'))))
+                ++i;
+            continue;
+        }
+        if (std::string_view(" \t.+-*/^(),").find(c) == std::string_view::npos) {
+            problem = std::string("character '") + (c >= 32 && c < 127 ? std::string(1, c) : std::string("?")) +
+                      "' is not part of an expression (numbers, parameters, + - * / ^, parentheses, functions)";
+            return 0.0;
+        }
+        ++i;
+    }
+    double value = 0.0;
+    try {
+        impl_->parser.SetExpr(text);
+        value = impl_->parser.Eval();
+    } catch (const mu::Parser::exception_type& e) {
+        problem = e.GetMsg();
+        return 0.0;
+    }
+    if (!std::isfinite(value)) problem = "the result is not finite (" + shortest(value) + ")";
+    return value;
+}
+
+namespace {
+thread_local const ExpressionEvaluator* active_evaluator = nullptr;
+}  // namespace
+
+ExpressionScope::ExpressionScope(const ExpressionEvaluator& evaluator) : previous_(active_evaluator) {
+    active_evaluator = &evaluator;
+}
+
+ExpressionScope::~ExpressionScope() { active_evaluator = previous_; }
+
+const ExpressionEvaluator* activeExpressions() { return active_evaluator; }
+
+bool looksLikeExpression(const std::string& text) {
+    return !std::all_of(text.begin(), text.end(), [](char c) { return isNameChar(c) || c == '.'; }) ||
+           (active_evaluator != nullptr && active_evaluator->defines(text));
+}
+
+ParameterSet declareParameters(YAML::Node root, const std::string& source, const ParameterSet& overrides,
+                               ExpressionEvaluator& evaluator) {
+    ParameterSet declared;
+    const Context top{source, ""};
+    if (root.IsMap()) {
+        if (const YAML::Node section = root["parameters"]; section.IsDefined()) {
+            const Context here = top / "parameters";
+            if (!section.IsMap()) fail(here, section, "expected a mapping of parameter names to values");
+            if (section.size() > kMaxParameters)
+                fail(here, section, "more than " + std::to_string(kMaxParameters) + " parameters");
+            for (const auto& entry : section) {
+                const std::string name = entry.first.IsScalar() ? entry.first.Scalar() : std::string();
+                if (!isParameterName(name)) {
+                    fail(here, entry.first,
+                         "'" + name +
+                             "' cannot name a parameter (a letter or _ then letters, digits or _; not a "
+                             "function's name or pi)");
+                }
+                for (const Parameter& other : declared) {
+                    if (other.name == name) fail(here / name, entry.first, "declared twice");
+                }
+                if (!entry.second.IsScalar()) fail(here / name, entry.second, "expected a number or an expression");
+                double value = 0.0;
+                if (const auto plain = parseDecimal(entry.second.Scalar())) {
+                    value = *plain;
+                } else {
+                    std::string problem;
+                    value = evaluator.evaluate(entry.second.Scalar(), problem);
+                    if (!problem.empty())
+                        fail(here / name, entry.second, "expression '" + entry.second.Scalar() + "': " + problem);
+                }
+                for (const Parameter& o : overrides) {
+                    if (o.name == name) value = o.value;
+                }
+                evaluator.define(name, value);
+                declared.push_back({name, value});
+            }
+            root.remove("parameters");
+        }
+    }
+    for (const Parameter& o : overrides) {
+        bool found = false;
+        for (const Parameter& d : declared) found = found || d.name == o.name;
+        if (!found) {
+            std::string list;
+            for (const Parameter& d : declared) list += (list.empty() ? "" : ", ") + d.name;
+            throw Error(source + ": parameter '" + o.name + "' is set but the file declares " +
+                        (list.empty() ? std::string("no parameters") : "only: " + list));
+        }
+        if (!std::isfinite(o.value)) throw Error(source + ": parameter '" + o.name + "' is set to a non-finite value");
+    }
+    return declared;
+}
+
+}  // namespace nocdyn::io::detail
