@@ -45,11 +45,16 @@ void addConvertCommand(CLI::App& app) {
                            "Print a robot file in the general per-limb form (the paper's 3-PRR short form expanded:\n"
                            "its stroke and peak force become each P joint's limits). Numbers are written in their\n"
                            "shortest round-trip form, so reading the output back gives the same robot exactly.");
-    command->add_option("robot", options->robot, "Robot file (YAML), short or general form")
-        ->required()
-        ->check(CLI::ExistingFile);
+    auto* robot = command->add_option("--robot", options->robot, "Robot file (YAML), short or general form (required)")
+                      ->check(CLI::ExistingFile);
+    // the robot as a positional argument, the old spelling, still accepted
+    auto* positional = command->add_option("ROBOT", options->robot, "The same as --robot")->check(CLI::ExistingFile);
+    positional->excludes(robot);
     command->add_option("--output,-o", options->output, "File to write [default: stdout]")->check(nonEmptyPath());
-    command->callback([options] { run(*options); });
+    command->callback([options, robot, positional] {
+        if (robot->count() + positional->count() == 0) throw CLI::RequiredError("--robot");
+        run(*options);
+    });
 }
 
 }  // namespace nocdyn::cli

@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -36,6 +37,10 @@ struct TrajectoryOptions {
 /// A CLI11 check for a file name given on the command line: an empty one is refused (it would
 /// otherwise mean standard output, the default when the option is absent).
 [[nodiscard]] CLI::Validator nonEmptyPath();
+
+/// Receives the progress of every long job (done, total) instead of the terminal line, when set
+/// (the Python package's progress callback; it may throw to stop the job). Empty: none.
+void setProgressObserver(std::function<void(double, double)> observer);
 
 /// Progress of a long job on a terminal: "t = 1.2 of 10 s (12 %), about 40 s left" on one
 /// line of standard error, rewritten at most once a second, only when standard error is a
