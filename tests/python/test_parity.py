@@ -286,3 +286,16 @@ def test_robot_draws_itself_and_help_shows_the_docstrings():
     assert "shake(record" in text and "nocdyn shake" in text
     package = pathlib.Path(nocdyn.__file__).parent
     assert (package / "py.typed").exists() and "def _run_command" in (package / "_nocdyn.pyi").read_text()
+
+
+def test_reproduce(tmp_path):
+    quick = ["--closed-loop-duration", 0.001, "--identification-duration", 0.01]
+    run_cli("reproduce", "--out-dir", tmp_path / "cli", *quick)
+    report = nocdyn.reproduce(out_dir=tmp_path / "py", closed_loop_duration=0.001, identification_duration=0.01)
+    cli_files = sorted(p.relative_to(tmp_path / "cli") for p in (tmp_path / "cli").rglob("*.csv"))
+    assert cli_files == sorted(p.relative_to(tmp_path / "py") for p in report.files if p.suffix == ".csv")
+    assert len(cli_files) >= 10
+    for name in cli_files:  # every table bit for bit (the timings in summary.md differ)
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    assert report.summary.startswith("# nocdyn reproduce") and report._repr_markdown_() == report.summary
+    same_table(tmp_path / "cli" / "paper1.csv", report.table("paper1.csv"))
