@@ -107,7 +107,6 @@ void addAnimateCommand(CLI::App& app) {
         ->capture_default_str();
     auto* out = command->add_option("--output,-o", options->out, "HTML file to write")->capture_default_str();
     auto* old_out = command->add_option("--out", options->out)->group("");  // the old spelling, hidden
-    old_out->excludes(out);
     auto* frame = command->add_option("--frame", options->frame, "Draw the robot at this time [s] (nearest sample)")
                       ->check(finiteIn(-1e6, 1e6, "s"));
     command->add_option("--png", options->png, "With --frame: PNG file to write")->needs(frame);

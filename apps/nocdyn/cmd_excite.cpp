@@ -120,7 +120,6 @@ void addExciteCommand(CLI::App& app) {
     addRobotOption(*command, options->robot);
     auto* output = command->add_option("--output,-o", options->output, "Trajectory YAML file to write (required)");
     auto* old_output = command->add_option("--out", options->output)->group("");  // the old spelling, hidden
-    old_output->excludes(output);
     command
         ->add_option("--payload-guess", options->payload,
                      "Guessed payload: MASS [kg] COM_X COM_Y [m, platform frame] INERTIA [kg m^2, about its c.o.m.]; "

@@ -134,8 +134,8 @@ void addShakeCommand(CLI::App& app) {
     command->add_option("--accuracy", options->settings.accuracy, "Simbody plant: integrator accuracy")
         ->check(CLI::Range(1e-14, 1e-3))
         ->capture_default_str();
-    auto* out_dir = command->add_option("--out-dir", options->out, "Output folder")->capture_default_str();
-    command->add_option("--out", options->out)->group("")->excludes(out_dir);  // the old spelling, hidden
+    command->add_option("--out-dir", options->out, "Output folder")->capture_default_str();
+    command->add_option("--out", options->out)->group("");  // the old spelling, hidden
     command->callback([options] { run(*options); });
 }
 

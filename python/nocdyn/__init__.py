@@ -17,6 +17,18 @@ Quick start::
     P, dP, ddP = traj.evaluate(t)                            # (N, 3) each
     u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)     # (N, n) each, GIL released
 
+Every command of the `nocdyn` command line is a function here, running the command's own code
+with the same options (``--foo-bar`` is ``foo_bar=``), defaults, checks and numbers::
+
+    nocdyn.pose(0.01, 0.001, -0.002)                      # nocdyn pose 0.01 0.001 -0.002
+    table = nocdyn.inverse_dynamics("paper1")             # a Table: table["tau1"], to_pandas()
+    nocdyn.control("paper1", plant="nocdyn", payload_mass=0.5)
+    nocdyn.shake("data/elcentro_1940_ns.AT2", window=5)    # nocdyn shake --record ... --window 5
+
+pose, inverse_dynamics, forward_kinematics, simulate, control, envelope, workspace, convert,
+animate, shake, regressor, identify, excite, loads, validate and reproduce (nocdyn.COMMANDS maps
+each command to its function; nocdyn.commands has the details, nocdyn.results the answers).
+
 Errors (a pose out of reach, a singular posture, a bad robot file, ...) raise nocdyn.Error, a
 subclass of ValueError, with the message the command line prints. Arrays of the wrong dtype
 raise TypeError.
