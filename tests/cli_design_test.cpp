@@ -56,7 +56,7 @@ std::string sweep(const fs::path& out) {
     return "design --robot " + kFamily +
            " --vary r_b=0.15:0.25 --vary l1=0.08:0.14 --set l2=0.11 --samples 10 --seed 3 --metric workspace_area"
            " --metric condition_median --metric condition_worst --metric envelope_x@50 --metric moving_mass"
-           " --resolution 31 --threads 2 --no-figures --out " +
+           " --resolution 31 --threads 2 --no-figures --out-dir " +
            out.string();
 }
 
@@ -119,7 +119,7 @@ TEST(CliDesign, AStoppedSweepResumesWithTheSameTable) {
 
 TEST(CliDesign, BadInputIsOneLineNamingTheParameterMetricOrExpression) {
     const fs::path dir = freshScratchDirectory("nocdyn_cli_design_test");
-    const std::string base = "design --robot " + kFamily + " --no-figures --out " + (dir / "x").string();
+    const std::string base = "design --robot " + kFamily + " --no-figures --out-dir " + (dir / "x").string();
     CliResult r = runCli(base + " --vary nope=0:1 --metric workspace_area");
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("varied parameter 'nope' is not declared (parameters: r_b, r_p, l1"), std::string::npos)

@@ -35,6 +35,28 @@ TEST(CliHelp, ACommandsHelpKeepsItsWholeDescription) {
     EXPECT_NE(r.out.find("--envelope"), std::string::npos) << r.out;
 }
 
+TEST(CliHelp, OneVocabularyForOutputsTheOldSpellingsHidden) {
+    const CliResult top = runCli("--help");
+    EXPECT_NE(top.out.find("-o/--output FILE"), std::string::npos) << top.out;
+    EXPECT_NE(top.out.find("--out-dir DIR"), std::string::npos) << top.out;
+    for (const char* command : {"animate", "excite", "convert"}) {
+        const CliResult r = runCli(std::string(command) + " --help");
+        EXPECT_NE(r.out.find("-o,--output"), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("--out "), std::string::npos) << r.out;
+    }
+    for (const char* command : {"shake", "reproduce"}) {
+        const CliResult r = runCli(std::string(command) + " --help");
+        EXPECT_NE(r.out.find("--out-dir"), std::string::npos) << r.out;
+        EXPECT_EQ(r.out.find("--out "), std::string::npos) << r.out;
+    }
+    // every plant wherever a plant is chosen
+    for (const char* command : {"control", "shake"}) {
+        const CliResult r = runCli(std::string(command) + " --help");
+        EXPECT_NE(r.out.find("nocdyn-rk4"), std::string::npos) << r.out;
+    }
+    EXPECT_NE(runCli("convert --help").out.find("--robot"), std::string::npos);
+}
+
 TEST(CliHelp, VersionIsTheProjectVersion) {
     const CliResult r = runCli("--version");
     ASSERT_EQ(r.exit_code, 0) << r.err;

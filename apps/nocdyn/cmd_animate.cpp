@@ -32,7 +32,7 @@ struct AnimateOptions {
 /// would replace the very data it is drawn from.
 void requireNotAnInput(const AnimateOptions& options, bool out_given) {
     const std::string outputs[][2] = {
-        {"--png", options.png}, {"--svg", options.svg}, {"--out", out_given ? options.out : ""}};
+        {"--png", options.png}, {"--svg", options.svg}, {"--output", out_given ? options.out : ""}};
     for (const auto& [option, path] : outputs) {
         if (path.empty()) continue;
         for (const std::string& input : {options.robot, options.trajectory, options.motion}) {
@@ -78,7 +78,7 @@ void addAnimateCommand(CLI::App& app) {
         "time. The motion is a trajectory (inverse dynamics at --rate over --duration) or a CSV written by\n"
         "simulate, control or inverse-dynamics (--motion). At most 2000 frames are embedded; 0.2 s at 10 kHz\n"
         "gives a page of about 0.4 MB. --frame T draws the sample nearest to T with gnuplot instead (--png,\n"
-        "--svg); the page is then written only when --out is given.");
+        "--svg); the page is then written only when --output is given.");
     addRobotOption(*command, options->robot);
     auto* trajectory = command->add_option("--trajectory", options->trajectory,
                                            "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or "
@@ -106,12 +106,13 @@ void addAnimateCommand(CLI::App& app) {
                      "Displacements about the mean pose drawn this many times larger (changeable on the page)")
         ->check(finiteIn(0.0, 1e4, ""))
         ->capture_default_str();
-    auto* out = command->add_option("--out,-o", options->out, "HTML file to write")->capture_default_str();
+    auto* out = command->add_option("--output,-o", options->out, "HTML file to write")->capture_default_str();
+    auto* old_out = command->add_option("--out", options->out)->group("");  // the old spelling, hidden
     auto* frame = command->add_option("--frame", options->frame, "Draw the robot at this time [s] (nearest sample)")
                       ->check(finiteIn(-1e6, 1e6, "s"));
     command->add_option("--png", options->png, "With --frame: PNG file to write")->needs(frame);
     command->add_option("--svg", options->svg, "With --frame: SVG file to write")->needs(frame);
-    command->callback([options, command, out] {
+    command->callback([options, command, out, old_out] {
         if (options->trajectory.empty() && options->motion.empty()) {
             throw Error("animate: give --trajectory or --motion");
         }
@@ -119,7 +120,7 @@ void addAnimateCommand(CLI::App& app) {
             throw Error("animate: --frame needs --png or --svg");
         }
         (void)command;
-        run(*options, out->count() > 0);
+        run(*options, out->count() + old_out->count() > 0);
     });
 }
 

@@ -163,9 +163,7 @@ void addControlCommand(CLI::App& app) {
     command->add_option("--controller", options->controller, "computed-torque or pd")
         ->check(CLI::IsMember({"computed-torque", "pd"}))
         ->capture_default_str();
-    command->add_option("--plant", options->plant, "simbody (the independent model) or nocdyn (our forward dynamics)")
-        ->check(CLI::IsMember({"simbody", "nocdyn"}))
-        ->capture_default_str();
+    addPlantOption(*command, options->plant);
     command->add_option("--rate", options->rate, "Controller rate [Hz]")
         ->check(finiteIn(kMinRate, 1e7, "Hz"))
         ->capture_default_str();

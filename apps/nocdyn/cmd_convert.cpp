@@ -47,12 +47,17 @@ void addConvertCommand(CLI::App& app) {
                            "shortest round-trip form, so reading the output back gives the same robot exactly.\n"
                            "A parametric file's expressions are evaluated (--set NAME=VALUE overrides a parameter):\n"
                            "the output is the plain robot file that parameter set means.");
-    command->add_option("robot", options->robot, "Robot file (YAML), short or general form")
-        ->required()
-        ->check(CLI::ExistingFile);
+    auto* robot = command->add_option("--robot", options->robot, "Robot file (YAML), short or general form (required)")
+                      ->check(CLI::ExistingFile);
+    // the robot as a positional argument, the old spelling, still accepted
+    auto* positional = command->add_option("ROBOT", options->robot, "The same as --robot")->check(CLI::ExistingFile);
+    positional->excludes(robot);
     command->add_option("--output,-o", options->output, "File to write [default: stdout]")->check(nonEmptyPath());
     addParameterOption(*command);
-    command->callback([options] { run(*options); });
+    command->callback([options, robot, positional] {
+        if (robot->count() + positional->count() == 0) throw CLI::RequiredError("--robot");
+        run(*options);
+    });
 }
 
 }  // namespace nocdyn::cli

@@ -271,15 +271,18 @@ void addDesignCommand(CLI::App& app) {
         "better), DIR/pareto.png/.svg (the first two metrics) and DIR/best.png/.svg (the best design by the\n"
         "first metric with its workspace). DIR/journal.csv holds every design as it is evaluated: run the\n"
         "same command again to resume a stopped sweep. Sobol and Latin-hypercube sweeps, optimisation and\n"
-        "Dask clusters: the Python package (nocdyn.design).\n"
+        "Dask clusters: the Python package (nocdyn.designs).\n"
         "Example: nocdyn design --robot examples/design_3rrr/family.yaml --vary r_b=0.15:0.25\n"
-        "           --vary l=0.09:0.13 --samples 64 --metric workspace_area --metric envelope_x@50 --out runs/a");
+        "           --vary l=0.09:0.13 --samples 64 --metric workspace_area --metric envelope_x@50 --out-dir runs/a");
     addRobotOption(*command, options->robot);
     command->add_option("--vary", options->vary, "NAME=LOWER:UPPER: a declared parameter and its range; repeatable")
         ->required();
     command->add_option("--metric", options->metrics, "A metric (see above); repeatable, the first ranks 'best'")
         ->required();
-    command->add_option("--out", options->out, "Output directory")->required()->check(nonEmptyPath());
+    auto* out_dir = command->add_option("--out-dir", options->out, "Output folder (created if missing; required)")
+                        ->check(nonEmptyPath());
+    auto* old_out = command->add_option("--out", options->out)->group("")->check(nonEmptyPath());  // the old spelling
+
     command->add_option("--sweep", options->sweep, "grid or random")
         ->check(CLI::IsMember({"grid", "random"}))
         ->capture_default_str();
@@ -301,7 +304,10 @@ void addDesignCommand(CLI::App& app) {
         ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
         ->capture_default_str();
     command->add_flag("!--no-figures", options->figures, "Write no figures");
-    command->callback([options] { run(*options); });
+    command->callback([options, out_dir, old_out] {
+        if (out_dir->count() + old_out->count() == 0) throw CLI::RequiredError("--out-dir");
+        run(*options);
+    });
 }
 
 }  // namespace nocdyn::cli

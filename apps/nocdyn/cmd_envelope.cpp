@@ -17,7 +17,7 @@ namespace nocdyn::cli {
 namespace {
 
 struct Options {
-    std::string robot, output, figure = "envelope";
+    std::string robot, output, figure;  ///< no figure unless asked for
     EnvelopeOptions envelope;
 };
 
@@ -99,11 +99,10 @@ void addEnvelopeCommand(CLI::App& app) {
         "workspace (reach, limb and actuation singularities), and which limit binds, named with its actuator.\n"
         "Writes CSV (axis 0 theta, 1 x, 2 y; limit 0 range, 1 velocity, 2 effort, 3 workspace, 4 none up to\n"
         "the search bound; limb, joint, actuator 1-based, 0 when not applicable; peak_effort_ratio =\n"
-        "max |tau|/effort at that amplitude) and a figure (amplitude versus frequency, log axes).");
+        "max |tau|/effort at that amplitude) and, with --figure, a figure (amplitude versus frequency, log axes).");
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]")->check(nonEmptyPath());
-    command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")
-        ->capture_default_str();
+    command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");
     command->add_option("--min-frequency", options->envelope.min_frequency, "[Hz]")
         ->check(finiteIn(kEnvelopeMinFrequency, kEnvelopeMaxFrequency, "Hz"))
         ->capture_default_str();

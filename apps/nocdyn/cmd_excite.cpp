@@ -118,7 +118,8 @@ void addExciteCommand(CLI::App& app) {
         "the robot's home) and each one's use of the limits (percent of the allowed value), and writes the\n"
         "trajectory file (YAML, usable as --trajectory).");
     addRobotOption(*command, options->robot);
-    command->add_option("--out,--output,-o", options->output, "Trajectory YAML file to write")->required();
+    auto* output = command->add_option("--output,-o", options->output, "Trajectory YAML file to write (required)");
+    auto* old_output = command->add_option("--out", options->output)->group("");  // the old spelling, hidden
     command
         ->add_option("--payload-guess", options->payload,
                      "Guessed payload: MASS [kg] COM_X COM_Y [m, platform frame] INERTIA [kg m^2, about its c.o.m.]; "
@@ -166,7 +167,11 @@ void addExciteCommand(CLI::App& app) {
         ->check(CLI::Range(24, 1000000))
         ->capture_default_str();
     command->add_option("--seed", options->excitation.seed, "Seed of the random search")->capture_default_str();
-    command->callback([options] { run(*options); });
+    command->callback([options, output, old_output] {
+        // either spelling gives the required output (a parse error, exit 2, without one)
+        if (output->count() + old_output->count() == 0) throw CLI::RequiredError("--output");
+        run(*options);
+    });
 }
 
 }  // namespace nocdyn::cli

@@ -10,6 +10,7 @@
 #include "common.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
+#include "plants.hpp"
 #include "shake_replay.hpp"
 
 namespace nocdyn::cli {
@@ -113,13 +114,7 @@ void addShakeCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--window", options->window, "Play only the record's first seconds [s]; 0: all")
         ->check(CLI::Range(0.0, 1e5));
-    command
-        ->add_option("--plant", options->settings.plant,
-                     "simbody (the independent model, integrated to --accuracy), nocdyn (nocdyn's forward dynamics, "
-                     "error-controlled to 1e-10) or nocdyn-rk4 (the same, one Runge-Kutta step per tick: about twice "
-                     "as fast)")
-        ->check(CLI::IsMember({"simbody", "nocdyn", "nocdyn-rk4"}))
-        ->capture_default_str();
+    addPlantOption(*command, options->settings.plant);
     command->add_option("--rate", options->settings.rate, "Controller rate [Hz]")
         ->check(CLI::Range(100.0, 1e6))
         ->capture_default_str();
@@ -139,7 +134,8 @@ void addShakeCommand(CLI::App& app) {
     command->add_option("--accuracy", options->settings.accuracy, "Simbody plant: integrator accuracy")
         ->check(CLI::Range(1e-14, 1e-3))
         ->capture_default_str();
-    command->add_option("--out", options->out, "Output folder")->capture_default_str();
+    command->add_option("--out-dir", options->out, "Output folder")->capture_default_str();
+    command->add_option("--out", options->out)->group("");  // the old spelling, hidden
     command->callback([options] { run(*options); });
 }
 

@@ -14,7 +14,7 @@ namespace nocdyn::cli {
 namespace {
 
 struct Options {
-    std::string robot, output, figure = "workspace";
+    std::string robot, output, figure;  ///< no figure unless asked for
     double theta = 0.0;
     bool theta_given = false;
     int resolution = 201;
@@ -50,7 +50,8 @@ void addWorkspaceCommand(CLI::App& app) {
         "Workspace of any robot at one platform orientation: the region of C reachable with every limb on its\n"
         "home branch, within every joint's range and away from singularities (condition numbers within the\n"
         "robot's max_condition), with the limb singularities (type 1: a limb at the edge of its reach) and the\n"
-        "actuation singularities (type 2: det A = 0) drawn as curves (STEM.png, STEM.svg), and its area.\n"
+        "actuation singularities (type 2: det A = 0) drawn as curves (--figure STEM: STEM.png, STEM.svg), and its "
+        "area.\n"
         "The grid is fitted to the feasible region. CSV: x, y [m] and cell (0 feasible, 1 out of reach, 2 a\n"
         "joint out of range, 3 singular).\n"
         "Example: nocdyn workspace --robot robots/3-rrr.yaml --theta 0.1");
@@ -62,8 +63,7 @@ void addWorkspaceCommand(CLI::App& app) {
         ->check(CLI::Range(11, 2001))
         ->capture_default_str();
     command->add_option("--output,-o", options->output, "CSV of the grid [default: none]")->check(nonEmptyPath());
-    command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")
-        ->capture_default_str();
+    command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");
     command->callback([options] { run(*options); });
 }
 

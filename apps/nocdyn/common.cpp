@@ -9,6 +9,7 @@
 #include <iostream>
 #include <sstream>
 #include <string_view>
+#include <utility>
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
@@ -17,10 +18,17 @@
 namespace nocdyn::cli {
 
 namespace {
+std::function<void(double, double)>& progressObserver() {
+    static std::function<void(double, double)> observer;
+    return observer;
+}
+
 double secondsNow() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 }  // namespace
+
+void setProgressObserver(std::function<void(double, double)> observer) { progressObserver() = std::move(observer); }
 
 Progress::Progress(double total) : total_(total), terminal_(::isatty(STDERR_FILENO) == 1) {
     start_ = last_ = secondsNow();
@@ -29,7 +37,12 @@ Progress::Progress(double total) : total_(total), terminal_(::isatty(STDERR_FILE
 Progress::~Progress() { finish(); }
 
 void Progress::update(double done) {
-    if (!terminal_ || (++calls_ & 1023U) != 0) return;
+    if ((++calls_ & 1023U) != 0) return;
+    if (const auto& observer = progressObserver()) {
+        observer(done, total_);
+        return;
+    }
+    if (!terminal_) return;
     const double now = secondsNow();
     if (now - last_ < 1.0 || !(total_ > 0.0)) return;
     last_ = now;
@@ -87,6 +100,8 @@ io::ParameterSet& overrides() {
 }  // namespace
 
 const io::ParameterSet& parameterOverrides() { return overrides(); }
+
+void clearParameterOverrides() { overrides().clear(); }
 
 void addParameterOption(CLI::App& command) {
     command

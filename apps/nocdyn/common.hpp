@@ -4,6 +4,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include <functional>
 #include <optional>
 #include <string>
 
@@ -38,6 +39,10 @@ struct TrajectoryOptions {
 /// otherwise mean standard output, the default when the option is absent).
 [[nodiscard]] CLI::Validator nonEmptyPath();
 
+/// Receives the progress of every long job (done, total) instead of the terminal line, when set
+/// (the Python package's progress callback; it may throw to stop the job). Empty: none.
+void setProgressObserver(std::function<void(double, double)> observer);
+
 /// Progress of a long job on a terminal: "t = 1.2 of 10 s (12 %), about 40 s left" on one
 /// line of standard error, rewritten at most once a second, only when standard error is a
 /// terminal (never into a redirected log); cleared by done() or when dropped.
@@ -68,6 +73,8 @@ void addParameterOption(CLI::App& command);
 
 /// The parameters given with --set, in order (a later one for the same name wins).
 [[nodiscard]] const io::ParameterSet& parameterOverrides();
+/// Forgets every --set of an earlier command run in this process (the Python package runs many).
+void clearParameterOverrides();
 /// Adds --trajectory (required), --robot, --duration, --rate and --output.
 void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options);
 

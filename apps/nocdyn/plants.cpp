@@ -17,6 +17,16 @@ std::string defaultPlantName() {
 #endif
 }
 
+CLI::Option* addPlantOption(CLI::App& command, std::string& plant) {
+    return command
+        .add_option("--plant", plant,
+                    "simbody (the independent model, integrated to its accuracy), nocdyn (nocdyn's forward "
+                    "dynamics, error-controlled to 1e-10) or nocdyn-rk4 (the same, one Runge-Kutta 4 step per "
+                    "controller tick: about twice as fast)")
+        ->check(CLI::IsMember({"simbody", "nocdyn", "nocdyn-rk4"}))
+        ->capture_default_str();
+}
+
 std::unique_ptr<RobotPlant> makePlant(const std::string& name, const RobotDescription& robot, double accuracy) {
     if (name == "nocdyn") return std::make_unique<SimulatorRobotPlant>(Model(robot));
     if (name == "nocdyn-rk4") return std::make_unique<RungeKuttaRobotPlant>(Model(robot));

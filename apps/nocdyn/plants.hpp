@@ -3,6 +3,8 @@
 // Runge-Kutta 4 (shake.hpp).
 #pragma once
 
+#include <CLI/CLI.hpp>
+
 #include <memory>
 #include <string>
 
@@ -13,6 +15,10 @@ namespace nocdyn::cli {
 
 /// "simbody" when built with the Simbody model, else "nocdyn".
 [[nodiscard]] std::string defaultPlantName();
+
+/// Adds --plant (simbody, nocdyn or nocdyn-rk4): every command that chooses a plant offers all
+/// three with this one definition.
+CLI::Option* addPlantOption(CLI::App& command, std::string& plant);
 
 /// The plant `name` (simbody, nocdyn or nocdyn-rk4) built from `robot`; accuracy: Simbody's
 /// integrator accuracy. Throws nocdyn::Error naming --plant for a plant not built in.

@@ -16,7 +16,7 @@ import time
 
 import numpy as np
 
-from nocdyn import design
+from nocdyn import designs
 
 HERE = pathlib.Path(__file__).resolve().parent
 VARY = {"l1": (0.07, 0.25), "l2": (0.07, 0.25)}
@@ -29,10 +29,10 @@ def main():
     parser.add_argument("--seed", type=int, nargs="+", default=[0])
     parser.add_argument("--resolution", type=int, default=61)
     args = parser.parse_args()
-    family = design.Family(HERE / "family.yaml", vary=VARY)
+    family = designs.Family(HERE / "family.yaml", vary=VARY)
 
     start = time.perf_counter()
-    grid = design.evaluate(family, design.sample(family, 400, "grid"), ["workspace_area", "moving_mass"],
+    grid = designs.evaluate(family, designs.sample(family, 400, "grid"), ["workspace_area", "moving_mass"],
                            resolution=args.resolution)
     grid_time = time.perf_counter() - start
     g = int(np.nanargmax(np.where(grid.values[:, 1] <= BUDGET, grid.values[:, 0], np.nan)))
@@ -45,7 +45,7 @@ def main():
 
 def optimise(family, grid_best, seed, args):
     start = time.perf_counter()
-    study, table = design.optimize(family, {"workspace_area": "maximize"}, n_trials=args.trials, seed=seed,
+    study, table = designs.optimize(family, {"workspace_area": "maximize"}, n_trials=args.trials, seed=seed,
                                    constraints={"moving_mass": (None, BUDGET)}, resolution=args.resolution)
     opt_time = time.perf_counter() - start
     within = np.where(table.values[:, 1] <= BUDGET, table.values[:, 0], np.nan)

@@ -13,7 +13,7 @@ import pathlib
 
 import numpy as np
 
-from nocdyn import design
+from nocdyn import designs
 
 HERE = pathlib.Path(__file__).resolve().parent
 OBJECTIVES = {"envelope_x@50": "maximize", "envelope_y@50": "maximize", "envelope_theta@50": "maximize"}
@@ -31,23 +31,23 @@ def main():
     out = pathlib.Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
 
-    family = design.Family(HERE / "family.yaml", vary=VARY)
+    family = designs.Family(HERE / "family.yaml", vary=VARY)
     metrics = list(OBJECTIVES) + ["workspace_area"]
-    prototype = design.evaluate(family, [PROTOTYPE], metrics, resolution=args.resolution)
+    prototype = designs.evaluate(family, [PROTOTYPE], metrics, resolution=args.resolution)
     area = prototype.values[0, -1]
     print(f"prototype: envelope x {prototype.values[0, 0] * 1e3:.3f} mm, y {prototype.values[0, 1] * 1e3:.3f} mm, "
           f"theta {np.degrees(prototype.values[0, 2]):.3f} deg at 50 Hz; workspace {area * 1e6:.1f} mm^2")
 
-    study, table = design.optimize(family, OBJECTIVES, n_trials=args.trials, seed=args.seed,
+    study, table = designs.optimize(family, OBJECTIVES, n_trials=args.trials, seed=args.seed,
                                    constraints={"workspace_area": (area, None)}, resolution=args.resolution)
     table.to_csv(out / "designs.csv")
     keep = table.feasible & (np.nan_to_num(table.column("workspace_area")) >= area)
-    candidates = design.Designs(table.names, table.metrics, table.points[keep], table.values[keep],
+    candidates = designs.Designs(table.names, table.metrics, table.points[keep], table.values[keep],
                                 table.feasible[keep], [r for r, k in zip(table.reason, keep) if k])
-    envelopes = design.Designs(table.names, list(OBJECTIVES), candidates.points, candidates.values[:, :3],
+    envelopes = designs.Designs(table.names, list(OBJECTIVES), candidates.points, candidates.values[:, :3],
                                candidates.feasible, candidates.reason)
-    front = design.pareto_front(envelopes)  # over the three envelopes
-    pareto = design.Designs(table.names, table.metrics, candidates.points[front], candidates.values[front],
+    front = designs.pareto_front(envelopes)  # over the three envelopes
+    pareto = designs.Designs(table.names, table.metrics, candidates.points[front], candidates.values[front],
                             candidates.feasible[front], [candidates.reason[i] for i in front])
     pareto.to_csv(out / "pareto.csv")
     print(f"{len(table)} trials, {int(keep.sum())} feasible with the prototype's workspace, {len(front)} on the front")

@@ -17,6 +17,18 @@ Quick start::
     P, dP, ddP = traj.evaluate(t)                            # (N, 3) each
     u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)     # (N, n) each, GIL released
 
+Every command of the `nocdyn` command line is a function here, running the command's own code
+with the same options (``--foo-bar`` is ``foo_bar=``), defaults, checks and numbers::
+
+    nocdyn.pose(0.01, 0.001, -0.002)                      # nocdyn pose 0.01 0.001 -0.002
+    table = nocdyn.inverse_dynamics("paper1")             # a Table: table["tau1"], to_pandas()
+    nocdyn.control("paper1", plant="nocdyn", payload_mass=0.5)
+    nocdyn.shake("data/elcentro_1940_ns.AT2", window=5)    # nocdyn shake --record ... --window 5
+
+pose, inverse_dynamics, forward_kinematics, simulate, control, envelope, workspace, convert,
+animate, shake, regressor, identify, excite, loads, validate and reproduce (nocdyn.COMMANDS maps
+each command to its function; nocdyn.commands has the details, nocdyn.results the answers).
+
 Errors (a pose out of reach, a singular posture, a bad robot file, ...) raise nocdyn.Error, a
 subclass of ValueError, with the message the command line prints. Arrays of the wrong dtype
 raise TypeError.
@@ -31,10 +43,19 @@ import numpy as np
 
 from . import _nocdyn
 from ._nocdyn import Error
+from .commands import (COMMANDS, animate, control, convert, design, envelope, excite, forward_kinematics, identify,
+                       inverse_dynamics, loads, pose, regressor, reproduce, shake, simulate, validate, workspace)
+from .results import (Animation, AssemblyModes, Excitation, Identification, PoseReport, Report, ShakeResult, Table,
+                      Workspace)
 
 __all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMatrices", "PayloadEstimate",
-           "load_prior"]
-__version__ = "0.1.0"
+           "load_prior",
+           # every command of the command line (nocdyn.commands), and their results (nocdyn.results)
+           "pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace", "convert",
+           "animate", "shake", "regressor", "identify", "excite", "loads", "validate", "reproduce", "design", "COMMANDS",
+           "Table", "PoseReport", "AssemblyModes", "Workspace", "Identification", "Excitation", "ShakeResult",
+           "Animation", "Report"]
+__version__ = _nocdyn.__version__  # the CMake project version, as `nocdyn --version`
 
 Error.__module__ = "nocdyn"
 Error.__doc__ = """An error nocdyn reports: one line naming the problem (file, line, field, limb,
@@ -324,6 +345,15 @@ class Robot:
     def __repr__(self):
         return f"<nocdyn.Robot {self.name!r}: {self.limbs} limbs, {self.actuators} actuators>"
 
+    def svg(self, pose=None):
+        """The robot drawn as SVG text at pose [theta, x, y] (default home): base, limbs, platform,
+        C, actuated joints marked (green). Jupyter shows a Robot this way (_repr_svg_)."""
+        from .drawing import robot_svg
+        return robot_svg(self, pose)
+
+    def _repr_svg_(self):
+        return self.svg()
+
     # --- inverse dynamics -------------------------------------------------------------
     def inverse_dynamics(self, p, dp, ddp, *, matrices=False, out=None, threads=1, check=True):
         """Actuator variables, rates, accelerations and forces for platform motions.
@@ -505,12 +535,13 @@ class Robot:
         return modes
 
     # --- forward dynamics -----------------------------------------------------------
-    def simulate(self, t, forces, force_times=None, *, p0=None, dp0=(0.0, 0.0, 0.0), interpolation="linear",
+    def simulate(self, t, forces, force_times=None, *, p0=None, dp0=(0.0, 0.0, 0.0), interpolation="cubic",
                  rtol=1e-10, atol=1e-12, max_step=1e-2):
         """Forward dynamics: the motion under given actuator forces.
 
         t: increasing output times [s] (from 0); forces: (M, n) actuator forces [N or N m] at
-        force_times (M,) (default: t itself), interpolated ('hold', 'linear' or 'cubic') and
+        force_times (M,) (default: t itself), interpolated ('cubic', the default as on the command
+        line: uniformly spaced times; 'linear' or 'hold') by the command line's ForceSignal and
         held beyond their ends; p0, dp0: initial pose (default home) and rate. Integrated by
         Dormand-Prince 5(4) with the given tolerances.
 
@@ -532,8 +563,8 @@ class Robot:
         return result
 
     # --- operating envelope ---------------------------------------------------------
-    def envelope(self, axes=("theta", "x", "y"), *, min_frequency=1.0, max_frequency=100.0, frequencies=41,
-                 samples_per_period=256, relative_tolerance=1e-6):
+    def envelope(self, axes=("theta", "x", "y"), *, min_frequency=1.0, max_frequency=100.0, points=41,
+                 samples_per_period=256, relative_tolerance=1e-6, frequencies=None):
         """Largest sinusoid amplitude along each pose axis about home at log-spaced frequencies
         [Hz] (as `nocdyn envelope`), within every joint range, velocity and effort limit and away
         from singularities.
@@ -543,12 +574,15 @@ class Robot:
 
         Returns a list of dicts: axis, frequency [Hz], amplitude [rad or m], limit ('range',
         'velocity', 'effort', 'workspace', 'none'), limb, joint, actuator (0-based, -1 when not
-        applicable), kinematic_amplitude, peak_effort_ratio."""
+        applicable), kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
+        `nocdyn envelope --points`; ``frequencies`` is its old name)."""
+        if frequencies is not None:
+            points = frequencies
         if isinstance(axes, str):
             axes = (axes,)
         return self._core._envelope(list(axes), _number(min_frequency, "min_frequency", 1e-3, 1e4),
                                     _number(max_frequency, "max_frequency", 1e-3, 1e4),
-                                    _integer(frequencies, "frequencies", 1, 1000),
+                                    _integer(points, "points", 1, 1000),
                                     _integer(samples_per_period, "samples_per_period", 8, 65536),
                                     _number(relative_tolerance, "relative_tolerance", 1e-15, 0.5))
 
@@ -650,4 +684,4 @@ class Trajectory:
 
     def __repr__(self):
         return f"<nocdyn.Trajectory {self.name!r}>"
-from . import design  # noqa: E402,F401  (nocdyn.design: sweeps, optimisation, Dask)
+from . import designs  # noqa: E402,F401  (nocdyn.designs: sweeps, optimisation, Dask)

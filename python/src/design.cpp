@@ -1,4 +1,4 @@
-// Bindings of the design sweeps (design.hpp, io/design.hpp) for nocdyn.design: a chunk of
+// Bindings of the design sweeps (design.hpp, io/design.hpp) for nocdyn.designs: a chunk of
 // designs of a parametric robot file evaluated on C++ threads with the GIL released, so that
 // Python threads, processes and Dask workers evaluate in parallel.
 #include <pybind11/numpy.h>

@@ -19,8 +19,10 @@
 #include <utility>
 #include <vector>
 
+#include "cli_commands.hpp"
 #include "nocdyn/batch.hpp"
 #include "nocdyn/direct_kinematics.hpp"
+#include "nocdyn/drawing.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/envelope.hpp"
 #include "nocdyn/error.hpp"
@@ -632,6 +634,8 @@ PYBIND11_MODULE(_nocdyn, m) {
     using namespace nocdyn;
     using namespace nocdyn::python;
     m.doc() = "Compiled core of the nocdyn package (use `import nocdyn`).";
+    m.attr("__version__") = NOCDYN_VERSION;
+    bindCommands(m);
     py::register_exception<Error>(m, "Error", PyExc_ValueError);
 
     py::class_<Robot>(m, "Robot")
@@ -675,6 +679,37 @@ PYBIND11_MODULE(_nocdyn, m) {
                  }
                  return out;
              })
+        .def(
+            "_drawing",
+            [](const Robot& r, const std::array<double, 3>& pose) {
+                // the geometry the animation page and the CLI's frames draw (drawing.hpp)
+                Data data(*r.model);
+                RobotDrawing drawing;
+                if (const Status status = drawRobot(*r.model, data, Pose(pose[0], pose[1], pose[2]), drawing); !status)
+                    throw Error(describe(status, *r.model));
+                const auto point = [](const Vector2& v) { return py::make_tuple(v.x(), v.y()); };
+                py::list limbs, platform;
+                for (int j = 0; j < drawing.limbs; ++j) {
+                    py::list joints;
+                    for (const JointDrawing& joint : drawing.limb[static_cast<std::size_t>(j)].joint) {
+                        py::dict d;
+                        d["type"] = joint.type == JointType::prismatic ? "P" : "R";
+                        d["actuator"] = joint.actuator;
+                        d["position"] = point(joint.position);
+                        d["rail_start"] = point(joint.rail_start);
+                        d["rail_end"] = point(joint.rail_end);
+                        joints.append(d);
+                    }
+                    limbs.append(joints);
+                    platform.append(point(drawing.platform[static_cast<std::size_t>(j)]));
+                }
+                py::dict out;
+                out["limbs"] = limbs;
+                out["platform"] = platform;
+                out["C"] = point(drawing.C);
+                return out;
+            },
+            py::arg("pose"))
         .def("actuator_info",
              [](const Robot& r) {
                  py::list out;

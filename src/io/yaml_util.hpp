@@ -7,7 +7,7 @@
 #include <initializer_list>
 #include <string>
 
-#include "nocdyn/robot.hpp"
+#include "nocdyn/io/short_form.hpp"
 
 namespace nocdyn::io::detail {
 

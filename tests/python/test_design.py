@@ -1,11 +1,11 @@
-"""nocdyn.design: parametric families, Sobol and Latin-hypercube sweeps, a Dask cluster of
+"""nocdyn.designs: parametric families, Sobol and Latin-hypercube sweeps, a Dask cluster of
 worker processes giving the serial table row for row, and the seeded optimiser."""
 
 import numpy as np
 import pytest
 
 import nocdyn
-from nocdyn import design
+from nocdyn import designs
 
 # small workspace grids keep each design to a few milliseconds
 OPTIONS = dict(resolution=21)
@@ -14,7 +14,7 @@ METRICS = ["workspace_area", "envelope_x@50", "moving_mass"]
 
 @pytest.fixture(scope="module")
 def family(source_dir):
-    return design.Family(source_dir / "examples" / "design_3rrr" / "family.yaml",
+    return designs.Family(source_dir / "examples" / "design_3rrr" / "family.yaml",
                          vary={"r_b": (0.15, 0.25), "l1": (0.08, 0.14)}, fixed={"l2": 0.11})
 
 
@@ -27,7 +27,7 @@ def same_rows(a, b):
 
 
 def test_a_family_at_its_values_is_the_example_robot(source_dir):
-    fam = design.Family(source_dir / "examples" / "design_3rrr" / "family.yaml", vary={"r_b": (0.1, 0.3)})
+    fam = designs.Family(source_dir / "examples" / "design_3rrr" / "family.yaml", vary={"r_b": (0.1, 0.3)})
     robot = fam.robot([0.2])
     assert (robot.limbs, robot.actuators) == (3, 3)
     assert dict(fam.parameters([0.25]))["rho"] == pytest.approx(0.25 - (0.25 - 0.0635) / 2)
@@ -42,34 +42,34 @@ def test_convert_is_the_command_lines_convert_set(family, source_dir, cli):
 
 def test_an_undeclared_parameter_is_named(source_dir):
     with pytest.raises(nocdyn.Error, match="varied parameter 'nope' is not declared"):
-        design.Family(source_dir / "examples" / "design_3rrr" / "family.yaml", vary={"nope": (0, 1)})
+        designs.Family(source_dir / "examples" / "design_3rrr" / "family.yaml", vary={"nope": (0, 1)})
 
 
 def test_sobol_and_latin_hypercube_samples_are_seeded_and_in_range(family):
     for method in ("sobol", "lhs", "random", "grid"):
-        a = design.sample(family, 16, method, seed=4)
+        a = designs.sample(family, 16, method, seed=4)
         assert a.shape == (16, 2)
-        assert np.array_equal(a, design.sample(family, 16, method, seed=4))
+        assert np.array_equal(a, designs.sample(family, 16, method, seed=4))
         assert (a[:, 0] >= 0.15).all() and (a[:, 0] <= 0.25).all()
-    lhs = design.sample(family, 8, "lhs", seed=1)
+    lhs = designs.sample(family, 8, "lhs", seed=1)
     # one point in each eighth of every range
     assert sorted(np.floor((lhs[:, 1] - 0.08) / 0.06 * 8).astype(int)) == list(range(8))
     with pytest.raises(nocdyn.Error, match="samples"):
-        design.sample(family, 2_000_000, "random")
+        designs.sample(family, 2_000_000, "random")
 
 
 def test_a_dask_cluster_of_two_worker_processes_gives_the_serial_table_row_for_row(family):
     distributed = pytest.importorskip("dask.distributed")
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True,
                                   dashboard_address=None) as cluster, distributed.Client(cluster) as client:
-        table = design.sweep(family, METRICS, samples=8, method="sobol", seed=2, client=client, chunk=3, **OPTIONS)
-    serial = design.evaluate(family, design.sample(family, 8, "sobol", seed=2), METRICS, threads=1, **OPTIONS)
+        table = designs.sweep(family, METRICS, samples=8, method="sobol", seed=2, client=client, chunk=3, **OPTIONS)
+    serial = designs.evaluate(family, designs.sample(family, 8, "sobol", seed=2), METRICS, threads=1, **OPTIONS)
     assert len(table) == 8 and table.feasible.sum() >= 6
     same_rows(table, serial)
 
 
 def test_the_optimiser_is_seeded_and_keeps_every_trial(family):
-    runs = [design.optimize(family, {"workspace_area": "maximize"}, n_trials=6, seed=5,
+    runs = [designs.optimize(family, {"workspace_area": "maximize"}, n_trials=6, seed=5,
                             constraints={"moving_mass": (None, 10.0)}, **OPTIONS) for _ in range(2)]
     (study, table), (_, again) = runs
     same_rows(table, again)
@@ -78,10 +78,10 @@ def test_the_optimiser_is_seeded_and_keeps_every_trial(family):
 
 
 def test_the_table_is_written_in_the_command_lines_layout(family, tmp_path):
-    table = design.evaluate(family, [[0.2, 0.105], [0.2, 0.02]], ["workspace_area"], **OPTIONS)
+    table = designs.evaluate(family, [[0.2, 0.105], [0.2, 0.02]], ["workspace_area"], **OPTIONS)
     table.to_csv(tmp_path / "designs.csv")
     lines = (tmp_path / "designs.csv").read_text().splitlines()
     assert lines[0] == "design,r_b,l1,workspace_area,feasible,reason"
     assert lines[1].endswith(",true,")
     assert ",false," in lines[2] and "not finite" in lines[2]
-    assert design.pareto_front(table) == [0]
+    assert designs.pareto_front(table) == [0]

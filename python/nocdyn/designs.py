@@ -15,9 +15,9 @@ NSGA-II for several), seeded, with constraints. Scale-out: ``sweep(..., client=.
 chunks of designs to a ``dask.distributed`` cluster (a ``LocalCluster`` of one worker process
 per core by default); every chunk is evaluated by the compiled library with the GIL released.
 
-    from nocdyn import design
-    family = design.Family("examples/design_3rrr/family.yaml", vary={"r_b": (0.15, 0.25)})
-    table = design.sweep(family, ["workspace_area", "envelope_x@50"], samples=64, method="sobol")
+    from nocdyn import designs
+    family = designs.Family("examples/design_3rrr/family.yaml", vary={"r_b": (0.15, 0.25)})
+    table = designs.sweep(family, ["workspace_area", "envelope_x@50"], samples=64, method="sobol")
     table.to_csv("designs.csv")
 """
 
@@ -154,7 +154,7 @@ class Designs:
         os.replace(tmp, path)
 
     def __repr__(self):
-        return f"<nocdyn.design.Designs {len(self)} designs, {int(self.feasible.sum())} feasible>"
+        return f"<nocdyn.designs.Designs {len(self)} designs, {int(self.feasible.sum())} feasible>"
 
 
 def sample(family, samples, method="sobol", seed=0):

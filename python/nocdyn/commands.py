@@ -1,0 +1,515 @@
+"""Every `nocdyn` command as a Python function.
+
+Each function runs the very code its command runs (the command line's commands are compiled
+into the package), with the same defaults and checks: an option ``--foo-bar`` of
+``nocdyn <command>`` is the keyword argument ``foo_bar`` of ``nocdyn.<command>()``, in the same
+units (SI: m, rad, s, kg, N). Files the command writes (``output``, ``figure``, ``out_dir``,
+``log``, ...) are written where given, else into a temporary folder, and read back as NumPy
+arrays (nocdyn.results): the numbers are the command line's bit for bit.
+
+``robot`` is a robot file's path, a nocdyn.Robot, or None for the paper's prototype;
+``trajectory`` is 'paper1', 'paper2' or a trajectory file's path (YAML or CSV samples).
+
+Long commands (inverse_dynamics, simulate) report their progress: ``progress=None`` shows a
+tqdm bar when Python runs in a terminal or a notebook and nothing otherwise, ``progress=False``
+never, and a callable is called as ``progress(done, total)`` (seconds of the motion). The GIL is
+released while a command runs; Ctrl-C stops it. The command's standard output and error are
+captured while it runs (``result.text``); its warnings are issued as Python warnings.
+
+Bad arguments raise ValueError naming the argument (nocdyn.Error, a ValueError, for what the
+command itself refuses: a pose out of reach, a bad file, ...).
+"""
+
+from __future__ import annotations
+
+import csv
+import inspect
+import math
+import json as _json
+import os
+import pathlib
+import re
+import sys
+import tempfile
+import warnings
+
+from . import _nocdyn
+from .results import (Animation, AssemblyModes, Excitation, Identification, PoseReport, Report, ShakeResult, Table,
+                      Workspace, load_json, read_csv)
+
+__all__ = ["pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace",
+           "convert", "animate", "shake", "regressor", "identify", "excite", "loads", "reproduce", "validate",
+           "design", "COMMANDS"]
+
+
+# --- running a command ---------------------------------------------------------------------
+
+def _interactive():
+    """A terminal or a notebook is watching (then a progress bar helps)."""
+    if "ipykernel" in sys.modules:
+        return True
+    stream = sys.stderr
+    return bool(stream is not None and hasattr(stream, "isatty") and stream.isatty())
+
+
+class _TqdmProgress:
+    """A tqdm bar over the motion's seconds, opened on the first report."""
+
+    def __init__(self, description):
+        self.description = description
+        self.bar = None
+
+    def __call__(self, done, total):
+        if self.bar is None:
+            try:
+                from tqdm.auto import tqdm
+            except ImportError:  # tqdm is optional (Debian: python3-tqdm)
+                self.bar = False
+                return
+            self.bar = tqdm(total=total, desc=self.description, unit="s", leave=False,
+                            bar_format="{l_bar}{bar}| {n:.3g}/{total:.3g} s [{elapsed}<{remaining}]")
+        if self.bar:
+            self.bar.update(done - self.bar.n)
+
+    def close(self):
+        if self.bar:
+            self.bar.close()
+
+
+def _progress_callback(progress, description):
+    if progress is False:
+        return None
+    if progress is None:
+        return _TqdmProgress(description) if _interactive() else None
+    if not callable(progress):
+        raise ValueError("progress: expected None (a bar when interactive), False or a callable(done, total)")
+    return progress
+
+
+_OPTION = re.compile(r"--([a-z][a-z0-9-]*)")
+
+
+# the positional arguments of the commands, as the command line names them in its messages
+_POSITIONAL = {"THETA": "theta", "X": "x", "Y": "y", "U": "u", "ROBOT": "robot"}
+
+
+def _python_message(message):
+    """The command line's message with its options named as the Python arguments."""
+    message = _OPTION.sub(lambda m: m.group(1).replace("-", "_"), message)
+    name, colon, rest = message.partition(":")
+    return _POSITIONAL[name] + colon + rest if colon and name in _POSITIONAL else message
+
+
+def _format(value, name):
+    if isinstance(value, bool):
+        raise ValueError(f"{name}: expected a number, got {value!r}")
+    if isinstance(value, float):
+        return repr(value)  # shortest round-trip form: the command reads the very number
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, (str, os.PathLike)):
+        text = os.fspath(value)
+        if "\0" in text:
+            raise ValueError(f"{name}: contains a NUL character")
+        return text
+    try:
+        import numpy as np
+        if isinstance(value, np.generic):
+            return _format(value.item(), name)
+    except ImportError:  # pragma: no cover
+        pass
+    raise ValueError(f"{name}: expected a number or a string, got {type(value).__name__}")
+
+
+class _Call:
+    """The arguments of one command line, built from Python arguments, in a temporary folder."""
+
+    def __init__(self, command, function):
+        self.command = command
+        self.arguments = [command]
+        # an argument left at its default is left out: the command applies its own default (the
+        # same, by the parity test), and a default that means "automatic" stays so
+        self.defaults = {name: p.default for name, p in inspect.signature(function).parameters.items()
+                         if p.default is not inspect.Parameter.empty}
+        self._folder = tempfile.TemporaryDirectory(prefix="nocdyn-")
+        self.folder = pathlib.Path(self._folder.name)
+
+    def positional(self, *values, name):
+        for value in values:
+            self.arguments.append(_format(value, name))
+
+    def option(self, name, value):
+        """--name value (several values for a list; nothing for None; a flag for a bool)."""
+        flag = "--" + name.replace("_", "-")
+        if name == "set" and value:
+            items = value.items() if isinstance(value, dict) else [str(v).split("=", 1) for v in value]
+            for key, number in items:
+                self.arguments.extend([flag, f"{key}={_format(number, name)}"])
+            return
+        default = self.defaults.get(name, None)
+        if value is None or (value is default) or (type(value) is type(default) and value == default):
+            return
+        if isinstance(value, bool):
+            if value:
+                self.arguments.append(flag)
+            return
+        if isinstance(value, (list, tuple)) or type(value).__name__ == "ndarray":
+            values = [_format(v, name) for v in list(value)]
+            if values:
+                self.arguments.append(flag)
+                self.arguments.extend(values)
+            return
+        self.arguments.extend([flag, _format(value, name)])
+
+    def options(self, arguments, handled=()):
+        """Every argument of the calling function not in `handled` as its option."""
+        for name, value in arguments.items():
+            if name not in handled and name not in ("call", "progress"):
+                self.option(name, value)
+
+    def robot(self, robot, name="robot"):
+        from . import Robot
+        if robot is None:
+            return None
+        if isinstance(robot, Robot):
+            path = self.folder / "robot.yaml"
+            path.write_text(robot.to_yaml(), encoding="utf-8")
+            self.option(name, str(path))
+            return str(path)
+        self.option(name, robot)
+        return os.fspath(robot)
+
+    def output(self, name, value, default_name):
+        """The file the command writes: where the caller asked, else in the temporary folder."""
+        path = pathlib.Path(value) if value is not None else self.folder / default_name
+        self.option(name, str(path))
+        return path
+
+    def run(self, progress=None, description=None):
+        callback = _progress_callback(progress, description or self.command)
+        try:
+            out, err = _nocdyn._run_command(self.arguments, callback)
+        except _nocdyn._ArgumentError as error:
+            raise ValueError(_python_message(str(error))) from None
+        finally:
+            if isinstance(callback, _TqdmProgress):
+                callback.close()
+        text = []
+        for line in err.splitlines():
+            if line.startswith("nocdyn: warning: "):
+                warnings.warn(line[len("nocdyn: warning: "):], RuntimeWarning, stacklevel=3)
+            else:
+                text.append(line)
+        return out, "\n".join(text)
+
+    def close(self):
+        self._folder.cleanup()
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        self.close()
+
+
+def _text(out, err):
+    return "\n".join(t for t in (out.rstrip("\n"), err) if t)
+
+
+def _table_file(call, table, name):
+    """A Table as the command line's CSV in the call's folder."""
+    path = call.folder / name
+    with open(path, "w", encoding="utf-8") as file:
+        file.write(",".join(table.columns) + "\n")
+        for row in table.data:
+            file.write(",".join(repr(float(v)) for v in row) + "\n")
+    return path
+
+
+def _forces_file(call, forces):
+    """A force table as the CSV simulate reads: a path, or columns (a dict, a Table, a DataFrame)."""
+    if isinstance(forces, (str, os.PathLike)):
+        return forces
+    if isinstance(forces, Table):
+        table = forces
+    elif hasattr(forces, "columns") and hasattr(forces, "to_numpy"):  # a pandas DataFrame
+        table = Table([str(c) for c in forces.columns], forces.to_numpy(dtype=float))
+    elif isinstance(forces, dict):
+        import numpy as np
+        table = Table(list(forces), np.column_stack([np.asarray(v, dtype=float).reshape(-1) for v in forces.values()]))
+    else:
+        raise ValueError("forces: expected a CSV path, a dict of columns (t, tau1..taun), a Table or a DataFrame")
+    return _table_file(call, table, "forces.csv")
+
+
+def _table_command(command, function, arguments, file_name, kind=Table, handled=()):
+    """Runs a command whose answer is one CSV (--output): the Table of its columns."""
+    with _Call(command, function) as call:
+        call.robot(arguments.get("robot"))
+        path = call.output("output", arguments.get("output"), file_name)
+        extra = {name: value(call) for name, value in dict(handled).items()}
+        for name, value in extra.items():
+            call.option(name, value)
+        call.options(arguments, handled=("robot", "output", *extra))
+        out, err = call.run(arguments.get("progress", False), command.replace("-", " "))
+        columns, data = read_csv(path)
+        return kind(columns, data, _text(out, err), command)
+
+
+# --- the commands, in the order of `nocdyn --help` --------------------------------------------
+# Each function passes its arguments as the options of the same names (_Call.options); only the
+# robot, the files it reads back and the positional arguments are handled one by one.
+
+def pose(theta, x, y, *, robot=None, set=None):
+    """Everything the model knows at one platform pose (``nocdyn pose THETA X Y``): every limb's
+    joint variables and the condition number of its Jacobian, the actuator variables and the
+    share of their range they use, the actuation map du = A dp/dt and its condition number, the
+    inertia I (eq. 23).
+
+    theta [rad], x, y [m]: the pose of the platform's operation point C. Returns a PoseReport."""
+    with _Call("pose", pose) as call:
+        call.positional(theta, name="theta")
+        call.positional(x, name="x")
+        call.positional(y, name="y")
+        call.robot(robot)
+        call.option("json", True)
+        out, err = call.run()
+        return PoseReport(_json.loads(out), err)
+
+
+def inverse_dynamics(trajectory, *, robot=None, set=None, duration=None, rate=10000.0, output=None, allow_limits=False,
+                     reactions=False, progress=None):
+    """Actuator variables, rates, accelerations and forces along a trajectory
+    (``nocdyn inverse-dynamics``), sampled at ``rate`` [Hz] over ``duration`` [s] (default: the
+    file's duration, else 0.2 s). allow_limits: warn instead of failing at a joint's limits;
+    reactions: the joint reactions as more columns. Returns a Table with the CSV's columns
+    (t, theta, x, y, ..., u1..un, du1..dun, ddu1..ddun, tau1..taun)."""
+    return _table_command("inverse-dynamics", inverse_dynamics, dict(locals()), "inverse_dynamics.csv")
+
+
+def forward_kinematics(u, *, robot=None, set=None, all_branches=False):
+    """Every platform pose the robot assembles in with actuator values u [m or rad]
+    (``nocdyn forward-kinematics U...``): the working modes (every limb on its home branch), or
+    with all_branches every assembly mode. Returns AssemblyModes (poses (k, 3), ...)."""
+    values = [u] if not hasattr(u, "__len__") else list(u)
+    with _Call("forward-kinematics", forward_kinematics) as call:
+        call.positional(*values, name="u")
+        call.robot(robot)
+        call.option("json", True)
+        call.option("all_branches", all_branches)
+        out, err = call.run()
+        return AssemblyModes(_json.loads(out), err)
+
+
+def simulate(forces, *, robot=None, set=None, interpolation="cubic", duration=None, rate=10000.0, output=None, atol=1e-12,
+             rtol=1e-10, assembly_mode=0, partial=False, progress=None):
+    """Forward dynamics (``nocdyn simulate``): the motion under actuator forces.
+
+    forces: a CSV path, or columns t, tau1..taun [s, N or N m] (a dict, Table or DataFrame; with
+    u1..un and du1..dun in the first row for the initial state, as the command reads them),
+    interpolated ('cubic', 'linear' or 'hold') and held beyond the last time. rate: output samples
+    per second; duration: seconds (default: the span of the forces). atol, rtol: the integrator's
+    tolerances; assembly_mode: which working mode of the first u (1-based; 0: nearest home);
+    partial: keep the motion up to a failure. Returns a Table with the CSV's columns."""
+    return _table_command("simulate", simulate, dict(locals()), "simulate.csv",
+                          handled={"forces": lambda call: _forces_file(call, forces)})
+
+
+def control(trajectory, *, robot=None, set=None, controller="computed-torque", plant=None, rate=10000.0, duration=None,
+            natural_frequency=50.0, payload_mass=0.0, payload_inertia=0.0, payload_com=None, noise_pose=0.0,
+            noise_rate=0.0, noise_tau=0.0, measure="pose", log=None, noise_u=0.0, noise_du=0.0, seed=1,
+            no_saturation=False, output=None, figure=None):
+    """Closed-loop tracking of a platform trajectory (``nocdyn control``) by computed torque or PD
+    on a plant: 'simbody' (the independent model, when built in; the default then), 'nocdyn' or
+    'nocdyn-rk4'. The payload_* arguments put a payload on the plant only (model mismatch); the
+    noise_* arguments are sensor noise; log: also write the sensors' log for identify. Returns a
+    Table with the CSV's columns (t, theta_d, ..., e_theta, e_x, e_y, u1..un, ..., tau1..taun);
+    its text holds the RMS and peak errors."""
+    return _table_command("control", control, dict(locals()), "control.csv")
+
+
+def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.0, max_frequency=100.0, points=41):
+    """The operating envelope (``nocdyn envelope``): per axis (theta, x, y) and ``points``
+    log-spaced frequencies in [min_frequency, max_frequency] Hz, the largest amplitude within
+    every limit and which limit binds. Returns a Table with the CSV's columns (axis 0 theta, 1 x,
+    2 y; frequency, amplitude, limit 0 range .. 4 none, limb, joint, actuator, ...)."""
+    return _table_command("envelope", envelope, dict(locals()), "envelope.csv")
+
+
+def workspace(*, robot=None, set=None, theta=None, resolution=201, output=None, figure=None):
+    """The workspace at one platform orientation theta [rad] (default: the robot's home)
+    (``nocdyn workspace``): a resolution x resolution grid of C's positions, each feasible (0),
+    out of reach (1), with a joint out of range (2) or singular (3). Returns a Workspace (x, y,
+    cell; ``cells`` as a grid, ``area``; ``text`` the summary line)."""
+    return _table_command("workspace", workspace, dict(locals()), "workspace.csv", kind=Workspace)
+
+
+def convert(robot, *, set=None, output=None):
+    """A robot file in the general per-limb form (``nocdyn convert``): returns its YAML text
+    (numbers in shortest round-trip form); also written to ``output`` when given."""
+    with _Call("convert", convert) as call:
+        call.robot(robot)
+        path = call.output("output", output, "robot.yaml")
+        call.run()
+        return path.read_text(encoding="utf-8")
+
+
+def animate(trajectory=None, *, robot=None, set=None, motion=None, duration=None, rate=10000.0, slow_motion=0.0,
+            magnify=1.0, output=None, frame=None, png=None, svg=None):
+    """The robot in motion as one self-contained HTML page (``nocdyn animate``), from a
+    trajectory (inverse dynamics at ``rate`` over ``duration``) or a motion CSV written by
+    simulate, control or inverse-dynamics (``motion``, a path or a Table). Returns an Animation,
+    shown inline in Jupyter. frame (with png or svg): also draw the robot at that time."""
+    arguments = dict(locals())
+    with _Call("animate", animate) as call:
+        call.robot(robot)
+        if isinstance(motion, Table):
+            call.option("motion", _table_file(call, motion, "motion.csv"))
+        path = call.output("output", output, "robot.html")
+        call.options(arguments, handled=("robot", "output") + (("motion",) if isinstance(motion, Table) else ()))
+        out, err = call.run()
+        return Animation(path.read_text(encoding="utf-8"), None if output is None else path, _text(out, err))
+
+
+def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, time_scale="auto", highpass=0.1, margin=0.1,
+          window=0.0, plant=None, rate=10000.0, natural_frequency=30.0, payload_mass=0.5, noise_pose=1e-6,
+          noise_rate=1e-5, seed=1, accuracy=1e-10, out_dir=None):
+    """Play a ground-motion record (PEER AT2, values in g) on a robot (``nocdyn shake``):
+    high-passed, integrated, scaled by similitude to fit every actuator, and tracked by computed
+    torque on the plant with an unknown payload and sensor noise. window: play only the
+    record's first seconds (0: all). Returns a ShakeResult: the samples (t, x, y, theta, ax, ay,
+    alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (the score: scales, RMS and peak
+    acceleration errors, spectra). out_dir: keep the files and figures there."""
+    arguments = dict(locals())
+    with _Call("shake", shake) as call:
+        call.robot(robot)
+        folder = call.output("out_dir", out_dir, "shake")
+        call.options(arguments, handled=("robot", "out_dir"))
+        out, err = call.run()
+        columns, data = read_csv(folder / "shake.csv")
+        return ShakeResult(columns, data, load_json(folder / "shake.json"), None if out_dir is None else folder,
+                           _text(out, err))
+
+
+def regressor(*, robot=None, set=None, samples=200, seed=1, output=None):
+    """The robot's standard inertial and friction parameters and its base parameters (the
+    combinations the actuator forces identify) (``nocdyn regressor``). Returns the report's text."""
+    arguments = dict(locals())
+    with _Call("regressor", regressor) as call:
+        call.robot(robot)
+        path = call.output("output", output, "regressor.txt")
+        call.options(arguments, handled=("robot", "output"))
+        call.run()
+        return path.read_text(encoding="utf-8")
+
+
+def identify(data, *, robot=None, set=None, payload=False, base=False, friction=False, held_forces=False, cutoff=0.0,
+             holdout=0.2, output=None, calibration=None, prior=None, figure=None):
+    """Identify a payload (the default) or the robot's base parameters (base) from a log of
+    actuator positions and forces, CSV t,u1..un,tau1..taun (``nocdyn identify``; control's
+    ``log`` writes one). Returns an Identification: the report the command prints (``text``),
+    read as a dict (``report``: payload, standard_deviation, fit, ...), and ``robot_yaml``, the
+    file the command writes (the robot with the payload merged, or with base the calibration)."""
+    arguments = dict(locals())
+    with _Call("identify", identify) as call:
+        call.robot(robot)
+        path = call.output("output", output, "identified.yaml")
+        call.options(arguments, handled=("robot", "output"))
+        out, err = call.run()
+        return Identification(out, path.read_text(encoding="utf-8"), err)
+
+
+def excite(*, robot=None, set=None, output=None, payload_guess=None, base=False, friction=False, duration=5.0, frequency=5.0,
+           harmonics=4, margin=0.1, max_condition=100.0, evaluations=400, random=60, samples=0, check_samples=2000,
+           seed=1):
+    """Design an excitation trajectory for identify (``nocdyn excite``): Fourier series of
+    ``harmonics`` harmonics of ``frequency`` [Hz] per axis, as large as every limit allows (with
+    ``margin`` to spare), minimising the condition number of the payload's (or with base, the
+    robot's base parameters') regressor. Returns an Excitation (yaml, trajectory, text)."""
+    from . import Trajectory
+    arguments = dict(locals())
+    with _Call("excite", excite) as call:
+        call.robot(robot)
+        path = call.output("output", output, "excitation.yaml")
+        call.options(arguments, handled=("robot", "output", "Trajectory"))
+        out, err = call.run()
+        text = path.read_text(encoding="utf-8")
+        return Excitation({"yaml": text, "trajectory": Trajectory.from_yaml(text, str(path)),
+                           "path": None if output is None else path}, _text(out, err))
+
+
+def loads(trajectory=None, *, robot=None, set=None, duration=None, rate=10000.0, output=None, figure=None, envelope=False,
+          min_frequency=1.0, max_frequency=100.0, points=9):
+    """Joint reactions and design loads (``nocdyn loads``) along a trajectory, or over the
+    operating envelope's motions (envelope=True). Returns a Table with the CSV's columns."""
+    return _table_command("loads", loads, dict(locals()), "loads.csv")
+
+
+def validate(trajectory, *, robot=None, set=None, duration=None, rate=1000.0, output=None):
+    """Our actuator forces against Simbody's and MuJoCo's (``nocdyn validate``; only when the
+    package was built with both engines). Returns a Table with the CSV's columns
+    (t, u1..un, tau1..taun, simbody_..., mujoco_..., simbody_dtau1..n, mujoco_dtau1..n); its text
+    holds the largest differences."""
+    return _table_command("validate", validate, dict(locals()), "validate.csv")
+
+
+def reproduce(*, out_dir="results", closed_loop_duration=0.2, identification_duration=5.0):
+    """The paper's results for its prototype (``nocdyn reproduce``): CSV files, figures and
+    summary.md in out_dir. Returns a Report (shown as Markdown in Jupyter)."""
+    arguments = dict(locals())
+    with _Call("reproduce", reproduce) as call:
+        folder = call.output("out_dir", out_dir, "results")
+        call.options(arguments, handled=("out_dir",))
+        out, err = call.run()
+        return Report(folder, _text(out, err))
+
+
+#: The command line's command of each function (the parity test and docs/python-parity.md).
+def design(vary, metric, *, robot=None, set=None, out_dir=None, sweep="random", samples=64, seed=1, threads=0,
+           theta=None, resolution=201, trajectory=None, duration=None, rate=10000.0, no_figures=False,
+           progress=None):
+    """Sweep a parametric robot family over its declared parameters (``nocdyn design``): each
+    design's metrics (workspace_area, condition_median, condition_worst, envelope_x@F, ...,
+    moving_mass, peak_force, rms_force, stroke, peak_reaction), infeasible designs as rows with
+    their reason. vary: "NAME=LOWER:UPPER" strings; metric: metric names. Returns a
+    nocdyn.designs.Designs read from the command's designs.csv. out_dir: keep designs.csv,
+    pareto.csv, the journal and the figures there (the sweep resumes from its journal). For
+    Sobol or Latin-hypercube sweeps, optimisation and Dask, see nocdyn.designs."""
+    arguments = dict(locals())
+    vary = [vary] if isinstance(vary, str) else list(vary)
+    metric = [metric] if isinstance(metric, str) else list(metric)
+    from .designs import Designs
+    with _Call("design", design) as call:
+        call.robot(robot)
+        folder = call.output("out_dir", out_dir, "design")
+        call.option("vary", vary)
+        call.option("metric", metric)
+        call.options(arguments, handled=("robot", "out_dir", "vary", "metric"))
+        call.run(progress, "design")
+        names = [v.split("=", 1)[0].strip() for v in vary]
+        with open(folder / "designs.csv", encoding="utf-8", newline="") as file:
+            rows = list(csv.reader(file))
+        header, body = rows[0], [r for r in rows[1:] if r]
+        d, m = len(names), len(header) - 3 - len(names)
+
+        def number(text):
+            return float(text) if text else math.nan
+        points = [[number(v) for v in r[1:1 + d]] for r in body]
+        values = [[number(v) for v in r[1 + d:1 + d + m]] for r in body]
+        return Designs(header[1:1 + d], header[1 + d:1 + d + m], points, values,
+                       [r[1 + d + m] == "true" for r in body], [r[2 + d + m] for r in body])
+
+
+COMMANDS = {"pose": pose, "inverse-dynamics": inverse_dynamics, "forward-kinematics": forward_kinematics,
+            "simulate": simulate, "control": control, "envelope": envelope, "workspace": workspace,
+            "convert": convert, "animate": animate, "shake": shake, "regressor": regressor, "identify": identify,
+            "excite": excite, "loads": loads, "validate": validate, "reproduce": reproduce, "design": design}
+
+
+def main(argv=None):
+    """The `nocdyn` command (pip's console script): the command line in this process."""
+    args = list(sys.argv if argv is None else argv)
+    args[0] = "nocdyn"
+    sys.stdout.flush()
+    sys.stderr.flush()
+    return _nocdyn._main(args)

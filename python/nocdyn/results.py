@@ -1,0 +1,294 @@
+"""The answers of nocdyn's command functions: NumPy arrays in one small type per kind of answer.
+
+Table: samples or grid points in named columns (the command line's CSV columns), e.g. the
+inverse dynamics of a trajectory, a simulated or closed-loop motion, the operating envelope.
+Every result has ``to_pandas()`` (pandas is optional: imported only there) giving the very
+columns the command line writes, and ``text``: what the command printed (its summary).
+"""
+
+from __future__ import annotations
+
+import json
+import pathlib
+
+import numpy as np
+
+__all__ = ["Table", "PoseReport", "AssemblyModes", "Workspace", "Identification", "Excitation", "ShakeResult",
+           "Animation", "Report"]
+
+
+def _pandas():
+    try:
+        import pandas
+    except ImportError as error:  # pandas is optional
+        raise ImportError("to_pandas() needs pandas (Debian: apt install python3-pandas)") from error
+    return pandas
+
+
+def read_csv(path):
+    """The command line's CSV (one header line, numbers in shortest round-trip form) as
+    (columns, (N, len(columns)) float64 array): the numbers read back bit for bit."""
+    with open(path, encoding="utf-8") as file:
+        header = file.readline().strip()
+        columns = header.split(",") if header else []
+        rows = [line for line in file if line.strip()]
+    if not rows:
+        return columns, np.empty((0, len(columns)))
+    data = np.array([[float(v) for v in line.split(",")] for line in rows], dtype=np.float64)
+    return columns, data.reshape(len(rows), len(columns))
+
+
+class Table:
+    """Samples in named columns, as the command line's CSV.
+
+    ``table["tau1"]`` is one column (a NumPy array); ``table.columns`` their names in the CSV's
+    order; ``table.data`` all of them as an (N, len(columns)) array; ``len(table)`` the number of
+    rows; ``table.to_pandas()`` a pandas DataFrame with the same columns. ``text`` is what the
+    command printed (summary lines, warnings are issued as Python warnings)."""
+
+    def __init__(self, columns, data, text="", name="table"):
+        self.columns = list(columns)
+        self.data = np.asarray(data, dtype=np.float64).reshape(-1, len(self.columns))
+        self.text = text
+        self.name = name
+
+    @classmethod
+    def from_csv(cls, path, text="", name="table"):
+        columns, data = read_csv(path)
+        return cls(columns, data, text, name)
+
+    def __getitem__(self, column):
+        try:
+            return self.data[:, self.columns.index(column)]
+        except ValueError:
+            raise KeyError(f"{column!r}: no such column (columns: {', '.join(self.columns)})") from None
+
+    def __contains__(self, column):
+        return column in self.columns
+
+    def __len__(self):
+        return self.data.shape[0]
+
+    def group(self, prefix):
+        """The columns prefix1, prefix2, ... (e.g. 'tau') side by side: an (N, k) array."""
+        names = [c for c in self.columns if c.startswith(prefix) and c[len(prefix):].isdigit()]
+        names.sort(key=lambda c: int(c[len(prefix):]))
+        return np.stack([self[c] for c in names], axis=1) if names else np.empty((len(self), 0))
+
+    def to_pandas(self):
+        """A pandas DataFrame with the command line's CSV columns."""
+        return _pandas().DataFrame(self.data.copy(), columns=self.columns)
+
+    def __repr__(self):
+        return f"<nocdyn.Table {self.name}: {len(self)} rows x {len(self.columns)} columns {self.columns[:8]}...>"
+
+
+class _Record:
+    """A JSON answer with attribute access; arrays as NumPy arrays."""
+
+    def __init__(self, fields, text=""):
+        self._fields = dict(fields)
+        self.text = text
+
+    def __getattr__(self, name):
+        try:
+            return self.__dict__["_fields"][name]
+        except KeyError:
+            raise AttributeError(name) from None
+
+    def as_dict(self):
+        return dict(self._fields)
+
+
+class PoseReport(_Record):
+    """Everything the model knows at one pose (``nocdyn pose``): pose [theta, x, y]; q (limbs, 3)
+    joint variables [rad or m]; cond_J (limbs,) the limb Jacobians' condition numbers; u (n,)
+    actuator variables and range_used (n,) the fraction of their range; A (n, 3) the actuation map
+    du = A dp/dt; cond_A; I the inertia (eq. 23) in ``coordinates`` ('actuators' or 'platform');
+    within_limits."""
+
+    def __init__(self, document, text=""):
+        fields = {"robot": document["robot"],
+                  "pose": np.array([document["pose"][k] for k in ("theta", "x", "y")]),
+                  "q": np.array([limb["q"] for limb in document["limbs"]], dtype=np.float64).reshape(-1, 3),
+                  "cond_J": np.array([limb["cond_J"] for limb in document["limbs"]], dtype=np.float64),
+                  "u": np.array([a["u"] for a in document["actuators"]], dtype=np.float64),
+                  "range_used": np.array([a["range_used"] for a in document["actuators"]], dtype=np.float64),
+                  "A": np.array(document["A"], dtype=np.float64), "cond_A": float(document["cond_A"]),
+                  "coordinates": document["coordinates"], "I": np.array(document["I"], dtype=np.float64),
+                  "within_limits": bool(document["within_limits"])}
+        super().__init__(fields, text)
+        self.document = document
+
+    def to_pandas(self):
+        """Per actuator: actuator, limb, joint, u, range_used (the JSON's actuator list)."""
+        return _pandas().DataFrame(self.document["actuators"])
+
+    def __repr__(self):
+        return f"<nocdyn.PoseReport {self.robot!r} at {self.pose.tolist()}: cond_A {self.cond_A:.4g}>"
+
+
+class AssemblyModes(_Record):
+    """The assembly modes of actuator values u (``nocdyn forward-kinematics``): poses (k, 3)
+    [theta, x, y] sorted by theta, their branches (k, limbs), working (k,) booleans, and the
+    JSON's other fields (degenerate, within_limits, solutions_all_branches, ...)."""
+
+    def __init__(self, document, text=""):
+        solutions = document.get("solutions", [])
+        fields = dict(document)
+        fields["solutions"] = solutions
+        fields["poses"] = np.array([[s["pose"][k] for k in ("theta", "x", "y")] for s in solutions],
+                                   dtype=np.float64).reshape(-1, 3)
+        if solutions and "branch" in solutions[0]:
+            fields["branches"] = np.array([s["branch"] for s in solutions], dtype=np.int64)
+        fields["working"] = np.array([bool(s.get("working", True)) for s in solutions])
+        super().__init__(fields, text)
+
+    def __len__(self):
+        return len(self.solutions)
+
+    def to_pandas(self):
+        """One row per assembly mode: theta, x, y and the other fields of each solution."""
+        rows = []
+        for s in self.solutions:
+            row = {k: v for k, v in s.items() if k != "pose"}
+            row.update(s["pose"])
+            rows.append(row)
+        return _pandas().DataFrame(rows)
+
+    def __repr__(self):
+        return f"<nocdyn.AssemblyModes: {len(self)} poses>"
+
+
+class Workspace(Table):
+    """The workspace grid (``nocdyn workspace``): columns x, y [m] and cell (0 feasible, 1 out of
+    reach, 2 a joint out of range, 3 singular); ``cells`` as an (n, n) array indexed [ix, iy];
+    ``text`` the summary line with the area."""
+
+    @property
+    def cells(self):
+        n = int(round(np.sqrt(len(self))))
+        return self["cell"].reshape(n, n).astype(np.int64)
+
+    @property
+    def area(self):
+        """Feasible area [m^2] from the grid (cells times the cell area)."""
+        x = np.unique(self["x"])
+        y = np.unique(self["y"])
+        step = (x[1] - x[0]) * (y[1] - y[0]) if len(x) > 1 and len(y) > 1 else 0.0
+        return float(np.count_nonzero(self["cell"] == 0) * step)
+
+
+class Identification:
+    """An identification (``nocdyn identify``): ``text`` the report the command prints (YAML),
+    ``report`` it read as a dict (needs PyYAML, Debian's python3-yaml; else None), ``payload``
+    the estimate {mass, com, inertia} when a payload was identified, ``robot_yaml`` the file the
+    command writes (the robot with the payload merged, or the calibration with base)."""
+
+    def __init__(self, text, robot_yaml, log=""):
+        self.text = text
+        self.log = log
+        self.robot_yaml = robot_yaml
+        try:
+            import yaml
+            self.report = yaml.safe_load(text)
+        except Exception:  # PyYAML missing, or a report that is not a YAML mapping
+            self.report = None
+        self.payload = self.report.get("payload") if isinstance(self.report, dict) else None
+
+    def to_pandas(self):
+        """The estimates: parameter, value, standard deviation (payload and friction)."""
+        rows = []
+        if self.payload:
+            sd = self.report.get("standard_deviation", {})
+            rows += [{"parameter": "mass", "value": self.payload["mass"], "stddev": sd.get("mass")},
+                     {"parameter": "com_x", "value": self.payload["com"][0], "stddev": sd.get("com", [None])[0]},
+                     {"parameter": "com_y", "value": self.payload["com"][1], "stddev": sd.get("com", [None, None])[1]},
+                     {"parameter": "inertia", "value": self.payload["inertia"], "stddev": sd.get("inertia")}]
+        for e in (self.report or {}).get("friction", []) or []:
+            rows.append({"parameter": e["name"], "value": e["value"], "stddev": e["stddev"]})
+        return _pandas().DataFrame(rows)
+
+    def __repr__(self):
+        return f"<nocdyn.Identification payload={self.payload}>"
+
+
+class Excitation(_Record):
+    """A designed excitation (``nocdyn excite``): ``yaml`` the trajectory file's text,
+    ``trajectory`` it as a nocdyn.Trajectory, ``path`` where it was written, ``text`` the
+    printed comparison with the paper's trajectories."""
+
+    def to_pandas(self):
+        """The trajectory's harmonics per axis: axis, frequency, amplitude, phase."""
+        rows = []
+        for axis in ("theta", "x", "y"):
+            for f, a, phase in self.trajectory.harmonics(axis):
+                rows.append({"axis": axis, "frequency": f, "amplitude": a, "phase": phase})
+        return _pandas().DataFrame(rows)
+
+
+class ShakeResult(Table):
+    """An earthquake replay (``nocdyn shake``): the samples of DIR/shake.csv as a Table, plus
+    ``metrics`` (DIR/shake.json: time_scale, amplitude_scale, RMS and peak errors, spectra),
+    ``folder`` the output folder (None when it was temporary)."""
+
+    def __init__(self, columns, data, metrics, folder, text=""):
+        super().__init__(columns, data, text, "shake")
+        self.metrics = metrics
+        self.folder = folder
+
+
+class Animation:
+    """The robot in motion as one self-contained HTML page (``nocdyn animate``); shows inline in
+    Jupyter (``_repr_html_``); ``save(path)`` writes it, ``html`` is its text."""
+
+    def __init__(self, html, path=None, text=""):
+        self.html = html
+        self.path = path
+        self.text = text
+
+    def save(self, path):
+        pathlib.Path(path).write_text(self.html, encoding="utf-8")
+        return path
+
+    def _repr_html_(self):
+        # in an iframe: the page's script and styles stay apart from the notebook's
+        escaped = self.html.replace("&", "&amp;").replace('"', "&quot;")
+        return f'<iframe srcdoc="{escaped}" style="width:100%;height:620px;border:0"></iframe>'
+
+    def __repr__(self):
+        return f"<nocdyn.Animation: {len(self.html)} characters of HTML>"
+
+
+class Report:
+    """A folder of results (``nocdyn reproduce``): ``folder``, ``summary`` (summary.md's text,
+    shown as Markdown in Jupyter), ``files`` (the paths written) and ``table(name)`` to read
+    one of its CSV files."""
+
+    def __init__(self, folder, text=""):
+        self.folder = pathlib.Path(folder)
+        summary = self.folder / "summary.md"
+        self.summary = summary.read_text(encoding="utf-8") if summary.exists() else ""
+        self.text = text
+
+    @property
+    def files(self):
+        return sorted(p for p in self.folder.rglob("*") if p.is_file())
+
+    def table(self, name):
+        return Table.from_csv(self.folder / name, name=name)
+
+    def to_pandas(self):
+        """The files written: path, size in bytes."""
+        return _pandas().DataFrame([{"path": str(p), "bytes": p.stat().st_size} for p in self.files])
+
+    def _repr_markdown_(self):
+        return self.summary
+
+    def __repr__(self):
+        return f"<nocdyn.Report {str(self.folder)!r}: {len(self.files)} files>"
+
+
+def load_json(path):
+    with open(path, encoding="utf-8") as file:
+        return json.load(file)

@@ -1,0 +1,35 @@
+"""The notebooks of examples/ (jupytext-style scripts, `# %%` cells) run from start to end, in
+a temporary folder, in their quick form (NOCDYN_EXAMPLE_QUICK=1: shorter experiments)."""
+
+import os
+import subprocess
+import sys
+
+import pytest
+
+from conftest import SOURCE_DIR
+
+EXAMPLES = ["paper_figures.py", "own_robot.py", "identification.py", "el_centro.py"]
+
+
+@pytest.mark.parametrize("name", EXAMPLES)
+def test_example_runs(name, tmp_path):
+    script = SOURCE_DIR / "examples" / name
+    assert "# %%" in script.read_text()
+    env = dict(os.environ, NOCDYN_EXAMPLE_OUT=str(tmp_path), NOCDYN_EXAMPLE_QUICK="1", MPLBACKEND="Agg",
+               NOCDYN_SOURCE_DIR=str(SOURCE_DIR))
+    # the package this test imports, whatever the folder the example runs in
+    env["PYTHONPATH"] = os.pathsep.join(os.path.abspath(p) for p in env.get("PYTHONPATH", "").split(os.pathsep) if p)
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=180, env=env,
+                          cwd=tmp_path)
+    assert done.returncode == 0, done.stderr
+    if name == "paper_figures.py":
+        for figure in ("paper_fig5.png", "paper_fig6.png"):
+            assert (tmp_path / figure).read_bytes()[:4] == b"\x89PNG"
+        assert "trajectory 1: 2000 samples" in done.stdout
+    if name == "own_robot.py":
+        assert (tmp_path / "3-rrr.svg").read_text().startswith("<svg") and "assembly modes" in done.stdout
+    if name == "identification.py":
+        assert "payload: {mass: 0.4" in done.stdout or "payload: {mass: 0.5" in done.stdout, done.stdout
+    if name == "el_centro.py":
+        assert (tmp_path / "el-centro" / "shake.json").exists() and "time scale L" in done.stdout
