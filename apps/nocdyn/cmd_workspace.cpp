@@ -7,6 +7,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/workspace.hpp"
+#include "progress.hpp"
 #include "workspace_figure.hpp"
 
 namespace nocdyn::cli {
@@ -18,6 +19,7 @@ struct Options {
     double theta = 0.0;
     bool theta_given = false;
     int resolution = 201;
+    bool quiet = false;
 };
 
 void run(const Options& options) {
@@ -25,10 +27,14 @@ void run(const Options& options) {
     WorkspaceOptions ws;
     ws.theta = options.theta_given ? options.theta : model.home(0);
     ws.resolution = options.resolution;
+    Steps steps("nocdyn workspace", 1, options.quiet);
+    ws.progress = [&steps](int done, int total) { steps.count(done, total, "grid column"); };
     const WorkspaceMap map = workspaceMap(model, ws);
+    steps.finish();
     if (!options.output.empty()) {
         io::Table table;
         table.columns = {"x", "y", "cell"};
+        table.categories = {{}, {}, {"feasible", "unreachable", "range", "singular"}};  // WorkspaceCell in order
         for (int i = 0; i < map.n; ++i) {
             for (int k = 0; k < map.n; ++k) {
                 table.rows.push_back(
@@ -38,7 +44,7 @@ void run(const Options& options) {
         writeTable(table, options.output);
     }
     if (!options.figure.empty()) renderFigure(workspaceFigure(map, model, {}), options.figure);
-    std::printf("%s\n", workspaceSummary(map).c_str());
+    if (!options.quiet) std::printf("%s\n", workspaceSummary(map).c_str());
 }
 
 }  // namespace
@@ -51,8 +57,8 @@ void addWorkspaceCommand(CLI::App& app) {
         "home branch, within every joint's range and away from singularities (condition numbers within the\n"
         "robot's max_condition), with the limb singularities (type 1: a limb at the edge of its reach) and the\n"
         "actuation singularities (type 2: det A = 0) drawn as curves (STEM.png, STEM.svg), and its area.\n"
-        "The grid is fitted to the feasible region. CSV: x, y [m] and cell (0 feasible, 1 out of reach, 2 a\n"
-        "joint out of range, 3 singular).\n"
+        "The grid is fitted to the feasible region. CSV: x, y [m] and cell (feasible, unreachable: out of\n"
+        "reach, range: a joint out of its range, singular).\n"
         "Example: nocdyn workspace --robot robots/3-rrr.yaml --theta 0.1");
     addRobotOption(*command, options->robot);
     command->add_option("--theta", options->theta, "Platform orientation [rad] [default: the robot's home]")
@@ -64,6 +70,8 @@ void addWorkspaceCommand(CLI::App& app) {
     command->add_option("--output,-o", options->output, "CSV of the grid [default: none]")->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg); empty: none")
         ->capture_default_str();
+    command->add_flag("--quiet,-q", options->quiet,
+                      "Print nothing (no summary, no progress line); errors still go to stderr");
     command->callback([options] { run(*options); });
 }
 

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "nocdyn/model.hpp"
@@ -18,6 +19,8 @@ namespace nocdyn {
 struct WorkspaceOptions {
     double theta = 0.0;    ///< platform orientation [rad]
     int resolution = 201;  ///< grid points per side, in [11, 2001]
+    /// Called after each grid column with the columns done and their total (a progress line).
+    std::function<void(int done, int total)> progress = {};
 };
 
 /// What limits each grid point.
