@@ -20,6 +20,7 @@ packages=(
   python3-dev python3-pybind11 python3-numpy   # the Python package (python/), /usr/bin/python3
   python3-pytest python3-matplotlib            # its tests (ctest -L python) and examples/quickstart.py
   python3-hypothesis                           # the property-based tests of the Python surface
+  python3-sphinx python3-myst-parser           # the user guide, docs/ (ctest -L docs)
 )
 # npm fetches playwright-core for the browser tests: Debian's package, unless the installed
 # Node.js already brings its own (NodeSource's nodejs provides and conflicts with Debian's npm)
