@@ -260,6 +260,13 @@ TEST(Cli, CategoryColumnsHoldWordsAndQuietPrintsNothing) {
         const std::string cell = line.substr(line.rfind(',') + 1);
         EXPECT_TRUE(cell == "feasible" || cell == "unreachable" || cell == "range" || cell == "singular") << line;
     }
+    // --json: the summary for a script
+    const CliRun json = run("workspace --resolution 21 --figure '' --json --robot " + robot);
+    ASSERT_EQ(json.exit_code, 0) << json.err;
+    const auto summary = nlohmann::json::parse(json.out);
+    EXPECT_EQ(summary["robot"].get<std::string>(), "3-rrr");
+    EXPECT_EQ(summary["resolution"].get<int>(), 21);
+    EXPECT_GT(summary["area"].get<double>(), 0.0);
     const CliRun loud = run("workspace --resolution 21 --figure '' --robot " + robot);
     EXPECT_NE(loud.out.find("feasible region"), std::string::npos) << loud.out;
     // not a terminal: no progress line on stderr

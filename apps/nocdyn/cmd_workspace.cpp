@@ -1,6 +1,9 @@
 // nocdyn workspace: the feasible region of C at one orientation with both kinds of
 // singularity curves (workspace.hpp), as a figure, a summary line and optionally CSV.
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
+#include <iostream>
 #include <memory>
 #include <string>
 
@@ -19,8 +22,23 @@ struct Options {
     double theta = 0.0;
     bool theta_given = false;
     int resolution = 201;
-    bool quiet = false;
+    bool quiet = false, json = false;
 };
+
+/// The summary for a script: the grid, the feasible area and the singularity points (SI units).
+nlohmann::json summaryJson(const WorkspaceMap& map, const Model& model) {
+    nlohmann::json out;
+    out["robot"] = model.description.name;
+    out["theta"] = map.theta;
+    out["area"] = map.area;
+    out["resolution"] = map.n;
+    out["step"] = map.step;
+    out["x_range"] = {map.x0, map.x0 + (map.n - 1) * map.step};
+    out["y_range"] = {map.y0, map.y0 + (map.n - 1) * map.step};
+    out["limb_singular_points"] = map.limb_singular.size();
+    out["actuation_singular_points"] = map.actuation_singular.size();
+    return out;
+}
 
 void run(const Options& options) {
     const Model model(loadRobotDescriptionOrDefault(options.robot));
@@ -44,7 +62,11 @@ void run(const Options& options) {
         writeTable(table, options.output);
     }
     if (!options.figure.empty()) renderFigure(workspaceFigure(map, model, {}), options.figure);
-    if (!options.quiet) std::printf("%s\n", workspaceSummary(map).c_str());
+    if (options.json) {
+        std::cout << summaryJson(map, model).dump(2) << "\n";
+    } else if (!options.quiet) {
+        std::printf("%s\n", workspaceSummary(map).c_str());
+    }
 }
 
 }  // namespace
@@ -72,6 +94,12 @@ void addWorkspaceCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_flag("--quiet,-q", options->quiet,
                       "Print nothing (no summary, no progress line); errors still go to stderr");
+    command
+        ->add_flag(
+            "--json", options->json,
+            "Print the summary as JSON instead (robot, theta [rad], area [m^2], resolution, step [m], x_range and\n"
+            "y_range [m], limb_singular_points, actuation_singular_points)")
+        ->excludes("--quiet");
     command->callback([options] { run(*options); });
 }
 
