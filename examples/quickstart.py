@@ -30,16 +30,21 @@ def main():
     P, dP, ddP = trajectory.evaluate(t)  # (N, 3) each: [theta, x, y] and derivatives
     u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)  # (N, n) each
 
+    # units by joint type: a prismatic actuator moves in mm and pushes in N, a revolute one
+    # turns in mrad and drives in N m (a robot mixing both is labelled with both)
+    types = {a["type"] for a in robot.actuator_info()}
+    u_unit = " or ".join(unit for kind, unit in (("P", "mm"), ("R", "mrad")) if kind in types)
+    tau_unit = " or ".join(unit for kind, unit in (("P", "N"), ("R", "N m")) if kind in types)
     peak = robot.actuator_info()[0]["effort"]
-    print(f"{robot!r}: peak |tau| per actuator [N]: {np.round(np.max(np.abs(tau), axis=0), 2)} "
-          f"(limit {peak:g} N)")
+    print(f"{robot!r}: peak |tau| per actuator [{tau_unit}]: {np.round(np.max(np.abs(tau), axis=0), 2)} "
+          f"(limit {peak:g} {tau_unit})")
 
     fig, (ax_u, ax_tau) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 5.5), constrained_layout=True)
     for i in range(robot.actuators):
         ax_u.plot(t * 1e3, u[:, i] * 1e3, label=f"u{i + 1}")
         ax_tau.plot(t * 1e3, tau[:, i], label=f"tau{i + 1}")
-    ax_u.set_ylabel("actuator displacement [mm]")
-    ax_tau.set_ylabel("actuator force [N]")
+    ax_u.set_ylabel(f"actuator displacement [{u_unit}]")
+    ax_tau.set_ylabel(f"actuator force [{tau_unit}]")
     ax_tau.set_xlabel("time [ms]")
     ax_u.set_title(f"{robot.name}, trajectory 1 of the paper (eq. 33): inverse dynamics")
     for ax in (ax_u, ax_tau):

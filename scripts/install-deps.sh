@@ -22,9 +22,10 @@ packages=(
   python3-pytest python3-matplotlib            # its tests (ctest -L python) and examples/quickstart.py
   python3-hypothesis                           # the property-based tests of the Python surface
   python3-scipy python3-optuna                 # design sweeps: Sobol/LHS (scipy.stats.qmc), NSGA-II/TPE
-  python3-dask python3-distributed             # design sweeps on a Dask cluster (nocdyn.design)
+  python3-dask python3-distributed             # design sweeps on a Dask cluster (nocdyn.designs)
   python3-tqdm python3-pandas                  # progress bars and to_pandas() of the Python package
   python3-venv python3-pip                     # the test of `pip install .` (ctest -L pip)
+  python3-sphinx python3-myst-parser           # the user guide, docs/ (ctest -L docs)
 )
 # npm fetches playwright-core for the browser tests: Debian's package, unless the installed
 # Node.js already brings its own (NodeSource's nodejs provides and conflicts with Debian's npm)

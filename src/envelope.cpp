@@ -213,6 +213,7 @@ std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeO
             const double s = options.frequencies > 1 ? static_cast<double>(k) / (options.frequencies - 1) : 0.0;
             const double f = options.min_frequency * std::pow(options.max_frequency / options.min_frequency, s);
             points.push_back(maximumAmplitude(model, axis, f, options));
+            if (options.progress) options.progress(static_cast<int>(points.size()), 3 * options.frequencies);
         }
     }
     return points;

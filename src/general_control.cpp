@@ -241,6 +241,7 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
     Pose next_p, next_dp, next_ddp;
     ActuatorVector u_measured(n);
     for (const double t : times) {
+        if (options.progress) options.progress(t);
         if (const Status status = poseReference(model, data, trajectory, t, reference); !status) {
             fail(t, status, "reference");
         }

@@ -176,6 +176,7 @@ WorkspaceMap workspaceMap(const Model& model, const WorkspaceOptions& options) {
                 if (probe.reaches(j, c.x(), c.y())) reach[index] |= static_cast<std::uint8_t>(1u << j);
             }
         }
+        if (options.progress) options.progress(i + 1, 2 * map.n);
     }
 
     // the curves, on every grid edge that crosses one
@@ -201,6 +202,7 @@ WorkspaceMap workspaceMap(const Model& model, const WorkspaceOptions& options) {
                 }
             }
         }
+        if (options.progress) options.progress(map.n + i + 1, 2 * map.n);
     }
     return map;
 }

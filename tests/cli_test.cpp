@@ -231,6 +231,49 @@ TEST(Cli, GeneralRobotFilesRunInverseDynamicsAndTheEnvelope) {
     EXPECT_NE(envelope.out.find("actuator "), std::string::npos) << envelope.out;
 }
 
+TEST(Cli, CategoryColumnsHoldWordsAndQuietPrintsNothing) {
+    // envelope.csv names the axis and the binding limit, workspace's grid its cells, in words
+    const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/3-rrr.yaml";
+    const fs::path envelope = scratch("words-envelope.csv"), grid = scratch("words-grid.csv");
+    const CliRun e = run("envelope --points 2 --figure '' --quiet --robot " + robot + " -o " + envelope.string());
+    ASSERT_EQ(e.exit_code, 0) << e.err;
+    EXPECT_EQ(e.out, "");
+    const std::string text = slurp(envelope);
+    EXPECT_EQ(text.substr(0, text.find('\n')),
+              "axis,frequency,amplitude,limit,limb,joint,actuator,kinematic_amplitude,peak_effort_ratio");
+    const std::string first =
+        text.substr(text.find('\n') + 1, text.find('\n', text.find('\n') + 1) - text.find('\n') - 1);
+    EXPECT_EQ(first.substr(0, first.find(',')), "theta") << first;
+    for (const char* word : {"\nx,", "\ny,"}) EXPECT_NE(text.find(word), std::string::npos) << text;
+    EXPECT_TRUE(text.find(",range,") != std::string::npos || text.find(",effort,") != std::string::npos ||
+                text.find(",velocity,") != std::string::npos)
+        << text;
+    const CliRun w = run("workspace --resolution 21 --figure '' --quiet --robot " + robot + " -o " + grid.string());
+    ASSERT_EQ(w.exit_code, 0) << w.err;
+    EXPECT_EQ(w.out, "");
+    const std::string cells = slurp(grid);
+    EXPECT_NE(cells.find(",feasible\n"), std::string::npos);
+    std::istringstream lines(cells);
+    std::string line;
+    std::getline(lines, line);
+    EXPECT_EQ(line, "x,y,cell");
+    while (std::getline(lines, line)) {
+        const std::string cell = line.substr(line.rfind(',') + 1);
+        EXPECT_TRUE(cell == "feasible" || cell == "unreachable" || cell == "range" || cell == "singular") << line;
+    }
+    // --json: the summary for a script
+    const CliRun json = run("workspace --resolution 21 --figure '' --json --robot " + robot);
+    ASSERT_EQ(json.exit_code, 0) << json.err;
+    const auto summary = nlohmann::json::parse(json.out);
+    EXPECT_EQ(summary["robot"].get<std::string>(), "3-rrr");
+    EXPECT_EQ(summary["resolution"].get<int>(), 21);
+    EXPECT_GT(summary["area"].get<double>(), 0.0);
+    const CliRun loud = run("workspace --resolution 21 --figure '' --robot " + robot);
+    EXPECT_NE(loud.out.find("feasible region"), std::string::npos) << loud.out;
+    // not a terminal: no progress line on stderr
+    EXPECT_EQ(loud.err, "");
+}
+
 TEST(Cli, SimulateReplaysTheInverseDynamicsOfAnyRobot) {
     // inverse-dynamics -> simulate (cubic forces): each actuator back within 1e-6 of its peak travel
     for (const std::string name : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {

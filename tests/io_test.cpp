@@ -9,6 +9,7 @@
 #include <functional>
 #include <iterator>
 #include <limits>
+#include <sstream>
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -235,6 +236,27 @@ TEST(Csv, DuplicateColumnsHexFloatsAndNonFiniteCellsAreErrors) {
     expectFileError([] { (void)io::parseCsv("t,tau1\n0,nan\n", "f.csv"); }, {"f.csv:2", "'nan'"});
     expectFileError([] { (void)io::parseCsv("t,tau1\n0,inf\n", "f.csv"); }, {"f.csv:2", "'inf'"});
     expectFileError([] { (void)io::parseCsv("t,,x\n0,1,2\n", "f.csv"); }, {"f.csv:1", "empty column name"});
+}
+
+TEST(Csv, CategoryColumnsAreWrittenAsWords) {
+    io::Table table;
+    table.columns = {"axis", "amplitude", "limit"};
+    table.categories = {{"theta", "x", "y"}, {}, {"range", "effort"}};
+    table.rows = {{1.0, 0.25, 1.0}, {0.0, 1e-3, 0.0}};
+    std::ostringstream out;
+    io::writeCsv(out, table);
+    EXPECT_EQ(out.str(), "axis,amplitude,limit\nx,0.25,effort\ntheta,0.001,range\n");
+    const auto path = std::filesystem::temp_directory_path() / "nocdyn_io_test_categories.csv";
+    io::writeCsvFile(path.string(), table);
+    std::ifstream file(path);
+    EXPECT_EQ(std::string(std::istreambuf_iterator<char>(file), {}), out.str());
+    std::filesystem::remove(path);
+    // a code without a name, or not a whole number, is an error naming the column
+    for (const double code : {3.0, 0.5, -1.0}) {
+        table.rows = {{code, 0.0, 0.0}};
+        std::ostringstream ignored;
+        expectFileError([&] { io::writeCsv(ignored, table); }, {"axis"});
+    }
 }
 
 TEST(Csv, ByteOrderMarkIsSkipped) {

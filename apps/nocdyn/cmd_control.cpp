@@ -98,7 +98,10 @@ void run(const ControlOptions& options) {
     loop.encoders = encoders;
     loop.noise_u = encoders ? options.noise_u : 0.0;
     loop.noise_du = options.noise_du;
+    Progress progress(loop.duration);  // on a terminal only: the Simbody plant runs a few s per 0.2 s
+    loop.progress = [&progress](double t) { progress.update(t); };
     const PoseLoopResult result = runPoseLoop(controller, *plant, trajectory, loop);
+    progress.finish();
     if (!options.output.empty()) writeTable(io::toTable(result), options.output);
     if (!options.log.empty()) {
         io::writeCsvFile(options.log,

@@ -11,6 +11,7 @@
 #include "common.hpp"
 #include "nocdyn/envelope.hpp"
 #include "plot.hpp"
+#include "progress.hpp"
 
 namespace nocdyn::cli {
 
@@ -19,10 +20,13 @@ namespace {
 struct Options {
     std::string robot, output, figure;  ///< no figure unless asked for
     EnvelopeOptions envelope;
+    bool quiet = false;
 };
 
 io::Table table(const std::vector<EnvelopePoint>& points) {
     io::Table t;
+    // axis and limit are written as words (EnvelopeAxis and EnvelopeLimit in order)
+    t.categories = {{"theta", "x", "y"}, {}, {}, {"range", "velocity", "effort", "workspace", "none"}};
     t.columns = {"axis",     "frequency",           "amplitude",        "limit", "limb", "joint",
                  "actuator", "kinematic_amplitude", "peak_effort_ratio"};
     for (const auto& p : points) {
@@ -73,10 +77,14 @@ void run(const Options& options) {
         throw CLI::ValidationError("--max-frequency", "must be at least --min-frequency");
     }
     const Model model(loadRobotDescriptionOrDefault(options.robot));
-    const auto points = operatingEnvelope(model, options.envelope);
+    Steps steps("nocdyn envelope", 1, options.quiet);
+    EnvelopeOptions envelope = options.envelope;
+    envelope.progress = [&steps](int done, int total) { steps.count(done, total, "point"); };
+    const auto points = operatingEnvelope(model, envelope);
+    steps.finish();
     if (!options.output.empty()) writeTable(table(points), options.output);
     if (!options.figure.empty()) renderFigure(figure(points, model.description.name), options.figure);
-    if (options.output.empty()) {
+    if (options.output.empty() && !options.quiet) {
         std::printf("axis   f [Hz]    amplitude        limit      peak |tau|/effort  where\n");
         for (const auto& p : points) {
             const bool angle = p.axis == EnvelopeAxis::theta;
@@ -97,9 +105,9 @@ void addEnvelopeCommand(CLI::App& app) {
         "amplitude A of A sin(2 pi f t) about the home posture within every joint's range and velocity limits,\n"
         "every actuator's effort (inverse dynamics over one period, gravity and friction included) and the\n"
         "workspace (reach, limb and actuation singularities), and which limit binds, named with its actuator.\n"
-        "Writes CSV (axis 0 theta, 1 x, 2 y; limit 0 range, 1 velocity, 2 effort, 3 workspace, 4 none up to\n"
-        "the search bound; limb, joint, actuator 1-based, 0 when not applicable; peak_effort_ratio =\n"
-        "max |tau|/effort at that amplitude) and, with --figure, a figure (amplitude versus frequency, log axes).");
+        "Writes CSV (axis theta, x or y; limit range, velocity, effort, workspace, or none up to the search\n"
+        "bound; limb, joint, actuator 1-based, 0 when not applicable; peak_effort_ratio = max |tau|/effort\n"
+        "at that amplitude) and, with --figure, a figure (amplitude versus frequency, log axes).");
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]")->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");
@@ -112,6 +120,8 @@ void addEnvelopeCommand(CLI::App& app) {
     command->add_option("--points", options->envelope.frequencies, "Frequencies per axis")
         ->check(CLI::Range(1, kEnvelopeMaxPoints))
         ->capture_default_str();
+    command->add_flag("--quiet,-q", options->quiet,
+                      "Print nothing (no table, no progress line); errors still go to stderr");
     command->callback([options] { run(*options); });
 }
 

@@ -17,6 +17,7 @@
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "plot.hpp"
+#include "progress.hpp"
 
 namespace nocdyn::cli {
 
@@ -143,8 +144,13 @@ void run(const IdentifyOptions& options) {
         }
     }
     if (!options.prior.empty()) identification.prior = io::loadPayloadPrior(options.prior);
+    // a log of 10^6 samples or more takes seconds per step: say which step runs (terminal only)
+    Steps steps("nocdyn identify", 3);
+    steps.next("reading " + io::terminalText(options.data));
     const Measurements measured = readMeasurements(options.data, model.actuators);
+    steps.next("reconstructing the motion");
     const Motion motion = reconstructMotion(model, measured, identification);
+    steps.next("least squares");
     std::string text, file;
     FitReport fit;
     if (options.base) {
@@ -220,6 +226,7 @@ void run(const IdentifyOptions& options) {
         file += io::descriptionToYaml(merged);
         fit = r.fit;
     }
+    steps.finish();
     std::cout << text;
     std::cout.flush();
     if (!std::cout) throw Error("cannot write to standard output");

@@ -20,6 +20,7 @@
 #include "nocdyn/sampling.hpp"
 #include "nocdyn/workspace.hpp"
 #include "plot.hpp"
+#include "progress.hpp"
 #include "reproduce_dynamics.hpp"
 #include "reproduce_identification.hpp"
 #include "shake_replay.hpp"
@@ -42,6 +43,7 @@ struct ReproduceOptions {
     std::string out = "results";
     double closed_loop_duration = kDuration;  ///< [s] of each closed-loop run on a Simbody plant
     double identification_duration = 5.0;     ///< [s] of data per identification experiment
+    bool quiet = false;                       ///< nothing on stdout, no progress line
 };
 
 /// Motor displacements [mm] or forces [N] of our model, with an engine's curves overlaid
@@ -75,20 +77,28 @@ PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std
 }
 
 #ifdef NOCDYN_HAS_ENGINES
-/// engine - model, per actuator, in nm or uN.
+/// engine - model, per actuator, in a unit fitted to the largest difference (axisUnit).
 PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine,
                           const std::vector<Eigen::VectorXd>& engine_values) {
     PlotPanel panel;
     panel.title = "(c) " + engine + " minus model";
     panel.xlabel = "t [s]";
-    panel.ylabel = forces ? "{/Symbol Dt}_j [{/Symbol m}N]" : "{/Symbol D}u_j [nm]";
+    const auto difference = [&](std::size_t k, int j) {
+        const InverseDynamicsSample& s = series.samples[k];
+        return engine_values[k](j) - (forces ? s.tau(j) : s.u(j));
+    };
+    double peak = 0.0;
+    for (std::size_t k = 0; k < series.samples.size(); ++k) {
+        for (int j = 0; j < 3; ++j) peak = std::max(peak, std::abs(difference(k, j)));
+    }
+    const AxisUnit unit = axisUnit(peak, forces ? "N" : "m");
+    panel.ylabel = (forces ? "{/Symbol Dt}_j [" : "{/Symbol D}u_j [") + unit.unit + "]";
     for (int j = 0; j < 3; ++j) {
         PlotSeries line;
         line.label = (forces ? "{/Symbol Dt}_" : "{/Symbol D}u_") + std::to_string(j + 1);
         for (std::size_t k = 0; k < series.samples.size(); ++k) {
-            const InverseDynamicsSample& s = series.samples[k];
-            line.x.push_back(s.t);
-            line.y.push_back(forces ? 1e6 * (engine_values[k](j) - s.tau(j)) : 1e9 * (engine_values[k](j) - s.u(j)));
+            line.x.push_back(series.samples[k].t);
+            line.y.push_back(unit.factor * difference(k, j));
         }
         line.style = "lines lw 1 lc " + std::to_string(j + 1);
         panel.series.push_back(std::move(line));
@@ -293,18 +303,47 @@ void run(const ReproduceOptions& options) {
     std::ostringstream summary;
     summary << "# nocdyn reproduce: the paper's 3-PRR results\n\n"
             << "Robot: the paper's prototype (`robots/paper-3prr.yaml`, eq. 32 and Table I, SI units).\n\n";
+    // about two minutes in all: one progress line on a terminal names the section running
+#ifdef NOCDYN_HAS_ENGINES
+    Steps steps("nocdyn reproduce", 9, options.quiet);
+#else
+    Steps steps("nocdyn reproduce", 8, options.quiet);
+#endif
+    // --quiet: the sections' console lines (the replay's timing) go nowhere
+    std::ostringstream discarded;
+    std::streambuf* const console = options.quiet ? std::cout.rdbuf(discarded.rdbuf()) : nullptr;
+    struct Restore {
+        explicit Restore(std::streambuf* saved) : buffer(saved) {}
+        Restore(const Restore&) = delete;
+        Restore& operator=(const Restore&) = delete;
+        ~Restore() {
+            if (buffer != nullptr) std::cout.rdbuf(buffer);
+        }
+        std::streambuf* buffer;
+    } restore{console};
+    steps.next("the paper's trajectories");
     reproduceTrajectories(robot, out, summary);
+    steps.next("animations");
     reproduceAnimations(out, summary);
+    steps.next("forward-dynamics round trip");
     reproduceRoundTrip(robot, summary);
+    steps.next("closed-loop control on the Simbody plant");
     reproduceControl(robot, out, summary, options.closed_loop_duration);
+    steps.next("operating envelope");
     reproduceEnvelope(robot, out, summary);
+    steps.next("workspace");
     reproduceWorkspace(robot, out, summary);
+    steps.next("El Centro replay");
     reproduceShake(out.string(), summary);
 #ifdef NOCDYN_HAS_ENGINES
+    steps.next("example robots against Simbody and MuJoCo");
     reproduceExampleRobots(out, summary, options.closed_loop_duration);
 #endif
+    steps.next("payload identification experiment");
     reproduceIdentification(out, summary, options.identification_duration);
+    steps.finish();
     io::writeTextFile((out / "summary.md").string(), summary.str());
+    if (options.quiet) return;
     std::cout << "nocdyn reproduce: wrote " << (out / "summary.md").string() << ", CSV files and figures in "
               << out.string() << "/\n";
 }
@@ -339,6 +378,8 @@ void addReproduceCommand(CLI::App& app) {
                      "is a quick check of the same code, its estimates from less data")
         ->check(CLI::Range(0.01, 60.0))
         ->capture_default_str();
+    command->add_flag("--quiet,-q", options->quiet,
+                      "Print nothing on stdout and no progress line (results in the folder; errors still on stderr)");
     command->callback([options] { run(*options); });
 }
 

@@ -1,12 +1,16 @@
 // nocdyn workspace: the feasible region of C at one orientation with both kinds of
 // singularity curves (workspace.hpp), as a figure, a summary line and optionally CSV.
+#include <nlohmann/json.hpp>
+
 #include <cstdio>
+#include <iostream>
 #include <memory>
 #include <string>
 
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/workspace.hpp"
+#include "progress.hpp"
 #include "workspace_figure.hpp"
 
 namespace nocdyn::cli {
@@ -18,17 +22,37 @@ struct Options {
     double theta = 0.0;
     bool theta_given = false;
     int resolution = 201;
+    bool quiet = false, json = false;
 };
+
+/// The summary for a script: the grid, the feasible area and the singularity points (SI units).
+nlohmann::json summaryJson(const WorkspaceMap& map, const Model& model) {
+    nlohmann::json out;
+    out["robot"] = model.description.name;
+    out["theta"] = map.theta;
+    out["area"] = map.area;
+    out["resolution"] = map.n;
+    out["step"] = map.step;
+    out["x_range"] = {map.x0, map.x0 + (map.n - 1) * map.step};
+    out["y_range"] = {map.y0, map.y0 + (map.n - 1) * map.step};
+    out["limb_singular_points"] = map.limb_singular.size();
+    out["actuation_singular_points"] = map.actuation_singular.size();
+    return out;
+}
 
 void run(const Options& options) {
     const Model model(loadRobotDescriptionOrDefault(options.robot));
     WorkspaceOptions ws;
     ws.theta = options.theta_given ? options.theta : model.home(0);
     ws.resolution = options.resolution;
+    Steps steps("nocdyn workspace", 1, options.quiet);
+    ws.progress = [&steps](int done, int total) { steps.count(done, total, "grid column"); };
     const WorkspaceMap map = workspaceMap(model, ws);
+    steps.finish();
     if (!options.output.empty()) {
         io::Table table;
         table.columns = {"x", "y", "cell"};
+        table.categories = {{}, {}, {"feasible", "unreachable", "range", "singular"}};  // WorkspaceCell in order
         for (int i = 0; i < map.n; ++i) {
             for (int k = 0; k < map.n; ++k) {
                 table.rows.push_back(
@@ -38,7 +62,11 @@ void run(const Options& options) {
         writeTable(table, options.output);
     }
     if (!options.figure.empty()) renderFigure(workspaceFigure(map, model, {}), options.figure);
-    std::printf("%s\n", workspaceSummary(map).c_str());
+    if (options.json) {
+        std::cout << summaryJson(map, model).dump(2) << "\n";
+    } else if (!options.quiet) {
+        std::printf("%s\n", workspaceSummary(map).c_str());
+    }
 }
 
 }  // namespace
@@ -50,10 +78,9 @@ void addWorkspaceCommand(CLI::App& app) {
         "Workspace of any robot at one platform orientation: the region of C reachable with every limb on its\n"
         "home branch, within every joint's range and away from singularities (condition numbers within the\n"
         "robot's max_condition), with the limb singularities (type 1: a limb at the edge of its reach) and the\n"
-        "actuation singularities (type 2: det A = 0) drawn as curves (--figure STEM: STEM.png, STEM.svg), and its "
-        "area.\n"
-        "The grid is fitted to the feasible region. CSV: x, y [m] and cell (0 feasible, 1 out of reach, 2 a\n"
-        "joint out of range, 3 singular).\n"
+        "actuation singularities (type 2: det A = 0) drawn as curves (--figure STEM: STEM.png, STEM.svg), and its area.\n"
+        "The grid is fitted to the feasible region. CSV: x, y [m] and cell (feasible, unreachable: out of\n"
+        "reach, range: a joint out of its range, singular).\n"
         "Example: nocdyn workspace --robot robots/3-rrr.yaml --theta 0.1");
     addRobotOption(*command, options->robot);
     command->add_option("--theta", options->theta, "Platform orientation [rad] [default: the robot's home]")
@@ -64,6 +91,14 @@ void addWorkspaceCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--output,-o", options->output, "CSV of the grid [default: none]")->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");
+    command->add_flag("--quiet,-q", options->quiet,
+                      "Print nothing (no summary, no progress line); errors still go to stderr");
+    command
+        ->add_flag(
+            "--json", options->json,
+            "Print the summary as JSON instead (robot, theta [rad], area [m^2], resolution, step [m], x_range and\n"
+            "y_range [m], limb_singular_points, actuation_singular_points)")
+        ->excludes("--quiet");
     command->callback([options] { run(*options); });
 }
 

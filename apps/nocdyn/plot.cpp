@@ -7,6 +7,7 @@
 
 #include <cctype>
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <sstream>
@@ -139,6 +140,23 @@ void runGnuplot(const std::string& text, int out_fd, const std::string& out_path
 }
 
 }  // namespace
+
+AxisUnit axisUnit(double peak, const std::string& base) {
+    peak = std::abs(peak);
+    if (!std::isfinite(peak) || peak >= 1.0) return {1.0, base};
+    const bool metres = base == "m";
+    const struct {
+        double factor;
+        const char* prefix;
+    } prefixes[] = {{1e3, "m"}, {1e6, "{/Symbol m}"}, {1e9, "n"}};
+    for (const auto& p : prefixes) {
+        if (!metres && p.factor > 1e6) break;
+        if (peak * p.factor >= 1.0) return {p.factor, std::string(p.prefix) + base};
+    }
+    if (peak == 0.0) return {1.0, base};
+    const int exponent = static_cast<int>(std::floor(std::log10(peak)));
+    return {std::pow(10.0, -exponent), "10^{" + std::to_string(exponent) + "} " + base};
+}
 
 std::string literalText(const std::string& text) {
     std::string out;

@@ -28,6 +28,18 @@ struct Figure {
     int width = 1000, height = 0;   ///< pixels; height 0 = 380 per panel
 };
 
+/// The unit an axis is labelled in: values in the base unit times `factor` are numbers in `unit`.
+struct AxisUnit {
+    double factor = 1.0;
+    std::string unit;  ///< gnuplot enhanced text, e.g. "mN", "{/Symbol m}m", "10^{-13} N"
+};
+
+/// The unit for values whose largest magnitude is `peak`, in the base unit `base` ("N" or
+/// "m"): the prefix (none, m, u, and n for metres) that puts the peak in [1, 1000), the base
+/// unit for larger values, and a power of ten of the base unit below the smallest prefix (a
+/// difference of 1e-13 N is drawn as 1.5 on an axis in 10^{-13} N, not 1.5x10^{-7} uN).
+[[nodiscard]] AxisUnit axisUnit(double peak, const std::string& base);
+
 /// `text` (e.g. a robot or trajectory name from a file) marked up to be shown as it is by the
 /// enhanced-text terminals: `\ @ _ ^ { } & ~` are escaped.
 [[nodiscard]] std::string literalText(const std::string& text);

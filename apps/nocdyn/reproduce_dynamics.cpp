@@ -39,12 +39,17 @@ Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopR
                       run.plant.c_str(), *std::max_element(run.rms_error.begin(), run.rms_error.end()) * 1e6);
         panel.title = heading;
         panel.xlabel = "t [s]";
-        panel.ylabel = "u_{d,j} - u_j [{/Symbol m}m]";
+        double peak = 0.0;
+        for (std::size_t k = 0; k < run.t.size(); ++k)
+            peak = std::max(peak, (run.u_d[k] - run.u[k]).cwiseAbs().maxCoeff());
+        const AxisUnit unit = axisUnit(peak, "m");  // PD errors are tens of um, computed torque's tens of nm
+        panel.ylabel = "u_{d,j} - u_j [" + unit.unit + "]";
         for (int j = 0; j < run.actuators; ++j) {
             PlotSeries line;
             line.label = "e_" + std::to_string(j + 1);
             line.x = run.t;
-            for (std::size_t k = 0; k < run.t.size(); ++k) line.y.push_back((run.u_d[k](j) - run.u[k](j)) * 1e6);
+            for (std::size_t k = 0; k < run.t.size(); ++k)
+                line.y.push_back((run.u_d[k](j) - run.u[k](j)) * unit.factor);
             line.style = "lines lw 2";
             panel.series.push_back(std::move(line));
         }
@@ -56,7 +61,7 @@ Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopR
 namespace {
 
 /// The short form's words for the limits: its actuated joints' range is the stroke and their
-/// effort the peak force. CSV code: 0 stroke, 1 force, 2 workspace.
+/// effort the peak force. CSV: `stroke`, `force` or `workspace` (kEnvelopeLimitWords).
 double limitCode(EnvelopeLimit limit) {
     switch (limit) {
         case EnvelopeLimit::effort:
@@ -83,6 +88,7 @@ const char* limitWord(EnvelopeLimit limit) {
 
 io::Table envelopeTable(const std::vector<EnvelopePoint>& points) {
     io::Table table;
+    table.categories = {{"theta", "x", "y"}, {}, {}, {"stroke", "force", "workspace"}};
     table.columns = {"axis", "frequency",           "amplitude",  "limit",
                      "limb", "kinematic_amplitude", "peak_force", "peak_stroke"};
     for (const auto& p : points) {

@@ -13,6 +13,7 @@
 // actuator.
 #pragma once
 
+#include <functional>
 #include <vector>
 
 #include "nocdyn/model.hpp"
@@ -40,6 +41,8 @@ struct EnvelopeOptions {
     int frequencies = 41;              ///< log-spaced, both ends included
     int samples_per_period = 256;      ///< a multiple of 4 puts samples on the sinusoid's peaks
     double relative_tolerance = 1e-6;  ///< bisection stops when (hi - lo) <= tol * hi
+    /// Called after each point with the points done and their total (e.g. a progress line).
+    std::function<void(int done, int total)> progress = {};
 };
 
 /// The largest amplitude at one frequency along one axis.

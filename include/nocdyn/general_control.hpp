@@ -26,6 +26,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -153,6 +154,8 @@ struct PoseLoopOptions {
     bool encoders = false;
     double noise_u = 0.0;   ///< std. dev. of each encoder [m or rad]
     double noise_du = 0.0;  ///< of each encoder rate [m/s or rad/s]
+    /// Called at each tick with its time [s] (e.g. a progress line); none by default.
+    std::function<void(double t)> progress = {};
 };
 
 /// One closed-loop run, one row per controller tick (state at the tick, before its forces act).

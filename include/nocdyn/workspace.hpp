@@ -9,6 +9,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <vector>
 
 #include "nocdyn/model.hpp"
@@ -19,6 +20,8 @@ struct WorkspaceOptions {
     double theta = 0.0;    ///< platform orientation [rad]
     int resolution = 201;  ///< grid points per side, in [11, 2001]
     bool curves = true;    ///< trace the singularity curves (the area and conditions need none)
+    /// Called after each grid column with the columns done and their total (a progress line).
+    std::function<void(int done, int total)> progress = {};
 };
 
 /// What limits each grid point.

@@ -43,9 +43,49 @@ std::size_t formatNumber(char* first, char* last, double value) {
     return static_cast<std::size_t>(result.ptr - first);
 }
 
+bool hasCategories(const Table& table) {
+    for (const auto& names : table.categories) {
+        if (!names.empty()) return true;
+    }
+    return false;
+}
+
+/// The whole table as text, category columns as their words (throws for a non-finite number or
+/// a code with no name).
+std::string formatWithCategories(const Table& table) {
+    std::string text;
+    for (std::size_t k = 0; k < table.columns.size(); ++k) text += (k ? "," : "") + table.columns[k];
+    text += '\n';
+    char cell[kMaxNumberChars];
+    for (const auto& row : table.rows) {
+        for (std::size_t k = 0; k < row.size(); ++k) {
+            if (k) text += ',';
+            const double value = row[k];
+            if (!std::isfinite(value)) {
+                throw Error("CSV column " + table.columns[k] + ": a non-finite number cannot be written");
+            }
+            if (k < table.categories.size() && !table.categories[k].empty()) {
+                const auto& names = table.categories[k];
+                if (value < 0.0 || value >= static_cast<double>(names.size()) || value != std::floor(value)) {
+                    throw Error("CSV column " + table.columns[k] + ": no name for category " + std::to_string(value));
+                }
+                text += names[static_cast<std::size_t>(value)];
+            } else {
+                text.append(cell, formatNumber(cell, cell + sizeof cell, value));
+            }
+        }
+        text += '\n';
+    }
+    return text;
+}
+
 }  // namespace
 
 void writeCsv(std::ostream& out, const Table& table) {
+    if (hasCategories(table)) {
+        out << formatWithCategories(table);
+        return;
+    }
     for (std::size_t k = 0; k < table.columns.size(); ++k) out << (k ? "," : "") << table.columns[k];
     out << '\n';
     char cell[kMaxNumberChars];
@@ -169,6 +209,10 @@ void writeCsvFile(const std::string& path, const Table& table) {
 }
 
 void writeCsv(OutputFile& out, const Table& table) {
+    if (hasCategories(table)) {
+        out.write(formatWithCategories(table));
+        return;
+    }
     CsvWriter csv(out, table.columns);
     for (const auto& row : table.rows) csv.row(row);
     csv.finish();

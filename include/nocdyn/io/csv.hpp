@@ -26,6 +26,11 @@ struct Table {
     std::vector<std::vector<double>> rows;
     /// 1-based line of each row in the file it was read from (empty for a table built in code).
     std::vector<std::size_t> lines = {};
+    /// Columns that hold categories: for column k with names, cell value c (an integer code) is
+    /// written as the word categories[k][c] ("effort", not 2), so that a person reads the file.
+    /// Empty (the default) or an empty entry: the column is written as numbers. Written only;
+    /// the reader takes numbers.
+    std::vector<std::vector<std::string>> categories = {};
 
     /// Index of a column; throws nocdyn::Error naming the column when it is absent.
     [[nodiscard]] std::size_t column(const std::string& name) const;
