@@ -46,6 +46,45 @@ TEST(CliShake, WritesTheTargetAndAchievedAccelerationAndTheScales) {
     EXPECT_TRUE(std::filesystem::exists(dir / "shake_acceleration.png"));
 }
 
+TEST(CliShake, ASuiteOfRecordsGivesOneRowEachAndJudgesThemAgainstTheThresholds) {
+    const auto dir = freshScratchDirectory("cli_shake_suite");
+    // a second record: El Centro with CR CR LF line ends
+    const std::filesystem::path other = dir / "crcrlf.AT2";
+    {
+        const std::string text = readWhole(kRecord);
+        std::string converted;
+        for (char c : text) {
+            if (c == '\n') {
+                converted += "\r\r\n";
+            } else {
+                converted += c;
+            }
+        }
+        std::ofstream(other, std::ios::binary) << converted;
+    }
+    const CliResult r =
+        runCli("shake --robot " + kRobot + " --record " + kRecord + " --record " + other.string() +
+               " --window 1.5 --plant nocdyn-rk4 --rate 4000 --jobs 2 --max-rms 0.2 --out " + dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const std::string summary = readWhole(dir / "summary.md");
+    EXPECT_NE(summary.find("| elcentro_1940_ns.AT2 |"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("| crcrlf.AT2 |"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("2 of 2 records pass"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("ADXL355"), std::string::npos) << summary;
+    // the same record in two spellings plays alike: the same scales, the same scores
+    const nlohmann::json a = nlohmann::json::parse(readWhole(dir / "elcentro_1940_ns" / "shake.json"));
+    const nlohmann::json b = nlohmann::json::parse(readWhole(dir / "crcrlf" / "shake.json"));
+    EXPECT_EQ(a["time_scale"].get<double>(), b["time_scale"].get<double>());
+    EXPECT_EQ(a["metrics"]["ax"]["rms_error"].get<double>(), b["metrics"]["ax"]["rms_error"].get<double>());
+    // a threshold no replay meets fails them all
+    const CliResult strict = runCli("shake --robot " + kRobot + " --record " + kRecord + " --record " + other.string() +
+                                    " --window 1.5 --plant nocdyn-rk4 --rate 4000 --max-rms 1e-6 "
+                                    "--out " +
+                                    (dir / "strict").string());
+    ASSERT_EQ(strict.exit_code, 0) << strict.err;
+    EXPECT_NE(strict.out.find("0 of 2 records pass"), std::string::npos) << strict.out;
+}
+
 TEST(CliShake, RefusesATruncatedRecordNamingTheLine) {
     const auto dir = freshScratchDirectory("cli_shake");
     const std::filesystem::path bad = dir / "short.AT2";
