@@ -113,8 +113,8 @@ BENCHMARK_CAPTURE(BM_ShakeClosedLoop, simbody, std::string("simbody"))->Unit(ben
 #endif
 
 // The shake-table controller of `nocdyn shake` (the default --controller table: 1 um encoders
-// through the direct-kinematics tracker, ADXL355 accelerometers, the Kalman estimator, f_n = 5
-// Hz, acceleration correction g = 0.05) at 10 kHz over the same 20 ms, 0.5 kg payload on the
+// through the direct-kinematics tracker, ADXL355 accelerometers, the Kalman estimator, f_n = 6
+// Hz, no acceleration correction) at 10 kHz over the same 20 ms, 0.5 kg payload on the
 // plant only. simulated_per_cpu_s: seconds of motion per CPU second (goal: 10).
 namespace {
 

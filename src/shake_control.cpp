@@ -98,7 +98,15 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
     const TaskGains gains = taskCriticallyDamped(options.natural_frequency);
     PoseController controller(model, ControlLaw::computed_torque, gains);
     PoseLoopResult result;
-    result.controller = "shake table (estimator, model feed-forward, acceleration correction)";
+    {
+        std::ostringstream name;
+        name << "shake table: Kalman estimator of encoders" << (sensors.accelerometer ? " and accelerometers" : "")
+             << ", model feed-forward, pose feedback f_n = " << options.natural_frequency << " Hz";
+        if (sensors.accelerometer && options.acceleration_gain > 0.0) {
+            name << ", acceleration correction g = " << options.acceleration_gain;
+        }
+        result.controller = name.str();
+    }
     result.plant = plant.name();
     result.actuators = n;
     for (auto* v : {&result.p, &result.p_d}) v->reserve(times.size());

@@ -85,6 +85,28 @@ TEST(CliShake, ASuiteOfRecordsGivesOneRowEachAndJudgesThemAgainstTheThresholds) 
     EXPECT_NE(strict.out.find("0 of 2 records pass"), std::string::npos) << strict.out;
 }
 
+TEST(CliShake, IdentifiesThePayloadRaisesTheAmplitudeAndIteratesTheDrive) {
+    const auto dir = freshScratchDirectory("cli_shake_identify");
+    const CliResult r = runCli("shake --robot " + kRobot + " --record " + kRecord +
+                               " --window 1.5 --plant nocdyn-rk4 --rate 4000 --identify-payload --amplitude 1.5 "
+                               "--iterations 2 --excitation-duration 1 --out " +
+                               dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("times 1.5 before the fit, as asked (--amplitude)"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("drive iteration: RMS error per pass 0: "), std::string::npos) << r.out;
+    const nlohmann::json json = nlohmann::json::parse(readWhole(dir / "shake.json"));
+    // the plant carries 0.5 kg at the platform's origin (the default)
+    EXPECT_NEAR(json["payload_estimate"]["mass"].get<double>(), 0.5, 0.01);
+    EXPECT_NEAR(json["payload_estimate"]["com"][0].get<double>(), 0.0, 1e-3);
+    EXPECT_EQ(json["amplitude_requested"].get<double>(), 1.5);
+    const auto passes = json["pass_rms_error"].get<std::vector<double>>();
+    ASSERT_GE(passes.size(), 2u);
+    ASSERT_LE(passes.size(), 3u);
+    const auto kept = json["pass_kept"].get<std::size_t>();
+    EXPECT_EQ(json["metrics"]["ax"]["rms_error"].get<double>(), passes.at(kept));
+    for (double e : passes) EXPECT_GE(e, passes.at(kept));
+}
+
 TEST(CliShake, RefusesATruncatedRecordNamingTheLine) {
     const auto dir = freshScratchDirectory("cli_shake");
     const std::filesystem::path bad = dir / "short.AT2";

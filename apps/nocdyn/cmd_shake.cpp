@@ -180,6 +180,8 @@ void run(ShakeOptions options) {
     const bool table = settings.controller == "table";
     if (options.natural_frequency) {
         (table ? settings.table.natural_frequency : settings.natural_frequency) = *options.natural_frequency;
+    } else if (table && settings.identify_payload) {
+        settings.table.natural_frequency = 2.0;  // the model carries the payload: the feedback holds the drift only
     }
     settings.table.sensors.accel_noise_density = options.accel_density_ug * 1e-6 * kGravity;
     settings.table.sensors.accelerometer = !options.no_accelerometer;
@@ -270,7 +272,7 @@ void addShakeCommand(CLI::App& app) {
         ->capture_default_str();
     command
         ->add_option("--natural-frequency", options->natural_frequency,
-                     "f_n of the pose feedback [Hz] (default 5 with --controller table, 30 with pose)")
+                     "f_n of the pose feedback [Hz] (default: table 6, or 2 with --identify-payload; pose 30)")
         ->check(CLI::Range(0.1, 1e4));
     command
         ->add_option("--acceleration-gain", options->settings.table.acceleration_gain,
@@ -317,6 +319,11 @@ void addShakeCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--iteration-gain", options->settings.iteration_gain, "Drive-signal iteration gain")
         ->check(CLI::Range(0.01, 1.0))
+        ->capture_default_str();
+    command
+        ->add_option("--excitation-duration", options->settings.excitation_duration,
+                     "--identify-payload: length of the excitation [s] (whole periods of its 5 Hz base)")
+        ->check(CLI::Range(0.2, 600.0))
         ->capture_default_str();
     command->add_option("--jobs", options->jobs, "Suite: records played at once (0: one per core)")
         ->check(CLI::Range(0u, 256u))

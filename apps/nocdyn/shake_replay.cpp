@@ -61,6 +61,7 @@ PayloadIdentification identifyTablePayload(const RobotDescription& robot, RobotP
     ShakeLoopOptions loop = settings.table;
     loop.rate = settings.rate;
     loop.duration = settings.excitation_duration;
+    loop.seed = settings.table.seed + 1000;  // a run of its own, before the replay's
     const PoseLoopResult run = runShakeLoop(model, plant, design.trajectory, loop);
     IdentificationOptions options;
     options.held_forces = true;
@@ -99,7 +100,6 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
     out.driven = {!fit.alpha.empty(), !fit.ax.empty(), !fit.ay.empty()};
     const std::unique_ptr<RobotPlant> plant =
         makePlant(settings.plant, withPayload(robot, settings.payload), settings.accuracy);
-    const auto start = std::chrono::steady_clock::now();
     RobotDescription known = robot;
     if (settings.controller == "table" && settings.identify_payload) {
         out.payload = identifyTablePayload(robot, *plant, settings);
@@ -107,12 +107,14 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         known = withPayload(robot, Payload{e.mass, e.inertia, e.com});
     }
     const Model controller_model(known);
-    // one pass of a drive (a fitted motion) on the plant
-    const auto play = [&](const PoseTrajectory& drive, EstimatorReport* report) {
+    // one pass of a drive (a fitted motion) on the plant; each pass draws its own sensor noise
+    // (a new run of the table), so that the iteration corrects the table's repeatable error only
+    const auto play = [&](const PoseTrajectory& drive, EstimatorReport* report, int pass) {
         if (settings.controller == "table") {
             ShakeLoopOptions loop = settings.table;
             loop.rate = settings.rate;
             loop.duration = fit.t.back();
+            loop.seed = settings.table.seed + static_cast<unsigned>(pass);
             return runShakeLoop(controller_model, *plant, drive, loop, report);
         }
         if (settings.controller != "pose")
@@ -125,7 +127,7 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         loop.noise_angle = settings.noise_pose;
         loop.noise_position = settings.noise_pose;
         loop.noise_rate = settings.noise_rate;
-        loop.seed = settings.seed;
+        loop.seed = settings.seed + static_cast<unsigned>(pass);
         return runPoseLoop(controller, *plant, drive, loop);
     };
     const int scored_axis = out.driven[1] ? 1 : out.driven[2] ? 2 : 0;
@@ -135,7 +137,9 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         return relativeRmsError(std::span(target(fit, scored_axis)).first(n),
                                 std::span(achieved[static_cast<std::size_t>(scored_axis)]).first(n));
     };
-    out.loop = play(fit.trajectory, &out.estimator);
+    const auto start = std::chrono::steady_clock::now();
+    out.loop = play(fit.trajectory, &out.estimator, 0);
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out.pass_rms.push_back(passRms(out.loop, out.achieved));
     // drive-signal iteration (time waveform replication)
     std::array<std::vector<double>, 3> drive = {fit.alpha, fit.ax, fit.ay};
@@ -154,14 +158,18 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         next.alpha = drive[0];
         next.ax = drive[1];
         next.ay = drive[2];
+        // the drive may use half of the reserve the target keeps (margin): its corrections make up
+        // for what the plant does not follow
         FitOptions options = settings.fit;
         options.time_scale = fit.time_scale;
+        options.margin = 0.5 * settings.fit.margin;
+        options.highpass = 0.0;  // the target is filtered already
         const FittedRecord refit = fitRecord(model, next, options);
         if (refit.amplitude_scale < 1.0) {
             out.iteration_stop = "pass " + std::to_string(pass) + "'s drive would leave the limits";
             break;
         }
-        PoseLoopResult loop = play(refit.trajectory, nullptr);
+        PoseLoopResult loop = play(refit.trajectory, nullptr, pass);
         std::array<std::vector<double>, 3> achieved;
         const double rms = passRms(loop, achieved);
         out.pass_rms.push_back(rms);
@@ -179,7 +187,6 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         }
     }
     if (settings.iterations > 0 && out.iteration_stop.empty()) out.iteration_stop = "the last pass asked";
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     char text[512];
     if (settings.controller == "table") {
         const TableSensors& s = settings.table.sensors;

@@ -29,7 +29,8 @@ struct ShakeSettings {
     double excitation_duration = 2.0;  ///< [s] of the payload excitation
     /// Drive-signal iteration: at most this many passes after the first, each playing the drive
     /// a_drive + gain (a_target - a_achieved) of the last; stops when the RMS error falls by less
-    /// than iteration_tolerance (relative) or the drive would leave the limits; the best pass is kept.
+    /// than iteration_tolerance (relative) or the drive would leave the limits less half the margin;
+    /// the best pass is kept.
     int iterations = 0;
     double iteration_gain = 0.7;
     double iteration_tolerance = 0.02;
@@ -68,7 +69,7 @@ struct ShakeOutcome {
     std::array<ShakeScore, 3> score;              ///< of the driven axes
     double period_min = 0.0, period_max = 0.0;    ///< the passband's periods [s]
     LimitUse achieved_use;                        ///< of the limits (no margin), from the forces and u
-    double seconds = 0.0;                         ///< wall time of the closed loop [s]
+    double seconds = 0.0;                         ///< wall time of the first pass of the closed loop [s]
     double margin = 0.0;                          ///< the fit's margin
 };
 
