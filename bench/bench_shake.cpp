@@ -78,18 +78,21 @@ private:
 };
 #endif
 
+/// The plant `which` ("simbody", "nocdyn_rk4", else "nocdyn") of the prototype carrying 0.5 kg.
+std::unique_ptr<nocdyn::RobotPlant> loadedPlant(const nocdyn::RobotDescription& robot, const std::string& which) {
+    const nocdyn::RobotDescription loaded = nocdyn::withPayload(robot, {0.5, 0.0, nocdyn::Vector2::Zero()});
+#ifdef NOCDYN_HAS_ENGINES
+    if (which == "simbody") return std::make_unique<SimbodyBenchPlant>(loaded);
+#endif
+    if (which == "nocdyn_rk4") return std::make_unique<nocdyn::RungeKuttaRobotPlant>(nocdyn::Model(loaded));
+    return std::make_unique<nocdyn::SimulatorRobotPlant>(nocdyn::Model(loaded));
+}
+
 void BM_ShakeClosedLoop(benchmark::State& state, const std::string& which) {
-    const bool simbody = which == "simbody";
     const nocdyn::RobotDescription robot = nocdyn::io::exampleRobot("paper-3prr-general");
     const nocdyn::Model model(robot);
     const nocdyn::FittedRecord fit = nocdyn::fitRecord(model, elCentro(), nocdyn::FitOptions{});
-    const nocdyn::RobotDescription loaded = nocdyn::withPayload(robot, {0.5, 0.0, nocdyn::Vector2::Zero()});
-    std::unique_ptr<nocdyn::RobotPlant> plant;
-#ifdef NOCDYN_HAS_ENGINES
-    if (simbody) plant = std::make_unique<SimbodyBenchPlant>(loaded);
-#endif
-    if (which == "nocdyn_rk4") plant = std::make_unique<nocdyn::RungeKuttaRobotPlant>(nocdyn::Model(loaded));
-    if (!plant) plant = std::make_unique<nocdyn::SimulatorRobotPlant>(nocdyn::Model(loaded));
+    const std::unique_ptr<nocdyn::RobotPlant> plant = loadedPlant(robot, which);
     nocdyn::PoseController controller(model, nocdyn::ControlLaw::computed_torque, nocdyn::taskCriticallyDamped(30.0));
     nocdyn::PoseLoopOptions options;
     options.rate = 1e4;
@@ -122,13 +125,7 @@ void BM_ShakeTableLoop(benchmark::State& state, const std::string& which) {
     const nocdyn::RobotDescription robot = nocdyn::io::exampleRobot("paper-3prr-general");
     const nocdyn::Model model(robot);
     const nocdyn::FittedRecord fit = nocdyn::fitRecord(model, elCentro(), nocdyn::FitOptions{});
-    const nocdyn::RobotDescription loaded = nocdyn::withPayload(robot, {0.5, 0.0, nocdyn::Vector2::Zero()});
-    std::unique_ptr<nocdyn::RobotPlant> plant;
-#ifdef NOCDYN_HAS_ENGINES
-    if (which == "simbody") plant = std::make_unique<SimbodyBenchPlant>(loaded);
-#endif
-    if (which == "nocdyn_rk4") plant = std::make_unique<nocdyn::RungeKuttaRobotPlant>(nocdyn::Model(loaded));
-    if (!plant) plant = std::make_unique<nocdyn::SimulatorRobotPlant>(nocdyn::Model(loaded));
+    const std::unique_ptr<nocdyn::RobotPlant> plant = loadedPlant(robot, which);
     nocdyn::ShakeLoopOptions options;
     options.rate = 1e4;
     options.duration = kLoopSeconds;

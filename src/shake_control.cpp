@@ -139,14 +139,7 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
     std::mt19937 rng(options.seed);
     std::normal_distribution<double> normal(0.0, 1.0);
     PoseTracker tracker(reference.p);
-    TrackerOptions tracker_options;
-    double inv_scale = 0.0;
-    for (int a = 0; a < n; ++a) {
-        const auto aa = static_cast<std::size_t>(a);
-        inv_scale = std::max(inv_scale, model.limb[static_cast<std::size_t>(model.actuator_limb[aa])]
-                                            .inv_joint_scale[static_cast<std::size_t>(model.actuator_joint[aa])]);
-    }
-    tracker_options.max_residual = std::max(tracker_options.max_residual, 10.0 * sensors.encoder_noise * inv_scale);
+    const TrackerOptions tracker_options = noisyEncoderTrackerOptions(model, sensors.encoder_noise);
 
     ActuatorVector tau(n), u_measured(n);
     Twist y = Twist::Zero();           // the accelerometers' filtered output
@@ -206,27 +199,8 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
         plant.advance(dt);
     }
 
-    const auto un = static_cast<std::size_t>(n);
-    result.rms_error.assign(un, 0.0);
-    result.peak_error.assign(un, 0.0);
-    result.peak_tau.assign(un, 0.0);
-    const std::size_t half = result.t.size() / 2;
-    for (std::size_t k = 0; k < result.t.size(); ++k) {
-        const Vector3 e_p = (result.p_d[k] - result.p[k]).cwiseAbs();
-        result.pose_rms_error += e_p.cwiseAbs2();
-        result.pose_peak_error = result.pose_peak_error.cwiseMax(e_p);
-        if (k >= half) result.pose_late_peak_error = result.pose_late_peak_error.cwiseMax(e_p);
-        for (std::size_t a = 0; a < un; ++a) {
-            const auto ai = static_cast<Eigen::Index>(a);
-            const double e = std::abs(result.u_d[k](ai) - result.u[k](ai));
-            result.rms_error[a] += e * e;
-            result.peak_error[a] = std::max(result.peak_error[a], e);
-            result.peak_tau[a] = std::max(result.peak_tau[a], std::abs(result.tau[k](ai)));
-        }
-    }
+    summarizeLoop(result);
     const double count = static_cast<double>(result.t.size());
-    result.pose_rms_error = (result.pose_rms_error / count).cwiseSqrt();
-    for (double& e : result.rms_error) e = std::sqrt(e / count);
     if (report != nullptr) {
         report->pose_rms_error = (pose_sq / count).cwiseSqrt();
         report->rate_rms_error = (rate_sq / count).cwiseSqrt();

@@ -107,6 +107,25 @@ TEST(CliShake, IdentifiesThePayloadRaisesTheAmplitudeAndIteratesTheDrive) {
     for (double e : passes) EXPECT_GE(e, passes.at(kept));
 }
 
+TEST(CliShake, AWeakRealRecordMeetsEveryGoalWithTheDefaults) {
+    // Borah Peak 1983, CEM 000: PGA 0.025 g, the pose-sensor controller's 36 % RMS error
+    const std::string record = std::string(NOCDYN_SOURCE_DIR) + "/../shared/data/borahpeak_1983_cem_000.AT2";
+    if (!std::filesystem::exists(record)) GTEST_SKIP() << "no " << record;
+    const auto dir = freshScratchDirectory("cli_shake_weak");
+    const CliResult r = runCli("shake --robot " + kRobot + " --record " + record +
+                               " --window 8 --plant nocdyn-rk4 --out " + dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const nlohmann::json json = nlohmann::json::parse(readWhole(dir / "shake.json"));
+    const nlohmann::json& ax = json["metrics"]["ax"];
+    // measured: 2.95 %, -0.09 %, no counted period outside, 58 % of actuator 2's stroke
+    EXPECT_LE(ax["rms_error"].get<double>(), 0.05);
+    EXPECT_LE(std::abs(ax["peak_error"].get<double>()), 0.05);
+    EXPECT_LE(ax["spectrum_share_outside_10_percent"].get<double>(), 0.05);
+    EXPECT_GE(ax["spectrum_periods_counted"].get<int>(), 30);
+    EXPECT_LE(json["achieved_limit_use"]["ratio"].get<double>(), 1.0);
+    EXPECT_EQ(json["amplitude_scale"].get<double>(), 1.0);
+}
+
 TEST(CliShake, RefusesATruncatedRecordNamingTheLine) {
     const auto dir = freshScratchDirectory("cli_shake");
     const std::filesystem::path bad = dir / "short.AT2";
@@ -115,6 +134,19 @@ TEST(CliShake, RefusesATruncatedRecordNamingTheLine) {
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("short.AT2:6:"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "o" / "shake.csv"));
+}
+
+TEST(CliShake, ASuiteRefusesABadRecordBeforeAnyReplayNamingItsFileAndLine) {
+    const auto dir = freshScratchDirectory("cli_shake_suite_bad");
+    const std::filesystem::path bad = dir / "records" / "bad.AT2";
+    std::filesystem::create_directories(bad.parent_path());
+    std::filesystem::copy_file(kRecord, dir / "records" / "a.AT2");
+    std::ofstream(bad) << "title\nevent\nunits g\nNPTS=  3, DT= .02 SEC\n0.1 0.2x 0.3\n";
+    const CliResult r = runCli("shake --record " + (dir / "records").string() + " --out " + (dir / "o").string());
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("bad.AT2:5: value 2 '0.2x'"), std::string::npos) << r.err;
+    EXPECT_FALSE(std::filesystem::exists(dir / "o" / "a" / "shake.json"));
+    EXPECT_FALSE(std::filesystem::exists(dir / "o" / "summary.md"));
 }
 
 TEST(CliShake, InverseDynamicsTakesASampledTrajectory) {

@@ -221,8 +221,11 @@ void addShakeCommand(CLI::App& app) {
         "Butterworth, order 4 forward and backward, odd-reflection padding), integrated to velocity and\n"
         "displacement, and scaled by similitude: time compressed by L with accelerations kept (displacement / L^2),\n"
         "L the least compression that keeps every actuator within (1 - margin) of its range, velocity and effort\n"
-        "(inverse dynamics of the fitted motion), else the amplitude is scaled down. The motion is then tracked by\n"
-        "computed torque on the plant carrying a payload the controller does not know, with sensor noise.\n"
+        "(inverse dynamics of the fitted motion), else the amplitude is scaled down. The motion is then played on\n"
+        "the plant carrying a payload the controller does not know, measured as a shake table measures it:\n"
+        "encoders and platform accelerometers fused by a Kalman estimator, model feed-forward with low-gain pose\n"
+        "feedback (--controller table; docs/earthquake-replay.md); optionally the payload identified first and the\n"
+        "drive iterated.\n"
         "Writes DIR/shake.csv (t,x,y,theta,ax,ay,alpha,ax_achieved,ay_achieved,alpha_achieved,u1..un,tau1..taun),\n"
         "DIR/shake.json (time_scale, amplitude_scale, metrics: RMS and peak acceleration errors, 5 %-damped\n"
         "pseudo-acceleration spectra) and figures DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}.");
