@@ -189,6 +189,47 @@ RobotDescription withPayload(RobotDescription robot, const Payload& payload) {
     return robot;
 }
 
+TrackerOptions noisyEncoderTrackerOptions(const Model& model, double noise_u) {
+    // redundant robots: noisy encoders are inconsistent by about noise_u (scaled)
+    double inv_scale = 0.0;
+    for (int a = 0; a < model.actuators; ++a) {
+        const auto aa = static_cast<std::size_t>(a);
+        inv_scale = std::max(inv_scale, model.limb[static_cast<std::size_t>(model.actuator_limb[aa])]
+                                            .inv_joint_scale[static_cast<std::size_t>(model.actuator_joint[aa])]);
+    }
+    TrackerOptions options;
+    options.max_residual = std::max(options.max_residual, 10.0 * noise_u * inv_scale);
+    return options;
+}
+
+void summarizeLoop(PoseLoopResult& result) {
+    const auto un = static_cast<std::size_t>(result.actuators);
+    result.rms_error.assign(un, 0.0);
+    result.peak_error.assign(un, 0.0);
+    result.peak_tau.assign(un, 0.0);
+    result.pose_rms_error.setZero();
+    result.pose_peak_error.setZero();
+    result.pose_late_peak_error.setZero();
+    if (result.t.empty()) return;
+    const std::size_t half = result.t.size() / 2;
+    for (std::size_t k = 0; k < result.t.size(); ++k) {
+        const Vector3 e_p = (result.p_d[k] - result.p[k]).cwiseAbs();
+        result.pose_rms_error += e_p.cwiseAbs2();
+        result.pose_peak_error = result.pose_peak_error.cwiseMax(e_p);
+        if (k >= half) result.pose_late_peak_error = result.pose_late_peak_error.cwiseMax(e_p);
+        for (std::size_t a = 0; a < un; ++a) {
+            const auto ai = static_cast<Eigen::Index>(a);
+            const double e = std::abs(result.u_d[k](ai) - result.u[k](ai));
+            result.rms_error[a] += e * e;
+            result.peak_error[a] = std::max(result.peak_error[a], e);
+            result.peak_tau[a] = std::max(result.peak_tau[a], std::abs(result.tau[k](ai)));
+        }
+    }
+    const double count = static_cast<double>(result.t.size());
+    result.pose_rms_error = (result.pose_rms_error / count).cwiseSqrt();
+    for (double& e : result.rms_error) e = std::sqrt(e / count);
+}
+
 PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const PoseTrajectory& trajectory,
                            const PoseLoopOptions& options, const Pose* start) {
     const Model& model = controller.model();
@@ -226,17 +267,8 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
     // encoders: the tracker from the reference's start (the working mode the plant starts in)
     Data sensor(model);
     PoseTracker tracker(start != nullptr ? *start : reference.p);
-    TrackerOptions tracker_options;
-    if (options.encoders) {
-        // redundant robots: noisy encoders are inconsistent by about noise_u (scaled)
-        double inv_scale = 0.0;
-        for (int a = 0; a < n; ++a) {
-            const auto aa = static_cast<std::size_t>(a);
-            inv_scale = std::max(inv_scale, model.limb[static_cast<std::size_t>(model.actuator_limb[aa])]
-                                                .inv_joint_scale[static_cast<std::size_t>(model.actuator_joint[aa])]);
-        }
-        tracker_options.max_residual = std::max(tracker_options.max_residual, 10.0 * options.noise_u * inv_scale);
-    }
+    const TrackerOptions tracker_options =
+        options.encoders ? noisyEncoderTrackerOptions(model, options.noise_u) : TrackerOptions{};
     Vector3 measurement_sq = Vector3::Zero();
     Pose next_p, next_dp, next_ddp;
     ActuatorVector u_measured(n);
@@ -281,28 +313,8 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
         plant.advance(dt);
     }
 
-    const auto un = static_cast<std::size_t>(n);
-    result.rms_error.assign(un, 0.0);
-    result.peak_error.assign(un, 0.0);
-    result.peak_tau.assign(un, 0.0);
-    const std::size_t half = result.t.size() / 2;
-    for (std::size_t k = 0; k < result.t.size(); ++k) {
-        const Vector3 e_p = (result.p_d[k] - result.p[k]).cwiseAbs();
-        result.pose_rms_error += e_p.cwiseAbs2();
-        result.pose_peak_error = result.pose_peak_error.cwiseMax(e_p);
-        if (k >= half) result.pose_late_peak_error = result.pose_late_peak_error.cwiseMax(e_p);
-        for (std::size_t a = 0; a < un; ++a) {
-            const auto ai = static_cast<Eigen::Index>(a);
-            const double e = std::abs(result.u_d[k](ai) - result.u[k](ai));
-            result.rms_error[a] += e * e;
-            result.peak_error[a] = std::max(result.peak_error[a], e);
-            result.peak_tau[a] = std::max(result.peak_tau[a], std::abs(result.tau[k](ai)));
-        }
-    }
-    const double count = static_cast<double>(result.t.size());
-    result.pose_rms_error = (result.pose_rms_error / count).cwiseSqrt();
-    result.measurement_rms_error = (measurement_sq / count).cwiseSqrt();
-    for (double& e : result.rms_error) e = std::sqrt(e / count);
+    summarizeLoop(result);
+    result.measurement_rms_error = (measurement_sq / static_cast<double>(result.t.size())).cwiseSqrt();
     return result;
 }
 

@@ -375,12 +375,25 @@ ShakeScore scoreShake(std::span<const double> target, std::span<const double> ac
     }
     score.target_sa = responseSpectrum(target, dt, score.periods);
     score.achieved_sa = responseSpectrum(achieved, dt, score.periods);
+    const double peak_sa = *std::max_element(score.target_sa.begin(), score.target_sa.end());
     int outside = 0;
     for (std::size_t k = 0; k < score.periods.size(); ++k) {
-        if (score.target_sa[k] > 0.0 && std::abs(score.achieved_sa[k] / score.target_sa[k] - 1.0) > 0.1) ++outside;
+        if (!(score.target_sa[k] > 0.0 && score.target_sa[k] >= 0.1 * peak_sa)) continue;
+        ++score.counted;
+        if (std::abs(score.achieved_sa[k] / score.target_sa[k] - 1.0) > 0.1) ++outside;
     }
-    score.share_outside = static_cast<double>(outside) / n_periods;
+    score.share_outside = score.counted > 0 ? static_cast<double>(outside) / score.counted : 0.0;
     return score;
+}
+
+double relativeRmsError(std::span<const double> target, std::span<const double> achieved, double reference) {
+    if (target.size() != achieved.size()) throw Error("score: target and achieved differ in length");
+    double se = 0.0, st = 0.0;
+    for (std::size_t i = 0; i < target.size(); ++i) {
+        se += (achieved[i] - target[i]) * (achieved[i] - target[i]);
+        st += (target[i] - reference) * (target[i] - reference);
+    }
+    return st > 0.0 ? std::sqrt(se / st) : 0.0;
 }
 
 RungeKuttaRobotPlant::RungeKuttaRobotPlant(const Model& model)

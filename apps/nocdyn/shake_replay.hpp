@@ -10,14 +10,31 @@
 
 #include "nocdyn/description.hpp"
 #include "nocdyn/general_control.hpp"
+#include "nocdyn/identification.hpp"
 #include "nocdyn/shake.hpp"
+#include "nocdyn/shake_control.hpp"
 
 namespace nocdyn::cli {
 
 struct ShakeSettings {
     FitOptions fit;
     std::string plant = "simbody";  ///< or "nocdyn", "nocdyn-rk4"
-    double rate = 10000.0;          ///< controller ticks per second [Hz]
+    /// "table": encoders, accelerometers, estimator, low-gain feedback and acceleration correction
+    /// (shake_control.hpp); "pose": computed torque on a noisy pose and rate sensor at f_n =
+    /// natural_frequency (noise_pose, noise_rate)
+    std::string controller = "table";
+    ShakeLoopOptions table;  ///< the table controller's gains and sensors (rate and duration unused)
+    double amplitude = 1.0;  ///< the record's accelerations times this before the fit (--amplitude)
+    bool identify_payload = false;
+    double excitation_duration = 2.0;  ///< [s] of the payload excitation
+    /// Drive-signal iteration: at most this many passes after the first, each playing the drive
+    /// a_drive + gain (a_target - a_achieved) of the last; stops when the RMS error falls by less
+    /// than iteration_tolerance (relative) or the drive would leave the limits less half the margin;
+    /// the best pass is kept.
+    int iterations = 0;
+    double iteration_gain = 0.7;
+    double iteration_tolerance = 0.02;
+    double rate = 10000.0;  ///< controller ticks per second [Hz]
     /// f_n of the error dynamics [Hz]: the sensor noise moves the platform by about K_p = (2 pi
     /// f_n)^2 times it, the unknown payload by (f / f_n)^2 of the acceleration at frequency f;
     /// 30 Hz balances the two on El Centro (measured in README.md)
@@ -30,15 +47,29 @@ struct ShakeSettings {
     int difference_span = 5;  ///< ticks of the achieved-acceleration difference
 };
 
+/// The payload identified before the replay (--identify-payload).
+struct PayloadIdentification {
+    bool done = false;
+    PayloadResult estimate;
+    LimitUse excitation_use;  ///< of the excitation run (no margin)
+};
+
 struct ShakeOutcome {
     FittedRecord fit;
+    PayloadIdentification payload;
+    EstimatorReport estimator;     ///< table controller only
+    double amplitude = 1.0;        ///< the user's --amplitude
+    std::string sensing;           ///< the sensors, their noise and resolution, in words
+    std::vector<double> pass_rms;  ///< RMS error of each pass (x, else the first driven axis)
+    int best_pass = 0;             ///< the pass kept (0: the first)
+    std::string iteration_stop;    ///< why the iteration stopped
     PoseLoopResult loop;
     std::array<std::vector<double>, 3> achieved;  ///< [alpha, ax, ay] at fit.t
     std::array<bool, 3> driven{};                 ///< [theta, x, y]
     std::array<ShakeScore, 3> score;              ///< of the driven axes
     double period_min = 0.0, period_max = 0.0;    ///< the passband's periods [s]
     LimitUse achieved_use;                        ///< of the limits (no margin), from the forces and u
-    double seconds = 0.0;                         ///< wall time of the closed loop [s]
+    double seconds = 0.0;                         ///< wall time of the first pass of the closed loop [s]
     double margin = 0.0;                          ///< the fit's margin
 };
 

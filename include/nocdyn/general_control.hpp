@@ -30,6 +30,7 @@
 #include <string>
 #include <vector>
 
+#include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
@@ -181,6 +182,15 @@ struct PoseLoopResult {
     Vector3 measurement_peak_error = Vector3::Zero();
     int tracker_max_iterations = 0;  ///< encoders: most Newton steps of a tracker step
 };
+
+/// Fills the summaries of a run from its rows: pose_rms_error, pose_peak_error,
+/// pose_late_peak_error, rms_error, peak_error and peak_tau (measurement errors untouched).
+void summarizeLoop(PoseLoopResult& result);
+
+/// The tracker's options for encoders of noise std. dev. noise_u: on a redundant robot noisy
+/// encoders are inconsistent by about noise_u (over the joint scale), so the accepted residual is
+/// at least 10 noise_u / joint scale.
+[[nodiscard]] TrackerOptions noisyEncoderTrackerOptions(const Model& model, double noise_u);
 
 /// Runs `controller` on `plant` along `trajectory`: the plant starts at (p_d(0), dp_d(0)) (or
 /// at `start` when given, to see the error decay); each tick measures (p, dp) (+ noise; or

@@ -30,8 +30,9 @@
 //
 // Scores (scoreShake): RMS of (achieved - target) over RMS of target; (peak |achieved| - peak
 // |target|) / peak |target|; the 5 %-damped pseudo-acceleration spectra of both
-// (responseSpectrum) and the share of the periods of the record's passband where they differ
-// by more than 10 %.
+// (responseSpectrum) and, among the periods of the record's passband where the target's
+// S_a is at least 10 % of its peak (the counted periods), the share where they differ by more
+// than 10 %. relativeRmsError gives the same RMS ratio for displacements and velocities.
 #pragma once
 
 #include <array>
@@ -115,8 +116,16 @@ struct ShakeScore {
     double rms_error = 0.0;                               ///< RMS(achieved - target) / RMS(target)
     double peak_error = 0.0;                              ///< (peak |achieved| - peak |target|) / peak |target|
     std::vector<double> periods, target_sa, achieved_sa;  ///< [s], [m/s^2]
-    double share_outside = 0.0;                           ///< of periods with |S_a ratio - 1| > 0.1
+    /// of the counted periods (target S_a >= 10 % of its peak), those with |S_a ratio - 1| > 0.1
+    double share_outside = 0.0;
+    int counted = 0;                  ///< periods counted
+    double displacement_error = 0.0;  ///< RMS(d_achieved - d_target) / RMS(d_target - home), when given
+    double velocity_error = 0.0;      ///< the same for the velocity
 };
+
+/// RMS(achieved - target) / RMS(target - reference); 0 when the target equals the reference.
+[[nodiscard]] double relativeRmsError(std::span<const double> target, std::span<const double> achieved,
+                                      double reference = 0.0);
 
 /// Acceleration of each pose coordinate [theta, x, y] at `times` from poses recorded every
 /// `tick` seconds from t = 0: the central second difference over +-`span` ticks,

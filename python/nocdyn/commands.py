@@ -371,12 +371,18 @@ def animate(trajectory=None, *, robot=None, set=None, motion=None, duration=None
         return Animation(path.read_text(encoding="utf-8"), None if output is None else path, _text(out, err))
 
 
-def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, time_scale="auto", highpass=0.1, margin=0.1,
-          window=0.0, plant=None, rate=10000.0, natural_frequency=30.0, payload_mass=0.5, noise_pose=1e-6,
-          noise_rate=1e-5, seed=1, accuracy=1e-10, out_dir=None):
+def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, time_scale="auto", highpass=0.1,
+          margin=0.1, window=0.0, plant=None, rate=10000.0, controller="table", natural_frequency=None,
+          acceleration_gain=0.0, encoder_noise=1e-6, accel_noise_density=22.5, accel_bandwidth=1000.0,
+          accel_baseline=0.1, no_accelerometer=False, amplitude=1.0, identify_payload=False, iterations=0,
+          iteration_gain=0.7, excitation_duration=2.0, jobs=0, max_rms=0.05, max_peak=0.05, min_spectrum=0.95,
+          payload_mass=0.5, noise_pose=1e-6, noise_rate=1e-5, seed=1, accuracy=1e-10, out_dir=None):
     """Play a ground-motion record (PEER AT2, values in g) on a robot (``nocdyn shake``):
-    high-passed, integrated, scaled by similitude to fit every actuator, and tracked by computed
-    torque on the plant with an unknown payload and sensor noise. window: play only the
+    high-passed, integrated, scaled by similitude to fit every actuator, and played on the plant
+    with an unknown payload, as a shake table plays it: controller "table" (model feed-forward,
+    low-gain feedback from a Kalman estimate fusing the encoders and the platform accelerometers;
+    optionally the payload identified first and drive-signal iterations), or "pose" (computed
+    torque on noisy pose feedback). natural_frequency: None for the controller's own default. window: play only the
     record's first seconds (0: all). Returns a ShakeResult: the samples (t, x, y, theta, ax, ay,
     alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (the score: scales, RMS and peak
     acceleration errors, spectra). out_dir: keep the files and figures there."""

@@ -35,6 +35,25 @@ std::vector<std::string_view> words(std::string_view text) {
     return out;
 }
 
+/// The numbers of one blank-free word as Fortran writes them: a D exponent (1.0D-03) read as E,
+/// and values written without a blank between them (-0.1234E-02-0.5678E-03, fixed-width fields
+/// filled to the edge) split where a sign follows anything but an exponent letter.
+std::vector<std::string> values(std::string_view word) {
+    std::vector<std::string> out(1);
+    for (std::size_t i = 0; i < word.size(); ++i) {
+        char c = word[i];
+        if ((c == '+' || c == '-') && i > 0) {
+            const char before = word[i - 1];
+            if (before != 'e' && before != 'E' && before != 'd' && before != 'D') out.emplace_back();
+        }
+        const bool exponent = (c == 'd' || c == 'D') && i > 0 &&
+                              (std::isdigit(static_cast<unsigned char>(word[i - 1])) != 0 || word[i - 1] == '.');
+        if (exponent) c = 'E';
+        out.back() += c;
+    }
+    return out;
+}
+
 std::string upper(std::string_view text) {
     std::string out(text);
     for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
@@ -79,11 +98,20 @@ GroundMotionRecord parseAt2(const std::string& text, const std::string& source) 
     std::string_view rest(text);
     detail::stripByteOrderMark(rest);
     std::size_t line_number = 0;
+    // a line ends at LF, CR LF, CR CR LF (a CR LF file passed through another CR LF
+    // conversion) or a lone CR (the old Macintosh files)
     const auto nextLine = [&](std::string_view& line) {
         if (rest.empty()) return false;
-        const std::size_t end = rest.find('\n');
+        const std::size_t end = rest.find_first_of("\r\n");
         line = rest.substr(0, end);
-        rest = end == std::string_view::npos ? std::string_view{} : rest.substr(end + 1);
+        if (end == std::string_view::npos) {
+            rest = {};
+        } else {
+            std::size_t k = end;
+            while (k < rest.size() && rest[k] == '\r') ++k;
+            if (k < rest.size() && rest[k] == '\n') ++k;
+            rest = rest.substr(k);
+        }
         ++line_number;
         return true;
     };
@@ -122,18 +150,21 @@ GroundMotionRecord parseAt2(const std::string& text, const std::string& source) 
     record.dt = *dt;
     record.acceleration.reserve(npts);
     while (record.acceleration.size() < npts && nextLine(line)) {
-        for (const std::string_view word : words(line)) {
-            if (record.acceleration.size() == npts) break;  // extra values are ignored
-            const auto value = detail::parseDecimal(word);
-            if (!value) {
-                throw Error(at(source, line_number) + "value " + std::to_string(record.acceleration.size() + 1) + " '" +
-                            std::string(word.substr(0, 32)) + "' " + detail::numberProblem(word.substr(0, 32)));
+        for (const std::string_view glued : words(line)) {
+            for (const std::string& word : values(glued)) {
+                if (record.acceleration.size() == npts) break;  // extra values are ignored
+                const auto value = detail::parseDecimal(word);
+                if (!value) {
+                    throw Error(at(source, line_number) + "value " + std::to_string(record.acceleration.size() + 1) +
+                                " '" + std::string(word.substr(0, 32)) + "' " +
+                                detail::numberProblem(word.substr(0, 32)));
+                }
+                if (!(std::abs(*value) <= kMaxG)) {
+                    throw Error(at(source, line_number) + "value " + std::to_string(record.acceleration.size() + 1) +
+                                " is " + std::string(word) + " g, beyond +-100 g");
+                }
+                record.acceleration.push_back(*value * kStandardGravity);
             }
-            if (!(std::abs(*value) <= kMaxG)) {
-                throw Error(at(source, line_number) + "value " + std::to_string(record.acceleration.size() + 1) +
-                            " is " + std::string(word) + " g, beyond +-100 g");
-            }
-            record.acceleration.push_back(*value * kStandardGravity);
         }
     }
     if (record.acceleration.size() < npts) {

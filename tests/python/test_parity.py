@@ -40,7 +40,7 @@ BUILD_DEPENDENT = {("control", "plant"), ("shake", "plant")}
 OUTPUTS = {"output", "out_dir", "figure", "log", "png", "svg"}
 # defaults that mean "automatic" on the command line (its default text is a placeholder): the
 # robot's home orientation; Python says so with None
-AUTOMATIC = {("workspace", "theta"), ("design", "theta")}
+AUTOMATIC = {("workspace", "theta"), ("design", "theta"), ("shake", "natural_frequency")}
 
 
 def cli_path():

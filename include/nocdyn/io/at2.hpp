@@ -6,6 +6,10 @@
 //             "3930 0.00500 NPTS, DT"  (keys in any case)
 //   line 5-   the accelerations in g, any number of values per line separated by blanks
 //
+// Lines end in LF, CR LF, CR CR LF or a lone CR. Values are read as Fortran writes them: a D
+// exponent (1.0D-03) is an E exponent, and values filling their fixed-width fields to the edge
+// (-0.1234E-02-0.5678E-03) are split where a sign follows anything but an exponent letter.
+//
 // A file with fewer values than NPTS is refused; values after the NPTS-th are ignored (some
 // files pad their last line). Reads are bounded: at most kMaxAt2Bytes and kMaxAt2Points.
 #pragma once
