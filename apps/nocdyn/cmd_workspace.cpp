@@ -78,7 +78,8 @@ void addWorkspaceCommand(CLI::App& app) {
         "Workspace of any robot at one platform orientation: the region of C reachable with every limb on its\n"
         "home branch, within every joint's range and away from singularities (condition numbers within the\n"
         "robot's max_condition), with the limb singularities (type 1: a limb at the edge of its reach) and the\n"
-        "actuation singularities (type 2: det A = 0) drawn as curves (--figure STEM: STEM.png, STEM.svg), and its area.\n"
+        "actuation singularities (type 2: det A = 0) drawn as curves (--figure STEM: STEM.png, STEM.svg), and its "
+        "area.\n"
         "The grid is fitted to the feasible region. CSV: x, y [m] and cell (feasible, unreachable: out of\n"
         "reach, range: a joint out of its range, singular).\n"
         "Example: nocdyn workspace --robot robots/3-rrr.yaml --theta 0.1");

@@ -18,7 +18,7 @@
 namespace nocdyn::cli {
 
 namespace {
-std::function<void(double, double)>& progressObserver() {
+std::function<void(double, double)>& observerSlot() {
     static std::function<void(double, double)> observer;
     return observer;
 }
@@ -28,7 +28,9 @@ double secondsNow() {
 }
 }  // namespace
 
-void setProgressObserver(std::function<void(double, double)> observer) { progressObserver() = std::move(observer); }
+void setProgressObserver(std::function<void(double, double)> observer) { observerSlot() = std::move(observer); }
+
+const std::function<void(double, double)>& progressObserver() { return observerSlot(); }
 
 Progress::Progress(double total) : total_(total), terminal_(::isatty(STDERR_FILENO) == 1) {
     start_ = last_ = secondsNow();

@@ -42,6 +42,8 @@ struct TrajectoryOptions {
 /// Receives the progress of every long job (done, total) instead of the terminal line, when set
 /// (the Python package's progress callback; it may throw to stop the job). Empty: none.
 void setProgressObserver(std::function<void(double, double)> observer);
+/// The observer set by setProgressObserver (empty: none).
+[[nodiscard]] const std::function<void(double, double)>& progressObserver();
 
 /// Progress of a long job on a terminal: "t = 1.2 of 10 s (12 %), about 40 s left" on one
 /// line of standard error, rewritten at most once a second, only when standard error is a

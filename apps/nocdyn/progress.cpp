@@ -1,6 +1,9 @@
 #include "progress.hpp"
 
+#include "common.hpp"
+
 #include <unistd.h>
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <utility>
@@ -23,6 +26,11 @@ Steps::~Steps() { finish(); }
 void Steps::next(const std::string& what) {
     ++index_;
     step_ = what;
+    // the Python package's progress callback, when set, hears the steps instead of the terminal
+    if (const auto& observer = progressObserver()) {
+        observer(index_ - 1, total_);
+        return;
+    }
     if (!terminal_) return;
     char head[64];
     std::snprintf(head, sizeof head, ": %d of %d, ", index_, total_);
@@ -32,10 +40,15 @@ void Steps::next(const std::string& what) {
 }
 
 void Steps::count(int done, int total, const char* item) {
-    if (!terminal_) return;
+    const auto& observer = progressObserver();
+    if (!terminal_ && !observer) return;
     const double now = secondsNow();
     if (now - last_ < 0.2 && done < total) return;
     last_ = now;
+    if (observer) {
+        observer(std::max(index_ - 1, 0) + (total > 0 ? static_cast<double>(done) / total : 0.0), std::max(total_, 1));
+        return;
+    }
     char text[96];
     std::snprintf(text, sizeof text, "%s %d of %d", item, done, total);
     show(job_ + ": " + (step_.empty() ? std::string() : step_ + ", ") + text);

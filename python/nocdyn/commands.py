@@ -252,8 +252,8 @@ def _table_command(command, function, arguments, file_name, kind=Table, handled=
             call.option(name, value)
         call.options(arguments, handled=("robot", "output", *extra))
         out, err = call.run(arguments.get("progress", False), command.replace("-", " "))
-        columns, data = read_csv(path)
-        return kind(columns, data, _text(out, err), command)
+        columns, data, labels = read_csv(path)
+        return kind(columns, data, _text(out, err), command, labels)
 
 
 # --- the commands, in the order of `nocdyn --help` --------------------------------------------
@@ -301,7 +301,8 @@ def forward_kinematics(u, *, robot=None, set=None, all_branches=False):
         return AssemblyModes(_json.loads(out), err)
 
 
-def simulate(forces, *, robot=None, set=None, interpolation="cubic", duration=None, rate=10000.0, output=None, atol=1e-12,
+def simulate(forces, *, robot=None, set=None,
+             interpolation="cubic", duration=None, rate=10000.0, output=None, atol=1e-12,
              rtol=1e-10, assembly_mode=0, partial=False, progress=None):
     """Forward dynamics (``nocdyn simulate``): the motion under actuator forces.
 
@@ -318,7 +319,7 @@ def simulate(forces, *, robot=None, set=None, interpolation="cubic", duration=No
 def control(trajectory, *, robot=None, set=None, controller="computed-torque", plant=None, rate=10000.0, duration=None,
             natural_frequency=50.0, payload_mass=0.0, payload_inertia=0.0, payload_com=None, noise_pose=0.0,
             noise_rate=0.0, noise_tau=0.0, measure="pose", log=None, noise_u=0.0, noise_du=0.0, seed=1,
-            no_saturation=False, output=None, figure=None):
+            no_saturation=False, output=None, figure=None, progress=None):
     """Closed-loop tracking of a platform trajectory (``nocdyn control``) by computed torque or PD
     on a plant: 'simbody' (the independent model, when built in; the default then), 'nocdyn' or
     'nocdyn-rk4'. The payload_* arguments put a payload on the plant only (model mismatch); the
@@ -328,7 +329,8 @@ def control(trajectory, *, robot=None, set=None, controller="computed-torque", p
     return _table_command("control", control, dict(locals()), "control.csv")
 
 
-def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.0, max_frequency=100.0, points=41):
+def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.0, max_frequency=100.0, points=41,
+             progress=None):
     """The operating envelope (``nocdyn envelope``): per axis (theta, x, y) and ``points``
     log-spaced frequencies in [min_frequency, max_frequency] Hz, the largest amplitude within
     every limit and which limit binds. Returns a Table with the CSV's columns (axis 0 theta, 1 x,
@@ -336,7 +338,7 @@ def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.
     return _table_command("envelope", envelope, dict(locals()), "envelope.csv")
 
 
-def workspace(*, robot=None, set=None, theta=None, resolution=201, output=None, figure=None):
+def workspace(*, robot=None, set=None, theta=None, resolution=201, output=None, figure=None, progress=None):
     """The workspace at one platform orientation theta [rad] (default: the robot's home)
     (``nocdyn workspace``): a resolution x resolution grid of C's positions, each feasible (0),
     out of reach (1), with a joint out of range (2) or singular (3). Returns a Workspace (x, y,
@@ -376,7 +378,7 @@ def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, tim
           acceleration_gain=0.0, encoder_noise=1e-6, accel_noise_density=22.5, accel_bandwidth=1000.0,
           accel_baseline=0.1, no_accelerometer=False, amplitude=1.0, identify_payload=False, iterations=0,
           iteration_gain=0.7, excitation_duration=2.0, jobs=0, max_rms=0.05, max_peak=0.05, min_spectrum=0.95,
-          payload_mass=0.5, noise_pose=1e-6, noise_rate=1e-5, seed=1, accuracy=1e-10, out_dir=None):
+          payload_mass=0.5, noise_pose=1e-6, noise_rate=1e-5, seed=1, accuracy=1e-10, out_dir=None, progress=None):
     """Play a ground-motion record (PEER AT2, values in g) on a robot (``nocdyn shake``):
     high-passed, integrated, scaled by similitude to fit every actuator, and played on the plant
     with an unknown payload, as a shake table plays it: controller "table" (model feed-forward,
@@ -391,8 +393,8 @@ def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, tim
         call.robot(robot)
         folder = call.output("out_dir", out_dir, "shake")
         call.options(arguments, handled=("robot", "out_dir"))
-        out, err = call.run()
-        columns, data = read_csv(folder / "shake.csv")
+        out, err = call.run(progress, "shake")
+        columns, data, _ = read_csv(folder / "shake.csv")
         return ShakeResult(columns, data, load_json(folder / "shake.json"), None if out_dir is None else folder,
                            _text(out, err))
 
@@ -410,7 +412,7 @@ def regressor(*, robot=None, set=None, samples=200, seed=1, output=None):
 
 
 def identify(data, *, robot=None, set=None, payload=False, base=False, friction=False, held_forces=False, cutoff=0.0,
-             holdout=0.2, output=None, calibration=None, prior=None, figure=None):
+             holdout=0.2, output=None, calibration=None, prior=None, figure=None, progress=None):
     """Identify a payload (the default) or the robot's base parameters (base) from a log of
     actuator positions and forces, CSV t,u1..un,tau1..taun (``nocdyn identify``; control's
     ``log`` writes one). Returns an Identification: the report the command prints (``text``),
@@ -421,11 +423,12 @@ def identify(data, *, robot=None, set=None, payload=False, base=False, friction=
         call.robot(robot)
         path = call.output("output", output, "identified.yaml")
         call.options(arguments, handled=("robot", "output"))
-        out, err = call.run()
+        out, err = call.run(progress, "identify")
         return Identification(out, path.read_text(encoding="utf-8"), err)
 
 
-def excite(*, robot=None, set=None, output=None, payload_guess=None, base=False, friction=False, duration=5.0, frequency=5.0,
+def excite(*, robot=None, set=None,
+           output=None, payload_guess=None, base=False, friction=False, duration=5.0, frequency=5.0,
            harmonics=4, margin=0.1, max_condition=100.0, evaluations=400, random=60, samples=0, check_samples=2000,
            seed=1):
     """Design an excitation trajectory for identify (``nocdyn excite``): Fourier series of
@@ -444,7 +447,8 @@ def excite(*, robot=None, set=None, output=None, payload_guess=None, base=False,
                            "path": None if output is None else path}, _text(out, err))
 
 
-def loads(trajectory=None, *, robot=None, set=None, duration=None, rate=10000.0, output=None, figure=None, envelope=False,
+def loads(trajectory=None, *, robot=None, set=None,
+          duration=None, rate=10000.0, output=None, figure=None, envelope=False,
           min_frequency=1.0, max_frequency=100.0, points=9):
     """Joint reactions and design loads (``nocdyn loads``) along a trajectory, or over the
     operating envelope's motions (envelope=True). Returns a Table with the CSV's columns."""
@@ -459,14 +463,14 @@ def validate(trajectory, *, robot=None, set=None, duration=None, rate=1000.0, ou
     return _table_command("validate", validate, dict(locals()), "validate.csv")
 
 
-def reproduce(*, out_dir="results", closed_loop_duration=0.2, identification_duration=5.0):
+def reproduce(*, out_dir="results", closed_loop_duration=0.2, identification_duration=5.0, progress=None):
     """The paper's results for its prototype (``nocdyn reproduce``): CSV files, figures and
     summary.md in out_dir. Returns a Report (shown as Markdown in Jupyter)."""
     arguments = dict(locals())
     with _Call("reproduce", reproduce) as call:
         folder = call.output("out_dir", out_dir, "results")
         call.options(arguments, handled=("out_dir",))
-        out, err = call.run()
+        out, err = call.run(progress, "reproduce")
         return Report(folder, _text(out, err))
 
 

@@ -9,6 +9,7 @@ columns the command line writes, and ``text``: what the command printed (its sum
 from __future__ import annotations
 
 import json
+import math
 import pathlib
 
 import numpy as np
@@ -27,15 +28,27 @@ def _pandas():
 
 def read_csv(path):
     """The command line's CSV (one header line, numbers in shortest round-trip form) as
-    (columns, (N, len(columns)) float64 array): the numbers read back bit for bit."""
+    (columns, (N, len(columns)) float64 array, labels): the numbers read back bit for bit. A
+    column holding categories as words (envelope's axis and limit, the workspace's cell) is NaN
+    in the array and its words are labels[column], an array of str."""
     with open(path, encoding="utf-8") as file:
         header = file.readline().strip()
         columns = header.split(",") if header else []
-        rows = [line for line in file if line.strip()]
+        rows = [line.rstrip("\r\n").split(",") for line in file if line.strip()]
     if not rows:
-        return columns, np.empty((0, len(columns)))
-    data = np.array([[float(v) for v in line.split(",")] for line in rows], dtype=np.float64)
-    return columns, data.reshape(len(rows), len(columns))
+        return columns, np.empty((0, len(columns))), {}
+    words = set()
+    for row in rows:
+        for k, v in enumerate(row):
+            if k not in words:
+                try:
+                    float(v)
+                except ValueError:
+                    words.add(k)
+    data = np.array([[math.nan if k in words else float(v) for k, v in enumerate(row)] for row in rows],
+                    dtype=np.float64)
+    labels = {columns[k]: np.array([row[k] for row in rows], dtype=str) for k in sorted(words)}
+    return columns, data.reshape(len(rows), len(columns)), labels
 
 
 class Table:
@@ -44,20 +57,25 @@ class Table:
     ``table["tau1"]`` is one column (a NumPy array); ``table.columns`` their names in the CSV's
     order; ``table.data`` all of them as an (N, len(columns)) array; ``len(table)`` the number of
     rows; ``table.to_pandas()`` a pandas DataFrame with the same columns. ``text`` is what the
-    command printed (summary lines, warnings are issued as Python warnings)."""
+    command printed (summary lines, warnings are issued as Python warnings). A column of
+    categories (``axis``, ``limit``, ``cell``) holds words, as in the CSV: ``table["axis"]`` is
+    an array of str, and the same column of ``data`` is NaN."""
 
-    def __init__(self, columns, data, text="", name="table"):
+    def __init__(self, columns, data, text="", name="table", labels=None):
         self.columns = list(columns)
         self.data = np.asarray(data, dtype=np.float64).reshape(-1, len(self.columns))
         self.text = text
         self.name = name
+        self.labels = dict(labels or {})
 
     @classmethod
     def from_csv(cls, path, text="", name="table"):
-        columns, data = read_csv(path)
-        return cls(columns, data, text, name)
+        columns, data, labels = read_csv(path)
+        return cls(columns, data, text, name, labels)
 
     def __getitem__(self, column):
+        if column in self.labels:
+            return self.labels[column]
         try:
             return self.data[:, self.columns.index(column)]
         except ValueError:
@@ -77,7 +95,10 @@ class Table:
 
     def to_pandas(self):
         """A pandas DataFrame with the command line's CSV columns."""
-        return _pandas().DataFrame(self.data.copy(), columns=self.columns)
+        frame = _pandas().DataFrame(self.data.copy(), columns=self.columns)
+        for column, words in self.labels.items():
+            frame[column] = words
+        return frame
 
     def __repr__(self):
         return f"<nocdyn.Table {self.name}: {len(self)} rows x {len(self.columns)} columns {self.columns[:8]}...>"
@@ -161,14 +182,18 @@ class AssemblyModes(_Record):
 
 
 class Workspace(Table):
-    """The workspace grid (``nocdyn workspace``): columns x, y [m] and cell (0 feasible, 1 out of
-    reach, 2 a joint out of range, 3 singular); ``cells`` as an (n, n) array indexed [ix, iy];
-    ``text`` the summary line with the area."""
+    """The workspace grid (``nocdyn workspace``): columns x, y [m] and cell (feasible,
+    unreachable: out of reach, range: a joint out of its range, singular); ``cells`` as an (n, n)
+    array of codes (0 feasible, 1 unreachable, 2 range, 3 singular) indexed [ix, iy]; ``text``
+    the summary line with the area."""
+
+    CELLS = ("feasible", "unreachable", "range", "singular")
 
     @property
     def cells(self):
         n = int(round(np.sqrt(len(self))))
-        return self["cell"].reshape(n, n).astype(np.int64)
+        codes = np.array([self.CELLS.index(w) for w in self["cell"]], dtype=np.int64)
+        return codes.reshape(n, n)
 
     @property
     def area(self):
@@ -176,7 +201,7 @@ class Workspace(Table):
         x = np.unique(self["x"])
         y = np.unique(self["y"])
         step = (x[1] - x[0]) * (y[1] - y[0]) if len(x) > 1 and len(y) > 1 else 0.0
-        return float(np.count_nonzero(self["cell"] == 0) * step)
+        return float(np.count_nonzero(self["cell"] == "feasible") * step)
 
 
 class Identification:

@@ -145,9 +145,12 @@ PAPER = str(SOURCE_DIR / "robots" / "paper-3prr.yaml")
 
 
 def same_table(path, table):
-    columns, data = read_csv(path)
+    columns, data, labels = read_csv(path)
     assert columns == table.columns
-    np.testing.assert_array_equal(data, table.data)  # bit for bit: the same code ran
+    np.testing.assert_array_equal(data, table.data)  # bit for bit: the same code ran (NaN: words)
+    assert labels.keys() == table.labels.keys()
+    for column, words in labels.items():
+        np.testing.assert_array_equal(words, table[column])
     df = table.to_pandas()
     assert list(df.columns) == columns and df.shape == data.shape
 
