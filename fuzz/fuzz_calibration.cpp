@@ -12,7 +12,7 @@
 #include "nocdyn/io/short_form.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t size) {
-    static const nocdyn::Model model{nocdyn::io::RobotParameters{}};
+    static const nocdyn::Model model{nocdyn::io::expand(nocdyn::io::RobotParameters{})};
     const std::string text(reinterpret_cast<const char*>(bytes), size);
     nocdyn::Calibration calibration;
     try {
