@@ -115,6 +115,21 @@ std::vector<double> notAKnotCurvatures(const std::vector<double>& t, const std::
     return m;
 }
 
+/// The spline's value and two derivatives at every knot must be finite: extreme values or
+/// time steps (finite each) can overflow the divided differences or the integration.
+void checkFinite(const SampledAxis& axis, const char* what) {
+    for (std::size_t i = 0; i < axis.times.size(); ++i) {
+        double q = 0.0;
+        double dq = 0.0;
+        double ddq = 0.0;
+        axis.evaluate(axis.times[i], q, dq, ddq);
+        if (!(std::isfinite(q) && std::isfinite(dq) && std::isfinite(ddq))) {
+            throw Error(std::string(what) + ": the spline through the samples is not finite at time " +
+                        numberText(axis.times[i]) + " s (values or time steps out of range)");
+        }
+    }
+}
+
 /// Cubic pieces y_i + b s + (M_i / 2) s^2 + (M_{i+1} - M_i) / (6 h) s^3 of the spline.
 std::vector<std::array<double, 4>> cubicPieces(const std::vector<double>& t, const std::vector<double>& y) {
     const std::vector<double> m = notAKnotCurvatures(t, y);
@@ -134,6 +149,7 @@ SampledAxis splineOfPositions(const std::vector<double>& t, const std::vector<do
     SampledAxis axis;
     axis.times.assign(t.begin(), t.end());
     for (const auto& c : cubicPieces(t, q)) axis.pieces.push_back({c[0], c[1], c[2], c[3], 0.0, 0.0});
+    checkFinite(axis, "sampled positions");
     return axis;
 }
 
@@ -152,6 +168,7 @@ SampledAxis splineOfAccelerations(const std::vector<double>& t, const std::vecto
         v = (((5.0 * p[5] * h + 4.0 * p[4]) * h + 3.0 * p[3]) * h + 2.0 * p[2]) * h + p[1];
         axis.pieces.push_back(p);
     }
+    checkFinite(axis, "sampled accelerations");
     return axis;
 }
 

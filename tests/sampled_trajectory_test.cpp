@@ -138,5 +138,23 @@ TEST(SampledTrajectory, CsvRefusalsNameFileLineAndColumn) {
     expectCsvError("t,x\n0,0\n", {"motion.csv:1:", "at least 2"});
 }
 
+// Finite samples whose spline would overflow: a time beyond the bound (a fuzzer's find: the
+// acceleration 1e45 integrated over 7e101 s), values beyond the bounds, steps so short that the
+// divided differences overflow.
+TEST(SampledTrajectory, CsvRefusesSamplesWhoseSplineWouldOverflow) {
+    expectCsvError("t,ax,ay,alpha\n0,0,0,0\n0.02,-1,0.5,0\n7e101,0,0.5,0\n",
+                   {"motion.csv:4:", "column 't'", "out of range"});
+    expectCsvError("t,ax\n0,1e45\n0.02,-1\n0.04,0\n", {"motion.csv:2:", "column 'ax'", "out of range"});
+    expectCsvError("t,x\n0,0\n0.02,1e4\n", {"motion.csv:3:", "column 'x'", "out of range"});
+    expectCsvError("t,x\n0,0\n1e-300,1000\n2e-300,-1000\n3e-300,1000\n", {"motion.csv:3:", "less than 1e-09 s"});
+}
+
+TEST(SampledTrajectory, SplineBuildersRefuseOverflow) {
+    EXPECT_THROW((void)splineOfPositions({0.0, 1e-300, 2e-300}, {0.0, 1e300, 0.0}), Error);
+    EXPECT_THROW((void)splineOfAccelerations({0.0, 1e200, 2e200}, {1e200, 0.0, 1e200}), Error);
+    // and accept the ordinary
+    EXPECT_NO_THROW((void)splineOfAccelerations({0.0, 0.01, 0.02}, {1.0, 0.0, 1.0}));
+}
+
 }  // namespace
 }  // namespace nocdyn::test

@@ -27,6 +27,8 @@ constexpr double kMaxAmplitude = 1e3;         // |offset|, |amplitude| [m or rad
 constexpr double kMaxFrequency = 1e6;         // [Hz]
 constexpr double kMaxPhase = 1e6;             // |phase| [rad]
 constexpr double kMaxDuration = 1e6;          // [s]
+constexpr double kMaxAcceleration = 1e6;      // |sampled acceleration| [m/s^2 or rad/s^2]
+constexpr double kMinTimeStep = 1e-9;         // between samples [s]
 constexpr std::size_t kMaxHarmonics = 10000;  // per axis
 
 AxisMotion parseAxis(const Context& context, const YAML::Node& node) {
@@ -130,10 +132,20 @@ PoseTrajectory parseTrajectoryCsv(const std::string& text, const std::string& so
     const std::size_t ct = table.column("t");
     std::vector<double> t(n);
     for (std::size_t i = 0; i < n; ++i) t[i] = table.rows[i][ct];
+    for (std::size_t i = 0; i < n; ++i) {
+        if (!(std::abs(t[i]) <= kMaxDuration)) {
+            throw Error(lineOf(i) + "column 't': time " + shortNumber(t[i]) +
+                        " s is out of range (|t| <= " + shortNumber(kMaxDuration) + " s)");
+        }
+    }
     for (std::size_t i = 1; i < n; ++i) {
         if (!(t[i] > t[i - 1])) {
             throw Error(lineOf(i) + "column 't': time " + shortNumber(t[i]) + " s is not after the previous " +
                         shortNumber(t[i - 1]) + " s (times must increase)");
+        }
+        if (t[i] - t[i - 1] < kMinTimeStep) {
+            throw Error(lineOf(i) + "column 't': time " + shortNumber(t[i]) + " s is less than " +
+                        shortNumber(kMinTimeStep) + " s after the previous " + shortNumber(t[i - 1]) + " s");
         }
     }
     std::vector<double> steps(n - 1);
@@ -148,10 +160,17 @@ PoseTrajectory parseTrajectoryCsv(const std::string& text, const std::string& so
                         " times the median step " + shortNumber(median) + " s)");
         }
     }
-    const auto column = [&](const char* name) {
+    // Samples within the plausibility limits (positions as a harmonic's amplitude).
+    const auto column = [&](const char* name, double limit, const char* unit) {
         std::vector<double> v(n);
         const std::size_t c = table.column(name);
-        for (std::size_t i = 0; i < n; ++i) v[i] = table.rows[i][c];
+        for (std::size_t i = 0; i < n; ++i) {
+            v[i] = table.rows[i][c];
+            if (!(std::abs(v[i]) <= limit)) {
+                throw Error(lineOf(i) + "column '" + name + "': " + shortNumber(v[i]) + " is out of range (|" + name +
+                            "| <= " + shortNumber(limit) + " " + unit + ")");
+            }
+        }
         return v;
     };
     auto sampled = std::make_shared<SampledPose>();
@@ -162,8 +181,8 @@ PoseTrajectory parseTrajectoryCsv(const std::string& text, const std::string& so
             throw Error(header + "column '" + acceleration + "': axis already given by its position column '" +
                         position + "' (give one of the two)");
         }
-        if (p) out = splineOfPositions(t, column(position));
-        if (a) out = splineOfAccelerations(t, column(acceleration));
+        if (p) out = splineOfPositions(t, column(position, kMaxAmplitude, "m or rad"));
+        if (a) out = splineOfAccelerations(t, column(acceleration, kMaxAcceleration, "m/s^2 or rad/s^2"));
     };
     axis("theta", "alpha", sampled->theta);
     axis("x", "ax", sampled->x);
