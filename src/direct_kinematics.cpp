@@ -15,6 +15,7 @@
 #include <Eigen/LU>
 #include <unsupported/Eigen/Polynomials>
 
+#include "nocdyn/kinematics.hpp"
 #include "nocdyn/limb_ik.hpp"
 #include "locked_limbs.hpp"
 #include "stages.hpp"
@@ -471,6 +472,39 @@ Status directKinematics(const Model& model, Data& data, const ActuatorVector& u,
     std::sort(modes.mode.begin(), modes.mode.begin() + modes.count,
               [](const AssemblyMode& a, const AssemblyMode& b) { return a.p(0) < b.p(0); });
     return {};
+}
+
+Status stateFromActuators(const Model& model, Data& data, const ActuatorVector& u, const ActuatorVector& du, int choice,
+                          ActuatorStart& start) {
+    start = ActuatorStart{};
+    AssemblyModes modes;
+    if (const Status status = directKinematics(model, data, u, modes); !status) return status;
+    start.modes = modes.count;
+    const AssemblyMode* chosen = nullptr;
+    double nearest = std::numeric_limits<double>::infinity();
+    for (const AssemblyMode& mode : modes) {
+        if (!mode.working) continue;
+        ++start.working;
+        if (choice > 0) {
+            if (start.working == choice) chosen = &mode;
+            continue;
+        }
+        const Pose d = mode.p - model.home;
+        const double distance = std::max(std::abs(std::remainder(d(0), 2.0 * std::numbers::pi)),
+                                         d.tail<2>().cwiseAbs().maxCoeff() / model.length_scale);
+        if (distance < nearest) {
+            nearest = distance;
+            chosen = &mode;
+            start.mode = start.working;
+        }
+    }
+    if (chosen == nullptr) return {StatusCode::assembly_mode_missing, -1, static_cast<double>(start.working)};
+    if (choice > 0) start.mode = choice;
+    start.nearest_home = choice == 0;
+    start.p = chosen->p;
+    if (const Status status = inverseDisplacement(model, data, start.p); !status) return status;
+    if (du.size() == 0) return velocityFromPlatformTwist(model, data, start.dp);
+    return velocityFromActuatorRatesLeastSquares(model, data, du, start.dp);
 }
 
 }  // namespace nocdyn

@@ -110,10 +110,8 @@ void actuatorForces(const Model& model, Data& data) {
         data.Q.noalias() += data.C * data.t_M;
         data.Q += data.Q_gf;
         // minimum-norm tau with A_p^T tau = Q, A_p = A Xi; as Xi = S(c) is invertible this is
-        // A (A^T A)^-1 Xi^-T Q, with S(c)^-T Q = [Q_0 - c_y Q_1 + c_x Q_2; Q_1; Q_2]
-        const Vector2 c = data.p.tail<2>();
-        const Vector3 W(data.Q(0) - c.y() * data.Q(1) + c.x() * data.Q(2), data.Q(1), data.Q(2));
-        detail::distribute(model, data, W);
+        // A (A^T A)^-1 S(c)^-T Q
+        detail::distribute(model, data, platformWrenchOfPoseForce(data.p.tail<2>(), data.Q));
     }
 }
 

@@ -19,13 +19,22 @@
 namespace nocdyn {
 
 void platformDynamics(const Model& model, Data& data) {
-    // eq. 23 with the shaping matrices of v = dp/dt: xi_P = S(c) dp/dt
+    // eq. 23 with the shaping matrices of v = dp/dt: xi_P = S(c) dp/dt. Xi and dXi/dt keep the
+    // model's coordinates (the actuator-rate stages use them); T_i, I, C and Q_gf are in the
+    // platform coordinates, as data.coordinates says.
+    const Matrix3 Xi = data.Xi;
+    const Matrix3 Xi_dot = data.Xi_dot;
     detail::platformCoordinates(data);
     detail::shapeBodies(model, data);
+    data.coordinates = Coordinates::platform;
     jointSpaceDynamics(model, data);
     data.M_p = data.I;
     data.h_p.noalias() = data.C * data.t_M;
     data.h_p += data.Q_gf;
+    if (model.coordinates == Coordinates::actuators) {
+        data.Xi = Xi;
+        data.Xi_dot = Xi_dot;
+    }
 }
 
 Status forwardDynamics(const Model& model, Data& data, const Pose& p, const Twist& dp, const ActuatorVector& tau) {
@@ -35,11 +44,10 @@ Status forwardDynamics(const Model& model, Data& data, const Pose& p, const Twis
         if (!std::isfinite(tau(a))) return {StatusCode::not_finite, -1, tau(a)};
     }
     platformDynamics(model, data);
-    // generalized actuator force A_p^T tau = S(c)^T (A^T tau), S(c)^T w = [w_0 + c_y w_1 - c_x w_2; w_1; w_2]
+    // generalized actuator force A_p^T tau = S(c)^T (A^T tau)
     Vector3 w = Vector3::Zero();
     for (int a = 0; a < model.actuators; ++a) w.noalias() += tau(a) * data.A.row(a).transpose();
-    const Vector2 c = data.p.tail<2>();
-    const Vector3 rhs = Vector3(w(0) + c.y() * w(1) - c.x() * w(2), w(1), w(2)) - data.h_p;
+    const Vector3 rhs = poseForceOfPlatformWrench(data.p.tail<2>(), w) - data.h_p;
     const Eigen::LLT<Matrix3> llt(data.M_p);
     if (llt.info() != Eigen::Success) return {StatusCode::not_finite, -1, data.M_p.diagonal().minCoeff()};
     const Twist ddp = llt.solve(rhs);

@@ -72,16 +72,13 @@ void measureThroughEncoders(const Model& model, Data& sensor, PoseTracker& track
     }
     max_iterations = std::max(max_iterations, report.iterations);
     p_measured = tracker.pose();
-    // A_p = A S(c) (du = A xi_P, xi_P = S(c) dp/dt); A_p^T A_p dp/dt = A_p^T du
-    if (const Status status = velocityFromPlatformTwist(model, sensor, Twist::Zero()); !status) {
+    // dp/dt from du = A S(c) dp/dt at the measured pose (least squares: noisy rates of a redundant
+    // robot need not be consistent, so any residual is accepted)
+    if (const Status status = velocityFromActuatorRatesLeastSquares(model, sensor, du, dp_measured,
+                                                                    std::numeric_limits<double>::infinity());
+        !status) {
         fail(status, "measured pose");
     }
-    const Vector2 c = p_measured.tail<2>();
-    Matrix3 S;
-    S << 1.0, 0.0, 0.0, c.y(), 1.0, 0.0, -c.x(), 0.0, 1.0;
-    const ActuationMatrix A_p = sensor.A * S;
-    const Matrix3 normal_matrix = A_p.transpose() * A_p;
-    dp_measured = normal_matrix.ldlt().solve(A_p.transpose() * du);
 }
 
 }  // namespace

@@ -286,16 +286,18 @@ Eigen::MatrixXd differentiate(const Eigen::MatrixXd& x, const std::vector<double
 }
 
 /// The platform rates from the actuator rates and accelerations at the pose in `data` (position
-/// and Jacobian stages done): least squares on du = A xi_P and ddu = A dxi_P - (rows of
+/// stage done): least squares on du = A S(c) dp/dt and ddu = A dxi_P - (rows of
 /// J_j^-1 dJ_j gamma_dot_j), exact with three actuators.
 Status platformRates(const Model& model, Data& data, const Eigen::VectorXd& du, const Eigen::VectorXd& ddu) {
-    if (const Status status = velocityFromPlatformTwist(model, data, Twist::Zero()); !status) return status;
-    const Eigen::MatrixXd A = data.A;
-    const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(A);
-    const Twist xi_P = qr.solve(du);
+    // measured rates need not be consistent: any residual is accepted
+    Twist t_M;
+    if (const Status status = velocityFromActuatorRatesLeastSquares(model, data, ActuatorVector(du), t_M,
+                                                                    std::numeric_limits<double>::infinity());
+        !status) {
+        return status;
+    }
     const Vector2 c = data.p.tail<2>();
-    const Twist t_M(xi_P(0), xi_P(1) - xi_P(0) * c.y(), xi_P(2) + xi_P(0) * c.x());
-    if (const Status status = velocityFromPlatformTwist(model, data, t_M); !status) return status;
+    const Eigen::ColPivHouseholderQR<ActuationMatrix> qr(data.A);
     Eigen::VectorXd rhs = ddu;
     for (int a = 0; a < model.actuators; ++a) {
         const LimbData& ld = data.limb[at(model.actuator_limb[at(a)])];
@@ -304,8 +306,8 @@ Status platformRates(const Model& model, Data& data, const Eigen::VectorXd& du, 
     }
     const Twist xi_P_dot = qr.solve(rhs);
     const double w = t_M(0);
-    const Twist t_M_dot(xi_P_dot(0), xi_P_dot(1) - xi_P_dot(0) * c.y() - w * t_M(2),
-                        xi_P_dot(2) + xi_P_dot(0) * c.x() + w * t_M(1));
+    // S(c)^-1 (dxi_P/dt - dS/dt t_M)
+    const Twist t_M_dot = poseRateOfPlatformTwist(c, xi_P_dot) - Twist(0.0, w * t_M(2), -w * t_M(1));
     accelerationFromPlatform(model, data, t_M_dot);
     return {};
 }

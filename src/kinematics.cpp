@@ -5,6 +5,8 @@
 #include <array>
 #include <cmath>
 
+#include <Eigen/QR>
+
 #include "limb_ik_impl.hpp"
 #include "stages.hpp"
 
@@ -141,8 +143,7 @@ Status velocityFromPlatformTwist(const Model& model, Data& data, const Twist& t_
     if (const Status status = detail::jacobianStage(model, data); !status) return status;
     data.t_M = t_M;
     // xi_P = S(c) t_M: the velocity of the platform point at O is dc/dt + omega E (O - C)
-    const Vector2 c = data.p.tail<2>();
-    data.xi_P = Twist(t_M(0), t_M(1) + t_M(0) * c.y(), t_M(2) - t_M(0) * c.x());
+    data.xi_P = platformTwistOfPoseRate(data.p.tail<2>(), t_M);
     if (model.coordinates == Coordinates::platform) detail::platformCoordinates(data);
     detail::rateStage(model, data);
     return {};
@@ -155,19 +156,35 @@ Status velocityFromActuatorRates(const Model& model, Data& data, const ActuatorV
     }
     if (const Status status = detail::jacobianStage(model, data); !status) return status;
     data.xi_P.noalias() = data.Xi * du;
-    const Vector2 c = data.p.tail<2>();
-    data.t_M = Twist(data.xi_P(0), data.xi_P(1) - data.xi_P(0) * c.y(), data.xi_P(2) + data.xi_P(0) * c.x());
+    data.t_M = poseRateOfPlatformTwist(data.p.tail<2>(), data.xi_P);
     detail::rateStage(model, data);
+    return {};
+}
+
+Status velocityFromActuatorRatesLeastSquares(const Model& model, Data& data, const ActuatorVector& du, Twist& dp,
+                                             double tolerance) {
+    for (int a = 0; a < model.actuators; ++a) {
+        if (!std::isfinite(du(a))) return {StatusCode::not_finite, -1, du(a)};
+    }
+    if (const Status status = velocityFromPlatformTwist(model, data, Twist::Zero()); !status) return status;
+    // A xi_P = du in the least-squares sense; dp/dt = S(c)^-1 xi_P minimises |A S(c) dp/dt - du|
+    // too, as S(c) is invertible. Fixed-capacity QR: no allocation.
+    const Eigen::ColPivHouseholderQR<ActuationMatrix> qr(data.A);
+    const Twist xi_P = qr.solve(du);
+    dp = poseRateOfPlatformTwist(data.p.tail<2>(), xi_P);
+    if (const Status status = velocityFromPlatformTwist(model, data, dp); !status) return status;
+    const double residual = (data.du - du).cwiseAbs().maxCoeff();
+    if (!(residual <= tolerance * (1.0 + du.cwiseAbs().maxCoeff()))) {
+        return {StatusCode::inconsistent_rates, -1, residual};
+    }
     return {};
 }
 
 void accelerationFromPlatform(const Model& model, Data& data, const Twist& t_M_dot) {
     data.t_M_dot = t_M_dot;
-    // d/dt of xi_P = S(c) t_M
-    const Vector2 c = data.p.tail<2>();
+    // d/dt of xi_P = S(c) t_M: S(c) dt_M/dt + dS/dt t_M
     const double w = data.t_M(0);
-    data.xi_P_dot = Twist(t_M_dot(0), t_M_dot(1) + t_M_dot(0) * c.y() + w * data.t_M(2),
-                          t_M_dot(2) - t_M_dot(0) * c.x() - w * data.t_M(1));
+    data.xi_P_dot = platformTwistOfPoseRate(data.p.tail<2>(), t_M_dot) + Twist(0.0, w * data.t_M(2), -w * data.t_M(1));
     detail::jointAccelerations(model, data);
 }
 
@@ -181,10 +198,10 @@ void accelerationFromActuators(const Model& model, Data& data, const ActuatorVec
         rhs(a) = ddu(a) + ld.J_inv.row(k).dot(detail::jacobianRateTimesRates(ld));
     }
     data.xi_P_dot.noalias() = data.Xi * rhs;
-    const Vector2 c = data.p.tail<2>();
+    // dt_M/dt = S(c)^-1 (dxi_P/dt - dS/dt t_M)
     const double w = data.t_M(0);
-    data.t_M_dot = Twist(data.xi_P_dot(0), data.xi_P_dot(1) - data.xi_P_dot(0) * c.y() - w * data.t_M(2),
-                         data.xi_P_dot(2) + data.xi_P_dot(0) * c.x() + w * data.t_M(1));
+    data.t_M_dot =
+        poseRateOfPlatformTwist(data.p.tail<2>(), data.xi_P_dot) - Twist(0.0, w * data.t_M(2), -w * data.t_M(1));
     detail::jointAccelerations(model, data);
 }
 
@@ -205,6 +222,7 @@ void twistShaping(const Model& model, Data& data) {
         detail::platformCoordinates(data);
     }
     detail::shapeBodies(model, data);
+    data.coordinates = model.coordinates;
 }
 
 namespace detail {

@@ -266,6 +266,18 @@ std::string describe(const Status& status, const Model& model) {
                 << " s, below its minimum: the tolerances are too tight for double precision or the motion too"
                    " violent (loosen --atol/--rtol)";
             return out.str();
+        case StatusCode::assembly_mode_missing:
+            if (status.value == 0.0) {
+                return "no pose with every limb on its home branch has these actuator values: the robot cannot start "
+                       "there (forward-kinematics --all-branches lists the poses on other branches)";
+            }
+            out << "these actuator values give " << status.value << " assembly mode" << (status.value == 1.0 ? "" : "s")
+                << " with every limb on its home branch, fewer than the one asked for (forward-kinematics lists them)";
+            return out.str();
+        case StatusCode::inconsistent_rates:
+            out << "the actuator rates are not the rates of any platform motion at this pose (off by " << status.value
+                << ")";
+            return out.str();
         case StatusCode::integration_too_many_steps:
             out << "the integrator took " << status.value
                 << " steps over one interval without reaching its end (tolerances too tight?)";

@@ -65,9 +65,7 @@ Vector3 encoderPoseNoise(const Model& model, const Pose& p, double sigma_u) {
     Status status = inverseDisplacement(model, data, p);
     if (status) status = velocityFromPlatformTwist(model, data, Twist::Zero());
     if (!status) throw Error("encoder pose noise: " + describe(status, model));
-    Matrix3 S;
-    S << 1.0, 0.0, 0.0, p(2), 1.0, 0.0, -p(1), 0.0, 1.0;
-    const ActuationMatrix A_p = data.A * S;
+    const ActuationMatrix A_p = data.A * platformTwistMap(p.tail<2>());
     const Matrix3 normal = A_p.transpose() * A_p;
     const Matrix3 cov = normal.inverse() * sigma_u * sigma_u;
     return cov.diagonal().cwiseSqrt();

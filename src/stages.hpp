@@ -39,9 +39,8 @@ void shapeBodies(const Model& model, Data& data);
 
 /// Xi = S(c) and dXi/dt for the platform coordinates v = dp/dt (xi_P = S(c) t_M).
 inline void platformCoordinates(Data& data) {
-    const Vector2 c = data.p.tail<2>();
-    data.Xi << 1.0, 0.0, 0.0, c.y(), 1.0, 0.0, -c.x(), 0.0, 1.0;
-    data.Xi_dot << 0.0, 0.0, 0.0, data.t_M(2), 0.0, 0.0, -data.t_M(1), 0.0, 0.0;
+    data.Xi = platformTwistMap(data.p.tail<2>());
+    data.Xi_dot = platformTwistMapRate(data.t_M);
 }
 
 /// A planar rigid displacement x -> R(c, s) x + t.

@@ -521,5 +521,100 @@ TEST(GeneralDirectKinematics, AllocationFree) {
     }
 }
 
+// --- the state from actuator values and rates ---------------------------------------------
+
+/// Every example robot and random robots of every limb type: from u and du computed at a known
+/// pose and rate near home (the working mode), stateFromActuators gives back that state; the
+/// least-squares rate solve allocates nothing.
+TEST(StateFromActuators, GivesBackTheStateOfItsActuatorValuesAndRates) {
+    std::vector<std::pair<std::string, Model>> robots;
+    for (const std::string& name : io::exampleRobotNames()) robots.emplace_back(name, Model(io::exampleRobot(name)));
+    std::mt19937 rng(11);
+    for (const std::string& type : limbTypes()) {
+        for (int tries = 0; tries < 50; ++tries) {
+            if (auto robot = randomRobot(RandomRobotSpec{{type, type, type}, 3, false, false}, rng)) {
+                robots.emplace_back("random-" + type, Model(*robot));
+                break;
+            }
+        }
+    }
+    int checked = 0;
+    for (const auto& [name, model] : robots) {
+        Data data(model);
+        const Pose p = model.home + Pose(0.004, 0.02 * model.length_scale, -0.01 * model.length_scale);
+        const Twist dp(0.3, -0.05, 0.08);
+        if (!inverseDisplacement(model, data, p).ok() || !velocityFromPlatformTwist(model, data, dp).ok()) continue;
+        const ActuatorVector u = data.u;
+        const ActuatorVector du = data.du;
+        ActuatorStart start;
+        const Status status = stateFromActuators(model, data, u, du, 0, start);
+        ASSERT_TRUE(status.ok()) << name << ": " << describe(status, model);
+        EXPECT_LT((start.p - p).cwiseAbs().maxCoeff(), 1e-11) << name;
+        EXPECT_LT((start.dp - dp).cwiseAbs().maxCoeff(), 1e-9) << name;
+        EXPECT_TRUE(start.nearest_home) << name;
+        EXPECT_GE(start.working, 1) << name;
+        EXPECT_GE(start.modes, start.working) << name;
+        EXPECT_LT((data.du - du).cwiseAbs().maxCoeff(), 1e-12) << name << ": the velocity stage is left at the state";
+        // at rest without rates, and the mode chosen by number is the same one
+        ActuatorStart by_number;
+        ASSERT_TRUE(stateFromActuators(model, data, u, ActuatorVector(), start.mode, by_number).ok()) << name;
+        EXPECT_EQ(by_number.p, start.p) << name;
+        EXPECT_EQ(by_number.dp, Twist::Zero()) << name;
+        EXPECT_FALSE(by_number.nearest_home) << name;
+        // one mode more than there are
+        const Status missing = stateFromActuators(model, data, u, du, start.working + 1, by_number);
+        EXPECT_EQ(missing.code, StatusCode::assembly_mode_missing) << name;
+        EXPECT_EQ(missing.value, start.working) << name;
+        EXPECT_NE(describe(missing, model).find("fewer than the one asked for"), std::string::npos);
+        // the rate solve alone, allocation-free
+        Twist solved;
+        ASSERT_TRUE(inverseDisplacement(model, data, p).ok());
+        const long before = allocationCount();
+        const Status rates = velocityFromActuatorRatesLeastSquares(model, data, du, solved);
+        const long after = allocationCount();
+        EXPECT_TRUE(rates.ok()) << name;
+        EXPECT_LT((solved - dp).cwiseAbs().maxCoeff(), 1e-9) << name;
+        if (kCountsMalloc) {
+            EXPECT_EQ(after - before, 0) << name;
+        }
+        ++checked;
+    }
+    EXPECT_GE(checked, 8);
+}
+
+/// A redundant robot's rates that no platform motion has are refused with the residual; its
+/// consistent rates are solved exactly.
+TEST(StateFromActuators, RedundantRobotRefusesInconsistentRates) {
+    const Model model(io::exampleRobot("4-rrr"));
+    Data data(model);
+    const Twist dp(0.2, 0.01, -0.02);
+    ASSERT_TRUE(inverseDisplacement(model, data, model.home).ok());
+    ASSERT_TRUE(velocityFromPlatformTwist(model, data, dp).ok());
+    const ActuatorVector u = data.u;
+    ActuatorVector du = data.du;
+    ActuatorStart start;
+    ASSERT_TRUE(stateFromActuators(model, data, u, du, 0, start).ok());
+    EXPECT_LT((start.dp - dp).cwiseAbs().maxCoeff(), 1e-12);
+    du(3) += 1e-3;
+    const Status status = stateFromActuators(model, data, u, du, 0, start);
+    EXPECT_EQ(status.code, StatusCode::inconsistent_rates);
+    EXPECT_GT(status.value, 1e-4);
+    EXPECT_LT(status.value, 1e-3);
+    EXPECT_NE(describe(status, model).find("not the rates of any platform motion"), std::string::npos);
+}
+
+/// Actuator values no working mode has: assembly_mode_missing with value 0.
+TEST(StateFromActuators, NoWorkingModeIsMissing) {
+    const Model model(io::exampleRobot("3-rpr"));
+    Data data(model);
+    ActuatorVector u = actuatorsAt(model, model.home);
+    u(0) += 1.0;  // one leg a metre longer: no pose closes
+    ActuatorStart start;
+    const Status status = stateFromActuators(model, data, u, ActuatorVector(), 0, start);
+    EXPECT_EQ(status.code, StatusCode::assembly_mode_missing);
+    EXPECT_EQ(status.value, 0.0);
+    EXPECT_NE(describe(status, model).find("cannot start there"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace nocdyn::test

@@ -222,7 +222,12 @@ TEST_P(ExampleRobot, PlatformInertiaIsSymmetricPositiveDefiniteAndInvertsTheInve
             S_inv << 1.0, 0.0, 0.0, -c.y(), 1.0, 0.0, c.x(), 0.0, 1.0;
             const Matrix3 Xi_p = S_inv * ref.Xi;
             EXPECT_LT((Xi_p.transpose() * M * Xi_p - ref.I).cwiseAbs().maxCoeff(), 1e-12 * ref.I.cwiseAbs().maxCoeff());
+            // Xi keeps the model's coordinates (A^-1); T, I and C say they are the platform's
+            EXPECT_LT((data.Xi - ref.Xi).cwiseAbs().maxCoeff(), 1e-12 * ref.Xi.cwiseAbs().maxCoeff());
+            EXPECT_EQ(ref.coordinates, Coordinates::actuators);
         }
+        EXPECT_EQ(data.coordinates, Coordinates::platform);
+        EXPECT_LT((data.I - M).cwiseAbs().maxCoeff(), 1e-300) << "I holds M_p after forwardDynamics";
     }
 }
 

@@ -200,5 +200,24 @@ TEST(Workspace, StrokeBeyondTheActuatorIsReportedForTheRightLimb) {
     }
 }
 
+/// S(c) and its companions (planar.hpp) agree with each other: S^-1 S = 1, S^-T S^T = 1, the
+/// vector forms equal the matrix ones, dS/dt equals the central difference of S(c(t)), and the
+/// power of a wrench is the same in both coordinates (w^T S dp = (S^T w)^T dp).
+TEST(PlatformTwistMap, CompanionsAreConsistentWithTheMatrix) {
+    const Vector2 c(0.13, -0.27);
+    const Twist dp(0.7, -0.2, 0.45);
+    const Wrench w(-1.5, 3.0, 0.25);
+    const Matrix3 S = platformTwistMap(c);
+    EXPECT_LT((platformTwistOfPoseRate(c, dp) - S * dp).cwiseAbs().maxCoeff(), 1e-16);
+    EXPECT_LT((poseRateOfPlatformTwist(c, S * dp) - dp).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((poseForceOfPlatformWrench(c, w) - S.transpose() * w).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((platformWrenchOfPoseForce(c, S.transpose() * w) - w).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_NEAR(w.dot(S * dp), poseForceOfPlatformWrench(c, w).dot(dp), 1e-15);
+    const double h = 1e-6;
+    const Matrix3 dS = (platformTwistMap(c + h * dp.tail<2>()) - platformTwistMap(c - h * dp.tail<2>())) / (2.0 * h);
+    EXPECT_LT((dS - platformTwistMapRate(dp)).cwiseAbs().maxCoeff(), 1e-9);
+    EXPECT_GT(std::abs(S(1, 0)), 0.1) << "S(c) is not the identity for this c";
+}
+
 }  // namespace
 }  // namespace nocdyn::test

@@ -66,8 +66,7 @@ void run(const PoseOptions& options) {
     }
     const Status limits = checkJointLimits(model, data);
     // du = A xi_P = A S(c) dp/dt: the actuation map in the pose's own rates (eq. 5 generalised)
-    const Matrix3 S = (Matrix3() << 1.0, 0.0, 0.0, p(2), 1.0, 0.0, -p(1), 0.0, 1.0).finished();
-    const Eigen::MatrixXd A_pose = Eigen::MatrixXd(data.A) * S;
+    const Eigen::MatrixXd A_pose = Eigen::MatrixXd(data.A) * platformTwistMap(p.tail<2>());
     const char* coordinates = model.coordinates == Coordinates::actuators ? "actuators" : "platform";
 
     if (options.json) {

@@ -6,12 +6,8 @@
 #include <iostream>
 #include <map>
 #include <memory>
-#include <limits>
-#include <numbers>
 #include <sstream>
 #include <vector>
-
-#include <Eigen/QR>
 
 #include "commands.hpp"
 #include "common.hpp"
@@ -20,8 +16,6 @@
 #include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/forces.hpp"
-#include "nocdyn/io/robot_file.hpp"
-#include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/kinematics.hpp"
 
 namespace nocdyn::cli {
@@ -53,90 +47,19 @@ struct InitialState {
 
 std::string columnList(const char* prefix, int n) { return std::string(prefix) + "1.." + prefix + std::to_string(n); }
 
-/// True when the robot is the paper's 3-PRR in the short form (or the default prototype).
-bool isShortForm(const std::string& path) {
-    if (path.empty()) return true;
-    return !io::isGeneralForm(io::readRobotFileText(path), path);
-}
-
-/// The platform rate dp/dt whose actuator rates are du: A_p dp = du (least squares; exact for a
-/// consistent du). Needs the position stage at the pose in `data`.
-Twist poseRateFromActuatorRates(const Model& model, Data& data, const ActuatorVector& du, const std::string& where) {
-    if (const Status status = velocityFromPlatformTwist(model, data, Twist::Zero()); !status)
-        throw Error(where + ": " + describe(status, model));
-    const Vector2 c = data.p.tail<2>();
-    Matrix3 S;
-    S << 1.0, 0.0, 0.0, c.y(), 1.0, 0.0, -c.x(), 0.0, 1.0;
-    const Eigen::MatrixXd A_p = Eigen::MatrixXd(data.A) * S;
-    const Twist dp = A_p.colPivHouseholderQr().solve(Eigen::VectorXd(du));
-    const double residual = (A_p * dp - Eigen::VectorXd(du)).cwiseAbs().maxCoeff();
-    if (!(residual <= kInitialStateTolerance * (1.0 + du.cwiseAbs().maxCoeff()))) {
-        std::ostringstream out;
-        out << where << ": du1..du" << model.actuators << " are not the rates of any platform motion at this pose ("
-            << "off by " << residual << ")";
-        throw Error(out.str());
+/// dp/dt from the first row's du1..dun at the pose in `data` (position stage done).
+Twist poseRate(const Model& model, Data& data, const ActuatorVector& du, const std::string& where) {
+    Twist dp = Twist::Zero();
+    if (const Status status = velocityFromActuatorRatesLeastSquares(model, data, du, dp, kInitialStateTolerance);
+        !status) {
+        throw Error(where + ": " + columnList("du", model.actuators) + ": " + describe(status, model));
     }
     return dp;
 }
 
-/// The pose of a working assembly mode (every limb on its home branch, the branches the
-/// simulation follows) with actuator values u: the `choice`-th as forward-kinematics lists them
-/// (sorted by theta), or the one nearest home (0). Leaves the position stage there in `data`;
-/// `origin` says which mode was taken.
-Pose assemblyFromActuators(const Model& model, Data& data, const ActuatorVector& u, int choice,
-                           const std::string& where, std::string& origin) {
-    const int n = model.actuators;
-    AssemblyModes modes;
-    if (const Status status = directKinematics(model, data, u, modes); !status)
-        throw Error(where + ": " + columnList("u", n) + ": " + describe(status, model));
-    std::vector<const AssemblyMode*> working;
-    for (const AssemblyMode& mode : modes) {
-        if (mode.working) working.push_back(&mode);
-    }
-    const auto count = static_cast<int>(working.size());
-    if (count == 0) {
-        throw Error(
-            where + ": no pose with every limb on its home branch has the actuator values " + columnList("u", n) +
-            " (" + std::to_string(modes.count) +
-            " on other branches): the robot cannot start there (give the pose columns theta,x,y; forward-kinematics "
-            "--all-branches lists the others)");
-    }
-    if (choice > count) {
-        throw Error(where + ": --assembly-mode " + std::to_string(choice) + ", but " + columnList("u", n) + " give " +
-                    std::to_string(count) + " working assembly mode" + (count == 1 ? "" : "s") +
-                    " (forward-kinematics lists them)");
-    }
-    int chosen = choice - 1;
-    if (choice == 0) {
-        // nearest home: max(|theta - theta_home|, |C - C_home| / L)
-        double nearest = std::numeric_limits<double>::infinity();
-        for (int i = 0; i < count; ++i) {
-            const Pose d = working[static_cast<std::size_t>(i)]->p - model.home;
-            const double distance = std::max(std::abs(std::remainder(d(0), 2.0 * std::numbers::pi)),
-                                             d.tail<2>().cwiseAbs().maxCoeff() / model.length_scale);
-            if (distance < nearest) {
-                nearest = distance;
-                chosen = i;
-            }
-        }
-    }
-    const AssemblyMode& mode = *working[static_cast<std::size_t>(chosen)];
-    if (const Status status = inverseDisplacement(model, data, mode.p); !status)
-        throw Error(where + ": initial pose: " + describe(status, model));
-    std::ostringstream out;
-    out.precision(9);
-    out << "assembly mode " << chosen + 1 << " of " << count << " with every limb on its home branch"
-        << (choice == 0 ? ", the nearest home" : ", as --assembly-mode chose") << ": theta = " << mode.p(0)
-        << " rad, x = " << mode.p(1) << " m, y = " << mode.p(2) << " m";
-    origin = out.str();
-    return mode.p;
-}
-
 /// The initial state from the first row of the forces file: the pose columns theta,x,y (with
-/// dtheta,dx,dy, else du1..dun, else at rest); else u1..un (and du1..dun): the pose of a working
-/// assembly mode by directKinematics (for the 3-PRR in the short form without --assembly-mode,
-/// the 3-PRR's direct kinematics tracked from the reference posture); else the robot's home at
-/// rest.
+/// dtheta,dx,dy, else du1..dun, else at rest); else u1..un (and du1..dun): the state of a
+/// working assembly mode (stateFromActuators); else the robot's home at rest.
 InitialState initialState(const Model& model, const io::Table& table, const SimulateOptions& options) {
     const int n = model.actuators;
     const auto& first = table.rows.front();
@@ -183,33 +106,36 @@ InitialState initialState(const Model& model, const io::Table& table, const Simu
             state.dp = Twist(value("dtheta"), value("dx"), value("dy"));
             state.origin = "first row's theta,x,y,dtheta,dx,dy";
         } else if (has_du) {
-            state.dp = poseRateFromActuatorRates(model, data, actuatorColumns("du"), where);
+            state.dp = poseRate(model, data, actuatorColumns("du"), where);
             state.origin = "first row's theta,x,y and " + columnList("du", n);
         } else {
             state.origin = "first row's theta,x,y, at rest";
         }
         return state;
     }
-    if (has_u && (n != 3 || !isShortForm(options.robot) || options.assembly_mode > 0)) {
-        const ActuatorVector u = actuatorColumns("u");
-        state.p = assemblyFromActuators(model, data, u, options.assembly_mode, where, state.origin);
-        if (has_du) state.dp = poseRateFromActuatorRates(model, data, actuatorColumns("du"), where);
-        state.origin = "first row's " + columnList("u", n) +
-                       (has_du ? "," + columnList("du", n) : std::string(", at rest")) + " (" + state.origin + ")";
-        return state;
-    }
     if (has_u) {
-        // the direct kinematics tracked from the reference posture (home)
-        const ActuatorVector u = actuatorColumns("u");
-        Pose p = model.home;
-        if (const Status status = trackPose(model, data, u, p); !status)
-            throw Error(where + ": initial state from u1..u3: " + describe(status, model));
-        state.p = p;
-        if (const Status status = inverseDisplacement(model, data, p); !status)
-            throw Error(where + ": initial pose: " + describe(status, model));
-        if (has_du) state.dp = poseRateFromActuatorRates(model, data, actuatorColumns("du"), where);
-        state.origin = "first row's u1..u3" + std::string(has_du ? ",du1..du3" : ", at rest") +
-                       " (3-PRR direct kinematics from the reference posture)";
+        ActuatorStart start;
+        const ActuatorVector du = has_du ? actuatorColumns("du") : ActuatorVector();
+        if (const Status status =
+                stateFromActuators(model, data, actuatorColumns("u"), du, options.assembly_mode, start);
+            !status) {
+            const std::string columns = columnList("u", n) + (has_du ? "," + columnList("du", n) : std::string());
+            if (status.code == StatusCode::assembly_mode_missing && options.assembly_mode > 0) {
+                throw Error(where + ": --assembly-mode " + std::to_string(options.assembly_mode) + ", but " +
+                            columnList("u", n) + " give " + std::to_string(start.working) + " working assembly mode" +
+                            (start.working == 1 ? "" : "s") + " (forward-kinematics lists them)");
+            }
+            throw Error(where + ": " + columns + ": " + describe(status, model));
+        }
+        state.p = start.p;
+        state.dp = start.dp;
+        std::ostringstream out;
+        out.precision(9);
+        out << "first row's " << columnList("u", n) << (has_du ? "," + columnList("du", n) : std::string(", at rest"))
+            << " (assembly mode " << start.mode << " of " << start.working << " with every limb on its home branch"
+            << (start.nearest_home ? ", the nearest home" : ", as --assembly-mode chose") << ": theta = " << start.p(0)
+            << " rad, x = " << start.p(1) << " m, y = " << start.p(2) << " m)";
+        state.origin = out.str();
         return state;
     }
     state.p = model.home;
@@ -307,8 +233,8 @@ void addSimulateCommand(CLI::App& app) {
         "CSV with columns t,tau1..taun. The initial state is the first row's theta,x,y with dtheta,dx,dy (else\n"
         "du1..dun, else at rest), so that the CSV of `inverse-dynamics` can be fed straight back; else its\n"
         "u1..un (with du1..dun, else at rest): the pose by direct kinematics, among the assembly modes with\n"
-        "every limb on its home branch the one nearest home unless --assembly-mode picks another (the 3-PRR in\n"
-        "the short form: tracked from the reference posture); else the robot's home at rest. Writes\n"
+        "every limb on its home branch the one nearest home unless --assembly-mode picks another; else the\n"
+        "robot's home at rest. Writes\n"
         "t,x,y,theta,u1..un,du1..dun,tau1..taun,kinetic (SI) at t0 + k / rate up to t0 + duration. A pose out of\n"
         "reach or singular stops it with the time and the limb, and no file unless --partial.");
     addRobotOption(*command, options->robot);

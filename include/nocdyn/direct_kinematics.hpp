@@ -103,6 +103,27 @@ struct DirectKinematicsOptions {
 Status directKinematics(const Model& model, Data& data, const ActuatorVector& u, AssemblyModes& modes,
                         const DirectKinematicsOptions& options = {});
 
+/// A state to start from, given by actuator values (and rates).
+struct ActuatorStart {
+    Pose p = Pose::Zero();     ///< the pose of the chosen working assembly mode
+    Twist dp = Twist::Zero();  ///< its rates dp/dt (zero at rest)
+    int mode = 0;              ///< which working mode (1-based, sorted by theta as directKinematics lists them)
+    int working = 0;           ///< how many modes have every limb on its home branch
+    int modes = 0;             ///< how many modes on any branches
+    bool nearest_home = true;  ///< the mode was chosen as the one nearest home
+};
+
+/// The state whose actuator values are u and rates du (du of size 0: at rest): among the
+/// assembly modes with every limb on its home branch (the branches inverse displacement, the
+/// dynamics and the simulation follow), the `choice`-th as directKinematics lists them
+/// (1-based), or with choice 0 the one nearest home (max(|theta - theta_home|,
+/// |C - C_home| / length_scale)); dp/dt from du by velocityFromActuatorRatesLeastSquares.
+/// Leaves the position and velocity stages at that state in `data`. Fails with
+/// assembly_mode_missing (none, or fewer than `choice`), inconsistent_rates, not_finite, or
+/// as the stages fail there.
+Status stateFromActuators(const Model& model, Data& data, const ActuatorVector& u, const ActuatorVector& du, int choice,
+                          ActuatorStart& start);
+
 struct TrackerOptions {
     int max_iterations = 20;
     /// Accepted when max_a |u_a(p) - u_a| / joint_scale_a <= tolerance (1 rad or

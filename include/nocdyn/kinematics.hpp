@@ -50,6 +50,14 @@ Status velocityFromPlatformTwist(const Model& model, Data& data, const Twist& t_
 /// Fails as above, and with singular_actuation when the robot is redundantly actuated.
 Status velocityFromActuatorRates(const Model& model, Data& data, const ActuatorVector& du);
 
+/// Velocity stage from actuator rates of any robot: dp/dt from du = A S(c) dp/dt by least
+/// squares (exact with three actuators; with more, the rates of the nearest platform motion),
+/// then velocityFromPlatformTwist(dp/dt). Needs the position stage. Fails as
+/// velocityFromPlatformTwist, with not_finite, and with inconsistent_rates when du misses
+/// A S(c) dp/dt by more than `tolerance` (1 + max |du|). Allocation-free.
+Status velocityFromActuatorRatesLeastSquares(const Model& model, Data& data, const ActuatorVector& du, Twist& dp,
+                                             double tolerance = 1e-9);
+
 /// Acceleration stage from d2p/dt2: xi_P_dot, joint accelerations and ddu.
 /// Needs the velocity stage.
 void accelerationFromPlatform(const Model& model, Data& data, const Twist& t_M_dot);

@@ -168,38 +168,48 @@ struct LimbData {
 };
 
 /// Per-sample workspace. Fixed capacity; sized once by the Model it is constructed for.
+/// Frames and coordinates: every vector and twist is in the base frame; twists and wrenches
+/// are referred to the base origin O unless a field says otherwise. The algorithms fill it in
+/// stages (kinematics.hpp): position (p, x_P, limb q, s, x, u), velocity (t_M, xi_P, A, cond_A,
+/// limb J, J_inv, cond, gamma_dot, xi, s_dot, du; Xi when the model's coordinates are the
+/// actuators), acceleration (t_M_dot, xi_P_dot, gamma_ddot, ddu), shaping (Xi, Xi_dot, T, T_dot)
+/// and dynamics (I, C, Q_gf, Q, tau, W_P, M_p, h_p). A field holds the last stage that set it.
 struct Data {
     explicit Data(const Model& model);
 
-    Pose p = Pose::Zero();           ///< [theta, x_c, y_c] (eq. 1)
-    Twist t_M = Twist::Zero();       ///< dp/dt (eq. 2)
-    Twist t_M_dot = Twist::Zero();   ///< d2p/dt2
-    Twist xi_P = Twist::Zero();      ///< platform twist referred to O
-    Twist xi_P_dot = Twist::Zero();  ///< its time derivative
-    Vector2 x_P = Vector2::Zero();   ///< platform c.o.m. [m]
-    std::array<LimbData, kMaxLimbs> limb{};
+    Pose p = Pose::Zero();                   ///< pose [theta, x_c, y_c] (eq. 1) [rad, m, m]
+    Twist t_M = Twist::Zero();               ///< pose rates dp/dt = [omega, dx_c/dt, dy_c/dt] (eq. 2)
+    Twist t_M_dot = Twist::Zero();           ///< d2p/dt2
+    Twist xi_P = Twist::Zero();              ///< platform twist referred to O: xi_P = S(c) dp/dt (planar.hpp)
+    Twist xi_P_dot = Twist::Zero();          ///< d xi_P / dt
+    Vector2 x_P = Vector2::Zero();           ///< platform c.o.m. [m]
+    std::array<LimbData, kMaxLimbs> limb{};  ///< per limb, file order (first model.limbs used)
 
-    ActuatorVector u;     ///< actuator variables (the actuated q) [m or rad]
-    ActuatorVector du;    ///< actuator rates
-    ActuatorVector ddu;   ///< actuator accelerations
-    ActuatorVector tau;   ///< actuator forces (torques) on the outboard bodies [N, N m]
-    ActuationMatrix A;    ///< du = A xi_P: the actuated rows of the J_j^-1 (eq. 5 generalised)
+    ActuatorVector u;     ///< actuator variables (the actuated q), size n, file order [m or rad]
+    ActuatorVector du;    ///< actuator rates, size n
+    ActuatorVector ddu;   ///< actuator accelerations, size n
+    ActuatorVector tau;   ///< actuator forces (torques) on the outboard bodies, size n [N, N m]
+    ActuationMatrix A;    ///< n x 3: du = A xi_P, the actuated rows of the J_j^-1 (eq. 5 generalised)
     double cond_A = 0.0;  ///< scaled condition number of A
 
-    /// Independent coordinates: xi_P = Xi v (v = du, or dp/dt when redundant), and dXi/dt.
+    /// 3 x 3: xi_P = Xi v for the model's independent coordinates v (model.coordinates: v = du
+    /// with Xi = A^-1, or v = dp/dt with Xi = S(c)), and dXi/dt. Always the model's coordinates.
     Matrix3 Xi = Matrix3::Identity();
     Matrix3 Xi_dot = Matrix3::Zero();
-    std::array<ShapingMatrix3, kMaxBodies> T{};      ///< T_i: t_i = T_i v (eq. 22)
+    /// The coordinates v of T, T_dot, I, C, Q_gf and Q: model.coordinates after twistShaping
+    /// and inverseDynamics; Coordinates::platform after platformDynamics and forwardDynamics.
+    Coordinates coordinates = Coordinates::platform;
+    std::array<ShapingMatrix3, kMaxBodies> T{};      ///< T_i (3 x 3, body i's c.o.m. twist t_i = T_i v, eq. 22)
     std::array<ShapingMatrix3, kMaxBodies> T_dot{};  ///< dT_i/dt
-    Matrix3 I = Matrix3::Zero();                     ///< inertia in the independent coordinates (eq. 23)
-    Matrix3 C = Matrix3::Zero();                     ///< Coriolis matrix (eq. 23), dI/dt = C + C^T
-    Vector3 Q_gf = Vector3::Zero();                  ///< generalized gravity and friction force to supply
-    Vector3 Q = Vector3::Zero();                     ///< I dv + C v + Q_gf: the generalized force to supply
+    Matrix3 I = Matrix3::Zero();                     ///< 3 x 3 inertia in v (eq. 23), SPD
+    Matrix3 C = Matrix3::Zero();                     ///< 3 x 3 Coriolis matrix in v (eq. 23), dI/dt = C + C^T
+    Vector3 Q_gf = Vector3::Zero();                  ///< generalized gravity and friction force to supply, in v
+    Vector3 Q = Vector3::Zero();                     ///< I dv + C v + Q_gf: the generalized force to supply, in v
     /// Platform wrench referred to O that the limbs must supply (lean path), [N m; N].
     Wrench W_P = Wrench::Zero();
     /// Equations of motion in the platform coordinates, M_p d2p/dt2 + h_p = A_p^T tau for every n
-    /// (forward_dynamics.hpp): M_p = sum_i T_i^T M_i T_i and h_p = C_p dp/dt + Q_gf with
-    /// xi_P = S(c) dp/dt.
+    /// (forward_dynamics.hpp): M_p = sum_i T_i^T M_i T_i (3 x 3) and h_p = C_p dp/dt + Q_gf with
+    /// xi_P = S(c) dp/dt, A_p = A S(c).
     Matrix3 M_p = Matrix3::Identity();
     Vector3 h_p = Vector3::Zero();
 };

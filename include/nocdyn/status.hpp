@@ -35,6 +35,12 @@ enum class StatusCode {
     velocity_exceeded,
     /// An input (pose, rate, acceleration) is not a finite number. value = the input.
     not_finite,
+    /// No assembly mode with every limb on its home branch has the actuator values, or fewer
+    /// than the one asked for. value = how many there are.
+    assembly_mode_missing,
+    /// Actuator rates that no platform motion has at the pose (redundant actuation).
+    /// value = max_a |A S(c) dp/dt - du|_a of the least-squares dp/dt.
+    inconsistent_rates,
 };
 
 struct Status {

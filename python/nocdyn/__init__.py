@@ -534,16 +534,30 @@ class Robot:
             mode["degenerate"] = result["degenerate"]
         return modes
 
+    def state_from_actuators(self, u, du=None, *, assembly_mode=0):
+        """The state whose actuator values are u (and rates du; None: at rest), as ``nocdyn simulate``
+        starts from a first row of u1..un (du1..dun): among the assembly modes with every limb on its
+        home branch, the one nearest home (assembly_mode 0) or the assembly_mode-th as
+        forward_kinematics lists the working ones; dp from du by least squares (exact with three
+        actuators; with more, du must be the rates of a platform motion).
+
+        Returns a dict: p [theta, x, y], dp (3,), mode (1-based), working (how many working modes),
+        modes (how many on any branches). Raises nocdyn.Error when no working mode has u."""
+        return self._core._state_from_actuators(_input(u, "u", (self.actuators,)),
+                                                None if du is None else _input(du, "du", (self.actuators,)),
+                                                _integer(assembly_mode, "assembly_mode", 0, 12))
+
     # --- forward dynamics -----------------------------------------------------------
-    def simulate(self, t, forces, force_times=None, *, p0=None, dp0=(0.0, 0.0, 0.0), interpolation="cubic",
-                 rtol=1e-10, atol=1e-12, max_step=1e-2):
+    def simulate(self, t, forces, force_times=None, *, p0=None, dp0=(0.0, 0.0, 0.0), u0=None, du0=None,
+                 assembly_mode=0, interpolation="cubic", rtol=1e-10, atol=1e-12, max_step=1e-2):
         """Forward dynamics: the motion under given actuator forces.
 
         t: increasing output times [s] (from 0); forces: (M, n) actuator forces [N or N m] at
         force_times (M,) (default: t itself), interpolated ('cubic', the default as on the command
         line: uniformly spaced times; 'linear' or 'hold') by the command line's ForceSignal and
-        held beyond their ends; p0, dp0: initial pose (default home) and rate. Integrated by
-        Dormand-Prince 5(4) with the given tolerances.
+        held beyond their ends; p0, dp0: initial pose (default home) and rate, or instead u0 (and
+        du0): initial actuator values and rates, the state by state_from_actuators (assembly_mode
+        as there). Integrated by Dormand-Prince 5(4) with the given tolerances.
 
         Returns a dict of arrays at t: t, p, dp (len(t), 3), u, du, tau (len(t), n). Raises
         nocdyn.Error "t = ... s: <reason>" where the motion leaves the workspace or turns
@@ -552,6 +566,13 @@ class Robot:
         force_times = t if force_times is None else _input(_floats(force_times, "force_times").reshape(-1),
                                                            "force_times", (None,))
         forces = _input(forces, "forces", (force_times.shape[0], self.actuators))
+        if u0 is not None:
+            if p0 is not None:
+                raise ValueError("give the initial state as p0 (and dp0) or as u0 (and du0), not both")
+            start = self.state_from_actuators(u0, du0, assembly_mode=assembly_mode)
+            p0, dp0 = start["p"], start["dp"]
+        elif du0 is not None:
+            raise ValueError("du0 needs u0 (the initial actuator values)")
         p0 = _input(self.home if p0 is None else p0, "p0", (3,))
         dp0 = _input(dp0, "dp0", (3,))
         if not isinstance(interpolation, str):

@@ -341,6 +341,27 @@ py::dict forwardKinematics(const Robot& robot, const py::handle& u, double toler
     return out;
 }
 
+/// The state with actuator values u and rates du (None: at rest), by the library call the
+/// command line's simulate uses (stateFromActuators).
+py::dict stateFromActuatorValues(const Robot& robot, const py::handle& u, const py::handle& du, int assembly_mode) {
+    const Model& model = *robot.model;
+    const ActuatorVector uu = actuatorVector(model, u, "u");
+    const ActuatorVector dd = du.is_none() ? ActuatorVector() : actuatorVector(model, du, "du");
+    if (assembly_mode < 0) throw Error("assembly_mode: expected 0 (the nearest home) or a mode number from 1");
+    Data data(model);
+    ActuatorStart start;
+    if (const Status status = stateFromActuators(model, data, uu, dd, assembly_mode, start); !status) {
+        throw Error(describe(status, model));
+    }
+    py::dict out;
+    out["p"] = toArray(Eigen::Vector3d(start.p));
+    out["dp"] = toArray(Eigen::Vector3d(start.dp));
+    out["mode"] = start.mode;
+    out["working"] = start.working;
+    out["modes"] = start.modes;
+    return out;
+}
+
 Interpolation interpolationOf(const std::string& name) {
     if (name == "hold") return Interpolation::hold;
     if (name == "linear") return Interpolation::linear;
@@ -741,6 +762,7 @@ PYBIND11_MODULE(_nocdyn, m) {
         .def("_sample_trajectory", &sampleTrajectory, py::arg("trajectory"), py::arg("rate"),
              py::arg("duration") = std::nullopt, py::arg("allow_limits") = false)
         .def("_forward_kinematics", &forwardKinematics, py::arg("u"), py::arg("tolerance") = 1e-9)
+        .def("_state_from_actuators", &stateFromActuatorValues, py::arg("u"), py::arg("du"), py::arg("assembly_mode"))
         .def("_simulate", &simulate, py::arg("p0"), py::arg("dp0"), py::arg("force_times"), py::arg("forces"),
              py::arg("interpolation"), py::arg("t"), py::arg("rtol"), py::arg("atol"), py::arg("max_step"))
         .def("_parameter_names",

@@ -155,6 +155,26 @@ def test_simulating_the_inverse_dynamics_forces_follows_the_trajectory(paper_rob
         paper_robot.simulate(t, tau, interpolation="spline")
 
 
+def test_simulating_from_actuator_values_starts_where_the_pose_does(paper_robot):
+    """u0, du0 of the trajectory's first sample give back its pose and rate (the library call the
+    command line's simulate uses), and the motion equals the one started from p0, dp0."""
+    traj = nocdyn.Trajectory.paper(1)
+    t = np.arange(201) / 20000.0
+    P, dP, ddP = traj.evaluate(t)
+    result = paper_robot.inverse_dynamics(P, dP, ddP)
+    start = paper_robot.state_from_actuators(result.u[0], result.du[0])
+    np.testing.assert_allclose(start["p"], P[0], rtol=0, atol=1e-12)
+    np.testing.assert_allclose(start["dp"], dP[0], rtol=0, atol=1e-10)
+    assert start["mode"] >= 1 and start["working"] >= start["mode"] and start["modes"] >= start["working"]
+    from_u = paper_robot.simulate(t, result.tau, u0=result.u[0], du0=result.du[0])
+    from_p = paper_robot.simulate(t, result.tau, p0=P[0], dp0=dP[0])
+    np.testing.assert_allclose(from_u["p"], from_p["p"], rtol=0, atol=1e-10)
+    with pytest.raises(nocdyn.Error, match="fewer than the one asked for"):
+        paper_robot.state_from_actuators(result.u[0], assembly_mode=12)
+    with pytest.raises(ValueError, match="not both"):
+        paper_robot.simulate(t, result.tau, p0=P[0], u0=result.u[0])
+
+
 def test_simulation_out_of_reach_stops_with_the_time():
     robot = nocdyn.Robot.paper()
     t = np.linspace(0.0, 0.5, 11)
