@@ -3,6 +3,8 @@
 // the throughput of two worker processes against one on the same designs.
 //   BM_DesignEvaluation/<resolution>: workspace_area, condition_median, envelope_x, _y and
 //     _theta at 50 Hz; the goal is <= 20 ms per design on one core.
+//   BM_DesignParts/<part>: where that time goes (0 parse and model, 1 workspace at
+//     resolution 61, 2-4 the envelope along theta, x, y).
 //   BM_DesignProcesses: one iteration evaluates 2 x kDesigns designs in one process, then the
 //     same designs split over two forked processes; counter `speedup` is the throughput ratio
 //     (the goal is >= 1.7 on two cores), read from one run.
@@ -53,6 +55,32 @@ void BM_DesignEvaluation(benchmark::State& state) {
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
 }
 BENCHMARK(BM_DesignEvaluation)->Arg(61)->Arg(101)->Arg(201)->Unit(benchmark::kMillisecond);
+
+/// The parts of one evaluation, on the same designs: 0 parses the family and builds the
+/// model, 1 the workspace map at resolution 61 (no curves), 2, 3, 4 the envelope along theta,
+/// x and y at 50 Hz (maximumAmplitude).
+void BM_DesignParts(benchmark::State& state) {
+    const io::DesignFamily f = family();
+    const auto points = sweepPoints(f.ranges, SweepKind::random, 16, 1);
+    std::vector<Model> models;
+    for (const auto& point : points) models.emplace_back(io::designRobot(f, point));
+    const auto part = state.range(0);
+    std::size_t k = 0;
+    for (auto _ : state) {
+        const std::size_t i = k++ % points.size();
+        if (part == 0) {
+            const Model model(io::designRobot(f, points[i]));
+            benchmark::DoNotOptimize(&model);
+        } else if (part == 1) {
+            const WorkspaceMap map = workspaceMap(models[i], {models[i].home(0), 61, false});
+            benchmark::DoNotOptimize(map.area);
+        } else {
+            const EnvelopePoint p = maximumAmplitude(models[i], static_cast<EnvelopeAxis>(part - 2), 50.0);
+            benchmark::DoNotOptimize(p.amplitude);
+        }
+    }
+}
+BENCHMARK(BM_DesignParts)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
 
 /// Evaluates designs [first, first + count) of `points`.
 void evaluateRange(const io::DesignFamily& f, const std::vector<std::vector<double>>& points, std::size_t first,

@@ -162,6 +162,9 @@ BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const Co
         throw Error("inverseDynamicsBatch: u, du, ddu and tau must have the same layout");
     }
     const Arrays a{p, dp, ddp, u, du, ddu, tau};
+    // one thread needs no count of the hardware's threads: asking costs microseconds (a
+    // system call), more than a short batch such as a chunk of an envelope's period
+    if (threads == 1 || n < 2) return chunk(model, a, 0, n);
     // at most one thread per hardware thread and per chunk of 8 samples: more only adds start-up
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
     const auto chunks = static_cast<unsigned>(std::min<Eigen::Index>((n + 7) / 8, hardware));

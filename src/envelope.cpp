@@ -4,10 +4,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <vector>
 
+#include <Eigen/Core>
+
+#include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
@@ -84,7 +89,41 @@ double effortRatio(const Model& model, const Data& data) {
     return ratio;
 }
 
+/// Whether every joint with a range or velocity limit is actuated: then u and du (the
+/// actuated q and gamma_dot) are all that checkJointLimits reads that can fail.
+bool limitsOnActuatedJointsOnly(const Model& model) {
+    constexpr double kInf = std::numeric_limits<double>::infinity();
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const JointLimits& lim = limb.limits[k];
+            if (limb.actuator[k] < 0 && !(lim.lower == -kInf && lim.upper == kInf && lim.velocity == kInf)) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+/// An actuated joint and its limits, in checkJointLimits' order (limb j, then joint k).
+struct ActuatedJoint {
+    int limb = -1, joint = -1, actuator = -1;
+    JointLimits limits;
+};
+
 /// The sinusoid's samples over one period, checked in order.
+///
+/// Two ways to check a period, the same tests in the same order on the same numbers (to
+/// rounding), so the same verdict and first violation:
+///   full  per sample the full path (inverseDynamics), checkJointLimits and checkEffort; it
+///         also keeps the peaks of u, tau and the effort ratio (the reported numbers);
+///   batch the lean kernel four samples at a time (inverseDynamicsBatch: u, du, ddu, tau
+///         equal to the full path's to rounding, and the full path's Status for a sample it
+///         rejects), a chunk of the period per call so that a violation ends the check
+///         early, then the range, velocity and effort tests on u, du and tau; about five
+///         times faster. It needs every limited joint to be actuated (u and du are then every
+///         limited q and gamma_dot): the bisections use it when they are, the full path
+///         otherwise.
 class Period {
 public:
     Period(const Model& model, EnvelopeAxis axis, double frequency, int samples)
@@ -92,22 +131,55 @@ public:
           data_(model),
           index_(static_cast<int>(axis)),
           w_(2.0 * std::numbers::pi * frequency),
-          samples_(samples) {}
+          samples_(samples),
+          sin_(static_cast<std::size_t>(samples)),
+          cos_(static_cast<std::size_t>(samples)),
+          batch_(limitsOnActuatedJointsOnly(model)) {
+        // sin and cos of each sample's phase, once for every check of the period
+        for (int k = 0; k < samples_; ++k) {
+            const double phase = 2.0 * std::numbers::pi * k / samples_;
+            sin_[static_cast<std::size_t>(k)] = std::sin(phase);
+            cos_[static_cast<std::size_t>(k)] = std::cos(phase);
+        }
+        if (!batch_) return;
+        for (int j = 0; j < model.limbs; ++j) {
+            const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+            for (int k = 0; k < 3; ++k) {
+                const int a = limb.actuator[static_cast<std::size_t>(k)];
+                if (a >= 0) actuated_.push_back({j, k, a, limb.limits[static_cast<std::size_t>(k)]});
+            }
+        }
+        const Eigen::Index rows = std::min(kChunk, samples_);
+        const Eigen::Index n = model.actuators;
+        p_.resize(rows, 3);
+        dp_.resize(rows, 3);
+        ddp_.resize(rows, 3);
+        u_.resize(rows, n);
+        du_.resize(rows, n);
+        ddu_.resize(rows, n);
+        tau_.resize(rows, n);
+    }
 
     /// First violation of one period at amplitude A; dynamic: rates, accelerations and the
-    /// effort check, else poses at rest (ranges and the workspace only).
+    /// effort check, else poses at rest (ranges and the workspace only). By the batch when
+    /// the robot allows it (the peaks below are then not kept), else as checkFull.
     Status check(double amplitude, bool dynamic) {
+        return batch_ ? checkBatch(amplitude, dynamic) : checkFull(amplitude, dynamic);
+    }
+
+    /// check on the full path, keeping the peaks below (of a dynamic check).
+    Status checkFull(double amplitude, bool dynamic) {
         peak_effort_ratio = 0.0;
         peak_u = 0.0;
         peak_tau = 0.0;
         for (int k = 0; k < samples_; ++k) {
-            const double phase = 2.0 * std::numbers::pi * k / samples_;
+            const double s = sin_[static_cast<std::size_t>(k)];
             Pose p = model_.home;
             Twist dp = Twist::Zero(), ddp = Twist::Zero();
-            p(index_) += amplitude * std::sin(phase);
+            p(index_) += amplitude * s;
             if (dynamic) {
-                dp(index_) = amplitude * w_ * std::cos(phase);
-                ddp(index_) = -amplitude * w_ * w_ * std::sin(phase);
+                dp(index_) = amplitude * w_ * cos_[static_cast<std::size_t>(k)];
+                ddp(index_) = -amplitude * w_ * w_ * s;
             }
             if (const Status status = inverseDynamics(model_, data_, p, dp, ddp); !status) return status;
             if (const Status status = checkJointLimits(model_, data_); !status) return status;
@@ -137,14 +209,82 @@ public:
     }
 
     double peak_effort_ratio = 0.0;
-    double peak_u = 0.0, peak_tau = 0.0;  ///< max |u_a| and |tau_a| over the last dynamic check
+    double peak_u = 0.0, peak_tau = 0.0;  ///< max |u_a| and |tau_a| over the last checkFull (dynamic)
 
 private:
+    /// Samples per call of the batch: short enough that a violation near the start of the
+    /// period (the velocity's peak at phase 0, the displacement's and force's at a quarter)
+    /// ends the check soon, long enough to keep the kernel's lanes busy.
+    static constexpr int kChunk = 32;
+
+    Status checkBatch(double amplitude, bool dynamic) {
+        for (int first = 0; first < samples_; first += kChunk) {
+            const int rows = std::min(kChunk, samples_ - first);
+            for (int i = 0; i < rows; ++i) {
+                const auto k = static_cast<std::size_t>(first + i);
+                const double s = sin_[k];
+                for (int c = 0; c < 3; ++c) {
+                    p_(i, c) = model_.home(c);
+                    dp_(i, c) = 0.0;
+                    ddp_(i, c) = 0.0;
+                }
+                p_(i, index_) += amplitude * s;
+                if (dynamic) {
+                    dp_(i, index_) = amplitude * w_ * cos_[k];
+                    ddp_(i, index_) = -amplitude * w_ * w_ * s;
+                }
+            }
+            const BatchResult result =
+                inverseDynamicsBatch(model_, p_.topRows(rows), dp_.topRows(rows), ddp_.topRows(rows), u_.topRows(rows),
+                                     du_.topRows(rows), ddu_.topRows(rows), tau_.topRows(rows));
+            for (int i = 0; i < rows; ++i) {
+                if (i == result.first_failure) return result.status;
+                if (const Status status = limitsOf(i, dynamic); !status) return status;
+            }
+        }
+        return {};
+    }
+
+    /// checkJointLimits and (dynamic) checkEffort of batch row i, from u, du and tau.
+    [[nodiscard]] Status limitsOf(int i, bool dynamic) const {
+        for (const ActuatedJoint& joint : actuated_) {
+            const double q = u_(i, joint.actuator), dq = du_(i, joint.actuator);
+            if (!(q >= joint.limits.lower && q <= joint.limits.upper)) {
+                Status s{StatusCode::joint_limit_exceeded, joint.limb, q};
+                s.joint = joint.joint;
+                return s;
+            }
+            if (!(std::abs(dq) <= joint.limits.velocity)) {
+                Status s{StatusCode::velocity_exceeded, joint.limb, dq};
+                s.joint = joint.joint;
+                return s;
+            }
+        }
+        if (!dynamic) return {};
+        for (int a = 0; a < model_.actuators; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            const int j = model_.actuator_limb[aa];
+            const int k = model_.actuator_joint[aa];
+            const double limit = model_.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)].effort;
+            if (!(std::abs(tau_(i, a)) <= limit)) {
+                Status s{StatusCode::effort_exceeded, j, tau_(i, a)};
+                s.joint = k;
+                return s;
+            }
+        }
+        return {};
+    }
+
     const Model& model_;
     Data data_;
     int index_;
     double w_;
     int samples_;
+    std::vector<double> sin_, cos_;  ///< of each sample's phase 2 pi k / samples
+    bool batch_;
+    std::vector<ActuatedJoint> actuated_;  ///< in checkJointLimits' order
+    Eigen::ArrayXXd p_, dp_, ddp_;         ///< a chunk's samples, one per row
+    Eigen::ArrayXXd u_, du_, ddu_, tau_;   ///< and their inverse dynamics
 };
 
 }  // namespace
@@ -167,7 +307,7 @@ EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double fre
     const double upper = axis == EnvelopeAxis::theta ? std::numbers::pi : 10.0 * model.length_scale;
     Status kinematic = period.check(upper, false);
     if (!kinematic) {
-        if (const Status home = period.check(0.0, false); !home) {
+        if (const Status home = period.checkFull(0.0, false); !home) {
             throw Error("envelope: the robot's home posture is not feasible: " + describe(home, model));
         }
         point.kinematic_amplitude = period.bisect(0.0, upper, false, options.relative_tolerance, kinematic);
@@ -180,7 +320,7 @@ EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double fre
         point.amplitude = point.kinematic_amplitude;
         failure = kinematic;
     } else {
-        if (const Status home = period.check(0.0, true); !home) {
+        if (const Status home = period.checkFull(0.0, true); !home) {
             throw Error("envelope: the robot cannot hold its home posture: " + describe(home, model));
         }
         point.amplitude = period.bisect(0.0, point.kinematic_amplitude, true, options.relative_tolerance, failure);
@@ -192,7 +332,8 @@ EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double fre
         point.actuator =
             model.limb[static_cast<std::size_t>(point.limb)].actuator[static_cast<std::size_t>(point.joint)];
     }
-    (void)period.check(point.amplitude, true);
+    // the reported peaks on the full path
+    (void)period.checkFull(point.amplitude, true);
     point.peak_effort_ratio = period.peak_effort_ratio;
     point.peak_u = period.peak_u;
     point.peak_tau = period.peak_tau;

@@ -9,6 +9,7 @@
 
 #include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
+#include "nocdyn/envelope.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/kinematics.hpp"
@@ -76,6 +77,23 @@ TEST(RealTime, GeneralModelAllocatesNothingPerSample) {
         EXPECT_EQ(after - before, 0) << robot;
         EXPECT_EQ(batch.failed, 1) << robot;
         EXPECT_TRUE(std::isfinite(checksum)) << robot;
+    }
+}
+
+TEST(RealTime, EnvelopeAllocatesPerSearchNotPerSample) {
+    // A search allocates its buffers once: as many allocations with 16 times the samples
+    for (const std::string robot : {"paper-3prr-general", "3-rrr"}) {
+        const Model model(io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
+        const auto allocations = [&](int samples) {
+            EnvelopeOptions options;
+            options.samples_per_period = samples;
+            const long before = allocationCount();
+            const EnvelopePoint point = maximumAmplitude(model, EnvelopeAxis::x, 50.0, options);
+            const long count = allocationCount() - before;
+            EXPECT_GT(point.amplitude, 0.0) << robot;
+            return count;
+        };
+        EXPECT_EQ(allocations(64), allocations(1024)) << robot;
     }
 }
 

@@ -147,6 +147,40 @@ TEST(GeneralEnvelope, EveryExampleRobotHasAnEnvelopeNamingItsLimits) {
     }
 }
 
+TEST(GeneralEnvelope, APassiveJointsLimitsAreCheckedAndWideOnesChangeNothing) {
+    // Limits on passive joints take the per-sample full path, the actuated joints' alone the
+    // batch: wide passive limits give the same envelope, narrow ones bind at the passive joint.
+    const RobotDescription robot = example("3-rrr");
+    RobotDescription wide = robot, narrow = robot;
+    for (std::size_t j = 0; j < robot.limbs.size(); ++j) {
+        for (std::size_t k : {1u, 2u}) {
+            wide.limbs[j].joints[k].limits.lower = -100.0;  // [rad]
+            wide.limbs[j].joints[k].limits.upper = 100.0;
+            wide.limbs[j].joints[k].limits.velocity = 1e6;  // [rad/s]
+        }
+        narrow.limbs[j].joints[1].limits.lower = -0.01;  // the elbow [rad]
+        narrow.limbs[j].joints[1].limits.upper = 0.01;
+    }
+    const Model model(robot), model_wide(wide), model_narrow(narrow);
+    for (const EnvelopeAxis axis : kAxes) {
+        for (const double f : {1.0, 50.0}) {
+            const EnvelopePoint a = maximumAmplitude(model, axis, f);
+            const EnvelopePoint b = maximumAmplitude(model_wide, axis, f);
+            EXPECT_NEAR(b.amplitude, a.amplitude, 1e-12 * a.amplitude) << axisName(axis) << " at " << f << " Hz";
+            EXPECT_NEAR(b.kinematic_amplitude, a.kinematic_amplitude, 1e-12 * a.kinematic_amplitude);
+            EXPECT_EQ(b.limit, a.limit);
+            EXPECT_EQ(b.limb, a.limb);
+            EXPECT_EQ(b.joint, a.joint);
+            EXPECT_NEAR(b.peak_tau, a.peak_tau, 1e-9 * a.peak_tau);
+        }
+        const EnvelopePoint elbow = maximumAmplitude(model_narrow, axis, 1.0);
+        EXPECT_EQ(elbow.limit, EnvelopeLimit::range) << axisName(axis);
+        EXPECT_EQ(elbow.joint, 1);
+        EXPECT_EQ(elbow.actuator, -1);
+        EXPECT_LT(elbow.amplitude, maximumAmplitude(model, axis, 1.0).amplitude);
+    }
+}
+
 TEST(GeneralEnvelope, RefusesFrequenciesOutOfRange) {
     const Model model{io::expand(io::RobotParameters{})};
     EXPECT_THROW((void)maximumAmplitude(model, EnvelopeAxis::x, 0.0), Error);
