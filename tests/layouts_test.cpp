@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli_support.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/tables.hpp"
@@ -57,6 +58,7 @@ TEST(Layouts, EveryTableHasUniqueNamedDocumentedColumns) {
         EXPECT_TRUE(headings.insert(layout.name).second) << layout.name;
         EXPECT_FALSE(layout.written_by.empty()) << layout.name;
         EXPECT_EQ(&io::layout(layout.id), &layout);
+        EXPECT_EQ(io::tableId(io::tableKey(layout.id)), layout.id);
         for (const io::Column& c : layout.columns) EXPECT_FALSE(c.meaning.empty()) << layout.name << ": " << c.name;
         const std::vector<std::string> names = columnNames(layout.id, everything());
         EXPECT_FALSE(names.empty()) << layout.name;
@@ -67,6 +69,8 @@ TEST(Layouts, EveryTableHasUniqueNamedDocumentedColumns) {
         }
     }
     EXPECT_EQ(ids.size(), 12U);
+    EXPECT_EQ(io::tableKey(TableId::closed_loop), "closed_loop");
+    EXPECT_THROW((void)io::tableId("closed-loop"), Error);
 }
 
 TEST(Layouts, ThePoseIsAlwaysXYTheta) {

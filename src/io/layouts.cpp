@@ -1,6 +1,9 @@
 // The registry of CSV layouts (layouts.hpp).
 #include "nocdyn/io/layouts.hpp"
 
+#include <array>
+#include <utility>
+
 #include "nocdyn/error.hpp"
 
 namespace nocdyn::io {
@@ -160,6 +163,21 @@ std::vector<Layout> makeLayouts() {
 
 /// `pattern` with its first `key` replaced by `value` (built by appending: GCC 12's -Wrestrict
 /// misfires on std::string::replace at -O3).
+constexpr std::array<std::pair<TableId, std::string_view>, 12> kKeys{{
+    {TableId::inverse_dynamics, "inverse_dynamics"},
+    {TableId::reactions, "reactions"},
+    {TableId::simulate, "simulate"},
+    {TableId::closed_loop, "closed_loop"},
+    {TableId::measurements, "measurements"},
+    {TableId::held_out_forces, "held_out_forces"},
+    {TableId::envelope, "envelope"},
+    {TableId::workspace, "workspace"},
+    {TableId::loads, "loads"},
+    {TableId::shake, "shake"},
+    {TableId::validation, "validation"},
+    {TableId::design, "design"},
+}};
+
 std::string replaced(std::string_view pattern, std::string_view key, std::string_view value) {
     const std::size_t at = pattern.find(key);
     if (at == std::string_view::npos) return std::string(pattern);
@@ -193,6 +211,22 @@ const Layout& layout(TableId id) {
         if (l.id == id) return l;
     }
     throw Error("no CSV layout with id " + std::to_string(static_cast<int>(id)));
+}
+
+std::string_view tableKey(TableId id) {
+    for (const auto& [each, key] : kKeys) {
+        if (each == id) return key;
+    }
+    throw Error("no CSV layout with id " + std::to_string(static_cast<int>(id)));
+}
+
+TableId tableId(std::string_view key) {
+    std::string known;
+    for (const auto& [id, each] : kKeys) {
+        if (each == key) return id;
+        known += (known.empty() ? "" : ", ") + std::string(each);
+    }
+    throw Error("no CSV layout named '" + std::string(key) + "' (known: " + known + ")");
 }
 
 std::vector<std::string> columnNames(TableId id, const LayoutSizes& sizes) {

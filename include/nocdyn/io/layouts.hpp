@@ -67,6 +67,12 @@ struct LayoutSizes {
 /// One layout.
 [[nodiscard]] const Layout& layout(TableId id);
 
+/// The id's name, as the enumerator is spelled ("closed_loop"): how Python names a layout.
+[[nodiscard]] std::string_view tableKey(TableId id);
+
+/// The id of a name of tableKey; throws nocdyn::Error for an unknown one.
+[[nodiscard]] TableId tableId(std::string_view key);
+
 /// The header of a file of layout `id`: the column names, repeated columns expanded.
 [[nodiscard]] std::vector<std::string> columnNames(TableId id, const LayoutSizes& sizes = {});
 
