@@ -16,6 +16,7 @@
 #include "cli_support.hpp"
 #include "skip.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/layouts.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -264,8 +265,16 @@ TEST(CliOutput, ControlTakesAnyRobotFile) {
     const io::Table table = io::readCsvFile(out.string());
     ASSERT_EQ(table.rows.size(), 200U);
     ASSERT_EQ(table.columns.size(), 22U);
-    EXPECT_EQ(table.columns[7], "e_theta");
+    EXPECT_EQ(table.columns, io::columnNames(io::TableId::closed_loop, {.actuators = 4}));
+    EXPECT_EQ(table.columns[9], "e_theta");  // the pose in the order x, y, theta
     EXPECT_EQ(table.columns.back(), "tau4");
+    for (const auto& row : table.rows) {
+        // each error is the desired value minus the achieved one, in the same pose order
+        for (const char* axis : {"x", "y", "theta"}) {
+            const std::string a(axis);
+            EXPECT_DOUBLE_EQ(row[table.column("e_" + a)], row[table.column(a + "_d")] - row[table.column(a)]) << a;
+        }
+    }
     for (const auto& row : table.rows) {
         for (const double v : row) EXPECT_TRUE(std::isfinite(v));
         for (std::size_t a = 18; a < 22; ++a) EXPECT_LE(std::abs(row[a]), 12.0);  // effort [N m]

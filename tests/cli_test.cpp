@@ -17,6 +17,7 @@
 
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -239,8 +240,9 @@ TEST(Cli, CategoryColumnsHoldWordsAndQuietPrintsNothing) {
     ASSERT_EQ(e.exit_code, 0) << e.err;
     EXPECT_EQ(e.out, "");
     const std::string text = slurp(envelope);
-    EXPECT_EQ(text.substr(0, text.find('\n')),
-              "axis,frequency,amplitude,limit,limb,joint,actuator,kinematic_amplitude,peak_effort_ratio");
+    EXPECT_EQ(
+        text.substr(0, text.find('\n')),
+        "axis,frequency,amplitude,limit,limb,joint,actuator,kinematic_amplitude,peak_effort_ratio,peak_u,peak_tau");
     const std::string first =
         text.substr(text.find('\n') + 1, text.find('\n', text.find('\n') + 1) - text.find('\n') - 1);
     EXPECT_EQ(first.substr(0, first.find(',')), "theta") << first;
@@ -387,6 +389,17 @@ TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
     }
     EXPECT_GT(peak, 20.0);
     EXPECT_LT(peak, 262.0);
+    // reproduce writes its tables in the layouts of the commands that write them alone
+    const auto header = [](const std::vector<std::string>& names) {
+        std::string line;
+        for (const std::string& name : names) line += (line.empty() ? "" : ",") + name;
+        return line;
+    };
+    const auto firstLine = [](const std::string& text) { return text.substr(0, text.find('\n')); };
+    EXPECT_EQ(paper1.columns, io::columnNames(io::TableId::inverse_dynamics, {.actuators = 3}));
+    EXPECT_EQ(firstLine(slurp(out / "envelope.csv")), header(io::columnNames(io::TableId::envelope)));
+    EXPECT_EQ(io::readCsvFile((out / "control_paper1.csv").string()).columns,
+              io::columnNames(io::TableId::closed_loop, {.actuators = 3}));
     const std::string summary = slurp(out / "summary.md");
     EXPECT_NE(summary.find("| paper1 | 1 |"), std::string::npos) << summary;
     EXPECT_NE(summary.find("262"), std::string::npos);
@@ -400,7 +413,9 @@ TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
     }
     const io::Table forces = io::readCsvFile((out / "identification" / "designed_forces.csv").string());
     ASSERT_FALSE(forces.rows.empty());
-    EXPECT_TRUE(forces.has("tau3_predicted"));
+    EXPECT_EQ(forces.columns, io::columnNames(io::TableId::held_out_forces, {.actuators = 3}));
+    EXPECT_EQ(io::readCsvFile((out / "identification" / "paper1_log.csv").string()).columns,
+              io::columnNames(io::TableId::measurements, {.actuators = 3}));  // no rates: identify derives them
     const std::size_t section = summary.find("## Identification experiment");
     ASSERT_NE(section, std::string::npos) << summary;
     int rows = 0;

@@ -363,7 +363,7 @@ MotionSamples motionFromCsv(const Model& model, const std::string& path) {
         const std::string name = "tau" + std::to_string(a);
         if (!table.has(name)) {
             throw Error(path + ": no column '" + name + "' (the robot has " + std::to_string(n) +
-                        " actuators; animate reads t,theta,x,y,tau1..tau" + std::to_string(n) + ")");
+                        " actuators; animate reads t,x,y,theta,tau1..tau" + std::to_string(n) + ")");
         }
         ctau.push_back(table.column(name));
     }

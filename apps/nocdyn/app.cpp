@@ -20,6 +20,7 @@
 #include "common.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/escape.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/output.hpp"
 
 namespace {
@@ -145,6 +146,11 @@ int runCommandLine(int argc, const char* const* argv) {
     // hidden: the options of every command as JSON (tests/python/test_parity.py)
     if (argc == 2 && std::string(argv[1]) == "--help-json") {
         std::cout << describeOptions(app) << "\n";
+        return 0;
+    }
+    // hidden: docs/output-formats.md, the CSV layouts from their registry (its test compares)
+    if (argc == 2 && std::string(argv[1]) == "--output-formats") {
+        std::cout << nocdyn::io::outputFormatsMarkdown();
         return 0;
     }
     try {

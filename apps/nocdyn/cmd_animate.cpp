@@ -84,7 +84,7 @@ void addAnimateCommand(CLI::App& app) {
                                            "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or "
                                            "samples (.csv: t and x,y,theta or ax,ay,alpha)");
     auto* motion = command->add_option("--motion", options->motion,
-                                       "CSV with columns t,theta,x,y,tau1..taun (SI), as written by simulate, "
+                                       "CSV with columns t,x,y,theta,tau1..taun (SI), as written by simulate, "
                                        "control or inverse-dynamics; u is recomputed from the pose");
     trajectory->excludes(motion);
     command

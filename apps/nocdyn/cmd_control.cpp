@@ -16,6 +16,7 @@
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/tables.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "plants.hpp"
@@ -155,8 +156,10 @@ void addControlCommand(CLI::App& app) {
         "--measure encoders). computed-torque: A_p^T tau = M_p(p) (ddp_d + Kd e' + Kp e) + h_p(p, dp), e = p_d - p,\n"
         "Kp = w^2, Kd = 2w, w = 2 pi f_n; pd: A_p^T tau = M_p(home) (Kp e + Kd e'); tau minimum-norm when redundant.\n"
         "Forces held between ticks, each clipped at its joint's effort. Prints RMS and peak errors.\n"
-        "CSV: t,theta_d,x_d,y_d,theta,x,y,e_theta,e_x,e_y,u1..un,u1_d..un_d,tau1..taun.\n"
-        "Example: nocdyn control --trajectory paper1 --payload-mass 0.5 --payload-com 0.012 -0.007 --log log.csv");
+        "CSV: " +
+            io::columnList(io::TableId::closed_loop) +
+            ".\n"
+            "Example: nocdyn control --trajectory paper1 --payload-mass 0.5 --payload-com 0.012 -0.007 --log log.csv");
     command
         ->add_option("--trajectory", options->trajectory,
                      "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or samples (.csv: t and "
@@ -222,9 +225,7 @@ void addControlCommand(CLI::App& app) {
         ->check(finiteIn(0.0, 1e3, "m/s"));
     command->add_option("--seed", options->seed, "Noise seed")->capture_default_str();
     command->add_flag("--no-saturation", options->no_saturation, "Do not clip the forces at each joint's effort");
-    command
-        ->add_option("--output,-o", options->output,
-                     "CSV: t,theta_d,x_d,y_d,theta,x,y,e_theta,e_x,e_y,u1..un,u1_d..un_d,tau1..taun (SI)")
+    command->add_option("--output,-o", options->output, "CSV: " + io::columnList(io::TableId::closed_loop) + " (SI)")
         ->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Tracking-error figure: writes STEM.png and STEM.svg")
         ->check(nonEmptyPath());

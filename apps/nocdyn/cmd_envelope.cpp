@@ -10,6 +10,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/envelope.hpp"
+#include "nocdyn/io/tables.hpp"
 #include "plot.hpp"
 #include "progress.hpp"
 
@@ -22,20 +23,6 @@ struct Options {
     EnvelopeOptions envelope;
     bool quiet = false;
 };
-
-io::Table table(const std::vector<EnvelopePoint>& points) {
-    io::Table t;
-    // axis and limit are written as words (EnvelopeAxis and EnvelopeLimit in order)
-    t.categories = {{"theta", "x", "y"}, {}, {}, {"range", "velocity", "effort", "workspace", "none"}};
-    t.columns = {"axis",     "frequency",           "amplitude",        "limit", "limb", "joint",
-                 "actuator", "kinematic_amplitude", "peak_effort_ratio"};
-    for (const auto& p : points) {
-        t.rows.push_back({static_cast<double>(p.axis), p.frequency, p.amplitude, static_cast<double>(p.limit),
-                          static_cast<double>(p.limb + 1), static_cast<double>(p.joint + 1),
-                          static_cast<double>(p.actuator + 1), p.kinematic_amplitude, p.peak_effort_ratio});
-    }
-    return t;
-}
 
 Figure figure(const std::vector<EnvelopePoint>& points, const std::string& robot) {
     PlotPanel translation{"Translation along x and y", "frequency [Hz]", "largest amplitude [mm]", {}, true, true};
@@ -82,7 +69,7 @@ void run(const Options& options) {
     envelope.progress = [&steps](int done, int total) { steps.count(done, total, "point"); };
     const auto points = operatingEnvelope(model, envelope);
     steps.finish();
-    if (!options.output.empty()) writeTable(table(points), options.output);
+    if (!options.output.empty()) writeTable(io::toTable(points), options.output);
     if (!options.figure.empty()) renderFigure(figure(points, model.description.name), options.figure);
     if (options.output.empty() && !options.quiet) {
         std::printf("axis   f [Hz]    amplitude        limit      peak |tau|/effort  where\n");

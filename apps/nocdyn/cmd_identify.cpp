@@ -14,6 +14,7 @@
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/calibration.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "plot.hpp"
@@ -252,7 +253,7 @@ void addIdentifyCommand(CLI::App& app) {
         "bounded least-squares solution, the bounds it lies on reported as active_bounds); standard deviations\n"
         "from the residuals; the last --holdout of the samples is held out to check the fit. Prints YAML.");
     addRobotOption(*command, options->robot);
-    command->add_option("--data", options->data, "Measured CSV: t,u1..un,tau1..taun[,du1..dun,ddu1..ddun]")
+    command->add_option("--data", options->data, "Measured CSV: " + io::columnList(io::TableId::measurements))
         ->required()
         ->check(CLI::ExistingFile);
     command->add_flag("--payload", options->payload, "Identify a payload (the default)");

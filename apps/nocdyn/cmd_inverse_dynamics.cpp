@@ -5,6 +5,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/io/escape.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/io/tables.hpp"
 #include "nocdyn/sampling.hpp"
@@ -64,12 +65,14 @@ void addInverseDynamicsCommand(CLI::App& app) {
         "Actuator variables, rates, accelerations and forces of any robot along a platform trajectory\n"
         "(minimum-norm forces when the robot has more than three actuators; gravity and joint friction\n"
         "when its file sets them). Samples t_k = k / rate, k = 0..round(duration * rate) - 1, and writes\n"
-        "CSV with the columns t,x,y,theta,u1..un,du1..dun,ddu1..ddun,tau1..taun,kinetic (SI, shortest\n"
-        "form that reads back exactly), row by row. Joint ranges and velocities, actuator efforts and\n"
-        "reach are also checked between samples, at 40 points per period of the trajectory's highest\n"
-        "harmonic; a rate at or below twice that frequency is refused. A pose out of reach, a singular\n"
-        "posture, or one beyond a joint or effort limit is an error (no CSV file is written; on stdout,\n"
-        "the rows before it).");
+        "CSV with the columns " +
+            io::columnList(io::TableId::inverse_dynamics) +
+            " (SI, shortest\n"
+            "form that reads back exactly), row by row. Joint ranges and velocities, actuator efforts and\n"
+            "reach are also checked between samples, at 40 points per period of the trajectory's highest\n"
+            "harmonic; a rate at or below twice that frequency is refused. A pose out of reach, a singular\n"
+            "posture, or one beyond a joint or effort limit is an error (no CSV file is written; on stdout,\n"
+            "the rows before it).");
     addTrajectoryOptions(*command, *options);
     command->add_flag("--allow-limits", options->allow_limits,
                       "Write the CSV even when a joint range, joint velocity or effort limit is exceeded (warnings\n"

@@ -14,6 +14,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/drawing.hpp"
 #include "nocdyn/envelope.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/reactions.hpp"
 #include "nocdyn/sampling.hpp"
@@ -64,10 +65,7 @@ const char* jointTypeName(JointType type) { return type == JointType::revolute ?
 
 io::Table table(const Model& model, const JointLoads& loads, const std::vector<double>& frequency) {
     io::Table t;
-    t.columns = {"limb",         "joint",        "peak_force",       "peak_force_t",
-                 "peak_force_x", "peak_force_y", "peak_force_theta", "rms_force",
-                 "peak_moment",  "peak_moment_t"};
-    if (!frequency.empty()) t.columns.emplace_back("peak_force_frequency");
+    t.columns = io::columnNames(io::TableId::loads, {.optional = !frequency.empty()});
     for (int j = 0; j < model.limbs; ++j) {
         for (int k = 0; k < 3; ++k) {
             const JointLoad& l = loads.joint[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];

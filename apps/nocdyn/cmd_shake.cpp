@@ -19,6 +19,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "plants.hpp"
 #include "shake_replay.hpp"
 
@@ -227,9 +228,11 @@ void addShakeCommand(CLI::App& app) {
         "encoders and platform accelerometers fused by a Kalman estimator, model feed-forward with low-gain pose\n"
         "feedback (--controller table; docs/earthquake-replay.md); optionally the payload identified first and the\n"
         "drive iterated.\n"
-        "Writes DIR/shake.csv (t,x,y,theta,ax,ay,alpha,ax_achieved,ay_achieved,alpha_achieved,u1..un,tau1..taun),\n"
-        "DIR/shake.json (time_scale, amplitude_scale, metrics: RMS and peak acceleration errors, 5 %-damped\n"
-        "pseudo-acceleration spectra) and figures DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}.");
+        "Writes DIR/shake.csv (" +
+            io::columnList(io::TableId::shake) +
+            "),\n"
+            "DIR/shake.json (time_scale, amplitude_scale, metrics: RMS and peak acceleration errors, 5 %-damped\n"
+            "pseudo-acceleration spectra) and figures DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}.");
     addRobotOption(*command, options->robot);
     command
         ->add_option("--record", options->records,

@@ -16,6 +16,7 @@
 #include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/forces.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/kinematics.hpp"
 
 namespace nocdyn::cli {
@@ -143,14 +144,7 @@ InitialState initialState(const Model& model, const io::Table& table, const Simu
     return state;
 }
 
-std::vector<std::string> outputColumns(int n) {
-    std::vector<std::string> columns{"t", "x", "y", "theta"};
-    for (const char* prefix : {"u", "du", "tau"}) {
-        for (int a = 1; a <= n; ++a) columns.push_back(prefix + std::to_string(a));
-    }
-    columns.emplace_back("kinetic");
-    return columns;
-}
+std::vector<std::string> outputColumns(int n) { return io::columnNames(io::TableId::simulate, {.actuators = n}); }
 
 void run(const SimulateOptions& options) {
     const Model model(loadRobotDescriptionOrDefault(options.robot));

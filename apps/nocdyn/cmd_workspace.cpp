@@ -9,6 +9,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/workspace.hpp"
 #include "progress.hpp"
 #include "workspace_figure.hpp"
@@ -51,7 +52,7 @@ void run(const Options& options) {
     steps.finish();
     if (!options.output.empty()) {
         io::Table table;
-        table.columns = {"x", "y", "cell"};
+        table.columns = io::columnNames(io::TableId::workspace);
         table.categories = {{}, {}, {"feasible", "unreachable", "range", "singular"}};  // WorkspaceCell in order
         for (int i = 0; i < map.n; ++i) {
             for (int k = 0; k < map.n; ++k) {

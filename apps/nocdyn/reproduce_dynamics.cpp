@@ -61,18 +61,7 @@ Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopR
 namespace {
 
 /// The short form's words for the limits: its actuated joints' range is the stroke and their
-/// effort the peak force. CSV: `stroke`, `force` or `workspace` (kEnvelopeLimitWords).
-double limitCode(EnvelopeLimit limit) {
-    switch (limit) {
-        case EnvelopeLimit::effort:
-            return 1.0;
-        case EnvelopeLimit::workspace:
-            return 2.0;
-        default:
-            return 0.0;
-    }
-}
-
+/// effort the peak force.
 const char* limitWord(EnvelopeLimit limit) {
     switch (limit) {
         case EnvelopeLimit::effort:
@@ -85,18 +74,6 @@ const char* limitWord(EnvelopeLimit limit) {
 }
 
 }  // namespace
-
-io::Table envelopeTable(const std::vector<EnvelopePoint>& points) {
-    io::Table table;
-    table.categories = {{"theta", "x", "y"}, {}, {}, {"stroke", "force", "workspace"}};
-    table.columns = {"axis", "frequency",           "amplitude",  "limit",
-                     "limb", "kinematic_amplitude", "peak_force", "peak_stroke"};
-    for (const auto& p : points) {
-        table.rows.push_back({static_cast<double>(p.axis), p.frequency, p.amplitude, limitCode(p.limit),
-                              static_cast<double>(p.limb + 1), p.kinematic_amplitude, p.peak_tau, p.peak_u});
-    }
-    return table;
-}
 
 Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot) {
     PlotPanel translation{"Translation along x and y", "frequency [Hz]", "largest amplitude [mm]", {}, true, true};
@@ -179,7 +156,7 @@ void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::pat
     const Model model(robot);
     const ActuatorLimits limits = actuatorLimits(robot);
     const auto points = operatingEnvelope(model);
-    io::writeCsvFile((out / "envelope.csv").string(), envelopeTable(points));
+    io::writeCsvFile((out / "envelope.csv").string(), io::toTable(points));
     renderFigure(envelopeFigure(points, robot.name), (out / "envelope").string());
 
     summary

@@ -28,10 +28,6 @@ struct ActuatorLimits {
 /// Tracking errors u_d - u per actuator [um] versus time, one panel per run.
 [[nodiscard]] Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopResult>& runs);
 
-/// Envelope as CSV: axis,frequency,amplitude,limit,limb,kinematic_amplitude,peak_force,peak_stroke
-/// (axis 0 theta, 1 x, 2 y; limit 0 stroke (a joint's range), 1 force (an actuator's effort),
-/// 2 workspace; limb 1..3): the envelope of the 3-PRR short form, whose actuators are its P joints.
-[[nodiscard]] io::Table envelopeTable(const std::vector<EnvelopePoint>& points);
 /// Amplitude versus frequency, log axes: one panel for x and y [mm], one for theta [deg].
 [[nodiscard]] Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot);
 

@@ -18,6 +18,7 @@
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/tables.hpp"
 #include "nocdyn/shake.hpp"
 #include "plants.hpp"
@@ -68,11 +69,8 @@ io::Table decimated(const io::Table& table) {
 /// Held-out forces: t, tau1..taun measured, tau1..taun predicted (every kDecimation-th sample).
 io::Table forcesTable(const FitReport& fit) {
     io::Table table;
-    table.columns = {"t"};
     const auto n = fit.measured.cols();
-    for (const char* what : {"_measured", "_predicted"}) {
-        for (Eigen::Index a = 1; a <= n; ++a) table.columns.push_back("tau" + std::to_string(a) + what);
-    }
+    table.columns = io::columnNames(io::TableId::held_out_forces, {.actuators = static_cast<int>(n)});
     for (std::size_t k = 0; k < fit.t.size(); k += kDecimation) {
         const auto kk = static_cast<Eigen::Index>(k);
         std::vector<double> row{fit.t[k]};

@@ -18,6 +18,7 @@
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "plants.hpp"
 #include "plot.hpp"
 
@@ -251,10 +252,7 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
     const int n = model.actuators;
     // shake.csv at the record's (scaled) samples; u and tau from the nearest tick
     io::Table table;
-    table.columns = {"t", "x", "y", "theta", "ax", "ay", "alpha", "ax_achieved", "ay_achieved", "alpha_achieved"};
-    for (const char* prefix : {"u", "tau"}) {
-        for (int a = 0; a < n; ++a) table.columns.push_back(std::string(prefix).append(std::to_string(a + 1)));
-    }
+    table.columns = io::columnNames(io::TableId::shake, {.actuators = n});
     const double tick = loop.t.size() > 1 ? loop.t[1] - loop.t[0] : 1.0;
     Pose p, dp, ddp;
     for (std::size_t i = 0; i < fit.t.size(); ++i) {

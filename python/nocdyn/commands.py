@@ -324,7 +324,7 @@ def control(trajectory, *, robot=None, set=None, controller="computed-torque", p
     on a plant: 'simbody' (the independent model, when built in; the default then), 'nocdyn' or
     'nocdyn-rk4'. The payload_* arguments put a payload on the plant only (model mismatch); the
     noise_* arguments are sensor noise; log: also write the sensors' log for identify. Returns a
-    Table with the CSV's columns (t, theta_d, ..., e_theta, e_x, e_y, u1..un, ..., tau1..taun);
+    Table with the CSV's columns (t, x_d, y_d, theta_d, ..., e_x, e_y, e_theta, u1..un, ..., tau1..taun);
     its text holds the RMS and peak errors."""
     return _table_command("control", control, dict(locals()), "control.csv")
 

@@ -143,7 +143,7 @@ class Designs:
             if any(c in text for c in ',"\r\n'):
                 return '"' + text.replace('"', '""').replace("\r", " ").replace("\n", " ") + '"'
             return text
-        lines = [",".join(["design", *self.names, *self.metrics, "feasible", "reason"])]
+        lines = [",".join(_nocdyn._column_names("design", parameters=self.names, metrics=self.metrics))]
         for i in range(len(self)):
             lines.append(",".join([str(i), *(number(v) for v in self.points[i]),
                                    *(number(v) for v in self.values[i]),

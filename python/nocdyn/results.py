@@ -169,11 +169,12 @@ class AssemblyModes(_Record):
         return len(self.solutions)
 
     def to_pandas(self):
-        """One row per assembly mode: theta, x, y and the other fields of each solution."""
+        """One row per assembly mode: the fields of each solution, then its pose x, y, theta (the
+        order of every table nocdyn writes)."""
         rows = []
         for s in self.solutions:
             row = {k: v for k, v in s.items() if k != "pose"}
-            row.update(s["pose"])
+            row.update({k: s["pose"][k] for k in ("x", "y", "theta")})
             rows.append(row)
         return _pandas().DataFrame(rows)
 

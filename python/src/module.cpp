@@ -31,6 +31,7 @@
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/calibration.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/kinematics.hpp"
@@ -839,6 +840,18 @@ PYBIND11_MODULE(_nocdyn, m) {
                  return py::make_tuple(a.offset, harmonicsOf(a));
              })
         .def("_evaluate", &evaluateTrajectory, py::arg("t"));
+
+    // the CSV layouts (io/layouts.hpp): the header of a table Python writes itself
+    m.def(
+        "_column_names",
+        [](const std::string& table, int actuators, int limbs, std::vector<std::string> parameters,
+           std::vector<std::string> metrics, bool optional) {
+            const io::LayoutSizes sizes{actuators, limbs, std::move(parameters), std::move(metrics), optional};
+            return io::columnNames(io::tableId(table), sizes);
+        },
+        py::arg("table"), py::arg("actuators") = 0, py::arg("limbs") = 0,
+        py::arg("parameters") = std::vector<std::string>{}, py::arg("metrics") = std::vector<std::string>{},
+        py::arg("optional") = false);
 
     // --- design sweeps (python/src/design.cpp): chunks of designs evaluated with the GIL released
     void nocdyn_python_bind_design(py::module_ & m);

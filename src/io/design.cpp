@@ -10,6 +10,7 @@
 #include "file_util.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/layouts.hpp"
 
 namespace nocdyn::io {
 
@@ -113,12 +114,10 @@ DesignEvaluation evaluateFamilyDesign(const DesignFamily& family, const std::vec
 
 std::vector<std::string> designColumns(const std::vector<DesignRange>& ranges,
                                        const std::vector<DesignMetric>& metrics) {
-    std::vector<std::string> columns{"design"};
-    for (const DesignRange& r : ranges) columns.push_back(r.name);
-    for (const DesignMetric& m : metrics) columns.push_back(m.name());
-    columns.emplace_back("feasible");
-    columns.emplace_back("reason");
-    return columns;
+    LayoutSizes sizes;
+    for (const DesignRange& r : ranges) sizes.parameters.push_back(r.name);
+    for (const DesignMetric& m : metrics) sizes.metrics.push_back(m.name());
+    return columnNames(TableId::design, sizes);
 }
 
 std::string designCsvRow(const DesignRecord& record) {

@@ -1,6 +1,8 @@
 // CSV layouts of the results (tables.hpp).
 #include "nocdyn/io/tables.hpp"
 
+#include "nocdyn/io/layouts.hpp"
+
 namespace nocdyn::io {
 
 std::vector<std::string> numbered(const std::string& prefix, int count) {
@@ -10,12 +12,7 @@ std::vector<std::string> numbered(const std::string& prefix, int count) {
 }
 
 std::vector<std::string> inverseDynamicsColumns(int actuators) {
-    std::vector<std::string> columns{"t", "x", "y", "theta"};
-    for (const char* quantity : {"u", "du", "ddu", "tau"}) {
-        for (std::string& name : numbered(quantity, actuators)) columns.push_back(std::move(name));
-    }
-    columns.emplace_back("kinetic");
-    return columns;
+    return columnNames(TableId::inverse_dynamics, {.actuators = actuators});
 }
 
 void inverseDynamicsRow(const InverseDynamicsSample& s, std::vector<double>& row) {
@@ -32,16 +29,7 @@ void inverseDynamicsRow(const InverseDynamicsSample& s, std::vector<double>& row
     row[c] = s.kinetic;
 }
 
-std::vector<std::string> reactionColumns(int limbs) {
-    std::vector<std::string> columns;
-    for (int i = 1; i <= limbs; ++i) {
-        for (int k = 1; k <= 3; ++k) {
-            const std::string stem = "limb" + std::to_string(i) + "_j" + std::to_string(k) + "_";
-            for (const char* part : {"fx", "fy", "m"}) columns.push_back(stem + part);
-        }
-    }
-    return columns;
-}
+std::vector<std::string> reactionColumns(int limbs) { return columnNames(TableId::reactions, {.limbs = limbs}); }
 
 void appendReactions(const Reactions& reactions, int limbs, std::vector<double>& row) {
     for (int i = 0; i < limbs; ++i) {
@@ -63,17 +51,12 @@ Table toTable(const InverseDynamicsSeries& series, int actuators) {
 
 Table toTable(const PoseLoopResult& result) {
     Table table;
-    table.columns = {"t", "theta_d", "x_d", "y_d", "theta", "x", "y", "e_theta", "e_x", "e_y"};
-    for (const char* suffix : {"", "_d"}) {
-        for (int a = 1; a <= result.actuators; ++a)
-            table.columns.push_back(std::string("u").append(std::to_string(a)).append(suffix));
-    }
-    for (int a = 1; a <= result.actuators; ++a) table.columns.push_back(std::string("tau").append(std::to_string(a)));
+    table.columns = columnNames(TableId::closed_loop, {.actuators = result.actuators});
     table.rows.reserve(result.t.size());
     for (std::size_t k = 0; k < result.t.size(); ++k) {
-        const Pose& d = result.p_d[k];
+        const Pose& d = result.p_d[k];  // (theta, x, y)
         const Pose& p = result.p[k];
-        std::vector<double> row{result.t[k], d(0), d(1), d(2), p(0), p(1), p(2), d(0) - p(0), d(1) - p(1), d(2) - p(2)};
+        std::vector<double> row{result.t[k], d(1), d(2), d(0), p(1), p(2), p(0), d(1) - p(1), d(2) - p(2), d(0) - p(0)};
         for (const auto* v : {&result.u, &result.u_d, &result.tau}) {
             for (int a = 0; a < result.actuators; ++a) row.push_back((*v)[k](a));
         }
@@ -86,16 +69,7 @@ Table toTable(const Measurements& measurements) {
     Table table;
     const auto n = measurements.u.cols();
     const bool rates = measurements.du.size() > 0 && measurements.ddu.size() > 0;
-    table.columns = {"t"};
-    const auto append = [&](const char* quantity) {
-        for (std::string& name : numbered(quantity, static_cast<int>(n))) table.columns.push_back(std::move(name));
-    };
-    append("u");
-    append("tau");
-    if (rates) {
-        append("du");
-        append("ddu");
-    }
+    table.columns = columnNames(TableId::measurements, {.actuators = static_cast<int>(n), .optional = rates});
     for (std::size_t k = 0; k < measurements.t.size(); ++k) {
         const auto kk = static_cast<Eigen::Index>(k);
         std::vector<double> row{measurements.t[k]};
@@ -106,6 +80,20 @@ Table toTable(const Measurements& measurements) {
             for (Eigen::Index a = 0; a < n; ++a) row.push_back(measurements.ddu(kk, a));
         }
         table.rows.push_back(std::move(row));
+    }
+    return table;
+}
+
+Table toTable(const std::vector<EnvelopePoint>& points) {
+    Table table;
+    // axis and limit are written as words (EnvelopeAxis and EnvelopeLimit in order)
+    table.categories = {{"theta", "x", "y"}, {}, {}, {"range", "velocity", "effort", "workspace", "none"}};
+    table.columns = columnNames(TableId::envelope);
+    for (const EnvelopePoint& p : points) {
+        table.rows.push_back({static_cast<double>(p.axis), p.frequency, p.amplitude, static_cast<double>(p.limit),
+                              static_cast<double>(p.limb + 1), static_cast<double>(p.joint + 1),
+                              static_cast<double>(p.actuator + 1), p.kinematic_amplitude, p.peak_effort_ratio, p.peak_u,
+                              p.peak_tau});
     }
     return table;
 }

@@ -193,6 +193,17 @@ def test_forward_kinematics_every_assembly_mode():
     assert py.solutions == cli["solutions"] and len(py) == cli["solutions_all_branches"] > 1
     working = nocdyn.forward_kinematics(u, robot=ROBOT)
     assert any(np.allclose(p, [0.01, 0.001, -0.002], atol=1e-9) for p in working.poses)
+    # as a table the pose is in the order of every file: x, y, theta, last
+    assert list(working.to_pandas().columns)[-3:] == ["x", "y", "theta"]
+
+
+def test_tables_take_their_columns_from_the_registry():
+    run = nocdyn.control("paper1", duration=0.005, rate=2000.0, plant="nocdyn")
+    assert run.columns == nocdyn._nocdyn._column_names("closed_loop", actuators=3)
+    assert run.columns[:10] == ["t", "x_d", "y_d", "theta_d", "x", "y", "theta", "e_x", "e_y", "e_theta"]
+    np.testing.assert_array_equal(run["e_x"], run["x_d"] - run["x"])
+    with pytest.raises(nocdyn.Error, match="no CSV layout named 'nope'"):
+        nocdyn._nocdyn._column_names("nope")
 
 
 def test_control_on_every_plant_and_identify(tmp_path):

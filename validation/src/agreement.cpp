@@ -6,6 +6,7 @@
 #include <cstdio>
 
 #include "nocdyn/io/tables.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"
@@ -58,17 +59,7 @@ EngineComparison compareWithEngines(const RobotDescription& robot, const PoseTra
 io::Table toTable(const EngineComparison& c) {
     const int n = c.actuators;
     io::Table table;
-    table.columns = {"t"};
-    for (const char* prefix : {"", "simbody_", "mujoco_"}) {
-        for (const char* quantity : {"u", "tau"}) {
-            for (std::string& name : io::numbered(std::string(prefix) + quantity, n))
-                table.columns.push_back(std::move(name));
-        }
-    }
-    for (const char* prefix : {"simbody_", "mujoco_"}) {
-        for (std::string& name : io::numbered(std::string(prefix) + "dtau", n))
-            table.columns.push_back(std::move(name));
-    }
+    table.columns = io::columnNames(io::TableId::validation, {.actuators = n});
     for (std::size_t k = 0; k < c.ours.samples.size(); ++k) {
         const InverseDynamicsSample& ours = c.ours.samples[k];
         std::vector<double> row{ours.t};

@@ -1,10 +1,11 @@
-// CSV layouts of the results (column names and rows), kept out of the physics.
+// CSV tables of the results (rows in the column layouts of layouts.hpp), kept out of the physics.
 #pragma once
 
 #include <span>
 #include <string>
 #include <vector>
 
+#include "nocdyn/envelope.hpp"
 #include "nocdyn/general_control.hpp"
 #include "nocdyn/identification.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -13,7 +14,8 @@
 
 namespace nocdyn::io {
 
-/// t,x,y,theta,u1..un,du1..dun,ddu1..ddun,tau1..taun,kinetic (SI; n actuators).
+/// t,x,y,theta,u1..un,du1..dun,ddu1..ddun,tau1..taun,kinetic (SI; n actuators;
+/// TableId::inverse_dynamics).
 [[nodiscard]] std::vector<std::string> inverseDynamicsColumns(int actuators);
 
 /// `prefix`1..`prefix`n, e.g. "tau1".."tau4".
@@ -32,12 +34,15 @@ void appendReactions(const Reactions& reactions, int limbs, std::vector<double>&
 /// The whole series as a table.
 [[nodiscard]] Table toTable(const InverseDynamicsSeries& series, int actuators);
 
-/// A closed-loop run: t, theta_d, x_d, y_d, theta, x, y, e_theta, e_x, e_y, u1..un, u1_d..un_d,
-/// tau1..taun (SI).
+/// A closed-loop run: t, x_d, y_d, theta_d, x, y, theta, e_x, e_y, e_theta, u1..un, u1_d..un_d,
+/// tau1..taun (SI; TableId::closed_loop).
 [[nodiscard]] Table toTable(const PoseLoopResult& result);
 
 /// An experiment's log: t,u1..un,tau1..taun, then du1..dun,ddu1..ddun when it has them (what
 /// identify reads).
 [[nodiscard]] Table toTable(const Measurements& measurements);
+
+/// An operating envelope, one row per point (TableId::envelope; axis and limit as words).
+[[nodiscard]] Table toTable(const std::vector<EnvelopePoint>& points);
 
 }  // namespace nocdyn::io
