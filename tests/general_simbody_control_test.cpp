@@ -18,7 +18,7 @@ namespace {
 PoseLoopResult trackOnSimbody(const RobotDescription& robot, const RobotDescription& plant_robot) {
     const Model model(robot);
     PoseController controller(model, ControlLaw::computed_torque, taskCriticallyDamped(50.0));
-    cli::SimbodyPlant plant(plant_robot, 1e-8);
+    report::SimbodyPlant plant(plant_robot, 1e-8);
     PoseLoopOptions options;
     options.rate = 5000.0;
     options.duration = 0.1;

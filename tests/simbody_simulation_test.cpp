@@ -56,7 +56,7 @@ TEST(SimbodyForwardDynamics, ComputedTorqueOnTheSimbodyPlantBeatsPd) {
     options.duration = 0.1;
     PoseController computed_torque(model, ControlLaw::computed_torque, taskCriticallyDamped(50.0));
     PoseController pd(model, ControlLaw::pd, taskCriticallyDamped(50.0));
-    cli::SimbodyPlant plant_a(robot), plant_b(robot);
+    report::SimbodyPlant plant_a(robot), plant_b(robot);
     const auto ct = runPoseLoop(computed_torque, plant_a, paperTrajectory1(), options);
     const auto pd_result = runPoseLoop(pd, plant_b, paperTrajectory1(), options);
     const double ct_rms = *std::max_element(ct.rms_error.begin(), ct.rms_error.end());

@@ -13,7 +13,12 @@
 #include "nocdyn/description.hpp"
 #include "nocdyn/trajectory.hpp"
 
+namespace nocdyn::report {}  // namespace nocdyn::report
+
 namespace nocdyn::cli {
+
+/// The commands draw figures, pages and replays with the report module's functions.
+using namespace nocdyn::report;
 
 /// Accepted ranges of the sampling options (README, "Command line").
 inline constexpr double kMinRate = 1.0, kMaxRate = 1e8;           // --rate [Hz]

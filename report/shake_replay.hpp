@@ -14,7 +14,7 @@
 #include "nocdyn/shake.hpp"
 #include "nocdyn/shake_control.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 struct ShakeSettings {
     FitOptions fit;
@@ -89,4 +89,4 @@ void printShakeSummary(const ShakeOutcome& outcome, std::ostream& out, bool with
 /// The El Centro replay on the paper's prototype, for summary.md of nocdyn reproduce.
 void reproduceShake(const std::string& out_dir, std::ostream& summary);
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

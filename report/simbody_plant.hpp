@@ -13,7 +13,7 @@ namespace nocdyn::validation {
 class SimbodyMechanism;
 }  // namespace nocdyn::validation
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 class SimbodyPlant final : public RobotPlant {
 public:
@@ -34,4 +34,4 @@ private:
     std::unique_ptr<validation::SimbodyMechanism> mechanism_;
 };
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

@@ -22,7 +22,7 @@
 #include "plants.hpp"
 #include "plot.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 /// The El Centro record compiled in (generated from data/elcentro_1940_ns.AT2).
 extern const char* const kElCentroAt2;
@@ -448,4 +448,4 @@ void reproduceShake(const std::string& out_dir, std::ostream& summary) {
             << " data/elcentro_1940_ns.AT2 --window " << kWindow << " --plant nocdyn` reproduces them.\n\n";
 }
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

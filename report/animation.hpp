@@ -12,7 +12,7 @@
 #include "nocdyn/trajectory.hpp"
 #include "plot.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 /// Samples of a motion: times, poses, actuator variables and forces (n = model.actuators).
 struct MotionSamples {
@@ -59,4 +59,4 @@ struct AnimationOptions {
 /// 10 kHz) into `out`, and a paragraph naming them in `summary`.
 void reproduceAnimations(const std::filesystem::path& out, std::ostream& summary);
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

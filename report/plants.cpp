@@ -7,7 +7,7 @@
 #include "simbody_plant.hpp"
 #endif
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 std::string defaultPlantName() {
 #ifdef NOCDYN_HAS_SIMBODY
@@ -37,4 +37,4 @@ std::unique_ptr<RobotPlant> makePlant(const std::string& name, const RobotDescri
     throw Error("--plant " + name + ": not built in (use --plant nocdyn)");
 }
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

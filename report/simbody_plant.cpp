@@ -2,7 +2,7 @@
 
 #include "nocdyn/validation/simbody_mechanism.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 SimbodyPlant::SimbodyPlant(const RobotDescription& robot, double accuracy)
     : mechanism_(std::make_unique<validation::SimbodyMechanism>(robot)) {
@@ -18,4 +18,4 @@ Pose SimbodyPlant::pose() const { return mechanism_->pose(); }
 Twist SimbodyPlant::poseRate() const { return mechanism_->poseRate(); }
 ActuatorVector SimbodyPlant::u() const { return mechanism_->u(); }
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

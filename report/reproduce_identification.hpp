@@ -5,7 +5,7 @@
 #include <filesystem>
 #include <iosfwd>
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 /// Runs the experiment (designed excitation, with and without slider friction unknown to the
 /// robot file; the paper's trajectories 1 and 2 as the naive baseline), each for `duration`
@@ -13,4 +13,4 @@ namespace nocdyn::cli {
 /// in `out` and its markdown section to `summary`. Deterministic (fixed seeds).
 void reproduceIdentification(const std::filesystem::path& out, std::ostream& summary, double duration);
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

@@ -18,7 +18,7 @@
 #include "nocdyn/sampling.hpp"
 #include "plants.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 ActuatorLimits actuatorLimits(const RobotDescription& robot) {
     for (const LimbDescription& limb : robot.limbs) {
@@ -269,4 +269,4 @@ void reproduceRoundTrip(const RobotDescription& robot, std::ostream& summary) {
            "interval (test ForwardDynamics.RoundTripErrorIsSecondOrderInForceSampling).\n\n";
 }
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

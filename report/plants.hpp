@@ -11,7 +11,7 @@
 #include "nocdyn/description.hpp"
 #include "nocdyn/general_control.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 /// "simbody" when built with the Simbody model, else "nocdyn".
 [[nodiscard]] std::string defaultPlantName();
@@ -25,4 +25,4 @@ CLI::Option* addPlantOption(CLI::App& command, std::string& plant);
 [[nodiscard]] std::unique_ptr<RobotPlant> makePlant(const std::string& name, const RobotDescription& robot,
                                                     double accuracy = 1e-10);
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

@@ -16,7 +16,7 @@
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/sampling.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 namespace {
 
@@ -586,4 +586,4 @@ void reproduceAnimations(const std::filesystem::path& out, std::ostream& summary
     summary << "\n`nocdyn animate --trajectory paper1 --out paper1_animation.html` writes the same page.\n\n";
 }
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

@@ -17,7 +17,7 @@
 
 extern char** environ;
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 namespace {
 
@@ -224,4 +224,4 @@ void renderFigureFiles(const Figure& figure, const std::string& png, const std::
     }
 }
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 struct PlotSeries {
     std::string label;
@@ -54,4 +54,4 @@ void renderFigure(const Figure& figure, const std::string& stem);
 /// The same to the paths given (an empty path: that format is not written).
 void renderFigureFiles(const Figure& figure, const std::string& png, const std::string& svg);
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

@@ -5,7 +5,7 @@
 #include <cstdio>
 #include <numbers>
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 Figure workspaceFigure(const WorkspaceMap& map, const Model& model, const std::vector<PlotSeries>& paths) {
     PlotSeries outline{"feasible region (outline)", {}, {}, "points pt 7 ps 0.25 lc rgb '#1f77b4'"};
@@ -76,4 +76,4 @@ std::string workspaceSummary(const WorkspaceMap& map) {
     return text;
 }
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

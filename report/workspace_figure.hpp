@@ -7,7 +7,7 @@
 #include "nocdyn/workspace.hpp"
 #include "plot.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 /// Outline of the feasible region, the two kinds of singularity curves and the home position,
 /// in mm, equal axes; `paths` (label, x [m], y [m]) drawn as lines on top.
@@ -16,4 +16,4 @@ namespace nocdyn::cli {
 /// One paragraph for a summary: the area, the box, the counts of curve points.
 [[nodiscard]] std::string workspaceSummary(const WorkspaceMap& map);
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

@@ -15,7 +15,7 @@
 #include "nocdyn/io/csv.hpp"
 #include "plot.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 /// The actuators' limits of a robot whose actuated joints share them (the paper's prototype):
 /// the first actuated joint's range (upper - lower, the total stroke) and effort (the peak force).
@@ -49,4 +49,4 @@ void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::pat
 /// (10 kHz, linear in between) fed to the forward dynamics; max |u - u_d| and pose error.
 void reproduceRoundTrip(const RobotDescription& robot, std::ostream& summary);
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report

@@ -24,7 +24,7 @@
 #include "plants.hpp"
 #include "plot.hpp"
 
-namespace nocdyn::cli {
+namespace nocdyn::report {
 
 namespace {
 
@@ -284,4 +284,4 @@ void reproduceIdentification(const std::filesystem::path& out, std::ostream& sum
             << " (the designed case). `nocdyn reproduce --identification-duration S` sets the length of each run.\n\n";
 }
 
-}  // namespace nocdyn::cli
+}  // namespace nocdyn::report
