@@ -22,7 +22,9 @@
 #include "nocdyn/io/forces.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
+#include "nocdyn/io/tables.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "nocdyn/reactions.hpp"
 
 namespace nocdyn::cli {
 
@@ -36,6 +38,7 @@ struct SimulateOptions {
     double relative_tolerance = 1e-10;
     std::string interpolation = "cubic";
     bool partial = false;
+    bool reactions = false;
     /// Which working assembly mode of the first row's u (1-based, as forward-kinematics lists
     /// them); 0: the one nearest home.
     int assembly_mode = 0;
@@ -259,8 +262,14 @@ void run(const SimulateOptions& options) {
     // rows at t0 + k / rate, k = 0..count-1, and at t0 + duration
     const auto count = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(duration * options.rate)));
     io::OutputFile out = openOutput(options.output);
-    io::CsvWriter csv(out, outputColumns(n), /*background=*/true);
+    std::vector<std::string> columns = outputColumns(n);
+    if (options.reactions) {
+        for (std::string& name : io::reactionColumns(model.limbs)) columns.push_back(std::move(name));
+    }
+    io::CsvWriter csv(out, columns, /*background=*/true);
     std::vector<double> row(static_cast<std::size_t>(4 + 3 * n + 1));
+    row.reserve(columns.size());
+    Reactions reactions;
     Progress progress(duration);
     for (std::size_t k = 0; k <= count; ++k) {
         const double t = k < count ? t0 + static_cast<double>(k) / options.rate : t0 + duration;
@@ -286,6 +295,12 @@ void run(const SimulateOptions& options) {
         for (int a = 0; a < n; ++a) row[c++] = simulator.du()(a);
         for (int a = 0; a < n; ++a) row[c++] = simulator.tau()(a);
         row[c] = simulator.kineticEnergy();
+        if (options.reactions) {
+            // the simulated state's every stage and the forces applied (forwardDynamics sets them)
+            jointReactions(model, simulator.data(), reactions);
+            row.resize(static_cast<std::size_t>(4 + 3 * n + 1));
+            io::appendReactions(reactions, model.limbs, row);
+        }
         csv.row(row);
     }
     progress.finish();
@@ -343,6 +358,12 @@ void addSimulateCommand(CLI::App& app) {
         ->check(CLI::Range(1, kMaxAssemblyModes));
     command->add_flag("--partial", options->partial,
                       "When the simulation stops early (singularity, out of reach), keep the rows before it");
+    command->add_flag(
+        "--reactions", options->reactions,
+        "Add every joint's reaction after the other columns, at each output sample from the simulated\n"
+        "state and the forces applied: limb{i}_j{k}_fx, _fy [N] and _m [N m] as in inverse-dynamics\n"
+        "--reactions (base frame, the inboard body on the outboard body, the joint's effort and friction\n"
+        "taken out)");
     command->callback([options] { run(*options); });
 }
 
