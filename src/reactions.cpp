@@ -342,6 +342,11 @@ inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, cons
         ld.x[1] = Vector2(t.x[1], t.y[1]);
         ld.xi[0] = wrenchOf(t.xi[0]);
         ld.xi[1] = wrenchOf(t.xi[1]);
+        // ds_k/dt = [xi of the body carrying joint k, s_k]: s_1 is fixed to the base
+        ld.s_dot[0].setZero();
+        const auto sd1 = lean::bracket(t.xi[0], t.s[1]), sd2 = lean::bracket(t.xi[1], t.s[2]);
+        ld.s_dot[1] << 0.0, sd1.x, sd1.y;
+        ld.s_dot[2] << 0.0, sd2.x, sd2.y;
         ld.gamma_dot << t.gd[0], t.gd[1], t.gd[2];
         ld.gamma_ddot << t.gdd[0], t.gdd[1], t.gdd[2];
         reactions.body[static_cast<std::size_t>(model.body(j, 0))] = wrenchOf(t.w[0]);

@@ -73,9 +73,9 @@ void jointReactions(const Model& model, const Data& data, Reactions& reactions);
 /// the bodies' wrenches and tau from the platform's balance A^T tau = w_P + sum_j J_j^-T
 /// (phi_j + k_j) (W_P; minimum-norm with more than three actuators), then the
 /// back-substitution. The same tau (to rounding) and Status as inverseDynamics. Sets data's
-/// u, du, ddu, tau, W_P, p, its rates, xi_P and its rate, x_P, and per limb s, J_inv, x, xi,
-/// gamma_dot and gamma_ddot; the other fields (q, J, s_dot, A, T_i, I, C, ...) may be left as
-/// they were. Allocation-free.
+/// u, du, ddu, tau, W_P, p, its rates, xi_P and its rate, x_P, and per limb s, s_dot, J_inv, x,
+/// xi, gamma_dot and gamma_ddot (all jointReactions reads); the other fields (q, J, A, T_i, I,
+/// C, ...) may be left as they were. Allocation-free.
 Status inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
                                     Reactions& reactions);
 
