@@ -424,7 +424,7 @@ BatchResult reactionsBatch(const Model& model, const BatchInput& p, const BatchI
     requireBatchShape("p", p.rows(), p.cols(), n, 3);
     requireBatchShape("dp", dp.rows(), dp.cols(), n, 3);
     requireBatchShape("ddp", ddp.rows(), ddp.cols(), n, 3);
-    requireBatchShape("out", out.rows(), out.cols(), n, 9 * model.limbs);
+    requireBatchShape("out", out.rows(), out.cols(), n, Eigen::Index{9} * model.limbs);
     // the split of inverseDynamicsBatch: at most one thread per hardware thread and 8 samples
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
     const auto chunks = static_cast<unsigned>(std::min<Eigen::Index>((n + 7) / 8, hardware));
