@@ -308,16 +308,30 @@ NOCDYN_ALWAYS_INLINE bool pass(Mask<S>& ok, const Mask<S>& test) {
     }
 }
 
+/// What the joint reactions (reactions.cpp) keep of one limb: the screws s_k, the rows j_k of
+/// J_j^-1, the bodies' wrenches w_1, w_2 (M dt - gravity, referred to O) and c.o.m., the joint
+/// rates and accelerations, and f = k_j + phi_j (each joint's share of the bodies' wrenches
+/// plus its friction), so that F_3 = J_j^-T (e - f) with e the actuators' forces.
+template <class S>
+struct LimbTerms {
+    V3<S> s[3], j[3], w[2], xi[2];
+    S x[2], y[2];
+    S gd[3], gdd[3], f[3];
+};
+/// No capture: the inverse dynamics alone (the capture's stores compiled away).
+struct NoCapture {};
+
 /// One limb of kind K: its joint rates and accelerations, its bodies' share of W_P (into
 /// W), and its actuators' u, du, ddu and rows of A. False (lane by lane) when the limb
-/// cannot close or its J_j is too ill-conditioned.
+/// cannot close or its J_j is too ill-conditioned. With a LimbTerms `capture`, also what the
+/// reactions need.
 /// kAct: the one actuated joint of the limb (0..2), known at compile time, or kAnyActuation
 /// (read from limb.actuator).
 inline constexpr int kAnyActuation = -1;
 
-template <LimbKind K, int kAct, class S, class LM>
+template <LimbKind K, int kAct, class S, class LM, class Capture = NoCapture>
 NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LM& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W, V3<S>* rows,
-                                       double* weight, double* scale) {
+                                       double* weight, double* scale, Capture* capture = nullptr) {
     const PlatformMove<S>& G = f.G;
     const V3<S>& xi_P = f.xi_P;
     const V3<S>& xi_P_dot = f.xi_P_dot;
@@ -368,13 +382,26 @@ NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LM& limb, const Frame<S>& f, const 
     const V3<S> W1 = bodyWrench(inertiaOf(limb, 1), massOf(limb, 1), gx, gy, x1, y1, xi1, alpha1);
     // joint efforts: joint k carries every body outboard of it in the limb, plus friction
     S f0 = dot(s0, W0 + W1), f1 = dot(s1, W1);
+    S f2 = splat<S>(0.0);
     if (modelOf(limb).frictionless) [[likely]] {
         W = W + f0 * j0 + f1 * j1;
     } else {
         f0 += dampingOf(limb, 0) * gd0 + frictionOf(limb, 0) * sign(gd0);
         f1 += dampingOf(limb, 1) * gd1 + frictionOf(limb, 1) * sign(gd1);
-        const S f2 = dampingOf(limb, 2) * gd2 + frictionOf(limb, 2) * sign(gd2);
+        f2 = dampingOf(limb, 2) * gd2 + frictionOf(limb, 2) * sign(gd2);
         W = W + f0 * j0 + f1 * j1 + f2 * j2;
+    }
+    if constexpr (!std::is_same_v<Capture, NoCapture>) {
+        const auto full = [](const auto& t) NOCDYN_INLINE_LAMBDA { return V3<S>{value<S>(t.w), t.x, t.y}; };
+        LimbTerms<S>& c = *capture;
+        c.s[0] = full(s0), c.s[1] = full(s1), c.s[2] = full(s2);
+        c.j[0] = j0, c.j[1] = j1, c.j[2] = j2;
+        c.w[0] = W0, c.w[1] = W1;
+        c.xi[0] = full(xi0), c.xi[1] = full(xi1);
+        c.x[0] = x0, c.y[0] = y0, c.x[1] = x1, c.y[1] = y1;
+        c.gd[0] = gd0, c.gd[1] = gd1, c.gd[2] = gd2;
+        c.gdd[0] = gdd0, c.gdd[1] = gdd1, c.gdd[2] = gdd2;
+        c.f[0] = f0, c.f[1] = f1, c.f[2] = f2;
     }
 
     // joint k's value of three (no array: the values stay in registers)

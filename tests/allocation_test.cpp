@@ -4,6 +4,7 @@
 
 #include "allocation_counter.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -13,6 +14,7 @@
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "nocdyn/reactions.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::test {
@@ -94,6 +96,48 @@ TEST(RealTime, EnvelopeAllocatesPerSearchNotPerSample) {
             return count;
         };
         EXPECT_EQ(allocations(64), allocations(1024)) << robot;
+    }
+}
+
+TEST(RealTime, JointReactionsAllocateNothingPerSampleNorInTheBatch) {
+    for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
+        const Model model(io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
+        Data data(model);
+        Reactions reactions;
+        const PoseTrajectory trajectory = paperTrajectory1();
+        const Eigen::Index N = 300;
+        Eigen::ArrayX3d P(N, 3), dP(N, 3), ddP(N, 3);
+        Eigen::ArrayXXd out(N, 9 * model.limbs);
+        Pose p, dp, ddp;
+        for (Eigen::Index k = 0; k < N; ++k) {
+            trajectory.evaluate(static_cast<double>(k) * 2e-4, p, dp, ddp);
+            P.row(k) = p.transpose();
+            dP.row(k) = dp.transpose();
+            ddP.row(k) = ddp.transpose();
+        }
+        P(N / 2, 1) = 1e3;  // far out of reach: the stages' path gives the Status, without allocating either
+        const long before = allocationCount();
+        double checksum = 0.0, difference = 0.0;
+        int failed = 0;
+        for (Eigen::Index k = 0; k < N; ++k) {
+            const Status status = inverseDynamicsWithReactions(model, data, P.row(k).transpose(), dP.row(k).transpose(),
+                                                               ddP.row(k).transpose(), reactions);
+            failed += !status.ok();
+            if (!status) continue;
+            const Vector3 lean = reactions.joint[0][1];
+            jointReactions(model, data, reactions);  // at the state the call left: the same
+            difference = std::max(difference, (reactions.joint[0][1] - lean).cwiseAbs().maxCoeff());
+            checksum += lean.sum();
+        }
+        const BatchResult batch = reactionsBatch(model, P, dP, ddP, out, 1);
+        const long after = allocationCount();
+        EXPECT_EQ(after - before, 0) << robot;
+        EXPECT_EQ(failed, 1) << robot;
+        EXPECT_LT(difference, 1e-9) << robot << ": jointReactions at the state left [N]";
+        EXPECT_EQ(batch.failed, 1) << robot;
+        EXPECT_EQ(batch.first_failure, N / 2) << robot;
+        EXPECT_TRUE(std::isnan(out(N / 2, 0))) << robot;
+        EXPECT_TRUE(std::isfinite(checksum + out.row(0).sum())) << robot;
     }
 }
 

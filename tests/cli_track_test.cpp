@@ -101,7 +101,7 @@ TEST(CliTrack, SimulateRefusesActuatorValuesWithoutAssembly) {
     const CliResult both =
         runCli("simulate --robot " + robotFile("3-rrr") + " --forces " + posed.string() + " --assembly-mode 1");
     EXPECT_EQ(both.exit_code, 1);
-    EXPECT_NE(both.err.find("but the row gives the pose theta,x,y"), std::string::npos) << both.err;
+    EXPECT_NE(both.err.find("but the row gives the pose x,y,theta"), std::string::npos) << both.err;
 }
 
 /// The numbers of stdout's "pose: RMS error x .. um, y .. um, theta .. urad" line.

@@ -10,6 +10,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/forward_dynamics.hpp"
 #include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/reactions.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"
 #include "random_robots.hpp"
@@ -137,6 +138,62 @@ INSTANTIATE_TEST_SUITE_P(Robots, ExampleRobot,
                              return name;
                          });
 
+/// Largest |reaction_ours - reaction_Simbody| / peak |reaction_Simbody| along a trajectory, and
+/// the peak [N or N m]; every component of every joint.
+std::pair<double, double> reactionAgreement(const Model& model, validation::SimbodyMechanism& simbody,
+                                            const PoseTrajectory& trajectory, const std::vector<double>& times) {
+    const auto samples = simbody.inverseDynamics(trajectory, times);
+    Data data(model);
+    Reactions ours;
+    double peak = 0.0, difference = 0.0;
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        Pose p, dp, ddp;
+        trajectory.evaluate(times[k], p, dp, ddp);
+        const Status status = inverseDynamicsWithReactions(model, data, p, dp, ddp, ours);
+        EXPECT_TRUE(status.ok()) << describe(status, model);
+        if (!status) return {1.0, 0.0};
+        const auto& theirs = samples[k].reactions;
+        EXPECT_EQ(theirs.size(), 3U * static_cast<std::size_t>(model.limbs));
+        if (theirs.size() != 3U * static_cast<std::size_t>(model.limbs)) return {1.0, 0.0};
+        for (std::size_t j = 0; j < static_cast<std::size_t>(model.limbs); ++j) {
+            for (std::size_t jk = 0; jk < 3; ++jk) {
+                const Eigen::Vector3d& r = theirs[3 * j + jk];
+                peak = std::max(peak, r.cwiseAbs().maxCoeff());
+                difference = std::max(difference, (ours.joint[j][jk] - r).cwiseAbs().maxCoeff());
+            }
+        }
+    }
+    return {difference / peak, peak};
+}
+
+// Simbody's mobilizer reaction forces (calcMobilizerReactionForces, the applied mobility forces
+// included) and loop-closure constraint forces, with our inverse dynamics' forces applied, in
+// our convention (base frame, inboard on outboard, effort and friction taken out): every example
+// robot along trajectory 1, as given and with gravity and joint damping and friction.
+TEST(SimbodyReactions, AgreeOnEveryExampleRobotWithinOneBillionthOfThePeak) {
+    for (const char* name : {"paper-3prr.yaml", "paper-3prr-general.yaml", "3-rrr.yaml", "3-rpr.yaml", "4-rrr.yaml"}) {
+        for (const bool loaded : {false, true}) {
+            RobotDescription robot = io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + name);
+            if (loaded) {
+                robot.gravity = Vector2(0.0, -9.81);
+                for (LimbDescription& limb : robot.limbs) {
+                    for (JointDescription& joint : limb.joints) {
+                        joint.damping = 0.05;
+                        joint.friction = 0.02;
+                    }
+                }
+            }
+            const Model model(robot);
+            validation::SimbodyMechanism simbody(robot);
+            const auto [agreement, peak] = reactionAgreement(model, simbody, paperTrajectory1(), sampleTimes(0.2, 100));
+            EXPECT_GT(peak, 1.0) << name;
+            EXPECT_LT(agreement, kForceOfPeak) << name << (loaded ? " with gravity and friction" : "");
+            std::printf("%s%s: reactions, difference / peak (%.4g): Simbody %.2g\n", name,
+                        loaded ? " with gravity and friction" : "", peak, agreement);
+        }
+    }
+}
+
 class RandomRobotOfType : public ::testing::TestWithParam<std::string> {};
 
 // Per limb type: three-actuator robots with gravity and friction, and a redundant one.
@@ -172,9 +229,15 @@ TEST_P(RandomRobotOfType, AgreesWithSimbodyAndMujocoWithGravityFrictionAndRedund
             EXPECT_LT(m.force, kForceOfPeak) << type << " x" << spec.limb_types.size() << " MuJoCo";
             EXPECT_LT(s.motion, 1e-9) << type << " Simbody";
             EXPECT_LT(m.motion, 1e-9) << type << " MuJoCo";
-            std::printf("%s x%zu, %d actuators%s: force difference / peak: Simbody %.2g, MuJoCo %.2g\n", type.c_str(),
-                        spec.limb_types.size(), spec.actuators, spec.gravity ? ", gravity, friction" : "", s.force,
-                        m.force);
+            // every joint's reaction against Simbody's (loops closed at another joint than the
+            // examples' for some limb types: reversed mobilizers)
+            const auto [reactions, peak] = reactionAgreement(model, simbody, trajectory, times);
+            EXPECT_LT(reactions, kForceOfPeak) << type << " x" << spec.limb_types.size() << " Simbody reactions";
+            std::printf(
+                "%s x%zu, %d actuators%s: force difference / peak: Simbody %.2g, MuJoCo %.2g; reactions "
+                "(peak %.3g): Simbody %.2g\n",
+                type.c_str(), spec.limb_types.size(), spec.actuators, spec.gravity ? ", gravity, friction" : "",
+                s.force, m.force, peak, reactions);
         }
         EXPECT_EQ(kept, 1) << type << ": no regular random robot";
     }

@@ -12,6 +12,7 @@
 #include "common.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/reactions.hpp"
 
 namespace nocdyn::cli {
 
@@ -65,6 +66,9 @@ void run(const PoseOptions& options) {
         throw Error(describe(status, model));
     }
     const Status limits = checkJointLimits(model, data);
+    // at rest (dp = ddp = 0) tau holds the pose against gravity; the reactions that go with it
+    Reactions reactions;
+    jointReactions(model, data, reactions);
     // du = A xi_P = A S(c) dp/dt: the actuation map in the pose's own rates (eq. 5 generalised)
     const Eigen::MatrixXd A_pose = Eigen::MatrixXd(data.A) * platformTwistMap(p.tail<2>());
     const char* coordinates = model.coordinates == Coordinates::actuators ? "actuators" : "platform";
@@ -101,6 +105,20 @@ void run(const PoseOptions& options) {
         out["coordinates"] = coordinates;
         out["I"] = toJson(data.I);
         out["within_limits"] = limits.ok();
+        nlohmann::json joints = nlohmann::json::array();
+        for (int j = 0; j < model.limbs; ++j) {
+            for (int k = 0; k < 3; ++k) {
+                const Vector3& r = reactions.joint[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
+                joints.push_back({{"limb", j + 1},
+                                  {"joint", k + 1},
+                                  {"type", revolute(model, j, k) ? "R" : "P"},
+                                  {"fx", r(0)},
+                                  {"fy", r(1)},
+                                  {"m", r(2)}});
+            }
+        }
+        out["tau"] = std::vector<double>(data.tau.data(), data.tau.data() + model.actuators);
+        out["reactions"] = joints;
         std::cout << out.dump(2) << "\n";
         return;
     }
@@ -139,6 +157,17 @@ void run(const PoseOptions& options) {
         std::printf("inertia I (eq. 23) in the platform pose (redundant actuation):\n%s",
                     formatMatrix(data.I, "  ").c_str());
     }
+    std::printf("\nat rest under gravity: tau =");
+    for (int a = 0; a < model.actuators; ++a) std::printf(" %+.6e", data.tau(a));
+    std::printf("\njoint reactions (base frame, inboard body on outboard body, effort and friction taken out):\n");
+    std::printf("limb  joint  fx [N]           fy [N]           m [N m]\n");
+    for (int j = 0; j < model.limbs; ++j) {
+        for (int k = 0; k < 3; ++k) {
+            const Vector3& r = reactions.joint[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
+            std::printf("%-4d  %d %s    %+.9e  %+.9e  %+.9e\n", j + 1, k + 1, revolute(model, j, k) ? "R" : "P", r(0),
+                        r(1), r(2));
+        }
+    }
     if (!limits) std::printf("\nwarning: %s\n", describe(limits, model).c_str());
 }
 
@@ -150,7 +179,9 @@ void addPoseCommand(CLI::App& app) {
         "pose",
         "At one platform pose of any robot: every limb's joint variables and the condition number of\n"
         "its Jacobian, the actuator variables and how much of their range they use, the actuation map\n"
-        "du = A dp/dt and its condition number, and the inertia I (eq. 23).\n"
+        "du = A dp/dt and its condition number, the inertia I (eq. 23), and at rest under gravity the\n"
+        "actuator forces and every joint's reaction (base frame, the inboard body on the outboard body,\n"
+        "the joint's effort and friction taken out; JSON: \"tau\" and \"reactions\").\n"
         "Example: nocdyn pose 0.05 0.001 -0.002 --robot robots/3-rrr.yaml   (theta in rad, x and y in m)");
     command->add_option("THETA", options->theta, "Platform rotation [rad]")
         ->required()

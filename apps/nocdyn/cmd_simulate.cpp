@@ -17,7 +17,9 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/forces.hpp"
 #include "nocdyn/io/layouts.hpp"
+#include "nocdyn/io/tables.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "nocdyn/reactions.hpp"
 
 namespace nocdyn::cli {
 
@@ -31,6 +33,7 @@ struct SimulateOptions {
     double relative_tolerance = 1e-10;
     std::string interpolation = "cubic";
     bool partial = false;
+    bool reactions = false;
     /// Which working assembly mode of the first row's u (1-based, as forward-kinematics lists
     /// them); 0: the one nearest home.
     int assembly_mode = 0;
@@ -58,7 +61,7 @@ Twist poseRate(const Model& model, Data& data, const ActuatorVector& du, const s
     return dp;
 }
 
-/// The initial state from the first row of the forces file: the pose columns theta,x,y (with
+/// The initial state from the first row of the forces file: the pose columns x,y,theta (with
 /// dtheta,dx,dy, else du1..dun, else at rest); else u1..un (and du1..dun): the state of a
 /// working assembly mode (stateFromActuators); else the robot's home at rest.
 InitialState initialState(const Model& model, const io::Table& table, const SimulateOptions& options) {
@@ -85,7 +88,7 @@ InitialState initialState(const Model& model, const io::Table& table, const Simu
     if (options.assembly_mode > 0 && (has_pose || !has_u)) {
         throw Error(where + ": --assembly-mode " + std::to_string(options.assembly_mode) +
                     " chooses among the poses of the first row's " + columnList("u", n) + ", but the row gives " +
-                    (has_pose ? "the pose theta,x,y" : "no " + columnList("u", n)));
+                    (has_pose ? "the pose x,y,theta" : "no " + columnList("u", n)));
     }
     if (has_pose) {
         state.p = Pose(value("theta"), value("x"), value("y"));
@@ -97,7 +100,7 @@ InitialState initialState(const Model& model, const io::Table& table, const Simu
                 if (!(std::abs(u(a) - data.u(a)) <= kInitialStateTolerance)) {
                     std::ostringstream out;
                     out.precision(12);
-                    out << where << ": column 'u" << a + 1 << "': " << u(a) << " but the pose theta,x,y gives "
+                    out << where << ": column 'u" << a + 1 << "': " << u(a) << " but the pose x,y,theta gives "
                         << data.u(a);
                     throw Error(out.str());
                 }
@@ -105,12 +108,12 @@ InitialState initialState(const Model& model, const io::Table& table, const Simu
         }
         if (table.has("dtheta") && table.has("dx") && table.has("dy")) {
             state.dp = Twist(value("dtheta"), value("dx"), value("dy"));
-            state.origin = "first row's theta,x,y,dtheta,dx,dy";
+            state.origin = "first row's x,y,theta,dx,dy,dtheta";
         } else if (has_du) {
             state.dp = poseRate(model, data, actuatorColumns("du"), where);
-            state.origin = "first row's theta,x,y and " + columnList("du", n);
+            state.origin = "first row's x,y,theta and " + columnList("du", n);
         } else {
-            state.origin = "first row's theta,x,y, at rest";
+            state.origin = "first row's x,y,theta, at rest";
         }
         return state;
     }
@@ -179,8 +182,14 @@ void run(const SimulateOptions& options) {
     // rows at t0 + k / rate, k = 0..count-1, and at t0 + duration
     const auto count = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(duration * options.rate)));
     io::OutputFile out = openOutput(options.output);
-    io::CsvWriter csv(out, outputColumns(n), /*background=*/true);
+    std::vector<std::string> columns = outputColumns(n);
+    if (options.reactions) {
+        for (std::string& name : io::reactionColumns(model.limbs)) columns.push_back(std::move(name));
+    }
+    io::CsvWriter csv(out, columns, /*background=*/true);
     std::vector<double> row(static_cast<std::size_t>(4 + 3 * n + 1));
+    row.reserve(columns.size());
+    Reactions reactions;
     Progress progress(duration);
     for (std::size_t k = 0; k <= count; ++k) {
         const double t = k < count ? t0 + static_cast<double>(k) / options.rate : t0 + duration;
@@ -206,6 +215,12 @@ void run(const SimulateOptions& options) {
         for (int a = 0; a < n; ++a) row[c++] = simulator.du()(a);
         for (int a = 0; a < n; ++a) row[c++] = simulator.tau()(a);
         row[c] = simulator.kineticEnergy();
+        if (options.reactions) {
+            // the simulated state's every stage and the forces applied (forwardDynamics sets them)
+            jointReactions(model, simulator.data(), reactions);
+            row.resize(static_cast<std::size_t>(4 + 3 * n + 1));
+            io::appendReactions(reactions, model.limbs, row);
+        }
         csv.row(row);
     }
     progress.finish();
@@ -224,7 +239,7 @@ void addSimulateCommand(CLI::App& app) {
         "simulate",
         "Forward dynamics of any robot: integrates M_p(p) d2p/dt2 = A_p^T tau - h_p(p, dp/dt) (eq. 23 in the\n"
         "platform coordinates, gravity and joint friction from the robot file) under actuator forces read from a\n"
-        "CSV with columns t,tau1..taun. The initial state is the first row's theta,x,y with dtheta,dx,dy (else\n"
+        "CSV with columns t,tau1..taun. The initial state is the first row's x,y,theta with dx,dy,dtheta (else\n"
         "du1..dun, else at rest), so that the CSV of `inverse-dynamics` can be fed straight back; else its\n"
         "u1..un (with du1..dun, else at rest): the pose by direct kinematics, among the assembly modes with\n"
         "every limb on its home branch the one nearest home unless --assembly-mode picks another; else the\n"
@@ -263,6 +278,12 @@ void addSimulateCommand(CLI::App& app) {
         ->check(CLI::Range(1, kMaxAssemblyModes));
     command->add_flag("--partial", options->partial,
                       "When the simulation stops early (singularity, out of reach), keep the rows before it");
+    command->add_flag(
+        "--reactions", options->reactions,
+        "Add every joint's reaction after the other columns, at each output sample from the simulated\n"
+        "state and the forces applied: limb{i}_j{k}_fx, _fy [N] and _m [N m] as in inverse-dynamics\n"
+        "--reactions (base frame, the inboard body on the outboard body, the joint's effort and friction\n"
+        "taken out)");
     command->callback([options] { run(*options); });
 }
 

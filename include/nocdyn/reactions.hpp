@@ -21,6 +21,7 @@
 
 #include <array>
 
+#include "nocdyn/batch.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 
@@ -67,12 +68,24 @@ struct JointLoads {
 /// of the inverse dynamics, the minimum-norm ones, or any others given). Allocation-free.
 void jointReactions(const Model& model, const Data& data, Reactions& reactions);
 
-/// Inverse dynamics and the reactions that go with its forces, without T, I or C: the
-/// position, velocity and acceleration stages, the bodies' wrenches, tau from the platform's
-/// balance A^T tau = w_P + sum_j J_j^-T (phi_j + k_j) (the lean path's W_P; minimum-norm with
-/// more than three actuators), then the back-substitution. The same tau and Status as
-/// inverseDynamics; data's T_i, I and C are left as they were. Allocation-free.
+/// Inverse dynamics and the reactions that go with its forces, without T, I or C: the lean
+/// kernel of inverseDynamicsFast (closed-form limb IK, J_j^-1 by cofactors), which also gives
+/// the bodies' wrenches and tau from the platform's balance A^T tau = w_P + sum_j J_j^-T
+/// (phi_j + k_j) (W_P; minimum-norm with more than three actuators), then the
+/// back-substitution. The same tau (to rounding) and Status as inverseDynamics. Sets data's
+/// u, du, ddu, tau, W_P, p, its rates, xi_P and its rate, x_P, and per limb s, s_dot, J_inv, x,
+/// xi, gamma_dot and gamma_ddot (all jointReactions reads); the other fields (q, J, A, T_i, I,
+/// C, ...) may be left as they were. Allocation-free.
 Status inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
                                     Reactions& reactions);
+
+/// inverseDynamicsWithReactions over N samples: (p, dp, ddp), N x 3 each (batch.hpp's layout)
+/// -> `out`, N x 9 limbs, row k = sample k's Reactions::joint limb by limb, joint by joint,
+/// [fx, fy, m] each (NumPy's (N, limbs, 3, 3) in C order). A failed sample's row is NaN; the
+/// result names the first failure and its Status (inverseDynamics's). `threads` as in
+/// inverseDynamicsBatch. Nothing is allocated per sample. Throws nocdyn::Error when the arrays'
+/// sizes disagree (before any sample is computed).
+BatchResult reactionsBatch(const Model& model, const BatchInput& p, const BatchInput& dp, const BatchInput& ddp,
+                           BatchOutput out, unsigned threads = 1);
 
 }  // namespace nocdyn

@@ -407,6 +407,41 @@ class Robot:
             _require_finite(out, "the inverse dynamics")
         return InverseDynamics(*out)
 
+    def reactions(self, p, dp, ddp, *, threads=1, check=True):
+        """Every joint's reaction with the inverse dynamics' forces (the minimum-norm ones when
+        redundant), as in `nocdyn inverse-dynamics --reactions`: base frame, the wrench of the
+        joint's inboard body on its outboard body, the joint's effort and friction taken out
+        (R: the force at the axis, m = 0; P: the force normal to the joint and the couple about
+        the outboard body's c.o.m.).
+
+        p, dp, ddp of shape (N, 3) ([theta, x, y], its rate and acceleration; float64, read in
+        place whatever their memory order) give an array of shape (N, limbs, 3, 3): sample,
+        limb, joint (file order), [fx, fy, m] [N, N, N m]. One sample, shape (3,) each, gives
+        (limbs, 3, 3). The GIL is released during the computation; threads as in
+        inverse_dynamics. A sample out of reach or singular raises nocdyn.Error "sample K:
+        <reason>" (the first such; failed rows are NaN); check=False returns instead.
+        """
+        threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
+        p_arr = _floats(p, "p")
+        single = p_arr.ndim == 1
+        if single:
+            p_arr = p_arr.reshape(1, -1)
+            dp, ddp = _floats(dp, "dp").reshape(1, -1), _floats(ddp, "ddp").reshape(1, -1)
+        if p_arr.ndim != 2:
+            raise Error(f"p: expected shape (3,) or (N, 3), got {p_arr.shape}")
+        n = p_arr.shape[0]
+        p_arr = _input(p_arr, "p", (None, 3), finite=False)
+        dp_arr = _input(dp, "dp", (n, 3), finite=False)
+        ddp_arr = _input(ddp, "ddp", (n, 3), finite=False)
+        out = np.empty((n, self.limbs, 3, 3))
+        failed, first, message = self._core._reactions_batch(p_arr, dp_arr, ddp_arr, out.reshape(n, 9 * self.limbs),
+                                                             threads=threads)
+        if failed and check:
+            raise Error(message if single else f"sample {first}: {message} ({failed} of {n} samples failed)")
+        if check:
+            _require_finite((out.reshape(n, -1),), "the reactions")
+        return out[0] if single else out
+
     def trajectory_dynamics(self, trajectory, rate=10000.0, duration=None, *, allow_limits=False):
         """The command line's `nocdyn inverse-dynamics`: samples t_k = k / rate over `duration`
         [s] (default: the trajectory's, else 0.2 s), with its checks between samples (joint

@@ -264,7 +264,7 @@ def pose(theta, x, y, *, robot=None, set=None):
     """Everything the model knows at one platform pose (``nocdyn pose THETA X Y``): every limb's
     joint variables and the condition number of its Jacobian, the actuator variables and the
     share of their range they use, the actuation map du = A dp/dt and its condition number, the
-    inertia I (eq. 23).
+    inertia I (eq. 23), and at rest under gravity the actuator forces tau and every joint's reaction.
 
     theta [rad], x, y [m]: the pose of the platform's operation point C. Returns a PoseReport."""
     with _Call("pose", pose) as call:
@@ -303,7 +303,7 @@ def forward_kinematics(u, *, robot=None, set=None, all_branches=False):
 
 def simulate(forces, *, robot=None, set=None,
              interpolation="cubic", duration=None, rate=10000.0, output=None, atol=1e-12,
-             rtol=1e-10, assembly_mode=0, partial=False, progress=None):
+             rtol=1e-10, assembly_mode=0, partial=False, reactions=False, progress=None):
     """Forward dynamics (``nocdyn simulate``): the motion under actuator forces.
 
     forces: a CSV path, or columns t, tau1..taun [s, N or N m] (a dict, Table or DataFrame; with
@@ -311,7 +311,8 @@ def simulate(forces, *, robot=None, set=None,
     interpolated ('cubic', 'linear' or 'hold') and held beyond the last time. rate: output samples
     per second; duration: seconds (default: the span of the forces). atol, rtol: the integrator's
     tolerances; assembly_mode: which working mode of the first u (1-based; 0: nearest home);
-    partial: keep the motion up to a failure. Returns a Table with the CSV's columns."""
+    partial: keep the motion up to a failure; reactions: every joint's reaction at each sample
+    (limb{i}_j{k}_fx, _fy, _m) as more columns. Returns a Table with the CSV's columns."""
     return _table_command("simulate", simulate, dict(locals()), "simulate.csv",
                           handled={"forces": lambda call: _forces_file(call, forces)})
 

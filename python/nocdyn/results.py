@@ -126,7 +126,8 @@ class PoseReport(_Record):
     joint variables [rad or m]; cond_J (limbs,) the limb Jacobians' condition numbers; u (n,)
     actuator variables and range_used (n,) the fraction of their range; A (n, 3) the actuation map
     du = A dp/dt; cond_A; I the inertia (eq. 23) in ``coordinates`` ('actuators' or 'platform');
-    within_limits."""
+    within_limits; at rest under gravity, tau (n,) the actuator forces and reactions (limbs, 3, 3)
+    every joint's reaction [fx, fy, m] (as Robot.reactions)."""
 
     def __init__(self, document, text=""):
         fields = {"robot": document["robot"],
@@ -137,7 +138,10 @@ class PoseReport(_Record):
                   "range_used": np.array([a["range_used"] for a in document["actuators"]], dtype=np.float64),
                   "A": np.array(document["A"], dtype=np.float64), "cond_A": float(document["cond_A"]),
                   "coordinates": document["coordinates"], "I": np.array(document["I"], dtype=np.float64),
-                  "within_limits": bool(document["within_limits"])}
+                  "within_limits": bool(document["within_limits"]),
+                  "tau": np.array(document["tau"], dtype=np.float64),
+                  "reactions": np.array([[r["fx"], r["fy"], r["m"]] for r in document["reactions"]],
+                                        dtype=np.float64).reshape(len(document["limbs"]), 3, 3)}
         super().__init__(fields, text)
         self.document = document
 

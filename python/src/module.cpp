@@ -36,6 +36,7 @@
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/reactions.hpp"
 #include "nocdyn/sampling.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -195,6 +196,25 @@ py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, con
         const py::gil_scoped_release release;
         result = inverseDynamicsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vu), map(vdu), map(vddu),
                                       map(vtau), threads);
+    }
+    const std::string message = result.ok() ? std::string() : describe(result.status, model);
+    return py::make_tuple(static_cast<std::int64_t>(result.failed),
+                          result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message);
+}
+
+/// The joint reactions of N samples into `out`, (N, 9 limbs) (a view of the (N, limbs, 3, 3)
+/// array), the GIL released while they run. Returns (failed, first_failure, message).
+py::tuple reactionsBatchArrays(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp,
+                               const py::array& out, unsigned threads) {
+    const Model& model = *robot.model;
+    const ArrayView vp = viewOf(p, "p", -1, 3, false);
+    const py::ssize_t n = vp.rows;
+    const ArrayView vdp = viewOf(dp, "dp", n, 3, false), vddp = viewOf(ddp, "ddp", n, 3, false);
+    const ArrayView vout = viewOf(out, "out", n, 9 * model.limbs, true);
+    BatchResult result;
+    {
+        const py::gil_scoped_release release;
+        result = reactionsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vout), threads);
     }
     const std::string message = result.ok() ? std::string() : describe(result.status, model);
     return py::make_tuple(static_cast<std::int64_t>(result.failed),
@@ -758,6 +778,8 @@ PYBIND11_MODULE(_nocdyn, m) {
              py::arg("matrices") = false)
         .def("_inverse_dynamics_batch", &inverseDynamicsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"),
              py::arg("u"), py::arg("du"), py::arg("ddu"), py::arg("tau"), py::arg("threads") = 1)
+        .def("_reactions_batch", &reactionsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"), py::arg("out"),
+             py::arg("threads") = 1)
         .def("_time_cpp_batch", &timeCppBatch, py::arg("p"), py::arg("dp"), py::arg("ddp"), py::arg("repeat") = 1)
         .def_static("_thread_cpu_seconds", &threadCpuSeconds)
         .def("_sample_trajectory", &sampleTrajectory, py::arg("trajectory"), py::arg("rate"),

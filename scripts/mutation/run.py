@@ -36,6 +36,7 @@ TESTS = [
     "model_test",
     "general_forward_dynamics_test",
     "identification_test",
+    "reactions_test",
 ]
 # A test binary that runs longer than this under a mutation (a loop that no longer converges)
 # counts as failing.

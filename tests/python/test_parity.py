@@ -161,6 +161,10 @@ def test_pose(tmp_path):
     assert py.document == cli
     np.testing.assert_array_equal(py.u, [a["u"] for a in cli["actuators"]])
     assert py.I.shape == (3, 3) and py.cond_A == cli["cond_A"] > 1.0
+    # the static reactions: the JSON's list in (limb, joint, [fx, fy, m]) order, as Robot.reactions
+    robot = nocdyn.Robot.load(ROBOT)
+    np.testing.assert_array_equal(py.reactions[1, 2], [cli["reactions"][5][k] for k in ("fx", "fy", "m")])
+    np.testing.assert_allclose(py.reactions, robot.reactions(py.pose, np.zeros(3), np.zeros(3)), rtol=0, atol=1e-12)
     with pytest.raises(ValueError, match="theta"):
         nocdyn.pose(float("nan"), 0.0, 0.0)
 
@@ -179,6 +183,19 @@ def test_inverse_dynamics_simulate_and_animate(tmp_path):
     py_from_table = nocdyn.simulate(py_id, rate=2000.0, progress=False)
     np.testing.assert_array_equal(py_from_table.data, py_sim.data)
     np.testing.assert_allclose(py_sim["x"], py_id["x"][: len(py_sim)], atol=1e-9)
+    # the joint reactions: the same columns from both, after the others
+    cli_rid = tmp_path / "rid.csv"
+    run_cli("inverse-dynamics", "--trajectory", "paper1", "--duration", 0.005, "--rate", 2000, "--reactions", "-o",
+            cli_rid)
+    py_rid = nocdyn.inverse_dynamics("paper1", duration=0.005, rate=2000.0, reactions=True, progress=False)
+    same_table(cli_rid, py_rid)
+    cli_rsim = tmp_path / "rsim.csv"
+    run_cli("simulate", "--forces", cli_id, "--rate", 2000, "--reactions", "-o", cli_rsim)
+    py_rsim = nocdyn.simulate(str(cli_id), rate=2000.0, reactions=True, progress=False)
+    same_table(cli_rsim, py_rsim)
+    assert py_rsim.columns[-1] == "limb3_j3_m" and len(py_rsim.columns) == len(py_sim.columns) + 27
+    # limb 1's rail (a P joint along x) takes no force along itself; its pivot does
+    assert np.all(py_rsim["limb1_j1_fx"] == 0.0) and np.max(np.abs(py_rsim["limb1_j2_fx"])) > 0.1
     page = tmp_path / "robot.html"
     run_cli("animate", "--trajectory", "paper1", "--duration", 0.005, "--rate", 2000, "--output", page)
     animation = nocdyn.animate("paper1", duration=0.005, rate=2000.0)

@@ -123,6 +123,9 @@ public:
     SimTK::State state;
 
     std::vector<int> closure;
+    std::vector<std::array<SimTK::MobilizedBody, 4>> links;       // per limb: ground, body 1, body 2, platform
+    std::vector<std::array<SimTK::MobilizedBody, 3>> mobilizers;  // per limb and tree joint
+    std::vector<SimTK::Constraint::PointOnLine> closures;         // per limb: its loop closure
     detail::TreeIndices tree;
     Eigen::MatrixXd rows;     // joint rate rows (3 L x nu)
     std::vector<int> free_q;  // the passive tree coordinates
@@ -154,6 +157,11 @@ public:
                   const Eigen::VectorXd& q_from);
     /// Velocities with the platform's rate prescribed (the Motion's qdot), after assemble().
     void projectVelocities();
+    /// Applies the actuator forces tau (file order) to `s` as the plant does: DiscreteForces.
+    void applyActuatorForces(SimTK::State& s, const Eigen::VectorXd& tau);
+    /// Every joint's reaction (MechanismSample::reactions) at the inverse-dynamics state realized
+    /// to Acceleration with the actuator forces applied.
+    [[nodiscard]] std::vector<Eigen::Vector3d> jointReactions() const;
 };
 
 SimbodyMechanism::Impl::Impl(const RobotDescription& description)
@@ -170,8 +178,8 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description)
 
     const int L = static_cast<int>(robot.limbs.size());
     friction = new JointFriction();
-    std::vector<std::array<MobilizedBody, 4>> links(static_cast<std::size_t>(L));
-    std::vector<std::array<MobilizedBody, 3>> mobilizers(static_cast<std::size_t>(L));
+    links.resize(static_cast<std::size_t>(L));
+    mobilizers.resize(static_cast<std::size_t>(L));
     for (int j = 0; j < L; ++j) {
         const LimbDescription& limb = robot.limbs[static_cast<std::size_t>(j)];
         const int c = detail::closureJoint(robot, j, true);
@@ -199,8 +207,8 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description)
         for (int k = 0; k < c; ++k) mobilize(k, link[static_cast<std::size_t>(k)], k + 1);
         for (int k = 2; k > c; --k) mobilize(k, link[static_cast<std::size_t>(k + 1)], k);
         const Vec3 axis = toVec3(limb.joints[static_cast<std::size_t>(c)].point);
-        Constraint::PointOnLine(link[static_cast<std::size_t>(c)], UnitVec3(ZAxis), axis,
-                                link[static_cast<std::size_t>(c + 1)], axis);
+        closures.push_back(Constraint::PointOnLine(link[static_cast<std::size_t>(c)], UnitVec3(ZAxis), axis,
+                                                   link[static_cast<std::size_t>(c + 1)], axis));
         for (int k = 0; k < 3; ++k) {
             JointFriction::Joint f;
             f.joint = &robot.limbs[static_cast<std::size_t>(j)].joints[static_cast<std::size_t>(k)];
@@ -332,6 +340,73 @@ void SimbodyMechanism::Impl::projectVelocities() {
     system.projectU(state, no_error_estimate, forced, results);
 }
 
+void SimbodyMechanism::Impl::applyActuatorForces(SimTK::State& s, const Eigen::VectorXd& tau) {
+    using namespace SimTK;
+    // a mobility force along a tree joint's mobility (sign: reversed joints), equal and opposite
+    // torques across a closure joint, as the joint friction
+    mobility_forces = 0.0;
+    body_forces = SpatialVec(Vec3(0), Vec3(0));
+    for (std::size_t a = 0; a < actuated.size(); ++a) {
+        const JointFriction::Joint& j = friction->joints[actuated[a]];
+        const double f = tau[static_cast<Eigen::Index>(a)];
+        if (!j.closure) {
+            j.mobilizer.applyOneMobilityForce(s, 0, j.sign * f, mobility_forces);
+        } else {
+            j.outboard.applyBodyTorque(s, Vec3(0, 0, f), body_forces);
+            j.inboard.applyBodyTorque(s, Vec3(0, 0, -f), body_forces);
+        }
+    }
+    actuation.setAllMobilityForces(s, mobility_forces);
+    actuation.setAllBodyForces(s, body_forces);
+}
+
+std::vector<Eigen::Vector3d> SimbodyMechanism::Impl::jointReactions() const {
+    using namespace SimTK;
+    Vector_<SpatialVec> at_M;  // on each mobilized body from its parent, at its M origin, in Ground
+    matter.calcMobilizerReactionForces(state, at_M);
+    std::vector<Eigen::Vector3d> out;
+    for (std::size_t j = 0; j < robot.limbs.size(); ++j) {
+        const LimbDescription& limb = robot.limbs[j];
+        const auto c = static_cast<std::size_t>(closure[j]);
+        for (std::size_t k = 0; k < 3; ++k) {
+            const JointDescription& joint = limb.joints[k];
+            const MobilizedBody& outboard = links[j][k + 1];
+            Vec3 n_O, f;  // F_k: the inboard link's wrench on the outboard link, about O, in Ground
+            if (k == c) {
+                // the closure: minus the constraint's body force (Simbody's constraint forces
+                // have the sign of the left-hand side) on the follower, the outboard link
+                const Constraint::PointOnLine& con = closures[j];
+                const Vector_<SpatialVec> forces = con.getConstrainedBodyForcesAsVector(state);
+                for (ConstrainedBodyIndex b(0); b < con.getNumConstrainedBodies(); ++b) {
+                    const MobilizedBody& body = con.getMobilizedBodyFromConstrainedBody(b);
+                    if (body.getMobilizedBodyIndex() != outboard.getMobilizedBodyIndex()) continue;
+                    f = -forces[b][1];
+                    n_O = -forces[b][0] + body.getBodyOriginLocation(state) % f;
+                }
+            } else {
+                const MobilizedBody& mob = mobilizers[j][k];
+                const SpatialVec& R = at_M[mob.getMobilizedBodyIndex()];
+                // M's origin is at the joint's point on the child (the frames coincide at home)
+                const Vec3 p_M = mob.findStationLocationInGround(state, Vec3(joint.point.x(), joint.point.y(), 0.0));
+                // forward (k < c): the child is the outboard link; reversed: the inboard one
+                const double sign = k < c ? 1.0 : -1.0;
+                f = sign * R[1];
+                n_O = sign * (R[0] + p_M % R[1]);
+            }
+            if (joint.type == JointType::revolute) {
+                out.emplace_back(f[0], f[1], 0.0);
+            } else {
+                // the slider's axis, fixed in both links, and the outboard link's mass centre
+                const Vec3 d = outboard.getBodyRotation(state) * Vec3(joint.direction.x(), joint.direction.y(), 0.0);
+                const Vec3 x = outboard.findMassCenterLocationInGround(state);
+                const Vec3 normal = f - (~d * f) * d;
+                out.emplace_back(normal[0], normal[1], n_O[2] - (x % f)[2]);
+            }
+        }
+    }
+    return out;
+}
+
 SimbodyMechanism::SimbodyMechanism(const RobotDescription& robot) : impl_(std::make_unique<Impl>(robot)) {}
 SimbodyMechanism::~SimbodyMechanism() = default;
 SimbodyMechanism::SimbodyMechanism(SimbodyMechanism&&) noexcept = default;
@@ -411,6 +486,12 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
         s.condition = forces.condition;
         s.kinetic = m.matter.calcKineticEnergy(m.state);
         s.potential = m.system.calcPotentialEnergy(m.state) - m.potential_home;
+        // the reactions with the actuators driving: tau applied, the platform's prescribed
+        // motion then takes no force (to rounding), the loops' constraints carry the rest
+        m.applyActuatorForces(m.state, s.tau);
+        m.system.realize(m.state, Stage::Acceleration);
+        s.reactions = m.jointReactions();
+        m.actuation.clearAllForces(m.state);
         out.push_back(std::move(s));
 
         q_prev = q;

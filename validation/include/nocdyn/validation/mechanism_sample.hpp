@@ -2,6 +2,8 @@
 // by an independent multibody engine (SimbodyMechanism, MujocoMechanism).
 #pragma once
 
+#include <vector>
+
 #include <Eigen/Core>
 
 namespace nocdyn::validation {
@@ -23,6 +25,12 @@ struct MechanismSample {
     /// Largest condition number (2-norm) of the loop-closure Jacobian of the passive tree
     /// coordinates and of the map from the platform twist to the actuator rates.
     double condition = 0.0;
+    /// Every joint's reaction with the actuator forces tau applied, limb by limb, joint by joint
+    /// (3 per limb): [fx, fy, m] in the base frame, the wrench of the joint's inboard body on its
+    /// outboard body without the joint's own effort and friction (R: the force at the axis, m = 0;
+    /// P: the force normal to the joint and the couple about the outboard body's c.o.m.), as
+    /// nocdyn's reactions.hpp. Empty when the engine does not give them.
+    std::vector<Eigen::Vector3d> reactions;
 };
 
 }  // namespace nocdyn::validation
