@@ -209,7 +209,10 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
         const validation::EngineComparison c = validation::compareWithEngines(robot, paperTrajectory1(), times);
         io::writeCsvFile((out / (std::string("example_") + name + "_validation.csv")).string(), validation::toTable(c));
         std::string types;
-        for (const LimbDescription& limb : robot.limbs) types += (types.empty() ? "" : " ") + limb.type();
+        for (const LimbDescription& limb : robot.limbs) {
+            if (!types.empty()) types += ' ';
+            types += limb.type();
+        }
         double peak = 0.0;
         for (double v : c.ours.summary.peak_tau) peak = std::max(peak, v);
         std::snprintf(line, sizeof line, "| %s | %s | %d | %.4g | %.2e | %.2e |\n", name, types.c_str(), c.actuators,

@@ -221,7 +221,7 @@ private:
         for (int first = 0; first < samples_; first += kChunk) {
             const int rows = std::min(kChunk, samples_ - first);
             for (int i = 0; i < rows; ++i) {
-                const auto k = static_cast<std::size_t>(first + i);
+                const auto k = static_cast<std::size_t>(first) + static_cast<std::size_t>(i);
                 const double s = sin_[k];
                 for (int c = 0; c < 3; ++c) {
                     p_(i, c) = model_.home(c);
