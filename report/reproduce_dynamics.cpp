@@ -75,7 +75,7 @@ const char* limitWord(EnvelopeLimit limit) {
 
 }  // namespace
 
-Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot) {
+Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot, const std::string& reading) {
     PlotPanel translation{"Translation along x and y", "frequency [Hz]", "largest amplitude [mm]", {}, true, true};
     PlotPanel rotation{"Rotation theta", "frequency [Hz]", "largest amplitude [deg]", {}, true, true};
     for (const EnvelopeAxis axis : {EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta}) {
@@ -90,7 +90,7 @@ Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::strin
         (axis == EnvelopeAxis::theta ? rotation : translation).series.push_back(std::move(line));
     }
     Figure figure;
-    figure.title = "Operating envelope of " + literalText(robot) + ": flat = stroke-bound, slope -2 = peak-force-bound";
+    figure.title = "Operating envelope of " + literalText(robot) + ": " + reading;
     figure.panels = {translation, rotation};
     return figure;
 }

@@ -29,7 +29,8 @@ struct ActuatorLimits {
 [[nodiscard]] Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopResult>& runs);
 
 /// Amplitude versus frequency, log axes: one panel for x and y [mm], one for theta [deg].
-[[nodiscard]] Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot);
+[[nodiscard]] Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot,
+                                    const std::string& reading = "flat = stroke-bound, slope -2 = peak-force-bound");
 
 /// Section "Model-based control": for paper1 and paper2, task-space computed torque and PD
 /// (general_control.hpp) on the default plant (Simbody when built in), plus computed torque with

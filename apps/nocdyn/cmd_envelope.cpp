@@ -12,6 +12,7 @@
 #include "nocdyn/envelope.hpp"
 #include "nocdyn/io/tables.hpp"
 #include "plot.hpp"
+#include "reproduce_dynamics.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -24,25 +25,9 @@ struct Options {
     bool quiet = false;
 };
 
+/// The report's envelope figure, read with the limits every robot file may set.
 Figure figure(const std::vector<EnvelopePoint>& points, const std::string& robot) {
-    PlotPanel translation{"Translation along x and y", "frequency [Hz]", "largest amplitude [mm]", {}, true, true};
-    PlotPanel rotation{"Rotation theta", "frequency [Hz]", "largest amplitude [deg]", {}, true, true};
-    for (const EnvelopeAxis axis : {EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta}) {
-        PlotSeries line;
-        line.label = axisName(axis);
-        line.style = "linespoints lw 2 pt 7 ps 0.6";
-        for (const auto& p : points) {
-            if (p.axis != axis) continue;
-            line.x.push_back(p.frequency);
-            line.y.push_back(axis == EnvelopeAxis::theta ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3);
-        }
-        (axis == EnvelopeAxis::theta ? rotation : translation).series.push_back(std::move(line));
-    }
-    Figure f;
-    f.title = "Operating envelope of " + literalText(robot) +
-              ": flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound";
-    f.panels = {translation, rotation};
-    return f;
+    return envelopeFigure(points, robot, "flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound");
 }
 
 /// "actuator 2 (limb 2, joint 1)", "limb 3, joint 2 (passive)", "limb 1", or "-".
