@@ -8,7 +8,7 @@
 #include "fixture.hpp"
 #include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/prr3/batch.hpp"
 

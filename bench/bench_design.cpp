@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "nocdyn/design.hpp"
+#include "nocdyn/analysis/design.hpp"
 #include "nocdyn/io/design.hpp"
 
 namespace nocdyn::bench {

@@ -8,8 +8,8 @@
 #include <numbers>
 
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/examples.hpp"
 
 namespace {

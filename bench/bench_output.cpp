@@ -13,7 +13,7 @@
 #include "nocdyn/io/tables.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/prr3/dynamics.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 
 namespace nocdyn::bench {
 namespace {

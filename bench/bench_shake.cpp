@@ -7,11 +7,11 @@
 #include <string>
 
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/examples.hpp"
-#include "nocdyn/shake.hpp"
-#include "nocdyn/shake_control.hpp"
+#include "nocdyn/sim/shake.hpp"
+#include "nocdyn/sim/shake_control.hpp"
 #ifdef NOCDYN_HAS_ENGINES
 #include "nocdyn/validation/simbody_mechanism.hpp"
 #endif

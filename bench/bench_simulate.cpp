@@ -3,10 +3,10 @@
 // tolerances (1e-12 absolute, 1e-10 relative); `simulated_per_cpu_s` is the simulated time per
 // CPU second. BM_Simulate/<robot>/nocdyn_cubic: the same forces sampled at 10 kHz through the
 // cubic spline (the `simulate` command's case). The Simbody plant on the same forces is
-// BM_Simulate/<robot>/simbody (bench_general_engines.cpp).
+// BM_Simulate/<robot>/simbody (bench_engines.cpp).
 #include <benchmark/benchmark.h>
 
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "simulate_fixture.hpp"
 
 namespace nocdyn::bench {

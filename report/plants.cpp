@@ -2,7 +2,7 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/shake.hpp"
+#include "nocdyn/sim/shake.hpp"
 #ifdef NOCDYN_HAS_SIMBODY
 #include "simbody_plant.hpp"
 #endif
@@ -15,16 +15,6 @@ std::string defaultPlantName() {
 #else
     return "nocdyn";
 #endif
-}
-
-CLI::Option* addPlantOption(CLI::App& command, std::string& plant) {
-    return command
-        .add_option("--plant", plant,
-                    "simbody (the independent model, integrated to its accuracy), nocdyn (nocdyn's forward "
-                    "dynamics, error-controlled to 1e-10) or nocdyn-rk4 (the same, one Runge-Kutta 4 step per "
-                    "controller tick: about twice as fast)")
-        ->check(CLI::IsMember({"simbody", "nocdyn", "nocdyn-rk4"}))
-        ->capture_default_str();
 }
 
 std::unique_ptr<RobotPlant> makePlant(const std::string& name, const RobotDescription& robot, double accuracy) {

@@ -3,22 +3,23 @@
 // Runge-Kutta 4 (shake.hpp).
 #pragma once
 
-#include <CLI/CLI.hpp>
-
 #include <memory>
 #include <string>
 
 #include "nocdyn/description.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 
 namespace nocdyn::report {
 
 /// "simbody" when built with the Simbody model, else "nocdyn".
 [[nodiscard]] std::string defaultPlantName();
 
-/// Adds --plant (simbody, nocdyn or nocdyn-rk4): every command that chooses a plant offers all
-/// three with this one definition.
-CLI::Option* addPlantOption(CLI::App& command, std::string& plant);
+/// The plants by name, with what each is: the choices of every command that chooses a plant.
+inline constexpr const char* kPlantNames[] = {"simbody", "nocdyn", "nocdyn-rk4"};
+inline constexpr const char* kPlantHelp =
+    "simbody (the independent model, integrated to its accuracy), nocdyn (nocdyn's forward "
+    "dynamics, error-controlled to 1e-10) or nocdyn-rk4 (the same, one Runge-Kutta 4 step per "
+    "controller tick: about twice as fast)";
 
 /// The plant `name` (simbody, nocdyn or nocdyn-rk4) built from `robot`; accuracy: Simbody's
 /// integrator accuracy. Throws nocdyn::Error naming --plant for a plant not built in.

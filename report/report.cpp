@@ -17,8 +17,8 @@
 #include "nocdyn/description.hpp"
 #include "nocdyn/io/tables.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/sampling.hpp"
-#include "nocdyn/workspace.hpp"
+#include "nocdyn/analysis/sampling.hpp"
+#include "nocdyn/analysis/workspace.hpp"
 #include "plot.hpp"
 #include "reproduce_dynamics.hpp"
 #include "reproduce_identification.hpp"
@@ -26,7 +26,7 @@
 #include "workspace_figure.hpp"
 #include "nocdyn/io/examples.hpp"
 #ifdef NOCDYN_HAS_ENGINES
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/validation/agreement.hpp"
 #include "simbody_plant.hpp"
 #endif
@@ -222,7 +222,7 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
     summary << "\nFiles: `example_{3-rrr,3-rpr,4-rrr}_validation.csv` (ours and both engines' u and tau at every"
             << " sample).\n\n";
 
-    // closed loop on each robot's Simbody plant (general_control.hpp)
+    // closed loop on each robot's Simbody plant (control.hpp)
     constexpr double kNaturalFrequency = 50.0;  // [Hz]
     const Payload payload{0.3, 2e-4, {0.01, -0.005}};
     summary

@@ -12,10 +12,10 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/io/tables.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 #include "plants.hpp"
 
 namespace nocdyn::report {

@@ -10,8 +10,8 @@
 #include <vector>
 
 #include "nocdyn/description.hpp"
-#include "nocdyn/envelope.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/analysis/envelope.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "plot.hpp"
 
@@ -33,7 +33,7 @@ struct ActuatorLimits {
                                     const std::string& reading = "flat = stroke-bound, slope -2 = peak-force-bound");
 
 /// Section "Model-based control": for paper1 and paper2, task-space computed torque and PD
-/// (general_control.hpp) on the default plant (Simbody when built in), plus computed torque with
+/// (control.hpp) on the default plant (Simbody when built in), plus computed torque with
 /// an unknown 0.5 kg payload;
 /// control_<trajectory>.csv and control_<trajectory>_errors.png/.svg in `out`; a markdown table
 /// of RMS and peak errors in `summary`.

@@ -13,14 +13,14 @@
 #include <vector>
 
 #include "nocdyn/error.hpp"
-#include "nocdyn/excitation.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/excitation.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/tables.hpp"
-#include "nocdyn/shake.hpp"
+#include "nocdyn/sim/shake.hpp"
 #include "plants.hpp"
 #include "plot.hpp"
 

@@ -14,7 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "nocdyn/error.hpp"
-#include "nocdyn/excitation.hpp"
+#include "nocdyn/sim/excitation.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"

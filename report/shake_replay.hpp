@@ -1,6 +1,6 @@
 // Playing a ground-motion record on a robot (nocdyn shake, and its section of nocdyn reproduce):
 // fit (shake.hpp), closed-loop computed torque on a plant with an unknown payload and sensor
-// noise (general_control.hpp), then the scores, shake.csv, shake.json and the figures.
+// noise (control.hpp), then the scores, shake.csv, shake.json and the figures.
 #pragma once
 
 #include <array>
@@ -9,10 +9,10 @@
 #include <vector>
 
 #include "nocdyn/description.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
-#include "nocdyn/shake.hpp"
-#include "nocdyn/shake_control.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
+#include "nocdyn/sim/shake.hpp"
+#include "nocdyn/sim/shake_control.hpp"
 
 namespace nocdyn::report {
 

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "nocdyn/description.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 
 namespace nocdyn::validation {
 class SimbodyMechanism;

@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "nocdyn/workspace.hpp"
+#include "nocdyn/analysis/workspace.hpp"
 #include "plot.hpp"
 
 namespace nocdyn::report {

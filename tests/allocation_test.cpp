@@ -10,7 +10,7 @@
 
 #include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/envelope.hpp"
+#include "nocdyn/analysis/envelope.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/kinematics.hpp"

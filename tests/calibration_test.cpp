@@ -11,8 +11,8 @@
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/calibration.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "random_robots.hpp"

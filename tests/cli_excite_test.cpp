@@ -9,8 +9,8 @@
 
 #include "cli_support.hpp"
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/tables.hpp"

@@ -12,7 +12,7 @@
 
 #include "cli_support.hpp"
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"

@@ -1,5 +1,5 @@
 // Closed-loop control of the paper's prototype (the default robot: the short form, expanded by
-// io to the general model) by the one controller (general_control.hpp) on nocdyn's own forward
+// io to the general model) by the one controller (control.hpp) on nocdyn's own forward
 // dynamics: computed torque tracks both paper trajectories to a fraction of a micrometre and
 // beats PD by orders of magnitude; its error shrinks with the control rate; a payload unknown
 // to the controller degrades it; saturation and encoder noise do what they say; on the
@@ -11,7 +11,7 @@
 #include <limits>
 
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/model.hpp"
 

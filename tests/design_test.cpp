@@ -9,13 +9,13 @@
 #include <set>
 #include <string>
 
-#include "nocdyn/design.hpp"
+#include "nocdyn/analysis/design.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/design.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/workspace.hpp"
+#include "nocdyn/analysis/workspace.hpp"
 
 namespace nocdyn {
 namespace {

@@ -11,7 +11,7 @@
 
 #include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/envelope.hpp"
+#include "nocdyn/analysis/envelope.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"

@@ -12,9 +12,9 @@
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/excitation.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/excitation.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 

@@ -3,7 +3,7 @@
 // drives it) it returns to the paper's trajectories, with an error second order in the force
 // sampling interval; pushed past the workspace it stops naming the limb; impossible tolerances
 // end with an error instead of crawling. (Inversion of the inverse dynamics, energy
-// conservation, friction's dissipation and allocation: general_forward_dynamics_test.)
+// conservation, friction's dissipation and allocation: forward_dynamics_robots_test.)
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,7 +11,7 @@
 
 #include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
 

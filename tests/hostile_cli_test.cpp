@@ -19,7 +19,7 @@
 
 #include "cli_support.hpp"
 #include "nocdyn/description.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/robot_file.hpp"
 
 extern char** environ;

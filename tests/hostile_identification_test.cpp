@@ -10,7 +10,7 @@
 #include "identification_support.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/examples.hpp"
 
 namespace nocdyn::test {

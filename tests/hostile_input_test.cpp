@@ -9,8 +9,8 @@
 #include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/examples.hpp"
 
 namespace nocdyn::test {

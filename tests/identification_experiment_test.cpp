@@ -5,11 +5,11 @@
 
 #include <gtest/gtest.h>
 
-#include "nocdyn/excitation.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/excitation.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/examples.hpp"
-#include "nocdyn/shake.hpp"
+#include "nocdyn/sim/shake.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn {

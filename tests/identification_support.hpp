@@ -7,7 +7,7 @@
 #include <random>
 
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "random_robots.hpp"
 
 namespace nocdyn::test {

@@ -8,8 +8,8 @@
 #include <string>
 
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "random_robots.hpp"
 #include "identification_support.hpp"

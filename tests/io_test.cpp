@@ -16,7 +16,7 @@
 #include "nocdyn/io/forces.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/description.hpp"
 #include "nocdyn/model.hpp"
 

@@ -15,7 +15,7 @@
 #include "nocdyn/io/tables.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 
 namespace nocdyn::test {
 namespace {

@@ -9,12 +9,12 @@
 #include <vector>
 
 #include "nocdyn/error.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/shake.hpp"
-#include "nocdyn/shake_control.hpp"
+#include "nocdyn/sim/shake.hpp"
+#include "nocdyn/sim/shake_control.hpp"
 
 namespace nocdyn::test {
 namespace {

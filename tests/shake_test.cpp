@@ -9,8 +9,8 @@
 
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/shake.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/shake.hpp"
 
 namespace nocdyn::test {
 namespace {

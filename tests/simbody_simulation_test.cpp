@@ -6,8 +6,8 @@
 #include <algorithm>
 
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/forward_dynamics.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"

@@ -14,11 +14,11 @@ if(TARGET nocdyn_simbody)
     ${PROJECT_SOURCE_DIR}/report/simbody_plant.cpp
     LABELS validation LIBRARIES nocdyn_simbody)
   target_include_directories(simbody_simulation_test PRIVATE ${PROJECT_SOURCE_DIR}/report)
-  nocdyn_add_test(general_simbody_plant_test general_simbody_plant_test.cpp LABELS validation LIBRARIES nocdyn_simbody)
-  nocdyn_add_test(general_simbody_control_test general_simbody_control_test.cpp
+  nocdyn_add_test(simbody_plant_test simbody_plant_test.cpp LABELS validation LIBRARIES nocdyn_simbody)
+  nocdyn_add_test(simbody_control_test simbody_control_test.cpp
     ${PROJECT_SOURCE_DIR}/report/simbody_plant.cpp
     LABELS validation LIBRARIES nocdyn_simbody)
-  target_include_directories(general_simbody_control_test PRIVATE ${PROJECT_SOURCE_DIR}/report)
+  target_include_directories(simbody_control_test PRIVATE ${PROJECT_SOURCE_DIR}/report)
 endif()
-nocdyn_add_test(general_forward_dynamics_test general_forward_dynamics_test.cpp)
-nocdyn_add_test(general_control_test general_control_test.cpp)
+nocdyn_add_test(forward_dynamics_robots_test forward_dynamics_robots_test.cpp)
+nocdyn_add_test(control_robots_test control_robots_test.cpp)

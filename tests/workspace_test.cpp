@@ -16,7 +16,7 @@
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
-#include "nocdyn/workspace.hpp"
+#include "nocdyn/analysis/workspace.hpp"
 #include "support.hpp"
 
 namespace nocdyn::test {

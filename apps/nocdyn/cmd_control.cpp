@@ -1,5 +1,5 @@
 // nocdyn control: closed-loop tracking of a pose trajectory by computed torque or PD in the
-// platform coordinates (general_control.hpp), on the Simbody plant generated from the robot
+// platform coordinates (control.hpp), on the Simbody plant generated from the robot
 // file (when built in) or nocdyn's own forward dynamics. Any robot file of either form (the
 // short form is the general robot it expands to); none: the paper's prototype.
 #include <cmath>
@@ -12,9 +12,9 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/escape.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/tables.hpp"

@@ -13,7 +13,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/design.hpp"
+#include "nocdyn/analysis/design.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/design.hpp"
 #include "nocdyn/io/escape.hpp"

@@ -9,7 +9,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/envelope.hpp"
+#include "nocdyn/analysis/envelope.hpp"
 #include "nocdyn/io/tables.hpp"
 #include "plot.hpp"
 #include "reproduce_dynamics.hpp"

@@ -9,8 +9,8 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/excitation.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/excitation.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 

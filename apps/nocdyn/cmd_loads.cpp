@@ -13,11 +13,11 @@
 #include "common.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/drawing.hpp"
-#include "nocdyn/envelope.hpp"
+#include "nocdyn/analysis/envelope.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/reactions.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 #include "plot.hpp"
 
 namespace nocdyn::cli {

@@ -7,7 +7,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 
 namespace nocdyn::cli {

@@ -13,7 +13,7 @@
 #include "common.hpp"
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/forces.hpp"
 #include "nocdyn/io/layouts.hpp"

@@ -10,7 +10,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "nocdyn/workspace.hpp"
+#include "nocdyn/analysis/workspace.hpp"
 #include "progress.hpp"
 #include "workspace_figure.hpp"
 

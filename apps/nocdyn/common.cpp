@@ -1,5 +1,7 @@
 #include "common.hpp"
 
+#include "plants.hpp"
+
 #include <unistd.h>
 #include <cstdio>
 #include <algorithm>
@@ -174,6 +176,12 @@ void writeTable(const io::Table& table, const std::string& path) {
     io::OutputFile out = openOutput(path);
     io::writeCsv(out, table);
     out.commit();
+}
+
+CLI::Option* addPlantOption(CLI::App& command, std::string& plant) {
+    return command.add_option("--plant", plant, report::kPlantHelp)
+        ->check(CLI::IsMember(std::vector<std::string>(std::begin(report::kPlantNames), std::end(report::kPlantNames))))
+        ->capture_default_str();
 }
 
 }  // namespace nocdyn::cli

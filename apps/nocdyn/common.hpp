@@ -98,4 +98,8 @@ void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options);
 /// Writes the table to `path`, or to stdout when the path is empty.
 void writeTable(const io::Table& table, const std::string& path);
 
+/// Adds --plant (report::kPlantNames): every command that chooses a plant offers all three with
+/// this one definition.
+CLI::Option* addPlantOption(CLI::App& command, std::string& plant);
+
 }  // namespace nocdyn::cli

@@ -11,7 +11,7 @@
 #include <utility>
 #include <vector>
 
-#include "nocdyn/design.hpp"
+#include "nocdyn/analysis/design.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/design.hpp"
 #include "nocdyn/io/robot_file.hpp"

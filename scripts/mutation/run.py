@@ -34,7 +34,7 @@ TESTS = [
     "lagrange_test",
     "golden_test",
     "model_test",
-    "general_forward_dynamics_test",
+    "forward_dynamics_robots_test",
     "identification_test",
     "reactions_test",
 ]

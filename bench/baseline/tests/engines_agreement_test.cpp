@@ -7,7 +7,7 @@
 #include <cstdio>
 
 #include "nocdyn/prr3/dynamics.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/prr3/mujoco_robot.hpp"
 #include "nocdyn/prr3/simbody_robot.hpp"
 #include "baseline_support.hpp"

@@ -25,7 +25,7 @@
 
 #include <string>
 
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/model.hpp"
 
 namespace nocdyn::io {

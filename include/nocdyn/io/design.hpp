@@ -11,7 +11,7 @@
 #include <string>
 #include <vector>
 
-#include "nocdyn/design.hpp"
+#include "nocdyn/analysis/design.hpp"
 #include "nocdyn/io/robot_file.hpp"
 
 namespace nocdyn::io {

@@ -5,12 +5,12 @@
 #include <string>
 #include <vector>
 
-#include "nocdyn/envelope.hpp"
-#include "nocdyn/general_control.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/analysis/envelope.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/reactions.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 
 namespace nocdyn::io {
 

@@ -8,7 +8,7 @@
 
 #include "nocdyn/description.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "nocdyn/validation/mechanism_sample.hpp"
 

@@ -42,7 +42,7 @@
 #include <string>
 #include <vector>
 
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
 

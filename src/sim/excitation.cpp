@@ -1,6 +1,6 @@
 // Excitation design (excitation.hpp): Fourier shapes scaled to the robot's limits, the
 // condition number of the stacked regressor minimised by random search and Nelder-Mead.
-#include "nocdyn/excitation.hpp"
+#include "nocdyn/sim/excitation.hpp"
 
 #include <algorithm>
 #include <array>
@@ -15,7 +15,7 @@
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/status.hpp"
 

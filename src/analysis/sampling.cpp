@@ -1,6 +1,6 @@
 // Trajectory sampling through the per-sample inverse dynamics of any robot, with the limits
 // checked between output samples as well (see sampling.hpp).
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 
 #include <algorithm>
 #include <cmath>

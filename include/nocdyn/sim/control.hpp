@@ -31,7 +31,7 @@
 #include <vector>
 
 #include "nocdyn/direct_kinematics.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 #include "nocdyn/trajectory.hpp"

@@ -1,5 +1,5 @@
 // Regressor, base parameters and least-squares identification (identification.hpp).
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/identification.hpp"
 
 #include <algorithm>
 #include <cmath>

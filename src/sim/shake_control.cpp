@@ -1,5 +1,5 @@
 // Shake-table sensing, estimation and control (see shake_control.hpp).
-#include "nocdyn/shake_control.hpp"
+#include "nocdyn/sim/shake_control.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -13,7 +13,7 @@
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 
 namespace nocdyn {
 

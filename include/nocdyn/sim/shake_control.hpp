@@ -39,7 +39,7 @@
 
 #include <vector>
 
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
 

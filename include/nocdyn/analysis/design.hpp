@@ -23,10 +23,10 @@
 #include <vector>
 
 #include "nocdyn/description.hpp"
-#include "nocdyn/envelope.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/envelope.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/trajectory.hpp"
-#include "nocdyn/workspace.hpp"
+#include "nocdyn/analysis/workspace.hpp"
 
 namespace nocdyn {
 

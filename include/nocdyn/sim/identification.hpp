@@ -29,7 +29,7 @@
 
 #include <Eigen/Core>
 
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 

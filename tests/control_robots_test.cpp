@@ -1,4 +1,4 @@
-// Task-space computed-torque and PD control of any robot (general_control.hpp) on nocdyn's own
+// Task-space computed-torque and PD control of any robot (control.hpp) on nocdyn's own
 // forward dynamics: tracking of the paper's trajectory 1 on every example robot, the designed
 // (critically damped) error decay, an unknown payload, PD versus computed torque, saturation
 // at each joint's effort, sensor noise, and an allocation-free compute().
@@ -11,7 +11,7 @@
 #include "allocation_counter.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/tables.hpp"
 #include "nocdyn/trajectory.hpp"

@@ -11,7 +11,7 @@
 
 #include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/envelope.hpp"
+#include "nocdyn/analysis/envelope.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
 

@@ -1,6 +1,6 @@
 // Forward dynamics of the general planar parallel robot in the platform coordinates, its time
 // integration (Boost.Odeint) and the interpolated actuator forces (Boost.Math).
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 
 #include <algorithm>
 #include <array>
@@ -14,7 +14,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
-#include "stages.hpp"
+#include "../core/stages.hpp"
 
 namespace nocdyn {
 

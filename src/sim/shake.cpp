@@ -1,5 +1,5 @@
 // Recorded ground motion on a robot (see shake.hpp).
-#include "nocdyn/shake.hpp"
+#include "nocdyn/sim/shake.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -12,7 +12,7 @@
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/kinematics.hpp"
 
 namespace nocdyn {

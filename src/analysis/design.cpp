@@ -1,6 +1,6 @@
 // Metrics of one design and the sweep machinery (design.hpp): each metric by the same
 // library call the single-robot command makes, failures of the design turned into reasons.
-#include "nocdyn/design.hpp"
+#include "nocdyn/analysis/design.hpp"
 
 #include <algorithm>
 #include <atomic>

@@ -1,6 +1,6 @@
 // BM_InverseDynamics/<robot>/{mujoco,simbody}: the independent engines' general models of the
 // example robots on the same cycle of samples as BM_InverseDynamics/<robot>/nocdyn
-// (bench_general.cpp). Neither engine has a per-sample inverse-dynamics entry for a closed
+// (bench_robots.cpp). Neither engine has a per-sample inverse-dynamics entry for a closed
 // loop: each call covers the cycle, assembling every sample from the previous one, and
 // `per_sample` is the time per sample.
 // BM_Simulate/<robot>/simbody: the Simbody plant (SimbodyMechanism::advance, accuracy 1e-10)
@@ -16,7 +16,7 @@
 
 #include "fixture.hpp"
 #include "simulate_fixture.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"

@@ -1,4 +1,4 @@
-// Task-space computed torque (general_control.hpp) designed on the NOC model, run on the
+// Task-space computed torque (control.hpp) designed on the NOC model, run on the
 // independent Simbody model of the robot file (SimbodyMechanism as a plant): the redundant
 // 4-RRR and the 3-RRR track the paper's trajectory 1, also with a payload the controller does
 // not know.
@@ -7,7 +7,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "simbody_plant.hpp"

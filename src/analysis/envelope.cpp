@@ -1,6 +1,6 @@
 // Operating envelope of any robot: bisection on the sinusoid amplitude with the inverse
 // dynamics (eq. 20) and every joint's limits.
-#include "nocdyn/envelope.hpp"
+#include "nocdyn/analysis/envelope.hpp"
 
 #include <algorithm>
 #include <cmath>

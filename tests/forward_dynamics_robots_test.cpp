@@ -15,7 +15,7 @@
 #include "allocation_counter.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/forward_dynamics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/trajectory.hpp"

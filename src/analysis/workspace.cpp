@@ -1,7 +1,7 @@
 // Workspace map at a fixed orientation: every grid point through the position and velocity
 // stages (kinematics.hpp), each limb's reach by its closed form (limb_ik.hpp), the singularity
 // curves refined by bisection along the grid edges that cross them.
-#include "nocdyn/workspace.hpp"
+#include "nocdyn/analysis/workspace.hpp"
 
 #include <algorithm>
 #include <cmath>

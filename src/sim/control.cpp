@@ -1,6 +1,6 @@
 // Task-space computed-torque and PD control of any robot, plants, closed-loop simulation
 // (see the header).
-#include "nocdyn/general_control.hpp"
+#include "nocdyn/sim/control.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -15,7 +15,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
-#include "nocdyn/sampling.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 
 namespace nocdyn {
 

@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <string>
 
-#include "nocdyn/identification.hpp"
+#include "nocdyn/sim/identification.hpp"
 
 namespace nocdyn {
 
