@@ -1,5 +1,5 @@
 // Families of robots for design sweeps, the designs table and its journal (io/design.hpp).
-#include "nocdyn/io/design.hpp"
+#include "nocdyn/tables/design.hpp"
 
 #include <charconv>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Calibration files (calibration.hpp).
-#include "nocdyn/io/calibration.hpp"
+#include "nocdyn/tables/calibration.hpp"
 
 #include <cmath>
 #include <cstdio>
