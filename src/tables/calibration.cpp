@@ -7,7 +7,7 @@
 
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/error.hpp"
-#include "yaml_util.hpp"
+#include "../io/yaml_util.hpp"
 
 namespace nocdyn::io {
 

@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "file_util.hpp"
+#include "../io/file_util.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"
