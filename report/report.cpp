@@ -43,7 +43,7 @@ constexpr double kRate = 10000.0;  // Hz
 PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine = {},
                      const std::vector<Eigen::VectorXd>* engine_values = nullptr) {
     PlotPanel panel;
-    panel.title = forces ? "(b) Motor forces" : "(a) Motor displacements";
+    panel.title = forces ? "(a) Motor forces" : "(a) Motor displacements";
     panel.xlabel = "t [s]";
     panel.ylabel = forces ? "{/Symbol t}_j [N]" : "u_j [mm]";
     const double scale = forces ? 1.0 : 1e3;
@@ -73,7 +73,7 @@ PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std
 PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine,
                           const std::vector<Eigen::VectorXd>& engine_values) {
     PlotPanel panel;
-    panel.title = "(c) " + engine + " minus model";
+    panel.title = "(b) " + engine + " minus model";
     panel.xlabel = "t [s]";
     const auto difference = [&](std::size_t k, int j) {
         const InverseDynamicsSample& s = series.samples[k];
