@@ -51,7 +51,11 @@ TEST(CliUsability, EveryCommandsHelpHasAnExampleAndHelpCommandShowsTheSame) {
     for (const std::string& command : commands) {
         const CliResult help = runCli(command + " --help");
         ASSERT_EQ(help.exit_code, 0) << command << help.err;
-        EXPECT_NE(help.out.find("Example: nocdyn " + command), std::string::npos) << command << "\n" << help.out;
+        // one line "Example: nocdyn ..." that runs this command (after another one that makes its input)
+        const std::size_t at = help.out.find("\nExample: nocdyn ");
+        ASSERT_NE(at, std::string::npos) << command << "\n" << help.out;
+        const std::string example = help.out.substr(at + 1, help.out.find('\n', at + 1) - at - 1);
+        EXPECT_NE(example.find("nocdyn " + command + " "), std::string::npos) << example;
         const CliResult same = runCli("help " + command);
         EXPECT_EQ(same.exit_code, 0) << command << same.err;
         EXPECT_EQ(same.out, help.out) << command;
@@ -132,13 +136,19 @@ TEST(CliUsability, ShakesDefaultPlantIsTheFastOneAndEachPlantsSpeedIsInTheHelp) 
     EXPECT_NE(r.out.find("under --out-dir"), std::string::npos) << r.out;
 }
 
+// The 3-RPR reaches x = 5 m (its prismatic joints stretch) far outside their 30 mm range: 5 mm
+// meant, 5 m typed.
 TEST(CliUsability, APoseFarOutsideAJointsRangeWarnsOfTheUnit) {
-    const CliResult r = runCli("pose 0 5 0");
-    EXPECT_NE(r.err.find("nocdyn: warning: "), std::string::npos) << r.err;
+    const std::string robot = " --robot " + std::string(NOCDYN_SOURCE_DIR) + "/robots/3-rpr.yaml";
+    const CliResult r = runCli("pose 0 5 0" + robot);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("nocdyn: warning: joint range exceeded"), std::string::npos) << r.err;
     EXPECT_NE(r.err.find("the command line takes m and rad"), std::string::npos) << r.err;
-    const CliResult json = runCli("pose 0 5 0 --json");
+    const CliResult json = runCli("pose 0 5 0 --json" + robot);
     EXPECT_NE(json.err.find("nocdyn: warning: "), std::string::npos) << json.err;
-    const CliResult fine = runCli("pose 0 0.001 0");
+    const CliResult fk = runCli("forward-kinematics 5 0 0" + robot);
+    EXPECT_NE(fk.err.find("nocdyn: warning: u1 is outside its joint's range"), std::string::npos) << fk.err;
+    const CliResult fine = runCli("pose 0 0.001 0" + robot);
     EXPECT_EQ(fine.exit_code, 0) << fine.err;
     EXPECT_EQ(fine.err.find("warning"), std::string::npos) << fine.err;
 }

@@ -102,6 +102,14 @@ std::string nearest(const std::string& typed, const std::vector<std::string>& na
     return best;
 }
 
+/// The command of that name, or nullptr.
+CLI::App* findCommand(CLI::App& app, const std::string& name) {
+    for (CLI::App* command : app.get_subcommands({})) {
+        if (command->get_name() == name) return command;
+    }
+    return nullptr;
+}
+
 std::vector<std::string> commandNames(CLI::App& app) {
     std::vector<std::string> names;
     for (CLI::App* command : app.get_subcommands({})) names.push_back(command->get_name());
@@ -114,7 +122,7 @@ std::string misspelling(CLI::App& app, const std::vector<std::string>& arguments
     if (arguments.empty() || arguments.front().starts_with("-")) return {};
     const std::vector<std::string> commands = commandNames(app);
     const std::string& typed = arguments.front();
-    CLI::App* command = app.get_subcommand_no_throw(typed);
+    CLI::App* command = findCommand(app, typed);
     if (command == nullptr) {
         const std::string near = nearest(typed, commands);
         std::string list;
@@ -203,13 +211,13 @@ std::unique_ptr<CLI::App> makeApp() {
     };
     // --quiet on every long command (runCommandLine reads it: no progress, no "wrote FILE" lines)
     for (const char* name : {"control", "shake", "simulate", "inverse-dynamics"}) {
-        CLI::App* command = app.get_subcommand_no_throw(name);
+        CLI::App* command = findCommand(app, name);
         if (command != nullptr && command->get_option_no_throw("--quiet") == nullptr) {
-            command->add_flag("--quiet,-q", "No progress line and no 'wrote FILE' line on standard error");
+            command->add_flag("--quiet,-q")->description("No progress line and no 'wrote FILE' line on standard error");
         }
     }
     for (const auto& [name, example] : examples) {
-        CLI::App* command = app.get_subcommand_no_throw(name);
+        CLI::App* command = findCommand(app, name);
         if (command != nullptr && command->get_description().find("Example: ") == std::string::npos) {
             command->description(command->get_description() + "\nExample: " + example);
         }
@@ -257,7 +265,7 @@ int runCommandLine(int argc, const char* const* argv) {
     std::vector<std::string> arguments(argv + 1, argv + argc);
     // `nocdyn help [COMMAND]`: the same as `nocdyn [COMMAND] --help`
     if (!arguments.empty() && arguments.front() == "help" && arguments.size() <= 2) {
-        if (arguments.size() == 2 && app.get_subcommand_no_throw(arguments[1]) == nullptr) {
+        if (arguments.size() == 2 && findCommand(app, arguments[1]) == nullptr) {
             const std::string typo = misspelling(app, {arguments[1]});
             std::cerr << "nocdyn: error: "
                       << (typo.empty() ? "unknown command '" + nocdyn::io::terminalText(arguments[1]) + "'" : typo)
