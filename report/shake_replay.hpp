@@ -19,7 +19,7 @@ namespace nocdyn::report {
 struct ShakeSettings {
     FitOptions fit;
     /// "nocdyn-rk4" (a 40 s record in seconds), "nocdyn" or "simbody" (the independent check,
-    /// about 75 times slower)
+    /// about 70 times slower)
     std::string plant = "nocdyn-rk4";
     /// "table": encoders, accelerometers, estimator, low-gain feedback and acceleration correction
     /// (shake_control.hpp); "pose": computed torque on a noisy pose and rate sensor at f_n =

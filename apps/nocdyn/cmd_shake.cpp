@@ -239,7 +239,7 @@ void addShakeCommand(CLI::App& app) {
             "DIR/shake.json (time_scale, amplitude_scale, metrics: RMS and peak acceleration errors, 5 %-damped\n"
             "pseudo-acceleration spectra) and figures DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}\n"
             "(DIR: --out-dir). The default plant is nocdyn-rk4 (a 40 s record in seconds); --plant simbody replays\n"
-            "on the independent Simbody model, about 75 times slower, as a check.");
+            "on the independent Simbody model, about 70 times slower, as a check.");
     addRobotOption(*command, options->robot);
     command
         ->add_option("--record", options->records,
