@@ -518,7 +518,8 @@ class Robot:
         differentiated (uniform sampling needed). The robot's own parameters are this robot's.
         friction=True identifies the actuated joints' damping and Coulomb friction alongside;
         held_forces=True takes the forces as commands held until the next sample (as `nocdyn
-        control --log` writes them); the last `holdout` fraction of the samples is held out to
+        control --log` writes them: its columns tau1_held..taun_held; pass held_forces=True with
+        them, or identify the file with nocdyn.identify, which reads the names); the last `holdout` fraction of the samples is held out to
         check the fit. prior: bounds on the payload, a dict {"mass": (lower, upper), "com_x":
         ..., "com_y": ..., "inertia": ...} (None for an open side; see load_prior) or the path
         of a prior file: the estimate is then the weighted least-squares solution within them.

@@ -415,8 +415,9 @@ def regressor(*, robot=None, set=None, samples=200, seed=1, output=None):
 def identify(data, *, robot=None, set=None, payload=False, base=False, friction=False, held_forces=False, cutoff=0.0,
              holdout=0.2, output=None, calibration=None, prior=None, figure=None, progress=None):
     """Identify a payload (the default) or the robot's base parameters (base) from a log of
-    actuator positions and forces, CSV t,u1..un,tau1..taun (``nocdyn identify``; control's
-    ``log`` writes one). Returns an Identification: the report the command prints (``text``),
+    actuator positions and forces, CSV t,u1..un with tau1..taun (forces at each sample) or
+    tau1_held..taun_held (commands held until the next sample, as control's ``log`` writes them;
+    taken so without held_forces) (``nocdyn identify``). Returns an Identification: the report the command prints (``text``),
     read as a dict (``report``: payload, standard_deviation, fit, ...), and ``robot_yaml``, the
     file the command writes (the robot with the payload merged, or with base the calibration)."""
     arguments = dict(locals())
