@@ -271,8 +271,10 @@ void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::pa
     for (int k = 0; k < 2; ++k) {
         const PoseTrajectory trajectory = k == 0 ? paperTrajectory1() : paperTrajectory2();
         PlotSeries path{
-            std::string("C along trajectory ") + (k == 0 ? "1 (wide, under 2)" : "2 (dashed)") + ", theta varies", {},
-            {}, styles[k]};
+            std::string("C along trajectory ") + (k == 0 ? "1 (wide, under 2)" : "2 (dashed)") + ", theta varies",
+            {},
+            {},
+            styles[k]};
         for (const double t : sampleTimes(kDuration, 2000.0)) {
             Pose p, dp, ddp;
             trajectory.evaluate(t, p, dp, ddp);

@@ -159,10 +159,10 @@ TEST(CliUsability, APoseFarOutsideAJointsRangeWarnsOfTheUnit) {
 TEST(CliUsability, IdentifyGetsThePayloadOfAControlLogWithinOnePercentByDefault) {
     const fs::path dir = freshScratchDirectory("cli_usability");
     const std::string log = (dir / "log.csv").string();
-    const CliResult control =
-        runCli("control --trajectory paper2 --plant nocdyn-rk4 --duration 0.5 --payload-mass 0.5 --payload-com 0.012 "
-               "-0.007 --payload-inertia 2e-4 --noise-u 1e-7 --noise-tau 0.05 --seed 3 --log " +
-               log);
+    const CliResult control = runCli(
+        "control --trajectory paper2 --plant nocdyn-rk4 --duration 0.5 --payload-mass 0.5 --payload-com 0.012 "
+        "-0.007 --payload-inertia 2e-4 --noise-u 1e-7 --noise-tau 0.05 --seed 3 --log " +
+        log);
     ASSERT_EQ(control.exit_code, 0) << control.err;
     EXPECT_TRUE(io::readCsvFile(log).has("tau3_held"));
     const CliResult r = runCli("identify --data " + log);

@@ -201,7 +201,8 @@ std::unique_ptr<CLI::App> makeApp() {
          "nocdyn inverse-dynamics --trajectory paper1 -o forces.csv && nocdyn simulate --forces forces.csv "
          "-o motion.csv"},
         {"envelope", "nocdyn envelope --output envelope.csv --figure envelope"},
-        {"animate", "nocdyn animate --trajectory paper1 --output paper1.html   (a replay: --trajectory shake/shake.csv)"},
+        {"animate",
+         "nocdyn animate --trajectory paper1 --output paper1.html   (a replay: --trajectory shake/shake.csv)"},
         {"convert", "nocdyn convert robots/paper-3prr.yaml --output paper-3prr-general.yaml"},
         {"shake", "nocdyn shake --record data/elcentro_1940_ns.AT2 --out-dir shake"},
         {"excite", "nocdyn excite --payload-guess 0.5 0 0 2e-4 --output excitation.yaml"},

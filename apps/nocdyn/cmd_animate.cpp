@@ -154,8 +154,7 @@ void addAnimateCommand(CLI::App& app) {
             throw Error("animate: --frame needs --png or --svg");
         }
         (void)command;
-        run(*options, out->count() + old_out->count() > 0,
-            command->count("--duration") + command->count("--rate") > 0);
+        run(*options, out->count() + old_out->count() > 0, command->count("--duration") + command->count("--rate") > 0);
     });
 }
 

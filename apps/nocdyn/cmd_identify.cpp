@@ -58,7 +58,8 @@ Measurements readMeasurements(const std::string& path, int n) {
     if (!held && !table.has("tau1")) {
         throw Error(path + ": no column 'tau1' or 'tau1_held' (the log needs t, u1..u" + std::to_string(n) +
                     " and the forces tau1..tau" + std::to_string(n) + " as measured at each sample, or tau1_held..tau" +
-                    std::to_string(n) + "_held when they are commands held until the next sample, as `nocdyn control "
+                    std::to_string(n) +
+                    "_held when they are commands held until the next sample, as `nocdyn control "
                     "--log` writes them)");
     }
     std::vector<std::size_t> u_col, tau_col, du_col, ddu_col;
@@ -272,7 +273,8 @@ void addIdentifyCommand(CLI::App& app) {
         "physically consistent solution (mass > 0, inertia about the c.o.m. >= 0, and the bounds of --prior: the\n"
         "bounded least-squares solution, the bounds it lies on reported as active_bounds); standard deviations\n"
         "from the residuals; the last --holdout of the samples is held out to check the fit. Prints YAML.\n"
-        "Example: nocdyn control --trajectory paper2 --payload-mass 0.5 --log log.csv && nocdyn identify --data log.csv");
+        "Example: nocdyn control --trajectory paper2 --payload-mass 0.5 --log log.csv && nocdyn identify --data "
+        "log.csv");
     addRobotOption(*command, options->robot);
     command->add_option("--data", options->data, "Measured CSV: " + io::columnList(io::TableId::measurements))
         ->required()

@@ -65,8 +65,9 @@ void warnOutsideRange(const Model& model, const Data& data, const Status& limits
     double worst = 0.0;
     for (int j = 0; j < model.limbs; ++j) {
         for (int k = 0; k < 3; ++k) {
-            worst = std::max(worst, rangeUsed(model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)],
-                                              data.limb[static_cast<std::size_t>(j)].q(k)));
+            worst =
+                std::max(worst, rangeUsed(model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)],
+                                          data.limb[static_cast<std::size_t>(j)].q(k)));
         }
     }
     std::fprintf(stderr, "nocdyn: warning: %s%s\n", describe(limits, model).c_str(),
