@@ -294,14 +294,14 @@ TEST_P(DerivativesRandomRobots, BatchEqualsSampleBySample) {
     Eigen::ArrayXXd d_p(N, 3 * n), d_dp(N, 3 * n), d_ddp(N, 3 * n);
     const BatchResult result = inverseDynamicsDerivativesBatch(model, p, dp, ddp, d_p, d_dp, d_ddp, 2);
     Data data(model);
-    Eigen::Index failed = 0, first = BatchResult::npos;
+    Eigen::Index failed = 0, first_failed = BatchResult::npos;
     StatusCode first_code = StatusCode::ok;
     for (Eigen::Index k = 0; k < N; ++k) {
         InverseDynamicsDerivatives d;
         const Status status = inverseDynamicsDerivatives(model, data, p.row(k).transpose(), dp.row(k).transpose(),
                                                          ddp.row(k).transpose(), d);
         if (!status && failed++ == 0) {
-            first = k;
+            first_failed = k;
             first_code = status.code;
         }
         for (int a = 0; a < n; ++a) {
@@ -318,7 +318,7 @@ TEST_P(DerivativesRandomRobots, BatchEqualsSampleBySample) {
     }
     EXPECT_GE(failed, 1);
     EXPECT_EQ(result.failed, failed);
-    EXPECT_EQ(result.first_failure, first);
+    EXPECT_EQ(result.first_failure, first_failed);
     EXPECT_EQ(result.status.code, first_code);
 }
 
