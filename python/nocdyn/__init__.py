@@ -45,6 +45,7 @@ from . import _nocdyn
 from ._nocdyn import Error
 from .commands import (COMMANDS, animate, control, convert, design, envelope, excite, forward_kinematics, identify,
                        inverse_dynamics, loads, pose, regressor, reproduce, shake, simulate, validate, workspace)
+from .commands import frequency_response
 from .results import (Animation, AssemblyModes, Excitation, Identification, PoseReport, Report, ShakeResult, Table,
                       Workspace)
 
@@ -53,6 +54,7 @@ __all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMa
            # every command of the command line (nocdyn.commands), and their results (nocdyn.results)
            "pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace", "convert",
            "animate", "shake", "regressor", "identify", "excite", "loads", "validate", "reproduce", "design", "COMMANDS",
+           "frequency_response",
            "Table", "PoseReport", "AssemblyModes", "Workspace", "Identification", "Excitation", "ShakeResult",
            "Animation", "Report"]
 __version__ = _nocdyn.__version__  # the CMake project version, as `nocdyn --version`
