@@ -90,9 +90,9 @@ void run(benchmark::State& state, const std::string& robot, What what) {
         }
         benchmark::ClobberMemory();
     }
-    state.counters["per_sample"] = benchmark::Counter(static_cast<double>(samples.size()),
-                                                      benchmark::Counter::kIsIterationInvariantRate |
-                                                          benchmark::Counter::kInvert);
+    state.counters["per_sample"] =
+        benchmark::Counter(static_cast<double>(samples.size()),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 const bool registered = [] {

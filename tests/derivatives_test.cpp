@@ -163,8 +163,8 @@ TEST_P(DerivativesRandomRobots, InverseDynamicsDerivativesEqualFiniteDifferences
                 };
                 fd.col(i) = stencil(f, kStep, spread);
             }
-            const Eigen::MatrixXd exact = which == 0 ? Eigen::MatrixXd(d.d_p)
-                                                     : (which == 1 ? Eigen::MatrixXd(d.d_dp) : Eigen::MatrixXd(d.d_ddp));
+            const Eigen::MatrixXd exact =
+                which == 0 ? Eigen::MatrixXd(d.d_p) : (which == 1 ? Eigen::MatrixXd(d.d_dp) : Eigen::MatrixXd(d.d_ddp));
             ++matrices;
             if (spread > kUnconverged * (exact.cwiseAbs().maxCoeff() + floor)) {
                 ++skipped;
@@ -172,8 +172,11 @@ TEST_P(DerivativesRandomRobots, InverseDynamicsDerivativesEqualFiniteDifferences
             }
             const double error = relativeError(exact, fd, floor);
             worst = std::max(worst, error);
-            EXPECT_LE(error, kTolerance) << "d tau/d " << (which == 0 ? "p" : which == 1 ? "dp" : "ddp") << " of "
-                                         << label(GetParam()) << " at " << where(s) << "\nexact\n"
+            EXPECT_LE(error, kTolerance) << "d tau/d "
+                                         << (which == 0   ? "p"
+                                             : which == 1 ? "dp"
+                                                          : "ddp")
+                                         << " of " << label(GetParam()) << " at " << where(s) << "\nexact\n"
                                          << exact << "\nfinite differences\n"
                                          << fd;
         }
@@ -246,8 +249,11 @@ TEST_P(DerivativesRandomRobots, ForwardDynamicsDerivativesEqualFiniteDifferences
             }
             const double error = relativeError(exact, fd, which == 2 ? 0.0 : floor);
             worst = std::max(worst, error);
-            EXPECT_LE(error, kTolerance) << "d ddp/d " << (which == 0 ? "p" : which == 1 ? "dp" : "tau") << " of "
-                                         << label(GetParam()) << " at " << where(s) << "\nexact\n"
+            EXPECT_LE(error, kTolerance) << "d ddp/d "
+                                         << (which == 0   ? "p"
+                                             : which == 1 ? "dp"
+                                                          : "tau")
+                                         << " of " << label(GetParam()) << " at " << where(s) << "\nexact\n"
                                          << exact << "\nfinite differences\n"
                                          << fd;
         }

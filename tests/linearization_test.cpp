@@ -24,7 +24,9 @@
 namespace nocdyn::test {
 namespace {
 
-RobotDescription paperRobot() { return io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/paper-3prr.yaml"); }
+RobotDescription paperRobot() {
+    return io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/paper-3prr.yaml");
+}
 
 /// The paper's robot with viscous damping `c` [N s/m] at every slider: the plant from force to
 /// acceleration is then a high-pass (M s + D)^-1 s A_p^T instead of a constant.

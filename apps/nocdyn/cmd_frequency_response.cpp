@@ -71,10 +71,10 @@ void run(const FrequencyResponseOptions& options) {
     }
     writeTable(table, options.output);
 
-    std::string text = "# frequency response of " + model.description.name + " from the actuator forces to " +
-                       (kind == LinearOutput::platform_acceleration ? "the platform acceleration"
-                                                                    : "the actuator variables") +
-                       " (rigid model)\n";
+    std::string text =
+        "# frequency response of " + model.description.name + " from the actuator forces to " +
+        (kind == LinearOutput::platform_acceleration ? "the platform acceleration" : "the actuator variables") +
+        " (rigid model)\n";
     char line[200];
     std::snprintf(line, sizeof line, "# operating point p = [%.6g, %.6g, %.6g], dp = [%.6g, %.6g, %.6g]\n", p(0), p(1),
                   p(2), dp(0), dp(1), dp(2));
@@ -106,8 +106,8 @@ void run(const FrequencyResponseOptions& options) {
         for (int o = 0; o < r.outputs; ++o) {
             for (int i = 0; i < r.inputs; ++i) {
                 const Eigen::Index c = o * r.inputs + i;
-                report::PlotSeries m{report::literalText(outputName(o) + "/tau" + std::to_string(i + 1)), r.frequency,
-                                     {}};
+                report::PlotSeries m{
+                    report::literalText(outputName(o) + "/tau" + std::to_string(i + 1)), r.frequency, {}};
                 report::PlotSeries ph = m;
                 for (std::size_t k = 0; k < r.frequency.size(); ++k) {
                     m.y.push_back(r.magnitude_db(static_cast<Eigen::Index>(k), c));
@@ -135,8 +135,7 @@ void addFrequencyResponseCommand(CLI::App& app) {
         "Joint and drive compliance are not modelled. Example:\n"
         "  nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant");
     addRobotOption(*command, options->robot);
-    command->add_option("--pose", options->pose, "Operating pose THETA X Y [rad, m, m] (default: home)")
-        ->expected(3);
+    command->add_option("--pose", options->pose, "Operating pose THETA X Y [rad, m, m] (default: home)")->expected(3);
     command->add_option("--rate", options->rate, "Operating pose rate [rad/s, m/s, m/s] (default: at rest)")
         ->expected(3);
     command->add_option("--output-kind", options->output_kind, "What the output is")

@@ -37,18 +37,18 @@ using PoseActuatorJacobian = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMax
 
 /// d tau / d(p, dp/dt, d2p/dt2) at a sample, and tau itself.
 struct InverseDynamicsDerivatives {
-    ActuatorVector tau;           ///< actuator forces (inverseDynamics' values)
-    ActuatorPoseJacobian d_p;     ///< d tau / d p
-    ActuatorPoseJacobian d_dp;    ///< d tau / d(dp/dt)
-    ActuatorPoseJacobian d_ddp;   ///< d tau / d(d2p/dt2): the mass matrix mapped to the actuators
+    ActuatorVector tau;          ///< actuator forces (inverseDynamics' values)
+    ActuatorPoseJacobian d_p;    ///< d tau / d p
+    ActuatorPoseJacobian d_dp;   ///< d tau / d(dp/dt)
+    ActuatorPoseJacobian d_ddp;  ///< d tau / d(d2p/dt2): the mass matrix mapped to the actuators
 };
 
 /// d(d2p/dt2) / d(p, dp/dt, tau) at a state and force, and d2p/dt2 itself.
 struct ForwardDynamicsDerivatives {
-    Twist ddp = Twist::Zero();         ///< d2p/dt2 (forwardDynamics' value)
-    Matrix3 d_p = Matrix3::Zero();     ///< d(d2p/dt2) / d p
-    Matrix3 d_dp = Matrix3::Zero();    ///< d(d2p/dt2) / d(dp/dt)
-    PoseActuatorJacobian d_tau;        ///< d(d2p/dt2) / d tau = M_p^-1 A_p^T
+    Twist ddp = Twist::Zero();       ///< d2p/dt2 (forwardDynamics' value)
+    Matrix3 d_p = Matrix3::Zero();   ///< d(d2p/dt2) / d p
+    Matrix3 d_dp = Matrix3::Zero();  ///< d(d2p/dt2) / d(dp/dt)
+    PoseActuatorJacobian d_tau;      ///< d(d2p/dt2) / d tau = M_p^-1 A_p^T
     /// The platform-coordinate mass matrix M_p (forward_dynamics.hpp), d(A_p^T tau)/d(d2p/dt2).
     Matrix3 M_p = Matrix3::Zero();
 };
@@ -69,7 +69,7 @@ Status forwardDynamicsDerivatives(const Model& model, Data& data, const Pose& p,
 /// (so that a row-major N x 3n array is an N x n x 3 one). `threads` as inverseDynamicsBatch.
 /// A failed sample's outputs are NaN. Throws nocdyn::Error when the sizes disagree.
 BatchResult inverseDynamicsDerivativesBatch(const Model& model, const BatchInput& p, const BatchInput& dp,
-                                            const BatchInput& ddp, BatchOutput d_p, BatchOutput d_dp,
-                                            BatchOutput d_ddp, unsigned threads = 1);
+                                            const BatchInput& ddp, BatchOutput d_p, BatchOutput d_dp, BatchOutput d_ddp,
+                                            unsigned threads = 1);
 
 }  // namespace nocdyn

@@ -443,8 +443,8 @@ void requireShape(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen:
 }  // namespace
 
 BatchResult inverseDynamicsDerivativesBatch(const Model& model, const BatchInput& p, const BatchInput& dp,
-                                            const BatchInput& ddp, BatchOutput d_p, BatchOutput d_dp,
-                                            BatchOutput d_ddp, unsigned threads) {
+                                            const BatchInput& ddp, BatchOutput d_p, BatchOutput d_dp, BatchOutput d_ddp,
+                                            unsigned threads) {
     const Eigen::Index n = p.rows();
     requireShape("p", p.rows(), p.cols(), n, 3);
     requireShape("dp", dp.rows(), dp.cols(), n, 3);
