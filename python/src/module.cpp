@@ -257,11 +257,9 @@ py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::han
         throw Error("output: expected 'acceleration' or 'actuators', got '" + output + "'");
     }
     StateSpace ss;
-    const Status status = linearize(model, *robot.data, vector3(p, "p"), vector3(dp, "dp"),
-                                    actuatorVector(model, tau, "tau"),
-                                    output == "acceleration" ? LinearOutput::platform_acceleration
-                                                             : LinearOutput::actuator_variables,
-                                    ss);
+    const Status status = linearize(
+        model, *robot.data, vector3(p, "p"), vector3(dp, "dp"), actuatorVector(model, tau, "tau"),
+        output == "acceleration" ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables, ss);
     if (!status) throw Error(describe(status, model));
     return py::make_tuple(matrixToArray(ss.A), matrixToArray(ss.B), matrixToArray(ss.C), matrixToArray(ss.D));
 }

@@ -55,8 +55,9 @@ FrequencyResponse frequencyResponse(const StateSpace& system, const std::vector<
     r.outputs = static_cast<int>(system.C.rows());
     r.inputs = static_cast<int>(system.B.cols());
     const auto rows = static_cast<Eigen::Index>(frequencies.size());
-    r.magnitude_db.resize(rows, r.outputs * r.inputs);
-    r.phase_deg.resize(rows, r.outputs * r.inputs);
+    const auto channels = static_cast<Eigen::Index>(r.outputs) * r.inputs;
+    r.magnitude_db.resize(rows, channels);
+    r.phase_deg.resize(rows, channels);
     for (Eigen::Index k = 0; k < rows; ++k) {
         const double f = frequencies[static_cast<std::size_t>(k)];
         if (!(f > 0.0) || !std::isfinite(f) || (k > 0 && !(f > frequencies[static_cast<std::size_t>(k - 1)]))) {

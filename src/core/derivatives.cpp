@@ -446,12 +446,13 @@ BatchResult inverseDynamicsDerivativesBatch(const Model& model, const BatchInput
                                             const BatchInput& ddp, BatchOutput d_p, BatchOutput d_dp, BatchOutput d_ddp,
                                             unsigned threads) {
     const Eigen::Index n = p.rows();
+    const Eigen::Index columns = 3 * static_cast<Eigen::Index>(model.actuators);
     requireShape("p", p.rows(), p.cols(), n, 3);
     requireShape("dp", dp.rows(), dp.cols(), n, 3);
     requireShape("ddp", ddp.rows(), ddp.cols(), n, 3);
-    requireShape("d_p", d_p.rows(), d_p.cols(), n, 3 * model.actuators);
-    requireShape("d_dp", d_dp.rows(), d_dp.cols(), n, 3 * model.actuators);
-    requireShape("d_ddp", d_ddp.rows(), d_ddp.cols(), n, 3 * model.actuators);
+    requireShape("d_p", d_p.rows(), d_p.cols(), n, columns);
+    requireShape("d_dp", d_dp.rows(), d_dp.cols(), n, columns);
+    requireShape("d_ddp", d_ddp.rows(), d_ddp.cols(), n, columns);
     const DerivativeArrays a{p, dp, ddp, d_p, d_dp, d_ddp};
     if (threads == 1 || n < 2) return derivativeChunk(model, a, 0, n);
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
