@@ -129,6 +129,7 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         loop.noise_position = settings.noise_pose;
         loop.noise_rate = settings.noise_rate;
         loop.seed = settings.seed + static_cast<unsigned>(pass);
+        loop.progress = settings.table.progress;
         return runPoseLoop(controller, *plant, drive, loop);
     };
     const int scored_axis = out.driven[1] ? 1 : out.driven[2] ? 2 : 0;

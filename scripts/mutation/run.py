@@ -38,6 +38,7 @@ TESTS = [
     "identification_test",
     "reactions_test",
     "batch_test",
+    "derivatives_test",
 ]
 # A test binary that runs longer than this under a mutation (a loop that no longer converges)
 # counts as failing.

@@ -37,6 +37,8 @@
 // K_p sigma_q, (2 pi f_n)^2 times the estimator's pose error.
 #pragma once
 
+#include <functional>
+
 #include <vector>
 
 #include "nocdyn/sim/control.hpp"
@@ -101,6 +103,8 @@ struct ShakeLoopOptions {
     TableSensors sensors;
     unsigned seed = 1;
     bool saturation = true;  ///< clip at each actuator's effort
+    /// Called at each tick with its time [s] (e.g. a progress line); none by default.
+    std::function<void(double t)> progress = {};
 };
 
 /// What the estimator achieved over a run, against the plant's true state (kept for the report;
