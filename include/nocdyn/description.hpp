@@ -107,8 +107,8 @@ inline constexpr int kMaxActuators = 3 * kMaxLimbs;
 /// fewer than 3 actuated joints, a zero P direction, non-finite numbers, negative or
 /// implausible masses and inertias, a zero-mass robot, inconsistent limits, a limb of three
 /// prismatic joints, a negative or non-finite stiffness, an EA or EI not positive, an elastic
-/// body not between two revolute joints (or of zero length). Normalises P directions to unit length. The posture checks (every limb
-/// closes and is regular at home) are made by the Model.
+/// body not between two revolute joints (or of zero length). Normalises P directions to unit length. The posture checks
+/// (every limb closes and is regular at home) are made by the Model.
 void validate(RobotDescription& robot);
 
 /// "SOURCE:LINE: " (or "SOURCE: " or "" when unknown), to prefix messages.

@@ -18,9 +18,9 @@ namespace nocdyn::analysis {
 
 namespace {
 
-constexpr double kRankTolerance = 1e-9;   // relative, on unit columns in metres
-constexpr double kFreeTolerance = 1e-9;   // relative eigenvalue of the scaled K
-constexpr int kMaxLimbColumns = 9;        // 3 joints + 2 beams of 3 deflections
+constexpr double kRankTolerance = 1e-9;  // relative, on unit columns in metres
+constexpr double kFreeTolerance = 1e-9;  // relative eigenvalue of the scaled K
+constexpr int kMaxLimbColumns = 9;       // 3 joints + 2 beams of 3 deflections
 using LimbColumns = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxLimbColumns>;
 
 /// D = diag(L, 1, 1): a twist with its rotation in metres (or a pose with theta in metres).
@@ -116,8 +116,7 @@ StiffnessModel::StiffnessModel(const Model& model) {
     }
 }
 
-Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, const Data& data,
-                          StiffnessData& out) {
+Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, const Data& data, StiffnessData& out) {
     const double L = model.length_scale;
     Matrix3 K_twist = Matrix3::Zero();
     for (int j = 0; j < model.limbs; ++j) {
@@ -238,7 +237,7 @@ void lumpedModes(const Model& model, const Data& data, const StiffnessData& stif
     out.M = poseMassMatrix(data);
     out.M = 0.5 * (out.M + out.M.transpose()).eval();
     const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix3> eig(stiffness.K, out.M,
-                                                                 Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+                                                                Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
     for (int i = 0; i < 3; ++i) {
         const double w2 = i < stiffness.free_directions ? 0.0 : std::max(eig.eigenvalues()(i), 0.0);
         out.frequency(i) = std::sqrt(w2) / (2.0 * std::numbers::pi);
@@ -267,11 +266,11 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
     // element e of limb j in chain order: joint 0, beam 0 (3), joint 1, beam 1 (3), joint 2
     struct Column {
         int limb;
-        int stage;     // 0..4: joint 0, beam 0, joint 1, beam 1, joint 2
+        int stage;      // 0..4: joint 0, beam 0, joint 1, beam 1, joint 2
         Vector3 twist;  // scaled twist (D t / s_x) of a unit scaled coordinate
     };
     std::vector<Column> columns;
-    std::vector<double> spring;  // per coordinate: stiffness in scaled units, or 0
+    std::vector<double> spring;                  // per coordinate: stiffness in scaled units, or 0
     std::vector<std::pair<int, Matrix3>> beams;  // first coordinate, scaled beam stiffness
     std::vector<double> unit{L, 1.0, 1.0};       // per coordinate: scaled / unscaled
     const Vector3 d(L, 1.0, 1.0);
@@ -322,7 +321,8 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
     const Eigen::MatrixXd Z = svd.matrixV().rightCols(n - rank);
     // H: springs and beams; M_x: every body's inertia, riding on the coordinates inboard of it
     Eigen::MatrixXd H = Eigen::MatrixXd::Zero(n, n);
-    for (std::size_t c = 0; c < spring.size(); ++c) H(3 + static_cast<Eigen::Index>(c), 3 + static_cast<Eigen::Index>(c)) = spring[c];
+    for (std::size_t c = 0; c < spring.size(); ++c)
+        H(3 + static_cast<Eigen::Index>(c), 3 + static_cast<Eigen::Index>(c)) = spring[c];
     for (const auto& [first, Kb] : beams) H.block(first, first, 3, 3) = Kb;
     Eigen::MatrixXd Mx = Eigen::MatrixXd::Zero(n, n);
     const auto addBody = [&](const Eigen::MatrixXd& twist_of_x, const InertiaDyad& dyad, const Vector2& com) {
@@ -348,18 +348,38 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
                     xi.col(3 + static_cast<Eigen::Index>(c)) = columns[c].twist;
                 }
             }
-            addBody(xi, model.inertia(model.body(j, b)), data.limb[static_cast<std::size_t>(j)].x[static_cast<std::size_t>(b)]);
+            addBody(xi, model.inertia(model.body(j, b)),
+                    data.limb[static_cast<std::size_t>(j)].x[static_cast<std::size_t>(b)]);
         }
     }
-    out.dofs = n - rank;
-    out.K = Z.transpose() * H * Z;
-    out.M = Z.transpose() * Mx * Z;
-    out.K = 0.5 * (out.K + out.K.transpose()).eval();
-    out.M = 0.5 * (out.M + out.M.transpose()).eval();
-    if (Eigen::LLT<Eigen::MatrixXd>(out.M).info() != Eigen::Success) {
-        throw Error("the elastodynamic model has a degree of freedom that carries no mass: give every body that "
-                    "moves a mass and an inertia");
+    const int r = n - rank;
+    Eigen::MatrixXd Kr = Z.transpose() * H * Z, Mr = Z.transpose() * Mx * Z;
+    Kr = 0.5 * (Kr + Kr.transpose()).eval();
+    Mr = 0.5 * (Mr + Mr.transpose()).eval();
+    // degrees of freedom without mass (a beam's tip rotation at a free pivot) are condensed
+    // statically, exactly: y = V [a; b], M = diag(M_aa, 0), b = -K_bb^-1 K_ba a
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> mass(Mr);
+    int massless = 0;
+    while (massless < r && mass.eigenvalues()(massless) <= 1e-12 * mass.eigenvalues()(r - 1)) ++massless;
+    const Eigen::MatrixXd V = mass.eigenvectors();
+    const Eigen::MatrixXd Vb = V.leftCols(massless), Va = V.rightCols(r - massless);
+    Eigen::MatrixXd Kmass = Va.transpose() * Kr * Va;
+    Eigen::MatrixXd back = Eigen::MatrixXd::Zero(massless, r - massless);  // b = back a
+    if (massless > 0) {
+        const Eigen::MatrixXd Kbb = Vb.transpose() * Kr * Vb;
+        const Eigen::LLT<Eigen::MatrixXd> llt(Kbb);
+        if (llt.info() != Eigen::Success) {
+            throw Error(
+                "the elastodynamic model has a degree of freedom with neither mass nor stiffness: give "
+                "every body that moves a mass and an inertia");
+        }
+        back = -llt.solve(Vb.transpose() * Kr * Va);
+        Kmass += (Va.transpose() * Kr * Vb) * back;
     }
+    out.dofs = r - massless;
+    out.K = 0.5 * (Kmass + Kmass.transpose());
+    out.M = Va.transpose() * Mr * Va;
+    out.M = 0.5 * (out.M + out.M.transpose()).eval();
     const Eigen::GeneralizedSelfAdjointEigenSolver<Eigen::MatrixXd> eig(out.K, out.M,
                                                                         Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
     out.frequency.resize(out.dofs);
@@ -367,7 +387,7 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
         const double w2 = i < check.free_directions ? 0.0 : std::max(eig.eigenvalues()(i), 0.0);
         out.frequency(i) = std::sqrt(w2) / (2.0 * std::numbers::pi);
     }
-    out.shape = Z * eig.eigenvectors();
+    out.shape = Z * (Va * eig.eigenvectors() + Vb * (back * eig.eigenvectors()));
     for (Eigen::Index c = 0; c < n; ++c) out.shape.row(c) /= unit[static_cast<std::size_t>(c)];
     out.platform_shape = out.shape.topRows(3);
     // static condensation onto dp: W = P Z, W^T = Q [R1; 0], y = Q [a; b], dp = R1^T a
@@ -375,8 +395,8 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(W.transpose());
     const Eigen::MatrixXd Q = qr.householderQ();
     const Matrix3 R1 = qr.matrixQR().topRows(3).triangularView<Eigen::Upper>();
-    const Eigen::MatrixXd Kq = Q.transpose() * out.K * Q;
-    const int inner = out.dofs - 3;
+    const Eigen::MatrixXd Kq = Q.transpose() * Kr * Q;
+    const int inner = r - 3;
     Matrix3 Ka = Kq.topLeftCorner(3, 3);
     if (inner > 0) {
         const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> cod(Kq.bottomRightCorner(inner, inner));

@@ -159,9 +159,8 @@ void validate(RobotDescription& robot) {
                 const JointDescription& outboard = limb.joints[static_cast<std::size_t>(b + 1)];
                 if (inboard.type != JointType::revolute || outboard.type != JointType::revolute) {
                     check.fail(body.line, field + ".elastic",
-                               "an elastic body is a beam between two revolute joints, but " + limb.name +
-                                   "'s body " + std::to_string(b + 1) + " is carried by a prismatic joint (" +
-                                   limb.type() + ")");
+                               "an elastic body is a beam between two revolute joints, but " + limb.name + "'s body " +
+                                   std::to_string(b + 1) + " is carried by a prismatic joint (" + limb.type() + ")");
                 }
                 if (!((outboard.point - inboard.point).norm() > 1e-9)) {
                     check.fail(body.line, field + ".elastic", "the beam between the body's two joints has zero length");

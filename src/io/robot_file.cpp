@@ -41,7 +41,8 @@ bool flag(const Context& context, const YAML::Node& map, const char* key) {
 }
 
 JointDescription parseJoint(const Context& context, const YAML::Node& node) {
-    detail::requireMap(context, node, {"type", "point", "direction", "actuated", "limits", "damping", "friction", "stiffness"});
+    detail::requireMap(context, node,
+                       {"type", "point", "direction", "actuated", "limits", "damping", "friction", "stiffness"});
     JointDescription joint;
     joint.line = lineOf(node);
     const YAML::Node type = node["type"];
@@ -87,7 +88,8 @@ BodyDescription parseBody(const Context& context, const YAML::Node& node) {
     if (const YAML::Node elastic = node["elastic"]; elastic.IsDefined()) {
         const Context here = context / "elastic";
         detail::requireMap(here, elastic, {"EA", "EI"});
-        body.elastic = ElasticBeam{detail::requireNumber(here, elastic, "EA"), detail::requireNumber(here, elastic, "EI")};
+        body.elastic =
+            ElasticBeam{detail::requireNumber(here, elastic, "EA"), detail::requireNumber(here, elastic, "EI")};
     }
     return body;
 }

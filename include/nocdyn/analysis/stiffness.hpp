@@ -22,6 +22,8 @@
 // flexure, beam deflection) is a degree of freedom; x = [dp; z_1 ... z_L], closure
 // S dp = G_j z_j per limb, x = Z y on its null space, (Z^T H Z) v = w^2 (Z^T M_x Z) v.
 // An elastic body's inertia rides on its root (inboard joint); its beam adds the tip DOFs.
+// Coordinates that carry no mass (a beam tip's rotation at a free pivot) are condensed
+// statically, which is exact for them.
 // With rigid bodies the two models are one.
 //
 // Mixed units: rotations are scaled by the model's length_scale L wherever a rank or a
@@ -94,8 +96,7 @@ struct StiffnessData {
 
 /// K at the pose of `data` (its position stage done). Fails with rigid_limb naming the
 /// limb when a limb does not yield in some direction. Allocation-free.
-Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, const Data& data,
-                          StiffnessData& out);
+Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, const Data& data, StiffnessData& out);
 
 /// The displacement dp (pose order) under a generalized force f = [moment about C, f_x, f_y]:
 /// K dp = f. False (dp untouched) when f loads a free direction (no equilibrium); with free
@@ -105,7 +106,7 @@ Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, 
 
 /// Modes: frequencies in Hz, ascending, and shapes (columns, mass-normalised).
 struct LumpedModes {
-    Matrix3 M = Matrix3::Identity();  ///< mass matrix in the pose coordinates
+    Matrix3 M = Matrix3::Identity();      ///< mass matrix in the pose coordinates
     Vector3 frequency = Vector3::Zero();  ///< [Hz], ascending (0 for a free direction)
     Matrix3 shape = Matrix3::Zero();      ///< columns dp, pose order, v^T M v = 1
 };
@@ -121,11 +122,11 @@ Status stiffnessAndModes(const Model& model, const StiffnessModel& compliance, D
 
 /// Elastodynamic modes (allocates; not for the per-sample path).
 struct ElastodynamicModes {
-    int dofs = 0;                    ///< independent coordinates of the model
+    int dofs = 0;                    ///< independent coordinates with mass (massless ones condensed)
     Eigen::VectorXd frequency;       ///< [Hz], ascending
     Eigen::MatrixXd platform_shape;  ///< 3 x dofs: the platform's dp in each mode (pose order)
     Eigen::MatrixXd shape;           ///< all coordinates x = [dp; z_1 ... z_L] in each mode
-    Eigen::MatrixXd K, M;            ///< reduced stiffness and mass (dofs x dofs), for checks
+    Eigen::MatrixXd K, M;            ///< stiffness and mass on the dofs coordinates, for checks
     /// The static stiffness of the platform by condensing the model (Schur complement):
     /// an independent computation of K (pose order).
     Matrix3 K_condensed = Matrix3::Zero();
