@@ -434,7 +434,7 @@ Agreement compareWithCalculix(RobotDescription robot, const Pose& p, const std::
 }
 
 RobotDescription robotDescription(const std::string& robot) {
-    return io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
+    return io::loadRobotDescription((fs::path(NOCDYN_SOURCE_DIR) / "robots" / (robot + ".yaml")).string());
 }
 
 class StiffnessCalculix : public testing::Test {

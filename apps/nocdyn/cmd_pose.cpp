@@ -119,13 +119,10 @@ nlohmann::json complianceJson(const ComplianceAtPose& c) {
 }
 
 void printCompliance(const ComplianceAtPose& c) {
-    std::printf("
-stiffness K at C (virtual joint method, gravity preload ignored; dQ = K dp, columns and rows:");
+    std::printf("\nstiffness K at C (virtual joint method, gravity preload ignored; dQ = K dp, rows and columns:");
     for (int r = 0; r < 3; ++r) std::printf(" %s", analysis::coordinateLabel(r).c_str());
-    std::printf(")
-%s", formatMatrix(analysis::reported(c.K.K), "  ").c_str());
-    std::printf("units:
-");
+    std::printf(")\n%s", formatMatrix(analysis::reported(c.K.K), "  ").c_str());
+    std::printf("units:\n");
     for (int r = 0; r < 3; ++r) {
         std::printf("  [");
         for (int k = 0; k < 3; ++k) std::printf("%s%-8s", k ? "  " : "", analysis::stiffnessUnit(r, k).c_str());
