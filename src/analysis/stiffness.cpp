@@ -32,13 +32,13 @@ Vector2 revolutePoint(const Twist& s) { return {-s(2), s(1)}; }
 /// The twists G_b = [[0; e], [0; n], s_B] of beam b's tip deflection [u_e, v_n, phi].
 Matrix3 beamTwists(const LimbData& limb, int b) {
     const Vector2 a = revolutePoint(limb.s[static_cast<std::size_t>(b)]);
-    const Vector2 tip = revolutePoint(limb.s[static_cast<std::size_t>(b + 1)]);
+    const Vector2 tip = revolutePoint(limb.s[static_cast<std::size_t>(b) + 1]);
     const Vector2 e = (tip - a).normalized();
     const Vector2 n = perp(e);
     Matrix3 G;
     G.col(0) = Twist(0.0, e.x(), e.y());
     G.col(1) = Twist(0.0, n.x(), n.y());
-    G.col(2) = limb.s[static_cast<std::size_t>(b + 1)];
+    G.col(2) = limb.s[static_cast<std::size_t>(b) + 1];
     return G;
 }
 
@@ -308,10 +308,10 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
     Matrix3 S_s;  // D S D_p^-1: the scaled platform twist of a scaled pose displacement
     for (int c = 0; c < 3; ++c) S_s.col(c) = d.cwiseProduct(S.col(c)) / dp_scale(c);
     // closure D S dp - sum D t z = 0, limb by limb
-    Eigen::MatrixXd closure = Eigen::MatrixXd::Zero(3 * model.limbs, n);
-    for (int j = 0; j < model.limbs; ++j) closure.block(3 * j, 0, 3, 3) = S_s;
+    Eigen::MatrixXd closure = Eigen::MatrixXd::Zero(Eigen::Index{3} * model.limbs, n);
+    for (int j = 0; j < model.limbs; ++j) closure.block(Eigen::Index{3} * j, 0, 3, 3) = S_s;
     for (std::size_t c = 0; c < columns.size(); ++c) {
-        closure.block(3 * columns[c].limb, 3 + static_cast<Eigen::Index>(c), 3, 1) = -columns[c].twist;
+        closure.block(Eigen::Index{3} * columns[c].limb, 3 + static_cast<Eigen::Index>(c), 3, 1) = -columns[c].twist;
     }
     const Eigen::JacobiSVD<Eigen::MatrixXd> svd(closure, Eigen::ComputeFullV);
     int rank = 0;
@@ -361,7 +361,7 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> mass(Mr);
     int massless = 0;
     while (massless < r && mass.eigenvalues()(massless) <= 1e-12 * mass.eigenvalues()(r - 1)) ++massless;
-    const Eigen::MatrixXd V = mass.eigenvectors();
+    const Eigen::MatrixXd& V = mass.eigenvectors();
     const Eigen::MatrixXd Vb = V.leftCols(massless), Va = V.rightCols(r - massless);
     Eigen::MatrixXd Kmass = Va.transpose() * Kr * Va;
     Eigen::MatrixXd back = Eigen::MatrixXd::Zero(massless, r - massless);  // b = back a
