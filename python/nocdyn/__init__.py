@@ -403,10 +403,10 @@ class Robot:
         else:
             out = _outputs(out, ("u", "du", "ddu", "tau"), shape, ((p_arr, "p"), (dp_arr, "dp"), (ddp_arr, "ddp")))
         failed, first, message = self._core._inverse_dynamics_batch(p_arr, dp_arr, ddp_arr, *out, threads=threads)
+        # the compiled batch counts a sample whose results overflow as failed (its row NaN):
+        # no second pass over the outputs here
         if failed and check:
             raise Error(f"sample {first}: {message} ({failed} of {n} samples failed)")
-        if check:
-            _require_finite(out, "the inverse dynamics")
         return InverseDynamics(*out)
 
     def inverse_dynamics_derivatives(self, p, dp, ddp, *, threads=1, check=True):
