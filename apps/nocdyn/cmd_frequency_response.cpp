@@ -1,7 +1,9 @@
 // nocdyn frequency-response: the rigid robot linearised at an operating point (exact
 // derivatives of the forward dynamics) and its frequency response from the actuator forces
 // to the platform acceleration (or to the actuator variables): CSV, Bode figure, -3 dB
-// bandwidth of each channel.
+// bandwidth of each channel. With --closed-loop: the shake-table loop (sim/closed_loop.hpp)
+// linearised, from the reference to the achieved platform acceleration per axis, with the loop
+// transfer's crossover and phase margin.
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -15,6 +17,8 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/sim/closed_loop.hpp"
+#include "nocdyn/sim/control.hpp"
 #include "plot.hpp"
 
 namespace nocdyn::cli {
@@ -27,6 +31,8 @@ struct FrequencyResponseOptions {
     std::string output_kind = "acceleration";
     double f_min = 1.0, f_max = 1000.0;
     int points = 200;
+    bool closed_loop = false;
+    double payload = 0.0, controller_rate = 10000.0, natural_frequency = 6.0;
 };
 
 const char* const kPoseNames[3] = {"theta", "x", "y"};
@@ -122,6 +128,95 @@ void run(const FrequencyResponseOptions& options) {
     }
 }
 
+std::string numberOrBeyond(double value) {
+    if (std::isnan(value)) return "beyond the grid";
+    char text[40];
+    std::snprintf(text, sizeof text, "%.4f", value);
+    return text;
+}
+
+/// The shake-table loop linearised at rest at the pose (see sim/closed_loop.hpp).
+void runClosedLoop(const FrequencyResponseOptions& options) {
+    const RobotDescription robot = loadRobotDescriptionOrDefault(options.robot);
+    const Model model(robot);
+    const Model plant_model(withPayload(robot, Payload{options.payload, 0.0, Vector2::Zero()}));
+    const Pose p = options.pose.empty() ? model.home : Pose(options.pose[0], options.pose[1], options.pose[2]);
+    if (!(options.f_max < 0.5 * options.controller_rate)) {
+        throw Error("--f-max must be below half the --controller-rate (the Nyquist frequency)");
+    }
+    ShakeLoopOptions loop_options;
+    loop_options.rate = options.controller_rate;
+    loop_options.natural_frequency = options.natural_frequency;
+    const ShakeLoopLinearization loop = linearizeShakeLoop(model, plant_model, p, loop_options);
+    const ShakeLoopFrequencyResponse r =
+        shakeLoopFrequencyResponse(loop, logGrid(options.f_min, options.f_max, options.points));
+    io::Table table;
+    table.columns.push_back("f");
+    for (const char* axis : kPoseNames) {
+        for (const char* column : {"_db", "_deg", "_loop_db", "_loop_deg"})
+            table.columns.push_back(axis + std::string(column));
+    }
+    for (std::size_t k = 0; k < r.frequency.size(); ++k) {
+        const auto row_index = static_cast<Eigen::Index>(k);
+        std::vector<double> row{r.frequency[k]};
+        for (int i = 0; i < 3; ++i) {
+            row.push_back(r.magnitude_db(row_index, i));
+            row.push_back(r.phase_deg(row_index, i));
+            row.push_back(r.loop_magnitude_db(row_index, i));
+            row.push_back(r.loop_phase_deg(row_index, i));
+        }
+        table.rows.push_back(row);
+    }
+    writeTable(table, options.output);
+
+    char line[300];
+    std::snprintf(line, sizeof line,
+                  "# closed-loop frequency response of %s under the shake-table controller, from the reference to "
+                  "the achieved platform acceleration\n# (linearised at rest at p = [%.6g, %.6g, %.6g]; tick %g Hz, "
+                  "f_n = %g Hz, payload unknown to the controller %g kg)\n",
+                  model.description.name.c_str(), p(0), p(1), p(2), options.controller_rate, options.natural_frequency,
+                  options.payload);
+    std::string text = line;
+    text += "# axis  |H| at f_min [dB]  |H| at f_max [dB]  -3 dB bandwidth [Hz]  crossover [Hz]  phase margin [deg]\n";
+    for (int i = 0; i < 3; ++i) {
+        const Eigen::Index last = r.magnitude_db.rows() - 1;
+        std::snprintf(line, sizeof line, "%s  %.4f  %.4f  %s  %s  %s\n", kPoseNames[i], r.magnitude_db(0, i),
+                      r.magnitude_db(last, i), numberOrBeyond(r.bandwidth(i)).c_str(),
+                      numberOrBeyond(r.crossover(i)).c_str(), numberOrBeyond(r.phase_margin(i)).c_str());
+        text += line;
+    }
+    if (!options.summary.empty()) {
+        io::writeTextFile(options.summary, text);
+    } else if (!options.output.empty()) {
+        std::cout << text;
+        std::cout.flush();
+        if (!std::cout) throw Error("cannot write to standard output");
+    }
+    if (!options.figure.empty()) {
+        report::Figure figure;
+        figure.title = "Closed loop of " + report::literalText(model.description.name) + " (shake-table controller)";
+        report::PlotPanel magnitude{"", "frequency [Hz]", "magnitude [dB]", {}, true, false, false};
+        report::PlotPanel phase{"", "frequency [Hz]", "phase [deg]", {}, true, false, false};
+        for (int i = 0; i < 3; ++i) {
+            for (const bool open : {false, true}) {
+                const Eigen::MatrixXd& m_db = open ? r.loop_magnitude_db : r.magnitude_db;
+                const Eigen::MatrixXd& deg = open ? r.loop_phase_deg : r.phase_deg;
+                report::PlotSeries m{
+                    report::literalText(std::string(open ? "L " : "H ") + kPoseNames[i]), r.frequency, {}};
+                report::PlotSeries ph = m;
+                for (std::size_t k = 0; k < r.frequency.size(); ++k) {
+                    m.y.push_back(m_db(static_cast<Eigen::Index>(k), i));
+                    ph.y.push_back(deg(static_cast<Eigen::Index>(k), i));
+                }
+                magnitude.series.push_back(m);
+                phase.series.push_back(ph);
+            }
+        }
+        figure.panels = {magnitude, phase};
+        report::renderFigure(figure, options.figure);
+    }
+}
+
 }  // namespace
 
 void addFrequencyResponseCommand(CLI::App& app) {
@@ -133,7 +228,8 @@ void addFrequencyResponseCommand(CLI::App& app) {
         "each actuator force to each platform acceleration (or actuator variable): a CSV of magnitude [dB] and\n"
         "phase [deg] per channel, a summary with each channel's -3 dB bandwidth, and a Bode figure.\n"
         "Joint and drive compliance are not modelled. Example:\n"
-        "  nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant");
+        "  nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant\n"
+        "  nocdyn frequency-response --closed-loop --payload 5 --f-min 0.1 --f-max 4000 -o loop.csv");
     addRobotOption(*command, options->robot);
     command->add_option("--pose", options->pose, "Operating pose THETA X Y [rad, m, m] (default: home)")->expected(3);
     command->add_option("--rate", options->rate, "Operating pose rate [rad/s, m/s, m/s] (default: at rest)")
@@ -150,6 +246,24 @@ void addFrequencyResponseCommand(CLI::App& app) {
     command->add_option("--points", options->points, "Frequencies, log-spaced")
         ->check(CLI::Range(2, 100000))
         ->capture_default_str();
+    command->add_flag("--closed-loop", options->closed_loop,
+                      "The shake-table loop instead (encoders, accelerometers, Kalman estimator, model feed-forward,\n"
+                      "pose feedback; discrete at the controller's tick, forces held) linearised at rest: from the\n"
+                      "reference to the achieved platform acceleration per axis, and the loop transfer");
+    command
+        ->add_option("--payload", options->payload,
+                     "With --closed-loop: a point mass at C on the plant that the "
+                     "controller's model does not carry [kg]")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
+    command->add_option("--controller-rate", options->controller_rate, "With --closed-loop: controller ticks [Hz]")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    command
+        ->add_option("--natural-frequency", options->natural_frequency,
+                     "With --closed-loop: f_n of the pose feedback [Hz]")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
     command->add_option("--summary", options->summary, "Summary text file [default: stdout when -o is given]")
         ->check(nonEmptyPath());
@@ -157,6 +271,11 @@ void addFrequencyResponseCommand(CLI::App& app) {
         ->check(nonEmptyPath());
     command->callback([options] {
         if (!(options->f_max > options->f_min)) throw Error("--f-max must be above --f-min");
+        if (options->closed_loop) {
+            if (!options->rate.empty()) throw Error("--closed-loop linearises at rest: --rate does not apply");
+            runClosedLoop(*options);
+            return;
+        }
         run(*options);
     });
 }

@@ -342,13 +342,20 @@ def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.
 
 
 def frequency_response(*, robot=None, set=None, pose=None, rate=None, output_kind="acceleration", f_min=1.0,
-                       f_max=1000.0, points=200, output=None, summary=None, figure=None):
+                       f_max=1000.0, points=200, output=None, summary=None, figure=None, closed_loop=False,
+                       payload=0.0, controller_rate=10000.0, natural_frequency=6.0):
     """The rigid robot linearised at an operating point and its frequency response
     (``nocdyn frequency-response``): pose [theta, x, y] (default home) and rate (default at
     rest), held by the inverse dynamics' forces; from each actuator force to each platform
     acceleration (output_kind "acceleration") or actuator variable ("actuators") over ``points``
     log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then <output>_tau<a>_db and
-    _deg per channel); ``text`` holds the summary with each channel's -3 dB bandwidth."""
+    _deg per channel); ``text`` holds the summary with each channel's -3 dB bandwidth.
+
+    closed_loop=True: the shake-table loop linearised at rest (``--closed-loop``), from the
+    reference to the achieved platform acceleration per axis, with a plant ``payload`` [kg] at C
+    unknown to the controller, ``controller_rate`` [Hz] and the pose feedback's
+    ``natural_frequency`` [Hz]; the Table has <axis>_db, _deg, _loop_db, _loop_deg per axis and
+    ``text`` each axis's -3 dB bandwidth, crossover and phase margin."""
     return _table_command("frequency-response", frequency_response, dict(locals()), "frequency_response.csv")
 
 

@@ -10,7 +10,8 @@ TESTS) caught the mutation, and the binaries that failed are listed. The check p
 found exactly once (a mutation whose code has moved must be updated, not skipped). The last
 line printed is "N/N mutations caught".
 
-Usage: scripts/mutation/run.py [--build-dir DIR] [--jobs N] [--only SUBSTRING] [--all]
+Usage: scripts/mutation/run.py [--build-dir DIR] [--golden-dir DIR] [--jobs N] [--only SUBSTRING] [--all]
+(--golden-dir: the golden values' folder, by default ../shared/golden beside the repository's parent.)
 (--all also runs the extended mutations, of shared headers that rebuild many files: several
 minutes more; their searched texts are checked on every run.)
 """
@@ -130,10 +131,15 @@ def failing_test(output):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--build-dir", default=str(ROOT / "build-mutation"))
+    parser.add_argument("--golden-dir", default=str(ROOT.parent / "shared" / "golden"),
+                        help="folder of the golden values (NOCDYN_GOLDEN_DIR)")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--only", default=None, help="run only the mutations whose description contains this")
     parser.add_argument("--all", action="store_true", help="run the extended mutations too (slower)")
     args = parser.parse_args()
+    if not Path(args.golden_dir).is_dir():
+        print(f"mutation: the golden folder {args.golden_dir} does not exist (--golden-dir)", file=sys.stderr)
+        return 1
 
     start = time.monotonic()
     mutations = parse(LIST.read_text())
@@ -169,7 +175,7 @@ def main():
                  "-DCMAKE_CXX_FLAGS=-O1 -DNDEBUG -DNOCDYN_NO_TARGET_CLONES",
                  "-DNOCDYN_BUILD_TESTS=ON", "-DNOCDYN_BUILD_VALIDATION=OFF", "-DNOCDYN_BUILD_BENCHMARKS=OFF",
                  "-DNOCDYN_BUILD_PYTHON=OFF", "-DNOCDYN_SANITIZE=OFF", "-DNOCDYN_FUZZ=OFF",
-                 f"-DNOCDYN_GOLDEN_DIR={ROOT.parent / 'shared' / 'golden'}"]
+                 f"-DNOCDYN_GOLDEN_DIR={Path(args.golden_dir).resolve()}"]
     build_command = ["cmake", "--build", str(build), "-j", str(args.jobs), "--target", *TESTS]
     code, out = run(configure, log=log)
     if code != 0:

@@ -98,3 +98,14 @@ def test_frequency_response_of_the_paper_robot_is_the_guide_s(tmp_path):
     assert np.allclose(result.data[:, col["ddtheta_tau1_db"]], 6.2490, atol=5e-4)
     assert np.allclose(result.data[:, col["ddx_tau1_db"]], -15.8739, atol=5e-4)
     assert "beyond the grid" in result.text
+
+
+def test_closed_loop_response_of_the_paper_robot_is_the_guide_s():
+    nominal = nocdyn.frequency_response(closed_loop=True, f_min=0.1, f_max=4000.0, points=400)
+    col = {c: i for i, c in enumerate(nominal.columns)}
+    assert np.all(np.abs(nominal.data[:, col["x_db"]]) < 0.1)
+    assert "beyond the grid  12.4481  75.9941" in nominal.text
+    loaded = nocdyn.frequency_response(closed_loop=True, payload=5.0, f_min=0.1, f_max=4000.0, points=400)
+    assert "x  0.0019  -5.1516  10.5627  7.2248  67.3268" in loaded.text
+    col = {c: i for i, c in enumerate(loaded.columns)}
+    assert loaded.data[-1, col["y_db"]] == pytest.approx(-5.1516, abs=1e-3)
