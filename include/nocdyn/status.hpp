@@ -41,6 +41,10 @@ enum class StatusCode {
     /// Actuator rates that no platform motion has at the pose (redundant actuation).
     /// value = max_a |A S(c) dp/dt - du|_a of the least-squares dp/dt.
     inconsistent_rates,
+    /// The mass matrix M_p of the equations of motion (forward_dynamics.hpp) is not positive
+    /// definite: some body has no mass or no inertia where the motion needs one. value = the
+    /// smallest diagonal entry of M_p.
+    singular_mass_matrix,
 };
 
 struct Status {
