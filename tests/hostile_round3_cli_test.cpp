@@ -10,9 +10,13 @@
 #include <fstream>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "cli_support.hpp"
+#include "nocdyn/description.hpp"
+#include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/robot_file.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -32,19 +36,12 @@ void writeFile(const fs::path& path, const std::string& text) {
 
 bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
 
-/// The shell's single-quoted form of `text`.
-std::string quoted(const std::string& text) {
-    std::string out = "'";
-    for (const char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
-    return out + "'";
-}
-
 TEST(HostileRound3Cli, ASuiteKeepsEveryRecordInItsOwnSafeFolderAndEscapesItsName) {
     const fs::path dir = freshScratchDirectory("hostile_round3_cli");
     const fs::path records = dir / "records", out = dir / "suite";
     fs::create_directories(records);
     const std::string forged = "x | pass |<b>y\x1b]0;t\x07.AT2";
-    for (const std::string name : {std::string("...AT2"), std::string("quake.AT2"), std::string("quake.at2"), forged})
+    for (const std::string& name : {std::string("...AT2"), std::string("quake.AT2"), std::string("quake.at2"), forged})
         fs::copy_file(kRecord, records / name);
     writeFile(dir / "keep.txt", "the suite's parent folder");
     const CliResult r = runCli("shake --record " + records.string() + kQuick + " --out-dir " + out.string());
@@ -52,7 +49,7 @@ TEST(HostileRound3Cli, ASuiteKeepsEveryRecordInItsOwnSafeFolderAndEscapesItsName
     // nothing lands beside the output folder ("...AT2" has the stem ".."); every record its own folder
     EXPECT_FALSE(fs::exists(dir / "shake.csv"));
     EXPECT_EQ(readWhole(dir / "keep.txt"), "the suite's parent folder");
-    for (const std::string folder : {"record", "quake", "quake-2"})
+    for (const char* folder : {"record", "quake", "quake-2", "x___pass___b_y__0_t_"})
         EXPECT_TRUE(fs::exists(out / folder / "shake.csv")) << folder;
     const std::string summary = readWhole(out / "summary.md");
     EXPECT_TRUE(has(summary, "| record | folder |")) << summary;
@@ -112,15 +109,22 @@ TEST(HostileRound3Cli, DesignRefusesARobotFileInsideItsOutputFolder) {
 
 TEST(HostileRound3Cli, EveryFloatingOptionRefusesNanInfAndHexadecimal) {
     const fs::path dir = freshScratchDirectory("hostile_round3_cli");
-    const std::string shake = "shake --record " + kRecord + kQuick + " --out-dir " + (dir / "s").string();
-    for (const std::string& option :
-         {shake + " --noise-pose nan", shake + " --window nan", shake + " --max-rms nan", shake + " --max-rms inf",
-          shake + " --noise-pose 0x1p-20", std::string("reproduce --identification-duration nan --out-dir ") +
-                                                 (dir / "r").string(),
-          std::string("inverse-dynamics --trajectory paper1 --duration 0x10")}) {
-        const CliResult r = runCli(option);
-        EXPECT_EQ(r.exit_code, 2) << option << "\n" << r.err;
-        EXPECT_TRUE(has(r.err, "finite")) << option << "\n" << r.err;
+    const std::string shake = "shake --record " + kRecord + " --plant nocdyn-rk4 --rate 1000 --out-dir " + (dir / "s").string();
+    const std::vector<std::pair<std::string, std::string>> refused = {
+        {shake + " --noise-pose nan", "--noise-pose"},
+        {shake + " --window nan", "--window"},
+        {shake + " --max-rms nan", "--max-rms"},
+        {shake + " --max-rms inf", "--max-rms"},
+        {shake + " --noise-pose 0x1p-20", "--noise-pose"},
+        {"reproduce --identification-duration nan --out-dir " + (dir / "r").string(), "--identification-duration"},
+        {"inverse-dynamics --trajectory paper1 --duration 0x10", "--duration"}};
+    for (const auto& [arguments, option] : refused) {
+        const CliResult r = runCli(arguments);
+        EXPECT_EQ(r.exit_code, 2) << arguments << "\n" << r.err;
+        EXPECT_TRUE(has(r.err, option)) << arguments << "\n" << r.err;
+        if (!has(arguments, "inf")) {
+            EXPECT_TRUE(has(r.err, "finite")) << arguments << "\n" << r.err;
+        }
     }
     // --time-scale takes auto or a number: 0x10 was read as 16
     const CliResult hex = runCli(shake + " --controller pose --time-scale 0x10");
@@ -177,25 +181,40 @@ void writeLongRecord(const fs::path& path, double seconds) {
     writeFile(path, out + "\n");
 }
 
-TEST(HostileRound3Cli, ATwoThousandSecondRecordIsRefusedWithItsSizeAndTheLimit) {
+TEST(HostileRound3Cli, AReplayOverTheMemoryCeilingIsRefusedWithItsSizeAndTheLimit) {
+    // 200 s of record at 1 MHz: about 44 million controller ticks, 4 GB, refused before the loop
+    // (not a bare std::bad_alloc); the 2000 s record at 10 kHz fits (docs/hardening.md)
     const fs::path dir = freshScratchDirectory("hostile_round3_cli");
-    writeLongRecord(dir / "long.AT2", 2000.0);
-    const CliResult r = runCli("shake --record " + (dir / "long.AT2").string() + " --plant nocdyn-rk4 --out-dir " +
-                               (dir / "out").string());
+    writeLongRecord(dir / "long.AT2", 200.0);
+    const CliResult r = runCli("shake --record " + (dir / "long.AT2").string() +
+                               " --plant nocdyn-rk4 --rate 1000000 --out-dir " + (dir / "out").string());
     EXPECT_EQ(r.exit_code, 1) << r.err;
-    EXPECT_TRUE(has(r.err, "the replay of this 2000 s record is too long to hold")) << r.err;
+    EXPECT_TRUE(has(r.err, "the replay of this 200 s record is too long to hold")) << r.err;
+    EXPECT_TRUE(has(r.err, "million ticks at 1e+06 Hz")) << r.err;
     EXPECT_TRUE(has(r.err, "the limit is 1000 MB per replay")) << r.err;
     EXPECT_FALSE(has(r.err, "bad_alloc")) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out" / "shake.csv"));
 }
 
 TEST(HostileRound3Cli, SimulateReportsASingularMassMatrixWithTheBodiesNotANonFiniteNumber) {
     const fs::path dir = freshScratchDirectory("hostile_round3_cli");
-    std::string robot = readWhole(kSource + "/robots/paper-3prr-general.yaml");
-    // the platform and every coupler without mass or inertia: nothing resists the rotation
-    const std::string platform = robot.substr(robot.find("platform:"));
-    (void)platform;
-    writeFile(dir / "robot.yaml", robot);
-    GTEST_SKIP() << "filled in below";
+    // a point-mass platform on massless limbs: nothing resists the platform's rotation
+    RobotDescription robot = io::exampleRobot("paper-3prr");
+    robot.platform.inertia = 0.0;
+    robot.platform.com.setZero();
+    for (LimbDescription& limb : robot.limbs) {
+        for (BodyDescription& body : limb.bodies) body.mass = body.inertia = 0.0;
+    }
+    writeFile(dir / "robot.yaml", io::descriptionToYaml(robot));
+    writeFile(dir / "f.csv", "t,tau1,tau2,tau3\n0,0,0,0\n0.01,0,0,0\n");
+    const CliResult r = runCli("simulate --robot " + (dir / "robot.yaml").string() + " --forces " +
+                               (dir / "f.csv").string() + " -o " + (dir / "out.csv").string());
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(has(r.err, "the mass matrix M_p is singular")) << r.err;
+    EXPECT_TRUE(has(r.err, "the platform has zero inertia")) << r.err;
+    EXPECT_TRUE(has(r.err, "body 1 has zero mass and inertia")) << r.err;
+    EXPECT_FALSE(has(r.err, "not a finite number")) << r.err;
+    EXPECT_FALSE(fs::exists(dir / "out.csv"));
 }
 
 }  // namespace

@@ -7,8 +7,10 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -117,9 +119,13 @@ std::string signature(const Options& options, const io::DesignFamily& family, co
     if (design.trajectory) {
         // a file by its content (an edited file is another sweep), a built-in one by its name
         std::error_code ec;
-        const std::string content = std::filesystem::is_regular_file(options.trajectory, ec)
-                                        ? io::fingerprint(readWholeInput(options.trajectory, "trajectory"))
-                                        : "builtin";
+        std::string content = "builtin";
+        if (std::filesystem::is_regular_file(options.trajectory, ec)) {
+            std::ifstream in(options.trajectory, std::ios::binary);
+            std::ostringstream text;
+            text << in.rdbuf();
+            content = io::fingerprint(text.str());
+        }
         s += " trajectory " + io::fingerprint(options.trajectory) + " " + content + " " + exact(design.duration) +
              " " + exact(design.rate);
     }

@@ -116,8 +116,9 @@ CLI::Validator finiteNumber() {
 void requireFiniteFloats(CLI::App& app) {
     for (CLI::App* command : app.get_subcommands({})) {
         for (CLI::Option* option : command->get_options()) {
-            // CLI11 names the type of a double or std::optional<double> option FLOAT
-            if (option->get_type_name() == "FLOAT") option->check(finiteNumber());
+            // CLI11 names the type of a double or std::optional<double> option FLOAT (then its
+            // checks: "FLOAT:FLOAT in [0 - 1]")
+            if (option->get_type_name().rfind("FLOAT", 0) == 0) option->check(finiteNumber());
         }
     }
 }

@@ -150,11 +150,15 @@ GroundMotionRecord parseAt2(const std::string& text, const std::string& source) 
     }
     record.dt = *dt;
     record.acceleration.reserve(npts);
+    std::size_t last_line = 0;  // the line of the NPTS-th value
     while (nextLine(line)) {
         for (const std::string_view glued : words(line)) {
             for (const std::string& word : values(glued)) {
-                // a value beyond NPTS: the header or the data is wrong, and neither is cut silently
+                // a value beyond NPTS: the header or the data is wrong, and neither is cut
+                // silently; only zeros filling the line of the last value (padding) are allowed
                 if (record.acceleration.size() == npts) {
+                    const auto padding = detail::parseDecimal(word);
+                    if (line_number == last_line && padding && *padding == 0.0) continue;
                     throw Error(at(source, line_number) + "the data go on past NPTS = " + std::to_string(npts) +
                                 " values (value " + std::to_string(npts + 1) + " is '" +
                                 terminalText(std::string_view(word).substr(0, 32)) +
@@ -172,6 +176,7 @@ GroundMotionRecord parseAt2(const std::string& text, const std::string& source) 
                                 " is " + terminalText(std::string_view(word).substr(0, 32)) + " g, beyond +-100 g");
                 }
                 record.acceleration.push_back(*value * kStandardGravity);
+                if (record.acceleration.size() == npts) last_line = line_number;
             }
         }
     }

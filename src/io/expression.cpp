@@ -7,6 +7,7 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <numbers>
 #include <string_view>
@@ -39,6 +40,9 @@ std::string shortest(double value) {
     return {buffer, result.ptr};
 }
 
+/// A value as a message shows it: nan without a sign (x86 gives sqrt(-1) the sign bit).
+std::string shown(double value) { return std::isnan(value) ? std::string("nan") : shortest(value); }
+
 /// The first sub-expression of the current evaluation whose value is not finite, written with
 /// its operands' values ("sqrt(-1)", "1 / 0"); empty while every value so far is finite. A
 /// later function (max, min, 1/x) could otherwise hide it: max(0, sqrt(-1)) or 1/(1/0).
@@ -51,17 +55,17 @@ double checked(double value, const char* name, std::initializer_list<double> arg
         bool first = true;
         for (const double a : arguments) {
             if (!first) first_non_finite += ", ";
-            first_non_finite += shortest(a);
+            first_non_finite += shown(a);
             first = false;
         }
-        first_non_finite += ") = " + shortest(value);
+        first_non_finite += ") = " + shown(value);
     }
     return value;
 }
 
 double checkedBinary(double value, double a, const char* op, double b) {
     if (!std::isfinite(value) && first_non_finite.empty())
-        first_non_finite = shortest(a) + " " + op + " " + shortest(b) + " = " + shortest(value);
+        first_non_finite = shown(a) + " " + op + " " + shown(b) + " = " + shown(value);
     return value;
 }
 

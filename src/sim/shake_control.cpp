@@ -191,19 +191,20 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
             fail(t, status, "controller");
         }
         if (options.saturation && controller.saturate(tau)) ++result.saturated_ticks;
-        if (options.on_tick) options.on_tick(result.t.size(), t, plant.u(), tau);
+        const ActuatorVector& u_now = plant.u();
+        if (options.on_tick) options.on_tick(result.t.size(), t, u_now, tau);
         result.t.push_back(t);
         result.p.push_back(p);
         result.p_d.push_back(reference.p);
         if (options.keep_actuators) {
-            result.u.push_back(plant.u());
+            result.u.push_back(u_now);
             result.u_d.push_back(reference.u);
             result.tau.push_back(tau);
             result.u_measured.push_back(u_measured);
         } else {
             for (int a = 0; a < n; ++a) {
                 const auto ai = static_cast<std::size_t>(a);
-                const double e = std::abs(reference.u(a) - plant.u()(a));
+                const double e = std::abs(reference.u(a) - u_now(a));
                 sum_sq[ai] += e * e;
                 peak[ai] = std::max(peak[ai], e);
                 peak_tau[ai] = std::max(peak_tau[ai], std::abs(tau(a)));
@@ -216,7 +217,8 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
     summarizeLoop(result);
     if (!options.keep_actuators && !result.t.empty()) {
         result.rms_error.resize(un);
-        for (std::size_t a = 0; a < un; ++a) result.rms_error[a] = std::sqrt(sum_sq[a] / static_cast<double>(result.t.size()));
+        for (std::size_t a = 0; a < un; ++a)
+            result.rms_error[a] = std::sqrt(sum_sq[a] / static_cast<double>(result.t.size()));
         result.peak_error = peak;
         result.peak_tau = peak_tau;
     }

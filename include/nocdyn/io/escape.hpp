@@ -111,9 +111,10 @@ inline std::string xmlText(std::string_view text) {
     return out;
 }
 
-/// Text in a Markdown table cell (or Markdown prose) that shows as it is: the characters that
-/// end a cell (|), start markup (* _ ` [ ] # ! ~ \) or HTML (< > &) escaped, control bytes
-/// (and so line breaks, which would end the row) as \xHH. A name cannot forge a row or carry HTML.
+/// Text in a Markdown table cell that shows as it is: the characters that end a cell (|), open
+/// markup (* ` [ ] ~ \) or HTML (< > &) escaped, control bytes (and so line breaks, which would
+/// end the row) as \xHH. A name cannot forge a row, a link or HTML. ('_' is kept: GitHub's
+/// Markdown reads no emphasis inside a word, as in file names like elcentro_1940_ns.)
 inline std::string markdownText(std::string_view text) {
     std::string out;
     out.reserve(text.size());
@@ -132,11 +133,8 @@ inline std::string markdownText(std::string_view text) {
             case '\\':
             case '`':
             case '*':
-            case '_':
             case '[':
             case ']':
-            case '#':
-            case '!':
             case '~':
                 out += '\\';
                 out += ch;
