@@ -186,7 +186,8 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         PoseLoopResult result = runPoseLoop(controller, *plant, drive, loop);
         for (std::size_t k = 0; k < result.t.size(); ++k)
             actuators.tick(model, fit.t, settings.rate, k, result.t[k], result.u[k], result.tau[k]);
-        for (auto* v : {&result.u, &result.u_d, &result.tau, &result.u_measured}) std::vector<ActuatorVector>().swap(*v);
+        for (auto* v : {&result.u, &result.u_d, &result.tau, &result.u_measured})
+            std::vector<ActuatorVector>().swap(*v);
         return result;
     };
     const int scored_axis = out.driven[1] ? 1 : out.driven[2] ? 2 : 0;

@@ -73,7 +73,7 @@ struct ShakeOutcome {
     std::vector<double> pass_rms;  ///< RMS error of each pass (x, else the first driven axis)
     int best_pass = 0;             ///< the pass kept (0: the first)
     std::string iteration_stop;    ///< why the iteration stopped
-    PoseLoopResult loop;  ///< t, p, p_d of the kept pass (u and tau below, at the record's samples)
+    PoseLoopResult loop;           ///< t, p, p_d of the kept pass (u and tau below, at the record's samples)
     /// u and tau at the tick nearest each of fit.t (n values per sample, as many samples as the
     /// loop reached), for shake.csv
     std::vector<double> u_at_samples, tau_at_samples;

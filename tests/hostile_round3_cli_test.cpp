@@ -74,7 +74,8 @@ TEST(HostileRound3Cli, InverseDynamicsRefusesToWriteOverItsOwnSamples) {
     EXPECT_EQ(readWhole(samples), before);
     // the same file by another name (a hard link) is the same input
     fs::create_hard_link(samples, dir / "link.csv");
-    const CliResult linked = runCli("inverse-dynamics --trajectory " + samples.string() + " -o " + (dir / "link.csv").string());
+    const CliResult linked =
+        runCli("inverse-dynamics --trajectory " + samples.string() + " -o " + (dir / "link.csv").string());
     EXPECT_EQ(linked.exit_code, 1);
     EXPECT_TRUE(has(linked.err, "is the input of --trajectory")) << linked.err;
     EXPECT_EQ(readWhole(samples), before);
@@ -85,8 +86,8 @@ TEST(HostileRound3Cli, ShakeRefusesARecordInsideItsOutputFolder) {
     fs::create_directories(dir / "out");
     fs::copy_file(kRecord, dir / "out" / "shake.csv");
     const std::string before = readWhole(dir / "out" / "shake.csv");
-    const CliResult r =
-        runCli("shake --record " + (dir / "out" / "shake.csv").string() + kQuick + " --out-dir " + (dir / "out").string());
+    const CliResult r = runCli("shake --record " + (dir / "out" / "shake.csv").string() + kQuick + " --out-dir " +
+                               (dir / "out").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_TRUE(has(r.err, "is inside the output folder --out-dir")) << r.err;
     EXPECT_EQ(readWhole(dir / "out" / "shake.csv"), before);
@@ -109,7 +110,8 @@ TEST(HostileRound3Cli, DesignRefusesARobotFileInsideItsOutputFolder) {
 
 TEST(HostileRound3Cli, EveryFloatingOptionRefusesNanInfAndHexadecimal) {
     const fs::path dir = freshScratchDirectory("hostile_round3_cli");
-    const std::string shake = "shake --record " + kRecord + " --plant nocdyn-rk4 --rate 1000 --out-dir " + (dir / "s").string();
+    const std::string shake =
+        "shake --record " + kRecord + " --plant nocdyn-rk4 --rate 1000 --out-dir " + (dir / "s").string();
     const std::vector<std::pair<std::string, std::string>> refused = {
         {shake + " --noise-pose nan", "--noise-pose"},
         {shake + " --window nan", "--window"},

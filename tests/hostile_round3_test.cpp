@@ -117,8 +117,7 @@ TEST(HostileRound3At2, AnNptsSmallerThanTheDataIsAnError) {
         EXPECT_TRUE(has(e.what(), "short.AT2:5: the data go on past NPTS = 3 values (value 4 is '0.4')")) << e.what();
     }
     // a zero on the next line is data, not padding
-    EXPECT_THROW((void)io::parseAt2(std::string(kAt2Header) + "NPTS=    2, DT= .01\n 0.1 0.2\n 0.0\n", "z.AT2"),
-                 Error);
+    EXPECT_THROW((void)io::parseAt2(std::string(kAt2Header) + "NPTS=    2, DT= .01\n 0.1 0.2\n 0.0\n", "z.AT2"), Error);
     // the count agreeing with the data still reads, trailing blanks, blank lines and zeros
     // padding the last line included
     const io::GroundMotionRecord record = io::parseAt2(
@@ -243,7 +242,8 @@ TEST(HostileRound3Errors, ASingularMassMatrixNamesTheBodiesWithoutMassOrInertia)
     }
     const Model model(description);
     Data data(model);
-    const Status status = forwardDynamics(model, data, model.home, Twist::Zero(), ActuatorVector::Zero(model.actuators));
+    const Status status =
+        forwardDynamics(model, data, model.home, Twist::Zero(), ActuatorVector::Zero(model.actuators));
     ASSERT_EQ(status.code, StatusCode::singular_mass_matrix) << describe(status, model);
     const std::string message = describe(status, model);
     EXPECT_TRUE(has(message, "the mass matrix M_p is singular")) << message;

@@ -126,8 +126,8 @@ std::string signature(const Options& options, const io::DesignFamily& family, co
             text << in.rdbuf();
             content = io::fingerprint(text.str());
         }
-        s += " trajectory " + io::fingerprint(options.trajectory) + " " + content + " " + exact(design.duration) +
-             " " + exact(design.rate);
+        s += " trajectory " + io::fingerprint(options.trajectory) + " " + content + " " + exact(design.duration) + " " +
+             exact(design.rate);
     }
     return io::fingerprint(s);
 }
@@ -267,10 +267,9 @@ void run(const Options& options) {
     io::writeDesignTable((dir / "designs.csv").string(), columns, records);
     Steps front_progress("nocdyn design", 1);
     front_progress.next("Pareto front");
-    const std::vector<std::size_t> front =
-        paretoFront(evaluations, metrics, [&](std::size_t done, std::size_t total) {
-            front_progress.count(static_cast<int>(done), static_cast<int>(total), "design");
-        });
+    const std::vector<std::size_t> front = paretoFront(evaluations, metrics, [&](std::size_t done, std::size_t total) {
+        front_progress.count(static_cast<int>(done), static_cast<int>(total), "design");
+    });
     front_progress.finish();
     std::vector<io::DesignRecord> front_records;
     for (const std::size_t i : front) front_records.push_back(records[i]);

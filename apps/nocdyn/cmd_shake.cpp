@@ -158,7 +158,8 @@ void runSuite(const std::vector<std::string>& records, const ShakeOptions& optio
             try {
                 rows[i].outcome = runShake(robot, inputs[i], options.settings);
                 const std::lock_guard lock(output);
-                writeShakeOutputs(rows[i].outcome, Model(robot), (std::filesystem::path(options.out) / folders[i]).string(),
+                writeShakeOutputs(rows[i].outcome, Model(robot),
+                                  (std::filesystem::path(options.out) / folders[i]).string(),
                                   robot.name + ": " + records[i]);
                 rows[i].outcome.loop = {};  // the ticks are written; keep the scores
                 rows[i].outcome.achieved = {};
@@ -181,9 +182,10 @@ void runSuite(const std::vector<std::string>& records, const ShakeOptions& optio
                   "spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%\n\n",
                   records.size(), options.settings.plant.c_str(), options.settings.controller.c_str(), workers,
                   100.0 * options.max_rms, 100.0 * options.max_peak, 100.0 * options.min_spectrum);
-    table << head << "sensors: " << rows.front().outcome.sensing << "\n\n"
-          << "| record | folder | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
-             "result |\n|---|---|---|---|---|---|---|---|---|\n";
+    table
+        << head << "sensors: " << rows.front().outcome.sensing << "\n\n"
+        << "| record | folder | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
+           "result |\n|---|---|---|---|---|---|---|---|---|\n";
     int passed = 0;
     for (const SuiteRow& row : rows) {
         std::string line;

@@ -127,8 +127,9 @@ namespace {
 
 /// Options that name a file or folder a command reads, and options that name a file it writes
 /// (or, for --figure, the stem of STEM.png and STEM.svg).
-constexpr const char* kInputOptions[] = {"--robot", "ROBOT",  "--trajectory", "--record", "--record-y", "--record-theta",
-                                         "--forces", "--prior", "--calibration", "--data", "--motion"};
+constexpr const char* kInputOptions[] = {"--robot",       "ROBOT",          "--trajectory", "--record",
+                                         "--record-y",    "--record-theta", "--forces",     "--prior",
+                                         "--calibration", "--data",         "--motion"};
 constexpr const char* kOutputFileOptions[] = {"--output", "--out", "--log", "--png", "--svg"};
 
 bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {

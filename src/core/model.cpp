@@ -285,10 +285,12 @@ std::string describe(const Status& status, const Model& model) {
             for (int i = 0; i < model.bodies; ++i) {
                 const InertiaDyad& m = model.inertia(i);
                 if (m.mass > 0.0 && m.inertia > 0.0) continue;
-                const std::string body = i == model.platformBody()
-                                             ? std::string("the platform")
-                                             : model.limbName(i % model.limbs) + " body " + std::to_string(i / model.limbs + 1);
-                const char* what = m.mass <= 0.0 && m.inertia <= 0.0 ? "mass and inertia" : m.mass <= 0.0 ? "mass" : "inertia";
+                const std::string body = i == model.platformBody() ? std::string("the platform")
+                                                                   : model.limbName(i % model.limbs) + " body " +
+                                                                         std::to_string(i / model.limbs + 1);
+                const char* what = m.mass <= 0.0 && m.inertia <= 0.0 ? "mass and inertia"
+                                   : m.mass <= 0.0                   ? "mass"
+                                                                     : "inertia";
                 zero += (zero.empty() ? "" : ", ") + body + " has zero " + what;
             }
             if (!zero.empty()) {

@@ -124,15 +124,21 @@ ExpressionEvaluator::ExpressionEvaluator() : impl_(std::make_unique<Impl>()) {
     p.DefineFun(
         "atan", +[](double x) { return checked(std::atan(x), "atan", {x}); });
     p.DefineFun(
-        "atan2", +[](double y, double x) { return checked(std::atan2(y, x), "atan2", {y, x}); });
+        "atan2", +[](double y, double x) {
+            return checked(std::atan2(y, x), "atan2", {y, x});
+        });
     p.DefineFun(
         "sqrt", +[](double x) { return checked(std::sqrt(x), "sqrt", {x}); });
     p.DefineFun(
         "abs", +[](double x) { return checked(std::abs(x), "abs", {x}); });
     p.DefineFun(
-        "min", +[](double a, double b) { return checked(std::min(a, b), "min", {a, b}); });
+        "min", +[](double a, double b) {
+            return checked(std::min(a, b), "min", {a, b});
+        });
     p.DefineFun(
-        "max", +[](double a, double b) { return checked(std::max(a, b), "max", {a, b}); });
+        "max", +[](double a, double b) {
+            return checked(std::max(a, b), "max", {a, b});
+        });
     p.DefineConst("pi", std::numbers::pi);
 }
 
@@ -174,8 +180,7 @@ double ExpressionEvaluator::evaluate(const std::string& text, std::string& probl
             const std::string name = text.substr(i, end - i);
             bool known = impl_->values.count(name) != 0;
             for (const std::string_view f : kFunctions) known = known || (!f.empty() && name == f);
-            after_function = std::find(kFunctions.begin(), kFunctions.end(), name) != kFunctions.end() &&
-                              name != "pi";
+            after_function = std::find(kFunctions.begin(), kFunctions.end(), name) != kFunctions.end() && name != "pi";
             if (!known) {
                 problem = "unknown name '" + name +
                           "' (not a parameter, pi or one of the functions sin cos tan "
