@@ -23,7 +23,7 @@
 #include <vector>
 
 #include "nocdyn/analysis/design.hpp"
-#include "nocdyn/io/design.hpp"
+#include "nocdyn/tables/design.hpp"
 
 namespace nocdyn::bench {
 namespace {

@@ -1,7 +1,8 @@
-// Inverse dynamics per sample: nocdyn against Simbody and MuJoCo, and nocdyn's stages.
+// Inverse dynamics per sample of the frozen hand-written 3-PRR kernel, and its stages (the
+// engines and the general model per robot: bench_engines.cpp, bench_robots.cpp).
 //
 // BM_InverseDynamics/nocdyn times the lean entry (prr3::inverseDynamicsFast), /nocdyn_full the
-// full path (prr3::inverseDynamics). Every BM_InverseDynamics/<engine> runs the same cycle of 1000 samples
+// full path (prr3::inverseDynamics). Every BM_InverseDynamics/... runs the same cycle of 1000 samples
 // (fixture.hpp) per iteration, in the same order, and reports `per_sample` = time / 1000 (seconds; the console prints
 // it with an SI prefix). The BM_Stage/... benchmarks run one stage of one sample per iteration, on Data prepared by the
 // earlier stages outside the timed loop.
@@ -13,10 +14,6 @@
 #include "fixture.hpp"
 #include "nocdyn/noc.hpp"
 #include "nocdyn/prr3/fast.hpp"
-#ifdef NOCDYN_HAS_ENGINES
-#include "nocdyn/prr3/mujoco_robot.hpp"
-#include "nocdyn/prr3/simbody_robot.hpp"
-#endif
 
 namespace nocdyn::bench {
 namespace {
@@ -59,36 +56,6 @@ void inverseDynamicsNocdynFull(benchmark::State& state) {
     perSample(state, f.samples.size());
 }
 
-#ifdef NOCDYN_HAS_ENGINES
-// the same cycle on the engines (built with NOCDYN_BUILD_VALIDATION)
-void inverseDynamicsMujoco(benchmark::State& state) {
-    const Fixture& f = fixture();
-    prr3::MujocoRobot robot(f.model.parameters);
-    Eigen::Vector3d u, du, ddu, tau;
-    // Warm start: the closure solve continues from the previous sample, as in a control loop.
-    for (const Sample& s : f.samples) robot.inverseDynamicsSample(s.p, s.dp, s.ddp, u, du, ddu, tau);
-    for (auto _ : state) {
-        for (const Sample& s : f.samples) {
-            robot.inverseDynamicsSample(s.p, s.dp, s.ddp, u, du, ddu, tau);
-            benchmark::DoNotOptimize(tau);
-        }
-        benchmark::ClobberMemory();
-    }
-    perSample(state, f.samples.size());
-}
-
-void inverseDynamicsSimbody(benchmark::State& state) {
-    const Fixture& f = fixture();
-    prr3::SimbodyRobot robot(f.model.parameters);
-    // SimbodyRobot has no per-sample entry: its batch call over the cycle is the fastest
-    // correct use of its public API (each assembly continues from the previous sample).
-    for (auto _ : state) {
-        auto out = robot.inverseDynamics(f.trajectory, f.times);
-        benchmark::DoNotOptimize(out.data());
-    }
-    perSample(state, f.times.size());
-}
-#endif
 
 // ---- stages of nocdyn's per-sample path ----------------------------------------------
 
@@ -151,10 +118,6 @@ void stageForces(benchmark::State& state) {
 [[maybe_unused]] const bool registered = [] {
     benchmark::RegisterBenchmark("BM_InverseDynamics/nocdyn", inverseDynamicsNocdyn);
     benchmark::RegisterBenchmark("BM_InverseDynamics/nocdyn_full", inverseDynamicsNocdynFull);
-#ifdef NOCDYN_HAS_ENGINES
-    benchmark::RegisterBenchmark("BM_InverseDynamics/mujoco", inverseDynamicsMujoco);
-    benchmark::RegisterBenchmark("BM_InverseDynamics/simbody", inverseDynamicsSimbody)->Unit(benchmark::kMillisecond);
-#endif
     benchmark::RegisterBenchmark("BM_Stage/inverse_displacement", stageInverseDisplacement);
     benchmark::RegisterBenchmark("BM_Stage/jacobians_velocity", stageVelocity);
     benchmark::RegisterBenchmark("BM_Stage/twist_shaping_T_dT", stageTwistShaping);

@@ -10,7 +10,7 @@
 #include "nocdyn/io/short_form.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/output.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/prr3/dynamics.hpp"
 #include "nocdyn/analysis/sampling.hpp"

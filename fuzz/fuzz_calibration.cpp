@@ -7,7 +7,7 @@
 #include <string>
 
 #include "nocdyn/error.hpp"
-#include "nocdyn/io/calibration.hpp"
+#include "nocdyn/tables/calibration.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/io/short_form.hpp"
 

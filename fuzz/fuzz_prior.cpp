@@ -8,7 +8,7 @@
 #include <string>
 
 #include "nocdyn/error.hpp"
-#include "nocdyn/io/calibration.hpp"
+#include "nocdyn/tables/calibration.hpp"
 
 namespace {
 

@@ -15,7 +15,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/description.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/analysis/workspace.hpp"

@@ -14,7 +14,7 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "plants.hpp"
 

@@ -19,7 +19,7 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/sim/shake.hpp"
 #include "plants.hpp"
 #include "plot.hpp"

@@ -13,7 +13,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/sim/identification.hpp"
-#include "nocdyn/io/calibration.hpp"
+#include "nocdyn/tables/calibration.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "random_robots.hpp"
 #include "identification_support.hpp"

@@ -1,12 +1,14 @@
 cmake_minimum_required(VERSION 3.25)
 # The layers depend only downwards, and the folder is the layer:
-#   0 core      src/core, include/nocdyn/*.hpp, include/nocdyn/detail
-#   1 analysis  src/analysis, include/nocdyn/analysis
-#   2 sim       src/sim, include/nocdyn/sim
-#   3 io        src/io, include/nocdyn/io
-#   4 report    report/ (no CLI11, no header of the CLI)
-#   5 surfaces  apps/, python/src, validation/ (above every library layer)
-# A file may include a library header ("nocdyn/...") of its own layer or one below. The
+#   core      src/core, include/nocdyn/*.hpp, include/nocdyn/detail   (Eigen only)
+#   analysis  src/analysis, include/nocdyn/analysis                   over core
+#   sim       src/sim, include/nocdyn/sim                             over core, analysis
+#   io        src/io, include/nocdyn/io                               over core only
+#   tables    src/tables, include/nocdyn/tables                       over every layer above
+#   validation  validation/ (the Simbody and MuJoCo models)           over the library
+#   report    report/ (no CLI11, no header of the CLI)                over the library and validation
+# apps/ and python/ stand on all of them.
+# A file may include a library header ("nocdyn/...") only of its own layer or one it stands on. The
 # private headers of a folder (src/core/stages.hpp, ...) count as that folder's layer, and
 # nothing in the library includes report's or the CLI's headers or CLI11.
 # Run with -DSOURCE_DIR=<tree>. With -DPLANT=<scratch folder>, the check instead copies the
@@ -14,7 +16,7 @@ cmake_minimum_required(VERSION 3.25)
 # the test that shows the check can fail.
 if(PLANT)
   file(REMOVE_RECURSE ${PLANT})
-  foreach(dir src include report apps)
+  foreach(dir src include report apps validation)
     file(COPY ${SOURCE_DIR}/${dir} DESTINATION ${PLANT})
   endforeach()
   file(APPEND ${PLANT}/src/core/model.cpp "#include \"nocdyn/sim/shake.hpp\"\n")
@@ -31,19 +33,22 @@ if(PLANT)
   return()
 endif()
 
-set(layer_names core analysis sim io report surface)
+# the layers each layer may include (its own among them)
+set(allowed_core core)
+set(allowed_analysis core analysis)
+set(allowed_sim core analysis sim)
+set(allowed_io core io)
+set(allowed_tables core analysis sim io tables)
+set(allowed_validation core analysis sim io tables validation)
+set(allowed_report core analysis sim io tables validation)
 # the layer of a library header named in an #include "nocdyn/..."
 function(header_layer header out)
-  if(header MATCHES "^nocdyn/analysis/")
-    set(${out} 1 PARENT_SCOPE)
-  elseif(header MATCHES "^nocdyn/sim/")
-    set(${out} 2 PARENT_SCOPE)
-  elseif(header MATCHES "^nocdyn/io/")
-    set(${out} 3 PARENT_SCOPE)
-  elseif(header MATCHES "^nocdyn/prr3/")
-    set(${out} 5 PARENT_SCOPE)  # the frozen benchmark kernel: no library file may use it
+  if(header MATCHES "^nocdyn/(analysis|sim|io|tables|validation)/")
+    set(${out} ${CMAKE_MATCH_1} PARENT_SCOPE)
+  elseif(header MATCHES "^nocdyn/[a-z0-9_]+/" AND NOT header MATCHES "^nocdyn/detail/")
+    set(${out} other PARENT_SCOPE)  # e.g. the frozen benchmark kernel (nocdyn/prr3): no library file uses it
   else()
-    set(${out} 0 PARENT_SCOPE)
+    set(${out} core PARENT_SCOPE)
   endif()
 endfunction()
 
@@ -59,20 +64,24 @@ function(check layer globs)
   endforeach()
   list(LENGTH files count)
   set(counts "${counts} ${count} ${layer}" PARENT_SCOPE)
-  list(FIND layer_names ${layer} level)
   foreach(file IN LISTS files)
     file(RELATIVE_PATH name ${SOURCE_DIR} ${file})
     file(STRINGS ${file} includes REGEX "^#include [\"<]")
     foreach(line IN LISTS includes)
       string(REGEX REPLACE "^#include [\"<]([^\">]+)[\">].*" "\\1" header "${line}")
-      if(header MATCHES "^nocdyn/")
-        header_layer(${header} target)
-        if(target GREATER level)
+      if(header MATCHES "^\\.\\./(core|analysis|sim|io|tables)/")
+        # a private header of another folder, by a relative path: that folder's layer
+        if(NOT CMAKE_MATCH_1 IN_LIST allowed_${layer})
           list(APPEND failures "${name}: ${layer} includes ${header}")
         endif()
-      elseif(level LESS 5 AND (header MATCHES "^CLI/" OR header IN_LIST cli_headers))
+      elseif(header MATCHES "^nocdyn/")
+        header_layer(${header} target)
+        if(NOT target IN_LIST allowed_${layer})
+          list(APPEND failures "${name}: ${layer} includes ${header}")
+        endif()
+      elseif(header MATCHES "^CLI/" OR header IN_LIST cli_headers)
         list(APPEND failures "${name}: ${layer} includes the command line's ${header}")
-      elseif(level LESS 4 AND header IN_LIST report_headers)
+      elseif(NOT layer STREQUAL "report" AND header IN_LIST report_headers)
         list(APPEND failures "${name}: ${layer} includes report's ${header}")
       endif()
     endforeach()
@@ -83,11 +92,13 @@ check(core "src/core/*.cpp;src/core/*.hpp;include/nocdyn/*.hpp;include/nocdyn/de
 check(analysis "src/analysis/*.cpp;src/analysis/*.hpp;include/nocdyn/analysis/*.hpp")
 check(sim "src/sim/*.cpp;src/sim/*.hpp;include/nocdyn/sim/*.hpp")
 check(io "src/io/*.cpp;src/io/*.hpp;include/nocdyn/io/*.hpp")
+check(tables "src/tables/*.cpp;src/tables/*.hpp;include/nocdyn/tables/*.hpp")
+check(validation "validation/src/*.cpp;validation/*/src/*.cpp;validation/*/src/*.hpp;validation/include/nocdyn/validation/*.hpp;validation/include/nocdyn/validation/detail/*.hpp;validation/*/include/nocdyn/validation/*.hpp")
 check(report "report/*.cpp;report/*.hpp")
 # Nothing of the library lies outside its layer folders.
 file(GLOB loose ${SOURCE_DIR}/src/*.cpp ${SOURCE_DIR}/src/*.hpp)
 foreach(file IN LISTS loose)
-  list(APPEND failures "${file}: a source directly under src/ is in no layer (src/core, analysis, sim, io)")
+  list(APPEND failures "${file}: a source directly under src/ is in no layer (src/core, analysis, sim, io, tables)")
 endforeach()
 if(failures)
   string(REPLACE ";" "\n" text "${failures}")

@@ -13,7 +13,7 @@
 #include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "identification_support.hpp"
 #include "random_robots.hpp"
 

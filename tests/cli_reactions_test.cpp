@@ -16,7 +16,7 @@
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/reactions.hpp"
 #include "nocdyn/trajectory.hpp"
 

@@ -13,7 +13,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/examples.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::test {

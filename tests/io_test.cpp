@@ -13,7 +13,7 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/io/forces.hpp"
+#include "nocdyn/tables/forces.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"

@@ -2,8 +2,7 @@
 // inverse displacement and by inverting eq. 5, on the example robots and on random robots of
 // every limb type; and what the per-sample path reports outside the workspace and at the
 // singularities of the paper's robot (both forms of its file): the limb named, the value,
-// a message that calls a non-finite value what it is. (The 3-PRR kernel's literal formulas of
-// Appendix A and eqs. 6-7: bench/baseline/tests/paper_formulas_test.cpp.)
+// a message that calls a non-finite value what it is.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -13,7 +13,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 
 namespace nocdyn {
 namespace {

@@ -12,7 +12,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/analysis/sampling.hpp"

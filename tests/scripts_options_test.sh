@@ -6,7 +6,7 @@ set -euo pipefail
 source_dir="$1"
 options=$(sed -n 's/^option(\(NOCDYN_[A-Z_]*\).*/\1/p' "$source_dir/CMakeLists.txt")
 status=0
-for script in scripts/test.sh scripts/reproduce.sh; do
+for script in scripts/test.sh scripts/test-extended.sh scripts/reproduce.sh; do
   # one command per line: join the backslash continuations
   commands=$(grep -v '^[[:space:]]*#' "$source_dir/$script" | sed -e ':a' -e '/\\$/N; s/\\\n//; ta')
   while IFS= read -r line; do

@@ -138,6 +138,8 @@ std::string optionsJson() {
 }
 
 void runCommand(const std::vector<std::string>& arguments) {
+    // --set of an earlier command run in this process must not reach this one
+    clearParameterOverrides();
     const std::unique_ptr<CLI::App> app = makeApp();
     std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 parses from the back
     app->parse(reversed);

@@ -17,7 +17,7 @@
 #include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "plants.hpp"
 #include "reproduce_dynamics.hpp"

@@ -18,7 +18,7 @@
 #include "common.hpp"
 #include "nocdyn/analysis/design.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/io/design.hpp"
+#include "nocdyn/tables/design.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/model.hpp"

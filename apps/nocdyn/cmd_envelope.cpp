@@ -10,7 +10,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/analysis/envelope.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "plot.hpp"
 #include "reproduce_dynamics.hpp"
 #include "progress.hpp"

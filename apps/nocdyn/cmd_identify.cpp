@@ -12,7 +12,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/sim/identification.hpp"
-#include "nocdyn/io/calibration.hpp"
+#include "nocdyn/tables/calibration.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/escape.hpp"

@@ -7,7 +7,7 @@
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 
 namespace nocdyn::cli {

@@ -15,9 +15,9 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "nocdyn/io/forces.hpp"
+#include "nocdyn/tables/forces.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/reactions.hpp"
 

@@ -272,6 +272,7 @@ def pose(theta, x, y, *, robot=None, set=None):
         call.positional(x, name="x")
         call.positional(y, name="y")
         call.robot(robot)
+        call.option("set", set)
         call.option("json", True)
         out, err = call.run()
         return PoseReport(_json.loads(out), err)
@@ -295,6 +296,7 @@ def forward_kinematics(u, *, robot=None, set=None, all_branches=False):
     with _Call("forward-kinematics", forward_kinematics) as call:
         call.positional(*values, name="u")
         call.robot(robot)
+        call.option("set", set)
         call.option("json", True)
         call.option("all_branches", all_branches)
         out, err = call.run()
@@ -352,6 +354,7 @@ def convert(robot, *, set=None, output=None):
     (numbers in shortest round-trip form); also written to ``output`` when given."""
     with _Call("convert", convert) as call:
         call.robot(robot)
+        call.option("set", set)
         path = call.output("output", output, "robot.yaml")
         call.run()
         return path.read_text(encoding="utf-8")

@@ -13,7 +13,7 @@
 
 #include "nocdyn/analysis/design.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/io/design.hpp"
+#include "nocdyn/tables/design.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/model.hpp"
 

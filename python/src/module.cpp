@@ -29,7 +29,7 @@
 #include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/sim/identification.hpp"
-#include "nocdyn/io/calibration.hpp"
+#include "nocdyn/tables/calibration.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/robot_file.hpp"

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <cstdio>
 
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"

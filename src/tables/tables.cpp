@@ -1,5 +1,5 @@
 // CSV layouts of the results (tables.hpp).
-#include "nocdyn/io/tables.hpp"
+#include "nocdyn/tables/tables.hpp"
 
 #include "nocdyn/io/layouts.hpp"
 

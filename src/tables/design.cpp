@@ -1,5 +1,5 @@
 // Families of robots for design sweeps, the designs table and its journal (io/design.hpp).
-#include "nocdyn/io/design.hpp"
+#include "nocdyn/tables/design.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <filesystem>
 #include <sstream>
 
-#include "file_util.hpp"
+#include "../io/file_util.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"

@@ -1,5 +1,5 @@
 // Force signals from CSV (forces.hpp): the columns t,tau1..taun read into a ForceSignal.
-#include "nocdyn/io/forces.hpp"
+#include "nocdyn/tables/forces.hpp"
 
 #include <algorithm>
 #include <sstream>

@@ -1,5 +1,5 @@
 // Calibration files (calibration.hpp).
-#include "nocdyn/io/calibration.hpp"
+#include "nocdyn/tables/calibration.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -7,7 +7,7 @@
 
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/error.hpp"
-#include "yaml_util.hpp"
+#include "../io/yaml_util.hpp"
 
 namespace nocdyn::io {
 

@@ -1,0 +1,31 @@
+#!/usr/bin/env bash
+# The slower checks, after scripts/test.sh (which built build/ and ran every test there):
+# - the mutation check (scripts/mutation/): deliberate errors in the core formulas, each of
+#   which some test must catch; its own -O1 build without Simbody and MuJoCo, one file rebuilt
+#   per error;
+# - the whole suite again under AddressSanitizer and UndefinedBehaviorSanitizer;
+# - a short libFuzzer run (clang, ASan, UBSan) of each file reader over its committed corpus.
+# .ci/run runs both scripts. Every option is set explicitly, and ctest fails when it finds no test.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+jobs="$(nproc)"
+
+python3 scripts/mutation/run.py --jobs "$jobs"
+
+# The Python package is not built here: an interpreter cannot load an ASan-instrumented module
+# without LD_PRELOAD of the ASan runtime (its tests run in the release build).
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
+  -DNOCDYN_BUILD_BENCHMARKS=OFF -DNOCDYN_SANITIZE=ON -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=OFF
+cmake --build build-sanitize -j"$jobs"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+  ctest --test-dir build-sanitize --output-on-failure --no-tests=error -j"$jobs"
+
+# The file readers under libFuzzer (clang, ASan, UBSan): only the library's readers and the
+# harnesses are built; each harness runs briefly over its committed seed corpus (fuzz/).
+cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DNOCDYN_BUILD_TESTS=OFF -DNOCDYN_BUILD_VALIDATION=OFF -DNOCDYN_BUILD_BENCHMARKS=OFF \
+  -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=ON -DNOCDYN_BUILD_PYTHON=OFF
+cmake --build build-fuzz -j"$jobs" --target nocdyn_fuzzers
+ctest --test-dir build-fuzz --output-on-failure --no-tests=error -L fuzz -j"$jobs"
+echo "test-extended.sh: mutation check, sanitizer and fuzz builds passed"
