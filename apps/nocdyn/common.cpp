@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <charconv>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
@@ -137,6 +138,16 @@ bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {
     return std::filesystem::equivalent(a, b, error) && !error;
 }
 
+/// The kinds of file a command writes into its --out-dir (tables, reports, figures, pages).
+bool outputKind(const std::filesystem::path& path) {
+    std::string extension = path.extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* kind : {".csv", ".json", ".md", ".png", ".svg", ".html"}) {
+        if (extension == kind) return true;
+    }
+    return false;
+}
+
 /// Whether `path`, or a folder it is in, is the folder `dir` (by inode, through any link).
 bool isInside(const std::filesystem::path& path, const std::filesystem::path& dir) {
     std::error_code error;
@@ -186,11 +197,15 @@ void refuseOutputOverInput(const CLI::App& command) {
                             "'): writing it would replace it");
             }
         }
+        // in the output folder, a file of a kind the command writes there (a record beside it
+        // is read, not replaced; a folder of inputs holding the output folder is fine)
         for (const auto& [out_option, folder] : folders) {
-            if (isInside(input, folder)) {
+            std::error_code error;
+            const bool a_folder = std::filesystem::is_directory(input, error);
+            if ((a_folder && sameFile(input, folder)) || (!a_folder && outputKind(input) && isInside(input, folder))) {
                 throw Error(command.get_name() + ": " + in_option + " '" + io::terminalText(input) +
                             "' is inside the output folder " + out_option + " '" + io::terminalText(folder) +
-                            "', whose files the command replaces: choose another folder");
+                            "', where the command writes files of its kind: choose another folder");
             }
         }
     }

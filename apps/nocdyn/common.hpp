@@ -50,7 +50,9 @@ void requireFiniteFloats(CLI::App& app);
 /// Refuses (nocdyn::Error) a command whose output would replace one of its inputs: an output
 /// file (-o, --log, --png, --svg, --figure's STEM.png and STEM.svg) that is an input file
 /// (--robot, --trajectory, --record, ... the same file by inode, through any path or link), or
-/// an input inside its output folder (--out-dir). Called for every command once parsed.
+/// an input file of a kind the command writes (.csv .json .md .png .svg .html) inside its output
+/// folder (--out-dir), or an input folder that is the output folder. Called for every command
+/// once parsed.
 void refuseOutputOverInput(const CLI::App& command);
 
 /// A CLI11 check for a file name given on the command line: an empty one is refused (it would
