@@ -70,14 +70,14 @@ TEST(HostileRound3Cli, InverseDynamicsRefusesToWriteOverItsOwnSamples) {
     const std::string before = readWhole(samples);
     const CliResult r = runCli("inverse-dynamics --trajectory " + samples.string() + " -o " + samples.string());
     EXPECT_EQ(r.exit_code, 1);
-    EXPECT_TRUE(has(r.err, "--output '" + samples.string() + "' is the input of --trajectory")) << r.err;
+    EXPECT_TRUE(has(r.err, "--output '" + samples.string() + "' is an input file (--trajectory")) << r.err;
     EXPECT_EQ(readWhole(samples), before);
     // the same file by another name (a hard link) is the same input
     fs::create_hard_link(samples, dir / "link.csv");
     const CliResult linked =
         runCli("inverse-dynamics --trajectory " + samples.string() + " -o " + (dir / "link.csv").string());
     EXPECT_EQ(linked.exit_code, 1);
-    EXPECT_TRUE(has(linked.err, "is the input of --trajectory")) << linked.err;
+    EXPECT_TRUE(has(linked.err, "is an input file (--trajectory")) << linked.err;
     EXPECT_EQ(readWhole(samples), before);
 }
 

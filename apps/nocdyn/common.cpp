@@ -193,7 +193,7 @@ void refuseOutputOverInput(const CLI::App& command) {
         for (const auto& [out_option, output] : files) {
             if (sameFile(output, input)) {
                 throw Error(command.get_name() + ": " + out_option + " '" + io::terminalText(output) +
-                            "' is the input of " + in_option + " ('" + io::terminalText(input) +
+                            "' is an input file (" + in_option + " '" + io::terminalText(input) +
                             "'): writing it would replace it");
             }
         }
