@@ -56,7 +56,6 @@ void inverseDynamicsNocdynFull(benchmark::State& state) {
     perSample(state, f.samples.size());
 }
 
-
 // ---- stages of nocdyn's per-sample path ----------------------------------------------
 
 /// Data after the whole path for every sample of the cycle.

@@ -1,10 +1,11 @@
-# The nocdyn user guide (Sphinx, Markdown pages through MyST). Built by the test `docs.sphinx`
-# (ctest -L docs) with warnings as errors:
-#   NOCDYN_CLI=build/nocdyn NOCDYN_PYTHONPATH=build/python \
-#     sphinx-build -W --keep-going -b html docs build/docs/html
+# The nocdyn user guide (Sphinx, Markdown pages through MyST). Build it with
+#   bash scripts/docs.sh
+# which builds what the guide reads, sets the variables below and checks the site; the test
+# `docs.sphinx` (ctest -L docs) does the same with warnings as errors.
 # NOCDYN_CLI: the built `nocdyn`, whose `--help` pages are the option lists of docs/commands/
 # (read at build time, so they cannot drift from the program). NOCDYN_PYTHONPATH: the folder
-# holding the built Python package, whose docstrings make the Python API page.
+# holding the built Python package, whose docstrings make the Python API page. Unset, both are
+# taken from build/ when it holds them; else the build stops here and says how to build.
 import os
 import pathlib
 import subprocess
@@ -12,8 +13,14 @@ import sys
 
 here = pathlib.Path(__file__).resolve().parent
 sys.path.insert(0, str(here / "_ext"))
-if os.environ.get("NOCDYN_PYTHONPATH"):
-    sys.path.insert(0, os.environ["NOCDYN_PYTHONPATH"])
+for variable, default in (("NOCDYN_CLI", here.parent / "build" / "nocdyn"),
+                          ("NOCDYN_PYTHONPATH", here.parent / "build" / "python")):
+    if not os.environ.get(variable):
+        if not default.exists():
+            raise RuntimeError(f"{variable} is not set and {default} does not exist: build the guide with "
+                               "`bash scripts/docs.sh` (it builds the program and the Python package first)")
+        os.environ[variable] = str(default)
+sys.path.insert(0, os.environ["NOCDYN_PYTHONPATH"])
 
 project = "nocdyn"
 author = "the nocdyn authors"

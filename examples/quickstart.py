@@ -38,13 +38,24 @@ def main():
     peak = robot.actuator_info()[0]["effort"]
     print(f"{robot!r}: peak |tau| per actuator [{tau_unit}]: {np.round(np.max(np.abs(tau), axis=0), 2)} "
           f"(limit {peak:g} {tau_unit})")
+    # the check: these forces, played back through the forward dynamics from the first sample's
+    # state, move the platform along trajectory 1 again (10 ms)
+    columns = {"t": t, **{f"{name}{i + 1}": v[:, i] for name, v in (("u", u), ("du", du), ("tau", tau))
+                          for i in range(robot.actuators)}}
+    replayed = nocdyn.simulate(columns, robot=args.robot, duration=0.01)
+    n = len(replayed)
+    error = max(np.abs(replayed[axis] - P[:n, k]).max() for k, axis in enumerate(("theta", "x", "y")))
+    print(f"forward dynamics of these forces: largest pose error {error:.2g} (m, rad) over {n} samples")
+    if not error <= 1e-7:
+        raise SystemExit(f"the forces do not reproduce trajectory 1: pose error {error:.3g}")
 
     fig, (ax_u, ax_tau) = plt.subplots(2, 1, sharex=True, figsize=(7.5, 5.5), constrained_layout=True)
     for i in range(robot.actuators):
         ax_u.plot(t * 1e3, u[:, i] * 1e3, label=f"u{i + 1}")
         ax_tau.plot(t * 1e3, tau[:, i], label=f"tau{i + 1}")
     ax_u.set_ylabel(f"actuator displacement [{u_unit}]")
-    ax_tau.set_ylabel(f"actuator force [{tau_unit}]")
+    tau_name = " or ".join(name for kind, name in (("P", "force"), ("R", "torque")) if kind in types)
+    ax_tau.set_ylabel(f"actuator {tau_name} [{tau_unit}]")
     ax_tau.set_xlabel("time [ms]")
     ax_u.set_title(f"{robot.name}, trajectory 1 of the paper (eq. 33): inverse dynamics")
     for ax in (ax_u, ax_tau):

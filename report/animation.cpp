@@ -214,6 +214,11 @@ function drawRobot() {
 // actuator forces as bars, coloured by the fraction of the effort limit
 const bars = $('bars'), bctx = bars.getContext('2d');
 bars.height = 26 * n + 8;
+// wide enough for the longest label ("tau1 = -1.234e+00 N m (100% of 12.00 N m)"), not clipped
+bctx.font = '12px sans-serif';
+bars.width = Math.max(bars.width, Math.ceil(170 + Math.max(...D.actuators.map((a, k) => bctx.measureText(
+  'tau' + (k + 1) + ' = -0.000e+00 ' + a.forceUnit + ' (100% of ' +
+  (a.effort !== null ? a.effort.toPrecision(4) + ' ' + a.forceUnit : 'no effort limit') + ')').width))));
 function drawBars() {
   bctx.clearRect(0, 0, bars.width, bars.height);
   bctx.font = '12px sans-serif';

@@ -43,7 +43,7 @@ constexpr double kRate = 10000.0;  // Hz
 PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine = {},
                      const std::vector<Eigen::VectorXd>* engine_values = nullptr) {
     PlotPanel panel;
-    panel.title = forces ? "(b) Motor forces" : "(a) Motor displacements";
+    panel.title = forces ? "(a) Motor forces" : "(a) Motor displacements";
     panel.xlabel = "t [s]";
     panel.ylabel = forces ? "{/Symbol t}_j [N]" : "u_j [mm]";
     const double scale = forces ? 1.0 : 1e3;
@@ -73,7 +73,7 @@ PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std
 PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, const std::string& engine,
                           const std::vector<Eigen::VectorXd>& engine_values) {
     PlotPanel panel;
-    panel.title = "(c) " + engine + " minus model";
+    panel.title = "(b) " + engine + " minus model";
     panel.xlabel = "t [s]";
     const auto difference = [&](std::size_t k, int j) {
         const InverseDynamicsSample& s = series.samples[k];
@@ -264,12 +264,17 @@ void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::pa
     const Model model(robot);
     const WorkspaceMap map = workspaceMap(model, {0.0, 301});
     std::vector<PlotSeries> paths;
-    const char* styles[] = {"lines lw 2 lc rgb '#2ca02c'", "lines lw 2 lc rgb '#9467bd'"};
+    // trajectory 1 wide and light, trajectory 2 dashed on top: where the paths of C coincide,
+    // both stay visible
+    const char* styles[] = {"lines lw 7 lc rgb '#a1d99b'", "lines lw 2 dt 2 lc rgb '#6a3d9a'"};
     double peak_theta = 0.0;
     for (int k = 0; k < 2; ++k) {
         const PoseTrajectory trajectory = k == 0 ? paperTrajectory1() : paperTrajectory2();
         PlotSeries path{
-            std::string("C along trajectory ") + (k == 0 ? "1" : "2") + " (theta varies)", {}, {}, styles[k]};
+            std::string("C along trajectory ") + (k == 0 ? "1 (wide, under 2)" : "2 (dashed)") + ", theta varies",
+            {},
+            {},
+            styles[k]};
         for (const double t : sampleTimes(kDuration, 2000.0)) {
             Pose p, dp, ddp;
             trajectory.evaluate(t, p, dp, ddp);

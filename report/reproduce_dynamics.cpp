@@ -29,14 +29,18 @@ ActuatorLimits actuatorLimits(const RobotDescription& robot) {
     throw Error("robot '" + robot.name + "' has no actuated joint");
 }
 
-Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopResult>& runs) {
+Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopResult>& runs,
+                           const std::vector<std::string>& notes) {
     Figure figure;
     figure.title = title;
-    for (const auto& run : runs) {
+    for (std::size_t r = 0; r < runs.size(); ++r) {
+        const PoseLoopResult& run = runs[r];
         PlotPanel panel;
-        char heading[200];
-        std::snprintf(heading, sizeof heading, "%s on the %s plant: RMS error %.3g um", run.controller.c_str(),
-                      run.plant.c_str(), *std::max_element(run.rms_error.begin(), run.rms_error.end()) * 1e6);
+        char heading[300];
+        const std::string note = r < notes.size() && !notes[r].empty() ? ", " + notes[r] : std::string();
+        std::snprintf(heading, sizeof heading, "%s on the %s plant%s: RMS error %.3g um", run.controller.c_str(),
+                      run.plant.c_str(), note.c_str(),
+                      *std::max_element(run.rms_error.begin(), run.rms_error.end()) * 1e6);
         panel.title = heading;
         panel.xlabel = "t [s]";
         double peak = 0.0;
@@ -143,7 +147,8 @@ void reproduceControl(const RobotDescription& robot, const std::filesystem::path
         }
         const std::string stem = std::string("control_") + kTrajectories[k];
         io::writeCsvFile((out / (stem + ".csv")).string(), io::toTable(runs[0]));
-        renderFigure(trackingErrorFigure(std::string(kTrajectories[k]) + ": actuator tracking errors", runs),
+        renderFigure(trackingErrorFigure(std::string(kTrajectories[k]) + ": actuator tracking errors", runs,
+                                         {"no payload", "no payload", "payload unknown to the controller"}),
                      (out / (stem + "_errors")).string());
     }
     summary << "\nFigures: `control_paper1_errors.png`, `control_paper2_errors.png` (panels: computed torque, PD, "

@@ -26,7 +26,10 @@ struct ActuatorLimits {
 [[nodiscard]] ActuatorLimits actuatorLimits(const RobotDescription& robot);
 
 /// Tracking errors u_d - u per actuator [um] versus time, one panel per run.
-[[nodiscard]] Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopResult>& runs);
+/// `notes`: a few words per run added to its panel's title (e.g. "payload unknown to the
+/// controller"), so that runs of the same controller and plant are told apart; may be empty.
+[[nodiscard]] Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopResult>& runs,
+                                         const std::vector<std::string>& notes = {});
 
 /// Amplitude versus frequency, log axes: one panel for x and y [mm], one for theta [deg].
 [[nodiscard]] Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot,

@@ -111,7 +111,10 @@ Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c
         outcome.peak_error = run.pose_peak_error;
         // the encoders' readings the controller used; the force sensor's own noise
         const Measurements log = sensorLog(run, kNoiseU, kNoiseTau, kSeed + 1);
-        io::writeCsvFile((folder / (c.key + "_log.csv")).string(), decimated(io::toTable(log)));
+        // every kDecimation-th sample: each force is then the one at its sample's instant, not a hold
+        Measurements shown = log;
+        shown.held_forces = false;
+        io::writeCsvFile((folder / (c.key + "_log.csv")).string(), decimated(io::toTable(shown)));
         IdentificationOptions options;
         options.held_forces = true;  // the log's forces are the commands held over each tick
         options.friction = c.friction;
@@ -179,9 +182,8 @@ void caseTable(const Case& c, const Outcome& o, std::ostream& summary) {
 
 Figure forcesFigure(const Case& c, const FitReport& fit) {
     Figure f;
-    f.title = "Payload identification, " + c.title +
-              ": measured (force sensors, low-pass filtered as identify does) and predicted actuator forces, "
-              "held-out data";
+    // short enough for the canvas; the series' labels say the measured forces are filtered
+    f.title = "Payload identification, " + c.title + ": measured and predicted forces (held-out data)";
     PlotPanel residual;
     residual.title = "measured minus predicted";
     residual.xlabel = "t [s]";

@@ -183,6 +183,7 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         loop.noise_position = settings.noise_pose;
         loop.noise_rate = settings.noise_rate;
         loop.seed = settings.seed + static_cast<unsigned>(pass);
+        loop.progress = settings.table.progress;
         PoseLoopResult result = runPoseLoop(controller, *plant, drive, loop);
         for (std::size_t k = 0; k < result.t.size(); ++k)
             actuators.tick(model, fit.t, settings.rate, k, result.t[k], result.u[k], result.tau[k]);

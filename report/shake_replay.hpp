@@ -18,7 +18,9 @@ namespace nocdyn::report {
 
 struct ShakeSettings {
     FitOptions fit;
-    std::string plant = "simbody";  ///< or "nocdyn", "nocdyn-rk4"
+    /// "nocdyn-rk4" (a 40 s record in seconds), "nocdyn" or "simbody" (the independent check,
+    /// about 70 times slower)
+    std::string plant = "nocdyn-rk4";
     /// "table": encoders, accelerometers, estimator, low-gain feedback and acceleration correction
     /// (shake_control.hpp); "pose": computed torque on a noisy pose and rate sensor at f_n =
     /// natural_frequency (noise_pose, noise_rate)

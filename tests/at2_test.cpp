@@ -86,7 +86,7 @@ TEST(At2, EveryLineEndingHeaderFormAndFortranSpellingReadsTheSameValues) {
 
 TEST(At2, TheSharedRecordsReadTheSameAfterACrCrLfConversion) {
     // Borah Peak: the "NPTS= N, dt= STEP" header form
-    const std::string path = std::string(NOCDYN_SOURCE_DIR) + "/../shared/data/borahpeak_1983_cem_000.AT2";
+    const std::string path = std::string(NOCDYN_SOURCE_DIR) + "/data/borahpeak_1983_cem_000.AT2";
     std::ifstream file(path, std::ios::binary);
     if (!file) GTEST_SKIP() << "no " << path;
     const std::string text((std::istreambuf_iterator<char>(file)), std::istreambuf_iterator<char>());

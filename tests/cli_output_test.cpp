@@ -295,7 +295,9 @@ TEST(CliOutput, ControlTakesAnyRobotFile) {
         << fallback.out;
     EXPECT_NE(fallback.out.find("actuator 3 (limb 3): RMS error"), std::string::npos) << fallback.out;
     const io::Table sensors = io::readCsvFile(log.string());
-    EXPECT_EQ(sensors.columns, (std::vector<std::string>{"t", "u1", "u2", "u3", "tau1", "tau2", "tau3"}));
+    // the forces are the commands held over each tick, and the log says so
+    EXPECT_EQ(sensors.columns,
+              (std::vector<std::string>{"t", "u1", "u2", "u3", "tau1_held", "tau2_held", "tau3_held"}));
     EXPECT_EQ(sensors.rows.size(), 200U);
 }
 

@@ -109,7 +109,7 @@ TEST(CliShake, IdentifiesThePayloadRaisesTheAmplitudeAndIteratesTheDrive) {
 
 TEST(CliShake, AWeakRealRecordMeetsEveryGoalWithTheDefaults) {
     // Borah Peak 1983, CEM 000: PGA 0.025 g, the pose-sensor controller's 36 % RMS error
-    const std::string record = std::string(NOCDYN_SOURCE_DIR) + "/../shared/data/borahpeak_1983_cem_000.AT2";
+    const std::string record = std::string(NOCDYN_SOURCE_DIR) + "/data/borahpeak_1983_cem_000.AT2";
     if (!std::filesystem::exists(record)) GTEST_SKIP() << "no " << record;
     const auto dir = freshScratchDirectory("cli_shake_weak");
     const CliResult r = runCli("shake --robot " + kRobot + " --record " + record +

@@ -18,6 +18,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "progress.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/layouts.hpp"
@@ -70,6 +71,82 @@ std::string describeOptions(CLI::App& app) {
     return commands.dump(1);
 }
 
+/// Levenshtein distance (insertions, deletions, substitutions), for "did you mean".
+std::size_t editDistance(const std::string& a, const std::string& b) {
+    std::vector<std::size_t> row(b.size() + 1);
+    for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+    for (std::size_t i = 1; i <= a.size(); ++i) {
+        std::size_t diagonal = row[0];
+        row[0] = i;
+        for (std::size_t j = 1; j <= b.size(); ++j) {
+            const std::size_t above = row[j];
+            row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+            diagonal = above;
+        }
+    }
+    return row[b.size()];
+}
+
+/// The name nearest `typed` among `names` when it is near enough to be a slip (at most a third of
+/// its letters wrong, at least 2 allowed) or a prefix of one; empty when none is.
+std::string nearest(const std::string& typed, const std::vector<std::string>& names) {
+    std::string best;
+    std::size_t best_distance = std::max<std::size_t>(2, typed.size() / 3) + 1;
+    for (const std::string& name : names) {
+        const std::size_t d = name.starts_with(typed) && typed.size() >= 3 ? 1 : editDistance(typed, name);
+        if (d < best_distance) {
+            best_distance = d;
+            best = name;
+        }
+    }
+    return best;
+}
+
+/// The command of that name, or nullptr.
+CLI::App* findCommand(CLI::App& app, const std::string& name) {
+    for (CLI::App* command : app.get_subcommands({})) {
+        if (command->get_name() == name) return command;
+    }
+    return nullptr;
+}
+
+std::vector<std::string> commandNames(CLI::App& app) {
+    std::vector<std::string> names;
+    for (CLI::App* command : app.get_subcommands({})) names.push_back(command->get_name());
+    return names;
+}
+
+/// A mistyped command or long option named with the nearest one, before CLI11 parses (which
+/// would report a missing required option or subcommand instead); empty when all are known.
+std::string misspelling(CLI::App& app, const std::vector<std::string>& arguments) {
+    if (arguments.empty() || arguments.front().starts_with("-")) return {};
+    const std::vector<std::string> commands = commandNames(app);
+    const std::string& typed = arguments.front();
+    CLI::App* command = findCommand(app, typed);
+    if (command == nullptr) {
+        const std::string near = nearest(typed, commands);
+        std::string list;
+        for (const std::string& name : commands) list += (list.empty() ? "" : ", ") + name;
+        return "unknown command '" + nocdyn::io::terminalText(typed) + "'" +
+               (near.empty() ? " (the commands: " + list + ")" : "; did you mean '" + near + "'?");
+    }
+    std::vector<std::string> options;
+    for (const CLI::Option* option : command->get_options()) {
+        for (const std::string& name : option->get_lnames()) options.push_back("--" + name);
+    }
+    for (std::size_t i = 1; i < arguments.size(); ++i) {
+        const std::string& argument = arguments[i];
+        if (argument == "--") break;  // the rest are positional
+        if (!argument.starts_with("--") || argument.size() == 2) continue;
+        const std::string name = argument.substr(0, argument.find('='));
+        if (command->get_option_no_throw(name) != nullptr) continue;
+        const std::string near = nearest(name, options);
+        return "nocdyn " + typed + ": unknown option '" + nocdyn::io::terminalText(name) + "'" +
+               (near.empty() ? "" : "; did you mean '" + near + "'?");
+    }
+    return {};
+}
+
 }  // namespace
 
 namespace nocdyn::cli {
@@ -81,7 +158,8 @@ std::unique_ptr<CLI::App> makeApp() {
         "Output files: -o/--output FILE for a command's one output file (a table: stdout without it),\n"
         "--out-dir DIR for the folder of a command with several, --figure STEM for a figure (STEM.png,\n"
         "STEM.svg): figures only when asked for.\n"
-        "Run `nocdyn <command> --help` for a command's details, options and an example.",
+        "Run `nocdyn <command> --help` (or `nocdyn help <command>`) for a command's details, options and an\n"
+        "example; `nocdyn --version` (-V) for the version.",
         "nocdyn");
     CLI::App& app = *owned;
     app.require_subcommand(1);
@@ -101,10 +179,11 @@ std::unique_ptr<CLI::App> makeApp() {
     addExciteCommand(app);
     addLoadsCommand(app);
     addDesignCommand(app);
+    addFrequencyResponseCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     addValidateCommand(app);
 #endif
-    app.set_version_flag("--version", std::string("nocdyn ") + NOCDYN_VERSION);
+    app.set_version_flag("--version,-V", std::string("nocdyn ") + NOCDYN_VERSION);
     requireFiniteFloats(app);
     // before the chosen command runs: none may write over its own input
     app.parse_complete_callback([&app] {
@@ -119,6 +198,37 @@ std::unique_ptr<CLI::App> makeApp() {
         {"Purposes", {"shake", "reproduce", "validate", "design"}},
         {"Files", {"convert"}},
     };
+    // an example in every command's --help: the commands whose description has none get theirs
+    // here (runnable from the repository's root)
+    const std::pair<const char*, const char*> examples[] = {
+        {"inverse-dynamics", "nocdyn inverse-dynamics --trajectory paper1 --output paper1.csv"},
+        {"forward-kinematics", "nocdyn forward-kinematics 0.001 -0.0005 0.0002 --all-branches"},
+        {"simulate",
+         "nocdyn inverse-dynamics --trajectory paper1 -o forces.csv && nocdyn simulate --forces forces.csv "
+         "-o motion.csv"},
+        {"envelope", "nocdyn envelope --output envelope.csv --figure envelope"},
+        {"animate",
+         "nocdyn animate --trajectory paper1 --output paper1.html   (a replay: --trajectory shake/shake.csv)"},
+        {"convert", "nocdyn convert robots/paper-3prr.yaml --output paper-3prr-general.yaml"},
+        {"shake", "nocdyn shake --record data/elcentro_1940_ns.AT2 --out-dir shake"},
+        {"excite", "nocdyn excite --payload-guess 0.5 0 0 2e-4 --output excitation.yaml"},
+        {"regressor", "nocdyn regressor --robot robots/3-rrr.yaml"},
+        {"reproduce", "nocdyn reproduce --out-dir results"},
+        {"validate", "nocdyn validate --trajectory paper1 --output validation.csv"},
+    };
+    // --quiet on every long command (runCommandLine reads it: no progress, no "wrote FILE" lines)
+    for (const char* name : {"control", "shake", "simulate", "inverse-dynamics"}) {
+        CLI::App* command = findCommand(app, name);
+        if (command != nullptr && command->get_option_no_throw("--quiet") == nullptr) {
+            command->add_flag("--quiet,-q")->description("No progress line and no 'wrote FILE' line on standard error");
+        }
+    }
+    for (const auto& [name, example] : examples) {
+        CLI::App* command = findCommand(app, name);
+        if (command != nullptr && command->get_description().find("Example: ") == std::string::npos) {
+            command->description(command->get_description() + "\nExample: " + example);
+        }
+    }
     for (CLI::App* command : app.get_subcommands({})) {
         const std::string text = command->get_description();
         if (text.find('\n') != std::string::npos) {
@@ -138,6 +248,7 @@ std::string optionsJson() {
 }
 
 void runCommand(const std::vector<std::string>& arguments) {
+    setQuiet(false);
     // --set of an earlier command run in this process must not reach this one
     clearParameterOverrides();
     const std::unique_ptr<CLI::App> app = makeApp();
@@ -160,6 +271,28 @@ int runCommandLine(int argc, const char* const* argv) {
         std::cout << nocdyn::io::outputFormatsMarkdown();
         return 0;
     }
+    std::vector<std::string> arguments(argv + 1, argv + argc);
+    // `nocdyn help [COMMAND]`: the same as `nocdyn [COMMAND] --help`
+    if (!arguments.empty() && arguments.front() == "help" && arguments.size() <= 2) {
+        if (arguments.size() == 2 && findCommand(app, arguments[1]) == nullptr) {
+            const std::string typo = misspelling(app, {arguments[1]});
+            std::cerr << "nocdyn: error: "
+                      << (typo.empty() ? "unknown command '" + nocdyn::io::terminalText(arguments[1]) + "'" : typo)
+                      << " (see nocdyn --help)\n";
+            return 2;
+        }
+        std::vector<const char*> help{argv[0]};
+        if (arguments.size() == 2) help.push_back(argv[2]);
+        help.push_back("--help");
+        return runCommandLine(static_cast<int>(help.size()), help.data());
+    }
+    if (const std::string typo = misspelling(app, arguments); !typo.empty()) {
+        std::cerr << "nocdyn: error: " << typo << " (see nocdyn --help)\n";
+        return 2;
+    }
+    announceWrittenFiles();
+    setQuiet(std::any_of(arguments.begin(), std::find(arguments.begin(), arguments.end(), "--"),
+                         [](const std::string& a) { return a == "--quiet" || a == "-q"; }));
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {

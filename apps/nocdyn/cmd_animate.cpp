@@ -1,7 +1,13 @@
 // nocdyn animate: the robot moving along a trajectory or a recorded motion, as one
 // self-contained HTML page, and static frames as PNG and SVG.
+#include <algorithm>
+#include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
 #include <memory>
 #include <optional>
 
@@ -45,12 +51,39 @@ void requireNotAnInput(const AnimateOptions& options, bool out_given) {
     }
 }
 
-void run(const AnimateOptions& options, bool out_given) {
+/// Whether `path` is a CSV of a recorded motion with its forces (its header has t, x, y, theta
+/// and tau1: what simulate, control, inverse-dynamics and shake write), not a trajectory's samples.
+bool recordedMotion(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension != ".csv") return false;
+    std::ifstream in(path);
+    std::string header;
+    if (!in || !std::getline(in, header)) return false;
+    std::vector<std::string> names;
+    std::stringstream fields(header);
+    for (std::string name; std::getline(fields, name, ',');) {
+        if (!name.empty() && name.back() == '\r') name.pop_back();
+        names.push_back(name);
+    }
+    const auto has = [&](const char* name) { return std::find(names.begin(), names.end(), name) != names.end(); };
+    return has("t") && has("x") && has("y") && has("theta") && has("tau1");
+}
+
+void run(const AnimateOptions& options, bool out_given, bool sampling_given) {
     requireNotAnInput(options, out_given);
     const Model model(loadRobotDescriptionOrDefault(options.robot));
     MotionSamples motion;
-    if (!options.motion.empty()) {
-        motion = motionFromCsv(model, options.motion);
+    // a recorded motion given as --trajectory (a replay's shake.csv): played as --motion, forces and all
+    const bool recorded = !options.trajectory.empty() && recordedMotion(options.trajectory);
+    if (recorded && sampling_given) {
+        throw Error("animate: --trajectory " + options.trajectory +
+                    " is a recorded motion (t, x, y, theta, tau1..): it is played as recorded, without --duration "
+                    "or --rate");
+    }
+    if (!options.motion.empty() || recorded) {
+        motion = motionFromCsv(model, recorded ? options.trajectory : options.motion);
     } else {
         const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
         motion = motionFromTrajectory(model, trajectory, chooseDuration(options.duration, trajectory), options.rate);
@@ -84,8 +117,9 @@ void addAnimateCommand(CLI::App& app) {
                                            "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or "
                                            "samples (.csv: t and x,y,theta or ax,ay,alpha)");
     auto* motion = command->add_option("--motion", options->motion,
-                                       "CSV with columns t,x,y,theta,tau1..taun (SI), as written by simulate, "
-                                       "control or inverse-dynamics; u is recomputed from the pose");
+                                       "CSV with columns t,x,y,theta,tau1..taun (SI; other columns ignored), as "
+                                       "written by simulate, control, inverse-dynamics or shake; u is recomputed "
+                                       "from the pose. A --trajectory CSV with these columns is played so too");
     trajectory->excludes(motion);
     command
         ->add_option("--duration", options->duration,
@@ -120,7 +154,7 @@ void addAnimateCommand(CLI::App& app) {
             throw Error("animate: --frame needs --png or --svg");
         }
         (void)command;
-        run(*options, out->count() + old_out->count() > 0);
+        run(*options, out->count() + old_out->count() > 0, command->count("--duration") + command->count("--rate") > 0);
     });
 }
 

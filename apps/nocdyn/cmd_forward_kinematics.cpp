@@ -55,6 +55,10 @@ void runGeneral(const ForwardKinematicsOptions& options) {
     ActuatorVector u(model.actuators);
     for (int a = 0; a < model.actuators; ++a) u(a) = options.u[static_cast<std::size_t>(a)];
     const int outside = outsideRange(model, u);
+    if (outside > 0) {
+        std::cerr << "nocdyn: warning: u" << outside
+                  << " is outside its joint's range (the command line takes m and rad: 5 mm is 0.005)\n";
+    }
     Data data(model);
     AssemblyModes modes;
     if (const Status status = directKinematics(model, data, u, modes); !status) {

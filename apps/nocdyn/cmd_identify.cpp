@@ -47,10 +47,25 @@ Measurements readMeasurements(const std::string& path, int n) {
         return table.column(name);
     };
     const std::size_t t_col = need("t");
+    // the forces' name says what they are: tau1 at the sample's instant (a force sensor),
+    // tau1_held the command held from the sample to the next (`nocdyn control --log`)
+    const bool held = table.has("tau1_held");
+    if (held && table.has("tau1")) {
+        throw Error(path + ": both tau1 and tau1_held: give the forces once, as tau1..tau" + std::to_string(n) +
+                    " (measured at each sample) or tau1_held..tau" + std::to_string(n) +
+                    "_held (commands held until the next sample)");
+    }
+    if (!held && !table.has("tau1")) {
+        throw Error(path + ": no column 'tau1' or 'tau1_held' (the log needs t, u1..u" + std::to_string(n) +
+                    " and the forces tau1..tau" + std::to_string(n) + " as measured at each sample, or tau1_held..tau" +
+                    std::to_string(n) +
+                    "_held when they are commands held until the next sample, as `nocdyn control "
+                    "--log` writes them)");
+    }
     std::vector<std::size_t> u_col, tau_col, du_col, ddu_col;
     for (int a = 1; a <= n; ++a) {
         u_col.push_back(need("u" + std::to_string(a)));
-        tau_col.push_back(need("tau" + std::to_string(a)));
+        tau_col.push_back(need("tau" + std::to_string(a) + (held ? "_held" : "")));
     }
     const bool has_du = table.has("du1"), has_ddu = table.has("ddu1");
     if (has_du != has_ddu)
@@ -64,6 +79,7 @@ Measurements readMeasurements(const std::string& path, int n) {
     }
     const auto N = static_cast<Eigen::Index>(table.rows.size());
     Measurements m;
+    m.held_forces = held;
     m.u.resize(N, n);
     m.tau.resize(N, n);
     if (has_du) {
@@ -114,7 +130,10 @@ void figure(const Model& model, const FitReport& fit, const std::string& stem) {
         PlotPanel panel;
         panel.title = "actuator " + std::to_string(a + 1);
         panel.xlabel = "t [s]";
-        panel.ylabel = "tau [N or N m]";
+        const auto ia = static_cast<std::size_t>(a);
+        const bool revolute = model.limb[static_cast<std::size_t>(model.actuator_limb[ia])]
+                                  .type[static_cast<std::size_t>(model.actuator_joint[ia])] == JointType::revolute;
+        panel.ylabel = revolute ? "tau [N m]" : "tau [N]";
         PlotSeries measured{"measured", fit.t, {}, "lines lw 1"};
         PlotSeries predicted{"predicted", fit.t, {}, "lines dt 2 lw 2"};
         for (Eigen::Index k = 0; k < fit.measured.rows(); ++k) {
@@ -246,12 +265,16 @@ void addIdentifyCommand(CLI::App& app) {
         "Identify a payload fixed to the platform (mass, c.o.m. [x, y] in the platform frame, moment of inertia\n"
         "about its own c.o.m.; the robot's own parameters from the robot file) or the robot's base parameters\n"
         "(--base; see `nocdyn regressor`) from a log of actuator positions and forces. The CSV holds\n"
-        "t,u1..un,tau1..taun (other columns ignored); with du1..dun,ddu1..ddun they are used as given, else u and\n"
+        "t,u1..un and the forces: tau1..taun measured at each sample, or tau1_held..taun_held, commands held until\n"
+        "the next sample (as `nocdyn control --log` writes them; other columns ignored); with du1..dun,ddu1..ddun\n"
+        "they are used as given, else u and\n"
         "tau are low-pass filtered (zero phase) and u differentiated. The platform pose comes from the\n"
         "direct-kinematics tracker; weighted least squares (weights from each actuator's residual), then the\n"
         "physically consistent solution (mass > 0, inertia about the c.o.m. >= 0, and the bounds of --prior: the\n"
         "bounded least-squares solution, the bounds it lies on reported as active_bounds); standard deviations\n"
-        "from the residuals; the last --holdout of the samples is held out to check the fit. Prints YAML.");
+        "from the residuals; the last --holdout of the samples is held out to check the fit. Prints YAML.\n"
+        "Example: nocdyn control --trajectory paper2 --payload-mass 0.5 --log log.csv && nocdyn identify --data "
+        "log.csv");
     addRobotOption(*command, options->robot);
     command->add_option("--data", options->data, "Measured CSV: " + io::columnList(io::TableId::measurements))
         ->required()
@@ -261,8 +284,9 @@ void addIdentifyCommand(CLI::App& app) {
     command->add_flag("--friction", options->identification.friction,
                       "With --payload: identify the actuated joints' damping and Coulomb friction alongside");
     command->add_flag("--held-forces", options->identification.held_forces,
-                      "The logged forces are commands held until the next sample (zero-order hold, as `nocdyn "
-                      "control --log` writes them): each sample's force is taken as the mean of the holds around it");
+                      "The logged tau1..taun are commands held until the next sample (zero-order hold): each "
+                      "sample's force is taken as the mean of the holds around it. Not needed for columns named "
+                      "tau1_held..taun_held (as `nocdyn control --log` writes them), which are taken so anyway");
     command
         ->add_option("--cutoff", options->identification.cutoff,
                      "Low-pass cut-off when du, ddu are not given [Hz] (default: rate/10, at most 50)")

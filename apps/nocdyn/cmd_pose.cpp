@@ -1,6 +1,7 @@
 // nocdyn pose: everything the model knows at one platform pose, for any robot, as text or JSON.
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
@@ -58,6 +59,21 @@ double rangeUsed(const JointLimits& limits, double q) {
     return std::isfinite(bound) && bound > 0.0 ? std::abs(q) / bound : 0.0;
 }
 
+/// A pose outside a joint's range, said loudly on standard error (also with --json); far outside
+/// (more than 10 times the range), most likely a unit slip: the command line takes m and rad.
+void warnOutsideRange(const Model& model, const Data& data, const Status& limits) {
+    double worst = 0.0;
+    for (int j = 0; j < model.limbs; ++j) {
+        for (int k = 0; k < 3; ++k) {
+            worst =
+                std::max(worst, rangeUsed(model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)],
+                                          data.limb[static_cast<std::size_t>(j)].q(k)));
+        }
+    }
+    std::fprintf(stderr, "nocdyn: warning: %s%s\n", describe(limits, model).c_str(),
+                 worst > 10.0 ? " -- far outside the range: the command line takes m and rad (5 mm is 0.005)" : "");
+}
+
 void run(const PoseOptions& options) {
     const Model model(loadRobotDescriptionOrDefault(options.robot));
     Data data(model);
@@ -66,6 +82,7 @@ void run(const PoseOptions& options) {
         throw Error(describe(status, model));
     }
     const Status limits = checkJointLimits(model, data);
+    if (!limits) warnOutsideRange(model, data, limits);
     // at rest (dp = ddp = 0) tau holds the pose against gravity; the reactions that go with it
     Reactions reactions;
     jointReactions(model, data, reactions);

@@ -23,6 +23,7 @@
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "plants.hpp"
+#include "progress.hpp"
 #include "shake_replay.hpp"
 
 namespace nocdyn::cli {
@@ -239,7 +240,11 @@ void run(ShakeOptions options) {
     for (auto* a : {&record.ax, &record.ay, &record.alpha}) {
         if (!a->empty()) a->resize(n);  // records of one event may differ by a few samples
     }
+    // one progress line every few seconds on standard error (the Simbody plant takes minutes)
+    Heartbeat heartbeat("nocdyn shake");
+    settings.table.progress = [&heartbeat](double t) { heartbeat.at(t); };
     const ShakeOutcome outcome = runShake(robot, record, settings);
+    heartbeat.finish();
     writeShakeOutputs(outcome, Model(robot), options.out, robot.name + ": " + records.front());
     printShakeSummary(outcome, std::cout);
     std::cout << "wrote " << io::terminalText(options.out) << "/shake.csv, shake.json, shake_acceleration.{png,svg}, "
@@ -265,12 +270,14 @@ void addShakeCommand(CLI::App& app) {
             io::columnList(io::TableId::shake) +
             "),\n"
             "DIR/shake.json (time_scale, amplitude_scale, metrics: RMS and peak acceleration errors, 5 %-damped\n"
-            "pseudo-acceleration spectra) and figures DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}.");
+            "pseudo-acceleration spectra) and figures DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}\n"
+            "(DIR: --out-dir). The default plant is nocdyn-rk4 (a 40 s record in seconds); --plant simbody replays\n"
+            "on the independent Simbody model, about 70 times slower, as a check.");
     addRobotOption(*command, options->robot);
     command
         ->add_option("--record", options->records,
                      "AT2 record driving x (values in g); repeat it, or name a folder (its *.AT2 files), for a suite: "
-                     "one folder of outputs per record under --out, the records in parallel, one summary table "
+                     "one folder of outputs per record under --out-dir, the records in parallel, one summary table "
                      "(DIR/summary.md)")
         ->required()
         ->check(CLI::ExistingPath);

@@ -1,6 +1,7 @@
 #include "common.hpp"
 
 #include "plants.hpp"
+#include "progress.hpp"
 
 #include <unistd.h>
 #include <cstdio>
@@ -37,7 +38,7 @@ void setProgressObserver(std::function<void(double, double)> observer) { observe
 
 const std::function<void(double, double)>& progressObserver() { return observerSlot(); }
 
-Progress::Progress(double total) : total_(total), terminal_(::isatty(STDERR_FILENO) == 1) {
+Progress::Progress(double total) : total_(total), terminal_(!quiet() && ::isatty(STDERR_FILENO) == 1) {
     start_ = last_ = secondsNow();
 }
 
@@ -49,12 +50,19 @@ void Progress::update(double done) {
         observer(done, total_);
         return;
     }
-    if (!terminal_) return;
+    if (quiet()) return;
     const double now = secondsNow();
-    if (now - last_ < 1.0 || !(total_ > 0.0)) return;
+    if (now - last_ < (terminal_ ? 1.0 : kProgressLogSeconds) || !(total_ > 0.0)) return;
     last_ = now;
     const double fraction = std::clamp(done / total_, 0.0, 1.0);
     const double left = fraction > 0.0 ? (now - start_) * (1.0 - fraction) / fraction : 0.0;
+    if (!terminal_) {
+        // a log: a line of its own
+        std::fprintf(stderr, "nocdyn: t = %.4g of %.4g s (%.0f %%), %.0f s so far, about %.0f s left\n", done, total_,
+                     100.0 * fraction, now - start_, left);
+        std::fflush(stderr);
+        return;
+    }
     std::fprintf(stderr, "\rnocdyn: t = %.4g of %.4g s (%.0f %%), about %.0f s left   ", done, total_, 100.0 * fraction,
                  left);
     std::fflush(stderr);

@@ -65,9 +65,10 @@ void setProgressObserver(std::function<void(double, double)> observer);
 /// The observer set by setProgressObserver (empty: none).
 [[nodiscard]] const std::function<void(double, double)>& progressObserver();
 
-/// Progress of a long job on a terminal: "t = 1.2 of 10 s (12 %), about 40 s left" on one
-/// line of standard error, rewritten at most once a second, only when standard error is a
-/// terminal (never into a redirected log); cleared by done() or when dropped.
+/// Progress of a long job: "t = 1.2 of 10 s (12 %), about 40 s left" on standard error. On a
+/// terminal one line rewritten at most once a second and cleared by finish() or when dropped;
+/// otherwise (a log, a pipe) one line of its own every kProgressLogSeconds, the first only
+/// after that long (a short run writes nothing). Nothing with --quiet (setQuiet).
 class Progress {
 public:
     explicit Progress(double total);

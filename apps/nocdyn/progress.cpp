@@ -1,6 +1,8 @@
 #include "progress.hpp"
 
 #include "common.hpp"
+#include "nocdyn/io/escape.hpp"
+#include "nocdyn/io/output.hpp"
 
 #include <unistd.h>
 #include <algorithm>
@@ -14,11 +16,26 @@ namespace {
 double secondsNow() {
     return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
+
+bool quiet_run = false;
+
+void wrote(const std::string& path) {
+    if (!quiet_run) std::fprintf(stderr, "nocdyn: wrote %s\n", io::terminalText(path).c_str());
+}
 }  // namespace
 
+void setQuiet(bool quiet) { quiet_run = quiet; }
+
+bool quiet() { return quiet_run; }
+
+void announceWrittenFiles() { io::setCommitObserver(&wrote); }
+
 Steps::Steps(std::string job, int total, bool quiet)
-    : job_(std::move(job)), total_(total), terminal_(!quiet && ::isatty(STDERR_FILENO) == 1) {
-    start_ = last_ = secondsNow();
+    : job_(std::move(job)),
+      total_(total),
+      terminal_(!quiet && !quiet_run && ::isatty(STDERR_FILENO) == 1),
+      quiet_(quiet || quiet_run) {
+    start_ = last_ = logged_ = secondsNow();
 }
 
 Steps::~Steps() { finish(); }
@@ -31,7 +48,16 @@ void Steps::next(const std::string& what) {
         observer(index_ - 1, total_);
         return;
     }
-    if (!terminal_) return;
+    if (!terminal_) {
+        // a log: the step's line once the run has taken kProgressLogSeconds since the last one
+        const double now = secondsNow();
+        if (quiet_ || now - logged_ < kProgressLogSeconds) return;
+        logged_ = now;
+        std::fprintf(stderr, "%s: %d of %d, %s (%.0f s so far)\n", job_.c_str(), index_, total_, step_.c_str(),
+                     now - start_);
+        std::fflush(stderr);
+        return;
+    }
     char head[64];
     std::snprintf(head, sizeof head, ": %d of %d, ", index_, total_);
     char tail[48];
@@ -41,7 +67,15 @@ void Steps::next(const std::string& what) {
 
 void Steps::count(int done, int total, const char* item) {
     const auto& observer = progressObserver();
-    if (!terminal_ && !observer) return;
+    if (!terminal_ && !observer) {
+        const double now = secondsNow();
+        if (quiet_ || now - logged_ < kProgressLogSeconds) return;
+        logged_ = now;
+        std::fprintf(stderr, "%s: %s%s%s %d of %d (%.0f s so far)\n", job_.c_str(), step_.c_str(),
+                     step_.empty() ? "" : ", ", item, done, total, now - start_);
+        std::fflush(stderr);
+        return;
+    }
     const double now = secondsNow();
     if (now - last_ < 0.2 && done < total) return;
     last_ = now;
@@ -66,6 +100,31 @@ void Steps::finish() {
     std::fprintf(stderr, "\r\033[K");
     std::fflush(stderr);
     written_ = false;
+}
+
+Heartbeat::Heartbeat(std::string job) : job_(std::move(job)), terminal_(::isatty(STDERR_FILENO) == 1) {
+    start_ = last_ = secondsNow();
+}
+
+Heartbeat::~Heartbeat() { finish(); }
+
+void Heartbeat::at(double t) {
+    // the Python package (an observer set) has its own progress; a line only for the command line
+    if ((++calls_ & 1023U) != 0 || quiet_run || progressObserver()) return;
+    const double now = secondsNow();
+    if (now - last_ < (terminal_ ? 1.0 : kProgressLogSeconds)) return;
+    last_ = now;
+    std::fprintf(stderr, terminal_ ? "\r\033[K%s: t = %.4g s (%.0f s so far)" : "%s: t = %.4g s (%.0f s so far)\n",
+                 job_.c_str(), t, now - start_);
+    std::fflush(stderr);
+    shown_ = terminal_;
+}
+
+void Heartbeat::finish() {
+    if (!shown_) return;
+    std::fprintf(stderr, "\r\033[K");
+    std::fflush(stderr);
+    shown_ = false;
 }
 
 }  // namespace nocdyn::cli

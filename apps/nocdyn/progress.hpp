@@ -1,11 +1,23 @@
-// Progress of a job made of named steps or counted items, for a person at a terminal: one line
-// of standard error, rewritten in place and cleared at the end. Nothing is written when
-// standard error is not a terminal (a log, a pipe, a test) or when the user asked for quiet.
+// Progress of a job made of named steps or counted items, for a person: on a terminal one line
+// of standard error, rewritten in place and cleared at the end; otherwise (a log, a pipe) one
+// line of its own every kProgressLogSeconds, the first only after that long, so that a long
+// run is never silent and a short one writes nothing. Nothing when the user asked for quiet.
 #pragma once
 
 #include <string>
 
 namespace nocdyn::cli {
+
+/// Seconds between two progress lines when standard error is not a terminal.
+inline constexpr double kProgressLogSeconds = 5.0;
+
+/// --quiet of the command running: no progress and no "wrote FILE" lines on standard error.
+void setQuiet(bool quiet);
+[[nodiscard]] bool quiet();
+
+/// The command line's rule for files: every file written is named on standard error as
+/// "nocdyn: wrote PATH" when written (unless quiet). Installed by runCommandLine.
+void announceWrittenFiles();
 
 class Steps {
 public:
@@ -30,7 +42,26 @@ private:
 
     std::string job_, step_;
     int total_ = 0, index_ = 0;
-    bool terminal_ = false, written_ = false;
+    bool terminal_ = false, written_ = false, quiet_ = false;
+    double start_ = 0.0, last_ = 0.0, logged_ = 0.0;
+};
+
+/// Progress of a run whose length is known only as it goes (a replay, its passes): "JOB: t =
+/// 12.3 s (8 s so far)", on a terminal rewritten at most once a second, else a line of its own
+/// every kProgressLogSeconds; nothing when quiet. at() is cheap (the clock every 1024 calls).
+class Heartbeat {
+public:
+    explicit Heartbeat(std::string job);
+    ~Heartbeat();
+    Heartbeat(const Heartbeat&) = delete;
+    Heartbeat& operator=(const Heartbeat&) = delete;
+    void at(double t);
+    void finish();
+
+private:
+    std::string job_;
+    bool terminal_ = false, shown_ = false;
+    unsigned calls_ = 0;
     double start_ = 0.0, last_ = 0.0;
 };
 

@@ -71,7 +71,11 @@ std::vector<Layout> makeLayouts() {
          "the rates are optional (without them `identify` differentiates u).",
          {t,
           {"u{a}", kActuatorUnit, "measured displacement of actuator a", Repeat::actuator},
-          {"tau{a}", kForceUnit, "measured force or torque of actuator a", Repeat::actuator},
+          {"tau{a}", kForceUnit,
+           "force or torque of actuator a at the sample's instant (measured); named tau{a}_held when it is the "
+           "command held from this sample to the next (`control --log`), which `identify` then averages over "
+           "the two holds around each sample",
+           Repeat::actuator},
           {"du{a}", "m/s or rad/s", "actuator a's rate", Repeat::actuator, true},
           {"ddu{a}", "m/s^2 or rad/s^2", "actuator a's acceleration", Repeat::actuator, true}}},
         {held_out_forces,

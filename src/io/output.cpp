@@ -26,6 +26,8 @@ namespace {
 
 constexpr std::size_t kBufferBytes = std::size_t{1} << 16;
 
+std::atomic<CommitObserver> commit_observer{nullptr};
+
 [[noreturn]] void fail(const std::string& what, const std::string& path, int error) {
     throw Error(what + " '" + path + "': " + std::strerror(error));
 }
@@ -223,9 +225,12 @@ void OutputFile::commit() {
             (void)::fsync(dir);
             ::close(dir);
         }
+        if (const CommitObserver observer = commit_observer.load()) observer(path_);
     }
     committed_ = true;
 }
+
+void setCommitObserver(CommitObserver observer) { commit_observer.store(observer); }
 
 void removeTemporariesOnSignals() {
     struct sigaction action {};

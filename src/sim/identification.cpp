@@ -331,7 +331,7 @@ Motion reconstructMotion(const Model& model, const Measurements& measured, const
     const bool given = measured.du.size() > 0 && measured.ddu.size() > 0;
     Eigen::MatrixXd u = measured.u, tau = measured.tau, du, ddu;
     Eigen::Index first = 0, last = N;
-    if (options.held_forces) {
+    if (options.held_forces || measured.held_forces) {
         for (Eigen::Index k = N - 1; k > 0; --k) tau.row(k) = 0.5 * (tau.row(k - 1) + tau.row(k));
         first = 1;
     }
@@ -1055,6 +1055,7 @@ Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_t
         throw Error("sensorLog: the run's encoder readings do not match its ticks");
     Measurements m;
     m.t = run.t;
+    m.held_forces = true;  // the loop holds each tick's command until the next
     m.u.resize(N, n);
     m.tau.resize(N, n);
     for (Eigen::Index k = 0; k < N; ++k) {

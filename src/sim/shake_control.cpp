@@ -153,6 +153,7 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
     Vector3 pose_sq = Vector3::Zero(), rate_sq = Vector3::Zero();
     bool first = true;
     for (const double t : times) {
+        if (options.progress) options.progress(t);
         if (const Status status = poseReference(model, data, trajectory, t, reference); !status) {
             fail(t, status, "reference");
         }

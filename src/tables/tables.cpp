@@ -70,6 +70,12 @@ Table toTable(const Measurements& measurements) {
     const auto n = measurements.u.cols();
     const bool rates = measurements.du.size() > 0 && measurements.ddu.size() > 0;
     table.columns = columnNames(TableId::measurements, {.actuators = static_cast<int>(n), .optional = rates});
+    if (measurements.held_forces) {
+        // forces held from each sample to the next say so in their name: tau{a}_held
+        for (std::string& name : table.columns) {
+            if (name.starts_with("tau")) name += "_held";
+        }
+    }
     for (std::size_t k = 0; k < measurements.t.size(); ++k) {
         const auto kk = static_cast<Eigen::Index>(k);
         std::vector<double> row{measurements.t[k]};

@@ -26,7 +26,8 @@ from conftest import SOURCE_DIR, skip_or_fail_in_ci
 # options of the command line with no Python argument: the output format of the printed answer, or
 # none (Python always gets the structured answer, and the printed text in .text)
 CLI_ONLY = {("pose", "json"), ("forward-kinematics", "json"), ("workspace", "json"), ("workspace", "quiet"),
-            ("envelope", "quiet"), ("reproduce", "quiet")}
+            ("envelope", "quiet"), ("reproduce", "quiet"), ("control", "quiet"), ("shake", "quiet"),
+            ("simulate", "quiet"), ("inverse-dynamics", "quiet")}
 # Python arguments with no option: the progress callback of the long commands
 PYTHON_ONLY = {"progress"}
 # positional arguments of the command line (upper case) and their Python names

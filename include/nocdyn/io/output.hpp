@@ -71,6 +71,12 @@ private:
 /// process by the same signal. For programs (the command line), not for a library's host.
 void removeTemporariesOnSignals();
 
+/// Called with the path of every file an OutputFile has written (a regular file, after its
+/// rename; not standard output or a device): the command line names each file it writes on
+/// standard error through it. nullptr (the default, for a library's host): nothing.
+using CommitObserver = void (*)(const std::string& path);
+void setCommitObserver(CommitObserver observer);
+
 /// Creates `path` as a new file, exclusively (O_CREAT | O_EXCL | O_NOFOLLOW | O_CLOEXEC, mode
 /// 0666 less the umask), and returns its descriptor. Throws nocdyn::Error when anything, even
 /// a dangling symbolic link, already exists under that name.

@@ -102,6 +102,10 @@ struct BaseParameterOptions {
 struct Measurements {
     std::vector<double> t;
     Eigen::MatrixXd u, tau, du, ddu;
+    /// What tau is: false, the force at each sample's instant (a force sensor's reading); true,
+    /// the command applied from each sample until the next (zero-order hold, as sensorLog and
+    /// `nocdyn control --log` give it; a log names these columns tau{a}_held).
+    bool held_forces = false;
 };
 
 /// The robot's own base parameters as identified on it (identifyBase on data without payload):

@@ -109,6 +109,8 @@ struct ShakeLoopOptions {
     bool keep_actuators = true;
     /// Called once per tick with its index, time, u and the applied tau (may be empty).
     std::function<void(std::size_t, double, const ActuatorVector&, const ActuatorVector&)> on_tick;
+    /// Called at each tick with its time [s] (e.g. a progress line); none by default.
+    std::function<void(double t)> progress = {};
 };
 
 /// What the estimator achieved over a run, against the plant's true state (kept for the report;
