@@ -35,6 +35,32 @@ const std::vector<double>& target(const FittedRecord& fit, int axis) {
     return axis == 0 ? fit.alpha : axis == 1 ? fit.ax : fit.ay;
 }
 
+/// What one pass keeps of its actuators, tick by tick as the loop runs: the worst limit use and
+/// u, tau at the tick nearest each record sample (fit.t).
+struct PassActuators {
+    LimitUse use;
+    std::vector<double> u, tau;  // n per sample
+    std::size_t next = 0;        // the next sample of fit.t to capture
+
+    void tick(const Model& model, const std::vector<double>& sample_t, double rate, std::size_t k, double t,
+              const ActuatorVector& u_k, const ActuatorVector& tau_k) {
+        // worst |u - centre| / half range and |tau| / effort (no margin; du is not recorded)
+        accumulateLimitUse(model, t, u_k, nullptr, tau_k, 0.0, use);
+        if (k == 0) {
+            u.reserve(sample_t.size() * static_cast<std::size_t>(model.actuators));
+            tau.reserve(u.capacity());
+        }
+        const double tick = 1.0 / rate;
+        while (next < sample_t.size() && static_cast<std::size_t>(std::lround(sample_t[next] / tick)) <= k) {
+            for (int a = 0; a < model.actuators; ++a) {
+                u.push_back(u_k(a));
+                tau.push_back(tau_k(a));
+            }
+            ++next;
+        }
+    }
+};
+
 /// Worst |u - centre| / half range and |tau| / effort over the run (no margin; the loop does not
 /// record du).
 LimitUse runUse(const Model& model, const PoseLoopResult& loop) {
@@ -86,6 +112,12 @@ std::vector<double> rateOf(const std::vector<Pose>& p, int axis, double tick) {
 
 }  // namespace
 
+double replayBytesPerTick(const std::string& controller) {
+    // t, p, p_d, the loop's tick times, and the scores' displacement and rate series of one axis
+    const double kept = sizeof(double) + 2.0 * sizeof(Pose) + sizeof(double) + 4.0 * sizeof(double);
+    return controller == "table" ? kept : kept + 4.0 * sizeof(ActuatorVector);
+}
+
 ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record, const ShakeSettings& settings) {
     const Model model(robot);
     ShakeOutcome out;
@@ -98,6 +130,22 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
     out.fit = fitRecord(model, scaled, settings.fit);
     out.margin = settings.fit.margin;
     const FittedRecord& fit = out.fit;
+    {
+        // the memory the closed loop will hold, refused before it is taken
+        const double ticks = std::floor(fit.t.back() * settings.rate) + 1.0;
+        const double bytes = ticks * replayBytesPerTick(settings.controller);
+        if (!(bytes <= kMaxReplayBytes)) {
+            const double record_seconds = record.dt * static_cast<double>(fit.t.size() - 1);
+            char text[512];
+            std::snprintf(text, sizeof text,
+                          "the replay of this %.6g s record is too long to hold: time scale L = %.4g gives %.6g s "
+                          "of replay, %.4g million ticks at %.6g Hz, about %.0f MB (%.3g MB per second of record); "
+                          "the limit is %.0f MB per replay: play part of the record (--window) or lower --rate",
+                          record_seconds, fit.time_scale, fit.t.back(), ticks / 1e6, settings.rate, bytes / 1e6,
+                          bytes / 1e6 / record_seconds, kMaxReplayBytes / 1e6);
+            throw Error(text);
+        }
+    }
     out.driven = {!fit.alpha.empty(), !fit.ax.empty(), !fit.ay.empty()};
     const std::unique_ptr<RobotPlant> plant =
         makePlant(settings.plant, withPayload(robot, settings.payload), settings.accuracy);
@@ -109,13 +157,19 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
     }
     const Model controller_model(known);
     // one pass of a drive (a fitted motion) on the plant; each pass draws its own sensor noise
-    // (a new run of the table), so that the iteration corrects the table's repeatable error only
-    const auto play = [&](const PoseTrajectory& drive, EstimatorReport* report, int pass) {
+    // (a new run of the table), so that the iteration corrects the table's repeatable error only.
+    // Its actuators go to `actuators` as the loop runs (only t, p and p_d of each tick are kept).
+    const auto play = [&](const PoseTrajectory& drive, EstimatorReport* report, int pass, PassActuators& actuators) {
+        actuators = PassActuators{};
         if (settings.controller == "table") {
             ShakeLoopOptions loop = settings.table;
             loop.rate = settings.rate;
             loop.duration = fit.t.back();
             loop.seed = settings.table.seed + static_cast<unsigned>(pass);
+            loop.keep_actuators = false;
+            loop.on_tick = [&](std::size_t k, double t, const ActuatorVector& u, const ActuatorVector& tau) {
+                actuators.tick(model, fit.t, settings.rate, k, t, u, tau);
+            };
             return runShakeLoop(controller_model, *plant, drive, loop, report);
         }
         if (settings.controller != "pose")
@@ -130,7 +184,12 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         loop.noise_rate = settings.noise_rate;
         loop.seed = settings.seed + static_cast<unsigned>(pass);
         loop.progress = settings.table.progress;
-        return runPoseLoop(controller, *plant, drive, loop);
+        PoseLoopResult result = runPoseLoop(controller, *plant, drive, loop);
+        for (std::size_t k = 0; k < result.t.size(); ++k)
+            actuators.tick(model, fit.t, settings.rate, k, result.t[k], result.u[k], result.tau[k]);
+        for (auto* v : {&result.u, &result.u_d, &result.tau, &result.u_measured})
+            std::vector<ActuatorVector>().swap(*v);
+        return result;
     };
     const int scored_axis = out.driven[1] ? 1 : out.driven[2] ? 2 : 0;
     const auto passRms = [&](const PoseLoopResult& loop, std::array<std::vector<double>, 3>& achieved) {
@@ -140,7 +199,8 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
                                 std::span(achieved[static_cast<std::size_t>(scored_axis)]).first(n));
     };
     const auto start = std::chrono::steady_clock::now();
-    out.loop = play(fit.trajectory, &out.estimator, 0);
+    PassActuators kept;
+    out.loop = play(fit.trajectory, &out.estimator, 0, kept);
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out.pass_rms.push_back(passRms(out.loop, out.achieved));
     // drive-signal iteration (time waveform replication)
@@ -171,7 +231,8 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
             out.iteration_stop = "pass " + std::to_string(pass) + "'s drive would leave the limits";
             break;
         }
-        PoseLoopResult loop = play(refit.trajectory, nullptr, pass);
+        PassActuators actuators;
+        PoseLoopResult loop = play(refit.trajectory, nullptr, pass, actuators);
         std::array<std::vector<double>, 3> achieved;
         const double rms = passRms(loop, achieved);
         out.pass_rms.push_back(rms);
@@ -180,6 +241,7 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
             out.best_pass = pass;
             out.loop = std::move(loop);
             out.achieved = achieved;
+            kept = std::move(actuators);
         }
         last_achieved = std::move(achieved);
         if (!(rms < (1.0 - settings.iteration_tolerance) * best)) {
@@ -238,7 +300,9 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         score.displacement_error = relativeRmsError(d_target, d_achieved, model.home(axis));
         score.velocity_error = relativeRmsError(rateOf(out.loop.p_d, axis, tick), rateOf(out.loop.p, axis, tick));
     }
-    out.achieved_use = runUse(model, out.loop);
+    out.achieved_use = kept.use;
+    out.u_at_samples = std::move(kept.u);
+    out.tau_at_samples = std::move(kept.tau);
     return out;
 }
 
@@ -254,12 +318,11 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
     // shake.csv at the record's (scaled) samples; u and tau from the nearest tick
     io::Table table;
     table.columns = io::columnNames(io::TableId::shake, {.actuators = n});
-    const double tick = loop.t.size() > 1 ? loop.t[1] - loop.t[0] : 1.0;
+    const auto un = static_cast<std::size_t>(n);
+    const std::size_t samples = un == 0 ? 0 : std::min(fit.t.size(), outcome.u_at_samples.size() / un);
     Pose p, dp, ddp;
-    for (std::size_t i = 0; i < fit.t.size(); ++i) {
+    for (std::size_t i = 0; i < samples; ++i) {
         const double t = fit.t[i];
-        const auto k = static_cast<std::size_t>(std::lround(t / tick));
-        if (k >= loop.t.size()) break;
         fit.trajectory.evaluate(t, p, dp, ddp);
         std::vector<double> row = {t,
                                    p(1),
@@ -271,8 +334,8 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
                                    outcome.achieved[1][i],
                                    outcome.achieved[2][i],
                                    outcome.achieved[0][i]};
-        for (int a = 0; a < n; ++a) row.push_back(loop.u[k](a));
-        for (int a = 0; a < n; ++a) row.push_back(loop.tau[k](a));
+        for (std::size_t a = 0; a < un; ++a) row.push_back(outcome.u_at_samples[i * un + a]);
+        for (std::size_t a = 0; a < un; ++a) row.push_back(outcome.tau_at_samples[i * un + a]);
         table.rows.push_back(std::move(row));
     }
     io::writeCsvFile((folder / "shake.csv").string(), table);

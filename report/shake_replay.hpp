@@ -56,6 +56,16 @@ struct PayloadIdentification {
     LimitUse excitation_use;  ///< of the excitation run (no margin)
 };
 
+/// Memory ceiling of one replay [bytes]. The closed loop keeps t, p and p_d of every controller
+/// tick (56 bytes; the table controller streams u and tau, the pose controller keeps them, 664
+/// bytes a tick), and the scores a few numbers more; a replay whose ticks would hold more than
+/// this is refused before it starts, with its size: about 1 MB per second of replay at 10 kHz
+/// with the table controller, so about 1 000 s of replay.
+inline constexpr double kMaxReplayBytes = 1.0e9;
+
+/// Bytes a replay holds per controller tick (the ceiling's measure).
+[[nodiscard]] double replayBytesPerTick(const std::string& controller);
+
 struct ShakeOutcome {
     FittedRecord fit;
     PayloadIdentification payload;
@@ -65,7 +75,10 @@ struct ShakeOutcome {
     std::vector<double> pass_rms;  ///< RMS error of each pass (x, else the first driven axis)
     int best_pass = 0;             ///< the pass kept (0: the first)
     std::string iteration_stop;    ///< why the iteration stopped
-    PoseLoopResult loop;
+    PoseLoopResult loop;           ///< t, p, p_d of the kept pass (u and tau below, at the record's samples)
+    /// u and tau at the tick nearest each of fit.t (n values per sample, as many samples as the
+    /// loop reached), for shake.csv
+    std::vector<double> u_at_samples, tau_at_samples;
     std::array<std::vector<double>, 3> achieved;  ///< [alpha, ax, ay] at fit.t
     std::array<bool, 3> driven{};                 ///< [theta, x, y]
     std::array<ShakeScore, 3> score;              ///< of the driven axes

@@ -34,11 +34,12 @@ TEST(At2, ReadsTheLowerCaseDtHeaderFormWithoutUnit) {
     EXPECT_DOUBLE_EQ(r.acceleration[1], 0.025 * 9.80665);
 }
 
-TEST(At2, ReadsTheNumbersFirstHeaderFormAndIgnoresExtraValues) {
-    const io::GroundMotionRecord r = io::parseAt2(kHead + "4 0.00500 NPTS, DT\n1 2 3 4 5 6\n7\n", "c.AT2");
+TEST(At2, ReadsTheNumbersFirstHeaderFormAndRefusesValuesBeyondNpts) {
+    const io::GroundMotionRecord r = io::parseAt2(kHead + "4 0.00500 NPTS, DT\n1 2 3 4\n", "c.AT2");
     EXPECT_DOUBLE_EQ(r.dt, 0.005);
     ASSERT_EQ(r.acceleration.size(), 4u);
     EXPECT_DOUBLE_EQ(r.acceleration[3], 4 * 9.80665);
+    EXPECT_THROW((void)io::parseAt2(kHead + "4 0.00500 NPTS, DT\n1 2 3 4 5 6\n7\n", "c.AT2"), Error);
 }
 
 TEST(At2, ShippedElCentroRecordHas1559PointsAt20msAndItsKnownPeak) {

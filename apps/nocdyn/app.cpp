@@ -184,6 +184,11 @@ std::unique_ptr<CLI::App> makeApp() {
     addValidateCommand(app);
 #endif
     app.set_version_flag("--version,-V", std::string("nocdyn ") + NOCDYN_VERSION);
+    requireFiniteFloats(app);
+    // before the chosen command runs: none may write over its own input
+    app.parse_complete_callback([&app] {
+        for (const CLI::App* command : app.get_subcommands()) refuseOutputOverInput(*command);
+    });
     // one line per command in `nocdyn --help`, grouped; the rest of each description is shown
     // by the command's own --help
     const std::pair<const char*, std::vector<std::string>> groups[] = {

@@ -3,11 +3,14 @@
 // with the Pareto front (pareto.csv) and figures; a journal lets a stopped sweep resume.
 #include <unistd.h>
 
+#include <charconv>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -20,6 +23,7 @@
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/model.hpp"
 #include "plot.hpp"
+#include "progress.hpp"
 #include "workspace_figure.hpp"
 
 namespace nocdyn::cli {
@@ -92,19 +96,38 @@ private:
     std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now(), last_{};
 };
 
+/// The shortest decimal that reads back as exactly `value`: two options that differ in any bit
+/// differ here (std::to_string keeps six decimals and would take 0.1 and 0.1000001 as one).
+std::string exact(double value) {
+    char buffer[64];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+    return {buffer, end};
+}
+
+/// What a journal is kept for: the content of every input file (the robot file, a trajectory
+/// file) and every option that changes a design's numbers, each exactly. Any difference makes
+/// the journal another sweep's, which is refused rather than reused.
 std::string signature(const Options& options, const io::DesignFamily& family, const std::vector<DesignMetric>& metrics,
                       const DesignOptions& design) {
     std::string s = "robot " + io::fingerprint(family.text);
-    for (const io::Parameter& p : family.fixed) s += " set " + p.name + "=" + std::to_string(p.value);
-    for (const DesignRange& r : family.ranges)
-        s += " vary " + r.name + "=" + io::fingerprint(std::to_string(r.lower) + ":" + std::to_string(r.upper));
+    for (const io::Parameter& p : family.fixed) s += " set " + p.name + "=" + exact(p.value);
+    for (const DesignRange& r : family.ranges) s += " vary " + r.name + "=" + exact(r.lower) + ":" + exact(r.upper);
     s += " " + options.sweep + " " + std::to_string(options.samples) + " seed " + std::to_string(options.seed);
     for (const DesignMetric& m : metrics) s += " " + m.name();
     s += " ws " + std::to_string(design.workspace.resolution) +
-         (options.theta_given ? "@" + std::to_string(options.theta) : std::string());
+         (options.theta_given ? "@" + exact(options.theta) : std::string());
     if (design.trajectory) {
-        s += " trajectory " + io::fingerprint(options.trajectory) + " " + std::to_string(design.duration) + " " +
-             std::to_string(design.rate);
+        // a file by its content (an edited file is another sweep), a built-in one by its name
+        std::error_code ec;
+        std::string content = "builtin";
+        if (std::filesystem::is_regular_file(options.trajectory, ec)) {
+            std::ifstream in(options.trajectory, std::ios::binary);
+            std::ostringstream text;
+            text << in.rdbuf();
+            content = io::fingerprint(text.str());
+        }
+        s += " trajectory " + io::fingerprint(options.trajectory) + " " + content + " " + exact(design.duration) + " " +
+             exact(design.rate);
     }
     return io::fingerprint(s);
 }
@@ -242,7 +265,12 @@ void run(const Options& options) {
         evaluations.push_back(r->evaluation);
     }
     io::writeDesignTable((dir / "designs.csv").string(), columns, records);
-    const std::vector<std::size_t> front = paretoFront(evaluations, metrics);
+    Steps front_progress("nocdyn design", 1);
+    front_progress.next("Pareto front");
+    const std::vector<std::size_t> front = paretoFront(evaluations, metrics, [&](std::size_t done, std::size_t total) {
+        front_progress.count(static_cast<int>(done), static_cast<int>(total), "design");
+    });
+    front_progress.finish();
     std::vector<io::DesignRecord> front_records;
     for (const std::size_t i : front) front_records.push_back(records[i]);
     io::writeDesignTable((dir / "pareto.csv").string(), columns, front_records);

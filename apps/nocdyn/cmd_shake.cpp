@@ -2,6 +2,7 @@
 // the reproduction (shake_replay.hpp).
 #include <algorithm>
 #include <atomic>
+#include <charconv>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "plants.hpp"
 #include "progress.hpp"
@@ -84,8 +86,37 @@ std::vector<std::string> expandRecords(const std::vector<std::string>& names) {
     return out;
 }
 
+/// One folder name per record, safe and unique: the record's stem with every character but
+/// letters, digits, '-' and '_' replaced by '_' (no separator, no "." or ".." and no hidden
+/// folder), "record" when nothing is left, and "-2", "-3", ... after a name already taken
+/// ignoring case (quake.AT2 and quake.at2 must not share a folder on any file system).
+std::vector<std::string> recordFolders(const std::vector<std::string>& records) {
+    std::vector<std::string> out, taken;
+    for (const std::string& record : records) {
+        std::string name = std::filesystem::path(record).stem().string();
+        bool any = false;
+        for (char& c : name) {
+            const bool plain = std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_';
+            if (!plain) c = '_';
+            any = any || std::isalnum(static_cast<unsigned char>(c)) != 0;
+        }
+        if (!any) name = "record";
+        if (name.size() > 100) name.resize(100);
+        const auto lower = [](std::string text) {
+            for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+            return text;
+        };
+        std::string chosen = name;
+        for (int k = 2; std::find(taken.begin(), taken.end(), lower(chosen)) != taken.end(); ++k)
+            chosen = name + "-" + std::to_string(k);
+        taken.push_back(lower(chosen));
+        out.push_back(chosen);
+    }
+    return out;
+}
+
 struct SuiteRow {
-    std::string record;
+    std::string record, folder;
     ShakeOutcome outcome;
     std::string error;
 };
@@ -97,22 +128,25 @@ bool suiteLine(const SuiteRow& row, const ShakeOptions& options, std::string& li
     const double within = 1.0 - s.share_outside;
     const bool pass = s.rms_error <= options.max_rms && std::abs(s.peak_error) <= options.max_peak &&
                       within >= options.min_spectrum && o.achieved_use.ratio <= 1.0;
-    char text[1024];
-    std::snprintf(text, sizeof text, "| %s | %.4g | %.4g%s | %.2f %% | %+.2f %% | %.0f %% | %.0f %% (%s) | %s |",
-                  std::filesystem::path(row.record).filename().string().c_str(), o.fit.time_scale,
-                  o.fit.amplitude_scale * o.amplitude, o.amplitude != 1.0 ? " (asked)" : "", 100.0 * s.rms_error,
-                  100.0 * s.peak_error, 100.0 * within, 100.0 * o.achieved_use.ratio, o.achieved_use.what.c_str(),
-                  pass ? "pass" : "FAIL");
-    line = text;
+    char numbers[512];
+    std::snprintf(numbers, sizeof numbers, " %.4g | %.4g%s | %.2f %% | %+.2f %% | %.0f %% | %.0f %% (%s) | %s |",
+                  o.fit.time_scale, o.fit.amplitude_scale * o.amplitude, o.amplitude != 1.0 ? " (asked)" : "",
+                  100.0 * s.rms_error, 100.0 * s.peak_error, 100.0 * within, 100.0 * o.achieved_use.ratio,
+                  o.achieved_use.what.c_str(), pass ? "pass" : "FAIL");
+    // the names through the Markdown escaper: a file name cannot forge a row or carry HTML
+    line = "| " + io::markdownText(std::filesystem::path(row.record).filename().string()) + " | " +
+           io::markdownText(row.folder) + " |" + numbers;
     return pass;
 }
 
 void runSuite(const std::vector<std::string>& records, const ShakeOptions& options, const RobotDescription& robot) {
     std::vector<SuiteRow> rows(records.size());
     std::vector<GroundRecord> inputs(records.size());
+    const std::vector<std::string> folders = recordFolders(records);
     // every record read (and refused) before any replay
     for (std::size_t i = 0; i < records.size(); ++i) {
         rows[i].record = records[i];
+        rows[i].folder = folders[i];
         inputs[i].ax = readAxis(records[i], options.window, inputs[i].dt, false);
     }
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
@@ -124,9 +158,9 @@ void runSuite(const std::vector<std::string>& records, const ShakeOptions& optio
         for (std::size_t i = next++; i < records.size(); i = next++) {
             try {
                 rows[i].outcome = runShake(robot, inputs[i], options.settings);
-                const std::string stem = std::filesystem::path(records[i]).stem().string();
                 const std::lock_guard lock(output);
-                writeShakeOutputs(rows[i].outcome, Model(robot), (std::filesystem::path(options.out) / stem).string(),
+                writeShakeOutputs(rows[i].outcome, Model(robot),
+                                  (std::filesystem::path(options.out) / folders[i]).string(),
                                   robot.name + ": " + records[i]);
                 rows[i].outcome.loop = {};  // the ticks are written; keep the scores
                 rows[i].outcome.achieved = {};
@@ -149,9 +183,10 @@ void runSuite(const std::vector<std::string>& records, const ShakeOptions& optio
                   "spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%\n\n",
                   records.size(), options.settings.plant.c_str(), options.settings.controller.c_str(), workers,
                   100.0 * options.max_rms, 100.0 * options.max_peak, 100.0 * options.min_spectrum);
-    table << head << "sensors: " << rows.front().outcome.sensing << "\n\n"
-          << "| record | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
-             "result |\n|---|---|---|---|---|---|---|---|\n";
+    table
+        << head << "sensors: " << rows.front().outcome.sensing << "\n\n"
+        << "| record | folder | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
+           "result |\n|---|---|---|---|---|---|---|---|---|\n";
     int passed = 0;
     for (const SuiteRow& row : rows) {
         std::string line;
@@ -160,22 +195,20 @@ void runSuite(const std::vector<std::string>& records, const ShakeOptions& optio
     }
     table << "\n" << passed << " of " << rows.size() << " records pass\n";
     io::writeTextFile((std::filesystem::path(options.out) / "summary.md").string(), table.str());
-    std::cout << table.str() << "wrote " << options.out << "/summary.md and one folder per record\n";
+    std::cout << table.str() << "wrote " << io::terminalText(options.out) << "/summary.md and one folder per record\n";
 }
 
 void run(ShakeOptions options) {
     const RobotDescription robot = loadRobotDescriptionOrDefault(options.robot);
     if (options.time_scale != "auto") {
-        std::size_t used = 0;
+        // a decimal number only (std::stod would read 0x10 as 16, and nan or inf)
         double value = 0.0;
-        try {
-            value = std::stod(options.time_scale, &used);
-        } catch (const std::exception&) {
-            used = 0;
-        }
-        if (used != options.time_scale.size() || !(value >= 1e-3 && value <= 1e4)) {
-            throw Error("--time-scale: expected auto or a number from 0.001 to 10000, got '" + options.time_scale +
-                        "'");
+        const std::string& text = options.time_scale;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
+            !(value >= 1e-3 && value <= 1e4)) {
+            throw Error("--time-scale: expected auto or a decimal number from 0.001 to 10000, got '" +
+                        io::terminalText(text) + "'");
         }
         options.settings.fit.time_scale = value;
     }
@@ -214,7 +247,7 @@ void run(ShakeOptions options) {
     heartbeat.finish();
     writeShakeOutputs(outcome, Model(robot), options.out, robot.name + ": " + records.front());
     printShakeSummary(outcome, std::cout);
-    std::cout << "wrote " << options.out << "/shake.csv, shake.json, shake_acceleration.{png,svg}, "
+    std::cout << "wrote " << io::terminalText(options.out) << "/shake.csv, shake.json, shake_acceleration.{png,svg}, "
               << "shake_spectrum.{png,svg}\n";
 }
 

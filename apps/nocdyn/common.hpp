@@ -40,6 +40,21 @@ struct TrajectoryOptions {
 /// message, e.g. "Hz"); nan, inf and hex are refused. Any failure exits with status 2.
 [[nodiscard]] CLI::Validator finiteIn(double lo, double hi, const std::string& unit);
 
+/// A CLI11 check: the argument is a finite decimal number; nan, inf and hex are refused.
+[[nodiscard]] CLI::Validator finiteNumber();
+
+/// The one rule for floating options: every FLOAT option of every command of `app` refuses
+/// nan, inf and hexadecimal (no option gives them a meaning).
+void requireFiniteFloats(CLI::App& app);
+
+/// Refuses (nocdyn::Error) a command whose output would replace one of its inputs: an output
+/// file (-o, --log, --png, --svg, --figure's STEM.png and STEM.svg) that is an input file
+/// (--robot, --trajectory, --record, ... the same file by inode, through any path or link), or
+/// an input file of a kind the command writes (.csv .json .md .png .svg .html) inside its output
+/// folder (--out-dir), or an input folder that is the output folder. Called for every command
+/// once parsed.
+void refuseOutputOverInput(const CLI::App& command);
+
 /// A CLI11 check for a file name given on the command line: an empty one is refused (it would
 /// otherwise mean standard output, the default when the option is absent).
 [[nodiscard]] CLI::Validator nonEmptyPath();

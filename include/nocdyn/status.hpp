@@ -44,6 +44,10 @@ enum class StatusCode {
     /// Limb `limb` gives the platform no finite stiffness in some direction (an actuated joint
     /// without a stiffness is locked, and nothing else in the limb yields): value = 0.
     rigid_limb,
+    /// The mass matrix M_p of the equations of motion (forward_dynamics.hpp) is not positive
+    /// definite: some body has no mass or no inertia where the motion needs one. value = the
+    /// smallest diagonal entry of M_p.
+    singular_mass_matrix,
 };
 
 struct Status {

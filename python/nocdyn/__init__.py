@@ -468,6 +468,8 @@ class Robot:
         if p_arr.ndim != 2:
             raise Error(f"p: expected shape (3,) or (N, 3), got {p_arr.shape}")
         n = p_arr.shape[0]
+        if n == 0:
+            raise ValueError("p: no samples (shape (0, 3)): give at least one pose")
         p_arr = _input(p_arr, "p", (None, 3), finite=False)
         dp_arr = _input(dp, "dp", (n, 3), finite=False)
         ddp_arr = _input(ddp, "ddp", (n, 3), finite=False)

@@ -411,6 +411,13 @@ def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, tim
     alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (the score: scales, RMS and peak
     acceleration errors, spectra). out_dir: keep the files and figures there."""
     arguments = dict(locals())
+    # a folder (or several records) is a suite, whose results are one folder per record and no
+    # samples to return: refused before anything runs, rather than after
+    several = isinstance(record, (list, tuple)) and len(record) != 1
+    if several or (isinstance(record, (str, os.PathLike)) and os.path.isdir(record)):
+        raise ValueError(f"record: {record!r} is a suite of records, and nocdyn.shake plays one record and "
+                         "returns its samples: call it once per .AT2 file, or run the suite with "
+                         "`nocdyn shake --record FOLDER --out-dir DIR` (summary.md and one folder per record)")
     with _Call("shake", shake) as call:
         call.robot(robot)
         folder = call.output("out_dir", out_dir, "shake")

@@ -17,8 +17,9 @@ per core by default); every chunk is evaluated by the compiled library with the 
 
     from nocdyn import designs
     family = designs.Family("examples/design_3rrr/family.yaml", vary={"r_b": (0.15, 0.25)})
-    table = designs.sweep(family, ["workspace_area", "envelope_x@50"], samples=64, method="sobol")
-    table.to_csv("designs.csv")
+    if __name__ == "__main__":  # the sweep's worker processes import this script again
+        table = designs.sweep(family, ["workspace_area", "envelope_x@50"], samples=64, method="sobol")
+        table.to_csv("designs.csv")
 """
 
 from __future__ import annotations
@@ -61,6 +62,8 @@ class Family:
         for name, lo, hi in self.vary:
             if not (math.isfinite(lo) and math.isfinite(hi) and lo <= hi):
                 raise Error(f"vary: {name}: expected finite (lower, upper) with lower <= upper")
+            if not math.isfinite(hi - lo):
+                raise Error(f"vary: {name}: the width {hi} - ({lo}) of the range overflows a double")
         declared = dict(self.parameters())
         for name, _, _ in self.vary:
             if name not in declared:
@@ -192,7 +195,30 @@ def qmc_scale(unit, lo, hi):
     return lo + unit * (hi - lo)
 
 
+def _finite(name, value, lower=None, upper=None, positive=False):
+    """float(value), or ValueError naming the argument: NaN, inf, out of [lower, upper] or (with
+    positive) not above zero are refused."""
+    try:
+        x = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{name}: expected a number, got {value!r}") from None
+    if not math.isfinite(x):
+        raise ValueError(f"{name}: expected a finite number, got {value!r}")
+    if positive and not x > 0.0:
+        raise ValueError(f"{name}: expected a number above 0, got {value!r}")
+    if (lower is not None and x < lower) or (upper is not None and x > upper):
+        raise ValueError(f"{name}: expected a number in [{lower}, {upper}], got {value!r}")
+    return x
+
+
 def _options(theta=None, resolution=201, trajectory=None, duration=None, rate=10000.0):
+    if theta is not None:
+        theta = _finite("theta", theta)
+    if isinstance(resolution, bool) or int(resolution) != resolution or not 2 <= int(resolution) <= 10001:
+        raise ValueError(f"resolution: expected a whole number of grid points from 2 to 10001, got {resolution!r}")
+    rate = _finite("rate", rate, 1.0, 1e8)
+    if duration is not None:
+        duration = _finite("duration", duration, 1e-6, 1e6)
     traj = None
     if trajectory is not None:
         from . import Trajectory
@@ -201,8 +227,63 @@ def _options(theta=None, resolution=201, trajectory=None, duration=None, rate=10
         traj = trajectory._core
         if duration is None:
             duration = trajectory.duration if trajectory.duration is not None else 0.2
-    return dict(theta=None if theta is None else float(theta), resolution=int(resolution), trajectory=traj,
-                duration=0.2 if duration is None else float(duration), rate=float(rate))
+    return dict(theta=theta, resolution=int(resolution), trajectory=traj,
+                duration=0.2 if duration is None else float(duration), rate=rate)
+
+
+def _metric_names(metrics):
+    """The metrics' names as the library spells them; ValueError for none (a table needs one)."""
+    if isinstance(metrics, str):
+        metrics = [metrics]
+    metrics = list(metrics)
+    if not metrics:
+        raise ValueError("metrics: name at least one metric (e.g. 'workspace_area')")
+    return [name for name, _, _ in _nocdyn._design_metric_names(metrics)]
+
+
+def _require_main_guard():
+    """Raises RuntimeError when a LocalCluster would start from a script's top level without the
+    ``if __name__ == "__main__":`` guard: its worker processes import the script again (the
+    'spawn' start method), and each would start the sweep, and a cluster, once more."""
+    import multiprocessing
+    import sys
+    fix = ('designs.sweep starts worker processes, which import the main script again: put the call under '
+           '`if __name__ == "__main__":` (or give client=)')
+    main = sys.modules.get("__main__")
+    if getattr(main, "__name__", "") == "__mp_main__" or multiprocessing.parent_process() is not None:
+        raise RuntimeError(fix + "; this is a worker process running the script's top level")
+    path = getattr(main, "__file__", None)
+    if not path or not os.path.isfile(path):
+        return  # an interactive session or notebook: nothing is imported again
+    frame, line = sys._getframe(1), None
+    while frame is not None:
+        if frame.f_globals is getattr(main, "__dict__", None) and frame.f_code.co_name == "<module>":
+            line = frame.f_lineno
+        frame = frame.f_back
+    if line is None:
+        return  # not called from the script's top level (a function run elsewhere)
+    import ast
+    try:
+        tree = ast.parse(pathlib.Path(path).read_text(encoding="utf-8"))
+    except (OSError, SyntaxError, UnicodeDecodeError):
+        return
+    for node in ast.walk(tree):
+        if isinstance(node, ast.If) and _is_main_test(node.test):
+            end = getattr(node, "end_lineno", None) or node.lineno
+            if node.lineno <= line <= end:
+                return
+    raise RuntimeError(fix + f" ({path}, line {line})")
+
+
+def _is_main_test(test):
+    """Whether an if's test is __name__ == "__main__" (either way round)."""
+    import ast
+    if not (isinstance(test, ast.Compare) and len(test.ops) == 1 and isinstance(test.ops[0], ast.Eq)):
+        return False
+    sides = [test.left, test.comparators[0]]
+    names = [s for s in sides if isinstance(s, ast.Name) and s.id == "__name__"]
+    values = [s for s in sides if isinstance(s, ast.Constant) and s.value == "__main__"]
+    return len(names) == 1 and len(values) == 1
 
 
 def _evaluate_chunk(family_key, points, metrics, options, threads=1):
@@ -220,8 +301,15 @@ def evaluate(family, points, metrics, *, threads=None, **options):
     returning a Designs table. options: theta (workspace orientation [rad], default each
     design's home), resolution (workspace grid, 201), trajectory (nocdyn.Trajectory or a file
     name), duration [s], rate [Hz] for the force metrics."""
-    metrics = [name for name, _, _ in _nocdyn._design_metric_names(list(metrics))]
-    points = np.asarray(points, dtype=float).reshape(-1, len(family.vary))
+    metrics = _metric_names(metrics)
+    points = np.asarray(points, dtype=float)
+    if points.size == 0:
+        raise ValueError("points: no design to evaluate (an empty array)")
+    d = len(family.vary)
+    if points.ndim > 2 or points.size % d != 0 or (points.ndim == 2 and points.shape[1] != d):
+        raise ValueError(f"points: expected shape (N, {d}) (one value per varied parameter: "
+                         f"{', '.join(family.names)}), got {points.shape}")
+    points = points.reshape(-1, d)
     threads = (os.cpu_count() or 1) if threads is None else int(threads)
     values, feasible, reason = _evaluate_chunk(family._key(), points, metrics, _options(**options), threads)
     return Designs(family.names, metrics, points, values, feasible, reason)
@@ -233,8 +321,10 @@ def sweep(family, metrics, samples=64, method="sobol", seed=0, *, client=None, c
     Client("tcp://scheduler:8786")); with client=None a LocalCluster of `workers` worker
     processes (default: every core), one thread each, is started and closed. The result is
     one Designs table in the sweep's order, equal row for row to evaluate() on the same points."""
+    if client is None:
+        _require_main_guard()
     from dask.distributed import Client, LocalCluster, as_completed
-    metrics = [name for name, _, _ in _nocdyn._design_metric_names(list(metrics))]
+    metrics = _metric_names(metrics)
     points = sample(family, samples, method, seed)
     chunk = max(1, int(chunk))
     opts = _options(**options)
@@ -268,18 +358,46 @@ def sweep(family, metrics, samples=64, method="sobol", seed=0, *, client=None, c
 
 def pareto_front(table, senses=None):
     """Indices of the feasible designs no other feasible design dominates; senses: {metric:
-    'maximize' | 'minimize'} (default: workspace and envelope maximised, the rest minimised)."""
+    'maximize' | 'minimize'} for metrics of the table (default: workspace and envelope
+    maximised, the rest minimised); ValueError for any other key or value. O(n log n) for one
+    or two metrics (a sort and a running maximum), O(n |front|) for more."""
     larger = {name: better for name, _, better in _nocdyn._design_metric_names(table.metrics)}
-    sign = np.array([1.0 if (senses or {}).get(m, "maximize" if larger[m] else "minimize") == "maximize" else -1.0
+    senses = dict(senses or {})
+    for metric, sense in senses.items():
+        if metric not in larger:
+            raise ValueError(f"senses: {metric!r} is not a metric of the table ({', '.join(table.metrics)})")
+        if sense not in ("maximize", "minimize"):
+            raise ValueError(f"senses: {metric}: expected 'maximize' or 'minimize', got {sense!r}")
+    sign = np.array([1.0 if senses.get(m, "maximize" if larger[m] else "minimize") == "maximize" else -1.0
                      for m in table.metrics])
     idx = np.flatnonzero(table.feasible)
-    scores = table.values[idx] * sign
+    if len(idx) == 0 or len(table.metrics) == 0:
+        return [int(i) for i in idx]
+    scores = table.values[idx] * sign  # larger is better in every column
+    m = scores.shape[1]
+    # decreasing lexicographic order: a design's dominators all come before it
+    order = np.lexsort(tuple(-scores[:, k] for k in reversed(range(m))))
+    s = scores[order]
+    if m <= 2:
+        s0 = s[:, 0]
+        s1 = s[:, 1] if m == 2 else np.zeros(len(s))
+        # groups of equal s0: dominated by a design of larger s0 with s1 >= s1(i), or one of
+        # equal s0 with s1 > s1(i) (the group's first holds its largest s1)
+        start = np.r_[True, s0[1:] != s0[:-1]]
+        group = np.cumsum(start) - 1
+        group_best = s1[start][group]
+        best_of_group = s1[start]
+        best_before = np.r_[-np.inf, np.maximum.accumulate(best_of_group)[:-1]][group]
+        keep = ~((best_before >= s1) | (group_best > s1))
+        return sorted(int(i) for i in idx[order[keep]])
     front = []
-    for a in range(len(idx)):
-        dominated = np.any(np.all(scores >= scores[a], axis=1) & np.any(scores > scores[a], axis=1))
-        if not dominated:
-            front.append(int(idx[a]))
-    return front
+    for k in range(len(s)):
+        if front:
+            f = s[front]
+            if np.any(np.all(f >= s[k], axis=1) & np.any(f > s[k], axis=1)):
+                continue
+        front.append(k)
+    return sorted(int(i) for i in idx[order[front]])
 
 
 def optimize(family, objectives, n_trials=100, seed=0, *, constraints=None, sampler=None, storage=None,

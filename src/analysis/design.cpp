@@ -6,6 +6,7 @@
 #include <atomic>
 #include <cmath>
 #include <exception>
+#include <limits>
 #include <mutex>
 #include <random>
 #include <thread>
@@ -244,6 +245,10 @@ std::vector<std::vector<double>> sweepPoints(const std::vector<DesignRange>& ran
         if (!std::isfinite(r.lower) || !std::isfinite(r.upper) || !(r.lower <= r.upper)) {
             throw Error("design: the range of '" + r.name + "' must be finite with lower <= upper");
         }
+        // every point is lower + s (upper - lower): the width itself must be a finite number
+        if (!std::isfinite(r.upper - r.lower)) {
+            throw Error("design: the range of '" + r.name + "' is wider than a double holds (upper - lower overflows)");
+        }
     }
     if (samples < 1 || samples > kMaxDesigns) {
         throw Error("design: " + std::to_string(samples) + " designs asked; at most " + std::to_string(kMaxDesigns) +
@@ -322,28 +327,30 @@ std::size_t evaluateInParallel(std::size_t count, int threads,
 }
 
 std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& designs,
-                                     const std::vector<DesignMetric>& metrics) {
-    // a >= b in every metric's sense, and > in one
-    const auto dominates = [&](const DesignEvaluation& a, const DesignEvaluation& b) {
-        bool better = false;
-        for (std::size_t m = 0; m < metrics.size(); ++m) {
-            const double sa = metrics[m].larger_is_better() ? a.values[m] : -a.values[m];
-            const double sb = metrics[m].larger_is_better() ? b.values[m] : -b.values[m];
-            if (sa < sb) return false;
-            better = better || sa > sb;
-        }
-        return better;
-    };
-    // In decreasing lexicographic order of the metrics (each in its better-is-larger sense) a
-    // design's dominators all come before it, and one of them on the front when any does: each
-    // design is compared with the front found so far only.
+                                     const std::vector<DesignMetric>& metrics,
+                                     const std::function<void(std::size_t, std::size_t)>& progress) {
+    // each metric in its better-is-larger sense
     const auto score = [&](std::size_t i, std::size_t m) {
         return metrics[m].larger_is_better() ? designs[i].values[m] : -designs[i].values[m];
+    };
+    // a >= b in every metric, and > in one
+    const auto dominates = [&](std::size_t a, std::size_t b) {
+        bool better = false;
+        for (std::size_t m = 0; m < metrics.size(); ++m) {
+            if (score(a, m) < score(b, m)) return false;
+            better = better || score(a, m) > score(b, m);
+        }
+        return better;
     };
     std::vector<std::size_t> order;
     for (std::size_t i = 0; i < designs.size(); ++i) {
         if (designs[i].feasible) order.push_back(i);
     }
+    if (metrics.empty()) {
+        std::sort(order.begin(), order.end());
+        return order;  // nothing to compare: no design dominates another
+    }
+    // In decreasing lexicographic order of the scores a design's dominators all come before it.
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
         for (std::size_t m = 0; m < metrics.size(); ++m) {
             if (score(a, m) != score(b, m)) return score(a, m) > score(b, m);
@@ -351,11 +358,39 @@ std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& design
         return a < b;
     });
     std::vector<std::size_t> front;
-    for (const std::size_t i : order) {
-        bool dominated = false;
-        for (std::size_t k = 0; k < front.size() && !dominated; ++k)
-            dominated = dominates(designs[front[k]], designs[i]);
-        if (!dominated) front.push_back(i);
+    if (metrics.size() <= 2) {
+        // One pass, O(n log n) with the sort: i is dominated when a design of strictly larger
+        // s0 has s1 >= s1(i) (best_before), or one of equal s0 has s1 > s1(i) (the group's
+        // first, which has its largest s1). With one metric, s1 is taken as 0 for every design.
+        const auto second = [&](std::size_t i) { return metrics.size() == 2 ? score(i, 1) : 0.0; };
+        double best_before = -std::numeric_limits<double>::infinity();
+        bool any_before = false;
+        for (std::size_t g = 0; g < order.size();) {
+            std::size_t end = g;
+            while (end < order.size() && score(order[end], 0) == score(order[g], 0)) ++end;
+            const double group_best = second(order[g]);
+            for (std::size_t k = g; k < end; ++k) {
+                const double s1 = second(order[k]);
+                if ((any_before && best_before >= s1) || group_best > s1) continue;
+                front.push_back(order[k]);
+            }
+            best_before = any_before ? std::max(best_before, group_best) : group_best;
+            any_before = true;
+            if (progress && (end / 65536 != g / 65536 || end == order.size())) progress(end, order.size());
+            g = end;
+        }
+    } else {
+        // Three metrics or more: each design compared with the front found so far; one of the
+        // front dominates it when any design does (dominance is transitive and the front
+        // holds every undominated design before it). O(n |front|).
+        for (std::size_t k = 0; k < order.size(); ++k) {
+            const std::size_t i = order[k];
+            bool dominated = false;
+            for (std::size_t f = 0; f < front.size() && !dominated; ++f) dominated = dominates(front[f], i);
+            if (!dominated) front.push_back(i);
+            if (progress && (k + 1) % 4096 == 0) progress(k + 1, order.size());
+        }
+        if (progress) progress(order.size(), order.size());
     }
     std::sort(front.begin(), front.end());
     return front;

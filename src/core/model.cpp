@@ -283,6 +283,29 @@ std::string describe(const Status& status, const Model& model) {
                 << " does not yield in some direction of the platform (an actuated joint without a stiffness is"
                    " locked): give its drive a stiffness or make a body elastic";
             return out.str();
+        case StatusCode::singular_mass_matrix: {
+            // name the bodies whose zero mass or inertia leaves M_p = sum T_i^T M_i T_i singular
+            out << "the mass matrix M_p is singular (smallest diagonal entry " << status.value << ")";
+            std::string zero;
+            for (int i = 0; i < model.bodies; ++i) {
+                const InertiaDyad& m = model.inertia(i);
+                if (m.mass > 0.0 && m.inertia > 0.0) continue;
+                const std::string body = i == model.platformBody() ? std::string("the platform")
+                                                                   : model.limbName(i % model.limbs) + " body " +
+                                                                         std::to_string(i / model.limbs + 1);
+                const char* what = m.mass <= 0.0 && m.inertia <= 0.0 ? "mass and inertia"
+                                   : m.mass <= 0.0                   ? "mass"
+                                                                     : "inertia";
+                zero += (zero.empty() ? "" : ", ") + body + " has zero " + what;
+            }
+            if (!zero.empty()) {
+                out << ": " << zero << "; give the bodies the motion moves a mass and an inertia";
+            } else {
+                out << ": no body has zero mass or inertia, yet the moving bodies cannot resist every platform motion "
+                       "(give the platform a mass and an inertia)";
+            }
+            return out.str();
+        }
         case StatusCode::integration_too_many_steps:
             out << "the integrator took " << status.value
                 << " steps over one interval without reaching its end (tolerances too tight?)";

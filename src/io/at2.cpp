@@ -9,6 +9,7 @@
 
 #include "file_util.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/io/escape.hpp"
 
 namespace nocdyn::io {
 
@@ -149,21 +150,33 @@ GroundMotionRecord parseAt2(const std::string& text, const std::string& source) 
     }
     record.dt = *dt;
     record.acceleration.reserve(npts);
-    while (record.acceleration.size() < npts && nextLine(line)) {
+    std::size_t last_line = 0;  // the line of the NPTS-th value
+    while (nextLine(line)) {
         for (const std::string_view glued : words(line)) {
             for (const std::string& word : values(glued)) {
-                if (record.acceleration.size() == npts) break;  // extra values are ignored
+                // a value beyond NPTS: the header or the data is wrong, and neither is cut
+                // silently; only zeros filling the line of the last value (padding) are allowed
+                if (record.acceleration.size() == npts) {
+                    const auto padding = detail::parseDecimal(word);
+                    if (line_number == last_line && padding && *padding == 0.0) continue;
+                    throw Error(at(source, line_number) + "the data go on past NPTS = " + std::to_string(npts) +
+                                " values (value " + std::to_string(npts + 1) + " is '" +
+                                terminalText(std::string_view(word).substr(0, 32)) +
+                                "'): the header's NPTS disagrees with the data");
+                }
                 const auto value = detail::parseDecimal(word);
                 if (!value) {
+                    // the word shown escaped: a NUL or control byte would cut or garble the message
+                    const std::string shown = terminalText(std::string_view(word).substr(0, 32));
                     throw Error(at(source, line_number) + "value " + std::to_string(record.acceleration.size() + 1) +
-                                " '" + std::string(word.substr(0, 32)) + "' " +
-                                detail::numberProblem(word.substr(0, 32)));
+                                " '" + shown + "' " + detail::numberProblem(shown));
                 }
                 if (!(std::abs(*value) <= kMaxG)) {
                     throw Error(at(source, line_number) + "value " + std::to_string(record.acceleration.size() + 1) +
-                                " is " + std::string(word) + " g, beyond +-100 g");
+                                " is " + terminalText(std::string_view(word).substr(0, 32)) + " g, beyond +-100 g");
                 }
                 record.acceleration.push_back(*value * kStandardGravity);
+                if (record.acceleration.size() == npts) last_line = line_number;
             }
         }
     }

@@ -7,9 +7,11 @@
 #include <array>
 #include <charconv>
 #include <cmath>
+#include <initializer_list>
 #include <map>
 #include <numbers>
 #include <string_view>
+#include <vector>
 
 #include "file_util.hpp"
 #include "nocdyn/error.hpp"
@@ -38,6 +40,35 @@ std::string shortest(double value) {
     return {buffer, result.ptr};
 }
 
+/// A value as a message shows it: nan without a sign (x86 gives sqrt(-1) the sign bit).
+std::string shown(double value) { return std::isnan(value) ? std::string("nan") : shortest(value); }
+
+/// The first sub-expression of the current evaluation whose value is not finite, written with
+/// its operands' values ("sqrt(-1)", "1 / 0"); empty while every value so far is finite. A
+/// later function (max, min, 1/x) could otherwise hide it: max(0, sqrt(-1)) or 1/(1/0).
+thread_local std::string first_non_finite;
+
+double checked(double value, const char* name, std::initializer_list<double> arguments) {
+    if (!std::isfinite(value) && first_non_finite.empty()) {
+        first_non_finite = name;
+        first_non_finite += '(';
+        bool first = true;
+        for (const double a : arguments) {
+            if (!first) first_non_finite += ", ";
+            first_non_finite += shown(a);
+            first = false;
+        }
+        first_non_finite += ") = " + shown(value);
+    }
+    return value;
+}
+
+double checkedBinary(double value, double a, const char* op, double b) {
+    if (!std::isfinite(value) && first_non_finite.empty())
+        first_non_finite = shown(a) + " " + op + " " + shown(b) + " = " + shown(value);
+    return value;
+}
+
 }  // namespace
 
 bool isParameterName(const std::string& name) {
@@ -64,32 +95,50 @@ ExpressionEvaluator::ExpressionEvaluator() : impl_(std::make_unique<Impl>()) {
     p.ClearPostfixOprt();
     p.ClearInfixOprt();
     p.ClearOprt();
+    // + - * / ^ as our own operators, so that every intermediate value is checked
+    p.EnableBuiltInOprt(false);
+    p.DefineOprt(
+        "+", +[](double a, double b) { return checkedBinary(a + b, a, "+", b); }, mu::prADD_SUB);
+    p.DefineOprt(
+        "-", +[](double a, double b) { return checkedBinary(a - b, a, "-", b); }, mu::prADD_SUB);
+    p.DefineOprt(
+        "*", +[](double a, double b) { return checkedBinary(a * b, a, "*", b); }, mu::prMUL_DIV);
+    p.DefineOprt(
+        "/", +[](double a, double b) { return checkedBinary(a / b, a, "/", b); }, mu::prMUL_DIV);
+    p.DefineOprt(
+        "^", +[](double a, double b) { return checkedBinary(std::pow(a, b), a, "^", b); }, mu::prPOW, mu::oaRIGHT);
     p.DefineInfixOprt(
         "-", +[](double x) { return -x; });
     p.DefineInfixOprt(
         "+", +[](double x) { return x; });
     p.DefineFun(
-        "sin", +[](double x) { return std::sin(x); });
+        "sin", +[](double x) { return checked(std::sin(x), "sin", {x}); });
     p.DefineFun(
-        "cos", +[](double x) { return std::cos(x); });
+        "cos", +[](double x) { return checked(std::cos(x), "cos", {x}); });
     p.DefineFun(
-        "tan", +[](double x) { return std::tan(x); });
+        "tan", +[](double x) { return checked(std::tan(x), "tan", {x}); });
     p.DefineFun(
-        "asin", +[](double x) { return std::asin(x); });
+        "asin", +[](double x) { return checked(std::asin(x), "asin", {x}); });
     p.DefineFun(
-        "acos", +[](double x) { return std::acos(x); });
+        "acos", +[](double x) { return checked(std::acos(x), "acos", {x}); });
     p.DefineFun(
-        "atan", +[](double x) { return std::atan(x); });
+        "atan", +[](double x) { return checked(std::atan(x), "atan", {x}); });
     p.DefineFun(
-        "atan2", +[](double y, double x) { return std::atan2(y, x); });
+        "atan2", +[](double y, double x) {
+            return checked(std::atan2(y, x), "atan2", {y, x});
+        });
     p.DefineFun(
-        "sqrt", +[](double x) { return std::sqrt(x); });
+        "sqrt", +[](double x) { return checked(std::sqrt(x), "sqrt", {x}); });
     p.DefineFun(
-        "abs", +[](double x) { return std::abs(x); });
+        "abs", +[](double x) { return checked(std::abs(x), "abs", {x}); });
     p.DefineFun(
-        "min", +[](double a, double b) { return std::min(a, b); });
+        "min", +[](double a, double b) {
+            return checked(std::min(a, b), "min", {a, b});
+        });
     p.DefineFun(
-        "max", +[](double a, double b) { return std::max(a, b); });
+        "max", +[](double a, double b) {
+            return checked(std::max(a, b), "max", {a, b});
+        });
     p.DefineConst("pi", std::numbers::pi);
 }
 
@@ -109,15 +158,29 @@ double ExpressionEvaluator::evaluate(const std::string& text, std::string& probl
         return 0.0;
     }
     // Only the documented grammar reaches muParser: its comparison, logical, assignment and
-    // ternary operators (and any name not defined here) are refused first.
+    // ternary operators (and any name not defined here) are refused first. A comma is allowed
+    // only between a function's arguments: muParser would read "1,75257" as a list and keep
+    // its last value, so a decimal comma would silently become 75257.
+    std::vector<bool> call_parentheses;  // per open parenthesis: whether it follows a function
+    bool after_function = false;
     for (std::size_t i = 0; i < text.size();) {
         const char c = text[i];
+        if (c == '(') {
+            call_parentheses.push_back(after_function);
+        } else if (c == ')') {
+            if (!call_parentheses.empty()) call_parentheses.pop_back();
+        } else if (c == ',' && (call_parentheses.empty() || !call_parentheses.back())) {
+            problem = "a comma outside a function's argument list (write decimals with a point: 1.5, not 1,5)";
+            return 0.0;
+        }
+        if (c != ' ' && c != '\t') after_function = false;
         if (isNameStart(c)) {
             std::size_t end = i;
             while (end < text.size() && isNameChar(text[end])) ++end;
             const std::string name = text.substr(i, end - i);
             bool known = impl_->values.count(name) != 0;
             for (const std::string_view f : kFunctions) known = known || (!f.empty() && name == f);
+            after_function = std::find(kFunctions.begin(), kFunctions.end(), name) != kFunctions.end() && name != "pi";
             if (!known) {
                 problem = "unknown name '" + name +
                           "' (not a parameter, pi or one of the functions sin cos tan "
@@ -142,11 +205,19 @@ double ExpressionEvaluator::evaluate(const std::string& text, std::string& probl
         ++i;
     }
     double value = 0.0;
+    first_non_finite.clear();
     try {
         impl_->parser.SetExpr(text);
         value = impl_->parser.Eval();
     } catch (const mu::Parser::exception_type& e) {
-        problem = e.GetMsg();
+        // muParser calls a sign with nothing after it ("+", "1*-") an internal error
+        problem = e.GetCode() == mu::ecINTERNAL_ERROR
+                      ? std::string("the expression ends with a sign that has no number after it")
+                      : e.GetMsg();
+        return 0.0;
+    }
+    if (!first_non_finite.empty()) {
+        problem = "the sub-expression " + first_non_finite + " is not finite";
         return 0.0;
     }
     if (!std::isfinite(value)) problem = "the result is not finite (" + shortest(value) + ")";

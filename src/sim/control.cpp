@@ -209,12 +209,16 @@ void summarizeLoop(PoseLoopResult& result) {
     result.pose_late_peak_error.setZero();
     if (result.t.empty()) return;
     const std::size_t half = result.t.size() / 2;
+    // a run that kept only t, p and p_d (ShakeLoopOptions::keep_actuators) has its actuator
+    // summaries from the loop
+    const bool actuators = result.u.size() == result.t.size() && result.u_d.size() == result.t.size() &&
+                           result.tau.size() == result.t.size();
     for (std::size_t k = 0; k < result.t.size(); ++k) {
         const Vector3 e_p = (result.p_d[k] - result.p[k]).cwiseAbs();
         result.pose_rms_error += e_p.cwiseAbs2();
         result.pose_peak_error = result.pose_peak_error.cwiseMax(e_p);
         if (k >= half) result.pose_late_peak_error = result.pose_late_peak_error.cwiseMax(e_p);
-        for (std::size_t a = 0; a < un; ++a) {
+        for (std::size_t a = 0; a < (actuators ? un : 0); ++a) {
             const auto ai = static_cast<Eigen::Index>(a);
             const double e = std::abs(result.u_d[k](ai) - result.u[k](ai));
             result.rms_error[a] += e * e;

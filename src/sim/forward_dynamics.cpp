@@ -49,7 +49,7 @@ Status forwardDynamics(const Model& model, Data& data, const Pose& p, const Twis
     for (int a = 0; a < model.actuators; ++a) w.noalias() += tau(a) * data.A.row(a).transpose();
     const Vector3 rhs = poseForceOfPlatformWrench(data.p.tail<2>(), w) - data.h_p;
     const Eigen::LLT<Matrix3> llt(data.M_p);
-    if (llt.info() != Eigen::Success) return {StatusCode::not_finite, -1, data.M_p.diagonal().minCoeff()};
+    if (llt.info() != Eigen::Success) return {StatusCode::singular_mass_matrix, -1, data.M_p.diagonal().minCoeff()};
     const Twist ddp = llt.solve(rhs);
     for (int i = 0; i < 3; ++i) {
         if (!std::isfinite(ddp(i))) return {StatusCode::not_finite, -1, ddp(i)};

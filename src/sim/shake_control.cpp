@@ -108,8 +108,13 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
     result.plant = plant.name();
     result.actuators = n;
     for (auto* v : {&result.p, &result.p_d}) v->reserve(times.size());
-    for (auto* v : {&result.u, &result.u_d, &result.tau, &result.u_measured}) v->reserve(times.size());
+    if (options.keep_actuators) {
+        for (auto* v : {&result.u, &result.u_d, &result.tau, &result.u_measured}) v->reserve(times.size());
+    }
     result.t.reserve(times.size());
+    // the actuator summaries, accumulated here when the ticks are not kept
+    const auto un = static_cast<std::size_t>(n);
+    std::vector<double> sum_sq(un, 0.0), peak(un, 0.0), peak_tau(un, 0.0);
 
     Data data(model), sensor(model);
     PoseReference reference;
@@ -187,18 +192,37 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
             fail(t, status, "controller");
         }
         if (options.saturation && controller.saturate(tau)) ++result.saturated_ticks;
+        const ActuatorVector& u_now = plant.u();
+        if (options.on_tick) options.on_tick(result.t.size(), t, u_now, tau);
         result.t.push_back(t);
         result.p.push_back(p);
         result.p_d.push_back(reference.p);
-        result.u.push_back(plant.u());
-        result.u_d.push_back(reference.u);
-        result.tau.push_back(tau);
-        result.u_measured.push_back(u_measured);
+        if (options.keep_actuators) {
+            result.u.push_back(u_now);
+            result.u_d.push_back(reference.u);
+            result.tau.push_back(tau);
+            result.u_measured.push_back(u_measured);
+        } else {
+            for (int a = 0; a < n; ++a) {
+                const auto ai = static_cast<std::size_t>(a);
+                const double e = std::abs(reference.u(a) - u_now(a));
+                sum_sq[ai] += e * e;
+                peak[ai] = std::max(peak[ai], e);
+                peak_tau[ai] = std::max(peak_tau[ai], std::abs(tau(a)));
+            }
+        }
         plant.setForces(tau);
         plant.advance(dt);
     }
 
     summarizeLoop(result);
+    if (!options.keep_actuators && !result.t.empty()) {
+        result.rms_error.resize(un);
+        for (std::size_t a = 0; a < un; ++a)
+            result.rms_error[a] = std::sqrt(sum_sq[a] / static_cast<double>(result.t.size()));
+        result.peak_error = peak;
+        result.peak_tau = peak_tau;
+    }
     const double count = static_cast<double>(result.t.size());
     if (report != nullptr) {
         report->pose_rms_error = (pose_sq / count).cwiseSqrt();

@@ -112,7 +112,10 @@ std::size_t evaluateInParallel(std::size_t count, int threads,
 
 /// Indices of the feasible designs no other feasible design dominates (at least as good in
 /// every metric, better in one), each metric's sense from larger_is_better(); in index order.
+/// O(n log n) for one or two metrics (a sort and one pass), O(n |front|) for more.
+/// `progress(done, total)`, when given, is called as the feasible designs are passed.
 [[nodiscard]] std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& designs,
-                                                   const std::vector<DesignMetric>& metrics);
+                                                   const std::vector<DesignMetric>& metrics,
+                                                   const std::function<void(std::size_t, std::size_t)>& progress = {});
 
 }  // namespace nocdyn

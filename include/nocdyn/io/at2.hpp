@@ -10,8 +10,9 @@
 // exponent (1.0D-03) is an E exponent, and values filling their fixed-width fields to the edge
 // (-0.1234E-02-0.5678E-03) are split where a sign follows anything but an exponent letter.
 //
-// A file with fewer values than NPTS is refused; values after the NPTS-th are ignored (some
-// files pad their last line). Reads are bounded: at most kMaxAt2Bytes and kMaxAt2Points.
+// A file with fewer or more values than NPTS is refused (the header or the data is wrong, and
+// neither may cut the record silently); only zeros after the NPTS-th value on its own line
+// are taken as padding and ignored. Reads are bounded: at most kMaxAt2Bytes and kMaxAt2Points.
 #pragma once
 
 #include <cstddef>

@@ -111,4 +111,44 @@ inline std::string xmlText(std::string_view text) {
     return out;
 }
 
+/// Text in a Markdown table cell that shows as it is: the characters that end a cell (|), open
+/// markup (* ` [ ] ~ \) or HTML (< > &) escaped, control bytes (and so line breaks, which would
+/// end the row) as \xHH. A name cannot forge a row, a link or HTML. ('_' is kept: GitHub's
+/// Markdown reads no emphasis inside a word, as in file names like elcentro_1940_ns.)
+inline std::string markdownText(std::string_view text) {
+    std::string out;
+    out.reserve(text.size());
+    for (const char ch : text) {
+        switch (ch) {
+            case '&':
+                out += "&amp;";
+                break;
+            case '<':
+                out += "&lt;";
+                break;
+            case '>':
+                out += "&gt;";
+                break;
+            case '|':
+            case '\\':
+            case '`':
+            case '*':
+            case '[':
+            case ']':
+            case '~':
+                out += '\\';
+                out += ch;
+                break;
+            default:
+                if (detail::isControl(static_cast<unsigned char>(ch))) {
+                    out += "\\\\x";  // shown as \xHH: the backslash itself escaped
+                    out += detail::hexEscape(static_cast<unsigned char>(ch)).substr(2);
+                } else {
+                    out += ch;
+                }
+        }
+    }
+    return out;
+}
+
 }  // namespace nocdyn::io

@@ -38,7 +38,6 @@
 #pragma once
 
 #include <functional>
-
 #include <vector>
 
 #include "nocdyn/sim/control.hpp"
@@ -103,6 +102,13 @@ struct ShakeLoopOptions {
     TableSensors sensors;
     unsigned seed = 1;
     bool saturation = true;  ///< clip at each actuator's effort
+    /// Keep u, u_d, tau and u_measured of every tick in the result. false: only their summaries
+    /// (rms_error, peak_error, peak_tau) are kept, and each tick's u and tau go to on_tick; the
+    /// result then holds t, p and p_d only, 56 bytes a tick instead of 664 (a long record's
+    /// replay fits in memory).
+    bool keep_actuators = true;
+    /// Called once per tick with its index, time, u and the applied tau (may be empty).
+    std::function<void(std::size_t, double, const ActuatorVector&, const ActuatorVector&)> on_tick;
     /// Called at each tick with its time [s] (e.g. a progress line); none by default.
     std::function<void(double t)> progress = {};
 };
