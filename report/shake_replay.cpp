@@ -325,8 +325,9 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
         const std::vector<double>& a = target(fit, static_cast<int>(axis));
         const char* unit = axis == 0 ? "rad/s^2" : "m/s^2";
         PlotPanel panel{kAxisNames[axis], "t [s]", std::string(kAxisNames[axis]) + " [" + unit + "]", {}};
-        PlotSeries tgt{"target", {}, {}, "lines lw 2"};
-        PlotSeries ach{std::string("achieved (").append(loop.plant).append(" plant)"), {}, {}, "lines dt 2"};
+        PlotSeries tgt{"target", {}, {}, "lines lw 2 lc rgb '#1f4e79'"};
+        PlotSeries ach{
+            std::string("achieved (").append(loop.plant).append(" plant)"), {}, {}, "lines dt 2 lw 2 lc rgb '#d62728'"};
         for (std::size_t i = 0; i < table.rows.size(); ++i) {
             tgt.x.push_back(fit.t[i]);
             tgt.y.push_back(a[i]);

@@ -96,9 +96,19 @@ double roundDown125(double v) {
     return decade;
 }
 
+/// The smallest of 1, 2, 5 times a power of ten that is at least `v` (> 0): a round scale.
+double roundUp125(double v) {
+    const double decade = std::pow(10.0, std::floor(std::log10(v)));
+    for (const double m : {1.0, 2.0, 5.0}) {
+        if (m * decade >= v) return m * decade;
+    }
+    return 10.0 * decade;
+}
+
 /// The robot at the pose of the largest peak force, each joint's force drawn as an arrow
-/// from the joint (scaled so that the largest is a fifth of the drawing's size), with a
-/// reference arrow of a round force under the drawing and the scale in the panel's title.
+/// from the joint (a round scale, 10 mm for 1, 2 or 5 times a power of ten newtons, that draws
+/// the largest at most a third of the drawing's size), with a reference arrow of a round force
+/// under the drawing and the scale in the panel's title.
 Figure worstPoseFigure(const Model& model, const Pose& pose, const Reactions& reactions) {
     Data data(model);
     RobotDrawing drawing;
@@ -128,7 +138,8 @@ Figure worstPoseFigure(const Model& model, const Pose& pose, const Reactions& re
     }
     panel.series.push_back(std::move(platform));
     const char* arrow = "vectors head filled size screen 0.014,22 lw 2 lc rgb '#d62728'";
-    const double scale = peak > 0.0 ? 0.2 * size / peak : 0.0;  // m per N
+    const double per_10mm = peak > 0.0 ? roundUp125(peak * 0.01 / (size / 3.0)) : 0.0;  // N drawn 10 mm long
+    const double scale = peak > 0.0 ? 0.01 / per_10mm : 0.0;                            // m per N
     PlotSeries forces{"reaction force (largest " + shortNumber(peak) + " N)", {}, {}, arrow, {{}, {}}};
     for (int j = 0; j < model.limbs; ++j) {
         for (std::size_t k = 0; k < 3; ++k) {
@@ -145,12 +156,12 @@ Figure worstPoseFigure(const Model& model, const Pose& pose, const Reactions& re
     if (peak > 0.0) {
         // the reference: a round force drawn to the same scale, below the lowest joint or arrow tip
         const double reference = roundDown125(peak);
-        panel.series.push_back({"reference arrow (below): " + shortNumber(reference) + " N",
+        panel.series.push_back({"reference arrow (lower left): " + shortNumber(reference) + " N",
                                 {lower.x() * 1e3},
                                 {(lower.y() - 0.06 * size) * 1e3},
                                 "vectors head filled size screen 0.014,22 lw 3 lc rgb '#000000'",
                                 {{scale * reference * 1e3}, {0.0}}});
-        panel.title += "; arrows: 10 mm = " + shortNumber(0.01 / scale) + " N";
+        panel.title += "; arrows: 10 mm = " + shortNumber(per_10mm) + " N";
     }
     Figure f;
     f.title = literalText(model.description.name) + ": joint reactions at the pose of the largest peak force";
