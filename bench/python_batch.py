@@ -1,7 +1,7 @@
 #!/usr/bin/python3
 """Speed of the Python package against the C++ library, measured in one run (one process).
 
-  PYTHONPATH=build/python /usr/bin/python3 bench/python_batch.py [--samples 1000000] [--robot paper-3prr]
+  PYTHONPATH=build/python /usr/bin/python3 bench/python_batch.py [--samples 1000000] [--robot paper-3prr ...]
 
 1. Batch: inverse dynamics of N samples (trajectory 1 of the paper plus a second harmonic per
    axis) through `robot.inverse_dynamics(P, dP, ddP)` from Python, with C-ordered inputs and new
@@ -10,7 +10,9 @@
    (`Robot._core._time_cpp_batch`, the same kernel on one thread, its outputs allocated and
    written once before it is timed). CPU time of the calling
    thread (CLOCK_THREAD_CPUTIME_ID on both sides), best of R interleaved repetitions of each
-   (the machine may be shared: interleaving gives each the same load).
+   (the machine may be shared: interleaving gives each the same load). The memory floor: the
+   same bytes read and written by one thread without computing (the 9 inputs of a sample read
+   into the first of its 4 n output values, the rest written), what no batch can beat.
 2. Per-sample call: `robot.inverse_dynamics(p, dp, ddp)` on (3,) arrays, and the compiled entry
    alone, against the C++ per-sample time of the batch; the difference is the call overhead.
 """
@@ -47,12 +49,18 @@ def best(fn, repeat):
 def main():
     parser = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
     parser.add_argument("--samples", type=int, default=1_000_000)
-    parser.add_argument("--robot", default="paper-3prr", help="an example robot name (nocdyn.Robot.examples())")
+    parser.add_argument("--robot", nargs="+", default=["paper-3prr"],
+                        help="example robot names (nocdyn.Robot.examples()), measured one after the other")
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--calls", type=int, default=200_000, help="per-sample calls timed")
     args = parser.parse_args()
+    for name in args.robot:
+        measure(name, args)
+        print()
 
-    robot = nocdyn.Robot.example(args.robot)
+
+def measure(name, args):
+    robot = nocdyn.Robot.example(name)
     n = args.samples
     P, dP, ddP = motion(robot, n)
     Pf, dPf, ddPf = (np.asfortranarray(a) for a in (P, dP, ddP))
@@ -60,8 +68,18 @@ def main():
     core = robot._core
 
     # interleaved repetitions: each variant sees the same machine load
-    results = {"cpp": [], "py_c": [], "py_f": [], "py_out": []}
+    results = {"cpp": [], "py_c": [], "py_f": [], "py_out": [], "floor": []}
+    # the floor: 9 n doubles read, 4 n m written (m actuators), in one pass each
+    source = np.concatenate([P.ravel(), dP.ravel(), ddP.ravel()])
+    target = np.empty(4 * n * robot.actuators)
+
+    def floor():
+        np.copyto(target[:source.size], source)
+        target[source.size:].fill(0.0)
+
+    floor()
     for _ in range(args.repeat):
+        results["floor"].append(best(floor, 1))
         results["cpp"].append(core._time_cpp_batch(P, dP, ddP, 1))
         results["py_c"].append(best(lambda: robot.inverse_dynamics(P, dP, ddP), 1))
         results["py_f"].append(best(lambda: robot.inverse_dynamics(Pf, dPf, ddPf), 1))
@@ -88,15 +106,17 @@ def main():
     print(f"robot {robot.name}, {n} samples, thread CPU time, best of {args.repeat} interleaved runs; "
           f"load average {os.getloadavg()[0]:.1f} at the end")
     print()
-    print("| batch of %d samples | time (ms) | ns/sample | / C++ batch |" % n)
-    print("|---|---|---|---|")
     names = {"cpp": "C++ `inverseDynamicsBatch` (Eigen arrays, timed in C++)",
              "py_c": "Python, C-ordered inputs, new outputs",
              "py_f": "Python, F-ordered inputs, new outputs",
              "py_out": "Python, C-ordered inputs, `out=` preallocated"}
+    names["floor"] = "memory floor (the same bytes copied, NumPy)"
+    floor_time = min(results["floor"])
+    print("| batch of %d samples | time (ms) | ns/sample | / C++ batch | / memory floor |" % n)
+    print("|---|---|---|---|---|")
     for key, label in names.items():
         t = min(results[key])
-        print(f"| {label} | {t * 1e3:.1f} | {t / n * 1e9:.0f} | {t / cpp:.3f} |")
+        print(f"| {label} | {t * 1e3:.1f} | {t / n * 1e9:.1f} | {t / cpp:.3f} | {t / floor_time:.2f} |")
     print()
     print("| per-sample call (CPU time) | us/call | overhead over the C++ per-sample time |")
     print("|---|---|---|")

@@ -179,6 +179,7 @@ std::unique_ptr<CLI::App> makeApp() {
     addExciteCommand(app);
     addLoadsCommand(app);
     addDesignCommand(app);
+    addFrequencyResponseCommand(app);
 #ifdef NOCDYN_HAS_ENGINES
     addValidateCommand(app);
 #endif

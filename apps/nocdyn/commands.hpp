@@ -22,6 +22,7 @@ void addIdentifyCommand(CLI::App& app);
 void addExciteCommand(CLI::App& app);
 void addLoadsCommand(CLI::App& app);
 void addDesignCommand(CLI::App& app);
+void addFrequencyResponseCommand(CLI::App& app);
 #ifdef NOCDYN_HAS_ENGINES
 void addValidateCommand(CLI::App& app);
 #endif

@@ -45,6 +45,7 @@ from . import _nocdyn
 from ._nocdyn import Error
 from .commands import (COMMANDS, animate, control, convert, design, envelope, excite, forward_kinematics, identify,
                        inverse_dynamics, loads, pose, regressor, reproduce, shake, simulate, validate, workspace)
+from .commands import frequency_response
 from .results import (Animation, AssemblyModes, Excitation, Identification, PoseReport, Report, ShakeResult, Table,
                       Workspace)
 
@@ -53,6 +54,7 @@ __all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMa
            # every command of the command line (nocdyn.commands), and their results (nocdyn.results)
            "pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace", "convert",
            "animate", "shake", "regressor", "identify", "excite", "loads", "validate", "reproduce", "design", "COMMANDS",
+           "frequency_response",
            "Table", "PoseReport", "AssemblyModes", "Workspace", "Identification", "Excitation", "ShakeResult",
            "Animation", "Report"]
 __version__ = _nocdyn.__version__  # the CMake project version, as `nocdyn --version`
@@ -401,11 +403,47 @@ class Robot:
         else:
             out = _outputs(out, ("u", "du", "ddu", "tau"), shape, ((p_arr, "p"), (dp_arr, "dp"), (ddp_arr, "ddp")))
         failed, first, message = self._core._inverse_dynamics_batch(p_arr, dp_arr, ddp_arr, *out, threads=threads)
+        # the compiled batch counts a sample whose results overflow as failed (its row NaN):
+        # no second pass over the outputs here
         if failed and check:
             raise Error(f"sample {first}: {message} ({failed} of {n} samples failed)")
-        if check:
-            _require_finite(out, "the inverse dynamics")
         return InverseDynamics(*out)
+
+    def inverse_dynamics_derivatives(self, p, dp, ddp, *, threads=1, check=True):
+        """Exact first derivatives of the actuator forces: (d tau/d p, d tau/d dp, d tau/d ddp).
+
+        One sample, p, dp, ddp of shape (3,), gives three arrays of shape (n, 3); a batch,
+        shape (N, 3) each, three of shape (N, n, 3). Row a is actuator a, columns the pose
+        order [theta, x, y] of inverse_dynamics; d tau/d ddp is the mass matrix mapped to the
+        actuators. Forward-mode automatic differentiation: exact to rounding. Coulomb friction
+        is differentiated with its sign held (at a joint rate of exactly 0 its force and
+        derivative are 0). Errors and threads as in inverse_dynamics.
+        """
+        threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
+        p_arr = _floats(p, "p")
+        if p_arr.ndim == 1:
+            return self._core._inverse_dynamics_derivatives_sample(p_arr, _floats(dp, "dp"), _floats(ddp, "ddp"))
+        if p_arr.ndim != 2:
+            raise Error(f"p: expected shape (3,) or (N, 3), got {p_arr.shape}")
+        n = p_arr.shape[0]
+        p_arr = _input(p_arr, "p", (None, 3), finite=False)
+        dp_arr = _input(dp, "dp", (n, 3), finite=False)
+        ddp_arr = _input(ddp, "ddp", (n, 3), finite=False)
+        d_p, d_dp, d_ddp, failed, first, message = self._core._inverse_dynamics_derivatives_batch(
+            p_arr, dp_arr, ddp_arr, threads=threads)
+        if failed and check:
+            raise Error(f"sample {first}: {message} ({failed} of {n} samples failed)")
+        return d_p, d_dp, d_ddp
+
+    def linearize(self, p, dp, tau, *, output=None):
+        """The rigid robot linearised at the state (p, dp) ([theta, x, y] and its rate) under the
+        actuator forces tau (n,): (A, B) with the state x = [p; dp] and the input tau,
+        dx/dt = A x + B tau (deviations from the operating point), A (6, 6), B (6, n), from the
+        exact derivatives of the forward dynamics. output="acceleration" or "actuators" also
+        returns C and D of that output (y = C x + D tau): (A, B, C, D).
+        """
+        A, B, C, D = self._core._linearize(p, dp, tau, output or "acceleration")
+        return (A, B) if output is None else (A, B, C, D)
 
     def reactions(self, p, dp, ddp, *, threads=1, check=True):
         """Every joint's reaction with the inverse dynamics' forces (the minimum-norm ones when

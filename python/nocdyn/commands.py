@@ -39,7 +39,7 @@ from .results import (Animation, AssemblyModes, Excitation, Identification, Pose
 
 __all__ = ["pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace",
            "convert", "animate", "shake", "regressor", "identify", "excite", "loads", "reproduce", "validate",
-           "design", "COMMANDS"]
+           "design", "frequency_response", "COMMANDS"]
 
 
 # --- running a command ---------------------------------------------------------------------
@@ -341,6 +341,17 @@ def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.
     return _table_command("envelope", envelope, dict(locals()), "envelope.csv")
 
 
+def frequency_response(*, robot=None, set=None, pose=None, rate=None, output_kind="acceleration", f_min=1.0,
+                       f_max=1000.0, points=200, output=None, summary=None, figure=None):
+    """The rigid robot linearised at an operating point and its frequency response
+    (``nocdyn frequency-response``): pose [theta, x, y] (default home) and rate (default at
+    rest), held by the inverse dynamics' forces; from each actuator force to each platform
+    acceleration (output_kind "acceleration") or actuator variable ("actuators") over ``points``
+    log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then <output>_tau<a>_db and
+    _deg per channel); ``text`` holds the summary with each channel's -3 dB bandwidth."""
+    return _table_command("frequency-response", frequency_response, dict(locals()), "frequency_response.csv")
+
+
 def workspace(*, robot=None, set=None, theta=None, resolution=201, output=None, figure=None, progress=None):
     """The workspace at one platform orientation theta [rad] (default: the robot's home)
     (``nocdyn workspace``): a resolution x resolution grid of C's positions, each feasible (0),
@@ -518,7 +529,8 @@ def design(vary, metric, *, robot=None, set=None, out_dir=None, sweep="random", 
 COMMANDS = {"pose": pose, "inverse-dynamics": inverse_dynamics, "forward-kinematics": forward_kinematics,
             "simulate": simulate, "control": control, "envelope": envelope, "workspace": workspace,
             "convert": convert, "animate": animate, "shake": shake, "regressor": regressor, "identify": identify,
-            "excite": excite, "loads": loads, "validate": validate, "reproduce": reproduce, "design": design}
+            "excite": excite, "loads": loads, "validate": validate, "reproduce": reproduce, "design": design,
+            "frequency-response": frequency_response}
 
 
 def main(argv=None):

@@ -21,6 +21,8 @@
 
 #include "cli_commands.hpp"
 #include "nocdyn/batch.hpp"
+#include "nocdyn/derivatives.hpp"
+#include "nocdyn/analysis/linearization.hpp"
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/drawing.hpp"
 #include "nocdyn/dynamics.hpp"
@@ -200,6 +202,66 @@ py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, con
     const std::string message = result.ok() ? std::string() : describe(result.status, model);
     return py::make_tuple(static_cast<std::int64_t>(result.failed),
                           result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message);
+}
+
+/// A matrix as a new (rows, cols) array.
+py::array_t<double> matrixToArray(const Eigen::MatrixXd& m) {
+    py::array_t<double> a({static_cast<py::ssize_t>(m.rows()), static_cast<py::ssize_t>(m.cols())});
+    for (Eigen::Index i = 0; i < m.rows(); ++i)
+        for (Eigen::Index j = 0; j < m.cols(); ++j) a.mutable_at(i, j) = m(i, j);
+    return a;
+}
+
+/// d tau/d p, d tau/d dp, d tau/d ddp of one sample, each (n, 3).
+py::tuple inverseDynamicsDerivativesSample(const Robot& robot, const py::handle& p, const py::handle& dp,
+                                           const py::handle& ddp) {
+    const Model& model = *robot.model;
+    InverseDynamicsDerivatives d;
+    const Status status =
+        inverseDynamicsDerivatives(model, *robot.data, vector3(p, "p"), vector3(dp, "dp"), vector3(ddp, "ddp"), d);
+    if (!status) throw Error(describe(status, model));
+    return py::make_tuple(matrixToArray(d.d_p), matrixToArray(d.d_dp), matrixToArray(d.d_ddp));
+}
+
+/// The derivatives of N samples, each (N, n, 3), the GIL released while they run. Returns
+/// (d_p, d_dp, d_ddp, failed, first_failure, message of the first failure or "").
+py::tuple inverseDynamicsDerivativesBatchArrays(const Robot& robot, const py::array& p, const py::array& dp,
+                                                const py::array& ddp, unsigned threads) {
+    const Model& model = *robot.model;
+    const ArrayView vp = viewOf(p, "p", -1, 3, false);
+    const py::ssize_t n = vp.rows;
+    const ArrayView vdp = viewOf(dp, "dp", n, 3, false), vddp = viewOf(ddp, "ddp", n, 3, false);
+    const auto a = static_cast<py::ssize_t>(model.actuators);
+    RowArray d_p({n, a, py::ssize_t{3}}), d_dp({n, a, py::ssize_t{3}}), d_ddp({n, a, py::ssize_t{3}});
+    // a C-ordered (N, n, 3) array is an (N, 3n) one, row k = sample k
+    const auto rowMajor = [&](RowArray& x) {
+        return StridedMap(x.mutable_data(), n, 3 * a, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(1, 3 * a));
+    };
+    StridedMap m_p = rowMajor(d_p), m_dp = rowMajor(d_dp), m_ddp = rowMajor(d_ddp);
+    BatchResult result;
+    {
+        const py::gil_scoped_release release;
+        result = inverseDynamicsDerivativesBatch(model, constMap(vp), constMap(vdp), constMap(vddp), m_p, m_dp, m_ddp,
+                                                 threads);
+    }
+    const std::string message = result.ok() ? std::string() : describe(result.status, model);
+    return py::make_tuple(d_p, d_dp, d_ddp, static_cast<std::int64_t>(result.failed),
+                          result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message);
+}
+
+/// The linearised model at (p, dp, tau): (A, B, C, D), the output "acceleration" or "actuators".
+py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::handle& dp, const py::handle& tau,
+                          const std::string& output) {
+    const Model& model = *robot.model;
+    if (output != "acceleration" && output != "actuators") {
+        throw Error("output: expected 'acceleration' or 'actuators', got '" + output + "'");
+    }
+    StateSpace ss;
+    const Status status = linearize(
+        model, *robot.data, vector3(p, "p"), vector3(dp, "dp"), actuatorVector(model, tau, "tau"),
+        output == "acceleration" ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables, ss);
+    if (!status) throw Error(describe(status, model));
+    return py::make_tuple(matrixToArray(ss.A), matrixToArray(ss.B), matrixToArray(ss.C), matrixToArray(ss.D));
 }
 
 /// The joint reactions of N samples into `out`, (N, 9 limbs) (a view of the (N, limbs, 3, 3)
@@ -778,6 +840,12 @@ PYBIND11_MODULE(_nocdyn, m) {
              py::arg("matrices") = false)
         .def("_inverse_dynamics_batch", &inverseDynamicsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"),
              py::arg("u"), py::arg("du"), py::arg("ddu"), py::arg("tau"), py::arg("threads") = 1)
+        .def("_inverse_dynamics_derivatives_sample", &inverseDynamicsDerivativesSample, py::arg("p"), py::arg("dp"),
+             py::arg("ddp"))
+        .def("_inverse_dynamics_derivatives_batch", &inverseDynamicsDerivativesBatchArrays, py::arg("p"), py::arg("dp"),
+             py::arg("ddp"), py::arg("threads") = 1)
+        .def("_linearize", &linearizeSample, py::arg("p"), py::arg("dp"), py::arg("tau"),
+             py::arg("output") = "acceleration")
         .def("_reactions_batch", &reactionsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"), py::arg("out"),
              py::arg("threads") = 1)
         .def("_time_cpp_batch", &timeCppBatch, py::arg("p"), py::arg("dp"), py::arg("ddp"), py::arg("repeat") = 1)

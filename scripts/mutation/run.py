@@ -37,6 +37,8 @@ TESTS = [
     "forward_dynamics_robots_test",
     "identification_test",
     "reactions_test",
+    "batch_test",
+    "derivatives_test",
 ]
 # A test binary that runs longer than this under a mutation (a loop that no longer converges)
 # counts as failing.

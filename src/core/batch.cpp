@@ -45,8 +45,20 @@ __attribute__((noinline, cold))
 #endif
 Status
 fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
-    const Status status =
+    Status status =
         inverseDynamics(model, data, a.p.row(k).transpose(), a.dp.row(k).transpose(), a.ddp.row(k).transpose());
+    // finite input whose results overflow (huge rates or accelerations): a failed sample, as
+    // an actuator effort that is not finite, never a non-finite number in the outputs
+    for (int i = 0; status && i < model.actuators; ++i) {
+        const double values[4] = {data.tau(i), data.u(i), data.du(i), data.ddu(i)};
+        for (const double v : values) {
+            if (!std::isfinite(v)) {
+                status = {StatusCode::effort_exceeded, model.actuator_limb[static_cast<std::size_t>(i)], v};
+                status.joint = model.actuator_joint[static_cast<std::size_t>(i)];
+                break;
+            }
+        }
+    }
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (int i = 0; i < model.actuators; ++i) {
         a.u(k, i) = status ? data.u(i) : nan;
@@ -76,11 +88,23 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
         a.u.innerStride() == 1 && a.du.innerStride() == 1 && a.ddu.innerStride() == 1 && a.tau.innerStride() == 1;
     // pointers and strides read once: a packet's stores (memcpy) may alias any object, and
     // would make the compiler read them again from the arrays at every store
+    // (element (k, i) at data[k * step + i * stride]: step 1 for Eigen's layout, the row's
+    // length for NumPy's C order)
     const double *const in_p = a.p.data(), *const in_dp = a.dp.data(), *const in_ddp = a.ddp.data();
     const Eigen::Index stride_p = a.p.outerStride(), stride_dp = a.dp.outerStride(), stride_ddp = a.ddp.outerStride();
+    const Eigen::Index step_p = a.p.innerStride(), step_dp = a.dp.innerStride(), step_ddp = a.ddp.innerStride();
     double *const out_u = a.u.data(), *const out_du = a.du.data(), *const out_ddu = a.ddu.data(),
                   *const out_tau = a.tau.data();
     const Eigen::Index stride_out = a.u.outerStride();  // the same for the four (checked)
+    const Eigen::Index step_u = a.u.innerStride(), step_du = a.du.innerStride(), step_ddu = a.ddu.innerStride(),
+                       step_tau = a.tau.innerStride();
+    // the four samples of column i of an array with rows `step` apart
+    const auto gather = [](const double* at, Eigen::Index step) NOCDYN_INLINE_LAMBDA {
+        return Pack{at[0], at[step], at[2 * step], at[3 * step]};
+    };
+    const auto scatter = [](double* at, Eigen::Index step, const Pack& v) NOCDYN_INLINE_LAMBDA {
+        at[0] = v[0], at[step] = v[1], at[2 * step] = v[2], at[3 * step] = v[3];
+    };
     for (Eigen::Index k = begin; k < end; k += kLanes) {
         // lane l = sample k + l; past the end, the last sample again (not written)
         const int lanes = static_cast<int>(std::min<Eigen::Index>(kLanes, end - k));
@@ -91,6 +115,13 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
                 std::memcpy(&p[i], in_p + k + i * stride_p, sizeof(Pack));
                 std::memcpy(&dp[i], in_dp + k + i * stride_dp, sizeof(Pack));
                 std::memcpy(&ddp[i], in_ddp + k + i * stride_ddp, sizeof(Pack));
+            }
+        } else if (lanes == kLanes) {
+            // any other layout (NumPy's C order: a packet's 4 x 3 values side by side)
+            for (int i = 0; i < 3; ++i) {
+                p[i] = gather(in_p + k * step_p + i * stride_p, step_p);
+                dp[i] = gather(in_dp + k * step_dp + i * stride_dp, step_dp);
+                ddp[i] = gather(in_ddp + k * step_ddp + i * stride_ddp, step_ddp);
             }
         } else {
             for (int l = 0; l < kLanes; ++l) {
@@ -108,15 +139,29 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
         Pack u[kMaxActuators], du[kMaxActuators], ddu[kMaxActuators], tau[kMaxActuators];
         const detail::lean::Out<Pack> out{u, du, ddu, tau, 1};
         detail::lean::V3<Pack> W;
-        const PackMask ok =
+        PackMask ok =
             (zero == 0.0) & (fastmath::absOf(dtheta) < 1.0e6) & detail::lean::sample(model, c, s, p, dp, ddp, out, W);
-        if (lanes == kLanes && contiguous_out && fastmath::all(ok)) [[likely]] {
-            for (int i = 0; i < n; ++i) {
-                const Eigen::Index at = k + i * stride_out;
-                std::memcpy(out_u + at, &u[i], sizeof(Pack));
-                std::memcpy(out_du + at, &du[i], sizeof(Pack));
-                std::memcpy(out_ddu + at, &ddu[i], sizeof(Pack));
-                std::memcpy(out_tau + at, &tau[i], sizeof(Pack));
+        // the outputs finite (finite input can overflow): the same 0 x test, fused here so
+        // that no caller needs a second pass over the outputs
+        Pack zero_out = Pack{};
+        for (int i = 0; i < n; ++i) zero_out += u[i] * 0.0 + du[i] * 0.0 + ddu[i] * 0.0 + tau[i] * 0.0;
+        ok &= zero_out == 0.0;
+        if (lanes == kLanes && fastmath::all(ok)) [[likely]] {
+            if (contiguous_out) {
+                for (int i = 0; i < n; ++i) {
+                    const Eigen::Index at = k + i * stride_out;
+                    std::memcpy(out_u + at, &u[i], sizeof(Pack));
+                    std::memcpy(out_du + at, &du[i], sizeof(Pack));
+                    std::memcpy(out_ddu + at, &ddu[i], sizeof(Pack));
+                    std::memcpy(out_tau + at, &tau[i], sizeof(Pack));
+                }
+            } else {
+                for (int i = 0; i < n; ++i) {
+                    scatter(out_u + k * step_u + i * stride_out, step_u, u[i]);
+                    scatter(out_du + k * step_du + i * stride_out, step_du, du[i]);
+                    scatter(out_ddu + k * step_ddu + i * stride_out, step_ddu, ddu[i]);
+                    scatter(out_tau + k * step_tau + i * stride_out, step_tau, tau[i]);
+                }
             }
             continue;
         }

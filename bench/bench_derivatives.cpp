@@ -1,0 +1,118 @@
+// Exact derivatives of the dynamics (derivatives.hpp) against the values they differentiate,
+// per sample, in one run: BM_Derivatives/<robot>/<what> for the example robots paper-3prr,
+// 3-rrr, 3-rpr and 4-rrr (redundant), what in
+//   inverse_dynamics_fast    one inverse dynamics, the lean path (inverseDynamicsFast)
+//   inverse_dynamics         one inverse dynamics, the full path (inverseDynamics)
+//   inverse_derivatives      tau and d tau/d(p, dp, ddp) (inverseDynamicsDerivatives)
+//   forward_dynamics         one forward dynamics (forwardDynamics, sim layer)
+//   forward_derivatives      ddp and d ddp/d(p, dp, tau) (forwardDynamicsDerivatives)
+// over a cycle of 1000 samples of the paper's trajectory 1 plus a second harmonic per axis
+// (the fixture of bench_robots.cpp), each reporting `per_sample`. bench/derivative_ratios.py
+// prints the ratios of one JSON run: inverse_derivatives / inverse_dynamics(_fast) and
+// forward_derivatives / forward_dynamics.
+#include <benchmark/benchmark.h>
+
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include "nocdyn/derivatives.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/trajectory.hpp"
+
+namespace nocdyn::bench {
+namespace {
+
+struct Sample {
+    Pose p, dp, ddp;
+    ActuatorVector tau;
+};
+
+/// One period (0.1 s) of the benchmark trajectory at 10 kHz, and the forces of each sample.
+std::vector<Sample> cycle(const Model& model) {
+    constexpr double pi = std::numbers::pi;
+    PoseTrajectory trajectory = paperTrajectory1();
+    trajectory.theta.harmonics.push_back({1.0 * pi / 180.0, 30.0, 0.3});
+    trajectory.x.harmonics.push_back({0.0005, 20.0, 1.0});
+    trajectory.y.harmonics.push_back({0.0008, 30.0, -0.5});
+    std::vector<Sample> samples(1000);
+    Data data(model);
+    for (std::size_t k = 0; k < samples.size(); ++k) {
+        Sample& s = samples[k];
+        trajectory.evaluate(static_cast<double>(k) * 1e-4, s.p, s.dp, s.ddp);
+        s.p += model.home;  // around the robot's home pose
+        if (!inverseDynamics(model, data, s.p, s.dp, s.ddp)) return {};
+        s.tau = data.tau;
+    }
+    return samples;
+}
+
+enum class What { inverse_fast, inverse, inverse_derivatives, forward, forward_derivatives };
+
+void run(benchmark::State& state, const std::string& robot, What what) {
+    const Model model(io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
+    const std::vector<Sample> samples = cycle(model);
+    if (samples.empty()) {
+        state.SkipWithError(("the benchmark trajectory leaves the workspace of " + robot).c_str());
+        return;
+    }
+    Data data(model);
+    InverseDynamicsDerivatives id;
+    ForwardDynamicsDerivatives fd;
+    for (auto _ : state) {
+        for (const Sample& s : samples) {
+            Status status;
+            switch (what) {
+                case What::inverse_fast:
+                    status = inverseDynamicsFast(model, data, s.p, s.dp, s.ddp);
+                    benchmark::DoNotOptimize(data.tau.data());
+                    break;
+                case What::inverse:
+                    status = inverseDynamics(model, data, s.p, s.dp, s.ddp);
+                    benchmark::DoNotOptimize(data.tau.data());
+                    break;
+                case What::inverse_derivatives:
+                    status = inverseDynamicsDerivatives(model, data, s.p, s.dp, s.ddp, id);
+                    benchmark::DoNotOptimize(id.d_p.data());
+                    break;
+                case What::forward:
+                    status = forwardDynamics(model, data, s.p, s.dp, s.tau);
+                    benchmark::DoNotOptimize(data.t_M_dot.data());
+                    break;
+                case What::forward_derivatives:
+                    status = forwardDynamicsDerivatives(model, data, s.p, s.dp, s.tau, fd);
+                    benchmark::DoNotOptimize(fd.d_p.data());
+                    break;
+            }
+            benchmark::DoNotOptimize(status);
+        }
+        benchmark::ClobberMemory();
+    }
+    state.counters["per_sample"] =
+        benchmark::Counter(static_cast<double>(samples.size()),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+const bool registered = [] {
+    const std::pair<const char*, What> whats[] = {{"inverse_dynamics_fast", What::inverse_fast},
+                                                  {"inverse_dynamics", What::inverse},
+                                                  {"inverse_derivatives", What::inverse_derivatives},
+                                                  {"forward_dynamics", What::forward},
+                                                  {"forward_derivatives", What::forward_derivatives}};
+    for (const char* robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
+        for (const auto& [name, what] : whats) {
+            const std::string robot_name = robot;
+            const What w = what;
+            benchmark::RegisterBenchmark(("BM_Derivatives/" + robot_name + "/" + name).c_str(),
+                                         [robot_name, w](benchmark::State& state) { run(state, robot_name, w); });
+        }
+    }
+    return true;
+}();
+
+}  // namespace
+}  // namespace nocdyn::bench
+
+BENCHMARK_MAIN();

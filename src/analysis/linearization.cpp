@@ -1,0 +1,109 @@
+// The rigid robot linearised at an operating point, and its frequency response
+// (analysis/linearization.hpp).
+#include "nocdyn/analysis/linearization.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include <Eigen/LU>
+
+#include "nocdyn/derivatives.hpp"
+#include "nocdyn/error.hpp"
+
+namespace nocdyn {
+
+const char* name(LinearOutput output) {
+    return output == LinearOutput::platform_acceleration ? "acceleration" : "actuators";
+}
+
+Status linearize(const Model& model, Data& data, const Pose& p, const Twist& dp, const ActuatorVector& tau,
+                 LinearOutput output, StateSpace& out) {
+    ForwardDynamicsDerivatives d;
+    if (const Status status = forwardDynamicsDerivatives(model, data, p, dp, tau, d); !status) return status;
+    const int n = model.actuators;
+    out.output = output;
+    out.A = Eigen::MatrixXd::Zero(6, 6);
+    out.A.topRightCorner<3, 3>().setIdentity();
+    out.A.block<3, 3>(3, 0) = d.d_p;
+    out.A.block<3, 3>(3, 3) = d.d_dp;
+    out.B = Eigen::MatrixXd::Zero(6, n);
+    out.B.bottomRows<3>() = d.d_tau;
+    if (output == LinearOutput::platform_acceleration) {
+        out.C = out.A.bottomRows<3>();
+        out.D = out.B.bottomRows<3>();
+    } else {
+        // du = A S(c) dp/dt: the actuator variables' derivative by the pose is A_p
+        out.C = Eigen::MatrixXd::Zero(n, 6);
+        out.C.leftCols<3>() = Eigen::MatrixXd(data.A) * platformTwistMap(p.tail<2>());
+        out.D = Eigen::MatrixXd::Zero(n, n);
+    }
+    return {};
+}
+
+Eigen::MatrixXcd frequencyResponse(const StateSpace& system, double frequency) {
+    const std::complex<double> s(0.0, 2.0 * std::numbers::pi * frequency);
+    const Eigen::Index m = system.A.rows();
+    const Eigen::MatrixXcd sI_A = s * Eigen::MatrixXcd::Identity(m, m) - system.A.cast<std::complex<double>>();
+    const Eigen::MatrixXcd X = sI_A.partialPivLu().solve(system.B.cast<std::complex<double>>());
+    return system.C.cast<std::complex<double>>() * X + system.D.cast<std::complex<double>>();
+}
+
+FrequencyResponse frequencyResponse(const StateSpace& system, const std::vector<double>& frequencies) {
+    FrequencyResponse r;
+    r.frequency = frequencies;
+    r.outputs = static_cast<int>(system.C.rows());
+    r.inputs = static_cast<int>(system.B.cols());
+    const auto rows = static_cast<Eigen::Index>(frequencies.size());
+    const auto channels = static_cast<Eigen::Index>(r.outputs) * r.inputs;
+    r.magnitude_db.resize(rows, channels);
+    r.phase_deg.resize(rows, channels);
+    for (Eigen::Index k = 0; k < rows; ++k) {
+        const double f = frequencies[static_cast<std::size_t>(k)];
+        if (!(f > 0.0) || !std::isfinite(f) || (k > 0 && !(f > frequencies[static_cast<std::size_t>(k - 1)]))) {
+            throw Error("frequency response: the frequencies must be positive and increasing (" + std::to_string(f) +
+                        " Hz)");
+        }
+        const Eigen::MatrixXcd H = frequencyResponse(system, f);
+        for (int o = 0; o < r.outputs; ++o) {
+            for (int i = 0; i < r.inputs; ++i) {
+                const Eigen::Index c = o * r.inputs + i;
+                const std::complex<double> h = H(o, i);
+                r.magnitude_db(k, c) = 20.0 * std::log10(std::abs(h));
+                double phase = std::arg(h) * 180.0 / std::numbers::pi;
+                // unwrap: the nearest to the previous frequency's phase
+                if (k > 0) phase += 360.0 * std::round((r.phase_deg(k - 1, c) - phase) / 360.0);
+                r.phase_deg(k, c) = phase;
+            }
+        }
+    }
+    return r;
+}
+
+double bandwidth3dB(const FrequencyResponse& response, int o, int i) {
+    const Eigen::Index c = o * response.inputs + i;
+    const Eigen::Index rows = response.magnitude_db.rows();
+    if (rows == 0) return std::numeric_limits<double>::quiet_NaN();
+    const double level = response.magnitude_db(0, c) - 3.0;
+    for (Eigen::Index k = 1; k < rows; ++k) {
+        const double m0 = response.magnitude_db(k - 1, c), m1 = response.magnitude_db(k, c);
+        if (m1 < level) {
+            const double f0 = std::log(response.frequency[static_cast<std::size_t>(k - 1)]);
+            const double f1 = std::log(response.frequency[static_cast<std::size_t>(k)]);
+            return std::exp(f0 + (f1 - f0) * (m0 - level) / (m0 - m1));
+        }
+    }
+    return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::vector<double> logGrid(double f_min, double f_max, int count) {
+    if (!(f_min > 0.0) || !(f_max > f_min) || !std::isfinite(f_max) || count < 2) {
+        throw Error("frequency grid: expected 0 < f_min < f_max and at least 2 points");
+    }
+    std::vector<double> grid(static_cast<std::size_t>(count));
+    const double a = std::log(f_min), b = std::log(f_max);
+    for (int k = 0; k < count; ++k) grid[static_cast<std::size_t>(k)] = std::exp(a + (b - a) * k / (count - 1));
+    return grid;
+}
+
+}  // namespace nocdyn

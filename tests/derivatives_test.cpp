@@ -1,0 +1,379 @@
+// Exact derivatives of the inverse and forward dynamics (derivatives.hpp) on random robots of
+// every limb type (the robots of lagrange_test.cpp: gravity, friction, redundant actuation),
+// against five-point central finite differences of the values of inverseDynamics and
+// forwardDynamics (independent code: the full NOC path with T_i, I and C), and the identities
+// A_p^T d tau/d ddp = M_p (the mapped mass matrix) and d ddp/d tau = M_p^-1 A_p^T.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <optional>
+#include <cmath>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "nocdyn/batch.hpp"
+#include "nocdyn/derivatives.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
+#include "random_robots.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+// Five-point stencils at h and h/2, extrapolated: at these steps truncation and rounding are
+// both below 1e-9 of the derivatives' size on most samples of these robots (poses over
+// centimetres and tenths of a radian, rates of a few rad/s and tens of mm/s).
+constexpr double kStep = 2e-5;
+constexpr double kTolerance = 1e-7;  // relative, per matrix: |AD - FD| <= kTolerance (|AD| + floor)
+constexpr double kConditionLimit = 1e3;
+
+std::vector<RandomRobotSpec> specs() {
+    std::vector<RandomRobotSpec> out;
+    for (const std::string& type : limbTypes()) {
+        out.push_back({{type, type, type}, 3, true, true});
+        out.push_back({{type, type, type, type}, 4, true, true});
+    }
+    out.push_back({{"RRR", "PRR", "RPR"}, 3, true, false});
+    out.push_back({{"RRP", "PRP", "RPP", "PPR"}, 5, false, true});
+    out.push_back({{"PRR", "RRR", "RPR", "RRR", "PRR"}, 6, true, true});
+    out.push_back({{"PRR", "PRR", "PRR"}, 3, true, true, 0});
+    out.push_back({{"RRR", "RRR", "RRR"}, 3, true, true, 0});
+    out.push_back({{"RPR", "RPR", "RPR"}, 3, true, true, 1});
+    return out;
+}
+
+std::string label(const RandomRobotSpec& spec) {
+    std::string s;
+    for (const auto& type : spec.limb_types) s += type + "_";
+    if (spec.actuated_joint >= 0) s += "joint" + std::to_string(spec.actuated_joint + 1) + "_";
+    return s + std::to_string(spec.actuators) + (spec.gravity ? "_gravity" : "") + (spec.friction ? "_friction" : "");
+}
+
+std::string testName(const ::testing::TestParamInfo<RandomRobotSpec>& info) { return label(info.param); }
+
+struct Sample {
+    Pose p, dp, ddp;
+};
+
+/// Every joint rate of the sample away from zero, so that no Coulomb sign flips within the
+/// stencil (the derivative freezes it; a difference across the flip would see the jump).
+bool ratesAwayFromZero(const Model& model, const Data& data) {
+    for (int j = 0; j < model.limbs; ++j) {
+        if (data.limb[static_cast<std::size_t>(j)].gamma_dot.cwiseAbs().minCoeff() < 1e-2) return false;
+    }
+    return true;
+}
+
+/// Five-point derivative of f (a vector) at step h.
+template <class F>
+Eigen::VectorXd fivePoint(const F& f, double h) {
+    return (-f(2.0 * h) + 8.0 * f(h) - 8.0 * f(-h) + f(-2.0 * h)) / (12.0 * h);
+}
+
+/// The five-point derivatives at h and h/2 extrapolated (Richardson, truncation O(h^6)), and
+/// in `spread` how far the two disagree (an upper bound of the extrapolation's error where the
+/// Taylor series converges).
+template <class F>
+Eigen::VectorXd stencil(const F& f, double h, double& spread) {
+    const Eigen::VectorXd coarse = fivePoint(f, h), fine = fivePoint(f, 0.5 * h);
+    spread = std::max(spread, (fine - coarse).cwiseAbs().maxCoeff());
+    return (16.0 * fine - coarse) / 15.0;
+}
+
+/// Where the dynamics vary over lengths near the step (a limb close to the edge of its reach)
+/// the differences do not converge, and cannot judge the derivative: such a matrix is skipped
+/// when its two stencils differ by more than this, relative.
+constexpr double kUnconverged = 1e-4;
+
+double relativeError(const Eigen::MatrixXd& exact, const Eigen::MatrixXd& fd, double floor) {
+    return (exact - fd).cwiseAbs().maxCoeff() / (exact.cwiseAbs().maxCoeff() + floor);
+}
+
+class DerivativesRandomRobots : public ::testing::TestWithParam<RandomRobotSpec> {
+protected:
+    static constexpr int kRobots = 2;
+    static constexpr int kSamples = 10;
+
+    /// The first kRobots random robots of the spec that are regular along a random trajectory,
+    /// with check run on each sample whose joint rates are away from zero. Returns the count.
+    template <class Check>
+    void forEachSample(const Check& check) {
+        std::mt19937 rng(23);
+        int kept = 0, tried = 0, checked = 0;
+        while (kept < kRobots && tried < 200) {
+            ++tried;
+            const auto description = randomRobot(GetParam(), rng);
+            if (!description) continue;
+            const Model model(*description);
+            const PoseTrajectory trajectory = trajectoryAround(description->home, rng, 0.5);
+            Data data(model);
+            std::vector<Sample> samples;
+            bool regular = true;
+            for (int k = 0; k < kSamples && regular; ++k) {
+                Sample s;
+                trajectory.evaluate(0.037 + k * 0.03, s.p, s.dp, s.ddp);
+                regular = inverseDynamics(model, data, s.p, s.dp, s.ddp).ok() && data.cond_A < kConditionLimit;
+                for (int j = 0; j < model.limbs; ++j)
+                    regular = regular && data.limb[static_cast<std::size_t>(j)].cond < kConditionLimit;
+                if (regular && ratesAwayFromZero(model, data)) samples.push_back(s);
+            }
+            if (!regular) continue;
+            ++kept;
+            for (const Sample& s : samples) {
+                check(model, s);
+                ++checked;
+            }
+        }
+        EXPECT_EQ(kept, kRobots) << label(GetParam()) << ": only " << kept << " regular robots in " << tried;
+        EXPECT_GE(checked, kRobots * kSamples / 2) << label(GetParam()) << ": too few samples checked";
+    }
+};
+
+std::string where(const Sample& s) {
+    std::ostringstream out;
+    out << "p = [" << s.p.transpose() << "], dp = [" << s.dp.transpose() << "], ddp = [" << s.ddp.transpose() << "]";
+    return out.str();
+}
+
+TEST_P(DerivativesRandomRobots, InverseDynamicsDerivativesEqualFiniteDifferences) {
+    double worst = 0.0;
+    int matrices = 0, skipped = 0;
+    forEachSample([&](const Model& model, const Sample& s) {
+        Data data(model), probe(model);
+        InverseDynamicsDerivatives d;
+        ASSERT_TRUE(inverseDynamicsDerivatives(model, data, s.p, s.dp, s.ddp, d).ok()) << where(s);
+        ASSERT_TRUE(inverseDynamics(model, probe, s.p, s.dp, s.ddp).ok());
+        const Eigen::VectorXd tau = probe.tau;
+        EXPECT_LE((Eigen::VectorXd(d.tau) - tau).cwiseAbs().maxCoeff(), 1e-11 * (1.0 + tau.cwiseAbs().maxCoeff()));
+        const int n = model.actuators;
+        const double floor = 1e-3 * (1.0 + tau.cwiseAbs().maxCoeff());
+        for (int which = 0; which < 3; ++which) {
+            Eigen::MatrixXd fd(n, 3);
+            double spread = 0.0;
+            for (int i = 0; i < 3; ++i) {
+                const auto f = [&](double h) -> Eigen::VectorXd {
+                    Sample t = s;
+                    (which == 0 ? t.p : which == 1 ? t.dp : t.ddp)(i) += h;
+                    EXPECT_TRUE(inverseDynamics(model, probe, t.p, t.dp, t.ddp).ok());
+                    return probe.tau;
+                };
+                fd.col(i) = stencil(f, kStep, spread);
+            }
+            const Eigen::MatrixXd exact =
+                which == 0 ? Eigen::MatrixXd(d.d_p) : (which == 1 ? Eigen::MatrixXd(d.d_dp) : Eigen::MatrixXd(d.d_ddp));
+            ++matrices;
+            if (spread > kUnconverged * (exact.cwiseAbs().maxCoeff() + floor)) {
+                ++skipped;
+                continue;
+            }
+            const double error = relativeError(exact, fd, floor);
+            worst = std::max(worst, error);
+            EXPECT_LE(error, kTolerance) << "d tau/d "
+                                         << (which == 0   ? "p"
+                                             : which == 1 ? "dp"
+                                                          : "ddp")
+                                         << " of " << label(GetParam()) << " at " << where(s) << "\nexact\n"
+                                         << exact << "\nfinite differences\n"
+                                         << fd;
+        }
+    });
+    std::printf("%s: worst relative error of d tau/d(p, dp, ddp) %.2e (%d of %d matrices skipped)\n",
+                label(GetParam()).c_str(), worst, skipped, matrices);
+    EXPECT_LE(10 * skipped, matrices) << "the finite differences did not converge on too many samples";
+}
+
+TEST_P(DerivativesRandomRobots, AccelerationDerivativeIsTheMappedMassMatrix) {
+    forEachSample([&](const Model& model, const Sample& s) {
+        Data data(model), platform(model);
+        InverseDynamicsDerivatives d;
+        ASSERT_TRUE(inverseDynamicsDerivatives(model, data, s.p, s.dp, s.ddp, d).ok());
+        ASSERT_TRUE(inverseDisplacement(model, platform, s.p).ok());
+        ASSERT_TRUE(velocityFromPlatformTwist(model, platform, s.dp).ok());
+        platformDynamics(model, platform);
+        // A_p^T d tau/d ddp = M_p (the actuators' resultant supplies M_p ddp), A_p = A S(c)
+        const Eigen::MatrixXd A_p = Eigen::MatrixXd(platform.A) * platformTwistMap(s.p.tail<2>());
+        const Matrix3 mapped = A_p.transpose() * Eigen::MatrixXd(d.d_ddp);
+        EXPECT_LE((mapped - platform.M_p).cwiseAbs().maxCoeff(), 1e-11 * platform.M_p.cwiseAbs().maxCoeff())
+            << label(GetParam()) << "\n"
+            << mapped << "\nM_p\n"
+            << platform.M_p;
+        // and the minimum-norm tau lies in the range of A_p: d tau/d ddp = A_p (A_p^T A_p)^-1 M_p
+        const Eigen::MatrixXd expected = A_p * (A_p.transpose() * A_p).inverse() * platform.M_p;
+        EXPECT_LE((Eigen::MatrixXd(d.d_ddp) - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff());
+    });
+}
+
+TEST_P(DerivativesRandomRobots, ForwardDynamicsDerivativesEqualFiniteDifferences) {
+    double worst = 0.0;
+    int matrices = 0, skipped = 0;
+    forEachSample([&](const Model& model, const Sample& s) {
+        Data data(model), probe(model);
+        // the forces of the sample's own motion
+        ASSERT_TRUE(inverseDynamics(model, probe, s.p, s.dp, s.ddp).ok());
+        const ActuatorVector tau = probe.tau;
+        ForwardDynamicsDerivatives d;
+        ASSERT_TRUE(forwardDynamicsDerivatives(model, data, s.p, s.dp, tau, d).ok()) << where(s);
+        ASSERT_TRUE(forwardDynamics(model, probe, s.p, s.dp, tau).ok());
+        EXPECT_LE((d.ddp - probe.t_M_dot).cwiseAbs().maxCoeff(), 1e-9 * (1.0 + s.ddp.cwiseAbs().maxCoeff()));
+        EXPECT_LE((d.M_p - probe.M_p).cwiseAbs().maxCoeff(), 1e-11 * probe.M_p.cwiseAbs().maxCoeff());
+        const double floor = 1e-3 * (1.0 + s.ddp.cwiseAbs().maxCoeff());
+        const int n = model.actuators;
+        for (int which = 0; which < 3; ++which) {
+            const int columns = which == 2 ? n : 3;
+            Eigen::MatrixXd fd(3, columns);
+            double spread = 0.0;
+            for (int i = 0; i < columns; ++i) {
+                const auto f = [&](double h) -> Eigen::VectorXd {
+                    Pose p = s.p;
+                    Twist dp = s.dp;
+                    ActuatorVector t = tau;
+                    if (which == 0) p(i) += h;
+                    if (which == 1) dp(i) += h;
+                    if (which == 2) t(i) += h;
+                    EXPECT_TRUE(forwardDynamics(model, probe, p, dp, t).ok());
+                    return probe.t_M_dot;
+                };
+                // forces are tens of newtons: a step of 1e-4 N is as fine as 1e-4 m
+                fd.col(i) = stencil(f, which == 2 ? 1e-2 : kStep, spread);
+            }
+            const Eigen::MatrixXd exact =
+                which == 0 ? Eigen::MatrixXd(d.d_p) : (which == 1 ? Eigen::MatrixXd(d.d_dp) : Eigen::MatrixXd(d.d_tau));
+            ++matrices;
+            if (spread > kUnconverged * (exact.cwiseAbs().maxCoeff() + floor)) {
+                ++skipped;
+                continue;
+            }
+            const double error = relativeError(exact, fd, which == 2 ? 0.0 : floor);
+            worst = std::max(worst, error);
+            EXPECT_LE(error, kTolerance) << "d ddp/d "
+                                         << (which == 0   ? "p"
+                                             : which == 1 ? "dp"
+                                                          : "tau")
+                                         << " of " << label(GetParam()) << " at " << where(s) << "\nexact\n"
+                                         << exact << "\nfinite differences\n"
+                                         << fd;
+        }
+        // d ddp/d tau = M_p^-1 A_p^T
+        const Eigen::MatrixXd A_p = Eigen::MatrixXd(data.A) * platformTwistMap(s.p.tail<2>());
+        const Eigen::MatrixXd expected = probe.M_p.inverse() * A_p.transpose();
+        EXPECT_LE((Eigen::MatrixXd(d.d_tau) - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff());
+    });
+    std::printf("%s: worst relative error of d ddp/d(p, dp, tau) %.2e (%d of %d matrices skipped)\n",
+                label(GetParam()).c_str(), worst, skipped, matrices);
+    EXPECT_LE(10 * skipped, matrices) << "the finite differences did not converge on too many samples";
+}
+
+TEST_P(DerivativesRandomRobots, BatchEqualsSampleBySample) {
+    std::vector<Sample> all;
+    const Model* first = nullptr;
+    std::optional<Model> kept;
+    std::mt19937 rng(23);
+    for (int tried = 0; tried < 200 && !kept; ++tried) {
+        const auto description = randomRobot(GetParam(), rng);
+        if (description) kept.emplace(*description);
+        if (kept) {
+            const PoseTrajectory trajectory = trajectoryAround(description->home, rng, 0.5);
+            for (int k = 0; k < 20; ++k) {
+                Sample s;
+                trajectory.evaluate(0.01 * k, s.p, s.dp, s.ddp);
+                all.push_back(s);
+            }
+        }
+    }
+    ASSERT_TRUE(kept.has_value());
+    first = &*kept;
+    const Model& model = *first;
+    const auto N = static_cast<Eigen::Index>(all.size());
+    Eigen::ArrayXXd p(N, 3), dp(N, 3), ddp(N, 3);
+    for (Eigen::Index k = 0; k < N; ++k) {
+        p.row(k) = all[static_cast<std::size_t>(k)].p.transpose();
+        dp.row(k) = all[static_cast<std::size_t>(k)].dp.transpose();
+        ddp.row(k) = all[static_cast<std::size_t>(k)].ddp.transpose();
+    }
+    // a last sample that is not a number: NaN outputs and its Status
+    p(N - 1, 1) = std::nan("");
+    const int n = model.actuators;
+    Eigen::ArrayXXd d_p(N, 3 * n), d_dp(N, 3 * n), d_ddp(N, 3 * n);
+    const BatchResult result = inverseDynamicsDerivativesBatch(model, p, dp, ddp, d_p, d_dp, d_ddp, 2);
+    Data data(model);
+    Eigen::Index failed = 0, first_failed = BatchResult::npos;
+    StatusCode first_code = StatusCode::ok;
+    for (Eigen::Index k = 0; k < N; ++k) {
+        InverseDynamicsDerivatives d;
+        const Status status = inverseDynamicsDerivatives(model, data, p.row(k).transpose(), dp.row(k).transpose(),
+                                                         ddp.row(k).transpose(), d);
+        if (!status && failed++ == 0) {
+            first_failed = k;
+            first_code = status.code;
+        }
+        for (int a = 0; a < n; ++a) {
+            for (int i = 0; i < 3; ++i) {
+                if (!status) {
+                    EXPECT_TRUE(std::isnan(d_p(k, 3 * a + i)));
+                    continue;
+                }
+                EXPECT_EQ(d_p(k, 3 * a + i), d.d_p(a, i));
+                EXPECT_EQ(d_dp(k, 3 * a + i), d.d_dp(a, i));
+                EXPECT_EQ(d_ddp(k, 3 * a + i), d.d_ddp(a, i));
+            }
+        }
+    }
+    EXPECT_GE(failed, 1);
+    EXPECT_EQ(result.failed, failed);
+    EXPECT_EQ(result.first_failure, first_failed);
+    EXPECT_EQ(result.status.code, first_code);
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryLimbType, DerivativesRandomRobots, ::testing::ValuesIn(specs()), testName);
+
+TEST(Derivatives, CoulombFrictionAtRestContributesNeitherForceNorDerivative) {
+    std::mt19937 rng(5);
+    std::optional<RobotDescription> description;
+    while (!description) description = randomRobot({{"PRR", "PRR", "PRR"}, 3, false, true}, rng);
+    RobotDescription frictionless = *description;
+    for (LimbDescription& limb : frictionless.limbs) {
+        for (JointDescription& joint : limb.joints) joint.friction = 0.0;
+    }
+    const Model model(*description), reference(frictionless);
+    Data data(model), data_ref(reference);
+    const Pose p = description->home;
+    const Twist ddp(0.3, 0.1, -0.2);
+    InverseDynamicsDerivatives d, d_ref;
+    ASSERT_TRUE(inverseDynamicsDerivatives(model, data, p, Twist::Zero(), ddp, d).ok());
+    ASSERT_TRUE(inverseDynamicsDerivatives(reference, data_ref, p, Twist::Zero(), ddp, d_ref).ok());
+    // at rest, sign 0 = 0: the Coulomb force and its derivative are those of no friction
+    EXPECT_LE((Eigen::VectorXd(d.tau) - Eigen::VectorXd(d_ref.tau)).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LE((Eigen::MatrixXd(d.d_p) - Eigen::MatrixXd(d_ref.d_p)).cwiseAbs().maxCoeff(), 1e-12);
+    EXPECT_LE((Eigen::MatrixXd(d.d_dp) - Eigen::MatrixXd(d_ref.d_dp)).cwiseAbs().maxCoeff(), 1e-12);
+    // while moving, the Coulomb force is there (the robots differ)
+    ASSERT_TRUE(inverseDynamicsDerivatives(model, data, p, Twist(0.5, 0.02, -0.01), ddp, d).ok());
+    ASSERT_TRUE(inverseDynamicsDerivatives(reference, data_ref, p, Twist(0.5, 0.02, -0.01), ddp, d_ref).ok());
+    EXPECT_GT((Eigen::VectorXd(d.tau) - Eigen::VectorXd(d_ref.tau)).cwiseAbs().maxCoeff(), 1e-3);
+}
+
+TEST(Derivatives, BadInputGivesTheStatusOfInverseDynamics) {
+    std::mt19937 rng(5);
+    std::optional<RobotDescription> description;
+    while (!description) description = randomRobot({{"RRR", "RRR", "RRR"}, 3, true, false}, rng);
+    const Model model(*description);
+    Data data(model);
+    InverseDynamicsDerivatives d;
+    const Pose far(0.0, 5.0, 0.0);
+    EXPECT_EQ(inverseDynamicsDerivatives(model, data, far, Twist::Zero(), Twist::Zero(), d).code,
+              StatusCode::unreachable);
+    const Twist nan(std::nan(""), 0.0, 0.0);
+    EXPECT_EQ(inverseDynamicsDerivatives(model, data, description->home, Twist::Zero(), nan, d).code,
+              StatusCode::not_finite);
+    ForwardDynamicsDerivatives f;
+    ActuatorVector tau = ActuatorVector::Zero(model.actuators);
+    tau(1) = std::nan("");
+    EXPECT_EQ(forwardDynamicsDerivatives(model, data, description->home, Twist::Zero(), tau, f).code,
+              StatusCode::not_finite);
+}
+
+}  // namespace
+}  // namespace nocdyn::test
