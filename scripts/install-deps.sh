@@ -26,6 +26,7 @@ packages=(
   python3-tqdm python3-pandas                  # progress bars and to_pandas() of the Python package
   python3-venv python3-pip                     # the test of `pip install .` (ctest -L pip)
   python3-sphinx python3-myst-parser           # the user guide, docs/ (ctest -L docs)
+  calculix-ccx                                 # finite-element check of the stiffness and modes (ctest -L validation)
   doxygen python3-breathe                      # its C++ API page (docs/cpp-api.md, docs/Doxyfile)
 )
 # npm fetches playwright-core for the browser tests: Debian's package, unless the installed

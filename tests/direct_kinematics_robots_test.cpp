@@ -302,8 +302,8 @@ void sixModes(const std::string& type, int actuated_joint, unsigned seed) {
                 joint.direction = (anchor - base).normalized();
                 joint.actuated = static_cast<int>(k) == actuated_joint;
             }
-            limb.bodies[0] = {0.5, 1e-3, 0.5 * (base + mid), 0};
-            limb.bodies[1] = {0.5, 1e-3, 0.5 * (mid + anchor), 0};
+            limb.bodies[0] = {0.5, 1e-3, 0.5 * (base + mid), 0, {}};
+            limb.bodies[1] = {0.5, 1e-3, 0.5 * (mid + anchor), 0, {}};
             robot.limbs.push_back(limb);
         }
         std::optional<Model> model;

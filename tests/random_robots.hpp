@@ -84,10 +84,10 @@ inline std::optional<RobotDescription> randomRobot(const RandomRobotSpec& spec, 
                 joint.friction = 0.5 * (unit(rng) + 1.0);
             }
         }
-        limb.bodies[0] = {mass(rng), inertia(rng),
-                          0.5 * (base + mid) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0};
-        limb.bodies[1] = {mass(rng), inertia(rng),
-                          0.5 * (mid + anchor) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0};
+        limb.bodies[0] = {
+            mass(rng), inertia(rng), 0.5 * (base + mid) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0, {}};
+        limb.bodies[1] = {
+            mass(rng), inertia(rng), 0.5 * (mid + anchor) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0, {}};
         robot.limbs.push_back(limb);
     }
     // actuators: a random choice among all joints

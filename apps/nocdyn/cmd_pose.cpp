@@ -7,10 +7,12 @@
 #include <iostream>
 #include <memory>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/reactions.hpp"
@@ -74,6 +76,92 @@ void warnOutsideRange(const Model& model, const Data& data, const Status& limits
                  worst > 10.0 ? " -- far outside the range: the command line takes m and rad (5 mm is 0.005)" : "");
 }
 
+/// The compliance results at the pose, when the robot file declares any compliance.
+struct ComplianceAtPose {
+    analysis::StiffnessData K;
+    analysis::LumpedModes modes;
+    analysis::ElastodynamicModes elastodynamic;
+    bool elastic = false;
+};
+
+std::optional<ComplianceAtPose> complianceAtPose(const Model& model, const Data& data) {
+    if (!model.description.hasCompliance()) return std::nullopt;
+    ComplianceAtPose out;
+    const analysis::StiffnessModel compliance(model);
+    if (const Status status = analysis::cartesianStiffness(model, compliance, data, out.K); !status) {
+        throw Error(describe(status, model));
+    }
+    analysis::lumpedModes(model, data, out.K, out.modes);
+    out.elastic = model.description.hasElasticBody();
+    if (out.elastic) {
+        if (const Status status = analysis::elastodynamicModes(model, compliance, data, out.elastodynamic); !status) {
+            throw Error(describe(status, model));
+        }
+    }
+    return out;
+}
+
+nlohmann::json complianceJson(const ComplianceAtPose& c) {
+    nlohmann::json coordinates = nlohmann::json::array(), units = nlohmann::json::array();
+    for (int r = 0; r < 3; ++r) {
+        coordinates.push_back(analysis::coordinateLabel(r));
+        nlohmann::json row = nlohmann::json::array();
+        for (int k = 0; k < 3; ++k) row.push_back(analysis::stiffnessUnit(r, k));
+        units.push_back(row);
+    }
+    nlohmann::json free = nlohmann::json::array();
+    for (int i = 0; i < c.K.free_directions; ++i) {
+        const Vector3 v = c.K.free.col(i);
+        const Vector3 r = analysis::reported(v);
+        free.push_back({{"direction", {r(0), r(1), r(2)}}, {"description", analysis::describeDirection(v)}});
+    }
+    nlohmann::json out;
+    out["stiffness"] = {{"coordinates", coordinates},
+                        {"matrix", toJson(analysis::reported(c.K.K))},
+                        {"units", units},
+                        {"free_directions", free}};
+    out["natural_frequencies"] = {c.modes.frequency(0), c.modes.frequency(1), c.modes.frequency(2)};
+    nlohmann::json shapes = nlohmann::json::array();
+    for (int i = 0; i < 3; ++i) {
+        const Vector3 r = analysis::reported(Vector3(c.modes.shape.col(i)));
+        shapes.push_back({r(0), r(1), r(2)});
+    }
+    out["mode_shapes"] = shapes;
+    if (c.elastic) {
+        out["elastodynamic_frequencies"] = std::vector<double>(
+            c.elastodynamic.frequency.data(), c.elastodynamic.frequency.data() + c.elastodynamic.frequency.size());
+    }
+    return out;
+}
+
+void printCompliance(const ComplianceAtPose& c) {
+    std::printf("\nstiffness K at C (virtual joint method, gravity preload ignored; dQ = K dp, rows and columns:");
+    for (int r = 0; r < 3; ++r) std::printf(" %s", analysis::coordinateLabel(r).c_str());
+    std::printf(")\n%s", formatMatrix(analysis::reported(c.K.K), "  ").c_str());
+    std::printf("units:\n");
+    for (int r = 0; r < 3; ++r) {
+        std::printf("  [");
+        for (int k = 0; k < 3; ++k) std::printf("%s%-8s", k ? "  " : "", analysis::stiffnessUnit(r, k).c_str());
+        std::printf("]\n");
+    }
+    for (int i = 0; i < c.K.free_directions; ++i) {
+        std::printf("free direction (no stiffness): %s\n",
+                    analysis::describeDirection(Vector3(c.K.free.col(i))).c_str());
+    }
+    std::printf("natural frequencies (lumped model K v = w^2 M v) [Hz]: %.6g %.6g %.6g\n", c.modes.frequency(0),
+                c.modes.frequency(1), c.modes.frequency(2));
+    std::printf("mode shapes (columns, mass-normalised; rows:");
+    for (int r = 0; r < 3; ++r) std::printf(" %s", analysis::coordinateLabel(r).c_str());
+    std::printf("):\n%s", formatMatrix(analysis::reported(c.modes.shape), "  ").c_str());
+    if (c.elastic) {
+        std::printf("elastodynamic frequencies (%d DOF) [Hz]:", c.elastodynamic.dofs);
+        for (Eigen::Index i = 0; i < c.elastodynamic.frequency.size(); ++i) {
+            std::printf(" %.6g", c.elastodynamic.frequency(i));
+        }
+        std::printf("\n");
+    }
+}
+
 void run(const PoseOptions& options) {
     const Model model(loadRobotDescriptionOrDefault(options.robot));
     Data data(model);
@@ -89,6 +177,7 @@ void run(const PoseOptions& options) {
     // du = A xi_P = A S(c) dp/dt: the actuation map in the pose's own rates (eq. 5 generalised)
     const Eigen::MatrixXd A_pose = Eigen::MatrixXd(data.A) * platformTwistMap(p.tail<2>());
     const char* coordinates = model.coordinates == Coordinates::actuators ? "actuators" : "platform";
+    const std::optional<ComplianceAtPose> compliance = complianceAtPose(model, data);
 
     if (options.json) {
         nlohmann::json out;
@@ -136,6 +225,7 @@ void run(const PoseOptions& options) {
         }
         out["tau"] = std::vector<double>(data.tau.data(), data.tau.data() + model.actuators);
         out["reactions"] = joints;
+        if (compliance) out.update(complianceJson(*compliance));
         std::cout << out.dump(2) << "\n";
         return;
     }
@@ -185,6 +275,7 @@ void run(const PoseOptions& options) {
                         r(1), r(2));
         }
     }
+    if (compliance) printCompliance(*compliance);
     if (!limits) std::printf("\nwarning: %s\n", describe(limits, model).c_str());
 }
 
@@ -199,6 +290,8 @@ void addPoseCommand(CLI::App& app) {
         "du = A dp/dt and its condition number, the inertia I (eq. 23), and at rest under gravity the\n"
         "actuator forces and every joint's reaction (base frame, the inboard body on the outboard body,\n"
         "the joint's effort and friction taken out; JSON: \"tau\" and \"reactions\").\n"
+        "When the robot file declares compliance (stiffness, elastic), also the stiffness K and the\n"
+        "natural frequencies (JSON: \"stiffness\", \"natural_frequencies\", \"elastodynamic_frequencies\").\n"
         "Example: nocdyn pose 0.05 0.001 -0.002 --robot robots/3-rrr.yaml   (theta in rad, x and y in m)");
     command->add_option("THETA", options->theta, "Platform rotation [rad]")
         ->required()

@@ -16,6 +16,7 @@
 
 #include <array>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,16 @@ struct JointDescription {
     double damping = 0.0;   ///< viscous coefficient [N s/m or N m s/rad]
     double friction = 0.0;  ///< Coulomb force or torque [N or N m]
     int line = 0;           ///< line in the robot file (0 when not read from a file)
+    /// Spring about the joint's position at the pose analysed [N/m for P, N m/rad for R]
+    /// (analysis/stiffness.hpp). Actuated: the drive's stiffness, absent = locked (rigid),
+    /// 0 = a force actuator. Passive: a flexure hinge, absent = free.
+    std::optional<double> stiffness;
+};
+
+/// A straight, uniform Euler-Bernoulli beam between a body's two (revolute) joints.
+struct ElasticBeam {
+    double EA = 0.0;  ///< axial rigidity [N]
+    double EI = 0.0;  ///< bending rigidity in the plane [N m^2]
 };
 
 /// A moving body: mass, moment of inertia about its c.o.m., c.o.m. at home (base frame).
@@ -50,6 +61,7 @@ struct BodyDescription {
     double inertia = 0.0;                           ///< about the c.o.m. [kg m^2]
     Eigen::Vector2d com = Eigen::Vector2d::Zero();  ///< base frame, at home [m]
     int line = 0;
+    std::optional<ElasticBeam> elastic;  ///< absent: rigid
 };
 
 struct LimbDescription {
@@ -80,6 +92,10 @@ struct RobotDescription {
 
     /// Number of actuated joints.
     [[nodiscard]] int actuatorCount() const;
+    /// Whether any joint has a stiffness or any body is elastic.
+    [[nodiscard]] bool hasCompliance() const;
+    /// Whether any body is elastic.
+    [[nodiscard]] bool hasElasticBody() const;
 };
 
 /// Largest number of limbs and actuators a model holds (fixed-capacity storage).
@@ -90,8 +106,9 @@ inline constexpr int kMaxActuators = 3 * kMaxLimbs;
 /// description is not a robot nocdyn can model: fewer than 2 or more than kMaxLimbs limbs,
 /// fewer than 3 actuated joints, a zero P direction, non-finite numbers, negative or
 /// implausible masses and inertias, a zero-mass robot, inconsistent limits, a limb of three
-/// prismatic joints. Normalises P directions to unit length. The posture checks (every limb
-/// closes and is regular at home) are made by the Model.
+/// prismatic joints, a negative or non-finite stiffness, an EA or EI not positive, an elastic
+/// body not between two revolute joints (or of zero length). Normalises P directions to unit length. The posture checks
+/// (every limb closes and is regular at home) are made by the Model.
 void validate(RobotDescription& robot);
 
 /// "SOURCE:LINE: " (or "SOURCE: " or "" when unknown), to prefix messages.

@@ -41,6 +41,9 @@ enum class StatusCode {
     /// Actuator rates that no platform motion has at the pose (redundant actuation).
     /// value = max_a |A S(c) dp/dt - du|_a of the least-squares dp/dt.
     inconsistent_rates,
+    /// Limb `limb` gives the platform no finite stiffness in some direction (an actuated joint
+    /// without a stiffness is locked, and nothing else in the limb yields): value = 0.
+    rigid_limb,
 };
 
 struct Status {

@@ -682,6 +682,37 @@ class Robot:
                                     _number(relative_tolerance, "relative_tolerance", 1e-15, 0.5))
 
 
+    # --- stiffness and natural frequencies --------------------------------------------
+    stiffness_coordinates = ("theta [rad]", "x [m]", "y [m]")
+
+    def stiffness(self, p):
+        """The 3 x 3 Cartesian stiffness K of the platform at pose p = (theta, x, y) (virtual joint
+        method on the compliance of the robot file: joint `stiffness`, body `elastic`; gravity
+        preload ignored), as a numpy array in the order Robot.stiffness_coordinates: dQ = K dp,
+        Q = (moment about C [N m], f_x [N], f_y [N]); units N m/rad, N, N/rad, N/m.
+        Raises nocdyn.Error when the robot declares no compliance, a limb is rigid, or the pose is
+        out of reach."""
+        return self._core._stiffness(p)["matrix"]
+
+    def natural_frequencies(self, p, *, modes=False, model="lumped"):
+        """Natural frequencies [Hz], ascending, at pose p = (theta, x, y).
+
+        model='lumped' (K v = w^2 M v, M the rigid bodies' mass matrix in the pose coordinates):
+        3 frequencies; model='elastodynamic' (every body keeps its inertia, every virtual spring
+        is a degree of freedom): one per degree of freedom. With modes=True returns
+        (frequencies, shapes): shapes' columns are the platform's displacement in each mode, rows
+        in the order Robot.stiffness_coordinates (lumped shapes are mass-normalised)."""
+        if model not in ("lumped", "elastodynamic"):
+            raise Error("model: expected 'lumped' or 'elastodynamic', got " + repr(model))
+        elastodynamic = model == "elastodynamic"
+        result = self._core._stiffness(p, elastodynamic)
+        key = "elastodynamic_" if elastodynamic else ""
+        frequencies = result[key + "frequencies"]
+        if not modes:
+            return frequencies
+        return frequencies, result["elastodynamic_platform_shapes" if elastodynamic else "mode_shapes"]
+
+
 class Trajectory:
     """A harmonic platform trajectory: per axis q(t) = offset + sum_k a_k sin(2 pi f_k t + phase_k).
 

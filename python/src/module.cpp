@@ -27,6 +27,7 @@
 #include "nocdyn/drawing.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/analysis/envelope.hpp"
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/sim/control.hpp"
@@ -518,6 +519,61 @@ py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp
     return out;
 }
 
+// --- stiffness and natural frequencies ----------------------------------------------
+
+/// K, the lumped modes and (when `elastodynamic`) the elastodynamic modes at pose p, every
+/// pose-indexed array in analysis::kReportedCoordinates' order.
+py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic) {
+    const Model& model = *robot.model;
+    const Pose p3 = vector3(p, "p");
+    const analysis::StiffnessModel compliance(model);
+    if (!compliance.any) {
+        throw Error(
+            "the robot file declares no compliance (a joint's stiffness or an elastic body): the robot is "
+            "rigid");
+    }
+    Data data(model);
+    analysis::StiffnessData K;
+    analysis::LumpedModes modes;
+    if (const Status status = analysis::stiffnessAndModes(model, compliance, data, p3, K, modes); !status) {
+        throw Error(describe(status, model));
+    }
+    py::dict out;
+    py::list coordinates, free;
+    for (int r = 0; r < 3; ++r) coordinates.append(analysis::coordinateLabel(r));
+    for (int i = 0; i < K.free_directions; ++i) {
+        const Vector3 v = K.free.col(i);
+        py::dict d;
+        d["direction"] = toArray(analysis::reported(v));
+        d["description"] = analysis::describeDirection(v);
+        free.append(d);
+    }
+    out["coordinates"] = coordinates;
+    out["matrix"] = toArray(analysis::reported(K.K));
+    out["free_directions"] = free;
+    out["frequencies"] = toArray(modes.frequency);
+    out["mode_shapes"] = toArray(analysis::reported(modes.shape));
+    out["mass_matrix"] = toArray(analysis::reported(modes.M));
+    if (elastodynamic) {
+        analysis::ElastodynamicModes e;
+        if (const Status status = analysis::elastodynamicModes(model, compliance, data, e); !status) {
+            throw Error(describe(status, model));
+        }
+        py::array_t<double> f(e.frequency.size());
+        for (Eigen::Index i = 0; i < e.frequency.size(); ++i) f.mutable_at(i) = e.frequency(i);
+        py::array_t<double> shapes({py::ssize_t{3}, static_cast<py::ssize_t>(e.dofs)});
+        for (int r = 0; r < 3; ++r) {
+            for (int c = 0; c < e.dofs; ++c) {
+                shapes.mutable_at(r, c) =
+                    e.platform_shape(analysis::kReportedCoordinates[static_cast<std::size_t>(r)].index, c);
+            }
+        }
+        out["elastodynamic_frequencies"] = f;
+        out["elastodynamic_platform_shapes"] = shapes;
+    }
+    return out;
+}
+
 py::list envelope(const Robot& robot, const std::vector<std::string>& axes, double min_frequency, double max_frequency,
                   int frequencies, int samples_per_period, double relative_tolerance) {
     const Model& model = *robot.model;
@@ -885,6 +941,7 @@ PYBIND11_MODULE(_nocdyn, m) {
              py::arg("ddu"), py::arg("friction"), py::arg("held_forces"), py::arg("cutoff"), py::arg("holdout"),
              py::arg("prior"))
         .def_static("_load_prior", &loadPrior, py::arg("path"))
+        .def("_stiffness", &stiffnessAt, py::arg("p"), py::arg("elastodynamic") = false)
         .def("_envelope", &envelope, py::arg("axes"), py::arg("min_frequency"), py::arg("max_frequency"),
              py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"));
 

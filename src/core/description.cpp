@@ -24,6 +24,24 @@ int RobotDescription::actuatorCount() const {
     return count;
 }
 
+bool RobotDescription::hasCompliance() const {
+    for (const LimbDescription& limb : limbs) {
+        for (const JointDescription& joint : limb.joints) {
+            if (joint.stiffness) return true;
+        }
+    }
+    return hasElasticBody();
+}
+
+bool RobotDescription::hasElasticBody() const {
+    for (const LimbDescription& limb : limbs) {
+        for (const BodyDescription& body : limb.bodies) {
+            if (body.elastic) return true;
+        }
+    }
+    return false;
+}
+
 std::string where(const RobotDescription& robot, int line) {
     if (robot.source.empty()) return "";
     if (line <= 0) return robot.source + ": ";
@@ -38,6 +56,7 @@ constexpr double kMaxMass = 1.0e6;     // [kg]
 constexpr double kMaxInertia = 1.0e9;  // [kg m^2]
 constexpr double kMaxGravity = 1.0e4;  // [m/s^2]
 constexpr double kMaxCoefficient = 1.0e9;
+constexpr double kMaxStiffness = 1.0e15;  // [N/m, N m/rad, N, N m^2]
 
 class Checker {
 public:
@@ -123,6 +142,10 @@ void validate(RobotDescription& robot) {
             }
             check.finiteIn(joint.damping, 0.0, kMaxCoefficient, joint.line, field + ".damping", "");
             check.finiteIn(joint.friction, 0.0, kMaxCoefficient, joint.line, field + ".friction", "");
+            if (joint.stiffness) {
+                check.finiteIn(*joint.stiffness, 0.0, kMaxStiffness, joint.line, field + ".stiffness",
+                               joint.type == JointType::revolute ? "N m/rad" : "N/m");
+            }
         }
         for (int b = 0; b < 2; ++b) {
             const BodyDescription& body = limb.bodies[static_cast<std::size_t>(b)];
@@ -131,6 +154,27 @@ void validate(RobotDescription& robot) {
             check.finiteIn(body.inertia, 0.0, kMaxInertia, body.line, field + ".inertia", "kg m^2");
             check.point(body.com, body.line, field + ".com");
             total_mass += body.mass;
+            if (body.elastic) {
+                const JointDescription& inboard = limb.joints[static_cast<std::size_t>(b)];
+                const JointDescription& outboard = limb.joints[static_cast<std::size_t>(b + 1)];
+                if (inboard.type != JointType::revolute || outboard.type != JointType::revolute) {
+                    check.fail(body.line, field + ".elastic",
+                               "an elastic body is a beam between two revolute joints, but " + limb.name + "'s body " +
+                                   std::to_string(b + 1) + " is carried by a prismatic joint (" + limb.type() + ")");
+                }
+                if (!((outboard.point - inboard.point).norm() > 1e-9)) {
+                    check.fail(body.line, field + ".elastic", "the beam between the body's two joints has zero length");
+                }
+                const auto positive = [&](double value, const char* key, const char* unit) {
+                    if (!std::isfinite(value) || !(value > 0.0) || value > kMaxStiffness) {
+                        std::ostringstream msg;
+                        msg << "must be a finite number in (0, " << kMaxStiffness << "] " << unit << ", got " << value;
+                        check.fail(body.line, field + ".elastic." + key, msg.str());
+                    }
+                };
+                positive(body.elastic->EA, "EA", "N");
+                positive(body.elastic->EI, "EI", "N m^2");
+            }
         }
     }
     if (!(total_mass > 0.0)) check.fail(0, "platform.mass", "the robot has no mass at all");

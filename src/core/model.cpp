@@ -278,6 +278,11 @@ std::string describe(const Status& status, const Model& model) {
             out << "the actuator rates are not the rates of any platform motion at this pose (off by " << status.value
                 << ")";
             return out.str();
+        case StatusCode::rigid_limb:
+            out << "infinitely stiff: " << limb
+                << " does not yield in some direction of the platform (an actuated joint without a stiffness is"
+                   " locked): give its drive a stiffness or make a body elastic";
+            return out.str();
         case StatusCode::integration_too_many_steps:
             out << "the integrator took " << status.value
                 << " steps over one interval without reaching its end (tolerances too tight?)";

@@ -41,7 +41,8 @@ bool flag(const Context& context, const YAML::Node& map, const char* key) {
 }
 
 JointDescription parseJoint(const Context& context, const YAML::Node& node) {
-    detail::requireMap(context, node, {"type", "point", "direction", "actuated", "limits", "damping", "friction"});
+    detail::requireMap(context, node,
+                       {"type", "point", "direction", "actuated", "limits", "damping", "friction", "stiffness"});
     JointDescription joint;
     joint.line = lineOf(node);
     const YAML::Node type = node["type"];
@@ -73,16 +74,23 @@ JointDescription parseJoint(const Context& context, const YAML::Node& node) {
     }
     joint.damping = detail::optionalNumber(context, node, "damping", 0.0);
     joint.friction = detail::optionalNumber(context, node, "friction", 0.0);
+    if (node["stiffness"].IsDefined()) joint.stiffness = detail::requireNumber(context, node, "stiffness");
     return joint;
 }
 
 BodyDescription parseBody(const Context& context, const YAML::Node& node) {
-    detail::requireMap(context, node, {"mass", "inertia", "com"});
+    detail::requireMap(context, node, {"mass", "inertia", "com", "elastic"});
     BodyDescription body;
     body.line = lineOf(node);
     body.mass = detail::requireNumber(context, node, "mass");
     body.inertia = detail::requireNumber(context, node, "inertia");
     body.com = vector2(context, node, "com");
+    if (const YAML::Node elastic = node["elastic"]; elastic.IsDefined()) {
+        const Context here = context / "elastic";
+        detail::requireMap(here, elastic, {"EA", "EI"});
+        body.elastic =
+            ElasticBeam{detail::requireNumber(here, elastic, "EA"), detail::requireNumber(here, elastic, "EI")};
+    }
     return body;
 }
 
@@ -237,12 +245,17 @@ std::string descriptionToYaml(const RobotDescription& robot) {
             if (!limits.empty()) out << ", limits: {" << limits << "}";
             if (joint.damping != 0.0) out << ", damping: " << number(joint.damping);
             if (joint.friction != 0.0) out << ", friction: " << number(joint.friction);
+            if (joint.stiffness) out << ", stiffness: " << number(*joint.stiffness);
             out << "}\n";
         }
         out << "    bodies:\n";
         for (const BodyDescription& body : limb.bodies) {
             out << "      - {mass: " << number(body.mass) << ", inertia: " << number(body.inertia)
-                << ", com: " << pair(body.com) << "}\n";
+                << ", com: " << pair(body.com);
+            if (body.elastic) {
+                out << ", elastic: {EA: " << number(body.elastic->EA) << ", EI: " << number(body.elastic->EI) << "}";
+            }
+            out << "}\n";
         }
     }
     return out.str();

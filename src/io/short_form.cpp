@@ -108,8 +108,8 @@ RobotDescription expand(const RobotParameters& robot) {
         limb.joints[1].point = A;
         limb.joints[2].type = JointType::revolute;
         limb.joints[2].point = M;
-        limb.bodies[0] = {robot.slider_mass, 0.0, A, 0};
-        limb.bodies[1] = {robot.link_mass, robot.link_inertia, A + (robot.link_com / l) * m, 0};
+        limb.bodies[0] = {robot.slider_mass, 0.0, A, 0, {}};
+        limb.bodies[1] = {robot.link_mass, robot.link_inertia, A + (robot.link_com / l) * m, 0, {}};
         out.limbs.push_back(limb);
     }
     validate(out);

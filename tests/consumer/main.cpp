@@ -36,8 +36,8 @@ int main() {
         limb.joints[1].point = A;
         limb.joints[2].type = nocdyn::JointType::revolute;  // at M_j
         limb.joints[2].point = M;
-        limb.bodies[0] = {1.46966, 0.0, A, 0};                           // slider (Table I)
-        limb.bodies[1] = {0.63863, 1.5786066e-3, A + (l_c / l) * m, 0};  // link
+        limb.bodies[0] = {1.46966, 0.0, A, 0, {}};                           // slider (Table I)
+        limb.bodies[1] = {0.63863, 1.5786066e-3, A + (l_c / l) * m, 0, {}};  // link
         robot.limbs.push_back(limb);
     }
     const nocdyn::Model model(robot);
