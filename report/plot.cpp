@@ -76,8 +76,13 @@ std::string script(const Figure& figure, const std::string& terminal) {
             const PlotSeries& series = figure.panels[p].series[s];
             gp << "$d" << p << "_" << s << " << EOD\n";
             for (std::size_t k = 0; k < series.x.size(); ++k) {
-                std::snprintf(number, sizeof number, "%.10g %.10g\n", series.x[k], series.y[k]);
+                std::snprintf(number, sizeof number, "%.10g %.10g", series.x[k], series.y[k]);
                 gp << number;
+                for (const std::vector<double>& column : series.extra) {
+                    std::snprintf(number, sizeof number, " %.10g", k < column.size() ? column[k] : 0.0);
+                    gp << number;
+                }
+                gp << "\n";
             }
             gp << "EOD\n";
         }
@@ -89,12 +94,13 @@ std::string script(const Figure& figure, const std::string& terminal) {
         gp << "set xlabel " << quoted(panel.xlabel) << "\nset ylabel " << quoted(panel.ylabel) << "\n";
         gp << (panel.log_x ? "set logscale x\n" : "unset logscale x\n");
         gp << (panel.log_y ? "set logscale y\n" : "unset logscale y\n");
-        gp << (panel.equal_axes ? "set size ratio -1\nset key below\n"
-                                : "set size noratio\nset key outside right top\n");
+        gp << (panel.equal_axes ? "set size ratio -1\n" : "set size noratio\n");
+        gp << (panel.equal_axes || panel.key_below ? "set key below horizontal\n" : "set key outside right top\n");
         gp << "plot ";
         for (std::size_t s = 0; s < panel.series.size(); ++s) {
-            gp << (s ? ", " : "") << "$d" << p << "_" << s << " using 1:2 with " << panel.series[s].style << " title "
-               << quoted(panel.series[s].label);
+            gp << (s ? ", " : "") << "$d" << p << "_" << s << " using 1:2";
+            for (std::size_t c = 0; c < panel.series[s].extra.size(); ++c) gp << ":" << c + 3;
+            gp << " with " << panel.series[s].style << " title " << quoted(panel.series[s].label);
         }
         gp << "\n";
     }

@@ -13,6 +13,9 @@ struct PlotSeries {
     std::string label;
     std::vector<double> x, y;
     std::string style = "lines";  ///< gnuplot style, e.g. "lines dt 2 lw 2"
+    /// Further columns (3, 4, ...) for the styles that read them: "filledcurves" (a band
+    /// from y to extra[0]), "vectors" (arrows from (x, y) by (extra[0], extra[1])).
+    std::vector<std::vector<double>> extra{};
 };
 
 struct PlotPanel {
@@ -20,6 +23,7 @@ struct PlotPanel {
     std::vector<PlotSeries> series;
     bool log_x = false, log_y = false;
     bool equal_axes = false;  ///< one unit as long on both axes (a map)
+    bool key_below = false;   ///< the legend in rows under the plot, not in a column at its right
 };
 
 struct Figure {

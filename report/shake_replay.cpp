@@ -388,8 +388,9 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
         const std::vector<double>& a = target(fit, static_cast<int>(axis));
         const char* unit = axis == 0 ? "rad/s^2" : "m/s^2";
         PlotPanel panel{kAxisNames[axis], "t [s]", std::string(kAxisNames[axis]) + " [" + unit + "]", {}};
-        PlotSeries tgt{"target", {}, {}, "lines lw 2"};
-        PlotSeries ach{std::string("achieved (").append(loop.plant).append(" plant)"), {}, {}, "lines dt 2"};
+        PlotSeries tgt{"target", {}, {}, "lines lw 2 lc rgb '#1f4e79'"};
+        PlotSeries ach{
+            std::string("achieved (").append(loop.plant).append(" plant)"), {}, {}, "lines dt 2 lw 2 lc rgb '#d62728'"};
         for (std::size_t i = 0; i < table.rows.size(); ++i) {
             tgt.x.push_back(fit.t[i]);
             tgt.y.push_back(a[i]);
@@ -397,19 +398,22 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
             ach.y.push_back(outcome.achieved[axis][i]);
         }
         panel.series = {tgt, ach};
+        panel.key_below = true;  // the plant's long name in one row under the plot, not beside it
         accel.panels.push_back(panel);
         const ShakeScore& s = outcome.score[axis];
         PlotPanel sp{kAxisNames[axis], "period T [s] (replay time)", std::string("S_a [") + unit + "]", {}};
         sp.log_x = true;
-        PlotSeries st{"target", s.periods, s.target_sa, "lines lw 2"};
-        PlotSeries sa{"achieved", s.periods, s.achieved_sa, "lines dt 2"};
-        PlotSeries lo{"target -10 %", s.periods, {}, "lines dt 3 lc rgb 'gray'"};
-        PlotSeries hi{"target +10 %", s.periods, {}, "lines dt 3 lc rgb 'gray'"};
+        sp.key_below = true;
+        // the tolerance band 0.9 S_a to 1.1 S_a of the target, shaded under both curves
+        PlotSeries band{"target \u00b110 %", s.periods, {}, "filledcurves fs solid 0.35 noborder lc rgb '#9ecae1'"};
+        band.extra.emplace_back();
         for (double v : s.target_sa) {
-            lo.y.push_back(0.9 * v);
-            hi.y.push_back(1.1 * v);
+            band.y.push_back(0.9 * v);
+            band.extra[0].push_back(1.1 * v);
         }
-        sp.series = {st, sa, lo, hi};
+        PlotSeries st{"target", s.periods, s.target_sa, "lines lw 2 lc rgb '#1f4e79'"};
+        PlotSeries sa{"achieved", s.periods, s.achieved_sa, "lines dt 2 lw 2 lc rgb '#d62728'"};
+        sp.series = {band, st, sa};
         spectra.panels.push_back(sp);
     }
     renderFigure(accel, (folder / "shake_acceleration").string());

@@ -282,6 +282,20 @@ TEST(CliLoads, EnvelopeLoadsCoverEveryJointAndDrawTheWorstPose) {
     EXPECT_TRUE(fs::is_regular_file(dir / "worst.svg"));
 }
 
+TEST(CliLoads, TheWorstPoseFigureStatesItsArrowScaleAndDrawsAReferenceArrow) {
+    const fs::path dir = scratch();
+    const CliResult r = runCli("loads --robot " + kRobot + " --trajectory paper1 --figure " + (dir / "worst").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    ASSERT_NE(r.out.find("largest: limb 2 joint 1, 36.53 N"), std::string::npos) << r.out;
+    // the largest force drawn at most a third of the drawing's size (its farthest joint, 200 mm
+    // from the origin): 36.53 N * 10 mm / 66.7 mm = 5.5 N, rounded up to 10 N per 10 mm; the
+    // reference is the round force below the largest, 20 N
+    const std::string svg = readWhole(dir / "worst.svg");
+    EXPECT_NE(svg.find("arrows: 10 mm = 10 N"), std::string::npos);
+    EXPECT_NE(svg.find("reference arrow (lower left): 20 N"), std::string::npos);
+    EXPECT_NE(svg.find("reaction force (largest 36.53 N)"), std::string::npos);
+}
+
 TEST(CliLoads, UnreachableTrajectoryIsTheInverseDynamicsErrorAndNoFile) {
     const fs::path dir = scratch();
     std::ofstream(dir / "far.yaml") << "name: far\nx:\n  offset: 0.5\n";

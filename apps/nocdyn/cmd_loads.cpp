@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <string>
@@ -86,16 +87,37 @@ io::Table table(const Model& model, const JointLoads& loads, const std::vector<d
     return t;
 }
 
+/// The largest of 1, 2, 5 times a power of ten that is at most `v` (> 0): a reference arrow's value.
+double roundDown125(double v) {
+    const double decade = std::pow(10.0, std::floor(std::log10(v)));
+    for (const double m : {5.0, 2.0}) {
+        if (m * decade <= v) return m * decade;
+    }
+    return decade;
+}
+
+/// The smallest of 1, 2, 5 times a power of ten that is at least `v` (> 0): a round scale.
+double roundUp125(double v) {
+    const double decade = std::pow(10.0, std::floor(std::log10(v)));
+    for (const double m : {1.0, 2.0, 5.0}) {
+        if (m * decade >= v) return m * decade;
+    }
+    return 10.0 * decade;
+}
+
 /// The robot at the pose of the largest peak force, each joint's force drawn as an arrow
-/// from the joint (scaled so that the largest is a fifth of the drawing's size).
-Figure worstPoseFigure(const Model& model, const JointLoads& loads, const Pose& pose, const Reactions& reactions) {
+/// from the joint (a round scale, 10 mm for 1, 2 or 5 times a power of ten newtons, that draws
+/// the largest at most a third of the drawing's size), with a reference arrow of a round force
+/// under the drawing and the scale in the panel's title.
+Figure worstPoseFigure(const Model& model, const Pose& pose, const Reactions& reactions) {
     Data data(model);
     RobotDrawing drawing;
     if (const Status status = drawRobot(model, data, pose, drawing); !status) {
         throw Error("the worst pose cannot be drawn: " + describe(status, model));
     }
-    PlotPanel panel{"Joint reaction forces at the worst pose (arrows)", "x [mm]", "y [mm]", {}, false, false, true};
+    PlotPanel panel{"Joint reaction forces at the worst pose", "x [mm]", "y [mm]", {}, false, false, true};
     double size = 0.0, peak = 0.0;
+    Vector2 lower = Vector2::Constant(std::numeric_limits<double>::infinity());
     for (int j = 0; j < model.limbs; ++j) {
         const LimbDrawing& limb = drawing.limb[static_cast<std::size_t>(j)];
         PlotSeries line{j == 0 ? "limbs" : "", {}, {}, "linespoints lw 2 pt 7 ps 0.8 lc rgb '#404040'"};
@@ -103,6 +125,7 @@ Figure worstPoseFigure(const Model& model, const JointLoads& loads, const Pose& 
             line.x.push_back(joint.position.x() * 1e3);
             line.y.push_back(joint.position.y() * 1e3);
             size = std::max(size, joint.position.norm());
+            lower = lower.cwiseMin(joint.position);
         }
         panel.series.push_back(std::move(line));
         for (const Vector3& r : reactions.joint[static_cast<std::size_t>(j)]) peak = std::max(peak, r.head<2>().norm());
@@ -114,21 +137,37 @@ Figure worstPoseFigure(const Model& model, const JointLoads& loads, const Pose& 
         platform.y.push_back(v.y() * 1e3);
     }
     panel.series.push_back(std::move(platform));
-    const double scale = peak > 0.0 ? 0.2 * size / peak : 0.0;  // m per N
+    const char* arrow = "vectors head filled size screen 0.014,22 lw 2 lc rgb '#d62728'";
+    const double per_10mm = peak > 0.0 ? roundUp125(peak * 0.01 / (size / 3.0)) : 0.0;  // N drawn 10 mm long
+    const double scale = peak > 0.0 ? 0.01 / per_10mm : 0.0;                            // m per N
+    PlotSeries forces{"reaction force (largest " + shortNumber(peak) + " N)", {}, {}, arrow, {{}, {}}};
     for (int j = 0; j < model.limbs; ++j) {
         for (std::size_t k = 0; k < 3; ++k) {
             const Vector2 from = drawing.limb[static_cast<std::size_t>(j)].joint[k].position;
-            const Vector2 to = from + scale * reactions.joint[static_cast<std::size_t>(j)][k].head<2>();
-            panel.series.push_back({j == 0 && k == 0 ? "reaction force (largest " + shortNumber(peak) + " N)" : "",
-                                    {from.x() * 1e3, to.x() * 1e3},
-                                    {from.y() * 1e3, to.y() * 1e3},
-                                    "lines lw 2 lc rgb '#d62728'"});
+            const Vector2 f = scale * reactions.joint[static_cast<std::size_t>(j)][k].head<2>();
+            forces.x.push_back(from.x() * 1e3);
+            forces.y.push_back(from.y() * 1e3);
+            forces.extra[0].push_back(f.x() * 1e3);
+            forces.extra[1].push_back(f.y() * 1e3);
+            lower = lower.cwiseMin(from + f);
         }
     }
-    (void)loads;
+    panel.series.push_back(std::move(forces));
+    if (peak > 0.0) {
+        // the reference: a round force drawn to the same scale, below the lowest joint or arrow tip
+        const double reference = roundDown125(peak);
+        panel.series.push_back({"reference arrow (lower left): " + shortNumber(reference) + " N",
+                                {lower.x() * 1e3},
+                                {(lower.y() - 0.06 * size) * 1e3},
+                                "vectors head filled size screen 0.014,22 lw 3 lc rgb '#000000'",
+                                {{scale * reference * 1e3}, {0.0}}});
+        panel.title += "; arrows: 10 mm = " + shortNumber(per_10mm) + " N";
+    }
     Figure f;
     f.title = literalText(model.description.name) + ": joint reactions at the pose of the largest peak force";
     f.panels = {panel};
+    f.width = 820;  // a map: about as wide as high, the legend in rows under it
+    f.height = 900;
     return f;
 }
 
@@ -208,7 +247,7 @@ void run(const LoadsOptions& options) {
         if (const Status status = inverseDynamicsWithReactions(model, data, p, dp, ddp, reactions); !status) {
             throw Error("the worst pose: " + describe(status, model));
         }
-        renderFigure(worstPoseFigure(model, loads, p, reactions), options.figure);
+        renderFigure(worstPoseFigure(model, p, reactions), options.figure);
     }
 }
 

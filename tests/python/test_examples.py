@@ -33,3 +33,32 @@ def test_example_runs(name, tmp_path):
         assert "payload: {mass: 0.4" in done.stdout or "payload: {mass: 0.5" in done.stdout, done.stdout
     if name == "el_centro.py":
         assert (tmp_path / "el-centro" / "shake.json").exists() and "time scale L" in done.stdout
+
+
+# The design studies (argparse scripts): each checks its own claims and exits non-zero when one fails.
+DESIGN_EXAMPLES = ["design_3rrr/optimise_vs_grid.py", "design_vibration_generator/run.py"]
+
+
+@pytest.mark.parametrize("name", DESIGN_EXAMPLES)
+def test_design_example_checks_its_claims(name, tmp_path):
+    script = SOURCE_DIR / "examples" / name
+    env = dict(os.environ, NOCDYN_EXAMPLE_OUT=str(tmp_path), NOCDYN_EXAMPLE_QUICK="1", MPLBACKEND="Agg")
+    env["PYTHONPATH"] = os.pathsep.join(os.path.abspath(p) for p in env.get("PYTHONPATH", "").split(os.pathsep) if p)
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=180, env=env,
+                          cwd=tmp_path)
+    assert done.returncode == 0, done.stdout + done.stderr
+    if name.startswith("design_3rrr"):
+        assert "grid 20 x 20: 400 evaluations, best area 22140.73 mm^2" in done.stdout, done.stdout
+        assert "optimiser >= grid: True" in done.stdout and "the claims hold" in done.stdout, done.stdout
+    else:
+        assert (tmp_path / "design_vibration_generator" / "pareto.png").read_bytes()[:4] == b"\x89PNG"
+        assert "on the front reach at least the prototype's three envelopes" in done.stdout, done.stdout
+
+
+def test_a_design_example_fails_when_its_claim_is_off(tmp_path):
+    """Ten trials cannot reach the grid's best: the comparison says so and exits non-zero."""
+    env = dict(os.environ, NOCDYN_EXAMPLE_QUICK="1")
+    env["PYTHONPATH"] = os.pathsep.join(os.path.abspath(p) for p in env.get("PYTHONPATH", "").split(os.pathsep) if p)
+    done = subprocess.run([sys.executable, str(SOURCE_DIR / "examples" / "design_3rrr" / "optimise_vs_grid.py"),
+                           "--trials", "10"], capture_output=True, text=True, timeout=180, env=env, cwd=tmp_path)
+    assert done.returncode != 0 and "below the grid's" in done.stderr, done.stderr
