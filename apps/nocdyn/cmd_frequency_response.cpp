@@ -227,9 +227,9 @@ void addFrequencyResponseCommand(CLI::App& app) {
         "derivatives of the forward dynamics, and its frequency response H(j w) = C (j w I - A)^-1 B + D from\n"
         "each actuator force to each platform acceleration (or actuator variable): a CSV of magnitude [dB] and\n"
         "phase [deg] per channel, a summary with each channel's -3 dB bandwidth, and a Bode figure.\n"
-        "Joint and drive compliance are not modelled. Example:\n"
-        "  nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant\n"
-        "  nocdyn frequency-response --closed-loop --payload 5 --f-min 0.1 --f-max 4000 -o loop.csv");
+        "Joint and drive compliance are not modelled. The shake table's closed loop: --closed-loop, e.g.\n"
+        "  nocdyn frequency-response --closed-loop --payload 5 --f-min 0.1 --f-max 4000 -o loop.csv\n"
+        "Example: nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant");
     addRobotOption(*command, options->robot);
     command->add_option("--pose", options->pose, "Operating pose THETA X Y [rad, m, m] (default: home)")->expected(3);
     command->add_option("--rate", options->rate, "Operating pose rate [rad/s, m/s, m/s] (default: at rest)")

@@ -156,7 +156,7 @@ void validate(RobotDescription& robot) {
             total_mass += body.mass;
             if (body.elastic) {
                 const JointDescription& inboard = limb.joints[static_cast<std::size_t>(b)];
-                const JointDescription& outboard = limb.joints[static_cast<std::size_t>(b + 1)];
+                const JointDescription& outboard = limb.joints[static_cast<std::size_t>(b) + 1];
                 if (inboard.type != JointType::revolute || outboard.type != JointType::revolute) {
                     check.fail(body.line, field + ".elastic",
                                "an elastic body is a beam between two revolute joints, but " + limb.name + "'s body " +
