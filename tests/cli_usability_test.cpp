@@ -153,6 +153,19 @@ TEST(CliUsability, APoseFarOutsideAJointsRangeWarnsOfTheUnit) {
     EXPECT_EQ(fine.err.find("warning"), std::string::npos) << fine.err;
 }
 
+TEST(CliUsability, AControlReferenceBeyondAJointsRangeWarns) {
+    // 3-RPR's actuated joints have +-30 mm of stroke; a 50 mm swing of x stays in reach but not in range
+    const std::filesystem::path motion = freshScratchDirectory("CliUsability") / "wide.yaml";
+    std::ofstream(motion)
+        << "duration: 0.02\nx: {harmonics: [{amplitude: 0.05, frequency: 2, phase: 1.5707963267948966}]}\n";
+    const std::string robot = " --robot " + std::string(NOCDYN_SOURCE_DIR) + "/robots/3-rpr.yaml";
+    const CliResult wide = runCli("control" + robot + " --plant nocdyn-rk4 --trajectory " + motion.string());
+    EXPECT_NE(wide.err.find("nocdyn: warning: the reference trajectory:"), std::string::npos) << wide.err;
+    const CliResult paper = runCli("control" + robot + " --plant nocdyn-rk4 --trajectory paper1 --duration 0.02");
+    EXPECT_EQ(paper.exit_code, 0) << paper.err;
+    EXPECT_EQ(paper.err.find("warning"), std::string::npos) << paper.err;
+}
+
 // The trap of a log of held commands read as forces measured at each sample (18 % on the
 // inertia): the log names its forces tau1_held..., and identify with its default options takes
 // them so. Truth: 0.5 kg at (12, -7) mm, 2e-4 kg m^2.

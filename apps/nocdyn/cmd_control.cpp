@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/escape.hpp"
@@ -58,6 +59,21 @@ void checkDuration(double duration, double rate, const std::string& trajectory) 
     }
 }
 
+/// A reference beyond a joint's range or an actuator's effort is a warning on standard error:
+/// the closed loop still tries to track it (a reference out of reach is the loop's error).
+void warnReferenceBeyondLimits(const Model& model, const PoseTrajectory& trajectory, double duration, double rate) {
+    LimitSummary summary;
+    try {
+        summary = streamInverseDynamics(model, trajectory, sampleGrid(duration, rate), LimitPolicy::record,
+                                        [](const InverseDynamicsSample&) {});
+    } catch (const Error&) {
+        return;
+    }
+    for (const std::string& violation : summary.limit_violations) {
+        std::cerr << "nocdyn: warning: the reference trajectory: " << io::terminalText(violation) << "\n";
+    }
+}
+
 /// Task-space computed torque or PD on the pose measured from the plant (or through the
 /// encoders and the tracker).
 void run(const ControlOptions& options) {
@@ -84,6 +100,7 @@ void run(const ControlOptions& options) {
     loop.rate = options.rate;
     loop.duration = chooseDuration(options.duration, trajectory);
     checkDuration(loop.duration, loop.rate, options.trajectory);
+    warnReferenceBeyondLimits(model, trajectory, loop.duration, loop.rate);
     Payload payload;
     payload.mass = options.payload_mass;
     payload.inertia = options.payload_inertia;
