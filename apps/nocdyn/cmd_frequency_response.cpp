@@ -37,6 +37,17 @@ struct FrequencyResponseOptions {
 
 const char* const kPoseNames[3] = {"theta", "x", "y"};
 
+/// The summary to --summary, or to stdout when the table went to a file (--output).
+void writeSummary(const FrequencyResponseOptions& options, const std::string& text) {
+    if (!options.summary.empty()) {
+        io::writeTextFile(options.summary, text);
+    } else if (!options.output.empty()) {
+        std::cout << text;
+        std::cout.flush();
+        if (!std::cout) throw Error("cannot write to standard output");
+    }
+}
+
 void run(const FrequencyResponseOptions& options) {
     const Model model(loadRobotDescriptionOrDefault(options.robot));
     Data data(model);
@@ -96,13 +107,7 @@ void run(const FrequencyResponseOptions& options) {
             text += line;
         }
     }
-    if (!options.summary.empty()) {
-        io::writeTextFile(options.summary, text);
-    } else if (!options.output.empty()) {
-        std::cout << text;
-        std::cout.flush();
-        if (!std::cout) throw Error("cannot write to standard output");
-    }
+    writeSummary(options, text);
 
     if (!options.figure.empty()) {
         report::Figure figure;
@@ -185,13 +190,7 @@ void runClosedLoop(const FrequencyResponseOptions& options) {
                       numberOrBeyond(r.crossover(i)).c_str(), numberOrBeyond(r.phase_margin(i)).c_str());
         text += line;
     }
-    if (!options.summary.empty()) {
-        io::writeTextFile(options.summary, text);
-    } else if (!options.output.empty()) {
-        std::cout << text;
-        std::cout.flush();
-        if (!std::cout) throw Error("cannot write to standard output");
-    }
+    writeSummary(options, text);
     if (!options.figure.empty()) {
         report::Figure figure;
         figure.title = "Closed loop of " + report::literalText(model.description.name) + " (shake-table controller)";
