@@ -30,7 +30,7 @@ print(f"feasible area from the grid: {ws.area * 1e4:.2f} cm^2")
 
 # %%
 theta, x, y = robot.home + np.array([0.02, 0.002, -0.001])
-report = nocdyn.pose(theta, x, y, robot=robot)
+report = nocdyn.pose(x, y, theta, robot=robot)
 print("u [rad]:", report.u, " cond(A):", round(report.cond_A, 3))
 modes = nocdyn.forward_kinematics(report.u, robot=robot, all_branches=True)
 print(f"{len(modes)} assembly modes; working modes: {int(modes.working.sum())}")

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "app_bindings.hpp"
 #include "cli_commands.hpp"
 #include "nocdyn/batch.hpp"
 #include "nocdyn/derivatives.hpp"
@@ -796,6 +797,7 @@ PYBIND11_MODULE(_nocdyn, m) {
     m.doc() = "Compiled core of the nocdyn package (use `import nocdyn`).";
     m.attr("__version__") = NOCDYN_VERSION;
     bindCommands(m);
+    bindApplication(m);
     py::register_exception<Error>(m, "Error", PyExc_ValueError);
 
     py::class_<Robot>(m, "Robot")
