@@ -1,34 +1,23 @@
-// nocdyn envelope: the largest sinusoidal amplitude per axis and frequency within every
-// joint's range, velocity and effort limits and the workspace (envelope.hpp), for any robot,
-// as CSV and a figure.
+// nocdyn envelope: binds app::EnvelopeOptions and renders the envelope as a table on stdout, CSV
+// and a figure.
 #include <cstdio>
-#include <iostream>
 #include <memory>
 #include <numbers>
 #include <string>
 
+#include "app/envelope.hpp"
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/analysis/envelope.hpp"
-#include "nocdyn/tables/tables.hpp"
-#include "plot.hpp"
-#include "reproduce_dynamics.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
 
 namespace {
 
-struct Options {
-    std::string robot, output, figure;  ///< no figure unless asked for
-    EnvelopeOptions envelope;
+struct Options : app::EnvelopeOptions {
+    std::string output, figure;  ///< no figure unless asked for
     bool quiet = false;
 };
-
-/// The report's envelope figure, read with the limits every robot file may set.
-Figure figure(const std::vector<EnvelopePoint>& points, const std::string& robot) {
-    return envelopeFigure(points, robot, "flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound");
-}
 
 /// "actuator 2 (limb 2, joint 1)", "limb 3, joint 2 (passive)", "limb 1", or "-".
 std::string where(const EnvelopePoint& p) {
@@ -45,20 +34,17 @@ std::string where(const EnvelopePoint& p) {
 }
 
 void run(const Options& options) {
-    if (options.envelope.max_frequency < options.envelope.min_frequency) {
+    if (options.max_frequency < options.min_frequency) {
         throw CLI::ValidationError("--max-frequency", "must be at least --min-frequency");
     }
-    const Model model(loadRobotDescriptionOrDefault(options.robot));
-    Steps steps("nocdyn envelope", 1, options.quiet);
-    EnvelopeOptions envelope = options.envelope;
-    envelope.progress = [&steps](int done, int total) { steps.count(done, total, "point"); };
-    const auto points = operatingEnvelope(model, envelope);
-    steps.finish();
-    if (!options.output.empty()) writeTable(io::toTable(points), options.output);
-    if (!options.figure.empty()) renderFigure(figure(points, model.description.name), options.figure);
+    TerminalObserver terminal("nocdyn envelope");
+    const app::EnvelopeResult result = app::runEnvelope(options, options.quiet ? app::silent() : terminal);
+    terminal.finish();
+    if (!options.output.empty()) writeTable(result.table, options.output);
+    if (!options.figure.empty()) app::writeEnvelopeFigure(result, options.figure);
     if (options.output.empty() && !options.quiet) {
         std::printf("axis   f [Hz]    amplitude        limit      peak |tau|/effort  where\n");
-        for (const auto& p : points) {
+        for (const auto& p : result.points) {
             const bool angle = p.axis == EnvelopeAxis::theta;
             std::printf("%-5s  %8.3f  %10.5g %-4s  %-9s  %8.3f           %s\n", axisName(p.axis), p.frequency,
                         angle ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3, angle ? "deg" : "mm",
@@ -83,13 +69,13 @@ void addEnvelopeCommand(CLI::App& app) {
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]")->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");
-    command->add_option("--min-frequency", options->envelope.min_frequency, "[Hz]")
-        ->check(finiteIn(kEnvelopeMinFrequency, kEnvelopeMaxFrequency, "Hz"))
+    command->add_option("--min-frequency", options->min_frequency, "[Hz]")
+        ->check(within(app::kEnvelopeFrequencyRange))
         ->capture_default_str();
-    command->add_option("--max-frequency", options->envelope.max_frequency, "[Hz], at least --min-frequency")
-        ->check(finiteIn(kEnvelopeMinFrequency, kEnvelopeMaxFrequency, "Hz"))
+    command->add_option("--max-frequency", options->max_frequency, "[Hz], at least --min-frequency")
+        ->check(within(app::kEnvelopeFrequencyRange))
         ->capture_default_str();
-    command->add_option("--points", options->envelope.frequencies, "Frequencies per axis")
+    command->add_option("--points", options->points, "Frequencies per axis")
         ->check(CLI::Range(1, kEnvelopeMaxPoints))
         ->capture_default_str();
     command->add_flag("--quiet,-q", options->quiet,

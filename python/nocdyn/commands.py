@@ -345,6 +345,30 @@ def _signature(options_type, positional, before=(), after=()):
     return inspect.Signature(parameters)
 
 
+def _path(value, name):
+    """A file the caller asks for (None: none) as the C++ side takes it."""
+    if value is None:
+        return None
+    if not isinstance(value, (str, os.PathLike)):
+        raise ValueError(f"{name}: expected a path, got {type(value).__name__}")
+    text = os.fspath(value)
+    if not text or "\0" in text:
+        raise ValueError(f"{name}: expected a file name, got {text!r}")
+    return text
+
+
+def _table(answer, name, kind=None, text="", integers=()):
+    """A Table (or `kind`) from the bound (columns, data, labels) of a typed result."""
+    import numpy as np
+    columns, data, labels = answer
+    labels = {column: np.array(words, dtype=str) for column, words in labels.items()}
+    return (kind or Table)(columns, data, text, name, labels, integers)
+
+
+# limbs, joints and actuators are numbered from 1 (0: none)
+_NUMBERS = ("limb", "joint", "actuator")
+
+
 def _write_table(path, columns, data):
     """The table as the command line's CSV, written safely (a unique temporary file renamed)."""
     _nocdyn._write_table(os.fspath(path), list(columns), data)
@@ -435,13 +459,21 @@ def control(trajectory, *, robot=None, set=None, controller="computed-torque", p
     return _table_command("control", control, dict(locals()), "control.csv")
 
 
-def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.0, max_frequency=100.0, points=41,
-             progress=None):
+def envelope(*, robot=None, set=None, output=None, figure=None, progress=None, **options):
     """The operating envelope (``nocdyn envelope``): per axis (theta, x, y) and ``points``
     log-spaced frequencies in [min_frequency, max_frequency] Hz, the largest amplitude within
-    every limit and which limit binds. Returns a Table with the CSV's columns (axis 0 theta, 1 x,
-    2 y; frequency, amplitude, limit 0 range .. 4 none, limb, joint, actuator, ...)."""
-    return _table_command("envelope", envelope, dict(locals()), "envelope.csv")
+    every limit and which limit binds. Returns a Table with the CSV's columns (axis and limit as
+    words; frequency, amplitude, ...; limb, joint, actuator numbered from 1, 0 when none).
+    output: also write the CSV; figure: the figure's stem (STEM.png, STEM.svg)."""
+    bound = _bound_options(_nocdyn.EnvelopeOptions, options)
+    bound.robot = _robot_source(robot, set)
+    answer = _run(lambda o, p: _nocdyn._run_envelope(o, p, _path(output, "output"), _path(figure, "figure")), bound,
+                  progress, "envelope")
+    return _table(answer, "envelope", integers=_NUMBERS)
+
+
+envelope.__signature__ = _signature(_nocdyn.EnvelopeOptions, (), before=(("robot", None), ("set", None)),
+                                    after=(("output", None), ("figure", None), ("progress", None)))
 
 
 def frequency_response(*, robot=None, set=None, pose=None, rate=None, output_kind="acceleration", f_min=1.0,

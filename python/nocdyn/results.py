@@ -59,14 +59,16 @@ class Table:
     rows; ``table.to_pandas()`` a pandas DataFrame with the same columns. ``text`` is what the
     command printed (summary lines, warnings are issued as Python warnings). A column of
     categories (``axis``, ``limit``, ``cell``) holds words, as in the CSV: ``table["axis"]`` is
-    an array of str, and the same column of ``data`` is NaN."""
+    an array of str, and the same column of ``data`` is NaN. A column of numbers (``limb``,
+    ``joint``, ``actuator``, numbered from 1) is an array of int, in ``data`` as floats."""
 
-    def __init__(self, columns, data, text="", name="table", labels=None):
+    def __init__(self, columns, data, text="", name="table", labels=None, integers=()):
         self.columns = list(columns)
         self.data = np.asarray(data, dtype=np.float64).reshape(-1, len(self.columns))
         self.text = text
         self.name = name
         self.labels = dict(labels or {})
+        self.integers = tuple(c for c in integers if c in self.columns)
 
     @classmethod
     def from_csv(cls, path, text="", name="table"):
@@ -77,9 +79,10 @@ class Table:
         if column in self.labels:
             return self.labels[column]
         try:
-            return self.data[:, self.columns.index(column)]
+            values = self.data[:, self.columns.index(column)]
         except ValueError:
             raise KeyError(f"{column!r}: no such column (columns: {', '.join(self.columns)})") from None
+        return values.astype(np.int64) if column in self.integers else values
 
     def __contains__(self, column):
         return column in self.columns
@@ -98,6 +101,8 @@ class Table:
         frame = _pandas().DataFrame(self.data.copy(), columns=self.columns)
         for column, words in self.labels.items():
             frame[column] = words
+        for column in self.integers:
+            frame[column] = self[column]
         return frame
 
     def __repr__(self):

@@ -1,0 +1,82 @@
+// The analysis commands bound for Python: envelope, workspace, loads, regressor, convert and
+// design. Each takes its options struct and returns its typed result as NumPy arrays; files only
+// where the caller names them, written by the library's safe writers.
+#include <pybind11/eigen.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "app/envelope.hpp"
+#include "app_bindings.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/output.hpp"
+
+namespace nocdyn::python {
+
+namespace {
+
+/// A table as the command line writes it: (columns, (rows, columns) float64 array, labels), a
+/// column of categories NaN in the array and its words in labels[column] (as results.read_csv).
+py::tuple tableTuple(const io::Table& table) {
+    const auto columns = static_cast<py::ssize_t>(table.columns.size());
+    const auto rows = static_cast<py::ssize_t>(table.rows.size());
+    py::array_t<double> data({rows, columns});
+    py::dict labels;
+    for (py::ssize_t k = 0; k < columns; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        const bool words = kk < table.categories.size() && !table.categories[kk].empty();
+        py::list column;
+        for (py::ssize_t i = 0; i < rows; ++i) {
+            const double v = table.rows[static_cast<std::size_t>(i)][kk];
+            data.mutable_at(i, k) = words ? std::numeric_limits<double>::quiet_NaN() : v;
+            if (words) column.append(table.categories[kk].at(static_cast<std::size_t>(v)));
+        }
+        if (words) labels[py::str(table.columns[kk])] = column;
+    }
+    return py::make_tuple(table.columns, data, labels);
+}
+
+/// The table as the command line's CSV at `path` (a unique temporary file, then renamed).
+void writeCsvFile(const io::Table& table, const std::string& path) {
+    io::OutputFile out(path);
+    io::writeCsv(out, table);
+    out.commit();
+}
+
+/// py::none() or a path: the file to write, empty for none.
+std::string pathOrEmpty(const py::object& path) {
+    return path.is_none() ? std::string() : py::str(path).cast<std::string>();
+}
+
+}  // namespace
+
+void bindAnalysis(py::module_& m) {
+    py::class_<app::EnvelopeOptions>(m, "EnvelopeOptions")
+        .def(py::init<>())
+        .def_readwrite("robot", &app::EnvelopeOptions::robot)
+        .def_readwrite("min_frequency", &app::EnvelopeOptions::min_frequency)
+        .def_readwrite("max_frequency", &app::EnvelopeOptions::max_frequency)
+        .def_readwrite("points", &app::EnvelopeOptions::points)
+        .def_property_readonly_static(
+            "_fields", [](const py::object&) { return py::make_tuple("min_frequency", "max_frequency", "points"); });
+    m.def(
+        "_run_envelope",
+        [](const app::EnvelopeOptions& options, const py::object& progress, const py::object& output,
+           const py::object& figure) {
+            const std::string csv = pathOrEmpty(output), stem = pathOrEmpty(figure);
+            const app::EnvelopeResult result = runJob(progress, [&](app::Observer& observer) {
+                app::EnvelopeResult r = app::runEnvelope(options, observer);
+                if (!csv.empty()) writeCsvFile(r.table, csv);
+                if (!stem.empty()) app::writeEnvelopeFigure(r, stem);
+                return r;
+            });
+            return tableTuple(result.table);
+        },
+        py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
+        py::arg("figure") = py::none());
+}
+
+}  // namespace nocdyn::python

