@@ -1,5 +1,5 @@
-// nocdyn workspace: the feasible region of C at one orientation with both kinds of
-// singularity curves (workspace.hpp), as a figure, a summary line and optionally CSV.
+// nocdyn workspace: binds app::WorkspaceOptions and renders the map as a summary line (or JSON),
+// CSV and a figure.
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -7,29 +7,25 @@
 #include <memory>
 #include <string>
 
+#include "app/workspace.hpp"
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/io/layouts.hpp"
-#include "nocdyn/analysis/workspace.hpp"
 #include "progress.hpp"
-#include "workspace_figure.hpp"
 
 namespace nocdyn::cli {
 
 namespace {
 
-struct Options {
-    std::string robot, output, figure;  ///< no figure unless asked for
-    double theta = 0.0;
-    bool theta_given = false;
-    int resolution = 201;
+struct Options : app::WorkspaceOptions {
+    std::string output, figure;  ///< no figure unless asked for
     bool quiet = false, json = false;
 };
 
 /// The summary for a script: the grid, the feasible area and the singularity points (SI units).
-nlohmann::json summaryJson(const WorkspaceMap& map, const Model& model) {
+nlohmann::json summaryJson(const app::WorkspaceResult& result) {
+    const WorkspaceMap& map = result.map;
     nlohmann::json out;
-    out["robot"] = model.description.name;
+    out["robot"] = result.model->description.name;
     out["theta"] = map.theta;
     out["area"] = map.area;
     out["resolution"] = map.n;
@@ -42,31 +38,15 @@ nlohmann::json summaryJson(const WorkspaceMap& map, const Model& model) {
 }
 
 void run(const Options& options) {
-    const Model model(loadRobotDescriptionOrDefault(options.robot));
-    WorkspaceOptions ws;
-    ws.theta = options.theta_given ? options.theta : model.home(0);
-    ws.resolution = options.resolution;
-    Steps steps("nocdyn workspace", 1, options.quiet);
-    ws.progress = [&steps](int done, int total) { steps.count(done, total, "grid column"); };
-    const WorkspaceMap map = workspaceMap(model, ws);
-    steps.finish();
-    if (!options.output.empty()) {
-        io::Table table;
-        table.columns = io::columnNames(io::TableId::workspace);
-        table.categories = {{}, {}, {"feasible", "unreachable", "range", "singular"}};  // WorkspaceCell in order
-        for (int i = 0; i < map.n; ++i) {
-            for (int k = 0; k < map.n; ++k) {
-                table.rows.push_back(
-                    {map.x0 + i * map.step, map.y0 + k * map.step, static_cast<double>(map.cell(i, k))});
-            }
-        }
-        writeTable(table, options.output);
-    }
-    if (!options.figure.empty()) renderFigure(workspaceFigure(map, model, {}), options.figure);
+    TerminalObserver terminal("nocdyn workspace");
+    const app::WorkspaceResult result = app::runWorkspace(options, options.quiet ? app::silent() : terminal);
+    terminal.finish();
+    if (!options.output.empty()) writeTable(result.table, options.output);
+    if (!options.figure.empty()) app::writeWorkspaceFigure(result, options.figure);
     if (options.json) {
-        std::cout << summaryJson(map, model).dump(2) << "\n";
+        std::cout << summaryJson(result).dump(2) << "\n";
     } else if (!options.quiet) {
-        std::printf("%s\n", workspaceSummary(map).c_str());
+        std::printf("%s\n", result.summary.c_str());
     }
 }
 
@@ -86,8 +66,7 @@ void addWorkspaceCommand(CLI::App& app) {
         "Example: nocdyn workspace --robot robots/3-rrr.yaml --theta 0.1");
     addRobotOption(*command, options->robot);
     command->add_option("--theta", options->theta, "Platform orientation [rad] [default: the robot's home]")
-        ->check(finiteIn(-1e3, 1e3, "rad"))
-        ->each([options](const std::string&) { options->theta_given = true; });
+        ->check(within(app::kWorkspaceThetaRange));
     command->add_option("--resolution", options->resolution, "Grid points per side")
         ->check(CLI::Range(11, 2001))
         ->capture_default_str();

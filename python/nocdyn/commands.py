@@ -494,12 +494,21 @@ def frequency_response(*, robot=None, set=None, pose=None, rate=None, output_kin
     return _table_command("frequency-response", frequency_response, dict(locals()), "frequency_response.csv")
 
 
-def workspace(*, robot=None, set=None, theta=None, resolution=201, output=None, figure=None, progress=None):
+def workspace(*, robot=None, set=None, output=None, figure=None, progress=None, **options):
     """The workspace at one platform orientation theta [rad] (default: the robot's home)
     (``nocdyn workspace``): a resolution x resolution grid of C's positions, each feasible (0),
     out of reach (1), with a joint out of range (2) or singular (3). Returns a Workspace (x, y,
-    cell; ``cells`` as a grid, ``area``; ``text`` the summary line)."""
-    return _table_command("workspace", workspace, dict(locals()), "workspace.csv", kind=Workspace)
+    cell; ``cells`` as a grid, ``area``; ``text`` the summary line). output: also write the CSV;
+    figure: the figure's stem (STEM.png, STEM.svg)."""
+    bound = _bound_options(_nocdyn.WorkspaceOptions, options)
+    bound.robot = _robot_source(robot, set)
+    answer, summary = _run(lambda o, p: _nocdyn._run_workspace(o, p, _path(output, "output"), _path(figure, "figure")),
+                           bound, progress, "workspace")
+    return _table(answer, "workspace", Workspace, summary)
+
+
+workspace.__signature__ = _signature(_nocdyn.WorkspaceOptions, (), before=(("robot", None), ("set", None)),
+                                     after=(("output", None), ("figure", None), ("progress", None)))
 
 
 def convert(robot, *, set=None, output=None):

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/envelope.hpp"
+#include "app/workspace.hpp"
 #include "app_bindings.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/output.hpp"
@@ -74,6 +75,29 @@ void bindAnalysis(py::module_& m) {
                 return r;
             });
             return tableTuple(result.table);
+        },
+        py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
+        py::arg("figure") = py::none());
+
+    py::class_<app::WorkspaceOptions>(m, "WorkspaceOptions")
+        .def(py::init<>())
+        .def_readwrite("robot", &app::WorkspaceOptions::robot)
+        .def_readwrite("theta", &app::WorkspaceOptions::theta)
+        .def_readwrite("resolution", &app::WorkspaceOptions::resolution)
+        .def_property_readonly_static("_fields",
+                                      [](const py::object&) { return py::make_tuple("theta", "resolution"); });
+    m.def(
+        "_run_workspace",
+        [](const app::WorkspaceOptions& options, const py::object& progress, const py::object& output,
+           const py::object& figure) {
+            const std::string csv = pathOrEmpty(output), stem = pathOrEmpty(figure);
+            const app::WorkspaceResult result = runJob(progress, [&](app::Observer& observer) {
+                app::WorkspaceResult r = app::runWorkspace(options, observer);
+                if (!csv.empty()) writeCsvFile(r.table, csv);
+                if (!stem.empty()) app::writeWorkspaceFigure(r, stem);
+                return r;
+            });
+            return py::make_tuple(tableTuple(result.table), result.summary);
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
         py::arg("figure") = py::none());

@@ -67,3 +67,21 @@ def test_envelope_set_bad_values_and_two_threads():
         nocdyn.envelope(min_frequency=float("nan"))
     a, b = in_two_threads(lambda: nocdyn.envelope(robot=ROBOT, **SMALL_ENVELOPE))
     np.testing.assert_array_equal(a.data, b.data)
+
+
+def test_workspace_set_bad_values_and_two_threads(tmp_path):
+    ws = nocdyn.workspace(robot=FAMILY, resolution=21)
+    larger = nocdyn.workspace(robot=FAMILY, set={"l1": 0.13}, resolution=21)
+    assert larger.area > ws.area > 0.0
+    with pytest.raises(ValueError, match="^resolution: "):
+        nocdyn.workspace(resolution=5)
+    with pytest.raises(ValueError, match="^theta: "):
+        nocdyn.workspace(theta=1e4)
+    with pytest.raises(ValueError, match="^set: "):
+        nocdyn.workspace(set={"l1": 0.1})  # the built-in prototype has no parameters
+    a, b = in_two_threads(lambda: nocdyn.workspace(robot=ROBOT, resolution=21))
+    np.testing.assert_array_equal(a.data, b.data)
+    assert a.text == b.text and a.cells.shape == (21, 21)
+    # files only where asked, and then the command line's
+    nocdyn.workspace(robot=ROBOT, resolution=21, output=tmp_path / "w.csv", figure=tmp_path / "w")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["w.csv", "w.png", "w.svg"]

@@ -1,0 +1,44 @@
+#include "app/workspace.hpp"
+
+#include "nocdyn/io/layouts.hpp"
+#include "workspace_figure.hpp"
+
+namespace nocdyn::app {
+
+void validate(const WorkspaceOptions& options) {
+    if (options.theta) requireIn(*options.theta, kWorkspaceThetaRange, "theta");
+    requireIn(options.resolution, kWorkspaceResolutionRange, "resolution");
+}
+
+WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer) {
+    validate(options);
+    WorkspaceResult out;
+    out.model = std::make_shared<const Model>(loadRobot(options.robot));
+    const Model& model = *out.model;
+    nocdyn::WorkspaceOptions ws;
+    ws.theta = options.theta ? *options.theta : model.home(0);
+    ws.resolution = options.resolution;
+    // called after each grid column, from this thread
+    ws.progress = [&observer](int done, int total) {
+        observer.progress(done, total, "grid columns");
+        stopIfRequested(observer);
+    };
+    out.map = workspaceMap(model, ws);
+    out.summary = report::workspaceSummary(out.map);
+    const WorkspaceMap& map = out.map;
+    out.table.columns = io::columnNames(io::TableId::workspace);
+    out.table.categories = {{}, {}, {"feasible", "unreachable", "range", "singular"}};  // WorkspaceCell in order
+    for (int i = 0; i < map.n; ++i) {
+        for (int k = 0; k < map.n; ++k) {
+            out.table.rows.push_back(
+                {map.x0 + i * map.step, map.y0 + k * map.step, static_cast<double>(map.cell(i, k))});
+        }
+    }
+    return out;
+}
+
+void writeWorkspaceFigure(const WorkspaceResult& result, const std::string& stem) {
+    report::renderFigure(report::workspaceFigure(result.map, *result.model, {}), stem);
+}
+
+}  // namespace nocdyn::app
