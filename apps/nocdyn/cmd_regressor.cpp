@@ -1,40 +1,27 @@
-// nocdyn regressor: the robot's standard inertial and friction parameters, and which
-// combinations of them (base parameters) the actuator forces can identify.
-#include <cstdio>
+// nocdyn regressor: binds app::RegressorOptions and prints (or writes) the report: the robot's
+// standard inertial and friction parameters, and which combinations of them (base parameters)
+// the actuator forces can identify.
 #include <iostream>
 #include <memory>
 
+#include "app/regressor.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "progress.hpp"
 
 namespace nocdyn::cli {
 
 namespace {
 
-struct RegressorOptions {
-    std::string robot, output;
-    int samples = 200;
-    unsigned seed = 1;
+struct Options : app::RegressorOptions {
+    std::string output;
 };
 
-void run(const RegressorOptions& options) {
-    const Model model(loadRobotDescriptionOrDefault(options.robot));
-    BaseParameterOptions base_options;
-    base_options.samples = options.samples;
-    base_options.seed = options.seed;
-    const BaseParameters base = baseParameters(model, base_options);
-    const ParameterVector pi = standardParameters(model);
-    std::string text = "# standard parameters (robot file values)\n";
-    char line[160];
-    for (int c = 0; c < parameterCount(model); ++c) {
-        std::snprintf(line, sizeof line, "%-28s %15.9g %s\n", parameterName(model, c).c_str(), pi(c),
-                      parameterUnit(model, c).c_str());
-        text += line;
-    }
-    text += describeBaseParameters(model, base);
+void run(const Options& options) {
+    TerminalObserver observer("nocdyn regressor");
+    const std::string text = app::runRegressor(options, observer).text;
     if (options.output.empty()) {
         std::cout << text;
         std::cout.flush();
@@ -47,7 +34,7 @@ void run(const RegressorOptions& options) {
 }  // namespace
 
 void addRegressorCommand(CLI::App& app) {
-    auto options = std::make_shared<RegressorOptions>();
+    auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "regressor",
         "The dynamics are linear in each body's planar inertial parameters [m, m c_x, m c_y, I_O] (body frame:\n"

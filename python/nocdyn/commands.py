@@ -572,16 +572,17 @@ def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, tim
                            _text(out, err))
 
 
-def regressor(*, robot=None, set=None, samples=200, seed=1, output=None):
+def regressor(*, robot=None, set=None, output=None, **options):
     """The robot's standard inertial and friction parameters and its base parameters (the
-    combinations the actuator forces identify) (``nocdyn regressor``). Returns the report's text."""
-    arguments = dict(locals())
-    with _Call("regressor", regressor) as call:
-        call.robot(robot)
-        path = call.output("output", output, "regressor.txt")
-        call.options(arguments, handled=("robot", "output"))
-        call.run()
-        return path.read_text(encoding="utf-8")
+    combinations the actuator forces identify) (``nocdyn regressor``). Returns the report's text;
+    output: also write it there."""
+    bound = _bound_options(_nocdyn.RegressorOptions, options)
+    bound.robot = _robot_source(robot, set)
+    return _run(lambda o, p: _nocdyn._run_regressor(o, p, _path(output, "output")), bound, False, "regressor")["text"]
+
+
+regressor.__signature__ = _signature(_nocdyn.RegressorOptions, (), before=(("robot", None), ("set", None)),
+                                     after=(("output", None),))
 
 
 def identify(data, *, robot=None, set=None, payload=False, base=False, friction=False, held_forces=False, cutoff=0.0,

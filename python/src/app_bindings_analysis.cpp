@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/envelope.hpp"
+#include "app/regressor.hpp"
 #include "app/workspace.hpp"
 #include "app_bindings.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -45,6 +46,11 @@ void writeCsvFile(const io::Table& table, const std::string& path) {
     io::OutputFile out(path);
     io::writeCsv(out, table);
     out.commit();
+}
+
+/// The text at `path` (none when empty), written safely.
+void writeText(const std::string& text, const std::string& path) {
+    if (!path.empty()) io::writeTextFile(path, text);
 }
 
 /// py::none() or a path: the file to write, empty for none.
@@ -101,6 +107,29 @@ void bindAnalysis(py::module_& m) {
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
         py::arg("figure") = py::none());
+
+    py::class_<app::RegressorOptions>(m, "RegressorOptions")
+        .def(py::init<>())
+        .def_readwrite("robot", &app::RegressorOptions::robot)
+        .def_readwrite("samples", &app::RegressorOptions::samples)
+        .def_readwrite("seed", &app::RegressorOptions::seed)
+        .def_property_readonly_static("_fields", [](const py::object&) { return py::make_tuple("samples", "seed"); });
+    m.def(
+        "_run_regressor",
+        [](const app::RegressorOptions& options, const py::object& progress, const py::object& output) {
+            const std::string path = pathOrEmpty(output);
+            const app::RegressorResult r = runJob(progress, [&](app::Observer& observer) {
+                app::RegressorResult result = app::runRegressor(options, observer);
+                writeText(result.text, path);
+                return result;
+            });
+            return py::dict(py::arg("text") = r.text, py::arg("names") = r.names, py::arg("units") = r.units,
+                            py::arg("pi") = r.pi, py::arg("rank") = r.base.rank,
+                            py::arg("independent") = r.base.independent,
+                            py::arg("unidentifiable") = r.base.unidentifiable, py::arg("K") = r.base.K,
+                            py::arg("condition") = r.base.condition);
+        },
+        py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none());
 }
 
 }  // namespace nocdyn::python

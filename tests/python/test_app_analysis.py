@@ -85,3 +85,11 @@ def test_workspace_set_bad_values_and_two_threads(tmp_path):
     # files only where asked, and then the command line's
     nocdyn.workspace(robot=ROBOT, resolution=21, output=tmp_path / "w.csv", figure=tmp_path / "w")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["w.csv", "w.png", "w.svg"]
+
+
+def test_regressor_set_bad_values_and_two_threads():
+    assert nocdyn.regressor(robot=FAMILY, set={"l1": 0.12}, samples=40) != nocdyn.regressor(robot=FAMILY, samples=40)
+    with pytest.raises(ValueError, match="^samples: "):
+        nocdyn.regressor(samples=5)
+    a, b = in_two_threads(lambda: nocdyn.regressor(robot=ROBOT, samples=40))
+    assert a == b and a.startswith("# standard parameters")
