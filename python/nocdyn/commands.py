@@ -514,12 +514,11 @@ workspace.__signature__ = _signature(_nocdyn.WorkspaceOptions, (), before=(("rob
 def convert(robot, *, set=None, output=None):
     """A robot file in the general per-limb form (``nocdyn convert``): returns its YAML text
     (numbers in shortest round-trip form); also written to ``output`` when given."""
-    with _Call("convert", convert) as call:
-        call.robot(robot)
-        call.option("set", set)
-        path = call.output("output", output, "robot.yaml")
-        call.run()
-        return path.read_text(encoding="utf-8")
+    if robot is None:
+        raise ValueError("robot: a robot file's path or a nocdyn.Robot is required")
+    bound = _nocdyn.ConvertOptions()
+    bound.robot = _robot_source(robot, set)
+    return _run(lambda o, p: _nocdyn._run_convert(o, p, _path(output, "output")), bound, False, "convert")
 
 
 def animate(trajectory=None, *, robot=None, set=None, motion=None, duration=None, rate=10000.0, slow_motion=0.0,

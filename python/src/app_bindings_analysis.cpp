@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "app/convert.hpp"
 #include "app/envelope.hpp"
 #include "app/regressor.hpp"
 #include "app/workspace.hpp"
@@ -128,6 +129,22 @@ void bindAnalysis(py::module_& m) {
                             py::arg("independent") = r.base.independent,
                             py::arg("unidentifiable") = r.base.unidentifiable, py::arg("K") = r.base.K,
                             py::arg("condition") = r.base.condition);
+        },
+        py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none());
+
+    py::class_<app::ConvertOptions>(m, "ConvertOptions")
+        .def(py::init<>())
+        .def_readwrite("robot", &app::ConvertOptions::robot)
+        .def_property_readonly_static("_fields", [](const py::object&) { return py::make_tuple(); });
+    m.def(
+        "_run_convert",
+        [](const app::ConvertOptions& options, const py::object& progress, const py::object& output) {
+            const std::string path = pathOrEmpty(output);
+            return runJob(progress, [&](app::Observer& observer) {
+                app::ConvertResult result = app::runConvert(options, observer);
+                writeText(result.text, path);
+                return result.text;
+            });
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none());
 }

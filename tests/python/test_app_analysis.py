@@ -93,3 +93,15 @@ def test_regressor_set_bad_values_and_two_threads():
         nocdyn.regressor(samples=5)
     a, b = in_two_threads(lambda: nocdyn.regressor(robot=ROBOT, samples=40))
     assert a == b and a.startswith("# standard parameters")
+
+
+def test_convert_set_bad_values_and_two_threads(tmp_path):
+    assert nocdyn.convert(FAMILY, set={"l1": 0.12}) != nocdyn.convert(FAMILY)
+    with pytest.raises(ValueError, match="^robot: "):
+        nocdyn.convert(None)
+    with pytest.raises(nocdyn.Error, match="parameter 'l1' is set but the file declares no parameters"):
+        nocdyn.convert(ROBOT, set={"l1": 0.12})
+    a, b = in_two_threads(lambda: nocdyn.convert(ROBOT))
+    assert a == b and a.startswith("# ")
+    nocdyn.convert(ROBOT, output=tmp_path / "robot.yaml")
+    assert (tmp_path / "robot.yaml").read_text() == a
