@@ -621,12 +621,22 @@ def excite(*, robot=None, set=None,
                            "path": None if output is None else path}, _text(out, err))
 
 
-def loads(trajectory=None, *, robot=None, set=None,
-          duration=None, rate=10000.0, output=None, figure=None, envelope=False,
-          min_frequency=1.0, max_frequency=100.0, points=9):
+def loads(trajectory=None, *, robot=None, set=None, output=None, figure=None, progress=None, **options):
     """Joint reactions and design loads (``nocdyn loads``) along a trajectory, or over the
-    operating envelope's motions (envelope=True). Returns a Table with the CSV's columns."""
-    return _table_command("loads", loads, dict(locals()), "loads.csv")
+    operating envelope's motions (envelope=True). Returns a Table with the CSV's columns (limb and
+    joint numbered from 1, peak and RMS forces, ...); ``text`` the command line's report. output:
+    also write the CSV; figure: the robot at the worst pose (STEM.png, STEM.svg)."""
+    bound = _bound_options(_nocdyn.LoadsOptions, {"trajectory": "" if trajectory is None else trajectory, **options})
+    bound.robot = _robot_source(robot, set)
+    answer, text = _run(lambda o, p: _nocdyn._run_loads(o, p, _path(output, "output"), _path(figure, "figure")),
+                        bound, progress, "loads")
+    return _table(answer, "loads", text=text.rstrip("\n"), integers=_NUMBERS)
+
+
+loads.__signature__ = _signature(_nocdyn.LoadsOptions, ("trajectory",), before=(("robot", None), ("set", None)),
+                                 after=(("output", None), ("figure", None), ("progress", None)))
+loads.__signature__ = loads.__signature__.replace(parameters=[
+    p.replace(default=None) if p.name == "trajectory" else p for p in loads.__signature__.parameters.values()])
 
 
 def validate(trajectory, *, robot=None, set=None, duration=None, rate=1000.0, output=None):

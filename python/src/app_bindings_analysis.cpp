@@ -11,6 +11,7 @@
 
 #include "app/convert.hpp"
 #include "app/envelope.hpp"
+#include "app/loads.hpp"
 #include "app/regressor.hpp"
 #include "app/workspace.hpp"
 #include "app_bindings.hpp"
@@ -147,6 +148,33 @@ void bindAnalysis(py::module_& m) {
             });
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none());
+
+    py::class_<app::LoadsOptions, app::SamplingOptions>(m, "LoadsOptions")
+        .def(py::init<>())
+        .def_readwrite("robot", &app::LoadsOptions::robot)
+        .def_readwrite("envelope", &app::LoadsOptions::envelope)
+        .def_readwrite("min_frequency", &app::LoadsOptions::min_frequency)
+        .def_readwrite("max_frequency", &app::LoadsOptions::max_frequency)
+        .def_readwrite("points", &app::LoadsOptions::points)
+        .def_property_readonly_static("_fields", [](const py::object&) {
+            return py::make_tuple("trajectory", "duration", "rate", "envelope", "min_frequency", "max_frequency",
+                                  "points");
+        });
+    m.def(
+        "_run_loads",
+        [](const app::LoadsOptions& options, const py::object& progress, const py::object& output,
+           const py::object& figure) {
+            const std::string csv = pathOrEmpty(output), stem = pathOrEmpty(figure);
+            const app::LoadsResult result = runJob(progress, [&](app::Observer& observer) {
+                app::LoadsResult r = app::runLoads(options, observer);
+                if (!csv.empty()) writeCsvFile(r.table, csv);
+                if (!stem.empty()) app::writeLoadsFigure(options, r, stem);
+                return r;
+            });
+            return py::make_tuple(tableTuple(result.table), result.text);
+        },
+        py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
+        py::arg("figure") = py::none());
 }
 
 }  // namespace nocdyn::python

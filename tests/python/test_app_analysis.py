@@ -87,6 +87,24 @@ def test_workspace_set_bad_values_and_two_threads(tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["w.csv", "w.png", "w.svg"]
 
 
+def test_loads_integers_set_bad_values_and_two_threads():
+    table = nocdyn.loads("paper1", duration=0.005, rate=2000.0)
+    assert list(table["limb"]) == [1, 1, 1, 2, 2, 2, 3, 3, 3] and table["limb"].dtype == np.int64
+    assert list(table["joint"]) == [1, 2, 3] * 3 and table["joint"].dtype == np.int64
+    assert "largest: limb" in table.text
+    heavier = nocdyn.loads("paper1", robot=FAMILY, set={"r_b": 0.25}, duration=0.005, rate=2000.0)
+    lighter = nocdyn.loads("paper1", robot=FAMILY, duration=0.005, rate=2000.0)
+    assert not np.array_equal(heavier["peak_force"], lighter["peak_force"])
+    with pytest.raises(ValueError, match="^trajectory: "):
+        nocdyn.loads()
+    with pytest.raises(ValueError, match="^rate: "):
+        nocdyn.loads("paper1", rate=0.0)
+    with pytest.raises(ValueError, match="^trajectory: "):
+        nocdyn.loads("paper1", envelope=True)
+    a, b = in_two_threads(lambda: nocdyn.loads("paper1", duration=0.005, rate=2000.0))
+    np.testing.assert_array_equal(a.data, b.data)
+
+
 def test_regressor_set_bad_values_and_two_threads():
     assert nocdyn.regressor(robot=FAMILY, set={"l1": 0.12}, samples=40) != nocdyn.regressor(robot=FAMILY, samples=40)
     with pytest.raises(ValueError, match="^samples: "):

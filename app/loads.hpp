@@ -1,0 +1,54 @@
+// `loads`: every joint's design loads (reactions.hpp) along a trajectory, or over the operating
+// envelope's motions: peak and RMS reaction force, peak couple, and where the peaks occur.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "app/envelope.hpp"
+#include "app/observer.hpp"
+#include "app/options.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/reactions.hpp"
+#include "nocdyn/trajectory.hpp"
+
+namespace nocdyn::app {
+
+struct LoadsOptions : SamplingOptions {
+    RobotSource robot;
+    /// Over the operating envelope's motions instead of the trajectory (then none is given).
+    bool envelope = false;
+    double min_frequency = 1.0;    ///< envelope: [Hz] (kEnvelopeFrequencyRange)
+    double max_frequency = 100.0;  ///< envelope: [Hz], at least min_frequency
+    int points = 9;                ///< envelope: frequencies per axis
+};
+
+struct LoadsResult {
+    std::shared_ptr<const Model> model;
+    /// Per joint (limb j, joint k at joint[j][k], 0-based inside; numbered from 1 in the table).
+    JointLoads loads;
+    /// envelope: per joint (3 j + k) the frequency of the motion of its peak force [Hz]; else empty.
+    std::vector<double> frequency;
+    /// envelope: the envelope's points (the motions run).
+    std::vector<EnvelopePoint> points;
+    int worst_limb = 1, worst_joint = 1;  ///< 1-based: the joint of the largest peak force
+    /// The CSV's table (io::TableId::loads): limb and joint numbered from 1.
+    io::Table table;
+    /// The report the command line prints: one line per joint, then the largest.
+    std::string text;
+};
+
+/// Throws OptionError for a sampling or envelope option out of range, a trajectory with the
+/// envelope or none without it.
+void validate(const LoadsOptions& options);
+
+/// The loads; a pose out of reach or beyond a limit along the trajectory is an Error (the
+/// envelope's motions are within every limit by construction). A stop between envelope points.
+[[nodiscard]] LoadsResult runLoads(const LoadsOptions& options, Observer& observer);
+
+/// The robot at the pose of the largest peak force with each joint's force as an arrow:
+/// STEM.png and STEM.svg.
+void writeLoadsFigure(const LoadsOptions& options, const LoadsResult& result, const std::string& stem);
+
+}  // namespace nocdyn::app
