@@ -22,9 +22,7 @@ command itself refuses: a pose out of reach, a bad file, ...).
 
 from __future__ import annotations
 
-import csv
 import inspect
-import math
 import json as _json
 import os
 import pathlib
@@ -658,42 +656,34 @@ def reproduce(*, out_dir="results", closed_loop_duration=0.2, identification_dur
         return Report(folder, _text(out, err))
 
 
-#: The command line's command of each function (the parity test and docs/python-parity.md).
-def design(vary, metric, *, robot=None, set=None, out_dir=None, sweep="random", samples=64, seed=1, threads=0,
-           theta=None, resolution=201, trajectory=None, duration=None, rate=10000.0, no_figures=False,
-           progress=None):
+def design(vary, metric, *, robot=None, set=None, out_dir=None, progress=None, **options):
     """Sweep a parametric robot family over its declared parameters (``nocdyn design``): each
     design's metrics (workspace_area, condition_median, condition_worst, envelope_x@F, ...,
     moving_mass, peak_force, rms_force, stroke, peak_reaction), infeasible designs as rows with
     their reason. vary: "NAME=LOWER:UPPER" strings; metric: metric names. Returns a
-    nocdyn.designs.Designs read from the command's designs.csv. out_dir: keep designs.csv,
-    pareto.csv, the journal and the figures there (the sweep resumes from its journal). For
-    Sobol or Latin-hypercube sweeps, optimisation and Dask, see nocdyn.designs."""
-    arguments = dict(locals())
+    nocdyn.designs.Designs (``front``: the indices of the Pareto front). out_dir: also write
+    designs.csv, pareto.csv, the journal and the figures there (the sweep resumes from its
+    journal); without it nothing is written. Ctrl-C (or an exception from ``progress``) stops the
+    sweep once the designs under way finish. For Sobol or Latin-hypercube sweeps, optimisation
+    and Dask, see nocdyn.designs."""
+    from .designs import Designs
     vary = [vary] if isinstance(vary, str) else list(vary)
     metric = [metric] if isinstance(metric, str) else list(metric)
-    from .designs import Designs
-    with _Call("design", design) as call:
-        call.robot(robot)
-        folder = call.output("out_dir", out_dir, "design")
-        call.option("vary", vary)
-        call.option("metric", metric)
-        call.options(arguments, handled=("robot", "out_dir", "vary", "metric"))
-        call.run(progress, "design")
-        names = [v.split("=", 1)[0].strip() for v in vary]
-        with open(folder / "designs.csv", encoding="utf-8", newline="") as file:
-            rows = list(csv.reader(file))
-        header, body = rows[0], [r for r in rows[1:] if r]
-        d, m = len(names), len(header) - 3 - len(names)
-
-        def number(text):
-            return float(text) if text else math.nan
-        points = [[number(v) for v in r[1:1 + d]] for r in body]
-        values = [[number(v) for v in r[1 + d:1 + d + m]] for r in body]
-        return Designs(header[1:1 + d], header[1 + d:1 + d + m], points, values,
-                       [r[1 + d + m] == "true" for r in body], [r[2 + d + m] for r in body])
+    bound = _bound_options(_nocdyn.DesignOptions, {"vary": vary, "metric": metric, **options})
+    bound.robot = _robot_source(robot, set)
+    bound.out_dir = "" if out_dir is None else _path(out_dir, "out_dir")
+    answer = _run(_nocdyn._run_design, bound, progress, "design")
+    designs = Designs(answer["names"], answer["metrics"], answer["points"], answer["values"], answer["feasible"],
+                      answer["reason"])
+    designs.front = list(answer["front"])
+    return designs
 
 
+design.__signature__ = _signature(_nocdyn.DesignOptions, ("vary", "metric"), before=(("robot", None), ("set", None)),
+                                  after=(("out_dir", None), ("progress", None)))
+
+
+#: The command line's command of each function (the parity test and docs/python-parity.md).
 COMMANDS = {"pose": pose, "inverse-dynamics": inverse_dynamics, "forward-kinematics": forward_kinematics,
             "simulate": simulate, "control": control, "envelope": envelope, "workspace": workspace,
             "convert": convert, "animate": animate, "shake": shake, "regressor": regressor, "identify": identify,

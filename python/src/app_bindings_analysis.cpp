@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "app/convert.hpp"
+#include "app/design.hpp"
 #include "app/envelope.hpp"
 #include "app/loads.hpp"
 #include "app/regressor.hpp"
@@ -175,6 +176,54 @@ void bindAnalysis(py::module_& m) {
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
         py::arg("figure") = py::none());
+
+    py::class_<app::DesignOptions>(m, "DesignOptions")
+        .def(py::init<>())
+        .def_readwrite("robot", &app::DesignOptions::robot)
+        .def_readwrite("vary", &app::DesignOptions::vary)
+        .def_readwrite("metric", &app::DesignOptions::metric)
+        .def_readwrite("out_dir", &app::DesignOptions::out_dir)
+        .def_readwrite("sweep", &app::DesignOptions::sweep)
+        .def_readwrite("samples", &app::DesignOptions::samples)
+        .def_readwrite("seed", &app::DesignOptions::seed)
+        .def_readwrite("threads", &app::DesignOptions::threads)
+        .def_readwrite("theta", &app::DesignOptions::theta)
+        .def_readwrite("resolution", &app::DesignOptions::resolution)
+        .def_readwrite("trajectory", &app::DesignOptions::trajectory)
+        .def_readwrite("duration", &app::DesignOptions::duration)
+        .def_readwrite("rate", &app::DesignOptions::rate)
+        .def_readwrite("no_figures", &app::DesignOptions::no_figures)
+        .def_property_readonly_static("_fields", [](const py::object&) {
+            return py::make_tuple("vary", "metric", "sweep", "samples", "seed", "threads", "theta", "resolution",
+                                  "trajectory", "duration", "rate", "no_figures");
+        });
+    m.def(
+        "_run_design",
+        [](const app::DesignOptions& options, const py::object& progress) {
+            const app::DesignResult r =
+                runJob(progress, [&](app::Observer& observer) { return app::runDesign(options, observer); });
+            const auto n = static_cast<py::ssize_t>(r.records.size());
+            const auto d = static_cast<py::ssize_t>(r.names.size());
+            const auto k = static_cast<py::ssize_t>(r.metrics.size());
+            py::array_t<double> points({n, d}), values({n, k});
+            py::array_t<bool> feasible(n);
+            py::list reason;
+            for (py::ssize_t i = 0; i < n; ++i) {
+                const io::DesignRecord& record = r.records[static_cast<std::size_t>(i)];
+                for (py::ssize_t c = 0; c < d; ++c) points.mutable_at(i, c) = record.point[static_cast<std::size_t>(c)];
+                for (py::ssize_t c = 0; c < k; ++c) {
+                    values.mutable_at(i, c) = record.evaluation.feasible
+                                                  ? record.evaluation.values[static_cast<std::size_t>(c)]
+                                                  : std::numeric_limits<double>::quiet_NaN();
+                }
+                feasible.mutable_at(i) = record.evaluation.feasible;
+                reason.append(record.evaluation.reason);
+            }
+            return py::dict(py::arg("names") = r.names, py::arg("metrics") = r.metrics, py::arg("points") = points,
+                            py::arg("values") = values, py::arg("feasible") = feasible, py::arg("reason") = reason,
+                            py::arg("front") = r.front, py::arg("resumed") = r.resumed);
+        },
+        py::arg("options"), py::arg("progress") = py::none());
 }
 
 }  // namespace nocdyn::python

@@ -123,3 +123,65 @@ def test_convert_set_bad_values_and_two_threads(tmp_path):
     assert a == b and a.startswith("# ")
     nocdyn.convert(ROBOT, output=tmp_path / "robot.yaml")
     assert (tmp_path / "robot.yaml").read_text() == a
+
+
+SWEEP = dict(robot=FAMILY, set={"l2": 0.11}, resolution=11, threads=2)
+
+
+def test_design_without_out_dir_writes_nothing_and_equals_the_command_line(tmp_path):
+    before = temporary_folders()
+    designs = nocdyn.design(["r_b=0.15:0.25", "l1=0.08:0.14"], ["workspace_area", "moving_mass"], samples=6, seed=3,
+                            no_figures=True, **SWEEP)
+    assert len(designs) == 6 and designs.names == ["r_b", "l1"] and temporary_folders() == before
+    kept = nocdyn.design(["r_b=0.15:0.25", "l1=0.08:0.14"], ["workspace_area", "moving_mass"], samples=6, seed=3,
+                         no_figures=True, out_dir=tmp_path / "run", **SWEEP)
+    np.testing.assert_array_equal(kept.values, designs.values)
+    assert sorted(p.name for p in (tmp_path / "run").iterdir()) == ["designs.csv", "journal.csv", "pareto.csv"]
+    with pytest.raises(ValueError, match="^vary: "):
+        nocdyn.design("r_b=0.3:0.2", "moving_mass", **SWEEP)
+    with pytest.raises(ValueError, match="^metric: "):
+        nocdyn.design("r_b=0.1:0.2", "envelope_q@50", **SWEEP)
+    with pytest.raises(ValueError, match="^threads: "):
+        nocdyn.design("r_b=0.1:0.2", "moving_mass", robot=FAMILY, threads=-1)
+    with pytest.raises(ValueError, match="^robot: "):
+        nocdyn.design("r_b=0.1:0.2", "moving_mass")
+
+
+def test_a_keyboard_interrupt_from_the_progress_callback_stops_a_design_sweep(tmp_path):
+    before = temporary_folders()
+    calls = []
+
+    def progress(done, total):
+        calls.append((done, total))
+        if done >= 2:
+            raise KeyboardInterrupt
+    started = time.monotonic()
+    with pytest.raises(KeyboardInterrupt):
+        nocdyn.design("r_b=0.15:0.25", "workspace_area", samples=400, out_dir=tmp_path / "run", progress=progress,
+                      **SWEEP)
+    # stopped once the designs under way finished: far from the 400
+    assert calls[-1][0] < 10 and calls[-1][1] == 400 and time.monotonic() - started < 60
+    assert temporary_folders() == before
+    # the journal keeps what was done; no table of a sweep that did not finish
+    assert sorted(p.name for p in (tmp_path / "run").iterdir()) == ["journal.csv"]
+    lines = (tmp_path / "run" / "journal.csv").read_text().splitlines()
+    assert 2 <= len(lines) - 2 < 10
+    # and the same sweep resumes from it, with a warning saying so
+    with pytest.warns(RuntimeWarning, match="resuming: "):
+        nocdyn.design("r_b=0.15:0.25", "workspace_area", samples=6, out_dir=tmp_path / "other", **SWEEP)
+        nocdyn.design("r_b=0.15:0.25", "workspace_area", samples=6, out_dir=tmp_path / "other", **SWEEP)
+
+
+@pytest.mark.skipif(threading.current_thread() is not threading.main_thread(), reason="signals reach the main thread")
+def test_ctrl_c_stops_a_design_sweep_and_leaves_no_temporary_folder():
+    before = temporary_folders()
+    timer = threading.Timer(0.5, os.kill, (os.getpid(), signal.SIGINT))
+    started = time.monotonic()
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            nocdyn.design("r_b=0.15:0.25", "workspace_area", samples=100000, **SWEEP)
+    finally:
+        timer.cancel()
+    assert time.monotonic() - started < 30
+    assert temporary_folders() == before

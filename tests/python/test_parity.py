@@ -273,6 +273,24 @@ def test_envelope_workspace_loads_regressor_convert(tmp_path):
     assert nocdyn.convert(ROBOT) == run_cli("convert", "--robot", ROBOT) == run_cli("convert", ROBOT)
 
 
+def test_design_and_loads_over_the_envelope(tmp_path):
+    family = str(SOURCE_DIR / "examples" / "design_3rrr" / "family.yaml")
+    run_cli("design", "--robot", family, "--set", "l2=0.11", "--vary", "r_b=0.15:0.25", "--samples", 4, "--metric",
+            "workspace_area", "--metric", "moving_mass", "--resolution", 11, "--no-figures", "--out-dir",
+            tmp_path / "cli")
+    py = nocdyn.design("r_b=0.15:0.25", ["workspace_area", "moving_mass"], robot=family, set={"l2": 0.11}, samples=4,
+                       resolution=11, no_figures=True, out_dir=tmp_path / "py")
+    for name in ("designs.csv", "pareto.csv"):
+        assert (tmp_path / "py" / name).read_bytes() == (tmp_path / "cli" / name).read_bytes(), name
+    columns, data, labels = read_csv(tmp_path / "cli" / "designs.csv")
+    np.testing.assert_array_equal(py.values, data[:, 2:4])
+    assert list(py.feasible) == [w == "true" for w in labels["feasible"]]
+    run_cli("loads", "--envelope", "--points", 1, "--min-frequency", 20, "--max-frequency", 20, "-o", tmp_path / "l.csv")
+    table = nocdyn.loads(envelope=True, points=1, min_frequency=20.0, max_frequency=20.0)
+    same_table(tmp_path / "l.csv", table)
+    assert table["limb"].dtype == np.int64 and "over the operating envelope" in table.text
+
+
 def test_excite(tmp_path):
     small = dict(evaluations=12, random=6, samples=48, check_samples=300, duration=0.4)
     args = [a for k, v in small.items() for a in ("--" + k.replace("_", "-"), v)]

@@ -1,0 +1,339 @@
+#include "app/design.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <charconv>
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <mutex>
+#include <sstream>
+#include <thread>
+#include <utility>
+
+#include "nocdyn/analysis/design.hpp"
+#include "nocdyn/analysis/sampling.hpp"
+#include "nocdyn/io/escape.hpp"
+#include "nocdyn/io/trajectory_yaml.hpp"
+#include "nocdyn/model.hpp"
+#include "plot.hpp"
+#include "workspace_figure.hpp"
+
+namespace nocdyn::app {
+
+namespace {
+
+/// "NAME=LO:HI" as a range.
+DesignRange parseRange(const std::string& text) {
+    const auto equals = text.find('=');
+    const auto colon = text.find(':', equals == std::string::npos ? 0 : equals);
+    DesignRange r;
+    if (equals != std::string::npos && colon != std::string::npos) {
+        r.name = text.substr(0, equals);
+        const io::Parameter lo =
+            io::parseParameterAssignment(r.name + "=" + text.substr(equals + 1, colon - equals - 1));
+        const io::Parameter hi = io::parseParameterAssignment(r.name + "=" + text.substr(colon + 1));
+        r.lower = lo.value;
+        r.upper = hi.value;
+        if (r.lower <= r.upper) return r;
+    }
+    throw OptionError("vary", "'" + io::terminalText(text) + "': expected NAME=LOWER:UPPER, LOWER <= UPPER");
+}
+
+/// The shortest decimal that reads back as exactly `value`: two options that differ in any bit
+/// differ here (std::to_string keeps six decimals and would take 0.1 and 0.1000001 as one).
+std::string exact(double value) {
+    char buffer[64];
+    const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
+    return {buffer, end};
+}
+
+/// What a journal is kept for: the content of every input file (the robot file, a trajectory
+/// file) and every option that changes a design's numbers, each exactly. Any difference makes
+/// the journal another sweep's, which is refused rather than reused.
+std::string signature(const DesignOptions& options, const io::DesignFamily& family,
+                      const std::vector<DesignMetric>& metrics, const nocdyn::DesignOptions& design) {
+    std::string s = "robot " + io::fingerprint(family.text);
+    for (const io::Parameter& p : family.fixed) s += " set " + p.name + "=" + exact(p.value);
+    for (const DesignRange& r : family.ranges) s += " vary " + r.name + "=" + exact(r.lower) + ":" + exact(r.upper);
+    s += " " + options.sweep + " " + std::to_string(options.samples) + " seed " + std::to_string(options.seed);
+    for (const DesignMetric& m : metrics) {
+        s += ' ';
+        s += m.name();
+    }
+    s += " ws " + std::to_string(design.workspace.resolution);
+    if (options.theta) {
+        s += '@';
+        s += exact(*options.theta);
+    }
+    if (design.trajectory) {
+        // a file by its content (an edited file is another sweep), a built-in one by its name
+        std::error_code ec;
+        std::string content = "builtin";
+        if (std::filesystem::is_regular_file(options.trajectory, ec)) {
+            std::ifstream in(options.trajectory, std::ios::binary);
+            std::ostringstream text;
+            text << in.rdbuf();
+            content = io::fingerprint(text.str());
+        }
+        s += " trajectory " + io::fingerprint(options.trajectory) + " " + content + " " + exact(design.duration) + " " +
+             exact(design.rate);
+    }
+    return io::fingerprint(s);
+}
+
+/// Runs evaluate(i), i in [0, count), on `threads` worker threads, each index once; the calling
+/// thread calls record(i, result) for each in completion order and polls the observer at least
+/// every 0.1 s (worker threads never call it). A failure in a worker or an exception from record
+/// or the observer stops new designs; the designs under way finish; then it is rethrown.
+void evaluateOnPool(std::size_t count, int threads, const std::function<DesignEvaluation(std::size_t)>& evaluate,
+                    const std::function<void(std::size_t, DesignEvaluation&&)>& record, Observer& observer) {
+    std::mutex mutex;
+    std::condition_variable ready_cv;
+    std::deque<std::pair<std::size_t, DesignEvaluation>> ready;
+    std::exception_ptr failure;
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stopping{false};
+    const int n = std::clamp(threads, 1, 256);
+    int running = n;
+    const auto worker = [&] {
+        while (!stopping.load()) {
+            const std::size_t i = next.fetch_add(1);
+            if (i >= count) break;
+            try {
+                DesignEvaluation result = evaluate(i);
+                const std::lock_guard<std::mutex> lock(mutex);
+                ready.emplace_back(i, std::move(result));
+            } catch (...) {
+                const std::lock_guard<std::mutex> lock(mutex);
+                if (!failure) failure = std::current_exception();
+                stopping = true;
+                break;
+            }
+            ready_cv.notify_one();
+        }
+        const std::lock_guard<std::mutex> lock(mutex);
+        --running;
+        ready_cv.notify_one();
+    };
+    std::vector<std::jthread> pool;
+    // on any exit (an exception included): no new design starts, and every worker is joined
+    struct Join {
+        std::atomic<bool>& stopping;
+        std::vector<std::jthread>& pool;
+        ~Join() {
+            stopping = true;
+            pool.clear();
+        }
+    } join{stopping, pool};
+    for (int t = 0; t < n; ++t) pool.emplace_back(worker);
+    for (;;) {
+        std::deque<std::pair<std::size_t, DesignEvaluation>> batch;
+        bool finished = false;
+        {
+            std::unique_lock<std::mutex> lock(mutex);
+            ready_cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return !ready.empty() || running == 0; });
+            batch.swap(ready);
+            finished = running == 0;
+        }
+        for (auto& [i, result] : batch) record(i, std::move(result));
+        if (finished) break;
+        stopIfRequested(observer);
+    }
+    if (failure) std::rethrow_exception(failure);
+}
+
+void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& family,
+                  const std::vector<DesignMetric>& metrics, const nocdyn::DesignOptions& design,
+                  const std::vector<io::DesignRecord>& records, const std::vector<std::size_t>& front) {
+    using report::literalText;
+    if (metrics.size() >= 2) {
+        report::PlotSeries all{"feasible designs", {}, {}, "points pt 7 ps 0.5 lc rgb '#999999'"};
+        report::PlotSeries best{"Pareto front (over every metric)", {}, {}, "points pt 7 ps 0.9 lc rgb '#c0392b'"};
+        for (const io::DesignRecord& r : records) {
+            if (!r.evaluation.feasible) continue;
+            all.x.push_back(r.evaluation.values[0]);
+            all.y.push_back(r.evaluation.values[1]);
+        }
+        std::vector<std::size_t> sorted = front;
+        std::sort(sorted.begin(), sorted.end(), [&](std::size_t a, std::size_t b) {
+            return records[a].evaluation.values[0] < records[b].evaluation.values[0];
+        });
+        for (const std::size_t i : sorted) {
+            best.x.push_back(records[i].evaluation.values[0]);
+            best.y.push_back(records[i].evaluation.values[1]);
+        }
+        report::Figure f;
+        f.title = "Designs of " + literalText(family.source);
+        f.panels = {report::PlotPanel{"Pareto front (the first two metrics)",
+                                      literalText(metrics[0].name() + " [" + metrics[0].unit() + "]"),
+                                      literalText(metrics[1].name() + " [" + metrics[1].unit() + "]"),
+                                      {all, best}}};
+        report::renderFigure(f, (dir / "pareto").string());
+    }
+    // the best design by the first metric, drawn with its workspace
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        if (!records[i].evaluation.feasible) continue;
+        const double v = records[i].evaluation.values[0], b = best ? records[*best].evaluation.values[0] : 0.0;
+        if (!best || (metrics[0].larger_is_better() ? v > b : v < b)) best = i;
+    }
+    if (!best) return;
+    const Model model(io::designRobot(family, records[*best].point));
+    WorkspaceOptions ws = design.workspace;
+    ws.curves = true;
+    if (design.workspace_theta_at_home) ws.theta = model.home(0);
+    report::Figure f = report::workspaceFigure(workspaceMap(model, ws), model, {});
+    f.title =
+        "Best design by " + literalText(metrics[0].name()) + " (design " + std::to_string(records[*best].index) + ")";
+    report::renderFigure(f, (dir / "best").string());
+}
+
+/// A robot file inside the output folder would be overwritten by the tables it writes.
+void refuseRobotInside(const std::string& robot, const std::string& out_dir) {
+    std::error_code ec;
+    const auto file = std::filesystem::weakly_canonical(robot, ec);
+    const auto dir = std::filesystem::weakly_canonical(out_dir, ec);
+    if (ec || dir.empty()) return;
+    const auto [end, _] = std::mismatch(dir.begin(), dir.end(), file.begin(), file.end());
+    if (end == dir.end()) {
+        throw OptionError("robot", "'" + io::terminalText(robot) + "' is inside the output folder out_dir");
+    }
+}
+
+}  // namespace
+
+void validate(const DesignOptions& options) {
+    if (options.robot.description) {
+        throw OptionError("robot", "a parametric robot file is required (a robot built in code has no parameters)");
+    }
+    if (options.robot.path.empty()) throw OptionError("robot", "a parametric robot file is required");
+    if (options.vary.empty()) throw OptionError("vary", "at least one NAME=LOWER:UPPER is required");
+    if (options.metric.empty()) throw OptionError("metric", "at least one metric is required");
+    if (options.sweep != "grid" && options.sweep != "random") {
+        throw OptionError("sweep", "'" + io::terminalText(options.sweep) + "': expected grid or random");
+    }
+    if (options.samples < 1 || options.samples > kMaxDesigns) {
+        throw OptionError("samples", std::to_string(options.samples) + " is outside [1, " +
+                                         std::to_string(kMaxDesigns) + "] designs");
+    }
+    requireIn(options.threads, kDesignThreadsRange, "threads");
+    if (options.theta) requireIn(*options.theta, kDesignThetaRange, "theta");
+    requireIn(options.resolution, kDesignResolutionRange, "resolution");
+    if (options.duration) requireIn(*options.duration, kDurationRange, "duration");
+    requireIn(options.rate, kRateRange, "rate");
+}
+
+DesignResult runDesign(const DesignOptions& options, Observer& observer) {
+    validate(options);
+    io::DesignFamily family;
+    family.text = io::readRobotFileText(options.robot.path);
+    family.source = options.robot.path;
+    family.fixed = options.robot.set;
+    for (const std::string& v : options.vary) family.ranges.push_back(parseRange(v));
+    for (std::size_t a = 0; a < family.ranges.size(); ++a) {
+        for (std::size_t b = 0; b < a; ++b) {
+            if (family.ranges[a].name == family.ranges[b].name)
+                throw OptionError("vary", "'" + family.ranges[a].name + "' is varied twice");
+        }
+        for (const io::Parameter& p : family.fixed) {
+            if (p.name == family.ranges[a].name)
+                throw OptionError("vary", "'" + p.name + "' is both varied and fixed by set");
+        }
+    }
+    io::checkDesignFamily(family);
+    std::vector<DesignMetric> metrics;
+    for (const std::string& m : options.metric) {
+        try {
+            metrics.push_back(parseDesignMetric(m));
+        } catch (const Error& e) {
+            throw OptionError("metric", io::terminalText(e.what()));
+        }
+    }
+    nocdyn::DesignOptions design;
+    design.workspace.resolution = options.resolution;
+    design.workspace_theta_at_home = !options.theta;
+    design.workspace.theta = options.theta.value_or(0.0);
+    if (std::any_of(metrics.begin(), metrics.end(), [](const DesignMetric& m) { return m.along_trajectory(); })) {
+        if (options.trajectory.empty())
+            throw OptionError("trajectory", "is required by peak_force, rms_force, stroke and peak_reaction");
+        design.trajectory = io::trajectoryByNameOrFile(options.trajectory);
+        design.duration = chooseDuration(options.duration, *design.trajectory);
+        design.rate = options.rate;
+        requireRateAboveNyquist(*design.trajectory, design.rate);
+    }
+    const auto points = sweepPoints(family.ranges, options.sweep == "grid" ? SweepKind::grid : SweepKind::random,
+                                    options.samples, options.seed);
+
+    DesignResult out;
+    for (const DesignRange& r : family.ranges) out.names.push_back(r.name);
+    for (const DesignMetric& m : metrics) out.metrics.push_back(m.name());
+    out.columns = io::designColumns(family.ranges, metrics);
+    const std::filesystem::path dir(options.out_dir);
+    std::optional<io::DesignJournal> journal;
+    if (!options.out_dir.empty()) {
+        refuseRobotInside(options.robot.path, options.out_dir);
+        std::filesystem::create_directories(dir);
+        journal.emplace((dir / "journal.csv").string(), signature(options, family, metrics, design), out.columns,
+                        family.ranges.size(), metrics.size());
+    }
+    std::vector<std::optional<io::DesignRecord>> done(points.size());
+    std::size_t count = 0;
+    for (const io::DesignRecord& r : journal ? journal->previous() : std::vector<io::DesignRecord>{}) {
+        if (r.index < done.size() && !done[r.index]) {
+            done[r.index] = r;
+            ++count;
+            out.feasible += r.evaluation.feasible ? 1 : 0;
+        }
+    }
+    out.resumed = count;
+    std::vector<std::size_t> todo;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (!done[i]) todo.push_back(i);
+    }
+    if (count > 0) {
+        observer.warning("resuming: " + std::to_string(count) + " of " + std::to_string(points.size()) +
+                         " designs already evaluated (" + io::terminalText((dir / "journal.csv").string()) + ")");
+    }
+    const int threads =
+        options.threads > 0 ? options.threads : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+    const auto total = static_cast<double>(points.size());
+    observer.progress(static_cast<double>(count), total, "designs");
+    evaluateOnPool(
+        todo.size(), threads,
+        [&](std::size_t k) { return io::evaluateFamilyDesign(family, points[todo[k]], metrics, design); },
+        [&](std::size_t k, DesignEvaluation&& e) {
+            io::DesignRecord r{todo[k], points[todo[k]], std::move(e)};
+            if (journal) journal->append(r);
+            out.feasible += r.evaluation.feasible ? 1 : 0;
+            done[todo[k]] = std::move(r);
+            observer.progress(static_cast<double>(++count), total, "designs");
+        },
+        observer);
+
+    std::vector<DesignEvaluation> evaluations;
+    for (auto& r : done) {
+        out.records.push_back(std::move(*r));
+        evaluations.push_back(out.records.back().evaluation);
+    }
+    if (journal) io::writeDesignTable((dir / "designs.csv").string(), out.columns, out.records);
+    observer.step("Pareto front", 1, 1);
+    out.front = paretoFront(evaluations, metrics, [&](std::size_t k, std::size_t n) {
+        if ((k & 1023U) != 0 && k != n) return;  // the observer at a price that does not show
+        observer.progress(static_cast<double>(k), static_cast<double>(n), "designs");
+        stopIfRequested(observer);
+    });
+    if (journal) {
+        std::vector<io::DesignRecord> front_records;
+        for (const std::size_t i : out.front) front_records.push_back(out.records[i]);
+        io::writeDesignTable((dir / "pareto.csv").string(), out.columns, front_records);
+        if (!options.no_figures) writeFigures(dir, family, metrics, design, out.records, out.front);
+    }
+    return out;
+}
+
+}  // namespace nocdyn::app
