@@ -74,9 +74,9 @@ py::array_t<double> tableArray(app::TableCollector& table) {
     const py::capsule owner(values, [](void* p) { delete static_cast<std::vector<double>*>(p); });
     const auto columns = static_cast<py::ssize_t>(table.names().size());
     const py::ssize_t rows = columns == 0 ? 0 : static_cast<py::ssize_t>(values->size()) / columns;
-    return py::array_t<double>({rows, columns}, {columns * static_cast<py::ssize_t>(sizeof(double)),
-                                                 static_cast<py::ssize_t>(sizeof(double))},
-                               values->data(), owner);
+    return py::array_t<double>(
+        {rows, columns}, {columns * static_cast<py::ssize_t>(sizeof(double)), static_cast<py::ssize_t>(sizeof(double))},
+        values->data(), owner);
 }
 
 py::dict poseDict(const app::PoseResult& r) {
@@ -95,16 +95,17 @@ py::dict poseDict(const app::PoseResult& r) {
         u.mutable_at(a) = x.u;
         range_used.mutable_at(a) = x.range_used;
         actuators.append(py::dict(py::arg("actuator") = x.actuator, py::arg("limb") = x.limb,
-                                  py::arg("joint") = x.joint, py::arg("u") = x.u, py::arg("range_used") = x.range_used));
+                                  py::arg("joint") = x.joint, py::arg("u") = x.u,
+                                  py::arg("range_used") = x.range_used));
     }
     for (const app::PoseReaction& j : r.reactions) {
         for (py::ssize_t c = 0; c < 3; ++c) reactions.mutable_at(j.limb - 1, j.joint - 1, c) = j.f(c);
     }
     py::dict out(py::arg("robot") = r.robot, py::arg("pose") = Eigen::Vector3d(r.pose), py::arg("q") = q,
-                 py::arg("cond_J") = cond_J, py::arg("u") = u, py::arg("range_used") = range_used,
-                 py::arg("A") = r.A, py::arg("cond_A") = r.cond_A, py::arg("coordinates") = r.coordinates,
-                 py::arg("I") = r.I, py::arg("within_limits") = r.within_limits, py::arg("tau") = r.tau,
-                 py::arg("reactions") = reactions, py::arg("actuators") = actuators);
+                 py::arg("cond_J") = cond_J, py::arg("u") = u, py::arg("range_used") = range_used, py::arg("A") = r.A,
+                 py::arg("cond_A") = r.cond_A, py::arg("coordinates") = r.coordinates, py::arg("I") = r.I,
+                 py::arg("within_limits") = r.within_limits, py::arg("tau") = r.tau, py::arg("reactions") = reactions,
+                 py::arg("actuators") = actuators);
     if (r.compliance) {
         const app::PoseCompliance& c = *r.compliance;
         out["stiffness"] = Eigen::Matrix3d(c.K);
@@ -194,9 +195,8 @@ void bindApplication(py::module_& m) {
         "_run_inverse_dynamics",
         [](const app::InverseDynamicsOptions& options, const py::object& progress) {
             auto table = std::make_shared<app::TableCollector>();
-            (void)runJob(progress, [&](app::Observer& observer) {
-                return app::runInverseDynamics(options, *table, observer);
-            });
+            (void)runJob(progress,
+                         [&](app::Observer& observer) { return app::runInverseDynamics(options, *table, observer); });
             return py::make_tuple(table->names(), tableArray(*table));
         },
         py::arg("options"), py::arg("progress") = py::none());

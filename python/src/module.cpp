@@ -21,6 +21,7 @@
 
 #include "app_bindings.hpp"
 #include "cli_commands.hpp"
+#include "cli_main.hpp"
 #include "nocdyn/batch.hpp"
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/analysis/linearization.hpp"
@@ -798,6 +799,7 @@ PYBIND11_MODULE(_nocdyn, m) {
     m.attr("__version__") = NOCDYN_VERSION;
     bindCommands(m);
     bindApplication(m);
+    bindCommandLine(m);
     py::register_exception<Error>(m, "Error", PyExc_ValueError);
 
     py::class_<Robot>(m, "Robot")
