@@ -36,6 +36,7 @@ struct Arrays {
     Ref& du;
     Ref& ddu;
     Ref& tau;
+    PoseColumns order;
 };
 
 /// A sample the kernel rejected (or with a non-finite input): the full path's Status and,
@@ -46,7 +47,7 @@ __attribute__((noinline, cold))
 Status
 fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
     Status status =
-        inverseDynamics(model, data, a.p.row(k).transpose(), a.dp.row(k).transpose(), a.ddp.row(k).transpose());
+        inverseDynamics(model, data, poseRow(a.p, k, a.order), poseRow(a.dp, k, a.order), poseRow(a.ddp, k, a.order));
     // finite input whose results overflow (huge rates or accelerations): a failed sample, as
     // an actuator effort that is not finite, never a non-finite number in the outputs
     for (int i = 0; status && i < model.actuators; ++i) {
@@ -93,6 +94,9 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
     const double *const in_p = a.p.data(), *const in_dp = a.dp.data(), *const in_ddp = a.ddp.data();
     const Eigen::Index stride_p = a.p.outerStride(), stride_dp = a.dp.outerStride(), stride_ddp = a.ddp.outerStride();
     const Eigen::Index step_p = a.p.innerStride(), step_dp = a.dp.innerStride(), step_ddp = a.ddp.innerStride();
+    // the column of the core's coordinate i (theta, x, y): the pose order of the caller's arrays
+    // taken by the gathers' index mapping, no pass or copy of its own
+    const int column[3] = {poseColumn(a.order, 0), poseColumn(a.order, 1), poseColumn(a.order, 2)};
     double *const out_u = a.u.data(), *const out_du = a.du.data(), *const out_ddu = a.ddu.data(),
                   *const out_tau = a.tau.data();
     const Eigen::Index stride_out = a.u.outerStride();  // the same for the four (checked)
@@ -112,21 +116,23 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
         if (lanes == kLanes && contiguous_in) [[likely]] {
             // column i of each input holds the four samples side by side
             for (int i = 0; i < 3; ++i) {
-                std::memcpy(&p[i], in_p + k + i * stride_p, sizeof(Pack));
-                std::memcpy(&dp[i], in_dp + k + i * stride_dp, sizeof(Pack));
-                std::memcpy(&ddp[i], in_ddp + k + i * stride_ddp, sizeof(Pack));
+                std::memcpy(&p[i], in_p + k + column[i] * stride_p, sizeof(Pack));
+                std::memcpy(&dp[i], in_dp + k + column[i] * stride_dp, sizeof(Pack));
+                std::memcpy(&ddp[i], in_ddp + k + column[i] * stride_ddp, sizeof(Pack));
             }
         } else if (lanes == kLanes) {
             // any other layout (NumPy's C order: a packet's 4 x 3 values side by side)
             for (int i = 0; i < 3; ++i) {
-                p[i] = gather(in_p + k * step_p + i * stride_p, step_p);
-                dp[i] = gather(in_dp + k * step_dp + i * stride_dp, step_dp);
-                ddp[i] = gather(in_ddp + k * step_ddp + i * stride_ddp, step_ddp);
+                p[i] = gather(in_p + k * step_p + column[i] * stride_p, step_p);
+                dp[i] = gather(in_dp + k * step_dp + column[i] * stride_dp, step_dp);
+                ddp[i] = gather(in_ddp + k * step_ddp + column[i] * stride_ddp, step_ddp);
             }
         } else {
             for (int l = 0; l < kLanes; ++l) {
                 const Eigen::Index s = k + std::min(l, lanes - 1);
-                for (int i = 0; i < 3; ++i) p[i][l] = a.p(s, i), dp[i][l] = a.dp(s, i), ddp[i][l] = a.ddp(s, i);
+                for (int i = 0; i < 3; ++i) {
+                    p[i][l] = a.p(s, column[i]), dp[i][l] = a.dp(s, column[i]), ddp[i][l] = a.ddp(s, column[i]);
+                }
             }
         }
         // 0 x is 0 for a finite x and NaN otherwise: one test for the nine inputs; beyond
@@ -193,7 +199,7 @@ void requireShape(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen:
 }  // namespace
 
 BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const ConstRef& dp, const ConstRef& ddp, Ref u,
-                                 Ref du, Ref ddu, Ref tau, unsigned threads) {
+                                 Ref du, Ref ddu, Ref tau, unsigned threads, PoseColumns order) {
     const Eigen::Index n = p.rows();
     requireShape("p", p.rows(), p.cols(), n, 3);
     requireShape("dp", dp.rows(), dp.cols(), n, 3);
@@ -206,7 +212,7 @@ BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const Co
         u.outerStride() != tau.outerStride()) {
         throw Error("inverseDynamicsBatch: u, du, ddu and tau must have the same layout");
     }
-    const Arrays a{p, dp, ddp, u, du, ddu, tau};
+    const Arrays a{p, dp, ddp, u, du, ddu, tau, order};
     // one thread needs no count of the hardware's threads: asking costs microseconds (a
     // system call), more than a short batch such as a chunk of an envelope's period
     if (threads == 1 || n < 2) return chunk(model, a, 0, n);
