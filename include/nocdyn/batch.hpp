@@ -32,8 +32,23 @@ struct BatchResult {
     Eigen::Index failed = 0;
     Eigen::Index first_failure = npos;
     Status status;  ///< of sample first_failure; ok when failed == 0
+    /// With ActuatorLimits::check: the first computed sample beyond an actuated joint's range
+    /// or velocity limit or an actuator's effort (npos: none), and that Status (the codes of
+    /// checkJointLimits and checkEffort). Its outputs are written all the same.
+    Eigen::Index first_beyond_limits = npos;
+    Status limits;
     [[nodiscard]] bool ok() const { return failed == 0; }
 };
+
+/// Whether a batch checks, from each computed sample's u, du and tau, the actuated joints' ranges
+/// and velocity limits (limb by limb, joint by joint, as checkJointLimits) and then every
+/// actuator's effort (as checkEffort). Passive joints' limits need the full path (their q).
+enum class ActuatorLimits { ignore, check };
+
+/// ActuatorLimits::check of one computed sample (u, du, tau of size n): the first limit
+/// exceeded, or ok.
+[[nodiscard]] Status checkActuatorLimits(const Model& model, const ActuatorVector& u, const ActuatorVector& du,
+                                         const ActuatorVector& tau);
 
 /// The order of the three pose columns of a batch's arrays: the core's twist order
 /// [theta, x, y], or the tables' and Python's [x, y, theta].
@@ -54,11 +69,13 @@ using BatchOutput = Eigen::Ref<Eigen::ArrayXXd, 0, Eigen::Stride<Eigen::Dynamic,
 /// samples into that many contiguous chunks (the calling thread runs one), capped at the
 /// hardware threads and at one chunk per 8 samples.
 /// The four outputs must have the same stride from one actuator to the next. `order`: the
-/// order of p's, dp's and ddp's columns.
+/// order of p's, dp's and ddp's columns. `limits`: see ActuatorLimits (checked on the values
+/// still in registers, no pass over the outputs; after a chunk's first violation, no more).
 /// Throws nocdyn::Error when the arrays' sizes disagree (before any sample is computed).
 BatchResult inverseDynamicsBatch(const Model& model, const BatchInput& p, const BatchInput& dp, const BatchInput& ddp,
                                  BatchOutput u, BatchOutput du, BatchOutput ddu, BatchOutput tau, unsigned threads = 1,
-                                 PoseColumns order = PoseColumns::theta_x_y);
+                                 PoseColumns order = PoseColumns::theta_x_y,
+                                 ActuatorLimits limits = ActuatorLimits::ignore);
 
 /// Row k of a batch's pose array in the core's twist order [theta, x, y].
 [[nodiscard]] inline Vector3 poseRow(const BatchInput& a, Eigen::Index k, PoseColumns order) {

@@ -405,10 +405,11 @@ class Robot:
         Limits, as `nocdyn inverse-dynamics` checks them: with check_limits=True (the default) a
         sample where a joint leaves its range or exceeds its velocity limit, or an actuator its
         effort, raises nocdyn.Error with the command line's reason ("sample K: <reason>" for a
-        batch: the first such sample; the outputs are filled all the same). A batch checks them
-        on its own outputs u, du, tau when every limited joint is actuated (no second inverse
-        dynamics: a pass over the outputs), else by the full path at every sample;
-        check_limits=False is the batch's fast path, no limit checked, as before.
+        batch: the first such sample; the outputs are filled all the same). They are checked on
+        the results u, du, tau when every limited joint is actuated (no second inverse dynamics;
+        a batch checks them inside its kernel, on values still in registers, at no measurable
+        cost), else by the full path at every sample (a range on a passive joint needs its q,
+        which the batch's kernel does not compute); check_limits=False checks none.
         """
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         p_arr = _floats(p, "p")

@@ -198,19 +198,36 @@ Status sampleLimits(const Model& model, const Data& data) {
     return checkEffort(model, data);
 }
 
+/// Whether every joint with a range or velocity limit is actuated: then u and du (the actuated
+/// joints' q and rate) are all that checkJointLimits reads that can fail.
+bool limitsOnActuatedJointsOnly(const Model& model) {
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const JointLimits& lim = limb.limits[k];
+            if (limb.actuator[k] < 0 && !(lim.lower == -INFINITY && lim.upper == INFINITY && lim.velocity == INFINITY))
+                return false;
+        }
+    }
+    return true;
+}
+
 py::tuple inverseDynamicsSample(const Robot& robot, const py::handle& p, const py::handle& dp, const py::handle& ddp,
                                 bool matrices, bool check_limits) {
     const Model& model = *robot.model;
     const Pose p3 = vector3(p, "p");
     const Twist dp3 = vector3(dp, "dp"), ddp3 = vector3(ddp, "ddp");
     Data data(model);
-    // the limits need every joint's q and rate: the full path
-    const bool full = matrices || check_limits;
+    // the limits of passive joints need every joint's q and rate: the full path
+    const bool actuated_only = limitsOnActuatedJointsOnly(model);
+    const bool full = matrices || (check_limits && !actuated_only);
     const Status status =
         full ? inverseDynamics(model, data, p3, dp3, ddp3) : inverseDynamicsFast(model, data, p3, dp3, ddp3);
     if (!status) throw Error(describe(status, model));
     if (check_limits) {
-        if (const Status limits = sampleLimits(model, data); !limits) throw Error(describe(limits, model));
+        const Status limits =
+            actuated_only ? checkActuatorLimits(model, data.u, data.du, data.tau) : sampleLimits(model, data);
+        if (!limits) throw Error(describe(limits, model));
     }
     if (!matrices) return py::make_tuple(toArray(data.u), toArray(data.du), toArray(data.ddu), toArray(data.tau));
     // the independent coordinates are the pose when redundant: I, C and T's columns then in
@@ -228,74 +245,20 @@ py::tuple inverseDynamicsSample(const Robot& robot, const py::handle& p, const p
                           toArray(C), T);
 }
 
-/// Whether every joint with a range or velocity limit is actuated: then u and du (the actuated
-/// joints' q and rate) are all that checkJointLimits reads that can fail.
-bool limitsOnActuatedJointsOnly(const Model& model) {
-    for (int j = 0; j < model.limbs; ++j) {
-        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
-        for (std::size_t k = 0; k < 3; ++k) {
-            const JointLimits& lim = limb.limits[k];
-            if (limb.actuator[k] < 0 && !(lim.lower == -INFINITY && lim.upper == INFINITY && lim.velocity == INFINITY))
-                return false;
-        }
-    }
-    return true;
-}
-
 /// The first sample of N, computed by a batch, beyond a limit sampleLimits checks, and that
-/// Status (index -1: none; a failed sample, NaN, is skipped). When every limited joint is
-/// actuated, the same tests in the same order on u, du and tau (no second inverse dynamics);
-/// else the full path and sampleLimits at each sample.
-std::pair<Eigen::Index, Status> batchLimits(const Model& model, const ConstStridedMap& p, const ConstStridedMap& dp,
-                                            const ConstStridedMap& ddp, const ConstStridedMap& u,
-                                            const ConstStridedMap& du, const ConstStridedMap& tau) {
-    if (!limitsOnActuatedJointsOnly(model)) {
-        Data data(model);
-        const auto row = [](const ConstStridedMap& a, Eigen::Index k) {
-            Vector3 v;
-            for (int i = 0; i < 3; ++i) v(i) = a(k, poseColumn(kPythonPose, i));
-            return v;
-        };
-        for (Eigen::Index k = 0; k < p.rows(); ++k) {
-            if (std::isnan(tau(k, 0)) || !inverseDynamics(model, data, row(p, k), row(dp, k), row(ddp, k))) continue;
-            if (const Status s = sampleLimits(model, data); !s) return {k, s};
-        }
-        return {-1, Status{}};
-    }
-    // the actuated joints in checkJointLimits' order (limb by limb, joint by joint)
-    std::vector<int> order;
-    for (int j = 0; j < model.limbs; ++j)
-        for (std::size_t k = 0; k < 3; ++k)
-            if (const int a = model.limb[static_cast<std::size_t>(j)].actuator[k]; a >= 0) order.push_back(a);
-    for (Eigen::Index k = 0; k < u.rows(); ++k) {
-        if (std::isnan(tau(k, 0))) continue;
-        for (const int a : order) {
-            const auto aa = static_cast<std::size_t>(a);
-            const int j = model.actuator_limb[aa], joint = model.actuator_joint[aa];
-            const JointLimits& lim = model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(joint)];
-            const double q = u(k, a), dq = du(k, a);
-            if (!(q >= lim.lower && q <= lim.upper)) {
-                Status s{StatusCode::joint_limit_exceeded, j, q};
-                s.joint = joint;
-                return {k, s};
-            }
-            if (!(std::abs(dq) <= lim.velocity)) {
-                Status s{StatusCode::velocity_exceeded, j, dq};
-                s.joint = joint;
-                return {k, s};
-            }
-        }
-        for (int a = 0; a < model.actuators; ++a) {
-            const auto aa = static_cast<std::size_t>(a);
-            const int j = model.actuator_limb[aa], joint = model.actuator_joint[aa];
-            const double effort =
-                model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(joint)].effort;
-            if (!(std::abs(tau(k, a)) <= effort)) {
-                Status s{StatusCode::effort_exceeded, j, tau(k, a)};
-                s.joint = joint;
-                return {k, s};
-            }
-        }
+/// Status (index -1: none; a failed sample, NaN, is skipped), by the full path at each sample:
+/// for a model with a limited passive joint (the batch's own check sees only the actuated ones).
+std::pair<Eigen::Index, Status> passiveLimits(const Model& model, const ConstStridedMap& p, const ConstStridedMap& dp,
+                                              const ConstStridedMap& ddp, const ConstStridedMap& tau) {
+    Data data(model);
+    const auto row = [](const ConstStridedMap& a, Eigen::Index k) {
+        Vector3 v;
+        for (int i = 0; i < 3; ++i) v(i) = a(k, poseColumn(kPythonPose, i));
+        return v;
+    };
+    for (Eigen::Index k = 0; k < p.rows(); ++k) {
+        if (std::isnan(tau(k, 0)) || !inverseDynamics(model, data, row(p, k), row(dp, k), row(ddp, k))) continue;
+        if (const Status s = sampleLimits(model, data); !s) return {k, s};
     }
     return {-1, Status{}};
 }
@@ -319,11 +282,15 @@ py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, con
     std::pair<Eigen::Index, Status> limits{-1, Status{}};
     {
         const py::gil_scoped_release release;
+        // limits of actuated joints only: checked inside the batch, on the values in registers
+        const bool actuated_only = limitsOnActuatedJointsOnly(model);
         result = inverseDynamicsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vu), map(vdu), map(vddu),
-                                      map(vtau), threads, kPythonPose);
-        if (check_limits) {
-            limits = batchLimits(model, constMap(vp), constMap(vdp), constMap(vddp), constMap(vu), constMap(vdu),
-                                 constMap(vtau));
+                                      map(vtau), threads, kPythonPose,
+                                      check_limits && actuated_only ? ActuatorLimits::check : ActuatorLimits::ignore);
+        if (check_limits && actuated_only && result.first_beyond_limits != BatchResult::npos) {
+            limits = {result.first_beyond_limits, result.limits};
+        } else if (check_limits && !actuated_only) {
+            limits = passiveLimits(model, constMap(vp), constMap(vdp), constMap(vddp), constMap(vtau));
         }
     }
     const std::string message = result.ok() ? std::string() : describe(result.status, model);

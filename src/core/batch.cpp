@@ -4,6 +4,7 @@
 #include "nocdyn/batch.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <system_error>
@@ -37,6 +38,57 @@ struct Arrays {
     Ref& ddu;
     Ref& tau;
     PoseColumns order;
+    ActuatorLimits limits;
+};
+
+/// The actuated joints' limits in checkJointLimits' order, then the actuators' efforts.
+struct LimitTable {
+    int count = 0;
+    std::array<int, kMaxActuators> actuator{};                       ///< limb by limb, joint by joint
+    std::array<double, kMaxActuators> effort{};                      ///< by actuator
+    std::array<double, kMaxActuators> lower{}, upper{}, velocity{};  ///< of actuator a's joint
+
+    explicit LimitTable(const Model& model) {
+        for (int j = 0; j < model.limbs; ++j)
+            for (std::size_t k = 0; k < 3; ++k)
+                if (const int a = model.limb[static_cast<std::size_t>(j)].actuator[k]; a >= 0) actuator[count++] = a;
+        for (int a = 0; a < model.actuators; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            const JointLimits& lim = model.limb[static_cast<std::size_t>(model.actuator_limb[aa])]
+                                         .limits[static_cast<std::size_t>(model.actuator_joint[aa])];
+            effort[aa] = lim.effort;
+            lower[aa] = lim.lower;
+            upper[aa] = lim.upper;
+            velocity[aa] = lim.velocity;
+        }
+    }
+
+    /// The first limit sample (u(a), du(a), tau(a)) exceeds, or ok.
+    template <class Value>
+    [[nodiscard]] Status check(const Model& model, const Value& u, const Value& du, const Value& tau) const {
+        for (int i = 0; i < count; ++i) {
+            const auto a = static_cast<std::size_t>(actuator[static_cast<std::size_t>(i)]);
+            const int j = model.actuator_limb[a], k = model.actuator_joint[a];
+            const JointLimits& lim = model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)];
+            const double q = u(static_cast<int>(a)), dq = du(static_cast<int>(a));
+            if (!(q >= lim.lower && q <= lim.upper)) return limitStatus(StatusCode::joint_limit_exceeded, j, k, q);
+            if (!(std::abs(dq) <= lim.velocity)) return limitStatus(StatusCode::velocity_exceeded, j, k, dq);
+        }
+        for (int a = 0; a < model.actuators; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            if (!(std::abs(tau(a)) <= effort[aa])) {
+                return limitStatus(StatusCode::effort_exceeded, model.actuator_limb[aa], model.actuator_joint[aa],
+                                   tau(a));
+            }
+        }
+        return {};
+    }
+
+    static Status limitStatus(StatusCode code, int limb, int joint, double value) {
+        Status s{code, limb, value};
+        s.joint = joint;
+        return s;
+    }
 };
 
 /// A sample the kernel rejected (or with a non-finite input): the full path's Status and,
@@ -83,6 +135,8 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
     BatchResult result;
     Data data(model);  // for rejected samples only: fixed capacity, no allocation
     const int n = model.actuators;
+    const LimitTable limits(model);
+    bool check_limits = a.limits == ActuatorLimits::check;
     // Eigen's default (column-major) layout: a packet's samples are adjacent in each column
     const bool contiguous_in = a.p.innerStride() == 1 && a.dp.innerStride() == 1 && a.ddp.innerStride() == 1;
     const bool contiguous_out =
@@ -152,6 +206,28 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
         Pack zero_out = Pack{};
         for (int i = 0; i < n; ++i) zero_out += u[i] * 0.0 + du[i] * 0.0 + ddu[i] * 0.0 + tau[i] * 0.0;
         ok &= zero_out == 0.0;
+        // the packet's four samples against every limit at once (NaN compares false: beyond);
+        // the rare packet with a lane beyond one is then taken lane by lane, in sample order
+        PackMask beyond = PackMask{};
+        if (check_limits) {
+            for (int i = 0; i < n; ++i) {
+                const auto ii = static_cast<std::size_t>(i);
+                beyond |=
+                    ~((u[i] >= limits.lower[ii]) & (u[i] <= limits.upper[ii]) &
+                      (fastmath::absOf(du[i]) <= limits.velocity[ii]) & (fastmath::absOf(tau[i]) <= limits.effort[ii]));
+            }
+        }
+        if (fastmath::any(beyond & ok)) [[unlikely]] {
+            for (int l = 0; l < lanes && check_limits; ++l) {
+                if (ok[l] == 0) continue;
+                const auto at = [l](const Pack* v) { return [v, l](int i) { return v[i][l]; }; };
+                if (const Status s = limits.check(model, at(u), at(du), at(tau)); !s) {
+                    result.first_beyond_limits = k + l;
+                    result.limits = s;
+                    check_limits = false;
+                }
+            }
+        }
         if (lanes == kLanes && fastmath::all(ok)) [[likely]] {
             if (contiguous_out) {
                 for (int i = 0; i < n; ++i) {
@@ -180,9 +256,18 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
                     a.ddu(row, i) = ddu[i][l];
                     a.tau(row, i) = tau[i][l];
                 }
-            } else if (const Status status = fullPath(model, data, a, row); !status && result.failed++ == 0) {
-                result.first_failure = row;
-                result.status = status;
+            } else if (const Status status = fullPath(model, data, a, row); !status) {
+                if (result.failed++ == 0) {
+                    result.first_failure = row;
+                    result.status = status;
+                }
+            } else if (a.limits == ActuatorLimits::check && row < result.first_beyond_limits) {
+                // a sample the kernel rejected and the full path accepted: its limits too
+                if (const Status s = limits.check(model, data.u, data.du, data.tau); !s) {
+                    result.first_beyond_limits = row;
+                    result.limits = s;
+                    check_limits = false;
+                }
             }
         }
     }
@@ -198,8 +283,13 @@ void requireShape(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen:
 
 }  // namespace
 
+Status checkActuatorLimits(const Model& model, const ActuatorVector& u, const ActuatorVector& du,
+                           const ActuatorVector& tau) {
+    return LimitTable(model).check(model, u, du, tau);
+}
+
 BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const ConstRef& dp, const ConstRef& ddp, Ref u,
-                                 Ref du, Ref ddu, Ref tau, unsigned threads, PoseColumns order) {
+                                 Ref du, Ref ddu, Ref tau, unsigned threads, PoseColumns order, ActuatorLimits limits) {
     const Eigen::Index n = p.rows();
     requireShape("p", p.rows(), p.cols(), n, 3);
     requireShape("dp", dp.rows(), dp.cols(), n, 3);
@@ -212,7 +302,7 @@ BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const Co
         u.outerStride() != tau.outerStride()) {
         throw Error("inverseDynamicsBatch: u, du, ddu and tau must have the same layout");
     }
-    const Arrays a{p, dp, ddp, u, du, ddu, tau, order};
+    const Arrays a{p, dp, ddp, u, du, ddu, tau, order, limits};
     // one thread needs no count of the hardware's threads: asking costs microseconds (a
     // system call), more than a short batch such as a chunk of an envelope's period
     if (threads == 1 || n < 2) return chunk(model, a, 0, n);
@@ -247,6 +337,10 @@ BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const Co
             total.status = r.status;
         }
         total.failed += r.failed;
+        if (r.first_beyond_limits != BatchResult::npos && total.first_beyond_limits == BatchResult::npos) {
+            total.first_beyond_limits = r.first_beyond_limits;
+            total.limits = r.limits;
+        }
     }
     return total;
 }

@@ -26,7 +26,7 @@ def test_the_cli_csvs_pose_columns_in_file_order_give_its_forces(tmp_path, cli, 
     """The pose columns of a CSV written by `nocdyn inverse-dynamics`, taken in the file's order
     x, y, theta, with the rates and accelerations of the same trajectory (the CSV has none), go
     into Robot.inverse_dynamics unchanged and give the CSV's forces to 1e-12 of each column's
-    peak (measured: a few 1e-16; the batch's lean kernel against the CLI's full path)."""
+    peak (measured: 2.1e-15; the batch's lean kernel against the CLI's full path)."""
     robot_path = source_dir / "robots" / "3-rrr.yaml"
     out = tmp_path / "id.csv"
     code, _, err = cli("inverse-dynamics", "--robot", robot_path, "--trajectory", "paper1", "--duration", 0.05,
