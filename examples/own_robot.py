@@ -30,7 +30,7 @@ print(f"feasible area from the grid: {ws.area * 1e4:.2f} cm^2")
 
 # %%
 x, y, theta = robot.home + np.array([0.002, -0.001, 0.02])  # Robot's poses: [x, y, theta]
-report = nocdyn.pose(theta, x, y, robot=robot)
+report = nocdyn.pose(x, y, theta, robot=robot)
 print("u [rad]:", report.u, " cond(A):", round(report.cond_A, 3))
 modes = nocdyn.forward_kinematics(report.u, robot=robot, all_branches=True)
 print(f"{len(modes)} assembly modes; working modes: {int(modes.working.sum())}")

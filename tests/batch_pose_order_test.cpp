@@ -12,6 +12,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "nocdyn/pose_order.hpp"
 #include "nocdyn/reactions.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -48,6 +49,11 @@ TEST(PoseColumns, XYThetaIsTheTablesOrder) {
     EXPECT_EQ(poseColumn(PoseColumns::x_y_theta, 1), 0);  // x first
     EXPECT_EQ(poseColumn(PoseColumns::x_y_theta, 2), 1);
     for (int i = 0; i < 3; ++i) EXPECT_EQ(poseColumn(PoseColumns::theta_x_y, i), i);
+    // the user's pose of pose_order.hpp: coordinate i of the core at column poseColumn(x_y_theta, i)
+    const Pose p(0.25, -1.5, 3.0);
+    const Vector3 user = userPose(p);
+    for (int i = 0; i < 3; ++i) EXPECT_EQ(user(poseColumn(PoseColumns::x_y_theta, i)), p(i));
+    EXPECT_EQ(corePose(user), p);
 }
 
 TEST(PoseColumns, EveryBatchGivesTheTwistOrdersNumbersBitForBit) {

@@ -740,16 +740,17 @@ class Robot:
 
 
     # --- stiffness and natural frequencies --------------------------------------------
-    stiffness_coordinates = ("theta [rad]", "x [m]", "y [m]")
+    # the order of the command line's stiffness report (analysis::kReportedCoordinates)
+    stiffness_coordinates = ("x [m]", "y [m]", "theta [rad]")
 
     @_vocabulary
     def stiffness(self, p):
         """The 3 x 3 Cartesian stiffness K of the platform at pose p = [x, y, theta] (virtual joint
         method on the compliance of the robot file: joint `stiffness`, body `elastic`; gravity
-        preload ignored), as a numpy array in the order Robot.stiffness_coordinates, theta, x, y:
-        the order of the command line's stiffness report (`nocdyn pose`), so that the
+        preload ignored), as a numpy array in the order Robot.stiffness_coordinates, x, y, theta:
+        the pose's order and the command line's stiffness report's (`nocdyn pose`), so that the
         numbers compare one to one with it: dQ = K dp,
-        Q = (moment about C [N m], f_x [N], f_y [N]); units N m/rad, N, N/rad, N/m.
+        Q = (f_x [N], f_y [N], moment about C [N m]); units N/m, N/rad, N, N m/rad.
         Raises nocdyn.Error when the robot declares no compliance, a limb is rigid, or the pose is
         out of reach."""
         return self._core._stiffness(p)["matrix"]
@@ -762,7 +763,7 @@ class Robot:
         3 frequencies; model='elastodynamic' (every body keeps its inertia, every virtual spring
         is a degree of freedom): one per degree of freedom. With modes=True returns
         (frequencies, shapes): shapes' columns are the platform's displacement in each mode, rows
-        in the order Robot.stiffness_coordinates, theta, x, y, as `nocdyn pose` reports them
+        in the order Robot.stiffness_coordinates, x, y, theta, as `nocdyn pose` reports them
         (lumped shapes are mass-normalised)."""
         if model not in ("lumped", "elastodynamic"):
             raise Error("model: expected 'lumped' or 'elastodynamic', got " + repr(model))

@@ -19,6 +19,7 @@
 #include <utility>
 #include <vector>
 
+#include "app_bindings.hpp"
 #include "cli_commands.hpp"
 #include "nocdyn/batch.hpp"
 #include "nocdyn/derivatives.hpp"
@@ -39,6 +40,7 @@
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/pose_order.hpp"
 #include "nocdyn/reactions.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/trajectory.hpp"
@@ -112,7 +114,8 @@ StridedMap map(const ArrayView& v) {
 // batches' gathers (PoseColumns::x_y_theta).
 constexpr PoseColumns kPythonPose = PoseColumns::x_y_theta;
 
-/// The core's coordinate (0 theta, 1 x, 2 y) at Python's index c (0 x, 1 y, 2 theta).
+/// The core's coordinate (0 theta, 1 x, 2 y) at Python's index c (0 x, 1 y, 2 theta), as
+/// pose_order.hpp's userPose and corePose map them.
 constexpr int twistIndex(int c) { return (c + 1) % 3; }
 static_assert(poseColumn(kPythonPose, twistIndex(0)) == 0 && poseColumn(kPythonPose, twistIndex(2)) == 2);
 
@@ -121,15 +124,14 @@ static_assert(poseColumn(kPythonPose, twistIndex(0)) == 0 && poseColumn(kPythonP
 Eigen::Vector3d vector3(const py::handle& x, const char* name) {
     const auto a = py::array_t<double, py::array::forcecast>::ensure(x);
     if (!a || a.ndim() != 1 || a.shape(0) != 3) throw Error(std::string(name) + ": expected 3 values [x, y, theta]");
-    Eigen::Vector3d v;
-    for (int c = 0; c < 3; ++c) v(twistIndex(c)) = a.at(c);
-    return v;
+    return corePose(Vector3(a.at(0), a.at(1), a.at(2)));
 }
 
 /// A pose (or its rate) of the core as Python's [x, y, theta].
 py::array_t<double> poseArray(const Eigen::Vector3d& v) {
+    const Vector3 user = userPose(v);
     py::array_t<double> a(3);
-    for (int c = 0; c < 3; ++c) a.mutable_at(c) = v(twistIndex(c));
+    for (int c = 0; c < 3; ++c) a.mutable_at(c) = user(c);
     return a;
 }
 
@@ -679,7 +681,10 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
     out["matrix"] = toArray(analysis::reported(K.K));
     out["free_directions"] = free;
     out["frequencies"] = toArray(modes.frequency);
-    out["mode_shapes"] = toArray(analysis::reported(modes.shape));
+    // the shapes' rows are pose coordinates, their columns the modes (ascending): rows only
+    Matrix3 shapes;
+    for (int i = 0; i < 3; ++i) shapes.col(i) = analysis::reported(Vector3(modes.shape.col(i)));
+    out["mode_shapes"] = toArray(shapes);
     out["mass_matrix"] = toArray(analysis::reported(modes.M));
     if (elastodynamic) {
         analysis::ElastodynamicModes e;
@@ -928,6 +933,7 @@ PYBIND11_MODULE(_nocdyn, m) {
     m.doc() = "Compiled core of the nocdyn package (use `import nocdyn`).";
     m.attr("__version__") = NOCDYN_VERSION;
     bindCommands(m);
+    bindApplication(m);
     py::register_exception<Error>(m, "Error", PyExc_ValueError);
 
     py::class_<Robot>(m, "Robot")
