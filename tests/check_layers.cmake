@@ -7,7 +7,8 @@ cmake_minimum_required(VERSION 3.25)
 #   tables    src/tables, include/nocdyn/tables                       over every layer above
 #   validation  validation/ (the Simbody and MuJoCo models)           over the library
 #   report    report/ (no CLI11, no header of the CLI)                over the library and validation
-# apps/ and python/ stand on all of them.
+#   app       app/ (each command's options, run and typed result)     over all of the above
+# apps/ (the command line) and python/ stand on all of them.
 # A file may include a library header ("nocdyn/...") only of its own layer or one it stands on. The
 # private headers of a folder (src/core/stages.hpp, ...) count as that folder's layer, and
 # nothing in the library includes report's or the CLI's headers or CLI11.
@@ -16,7 +17,7 @@ cmake_minimum_required(VERSION 3.25)
 # the test that shows the check can fail.
 if(PLANT)
   file(REMOVE_RECURSE ${PLANT})
-  foreach(dir src include report apps validation)
+  foreach(dir src include report app apps validation)
     file(COPY ${SOURCE_DIR}/${dir} DESTINATION ${PLANT})
   endforeach()
   file(APPEND ${PLANT}/src/core/model.cpp "#include \"nocdyn/sim/shake.hpp\"\n")
@@ -41,6 +42,7 @@ set(allowed_io core io)
 set(allowed_tables core analysis sim io tables)
 set(allowed_validation core analysis sim io tables validation)
 set(allowed_report core analysis sim io tables validation)
+set(allowed_app core analysis sim io tables validation report app)
 # the layer of a library header named in an #include "nocdyn/..."
 function(header_layer header out)
   if(header MATCHES "^nocdyn/(analysis|sim|io|tables|validation)/")
@@ -74,6 +76,11 @@ function(check layer globs)
         if(NOT CMAKE_MATCH_1 IN_LIST allowed_${layer})
           list(APPEND failures "${name}: ${layer} includes ${header}")
         endif()
+      elseif(header MATCHES "^app/")
+        # the application layer's headers ("app/pose.hpp"): above the library and report
+        if(NOT "app" IN_LIST allowed_${layer})
+          list(APPEND failures "${name}: ${layer} includes the application layer's ${header}")
+        endif()
       elseif(header MATCHES "^nocdyn/")
         header_layer(${header} target)
         if(NOT target IN_LIST allowed_${layer})
@@ -81,7 +88,7 @@ function(check layer globs)
         endif()
       elseif(header MATCHES "^CLI/" OR header IN_LIST cli_headers)
         list(APPEND failures "${name}: ${layer} includes the command line's ${header}")
-      elseif(NOT layer STREQUAL "report" AND header IN_LIST report_headers)
+      elseif(NOT layer MATCHES "^(report|app)$" AND header IN_LIST report_headers)
         list(APPEND failures "${name}: ${layer} includes report's ${header}")
       endif()
     endforeach()
@@ -95,6 +102,7 @@ check(io "src/io/*.cpp;src/io/*.hpp;include/nocdyn/io/*.hpp")
 check(tables "src/tables/*.cpp;src/tables/*.hpp;include/nocdyn/tables/*.hpp")
 check(validation "validation/src/*.cpp;validation/*/src/*.cpp;validation/*/src/*.hpp;validation/include/nocdyn/validation/*.hpp;validation/include/nocdyn/validation/detail/*.hpp;validation/*/include/nocdyn/validation/*.hpp")
 check(report "report/*.cpp;report/*.hpp")
+check(app "app/*.cpp;app/*.hpp")
 # Nothing of the library lies outside its layer folders.
 file(GLOB loose ${SOURCE_DIR}/src/*.cpp ${SOURCE_DIR}/src/*.hpp)
 foreach(file IN LISTS loose)

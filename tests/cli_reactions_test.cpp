@@ -181,8 +181,8 @@ TEST(CliReactions, PoseJsonListsTheStaticReactionsThatCarryTheWeight) {
         const Model model(io::loadRobotDescription(robot));
         const Pose p(0.02, 0.001, -0.003);
         const Pose at = p + model.home;
-        const CliResult r = runCli("pose " + std::to_string(at(0)) + " " + std::to_string(at(1)) + " " +
-                                   std::to_string(at(2)) + " --json --robot " + robot);
+        const CliResult r = runCli("pose " + std::to_string(at(1)) + " " + std::to_string(at(2)) + " " +
+                                   std::to_string(at(0)) + " --json --robot " + robot);  // x, y, theta
         ASSERT_EQ(r.exit_code, 0) << r.err;
         const nlohmann::json out = nlohmann::json::parse(r.out);
         const Pose pose(out["pose"]["theta"].get<double>(), out["pose"]["x"].get<double>(),
@@ -230,7 +230,7 @@ TEST(CliReactions, PoseTextShowsTheReactionsAndAnUnreachablePoseIsTheSameError) 
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("joint reactions"), std::string::npos) << r.out;
     EXPECT_NE(r.out.find("3     3 R"), std::string::npos) << r.out;
-    const CliResult far = runCli("pose 0 0.5 0 --json --robot " + kRobot);
+    const CliResult far = runCli("pose 0.5 0 0 --json --robot " + kRobot);
     EXPECT_EQ(far.exit_code, 1);
     EXPECT_NE(far.err.find("out of reach"), std::string::npos) << far.err;
 }

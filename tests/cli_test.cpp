@@ -180,7 +180,7 @@ TEST(Cli, StrokeBeyondTheActuatorIsAnErrorUnlessAllowed) {
 }
 
 TEST(Cli, PoseJsonCarriesJointsActuationMapAndInertia) {
-    const CliRun r = run("pose 0.02 0.001 -0.003 --json");
+    const CliRun r = run("pose 0.001 -0.003 0.02 --json");  // x, y, theta
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const auto json = nlohmann::json::parse(r.out);
     // the library's general model of the default robot (the paper's, short form) gives the same
@@ -199,20 +199,23 @@ TEST(Cli, PoseJsonCarriesJointsActuationMapAndInertia) {
     const Vector2 e = limb.s[0].tail<2>(), A = axis(limb.s[1]), M = axis(limb.s[2]);
     const Vector2 f = (M - A).normalized(), C(0.001, -0.003);
     const double d = e.dot(f);
-    EXPECT_NEAR(json["A"][0][0].get<double>(), cross(M - C, f) / d, 1e-12);
-    EXPECT_NEAR(json["A"][0][1].get<double>(), f.x() / d, 1e-12);
-    EXPECT_NEAR(json["A"][0][2].get<double>(), f.y() / d, 1e-12);
+    // the columns in the pose's order x, y, theta
+    EXPECT_NEAR(json["A"][0][0].get<double>(), f.x() / d, 1e-12);
+    EXPECT_NEAR(json["A"][0][1].get<double>(), f.y() / d, 1e-12);
+    EXPECT_NEAR(json["A"][0][2].get<double>(), cross(M - C, f) / d, 1e-12);
+    EXPECT_EQ(json["pose"]["x"].get<double>(), 0.001);
+    EXPECT_EQ(json["pose"]["theta"].get<double>(), 0.02);
     EXPECT_EQ(json["limbs"][0]["type"].get<std::string>(), "PRR");
     EXPECT_TRUE(json["within_limits"].get<bool>());
     const CliRun text = run("pose 0 0 0");
     ASSERT_EQ(text.exit_code, 0);
     EXPECT_NE(text.out.find("joint-space inertia"), std::string::npos);
-    const CliRun outside = run("pose 0 0 -0.3");
+    const CliRun outside = run("pose 0 -0.3 0");
     EXPECT_EQ(outside.exit_code, 1);
     EXPECT_NE(outside.err.find("out of reach: limb 1"), std::string::npos) << outside.err;
     // any robot: the redundant 4-RRR
     const CliRun rrr =
-        run("pose 0.02 0.001 -0.003 --json --robot " + std::string(NOCDYN_SOURCE_DIR) + "/robots/4-rrr.yaml");
+        run("pose 0.001 -0.003 0.02 --json --robot " + std::string(NOCDYN_SOURCE_DIR) + "/robots/4-rrr.yaml");
     ASSERT_EQ(rrr.exit_code, 0) << rrr.err;
     const auto four = nlohmann::json::parse(rrr.out);
     EXPECT_EQ(four["actuators"].size(), 4u);

@@ -140,15 +140,15 @@ TEST(CliUsability, ShakesDefaultPlantIsTheFastOneAndEachPlantsSpeedIsInTheHelp) 
 // meant, 5 m typed.
 TEST(CliUsability, APoseFarOutsideAJointsRangeWarnsOfTheUnit) {
     const std::string robot = " --robot " + std::string(NOCDYN_SOURCE_DIR) + "/robots/3-rpr.yaml";
-    const CliResult r = runCli("pose 0 5 0" + robot);
+    const CliResult r = runCli("pose 5 0 0" + robot);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.err.find("nocdyn: warning: joint range exceeded"), std::string::npos) << r.err;
-    EXPECT_NE(r.err.find("the command line takes m and rad"), std::string::npos) << r.err;
-    const CliResult json = runCli("pose 0 5 0 --json" + robot);
+    EXPECT_NE(r.err.find("poses are in m and rad"), std::string::npos) << r.err;
+    const CliResult json = runCli("pose 5 0 0 --json" + robot);
     EXPECT_NE(json.err.find("nocdyn: warning: "), std::string::npos) << json.err;
     const CliResult fk = runCli("forward-kinematics 5 0 0" + robot);
     EXPECT_NE(fk.err.find("nocdyn: warning: u1 is outside its joint's range"), std::string::npos) << fk.err;
-    const CliResult fine = runCli("pose 0 0.001 0" + robot);
+    const CliResult fine = runCli("pose 0.001 0 0" + robot);
     EXPECT_EQ(fine.exit_code, 0) << fine.err;
     EXPECT_EQ(fine.err.find("warning"), std::string::npos) << fine.err;
 }

@@ -321,13 +321,13 @@ TEST(Stiffness, APoseOutOfReachIsTheKinematicsError) {
 }
 
 TEST(Stiffness, ReportedCoordinatesAreNamedWithUnits) {
-    EXPECT_EQ(analysis::coordinateLabel(0), "theta [rad]");
-    EXPECT_EQ(analysis::coordinateLabel(1), "x [m]");
-    EXPECT_EQ(analysis::coordinateLabel(2), "y [m]");
-    EXPECT_EQ(analysis::stiffnessUnit(0, 0), "N m/rad");
-    EXPECT_EQ(analysis::stiffnessUnit(1, 1), "N/m");
-    EXPECT_EQ(analysis::stiffnessUnit(1, 0), "N/rad");
-    EXPECT_EQ(analysis::stiffnessUnit(0, 2), "N");
+    EXPECT_EQ(analysis::coordinateLabel(0), "x [m]");
+    EXPECT_EQ(analysis::coordinateLabel(1), "y [m]");
+    EXPECT_EQ(analysis::coordinateLabel(2), "theta [rad]");
+    EXPECT_EQ(analysis::stiffnessUnit(2, 2), "N m/rad");
+    EXPECT_EQ(analysis::stiffnessUnit(0, 0), "N/m");
+    EXPECT_EQ(analysis::stiffnessUnit(0, 2), "N/rad");
+    EXPECT_EQ(analysis::stiffnessUnit(2, 1), "N");
 }
 
 // ---- the robot file ----

@@ -1,65 +1,53 @@
-// nocdyn inverse-dynamics: a pose trajectory -> u, du, ddu, tau as CSV (eqs. 5, 20, Appendix A).
-#include <iostream>
+// nocdyn inverse-dynamics: binds app::InverseDynamicsOptions and writes the table as CSV, row by
+// row as computed (memory does not depend on the sample count).
 #include <memory>
 
+#include "app/inverse_dynamics.hpp"
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/io/escape.hpp"
+#include "progress.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "nocdyn/io/trajectory_yaml.hpp"
-#include "nocdyn/tables/tables.hpp"
-#include "nocdyn/analysis/sampling.hpp"
 
 namespace nocdyn::cli {
 
 namespace {
 
-struct InverseDynamicsOptions : TrajectoryOptions {
-    bool allow_limits = false;
-    bool reactions = false;
+struct Options : app::InverseDynamicsOptions {
+    std::string output;
 };
 
-// Rows are written as they are computed (memory does not depend on the sample count); a file
-// is only renamed into place once every sample passed, so an error leaves no partial file.
-void run(const InverseDynamicsOptions& options) {
-    const Model model(loadRobotDescriptionOrDefault(options.robot));
-    const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
-    const SampleGrid grid = sampleGrid(chooseDuration(options.duration, trajectory), options.rate);
-    requireRateAboveNyquist(trajectory, grid.rate);
-    const auto policy = options.allow_limits ? LimitPolicy::record : LimitPolicy::error;
-    io::OutputFile out = openOutput(options.output);
-    std::vector<std::string> columns = io::inverseDynamicsColumns(model.actuators);
-    if (options.reactions) {
-        for (std::string& name : io::reactionColumns(model.limbs)) columns.push_back(std::move(name));
+/// The table's rows into a CSV file (renamed into place only once every sample passed: an
+/// error leaves no partial file) or onto stdout.
+class CsvSink final : public app::TableSink {
+public:
+    explicit CsvSink(io::OutputFile& out) : out_(out) {}
+    void columns(const std::vector<std::string>& names) override {
+        csv_ = std::make_unique<io::CsvWriter>(out_, names, /*background=*/true);  // formats while we compute
     }
-    io::CsvWriter csv(out, columns, /*background=*/true);  // formats while we compute
-    std::vector<double> row;
-    Progress progress(static_cast<double>(grid.count) / grid.rate);
-    const LimitSummary summary =
-        options.reactions
-            ? streamInverseDynamicsWithReactions(model, trajectory, grid, policy,
-                                                 [&](const InverseDynamicsSample& sample, const Reactions& r) {
-                                                     io::inverseDynamicsRow(sample, row);
-                                                     io::appendReactions(r, model.limbs, row);
-                                                     csv.row(row);
-                                                     progress.update(sample.t);
-                                                 })
-            : streamInverseDynamics(model, trajectory, grid, policy, [&](const InverseDynamicsSample& sample) {
-                  io::inverseDynamicsRow(sample, row);
-                  csv.row(row);
-                  progress.update(sample.t);
-              });
-    progress.finish();
+    void row(std::span<const double> values) override { csv_->row(values); }
+    void finish() {
+        if (csv_) csv_->finish();
+    }
+
+private:
+    io::OutputFile& out_;
+    std::unique_ptr<io::CsvWriter> csv_;
+};
+
+void run(const Options& options) {
+    io::OutputFile out = openOutput(options.output);
+    CsvSink csv(out);
+    TerminalObserver observer("nocdyn inverse-dynamics");
+    (void)app::runInverseDynamics(options, csv, observer);
+    observer.finish();
     csv.finish();
     out.commit();
-    for (const std::string& violation : summary.limit_violations)
-        std::cerr << "nocdyn: warning: " << io::terminalText(violation) << "\n";
 }
 
 }  // namespace
 
 void addInverseDynamicsCommand(CLI::App& app) {
-    auto options = std::make_shared<InverseDynamicsOptions>();
+    auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "inverse-dynamics",
         "Actuator variables, rates, accelerations and forces of any robot along a platform trajectory\n"
@@ -73,7 +61,9 @@ void addInverseDynamicsCommand(CLI::App& app) {
             "harmonic; a rate at or below twice that frequency is refused. A pose out of reach, a singular\n"
             "posture, or one beyond a joint or effort limit is an error (no CSV file is written; on stdout,\n"
             "the rows before it).");
-    addTrajectoryOptions(*command, *options);
+    addSamplingOptions(*command, *options);
+    addRobotOption(*command, options->robot);
+    command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
     command->add_flag("--allow-limits", options->allow_limits,
                       "Write the CSV even when a joint range, joint velocity or effort limit is exceeded (warnings\n"
                       "on stderr); a pose out of reach, a singular posture or a non-finite value stays an error");

@@ -263,6 +263,39 @@ void addRobotOption(CLI::App& command, std::string& robot_path) {
     addParameterOption(command);
 }
 
+void addRobotOption(CLI::App& command, app::RobotSource& robot) {
+    command
+        .add_option("--robot", robot.path, "Robot file (YAML); default: the paper's prototype (robots/paper-3prr.yaml)")
+        ->check(CLI::ExistingFile);
+    command
+        .add_option_function<std::vector<std::string>>(
+            "--set",
+            [&robot](const std::vector<std::string>& assignments) {
+                for (const std::string& text : assignments) {
+                    try {
+                        app::addOverride(robot.set, io::parseParameterAssignment(text));
+                    } catch (const Error& e) {
+                        throw CLI::ValidationError("--set", e.what());
+                    }
+                }
+            },
+            "NAME=VALUE: a parameter the robot file declares (parameters:), overridden; repeatable")
+        ->type_name("NAME=VALUE");
+}
+
+void addSamplingOptions(CLI::App& command, app::SamplingOptions& sampling) {
+    command
+        .add_option("--trajectory", sampling.trajectory,
+                    "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or samples (.csv: t and "
+                    "x,y,theta or ax,ay,alpha)")
+        ->required();
+    command.add_option("--duration", sampling.duration, "Seconds to sample [default: the file's duration, else 0.2]")
+        ->check(within(app::kDurationRange));
+    command.add_option("--rate", sampling.rate, "Samples per second")
+        ->check(within(app::kRateRange))
+        ->capture_default_str();
+}
+
 void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options) {
     command
         .add_option("--trajectory", options.trajectory,

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "app/options.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/description.hpp"
@@ -39,6 +40,9 @@ struct TrajectoryOptions {
 /// A CLI11 check: the argument is a finite decimal number in [lo, hi] (unit named in the
 /// message, e.g. "Hz"); nan, inf and hex are refused. Any failure exits with status 2.
 [[nodiscard]] CLI::Validator finiteIn(double lo, double hi, const std::string& unit);
+
+/// finiteIn over an option's range as the application layer states it.
+[[nodiscard]] inline CLI::Validator within(const app::Range& range) { return finiteIn(range.lo, range.hi, range.unit); }
 
 /// A CLI11 check: the argument is a finite decimal number; nan, inf and hex are refused.
 [[nodiscard]] CLI::Validator finiteNumber();
@@ -90,6 +94,13 @@ private:
 /// Adds --robot to a command (empty = the paper's prototype), and --set NAME=VALUE (any
 /// number of times) overriding a parameter the robot file declares.
 void addRobotOption(CLI::App& command, std::string& robot_path);
+
+/// Adds --robot and --set NAME=VALUE (any number of times) to a command, into its options'
+/// RobotSource (path and overrides: nothing process-wide).
+void addRobotOption(CLI::App& command, app::RobotSource& robot);
+
+/// Adds --trajectory (required), --duration and --rate into the options' SamplingOptions.
+void addSamplingOptions(CLI::App& command, app::SamplingOptions& sampling);
 
 /// Adds only --set NAME=VALUE to a command (for one naming its robot file otherwise).
 void addParameterOption(CLI::App& command);

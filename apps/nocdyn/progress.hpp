@@ -5,6 +5,9 @@
 #pragma once
 
 #include <string>
+#include <string_view>
+
+#include "app/observer.hpp"
 
 namespace nocdyn::cli {
 
@@ -62,6 +65,34 @@ private:
     std::string job_;
     bool terminal_ = false, shown_ = false;
     unsigned calls_ = 0;
+    double start_ = 0.0, last_ = 0.0;
+};
+
+/// The command line's observer of a job (app/observer.hpp): its progress on standard error as
+/// Progress and Steps show it (a terminal line rewritten at most once a second, else a line of
+/// its own every kProgressLogSeconds; nothing when quiet), and its warnings as "nocdyn: warning:
+/// TEXT" lines. It never asks to stop: Ctrl-C ends the process.
+class TerminalObserver final : public app::Observer {
+public:
+    /// `job` heads the lines ("nocdyn shake").
+    explicit TerminalObserver(std::string job = "nocdyn");
+    ~TerminalObserver() override;
+    TerminalObserver(const TerminalObserver&) = delete;
+    TerminalObserver& operator=(const TerminalObserver&) = delete;
+    TerminalObserver(TerminalObserver&&) = delete;
+    TerminalObserver& operator=(TerminalObserver&&) = delete;
+
+    void progress(double done, double total, std::string_view unit) override;
+    void step(std::string_view what, int index, int total) override;
+    void warning(std::string_view text) override;
+    /// Clears the progress line (also when dropped).
+    void finish();
+
+private:
+    void show(const std::string& text);
+
+    std::string job_, step_;
+    bool terminal_ = false, shown_ = false;
     double start_ = 0.0, last_ = 0.0;
 };
 

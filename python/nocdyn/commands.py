@@ -256,36 +256,143 @@ def _table_command(command, function, arguments, file_name, kind=Table, handled=
         return kind(columns, data, _text(out, err), command, labels)
 
 
+# --- the application layer: options structs in, typed results out ----------------------------
+# A command bound this way builds its options struct (nocdyn._nocdyn.<Name>Options, whose
+# defaults are the command line's: one definition in C++), runs the command with the GIL
+# released and an observer of its own (progress, Ctrl-C, warnings), and converts the typed
+# result: no argv, no captured streams, no temporary files, nothing shared between two calls.
+
+def _argument(value, name, default):
+    """A Python argument as the struct's field takes it; ValueError naming the argument."""
+    if isinstance(value, bool) and not isinstance(default, bool):
+        raise ValueError(f"{name}: expected a number, got {value!r}")
+    if isinstance(default, bool) and not isinstance(value, bool):
+        import numpy as np
+        if not isinstance(value, np.bool_):
+            raise ValueError(f"{name}: expected True or False, got {value!r}")
+        return bool(value)
+    if isinstance(value, os.PathLike):
+        value = os.fspath(value)
+    if isinstance(value, str) and "\0" in value:
+        raise ValueError(f"{name}: contains a NUL character")
+    try:
+        import numpy as np
+        if isinstance(value, np.generic):
+            return value.item()
+    except ImportError:  # pragma: no cover
+        pass
+    return value
+
+
+def _robot_source(robot, set_, name="robot"):
+    """The RobotSource of a robot file's path, a nocdyn.Robot or None (the paper's prototype)."""
+    from . import Robot
+    source = _nocdyn.RobotSource()
+    if isinstance(robot, Robot):
+        source.use_yaml(robot.to_yaml(), "<nocdyn.Robot>")
+    elif robot is not None:
+        if not isinstance(robot, (str, os.PathLike)):
+            raise ValueError(f"{name}: expected a robot file's path, a nocdyn.Robot or None")
+        path = os.fspath(robot)
+        if "\0" in path:
+            raise ValueError(f"{name}: contains a NUL character")
+        source.path = path
+    if set_:
+        items = set_.items() if isinstance(set_, dict) else [str(v).split("=", 1) for v in set_]
+        overrides = {}
+        for key, number in items:
+            number = _argument(number, "set", 0.0)
+            try:
+                overrides[str(key).strip()] = float(number)
+            except (TypeError, ValueError):
+                raise ValueError(f"set: {key}: expected a number, got {number!r}") from None
+        source.set = overrides
+    return source
+
+
+def _bound_options(options_type, arguments):
+    """The options struct of a call: every field the call's arguments name, checked by type."""
+    options = options_type()
+    for name, value in arguments.items():
+        if name not in options_type._fields:
+            import difflib
+            near = difflib.get_close_matches(name, options_type._fields, n=1)
+            raise TypeError(f"unexpected keyword argument {name!r}" + (f"; did you mean {near[0]!r}?" if near else ""))
+        default = getattr(options, name)
+        value = _argument(value, name, default)
+        try:
+            setattr(options, name, value)
+        except TypeError:
+            raise ValueError(f"{name}: expected {type(default).__name__}, got {type(value).__name__}") from None
+    return options
+
+
+def _run(run, options, progress, description):
+    callback = _progress_callback(progress, description)
+    try:
+        return run(options, callback)
+    finally:
+        if isinstance(callback, _TqdmProgress):
+            callback.close()
+
+
+def _signature(options_type, positional, before=(), after=()):
+    """The function's signature from the struct: its fields with the struct's defaults."""
+    defaults = options_type()
+    fields = options_type._fields
+    P = inspect.Parameter
+    parameters = [P(name, P.POSITIONAL_OR_KEYWORD) for name in positional]
+    parameters += [P(name, P.KEYWORD_ONLY, default=default) for name, default in before]
+    parameters += [P(name, P.KEYWORD_ONLY, default=getattr(defaults, name)) for name in fields
+                   if name not in positional]
+    parameters += [P(name, P.KEYWORD_ONLY, default=default) for name, default in after]
+    return inspect.Signature(parameters)
+
+
+def _write_table(path, columns, data):
+    """The table as the command line's CSV, written safely (a unique temporary file renamed)."""
+    _nocdyn._write_table(os.fspath(path), list(columns), data)
+
+
 # --- the commands, in the order of `nocdyn --help` --------------------------------------------
 # Each function passes its arguments as the options of the same names (_Call.options); only the
 # robot, the files it reads back and the positional arguments are handled one by one.
 
-def pose(theta, x, y, *, robot=None, set=None):
-    """Everything the model knows at one platform pose (``nocdyn pose THETA X Y``): every limb's
+def pose(x, y, theta, *, robot=None, set=None):
+    """Everything the model knows at one platform pose (``nocdyn pose X Y THETA``): every limb's
     joint variables and the condition number of its Jacobian, the actuator variables and the
     share of their range they use, the actuation map du = A dp/dt and its condition number, the
     inertia I (eq. 23), and at rest under gravity the actuator forces tau and every joint's reaction.
 
-    theta [rad], x, y [m]: the pose of the platform's operation point C. Returns a PoseReport."""
-    with _Call("pose", pose) as call:
-        call.positional(theta, name="theta")
-        call.positional(x, name="x")
-        call.positional(y, name="y")
-        call.robot(robot)
-        call.option("set", set)
-        call.option("json", True)
-        out, err = call.run()
-        return PoseReport(_json.loads(out), err)
+    x, y [m], theta [rad]: the pose of the platform's operation point C, in the order of every
+    table (x, y, theta). Returns a PoseReport; its pose, A's columns and, for compliant robots,
+    the stiffness and mode shapes are in the order x, y, theta."""
+    options = _bound_options(_nocdyn.PoseOptions, {"x": x, "y": y, "theta": theta})
+    options.robot = _robot_source(robot, set)
+    return PoseReport(_nocdyn._run_pose(options, None))
 
 
-def inverse_dynamics(trajectory, *, robot=None, set=None, duration=None, rate=10000.0, output=None, allow_limits=False,
-                     reactions=False, progress=None):
+pose.__signature__ = _signature(_nocdyn.PoseOptions, ("x", "y", "theta"), after=(("robot", None), ("set", None)))
+
+
+def inverse_dynamics(trajectory, *, robot=None, set=None, output=None, progress=None, **options):
     """Actuator variables, rates, accelerations and forces along a trajectory
     (``nocdyn inverse-dynamics``), sampled at ``rate`` [Hz] over ``duration`` [s] (default: the
     file's duration, else 0.2 s). allow_limits: warn instead of failing at a joint's limits;
     reactions: the joint reactions as more columns. Returns a Table with the CSV's columns
-    (t, theta, x, y, ..., u1..un, du1..dun, ddu1..ddun, tau1..taun)."""
-    return _table_command("inverse-dynamics", inverse_dynamics, dict(locals()), "inverse_dynamics.csv")
+    (t, x, y, theta, ..., u1..un, du1..dun, ddu1..ddun, tau1..taun); output: also write it as CSV."""
+    bound = _bound_options(_nocdyn.InverseDynamicsOptions, {"trajectory": trajectory, **options})
+    bound.robot = _robot_source(robot, set)
+    columns, data = _run(_nocdyn._run_inverse_dynamics, bound, progress, "inverse dynamics")
+    table = Table(columns, data, "", "inverse-dynamics")
+    if output is not None:
+        _write_table(output, columns, data)
+    return table
+
+
+inverse_dynamics.__signature__ = _signature(_nocdyn.InverseDynamicsOptions, ("trajectory",),
+                                            before=(("robot", None), ("set", None)),
+                                            after=(("output", None), ("progress", None)))
 
 
 def forward_kinematics(u, *, robot=None, set=None, all_branches=False):

@@ -122,32 +122,24 @@ class _Record:
 
 
 class PoseReport(_Record):
-    """Everything the model knows at one pose (``nocdyn pose``): pose [theta, x, y]; q (limbs, 3)
+    """Everything the model knows at one pose (``nocdyn pose``): pose [x, y, theta]; q (limbs, 3)
     joint variables [rad or m]; cond_J (limbs,) the limb Jacobians' condition numbers; u (n,)
     actuator variables and range_used (n,) the fraction of their range; A (n, 3) the actuation map
-    du = A dp/dt; cond_A; I the inertia (eq. 23) in ``coordinates`` ('actuators' or 'platform');
-    within_limits; at rest under gravity, tau (n,) the actuator forces and reactions (limbs, 3, 3)
-    every joint's reaction [fx, fy, m] (as Robot.reactions)."""
+    du = A dp/dt (columns x, y, theta); cond_A; I the inertia (eq. 23) in ``coordinates``
+    ('actuators', or 'platform': rows and columns x, y, theta); within_limits; at rest under
+    gravity, tau (n,) the actuator forces and reactions (limbs, 3, 3) every joint's reaction
+    [fx, fy, m] (as Robot.reactions); for a robot whose file declares compliance, stiffness (3, 3),
+    natural_frequencies (3,) [Hz], mode_shapes (3, 3) (columns; rows x, y, theta) and, with
+    elastic links, elastodynamic_frequencies. Limbs, joints and actuators are numbered from 1."""
 
-    def __init__(self, document, text=""):
-        fields = {"robot": document["robot"],
-                  "pose": np.array([document["pose"][k] for k in ("theta", "x", "y")]),
-                  "q": np.array([limb["q"] for limb in document["limbs"]], dtype=np.float64).reshape(-1, 3),
-                  "cond_J": np.array([limb["cond_J"] for limb in document["limbs"]], dtype=np.float64),
-                  "u": np.array([a["u"] for a in document["actuators"]], dtype=np.float64),
-                  "range_used": np.array([a["range_used"] for a in document["actuators"]], dtype=np.float64),
-                  "A": np.array(document["A"], dtype=np.float64), "cond_A": float(document["cond_A"]),
-                  "coordinates": document["coordinates"], "I": np.array(document["I"], dtype=np.float64),
-                  "within_limits": bool(document["within_limits"]),
-                  "tau": np.array(document["tau"], dtype=np.float64),
-                  "reactions": np.array([[r["fx"], r["fy"], r["m"]] for r in document["reactions"]],
-                                        dtype=np.float64).reshape(len(document["limbs"]), 3, 3)}
+    def __init__(self, fields, text=""):
+        fields = dict(fields)
+        self.actuator_table = fields.pop("actuators")
         super().__init__(fields, text)
-        self.document = document
 
     def to_pandas(self):
-        """Per actuator: actuator, limb, joint, u, range_used (the JSON's actuator list)."""
-        return _pandas().DataFrame(self.document["actuators"])
+        """Per actuator: actuator, limb, joint, u, range_used."""
+        return _pandas().DataFrame(self.actuator_table)
 
     def __repr__(self):
         return f"<nocdyn.PoseReport {self.robot!r} at {self.pose.tolist()}: cond_A {self.cond_A:.4g}>"

@@ -31,7 +31,7 @@ CLI_ONLY = {("pose", "json"), ("forward-kinematics", "json"), ("workspace", "jso
 # Python arguments with no option: the progress callback of the long commands
 PYTHON_ONLY = {"progress"}
 # positional arguments of the command line (upper case) and their Python names
-POSITIONAL = {("pose", "THETA"): "theta", ("pose", "X"): "x", ("pose", "Y"): "y",
+POSITIONAL = {("pose", "X"): "x", ("pose", "Y"): "y", ("pose", "THETA"): "theta",
               ("forward-kinematics", "U"): "u", ("convert", "ROBOT"): "robot"}
 # defaults that depend on the build: the plant is Simbody's when built in, else nocdyn's; Python
 # leaves the choice to the command (None)
@@ -157,17 +157,36 @@ def same_table(path, table):
 
 
 def test_pose(tmp_path):
-    cli = json.loads(run_cli("pose", 0.01, 0.001, -0.002, "--robot", ROBOT, "--json"))
-    py = nocdyn.pose(0.01, 0.001, -0.002, robot=ROBOT)
-    assert py.document == cli
+    # the pose in the order of every table: x, y, theta, on the command line and in Python
+    cli = json.loads(run_cli("pose", 0.001, -0.002, 0.01, "--robot", ROBOT, "--json"))
+    py = nocdyn.pose(0.001, -0.002, 0.01, robot=ROBOT)
+    assert cli["pose"] == {"x": 0.001, "y": -0.002, "theta": 0.01}
+    np.testing.assert_array_equal(py.pose, [0.001, -0.002, 0.01])
+    # bit for bit: the same typed result rendered twice
     np.testing.assert_array_equal(py.u, [a["u"] for a in cli["actuators"]])
-    assert py.I.shape == (3, 3) and py.cond_A == cli["cond_A"] > 1.0
+    np.testing.assert_array_equal(py.range_used, [a["range_used"] for a in cli["actuators"]])
+    np.testing.assert_array_equal(py.q, [limb["q"] for limb in cli["limbs"]])
+    np.testing.assert_array_equal(py.cond_J, [limb["cond_J"] for limb in cli["limbs"]])
+    np.testing.assert_array_equal(py.A, cli["A"])
+    np.testing.assert_array_equal(py.I, cli["I"])
+    np.testing.assert_array_equal(py.tau, cli["tau"])
+    assert py.cond_A == cli["cond_A"] > 1.0 and py.coordinates == cli["coordinates"] and py.within_limits
+    assert list(py.to_pandas()["joint"]) == [a["joint"] for a in cli["actuators"]] == [1, 1, 1]
+    # A's columns are x, y, theta: du = A dp/dt against a finite difference of u along each
+    h = 1e-7
+    for k, step in enumerate(np.eye(3) * h):
+        ahead = nocdyn.pose(*(py.pose + step), robot=ROBOT).u
+        behind = nocdyn.pose(*(py.pose - step), robot=ROBOT).u
+        np.testing.assert_allclose((ahead - behind) / (2 * h), py.A[:, k], rtol=1e-6, atol=1e-9)
     # the static reactions: the JSON's list in (limb, joint, [fx, fy, m]) order, as Robot.reactions
     robot = nocdyn.Robot.load(ROBOT)
     np.testing.assert_array_equal(py.reactions[1, 2], [cli["reactions"][5][k] for k in ("fx", "fy", "m")])
-    np.testing.assert_allclose(py.reactions, robot.reactions(py.pose, np.zeros(3), np.zeros(3)), rtol=0, atol=1e-12)
+    np.testing.assert_allclose(py.reactions, robot.reactions(py.pose[[2, 0, 1]], np.zeros(3), np.zeros(3)), rtol=0,
+                               atol=1e-12)
     with pytest.raises(ValueError, match="theta"):
-        nocdyn.pose(float("nan"), 0.0, 0.0)
+        nocdyn.pose(0.0, 0.0, float("nan"))
+    with pytest.raises(ValueError, match="^x: "):
+        nocdyn.pose(5e3, 0.0, 0.0)
 
 
 def test_inverse_dynamics_simulate_and_animate(tmp_path):
@@ -204,7 +223,7 @@ def test_inverse_dynamics_simulate_and_animate(tmp_path):
 
 
 def test_forward_kinematics_every_assembly_mode():
-    u = nocdyn.pose(0.01, 0.001, -0.002, robot=ROBOT).u
+    u = nocdyn.pose(0.001, -0.002, 0.01, robot=ROBOT).u
     args = [repr(float(v)) for v in u]
     cli = json.loads(run_cli("forward-kinematics", *args, "--robot", ROBOT, "--json", "--all-branches"))
     py = nocdyn.forward_kinematics(u, robot=ROBOT, all_branches=True)

@@ -48,10 +48,11 @@ struct PoseCoordinate {
     int index;
 };
 
-/// The pose coordinates in the order every stiffness and mode result is reported. The one
-/// place that order is decided.
+/// The pose coordinates in the order every stiffness and mode result is reported: the user's
+/// order x, y, theta (planar.hpp's userPose), as every table and array. The one place that
+/// order is decided for compliance results.
 inline constexpr std::array<PoseCoordinate, 3> kReportedCoordinates{
-    {{"theta", "rad", 0}, {"x", "m", 1}, {"y", "m", 2}}};
+    {{"x", "m", 1}, {"y", "m", 2}, {"theta", "rad", 0}}};
 
 /// "theta [rad]", "x [m]", "y [m]": coordinate r of the reported order.
 [[nodiscard]] std::string coordinateLabel(int r);

@@ -1,0 +1,56 @@
+#include "app/options.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "nocdyn/io/examples.hpp"
+
+namespace nocdyn::app {
+
+void requireIn(double value, const Range& range, const std::string& field) {
+    if (!std::isfinite(value)) throw OptionError(field, "expected a finite number");
+    if (value < range.lo || value > range.hi) {
+        std::ostringstream text;
+        text.precision(17);
+        text << value << " is outside [" << range.lo << ", " << range.hi << "] " << range.unit;
+        throw OptionError(field, text.str());
+    }
+}
+
+RobotDescription loadRobot(const RobotSource& source) {
+    if (source.description) {
+        if (!source.set.empty()) {
+            throw OptionError("set", "a robot built in code has no file parameters: change the robot itself");
+        }
+        return *source.description;  // validated when it was built
+    }
+    if (source.path.empty()) {
+        if (!source.set.empty())
+            throw OptionError("set", "needs a robot file: the built-in prototype has no parameters");
+        return io::exampleRobot("paper-3prr");
+    }
+    return io::loadRobotDescription(source.path, source.set);
+}
+
+void addOverride(io::ParameterSet& set, const io::Parameter& parameter) {
+    const auto same =
+        std::find_if(set.begin(), set.end(), [&](const io::Parameter& q) { return q.name == parameter.name; });
+    if (same != set.end())
+        same->value = parameter.value;
+    else
+        set.push_back(parameter);
+}
+
+void validate(const SamplingOptions& options) {
+    if (options.duration) requireIn(*options.duration, kDurationRange, "duration");
+    requireIn(options.rate, kRateRange, "rate");
+}
+
+double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory) {
+    if (requested) return *requested;
+    if (trajectory.duration) return *trajectory.duration;
+    return 0.2;
+}
+
+}  // namespace nocdyn::app

@@ -1,0 +1,80 @@
+// What the options of several commands share, for the command line and Python alike: the robot
+// (a file, its parameter overrides, or a robot built in code), the sampling of a trajectory, the
+// accepted range of a number, and the error naming the option a value breaks.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "nocdyn/description.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/trajectory.hpp"
+
+namespace nocdyn::app {
+
+/// A value outside what an option accepts. field() is the option's name in the options struct
+/// ("rate", "allow_limits"): the command line shows it as --rate, Python as rate.
+class OptionError : public Error {
+public:
+    OptionError(std::string field, const std::string& message)
+        : Error(field + ": " + message), field_(std::move(field)), message_(message) {}
+    [[nodiscard]] const std::string& field() const { return field_; }
+    /// The message without the option's name.
+    [[nodiscard]] const std::string& message() const { return message_; }
+
+private:
+    std::string field_, message_;
+};
+
+/// The closed interval a number option accepts, with its unit; nan and inf are never accepted.
+struct Range {
+    double lo, hi;
+    const char* unit;
+};
+
+/// Throws OptionError(field, ...) unless `value` is finite and in `range`.
+void requireIn(double value, const Range& range, const std::string& field);
+
+/// Sampling ranges shared by the trajectory-driven commands.
+inline constexpr Range kRateRange{1.0, 1e8, "Hz"};
+inline constexpr Range kDurationRange{1e-6, 1e6, "s"};
+/// Positions a user gives (pose, forward kinematics): far beyond any planar robot's size.
+inline constexpr Range kAngleRange{-1e6, 1e6, "rad"};
+inline constexpr Range kLengthRange{-1e3, 1e3, "m"};
+
+/// The robot a command works on.
+struct RobotSource {
+    /// A robot file (YAML, either form); empty: the paper's prototype (robots/paper-3prr.yaml).
+    std::string path;
+    /// NAME=VALUE overrides of parameters the file declares (a later one for a name wins).
+    io::ParameterSet set;
+    /// A robot built in code (Python's nocdyn.Robot): used instead of `path` when given.
+    std::optional<RobotDescription> description;
+};
+
+/// The robot a source names, with its overrides. Throws nocdyn::Error for a bad file, and
+/// OptionError("set") for overrides of the built-in prototype or of a robot built in code.
+[[nodiscard]] RobotDescription loadRobot(const RobotSource& source);
+
+/// Adds NAME=VALUE to a parameter set (a later one for the same name replaces the earlier).
+void addOverride(io::ParameterSet& set, const io::Parameter& parameter);
+
+/// How a trajectory-driven command samples its trajectory.
+struct SamplingOptions {
+    /// paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or samples (.csv).
+    std::string trajectory;
+    /// Seconds to sample; empty: the trajectory's own duration, else 0.2 s.
+    std::optional<double> duration;
+    /// Samples per second.
+    double rate = 10000.0;
+};
+
+/// Checks duration and rate against their ranges (OptionError naming the field).
+void validate(const SamplingOptions& options);
+
+/// The duration asked for, else the trajectory's own, else 0.2 s.
+[[nodiscard]] double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory);
+
+}  // namespace nocdyn::app

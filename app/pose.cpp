@@ -1,0 +1,126 @@
+#include "app/pose.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "nocdyn/analysis/stiffness.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/kinematics.hpp"
+#include "nocdyn/reactions.hpp"
+
+namespace nocdyn::app {
+
+namespace {
+
+/// Fraction of the joint's range [lower, upper] used on the side q is on (0 when unlimited).
+double rangeUsed(const JointLimits& limits, double q) {
+    const double bound = q >= 0.0 ? limits.upper : -limits.lower;
+    return std::isfinite(bound) && bound > 0.0 ? std::abs(q) / bound : 0.0;
+}
+
+std::size_t at(int i) { return static_cast<std::size_t>(i); }
+
+PoseCompliance compliance(const Model& model, const Data& data) {
+    const analysis::StiffnessModel stiffness(model);
+    analysis::StiffnessData K;
+    if (const Status status = analysis::cartesianStiffness(model, stiffness, data, K); !status) {
+        throw Error(describe(status, model));
+    }
+    analysis::LumpedModes modes;
+    analysis::lumpedModes(model, data, K, modes);
+    PoseCompliance out;
+    out.K = analysis::reported(K.K);
+    for (int i = 0; i < K.free_directions; ++i) {
+        const Vector3 v = K.free.col(i);
+        out.free_directions.push_back(analysis::reported(v));
+        out.free_descriptions.push_back(analysis::describeDirection(v));
+    }
+    out.frequencies = modes.frequency;
+    for (int i = 0; i < 3; ++i) out.mode_shapes.col(i) = analysis::reported(Vector3(modes.shape.col(i)));
+    if (model.description.hasElasticBody()) {
+        analysis::ElastodynamicModes elastic;
+        if (const Status status = analysis::elastodynamicModes(model, stiffness, data, elastic); !status) {
+            throw Error(describe(status, model));
+        }
+        out.elastodynamic_frequencies = elastic.frequency;
+        out.elastodynamic_dofs = elastic.dofs;
+    }
+    return out;
+}
+
+}  // namespace
+
+void validate(const PoseOptions& options) {
+    requireIn(options.x, kLengthRange, "x");
+    requireIn(options.y, kLengthRange, "y");
+    requireIn(options.theta, kAngleRange, "theta");
+}
+
+PoseResult runPose(const PoseOptions& options, Observer& observer) {
+    validate(options);
+    const Model model(loadRobot(options.robot));
+    Data data(model);
+    const Pose p(options.theta, options.x, options.y);
+    if (const Status status = inverseDynamics(model, data, p, Twist::Zero(), Twist::Zero()); !status) {
+        throw Error(describe(status, model));
+    }
+    PoseResult out;
+    out.robot = model.description.name;
+    out.pose = userPose(p);
+    const Status limits = checkJointLimits(model, data);
+    out.within_limits = limits.ok();
+    if (!limits) {
+        out.limits = describe(limits, model);
+        // far outside (more than 10 times the range): most likely a unit slip
+        double worst = 0.0;
+        for (int j = 0; j < model.limbs; ++j) {
+            for (int k = 0; k < 3; ++k) {
+                worst = std::max(worst, rangeUsed(model.limb[at(j)].limits[at(k)], data.limb[at(j)].q(k)));
+            }
+        }
+        observer.warning(out.limits +
+                         (worst > 10.0 ? " -- far outside the range: poses are in m and rad (5 mm is 0.005)" : ""));
+    }
+    for (int j = 0; j < model.limbs; ++j) {
+        PoseLimb limb;
+        limb.limb = j + 1;
+        limb.name = model.description.limbs[at(j)].name;
+        limb.type = model.description.limbs[at(j)].type();
+        limb.q = data.limb[at(j)].q;
+        for (int k = 0; k < 3; ++k) limb.revolute[at(k)] = model.limb[at(j)].type[at(k)] == JointType::revolute;
+        limb.cond_J = data.limb[at(j)].cond;
+        out.limbs.push_back(std::move(limb));
+    }
+    for (int a = 0; a < model.actuators; ++a) {
+        const int j = model.actuator_limb[at(a)];
+        const int k = model.actuator_joint[at(a)];
+        out.actuators.push_back({a + 1, j + 1, k + 1, model.limb[at(j)].type[at(k)] == JointType::revolute, data.u(a),
+                                 rangeUsed(model.limb[at(j)].limits[at(k)], data.u(a))});
+    }
+    // du = A xi_P = A S(c) dp/dt: the actuation map in the pose's own rates (eq. 5 generalised)
+    const Eigen::MatrixXd A_pose = Eigen::MatrixXd(data.A) * platformTwistMap(p.tail<2>());
+    out.A = A_pose * userToCoreMap();
+    out.cond_A = data.cond_A;
+    out.max_condition = model.max_condition;
+    if (model.coordinates == Coordinates::actuators) {
+        out.coordinates = "actuators";
+        out.I = data.I;
+    } else {
+        out.coordinates = "platform";
+        out.I = userToCoreMap().transpose() * Eigen::MatrixXd(data.I) * userToCoreMap();
+    }
+    out.tau = data.tau.head(model.actuators);
+    // at rest (dp = ddp = 0) tau holds the pose against gravity; the reactions that go with it
+    Reactions reactions;
+    jointReactions(model, data, reactions);
+    for (int j = 0; j < model.limbs; ++j) {
+        for (int k = 0; k < 3; ++k) {
+            out.reactions.push_back(
+                {j + 1, k + 1, model.limb[at(j)].type[at(k)] == JointType::revolute, reactions.joint[at(j)][at(k)]});
+        }
+    }
+    if (model.description.hasCompliance()) out.compliance = compliance(model, data);
+    return out;
+}
+
+}  // namespace nocdyn::app

@@ -1,0 +1,205 @@
+#include "app_bindings.hpp"
+
+#include <pybind11/eigen.h>
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "app/inverse_dynamics.hpp"
+#include "app/observer.hpp"
+#include "app/options.hpp"
+#include "app/pose.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/output.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/io/robot_yaml.hpp"
+
+namespace nocdyn::python {
+
+namespace {
+
+/// A job's observer for Python: progress to the callback (GIL held), Ctrl-C (a pending signal)
+/// stops the job with the KeyboardInterrupt, warnings kept and issued as Python warnings once
+/// the job returns. One per call: two threads run two jobs with nothing shared.
+class PythonObserver final : public app::Observer {
+public:
+    explicit PythonObserver(py::object callback) : callback_(std::move(callback)) {}
+
+    void progress(double done, double total, std::string_view /*unit*/) override {
+        const py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        if (!callback_.is_none()) callback_(done, total);
+    }
+    void step(std::string_view /*what*/, int index, int total) override {
+        progress(static_cast<double>(index - 1), static_cast<double>(total), "steps");
+    }
+    void warning(std::string_view text) override { warnings_.emplace_back(text); }
+    bool stopRequested() override {
+        const py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        return false;
+    }
+    /// With the GIL held: each warning as a RuntimeWarning (an error when warnings are errors).
+    void issueWarnings() {
+        for (const std::string& text : warnings_) {
+            if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 2) != 0) throw py::error_already_set();
+        }
+        warnings_.clear();
+    }
+
+private:
+    py::object callback_;
+    std::vector<std::string> warnings_;
+};
+
+/// Runs job(observer) with the GIL released, then issues its warnings.
+template <class Job>
+auto runJob(const py::object& progress, Job&& job) {
+    PythonObserver observer(progress);
+    auto result = [&] {
+        const py::gil_scoped_release release;
+        return job(observer);
+    }();
+    observer.issueWarnings();
+    return result;
+}
+
+/// A (rows, columns) float64 array owning the collector's values (no copy).
+py::array_t<double> tableArray(app::TableCollector& table) {
+    auto* values = new std::vector<double>(std::move(table.values()));
+    const py::capsule owner(values, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+    const auto columns = static_cast<py::ssize_t>(table.names().size());
+    const py::ssize_t rows = columns == 0 ? 0 : static_cast<py::ssize_t>(values->size()) / columns;
+    return py::array_t<double>(
+        {rows, columns}, {columns * static_cast<py::ssize_t>(sizeof(double)), static_cast<py::ssize_t>(sizeof(double))},
+        values->data(), owner);
+}
+
+py::dict poseDict(const app::PoseResult& r) {
+    const auto limbs = static_cast<py::ssize_t>(r.limbs.size());
+    const auto n = static_cast<py::ssize_t>(r.actuators.size());
+    py::array_t<double> q({limbs, py::ssize_t{3}}), cond_J(limbs), u(n), range_used(n);
+    py::array_t<double> reactions({limbs, py::ssize_t{3}, py::ssize_t{3}});
+    py::list actuators;
+    for (py::ssize_t j = 0; j < limbs; ++j) {
+        const app::PoseLimb& l = r.limbs[static_cast<std::size_t>(j)];
+        for (py::ssize_t k = 0; k < 3; ++k) q.mutable_at(j, k) = l.q(k);
+        cond_J.mutable_at(j) = l.cond_J;
+    }
+    for (py::ssize_t a = 0; a < n; ++a) {
+        const app::PoseActuator& x = r.actuators[static_cast<std::size_t>(a)];
+        u.mutable_at(a) = x.u;
+        range_used.mutable_at(a) = x.range_used;
+        actuators.append(py::dict(py::arg("actuator") = x.actuator, py::arg("limb") = x.limb,
+                                  py::arg("joint") = x.joint, py::arg("u") = x.u,
+                                  py::arg("range_used") = x.range_used));
+    }
+    for (const app::PoseReaction& j : r.reactions) {
+        for (py::ssize_t c = 0; c < 3; ++c) reactions.mutable_at(j.limb - 1, j.joint - 1, c) = j.f(c);
+    }
+    py::dict out(py::arg("robot") = r.robot, py::arg("pose") = Eigen::Vector3d(r.pose), py::arg("q") = q,
+                 py::arg("cond_J") = cond_J, py::arg("u") = u, py::arg("range_used") = range_used, py::arg("A") = r.A,
+                 py::arg("cond_A") = r.cond_A, py::arg("coordinates") = r.coordinates, py::arg("I") = r.I,
+                 py::arg("within_limits") = r.within_limits, py::arg("tau") = r.tau, py::arg("reactions") = reactions,
+                 py::arg("actuators") = actuators);
+    if (r.compliance) {
+        const app::PoseCompliance& c = *r.compliance;
+        out["stiffness"] = Eigen::Matrix3d(c.K);
+        out["natural_frequencies"] = Eigen::Vector3d(c.frequencies);
+        out["mode_shapes"] = Eigen::Matrix3d(c.mode_shapes);
+        if (c.elastodynamic_frequencies) out["elastodynamic_frequencies"] = *c.elastodynamic_frequencies;
+    }
+    return out;
+}
+
+}  // namespace
+
+void bindApplication(py::module_& m) {
+    py::class_<app::RobotSource>(m, "RobotSource", "The robot of a command: a file and its overrides, or a robot")
+        .def(py::init<>())
+        .def_readwrite("path", &app::RobotSource::path)
+        .def_property(
+            "set",
+            [](const app::RobotSource& s) {
+                py::dict out;
+                for (const io::Parameter& p : s.set) out[py::str(p.name)] = p.value;
+                return out;
+            },
+            [](app::RobotSource& s, const py::dict& values) {
+                s.set.clear();
+                for (const auto& [name, value] : values) {
+                    app::addOverride(s.set, io::Parameter{py::str(name), value.cast<double>()});
+                }
+            })
+        .def(
+            "use_yaml",
+            [](app::RobotSource& s, const std::string& text, const std::string& source) {
+                s.description = io::parseRobotDescription(text, source);
+            },
+            py::arg("text"), py::arg("source"), "The robot of this YAML text instead of a file");
+
+    m.def(
+        "_write_table",
+        [](const std::string& path, const std::vector<std::string>& columns,
+           const py::array_t<double, py::array::c_style | py::array::forcecast>& data) {
+            if (data.ndim() != 2 || data.shape(1) != static_cast<py::ssize_t>(columns.size())) {
+                throw Error("output: expected a (rows, " + std::to_string(columns.size()) + ") table");
+            }
+            io::Table table{columns, {}};
+            for (py::ssize_t i = 0; i < data.shape(0); ++i) {
+                table.rows.emplace_back(data.data(i, 0), data.data(i, 0) + data.shape(1));
+            }
+            const py::gil_scoped_release release;
+            io::OutputFile out(path);
+            io::writeCsv(out, table);
+            out.commit();
+        },
+        py::arg("path"), py::arg("columns"), py::arg("data"),
+        "Writes a table as the command line's CSV (a unique temporary file, then renamed).");
+
+    py::class_<app::SamplingOptions>(m, "SamplingOptions")
+        .def(py::init<>())
+        .def_readwrite("trajectory", &app::SamplingOptions::trajectory)
+        .def_readwrite("duration", &app::SamplingOptions::duration)
+        .def_readwrite("rate", &app::SamplingOptions::rate);
+
+    py::class_<app::PoseOptions>(m, "PoseOptions")
+        .def(py::init<>())
+        .def_readwrite("x", &app::PoseOptions::x)
+        .def_readwrite("y", &app::PoseOptions::y)
+        .def_readwrite("theta", &app::PoseOptions::theta)
+        .def_readwrite("robot", &app::PoseOptions::robot)
+        .def_property_readonly_static("_fields", [](const py::object&) { return py::make_tuple("x", "y", "theta"); });
+    m.def(
+        "_run_pose",
+        [](const app::PoseOptions& options, const py::object& progress) {
+            const app::PoseResult result =
+                runJob(progress, [&](app::Observer& observer) { return app::runPose(options, observer); });
+            return poseDict(result);
+        },
+        py::arg("options"), py::arg("progress") = py::none());
+
+    py::class_<app::InverseDynamicsOptions, app::SamplingOptions>(m, "InverseDynamicsOptions")
+        .def(py::init<>())
+        .def_readwrite("robot", &app::InverseDynamicsOptions::robot)
+        .def_readwrite("allow_limits", &app::InverseDynamicsOptions::allow_limits)
+        .def_readwrite("reactions", &app::InverseDynamicsOptions::reactions)
+        .def_property_readonly_static("_fields", [](const py::object&) {
+            return py::make_tuple("trajectory", "duration", "rate", "allow_limits", "reactions");
+        });
+    m.def(
+        "_run_inverse_dynamics",
+        [](const app::InverseDynamicsOptions& options, const py::object& progress) {
+            auto table = std::make_shared<app::TableCollector>();
+            (void)runJob(progress,
+                         [&](app::Observer& observer) { return app::runInverseDynamics(options, *table, observer); });
+            return py::make_tuple(table->names(), tableArray(*table));
+        },
+        py::arg("options"), py::arg("progress") = py::none());
+}
+
+}  // namespace nocdyn::python
