@@ -314,6 +314,10 @@ def _bound_options(options_type, arguments):
     """The options struct of a call: every field the call's arguments name, checked by type."""
     options = options_type()
     for name, value in arguments.items():
+        if name not in options_type._fields:
+            import difflib
+            near = difflib.get_close_matches(name, options_type._fields, n=1)
+            raise TypeError(f"unexpected keyword argument {name!r}" + (f"; did you mean {near[0]!r}?" if near else ""))
         default = getattr(options, name)
         value = _argument(value, name, default)
         try:
