@@ -25,8 +25,10 @@ void requireNotAnInput(const AnimateOptions& options) {
         for (const std::string& input : {options.robot.path, options.trajectory, options.motion}) {
             std::error_code error;
             if (!input.empty() && std::filesystem::equivalent(path, input, error)) {
-                throw OptionError(field,
-                                  "'" + path + "' is an input file (" + input + "): writing it would replace it");
+                std::string message = "'";
+                message.append(path).append("' is an input file (").append(input);
+                message += "): writing it would replace it";
+                throw OptionError(field, message);
             }
         }
     }
