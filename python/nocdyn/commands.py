@@ -485,29 +485,43 @@ def convert(robot, *, set=None, output=None):
         return path.read_text(encoding="utf-8")
 
 
-def animate(trajectory=None, *, robot=None, set=None, motion=None, duration=None, rate=10000.0, slow_motion=0.0,
-            magnify=1.0, output=None, frame=None, png=None, svg=None):
+def animate(trajectory=None, *, robot=None, set=None, output=None, png=None, svg=None, **options):
     """The robot in motion as one self-contained HTML page (``nocdyn animate``), from a
     trajectory (inverse dynamics at ``rate`` over ``duration``) or a motion CSV written by
     simulate, control or inverse-dynamics (``motion``, a path or a Table). Returns an Animation,
-    shown inline in Jupyter. frame (with png or svg): also draw the robot at that time."""
-    arguments = dict(locals())
-    with _Call("animate", animate) as call:
-        call.robot(robot)
-        if isinstance(motion, Table):
-            call.option("motion", _table_file(call, motion, "motion.csv"))
-        path = call.output("output", output, "robot.html")
-        call.options(arguments, handled=("robot", "output") + (("motion",) if isinstance(motion, Table) else ()))
-        out, err = call.run()
-        return Animation(path.read_text(encoding="utf-8"), None if output is None else path, _text(out, err))
+    shown inline in Jupyter; output: also write the page. frame (with png or svg): also draw
+    the robot at that time."""
+    motion = options.pop("motion", None)
+    arguments = {name: value for name, value in options.items() if value is not None or name == "frame"}
+    if trajectory is not None:
+        arguments["trajectory"] = trajectory
+    if isinstance(motion, Table):
+        bound = _bound_options(_nocdyn.AnimateOptions, arguments)
+        bound.use_motion_table(list(motion.columns), motion.data, motion.name or "motion")
+    else:
+        if motion is not None:
+            arguments["motion"] = motion
+        bound = _bound_options(_nocdyn.AnimateOptions, arguments)
+    bound.robot = _robot_source(robot, set)
+    for name, value in (("output", output), ("png", png), ("svg", svg)):
+        if value is not None:
+            setattr(bound, name, _argument(value, name, ""))
+    html = _run(_nocdyn._run_animate, bound, False, "animate")
+    return Animation(html, None if output is None else pathlib.Path(output))
 
 
-def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, time_scale="auto", highpass=0.1,
-          margin=0.1, window=0.0, plant=None, rate=10000.0, controller="table", natural_frequency=None,
-          acceleration_gain=0.0, encoder_noise=1e-6, accel_noise_density=22.5, accel_bandwidth=1000.0,
-          accel_baseline=0.1, no_accelerometer=False, amplitude=1.0, identify_payload=False, iterations=0,
-          iteration_gain=0.7, excitation_duration=2.0, jobs=0, max_rms=0.05, max_peak=0.05, min_spectrum=0.95,
-          payload_mass=0.5, noise_pose=1e-6, noise_rate=1e-5, seed=1, accuracy=1e-10, out_dir=None, progress=None):
+def _animate_signature():
+    signature = _signature(_nocdyn.AnimateOptions, ("trajectory",), before=(("robot", None), ("set", None)),
+                           after=(("output", None), ("png", None), ("svg", None)))
+    parameters = list(signature.parameters.values())
+    parameters[0] = parameters[0].replace(default=None)
+    return signature.replace(parameters=parameters)
+
+
+animate.__signature__ = _animate_signature()
+
+
+def shake(record, *, robot=None, set=None, out_dir=None, progress=None, **options):
     """Play a ground-motion record (PEER AT2, values in g) on a robot (``nocdyn shake``):
     high-passed, integrated, scaled by similitude to fit every actuator, and played on the plant
     with an unknown payload, as a shake table plays it: controller "table" (model feed-forward,
@@ -515,9 +529,10 @@ def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, tim
     optionally the payload identified first and drive-signal iterations), or "pose" (computed
     torque on noisy pose feedback). natural_frequency: None for the controller's own default. window: play only the
     record's first seconds (0: all). Returns a ShakeResult: the samples (t, x, y, theta, ax, ay,
-    alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (the score: scales, RMS and peak
-    acceleration errors, spectra). out_dir: keep the files and figures there."""
-    arguments = dict(locals())
+    alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (shake.json: scales, and per axis
+    the errors in percent, ``rms_error_percent``, ``peak_error_percent``, ..., and the spectra).
+    out_dir: also write the files and figures there. Ctrl-C (or a KeyboardInterrupt raised by
+    ``progress``) stops the replay and writes nothing."""
     # a folder (or several records) is a suite, whose results are one folder per record and no
     # samples to return: refused before anything runs, rather than after
     several = isinstance(record, (list, tuple)) and len(record) != 1
@@ -525,14 +540,24 @@ def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, tim
         raise ValueError(f"record: {record!r} is a suite of records, and nocdyn.shake plays one record and "
                          "returns its samples: call it once per .AT2 file, or run the suite with "
                          "`nocdyn shake --record FOLDER --out-dir DIR` (summary.md and one folder per record)")
-    with _Call("shake", shake) as call:
-        call.robot(robot)
-        folder = call.output("out_dir", out_dir, "shake")
-        call.options(arguments, handled=("robot", "out_dir"))
-        out, err = call.run(progress, "shake")
-        columns, data, _ = read_csv(folder / "shake.csv")
-        return ShakeResult(columns, data, load_json(folder / "shake.json"), None if out_dir is None else folder,
-                           _text(out, err))
+    if isinstance(record, (list, tuple)):
+        record = record[0]
+    if not isinstance(record, (str, os.PathLike)):
+        raise ValueError(f"record: expected an AT2 file's path, got {type(record).__name__}")
+    arguments = {"record": [_argument(record, "record", "")], **options}
+    if arguments.get("natural_frequency", None) is None:
+        arguments.pop("natural_frequency", None)
+    bound = _bound_options(_nocdyn.ShakeOptions, arguments)
+    bound.robot = _robot_source(robot, set)
+    if out_dir is not None:
+        bound.out_dir = _argument(out_dir, "out_dir", "")
+    columns, data, metrics, text = _run(_nocdyn._run_shake, bound, progress, "shake")
+    return ShakeResult(columns, data, _json.loads(metrics), None if out_dir is None else pathlib.Path(out_dir),
+                       text.rstrip("\n"))
+
+
+shake.__signature__ = _signature(_nocdyn.ShakeOptions, ("record",), before=(("robot", None), ("set", None)),
+                                 after=(("out_dir", None), ("progress", None)))
 
 
 def regressor(*, robot=None, set=None, samples=200, seed=1, output=None):
@@ -547,41 +572,53 @@ def regressor(*, robot=None, set=None, samples=200, seed=1, output=None):
         return path.read_text(encoding="utf-8")
 
 
-def identify(data, *, robot=None, set=None, payload=False, base=False, friction=False, held_forces=False, cutoff=0.0,
-             holdout=0.2, output=None, calibration=None, prior=None, figure=None, progress=None):
+def identify(data, *, robot=None, set=None, output=None, figure=None, progress=None, **options):
     """Identify a payload (the default) or the robot's base parameters (base) from a log of
     actuator positions and forces, CSV t,u1..un with tau1..taun (forces at each sample) or
     tau1_held..taun_held (commands held until the next sample, as control's ``log`` writes them;
     taken so without held_forces) (``nocdyn identify``). Returns an Identification: the report the command prints (``text``),
     read as a dict (``report``: payload, standard_deviation, fit, ...), and ``robot_yaml``, the
-    file the command writes (the robot with the payload merged, or with base the calibration)."""
-    arguments = dict(locals())
-    with _Call("identify", identify) as call:
-        call.robot(robot)
-        path = call.output("output", output, "identified.yaml")
-        call.options(arguments, handled=("robot", "output"))
-        out, err = call.run(progress, "identify")
-        return Identification(out, path.read_text(encoding="utf-8"), err)
+    file the command writes (the robot with the payload merged, or with base the calibration).
+    output: also write that file; figure: STEM of the held-out forces' figure (STEM.png, STEM.svg)."""
+    bound = _bound_options(_nocdyn.IdentifyOptions, {"data": data, **options})
+    bound.robot = _robot_source(robot, set)
+    if output is not None:
+        bound.output = _argument(output, "output", "")
+    if figure is not None:
+        bound.figure = _argument(figure, "figure", "")
+    text, robot_yaml = _run(_nocdyn._run_identify, bound, progress, "identify")
+    return Identification(text, robot_yaml)
 
 
-def excite(*, robot=None, set=None,
-           output=None, payload_guess=None, base=False, friction=False, duration=5.0, frequency=5.0,
-           harmonics=4, margin=0.1, max_condition=100.0, evaluations=400, random=60, samples=0, check_samples=2000,
-           seed=1):
+identify.__signature__ = _signature(_nocdyn.IdentifyOptions, ("data",), before=(("robot", None), ("set", None)),
+                                    after=(("output", None), ("figure", None), ("progress", None)))
+
+
+def excite(*, robot=None, set=None, output=None, progress=None, **options):
     """Design an excitation trajectory for identify (``nocdyn excite``): Fourier series of
     ``harmonics`` harmonics of ``frequency`` [Hz] per axis, as large as every limit allows (with
     ``margin`` to spare), minimising the condition number of the payload's (or with base, the
-    robot's base parameters') regressor. Returns an Excitation (yaml, trajectory, text)."""
+    robot's base parameters') regressor. payload_guess: (mass, com_x, com_y, inertia) or None.
+    Returns an Excitation (yaml, trajectory, text); output: also write the trajectory file.
+    Ctrl-C (or a KeyboardInterrupt raised by ``progress``) stops the design."""
     from . import Trajectory
-    arguments = dict(locals())
-    with _Call("excite", excite) as call:
-        call.robot(robot)
-        path = call.output("output", output, "excitation.yaml")
-        call.options(arguments, handled=("robot", "output", "Trajectory"))
-        out, err = call.run()
-        text = path.read_text(encoding="utf-8")
-        return Excitation({"yaml": text, "trajectory": Trajectory.from_yaml(text, str(path)),
-                           "path": None if output is None else path}, _text(out, err))
+    guess = options.pop("payload_guess", None)
+    bound = _bound_options(_nocdyn.ExciteOptions, options)
+    if guess is not None:
+        try:
+            bound.payload_guess = [float(_argument(v, "payload_guess", 0.0)) for v in guess]
+        except (TypeError, ValueError):
+            raise ValueError("payload_guess: expected 4 numbers: mass, com_x, com_y, inertia") from None
+    bound.robot = _robot_source(robot, set)
+    if output is not None:
+        bound.output = _argument(output, "output", "")
+    text, yaml_text = _run(_nocdyn._run_excite, bound, progress, "excite")
+    return Excitation({"yaml": yaml_text, "trajectory": Trajectory.from_yaml(yaml_text, "<excite>" if output is None else os.fspath(output)),
+                       "path": None if output is None else pathlib.Path(output)}, text.rstrip("\n"))
+
+
+excite.__signature__ = _signature(_nocdyn.ExciteOptions, (), before=(("robot", None), ("set", None)),
+                                  after=(("output", None), ("progress", None)))
 
 
 def loads(trajectory=None, *, robot=None, set=None,
