@@ -26,7 +26,8 @@ RobotDescription loadRobot(const RobotSource& source) {
         return *source.description;  // validated when it was built
     }
     if (source.path.empty()) {
-        if (!source.set.empty()) throw OptionError("set", "needs a robot file: the built-in prototype has no parameters");
+        if (!source.set.empty())
+            throw OptionError("set", "needs a robot file: the built-in prototype has no parameters");
         return io::exampleRobot("paper-3prr");
     }
     return io::loadRobotDescription(source.path, source.set);

@@ -78,8 +78,8 @@ PoseResult runPose(const PoseOptions& options, Observer& observer) {
                 worst = std::max(worst, rangeUsed(model.limb[at(j)].limits[at(k)], data.limb[at(j)].q(k)));
             }
         }
-        observer.warning(out.limits + (worst > 10.0 ? " -- far outside the range: poses are in m and rad (5 mm is 0.005)"
-                                                    : ""));
+        observer.warning(out.limits +
+                         (worst > 10.0 ? " -- far outside the range: poses are in m and rad (5 mm is 0.005)" : ""));
     }
     for (int j = 0; j < model.limbs; ++j) {
         PoseLimb limb;

@@ -51,8 +51,8 @@ struct PoseCompliance {
     Matrix3 K = Matrix3::Zero();  ///< dQ = K dp (virtual joint method, gravity preload ignored)
     std::vector<Vector3> free_directions;
     std::vector<std::string> free_descriptions;
-    Vector3 frequencies = Vector3::Zero();  ///< lumped model K v = w^2 M v [Hz], ascending
-    Matrix3 mode_shapes = Matrix3::Zero();  ///< columns, mass-normalised
+    Vector3 frequencies = Vector3::Zero();                     ///< lumped model K v = w^2 M v [Hz], ascending
+    Matrix3 mode_shapes = Matrix3::Zero();                     ///< columns, mass-normalised
     std::optional<Eigen::VectorXd> elastodynamic_frequencies;  ///< [Hz], elastic links only
     int elastodynamic_dofs = 0;
 };
@@ -66,8 +66,8 @@ struct PoseResult {
     double cond_A = 0.0, max_condition = 0.0;
     /// "actuators": I in the actuator variables; "platform": in the pose (columns x, y, theta).
     std::string coordinates;
-    Eigen::MatrixXd I;          ///< inertia (eq. 23)
-    Eigen::VectorXd tau;        ///< actuator forces at rest under gravity
+    Eigen::MatrixXd I;    ///< inertia (eq. 23)
+    Eigen::VectorXd tau;  ///< actuator forces at rest under gravity
     std::vector<PoseReaction> reactions;
     bool within_limits = true;
     std::string limits;  ///< the first limit passed, when not within limits

@@ -314,6 +314,10 @@ def _bound_options(options_type, arguments):
     """The options struct of a call: every field the call's arguments name, checked by type."""
     options = options_type()
     for name, value in arguments.items():
+        if name not in options_type._fields:
+            import difflib
+            near = difflib.get_close_matches(name, options_type._fields, n=1)
+            raise TypeError(f"unexpected keyword argument {name!r}" + (f"; did you mean {near[0]!r}?" if near else ""))
         default = getattr(options, name)
         value = _argument(value, name, default)
         try:
@@ -391,19 +395,21 @@ inverse_dynamics.__signature__ = _signature(_nocdyn.InverseDynamicsOptions, ("tr
                                             after=(("output", None), ("progress", None)))
 
 
-def forward_kinematics(u, *, robot=None, set=None, all_branches=False):
+def forward_kinematics(u, *, robot=None, set=None, **options):
     """Every platform pose the robot assembles in with actuator values u [m or rad]
     (``nocdyn forward-kinematics U...``): the working modes (every limb on its home branch), or
-    with all_branches every assembly mode. Returns AssemblyModes (poses (k, 3), ...)."""
+    with all_branches every assembly mode. Returns AssemblyModes (poses (k, 3) [x, y, theta], ...)."""
     values = [u] if not hasattr(u, "__len__") else list(u)
-    with _Call("forward-kinematics", forward_kinematics) as call:
-        call.positional(*values, name="u")
-        call.robot(robot)
-        call.option("set", set)
-        call.option("json", True)
-        call.option("all_branches", all_branches)
-        out, err = call.run()
-        return AssemblyModes(_json.loads(out), err)
+    values = [_argument(v, "u", 0.0) for v in values]
+    if any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in values):
+        raise ValueError(f"u: expected numbers, got {u!r}")
+    bound = _bound_options(_nocdyn.ForwardKinematicsOptions, {"u": [float(v) for v in values], **options})
+    bound.robot = _robot_source(robot, set)
+    return AssemblyModes(_nocdyn._run_forward_kinematics(bound, None))
+
+
+forward_kinematics.__signature__ = _signature(_nocdyn.ForwardKinematicsOptions, ("u",),
+                                              after=(("robot", None), ("set", None)))
 
 
 def simulate(forces, *, robot=None, set=None,

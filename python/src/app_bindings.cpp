@@ -20,64 +20,18 @@
 
 namespace nocdyn::python {
 
-namespace {
-
-/// A job's observer for Python: progress to the callback (GIL held), Ctrl-C (a pending signal)
-/// stops the job with the KeyboardInterrupt, warnings kept and issued as Python warnings once
-/// the job returns. One per call: two threads run two jobs with nothing shared.
-class PythonObserver final : public app::Observer {
-public:
-    explicit PythonObserver(py::object callback) : callback_(std::move(callback)) {}
-
-    void progress(double done, double total, std::string_view /*unit*/) override {
-        const py::gil_scoped_acquire acquire;
-        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        if (!callback_.is_none()) callback_(done, total);
-    }
-    void step(std::string_view /*what*/, int index, int total) override {
-        progress(static_cast<double>(index - 1), static_cast<double>(total), "steps");
-    }
-    void warning(std::string_view text) override { warnings_.emplace_back(text); }
-    bool stopRequested() override {
-        const py::gil_scoped_acquire acquire;
-        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-        return false;
-    }
-    /// With the GIL held: each warning as a RuntimeWarning (an error when warnings are errors).
-    void issueWarnings() {
-        for (const std::string& text : warnings_) {
-            if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 2) != 0) throw py::error_already_set();
-        }
-        warnings_.clear();
-    }
-
-private:
-    py::object callback_;
-    std::vector<std::string> warnings_;
-};
-
-/// Runs job(observer) with the GIL released, then issues its warnings.
-template <class Job>
-auto runJob(const py::object& progress, Job&& job) {
-    PythonObserver observer(progress);
-    auto result = [&] {
-        const py::gil_scoped_release release;
-        return job(observer);
-    }();
-    observer.issueWarnings();
-    return result;
-}
-
 /// A (rows, columns) float64 array owning the collector's values (no copy).
 py::array_t<double> tableArray(app::TableCollector& table) {
     auto* values = new std::vector<double>(std::move(table.values()));
     const py::capsule owner(values, [](void* p) { delete static_cast<std::vector<double>*>(p); });
     const auto columns = static_cast<py::ssize_t>(table.names().size());
     const py::ssize_t rows = columns == 0 ? 0 : static_cast<py::ssize_t>(values->size()) / columns;
-    return py::array_t<double>({rows, columns}, {columns * static_cast<py::ssize_t>(sizeof(double)),
-                                                 static_cast<py::ssize_t>(sizeof(double))},
-                               values->data(), owner);
+    return py::array_t<double>(
+        {rows, columns}, {columns * static_cast<py::ssize_t>(sizeof(double)), static_cast<py::ssize_t>(sizeof(double))},
+        values->data(), owner);
 }
+
+namespace {
 
 py::dict poseDict(const app::PoseResult& r) {
     const auto limbs = static_cast<py::ssize_t>(r.limbs.size());
@@ -95,16 +49,17 @@ py::dict poseDict(const app::PoseResult& r) {
         u.mutable_at(a) = x.u;
         range_used.mutable_at(a) = x.range_used;
         actuators.append(py::dict(py::arg("actuator") = x.actuator, py::arg("limb") = x.limb,
-                                  py::arg("joint") = x.joint, py::arg("u") = x.u, py::arg("range_used") = x.range_used));
+                                  py::arg("joint") = x.joint, py::arg("u") = x.u,
+                                  py::arg("range_used") = x.range_used));
     }
     for (const app::PoseReaction& j : r.reactions) {
         for (py::ssize_t c = 0; c < 3; ++c) reactions.mutable_at(j.limb - 1, j.joint - 1, c) = j.f(c);
     }
     py::dict out(py::arg("robot") = r.robot, py::arg("pose") = Eigen::Vector3d(r.pose), py::arg("q") = q,
-                 py::arg("cond_J") = cond_J, py::arg("u") = u, py::arg("range_used") = range_used,
-                 py::arg("A") = r.A, py::arg("cond_A") = r.cond_A, py::arg("coordinates") = r.coordinates,
-                 py::arg("I") = r.I, py::arg("within_limits") = r.within_limits, py::arg("tau") = r.tau,
-                 py::arg("reactions") = reactions, py::arg("actuators") = actuators);
+                 py::arg("cond_J") = cond_J, py::arg("u") = u, py::arg("range_used") = range_used, py::arg("A") = r.A,
+                 py::arg("cond_A") = r.cond_A, py::arg("coordinates") = r.coordinates, py::arg("I") = r.I,
+                 py::arg("within_limits") = r.within_limits, py::arg("tau") = r.tau, py::arg("reactions") = reactions,
+                 py::arg("actuators") = actuators);
     if (r.compliance) {
         const app::PoseCompliance& c = *r.compliance;
         out["stiffness"] = Eigen::Matrix3d(c.K);
@@ -194,12 +149,12 @@ void bindApplication(py::module_& m) {
         "_run_inverse_dynamics",
         [](const app::InverseDynamicsOptions& options, const py::object& progress) {
             auto table = std::make_shared<app::TableCollector>();
-            (void)runJob(progress, [&](app::Observer& observer) {
-                return app::runInverseDynamics(options, *table, observer);
-            });
+            (void)runJob(progress,
+                         [&](app::Observer& observer) { return app::runInverseDynamics(options, *table, observer); });
             return py::make_tuple(table->names(), tableArray(*table));
         },
         py::arg("options"), py::arg("progress") = py::none());
+    bindSimulation(m);
 }
 
 }  // namespace nocdyn::python

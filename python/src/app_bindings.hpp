@@ -3,13 +3,74 @@
 // observer) and its typed result as NumPy arrays. No argv, no captured streams, no files.
 #pragma once
 
+#include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "app/observer.hpp"
+#include "app/table.hpp"
 
 namespace py = pybind11;
 
 namespace nocdyn::python {
 
+/// A job's observer for Python: progress to the callback (GIL held), Ctrl-C (a pending signal)
+/// stops the job with the KeyboardInterrupt, warnings kept and issued as Python warnings once
+/// the job returns. One per call: two threads run two jobs with nothing shared.
+class PythonObserver final : public app::Observer {
+public:
+    explicit PythonObserver(py::object callback) : callback_(std::move(callback)) {}
+
+    void progress(double done, double total, std::string_view /*unit*/) override {
+        const py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        if (!callback_.is_none()) callback_(done, total);
+    }
+    void step(std::string_view /*what*/, int index, int total) override {
+        progress(static_cast<double>(index - 1), static_cast<double>(total), "steps");
+    }
+    void warning(std::string_view text) override { warnings_.emplace_back(text); }
+    bool stopRequested() override {
+        const py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+        return false;
+    }
+    /// With the GIL held: each warning as a RuntimeWarning (an error when warnings are errors).
+    void issueWarnings() {
+        for (const std::string& text : warnings_) {
+            if (PyErr_WarnEx(PyExc_RuntimeWarning, text.c_str(), 2) != 0) throw py::error_already_set();
+        }
+        warnings_.clear();
+    }
+
+private:
+    py::object callback_;
+    std::vector<std::string> warnings_;
+};
+
+/// Runs job(observer) with the GIL released, then issues its warnings.
+template <class Job>
+auto runJob(const py::object& progress, Job&& job) {
+    PythonObserver observer(progress);
+    auto result = [&] {
+        const py::gil_scoped_release release;
+        return job(observer);
+    }();
+    observer.issueWarnings();
+    return result;
+}
+
+/// A (rows, columns) float64 array owning the collector's values (no copy).
+py::array_t<double> tableArray(app::TableCollector& table);
+
 /// Adds the options types, _run_<command> functions and helpers to the compiled module.
 void bindApplication(py::module_& m);
+
+/// forward-kinematics, simulate, control, frequency-response (app_bindings_sim.cpp).
+void bindSimulation(py::module_& m);
 
 }  // namespace nocdyn::python
