@@ -226,20 +226,20 @@ def _table_file(call, table, name):
     return path
 
 
-def _forces_file(call, forces):
-    """A force table as the CSV simulate reads: a path, or columns (a dict, a Table, a DataFrame)."""
-    if isinstance(forces, (str, os.PathLike)):
-        return forces
+def _forces_table(forces):
+    """The forces given as columns (a dict, a Table, a DataFrame) as a Table."""
     if isinstance(forces, Table):
-        table = forces
-    elif hasattr(forces, "columns") and hasattr(forces, "to_numpy"):  # a pandas DataFrame
-        table = Table([str(c) for c in forces.columns], forces.to_numpy(dtype=float))
-    elif isinstance(forces, dict):
+        return forces
+    if hasattr(forces, "columns") and hasattr(forces, "to_numpy"):  # a pandas DataFrame
+        return Table([str(c) for c in forces.columns], forces.to_numpy(dtype=float))
+    if isinstance(forces, dict):
         import numpy as np
-        table = Table(list(forces), np.column_stack([np.asarray(v, dtype=float).reshape(-1) for v in forces.values()]))
-    else:
-        raise ValueError("forces: expected a CSV path, a dict of columns (t, tau1..taun), a Table or a DataFrame")
-    return _table_file(call, table, "forces.csv")
+        try:
+            return Table(list(forces), np.column_stack([np.asarray(v, dtype=float).reshape(-1)
+                                                        for v in forces.values()]))
+        except (TypeError, ValueError) as error:
+            raise ValueError(f"forces: {error}") from None
+    raise ValueError("forces: expected a CSV path, a dict of columns (t, tau1..taun), a Table or a DataFrame")
 
 
 def _table_command(command, function, arguments, file_name, kind=Table, handled=()):
@@ -412,9 +412,7 @@ forward_kinematics.__signature__ = _signature(_nocdyn.ForwardKinematicsOptions, 
                                               after=(("robot", None), ("set", None)))
 
 
-def simulate(forces, *, robot=None, set=None,
-             interpolation="cubic", duration=None, rate=10000.0, output=None, atol=1e-12,
-             rtol=1e-10, assembly_mode=0, partial=False, reactions=False, progress=None):
+def simulate(forces, *, robot=None, set=None, output=None, progress=None, **options):
     """Forward dynamics (``nocdyn simulate``): the motion under actuator forces.
 
     forces: a CSV path, or columns t, tau1..taun [s, N or N m] (a dict, Table or DataFrame; with
@@ -422,10 +420,26 @@ def simulate(forces, *, robot=None, set=None,
     interpolated ('cubic', 'linear' or 'hold') and held beyond the last time. rate: output samples
     per second; duration: seconds (default: the span of the forces). atol, rtol: the integrator's
     tolerances; assembly_mode: which working mode of the first u (1-based; 0: nearest home);
-    partial: keep the motion up to a failure; reactions: every joint's reaction at each sample
-    (limb{i}_j{k}_fx, _fy, _m) as more columns. Returns a Table with the CSV's columns."""
-    return _table_command("simulate", simulate, dict(locals()), "simulate.csv",
-                          handled={"forces": lambda call: _forces_file(call, forces)})
+    partial: return the motion up to a failure (and warn of it) instead of raising; reactions: every
+    joint's reaction at each sample (limb{i}_j{k}_fx, _fy, _m) as more columns. Returns a Table
+    with the CSV's columns; output: also write it as CSV."""
+    if isinstance(forces, (str, os.PathLike)):
+        bound = _bound_options(_nocdyn.SimulateOptions, {"forces": forces, **options})
+    else:
+        bound = _bound_options(_nocdyn.SimulateOptions, options)
+        table = _forces_table(forces)
+        bound.use_forces(table.columns, table.data)
+    bound.robot = _robot_source(robot, set)
+    columns, data, text, stopped = _run(_nocdyn._run_simulate, bound, progress, "simulate")
+    if stopped:
+        warnings.warn(stopped, RuntimeWarning, stacklevel=2)
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, "" if stopped else text, "simulate")
+
+
+simulate.__signature__ = _signature(_nocdyn.SimulateOptions, ("forces",), before=(("robot", None), ("set", None)),
+                                    after=(("output", None), ("progress", None)))
 
 
 def control(trajectory, *, robot=None, set=None, controller="computed-torque", plant=None, rate=10000.0, duration=None,

@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "app/forward_kinematics.hpp"
+#include "app/simulate.hpp"
 #include "app_bindings.hpp"
 
 namespace nocdyn::python {
@@ -42,6 +43,48 @@ void bindSimulation(py::module_& m) {
         [](const app::ForwardKinematicsOptions& options, const py::object& progress) {
             return forwardKinematicsDict(runJob(
                 progress, [&](app::Observer& observer) { return app::runForwardKinematics(options, observer); }));
+        },
+        py::arg("options"), py::arg("progress") = py::none());
+
+    py::class_<app::SimulateOptions>(m, "SimulateOptions")
+        .def(py::init<>())
+        .def_readwrite("forces", &app::SimulateOptions::forces)
+        .def_readwrite("robot", &app::SimulateOptions::robot)
+        .def_readwrite("interpolation", &app::SimulateOptions::interpolation)
+        .def_readwrite("duration", &app::SimulateOptions::duration)
+        .def_readwrite("rate", &app::SimulateOptions::rate)
+        .def_readwrite("atol", &app::SimulateOptions::atol)
+        .def_readwrite("rtol", &app::SimulateOptions::rtol)
+        .def_readwrite("assembly_mode", &app::SimulateOptions::assembly_mode)
+        .def_readwrite("partial", &app::SimulateOptions::partial)
+        .def_readwrite("reactions", &app::SimulateOptions::reactions)
+        .def(
+            "use_forces",
+            [](app::SimulateOptions& o, const std::vector<std::string>& columns,
+               const py::array_t<double, py::array::c_style | py::array::forcecast>& data) {
+                if (data.ndim() != 2 || data.shape(1) != static_cast<py::ssize_t>(columns.size())) {
+                    throw app::OptionError(
+                        "forces", "expected a (rows, " + std::to_string(columns.size()) + ") table of numbers");
+                }
+                if (data.shape(0) == 0) throw app::OptionError("forces", "no rows");
+                io::Table table{columns, {}};
+                for (py::ssize_t i = 0; i < data.shape(0); ++i) {
+                    table.rows.emplace_back(data.data(i, 0), data.data(i, 0) + data.shape(1));
+                }
+                o.forces_table = std::move(table);
+            },
+            py::arg("columns"), py::arg("data"), "The forces of this table (columns t, tau1..taun) instead of a file")
+        .def_property_readonly_static("_fields", [](const py::object&) {
+            return py::make_tuple("forces", "interpolation", "duration", "rate", "atol", "rtol", "assembly_mode",
+                                  "partial", "reactions");
+        });
+    m.def(
+        "_run_simulate",
+        [](const app::SimulateOptions& options, const py::object& progress) {
+            auto table = std::make_shared<app::TableCollector>();
+            const app::SimulateResult result =
+                runJob(progress, [&](app::Observer& observer) { return app::runSimulate(options, *table, observer); });
+            return py::make_tuple(table->names(), tableArray(*table), app::summaryLine(result), result.stopped);
         },
         py::arg("options"), py::arg("progress") = py::none());
 }
