@@ -349,6 +349,18 @@ def _signature(options_type, positional, before=(), after=()):
     return inspect.Signature(parameters)
 
 
+def _path_argument(value, name):
+    """A file name the caller gave ('' for none); ValueError naming the argument."""
+    if value is None:
+        return ""
+    if not isinstance(value, (str, os.PathLike)):
+        raise ValueError(f"{name}: expected a path, got {type(value).__name__}")
+    text = os.fspath(value)
+    if not text or "\0" in text:
+        raise ValueError(f"{name}: expected a non-empty path without NUL characters")
+    return text
+
+
 def _write_table(path, columns, data):
     """The table as the command line's CSV, written safely (a unique temporary file renamed)."""
     _nocdyn._write_table(os.fspath(path), list(columns), data)
@@ -464,22 +476,37 @@ def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.
     return _table_command("envelope", envelope, dict(locals()), "envelope.csv")
 
 
-def frequency_response(*, robot=None, set=None, pose=None, rate=None, output_kind="acceleration", f_min=1.0,
-                       f_max=1000.0, points=200, output=None, summary=None, figure=None, closed_loop=False,
-                       payload=0.0, controller_rate=10000.0, natural_frequency=6.0):
+def frequency_response(*, robot=None, set=None, output=None, summary=None, figure=None, **options):
     """The rigid robot linearised at an operating point and its frequency response
-    (``nocdyn frequency-response``): pose [theta, x, y] (default home) and rate (default at
-    rest), held by the inverse dynamics' forces; from each actuator force to each platform
-    acceleration (output_kind "acceleration") or actuator variable ("actuators") over ``points``
-    log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then <output>_tau<a>_db and
-    _deg per channel); ``text`` holds the summary with each channel's -3 dB bandwidth.
+    (``nocdyn frequency-response``): pose [x, y, theta] (default home) and rate [dx, dy, dtheta]
+    (default at rest), held by the inverse dynamics' forces; from each actuator force to each
+    platform acceleration (output_kind "acceleration") or actuator variable ("actuators") over
+    ``points`` log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then
+    <output>_tau<a>_db and _deg per channel, axes x, y, theta); ``text`` holds the summary with
+    each channel's -3 dB bandwidth. output, summary, figure: also write the CSV, the summary and
+    the Bode figure (STEM.png and STEM.svg).
 
     closed_loop=True: the shake-table loop linearised at rest (``--closed-loop``), from the
     reference to the achieved platform acceleration per axis, with a plant ``payload`` [kg] at C
     unknown to the controller, ``controller_rate`` [Hz] and the pose feedback's
     ``natural_frequency`` [Hz]; the Table has <axis>_db, _deg, _loop_db, _loop_deg per axis and
     ``text`` each axis's -3 dB bandwidth, crossover and phase margin."""
-    return _table_command("frequency-response", frequency_response, dict(locals()), "frequency_response.csv")
+    options = {k: v for k, v in options.items() if not (k in ("pose", "rate") and v is None)}
+    for name in ("pose", "rate"):
+        if name in options:
+            options[name] = [float(_argument(v, name, 0.0)) for v in options[name]]
+    bound = _bound_options(_nocdyn.FrequencyResponseOptions, options)
+    bound.robot = _robot_source(robot, set)
+    files = [_path_argument(summary, "summary"), _path_argument(figure, "figure")]
+    columns, data, text = _nocdyn._run_frequency_response(bound, *files)
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, text, "frequency-response")
+
+
+frequency_response.__signature__ = _signature(_nocdyn.FrequencyResponseOptions, (),
+                                              before=(("robot", None), ("set", None)),
+                                              after=(("output", None), ("summary", None), ("figure", None)))
 
 
 def workspace(*, robot=None, set=None, theta=None, resolution=201, output=None, figure=None, progress=None):

@@ -7,8 +7,11 @@
 #include <memory>
 
 #include "app/forward_kinematics.hpp"
+#include "app/frequency_response.hpp"
 #include "app/simulate.hpp"
 #include "app_bindings.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "report/plot.hpp"
 
 namespace nocdyn::python {
 
@@ -87,6 +90,37 @@ void bindSimulation(py::module_& m) {
             return py::make_tuple(table->names(), tableArray(*table), app::summaryLine(result), result.stopped);
         },
         py::arg("options"), py::arg("progress") = py::none());
+
+    py::class_<app::FrequencyResponseOptions>(m, "FrequencyResponseOptions")
+        .def(py::init<>())
+        .def_readwrite("robot", &app::FrequencyResponseOptions::robot)
+        .def_readwrite("pose", &app::FrequencyResponseOptions::pose)
+        .def_readwrite("rate", &app::FrequencyResponseOptions::rate)
+        .def_readwrite("output_kind", &app::FrequencyResponseOptions::output_kind)
+        .def_readwrite("f_min", &app::FrequencyResponseOptions::f_min)
+        .def_readwrite("f_max", &app::FrequencyResponseOptions::f_max)
+        .def_readwrite("points", &app::FrequencyResponseOptions::points)
+        .def_readwrite("closed_loop", &app::FrequencyResponseOptions::closed_loop)
+        .def_readwrite("payload", &app::FrequencyResponseOptions::payload)
+        .def_readwrite("controller_rate", &app::FrequencyResponseOptions::controller_rate)
+        .def_readwrite("natural_frequency", &app::FrequencyResponseOptions::natural_frequency)
+        .def_property_readonly_static("_fields", [](const py::object&) {
+            return py::make_tuple("pose", "rate", "output_kind", "f_min", "f_max", "points", "closed_loop", "payload",
+                                  "controller_rate", "natural_frequency");
+        });
+    m.def(
+        "_run_frequency_response",
+        [](const app::FrequencyResponseOptions& options, const std::string& summary, const std::string& figure) {
+            const app::FrequencyResponseResult result = runJob(py::none(), [&](app::Observer& observer) {
+                app::FrequencyResponseResult r = app::runFrequencyResponse(options, observer);
+                // the files asked for, written safely (a unique temporary file renamed into place)
+                if (!summary.empty()) io::writeTextFile(summary, r.summary);
+                if (!figure.empty()) report::renderFigure(app::bodeFigure(r), figure);
+                return r;
+            });
+            return py::make_tuple(result.columns, Eigen::MatrixXd(result.table), result.summary);
+        },
+        py::arg("options"), py::arg("summary") = std::string(), py::arg("figure") = std::string());
 }
 
 }  // namespace nocdyn::python

@@ -1,6 +1,6 @@
-"""forward_kinematics and simulate on the application layer: each honours set=, names the argument
-a bad value breaks, and runs in two threads at once (the GIL is released: two simulations take well
-under twice as long as one)."""
+"""forward_kinematics, simulate and frequency_response on the application layer: each honours set=,
+names the argument a bad value breaks, and runs in two threads at once (the GIL is released: two
+simulations take well under twice as long as one)."""
 
 import math
 import threading
@@ -131,3 +131,44 @@ def test_two_simulations_in_two_threads_take_well_under_twice_one():
         if ratios[-1] < 1.6:
             break
     assert min(ratios) < 1.6, ratios
+
+
+# --- frequency_response -------------------------------------------------------------------------
+
+def test_frequency_response_honours_set_and_its_axes_are_x_y_theta(source_dir, tmp_path):
+    robot = family(source_dir)
+    plain = nocdyn.frequency_response(robot=robot, points=3)
+    longer = nocdyn.frequency_response(robot=robot, points=3, set={"l1": 0.12})
+    assert np.max(np.abs(plain.data - longer.data)) > 1e-6
+    assert plain.columns[1:7] == ["ddx_tau1_db", "ddx_tau1_deg", "ddx_tau2_db", "ddx_tau2_deg", "ddx_tau3_db",
+                                  "ddx_tau3_deg"]
+    loop = nocdyn.frequency_response(closed_loop=True, points=3, f_max=100.0, summary=tmp_path / "s.txt")
+    assert [c for c in loop.columns if c.endswith("_loop_db")] == ["x_loop_db", "y_loop_db", "theta_loop_db"]
+    assert (tmp_path / "s.txt").read_text() == loop.text
+
+
+def test_frequency_response_pose_is_x_y_theta(paper_robot):
+    # the operating pose [x, y, theta]: the summary says so, and moving along x changes the plant
+    home = nocdyn.frequency_response(points=3)
+    moved = nocdyn.frequency_response(points=3, pose=[0.002, 0.0, 0.0])
+    assert "[x, y, theta] = [0.002, 0, 0]" in moved.text
+    assert np.max(np.abs(home.data - moved.data)) > 1e-9
+
+
+def test_frequency_response_bad_values_name_the_argument():
+    with pytest.raises(ValueError, match="^points: "):
+        nocdyn.frequency_response(points=1)
+    with pytest.raises(ValueError, match="^f_max: "):
+        nocdyn.frequency_response(f_min=10.0, f_max=5.0)
+    with pytest.raises(ValueError, match="^pose: "):
+        nocdyn.frequency_response(pose=[0.0, 0.0])
+    with pytest.raises(ValueError, match="^output_kind: "):
+        nocdyn.frequency_response(output_kind="velocity")
+    with pytest.raises(ValueError, match="^rate: "):
+        nocdyn.frequency_response(closed_loop=True, rate=[0.0, 0.0, 0.0])
+
+
+def test_frequency_response_in_two_threads():
+    (a, b), _ = in_two_threads(lambda: nocdyn.frequency_response(points=50))
+    np.testing.assert_array_equal(a.data, b.data)
+    assert a.text == b.text

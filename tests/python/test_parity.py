@@ -234,6 +234,19 @@ def test_forward_kinematics_every_assembly_mode():
     assert list(working.to_pandas().columns)[-3:] == ["x", "y", "theta"]
 
 
+def test_frequency_response_open_and_closed_loop(tmp_path):
+    for args, kwargs in (([], {}), (["--pose", 0.002, -0.001, 0.01, "--output-kind", "actuators"],
+                                    {"pose": [0.002, -0.001, 0.01], "output_kind": "actuators"}),
+                         (["--closed-loop", "--payload", 2, "--f-max", 2000], {"closed_loop": True, "payload": 2.0,
+                                                                              "f_max": 2000.0})):
+        out, summary = tmp_path / "fr.csv", tmp_path / "fr.txt"
+        printed = run_cli("frequency-response", "--points", 7, *args, "-o", out)
+        run_cli("frequency-response", "--points", 7, *args, "-o", out, "--summary", summary)
+        py = nocdyn.frequency_response(points=7, **kwargs)
+        same_table(out, py)
+        assert py.text == printed == summary.read_text()
+
+
 def test_tables_take_their_columns_from_the_registry():
     run = nocdyn.control("paper1", duration=0.005, rate=2000.0, plant="nocdyn")
     assert run.columns == nocdyn._nocdyn._column_names("closed_loop", actuators=3)
