@@ -454,17 +454,34 @@ simulate.__signature__ = _signature(_nocdyn.SimulateOptions, ("forces",), before
                                     after=(("output", None), ("progress", None)))
 
 
-def control(trajectory, *, robot=None, set=None, controller="computed-torque", plant=None, rate=10000.0, duration=None,
-            natural_frequency=50.0, payload_mass=0.0, payload_inertia=0.0, payload_com=None, noise_pose=0.0,
-            noise_rate=0.0, noise_tau=0.0, measure="pose", log=None, noise_u=0.0, noise_du=0.0, seed=1,
-            no_saturation=False, output=None, figure=None, progress=None):
+def control(trajectory, *, robot=None, set=None, plant=None, log=None, output=None, figure=None, progress=None,
+            **options):
     """Closed-loop tracking of a platform trajectory (``nocdyn control``) by computed torque or PD
     on a plant: 'simbody' (the independent model, when built in; the default then), 'nocdyn' or
     'nocdyn-rk4'. The payload_* arguments put a payload on the plant only (model mismatch); the
     noise_* arguments are sensor noise; log: also write the sensors' log for identify. Returns a
     Table with the CSV's columns (t, x_d, y_d, theta_d, ..., e_x, e_y, e_theta, u1..un, ..., tau1..taun);
-    its text holds the RMS and peak errors."""
-    return _table_command("control", control, dict(locals()), "control.csv")
+    its text holds the RMS and peak errors. output, figure: also write the CSV and the
+    tracking-error figure (STEM.png and STEM.svg)."""
+    if options.get("payload_com") is None:
+        options.pop("payload_com", None)
+    else:
+        options["payload_com"] = [float(_argument(v, "payload_com", 0.0)) for v in options["payload_com"]]
+    bound = _bound_options(_nocdyn.ControlOptions, {"trajectory": trajectory, **options})
+    if plant is not None:  # None: the build's default (Simbody's when built in)
+        bound.plant = _argument(plant, "plant", "")
+    bound.robot = _robot_source(robot, set)
+    files = [_path_argument(log, "log"), _path_argument(figure, "figure")]
+    columns, data, text = _run(lambda o, p: _nocdyn._run_control(o, *files, p), bound, progress, "control")
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, text.rstrip("\n"), "control")
+
+
+control.__signature__ = _signature(_nocdyn.ControlOptions, ("trajectory",), before=(("robot", None), ("set", None)),
+                                   after=(("log", None), ("output", None), ("figure", None), ("progress", None)))
+control.__signature__ = control.__signature__.replace(parameters=[
+    p.replace(default=None) if p.name == "plant" else p for p in control.__signature__.parameters.values()])
 
 
 def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.0, max_frequency=100.0, points=41,

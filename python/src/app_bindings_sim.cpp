@@ -6,6 +6,7 @@
 
 #include <memory>
 
+#include "app/control.hpp"
 #include "app/forward_kinematics.hpp"
 #include "app/frequency_response.hpp"
 #include "app/simulate.hpp"
@@ -121,6 +122,53 @@ void bindSimulation(py::module_& m) {
             return py::make_tuple(result.columns, Eigen::MatrixXd(result.table), result.summary);
         },
         py::arg("options"), py::arg("summary") = std::string(), py::arg("figure") = std::string());
+
+    py::class_<app::ControlOptions, app::SamplingOptions>(m, "ControlOptions")
+        .def(py::init<>())
+        .def_readwrite("robot", &app::ControlOptions::robot)
+        .def_readwrite("controller", &app::ControlOptions::controller)
+        .def_readwrite("plant", &app::ControlOptions::plant)
+        .def_readwrite("natural_frequency", &app::ControlOptions::natural_frequency)
+        .def_readwrite("payload_mass", &app::ControlOptions::payload_mass)
+        .def_readwrite("payload_inertia", &app::ControlOptions::payload_inertia)
+        .def_readwrite("payload_com", &app::ControlOptions::payload_com)
+        .def_readwrite("noise_pose", &app::ControlOptions::noise_pose)
+        .def_readwrite("noise_rate", &app::ControlOptions::noise_rate)
+        .def_readwrite("noise_tau", &app::ControlOptions::noise_tau)
+        .def_readwrite("measure", &app::ControlOptions::measure)
+        .def_readwrite("noise_u", &app::ControlOptions::noise_u)
+        .def_readwrite("noise_du", &app::ControlOptions::noise_du)
+        .def_readwrite("seed", &app::ControlOptions::seed)
+        .def_readwrite("no_saturation", &app::ControlOptions::no_saturation)
+        .def_readwrite("sensor_log", &app::ControlOptions::sensor_log)
+        .def_property_readonly_static("_fields", [](const py::object&) {
+            return py::make_tuple("trajectory", "controller", "plant", "rate", "duration", "natural_frequency",
+                                  "payload_mass", "payload_inertia", "payload_com", "noise_pose", "noise_rate",
+                                  "noise_tau", "measure", "noise_u", "noise_du", "seed", "no_saturation");
+        });
+    m.def(
+        "_run_control",
+        [](app::ControlOptions options, const std::string& log, const std::string& figure, const py::object& progress) {
+            options.sensor_log = !log.empty();
+            const app::ControlResult result = runJob(progress, [&](app::Observer& observer) {
+                app::ControlResult r = app::runControl(options, observer);
+                // the files asked for, written safely (a unique temporary file renamed into place)
+                if (!log.empty()) io::writeCsvFile(log, r.log);
+                if (!figure.empty()) report::renderFigure(app::trackingFigure(r), figure);
+                return r;
+            });
+            const auto rows = static_cast<py::ssize_t>(result.table.rows.size());
+            const auto columns = static_cast<py::ssize_t>(result.table.columns.size());
+            py::array_t<double> data({rows, columns});
+            for (py::ssize_t i = 0; i < rows; ++i) {
+                for (py::ssize_t k = 0; k < columns; ++k) {
+                    data.mutable_at(i, k) = result.table.rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(k)];
+                }
+            }
+            return py::make_tuple(result.table.columns, data, result.text);
+        },
+        py::arg("options"), py::arg("log") = std::string(), py::arg("figure") = std::string(),
+        py::arg("progress") = py::none());
 }
 
 }  // namespace nocdyn::python

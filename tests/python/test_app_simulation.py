@@ -1,6 +1,6 @@
-"""forward_kinematics, simulate and frequency_response on the application layer: each honours set=,
-names the argument a bad value breaks, and runs in two threads at once (the GIL is released: two
-simulations take well under twice as long as one)."""
+"""forward_kinematics, simulate, control and frequency_response on the application layer: each
+honours set=, names the argument a bad value breaks, and runs in two threads at once (the GIL is
+released: two simulations take well under twice as long as one)."""
 
 import math
 import threading
@@ -131,6 +131,39 @@ def test_two_simulations_in_two_threads_take_well_under_twice_one():
         if ratios[-1] < 1.6:
             break
     assert min(ratios) < 1.6, ratios
+
+
+# --- control ------------------------------------------------------------------------------------
+
+def test_control_honours_set_and_writes_what_is_asked(source_dir, tmp_path):
+    robot = family(source_dir)
+    plain = nocdyn.control("paper1", robot=robot, plant="nocdyn", duration=0.005, rate=2000.0)
+    longer = nocdyn.control("paper1", robot=robot, plant="nocdyn", duration=0.005, rate=2000.0, set={"l1": 0.12})
+    assert np.max(np.abs(plain["tau1"] - longer["tau1"])) > 1e-6
+    log = tmp_path / "log.csv"
+    logged = nocdyn.control("paper1", robot=robot, plant="nocdyn", duration=0.005, rate=2000.0, log=log,
+                            output=tmp_path / "run.csv")
+    np.testing.assert_array_equal(logged.data, plain.data)
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["log.csv", "run.csv"]
+    assert log.read_text().startswith("t,u1,")
+
+
+def test_control_bad_values_name_the_argument():
+    with pytest.raises(ValueError, match="^plant: "):
+        nocdyn.control("paper1", plant="adams")
+    with pytest.raises(ValueError, match="^noise_du: "):
+        nocdyn.control("paper1", plant="nocdyn", noise_du=1e-3)
+    with pytest.raises(ValueError, match="^natural_frequency: "):
+        nocdyn.control("paper1", plant="nocdyn", natural_frequency=0.0)
+    with pytest.raises(ValueError, match="^payload_com: "):
+        nocdyn.control("paper1", plant="nocdyn", payload_com=[0.01])
+
+
+def test_control_in_two_threads():
+    call = lambda: nocdyn.control("paper1", plant="nocdyn", duration=0.01, rate=2000.0)  # noqa: E731
+    (a, b), _ = in_two_threads(call)
+    np.testing.assert_array_equal(a.data, b.data)
+    assert a.text == b.text and "RMS error" in a.text
 
 
 # --- frequency_response -------------------------------------------------------------------------
