@@ -96,7 +96,55 @@ void generalBatch(benchmark::State& state, const std::string& robot, std::size_t
     perSample(state, static_cast<std::size_t>(N));
 }
 
+/// The one-thread batch of 100 cycles on the paper's robot with the pose columns in `order`
+/// (the core's [theta, x, y] or Python's [x, y, theta]: the same gathers, another column
+/// index), inputs and outputs column-major (Eigen's) or row-major (NumPy's C order, viewed in
+/// place as Python's batch views it).
+void poseOrderBatch(benchmark::State& state, PoseColumns order, bool c_order) {
+    const Fixture& f = fixture();
+    const Model model = loadExample("paper-3prr");
+    const auto N = static_cast<Eigen::Index>(100 * f.samples.size());
+    const int n = model.actuators;
+    using Stride = Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>;
+    // element (k, i) at k * step + i * stride
+    const auto strides = [&](Eigen::Index columns) { return c_order ? Stride(1, columns) : Stride(N, 1); };
+    std::vector<double> p(static_cast<std::size_t>(3 * N)), dp(p.size()), ddp(p.size());
+    std::vector<double> u(static_cast<std::size_t>(n * N)), du(u.size()), ddu(u.size()), tau(u.size());
+    using Map = Eigen::Map<Eigen::ArrayXXd, 0, Stride>;
+    Map P(p.data(), N, 3, strides(3)), dP(dp.data(), N, 3, strides(3)), ddP(ddp.data(), N, 3, strides(3));
+    Map U(u.data(), N, n, strides(n)), dU(du.data(), N, n, strides(n)), ddU(ddu.data(), N, n, strides(n)),
+        T(tau.data(), N, n, strides(n));
+    for (Eigen::Index k = 0; k < N; ++k) {
+        const Sample& s = f.samples[static_cast<std::size_t>(k) % f.samples.size()];
+        for (int i = 0; i < 3; ++i) {
+            P(k, poseColumn(order, i)) = s.p(i);
+            dP(k, poseColumn(order, i)) = s.dp(i);
+            ddP(k, poseColumn(order, i)) = s.ddp(i);
+        }
+    }
+    if (!inverseDynamicsBatch(model, P, dP, ddP, U, dU, ddU, T, 1, order).ok()) {
+        state.SkipWithError("the benchmark trajectory leaves the workspace");
+        return;
+    }
+    for (auto _ : state) {
+        const BatchResult result = inverseDynamicsBatch(model, P, dP, ddP, U, dU, ddU, T, 1, order);
+        benchmark::DoNotOptimize(result);
+        benchmark::DoNotOptimize(tau.data());
+        benchmark::ClobberMemory();
+    }
+    perSample(state, static_cast<std::size_t>(N));
+}
+
 [[maybe_unused]] const bool registered = [] {
+    for (const bool c_order : {false, true}) {
+        const std::string layout = c_order ? "c_order" : "column_major";
+        benchmark::RegisterBenchmark(("BM_PoseOrder/theta_x_y/" + layout).c_str(), [c_order](benchmark::State& s) {
+            poseOrderBatch(s, PoseColumns::theta_x_y, c_order);
+        })->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("BM_PoseOrder/x_y_theta/" + layout).c_str(), [c_order](benchmark::State& s) {
+            poseOrderBatch(s, PoseColumns::x_y_theta, c_order);
+        })->Unit(benchmark::kMillisecond);
+    }
     benchmark::RegisterBenchmark("BM_InverseDynamics/paper-3prr/baseline", baseline);
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn").c_str(),

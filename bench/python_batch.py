@@ -68,7 +68,7 @@ def measure(name, args):
     core = robot._core
 
     # interleaved repetitions: each variant sees the same machine load
-    results = {"cpp": [], "py_c": [], "py_f": [], "py_out": [], "floor": []}
+    results = {"cpp": [], "py_c": [], "py_unchecked": [], "py_f": [], "py_out": [], "floor": []}
     # the floor: 9 n doubles read, 4 n m written (m actuators), in one pass each
     source = np.concatenate([P.ravel(), dP.ravel(), ddP.ravel()])
     target = np.empty(4 * n * robot.actuators)
@@ -82,6 +82,7 @@ def measure(name, args):
         results["floor"].append(best(floor, 1))
         results["cpp"].append(core._time_cpp_batch(P, dP, ddP, 1))
         results["py_c"].append(best(lambda: robot.inverse_dynamics(P, dP, ddP), 1))
+        results["py_unchecked"].append(best(lambda: robot.inverse_dynamics(P, dP, ddP, check_limits=False), 1))
         results["py_f"].append(best(lambda: robot.inverse_dynamics(Pf, dPf, ddPf), 1))
         results["py_out"].append(best(lambda: robot.inverse_dynamics(P, dP, ddP, out=out), 1))
     cpp = min(results["cpp"])
@@ -107,7 +108,8 @@ def measure(name, args):
           f"load average {os.getloadavg()[0]:.1f} at the end")
     print()
     names = {"cpp": "C++ `inverseDynamicsBatch` (Eigen arrays, timed in C++)",
-             "py_c": "Python, C-ordered inputs, new outputs",
+             "py_c": "Python, C-ordered inputs, new outputs (limits checked, the default)",
+             "py_unchecked": "Python, C-ordered inputs, new outputs, `check_limits=False`",
              "py_f": "Python, F-ordered inputs, new outputs",
              "py_out": "Python, C-ordered inputs, `out=` preallocated"}
     names["floor"] = "memory floor (the same bytes copied, NumPy)"

@@ -29,7 +29,7 @@ print(ws.text)
 print(f"feasible area from the grid: {ws.area * 1e4:.2f} cm^2")
 
 # %%
-theta, x, y = robot.home + np.array([0.02, 0.002, -0.001])
+x, y, theta = robot.home + np.array([0.002, -0.001, 0.02])  # Robot's poses: [x, y, theta]
 report = nocdyn.pose(x, y, theta, robot=robot)
 print("u [rad]:", report.u, " cond(A):", round(report.cond_A, 3))
 modes = nocdyn.forward_kinematics(report.u, robot=robot, all_branches=True)
@@ -45,9 +45,9 @@ home = robot.home
 trajectory = out / "own.yaml"
 trajectory.write_text(f"""name: small circle about home
 duration: 0.2
-x:     {{offset: {home[1]!r}, harmonics: [{{amplitude: 0.002, frequency: 5, phase: 0}}]}}
-y:     {{offset: {home[2]!r}, harmonics: [{{amplitude: 0.002, frequency: 5, phase: 1.5707963267948966}}]}}
-theta: {{offset: {home[0]!r}, harmonics: [{{amplitude: 0.01, frequency: 5, phase: 0}}]}}
+x:     {{offset: {home[0]!r}, harmonics: [{{amplitude: 0.002, frequency: 5, phase: 0}}]}}
+y:     {{offset: {home[1]!r}, harmonics: [{{amplitude: 0.002, frequency: 5, phase: 1.5707963267948966}}]}}
+theta: {{offset: {home[2]!r}, harmonics: [{{amplitude: 0.01, frequency: 5, phase: 0}}]}}
 """)
 forces = nocdyn.inverse_dynamics(str(trajectory), robot=robot, rate=2000.0)
 peak = np.abs(forces.group("tau")).max(axis=0)

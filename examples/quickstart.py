@@ -27,7 +27,7 @@ def main():
     robot = nocdyn.Robot.load(args.robot)
     trajectory = nocdyn.Trajectory.paper(1)  # eq. 33: 10 Hz in x, y and theta
     t = np.arange(2000) / 10000.0  # 0.2 s at 10 kHz
-    P, dP, ddP = trajectory.evaluate(t)  # (N, 3) each: [theta, x, y] and derivatives
+    P, dP, ddP = trajectory.evaluate(t)  # (N, 3) each: [x, y, theta] and derivatives
     u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)  # (N, n) each
 
     # units by joint type: a prismatic actuator moves in mm and pushes in N, a revolute one
@@ -44,7 +44,7 @@ def main():
                           for i in range(robot.actuators)}}
     replayed = nocdyn.simulate(columns, robot=args.robot, duration=0.01)
     n = len(replayed)
-    error = max(np.abs(replayed[axis] - P[:n, k]).max() for k, axis in enumerate(("theta", "x", "y")))
+    error = max(np.abs(replayed[axis] - P[:n, k]).max() for k, axis in enumerate(("x", "y", "theta")))
     print(f"forward dynamics of these forces: largest pose error {error:.2g} (m, rad) over {n} samples")
     if not error <= 1e-7:
         raise SystemExit(f"the forces do not reproduce trajectory 1: pose error {error:.3g}")

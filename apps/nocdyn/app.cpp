@@ -47,9 +47,10 @@ std::string summary(std::string text) {
     return text;
 }
 
-/// Every command's options as JSON, for the Python parity test: per command, per option its
-/// names, its default as the command line prints it, whether it is a flag, positional or
-/// hidden (an old spelling).
+/// Every command's options as JSON, for the Python parity test and the vocabulary table
+/// (docs/vocabulary.md): per command, per option its names, its default as the command line
+/// prints it, whether it is a flag, positional or hidden (an old spelling), its type with the
+/// accepted range and unit, and its help.
 std::string describeOptions(CLI::App& app) {
     nlohmann::json commands = nlohmann::json::object();
     for (CLI::App* command : app.get_subcommands({})) {
@@ -64,7 +65,9 @@ std::string describeOptions(CLI::App& app) {
                                {"flag", option->get_expected_max() == 0},
                                {"hidden", option->get_group().empty()},
                                {"required", option->get_required()},
-                               {"default", option->get_default_str()}});
+                               {"default", option->get_default_str()},
+                               {"type", option->get_type_name()},
+                               {"help", option->get_description()}});
         }
         commands[command->get_name()] = options;
     }

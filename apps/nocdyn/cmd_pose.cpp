@@ -61,7 +61,8 @@ nlohmann::json complianceJson(const app::PoseCompliance& c) {
         free.push_back({{"direction", {v(0), v(1), v(2)}}, {"description", c.free_descriptions[i]}});
     }
     nlohmann::json out;
-    out["stiffness"] = {{"coordinates", coordinates}, {"matrix", toJson(c.K)}, {"units", units}, {"free_directions", free}};
+    out["stiffness"] = {
+        {"coordinates", coordinates}, {"matrix", toJson(c.K)}, {"units", units}, {"free_directions", free}};
     out["natural_frequencies"] = {c.frequencies(0), c.frequencies(1), c.frequencies(2)};
     out["mode_shapes"] = toJson(c.mode_shapes.transpose());  // one shape per entry
     if (c.elastodynamic_frequencies) {
@@ -76,8 +77,11 @@ void printJson(const app::PoseResult& r) {
     out["robot"] = r.robot;
     out["pose"] = {{"x", r.pose(0)}, {"y", r.pose(1)}, {"theta", r.pose(2)}};
     for (const app::PoseLimb& l : r.limbs) {
-        out["limbs"].push_back(
-            {{"limb", l.limb}, {"name", l.name}, {"type", l.type}, {"q", {l.q(0), l.q(1), l.q(2)}}, {"cond_J", l.cond_J}});
+        out["limbs"].push_back({{"limb", l.limb},
+                                {"name", l.name},
+                                {"type", l.type},
+                                {"q", {l.q(0), l.q(1), l.q(2)}},
+                                {"cond_J", l.cond_J}});
     }
     for (const app::PoseActuator& a : r.actuators) {
         out["actuators"].push_back(
@@ -110,7 +114,8 @@ void printCompliance(const app::PoseCompliance& c) {
         for (int k = 0; k < 3; ++k) std::printf("%s%-8s", k ? "  " : "", analysis::stiffnessUnit(r, k).c_str());
         std::printf("]\n");
     }
-    for (const std::string& text : c.free_descriptions) std::printf("free direction (no stiffness): %s\n", text.c_str());
+    for (const std::string& text : c.free_descriptions)
+        std::printf("free direction (no stiffness): %s\n", text.c_str());
     std::printf("natural frequencies (lumped model K v = w^2 M v) [Hz]: %.6g %.6g %.6g\n", c.frequencies(0),
                 c.frequencies(1), c.frequencies(2));
     std::printf("mode shapes (columns, mass-normalised; rows: x, y, theta):\n%s", formatMatrix(c.mode_shapes).c_str());
@@ -180,7 +185,9 @@ void addPoseCommand(CLI::App& app) {
     command->add_option("Y", options->y, "y of the platform's operation point C [m]")
         ->required()
         ->check(within(app::kLengthRange));
-    command->add_option("THETA", options->theta, "Platform rotation [rad]")->required()->check(within(app::kAngleRange));
+    command->add_option("THETA", options->theta, "Platform rotation [rad]")
+        ->required()
+        ->check(within(app::kAngleRange));
     addRobotOption(*command, options->robot);
     command->add_flag("--json", options->json, "Write JSON instead of text");
     command->callback([options] {

@@ -3,7 +3,9 @@
 // optionally split over std::threads.
 //
 // Layout: inputs are N x 3 arrays, row k = sample k ([theta, x_c, y_c], its rate, its
-// acceleration); outputs are N x n arrays (n = model.actuators), row k = sample k's u, du,
+// acceleration; or [x_c, y_c, theta], the order of the CSV tables and of Python, with
+// PoseColumns::x_y_theta: the columns are then read in that order by the same gathers, no
+// copy); outputs are N x n arrays (n = model.actuators), row k = sample k's u, du,
 // ddu and tau. Eigen's default column-major storage makes each column one coordinate of every
 // sample (structure of arrays); any strides work, row-major included (NumPy's C- and
 // F-ordered arrays and their strided views map onto these Refs without a copy).
@@ -30,8 +32,32 @@ struct BatchResult {
     Eigen::Index failed = 0;
     Eigen::Index first_failure = npos;
     Status status;  ///< of sample first_failure; ok when failed == 0
+    /// With ActuatorLimits::check: the first computed sample beyond an actuated joint's range
+    /// or velocity limit or an actuator's effort (npos: none), and that Status (the codes of
+    /// checkJointLimits and checkEffort). Its outputs are written all the same.
+    Eigen::Index first_beyond_limits = npos;
+    Status limits;
     [[nodiscard]] bool ok() const { return failed == 0; }
 };
+
+/// Whether a batch checks, from each computed sample's u, du and tau, the actuated joints' ranges
+/// and velocity limits (limb by limb, joint by joint, as checkJointLimits) and then every
+/// actuator's effort (as checkEffort). Passive joints' limits need the full path (their q).
+enum class ActuatorLimits { ignore, check };
+
+/// ActuatorLimits::check of one computed sample (u, du, tau of size n): the first limit
+/// exceeded, or ok.
+[[nodiscard]] Status checkActuatorLimits(const Model& model, const ActuatorVector& u, const ActuatorVector& du,
+                                         const ActuatorVector& tau);
+
+/// The order of the three pose columns of a batch's arrays: the core's twist order
+/// [theta, x, y], or the tables' and Python's [x, y, theta].
+enum class PoseColumns { theta_x_y, x_y_theta };
+
+/// The column that holds the core's pose coordinate i (0 theta, 1 x, 2 y) in `order`.
+[[nodiscard]] constexpr int poseColumn(PoseColumns order, int i) {
+    return order == PoseColumns::theta_x_y ? i : (i + 2) % 3;
+}
 
 /// An N x m array of any (non-negative) strides: Eigen's default layout, a row-major one or a
 /// strided view of either, referred to without a copy.
@@ -42,9 +68,18 @@ using BatchOutput = Eigen::Ref<Eigen::ArrayXXd, 0, Eigen::Stride<Eigen::Dynamic,
 /// `threads`: 1 runs on the calling thread; 0 uses one per hardware thread; more splits the
 /// samples into that many contiguous chunks (the calling thread runs one), capped at the
 /// hardware threads and at one chunk per 8 samples.
-/// The four outputs must have the same stride from one actuator to the next.
+/// The four outputs must have the same stride from one actuator to the next. `order`: the
+/// order of p's, dp's and ddp's columns. `limits`: see ActuatorLimits (checked on the values
+/// still in registers, no pass over the outputs; after a chunk's first violation, no more).
 /// Throws nocdyn::Error when the arrays' sizes disagree (before any sample is computed).
 BatchResult inverseDynamicsBatch(const Model& model, const BatchInput& p, const BatchInput& dp, const BatchInput& ddp,
-                                 BatchOutput u, BatchOutput du, BatchOutput ddu, BatchOutput tau, unsigned threads = 1);
+                                 BatchOutput u, BatchOutput du, BatchOutput ddu, BatchOutput tau, unsigned threads = 1,
+                                 PoseColumns order = PoseColumns::theta_x_y,
+                                 ActuatorLimits limits = ActuatorLimits::ignore);
+
+/// Row k of a batch's pose array in the core's twist order [theta, x, y].
+[[nodiscard]] inline Vector3 poseRow(const BatchInput& a, Eigen::Index k, PoseColumns order) {
+    return {a(k, poseColumn(order, 0)), a(k, poseColumn(order, 1)), a(k, poseColumn(order, 2))};
+}
 
 }  // namespace nocdyn

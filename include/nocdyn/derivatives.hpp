@@ -67,9 +67,10 @@ Status forwardDynamicsDerivatives(const Model& model, Data& data, const Pose& p,
 /// The inverse dynamics' derivatives of N samples: (p, dp, ddp), N x 3 each -> d tau/d p,
 /// d tau/d dp, d tau/d ddp, N x 3n each, row k = sample k, column 3 a + i = d tau_a / d x_i
 /// (so that a row-major N x 3n array is an N x n x 3 one). `threads` as inverseDynamicsBatch.
+/// `order`: the pose order of the inputs' columns and of i in the outputs' columns.
 /// A failed sample's outputs are NaN. Throws nocdyn::Error when the sizes disagree.
 BatchResult inverseDynamicsDerivativesBatch(const Model& model, const BatchInput& p, const BatchInput& dp,
                                             const BatchInput& ddp, BatchOutput d_p, BatchOutput d_dp, BatchOutput d_ddp,
-                                            unsigned threads = 1);
+                                            unsigned threads = 1, PoseColumns order = PoseColumns::theta_x_y);
 
 }  // namespace nocdyn

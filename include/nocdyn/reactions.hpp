@@ -83,9 +83,10 @@ Status inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& 
 /// -> `out`, N x 9 limbs, row k = sample k's Reactions::joint limb by limb, joint by joint,
 /// [fx, fy, m] each (NumPy's (N, limbs, 3, 3) in C order). A failed sample's row is NaN; the
 /// result names the first failure and its Status (inverseDynamics's). `threads` as in
-/// inverseDynamicsBatch. Nothing is allocated per sample. Throws nocdyn::Error when the arrays'
-/// sizes disagree (before any sample is computed).
+/// inverseDynamicsBatch, `order` the pose order of the inputs' columns. Nothing is allocated
+/// per sample. Throws nocdyn::Error when the arrays' sizes disagree (before any sample is
+/// computed).
 BatchResult reactionsBatch(const Model& model, const BatchInput& p, const BatchInput& dp, const BatchInput& ddp,
-                           BatchOutput out, unsigned threads = 1);
+                           BatchOutput out, unsigned threads = 1, PoseColumns order = PoseColumns::theta_x_y);
 
 }  // namespace nocdyn

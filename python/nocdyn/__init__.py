@@ -4,8 +4,12 @@ The Python face of the nocdyn C++ library (the general model of any planar paral
 described by a per-limb robot file). Everything is in SI units: metres, radians, seconds,
 kilograms, newtons (newton metres for revolute actuators).
 
-A platform pose is p = [theta, x, y] (rad, m, m), its rate dp and acceleration ddp in the same
-order. Arrays of samples have one row per sample: poses are (N, 3) float64 arrays, actuator
+The vocabulary, the same as the command line's CSV tables: a platform pose is p = [x, y, theta]
+(m, m, rad), its rate dp and acceleration ddp in the same order, and so is every row or column
+that runs over the pose coordinates (derivatives, linearised states); SI units; limbs, joints
+and actuators are numbered from 1 where a person reads the number (as the command line
+names them), array axes from 0; the core keeps its internal twist order [theta, x, y] inside.
+Arrays of samples have one row per sample: poses are (N, 3) float64 arrays, actuator
 quantities (N, n) with n = robot.actuators.
 
 Quick start::
@@ -14,7 +18,7 @@ Quick start::
     robot = nocdyn.Robot.load("robots/paper-3prr.yaml")    # or nocdyn.Robot.example("3-rrr")
     traj = nocdyn.Trajectory.paper(1)                        # eq. 33 of the paper
     t = np.arange(2000) / 10000.0
-    P, dP, ddP = traj.evaluate(t)                            # (N, 3) each
+    P, dP, ddP = traj.evaluate(t)                            # (N, 3) each: [x, y, theta]
     u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)     # (N, n) each, GIL released
 
 Every command of the `nocdyn` command line is a function here, running the command's own code
@@ -80,6 +84,16 @@ bodies of limbs 1..m, second bodies, then the platform)."""
 
 
 _PRIOR_KEYS = ("mass", "com_x", "com_y", "inertia")
+
+VOCABULARY = ("Vocabulary: a pose is [x, y, theta] (m, m, rad), its rates in the same order, as in the command "
+              "line's CSV tables; SI units; limbs, joints and actuators numbered from 1; array axes from 0; the "
+              "core's internal twist order [theta, x, y] stays inside the core.")
+
+
+def _vocabulary(function):
+    """Appends the one sentence of the vocabulary to a docstring that takes or returns a pose."""
+    function.__doc__ = (function.__doc__ or "").rstrip() + "\n\n        " + VOCABULARY + "\n        "
+    return function
 
 # --- the one guard of every entry: numbers as the command line checks them, arrays of any
 # memory order read correctly (copied when the compiled part cannot view them), outputs that
@@ -263,6 +277,10 @@ class Robot:
     Create one with Robot.load(path), Robot.from_yaml(text), Robot.example(name) (the robots
     shipped in robots/: paper-3prr, paper-3prr-general, 3-rrr, 3-rpr, 4-rrr) or Robot.paper()
     (the paper's 3-PRR prototype). A Robot is immutable and may be shared between threads.
+
+    Vocabulary: a pose is [x, y, theta] (m, m, rad), its rates in the same order, as in the command
+    line's CSV tables; SI units; limbs, joints and actuators numbered from 1; array axes from 0; the
+    core's internal twist order [theta, x, y] stays inside the core.
     """
 
     __slots__ = ("_core",)
@@ -323,7 +341,7 @@ class Robot:
 
     @property
     def home(self):
-        """Platform pose at home [theta, x, y] (rad, m, m), shape (3,)."""
+        """Platform pose at home [x, y, theta] (m, m, rad), shape (3,)."""
         return self._core.home
 
     @property
@@ -336,8 +354,10 @@ class Robot:
         return self._core.limb_info()
 
     def actuator_info(self):
-        """Per actuator, in file order: dict(limb, limb_name, joint, type 'P' or 'R',
-        lower, upper [m or rad], effort [N or N m], velocity [m/s or rad/s]) (inf when absent)."""
+        """Per actuator, in file order (list index a is actuator a + 1, column a of u and tau):
+        dict(limb, limb_name, joint, type 'P' or 'R', lower, upper [m or rad], effort [N or N m],
+        velocity [m/s or rad/s]) (inf when absent); limb and joint are numbered from 1 as the
+        command line names them (joint 1 at the base)."""
         return self._core.actuator_info()
 
     def to_yaml(self):
@@ -348,7 +368,7 @@ class Robot:
         return f"<nocdyn.Robot {self.name!r}: {self.limbs} limbs, {self.actuators} actuators>"
 
     def svg(self, pose=None):
-        """The robot drawn as SVG text at pose [theta, x, y] (default home): base, limbs, platform,
+        """The robot drawn as SVG text at pose [x, y, theta] (default home): base, limbs, platform,
         C, actuated joints marked (green). Jupyter shows a Robot this way (_repr_svg_)."""
         from .drawing import robot_svg
         return robot_svg(self, pose)
@@ -357,13 +377,15 @@ class Robot:
         return self.svg()
 
     # --- inverse dynamics -------------------------------------------------------------
-    def inverse_dynamics(self, p, dp, ddp, *, matrices=False, out=None, threads=1, check=True):
+    @_vocabulary
+    def inverse_dynamics(self, p, dp, ddp, *, matrices=False, out=None, threads=1, check=True, check_limits=True):
         """Actuator variables, rates, accelerations and forces for platform motions.
 
-        One sample: p, dp, ddp of shape (3,) ([theta, x, y], its rate and acceleration) give
+        One sample: p, dp, ddp of shape (3,) ([x, y, theta], its rate and acceleration) give
         InverseDynamics(u, du, ddu, tau), each of shape (n,). With matrices=True (one sample
         only) the full NOC path also returns I, C (3, 3) and T (bodies, 3, 3)
-        (InverseDynamicsMatrices).
+        (InverseDynamicsMatrices; when the robot is redundant their pose rows and columns are
+        in the order [x, y, theta], and T_i's rows, body i's twist, are [v_x, v_y, omega]).
 
         Batch: p, dp, ddp of shape (N, 3), float64, give u, du, ddu, tau of shape (N, n). The
         inputs are read in place, whatever their memory order (C, Fortran, or a strided view:
@@ -379,13 +401,22 @@ class Robot:
         such sample; its row, like every failed one, is NaN), and so does a result that is not
         finite (rates or accelerations so large that the forces overflow). check=False returns
         instead, leaving NaN rows for the failed samples.
+
+        Limits, as `nocdyn inverse-dynamics` checks them: with check_limits=True (the default) a
+        sample where a joint leaves its range or exceeds its velocity limit, or an actuator its
+        effort, raises nocdyn.Error with the command line's reason ("sample K: <reason>" for a
+        batch: the first such sample; the outputs are filled all the same). They are checked on
+        the results u, du, tau when every limited joint is actuated (no second inverse dynamics;
+        a batch checks them inside its kernel, on values still in registers, at no measurable
+        cost), else by the full path at every sample (a range on a passive joint needs its q,
+        which the batch's kernel does not compute); check_limits=False checks none.
         """
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         p_arr = _floats(p, "p")
         if p_arr.ndim == 1:
             if out is not None:
                 raise Error("out: only for a batch of (N, 3) arrays")
-            result = self._core._inverse_dynamics_sample(p_arr, dp, ddp, bool(matrices))
+            result = self._core._inverse_dynamics_sample(p_arr, dp, ddp, bool(matrices), bool(check_limits))
             if check:
                 _require_finite(result, "the inverse dynamics")
             return InverseDynamicsMatrices(*result) if matrices else InverseDynamics(*result)
@@ -402,19 +433,23 @@ class Robot:
             out = tuple(np.empty(shape) for _ in range(4))
         else:
             out = _outputs(out, ("u", "du", "ddu", "tau"), shape, ((p_arr, "p"), (dp_arr, "dp"), (ddp_arr, "ddp")))
-        failed, first, message = self._core._inverse_dynamics_batch(p_arr, dp_arr, ddp_arr, *out, threads=threads)
+        failed, first, message, beyond, reason = self._core._inverse_dynamics_batch(
+            p_arr, dp_arr, ddp_arr, *out, threads=threads, check_limits=bool(check_limits))
         # the compiled batch counts a sample whose results overflow as failed (its row NaN):
         # no second pass over the outputs here
         if failed and check:
             raise Error(f"sample {first}: {message} ({failed} of {n} samples failed)")
+        if beyond >= 0:
+            raise Error(f"sample {beyond}: {reason}")
         return InverseDynamics(*out)
 
+    @_vocabulary
     def inverse_dynamics_derivatives(self, p, dp, ddp, *, threads=1, check=True):
         """Exact first derivatives of the actuator forces: (d tau/d p, d tau/d dp, d tau/d ddp).
 
         One sample, p, dp, ddp of shape (3,), gives three arrays of shape (n, 3); a batch,
-        shape (N, 3) each, three of shape (N, n, 3). Row a is actuator a, columns the pose
-        order [theta, x, y] of inverse_dynamics; d tau/d ddp is the mass matrix mapped to the
+        shape (N, 3) each, three of shape (N, n, 3). Row a is actuator a + 1, columns the pose
+        order [x, y, theta] of inverse_dynamics; d tau/d ddp is the mass matrix mapped to the
         actuators. Forward-mode automatic differentiation: exact to rounding. Coulomb friction
         is differentiated with its sign held (at a joint rate of exactly 0 its force and
         derivative are 0). Errors and threads as in inverse_dynamics.
@@ -435,29 +470,37 @@ class Robot:
             raise Error(f"sample {first}: {message} ({failed} of {n} samples failed)")
         return d_p, d_dp, d_ddp
 
+    @_vocabulary
     def linearize(self, p, dp, tau, *, output=None):
-        """The rigid robot linearised at the state (p, dp) ([theta, x, y] and its rate) under the
-        actuator forces tau (n,): (A, B) with the state x = [p; dp] and the input tau,
+        """The rigid robot linearised at the state (p, dp) ([x, y, theta] and its rate) under the
+        actuator forces tau (n,): (A, B) with the state x = [p; dp] = [x, y, theta, dx/dt, dy/dt,
+        dtheta/dt] and the input tau,
         dx/dt = A x + B tau (deviations from the operating point), A (6, 6), B (6, n), from the
         exact derivatives of the forward dynamics. output="acceleration" or "actuators" also
-        returns C and D of that output (y = C x + D tau): (A, B, C, D).
+        returns C and D of that output (y = C x + D tau, y = ddp in the order [x, y, theta], or
+        u): (A, B, C, D).
         """
         A, B, C, D = self._core._linearize(p, dp, tau, output or "acceleration")
         return (A, B) if output is None else (A, B, C, D)
 
-    def reactions(self, p, dp, ddp, *, threads=1, check=True):
+    @_vocabulary
+    def reactions(self, p, dp, ddp, *, threads=1, check=True, check_limits=True):
         """Every joint's reaction with the inverse dynamics' forces (the minimum-norm ones when
         redundant), as in `nocdyn inverse-dynamics --reactions`: base frame, the wrench of the
         joint's inboard body on its outboard body, the joint's effort and friction taken out
         (R: the force at the axis, m = 0; P: the force normal to the joint and the couple about
         the outboard body's c.o.m.).
 
-        p, dp, ddp of shape (N, 3) ([theta, x, y], its rate and acceleration; float64, read in
+        p, dp, ddp of shape (N, 3) ([x, y, theta], its rate and acceleration; float64, read in
         place whatever their memory order) give an array of shape (N, limbs, 3, 3): sample,
-        limb, joint (file order), [fx, fy, m] [N, N, N m]. One sample, shape (3,) each, gives
-        (limbs, 3, 3). The GIL is released during the computation; threads as in
-        inverse_dynamics. A sample out of reach or singular raises nocdyn.Error "sample K:
-        <reason>" (the first such; failed rows are NaN); check=False returns instead.
+        limb, joint (file order: index j is limb j + 1, k joint k + 1), [fx, fy, m] [N, N, N m].
+        One sample, shape (3,) each, gives (limbs, 3, 3). The GIL is released during the
+        computation; threads as in inverse_dynamics. A sample out of reach or singular raises
+        nocdyn.Error "sample K: <reason>" (the first such; failed rows are NaN); check=False
+        returns instead. check_limits=True (the default, as `nocdyn inverse-dynamics
+        --reactions`) raises nocdyn.Error at the first sample beyond a joint's range or
+        velocity limit or an actuator's effort (checked by the full path at every sample);
+        check_limits=False checks none.
         """
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         p_arr = _floats(p, "p")
@@ -480,16 +523,22 @@ class Robot:
             raise Error(message if single else f"sample {first}: {message} ({failed} of {n} samples failed)")
         if check:
             _require_finite((out.reshape(n, -1),), "the reactions")
+        if check_limits:
+            beyond, reason = self._core._limits_batch(p_arr, dp_arr, ddp_arr)
+            if beyond >= 0:
+                raise Error(reason if single else f"sample {beyond}: {reason}")
         return out[0] if single else out
 
-    def trajectory_dynamics(self, trajectory, rate=10000.0, duration=None, *, allow_limits=False):
+    @_vocabulary
+    def trajectory_dynamics(self, trajectory, rate=10000.0, duration=None, *, allow_limits=False, check_limits=True):
         """The command line's `nocdyn inverse-dynamics`: samples t_k = k / rate over `duration`
         [s] (default: the trajectory's, else 0.2 s), with its checks between samples (joint
         ranges, velocities, efforts, reach) and its messages ("t = ... s: <reason>").
 
-        Returns a dict of arrays: t (N,), p, dp, ddp (N, 3), u, du, ddu, tau (N, n), kinetic (N,)
-        [J], and warnings (the limit violations when allow_limits=True, which records them
-        instead of raising)."""
+        Returns a dict of arrays: t (N,), p, dp, ddp (N, 3) ([x, y, theta], the CSV's column
+        order), u, du, ddu, tau (N, n), kinetic (N,) [J], and warnings (the limit violations
+        when allow_limits=True or check_limits=False, which record them instead of raising, as
+        `--allow-limits` does)."""
         if not isinstance(trajectory, Trajectory):
             raise TypeError("trajectory: expected a nocdyn.Trajectory")
         rate = _number(rate, "rate", 1.0, 1e8)
@@ -500,7 +549,8 @@ class Robot:
             # 19 arrays' worth of 8 bytes a sample: 1e7 samples are about 1.5 GB
             raise Error(f"duration * rate = {span * rate:.6g} samples: at most {_MAX_SAMPLES:.0e} are held in "
                         "memory (the command line's inverse-dynamics streams any number to a file)")
-        return self._core._sample_trajectory(trajectory._core, rate, duration, bool(allow_limits))
+        return self._core._sample_trajectory(trajectory._core, rate, duration,
+                                             bool(allow_limits) or not bool(check_limits))
 
     # --- identification -------------------------------------------------------------
     def parameter_names(self):
@@ -525,10 +575,12 @@ class Robot:
         return Robot(self._core._with_payload(_number(mass, "mass"), [float(v) for v in com],
                                               _number(inertia, "inertia")))
 
+    @_vocabulary
     def regressor(self, p, dp, ddp):
         """The inverse-dynamics regressor Y, linear in the standard parameters: tau = Y pi.
 
-        One sample: p, dp, ddp of shape (3,) give Y of shape (n, P). A batch: (N, 3) float64
+        One sample: p, dp, ddp of shape (3,) ([x, y, theta], rate, acceleration) give Y of
+        shape (n, P). A batch: (N, 3) float64
         arrays (read in place, any memory order) give the stacked regressor of shape (N * n, P),
         rows k * n .. k * n + n - 1 those of sample k (reshape(N, n, P) separates them). A
         sample out of reach or singular raises nocdyn.Error ("sample K: <reason>")."""
@@ -595,10 +647,11 @@ class Robot:
         return PayloadEstimate(result)
 
     # --- direct kinematics ----------------------------------------------------------
+    @_vocabulary
     def forward_kinematics(self, u, *, tolerance=1e-9):
         """Every platform pose the robot assembles in with actuator values u (n values, m or rad).
 
-        Returns a list (sorted by theta) of dicts: pose [theta, x, y], branch (each limb's
+        Returns a list (sorted by theta) of dicts: pose [x, y, theta], branch (each limb's
         inverse-kinematics branch, +1/-1, 0 for limbs with one solution), working (True for the
         robot's working mode: every limb on its home branch), u_error (how well the pose gives
         back u) and condition (large next to a singularity). Empty when u does not assemble.
@@ -610,6 +663,7 @@ class Robot:
             mode["degenerate"] = result["degenerate"]
         return modes
 
+    @_vocabulary
     def state_from_actuators(self, u, du=None, *, assembly_mode=0):
         """The state whose actuator values are u (and rates du; None: at rest), as ``nocdyn simulate``
         starts from a first row of u1..un (du1..dun): among the assembly modes with every limb on its
@@ -617,13 +671,14 @@ class Robot:
         forward_kinematics lists the working ones; dp from du by least squares (exact with three
         actuators; with more, du must be the rates of a platform motion).
 
-        Returns a dict: p [theta, x, y], dp (3,), mode (1-based), working (how many working modes),
+        Returns a dict: p [x, y, theta], dp (3,) in the same order, mode (1-based), working (how many working modes),
         modes (how many on any branches). Raises nocdyn.Error when no working mode has u."""
         return self._core._state_from_actuators(_input(u, "u", (self.actuators,)),
                                                 None if du is None else _input(du, "du", (self.actuators,)),
                                                 _integer(assembly_mode, "assembly_mode", 0, 12))
 
     # --- forward dynamics -----------------------------------------------------------
+    @_vocabulary
     def simulate(self, t, forces, force_times=None, *, p0=None, dp0=(0.0, 0.0, 0.0), u0=None, du0=None,
                  assembly_mode=0, interpolation="cubic", rtol=1e-10, atol=1e-12, max_step=1e-2):
         """Forward dynamics: the motion under given actuator forces.
@@ -631,11 +686,11 @@ class Robot:
         t: increasing output times [s] (from 0); forces: (M, n) actuator forces [N or N m] at
         force_times (M,) (default: t itself), interpolated ('cubic', the default as on the command
         line: uniformly spaced times; 'linear' or 'hold') by the command line's ForceSignal and
-        held beyond their ends; p0, dp0: initial pose (default home) and rate, or instead u0 (and
+        held beyond their ends; p0, dp0: initial pose [x, y, theta] (default home) and rate, or instead u0 (and
         du0): initial actuator values and rates, the state by state_from_actuators (assembly_mode
         as there). Integrated by Dormand-Prince 5(4) with the given tolerances.
 
-        Returns a dict of arrays at t: t, p, dp (len(t), 3), u, du, tau (len(t), n). Raises
+        Returns a dict of arrays at t: t, p, dp (len(t), 3) ([x, y, theta]), u, du, tau (len(t), n). Raises
         nocdyn.Error "t = ... s: <reason>" where the motion leaves the workspace or turns
         singular."""
         t = _input(_floats(t, "t").reshape(-1), "t", (None,))
@@ -670,8 +725,8 @@ class Robot:
         call as the command line's, so that the numbers are the same.
 
         Returns a list of dicts: axis, frequency [Hz], amplitude [rad or m], limit ('range',
-        'velocity', 'effort', 'workspace', 'none'), limb, joint, actuator (0-based, -1 when not
-        applicable), kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
+        'velocity', 'effort', 'workspace', 'none'), limb, joint, actuator (numbered from 1 as
+        the command line's CSV, 0 when not applicable), kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
         `nocdyn envelope --points`; ``frequencies`` is its old name)."""
         if frequencies is not None:
             points = frequencies
@@ -685,25 +740,31 @@ class Robot:
 
 
     # --- stiffness and natural frequencies --------------------------------------------
-    stiffness_coordinates = ("theta [rad]", "x [m]", "y [m]")
+    # the order of the command line's stiffness report (analysis::kReportedCoordinates)
+    stiffness_coordinates = ("x [m]", "y [m]", "theta [rad]")
 
+    @_vocabulary
     def stiffness(self, p):
-        """The 3 x 3 Cartesian stiffness K of the platform at pose p = (theta, x, y) (virtual joint
+        """The 3 x 3 Cartesian stiffness K of the platform at pose p = [x, y, theta] (virtual joint
         method on the compliance of the robot file: joint `stiffness`, body `elastic`; gravity
-        preload ignored), as a numpy array in the order Robot.stiffness_coordinates: dQ = K dp,
-        Q = (moment about C [N m], f_x [N], f_y [N]); units N m/rad, N, N/rad, N/m.
+        preload ignored), as a numpy array in the order Robot.stiffness_coordinates, x, y, theta:
+        the pose's order and the command line's stiffness report's (`nocdyn pose`), so that the
+        numbers compare one to one with it: dQ = K dp,
+        Q = (f_x [N], f_y [N], moment about C [N m]); units N/m, N/rad, N, N m/rad.
         Raises nocdyn.Error when the robot declares no compliance, a limb is rigid, or the pose is
         out of reach."""
         return self._core._stiffness(p)["matrix"]
 
+    @_vocabulary
     def natural_frequencies(self, p, *, modes=False, model="lumped"):
-        """Natural frequencies [Hz], ascending, at pose p = (theta, x, y).
+        """Natural frequencies [Hz], ascending, at pose p = [x, y, theta].
 
         model='lumped' (K v = w^2 M v, M the rigid bodies' mass matrix in the pose coordinates):
         3 frequencies; model='elastodynamic' (every body keeps its inertia, every virtual spring
         is a degree of freedom): one per degree of freedom. With modes=True returns
         (frequencies, shapes): shapes' columns are the platform's displacement in each mode, rows
-        in the order Robot.stiffness_coordinates (lumped shapes are mass-normalised)."""
+        in the order Robot.stiffness_coordinates, x, y, theta, as `nocdyn pose` reports them
+        (lumped shapes are mass-normalised)."""
         if model not in ("lumped", "elastodynamic"):
             raise Error("model: expected 'lumped' or 'elastodynamic', got " + repr(model))
         elastodynamic = model == "elastodynamic"
@@ -760,10 +821,11 @@ class Trajectory:
         return cls(_nocdyn.Trajectory.from_yaml(text, source))
 
     @classmethod
+    @_vocabulary
     def harmonic(cls, *, theta=(), x=(), y=(), offset=(0.0, 0.0, 0.0), duration=None, name="harmonic"):
         """A trajectory from harmonics: theta, x, y are sequences of (amplitude, frequency,
-        phase) triples [rad or m, Hz, rad]; offset is [theta, x, y] (rad, m, m); duration [s]
-        is optional."""
+        phase) triples [rad or m, Hz, rad]; offset is the pose [x, y, theta] (m, m, rad);
+        duration [s] is optional."""
         def terms(axis, values):
             out = []
             for h in values:
@@ -776,10 +838,10 @@ class Trajectory:
             return out
         off = [float(v) for v in offset]
         if len(off) != 3 or not all(np.isfinite(off)):
-            raise Error("offset: expected 3 finite values [theta, x, y]")
+            raise Error("offset: expected 3 finite values [x, y, theta]")
         if duration is not None and not (np.isfinite(duration) and duration > 0):
             raise Error("duration: expected a positive number of seconds")
-        return cls(_nocdyn.Trajectory(name, off[0], terms("theta", theta), off[1], terms("x", x), off[2],
+        return cls(_nocdyn.Trajectory(name, off[2], terms("theta", theta), off[0], terms("x", x), off[1],
                                       terms("y", y), duration))
 
     @property
@@ -803,9 +865,10 @@ class Trajectory:
         offset, terms = self._core._axis(axis)
         return offset, [tuple(h) for h in terms]
 
+    @_vocabulary
     def evaluate(self, t):
         """p, dp/dt, d2p/dt2 at the times t [s] (any shape-(N,) sequence): three (N, 3) arrays
-        with columns [theta, x, y] (exact derivatives)."""
+        with columns [x, y, theta] (exact derivatives), ready for Robot.inverse_dynamics."""
         result = self._core._evaluate(_input(_floats(t, "t").reshape(-1), "t", (None,)))
         _require_finite(result, "the trajectory")
         return result

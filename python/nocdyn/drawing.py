@@ -13,7 +13,7 @@ _WIDTH, _HEIGHT, _MARGIN = 420, 420, 30
 
 
 def robot_svg(robot, pose=None):
-    """SVG text of the robot at pose [theta, x, y] (default: home)."""
+    """SVG text of the robot at pose [x, y, theta] (default: home)."""
     pose = robot.home if pose is None else np.asarray(pose, dtype=float).reshape(3)
     d = robot._core._drawing([float(v) for v in pose])
     points = [d["C"]] + list(d["platform"])

@@ -132,19 +132,6 @@ void bindCommands(py::module_& m) {
     });
     m.def("_run_command", &runCommand, py::arg("arguments"), py::arg("progress") = nullptr,
           "Runs `nocdyn <arguments>` in this process (GIL released): returns (stdout, stderr).");
-    m.def("_options_json", &cli::optionsJson, "Every command's options as JSON (as `nocdyn --help-json`).");
-    m.def(
-        "_main",
-        [](const std::vector<std::string>& argv) {
-            std::vector<const char*> pointers;
-            for (const std::string& a : argv) pointers.push_back(a.c_str());
-            std::fflush(stdout);
-            const int status = cli::runCommandLine(static_cast<int>(pointers.size()), pointers.data());
-            std::cout.flush();
-            std::fflush(stdout);
-            return status;
-        },
-        py::arg("argv"), "The `nocdyn` command line with these arguments (argv[0] the program); the exit status.");
 }
 
 }  // namespace nocdyn::python

@@ -21,6 +21,7 @@
 
 #include "app_bindings.hpp"
 #include "cli_commands.hpp"
+#include "cli_main.hpp"
 #include "nocdyn/batch.hpp"
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/analysis/linearization.hpp"
@@ -40,6 +41,7 @@
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/pose_order.hpp"
 #include "nocdyn/reactions.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/trajectory.hpp"
@@ -107,11 +109,41 @@ StridedMap map(const ArrayView& v) {
     return {v.data, v.rows, v.cols, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(v.col_stride, v.row_stride)};
 }
 
-/// A 3-vector from anything NumPy reads as three floats.
+// The vocabulary of every array Python passes or receives: a pose p, its rates dp, ddp and
+// every row or column that runs over pose coordinates in the tables' order [x, y, theta]. The
+// core keeps its twist order [theta, x, y]; the order changes here, at the boundary, and in the
+// batches' gathers (PoseColumns::x_y_theta).
+constexpr PoseColumns kPythonPose = PoseColumns::x_y_theta;
+
+/// The core's coordinate (0 theta, 1 x, 2 y) at Python's index c (0 x, 1 y, 2 theta), as
+/// pose_order.hpp's userPose and corePose map them.
+constexpr int twistIndex(int c) { return (c + 1) % 3; }
+static_assert(poseColumn(kPythonPose, twistIndex(0)) == 0 && poseColumn(kPythonPose, twistIndex(2)) == 2);
+
+/// A pose (or its rate) from anything NumPy reads as three floats [x, y, theta], in the core's
+/// twist order.
 Eigen::Vector3d vector3(const py::handle& x, const char* name) {
     const auto a = py::array_t<double, py::array::forcecast>::ensure(x);
-    if (!a || a.ndim() != 1 || a.shape(0) != 3) throw Error(std::string(name) + ": expected 3 values [theta, x, y]");
-    return {a.at(0), a.at(1), a.at(2)};
+    if (!a || a.ndim() != 1 || a.shape(0) != 3) throw Error(std::string(name) + ": expected 3 values [x, y, theta]");
+    return corePose(Vector3(a.at(0), a.at(1), a.at(2)));
+}
+
+/// A pose (or its rate) of the core as Python's [x, y, theta].
+py::array_t<double> poseArray(const Eigen::Vector3d& v) {
+    const Vector3 user = userPose(v);
+    py::array_t<double> a(3);
+    for (int c = 0; c < 3; ++c) a.mutable_at(c) = user(c);
+    return a;
+}
+
+/// m with its rows (`rows`) and/or columns (`cols`) that run over pose coordinates, in blocks
+/// of three (p, then dp), put in Python's order.
+Eigen::MatrixXd inPythonOrder(const Eigen::MatrixXd& m, bool rows, bool cols) {
+    const auto at = [](Eigen::Index i) { return i / 3 * 3 + twistIndex(static_cast<int>(i % 3)); };
+    Eigen::MatrixXd out(m.rows(), m.cols());
+    for (Eigen::Index r = 0; r < m.rows(); ++r)
+        for (Eigen::Index c = 0; c < m.cols(); ++c) out(r, c) = m(rows ? at(r) : r, cols ? at(c) : c);
+    return out;
 }
 
 ActuatorVector actuatorVector(const Model& model, const py::handle& x, const char* name) {
@@ -162,29 +194,83 @@ double threadCpuSeconds() {
 
 // --- inverse dynamics ---------------------------------------------------------------
 
+/// The command line's checks of a computed sample (analysis/sampling.cpp, `nocdyn
+/// inverse-dynamics`): every joint's range and velocity limits, then every actuator's effort.
+Status sampleLimits(const Model& model, const Data& data) {
+    if (const Status s = checkJointLimits(model, data); !s) return s;
+    return checkEffort(model, data);
+}
+
+/// Whether every joint with a range or velocity limit is actuated: then u and du (the actuated
+/// joints' q and rate) are all that checkJointLimits reads that can fail.
+bool limitsOnActuatedJointsOnly(const Model& model) {
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const JointLimits& lim = limb.limits[k];
+            if (limb.actuator[k] < 0 && !(lim.lower == -INFINITY && lim.upper == INFINITY && lim.velocity == INFINITY))
+                return false;
+        }
+    }
+    return true;
+}
+
 py::tuple inverseDynamicsSample(const Robot& robot, const py::handle& p, const py::handle& dp, const py::handle& ddp,
-                                bool matrices) {
+                                bool matrices, bool check_limits) {
     const Model& model = *robot.model;
     const Pose p3 = vector3(p, "p");
     const Twist dp3 = vector3(dp, "dp"), ddp3 = vector3(ddp, "ddp");
     Data data(model);
+    // the limits of passive joints need every joint's q and rate: the full path
+    const bool actuated_only = limitsOnActuatedJointsOnly(model);
+    const bool full = matrices || (check_limits && !actuated_only);
     const Status status =
-        matrices ? inverseDynamics(model, data, p3, dp3, ddp3) : inverseDynamicsFast(model, data, p3, dp3, ddp3);
+        full ? inverseDynamics(model, data, p3, dp3, ddp3) : inverseDynamicsFast(model, data, p3, dp3, ddp3);
     if (!status) throw Error(describe(status, model));
+    if (check_limits) {
+        const Status limits =
+            actuated_only ? checkActuatorLimits(model, data.u, data.du, data.tau) : sampleLimits(model, data);
+        if (!limits) throw Error(describe(limits, model));
+    }
     if (!matrices) return py::make_tuple(toArray(data.u), toArray(data.du), toArray(data.ddu), toArray(data.tau));
+    // the independent coordinates are the pose when redundant: I, C and T's columns then in
+    // Python's pose order; T_i's rows are body i's twist, [v_x, v_y, omega] in that order too
+    const bool pose_coordinates = model.coordinates == Coordinates::platform;
     py::array_t<double> T({static_cast<py::ssize_t>(model.bodies), py::ssize_t{3}, py::ssize_t{3}});
-    for (int i = 0; i < model.bodies; ++i)
+    for (int i = 0; i < model.bodies; ++i) {
+        const Eigen::MatrixXd Ti = inPythonOrder(data.T[static_cast<std::size_t>(i)], true, pose_coordinates);
         for (int r = 0; r < 3; ++r)
-            for (int c = 0; c < 3; ++c) T.mutable_at(i, r, c) = data.T[static_cast<std::size_t>(i)](r, c);
-    return py::make_tuple(toArray(data.u), toArray(data.du), toArray(data.ddu), toArray(data.tau), toArray(data.I),
-                          toArray(data.C), T);
+            for (int c = 0; c < 3; ++c) T.mutable_at(i, r, c) = Ti(r, c);
+    }
+    const Matrix3 I = inPythonOrder(data.I, pose_coordinates, pose_coordinates);
+    const Matrix3 C = inPythonOrder(data.C, pose_coordinates, pose_coordinates);
+    return py::make_tuple(toArray(data.u), toArray(data.du), toArray(data.ddu), toArray(data.tau), toArray(I),
+                          toArray(C), T);
+}
+
+/// The first sample of N, computed by a batch, beyond a limit sampleLimits checks, and that
+/// Status (index -1: none; a failed sample, NaN, is skipped), by the full path at each sample:
+/// for a model with a limited passive joint (the batch's own check sees only the actuated ones).
+std::pair<Eigen::Index, Status> passiveLimits(const Model& model, const ConstStridedMap& p, const ConstStridedMap& dp,
+                                              const ConstStridedMap& ddp, const ConstStridedMap& tau) {
+    Data data(model);
+    const auto row = [](const ConstStridedMap& a, Eigen::Index k) {
+        Vector3 v;
+        for (int i = 0; i < 3; ++i) v(i) = a(k, poseColumn(kPythonPose, i));
+        return v;
+    };
+    for (Eigen::Index k = 0; k < p.rows(); ++k) {
+        if (std::isnan(tau(k, 0)) || !inverseDynamics(model, data, row(p, k), row(dp, k), row(ddp, k))) continue;
+        if (const Status s = sampleLimits(model, data); !s) return {k, s};
+    }
+    return {-1, Status{}};
 }
 
 /// The batch over arrays viewed in place, the GIL released while it runs. Returns
 /// (failed, first_failure, message of the first failure or "").
 py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp,
                                      const py::array& u, const py::array& du, const py::array& ddu,
-                                     const py::array& tau, unsigned threads) {
+                                     const py::array& tau, unsigned threads, bool check_limits) {
     const Model& model = *robot.model;
     const ArrayView vp = viewOf(p, "p", -1, 3, false);
     const py::ssize_t n = vp.rows;
@@ -196,14 +282,51 @@ py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, con
         throw Error("out: u, du, ddu and tau must have the same memory order (all C- or all F-ordered)");
     }
     BatchResult result;
+    std::pair<Eigen::Index, Status> limits{-1, Status{}};
     {
         const py::gil_scoped_release release;
+        // limits of actuated joints only: checked inside the batch, on the values in registers
+        const bool actuated_only = limitsOnActuatedJointsOnly(model);
         result = inverseDynamicsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vu), map(vdu), map(vddu),
-                                      map(vtau), threads);
+                                      map(vtau), threads, kPythonPose,
+                                      check_limits && actuated_only ? ActuatorLimits::check : ActuatorLimits::ignore);
+        if (check_limits && actuated_only && result.first_beyond_limits != BatchResult::npos) {
+            limits = {result.first_beyond_limits, result.limits};
+        } else if (check_limits && !actuated_only) {
+            limits = passiveLimits(model, constMap(vp), constMap(vdp), constMap(vddp), constMap(vtau));
+        }
     }
     const std::string message = result.ok() ? std::string() : describe(result.status, model);
     return py::make_tuple(static_cast<std::int64_t>(result.failed),
-                          result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message);
+                          result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message,
+                          static_cast<std::int64_t>(limits.first),
+                          limits.first < 0 ? std::string() : describe(limits.second, model));
+}
+
+/// The first of N samples (p, dp, ddp (N, 3)) beyond a limit sampleLimits checks, by the full
+/// path: (index or -1, message). Samples out of reach or singular are skipped (the caller's
+/// own computation reports them).
+py::tuple limitsBatchArrays(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp) {
+    const Model& model = *robot.model;
+    const ArrayView vp = viewOf(p, "p", -1, 3, false);
+    const ArrayView vdp = viewOf(dp, "dp", vp.rows, 3, false), vddp = viewOf(ddp, "ddp", vp.rows, 3, false);
+    Eigen::Index first = -1;
+    Status status;
+    {
+        const py::gil_scoped_release release;
+        const ConstStridedMap mp = constMap(vp), mdp = constMap(vdp), mddp = constMap(vddp);
+        Data data(model);
+        for (Eigen::Index k = 0; k < vp.rows && first < 0; ++k) {
+            Vector3 pk, dpk, ddpk;
+            for (int i = 0; i < 3; ++i) {
+                const int c = poseColumn(kPythonPose, i);
+                pk(i) = mp(k, c), dpk(i) = mdp(k, c), ddpk(i) = mddp(k, c);
+            }
+            if (!inverseDynamics(model, data, pk, dpk, ddpk)) continue;
+            if (status = sampleLimits(model, data); !status) first = k;
+        }
+    }
+    return py::make_tuple(static_cast<std::int64_t>(first), first < 0 ? std::string() : describe(status, model));
 }
 
 /// A matrix as a new (rows, cols) array.
@@ -222,7 +345,9 @@ py::tuple inverseDynamicsDerivativesSample(const Robot& robot, const py::handle&
     const Status status =
         inverseDynamicsDerivatives(model, *robot.data, vector3(p, "p"), vector3(dp, "dp"), vector3(ddp, "ddp"), d);
     if (!status) throw Error(describe(status, model));
-    return py::make_tuple(matrixToArray(d.d_p), matrixToArray(d.d_dp), matrixToArray(d.d_ddp));
+    return py::make_tuple(matrixToArray(inPythonOrder(d.d_p, false, true)),
+                          matrixToArray(inPythonOrder(d.d_dp, false, true)),
+                          matrixToArray(inPythonOrder(d.d_ddp, false, true)));
 }
 
 /// The derivatives of N samples, each (N, n, 3), the GIL released while they run. Returns
@@ -244,7 +369,7 @@ py::tuple inverseDynamicsDerivativesBatchArrays(const Robot& robot, const py::ar
     {
         const py::gil_scoped_release release;
         result = inverseDynamicsDerivativesBatch(model, constMap(vp), constMap(vdp), constMap(vddp), m_p, m_dp, m_ddp,
-                                                 threads);
+                                                 threads, kPythonPose);
     }
     const std::string message = result.ok() ? std::string() : describe(result.status, model);
     return py::make_tuple(d_p, d_dp, d_ddp, static_cast<std::int64_t>(result.failed),
@@ -263,7 +388,11 @@ py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::han
         model, *robot.data, vector3(p, "p"), vector3(dp, "dp"), actuatorVector(model, tau, "tau"),
         output == "acceleration" ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables, ss);
     if (!status) throw Error(describe(status, model));
-    return py::make_tuple(matrixToArray(ss.A), matrixToArray(ss.B), matrixToArray(ss.C), matrixToArray(ss.D));
+    // the state [p; dp] and the output ddp in Python's pose order
+    const bool pose_output = output == "acceleration";
+    return py::make_tuple(
+        matrixToArray(inPythonOrder(ss.A, true, true)), matrixToArray(inPythonOrder(ss.B, true, false)),
+        matrixToArray(inPythonOrder(ss.C, pose_output, true)), matrixToArray(inPythonOrder(ss.D, pose_output, false)));
 }
 
 /// The joint reactions of N samples into `out`, (N, 9 limbs) (a view of the (N, limbs, 3, 3)
@@ -278,7 +407,7 @@ py::tuple reactionsBatchArrays(const Robot& robot, const py::array& p, const py:
     BatchResult result;
     {
         const py::gil_scoped_release release;
-        result = reactionsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vout), threads);
+        result = reactionsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vout), threads, kPythonPose);
     }
     const std::string message = result.ok() ? std::string() : describe(result.status, model);
     return py::make_tuple(static_cast<std::int64_t>(result.failed),
@@ -297,11 +426,11 @@ double timeCppBatch(const Robot& robot, const py::array& p, const py::array& dp,
     Eigen::ArrayXXd u(P.rows(), model.actuators), du(u.rows(), u.cols()), ddu(u.rows(), u.cols()),
         tau(u.rows(), u.cols());
     const py::gil_scoped_release release;
-    inverseDynamicsBatch(model, P, dP, ddP, u, du, ddu, tau, 1);  // untimed: the outputs' pages mapped
+    inverseDynamicsBatch(model, P, dP, ddP, u, du, ddu, tau, 1, kPythonPose);  // untimed: the outputs' pages mapped
     double best = INFINITY;
     for (int r = 0; r < repeat; ++r) {
         const double start = threadCpuSeconds();
-        const BatchResult result = inverseDynamicsBatch(model, P, dP, ddP, u, du, ddu, tau, 1);
+        const BatchResult result = inverseDynamicsBatch(model, P, dP, ddP, u, du, ddu, tau, 1, kPythonPose);
         const double elapsed = threadCpuSeconds() - start;
         if (!result.ok()) throw Error(describe(result.status, model));
         best = std::min(best, elapsed);
@@ -335,9 +464,9 @@ py::tuple evaluateTrajectory(const PoseTrajectory& trajectory, const ContiguousI
         Pose p, dp, ddp;
         trajectory.evaluate(tp(k), p, dp, ddp);
         for (int i = 0; i < 3; ++i) {
-            a(k, i) = p(i);
-            b(k, i) = dp(i);
-            c(k, i) = ddp(i);
+            a(k, i) = p(twistIndex(i));
+            b(k, i) = dp(twistIndex(i));
+            c(k, i) = ddp(twistIndex(i));
         }
     }
     return py::make_tuple(P, dP, ddP);
@@ -370,9 +499,9 @@ py::dict sampleTrajectory(const Robot& robot, const PoseTrajectory& trajectory, 
                                       tt[k] = s.t;
                                       kk[k] = s.kinetic;
                                       for (int i = 0; i < 3; ++i) {
-                                          pp[3 * k + i] = s.p(i);
-                                          dpp[3 * k + i] = s.dp(i);
-                                          ddpp[3 * k + i] = s.ddp(i);
+                                          pp[3 * k + i] = s.p(twistIndex(i));
+                                          dpp[3 * k + i] = s.dp(twistIndex(i));
+                                          ddpp[3 * k + i] = s.ddp(twistIndex(i));
                                       }
                                       for (py::ssize_t i = 0; i < m; ++i) {
                                           uu[m * k + i] = s.u(i);
@@ -411,7 +540,7 @@ py::dict forwardKinematics(const Robot& robot, const py::handle& u, double toler
     py::list list;
     for (const AssemblyMode& mode : modes) {
         py::dict d;
-        d["pose"] = toArray(Eigen::Vector3d(mode.p));
+        d["pose"] = poseArray(mode.p);
         std::vector<int> branch(mode.branch.begin(), mode.branch.begin() + model.limbs);
         d["branch"] = branch;
         d["working"] = mode.working;
@@ -439,8 +568,8 @@ py::dict stateFromActuatorValues(const Robot& robot, const py::handle& u, const 
         throw Error(describe(status, model));
     }
     py::dict out;
-    out["p"] = toArray(Eigen::Vector3d(start.p));
-    out["dp"] = toArray(Eigen::Vector3d(start.dp));
+    out["p"] = poseArray(start.p);
+    out["dp"] = poseArray(start.dp);
     out["mode"] = start.mode;
     out["working"] = start.working;
     out["modes"] = start.modes;
@@ -499,8 +628,8 @@ py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp
             failure = simulator.advance(to(k) - simulator.time());
             if (!failure) break;
             for (int i = 0; i < 3; ++i) {
-                pp(k, i) = simulator.pose()(i);
-                dpp(k, i) = simulator.poseRate()(i);
+                pp(k, i) = simulator.pose()(twistIndex(i));
+                dpp(k, i) = simulator.poseRate()(twistIndex(i));
             }
             for (int i = 0; i < n; ++i) {
                 uu(k, i) = simulator.u()(i);
@@ -553,7 +682,10 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
     out["matrix"] = toArray(analysis::reported(K.K));
     out["free_directions"] = free;
     out["frequencies"] = toArray(modes.frequency);
-    out["mode_shapes"] = toArray(analysis::reported(modes.shape));
+    // the shapes' rows are pose coordinates, their columns the modes (ascending): rows only
+    Matrix3 shapes;
+    for (int i = 0; i < 3; ++i) shapes.col(i) = analysis::reported(Vector3(modes.shape.col(i)));
+    out["mode_shapes"] = toArray(shapes);
     out["mass_matrix"] = toArray(analysis::reported(modes.M));
     if (elastodynamic) {
         analysis::ElastodynamicModes e;
@@ -608,9 +740,10 @@ py::list envelope(const Robot& robot, const std::vector<std::string>& axes, doub
         d["frequency"] = e.frequency;
         d["amplitude"] = e.amplitude;
         d["limit"] = limitName(e.limit);
-        d["limb"] = e.limb;
-        d["joint"] = e.joint;
-        d["actuator"] = e.actuator;
+        // numbered from 1 as `nocdyn envelope` writes them, 0 when not applicable
+        d["limb"] = e.limb + 1;
+        d["joint"] = e.joint + 1;
+        d["actuator"] = e.actuator + 1;
         d["kinematic_amplitude"] = e.kinematic_amplitude;
         d["peak_effort_ratio"] = e.peak_effort_ratio;
         out.append(d);
@@ -652,8 +785,12 @@ RowArray regressorBatch(const Robot& robot, const py::array& p, const py::array&
         Data data(model);
         RegressorMatrix Y;
         for (Eigen::Index k = 0; k < vp.rows && failed < 0; ++k) {
-            status = inverseDynamicsRegressor(model, data, mp.row(k).transpose().matrix(),
-                                              mdp.row(k).transpose().matrix(), mddp.row(k).transpose().matrix(), Y);
+            Vector3 pk, dpk, ddpk;
+            for (int i = 0; i < 3; ++i) {
+                const int c = poseColumn(kPythonPose, i);
+                pk(i) = mp(k, c), dpk(i) = mdp(k, c), ddpk(i) = mddp(k, c);
+            }
+            status = inverseDynamicsRegressor(model, data, pk, dpk, ddpk, Y);
             if (!status) {
                 failed = k;
                 break;
@@ -798,6 +935,7 @@ PYBIND11_MODULE(_nocdyn, m) {
     m.attr("__version__") = NOCDYN_VERSION;
     bindCommands(m);
     bindApplication(m);
+    bindCommandLine(m);
     py::register_exception<Error>(m, "Error", PyExc_ValueError);
 
     py::class_<Robot>(m, "Robot")
@@ -818,7 +956,7 @@ PYBIND11_MODULE(_nocdyn, m) {
         .def_property_readonly("actuator_count", [](const Robot& r) { return r.model->actuators; })
         .def_property_readonly("limb_count", [](const Robot& r) { return r.model->limbs; })
         .def_property_readonly("bodies", [](const Robot& r) { return r.model->bodies; })
-        .def_property_readonly("home", [](const Robot& r) { return toArray(Eigen::Vector3d(r.model->home)); })
+        .def_property_readonly("home", [](const Robot& r) { return poseArray(r.model->home); })
         .def_property_readonly("gravity",
                                [](const Robot& r) {
                                    return std::array{r.model->gravity(0), r.model->gravity(1)};
@@ -843,11 +981,11 @@ PYBIND11_MODULE(_nocdyn, m) {
              })
         .def(
             "_drawing",
-            [](const Robot& r, const std::array<double, 3>& pose) {
+            [](const Robot& r, const py::handle& pose) {
                 // the geometry the animation page and the CLI's frames draw (drawing.hpp)
                 Data data(*r.model);
                 RobotDrawing drawing;
-                if (const Status status = drawRobot(*r.model, data, Pose(pose[0], pose[1], pose[2]), drawing); !status)
+                if (const Status status = drawRobot(*r.model, data, vector3(pose, "pose"), drawing); !status)
                     throw Error(describe(status, *r.model));
                 const auto point = [](const Vector2& v) { return py::make_tuple(v.x(), v.y()); };
                 py::list limbs, platform;
@@ -881,9 +1019,10 @@ PYBIND11_MODULE(_nocdyn, m) {
                      const auto k = static_cast<std::size_t>(model.actuator_joint[static_cast<std::size_t>(a)]);
                      const JointDescription& joint = model.description.limbs[j].joints[k];
                      py::dict d;
-                     d["limb"] = static_cast<int>(j);
+                     // numbered from 1, as the command line names them
+                     d["limb"] = static_cast<int>(j) + 1;
                      d["limb_name"] = model.description.limbs[j].name;
-                     d["joint"] = static_cast<int>(k);
+                     d["joint"] = static_cast<int>(k) + 1;
                      d["type"] = joint.type == JointType::prismatic ? "P" : "R";
                      d["lower"] = joint.limits.lower;
                      d["upper"] = joint.limits.upper;
@@ -895,9 +1034,11 @@ PYBIND11_MODULE(_nocdyn, m) {
              })
         .def("to_yaml", [](const Robot& r) { return io::descriptionToYaml(r.model->description); })
         .def("_inverse_dynamics_sample", &inverseDynamicsSample, py::arg("p"), py::arg("dp"), py::arg("ddp"),
-             py::arg("matrices") = false)
+             py::arg("matrices") = false, py::arg("check_limits") = true)
         .def("_inverse_dynamics_batch", &inverseDynamicsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"),
-             py::arg("u"), py::arg("du"), py::arg("ddu"), py::arg("tau"), py::arg("threads") = 1)
+             py::arg("u"), py::arg("du"), py::arg("ddu"), py::arg("tau"), py::arg("threads") = 1,
+             py::arg("check_limits") = true)
+        .def("_limits_batch", &limitsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"))
         .def("_inverse_dynamics_derivatives_sample", &inverseDynamicsDerivativesSample, py::arg("p"), py::arg("dp"),
              py::arg("ddp"))
         .def("_inverse_dynamics_derivatives_batch", &inverseDynamicsDerivativesBatchArrays, py::arg("p"), py::arg("dp"),

@@ -4,6 +4,7 @@
 #include "nocdyn/batch.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <system_error>
@@ -36,6 +37,58 @@ struct Arrays {
     Ref& du;
     Ref& ddu;
     Ref& tau;
+    PoseColumns order;
+    ActuatorLimits limits;
+};
+
+/// The actuated joints' limits in checkJointLimits' order, then the actuators' efforts.
+struct LimitTable {
+    int count = 0;
+    std::array<int, kMaxActuators> actuator{};                       ///< limb by limb, joint by joint
+    std::array<double, kMaxActuators> effort{};                      ///< by actuator
+    std::array<double, kMaxActuators> lower{}, upper{}, velocity{};  ///< of actuator a's joint
+
+    explicit LimitTable(const Model& model) {
+        for (int j = 0; j < model.limbs; ++j)
+            for (std::size_t k = 0; k < 3; ++k)
+                if (const int a = model.limb[static_cast<std::size_t>(j)].actuator[k]; a >= 0) actuator[count++] = a;
+        for (int a = 0; a < model.actuators; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            const JointLimits& lim = model.limb[static_cast<std::size_t>(model.actuator_limb[aa])]
+                                         .limits[static_cast<std::size_t>(model.actuator_joint[aa])];
+            effort[aa] = lim.effort;
+            lower[aa] = lim.lower;
+            upper[aa] = lim.upper;
+            velocity[aa] = lim.velocity;
+        }
+    }
+
+    /// The first limit sample (u(a), du(a), tau(a)) exceeds, or ok.
+    template <class Value>
+    [[nodiscard]] Status check(const Model& model, const Value& u, const Value& du, const Value& tau) const {
+        for (int i = 0; i < count; ++i) {
+            const auto a = static_cast<std::size_t>(actuator[static_cast<std::size_t>(i)]);
+            const int j = model.actuator_limb[a], k = model.actuator_joint[a];
+            const JointLimits& lim = model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)];
+            const double q = u(static_cast<int>(a)), dq = du(static_cast<int>(a));
+            if (!(q >= lim.lower && q <= lim.upper)) return limitStatus(StatusCode::joint_limit_exceeded, j, k, q);
+            if (!(std::abs(dq) <= lim.velocity)) return limitStatus(StatusCode::velocity_exceeded, j, k, dq);
+        }
+        for (int a = 0; a < model.actuators; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            if (!(std::abs(tau(a)) <= effort[aa])) {
+                return limitStatus(StatusCode::effort_exceeded, model.actuator_limb[aa], model.actuator_joint[aa],
+                                   tau(a));
+            }
+        }
+        return {};
+    }
+
+    static Status limitStatus(StatusCode code, int limb, int joint, double value) {
+        Status s{code, limb, value};
+        s.joint = joint;
+        return s;
+    }
 };
 
 /// A sample the kernel rejected (or with a non-finite input): the full path's Status and,
@@ -46,7 +99,7 @@ __attribute__((noinline, cold))
 Status
 fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
     Status status =
-        inverseDynamics(model, data, a.p.row(k).transpose(), a.dp.row(k).transpose(), a.ddp.row(k).transpose());
+        inverseDynamics(model, data, poseRow(a.p, k, a.order), poseRow(a.dp, k, a.order), poseRow(a.ddp, k, a.order));
     // finite input whose results overflow (huge rates or accelerations): a failed sample, as
     // an actuator effort that is not finite, never a non-finite number in the outputs
     for (int i = 0; status && i < model.actuators; ++i) {
@@ -82,6 +135,8 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
     BatchResult result;
     Data data(model);  // for rejected samples only: fixed capacity, no allocation
     const int n = model.actuators;
+    const LimitTable limits(model);
+    bool check_limits = a.limits == ActuatorLimits::check;
     // Eigen's default (column-major) layout: a packet's samples are adjacent in each column
     const bool contiguous_in = a.p.innerStride() == 1 && a.dp.innerStride() == 1 && a.ddp.innerStride() == 1;
     const bool contiguous_out =
@@ -93,6 +148,9 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
     const double *const in_p = a.p.data(), *const in_dp = a.dp.data(), *const in_ddp = a.ddp.data();
     const Eigen::Index stride_p = a.p.outerStride(), stride_dp = a.dp.outerStride(), stride_ddp = a.ddp.outerStride();
     const Eigen::Index step_p = a.p.innerStride(), step_dp = a.dp.innerStride(), step_ddp = a.ddp.innerStride();
+    // the column of the core's coordinate i (theta, x, y): the pose order of the caller's arrays
+    // taken by the gathers' index mapping, no pass or copy of its own
+    const int column[3] = {poseColumn(a.order, 0), poseColumn(a.order, 1), poseColumn(a.order, 2)};
     double *const out_u = a.u.data(), *const out_du = a.du.data(), *const out_ddu = a.ddu.data(),
                   *const out_tau = a.tau.data();
     const Eigen::Index stride_out = a.u.outerStride();  // the same for the four (checked)
@@ -112,21 +170,23 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
         if (lanes == kLanes && contiguous_in) [[likely]] {
             // column i of each input holds the four samples side by side
             for (int i = 0; i < 3; ++i) {
-                std::memcpy(&p[i], in_p + k + i * stride_p, sizeof(Pack));
-                std::memcpy(&dp[i], in_dp + k + i * stride_dp, sizeof(Pack));
-                std::memcpy(&ddp[i], in_ddp + k + i * stride_ddp, sizeof(Pack));
+                std::memcpy(&p[i], in_p + k + column[i] * stride_p, sizeof(Pack));
+                std::memcpy(&dp[i], in_dp + k + column[i] * stride_dp, sizeof(Pack));
+                std::memcpy(&ddp[i], in_ddp + k + column[i] * stride_ddp, sizeof(Pack));
             }
         } else if (lanes == kLanes) {
             // any other layout (NumPy's C order: a packet's 4 x 3 values side by side)
             for (int i = 0; i < 3; ++i) {
-                p[i] = gather(in_p + k * step_p + i * stride_p, step_p);
-                dp[i] = gather(in_dp + k * step_dp + i * stride_dp, step_dp);
-                ddp[i] = gather(in_ddp + k * step_ddp + i * stride_ddp, step_ddp);
+                p[i] = gather(in_p + k * step_p + column[i] * stride_p, step_p);
+                dp[i] = gather(in_dp + k * step_dp + column[i] * stride_dp, step_dp);
+                ddp[i] = gather(in_ddp + k * step_ddp + column[i] * stride_ddp, step_ddp);
             }
         } else {
             for (int l = 0; l < kLanes; ++l) {
                 const Eigen::Index s = k + std::min(l, lanes - 1);
-                for (int i = 0; i < 3; ++i) p[i][l] = a.p(s, i), dp[i][l] = a.dp(s, i), ddp[i][l] = a.ddp(s, i);
+                for (int i = 0; i < 3; ++i) {
+                    p[i][l] = a.p(s, column[i]), dp[i][l] = a.dp(s, column[i]), ddp[i][l] = a.ddp(s, column[i]);
+                }
             }
         }
         // 0 x is 0 for a finite x and NaN otherwise: one test for the nine inputs; beyond
@@ -146,6 +206,28 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
         Pack zero_out = Pack{};
         for (int i = 0; i < n; ++i) zero_out += u[i] * 0.0 + du[i] * 0.0 + ddu[i] * 0.0 + tau[i] * 0.0;
         ok &= zero_out == 0.0;
+        // the packet's four samples against every limit at once (NaN compares false: beyond);
+        // the rare packet with a lane beyond one is then taken lane by lane, in sample order
+        PackMask beyond = PackMask{};
+        if (check_limits) {
+            for (int i = 0; i < n; ++i) {
+                const auto ii = static_cast<std::size_t>(i);
+                beyond |=
+                    ~((u[i] >= limits.lower[ii]) & (u[i] <= limits.upper[ii]) &
+                      (fastmath::absOf(du[i]) <= limits.velocity[ii]) & (fastmath::absOf(tau[i]) <= limits.effort[ii]));
+            }
+        }
+        if (fastmath::any(beyond & ok)) [[unlikely]] {
+            for (int l = 0; l < lanes && check_limits; ++l) {
+                if (ok[l] == 0) continue;
+                const auto at = [l](const Pack* v) { return [v, l](int i) { return v[i][l]; }; };
+                if (const Status s = limits.check(model, at(u), at(du), at(tau)); !s) {
+                    result.first_beyond_limits = k + l;
+                    result.limits = s;
+                    check_limits = false;
+                }
+            }
+        }
         if (lanes == kLanes && fastmath::all(ok)) [[likely]] {
             if (contiguous_out) {
                 for (int i = 0; i < n; ++i) {
@@ -174,9 +256,18 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
                     a.ddu(row, i) = ddu[i][l];
                     a.tau(row, i) = tau[i][l];
                 }
-            } else if (const Status status = fullPath(model, data, a, row); !status && result.failed++ == 0) {
-                result.first_failure = row;
-                result.status = status;
+            } else if (const Status status = fullPath(model, data, a, row); !status) {
+                if (result.failed++ == 0) {
+                    result.first_failure = row;
+                    result.status = status;
+                }
+            } else if (a.limits == ActuatorLimits::check && row < result.first_beyond_limits) {
+                // a sample the kernel rejected and the full path accepted: its limits too
+                if (const Status s = limits.check(model, data.u, data.du, data.tau); !s) {
+                    result.first_beyond_limits = row;
+                    result.limits = s;
+                    check_limits = false;
+                }
             }
         }
     }
@@ -192,8 +283,13 @@ void requireShape(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen:
 
 }  // namespace
 
+Status checkActuatorLimits(const Model& model, const ActuatorVector& u, const ActuatorVector& du,
+                           const ActuatorVector& tau) {
+    return LimitTable(model).check(model, u, du, tau);
+}
+
 BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const ConstRef& dp, const ConstRef& ddp, Ref u,
-                                 Ref du, Ref ddu, Ref tau, unsigned threads) {
+                                 Ref du, Ref ddu, Ref tau, unsigned threads, PoseColumns order, ActuatorLimits limits) {
     const Eigen::Index n = p.rows();
     requireShape("p", p.rows(), p.cols(), n, 3);
     requireShape("dp", dp.rows(), dp.cols(), n, 3);
@@ -206,7 +302,7 @@ BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const Co
         u.outerStride() != tau.outerStride()) {
         throw Error("inverseDynamicsBatch: u, du, ddu and tau must have the same layout");
     }
-    const Arrays a{p, dp, ddp, u, du, ddu, tau};
+    const Arrays a{p, dp, ddp, u, du, ddu, tau, order, limits};
     // one thread needs no count of the hardware's threads: asking costs microseconds (a
     // system call), more than a short batch such as a chunk of an envelope's period
     if (threads == 1 || n < 2) return chunk(model, a, 0, n);
@@ -241,6 +337,10 @@ BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const Co
             total.status = r.status;
         }
         total.failed += r.failed;
+        if (r.first_beyond_limits != BatchResult::npos && total.first_beyond_limits == BatchResult::npos) {
+            total.first_beyond_limits = r.first_beyond_limits;
+            total.limits = r.limits;
+        }
     }
     return total;
 }

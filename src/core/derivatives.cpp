@@ -405,6 +405,7 @@ struct DerivativeArrays {
     BatchOutput& d_p;
     BatchOutput& d_dp;
     BatchOutput& d_ddp;
+    PoseColumns order;
 };
 
 BatchResult derivativeChunk(const Model& model, const DerivativeArrays& a, Eigen::Index begin, Eigen::Index end) {
@@ -413,13 +414,13 @@ BatchResult derivativeChunk(const Model& model, const DerivativeArrays& a, Eigen
     BatchResult result;
     const int n = model.actuators;
     for (Eigen::Index row = begin; row < end; ++row) {
-        const Pose p = a.p.row(row).transpose();
-        const Twist dp = a.dp.row(row).transpose();
-        const Twist ddp = a.ddp.row(row).transpose();
+        const Pose p = poseRow(a.p, row, a.order);
+        const Twist dp = poseRow(a.dp, row, a.order);
+        const Twist ddp = poseRow(a.ddp, row, a.order);
         const Status status = inverseDynamicsDerivatives(model, data, p, dp, ddp, d);
         for (int k = 0; k < n; ++k) {
             for (int i = 0; i < 3; ++i) {
-                const Eigen::Index col = 3 * k + i;
+                const Eigen::Index col = 3 * k + poseColumn(a.order, i);
                 a.d_p(row, col) = status ? d.d_p(k, i) : std::numeric_limits<double>::quiet_NaN();
                 a.d_dp(row, col) = status ? d.d_dp(k, i) : std::numeric_limits<double>::quiet_NaN();
                 a.d_ddp(row, col) = status ? d.d_ddp(k, i) : std::numeric_limits<double>::quiet_NaN();
@@ -444,7 +445,7 @@ void requireShape(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen:
 
 BatchResult inverseDynamicsDerivativesBatch(const Model& model, const BatchInput& p, const BatchInput& dp,
                                             const BatchInput& ddp, BatchOutput d_p, BatchOutput d_dp, BatchOutput d_ddp,
-                                            unsigned threads) {
+                                            unsigned threads, PoseColumns order) {
     const Eigen::Index n = p.rows();
     const Eigen::Index columns = 3 * static_cast<Eigen::Index>(model.actuators);
     requireShape("p", p.rows(), p.cols(), n, 3);
@@ -453,7 +454,7 @@ BatchResult inverseDynamicsDerivativesBatch(const Model& model, const BatchInput
     requireShape("d_p", d_p.rows(), d_p.cols(), n, columns);
     requireShape("d_dp", d_dp.rows(), d_dp.cols(), n, columns);
     requireShape("d_ddp", d_ddp.rows(), d_ddp.cols(), n, columns);
-    const DerivativeArrays a{p, dp, ddp, d_p, d_dp, d_ddp};
+    const DerivativeArrays a{p, dp, ddp, d_p, d_dp, d_ddp, order};
     if (threads == 1 || n < 2) return derivativeChunk(model, a, 0, n);
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
     const auto chunks = static_cast<unsigned>(std::min<Eigen::Index>((n + 7) / 8, hardware));

@@ -387,14 +387,14 @@ namespace {
 /// Samples [begin, end) of reactionsBatch on the calling thread: one Data and one Reactions
 /// for the whole range (fixed capacity), nothing allocated per sample.
 BatchResult reactionsChunk(const Model& model, const BatchInput& p, const BatchInput& dp, const BatchInput& ddp,
-                           BatchOutput& out, Eigen::Index begin, Eigen::Index end) {
+                           BatchOutput& out, Eigen::Index begin, Eigen::Index end, PoseColumns order) {
     BatchResult result;
     Data data(model);
     Reactions reactions;
     const double nan = std::numeric_limits<double>::quiet_NaN();
     for (Eigen::Index k = begin; k < end; ++k) {
-        const Status status = inverseDynamicsWithReactions(model, data, p.row(k).transpose(), dp.row(k).transpose(),
-                                                           ddp.row(k).transpose(), reactions);
+        const Status status = inverseDynamicsWithReactions(model, data, poseRow(p, k, order), poseRow(dp, k, order),
+                                                           poseRow(ddp, k, order), reactions);
         if (!status && result.failed++ == 0) {
             result.first_failure = k;
             result.status = status;
@@ -419,7 +419,7 @@ void requireBatchShape(const char* name, Eigen::Index rows, Eigen::Index cols, E
 }  // namespace
 
 BatchResult reactionsBatch(const Model& model, const BatchInput& p, const BatchInput& dp, const BatchInput& ddp,
-                           BatchOutput out, unsigned threads) {
+                           BatchOutput out, unsigned threads, PoseColumns order) {
     const Eigen::Index n = p.rows();
     requireBatchShape("p", p.rows(), p.cols(), n, 3);
     requireBatchShape("dp", dp.rows(), dp.cols(), n, 3);
@@ -429,7 +429,7 @@ BatchResult reactionsBatch(const Model& model, const BatchInput& p, const BatchI
     const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
     const auto chunks = static_cast<unsigned>(std::min<Eigen::Index>((n + 7) / 8, hardware));
     threads = threads == 0 ? chunks : std::min(threads, chunks);
-    if (threads <= 1 || n < 2) return reactionsChunk(model, p, dp, ddp, out, 0, n);
+    if (threads <= 1 || n < 2) return reactionsChunk(model, p, dp, ddp, out, 0, n, order);
     const Eigen::Index per = ((n + threads - 1) / threads + 7) / 8 * 8;
     std::vector<BatchResult> results(threads);
     std::vector<std::thread> workers;
@@ -438,13 +438,13 @@ BatchResult reactionsBatch(const Model& model, const BatchInput& p, const BatchI
         for (unsigned t = 1; t < threads; ++t) {
             const Eigen::Index begin = std::min(n, t * per), end = std::min(n, (t + 1) * per);
             workers.emplace_back(
-                [&, t, begin, end] { results[t] = reactionsChunk(model, p, dp, ddp, out, begin, end); });
+                [&, t, begin, end] { results[t] = reactionsChunk(model, p, dp, ddp, out, begin, end, order); });
         }
     } catch (const std::system_error& e) {
         for (std::thread& w : workers) w.join();
         throw Error(std::string("reactionsBatch: cannot start a worker thread: ") + e.what());
     }
-    results[0] = reactionsChunk(model, p, dp, ddp, out, 0, std::min(n, per));
+    results[0] = reactionsChunk(model, p, dp, ddp, out, 0, std::min(n, per), order);
     for (std::thread& w : workers) w.join();
     BatchResult total;
     for (const BatchResult& r : results) {  // in sample order: the first failure wins

@@ -87,7 +87,7 @@ def test_paper_trajectories_equal_their_files_and_have_exact_derivatives(source_
         from_file = nocdyn.Trajectory.load(source_dir / "trajectories" / f"paper{k}.yaml").evaluate(t)
         for a, b in zip(built_in, from_file):
             np.testing.assert_allclose(a, b, rtol=0, atol=1e-15)
-    traj = nocdyn.Trajectory.harmonic(x=[(0.002, 10.0, 0.5)], theta=[(0.05, 5.0)], offset=(0.0, 0.001, 0.0))
+    traj = nocdyn.Trajectory.harmonic(x=[(0.002, 10.0, 0.5)], theta=[(0.05, 5.0)], offset=(0.001, 0.0, 0.0))
     h = 1e-6
     p, dp, ddp = traj.evaluate(t)
     p_plus, _, _ = traj.evaluate(t + h)
@@ -107,7 +107,7 @@ def test_sampled_trajectories_pass_through_their_samples_and_name_bad_lines(tmp_
     t = np.arange(0, 401) / 2000.0
     p, _, _ = nocdyn.Trajectory.paper(1).evaluate(t)
     path = tmp_path / "samples.CSV"
-    rows = ["t,theta,x,y"] + [f"{a!r},{b!r},{c!r},{d!r}" for a, (b, c, d) in zip(t, p)]
+    rows = ["t,x,y,theta"] + [f"{a!r},{b!r},{c!r},{d!r}" for a, (b, c, d) in zip(t, p)]
     path.write_text("\n".join(rows) + "\n")
     sampled = nocdyn.Trajectory.load(path)
     q, _, _ = sampled.evaluate(t)
@@ -125,7 +125,7 @@ def test_sampled_trajectories_pass_through_their_samples_and_name_bad_lines(tmp_
 @pytest.mark.parametrize("name", ["paper-3prr", "3-rrr", "4-rrr"])
 def test_forward_kinematics_finds_the_pose_that_gave_u_in_the_working_mode(name):
     robot = nocdyn.Robot.example(name)
-    p = robot.home + np.array([0.02, 0.002, -0.001])
+    p = robot.home + np.array([0.002, -0.001, 0.02])  # [x, y, theta]
     u = robot.inverse_dynamics(p, np.zeros(3), np.zeros(3)).u
     modes = robot.forward_kinematics(u)
     assert len(modes) >= 1
@@ -194,7 +194,9 @@ def test_envelope_equals_the_cli_envelope(tmp_path, cli, paper_robot):
     for ours, theirs in zip(points, rows):
         assert ours["frequency"] == float(theirs["frequency"])
         assert ours["amplitude"] == float(theirs["amplitude"])
-        assert ours["limb"] + 1 == int(float(theirs["limb"]))
+        # numbered from 1 as the CSV, 0 where not applicable
+        for key in ("limb", "joint", "actuator"):
+            assert ours[key] == int(float(theirs[key])), key
     assert [p["axis"] for p in paper_robot.envelope("x", min_frequency=5, max_frequency=50, frequencies=2)] == ["x"] * 2
     with pytest.raises(nocdyn.Error, match="axis"):
         paper_robot.envelope("z")

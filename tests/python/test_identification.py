@@ -12,10 +12,10 @@ PAYLOAD = dict(mass=0.5, com=(0.012, -0.007), inertia=8e-4)
 
 def motion(robot, samples, dt=0.004):
     """Samples of a two-frequency platform motion about the robot's home."""
-    theta, x, y = robot.home
+    x, y, theta = robot.home
     traj = nocdyn.Trajectory.harmonic(theta=[(0.04, 3.0, 0.3), (0.02, 7.0, 1.0)],
                                       x=[(0.003, 2.0, 0.0), (0.001, 5.0, 1.2)],
-                                      y=[(0.003, 4.0, 0.7), (0.001, 9.0, 0.2)], offset=(theta, x, y))
+                                      y=[(0.003, 4.0, 0.7), (0.001, 9.0, 0.2)], offset=(x, y, theta))
     t = np.arange(samples) * dt
     return (t, *traj.evaluate(t))
 

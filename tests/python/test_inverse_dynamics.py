@@ -45,8 +45,8 @@ def test_trajectory_dynamics_equals_the_cli_csv_exactly_and_the_batch_to_roundin
     n = robot.actuators
     t = table["t"]
     P, dP, ddP = nocdyn.Trajectory.paper(1).evaluate(t)
-    np.testing.assert_array_equal(P, np.column_stack([table["theta"], table["x"], table["y"]]))
-    batch = robot.inverse_dynamics(P, dP, ddP)
+    np.testing.assert_array_equal(P, np.column_stack([table["x"], table["y"], table["theta"]]))
+    batch = robot.inverse_dynamics(P, dP, ddP, check_limits=False)  # as --allow-limits
     sampled = robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=10000, duration=0.01, allow_limits=True)
     np.testing.assert_array_equal(sampled["t"], t)
     np.testing.assert_array_equal(sampled["kinetic"], table["kinetic"])
@@ -64,7 +64,7 @@ def test_trajectory_dynamics_equals_the_cli_csv_exactly_and_the_batch_to_roundin
 def test_paper_trajectories_reproduce_the_golden_values_to_1e9(golden_dir, paper_robot, number):
     golden = read_csv(golden_dir / f"paper_trajectory{number}.csv")
     P, dP, ddP = nocdyn.Trajectory.paper(number).evaluate(golden["t"])
-    np.testing.assert_allclose(P, np.column_stack([golden["theta"], golden["x"], golden["y"]]), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(P, np.column_stack([golden["x"], golden["y"], golden["theta"]]), rtol=0, atol=1e-15)
     result = paper_robot.inverse_dynamics(P, dP, ddP)
     for name in ("u", "du", "ddu", "tau"):
         theirs = columns(golden, name, 3)
@@ -80,9 +80,10 @@ LAGRANGE_TOLERANCE = 5e-11
 
 def random_motion(robot, n, seed=1):
     rng = np.random.default_rng(seed)
-    P = robot.home + rng.uniform(-1, 1, (n, 3)) * [0.02, 0.003, 0.003]
-    dP = rng.uniform(-1, 1, (n, 3)) * [0.5, 0.1, 0.1]
-    ddP = rng.uniform(-1, 1, (n, 3)) * [50.0, 10.0, 10.0]
+    # [x, y, theta] and its rates
+    P = robot.home + rng.uniform(-1, 1, (n, 3)) * [0.003, 0.003, 0.02]
+    dP = rng.uniform(-1, 1, (n, 3)) * [0.1, 0.1, 0.5]
+    ddP = rng.uniform(-1, 1, (n, 3)) * [10.0, 10.0, 50.0]
     return P, dP, ddP
 
 
@@ -239,7 +240,7 @@ def test_bad_shapes_layouts_and_outputs_raise_nocdyn_error(paper_robot):
 
 def test_a_sample_out_of_reach_names_it_and_leaves_nan_rows(paper_robot):
     P, dP, ddP = random_motion(paper_robot, 6)
-    P[3, 1] = 0.5  # 0.5 m off: far out of reach
+    P[3, 0] = 0.5  # x 0.5 m off: far out of reach
     with pytest.raises(nocdyn.Error, match=r"^sample 3: .*\(1 of 6 samples failed\)$"):
         paper_robot.inverse_dynamics(P, dP, ddP)
     result = paper_robot.inverse_dynamics(P, dP, ddP, check=False)

@@ -37,7 +37,7 @@ def test_the_batch_equals_the_cli_reaction_columns(tmp_path, cli, source_dir):
     table = read_csv(out)
     robot = nocdyn.Robot.load(robot_path)
     p, dp, ddp = nocdyn.Trajectory.paper(1).evaluate(table["t"])
-    np.testing.assert_allclose(p, np.column_stack([table["theta"], table["x"], table["y"]]), rtol=0, atol=1e-15)
+    np.testing.assert_allclose(p, np.column_stack([table["x"], table["y"], table["theta"]]), rtol=0, atol=1e-15)
     r = robot.reactions(p, dp, ddp)
     assert r.shape == (20, 3, 3, 3)
     expected = np.stack([np.column_stack([table[f"limb{j + 1}_j{k + 1}_{c}"] for c in ("fx", "fy", "m")])
@@ -52,7 +52,7 @@ def test_the_batch_equals_the_cli_reaction_columns(tmp_path, cli, source_dir):
 @pytest.mark.parametrize("name", ["3-rrr", "3-rpr", "4-rrr", "paper-3prr-general"])
 def test_at_rest_the_platform_pivots_carry_the_platforms_weight(source_dir, name):
     robot = robot_with_gravity(source_dir, name)
-    p = np.tile(np.asarray(robot.home), (3, 1)) + [[0.0, 0.0, 0.0], [0.01, 0.002, -0.001], [-0.02, -0.003, 0.002]]
+    p = np.tile(np.asarray(robot.home), (3, 1)) + [[0.0, 0.0, 0.0], [0.002, -0.001, 0.01], [-0.003, 0.002, -0.02]]
     zero = np.zeros_like(p)
     r = robot.reactions(p, zero, zero)
     assert r.shape == (3, robot.limbs, 3, 3)
