@@ -133,6 +133,29 @@ def test_two_simulations_in_two_threads_take_well_under_twice_one():
     assert min(ratios) < 1.6, ratios
 
 
+def test_python_runs_while_a_simulation_runs():
+    # the GIL released for the whole integration: this thread counts on while the other
+    # simulates (held, it would wait for the call to return); independent of the machine's load
+    forces = simulation_forces()
+    done = threading.Event()
+    counted = []
+
+    def simulate():
+        try:
+            nocdyn.simulate(forces, rate=2000.0, rtol=1e-12, progress=False)
+        finally:
+            done.set()
+
+    worker = threading.Thread(target=simulate)
+    worker.start()
+    count = 0
+    while not done.is_set():
+        count += 1
+    worker.join()
+    counted.append(count)
+    assert counted[0] > 1000, counted
+
+
 # --- control ------------------------------------------------------------------------------------
 
 def test_control_honours_set_and_writes_what_is_asked(source_dir, tmp_path):
