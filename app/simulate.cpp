@@ -203,7 +203,7 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
         for (std::string& column : io::reactionColumns(model.limbs)) columns.push_back(std::move(column));
     }
     table.columns(columns);
-    const auto base = static_cast<std::size_t>(4 + 3 * n + 1);
+    const std::size_t base = 5 + 3 * static_cast<std::size_t>(n);  // t, x, y, theta, u, du, tau, kinetic
     std::vector<double> row(base);
     row.reserve(columns.size());
     Reactions reactions;
