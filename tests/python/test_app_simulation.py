@@ -118,18 +118,26 @@ def test_two_simulations_in_two_threads_take_well_under_twice_one():
     run = lambda: nocdyn.simulate(forces, rate=2000.0, rtol=1e-12, progress=False)  # noqa: E731
     one = run()
     # held GIL: twice one's time at least; released: one's time on two free cores. The best of up
-    # to five tries, against a generous bound: the machine may be busy with other work
-    ratios = []
+    # to five tries, against a generous bound. A try whose single run got less than 0.8 of a core
+    # (process time over wall time: other work on the machine) cannot show two cores at once and
+    # is not counted; test_python_runs_while_a_simulation_runs shows the release at any load.
+    ratios, busy = [], []
     for _ in range(5):
-        start = time.perf_counter()
+        cpu, start = time.process_time(), time.perf_counter()
         run()
         single = time.perf_counter() - start
+        share = (time.process_time() - cpu) / single
         (a, b), both = in_two_threads(run)
         np.testing.assert_array_equal(a.data, one.data)
         np.testing.assert_array_equal(b.data, one.data)
+        if share < 0.8:
+            busy.append(round(share, 2))
+            continue
         ratios.append(both / single)
         if ratios[-1] < 1.6:
             break
+    if not ratios:
+        pytest.skip(f"the machine is busy: a single simulation got {busy} of a core")
     assert min(ratios) < 1.6, ratios
 
 
