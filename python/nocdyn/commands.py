@@ -226,20 +226,20 @@ def _table_file(call, table, name):
     return path
 
 
-def _forces_file(call, forces):
-    """A force table as the CSV simulate reads: a path, or columns (a dict, a Table, a DataFrame)."""
-    if isinstance(forces, (str, os.PathLike)):
-        return forces
+def _forces_table(forces):
+    """The forces given as columns (a dict, a Table, a DataFrame) as a Table."""
     if isinstance(forces, Table):
-        table = forces
-    elif hasattr(forces, "columns") and hasattr(forces, "to_numpy"):  # a pandas DataFrame
-        table = Table([str(c) for c in forces.columns], forces.to_numpy(dtype=float))
-    elif isinstance(forces, dict):
+        return forces
+    if hasattr(forces, "columns") and hasattr(forces, "to_numpy"):  # a pandas DataFrame
+        return Table([str(c) for c in forces.columns], forces.to_numpy(dtype=float))
+    if isinstance(forces, dict):
         import numpy as np
-        table = Table(list(forces), np.column_stack([np.asarray(v, dtype=float).reshape(-1) for v in forces.values()]))
-    else:
-        raise ValueError("forces: expected a CSV path, a dict of columns (t, tau1..taun), a Table or a DataFrame")
-    return _table_file(call, table, "forces.csv")
+        try:
+            return Table(list(forces), np.column_stack([np.asarray(v, dtype=float).reshape(-1)
+                                                        for v in forces.values()]))
+        except (TypeError, ValueError) as error:
+            raise ValueError(f"forces: {error}") from None
+    raise ValueError("forces: expected a CSV path, a dict of columns (t, tau1..taun), a Table or a DataFrame")
 
 
 def _table_command(command, function, arguments, file_name, kind=Table, handled=()):
@@ -349,6 +349,18 @@ def _signature(options_type, positional, before=(), after=()):
     return inspect.Signature(parameters)
 
 
+def _path_argument(value, name):
+    """A file name the caller gave ('' for none); ValueError naming the argument."""
+    if value is None:
+        return ""
+    if not isinstance(value, (str, os.PathLike)):
+        raise ValueError(f"{name}: expected a path, got {type(value).__name__}")
+    text = os.fspath(value)
+    if not text or "\0" in text:
+        raise ValueError(f"{name}: expected a non-empty path without NUL characters")
+    return text
+
+
 def _write_table(path, columns, data):
     """The table as the command line's CSV, written safely (a unique temporary file renamed)."""
     _nocdyn._write_table(os.fspath(path), list(columns), data)
@@ -395,24 +407,24 @@ inverse_dynamics.__signature__ = _signature(_nocdyn.InverseDynamicsOptions, ("tr
                                             after=(("output", None), ("progress", None)))
 
 
-def forward_kinematics(u, *, robot=None, set=None, all_branches=False):
+def forward_kinematics(u, *, robot=None, set=None, **options):
     """Every platform pose the robot assembles in with actuator values u [m or rad]
     (``nocdyn forward-kinematics U...``): the working modes (every limb on its home branch), or
-    with all_branches every assembly mode. Returns AssemblyModes (poses (k, 3), ...)."""
+    with all_branches every assembly mode. Returns AssemblyModes (poses (k, 3) [x, y, theta], ...)."""
     values = [u] if not hasattr(u, "__len__") else list(u)
-    with _Call("forward-kinematics", forward_kinematics) as call:
-        call.positional(*values, name="u")
-        call.robot(robot)
-        call.option("set", set)
-        call.option("json", True)
-        call.option("all_branches", all_branches)
-        out, err = call.run()
-        return AssemblyModes(_json.loads(out), err)
+    values = [_argument(v, "u", 0.0) for v in values]
+    if any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in values):
+        raise ValueError(f"u: expected numbers, got {u!r}")
+    bound = _bound_options(_nocdyn.ForwardKinematicsOptions, {"u": [float(v) for v in values], **options})
+    bound.robot = _robot_source(robot, set)
+    return AssemblyModes(_nocdyn._run_forward_kinematics(bound, None))
 
 
-def simulate(forces, *, robot=None, set=None,
-             interpolation="cubic", duration=None, rate=10000.0, output=None, atol=1e-12,
-             rtol=1e-10, assembly_mode=0, partial=False, reactions=False, progress=None):
+forward_kinematics.__signature__ = _signature(_nocdyn.ForwardKinematicsOptions, ("u",),
+                                              after=(("robot", None), ("set", None)))
+
+
+def simulate(forces, *, robot=None, set=None, output=None, progress=None, **options):
     """Forward dynamics (``nocdyn simulate``): the motion under actuator forces.
 
     forces: a CSV path, or columns t, tau1..taun [s, N or N m] (a dict, Table or DataFrame; with
@@ -420,23 +432,56 @@ def simulate(forces, *, robot=None, set=None,
     interpolated ('cubic', 'linear' or 'hold') and held beyond the last time. rate: output samples
     per second; duration: seconds (default: the span of the forces). atol, rtol: the integrator's
     tolerances; assembly_mode: which working mode of the first u (1-based; 0: nearest home);
-    partial: keep the motion up to a failure; reactions: every joint's reaction at each sample
-    (limb{i}_j{k}_fx, _fy, _m) as more columns. Returns a Table with the CSV's columns."""
-    return _table_command("simulate", simulate, dict(locals()), "simulate.csv",
-                          handled={"forces": lambda call: _forces_file(call, forces)})
+    partial: return the motion up to a failure (and warn of it) instead of raising; reactions: every
+    joint's reaction at each sample (limb{i}_j{k}_fx, _fy, _m) as more columns. Returns a Table
+    with the CSV's columns; output: also write it as CSV."""
+    if isinstance(forces, (str, os.PathLike)):
+        bound = _bound_options(_nocdyn.SimulateOptions, {"forces": forces, **options})
+    else:
+        bound = _bound_options(_nocdyn.SimulateOptions, options)
+        table = _forces_table(forces)
+        bound.use_forces(table.columns, table.data)
+    bound.robot = _robot_source(robot, set)
+    columns, data, text, stopped = _run(_nocdyn._run_simulate, bound, progress, "simulate")
+    if stopped:
+        warnings.warn(stopped, RuntimeWarning, stacklevel=2)
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, "" if stopped else text, "simulate")
 
 
-def control(trajectory, *, robot=None, set=None, controller="computed-torque", plant=None, rate=10000.0, duration=None,
-            natural_frequency=50.0, payload_mass=0.0, payload_inertia=0.0, payload_com=None, noise_pose=0.0,
-            noise_rate=0.0, noise_tau=0.0, measure="pose", log=None, noise_u=0.0, noise_du=0.0, seed=1,
-            no_saturation=False, output=None, figure=None, progress=None):
+simulate.__signature__ = _signature(_nocdyn.SimulateOptions, ("forces",), before=(("robot", None), ("set", None)),
+                                    after=(("output", None), ("progress", None)))
+
+
+def control(trajectory, *, robot=None, set=None, plant=None, log=None, output=None, figure=None, progress=None,
+            **options):
     """Closed-loop tracking of a platform trajectory (``nocdyn control``) by computed torque or PD
     on a plant: 'simbody' (the independent model, when built in; the default then), 'nocdyn' or
     'nocdyn-rk4'. The payload_* arguments put a payload on the plant only (model mismatch); the
     noise_* arguments are sensor noise; log: also write the sensors' log for identify. Returns a
     Table with the CSV's columns (t, x_d, y_d, theta_d, ..., e_x, e_y, e_theta, u1..un, ..., tau1..taun);
-    its text holds the RMS and peak errors."""
-    return _table_command("control", control, dict(locals()), "control.csv")
+    its text holds the RMS and peak errors. output, figure: also write the CSV and the
+    tracking-error figure (STEM.png and STEM.svg)."""
+    if options.get("payload_com") is None:
+        options.pop("payload_com", None)
+    else:
+        options["payload_com"] = [float(_argument(v, "payload_com", 0.0)) for v in options["payload_com"]]
+    bound = _bound_options(_nocdyn.ControlOptions, {"trajectory": trajectory, **options})
+    if plant is not None:  # None: the build's default (Simbody's when built in)
+        bound.plant = _argument(plant, "plant", "")
+    bound.robot = _robot_source(robot, set)
+    files = [_path_argument(log, "log"), _path_argument(figure, "figure")]
+    columns, data, text = _run(lambda o, p: _nocdyn._run_control(o, *files, p), bound, progress, "control")
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, text.rstrip("\n"), "control")
+
+
+control.__signature__ = _signature(_nocdyn.ControlOptions, ("trajectory",), before=(("robot", None), ("set", None)),
+                                   after=(("log", None), ("output", None), ("figure", None), ("progress", None)))
+control.__signature__ = control.__signature__.replace(parameters=[
+    p.replace(default=None) if p.name == "plant" else p for p in control.__signature__.parameters.values()])
 
 
 def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.0, max_frequency=100.0, points=41,
@@ -448,22 +493,37 @@ def envelope(*, robot=None, set=None, output=None, figure=None, min_frequency=1.
     return _table_command("envelope", envelope, dict(locals()), "envelope.csv")
 
 
-def frequency_response(*, robot=None, set=None, pose=None, rate=None, output_kind="acceleration", f_min=1.0,
-                       f_max=1000.0, points=200, output=None, summary=None, figure=None, closed_loop=False,
-                       payload=0.0, controller_rate=10000.0, natural_frequency=6.0):
+def frequency_response(*, robot=None, set=None, output=None, summary=None, figure=None, **options):
     """The rigid robot linearised at an operating point and its frequency response
-    (``nocdyn frequency-response``): pose [theta, x, y] (default home) and rate (default at
-    rest), held by the inverse dynamics' forces; from each actuator force to each platform
-    acceleration (output_kind "acceleration") or actuator variable ("actuators") over ``points``
-    log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then <output>_tau<a>_db and
-    _deg per channel); ``text`` holds the summary with each channel's -3 dB bandwidth.
+    (``nocdyn frequency-response``): pose [x, y, theta] (default home) and rate [dx, dy, dtheta]
+    (default at rest), held by the inverse dynamics' forces; from each actuator force to each
+    platform acceleration (output_kind "acceleration") or actuator variable ("actuators") over
+    ``points`` log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then
+    <output>_tau<a>_db and _deg per channel, axes x, y, theta); ``text`` holds the summary with
+    each channel's -3 dB bandwidth. output, summary, figure: also write the CSV, the summary and
+    the Bode figure (STEM.png and STEM.svg).
 
     closed_loop=True: the shake-table loop linearised at rest (``--closed-loop``), from the
     reference to the achieved platform acceleration per axis, with a plant ``payload`` [kg] at C
     unknown to the controller, ``controller_rate`` [Hz] and the pose feedback's
     ``natural_frequency`` [Hz]; the Table has <axis>_db, _deg, _loop_db, _loop_deg per axis and
     ``text`` each axis's -3 dB bandwidth, crossover and phase margin."""
-    return _table_command("frequency-response", frequency_response, dict(locals()), "frequency_response.csv")
+    options = {k: v for k, v in options.items() if not (k in ("pose", "rate") and v is None)}
+    for name in ("pose", "rate"):
+        if name in options:
+            options[name] = [float(_argument(v, name, 0.0)) for v in options[name]]
+    bound = _bound_options(_nocdyn.FrequencyResponseOptions, options)
+    bound.robot = _robot_source(robot, set)
+    files = [_path_argument(summary, "summary"), _path_argument(figure, "figure")]
+    columns, data, text = _nocdyn._run_frequency_response(bound, *files)
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, text, "frequency-response")
+
+
+frequency_response.__signature__ = _signature(_nocdyn.FrequencyResponseOptions, (),
+                                              before=(("robot", None), ("set", None)),
+                                              after=(("output", None), ("summary", None), ("figure", None)))
 
 
 def workspace(*, robot=None, set=None, theta=None, resolution=201, output=None, figure=None, progress=None):

@@ -229,9 +229,22 @@ def test_forward_kinematics_every_assembly_mode():
     py = nocdyn.forward_kinematics(u, robot=ROBOT, all_branches=True)
     assert py.solutions == cli["solutions"] and len(py) == cli["solutions_all_branches"] > 1
     working = nocdyn.forward_kinematics(u, robot=ROBOT)
-    assert any(np.allclose(p, [0.01, 0.001, -0.002], atol=1e-9) for p in working.poses)
+    assert any(np.allclose(p, [0.001, -0.002, 0.01], atol=1e-9) for p in working.poses)  # x, y, theta
     # as a table the pose is in the order of every file: x, y, theta, last
     assert list(working.to_pandas().columns)[-3:] == ["x", "y", "theta"]
+
+
+def test_frequency_response_open_and_closed_loop(tmp_path):
+    for args, kwargs in (([], {}), (["--pose", 0.002, -0.001, 0.01, "--output-kind", "actuators"],
+                                    {"pose": [0.002, -0.001, 0.01], "output_kind": "actuators"}),
+                         (["--closed-loop", "--payload", 2, "--f-max", 2000], {"closed_loop": True, "payload": 2.0,
+                                                                              "f_max": 2000.0})):
+        out, summary = tmp_path / "fr.csv", tmp_path / "fr.txt"
+        printed = run_cli("frequency-response", "--points", 7, *args, "-o", out)
+        run_cli("frequency-response", "--points", 7, *args, "-o", out, "--summary", summary)
+        py = nocdyn.frequency_response(points=7, **kwargs)
+        same_table(out, py)
+        assert py.text == printed == summary.read_text()
 
 
 def test_tables_take_their_columns_from_the_registry():
