@@ -35,7 +35,7 @@ print("u [rad]:", report.u, " cond(A):", round(report.cond_A, 3))
 modes = nocdyn.forward_kinematics(report.u, robot=robot, all_branches=True)
 print(f"{len(modes)} assembly modes; working modes: {int(modes.working.sum())}")
 # the check: the direct kinematics of u gives back the pose u was computed from
-distance = np.min(np.abs(modes.poses - [theta, x, y]).max(axis=1))
+distance = np.min(np.abs(modes.poses - report.pose).max(axis=1))  # both x, y, theta
 print(f"nearest assembly mode to the pose solved for: {distance:.2g} (m, rad)")
 if not distance <= 1e-9:
     sys.exit(f"the direct kinematics misses the pose by {distance:.3g}")

@@ -354,7 +354,12 @@ MotionSamples motionFromTrajectory(const Model& model, const PoseTrajectory& tra
 }
 
 MotionSamples motionFromCsv(const Model& model, const std::string& path) {
-    const io::Table table = io::readCsvFile(path);
+    MotionSamples motion = motionFromTable(model, io::readCsvFile(path), path);
+    motion.source = std::filesystem::path(path).filename().string();
+    return motion;
+}
+
+MotionSamples motionFromTable(const Model& model, const io::Table& table, const std::string& path) {
     if (table.rows.empty()) throw Error(path + ": no rows");
     if (table.rows.size() > kMaxAnimationSamples) {
         throw Error(path + ": " + std::to_string(table.rows.size()) + " rows; animate holds at most " +
@@ -373,7 +378,7 @@ MotionSamples motionFromCsv(const Model& model, const std::string& path) {
         ctau.push_back(table.column(name));
     }
     MotionSamples motion;
-    motion.source = std::filesystem::path(path).filename().string();
+    motion.source = path;
     motion.actuators = n;
     Data data(model);
     RobotDrawing drawing;

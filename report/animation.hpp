@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "nocdyn/io/csv.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "plot.hpp"
@@ -39,6 +40,9 @@ inline constexpr std::size_t kMaxPlotBuckets = 800;
 /// A CSV written by simulate, control or inverse-dynamics: columns t, theta, x, y and
 /// tau1..taun; u is recomputed from the pose. Throws nocdyn::Error "FILE:LINE: reason".
 [[nodiscard]] MotionSamples motionFromCsv(const Model& model, const std::string& path);
+
+/// The same from a table in memory; `name` stands for the file in messages and on the page.
+[[nodiscard]] MotionSamples motionFromTable(const Model& model, const io::Table& table, const std::string& name);
 
 /// Page options: slow-motion factor K (playback lasts K times the motion; 0 = so that the
 /// whole motion plays in about 10 s) and the magnification of the displacements about the

@@ -306,16 +306,10 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
     return out;
 }
 
-void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const std::string& dir,
-                       const std::string& title) {
-    std::error_code error;
-    std::filesystem::create_directories(dir, error);
-    if (error) throw Error("cannot create the folder '" + dir + "': " + error.message());
-    const std::filesystem::path folder(dir);
+io::Table shakeTable(const ShakeOutcome& outcome, const Model& model) {
     const FittedRecord& fit = outcome.fit;
-    const PoseLoopResult& loop = outcome.loop;
     const int n = model.actuators;
-    // shake.csv at the record's (scaled) samples; u and tau from the nearest tick
+    // the record's (scaled) samples; u and tau from the nearest tick
     io::Table table;
     table.columns = io::columnNames(io::TableId::shake, {.actuators = n});
     const auto un = static_cast<std::size_t>(n);
@@ -338,8 +332,15 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
         for (std::size_t a = 0; a < un; ++a) row.push_back(outcome.tau_at_samples[i * un + a]);
         table.rows.push_back(std::move(row));
     }
-    io::writeCsvFile((folder / "shake.csv").string(), table);
+    return table;
+}
 
+std::string shakeJson(const ShakeOutcome& outcome) {
+    const FittedRecord& fit = outcome.fit;
+    const PoseLoopResult& loop = outcome.loop;
+    // every error a percentage, with _percent in its name (the text prints the same numbers)
+    std::vector<double> pass_percent;
+    for (double e : outcome.pass_rms) pass_percent.push_back(100.0 * e);
     nlohmann::json json;
     json["time_scale"] = fit.time_scale;
     json["amplitude_scale"] = fit.amplitude_scale;
@@ -351,7 +352,7 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
     json["saturated_ticks"] = loop.saturated_ticks;
     json["duration"] = loop.t.empty() ? 0.0 : loop.t.back();
     json["amplitude_requested"] = outcome.amplitude;
-    json["pass_rms_error"] = outcome.pass_rms;
+    json["pass_rms_error_percent"] = pass_percent;
     json["pass_kept"] = outcome.best_pass;
     json["controller"] = loop.controller;
     json["sensors"] = outcome.sensing;
@@ -367,18 +368,31 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
     for (std::size_t axis = 0; axis < 3; ++axis) {
         if (!outcome.driven[axis]) continue;
         const ShakeScore& s = outcome.score[axis];
-        metrics[kAxisNames[axis]] = {{"rms_error", s.rms_error},
-                                     {"peak_error", s.peak_error},
-                                     {"spectrum_share_outside_10_percent", s.share_outside},
+        metrics[kAxisNames[axis]] = {{"rms_error_percent", 100.0 * s.rms_error},
+                                     {"peak_error_percent", 100.0 * s.peak_error},
+                                     {"spectrum_outside_band_percent", 100.0 * s.share_outside},
                                      {"spectrum_periods_counted", s.counted},
-                                     {"displacement_error", s.displacement_error},
-                                     {"velocity_error", s.velocity_error},
+                                     {"displacement_error_percent", 100.0 * s.displacement_error},
+                                     {"velocity_error_percent", 100.0 * s.velocity_error},
                                      {"periods", s.periods},
                                      {"target_sa", s.target_sa},
                                      {"achieved_sa", s.achieved_sa}};
     }
     json["metrics"] = metrics;
-    io::writeTextFile((folder / "shake.json").string(), json.dump(2) + "\n");
+    return json.dump(2) + "\n";
+}
+
+void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const std::string& dir,
+                       const std::string& title) {
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error) throw Error("cannot create the folder '" + dir + "': " + error.message());
+    const std::filesystem::path folder(dir);
+    const FittedRecord& fit = outcome.fit;
+    const PoseLoopResult& loop = outcome.loop;
+    const io::Table table = shakeTable(outcome, model);
+    io::writeCsvFile((folder / "shake.csv").string(), table);
+    io::writeTextFile((folder / "shake.json").string(), shakeJson(outcome));
 
     // figures: target against achieved acceleration, and both spectra, per driven axis
     Figure accel{literalText(title) + ": target and achieved acceleration", {}};

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "nocdyn/description.hpp"
+#include "nocdyn/io/csv.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/sim/identification.hpp"
 #include "nocdyn/sim/shake.hpp"
@@ -91,6 +92,15 @@ struct ShakeOutcome {
 /// Fits and plays `record` on `robot`. Throws nocdyn::Error.
 [[nodiscard]] ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
                                     const ShakeSettings& settings);
+
+/// shake.csv's table: the record's (scaled) samples (io::TableId::shake), u and tau at the tick
+/// nearest each.
+[[nodiscard]] io::Table shakeTable(const ShakeOutcome& outcome, const Model& model);
+
+/// shake.json's text: scales, limit use, and per driven axis the scores, every error in percent
+/// with "_percent" in its name (rms_error_percent: 100 sqrt(sum e^2 / sum a^2);
+/// spectrum_outside_band_percent: of the counted periods, those outside +-10 %), and the spectra.
+[[nodiscard]] std::string shakeJson(const ShakeOutcome& outcome);
 
 /// DIR/shake.csv, DIR/shake.json, DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}.
 void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const std::string& dir,

@@ -4,6 +4,8 @@
 set -euo pipefail
 packages=(
   g++ make cmake pkg-config            # toolchain (CMake >= 3.25)
+  ninja-build                          # the builds of scripts/test*.sh (CMAKE_GENERATOR=Ninja)
+  ccache                               # the mutation check: a file put back is not compiled again
   libeigen3-dev                        # linear algebra
   libyaml-cpp-dev                      # robot and trajectory files
   libmuparser-dev                      # arithmetic expressions in parametric robot files

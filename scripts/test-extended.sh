@@ -10,16 +10,37 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 jobs="$(nproc)"
+# Ninja for a new build tree (scripts/test.sh says why).
+command -v ninja >/dev/null && export CMAKE_GENERATOR=Ninja
 
-python3 scripts/mutation/run.py --jobs "$jobs"
+# The mutation check runs beside the sanitizer build: after its own build it compiles one file
+# and runs a few test binaries at a time, on one core, and the sanitizer build takes the other.
+# Its output is printed when it ends; it is stopped (its whole process group) if this script
+# stops first. It ends before the fuzzers start, whose runs are limited in time, not in work.
+mutation_log="$(mktemp)"
+setsid -w python3 scripts/mutation/run.py --jobs "$jobs" >"$mutation_log" 2>&1 &
+mutation_pid=$!
+trap 'kill -- -"$mutation_pid" 2>/dev/null || true; rm -f "$mutation_log"' EXIT
+start=$SECONDS
 
 # The Python package is not built here: an interpreter cannot load an ASan-instrumented module
 # without LD_PRELOAD of the ASan runtime (its tests run in the release build).
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
   -DNOCDYN_BUILD_BENCHMARKS=OFF -DNOCDYN_SANITIZE=ON -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=OFF
 cmake --build build-sanitize -j"$jobs"
+echo "test-extended.sh: sanitizer build done at $((SECONDS - start)) s"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
   ctest --test-dir build-sanitize --output-on-failure --no-tests=error -j"$jobs"
+echo "test-extended.sh: sanitizer tests done at $((SECONDS - start)) s"
+
+mutation_status=0
+wait "$mutation_pid" || mutation_status=$?
+cat "$mutation_log"
+echo "test-extended.sh: mutation check done at $((SECONDS - start)) s"
+if ((mutation_status != 0)); then
+  echo "test-extended.sh: the mutation check failed (exit code $mutation_status)" >&2
+  exit 1
+fi
 
 # The file readers under libFuzzer (clang, ASan, UBSan): only the library's readers and the
 # harnesses are built; each harness runs briefly over its committed seed corpus (fuzz/).

@@ -11,6 +11,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/install-deps.sh
 jobs="$(nproc)"
+# Ninja for a new build tree (an existing one keeps its generator): it compiles a target's files
+# as soon as their inputs exist, where make waits for every library below it to be linked, so
+# that both cores stay busy through the layered library.
+command -v ninja >/dev/null && export CMAKE_GENERATOR=Ninja
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
   -DNOCDYN_BUILD_BENCHMARKS=ON -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=ON

@@ -459,7 +459,7 @@ TEST(Cli, ForwardKinematicsTakesAnyRobotFile) {
     // four values for the redundant 4-RRR
     r = run("forward-kinematics 0 0 0 0 --robot " + robots + "4-rrr.yaml");
     EXPECT_EQ(r.exit_code, 0) << r.err;
-    EXPECT_NE(r.out.find("1. theta = "), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("1. x = "), std::string::npos) << r.out;
     // the wrong number of values: one line, exit 2
     r = run("forward-kinematics 0 0 --robot " + robots + "3-rpr.yaml");
     EXPECT_EQ(r.exit_code, 2);

@@ -115,8 +115,8 @@ TEST(HostileRound3Cli, EveryFloatingOptionRefusesNanInfAndHexadecimal) {
     const std::vector<std::pair<std::string, std::string>> refused = {
         {shake + " --noise-pose nan", "--noise-pose"},
         {shake + " --window nan", "--window"},
-        {shake + " --max-rms nan", "--max-rms"},
-        {shake + " --max-rms inf", "--max-rms"},
+        {shake + " --max-rms-percent nan", "--max-rms-percent"},
+        {shake + " --max-rms-percent inf", "--max-rms-percent"},
         {shake + " --noise-pose 0x1p-20", "--noise-pose"},
         {"reproduce --identification-duration nan --out-dir " + (dir / "r").string(), "--identification-duration"},
         {"inverse-dynamics --trajectory paper1 --duration 0x10", "--duration"}};

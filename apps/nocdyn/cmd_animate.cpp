@@ -1,106 +1,33 @@
-// nocdyn animate: the robot moving along a trajectory or a recorded motion, as one
-// self-contained HTML page, and static frames as PNG and SVG.
-#include <algorithm>
-#include <cctype>
-#include <filesystem>
-#include <fstream>
-#include <iostream>
-#include <sstream>
-#include <string>
-#include <vector>
+// nocdyn animate: binds app::AnimateOptions; the application layer samples the motion and writes
+// the page (--output) and the frame (--png, --svg).
 #include <memory>
-#include <optional>
+#include <string>
 
-#include "animation.hpp"
+#include "app/animate.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/io/escape.hpp"
-#include "nocdyn/io/csv.hpp"
-#include "nocdyn/io/trajectory_yaml.hpp"
+#include "option_names.hpp"
+#include "progress.hpp"
 
 namespace nocdyn::cli {
 
 namespace {
 
-struct AnimateOptions {
-    std::string robot, trajectory, motion;
-    std::optional<double> duration;
-    double rate = 10000.0;
-    double slow_motion = 0.0;
-    double magnify = 1.0;
-    std::string out = "robot.html";
-    std::optional<double> frame;
-    std::string png, svg;
+struct Options : app::AnimateOptions {
+    Options() { output = "robot.html"; }
 };
 
-/// Refuses an output that is one of the inputs (the same file by any path or link): writing it
-/// would replace the very data it is drawn from.
-void requireNotAnInput(const AnimateOptions& options, bool out_given) {
-    const std::string outputs[][2] = {
-        {"--png", options.png}, {"--svg", options.svg}, {"--output", out_given ? options.out : ""}};
-    for (const auto& [option, path] : outputs) {
-        if (path.empty()) continue;
-        for (const std::string& input : {options.robot, options.trajectory, options.motion}) {
-            std::error_code error;
-            if (!input.empty() && std::filesystem::equivalent(path, input, error)) {
-                throw Error("animate: " + option + " '" + path + "' is an input file (" + input +
-                            "): writing it would replace it");
-            }
-        }
-    }
-}
-
-/// Whether `path` is a CSV of a recorded motion with its forces (its header has t, x, y, theta
-/// and tau1: what simulate, control, inverse-dynamics and shake write), not a trajectory's samples.
-bool recordedMotion(const std::string& path) {
-    std::string extension = std::filesystem::path(path).extension().string();
-    std::transform(extension.begin(), extension.end(), extension.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    if (extension != ".csv") return false;
-    std::ifstream in(path);
-    std::string header;
-    if (!in || !std::getline(in, header)) return false;
-    std::vector<std::string> names;
-    std::stringstream fields(header);
-    for (std::string name; std::getline(fields, name, ',');) {
-        if (!name.empty() && name.back() == '\r') name.pop_back();
-        names.push_back(name);
-    }
-    const auto has = [&](const char* name) { return std::find(names.begin(), names.end(), name) != names.end(); };
-    return has("t") && has("x") && has("y") && has("theta") && has("tau1");
-}
-
-void run(const AnimateOptions& options, bool out_given, bool sampling_given) {
-    requireNotAnInput(options, out_given);
-    const Model model(loadRobotDescriptionOrDefault(options.robot));
-    MotionSamples motion;
-    // a recorded motion given as --trajectory (a replay's shake.csv): played as --motion, forces and all
-    const bool recorded = !options.trajectory.empty() && recordedMotion(options.trajectory);
-    if (recorded && sampling_given) {
-        throw Error("animate: --trajectory " + options.trajectory +
-                    " is a recorded motion (t, x, y, theta, tau1..): it is played as recorded, without --duration "
-                    "or --rate");
-    }
-    if (!options.motion.empty() || recorded) {
-        motion = motionFromCsv(model, recorded ? options.trajectory : options.motion);
-    } else {
-        const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
-        motion = motionFromTrajectory(model, trajectory, chooseDuration(options.duration, trajectory), options.rate);
-    }
-    for (const std::string& warning : motion.warnings)
-        std::cerr << "nocdyn: warning: " << io::terminalText(warning) << "\n";
-    if (options.frame) {
-        renderFigureFiles(frameFigure(model, motion, *options.frame), options.png, options.svg);
-        if (!out_given) return;
-    }
-    io::writeTextFile(options.out, animationPage(model, motion, {options.slow_motion, options.magnify}));
+void run(const Options& options) {
+    TerminalObserver observer("nocdyn animate");
+    (void)namingOptions([&] { return app::runAnimate(options, observer); });
+    observer.finish();
 }
 
 }  // namespace
 
 void addAnimateCommand(CLI::App& app) {
-    auto options = std::make_shared<AnimateOptions>();
+    auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "animate",
         "The robot in motion as one self-contained HTML page (inline script and canvas; nothing is fetched\n"
@@ -124,37 +51,37 @@ void addAnimateCommand(CLI::App& app) {
     command
         ->add_option("--duration", options->duration,
                      "With --trajectory: seconds to sample [default: the file's duration, else 0.2]")
-        ->check(finiteIn(kMinDuration, kMaxDuration, "s"))
+        ->check(within(app::kDurationRange))
         ->excludes(motion);
     command->add_option("--rate", options->rate, "With --trajectory: samples per second")
-        ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
+        ->check(within(app::kRateRange))
         ->capture_default_str()
         ->excludes(motion);
     command
         ->add_option("--slow-motion", options->slow_motion,
                      "Slow-motion factor K: 1 s of motion plays in K s (changeable on the page) [default: so "
                      "that the whole motion plays in about 10 s]")
-        ->check(finiteIn(1.0, 1e6, ""));
+        ->check(within(app::kSlowMotionRange));
     command
         ->add_option("--magnify", options->magnify,
                      "Displacements about the mean pose drawn this many times larger (changeable on the page)")
-        ->check(finiteIn(0.0, 1e4, ""))
+        ->check(within(app::kMagnifyRange))
         ->capture_default_str();
-    auto* out = command->add_option("--output,-o", options->out, "HTML file to write")->capture_default_str();
-    auto* old_out = command->add_option("--out", options->out)->group("");  // the old spelling, hidden
+    auto* out = command->add_option("--output,-o", options->output, "HTML file to write")->capture_default_str();
+    auto* old_out = command->add_option("--out", options->output)->group("");  // the old spelling, hidden
     auto* frame = command->add_option("--frame", options->frame, "Draw the robot at this time [s] (nearest sample)")
-                      ->check(finiteIn(-1e6, 1e6, "s"));
+                      ->check(within(app::kFrameRange));
     command->add_option("--png", options->png, "With --frame: PNG file to write")->needs(frame);
     command->add_option("--svg", options->svg, "With --frame: SVG file to write")->needs(frame);
-    command->callback([options, command, out, old_out] {
-        if (options->trajectory.empty() && options->motion.empty()) {
+    command->callback([options, out, old_out] {
+        if (options->trajectory.empty() && options->motion.empty())
             throw Error("animate: give --trajectory or --motion");
-        }
-        if (options->frame && options->png.empty() && options->svg.empty()) {
+        if (options->frame && options->png.empty() && options->svg.empty())
             throw Error("animate: --frame needs --png or --svg");
-        }
-        (void)command;
-        run(*options, out->count() + old_out->count() > 0, command->count("--duration") + command->count("--rate") > 0);
+        // with --frame the page is written only when --output is given
+        Options run_options = *options;
+        if (options->frame && out->count() + old_out->count() == 0) run_options.output.clear();
+        run(run_options);
     });
 }
 

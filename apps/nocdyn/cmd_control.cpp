@@ -1,171 +1,42 @@
-// nocdyn control: closed-loop tracking of a pose trajectory by computed torque or PD in the
-// platform coordinates (control.hpp), on the Simbody plant generated from the robot
-// file (when built in) or nocdyn's own forward dynamics. Any robot file of either form (the
-// short form is the general robot it expands to); none: the paper's prototype.
-#include <cmath>
+// nocdyn control: binds app::ControlOptions, writes the closed-loop table, the sensors' log and
+// the tracking-error figure where asked, and prints the RMS and peak errors.
 #include <cstdio>
-#include <iostream>
 #include <memory>
-#include <utility>
-#include <vector>
 
+#include "app/control.hpp"
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/analysis/sampling.hpp"
-#include "nocdyn/error.hpp"
-#include "nocdyn/sim/control.hpp"
-#include "nocdyn/io/escape.hpp"
-#include "nocdyn/sim/identification.hpp"
-#include "nocdyn/io/csv.hpp"
+#include "progress.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "nocdyn/tables/tables.hpp"
-#include "nocdyn/io/trajectory_yaml.hpp"
-#include "plants.hpp"
-#include "reproduce_dynamics.hpp"
 
 namespace nocdyn::cli {
 
 namespace {
 
-struct ControlOptions {
-    std::string trajectory, robot, output, figure;
-    std::optional<double> duration;
-    std::string controller = "computed-torque";  ///< "computed-torque" or "pd"
-    double natural_frequency = 50.0;             ///< f_n of the error dynamics [Hz]
-    std::string plant = defaultPlantName();
-    double rate = 10000.0;            ///< controller ticks per second [Hz]
-    double payload_mass = 0.0;        ///< [kg], on the plant's platform only (model mismatch)
-    double payload_inertia = 0.0;     ///< about the payload's c.o.m. [kg m^2]
-    std::vector<double> payload_com;  ///< [x, y] in the platform frame [m]
-    double noise_u = 0.0;             ///< encoder noise [m or rad]
-    double noise_du = 0.0;            ///< encoder rate noise [m/s or rad/s]
-    unsigned seed = 1;
-    bool no_saturation = false;
-    double noise_pose = 0.0;       ///< [m and rad]
-    double noise_rate = 0.0;       ///< [m/s and rad/s]
-    double noise_tau = 0.0;        ///< force measurement noise in the log [N or N m]
-    std::string log;               ///< the sensors' log t,u1..un,tau1..taun
-    std::string measure = "pose";  ///< pose (a pose sensor) or encoders (u, du and the tracker)
+struct Options : app::ControlOptions {
+    std::string output, figure, log;
 };
 
-void checkDuration(double duration, double rate, const std::string& trajectory) {
-    if (!(duration <= kMaxSimulatedDuration)) {
-        throw Error(trajectory + ": duration " + std::to_string(duration) + " s; control accepts at most " +
-                    std::to_string(kMaxSimulatedDuration) + " s (give --duration)");
-    }
-    if (!(duration * rate <= kMaxSimulatedSamples)) {
-        throw Error("duration " + std::to_string(duration) + " s at --rate " + std::to_string(rate) +
-                    " Hz gives more than 1e7 ticks, the most control accepts");
-    }
-}
-
-/// A reference beyond a joint's range or an actuator's effort is a warning on standard error:
-/// the closed loop still tries to track it (a reference out of reach is the loop's error).
-void warnReferenceBeyondLimits(const Model& model, const PoseTrajectory& trajectory, double duration, double rate) {
-    LimitSummary summary;
+void run(Options options) {
+    options.sensor_log = !options.log.empty();
+    TerminalObserver observer("nocdyn control");
+    app::ControlResult result;
     try {
-        summary = streamInverseDynamics(model, trajectory, sampleGrid(duration, rate), LimitPolicy::record,
-                                        [](const InverseDynamicsSample&) {});
-    } catch (const Error&) {
-        return;
+        result = app::runControl(options, observer);
+    } catch (const app::OptionError& e) {
+        throw Error(commandLineMessage(e));
     }
-    for (const std::string& violation : summary.limit_violations) {
-        std::cerr << "nocdyn: warning: the reference trajectory: " << io::terminalText(violation) << "\n";
-    }
-}
-
-/// Task-space computed torque or PD on the pose measured from the plant (or through the
-/// encoders and the tracker).
-void run(const ControlOptions& options) {
-    const bool encoders = options.measure == "encoders";
-    if (encoders && (options.noise_pose > 0.0 || options.noise_rate > 0.0)) {
-        throw Error(
-            "--measure encoders measures u and du: use --noise-u and --noise-du, not --noise-pose and "
-            "--noise-rate");
-    }
-    if (options.noise_du > 0.0 && !encoders) {
-        throw Error(
-            "--noise-du is the encoder-rate noise of --measure encoders; the controller measures the pose: use "
-            "--noise-rate (--noise-u is the encoder noise of --log)");
-    }
-    if (options.noise_u > 0.0 && options.log.empty() && !encoders) {
-        throw Error(
-            "--noise-u is the encoder noise of --log or of --measure encoders; the controller measures the pose: "
-            "use --noise-pose and --noise-rate");
-    }
-    const RobotDescription robot = loadRobotDescriptionOrDefault(options.robot);
-    const Model model(robot);
-    const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
-    PoseLoopOptions loop;
-    loop.rate = options.rate;
-    loop.duration = chooseDuration(options.duration, trajectory);
-    checkDuration(loop.duration, loop.rate, options.trajectory);
-    warnReferenceBeyondLimits(model, trajectory, loop.duration, loop.rate);
-    Payload payload;
-    payload.mass = options.payload_mass;
-    payload.inertia = options.payload_inertia;
-    if (options.payload_com.size() == 2) payload.com = Vector2(options.payload_com[0], options.payload_com[1]);
-    const std::unique_ptr<RobotPlant> plant = makePlant(options.plant, withPayload(robot, payload));
-    PoseController controller(model, options.controller == "pd" ? ControlLaw::pd : ControlLaw::computed_torque,
-                              taskCriticallyDamped(options.natural_frequency));
-    loop.saturation = !options.no_saturation;
-    loop.noise_angle = options.noise_pose;
-    loop.noise_position = options.noise_pose;
-    loop.noise_rate = options.noise_rate;
-    loop.seed = options.seed;
-    loop.encoders = encoders;
-    loop.noise_u = encoders ? options.noise_u : 0.0;
-    loop.noise_du = options.noise_du;
-    Progress progress(loop.duration);  // on a terminal only: the Simbody plant runs a few s per 0.2 s
-    loop.progress = [&progress](double t) { progress.update(t); };
-    const PoseLoopResult result = runPoseLoop(controller, *plant, trajectory, loop);
-    progress.finish();
-    if (!options.output.empty()) writeTable(io::toTable(result), options.output);
-    if (!options.log.empty()) {
-        io::writeCsvFile(options.log,
-                         io::toTable(sensorLog(result, options.noise_u, options.noise_tau, options.seed + 1)));
-    }
-    if (!options.figure.empty()) {
-        renderFigure(trackingErrorFigure(literalText(trajectory.name) + ": actuator tracking errors", {result}),
-                     options.figure);
-    }
-    std::printf("%s on the %s plant, %s, %s, %g s at %g Hz (f_n = %g Hz)%s\n", result.controller.c_str(),
-                result.plant.c_str(), io::terminalText(robot.name).c_str(), io::terminalText(trajectory.name).c_str(),
-                loop.duration, loop.rate, options.natural_frequency,
-                payload.mass > 0.0 || payload.inertia > 0.0 ? ", payload unknown to the controller" : "");
-    std::printf("pose: RMS error x %.4g um, y %.4g um, theta %.4g urad; peak x %.4g um, y %.4g um, theta %.4g urad\n",
-                result.pose_rms_error(1) * 1e6, result.pose_rms_error(2) * 1e6, result.pose_rms_error(0) * 1e6,
-                result.pose_peak_error(1) * 1e6, result.pose_peak_error(2) * 1e6, result.pose_peak_error(0) * 1e6);
-    std::printf("pose, second half: peak x %.4g um, y %.4g um, theta %.4g urad\n", result.pose_late_peak_error(1) * 1e6,
-                result.pose_late_peak_error(2) * 1e6, result.pose_late_peak_error(0) * 1e6);
-    for (int a = 0; a < model.actuators; ++a) {
-        const auto ia = static_cast<std::size_t>(a);
-        const LimbModel& limb = model.limb[static_cast<std::size_t>(model.actuator_limb[ia])];
-        const bool revolute = limb.type[static_cast<std::size_t>(model.actuator_joint[ia])] == JointType::revolute;
-        const double effort = controller.effort()(a);
-        char limit[64] = "none";
-        if (std::isfinite(effort)) std::snprintf(limit, sizeof limit, "%g %s", effort, revolute ? "N m" : "N");
-        std::printf("actuator %d (%s): RMS error %.4g %s, peak error %.4g %s, peak |tau| %.4g %s (effort %s)\n", a + 1,
-                    model.limbName(model.actuator_limb[ia]).c_str(), result.rms_error[ia] * 1e6,
-                    revolute ? "urad" : "um", result.peak_error[ia] * 1e6, revolute ? "urad" : "um",
-                    result.peak_tau[ia], revolute ? "N m" : "N", limit);
-    }
-    std::printf("saturated ticks: %zu of %zu\n", result.saturated_ticks, result.t.size());
-    if (encoders) {
-        std::printf(
-            "measured through the encoders and the tracker: pose error RMS x %.4g um, y %.4g um, theta %.4g urad; "
-            "peak x %.4g um, y %.4g um, theta %.4g urad; at most %d Newton steps per tick\n",
-            result.measurement_rms_error(1) * 1e6, result.measurement_rms_error(2) * 1e6,
-            result.measurement_rms_error(0) * 1e6, result.measurement_peak_error(1) * 1e6,
-            result.measurement_peak_error(2) * 1e6, result.measurement_peak_error(0) * 1e6,
-            result.tracker_max_iterations);
-    }
+    observer.finish();
+    if (!options.output.empty()) writeTable(result.table, options.output);
+    if (!options.log.empty()) io::writeCsvFile(options.log, result.log);
+    if (!options.figure.empty()) renderFigure(app::trackingFigure(result), options.figure);
+    std::fputs(result.text.c_str(), stdout);
 }
 
 }  // namespace
 
 void addControlCommand(CLI::App& app) {
-    auto options = std::make_shared<ControlOptions>();
+    auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "control",
         "Closed-loop tracking of a platform trajectory by any robot (either form of robot file; none: the paper's\n"
@@ -188,12 +59,12 @@ void addControlCommand(CLI::App& app) {
         ->capture_default_str();
     addPlantOption(*command, options->plant);
     command->add_option("--rate", options->rate, "Controller rate [Hz]")
-        ->check(finiteIn(kMinRate, 1e7, "Hz"))
+        ->check(within(app::kControllerRateRange))
         ->capture_default_str();
     command->add_option("--duration", options->duration, "Seconds [default: the file's duration, else 0.2]")
-        ->check(finiteIn(kMinDuration, kMaxSimulatedDuration, "s"));
+        ->check(within(app::kSimulatedDurationRange));
     command->add_option("--natural-frequency", options->natural_frequency, "f_n of the error dynamics [Hz]")
-        ->check(finiteIn(1e-3, 1e4, "Hz"))
+        ->check(within(app::kNaturalFrequencyRange))
         ->capture_default_str();
     command
         ->add_option("--payload-mass", options->payload_mass,
@@ -207,7 +78,7 @@ void addControlCommand(CLI::App& app) {
         ->add_option("--payload-com", options->payload_com,
                      "The payload's c.o.m. X Y in the platform frame [m] (default 0 0, at C)")
         ->expected(2)
-        ->check(finiteIn(-1e3, 1e3, "m"));
+        ->check(within(app::kLengthRange));
     command
         ->add_option("--noise-pose", options->noise_pose,
                      "Std. dev. of the pose measurement noise [m for x, y; rad for theta]")

@@ -11,6 +11,8 @@
 #include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <iterator>
+#include <regex>
 #include <iostream>
 #include <sstream>
 #include <string_view>
@@ -339,6 +341,22 @@ CLI::Option* addPlantOption(CLI::App& command, std::string& plant) {
     return command.add_option("--plant", plant, report::kPlantHelp)
         ->check(CLI::IsMember(std::vector<std::string>(std::begin(report::kPlantNames), std::end(report::kPlantNames))))
         ->capture_default_str();
+}
+
+/// An option's message as the command line spells its options: noise_pose -> --noise-pose.
+std::string commandLineMessage(const app::OptionError& e) {
+    static const std::regex snake(R"(\b([a-z]+(_[a-z]+)+)\b)");
+    std::string message;
+    std::regex_replace(std::back_inserter(message), e.message().begin(), e.message().end(), snake, "--$1");
+    for (std::size_t at = 0; (at = message.find("--", at)) != std::string::npos; at += 2) {
+        for (std::size_t k = at + 2;
+             k < message.size() && (std::isalpha(static_cast<unsigned char>(message[k])) || message[k] == '_'); ++k) {
+            if (message[k] == '_') message[k] = '-';
+        }
+    }
+    std::string field = e.field();
+    std::replace(field.begin(), field.end(), '_', '-');
+    return "--" + field + ": " + message;
 }
 
 }  // namespace nocdyn::cli

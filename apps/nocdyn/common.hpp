@@ -129,4 +129,8 @@ void writeTable(const io::Table& table, const std::string& path);
 /// this one definition.
 CLI::Option* addPlantOption(CLI::App& command, std::string& plant);
 
+/// An application-layer option error as the command line spells its options: "--noise-u: ...
+/// use --noise-pose and --noise-rate" for the field noise_u naming noise_pose and noise_rate.
+[[nodiscard]] std::string commandLineMessage(const app::OptionError& e);
+
 }  // namespace nocdyn::cli

@@ -224,20 +224,20 @@ def _table_file(call, table, name):
     return path
 
 
-def _forces_file(call, forces):
-    """A force table as the CSV simulate reads: a path, or columns (a dict, a Table, a DataFrame)."""
-    if isinstance(forces, (str, os.PathLike)):
-        return forces
+def _forces_table(forces):
+    """The forces given as columns (a dict, a Table, a DataFrame) as a Table."""
     if isinstance(forces, Table):
-        table = forces
-    elif hasattr(forces, "columns") and hasattr(forces, "to_numpy"):  # a pandas DataFrame
-        table = Table([str(c) for c in forces.columns], forces.to_numpy(dtype=float))
-    elif isinstance(forces, dict):
+        return forces
+    if hasattr(forces, "columns") and hasattr(forces, "to_numpy"):  # a pandas DataFrame
+        return Table([str(c) for c in forces.columns], forces.to_numpy(dtype=float))
+    if isinstance(forces, dict):
         import numpy as np
-        table = Table(list(forces), np.column_stack([np.asarray(v, dtype=float).reshape(-1) for v in forces.values()]))
-    else:
-        raise ValueError("forces: expected a CSV path, a dict of columns (t, tau1..taun), a Table or a DataFrame")
-    return _table_file(call, table, "forces.csv")
+        try:
+            return Table(list(forces), np.column_stack([np.asarray(v, dtype=float).reshape(-1)
+                                                        for v in forces.values()]))
+        except (TypeError, ValueError) as error:
+            raise ValueError(f"forces: {error}") from None
+    raise ValueError("forces: expected a CSV path, a dict of columns (t, tau1..taun), a Table or a DataFrame")
 
 
 def _table_command(command, function, arguments, file_name, kind=Table, handled=()):
@@ -371,6 +371,18 @@ def _table(answer, name, kind=None, text="", integers=()):
 _NUMBERS = ("limb", "joint", "actuator")
 
 
+def _path_argument(value, name):
+    """A file name the caller gave ('' for none); ValueError naming the argument."""
+    if value is None:
+        return ""
+    if not isinstance(value, (str, os.PathLike)):
+        raise ValueError(f"{name}: expected a path, got {type(value).__name__}")
+    text = os.fspath(value)
+    if not text or "\0" in text:
+        raise ValueError(f"{name}: expected a non-empty path without NUL characters")
+    return text
+
+
 def _write_table(path, columns, data):
     """The table as the command line's CSV, written safely (a unique temporary file renamed)."""
     _nocdyn._write_table(os.fspath(path), list(columns), data)
@@ -417,24 +429,24 @@ inverse_dynamics.__signature__ = _signature(_nocdyn.InverseDynamicsOptions, ("tr
                                             after=(("output", None), ("progress", None)))
 
 
-def forward_kinematics(u, *, robot=None, set=None, all_branches=False):
+def forward_kinematics(u, *, robot=None, set=None, **options):
     """Every platform pose the robot assembles in with actuator values u [m or rad]
     (``nocdyn forward-kinematics U...``): the working modes (every limb on its home branch), or
-    with all_branches every assembly mode. Returns AssemblyModes (poses (k, 3), ...)."""
+    with all_branches every assembly mode. Returns AssemblyModes (poses (k, 3) [x, y, theta], ...)."""
     values = [u] if not hasattr(u, "__len__") else list(u)
-    with _Call("forward-kinematics", forward_kinematics) as call:
-        call.positional(*values, name="u")
-        call.robot(robot)
-        call.option("set", set)
-        call.option("json", True)
-        call.option("all_branches", all_branches)
-        out, err = call.run()
-        return AssemblyModes(_json.loads(out), err)
+    values = [_argument(v, "u", 0.0) for v in values]
+    if any(isinstance(v, bool) or not isinstance(v, (int, float)) for v in values):
+        raise ValueError(f"u: expected numbers, got {u!r}")
+    bound = _bound_options(_nocdyn.ForwardKinematicsOptions, {"u": [float(v) for v in values], **options})
+    bound.robot = _robot_source(robot, set)
+    return AssemblyModes(_nocdyn._run_forward_kinematics(bound, None))
 
 
-def simulate(forces, *, robot=None, set=None,
-             interpolation="cubic", duration=None, rate=10000.0, output=None, atol=1e-12,
-             rtol=1e-10, assembly_mode=0, partial=False, reactions=False, progress=None):
+forward_kinematics.__signature__ = _signature(_nocdyn.ForwardKinematicsOptions, ("u",),
+                                              after=(("robot", None), ("set", None)))
+
+
+def simulate(forces, *, robot=None, set=None, output=None, progress=None, **options):
     """Forward dynamics (``nocdyn simulate``): the motion under actuator forces.
 
     forces: a CSV path, or columns t, tau1..taun [s, N or N m] (a dict, Table or DataFrame; with
@@ -442,23 +454,56 @@ def simulate(forces, *, robot=None, set=None,
     interpolated ('cubic', 'linear' or 'hold') and held beyond the last time. rate: output samples
     per second; duration: seconds (default: the span of the forces). atol, rtol: the integrator's
     tolerances; assembly_mode: which working mode of the first u (1-based; 0: nearest home);
-    partial: keep the motion up to a failure; reactions: every joint's reaction at each sample
-    (limb{i}_j{k}_fx, _fy, _m) as more columns. Returns a Table with the CSV's columns."""
-    return _table_command("simulate", simulate, dict(locals()), "simulate.csv",
-                          handled={"forces": lambda call: _forces_file(call, forces)})
+    partial: return the motion up to a failure (and warn of it) instead of raising; reactions: every
+    joint's reaction at each sample (limb{i}_j{k}_fx, _fy, _m) as more columns. Returns a Table
+    with the CSV's columns; output: also write it as CSV."""
+    if isinstance(forces, (str, os.PathLike)):
+        bound = _bound_options(_nocdyn.SimulateOptions, {"forces": forces, **options})
+    else:
+        bound = _bound_options(_nocdyn.SimulateOptions, options)
+        table = _forces_table(forces)
+        bound.use_forces(table.columns, table.data)
+    bound.robot = _robot_source(robot, set)
+    columns, data, text, stopped = _run(_nocdyn._run_simulate, bound, progress, "simulate")
+    if stopped:
+        warnings.warn(stopped, RuntimeWarning, stacklevel=2)
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, "" if stopped else text, "simulate")
 
 
-def control(trajectory, *, robot=None, set=None, controller="computed-torque", plant=None, rate=10000.0, duration=None,
-            natural_frequency=50.0, payload_mass=0.0, payload_inertia=0.0, payload_com=None, noise_pose=0.0,
-            noise_rate=0.0, noise_tau=0.0, measure="pose", log=None, noise_u=0.0, noise_du=0.0, seed=1,
-            no_saturation=False, output=None, figure=None, progress=None):
+simulate.__signature__ = _signature(_nocdyn.SimulateOptions, ("forces",), before=(("robot", None), ("set", None)),
+                                    after=(("output", None), ("progress", None)))
+
+
+def control(trajectory, *, robot=None, set=None, plant=None, log=None, output=None, figure=None, progress=None,
+            **options):
     """Closed-loop tracking of a platform trajectory (``nocdyn control``) by computed torque or PD
     on a plant: 'simbody' (the independent model, when built in; the default then), 'nocdyn' or
     'nocdyn-rk4'. The payload_* arguments put a payload on the plant only (model mismatch); the
     noise_* arguments are sensor noise; log: also write the sensors' log for identify. Returns a
     Table with the CSV's columns (t, x_d, y_d, theta_d, ..., e_x, e_y, e_theta, u1..un, ..., tau1..taun);
-    its text holds the RMS and peak errors."""
-    return _table_command("control", control, dict(locals()), "control.csv")
+    its text holds the RMS and peak errors. output, figure: also write the CSV and the
+    tracking-error figure (STEM.png and STEM.svg)."""
+    if options.get("payload_com") is None:
+        options.pop("payload_com", None)
+    else:
+        options["payload_com"] = [float(_argument(v, "payload_com", 0.0)) for v in options["payload_com"]]
+    bound = _bound_options(_nocdyn.ControlOptions, {"trajectory": trajectory, **options})
+    if plant is not None:  # None: the build's default (Simbody's when built in)
+        bound.plant = _argument(plant, "plant", "")
+    bound.robot = _robot_source(robot, set)
+    files = [_path_argument(log, "log"), _path_argument(figure, "figure")]
+    columns, data, text = _run(lambda o, p: _nocdyn._run_control(o, *files, p), bound, progress, "control")
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, text.rstrip("\n"), "control")
+
+
+control.__signature__ = _signature(_nocdyn.ControlOptions, ("trajectory",), before=(("robot", None), ("set", None)),
+                                   after=(("log", None), ("output", None), ("figure", None), ("progress", None)))
+control.__signature__ = control.__signature__.replace(parameters=[
+    p.replace(default=None) if p.name == "plant" else p for p in control.__signature__.parameters.values()])
 
 
 def envelope(*, robot=None, set=None, output=None, figure=None, progress=None, **options):
@@ -478,22 +523,37 @@ envelope.__signature__ = _signature(_nocdyn.EnvelopeOptions, (), before=(("robot
                                     after=(("output", None), ("figure", None), ("progress", None)))
 
 
-def frequency_response(*, robot=None, set=None, pose=None, rate=None, output_kind="acceleration", f_min=1.0,
-                       f_max=1000.0, points=200, output=None, summary=None, figure=None, closed_loop=False,
-                       payload=0.0, controller_rate=10000.0, natural_frequency=6.0):
+def frequency_response(*, robot=None, set=None, output=None, summary=None, figure=None, **options):
     """The rigid robot linearised at an operating point and its frequency response
-    (``nocdyn frequency-response``): pose [theta, x, y] (default home) and rate (default at
-    rest), held by the inverse dynamics' forces; from each actuator force to each platform
-    acceleration (output_kind "acceleration") or actuator variable ("actuators") over ``points``
-    log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then <output>_tau<a>_db and
-    _deg per channel); ``text`` holds the summary with each channel's -3 dB bandwidth.
+    (``nocdyn frequency-response``): pose [x, y, theta] (default home) and rate [dx, dy, dtheta]
+    (default at rest), held by the inverse dynamics' forces; from each actuator force to each
+    platform acceleration (output_kind "acceleration") or actuator variable ("actuators") over
+    ``points`` log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then
+    <output>_tau<a>_db and _deg per channel, axes x, y, theta); ``text`` holds the summary with
+    each channel's -3 dB bandwidth. output, summary, figure: also write the CSV, the summary and
+    the Bode figure (STEM.png and STEM.svg).
 
     closed_loop=True: the shake-table loop linearised at rest (``--closed-loop``), from the
     reference to the achieved platform acceleration per axis, with a plant ``payload`` [kg] at C
     unknown to the controller, ``controller_rate`` [Hz] and the pose feedback's
     ``natural_frequency`` [Hz]; the Table has <axis>_db, _deg, _loop_db, _loop_deg per axis and
     ``text`` each axis's -3 dB bandwidth, crossover and phase margin."""
-    return _table_command("frequency-response", frequency_response, dict(locals()), "frequency_response.csv")
+    options = {k: v for k, v in options.items() if not (k in ("pose", "rate") and v is None)}
+    for name in ("pose", "rate"):
+        if name in options:
+            options[name] = [float(_argument(v, name, 0.0)) for v in options[name]]
+    bound = _bound_options(_nocdyn.FrequencyResponseOptions, options)
+    bound.robot = _robot_source(robot, set)
+    files = [_path_argument(summary, "summary"), _path_argument(figure, "figure")]
+    columns, data, text = _nocdyn._run_frequency_response(bound, *files)
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, text, "frequency-response")
+
+
+frequency_response.__signature__ = _signature(_nocdyn.FrequencyResponseOptions, (),
+                                              before=(("robot", None), ("set", None)),
+                                              after=(("output", None), ("summary", None), ("figure", None)))
 
 
 def workspace(*, robot=None, set=None, output=None, figure=None, progress=None, **options):
@@ -523,29 +583,43 @@ def convert(robot, *, set=None, output=None):
     return _run(lambda o, p: _nocdyn._run_convert(o, p, _path(output, "output")), bound, False, "convert")
 
 
-def animate(trajectory=None, *, robot=None, set=None, motion=None, duration=None, rate=10000.0, slow_motion=0.0,
-            magnify=1.0, output=None, frame=None, png=None, svg=None):
+def animate(trajectory=None, *, robot=None, set=None, output=None, png=None, svg=None, **options):
     """The robot in motion as one self-contained HTML page (``nocdyn animate``), from a
     trajectory (inverse dynamics at ``rate`` over ``duration``) or a motion CSV written by
     simulate, control or inverse-dynamics (``motion``, a path or a Table). Returns an Animation,
-    shown inline in Jupyter. frame (with png or svg): also draw the robot at that time."""
-    arguments = dict(locals())
-    with _Call("animate", animate) as call:
-        call.robot(robot)
-        if isinstance(motion, Table):
-            call.option("motion", _table_file(call, motion, "motion.csv"))
-        path = call.output("output", output, "robot.html")
-        call.options(arguments, handled=("robot", "output") + (("motion",) if isinstance(motion, Table) else ()))
-        out, err = call.run()
-        return Animation(path.read_text(encoding="utf-8"), None if output is None else path, _text(out, err))
+    shown inline in Jupyter; output: also write the page. frame (with png or svg): also draw
+    the robot at that time."""
+    motion = options.pop("motion", None)
+    arguments = {name: value for name, value in options.items() if value is not None or name == "frame"}
+    if trajectory is not None:
+        arguments["trajectory"] = trajectory
+    if isinstance(motion, Table):
+        bound = _bound_options(_nocdyn.AnimateOptions, arguments)
+        bound.use_motion_table(list(motion.columns), motion.data, motion.name or "motion")
+    else:
+        if motion is not None:
+            arguments["motion"] = motion
+        bound = _bound_options(_nocdyn.AnimateOptions, arguments)
+    bound.robot = _robot_source(robot, set)
+    for name, value in (("output", output), ("png", png), ("svg", svg)):
+        if value is not None:
+            setattr(bound, name, _argument(value, name, ""))
+    html = _run(_nocdyn._run_animate, bound, False, "animate")
+    return Animation(html, None if output is None else pathlib.Path(output))
 
 
-def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, time_scale="auto", highpass=0.1,
-          margin=0.1, window=0.0, plant=None, rate=10000.0, controller="table", natural_frequency=None,
-          acceleration_gain=0.0, encoder_noise=1e-6, accel_noise_density=22.5, accel_bandwidth=1000.0,
-          accel_baseline=0.1, no_accelerometer=False, amplitude=1.0, identify_payload=False, iterations=0,
-          iteration_gain=0.7, excitation_duration=2.0, jobs=0, max_rms=0.05, max_peak=0.05, min_spectrum=0.95,
-          payload_mass=0.5, noise_pose=1e-6, noise_rate=1e-5, seed=1, accuracy=1e-10, out_dir=None, progress=None):
+def _animate_signature():
+    signature = _signature(_nocdyn.AnimateOptions, ("trajectory",), before=(("robot", None), ("set", None)),
+                           after=(("output", None), ("png", None), ("svg", None)))
+    parameters = list(signature.parameters.values())
+    parameters[0] = parameters[0].replace(default=None)
+    return signature.replace(parameters=parameters)
+
+
+animate.__signature__ = _animate_signature()
+
+
+def shake(record, *, robot=None, set=None, out_dir=None, progress=None, **options):
     """Play a ground-motion record (PEER AT2, values in g) on a robot (``nocdyn shake``):
     high-passed, integrated, scaled by similitude to fit every actuator, and played on the plant
     with an unknown payload, as a shake table plays it: controller "table" (model feed-forward,
@@ -553,9 +627,10 @@ def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, tim
     optionally the payload identified first and drive-signal iterations), or "pose" (computed
     torque on noisy pose feedback). natural_frequency: None for the controller's own default. window: play only the
     record's first seconds (0: all). Returns a ShakeResult: the samples (t, x, y, theta, ax, ay,
-    alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (the score: scales, RMS and peak
-    acceleration errors, spectra). out_dir: keep the files and figures there."""
-    arguments = dict(locals())
+    alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (shake.json: scales, and per axis
+    the errors in percent, ``rms_error_percent``, ``peak_error_percent``, ..., and the spectra).
+    out_dir: also write the files and figures there. Ctrl-C (or a KeyboardInterrupt raised by
+    ``progress``) stops the replay and writes nothing."""
     # a folder (or several records) is a suite, whose results are one folder per record and no
     # samples to return: refused before anything runs, rather than after
     several = isinstance(record, (list, tuple)) and len(record) != 1
@@ -563,14 +638,24 @@ def shake(record, *, robot=None, set=None, record_y=None, record_theta=None, tim
         raise ValueError(f"record: {record!r} is a suite of records, and nocdyn.shake plays one record and "
                          "returns its samples: call it once per .AT2 file, or run the suite with "
                          "`nocdyn shake --record FOLDER --out-dir DIR` (summary.md and one folder per record)")
-    with _Call("shake", shake) as call:
-        call.robot(robot)
-        folder = call.output("out_dir", out_dir, "shake")
-        call.options(arguments, handled=("robot", "out_dir"))
-        out, err = call.run(progress, "shake")
-        columns, data, _ = read_csv(folder / "shake.csv")
-        return ShakeResult(columns, data, load_json(folder / "shake.json"), None if out_dir is None else folder,
-                           _text(out, err))
+    if isinstance(record, (list, tuple)):
+        record = record[0]
+    if not isinstance(record, (str, os.PathLike)):
+        raise ValueError(f"record: expected an AT2 file's path, got {type(record).__name__}")
+    arguments = {"record": [_argument(record, "record", "")], **options}
+    if arguments.get("natural_frequency", None) is None:
+        arguments.pop("natural_frequency", None)
+    bound = _bound_options(_nocdyn.ShakeOptions, arguments)
+    bound.robot = _robot_source(robot, set)
+    if out_dir is not None:
+        bound.out_dir = _argument(out_dir, "out_dir", "")
+    columns, data, metrics, text = _run(_nocdyn._run_shake, bound, progress, "shake")
+    return ShakeResult(columns, data, _json.loads(metrics), None if out_dir is None else pathlib.Path(out_dir),
+                       text.rstrip("\n"))
+
+
+shake.__signature__ = _signature(_nocdyn.ShakeOptions, ("record",), before=(("robot", None), ("set", None)),
+                                 after=(("out_dir", None), ("progress", None)))
 
 
 def regressor(*, robot=None, set=None, output=None, **options):
@@ -586,41 +671,53 @@ regressor.__signature__ = _signature(_nocdyn.RegressorOptions, (), before=(("rob
                                      after=(("output", None),))
 
 
-def identify(data, *, robot=None, set=None, payload=False, base=False, friction=False, held_forces=False, cutoff=0.0,
-             holdout=0.2, output=None, calibration=None, prior=None, figure=None, progress=None):
+def identify(data, *, robot=None, set=None, output=None, figure=None, progress=None, **options):
     """Identify a payload (the default) or the robot's base parameters (base) from a log of
     actuator positions and forces, CSV t,u1..un with tau1..taun (forces at each sample) or
     tau1_held..taun_held (commands held until the next sample, as control's ``log`` writes them;
     taken so without held_forces) (``nocdyn identify``). Returns an Identification: the report the command prints (``text``),
     read as a dict (``report``: payload, standard_deviation, fit, ...), and ``robot_yaml``, the
-    file the command writes (the robot with the payload merged, or with base the calibration)."""
-    arguments = dict(locals())
-    with _Call("identify", identify) as call:
-        call.robot(robot)
-        path = call.output("output", output, "identified.yaml")
-        call.options(arguments, handled=("robot", "output"))
-        out, err = call.run(progress, "identify")
-        return Identification(out, path.read_text(encoding="utf-8"), err)
+    file the command writes (the robot with the payload merged, or with base the calibration).
+    output: also write that file; figure: STEM of the held-out forces' figure (STEM.png, STEM.svg)."""
+    bound = _bound_options(_nocdyn.IdentifyOptions, {"data": data, **options})
+    bound.robot = _robot_source(robot, set)
+    if output is not None:
+        bound.output = _argument(output, "output", "")
+    if figure is not None:
+        bound.figure = _argument(figure, "figure", "")
+    text, robot_yaml = _run(_nocdyn._run_identify, bound, progress, "identify")
+    return Identification(text, robot_yaml)
 
 
-def excite(*, robot=None, set=None,
-           output=None, payload_guess=None, base=False, friction=False, duration=5.0, frequency=5.0,
-           harmonics=4, margin=0.1, max_condition=100.0, evaluations=400, random=60, samples=0, check_samples=2000,
-           seed=1):
+identify.__signature__ = _signature(_nocdyn.IdentifyOptions, ("data",), before=(("robot", None), ("set", None)),
+                                    after=(("output", None), ("figure", None), ("progress", None)))
+
+
+def excite(*, robot=None, set=None, output=None, progress=None, **options):
     """Design an excitation trajectory for identify (``nocdyn excite``): Fourier series of
     ``harmonics`` harmonics of ``frequency`` [Hz] per axis, as large as every limit allows (with
     ``margin`` to spare), minimising the condition number of the payload's (or with base, the
-    robot's base parameters') regressor. Returns an Excitation (yaml, trajectory, text)."""
+    robot's base parameters') regressor. payload_guess: (mass, com_x, com_y, inertia) or None.
+    Returns an Excitation (yaml, trajectory, text); output: also write the trajectory file.
+    Ctrl-C (or a KeyboardInterrupt raised by ``progress``) stops the design."""
     from . import Trajectory
-    arguments = dict(locals())
-    with _Call("excite", excite) as call:
-        call.robot(robot)
-        path = call.output("output", output, "excitation.yaml")
-        call.options(arguments, handled=("robot", "output", "Trajectory"))
-        out, err = call.run()
-        text = path.read_text(encoding="utf-8")
-        return Excitation({"yaml": text, "trajectory": Trajectory.from_yaml(text, str(path)),
-                           "path": None if output is None else path}, _text(out, err))
+    guess = options.pop("payload_guess", None)
+    bound = _bound_options(_nocdyn.ExciteOptions, options)
+    if guess is not None:
+        try:
+            bound.payload_guess = [float(_argument(v, "payload_guess", 0.0)) for v in guess]
+        except (TypeError, ValueError):
+            raise ValueError("payload_guess: expected 4 numbers: mass, com_x, com_y, inertia") from None
+    bound.robot = _robot_source(robot, set)
+    if output is not None:
+        bound.output = _argument(output, "output", "")
+    text, yaml_text = _run(_nocdyn._run_excite, bound, progress, "excite")
+    return Excitation({"yaml": yaml_text, "trajectory": Trajectory.from_yaml(yaml_text, "<excite>" if output is None else os.fspath(output)),
+                       "path": None if output is None else pathlib.Path(output)}, text.rstrip("\n"))
+
+
+excite.__signature__ = _signature(_nocdyn.ExciteOptions, (), before=(("robot", None), ("set", None)),
+                                  after=(("output", None), ("progress", None)))
 
 
 def loads(trajectory=None, *, robot=None, set=None, output=None, figure=None, progress=None, **options):

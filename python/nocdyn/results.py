@@ -152,14 +152,14 @@ class PoseReport(_Record):
 
 class AssemblyModes(_Record):
     """The assembly modes of actuator values u (``nocdyn forward-kinematics``): poses (k, 3)
-    [theta, x, y] sorted by theta, their branches (k, limbs), working (k,) booleans, and the
+    [x, y, theta] sorted by theta, their branches (k, limbs), working (k,) booleans, and the
     JSON's other fields (degenerate, within_limits, solutions_all_branches, ...)."""
 
     def __init__(self, document, text=""):
         solutions = document.get("solutions", [])
         fields = dict(document)
         fields["solutions"] = solutions
-        fields["poses"] = np.array([[s["pose"][k] for k in ("theta", "x", "y")] for s in solutions],
+        fields["poses"] = np.array([[s["pose"][k] for k in ("x", "y", "theta")] for s in solutions],
                                    dtype=np.float64).reshape(-1, 3)
         if solutions and "branch" in solutions[0]:
             fields["branches"] = np.array([s["branch"] for s in solutions], dtype=np.int64)

@@ -20,6 +20,17 @@
 
 namespace nocdyn::python {
 
+/// A (rows, columns) float64 array owning the collector's values (no copy).
+py::array_t<double> tableArray(app::TableCollector& table) {
+    auto* values = new std::vector<double>(std::move(table.values()));
+    const py::capsule owner(values, [](void* p) { delete static_cast<std::vector<double>*>(p); });
+    const auto columns = static_cast<py::ssize_t>(table.names().size());
+    const py::ssize_t rows = columns == 0 ? 0 : static_cast<py::ssize_t>(values->size()) / columns;
+    return py::array_t<double>(
+        {rows, columns}, {columns * static_cast<py::ssize_t>(sizeof(double)), static_cast<py::ssize_t>(sizeof(double))},
+        values->data(), owner);
+}
+
 namespace {
 
 py::dict poseDict(const app::PoseResult& r) {
@@ -143,6 +154,8 @@ void bindApplication(py::module_& m) {
             return py::make_tuple(table->names(), tableArray(*table));
         },
         py::arg("options"), py::arg("progress") = py::none());
+    bindPurpose(m);  // after SamplingOptions, a base of its options
+    bindSimulation(m);
     bindAnalysis(m);
 }
 

@@ -18,12 +18,6 @@ namespace py = pybind11;
 
 namespace nocdyn::python {
 
-/// Adds the options types, _run_<command> functions and helpers to the compiled module.
-void bindApplication(py::module_& m);
-
-/// The analysis commands (envelope, workspace, loads, regressor, convert, design).
-void bindAnalysis(py::module_& m);
-
 /// A job's observer for Python: progress to the callback (GIL held), Ctrl-C (a pending signal)
 /// stops the job with the KeyboardInterrupt, warnings kept and issued as Python warnings once
 /// the job returns. One per call: two threads run two jobs with nothing shared.
@@ -71,14 +65,18 @@ auto runJob(const py::object& progress, Job&& job) {
 }
 
 /// A (rows, columns) float64 array owning the collector's values (no copy).
-inline py::array_t<double> tableArray(app::TableCollector& table) {
-    auto* values = new std::vector<double>(std::move(table.values()));
-    const py::capsule owner(values, [](void* p) { delete static_cast<std::vector<double>*>(p); });
-    const auto columns = static_cast<py::ssize_t>(table.names().size());
-    const py::ssize_t rows = columns == 0 ? 0 : static_cast<py::ssize_t>(values->size()) / columns;
-    return py::array_t<double>(
-        {rows, columns}, {columns * static_cast<py::ssize_t>(sizeof(double)), static_cast<py::ssize_t>(sizeof(double))},
-        values->data(), owner);
-}
+py::array_t<double> tableArray(app::TableCollector& table);
+
+/// Adds the options types, _run_<command> functions and helpers to the compiled module.
+void bindApplication(py::module_& m);
+
+/// forward-kinematics, simulate, control, frequency-response (app_bindings_sim.cpp).
+void bindSimulation(py::module_& m);
+
+/// shake, identify, excite, animate (app_bindings_purpose.cpp).
+void bindPurpose(py::module_& m);
+
+/// envelope, workspace, loads, regressor, convert, design (app_bindings_analysis.cpp).
+void bindAnalysis(py::module_& m);
 
 }  // namespace nocdyn::python

@@ -171,7 +171,15 @@ def main():
     mutations = [m for m in mutations if m not in left_out and (not args.only or args.only in m.description)]
 
     generator = ["-G", "Ninja"] if shutil.which("ninja") else []
-    configure = ["cmake", "-S", str(source), "-B", str(build), *generator, "-DCMAKE_BUILD_TYPE=None",
+    # A file mutated and then put back is compiled again, as it was in the unmutated build: with
+    # ccache (a cache of this build folder's own, empty at first) that second compile is a copy.
+    launcher = []
+    if shutil.which("ccache"):
+        launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"]
+        os.environ["CCACHE_DIR"] = str(work / "ccache")
+        os.environ.pop("CCACHE_DISABLE", None)
+        os.environ["CCACHE_DEPEND"] = "1"  # no preprocessor run on a miss: the compiler's -MD list
+    configure = ["cmake", "-S", str(source), "-B", str(build), *generator, *launcher, "-DCMAKE_BUILD_TYPE=None",
                  "-DCMAKE_CXX_FLAGS=-O1 -DNDEBUG -DNOCDYN_NO_TARGET_CLONES",
                  "-DNOCDYN_BUILD_TESTS=ON", "-DNOCDYN_BUILD_VALIDATION=OFF", "-DNOCDYN_BUILD_BENCHMARKS=OFF",
                  "-DNOCDYN_BUILD_PYTHON=OFF", "-DNOCDYN_SANITIZE=OFF", "-DNOCDYN_FUZZ=OFF",

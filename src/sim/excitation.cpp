@@ -380,7 +380,12 @@ ExcitationResult designExcitation(const Model& model, double duration, const Exc
         if (!(s > 0.0)) return kInfeasible;
         return std::log(judge.condition(m, s));
     };
-    const auto f = [&](const Eigen::VectorXd& z) { return objective(z, nullptr, samples); };
+    int calls = 0;
+    const auto f = [&](const Eigen::VectorXd& z) {
+        if (options.progress) options.progress(calls);  // may throw: the design stops
+        ++calls;
+        return objective(z, nullptr, samples);
+    };
     std::mt19937 rng(options.seed);
     std::uniform_real_distribution<double> unit(-1.0, 1.0);
     Eigen::VectorXd best_z(d);

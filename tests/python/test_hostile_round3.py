@@ -113,7 +113,7 @@ def test_shake_of_a_folder_is_refused_at_once_and_deletes_nothing(source_dir, tm
 
 @pytest.mark.parametrize("option, message", [(dict(noise_pose=math.nan), "noise_pose: .*finite"),
                                              (dict(window=math.nan), "window: .*finite"),
-                                             (dict(max_rms=math.inf), "max_rms: .*not in range")])
+                                             (dict(max_rms_percent=math.inf), "max_rms_percent: .*finite")])
 def test_shake_refuses_a_non_finite_option(source_dir, tmp_path, option, message):
     with pytest.raises(ValueError, match=message):
         nocdyn.shake(str(source_dir / "data" / "elcentro_1940_ns.AT2"), plant="nocdyn-rk4", rate=1000.0,

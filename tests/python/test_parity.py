@@ -35,7 +35,7 @@ POSITIONAL = {("pose", "X"): "x", ("pose", "Y"): "y", ("pose", "THETA"): "theta"
               ("forward-kinematics", "U"): "u", ("convert", "ROBOT"): "robot"}
 # defaults that depend on the build: the plant is Simbody's when built in, else nocdyn's; Python
 # leaves the choice to the command (None)
-BUILD_DEPENDENT = {("control", "plant"), ("shake", "plant")}
+BUILD_DEPENDENT = {("control", "plant")}
 # the files a command writes: Python returns the answer and writes a file only when asked (None),
 # or where the command line would (reproduce's out_dir)
 OUTPUTS = {"output", "out_dir", "figure", "log", "png", "svg"}
@@ -181,7 +181,7 @@ def test_pose(tmp_path):
     # the static reactions: the JSON's list in (limb, joint, [fx, fy, m]) order, as Robot.reactions
     robot = nocdyn.Robot.load(ROBOT)
     np.testing.assert_array_equal(py.reactions[1, 2], [cli["reactions"][5][k] for k in ("fx", "fy", "m")])
-    np.testing.assert_allclose(py.reactions, robot.reactions(py.pose[[2, 0, 1]], np.zeros(3), np.zeros(3)), rtol=0,
+    np.testing.assert_allclose(py.reactions, robot.reactions(py.pose, np.zeros(3), np.zeros(3)), rtol=0,
                                atol=1e-12)
     with pytest.raises(ValueError, match="theta"):
         nocdyn.pose(0.0, 0.0, float("nan"))
@@ -229,9 +229,22 @@ def test_forward_kinematics_every_assembly_mode():
     py = nocdyn.forward_kinematics(u, robot=ROBOT, all_branches=True)
     assert py.solutions == cli["solutions"] and len(py) == cli["solutions_all_branches"] > 1
     working = nocdyn.forward_kinematics(u, robot=ROBOT)
-    assert any(np.allclose(p, [0.01, 0.001, -0.002], atol=1e-9) for p in working.poses)
+    assert any(np.allclose(p, [0.001, -0.002, 0.01], atol=1e-9) for p in working.poses)  # x, y, theta
     # as a table the pose is in the order of every file: x, y, theta, last
     assert list(working.to_pandas().columns)[-3:] == ["x", "y", "theta"]
+
+
+def test_frequency_response_open_and_closed_loop(tmp_path):
+    for args, kwargs in (([], {}), (["--pose", 0.002, -0.001, 0.01, "--output-kind", "actuators"],
+                                    {"pose": [0.002, -0.001, 0.01], "output_kind": "actuators"}),
+                         (["--closed-loop", "--payload", 2, "--f-max", 2000], {"closed_loop": True, "payload": 2.0,
+                                                                              "f_max": 2000.0})):
+        out, summary = tmp_path / "fr.csv", tmp_path / "fr.txt"
+        printed = run_cli("frequency-response", "--points", 7, *args, "-o", out)
+        run_cli("frequency-response", "--points", 7, *args, "-o", out, "--summary", summary)
+        py = nocdyn.frequency_response(points=7, **kwargs)
+        same_table(out, py)
+        assert py.text == printed == summary.read_text()
 
 
 def test_tables_take_their_columns_from_the_registry():
@@ -297,8 +310,8 @@ def test_excite(tmp_path):
     text = run_cli("excite", "--robot", ROBOT, *args, "-o", tmp_path / "x.yaml")
     py = nocdyn.excite(robot=ROBOT, **small)
     assert py.yaml == (tmp_path / "x.yaml").read_text()
-    # the same report but for the path of the file written
-    assert py.text.splitlines()[:-1] == text.splitlines()[:-1] and "wrote" in py.text.splitlines()[-1]
+    # the same report; the command line then names the file written
+    assert py.text.splitlines() == text.splitlines()[:-1] and "wrote" in text.splitlines()[-1]
     assert py.trajectory.duration == pytest.approx(0.4)
 
 

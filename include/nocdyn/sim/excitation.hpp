@@ -19,6 +19,7 @@
 // bounded by a number of evaluations, deterministic for a seed.
 #pragma once
 
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,9 @@ struct ExcitationOptions {
     int evaluations = 400;         ///< objective evaluations in all (random search and Nelder-Mead)
     int random_shapes = 60;        ///< of them, random shapes before Nelder-Mead
     unsigned seed = 1;
+    /// Called before each objective evaluation with the number made so far (progress); may
+    /// throw to stop the design. None by default.
+    std::function<void(int evaluations)> progress = {};
 };
 
 /// How much of each limit a trajectory uses at its worst sample, as a fraction of the allowed

@@ -1,0 +1,103 @@
+#include "app/animate.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <vector>
+
+#include "animation.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/trajectory_yaml.hpp"
+
+namespace nocdyn::app {
+
+namespace {
+
+/// Refuses an output that is one of the inputs (the same file by any path or link): writing it
+/// would replace the very data it is drawn from.
+void requireNotAnInput(const AnimateOptions& options) {
+    const std::pair<const char*, std::string> outputs[] = {
+        {"png", options.png}, {"svg", options.svg}, {"output", options.output}};
+    for (const auto& [field, path] : outputs) {
+        if (path.empty()) continue;
+        for (const std::string& input : {options.robot.path, options.trajectory, options.motion}) {
+            std::error_code error;
+            if (!input.empty() && std::filesystem::equivalent(path, input, error)) {
+                std::string message = "'";
+                message.append(path).append("' is an input file (").append(input);
+                message += "): writing it would replace it";
+                throw OptionError(field, message);
+            }
+        }
+    }
+}
+
+/// Whether `path` is a CSV of a recorded motion with its forces (its header has t, x, y, theta
+/// and tau1: what simulate, control, inverse-dynamics and shake write), not a trajectory's samples.
+bool recordedMotion(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (extension != ".csv") return false;
+    std::ifstream in(path);
+    std::string header;
+    if (!in || !std::getline(in, header)) return false;
+    std::vector<std::string> names;
+    std::stringstream fields(header);
+    for (std::string name; std::getline(fields, name, ',');) {
+        if (!name.empty() && name.back() == '\r') name.pop_back();
+        names.push_back(name);
+    }
+    const auto has = [&](const char* name) { return std::find(names.begin(), names.end(), name) != names.end(); };
+    return has("t") && has("x") && has("y") && has("theta") && has("tau1");
+}
+
+}  // namespace
+
+void validate(const AnimateOptions& o) {
+    validate(static_cast<const SamplingOptions&>(o));
+    const int motions = (o.trajectory.empty() ? 0 : 1) + (o.motion.empty() ? 0 : 1) + (o.motion_table ? 1 : 0);
+    if (motions == 0) throw OptionError("trajectory", "give a trajectory or a motion");
+    if (motions > 1) throw OptionError("motion", "give a trajectory or a motion, not both");
+    if (o.slow_motion != 0.0) requireIn(o.slow_motion, kSlowMotionRange, "slow_motion");
+    requireIn(o.magnify, kMagnifyRange, "magnify");
+    if (o.frame) requireIn(*o.frame, kFrameRange, "frame");
+    if (o.frame && o.png.empty() && o.svg.empty()) throw OptionError("frame", "needs png or svg");
+    if (!o.frame && (!o.png.empty() || !o.svg.empty()))
+        throw OptionError(o.png.empty() ? "svg" : "png", "needs frame (the time to draw)");
+}
+
+AnimateResult runAnimate(const AnimateOptions& options, Observer& observer) {
+    validate(options);
+    requireNotAnInput(options);
+    const Model model(loadRobot(options.robot));
+    report::MotionSamples motion;
+    // a recorded motion given as the trajectory (a replay's shake.csv): played as a motion, forces and all
+    const bool recorded = !options.trajectory.empty() && recordedMotion(options.trajectory);
+    if (recorded && (options.duration || options.rate != SamplingOptions{}.rate)) {
+        throw OptionError("trajectory", options.trajectory +
+                                            " is a recorded motion (t, x, y, theta, tau1..): it is played as "
+                                            "recorded, without duration or rate");
+    }
+    if (options.motion_table) {
+        motion = report::motionFromTable(model, *options.motion_table, options.motion_name);
+    } else if (!options.motion.empty() || recorded) {
+        motion = report::motionFromCsv(model, recorded ? options.trajectory : options.motion);
+    } else {
+        const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
+        motion =
+            report::motionFromTrajectory(model, trajectory, chooseDuration(options.duration, trajectory), options.rate);
+    }
+    for (const std::string& warning : motion.warnings) observer.warning(warning);
+    if (options.frame) {
+        report::renderFigureFiles(report::frameFigure(model, motion, *options.frame), options.png, options.svg);
+    }
+    AnimateResult out;
+    out.html = report::animationPage(model, motion, {options.slow_motion, options.magnify});
+    if (!options.output.empty()) io::writeTextFile(options.output, out.html);
+    return out;
+}
+
+}  // namespace nocdyn::app

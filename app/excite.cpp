@@ -1,0 +1,137 @@
+#include "app/excite.hpp"
+
+#include <cstdio>
+
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/trajectory_yaml.hpp"
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/excitation.hpp"
+
+namespace nocdyn::app {
+
+namespace {
+
+std::string number(double v) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.6g", v);
+    return buffer;
+}
+
+std::string percent(double v) {
+    char buffer[40];
+    std::snprintf(buffer, sizeof buffer, "%.1f", 100.0 * v);
+    return buffer;
+}
+
+std::string useText(const ExcitationLimitUse& use) {
+    return "{range: " + percent(use.range) + ", velocity: " + percent(use.velocity) +
+           ", effort: " + percent(use.effort) + ", condition: " + percent(use.condition) + ", binding: '" +
+           use.binding + "'}";
+}
+
+/// One baseline line: the paper's trajectory about home, its condition number and limit use.
+std::string baseline(const Model& model, const char* key, const PoseTrajectory& paper,
+                     const ExcitationOptions& options) {
+    const ExcitationAssessment a =
+        assessExcitation(model, aboutHome(model, paper), *paper.duration, options.check_samples, options);
+    std::string text = key + std::string(": {condition_number: ") + number(a.condition) +
+                       ", limit_use_percent: " + useText(a.use) + "}";
+    if (!a.feasible) text += "   # outside the limits: " + a.failure;
+    return text + "\n";
+}
+
+void requireCount(int value, int lo, int hi, const char* field) {
+    if (value < lo || value > hi) {
+        throw OptionError(
+            field, std::to_string(value) + " is outside [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+    }
+}
+
+}  // namespace
+
+void validate(const ExciteOptions& o) {
+    if (!o.payload_guess.empty() && o.payload_guess.size() != 4)
+        throw OptionError("payload_guess", "expected 4 numbers: mass, com x, com y, inertia");
+    for (double v : o.payload_guess) requireIn(v, kPayloadGuessRange, "payload_guess");
+    if (!o.payload_guess.empty() && o.base)
+        throw OptionError("payload_guess", "is for a payload; base designs for the robot without one");
+    requireIn(o.duration, kExciteDurationRange, "duration");
+    requireIn(o.frequency, kExciteFrequencyRange, "frequency");
+    requireCount(o.harmonics, 3, 20, "harmonics");
+    requireIn(o.margin, kExciteMarginRange, "margin");
+    requireIn(o.max_condition, kMaxConditionRange, "max_condition");
+    requireCount(o.evaluations, 1, 1000000, "evaluations");
+    requireCount(o.random, 1, 1000000, "random");
+    requireCount(o.samples, 0, 100000, "samples");
+    requireCount(o.check_samples, 24, 1000000, "check_samples");
+}
+
+ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
+    validate(options);
+    RobotDescription robot = loadRobot(options.robot);
+    Payload payload;
+    if (!options.payload_guess.empty()) {
+        const std::vector<double>& g = options.payload_guess;
+        payload = Payload{g[0], g[3], Vector2(g[1], g[2])};
+        robot = withPayload(robot, payload);
+    }
+    ExcitationOptions o;
+    o.parameters = options.base ? ExcitedParameters::base : ExcitedParameters::payload;
+    o.friction = options.friction;
+    o.base_frequency = options.frequency;
+    o.harmonics = options.harmonics;
+    o.margin = options.margin;
+    o.max_condition = options.max_condition;
+    o.samples = options.samples;
+    o.check_samples = options.check_samples;
+    o.evaluations = options.evaluations;
+    o.random_shapes = options.random;
+    o.seed = options.seed;
+    const auto total = static_cast<double>(options.evaluations);
+    o.progress = [&observer, total](int done) {
+        observer.progress(static_cast<double>(done), total, "evaluations");
+        stopIfRequested(observer);
+    };
+    const Model model(robot);
+    const ExcitationResult result = designExcitation(model, options.duration, o);
+    o.progress = {};
+    const std::string what =
+        options.base ? "the base parameters" : (o.friction ? "the payload and the actuators' friction" : "the payload");
+    std::string report = "# " + robot.name + ": excitation for " + what + ", " + std::to_string(o.harmonics) +
+                         " harmonics of " + number(o.base_frequency) + " Hz per axis, " + number(options.duration) +
+                         " s, margin " + percent(o.margin) + " %, condition numbers of J_j and A at most " +
+                         number(o.max_condition) + "\n";
+    if (!options.payload_guess.empty()) {
+        report += "# payload guess: " + number(payload.mass) + " kg at [" + number(payload.com.x()) + ", " +
+                  number(payload.com.y()) + "] m, " + number(payload.inertia) + " kg m^2 about its c.o.m.\n";
+    }
+    report += "# " + std::to_string(result.evaluations) + " evaluations (" + std::to_string(o.random_shapes) +
+              " random shapes, then Nelder-Mead), seed " + std::to_string(o.seed) +
+              "; condition number of the column-scaled stacked regressor (as identify reports it)\n";
+    report += "designed: {condition_number: " + number(result.assessment.condition) +
+              ", limit_use_percent: " + useText(result.assessment.use) + "}\n";
+    report += baseline(model, "paper_trajectory_1", paperTrajectory1(), o);
+    report += baseline(model, "paper_trajectory_2", paperTrajectory2(), o);
+
+    std::string file = "# Excitation trajectory by `nocdyn excite` for " + what + " of " + robot.name +
+                       ": condition number " + number(result.assessment.condition) +
+                       "; starts and ends each period at home, at rest.\n";
+    for (std::size_t start = 0; start < report.size();) {
+        const std::size_t end = report.find('\n', start);
+        const std::string line = report.substr(start, end - start);
+        file += (line.rfind('#', 0) == 0 ? line : "# " + line) + "\n";
+        start = end == std::string::npos ? report.size() : end + 1;
+    }
+    file += io::trajectoryToYaml(result.trajectory);
+    if (!options.output.empty()) io::writeTextFile(options.output, file);
+    ExciteResult out;
+    out.text = std::move(report);
+    out.yaml = std::move(file);
+    out.trajectory = result.trajectory;
+    out.condition = result.assessment.condition;
+    out.evaluations = result.evaluations;
+    return out;
+}
+
+}  // namespace nocdyn::app

@@ -1,0 +1,191 @@
+#include "app/frequency_response.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "nocdyn/analysis/linearization.hpp"
+#include "nocdyn/dynamics.hpp"
+#include "nocdyn/pose_order.hpp"
+#include "nocdyn/sim/closed_loop.hpp"
+#include "nocdyn/sim/control.hpp"
+
+namespace nocdyn::app {
+
+namespace {
+
+/// The axes in the user's order x, y, theta: their names and indices in the core's [theta, x, y].
+constexpr const char* kAxisNames[3] = {"x", "y", "theta"};
+constexpr int kCoreAxis[3] = {1, 2, 0};
+
+Vector3 threeValues(const std::vector<double>& values) { return {values[0], values[1], values[2]}; }
+
+std::string numberOrBeyond(double value) {
+    if (std::isnan(value)) return "beyond the grid";
+    char text[40];
+    std::snprintf(text, sizeof text, "%.4f", value);
+    return text;
+}
+
+std::vector<double> column(const Eigen::MatrixXd& m, Eigen::Index c) {
+    return {m.col(c).data(), m.col(c).data() + m.rows()};
+}
+
+/// The open-loop plant: from each actuator force to each output.
+FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Model& model) {
+    Data data(model);
+    const Pose p = options.pose.empty() ? model.home : corePose(threeValues(options.pose));
+    const Twist dp = options.rate.empty() ? Twist::Zero() : Twist(corePose(threeValues(options.rate)));
+    // the operating point: the forces that hold the state without acceleration
+    if (const Status status = inverseDynamics(model, data, p, dp, Twist::Zero()); !status) {
+        throw Error("operating point: " + describe(status, model));
+    }
+    const ActuatorVector tau = data.tau;
+    const bool acceleration = options.output_kind == "acceleration";
+    const LinearOutput kind = acceleration ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables;
+    StateSpace system;
+    if (const Status status = linearize(model, data, p, dp, tau, kind, system); !status) {
+        throw Error("operating point: " + describe(status, model));
+    }
+    const FrequencyResponse r = frequencyResponse(system, logGrid(options.f_min, options.f_max, options.points));
+    FrequencyResponseResult out;
+    out.robot = model.description.name;
+    out.frequency = r.frequency;
+    const auto rows = static_cast<Eigen::Index>(r.frequency.size());
+    out.table.resize(rows, 1 + 2 * r.outputs * r.inputs);
+    out.columns.push_back("f");
+    for (Eigen::Index k = 0; k < rows; ++k) out.table(k, 0) = r.frequency[static_cast<std::size_t>(k)];
+    const Vector3 pu = userPose(p), dpu = userPose(dp);
+    char line[200];
+    out.summary = "# frequency response of " + out.robot + " from the actuator forces to " +
+                  (acceleration ? "the platform acceleration" : "the actuator variables") + " (rigid model)\n";
+    std::snprintf(line, sizeof line,
+                  "# operating point [x, y, theta] = [%.6g, %.6g, %.6g], its rate = [%.6g, %.6g, %.6g]\n", pu(0), pu(1),
+                  pu(2), dpu(0), dpu(1), dpu(2));
+    out.summary += line;
+    out.summary += "# channel  |H| at f_min [dB]  |H| at f_max [dB]  -3 dB bandwidth [Hz]\n";
+    Eigen::Index c_out = 1;
+    for (int k = 0; k < r.outputs; ++k) {
+        // accelerations per axis in the order x, y, theta; actuator variables in theirs
+        const int o = acceleration ? kCoreAxis[k] : k;
+        std::string name = acceleration ? "dd" : "u";
+        name += acceleration ? std::string(kAxisNames[k]) : std::to_string(k + 1);
+        for (int i = 0; i < r.inputs; ++i) {
+            const Eigen::Index c = o * r.inputs + i;
+            const std::string channel = name + "_tau" + std::to_string(i + 1);
+            out.columns.push_back(channel + "_db");
+            out.columns.push_back(channel + "_deg");
+            out.table.col(c_out++) = r.magnitude_db.col(c);
+            out.table.col(c_out++) = r.phase_deg.col(c);
+            const double bw = bandwidth3dB(r, o, i);
+            std::snprintf(line, sizeof line, "%s/tau%d  %.4f  %.4f  %s\n", name.c_str(), i + 1, r.magnitude_db(0, c),
+                          r.magnitude_db(rows - 1, c), std::isnan(bw) ? "beyond the grid" : std::to_string(bw).c_str());
+            out.summary += line;
+            out.curves.push_back(
+                {name + "/tau" + std::to_string(i + 1), column(r.magnitude_db, c), column(r.phase_deg, c)});
+        }
+    }
+    return out;
+}
+
+/// The shake-table loop linearised at rest at the pose (see sim/closed_loop.hpp).
+FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, const RobotDescription& robot,
+                                   const Model& model) {
+    const Model plant_model(withPayload(robot, Payload{options.payload, 0.0, Vector2::Zero()}));
+    const Pose p = options.pose.empty() ? model.home : corePose(threeValues(options.pose));
+    ShakeLoopOptions loop_options;
+    loop_options.rate = options.controller_rate;
+    loop_options.natural_frequency = options.natural_frequency;
+    const ShakeLoopLinearization loop = linearizeShakeLoop(model, plant_model, p, loop_options);
+    const ShakeLoopFrequencyResponse r =
+        shakeLoopFrequencyResponse(loop, logGrid(options.f_min, options.f_max, options.points));
+    FrequencyResponseResult out;
+    out.robot = model.description.name;
+    out.closed_loop = true;
+    out.frequency = r.frequency;
+    const auto rows = static_cast<Eigen::Index>(r.frequency.size());
+    out.table.resize(rows, 1 + 4 * 3);
+    out.columns.push_back("f");
+    for (Eigen::Index k = 0; k < rows; ++k) out.table(k, 0) = r.frequency[static_cast<std::size_t>(k)];
+    const Vector3 pu = userPose(p);
+    char line[300];
+    std::snprintf(line, sizeof line,
+                  "# (linearised at rest at [x, y, theta] = [%.6g, %.6g, %.6g]; tick %g Hz, f_n = %g Hz, payload "
+                  "unknown to the controller %g kg)\n",
+                  pu(0), pu(1), pu(2), options.controller_rate, options.natural_frequency, options.payload);
+    out.summary = "# closed-loop frequency response of " + out.robot +
+                  " under the shake-table controller, from the reference to the achieved platform acceleration\n" +
+                  line;
+    out.summary +=
+        "# axis  |H| at f_min [dB]  |H| at f_max [dB]  -3 dB bandwidth [Hz]  crossover [Hz]  phase margin [deg]\n";
+    Eigen::Index c_out = 1;
+    for (int k = 0; k < 3; ++k) {
+        const int i = kCoreAxis[k];
+        for (const char* suffix : {"_db", "_deg", "_loop_db", "_loop_deg"})
+            out.columns.push_back(kAxisNames[k] + std::string(suffix));
+        out.table.col(c_out++) = r.magnitude_db.col(i);
+        out.table.col(c_out++) = r.phase_deg.col(i);
+        out.table.col(c_out++) = r.loop_magnitude_db.col(i);
+        out.table.col(c_out++) = r.loop_phase_deg.col(i);
+        std::snprintf(line, sizeof line, "%s  %.4f  %.4f  %s  %s  %s\n", kAxisNames[k], r.magnitude_db(0, i),
+                      r.magnitude_db(rows - 1, i), numberOrBeyond(r.bandwidth(i)).c_str(),
+                      numberOrBeyond(r.crossover(i)).c_str(), numberOrBeyond(r.phase_margin(i)).c_str());
+        out.summary += line;
+        out.curves.push_back({std::string("H ") + kAxisNames[k], column(r.magnitude_db, i), column(r.phase_deg, i)});
+        out.curves.push_back(
+            {std::string("L ") + kAxisNames[k], column(r.loop_magnitude_db, i), column(r.loop_phase_deg, i)});
+    }
+    return out;
+}
+
+}  // namespace
+
+void validate(const FrequencyResponseOptions& options) {
+    if (!options.pose.empty() && options.pose.size() != 3) throw OptionError("pose", "expected 3 values x, y, theta");
+    if (!options.rate.empty() && options.rate.size() != 3)
+        throw OptionError("rate", "expected 3 values dx, dy, dtheta");
+    for (const double v : options.pose) requireIn(v, kLengthRange, "pose");
+    for (const double v : options.rate) requireIn(v, Range{-1e6, 1e6, "m/s or rad/s"}, "rate");
+    if (options.output_kind != "acceleration" && options.output_kind != "actuators") {
+        throw OptionError("output_kind", "'" + options.output_kind + "' is not one of acceleration, actuators");
+    }
+    requireIn(options.f_min, Range{1e-300, 1e300, "Hz"}, "f_min");
+    requireIn(options.f_max, Range{1e-300, 1e300, "Hz"}, "f_max");
+    if (!(options.f_max > options.f_min)) throw OptionError("f_max", "must be above f_min");
+    if (options.points < kMinPoints || options.points > kMaxPoints) {
+        throw OptionError("points", std::to_string(options.points) + " is outside [2, 100000]");
+    }
+    requireIn(options.payload, Range{0.0, 1e300, "kg"}, "payload");
+    requireIn(options.controller_rate, Range{1e-300, 1e300, "Hz"}, "controller_rate");
+    requireIn(options.natural_frequency, Range{1e-300, 1e300, "Hz"}, "natural_frequency");
+    if (options.closed_loop) {
+        if (!options.rate.empty())
+            throw OptionError("rate", "the closed loop is linearised at rest: rate does not apply");
+        if (!(options.f_max < 0.5 * options.controller_rate)) {
+            throw OptionError("f_max", "must be below half the controller_rate (the Nyquist frequency)");
+        }
+    }
+}
+
+FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& options, Observer& /*observer*/) {
+    validate(options);
+    const RobotDescription robot = loadRobot(options.robot);
+    const Model model(robot);
+    return options.closed_loop ? closedLoop(options, robot, model) : plant(options, model);
+}
+
+report::Figure bodeFigure(const FrequencyResponseResult& result) {
+    report::Figure figure;
+    figure.title = result.closed_loop
+                       ? "Closed loop of " + report::literalText(result.robot) + " (shake-table controller)"
+                       : "Frequency response of " + report::literalText(result.robot);
+    report::PlotPanel magnitude{"", "frequency [Hz]", "magnitude [dB]", {}, true, false, false};
+    report::PlotPanel phase{"", "frequency [Hz]", "phase [deg]", {}, true, false, false};
+    for (const BodeCurve& curve : result.curves) {
+        magnitude.series.push_back({report::literalText(curve.label), result.frequency, curve.magnitude_db});
+        phase.series.push_back({report::literalText(curve.label), result.frequency, curve.phase_deg});
+    }
+    figure.panels = {magnitude, phase};
+    return figure;
+}
+
+}  // namespace nocdyn::app

@@ -1,0 +1,65 @@
+// `frequency-response`: the rigid robot linearised at an operating point (exact derivatives of
+// the forward dynamics) and its frequency response H(j w) = C (j w I - A)^-1 B + D from the
+// actuator forces to the platform acceleration or the actuator variables; or, closed_loop, the
+// shake-table loop (sim/closed_loop.hpp) linearised at rest, from the reference to the achieved
+// platform acceleration per axis, with the loop transfer's crossover and phase margin.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "app/observer.hpp"
+#include "app/options.hpp"
+#include "report/plot.hpp"
+
+namespace nocdyn::app {
+
+struct FrequencyResponseOptions {
+    RobotSource robot;
+    /// Operating pose [x, y, theta] [m, m, rad]; empty: the robot's home.
+    std::vector<double> pose;
+    /// Operating pose rate [dx, dy, dtheta] [m/s, m/s, rad/s]; empty: at rest (closed_loop: empty).
+    std::vector<double> rate;
+    /// "acceleration" (the platform's, per axis) or "actuators" (the actuator variables).
+    std::string output_kind = "acceleration";
+    double f_min = 1.0, f_max = 1000.0;  ///< [Hz], 0 < f_min < f_max
+    int points = 200;                    ///< log-spaced frequencies (kPointsRange)
+    bool closed_loop = false;
+    double payload = 0.0;              ///< closed_loop: a point mass at C the controller does not know [kg]
+    double controller_rate = 10000.0;  ///< closed_loop: controller ticks [Hz], above 2 f_max
+    double natural_frequency = 6.0;    ///< closed_loop: f_n of the pose feedback [Hz]
+};
+
+inline constexpr int kMinPoints = 2, kMaxPoints = 100000;
+
+/// One curve of the Bode figure: a channel's (or a loop transfer's) magnitude and phase.
+struct BodeCurve {
+    std::string label;  ///< "ddx/tau1"; closed loop: "H x" (closed), "L x" (loop transfer)
+    std::vector<double> magnitude_db, phase_deg;
+};
+
+struct FrequencyResponseResult {
+    std::string robot;
+    std::vector<double> frequency;  ///< [Hz]
+    /// The table: f, then per channel <output>_tau<i>_db and _deg (closed loop: per axis
+    /// <axis>_db, _deg, _loop_db, _loop_deg), axes in the order x, y, theta.
+    std::vector<std::string> columns;
+    Eigen::MatrixXd table;  ///< one row per frequency
+    /// The summary: each channel's gain at both ends and -3 dB bandwidth (closed loop: also the
+    /// crossover and phase margin), lines starting with '#' for the heading.
+    std::string summary;
+    std::vector<BodeCurve> curves;
+    bool closed_loop = false;
+};
+
+/// Throws OptionError naming the option that breaks its range.
+void validate(const FrequencyResponseOptions& options);
+
+[[nodiscard]] FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& options, Observer& observer);
+
+/// The Bode figure (magnitude over phase, log frequency) of a result, for report::renderFigure.
+[[nodiscard]] report::Figure bodeFigure(const FrequencyResponseResult& result);
+
+}  // namespace nocdyn::app

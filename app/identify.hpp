@@ -1,0 +1,54 @@
+// `identify`: a payload's mass, c.o.m. and inertia (or the robot's base parameters) from a log
+// of actuator positions and forces (sim/identification.hpp), with the report printed as YAML and
+// the file written: the robot with the payload merged, or the calibration.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "app/observer.hpp"
+#include "app/options.hpp"
+#include "nocdyn/sim/identification.hpp"
+
+namespace nocdyn::app {
+
+inline constexpr Range kCutoffRange{1e-3, 1e6, "Hz"};
+inline constexpr Range kHoldoutRange{0.0, 0.9, ""};
+
+struct IdentifyOptions {
+    RobotSource robot;
+    /// The log: CSV t,u1..un with tau1..taun (forces at each sample) or tau1_held..taun_held.
+    std::string data;
+    bool payload = false;  ///< identify a payload (the default when base is not given)
+    bool base = false;     ///< identify the robot's base parameters instead
+    bool friction = false;
+    bool held_forces = false;
+    /// Low-pass cut-off when du and ddu are derived [Hz]; 0: a tenth of the rate, at most 50 Hz.
+    double cutoff = 0.0;
+    double holdout = 0.2;     ///< share of the samples (the last) held out
+    std::string calibration;  ///< payload: a calibration file (identify base's output)
+    std::string prior;        ///< payload: bounds on its parameters (YAML)
+    std::string output;       ///< where the YAML goes (none when empty)
+    std::string figure;       ///< STEM of the held-out forces' figure (none when empty)
+};
+
+/// Throws OptionError naming the field of a value out of range or options that do not go together.
+void validate(const IdentifyOptions& options);
+
+struct IdentifyResult {
+    /// The report printed (YAML with # comments): fit, payload or base parameters.
+    std::string text;
+    /// The file: the robot with the payload merged into the platform, or the calibration.
+    std::string yaml;
+    std::optional<PayloadResult> payload;
+    std::optional<BaseResult> base;
+};
+
+/// The measurements of a log (named columns, time increasing; errors name file, line, column).
+[[nodiscard]] Measurements readMeasurements(const std::string& path, int actuators);
+
+/// Reads, reconstructs the motion, solves (three steps through the observer); writes output
+/// and figure when given.
+IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer);
+
+}  // namespace nocdyn::app

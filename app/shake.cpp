@@ -1,0 +1,335 @@
+#include "app/shake.hpp"
+
+#include <algorithm>
+#include <atomic>
+#include <cctype>
+#include <charconv>
+#include <chrono>
+#include <condition_variable>
+#include <cstdio>
+#include <filesystem>
+#include <mutex>
+#include <sstream>
+#include <thread>
+
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/at2.hpp"
+#include "nocdyn/io/escape.hpp"
+#include "plants.hpp"
+
+namespace nocdyn::app {
+
+namespace {
+
+/// The record's first `window` seconds (all of it when 0), as accelerations in SI.
+std::vector<double> readAxis(const std::string& path, double window, double& dt, bool angular) {
+    const io::GroundMotionRecord record = io::readAt2File(path);
+    if (dt != 0.0 && record.dt != dt) {
+        throw Error(path + ": time step " + std::to_string(record.dt) + " s differs from the other records' " +
+                    std::to_string(dt) + " s");
+    }
+    dt = record.dt;
+    std::vector<double> a = record.acceleration;
+    if (window > 0.0) a.resize(std::min(a.size(), static_cast<std::size_t>(window / dt) + 1));
+    // nothing to replay: every score would be a perfect 0 % error of a motion that never moves
+    if (std::all_of(a.begin(), a.end(), [](double v) { return v == 0.0; })) {
+        throw Error(path + ": every acceleration" + (window > 0.0 ? " of the window" : std::string()) +
+                    " is zero: no ground motion to replay");
+    }
+    if (angular) {
+        for (double& v : a) v /= io::kStandardGravity;  // the file's numbers are rad/s^2
+    }
+    return a;
+}
+
+/// The records named: files, and the *.AT2 files of folders (sorted by name).
+std::vector<std::string> expandRecords(const std::vector<std::string>& names) {
+    std::vector<std::string> out;
+    for (const std::string& name : names) {
+        std::error_code error;
+        if (!std::filesystem::is_directory(name, error)) {
+            out.push_back(name);
+            continue;
+        }
+        std::vector<std::string> found;
+        for (const auto& entry : std::filesystem::directory_iterator(name, error)) {
+            std::string ext = entry.path().extension().string();
+            for (char& c : ext) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+            if (entry.is_regular_file() && ext == ".AT2") found.push_back(entry.path().string());
+        }
+        if (error) throw OptionError("record", name + ": cannot list the folder: " + error.message());
+        if (found.empty()) throw OptionError("record", name + ": the folder holds no .AT2 file");
+        std::sort(found.begin(), found.end());
+        out.insert(out.end(), found.begin(), found.end());
+    }
+    return out;
+}
+
+/// One folder name per record, safe and unique: the record's stem with every character but
+/// letters, digits, '-' and '_' replaced by '_' (no separator, no "." or ".." and no hidden
+/// folder), "record" when nothing is left, and "-2", "-3", ... after a name already taken
+/// ignoring case (quake.AT2 and quake.at2 must not share a folder on any file system).
+std::vector<std::string> recordFolders(const std::vector<std::string>& records) {
+    std::vector<std::string> out, taken;
+    const auto lower = [](std::string text) {
+        for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+        return text;
+    };
+    for (const std::string& record : records) {
+        std::string name = std::filesystem::path(record).stem().string();
+        bool any = false;
+        for (char& c : name) {
+            const bool plain = std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_';
+            if (!plain) c = '_';
+            any = any || std::isalnum(static_cast<unsigned char>(c)) != 0;
+        }
+        if (!any) name = "record";
+        if (name.size() > 100) name.resize(100);
+        std::string chosen = name;
+        for (int k = 2; std::find(taken.begin(), taken.end(), lower(chosen)) != taken.end(); ++k)
+            chosen = name + "-" + std::to_string(k);
+        taken.push_back(lower(chosen));
+        out.push_back(chosen);
+    }
+    return out;
+}
+
+/// The replay's settings from the options (natural frequency by controller, sensors in SI).
+report::ShakeSettings settingsOf(const ShakeOptions& o) {
+    report::ShakeSettings s;
+    s.fit.highpass = o.highpass;
+    s.fit.margin = o.margin;
+    if (o.time_scale != "auto") {
+        // a decimal number only (std::stod would read 0x10 as 16, and nan or inf)
+        double value = 0.0;
+        const std::string& text = o.time_scale;
+        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
+            !(value >= 1e-3 && value <= 1e4)) {
+            throw OptionError("time_scale", "expected auto or a decimal number from 0.001 to 10000, got '" +
+                                                io::terminalText(text) + "'");
+        }
+        s.fit.time_scale = value;
+    }
+    s.plant = o.plant;
+    s.controller = o.controller;
+    s.rate = o.rate;
+    s.amplitude = o.amplitude;
+    s.identify_payload = o.identify_payload;
+    s.excitation_duration = o.excitation_duration;
+    s.iterations = o.iterations;
+    s.iteration_gain = o.iteration_gain;
+    s.payload.mass = o.payload_mass;
+    s.noise_pose = o.noise_pose;
+    s.noise_rate = o.noise_rate;
+    s.seed = o.seed;
+    s.accuracy = o.accuracy;
+    s.table.acceleration_gain = o.acceleration_gain;
+    s.table.sensors.encoder_noise = o.encoder_noise;
+    s.table.sensors.accel_bandwidth = o.accel_bandwidth;
+    s.table.sensors.accel_baseline = o.accel_baseline;
+    s.table.sensors.accel_noise_density = o.accel_noise_density * 1e-6 * kGravity;  // ug/sqrt(Hz) -> SI
+    s.table.sensors.accelerometer = !o.no_accelerometer;
+    s.table.seed = o.seed;
+    const bool table = o.controller == "table";
+    if (o.natural_frequency) {
+        (table ? s.table.natural_frequency : s.natural_frequency) = *o.natural_frequency;
+    } else if (table && o.identify_payload) {
+        s.table.natural_frequency = 2.0;  // the model carries the payload: the feedback holds the drift only
+    }
+    return s;
+}
+
+/// A suite's row from its replay: the scores of x, and whether every threshold holds.
+ShakeSuiteRow scoreRow(const report::ShakeOutcome& o, const ShakeOptions& options) {
+    const ShakeScore& s = o.score[1];
+    ShakeSuiteRow row;
+    row.time_scale = o.fit.time_scale;
+    row.amplitude = o.fit.amplitude_scale * o.amplitude;
+    row.amplitude_asked = o.amplitude != 1.0;
+    row.rms_error_percent = 100.0 * s.rms_error;
+    row.peak_error_percent = 100.0 * s.peak_error;
+    row.within_percent = 100.0 * (1.0 - s.share_outside);
+    row.limit_use_percent = 100.0 * o.achieved_use.ratio;
+    row.binding = o.achieved_use.what;
+    row.pass = row.rms_error_percent <= options.max_rms_percent &&
+               std::abs(row.peak_error_percent) <= options.max_peak_percent &&
+               row.within_percent >= options.min_spectrum_percent && o.achieved_use.ratio <= 1.0;
+    return row;
+}
+
+/// summary.md of a suite.
+std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::size_t workers,
+                       const std::string& sensing) {
+    std::ostringstream out;
+    char line[512];
+    std::snprintf(line, sizeof line,
+                  "%zu records on %s, controller %s, %zu at a time; pass: RMS <= %.3g %%, |peak| <= %.3g %%, "
+                  "spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%\n\n",
+                  r.rows.size(), options.plant.c_str(), options.controller.c_str(), workers, options.max_rms_percent,
+                  options.max_peak_percent, options.min_spectrum_percent);
+    out << line << "sensors: " << sensing << "\n\n"
+        << "| record | folder | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
+           "result |\n|---|---|---|---|---|---|---|---|---|\n";
+    for (const ShakeSuiteRow& row : r.rows) {
+        std::snprintf(line, sizeof line, " %.4g | %.4g%s | %.2f %% | %+.2f %% | %.0f %% | %.0f %% (%s) | %s |",
+                      row.time_scale, row.amplitude, row.amplitude_asked ? " (asked)" : "", row.rms_error_percent,
+                      row.peak_error_percent, row.within_percent, row.limit_use_percent, row.binding.c_str(),
+                      row.pass ? "pass" : "FAIL");
+        // the names through the Markdown escaper: a file name cannot forge a row or carry HTML
+        out << "| " << io::markdownText(std::filesystem::path(row.record).filename().string()) << " | "
+            << io::markdownText(row.folder) << " |" << line << "\n";
+    }
+    out << "\n" << r.passed << " of " << r.rows.size() << " records pass\n";
+    return out.str();
+}
+
+ShakeResult runSuite(const std::vector<std::string>& records, const ShakeOptions& options,
+                     const report::ShakeSettings& base, const RobotDescription& robot, Observer& observer) {
+    if (options.out_dir.empty()) throw OptionError("out_dir", "a suite of records needs an output folder");
+    const std::vector<std::string> folders = recordFolders(records);
+    std::vector<GroundRecord> inputs(records.size());
+    // every record read (and refused) before any replay
+    for (std::size_t i = 0; i < records.size(); ++i)
+        inputs[i].ax = readAxis(records[i], options.window, inputs[i].dt, false);
+    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+    const std::size_t workers = std::min<std::size_t>(options.jobs > 0 ? options.jobs : cores, records.size());
+    std::vector<report::ShakeOutcome> outcomes(records.size());
+    std::vector<std::string> errors(records.size());
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stop{false};
+    std::mutex mutex;  // the outputs (figures) one at a time, and the count of records done
+    std::condition_variable finished;
+    std::size_t done = 0;
+    report::ShakeSettings settings = base;
+    // workers never call the observer: a stop reaches each replay at its next tick
+    settings.table.progress = [&stop](double /*t*/) {
+        if (stop.load(std::memory_order_relaxed)) throw Cancelled();
+    };
+    const auto work = [&] {
+        for (std::size_t i = next++; i < records.size() && !stop; i = next++) {
+            try {
+                outcomes[i] = report::runShake(robot, inputs[i], settings);
+                const std::lock_guard lock(mutex);
+                report::writeShakeOutputs(outcomes[i], Model(robot),
+                                          (std::filesystem::path(options.out_dir) / folders[i]).string(),
+                                          robot.name + ": " + records[i]);
+                outcomes[i].loop = {};  // the ticks are written; keep the scores
+                outcomes[i].achieved = {};
+            } catch (const std::exception& e) {
+                errors[i] = e.what();
+            }
+            const std::lock_guard lock(mutex);
+            ++done;
+            finished.notify_all();
+        }
+    };
+    std::vector<std::thread> pool;
+    for (std::size_t w = 0; w < workers; ++w) pool.emplace_back(work);
+    try {
+        std::unique_lock lock(mutex);
+        while (done < records.size()) {
+            finished.wait_for(lock, std::chrono::milliseconds(200));
+            const auto count = static_cast<double>(done);
+            lock.unlock();
+            observer.progress(count, static_cast<double>(records.size()), "records");
+            stopIfRequested(observer);
+            lock.lock();
+        }
+    } catch (...) {
+        stop = true;
+        for (std::thread& t : pool) t.join();
+        throw;
+    }
+    for (std::thread& t : pool) t.join();
+    ShakeResult out;
+    out.suite = true;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        if (!errors[i].empty()) throw Error(records[i] + ": " + errors[i]);
+        ShakeSuiteRow row = scoreRow(outcomes[i], options);
+        row.record = records[i];
+        row.folder = folders[i];
+        out.passed += row.pass ? 1 : 0;
+        out.rows.push_back(std::move(row));
+    }
+    out.text = suiteTable(out, options, workers, outcomes.front().sensing);
+    io::writeTextFile((std::filesystem::path(options.out_dir) / "summary.md").string(), out.text);
+    return out;
+}
+
+void requireCount(long long value, long long hi, const char* field) {
+    if (value < 0 || value > hi) {
+        throw OptionError(field, std::to_string(value) + " is outside [0, " + std::to_string(hi) + "]");
+    }
+}
+
+}  // namespace
+
+void validate(const ShakeOptions& o) {
+    if (o.record.empty()) throw OptionError("record", "at least one AT2 record is required");
+    requireIn(o.highpass, kHighpassRange, "highpass");
+    requireIn(o.margin, kShareRange, "margin");
+    requireIn(o.window, kWindowRange, "window");
+    if (std::find(std::begin(report::kPlantNames), std::end(report::kPlantNames), o.plant) ==
+        std::end(report::kPlantNames))
+        throw OptionError("plant", "expected simbody, nocdyn or nocdyn-rk4, got '" + io::terminalText(o.plant) + "'");
+    requireIn(o.rate, kControllerRateRange, "rate");
+    if (o.controller != "table" && o.controller != "pose")
+        throw OptionError("controller", "expected table or pose, got '" + io::terminalText(o.controller) + "'");
+    if (o.natural_frequency) requireIn(*o.natural_frequency, kNaturalFrequencyRange, "natural_frequency");
+    requireIn(o.acceleration_gain, kShareRange, "acceleration_gain");
+    requireIn(o.encoder_noise, kEncoderNoiseRange, "encoder_noise");
+    requireIn(o.accel_noise_density, kAccelNoiseDensityRange, "accel_noise_density");
+    requireIn(o.accel_bandwidth, kAccelBandwidthRange, "accel_bandwidth");
+    requireIn(o.accel_baseline, kAccelBaselineRange, "accel_baseline");
+    requireIn(o.amplitude, kAmplitudeRange, "amplitude");
+    requireCount(o.iterations, kMaxIterations, "iterations");
+    requireIn(o.iteration_gain, kIterationGainRange, "iteration_gain");
+    requireIn(o.excitation_duration, kExcitationDurationRange, "excitation_duration");
+    requireCount(o.jobs, kMaxJobs, "jobs");
+    requireIn(o.max_rms_percent, kErrorPercentRange, "max_rms_percent");
+    requireIn(o.max_peak_percent, kErrorPercentRange, "max_peak_percent");
+    requireIn(o.min_spectrum_percent, kPercentRange, "min_spectrum_percent");
+    requireIn(o.payload_mass, kPayloadMassRange, "payload_mass");
+    requireIn(o.noise_pose, kNoisePoseRange, "noise_pose");
+    requireIn(o.noise_rate, kNoiseRateRange, "noise_rate");
+    requireIn(o.accuracy, kAccuracyRange, "accuracy");
+    if (o.identify_payload && o.controller != "table") throw OptionError("identify_payload", "needs controller table");
+}
+
+ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
+    validate(options);
+    const RobotDescription robot = loadRobot(options.robot);
+    report::ShakeSettings settings = settingsOf(options);
+    const std::vector<std::string> records = expandRecords(options.record);
+    if (records.size() > 1) {
+        if (!options.record_y.empty() || !options.record_theta.empty())
+            throw OptionError("record_y", "record_y and record_theta go with a single record");
+        return runSuite(records, options, settings, robot, observer);
+    }
+    GroundRecord record;
+    record.ax = readAxis(records.front(), options.window, record.dt, false);
+    if (!options.record_y.empty()) record.ay = readAxis(options.record_y, options.window, record.dt, false);
+    if (!options.record_theta.empty()) record.alpha = readAxis(options.record_theta, options.window, record.dt, true);
+    const std::size_t n = std::min({record.ax.size(), record.ay.empty() ? record.ax.size() : record.ay.size(),
+                                    record.alpha.empty() ? record.ax.size() : record.alpha.size()});
+    for (auto* a : {&record.ax, &record.ay, &record.alpha}) {
+        if (!a->empty()) a->resize(n);  // records of one event may differ by a few samples
+    }
+    // the length of the replay is known only once fitted: progress in seconds of motion
+    Meter meter(observer, 0.0, "s");
+    settings.table.progress = [&meter](double t) { meter(t); };
+    const report::ShakeOutcome outcome = report::runShake(robot, record, settings);
+    const Model model(robot);
+    ShakeResult out;
+    out.table = report::shakeTable(outcome, model);
+    out.metrics_json = report::shakeJson(outcome);
+    std::ostringstream text;
+    report::printShakeSummary(outcome, text);
+    out.text = text.str();
+    if (!options.out_dir.empty())
+        report::writeShakeOutputs(outcome, model, options.out_dir, robot.name + ": " + records.front());
+    return out;
+}
+
+}  // namespace nocdyn::app

@@ -1,0 +1,111 @@
+// `shake`: a ground-motion record (PEER AT2) fitted to a robot by similitude and played on a
+// plant with an unknown payload (report/shake_replay.hpp); one record, or a suite of records
+// played in parallel and scored against pass thresholds. Every error is in percent, with
+// "_percent" in its name (options, shake.json, the text and the suite's table alike).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "app/observer.hpp"
+#include "app/options.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "shake_replay.hpp"
+
+namespace nocdyn::app {
+
+inline constexpr Range kHighpassRange{0.0, 1e3, "Hz"};
+inline constexpr Range kShareRange{0.0, 0.9, ""};  // margin, acceleration gain
+inline constexpr Range kWindowRange{0.0, 1e5, "s"};
+inline constexpr Range kControllerRateRange{100.0, 1e6, "Hz"};
+inline constexpr Range kNaturalFrequencyRange{0.1, 1e4, "Hz"};
+inline constexpr Range kEncoderNoiseRange{1e-12, 1.0, "m or rad"};
+inline constexpr Range kAccelNoiseDensityRange{0.0, 1e6, "ug/sqrt(Hz)"};
+inline constexpr Range kAccelBandwidthRange{1.0, 1e5, "Hz"};
+inline constexpr Range kAccelBaselineRange{1e-3, 10.0, "m"};
+inline constexpr Range kAmplitudeRange{1e-3, 1e3, ""};
+inline constexpr Range kIterationGainRange{0.01, 1.0, ""};
+inline constexpr Range kExcitationDurationRange{0.2, 600.0, "s"};
+inline constexpr Range kErrorPercentRange{0.0, 1000.0, "%"};
+inline constexpr Range kPercentRange{0.0, 100.0, "%"};
+inline constexpr Range kPayloadMassRange{0.0, 1e4, "kg"};
+inline constexpr Range kNoisePoseRange{0.0, 1.0, "m, rad"};
+inline constexpr Range kNoiseRateRange{0.0, 1e3, "m/s, rad/s"};
+inline constexpr Range kAccuracyRange{1e-14, 1e-3, ""};
+inline constexpr int kMaxIterations = 20;
+inline constexpr unsigned kMaxJobs = 256;
+
+struct ShakeOptions {
+    RobotSource robot;
+    /// AT2 records driving x (values in g); several, or a folder (its *.AT2 files): a suite.
+    std::vector<std::string> record;
+    std::string record_y;      ///< AT2 record driving y (values in g), same time step
+    std::string record_theta;  ///< AT2-format file driving theta, values in rad/s^2
+    /// "auto" (the least time compression L >= 1 that fits) or a decimal L in [0.001, 10000].
+    std::string time_scale = "auto";
+    double highpass = 0.1;  ///< [Hz] in record time; 0: none
+    double margin = 0.1;    ///< share of each actuator limit kept in reserve
+    double window = 0.0;    ///< [s] of the record played; 0: all
+    std::string plant = "nocdyn-rk4";
+    double rate = 10000.0;  ///< controller rate [Hz]
+    std::string controller = "table";
+    /// f_n of the pose feedback [Hz]; empty: table 6 (2 with identify_payload), pose 30.
+    std::optional<double> natural_frequency;
+    double acceleration_gain = 0.0;
+    double encoder_noise = 1e-6;        ///< [m or rad]
+    double accel_noise_density = 22.5;  ///< [ug/sqrt(Hz)] (ADXL355)
+    double accel_bandwidth = 1000.0;    ///< [Hz]
+    double accel_baseline = 0.1;        ///< [m]
+    bool no_accelerometer = false;
+    double amplitude = 1.0;
+    bool identify_payload = false;
+    int iterations = 0;
+    double iteration_gain = 0.7;
+    double excitation_duration = 2.0;  ///< [s]
+    unsigned jobs = 0;                 ///< suite: records at once (0: one per core)
+    double max_rms_percent = 5.0;      ///< suite: pass at an RMS error of at most this [%]
+    double max_peak_percent = 5.0;     ///< suite: pass at |peak error| of at most this [%]
+    /// suite: pass when at least this percentage of the counted periods is within +-10 %
+    double min_spectrum_percent = 95.0;
+    double payload_mass = 0.5;  ///< [kg] on the plant only
+    double noise_pose = 1e-6;   ///< pose controller [m, rad]
+    double noise_rate = 1e-5;   ///< pose controller [m/s, rad/s]
+    unsigned seed = 1;
+    double accuracy = 1e-10;  ///< Simbody plant
+    /// Where the files go (shake.csv, shake.json, figures; a suite: summary.md and one folder per
+    /// record); empty: nothing written (a suite needs one).
+    std::string out_dir;
+};
+
+/// Throws OptionError naming the field of the first value out of its range.
+void validate(const ShakeOptions& options);
+
+/// One record of a suite.
+struct ShakeSuiteRow {
+    std::string record, folder;
+    double time_scale = 1.0, amplitude = 1.0;  ///< L, and A times the asked amplitude
+    bool amplitude_asked = false;
+    double rms_error_percent = 0.0, peak_error_percent = 0.0, within_percent = 0.0;
+    double limit_use_percent = 0.0;
+    std::string binding;  ///< the limit used most
+    bool pass = false;
+};
+
+struct ShakeResult {
+    bool suite = false;
+    /// One record: shake.csv's table, shake.json's text and the summary printed.
+    io::Table table;
+    std::string metrics_json;
+    std::string text;
+    /// A suite: every record's row, summary.md's text, the number of workers.
+    std::vector<ShakeSuiteRow> rows;
+    int passed = 0;
+};
+
+/// Reads the records (every one before any replay), plays them, scores them; writes to
+/// options.out_dir when given. A suite plays its records on `jobs` threads; progress (records
+/// done) and a stop are handled on the calling thread, a stop ending every replay at its next tick.
+ShakeResult runShake(const ShakeOptions& options, Observer& observer);
+
+}  // namespace nocdyn::app
