@@ -273,10 +273,10 @@ void validate(const ShakeOptions& o) {
     if (std::find(std::begin(report::kPlantNames), std::end(report::kPlantNames), o.plant) ==
         std::end(report::kPlantNames))
         throw OptionError("plant", "expected simbody, nocdyn or nocdyn-rk4, got '" + io::terminalText(o.plant) + "'");
-    requireIn(o.rate, kControllerRateRange, "rate");
+    requireIn(o.rate, kShakeRateRange, "rate");
     if (o.controller != "table" && o.controller != "pose")
         throw OptionError("controller", "expected table or pose, got '" + io::terminalText(o.controller) + "'");
-    if (o.natural_frequency) requireIn(*o.natural_frequency, kNaturalFrequencyRange, "natural_frequency");
+    if (o.natural_frequency) requireIn(*o.natural_frequency, kShakeNaturalFrequencyRange, "natural_frequency");
     requireIn(o.acceleration_gain, kShareRange, "acceleration_gain");
     requireIn(o.encoder_noise, kEncoderNoiseRange, "encoder_noise");
     requireIn(o.accel_noise_density, kAccelNoiseDensityRange, "accel_noise_density");

@@ -18,8 +18,8 @@ namespace nocdyn::app {
 inline constexpr Range kHighpassRange{0.0, 1e3, "Hz"};
 inline constexpr Range kShareRange{0.0, 0.9, ""};  // margin, acceleration gain
 inline constexpr Range kWindowRange{0.0, 1e5, "s"};
-inline constexpr Range kControllerRateRange{100.0, 1e6, "Hz"};
-inline constexpr Range kNaturalFrequencyRange{0.1, 1e4, "Hz"};
+inline constexpr Range kShakeRateRange{100.0, 1e6, "Hz"};
+inline constexpr Range kShakeNaturalFrequencyRange{0.1, 1e4, "Hz"};
 inline constexpr Range kEncoderNoiseRange{1e-12, 1.0, "m or rad"};
 inline constexpr Range kAccelNoiseDensityRange{0.0, 1e6, "ug/sqrt(Hz)"};
 inline constexpr Range kAccelBandwidthRange{1.0, 1e5, "Hz"};

@@ -86,7 +86,7 @@ void addShakeCommand(CLI::App& app) {
         ->check(within(app::kWindowRange));
     addPlantOption(*command, options->plant);
     command->add_option("--rate", options->rate, "Controller rate [Hz]")
-        ->check(within(app::kControllerRateRange))
+        ->check(within(app::kShakeRateRange))
         ->capture_default_str();
     command
         ->add_option("--controller", options->controller,
@@ -98,7 +98,7 @@ void addShakeCommand(CLI::App& app) {
     command
         ->add_option("--natural-frequency", options->natural_frequency,
                      "f_n of the pose feedback [Hz] (default: table 6, or 2 with --identify-payload; pose 30)")
-        ->check(within(app::kNaturalFrequencyRange));
+        ->check(within(app::kShakeNaturalFrequencyRange));
     command
         ->add_option("--acceleration-gain", options->acceleration_gain,
                      "table: gain g per tick of the acceleration correction (bandwidth about g rate / 2 pi)")
