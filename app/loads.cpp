@@ -66,7 +66,8 @@ io::Table loadsTable(const Model& model, const JointLoads& loads, const std::vec
                                     l.rmsForce(),
                                     l.peak_moment,
                                     l.peak_moment_t};
-            if (!frequency.empty()) row.push_back(frequency[static_cast<std::size_t>(3 * j + k)]);
+            if (!frequency.empty())
+                row.push_back(frequency[(3 * static_cast<std::size_t>(j)) + static_cast<std::size_t>(k)]);
             t.rows.push_back(std::move(row));
         }
     }
@@ -215,7 +216,7 @@ LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
             observer.progress(done, total, "points");
             stopIfRequested(observer);
         };
-        out.frequency.assign(static_cast<std::size_t>(3 * model.limbs), 0.0);
+        out.frequency.assign(3 * static_cast<std::size_t>(model.limbs), 0.0);
         out.points = operatingEnvelope(model, envelope);
         for (const EnvelopePoint& point : out.points) {
             if (!(point.amplitude > 0.0)) continue;

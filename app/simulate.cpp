@@ -52,13 +52,19 @@ InitialState initialState(const Model& model, const io::Table& table, const std:
     auto value = [&](const std::string& name) { return first[table.column(name)]; };
     auto hasAll = [&](const char* prefix) {
         for (int a = 1; a <= n; ++a) {
-            if (!table.has(prefix + std::to_string(a))) return false;
+            std::string name(prefix);  // appended, not `prefix + ...` (a GCC 12 -Wrestrict false positive)
+            name += std::to_string(a);
+            if (!table.has(name)) return false;
         }
         return true;
     };
     auto actuatorColumns = [&](const char* prefix) {
         ActuatorVector v(n);
-        for (int a = 0; a < n; ++a) v(a) = value(prefix + std::to_string(a + 1));
+        for (int a = 0; a < n; ++a) {
+            std::string name(prefix);
+            name += std::to_string(a + 1);
+            v(a) = value(name);
+        }
         return v;
     };
     const bool has_u = hasAll("u"), has_du = hasAll("du");

@@ -125,7 +125,7 @@ TEST(RobotFile, BadInputNamesFileLineLimbJointAndField) {
          {"bad.yaml:5:", "joints[0].limits", "home value 0"}},
         {rrr("{type: R, point: [0.0, -0.2], actuated: true}", "{mass: 0.3, inertia: 2.7e-4, com: [0.04, -0.166]}",
              "home: [0.0, 0.0]\n"),
-         {"bad.yaml:2:", "home", "[theta, x, y]"}},
+         {"bad.yaml:2:", "home", "[x, y, theta]"}},
         {"platform: {mass: 1.0, inertia: 1.0}\nlimbs:\n  - joints: []\n    bodies: []\n  - joints: []\n    bodies: "
          "[]\n",
          {"bad.yaml:3:", "limbs[0].joints", "exactly 3 joints"}},

@@ -250,18 +250,8 @@ std::string optionsJson() {
     return describeOptions(*app);
 }
 
-void runCommand(const std::vector<std::string>& arguments) {
-    setQuiet(false);
-    // --set of an earlier command run in this process must not reach this one
-    clearParameterOverrides();
-    const std::unique_ptr<CLI::App> app = makeApp();
-    std::vector<std::string> reversed(arguments.rbegin(), arguments.rend());  // CLI11 parses from the back
-    app->parse(reversed);
-}
-
 int runCommandLine(int argc, const char* const* argv) {
     nocdyn::io::removeTemporariesOnSignals();
-    clearParameterOverrides();
     const std::unique_ptr<CLI::App> owned = makeApp();
     CLI::App& app = *owned;
     // hidden: the options of every command as JSON (tests/python/test_parity.py)

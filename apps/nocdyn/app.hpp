@@ -1,5 +1,5 @@
-// The whole `nocdyn` command line, shared by the executable (main.cpp) and the Python package
-// (python/src/module.cpp), so that both run the very same commands, defaults and checks.
+// The whole `nocdyn` command line, shared by the executable (main.cpp) and `python -m nocdyn`
+// (python/src/cli_main.cpp). Both it and the Python functions stand on the application layer.
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -16,11 +16,6 @@ namespace nocdyn::cli {
 /// `nocdyn` with these arguments (argv[0] the program): messages on stderr as the command line
 /// prints them; returns the exit status (0, 1 for an error, 2 for a malformed argument).
 int runCommandLine(int argc, const char* const* argv);
-
-/// One command for a library caller, arguments without the program name (e.g. {"pose", "0",
-/// "0", "0"}): throws CLI::ParseError for a malformed argument and nocdyn::Error (or another
-/// std::exception) for a failure, instead of printing them.
-void runCommand(const std::vector<std::string>& arguments);
 
 /// Every command's options as JSON: names, default, flag, positional, hidden (an old spelling).
 [[nodiscard]] std::string optionsJson();

@@ -133,10 +133,8 @@ void printText(const app::PoseResult& r) {
     for (const app::PoseLimb& l : r.limbs) {
         std::printf("%-4d  %s  ", l.limb, l.type.c_str());
         for (std::size_t k = 0; k < 3; ++k) {
-            if (l.revolute[k])
-                std::printf("%+11.6f deg   ", l.q(static_cast<Eigen::Index>(k)) * kDeg);
-            else
-                std::printf("%+11.6f mm    ", l.q(static_cast<Eigen::Index>(k)) * 1e3);
+            const double q = l.q(static_cast<Eigen::Index>(k));
+            std::printf(l.revolute[k] ? "%+11.6f deg   " : "%+11.6f mm    ", l.revolute[k] ? q * kDeg : q * 1e3);
         }
         std::printf("%.4g\n", l.cond_J);
     }
@@ -193,10 +191,7 @@ void addPoseCommand(CLI::App& app) {
     command->callback([options] {
         TerminalObserver observer("nocdyn pose");
         const app::PoseResult result = app::runPose(*options, observer);
-        if (options->json)
-            printJson(result);
-        else
-            printText(result);
+        options->json ? printJson(result) : printText(result);
     });
 }
 

@@ -1,31 +1,34 @@
-// nocdyn validate: our inverse dynamics of any robot against Simbody and MuJoCo on one trajectory.
+// nocdyn validate: binds app::ValidateOptions, writes the comparison as CSV and the agreement on
+// standard error.
 #include <iostream>
 #include <memory>
 
+#include "app/validate.hpp"
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/io/trajectory_yaml.hpp"
-#include "nocdyn/validation/agreement.hpp"
+#include "progress.hpp"
 
 namespace nocdyn::cli {
 
 namespace {
 
-void run(const TrajectoryOptions& options) {
-    const RobotDescription robot = loadRobotDescriptionOrDefault(options.robot);
-    const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
-    const auto times = sampleTimes(chooseDuration(options.duration, trajectory), options.rate);
-    const validation::EngineComparison comparison = validation::compareWithEngines(robot, trajectory, times);
-    writeTable(validation::toTable(comparison), options.output);
-    std::cerr << "nocdyn validate: " << robot.name << ", " << trajectory.name << ", " << times.size() << " samples\n"
-              << validation::agreementTable(comparison);
+struct Options : app::ValidateOptions {
+    std::string output;
+};
+
+void run(const Options& options) {
+    TerminalObserver observer("nocdyn validate");
+    const app::ValidateResult result = app::runValidate(options, observer);
+    writeTable(result.table, options.output);
+    std::cerr << "nocdyn validate: " << result.robot << ", " << result.trajectory << ", " << result.samples
+              << " samples\n"
+              << result.agreement;
 }
 
 }  // namespace
 
 void addValidateCommand(CLI::App& app) {
-    auto options = std::make_shared<TrajectoryOptions>();
-    options->rate = 1000.0;
+    auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "validate",
         "Actuator forces of our NOC model of any robot against two independent multibody engines\n"
@@ -34,7 +37,9 @@ void addValidateCommand(CLI::App& app) {
         "trajectory. Writes CSV with the columns t,u1..un,tau1..taun,simbody_u1..n,simbody_tau1..n,\n"
         "mujoco_u1..n,mujoco_tau1..n,simbody_dtau1..n,mujoco_dtau1..n and prints on stderr the largest\n"
         "absolute and relative difference per actuator and engine.");
-    addTrajectoryOptions(*command, *options);
+    addSamplingOptions(*command, *options);
+    addRobotOption(*command, options->robot);
+    command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
     command->callback([options] { run(*options); });
 }
 

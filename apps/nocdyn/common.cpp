@@ -25,59 +25,6 @@
 
 namespace nocdyn::cli {
 
-namespace {
-std::function<void(double, double)>& observerSlot() {
-    static std::function<void(double, double)> observer;
-    return observer;
-}
-
-double secondsNow() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-}  // namespace
-
-void setProgressObserver(std::function<void(double, double)> observer) { observerSlot() = std::move(observer); }
-
-const std::function<void(double, double)>& progressObserver() { return observerSlot(); }
-
-Progress::Progress(double total) : total_(total), terminal_(!quiet() && ::isatty(STDERR_FILENO) == 1) {
-    start_ = last_ = secondsNow();
-}
-
-Progress::~Progress() { finish(); }
-
-void Progress::update(double done) {
-    if ((++calls_ & 1023U) != 0) return;
-    if (const auto& observer = progressObserver()) {
-        observer(done, total_);
-        return;
-    }
-    if (quiet()) return;
-    const double now = secondsNow();
-    if (now - last_ < (terminal_ ? 1.0 : kProgressLogSeconds) || !(total_ > 0.0)) return;
-    last_ = now;
-    const double fraction = std::clamp(done / total_, 0.0, 1.0);
-    const double left = fraction > 0.0 ? (now - start_) * (1.0 - fraction) / fraction : 0.0;
-    if (!terminal_) {
-        // a log: a line of its own
-        std::fprintf(stderr, "nocdyn: t = %.4g of %.4g s (%.0f %%), %.0f s so far, about %.0f s left\n", done, total_,
-                     100.0 * fraction, now - start_, left);
-        std::fflush(stderr);
-        return;
-    }
-    std::fprintf(stderr, "\rnocdyn: t = %.4g of %.4g s (%.0f %%), about %.0f s left   ", done, total_, 100.0 * fraction,
-                 left);
-    std::fflush(stderr);
-    shown_ = true;
-}
-
-void Progress::finish() {
-    if (!shown_) return;
-    std::fprintf(stderr, "\r\033[K");
-    std::fflush(stderr);
-    shown_ = false;
-}
-
 CLI::Validator nonEmptyPath() {
     return CLI::Validator(
         [](std::string& input) -> std::string {
@@ -221,50 +168,6 @@ void refuseOutputOverInput(const CLI::App& command) {
     }
 }
 
-namespace {
-/// --set NAME=VALUE of the one command a process runs.
-io::ParameterSet& overrides() {
-    static io::ParameterSet set;
-    return set;
-}
-}  // namespace
-
-const io::ParameterSet& parameterOverrides() { return overrides(); }
-
-void clearParameterOverrides() { overrides().clear(); }
-
-void addParameterOption(CLI::App& command) {
-    command
-        .add_option_function<std::vector<std::string>>(
-            "--set",
-            [](const std::vector<std::string>& assignments) {
-                for (const std::string& text : assignments) {
-                    io::Parameter p;
-                    try {
-                        p = io::parseParameterAssignment(text);
-                    } catch (const Error& e) {
-                        throw CLI::ValidationError("--set", e.what());
-                    }
-                    auto& set = overrides();
-                    const auto same =
-                        std::find_if(set.begin(), set.end(), [&](const io::Parameter& q) { return q.name == p.name; });
-                    if (same != set.end())
-                        same->value = p.value;
-                    else
-                        set.push_back(p);
-                }
-            },
-            "NAME=VALUE: a parameter the robot file declares (parameters:), overridden; repeatable")
-        ->type_name("NAME=VALUE");
-}
-
-void addRobotOption(CLI::App& command, std::string& robot_path) {
-    command
-        .add_option("--robot", robot_path, "Robot file (YAML); default: the paper's prototype (robots/paper-3prr.yaml)")
-        ->check(CLI::ExistingFile);
-    addParameterOption(command);
-}
-
 void addRobotOption(CLI::App& command, app::RobotSource& robot) {
     command
         .add_option("--robot", robot.path, "Robot file (YAML); default: the paper's prototype (robots/paper-3prr.yaml)")
@@ -296,35 +199,6 @@ void addSamplingOptions(CLI::App& command, app::SamplingOptions& sampling) {
     command.add_option("--rate", sampling.rate, "Samples per second")
         ->check(within(app::kRateRange))
         ->capture_default_str();
-}
-
-void addTrajectoryOptions(CLI::App& command, TrajectoryOptions& options) {
-    command
-        .add_option("--trajectory", options.trajectory,
-                    "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or samples (.csv: t and "
-                    "x,y,theta or ax,ay,alpha)")
-        ->required();
-    addRobotOption(command, options.robot);
-    command.add_option("--duration", options.duration, "Seconds to sample [default: the file's duration, else 0.2]")
-        ->check(finiteIn(kMinDuration, kMaxDuration, "s"));
-    command.add_option("--rate", options.rate, "Samples per second")
-        ->check(finiteIn(kMinRate, kMaxRate, "Hz"))
-        ->capture_default_str();
-    command.add_option("--output,-o", options.output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
-}
-
-RobotDescription loadRobotDescriptionOrDefault(const std::string& path) {
-    if (path.empty()) {
-        if (!parameterOverrides().empty()) throw Error("--set needs --robot: the built-in prototype has no parameters");
-        return io::exampleRobot("paper-3prr");
-    }
-    return io::loadRobotDescription(path, parameterOverrides());
-}
-
-double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory) {
-    if (requested) return *requested;
-    if (trajectory.duration) return *trajectory.duration;
-    return 0.2;
 }
 
 io::OutputFile openOutput(const std::string& path) {

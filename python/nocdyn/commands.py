@@ -1,20 +1,22 @@
 """Every `nocdyn` command as a Python function.
 
-Each function runs the very code its command runs (the command line's commands are compiled
-into the package), with the same defaults and checks: an option ``--foo-bar`` of
-``nocdyn <command>`` is the keyword argument ``foo_bar`` of ``nocdyn.<command>()``, in the same
-units (SI: m, rad, s, kg, N). Files the command writes (``output``, ``figure``, ``out_dir``,
-``log``, ...) are written where given, else into a temporary folder, and read back as NumPy
-arrays (nocdyn.results): the numbers are the command line's bit for bit.
+Each function stands on the command's typed C++ layer (app/), as the command line does: an
+option ``--foo-bar`` of ``nocdyn <command>`` is the keyword argument ``foo_bar`` of
+``nocdyn.<command>()``, with the same default (read from the command's options struct, one
+definition) and the same unit (SI: m, rad, s, kg, N). The answer comes back as NumPy arrays
+(nocdyn.results), the command line's numbers bit for bit. Nothing is written to disk unless an
+argument names a file or folder (``output``, ``figure``, ``out_dir``, ``log``, ...). The pose is
+x, y, theta everywhere (docs/vocabulary.md).
 
-``robot`` is a robot file's path, a nocdyn.Robot, or None for the paper's prototype;
-``trajectory`` is 'paper1', 'paper2' or a trajectory file's path (YAML or CSV samples).
+``robot`` is a robot file's path, a nocdyn.Robot, or None for the paper's prototype; ``set`` a
+dict of the file's parameters overridden for this call only; ``trajectory`` is 'paper1',
+'paper2' or a trajectory file's path (YAML or CSV samples).
 
-Long commands (inverse_dynamics, simulate) report their progress: ``progress=None`` shows a
-tqdm bar when Python runs in a terminal or a notebook and nothing otherwise, ``progress=False``
-never, and a callable is called as ``progress(done, total)`` (seconds of the motion). The GIL is
-released while a command runs; Ctrl-C stops it. The command's standard output and error are
-captured while it runs (``result.text``); its warnings are issued as Python warnings.
+Long commands report their progress: ``progress=None`` shows a tqdm bar when Python runs in a
+terminal or a notebook and nothing otherwise, ``progress=False`` never, and a callable is
+called as ``progress(done, total)`` from the calling thread (it may call nocdyn). The GIL is
+released while a command runs, so two threads run two commands at once; Ctrl-C (or a
+KeyboardInterrupt raised by the callback) stops it. Warnings are issued as Python warnings.
 
 Bad arguments raise ValueError naming the argument (nocdyn.Error, a ValueError, for what the
 command itself refuses: a pose out of reach, a bad file, ...).
@@ -26,14 +28,12 @@ import inspect
 import json as _json
 import os
 import pathlib
-import re
 import sys
-import tempfile
 import warnings
 
 from . import _nocdyn
 from .results import (Animation, AssemblyModes, Excitation, Identification, PoseReport, Report, ShakeResult, Table,
-                      Workspace, load_json, read_csv)
+                      Workspace)
 
 __all__ = ["pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace",
            "convert", "animate", "shake", "regressor", "identify", "excite", "loads", "reproduce", "validate",
@@ -84,146 +84,6 @@ def _progress_callback(progress, description):
     return progress
 
 
-_OPTION = re.compile(r"--([a-z][a-z0-9-]*)")
-
-
-# the positional arguments of the commands, as the command line names them in its messages
-_POSITIONAL = {"THETA": "theta", "X": "x", "Y": "y", "U": "u", "ROBOT": "robot"}
-
-
-def _python_message(message):
-    """The command line's message with its options named as the Python arguments."""
-    message = _OPTION.sub(lambda m: m.group(1).replace("-", "_"), message)
-    name, colon, rest = message.partition(":")
-    return _POSITIONAL[name] + colon + rest if colon and name in _POSITIONAL else message
-
-
-def _format(value, name):
-    if isinstance(value, bool):
-        raise ValueError(f"{name}: expected a number, got {value!r}")
-    if isinstance(value, float):
-        return repr(value)  # shortest round-trip form: the command reads the very number
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, (str, os.PathLike)):
-        text = os.fspath(value)
-        if "\0" in text:
-            raise ValueError(f"{name}: contains a NUL character")
-        return text
-    try:
-        import numpy as np
-        if isinstance(value, np.generic):
-            return _format(value.item(), name)
-    except ImportError:  # pragma: no cover
-        pass
-    raise ValueError(f"{name}: expected a number or a string, got {type(value).__name__}")
-
-
-class _Call:
-    """The arguments of one command line, built from Python arguments, in a temporary folder."""
-
-    def __init__(self, command, function):
-        self.command = command
-        self.arguments = [command]
-        # an argument left at its default is left out: the command applies its own default (the
-        # same, by the parity test), and a default that means "automatic" stays so
-        self.defaults = {name: p.default for name, p in inspect.signature(function).parameters.items()
-                         if p.default is not inspect.Parameter.empty}
-        self._folder = tempfile.TemporaryDirectory(prefix="nocdyn-")
-        self.folder = pathlib.Path(self._folder.name)
-
-    def positional(self, *values, name):
-        for value in values:
-            self.arguments.append(_format(value, name))
-
-    def option(self, name, value):
-        """--name value (several values for a list; nothing for None; a flag for a bool)."""
-        flag = "--" + name.replace("_", "-")
-        if name == "set" and value:
-            items = value.items() if isinstance(value, dict) else [str(v).split("=", 1) for v in value]
-            for key, number in items:
-                self.arguments.extend([flag, f"{key}={_format(number, name)}"])
-            return
-        default = self.defaults.get(name, None)
-        if value is None or (value is default) or (type(value) is type(default) and value == default):
-            return
-        if isinstance(value, bool):
-            if value:
-                self.arguments.append(flag)
-            return
-        if isinstance(value, (list, tuple)) or type(value).__name__ == "ndarray":
-            values = [_format(v, name) for v in list(value)]
-            if values:
-                self.arguments.append(flag)
-                self.arguments.extend(values)
-            return
-        self.arguments.extend([flag, _format(value, name)])
-
-    def options(self, arguments, handled=()):
-        """Every argument of the calling function not in `handled` as its option."""
-        for name, value in arguments.items():
-            if name not in handled and name not in ("call", "progress"):
-                self.option(name, value)
-
-    def robot(self, robot, name="robot"):
-        from . import Robot
-        if robot is None:
-            return None
-        if isinstance(robot, Robot):
-            path = self.folder / "robot.yaml"
-            path.write_text(robot.to_yaml(), encoding="utf-8")
-            self.option(name, str(path))
-            return str(path)
-        self.option(name, robot)
-        return os.fspath(robot)
-
-    def output(self, name, value, default_name):
-        """The file the command writes: where the caller asked, else in the temporary folder."""
-        path = pathlib.Path(value) if value is not None else self.folder / default_name
-        self.option(name, str(path))
-        return path
-
-    def run(self, progress=None, description=None):
-        callback = _progress_callback(progress, description or self.command)
-        try:
-            out, err = _nocdyn._run_command(self.arguments, callback)
-        except _nocdyn._ArgumentError as error:
-            raise ValueError(_python_message(str(error))) from None
-        finally:
-            if isinstance(callback, _TqdmProgress):
-                callback.close()
-        text = []
-        for line in err.splitlines():
-            if line.startswith("nocdyn: warning: "):
-                warnings.warn(line[len("nocdyn: warning: "):], RuntimeWarning, stacklevel=3)
-            else:
-                text.append(line)
-        return out, "\n".join(text)
-
-    def close(self):
-        self._folder.cleanup()
-
-    def __enter__(self):
-        return self
-
-    def __exit__(self, *exc):
-        self.close()
-
-
-def _text(out, err):
-    return "\n".join(t for t in (out.rstrip("\n"), err) if t)
-
-
-def _table_file(call, table, name):
-    """A Table as the command line's CSV in the call's folder."""
-    path = call.folder / name
-    with open(path, "w", encoding="utf-8") as file:
-        file.write(",".join(table.columns) + "\n")
-        for row in table.data:
-            file.write(",".join(repr(float(v)) for v in row) + "\n")
-    return path
-
-
 def _forces_table(forces):
     """The forces given as columns (a dict, a Table, a DataFrame) as a Table."""
     if isinstance(forces, Table):
@@ -238,20 +98,6 @@ def _forces_table(forces):
         except (TypeError, ValueError) as error:
             raise ValueError(f"forces: {error}") from None
     raise ValueError("forces: expected a CSV path, a dict of columns (t, tau1..taun), a Table or a DataFrame")
-
-
-def _table_command(command, function, arguments, file_name, kind=Table, handled=()):
-    """Runs a command whose answer is one CSV (--output): the Table of its columns."""
-    with _Call(command, function) as call:
-        call.robot(arguments.get("robot"))
-        path = call.output("output", arguments.get("output"), file_name)
-        extra = {name: value(call) for name, value in dict(handled).items()}
-        for name, value in extra.items():
-            call.option(name, value)
-        call.options(arguments, handled=("robot", "output", *extra))
-        out, err = call.run(arguments.get("progress", False), command.replace("-", " "))
-        columns, data, labels = read_csv(path)
-        return kind(columns, data, _text(out, err), command, labels)
 
 
 # --- the application layer: options structs in, typed results out ----------------------------
@@ -389,7 +235,7 @@ def _write_table(path, columns, data):
 
 
 # --- the commands, in the order of `nocdyn --help` --------------------------------------------
-# Each function passes its arguments as the options of the same names (_Call.options); only the
+# Each function binds its arguments to the command's options struct (_bound_options); only the
 # robot, the files it reads back and the positional arguments are handled one by one.
 
 def pose(x, y, theta, *, robot=None, set=None):
@@ -738,23 +584,36 @@ loads.__signature__ = loads.__signature__.replace(parameters=[
     p.replace(default=None) if p.name == "trajectory" else p for p in loads.__signature__.parameters.values()])
 
 
-def validate(trajectory, *, robot=None, set=None, duration=None, rate=1000.0, output=None):
+def validate(trajectory, *, robot=None, set=None, output=None, progress=None, **options):
     """Our actuator forces against Simbody's and MuJoCo's (``nocdyn validate``; only when the
     package was built with both engines). Returns a Table with the CSV's columns
     (t, u1..un, tau1..taun, simbody_..., mujoco_..., simbody_dtau1..n, mujoco_dtau1..n); its text
-    holds the largest differences."""
-    return _table_command("validate", validate, dict(locals()), "validate.csv")
+    holds the largest differences. output: also write the CSV."""
+    if not hasattr(_nocdyn, "_run_validate"):
+        raise _nocdyn.Error("validate needs the package built with Simbody and MuJoCo")
+    bound = _bound_options(_nocdyn.ValidateOptions, {"trajectory": trajectory, **options})
+    bound.robot = _robot_source(robot, set)
+    columns, data, text = _run(_nocdyn._run_validate, bound, progress, "validate")
+    if output is not None:
+        _write_table(output, columns, data)
+    return Table(columns, data, text.rstrip("\n"), "validate")
 
 
-def reproduce(*, out_dir="results", closed_loop_duration=0.2, identification_duration=5.0, progress=None):
+if hasattr(_nocdyn, "ValidateOptions"):
+    validate.__signature__ = _signature(_nocdyn.ValidateOptions, ("trajectory",), before=(("robot", None), ("set", None)),
+                                        after=(("output", None), ("progress", None)))
+
+
+def reproduce(*, progress=None, **options):
     """The paper's results for its prototype (``nocdyn reproduce``): CSV files, figures and
-    summary.md in out_dir. Returns a Report (shown as Markdown in Jupyter)."""
-    arguments = dict(locals())
-    with _Call("reproduce", reproduce) as call:
-        folder = call.output("out_dir", out_dir, "results")
-        call.options(arguments, handled=("out_dir",))
-        out, err = call.run(progress, "reproduce")
-        return Report(folder, _text(out, err))
+    summary.md in out_dir. Returns a Report (shown as Markdown in Jupyter). Ctrl-C (or a
+    KeyboardInterrupt raised by ``progress``) stops it between sections."""
+    bound = _bound_options(_nocdyn.ReproduceOptions, options)
+    folder = _run(_nocdyn._run_reproduce, bound, progress, "reproduce")
+    return Report(folder)
+
+
+reproduce.__signature__ = _signature(_nocdyn.ReproduceOptions, (), after=(("progress", None),))
 
 
 def design(vary, metric, *, robot=None, set=None, out_dir=None, progress=None, **options):

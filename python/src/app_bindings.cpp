@@ -31,6 +31,18 @@ py::array_t<double> tableArray(app::TableCollector& table) {
         values->data(), owner);
 }
 
+/// An io::Table's rows as a (rows, columns) float64 array.
+py::array_t<double> rowsArray(const io::Table& table) {
+    const auto columns = static_cast<py::ssize_t>(table.columns.size());
+    py::array_t<double> out({static_cast<py::ssize_t>(table.rows.size()), columns});
+    auto view = out.mutable_unchecked<2>();
+    for (py::ssize_t i = 0; i < view.shape(0); ++i) {
+        for (py::ssize_t j = 0; j < columns; ++j)
+            view(i, j) = table.rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
+    }
+    return out;
+}
+
 namespace {
 
 py::dict poseDict(const app::PoseResult& r) {
@@ -156,6 +168,7 @@ void bindApplication(py::module_& m) {
         py::arg("options"), py::arg("progress") = py::none());
     bindPurpose(m);  // after SamplingOptions, a base of its options
     bindSimulation(m);
+    bindReport(m);
     bindAnalysis(m);
 }
 

@@ -13,6 +13,7 @@
 
 #include "app/observer.hpp"
 #include "app/table.hpp"
+#include "nocdyn/io/csv.hpp"
 
 namespace py = pybind11;
 
@@ -67,6 +68,9 @@ auto runJob(const py::object& progress, Job&& job) {
 /// A (rows, columns) float64 array owning the collector's values (no copy).
 py::array_t<double> tableArray(app::TableCollector& table);
 
+/// An io::Table's rows as a (rows, columns) float64 array.
+py::array_t<double> rowsArray(const io::Table& table);
+
 /// Adds the options types, _run_<command> functions and helpers to the compiled module.
 void bindApplication(py::module_& m);
 
@@ -75,6 +79,9 @@ void bindSimulation(py::module_& m);
 
 /// shake, identify, excite, animate (app_bindings_purpose.cpp).
 void bindPurpose(py::module_& m);
+
+/// reproduce, and validate when both engines are built in (app_bindings_report.cpp).
+void bindReport(py::module_& m);
 
 /// envelope, workspace, loads, regressor, convert, design (app_bindings_analysis.cpp).
 void bindAnalysis(py::module_& m);

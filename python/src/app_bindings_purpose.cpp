@@ -16,18 +16,6 @@ namespace nocdyn::python {
 
 namespace {
 
-/// An io::Table's rows as a (rows, columns) float64 array.
-py::array_t<double> rowsArray(const io::Table& table) {
-    const auto columns = static_cast<py::ssize_t>(table.columns.size());
-    py::array_t<double> out({static_cast<py::ssize_t>(table.rows.size()), columns});
-    auto view = out.mutable_unchecked<2>();
-    for (py::ssize_t i = 0; i < view.shape(0); ++i) {
-        for (py::ssize_t j = 0; j < columns; ++j)
-            view(i, j) = table.rows[static_cast<std::size_t>(i)][static_cast<std::size_t>(j)];
-    }
-    return out;
-}
-
 void bindShake(py::module_& m) {
     using O = app::ShakeOptions;
     py::class_<O>(m, "ShakeOptions")

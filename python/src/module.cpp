@@ -20,7 +20,6 @@
 #include <vector>
 
 #include "app_bindings.hpp"
-#include "cli_commands.hpp"
 #include "cli_main.hpp"
 #include "nocdyn/batch.hpp"
 #include "nocdyn/derivatives.hpp"
@@ -933,7 +932,6 @@ PYBIND11_MODULE(_nocdyn, m) {
     using namespace nocdyn::python;
     m.doc() = "Compiled core of the nocdyn package (use `import nocdyn`).";
     m.attr("__version__") = NOCDYN_VERSION;
-    bindCommands(m);
     bindApplication(m);
     bindCommandLine(m);
     py::register_exception<Error>(m, "Error", PyExc_ValueError);

@@ -9,6 +9,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/io/escape.hpp"
+#include "nocdyn/pose_order.hpp"
 #include "expression.hpp"
 #include "file_util.hpp"
 #include "yaml_util.hpp"
@@ -106,9 +107,12 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
     }
     if (root["gravity"].IsDefined()) robot.gravity = vector2(top, root, "gravity");
     if (const YAML::Node home = root["home"]; home.IsDefined()) {
-        if (!home.IsSequence() || home.size() != 3) detail::fail(top / "home", home, "expected [theta, x, y]");
+        // the user's order, as every pose a user writes (pose_order.hpp); the core's inside
+        if (!home.IsSequence() || home.size() != 3) detail::fail(top / "home", home, "expected [x, y, theta]");
+        Vector3 user;
         for (std::size_t i = 0; i < 3; ++i)
-            robot.home(static_cast<Eigen::Index>(i)) = detail::toNumber(top / "home", home[i]);
+            user(static_cast<Eigen::Index>(i)) = detail::toNumber(top / "home", home[i]);
+        robot.home = corePose(user);
     }
     robot.max_condition = detail::optionalNumber(top, root, "max_condition", robot.max_condition);
     const YAML::Node platform = root["platform"];

@@ -368,7 +368,7 @@ def test_robot_draws_itself_and_help_shows_the_docstrings():
     text = pydoc.render_doc(nocdyn.shake, renderer=pydoc.plaintext)
     assert "shake(record" in text and "nocdyn shake" in text
     package = pathlib.Path(nocdyn.__file__).parent
-    assert (package / "py.typed").exists() and "def _run_command" in (package / "_nocdyn.pyi").read_text()
+    assert (package / "py.typed").exists() and "def _run_pose" in (package / "_nocdyn.pyi").read_text()
 
 
 def test_reproduce(tmp_path):

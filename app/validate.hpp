@@ -1,0 +1,29 @@
+// `validate`: the actuator forces of nocdyn's model of any robot against Simbody's and MuJoCo's,
+// each engine's model generated from the same robot file (built with both engines only).
+#pragma once
+
+#include <string>
+
+#include "app/observer.hpp"
+#include "app/options.hpp"
+#include "nocdyn/io/csv.hpp"
+
+namespace nocdyn::app {
+
+struct ValidateOptions : SamplingOptions {
+    ValidateOptions() { rate = 1000.0; }
+    RobotSource robot;
+};
+
+struct ValidateResult {
+    std::string robot, trajectory;
+    std::size_t samples = 0;
+    /// t, u, tau, each engine's u and tau, and their differences (validation::toTable).
+    io::Table table;
+    /// The largest absolute and relative difference per actuator and engine, as text.
+    std::string agreement;
+};
+
+[[nodiscard]] ValidateResult runValidate(const ValidateOptions& options, Observer& observer);
+
+}  // namespace nocdyn::app
