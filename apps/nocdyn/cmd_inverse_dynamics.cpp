@@ -16,24 +16,6 @@ struct Options : app::InverseDynamicsOptions {
     std::string output;
 };
 
-/// The table's rows into a CSV file (renamed into place only once every sample passed: an
-/// error leaves no partial file) or onto stdout.
-class CsvSink final : public app::TableSink {
-public:
-    explicit CsvSink(io::OutputFile& out) : out_(out) {}
-    void columns(const std::vector<std::string>& names) override {
-        csv_ = std::make_unique<io::CsvWriter>(out_, names, /*background=*/true);  // formats while we compute
-    }
-    void row(std::span<const double> values) override { csv_->row(values); }
-    void finish() {
-        if (csv_) csv_->finish();
-    }
-
-private:
-    io::OutputFile& out_;
-    std::unique_ptr<io::CsvWriter> csv_;
-};
-
 void run(const Options& options) {
     io::OutputFile out = openOutput(options.output);
     CsvSink csv(out);

@@ -5,10 +5,13 @@
 #include <CLI/CLI.hpp>
 
 #include <functional>
+#include <memory>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "app/options.hpp"
+#include "app/table.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/description.hpp"
@@ -56,6 +59,25 @@ void addSamplingOptions(CLI::App& command, app::SamplingOptions& sampling);
 
 /// The output named by --output: a file written safely (io::OutputFile), or stdout when empty.
 [[nodiscard]] io::OutputFile openOutput(const std::string& path);
+
+/// A command's table row by row into CSV (io::CsvWriter formatting on a second thread while the
+/// command computes): a file renamed into place only when committed, so an error leaves no
+/// partial file, or stdout (the rows before an error).
+class CsvSink final : public app::TableSink {
+public:
+    explicit CsvSink(io::OutputFile& out) : out_(out) {}
+    void columns(const std::vector<std::string>& names) override {
+        csv_ = std::make_unique<io::CsvWriter>(out_, names, /*background=*/true);
+    }
+    void row(std::span<const double> values) override { csv_->row(values); }
+    void finish() {
+        if (csv_) csv_->finish();
+    }
+
+private:
+    io::OutputFile& out_;
+    std::unique_ptr<io::CsvWriter> csv_;
+};
 
 /// Writes the table to `path`, or to stdout when the path is empty.
 void writeTable(const io::Table& table, const std::string& path);
