@@ -10,6 +10,7 @@
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/sim/identification.hpp"
 #include "nocdyn/tables/tables.hpp"
+#include "nocdyn/text.hpp"
 #include "report/reproduce_dynamics.hpp"
 
 namespace nocdyn::app {
@@ -43,11 +44,7 @@ void warnReferenceBeyondLimits(const Model& model, const PoseTrajectory& traject
     }
 }
 
-void appendf(std::string& text, const char* format, auto... values) {
-    char line[512];
-    std::snprintf(line, sizeof line, format, values...);
-    text += line;
-}
+void appendf(std::string& text, const char* format, auto... values) { text += text::format(format, values...); }
 
 std::string report(const ControlOptions& options, const Model& model, const PoseController& controller,
                    const PoseLoopResult& result, const PoseLoopOptions& loop, const std::string& trajectory) {
@@ -67,12 +64,12 @@ std::string report(const ControlOptions& options, const Model& model, const Pose
         const LimbModel& limb = model.limb[static_cast<std::size_t>(model.actuator_limb[ia])];
         const bool revolute = limb.type[static_cast<std::size_t>(model.actuator_joint[ia])] == JointType::revolute;
         const double effort = controller.effort()(a);
-        char limit[64] = "none";
-        if (std::isfinite(effort)) std::snprintf(limit, sizeof limit, "%g %s", effort, revolute ? "N m" : "N");
+        std::string limit = "none";
+        if (std::isfinite(effort)) limit = text::format("%g %s", effort, revolute ? "N m" : "N");
         appendf(text, "actuator %d (%s): RMS error %.4g %s, peak error %.4g %s, peak |tau| %.4g %s (effort %s)\n",
                 a + 1, model.limbName(model.actuator_limb[ia]).c_str(), result.rms_error[ia] * 1e6,
                 revolute ? "urad" : "um", result.peak_error[ia] * 1e6, revolute ? "urad" : "um", result.peak_tau[ia],
-                revolute ? "N m" : "N", limit);
+                revolute ? "N m" : "N", limit.c_str());
     }
     appendf(text, "saturated ticks: %zu of %zu\n", result.saturated_ticks, result.t.size());
     if (loop.encoders) {

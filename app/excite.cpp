@@ -7,22 +7,15 @@
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/sim/excitation.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::app {
 
 namespace {
 
-std::string number(double v) {
-    char buffer[40];
-    std::snprintf(buffer, sizeof buffer, "%.6g", v);
-    return buffer;
-}
+std::string number(double v) { return text::format("%.6g", v); }
 
-std::string percent(double v) {
-    char buffer[40];
-    std::snprintf(buffer, sizeof buffer, "%.1f", 100.0 * v);
-    return buffer;
-}
+std::string percent(double v) { return text::format("%.1f", 100.0 * v); }
 
 std::string useText(const ExcitationLimitUse& use) {
     return "{range: " + percent(use.range) + ", velocity: " + percent(use.velocity) +

@@ -8,6 +8,7 @@
 #include "nocdyn/pose_order.hpp"
 #include "nocdyn/sim/closed_loop.hpp"
 #include "nocdyn/sim/control.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::app {
 
@@ -21,9 +22,7 @@ Vector3 threeValues(const std::vector<double>& values) { return {values[0], valu
 
 std::string numberOrBeyond(double value) {
     if (std::isnan(value)) return "beyond the grid";
-    char text[40];
-    std::snprintf(text, sizeof text, "%.4f", value);
-    return text;
+    return text::format("%.4f", value);
 }
 
 std::vector<double> column(const Eigen::MatrixXd& m, Eigen::Index c) {
@@ -55,12 +54,11 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
     out.columns.push_back("f");
     for (Eigen::Index k = 0; k < rows; ++k) out.table(k, 0) = r.frequency[static_cast<std::size_t>(k)];
     const Vector3 pu = userPose(p), dpu = userPose(dp);
-    char line[200];
+    std::string line;
     out.summary = "# frequency response of " + out.robot + " from the actuator forces to " +
                   (acceleration ? "the platform acceleration" : "the actuator variables") + " (rigid model)\n";
-    std::snprintf(line, sizeof line,
-                  "# operating point [x, y, theta] = [%.6g, %.6g, %.6g], its rate = [%.6g, %.6g, %.6g]\n", pu(0), pu(1),
-                  pu(2), dpu(0), dpu(1), dpu(2));
+    line = text::format("# operating point [x, y, theta] = [%.6g, %.6g, %.6g], its rate = [%.6g, %.6g, %.6g]\n", pu(0),
+                        pu(1), pu(2), dpu(0), dpu(1), dpu(2));
     out.summary += line;
     out.summary += "# channel  |H| at f_min [dB]  |H| at f_max [dB]  -3 dB bandwidth [Hz]\n";
     Eigen::Index c_out = 1;
@@ -77,8 +75,9 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
             out.table.col(c_out++) = r.magnitude_db.col(c);
             out.table.col(c_out++) = r.phase_deg.col(c);
             const double bw = bandwidth3dB(r, o, i);
-            std::snprintf(line, sizeof line, "%s/tau%d  %.4f  %.4f  %s\n", name.c_str(), i + 1, r.magnitude_db(0, c),
-                          r.magnitude_db(rows - 1, c), std::isnan(bw) ? "beyond the grid" : std::to_string(bw).c_str());
+            line = text::format("%s/tau%d  %.4f  %.4f  %s\n", name.c_str(), i + 1, r.magnitude_db(0, c),
+                                r.magnitude_db(rows - 1, c),
+                                std::isnan(bw) ? "beyond the grid" : text::format("%f", bw).c_str());
             out.summary += line;
             out.curves.push_back(
                 {name + "/tau" + std::to_string(i + 1), column(r.magnitude_db, c), column(r.phase_deg, c)});
@@ -107,11 +106,11 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
     out.columns.push_back("f");
     for (Eigen::Index k = 0; k < rows; ++k) out.table(k, 0) = r.frequency[static_cast<std::size_t>(k)];
     const Vector3 pu = userPose(p);
-    char line[300];
-    std::snprintf(line, sizeof line,
-                  "# (linearised at rest at [x, y, theta] = [%.6g, %.6g, %.6g]; tick %g Hz, f_n = %g Hz, payload "
-                  "unknown to the controller %g kg)\n",
-                  pu(0), pu(1), pu(2), options.controller_rate, options.natural_frequency, options.payload);
+    std::string line;
+    line = text::format(
+        "# (linearised at rest at [x, y, theta] = [%.6g, %.6g, %.6g]; tick %g Hz, f_n = %g Hz, payload "
+        "unknown to the controller %g kg)\n",
+        pu(0), pu(1), pu(2), options.controller_rate, options.natural_frequency, options.payload);
     out.summary = "# closed-loop frequency response of " + out.robot +
                   " under the shake-table controller, from the reference to the achieved platform acceleration\n" +
                   line;
@@ -126,9 +125,9 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
         out.table.col(c_out++) = r.phase_deg.col(i);
         out.table.col(c_out++) = r.loop_magnitude_db.col(i);
         out.table.col(c_out++) = r.loop_phase_deg.col(i);
-        std::snprintf(line, sizeof line, "%s  %.4f  %.4f  %s  %s  %s\n", kAxisNames[k], r.magnitude_db(0, i),
-                      r.magnitude_db(rows - 1, i), numberOrBeyond(r.bandwidth(i)).c_str(),
-                      numberOrBeyond(r.crossover(i)).c_str(), numberOrBeyond(r.phase_margin(i)).c_str());
+        line = text::format("%s  %.4f  %.4f  %s  %s  %s\n", kAxisNames[k], r.magnitude_db(0, i),
+                            r.magnitude_db(rows - 1, i), numberOrBeyond(r.bandwidth(i)).c_str(),
+                            numberOrBeyond(r.crossover(i)).c_str(), numberOrBeyond(r.phase_margin(i)).c_str());
         out.summary += line;
         out.curves.push_back({std::string("H ") + kAxisNames[k], column(r.magnitude_db, i), column(r.phase_deg, i)});
         out.curves.push_back(

@@ -12,6 +12,7 @@
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/tables/calibration.hpp"
+#include "nocdyn/text.hpp"
 #include "plot.hpp"
 
 namespace nocdyn::app {
@@ -24,11 +25,7 @@ using report::renderFigure;
 
 namespace {
 
-std::string number(double v) {
-    char buffer[40];
-    std::snprintf(buffer, sizeof buffer, "%.12g", v);
-    return buffer;
-}
+std::string number(double v) { return text::format("%.12g", v); }
 
 /// The measurements of the CSV file: named columns, time increasing (errors name the line).
 }  // namespace
@@ -111,11 +108,11 @@ std::string fitText(const Model& model, const FitReport& fit) {
                        ", condition number of the scaled regressor " + number(fit.condition) + "\n";
     for (int a = 0; a < model.actuators; ++a) {
         const auto aa = static_cast<std::size_t>(a);
-        char line[200];
-        std::snprintf(line, sizeof line,
-                      "# actuator %d: rms residual %.4g (fit), %.4g held out, of rms force %.4g held out (%.3g %%)\n",
-                      a + 1, fit.rms_fit[aa], fit.rms_holdout[aa], fit.rms_measured[aa],
-                      fit.rms_measured[aa] > 0.0 ? 100.0 * fit.rms_holdout[aa] / fit.rms_measured[aa] : 0.0);
+        std::string line;
+        line = text::format(
+            "# actuator %d: rms residual %.4g (fit), %.4g held out, of rms force %.4g held out (%.3g %%)\n", a + 1,
+            fit.rms_fit[aa], fit.rms_holdout[aa], fit.rms_measured[aa],
+            fit.rms_measured[aa] > 0.0 ? 100.0 * fit.rms_holdout[aa] / fit.rms_measured[aa] : 0.0);
         text += line;
     }
     return text;

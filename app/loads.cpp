@@ -11,6 +11,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
+#include "nocdyn/text.hpp"
 #include "plot.hpp"
 
 namespace nocdyn::app {
@@ -43,8 +44,8 @@ PoseTrajectory envelopeMotion(const Model& model, const EnvelopePoint& point) {
 }
 
 std::string shortNumber(double v) {
-    char text[32];
-    std::snprintf(text, sizeof text, "%.4g", v);
+    std::string text;
+    text = text::format("%.4g", v);
     return text;
 }
 
@@ -165,24 +166,23 @@ JointLoad& at(JointLoads& loads, int i) {
 std::string reportText(const Model& model, const LoadsResult& r, bool envelope) {
     std::string text =
         "joint              peak |f| [N]  at t [s]   pose x, y [mm], theta [deg]     RMS |f| [N]  peak |m| [N m]\n";
-    char line[256];
+    std::string line;
     for (int j = 0; j < model.limbs; ++j) {
         for (int k = 0; k < 3; ++k) {
             const auto kk = static_cast<std::size_t>(k);
             const JointLoad& l = r.loads.joint[static_cast<std::size_t>(j)][kk];
             const std::string name = "limb " + std::to_string(j + 1) + " joint " + std::to_string(k + 1) + " (" +
                                      jointTypeName(model.limb[static_cast<std::size_t>(j)].type[kk]) + ")";
-            std::snprintf(line, sizeof line, "%-18s %12.4g  %8.4f   %8.3f, %8.3f, %8.3f   %11.4g  %14.4g\n",
-                          name.c_str(), l.peak_force, l.peak_force_t, l.peak_force_pose(1) * 1e3,
-                          l.peak_force_pose(2) * 1e3, l.peak_force_pose(0) * 180.0 / std::numbers::pi, l.rmsForce(),
-                          l.peak_moment);
+            line = text::format("%-18s %12.4g  %8.4f   %8.3f, %8.3f, %8.3f   %11.4g  %14.4g\n", name.c_str(),
+                                l.peak_force, l.peak_force_t, l.peak_force_pose(1) * 1e3, l.peak_force_pose(2) * 1e3,
+                                l.peak_force_pose(0) * 180.0 / std::numbers::pi, l.rmsForce(), l.peak_moment);
             text += line;
         }
     }
     const JointLoad& w =
         r.loads.joint[static_cast<std::size_t>(r.worst_limb - 1)][static_cast<std::size_t>(r.worst_joint - 1)];
-    std::snprintf(line, sizeof line, "largest: limb %d joint %d, %.4g N%s\n", r.worst_limb, r.worst_joint, w.peak_force,
-                  envelope ? " (over the operating envelope's motions)" : "");
+    line = text::format("largest: limb %d joint %d, %.4g N%s\n", r.worst_limb, r.worst_joint, w.peak_force,
+                        envelope ? " (over the operating envelope's motions)" : "");
     return text + line;
 }
 

@@ -1,6 +1,7 @@
 #include "app/regressor.hpp"
 
 #include <cstdio>
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::app {
 
@@ -16,12 +17,11 @@ RegressorResult runRegressor(const RegressorOptions& options, Observer& /*observ
     out.base = baseParameters(model, base_options);
     out.pi = standardParameters(model);
     out.text = "# standard parameters (robot file values)\n";
-    char line[160];
+    std::string line;
     for (int c = 0; c < parameterCount(model); ++c) {
         out.names.push_back(parameterName(model, c));
         out.units.push_back(parameterUnit(model, c));
-        std::snprintf(line, sizeof line, "%-28s %15.9g %s\n", out.names.back().c_str(), out.pi(c),
-                      out.units.back().c_str());
+        line = text::format("%-28s %15.9g %s\n", out.names.back().c_str(), out.pi(c), out.units.back().c_str());
         out.text += line;
     }
     out.text += describeBaseParameters(model, out.base);

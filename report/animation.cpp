@@ -15,14 +15,15 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/analysis/sampling.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::report {
 
 namespace {
 
 std::string secondsText(double t) {
-    char text[40];
-    std::snprintf(text, sizeof text, "%.9g", t);
+    std::string text;
+    text = text::format("%.9g", t);
     return text;
 }
 
@@ -54,15 +55,15 @@ void appendPoints(const RobotDrawing& d, std::vector<long long>& out) {
 template <class Range>
 void appendArray(std::string& out, const Range& values, int digits) {
     out += '[';
-    char number[40];
+    std::string number;
     bool first = true;
     for (const auto v : values) {
         if (!first) out += ',';
         first = false;
         if constexpr (std::is_integral_v<std::decay_t<decltype(v)>>) {
-            std::snprintf(number, sizeof number, "%lld", static_cast<long long>(v));
+            number = text::format("%lld", static_cast<long long>(v));
         } else {
-            std::snprintf(number, sizeof number, "%.*g", digits, static_cast<double>(v));
+            number = text::format("%.*g", digits, static_cast<double>(v));
         }
         out += number;
     }

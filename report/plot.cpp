@@ -14,6 +14,7 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/output.hpp"
+#include "nocdyn/text.hpp"
 
 extern char** environ;
 
@@ -70,16 +71,16 @@ std::string script(const Figure& figure, const std::string& terminal) {
     const int height = figure.height > 0 ? figure.height : 380 * static_cast<int>(figure.panels.size()) + 60;
     gp << "set terminal " << terminal << " size " << figure.width << "," << height << "\n";
     gp << "set grid\nset key outside right top\nset tics nomirror\n";
-    char number[64];
+    std::string number;
     for (std::size_t p = 0; p < figure.panels.size(); ++p) {
         for (std::size_t s = 0; s < figure.panels[p].series.size(); ++s) {
             const PlotSeries& series = figure.panels[p].series[s];
             gp << "$d" << p << "_" << s << " << EOD\n";
             for (std::size_t k = 0; k < series.x.size(); ++k) {
-                std::snprintf(number, sizeof number, "%.10g %.10g", series.x[k], series.y[k]);
+                number = text::format("%.10g %.10g", series.x[k], series.y[k]);
                 gp << number;
                 for (const std::vector<double>& column : series.extra) {
-                    std::snprintf(number, sizeof number, " %.10g", k < column.size() ? column[k] : 0.0);
+                    number = text::format(" %.10g", k < column.size() ? column[k] : 0.0);
                     gp << number;
                 }
                 gp << "\n";

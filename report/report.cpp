@@ -28,6 +28,7 @@
 #ifdef NOCDYN_HAS_ENGINES
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/validation/agreement.hpp"
+#include "nocdyn/text.hpp"
 #include "simbody_plant.hpp"
 #endif
 
@@ -160,10 +161,10 @@ void reproduceTrajectories(const RobotDescription& robot, const std::filesystem:
             }
             const double peak_stroke = series.summary.peak_u[static_cast<std::size_t>(j)];
             const double peak_force = series.summary.peak_tau[static_cast<std::size_t>(j)];
-            char row[256];
-            std::snprintf(row, sizeof row, "| %s | %d | %+.3f .. %+.3f | %.1f %% | %.2f | %.1f %% |\n", c.name, j + 1,
-                          lo * 1e3, hi * 1e3, 100.0 * peak_stroke / (0.5 * limits.stroke), peak_force,
-                          100.0 * peak_force / limits.peak_force);
+            std::string row;
+            row = text::format("| %s | %d | %+.3f .. %+.3f | %.1f %% | %.2f | %.1f %% |\n", c.name, j + 1, lo * 1e3,
+                               hi * 1e3, 100.0 * peak_stroke / (0.5 * limits.stroke), peak_force,
+                               100.0 * peak_force / limits.peak_force);
             summary << row;
         }
         for (const std::string& violation : series.summary.limit_violations)
@@ -173,10 +174,10 @@ void reproduceTrajectories(const RobotDescription& robot, const std::filesystem:
         << "\nFiles: `paper1.csv`, `paper2.csv` (columns t,x,y,theta,u1..u3,du1..du3,ddu1..ddu3,tau1..tau3,kinetic);"
         << " figures `paper{1,2}_displacements.{png,svg}` and `paper{1,2}_forces.{png,svg}`.\n\n";
 #ifdef NOCDYN_HAS_ENGINES
-    char line[256];
-    std::snprintf(line, sizeof line,
-                  "Largest force difference from either engine: %.3e N, %.3e of the peak force of the trajectory.\n\n",
-                  worst_abs, worst_rel);
+    std::string line;
+    line = text::format(
+        "Largest force difference from either engine: %.3e N, %.3e of the peak force of the trajectory.\n\n", worst_abs,
+        worst_rel);
     summary << "## Validation against independent multibody engines\n\n"
             << "The same robot file and trajectories were built in Simbody (the reference, as ADAMS was for the paper)"
             << " and MuJoCo, which never call nocdyn's kinematics or dynamics; the platform pose is prescribed and each"
@@ -203,7 +204,7 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
             << "| robot | limbs | actuators | peak abs(tau) [N or N m] | Simbody: max diff / peak | MuJoCo: max diff / "
                "peak |\n"
             << "| --- | --- | --- | --- | --- | --- |\n";
-    char line[256];
+    std::string line;
     for (const char* name : {"3-rrr", "3-rpr", "4-rrr"}) {
         const RobotDescription robot = io::exampleRobot(name);
         const validation::EngineComparison c = validation::compareWithEngines(robot, paperTrajectory1(), times);
@@ -215,8 +216,8 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
         }
         double peak = 0.0;
         for (double v : c.ours.summary.peak_tau) peak = std::max(peak, v);
-        std::snprintf(line, sizeof line, "| %s | %s | %d | %.4g | %.2e | %.2e |\n", name, types.c_str(), c.actuators,
-                      peak, c.simbody_agreement.worstRelative(), c.mujoco_agreement.worstRelative());
+        line = text::format("| %s | %s | %d | %.4g | %.2e | %.2e |\n", name, types.c_str(), c.actuators, peak,
+                            c.simbody_agreement.worstRelative(), c.mujoco_agreement.worstRelative());
         summary << line;
     }
     summary << "\nFiles: `example_{3-rrr,3-rpr,4-rrr}_validation.csv` (ours and both engines' u and tau at every"
@@ -243,9 +244,9 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
             SimbodyPlant plant(with_payload ? withPayload(robot, payload) : robot);
             const PoseLoopResult r = runPoseLoop(controller, plant, paperTrajectory1(), loop);
             saturated += r.saturated_ticks;
-            char cell[96];
-            std::snprintf(cell, sizeof cell, "%.3g, %.3g, %.3g", r.pose_peak_error(1) * 1e6, r.pose_peak_error(2) * 1e6,
-                          r.pose_peak_error(0) * 1e6);
+            std::string cell;
+            cell = text::format("%.3g, %.3g, %.3g", r.pose_peak_error(1) * 1e6, r.pose_peak_error(2) * 1e6,
+                                r.pose_peak_error(0) * 1e6);
             return std::string(cell);
         };
         std::size_t saturated = 0;
@@ -285,9 +286,9 @@ void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::pa
         paths.push_back(std::move(path));
     }
     renderFigure(workspaceFigure(map, model, paths), (out / "workspace").string());
-    char line[160];
-    std::snprintf(line, sizeof line, " The trajectories turn the platform by up to %.3g deg as they go.\n\n",
-                  peak_theta * 180.0 / std::numbers::pi);
+    std::string line;
+    line = text::format(" The trajectories turn the platform by up to %.3g deg as they go.\n\n",
+                        peak_theta * 180.0 / std::numbers::pi);
     summary << "## Workspace\n\n"
             << workspaceSummary(map) << line
             << "`workspace.{png,svg}`: the outline of that region, the singularity curves where they fall in the"

@@ -16,6 +16,7 @@
 #include "nocdyn/model.hpp"
 #include "nocdyn/tables/tables.hpp"
 #include "nocdyn/analysis/sampling.hpp"
+#include "nocdyn/text.hpp"
 #include "plants.hpp"
 
 namespace nocdyn::report {
@@ -36,11 +37,10 @@ Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopR
     for (std::size_t r = 0; r < runs.size(); ++r) {
         const PoseLoopResult& run = runs[r];
         PlotPanel panel;
-        char heading[300];
+        std::string heading;
         const std::string note = r < notes.size() && !notes[r].empty() ? ", " + notes[r] : std::string();
-        std::snprintf(heading, sizeof heading, "%s on the %s plant%s: RMS error %.3g um", run.controller.c_str(),
-                      run.plant.c_str(), note.c_str(),
-                      *std::max_element(run.rms_error.begin(), run.rms_error.end()) * 1e6);
+        heading = text::format("%s on the %s plant%s: RMS error %.3g um", run.controller.c_str(), run.plant.c_str(),
+                               note.c_str(), *std::max_element(run.rms_error.begin(), run.rms_error.end()) * 1e6);
         panel.title = heading;
         panel.xlabel = "t [s]";
         double peak = 0.0;
@@ -137,12 +137,12 @@ void reproduceControl(const RobotDescription& robot, const std::filesystem::path
                 makePlant(plant_name, loaded ? withPayload(robot, payload) : robot);
             runs.push_back(runPoseLoop(controller, *plant, trajectory, loop));
             const PoseLoopResult& r = runs.back();
-            char row[400];
-            std::snprintf(row, sizeof row, "| %s | %s | %s | %.4g, %.4g, %.4g | %.4g | %.4g, %.4g, %.4g | %zu |\n",
-                          kTrajectories[k], name(law), loaded ? "0.5 kg" : "none", r.rms_error[0] * 1e6,
-                          r.rms_error[1] * 1e6, r.rms_error[2] * 1e6,
-                          *std::max_element(r.peak_error.begin(), r.peak_error.end()) * 1e6, r.pose_peak_error(1) * 1e6,
-                          r.pose_peak_error(2) * 1e6, r.pose_peak_error(0) * 1e6, r.saturated_ticks);
+            std::string row;
+            row = text::format(
+                "| %s | %s | %s | %.4g, %.4g, %.4g | %.4g | %.4g, %.4g, %.4g | %zu |\n", kTrajectories[k], name(law),
+                loaded ? "0.5 kg" : "none", r.rms_error[0] * 1e6, r.rms_error[1] * 1e6, r.rms_error[2] * 1e6,
+                *std::max_element(r.peak_error.begin(), r.peak_error.end()) * 1e6, r.pose_peak_error(1) * 1e6,
+                r.pose_peak_error(2) * 1e6, r.pose_peak_error(0) * 1e6, r.saturated_ticks);
             summary << row;
         }
         const std::string stem = std::string("control_") + kTrajectories[k];
@@ -187,9 +187,9 @@ void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::pat
         const bool angle = axis == EnvelopeAxis::theta;
         const double scale = angle ? 180.0 / std::numbers::pi : 1e3;
         const char* unit = angle ? "deg" : "mm";
-        char row[300];
-        std::snprintf(row, sizeof row, "| %s | %.4g %s | %.3g | %.3g | %.4g %s | %.3f |\n", axisName(axis),
-                      kinematic * scale, unit, last_stroke, first_force, at100 * scale, unit, ratio);
+        std::string row;
+        row = text::format("| %s | %.4g %s | %.3g | %.3g | %.4g %s | %.3f |\n", axisName(axis), kinematic * scale, unit,
+                           last_stroke, first_force, at100 * scale, unit, ratio);
         summary << row;
     }
     summary << "\nBelow the crossover the stroke binds (amplitude independent of f); above it the peak force binds and "
@@ -206,11 +206,11 @@ void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::pat
             const double scale = angle ? 180.0 / std::numbers::pi : 1e3;
             for (const Harmonic& h : motions[static_cast<int>(axis)]->harmonics) {
                 const auto p = maximumAmplitude(model, axis, h.frequency);
-                char row[300];
-                std::snprintf(row, sizeof row, "| %s | %s | %.4g %s | %.4g | %.4g %s (%s-bound) | %.1f %% |\n",
-                              kTrajectories[k], axisName(axis), std::abs(h.amplitude) * scale, angle ? "deg" : "mm",
-                              h.frequency, p.amplitude * scale, angle ? "deg" : "mm", limitWord(p.limit),
-                              100.0 * std::abs(h.amplitude) / p.amplitude);
+                std::string row;
+                row = text::format("| %s | %s | %.4g %s | %.4g | %.4g %s (%s-bound) | %.1f %% |\n", kTrajectories[k],
+                                   axisName(axis), std::abs(h.amplitude) * scale, angle ? "deg" : "mm", h.frequency,
+                                   p.amplitude * scale, angle ? "deg" : "mm", limitWord(p.limit),
+                                   100.0 * std::abs(h.amplitude) / p.amplitude);
                 summary << row;
             }
         }
@@ -220,12 +220,12 @@ void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::pat
             stroke = std::max(stroke, series.summary.peak_u[a]);
             force = std::max(force, series.summary.peak_tau[a]);
         }
-        char row[300];
-        std::snprintf(row, sizeof row,
-                      "| %s | combined | peak abs(u) %.3f mm = %.1f %% of half stroke | | peak abs(tau) %.2f N | %.1f "
-                      "%% of peak force |\n",
-                      kTrajectories[k], stroke * 1e3, 100.0 * stroke / (0.5 * limits.stroke), force,
-                      100.0 * force / limits.peak_force);
+        std::string row;
+        row = text::format(
+            "| %s | combined | peak abs(u) %.3f mm = %.1f %% of half stroke | | peak abs(tau) %.2f N | %.1f "
+            "%% of peak force |\n",
+            kTrajectories[k], stroke * 1e3, 100.0 * stroke / (0.5 * limits.stroke), force,
+            100.0 * force / limits.peak_force);
         summary << row;
     }
     summary << "\n";
@@ -264,9 +264,9 @@ void reproduceRoundTrip(const RobotDescription& robot, std::ostream& summary) {
             xy_error = std::max(xy_error, (simulator.pose() - s.p).tail<2>().cwiseAbs().maxCoeff());
             theta_error = std::max(theta_error, std::abs(simulator.pose()(0) - s.p(0)));
         }
-        char row[300];
-        std::snprintf(row, sizeof row, "| %s | %.3g | %.3g | %.3g | %zu |\n", kTrajectories[k], u_error, xy_error,
-                      theta_error, simulator.acceptedSteps());
+        std::string row;
+        row = text::format("| %s | %.3g | %.3g | %.3g | %zu |\n", kTrajectories[k], u_error, xy_error, theta_error,
+                           simulator.acceptedSteps());
         summary << row;
     }
     summary

@@ -21,6 +21,7 @@
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/tables/tables.hpp"
 #include "nocdyn/sim/shake.hpp"
+#include "nocdyn/text.hpp"
 #include "plants.hpp"
 #include "plot.hpp"
 
@@ -127,11 +128,7 @@ Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c
     return outcome;
 }
 
-std::string format(const char* pattern, double value) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, pattern, value);
-    return buffer;
-}
+std::string format(const char* pattern, double value) { return text::format(pattern, value); }
 
 /// "| mass [kg] | 0.5 | 0.50012 ± 0.0003 | +0.02 % | 0.5 % | yes |"
 std::string row(const std::string& name, double truth_value, double value, double sd, double error,

@@ -19,6 +19,7 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/io/layouts.hpp"
+#include "nocdyn/text.hpp"
 #include "plants.hpp"
 #include "plot.hpp"
 
@@ -136,13 +137,13 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         const double bytes = ticks * replayBytesPerTick(settings.controller);
         if (!(bytes <= kMaxReplayBytes)) {
             const double record_seconds = record.dt * static_cast<double>(fit.t.size() - 1);
-            char text[512];
-            std::snprintf(text, sizeof text,
-                          "the replay of this %.6g s record is too long to hold: time scale L = %.4g gives %.6g s "
-                          "of replay, %.4g million ticks at %.6g Hz, about %.0f MB (%.3g MB per second of record); "
-                          "the limit is %.0f MB per replay: play part of the record (--window) or lower --rate",
-                          record_seconds, fit.time_scale, fit.t.back(), ticks / 1e6, settings.rate, bytes / 1e6,
-                          bytes / 1e6 / record_seconds, kMaxReplayBytes / 1e6);
+            std::string text;
+            text = text::format(
+                "the replay of this %.6g s record is too long to hold: time scale L = %.4g gives %.6g s "
+                "of replay, %.4g million ticks at %.6g Hz, about %.0f MB (%.3g MB per second of record); "
+                "the limit is %.0f MB per replay: play part of the record (--window) or lower --rate",
+                record_seconds, fit.time_scale, fit.t.back(), ticks / 1e6, settings.rate, bytes / 1e6,
+                bytes / 1e6 / record_seconds, kMaxReplayBytes / 1e6);
             throw Error(text);
         }
     }
@@ -251,27 +252,27 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         }
     }
     if (settings.iterations > 0 && out.iteration_stop.empty()) out.iteration_stop = "the last pass asked";
-    char text[512];
+    std::string text;
     if (settings.controller == "table") {
         const TableSensors& s = settings.table.sensors;
-        std::snprintf(text, sizeof text,
-                      "encoders: noise %.3g (m or rad) per actuator (pose noise at home %.3g rad, %.3g m, %.3g m); "
-                      "accelerometers: %s",
-                      s.encoder_noise, out.estimator.sigma_q(0), out.estimator.sigma_q(1), out.estimator.sigma_q(2),
-                      s.accelerometer ? "" : "none");
+        text = text::format(
+            "encoders: noise %.3g (m or rad) per actuator (pose noise at home %.3g rad, %.3g m, %.3g m); "
+            "accelerometers: %s",
+            s.encoder_noise, out.estimator.sigma_q(0), out.estimator.sigma_q(1), out.estimator.sigma_q(2),
+            s.accelerometer ? "" : "none");
         out.sensing = text;
         if (s.accelerometer) {
-            std::snprintf(text, sizeof text,
-                          "noise density %.3g ug/sqrt(Hz) (ADXL355 default 22.5), bandwidth %.4g Hz (first-order), "
-                          "so %.3g m/s^2 RMS per axis; a pair %.3g m apart for alpha (%.3g rad/s^2 RMS); rates from "
-                          "the estimator",
-                          s.accel_noise_density / kGravity * 1e6, s.accel_bandwidth, out.estimator.sigma_y(1),
-                          s.accel_baseline, out.estimator.sigma_y(0));
+            text = text::format(
+                "noise density %.3g ug/sqrt(Hz) (ADXL355 default 22.5), bandwidth %.4g Hz (first-order), "
+                "so %.3g m/s^2 RMS per axis; a pair %.3g m apart for alpha (%.3g rad/s^2 RMS); rates from "
+                "the estimator",
+                s.accel_noise_density / kGravity * 1e6, s.accel_bandwidth, out.estimator.sigma_y(1), s.accel_baseline,
+                out.estimator.sigma_y(0));
             out.sensing += text;
         }
     } else {
-        std::snprintf(text, sizeof text, "pose sensor: noise %.3g (m, rad); rate sensor: noise %.3g (m/s, rad/s)",
-                      settings.noise_pose, settings.noise_rate);
+        text = text::format("pose sensor: noise %.3g (m, rad); rate sensor: noise %.3g (m/s, rad/s)",
+                            settings.noise_pose, settings.noise_rate);
         out.sensing = text;
     }
     // the record's passband, in the replay's time: [2 f_highpass (or 2 / duration), 0.4 / dt]
@@ -436,57 +437,55 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
 
 void printShakeSummary(const ShakeOutcome& outcome, std::ostream& out, bool with_timing) {
     const FittedRecord& fit = outcome.fit;
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "time scale L = %.4g (time compressed %.4g times, displacement / L^2), amplitude scale A = %.4g\n"
-                  "fitted motion: worst limit use %.1f %% of the allowed (%s at t = %.4g s)\n",
-                  fit.time_scale, fit.time_scale, fit.amplitude_scale, 100.0 * fit.use.ratio, fit.use.what.c_str(),
-                  fit.use.t);
+    std::string line;
+    line = text::format(
+        "time scale L = %.4g (time compressed %.4g times, displacement / L^2), amplitude scale A = %.4g\n"
+        "fitted motion: worst limit use %.1f %% of the allowed (%s at t = %.4g s)\n",
+        fit.time_scale, fit.time_scale, fit.amplitude_scale, 100.0 * fit.use.ratio, fit.use.what.c_str(), fit.use.t);
     out << line;
     if (outcome.amplitude != 1.0) {
-        std::snprintf(line, sizeof line,
-                      "amplitude: the record's accelerations times %.4g before the fit, as asked (--amplitude)\n",
-                      outcome.amplitude);
+        line = text::format("amplitude: the record's accelerations times %.4g before the fit, as asked (--amplitude)\n",
+                            outcome.amplitude);
         out << line;
     }
     out << "controller: " << outcome.loop.controller << "\nsensors: " << outcome.sensing << "\n";
     if (outcome.payload.done) {
         const PayloadResult& e = outcome.payload.estimate;
-        std::snprintf(line, sizeof line,
-                      "payload identified first: m = %.4g +- %.2g kg, c.o.m. [%.3g, %.3g] m, I_zz = %.3g +- %.2g kg "
-                      "m^2 (excitation within %.1f %% of the limits); the controller's model carries it\n",
-                      e.mass, e.mass_sd, e.com.x(), e.com.y(), e.inertia, e.inertia_sd,
-                      100.0 * outcome.payload.excitation_use.ratio);
+        line = text::format(
+            "payload identified first: m = %.4g +- %.2g kg, c.o.m. [%.3g, %.3g] m, I_zz = %.3g +- %.2g kg "
+            "m^2 (excitation within %.1f %% of the limits); the controller's model carries it\n",
+            e.mass, e.mass_sd, e.com.x(), e.com.y(), e.inertia, e.inertia_sd,
+            100.0 * outcome.payload.excitation_use.ratio);
         out << line;
     }
     if (outcome.pass_rms.size() > 1 || !outcome.iteration_stop.empty()) {
         out << "drive iteration: RMS error per pass";
         for (std::size_t k = 0; k < outcome.pass_rms.size(); ++k) {
-            std::snprintf(line, sizeof line, " %zu: %.2f %%", k, 100.0 * outcome.pass_rms[k]);
+            line = text::format(" %zu: %.2f %%", k, 100.0 * outcome.pass_rms[k]);
             out << (k > 0 ? "," : "") << line;
         }
         out << "; stopped: " << outcome.iteration_stop << "; pass " << outcome.best_pass << " kept\n";
     }
     const double duration = outcome.loop.t.back();
     if (with_timing) {
-        std::snprintf(line, sizeof line, "closed loop: %.4g s of motion in %.3g s (%.3g x real time), ", duration,
-                      outcome.seconds, duration / outcome.seconds);
+        line = text::format("closed loop: %.4g s of motion in %.3g s (%.3g x real time), ", duration, outcome.seconds,
+                            duration / outcome.seconds);
     } else {
-        std::snprintf(line, sizeof line, "closed loop: %.4g s of motion, ", duration);
+        line = text::format("closed loop: %.4g s of motion, ", duration);
     }
     out << line;
-    std::snprintf(line, sizeof line, "%zu saturated ticks; worst use of a limit %.1f %% (%s)\n",
-                  outcome.loop.saturated_ticks, 100.0 * outcome.achieved_use.ratio, outcome.achieved_use.what.c_str());
+    line = text::format("%zu saturated ticks; worst use of a limit %.1f %% (%s)\n", outcome.loop.saturated_ticks,
+                        100.0 * outcome.achieved_use.ratio, outcome.achieved_use.what.c_str());
     out << line;
     for (std::size_t axis = 0; axis < 3; ++axis) {
         if (!outcome.driven[axis]) continue;
         const ShakeScore& s = outcome.score[axis];
-        std::snprintf(line, sizeof line,
-                      "%s: RMS error %.2f %% of the target RMS, peak error %+.2f %%, spectrum: %.0f %% of the %d "
-                      "periods %.3g-%.3g s with S_a >= 10 %% of its peak outside +-10 %%; displacement error %.2f "
-                      "%%, velocity error %.2f %%\n",
-                      kAxisNames[axis], 100.0 * s.rms_error, 100.0 * s.peak_error, 100.0 * s.share_outside, s.counted,
-                      outcome.period_min, outcome.period_max, 100.0 * s.displacement_error, 100.0 * s.velocity_error);
+        line = text::format(
+            "%s: RMS error %.2f %% of the target RMS, peak error %+.2f %%, spectrum: %.0f %% of the %d "
+            "periods %.3g-%.3g s with S_a >= 10 %% of its peak outside +-10 %%; displacement error %.2f "
+            "%%, velocity error %.2f %%\n",
+            kAxisNames[axis], 100.0 * s.rms_error, 100.0 * s.peak_error, 100.0 * s.share_outside, s.counted,
+            outcome.period_min, outcome.period_max, 100.0 * s.displacement_error, 100.0 * s.velocity_error);
         out << line;
     }
 }

@@ -28,6 +28,7 @@ packages=(
   python3-tqdm python3-pandas                  # progress bars and to_pandas() of the Python package
   python3-venv python3-pip                     # the test of `pip install .` (ctest -L pip)
   python3-sphinx python3-myst-parser           # the user guide, docs/ (ctest -L docs)
+  locales                                      # a decimal-comma locale built by the tests (numbers as text)
   calculix-ccx                                 # finite-element check of the stiffness and modes (ctest -L validation)
   doxygen python3-breathe                      # its C++ API page (docs/cpp-api.md, docs/Doxyfile)
 )

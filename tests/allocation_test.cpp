@@ -47,7 +47,7 @@ TEST(RealTime, PerSamplePathWithItsChecksAllocatesNothing) {
     }
 }
 
-TEST(RealTime, GeneralModelAllocatesNothingPerSample) {
+TEST(RealTime, TheModelAllocatesNothingPerSample) {
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
         const Model model(io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
         Data data(model);

@@ -127,7 +127,7 @@ TEST_P(ExampleRobot, SaturationHonoursEachJointsEffort) {
     EXPECT_GT(largest(result.pose_peak_error), largest(free_run.pose_peak_error));
 }
 
-INSTANTIATE_TEST_SUITE_P(GeneralControl, ExampleRobot,
+INSTANTIATE_TEST_SUITE_P(ControlRobots, ExampleRobot,
                          ::testing::Values("paper-3prr-general", "3-rrr", "3-rpr", "4-rrr"),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                              std::string name = info.param;
@@ -137,7 +137,7 @@ INSTANTIATE_TEST_SUITE_P(GeneralControl, ExampleRobot,
 
 // Pose noise of 1 um / 1 urad (rates 1 mm/s): the error stays of the order of the noise
 // filtered by the 50 Hz loop, and every force stays finite.
-TEST(GeneralControl, SensorNoiseKeepsTheErrorAtTheNoiseLevel) {
+TEST(ControlRobots, SensorNoiseKeepsTheErrorAtTheNoiseLevel) {
     const RobotDescription robot = io::exampleRobot("4-rrr");
     PoseLoopOptions options;
     options.noise_angle = 1e-6;
@@ -151,7 +151,7 @@ TEST(GeneralControl, SensorNoiseKeepsTheErrorAtTheNoiseLevel) {
 
 // The redundant 4-RRR's forces are the minimum-norm ones: no internal force along the
 // null space of A_p^T (checked against the inverse dynamics of the reference).
-TEST(GeneralControl, RedundantForcesAreMinimumNorm) {
+TEST(ControlRobots, RedundantForcesAreMinimumNorm) {
     const Model model(io::exampleRobot("4-rrr"));
     PoseController controller(model, ControlLaw::computed_torque, taskCriticallyDamped(kNaturalFrequency));
     Data data(model);
@@ -169,7 +169,7 @@ TEST(GeneralControl, RedundantForcesAreMinimumNorm) {
     EXPECT_GT(tau.cwiseAbs().maxCoeff(), 0.0);
 }
 
-TEST(GeneralControl, PayloadMergesByTheParallelAxisTheorem) {
+TEST(ControlRobots, PayloadMergesByTheParallelAxisTheorem) {
     RobotDescription robot = io::exampleRobot("3-rrr");
     robot.platform.mass = 2.0;
     robot.platform.inertia = 0.01;
@@ -184,7 +184,7 @@ TEST(GeneralControl, PayloadMergesByTheParallelAxisTheorem) {
     EXPECT_EQ(withPayload(robot, {}).platform.mass, 2.0);
 }
 
-TEST(GeneralControl, ComputeIsAllocationFree) {
+TEST(ControlRobots, ComputeIsAllocationFree) {
     for (const ControlLaw law : {ControlLaw::computed_torque, ControlLaw::pd}) {
         const Model model(io::exampleRobot("4-rrr"));
         PoseController controller(model, law, taskCriticallyDamped(kNaturalFrequency));
@@ -206,7 +206,7 @@ TEST(GeneralControl, ComputeIsAllocationFree) {
     }
 }
 
-TEST(GeneralControl, TableHasEveryActuator) {
+TEST(ControlRobots, TableHasEveryActuator) {
     const RobotDescription robot = io::exampleRobot("4-rrr");
     PoseLoopOptions options;
     options.duration = 0.01;

@@ -243,7 +243,7 @@ void randomRobots(const std::vector<std::string>& types, int actuators, int robo
     EXPECT_EQ(made, robots);
 }
 
-TEST(GeneralDirectKinematics, RandomRobotsOfEveryTypeMatchTheSearch) {
+TEST(DirectKinematicsRobots, RandomRobotsOfEveryTypeMatchTheSearch) {
     Tally tally;
     unsigned seed = 100;
     for (const std::string& type : limbTypes()) randomRobots({type, type, type}, 3, 6, tally, seed++);
@@ -257,7 +257,7 @@ TEST(GeneralDirectKinematics, RandomRobotsOfEveryTypeMatchTheSearch) {
     EXPECT_GT(tally.non_working, 0);
 }
 
-TEST(GeneralDirectKinematics, RedundantRobotsMatchTheSearch) {
+TEST(DirectKinematicsRobots, RedundantRobotsMatchTheSearch) {
     Tally tally;
     randomRobots({"*", "*", "*"}, 4, 8, tally, 300);
     randomRobots({"*", "*", "*", "*"}, 4, 8, tally, 301);
@@ -268,7 +268,7 @@ TEST(GeneralDirectKinematics, RedundantRobotsMatchTheSearch) {
     EXPECT_GE(tally.modes, tally.brute);
 }
 
-TEST(GeneralDirectKinematics, ExampleRobotsHomeIsAWorkingMode) {
+TEST(DirectKinematicsRobots, ExampleRobotsHomeIsAWorkingMode) {
     for (const std::string& name : io::exampleRobotNames()) {
         const Model model(io::exampleRobot(name));
         Tally tally;
@@ -330,10 +330,10 @@ void sixModes(const std::string& type, int actuated_joint, unsigned seed) {
     ADD_FAILURE() << "no " << type << " with six real modes in the scan";
 }
 
-TEST(GeneralDirectKinematics, SixModes3RPR) { sixModes("RPR", 1, 7); }
-TEST(GeneralDirectKinematics, SixModes3RRR) { sixModes("RRR", 0, 8); }
+TEST(DirectKinematicsRobots, SixModes3RPR) { sixModes("RPR", 1, 7); }
+TEST(DirectKinematicsRobots, SixModes3RRR) { sixModes("RRR", 0, 8); }
 
-TEST(GeneralDirectKinematics, NoAssemblyIsZeroModes) {
+TEST(DirectKinematicsRobots, NoAssemblyIsZeroModes) {
     const Model model(io::exampleRobot("3-rrr"));
     ActuatorVector u = actuatorsAt(model, model.home);
     Data data(model);
@@ -351,7 +351,7 @@ TEST(GeneralDirectKinematics, NoAssemblyIsZeroModes) {
     EXPECT_EQ(directKinematics(rpr, rpr_data, legs, modes).code, StatusCode::not_finite);
 }
 
-TEST(GeneralDirectKinematics, RedundantInconsistentActuatorsHaveNoMode) {
+TEST(DirectKinematicsRobots, RedundantInconsistentActuatorsHaveNoMode) {
     const Model model(io::exampleRobot("4-rrr"));
     ActuatorVector u = actuatorsAt(model, model.home);
     Data data(model);
@@ -392,7 +392,7 @@ void trackTrajectory(const std::string& name) {
                 max_iterations);
 }
 
-TEST(GeneralDirectKinematics, TrackerFollowsThePaperTrajectory) {
+TEST(DirectKinematicsRobots, TrackerFollowsThePaperTrajectory) {
     for (const std::string& name : io::exampleRobotNames()) trackTrajectory(name);
 }
 
@@ -403,7 +403,7 @@ Pose trajectoryPose(const Model& model, double t) {
     return p + model.home;
 }
 
-TEST(GeneralDirectKinematics, TrackerStopsAfterARoundOffStepWithoutAnotherEvaluation) {
+TEST(DirectKinematicsRobots, TrackerStopsAfterARoundOffStepWithoutAnotherEvaluation) {
     // one Newton step of 1e-10 from the exact pose leaves round-off: the tracker verifies it by
     // inverse displacement without evaluating the equations again (one step, not two)
     for (const std::string& name : io::exampleRobotNames()) {
@@ -426,7 +426,7 @@ TEST(GeneralDirectKinematics, TrackerStopsAfterARoundOffStepWithoutAnotherEvalua
     }
 }
 
-TEST(GeneralDirectKinematics, PoseTrackerTakesOneNewtonStepPerSampleAt10kHz) {
+TEST(DirectKinematicsRobots, PoseTrackerTakesOneNewtonStepPerSampleAt10kHz) {
     // the extrapolated start is within h^4 |d4p/dt4| ~ 1e-11 of the pose: one step each, to
     // round-off, where trackPose from the previous pose takes two
     for (const std::string& name : io::exampleRobotNames()) {
@@ -452,7 +452,7 @@ TEST(GeneralDirectKinematics, PoseTrackerTakesOneNewtonStepPerSampleAt10kHz) {
     }
 }
 
-TEST(GeneralDirectKinematics, PoseTrackerRecoversFromAJumpAndSaysWhenTheModeIsLost) {
+TEST(DirectKinematicsRobots, PoseTrackerRecoversFromAJumpAndSaysWhenTheModeIsLost) {
     const Model model(io::exampleRobot("3-rrr"));
     Data data(model);
     PoseTracker tracker(trajectoryPose(model, 0.0));
@@ -472,7 +472,7 @@ TEST(GeneralDirectKinematics, PoseTrackerRecoversFromAJumpAndSaysWhenTheModeIsLo
     EXPECT_EQ(tracker.prediction(), tracker.pose()) << "the motion is forgotten after a failure";
 }
 
-TEST(GeneralDirectKinematics, TrackerReportsWhatStopsIt) {
+TEST(DirectKinematicsRobots, TrackerReportsWhatStopsIt) {
     const Model model(io::exampleRobot("3-rpr"));
     Data data(model);
     ActuatorVector u = actuatorsAt(model, model.home);
@@ -491,7 +491,7 @@ TEST(GeneralDirectKinematics, TrackerReportsWhatStopsIt) {
 
 // What stops the tracker is described for the robot at hand: its limb and the condition number
 // or residual, not the 3-PRR's rail distance d_j^M.
-TEST(GeneralDirectKinematics, TrackerFailuresAreDescribedByLimb) {
+TEST(DirectKinematicsRobots, TrackerFailuresAreDescribedByLimb) {
     const Model model(io::exampleRobot("3-rpr"));
     const std::string edge = describe(Status{StatusCode::workspace_edge, 1, 5000.0}, model);
     EXPECT_NE(edge.find("edge of the workspace: limb 2"), std::string::npos) << edge;
@@ -501,7 +501,7 @@ TEST(GeneralDirectKinematics, TrackerFailuresAreDescribedByLimb) {
     EXPECT_NE(lost.find("lost the assembly mode (limb 1, scaled residual 0.001)"), std::string::npos) << lost;
 }
 
-TEST(GeneralDirectKinematics, AllocationFree) {
+TEST(DirectKinematicsRobots, AllocationFree) {
     for (const std::string& name : io::exampleRobotNames()) {
         const Model model(io::exampleRobot(name));
         Data data(model);

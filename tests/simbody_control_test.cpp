@@ -48,7 +48,7 @@ TEST_P(SimbodyExample, UnknownPayloadOnTheSimbodyPlantStaysBounded) {
     EXPECT_LT(largest(result.pose_peak_error), 1e-3);
 }
 
-INSTANTIATE_TEST_SUITE_P(GeneralSimbodyControl, SimbodyExample, ::testing::Values("4-rrr", "3-rrr"),
+INSTANTIATE_TEST_SUITE_P(SimbodyControlRobots, SimbodyExample, ::testing::Values("4-rrr", "3-rrr"),
                          [](const ::testing::TestParamInfo<std::string>& info) {
                              std::string name = info.param;
                              std::replace(name.begin(), name.end(), '-', '_');

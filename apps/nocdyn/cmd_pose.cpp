@@ -12,6 +12,7 @@
 #include "common.hpp"
 #include "progress.hpp"
 #include "nocdyn/analysis/stiffness.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::cli {
 
@@ -35,11 +36,11 @@ nlohmann::json toJson(const Eigen::Ref<const Eigen::MatrixXd>& m) {
 
 std::string formatMatrix(const Eigen::Ref<const Eigen::MatrixXd>& m) {
     std::ostringstream out;
-    char cell[40];
+    std::string cell;
     for (Eigen::Index i = 0; i < m.rows(); ++i) {
         out << "  [";
         for (Eigen::Index k = 0; k < m.cols(); ++k) {
-            std::snprintf(cell, sizeof cell, "%s% .9e", k ? "  " : "", m(i, k));
+            cell = text::format("%s% .9e", k ? "  " : "", m(i, k));
             out << cell;
         }
         out << "]\n";

@@ -3,6 +3,7 @@
 #include "common.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/output.hpp"
+#include "nocdyn/text.hpp"
 
 #include <unistd.h>
 #include <algorithm>
@@ -56,15 +57,14 @@ void TerminalObserver::progress(double done, double total, std::string_view unit
     last_ = now;
     const std::string head = job_ + ": " + (step_.empty() ? std::string() : step_ + ", ");
     const std::string name(unit);
-    char text[160];
+    std::string text;
     if (total > 0.0) {
         const double fraction = std::clamp(done / total, 0.0, 1.0);
         const double left = fraction > 0.0 ? (now - start_) * (1.0 - fraction) / fraction : 0.0;
-        std::snprintf(text, sizeof text, "%s%.4g of %.4g %s (%.0f %%), %.0f s so far, about %.0f s left",
-                      name == "s" ? "t = " : "", done, total, name.c_str(), 100.0 * fraction, now - start_, left);
+        text = text::format("%s%.4g of %.4g %s (%.0f %%), %.0f s so far, about %.0f s left", name == "s" ? "t = " : "",
+                            done, total, name.c_str(), 100.0 * fraction, now - start_, left);
     } else {
-        std::snprintf(text, sizeof text, "%s%.4g %s (%.0f s so far)", name == "s" ? "t = " : "", done, name.c_str(),
-                      now - start_);
+        text = text::format("%s%.4g %s (%.0f s so far)", name == "s" ? "t = " : "", done, name.c_str(), now - start_);
     }
     show(head + text);
 }
@@ -75,10 +75,10 @@ void TerminalObserver::step(std::string_view what, int index, int total) {
     const double now = secondsNow();
     if (!terminal_ && now - last_ < kProgressLogSeconds) return;
     last_ = now;
-    char text[64];
-    std::snprintf(text, sizeof text, "%d of %d, ", index, total);
-    char tail[48];
-    std::snprintf(tail, sizeof tail, " (%.0f s so far)", now - start_);
+    std::string text;
+    text = text::format("%d of %d, ", index, total);
+    std::string tail;
+    tail = text::format(" (%.0f s so far)", now - start_);
     show(job_ + ": " + (total > 1 ? std::string(text) : std::string()) + step_ + tail);
 }
 

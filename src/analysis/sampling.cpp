@@ -8,6 +8,7 @@
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn {
 
@@ -43,12 +44,7 @@ double highestFrequency(const PoseTrajectory& trajectory) {
 
 namespace {
 
-std::string number(double value) {
-    std::ostringstream out;
-    out.precision(10);
-    out << value;
-    return out.str();
-}
+std::string number(double value) { return text::format("%.10g", value); }
 
 std::string atTime(double t, const std::string& reason) { return "t = " + number(t) + " s: " + reason; }
 

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn {
 
@@ -47,12 +48,7 @@ void SampledAxis::evaluate(double t, double& q, double& dq, double& ddq) const {
 
 namespace {
 
-std::string numberText(double value) {
-    std::ostringstream out;
-    out.precision(10);
-    out << value;
-    return out.str();
-}
+std::string numberText(double value) { return text::format("%.10g", value); }
 
 void checkSamples(const std::vector<double>& t, const std::vector<double>& v, const char* what) {
     if (t.size() != v.size()) throw Error(std::string(what) + ": as many times as values are needed");

@@ -18,6 +18,7 @@
 
 #include "file_util.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::io {
 
@@ -37,11 +38,8 @@ bool Table::has(const std::string& name) const {
 
 namespace {
 
-/// Shortest decimal form that reads back as the same double (std::to_chars, no precision).
-std::size_t formatNumber(char* first, char* last, double value) {
-    const auto result = std::to_chars(first, last, value);
-    return static_cast<std::size_t>(result.ptr - first);
-}
+/// Shortest decimal form that reads back as the same double.
+std::size_t formatNumber(char* first, char* last, double value) { return text::shortest(first, last, value); }
 
 bool hasCategories(const Table& table) {
     for (const auto& names : table.categories) {

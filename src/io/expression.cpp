@@ -15,6 +15,7 @@
 
 #include "file_util.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 #include "yaml_util.hpp"
 
 namespace nocdyn::io::detail {
@@ -34,11 +35,7 @@ bool isNameStart(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z
 bool isNameChar(char c) { return isNameStart(c) || (c >= '0' && c <= '9'); }
 
 /// Shortest decimal that reads back as the same double.
-std::string shortest(double value) {
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return {buffer, result.ptr};
-}
+std::string shortest(double value) { return text::shortest(value); }
 
 /// A value as a message shows it: nan without a sign (x86 gives sqrt(-1) the sign bit).
 std::string shown(double value) { return std::isnan(value) ? std::string("nan") : shortest(value); }

@@ -19,6 +19,7 @@
 #include <utility>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::io {
 
@@ -80,9 +81,7 @@ std::string randomSuffix() {
         std::random_device device;
         bits = (static_cast<unsigned long long>(device()) << 32) ^ device();
     }
-    char text[17];
-    std::snprintf(text, sizeof text, "%016llx", bits);
-    return text;
+    return text::format("%016llx", bits);
 }
 
 void writeAll(int fd, const char* data, std::size_t size, const std::string& path) {

@@ -10,6 +10,7 @@
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/pose_order.hpp"
+#include "nocdyn/text.hpp"
 #include "expression.hpp"
 #include "file_util.hpp"
 #include "yaml_util.hpp"
@@ -164,11 +165,7 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
 }
 
 /// Shortest decimal that reads back as the same double.
-std::string number(double value) {
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return {buffer, result.ptr};
-}
+std::string number(double value) { return text::shortest(value); }
 
 std::string pair(const Eigen::Vector2d& v) {
     std::string out("[");

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::io {
 
@@ -14,12 +15,7 @@ double RobotParameters::platformCircumradius() const { return platform_side / st
 
 namespace {
 
-std::string formatted(double value) {
-    std::ostringstream out;
-    out.precision(6);
-    out << value;
-    return out.str();
-}
+std::string formatted(double value) { return text::format("%g", value); }
 
 /// Requires lo <= value <= hi (NaN fails): "must be positive, in [lo, hi] UNIT; got V".
 void requireIn(double value, double lo, double hi, const char* unit, const char* field, const std::string& robot) {

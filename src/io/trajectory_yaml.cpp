@@ -13,6 +13,7 @@
 #include "nocdyn/io/csv.hpp"
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 #include "file_util.hpp"
 #include "yaml_util.hpp"
 
@@ -93,12 +94,7 @@ PoseTrajectory loadTrajectory(const std::string& path) {
 
 namespace {
 
-std::string shortNumber(double value) {
-    std::ostringstream out;
-    out.precision(10);
-    out << value;
-    return out.str();
-}
+std::string shortNumber(double value) { return text::format("%.10g", value); }
 
 bool endsWithCsv(const std::string& path) {
     const std::string ext = std::filesystem::path(path).extension().string();
@@ -210,11 +206,7 @@ PoseTrajectory trajectoryByNameOrFile(const std::string& name_or_path) {
 
 namespace {
 
-std::string roundTrip(double v) {
-    char buffer[40];
-    std::snprintf(buffer, sizeof buffer, "%.17g", v);
-    return buffer;
-}
+std::string roundTrip(double v) { return text::format("%.17g", v); }
 
 std::string axisYaml(const char* name, const AxisMotion& axis) {
     std::string text = std::string(name) + ": {offset: " + roundTrip(axis.offset) + ", harmonics: [";

@@ -10,6 +10,7 @@
 #include "expression.hpp"
 #include "file_util.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::io::detail {
 
@@ -136,12 +137,7 @@ void requireRange(const Context& context, const YAML::Node& map, const char* key
          "must be in [" + formatted(lo) + ", " + formatted(hi) + "] " + unit + ", got " + formatted(value));
 }
 
-std::string formatted(double value) {
-    std::ostringstream out;
-    out.precision(6);
-    out << value;
-    return out.str();
-}
+std::string formatted(double value) { return text::format("%g", value); }
 
 std::string readFile(const std::string& path, const char* what) { return readRegularFile(path, what, kMaxYamlBytes); }
 

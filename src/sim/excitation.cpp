@@ -18,6 +18,7 @@
 #include "nocdyn/sim/identification.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/status.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn {
 
@@ -32,11 +33,7 @@ constexpr double kScaleBracket = 1e-4;
 
 [[nodiscard]] std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-std::string formatted(const char* format, double value) {
-    char buffer[64];
-    std::snprintf(buffer, sizeof buffer, format, value);
-    return buffer;
-}
+std::string formatted(const char* format, double value) { return text::format(format, value); }
 
 /// Samples of the pose excursion from home, its rate and acceleration (at scale 1).
 struct UnitMotion {

@@ -19,6 +19,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn {
 
@@ -206,16 +207,16 @@ std::string describeBaseParameters(const Model& model, const BaseParameters& bas
            "# frame origin (limb bodies: the base frame at home; platform: C, turning with theta);\n"
            "# per joint: damping and Coulomb friction.\n";
     const Eigen::VectorXd beta = base.K * pi;
-    char buffer[64];
+    std::string buffer;
     for (int k = 0; k < base.rank; ++k) {
         out << "beta_" << (k + 1) << " = " << parameterName(model, base.independent[at(k)]);
         for (int c = 0; c < P; ++c) {
             const double x = base.K(k, c);
             if (c == base.independent[at(k)] || x == 0.0) continue;
-            std::snprintf(buffer, sizeof buffer, " %c %.6g ", x < 0.0 ? '-' : '+', std::abs(x));
+            buffer = text::format(" %c %.6g ", x < 0.0 ? '-' : '+', std::abs(x));
             out << buffer << parameterName(model, c);
         }
-        std::snprintf(buffer, sizeof buffer, "%.9g", beta(k));
+        buffer = text::format("%.9g", beta(k));
         out << "   (robot file: " << buffer << " " << parameterUnit(model, base.independent[at(k)]) << ")\n";
     }
     if (base.unidentifiable.empty()) {
@@ -245,8 +246,8 @@ std::string describeBaseParameters(const Model& model, const BaseParameters& bas
 namespace {
 
 [[nodiscard]] std::string timeText(double t) {
-    char buffer[48];
-    std::snprintf(buffer, sizeof buffer, "t = %.9g s", t);
+    std::string buffer;
+    buffer = text::format("t = %.9g s", t);
     return buffer;
 }
 
@@ -509,8 +510,8 @@ void requireDetermined(const Model& model, const Eigen::MatrixXd& Aw, const Eige
         for (std::size_t j = 0; j < keep.size(); ++j) Ak.col(static_cast<Eigen::Index>(j)) = Aw.col(keep[j]);
         const Eigen::VectorXd xk = Ak.colPivHouseholderQr().solve(bw);
         for (std::size_t j = 0; j < keep.size(); ++j) {
-            char buffer[64];
-            std::snprintf(buffer, sizeof buffer, " %.6g ", xk(static_cast<Eigen::Index>(j)));
+            std::string buffer;
+            buffer = text::format(" %.6g ", xk(static_cast<Eigen::Index>(j)));
             known += (known.empty() ? "" : ", ") + names[at(static_cast<int>(keep[j]))] + buffer +
                      parameterUnit(model, columns[at(static_cast<int>(keep[j]))]);
         }
@@ -917,11 +918,11 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
         throw Error("identification: the prior's upper bound on the payload mass is not positive");
     const double m = x(0);
     if (!(m > 0.0) && !(prior.mass.lower > 0.0)) {
-        char buffer[256];
-        std::snprintf(buffer, sizeof buffer,
-                      "identification: the payload mass comes out as %.6g kg (standard deviation %.3g kg), not "
-                      "positive: no payload, or the robot file's parameters do not match the robot",
-                      m, std::sqrt(ls.covariance(0, 0)));
+        std::string buffer;
+        buffer = text::format(
+            "identification: the payload mass comes out as %.6g kg (standard deviation %.3g kg), not "
+            "positive: no payload, or the robot file's parameters do not match the robot",
+            m, std::sqrt(ls.covariance(0, 0)));
         throw Error(buffer);
     }
     const double nan = std::numeric_limits<double>::quiet_NaN();

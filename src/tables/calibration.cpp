@@ -7,6 +7,7 @@
 
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 #include "../io/yaml_util.hpp"
 
 namespace nocdyn::io {
@@ -17,11 +18,7 @@ namespace {
 
 constexpr std::size_t kMaxBaseParameters = 1000;
 
-std::string roundTrip(double v) {
-    char buffer[40];
-    std::snprintf(buffer, sizeof buffer, "%.17g", v);
-    return buffer;
-}
+std::string roundTrip(double v) { return text::format("%.17g", v); }
 
 std::string quoted(const std::string& text) { return yamlQuoted(text); }
 

@@ -1,4 +1,4 @@
-// The benchmarks' ratio of the general model to the frozen 3-PRR kernel is only honest if both
+// The benchmarks' ratio of the model (nocdyn::Model) to the frozen 3-PRR kernel is only honest if both
 // compute the same thing: on the paper's robot (either form of its file) they agree sample by
 // sample on u, du, ddu, tau, I, C, every T_i and dT_i across the workspace.
 #include <gtest/gtest.h>
@@ -22,14 +22,14 @@ constexpr double kForceRoundOff = 1e-12;
 constexpr double kRoundOff = 1e-10;
 constexpr int kPoses = 300;
 
-class EqualsGeneralModel : public ::testing::TestWithParam<std::string> {};
+class EqualsTheModel : public ::testing::TestWithParam<std::string> {};
 
-TEST_P(EqualsGeneralModel, AtRandomWorkspacePosesUpToRounding) {
+TEST_P(EqualsTheModel, AtRandomWorkspacePosesUpToRounding) {
     const prr3::Model special;
-    const Model general(io::exampleRobot(GetParam()));
-    ASSERT_EQ(general.bodies, prr3::kBodies);
+    const Model model(io::exampleRobot(GetParam()));
+    ASSERT_EQ(model.bodies, prr3::kBodies);
     prr3::Data a;
-    Data b(general);
+    Data b(model);
     BaselineSampler sampler(special, 11);
     double worst_tau = 0.0;
     int checked = 0;
@@ -38,8 +38,8 @@ TEST_P(EqualsGeneralModel, AtRandomWorkspacePosesUpToRounding) {
         const Twist dp = sampler.twist(), ddp = 100.0 * sampler.twist();
         SCOPED_TRACE(GetParam() + ", " + describePose(p));
         ASSERT_TRUE(prr3::inverseDynamics(special, a, p, dp, ddp).ok());
-        const Status status = inverseDynamics(general, b, p, dp, ddp);
-        ASSERT_TRUE(status.ok()) << describe(status, general);
+        const Status status = inverseDynamics(model, b, p, dp, ddp);
+        ASSERT_TRUE(status.ok()) << describe(status, model);
         const double tau_scale = a.tau.cwiseAbs().maxCoeff();
         for (int j = 0; j < 3; ++j) {
             SCOPED_TRACE("limb " + std::to_string(j + 1));
@@ -65,7 +65,7 @@ TEST_P(EqualsGeneralModel, AtRandomWorkspacePosesUpToRounding) {
     RecordProperty("worst_tau_relative", std::to_string(worst_tau));
 }
 
-INSTANTIATE_TEST_SUITE_P(PaperRobot, EqualsGeneralModel, ::testing::Values("paper-3prr", "paper-3prr-general"),
+INSTANTIATE_TEST_SUITE_P(PaperRobot, EqualsTheModel, ::testing::Values("paper-3prr", "paper-3prr-general"),
                          [](const auto& info) {
                              std::string name = info.param;
                              std::replace(name.begin(), name.end(), '-', '_');
