@@ -149,24 +149,6 @@ bool PoseController::saturate(ActuatorVector& tau) const {
     return clipped;
 }
 
-SimulatorRobotPlant::SimulatorRobotPlant(const Model& model, const SimulatorOptions& options)
-    : simulator_(model, options) {}
-
-void SimulatorRobotPlant::reset(const Pose& p, const Twist& dp) {
-    if (const Status status = simulator_.reset(p, dp); !status) {
-        throw Error("plant reset: " + describe(status, simulator_.model()));
-    }
-}
-
-void SimulatorRobotPlant::advance(double dt) {
-    if (const Status status = simulator_.advance(dt); !status) {
-        std::ostringstream out;
-        out.precision(9);
-        out << "plant: t = " << simulator_.time() << " s: " << describe(status, simulator_.model());
-        throw Error(out.str());
-    }
-}
-
 RobotDescription withPayload(RobotDescription robot, const Payload& payload) {
     if (!std::isfinite(payload.mass) || !std::isfinite(payload.inertia) || !payload.com.allFinite() ||
         payload.mass < 0.0 || payload.inertia < 0.0) {
