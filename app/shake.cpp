@@ -10,11 +10,11 @@
 #include <filesystem>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/escape.hpp"
+#include "nocdyn/parallel.hpp"
 #include "plants.hpp"
 
 namespace nocdyn::app {
@@ -192,8 +192,8 @@ ShakeResult runSuite(const std::vector<std::string>& records, const ShakeOptions
     // every record read (and refused) before any replay
     for (std::size_t i = 0; i < records.size(); ++i)
         inputs[i].ax = readAxis(records[i], options.window, inputs[i].dt, false);
-    const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    const std::size_t workers = std::min<std::size_t>(options.jobs > 0 ? options.jobs : cores, records.size());
+    const std::size_t workers =
+        std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardwareThreads(), records.size());
     std::vector<report::ShakeOutcome> outcomes(records.size());
     std::vector<std::string> errors(records.size());
     std::atomic<std::size_t> next{0};
@@ -224,24 +224,30 @@ ShakeResult runSuite(const std::vector<std::string>& records, const ShakeOptions
             finished.notify_all();
         }
     };
-    std::vector<std::thread> pool;
-    for (std::size_t w = 0; w < workers; ++w) pool.emplace_back(work);
-    try {
-        std::unique_lock lock(mutex);
-        while (done < records.size()) {
-            finished.wait_for(lock, std::chrono::milliseconds(200));
-            const auto count = static_cast<double>(done);
-            lock.unlock();
-            observer.progress(count, static_cast<double>(records.size()), "records");
-            stopIfRequested(observer);
-            lock.lock();
+    // the calling thread watches (worker 0): the progress, and a stop asked by the observer
+    const auto watch = [&] {
+        try {
+            std::unique_lock lock(mutex);
+            while (done < records.size()) {
+                finished.wait_for(lock, std::chrono::milliseconds(200));
+                const auto count = static_cast<double>(done);
+                lock.unlock();
+                observer.progress(count, static_cast<double>(records.size()), "records");
+                stopIfRequested(observer);
+                lock.lock();
+            }
+        } catch (...) {
+            stop = true;
+            throw;
         }
-    } catch (...) {
-        stop = true;
-        for (std::thread& t : pool) t.join();
-        throw;
-    }
-    for (std::thread& t : pool) t.join();
+    };
+    runWorkers("shake", static_cast<unsigned>(workers) + 1, [&](unsigned w) {
+        if (w == 0) {
+            watch();
+        } else {
+            work();
+        }
+    });
     ShakeResult out;
     out.suite = true;
     for (std::size_t i = 0; i < records.size(); ++i) {

@@ -13,7 +13,7 @@
 #include "nocdyn/sim/shake.hpp"
 #include "nocdyn/sim/shake_control.hpp"
 #ifdef NOCDYN_HAS_ENGINES
-#include "nocdyn/validation/simbody_mechanism.hpp"
+#include "simbody_plant.hpp"
 #endif
 
 namespace {
@@ -59,30 +59,11 @@ namespace {
 
 constexpr double kLoopSeconds = 0.02;
 
-#ifdef NOCDYN_HAS_ENGINES
-/// validation::SimbodyMechanism as a RobotPlant (the CLI's SimbodyMechanismPlant, which lives in
-/// apps/nocdyn).
-class SimbodyBenchPlant final : public nocdyn::RobotPlant {
-public:
-    explicit SimbodyBenchPlant(const nocdyn::RobotDescription& robot) : mechanism_(robot) {}
-    void reset(const nocdyn::Pose& p, const nocdyn::Twist& dp) override { mechanism_.resetPlant(p, dp); }
-    void setForces(const nocdyn::ActuatorVector& tau) override { mechanism_.setActuatorForces(Eigen::VectorXd(tau)); }
-    void advance(double dt) override { mechanism_.advance(dt); }
-    [[nodiscard]] nocdyn::Pose pose() const override { return mechanism_.pose(); }
-    [[nodiscard]] nocdyn::Twist poseRate() const override { return mechanism_.poseRate(); }
-    [[nodiscard]] nocdyn::ActuatorVector u() const override { return mechanism_.u(); }
-    [[nodiscard]] std::string name() const override { return "Simbody"; }
-
-private:
-    nocdyn::validation::SimbodyMechanism mechanism_;
-};
-#endif
-
 /// The plant `which` ("simbody", "nocdyn_rk4", else "nocdyn") of the prototype carrying 0.5 kg.
 std::unique_ptr<nocdyn::RobotPlant> loadedPlant(const nocdyn::RobotDescription& robot, const std::string& which) {
     const nocdyn::RobotDescription loaded = nocdyn::withPayload(robot, {0.5, 0.0, nocdyn::Vector2::Zero()});
 #ifdef NOCDYN_HAS_ENGINES
-    if (which == "simbody") return std::make_unique<SimbodyBenchPlant>(loaded);
+    if (which == "simbody") return std::make_unique<nocdyn::report::SimbodyPlant>(loaded);
 #endif
     if (which == "nocdyn_rk4") return std::make_unique<nocdyn::RungeKuttaRobotPlant>(nocdyn::Model(loaded));
     return std::make_unique<nocdyn::SimulatorRobotPlant>(nocdyn::Model(loaded));

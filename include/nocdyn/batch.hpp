@@ -17,6 +17,7 @@
 #pragma once
 
 #include <limits>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -39,6 +40,10 @@ struct BatchResult {
     Status limits;
     [[nodiscard]] bool ok() const { return failed == 0; }
 };
+
+/// The outcome of a batch run in consecutive chunks (chunks[0] first): the failures added up,
+/// the first failure and the first sample beyond limits those of the earliest chunk with one.
+[[nodiscard]] BatchResult combineChunks(const std::vector<BatchResult>& chunks);
 
 /// Whether a batch checks, from each computed sample's u, du and tau, the actuated joints' ranges
 /// and velocity limits (limb by limb, joint by joint, as checkJointLimits) and then every

@@ -9,10 +9,10 @@
 #include <limits>
 #include <mutex>
 #include <random>
-#include <thread>
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/parallel.hpp"
 #include "nocdyn/reactions.hpp"
 
 namespace nocdyn {
@@ -317,11 +317,7 @@ std::size_t evaluateInParallel(std::size_t count, int threads,
             }
         }
     };
-    const int n = std::clamp(threads, 1, 256);
-    std::vector<std::thread> pool;
-    for (int t = 1; t < n; ++t) pool.emplace_back(worker);
-    worker();
-    for (std::thread& t : pool) t.join();
+    runWorkers("design", static_cast<unsigned>(std::clamp(threads, 1, 256)), [&](unsigned) { worker(); });
     if (failure) std::rethrow_exception(failure);
     return recorded;
 }

@@ -1,20 +1,19 @@
 // Batch inverse dynamics of the general model (batch.hpp): the lean kernel over a range of
 // samples, four at a time in the lanes of a packet (vectorised across samples, for any
-// robot), the full path for the rare samples it rejects, and a std::thread split.
+// robot), the full path for the rare samples it rejects, and a split over threads (parallel.hpp).
 #include "nocdyn/batch.hpp"
 
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <system_error>
-#include <thread>
 #include <vector>
 
 #include "lean_kernel.hpp"
 #include "nocdyn/detail/fast_math.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/parallel.hpp"
 
 // A packet lives in registers inside chunk (everything it calls is inlined): the note that a
 // 32-byte vector's ABI depends on AVX does not apply.
@@ -303,35 +302,19 @@ BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const Co
         throw Error("inverseDynamicsBatch: u, du, ddu and tau must have the same layout");
     }
     const Arrays a{p, dp, ddp, u, du, ddu, tau, order, limits};
-    // one thread needs no count of the hardware's threads: asking costs microseconds (a
-    // system call), more than a short batch such as a chunk of an envelope's period
-    if (threads == 1 || n < 2) return chunk(model, a, 0, n);
-    // at most one thread per hardware thread and per chunk of 8 samples: more only adds start-up
-    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-    const auto chunks = static_cast<unsigned>(std::min<Eigen::Index>((n + 7) / 8, hardware));
-    threads = threads == 0 ? chunks : std::min(threads, chunks);
-    if (threads <= 1 || n < 2) return chunk(model, a, 0, n);
+    // at most one thread per hardware thread and per chunk of 8 samples (more only adds
+    // start-up), chunks of multiples of 8 samples so that no two threads share a cache line
+    const ParallelSplit split = splitRange(n, threads, 8);
+    if (split.workers == 1) return chunk(model, a, 0, n);
+    std::vector<BatchResult> results(split.workers);
+    parallelFor("inverseDynamicsBatch", split,
+                [&](unsigned w, Eigen::Index begin, Eigen::Index end) { results[w] = chunk(model, a, begin, end); });
+    return combineChunks(results);
+}
 
-    // contiguous chunks, multiples of 8 samples so that no two threads share a cache line
-    const Eigen::Index per = ((n + threads - 1) / threads + 7) / 8 * 8;
-    std::vector<BatchResult> results(threads);
-    std::vector<std::thread> workers;
-    workers.reserve(threads - 1);
-    try {
-        for (unsigned t = 1; t < threads; ++t) {
-            const Eigen::Index begin = std::min(n, t * per), end = std::min(n, (t + 1) * per);
-            workers.emplace_back([&, t, begin, end] { results[t] = chunk(model, a, begin, end); });
-        }
-    } catch (const std::system_error& e) {
-        // a thread that cannot start: join those that did, and say so
-        for (std::thread& w : workers) w.join();
-        throw Error(std::string("inverseDynamicsBatch: cannot start a worker thread: ") + e.what());
-    }
-    results[0] = chunk(model, a, 0, std::min(n, per));
-    for (std::thread& w : workers) w.join();
-
+BatchResult combineChunks(const std::vector<BatchResult>& chunks) {
     BatchResult total;
-    for (const BatchResult& r : results) {  // chunks are in sample order: the first failure wins
+    for (const BatchResult& r : chunks) {  // chunks are in sample order: the first failure wins
         if (r.failed > 0 && total.failed == 0) {
             total.first_failure = r.first_failure;
             total.status = r.status;

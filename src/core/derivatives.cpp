@@ -8,12 +8,11 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <system_error>
-#include <thread>
 #include <vector>
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "nocdyn/parallel.hpp"
 #include <Eigen/LU>
 
 #include "stages.hpp"
@@ -455,35 +454,13 @@ BatchResult inverseDynamicsDerivativesBatch(const Model& model, const BatchInput
     requireShape("d_dp", d_dp.rows(), d_dp.cols(), n, columns);
     requireShape("d_ddp", d_ddp.rows(), d_ddp.cols(), n, columns);
     const DerivativeArrays a{p, dp, ddp, d_p, d_dp, d_ddp, order};
-    if (threads == 1 || n < 2) return derivativeChunk(model, a, 0, n);
-    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-    const auto chunks = static_cast<unsigned>(std::min<Eigen::Index>((n + 7) / 8, hardware));
-    threads = threads == 0 ? chunks : std::min(threads, chunks);
-    if (threads <= 1) return derivativeChunk(model, a, 0, n);
-    const Eigen::Index per = ((n + threads - 1) / threads + 7) / 8 * 8;
-    std::vector<BatchResult> results(threads);
-    std::vector<std::thread> workers;
-    workers.reserve(threads - 1);
-    try {
-        for (unsigned t = 1; t < threads; ++t) {
-            const Eigen::Index begin = std::min(n, t * per), end = std::min(n, (t + 1) * per);
-            workers.emplace_back([&, t, begin, end] { results[t] = derivativeChunk(model, a, begin, end); });
-        }
-    } catch (const std::system_error& e) {
-        for (std::thread& w : workers) w.join();
-        throw Error(std::string("inverseDynamicsDerivativesBatch: cannot start a worker thread: ") + e.what());
-    }
-    results[0] = derivativeChunk(model, a, 0, std::min(n, per));
-    for (std::thread& w : workers) w.join();
-    BatchResult total;
-    for (const BatchResult& r : results) {
-        if (r.failed > 0 && total.failed == 0) {
-            total.first_failure = r.first_failure;
-            total.status = r.status;
-        }
-        total.failed += r.failed;
-    }
-    return total;
+    const ParallelSplit split = splitRange(n, threads, 8);  // inverseDynamicsBatch's split
+    if (split.workers == 1) return derivativeChunk(model, a, 0, n);
+    std::vector<BatchResult> results(split.workers);
+    parallelFor("inverseDynamicsDerivativesBatch", split, [&](unsigned w, Eigen::Index begin, Eigen::Index end) {
+        results[w] = derivativeChunk(model, a, begin, end);
+    });
+    return combineChunks(results);
 }
 
 }  // namespace nocdyn

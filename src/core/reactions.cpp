@@ -5,8 +5,6 @@
 #include <cmath>
 #include <limits>
 #include <string>
-#include <system_error>
-#include <thread>
 #include <vector>
 
 #include "lean_kernel.hpp"
@@ -14,6 +12,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "nocdyn/parallel.hpp"
 #include "stages.hpp"
 
 // the lean kernel's packets appear only in its inlined templates (as in dynamics.cpp)
@@ -425,36 +424,13 @@ BatchResult reactionsBatch(const Model& model, const BatchInput& p, const BatchI
     requireBatchShape("dp", dp.rows(), dp.cols(), n, 3);
     requireBatchShape("ddp", ddp.rows(), ddp.cols(), n, 3);
     requireBatchShape("out", out.rows(), out.cols(), n, Eigen::Index{9} * model.limbs);
-    // the split of inverseDynamicsBatch: at most one thread per hardware thread and 8 samples
-    const unsigned hardware = std::max(1u, std::thread::hardware_concurrency());
-    const auto chunks = static_cast<unsigned>(std::min<Eigen::Index>((n + 7) / 8, hardware));
-    threads = threads == 0 ? chunks : std::min(threads, chunks);
-    if (threads <= 1 || n < 2) return reactionsChunk(model, p, dp, ddp, out, 0, n, order);
-    const Eigen::Index per = ((n + threads - 1) / threads + 7) / 8 * 8;
-    std::vector<BatchResult> results(threads);
-    std::vector<std::thread> workers;
-    workers.reserve(threads - 1);
-    try {
-        for (unsigned t = 1; t < threads; ++t) {
-            const Eigen::Index begin = std::min(n, t * per), end = std::min(n, (t + 1) * per);
-            workers.emplace_back(
-                [&, t, begin, end] { results[t] = reactionsChunk(model, p, dp, ddp, out, begin, end, order); });
-        }
-    } catch (const std::system_error& e) {
-        for (std::thread& w : workers) w.join();
-        throw Error(std::string("reactionsBatch: cannot start a worker thread: ") + e.what());
-    }
-    results[0] = reactionsChunk(model, p, dp, ddp, out, 0, std::min(n, per), order);
-    for (std::thread& w : workers) w.join();
-    BatchResult total;
-    for (const BatchResult& r : results) {  // in sample order: the first failure wins
-        if (r.failed > 0 && total.failed == 0) {
-            total.first_failure = r.first_failure;
-            total.status = r.status;
-        }
-        total.failed += r.failed;
-    }
-    return total;
+    const ParallelSplit split = splitRange(n, threads, 8);  // inverseDynamicsBatch's split
+    if (split.workers == 1) return reactionsChunk(model, p, dp, ddp, out, 0, n, order);
+    std::vector<BatchResult> results(split.workers);
+    parallelFor("reactionsBatch", split, [&](unsigned w, Eigen::Index begin, Eigen::Index end) {
+        results[w] = reactionsChunk(model, p, dp, ddp, out, begin, end, order);
+    });
+    return combineChunks(results);
 }
 
 double JointLoad::rmsForce() const {

@@ -7,7 +7,6 @@
 #include <limits>
 #include <numbers>
 #include <random>
-#include <sstream>
 
 #include <Eigen/Cholesky>
 
@@ -16,6 +15,8 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/analysis/sampling.hpp"
+
+#include "loop.hpp"
 
 namespace nocdyn {
 
@@ -51,12 +52,7 @@ void measureThroughEncoders(const Model& model, Data& sensor, PoseTracker& track
                             std::normal_distribution<double>& normal, double t, ActuatorVector& u, Pose& p_measured,
                             Twist& dp_measured, int& max_iterations) {
     const int n = model.actuators;
-    const auto fail = [&](const Status& status, const char* what) {
-        std::ostringstream out;
-        out.precision(9);
-        out << "t = " << t << " s: " << what << ": " << describe(status, model);
-        throw Error(out.str());
-    };
+    const auto fail = [&](const Status& status, const char* what) { detail::failTick(model, t, status, what); };
     // the encoder rates: du = A xi_P at the plant's pose
     if (const Status status = inverseDisplacement(model, sensor, p); !status) fail(status, "plant pose");
     if (const Status status = velocityFromPlatformTwist(model, sensor, dp); !status) fail(status, "plant pose");
@@ -80,6 +76,60 @@ void measureThroughEncoders(const Model& model, Data& sensor, PoseTracker& track
         fail(status, "measured pose");
     }
 }
+
+/// runPoseLoop's sensing: the plant's state itself, plus white noise, or the encoders through
+/// the tracker (options.encoders); the controller tracks the reference.
+class PoseSensing final : public detail::LoopSensing {
+public:
+    PoseSensing(const Model& model, const PoseLoopOptions& options, const Pose& start, PoseLoopResult& result)
+        : model_(model),
+          options_(options),
+          result_(result),
+          rng_(options.seed),
+          noise_(options.noise_angle, options.noise_position, options.noise_position),
+          sensor_(model),
+          tracker_(start),
+          tracker_options_(options.encoders ? noisyEncoderTrackerOptions(model, options.noise_u) : TrackerOptions{}),
+          u_measured_(model.actuators) {}
+
+    void sense(double t, const RobotPlant& plant, const Pose& p, const Twist& dp, const PoseReference& reference,
+               const Twist& ddp_ff, detail::Sensed& out) override {
+        out.command = reference;
+        out.command.ddp = ddp_ff;
+        out.p = p;
+        out.dp = dp;
+        out.u_measured = nullptr;
+        if (options_.encoders) {
+            measureThroughEncoders(model_, sensor_, tracker_, tracker_options_, plant, p, dp, options_, rng_, normal_,
+                                   t, u_measured_, out.p, out.dp, result_.tracker_max_iterations);
+            out.u_measured = &u_measured_;
+        } else {
+            for (int i = 0; i < 3; ++i) {
+                if (noise_(i) > 0.0) out.p(i) += noise_(i) * normal_(rng_);
+                if (options_.noise_rate > 0.0) out.dp(i) += options_.noise_rate * normal_(rng_);
+            }
+        }
+        const Vector3 e_measured = (out.p - p).cwiseAbs();
+        measurement_sq_ += e_measured.cwiseAbs2();
+        result_.measurement_peak_error = result_.measurement_peak_error.cwiseMax(e_measured);
+    }
+    [[nodiscard]] bool readsEncoders() const override { return options_.encoders; }
+    /// sum over the ticks of (p_measured - p)^2
+    [[nodiscard]] const Vector3& measurementSquares() const { return measurement_sq_; }
+
+private:
+    const Model& model_;
+    const PoseLoopOptions& options_;
+    PoseLoopResult& result_;
+    std::mt19937 rng_;
+    std::normal_distribution<double> normal_{0.0, 1.0};
+    Vector3 noise_;
+    Data sensor_;
+    PoseTracker tracker_;
+    TrackerOptions tracker_options_;
+    ActuatorVector u_measured_;
+    Vector3 measurement_sq_ = Vector3::Zero();
+};
 
 }  // namespace
 
@@ -147,24 +197,6 @@ bool PoseController::saturate(ActuatorVector& tau) const {
         }
     }
     return clipped;
-}
-
-SimulatorRobotPlant::SimulatorRobotPlant(const Model& model, const SimulatorOptions& options)
-    : simulator_(model, options) {}
-
-void SimulatorRobotPlant::reset(const Pose& p, const Twist& dp) {
-    if (const Status status = simulator_.reset(p, dp); !status) {
-        throw Error("plant reset: " + describe(status, simulator_.model()));
-    }
-}
-
-void SimulatorRobotPlant::advance(double dt) {
-    if (const Status status = simulator_.advance(dt); !status) {
-        std::ostringstream out;
-        out.precision(9);
-        out << "plant: t = " << simulator_.time() << " s: " << describe(status, simulator_.model());
-        throw Error(out.str());
-    }
 }
 
 RobotDescription withPayload(RobotDescription robot, const Payload& payload) {
@@ -237,85 +269,25 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
     const std::vector<double> times = sampleTimes(options.duration, options.rate);
     requireRateAboveNyquist(trajectory, options.rate);
     requireReachable(model, trajectory, times.back());
-    const double dt = 1.0 / options.rate;
-    const int n = model.actuators;
     PoseLoopResult result;
     result.controller = name(controller.law());
     result.plant = plant.name();
-    result.actuators = n;
-    for (auto* v : {&result.p, &result.p_d}) v->reserve(times.size());
-    for (auto* v : {&result.u, &result.u_d, &result.tau}) v->reserve(times.size());
-    if (options.encoders) result.u_measured.reserve(times.size());
-    result.t.reserve(times.size());
+    result.actuators = model.actuators;
 
     Data data(model);
     PoseReference reference;
-    auto fail = [&](double t, const Status& status, const char* what) {
-        std::ostringstream out;
-        out.precision(9);
-        out << "t = " << t << " s: " << what << ": " << describe(status, model);
-        throw Error(out.str());
-    };
     if (const Status status = poseReference(model, data, trajectory, 0.0, reference); !status) {
-        fail(0.0, status, "reference");
+        detail::failTick(model, 0.0, status, "reference");
     }
     plant.reset(start != nullptr ? *start : reference.p, reference.dp);
-
-    std::mt19937 rng(options.seed);
-    std::normal_distribution<double> normal(0.0, 1.0);
-    const Vector3 noise(options.noise_angle, options.noise_position, options.noise_position);
-    ActuatorVector tau(n);
-    // encoders: the tracker from the reference's start (the working mode the plant starts in)
-    Data sensor(model);
-    PoseTracker tracker(start != nullptr ? *start : reference.p);
-    const TrackerOptions tracker_options =
-        options.encoders ? noisyEncoderTrackerOptions(model, options.noise_u) : TrackerOptions{};
-    Vector3 measurement_sq = Vector3::Zero();
-    Pose next_p, next_dp, next_ddp;
-    ActuatorVector u_measured(n);
-    for (const double t : times) {
-        if (options.progress) options.progress(t);
-        if (const Status status = poseReference(model, data, trajectory, t, reference); !status) {
-            fail(t, status, "reference");
-        }
-        // feedforward: the mean reference acceleration over the hold, so that the held force
-        // gives the reference's change of rate over the tick
-        trajectory.evaluate(t + dt, next_p, next_dp, next_ddp);
-        reference.ddp = (next_dp - reference.dp) / dt;
-        const Pose p = plant.pose();
-        const Twist dp = plant.poseRate();
-        if (!p.allFinite() || !dp.allFinite()) fail(t, {StatusCode::not_finite, -1, 0.0}, "plant state");
-        Pose p_measured = p;
-        Twist dp_measured = dp;
-        if (options.encoders) {
-            measureThroughEncoders(model, sensor, tracker, tracker_options, plant, p, dp, options, rng, normal, t,
-                                   u_measured, p_measured, dp_measured, result.tracker_max_iterations);
-        } else {
-            for (int i = 0; i < 3; ++i) {
-                if (noise(i) > 0.0) p_measured(i) += noise(i) * normal(rng);
-                if (options.noise_rate > 0.0) dp_measured(i) += options.noise_rate * normal(rng);
-            }
-        }
-        const Vector3 e_measured = (p_measured - p).cwiseAbs();
-        measurement_sq += e_measured.cwiseAbs2();
-        result.measurement_peak_error = result.measurement_peak_error.cwiseMax(e_measured);
-        if (const Status status = controller.compute(p_measured, dp_measured, reference, tau); !status) {
-            fail(t, status, "controller");
-        }
-        if (options.saturation && controller.saturate(tau)) ++result.saturated_ticks;
-        result.t.push_back(t);
-        result.p.push_back(p);
-        result.p_d.push_back(reference.p);
-        result.u.push_back(plant.u());
-        result.u_d.push_back(reference.u);
-        result.tau.push_back(tau);
-        if (options.encoders) result.u_measured.push_back(u_measured);
-        plant.setForces(tau);
-        plant.advance(dt);
-    }
-
-    summarizeLoop(result);
-    result.measurement_rms_error = (measurement_sq / static_cast<double>(result.t.size())).cwiseSqrt();
+    // encoders: the tracker from the plant's start (the working mode it starts in)
+    PoseSensing sensing(model, options, start != nullptr ? *start : reference.p, result);
+    detail::TickOptions ticks;
+    ticks.dt = 1.0 / options.rate;
+    ticks.saturation = options.saturation;
+    ticks.progress = options.progress;
+    detail::runTicks(controller, plant, trajectory, times, data, sensing, ticks, result);
+    result.measurement_rms_error = (sensing.measurementSquares() / static_cast<double>(result.t.size())).cwiseSqrt();
     return result;
 }
 

@@ -15,6 +15,8 @@
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 
+#include "loop.hpp"
+
 namespace nocdyn {
 
 PoseEstimator::PoseEstimator(double dt, const Vector3& sigma_q, const Vector3& sigma_y) : dt_(dt) {
@@ -76,6 +78,102 @@ Vector3 accelerometerNoise(const TableSensors& sensors) {
     return {std::sqrt(2.0) * s / sensors.accel_baseline, s, s};
 }
 
+namespace {
+
+/// runShakeLoop's sensing: the encoders through the tracker and the accelerometers, fused by the
+/// estimator; the controller sees the estimate (p^, v^) and tracks the servo's demand
+/// ddp_cmd + c at p = p^, dp = v^ (its own gains then see no error).
+class TableSensing final : public detail::LoopSensing {
+public:
+    TableSensing(const Model& model, const ShakeLoopOptions& options, const PoseReference& start)
+        : model_(model),
+          sensors_(options.sensors),
+          dt_(1.0 / options.rate),
+          gains_(taskCriticallyDamped(options.natural_frequency)),
+          sigma_q_(encoderPoseNoise(model, start.p, sensors_.encoder_noise)),
+          sigma_y_(sensors_.accelerometer ? accelerometerNoise(sensors_) : Vector3::Zero()),
+          estimator_(dt_, sigma_q_, sensors_.accelerometer ? sigma_y_ : Vector3::Constant(1e3)),
+          g_(sensors_.accelerometer ? options.acceleration_gain : 0.0),
+          beta_(1.0 - std::exp(-2.0 * std::numbers::pi * sensors_.accel_bandwidth * dt_)),
+          white_(std::sqrt(0.5 * options.rate)),
+          density_(std::sqrt(2.0) * sensors_.accel_noise_density / sensors_.accel_baseline,
+                   sensors_.accel_noise_density, sensors_.accel_noise_density),
+          rng_(options.seed),
+          sensor_(model),
+          tracker_(start.p),
+          tracker_options_(noisyEncoderTrackerOptions(model, sensors_.encoder_noise)),
+          u_measured_(model.actuators),
+          rate_before_(start.dp) {
+        estimator_.reset(start.p, start.dp);
+    }
+
+    void sense(double t, const RobotPlant& plant, const Pose& p, const Twist& dp, const PoseReference& reference,
+               const Twist& ddp_ff, detail::Sensed& out) override {
+        // accelerometers: the mean acceleration of the last tick, noise, the sensor's low-pass
+        if (sensors_.accelerometer && !first_) {
+            const Twist a = (dp - rate_before_) / dt_;
+            for (int i = 0; i < 3; ++i) y_(i) += beta_ * (a(i) + density_(i) * white_ * normal_(rng_) - y_(i));
+        }
+        rate_before_ = dp;
+        // encoders and the tracker
+        u_measured_ = plant.u();
+        for (int a = 0; a < model_.actuators; ++a) u_measured_(a) += sensors_.encoder_noise * normal_(rng_);
+        if (const Status status = tracker_.step(model_, sensor_, u_measured_, tracker_options_); !status) {
+            detail::failTick(model_, t, status, "direct kinematics of the encoders (tracker)");
+        }
+        if (!first_) estimator_.update(tracker_.pose(), y_);
+        pose_sq_ += (estimator_.pose() - p).cwiseAbs2();
+        rate_sq_ += (estimator_.rate() - dp).cwiseAbs2();
+        // the acceleration correction from the last tick's demand
+        if (!first_) correction_ += g_ * (commanded_ - y_);
+        first_ = false;
+        const Vector3 servo = gains_.kp.cwiseProduct(reference.p - estimator_.pose()) +
+                              gains_.kd.cwiseProduct(reference.dp - estimator_.rate());
+        commanded_ = ddp_ff + servo;
+        out.command = reference;
+        out.command.ddp = commanded_ + correction_;
+        // the servo is inside ddp: the controller's own gains see p = p_d, dp = dp_d
+        out.command.p = estimator_.pose();
+        out.command.dp = estimator_.rate();
+        out.p = estimator_.pose();
+        out.dp = estimator_.rate();
+        out.u_measured = &u_measured_;
+    }
+    [[nodiscard]] bool readsEncoders() const override { return true; }
+
+    /// The estimator against the plant's true state over `ticks` ticks.
+    void report(double ticks, EstimatorReport& r) const {
+        r.pose_rms_error = (pose_sq_ / ticks).cwiseSqrt();
+        r.rate_rms_error = (rate_sq_ / ticks).cwiseSqrt();
+        r.sigma_q = sigma_q_;
+        r.sigma_y = sigma_y_;
+    }
+
+private:
+    const Model& model_;
+    const TableSensors& sensors_;
+    double dt_;
+    TaskGains gains_;
+    Vector3 sigma_q_, sigma_y_;
+    PoseEstimator estimator_;
+    double g_, beta_, white_;
+    Vector3 density_;
+    std::mt19937 rng_;
+    std::normal_distribution<double> normal_{0.0, 1.0};
+    Data sensor_;
+    PoseTracker tracker_;
+    TrackerOptions tracker_options_;
+    ActuatorVector u_measured_;
+    Twist y_ = Twist::Zero();           // the accelerometers' filtered output
+    Twist correction_ = Twist::Zero();  // c
+    Twist commanded_ = Twist::Zero();   // ddp_cmd - c of the last tick
+    Twist rate_before_;
+    Vector3 pose_sq_ = Vector3::Zero(), rate_sq_ = Vector3::Zero();
+    bool first_ = true;
+};
+
+}  // namespace
+
 PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTrajectory& trajectory,
                             const ShakeLoopOptions& options, EstimatorReport* report) {
     const TableSensors& sensors = options.sensors;
@@ -91,10 +189,7 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
     const std::vector<double> times = sampleTimes(options.duration, options.rate);
     requireRateAboveNyquist(trajectory, options.rate);
     requireReachable(model, trajectory, times.back());
-    const double dt = 1.0 / options.rate;
-    const int n = model.actuators;
-    const TaskGains gains = taskCriticallyDamped(options.natural_frequency);
-    PoseController controller(model, ControlLaw::computed_torque, gains);
+    PoseController controller(model, ControlLaw::computed_torque, taskCriticallyDamped(options.natural_frequency));
     PoseLoopResult result;
     {
         std::ostringstream name;
@@ -106,130 +201,23 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
         result.controller = name.str();
     }
     result.plant = plant.name();
-    result.actuators = n;
-    for (auto* v : {&result.p, &result.p_d}) v->reserve(times.size());
-    if (options.keep_actuators) {
-        for (auto* v : {&result.u, &result.u_d, &result.tau, &result.u_measured}) v->reserve(times.size());
-    }
-    result.t.reserve(times.size());
-    // the actuator summaries, accumulated here when the ticks are not kept
-    const auto un = static_cast<std::size_t>(n);
-    std::vector<double> sum_sq(un, 0.0), peak(un, 0.0), peak_tau(un, 0.0);
+    result.actuators = model.actuators;
 
-    Data data(model), sensor(model);
+    Data data(model);
     PoseReference reference;
-    const auto fail = [&](double t, const Status& status, const char* what) {
-        std::ostringstream out;
-        out.precision(9);
-        out << "t = " << t << " s: " << what << ": " << describe(status, model);
-        throw Error(out.str());
-    };
     if (const Status status = poseReference(model, data, trajectory, 0.0, reference); !status) {
-        fail(0.0, status, "reference");
+        detail::failTick(model, 0.0, status, "reference");
     }
     plant.reset(reference.p, reference.dp);
-
-    const Vector3 sigma_q = encoderPoseNoise(model, reference.p, sensors.encoder_noise);
-    const Vector3 sigma_y = sensors.accelerometer ? accelerometerNoise(sensors) : Vector3::Zero();
-    PoseEstimator estimator(dt, sigma_q, sensors.accelerometer ? sigma_y : Vector3::Constant(1e3));
-    estimator.reset(reference.p, reference.dp);
-    const double g = sensors.accelerometer ? options.acceleration_gain : 0.0;
-    const double beta = 1.0 - std::exp(-2.0 * std::numbers::pi * sensors.accel_bandwidth * dt);
-    const double white = std::sqrt(0.5 * options.rate);
-    const Vector3 density(std::sqrt(2.0) * sensors.accel_noise_density / sensors.accel_baseline,
-                          sensors.accel_noise_density, sensors.accel_noise_density);
-
-    std::mt19937 rng(options.seed);
-    std::normal_distribution<double> normal(0.0, 1.0);
-    PoseTracker tracker(reference.p);
-    const TrackerOptions tracker_options = noisyEncoderTrackerOptions(model, sensors.encoder_noise);
-
-    ActuatorVector tau(n), u_measured(n);
-    Twist y = Twist::Zero();           // the accelerometers' filtered output
-    Twist correction = Twist::Zero();  // c
-    Twist commanded = Twist::Zero();   // ddp_cmd - c of the last tick
-    Twist rate_before = reference.dp;
-    Pose next_p, next_dp, next_ddp;
-    Vector3 pose_sq = Vector3::Zero(), rate_sq = Vector3::Zero();
-    bool first = true;
-    for (const double t : times) {
-        if (options.progress) options.progress(t);
-        if (const Status status = poseReference(model, data, trajectory, t, reference); !status) {
-            fail(t, status, "reference");
-        }
-        trajectory.evaluate(t + dt, next_p, next_dp, next_ddp);
-        const Twist feedforward = (next_dp - reference.dp) / dt;
-        const Pose p = plant.pose();
-        const Twist dp = plant.poseRate();
-        if (!p.allFinite() || !dp.allFinite()) fail(t, {StatusCode::not_finite, -1, 0.0}, "plant state");
-        // accelerometers: the mean acceleration of the last tick, noise, the sensor's low-pass
-        if (sensors.accelerometer && !first) {
-            const Twist a = (dp - rate_before) / dt;
-            for (int i = 0; i < 3; ++i) y(i) += beta * (a(i) + density(i) * white * normal(rng) - y(i));
-        }
-        rate_before = dp;
-        // encoders and the tracker
-        u_measured = plant.u();
-        for (int a = 0; a < n; ++a) u_measured(a) += sensors.encoder_noise * normal(rng);
-        if (const Status status = tracker.step(model, sensor, u_measured, tracker_options); !status) {
-            fail(t, status, "direct kinematics of the encoders (tracker)");
-        }
-        if (!first) estimator.update(tracker.pose(), y);
-        pose_sq += (estimator.pose() - p).cwiseAbs2();
-        rate_sq += (estimator.rate() - dp).cwiseAbs2();
-        // the acceleration correction from the last tick's demand
-        if (!first) correction += g * (commanded - y);
-        first = false;
-        const Vector3 servo = gains.kp.cwiseProduct(reference.p - estimator.pose()) +
-                              gains.kd.cwiseProduct(reference.dp - estimator.rate());
-        commanded = feedforward + servo;
-        PoseReference command = reference;
-        command.ddp = commanded + correction;
-        // the servo is inside ddp: the controller's own gains see p = p_d, dp = dp_d
-        command.p = estimator.pose();
-        command.dp = estimator.rate();
-        if (const Status status = controller.compute(estimator.pose(), estimator.rate(), command, tau); !status) {
-            fail(t, status, "controller");
-        }
-        if (options.saturation && controller.saturate(tau)) ++result.saturated_ticks;
-        const ActuatorVector& u_now = plant.u();
-        if (options.on_tick) options.on_tick(result.t.size(), t, u_now, tau);
-        result.t.push_back(t);
-        result.p.push_back(p);
-        result.p_d.push_back(reference.p);
-        if (options.keep_actuators) {
-            result.u.push_back(u_now);
-            result.u_d.push_back(reference.u);
-            result.tau.push_back(tau);
-            result.u_measured.push_back(u_measured);
-        } else {
-            for (int a = 0; a < n; ++a) {
-                const auto ai = static_cast<std::size_t>(a);
-                const double e = std::abs(reference.u(a) - u_now(a));
-                sum_sq[ai] += e * e;
-                peak[ai] = std::max(peak[ai], e);
-                peak_tau[ai] = std::max(peak_tau[ai], std::abs(tau(a)));
-            }
-        }
-        plant.setForces(tau);
-        plant.advance(dt);
-    }
-
-    summarizeLoop(result);
-    if (!options.keep_actuators && !result.t.empty()) {
-        result.rms_error.resize(un);
-        for (std::size_t a = 0; a < un; ++a)
-            result.rms_error[a] = std::sqrt(sum_sq[a] / static_cast<double>(result.t.size()));
-        result.peak_error = peak;
-        result.peak_tau = peak_tau;
-    }
-    const double count = static_cast<double>(result.t.size());
-    if (report != nullptr) {
-        report->pose_rms_error = (pose_sq / count).cwiseSqrt();
-        report->rate_rms_error = (rate_sq / count).cwiseSqrt();
-        report->sigma_q = sigma_q;
-        report->sigma_y = sigma_y;
-    }
+    TableSensing sensing(model, options, reference);
+    detail::TickOptions ticks;
+    ticks.dt = 1.0 / options.rate;
+    ticks.saturation = options.saturation;
+    ticks.keep_actuators = options.keep_actuators;
+    ticks.progress = options.progress;
+    ticks.on_tick = options.on_tick;
+    detail::runTicks(controller, plant, trajectory, times, data, sensing, ticks, result);
+    if (report != nullptr) sensing.report(static_cast<double>(result.t.size()), *report);
     return result;
 }
 

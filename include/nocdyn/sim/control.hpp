@@ -31,8 +31,9 @@
 #include <vector>
 
 #include "nocdyn/direct_kinematics.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/plant.hpp"
 #include "nocdyn/status.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -93,39 +94,6 @@ private:
     TaskGains gains_;
     Matrix3 M_home_ = Matrix3::Identity();
     ActuatorVector effort_;
-};
-
-/// The robot being controlled, measured by its platform pose and rate (and actuator
-/// variables, recorded). Not real-time: methods may throw nocdyn::Error.
-class RobotPlant {
-public:
-    virtual ~RobotPlant() = default;
-    /// Assembles the robot at pose p with rate dp, time 0, zero forces.
-    virtual void reset(const Pose& p, const Twist& dp) = 0;
-    /// Actuator forces (n values) [N, N m], held until changed.
-    virtual void setForces(const ActuatorVector& tau) = 0;
-    /// Integrates dt seconds forward.
-    virtual void advance(double dt) = 0;
-    [[nodiscard]] virtual Pose pose() const = 0;
-    [[nodiscard]] virtual Twist poseRate() const = 0;
-    [[nodiscard]] virtual ActuatorVector u() const = 0;
-    [[nodiscard]] virtual std::string name() const = 0;
-};
-
-/// Plant on nocdyn's own forward dynamics (Simulator) of a model (possibly with a payload).
-class SimulatorRobotPlant final : public RobotPlant {
-public:
-    explicit SimulatorRobotPlant(const Model& model, const SimulatorOptions& options = {});
-    void reset(const Pose& p, const Twist& dp) override;
-    void setForces(const ActuatorVector& tau) override { simulator_.setForces(tau); }
-    void advance(double dt) override;
-    [[nodiscard]] Pose pose() const override { return simulator_.pose(); }
-    [[nodiscard]] Twist poseRate() const override { return simulator_.poseRate(); }
-    [[nodiscard]] ActuatorVector u() const override { return simulator_.u(); }
-    [[nodiscard]] std::string name() const override { return "nocdyn forward dynamics"; }
-
-private:
-    Simulator simulator_;
 };
 
 /// A rigid payload fixed on the platform.

@@ -139,32 +139,4 @@ struct ShakeScore {
 [[nodiscard]] ShakeScore scoreShake(std::span<const double> target, std::span<const double> achieved, double dt,
                                     double t_min, double t_max, int n_periods = 50);
 
-/// nocdyn's forward dynamics as a plant integrated by one classical Runge-Kutta step (order 4)
-/// per advance(dt), the forces held over it: 4 forward-dynamics evaluations per controller tick
-/// where the error-controlled Simulator (SimulatorRobotPlant) takes 8. Its error against the
-/// Simulator at 1e-10 is bounded by a test (shake_test). Throws nocdyn::Error "plant: t = ... s:
-/// reason" when a stage fails (out of reach, singular).
-class RungeKuttaRobotPlant final : public RobotPlant {
-public:
-    explicit RungeKuttaRobotPlant(const Model& model);
-    void reset(const Pose& p, const Twist& dp) override;
-    void setForces(const ActuatorVector& tau) override { tau_ = tau; }
-    void advance(double dt) override;
-    [[nodiscard]] Pose pose() const override { return p_; }
-    [[nodiscard]] Twist poseRate() const override { return dp_; }
-    [[nodiscard]] ActuatorVector u() const override;
-    [[nodiscard]] std::string name() const override { return "nocdyn forward dynamics, RK4 per tick"; }
-
-private:
-    /// d2p/dt2 at (p, dp) under tau_, into a.
-    void acceleration(const Pose& p, const Twist& dp, Twist& a);
-    Model model_;
-    Data data_;
-    mutable Data pose_data_;  ///< u() of the current pose
-    Pose p_ = Pose::Zero();
-    Twist dp_ = Twist::Zero();
-    ActuatorVector tau_;
-    double t_ = 0.0;
-};
-
 }  // namespace nocdyn
