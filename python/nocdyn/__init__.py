@@ -726,8 +726,9 @@ class Robot:
 
         Returns a list of dicts: axis, frequency [Hz], amplitude [rad or m], limit ('range',
         'velocity', 'effort', 'workspace', 'none', or 'resonance' at and above the first natural
-        frequency when the robot file declares compliance: see nocdyn.envelope), limb, joint, actuator (numbered from 1 as
-        the command line's CSV, 0 when not applicable), kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
+        frequency when the robot file declares compliance: see nocdyn.envelope), limb, joint,
+        actuator (numbered from 1 as the command line's CSV, 0 when not applicable),
+        kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
         `nocdyn envelope --points`; ``frequencies`` is its old name)."""
         if frequencies is not None:
             points = frequencies
