@@ -268,6 +268,25 @@ TEST(GeneralEnvelope, WithoutDeclaredComplianceTheEnvelopeIsUnchangedAndTheBound
     EXPECT_EQ(io::toTable(points, resonance).columns, io::columnNames(io::TableId::envelope));
 }
 
+TEST(GeneralEnvelope, ComplianceThatLeavesALimbRigidGivesNoBoundAndSaysWhy) {
+    // the compliant prototype with limbs 2 and 3 rigid again: K is not finite, f_1 unknown
+    RobotDescription robot = example("paper-3prr-compliant");
+    for (std::size_t j : {1u, 2u}) {
+        for (auto& joint : robot.limbs[j].joints) joint.stiffness.reset();
+        for (auto& body : robot.limbs[j].bodies) body.elastic.reset();
+    }
+    const Model model(robot);
+    const EnvelopeResonance resonance = envelopeResonance(model);
+    EXPECT_TRUE(resonance.declared);
+    EXPECT_FALSE(resonance.known);
+    EXPECT_EQ(resonance.reason.rfind("at home: ", 0), 0u) << resonance.reason;
+    EXPECT_NE(resonance.reason.find("limb 2"), std::string::npos) << resonance.reason;
+    EnvelopeOptions options;
+    options.frequencies = 1;
+    options.min_frequency = options.max_frequency = 500.0;
+    for (const EnvelopePoint& p : operatingEnvelope(model, options)) EXPECT_NE(p.limit, EnvelopeLimit::resonance);
+}
+
 TEST(GeneralEnvelope, RefusesFrequenciesOutOfRange) {
     const Model model{io::expand(io::RobotParameters{})};
     EXPECT_THROW((void)maximumAmplitude(model, EnvelopeAxis::x, 0.0), Error);
