@@ -1,5 +1,7 @@
 #include "app/envelope.hpp"
 
+#include <cstdio>
+
 #include "nocdyn/tables/tables.hpp"
 #include "plot.hpp"
 #include "reproduce_dynamics.hpp"
@@ -29,14 +31,33 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
     EnvelopeResult out;
     out.robot = model.description.name;
     out.points = operatingEnvelope(model, envelope);
-    out.table = io::toTable(out.points);
+    out.resonance = envelopeResonance(model);
+    out.table = io::toTable(out.points, out.resonance);
+    out.summary = resonanceSummary(out.resonance);
     return out;
+}
+
+std::string resonanceSummary(const EnvelopeResonance& resonance) {
+    if (resonance.known) {
+        char text[200];
+        std::snprintf(text, sizeof text,
+                      "third bound: first natural frequency %.6g Hz (lumped model at home); the limit at and above "
+                      "it is resonance",
+                      resonance.frequency);
+        return text;
+    }
+    std::string text = "third bound (first natural frequency): unknown, " + resonance.reason;
+    if (!resonance.declared) {
+        text += " (joint stiffness, body elastic: docs/robot-files.md, Compliance)";
+    }
+    return text;
 }
 
 void writeEnvelopeFigure(const EnvelopeResult& result, const std::string& stem) {
     report::renderFigure(
         report::envelopeFigure(result.points, result.robot,
-                               "flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound"),
+                               "flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound",
+                               result.resonance),
         stem);
 }
 

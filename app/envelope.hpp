@@ -1,5 +1,7 @@
-// `envelope`: per axis (theta, x, y) and log-spaced frequency, the largest amplitude of a
-// sinusoid about the home posture within every limit, and which limit binds (envelope.hpp).
+// `envelope`: per axis (x, y, theta) and log-spaced frequency, the largest amplitude of a
+// sinusoid about the home posture within every limit, and which limit binds; the band's third
+// bound, the first natural frequency at home, when the robot file declares compliance
+// (envelope.hpp).
 #pragma once
 
 #include <string>
@@ -25,11 +27,17 @@ struct EnvelopeOptions {
 
 struct EnvelopeResult {
     std::string robot;
-    /// Axis after axis (theta, x, y), frequency after frequency.
+    /// Axis after axis (x, y, theta), frequency after frequency.
     std::vector<EnvelopePoint> points;
+    /// The band's third bound: the first natural frequency of the lumped model at home, or why
+    /// it is unknown.
+    EnvelopeResonance resonance;
     /// The points as the CSV's table (io::TableId::envelope): axis and limit as words, limb,
-    /// joint and actuator numbered from 1 (0: not applicable).
+    /// joint and actuator numbered from 1 (0: not applicable); first_natural_frequency [Hz] when
+    /// the resonance is known.
     io::Table table;
+    /// One line: the third bound with its unit, or why it is unknown.
+    std::string summary;
 };
 
 /// Throws OptionError for a frequency or count out of range, or max below min.
@@ -38,7 +46,11 @@ void validate(const EnvelopeOptions& options);
 /// The envelope; progress in points (3 * options.points), a stop between points.
 [[nodiscard]] EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer);
 
-/// The figure (amplitude versus frequency, log axes): STEM.png and STEM.svg.
+/// The summary line of a resonance.
+[[nodiscard]] std::string resonanceSummary(const EnvelopeResonance& resonance);
+
+/// The figure (amplitude versus frequency, log axes; the first natural frequency as a vertical
+/// line when known): STEM.png and STEM.svg.
 void writeEnvelopeFigure(const EnvelopeResult& result, const std::string& stem);
 
 }  // namespace nocdyn::app

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <memory>
 #include <numbers>
 #include <ostream>
@@ -72,6 +73,8 @@ const char* limitWord(EnvelopeLimit limit) {
             return "force";
         case EnvelopeLimit::workspace:
             return "workspace";
+        case EnvelopeLimit::resonance:
+            return "resonance";
         default:
             return "stroke";
     }
@@ -79,10 +82,37 @@ const char* limitWord(EnvelopeLimit limit) {
 
 }  // namespace
 
-Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot, const std::string& reading) {
+namespace {
+
+/// The band's third bound on a panel: a vertical line at f_1 over the panel's amplitudes, and
+/// the frequencies from f_1 to the last point shaded as beyond the band.
+void drawResonance(PlotPanel& panel, double f1, double last_frequency) {
+    double low = std::numeric_limits<double>::infinity(), high = 0.0;
+    for (const PlotSeries& s : panel.series) {
+        for (const double y : s.y) {
+            if (y > 0.0) low = std::min(low, y), high = std::max(high, y);
+        }
+    }
+    if (!(high > 0.0)) return;  // nothing on a log axis to span
+    if (f1 < last_frequency) {
+        panel.series.push_back({"beyond the band (above the first resonance)",
+                                {f1, last_frequency},
+                                {low, low},
+                                "filledcurves fs transparent solid 0.15 noborder lc rgb '#d62728'",
+                                {{high, high}}});
+    }
+    char label[80];
+    std::snprintf(label, sizeof label, "first natural frequency %.4g Hz", f1);
+    panel.series.push_back({label, {f1, f1}, {low, high}, "lines dt 2 lw 2 lc rgb '#d62728'"});
+}
+
+}  // namespace
+
+Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot, const std::string& reading,
+                      const EnvelopeResonance& resonance) {
     PlotPanel translation{"Translation along x and y", "frequency [Hz]", "largest amplitude [mm]", {}, true, true};
     PlotPanel rotation{"Rotation theta", "frequency [Hz]", "largest amplitude [deg]", {}, true, true};
-    for (const EnvelopeAxis axis : {EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta}) {
+    for (const EnvelopeAxis axis : kEnvelopeAxes) {
         PlotSeries line;
         line.label = axisName(axis);
         line.style = "linespoints lw 2 pt 7 ps 0.6";
@@ -92,6 +122,12 @@ Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::strin
             line.y.push_back(axis == EnvelopeAxis::theta ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3);
         }
         (axis == EnvelopeAxis::theta ? rotation : translation).series.push_back(std::move(line));
+    }
+    if (resonance.known) {
+        double last = 0.0;
+        for (const auto& p : points) last = std::max(last, p.frequency);
+        drawResonance(translation, resonance.frequency, last);
+        drawResonance(rotation, resonance.frequency, last);
     }
     Figure figure;
     figure.title = "Operating envelope of " + literalText(robot) + ": " + reading;
@@ -161,8 +197,10 @@ void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::pat
     const Model model(robot);
     const ActuatorLimits limits = actuatorLimits(robot);
     const auto points = operatingEnvelope(model);
-    io::writeCsvFile((out / "envelope.csv").string(), io::toTable(points));
-    renderFigure(envelopeFigure(points, robot.name), (out / "envelope").string());
+    const EnvelopeResonance resonance = envelopeResonance(model);
+    io::writeCsvFile((out / "envelope.csv").string(), io::toTable(points, resonance));
+    renderFigure(envelopeFigure(points, robot.name, "flat = stroke-bound, slope -2 = peak-force-bound", resonance),
+                 (out / "envelope").string());
 
     summary
         << "## Operating envelope\n\n"
@@ -178,7 +216,7 @@ void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::pat
         for (const auto& p : points) {
             if (p.axis != axis) continue;
             kinematic = p.kinematic_amplitude;
-            if (p.limit != EnvelopeLimit::effort) last_stroke = p.frequency;
+            if (p.limit != EnvelopeLimit::effort && p.limit != EnvelopeLimit::resonance) last_stroke = p.frequency;
             if (p.limit == EnvelopeLimit::effort && first_force == 0.0) first_force = p.frequency;
             at100 = p.amplitude;
         }

@@ -31,9 +31,12 @@ struct ActuatorLimits {
 [[nodiscard]] Figure trackingErrorFigure(const std::string& title, const std::vector<PoseLoopResult>& runs,
                                          const std::vector<std::string>& notes = {});
 
-/// Amplitude versus frequency, log axes: one panel for x and y [mm], one for theta [deg].
+/// Amplitude versus frequency, log axes: one panel for x and y [mm], one for theta [deg]. With a
+/// known resonance, each panel draws the first natural frequency as a vertical line (the band's
+/// third bound) and shades the frequencies above it up to the last point.
 [[nodiscard]] Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot,
-                                    const std::string& reading = "flat = stroke-bound, slope -2 = peak-force-bound");
+                                    const std::string& reading = "flat = stroke-bound, slope -2 = peak-force-bound",
+                                    const EnvelopeResonance& resonance = {});
 
 /// Section "Model-based control": for paper1 and paper2, task-space computed torque and PD
 /// (control.hpp) on the default plant (Simbody when built in), plus computed torque with

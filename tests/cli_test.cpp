@@ -248,8 +248,8 @@ TEST(Cli, CategoryColumnsHoldWordsAndQuietPrintsNothing) {
         "axis,frequency,amplitude,limit,limb,joint,actuator,kinematic_amplitude,peak_effort_ratio,peak_u,peak_tau");
     const std::string first =
         text.substr(text.find('\n') + 1, text.find('\n', text.find('\n') + 1) - text.find('\n') - 1);
-    EXPECT_EQ(first.substr(0, first.find(',')), "theta") << first;
-    for (const char* word : {"\nx,", "\ny,"}) EXPECT_NE(text.find(word), std::string::npos) << text;
+    EXPECT_EQ(first.substr(0, first.find(',')), "x") << first;  // the pose's order: x, y, theta
+    for (const char* word : {"\ny,", "\ntheta,"}) EXPECT_NE(text.find(word), std::string::npos) << text;
     EXPECT_TRUE(text.find(",range,") != std::string::npos || text.find(",effort,") != std::string::npos ||
                 text.find(",velocity,") != std::string::npos)
         << text;

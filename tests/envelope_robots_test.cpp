@@ -2,14 +2,19 @@
 // hand-derived 3-PRR envelope's numbers (the P joints' range is the stroke, their effort the
 // peak force); each kind of
 // limit binds where it should (range flat in f, velocity ~ 1/f, effort ~ 1/f^2) and is reached
-// at the envelope; every example robot has an envelope whose limits name their actuator.
+// at the envelope; every example robot has an envelope whose limits name their actuator; its
+// points come in the order x, y, theta; a robot file that declares compliance bounds the band
+// by the first natural frequency at home (stiffnessAndModes), where the limit is resonance.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <numbers>
 #include <string>
 
+#include "nocdyn/analysis/stiffness.hpp"
+#include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/short_form.hpp"
+#include "nocdyn/tables/tables.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/analysis/envelope.hpp"
 #include "nocdyn/io/robot_file.hpp"
@@ -18,7 +23,11 @@
 namespace nocdyn::test {
 namespace {
 
-constexpr EnvelopeAxis kAxes[] = {EnvelopeAxis::theta, EnvelopeAxis::x, EnvelopeAxis::y};
+constexpr EnvelopeAxis kAxes[] = {EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta};
+
+/// First natural frequency [Hz] of robots/paper-3prr-compliant.yaml's lumped model at home
+/// (`nocdyn pose 0 0 0 --robot robots/paper-3prr-compliant.yaml --json`).
+constexpr double kCompliantFirstFrequency = 41.038352764818065;
 
 RobotDescription example(const std::string& robot) {
     return io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
@@ -179,6 +188,103 @@ TEST(GeneralEnvelope, APassiveJointsLimitsAreCheckedAndWideOnesChangeNothing) {
         EXPECT_EQ(elbow.actuator, -1);
         EXPECT_LT(elbow.amplitude, maximumAmplitude(model, axis, 1.0).amplitude);
     }
+}
+
+TEST(GeneralEnvelope, PointsComeAxisAfterAxisInTheOrderXYTheta) {
+    EnvelopeOptions options;
+    options.frequencies = 2;
+    const auto points = operatingEnvelope(Model(example("3-rrr")), options);
+    ASSERT_EQ(points.size(), 6u);
+    const EnvelopeAxis expected[] = {EnvelopeAxis::x, EnvelopeAxis::x,     EnvelopeAxis::y,
+                                     EnvelopeAxis::y, EnvelopeAxis::theta, EnvelopeAxis::theta};
+    for (std::size_t k = 0; k < points.size(); ++k) EXPECT_EQ(points[k].axis, expected[k]) << k;
+    const io::Table table = io::toTable(points);
+    EXPECT_EQ(table.categories[0][static_cast<std::size_t>(table.rows[0][0])], "x");
+    EXPECT_EQ(table.categories[0][static_cast<std::size_t>(table.rows[5][0])], "theta");
+}
+
+TEST(GeneralEnvelope, TheFirstNaturalFrequencyAtHomeIsTheBandsThirdBound) {
+    const Model model(example("paper-3prr-compliant"));
+    const EnvelopeResonance resonance = envelopeResonance(model);
+    ASSERT_TRUE(resonance.known) << resonance.reason;
+    EXPECT_TRUE(resonance.declared);
+    // the lumped model at home, as `nocdyn pose` reports it
+    const analysis::StiffnessModel compliance(model);
+    Data data(model);
+    analysis::StiffnessData stiffness;
+    analysis::LumpedModes modes;
+    ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes));
+    EXPECT_EQ(resonance.frequency, modes.frequency(0));
+    EXPECT_NEAR(resonance.frequency, kCompliantFirstFrequency, 1e-9 * kCompliantFirstFrequency);
+
+    // f_1 / 2, f_1 and 2 f_1 (log-spaced: the middle one is f_1 to the last bit)
+    EnvelopeOptions options;
+    options.frequencies = 3;
+    options.min_frequency = 0.5 * resonance.frequency;
+    options.max_frequency = 2.0 * resonance.frequency;
+    const auto points = operatingEnvelope(model, options);
+    ASSERT_EQ(points.size(), 9u);
+    for (const EnvelopePoint& p : points) {
+        const EnvelopePoint rigid = maximumAmplitude(model, p.axis, p.frequency);
+        EXPECT_EQ(p.amplitude, rigid.amplitude);  // the rigid model's number, kept
+        if (p.frequency >= resonance.frequency) {
+            EXPECT_EQ(p.limit, EnvelopeLimit::resonance) << axisName(p.axis) << " at " << p.frequency;
+            EXPECT_EQ(p.limb, -1);
+            EXPECT_EQ(p.joint, -1);
+            EXPECT_EQ(p.actuator, -1);
+        } else {
+            EXPECT_EQ(p.limit, rigid.limit) << axisName(p.axis) << " at " << p.frequency;
+            EXPECT_NE(p.limit, EnvelopeLimit::resonance);
+        }
+    }
+    EXPECT_EQ(points[1].frequency, resonance.frequency);
+    EXPECT_STREQ(limitName(EnvelopeLimit::resonance), "resonance");
+
+    // the CSV names it in its optional last column, in every row
+    const io::Table table = io::toTable(points, resonance);
+    ASSERT_EQ(table.columns, io::columnNames(io::TableId::envelope, {.optional = true}));
+    EXPECT_EQ(table.columns.back(), "first_natural_frequency");
+    for (const auto& row : table.rows) EXPECT_EQ(row.back(), resonance.frequency);
+    EXPECT_EQ(table.categories[3][static_cast<std::size_t>(table.rows[1][3])], "resonance");
+}
+
+TEST(GeneralEnvelope, WithoutDeclaredComplianceTheEnvelopeIsUnchangedAndTheBoundUnknown) {
+    const Model model(example("paper-3prr-general"));
+    const EnvelopeResonance resonance = envelopeResonance(model);
+    EXPECT_FALSE(resonance.known);
+    EXPECT_FALSE(resonance.declared);
+    EXPECT_EQ(resonance.reason, "the robot file declares no compliance");
+    EnvelopeOptions options;
+    options.frequencies = 2;
+    options.min_frequency = 10.0;
+    options.max_frequency = 1000.0;
+    const auto points = operatingEnvelope(model, options);
+    for (const EnvelopePoint& p : points) {
+        const EnvelopePoint rigid = maximumAmplitude(model, p.axis, p.frequency);
+        EXPECT_EQ(p.limit, rigid.limit);
+        EXPECT_EQ(p.limb, rigid.limb);
+        EXPECT_EQ(p.amplitude, rigid.amplitude);
+    }
+    EXPECT_EQ(io::toTable(points, resonance).columns, io::columnNames(io::TableId::envelope));
+}
+
+TEST(GeneralEnvelope, ComplianceThatLeavesALimbRigidGivesNoBoundAndSaysWhy) {
+    // the compliant prototype with limbs 2 and 3 rigid again: K is not finite, f_1 unknown
+    RobotDescription robot = example("paper-3prr-compliant");
+    for (std::size_t j : {1u, 2u}) {
+        for (auto& joint : robot.limbs[j].joints) joint.stiffness.reset();
+        for (auto& body : robot.limbs[j].bodies) body.elastic.reset();
+    }
+    const Model model(robot);
+    const EnvelopeResonance resonance = envelopeResonance(model);
+    EXPECT_TRUE(resonance.declared);
+    EXPECT_FALSE(resonance.known);
+    EXPECT_EQ(resonance.reason.rfind("at home: ", 0), 0u) << resonance.reason;
+    EXPECT_NE(resonance.reason.find("limb 2"), std::string::npos) << resonance.reason;
+    EnvelopeOptions options;
+    options.frequencies = 1;
+    options.min_frequency = options.max_frequency = 500.0;
+    for (const EnvelopePoint& p : operatingEnvelope(model, options)) EXPECT_NE(p.limit, EnvelopeLimit::resonance);
 }
 
 TEST(GeneralEnvelope, RefusesFrequenciesOutOfRange) {

@@ -1,5 +1,5 @@
-// nocdyn envelope: binds app::EnvelopeOptions and renders the envelope as a table on stdout, CSV
-// and a figure.
+// nocdyn envelope: binds app::EnvelopeOptions and renders the envelope as a table on stdout (then
+// the third bound's summary line), CSV and a figure.
 #include <cstdio>
 #include <memory>
 #include <numbers>
@@ -42,7 +42,8 @@ void run(const Options& options) {
     terminal.finish();
     if (!options.output.empty()) writeTable(result.table, options.output);
     if (!options.figure.empty()) app::writeEnvelopeFigure(result, options.figure);
-    if (options.output.empty() && !options.quiet) {
+    if (options.quiet) return;
+    if (options.output.empty()) {
         std::printf("axis   f [Hz]    amplitude        limit      peak |tau|/effort  where\n");
         for (const auto& p : result.points) {
             const bool angle = p.axis == EnvelopeAxis::theta;
@@ -51,6 +52,7 @@ void run(const Options& options) {
                         limitName(p.limit), p.peak_effort_ratio, where(p).c_str());
         }
     }
+    std::printf("%s\n", result.summary.c_str());
 }
 
 }  // namespace
@@ -59,13 +61,16 @@ void addEnvelopeCommand(CLI::App& app) {
     auto options = std::make_shared<Options>();
     CLI::App* command = app.add_subcommand(
         "envelope",
-        "Operating envelope of any robot: for each axis (theta, x, y) and log-spaced frequencies, the largest\n"
+        "Operating envelope of any robot: for each axis (x, y, theta) and log-spaced frequencies, the largest\n"
         "amplitude A of A sin(2 pi f t) about the home posture within every joint's range and velocity limits,\n"
         "every actuator's effort (inverse dynamics over one period, gravity and friction included) and the\n"
         "workspace (reach, limb and actuation singularities), and which limit binds, named with its actuator.\n"
-        "Writes CSV (axis theta, x or y; limit range, velocity, effort, workspace, or none up to the search\n"
-        "bound; limb, joint, actuator 1-based, 0 when not applicable; peak_effort_ratio = max |tau|/effort\n"
-        "at that amplitude) and, with --figure, a figure (amplitude versus frequency, log axes).");
+        "The band's third bound: when the robot file declares compliance, the first natural frequency of the\n"
+        "lumped model at home; at and above it the limit is resonance (the summary line names it, in Hz).\n"
+        "Writes CSV (axis x, y or theta; limit range, velocity, effort, workspace, resonance, or none up to\n"
+        "the search bound; limb, joint, actuator 1-based, 0 when not applicable; peak_effort_ratio =\n"
+        "max |tau|/effort at that amplitude; first_natural_frequency [Hz] when known) and, with --figure, a\n"
+        "figure (amplitude versus frequency, log axes, the first natural frequency as a vertical line).");
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]")->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");

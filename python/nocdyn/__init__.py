@@ -50,8 +50,8 @@ from ._nocdyn import Error
 from .commands import (COMMANDS, animate, control, convert, design, envelope, excite, forward_kinematics, identify,
                        inverse_dynamics, loads, pose, regressor, reproduce, shake, simulate, validate, workspace)
 from .commands import frequency_response
-from .results import (Animation, AssemblyModes, Excitation, Identification, PoseReport, Report, ShakeResult, Table,
-                      Workspace)
+from .results import (Animation, AssemblyModes, Envelope, Excitation, Identification, PoseReport, Report, ShakeResult,
+                      Table, Workspace)
 
 __all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMatrices", "PayloadEstimate",
            "load_prior",
@@ -59,8 +59,8 @@ __all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMa
            "pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace", "convert",
            "animate", "shake", "regressor", "identify", "excite", "loads", "validate", "reproduce", "design", "COMMANDS",
            "frequency_response",
-           "Table", "PoseReport", "AssemblyModes", "Workspace", "Identification", "Excitation", "ShakeResult",
-           "Animation", "Report"]
+           "Table", "PoseReport", "AssemblyModes", "Workspace", "Envelope", "Identification", "Excitation",
+           "ShakeResult", "Animation", "Report"]
 __version__ = _nocdyn.__version__  # the CMake project version, as `nocdyn --version`
 
 Error.__module__ = "nocdyn"
@@ -715,18 +715,20 @@ class Robot:
         return result
 
     # --- operating envelope ---------------------------------------------------------
-    def envelope(self, axes=("theta", "x", "y"), *, min_frequency=1.0, max_frequency=100.0, points=41,
+    def envelope(self, axes=("x", "y", "theta"), *, min_frequency=1.0, max_frequency=100.0, points=41,
                  samples_per_period=256, relative_tolerance=1e-6, frequencies=None):
         """Largest sinusoid amplitude along each pose axis about home at log-spaced frequencies
         [Hz] (as `nocdyn envelope`), within every joint range, velocity and effort limit and away
         from singularities.
 
-        axes selects the axes returned ('theta', 'x', 'y'); all three are computed, by the same
-        call as the command line's, so that the numbers are the same.
+        axes selects the axes returned ('x', 'y', 'theta'); all three are computed, by the same
+        call as the command line's, so that the numbers are the same, in the order x, y, theta.
 
         Returns a list of dicts: axis, frequency [Hz], amplitude [rad or m], limit ('range',
-        'velocity', 'effort', 'workspace', 'none'), limb, joint, actuator (numbered from 1 as
-        the command line's CSV, 0 when not applicable), kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
+        'velocity', 'effort', 'workspace', 'none', or 'resonance' at and above the first natural
+        frequency when the robot file declares compliance: see nocdyn.envelope), limb, joint,
+        actuator (numbered from 1 as the command line's CSV, 0 when not applicable),
+        kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
         `nocdyn envelope --points`; ``frequencies`` is its old name)."""
         if frequencies is not None:
             points = frequencies

@@ -32,8 +32,8 @@ import sys
 import warnings
 
 from . import _nocdyn
-from .results import (Animation, AssemblyModes, Excitation, Identification, PoseReport, Report, ShakeResult, Table,
-                      Workspace)
+from .results import (Animation, AssemblyModes, Envelope, Excitation, Identification, PoseReport, Report, ShakeResult,
+                      Table, Workspace)
 
 __all__ = ["pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace",
            "convert", "animate", "shake", "regressor", "identify", "excite", "loads", "reproduce", "validate",
@@ -353,16 +353,21 @@ control.__signature__ = control.__signature__.replace(parameters=[
 
 
 def envelope(*, robot=None, set=None, output=None, figure=None, progress=None, **options):
-    """The operating envelope (``nocdyn envelope``): per axis (theta, x, y) and ``points``
+    """The operating envelope (``nocdyn envelope``): per axis (x, y, theta) and ``points``
     log-spaced frequencies in [min_frequency, max_frequency] Hz, the largest amplitude within
-    every limit and which limit binds. Returns a Table with the CSV's columns (axis and limit as
-    words; frequency, amplitude, ...; limb, joint, actuator numbered from 1, 0 when none).
-    output: also write the CSV; figure: the figure's stem (STEM.png, STEM.svg)."""
+    every limit and which limit binds. Returns an Envelope (a Table with the CSV's columns: axis
+    and limit as words; frequency, amplitude, ...; limb, joint, actuator numbered from 1, 0 when
+    none) whose ``first_natural_frequency`` [Hz] is the band's third bound when the robot file
+    declares compliance (None otherwise; ``text`` says which). output: also write the CSV;
+    figure: the figure's stem (STEM.png, STEM.svg)."""
     bound = _bound_options(_nocdyn.EnvelopeOptions, options)
     bound.robot = _robot_source(robot, set)
-    answer = _run(lambda o, p: _nocdyn._run_envelope(o, p, _path(output, "output"), _path(figure, "figure")), bound,
-                  progress, "envelope")
-    return _table(answer, "envelope", integers=_NUMBERS)
+    answer, summary, first = _run(
+        lambda o, p: _nocdyn._run_envelope(o, p, _path(output, "output"), _path(figure, "figure")), bound, progress,
+        "envelope")
+    table = _table(answer, "envelope", Envelope, summary, integers=_NUMBERS)
+    table.first_natural_frequency = first
+    return table
 
 
 envelope.__signature__ = _signature(_nocdyn.EnvelopeOptions, (), before=(("robot", None), ("set", None)),

@@ -14,8 +14,8 @@ import pathlib
 
 import numpy as np
 
-__all__ = ["Table", "PoseReport", "AssemblyModes", "Workspace", "Identification", "Excitation", "ShakeResult",
-           "Animation", "Report"]
+__all__ = ["Table", "PoseReport", "AssemblyModes", "Workspace", "Envelope", "Identification", "Excitation",
+           "ShakeResult", "Animation", "Report"]
 
 
 def _pandas():
@@ -204,6 +204,19 @@ class Workspace(Table):
         y = np.unique(self["y"])
         step = (x[1] - x[0]) * (y[1] - y[0]) if len(x) > 1 and len(y) > 1 else 0.0
         return float(np.count_nonzero(self["cell"] == "feasible") * step)
+
+
+class Envelope(Table):
+    """The operating envelope (``nocdyn envelope``): one row per axis (x, y, theta) and frequency,
+    the CSV's columns. ``first_natural_frequency``: the band's third bound [Hz], the first
+    natural frequency of the lumped model at home, when the robot file declares compliance
+    (rows at or above it have the limit 'resonance'), else None; ``text`` the summary line that
+    names it or says why it is unknown."""
+
+    def __init__(self, columns, data, text="", name="envelope", labels=None, integers=(),
+                 first_natural_frequency=None):
+        super().__init__(columns, data, text, name, labels, integers)
+        self.first_natural_frequency = first_natural_frequency
 
 
 class Identification:

@@ -83,7 +83,10 @@ void bindAnalysis(py::module_& m) {
                 if (!stem.empty()) app::writeEnvelopeFigure(r, stem);
                 return r;
             });
-            return tableTuple(result.table);
+            // (table, summary, first natural frequency [Hz] or None)
+            const py::object first =
+                result.resonance.known ? py::object(py::float_(result.resonance.frequency)) : py::object(py::none());
+            return py::make_tuple(tableTuple(result.table), result.summary, first);
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
         py::arg("figure") = py::none());

@@ -724,7 +724,7 @@ py::list envelope(const Robot& robot, const std::vector<std::string>& axes, doub
         else if (a == "y")
             which.push_back(EnvelopeAxis::y);
         else
-            throw Error("axis: '" + a + "' is not one of theta, x, y");
+            throw Error("axis: '" + a + "' is not one of x, y, theta");
     }
     std::vector<EnvelopePoint> points;
     {

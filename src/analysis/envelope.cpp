@@ -1,5 +1,5 @@
 // Operating envelope of any robot: bisection on the sinusoid amplitude with the inverse
-// dynamics (eq. 20) and every joint's limits.
+// dynamics (eq. 20) and every joint's limits; the first natural frequency at home bounds it.
 #include "nocdyn/analysis/envelope.hpp"
 
 #include <algorithm>
@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
@@ -43,6 +44,8 @@ const char* limitName(EnvelopeLimit limit) {
             return "workspace";
         case EnvelopeLimit::none:
             return "none";
+        case EnvelopeLimit::resonance:
+            return "resonance";
     }
     return "?";
 }
@@ -340,6 +343,32 @@ EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double fre
     return point;
 }
 
+EnvelopeResonance envelopeResonance(const Model& model) {
+    EnvelopeResonance out;
+    const analysis::StiffnessModel compliance(model);
+    if (!compliance.any) {
+        out.reason = "the robot file declares no compliance";
+        return out;
+    }
+    out.declared = true;
+    Data data(model);
+    analysis::StiffnessData stiffness;
+    analysis::LumpedModes modes;
+    if (const Status status = analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes);
+        !status) {
+        out.reason = "at home: " + describe(status, model);
+        return out;
+    }
+    if (stiffness.free_directions > 0) {
+        out.reason = "the declared compliance leaves the platform free at home (" +
+                     analysis::describeDirection(stiffness.free.col(0)) + ")";
+        return out;
+    }
+    out.known = true;
+    out.frequency = modes.frequency(0);  // ascending: the first resonance
+    return out;
+}
+
 std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeOptions& options) {
     checkFrequency(options.min_frequency, "min_frequency");
     checkFrequency(options.max_frequency, "max_frequency");
@@ -349,12 +378,20 @@ std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeO
                     "], got " + std::to_string(options.frequencies));
     }
     std::vector<EnvelopePoint> points;
-    for (const EnvelopeAxis axis : {EnvelopeAxis::theta, EnvelopeAxis::x, EnvelopeAxis::y}) {
+    for (const EnvelopeAxis axis : kEnvelopeAxes) {
         for (int k = 0; k < options.frequencies; ++k) {
             const double s = options.frequencies > 1 ? static_cast<double>(k) / (options.frequencies - 1) : 0.0;
             const double f = options.min_frequency * std::pow(options.max_frequency / options.min_frequency, s);
             points.push_back(maximumAmplitude(model, axis, f, options));
             if (options.progress) options.progress(static_cast<int>(points.size()), 3 * options.frequencies);
+        }
+    }
+    // f >= f_1: the machine's own resonance binds, whatever the joints allow
+    if (const EnvelopeResonance resonance = envelopeResonance(model); resonance.known) {
+        for (EnvelopePoint& p : points) {
+            if (p.frequency < resonance.frequency) continue;
+            p.limit = EnvelopeLimit::resonance;
+            p.limb = p.joint = p.actuator = -1;
         }
     }
     return points;

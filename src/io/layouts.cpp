@@ -88,19 +88,24 @@ std::vector<Layout> makeLayouts() {
         {envelope,
          "Operating envelope",
          "`nocdyn envelope --output`; `nocdyn reproduce`'s `envelope.csv`; Python `nocdyn.envelope`",
-         "One row per axis and frequency: the largest amplitude of a sinusoid along the axis about the home "
-         "posture within every limit.",
+         "One row per axis (x, y, theta) and frequency: the largest amplitude of a sinusoid along the axis about "
+         "the home posture within every limit. When the robot file declares compliance, the band's third bound, "
+         "the first natural frequency of the lumped model at home, is written in `first_natural_frequency` (the "
+         "same in every row; the column is absent otherwise), and rows at or above it have the limit `resonance` "
+         "(the rigid model's amplitude, not trustworthy there; no limb, joint or actuator).",
          {{"axis", "", "the axis moved: x, y or theta (a word)"},
           {"frequency", "Hz", "frequency of the sinusoid"},
           {"amplitude", "m or rad", "largest amplitude (m for x and y, rad for theta)"},
-          {"limit", "", "the limit that binds: range, velocity, effort, workspace or none (a word)"},
+          {"limit", "", "the limit that binds: range, velocity, effort, workspace, none or resonance (a word)"},
           {"limb", "", "limb that reaches the limit first (1-based; 0: none)"},
           {"joint", "", "joint of that limb (1-based; 0: not joint-specific)"},
           {"actuator", "", "actuator at that joint (1-based; 0: a passive joint or none)"},
           {"kinematic_amplitude", "m or rad", "largest amplitude within the ranges and the workspace alone"},
           {"peak_effort_ratio", "", "largest |tau_a| / effort limit of actuator a over the period"},
           {"peak_u", kActuatorUnit, "largest |u_a| over the actuators and the period"},
-          {"peak_tau", kForceUnit, "largest |tau_a| over the actuators and the period"}}},
+          {"peak_tau", kForceUnit, "largest |tau_a| over the actuators and the period"},
+          {"first_natural_frequency", "Hz", "first natural frequency of the lumped model at home", Repeat::once,
+           true}}},
         {workspace,
          "Workspace grid",
          "`nocdyn workspace --output`; Python `nocdyn.workspace`",

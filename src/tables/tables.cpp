@@ -90,16 +90,25 @@ Table toTable(const Measurements& measurements) {
     return table;
 }
 
-Table toTable(const std::vector<EnvelopePoint>& points) {
+Table toTable(const std::vector<EnvelopePoint>& points, const EnvelopeResonance& resonance) {
     Table table;
     // axis and limit are written as words (EnvelopeAxis and EnvelopeLimit in order)
-    table.categories = {{"theta", "x", "y"}, {}, {}, {"range", "velocity", "effort", "workspace", "none"}};
-    table.columns = columnNames(TableId::envelope);
+    table.categories = {{"theta", "x", "y"}, {}, {}, {"range", "velocity", "effort", "workspace", "none", "resonance"}};
+    table.columns = columnNames(TableId::envelope, {.optional = resonance.known});
     for (const EnvelopePoint& p : points) {
-        table.rows.push_back({static_cast<double>(p.axis), p.frequency, p.amplitude, static_cast<double>(p.limit),
-                              static_cast<double>(p.limb + 1), static_cast<double>(p.joint + 1),
-                              static_cast<double>(p.actuator + 1), p.kinematic_amplitude, p.peak_effort_ratio, p.peak_u,
-                              p.peak_tau});
+        std::vector<double> row{static_cast<double>(p.axis),
+                                p.frequency,
+                                p.amplitude,
+                                static_cast<double>(p.limit),
+                                static_cast<double>(p.limb + 1),
+                                static_cast<double>(p.joint + 1),
+                                static_cast<double>(p.actuator + 1),
+                                p.kinematic_amplitude,
+                                p.peak_effort_ratio,
+                                p.peak_u,
+                                p.peak_tau};
+        if (resonance.known) row.push_back(resonance.frequency);
+        table.rows.push_back(std::move(row));
     }
     return table;
 }

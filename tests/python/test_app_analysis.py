@@ -19,6 +19,7 @@ from conftest import SOURCE_DIR
 ROBOT = str(SOURCE_DIR / "robots" / "3-rrr.yaml")
 FAMILY = str(SOURCE_DIR / "examples" / "design_3rrr" / "family.yaml")
 SMALL_ENVELOPE = dict(points=2, min_frequency=5.0, max_frequency=50.0)
+COMPLIANT = str(SOURCE_DIR / "robots" / "paper-3prr-compliant.yaml")
 
 
 def temporary_folders():
@@ -46,13 +47,37 @@ def in_two_threads(function):
 
 def test_envelope_numbers_limbs_joints_and_actuators_from_one_as_integers():
     table = nocdyn.envelope(robot=ROBOT, **SMALL_ENVELOPE)
-    assert len(table) == 6 and list(table["axis"]) == ["theta"] * 2 + ["x"] * 2 + ["y"] * 2
+    assert len(table) == 6 and list(table["axis"]) == ["x"] * 2 + ["y"] * 2 + ["theta"] * 2
     for column in ("limb", "joint", "actuator"):
         assert table[column].dtype == np.int64 and table[column].min() >= 0
         assert str(table.to_pandas()[column].dtype) == "int64"
     bound = table["limit"] != "none"
     assert np.all(table["limb"][bound] >= 1) and np.all(table["limb"][bound] <= 3)
     assert np.all(table["amplitude"] > 0.0)
+
+
+def test_envelope_returns_the_first_natural_frequency_at_home_and_resonance_from_it():
+    f1 = float(nocdyn.pose(0.0, 0.0, 0.0, robot=COMPLIANT).natural_frequencies[0])  # the lumped model at home
+    assert f1 > 0.0
+    table = nocdyn.envelope(robot=COMPLIANT, points=3, min_frequency=0.5 * f1, max_frequency=2.0 * f1)
+    assert isinstance(table, nocdyn.Envelope)
+    assert table.first_natural_frequency == f1
+    assert f"first natural frequency {f1:.6g} Hz" in table.text
+    np.testing.assert_array_equal(table["first_natural_frequency"], np.full(9, f1))
+    assert list(table["axis"]) == ["x"] * 3 + ["y"] * 3 + ["theta"] * 3
+    beyond = table["frequency"] >= f1
+    assert list(beyond) == [False, True, True] * 3
+    assert np.all((table["limit"] == "resonance") == beyond)
+    assert np.all(table["actuator"][beyond] == 0) and np.all(table["actuator"][~beyond] >= 1)
+
+
+def test_envelope_without_compliance_has_no_third_bound_and_says_why():
+    table = nocdyn.envelope(robot=ROBOT, **SMALL_ENVELOPE)
+    assert table.first_natural_frequency is None
+    assert "first_natural_frequency" not in table
+    assert "resonance" not in set(table["limit"])
+    assert table.text.startswith("third bound (first natural frequency): unknown, the robot file declares no "
+                                 "compliance") and "docs/robot-files.md" in table.text
 
 
 def test_envelope_set_bad_values_and_two_threads():

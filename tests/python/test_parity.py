@@ -275,6 +275,13 @@ def test_control_on_every_plant_and_identify(tmp_path):
 def test_envelope_workspace_loads_regressor_convert(tmp_path):
     run_cli("envelope", "--points", 2, "--min-frequency", 5, "--max-frequency", 50, "-o", tmp_path / "e.csv")
     same_table(tmp_path / "e.csv", nocdyn.envelope(points=2, min_frequency=5.0, max_frequency=50.0))
+    compliant = str(SOURCE_DIR / "robots" / "paper-3prr-compliant.yaml")
+    text = run_cli("envelope", "--robot", compliant, "--points", 3, "--min-frequency", 5, "--max-frequency", 500,
+                   "-o", tmp_path / "c.csv")
+    band = nocdyn.envelope(robot=compliant, points=3, min_frequency=5.0, max_frequency=500.0)
+    same_table(tmp_path / "c.csv", band)
+    assert band.text == text.strip() and "resonance" in set(band["limit"])
+    (tmp_path / "c.csv").unlink()
     text = run_cli("workspace", "--robot", ROBOT, "--resolution", 21, "-o", tmp_path / "w.csv", cwd=tmp_path)
     ws = nocdyn.workspace(robot=ROBOT, resolution=21)
     same_table(tmp_path / "w.csv", ws)

@@ -11,9 +11,16 @@
 // Each is found by bisection on A: first the kinematic one (the period at rest, dp = ddp = 0),
 // then the dynamic one below it; the smaller binds, and is named with its limb, joint and
 // actuator.
+//
+// The band's third bound is the machine's own first resonance: when the robot file declares
+// compliance, the first natural frequency f_1 of the lumped model K v = w^2 M v at the home
+// posture (stiffness.hpp). At f >= f_1 the rigid model's amplitude is not what the platform
+// does, so the resonance binds there. Elastodynamic modes of elastic links can lie below f_1.
 #pragma once
 
+#include <array>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "nocdyn/model.hpp"
@@ -21,13 +28,18 @@
 
 namespace nocdyn {
 
-/// Pose axis, numbered as in the pose p = [theta, x, y] (eq. 1).
+/// Pose axis, numbered as its index in the core's pose p = [theta, x, y] (eq. 1).
 enum class EnvelopeAxis { theta = 0, x = 1, y = 2 };
 [[nodiscard]] const char* axisName(EnvelopeAxis axis);
 
+/// The axes in the user's pose order x, y, theta (pose_order.hpp): the order of the envelope's
+/// points, tables and figures.
+inline constexpr std::array<EnvelopeAxis, 3> kEnvelopeAxes{EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta};
+
 /// Which limit stops a larger amplitude. `none`: nothing up to the search bound (the robot's
-/// joints are unlimited along this axis).
-enum class EnvelopeLimit { range = 0, velocity = 1, effort = 2, workspace = 3, none = 4 };
+/// joints are unlimited along this axis). `resonance`: the frequency is at or above the first
+/// natural frequency (operatingEnvelope only).
+enum class EnvelopeLimit { range = 0, velocity = 1, effort = 2, workspace = 3, none = 4, resonance = 5 };
 [[nodiscard]] const char* limitName(EnvelopeLimit limit);
 
 /// Accepted frequency range [Hz] and largest number of frequencies per axis.
@@ -68,7 +80,22 @@ struct EnvelopePoint {
 [[nodiscard]] EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double frequency,
                                              const EnvelopeOptions& options = {});
 
-/// The whole envelope: for each axis (theta, x, y), each log-spaced frequency.
+/// The band's third bound: the first natural frequency of the lumped model at home.
+struct EnvelopeResonance {
+    bool declared = false;  ///< the robot file declares compliance (joint stiffness, elastic body)
+    bool known = false;
+    double frequency = 0.0;  ///< f_1 [Hz] when known
+    /// Why it is not known: the robot file declares no compliance, or the compliance it declares
+    /// leaves a limb rigid or the platform free at home ("" when known).
+    std::string reason;
+};
+
+/// f_1 of `model` at its home posture (stiffnessAndModes), or why there is none.
+[[nodiscard]] EnvelopeResonance envelopeResonance(const Model& model);
+
+/// The whole envelope: for each axis (x, y, theta), each log-spaced frequency. When
+/// envelopeResonance is known, the points at f >= f_1 keep the rigid model's amplitude and peaks
+/// but their limit is `resonance` (no limb, joint or actuator).
 [[nodiscard]] std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeOptions& options = {});
 
 }  // namespace nocdyn

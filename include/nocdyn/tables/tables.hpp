@@ -42,7 +42,8 @@ void appendReactions(const Reactions& reactions, int limbs, std::vector<double>&
 /// identify reads).
 [[nodiscard]] Table toTable(const Measurements& measurements);
 
-/// An operating envelope, one row per point (TableId::envelope; axis and limit as words).
-[[nodiscard]] Table toTable(const std::vector<EnvelopePoint>& points);
+/// An operating envelope, one row per point (TableId::envelope; axis and limit as words); with a
+/// known resonance, its first_natural_frequency column.
+[[nodiscard]] Table toTable(const std::vector<EnvelopePoint>& points, const EnvelopeResonance& resonance = {});
 
 }  // namespace nocdyn::io
