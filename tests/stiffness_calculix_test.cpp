@@ -1,15 +1,27 @@
 // The platform's static compliance and natural frequencies against CalculiX (Debian's
-// calculix-ccx, /usr/bin/ccx) on the same frame, for robots with rigid bodies and joint springs
-// (drive springs, flexure hinges), where the lumped, elastodynamic and finite-element models are
-// one. The CalculiX input is written here from the robot at the pose, in absolute coordinates,
-// independent of the library's joint-space formulation:
+// calculix-ccx 2.20, /usr/bin/ccx) on the same frame, for robots with joint springs (drive springs,
+// flexure hinges) and elastic links. The CalculiX input is written here from the robot at the
+// pose, in absolute coordinates, independent of the library's joint-space formulation:
 //   - every rigid body is a node R at its c.o.m. (translations) and a node PHI whose x
 //     displacement is its rotation; a MASS element on R (m) and one on PHI (I about the c.o.m.);
 //   - a joint ties the velocities of its two bodies at its point, v_i(r) = u_R + phi E (r - R):
 //     R joint: both components; P joint: equal rotations and the component normal to its
 //     direction, its slide a node Q with u_Q = d . (v_b - v_a);
 //   - a joint spring is a SPRING1/SPRING2 element on the PHI or Q degrees of freedom;
+//   - an elastic link is a chain of beam segments between its joints (addBeam): each segment's
+//     stiffness is that of CalculiX's own beam element U1 (a Timoshenko beam, its shear
+//     coefficient set to 1e10, so Euler-Bernoulli's), measured by CalculiX on a clamped
+//     cantilever of the segment's length (three tip load cases), and written as springs on the
+//     segment's relative deflection; the link's R and PHI nodes are welded to its root, so its
+//     inertia rides on its root (nocdyn's elastodynamic model) or, in the distributed mass model,
+//     its mass is spread over the beam's nodes;
 //   - the platform's point C is a node; its load cases give the compliance columns.
+// The U1 elements are not in the assembled model itself: there CalculiX 2.20 drops a beam
+// rotation that an *EQUATION makes dependent, fails to assemble MASS elements beside U1 nodes in
+// equations ("add_sm_st: coefficient should be 0"), and U1 has no mass matrix ("e_c3d_u1: no
+// dynamic"). One U1 element reproduces the Euler-Bernoulli cantilever's tip compliance to
+// CalculiX's 7 printed digits, so the segment count does not change a massless beam (1 and 4
+// segments agree) and converges the distributed mass (8 and 16 segments, Richardson).
 // The linear constraints are written in CalculiX's *EQUATION form, one dependent degree of
 // freedom each (solved for here by a rank-revealing QR); CalculiX assembles the springs and
 // masses, solves the three load cases and the eigenproblem. Its .dat file prints 7 significant
@@ -72,7 +84,7 @@ public:
     /// The tip compliance of a cantilever (EA, EI, length) on [u_e, v_n, phi].
     using SegmentCompliance = std::function<Matrix3(double, double, double)>;
 
-    /// Beams as U1 elements (segment empty: statics) or as springs of the segments' stiffness.
+    /// `segment`: the beams' segment compliance (needed when a body is elastic).
     CalculixModel(const Model& model, const analysis::StiffnessModel& compliance, const Data& data,
                   MassModel mass_model = MassModel::root, int beam_elements = 1, SegmentCompliance segment = {})
         : segment_(std::move(segment)) {
@@ -93,9 +105,8 @@ public:
             body_R_[I] = addNode(com, 2);
             body_PHI_[I] = addNode(com, 1);
             root_[I] = tip_[I] = {body_R_[I], com, body_PHI_[I], 1};
-            const bool elastic =
-                !platform && compliance.elastic[static_cast<std::size_t>(i % model.limbs)][static_cast<std::size_t>(
-                                 i / model.limbs)];
+            const bool elastic = !platform && compliance.elastic[static_cast<std::size_t>(i % model.limbs)]
+                                                                [static_cast<std::size_t>(i / model.limbs)];
             const InertiaDyad& M = model.inertia(i);
             if (elastic) addBeam(model, data, i, mass_model, beam_elements);
             if (elastic && mass_model == MassModel::distributed) continue;
@@ -203,27 +214,12 @@ public:
             out << "*MASS, ELSET=M" << element << "\n" << real(m.mass) << "\n";
             ++element;
         }
-        // beams: Euler-Bernoulli as CalculiX's U1 (a Timoshenko beam, not expanded into bricks)
-        // with a shear coefficient of 1e10, which removes its shear compliance; the in-plane
-        // bending about the 1-direction z; I11 = I22 (the out-of-plane DOFs are held)
-        if (!beams_.empty()) out << "*USER ELEMENT, TYPE=U1, INTEGRATION POINTS=2, MAXDOF=6, NODES=2\n";
-        for (std::size_t k = 0; k < beams_.size(); ++k) {
-            const Beam& beam = beams_[k];
-            out << "*ELEMENT, TYPE=U1, ELSET=B" << k << "\n";
-            for (std::size_t e = 0; e + 1 < beam.nodes.size(); ++e) {
-                out << element++ << ", " << beam.nodes[e] + 1 << ", " << beam.nodes[e + 1] + 1 << "\n";
-            }
-            out << "*MATERIAL, NAME=MB" << k << "\n*ELASTIC\n" << real(kE) << ", 0.3\n";
-            out << "*BEAM SECTION, ELSET=B" << k << ", MATERIAL=MB" << k << ", SECTION=GENERAL\n"
-                << real(beam.EA / kE) << ", " << real(beam.EI / kE) << ", 0, " << real(beam.EI / kE) << ", 1.0e10\n"
-                << "0, 0, 1\n";
-        }
         std::vector<Dof> zero;
         out << equations(zero);
         out << "*BOUNDARY\n";
         for (const Dof& z : zero) out << z.node + 1 << ", " << z.dof << ", " << z.dof << "\n";
         for (std::size_t i = 0; i < nodes_.size(); ++i) {
-            out << i + 1 << (nodes_[i].dofs == 6 ? ", 3, 5\n" : ", 3, 3\n");
+            out << i + 1 << ", 3, 3\n";
             if (nodes_[i].dofs == 1) out << i + 1 << ", 2, 2\n";
         }
         if (!statics) {
@@ -244,20 +240,15 @@ public:
 
 private:
     static constexpr int kPadding = 64;
-    static constexpr double kE = 7.0e10;  // Young's modulus of the beams' material [Pa]
     struct Node {
         Vector2 point;
-        int dofs;  // 1, 2 (in the plane) or 6 (a beam node)
+        int dofs;
     };
     /// A body's frame: velocity at r = u_trans + rotation E (r - origin).
     struct Frame {
         int trans;
         Vector2 origin;
         int rot_node, rot_dof;
-    };
-    struct Beam {
-        std::vector<int> nodes;
-        double EA, EI;
     };
     struct Spring {
         int a, b;  // PHI or Q nodes, a = -1 for the ground
@@ -296,16 +287,16 @@ private:
     }
 
     /// Body i (limb i % limbs, link i / limbs) as a chain of `elements` beam segments from its
-    /// inboard joint A to its outboard one B. Its root frame (the R and PHI nodes, which carry its
-    /// inertia in the root mass model) is welded to the first beam node; its tip frame is the
-    /// last beam node, with a PHI node equal to its rotation for the joint springs.
-    /// U1 (statics): each segment a U1 element between 6-dof nodes (rotation: dof 6).
-    /// Springs (frequencies; CalculiX 2.20's U1 has no mass matrix, "e_c3d_u1: no dynamic"):
-    /// each node a 2-dof node and a rotation node, each segment the stiffness K_s of a U1
-    /// cantilever of its length as CalculiX computes it (`segment`, in the segment's axes),
-    /// K_s = sum lambda_k q_k q_k^T as three springs lambda_k on a_k = q_k^T d, d the tip's
-    /// displacement relative to the root's frame; in the distributed mass model each node
-    /// carries the mass of its share of the beam (translations only, as Euler-Bernoulli's).
+    /// inboard joint A to its outboard one B. Each beam node is a 2-dof node and a rotation node;
+    /// each segment has the stiffness K_s of CalculiX's U1 cantilever of its length (`segment_`,
+    /// in the segment's axes [u_e, v_n, phi], rotated here to the plane's), written as three
+    /// springs: K_s = sum lambda_k q_k q_k^T, a spring lambda_k on a_k = q_k^T d, d the segment
+    /// tip's displacement relative to its root's frame. The body's root frame (its R and PHI
+    /// nodes, which carry its inertia in the root mass model) is welded to the first beam node;
+    /// its tip frame is the last one with a rotation node of its own, equal to the beam's (without
+    /// it, CalculiX's eigensolver returned a spurious negative eigenvalue on the 3-RRR with one
+    /// segment per link, the singular mass matrix's doing). In the distributed mass model each beam node carries its
+    /// share of the link's mass instead (translations only, as Euler-Bernoulli's beam).
     void addBeam(const Model& model, const Data& data, int i, MassModel mass_model, int elements) {
         const auto I = static_cast<std::size_t>(i);
         const auto J = static_cast<std::size_t>(i % model.limbs), b = static_cast<std::size_t>(i / model.limbs);
@@ -317,44 +308,33 @@ private:
         std::vector<Frame> node;
         for (int e = 0; e <= elements; ++e) {
             const Vector2 x = A + (B - A) * (static_cast<double>(e) / elements);
-            if (!segment_) {
-                const int n = addNode(x, 6);
-                node.push_back({n, x, n, 6});
-            } else {
-                const int t = addNode(x, 2);
-                node.push_back({t, x, addNode(x, 1), 1});
-                if (mass_model == MassModel::distributed) {
-                    const double share = (e == 0 || e == elements) ? 0.5 : 1.0;
-                    masses_.push_back({t, share * model.inertia(i).mass / elements});
-                }
+            const int t = addNode(x, 2);
+            node.push_back({t, x, addNode(x, 1), 1});
+            if (mass_model == MassModel::distributed) {
+                const double share = (e == 0 || e == elements) ? 0.5 : 1.0;
+                masses_.push_back({t, share * model.inertia(i).mass / elements});
             }
         }
-        if (!segment_) {
-            Beam beam{{}, EA, EI};
-            for (const Frame& f : node) beam.nodes.push_back(f.trans);
-            beams_.push_back(beam);
-        } else {
-            const Vector2 e = (B - A).normalized();
-            Matrix3 R = Matrix3::Identity();  // local [u_e, v_n, phi] to global [u_x, u_y, phi]
-            R.block<2, 1>(0, 0) = e;
-            R.block<2, 1>(0, 1) = perp(e);
-            const Matrix3 K_local = segment_(EA, EI, l / elements).inverse();
-            const Eigen::SelfAdjointEigenSolver<Matrix3> eig(0.5 * (K_local + K_local.transpose()));
-            for (std::size_t k = 0; k + 1 < node.size(); ++k) {
-                for (int m = 0; m < 3; ++m) {
-                    const Vector3 q = R * eig.eigenvectors().col(m);
-                    const int a = addNode(node[k + 1].origin, 1);
-                    Row row;  // a = q^T d, d = [v_tip - v_root(x_tip); phi_tip - phi_root]
-                    row[{a, 1}] = 1.0;
-                    for (int c = 1; c <= 2; ++c) {
-                        addVelocity(row, &node[k + 1], node[k + 1].origin, c, -q(c - 1));
-                        addVelocity(row, &node[k], node[k + 1].origin, c, q(c - 1));
-                    }
-                    row[{node[k + 1].rot_node, 1}] -= q(2);
-                    row[{node[k].rot_node, 1}] += q(2);
-                    rows_.push_back(row);
-                    springs_.push_back({-1, a, eig.eigenvalues()(m)});
+        const Vector2 e = (B - A).normalized();
+        Matrix3 R = Matrix3::Identity();  // local [u_e, v_n, phi] to global [u_x, u_y, phi]
+        R.block<2, 1>(0, 0) = e;
+        R.block<2, 1>(0, 1) = perp(e);
+        const Matrix3 K_local = segment_(EA, EI, l / elements).inverse();
+        const Eigen::SelfAdjointEigenSolver<Matrix3> eig(0.5 * (K_local + K_local.transpose()));
+        for (std::size_t k = 0; k + 1 < node.size(); ++k) {
+            for (int m = 0; m < 3; ++m) {
+                const Vector3 q = R * eig.eigenvectors().col(m);
+                const int a = addNode(node[k + 1].origin, 1);
+                Row row;  // a = q^T d, d = [v_tip - v_root(x_tip); phi_tip - phi_root]
+                row[{a, 1}] = 1.0;
+                for (int c = 1; c <= 2; ++c) {
+                    addVelocity(row, &node[k + 1], node[k + 1].origin, c, -q(c - 1));
+                    addVelocity(row, &node[k], node[k + 1].origin, c, q(c - 1));
                 }
+                row[{node[k + 1].rot_node, 1}] -= q(2);
+                row[{node[k].rot_node, 1}] += q(2);
+                rows_.push_back(row);
+                springs_.push_back({-1, a, eig.eigenvalues()(m)});
             }
         }
         for (int c = 1; c <= 2; ++c) {
@@ -392,8 +372,7 @@ private:
         std::vector<Eigen::Index> allowed, kept;
         for (Eigen::Index c = 0; c < n; ++c) {
             const Dof& u = unknowns[static_cast<std::size_t>(c)];
-            // a beam node's rotation is never a dependent: CalculiX then drops it from the beam
-            bool independent = u.dof == 6;
+            bool independent = false;
             for (const Dof& i : independent_) independent = independent || (i.node == u.node && i.dof == u.dof);
             (independent ? kept : allowed).push_back(c);
         }
@@ -439,7 +418,6 @@ private:
     std::vector<int> body_R_, body_PHI_;
     std::vector<Vector2> com_;
     std::vector<Frame> root_, tip_;
-    std::vector<Beam> beams_;
     SegmentCompliance segment_;
     int node_C_ = -1;
     std::vector<Row> rows_;
@@ -478,7 +456,7 @@ CalculixResult parseDat(const std::string& text, int phi_node, int c_node) {
     int step = -1;
     bool eigen = false;
     while (std::getline(in, line)) {
-        // "displacements (vx,vy,vz)", or "(v(i),i=1..ndof)" in a model with beams
+        // "displacements (vx,vy,vz)", or "(v(i),i=1..ndof)" with rotational DOFs (the cantilever)
         if (line.find("displacements (") != std::string::npos) {
             ++step;
             eigen = false;
@@ -558,10 +536,10 @@ struct Agreement {
 
 /// nocdyn's and CalculiX's answers on one robot at one pose.
 struct Comparison {
-    Agreement agreement;                  ///< statics; frequency: CalculiX against `reference`
-    std::vector<double> calculix;         ///< CalculiX's lowest frequencies [Hz]
-    Vector3 lumped = Vector3::Zero();     ///< nocdyn's lumped frequencies [Hz]
-    Eigen::VectorXd elastodynamic;        ///< nocdyn's elastodynamic frequencies [Hz]
+    Agreement agreement;               ///< statics; frequency: CalculiX against `reference`
+    std::vector<double> calculix;      ///< CalculiX's lowest frequencies [Hz]
+    Vector3 lumped = Vector3::Zero();  ///< nocdyn's lumped frequencies [Hz]
+    Eigen::VectorXd elastodynamic;     ///< nocdyn's elastodynamic frequencies [Hz]
 };
 
 /// Runs both; the frequencies compared are the lumped ones for rigid bodies, the elastodynamic
@@ -617,8 +595,8 @@ Comparison compare(RobotDescription robot, const Pose& p, const std::string& job
     agreement.stiffness = (scaledK(result.compliance.inverse()) - scaledK(K.K)).norm() / scaledK(K.K).norm();
     EXPECT_EQ(out.calculix.size(), static_cast<std::size_t>(n));
     for (std::size_t i = 0; i < std::min(static_cast<std::size_t>(n), out.calculix.size()); ++i) {
-        agreement.frequency = std::max(agreement.frequency,
-                                       std::abs(out.calculix[i] / reference(static_cast<Eigen::Index>(i)) - 1.0));
+        agreement.frequency =
+            std::max(agreement.frequency, std::abs(out.calculix[i] / reference(static_cast<Eigen::Index>(i)) - 1.0));
     }
     std::printf("%s: CalculiX vs nocdyn: compliance %.3g, stiffness %.3g, frequencies %.3g (relative)\n", job.c_str(),
                 agreement.compliance, agreement.stiffness, agreement.frequency);
@@ -722,8 +700,8 @@ TEST_F(StiffnessCalculix, TheLumpedModelIsWithin0p2PercentOfTheElastodynamicOneO
         const Comparison c = compare(robotDescription(k.robot), k.p, std::string("lumped_") + k.robot);
         for (int i = 0; i < 3; ++i) {
             const double d = c.lumped(i) / c.elastodynamic(i) - 1.0;
-            std::printf("%s mode %d: lumped %.9g Hz, elastodynamic %.9g Hz, lumped/elastodynamic - 1 = %.6g\n",
-                        k.robot, i + 1, c.lumped(i), c.elastodynamic(i), d);
+            std::printf("%s mode %d: lumped %.9g Hz, elastodynamic %.9g Hz, lumped/elastodynamic - 1 = %.6g\n", k.robot,
+                        i + 1, c.lumped(i), c.elastodynamic(i), d);
             EXPECT_LT(std::abs(d), 2e-3);
             EXPECT_NEAR(d, k.lumped_over_elastodynamic[static_cast<std::size_t>(i)], 1e-7);
         }
@@ -746,9 +724,10 @@ TEST_F(StiffnessCalculix, ADistributedLinkMassLowersThe3RrrsFirstFrequenciesByAb
         const double continuum = f16 + (f16 - f8) / 3.0;
         const double elastodynamic = runs[1].elastodynamic(static_cast<Eigen::Index>(i));
         const double d = continuum / elastodynamic - 1.0;
-        std::printf("mode %zu: CalculiX 8 segments %.7g, 16 segments %.7g, extrapolated %.7g Hz; nocdyn elastodynamic "
-                    "%.9g, lumped %.9g Hz; continuum/elastodynamic - 1 = %.6g\n",
-                    i + 1, f8, f16, continuum, elastodynamic, runs[1].lumped(static_cast<Eigen::Index>(i)), d);
+        std::printf(
+            "mode %zu: CalculiX 8 segments %.7g, 16 segments %.7g, extrapolated %.7g Hz; nocdyn elastodynamic "
+            "%.9g, lumped %.9g Hz; continuum/elastodynamic - 1 = %.6g\n",
+            i + 1, f8, f16, continuum, elastodynamic, runs[1].lumped(static_cast<Eigen::Index>(i)), d);
         EXPECT_LT(std::abs(f16 / f8 - 1.0), 2e-3);
         EXPECT_NEAR(d, measured[i], 2e-5);  // CalculiX prints 7 digits
     }
