@@ -295,8 +295,9 @@ private:
     /// nodes, which carry its inertia in the root mass model) is welded to the first beam node;
     /// its tip frame is the last one with a rotation node of its own, equal to the beam's (without
     /// it, CalculiX's eigensolver returned a spurious negative eigenvalue on the 3-RRR with one
-    /// segment per link, the singular mass matrix's doing). In the distributed mass model each beam node carries its
-    /// share of the link's mass instead (translations only, as Euler-Bernoulli's beam).
+    /// segment per link, the singular mass matrix's doing). In the distributed mass model each
+    /// beam node carries its share of the link's mass instead (translations only, as
+    /// Euler-Bernoulli's beam).
     void addBeam(const Model& model, const Data& data, int i, MassModel mass_model, int elements) {
         const auto I = static_cast<std::size_t>(i);
         const auto J = static_cast<std::size_t>(i % model.limbs), b = static_cast<std::size_t>(i / model.limbs);
