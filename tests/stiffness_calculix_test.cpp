@@ -17,8 +17,7 @@
 //     its mass is spread over the beam's nodes;
 //   - the platform's point C is a node; its load cases give the compliance columns.
 // The U1 elements are not in the assembled model itself: there CalculiX 2.20 drops a beam
-// rotation that an *EQUATION makes dependent, fails to assemble MASS elements beside U1 nodes in
-// equations ("add_sm_st: coefficient should be 0"), and U1 has no mass matrix ("e_c3d_u1: no
+// rotation that an *EQUATION makes dependent, and U1 has no mass matrix ("e_c3d_u1: no
 // dynamic"). One U1 element reproduces the Euler-Bernoulli cantilever's tip compliance to
 // CalculiX's 7 printed digits, so the segment count does not change a massless beam (1 and 4
 // segments agree) and converges the distributed mass (8 and 16 segments, Richardson).
@@ -76,7 +75,7 @@ struct Dof {
 };
 
 /// Where an elastic body's inertia is: rigidly on its root (nocdyn's elastodynamic model), or
-/// spread along its beam as a density (the continuum; its mass and length give rho A).
+/// spread along its beam (the continuum: its mass shared among the beam's nodes).
 enum class MassModel { root, distributed };
 
 class CalculixModel {
@@ -209,6 +208,8 @@ public:
                 << real(0.0) << "\n";
             ++element;
         }
+        // no masses in the load cases: they play no part there, and with a beam's nodal masses
+        // CalculiX 2.20's static step fails ("add_sm_st: coefficient should be 0")
         for (const Mass& m : statics ? std::vector<Mass>{} : masses_) {
             out << "*ELEMENT, TYPE=MASS, ELSET=M" << element << "\n" << element << ", " << m.node + 1 << "\n";
             out << "*MASS, ELSET=M" << element << "\n" << real(m.mass) << "\n";
@@ -659,6 +660,25 @@ TEST_F(StiffnessCalculix, A3RrrWithMotorSpringsAndFlexureElbowsAgreesTo1e6) {
     EXPECT_LT(a.compliance, 1e-6);
     EXPECT_LT(a.stiffness, 1e-6);
     EXPECT_LT(a.frequency, 1e-6);
+}
+
+// The beams' stiffness in the models below: one U1 element with the shear coefficient 1e10 is the
+// Euler-Bernoulli cantilever, C_b = [l/EA 0 0; 0 l^3/(3 EI) l^2/(2 EI); 0 l^2/(2 EI) l/EI].
+TEST_F(StiffnessCalculix, OneU1ElementIsTheEulerBernoulliCantileverTo1e6) {
+    const fs::path dir = test::freshScratchDirectory("stiffness_calculix");
+    const double EA = 1.4e7, EI = 466.667, l = 0.105157;
+    Matrix3 expected;
+    expected << l / EA, 0.0, 0.0, 0.0, l * l * l / (3.0 * EI), l * l / (2.0 * EI), 0.0, l * l / (2.0 * EI), l / EI;
+    const Matrix3 C = cantileverCompliance(dir, EA, EI, l);
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) {
+            if (expected(r, c) == 0.0) {
+                EXPECT_LT(std::abs(C(r, c)), 1e-12 * expected.norm()) << r << ", " << c;
+            } else {
+                EXPECT_NEAR(C(r, c) / expected(r, c), 1.0, 1e-6) << r << ", " << c;
+            }
+        }
+    }
 }
 
 // Elastic links: CalculiX's beams are its U1 element with a shear coefficient of 1e10 (Euler-
