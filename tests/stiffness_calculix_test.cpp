@@ -1,15 +1,26 @@
 // The platform's static compliance and natural frequencies against CalculiX (Debian's
-// calculix-ccx, /usr/bin/ccx) on the same frame, for robots with rigid bodies and joint springs
-// (drive springs, flexure hinges), where the lumped, elastodynamic and finite-element models are
-// one. The CalculiX input is written here from the robot at the pose, in absolute coordinates,
-// independent of the library's joint-space formulation:
+// calculix-ccx 2.20, /usr/bin/ccx) on the same frame, for robots with joint springs (drive springs,
+// flexure hinges) and elastic links. The CalculiX input is written here from the robot at the
+// pose, in absolute coordinates, independent of the library's joint-space formulation:
 //   - every rigid body is a node R at its c.o.m. (translations) and a node PHI whose x
 //     displacement is its rotation; a MASS element on R (m) and one on PHI (I about the c.o.m.);
 //   - a joint ties the velocities of its two bodies at its point, v_i(r) = u_R + phi E (r - R):
 //     R joint: both components; P joint: equal rotations and the component normal to its
 //     direction, its slide a node Q with u_Q = d . (v_b - v_a);
 //   - a joint spring is a SPRING1/SPRING2 element on the PHI or Q degrees of freedom;
+//   - an elastic link is a chain of beam segments between its joints (addBeam): each segment's
+//     stiffness is that of CalculiX's own beam element U1 (a Timoshenko beam, its shear
+//     coefficient set to 1e10, so Euler-Bernoulli's), measured by CalculiX on a clamped
+//     cantilever of the segment's length (three tip load cases), and written as springs on the
+//     segment's relative deflection; the link's R and PHI nodes are welded to its root, so its
+//     inertia rides on its root (nocdyn's elastodynamic model) or, in the distributed mass model,
+//     its mass is spread over the beam's nodes;
 //   - the platform's point C is a node; its load cases give the compliance columns.
+// The U1 elements are not in the assembled model itself: there CalculiX 2.20 drops a beam
+// rotation that an *EQUATION makes dependent, and U1 has no mass matrix ("e_c3d_u1: no
+// dynamic"). One U1 element reproduces the Euler-Bernoulli cantilever's tip compliance to
+// CalculiX's 7 printed digits, so the segment count does not change a massless beam (1 and 4
+// segments agree) and converges the distributed mass (8 and 16 segments, Richardson).
 // The linear constraints are written in CalculiX's *EQUATION form, one dependent degree of
 // freedom each (solved for here by a rank-revealing QR); CalculiX assembles the springs and
 // masses, solves the three load cases and the eigenproblem. Its .dat file prints 7 significant
@@ -21,15 +32,17 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/QR>
 
 #include "cli_support.hpp"
@@ -61,38 +74,57 @@ struct Dof {
     int dof;
 };
 
+/// Where an elastic body's inertia is: rigidly on its root (nocdyn's elastodynamic model), or
+/// spread along its beam (the continuum: its mass shared among the beam's nodes).
+enum class MassModel { root, distributed };
+
 class CalculixModel {
 public:
-    CalculixModel(const Model& model, const analysis::StiffnessModel& compliance, const Data& data) {
+    /// The tip compliance of a cantilever (EA, EI, length) on [u_e, v_n, phi].
+    using SegmentCompliance = std::function<Matrix3(double, double, double)>;
+
+    /// `segment`: the beams' segment compliance (needed when a body is elastic).
+    CalculixModel(const Model& model, const analysis::StiffnessModel& compliance, const Data& data,
+                  MassModel mass_model = MassModel::root, int beam_elements = 1, SegmentCompliance segment = {})
+        : segment_(std::move(segment)) {
         const int bodies = model.bodies;
         body_R_.resize(static_cast<std::size_t>(bodies));
         body_PHI_.resize(static_cast<std::size_t>(bodies));
         com_.resize(static_cast<std::size_t>(bodies));
+        root_.resize(static_cast<std::size_t>(bodies));
+        tip_.resize(static_cast<std::size_t>(bodies));
         for (int i = 0; i < bodies; ++i) {
+            const auto I = static_cast<std::size_t>(i);
             const bool platform = i == model.platformBody();
             const Vector2 com =
                 platform
                     ? Vector2(data.x_P)
                     : data.limb[static_cast<std::size_t>(i % model.limbs)].x[static_cast<std::size_t>(i / model.limbs)];
-            com_[static_cast<std::size_t>(i)] = com;
-            body_R_[static_cast<std::size_t>(i)] = addNode(com, 2);
-            body_PHI_[static_cast<std::size_t>(i)] = addNode(com, 1);
+            com_[I] = com;
+            body_R_[I] = addNode(com, 2);
+            body_PHI_[I] = addNode(com, 1);
+            root_[I] = tip_[I] = {body_R_[I], com, body_PHI_[I], 1};
+            const bool elastic = !platform && compliance.elastic[static_cast<std::size_t>(i % model.limbs)]
+                                                                [static_cast<std::size_t>(i / model.limbs)];
             const InertiaDyad& M = model.inertia(i);
-            if (M.mass > 0.0) masses_.push_back({body_R_[static_cast<std::size_t>(i)], M.mass});
-            if (M.inertia > 0.0) masses_.push_back({body_PHI_[static_cast<std::size_t>(i)], M.inertia});
+            if (elastic) addBeam(model, data, i, mass_model, beam_elements);
+            if (elastic && mass_model == MassModel::distributed) continue;
+            if (M.mass > 0.0) masses_.push_back({body_R_[I], M.mass});
+            if (M.inertia > 0.0) masses_.push_back({body_PHI_[I], M.inertia});
         }
         const Vector2 C = data.p.tail<2>();
         node_C_ = addNode(C, 2);
         const int P = model.platformBody();
         // C rides on the platform
-        addVelocityRow(node_C_, 1, P, C, -1.0);
-        addVelocityRow(node_C_, 2, P, C, -1.0);
+        addVelocityRow(node_C_, 1, &root_[static_cast<std::size_t>(P)], C, -1.0);
+        addVelocityRow(node_C_, 2, &root_[static_cast<std::size_t>(P)], C, -1.0);
         for (int j = 0; j < model.limbs; ++j) {
             const auto J = static_cast<std::size_t>(j);
             for (int k = 0; k < 3; ++k) {
                 const auto K = static_cast<std::size_t>(k);
-                const int a = k == 0 ? -1 : model.body(j, k - 1);
-                const int b = k == 2 ? P : model.body(j, k);
+                // the joint ties the outboard end (tip) of body a to the inboard end (root) of b
+                const Frame* a = k == 0 ? nullptr : &tip_[static_cast<std::size_t>(model.body(j, k - 1))];
+                const Frame* b = &root_[static_cast<std::size_t>(k == 2 ? P : model.body(j, k))];
                 const Twist& s = data.limb[J].s[K];
                 const JointSpring kind = compliance.joint[J][K];
                 if (model.limb[J].type[K] == JointType::revolute) {
@@ -107,7 +139,7 @@ public:
                     if (kind == JointSpring::locked) rows_.push_back(relativeRotation(a, b));
                 } else {
                     const Vector2 d(s(1), s(2)), n = perp(d);
-                    const Vector2 r = com_[static_cast<std::size_t>(b)];
+                    const Vector2 r = b->origin;
                     rows_.push_back(relativeRotation(a, b));
                     Row normal;
                     for (int c = 1; c <= 2; ++c) {
@@ -176,7 +208,9 @@ public:
                 << real(0.0) << "\n";
             ++element;
         }
-        for (const Mass& m : masses_) {
+        // no masses in the load cases: they play no part there, and with a beam's nodal masses
+        // CalculiX 2.20's static step fails ("add_sm_st: coefficient should be 0")
+        for (const Mass& m : statics ? std::vector<Mass>{} : masses_) {
             out << "*ELEMENT, TYPE=MASS, ELSET=M" << element << "\n" << element << ", " << m.node + 1 << "\n";
             out << "*MASS, ELSET=M" << element << "\n" << real(m.mass) << "\n";
             ++element;
@@ -206,10 +240,16 @@ public:
     [[nodiscard]] int platformC() const { return node_C_ + 1; }
 
 private:
-    static constexpr int kPadding = 20;
+    static constexpr int kPadding = 64;
     struct Node {
         Vector2 point;
         int dofs;
+    };
+    /// A body's frame: velocity at r = u_trans + rotation E (r - origin).
+    struct Frame {
+        int trans;
+        Vector2 origin;
+        int rot_node, rot_dof;
     };
     struct Spring {
         int a, b;  // PHI or Q nodes, a = -1 for the ground
@@ -225,26 +265,91 @@ private:
         nodes_.push_back({point, dofs});
         return static_cast<int>(nodes_.size()) - 1;
     }
-    int phi(int body) const { return body < 0 ? -1 : body_PHI_[static_cast<std::size_t>(body)]; }
+    static int phi(const Frame* f) { return f == nullptr ? -1 : f->rot_node; }
 
-    /// row += sign * component c of the velocity of body i at point r (nothing for the ground).
-    void addVelocity(Row& row, int i, const Vector2& r, int c, double sign) const {
-        if (i < 0) return;
-        const Vector2 arm = r - com_[static_cast<std::size_t>(i)];
-        row[{body_R_[static_cast<std::size_t>(i)], c}] += sign;
-        row[{body_PHI_[static_cast<std::size_t>(i)], 1}] += sign * (c == 1 ? -arm.y() : arm.x());
+    /// row += sign * component c of the velocity of frame f at point r (nothing for the ground).
+    static void addVelocity(Row& row, const Frame* f, const Vector2& r, int c, double sign) {
+        if (f == nullptr) return;
+        const Vector2 arm = r - f->origin;
+        row[{f->trans, c}] += sign;
+        row[{f->rot_node, f->rot_dof}] += sign * (c == 1 ? -arm.y() : arm.x());
     }
-    void addVelocityRow(int node, int c, int body, const Vector2& r, double sign) {
+    void addVelocityRow(int node, int c, const Frame* f, const Vector2& r, double sign) {
         Row row;
         row[{node, c}] = 1.0;
-        addVelocity(row, body, r, c, sign);
+        addVelocity(row, f, r, c, sign);
         rows_.push_back(row);
     }
-    Row relativeRotation(int a, int b) const {
+    static Row relativeRotation(const Frame* a, const Frame* b) {
         Row row;
-        row[{phi(b), 1}] += 1.0;
-        if (a >= 0) row[{phi(a), 1}] -= 1.0;
+        row[{b->rot_node, b->rot_dof}] += 1.0;
+        if (a != nullptr) row[{a->rot_node, a->rot_dof}] -= 1.0;
         return row;
+    }
+
+    /// Body i (limb i % limbs, link i / limbs) as a chain of `elements` beam segments from its
+    /// inboard joint A to its outboard one B. Each beam node is a 2-dof node and a rotation node;
+    /// each segment has the stiffness K_s of CalculiX's U1 cantilever of its length (`segment_`,
+    /// in the segment's axes [u_e, v_n, phi], rotated here to the plane's), written as three
+    /// springs: K_s = sum lambda_k q_k q_k^T, a spring lambda_k on a_k = q_k^T d, d the segment
+    /// tip's displacement relative to its root's frame. The body's root frame (its R and PHI
+    /// nodes, which carry its inertia in the root mass model) is welded to the first beam node;
+    /// its tip frame is the last one with a rotation node of its own, equal to the beam's (without
+    /// it, CalculiX's eigensolver returned a spurious negative eigenvalue on the 3-RRR with one
+    /// segment per link, the singular mass matrix's doing). In the distributed mass model each
+    /// beam node carries its share of the link's mass instead (translations only, as
+    /// Euler-Bernoulli's beam).
+    void addBeam(const Model& model, const Data& data, int i, MassModel mass_model, int elements) {
+        const auto I = static_cast<std::size_t>(i);
+        const auto J = static_cast<std::size_t>(i % model.limbs), b = static_cast<std::size_t>(i / model.limbs);
+        const Twist& sa = data.limb[J].s[b];
+        const Twist& sb = data.limb[J].s[b + 1];
+        const Vector2 A(-sa(2), sa(1)), B(-sb(2), sb(1));
+        const BodyDescription& body = model.description.limbs[J].bodies[b];
+        const double EA = body.elastic->EA, EI = body.elastic->EI, l = (B - A).norm();
+        std::vector<Frame> node;
+        for (int e = 0; e <= elements; ++e) {
+            const Vector2 x = A + (B - A) * (static_cast<double>(e) / elements);
+            const int t = addNode(x, 2);
+            node.push_back({t, x, addNode(x, 1), 1});
+            if (mass_model == MassModel::distributed) {
+                const double share = (e == 0 || e == elements) ? 0.5 : 1.0;
+                masses_.push_back({t, share * model.inertia(i).mass / elements});
+            }
+        }
+        const Vector2 e = (B - A).normalized();
+        Matrix3 R = Matrix3::Identity();  // local [u_e, v_n, phi] to global [u_x, u_y, phi]
+        R.block<2, 1>(0, 0) = e;
+        R.block<2, 1>(0, 1) = perp(e);
+        const Matrix3 K_local = segment_(EA, EI, l / elements).inverse();
+        const Eigen::SelfAdjointEigenSolver<Matrix3> eig(0.5 * (K_local + K_local.transpose()));
+        for (std::size_t k = 0; k + 1 < node.size(); ++k) {
+            for (int m = 0; m < 3; ++m) {
+                const Vector3 q = R * eig.eigenvectors().col(m);
+                const int a = addNode(node[k + 1].origin, 1);
+                Row row;  // a = q^T d, d = [v_tip - v_root(x_tip); phi_tip - phi_root]
+                row[{a, 1}] = 1.0;
+                for (int c = 1; c <= 2; ++c) {
+                    addVelocity(row, &node[k + 1], node[k + 1].origin, c, -q(c - 1));
+                    addVelocity(row, &node[k], node[k + 1].origin, c, q(c - 1));
+                }
+                row[{node[k + 1].rot_node, 1}] -= q(2);
+                row[{node[k].rot_node, 1}] += q(2);
+                rows_.push_back(row);
+                springs_.push_back({-1, a, eig.eigenvalues()(m)});
+            }
+        }
+        for (int c = 1; c <= 2; ++c) {
+            Row row;
+            row[{body_R_[I], c}] = 1.0;
+            addVelocity(row, &node.front(), com_[I], c, -1.0);
+            rows_.push_back(row);
+        }
+        rows_.push_back(relativeRotation(&node.front(), &root_[I]));
+        const int tip_phi = addNode(B, 1);
+        const Frame tip_rotation{-1, B, tip_phi, 1};
+        rows_.push_back(relativeRotation(&node.back(), &tip_rotation));
+        tip_[I] = {node.back().trans, B, tip_phi, 1};
     }
 
     /// The constraints with one dependent unknown each: x_D = G x_I, the platform's three
@@ -314,6 +419,8 @@ private:
     std::vector<Node> nodes_;
     std::vector<int> body_R_, body_PHI_;
     std::vector<Vector2> com_;
+    std::vector<Frame> root_, tip_;
+    SegmentCompliance segment_;
     int node_C_ = -1;
     std::vector<Row> rows_;
     std::vector<Spring> springs_;
@@ -350,9 +457,9 @@ CalculixResult parseDat(const std::string& text, int phi_node, int c_node) {
     std::string line;
     int step = -1;
     bool eigen = false;
-    const std::regex number_line(R"(^\s*(\d+)\s+(\S+)\s+(\S+)\s+(\S+)(\s+(\S+))?\s*$)");
     while (std::getline(in, line)) {
-        if (line.find("displacements (vx,vy,vz)") != std::string::npos) {
+        // "displacements (vx,vy,vz)", or "(v(i),i=1..ndof)" with rotational DOFs (the cantilever)
+        if (line.find("displacements (") != std::string::npos) {
             ++step;
             eigen = false;
             continue;
@@ -362,47 +469,115 @@ CalculixResult parseDat(const std::string& text, int phi_node, int c_node) {
             continue;
         }
         if (line.find("P A R T I C I P A T I O N") != std::string::npos) eigen = false;
-        std::smatch m;
-        if (!std::regex_match(line, m, number_line)) continue;
-        if (eigen && m[6].matched) {
-            out.frequency.push_back(std::stod(m[4].str()));
+        // a row: an integer (node or mode) and numbers
+        std::istringstream fields(line);
+        long index = 0;
+        if (!(fields >> index)) continue;
+        std::vector<double> values;
+        std::string field;
+        bool numbers = true;
+        while (fields >> field) {
+            char* end = nullptr;
+            values.push_back(std::strtod(field.c_str(), &end));
+            numbers = numbers && end != field.c_str() && *end == '\0';
+        }
+        if (!numbers || values.size() < 3) continue;
+        // eigenvalue rows: mode, eigenvalue, omega [rad/time], f [cycles/time], imaginary part
+        if (eigen && values.size() == 4) {
+            out.frequency.push_back(values[2]);
         } else if (!eigen && step >= 0 && step < 3) {
-            const int node = std::stoi(m[1].str());
-            if (node == phi_node) out.compliance(0, step) = std::stod(m[2].str());
-            if (node == c_node) {
-                out.compliance(1, step) = std::stod(m[2].str());
-                out.compliance(2, step) = std::stod(m[3].str());
+            if (index == phi_node) out.compliance(0, step) = values[0];
+            if (index == c_node) {
+                out.compliance(1, step) = values[0];
+                out.compliance(2, step) = values[1];
             }
         }
     }
     return out;
 }
 
+/// The tip compliance on [u_e, v_n, phi] of a cantilever of CalculiX's U1 beam element (length
+/// l along x, clamped at x = 0), from three load cases at its tip: f_x, f_y, m_z.
+Matrix3 cantileverCompliance(const fs::path& dir, double EA, double EI, double l) {
+    constexpr double E = 7.0e10;
+    std::ostringstream deck;
+    deck << "*NODE, NSET=NALL\n1, 0, 0, 0\n2, " << real(l) << ", 0, 0\n"
+         << "*USER ELEMENT, TYPE=U1, INTEGRATION POINTS=2, MAXDOF=6, NODES=2\n"
+         << "*ELEMENT, TYPE=U1, ELSET=B\n1, 1, 2\n*MATERIAL, NAME=MB\n*ELASTIC\n"
+         << real(E) << ", 0.3\n*BEAM SECTION, ELSET=B, MATERIAL=MB, SECTION=GENERAL\n"
+         << real(EA / E) << ", " << real(EI / E) << ", 0, " << real(EI / E) << ", 1.0e10\n0, 0, 1\n"
+         << "*NSET, NSET=TIP\n2\n*BOUNDARY\n1, 1, 6\n2, 3, 5\n";
+    for (const int dof : {1, 2, 6}) {
+        deck << "*STEP\n*STATIC\n*CLOAD, OP=NEW\n2, " << dof << ", 1.0\n*NODE PRINT, NSET=TIP\nU\n*END STEP\n";
+    }
+    const std::string job = "cantilever";
+    {
+        std::ofstream file(dir / (job + ".inp"));
+        file << deck.str();
+    }
+    EXPECT_TRUE(runCalculix(dir, job)) << test::readWhole(dir / (job + ".log"));
+    Matrix3 C = Matrix3::Zero();
+    std::istringstream in(test::readWhole(dir / (job + ".dat")));
+    std::string line;
+    int step = -1;
+    while (std::getline(in, line)) {
+        if (line.find("displacements (") != std::string::npos) ++step;
+        std::istringstream fields(line);
+        int node = 0;
+        std::array<double, 6> u{};
+        if (!(fields >> node) || node != 2 || step < 0 || step > 2) continue;
+        for (double& v : u) fields >> v;
+        C.col(step) = Vector3(u[0], u[1], u[5]);
+    }
+    return C;
+}
+
 struct Agreement {
     double compliance = 0.0, stiffness = 0.0, frequency = 0.0;
 };
 
-Agreement compareWithCalculix(RobotDescription robot, const Pose& p, const std::string& job) {
+/// nocdyn's and CalculiX's answers on one robot at one pose.
+struct Comparison {
+    Agreement agreement;               ///< statics; frequency: CalculiX against `reference`
+    std::vector<double> calculix;      ///< CalculiX's lowest frequencies [Hz]
+    Vector3 lumped = Vector3::Zero();  ///< nocdyn's lumped frequencies [Hz]
+    Eigen::VectorXd elastodynamic;     ///< nocdyn's elastodynamic frequencies [Hz]
+};
+
+/// Runs both; the frequencies compared are the lumped ones for rigid bodies, the elastodynamic
+/// ones (all of them, or `modes`) when a body is elastic.
+Comparison compare(RobotDescription robot, const Pose& p, const std::string& job,
+                   MassModel mass_model = MassModel::root, int beam_elements = 1, int modes = 0) {
     const Model model(std::move(robot));
     const analysis::StiffnessModel compliance(model);
     Data data(model);
     analysis::StiffnessData K;
-    analysis::LumpedModes modes;
-    const Status status = analysis::stiffnessAndModes(model, compliance, data, p, K, modes);
+    analysis::LumpedModes lumped;
+    Comparison out;
+    const Status status = analysis::stiffnessAndModes(model, compliance, data, p, K, lumped);
     EXPECT_TRUE(status.ok()) << describe(status, model);
-    const CalculixModel fe(model, compliance, data);
+    out.lumped = lumped.frequency;
+    analysis::ElastodynamicModes elastic;
+    EXPECT_TRUE(analysis::elastodynamicModes(model, compliance, data, elastic).ok());
+    out.elastodynamic = elastic.frequency;
+    const Eigen::VectorXd reference = compliance.any_elastic ? out.elastodynamic : Eigen::VectorXd(out.lumped);
+    const int n = modes > 0 ? modes : static_cast<int>(reference.size());
     const fs::path dir = test::freshScratchDirectory("stiffness_calculix");
+    const auto cantilever = [&](double EA, double EI, double l) { return cantileverCompliance(dir, EA, EI, l); };
+    const CalculixModel fe(model, compliance, data, mass_model, beam_elements, cantilever);
+    const CalculixModel& fe_modes = fe;
     for (const bool statics : {true, false}) {
         const std::string name = job + (statics ? "_static" : "_modes");
         {
             std::ofstream deck(dir / (name + ".inp"));
-            deck << fe.deck(statics, 3);
+            deck << (statics ? fe : fe_modes).deck(statics, n);
         }
         EXPECT_TRUE(runCalculix(dir, name)) << test::readWhole(dir / (name + ".log"));
     }
-    CalculixResult result = parseDat(test::readWhole(dir / (job + "_static.dat")), fe.platformPhi(), fe.platformC());
-    result.frequency =
-        parseDat(test::readWhole(dir / (job + "_modes.dat")), fe.platformPhi(), fe.platformC()).frequency;
+    const CalculixResult result =
+        parseDat(test::readWhole(dir / (job + "_static.dat")), fe.platformPhi(), fe.platformC());
+    out.calculix =
+        parseDat(test::readWhole(dir / (job + "_modes.dat")), fe_modes.platformPhi(), fe_modes.platformC()).frequency;
     // nocdyn's compliance: dp under the unit generalized forces
     Matrix3 C;
     for (int c = 0; c < 3; ++c) {
@@ -417,20 +592,26 @@ Agreement compareWithCalculix(RobotDescription robot, const Pose& p, const std::
     const auto scaledK = [&](const Matrix3& m) {
         return Matrix3(d.cwiseInverse().asDiagonal() * m * d.cwiseInverse().asDiagonal());
     };
-    Agreement agreement;
+    Agreement& agreement = out.agreement;
     agreement.compliance = (scaledC(result.compliance) - scaledC(C)).norm() / scaledC(C).norm();
     agreement.stiffness = (scaledK(result.compliance.inverse()) - scaledK(K.K)).norm() / scaledK(K.K).norm();
-    EXPECT_EQ(result.frequency.size(), 3U);
-    for (std::size_t i = 0; i < std::min<std::size_t>(3, result.frequency.size()); ++i) {
-        agreement.frequency = std::max(
-            agreement.frequency, std::abs(result.frequency[i] / modes.frequency(static_cast<Eigen::Index>(i)) - 1.0));
+    EXPECT_EQ(out.calculix.size(), static_cast<std::size_t>(n));
+    for (std::size_t i = 0; i < std::min(static_cast<std::size_t>(n), out.calculix.size()); ++i) {
+        agreement.frequency =
+            std::max(agreement.frequency, std::abs(out.calculix[i] / reference(static_cast<Eigen::Index>(i)) - 1.0));
     }
-    std::printf(
-        "%s: CalculiX vs nocdyn: compliance %.3g, stiffness %.3g, frequencies %.3g (relative); "
-        "nocdyn f = %.9g %.9g %.9g Hz\n",
-        job.c_str(), agreement.compliance, agreement.stiffness, agreement.frequency, modes.frequency(0),
-        modes.frequency(1), modes.frequency(2));
-    return agreement;
+    std::printf("%s: CalculiX vs nocdyn: compliance %.3g, stiffness %.3g, frequencies %.3g (relative)\n", job.c_str(),
+                agreement.compliance, agreement.stiffness, agreement.frequency);
+    for (std::size_t i = 0; i < out.calculix.size(); ++i) {
+        std::printf("  mode %zu: CalculiX %.9g Hz, nocdyn %.9g Hz%s\n", i + 1, out.calculix[i],
+                    i < static_cast<std::size_t>(reference.size()) ? reference(static_cast<Eigen::Index>(i)) : 0.0,
+                    compliance.any_elastic ? " (elastodynamic)" : " (lumped)");
+    }
+    return out;
+}
+
+Agreement compareWithCalculix(RobotDescription robot, const Pose& p, const std::string& job) {
+    return compare(std::move(robot), p, job).agreement;
 }
 
 RobotDescription robotDescription(const std::string& robot) {
@@ -479,6 +660,102 @@ TEST_F(StiffnessCalculix, A3RrrWithMotorSpringsAndFlexureElbowsAgreesTo1e6) {
     EXPECT_LT(a.compliance, 1e-6);
     EXPECT_LT(a.stiffness, 1e-6);
     EXPECT_LT(a.frequency, 1e-6);
+}
+
+// The beams' stiffness in the models below: one U1 element with the shear coefficient 1e10 is the
+// Euler-Bernoulli cantilever, C_b = [l/EA 0 0; 0 l^3/(3 EI) l^2/(2 EI); 0 l^2/(2 EI) l/EI].
+TEST_F(StiffnessCalculix, OneU1ElementIsTheEulerBernoulliCantileverTo1e6) {
+    const fs::path dir = test::freshScratchDirectory("stiffness_calculix");
+    const double EA = 1.4e7, EI = 466.667, l = 0.105157;
+    Matrix3 expected;
+    expected << l / EA, 0.0, 0.0, 0.0, l * l * l / (3.0 * EI), l * l / (2.0 * EI), 0.0, l * l / (2.0 * EI), l / EI;
+    const Matrix3 C = cantileverCompliance(dir, EA, EI, l);
+    for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) {
+            if (expected(r, c) == 0.0) {
+                EXPECT_LT(std::abs(C(r, c)), 1e-12 * expected.norm()) << r << ", " << c;
+            } else {
+                EXPECT_NEAR(C(r, c) / expected(r, c), 1.0, 1e-6) << r << ", " << c;
+            }
+        }
+    }
+}
+
+// Elastic links: CalculiX's beams are its U1 element with a shear coefficient of 1e10 (Euler-
+// Bernoulli); the mass model is nocdyn's elastodynamic one (each link's inertia on its root frame,
+// its beam massless), so every elastodynamic frequency must agree, not only the lowest three.
+// The beam's segmentation must not matter for massless beams: 1 and 4 segments per link.
+TEST_F(StiffnessCalculix, A3RrrWithElasticLinksAgreesTo1e6InStiffnessAndEveryElastodynamicMode) {
+    for (const int segments : {1, 4}) {
+        const Comparison c = compare(robotDescription("3-rrr-elastic"), Pose(0.01, 0.002, 0.003),
+                                     "rrr_elastic_" + std::to_string(segments), MassModel::root, segments);
+        EXPECT_EQ(c.elastodynamic.size(), 15);  // 3 platform + 12 beam-deflection DOFs with mass
+        EXPECT_LT(c.agreement.compliance, 1e-6);
+        EXPECT_LT(c.agreement.stiffness, 1e-6);
+        EXPECT_LT(c.agreement.frequency, 1e-6);
+    }
+}
+
+TEST_F(StiffnessCalculix, ThePaper3PrrWithElasticLinksAgreesTo1e6InStiffnessAndEveryElastodynamicMode) {
+    const Comparison c = compare(robotDescription("paper-3prr-compliant"), Pose(0.01, 0.002, -0.001), "prr_elastic");
+    EXPECT_EQ(c.elastodynamic.size(), 9);
+    EXPECT_LT(c.agreement.compliance, 1e-6);
+    EXPECT_LT(c.agreement.stiffness, 1e-6);
+    EXPECT_LT(c.agreement.frequency, 1e-6);
+}
+
+// The lumped model (rigid links' inertia on the pose coordinates, K from every compliance) against
+// the elastodynamic one: the links' inertia no longer follows their beams' deflection, so the
+// lumped frequencies are lower. Measured (docs/stiffness-validation.md).
+TEST_F(StiffnessCalculix, TheLumpedModelIsWithin0p2PercentOfTheElastodynamicOneOnBothElasticRobots) {
+    struct Case {
+        const char* robot;
+        Pose p;
+        std::array<double, 3> lumped_over_elastodynamic;  // minus 1, measured
+    };
+    const Case cases[] = {
+        {"3-rrr-elastic", Pose(0.01, 0.002, 0.003), {-1.33192e-3, -1.44579e-3, -1.76810e-3}},
+        {"paper-3prr-compliant", Pose(0.01, 0.002, -0.001), {-8.85272e-5, -1.57557e-4, -1.38208e-3}},
+    };
+    for (const Case& k : cases) {
+        const Comparison c = compare(robotDescription(k.robot), k.p, std::string("lumped_") + k.robot);
+        for (int i = 0; i < 3; ++i) {
+            const double d = c.lumped(i) / c.elastodynamic(i) - 1.0;
+            std::printf("%s mode %d: lumped %.9g Hz, elastodynamic %.9g Hz, lumped/elastodynamic - 1 = %.6g\n", k.robot,
+                        i + 1, c.lumped(i), c.elastodynamic(i), d);
+            EXPECT_LT(std::abs(d), 2e-3);
+            EXPECT_NEAR(d, k.lumped_over_elastodynamic[static_cast<std::size_t>(i)], 1e-7);
+        }
+    }
+}
+
+// The mass-model error: CalculiX with each link's mass spread along its beam (Euler-Bernoulli's
+// continuum, lumped at the beam's nodes, converged in the segment count) against nocdyn's
+// elastodynamic model, whose link inertia rides on its root. Measured (docs/stiffness-validation.md).
+TEST_F(StiffnessCalculix, ADistributedLinkMassLowersThe3RrrsFirstFrequenciesByAbout0p1Percent) {
+    std::vector<Comparison> runs;
+    for (const int segments : {8, 16}) {
+        runs.push_back(compare(robotDescription("3-rrr-elastic"), Pose(0.01, 0.002, 0.003),
+                               "rrr_distributed_" + std::to_string(segments), MassModel::distributed, segments, 6));
+    }
+    const std::array<double, 3> measured{-1.0496e-3, -1.1390e-3, -1.39556e-3};  // continuum / elastodynamic - 1
+    for (std::size_t i = 0; i < 3; ++i) {
+        // lumped nodal masses converge as 1/N^2: Richardson's extrapolation from 8 and 16 segments
+        const double f8 = runs[0].calculix[i], f16 = runs[1].calculix[i];
+        const double continuum = f16 + (f16 - f8) / 3.0;
+        const double elastodynamic = runs[1].elastodynamic(static_cast<Eigen::Index>(i));
+        const double d = continuum / elastodynamic - 1.0;
+        std::printf(
+            "mode %zu: CalculiX 8 segments %.7g, 16 segments %.7g, extrapolated %.7g Hz; nocdyn elastodynamic "
+            "%.9g, lumped %.9g Hz; continuum/elastodynamic - 1 = %.6g\n",
+            i + 1, f8, f16, continuum, elastodynamic, runs[1].lumped(static_cast<Eigen::Index>(i)), d);
+        EXPECT_LT(std::abs(f16 / f8 - 1.0), 2e-3);
+        EXPECT_NEAR(d, measured[i], 2e-5);  // CalculiX prints 7 digits
+    }
+    // the beams' own modes are beyond the elastodynamic model: its 4th mode (the links swinging on
+    // their beams' tip springs) against the continuum's first bending mode
+    std::printf("mode 4: CalculiX (16 segments) %.7g Hz, nocdyn elastodynamic %.7g Hz\n", runs[1].calculix[3],
+                runs[1].elastodynamic(3));
 }
 
 }  // namespace

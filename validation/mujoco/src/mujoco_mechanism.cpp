@@ -10,8 +10,10 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <complex>
 #include <cstring>
 #include <iomanip>
+#include <numbers>
 #include <sstream>
 
 #include <Eigen/Dense>
@@ -50,12 +52,16 @@ void writeInertial(std::ostringstream& x, const std::string& indent, double mass
 
 void writeJoint(std::ostringstream& x, const std::string& indent, const std::string& name,
                 const JointDescription& joint) {
+    // a joint spring (drive or flexure): MuJoCo's joint stiffness, at rest at home (springref 0)
+    std::ostringstream spring;
+    spring << std::setprecision(17);
+    if (joint.stiffness && *joint.stiffness > 0.0) spring << " stiffness=\"" << *joint.stiffness << "\"";
     if (joint.type == JointType::revolute) {
         x << indent << "<joint name=\"" << name << "\" type=\"hinge\" pos=\"" << joint.point.x() << " "
-          << joint.point.y() << " 0\" axis=\"0 0 1\"/>\n";
+          << joint.point.y() << " 0\" axis=\"0 0 1\"" << spring.str() << "/>\n";
     } else {
         x << indent << "<joint name=\"" << name << "\" type=\"slide\" axis=\"" << joint.direction.x() << " "
-          << joint.direction.y() << " 0\"/>\n";
+          << joint.direction.y() << " 0\"" << spring.str() << "/>\n";
     }
 }
 
@@ -549,5 +555,50 @@ double MujocoMechanism::loopError() const {
 }
 
 long MujocoMechanism::plantSteps() const { return impl_->plant_steps; }
+
+std::vector<MujocoMechanism::LinearMode> MujocoMechanism::linearModes(const Eigen::Vector3d& pose, double timestep) {
+    Impl& s = *impl_;
+    mjModel* m = s.m;
+    for (std::size_t j = 0; j < s.robot.limbs.size(); ++j) {
+        const JointDescription& joint = s.robot.limbs[j].joints[static_cast<std::size_t>(s.closure[j])];
+        if (joint.stiffness && *joint.stiffness > 0.0)
+            throw Error("MuJoCo plant: limb " + std::to_string(j + 1) +
+                        "'s spring is at its loop closure, which MuJoCo's connect cannot carry");
+    }
+    if (!(timestep > 0.0)) throw Error("MuJoCo plant: the linearisation's time step must be positive");
+    const double saved_timestep = m->opt.timestep, saved_tolerance = m->opt.tolerance;
+    const int saved_flags = m->opt.disableflags;
+    const std::vector<mjtNum> saved_spring(m->qpos_spring, m->qpos_spring + m->nq);
+    m->opt.timestep = timestep;  // the constraints' time constant follows: solref [2 h, 1]
+    m->opt.disableflags |= mjDSBL_GRAVITY;
+    m->opt.tolerance = 0.0;  // the solver to its iteration limit: no tolerance in the differences
+    resetPlant(pose);
+    for (int i = 0; i < m->nq; ++i) m->qpos_spring[i] = s.d->qpos[i];  // springref at the pose
+    const int nv = m->nv;
+    Eigen::Matrix<mjtNum, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> A(2 * nv, 2 * nv);
+    mjd_transitionFD(m, s.d, 1e-6, 1, A.data(), nullptr, nullptr, nullptr);
+    m->opt.timestep = saved_timestep;
+    m->opt.tolerance = saved_tolerance;
+    m->opt.disableflags = saved_flags;
+    std::copy(saved_spring.begin(), saved_spring.end(), m->qpos_spring);
+    resetPlant(pose);
+    // semi-implicit Euler: v' = v + h a(q, v), q' = q + h v', so A's velocity rows are exactly
+    // [h a_q, I + h a_v]: the continuous-time A_c = [[0, I], [a_q, a_v]]
+    const double h = timestep;
+    Eigen::MatrixXd Ac = Eigen::MatrixXd::Zero(2 * nv, 2 * nv);
+    Ac.topRightCorner(nv, nv).setIdentity();
+    Ac.bottomLeftCorner(nv, nv) = A.bottomLeftCorner(nv, nv) / h;
+    Ac.bottomRightCorner(nv, nv) = (A.bottomRightCorner(nv, nv) - Eigen::MatrixXd::Identity(nv, nv)) / h;
+    const Eigen::EigenSolver<Eigen::MatrixXd> eig(Ac, false);
+    std::vector<LinearMode> modes;
+    for (Eigen::Index i = 0; i < eig.eigenvalues().size(); ++i) {
+        const std::complex<double> lambda = eig.eigenvalues()(i);
+        if (!(lambda.imag() > 0.0)) continue;  // one of each conjugate pair; real ones are no oscillation
+        modes.push_back({std::abs(lambda) / (2.0 * std::numbers::pi), -lambda.real() / std::abs(lambda)});
+    }
+    std::sort(modes.begin(), modes.end(),
+              [](const LinearMode& a, const LinearMode& b) { return a.frequency < b.frequency; });
+    return modes;
+}
 
 }  // namespace nocdyn::validation

@@ -5,7 +5,8 @@
 // at their home points and directions): each limb is a tree plus one <connect> equality at one
 // of its revolute joints (the first unactuated R joint, else the first R joint): the joints
 // before it hang from the world, the joints after it from the platform (reversed); the platform
-// is on slide x, slide y and a hinge at C. Gravity is MuJoCo's option/gravity.
+// is on slide x, slide y and a hinge at C. Gravity is MuJoCo's option/gravity. A joint's
+// stiffness (a drive or flexure spring) is MuJoCo's joint stiffness, at rest at home.
 //
 // mj_inverse is not used (its soft constraints are wrong for prescribed closed loops): per
 // sample, Newton on the connect residuals efc_pos with efc_J for the passive joints
@@ -75,6 +76,19 @@ public:
     [[nodiscard]] double loopError() const;
     /// mj_step calls since the last resetPlant.
     [[nodiscard]] long plantSteps() const;
+
+    /// One mode of small free vibration: natural frequency |lambda| / 2 pi [Hz], damping ratio.
+    struct LinearMode {
+        double frequency;
+        double damping_ratio;
+    };
+    /// The plant linearised at rest at `pose` by mjd_transitionFD (centred differences), with
+    /// the joints' springs (MJCF joint stiffness) at rest at the pose (qpos_spring = the pose's
+    /// qpos, as springref), gravity off, at time step `timestep` (the loops' soft constraints
+    /// then have the time constant 2 timestep): the oscillatory eigenvalues lambda of the
+    /// continuous-time state matrix, ascending. Leaves the plant reset at the pose, with its own
+    /// time step. Throws nocdyn::Error when a spring is at a loop closure (a connect).
+    [[nodiscard]] std::vector<LinearMode> linearModes(const Eigen::Vector3d& pose, double timestep);
 
 private:
     struct Impl;
