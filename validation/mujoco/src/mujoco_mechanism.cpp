@@ -594,9 +594,9 @@ MujocoMechanism::PlatformDerivatives MujocoMechanism::platformDerivatives(double
     resetPlant(pose0, rate0, t0);
     restore();
     // the loops' impedance, restored below
-    std::vector<double> solimp(static_cast<std::size_t>(mjNIMP * m->neq));
-    for (int i = 0; i < mjNIMP * m->neq; ++i) solimp[static_cast<std::size_t>(i)] = m->eq_solimp[i];
-    for (int i = 0; i < m->neq; ++i) {
+    const std::ptrdiff_t neq = m->neq;
+    const std::vector<double> solimp(m->eq_solimp, m->eq_solimp + mjNIMP * neq);
+    for (std::ptrdiff_t i = 0; i < neq; ++i) {
         m->eq_solimp[mjNIMP * i] = impedance;
         m->eq_solimp[mjNIMP * i + 1] = impedance;
     }
@@ -613,7 +613,10 @@ MujocoMechanism::PlatformDerivatives MujocoMechanism::platformDerivatives(double
         const int row = nv + pv[static_cast<std::size_t>(r)];
         for (int c = 0; c < 2 * nv; ++c) {
             const double identity = c == row ? 1.0 : 0.0;
-            dqacc(r, c) = (A[static_cast<std::size_t>(row * 2 * nv + c)] - identity) / dt;
+            dqacc(r, c) =
+                (A[static_cast<std::size_t>(row) * 2 * static_cast<std::size_t>(nv) + static_cast<std::size_t>(c)] -
+                 identity) /
+                dt;
         }
     }
     out.d_p = dqacc.leftCols(nv) * V + dqacc.rightCols(nv) * dqvel_dp;
@@ -633,7 +636,7 @@ MujocoMechanism::PlatformDerivatives MujocoMechanism::platformDerivatives(double
         }
         out.d_tau.col(a) = (plus - minus) / 2.0;
     }
-    for (int i = 0; i < mjNIMP * m->neq; ++i) m->eq_solimp[i] = solimp[static_cast<std::size_t>(i)];
+    std::copy(solimp.begin(), solimp.end(), m->eq_solimp);
     mj_forward(m, d);
     return out;
 }
