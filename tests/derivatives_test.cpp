@@ -2,16 +2,20 @@
 // every limb type (the robots of lagrange_test.cpp: gravity, friction, redundant actuation),
 // against five-point central finite differences of the values of inverseDynamics and
 // forwardDynamics (independent code: the full NOC path with T_i, I and C), and the identities
-// A_p^T d tau/d ddp = M_p (the mapped mass matrix) and d ddp/d tau = M_p^-1 A_p^T.
+// A_p^T d tau/d ddp = M_p (the mapped mass matrix) and d ddp/d tau = M_p^-1 A_p^T; and the
+// derivatives of the actuator variables u, du, ddu against differences of inverseDynamics'
+// values, with d du/d dp = d ddu/d ddp = d u/d p = A S(c).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
 #include <optional>
 #include <cmath>
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "nocdyn/batch.hpp"
@@ -328,6 +332,86 @@ TEST_P(DerivativesRandomRobots, BatchEqualsSampleBySample) {
     EXPECT_EQ(result.status.code, first_code);
 }
 
+TEST_P(DerivativesRandomRobots, ActuatorVariableDerivativesEqualFiniteDifferences) {
+    double worst = 0.0;
+    int matrices = 0, skipped = 0;
+    forEachSample([&](const Model& model, const Sample& s) {
+        Data data(model), probe(model);
+        ActuatorVariableDerivatives d;
+        ASSERT_TRUE(actuatorVariableDerivatives(model, data, s.p, s.dp, s.ddp, d).ok()) << where(s);
+        ASSERT_TRUE(inverseDynamics(model, probe, s.p, s.dp, s.ddp).ok());
+        const int n = model.actuators;
+        // the values are inverseDynamics' own
+        const std::array<std::pair<const ActuatorVector*, const ActuatorVector*>, 3> values{
+            {{&d.u, &probe.u}, {&d.du, &probe.du}, {&d.ddu, &probe.ddu}}};
+        std::array<double, 3> floor{};
+        for (std::size_t v = 0; v < 3; ++v) {
+            const Eigen::VectorXd mine = *values[v].first, theirs = *values[v].second;
+            EXPECT_LE((mine - theirs).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + theirs.cwiseAbs().maxCoeff()));
+            floor[v] = 1e-3 * (1.0 + theirs.cwiseAbs().maxCoeff());
+        }
+        // (output u/du/ddu, input p/dp/ddp): the six derivatives that are not identically zero
+        struct Pair {
+            int output, input;
+            const ActuatorPoseJacobian* exact;
+            const char* name;
+        };
+        const std::array<Pair, 6> pairs{{{0, 0, &d.u_p, "d u/d p"},
+                                         {1, 0, &d.du_p, "d du/d p"},
+                                         {1, 1, &d.du_dp, "d du/d dp"},
+                                         {2, 0, &d.ddu_p, "d ddu/d p"},
+                                         {2, 1, &d.ddu_dp, "d ddu/d dp"},
+                                         {2, 2, &d.ddu_ddp, "d ddu/d ddp"}}};
+        for (const Pair& pair : pairs) {
+            Eigen::MatrixXd fd(n, 3);
+            double spread = 0.0;
+            for (int i = 0; i < 3; ++i) {
+                const auto f = [&](double h) -> Eigen::VectorXd {
+                    Sample t = s;
+                    (pair.input == 0 ? t.p : pair.input == 1 ? t.dp : t.ddp)(i) += h;
+                    EXPECT_TRUE(inverseDynamics(model, probe, t.p, t.dp, t.ddp).ok());
+                    return pair.output == 0 ? probe.u : (pair.output == 1 ? probe.du : probe.ddu);
+                };
+                fd.col(i) = stencil(f, kStep, spread);
+            }
+            const Eigen::MatrixXd exact(*pair.exact);
+            const double fl = floor[static_cast<std::size_t>(pair.output)];
+            ++matrices;
+            if (spread > kUnconverged * (exact.cwiseAbs().maxCoeff() + fl)) {
+                ++skipped;
+                continue;
+            }
+            const double error = relativeError(exact, fd, fl);
+            worst = std::max(worst, error);
+            EXPECT_LE(error, kTolerance) << pair.name << " of " << label(GetParam()) << " at " << where(s)
+                                         << "\nexact\n"
+                                         << exact << "\nfinite differences\n"
+                                         << fd;
+        }
+    });
+    std::printf("%s: worst relative error of d(u, du, ddu)/d(p, dp, ddp) %.2e (%d of %d matrices skipped)\n",
+                label(GetParam()).c_str(), worst, skipped, matrices);
+    EXPECT_GT(matrices, 0);
+    EXPECT_LE(10 * skipped, matrices) << "the finite differences did not converge on too many samples";
+}
+
+TEST_P(DerivativesRandomRobots, ActuatorRateAndAccelerationAreLinearWithTheActuationMap) {
+    forEachSample([&](const Model& model, const Sample& s) {
+        Data data(model);
+        ActuatorVariableDerivatives d;
+        ASSERT_TRUE(actuatorVariableDerivatives(model, data, s.p, s.dp, s.ddp, d).ok());
+        // d du/d dp = d ddu/d ddp = d u/d p: the dual slots of gamma_dot and gamma_ddot against
+        // A S(c) of the velocity stage
+        const Eigen::MatrixXd u_p(d.u_p), du_dp(d.du_dp), ddu_ddp(d.ddu_ddp);
+        const double scale = u_p.cwiseAbs().maxCoeff();
+        EXPECT_LE((du_dp - u_p).cwiseAbs().maxCoeff(), 1e-12 * scale) << label(GetParam()) << "\n" << du_dp;
+        EXPECT_LE((ddu_ddp - u_p).cwiseAbs().maxCoeff(), 1e-12 * scale) << label(GetParam()) << "\n" << ddu_ddp;
+        // and du = (d u/d p) dp (du is linear in dp)
+        EXPECT_LE((Eigen::VectorXd(d.du) - u_p * s.dp).cwiseAbs().maxCoeff(),
+                  1e-12 * (1.0 + Eigen::VectorXd(d.du).cwiseAbs().maxCoeff()));
+    });
+}
+
 INSTANTIATE_TEST_SUITE_P(EveryLimbType, DerivativesRandomRobots, ::testing::ValuesIn(specs()), testName);
 
 TEST(Derivatives, CoulombFrictionAtRestContributesNeitherForceNorDerivative) {
@@ -372,6 +456,11 @@ TEST(Derivatives, BadInputGivesTheStatusOfInverseDynamics) {
     ActuatorVector tau = ActuatorVector::Zero(model.actuators);
     tau(1) = std::nan("");
     EXPECT_EQ(forwardDynamicsDerivatives(model, data, description->home, Twist::Zero(), tau, f).code,
+              StatusCode::not_finite);
+    ActuatorVariableDerivatives u;
+    EXPECT_EQ(actuatorVariableDerivatives(model, data, far, Twist::Zero(), Twist::Zero(), u).code,
+              StatusCode::unreachable);
+    EXPECT_EQ(actuatorVariableDerivatives(model, data, description->home, Twist::Zero(), nan, u).code,
               StatusCode::not_finite);
 }
 

@@ -1,5 +1,6 @@
 // Exact first derivatives of the inverse and forward dynamics of any planar parallel robot
-// (model.hpp): every limb type, redundant actuation, gravity and joint friction.
+// (model.hpp), and of its actuator variables u, du, ddu: every limb type, redundant actuation,
+// gravity and joint friction.
 //
 // Forward-mode automatic differentiation with a dual number carrying one derivative per
 // input direction, through the NOC written once on a scalar type:
@@ -63,6 +64,32 @@ Status inverseDynamicsDerivatives(const Model& model, Data& data, const Pose& p,
 /// non-finite force. Allocation-free.
 Status forwardDynamicsDerivatives(const Model& model, Data& data, const Pose& p, const Twist& dp,
                                   const ActuatorVector& tau, ForwardDynamicsDerivatives& out);
+
+/// The actuator variables u (the actuated joints' positions), their rates du and
+/// accelerations ddu, and their exact derivatives at (p, dp/dt, d2p/dt2). Row a is actuator a
+/// (joint model.actuator_joint[a] of limb model.actuator_limb[a]), columns the pose order
+/// [theta, x_c, y_c]. du = A S(c) dp is linear in dp and ddu = A S(c) ddp + (terms in p, dp)
+/// is linear in ddp with the same coefficients, so d du/d dp = d ddu/d ddp = d u/d p = A S(c)
+/// (A: Data::A, S(c) = platformTwistMap). The rates and accelerations are the actuated entries
+/// of gamma_dot_j = J_j^-1 xi_P and gamma_ddot_j of the same dual-number kernel as
+/// inverseDynamicsDerivatives; u_p is A S(c) of the velocity stage.
+struct ActuatorVariableDerivatives {
+    ActuatorVector u;              ///< actuator variables (inverseDynamics' Data::u) [m or rad]
+    ActuatorVector du;             ///< actuator rates (Data::du)
+    ActuatorVector ddu;            ///< actuator accelerations (Data::ddu)
+    ActuatorPoseJacobian u_p;      ///< d u / d p = A S(c)
+    ActuatorPoseJacobian du_p;     ///< d du / d p
+    ActuatorPoseJacobian du_dp;    ///< d du / d(dp/dt) (= u_p)
+    ActuatorPoseJacobian ddu_p;    ///< d ddu / d p
+    ActuatorPoseJacobian ddu_dp;   ///< d ddu / d(dp/dt)
+    ActuatorPoseJacobian ddu_ddp;  ///< d ddu / d(d2p/dt2) (= u_p)
+};
+
+/// u, du, ddu and their exact derivatives at (p, dp/dt, d2p/dt2). `data` is workspace (its
+/// position and velocity stages are left set). Fails as inverseDynamicsDerivatives.
+/// Allocation-free.
+Status actuatorVariableDerivatives(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
+                                   ActuatorVariableDerivatives& out);
 
 /// The inverse dynamics' derivatives of N samples: (p, dp, ddp), N x 3 each -> d tau/d p,
 /// d tau/d dp, d tau/d ddp, N x 3n each, row k = sample k, column 3 a + i = d tau_a / d x_i

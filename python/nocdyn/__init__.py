@@ -53,7 +53,7 @@ from .commands import frequency_response
 from .results import (Animation, AssemblyModes, Envelope, Excitation, Identification, PoseReport, Report, ShakeResult,
                       Table, Workspace)
 
-__all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMatrices", "PayloadEstimate",
+__all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMatrices", "ActuatorDerivatives", "PayloadEstimate",
            "load_prior",
            # every command of the command line (nocdyn.commands), and their results (nocdyn.results)
            "pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace", "convert",
@@ -72,6 +72,15 @@ InverseDynamics.__doc__ = """Inverse dynamics of one sample (arrays of shape (n,
 
 u: actuator variables [m or rad]; du: their rates [m/s or rad/s]; ddu: accelerations
 [m/s^2 or rad/s^2]; tau: actuator forces [N or N m] (eq. 20; minimum-norm when redundant)."""
+
+ActuatorDerivatives = namedtuple("ActuatorDerivatives",
+                                 ["u", "du", "ddu", "u_p", "du_p", "du_dp", "ddu_p", "ddu_dp", "ddu_ddp"])
+ActuatorDerivatives.__doc__ = """The actuator variables of one sample and their exact derivatives.
+
+u, du, ddu: as InverseDynamics, shape (n,). u_p = d u/d p, du_p = d du/d p, du_dp = d du/d dp,
+ddu_p = d ddu/d p, ddu_dp = d ddu/d dp, ddu_ddp = d ddu/d ddp: shape (n, 3), row a actuator
+a + 1, columns the pose order [x, y, theta]. du_dp = ddu_ddp = u_p (du and ddu are linear in
+dp and ddp with the actuation map A S(c) as coefficients)."""
 
 InverseDynamicsMatrices = namedtuple("InverseDynamicsMatrices", ["u", "du", "ddu", "tau", "I", "C", "T"])
 InverseDynamicsMatrices.__doc__ = """Inverse dynamics of one sample with the NOC matrices (eq. 23).
@@ -469,6 +478,18 @@ class Robot:
         if failed and check:
             raise Error(f"sample {first}: {message} ({failed} of {n} samples failed)")
         return d_p, d_dp, d_ddp
+
+    @_vocabulary
+    def actuator_derivatives(self, p, dp, ddp):
+        """Exact first derivatives of the actuator variables u, du, ddu of one sample (p, dp,
+        ddp of shape (3,)): an ActuatorDerivatives of u, du, ddu (n,) and d u/d p, d du/d p,
+        d du/d dp, d ddu/d p, d ddu/d dp, d ddu/d ddp (n, 3), columns in the pose order
+        [x, y, theta]. The actuated joints' rates and accelerations by the same forward-mode
+        automatic differentiation as inverse_dynamics_derivatives: exact to rounding. Errors as
+        in inverse_dynamics.
+        """
+        return ActuatorDerivatives(*self._core._actuator_derivatives_sample(
+            _floats(p, "p"), _floats(dp, "dp"), _floats(ddp, "ddp")))
 
     @_vocabulary
     def linearize(self, p, dp, tau, *, output=None):

@@ -349,6 +349,20 @@ py::tuple inverseDynamicsDerivativesSample(const Robot& robot, const py::handle&
                           matrixToArray(inPythonOrder(d.d_ddp, false, true)));
 }
 
+/// u, du, ddu, each (n,), and d u/d p, d du/d p, d du/d dp, d ddu/d p, d ddu/d dp, d ddu/d ddp,
+/// each (n, 3), of one sample.
+py::tuple actuatorDerivativesSample(const Robot& robot, const py::handle& p, const py::handle& dp,
+                                    const py::handle& ddp) {
+    const Model& model = *robot.model;
+    ActuatorVariableDerivatives d;
+    const Status status =
+        actuatorVariableDerivatives(model, *robot.data, vector3(p, "p"), vector3(dp, "dp"), vector3(ddp, "ddp"), d);
+    if (!status) throw Error(describe(status, model));
+    const auto columns = [](const ActuatorPoseJacobian& m) { return matrixToArray(inPythonOrder(m, false, true)); };
+    return py::make_tuple(toArray(d.u), toArray(d.du), toArray(d.ddu), columns(d.u_p), columns(d.du_p),
+                          columns(d.du_dp), columns(d.ddu_p), columns(d.ddu_dp), columns(d.ddu_ddp));
+}
+
 /// The derivatives of N samples, each (N, n, 3), the GIL released while they run. Returns
 /// (d_p, d_dp, d_ddp, failed, first_failure, message of the first failure or "").
 py::tuple inverseDynamicsDerivativesBatchArrays(const Robot& robot, const py::array& p, const py::array& dp,
@@ -1041,6 +1055,7 @@ PYBIND11_MODULE(_nocdyn, m) {
              py::arg("ddp"))
         .def("_inverse_dynamics_derivatives_batch", &inverseDynamicsDerivativesBatchArrays, py::arg("p"), py::arg("dp"),
              py::arg("ddp"), py::arg("threads") = 1)
+        .def("_actuator_derivatives_sample", &actuatorDerivativesSample, py::arg("p"), py::arg("dp"), py::arg("ddp"))
         .def("_linearize", &linearizeSample, py::arg("p"), py::arg("dp"), py::arg("tau"),
              py::arg("output") = "acceleration")
         .def("_reactions_batch", &reactionsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"), py::arg("out"),

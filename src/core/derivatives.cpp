@@ -148,33 +148,58 @@ S3<T> bodyWrench(const InertiaDyad& M, const Vector2& g, const S3<T>& xi, const 
     return {M.inertia * dxi.w + x.x * fy - x.y * fx, fx, fy};
 }
 
+/// xi_P = S(c) dp and its rate S(c) ddp + dS/dt dp.
+template <class T>
+void platformTwists(const SampleIn<T>& in, S3<T>& xi_P, S3<T>& xi_P_dot) {
+    const S3<T>& dp = in.dp;
+    const S3<T>& ddp = in.ddp;
+    xi_P = {dp.w, dp.x + dp.w * in.c.y, dp.y - dp.w * in.c.x};
+    xi_P_dot = {ddp.w, ddp.x + ddp.w * in.c.y + dp.w * dp.y, ddp.y - ddp.w * in.c.x - dp.w * dp.x};
+}
+
+/// One limb's velocity and acceleration stages: the rows of J_j^-1, the joint rates and
+/// accelerations, the body twists xi_0, xi_1 and the screw rate ds_1 = [xi_0, s_1].
+template <class T>
+struct LimbRates {
+    std::array<S3<T>, 3> Ji;
+    S3<T> gd, gdd, xi0, xi1, sd1;
+};
+
+/// eq. 3: gamma_dot = J_j^-1 xi_P, and its rate J_j^-1 (dxi_P - dJ_j gamma_dot).
+template <class T>
+LimbRates<T> limbRates(const LimbIn<T>& li, const S3<T>& xi_P, const S3<T>& xi_P_dot) {
+    const auto& s = li.s;
+    LimbRates<T> r;
+    r.Ji = inverseRowsOfColumns(s[0], s[1], s[2]);
+    r.gd = {dot(r.Ji[0], xi_P), dot(r.Ji[1], xi_P), dot(r.Ji[2], xi_P)};
+    r.xi0 = scale(s[0], r.gd.w);
+    r.xi1 = r.xi0 + scale(s[1], r.gd.x);
+    r.sd1 = bracket(r.xi0, s[1]);
+    const S3<T> sd2 = bracket(r.xi1, s[2]);
+    const S3<T> rhs = xi_P_dot - scale(r.sd1, r.gd.x) - scale(sd2, r.gd.y);
+    r.gdd = {dot(r.Ji[0], rhs), dot(r.Ji[1], rhs), dot(r.Ji[2], rhs)};
+    return r;
+}
+
 /// The platform wrench W_P referred to O that the limbs supply (the generalized force in the
 /// xi_P coordinates), and the rows of A (du = A xi_P).
 template <class T>
 void platformWrench(const Model& model, const SampleIn<T>& in, S3<T>& W, std::array<S3<T>, kMaxActuators>& A) {
-    const S3<T>& dp = in.dp;
-    const S3<T>& ddp = in.ddp;
-    // xi_P = S(c) dp and its rate S(c) ddp + dS/dt dp
-    const S3<T> xi_P{dp.w, dp.x + dp.w * in.c.y, dp.y - dp.w * in.c.x};
-    const S3<T> xi_P_dot{ddp.w, ddp.x + ddp.w * in.c.y + dp.w * dp.y, ddp.y - ddp.w * in.c.x - dp.w * dp.x};
+    S3<T> xi_P, xi_P_dot;
+    platformTwists(in, xi_P, xi_P_dot);
     W = bodyWrench(model.platform_M, model.gravity, xi_P, xi_P_dot, in.x_P);
     for (int j = 0; j < model.limbs; ++j) {
         const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
         const LimbIn<T>& li = in.limb[static_cast<std::size_t>(j)];
         const auto& s = li.s;
-        // eq. 3: gamma_dot = J_j^-1 xi_P, and its rate J_j^-1 (dxi_P - dJ_j gamma_dot)
-        const std::array<S3<T>, 3> Ji = inverseRowsOfColumns(s[0], s[1], s[2]);
-        const S3<T> gd{dot(Ji[0], xi_P), dot(Ji[1], xi_P), dot(Ji[2], xi_P)};
-        const S3<T> xi0 = scale(s[0], gd.w);
-        const S3<T> xi1 = xi0 + scale(s[1], gd.x);
-        const S3<T> sd1 = bracket(xi0, s[1]);
-        const S3<T> sd2 = bracket(xi1, s[2]);
-        const S3<T> rhs = xi_P_dot - scale(sd1, gd.x) - scale(sd2, gd.y);
-        const S3<T> gdd{dot(Ji[0], rhs), dot(Ji[1], rhs), dot(Ji[2], rhs)};
+        const LimbRates<T> r = limbRates(li, xi_P, xi_P_dot);
+        const auto& Ji = r.Ji;
+        const S3<T>& gd = r.gd;
+        const S3<T>& gdd = r.gdd;
         const S3<T> dxi0 = scale(s[0], gdd.w);
-        const S3<T> dxi1 = dxi0 + scale(s[1], gdd.x) + scale(sd1, gd.x);
-        const S3<T> w0 = bodyWrench(limb.M[0], model.gravity, xi0, dxi0, li.x[0]);
-        const S3<T> w1 = bodyWrench(limb.M[1], model.gravity, xi1, dxi1, li.x[1]);
+        const S3<T> dxi1 = dxi0 + scale(s[1], gdd.x) + scale(r.sd1, gd.x);
+        const S3<T> w0 = bodyWrench(limb.M[0], model.gravity, r.xi0, dxi0, li.x[0]);
+        const S3<T> w1 = bodyWrench(limb.M[1], model.gravity, r.xi1, dxi1, li.x[1]);
         // the joint-space force U_j^T w + phi_j: body 1 moves with joint 1, body 2 with joints 1 and 2
         S3<T> y{dot(s[0], w0 + w1), dot(s[1], w1), w0.w * 0.0};
         if (!limb.frictionless) {
@@ -392,6 +417,56 @@ Status forwardDynamicsDerivatives(const Model& model, Data& data, const Pose& p,
     out.d_dp = dddp.rightCols<3>();
     out.d_tau.resize(3, n);
     for (int a = 0; a < n; ++a) out.d_tau.col(a) = lu.solve(Vector3(data.A.row(a).transpose()));
+    return {};
+}
+
+Status actuatorVariableDerivatives(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
+                                   ActuatorVariableDerivatives& out) {
+    if (const Status status = kinematics(model, data, p, dp); !status) return status;
+    for (int i = 0; i < 3; ++i) {
+        if (!std::isfinite(ddp(i))) return {StatusCode::not_finite, -1, ddp(i)};
+    }
+    // one pass with nine directions, as inverseDynamicsDerivatives: p in 0-2, dp in 3-5, ddp in 6-8
+    constexpr int N = 9;
+    SampleIn<Dual<N>> in;
+    seedPositions<N>(model, data, 0, in);
+    in.dp = seedVector<N>(dp, 3);
+    in.ddp = seedVector<N>(ddp, 6);
+    S3<Dual<N>> xi_P, xi_P_dot;
+    platformTwists(in, xi_P, xi_P_dot);
+    const int n = model.actuators;
+    out.u = data.u;
+    out.du.resize(n);
+    out.ddu.resize(n);
+    out.u_p.resize(n, 3);
+    out.du_p.resize(n, 3);
+    out.du_dp.resize(n, 3);
+    out.ddu_p.resize(n, 3);
+    out.ddu_dp.resize(n, 3);
+    out.ddu_ddp.resize(n, 3);
+    // d u/d p along e_i is the actuated joint's rate for dp = e_i: the rows of A S(c)
+    const Matrix3 S = platformTwistMap(data.p.tail<2>());
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        const LimbRates<Dual<N>> r = limbRates(in.limb[static_cast<std::size_t>(j)], xi_P, xi_P_dot);
+        const std::array<const Dual<N>*, 3> gd{&r.gd.w, &r.gd.x, &r.gd.y};
+        const std::array<const Dual<N>*, 3> gdd{&r.gdd.w, &r.gdd.x, &r.gdd.y};
+        for (std::size_t k = 0; k < 3; ++k) {
+            const int a = limb.actuator[k];
+            if (a < 0) continue;
+            // du_a = gamma_dot_jk, ddu_a = gamma_ddot_jk (eq. 3 and its rate)
+            out.du(a) = gd[k]->v;
+            out.ddu(a) = gdd[k]->v;
+            out.u_p.row(a) = data.limb[static_cast<std::size_t>(j)].J_inv.row(static_cast<Eigen::Index>(k)) * S;
+            for (int i = 0; i < 3; ++i) {
+                out.du_p(a, i) = gd[k]->d(i);
+                out.du_dp(a, i) = gd[k]->d(3 + i);
+                out.ddu_p(a, i) = gdd[k]->d(i);
+                out.ddu_dp(a, i) = gdd[k]->d(3 + i);
+                out.ddu_ddp(a, i) = gdd[k]->d(6 + i);
+            }
+        }
+    }
     return {};
 }
 

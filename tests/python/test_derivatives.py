@@ -1,6 +1,6 @@
-"""Exact derivatives from Python: Robot.inverse_dynamics_derivatives and Robot.linearize against
-central finite differences of Robot.inverse_dynamics and of the forward dynamics' linearisation,
-and nocdyn.frequency_response against the numbers of docs/frequency-response.md."""
+"""Exact derivatives from Python: Robot.inverse_dynamics_derivatives, Robot.actuator_derivatives and
+Robot.linearize against central finite differences of Robot.inverse_dynamics and of the forward
+dynamics' linearisation, and nocdyn.frequency_response against the numbers of docs/frequency-response.md."""
 
 import numpy as np
 import pytest
@@ -62,6 +62,45 @@ def test_batch_with_a_sample_out_of_reach_names_it(robots):
     p = np.array([robot.home, robot.home + [1.0, 0.0, 0.0]])
     with pytest.raises(nocdyn.Error, match="sample 1"):
         robot.inverse_dynamics_derivatives(p, np.zeros((2, 3)), np.zeros((2, 3)))
+
+
+def test_actuator_derivatives_equal_finite_differences(robots):
+    for robot in robots:  # a 3-PRR, a 3-RRR and a redundant 4-RRR
+        for k in range(3):
+            p, dp, ddp = sample(robot, k)
+            d = robot.actuator_derivatives(p, dp, ddp)
+            n = robot.actuators
+            values = robot.inverse_dynamics(p, dp, ddp)
+            for name in ("u", "du", "ddu"):
+                np.testing.assert_allclose(getattr(d, name), getattr(values, name), rtol=0, atol=1e-12)
+            assert d.u_p.shape == d.ddu_ddp.shape == (n, 3)
+
+            def of(name, p_=p, dp_=dp, ddp_=ddp):
+                return getattr(robot.inverse_dynamics(p_, dp_, ddp_), name)
+
+            for exact, fd in ((d.u_p, central(lambda x: of("u", p_=x), p, 1e-5)),
+                              (d.du_p, central(lambda x: of("du", p_=x), p, 1e-5)),
+                              (d.du_dp, central(lambda x: of("du", dp_=x), dp, 1e-4)),
+                              (d.ddu_p, central(lambda x: of("ddu", p_=x), p, 1e-5)),
+                              (d.ddu_dp, central(lambda x: of("ddu", dp_=x), dp, 1e-4)),
+                              (d.ddu_ddp, central(lambda x: of("ddu", ddp_=x), ddp, 1e-2))):
+                scale = np.abs(exact).max()
+                assert np.abs(exact - fd).max() <= 1e-7 * scale, (robot.name, exact, fd)
+            # du and ddu are linear in dp and ddp through the same map A S(c)
+            np.testing.assert_allclose(d.du_dp, d.u_p, rtol=0, atol=1e-12 * np.abs(d.u_p).max())
+            np.testing.assert_allclose(d.ddu_ddp, d.u_p, rtol=0, atol=1e-12 * np.abs(d.u_p).max())
+            # the pose order is [x, y, theta]: a rotation moves a prismatic or revolute actuator
+            # as the theta column says
+            h = 1e-6
+            step = np.array([0.0, 0.0, h])
+            assert np.abs((of("u", p_=p + step) - of("u", p_=p - step)) / (2 * h) - d.u_p[:, 2]).max() \
+                <= 1e-6 * np.abs(d.u_p).max()
+
+
+def test_actuator_derivatives_of_a_pose_out_of_reach_raise(robots):
+    robot = robots[0]
+    with pytest.raises(nocdyn.Error):
+        robot.actuator_derivatives(robot.home + [1.0, 0.0, 0.0], np.zeros(3), np.zeros(3))
 
 
 def test_linearize_is_the_forward_dynamics_jacobian(robots):

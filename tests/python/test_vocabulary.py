@@ -203,7 +203,7 @@ def test_a_passive_joints_range_is_checked_by_the_full_path_in_a_batch(source_di
 def test_the_vocabulary_is_stated_where_poses_are_taken():
     sentence = "a pose is [x, y, theta]"
     assert sentence in nocdyn.Robot.__doc__
-    for method in ("inverse_dynamics", "inverse_dynamics_derivatives", "linearize", "reactions",
+    for method in ("inverse_dynamics", "inverse_dynamics_derivatives", "actuator_derivatives", "linearize", "reactions",
                    "trajectory_dynamics", "regressor", "forward_kinematics", "state_from_actuators", "simulate",
                    "stiffness", "natural_frequencies"):
         assert sentence in getattr(nocdyn.Robot, method).__doc__, method

@@ -601,4 +601,95 @@ std::vector<MujocoMechanism::LinearMode> MujocoMechanism::linearModes(const Eige
     return modes;
 }
 
+MujocoMechanism::PlatformDerivatives MujocoMechanism::platformDerivatives(double eps, double h, double impedance) {
+    Impl& s = *impl_;
+    mjModel* m = s.m;
+    mjData* d = s.d;
+    const int nv = m->nv;
+    const int n = s.robot.actuatorCount();
+    const auto& pv = s.tree.platform_v;
+    const Eigen::VectorXd qpos0 = Eigen::Map<const Eigen::VectorXd>(d->qpos, nv);
+    const Eigen::VectorXd qvel0 = Eigen::Map<const Eigen::VectorXd>(d->qvel, nv);
+    const Eigen::VectorXd qfrc0 = Eigen::Map<const Eigen::VectorXd>(d->qfrc_applied, nv);
+    const double t0 = d->time;
+    const Eigen::Vector3d pose0 = pose();
+    Eigen::Vector3d rate0;
+    for (int i = 0; i < 3; ++i) rate0[i] = qvel0[pv[static_cast<std::size_t>(i)]];
+    const auto restore = [&] {
+        Eigen::Map<Eigen::VectorXd>(d->qpos, nv) = qpos0;
+        Eigen::Map<Eigen::VectorXd>(d->qvel, nv) = qvel0;
+        Eigen::Map<Eigen::VectorXd>(d->qfrc_applied, nv) = qfrc0;
+        d->time = t0;
+    };
+    // V: the loop-consistent qvel of each unit platform rate (G qvel = 0)
+    const auto velocityMap = [&] {
+        s.positionStage();
+        const Eigen::MatrixXd G = s.jacobian();
+        const Eigen::MatrixXd Vf = s.freeColumns(G).partialPivLu().solve(-s.platformColumns(G));
+        Eigen::MatrixXd V = Eigen::MatrixXd::Zero(nv, 3);
+        for (std::size_t c = 0; c < s.free_v.size(); ++c) V.row(s.free_v[c]) = Vf.row(static_cast<Eigen::Index>(c));
+        for (int i = 0; i < 3; ++i) V(pv[static_cast<std::size_t>(i)], i) = 1.0;
+        return V;
+    };
+    const Eigen::MatrixXd V = velocityMap();
+    // d qvel/d p at fixed dp/dt: centred differences of the assembled states
+    Eigen::MatrixXd dqvel_dp(nv, 3);
+    for (int i = 0; i < 3; ++i) {
+        Eigen::VectorXd plus, minus;
+        for (const double sign : {1.0, -1.0}) {
+            resetPlant(pose0 + sign * h * Eigen::Vector3d::Unit(i), rate0, t0);
+            (sign > 0 ? plus : minus) = Eigen::Map<const Eigen::VectorXd>(d->qvel, nv);
+        }
+        dqvel_dp.col(i) = (plus - minus) / (2.0 * h);
+    }
+    resetPlant(pose0, rate0, t0);
+    restore();
+    // the loops' impedance, restored below
+    const std::ptrdiff_t neq = m->neq;
+    const std::vector<double> solimp(m->eq_solimp, m->eq_solimp + mjNIMP * neq);
+    for (std::ptrdiff_t i = 0; i < neq; ++i) {
+        m->eq_solimp[mjNIMP * i] = impedance;
+        m->eq_solimp[mjNIMP * i + 1] = impedance;
+    }
+    PlatformDerivatives out;
+    mj_forward(m, d);
+    for (int i = 0; i < 3; ++i) out.ddp[i] = d->qacc[pv[static_cast<std::size_t>(i)]];
+    // A: (2 nv) x (2 nv), row-major; rows [dqpos_next; dqvel_next], columns [dqpos; dqvel]
+    std::vector<mjtNum> A(static_cast<std::size_t>(4 * nv * nv));
+    mjd_transitionFD(m, d, eps, 1, A.data(), nullptr, nullptr, nullptr);
+    restore();
+    const double dt = m->opt.timestep;
+    Eigen::MatrixXd dqacc(3, 2 * nv);  // d qacc/d(qpos, qvel) of the platform's rows
+    for (int r = 0; r < 3; ++r) {
+        const int row = nv + pv[static_cast<std::size_t>(r)];
+        for (int c = 0; c < 2 * nv; ++c) {
+            const double identity = c == row ? 1.0 : 0.0;
+            dqacc(r, c) =
+                (A[static_cast<std::size_t>(row) * 2 * static_cast<std::size_t>(nv) + static_cast<std::size_t>(c)] -
+                 identity) /
+                dt;
+        }
+    }
+    out.d_p = dqacc.leftCols(nv) * V + dqacc.rightCols(nv) * dqvel_dp;
+    out.d_dp = dqacc.rightCols(nv) * V;
+    // d_tau: qacc is linear in qfrc_applied = sum_a tau_a r_a
+    out.d_tau.resize(3, n);
+    for (int a = 0; a < n; ++a) {
+        Eigen::Vector3d plus, minus;
+        for (const double sign : {1.0, -1.0}) {
+            Eigen::VectorXd tau = Eigen::VectorXd::Zero(n);
+            tau[a] = sign;
+            setActuatorForces(tau);
+            Eigen::Map<Eigen::VectorXd>(d->qfrc_applied, nv) += qfrc0;
+            mj_forward(m, d);
+            for (int i = 0; i < 3; ++i) (sign > 0 ? plus : minus)[i] = d->qacc[pv[static_cast<std::size_t>(i)]];
+            restore();
+        }
+        out.d_tau.col(a) = (plus - minus) / 2.0;
+    }
+    std::copy(solimp.begin(), solimp.end(), m->eq_solimp);
+    mj_forward(m, d);
+    return out;
+}
+
 }  // namespace nocdyn::validation

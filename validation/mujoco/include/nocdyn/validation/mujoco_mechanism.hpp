@@ -90,6 +90,25 @@ public:
     /// time step. Throws nocdyn::Error when a spring is at a loop closure (a connect).
     [[nodiscard]] std::vector<LinearMode> linearModes(const Eigen::Vector3d& pose, double timestep);
 
+    /// MuJoCo's linearisation of the plant at its present state (resetPlant) and forces
+    /// (setActuatorForces), mapped to the platform pose [theta, x, y]: mjd_transitionFD (centred
+    /// differences of one mj_step, step `eps` in every joint coordinate and rate) gives
+    /// d qacc/d(qpos, qvel) = (A_v - [0 I]) / dt; along the loop-consistent state of a pose
+    /// direction e_i, dq = V e_i and dqvel = d(V dp)/dp e_i (V: qvel of a unit platform rate,
+    /// from G qvel = 0; its derivative by centred differences of the assembly, step `h`),
+    /// and of a rate direction dqvel = V e_i. d_tau: mjd_transitionFD perturbs only MuJoCo
+    /// controls and the forces here are qfrc_applied, so centred differences of mj_forward in
+    /// tau (exact: qacc is linear in the applied force). `impedance`: the loops' solimp d
+    /// (MuJoCo's default 0.9 leaves a soft loop compliant by (1 - d) / d). The state and model
+    /// are restored.
+    struct PlatformDerivatives {
+        Eigen::Vector3d ddp;    ///< the platform's qacc [theta, x, y]
+        Eigen::Matrix3d d_p;    ///< d ddp / d p
+        Eigen::Matrix3d d_dp;   ///< d ddp / d(dp/dt)
+        Eigen::MatrixXd d_tau;  ///< d ddp / d tau, 3 x n
+    };
+    [[nodiscard]] PlatformDerivatives platformDerivatives(double eps = 1e-6, double h = 1e-6, double impedance = 0.9);
+
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
