@@ -26,7 +26,7 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
         stopIfRequested(observer);
     };
     if (options.first_frequency && !analysis::StiffnessModel(model).any) {
-        throw Error(analysis::noComplianceMessage(model, "the first natural frequency map (--first-frequency)"));
+        throw Error(analysis::noComplianceMessage(model, "the first natural frequency map"));
     }
     out.map = workspaceMap(model, ws);
     out.summary = report::workspaceSummary(out.map);
@@ -36,7 +36,8 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
             observer.progress(done, total, "grid columns (natural frequencies)");
             stopIfRequested(observer);
         });
-        out.summary += " " + report::firstFrequencySummary(*out.frequency);
+        out.summary += ' ';
+        out.summary += report::firstFrequencySummary(*out.frequency);
         out.frequency_table.columns = io::columnNames(io::TableId::first_frequency);
         for (int i = 0; i < map.n; ++i) {
             for (int k = 0; k < map.n; ++k) {
