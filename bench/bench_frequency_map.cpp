@@ -57,12 +57,11 @@ const bool kRegistered = [] {
     for (const char* robot : {"paper-3prr-compliant", "3-rrr"}) {
         for (const int n : {101, 201}) {
             for (const bool frequency : {false, true}) {
-                benchmark::RegisterBenchmark((std::string("BM_FrequencyMap/") + robot + "/" + std::to_string(n) + "/" +
-                                              (frequency ? "first_frequency" : "workspace"))
-                                                 .c_str(),
-                                             [robot = std::string(robot), n, frequency](benchmark::State& s) {
-                                                 run(s, robot, n, frequency);
-                                             })
+                benchmark::RegisterBenchmark(
+                    (std::string("BM_FrequencyMap/") + robot + "/" + std::to_string(n) + "/" +
+                     (frequency ? "first_frequency" : "workspace"))
+                        .c_str(),
+                    [robot = std::string(robot), n, frequency](benchmark::State& s) { run(s, robot, n, frequency); })
                     ->Unit(benchmark::kMillisecond);
             }
         }

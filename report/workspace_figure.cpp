@@ -62,8 +62,7 @@ Figure workspaceFigure(const WorkspaceMap& map, const Model& model, const std::v
     return figure;
 }
 
-Figure firstFrequencyFigure(const WorkspaceMap& map, const analysis::FirstFrequencyMap& frequency,
-                           const Model& model) {
+Figure firstFrequencyFigure(const WorkspaceMap& map, const analysis::FirstFrequencyMap& frequency, const Model& model) {
     // one pixel per grid point ("with image" needs the whole grid; NaN is drawn blank)
     PlotSeries heat{"first natural frequency f_1 [Hz] (colour; blank: not feasible)", {}, {}, "image", {{}}};
     const auto cells = static_cast<std::size_t>(map.n) * static_cast<std::size_t>(map.n);

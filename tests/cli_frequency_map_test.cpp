@@ -76,10 +76,10 @@ TEST(CliFrequencyMap, WritesTheCsvColumnAndTheHeatMapAndTheSummaryNamesTheLowest
 
 TEST(CliFrequencyMap, ThePointNextToHomeHoldsThePoseCommandsFirstNaturalFrequency) {
     const fs::path dir = test::freshScratchDirectory("cli_frequency_map");
-    ASSERT_EQ(runCli("workspace --quiet --robot " + kCompliant + " --resolution 41 --frequency-map " +
-                     (dir / "f").string())
-                  .exit_code,
-              0);
+    ASSERT_EQ(
+        runCli("workspace --quiet --robot " + kCompliant + " --resolution 41 --frequency-map " + (dir / "f").string())
+            .exit_code,
+        0);
     const io::Table table = io::readCsvFile((dir / "f.csv").string());
     // the robot's home is C = (0, 0), theta = 0; the grid point nearest to it
     std::size_t at = 0;

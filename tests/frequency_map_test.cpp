@@ -43,9 +43,8 @@ TEST(FirstFrequencyMap, EveryFeasiblePointHoldsStiffnessAndModesAndTheLowestIsWh
                 continue;
             }
             ++feasible;
-            ASSERT_TRUE(
-                analysis::stiffnessAndModes(model, compliance, data,
-                                            Pose(map.theta, map.x0 + i * map.step, map.y0 + k * map.step), K, modes));
+            ASSERT_TRUE(analysis::stiffnessAndModes(
+                model, compliance, data, Pose(map.theta, map.x0 + i * map.step, map.y0 + k * map.step), K, modes));
             EXPECT_EQ(value, modes.frequency(0));
             lowest = std::min(lowest, value);
             highest = std::max(highest, value);
@@ -59,7 +58,8 @@ TEST(FirstFrequencyMap, EveryFeasiblePointHoldsStiffnessAndModesAndTheLowestIsWh
     EXPECT_EQ(f.lowest_x, map.x0 + f.lowest_i * map.step);
     EXPECT_EQ(f.lowest_y, map.y0 + f.lowest_k * map.step);
     // the reported point, recomputed from its (x, y) alone
-    ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, Pose(map.theta, f.lowest_x, f.lowest_y), K, modes));
+    ASSERT_TRUE(
+        analysis::stiffnessAndModes(model, compliance, data, Pose(map.theta, f.lowest_x, f.lowest_y), K, modes));
     EXPECT_EQ(modes.frequency(0), f.lowest);
     // the voice coils' 2e5 N/m under about 3 kg each: near 40 Hz (the file's comment), and it varies
     EXPECT_GT(f.lowest, 35.0);
@@ -128,8 +128,8 @@ TEST(FirstFrequencyMinMetric, IsTheMapsLowestOnTheSameGrid) {
     const RobotDescription robot = robotFile("paper-3prr-compliant");
     DesignOptions options;
     options.workspace.resolution = 41;
-    const DesignEvaluation e =
-        evaluateDesign(robot, {parseDesignMetric("workspace_area"), metric, parseDesignMetric("condition_worst")}, options);
+    const DesignEvaluation e = evaluateDesign(
+        robot, {parseDesignMetric("workspace_area"), metric, parseDesignMetric("condition_worst")}, options);
     ASSERT_TRUE(e.feasible) << e.reason;
     const Model model(robot);
     const WorkspaceMap map = mapAtHome(model, 41);
@@ -142,9 +142,8 @@ TEST(FirstFrequencyMinMetric, IsTheMapsLowestOnTheSameGrid) {
 TEST(FirstFrequencyMinMetric, ADesignWithoutComplianceIsInfeasibleWithTheReason) {
     DesignOptions options;
     options.workspace.resolution = 21;
-    const DesignEvaluation e =
-        evaluateDesign(robotFile("3-rrr"), {parseDesignMetric("moving_mass"), parseDesignMetric("first_frequency_min")},
-                       options);
+    const DesignEvaluation e = evaluateDesign(
+        robotFile("3-rrr"), {parseDesignMetric("moving_mass"), parseDesignMetric("first_frequency_min")}, options);
     EXPECT_FALSE(e.feasible);
     EXPECT_NE(e.reason.find("declares no compliance"), std::string::npos) << e.reason;
     EXPECT_NE(e.reason.find("first_frequency_min"), std::string::npos) << e.reason;

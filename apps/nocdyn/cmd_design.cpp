@@ -53,10 +53,10 @@ void addDesignCommand(CLI::App& app) {
         "Writes DIR/designs.csv (design, the varied parameters, the metrics, feasible, reason: a design that\n"
         "does not assemble, is singular or meets a limit is a row with the reason), DIR/pareto.csv (the\n"
         "feasible designs no other beats in every metric; workspace, first frequency and envelope larger, others\n"
-        "smaller is better), DIR/pareto.png/.svg (the first two metrics) and DIR/best.png/.svg (the best design by the\n"
-        "first metric with its workspace). DIR/journal.csv holds every design as it is evaluated: run the\n"
-        "same command again to resume a stopped sweep. Sobol and Latin-hypercube sweeps, optimisation and\n"
-        "Dask clusters: the Python package (nocdyn.designs).\n"
+        "smaller is better), DIR/pareto.png/.svg (the first two metrics) and DIR/best.png/.svg (the best\n"
+        "design by the first metric with its workspace). DIR/journal.csv holds every design as it is\n"
+        "evaluated: run the same command again to resume a stopped sweep. Sobol and Latin-hypercube sweeps,\n"
+        "optimisation and Dask clusters: the Python package (nocdyn.designs).\n"
         "Example: nocdyn design --robot examples/design_3rrr/family.yaml --vary r_b=0.15:0.25\n"
         "           --vary l=0.09:0.13 --samples 64 --metric workspace_area --metric envelope_x@50 --out-dir runs/a");
     addRobotOption(*command, options->robot);

@@ -90,9 +90,10 @@ void addWorkspaceCommand(CLI::App& app) {
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");
     command->add_flag("--first-frequency", options->first_frequency,
                       "Also the first natural frequency at every feasible point (needs compliance in the robot file)");
-    command->add_option("--frequency-map", options->frequency_map,
-                        "Stem of the first natural frequency's CSV and heat map (STEM.csv, STEM.png, STEM.svg);\n"
-                        "implies --first-frequency [default: none]")
+    command
+        ->add_option("--frequency-map", options->frequency_map,
+                     "Stem of the first natural frequency's CSV and heat map (STEM.csv, STEM.png, STEM.svg);\n"
+                     "implies --first-frequency [default: none]")
         ->check(nonEmptyPath());
     command->add_flag("--quiet,-q", options->quiet,
                       "Print nothing (no summary, no progress line); errors still go to stderr");

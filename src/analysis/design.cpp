@@ -29,7 +29,8 @@ std::string frequencyText(double f) {
 }
 
 constexpr const char* kMetricNames =
-    "workspace_area, condition_median, condition_worst, first_frequency_min, envelope_x@F, envelope_y@F, envelope_theta@F (F in Hz), "
+    "workspace_area, condition_median, condition_worst, first_frequency_min, envelope_x@F, envelope_y@F, "
+    "envelope_theta@F (F in Hz), "
     "moving_mass, peak_force, rms_force, stroke, peak_reaction";
 
 /// Peaks over a trajectory, accumulated sample by sample.
@@ -103,15 +104,16 @@ bool DesignMetric::along_trajectory() const {
 
 DesignMetric parseDesignMetric(const std::string& text) {
     DesignMetric m;
-    const std::pair<const char*, DesignMetricKind> plain[] = {{"workspace_area", DesignMetricKind::workspace_area},
-                                                              {"condition_median", DesignMetricKind::condition_median},
-                                                              {"condition_worst", DesignMetricKind::condition_worst},
-                                                              {"first_frequency_min", DesignMetricKind::first_frequency_min},
-                                                              {"moving_mass", DesignMetricKind::moving_mass},
-                                                              {"peak_force", DesignMetricKind::peak_force},
-                                                              {"rms_force", DesignMetricKind::rms_force},
-                                                              {"stroke", DesignMetricKind::stroke},
-                                                              {"peak_reaction", DesignMetricKind::peak_reaction}};
+    const std::pair<const char*, DesignMetricKind> plain[] = {
+        {"workspace_area", DesignMetricKind::workspace_area},
+        {"condition_median", DesignMetricKind::condition_median},
+        {"condition_worst", DesignMetricKind::condition_worst},
+        {"first_frequency_min", DesignMetricKind::first_frequency_min},
+        {"moving_mass", DesignMetricKind::moving_mass},
+        {"peak_force", DesignMetricKind::peak_force},
+        {"rms_force", DesignMetricKind::rms_force},
+        {"stroke", DesignMetricKind::stroke},
+        {"peak_reaction", DesignMetricKind::peak_reaction}};
     for (const auto& [name, kind] : plain) {
         if (text == name) {
             m.kind = kind;
