@@ -9,9 +9,11 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <limits>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "cli_support.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -112,6 +114,57 @@ TEST(CliFrequencyMap, ARobotWithoutComplianceIsRefusedWithAClearMessage) {
     }
     // the workspace alone still runs
     EXPECT_EQ(runCli("workspace --quiet --resolution 21 --robot " + kRigid).exit_code, 0);
+}
+
+/// The lines of a CSV file split at commas (no quoted fields in these files).
+std::vector<std::vector<std::string>> csvRows(const fs::path& path) {
+    std::istringstream text(test::readWhole(path));
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(text, line);) {
+        std::vector<std::string> fields;
+        std::istringstream cells(line);
+        for (std::string cell; std::getline(cells, cell, ',');) fields.push_back(cell);
+        rows.push_back(fields);
+    }
+    return rows;
+}
+
+TEST(CliFrequencyMap, TheDesignMetricIsTheWorkspaceCommandsLowestFirstFrequency) {
+    const fs::path dir = test::freshScratchDirectory("cli_frequency_map");
+    // the 3-RRR family with a drive stiffness of 20 N m/rad at each actuated joint
+    std::string family = test::readWhole(fs::path(NOCDYN_SOURCE_DIR) / "examples" / "design_3rrr" / "family.yaml");
+    for (std::size_t at = family.find("actuated: true,"); at != std::string::npos;
+         at = family.find("actuated: true,", at + 1)) {
+        family.insert(at + std::string("actuated: true,").size(), " stiffness: 20.0,");
+    }
+    std::ofstream(dir / "family.yaml") << family;
+    const std::string sweep =
+        " --vary r_b=0.19:0.21 --sweep grid --samples 2 --resolution 21 --threads 1 --metric "
+        "first_frequency_min --metric workspace_area --out-dir ";
+    const test::CliResult r =
+        runCli("design --robot " + (dir / "family.yaml").string() + sweep + (dir / "run").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const auto rows = csvRows(dir / "run" / "designs.csv");
+    ASSERT_EQ(rows.size(), 3u);
+    ASSERT_EQ(rows[0], (std::vector<std::string>{"design", "r_b", "first_frequency_min", "workspace_area", "feasible",
+                                                 "reason"}));
+    for (std::size_t k = 1; k < rows.size(); ++k) {
+        ASSERT_EQ(rows[k][4], "true") << rows[k][5];
+        const test::CliResult w = runCli("workspace --json --first-frequency --resolution 21 --robot " +
+                                         (dir / "family.yaml").string() + " --set r_b=" + rows[k][1]);
+        ASSERT_EQ(w.exit_code, 0) << w.err;
+        const double lowest = nlohmann::json::parse(w.out)["first_frequency"]["lowest"].get<double>();
+        EXPECT_EQ(std::stod(rows[k][2]), lowest) << rows[k][1];
+        EXPECT_GT(lowest, 1.0);
+    }
+    // the family as it is (no compliance): every design infeasible, the reason says why
+    const test::CliResult rigid = runCli("design --robot " + std::string(NOCDYN_SOURCE_DIR) +
+                                         "/examples/design_3rrr/family.yaml" + sweep + (dir / "rigid").string());
+    ASSERT_EQ(rigid.exit_code, 0) << rigid.err;
+    const auto rigid_rows = csvRows(dir / "rigid" / "designs.csv");
+    ASSERT_EQ(rigid_rows.size(), 3u);
+    EXPECT_EQ(rigid_rows[1][4], "false");
+    EXPECT_NE(rigid_rows[1][5].find("declares no compliance"), std::string::npos) << rigid_rows[1][5];
 }
 
 }  // namespace
