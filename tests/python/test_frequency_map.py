@@ -74,6 +74,13 @@ def test_a_robot_without_compliance_is_refused(source_dir):
         nocdyn.workspace(robot=str(source_dir / "robots" / "3-rrr.yaml"), resolution=21, first_frequency=True)
 
 
+def test_bad_values_name_the_argument(compliant):
+    with pytest.raises(ValueError, match="^first_frequency: "):
+        nocdyn.workspace(robot=compliant, resolution=21, first_frequency="yes")
+    with pytest.raises(ValueError, match="^frequency_map: "):
+        nocdyn.workspace(robot=compliant, resolution=21, frequency_map="")
+
+
 def test_two_threads_map_at_once(compliant):
     results = [None, None]
 
