@@ -107,6 +107,11 @@ def test_the_design_metric_is_the_maps_lowest(compliant_family, tmp_path):
         ws = nocdyn.workspace(robot=str(robot), resolution=RESOLUTION, first_frequency=True)
         assert table.values[k, 0] == ws.first_frequency_min > 0.0
         assert table.values[k, 1] == pytest.approx(ws.area, rel=1e-12)
+        # set= applies: the family file with the parameter overridden is the same design
+        by_set = nocdyn.workspace(robot=str(compliant_family), set={"r_b": point[0]}, resolution=RESOLUTION,
+                                  first_frequency=True)
+        assert by_set.first_frequency_min == ws.first_frequency_min
+    assert table.values[0, 0] != table.values[1, 0]
 
 
 def test_a_family_without_compliance_is_infeasible_with_the_reason(source_dir):
