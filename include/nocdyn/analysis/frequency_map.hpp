@@ -4,7 +4,9 @@
 // robot file declares (StiffnessModel::any).
 #pragma once
 
+#include <cstddef>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "nocdyn/analysis/workspace.hpp"
