@@ -151,6 +151,10 @@ void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& fami
                   const std::vector<DesignMetric>& metrics, const nocdyn::DesignOptions& design,
                   const std::vector<io::DesignRecord>& records, const std::vector<std::size_t>& front) {
     using report::literalText;
+    // no feasible design: nothing to draw (gnuplot refuses an empty data block)
+    if (std::none_of(records.begin(), records.end(), [](const io::DesignRecord& r) { return r.evaluation.feasible; })) {
+        return;
+    }
     if (metrics.size() >= 2) {
         report::PlotSeries all{"feasible designs", {}, {}, "points pt 7 ps 0.5 lc rgb '#999999'"};
         report::PlotSeries best{"Pareto front (over every metric)", {}, {}, "points pt 7 ps 0.9 lc rgb '#c0392b'"};

@@ -1,5 +1,7 @@
 #include "app/workspace.hpp"
 
+#include "nocdyn/analysis/stiffness.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "workspace_figure.hpp"
 
@@ -23,9 +25,28 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
         observer.progress(done, total, "grid columns");
         stopIfRequested(observer);
     };
+    if (options.first_frequency && !analysis::StiffnessModel(model).any) {
+        throw Error(analysis::noComplianceMessage(model, "the first natural frequency map"));
+    }
     out.map = workspaceMap(model, ws);
     out.summary = report::workspaceSummary(out.map);
     const WorkspaceMap& map = out.map;
+    if (options.first_frequency) {
+        out.frequency = analysis::firstFrequencyMap(model, map, [&observer](int done, int total) {
+            observer.progress(done, total, "grid columns (natural frequencies)");
+            stopIfRequested(observer);
+        });
+        out.summary += ' ';
+        out.summary += report::firstFrequencySummary(*out.frequency);
+        out.frequency_table.columns = io::columnNames(io::TableId::first_frequency);
+        for (int i = 0; i < map.n; ++i) {
+            for (int k = 0; k < map.n; ++k) {
+                if (map.cell(i, k) != WorkspaceCell::feasible) continue;
+                out.frequency_table.rows.push_back(
+                    {map.x0 + i * map.step, map.y0 + k * map.step, out.frequency->at(i, k, map.n)});
+            }
+        }
+    }
     out.table.columns = io::columnNames(io::TableId::workspace);
     out.table.categories = {{}, {}, {"feasible", "unreachable", "range", "singular"}};  // WorkspaceCell in order
     for (int i = 0; i < map.n; ++i) {
@@ -39,6 +60,11 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
 
 void writeWorkspaceFigure(const WorkspaceResult& result, const std::string& stem) {
     report::renderFigure(report::workspaceFigure(result.map, *result.model, {}), stem);
+}
+
+void writeFrequencyFigure(const WorkspaceResult& result, const std::string& stem) {
+    if (!result.frequency) throw Error("the figure of the first natural frequency needs first_frequency");
+    report::renderFigure(report::firstFrequencyFigure(result.map, *result.frequency, *result.model), stem);
 }
 
 }  // namespace nocdyn::app

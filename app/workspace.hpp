@@ -8,6 +8,7 @@
 
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "nocdyn/analysis/frequency_map.hpp"
 #include "nocdyn/analysis/workspace.hpp"
 #include "nocdyn/io/csv.hpp"
 
@@ -21,6 +22,9 @@ struct WorkspaceOptions {
     /// Platform orientation [rad]; empty: the robot's home orientation.
     std::optional<double> theta;
     int resolution = 201;  ///< grid points per side (kWorkspaceResolutionRange)
+    /// Also the first natural frequency of the lumped model at every feasible point
+    /// (frequency_map.hpp); the robot file must declare compliance.
+    bool first_frequency = false;
 };
 
 struct WorkspaceResult {
@@ -30,15 +34,24 @@ struct WorkspaceResult {
     std::string summary;
     /// The grid as the CSV's table (io::TableId::workspace): x, y [m], cell as words.
     io::Table table;
+    /// With options.first_frequency: f_1 per grid point [Hz] (NaN where not feasible), its
+    /// lowest and where, and the feasible points as a table (io::TableId::first_frequency).
+    std::optional<analysis::FirstFrequencyMap> frequency;
+    io::Table frequency_table;
 };
 
 /// Throws OptionError for theta or resolution out of range.
 void validate(const WorkspaceOptions& options);
 
-/// The map; progress in grid columns, a stop between columns.
+/// The map (and with first_frequency the frequency map: throws nocdyn::Error for a robot that
+/// declares no compliance); progress in grid columns, a stop between columns.
 [[nodiscard]] WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer);
 
 /// The map as a figure (feasible region, singularity curves): STEM.png and STEM.svg.
 void writeWorkspaceFigure(const WorkspaceResult& result, const std::string& stem);
+
+/// The first natural frequency over the map as a heat map with its lowest point: STEM.png and
+/// STEM.svg. Throws nocdyn::Error when the result holds no frequency map.
+void writeFrequencyFigure(const WorkspaceResult& result, const std::string& stem);
 
 }  // namespace nocdyn::app

@@ -62,6 +62,57 @@ Figure workspaceFigure(const WorkspaceMap& map, const Model& model, const std::v
     return figure;
 }
 
+Figure firstFrequencyFigure(const WorkspaceMap& map, const analysis::FirstFrequencyMap& frequency, const Model& model) {
+    // one pixel per grid point ("with image" needs the whole grid; NaN is drawn blank)
+    PlotSeries heat{"first natural frequency f_1 [Hz] (colour; blank: not feasible)", {}, {}, "image", {{}}};
+    const auto cells = static_cast<std::size_t>(map.n) * static_cast<std::size_t>(map.n);
+    heat.x.reserve(cells);
+    heat.y.reserve(cells);
+    heat.extra[0].reserve(cells);
+    for (int i = 0; i < map.n; ++i) {
+        for (int k = 0; k < map.n; ++k) {
+            heat.x.push_back((map.x0 + i * map.step) * 1e3);
+            heat.y.push_back((map.y0 + k * map.step) * 1e3);
+            heat.extra[0].push_back(frequency.at(i, k, map.n));
+        }
+    }
+    char lowest_label[128];
+    std::snprintf(lowest_label, sizeof lowest_label, "lowest f_1: %.4g Hz", frequency.lowest);
+    PlotSeries lowest{lowest_label,
+                      {frequency.lowest_x * 1e3},
+                      {frequency.lowest_y * 1e3},
+                      "points pt 6 ps 2.5 lw 2 lc rgb '#00a0ff'"};
+    PlotSeries home{
+        "home position of C", {model.home(1) * 1e3}, {model.home(2) * 1e3}, "points pt 2 ps 2 lc rgb 'black'"};
+    char theta[64];
+    std::snprintf(theta, sizeof theta, "%.4g deg", map.theta * 180.0 / std::numbers::pi);
+    PlotPanel panel{"First natural frequency f_1 [Hz] of the lumped model, C at theta = " + std::string(theta) +
+                        " (grid " + std::to_string(map.n) + " x " + std::to_string(map.n) + ")",
+                    "x [mm]",
+                    "y [mm]",
+                    {},
+                    false,
+                    false};
+    panel.equal_axes = true;
+    panel.series = {std::move(heat), std::move(lowest), std::move(home)};
+    Figure figure;
+    figure.title = "First natural frequency over the workspace of " + literalText(model.description.name);
+    figure.panels = {panel};
+    figure.width = 900;
+    figure.height = 900;
+    return figure;
+}
+
+std::string firstFrequencySummary(const analysis::FirstFrequencyMap& frequency) {
+    char text[320];
+    std::snprintf(text, sizeof text,
+                  "First natural frequency (lumped model) over its %d feasible points: lowest %.6g Hz at (x, y) = "
+                  "(%.6g, %.6g) mm, highest %.6g Hz.",
+                  frequency.points, frequency.lowest, frequency.lowest_x * 1e3, frequency.lowest_y * 1e3,
+                  frequency.highest);
+    return text;
+}
+
 std::string workspaceSummary(const WorkspaceMap& map) {
     char text[768];
     const Dexterity d = dexterity(map);

@@ -68,7 +68,7 @@ TEST(Layouts, EveryTableHasUniqueNamedDocumentedColumns) {
             EXPECT_EQ(name.find_first_of("{},\" "), std::string::npos) << layout.name << ": " << name;
         }
     }
-    EXPECT_EQ(ids.size(), 12U);
+    EXPECT_EQ(ids.size(), 13U);
     EXPECT_EQ(io::tableKey(TableId::closed_loop), "closed_loop");
     EXPECT_THROW((void)io::tableId("closed-loop"), Error);
 }

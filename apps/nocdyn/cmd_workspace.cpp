@@ -18,6 +18,7 @@ namespace {
 
 struct Options : app::WorkspaceOptions {
     std::string output, figure;  ///< no figure unless asked for
+    std::string frequency_map;   ///< STEM.csv, STEM.png, STEM.svg of the first natural frequency
     bool quiet = false, json = false;
 };
 
@@ -34,15 +35,27 @@ nlohmann::json summaryJson(const app::WorkspaceResult& result) {
     out["y_range"] = {map.y0, map.y0 + (map.n - 1) * map.step};
     out["limb_singular_points"] = map.limb_singular.size();
     out["actuation_singular_points"] = map.actuation_singular.size();
+    if (result.frequency) {
+        const analysis::FirstFrequencyMap& f = *result.frequency;
+        out["first_frequency"] = {{"points", f.points},
+                                  {"lowest", f.lowest},
+                                  {"lowest_at", {{"x", f.lowest_x}, {"y", f.lowest_y}, {"theta", map.theta}}},
+                                  {"highest", f.highest}};
+    }
     return out;
 }
 
-void run(const Options& options) {
+void run(Options options) {
+    if (!options.frequency_map.empty()) options.first_frequency = true;
     TerminalObserver terminal("nocdyn workspace");
     const app::WorkspaceResult result = app::runWorkspace(options, options.quiet ? app::silent() : terminal);
     terminal.finish();
     if (!options.output.empty()) writeTable(result.table, options.output);
     if (!options.figure.empty()) app::writeWorkspaceFigure(result, options.figure);
+    if (!options.frequency_map.empty()) {
+        writeTable(result.frequency_table, options.frequency_map + ".csv");
+        app::writeFrequencyFigure(result, options.frequency_map);
+    }
     if (options.json) {
         std::cout << summaryJson(result).dump(2) << "\n";
     } else if (!options.quiet) {
@@ -63,6 +76,9 @@ void addWorkspaceCommand(CLI::App& app) {
         "area.\n"
         "The grid is fitted to the feasible region. CSV: x, y [m] and cell (feasible, unreachable: out of\n"
         "reach, range: a joint out of its range, singular).\n"
+        "With --first-frequency (robot files that declare compliance: joint stiffness, elastic bodies) also the\n"
+        "first natural frequency of the lumped model at every feasible point, its lowest and where;\n"
+        "--frequency-map STEM writes it as STEM.csv (x, y [m], first_frequency [Hz]) and a heat map.\n"
         "Example: nocdyn workspace --robot robots/3-rrr.yaml --theta 0.1");
     addRobotOption(*command, options->robot);
     command->add_option("--theta", options->theta, "Platform orientation [rad] [default: the robot's home]")
@@ -72,13 +88,21 @@ void addWorkspaceCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--output,-o", options->output, "CSV of the grid [default: none]")->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");
+    command->add_flag("--first-frequency", options->first_frequency,
+                      "Also the first natural frequency at every feasible point (needs compliance in the robot file)");
+    command
+        ->add_option("--frequency-map", options->frequency_map,
+                     "Stem of the first natural frequency's CSV and heat map (STEM.csv, STEM.png, STEM.svg);\n"
+                     "implies --first-frequency [default: none]")
+        ->check(nonEmptyPath());
     command->add_flag("--quiet,-q", options->quiet,
                       "Print nothing (no summary, no progress line); errors still go to stderr");
     command
         ->add_flag(
             "--json", options->json,
             "Print the summary as JSON instead (robot, theta [rad], area [m^2], resolution, step [m], x_range and\n"
-            "y_range [m], limb_singular_points, actuation_singular_points)")
+            "y_range [m], limb_singular_points, actuation_singular_points; with --first-frequency first_frequency:\n"
+            "points, lowest [Hz], lowest_at {x, y [m], theta [rad]}, highest [Hz])")
         ->excludes("--quiet");
     command->callback([options] { run(*options); });
 }

@@ -407,21 +407,35 @@ frequency_response.__signature__ = _signature(_nocdyn.FrequencyResponseOptions, 
                                               after=(("output", None), ("summary", None), ("figure", None)))
 
 
-def workspace(*, robot=None, set=None, output=None, figure=None, progress=None, **options):
+def workspace(*, robot=None, set=None, output=None, figure=None, frequency_map=None, progress=None, **options):
     """The workspace at one platform orientation theta [rad] (default: the robot's home)
     (``nocdyn workspace``): a resolution x resolution grid of C's positions, each feasible (0),
     out of reach (1), with a joint out of range (2) or singular (3). Returns a Workspace (x, y,
     cell; ``cells`` as a grid, ``area``; ``text`` the summary line). output: also write the CSV;
-    figure: the figure's stem (STEM.png, STEM.svg)."""
+    figure: the figure's stem (STEM.png, STEM.svg). first_frequency=True (robot files that declare
+    compliance): also ``first_frequency``, the lowest natural frequency [Hz] per grid point as an
+    (n, n) array indexed [ix, iy] (NaN where not feasible), ``first_frequency_min`` and
+    ``first_frequency_at`` (x, y, theta); frequency_map: its stem (STEM.csv, STEM.png, STEM.svg),
+    which implies first_frequency."""
     bound = _bound_options(_nocdyn.WorkspaceOptions, options)
     bound.robot = _robot_source(robot, set)
-    answer, summary = _run(lambda o, p: _nocdyn._run_workspace(o, p, _path(output, "output"), _path(figure, "figure")),
-                           bound, progress, "workspace")
-    return _table(answer, "workspace", Workspace, summary)
+    answer, summary, frequency = _run(
+        lambda o, p: _nocdyn._run_workspace(o, p, _path(output, "output"), _path(figure, "figure"),
+                                            _path(frequency_map, "frequency_map")),
+        bound, progress, "workspace")
+    result = _table(answer, "workspace", Workspace, summary)
+    if frequency is not None:
+        result.first_frequency = frequency["first"]
+        result.first_frequency_min = frequency["lowest"]
+        result.first_frequency_at = frequency["lowest_at"]
+        result.first_frequency_max = frequency["highest"]
+        result.frequency_table = _table(frequency["table"], "first_frequency")
+    return result
 
 
 workspace.__signature__ = _signature(_nocdyn.WorkspaceOptions, (), before=(("robot", None), ("set", None)),
-                                     after=(("output", None), ("figure", None), ("progress", None)))
+                                     after=(("output", None), ("figure", None), ("frequency_map", None),
+                                            ("progress", None)))
 
 
 def convert(robot, *, set=None, output=None):

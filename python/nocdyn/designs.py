@@ -4,7 +4,8 @@ A family is a parametric robot file (``parameters:`` with named values, numbers 
 expressions of them) with some parameters varied over ranges. Each design is the robot file
 that one parameter set means (``nocdyn convert --set``), and its metrics are the numbers the
 single-robot commands give (see ``nocdyn design --help``): ``workspace_area``,
-``condition_median``, ``condition_worst``, ``envelope_x@50`` (any axis x, y, theta and
+``condition_median``, ``condition_worst``, ``first_frequency_min`` (the lowest first natural
+frequency over the workspace [Hz]; a family without compliance is infeasible), ``envelope_x@50`` (any axis x, y, theta and
 frequency), ``moving_mass``, and along a trajectory ``peak_force``, ``rms_force``, ``stroke``,
 ``peak_reaction``. A design that does not assemble, is singular or meets a limit is a row with
 ``feasible`` False and its ``reason``.
@@ -358,8 +359,8 @@ def sweep(family, metrics, samples=64, method="sobol", seed=0, *, client=None, c
 
 def pareto_front(table, senses=None):
     """Indices of the feasible designs no other feasible design dominates; senses: {metric:
-    'maximize' | 'minimize'} for metrics of the table (default: workspace and envelope
-    maximised, the rest minimised); ValueError for any other key or value. O(n log n) for one
+    'maximize' | 'minimize'} for metrics of the table (default: workspace, first frequency and
+    envelope maximised, the rest minimised); ValueError for any other key or value. O(n log n) for one
     or two metrics (a sort and a running maximum), O(n |front|) for more."""
     larger = {name: better for name, _, better in _nocdyn._design_metric_names(table.metrics)}
     senses = dict(senses or {})

@@ -190,6 +190,13 @@ class Workspace(Table):
     the summary line with the area."""
 
     CELLS = ("feasible", "unreachable", "range", "singular")
+    # with first_frequency=True: f_1 [Hz] per grid point, (n, n) indexed [ix, iy], NaN where not
+    # feasible; its lowest [Hz] and where (x, y, theta); the highest; the feasible points as a Table
+    first_frequency = None
+    first_frequency_min = None
+    first_frequency_at = None
+    first_frequency_max = None
+    frequency_table = None
 
     @property
     def cells(self):

@@ -4,6 +4,7 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -96,23 +97,43 @@ void bindAnalysis(py::module_& m) {
         .def_readwrite("robot", &app::WorkspaceOptions::robot)
         .def_readwrite("theta", &app::WorkspaceOptions::theta)
         .def_readwrite("resolution", &app::WorkspaceOptions::resolution)
-        .def_property_readonly_static("_fields",
-                                      [](const py::object&) { return py::make_tuple("theta", "resolution"); });
+        .def_readwrite("first_frequency", &app::WorkspaceOptions::first_frequency)
+        .def_property_readonly_static(
+            "_fields", [](const py::object&) { return py::make_tuple("theta", "resolution", "first_frequency"); });
     m.def(
         "_run_workspace",
         [](const app::WorkspaceOptions& options, const py::object& progress, const py::object& output,
-           const py::object& figure) {
-            const std::string csv = pathOrEmpty(output), stem = pathOrEmpty(figure);
+           const py::object& figure, const py::object& frequency_map) {
+            const std::string csv = pathOrEmpty(output), stem = pathOrEmpty(figure),
+                              frequency_stem = pathOrEmpty(frequency_map);
+            app::WorkspaceOptions run = options;
+            if (!frequency_stem.empty()) run.first_frequency = true;  // as the command line's --frequency-map
             const app::WorkspaceResult result = runJob(progress, [&](app::Observer& observer) {
-                app::WorkspaceResult r = app::runWorkspace(options, observer);
+                app::WorkspaceResult r = app::runWorkspace(run, observer);
                 if (!csv.empty()) writeCsvFile(r.table, csv);
                 if (!stem.empty()) app::writeWorkspaceFigure(r, stem);
+                if (!frequency_stem.empty()) {
+                    writeCsvFile(r.frequency_table, frequency_stem + ".csv");
+                    app::writeFrequencyFigure(r, frequency_stem);
+                }
                 return r;
             });
-            return py::make_tuple(tableTuple(result.table), result.summary);
+            // f_1 per grid point as an (n, n) array indexed [ix, iy] (NaN where not feasible)
+            py::object frequency = py::none();
+            if (result.frequency) {
+                const analysis::FirstFrequencyMap& f = *result.frequency;
+                const auto n = static_cast<py::ssize_t>(result.map.n);
+                py::array_t<double> first({n, n});
+                std::copy(f.first.begin(), f.first.end(), first.mutable_data());
+                frequency = py::dict(py::arg("first") = first, py::arg("lowest") = f.lowest,
+                                     py::arg("lowest_at") = py::make_tuple(f.lowest_x, f.lowest_y, result.map.theta),
+                                     py::arg("highest") = f.highest, py::arg("points") = f.points,
+                                     py::arg("table") = tableTuple(result.frequency_table));
+            }
+            return py::make_tuple(tableTuple(result.table), result.summary, frequency);
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
-        py::arg("figure") = py::none());
+        py::arg("figure") = py::none(), py::arg("frequency_map") = py::none());
 
     py::class_<app::RegressorOptions>(m, "RegressorOptions")
         .def(py::init<>())

@@ -10,6 +10,8 @@
 #include <mutex>
 #include <random>
 
+#include "nocdyn/analysis/frequency_map.hpp"
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/parallel.hpp"
@@ -27,7 +29,8 @@ std::string frequencyText(double f) {
 }
 
 constexpr const char* kMetricNames =
-    "workspace_area, condition_median, condition_worst, envelope_x@F, envelope_y@F, envelope_theta@F (F in Hz), "
+    "workspace_area, condition_median, condition_worst, first_frequency_min, envelope_x@F, envelope_y@F, "
+    "envelope_theta@F (F in Hz), "
     "moving_mass, peak_force, rms_force, stroke, peak_reaction";
 
 /// Peaks over a trajectory, accumulated sample by sample.
@@ -47,6 +50,8 @@ std::string DesignMetric::name() const {
             return "condition_median";
         case DesignMetricKind::condition_worst:
             return "condition_worst";
+        case DesignMetricKind::first_frequency_min:
+            return "first_frequency_min";
         case DesignMetricKind::envelope:
             return std::string("envelope_") + axisName(axis) + "@" + frequencyText(frequency);
         case DesignMetricKind::moving_mass:
@@ -70,6 +75,8 @@ std::string DesignMetric::unit() const {
         case DesignMetricKind::condition_median:
         case DesignMetricKind::condition_worst:
             return "-";
+        case DesignMetricKind::first_frequency_min:
+            return "Hz";
         case DesignMetricKind::envelope:
             return axis == EnvelopeAxis::theta ? "rad" : "m";
         case DesignMetricKind::moving_mass:
@@ -86,7 +93,8 @@ std::string DesignMetric::unit() const {
 }
 
 bool DesignMetric::larger_is_better() const {
-    return kind == DesignMetricKind::workspace_area || kind == DesignMetricKind::envelope;
+    return kind == DesignMetricKind::workspace_area || kind == DesignMetricKind::first_frequency_min ||
+           kind == DesignMetricKind::envelope;
 }
 
 bool DesignMetric::along_trajectory() const {
@@ -96,14 +104,16 @@ bool DesignMetric::along_trajectory() const {
 
 DesignMetric parseDesignMetric(const std::string& text) {
     DesignMetric m;
-    const std::pair<const char*, DesignMetricKind> plain[] = {{"workspace_area", DesignMetricKind::workspace_area},
-                                                              {"condition_median", DesignMetricKind::condition_median},
-                                                              {"condition_worst", DesignMetricKind::condition_worst},
-                                                              {"moving_mass", DesignMetricKind::moving_mass},
-                                                              {"peak_force", DesignMetricKind::peak_force},
-                                                              {"rms_force", DesignMetricKind::rms_force},
-                                                              {"stroke", DesignMetricKind::stroke},
-                                                              {"peak_reaction", DesignMetricKind::peak_reaction}};
+    const std::pair<const char*, DesignMetricKind> plain[] = {
+        {"workspace_area", DesignMetricKind::workspace_area},
+        {"condition_median", DesignMetricKind::condition_median},
+        {"condition_worst", DesignMetricKind::condition_worst},
+        {"first_frequency_min", DesignMetricKind::first_frequency_min},
+        {"moving_mass", DesignMetricKind::moving_mass},
+        {"peak_force", DesignMetricKind::peak_force},
+        {"rms_force", DesignMetricKind::rms_force},
+        {"stroke", DesignMetricKind::stroke},
+        {"peak_reaction", DesignMetricKind::peak_reaction}};
     for (const auto& [name, kind] : plain) {
         if (text == name) {
             m.kind = kind;
@@ -151,7 +161,16 @@ DesignEvaluation evaluateDesign(const RobotDescription& robot, const std::vector
     // A reason for infeasibility is any error the model or a metric reports for this design.
     try {
         const Model model(robot);
-        std::optional<std::pair<double, Dexterity>> workspace;  // area [m^2], dexterity
+        std::optional<WorkspaceMap> map;  // shared by the workspace metrics
+        std::optional<Dexterity> dexterity_over_map;
+        const auto workspace = [&]() -> const WorkspaceMap& {
+            if (!map) {
+                WorkspaceOptions ws = options.workspace;
+                if (options.workspace_theta_at_home) ws.theta = model.home(0);
+                map.emplace(workspaceMap(model, ws));
+            }
+            return *map;
+        };
         std::optional<TrajectoryPeaks> peaks;
         for (std::size_t i = 0; i < metrics.size(); ++i) {
             const DesignMetric& m = metrics[i];
@@ -160,15 +179,17 @@ DesignEvaluation evaluateDesign(const RobotDescription& robot, const std::vector
                 case DesignMetricKind::workspace_area:
                 case DesignMetricKind::condition_median:
                 case DesignMetricKind::condition_worst:
-                    if (!workspace) {
-                        WorkspaceOptions ws = options.workspace;
-                        if (options.workspace_theta_at_home) ws.theta = model.home(0);
-                        const WorkspaceMap map = workspaceMap(model, ws);
-                        workspace.emplace(map.area, dexterity(map));
+                    if (!dexterity_over_map) dexterity_over_map = dexterity(workspace());
+                    value = m.kind == DesignMetricKind::workspace_area     ? workspace().area
+                            : m.kind == DesignMetricKind::condition_median ? dexterity_over_map->median
+                                                                           : dexterity_over_map->worst;
+                    break;
+                case DesignMetricKind::first_frequency_min:
+                    // the same function as `nocdyn workspace --first-frequency`, over the same map
+                    if (!analysis::StiffnessModel(model).any) {
+                        throw Error(analysis::noComplianceMessage(model, "first_frequency_min"));
                     }
-                    value = m.kind == DesignMetricKind::workspace_area     ? workspace.value().first
-                            : m.kind == DesignMetricKind::condition_median ? workspace.value().second.median
-                                                                           : workspace.value().second.worst;
+                    value = analysis::firstFrequencyMap(model, workspace()).lowest;
                     break;
                 case DesignMetricKind::envelope:
                     value = maximumAmplitude(model, m.axis, m.frequency, options.envelope).amplitude;

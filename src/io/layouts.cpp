@@ -113,6 +113,13 @@ std::vector<Layout> makeLayouts() {
          {{"x", "m", "grid point, x"},
           {"y", "m", "grid point, y"},
           {"cell", "", "feasible, unreachable, range or singular (a word)"}}},
+        {first_frequency,
+         "First natural frequency over the workspace",
+         "`nocdyn workspace --frequency-map STEM`: STEM.csv; Python `nocdyn.workspace(first_frequency=True)`",
+         "One row per feasible grid point of the workspace grid, in its order.",
+         {{"x", "m", "grid point, x"},
+          {"y", "m", "grid point, y"},
+          {"first_frequency", "Hz", "lowest natural frequency of the lumped model K v = w^2 M v at (x, y, theta)"}}},
         {loads,
          "Joint design loads",
          "`nocdyn loads --output`; Python `nocdyn.loads`",
@@ -172,7 +179,7 @@ std::vector<Layout> makeLayouts() {
 
 /// `pattern` with its first `key` replaced by `value` (built by appending: GCC 12's -Wrestrict
 /// misfires on std::string::replace at -O3).
-constexpr std::array<std::pair<TableId, std::string_view>, 12> kKeys{{
+constexpr std::array<std::pair<TableId, std::string_view>, 13> kKeys{{
     {TableId::inverse_dynamics, "inverse_dynamics"},
     {TableId::reactions, "reactions"},
     {TableId::simulate, "simulate"},
@@ -181,6 +188,7 @@ constexpr std::array<std::pair<TableId, std::string_view>, 12> kKeys{{
     {TableId::held_out_forces, "held_out_forces"},
     {TableId::envelope, "envelope"},
     {TableId::workspace, "workspace"},
+    {TableId::first_frequency, "first_frequency"},
     {TableId::loads, "loads"},
     {TableId::shake, "shake"},
     {TableId::validation, "validation"},

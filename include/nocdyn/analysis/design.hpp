@@ -3,6 +3,8 @@
 //   workspace_area       area of the feasible region of C at theta (workspace.hpp) [m^2]
 //   condition_median     median scaled condition number of A over that region [-]
 //   condition_worst      largest scaled condition number of A over that region [-]
+//   first_frequency_min  lowest first natural frequency of the lumped model over that region
+//                        (frequency_map.hpp) [Hz]; needs the compliance the file declares
 //   envelope_AXIS@F      largest amplitude along AXIS (x, y, theta) at F Hz (envelope.hpp)
 //                        [m or rad]
 //   moving_mass          platform and every limb body [kg]
@@ -11,9 +13,9 @@
 //                        max u_a - min u_a, over actuators [N or N m; m or rad]
 //   peak_reaction        largest joint reaction force |(f_x, f_y)| over the trajectory
 //                        (reactions.hpp) [N]
-// A design that does not assemble at home, is singular there, has no feasible workspace or
-// meets a limit along the trajectory is infeasible: its evaluation names the reason instead
-// of throwing.
+// A design that does not assemble at home, is singular there, has no feasible workspace,
+// declares no compliance (first_frequency_min) or meets a limit along the trajectory is
+// infeasible: its evaluation names the reason instead of throwing.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +36,7 @@ enum class DesignMetricKind {
     workspace_area,
     condition_median,
     condition_worst,
+    first_frequency_min,
     envelope,
     moving_mass,
     peak_force,
@@ -51,7 +54,7 @@ struct DesignMetric {
     [[nodiscard]] std::string name() const;
     /// SI unit, for the column's description: "m^2", "m", "rad", "kg", "N", "-".
     [[nodiscard]] std::string unit() const;
-    /// Whether a larger value is better (workspace, envelope), else smaller is.
+    /// Whether a larger value is better (workspace, first frequency, envelope), else smaller is.
     [[nodiscard]] bool larger_is_better() const;
     /// Whether it needs a trajectory.
     [[nodiscard]] bool along_trajectory() const;

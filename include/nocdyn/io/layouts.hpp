@@ -20,6 +20,7 @@ enum class TableId {
     held_out_forces,   ///< reproduce's identification KEY_forces.csv
     envelope,          ///< nocdyn envelope, reproduce's envelope.csv
     workspace,         ///< nocdyn workspace --output
+    first_frequency,   ///< nocdyn workspace --frequency-map STEM: STEM.csv
     loads,             ///< nocdyn loads
     shake,             ///< nocdyn shake's shake.csv
     validation,        ///< nocdyn validate, reproduce's *_validation.csv

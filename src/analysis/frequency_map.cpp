@@ -1,0 +1,66 @@
+// First natural frequency over a workspace map (frequency_map.hpp): per feasible grid point the
+// position, velocity and shaping stages, K and the lumped modes (stiffnessAndModes), in one
+// Data reused from point to point.
+#include "nocdyn/analysis/frequency_map.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "nocdyn/analysis/stiffness.hpp"
+#include "nocdyn/error.hpp"
+
+namespace nocdyn::analysis {
+
+std::string noComplianceMessage(const Model& model, const std::string& what) {
+    const std::string& source = model.description.source;
+    return "robot '" + model.description.name + "'" + (source.empty() ? "" : " (" + source + ")") +
+           " declares no compliance (no joint stiffness, no elastic body): " + what +
+           " needs a joint 'stiffness' or a body's 'elastic' (see robots/paper-3prr-compliant.yaml)";
+}
+
+FirstFrequencyMap firstFrequencyMap(const Model& model, const WorkspaceMap& map,
+                                    const std::function<void(int done, int total)>& progress) {
+    const StiffnessModel compliance(model);
+    if (!compliance.any) throw Error(noComplianceMessage(model, "the first natural frequency"));
+    const std::size_t n = static_cast<std::size_t>(map.n);
+    if (map.n < 1 || map.cells.size() != n * n) throw Error("first natural frequency: the workspace map is empty");
+    FirstFrequencyMap out;
+    out.first.assign(map.cells.size(), std::numeric_limits<double>::quiet_NaN());
+    out.lowest = std::numeric_limits<double>::infinity();
+    out.highest = -std::numeric_limits<double>::infinity();
+    Data data(model);
+    StiffnessData stiffness;
+    LumpedModes modes;
+    for (int i = 0; i < map.n; ++i) {
+        const double x = map.x0 + i * map.step;
+        for (int k = 0; k < map.n; ++k) {
+            if (map.cell(i, k) != WorkspaceCell::feasible) continue;
+            const double y = map.y0 + k * map.step;
+            // nocdyn::Pose is (theta, x, y)
+            if (const Status s = stiffnessAndModes(model, compliance, data, Pose(map.theta, x, y), stiffness, modes);
+                !s) {
+                char where[96];
+                std::snprintf(where, sizeof where, " at (x, y, theta) = (%.6g m, %.6g m, %.6g rad)", x, y, map.theta);
+                throw Error("first natural frequency: " + describe(s, model) + where);
+            }
+            const double f1 = modes.frequency(0);  // ascending
+            out.first[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(k)] = f1;
+            ++out.points;
+            if (f1 < out.lowest) {
+                out.lowest = f1;
+                out.lowest_i = i;
+                out.lowest_k = k;
+                out.lowest_x = x;
+                out.lowest_y = y;
+            }
+            if (f1 > out.highest) out.highest = f1;
+        }
+        if (progress) progress(i + 1, map.n);
+    }
+    if (out.points == 0) throw Error("first natural frequency: the workspace map has no feasible point");
+    return out;
+}
+
+}  // namespace nocdyn::analysis
