@@ -20,6 +20,7 @@
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/text.hpp"
 #include "plot.hpp"
 #include "workspace_figure.hpp"
 
@@ -46,11 +47,7 @@ DesignRange parseRange(const std::string& text) {
 
 /// The shortest decimal that reads back as exactly `value`: two options that differ in any bit
 /// differ here (std::to_string keeps six decimals and would take 0.1 and 0.1000001 as one).
-std::string exact(double value) {
-    char buffer[64];
-    const auto end = std::to_chars(buffer, buffer + sizeof buffer, value).ptr;
-    return {buffer, end};
-}
+std::string exact(double value) { return text::shortest(value); }
 
 /// What a journal is kept for: the content of every input file (the robot file, a trajectory
 /// file) and every option that changes a design's numbers, each exactly. Any difference makes

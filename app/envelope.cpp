@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "nocdyn/tables/tables.hpp"
+#include "nocdyn/text.hpp"
 #include "plot.hpp"
 #include "reproduce_dynamics.hpp"
 
@@ -39,11 +40,11 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
 
 std::string resonanceSummary(const EnvelopeResonance& resonance) {
     if (resonance.known) {
-        char text[200];
-        std::snprintf(text, sizeof text,
-                      "third bound: first natural frequency %.6g Hz (lumped model at home); the limit at and above "
-                      "it is resonance",
-                      resonance.frequency);
+        std::string text;
+        text = text::format(
+            "third bound: first natural frequency %.6g Hz (lumped model at home); the limit at and above "
+            "it is resonance",
+            resonance.frequency);
         return text;
     }
     std::string text = "third bound (first natural frequency): unknown, " + resonance.reason;

@@ -32,7 +32,7 @@ JointLoads loadsAlong(const Model& model, const PoseTrajectory& trajectory, cons
 /// p(t) = home + A sin(2 pi f t) e_axis: one period of an envelope point's motion.
 PoseTrajectory envelopeMotion(const Model& model, const EnvelopePoint& point) {
     PoseTrajectory trajectory;
-    trajectory.name = std::string(axisName(point.axis)) + " at " + std::to_string(point.frequency) + " Hz";
+    trajectory.name = std::string(axisName(point.axis)) + " at " + text::format("%f", point.frequency) + " Hz";
     trajectory.theta.offset = model.home(0);
     trajectory.x.offset = model.home(1);
     trajectory.y.offset = model.home(2);

@@ -15,6 +15,7 @@
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/parallel.hpp"
+#include "nocdyn/text.hpp"
 #include "plants.hpp"
 
 namespace nocdyn::app {
@@ -162,20 +163,20 @@ ShakeSuiteRow scoreRow(const report::ShakeOutcome& o, const ShakeOptions& option
 std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::size_t workers,
                        const std::string& sensing) {
     std::ostringstream out;
-    char line[512];
-    std::snprintf(line, sizeof line,
-                  "%zu records on %s, controller %s, %zu at a time; pass: RMS <= %.3g %%, |peak| <= %.3g %%, "
-                  "spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%\n\n",
-                  r.rows.size(), options.plant.c_str(), options.controller.c_str(), workers, options.max_rms_percent,
-                  options.max_peak_percent, options.min_spectrum_percent);
+    std::string line;
+    line = text::format(
+        "%zu records on %s, controller %s, %zu at a time; pass: RMS <= %.3g %%, |peak| <= %.3g %%, "
+        "spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%\n\n",
+        r.rows.size(), options.plant.c_str(), options.controller.c_str(), workers, options.max_rms_percent,
+        options.max_peak_percent, options.min_spectrum_percent);
     out << line << "sensors: " << sensing << "\n\n"
         << "| record | folder | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
            "result |\n|---|---|---|---|---|---|---|---|---|\n";
     for (const ShakeSuiteRow& row : r.rows) {
-        std::snprintf(line, sizeof line, " %.4g | %.4g%s | %.2f %% | %+.2f %% | %.0f %% | %.0f %% (%s) | %s |",
-                      row.time_scale, row.amplitude, row.amplitude_asked ? " (asked)" : "", row.rms_error_percent,
-                      row.peak_error_percent, row.within_percent, row.limit_use_percent, row.binding.c_str(),
-                      row.pass ? "pass" : "FAIL");
+        line = text::format(" %.4g | %.4g%s | %.2f %% | %+.2f %% | %.0f %% | %.0f %% (%s) | %s |", row.time_scale,
+                            row.amplitude, row.amplitude_asked ? " (asked)" : "", row.rms_error_percent,
+                            row.peak_error_percent, row.within_percent, row.limit_use_percent, row.binding.c_str(),
+                            row.pass ? "pass" : "FAIL");
         // the names through the Markdown escaper: a file name cannot forge a row or carry HTML
         out << "| " << io::markdownText(std::filesystem::path(row.record).filename().string()) << " | "
             << io::markdownText(row.folder) << " |" << line << "\n";

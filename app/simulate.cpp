@@ -14,6 +14,7 @@
 #include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/tables/forces.hpp"
 #include "nocdyn/tables/tables.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::app {
 
@@ -47,8 +48,14 @@ Twist poseRate(const Model& model, Data& data, const ActuatorVector& du, const s
 InitialState initialState(const Model& model, const io::Table& table, const std::string& source, int assembly_mode) {
     const int n = model.actuators;
     const auto& first = table.rows.front();
-    const std::string where =
-        source + (table.lines.empty() ? std::string(": first row") : ":" + std::to_string(table.lines.front()));
+    // appended, not `":" + ...` (a GCC 12 -Wrestrict false positive)
+    std::string where = source;
+    if (table.lines.empty()) {
+        where += ": first row";
+    } else {
+        where += ':';
+        where += std::to_string(table.lines.front());
+    }
     auto value = [&](const std::string& name) { return first[table.column(name)]; };
     auto hasAll = [&](const char* prefix) {
         for (int a = 1; a <= n; ++a) {
@@ -108,7 +115,11 @@ InitialState initialState(const Model& model, const io::Table& table, const std:
         const ActuatorVector du = has_du ? actuatorColumns("du") : ActuatorVector();
         if (const Status status = stateFromActuators(model, data, actuatorColumns("u"), du, assembly_mode, start);
             !status) {
-            const std::string columns = columnList("u", n) + (has_du ? "," + columnList("du", n) : std::string());
+            std::string columns = columnList("u", n);
+            if (has_du) {
+                columns += ',';
+                columns += columnList("du", n);
+            }
             if (status.code == StatusCode::assembly_mode_missing && assembly_mode > 0) {
                 throw Error(where + ": --assembly-mode " + std::to_string(assembly_mode) + ", but " +
                             columnList("u", n) + " give " + std::to_string(start.working) + " working assembly mode" +
@@ -119,11 +130,15 @@ InitialState initialState(const Model& model, const io::Table& table, const std:
         state.p = start.p;
         state.dp = start.dp;
         std::ostringstream out;
-        out.precision(9);
-        out << "first row's " << columnList("u", n) << (has_du ? "," + columnList("du", n) : std::string(", at rest"))
-            << " (assembly mode " << start.mode << " of " << start.working << " with every limb on its home branch"
-            << (start.nearest_home ? ", the nearest home" : ", as --assembly-mode chose") << ": theta = " << start.p(0)
-            << " rad, x = " << start.p(1) << " m, y = " << start.p(2) << " m)";
+        out << "first row's " << columnList("u", n);
+        if (has_du) {
+            out << ',' << columnList("du", n);
+        } else {
+            out << ", at rest";
+        }
+        out << " (assembly mode " << start.mode << " of " << start.working << " with every limb on its home branch"
+            << (start.nearest_home ? ", the nearest home" : ", as --assembly-mode chose")
+            << text::format(": x = %.9g m, y = %.9g m, theta = %.9g rad)", start.p(1), start.p(2), start.p(0));
         state.origin = out.str();
         return state;
     }

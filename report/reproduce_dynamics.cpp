@@ -101,8 +101,8 @@ void drawResonance(PlotPanel& panel, double f1, double last_frequency) {
                                 "filledcurves fs transparent solid 0.15 noborder lc rgb '#d62728'",
                                 {{high, high}}});
     }
-    char label[80];
-    std::snprintf(label, sizeof label, "first natural frequency %.4g Hz", f1);
+    std::string label;
+    label = text::format("first natural frequency %.4g Hz", f1);
     panel.series.push_back({label, {f1, f1}, {low, high}, "lines dt 2 lw 2 lc rgb '#d62728'"});
 }
 

@@ -4,6 +4,7 @@
 
 #include <cstdio>
 #include <numbers>
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::report {
 
@@ -36,8 +37,8 @@ Figure workspaceFigure(const WorkspaceMap& map, const Model& model, const std::v
     }
     PlotSeries home{
         "home position of C", {model.home(1) * 1e3}, {model.home(2) * 1e3}, "points pt 2 ps 2 lc rgb 'black'"};
-    char theta[64];
-    std::snprintf(theta, sizeof theta, "%.4g deg", map.theta * 180.0 / std::numbers::pi);
+    std::string theta;
+    theta = text::format("%.4g deg", map.theta * 180.0 / std::numbers::pi);
     PlotPanel panel{
         "C at theta = " + std::string(theta) + " (grid " + std::to_string(map.n) + " x " + std::to_string(map.n) + ")",
         "x [mm]",
@@ -76,16 +77,16 @@ Figure firstFrequencyFigure(const WorkspaceMap& map, const analysis::FirstFreque
             heat.extra[0].push_back(frequency.at(i, k, map.n));
         }
     }
-    char lowest_label[128];
-    std::snprintf(lowest_label, sizeof lowest_label, "lowest f_1: %.4g Hz", frequency.lowest);
+    std::string lowest_label;
+    lowest_label = text::format("lowest f_1: %.4g Hz", frequency.lowest);
     PlotSeries lowest{lowest_label,
                       {frequency.lowest_x * 1e3},
                       {frequency.lowest_y * 1e3},
                       "points pt 6 ps 2.5 lw 2 lc rgb '#00a0ff'"};
     PlotSeries home{
         "home position of C", {model.home(1) * 1e3}, {model.home(2) * 1e3}, "points pt 2 ps 2 lc rgb 'black'"};
-    char theta[64];
-    std::snprintf(theta, sizeof theta, "%.4g deg", map.theta * 180.0 / std::numbers::pi);
+    std::string theta;
+    theta = text::format("%.4g deg", map.theta * 180.0 / std::numbers::pi);
     PlotPanel panel{"First natural frequency f_1 [Hz] of the lumped model, C at theta = " + std::string(theta) +
                         " (grid " + std::to_string(map.n) + " x " + std::to_string(map.n) + ")",
                     "x [mm]",
@@ -104,26 +105,25 @@ Figure firstFrequencyFigure(const WorkspaceMap& map, const analysis::FirstFreque
 }
 
 std::string firstFrequencySummary(const analysis::FirstFrequencyMap& frequency) {
-    char text[320];
-    std::snprintf(text, sizeof text,
-                  "First natural frequency (lumped model) over its %d feasible points: lowest %.6g Hz at (x, y) = "
-                  "(%.6g, %.6g) mm, highest %.6g Hz.",
-                  frequency.points, frequency.lowest, frequency.lowest_x * 1e3, frequency.lowest_y * 1e3,
-                  frequency.highest);
+    std::string text;
+    text = text::format(
+        "First natural frequency (lumped model) over its %d feasible points: lowest %.6g Hz at (x, y) = "
+        "(%.6g, %.6g) mm, highest %.6g Hz.",
+        frequency.points, frequency.lowest, frequency.lowest_x * 1e3, frequency.lowest_y * 1e3, frequency.highest);
     return text;
 }
 
 std::string workspaceSummary(const WorkspaceMap& map) {
-    char text[768];
+    std::string text;
     const Dexterity d = dexterity(map);
-    std::snprintf(text, sizeof text,
-                  "At theta = %.6g rad the feasible region of C (reachable on the home branches, within every "
-                  "joint range, regular) has an area of %.6g mm^2 (%d x %d grid, step %.4g mm, over x in "
-                  "[%.4g, %.4g] mm and y in [%.4g, %.4g] mm); %zu points on limb-singularity curves and %zu on "
-                  "actuation-singularity curves. Scaled condition number of A over it: median %.6g, worst %.6g.",
-                  map.theta, map.area * 1e6, map.n, map.n, map.step * 1e3, map.x0 * 1e3,
-                  (map.x0 + (map.n - 1) * map.step) * 1e3, map.y0 * 1e3, (map.y0 + (map.n - 1) * map.step) * 1e3,
-                  map.limb_singular.size(), map.actuation_singular.size(), d.median, d.worst);
+    text = text::format(
+        "At theta = %.6g rad the feasible region of C (reachable on the home branches, within every "
+        "joint range, regular) has an area of %.6g mm^2 (%d x %d grid, step %.4g mm, over x in "
+        "[%.4g, %.4g] mm and y in [%.4g, %.4g] mm); %zu points on limb-singularity curves and %zu on "
+        "actuation-singularity curves. Scaled condition number of A over it: median %.6g, worst %.6g.",
+        map.theta, map.area * 1e6, map.n, map.n, map.step * 1e3, map.x0 * 1e3, (map.x0 + (map.n - 1) * map.step) * 1e3,
+        map.y0 * 1e3, (map.y0 + (map.n - 1) * map.step) * 1e3, map.limb_singular.size(), map.actuation_singular.size(),
+        d.median, d.worst);
     return text;
 }
 

@@ -87,7 +87,9 @@ TEST(CliEnvelope, ACompliantRobotsBandEndsAtItsFirstNaturalFrequency) {
         const bool beyond = f >= f1;
         beyond_rows += beyond ? 1 : 0;
         EXPECT_EQ(rows[i][3] == "resonance", beyond) << i << ": " << rows[i][3] << " at " << f;
-        if (beyond) EXPECT_EQ(rows[i][6], "0") << i;
+        if (beyond) {
+            EXPECT_EQ(rows[i][6], "0") << i;
+        }
     }
     EXPECT_EQ(beyond_rows, 6);  // f_1 and 2 f_1 on each axis
     // the figure draws the bound with its number and shades what lies beyond

@@ -16,13 +16,14 @@
 #include "nocdyn/model.hpp"
 #include "nocdyn/parallel.hpp"
 #include "nocdyn/reactions.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn {
 
 namespace {
 
 std::string frequencyText(double f) {
-    std::string s = std::to_string(f);  // "50.000000" -> "50", "12.500000" -> "12.5"
+    std::string s = text::format("%f", f);  // "50.000000" -> "50", "12.500000" -> "12.5"
     s.erase(s.find_last_not_of('0') + 1);
     if (!s.empty() && s.back() == '.') s.pop_back();
     return s;

@@ -10,6 +10,7 @@
 
 #include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::analysis {
 
@@ -41,8 +42,8 @@ FirstFrequencyMap firstFrequencyMap(const Model& model, const WorkspaceMap& map,
             // nocdyn::Pose is (theta, x, y)
             if (const Status s = stiffnessAndModes(model, compliance, data, Pose(map.theta, x, y), stiffness, modes);
                 !s) {
-                char where[96];
-                std::snprintf(where, sizeof where, " at (x, y, theta) = (%.6g m, %.6g m, %.6g rad)", x, y, map.theta);
+                std::string where;
+                where = text::format(" at (x, y, theta) = (%.6g m, %.6g m, %.6g rad)", x, y, map.theta);
                 throw Error("first natural frequency: " + describe(s, model) + where);
             }
             const double f1 = modes.frequency(0);  // ascending

@@ -10,6 +10,7 @@
 
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn {
 
@@ -61,8 +62,8 @@ FrequencyResponse frequencyResponse(const StateSpace& system, const std::vector<
     for (Eigen::Index k = 0; k < rows; ++k) {
         const double f = frequencies[static_cast<std::size_t>(k)];
         if (!(f > 0.0) || !std::isfinite(f) || (k > 0 && !(f > frequencies[static_cast<std::size_t>(k - 1)]))) {
-            throw Error("frequency response: the frequencies must be positive and increasing (" + std::to_string(f) +
-                        " Hz)");
+            throw Error("frequency response: the frequencies must be positive and increasing (" +
+                        text::format("%f", f) + " Hz)");
         }
         const Eigen::MatrixXcd H = frequencyResponse(system, f);
         for (int o = 0; o < r.outputs; ++o) {

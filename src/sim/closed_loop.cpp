@@ -12,6 +12,7 @@
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn {
 
@@ -132,7 +133,7 @@ ShakeLoopResponse shakeLoopResponse(const ShakeLoopLinearization& loop, double f
     using Complex = std::complex<double>;
     const double T = loop.dt;
     if (!(frequency > 0.0 && frequency < 0.5 / T)) {
-        throw Error("shake loop: the frequency must be in (0, rate / 2): " + std::to_string(frequency) + " Hz");
+        throw Error("shake loop: the frequency must be in (0, rate / 2): " + text::format("%f", frequency) + " Hz");
     }
     const double w = 2.0 * std::numbers::pi * frequency;
     const Complex z = std::exp(Complex(0.0, w * T));

@@ -11,6 +11,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::io {
 
@@ -18,9 +19,7 @@ namespace {
 
 std::string number(double value) {
     if (std::isnan(value)) return {};
-    char buffer[64];
-    const auto result = std::to_chars(buffer, buffer + sizeof buffer, value);
-    return {buffer, result.ptr};
+    return text::shortest(value);
 }
 
 /// A CSV field: quoted (quotes doubled) when it holds a comma, quote or line break.
@@ -142,9 +141,7 @@ std::string fingerprint(const std::string& text) {
         h ^= static_cast<unsigned char>(c);
         h *= 1099511628211ULL;
     }
-    char out[17];
-    std::snprintf(out, sizeof out, "%016llx", static_cast<unsigned long long>(h));
-    return out;
+    return text::format("%016llx", static_cast<unsigned long long>(h));
 }
 
 DesignJournal::DesignJournal(const std::string& path, const std::string& signature,

@@ -6,17 +6,14 @@
 #include <cstdio>
 #include <string>
 #include <string_view>
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::io {
 
 namespace detail {
 
 /// The byte as \xHH (two hex digits).
-inline std::string hexEscape(unsigned char c) {
-    char buffer[8];
-    std::snprintf(buffer, sizeof buffer, "\\x%02X", static_cast<unsigned>(c));
-    return buffer;
-}
+inline std::string hexEscape(unsigned char c) { return text::format("\\x%02X", static_cast<unsigned>(c)); }
 
 inline bool isControl(unsigned char c) { return c < 0x20 || c == 0x7F; }
 
