@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include <Eigen/LU>
+#include <Eigen/SVD>
 
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/error.hpp"
@@ -18,12 +19,15 @@ const char* name(LinearOutput output) {
     return output == LinearOutput::platform_acceleration ? "acceleration" : "actuators";
 }
 
+const char* name(LinearInput input) { return input == LinearInput::force ? "tau" : "uc"; }
+
 Status linearize(const Model& model, Data& data, const Pose& p, const Twist& dp, const ActuatorVector& tau,
                  LinearOutput output, StateSpace& out) {
     ForwardDynamicsDerivatives d;
     if (const Status status = forwardDynamicsDerivatives(model, data, p, dp, tau, d); !status) return status;
     const int n = model.actuators;
     out.output = output;
+    out.inputs.assign(static_cast<std::size_t>(n), LinearInput::force);
     out.A = Eigen::MatrixXd::Zero(6, 6);
     out.A.topRightCorner<3, 3>().setIdentity();
     out.A.block<3, 3>(3, 0) = d.d_p;
@@ -37,6 +41,63 @@ Status linearize(const Model& model, Data& data, const Pose& p, const Twist& dp,
         // du = A S(c) dp/dt: the actuator variables' derivative by the pose is A_p
         out.C = Eigen::MatrixXd::Zero(n, 6);
         out.C.leftCols<3>() = Eigen::MatrixXd(data.A) * platformTwistMap(p.tail<2>());
+        out.D = Eigen::MatrixXd::Zero(n, n);
+    }
+    return {};
+}
+
+Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& compliance, Data& data, const Pose& p,
+                          const Twist& dp, const ActuatorVector& tau, LinearOutput output, StateSpace& out) {
+    if (!compliance.any) return linearize(model, data, p, dp, tau, output, out);
+    using analysis::JointSpring;
+    ForwardDynamicsDerivatives d;
+    if (const Status status = forwardDynamicsDerivatives(model, data, p, dp, tau, d); !status) return status;
+    analysis::StiffnessData stiffness;
+    if (const Status status = analysis::cartesianStiffness(model, compliance, data, stiffness); !status) return status;
+    const int n = model.actuators;
+    const Matrix3 S = platformTwistMap(data.p.tail<2>());
+    const Eigen::PartialPivLU<Matrix3> M(d.M_p);
+    // B_Q: the generalized force per unit input
+    Eigen::MatrixXd BQ = Eigen::MatrixXd::Zero(3, n);
+    out.inputs.assign(static_cast<std::size_t>(n), LinearInput::force);
+    for (int a = 0; a < n; ++a) {
+        const int j = model.actuator_limb[static_cast<std::size_t>(a)];
+        const auto J = static_cast<std::size_t>(j);
+        const auto q = static_cast<std::size_t>(model.actuator_joint[static_cast<std::size_t>(a)]);
+        const LimbData& limb = data.limb[J];
+        const Matrix3& K_j = stiffness.K_limb[J];
+        if (compliance.joint[J][q] != JointSpring::free) {
+            out.inputs[static_cast<std::size_t>(a)] = LinearInput::commanded_position;
+            BQ.col(a) = S.transpose() * (K_j * limb.s[q]);  // S^T K_j s_a
+            continue;
+        }
+        // W_j e_a: a wrench with G_f^T w = e_a (the free joints' forces), least norm
+        Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 3, 3> Gft(0, 3);
+        Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1> e(0);
+        for (std::size_t r = 0; r < 3; ++r) {
+            if (compliance.joint[J][r] != JointSpring::free) continue;
+            Gft.conservativeResize(Gft.rows() + 1, Eigen::NoChange);
+            e.conservativeResize(e.rows() + 1);
+            Gft.row(Gft.rows() - 1) = limb.s[r].transpose();
+            e(e.rows() - 1) = r == q ? 1.0 : 0.0;
+        }
+        const Vector3 w = Eigen::JacobiSVD<decltype(Gft)>(Gft, Eigen::ComputeFullU | Eigen::ComputeFullV).solve(e);
+        const Matrix3 C_j = analysis::limbCompliance(compliance, data, j);
+        BQ.col(a) = S.transpose() * ((Matrix3::Identity() - K_j * C_j) * w);
+    }
+    out.output = output;
+    out.A = Eigen::MatrixXd::Zero(6, 6);
+    out.A.topRightCorner<3, 3>().setIdentity();
+    out.A.block<3, 3>(3, 0) = d.d_p - M.solve(stiffness.K);
+    out.A.block<3, 3>(3, 3) = d.d_dp;
+    out.B = Eigen::MatrixXd::Zero(6, n);
+    out.B.bottomRows<3>() = M.solve(BQ);
+    if (output == LinearOutput::platform_acceleration) {
+        out.C = out.A.bottomRows<3>();
+        out.D = out.B.bottomRows<3>();
+    } else {
+        out.C = Eigen::MatrixXd::Zero(n, 6);
+        out.C.leftCols<3>() = Eigen::MatrixXd(data.A) * S;
         out.D = Eigen::MatrixXd::Zero(n, n);
     }
     return {};

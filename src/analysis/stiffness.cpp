@@ -203,6 +203,21 @@ Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, 
     return {};
 }
 
+Matrix3 limbCompliance(const StiffnessModel& compliance, const Data& data, int j) {
+    const auto J = static_cast<std::size_t>(j);
+    const LimbData& limb = data.limb[J];
+    Matrix3 C = Matrix3::Zero();
+    for (std::size_t q = 0; q < 3; ++q) {
+        if (compliance.joint[J][q] == JointSpring::spring) C.noalias() += limb.s[q] * limb.s[q].transpose() / compliance.k[J][q];
+    }
+    for (int b = 0; b < 2; ++b) {
+        if (!compliance.elastic[J][static_cast<std::size_t>(b)]) continue;
+        const Matrix3 G = beamTwists(limb, b);
+        C.noalias() += G * compliance.beam_compliance[J][static_cast<std::size_t>(b)] * G.transpose();
+    }
+    return C;
+}
+
 bool displacementUnderWrench(const StiffnessData& stiffness, double length_scale, const Vector3& f, Vector3& dp) {
     // in the scaled coordinates p_s = D p the generalized force is f_s = D^-1 f
     const Vector3 f_s(f(0) / length_scale, f(1), f(2));

@@ -7,7 +7,29 @@
 //     the platform acceleration d2p/dt2:  C = [df/dp df/d(dp)], D = df/dtau, or
 //     the actuator variables u(p):        C = [A_p 0] (du = A_p dp/dt, A_p = A S(c)), D = 0.
 // The frequency response is H(j w) = C (j w I - A)^-1 B + D, one complex matrix (outputs x
-// actuators) per frequency. The model is rigid: joint and drive compliance are not included.
+// actuators) per frequency.
+//
+// Compliant (lumped) model, linearizeCompliant: the compliance the robot file declares
+// (stiffness.hpp: drive and joint springs, elastic links) is quasi-static and massless, the
+// bodies rigid and carried by the platform's pose p as in the NOC (the lumped model of
+// stiffness.hpp). Limb j's springs and beams transmit the wrench (twists referred to O)
+//   w_j = -K_j (S dp - sum_{position drives a of j} s_a du_c,a) + (I - K_j C_j) W_j tau_f,j
+// with K_j, C_j the limb's stiffness and compliance (stiffness.hpp), S = S(c), s_a the drive's
+// screw, du_c,a a commanded drive position (the spring's rest position; a drive without a
+// stiffness is locked: its commanded position is its position), and W_j tau_f,j any wrench
+// with G_f^T W_j tau_f,j = [the free joints' forces] (a force actuator, stiffness 0, is a free
+// joint loaded by its force; (I - K_j C_j) removes the part its springs take). The platform
+//   M_p ddp + (rigid terms at p, dp, tau0) = S^T sum_j w_j
+// linearised, the joint forces' preload tau0 acting as in the rigid model and the springs by
+// the unloaded structure's K = S^T (sum_j K_j) S (stiffness.hpp: no preload stiffness):
+//   A = [0 I; df/dp - M_p^-1 K, df/d(dp)],  B = [0; M_p^-1 B_Q],
+//   B_Q column a = S^T K_j s_a        (position input du_c,a [m or rad]: drive with a
+//                                      stiffness k > 0, or locked),
+//                = S^T (I - K_j C_j) W_j e_a  (force input [N or N m]: stiffness 0).
+// At rest with gravity off df/dp = df/d(dp) = 0: -M_p A_21 = K and the eigenvalues of A are
+// +-j w with K v = w^2 M_p v, the lumped modes. Outputs as the rigid model; "actuators" is
+// then A_p dp, the actuator variables of the platform's pose (the drives' rigid image), not
+// the deflected drives.
 #pragma once
 
 #include <complex>
@@ -16,6 +38,7 @@
 
 #include <Eigen/Core>
 
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 
@@ -27,15 +50,28 @@ enum class LinearOutput { platform_acceleration, actuator_variables };
 /// "acceleration" or "actuators".
 [[nodiscard]] const char* name(LinearOutput output);
 
+/// What an input column of the linearised model is: an actuator force [N or N m] or a drive's
+/// commanded position (its spring's rest position) [m or rad].
+enum class LinearInput { force, commanded_position };
+
+/// "tau" or "uc": the prefix of an input's channel name.
+[[nodiscard]] const char* name(LinearInput input);
+
 /// A continuous-time state-space model dx/dt = A x + B u, y = C x + D u.
 struct StateSpace {
     Eigen::MatrixXd A, B, C, D;
     LinearOutput output = LinearOutput::platform_acceleration;
+    std::vector<LinearInput> inputs;  ///< one per column of B (actuator order)
 };
 
 /// The linearised model at (p, dp/dt, tau) (see above). Fails as forwardDynamicsDerivatives.
 Status linearize(const Model& model, Data& data, const Pose& p, const Twist& dp, const ActuatorVector& tau,
                  LinearOutput output, StateSpace& out);
+
+/// The compliant (lumped) linearised model (see above) when compliance.any, else linearize's.
+/// Fails as forwardDynamicsDerivatives and cartesianStiffness (rigid_limb).
+Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& compliance, Data& data, const Pose& p,
+                          const Twist& dp, const ActuatorVector& tau, LinearOutput output, StateSpace& out);
 
 /// H(j 2 pi f) = C (j 2 pi f I - A)^-1 B + D, outputs x inputs, at the frequency f [Hz].
 [[nodiscard]] Eigen::MatrixXcd frequencyResponse(const StateSpace& system, double frequency);

@@ -99,6 +99,10 @@ struct StiffnessData {
 /// limb when a limb does not yield in some direction. Allocation-free.
 Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, const Data& data, StiffnessData& out);
 
+/// C_j of limb j at the pose of `data`: sum_springs s s^T / k + sum_elastic G_b C_b G_b^T, on
+/// wrenches referred to O (unscaled) [m/N, rad/N ...]. Allocation-free.
+[[nodiscard]] Matrix3 limbCompliance(const StiffnessModel& compliance, const Data& data, int j);
+
 /// The displacement dp (pose order) under a generalized force f = [moment about C, f_x, f_y]:
 /// K dp = f. False (dp untouched) when f loads a free direction (no equilibrium); with free
 /// directions it does not load, the displacement with no free component.

@@ -1,0 +1,177 @@
+// The compliant (lumped) linearised model (analysis/linearization.hpp, linearizeCompliant)
+// against the lumped model of analysis/stiffness.hpp: at rest with gravity off its static
+// stiffness -M_p A_21 is cartesianStiffness' K and its free eigenfrequencies are lumpedModes';
+// a robot whose drives are all force actuators (stiffness 0) keeps the rigid model's inputs; a
+// robot without compliance gets the rigid model; the plant from the commanded drive positions
+// to the platform acceleration peaks at the lumped frequencies.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <Eigen/Eigenvalues>
+
+#include "nocdyn/analysis/linearization.hpp"
+#include "nocdyn/analysis/stiffness.hpp"
+#include "nocdyn/io/robot_file.hpp"
+
+namespace nocdyn::test {
+namespace {
+
+RobotDescription robotFile(const std::string& name) {
+    RobotDescription robot = io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + name + ".yaml");
+    robot.gravity.setZero();
+    return robot;
+}
+
+/// The compliant model at rest at p, with K and the lumped modes at the same pose.
+struct AtRest {
+    StateSpace system;
+    analysis::StiffnessData stiffness;
+    analysis::LumpedModes modes;
+};
+
+AtRest atRest(const Model& model, const Pose& p) {
+    const analysis::StiffnessModel compliance(model);
+    Data data(model);
+    AtRest r;
+    const ActuatorVector tau0 = ActuatorVector::Zero(model.actuators);
+    EXPECT_TRUE(linearizeCompliant(model, compliance, data, p, Twist::Zero(), tau0,
+                                   LinearOutput::platform_acceleration, r.system)
+                    .ok());
+    Data fresh(model);
+    EXPECT_TRUE(analysis::stiffnessAndModes(model, compliance, fresh, p, r.stiffness, r.modes).ok());
+    return r;
+}
+
+/// The undamped frequencies of A [Hz], ascending: the positive imaginary parts of its eigenvalues.
+std::vector<double> eigenfrequencies(const Eigen::MatrixXd& A) {
+    const Eigen::VectorXcd lambda = A.eigenvalues();
+    std::vector<double> f;
+    for (Eigen::Index i = 0; i < lambda.size(); ++i) {
+        if (lambda(i).imag() > 0.0) f.push_back(lambda(i).imag() / (2.0 * std::numbers::pi));
+    }
+    std::sort(f.begin(), f.end());
+    return f;
+}
+
+std::vector<Pose> poses(const Model& model) {
+    return {model.home, model.home + Pose(0.02, 0.003, -0.002)};
+}
+
+TEST(CompliantLinearization, StaticStiffnessIsTheLumpedKAtRest) {
+    const Model model(robotFile("paper-3prr-compliant"));
+    for (const Pose& p : poses(model)) {
+        const AtRest r = atRest(model, p);
+        // d(generalized force)/dp = -M_p d(ddp)/dp
+        Data data(model);
+        const Eigen::MatrixXd M = r.modes.M;
+        const Eigen::MatrixXd K = -M * r.system.A.block(3, 0, 3, 3);
+        EXPECT_LT((K - r.stiffness.K).norm(), 1e-9 * r.stiffness.K.norm()) << K << "\nvs\n" << r.stiffness.K;
+    }
+}
+
+TEST(CompliantLinearization, FreeEigenfrequenciesAreTheLumpedModes) {
+    const Model model(robotFile("paper-3prr-compliant"));
+    for (const Pose& p : poses(model)) {
+        const AtRest r = atRest(model, p);
+        const std::vector<double> f = eigenfrequencies(r.system.A);
+        ASSERT_EQ(f.size(), 3U);
+        for (int i = 0; i < 3; ++i) {
+            EXPECT_NEAR(f[static_cast<std::size_t>(i)], r.modes.frequency(i), 1e-9 * r.modes.frequency(i)) << i;
+        }
+        // every input is a commanded drive position (the drives have a stiffness)
+        for (const LinearInput input : r.system.inputs) EXPECT_EQ(input, LinearInput::commanded_position);
+    }
+}
+
+TEST(CompliantLinearization, MixedDrivesKeepTheIdentitiesAndNameTheirInputs) {
+    RobotDescription robot = robotFile("paper-3prr-compliant");
+    robot.limbs[0].joints[0].stiffness = 0.0;  // limb 1: a force actuator (voice coil)
+    const Model model(robot);
+    const AtRest r = atRest(model, model.home);
+    ASSERT_EQ(r.system.inputs.size(), 3U);
+    EXPECT_EQ(r.system.inputs[0], LinearInput::force);
+    EXPECT_EQ(r.system.inputs[1], LinearInput::commanded_position);
+    EXPECT_EQ(r.system.inputs[2], LinearInput::commanded_position);
+    const Eigen::MatrixXd K = -Eigen::MatrixXd(r.modes.M) * r.system.A.block(3, 0, 3, 3);
+    EXPECT_LT((K - r.stiffness.K).norm(), 1e-9 * r.stiffness.K.norm());
+    // the free direction (limb 1 carries no spring load) is a zero eigenvalue, the others the modes
+    ASSERT_EQ(r.stiffness.free_directions, 1);
+    const std::vector<double> f = eigenfrequencies(r.system.A);
+    ASSERT_EQ(f.size(), 2U);
+    EXPECT_NEAR(f[0], r.modes.frequency(1), 1e-9 * r.modes.frequency(1));
+    EXPECT_NEAR(f[1], r.modes.frequency(2), 1e-9 * r.modes.frequency(2));
+}
+
+TEST(CompliantLinearization, AllForceDrivesGiveTheRigidInputsThroughElasticLinks) {
+    // every drive a force actuator: each limb's free joints fix its wrench, its beams carry it
+    // unchanged, so B is the rigid M_p^-1 A_p^T and K = 0
+    RobotDescription robot = robotFile("paper-3prr-compliant");
+    for (LimbDescription& limb : robot.limbs) limb.joints[0].stiffness = 0.0;
+    const Model model(robot);
+    const analysis::StiffnessModel compliance(model);
+    ASSERT_TRUE(compliance.any);
+    Data data(model);
+    const ActuatorVector tau0 = ActuatorVector::Constant(model.actuators, 3.0);
+    const Pose p = model.home + Pose(0.01, 0.002, 0.001);
+    StateSpace compliant, rigid;
+    ASSERT_TRUE(linearizeCompliant(model, compliance, data, p, Twist::Zero(), tau0, LinearOutput::platform_acceleration,
+                                   compliant)
+                    .ok());
+    ASSERT_TRUE(linearize(model, data, p, Twist::Zero(), tau0, LinearOutput::platform_acceleration, rigid).ok());
+    EXPECT_LT((compliant.B - rigid.B).norm(), 1e-12 * rigid.B.norm()) << compliant.B << "\nvs\n" << rigid.B;
+    EXPECT_LT((compliant.A - rigid.A).norm(), 1e-9 * rigid.A.norm());
+    for (const LinearInput input : compliant.inputs) EXPECT_EQ(input, LinearInput::force);
+}
+
+TEST(CompliantLinearization, WithoutComplianceItIsTheRigidModel) {
+    const Model model(robotFile("paper-3prr"));
+    const analysis::StiffnessModel compliance(model);
+    ASSERT_FALSE(compliance.any);
+    Data data(model);
+    const ActuatorVector tau0 = ActuatorVector::Constant(model.actuators, 5.0);
+    StateSpace compliant, rigid;
+    ASSERT_TRUE(linearizeCompliant(model, compliance, data, model.home, Twist(0.1, 0.01, 0.0), tau0,
+                                   LinearOutput::actuator_variables, compliant)
+                    .ok());
+    ASSERT_TRUE(
+        linearize(model, data, model.home, Twist(0.1, 0.01, 0.0), tau0, LinearOutput::actuator_variables, rigid).ok());
+    EXPECT_EQ(compliant.A, rigid.A);
+    EXPECT_EQ(compliant.B, rigid.B);
+    EXPECT_EQ(compliant.C, rigid.C);
+    EXPECT_EQ(compliant.D, rigid.D);
+}
+
+TEST(CompliantLinearization, PlantFromCommandedPositionsPeaksAtTheLumpedFrequencies) {
+    const Model model(robotFile("paper-3prr-compliant"));
+    const AtRest r = atRest(model, model.home);
+    const std::vector<double> grid = logGrid(10.0, 1000.0, 400);
+    const double step = grid[1] / grid[0];
+    // |H|_F over every channel, and its local maxima
+    std::vector<double> gain;
+    for (const double f : grid) gain.push_back(frequencyResponse(r.system, f).norm());
+    std::vector<double> peaks;
+    for (std::size_t k = 1; k + 1 < grid.size(); ++k) {
+        if (gain[k] > gain[k - 1] && gain[k] > gain[k + 1]) peaks.push_back(grid[k]);
+    }
+    // the distinct lumped frequencies (at home the symmetric robot's x and y modes are one)
+    std::vector<double> lumped;
+    for (int i = 0; i < 3; ++i) {
+        const double f = r.modes.frequency(i);
+        if (lumped.empty() || f > lumped.back() * (1.0 + 1e-6)) lumped.push_back(f);
+    }
+    ASSERT_EQ(peaks.size(), lumped.size()) << r.modes.frequency.transpose();
+    for (std::size_t i = 0; i < peaks.size(); ++i) {
+        EXPECT_LE(std::max(peaks[i] / lumped[i], lumped[i] / peaks[i]), step)
+            << "peak " << peaks[i] << " Hz vs lumped " << lumped[i] << " Hz";
+    }
+    // the first resonance of the paper robot with its drive loops is near 41 Hz
+    EXPECT_NEAR(r.modes.frequency(0), 41.0, 1.0);
+}
+
+}  // namespace
+}  // namespace nocdyn::test
