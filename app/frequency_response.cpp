@@ -1,9 +1,11 @@
 #include "app/frequency_response.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
 #include "nocdyn/analysis/linearization.hpp"
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/pose_order.hpp"
 #include "nocdyn/sim/closed_loop.hpp"
@@ -29,7 +31,7 @@ std::vector<double> column(const Eigen::MatrixXd& m, Eigen::Index c) {
     return {m.col(c).data(), m.col(c).data() + m.rows()};
 }
 
-/// The open-loop plant: from each actuator force to each output.
+/// The open-loop plant: from each actuator force (or commanded drive position) to each output.
 FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Model& model) {
     Data data(model);
     const Pose p = options.pose.empty() ? model.home : corePose(threeValues(options.pose));
@@ -41,10 +43,15 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
     const ActuatorVector tau = data.tau;
     const bool acceleration = options.output_kind == "acceleration";
     const LinearOutput kind = acceleration ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables;
-    StateSpace system;
-    if (const Status status = linearize(model, data, p, dp, tau, kind, system); !status) {
-        throw Error("operating point: " + describe(status, model));
+    const analysis::StiffnessModel compliance(model);
+    const bool lumped = options.compliance == "lumped" || (options.compliance == "auto" && compliance.any);
+    if (lumped && !compliance.any) {
+        throw OptionError("compliance", "the robot file declares no joint or drive stiffness and no elastic link");
     }
+    StateSpace system;
+    const Status status = lumped ? linearizeCompliant(model, compliance, data, p, dp, tau, kind, system)
+                                 : linearize(model, data, p, dp, tau, kind, system);
+    if (!status) throw Error("operating point: " + describe(status, model));
     const FrequencyResponse r = frequencyResponse(system, logGrid(options.f_min, options.f_max, options.points));
     FrequencyResponseResult out;
     out.robot = model.description.name;
@@ -55,32 +62,49 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
     for (Eigen::Index k = 0; k < rows; ++k) out.table(k, 0) = r.frequency[static_cast<std::size_t>(k)];
     const Vector3 pu = userPose(p), dpu = userPose(dp);
     std::string line;
-    out.summary = "# frequency response of " + out.robot + " from the actuator forces to " +
-                  (acceleration ? "the platform acceleration" : "the actuator variables") + " (rigid model)\n";
+    const auto positions = std::count(system.inputs.begin(), system.inputs.end(), LinearInput::commanded_position);
+    const char* inputs = positions == 0                                     ? "the actuator forces"
+                         : positions == static_cast<long>(system.inputs.size()) ? "the commanded drive positions"
+                                                                             : "the drive inputs (uc: commanded "
+                                                                               "position, tau: force)";
+    out.summary = "# frequency response of " + out.robot + " from " + inputs + " to " +
+                  (acceleration ? "the platform acceleration" : "the actuator variables") +
+                  (lumped ? " (lumped compliant model)\n" : " (rigid model)\n");
     line = text::format("# operating point [x, y, theta] = [%.6g, %.6g, %.6g], its rate = [%.6g, %.6g, %.6g]\n", pu(0),
                         pu(1), pu(2), dpu(0), dpu(1), dpu(2));
     out.summary += line;
+    if (lumped) {
+        analysis::StiffnessData stiffness;
+        analysis::LumpedModes modes;
+        Data at_rest(model);
+        if (const Status s = analysis::stiffnessAndModes(model, compliance, at_rest, p, stiffness, modes); !s) {
+            throw Error("operating point: " + describe(s, model));
+        }
+        line = text::format("# lumped natural frequencies at the pose [Hz]: %.4f %.4f %.4f\n", modes.frequency(0),
+                            modes.frequency(1), modes.frequency(2));
+        out.summary += line;
+    }
     out.summary += "# channel  |H| at f_min [dB]  |H| at f_max [dB]  -3 dB bandwidth [Hz]\n";
     Eigen::Index c_out = 1;
     for (int k = 0; k < r.outputs; ++k) {
         // accelerations per axis in the order x, y, theta; actuator variables in theirs
         const int o = acceleration ? kCoreAxis[k] : k;
-        std::string name = acceleration ? "dd" : "u";
-        name += acceleration ? std::string(kAxisNames[k]) : std::to_string(k + 1);
+        std::string label = acceleration ? "dd" : "u";
+        label += acceleration ? std::string(kAxisNames[k]) : std::to_string(k + 1);
         for (int i = 0; i < r.inputs; ++i) {
             const Eigen::Index c = o * r.inputs + i;
-            const std::string channel = name + "_tau" + std::to_string(i + 1);
+            const std::string input = name(system.inputs[static_cast<std::size_t>(i)]) + std::to_string(i + 1);
+            const std::string channel = label + "_" + input;
             out.columns.push_back(channel + "_db");
             out.columns.push_back(channel + "_deg");
             out.table.col(c_out++) = r.magnitude_db.col(c);
             out.table.col(c_out++) = r.phase_deg.col(c);
             const double bw = bandwidth3dB(r, o, i);
-            line = text::format("%s/tau%d  %.4f  %.4f  %s\n", name.c_str(), i + 1, r.magnitude_db(0, c),
+            line = text::format("%s/%s  %.4f  %.4f  %s\n", label.c_str(), input.c_str(), r.magnitude_db(0, c),
                                 r.magnitude_db(rows - 1, c),
                                 std::isnan(bw) ? "beyond the grid" : text::format("%f", bw).c_str());
             out.summary += line;
-            out.curves.push_back(
-                {name + "/tau" + std::to_string(i + 1), column(r.magnitude_db, c), column(r.phase_deg, c)});
+            out.curves.push_back({label + "/" + input, column(r.magnitude_db, c), column(r.phase_deg, c)});
         }
     }
     return out;
@@ -156,7 +180,12 @@ void validate(const FrequencyResponseOptions& options) {
     requireIn(options.payload, Range{0.0, 1e300, "kg"}, "payload");
     requireIn(options.controller_rate, Range{1e-300, 1e300, "Hz"}, "controller_rate");
     requireIn(options.natural_frequency, Range{1e-300, 1e300, "Hz"}, "natural_frequency");
+    if (options.compliance != "auto" && options.compliance != "rigid" && options.compliance != "lumped") {
+        throw OptionError("compliance", "'" + options.compliance + "' is not one of auto, rigid, lumped");
+    }
     if (options.closed_loop) {
+        if (options.compliance == "lumped")
+            throw OptionError("compliance", "the closed loop is the rigid model: lumped does not apply");
         if (!options.rate.empty())
             throw OptionError("rate", "the closed loop is linearised at rest: rate does not apply");
         if (!(options.f_max < 0.5 * options.controller_rate)) {

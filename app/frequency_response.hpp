@@ -2,7 +2,10 @@
 // the forward dynamics) and its frequency response H(j w) = C (j w I - A)^-1 B + D from the
 // actuator forces to the platform acceleration or the actuator variables; or, closed_loop, the
 // shake-table loop (sim/closed_loop.hpp) linearised at rest, from the reference to the achieved
-// platform acceleration per axis, with the loop transfer's crossover and phase margin.
+// platform acceleration per axis, with the loop transfer's crossover and phase margin. With
+// compliance declared in the robot file, the open-loop plant is the lumped compliant model
+// (analysis/linearization.hpp: linearizeCompliant), from each drive's commanded position (or
+// force, for a drive of stiffness 0).
 #pragma once
 
 #include <Eigen/Core>
@@ -24,6 +27,12 @@ struct FrequencyResponseOptions {
     std::vector<double> rate;
     /// "acceleration" (the platform's, per axis) or "actuators" (the actuator variables).
     std::string output_kind = "acceleration";
+    /// The open-loop plant's model: "auto" (the compliant one when the robot file declares
+    /// joint or drive stiffness or elastic links, else the rigid one), "rigid", or "lumped" (the
+    /// compliant lumped model, linearizeCompliant; the file must declare compliance). Its inputs
+    /// are then each drive's commanded position (a drive with a stiffness, or locked) or force
+    /// (stiffness 0). The closed loop is always the rigid one.
+    std::string compliance = "auto";
     double f_min = 1.0, f_max = 1000.0;  ///< [Hz], 0 < f_min < f_max
     int points = 200;                    ///< log-spaced frequencies (kPointsRange)
     bool closed_loop = false;
@@ -43,7 +52,8 @@ struct BodeCurve {
 struct FrequencyResponseResult {
     std::string robot;
     std::vector<double> frequency;  ///< [Hz]
-    /// The table: f, then per channel <output>_tau<i>_db and _deg (closed loop: per axis
+    /// The table: f, then per channel <output>_<input><i>_db and _deg, input "tau" (a force) or
+    /// "uc" (a commanded drive position, compliant model) (closed loop: per axis
     /// <axis>_db, _deg, _loop_db, _loop_deg), axes in the order x, y, theta.
     std::vector<std::string> columns;
     Eigen::MatrixXd table;  ///< one row per frequency

@@ -57,7 +57,11 @@ void addFrequencyResponseCommand(CLI::App& app) {
         "derivatives of the forward dynamics, and its frequency response H(j w) = C (j w I - A)^-1 B + D from\n"
         "each actuator force to each platform acceleration (or actuator variable): a CSV of magnitude [dB] and\n"
         "phase [deg] per channel (axes x, y, theta), a summary with each channel's -3 dB bandwidth, and a Bode\n"
-        "figure. Joint and drive compliance are not modelled. The shake table's closed loop: --closed-loop, e.g.\n"
+        "figure. When the robot file declares compliance (joint or drive stiffness, elastic links) the plant is\n"
+        "the lumped compliant model (massless springs, rigid bodies: the model of `nocdyn pose`'s natural\n"
+        "frequencies) from each drive's commanded position uc (a drive with a stiffness: its servo's set point)\n"
+        "or force tau (stiffness 0) to the platform acceleration; --compliance rigid forces the rigid model.\n"
+        "The shake table's closed loop (always rigid): --closed-loop, e.g.\n"
         "  nocdyn frequency-response --closed-loop --payload 5 --f-min 0.1 --f-max 4000 -o loop.csv\n"
         "Example: nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant");
     addRobotOption(*command, options->robot);
@@ -69,6 +73,12 @@ void addFrequencyResponseCommand(CLI::App& app) {
         ->expected(3);
     command->add_option("--output-kind", options->output_kind, "What the output is")
         ->check(CLI::IsMember({"acceleration", "actuators"}))
+        ->capture_default_str();
+    command
+        ->add_option("--compliance", options->compliance,
+                     "The plant's model: auto (lumped when the robot file declares compliance, else rigid), rigid,\n"
+                     "or lumped (inputs: commanded drive positions uc [m or rad], forces tau for stiffness-0 drives)")
+        ->check(CLI::IsMember({"auto", "rigid", "lumped"}))
         ->capture_default_str();
     command->add_option("--f-min", options->f_min, "Lowest frequency [Hz]")
         ->check(CLI::PositiveNumber)

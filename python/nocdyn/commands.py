@@ -384,6 +384,12 @@ def frequency_response(*, robot=None, set=None, output=None, summary=None, figur
     each channel's -3 dB bandwidth. output, summary, figure: also write the CSV, the summary and
     the Bode figure (STEM.png and STEM.svg).
 
+    compliance "auto" (default): when the robot file declares compliance (joint or drive
+    stiffness, elastic links) the plant is the lumped compliant model, from each drive's
+    commanded position (columns <output>_uc<a>; a drive of stiffness 0 keeps its force,
+    _tau<a>), with the lumped natural frequencies in ``text``; "rigid" forces the rigid model,
+    "lumped" requires the compliant one.
+
     closed_loop=True: the shake-table loop linearised at rest (``--closed-loop``), from the
     reference to the achieved platform acceleration per axis, with a plant ``payload`` [kg] at C
     unknown to the controller, ``controller_rate`` [Hz] and the pose feedback's

@@ -98,6 +98,7 @@ void bindSimulation(py::module_& m) {
         .def_readwrite("pose", &app::FrequencyResponseOptions::pose)
         .def_readwrite("rate", &app::FrequencyResponseOptions::rate)
         .def_readwrite("output_kind", &app::FrequencyResponseOptions::output_kind)
+        .def_readwrite("compliance", &app::FrequencyResponseOptions::compliance)
         .def_readwrite("f_min", &app::FrequencyResponseOptions::f_min)
         .def_readwrite("f_max", &app::FrequencyResponseOptions::f_max)
         .def_readwrite("points", &app::FrequencyResponseOptions::points)
