@@ -235,8 +235,11 @@ def test_forward_kinematics_every_assembly_mode():
 
 
 def test_frequency_response_open_and_closed_loop(tmp_path):
+    compliant = str(SOURCE_DIR / "robots" / "paper-3prr-compliant.yaml")
     for args, kwargs in (([], {}), (["--pose", 0.002, -0.001, 0.01, "--output-kind", "actuators"],
                                     {"pose": [0.002, -0.001, 0.01], "output_kind": "actuators"}),
+                         (["--robot", compliant], {"robot": compliant}),
+                         (["--robot", compliant, "--compliance", "rigid"], {"robot": compliant, "compliance": "rigid"}),
                          (["--closed-loop", "--payload", 2, "--f-max", 2000], {"closed_loop": True, "payload": 2.0,
                                                                               "f_max": 2000.0})):
         out, summary = tmp_path / "fr.csv", tmp_path / "fr.txt"
