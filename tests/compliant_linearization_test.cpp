@@ -39,8 +39,8 @@ AtRest atRest(const Model& model, const Pose& p) {
     Data data(model);
     AtRest r;
     const ActuatorVector tau0 = ActuatorVector::Zero(model.actuators);
-    EXPECT_TRUE(linearizeCompliant(model, compliance, data, p, Twist::Zero(), tau0,
-                                   LinearOutput::platform_acceleration, r.system)
+    EXPECT_TRUE(linearizeCompliant(model, compliance, data, p, Twist::Zero(), tau0, LinearOutput::platform_acceleration,
+                                   r.system)
                     .ok());
     Data fresh(model);
     EXPECT_TRUE(analysis::stiffnessAndModes(model, compliance, fresh, p, r.stiffness, r.modes).ok());
@@ -58,9 +58,7 @@ std::vector<double> eigenfrequencies(const Eigen::MatrixXd& A) {
     return f;
 }
 
-std::vector<Pose> poses(const Model& model) {
-    return {model.home, model.home + Pose(0.02, 0.003, -0.002)};
-}
+std::vector<Pose> poses(const Model& model) { return {model.home, model.home + Pose(0.02, 0.003, -0.002)}; }
 
 TEST(CompliantLinearization, StaticStiffnessIsTheLumpedKAtRest) {
     const Model model(robotFile("paper-3prr-compliant"));

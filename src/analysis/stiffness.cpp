@@ -208,7 +208,8 @@ Matrix3 limbCompliance(const StiffnessModel& compliance, const Data& data, int j
     const LimbData& limb = data.limb[J];
     Matrix3 C = Matrix3::Zero();
     for (std::size_t q = 0; q < 3; ++q) {
-        if (compliance.joint[J][q] == JointSpring::spring) C.noalias() += limb.s[q] * limb.s[q].transpose() / compliance.k[J][q];
+        if (compliance.joint[J][q] == JointSpring::spring)
+            C.noalias() += limb.s[q] * limb.s[q].transpose() / compliance.k[J][q];
     }
     for (int b = 0; b < 2; ++b) {
         if (!compliance.elastic[J][static_cast<std::size_t>(b)]) continue;
