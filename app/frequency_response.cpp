@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <iterator>
 
 #include "nocdyn/analysis/linearization.hpp"
 #include "nocdyn/analysis/stiffness.hpp"
@@ -63,10 +64,10 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
     const Vector3 pu = userPose(p), dpu = userPose(dp);
     std::string line;
     const auto positions = std::count(system.inputs.begin(), system.inputs.end(), LinearInput::commanded_position);
-    const char* inputs = positions == 0                                         ? "the actuator forces"
-                         : positions == static_cast<long>(system.inputs.size()) ? "the commanded drive positions"
-                                                                                : "the drive inputs (uc: commanded "
-                                                                                  "position, tau: force)";
+    const char* inputs = positions == 0                           ? "the actuator forces"
+                         : positions == std::ssize(system.inputs) ? "the commanded drive positions"
+                                                                  : "the drive inputs (uc: commanded "
+                                                                    "position, tau: force)";
     out.summary = "# frequency response of " + out.robot + " from " + inputs + " to " +
                   (acceleration ? "the platform acceleration" : "the actuator variables") +
                   (lumped ? " (lumped compliant model)\n" : " (rigid model)\n");
