@@ -107,8 +107,8 @@ void bindSimulation(py::module_& m) {
         .def_readwrite("controller_rate", &app::FrequencyResponseOptions::controller_rate)
         .def_readwrite("natural_frequency", &app::FrequencyResponseOptions::natural_frequency)
         .def_property_readonly_static("_fields", [](const py::object&) {
-            return py::make_tuple("pose", "rate", "output_kind", "f_min", "f_max", "points", "closed_loop", "payload",
-                                  "controller_rate", "natural_frequency");
+            return py::make_tuple("pose", "rate", "output_kind", "compliance", "f_min", "f_max", "points",
+                                  "closed_loop", "payload", "controller_rate", "natural_frequency");
         });
     m.def(
         "_run_frequency_response",
