@@ -95,7 +95,7 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
         for (int i = 0; i < r.inputs; ++i) {
             const Eigen::Index c = o * r.inputs + i;
             const std::string input = name(system.inputs[static_cast<std::size_t>(i)]) + std::to_string(i + 1);
-            const std::string channel = label + "_" + input;
+            const std::string channel = text::format("%s_%s", label.c_str(), input.c_str());
             out.columns.push_back(channel + "_db");
             out.columns.push_back(channel + "_deg");
             out.table.col(c_out++) = r.magnitude_db.col(c);
@@ -105,7 +105,8 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
                                 r.magnitude_db(rows - 1, c),
                                 std::isnan(bw) ? "beyond the grid" : text::format("%f", bw).c_str());
             out.summary += line;
-            out.curves.push_back({label + "/" + input, column(r.magnitude_db, c), column(r.phase_deg, c)});
+            out.curves.push_back({text::format("%s/%s", label.c_str(), input.c_str()), column(r.magnitude_db, c),
+                                  column(r.phase_deg, c)});
         }
     }
     return out;
