@@ -248,6 +248,10 @@ def test_frequency_response_open_and_closed_loop(tmp_path):
         py = nocdyn.frequency_response(points=7, **kwargs)
         same_table(out, py)
         assert py.text == printed == summary.read_text()
+    # the compliant file's plant is from the commanded drive positions, its lumped modes in the summary
+    lumped = nocdyn.frequency_response(robot=compliant, points=7)
+    assert lumped.columns[1] == "ddx_uc1_db" and "lumped natural frequencies at the pose [Hz]: 41.0384" in lumped.text
+    assert nocdyn.frequency_response(robot=compliant, points=7, compliance="rigid").columns[1] == "ddx_tau1_db"
 
 
 def test_tables_take_their_columns_from_the_registry():
