@@ -126,6 +126,26 @@ TEST(CompliantLinearization, AllForceDrivesGiveTheRigidInputsThroughElasticLinks
     for (const LinearInput input : compliant.inputs) EXPECT_EQ(input, LinearInput::force);
 }
 
+TEST(CompliantLinearization, AForceInputIsTheLimitOfAVanishingDriveSpringDrivenByItsOffset) {
+    // a force tau on a free drive is a spring k -> 0 at rest offset tau / k: B_force = lim B_position / k;
+    // limb 1's passive pivot a spring too, so that the limb carries spring load ((I - K_j C_j) acts)
+    RobotDescription robot = robotFile("paper-3prr-compliant");
+    robot.limbs[0].joints[1].stiffness = 50.0;  // [N m/rad]
+    robot.limbs[0].joints[0].stiffness = 0.0;
+    const Model force_model(robot);
+    constexpr double k = 1e-5;  // [N/m]
+    robot.limbs[0].joints[0].stiffness = k;
+    const Model spring_model(robot);
+    const AtRest force = atRest(force_model, force_model.home);
+    const AtRest spring = atRest(spring_model, spring_model.home);
+    ASSERT_EQ(force.system.inputs[0], LinearInput::force);
+    ASSERT_EQ(spring.system.inputs[0], LinearInput::commanded_position);
+    const Eigen::VectorXd b_force = force.system.B.col(0), b_limit = spring.system.B.col(0) / k;
+    EXPECT_GT(b_force.norm(), 0.0);
+    EXPECT_LT((b_force - b_limit).norm(), 1e-6 * b_force.norm()) << b_force.transpose() << "\nvs\n"
+                                                                 << b_limit.transpose();
+}
+
 TEST(CompliantLinearization, WithoutComplianceItIsTheRigidModel) {
     const Model model(robotFile("paper-3prr"));
     const analysis::StiffnessModel compliance(model);
