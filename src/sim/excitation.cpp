@@ -1,5 +1,6 @@
 // Excitation design (excitation.hpp): Fourier shapes scaled to the robot's limits, the
-// condition number of the stacked regressor minimised by random search and Nelder-Mead.
+// condition number of the stacked regressor minimised by random search, then Nelder-Mead or a
+// descent on its exact gradient.
 #include "nocdyn/sim/excitation.hpp"
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "nocdyn/derivatives.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/identification.hpp"
@@ -312,7 +314,274 @@ std::pair<Eigen::VectorXd, double> nelderMead(F&& f, const Eigen::VectorXd& x0, 
     return {x[best], fx[best]};
 }
 
+/// Robots whose inverse dynamics give the regressor's columns and their derivatives: tau is
+/// linear in pi, so with parameters pi_b (model b) tau_b = Y pi_b, and column k of Y is
+/// sum_b C(k, b) tau_b whenever sum_b C(k, b) pi_b = e_k. Per body (L: the length scale), the
+/// robots with only that body's parameters, [m, m c_x, m c_y, I_O] =
+///   A: m 1, c 0 -> [1 0 0 0];  B: m 1, c (L, 0) -> [1 L 0 L^2];  Cy: m 1, c (0, L) -> [1 0 L L^2];
+///   D: I 1 -> [0 0 0 1];
+/// so e_m = A, e_I = D, e_mcx = (B - A - L^2 D) / L, e_mcy = (Cy - A - L^2 D) / L. A joint's
+/// damping (Coulomb friction) column is the robot with only that damping (friction) 1: the
+/// Coulomb column J_j^-T e_k sign q'_k varies with the pose through J_j^-T, its sign frozen.
+class ColumnRobots {
+public:
+    ColumnRobots(const Model& model, const std::vector<int>& columns) {
+        const auto K = static_cast<Eigen::Index>(columns.size());
+        std::vector<std::pair<int, int>> body_first;  // body -> index of its robot A
+        std::vector<Eigen::VectorXd> rows(at(static_cast<int>(K)));
+        const double L = model.length_scale;
+        for (Eigen::Index k = 0; k < K; ++k) {
+            const int c = columns[at(static_cast<int>(k))];
+            if (c < kBodyParameters * model.bodies) {
+                const int body = c / kBodyParameters, which = c % kBodyParameters;
+                int first = -1;
+                for (const auto& [b, i] : body_first) {
+                    if (b == body) first = i;
+                }
+                if (first < 0) {
+                    first = static_cast<int>(models_.size());
+                    body_first.emplace_back(body, first);
+                    models_.push_back(bodyRobot(model, body, 1.0, Vector2::Zero(), 0.0));
+                    models_.push_back(bodyRobot(model, body, 1.0, Vector2(L, 0.0), 0.0));
+                    models_.push_back(bodyRobot(model, body, 1.0, Vector2(0.0, L), 0.0));
+                    models_.push_back(bodyRobot(model, body, 0.0, Vector2::Zero(), 1.0));
+                }
+                std::vector<std::pair<int, double>> weights;
+                if (which == 0) weights = {{first, 1.0}};
+                if (which == 1) weights = {{first + 1, 1.0 / L}, {first, -1.0 / L}, {first + 3, -L}};
+                if (which == 2) weights = {{first + 2, 1.0 / L}, {first, -1.0 / L}, {first + 3, -L}};
+                if (which == 3) weights = {{first + 3, 1.0}};
+                weights_.push_back(weights);
+                continue;
+            }
+            std::vector<std::pair<int, double>> weights;
+            for (int j = 0; j < model.limbs; ++j) {
+                for (int joint = 0; joint < 3; ++joint) {
+                    const int index = jointParameterIndex(model, j, joint);
+                    if (c != index && c != index + 1) continue;
+                    Model robot = emptyRobot(model);
+                    (c == index ? robot.limb[at(j)].damping : robot.limb[at(j)].friction)[at(joint)] = 1.0;
+                    robot.limb[at(j)].frictionless = false;
+                    weights = {{static_cast<int>(models_.size()), 1.0}};
+                    models_.push_back(std::move(robot));
+                }
+            }
+            weights_.push_back(weights);
+        }
+        C_ = Eigen::MatrixXd::Zero(K, static_cast<Eigen::Index>(models_.size()));
+        for (Eigen::Index k = 0; k < K; ++k) {
+            for (const auto& [b, w] : weights_[at(static_cast<int>(k))]) C_(k, b) += w;
+        }
+    }
+
+    [[nodiscard]] const std::vector<Model>& robots() const { return models_; }
+    /// K x robots: column k of Y = sum_b C(k, b) tau_b.
+    [[nodiscard]] const Eigen::MatrixXd& combination() const { return C_; }
+
+private:
+    /// The robot with every inertial and friction parameter zero (the geometry unchanged).
+    static Model emptyRobot(const Model& model) {
+        Model robot = model;
+        for (int j = 0; j < model.limbs; ++j) {
+            LimbModel& limb = robot.limb[at(j)];
+            limb.M = {};
+            limb.damping = {};
+            limb.friction = {};
+            limb.frictionless = true;
+        }
+        robot.platform_M = {};
+        robot.limbs_in_lanes = false;  // the lanes keep the file's inertia; the scalar path reads the above
+        return robot;
+    }
+
+    /// Only body `body` with mass m, c.o.m. c in its frame and inertia I about the c.o.m.
+    static Model bodyRobot(const Model& model, int body, double m, const Vector2& c, double inertia) {
+        Model robot = emptyRobot(model);
+        if (body == model.platformBody()) {
+            robot.platform_M = {inertia, m};
+            robot.platform_com = c;
+            robot.platform_com_home =
+                Vector2(model.cos_home * c.x() - model.sin_home * c.y(), model.sin_home * c.x() + model.cos_home * c.y());
+        } else {
+            LimbModel& limb = robot.limb[at(body % model.limbs)];
+            limb.M[at(body / model.limbs)] = {inertia, m};
+            limb.com_home[at(body / model.limbs)] = c;
+        }
+        return robot;
+    }
+
+    std::vector<Model> models_;
+    std::vector<std::vector<std::pair<int, double>>> weights_;
+    Eigen::MatrixXd C_;
+};
+
+/// log cond of the column-scaled stacked regressor of a shape at a fixed scale, and its exact
+/// gradient with respect to the shape (excitation.hpp, excitationConditionGradient).
+class ConditionGradient {
+public:
+    ConditionGradient(const Model& model, const ExcitationOptions& options, std::vector<int> columns)
+        : model_(model), options_(options), columns_(std::move(columns)), robots_(model, columns_), data_(model) {
+        const int H = options.harmonics;
+        samples_ = options.samples > 0 ? options.samples : 25 * H;
+        period_ = 1.0 / options.base_frequency;
+        const auto d = static_cast<Eigen::Index>(3) * freePerAxis(H);
+        // the samples are linear in the shape: those of the unit shapes e_j
+        for (Eigen::Index j = 0; j < d; ++j) {
+            const PoseTrajectory unit = trajectoryOf(model, Eigen::VectorXd::Unit(d, j), 1.0, options, period_);
+            basis_.push_back(atRestFirst(sampleTrajectory(model, unit, period_, samples_)));
+        }
+    }
+
+    double operator()(const Eigen::VectorXd& z, double s, Eigen::VectorXd& gradient) {
+        const auto d = z.size();
+        const auto K = static_cast<Eigen::Index>(columns_.size());
+        const int n = model_.actuators;
+        gradient = Eigen::VectorXd::Zero(d);
+        const UnitMotion m =
+            atRestFirst(sampleTrajectory(model_, trajectoryOf(model_, z, 1.0, options_, period_), period_, samples_));
+        // N = sum_i Y_i^T Y_i over the excited columns
+        Yc_.resize(m.p.size());
+        Eigen::MatrixXd N = Eigen::MatrixXd::Zero(K, K);
+        for (std::size_t i = 0; i < m.p.size(); ++i) {
+            if (!inverseDynamicsRegressor(model_, data_, model_.home + s * m.p[i], s * m.dp[i], s * m.ddp[i], Y_))
+                return kInfeasible;
+            Yc_[i].resize(n, K);
+            for (Eigen::Index k = 0; k < K; ++k) Yc_[i].col(k) = Y_.col(columns_[at(static_cast<int>(k))]);
+            N.noalias() += Yc_[i].transpose() * Yc_[i];
+        }
+        const Eigen::VectorXd D = N.diagonal();
+        if (!(D.minCoeff() > 1e-24 * D.maxCoeff())) return kInfeasible;
+        const Eigen::VectorXd inv = D.cwiseSqrt().cwiseInverse();
+        const Eigen::MatrixXd S = inv.asDiagonal() * N * inv.asDiagonal();
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(S);
+        const double lo = eigen.eigenvalues()(0), hi = eigen.eigenvalues()(K - 1);
+        if (!(lo > 0.0)) return kInfeasible;
+        // Gamma = d log cond / d N (symmetric): G(lambda, v) = u u^T - lambda diag(v_a^2 / N_aa)
+        const auto G = [&](Eigen::Index e) {
+            const Eigen::VectorXd v = eigen.eigenvectors().col(e);
+            const Eigen::VectorXd u = inv.cwiseProduct(v);
+            Eigen::MatrixXd g = u * u.transpose();
+            g.diagonal() -= eigen.eigenvalues()(e) * v.cwiseAbs2().cwiseQuotient(D);
+            return g;
+        };
+        const Eigen::MatrixXd Gamma = 0.5 * (G(K - 1) / hi - G(0) / lo);
+        // d log cond = sum_i <2 Y_i Gamma, dY_i>, dY_i = sum_b C(., b) d tau_b
+        const Eigen::MatrixXd& C = robots_.combination();
+        InverseDynamicsDerivatives derivative;
+        for (std::size_t i = 0; i < m.p.size(); ++i) {
+            const Pose p = model_.home + s * m.p[i];
+            const Twist dp = s * m.dp[i], ddp = s * m.ddp[i];
+            const Eigen::MatrixXd Omega = 2.0 * Yc_[i] * Gamma * C;  // n x robots
+            Eigen::Matrix<double, 9, 1> g = Eigen::Matrix<double, 9, 1>::Zero();
+            for (std::size_t b = 0; b < robots_.robots().size(); ++b) {
+                const auto bb = static_cast<Eigen::Index>(b);
+                if (!inverseDynamicsDerivatives(robots_.robots()[b], data_, p, dp, ddp, derivative))
+                    return kInfeasible;
+                for (int a = 0; a < n; ++a) {
+                    const double w = Omega(a, bb);
+                    g.segment<3>(0) += w * derivative.d_p.row(a).transpose();
+                    g.segment<3>(3) += w * derivative.d_dp.row(a).transpose();
+                    g.segment<3>(6) += w * derivative.d_ddp.row(a).transpose();
+                }
+            }
+            // x_i = s (sum_j z_j x_i(e_j)) about home
+            for (Eigen::Index j = 0; j < d; ++j) {
+                const UnitMotion& e = basis_[at(static_cast<int>(j))];
+                gradient(j) += s * (g.segment<3>(0).dot(e.p[i]) + g.segment<3>(3).dot(e.dp[i]) +
+                                    g.segment<3>(6).dot(e.ddp[i]));
+            }
+        }
+        return 0.5 * std::log(hi / lo);
+    }
+
+private:
+    /// The first sample (t = 0) exactly at home at rest, as the ties make it: rounded, its joint
+    /// rates would be +-1e-17 and the Coulomb columns sign q' would flip with the shape.
+    static UnitMotion atRestFirst(UnitMotion m) {
+        m.p.front().setZero();
+        m.dp.front().setZero();
+        m.ddp.front().setZero();
+        return m;
+    }
+
+    const Model& model_;
+    const ExcitationOptions& options_;
+    std::vector<int> columns_;
+    ColumnRobots robots_;
+    Data data_;
+    RegressorMatrix Y_;
+    std::vector<Eigen::MatrixXd> Yc_;
+    std::vector<UnitMotion> basis_;
+    int samples_ = 0;
+    double period_ = 1.0;
+};
+
+/// Descent on the exact gradient from x0 (f: the design objective at the shape's largest
+/// scale, grad: log cond and its gradient at a fixed scale, the scale of f's last call), at
+/// most `budget` evaluations, a gradient counting as one. f is invariant to the shape's size
+/// (the scale absorbs it), so the step is along the gradient's part orthogonal to the shape,
+/// of length t |z|: doubled (to at most 1) after a decrease, halved after none, until the
+/// step is below 1e-6 or the budget is spent.
+template <typename F, typename G>
+std::pair<Eigen::VectorXd, double> gradientDescent(F&& f, G&& grad, const Eigen::VectorXd& x0, double f0, int budget,
+                                                   int& used, int& gradients) {
+    Eigen::VectorXd x = x0, g;
+    double fx = f0, t = 0.25;
+    bool fresh = false;
+    while (used < budget && t >= 1e-6) {
+        if (!fresh) {
+            ++used;
+            ++gradients;
+            if (!std::isfinite(grad(x, g))) break;
+            g -= (g.dot(x) / x.squaredNorm()) * x;
+            fresh = true;
+        }
+        const double norm = g.norm();
+        if (!(norm > 0.0) || used >= budget) break;
+        const Eigen::VectorXd trial = x - (t * x.norm() / norm) * g;
+        const double ft = f(trial);
+        ++used;
+        if (ft < fx) {
+            x = trial;
+            fx = ft;
+            t = std::min(1.0, 2.0 * t);
+            fresh = false;
+        } else {
+            t *= 0.5;
+        }
+    }
+    return {x, fx};
+}
+
 }  // namespace
+
+std::string optimizerName(ExcitationOptimizer optimizer) {
+    return optimizer == ExcitationOptimizer::gradient ? "gradient" : "nelder-mead";
+}
+
+ExcitationOptimizer parseOptimizer(const std::string& name) {
+    if (name == "nelder-mead") return ExcitationOptimizer::nelder_mead;
+    if (name == "gradient") return ExcitationOptimizer::gradient;
+    throw Error("excitation: unknown optimizer '" + name + "' (nelder-mead or gradient)");
+}
+
+PoseTrajectory excitationTrajectory(const Model& model, const Eigen::VectorXd& shape, double scale,
+                                    const ExcitationOptions& options, double duration) {
+    if (shape.size() != 3 * static_cast<Eigen::Index>(freePerAxis(options.harmonics)))
+        throw Error("excitation: the shape has " + std::to_string(shape.size()) + " coefficients, not 3 (2 H - 3) = " +
+                    std::to_string(3 * freePerAxis(options.harmonics)));
+    return trajectoryOf(model, shape, scale, options, duration);
+}
+
+double excitationConditionGradient(const Model& model, const Eigen::VectorXd& shape, double scale,
+                                   const ExcitationOptions& options, Eigen::VectorXd& gradient) {
+    checkOptions(options, 1.0 / options.base_frequency);
+    if (shape.size() != 3 * static_cast<Eigen::Index>(freePerAxis(options.harmonics)))
+        throw Error("excitation: the shape has " + std::to_string(shape.size()) + " coefficients, not 3 (2 H - 3) = " +
+                    std::to_string(3 * freePerAxis(options.harmonics)));
+    ConditionGradient condition(model, options, excitedColumns(model, options));
+    return condition(shape, scale, gradient);
+}
 
 std::vector<int> excitedColumns(const Model& model, const ExcitationOptions& options) {
     std::vector<int> columns;
@@ -397,11 +666,32 @@ ExcitationResult designExcitation(const Model& model, double duration, const Exc
             best_z = z;
         }
     }
+    int gradients = 0;
     if (used < options.evaluations && std::isfinite(best_f)) {
-        auto [z, fz] = nelderMead(f, best_z, best_f, 0.25, options.evaluations, used);
-        if (fz < best_f) {
-            best_z = z;
-            best_f = fz;
+        std::pair<Eigen::VectorXd, double> refined;
+        if (options.optimizer == ExcitationOptimizer::gradient) {
+            // the gradient at the scale of the last shape f judged (the current one's)
+            double scale = 0.0;
+            const auto f_scaled = [&](const Eigen::VectorXd& z) {
+                if (options.progress) options.progress(calls);
+                ++calls;
+                return objective(z, &scale, samples);
+            };
+            (void)f_scaled(best_z);
+            ++used;
+            ConditionGradient condition(model, options, excitedColumns(model, options));
+            const auto grad = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g) {
+                if (options.progress) options.progress(calls);
+                ++calls;
+                return condition(z, scale, g);
+            };
+            refined = gradientDescent(f_scaled, grad, best_z, best_f, options.evaluations, used, gradients);
+        } else {
+            refined = nelderMead(f, best_z, best_f, 0.25, options.evaluations, used);
+        }
+        if (refined.second < best_f) {
+            best_z = refined.first;
+            best_f = refined.second;
         }
     }
     if (!std::isfinite(best_f)) {
@@ -416,6 +706,7 @@ ExcitationResult designExcitation(const Model& model, double duration, const Exc
     result.trajectory = trajectoryOf(model, best_z, best_scale * (1.0 - 1e-6), options, duration);
     result.assessment = assessExcitation(model, result.trajectory, period, options.check_samples, options);
     result.evaluations = used;
+    result.gradients = gradients;
     return result;
 }
 
