@@ -126,6 +126,49 @@ TEST(ExcitationGradient, RedundantlyActuatedPayloadMatchesFiniteDifferences) {
     expectExactGradient({"4-rrr", ExcitedParameters::payload, false, 0.05});
 }
 
+/// The largest scale within the limits at the design samples, bisected to rounding (the
+/// design's own bisection stops at 0.06 %).
+double largestScale(const Model& model, const Eigen::VectorXd& z, const ExcitationOptions& options) {
+    const double period = 1.0 / options.base_frequency;
+    const auto use = [&](double s) {
+        return assessExcitation(model, excitationTrajectory(model, z, s, options, period), period, options.samples,
+                                options)
+            .use.worst();
+    };
+    double lo = 0.0, hi = 1.0;
+    while (use(hi) <= 1.0) hi *= 2.0;
+    for (int pass = 0; pass < 80 && hi - lo > 1e-15 * hi; ++pass) {
+        const double mid = 0.5 * (lo + hi);
+        (use(mid) <= 1.0 ? lo : hi) = mid;
+    }
+    return lo;
+}
+
+TEST(ExcitationGradient, TheLargestScalesGradientMatchesFiniteDifferencesWhereTheRangeBinds) {
+    const Model model(withPayload(io::exampleRobot("paper-3prr-general"), kGuess));
+    const ExcitationOptions options = gradientOptions(ExcitedParameters::payload, false);
+    const Eigen::VectorXd z = randomShape(options.harmonics, 7);
+    const double s = largestScale(model, z, options);
+    const double period = 1.0 / options.base_frequency;
+    const ExcitationAssessment at_s =
+        assessExcitation(model, excitationTrajectory(model, z, s, options, period), period, options.samples, options);
+    EXPECT_NE(at_s.use.binding.find("range"), std::string::npos) << at_s.use.binding;
+    Eigen::VectorXd gradient;
+    ASSERT_TRUE(excitationScaleGradient(model, z, s, options, gradient));
+    // s(z) is homogeneous of degree -1: grad s . z = -s
+    EXPECT_NEAR(gradient.dot(z), -s, 1e-9 * s);
+    const double h = 1e-5;
+    Eigen::VectorXd fd(z.size());
+    for (Eigen::Index j = 0; j < z.size(); ++j) {
+        Eigen::VectorXd plus = z, minus = z;
+        plus(j) += h;
+        minus(j) -= h;
+        fd(j) = (largestScale(model, plus, options) - largestScale(model, minus, options)) / (2.0 * h);
+    }
+    EXPECT_LE((gradient - fd).cwiseAbs().maxCoeff(), 1e-6 * fd.cwiseAbs().maxCoeff())
+        << "exact " << gradient.transpose() << "\nfd    " << fd.transpose();
+}
+
 TEST(ExcitationGradient, OptimizerNamesRoundTripAndAnUnknownOneIsRefusedInOneLine) {
     EXPECT_EQ(parseOptimizer("gradient"), ExcitationOptimizer::gradient);
     EXPECT_EQ(parseOptimizer("nelder-mead"), ExcitationOptimizer::nelder_mead);

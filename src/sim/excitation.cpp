@@ -424,6 +424,9 @@ public:
         const int H = options.harmonics;
         samples_ = options.samples > 0 ? options.samples : 25 * H;
         period_ = 1.0 / options.base_frequency;
+        if (const Status status = inverseDisplacement(model, data_, model.home); !status)
+            throw Error("excitation: the home posture is not valid: " + describe(status, model));
+        for (int j = 0; j < model.limbs; ++j) q_home_[at(j)] = data_.limb[at(j)].q;
         const auto d = static_cast<Eigen::Index>(3) * freePerAxis(H);
         // the samples are linear in the shape: those of the unit shapes e_j
         for (Eigen::Index j = 0; j < d; ++j) {
@@ -432,7 +435,120 @@ public:
         }
     }
 
-    double operator()(const Eigen::VectorXd& z, double s, Eigen::VectorXd& gradient) {
+    /// log cond at the fixed scale s and its gradient s d log cond / d c (c = s z). With
+    /// `with_scale`, the gradient of the design objective f(z) = log cond at the largest scale
+    /// s(z) instead, s the scale f found: s grad_c F + (grad_c F . z) grad s(z) (scaleGradient);
+    /// `scaled` tells whether the binding limit allowed it (else the fixed-scale gradient).
+    double operator()(const Eigen::VectorXd& z, double s, Eigen::VectorXd& gradient, bool with_scale = false,
+                      bool* scaled = nullptr) {
+        const double value = fixedScale(z, s, gradient);
+        if (scaled) *scaled = false;
+        if (!with_scale || !std::isfinite(value)) return value;
+        Eigen::VectorXd grad_s;
+        if (!scaleGradient(z, s, grad_s)) return value;
+        gradient += (gradient.dot(z) / s) * grad_s;
+        if (scaled) *scaled = true;
+        return value;
+    }
+
+    /// grad s(z) of the largest scale within the limits, from the limit that binds at the design
+    /// samples at scale s: its use g(s z) = 1, so grad s = -s grad_c g / (grad_c g . z). For a
+    /// joint's range (dq/dp = J_j^-1 S(c)), a joint's rate (d gamma_dot / d dp = J_j^-1 S(c),
+    /// d gamma_dot / d p = -J_j^-1 dJ_j gamma_dot with dJ_j's columns ds_k = [xi_(k-1), s_k] for
+    /// dp = e) or an actuator's effort (derivatives.hpp); false when a condition number binds
+    /// (its scaled 1-norm is not differentiated) or a sample fails.
+    bool scaleGradient(const Eigen::VectorXd& z, double s, Eigen::VectorXd& grad_s) {
+        const UnitMotion m =
+            atRestFirst(sampleTrajectory(model_, trajectoryOf(model_, z, 1.0, options_, period_), period_, samples_));
+        const double allowed = 1.0 - options_.margin;
+        // the binding use: kind (0 range, 1 rate, 2 effort, 3 condition), sample, limb/actuator, joint
+        double worst = -1.0;
+        int kind = -1, sample = -1, who = -1, joint = -1;
+        double sign = 1.0;
+        const auto keep = [&](double use, int k, int i, int w, int jt, double sg) {
+            if (use > worst) {
+                worst = use;
+                kind = k;
+                sample = i;
+                who = w;
+                joint = jt;
+                sign = sg;
+            }
+        };
+        for (std::size_t i = 0; i < m.p.size(); ++i) {
+            if (!inverseDynamics(model_, data_, model_.home + s * m.p[i], s * m.dp[i], s * m.ddp[i])) return false;
+            const int ii = static_cast<int>(i);
+            for (int j = 0; j < model_.limbs; ++j) {
+                const LimbModel& limb = model_.limb[at(j)];
+                const LimbData& ld = data_.limb[at(j)];
+                for (int k = 0; k < 3; ++k) {
+                    const JointLimits& lim = limb.limits[at(k)];
+                    const double q = ld.q(k), q0 = q_home_[at(j)](k);
+                    const double room = q >= q0 ? lim.upper - q0 : q0 - lim.lower;
+                    if (std::isfinite(room) && room > 0.0)
+                        keep(std::abs(q - q0) / (allowed * room), 0, ii, j, k, q >= q0 ? 1.0 / (allowed * room)
+                                                                                       : -1.0 / (allowed * room));
+                    if (std::isfinite(lim.velocity))
+                        keep(std::abs(ld.gamma_dot(k)) / (allowed * lim.velocity), 1, ii, j, k,
+                             (ld.gamma_dot(k) >= 0.0 ? 1.0 : -1.0) / (allowed * lim.velocity));
+                }
+                keep(ld.cond / options_.max_condition, 3, ii, j, -1, 0.0);
+            }
+            for (int a = 0; a < model_.actuators; ++a) {
+                const double effort =
+                    model_.limb[at(model_.actuator_limb[at(a)])].limits[at(model_.actuator_joint[at(a)])].effort;
+                if (std::isfinite(effort))
+                    keep(std::abs(data_.tau(a)) / (allowed * effort), 2, ii, a, -1,
+                         (data_.tau(a) >= 0.0 ? 1.0 : -1.0) / (allowed * effort));
+            }
+            keep(data_.cond_A / options_.max_condition, 3, ii, -1, -1, 0.0);
+        }
+        if (kind < 0 || kind == 3) return false;
+        // d g / d x at the binding sample, x = (p, dp, ddp)
+        const auto i = at(sample);
+        const Pose p = model_.home + s * m.p[i];
+        const Twist dp = s * m.dp[i], ddp = s * m.ddp[i];
+        Eigen::Matrix<double, 9, 1> dg = Eigen::Matrix<double, 9, 1>::Zero();
+        if (kind == 2) {
+            InverseDynamicsDerivatives derivative;
+            if (!inverseDynamicsDerivatives(model_, data_, p, dp, ddp, derivative)) return false;
+            dg.segment<3>(0) = sign * derivative.d_p.row(who).transpose();
+            dg.segment<3>(3) = sign * derivative.d_dp.row(who).transpose();
+            dg.segment<3>(6) = sign * derivative.d_ddp.row(who).transpose();
+        } else {
+            if (!inverseDynamics(model_, data_, p, dp, ddp)) return false;
+            const LimbData& ld = data_.limb[at(who)];
+            const Vector2 c = p.tail<2>();
+            for (int e = 0; e < 3; ++e) {
+                const Twist t = platformTwistOfPoseRate(c, Twist::Unit(e));
+                const Vector3 rate = ld.J_inv * t;  // joint rates for dp = e: dq / dp_e
+                if (kind == 0) {
+                    dg(e) = sign * rate(joint);
+                } else {
+                    // dJ_j along p_e: columns [0, [xi_0, s_1], [xi_1, s_2]] of this motion
+                    const Twist xi0 = ld.s[0] * rate(0), xi1 = xi0 + ld.s[1] * rate(1);
+                    Matrix3 dJ = Matrix3::Zero();
+                    dJ.col(1) = bracket(xi0, ld.s[1]);
+                    dJ.col(2) = bracket(xi1, ld.s[2]);
+                    dg(e) = sign * (-(ld.J_inv * (dJ * ld.gamma_dot))(joint));
+                    dg(3 + e) = sign * rate(joint);
+                }
+            }
+        }
+        const auto d = z.size();
+        Eigen::VectorXd grad_g(d);
+        for (Eigen::Index j = 0; j < d; ++j) {
+            const UnitMotion& e = basis_[at(static_cast<int>(j))];
+            grad_g(j) = dg.segment<3>(0).dot(e.p[i]) + dg.segment<3>(3).dot(e.dp[i]) + dg.segment<3>(6).dot(e.ddp[i]);
+        }
+        const double along = grad_g.dot(z);
+        if (!(along > 0.0)) return false;
+        grad_s = (-s / along) * grad_g;
+        return true;
+    }
+
+private:
+    double fixedScale(const Eigen::VectorXd& z, double s, Eigen::VectorXd& gradient) {
         const auto d = z.size();
         const auto K = static_cast<Eigen::Index>(columns_.size());
         const int n = model_.actuators;
@@ -494,7 +610,6 @@ public:
         return 0.5 * std::log(hi / lo);
     }
 
-private:
     /// The first sample (t = 0) exactly at home at rest, as the ties make it: rounded, its joint
     /// rates would be +-1e-17 and the Coulomb columns sign q' would flip with the shape.
     static UnitMotion atRestFirst(UnitMotion m) {
@@ -512,42 +627,79 @@ private:
     RegressorMatrix Y_;
     std::vector<Eigen::MatrixXd> Yc_;
     std::vector<UnitMotion> basis_;
+    std::array<Vector3, kMaxLimbs> q_home_{};
     int samples_ = 0;
     double period_ = 1.0;
 };
 
-/// Descent on the exact gradient from x0 (f: the design objective at the shape's largest
-/// scale, grad: log cond and its gradient at a fixed scale, the scale of f's last call), at
-/// most `budget` evaluations, a gradient counting as one. f is invariant to the shape's size
-/// (the scale absorbs it), so the step is along the gradient's part orthogonal to the shape,
-/// of length t |z|: doubled (to at most 1) after a decrease, halved after none, until the
-/// step is below 1e-6 or the budget is spent.
+/// BFGS on the exact gradient from x0 (f: the design objective, the shape judged at its largest
+/// scale; grad: its gradient at the shape f judged last, each counting as one evaluation), at
+/// most `budget` evaluations. f is invariant to the shape's size (the scale absorbs it), so
+/// the gradient's part along the shape is removed. The first step (and a step after a restart)
+/// is a quarter of the shape's norm along -g; backtracking halves the step until f decreases by
+/// 1e-4 of the predicted decrease (Armijo); a line search that fails restarts from the scaled
+/// identity once, twice in a row ends the refinement.
 template <typename F, typename G>
-std::pair<Eigen::VectorXd, double> gradientDescent(F&& f, G&& grad, const Eigen::VectorXd& x0, double f0, int budget,
-                                                   int& used, int& gradients) {
-    Eigen::VectorXd x = x0, g;
-    double fx = f0, t = 0.25;
-    bool fresh = false;
-    while (used < budget && t >= 1e-6) {
-        if (!fresh) {
-            ++used;
-            ++gradients;
-            if (!std::isfinite(grad(x, g))) break;
-            g -= (g.dot(x) / x.squaredNorm()) * x;
-            fresh = true;
-        }
-        const double norm = g.norm();
-        if (!(norm > 0.0) || used >= budget) break;
-        const Eigen::VectorXd trial = x - (t * x.norm() / norm) * g;
-        const double ft = f(trial);
+std::pair<Eigen::VectorXd, double> bfgs(F&& f, G&& grad, const Eigen::VectorXd& x0, double f0, int budget, int& used,
+                                        int& gradients) {
+    const auto d = x0.size();
+    Eigen::VectorXd x = x0, g, g_new;
+    double fx = f0;
+    const auto gradient = [&](const Eigen::VectorXd& at_x, Eigen::VectorXd& out) {
         ++used;
-        if (ft < fx) {
-            x = trial;
-            fx = ft;
-            t = std::min(1.0, 2.0 * t);
-            fresh = false;
-        } else {
+        ++gradients;
+        if (!std::isfinite(grad(at_x, out))) return false;
+        out -= (out.dot(at_x) / at_x.squaredNorm()) * at_x;
+        return out.allFinite();
+    };
+    if (used >= budget || !gradient(x, g)) return {x, fx};
+    Eigen::MatrixXd H;
+    bool restarted = false;
+    const auto reset = [&] {
+        H = (0.25 * x.norm() / std::max(g.norm(), 1e-300)) * Eigen::MatrixXd::Identity(d, d);
+    };
+    reset();
+    while (used < budget) {
+        const Eigen::VectorXd step = -H * g;
+        const double slope = g.dot(step);
+        if (!(slope < 0.0)) {
+            if (restarted) break;
+            reset();
+            restarted = true;
+            continue;
+        }
+        double t = 1.0, ft = fx;
+        Eigen::VectorXd trial;
+        bool accepted = false;
+        while (used < budget && t >= 1e-6) {
+            trial = x + t * step;
+            ft = f(trial);
+            ++used;
+            if (ft <= fx + 1e-4 * t * slope) {
+                accepted = true;
+                break;
+            }
             t *= 0.5;
+        }
+        if (!accepted) {
+            if (restarted || used >= budget) break;
+            reset();
+            restarted = true;
+            continue;
+        }
+        restarted = false;
+        const Eigen::VectorXd s_k = trial - x;
+        x = trial;
+        fx = ft;
+        if (used >= budget || !gradient(x, g_new)) break;
+        const Eigen::VectorXd y_k = g_new - g;
+        g = g_new;
+        const double sy = s_k.dot(y_k);
+        if (sy > 1e-12 * s_k.norm() * y_k.norm()) {
+            // H+ = (I - rho s y^T) H (I - rho y s^T) + rho s s^T
+            const double rho = 1.0 / sy;
+            const Eigen::VectorXd Hy = H * y_k;
+            H += rho * rho * (y_k.dot(Hy) + sy) * s_k * s_k.transpose() - rho * (Hy * s_k.transpose() + s_k * Hy.transpose());
         }
     }
     return {x, fx};
@@ -571,6 +723,16 @@ PoseTrajectory excitationTrajectory(const Model& model, const Eigen::VectorXd& s
         throw Error("excitation: the shape has " + std::to_string(shape.size()) + " coefficients, not 3 (2 H - 3) = " +
                     std::to_string(3 * freePerAxis(options.harmonics)));
     return trajectoryOf(model, shape, scale, options, duration);
+}
+
+bool excitationScaleGradient(const Model& model, const Eigen::VectorXd& shape, double scale,
+                             const ExcitationOptions& options, Eigen::VectorXd& gradient) {
+    checkOptions(options, 1.0 / options.base_frequency);
+    if (shape.size() != 3 * static_cast<Eigen::Index>(freePerAxis(options.harmonics)))
+        throw Error("excitation: the shape has " + std::to_string(shape.size()) + " coefficients, not 3 (2 H - 3) = " +
+                    std::to_string(3 * freePerAxis(options.harmonics)));
+    ConditionGradient condition(model, options, excitedColumns(model, options));
+    return condition.scaleGradient(shape, scale, gradient);
 }
 
 double excitationConditionGradient(const Model& model, const Eigen::VectorXd& shape, double scale,
@@ -683,9 +845,9 @@ ExcitationResult designExcitation(const Model& model, double duration, const Exc
             const auto grad = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g) {
                 if (options.progress) options.progress(calls);
                 ++calls;
-                return condition(z, scale, g);
+                return condition(z, scale, g, true);
             };
-            refined = gradientDescent(f_scaled, grad, best_z, best_f, options.evaluations, used, gradients);
+            refined = bfgs(f_scaled, grad, best_z, best_f, options.evaluations, used, gradients);
         } else {
             refined = nelderMead(f, best_z, best_f, 0.25, options.evaluations, used);
         }

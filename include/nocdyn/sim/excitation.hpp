@@ -125,6 +125,15 @@ struct ExcitationResult {
 [[nodiscard]] double excitationConditionGradient(const Model& model, const Eigen::VectorXd& shape, double scale,
                                                  const ExcitationOptions& options, Eigen::VectorXd& gradient);
 
+/// The gradient with respect to the shape of the largest scale within the limits, from the limit
+/// that binds at the design samples at `scale` (the scale the design found for the shape): its
+/// use g(s z) = 1 gives grad s = -s grad_c g / (grad_c g . z), exact for a joint's range or
+/// rate and an actuator's effort. False (gradient untouched) when a condition number of J_j or
+/// A binds (its scaled 1-norm is not differentiated) or a sample fails. The design's gradient
+/// refinement descends on s grad_c F + (grad_c F . z) grad s, F = log cond at a fixed scale.
+[[nodiscard]] bool excitationScaleGradient(const Model& model, const Eigen::VectorXd& shape, double scale,
+                                           const ExcitationOptions& options, Eigen::VectorXd& gradient);
+
 /// The trajectory moved so that its offsets are relative to the robot's home (the paper's
 /// trajectories were written about the paper robot's home, the origin).
 [[nodiscard]] PoseTrajectory aboutHome(const Model& model, PoseTrajectory trajectory);
