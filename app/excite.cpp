@@ -105,7 +105,7 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     report += "# " + std::to_string(result.evaluations) + " evaluations (" + std::to_string(o.random_shapes) +
               " random shapes, then " +
               (o.optimizer == ExcitationOptimizer::gradient
-                   ? "descent on the exact gradient, " + std::to_string(result.gradients) + " gradients"
+                   ? "BFGS on the exact gradient, " + std::to_string(result.gradients) + " gradients, then Nelder-Mead"
                    : std::string("Nelder-Mead")) +
               "), seed " + std::to_string(o.seed) +
               "; condition number of the column-scaled stacked regressor (as identify reports it)\n";

@@ -848,6 +848,12 @@ ExcitationResult designExcitation(const Model& model, double duration, const Exc
                 return condition(z, scale, g, true);
             };
             refined = bfgs(f_scaled, grad, best_z, best_f, options.evaluations, used, gradients);
+            // stopped at a kink (where the binding limit changes, s(z) is a minimum of smooth
+            // functions) with evaluations left: Nelder-Mead from there spends the rest
+            if (used < options.evaluations) {
+                auto [z, fz] = nelderMead(f, refined.first, refined.second, 0.25, options.evaluations, used);
+                if (fz < refined.second) refined = {z, fz};
+            }
         } else {
             refined = nelderMead(f, best_z, best_f, 0.25, options.evaluations, used);
         }

@@ -44,7 +44,10 @@ enum class ExcitedParameters {
 /// The local refinement after the random search.
 enum class ExcitationOptimizer {
     nelder_mead,  ///< derivative-free simplex
-    gradient,     ///< descent on the exact gradient of log cond at the shape's scale
+    /// BFGS on the exact gradient of the objective (log cond at the largest scale), then
+    /// Nelder-Mead with the evaluations left where BFGS stops (at a kink of the objective, where
+    /// the binding limit changes)
+    gradient,
 };
 
 /// "nelder-mead" / "gradient", and back; the parse throws nocdyn::Error on another name.
