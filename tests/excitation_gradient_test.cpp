@@ -145,15 +145,16 @@ double largestScale(const Model& model, const Eigen::VectorXd& z, const Excitati
     return lo;
 }
 
-TEST(ExcitationGradient, TheLargestScalesGradientMatchesFiniteDifferencesWhereTheRangeBinds) {
-    const Model model(withPayload(io::exampleRobot("paper-3prr-general"), kGuess));
-    const ExcitationOptions options = gradientOptions(ExcitedParameters::payload, false);
+/// grad s(z) against central differences of the bisected largest scale, 1e-6 relative, where
+/// `limit` binds.
+void expectExactScaleGradient(const Model& model, const ExcitationOptions& options, const std::string& limit) {
+    SCOPED_TRACE(model.description.name + ", " + limit);
     const Eigen::VectorXd z = randomShape(options.harmonics, 7);
     const double s = largestScale(model, z, options);
     const double period = 1.0 / options.base_frequency;
     const ExcitationAssessment at_s =
         assessExcitation(model, excitationTrajectory(model, z, s, options, period), period, options.samples, options);
-    EXPECT_NE(at_s.use.binding.find("range"), std::string::npos) << at_s.use.binding;
+    EXPECT_EQ(at_s.use.binding.rfind(limit, 0), 0U) << at_s.use.binding;
     Eigen::VectorXd gradient;
     ASSERT_TRUE(excitationScaleGradient(model, z, s, options, gradient));
     // s(z) is homogeneous of degree -1: grad s . z = -s
@@ -168,6 +169,23 @@ TEST(ExcitationGradient, TheLargestScalesGradientMatchesFiniteDifferencesWhereTh
     }
     EXPECT_LE((gradient - fd).cwiseAbs().maxCoeff(), 1e-6 * fd.cwiseAbs().maxCoeff())
         << "exact " << gradient.transpose() << "\nfd    " << fd.transpose();
+}
+
+TEST(ExcitationGradient, TheLargestScalesGradientMatchesFiniteDifferencesWhereAJointsRangeBinds) {
+    expectExactScaleGradient(Model(withPayload(io::exampleRobot("paper-3prr-general"), kGuess)),
+                             gradientOptions(ExcitedParameters::payload, false), "range");
+}
+
+TEST(ExcitationGradient, TheLargestScalesGradientMatchesFiniteDifferencesWhereAnActuatorsEffortBinds) {
+    ExcitationOptions options = gradientOptions(ExcitedParameters::payload, false);
+    options.base_frequency = 5.0;
+    expectExactScaleGradient(Model(withPayload(io::exampleRobot("3-rrr"), kGuess)), options, "effort");
+}
+
+TEST(ExcitationGradient, TheLargestScalesGradientMatchesFiniteDifferencesWhereAJointsRateBinds) {
+    ExcitationOptions options = gradientOptions(ExcitedParameters::payload, false);
+    options.base_frequency = 5.0;
+    expectExactScaleGradient(Model(withPayload(io::exampleRobot("3-rpr"), kGuess)), options, "velocity");
 }
 
 /// The 3-RRR's base parameters with a small budget: measured, Nelder-Mead reaches a condition

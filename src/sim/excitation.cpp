@@ -454,8 +454,8 @@ public:
     /// grad s(z) of the largest scale within the limits, from the limit that binds at the design
     /// samples at scale s: its use g(s z) = 1, so grad s = -s grad_c g / (grad_c g . z). For a
     /// joint's range (dq/dp = J_j^-1 S(c)), a joint's rate (d gamma_dot / d dp = J_j^-1 S(c),
-    /// d gamma_dot / d p = -J_j^-1 dJ_j gamma_dot with dJ_j's columns ds_k = [xi_(k-1), s_k] for
-    /// dp = e) or an actuator's effort (derivatives.hpp); false when a condition number binds
+    /// d gamma_dot / d p_e = J_j^-1 (dS_e dp - dJ_j gamma_dot) with dJ_j's columns
+    /// ds_k = [xi_(k-1), s_k] for dp = e) or an actuator's effort (derivatives.hpp); false when a condition number binds
     /// (its scaled 1-norm is not differentiated) or a sample fails.
     bool scaleGradient(const Eigen::VectorXd& z, double s, Eigen::VectorXd& grad_s) {
         const UnitMotion m =
@@ -530,7 +530,11 @@ public:
                     Matrix3 dJ = Matrix3::Zero();
                     dJ.col(1) = bracket(xi0, ld.s[1]);
                     dJ.col(2) = bracket(xi1, ld.s[2]);
-                    dg(e) = sign * (-(ld.J_inv * (dJ * ld.gamma_dot))(joint));
+                    // and xi_P = S(c) dp along c: d xi_P / d c_x = [0; 0; -omega], / d c_y = [0; omega; 0]
+                    Twist dxi = Twist::Zero();
+                    if (e == 1) dxi(2) = -dp(0);
+                    if (e == 2) dxi(1) = dp(0);
+                    dg(e) = sign * (ld.J_inv * (dxi - dJ * ld.gamma_dot))(joint);
                     dg(3 + e) = sign * rate(joint);
                 }
             }
