@@ -400,8 +400,8 @@ private:
         if (body == model.platformBody()) {
             robot.platform_M = {inertia, m};
             robot.platform_com = c;
-            robot.platform_com_home =
-                Vector2(model.cos_home * c.x() - model.sin_home * c.y(), model.sin_home * c.x() + model.cos_home * c.y());
+            robot.platform_com_home = Vector2(model.cos_home * c.x() - model.sin_home * c.y(),
+                                              model.sin_home * c.x() + model.cos_home * c.y());
         } else {
             LimbModel& limb = robot.limb[at(body % model.limbs)];
             limb.M[at(body / model.limbs)] = {inertia, m};
@@ -455,8 +455,8 @@ public:
     /// samples at scale s: its use g(s z) = 1, so grad s = -s grad_c g / (grad_c g . z). For a
     /// joint's range (dq/dp = J_j^-1 S(c)), a joint's rate (d gamma_dot / d dp = J_j^-1 S(c),
     /// d gamma_dot / d p_e = J_j^-1 (dS_e dp - dJ_j gamma_dot) with dJ_j's columns
-    /// ds_k = [xi_(k-1), s_k] for dp = e) or an actuator's effort (derivatives.hpp); false when a condition number binds
-    /// (its scaled 1-norm is not differentiated) or a sample fails.
+    /// ds_k = [xi_(k-1), s_k] for dp = e) or an actuator's effort (derivatives.hpp); false when a condition number
+    /// binds (its scaled 1-norm is not differentiated) or a sample fails.
     bool scaleGradient(const Eigen::VectorXd& z, double s, Eigen::VectorXd& grad_s) {
         const UnitMotion m =
             atRestFirst(sampleTrajectory(model_, trajectoryOf(model_, z, 1.0, options_, period_), period_, samples_));
@@ -486,8 +486,8 @@ public:
                     const double q = ld.q(k), q0 = q_home_[at(j)](k);
                     const double room = q >= q0 ? lim.upper - q0 : q0 - lim.lower;
                     if (std::isfinite(room) && room > 0.0)
-                        keep(std::abs(q - q0) / (allowed * room), 0, ii, j, k, q >= q0 ? 1.0 / (allowed * room)
-                                                                                       : -1.0 / (allowed * room));
+                        keep(std::abs(q - q0) / (allowed * room), 0, ii, j, k,
+                             q >= q0 ? 1.0 / (allowed * room) : -1.0 / (allowed * room));
                     if (std::isfinite(lim.velocity))
                         keep(std::abs(ld.gamma_dot(k)) / (allowed * lim.velocity), 1, ii, j, k,
                              (ld.gamma_dot(k) >= 0.0 ? 1.0 : -1.0) / (allowed * lim.velocity));
@@ -595,8 +595,7 @@ private:
             Eigen::Matrix<double, 9, 1> g = Eigen::Matrix<double, 9, 1>::Zero();
             for (std::size_t b = 0; b < robots_.robots().size(); ++b) {
                 const auto bb = static_cast<Eigen::Index>(b);
-                if (!inverseDynamicsDerivatives(robots_.robots()[b], data_, p, dp, ddp, derivative))
-                    return kInfeasible;
+                if (!inverseDynamicsDerivatives(robots_.robots()[b], data_, p, dp, ddp, derivative)) return kInfeasible;
                 for (int a = 0; a < n; ++a) {
                     const double w = Omega(a, bb);
                     g.segment<3>(0) += w * derivative.d_p.row(a).transpose();
@@ -607,8 +606,8 @@ private:
             // x_i = s (sum_j z_j x_i(e_j)) about home
             for (Eigen::Index j = 0; j < d; ++j) {
                 const UnitMotion& e = basis_[at(static_cast<int>(j))];
-                gradient(j) += s * (g.segment<3>(0).dot(e.p[i]) + g.segment<3>(3).dot(e.dp[i]) +
-                                    g.segment<3>(6).dot(e.ddp[i]));
+                gradient(j) +=
+                    s * (g.segment<3>(0).dot(e.p[i]) + g.segment<3>(3).dot(e.dp[i]) + g.segment<3>(6).dot(e.ddp[i]));
             }
         }
         return 0.5 * std::log(hi / lo);
@@ -659,9 +658,7 @@ std::pair<Eigen::VectorXd, double> bfgs(F&& f, G&& grad, const Eigen::VectorXd& 
     if (used >= budget || !gradient(x, g)) return {x, fx};
     Eigen::MatrixXd H;
     bool restarted = false;
-    const auto reset = [&] {
-        H = (0.25 * x.norm() / std::max(g.norm(), 1e-300)) * Eigen::MatrixXd::Identity(d, d);
-    };
+    const auto reset = [&] { H = (0.25 * x.norm() / std::max(g.norm(), 1e-300)) * Eigen::MatrixXd::Identity(d, d); };
     reset();
     while (used < budget) {
         const Eigen::VectorXd step = -H * g;
@@ -703,7 +700,8 @@ std::pair<Eigen::VectorXd, double> bfgs(F&& f, G&& grad, const Eigen::VectorXd& 
             // H+ = (I - rho s y^T) H (I - rho y s^T) + rho s s^T
             const double rho = 1.0 / sy;
             const Eigen::VectorXd Hy = H * y_k;
-            H += rho * rho * (y_k.dot(Hy) + sy) * s_k * s_k.transpose() - rho * (Hy * s_k.transpose() + s_k * Hy.transpose());
+            H += rho * rho * (y_k.dot(Hy) + sy) * s_k * s_k.transpose() -
+                 rho * (Hy * s_k.transpose() + s_k * Hy.transpose());
         }
     }
     return {x, fx};
@@ -724,8 +722,8 @@ ExcitationOptimizer parseOptimizer(const std::string& name) {
 PoseTrajectory excitationTrajectory(const Model& model, const Eigen::VectorXd& shape, double scale,
                                     const ExcitationOptions& options, double duration) {
     if (shape.size() != 3 * static_cast<Eigen::Index>(freePerAxis(options.harmonics)))
-        throw Error("excitation: the shape has " + std::to_string(shape.size()) + " coefficients, not 3 (2 H - 3) = " +
-                    std::to_string(3 * freePerAxis(options.harmonics)));
+        throw Error("excitation: the shape has " + std::to_string(shape.size()) +
+                    " coefficients, not 3 (2 H - 3) = " + std::to_string(3 * freePerAxis(options.harmonics)));
     return trajectoryOf(model, shape, scale, options, duration);
 }
 
@@ -733,8 +731,8 @@ bool excitationScaleGradient(const Model& model, const Eigen::VectorXd& shape, d
                              const ExcitationOptions& options, Eigen::VectorXd& gradient) {
     checkOptions(options, 1.0 / options.base_frequency);
     if (shape.size() != 3 * static_cast<Eigen::Index>(freePerAxis(options.harmonics)))
-        throw Error("excitation: the shape has " + std::to_string(shape.size()) + " coefficients, not 3 (2 H - 3) = " +
-                    std::to_string(3 * freePerAxis(options.harmonics)));
+        throw Error("excitation: the shape has " + std::to_string(shape.size()) +
+                    " coefficients, not 3 (2 H - 3) = " + std::to_string(3 * freePerAxis(options.harmonics)));
     ConditionGradient condition(model, options, excitedColumns(model, options));
     return condition.scaleGradient(shape, scale, gradient);
 }
@@ -743,8 +741,8 @@ double excitationConditionGradient(const Model& model, const Eigen::VectorXd& sh
                                    const ExcitationOptions& options, Eigen::VectorXd& gradient) {
     checkOptions(options, 1.0 / options.base_frequency);
     if (shape.size() != 3 * static_cast<Eigen::Index>(freePerAxis(options.harmonics)))
-        throw Error("excitation: the shape has " + std::to_string(shape.size()) + " coefficients, not 3 (2 H - 3) = " +
-                    std::to_string(3 * freePerAxis(options.harmonics)));
+        throw Error("excitation: the shape has " + std::to_string(shape.size()) +
+                    " coefficients, not 3 (2 H - 3) = " + std::to_string(3 * freePerAxis(options.harmonics)));
     ConditionGradient condition(model, options, excitedColumns(model, options));
     return condition(shape, scale, gradient);
 }
