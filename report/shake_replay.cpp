@@ -215,10 +215,11 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
         if (settings.controller != "table")
             throw Error("--drive-model " + std::string(name(settings.drive_model)) + " needs --controller table");
         // the closed loop the table knows, at home: the controller's model, the plant's the same or
-        // carrying the weighed specimen (the payload, which the controller does not carry)
+        // the robot carrying the weighed specimen (the payload, which the controller's model does
+        // not carry, or carries as identified)
         ShakeLoopOptions options = settings.table;
         options.rate = settings.rate;
-        const Model specimen(settings.drive_specimen ? withPayload(known, settings.payload) : known);
+        const Model specimen(settings.drive_specimen ? withPayload(robot, settings.payload) : known);
         const ShakeLoopLinearization linear = linearizeShakeLoop(
             controller_model, specimen, controller_model.home, options,
             settings.drive_model == DriveModel::exact ? LoopDerivatives::exact : LoopDerivatives::central_difference);

@@ -41,8 +41,9 @@ struct ShakeSettings {
     /// controller's model (the one it knows: nominal, or with the payload identified), by its
     /// exact derivatives or by central differences; table controller only.
     DriveModel drive_model = DriveModel::identity;
-    /// The linearised loop's plant carries `payload` (the specimen as weighed; the controller's
-    /// model does not carry it) rather than being the controller's model.
+    /// The linearised loop's plant is the robot carrying `payload` (the specimen as weighed; the
+    /// controller's model does not carry it, or carries its identified estimate) rather than the
+    /// controller's model.
     bool drive_specimen = false;
     double iteration_tolerance = 0.02;
     double rate = 10000.0;  ///< controller ticks per second [Hz]
