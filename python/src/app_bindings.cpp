@@ -133,13 +133,11 @@ void bindApplication(py::module_& m) {
         .def_readwrite("duration", &app::SamplingOptions::duration)
         .def_readwrite("rate", &app::SamplingOptions::rate);
 
-    py::class_<app::PoseOptions>(m, "PoseOptions")
-        .def(py::init<>())
-        .def_readwrite("x", &app::PoseOptions::x)
-        .def_readwrite("y", &app::PoseOptions::y)
-        .def_readwrite("theta", &app::PoseOptions::theta)
-        .def_readwrite("robot", &app::PoseOptions::robot)
-        .def_property_readonly_static("_fields", [](const py::object&) { return py::make_tuple("x", "y", "theta"); });
+    OptionsClass<app::PoseOptions>(m, "PoseOptions")
+        .field("robot", &app::PoseOptions::robot)
+        .option("x", &app::PoseOptions::x)
+        .option("y", &app::PoseOptions::y)
+        .option("theta", &app::PoseOptions::theta);
     m.def(
         "_run_pose",
         [](const app::PoseOptions& options, const py::object& progress) {
@@ -149,14 +147,13 @@ void bindApplication(py::module_& m) {
         },
         py::arg("options"), py::arg("progress") = py::none());
 
-    py::class_<app::InverseDynamicsOptions, app::SamplingOptions>(m, "InverseDynamicsOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &app::InverseDynamicsOptions::robot)
-        .def_readwrite("allow_limits", &app::InverseDynamicsOptions::allow_limits)
-        .def_readwrite("reactions", &app::InverseDynamicsOptions::reactions)
-        .def_property_readonly_static("_fields", [](const py::object&) {
-            return py::make_tuple("trajectory", "duration", "rate", "allow_limits", "reactions");
-        });
+    OptionsClass<app::InverseDynamicsOptions, app::SamplingOptions>(m, "InverseDynamicsOptions")
+        .field("robot", &app::InverseDynamicsOptions::robot)
+        .inherited("trajectory")
+        .inherited("duration")
+        .inherited("rate")
+        .option("allow_limits", &app::InverseDynamicsOptions::allow_limits)
+        .option("reactions", &app::InverseDynamicsOptions::reactions);
     m.def(
         "_run_inverse_dynamics",
         [](const app::InverseDynamicsOptions& options, const py::object& progress) {

@@ -6,6 +6,8 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <cstddef>
+#include <memory>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -51,6 +53,49 @@ public:
 private:
     py::object callback_;
     std::vector<std::string> warnings_;
+};
+
+/// An application options struct as a Python class, each field bound once: `option` binds a
+/// field and records its name in the class's `_fields` (the keywords the Python functions take,
+/// in this order; python/nocdyn/commands.py), `field` binds one that is not such a keyword (the
+/// robot, the output paths), `inherited` records a field that a base's class binds.
+template <class Options, class... Bases>
+class OptionsClass {
+public:
+    OptionsClass(py::module_& m, const char* name)
+        : class_(m, name), names_(std::make_shared<std::vector<std::string>>()) {
+        class_.def(py::init<>());
+        class_.def_property_readonly_static("_fields", [names = names_](const py::object&) {
+            py::tuple fields(names->size());
+            for (std::size_t i = 0; i < names->size(); ++i) fields[i] = py::str((*names)[i]);
+            return fields;
+        });
+    }
+    template <class T, class Owner>
+    OptionsClass& option(const char* name, T Owner::*member) {
+        class_.def_readwrite(name, member);
+        names_->emplace_back(name);
+        return *this;
+    }
+    template <class T, class Owner>
+    OptionsClass& field(const char* name, T Owner::*member) {
+        class_.def_readwrite(name, member);
+        return *this;
+    }
+    OptionsClass& inherited(const char* name) {
+        names_->emplace_back(name);
+        return *this;
+    }
+    /// A method of the class (py::class_::def).
+    template <class... Arguments>
+    OptionsClass& def(Arguments&&... arguments) {
+        class_.def(std::forward<Arguments>(arguments)...);
+        return *this;
+    }
+
+private:
+    py::class_<Options, Bases...> class_;
+    std::shared_ptr<std::vector<std::string>> names_;  // shared with the _fields getter
 };
 
 /// Runs job(observer) with the GIL released, then issues its warnings.

@@ -65,14 +65,11 @@ std::string pathOrEmpty(const py::object& path) {
 }  // namespace
 
 void bindAnalysis(py::module_& m) {
-    py::class_<app::EnvelopeOptions>(m, "EnvelopeOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &app::EnvelopeOptions::robot)
-        .def_readwrite("min_frequency", &app::EnvelopeOptions::min_frequency)
-        .def_readwrite("max_frequency", &app::EnvelopeOptions::max_frequency)
-        .def_readwrite("points", &app::EnvelopeOptions::points)
-        .def_property_readonly_static(
-            "_fields", [](const py::object&) { return py::make_tuple("min_frequency", "max_frequency", "points"); });
+    OptionsClass<app::EnvelopeOptions>(m, "EnvelopeOptions")
+        .field("robot", &app::EnvelopeOptions::robot)
+        .option("min_frequency", &app::EnvelopeOptions::min_frequency)
+        .option("max_frequency", &app::EnvelopeOptions::max_frequency)
+        .option("points", &app::EnvelopeOptions::points);
     m.def(
         "_run_envelope",
         [](const app::EnvelopeOptions& options, const py::object& progress, const py::object& output,
@@ -92,14 +89,11 @@ void bindAnalysis(py::module_& m) {
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
         py::arg("figure") = py::none());
 
-    py::class_<app::WorkspaceOptions>(m, "WorkspaceOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &app::WorkspaceOptions::robot)
-        .def_readwrite("theta", &app::WorkspaceOptions::theta)
-        .def_readwrite("resolution", &app::WorkspaceOptions::resolution)
-        .def_readwrite("first_frequency", &app::WorkspaceOptions::first_frequency)
-        .def_property_readonly_static(
-            "_fields", [](const py::object&) { return py::make_tuple("theta", "resolution", "first_frequency"); });
+    OptionsClass<app::WorkspaceOptions>(m, "WorkspaceOptions")
+        .field("robot", &app::WorkspaceOptions::robot)
+        .option("theta", &app::WorkspaceOptions::theta)
+        .option("resolution", &app::WorkspaceOptions::resolution)
+        .option("first_frequency", &app::WorkspaceOptions::first_frequency);
     m.def(
         "_run_workspace",
         [](const app::WorkspaceOptions& options, const py::object& progress, const py::object& output,
@@ -135,12 +129,10 @@ void bindAnalysis(py::module_& m) {
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
         py::arg("figure") = py::none(), py::arg("frequency_map") = py::none());
 
-    py::class_<app::RegressorOptions>(m, "RegressorOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &app::RegressorOptions::robot)
-        .def_readwrite("samples", &app::RegressorOptions::samples)
-        .def_readwrite("seed", &app::RegressorOptions::seed)
-        .def_property_readonly_static("_fields", [](const py::object&) { return py::make_tuple("samples", "seed"); });
+    OptionsClass<app::RegressorOptions>(m, "RegressorOptions")
+        .field("robot", &app::RegressorOptions::robot)
+        .option("samples", &app::RegressorOptions::samples)
+        .option("seed", &app::RegressorOptions::seed);
     m.def(
         "_run_regressor",
         [](const app::RegressorOptions& options, const py::object& progress, const py::object& output) {
@@ -158,10 +150,7 @@ void bindAnalysis(py::module_& m) {
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none());
 
-    py::class_<app::ConvertOptions>(m, "ConvertOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &app::ConvertOptions::robot)
-        .def_property_readonly_static("_fields", [](const py::object&) { return py::make_tuple(); });
+    OptionsClass<app::ConvertOptions>(m, "ConvertOptions").field("robot", &app::ConvertOptions::robot);
     m.def(
         "_run_convert",
         [](const app::ConvertOptions& options, const py::object& progress, const py::object& output) {
@@ -174,17 +163,15 @@ void bindAnalysis(py::module_& m) {
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none());
 
-    py::class_<app::LoadsOptions, app::SamplingOptions>(m, "LoadsOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &app::LoadsOptions::robot)
-        .def_readwrite("envelope", &app::LoadsOptions::envelope)
-        .def_readwrite("min_frequency", &app::LoadsOptions::min_frequency)
-        .def_readwrite("max_frequency", &app::LoadsOptions::max_frequency)
-        .def_readwrite("points", &app::LoadsOptions::points)
-        .def_property_readonly_static("_fields", [](const py::object&) {
-            return py::make_tuple("trajectory", "duration", "rate", "envelope", "min_frequency", "max_frequency",
-                                  "points");
-        });
+    OptionsClass<app::LoadsOptions, app::SamplingOptions>(m, "LoadsOptions")
+        .field("robot", &app::LoadsOptions::robot)
+        .inherited("trajectory")
+        .inherited("duration")
+        .inherited("rate")
+        .option("envelope", &app::LoadsOptions::envelope)
+        .option("min_frequency", &app::LoadsOptions::min_frequency)
+        .option("max_frequency", &app::LoadsOptions::max_frequency)
+        .option("points", &app::LoadsOptions::points);
     m.def(
         "_run_loads",
         [](const app::LoadsOptions& options, const py::object& progress, const py::object& output,
@@ -201,26 +188,21 @@ void bindAnalysis(py::module_& m) {
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
         py::arg("figure") = py::none());
 
-    py::class_<app::DesignOptions>(m, "DesignOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &app::DesignOptions::robot)
-        .def_readwrite("vary", &app::DesignOptions::vary)
-        .def_readwrite("metric", &app::DesignOptions::metric)
-        .def_readwrite("out_dir", &app::DesignOptions::out_dir)
-        .def_readwrite("sweep", &app::DesignOptions::sweep)
-        .def_readwrite("samples", &app::DesignOptions::samples)
-        .def_readwrite("seed", &app::DesignOptions::seed)
-        .def_readwrite("threads", &app::DesignOptions::threads)
-        .def_readwrite("theta", &app::DesignOptions::theta)
-        .def_readwrite("resolution", &app::DesignOptions::resolution)
-        .def_readwrite("trajectory", &app::DesignOptions::trajectory)
-        .def_readwrite("duration", &app::DesignOptions::duration)
-        .def_readwrite("rate", &app::DesignOptions::rate)
-        .def_readwrite("no_figures", &app::DesignOptions::no_figures)
-        .def_property_readonly_static("_fields", [](const py::object&) {
-            return py::make_tuple("vary", "metric", "sweep", "samples", "seed", "threads", "theta", "resolution",
-                                  "trajectory", "duration", "rate", "no_figures");
-        });
+    OptionsClass<app::DesignOptions>(m, "DesignOptions")
+        .field("robot", &app::DesignOptions::robot)
+        .field("out_dir", &app::DesignOptions::out_dir)
+        .option("vary", &app::DesignOptions::vary)
+        .option("metric", &app::DesignOptions::metric)
+        .option("sweep", &app::DesignOptions::sweep)
+        .option("samples", &app::DesignOptions::samples)
+        .option("seed", &app::DesignOptions::seed)
+        .option("threads", &app::DesignOptions::threads)
+        .option("theta", &app::DesignOptions::theta)
+        .option("resolution", &app::DesignOptions::resolution)
+        .option("trajectory", &app::DesignOptions::trajectory)
+        .option("duration", &app::DesignOptions::duration)
+        .option("rate", &app::DesignOptions::rate)
+        .option("no_figures", &app::DesignOptions::no_figures);
     m.def(
         "_run_design",
         [](const app::DesignOptions& options, const py::object& progress) {

@@ -14,14 +14,10 @@ namespace nocdyn::python {
 
 void bindReport(py::module_& m) {
     using R = app::ReproduceOptions;
-    py::class_<R>(m, "ReproduceOptions")
-        .def(py::init<>())
-        .def_readwrite("out_dir", &R::out_dir)
-        .def_readwrite("closed_loop_duration", &R::closed_loop_duration)
-        .def_readwrite("identification_duration", &R::identification_duration)
-        .def_property_readonly_static("_fields", [](const py::object&) {
-            return py::make_tuple("out_dir", "closed_loop_duration", "identification_duration");
-        });
+    OptionsClass<R>(m, "ReproduceOptions")
+        .option("out_dir", &R::out_dir)
+        .option("closed_loop_duration", &R::closed_loop_duration)
+        .option("identification_duration", &R::identification_duration);
     m.def(
         "_run_reproduce",
         [](const R& options, const py::object& progress) {
@@ -32,11 +28,11 @@ void bindReport(py::module_& m) {
         py::arg("options"), py::arg("progress") = py::none());
 #ifdef NOCDYN_HAS_ENGINES
     using V = app::ValidateOptions;
-    py::class_<V, app::SamplingOptions>(m, "ValidateOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &V::robot)
-        .def_property_readonly_static(
-            "_fields", [](const py::object&) { return py::make_tuple("trajectory", "duration", "rate"); });
+    OptionsClass<V, app::SamplingOptions>(m, "ValidateOptions")
+        .field("robot", &V::robot)
+        .inherited("trajectory")
+        .inherited("duration")
+        .inherited("rate");
     m.def(
         "_run_validate",
         [](const V& options, const py::object& progress) {

@@ -36,12 +36,10 @@ py::dict forwardKinematicsDict(const app::ForwardKinematicsResult& r) {
 }  // namespace
 
 void bindSimulation(py::module_& m) {
-    py::class_<app::ForwardKinematicsOptions>(m, "ForwardKinematicsOptions")
-        .def(py::init<>())
-        .def_readwrite("u", &app::ForwardKinematicsOptions::u)
-        .def_readwrite("robot", &app::ForwardKinematicsOptions::robot)
-        .def_readwrite("all_branches", &app::ForwardKinematicsOptions::all_branches)
-        .def_property_readonly_static("_fields", [](const py::object&) { return py::make_tuple("u", "all_branches"); });
+    OptionsClass<app::ForwardKinematicsOptions>(m, "ForwardKinematicsOptions")
+        .field("robot", &app::ForwardKinematicsOptions::robot)
+        .option("u", &app::ForwardKinematicsOptions::u)
+        .option("all_branches", &app::ForwardKinematicsOptions::all_branches);
     m.def(
         "_run_forward_kinematics",
         [](const app::ForwardKinematicsOptions& options, const py::object& progress) {
@@ -50,18 +48,17 @@ void bindSimulation(py::module_& m) {
         },
         py::arg("options"), py::arg("progress") = py::none());
 
-    py::class_<app::SimulateOptions>(m, "SimulateOptions")
-        .def(py::init<>())
-        .def_readwrite("forces", &app::SimulateOptions::forces)
-        .def_readwrite("robot", &app::SimulateOptions::robot)
-        .def_readwrite("interpolation", &app::SimulateOptions::interpolation)
-        .def_readwrite("duration", &app::SimulateOptions::duration)
-        .def_readwrite("rate", &app::SimulateOptions::rate)
-        .def_readwrite("atol", &app::SimulateOptions::atol)
-        .def_readwrite("rtol", &app::SimulateOptions::rtol)
-        .def_readwrite("assembly_mode", &app::SimulateOptions::assembly_mode)
-        .def_readwrite("partial", &app::SimulateOptions::partial)
-        .def_readwrite("reactions", &app::SimulateOptions::reactions)
+    OptionsClass<app::SimulateOptions>(m, "SimulateOptions")
+        .field("robot", &app::SimulateOptions::robot)
+        .option("forces", &app::SimulateOptions::forces)
+        .option("interpolation", &app::SimulateOptions::interpolation)
+        .option("duration", &app::SimulateOptions::duration)
+        .option("rate", &app::SimulateOptions::rate)
+        .option("atol", &app::SimulateOptions::atol)
+        .option("rtol", &app::SimulateOptions::rtol)
+        .option("assembly_mode", &app::SimulateOptions::assembly_mode)
+        .option("partial", &app::SimulateOptions::partial)
+        .option("reactions", &app::SimulateOptions::reactions)
         .def(
             "use_forces",
             [](app::SimulateOptions& o, const std::vector<std::string>& columns,
@@ -77,11 +74,7 @@ void bindSimulation(py::module_& m) {
                 }
                 o.forces_table = std::move(table);
             },
-            py::arg("columns"), py::arg("data"), "The forces of this table (columns t, tau1..taun) instead of a file")
-        .def_property_readonly_static("_fields", [](const py::object&) {
-            return py::make_tuple("forces", "interpolation", "duration", "rate", "atol", "rtol", "assembly_mode",
-                                  "partial", "reactions");
-        });
+            py::arg("columns"), py::arg("data"), "The forces of this table (columns t, tau1..taun) instead of a file");
     m.def(
         "_run_simulate",
         [](const app::SimulateOptions& options, const py::object& progress) {
@@ -92,24 +85,19 @@ void bindSimulation(py::module_& m) {
         },
         py::arg("options"), py::arg("progress") = py::none());
 
-    py::class_<app::FrequencyResponseOptions>(m, "FrequencyResponseOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &app::FrequencyResponseOptions::robot)
-        .def_readwrite("pose", &app::FrequencyResponseOptions::pose)
-        .def_readwrite("rate", &app::FrequencyResponseOptions::rate)
-        .def_readwrite("output_kind", &app::FrequencyResponseOptions::output_kind)
-        .def_readwrite("compliance", &app::FrequencyResponseOptions::compliance)
-        .def_readwrite("f_min", &app::FrequencyResponseOptions::f_min)
-        .def_readwrite("f_max", &app::FrequencyResponseOptions::f_max)
-        .def_readwrite("points", &app::FrequencyResponseOptions::points)
-        .def_readwrite("closed_loop", &app::FrequencyResponseOptions::closed_loop)
-        .def_readwrite("payload", &app::FrequencyResponseOptions::payload)
-        .def_readwrite("controller_rate", &app::FrequencyResponseOptions::controller_rate)
-        .def_readwrite("natural_frequency", &app::FrequencyResponseOptions::natural_frequency)
-        .def_property_readonly_static("_fields", [](const py::object&) {
-            return py::make_tuple("pose", "rate", "output_kind", "compliance", "f_min", "f_max", "points",
-                                  "closed_loop", "payload", "controller_rate", "natural_frequency");
-        });
+    OptionsClass<app::FrequencyResponseOptions>(m, "FrequencyResponseOptions")
+        .field("robot", &app::FrequencyResponseOptions::robot)
+        .option("pose", &app::FrequencyResponseOptions::pose)
+        .option("rate", &app::FrequencyResponseOptions::rate)
+        .option("output_kind", &app::FrequencyResponseOptions::output_kind)
+        .option("compliance", &app::FrequencyResponseOptions::compliance)
+        .option("f_min", &app::FrequencyResponseOptions::f_min)
+        .option("f_max", &app::FrequencyResponseOptions::f_max)
+        .option("points", &app::FrequencyResponseOptions::points)
+        .option("closed_loop", &app::FrequencyResponseOptions::closed_loop)
+        .option("payload", &app::FrequencyResponseOptions::payload)
+        .option("controller_rate", &app::FrequencyResponseOptions::controller_rate)
+        .option("natural_frequency", &app::FrequencyResponseOptions::natural_frequency);
     m.def(
         "_run_frequency_response",
         [](const app::FrequencyResponseOptions& options, const std::string& summary, const std::string& figure) {
@@ -124,29 +112,26 @@ void bindSimulation(py::module_& m) {
         },
         py::arg("options"), py::arg("summary") = std::string(), py::arg("figure") = std::string());
 
-    py::class_<app::ControlOptions, app::SamplingOptions>(m, "ControlOptions")
-        .def(py::init<>())
-        .def_readwrite("robot", &app::ControlOptions::robot)
-        .def_readwrite("controller", &app::ControlOptions::controller)
-        .def_readwrite("plant", &app::ControlOptions::plant)
-        .def_readwrite("natural_frequency", &app::ControlOptions::natural_frequency)
-        .def_readwrite("payload_mass", &app::ControlOptions::payload_mass)
-        .def_readwrite("payload_inertia", &app::ControlOptions::payload_inertia)
-        .def_readwrite("payload_com", &app::ControlOptions::payload_com)
-        .def_readwrite("noise_pose", &app::ControlOptions::noise_pose)
-        .def_readwrite("noise_rate", &app::ControlOptions::noise_rate)
-        .def_readwrite("noise_tau", &app::ControlOptions::noise_tau)
-        .def_readwrite("measure", &app::ControlOptions::measure)
-        .def_readwrite("noise_u", &app::ControlOptions::noise_u)
-        .def_readwrite("noise_du", &app::ControlOptions::noise_du)
-        .def_readwrite("seed", &app::ControlOptions::seed)
-        .def_readwrite("no_saturation", &app::ControlOptions::no_saturation)
-        .def_readwrite("sensor_log", &app::ControlOptions::sensor_log)
-        .def_property_readonly_static("_fields", [](const py::object&) {
-            return py::make_tuple("trajectory", "controller", "plant", "rate", "duration", "natural_frequency",
-                                  "payload_mass", "payload_inertia", "payload_com", "noise_pose", "noise_rate",
-                                  "noise_tau", "measure", "noise_u", "noise_du", "seed", "no_saturation");
-        });
+    OptionsClass<app::ControlOptions, app::SamplingOptions>(m, "ControlOptions")
+        .field("robot", &app::ControlOptions::robot)
+        .field("sensor_log", &app::ControlOptions::sensor_log)
+        .inherited("trajectory")
+        .option("controller", &app::ControlOptions::controller)
+        .option("plant", &app::ControlOptions::plant)
+        .inherited("rate")
+        .inherited("duration")
+        .option("natural_frequency", &app::ControlOptions::natural_frequency)
+        .option("payload_mass", &app::ControlOptions::payload_mass)
+        .option("payload_inertia", &app::ControlOptions::payload_inertia)
+        .option("payload_com", &app::ControlOptions::payload_com)
+        .option("noise_pose", &app::ControlOptions::noise_pose)
+        .option("noise_rate", &app::ControlOptions::noise_rate)
+        .option("noise_tau", &app::ControlOptions::noise_tau)
+        .option("measure", &app::ControlOptions::measure)
+        .option("noise_u", &app::ControlOptions::noise_u)
+        .option("noise_du", &app::ControlOptions::noise_du)
+        .option("seed", &app::ControlOptions::seed)
+        .option("no_saturation", &app::ControlOptions::no_saturation);
     m.def(
         "_run_control",
         [](app::ControlOptions options, const std::string& log, const std::string& figure, const py::object& progress) {
