@@ -104,6 +104,18 @@ def _derivative_batch(answer, check):
     return tuple(arrays)
 
 
+class EnvelopePoints(list):
+    """Robot.envelope's points (a list of dicts) with the band's third bound:
+    ``first_natural_frequency`` [Hz], the lumped model's first natural frequency at home (points
+    at and above it have the limit 'resonance'), or None with ``resonance_reason`` saying why it
+    is unknown (no compliance declared, a rigid limb, a free platform)."""
+
+    def __init__(self, points, first_natural_frequency, resonance_reason=""):
+        super().__init__(points)
+        self.first_natural_frequency = first_natural_frequency
+        self.resonance_reason = resonance_reason
+
+
 class LinearModel(tuple):
     """A linearised model (Robot.linearize): the tuple (A, B), or (A, B, C, D) when an output was
     asked for, with the attributes A, B, C, D, ``inputs`` (per column of B: "tau" an actuator
@@ -798,16 +810,21 @@ class Robot:
         frequency when the robot file declares compliance: see nocdyn.envelope), limb, joint,
         actuator (numbered from 1 as the command line's CSV, 0 when not applicable),
         kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
-        `nocdyn envelope --points`; ``frequencies`` is its old name)."""
+        `nocdyn envelope --points`; ``frequencies`` is its old name).
+
+        The list is an EnvelopePoints: its ``first_natural_frequency`` is the band's third bound
+        [Hz] (the lumped model's first natural frequency at home, as nocdyn.envelope's), None when
+        the robot file declares no compliance or it is unknown (``resonance_reason`` says why)."""
         if frequencies is not None:
             points = frequencies
         if isinstance(axes, str):
             axes = (axes,)
-        return self._core._envelope(list(axes), _number(min_frequency, "min_frequency", 1e-3, 1e4),
-                                    _number(max_frequency, "max_frequency", 1e-3, 1e4),
-                                    _integer(points, "points", 1, 1000),
-                                    _integer(samples_per_period, "samples_per_period", 8, 65536),
-                                    _number(relative_tolerance, "relative_tolerance", 1e-15, 0.5))
+        points, first, reason = self._core._envelope(
+            list(axes), _number(min_frequency, "min_frequency", 1e-3, 1e4),
+            _number(max_frequency, "max_frequency", 1e-3, 1e4), _integer(points, "points", 1, 1000),
+            _integer(samples_per_period, "samples_per_period", 8, 65536),
+            _number(relative_tolerance, "relative_tolerance", 1e-15, 0.5))
+        return EnvelopePoints(points, first, reason)
 
 
     # --- stiffness and natural frequencies --------------------------------------------

@@ -789,8 +789,10 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
     return out;
 }
 
-py::list envelope(const Robot& robot, const std::vector<std::string>& axes, double min_frequency, double max_frequency,
-                  int frequencies, int samples_per_period, double relative_tolerance) {
+/// The envelope's points as dicts, and the band's third bound: (points, the first natural
+/// frequency [Hz] or None, the summary line that names it or says why it is unknown).
+py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, double min_frequency, double max_frequency,
+                   int frequencies, int samples_per_period, double relative_tolerance) {
     const Model& model = *robot.model;
     EnvelopeOptions options;
     options.min_frequency = min_frequency;
@@ -810,9 +812,11 @@ py::list envelope(const Robot& robot, const std::vector<std::string>& axes, doub
             throw Error("axis: '" + a + "' is not one of x, y, theta");
     }
     std::vector<EnvelopePoint> points;
+    EnvelopeResonance resonance;
     {
         const py::gil_scoped_release release;
         points = operatingEnvelope(model, options);  // as `nocdyn envelope` computes it
+        resonance = envelopeResonance(model);
     }
     py::list out;
     for (const EnvelopePoint& e : points) {
@@ -830,7 +834,8 @@ py::list envelope(const Robot& robot, const std::vector<std::string>& axes, doub
         d["peak_effort_ratio"] = e.peak_effort_ratio;
         out.append(d);
     }
-    return out;
+    const py::object first = resonance.known ? py::object(py::float_(resonance.frequency)) : py::object(py::none());
+    return py::make_tuple(out, first, resonance.known ? std::string() : resonance.reason);
 }
 
 // --- identification ----------------------------------------------------------------------
