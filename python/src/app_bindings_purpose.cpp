@@ -122,10 +122,12 @@ void bindExcite(py::module_& m) {
         .def_readwrite("samples", &O::samples)
         .def_readwrite("check_samples", &O::check_samples)
         .def_readwrite("seed", &O::seed)
+        .def_readwrite("optimizer", &O::optimizer)
         .def_readwrite("output", &O::output)
         .def_property_readonly_static("_fields", [](const py::object&) {
             return py::make_tuple("payload_guess", "base", "friction", "duration", "frequency", "harmonics", "margin",
-                                  "max_condition", "evaluations", "random", "samples", "check_samples", "seed");
+                                  "max_condition", "evaluations", "random", "samples", "check_samples", "seed",
+                                  "optimizer");
         });
     m.def(
         "_run_excite",
