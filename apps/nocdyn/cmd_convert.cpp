@@ -1,13 +1,10 @@
 // nocdyn convert: binds app::ConvertOptions and prints (or writes) any robot file (short or
 // general form) in the general per-limb form.
-#include <iostream>
 #include <memory>
 
 #include "app/convert.hpp"
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/error.hpp"
-#include "nocdyn/io/csv.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -20,14 +17,7 @@ struct Options : app::ConvertOptions {
 
 void run(const Options& options) {
     TerminalObserver observer("nocdyn convert");
-    const std::string text = app::runConvert(options, observer).text;
-    if (options.output.empty()) {
-        std::cout << text;
-        std::cout.flush();
-        if (!std::cout) throw Error("cannot write to standard output");
-    } else {
-        io::writeTextFile(options.output, text);
-    }
+    writeText(app::runConvert(options, observer).text, options.output);
 }
 
 }  // namespace

@@ -1,6 +1,5 @@
 // nocdyn frequency-response: binds app::FrequencyResponseOptions and writes the table (CSV),
 // its summary and the Bode figure.
-#include <iostream>
 #include <memory>
 
 #include "app/frequency_response.hpp"
@@ -40,9 +39,7 @@ void run(const Options& options) {
     if (!options.summary.empty()) {
         io::writeTextFile(options.summary, result.summary);
     } else if (!options.output.empty()) {
-        std::cout << result.summary;
-        std::cout.flush();
-        if (!std::cout) throw Error("cannot write to standard output");
+        printText(result.summary);
     }
     if (!options.figure.empty()) report::renderFigure(app::bodeFigure(result), options.figure);
 }

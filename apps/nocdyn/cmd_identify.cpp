@@ -1,13 +1,11 @@
 // nocdyn identify: binds app::IdentifyOptions and prints the identification's report (YAML);
 // the application layer reads the log, solves, and writes --output and --figure.
-#include <iostream>
 #include <memory>
 #include <string>
 
 #include "app/identify.hpp"
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/error.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "option_names.hpp"
 #include "progress.hpp"
@@ -20,9 +18,7 @@ void run(const app::IdentifyOptions& options) {
     TerminalObserver observer("nocdyn identify");
     const app::IdentifyResult result = namingOptions([&] { return app::runIdentify(options, observer); });
     observer.finish();
-    std::cout << result.text;
-    std::cout.flush();
-    if (!std::cout) throw Error("cannot write to standard output");
+    printText(result.text);
 }
 
 }  // namespace

@@ -1,14 +1,11 @@
 // nocdyn regressor: binds app::RegressorOptions and prints (or writes) the report: the robot's
 // standard inertial and friction parameters, and which combinations of them (base parameters)
 // the actuator forces can identify.
-#include <iostream>
 #include <memory>
 
 #include "app/regressor.hpp"
 #include "commands.hpp"
 #include "common.hpp"
-#include "nocdyn/error.hpp"
-#include "nocdyn/io/csv.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -21,14 +18,7 @@ struct Options : app::RegressorOptions {
 
 void run(const Options& options) {
     TerminalObserver observer("nocdyn regressor");
-    const std::string text = app::runRegressor(options, observer).text;
-    if (options.output.empty()) {
-        std::cout << text;
-        std::cout.flush();
-        if (!std::cout) throw Error("cannot write to standard output");
-    } else {
-        io::writeTextFile(options.output, text);
-    }
+    writeText(app::runRegressor(options, observer).text, options.output);
 }
 
 }  // namespace

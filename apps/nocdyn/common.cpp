@@ -211,6 +211,20 @@ void writeTable(const io::Table& table, const std::string& path) {
     out.commit();
 }
 
+void printText(std::string_view text) {
+    std::cout << text;
+    std::cout.flush();
+    if (!std::cout) throw Error("cannot write to standard output");
+}
+
+void writeText(const std::string& text, const std::string& path) {
+    if (path.empty()) {
+        printText(text);
+    } else {
+        io::writeTextFile(path, text);
+    }
+}
+
 CLI::Option* addPlantOption(CLI::App& command, std::string& plant) {
     // what each plant is (report::makePlant)
     const char* help =

@@ -9,6 +9,7 @@
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 
 #include "app/options.hpp"
 #include "app/table.hpp"
@@ -81,6 +82,13 @@ private:
 
 /// Writes the table to `path`, or to stdout when the path is empty.
 void writeTable(const io::Table& table, const std::string& path);
+
+/// Prints text on stdout and flushes it; a failed write (a closed pipe, a full disk) is an Error.
+void printText(std::string_view text);
+
+/// Writes text to `path` (a unique temporary file, then renamed), or prints it when the path is
+/// empty.
+void writeText(const std::string& text, const std::string& path);
 
 /// Adds --plant (report::kPlantNames): every command that chooses a plant offers all three with
 /// this one definition.
