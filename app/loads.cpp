@@ -183,7 +183,15 @@ std::string reportText(const Model& model, const LoadsResult& r, bool envelope) 
         r.loads.joint[static_cast<std::size_t>(r.worst_limb - 1)][static_cast<std::size_t>(r.worst_joint - 1)];
     line = text::format("largest: limb %d joint %d, %.4g N%s\n", r.worst_limb, r.worst_joint, w.peak_force,
                         envelope ? " (over the operating envelope's motions)" : "");
-    return text + line;
+    text += line;
+    if (r.beyond_resonance > 0) {
+        line = text::format(
+            "left out: %d envelope motions at or above the first natural frequency %.6g Hz (limit resonance: the "
+            "platform does not follow the rigid model there)\n",
+            r.beyond_resonance, r.resonance.frequency);
+        text += line;
+    }
+    return text;
 }
 
 }  // namespace
@@ -217,7 +225,26 @@ LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
             stopIfRequested(observer);
         };
         out.frequency.assign(3 * static_cast<std::size_t>(model.limbs), 0.0);
-        out.points = operatingEnvelope(model, envelope);
+        const std::vector<EnvelopePoint> points = operatingEnvelope(model, envelope);
+        // at and above the first natural frequency the platform does not follow the rigid
+        // model's motion (the limit `resonance`): its loads there are not the machine's
+        int moving = 0;
+        for (const EnvelopePoint& point : points) {
+            if (point.limit == EnvelopeLimit::resonance) {
+                ++out.beyond_resonance;
+            } else {
+                out.points.push_back(point);
+                moving += point.amplitude > 0.0 ? 1 : 0;
+            }
+        }
+        if (out.beyond_resonance > 0) out.resonance = envelopeResonance(model);
+        if (moving == 0 && out.beyond_resonance > 0) {
+            throw OptionError("min_frequency",
+                              text::format("every envelope frequency is at or above the first natural frequency "
+                                           "%.6g Hz (limit resonance), where the rigid model's loads do not hold: "
+                                           "choose a lower one",
+                                           out.resonance.frequency));
+        }
         for (const EnvelopePoint& point : out.points) {
             if (!(point.amplitude > 0.0)) continue;
             const double rate = point.frequency * envelope.samples_per_period;

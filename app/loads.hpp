@@ -1,5 +1,8 @@
 // `loads`: every joint's design loads (reactions.hpp) along a trajectory, or over the operating
-// envelope's motions: peak and RMS reaction force, peak couple, and where the peaks occur.
+// envelope's motions: peak and RMS reaction force, peak couple, and where the peaks occur. The
+// envelope's motions at and above the first natural frequency (limit resonance) are left out:
+// there the platform does not follow the rigid model's motion, so its reactions are not loads
+// the machine sees, and a design load must not be sized (nor its peak placed) on them.
 #pragma once
 
 #include <memory>
@@ -30,8 +33,13 @@ struct LoadsResult {
     JointLoads loads;
     /// envelope: per joint (3 j + k) the frequency of the motion of its peak force [Hz]; else empty.
     std::vector<double> frequency;
-    /// envelope: the envelope's points (the motions run).
+    /// envelope: the envelope's points below the first natural frequency (the motions run).
     std::vector<EnvelopePoint> points;
+    /// envelope: how many of the envelope's points were left out, at or above the first natural
+    /// frequency (limit resonance: the rigid model's motion and loads do not hold there), and
+    /// that frequency (resonance.known when any was left out).
+    int beyond_resonance = 0;
+    EnvelopeResonance resonance;
     int worst_limb = 1, worst_joint = 1;  ///< 1-based: the joint of the largest peak force
     /// The CSV's table (io::TableId::loads): limb and joint numbered from 1.
     io::Table table;
@@ -44,7 +52,9 @@ struct LoadsResult {
 void validate(const LoadsOptions& options);
 
 /// The loads; a pose out of reach or beyond a limit along the trajectory is an Error (the
-/// envelope's motions are within every limit by construction). A stop between envelope points.
+/// envelope's motions are within every limit by construction). The envelope's points at or
+/// above the first natural frequency (robot files with compliance) are left out, and counted in
+/// the text; OptionError("min_frequency") when that leaves none. A stop between envelope points.
 [[nodiscard]] LoadsResult runLoads(const LoadsOptions& options, Observer& observer);
 
 /// The robot at the pose of the largest peak force with each joint's force as an arrow:

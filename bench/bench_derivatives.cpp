@@ -6,12 +6,16 @@
 //   inverse_derivatives      tau and d tau/d(p, dp, ddp) (inverseDynamicsDerivatives)
 //   forward_dynamics         one forward dynamics (forwardDynamics, sim layer)
 //   forward_derivatives      ddp and d ddp/d(p, dp, tau) (forwardDynamicsDerivatives)
+//   actuator_derivatives     u, du, ddu and their derivatives (actuatorVariableDerivatives)
+//   actuator_batch           the same over the cycle as one batch on one thread
+//                            (actuatorVariableDerivativesBatch, outputs preallocated)
 // over a cycle of 1000 samples of the paper's trajectory 1 plus a second harmonic per axis
 // (the fixture of bench_robots.cpp), each reporting `per_sample`. bench/derivative_ratios.py
-// prints the ratios of one JSON run: inverse_derivatives / inverse_dynamics(_fast) and
-// forward_derivatives / forward_dynamics.
+// prints the ratios of one JSON run: inverse_derivatives / inverse_dynamics(_fast),
+// forward_derivatives / forward_dynamics and actuator_derivatives (and _batch) / inverse_dynamics.
 #include <benchmark/benchmark.h>
 
+#include <array>
 #include <numbers>
 #include <string>
 #include <vector>
@@ -49,7 +53,39 @@ std::vector<Sample> cycle(const Model& model) {
     return samples;
 }
 
-enum class What { inverse_fast, inverse, inverse_derivatives, forward, forward_derivatives };
+enum class What { inverse_fast, inverse, inverse_derivatives, forward, forward_derivatives, actuator, actuator_batch };
+
+void perSample(benchmark::State& state, std::size_t samples) {
+    state.counters["per_sample"] = benchmark::Counter(
+        static_cast<double>(samples), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+/// The cycle as one actuatorVariableDerivativesBatch on the calling thread, N x 3 inputs and
+/// the outputs allocated once.
+void runActuatorBatch(benchmark::State& state, const Model& model, const std::vector<Sample>& samples) {
+    const auto N = static_cast<Eigen::Index>(samples.size());
+    const int n = model.actuators;
+    Eigen::ArrayXXd p(N, 3), dp(N, 3), ddp(N, 3);
+    for (Eigen::Index k = 0; k < N; ++k) {
+        p.row(k) = samples[static_cast<std::size_t>(k)].p.transpose();
+        dp.row(k) = samples[static_cast<std::size_t>(k)].dp.transpose();
+        ddp.row(k) = samples[static_cast<std::size_t>(k)].ddp.transpose();
+    }
+    std::array<Eigen::ArrayXXd, 3> values;
+    std::array<Eigen::ArrayXXd, 6> jacobians;
+    for (auto& v : values) v.resize(N, n);
+    for (auto& j : jacobians) j.resize(N, 3 * n);
+    auto& [u, du, ddu] = values;
+    auto& [u_p, du_p, du_dp, ddu_p, ddu_dp, ddu_ddp] = jacobians;
+    for (auto _ : state) {
+        const BatchResult r = actuatorVariableDerivativesBatch(
+            model, p, dp, ddp, {u, du, ddu, u_p, du_p, du_dp, ddu_p, ddu_dp, ddu_ddp}, 1);
+        benchmark::DoNotOptimize(r);
+        benchmark::DoNotOptimize(ddu_p.data());
+        benchmark::ClobberMemory();
+    }
+    perSample(state, samples.size());
+}
 
 void run(benchmark::State& state, const std::string& robot, What what) {
     const Model model(io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
@@ -61,6 +97,11 @@ void run(benchmark::State& state, const std::string& robot, What what) {
     Data data(model);
     InverseDynamicsDerivatives id;
     ForwardDynamicsDerivatives fd;
+    ActuatorVariableDerivatives ad;
+    if (what == What::actuator_batch) {
+        runActuatorBatch(state, model, samples);
+        return;
+    }
     for (auto _ : state) {
         for (const Sample& s : samples) {
             Status status;
@@ -85,14 +126,18 @@ void run(benchmark::State& state, const std::string& robot, What what) {
                     status = forwardDynamicsDerivatives(model, data, s.p, s.dp, s.tau, fd);
                     benchmark::DoNotOptimize(fd.d_p.data());
                     break;
+                case What::actuator:
+                    status = actuatorVariableDerivatives(model, data, s.p, s.dp, s.ddp, ad);
+                    benchmark::DoNotOptimize(ad.ddu_p.data());
+                    break;
+                case What::actuator_batch:
+                    break;
             }
             benchmark::DoNotOptimize(status);
         }
         benchmark::ClobberMemory();
     }
-    state.counters["per_sample"] =
-        benchmark::Counter(static_cast<double>(samples.size()),
-                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+    perSample(state, samples.size());
 }
 
 const bool registered = [] {
@@ -100,7 +145,9 @@ const bool registered = [] {
                                                   {"inverse_dynamics", What::inverse},
                                                   {"inverse_derivatives", What::inverse_derivatives},
                                                   {"forward_dynamics", What::forward},
-                                                  {"forward_derivatives", What::forward_derivatives}};
+                                                  {"forward_derivatives", What::forward_derivatives},
+                                                  {"actuator_derivatives", What::actuator},
+                                                  {"actuator_batch", What::actuator_batch}};
     for (const char* robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
         for (const auto& [name, what] : whats) {
             const std::string robot_name = robot;

@@ -32,6 +32,19 @@ def main(path):
               f"{t['inverse_derivatives'] / t['inverse_dynamics_fast']:.1f}x | "
               f"{t['forward_derivatives'] * 1e9:.0f} ns | "
               f"{t['forward_derivatives'] / t['forward_dynamics']:.1f}x |")
+    print()
+    print("| robot | u, du, ddu and derivatives | / inverse dynamics (full) | as one batch (1 thread) "
+          "| / inverse dynamics (full) |")
+    print("| --- | --- | --- | --- | --- |")
+    for robot in robots:
+        t = {what: per_sample.get(f"BM_Derivatives/{robot}/{what}") for what in
+             ("inverse_dynamics", "actuator_derivatives", "actuator_batch")}
+        if None in t.values():
+            continue
+        print(f"| {robot} | {t['actuator_derivatives'] * 1e9:.0f} ns | "
+              f"{t['actuator_derivatives'] / t['inverse_dynamics']:.1f}x | "
+              f"{t['actuator_batch'] * 1e9:.0f} ns | "
+              f"{t['actuator_batch'] / t['inverse_dynamics']:.1f}x |")
 
 
 if __name__ == "__main__":

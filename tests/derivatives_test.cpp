@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cstdio>
+#include <cstring>
 #include <optional>
 #include <cmath>
 #include <random>
@@ -21,6 +22,7 @@
 #include "nocdyn/batch.hpp"
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/dynamics.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
 #include "random_robots.hpp"
@@ -97,6 +99,41 @@ double relativeError(const Eigen::MatrixXd& exact, const Eigen::MatrixXd& fd, do
     return (exact - fd).cwiseAbs().maxCoeff() / (exact.cwiseAbs().maxCoeff() + floor);
 }
 
+/// What a test's finite-difference comparisons found: the worst relative error, and how many
+/// matrices were compared and skipped as unconverged.
+struct Agreement {
+    double worst = 0.0;
+    int matrices = 0, skipped = 0;
+
+    /// The summary line, and that at most one matrix in ten was skipped.
+    void report(const std::string& robot, const char* what) const {
+        std::printf("%s: worst relative error of %s %.2e (%d of %d matrices skipped)\n", robot.c_str(), what, worst,
+                    skipped, matrices);
+        EXPECT_LE(10 * skipped, matrices) << "the finite differences did not converge on too many samples";
+    }
+};
+
+/// `exact` against the extrapolated central differences of value(i, h) (the value with input
+/// coordinate i moved by h), one column per input, at step h: within kTolerance relative to
+/// |exact| + error_floor, unless the stencils differ by more than kUnconverged (|exact| + floor).
+template <class Value>
+void expectFiniteDifferences(const Eigen::MatrixXd& exact, double step, double floor, double error_floor,
+                             const Value& value, Agreement& agreement, const std::string& what) {
+    Eigen::MatrixXd fd(exact.rows(), exact.cols());
+    double spread = 0.0;
+    for (Eigen::Index i = 0; i < exact.cols(); ++i) {
+        fd.col(i) = stencil([&](double h) -> Eigen::VectorXd { return value(static_cast<int>(i), h); }, step, spread);
+    }
+    ++agreement.matrices;
+    if (spread > kUnconverged * (exact.cwiseAbs().maxCoeff() + floor)) {
+        ++agreement.skipped;
+        return;
+    }
+    const double error = relativeError(exact, fd, error_floor);
+    agreement.worst = std::max(agreement.worst, error);
+    EXPECT_LE(error, kTolerance) << what << "\nexact\n" << exact << "\nfinite differences\n" << fd;
+}
+
 class DerivativesRandomRobots : public ::testing::TestWithParam<RandomRobotSpec> {
 protected:
     static constexpr int kRobots = 2;
@@ -144,8 +181,7 @@ std::string where(const Sample& s) {
 }
 
 TEST_P(DerivativesRandomRobots, InverseDynamicsDerivativesEqualFiniteDifferences) {
-    double worst = 0.0;
-    int matrices = 0, skipped = 0;
+    Agreement agreement;
     forEachSample([&](const Model& model, const Sample& s) {
         Data data(model), probe(model);
         InverseDynamicsDerivatives d;
@@ -153,41 +189,23 @@ TEST_P(DerivativesRandomRobots, InverseDynamicsDerivativesEqualFiniteDifferences
         ASSERT_TRUE(inverseDynamics(model, probe, s.p, s.dp, s.ddp).ok());
         const Eigen::VectorXd tau = probe.tau;
         EXPECT_LE((Eigen::VectorXd(d.tau) - tau).cwiseAbs().maxCoeff(), 1e-11 * (1.0 + tau.cwiseAbs().maxCoeff()));
-        const int n = model.actuators;
         const double floor = 1e-3 * (1.0 + tau.cwiseAbs().maxCoeff());
+        const std::array<const char*, 3> names{"p", "dp", "ddp"};
         for (int which = 0; which < 3; ++which) {
-            Eigen::MatrixXd fd(n, 3);
-            double spread = 0.0;
-            for (int i = 0; i < 3; ++i) {
-                const auto f = [&](double h) -> Eigen::VectorXd {
-                    Sample t = s;
-                    (which == 0 ? t.p : which == 1 ? t.dp : t.ddp)(i) += h;
-                    EXPECT_TRUE(inverseDynamics(model, probe, t.p, t.dp, t.ddp).ok());
-                    return probe.tau;
-                };
-                fd.col(i) = stencil(f, kStep, spread);
-            }
+            const auto f = [&](int i, double h) -> Eigen::VectorXd {
+                Sample t = s;
+                (which == 0 ? t.p : which == 1 ? t.dp : t.ddp)(i) += h;
+                EXPECT_TRUE(inverseDynamics(model, probe, t.p, t.dp, t.ddp).ok());
+                return probe.tau;
+            };
             const Eigen::MatrixXd exact =
                 which == 0 ? Eigen::MatrixXd(d.d_p) : (which == 1 ? Eigen::MatrixXd(d.d_dp) : Eigen::MatrixXd(d.d_ddp));
-            ++matrices;
-            if (spread > kUnconverged * (exact.cwiseAbs().maxCoeff() + floor)) {
-                ++skipped;
-                continue;
-            }
-            const double error = relativeError(exact, fd, floor);
-            worst = std::max(worst, error);
-            EXPECT_LE(error, kTolerance) << "d tau/d "
-                                         << (which == 0   ? "p"
-                                             : which == 1 ? "dp"
-                                                          : "ddp")
-                                         << " of " << label(GetParam()) << " at " << where(s) << "\nexact\n"
-                                         << exact << "\nfinite differences\n"
-                                         << fd;
+            expectFiniteDifferences(exact, kStep, floor, floor, f, agreement,
+                                    std::string("d tau/d ") + names[static_cast<std::size_t>(which)] + " of " +
+                                        label(GetParam()) + " at " + where(s));
         }
     });
-    std::printf("%s: worst relative error of d tau/d(p, dp, ddp) %.2e (%d of %d matrices skipped)\n",
-                label(GetParam()).c_str(), worst, skipped, matrices);
-    EXPECT_LE(10 * skipped, matrices) << "the finite differences did not converge on too many samples";
+    agreement.report(label(GetParam()), "d tau/d(p, dp, ddp)");
 }
 
 TEST_P(DerivativesRandomRobots, AccelerationDerivativeIsTheMappedMassMatrix) {
@@ -212,8 +230,7 @@ TEST_P(DerivativesRandomRobots, AccelerationDerivativeIsTheMappedMassMatrix) {
 }
 
 TEST_P(DerivativesRandomRobots, ForwardDynamicsDerivativesEqualFiniteDifferences) {
-    double worst = 0.0;
-    int matrices = 0, skipped = 0;
+    Agreement agreement;
     forEachSample([&](const Model& model, const Sample& s) {
         Data data(model), probe(model);
         // the forces of the sample's own motion
@@ -225,81 +242,74 @@ TEST_P(DerivativesRandomRobots, ForwardDynamicsDerivativesEqualFiniteDifferences
         EXPECT_LE((d.ddp - probe.t_M_dot).cwiseAbs().maxCoeff(), 1e-9 * (1.0 + s.ddp.cwiseAbs().maxCoeff()));
         EXPECT_LE((d.M_p - probe.M_p).cwiseAbs().maxCoeff(), 1e-11 * probe.M_p.cwiseAbs().maxCoeff());
         const double floor = 1e-3 * (1.0 + s.ddp.cwiseAbs().maxCoeff());
-        const int n = model.actuators;
+        const std::array<const char*, 3> names{"p", "dp", "tau"};
         for (int which = 0; which < 3; ++which) {
-            const int columns = which == 2 ? n : 3;
-            Eigen::MatrixXd fd(3, columns);
-            double spread = 0.0;
-            for (int i = 0; i < columns; ++i) {
-                const auto f = [&](double h) -> Eigen::VectorXd {
-                    Pose p = s.p;
-                    Twist dp = s.dp;
-                    ActuatorVector t = tau;
-                    if (which == 0) p(i) += h;
-                    if (which == 1) dp(i) += h;
-                    if (which == 2) t(i) += h;
-                    EXPECT_TRUE(forwardDynamics(model, probe, p, dp, t).ok());
-                    return probe.t_M_dot;
-                };
-                // forces are tens of newtons: a step of 1e-4 N is as fine as 1e-4 m
-                fd.col(i) = stencil(f, which == 2 ? 1e-2 : kStep, spread);
-            }
+            const auto f = [&](int i, double h) -> Eigen::VectorXd {
+                Pose p = s.p;
+                Twist dp = s.dp;
+                ActuatorVector t = tau;
+                if (which == 0) p(i) += h;
+                if (which == 1) dp(i) += h;
+                if (which == 2) t(i) += h;
+                EXPECT_TRUE(forwardDynamics(model, probe, p, dp, t).ok());
+                return probe.t_M_dot;
+            };
             const Eigen::MatrixXd exact =
                 which == 0 ? Eigen::MatrixXd(d.d_p) : (which == 1 ? Eigen::MatrixXd(d.d_dp) : Eigen::MatrixXd(d.d_tau));
-            ++matrices;
-            if (spread > kUnconverged * (exact.cwiseAbs().maxCoeff() + floor)) {
-                ++skipped;
-                continue;
-            }
-            const double error = relativeError(exact, fd, which == 2 ? 0.0 : floor);
-            worst = std::max(worst, error);
-            EXPECT_LE(error, kTolerance) << "d ddp/d "
-                                         << (which == 0   ? "p"
-                                             : which == 1 ? "dp"
-                                                          : "tau")
-                                         << " of " << label(GetParam()) << " at " << where(s) << "\nexact\n"
-                                         << exact << "\nfinite differences\n"
-                                         << fd;
+            // forces are tens of newtons: a step of 1e-4 N is as fine as 1e-4 m
+            expectFiniteDifferences(exact, which == 2 ? 1e-2 : kStep, floor, which == 2 ? 0.0 : floor, f, agreement,
+                                    std::string("d ddp/d ") + names[static_cast<std::size_t>(which)] + " of " +
+                                        label(GetParam()) + " at " + where(s));
         }
         // d ddp/d tau = M_p^-1 A_p^T
         const Eigen::MatrixXd A_p = Eigen::MatrixXd(data.A) * platformTwistMap(s.p.tail<2>());
         const Eigen::MatrixXd expected = probe.M_p.inverse() * A_p.transpose();
         EXPECT_LE((Eigen::MatrixXd(d.d_tau) - expected).cwiseAbs().maxCoeff(), 1e-9 * expected.cwiseAbs().maxCoeff());
     });
-    std::printf("%s: worst relative error of d ddp/d(p, dp, tau) %.2e (%d of %d matrices skipped)\n",
-                label(GetParam()).c_str(), worst, skipped, matrices);
-    EXPECT_LE(10 * skipped, matrices) << "the finite differences did not converge on too many samples";
+    agreement.report(label(GetParam()), "d ddp/d(p, dp, tau)");
+}
+
+/// A random robot of the spec and 20 samples along a trajectory about its home (N x 3 each, the
+/// core's pose order), the last one's x not a number.
+struct BatchCase {
+    std::optional<Model> model;
+    Eigen::ArrayXXd p, dp, ddp;
+};
+
+BatchCase batchCase(const RandomRobotSpec& spec) {
+    BatchCase c;
+    std::mt19937 rng(23);
+    std::vector<Sample> all;
+    for (int tried = 0; tried < 200 && !c.model; ++tried) {
+        const auto description = randomRobot(spec, rng);
+        if (!description) continue;
+        c.model.emplace(*description);
+        const PoseTrajectory trajectory = trajectoryAround(description->home, rng, 0.5);
+        for (int k = 0; k < 20; ++k) {
+            Sample s;
+            trajectory.evaluate(0.01 * k, s.p, s.dp, s.ddp);
+            all.push_back(s);
+        }
+    }
+    const auto N = static_cast<Eigen::Index>(all.size());
+    c.p.resize(N, 3);
+    c.dp.resize(N, 3);
+    c.ddp.resize(N, 3);
+    for (Eigen::Index k = 0; k < N; ++k) {
+        c.p.row(k) = all[static_cast<std::size_t>(k)].p.transpose();
+        c.dp.row(k) = all[static_cast<std::size_t>(k)].dp.transpose();
+        c.ddp.row(k) = all[static_cast<std::size_t>(k)].ddp.transpose();
+    }
+    if (N > 0) c.p(N - 1, 1) = std::nan("");  // NaN outputs and its Status
+    return c;
 }
 
 TEST_P(DerivativesRandomRobots, BatchEqualsSampleBySample) {
-    std::vector<Sample> all;
-    const Model* first = nullptr;
-    std::optional<Model> kept;
-    std::mt19937 rng(23);
-    for (int tried = 0; tried < 200 && !kept; ++tried) {
-        const auto description = randomRobot(GetParam(), rng);
-        if (description) kept.emplace(*description);
-        if (kept) {
-            const PoseTrajectory trajectory = trajectoryAround(description->home, rng, 0.5);
-            for (int k = 0; k < 20; ++k) {
-                Sample s;
-                trajectory.evaluate(0.01 * k, s.p, s.dp, s.ddp);
-                all.push_back(s);
-            }
-        }
-    }
-    ASSERT_TRUE(kept.has_value());
-    first = &*kept;
-    const Model& model = *first;
-    const auto N = static_cast<Eigen::Index>(all.size());
-    Eigen::ArrayXXd p(N, 3), dp(N, 3), ddp(N, 3);
-    for (Eigen::Index k = 0; k < N; ++k) {
-        p.row(k) = all[static_cast<std::size_t>(k)].p.transpose();
-        dp.row(k) = all[static_cast<std::size_t>(k)].dp.transpose();
-        ddp.row(k) = all[static_cast<std::size_t>(k)].ddp.transpose();
-    }
-    // a last sample that is not a number: NaN outputs and its Status
-    p(N - 1, 1) = std::nan("");
+    const BatchCase c = batchCase(GetParam());
+    ASSERT_TRUE(c.model.has_value());
+    const Model& model = *c.model;
+    const Eigen::ArrayXXd &p = c.p, &dp = c.dp, &ddp = c.ddp;
+    const Eigen::Index N = p.rows();
     const int n = model.actuators;
     Eigen::ArrayXXd d_p(N, 3 * n), d_dp(N, 3 * n), d_ddp(N, 3 * n);
     const BatchResult result = inverseDynamicsDerivativesBatch(model, p, dp, ddp, d_p, d_dp, d_ddp, 2);
@@ -332,15 +342,119 @@ TEST_P(DerivativesRandomRobots, BatchEqualsSampleBySample) {
     EXPECT_EQ(result.status.code, first_code);
 }
 
+/// The outputs of actuatorVariableDerivativesBatch, allocated for N samples of n actuators.
+struct ActuatorBatchArrays {
+    std::array<Eigen::ArrayXXd, 3> values;     // u, du, ddu: N x n
+    std::array<Eigen::ArrayXXd, 6> jacobians;  // u_p, du_p, du_dp, ddu_p, ddu_dp, ddu_ddp: N x 3n
+    std::vector<Status> status;
+
+    ActuatorBatchArrays(Eigen::Index N, int n) : status(static_cast<std::size_t>(N)) {
+        for (auto& v : values) v.resize(N, n);
+        for (auto& j : jacobians) j.resize(N, 3 * n);
+    }
+    BatchResult run(const Model& model, unsigned threads, PoseColumns order, const Eigen::ArrayXXd& p,
+                    const Eigen::ArrayXXd& dp, const Eigen::ArrayXXd& ddp) {
+        auto& [u, du, ddu] = values;
+        auto& [u_p, du_p, du_dp, ddu_p, ddu_dp, ddu_ddp] = jacobians;
+        return actuatorVariableDerivativesBatch(
+            model, p, dp, ddp, {u, du, ddu, u_p, du_p, du_dp, ddu_p, ddu_dp, ddu_ddp, status}, threads, order);
+    }
+};
+
+/// Equal to the bit, NaN included.
+bool sameBits(const Eigen::ArrayXXd& a, const Eigen::ArrayXXd& b) {
+    return a.rows() == b.rows() && a.cols() == b.cols() &&
+           std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())) == 0;
+}
+
+TEST_P(DerivativesRandomRobots, ActuatorVariableDerivativesBatchEqualsSampleBySample) {
+    const BatchCase c = batchCase(GetParam());
+    ASSERT_TRUE(c.model.has_value());
+    const Model& model = *c.model;
+    const Eigen::Index N = c.p.rows();
+    const int n = model.actuators;
+    ActuatorBatchArrays one(N, n), two(N, n);
+    const BatchResult result = one.run(model, 1, PoseColumns::theta_x_y, c.p, c.dp, c.ddp);
+    const BatchResult threaded = two.run(model, 2, PoseColumns::theta_x_y, c.p, c.dp, c.ddp);
+    // threads change nothing: every output to the bit, and the outcome
+    for (std::size_t v = 0; v < 3; ++v) EXPECT_TRUE(sameBits(one.values[v], two.values[v])) << v;
+    for (std::size_t j = 0; j < 6; ++j) EXPECT_TRUE(sameBits(one.jacobians[j], two.jacobians[j])) << j;
+    EXPECT_EQ(threaded.failed, result.failed);
+    EXPECT_EQ(threaded.first_failure, result.first_failure);
+    // each row is actuatorVariableDerivatives' own, each status that sample's
+    Data data(model);
+    Eigen::Index failed = 0, first_failed = BatchResult::npos;
+    for (Eigen::Index k = 0; k < N; ++k) {
+        ActuatorVariableDerivatives d;
+        const Status status = actuatorVariableDerivatives(model, data, c.p.row(k).transpose(), c.dp.row(k).transpose(),
+                                                          c.ddp.row(k).transpose(), d);
+        EXPECT_EQ(one.status[static_cast<std::size_t>(k)].code, status.code) << k;
+        EXPECT_EQ(two.status[static_cast<std::size_t>(k)].code, status.code) << k;
+        if (!status && failed++ == 0) first_failed = k;
+        const std::array<const ActuatorVector*, 3> values{&d.u, &d.du, &d.ddu};
+        const std::array<const ActuatorPoseJacobian*, 6> jacobians{&d.u_p,   &d.du_p,   &d.du_dp,
+                                                                   &d.ddu_p, &d.ddu_dp, &d.ddu_ddp};
+        for (int a = 0; a < n; ++a) {
+            for (std::size_t v = 0; v < 3; ++v) {
+                if (status)
+                    EXPECT_EQ(one.values[v](k, a), (*values[v])(a));
+                else
+                    EXPECT_TRUE(std::isnan(one.values[v](k, a)));
+            }
+            for (std::size_t j = 0; j < 6; ++j) {
+                for (int i = 0; i < 3; ++i) {
+                    if (status)
+                        EXPECT_EQ(one.jacobians[j](k, 3 * a + i), (*jacobians[j])(a, i));
+                    else
+                        EXPECT_TRUE(std::isnan(one.jacobians[j](k, 3 * a + i)));
+                }
+            }
+        }
+    }
+    EXPECT_GE(failed, 1);
+    EXPECT_EQ(result.failed, failed);
+    EXPECT_EQ(result.first_failure, first_failed);
+    // the tables' pose order [x, y, theta]: the inputs' and the derivatives' columns permuted alike
+    const auto permuted = [](const Eigen::ArrayXXd& a) {
+        Eigen::ArrayXXd b(a.rows(), 3);
+        for (int i = 0; i < 3; ++i) b.col(poseColumn(PoseColumns::x_y_theta, i)) = a.col(i);
+        return b;
+    };
+    ActuatorBatchArrays xyt(N, n);
+    (void)xyt.run(model, 1, PoseColumns::x_y_theta, permuted(c.p), permuted(c.dp), permuted(c.ddp));
+    for (std::size_t v = 0; v < 3; ++v) EXPECT_TRUE(sameBits(xyt.values[v], one.values[v])) << v;
+    for (std::size_t j = 0; j < 6; ++j) {
+        for (int a = 0; a < n; ++a) {
+            for (int i = 0; i < 3; ++i) {
+                const Eigen::ArrayXd theirs = one.jacobians[j].col(3 * a + i);
+                const Eigen::ArrayXd mine = xyt.jacobians[j].col(3 * a + poseColumn(PoseColumns::x_y_theta, i));
+                EXPECT_TRUE(sameBits(mine, theirs)) << j << " " << a << " " << i;
+            }
+        }
+    }
+}
+
+TEST(Derivatives, ActuatorVariableBatchNamesAWrongShape) {
+    std::mt19937 rng(5);
+    std::optional<RobotDescription> description;
+    while (!description) description = randomRobot({{"RRR", "RRR", "RRR"}, 3, true, false}, rng);
+    const Model model(*description);
+    Eigen::ArrayXXd p = Eigen::ArrayXXd::Zero(4, 3), u(4, 3), wrong(4, 8);
+    try {
+        (void)actuatorVariableDerivativesBatch(model, p, p, p, {u, u, u, wrong, wrong, wrong, wrong, wrong, wrong});
+        FAIL() << "a 4 x 8 derivative output was accepted";
+    } catch (const Error& e) {
+        EXPECT_STREQ(e.what(), "actuatorVariableDerivativesBatch: u_p is 4 x 8, expected 4 x 9");
+    }
+}
+
 TEST_P(DerivativesRandomRobots, ActuatorVariableDerivativesEqualFiniteDifferences) {
-    double worst = 0.0;
-    int matrices = 0, skipped = 0;
+    Agreement agreement;
     forEachSample([&](const Model& model, const Sample& s) {
         Data data(model), probe(model);
         ActuatorVariableDerivatives d;
         ASSERT_TRUE(actuatorVariableDerivatives(model, data, s.p, s.dp, s.ddp, d).ok()) << where(s);
         ASSERT_TRUE(inverseDynamics(model, probe, s.p, s.dp, s.ddp).ok());
-        const int n = model.actuators;
         // the values are inverseDynamics' own
         const std::array<std::pair<const ActuatorVector*, const ActuatorVector*>, 3> values{
             {{&d.u, &probe.u}, {&d.du, &probe.du}, {&d.ddu, &probe.ddu}}};
@@ -363,36 +477,19 @@ TEST_P(DerivativesRandomRobots, ActuatorVariableDerivativesEqualFiniteDifference
                                          {2, 1, &d.ddu_dp, "d ddu/d dp"},
                                          {2, 2, &d.ddu_ddp, "d ddu/d ddp"}}};
         for (const Pair& pair : pairs) {
-            Eigen::MatrixXd fd(n, 3);
-            double spread = 0.0;
-            for (int i = 0; i < 3; ++i) {
-                const auto f = [&](double h) -> Eigen::VectorXd {
-                    Sample t = s;
-                    (pair.input == 0 ? t.p : pair.input == 1 ? t.dp : t.ddp)(i) += h;
-                    EXPECT_TRUE(inverseDynamics(model, probe, t.p, t.dp, t.ddp).ok());
-                    return pair.output == 0 ? probe.u : (pair.output == 1 ? probe.du : probe.ddu);
-                };
-                fd.col(i) = stencil(f, kStep, spread);
-            }
-            const Eigen::MatrixXd exact(*pair.exact);
+            const auto f = [&](int i, double h) -> Eigen::VectorXd {
+                Sample t = s;
+                (pair.input == 0 ? t.p : pair.input == 1 ? t.dp : t.ddp)(i) += h;
+                EXPECT_TRUE(inverseDynamics(model, probe, t.p, t.dp, t.ddp).ok());
+                return pair.output == 0 ? probe.u : (pair.output == 1 ? probe.du : probe.ddu);
+            };
             const double fl = floor[static_cast<std::size_t>(pair.output)];
-            ++matrices;
-            if (spread > kUnconverged * (exact.cwiseAbs().maxCoeff() + fl)) {
-                ++skipped;
-                continue;
-            }
-            const double error = relativeError(exact, fd, fl);
-            worst = std::max(worst, error);
-            EXPECT_LE(error, kTolerance) << pair.name << " of " << label(GetParam()) << " at " << where(s)
-                                         << "\nexact\n"
-                                         << exact << "\nfinite differences\n"
-                                         << fd;
+            expectFiniteDifferences(Eigen::MatrixXd(*pair.exact), kStep, fl, fl, f, agreement,
+                                    std::string(pair.name) + " of " + label(GetParam()) + " at " + where(s));
         }
     });
-    std::printf("%s: worst relative error of d(u, du, ddu)/d(p, dp, ddp) %.2e (%d of %d matrices skipped)\n",
-                label(GetParam()).c_str(), worst, skipped, matrices);
-    EXPECT_GT(matrices, 0);
-    EXPECT_LE(10 * skipped, matrices) << "the finite differences did not converge on too many samples";
+    EXPECT_GT(agreement.matrices, 0);
+    agreement.report(label(GetParam()), "d(u, du, ddu)/d(p, dp, ddp)");
 }
 
 TEST_P(DerivativesRandomRobots, ActuatorRateAndAccelerationAreLinearWithTheActuationMap) {

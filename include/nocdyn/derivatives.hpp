@@ -22,6 +22,8 @@
 // position and velocity stages (unreachable, singular_limb, singular_actuation, not_finite).
 #pragma once
 
+#include <span>
+
 #include <Eigen/Core>
 
 #include "nocdyn/batch.hpp"
@@ -99,5 +101,24 @@ Status actuatorVariableDerivatives(const Model& model, Data& data, const Pose& p
 BatchResult inverseDynamicsDerivativesBatch(const Model& model, const BatchInput& p, const BatchInput& dp,
                                             const BatchInput& ddp, BatchOutput d_p, BatchOutput d_dp, BatchOutput d_ddp,
                                             unsigned threads = 1, PoseColumns order = PoseColumns::theta_x_y);
+
+/// The outputs of actuatorVariableDerivativesBatch over N samples, row k = sample k: u, du, ddu
+/// N x n each; their derivatives N x 3n each, column 3 a + i = the derivative of actuator a's
+/// variable by the pose coordinate i (so that a row-major N x 3n array is an N x n x 3 one).
+/// `status`: empty, or N entries that get each sample's Status.
+struct ActuatorVariableDerivativesBatch {
+    BatchOutput u, du, ddu;
+    BatchOutput u_p, du_p, du_dp, ddu_p, ddu_dp, ddu_ddp;
+    std::span<Status> status = {};
+};
+
+/// actuatorVariableDerivatives of N samples (p, dp, ddp, N x 3 each), split over `threads` as
+/// inverseDynamicsBatch; `order` as inverseDynamicsDerivativesBatch. Each sample's values are
+/// actuatorVariableDerivatives' own (the same function on a workspace per thread); a failed
+/// sample's outputs are NaN. Nothing is allocated per sample. Throws nocdyn::Error when the
+/// sizes disagree.
+BatchResult actuatorVariableDerivativesBatch(const Model& model, const BatchInput& p, const BatchInput& dp,
+                                             const BatchInput& ddp, ActuatorVariableDerivativesBatch out,
+                                             unsigned threads = 1, PoseColumns order = PoseColumns::theta_x_y);
 
 }  // namespace nocdyn

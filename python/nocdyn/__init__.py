@@ -82,6 +82,53 @@ ddu_p = d ddu/d p, ddu_dp = d ddu/d dp, ddu_ddp = d ddu/d ddp: shape (n, 3), row
 a + 1, columns the pose order [x, y, theta]. du_dp = ddu_ddp = u_p (du and ddu are linear in
 dp and ddp with the actuation map A S(c) as coefficients)."""
 
+def _derivative_inputs(p, dp, ddp):
+    """(False, (p, dp, ddp)) of one sample, shape (3,) each, or (True, (p, dp, ddp)) of a batch,
+    shape (N, 3) each, read in place whatever their memory order (NaN allowed: a failed sample)."""
+    p_arr = _floats(p, "p")
+    if p_arr.ndim == 1:
+        return False, (p_arr, _floats(dp, "dp"), _floats(ddp, "ddp"))
+    if p_arr.ndim != 2:
+        raise Error(f"p: expected shape (3,) or (N, 3), got {p_arr.shape}")
+    n = p_arr.shape[0]
+    return True, (_input(p_arr, "p", (None, 3), finite=False), _input(dp, "dp", (n, 3), finite=False),
+                  _input(ddp, "ddp", (n, 3), finite=False))
+
+
+def _derivative_batch(answer, check):
+    """The arrays of a compiled derivative batch's answer (arrays..., failed, first, message);
+    with check, nocdyn.Error "sample K: <reason>" at its first failed sample."""
+    *arrays, failed, first, message = answer
+    if failed and check:
+        raise Error(f"sample {first}: {message} ({failed} of {len(arrays[0])} samples failed)")
+    return tuple(arrays)
+
+
+class EnvelopePoints(list):
+    """Robot.envelope's points (a list of dicts) with the band's third bound:
+    ``first_natural_frequency`` [Hz], the lumped model's first natural frequency at home (points
+    at and above it have the limit 'resonance'), or None with ``resonance_reason`` saying why it
+    is unknown (no compliance declared, a rigid limb, a free platform)."""
+
+    def __init__(self, points, first_natural_frequency, resonance_reason=""):
+        super().__init__(points)
+        self.first_natural_frequency = first_natural_frequency
+        self.resonance_reason = resonance_reason
+
+
+class LinearModel(tuple):
+    """A linearised model (Robot.linearize): the tuple (A, B), or (A, B, C, D) when an output was
+    asked for, with the attributes A, B, C, D, ``inputs`` (per column of B: "tau" an actuator
+    force, "uc" a drive's commanded position) and ``model`` ("rigid" or "lumped")."""
+
+    def __new__(cls, items, A, B, C, D, inputs, model):
+        self = super().__new__(cls, items)
+        self.A, self.B, self.C, self.D = A, B, C, D
+        self.inputs = tuple(inputs)
+        self.model = model
+        return self
+
+
 InverseDynamicsMatrices = namedtuple("InverseDynamicsMatrices", ["u", "du", "ddu", "tau", "I", "C", "T"])
 InverseDynamicsMatrices.__doc__ = """Inverse dynamics of one sample with the NOC matrices (eq. 23).
 
@@ -464,45 +511,58 @@ class Robot:
         derivative are 0). Errors and threads as in inverse_dynamics.
         """
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
-        p_arr = _floats(p, "p")
-        if p_arr.ndim == 1:
-            return self._core._inverse_dynamics_derivatives_sample(p_arr, _floats(dp, "dp"), _floats(ddp, "ddp"))
-        if p_arr.ndim != 2:
-            raise Error(f"p: expected shape (3,) or (N, 3), got {p_arr.shape}")
-        n = p_arr.shape[0]
-        p_arr = _input(p_arr, "p", (None, 3), finite=False)
-        dp_arr = _input(dp, "dp", (n, 3), finite=False)
-        ddp_arr = _input(ddp, "ddp", (n, 3), finite=False)
-        d_p, d_dp, d_ddp, failed, first, message = self._core._inverse_dynamics_derivatives_batch(
-            p_arr, dp_arr, ddp_arr, threads=threads)
-        if failed and check:
-            raise Error(f"sample {first}: {message} ({failed} of {n} samples failed)")
-        return d_p, d_dp, d_ddp
+        batch, inputs = _derivative_inputs(p, dp, ddp)
+        if not batch:
+            return self._core._inverse_dynamics_derivatives_sample(*inputs)
+        return _derivative_batch(self._core._inverse_dynamics_derivatives_batch(*inputs, threads=threads), check)
 
     @_vocabulary
-    def actuator_derivatives(self, p, dp, ddp):
+    def actuator_derivatives(self, p, dp, ddp, *, threads=1, check=True):
         """Exact first derivatives of the actuator variables u, du, ddu of one sample (p, dp,
         ddp of shape (3,)): an ActuatorDerivatives of u, du, ddu (n,) and d u/d p, d du/d p,
         d du/d dp, d ddu/d p, d ddu/d dp, d ddu/d ddp (n, 3), columns in the pose order
         [x, y, theta]. The actuated joints' rates and accelerations by the same forward-mode
-        automatic differentiation as inverse_dynamics_derivatives: exact to rounding. Errors as
-        in inverse_dynamics.
+        automatic differentiation as inverse_dynamics_derivatives: exact to rounding. A batch,
+        p, dp, ddp of shape (N, 3), gives u, du, ddu of shape (N, n) and the derivatives of
+        shape (N, n, 3), each row the sample's own values to the bit. Errors, check and threads
+        as in inverse_dynamics (check=False: a failed sample's rows are NaN).
         """
-        return ActuatorDerivatives(*self._core._actuator_derivatives_sample(
-            _floats(p, "p"), _floats(dp, "dp"), _floats(ddp, "ddp")))
+        threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
+        batch, inputs = _derivative_inputs(p, dp, ddp)
+        if not batch:
+            return ActuatorDerivatives(*self._core._actuator_derivatives_sample(*inputs))
+        return ActuatorDerivatives(*_derivative_batch(
+            self._core._actuator_derivatives_batch(*inputs, threads=threads), check))
 
     @_vocabulary
-    def linearize(self, p, dp, tau, *, output=None):
-        """The rigid robot linearised at the state (p, dp) ([x, y, theta] and its rate) under the
+    def linearize(self, p, dp, tau, *, output=None, compliance="auto"):
+        """The robot linearised at the state (p, dp) ([x, y, theta] and its rate) under the
         actuator forces tau (n,): (A, B) with the state x = [p; dp] = [x, y, theta, dx/dt, dy/dt,
-        dtheta/dt] and the input tau,
-        dx/dt = A x + B tau (deviations from the operating point), A (6, 6), B (6, n), from the
-        exact derivatives of the forward dynamics. output="acceleration" or "actuators" also
-        returns C and D of that output (y = C x + D tau, y = ddp in the order [x, y, theta], or
-        u): (A, B, C, D).
+        dtheta/dt] and the input u, dx/dt = A x + B u (deviations from the operating point),
+        A (6, 6), B (6, n), from the exact derivatives of the forward dynamics. output=
+        "acceleration" or "actuators" also returns C and D of that output (y = C x + D u, y = ddp
+        in the order [x, y, theta], or the actuator variables A_p p): (A, B, C, D).
+
+        compliance, as ``nocdyn frequency-response --compliance``: "rigid" the rigid model, every
+        input an actuator force [N or N m]; "lumped" the compliant lumped model of the joint and
+        drive stiffness and elastic links the robot file declares (an error when it declares
+        none); "auto" (default) lumped when the file declares compliance, else rigid. The lumped
+        model's springs are massless and quasi-static and its bodies rigid, carried by the
+        platform's pose: its state is the same x = [p; dp] (6 states; A's lower left block
+        gains -M_p^-1 K, K the Cartesian stiffness of Robot.stiffness, so that A's
+        eigenfrequencies at rest without gravity are Robot.natural_frequencies), and its input a
+        is drive a's commanded position (its spring's rest position) [m or rad] when the drive
+        has a stiffness (or none is given and the drive is locked), its force when its
+        stiffness is 0.
+
+        The result is a LinearModel: a tuple (A, B) or (A, B, C, D) with the attributes A, B, C,
+        D, ``inputs`` (per column of B "tau" for a force, "uc" for a commanded drive position:
+        the command line's channel names) and ``model`` ("rigid" or "lumped").
         """
-        A, B, C, D = self._core._linearize(p, dp, tau, output or "acceleration")
-        return (A, B) if output is None else (A, B, C, D)
+        if not isinstance(compliance, str):
+            raise TypeError("compliance: expected 'auto', 'rigid' or 'lumped'")
+        A, B, C, D, inputs, model = self._core._linearize(p, dp, tau, output or "acceleration", compliance)
+        return LinearModel((A, B) if output is None else (A, B, C, D), A, B, C, D, inputs, model)
 
     @_vocabulary
     def reactions(self, p, dp, ddp, *, threads=1, check=True, check_limits=True):
@@ -750,16 +810,21 @@ class Robot:
         frequency when the robot file declares compliance: see nocdyn.envelope), limb, joint,
         actuator (numbered from 1 as the command line's CSV, 0 when not applicable),
         kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
-        `nocdyn envelope --points`; ``frequencies`` is its old name)."""
+        `nocdyn envelope --points`; ``frequencies`` is its old name).
+
+        The list is an EnvelopePoints: its ``first_natural_frequency`` is the band's third bound
+        [Hz] (the lumped model's first natural frequency at home, as nocdyn.envelope's), None when
+        the robot file declares no compliance or it is unknown (``resonance_reason`` says why)."""
         if frequencies is not None:
             points = frequencies
         if isinstance(axes, str):
             axes = (axes,)
-        return self._core._envelope(list(axes), _number(min_frequency, "min_frequency", 1e-3, 1e4),
-                                    _number(max_frequency, "max_frequency", 1e-3, 1e4),
-                                    _integer(points, "points", 1, 1000),
-                                    _integer(samples_per_period, "samples_per_period", 8, 65536),
-                                    _number(relative_tolerance, "relative_tolerance", 1e-15, 0.5))
+        points, first, reason = self._core._envelope(
+            list(axes), _number(min_frequency, "min_frequency", 1e-3, 1e4),
+            _number(max_frequency, "max_frequency", 1e-3, 1e4), _integer(points, "points", 1, 1000),
+            _integer(samples_per_period, "samples_per_period", 8, 65536),
+            _number(relative_tolerance, "relative_tolerance", 1e-15, 0.5))
+        return EnvelopePoints(points, first, reason)
 
 
     # --- stiffness and natural frequencies --------------------------------------------

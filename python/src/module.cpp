@@ -336,6 +336,9 @@ py::array_t<double> matrixToArray(const Eigen::MatrixXd& m) {
     return a;
 }
 
+/// An actuator x pose derivative as an (n, 3) array, its columns in Python's pose order.
+py::array_t<double> poseColumns(const ActuatorPoseJacobian& m) { return matrixToArray(inPythonOrder(m, false, true)); }
+
 /// d tau/d p, d tau/d dp, d tau/d ddp of one sample, each (n, 3).
 py::tuple inverseDynamicsDerivativesSample(const Robot& robot, const py::handle& p, const py::handle& dp,
                                            const py::handle& ddp) {
@@ -344,9 +347,7 @@ py::tuple inverseDynamicsDerivativesSample(const Robot& robot, const py::handle&
     const Status status =
         inverseDynamicsDerivatives(model, *robot.data, vector3(p, "p"), vector3(dp, "dp"), vector3(ddp, "ddp"), d);
     if (!status) throw Error(describe(status, model));
-    return py::make_tuple(matrixToArray(inPythonOrder(d.d_p, false, true)),
-                          matrixToArray(inPythonOrder(d.d_dp, false, true)),
-                          matrixToArray(inPythonOrder(d.d_ddp, false, true)));
+    return py::make_tuple(poseColumns(d.d_p), poseColumns(d.d_dp), poseColumns(d.d_ddp));
 }
 
 /// u, du, ddu, each (n,), and d u/d p, d du/d p, d du/d dp, d ddu/d p, d ddu/d dp, d ddu/d ddp,
@@ -358,9 +359,42 @@ py::tuple actuatorDerivativesSample(const Robot& robot, const py::handle& p, con
     const Status status =
         actuatorVariableDerivatives(model, *robot.data, vector3(p, "p"), vector3(dp, "dp"), vector3(ddp, "ddp"), d);
     if (!status) throw Error(describe(status, model));
-    const auto columns = [](const ActuatorPoseJacobian& m) { return matrixToArray(inPythonOrder(m, false, true)); };
-    return py::make_tuple(toArray(d.u), toArray(d.du), toArray(d.ddu), columns(d.u_p), columns(d.du_p),
-                          columns(d.du_dp), columns(d.ddu_p), columns(d.ddu_dp), columns(d.ddu_ddp));
+    return py::make_tuple(toArray(d.u), toArray(d.du), toArray(d.ddu), poseColumns(d.u_p), poseColumns(d.du_p),
+                          poseColumns(d.du_dp), poseColumns(d.ddu_p), poseColumns(d.ddu_dp), poseColumns(d.ddu_ddp));
+}
+
+/// A new C-ordered (N, n) array (per_actuator 1) or (N, n, per_actuator) one, and the N x
+/// (n per_actuator) map of it the batches write, row k = sample k.
+struct RowMajorOutput {
+    RowArray array;
+    StridedMap map;
+    RowMajorOutput(py::ssize_t rows, py::ssize_t actuators, py::ssize_t per_actuator)
+        : array(per_actuator == 1 ? std::vector<py::ssize_t>{rows, actuators}
+                                  : std::vector<py::ssize_t>{rows, actuators, per_actuator}),
+          map(array.mutable_data(), rows, actuators * per_actuator,
+              Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(1, actuators * per_actuator)) {}
+};
+
+/// The N x 3 inputs p, dp, ddp of a batch read in place, whatever their memory order.
+struct SampleMaps {
+    py::ssize_t rows;
+    ConstStridedMap p, dp, ddp;
+    SampleMaps(const py::array& p_, const py::array& dp_, const py::array& ddp_)
+        : SampleMaps(viewOf(p_, "p", -1, 3, false), dp_, ddp_) {}
+
+private:
+    SampleMaps(const ArrayView& vp, const py::array& dp_, const py::array& ddp_)
+        : rows(vp.rows),
+          p(constMap(vp)),
+          dp(constMap(viewOf(dp_, "dp", vp.rows, 3, false))),
+          ddp(constMap(viewOf(ddp_, "ddp", vp.rows, 3, false))) {}
+};
+
+/// (failed, first_failure or -1, message of the first failure or "") of a batch.
+py::tuple batchOutcome(const Model& model, const BatchResult& result) {
+    const std::string message = result.ok() ? std::string() : describe(result.status, model);
+    return py::make_tuple(static_cast<std::int64_t>(result.failed),
+                          result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message);
 }
 
 /// The derivatives of N samples, each (N, n, 3), the GIL released while they run. Returns
@@ -368,44 +402,79 @@ py::tuple actuatorDerivativesSample(const Robot& robot, const py::handle& p, con
 py::tuple inverseDynamicsDerivativesBatchArrays(const Robot& robot, const py::array& p, const py::array& dp,
                                                 const py::array& ddp, unsigned threads) {
     const Model& model = *robot.model;
-    const ArrayView vp = viewOf(p, "p", -1, 3, false);
-    const py::ssize_t n = vp.rows;
-    const ArrayView vdp = viewOf(dp, "dp", n, 3, false), vddp = viewOf(ddp, "ddp", n, 3, false);
+    const SampleMaps in(p, dp, ddp);
+    const py::ssize_t n = in.rows;
     const auto a = static_cast<py::ssize_t>(model.actuators);
-    RowArray d_p({n, a, py::ssize_t{3}}), d_dp({n, a, py::ssize_t{3}}), d_ddp({n, a, py::ssize_t{3}});
-    // a C-ordered (N, n, 3) array is an (N, 3n) one, row k = sample k
-    const auto rowMajor = [&](RowArray& x) {
-        return StridedMap(x.mutable_data(), n, 3 * a, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(1, 3 * a));
-    };
-    StridedMap m_p = rowMajor(d_p), m_dp = rowMajor(d_dp), m_ddp = rowMajor(d_ddp);
+    RowMajorOutput d_p(n, a, 3), d_dp(n, a, 3), d_ddp(n, a, 3);
     BatchResult result;
     {
         const py::gil_scoped_release release;
-        result = inverseDynamicsDerivativesBatch(model, constMap(vp), constMap(vdp), constMap(vddp), m_p, m_dp, m_ddp,
-                                                 threads, kPythonPose);
+        result = inverseDynamicsDerivativesBatch(model, in.p, in.dp, in.ddp, d_p.map, d_dp.map, d_ddp.map, threads,
+                                                 kPythonPose);
     }
-    const std::string message = result.ok() ? std::string() : describe(result.status, model);
-    return py::make_tuple(d_p, d_dp, d_ddp, static_cast<std::int64_t>(result.failed),
-                          result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message);
+    return py::make_tuple(d_p.array, d_dp.array, d_ddp.array) + batchOutcome(model, result);
 }
 
-/// The linearised model at (p, dp, tau): (A, B, C, D), the output "acceleration" or "actuators".
+/// The actuator variables' derivatives of N samples, the GIL released while they run: (u, du,
+/// ddu (N, n) each, u_p, du_p, du_dp, ddu_p, ddu_dp, ddu_ddp (N, n, 3) each, failed,
+/// first_failure, message of the first failure or "").
+py::tuple actuatorDerivativesBatchArrays(const Robot& robot, const py::array& p, const py::array& dp,
+                                         const py::array& ddp, unsigned threads) {
+    const Model& model = *robot.model;
+    const SampleMaps in(p, dp, ddp);
+    const py::ssize_t n = in.rows;
+    const auto a = static_cast<py::ssize_t>(model.actuators);
+    RowMajorOutput u(n, a, 1), du(n, a, 1), ddu(n, a, 1);
+    RowMajorOutput u_p(n, a, 3), du_p(n, a, 3), du_dp(n, a, 3), ddu_p(n, a, 3), ddu_dp(n, a, 3), ddu_ddp(n, a, 3);
+    BatchResult result;
+    {
+        const py::gil_scoped_release release;
+        result = actuatorVariableDerivativesBatch(
+            model, in.p, in.dp, in.ddp,
+            {u.map, du.map, ddu.map, u_p.map, du_p.map, du_dp.map, ddu_p.map, ddu_dp.map, ddu_ddp.map}, threads,
+            kPythonPose);
+    }
+    return py::make_tuple(u.array, du.array, ddu.array, u_p.array, du_p.array, du_dp.array, ddu_p.array, ddu_dp.array,
+                          ddu_ddp.array) +
+           batchOutcome(model, result);
+}
+
+/// The linearised model at (p, dp, tau): (A, B, C, D, inputs, model), the output "acceleration"
+/// or "actuators"; compliance "auto" (the lumped compliant model, linearizeCompliant, when the
+/// robot file declares compliance), "rigid" or "lumped" as `nocdyn frequency-response
+/// --compliance`; inputs: per column of B "tau" (a force) or "uc" (a commanded drive position);
+/// model: "rigid" or "lumped".
 py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::handle& dp, const py::handle& tau,
-                          const std::string& output) {
+                          const std::string& output, const std::string& compliance) {
     const Model& model = *robot.model;
     if (output != "acceleration" && output != "actuators") {
         throw Error("output: expected 'acceleration' or 'actuators', got '" + output + "'");
     }
+    if (compliance != "auto" && compliance != "rigid" && compliance != "lumped") {
+        throw Error("compliance: expected 'auto', 'rigid' or 'lumped', got '" + compliance + "'");
+    }
+    const analysis::StiffnessModel stiffness(model);
+    const bool lumped = compliance == "lumped" || (compliance == "auto" && stiffness.any);
+    if (lumped && !stiffness.any) {
+        throw Error("compliance: the robot file declares no joint or drive stiffness and no elastic link");
+    }
+    const LinearOutput kind =
+        output == "acceleration" ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables;
+    const Pose p3 = vector3(p, "p");
+    const Twist dp3 = vector3(dp, "dp");
+    const ActuatorVector tau_n = actuatorVector(model, tau, "tau");
     StateSpace ss;
-    const Status status = linearize(
-        model, *robot.data, vector3(p, "p"), vector3(dp, "dp"), actuatorVector(model, tau, "tau"),
-        output == "acceleration" ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables, ss);
+    const Status status = lumped ? linearizeCompliant(model, stiffness, *robot.data, p3, dp3, tau_n, kind, ss)
+                                 : linearize(model, *robot.data, p3, dp3, tau_n, kind, ss);
     if (!status) throw Error(describe(status, model));
+    py::list inputs;
+    for (const LinearInput input : ss.inputs) inputs.append(name(input));
     // the state [p; dp] and the output ddp in Python's pose order
     const bool pose_output = output == "acceleration";
     return py::make_tuple(
         matrixToArray(inPythonOrder(ss.A, true, true)), matrixToArray(inPythonOrder(ss.B, true, false)),
-        matrixToArray(inPythonOrder(ss.C, pose_output, true)), matrixToArray(inPythonOrder(ss.D, pose_output, false)));
+        matrixToArray(inPythonOrder(ss.C, pose_output, true)), matrixToArray(inPythonOrder(ss.D, pose_output, false)),
+        py::tuple(inputs), lumped ? "lumped" : "rigid");
 }
 
 /// The joint reactions of N samples into `out`, (N, 9 limbs) (a view of the (N, limbs, 3, 3)
@@ -720,8 +789,10 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
     return out;
 }
 
-py::list envelope(const Robot& robot, const std::vector<std::string>& axes, double min_frequency, double max_frequency,
-                  int frequencies, int samples_per_period, double relative_tolerance) {
+/// The envelope's points as dicts, and the band's third bound: (points, the first natural
+/// frequency [Hz] or None, the summary line that names it or says why it is unknown).
+py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, double min_frequency, double max_frequency,
+                   int frequencies, int samples_per_period, double relative_tolerance) {
     const Model& model = *robot.model;
     EnvelopeOptions options;
     options.min_frequency = min_frequency;
@@ -741,9 +812,11 @@ py::list envelope(const Robot& robot, const std::vector<std::string>& axes, doub
             throw Error("axis: '" + a + "' is not one of x, y, theta");
     }
     std::vector<EnvelopePoint> points;
+    EnvelopeResonance resonance;
     {
         const py::gil_scoped_release release;
         points = operatingEnvelope(model, options);  // as `nocdyn envelope` computes it
+        resonance = envelopeResonance(model);
     }
     py::list out;
     for (const EnvelopePoint& e : points) {
@@ -761,7 +834,8 @@ py::list envelope(const Robot& robot, const std::vector<std::string>& axes, doub
         d["peak_effort_ratio"] = e.peak_effort_ratio;
         out.append(d);
     }
-    return out;
+    const py::object first = resonance.known ? py::object(py::float_(resonance.frequency)) : py::object(py::none());
+    return py::make_tuple(out, first, resonance.known ? std::string() : resonance.reason);
 }
 
 // --- identification ----------------------------------------------------------------------
@@ -1056,8 +1130,10 @@ PYBIND11_MODULE(_nocdyn, m) {
         .def("_inverse_dynamics_derivatives_batch", &inverseDynamicsDerivativesBatchArrays, py::arg("p"), py::arg("dp"),
              py::arg("ddp"), py::arg("threads") = 1)
         .def("_actuator_derivatives_sample", &actuatorDerivativesSample, py::arg("p"), py::arg("dp"), py::arg("ddp"))
+        .def("_actuator_derivatives_batch", &actuatorDerivativesBatchArrays, py::arg("p"), py::arg("dp"),
+             py::arg("ddp"), py::arg("threads") = 1)
         .def("_linearize", &linearizeSample, py::arg("p"), py::arg("dp"), py::arg("tau"),
-             py::arg("output") = "acceleration")
+             py::arg("output") = "acceleration", py::arg("compliance") = "rigid")
         .def("_reactions_batch", &reactionsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"), py::arg("out"),
              py::arg("threads") = 1)
         .def("_time_cpp_batch", &timeCppBatch, py::arg("p"), py::arg("dp"), py::arg("ddp"), py::arg("repeat") = 1)

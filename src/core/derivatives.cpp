@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <span>
+#include <utility>
 #include <string>
 #include <vector>
 
@@ -324,20 +326,31 @@ Status kinematics(const Model& model, Data& data, const Pose& p, const Twist& dp
     return velocityFromPlatformTwist(model, data, dp);
 }
 
-}  // namespace
+/// The nine input directions of one pass: p in slots 0-2, dp in 3-5, ddp in 6-8.
+constexpr int kNine = 9;
 
-Status inverseDynamicsDerivatives(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
-                                  InverseDynamicsDerivatives& out) {
+/// The position and Jacobian stages at (p, dp) and the sample's inputs as duals along the nine
+/// directions (the Status of inverseDynamics for a bad pose, rate or acceleration).
+Status seedNineDirections(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
+                          SampleIn<Dual<kNine>>& in) {
     if (const Status status = kinematics(model, data, p, dp); !status) return status;
     for (int i = 0; i < 3; ++i) {
         if (!std::isfinite(ddp(i))) return {StatusCode::not_finite, -1, ddp(i)};
     }
+    seedPositions<kNine>(model, data, 0, in);
+    in.dp = seedVector<kNine>(dp, 3);
+    in.ddp = seedVector<kNine>(ddp, 6);
+    return {};
+}
+
+}  // namespace
+
+Status inverseDynamicsDerivatives(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
+                                  InverseDynamicsDerivatives& out) {
     // one pass with nine directions: p in slots 0-2, dp in 3-5, ddp in 6-8
-    constexpr int N = 9;
+    constexpr int N = kNine;
     SampleIn<Dual<N>> in;
-    seedPositions<N>(model, data, 0, in);
-    in.dp = seedVector<N>(dp, 3);
-    in.ddp = seedVector<N>(ddp, 6);
+    if (const Status status = seedNineDirections(model, data, p, dp, ddp, in); !status) return status;
     S3<Dual<N>> W;
     std::array<S3<Dual<N>>, kMaxActuators> A;
     platformWrench(model, in, W, A);
@@ -422,16 +435,10 @@ Status forwardDynamicsDerivatives(const Model& model, Data& data, const Pose& p,
 
 Status actuatorVariableDerivatives(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
                                    ActuatorVariableDerivatives& out) {
-    if (const Status status = kinematics(model, data, p, dp); !status) return status;
-    for (int i = 0; i < 3; ++i) {
-        if (!std::isfinite(ddp(i))) return {StatusCode::not_finite, -1, ddp(i)};
-    }
     // one pass with nine directions, as inverseDynamicsDerivatives: p in 0-2, dp in 3-5, ddp in 6-8
-    constexpr int N = 9;
+    constexpr int N = kNine;
     SampleIn<Dual<N>> in;
-    seedPositions<N>(model, data, 0, in);
-    in.dp = seedVector<N>(dp, 3);
-    in.ddp = seedVector<N>(ddp, 6);
+    if (const Status status = seedNineDirections(model, data, p, dp, ddp, in); !status) return status;
     S3<Dual<N>> xi_P, xi_P_dot;
     platformTwists(in, xi_P, xi_P_dot);
     const int n = model.actuators;
@@ -472,47 +479,76 @@ Status actuatorVariableDerivatives(const Model& model, Data& data, const Pose& p
 
 namespace {
 
-struct DerivativeArrays {
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// The N x 3 inputs of a derivative batch and the order of their pose columns.
+struct SampleArrays {
     const BatchInput& p;
     const BatchInput& dp;
     const BatchInput& ddp;
-    BatchOutput& d_p;
-    BatchOutput& d_dp;
-    BatchOutput& d_ddp;
     PoseColumns order;
 };
 
-BatchResult derivativeChunk(const Model& model, const DerivativeArrays& a, Eigen::Index begin, Eigen::Index end) {
+/// Rows [begin, end) of a batch: sample(data, row, p, dp, ddp) computes and writes one row (NaN
+/// when it fails) and returns its Status; status, when not empty, gets each row's.
+template <class Sample>
+BatchResult derivativeChunk(const Model& model, const SampleArrays& in, Eigen::Index begin, Eigen::Index end,
+                            std::span<Status> status, Sample sample) {
     Data data(model);
-    InverseDynamicsDerivatives d;
     BatchResult result;
-    const int n = model.actuators;
     for (Eigen::Index row = begin; row < end; ++row) {
-        const Pose p = poseRow(a.p, row, a.order);
-        const Twist dp = poseRow(a.dp, row, a.order);
-        const Twist ddp = poseRow(a.ddp, row, a.order);
-        const Status status = inverseDynamicsDerivatives(model, data, p, dp, ddp, d);
-        for (int k = 0; k < n; ++k) {
-            for (int i = 0; i < 3; ++i) {
-                const Eigen::Index col = 3 * k + poseColumn(a.order, i);
-                a.d_p(row, col) = status ? d.d_p(k, i) : std::numeric_limits<double>::quiet_NaN();
-                a.d_dp(row, col) = status ? d.d_dp(k, i) : std::numeric_limits<double>::quiet_NaN();
-                a.d_ddp(row, col) = status ? d.d_ddp(k, i) : std::numeric_limits<double>::quiet_NaN();
-            }
-        }
-        if (!status && result.failed++ == 0) {
+        const Status s = sample(data, row, poseRow(in.p, row, in.order), poseRow(in.dp, row, in.order),
+                                poseRow(in.ddp, row, in.order));
+        if (!status.empty()) status[static_cast<std::size_t>(row)] = s;
+        if (!s && result.failed++ == 0) {
             result.first_failure = row;
-            result.status = status;
+            result.status = s;
         }
     }
     return result;
 }
 
-void requireShape(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen::Index n, Eigen::Index m) {
+/// A batch of in.p.rows() samples split over `threads` as inverseDynamicsBatch; sample as
+/// derivativeChunk's (it must keep its own per-sample workspace per chunk: see its callers).
+template <class MakeSample>
+BatchResult runDerivativeBatch(const char* what, const Model& model, const SampleArrays& in, unsigned threads,
+                               std::span<Status> status, const MakeSample& make) {
+    const Eigen::Index n = in.p.rows();
+    const ParallelSplit split = splitRange(n, threads, 8);  // inverseDynamicsBatch's split
+    if (split.workers == 1) return derivativeChunk(model, in, 0, n, status, make());
+    std::vector<BatchResult> results(split.workers);
+    parallelFor(what, split, [&](unsigned w, Eigen::Index begin, Eigen::Index end) {
+        results[w] = derivativeChunk(model, in, begin, end, status, make());
+    });
+    return combineChunks(results);
+}
+
+void requireShape(const char* what, const char* name, Eigen::Index rows, Eigen::Index cols, Eigen::Index n,
+                  Eigen::Index m) {
     if (rows != n || cols != m) {
-        throw Error(std::string("inverseDynamicsDerivativesBatch: ") + name + " is " + std::to_string(rows) + " x " +
-                    std::to_string(cols) + ", expected " + std::to_string(n) + " x " + std::to_string(m));
+        throw Error(std::string(what) + ": " + name + " is " + std::to_string(rows) + " x " + std::to_string(cols) +
+                    ", expected " + std::to_string(n) + " x " + std::to_string(m));
     }
+}
+
+void requireInputs(const char* what, const SampleArrays& in) {
+    const Eigen::Index n = in.p.rows();
+    requireShape(what, "p", in.p.rows(), in.p.cols(), n, 3);
+    requireShape(what, "dp", in.dp.rows(), in.dp.cols(), n, 3);
+    requireShape(what, "ddp", in.ddp.rows(), in.ddp.cols(), n, 3);
+}
+
+/// Row `row` of an N x 3n output: column 3 a + (pose column of i) = m(a, i), or NaN.
+void writeJacobianRow(BatchOutput& out, Eigen::Index row, const ActuatorPoseJacobian& m, int n, PoseColumns order,
+                      bool ok) {
+    for (int a = 0; a < n; ++a) {
+        for (int i = 0; i < 3; ++i) out(row, 3 * a + poseColumn(order, i)) = ok ? m(a, i) : kNaN;
+    }
+}
+
+/// Row `row` of an N x n output: v, or NaN.
+void writeActuatorRow(BatchOutput& out, Eigen::Index row, const ActuatorVector& v, int n, bool ok) {
+    for (int a = 0; a < n; ++a) out(row, a) = ok ? v(a) : kNaN;
 }
 
 }  // namespace
@@ -520,22 +556,69 @@ void requireShape(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen:
 BatchResult inverseDynamicsDerivativesBatch(const Model& model, const BatchInput& p, const BatchInput& dp,
                                             const BatchInput& ddp, BatchOutput d_p, BatchOutput d_dp, BatchOutput d_ddp,
                                             unsigned threads, PoseColumns order) {
+    constexpr const char* what = "inverseDynamicsDerivativesBatch";
+    const SampleArrays in{p, dp, ddp, order};
+    requireInputs(what, in);
     const Eigen::Index n = p.rows();
     const Eigen::Index columns = 3 * static_cast<Eigen::Index>(model.actuators);
-    requireShape("p", p.rows(), p.cols(), n, 3);
-    requireShape("dp", dp.rows(), dp.cols(), n, 3);
-    requireShape("ddp", ddp.rows(), ddp.cols(), n, 3);
-    requireShape("d_p", d_p.rows(), d_p.cols(), n, columns);
-    requireShape("d_dp", d_dp.rows(), d_dp.cols(), n, columns);
-    requireShape("d_ddp", d_ddp.rows(), d_ddp.cols(), n, columns);
-    const DerivativeArrays a{p, dp, ddp, d_p, d_dp, d_ddp, order};
-    const ParallelSplit split = splitRange(n, threads, 8);  // inverseDynamicsBatch's split
-    if (split.workers == 1) return derivativeChunk(model, a, 0, n);
-    std::vector<BatchResult> results(split.workers);
-    parallelFor("inverseDynamicsDerivativesBatch", split, [&](unsigned w, Eigen::Index begin, Eigen::Index end) {
-        results[w] = derivativeChunk(model, a, begin, end);
+    requireShape(what, "d_p", d_p.rows(), d_p.cols(), n, columns);
+    requireShape(what, "d_dp", d_dp.rows(), d_dp.cols(), n, columns);
+    requireShape(what, "d_ddp", d_ddp.rows(), d_ddp.cols(), n, columns);
+    const int actuators = model.actuators;
+    return runDerivativeBatch(what, model, in, threads, {}, [&] {
+        return [&, d = InverseDynamicsDerivatives{}](Data& data, Eigen::Index row, const Pose& pk, const Twist& dpk,
+                                                     const Twist& ddpk) mutable {
+            const Status status = inverseDynamicsDerivatives(model, data, pk, dpk, ddpk, d);
+            writeJacobianRow(d_p, row, d.d_p, actuators, order, status.ok());
+            writeJacobianRow(d_dp, row, d.d_dp, actuators, order, status.ok());
+            writeJacobianRow(d_ddp, row, d.d_ddp, actuators, order, status.ok());
+            return status;
+        };
     });
-    return combineChunks(results);
+}
+
+BatchResult actuatorVariableDerivativesBatch(const Model& model, const BatchInput& p, const BatchInput& dp,
+                                             const BatchInput& ddp, ActuatorVariableDerivativesBatch out,
+                                             unsigned threads, PoseColumns order) {
+    constexpr const char* what = "actuatorVariableDerivativesBatch";
+    const SampleArrays in{p, dp, ddp, order};
+    requireInputs(what, in);
+    const Eigen::Index n = p.rows();
+    const auto actuators = static_cast<Eigen::Index>(model.actuators);
+    const std::array<std::pair<const char*, const BatchOutput*>, 3> values{
+        {{"u", &out.u}, {"du", &out.du}, {"ddu", &out.ddu}}};
+    for (const auto& [name, m] : values) requireShape(what, name, m->rows(), m->cols(), n, actuators);
+    const std::array<std::pair<const char*, const BatchOutput*>, 6> jacobians{{{"u_p", &out.u_p},
+                                                                               {"du_p", &out.du_p},
+                                                                               {"du_dp", &out.du_dp},
+                                                                               {"ddu_p", &out.ddu_p},
+                                                                               {"ddu_dp", &out.ddu_dp},
+                                                                               {"ddu_ddp", &out.ddu_ddp}}};
+    for (const auto& [name, m] : jacobians) requireShape(what, name, m->rows(), m->cols(), n, 3 * actuators);
+    if (!out.status.empty() && std::ssize(out.status) != n) {
+        throw Error(std::string(what) + ": status has " + std::to_string(out.status.size()) + " entries, expected " +
+                    std::to_string(n));
+    }
+    const int a = model.actuators;
+    return runDerivativeBatch(what, model, in, threads, out.status, [&] {
+        return [&, d = ActuatorVariableDerivatives{}](Data& data, Eigen::Index row, const Pose& pk, const Twist& dpk,
+                                                      const Twist& ddpk) mutable {
+            const Status status = actuatorVariableDerivatives(model, data, pk, dpk, ddpk, d);
+            const bool ok = status.ok();
+            writeActuatorRow(out.u, row, d.u, a, ok);
+            writeActuatorRow(out.du, row, d.du, a, ok);
+            writeActuatorRow(out.ddu, row, d.ddu, a, ok);
+            const std::array<std::pair<BatchOutput*, const ActuatorPoseJacobian*>, 6> rows{
+                {{&out.u_p, &d.u_p},
+                 {&out.du_p, &d.du_p},
+                 {&out.du_dp, &d.du_dp},
+                 {&out.ddu_p, &d.ddu_p},
+                 {&out.ddu_dp, &d.ddu_dp},
+                 {&out.ddu_ddp, &d.ddu_ddp}}};
+            for (const auto& [o, m] : rows) writeJacobianRow(*o, row, *m, a, order, ok);
+            return status;
+        };
+    });
 }
 
 }  // namespace nocdyn

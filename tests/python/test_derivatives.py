@@ -4,6 +4,7 @@ dynamics' linearisation, and nocdyn.frequency_response against the numbers of do
 
 import numpy as np
 import pytest
+from conftest import SOURCE_DIR
 
 import nocdyn
 
@@ -148,3 +149,128 @@ def test_closed_loop_response_of_the_paper_robot_is_the_guide_s():
     assert "x  0.0019  -5.1516  10.5627  7.2248  67.3268" in loaded.text
     col = {c: i for i, c in enumerate(loaded.columns)}
     assert loaded.data[-1, col["y_db"]] == pytest.approx(-5.1516, abs=1e-3)
+
+
+def _compliant():
+    return nocdyn.Robot.load(SOURCE_DIR / "robots" / "paper-3prr-compliant.yaml")
+
+
+def _held(robot, p, dp=np.zeros(3)):
+    """The forces that hold the state (p, dp) without acceleration: the CLI's operating point."""
+    return robot.inverse_dynamics(p, dp, np.zeros(3)).tau
+
+
+def test_compliant_linearize_is_the_command_line_s_lumped_plant():
+    robot = _compliant()
+    p = robot.home
+    lin = robot.linearize(p, np.zeros(3), _held(robot, p), output="acceleration")
+    assert lin.model == "lumped" and lin.inputs == ("uc", "uc", "uc")
+    A, B, C, D = lin
+    assert A.shape == (6, 6) and B.shape == (6, 3) and C.shape == (3, 6) and D.shape == (3, 3)
+    table = nocdyn.frequency_response(robot=robot, f_min=5.0, f_max=500.0, points=7)
+    assert "(lumped compliant model)" in table.text
+    col = {c: i for i, c in enumerate(table.columns)}
+    for k, f in enumerate(table.data[:, 0]):
+        s = 2j * np.pi * f
+        H = C @ np.linalg.solve(s * np.eye(6) - A, B) + D
+        for o, axis in enumerate(("x", "y", "theta")):
+            for i in range(3):
+                h = H[o, i]
+                # the CSV's magnitude is printed to 6 significant figures or so: compare in dB
+                assert 20 * np.log10(abs(h)) == pytest.approx(table.data[k, col[f"dd{axis}_uc{i + 1}_db"]], abs=1e-6)
+                phase = np.degrees(np.angle(h))
+                wrapped = (phase - table.data[k, col[f"dd{axis}_uc{i + 1}_deg"]] + 180.0) % 360.0 - 180.0
+                assert abs(wrapped) < 1e-6
+
+
+def test_compliant_linearize_at_rest_has_the_lumped_natural_frequencies_and_stiffness():
+    robot = _compliant()  # no gravity: at rest df/dp = 0, so -M_p A_21 = K
+    for p in (robot.home, robot.home + [0.003, -0.002, 0.01]):
+        A, B = robot.linearize(p, np.zeros(3), _held(robot, p))
+        eigen = np.linalg.eigvals(A)
+        f = np.sort(eigen.imag[eigen.imag > 0] / (2 * np.pi))
+        np.testing.assert_allclose(f, robot.natural_frequencies(p), rtol=1e-9)
+        # the rigid model at the same point has no stiffness term: the difference of the
+        # acceleration rows by the pose is -M_p^-1 K
+        rigid_A, _ = robot.linearize(p, np.zeros(3), _held(robot, p), compliance="rigid")
+        M_inv_K = rigid_A[3:, :3] - A[3:, :3]
+        K = robot.stiffness(p)
+        # M_p^-1 K has the eigenvalues w^2 of K v = w^2 M_p v
+        w2 = np.sort(np.linalg.eigvals(M_inv_K).real)
+        np.testing.assert_allclose(np.sqrt(w2) / (2 * np.pi), robot.natural_frequencies(p), rtol=1e-9)
+        assert np.abs(K).max() > 1e3  # the stiffness is there
+
+
+def test_compliant_drives_follow_their_commanded_positions_at_dc():
+    # a constant commanded position u_c relaxes every spring once the drives are at u_c: the
+    # static gain from the commands to the actuator variables is the identity, whatever K is
+    robot = _compliant()
+    p = robot.home + [0.002, 0.001, -0.005]
+    A, B, C, D = robot.linearize(p, np.zeros(3), _held(robot, p), output="actuators")
+    static = -C @ np.linalg.solve(A, B) + D
+    np.testing.assert_allclose(static, np.eye(3), atol=1e-9)
+    # the rigid model from forces has no such gain: its A is singular at rest without gravity
+    rigid = robot.linearize(p, np.zeros(3), _held(robot, p), output="actuators", compliance="rigid")
+    assert rigid.inputs == ("tau",) * 3 and rigid.model == "rigid"
+    assert np.linalg.matrix_rank(rigid.A) < 6
+
+
+def test_linearize_compliance_choices():
+    rigid_robot = nocdyn.Robot.example("paper-3prr")
+    p = rigid_robot.home
+    tau = _held(rigid_robot, p)
+    auto = rigid_robot.linearize(p, np.zeros(3), tau)
+    rigid = rigid_robot.linearize(p, np.zeros(3), tau, compliance="rigid")
+    assert auto.model == rigid.model == "rigid" and auto.inputs == ("tau",) * 3
+    for a, b in zip(auto, rigid):
+        np.testing.assert_array_equal(a, b)
+    A, B = auto  # still a pair when no output is asked for
+    np.testing.assert_array_equal(A, auto.A)
+    with pytest.raises(nocdyn.Error, match="declares no joint or drive stiffness"):
+        rigid_robot.linearize(p, np.zeros(3), tau, compliance="lumped")
+    with pytest.raises(nocdyn.Error, match="compliance"):
+        rigid_robot.linearize(p, np.zeros(3), tau, compliance="elastic")
+    # a compliant file: "auto" is "lumped", and "rigid" the rigid model of the same bodies
+    robot = _compliant()
+    tau = _held(robot, robot.home)
+    for a, b in zip(robot.linearize(robot.home, np.zeros(3), tau),
+                    robot.linearize(robot.home, np.zeros(3), tau, compliance="lumped")):
+        np.testing.assert_array_equal(a, b)
+    rigid = robot.linearize(robot.home, np.zeros(3), tau, compliance="rigid")
+    np.testing.assert_array_equal(rigid.A[3:, :3], np.zeros((3, 3)))  # at rest, no gravity
+
+
+def test_actuator_derivatives_batch_is_the_samples_stacked_and_threads_change_nothing(robots):
+    for robot in robots:
+        samples = [sample(robot, k) for k in range(40)]
+        p, dp, ddp = (np.array([s[i] for s in samples]) for i in range(3))
+        batch = robot.actuator_derivatives(p, dp, ddp)
+        threaded = robot.actuator_derivatives(p, dp, ddp, threads=2)
+        n = robot.actuators
+        for name in batch._fields:
+            expected = (40, n) if name in ("u", "du", "ddu") else (40, n, 3)
+            assert getattr(batch, name).shape == expected, name
+            assert getattr(batch, name).tobytes() == getattr(threaded, name).tobytes(), name
+        for k, (pk, dpk, ddpk) in enumerate(samples):
+            one = robot.actuator_derivatives(pk, dpk, ddpk)
+            for name in batch._fields:
+                np.testing.assert_array_equal(getattr(batch, name)[k], getattr(one, name), err_msg=name)
+        # F-ordered and strided inputs read in place give the same numbers
+        wide = np.zeros((40, 6))
+        wide[:, ::2] = dp
+        again = robot.actuator_derivatives(np.asfortranarray(p), wide[:, ::2], np.asfortranarray(ddp))
+        for name in batch._fields:
+            np.testing.assert_array_equal(getattr(again, name), getattr(batch, name))
+
+
+def test_actuator_derivatives_batch_names_a_failed_sample_or_leaves_it_nan(robots):
+    robot = robots[0]
+    p = np.array([robot.home, robot.home + [1.0, 0.0, 0.0], robot.home])
+    zeros = np.zeros((3, 3))
+    with pytest.raises(nocdyn.Error, match=r"sample 1: .*\(1 of 3 samples failed\)"):
+        robot.actuator_derivatives(p, zeros, zeros)
+    d = robot.actuator_derivatives(p, zeros, zeros, check=False)
+    assert np.isnan(d.u[1]).all() and np.isnan(d.ddu_p[1]).all()
+    assert np.isfinite(d.u[[0, 2]]).all() and np.isfinite(d.ddu_p[[0, 2]]).all()
+    with pytest.raises(nocdyn.Error):
+        robot.actuator_derivatives(p, np.zeros((2, 3)), zeros)
