@@ -192,7 +192,9 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
     };
     // the packets, compiled for the robot's limbs (`terms`: the kind and actuated joint of a
     // uniform robot, or the kind read per limb), their constants splatted into packets once
-    const auto packets = [&](const auto terms) NOCDYN_INLINE_LAMBDA {
+    // (the pointers, strides and limits by value: a store to the outputs may alias any object
+    // whose address is taken, and would make the compiler read them again at every store)
+    const auto packets = [=, &model, &result, &check_limits, &data](const auto terms) NOCDYN_INLINE_LAMBDA {
         for (Eigen::Index k = begin; k < end; k += kLanes) {
             // lane l = sample k + l; past the end, the last sample again (not written)
             const int lanes = static_cast<int>(std::min<Eigen::Index>(kLanes, end - k));
