@@ -58,6 +58,8 @@ void validate(const ExciteOptions& o) {
     requireCount(o.random, 1, 1000000, "random");
     requireCount(o.samples, 0, 100000, "samples");
     requireCount(o.check_samples, 24, 1000000, "check_samples");
+    if (o.optimizer != "nelder-mead" && o.optimizer != "gradient")
+        throw OptionError("optimizer", "'" + o.optimizer + "' is not nelder-mead or gradient");
 }
 
 ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
@@ -81,6 +83,7 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     o.evaluations = options.evaluations;
     o.random_shapes = options.random;
     o.seed = options.seed;
+    o.optimizer = parseOptimizer(options.optimizer);
     const auto total = static_cast<double>(options.evaluations);
     o.progress = [&observer, total](int done) {
         observer.progress(static_cast<double>(done), total, "evaluations");
@@ -100,7 +103,11 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
                   number(payload.com.y()) + "] m, " + number(payload.inertia) + " kg m^2 about its c.o.m.\n";
     }
     report += "# " + std::to_string(result.evaluations) + " evaluations (" + std::to_string(o.random_shapes) +
-              " random shapes, then Nelder-Mead), seed " + std::to_string(o.seed) +
+              " random shapes, then " +
+              (o.optimizer == ExcitationOptimizer::gradient
+                   ? "BFGS on the exact gradient, " + std::to_string(result.gradients) + " gradients, then Nelder-Mead"
+                   : std::string("Nelder-Mead")) +
+              "), seed " + std::to_string(o.seed) +
               "; condition number of the column-scaled stacked regressor (as identify reports it)\n";
     report += "designed: {condition_number: " + number(result.assessment.condition) +
               ", limit_use_percent: " + useText(result.assessment.use) + "}\n";
@@ -124,6 +131,7 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     out.trajectory = result.trajectory;
     out.condition = result.assessment.condition;
     out.evaluations = result.evaluations;
+    out.gradients = result.gradients;
     return out;
 }
 

@@ -34,6 +34,8 @@ struct ExciteOptions {
     int samples = 0;
     int check_samples = 2000;
     unsigned seed = 1;
+    /// The refinement after the random search: "nelder-mead" or "gradient" (excitation.hpp).
+    std::string optimizer = "nelder-mead";
     /// The trajectory file to write (none when empty).
     std::string output;
 };
@@ -47,6 +49,7 @@ struct ExciteResult {
     PoseTrajectory trajectory;
     double condition = 0.0;
     int evaluations = 0;
+    int gradients = 0;  ///< of the evaluations, exact gradients (optimizer "gradient")
 };
 
 /// Designs the excitation (progress: evaluations; a stop ends it at the next evaluation);

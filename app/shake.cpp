@@ -120,6 +120,10 @@ report::ShakeSettings settingsOf(const ShakeOptions& o) {
     s.excitation_duration = o.excitation_duration;
     s.iterations = o.iterations;
     s.iteration_gain = o.iteration_gain;
+    s.drive_model = o.drive_model == "exact"        ? DriveModel::exact
+                    : o.drive_model == "difference" ? DriveModel::difference
+                                                    : DriveModel::identity;
+    s.drive_specimen = o.drive_specimen;
     s.payload.mass = o.payload_mass;
     s.noise_pose = o.noise_pose;
     s.noise_rate = o.noise_rate;
@@ -292,6 +296,14 @@ void validate(const ShakeOptions& o) {
     requireIn(o.amplitude, kAmplitudeRange, "amplitude");
     requireCount(o.iterations, kMaxIterations, "iterations");
     requireIn(o.iteration_gain, kIterationGainRange, "iteration_gain");
+    if (o.drive_model != "identity" && o.drive_model != "exact" && o.drive_model != "difference")
+        throw OptionError("drive_model",
+                          "expected identity, exact or difference, got '" + io::terminalText(o.drive_model) + "'");
+    if (o.drive_model != "identity" && o.controller != "table")
+        throw OptionError("drive_model",
+                          o.drive_model + " inverts the table controller's closed loop: needs controller table");
+    if (o.drive_specimen && o.drive_model == "identity")
+        throw OptionError("drive_specimen", "goes with drive_model exact or difference");
     requireIn(o.excitation_duration, kExcitationDurationRange, "excitation_duration");
     requireCount(o.jobs, kMaxJobs, "jobs");
     requireIn(o.max_rms_percent, kErrorPercentRange, "max_rms_percent");

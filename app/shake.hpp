@@ -62,6 +62,11 @@ struct ShakeOptions {
     bool identify_payload = false;
     int iterations = 0;
     double iteration_gain = 0.7;
+    /// The drive correction's model: "identity", or the inverse of the linearised closed loop by
+    /// its "exact" derivatives or by central "difference"s (table controller).
+    std::string drive_model = "identity";
+    /// The drive model's loop on the plant carrying the specimen as weighed (payload_mass at C).
+    bool drive_specimen = false;
     double excitation_duration = 2.0;  ///< [s]
     unsigned jobs = 0;                 ///< suite: records at once (0: one per core)
     double max_rms_percent = 5.0;      ///< suite: pass at an RMS error of at most this [%]

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/sim/closed_loop.hpp"
 #include "nocdyn/sim/excitation.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -124,6 +125,8 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
     ShakeOutcome out;
     if (!(settings.amplitude > 0.0 && std::isfinite(settings.amplitude))) throw Error("--amplitude must be positive");
     out.amplitude = settings.amplitude;
+    out.drive_model = settings.drive_model;
+    out.drive_specimen = settings.drive_specimen && settings.drive_model != DriveModel::identity;
     GroundRecord scaled = record;
     for (auto* a : {&scaled.ax, &scaled.ay, &scaled.alpha}) {
         for (double& v : *a) v *= settings.amplitude;
@@ -207,15 +210,45 @@ ShakeOutcome runShake(const RobotDescription& robot, const GroundRecord& record,
     // drive-signal iteration (time waveform replication)
     std::array<std::vector<double>, 3> drive = {fit.alpha, fit.ax, fit.ay};
     std::array<std::vector<double>, 3> last_achieved = out.achieved;
+    DriveInverse inverse;
+    if (settings.iterations > 0 && settings.drive_model != DriveModel::identity) {
+        if (settings.controller != "table")
+            throw Error("--drive-model " + std::string(name(settings.drive_model)) + " needs --controller table");
+        // the closed loop the table knows, at home: the controller's model, the plant's the same or
+        // the robot carrying the weighed specimen (the payload, which the controller's model does
+        // not carry, or carries as identified)
+        ShakeLoopOptions options = settings.table;
+        options.rate = settings.rate;
+        const Model specimen(settings.drive_specimen ? withPayload(robot, settings.payload) : known);
+        const ShakeLoopLinearization linear = linearizeShakeLoop(
+            controller_model, specimen, controller_model.home, options,
+            settings.drive_model == DriveModel::exact ? LoopDerivatives::exact : LoopDerivatives::central_difference);
+        // corrected up to the samples' Nyquist frequency, as the identity correction is
+        inverse = driveInverse(settings.drive_model, linear, fit.dt, fit.t.size(), 0.5 / fit.dt, out.driven);
+    }
     for (int pass = 1; pass <= settings.iterations; ++pass) {
         GroundRecord next;
         next.dt = record.dt;
-        for (int axis = 0; axis < 3; ++axis) {
-            const auto ia = static_cast<std::size_t>(axis);
-            if (!out.driven[ia]) continue;
-            const std::vector<double>& a = target(fit, axis);
-            for (std::size_t i = 0; i < drive[ia].size(); ++i) {
-                drive[ia][i] += settings.iteration_gain * (a[i] - last_achieved[ia][i]);
+        if (settings.drive_model == DriveModel::identity) {
+            for (int axis = 0; axis < 3; ++axis) {
+                const auto ia = static_cast<std::size_t>(axis);
+                if (!out.driven[ia]) continue;
+                const std::vector<double>& a = target(fit, axis);
+                for (std::size_t i = 0; i < drive[ia].size(); ++i) {
+                    drive[ia][i] += settings.iteration_gain * (a[i] - last_achieved[ia][i]);
+                }
+            }
+        } else {
+            std::array<std::vector<double>, 3> error;
+            for (int axis = 0; axis < 3; ++axis) {
+                const auto ia = static_cast<std::size_t>(axis);
+                if (!out.driven[ia]) continue;
+                const std::vector<double>& a = target(fit, axis);
+                error[ia].resize(a.size());
+                for (std::size_t i = 0; i < a.size(); ++i) error[ia][i] = a[i] - last_achieved[ia][i];
+            }
+            if (const Status status = correctDrive(inverse, error, settings.iteration_gain, drive); !status) {
+                throw Error("drive iteration: pass " + std::to_string(pass) + ": the acceleration error is not finite");
             }
         }
         next.alpha = drive[0];
@@ -355,6 +388,10 @@ std::string shakeJson(const ShakeOutcome& outcome) {
     json["amplitude_requested"] = outcome.amplitude;
     json["pass_rms_error_percent"] = pass_percent;
     json["pass_kept"] = outcome.best_pass;
+    if (outcome.drive_model != DriveModel::identity) {
+        json["drive_model"] = name(outcome.drive_model);
+        json["drive_specimen"] = outcome.drive_specimen;
+    }
     json["controller"] = loop.controller;
     json["sensors"] = outcome.sensing;
     if (outcome.payload.done) {
@@ -459,7 +496,12 @@ void printShakeSummary(const ShakeOutcome& outcome, std::ostream& out, bool with
         out << line;
     }
     if (outcome.pass_rms.size() > 1 || !outcome.iteration_stop.empty()) {
-        out << "drive iteration: RMS error per pass";
+        out << "drive iteration";
+        if (outcome.drive_model != DriveModel::identity) {
+            out << " (correction through the inverse closed loop, " << name(outcome.drive_model) << " derivatives"
+                << (outcome.drive_specimen ? ", the plant carrying the weighed specimen" : "") << ")";
+        }
+        out << ": RMS error per pass";
         for (std::size_t k = 0; k < outcome.pass_rms.size(); ++k) {
             line = text::format(" %zu: %.2f %%", k, 100.0 * outcome.pass_rms[k]);
             out << (k > 0 ? "," : "") << line;

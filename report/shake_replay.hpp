@@ -36,6 +36,15 @@ struct ShakeSettings {
     /// the best pass is kept.
     int iterations = 0;
     double iteration_gain = 0.7;
+    /// The correction's model of the table (shake.hpp, correctDrive): identity (the correction
+    /// above), or the inverse of the table controller's closed loop linearised at home on the
+    /// controller's model (the one it knows: nominal, or with the payload identified), by its
+    /// exact derivatives or by central differences; table controller only.
+    DriveModel drive_model = DriveModel::identity;
+    /// The linearised loop's plant is the robot carrying `payload` (the specimen as weighed; the
+    /// controller's model does not carry it, or carries its identified estimate) rather than the
+    /// controller's model.
+    bool drive_specimen = false;
     double iteration_tolerance = 0.02;
     double rate = 10000.0;  ///< controller ticks per second [Hz]
     /// f_n of the error dynamics [Hz]: the sensor noise moves the platform by about K_p = (2 pi
@@ -70,13 +79,15 @@ inline constexpr double kMaxReplayBytes = 1.0e9;
 struct ShakeOutcome {
     FittedRecord fit;
     PayloadIdentification payload;
-    EstimatorReport estimator;     ///< table controller only
-    double amplitude = 1.0;        ///< the user's --amplitude
-    std::string sensing;           ///< the sensors, their noise and resolution, in words
-    std::vector<double> pass_rms;  ///< RMS error of each pass (x, else the first driven axis)
-    int best_pass = 0;             ///< the pass kept (0: the first)
-    std::string iteration_stop;    ///< why the iteration stopped
-    PoseLoopResult loop;           ///< t, p, p_d of the kept pass (u and tau below, at the record's samples)
+    EstimatorReport estimator;                      ///< table controller only
+    double amplitude = 1.0;                         ///< the user's --amplitude
+    std::string sensing;                            ///< the sensors, their noise and resolution, in words
+    std::vector<double> pass_rms;                   ///< RMS error of each pass (x, else the first driven axis)
+    int best_pass = 0;                              ///< the pass kept (0: the first)
+    std::string iteration_stop;                     ///< why the iteration stopped
+    DriveModel drive_model = DriveModel::identity;  ///< the drive correction's model
+    bool drive_specimen = false;                    ///< its loop's plant carries the specimen
+    PoseLoopResult loop;  ///< t, p, p_d of the kept pass (u and tau below, at the record's samples)
     /// u and tau at the tick nearest each of fit.t (n values per sample, as many samples as the
     /// loop reached), for shake.csv
     std::vector<double> u_at_samples, tau_at_samples;

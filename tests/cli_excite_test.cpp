@@ -69,6 +69,22 @@ TEST(CliExcite, RefusesADurationThatIsNotWholePeriodsAndAPayloadWithBase) {
     EXPECT_FALSE(fs::exists(out));
 }
 
+TEST(CliExcite, TheGradientOptimizerRunsAndAnUnknownOneIsRefusedInOneLine) {
+    const fs::path dir = scratch();
+    const std::string out = (dir / "e.yaml").string();
+    CliResult r = runCli("excite --robot " + kRobot + " --payload-guess 0.5 0.012 -0.007 8e-4 --duration 1" + kSmall +
+                         " --optimizer gradient --out " + out);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("then BFGS on the exact gradient"), std::string::npos) << r.out;
+    EXPECT_TRUE(fs::exists(out));
+    fs::remove(out);
+    r = runCli("excite --robot " + kRobot + " --optimizer bfgs --out " + out);
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_NE(r.err.find("--optimizer: bfgs not in {nelder-mead,gradient}"), std::string::npos) << r.err;
+    EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
 TEST(CliIdentify, CalibratesTheRobotThenIdentifiesThePayloadAgainstIt) {
     const fs::path dir = scratch();
     // the robot as built: a heavier platform than its file says

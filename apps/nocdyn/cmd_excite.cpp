@@ -36,7 +36,8 @@ void addExciteCommand(CLI::App& app) {
         "(inverse dynamics with the guessed payload), all with --margin to spare, and the limb Jacobians and the\n"
         "actuation away from singularity (scaled condition numbers at most --max-condition). Among such shapes\n"
         "it minimises the condition number of the column-scaled stacked regressor of the payload parameters\n"
-        "(or, with --base, of the robot's base parameters): a seeded random search, then Nelder-Mead, bounded by\n"
+        "(or, with --base, of the robot's base parameters): a seeded random search, then Nelder-Mead (or, with\n"
+        "--optimizer gradient, a descent on the exact gradient), bounded by\n"
         "--evaluations. Prints the condition number reached next to the paper's trajectories 1 and 2 (moved to\n"
         "the robot's home) and each one's use of the limits (percent of the allowed value), and writes the\n"
         "trajectory file (YAML, usable as --trajectory).");
@@ -87,6 +88,12 @@ void addExciteCommand(CLI::App& app) {
         ->check(CLI::Range(24, 1000000))
         ->capture_default_str();
     command->add_option("--seed", options->seed, "Seed of the random search")->capture_default_str();
+    command
+        ->add_option("--optimizer", options->optimizer,
+                     "Refinement after the random search: nelder-mead (derivative-free) or gradient (descent on the "
+                     "exact gradient of the log condition number, from the inverse dynamics' derivatives)")
+        ->check(CLI::IsMember({"nelder-mead", "gradient"}))
+        ->capture_default_str();
     command->callback([options, output, old_output] {
         // either spelling gives the required output (a parse error, exit 2, without one)
         if (output->count() + old_output->count() == 0) throw CLI::RequiredError("--output");

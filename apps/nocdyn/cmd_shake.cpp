@@ -145,6 +145,16 @@ void addShakeCommand(CLI::App& app) {
         ->check(within(app::kIterationGainRange))
         ->capture_default_str();
     command
+        ->add_option("--drive-model", options->drive_model,
+                     "Drive-signal iteration: identity (the error itself corrects the drive), or the error through the "
+                     "inverse frequency response of the table controller's closed loop linearised at home, by exact "
+                     "derivatives (exact) or central differences (difference)")
+        ->check(CLI::IsMember({"identity", "exact", "difference"}))
+        ->capture_default_str();
+    command->add_flag("--drive-specimen", options->drive_specimen,
+                      "--drive-model exact or difference: the linearised loop's plant carries the specimen as weighed "
+                      "(--payload-mass at the platform's origin), which the controller's model does not");
+    command
         ->add_option("--excitation-duration", options->excitation_duration,
                      "--identify-payload: length of the excitation [s] (whole periods of its 5 Hz base)")
         ->check(within(app::kExcitationDurationRange))

@@ -495,7 +495,8 @@ def shake(record, *, robot=None, set=None, out_dir=None, progress=None, **option
     high-passed, integrated, scaled by similitude to fit every actuator, and played on the plant
     with an unknown payload, as a shake table plays it: controller "table" (model feed-forward,
     low-gain feedback from a Kalman estimate fusing the encoders and the platform accelerometers;
-    optionally the payload identified first and drive-signal iterations), or "pose" (computed
+    optionally the payload identified first and drive-signal iterations, corrected through
+    the identity or the inverse linearised loop: drive_model, drive_specimen), or "pose" (computed
     torque on noisy pose feedback). natural_frequency: None for the controller's own default. window: play only the
     record's first seconds (0: all). Returns a ShakeResult: the samples (t, x, y, theta, ax, ay,
     alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (shake.json: scales, and per axis

@@ -42,6 +42,8 @@ void bindShake(py::module_& m) {
         .def_readwrite("identify_payload", &O::identify_payload)
         .def_readwrite("iterations", &O::iterations)
         .def_readwrite("iteration_gain", &O::iteration_gain)
+        .def_readwrite("drive_model", &O::drive_model)
+        .def_readwrite("drive_specimen", &O::drive_specimen)
         .def_readwrite("excitation_duration", &O::excitation_duration)
         .def_readwrite("jobs", &O::jobs)
         .def_readwrite("max_rms_percent", &O::max_rms_percent)
@@ -54,12 +56,13 @@ void bindShake(py::module_& m) {
         .def_readwrite("accuracy", &O::accuracy)
         .def_readwrite("out_dir", &O::out_dir)
         .def_property_readonly_static("_fields", [](const py::object&) {
-            return py::make_tuple(
-                "record", "record_y", "record_theta", "time_scale", "highpass", "margin", "window", "plant", "rate",
-                "controller", "natural_frequency", "acceleration_gain", "encoder_noise", "accel_noise_density",
-                "accel_bandwidth", "accel_baseline", "no_accelerometer", "amplitude", "identify_payload", "iterations",
-                "iteration_gain", "excitation_duration", "jobs", "max_rms_percent", "max_peak_percent",
-                "min_spectrum_percent", "payload_mass", "noise_pose", "noise_rate", "seed", "accuracy");
+            return py::make_tuple("record", "record_y", "record_theta", "time_scale", "highpass", "margin", "window",
+                                  "plant", "rate", "controller", "natural_frequency", "acceleration_gain",
+                                  "encoder_noise", "accel_noise_density", "accel_bandwidth", "accel_baseline",
+                                  "no_accelerometer", "amplitude", "identify_payload", "iterations", "iteration_gain",
+                                  "drive_model", "drive_specimen", "excitation_duration", "jobs", "max_rms_percent",
+                                  "max_peak_percent", "min_spectrum_percent", "payload_mass", "noise_pose",
+                                  "noise_rate", "seed", "accuracy");
         });
     m.def(
         "_run_shake",
@@ -119,10 +122,12 @@ void bindExcite(py::module_& m) {
         .def_readwrite("samples", &O::samples)
         .def_readwrite("check_samples", &O::check_samples)
         .def_readwrite("seed", &O::seed)
+        .def_readwrite("optimizer", &O::optimizer)
         .def_readwrite("output", &O::output)
         .def_property_readonly_static("_fields", [](const py::object&) {
             return py::make_tuple("payload_guess", "base", "friction", "duration", "frequency", "harmonics", "margin",
-                                  "max_condition", "evaluations", "random", "samples", "check_samples", "seed");
+                                  "max_condition", "evaluations", "random", "samples", "check_samples", "seed",
+                                  "optimizer");
         });
     m.def(
         "_run_excite",

@@ -1,6 +1,7 @@
 // The shake-table loop linearised, and its frequency response (closed_loop.hpp).
 #include "nocdyn/sim/closed_loop.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -12,6 +13,7 @@
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/text.hpp"
 
 namespace nocdyn {
@@ -43,15 +45,82 @@ Rows pick(Slot slot) {
     return r;
 }
 
+/// d2p/dt2 = f(p, dp, tau) by forwardDynamics; throws naming the plant.
+Twist plantAcceleration(const Model& model, Data& data, const Pose& p, const Twist& dp, const ActuatorVector& tau) {
+    if (const Status status = forwardDynamics(model, data, p, dp, tau); !status) {
+        throw Error("shake loop: plant: " + describe(status, model));
+    }
+    return data.t_M_dot;
+}
+
+/// The plant's A and B (linearization.hpp) at rest by central differences of f.
+StateSpace differencedPlant(const Model& model, Data& data, const Pose& p, const ActuatorVector& tau, double h) {
+    const int n = model.actuators;
+    StateSpace out;
+    out.output = LinearOutput::platform_acceleration;
+    out.inputs.assign(static_cast<std::size_t>(n), LinearInput::force);
+    out.A = Eigen::MatrixXd::Zero(6, 6);
+    out.A.topRightCorner<3, 3>().setIdentity();
+    out.B = Eigen::MatrixXd::Zero(6, n);
+    for (int i = 0; i < 3; ++i) {
+        const Vector3 e = Vector3::Unit(i) * h;
+        out.A.block<3, 1>(3, i) = (plantAcceleration(model, data, p + e, Twist::Zero(), tau) -
+                                   plantAcceleration(model, data, p - e, Twist::Zero(), tau)) /
+                                  (2.0 * h);
+        out.A.block<3, 1>(3, 3 + i) =
+            (plantAcceleration(model, data, p, e, tau) - plantAcceleration(model, data, p, -e, tau)) / (2.0 * h);
+    }
+    for (int a = 0; a < n; ++a) {
+        const double ha = h * std::max(1.0, std::abs(tau(a)));
+        ActuatorVector plus = tau, minus = tau;
+        plus(a) += ha;
+        minus(a) -= ha;
+        out.B.block<3, 1>(3, a) = (plantAcceleration(model, data, p, Twist::Zero(), plus) -
+                                   plantAcceleration(model, data, p, Twist::Zero(), minus)) /
+                                  (2.0 * ha);
+    }
+    out.C = out.A.bottomRows<3>();
+    out.D = out.B.bottomRows<3>();
+    return out;
+}
+
+/// tau = ID(p, dp, ddp) by inverseDynamics; throws naming the controller.
+ActuatorVector lawForces(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
+    if (const Status status = inverseDynamics(model, data, p, dp, ddp); !status) {
+        throw Error("shake loop: controller: " + describe(status, model));
+    }
+    return data.tau;
+}
+
+/// d tau / d(p, dp, ddp) at rest by central differences of the inverse dynamics.
+InverseDynamicsDerivatives differencedLaw(const Model& model, Data& data, const Pose& p, double h) {
+    const int n = model.actuators;
+    InverseDynamicsDerivatives out;
+    out.tau = lawForces(model, data, p, Twist::Zero(), Twist::Zero());
+    out.d_p.resize(n, 3);
+    out.d_dp.resize(n, 3);
+    out.d_ddp.resize(n, 3);
+    const Twist zero = Twist::Zero();
+    for (int i = 0; i < 3; ++i) {
+        const Vector3 e = Vector3::Unit(i) * h;
+        out.d_p.col(i) =
+            (lawForces(model, data, p + e, zero, zero) - lawForces(model, data, p - e, zero, zero)) / (2.0 * h);
+        out.d_dp.col(i) = (lawForces(model, data, p, e, zero) - lawForces(model, data, p, -e, zero)) / (2.0 * h);
+        out.d_ddp.col(i) = (lawForces(model, data, p, zero, e) - lawForces(model, data, p, zero, -e)) / (2.0 * h);
+    }
+    return out;
+}
+
 }  // namespace
 
 ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant_model, const Pose& p,
-                                          const ShakeLoopOptions& options) {
+                                          const ShakeLoopOptions& options, LoopDerivatives derivatives, double step) {
     const TableSensors& sensors = options.sensors;
     if (!(options.rate > 0.0) || !std::isfinite(options.rate)) throw Error("shake loop: the rate must be positive");
     const double T = 1.0 / options.rate;
     const int n = model.actuators;
     if (plant_model.actuators != n) throw Error("shake loop: the plant and the controller's model differ in actuators");
+    if (!(step > 0.0 && step < 1e-2)) throw Error("shake loop: the difference step must be in (0, 0.01)");
 
     // the plant at rest at p, held by its own forces, discretised exactly under a zero-order hold
     Data plant_data(plant_model);
@@ -60,10 +129,14 @@ ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant
     }
     const ActuatorVector tau_plant = plant_data.tau;
     StateSpace plant;
-    if (const Status status =
-            linearize(plant_model, plant_data, p, Twist::Zero(), tau_plant, LinearOutput::platform_acceleration, plant);
-        !status) {
-        throw Error("shake loop: plant: " + describe(status, plant_model));
+    if (derivatives == LoopDerivatives::exact) {
+        if (const Status status = linearize(plant_model, plant_data, p, Twist::Zero(), tau_plant,
+                                            LinearOutput::platform_acceleration, plant);
+            !status) {
+            throw Error("shake loop: plant: " + describe(status, plant_model));
+        }
+    } else {
+        plant = differencedPlant(plant_model, plant_data, p, tau_plant, step);
     }
     Eigen::MatrixXd augmented = Eigen::MatrixXd::Zero(6 + n, 6 + n);
     augmented.topLeftCorner(6, 6) = plant.A * T;
@@ -74,8 +147,13 @@ ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant
     // the control law tau = ID(p^, v^, demand) of the controller's model, to first order
     Data data(model);
     InverseDynamicsDerivatives law;
-    if (const Status status = inverseDynamicsDerivatives(model, data, p, Twist::Zero(), Twist::Zero(), law); !status) {
-        throw Error("shake loop: controller: " + describe(status, model));
+    if (derivatives == LoopDerivatives::exact) {
+        if (const Status status = inverseDynamicsDerivatives(model, data, p, Twist::Zero(), Twist::Zero(), law);
+            !status) {
+            throw Error("shake loop: controller: " + describe(status, model));
+        }
+    } else {
+        law = differencedLaw(model, data, p, step);
     }
 
     // the estimator's steady-state gains and the sensors, as runShakeLoop sets them

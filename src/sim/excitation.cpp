@@ -1,5 +1,6 @@
 // Excitation design (excitation.hpp): Fourier shapes scaled to the robot's limits, the
-// condition number of the stacked regressor minimised by random search and Nelder-Mead.
+// condition number of the stacked regressor minimised by random search, then Nelder-Mead or a
+// descent on its exact gradient.
 #include "nocdyn/sim/excitation.hpp"
 
 #include <algorithm>
@@ -13,6 +14,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "nocdyn/derivatives.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/identification.hpp"
@@ -312,7 +314,438 @@ std::pair<Eigen::VectorXd, double> nelderMead(F&& f, const Eigen::VectorXd& x0, 
     return {x[best], fx[best]};
 }
 
+/// Robots whose inverse dynamics give the regressor's columns and their derivatives: tau is
+/// linear in pi, so with parameters pi_b (model b) tau_b = Y pi_b, and column k of Y is
+/// sum_b C(k, b) tau_b whenever sum_b C(k, b) pi_b = e_k. Per body (L: the length scale), the
+/// robots with only that body's parameters, [m, m c_x, m c_y, I_O] =
+///   A: m 1, c 0 -> [1 0 0 0];  B: m 1, c (L, 0) -> [1 L 0 L^2];  Cy: m 1, c (0, L) -> [1 0 L L^2];
+///   D: I 1 -> [0 0 0 1];
+/// so e_m = A, e_I = D, e_mcx = (B - A - L^2 D) / L, e_mcy = (Cy - A - L^2 D) / L. A joint's
+/// damping (Coulomb friction) column is the robot with only that damping (friction) 1: the
+/// Coulomb column J_j^-T e_k sign q'_k varies with the pose through J_j^-T, its sign frozen.
+class ColumnRobots {
+public:
+    ColumnRobots(const Model& model, const std::vector<int>& columns) {
+        const auto K = static_cast<Eigen::Index>(columns.size());
+        std::vector<std::pair<int, int>> body_first;  // body -> index of its robot A
+        std::vector<Eigen::VectorXd> rows(at(static_cast<int>(K)));
+        const double L = model.length_scale;
+        for (Eigen::Index k = 0; k < K; ++k) {
+            const int c = columns[at(static_cast<int>(k))];
+            if (c < kBodyParameters * model.bodies) {
+                const int body = c / kBodyParameters, which = c % kBodyParameters;
+                int first = -1;
+                for (const auto& [b, i] : body_first) {
+                    if (b == body) first = i;
+                }
+                if (first < 0) {
+                    first = static_cast<int>(models_.size());
+                    body_first.emplace_back(body, first);
+                    models_.push_back(bodyRobot(model, body, 1.0, Vector2::Zero(), 0.0));
+                    models_.push_back(bodyRobot(model, body, 1.0, Vector2(L, 0.0), 0.0));
+                    models_.push_back(bodyRobot(model, body, 1.0, Vector2(0.0, L), 0.0));
+                    models_.push_back(bodyRobot(model, body, 0.0, Vector2::Zero(), 1.0));
+                }
+                std::vector<std::pair<int, double>> weights;
+                if (which == 0) weights = {{first, 1.0}};
+                if (which == 1) weights = {{first + 1, 1.0 / L}, {first, -1.0 / L}, {first + 3, -L}};
+                if (which == 2) weights = {{first + 2, 1.0 / L}, {first, -1.0 / L}, {first + 3, -L}};
+                if (which == 3) weights = {{first + 3, 1.0}};
+                weights_.push_back(weights);
+                continue;
+            }
+            std::vector<std::pair<int, double>> weights;
+            for (int j = 0; j < model.limbs; ++j) {
+                for (int joint = 0; joint < 3; ++joint) {
+                    const int index = jointParameterIndex(model, j, joint);
+                    if (c != index && c != index + 1) continue;
+                    Model robot = emptyRobot(model);
+                    (c == index ? robot.limb[at(j)].damping : robot.limb[at(j)].friction)[at(joint)] = 1.0;
+                    robot.limb[at(j)].frictionless = false;
+                    weights = {{static_cast<int>(models_.size()), 1.0}};
+                    models_.push_back(std::move(robot));
+                }
+            }
+            weights_.push_back(weights);
+        }
+        C_ = Eigen::MatrixXd::Zero(K, static_cast<Eigen::Index>(models_.size()));
+        for (Eigen::Index k = 0; k < K; ++k) {
+            for (const auto& [b, w] : weights_[at(static_cast<int>(k))]) C_(k, b) += w;
+        }
+    }
+
+    [[nodiscard]] const std::vector<Model>& robots() const { return models_; }
+    /// K x robots: column k of Y = sum_b C(k, b) tau_b.
+    [[nodiscard]] const Eigen::MatrixXd& combination() const { return C_; }
+
+private:
+    /// The robot with every inertial and friction parameter zero (the geometry unchanged).
+    static Model emptyRobot(const Model& model) {
+        Model robot = model;
+        for (int j = 0; j < model.limbs; ++j) {
+            LimbModel& limb = robot.limb[at(j)];
+            limb.M = {};
+            limb.damping = {};
+            limb.friction = {};
+            limb.frictionless = true;
+        }
+        robot.platform_M = {};
+        robot.limbs_in_lanes = false;  // the lanes keep the file's inertia; the scalar path reads the above
+        return robot;
+    }
+
+    /// Only body `body` with mass m, c.o.m. c in its frame and inertia I about the c.o.m.
+    static Model bodyRobot(const Model& model, int body, double m, const Vector2& c, double inertia) {
+        Model robot = emptyRobot(model);
+        if (body == model.platformBody()) {
+            robot.platform_M = {inertia, m};
+            robot.platform_com = c;
+            robot.platform_com_home = Vector2(model.cos_home * c.x() - model.sin_home * c.y(),
+                                              model.sin_home * c.x() + model.cos_home * c.y());
+        } else {
+            LimbModel& limb = robot.limb[at(body % model.limbs)];
+            limb.M[at(body / model.limbs)] = {inertia, m};
+            limb.com_home[at(body / model.limbs)] = c;
+        }
+        return robot;
+    }
+
+    std::vector<Model> models_;
+    std::vector<std::vector<std::pair<int, double>>> weights_;
+    Eigen::MatrixXd C_;
+};
+
+/// log cond of the column-scaled stacked regressor of a shape at a fixed scale, and its exact
+/// gradient with respect to the shape (excitation.hpp, excitationConditionGradient).
+class ConditionGradient {
+public:
+    ConditionGradient(const Model& model, const ExcitationOptions& options, std::vector<int> columns)
+        : model_(model), options_(options), columns_(std::move(columns)), robots_(model, columns_), data_(model) {
+        const int H = options.harmonics;
+        samples_ = options.samples > 0 ? options.samples : 25 * H;
+        period_ = 1.0 / options.base_frequency;
+        if (const Status status = inverseDisplacement(model, data_, model.home); !status)
+            throw Error("excitation: the home posture is not valid: " + describe(status, model));
+        for (int j = 0; j < model.limbs; ++j) q_home_[at(j)] = data_.limb[at(j)].q;
+        const auto d = static_cast<Eigen::Index>(3) * freePerAxis(H);
+        // the samples are linear in the shape: those of the unit shapes e_j
+        for (Eigen::Index j = 0; j < d; ++j) {
+            const PoseTrajectory unit = trajectoryOf(model, Eigen::VectorXd::Unit(d, j), 1.0, options, period_);
+            basis_.push_back(atRestFirst(sampleTrajectory(model, unit, period_, samples_)));
+        }
+    }
+
+    /// log cond at the fixed scale s and its gradient s d log cond / d c (c = s z). With
+    /// `with_scale`, the gradient of the design objective f(z) = log cond at the largest scale
+    /// s(z) instead, s the scale f found: s grad_c F + (grad_c F . z) grad s(z) (scaleGradient);
+    /// `scaled` tells whether the binding limit allowed it (else the fixed-scale gradient).
+    double operator()(const Eigen::VectorXd& z, double s, Eigen::VectorXd& gradient, bool with_scale = false,
+                      bool* scaled = nullptr) {
+        const double value = fixedScale(z, s, gradient);
+        if (scaled) *scaled = false;
+        if (!with_scale || !std::isfinite(value)) return value;
+        Eigen::VectorXd grad_s;
+        if (!scaleGradient(z, s, grad_s)) return value;
+        gradient += (gradient.dot(z) / s) * grad_s;
+        if (scaled) *scaled = true;
+        return value;
+    }
+
+    /// grad s(z) of the largest scale within the limits, from the limit that binds at the design
+    /// samples at scale s: its use g(s z) = 1, so grad s = -s grad_c g / (grad_c g . z). For a
+    /// joint's range (dq/dp = J_j^-1 S(c)), a joint's rate (d gamma_dot / d dp = J_j^-1 S(c),
+    /// d gamma_dot / d p_e = J_j^-1 (dS_e dp - dJ_j gamma_dot) with dJ_j's columns
+    /// ds_k = [xi_(k-1), s_k] for dp = e) or an actuator's effort (derivatives.hpp); false when a condition number
+    /// binds (its scaled 1-norm is not differentiated) or a sample fails.
+    bool scaleGradient(const Eigen::VectorXd& z, double s, Eigen::VectorXd& grad_s) {
+        const UnitMotion m =
+            atRestFirst(sampleTrajectory(model_, trajectoryOf(model_, z, 1.0, options_, period_), period_, samples_));
+        const double allowed = 1.0 - options_.margin;
+        // the binding use: kind (0 range, 1 rate, 2 effort, 3 condition), sample, limb/actuator, joint
+        double worst = -1.0;
+        int kind = -1, sample = -1, who = -1, joint = -1;
+        double sign = 1.0;
+        const auto keep = [&](double use, int k, int i, int w, int jt, double sg) {
+            if (use > worst) {
+                worst = use;
+                kind = k;
+                sample = i;
+                who = w;
+                joint = jt;
+                sign = sg;
+            }
+        };
+        for (std::size_t i = 0; i < m.p.size(); ++i) {
+            if (!inverseDynamics(model_, data_, model_.home + s * m.p[i], s * m.dp[i], s * m.ddp[i])) return false;
+            const int ii = static_cast<int>(i);
+            for (int j = 0; j < model_.limbs; ++j) {
+                const LimbModel& limb = model_.limb[at(j)];
+                const LimbData& ld = data_.limb[at(j)];
+                for (int k = 0; k < 3; ++k) {
+                    const JointLimits& lim = limb.limits[at(k)];
+                    const double q = ld.q(k), q0 = q_home_[at(j)](k);
+                    const double room = q >= q0 ? lim.upper - q0 : q0 - lim.lower;
+                    if (std::isfinite(room) && room > 0.0)
+                        keep(std::abs(q - q0) / (allowed * room), 0, ii, j, k,
+                             q >= q0 ? 1.0 / (allowed * room) : -1.0 / (allowed * room));
+                    if (std::isfinite(lim.velocity))
+                        keep(std::abs(ld.gamma_dot(k)) / (allowed * lim.velocity), 1, ii, j, k,
+                             (ld.gamma_dot(k) >= 0.0 ? 1.0 : -1.0) / (allowed * lim.velocity));
+                }
+                keep(ld.cond / options_.max_condition, 3, ii, j, -1, 0.0);
+            }
+            for (int a = 0; a < model_.actuators; ++a) {
+                const double effort =
+                    model_.limb[at(model_.actuator_limb[at(a)])].limits[at(model_.actuator_joint[at(a)])].effort;
+                if (std::isfinite(effort))
+                    keep(std::abs(data_.tau(a)) / (allowed * effort), 2, ii, a, -1,
+                         (data_.tau(a) >= 0.0 ? 1.0 : -1.0) / (allowed * effort));
+            }
+            keep(data_.cond_A / options_.max_condition, 3, ii, -1, -1, 0.0);
+        }
+        if (kind < 0 || kind == 3) return false;
+        // d g / d x at the binding sample, x = (p, dp, ddp)
+        const auto i = at(sample);
+        const Pose p = model_.home + s * m.p[i];
+        const Twist dp = s * m.dp[i], ddp = s * m.ddp[i];
+        Eigen::Matrix<double, 9, 1> dg = Eigen::Matrix<double, 9, 1>::Zero();
+        if (kind == 2) {
+            InverseDynamicsDerivatives derivative;
+            if (!inverseDynamicsDerivatives(model_, data_, p, dp, ddp, derivative)) return false;
+            dg.segment<3>(0) = sign * derivative.d_p.row(who).transpose();
+            dg.segment<3>(3) = sign * derivative.d_dp.row(who).transpose();
+            dg.segment<3>(6) = sign * derivative.d_ddp.row(who).transpose();
+        } else {
+            if (!inverseDynamics(model_, data_, p, dp, ddp)) return false;
+            const LimbData& ld = data_.limb[at(who)];
+            const Vector2 c = p.tail<2>();
+            for (int e = 0; e < 3; ++e) {
+                const Twist t = platformTwistOfPoseRate(c, Twist::Unit(e));
+                const Vector3 rate = ld.J_inv * t;  // joint rates for dp = e: dq / dp_e
+                if (kind == 0) {
+                    dg(e) = sign * rate(joint);
+                } else {
+                    // dJ_j along p_e: columns [0, [xi_0, s_1], [xi_1, s_2]] of this motion
+                    const Twist xi0 = ld.s[0] * rate(0), xi1 = xi0 + ld.s[1] * rate(1);
+                    Matrix3 dJ = Matrix3::Zero();
+                    dJ.col(1) = bracket(xi0, ld.s[1]);
+                    dJ.col(2) = bracket(xi1, ld.s[2]);
+                    // and xi_P = S(c) dp along c: d xi_P / d c_x = [0; 0; -omega], / d c_y = [0; omega; 0]
+                    Twist dxi = Twist::Zero();
+                    if (e == 1) dxi(2) = -dp(0);
+                    if (e == 2) dxi(1) = dp(0);
+                    dg(e) = sign * (ld.J_inv * (dxi - dJ * ld.gamma_dot))(joint);
+                    dg(3 + e) = sign * rate(joint);
+                }
+            }
+        }
+        const auto d = z.size();
+        Eigen::VectorXd grad_g(d);
+        for (Eigen::Index j = 0; j < d; ++j) {
+            const UnitMotion& e = basis_[at(static_cast<int>(j))];
+            grad_g(j) = dg.segment<3>(0).dot(e.p[i]) + dg.segment<3>(3).dot(e.dp[i]) + dg.segment<3>(6).dot(e.ddp[i]);
+        }
+        const double along = grad_g.dot(z);
+        if (!(along > 0.0)) return false;
+        grad_s = (-s / along) * grad_g;
+        return true;
+    }
+
+private:
+    double fixedScale(const Eigen::VectorXd& z, double s, Eigen::VectorXd& gradient) {
+        const auto d = z.size();
+        const auto K = static_cast<Eigen::Index>(columns_.size());
+        const int n = model_.actuators;
+        gradient = Eigen::VectorXd::Zero(d);
+        const UnitMotion m =
+            atRestFirst(sampleTrajectory(model_, trajectoryOf(model_, z, 1.0, options_, period_), period_, samples_));
+        // N = sum_i Y_i^T Y_i over the excited columns
+        Yc_.resize(m.p.size());
+        Eigen::MatrixXd N = Eigen::MatrixXd::Zero(K, K);
+        for (std::size_t i = 0; i < m.p.size(); ++i) {
+            if (!inverseDynamicsRegressor(model_, data_, model_.home + s * m.p[i], s * m.dp[i], s * m.ddp[i], Y_))
+                return kInfeasible;
+            Yc_[i].resize(n, K);
+            for (Eigen::Index k = 0; k < K; ++k) Yc_[i].col(k) = Y_.col(columns_[at(static_cast<int>(k))]);
+            N.noalias() += Yc_[i].transpose() * Yc_[i];
+        }
+        const Eigen::VectorXd D = N.diagonal();
+        if (!(D.minCoeff() > 1e-24 * D.maxCoeff())) return kInfeasible;
+        const Eigen::VectorXd inv = D.cwiseSqrt().cwiseInverse();
+        const Eigen::MatrixXd S = inv.asDiagonal() * N * inv.asDiagonal();
+        const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eigen(S);
+        const double lo = eigen.eigenvalues()(0), hi = eigen.eigenvalues()(K - 1);
+        if (!(lo > 0.0)) return kInfeasible;
+        // Gamma = d log cond / d N (symmetric): G(lambda, v) = u u^T - lambda diag(v_a^2 / N_aa)
+        const auto G = [&](Eigen::Index e) {
+            const Eigen::VectorXd v = eigen.eigenvectors().col(e);
+            const Eigen::VectorXd u = inv.cwiseProduct(v);
+            Eigen::MatrixXd g = u * u.transpose();
+            g.diagonal() -= eigen.eigenvalues()(e) * v.cwiseAbs2().cwiseQuotient(D);
+            return g;
+        };
+        const Eigen::MatrixXd Gamma = 0.5 * (G(K - 1) / hi - G(0) / lo);
+        // d log cond = sum_i <2 Y_i Gamma, dY_i>, dY_i = sum_b C(., b) d tau_b
+        const Eigen::MatrixXd& C = robots_.combination();
+        InverseDynamicsDerivatives derivative;
+        for (std::size_t i = 0; i < m.p.size(); ++i) {
+            const Pose p = model_.home + s * m.p[i];
+            const Twist dp = s * m.dp[i], ddp = s * m.ddp[i];
+            const Eigen::MatrixXd Omega = 2.0 * Yc_[i] * Gamma * C;  // n x robots
+            Eigen::Matrix<double, 9, 1> g = Eigen::Matrix<double, 9, 1>::Zero();
+            for (std::size_t b = 0; b < robots_.robots().size(); ++b) {
+                const auto bb = static_cast<Eigen::Index>(b);
+                if (!inverseDynamicsDerivatives(robots_.robots()[b], data_, p, dp, ddp, derivative)) return kInfeasible;
+                for (int a = 0; a < n; ++a) {
+                    const double w = Omega(a, bb);
+                    g.segment<3>(0) += w * derivative.d_p.row(a).transpose();
+                    g.segment<3>(3) += w * derivative.d_dp.row(a).transpose();
+                    g.segment<3>(6) += w * derivative.d_ddp.row(a).transpose();
+                }
+            }
+            // x_i = s (sum_j z_j x_i(e_j)) about home
+            for (Eigen::Index j = 0; j < d; ++j) {
+                const UnitMotion& e = basis_[at(static_cast<int>(j))];
+                gradient(j) +=
+                    s * (g.segment<3>(0).dot(e.p[i]) + g.segment<3>(3).dot(e.dp[i]) + g.segment<3>(6).dot(e.ddp[i]));
+            }
+        }
+        return 0.5 * std::log(hi / lo);
+    }
+
+    /// The first sample (t = 0) exactly at home at rest, as the ties make it: rounded, its joint
+    /// rates would be +-1e-17 and the Coulomb columns sign q' would flip with the shape.
+    static UnitMotion atRestFirst(UnitMotion m) {
+        m.p.front().setZero();
+        m.dp.front().setZero();
+        m.ddp.front().setZero();
+        return m;
+    }
+
+    const Model& model_;
+    const ExcitationOptions& options_;
+    std::vector<int> columns_;
+    ColumnRobots robots_;
+    Data data_;
+    RegressorMatrix Y_;
+    std::vector<Eigen::MatrixXd> Yc_;
+    std::vector<UnitMotion> basis_;
+    std::array<Vector3, kMaxLimbs> q_home_{};
+    int samples_ = 0;
+    double period_ = 1.0;
+};
+
+/// BFGS on the exact gradient from x0 (f: the design objective, the shape judged at its largest
+/// scale; grad: its gradient at the shape f judged last, each counting as one evaluation), at
+/// most `budget` evaluations. f is invariant to the shape's size (the scale absorbs it), so
+/// the gradient's part along the shape is removed. The first step (and a step after a restart)
+/// is a quarter of the shape's norm along -g; backtracking halves the step until f decreases by
+/// 1e-4 of the predicted decrease (Armijo); a line search that fails restarts from the scaled
+/// identity once, twice in a row ends the refinement.
+template <typename F, typename G>
+std::pair<Eigen::VectorXd, double> bfgs(F&& f, G&& grad, const Eigen::VectorXd& x0, double f0, int budget, int& used,
+                                        int& gradients) {
+    const auto d = x0.size();
+    Eigen::VectorXd x = x0, g, g_new;
+    double fx = f0;
+    const auto gradient = [&](const Eigen::VectorXd& at_x, Eigen::VectorXd& out) {
+        ++used;
+        ++gradients;
+        if (!std::isfinite(grad(at_x, out))) return false;
+        out -= (out.dot(at_x) / at_x.squaredNorm()) * at_x;
+        return out.allFinite();
+    };
+    if (used >= budget || !gradient(x, g)) return {x, fx};
+    Eigen::MatrixXd H;
+    bool restarted = false;
+    const auto reset = [&] { H = (0.25 * x.norm() / std::max(g.norm(), 1e-300)) * Eigen::MatrixXd::Identity(d, d); };
+    reset();
+    while (used < budget) {
+        const Eigen::VectorXd step = -H * g;
+        const double slope = g.dot(step);
+        if (!(slope < 0.0)) {
+            if (restarted) break;
+            reset();
+            restarted = true;
+            continue;
+        }
+        double t = 1.0, ft = fx;
+        Eigen::VectorXd trial;
+        bool accepted = false;
+        while (used < budget && t >= 1e-6) {
+            trial = x + t * step;
+            ft = f(trial);
+            ++used;
+            if (ft <= fx + 1e-4 * t * slope) {
+                accepted = true;
+                break;
+            }
+            t *= 0.5;
+        }
+        if (!accepted) {
+            if (restarted || used >= budget) break;
+            reset();
+            restarted = true;
+            continue;
+        }
+        restarted = false;
+        const Eigen::VectorXd s_k = trial - x;
+        x = trial;
+        fx = ft;
+        if (used >= budget || !gradient(x, g_new)) break;
+        const Eigen::VectorXd y_k = g_new - g;
+        g = g_new;
+        const double sy = s_k.dot(y_k);
+        if (sy > 1e-12 * s_k.norm() * y_k.norm()) {
+            // H+ = (I - rho s y^T) H (I - rho y s^T) + rho s s^T
+            const double rho = 1.0 / sy;
+            const Eigen::VectorXd Hy = H * y_k;
+            H += rho * rho * (y_k.dot(Hy) + sy) * s_k * s_k.transpose() -
+                 rho * (Hy * s_k.transpose() + s_k * Hy.transpose());
+        }
+    }
+    return {x, fx};
+}
+
 }  // namespace
+
+std::string optimizerName(ExcitationOptimizer optimizer) {
+    return optimizer == ExcitationOptimizer::gradient ? "gradient" : "nelder-mead";
+}
+
+ExcitationOptimizer parseOptimizer(const std::string& name) {
+    if (name == "nelder-mead") return ExcitationOptimizer::nelder_mead;
+    if (name == "gradient") return ExcitationOptimizer::gradient;
+    throw Error("excitation: unknown optimizer '" + name + "' (nelder-mead or gradient)");
+}
+
+PoseTrajectory excitationTrajectory(const Model& model, const Eigen::VectorXd& shape, double scale,
+                                    const ExcitationOptions& options, double duration) {
+    if (shape.size() != 3 * static_cast<Eigen::Index>(freePerAxis(options.harmonics)))
+        throw Error("excitation: the shape has " + std::to_string(shape.size()) +
+                    " coefficients, not 3 (2 H - 3) = " + std::to_string(3 * freePerAxis(options.harmonics)));
+    return trajectoryOf(model, shape, scale, options, duration);
+}
+
+bool excitationScaleGradient(const Model& model, const Eigen::VectorXd& shape, double scale,
+                             const ExcitationOptions& options, Eigen::VectorXd& gradient) {
+    checkOptions(options, 1.0 / options.base_frequency);
+    if (shape.size() != 3 * static_cast<Eigen::Index>(freePerAxis(options.harmonics)))
+        throw Error("excitation: the shape has " + std::to_string(shape.size()) +
+                    " coefficients, not 3 (2 H - 3) = " + std::to_string(3 * freePerAxis(options.harmonics)));
+    ConditionGradient condition(model, options, excitedColumns(model, options));
+    return condition.scaleGradient(shape, scale, gradient);
+}
+
+double excitationConditionGradient(const Model& model, const Eigen::VectorXd& shape, double scale,
+                                   const ExcitationOptions& options, Eigen::VectorXd& gradient) {
+    checkOptions(options, 1.0 / options.base_frequency);
+    if (shape.size() != 3 * static_cast<Eigen::Index>(freePerAxis(options.harmonics)))
+        throw Error("excitation: the shape has " + std::to_string(shape.size()) +
+                    " coefficients, not 3 (2 H - 3) = " + std::to_string(3 * freePerAxis(options.harmonics)));
+    ConditionGradient condition(model, options, excitedColumns(model, options));
+    return condition(shape, scale, gradient);
+}
 
 std::vector<int> excitedColumns(const Model& model, const ExcitationOptions& options) {
     std::vector<int> columns;
@@ -397,11 +830,38 @@ ExcitationResult designExcitation(const Model& model, double duration, const Exc
             best_z = z;
         }
     }
+    int gradients = 0;
     if (used < options.evaluations && std::isfinite(best_f)) {
-        auto [z, fz] = nelderMead(f, best_z, best_f, 0.25, options.evaluations, used);
-        if (fz < best_f) {
-            best_z = z;
-            best_f = fz;
+        std::pair<Eigen::VectorXd, double> refined;
+        if (options.optimizer == ExcitationOptimizer::gradient) {
+            // the gradient at the scale of the last shape f judged (the current one's)
+            double scale = 0.0;
+            const auto f_scaled = [&](const Eigen::VectorXd& z) {
+                if (options.progress) options.progress(calls);
+                ++calls;
+                return objective(z, &scale, samples);
+            };
+            (void)f_scaled(best_z);
+            ++used;
+            ConditionGradient condition(model, options, excitedColumns(model, options));
+            const auto grad = [&](const Eigen::VectorXd& z, Eigen::VectorXd& g) {
+                if (options.progress) options.progress(calls);
+                ++calls;
+                return condition(z, scale, g, true);
+            };
+            refined = bfgs(f_scaled, grad, best_z, best_f, options.evaluations, used, gradients);
+            // stopped at a kink (where the binding limit changes, s(z) is a minimum of smooth
+            // functions) with evaluations left: Nelder-Mead from there spends the rest
+            if (used < options.evaluations) {
+                auto [z, fz] = nelderMead(f, refined.first, refined.second, 0.25, options.evaluations, used);
+                if (fz < refined.second) refined = {z, fz};
+            }
+        } else {
+            refined = nelderMead(f, best_z, best_f, 0.25, options.evaluations, used);
+        }
+        if (refined.second < best_f) {
+            best_z = refined.first;
+            best_f = refined.second;
         }
     }
     if (!std::isfinite(best_f)) {
@@ -416,6 +876,7 @@ ExcitationResult designExcitation(const Model& model, double duration, const Exc
     result.trajectory = trajectoryOf(model, best_z, best_scale * (1.0 - 1e-6), options, duration);
     result.assessment = assessExcitation(model, result.trajectory, period, options.check_samples, options);
     result.evaluations = used;
+    result.gradients = gradients;
     return result;
 }
 

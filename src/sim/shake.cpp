@@ -8,10 +8,14 @@
 #include <numbers>
 #include <sstream>
 
+#include <Eigen/LU>
+#include <unsupported/Eigen/FFT>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/sim/closed_loop.hpp"
+#include "nocdyn/text.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/kinematics.hpp"
 
@@ -394,6 +398,114 @@ double relativeRmsError(std::span<const double> target, std::span<const double> 
         st += (target[i] - reference) * (target[i] - reference);
     }
     return st > 0.0 ? std::sqrt(se / st) : 0.0;
+}
+
+const char* name(DriveModel model) {
+    switch (model) {
+        case DriveModel::identity:
+            return "identity";
+        case DriveModel::exact:
+            return "exact";
+        case DriveModel::difference:
+            return "difference";
+    }
+    return "identity";
+}
+
+DriveInverse driveInverse(DriveModel model, const ShakeLoopLinearization& loop, double dt, std::size_t samples,
+                          double band, const std::array<bool, 3>& driven) {
+    if (samples < 4) throw Error("drive correction: at least 4 samples are needed");
+    if (!(dt > 0.0 && std::isfinite(dt))) throw Error("drive correction: the sample step must be positive");
+    if (!(band > 0.0 && std::isfinite(band))) throw Error("drive correction: the band must be positive");
+    if (!(driven[0] || driven[1] || driven[2])) throw Error("drive correction: no axis is driven");
+    DriveInverse out;
+    out.dt = dt;
+    out.samples = samples;
+    out.band = band;
+    out.driven = driven;
+    out.fft_size = 1;
+    while (out.fft_size < 2 * samples) out.fft_size *= 2;
+    const std::size_t bins = out.fft_size / 2 + 1;
+    out.inverse.assign(bins, Eigen::Matrix3cd::Zero());
+    std::array<int, 3> axes{};
+    int m = 0;
+    for (int i = 0; i < 3; ++i) {
+        if (driven[static_cast<std::size_t>(i)]) axes[static_cast<std::size_t>(m++)] = i;
+    }
+    // the mean as is: the pose feedback makes H(0) = 1
+    for (int i = 0; i < m; ++i)
+        out.inverse[0](axes[static_cast<std::size_t>(i)], axes[static_cast<std::size_t>(i)]) = 1.0;
+    const double nyquist = model == DriveModel::identity ? std::numeric_limits<double>::infinity() : 0.5 / loop.dt;
+    for (std::size_t k = 1; k < bins; ++k) {
+        const double f = static_cast<double>(k) / (static_cast<double>(out.fft_size) * dt);
+        if (f > band || !(f < nyquist)) continue;  // no correction beyond the band or the controller's Nyquist
+        Eigen::Matrix3cd& inv = out.inverse[k];
+        if (model == DriveModel::identity) {
+            for (int i = 0; i < m; ++i) inv(axes[static_cast<std::size_t>(i)], axes[static_cast<std::size_t>(i)]) = 1.0;
+            continue;
+        }
+        const Eigen::Matrix3cd H = shakeLoopResponse(loop, f).closed_loop;
+        Eigen::MatrixXcd block(m, m);
+        for (int i = 0; i < m; ++i) {
+            for (int j = 0; j < m; ++j) {
+                block(i, j) = H(axes[static_cast<std::size_t>(i)], axes[static_cast<std::size_t>(j)]);
+            }
+        }
+        const Eigen::FullPivLU<Eigen::MatrixXcd> lu(block);
+        if (!lu.isInvertible() || !(std::abs(lu.determinant()) > 1e-12)) {
+            throw Error("drive correction: the closed loop is singular at " + text::format("%g", f) + " Hz");
+        }
+        const Eigen::MatrixXcd block_inverse = lu.inverse();
+        for (int i = 0; i < m; ++i) {
+            for (int j = 0; j < m; ++j) {
+                inv(axes[static_cast<std::size_t>(i)], axes[static_cast<std::size_t>(j)]) = block_inverse(i, j);
+            }
+        }
+    }
+    return out;
+}
+
+Status correctDrive(const DriveInverse& inverse, const std::array<std::vector<double>, 3>& error, double gain,
+                    std::array<std::vector<double>, 3>& drive) {
+    if (!(gain > 0.0 && gain <= 1.0)) throw Error("drive correction: the gain must be in (0, 1]");
+    const std::size_t n = inverse.samples, N = inverse.fft_size;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        if (!inverse.driven[axis]) continue;
+        if (error[axis].size() != n || drive[axis].size() != n) {
+            throw Error("drive correction: " + std::to_string(error[axis].size()) + " errors and " +
+                        std::to_string(drive[axis].size()) + " drive samples, expected " + std::to_string(n));
+        }
+        for (double e : error[axis]) {
+            if (!std::isfinite(e)) return {StatusCode::not_finite, -1, e};
+        }
+    }
+    Eigen::FFT<double> fft;
+    std::array<std::vector<std::complex<double>>, 3> spectrum;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        spectrum[axis].assign(N, 0.0);
+        if (!inverse.driven[axis]) continue;
+        std::vector<std::complex<double>> padded(N, 0.0);
+        for (std::size_t i = 0; i < n; ++i) padded[i] = error[axis][i];
+        fft.fwd(spectrum[axis], padded);
+    }
+    // C_k = H^-1(f_k) E_k on k = 0 .. N / 2, the conjugate mirror above (a real correction)
+    std::array<std::vector<std::complex<double>>, 3> corrected;
+    for (auto& c : corrected) c.assign(N, 0.0);
+    for (std::size_t k = 0; k <= N / 2; ++k) {
+        const Eigen::Vector3cd e(spectrum[0][k], spectrum[1][k], spectrum[2][k]);
+        const Eigen::Vector3cd c = inverse.inverse[k] * e;
+        for (std::size_t axis = 0; axis < 3; ++axis) {
+            corrected[axis][k] = c(static_cast<Eigen::Index>(axis));
+            if (k > 0 && k < N - k) corrected[axis][N - k] = std::conj(c(static_cast<Eigen::Index>(axis)));
+        }
+    }
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        if (!inverse.driven[axis]) continue;
+        std::vector<std::complex<double>> back;
+        fft.inv(back, corrected[axis]);
+        for (std::size_t i = 0; i < n; ++i) drive[axis][i] += gain * back[i].real();
+    }
+    return {};
 }
 
 }  // namespace nocdyn

@@ -118,9 +118,12 @@ public:
         // encoders and the tracker
         u_measured_ = plant.u();
         for (int a = 0; a < model_.actuators; ++a) u_measured_(a) += sensors_.encoder_noise * normal_(rng_);
-        if (const Status status = tracker_.step(model_, sensor_, u_measured_, tracker_options_); !status) {
+        TrackerReport tracked;
+        if (const Status status = tracker_.step(model_, sensor_, u_measured_, tracker_options_, &tracked); !status) {
             detail::failTick(model_, t, status, "direct kinematics of the encoders (tracker)");
         }
+        tracker_steps_ += tracked.iterations;
+        tracker_most_ = std::max(tracker_most_, tracked.iterations);
         if (!first_) estimator_.update(tracker_.pose(), y_);
         pose_sq_ += (estimator_.pose() - p).cwiseAbs2();
         rate_sq_ += (estimator_.rate() - dp).cwiseAbs2();
@@ -147,6 +150,8 @@ public:
         r.rate_rms_error = (rate_sq_ / ticks).cwiseSqrt();
         r.sigma_q = sigma_q_;
         r.sigma_y = sigma_y_;
+        r.tracker_mean_iterations = static_cast<double>(tracker_steps_) / ticks;
+        r.tracker_max_iterations = tracker_most_;
     }
 
 private:
@@ -170,6 +175,8 @@ private:
     Twist rate_before_;
     Vector3 pose_sq_ = Vector3::Zero(), rate_sq_ = Vector3::Zero();
     bool first_ = true;
+    long long tracker_steps_ = 0;  // Newton steps of the tracker over the run
+    int tracker_most_ = 0;
 };
 
 }  // namespace

@@ -36,6 +36,12 @@
 
 namespace nocdyn {
 
+/// How linearizeShakeLoop differentiates the plant and the control law: by their exact
+/// derivatives (derivatives.hpp), or by central differences of forwardDynamics and
+/// inverseDynamics with steps h (pose [rad, m], rate, acceleration) and h max(1, |tau_a|)
+/// (forces), the comparison the exact ones are measured against.
+enum class LoopDerivatives { exact, central_difference };
+
 /// The linearised shake-table loop: s_(k+1) = F s_k + G w_k, a_k = C s_k + D w_k (see above).
 struct ShakeLoopLinearization {
     Eigen::MatrixXd F, G, C, D;
@@ -49,7 +55,9 @@ struct ShakeLoopLinearization {
 /// Kalman gain). `model` is the controller's model; `plant_model` may differ (a payload).
 /// Throws nocdyn::Error when p is out of reach or singular for either model.
 [[nodiscard]] ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant_model, const Pose& p,
-                                                        const ShakeLoopOptions& options);
+                                                        const ShakeLoopOptions& options,
+                                                        LoopDerivatives derivatives = LoopDerivatives::exact,
+                                                        double step = 1e-6);
 
 /// The closed loop at frequency f [Hz] (0 < f < rate / 2): H(i, j) = achieved acceleration of
 /// axis i per reference acceleration of axis j; and the loop transfers L_i (i = 0, 1, 2).

@@ -15,13 +15,20 @@
 //     max_condition (away from singularities, as kinematics.hpp measures them),
 // found by bisection on log s (the envelope's approach, envelope.hpp). The objective is the
 // condition number of the column-scaled stacked regressor at that largest scale (the number
-// `identify` reports): a seeded random search over shapes, then Nelder-Mead from the best,
-// bounded by a number of evaluations, deterministic for a seed.
+// `identify` reports): a seeded random search over shapes, then a local refinement from the
+// best, bounded by a number of evaluations, deterministic for a seed. The refinement is
+// Nelder-Mead (the default), or a descent on the exact gradient of the log condition number:
+// tau = Y pi is linear in pi, so column k of Y and its derivatives d Y_k / d(p, dp, ddp) are
+// those of the inverse dynamics (derivatives.hpp) of robots whose parameters combine to e_k,
+// chained through the samples (linear in the shape) and the extreme eigenpairs of the scaled
+// information matrix (see excitationConditionGradient).
 #pragma once
 
 #include <functional>
 #include <string>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
@@ -33,6 +40,19 @@ enum class ExcitedParameters {
     payload,  ///< the four payload parameters [m, m c_x, m c_y, I_O] (the platform's columns)
     base,     ///< the robot's base parameters (calibration; identification.hpp)
 };
+
+/// The local refinement after the random search.
+enum class ExcitationOptimizer {
+    nelder_mead,  ///< derivative-free simplex
+    /// BFGS on the exact gradient of the objective (log cond at the largest scale), then
+    /// Nelder-Mead with the evaluations left where BFGS stops (at a kink of the objective, where
+    /// the binding limit changes)
+    gradient,
+};
+
+/// "nelder-mead" / "gradient", and back; the parse throws nocdyn::Error on another name.
+[[nodiscard]] std::string optimizerName(ExcitationOptimizer optimizer);
+[[nodiscard]] ExcitationOptimizer parseOptimizer(const std::string& name);
 
 struct ExcitationOptions {
     ExcitedParameters parameters = ExcitedParameters::payload;
@@ -46,6 +66,7 @@ struct ExcitationOptions {
     int evaluations = 400;         ///< objective evaluations in all (random search and Nelder-Mead)
     int random_shapes = 60;        ///< of them, random shapes before Nelder-Mead
     unsigned seed = 1;
+    ExcitationOptimizer optimizer = ExcitationOptimizer::nelder_mead;
     /// Called before each objective evaluation with the number made so far (progress); may
     /// throw to stop the design. None by default.
     std::function<void(int evaluations)> progress = {};
@@ -80,7 +101,8 @@ struct ExcitationAssessment {
 struct ExcitationResult {
     PoseTrajectory trajectory;        ///< offset at home, harmonics k f0; duration as asked
     ExcitationAssessment assessment;  ///< at options.check_samples per period
-    int evaluations = 0;              ///< objective evaluations made
+    int evaluations = 0;              ///< objective evaluations made (gradients included)
+    int gradients = 0;                ///< of them, exact gradients (the gradient refinement)
 };
 
 /// Designs the excitation (see the file header) for `duration` seconds (a whole number of base
@@ -88,6 +110,32 @@ struct ExcitationResult {
 /// limits, or no feasible shape found.
 [[nodiscard]] ExcitationResult designExcitation(const Model& model, double duration,
                                                 const ExcitationOptions& options = {});
+
+/// The shape's free Fourier coefficients (3 (2H - 3), per axis a_2..a_H then b_3..b_H, in rad
+/// and length scales) as a trajectory of `duration` at scale s (see the file header).
+[[nodiscard]] PoseTrajectory excitationTrajectory(const Model& model, const Eigen::VectorXd& shape, double scale,
+                                                  const ExcitationOptions& options, double duration);
+
+/// log of the condition number of the column-scaled stacked regressor of the shape at scale s
+/// (options.samples per period, 0: 25 H), and its exact gradient with respect to the shape's
+/// coefficients at that fixed scale:
+///   S = D^-1/2 N D^-1/2, N = sum_i Y_i^T Y_i (excited columns), D = diag N,
+///   d lambda = v^T dS v = u^T dN u - lambda sum_a v_a^2 dN_aa / N_aa   (u = D^-1/2 v),
+///   d log cond = (d lambda_max / lambda_max - d lambda_min / lambda_min) / 2,
+/// dN from dY_i = sum over (p, dp, ddp) of d Y_i / d x times d x / d shape (linear in it).
+/// Coulomb friction columns are differentiated with sign q' frozen (derivatives.hpp). Infinite value
+/// (gradient zero) where a sample cannot be computed or the matrix is singular.
+[[nodiscard]] double excitationConditionGradient(const Model& model, const Eigen::VectorXd& shape, double scale,
+                                                 const ExcitationOptions& options, Eigen::VectorXd& gradient);
+
+/// The gradient with respect to the shape of the largest scale within the limits, from the limit
+/// that binds at the design samples at `scale` (the scale the design found for the shape): its
+/// use g(s z) = 1 gives grad s = -s grad_c g / (grad_c g . z), exact for a joint's range or
+/// rate and an actuator's effort. False (gradient untouched) when a condition number of J_j or
+/// A binds (its scaled 1-norm is not differentiated) or a sample fails. The design's gradient
+/// refinement descends on s grad_c F + (grad_c F . z) grad s, F = log cond at a fixed scale.
+[[nodiscard]] bool excitationScaleGradient(const Model& model, const Eigen::VectorXd& shape, double scale,
+                                           const ExcitationOptions& options, Eigen::VectorXd& gradient);
 
 /// The trajectory moved so that its offsets are relative to the robot's home (the paper's
 /// trajectories were written about the paper robot's home, the origin).

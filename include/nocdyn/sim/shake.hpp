@@ -33,20 +33,36 @@
 // (responseSpectrum) and, among the periods of the record's passband where the target's
 // S_a is at least 10 % of its peak (the counted periods), the share where they differ by more
 // than 10 %. relativeRmsError gives the same RMS ratio for displacements and velocities.
+//
+// Drive correction (time waveform replication, driveInverse / correctDrive): a pass played with
+// the drive d_i (reference accelerations on the record's grid, step dt) achieves a_i; the next
+// drive is d_(i+1) = d_i + g H^-1 (a_target - a_i), H(f) the closed loop's frequency response
+// from reference to achieved acceleration (closed_loop.hpp: the linearised shake-table loop,
+// 3 x 3 per frequency, its block of the driven axes inverted). The error is zero-padded to
+// N >= 2 n samples (no wrap-around of the correction), transformed (Eigen's FFT), multiplied by
+// H^-1 at each bin f_k = k / (N dt) up to `band` (the record's passband: beyond it the target
+// has no content and the error is noise; zero correction there) and transformed back; the mean
+// (f = 0) is corrected as is (H(0) = 1: the pose feedback holds the table). With H = I
+// (DriveModel::identity) it is the correction d_i + g (a_target - a_i).
 #pragma once
 
 #include <array>
+#include <complex>
 #include <cstddef>
 #include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn {
+
+struct ShakeLoopLinearization;  // closed_loop.hpp
 
 inline constexpr int kHighPassOrder = 4;
 
@@ -138,5 +154,36 @@ struct ShakeScore {
 /// Scores one axis; periods: n_periods log-spaced over [t_min, t_max] [s].
 [[nodiscard]] ShakeScore scoreShake(std::span<const double> target, std::span<const double> achieved, double dt,
                                     double t_min, double t_max, int n_periods = 50);
+
+/// What the drive correction inverts: nothing (H = I), the linearised closed loop by its exact
+/// derivatives, or by central differences (closed_loop.hpp, LoopDerivatives).
+enum class DriveModel { identity, exact, difference };
+
+/// "identity", "exact" or "difference".
+[[nodiscard]] const char* name(DriveModel model);
+
+/// H^-1 of the driven axes on the correction's frequency grid (see the header comment).
+struct DriveInverse {
+    double dt = 0.0;                        ///< the drive's sample step [s]
+    std::size_t samples = 0;                ///< n
+    std::size_t fft_size = 0;               ///< N (a power of two >= 2 n)
+    double band = 0.0;                      ///< the highest frequency corrected [Hz]
+    std::array<bool, 3> driven{};           ///< [theta, x, y]
+    std::vector<Eigen::Matrix3cd> inverse;  ///< bin k = 0 .. N / 2: H^-1 (zero rows / columns off the driven axes)
+};
+
+/// Builds H^-1 from the linearised loop (identity for DriveModel::identity: loop unused) for a
+/// drive of `samples` samples every dt, corrected up to `band` [Hz] (at most below rate / 2).
+/// Throws nocdyn::Error for fewer than 4 samples, a non-positive dt or band, no driven axis, or
+/// a closed loop singular at a corrected frequency (naming it).
+[[nodiscard]] DriveInverse driveInverse(DriveModel model, const ShakeLoopLinearization& loop, double dt,
+                                        std::size_t samples, double band, const std::array<bool, 3>& driven);
+
+/// drive[axis] += gain H^-1 error[axis] for the driven axes [theta, x, y] (error and drive of
+/// inverse.samples each; see the header comment). Fails with not_finite (value: the first
+/// non-finite error) and leaves the drive unchanged; throws nocdyn::Error for a length that is
+/// not inverse.samples or a gain outside (0, 1].
+Status correctDrive(const DriveInverse& inverse, const std::array<std::vector<double>, 3>& error, double gain,
+                    std::array<std::vector<double>, 3>& drive);
 
 }  // namespace nocdyn

@@ -120,6 +120,10 @@ struct EstimatorReport {
     Vector3 rate_rms_error = Vector3::Zero();  ///< RMS of v^ - dp/dt
     Vector3 sigma_q = Vector3::Zero();         ///< the encoder pose noise assumed
     Vector3 sigma_y = Vector3::Zero();         ///< the accelerometer noise assumed
+    /// The encoders' direct kinematics (PoseTracker: Newton on the locked limbs' equations with
+    /// their analytic Jacobian): Newton steps per tick, mean and most.
+    double tracker_mean_iterations = 0.0;
+    int tracker_max_iterations = 0;
 };
 
 /// Runs the shake-table controller on `plant` along `trajectory` from (p_d(0), dp_d(0)): each
