@@ -150,7 +150,8 @@ NOCDYN_ALWAYS_INLINE bool uniformPackets(const Model& model, const LimbLanes* la
 }
 
 // On x86-64 with GCC an AVX2+FMA clone is built beside the baseline one (a packet is then
-// one register instead of two).
+// one register instead of two), and an x86-64-v4 one (AVX-512VL: the same four-lane packets
+// with 32 vector registers instead of 16, fewer spills).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
 __attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
