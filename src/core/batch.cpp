@@ -121,10 +121,39 @@ fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
     return status;
 }
 
+/// Every lane of `l` the limb's constant (detail::lean::SplatLimb): once per chunk.
+inline void splatLimb(const LimbModel& limb, LimbLanes& l) {
+    for (std::size_t lane = 0; lane < LimbLanes::kLanes; ++lane) {
+        for (std::size_t k = 0; k < 3; ++k) {
+            l.point_x[k][lane] = limb.point[k].x(), l.point_y[k][lane] = limb.point[k].y();
+            l.point_home_x[k][lane] = limb.point_home[k].x(), l.point_home_y[k][lane] = limb.point_home[k].y();
+            l.direction_x[k][lane] = limb.direction[k].x(), l.direction_y[k][lane] = limb.direction[k].y();
+            l.damping[k][lane] = limb.damping[k], l.friction[k][lane] = limb.friction[k];
+        }
+        for (std::size_t b = 0; b < 2; ++b) {
+            l.com_x[b][lane] = limb.com_home[b].x(), l.com_y[b][lane] = limb.com_home[b].y();
+            l.mass[b][lane] = limb.M[b].mass, l.inertia[b][lane] = limb.M[b].inertia;
+        }
+        l.screw_x[lane] = limb.screw_home[0](1), l.screw_y[lane] = limb.screw_home[0](2);
+        l.length1[lane] = limb.length1, l.length2[lane] = limb.length2;
+        l.inv_length1_sq[lane] = limb.inv_length1_sq, l.inv_length2_sq[lane] = limb.inv_length2_sq;
+        l.branch[lane] = static_cast<double>(limb.branch);
+    }
+}
+
+/// packets(terms) with the terms of the robot's uniform limbs, kind * 3 + actuated joint =
+/// model.uniform_limbs; false when its limbs are not uniform.
+template <class Packets, int... kCodes>
+NOCDYN_ALWAYS_INLINE bool uniformPackets(const Model& model, const LimbLanes* lanes, const Packets& packets,
+                                         std::integer_sequence<int, kCodes...> /*codes*/) {
+    return ((model.uniform_limbs == kCodes && (packets(detail::lean::UniformLimb<kCodes>{lanes}), true)) || ...);
+}
+
 // On x86-64 with GCC an AVX2+FMA clone is built beside the baseline one (a packet is then
-// one register instead of two).
+// one register instead of two), and an x86-64-v4 one (AVX-512VL: the same four-lane packets
+// with 32 vector registers instead of 16, fewer spills).
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
-__attribute__((target_clones("arch=x86-64-v3", "default")))
+__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
 #endif
 BatchResult
 chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
@@ -162,114 +191,130 @@ chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end)
     const auto scatter = [](double* at, Eigen::Index step, const Pack& v) NOCDYN_INLINE_LAMBDA {
         at[0] = v[0], at[step] = v[1], at[2 * step] = v[2], at[3 * step] = v[3];
     };
-    for (Eigen::Index k = begin; k < end; k += kLanes) {
-        // lane l = sample k + l; past the end, the last sample again (not written)
-        const int lanes = static_cast<int>(std::min<Eigen::Index>(kLanes, end - k));
-        Pack p[3], dp[3], ddp[3];
-        if (lanes == kLanes && contiguous_in) [[likely]] {
-            // column i of each input holds the four samples side by side
-            for (int i = 0; i < 3; ++i) {
-                std::memcpy(&p[i], in_p + k + column[i] * stride_p, sizeof(Pack));
-                std::memcpy(&dp[i], in_dp + k + column[i] * stride_dp, sizeof(Pack));
-                std::memcpy(&ddp[i], in_ddp + k + column[i] * stride_ddp, sizeof(Pack));
-            }
-        } else if (lanes == kLanes) {
-            // any other layout (NumPy's C order: a packet's 4 x 3 values side by side)
-            for (int i = 0; i < 3; ++i) {
-                p[i] = gather(in_p + k * step_p + column[i] * stride_p, step_p);
-                dp[i] = gather(in_dp + k * step_dp + column[i] * stride_dp, step_dp);
-                ddp[i] = gather(in_ddp + k * step_ddp + column[i] * stride_ddp, step_ddp);
-            }
-        } else {
-            for (int l = 0; l < kLanes; ++l) {
-                const Eigen::Index s = k + std::min(l, lanes - 1);
+    // the packets, compiled for the robot's limbs (`terms`: the kind and actuated joint of a
+    // uniform robot, or the kind read per limb), their constants splatted into packets once
+    // (the pointers, strides and limits by value: a store to the outputs may alias any object
+    // whose address is taken, and would make the compiler read them again at every store)
+    const auto packets = [=, &model, &result, &check_limits, &data](const auto terms) NOCDYN_INLINE_LAMBDA {
+        for (Eigen::Index k = begin; k < end; k += kLanes) {
+            // lane l = sample k + l; past the end, the last sample again (not written)
+            const int lanes = static_cast<int>(std::min<Eigen::Index>(kLanes, end - k));
+            Pack p[3], dp[3], ddp[3];
+            if (lanes == kLanes && contiguous_in) [[likely]] {
+                // column i of each input holds the four samples side by side
                 for (int i = 0; i < 3; ++i) {
-                    p[i][l] = a.p(s, column[i]), dp[i][l] = a.dp(s, column[i]), ddp[i][l] = a.ddp(s, column[i]);
+                    std::memcpy(&p[i], in_p + k + column[i] * stride_p, sizeof(Pack));
+                    std::memcpy(&dp[i], in_dp + k + column[i] * stride_dp, sizeof(Pack));
+                    std::memcpy(&ddp[i], in_ddp + k + column[i] * stride_ddp, sizeof(Pack));
                 }
-            }
-        }
-        // 0 x is 0 for a finite x and NaN otherwise: one test for the nine inputs; beyond
-        // 1e6 rad the branch-free sinCos is no longer exact (the full path takes libm's)
-        Pack zero = Pack{};
-        for (int i = 0; i < 3; ++i) zero += p[i] * 0.0 + dp[i] * 0.0 + ddp[i] * 0.0;
-        const Pack dtheta = p[0] - model.home(0);
-        Pack s, c;
-        fastmath::sinCos(dtheta, s, c);
-        Pack u[kMaxActuators], du[kMaxActuators], ddu[kMaxActuators], tau[kMaxActuators];
-        const detail::lean::Out<Pack> out{u, du, ddu, tau, 1};
-        detail::lean::V3<Pack> W;
-        PackMask ok =
-            (zero == 0.0) & (fastmath::absOf(dtheta) < 1.0e6) & detail::lean::sample(model, c, s, p, dp, ddp, out, W);
-        // the outputs finite (finite input can overflow): the same 0 x test, fused here so
-        // that no caller needs a second pass over the outputs
-        Pack zero_out = Pack{};
-        for (int i = 0; i < n; ++i) zero_out += u[i] * 0.0 + du[i] * 0.0 + ddu[i] * 0.0 + tau[i] * 0.0;
-        ok &= zero_out == 0.0;
-        // the packet's four samples against every limit at once (NaN compares false: beyond);
-        // the rare packet with a lane beyond one is then taken lane by lane, in sample order
-        PackMask beyond = PackMask{};
-        if (check_limits) {
-            for (int i = 0; i < n; ++i) {
-                const auto ii = static_cast<std::size_t>(i);
-                beyond |=
-                    ~((u[i] >= limits.lower[ii]) & (u[i] <= limits.upper[ii]) &
-                      (fastmath::absOf(du[i]) <= limits.velocity[ii]) & (fastmath::absOf(tau[i]) <= limits.effort[ii]));
-            }
-        }
-        if (fastmath::any(beyond & ok)) [[unlikely]] {
-            for (int l = 0; l < lanes && check_limits; ++l) {
-                if (ok[l] == 0) continue;
-                const auto at = [l](const Pack* v) { return [v, l](int i) { return v[i][l]; }; };
-                if (const Status s = limits.check(model, at(u), at(du), at(tau)); !s) {
-                    result.first_beyond_limits = k + l;
-                    result.limits = s;
-                    check_limits = false;
-                }
-            }
-        }
-        if (lanes == kLanes && fastmath::all(ok)) [[likely]] {
-            if (contiguous_out) {
-                for (int i = 0; i < n; ++i) {
-                    const Eigen::Index at = k + i * stride_out;
-                    std::memcpy(out_u + at, &u[i], sizeof(Pack));
-                    std::memcpy(out_du + at, &du[i], sizeof(Pack));
-                    std::memcpy(out_ddu + at, &ddu[i], sizeof(Pack));
-                    std::memcpy(out_tau + at, &tau[i], sizeof(Pack));
+            } else if (lanes == kLanes) {
+                // any other layout (NumPy's C order: a packet's 4 x 3 values side by side)
+                for (int i = 0; i < 3; ++i) {
+                    p[i] = gather(in_p + k * step_p + column[i] * stride_p, step_p);
+                    dp[i] = gather(in_dp + k * step_dp + column[i] * stride_dp, step_dp);
+                    ddp[i] = gather(in_ddp + k * step_ddp + column[i] * stride_ddp, step_ddp);
                 }
             } else {
-                for (int i = 0; i < n; ++i) {
-                    scatter(out_u + k * step_u + i * stride_out, step_u, u[i]);
-                    scatter(out_du + k * step_du + i * stride_out, step_du, du[i]);
-                    scatter(out_ddu + k * step_ddu + i * stride_out, step_ddu, ddu[i]);
-                    scatter(out_tau + k * step_tau + i * stride_out, step_tau, tau[i]);
+                for (int l = 0; l < kLanes; ++l) {
+                    const Eigen::Index s = k + std::min(l, lanes - 1);
+                    for (int i = 0; i < 3; ++i) {
+                        p[i][l] = a.p(s, column[i]), dp[i][l] = a.dp(s, column[i]), ddp[i][l] = a.ddp(s, column[i]);
+                    }
                 }
             }
-            continue;
-        }
-        for (int l = 0; l < lanes; ++l) {
-            const Eigen::Index row = k + l;
-            if (ok[l] != 0) [[likely]] {
+            // 0 x is 0 for a finite x and NaN otherwise: one test for the nine inputs; beyond
+            // 1e6 rad the branch-free sinCos is no longer exact (the full path takes libm's)
+            Pack zero = Pack{};
+            for (int i = 0; i < 3; ++i) zero += p[i] * 0.0 + dp[i] * 0.0 + ddp[i] * 0.0;
+            const Pack dtheta = p[0] - model.home(0);
+            Pack s, c;
+            fastmath::sinCos(dtheta, s, c);
+            Pack u[kMaxActuators], du[kMaxActuators], ddu[kMaxActuators], tau[kMaxActuators];
+            const detail::lean::Out<Pack> out{u, du, ddu, tau, 1};
+            detail::lean::V3<Pack> W;
+            PackMask ok = (zero == 0.0) & (fastmath::absOf(dtheta) < 1.0e6) &
+                          detail::lean::sampleWith(model, c, s, p, dp, ddp, out, W, terms);
+            // the outputs finite (finite input can overflow): the same 0 x test, fused here so
+            // that no caller needs a second pass over the outputs
+            Pack zero_out = Pack{};
+            for (int i = 0; i < n; ++i) zero_out += u[i] * 0.0 + du[i] * 0.0 + ddu[i] * 0.0 + tau[i] * 0.0;
+            ok &= zero_out == 0.0;
+            // the packet's four samples against every limit at once (NaN compares false: beyond);
+            // the rare packet with a lane beyond one is then taken lane by lane, in sample order
+            PackMask beyond = PackMask{};
+            if (check_limits) {
                 for (int i = 0; i < n; ++i) {
-                    a.u(row, i) = u[i][l];
-                    a.du(row, i) = du[i][l];
-                    a.ddu(row, i) = ddu[i][l];
-                    a.tau(row, i) = tau[i][l];
+                    const auto ii = static_cast<std::size_t>(i);
+                    beyond |= ~((u[i] >= limits.lower[ii]) & (u[i] <= limits.upper[ii]) &
+                                (fastmath::absOf(du[i]) <= limits.velocity[ii]) &
+                                (fastmath::absOf(tau[i]) <= limits.effort[ii]));
                 }
-            } else if (const Status status = fullPath(model, data, a, row); !status) {
-                if (result.failed++ == 0) {
-                    result.first_failure = row;
-                    result.status = status;
+            }
+            if (fastmath::any(beyond & ok)) [[unlikely]] {
+                for (int l = 0; l < lanes && check_limits; ++l) {
+                    if (ok[l] == 0) continue;
+                    const auto at = [l](const Pack* v) { return [v, l](int i) { return v[i][l]; }; };
+                    if (const Status s = limits.check(model, at(u), at(du), at(tau)); !s) {
+                        result.first_beyond_limits = k + l;
+                        result.limits = s;
+                        check_limits = false;
+                    }
                 }
-            } else if (a.limits == ActuatorLimits::check && row < result.first_beyond_limits) {
-                // a sample the kernel rejected and the full path accepted: its limits too
-                if (const Status s = limits.check(model, data.u, data.du, data.tau); !s) {
-                    result.first_beyond_limits = row;
-                    result.limits = s;
-                    check_limits = false;
+            }
+            if (lanes == kLanes && fastmath::all(ok)) [[likely]] {
+                if (contiguous_out) {
+                    for (int i = 0; i < n; ++i) {
+                        const Eigen::Index at = k + i * stride_out;
+                        std::memcpy(out_u + at, &u[i], sizeof(Pack));
+                        std::memcpy(out_du + at, &du[i], sizeof(Pack));
+                        std::memcpy(out_ddu + at, &ddu[i], sizeof(Pack));
+                        std::memcpy(out_tau + at, &tau[i], sizeof(Pack));
+                    }
+                } else {
+                    for (int i = 0; i < n; ++i) {
+                        scatter(out_u + k * step_u + i * stride_out, step_u, u[i]);
+                        scatter(out_du + k * step_du + i * stride_out, step_du, du[i]);
+                        scatter(out_ddu + k * step_ddu + i * stride_out, step_ddu, ddu[i]);
+                        scatter(out_tau + k * step_tau + i * stride_out, step_tau, tau[i]);
+                    }
+                }
+                continue;
+            }
+            for (int l = 0; l < lanes; ++l) {
+                const Eigen::Index row = k + l;
+                if (ok[l] != 0) [[likely]] {
+                    for (int i = 0; i < n; ++i) {
+                        a.u(row, i) = u[i][l];
+                        a.du(row, i) = du[i][l];
+                        a.ddu(row, i) = ddu[i][l];
+                        a.tau(row, i) = tau[i][l];
+                    }
+                } else if (const Status status = fullPath(model, data, a, row); !status) {
+                    if (result.failed++ == 0) {
+                        result.first_failure = row;
+                        result.status = status;
+                    }
+                } else if (a.limits == ActuatorLimits::check && row < result.first_beyond_limits) {
+                    // a sample the kernel rejected and the full path accepted: its limits too
+                    if (const Status s = limits.check(model, data.u, data.du, data.tau); !s) {
+                        result.first_beyond_limits = row;
+                        result.limits = s;
+                        check_limits = false;
+                    }
                 }
             }
         }
-    }
+    };
+    std::array<LimbLanes, kMaxLimbs> limb_lanes;
+    for (int j = 0; j < model.limbs; ++j)
+        splatLimb(model.limb[static_cast<std::size_t>(j)], limb_lanes[static_cast<std::size_t>(j)]);
+#if !defined(__SANITIZE_ADDRESS__)
+    // one dispatch per chunk: kind * 3 + actuated joint of a uniform robot (PPP excluded);
+    // under the sanitizers every robot takes the per-limb dispatch (the fewest instantiations)
+    if (!uniformPackets(model, limb_lanes.data(), packets,
+                        std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
+#endif
+        packets(detail::lean::SplatAny{limb_lanes.data()});
     return result;
 }
 

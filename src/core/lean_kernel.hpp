@@ -437,8 +437,8 @@ NOCDYN_ALWAYS_INLINE Mask<S> limbTerms(const LM& limb, const Frame<S>& f, const 
 struct AnyLimb {
     static constexpr bool kUnitWeights = false;  ///< every actuated joint revolute (weight 1)
     template <class S>
-    NOCDYN_ALWAYS_INLINE Mask<S> operator()(const LimbModel& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W,
-                                            V3<S>* rows, double* weight, double* scale) const {
+    NOCDYN_ALWAYS_INLINE Mask<S> operator()(int /*j*/, const LimbModel& limb, const Frame<S>& f, const Out<S>& out,
+                                            V3<S>& W, V3<S>* rows, double* weight, double* scale) const {
         switch (limb.kind) {
             case LimbKind::RRR:
                 return limbTerms<LimbKind::RRR, kAnyActuation>(limb, f, out, W, rows, weight, scale);
@@ -461,15 +461,60 @@ struct AnyLimb {
     }
 };
 
-/// Every limb of kind K with joint kAct its one actuator (Model::uniform_limbs): no dispatch
-/// and no search for the actuated joint in the limb loop.
+/// One limb's constants as packets, every lane the same value (the batch: a packet holds
+/// four samples of one limb). Read through LaneLimb's accessors, so that the kernel's
+/// constants are whole registers loaded from memory, broadcast once per chunk rather than at
+/// every packet; its actuated joints write their own actuators (not lane l = limb l).
+struct SplatLimb : LaneLimb {};
+NOCDYN_ALWAYS_INLINE int actuatorOf(const SplatLimb& limb, int k) {
+    return limb.first.actuator[static_cast<std::size_t>(k)];
+}
+
+/// The batch's limbs when they are uniform (Model::uniform_limbs = kCode = kind * 3 + the
+/// actuated joint): compiled for that kind and joint, no dispatch and no search for the
+/// actuated joint in the limb loop; their constants splatted once per chunk (`lanes`, limb j
+/// at lanes[j]).
 template <int kCode>
 struct UniformLimb {
     static constexpr bool kUnitWeights = revolute<static_cast<LimbKind>(kCode / 3)>(kCode % 3);
-    template <class S>
-    NOCDYN_ALWAYS_INLINE Mask<S> operator()(const LimbModel& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W,
-                                            V3<S>* rows, double* weight, double* scale) const {
+    const LimbLanes* lanes;
+    NOCDYN_ALWAYS_INLINE Mask<Pack> operator()(int j, const LimbModel& model_limb, const Frame<Pack>& f,
+                                               const Out<Pack>& out, V3<Pack>& W, V3<Pack>* rows, double* weight,
+                                               double* scale) const {
+        const SplatLimb limb{{lanes[j], model_limb}};
         return limbTerms<static_cast<LimbKind>(kCode / 3), kCode % 3>(limb, f, out, W, rows, weight, scale);
+    }
+};
+
+/// A robot of mixed limbs in the batch: the kind read per limb (once per limb and packet),
+/// each limb through the same template as a uniform robot's.
+struct SplatAny {
+    static constexpr bool kUnitWeights = false;
+    const LimbLanes* lanes;
+    NOCDYN_ALWAYS_INLINE Mask<Pack> operator()(int j, const LimbModel& limb, const Frame<Pack>& f, const Out<Pack>& out,
+                                               V3<Pack>& W, V3<Pack>* rows, double* weight, double* scale) const {
+        const auto terms = [&]<LimbKind K>() NOCDYN_INLINE_LAMBDA {
+            return limbTerms<K, kAnyActuation>(SplatLimb{{lanes[j], limb}}, f, out, W, rows, weight, scale);
+        };
+        switch (limb.kind) {
+            case LimbKind::RRR:
+                return terms.template operator()<LimbKind::RRR>();
+            case LimbKind::PRR:
+                return terms.template operator()<LimbKind::PRR>();
+            case LimbKind::RPR:
+                return terms.template operator()<LimbKind::RPR>();
+            case LimbKind::RRP:
+                return terms.template operator()<LimbKind::RRP>();
+            case LimbKind::PRP:
+                return terms.template operator()<LimbKind::PRP>();
+            case LimbKind::RPP:
+                return terms.template operator()<LimbKind::RPP>();
+            case LimbKind::PPR:
+                return terms.template operator()<LimbKind::PPR>();
+            case LimbKind::PPP:
+                break;  // rejected by validate()
+        }
+        return splat<Pack>(0.0) != 0.0;
     }
 };
 
@@ -583,7 +628,8 @@ NOCDYN_ALWAYS_INLINE Mask<S> sampleWith(const Model& model, const S& cos_dtheta,
     const Frame<S> frame{G, xi_P, xi_P_dot, gx, gy, L, inv_L, max_condition};
     Mask<S> ok = ik::yes<S>();
     for (int j = 0; j < model.limbs; ++j) {
-        if (!pass<S>(ok, terms(model.limb[static_cast<std::size_t>(j)], frame, out, W, rows, weight, scale))) return ok;
+        if (!pass<S>(ok, terms(j, model.limb[static_cast<std::size_t>(j)], frame, out, W, rows, weight, scale)))
+            return ok;
     }
     if (!pass<S>(ok, actuation<Terms::kUnitWeights>(model, rows, weight, scale, W, out))) return ok;
     return ok;
@@ -646,15 +692,6 @@ NOCDYN_ALWAYS_INLINE bool sampleLanes(const Model& model, double cos_dtheta, dou
     return actuation<false>(model, rows, weights, scales, W, out);
 }
 
-template <class S, int... kCodes>
-NOCDYN_ALWAYS_INLINE bool sampleUniform(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
-                                        const S* dp, const S* ddp, const Out<S>& out, V3<S>& W, Mask<S>& ok,
-                                        std::integer_sequence<int, kCodes...> /*codes*/) {
-    return ((model.uniform_limbs == kCodes &&
-             (ok = sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, UniformLimb<kCodes>{}), true)) ||
-            ...);
-}
-
 template <int... kKinds>
 NOCDYN_ALWAYS_INLINE bool sampleInLanes(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
                                         const double* dp, const double* ddp, const Out<double>& out, V3<double>& W,
@@ -666,30 +703,20 @@ NOCDYN_ALWAYS_INLINE bool sampleInLanes(const Model& model, double cos_dtheta, d
         ...);
 }
 
-/// One sample, or one packet of four (each lane as one sample, to rounding). A packet:
-/// sampleWith, compiled for the robot's limbs when they are uniform, else with the per-limb
-/// dispatch (once per packet). One sample: a robot with uniform limbs, at most four, runs its
-/// limbs in the lanes of a packet (sampleLanes); any other, sampleWith with the dispatch.
-template <class S>
-NOCDYN_ALWAYS_INLINE Mask<S> sample(const Model& model, const S& cos_dtheta, const S& sin_dtheta, const S* p,
-                                    const S* dp, const S* ddp, const Out<S>& out, V3<S>& W) {
+/// One sample: a robot with uniform limbs, at most four, runs its limbs in the lanes of a
+/// packet (sampleLanes); any other, sampleWith with the per-limb dispatch. (The batch runs
+/// packets of four samples through sampleWith, its limbs' terms chosen once per chunk.)
+NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
+                                 const double* dp, const double* ddp, const Out<double>& out, V3<double>& W) {
 #if !defined(__SANITIZE_ADDRESS__)
     // Under the sanitizers every robot takes the per-limb dispatch: the same template, the
     // fewest instantiations (the instrumented compile of the others takes many minutes).
-    Mask<S> ok{};
-    if constexpr (std::is_same_v<S, double>) {
-        // one sample: the limbs in lanes, else the dispatch (the rare uniform robot with more
-        // than four limbs, or friction at some of its limbs only)
-        if (model.limbs_in_lanes && sampleInLanes(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
-                                                  std::make_integer_sequence<int, static_cast<int>(LimbKind::PPP)>{}))
-            return ok;
-    } else {
-        // a packet: kind * 3 + actuated joint for the seven kinds with a closed form (PPP
-        // excluded)
-        if (sampleUniform(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
-                          std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
-            return ok;
-    }
+    // The limbs in lanes, else the dispatch (the rare uniform robot with more than four
+    // limbs, or friction at some of its limbs only).
+    bool ok = false;
+    if (model.limbs_in_lanes && sampleInLanes(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
+                                              std::make_integer_sequence<int, static_cast<int>(LimbKind::PPP)>{}))
+        return ok;
 #endif
     return sampleWith(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, AnyLimb{});
 }
