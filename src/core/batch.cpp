@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lean_kernel.hpp"
+#include "limb_lanes.hpp"
 #include "nocdyn/detail/fast_math.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
@@ -123,22 +124,7 @@ fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
 
 /// Every lane of `l` the limb's constant (detail::lean::SplatLimb): once per chunk.
 inline void splatLimb(const LimbModel& limb, LimbLanes& l) {
-    for (std::size_t lane = 0; lane < LimbLanes::kLanes; ++lane) {
-        for (std::size_t k = 0; k < 3; ++k) {
-            l.point_x[k][lane] = limb.point[k].x(), l.point_y[k][lane] = limb.point[k].y();
-            l.point_home_x[k][lane] = limb.point_home[k].x(), l.point_home_y[k][lane] = limb.point_home[k].y();
-            l.direction_x[k][lane] = limb.direction[k].x(), l.direction_y[k][lane] = limb.direction[k].y();
-            l.damping[k][lane] = limb.damping[k], l.friction[k][lane] = limb.friction[k];
-        }
-        for (std::size_t b = 0; b < 2; ++b) {
-            l.com_x[b][lane] = limb.com_home[b].x(), l.com_y[b][lane] = limb.com_home[b].y();
-            l.mass[b][lane] = limb.M[b].mass, l.inertia[b][lane] = limb.M[b].inertia;
-        }
-        l.screw_x[lane] = limb.screw_home[0](1), l.screw_y[lane] = limb.screw_home[0](2);
-        l.length1[lane] = limb.length1, l.length2[lane] = limb.length2;
-        l.inv_length1_sq[lane] = limb.inv_length1_sq, l.inv_length2_sq[lane] = limb.inv_length2_sq;
-        l.branch[lane] = static_cast<double>(limb.branch);
-    }
+    for (std::size_t lane = 0; lane < LimbLanes::kLanes; ++lane) detail::fillLane(l, lane, limb);
 }
 
 /// packets(terms) with the terms of the robot's uniform limbs, kind * 3 + actuated joint =

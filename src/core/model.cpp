@@ -7,6 +7,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/limb_ik.hpp"
+#include "limb_lanes.hpp"
 
 namespace nocdyn {
 
@@ -63,26 +64,33 @@ void fillLanes(Model& model) {
     LimbLanes& l = model.lanes;
     for (std::size_t lane = 0; lane < LimbLanes::kLanes; ++lane) {
         const auto j = static_cast<int>(lane) < model.limbs ? lane : 0;
-        const LimbModel& limb = model.limb[j];
-        for (std::size_t k = 0; k < 3; ++k) {
-            l.point_x[k][lane] = limb.point[k].x(), l.point_y[k][lane] = limb.point[k].y();
-            l.point_home_x[k][lane] = limb.point_home[k].x(), l.point_home_y[k][lane] = limb.point_home[k].y();
-            l.direction_x[k][lane] = limb.direction[k].x(), l.direction_y[k][lane] = limb.direction[k].y();
-            l.damping[k][lane] = limb.damping[k], l.friction[k][lane] = limb.friction[k];
-        }
-        for (std::size_t b = 0; b < 2; ++b) {
-            l.com_x[b][lane] = limb.com_home[b].x(), l.com_y[b][lane] = limb.com_home[b].y();
-            l.mass[b][lane] = limb.M[b].mass, l.inertia[b][lane] = limb.M[b].inertia;
-        }
-        l.screw_x[lane] = limb.screw_home[0](1), l.screw_y[lane] = limb.screw_home[0](2);
-        l.length1[lane] = limb.length1, l.length2[lane] = limb.length2;
-        l.inv_length1_sq[lane] = limb.inv_length1_sq, l.inv_length2_sq[lane] = limb.inv_length2_sq;
-        l.branch[lane] = static_cast<double>(limb.branch);
+        detail::fillLane(l, lane, model.limb[j]);
     }
     model.limbs_in_lanes = true;
 }
 
 }  // namespace
+
+namespace detail {
+
+void fillLane(LimbLanes& l, std::size_t lane, const LimbModel& limb) {
+    for (std::size_t k = 0; k < 3; ++k) {
+        l.point_x[k][lane] = limb.point[k].x(), l.point_y[k][lane] = limb.point[k].y();
+        l.point_home_x[k][lane] = limb.point_home[k].x(), l.point_home_y[k][lane] = limb.point_home[k].y();
+        l.direction_x[k][lane] = limb.direction[k].x(), l.direction_y[k][lane] = limb.direction[k].y();
+        l.damping[k][lane] = limb.damping[k], l.friction[k][lane] = limb.friction[k];
+    }
+    for (std::size_t b = 0; b < 2; ++b) {
+        l.com_x[b][lane] = limb.com_home[b].x(), l.com_y[b][lane] = limb.com_home[b].y();
+        l.mass[b][lane] = limb.M[b].mass, l.inertia[b][lane] = limb.M[b].inertia;
+    }
+    l.screw_x[lane] = limb.screw_home[0](1), l.screw_y[lane] = limb.screw_home[0](2);
+    l.length1[lane] = limb.length1, l.length2[lane] = limb.length2;
+    l.inv_length1_sq[lane] = limb.inv_length1_sq, l.inv_length2_sq[lane] = limb.inv_length2_sq;
+    l.branch[lane] = static_cast<double>(limb.branch);
+}
+
+}  // namespace detail
 
 Model::Model(RobotDescription d) : description(std::move(d)) {
     validate(description);
