@@ -120,7 +120,9 @@ def copy_if_changed(source, destination):
     source, destination = Path(source), Path(destination)
     if destination.exists() and destination.read_bytes() == source.read_bytes():
         return destination
-    shutil.copy2(source, destination)
+    # a new modification time (not copy2's): a source older than the build's last compile of it
+    # would otherwise leave a stale object behind
+    shutil.copy(source, destination)
     return destination
 
 
