@@ -377,7 +377,7 @@ def test_robot_draws_itself_and_help_shows_the_docstrings():
     assert nocdyn.Robot.paper().svg([0.02, 0.001, 0.0]) != nocdyn.Robot.paper().svg()
     with pytest.raises(nocdyn.Error):
         nocdyn.Robot.paper().svg([0.0, 1.0, 0.0])  # out of reach
-    # help() shows the docstrings; the stub completes the compiled part
+    # help() shows the docstrings; the type stub (_nocdyn.pyi) describes the compiled module
     import pydoc
     text = pydoc.render_doc(nocdyn.shake, renderer=pydoc.plaintext)
     assert "shake(record" in text and "nocdyn shake" in text
