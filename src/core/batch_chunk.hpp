@@ -9,7 +9,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
+#include <utility>
 #include <limits>
 #include <type_traits>
 
@@ -156,6 +158,66 @@ NOCDYN_ALWAYS_INLINE bool uniformPackets(const Model& model, const Make& make, c
     return ((model.uniform_limbs == kCodes && (packets(make.template operator()<kCodes>()), true)) || ...);
 }
 
+/// NumPy's C order of an N x 3 array: a packet's kLanes rows are 3 kLanes values side by side,
+/// three packets A, B, C of the flat values v_f, f = 3 l + i for lane l and column i. Column i
+/// is two shuffles (GCC's __builtin_shuffle: vpermt2pd on AVX-512): lanes whose f falls in A
+/// or B from the pair (A, B), then the rest from C. fromRows: the first shuffle's indices
+/// (first = true) or the second's for column i; toRows: the same for output packet v of
+/// columns c_0, c_1 (first) then c_2.
+template <int N>
+constexpr std::array<std::int64_t, N> fromRows(int i, bool first) {
+    std::array<std::int64_t, N> m{};
+    for (int l = 0; l < N; ++l) {
+        const int f = 3 * l + i;
+        m[static_cast<std::size_t>(l)] = first ? (f < 2 * N ? f : 0) : (f < 2 * N ? l : N + f - 2 * N);
+    }
+    return m;
+}
+template <int N>
+constexpr std::array<std::int64_t, N> toRows(int v, bool first) {
+    std::array<std::int64_t, N> m{};
+    for (int q = 0; q < N; ++q) {
+        const int f = v * N + q, l = f / 3, i = f % 3;
+        m[static_cast<std::size_t>(q)] = first ? (i < 2 ? i * N + l : 0) : (i < 2 ? q : N + l);
+    }
+    return m;
+}
+/// Column kI of the kLanes rows of 3 values in A, B, C (fromRows' indices), or output packet
+/// kI of columns A, B, C (toRows'): two shuffles with constant indices (__builtin_shufflevector).
+template <bool kToRows, int kI, class P, std::size_t... kL>
+NOCDYN_ALWAYS_INLINE P shuffled(const P& A, const P& B, const P& C, std::index_sequence<kL...> /*lanes*/) {
+    constexpr int kN = fastmath::kLanesOf<P>;
+    if constexpr (kToRows) {
+        return __builtin_shufflevector(__builtin_shufflevector(A, B, toRows<kN>(kI, true)[kL]...), C,
+                                       toRows<kN>(kI, false)[kL]...);
+    } else {
+        return __builtin_shufflevector(__builtin_shufflevector(A, B, fromRows<kN>(kI, true)[kL]...), C,
+                                       fromRows<kN>(kI, false)[kL]...);
+    }
+}
+/// Columns 0, 1, 2 of the kLanes rows of 3 values at `at`.
+template <class P>
+NOCDYN_ALWAYS_INLINE void columnsOfRows(const double* at, P (&c)[3]) {
+    constexpr int kN = fastmath::kLanesOf<P>;
+    constexpr auto kLanes = std::make_index_sequence<kN>{};
+    P A, B, C;
+    std::memcpy(&A, at, sizeof(P));
+    std::memcpy(&B, at + kN, sizeof(P));
+    std::memcpy(&C, at + 2 * kN, sizeof(P));
+    c[0] = shuffled<false, 0>(A, B, C, kLanes);
+    c[1] = shuffled<false, 1>(A, B, C, kLanes);
+    c[2] = shuffled<false, 2>(A, B, C, kLanes);
+}
+/// The kLanes rows of 3 values at `at` from columns c_0, c_1, c_2 (columnsOfRows inverted).
+template <class P>
+NOCDYN_ALWAYS_INLINE void rowsOfColumns(const P& c0, const P& c1, const P& c2, double* at) {
+    constexpr int kN = fastmath::kLanesOf<P>;
+    constexpr auto kLanes = std::make_index_sequence<kN>{};
+    const P v[3] = {shuffled<true, 0>(c0, c1, c2, kLanes), shuffled<true, 1>(c0, c1, c2, kLanes),
+                    shuffled<true, 2>(c0, c1, c2, kLanes)};
+    std::memcpy(at, v, sizeof v);
+}
+
 /// Samples [begin, end) in packets of P (four or eight samples, fastmath::Pack or Pack8).
 template <class P>
 NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
@@ -168,6 +230,11 @@ NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Ei
     bool check_limits = a.limits == ActuatorLimits::check;
     // Eigen's default (column-major) layout: a packet's samples are adjacent in each column
     const bool contiguous_in = a.p.innerStride() == 1 && a.dp.innerStride() == 1 && a.ddp.innerStride() == 1;
+    // NumPy's C order of N x 3 arrays (rows of 3 adjacent values)
+    const bool rows_of_3_in = a.p.innerStride() == 3 && a.dp.innerStride() == 3 && a.ddp.innerStride() == 3 &&
+                              a.p.outerStride() == 1 && a.dp.outerStride() == 1 && a.ddp.outerStride() == 1;
+    const bool rows_of_3_out = n == 3 && a.u.outerStride() == 1 && a.u.innerStride() == 3 && a.du.innerStride() == 3 &&
+                               a.ddu.innerStride() == 3 && a.tau.innerStride() == 3;
     const bool contiguous_out =
         a.u.innerStride() == 1 && a.du.innerStride() == 1 && a.ddu.innerStride() == 1 && a.tau.innerStride() == 1;
     // pointers and strides read once: a packet's stores (memcpy) may alias any object, and
@@ -210,8 +277,17 @@ NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Ei
                     std::memcpy(&dp[i], in_dp + k + column[i] * stride_dp, sizeof(P));
                     std::memcpy(&ddp[i], in_ddp + k + column[i] * stride_ddp, sizeof(P));
                 }
+            } else if (lanes == kLanes && rows_of_3_in) {
+                // NumPy's C order: a packet's rows of 3 values side by side, transposed
+                P cols[3];
+                columnsOfRows(in_p + k * 3, cols);
+                for (int i = 0; i < 3; ++i) p[i] = cols[column[i]];
+                columnsOfRows(in_dp + k * 3, cols);
+                for (int i = 0; i < 3; ++i) dp[i] = cols[column[i]];
+                columnsOfRows(in_ddp + k * 3, cols);
+                for (int i = 0; i < 3; ++i) ddp[i] = cols[column[i]];
             } else if (lanes == kLanes) {
-                // any other layout (NumPy's C order: a packet's rows of 3 values side by side)
+                // any other layout (a strided view)
                 for (int i = 0; i < 3; ++i) {
                     p[i] = gather(in_p + k * step_p + column[i] * stride_p, step_p);
                     dp[i] = gather(in_dp + k * step_dp + column[i] * stride_dp, step_dp);
@@ -273,6 +349,11 @@ NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Ei
                         std::memcpy(out_ddu + at, &ddu[i], sizeof(P));
                         std::memcpy(out_tau + at, &tau[i], sizeof(P));
                     }
+                } else if (rows_of_3_out) {
+                    rowsOfColumns(u[0], u[1], u[2], out_u + k * 3);
+                    rowsOfColumns(du[0], du[1], du[2], out_du + k * 3);
+                    rowsOfColumns(ddu[0], ddu[1], ddu[2], out_ddu + k * 3);
+                    rowsOfColumns(tau[0], tau[1], tau[2], out_tau + k * 3);
                 } else {
                     for (int i = 0; i < n; ++i) {
                         scatter(out_u + k * step_u + i * stride_out, step_u, u[i]);
