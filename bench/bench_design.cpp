@@ -1,10 +1,11 @@
 // Design sweeps (design.hpp): the envelope-and-workspace evaluation of one 3-RRR design of
 // examples/design_3rrr/family.yaml (parsed from the parametric file, as a sweep does), and
 // the throughput of two worker processes against one on the same designs.
-//   BM_DesignEvaluation/<resolution>: workspace_area, condition_median, envelope_x, _y and
-//     _theta at 50 Hz; the goal is <= 20 ms per design on one core.
-//   BM_DesignParts/<part>: where that time goes (0 parse and model, 1 workspace at
-//     resolution 61, 2-4 the envelope along theta, x, y).
+//   BM_DesignEvaluation/resolution:<r>/lanes:<4|8>: workspace_area, condition_median,
+//     envelope_x, _y and _theta at 50 Hz, the batch on packets of four or eight samples; the
+//     goal is <= 20 ms per design on one core.
+//   BM_DesignParts/part:<part>/lanes:<4|8>: where that time goes (0 parse and model, 1
+//     workspace at resolution 61, 2-4 the envelope along theta, x, y).
 //   BM_DesignProcesses: one iteration evaluates 2 x kDesigns designs in one process, then the
 //     same designs split over two forked processes; counter `speedup` is the throughput ratio
 //     (the goal is >= 1.7 on two cores), read from one run.
@@ -23,6 +24,7 @@
 #include <vector>
 
 #include "nocdyn/analysis/design.hpp"
+#include "nocdyn/batch.hpp"
 #include "nocdyn/tables/design.hpp"
 
 namespace nocdyn::bench {
@@ -46,7 +48,19 @@ std::vector<DesignMetric> metrics() {
     return m;
 }
 
+/// The batch's packets for one benchmark (its argument `lanes`: 4, or 8 where the CPU has
+/// AVX-512), the default again after it.
+struct Lanes {
+    explicit Lanes(benchmark::State& state, std::int64_t lanes) {
+        state.counters["lanes"] = setBatchPackets(lanes == 4 ? BatchPackets::four : BatchPackets::eight);
+    }
+    ~Lanes() { setBatchPackets(BatchPackets::automatic); }
+    Lanes(const Lanes&) = delete;
+    Lanes& operator=(const Lanes&) = delete;
+};
+
 void BM_DesignEvaluation(benchmark::State& state) {
+    const Lanes lanes(state, state.range(1));
     const io::DesignFamily f = family();
     const std::vector<DesignMetric> m = metrics();
     DesignOptions options;
@@ -59,12 +73,16 @@ void BM_DesignEvaluation(benchmark::State& state) {
     }
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
 }
-BENCHMARK(BM_DesignEvaluation)->Arg(61)->Arg(101)->Arg(201)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DesignEvaluation)
+    ->ArgNames({"resolution", "lanes"})
+    ->ArgsProduct({{61, 101, 201}, {4, 8}})
+    ->Unit(benchmark::kMillisecond);
 
 /// The parts of one evaluation, on the same designs: 0 parses the family and builds the
 /// model, 1 the workspace map at resolution 61 (no curves), 2, 3, 4 the envelope along theta,
-/// x and y at 50 Hz (maximumAmplitude).
+/// x and y at 50 Hz (maximumAmplitude). Each on packets of four and of eight.
 void BM_DesignParts(benchmark::State& state) {
+    const Lanes lanes(state, state.range(1));
     const io::DesignFamily f = family();
     const auto points = sweepPoints(f.ranges, SweepKind::random, 16, 1);
     std::vector<Model> models;
@@ -85,7 +103,10 @@ void BM_DesignParts(benchmark::State& state) {
         }
     }
 }
-BENCHMARK(BM_DesignParts)->DenseRange(0, 4)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_DesignParts)
+    ->ArgNames({"part", "lanes"})
+    ->ArgsProduct({{0, 1, 2, 3, 4}, {4, 8}})
+    ->Unit(benchmark::kMillisecond);
 
 /// Evaluates designs [first, first + count) of `points`.
 void evaluateRange(const io::DesignFamily& f, const std::vector<std::vector<double>>& points, std::size_t first,

@@ -4,8 +4,9 @@
 // the paper's robot `baseline`, the hand-specialised 3-PRR path the general one must match.
 // Each runs the paper's trajectory 1 plus a second harmonic per axis, a cycle of 1000
 // samples (fixture.hpp), and reports `per_sample`.
-// BM_Batch/<robot>/nocdyn: the general batch (batch.hpp, the lean kernel on packets of four
-// samples) over the same cycle on one thread,
+// BM_Batch/<robot>/nocdyn: the general batch (batch.hpp, the lean kernel on packets of eight
+// samples where the CPU has AVX-512, else four) over the same cycle on one thread,
+// BM_Batch/<robot>/nocdyn_4lanes the same on packets of four (AVX2),
 // next to prr3's BM_Batch/nocdyn/cycle_1thread; BM_Batch/<robot>/nocdyn_100k: 100 cycles over
 // 1 and 2 threads, wall-clock time.
 #include <benchmark/benchmark.h>
@@ -70,7 +71,15 @@ void baseline(benchmark::State& state) {
 }
 
 /// The general batch over `cycles` repetitions of the cycle, on `threads` threads.
-void generalBatch(benchmark::State& state, const std::string& robot, std::size_t cycles, unsigned threads) {
+void generalBatch(benchmark::State& state, const std::string& robot, std::size_t cycles, unsigned threads,
+                  BatchPackets packets = BatchPackets::automatic) {
+    struct Width {  // the packet width for this benchmark only
+        explicit Width(BatchPackets p) { setBatchPackets(p); }
+        ~Width() { setBatchPackets(BatchPackets::automatic); }
+        Width(const Width&) = delete;
+        Width& operator=(const Width&) = delete;
+    } width(packets);
+    state.counters["lanes"] = batchPacketWidth();
     const Fixture& f = fixture();
     const Model model = loadExample(robot);
     const auto N = static_cast<Eigen::Index>(cycles * f.samples.size());
@@ -155,6 +164,9 @@ void poseOrderBatch(benchmark::State& state, PoseColumns order, bool c_order) {
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
         benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn").c_str(),
                                      [robot](benchmark::State& s) { generalBatch(s, robot, 1, 1); });
+        benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn_4lanes").c_str(), [robot](benchmark::State& s) {
+            generalBatch(s, robot, 1, 1, BatchPackets::four);
+        });
         benchmark::RegisterBenchmark(
             ("BM_Batch/" + robot + "/nocdyn_100k").c_str(),
             [robot](benchmark::State& s) { generalBatch(s, robot, 100, static_cast<unsigned>(s.range(0))); })

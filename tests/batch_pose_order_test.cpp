@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "batch_packets.hpp"
 #include "nocdyn/batch.hpp"
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/dynamics.hpp"
@@ -18,6 +19,12 @@
 
 namespace nocdyn::test {
 namespace {
+
+/// The batch's tests on packets of four and of eight samples.
+class PoseColumnsBatch : public BatchPacketsTest {};
+NOCDYN_BATCH_PACKETS(PoseColumnsBatch);
+class BatchLimits : public BatchPacketsTest {};
+NOCDYN_BATCH_PACKETS(BatchLimits);
 
 using Stride = Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>;
 using Map = Eigen::Map<Eigen::ArrayXXd, 0, Stride>;
@@ -56,7 +63,7 @@ TEST(PoseColumns, XYThetaIsTheTablesOrder) {
     EXPECT_EQ(corePose(user), p);
 }
 
-TEST(PoseColumns, EveryBatchGivesTheTwistOrdersNumbersBitForBit) {
+TEST_P(PoseColumnsBatch, EveryBatchGivesTheTwistOrdersNumbersBitForBit) {
     for (const std::string robot : {"paper-3prr", "3-rrr", "4-rrr"}) {
         const Model model(io::exampleRobot(robot));
         const Eigen::Index N = 41, n = model.actuators;  // not a multiple of 4: the tail too
@@ -108,7 +115,7 @@ TEST(PoseColumns, EveryBatchGivesTheTwistOrdersNumbersBitForBit) {
     }
 }
 
-TEST(ActuatorLimits, TheBatchNamesTheFullPathsFirstSampleAndStatus) {
+TEST_P(BatchLimits, TheBatchNamesTheFullPathsFirstSampleAndStatus) {
     const Model model(io::exampleRobot("paper-3prr"));  // ranges +-12.45 mm, efforts 262 N
     const Eigen::Index N = 64;
     Eigen::ArrayX3d p(N, 3), dp = Eigen::ArrayX3d::Zero(N, 3), ddp = Eigen::ArrayX3d::Zero(N, 3);

@@ -1,4 +1,4 @@
-// The batch (inverseDynamicsBatch: the lean kernel on packets of four samples, compiled per
+// The batch (inverseDynamicsBatch: the lean kernel on packets of four or eight samples, compiled per
 // limb kind) against the per-sample lean path (inverseDynamicsFast), on every example robot,
 // random robots of every limb type and mixed ones, in Eigen's column-major layout and in
 // NumPy's C order; and a finite input whose results overflow, a failed sample.
@@ -17,11 +17,16 @@
 #include "nocdyn/batch.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "batch_packets.hpp"
 #include "random_robots.hpp"
 #include "support.hpp"
 
 namespace nocdyn::test {
 namespace {
+
+/// Each test on packets of four and of eight samples.
+class Batch : public BatchPacketsTest {};
+NOCDYN_BATCH_PACKETS(Batch);
 
 using RowMajor = Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 using Strided = Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>;
@@ -86,7 +91,7 @@ std::vector<RobotCase> robots() {
 // Within 2e-13 of each output column's peak, sample by sample: the batch's packets and the
 // per-sample path are the same arithmetic (one kernel), to rounding; a sample count that is
 // not a multiple of four exercises the last, partial packet.
-TEST(Batch, EqualsThePerSamplePathToTheColumnPeakInBothLayouts) {
+TEST_P(Batch, EqualsThePerSamplePathToTheColumnPeakInBothLayouts) {
     // the worst seen: 1.9e-14 of the peak (paper-3prr's tau_3), 1.6e-13 for a redundant robot
     // (the minimum-norm solve)
     constexpr double kTolerance = 2e-13;
@@ -181,7 +186,7 @@ std::vector<RobotCase> uniformRobots() {
 // and the per-sample path (the limbs in lanes) are the same formulas, summed in another order.
 // The worst seen: 1.9e-14 of the peak (the paper robot's tau_3: 1.1e-12 N of 59 N), every other
 // column within 1e-14.
-TEST(Batch, UniformRobotsOfEveryKindAndJointAgreeWithThePerSamplePathTo3e14OfThePeak) {
+TEST_P(Batch, UniformRobotsOfEveryKindAndJointAgreeWithThePerSamplePathTo3e14OfThePeak) {
     constexpr double kTolerance = 3e-14;
     int columns = 0;
     double worst_seen = 0.0;
@@ -224,7 +229,7 @@ TEST(Batch, UniformRobotsOfEveryKindAndJointAgreeWithThePerSamplePathTo3e14OfThe
 // Finite input whose results overflow (a rate of 1e155 squared is beyond the doubles): a failed
 // sample with a non-finite actuator effort, its row NaN, the others untouched; no output is
 // ever inf or a NaN that the result does not count.
-TEST(Batch, AFiniteInputWhoseResultsOverflowIsAFailedSample) {
+TEST_P(Batch, AFiniteInputWhoseResultsOverflowIsAFailedSample) {
     const Model model(io::exampleRobot("paper-3prr-general"));
     constexpr Eigen::Index kN = 9;
     Eigen::ArrayXXd p = model.home.transpose().replicate(kN, 1), dp = Eigen::ArrayXXd::Zero(kN, 3),

@@ -82,6 +82,18 @@ BatchResult inverseDynamicsBatch(const Model& model, const BatchInput& p, const 
                                  PoseColumns order = PoseColumns::theta_x_y,
                                  ActuatorLimits limits = ActuatorLimits::ignore);
 
+/// How many samples the batch computes at once (a packet, one value per lane of a vector):
+/// eight where the CPU has AVX-512 (x86-64-v4, found at run time), else four. `automatic` is
+/// the default; `four` and `eight` force a width for the process, for tests and benchmarks
+/// that compare the two (eight is four where the CPU or the build lacks it).
+enum class BatchPackets { automatic, four, eight };
+
+/// Sets the packet width of every later batch in this process; returns the width (4 or 8).
+int setBatchPackets(BatchPackets packets);
+
+/// The packet width the batch runs with: 4 or 8.
+[[nodiscard]] int batchPacketWidth();
+
 /// Row k of a batch's pose array in the core's twist order [theta, x, y].
 [[nodiscard]] inline Vector3 poseRow(const BatchInput& a, Eigen::Index k, PoseColumns order) {
     return {a(k, poseColumn(order, 0)), a(k, poseColumn(order, 1)), a(k, poseColumn(order, 2))};

@@ -1,22 +1,21 @@
 // Batch inverse dynamics of the general model (batch.hpp): the lean kernel over a range of
-// samples, four at a time in the lanes of a packet (vectorised across samples, for any
+// samples, four or eight at a time in the lanes of a packet (vectorised across samples, for any
 // robot), the full path for the rare samples it rejects, and a split over threads (parallel.hpp).
 #include "nocdyn/batch.hpp"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <cstring>
+#include <type_traits>
 #include <vector>
 
-#include "lean_kernel.hpp"
-#include "limb_lanes.hpp"
-#include "nocdyn/detail/fast_math.hpp"
-#include "nocdyn/dynamics.hpp"
+#include "batch_chunk.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/parallel.hpp"
 
-// A packet lives in registers inside chunk (everything it calls is inlined): the note that a
+// A packet lives in registers inside chunk4 (everything it calls is inlined): the note that a
 // 32-byte vector's ABI depends on AVX does not apply.
 #if defined(__GNUC__) && !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -26,282 +25,42 @@ namespace nocdyn {
 
 namespace {
 
-using ConstRef = BatchInput;
-using Ref = BatchOutput;
-
-struct Arrays {
-    const ConstRef& p;
-    const ConstRef& dp;
-    const ConstRef& ddp;
-    Ref& u;
-    Ref& du;
-    Ref& ddu;
-    Ref& tau;
-    PoseColumns order;
-    ActuatorLimits limits;
-};
-
-/// The actuated joints' limits in checkJointLimits' order, then the actuators' efforts.
-struct LimitTable {
-    int count = 0;
-    std::array<int, kMaxActuators> actuator{};                       ///< limb by limb, joint by joint
-    std::array<double, kMaxActuators> effort{};                      ///< by actuator
-    std::array<double, kMaxActuators> lower{}, upper{}, velocity{};  ///< of actuator a's joint
-
-    explicit LimitTable(const Model& model) {
-        for (int j = 0; j < model.limbs; ++j)
-            for (std::size_t k = 0; k < 3; ++k)
-                if (const int a = model.limb[static_cast<std::size_t>(j)].actuator[k]; a >= 0) actuator[count++] = a;
-        for (int a = 0; a < model.actuators; ++a) {
-            const auto aa = static_cast<std::size_t>(a);
-            const JointLimits& lim = model.limb[static_cast<std::size_t>(model.actuator_limb[aa])]
-                                         .limits[static_cast<std::size_t>(model.actuator_joint[aa])];
-            effort[aa] = lim.effort;
-            lower[aa] = lim.lower;
-            upper[aa] = lim.upper;
-            velocity[aa] = lim.velocity;
-        }
-    }
-
-    /// The first limit sample (u(a), du(a), tau(a)) exceeds, or ok.
-    template <class Value>
-    [[nodiscard]] Status check(const Model& model, const Value& u, const Value& du, const Value& tau) const {
-        for (int i = 0; i < count; ++i) {
-            const auto a = static_cast<std::size_t>(actuator[static_cast<std::size_t>(i)]);
-            const int j = model.actuator_limb[a], k = model.actuator_joint[a];
-            const JointLimits& lim = model.limb[static_cast<std::size_t>(j)].limits[static_cast<std::size_t>(k)];
-            const double q = u(static_cast<int>(a)), dq = du(static_cast<int>(a));
-            if (!(q >= lim.lower && q <= lim.upper)) return limitStatus(StatusCode::joint_limit_exceeded, j, k, q);
-            if (!(std::abs(dq) <= lim.velocity)) return limitStatus(StatusCode::velocity_exceeded, j, k, dq);
-        }
-        for (int a = 0; a < model.actuators; ++a) {
-            const auto aa = static_cast<std::size_t>(a);
-            if (!(std::abs(tau(a)) <= effort[aa])) {
-                return limitStatus(StatusCode::effort_exceeded, model.actuator_limb[aa], model.actuator_joint[aa],
-                                   tau(a));
-            }
-        }
-        return {};
-    }
-
-    static Status limitStatus(StatusCode code, int limb, int joint, double value) {
-        Status s{code, limb, value};
-        s.joint = joint;
-        return s;
-    }
-};
-
-/// A sample the kernel rejected (or with a non-finite input): the full path's Status and,
-/// should it accept the sample (within rounding of a threshold), its values.
-#if defined(__GNUC__)
-__attribute__((noinline, cold))
-#endif
-Status
-fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
-    Status status =
-        inverseDynamics(model, data, poseRow(a.p, k, a.order), poseRow(a.dp, k, a.order), poseRow(a.ddp, k, a.order));
-    // finite input whose results overflow (huge rates or accelerations): a failed sample, as
-    // an actuator effort that is not finite, never a non-finite number in the outputs
-    for (int i = 0; status && i < model.actuators; ++i) {
-        const double values[4] = {data.tau(i), data.u(i), data.du(i), data.ddu(i)};
-        for (const double v : values) {
-            if (!std::isfinite(v)) {
-                status = {StatusCode::effort_exceeded, model.actuator_limb[static_cast<std::size_t>(i)], v};
-                status.joint = model.actuator_joint[static_cast<std::size_t>(i)];
-                break;
-            }
-        }
-    }
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    for (int i = 0; i < model.actuators; ++i) {
-        a.u(k, i) = status ? data.u(i) : nan;
-        a.du(k, i) = status ? data.du(i) : nan;
-        a.ddu(k, i) = status ? data.ddu(i) : nan;
-        a.tau(k, i) = status ? data.tau(i) : nan;
-    }
-    return status;
-}
-
-/// Every lane of `l` the limb's constant (detail::lean::SplatLimb): once per chunk.
-inline void splatLimb(const LimbModel& limb, LimbLanes& l) {
-    for (std::size_t lane = 0; lane < LimbLanes::kLanes; ++lane) detail::fillLane(l, lane, limb);
-}
-
-/// packets(terms) with the terms of the robot's uniform limbs, kind * 3 + actuated joint =
-/// model.uniform_limbs; false when its limbs are not uniform.
-template <class Packets, int... kCodes>
-NOCDYN_ALWAYS_INLINE bool uniformPackets(const Model& model, const LimbLanes* lanes, const Packets& packets,
-                                         std::integer_sequence<int, kCodes...> /*codes*/) {
-    return ((model.uniform_limbs == kCodes && (packets(detail::lean::UniformLimb<kCodes>{lanes}), true)) || ...);
-}
-
-// On x86-64 with GCC an AVX2+FMA clone is built beside the baseline one (a packet is then
-// one register instead of two), and an x86-64-v4 one (AVX-512VL: the same four-lane packets
-// with 32 vector registers instead of 16, fewer spills).
+// On x86-64 with GCC, four-sample packets are built as an AVX2+FMA clone (one register per
+// packet) beside the baseline one (two). Eight-sample packets (one AVX-512 register) are
+// batch_avx512.cpp's, built for x86-64-v4 when CMake defines NOCDYN_EIGHT_LANES, and taken
+// where the CPU has it.
 #if defined(__GNUC__) && !defined(__clang__) && defined(__x86_64__) && !defined(NOCDYN_NO_TARGET_CLONES)
-__attribute__((target_clones("arch=x86-64-v4", "arch=x86-64-v3", "default")))
+__attribute__((target_clones("arch=x86-64-v3", "default")))
 #endif
 BatchResult
-chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
-    using fastmath::Pack;
-    using fastmath::PackMask;
-    constexpr int kLanes = fastmath::kLanes;
-    BatchResult result;
-    Data data(model);  // for rejected samples only: fixed capacity, no allocation
-    const int n = model.actuators;
-    const LimitTable limits(model);
-    bool check_limits = a.limits == ActuatorLimits::check;
-    // Eigen's default (column-major) layout: a packet's samples are adjacent in each column
-    const bool contiguous_in = a.p.innerStride() == 1 && a.dp.innerStride() == 1 && a.ddp.innerStride() == 1;
-    const bool contiguous_out =
-        a.u.innerStride() == 1 && a.du.innerStride() == 1 && a.ddu.innerStride() == 1 && a.tau.innerStride() == 1;
-    // pointers and strides read once: a packet's stores (memcpy) may alias any object, and
-    // would make the compiler read them again from the arrays at every store
-    // (element (k, i) at data[k * step + i * stride]: step 1 for Eigen's layout, the row's
-    // length for NumPy's C order)
-    const double *const in_p = a.p.data(), *const in_dp = a.dp.data(), *const in_ddp = a.ddp.data();
-    const Eigen::Index stride_p = a.p.outerStride(), stride_dp = a.dp.outerStride(), stride_ddp = a.ddp.outerStride();
-    const Eigen::Index step_p = a.p.innerStride(), step_dp = a.dp.innerStride(), step_ddp = a.ddp.innerStride();
-    // the column of the core's coordinate i (theta, x, y): the pose order of the caller's arrays
-    // taken by the gathers' index mapping, no pass or copy of its own
-    const int column[3] = {poseColumn(a.order, 0), poseColumn(a.order, 1), poseColumn(a.order, 2)};
-    double *const out_u = a.u.data(), *const out_du = a.du.data(), *const out_ddu = a.ddu.data(),
-                  *const out_tau = a.tau.data();
-    const Eigen::Index stride_out = a.u.outerStride();  // the same for the four (checked)
-    const Eigen::Index step_u = a.u.innerStride(), step_du = a.du.innerStride(), step_ddu = a.ddu.innerStride(),
-                       step_tau = a.tau.innerStride();
-    // the four samples of column i of an array with rows `step` apart
-    const auto gather = [](const double* at, Eigen::Index step) NOCDYN_INLINE_LAMBDA {
-        return Pack{at[0], at[step], at[2 * step], at[3 * step]};
-    };
-    const auto scatter = [](double* at, Eigen::Index step, const Pack& v) NOCDYN_INLINE_LAMBDA {
-        at[0] = v[0], at[step] = v[1], at[2 * step] = v[2], at[3 * step] = v[3];
-    };
-    // the packets, compiled for the robot's limbs (`terms`: the kind and actuated joint of a
-    // uniform robot, or the kind read per limb), their constants splatted into packets once
-    // (the pointers, strides and limits by value: a store to the outputs may alias any object
-    // whose address is taken, and would make the compiler read them again at every store)
-    const auto packets = [=, &model, &result, &check_limits, &data](const auto terms) NOCDYN_INLINE_LAMBDA {
-        for (Eigen::Index k = begin; k < end; k += kLanes) {
-            // lane l = sample k + l; past the end, the last sample again (not written)
-            const int lanes = static_cast<int>(std::min<Eigen::Index>(kLanes, end - k));
-            Pack p[3], dp[3], ddp[3];
-            if (lanes == kLanes && contiguous_in) [[likely]] {
-                // column i of each input holds the four samples side by side
-                for (int i = 0; i < 3; ++i) {
-                    std::memcpy(&p[i], in_p + k + column[i] * stride_p, sizeof(Pack));
-                    std::memcpy(&dp[i], in_dp + k + column[i] * stride_dp, sizeof(Pack));
-                    std::memcpy(&ddp[i], in_ddp + k + column[i] * stride_ddp, sizeof(Pack));
-                }
-            } else if (lanes == kLanes) {
-                // any other layout (NumPy's C order: a packet's 4 x 3 values side by side)
-                for (int i = 0; i < 3; ++i) {
-                    p[i] = gather(in_p + k * step_p + column[i] * stride_p, step_p);
-                    dp[i] = gather(in_dp + k * step_dp + column[i] * stride_dp, step_dp);
-                    ddp[i] = gather(in_ddp + k * step_ddp + column[i] * stride_ddp, step_ddp);
-                }
-            } else {
-                for (int l = 0; l < kLanes; ++l) {
-                    const Eigen::Index s = k + std::min(l, lanes - 1);
-                    for (int i = 0; i < 3; ++i) {
-                        p[i][l] = a.p(s, column[i]), dp[i][l] = a.dp(s, column[i]), ddp[i][l] = a.ddp(s, column[i]);
-                    }
-                }
-            }
-            // 0 x is 0 for a finite x and NaN otherwise: one test for the nine inputs; beyond
-            // 1e6 rad the branch-free sinCos is no longer exact (the full path takes libm's)
-            Pack zero = Pack{};
-            for (int i = 0; i < 3; ++i) zero += p[i] * 0.0 + dp[i] * 0.0 + ddp[i] * 0.0;
-            const Pack dtheta = p[0] - model.home(0);
-            Pack s, c;
-            fastmath::sinCos(dtheta, s, c);
-            Pack u[kMaxActuators], du[kMaxActuators], ddu[kMaxActuators], tau[kMaxActuators];
-            const detail::lean::Out<Pack> out{u, du, ddu, tau, 1};
-            detail::lean::V3<Pack> W;
-            PackMask ok = (zero == 0.0) & (fastmath::absOf(dtheta) < 1.0e6) &
-                          detail::lean::sampleWith(model, c, s, p, dp, ddp, out, W, terms);
-            // the outputs finite (finite input can overflow): the same 0 x test, fused here so
-            // that no caller needs a second pass over the outputs
-            Pack zero_out = Pack{};
-            for (int i = 0; i < n; ++i) zero_out += u[i] * 0.0 + du[i] * 0.0 + ddu[i] * 0.0 + tau[i] * 0.0;
-            ok &= zero_out == 0.0;
-            // the packet's four samples against every limit at once (NaN compares false: beyond);
-            // the rare packet with a lane beyond one is then taken lane by lane, in sample order
-            PackMask beyond = PackMask{};
-            if (check_limits) {
-                for (int i = 0; i < n; ++i) {
-                    const auto ii = static_cast<std::size_t>(i);
-                    beyond |= ~((u[i] >= limits.lower[ii]) & (u[i] <= limits.upper[ii]) &
-                                (fastmath::absOf(du[i]) <= limits.velocity[ii]) &
-                                (fastmath::absOf(tau[i]) <= limits.effort[ii]));
-                }
-            }
-            if (fastmath::any(beyond & ok)) [[unlikely]] {
-                for (int l = 0; l < lanes && check_limits; ++l) {
-                    if (ok[l] == 0) continue;
-                    const auto at = [l](const Pack* v) { return [v, l](int i) { return v[i][l]; }; };
-                    if (const Status s = limits.check(model, at(u), at(du), at(tau)); !s) {
-                        result.first_beyond_limits = k + l;
-                        result.limits = s;
-                        check_limits = false;
-                    }
-                }
-            }
-            if (lanes == kLanes && fastmath::all(ok)) [[likely]] {
-                if (contiguous_out) {
-                    for (int i = 0; i < n; ++i) {
-                        const Eigen::Index at = k + i * stride_out;
-                        std::memcpy(out_u + at, &u[i], sizeof(Pack));
-                        std::memcpy(out_du + at, &du[i], sizeof(Pack));
-                        std::memcpy(out_ddu + at, &ddu[i], sizeof(Pack));
-                        std::memcpy(out_tau + at, &tau[i], sizeof(Pack));
-                    }
-                } else {
-                    for (int i = 0; i < n; ++i) {
-                        scatter(out_u + k * step_u + i * stride_out, step_u, u[i]);
-                        scatter(out_du + k * step_du + i * stride_out, step_du, du[i]);
-                        scatter(out_ddu + k * step_ddu + i * stride_out, step_ddu, ddu[i]);
-                        scatter(out_tau + k * step_tau + i * stride_out, step_tau, tau[i]);
-                    }
-                }
-                continue;
-            }
-            for (int l = 0; l < lanes; ++l) {
-                const Eigen::Index row = k + l;
-                if (ok[l] != 0) [[likely]] {
-                    for (int i = 0; i < n; ++i) {
-                        a.u(row, i) = u[i][l];
-                        a.du(row, i) = du[i][l];
-                        a.ddu(row, i) = ddu[i][l];
-                        a.tau(row, i) = tau[i][l];
-                    }
-                } else if (const Status status = fullPath(model, data, a, row); !status) {
-                    if (result.failed++ == 0) {
-                        result.first_failure = row;
-                        result.status = status;
-                    }
-                } else if (a.limits == ActuatorLimits::check && row < result.first_beyond_limits) {
-                    // a sample the kernel rejected and the full path accepted: its limits too
-                    if (const Status s = limits.check(model, data.u, data.du, data.tau); !s) {
-                        result.first_beyond_limits = row;
-                        result.limits = s;
-                        check_limits = false;
-                    }
-                }
-            }
-        }
-    };
-    std::array<LimbLanes, kMaxLimbs> limb_lanes;
-    for (int j = 0; j < model.limbs; ++j)
-        splatLimb(model.limb[static_cast<std::size_t>(j)], limb_lanes[static_cast<std::size_t>(j)]);
-#if !defined(__SANITIZE_ADDRESS__)
-    // one dispatch per chunk: kind * 3 + actuated joint of a uniform robot (PPP excluded);
-    // under the sanitizers every robot takes the per-limb dispatch (the fewest instantiations)
-    if (!uniformPackets(model, limb_lanes.data(), packets,
-                        std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
+chunk4(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
+    return chunkOf<fastmath::Pack>(model, a, begin, end);
+}
+
+/// Whether this CPU runs the eight-lane packets.
+bool cpuHasEightLanes() {
+#if defined(NOCDYN_EIGHT_LANES)
+    // x86-64-v4's AVX-512 subsets and the AVX2 level below them (every CPU with these has the
+    // rest of x86-64-v3: MOVBE, F16C, LZCNT)
+    static const bool yes = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
+                            __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+                            __builtin_cpu_supports("avx512cd") && __builtin_cpu_supports("avx2") &&
+                            __builtin_cpu_supports("fma") && __builtin_cpu_supports("bmi2");
+    return yes;
+#else
+    return false;
 #endif
-        packets(detail::lean::SplatAny{limb_lanes.data()});
-    return result;
+}
+
+std::atomic<int> packet_width{0};  // 0 until chosen: 4 or 8
+
+int chooseWidth(BatchPackets packets) { return packets == BatchPackets::four ? 4 : cpuHasEightLanes() ? 8 : 4; }
+
+BatchResult chunk(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
+#if defined(NOCDYN_EIGHT_LANES)
+    if (batchPacketWidth() == 8) return detail::chunk8(model, a, begin, end);
+#endif
+    return chunk4(model, a, begin, end);
 }
 
 void requireShape(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen::Index n, Eigen::Index m) {
@@ -312,6 +71,21 @@ void requireShape(const char* name, Eigen::Index rows, Eigen::Index cols, Eigen:
 }
 
 }  // namespace
+
+int setBatchPackets(BatchPackets packets) {
+    const int width = chooseWidth(packets);
+    packet_width.store(width, std::memory_order_relaxed);
+    return width;
+}
+
+int batchPacketWidth() {
+    int width = packet_width.load(std::memory_order_relaxed);
+    if (width == 0) {
+        width = chooseWidth(BatchPackets::automatic);
+        packet_width.store(width, std::memory_order_relaxed);
+    }
+    return width;
+}
 
 Status checkActuatorLimits(const Model& model, const ActuatorVector& u, const ActuatorVector& du,
                            const ActuatorVector& tau) {

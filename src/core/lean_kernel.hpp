@@ -1,7 +1,7 @@
 // The lean inverse dynamics of one sample of the general model (dynamics.hpp,
 // inverseDynamicsFast), on a scalar S that stays in registers and inlines into the
-// per-sample entry (S = double) and the batch loop (S = fastmath::Pack, four samples in the
-// lanes of one vector, the same arithmetic lane by lane). Internal (not installed).
+// per-sample entry (S = double) and the batch loop (S = fastmath::Pack or Pack8, four or
+// eight samples in the lanes of one vector, the same arithmetic lane by lane). Internal (not installed).
 //
 // The same physics as the stages (kinematics.cpp, dynamics.cpp), one limb at a time:
 //   position   closed-form joint variables (limb_ik_impl.hpp), screws by the product of
@@ -44,7 +44,7 @@ using fastmath::splat;
 
 /// The scalars of the kernel: one sample or a packet of them.
 template <class S>
-concept Real = std::is_same_v<S, double> || std::is_same_v<S, Pack>;
+concept Real = std::is_same_v<S, double> || fastmath::Packet<S>;
 
 /// A compile-time zero: the angular part of a prismatic joint's screw and of the twist of a
 /// body that only translates. Terms with it vanish when the kernel is compiled (a double 0.0
@@ -470,6 +470,14 @@ NOCDYN_ALWAYS_INLINE int actuatorOf(const SplatLimb& limb, int k) {
     return limb.first.actuator[static_cast<std::size_t>(k)];
 }
 
+/// A limb of a uniform robot (Model::uniform_limbs = kCode = kind * 3 + the actuated joint):
+/// limbTerms compiled for that kind and joint, for UniformLimb and UniformModelLimb alike.
+template <int kCode, class LM, class S>
+NOCDYN_ALWAYS_INLINE Mask<S> uniformTerms(const LM& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W, V3<S>* rows,
+                                          double* weight, double* scale) {
+    return limbTerms<static_cast<LimbKind>(kCode / 3), kCode % 3>(limb, f, out, W, rows, weight, scale);
+}
+
 /// The batch's limbs when they are uniform (Model::uniform_limbs = kCode = kind * 3 + the
 /// actuated joint): compiled for that kind and joint, no dispatch and no search for the
 /// actuated joint in the limb loop; their constants splatted once per chunk (`lanes`, limb j
@@ -481,8 +489,21 @@ struct UniformLimb {
     NOCDYN_ALWAYS_INLINE Mask<Pack> operator()(int j, const LimbModel& model_limb, const Frame<Pack>& f,
                                                const Out<Pack>& out, V3<Pack>& W, V3<Pack>* rows, double* weight,
                                                double* scale) const {
-        const SplatLimb limb{{lanes[j], model_limb}};
-        return limbTerms<static_cast<LimbKind>(kCode / 3), kCode % 3>(limb, f, out, W, rows, weight, scale);
+        return uniformTerms<kCode>(SplatLimb{{lanes[j], model_limb}}, f, out, W, rows, weight, scale);
+    }
+};
+
+/// The batch's limbs of a uniform robot on packets of eight (Pack8, one AVX-512 register):
+/// compiled for that kind and actuated joint as UniformLimb, the constants read as doubles from
+/// the LimbModel and broadcast where they are used (an AVX-512 operation takes a broadcast
+/// operand from memory: no register holds them between limbs).
+template <int kCode>
+struct UniformModelLimb {
+    static constexpr bool kUnitWeights = revolute<static_cast<LimbKind>(kCode / 3)>(kCode % 3);
+    template <class S>
+    NOCDYN_ALWAYS_INLINE Mask<S> operator()(int /*j*/, const LimbModel& limb, const Frame<S>& f, const Out<S>& out,
+                                            V3<S>& W, V3<S>* rows, double* weight, double* scale) const {
+        return uniformTerms<kCode>(limb, f, out, W, rows, weight, scale);
     }
 };
 

@@ -42,40 +42,88 @@ struct JointSolution {
     [[nodiscard]] const S& s(int k) const { return s_[k]; }
 };
 
-/// Four planar vectors, one per lane: x() and y() as Vector2's.
-struct PackVector2 {
-    fastmath::Pack x_, y_;
-    [[nodiscard]] NOCDYN_ALWAYS_INLINE const fastmath::Pack& x() const { return x_; }
-    [[nodiscard]] NOCDYN_ALWAYS_INLINE const fastmath::Pack& y() const { return y_; }
+/// Planar vectors, one per lane of a packet P: x() and y() as Vector2's.
+template <class P>
+struct PackVector2T {
+    P x_, y_;
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE const P& x() const { return x_; }
+    [[nodiscard]] NOCDYN_ALWAYS_INLINE const P& y() const { return y_; }
 };
+using PackVector2 = PackVector2T<fastmath::Pack>;
 /// A planar vector of S: Eigen's Vector2 for one sample (its packed SSE arithmetic), a
-/// PackVector2 for a packet.
+/// PackVector2T for a packet.
 template <class S>
-using V2 = std::conditional_t<std::is_same_v<S, double>, Vector2, PackVector2>;
+using V2 = std::conditional_t<std::is_same_v<S, double>, Vector2, PackVector2T<S>>;
 
-using PV = PackVector2;
-NOCDYN_ALWAYS_INLINE PV operator+(const PV& a, const PV& b) { return {a.x_ + b.x_, a.y_ + b.y_}; }
-NOCDYN_ALWAYS_INLINE PV operator-(const PV& a, const PV& b) { return {a.x_ - b.x_, a.y_ - b.y_}; }
-NOCDYN_ALWAYS_INLINE PV operator-(const PV& a, const Vector2& b) { return {a.x_ - b.x(), a.y_ - b.y()}; }
-NOCDYN_ALWAYS_INLINE PV operator+(const Vector2& a, const PV& b) { return {a.x() + b.x_, a.y() + b.y_}; }
-NOCDYN_ALWAYS_INLINE PV operator*(const fastmath::Pack& k, const PV& a) { return {k * a.x_, k * a.y_}; }
-NOCDYN_ALWAYS_INLINE PV operator-(const PV& a) { return {-a.x_, -a.y_}; }
-NOCDYN_ALWAYS_INLINE fastmath::Pack dot(const PV& a, const PV& b) { return a.x_ * b.x_ + a.y_ * b.y_; }
-NOCDYN_ALWAYS_INLINE fastmath::Pack dot(const Vector2& a, const PV& b) { return a.x() * b.x_ + a.y() * b.y_; }
+template <class P>
+using PV = PackVector2T<P>;
+template <class P>
+NOCDYN_ALWAYS_INLINE PV<P> operator+(const PV<P>& a, const PV<P>& b) {
+    return {a.x_ + b.x_, a.y_ + b.y_};
+}
+template <class P>
+NOCDYN_ALWAYS_INLINE PV<P> operator-(const PV<P>& a, const PV<P>& b) {
+    return {a.x_ - b.x_, a.y_ - b.y_};
+}
+template <class P>
+NOCDYN_ALWAYS_INLINE PV<P> operator-(const PV<P>& a, const Vector2& b) {
+    return {a.x_ - b.x(), a.y_ - b.y()};
+}
+template <class P>
+NOCDYN_ALWAYS_INLINE PV<P> operator+(const Vector2& a, const PV<P>& b) {
+    return {a.x() + b.x_, a.y() + b.y_};
+}
+template <class P>
+NOCDYN_ALWAYS_INLINE PV<P> operator*(const P& k, const PV<P>& a) {
+    return {k * a.x_, k * a.y_};
+}
+template <class P>
+NOCDYN_ALWAYS_INLINE PV<P> operator-(const PV<P>& a) {
+    return {-a.x_, -a.y_};
+}
+template <class P>
+NOCDYN_ALWAYS_INLINE P dot(const PV<P>& a, const PV<P>& b) {
+    return a.x_ * b.x_ + a.y_ * b.y_;
+}
+template <class P>
+NOCDYN_ALWAYS_INLINE P dot(const Vector2& a, const PV<P>& b) {
+    return a.x() * b.x_ + a.y() * b.y_;
+}
 NOCDYN_ALWAYS_INLINE double dot(const Vector2& a, const Vector2& b) { return a.dot(b); }
-NOCDYN_ALWAYS_INLINE fastmath::Pack cross(const PV& a, const PV& b) { return a.x_ * b.y_ - a.y_ * b.x_; }
-NOCDYN_ALWAYS_INLINE fastmath::Pack cross(const Vector2& a, const PV& b) { return a.x() * b.y_ - a.y() * b.x_; }
-NOCDYN_ALWAYS_INLINE fastmath::Pack cross(const PV& a, const Vector2& b) { return a.x_ * b.y() - a.y_ * b.x(); }
+template <class P>
+NOCDYN_ALWAYS_INLINE P cross(const PV<P>& a, const PV<P>& b) {
+    return a.x_ * b.y_ - a.y_ * b.x_;
+}
+template <class P>
+NOCDYN_ALWAYS_INLINE P cross(const Vector2& a, const PV<P>& b) {
+    return a.x() * b.y_ - a.y() * b.x_;
+}
+template <class P>
+NOCDYN_ALWAYS_INLINE P cross(const PV<P>& a, const Vector2& b) {
+    return a.x_ * b.y() - a.y_ * b.x();
+}
 NOCDYN_ALWAYS_INLINE double cross(const Vector2& a, const Vector2& b) { return nocdyn::cross(a, b); }
-NOCDYN_ALWAYS_INLINE PV perp(const PV& v) { return {-v.y_, v.x_}; }
+template <class P>
+NOCDYN_ALWAYS_INLINE PV<P> perp(const PV<P>& v) {
+    return {-v.y_, v.x_};
+}
 NOCDYN_ALWAYS_INLINE Vector2 perp(const Vector2& v) { return nocdyn::perp(v); }
 /// k a for a constant direction a.
 NOCDYN_ALWAYS_INLINE Vector2 scaled(double k, const Vector2& a) { return k * a; }
-NOCDYN_ALWAYS_INLINE PV scaled(const fastmath::Pack& k, const Vector2& a) { return {k * a.x(), k * a.y()}; }
-NOCDYN_ALWAYS_INLINE PV scaled(const fastmath::Pack& k, const PV& a) { return k * a; }
+template <fastmath::Packet P>
+NOCDYN_ALWAYS_INLINE PV<P> scaled(const P& k, const Vector2& a) {
+    return {k * a.x(), k * a.y()};
+}
+template <fastmath::Packet P>
+NOCDYN_ALWAYS_INLINE PV<P> scaled(const P& k, const PV<P>& a) {
+    return k * a;
+}
 /// a - b of two constant vectors (evaluated: not an Eigen expression).
 NOCDYN_ALWAYS_INLINE Vector2 minus(const Vector2& a, const Vector2& b) { return a - b; }
-NOCDYN_ALWAYS_INLINE PV minus(const PV& a, const PV& b) { return a - b; }
+template <class P>
+NOCDYN_ALWAYS_INLINE PV<P> minus(const PV<P>& a, const PV<P>& b) {
+    return a - b;
+}
 /// A constant vector as a V2<S>.
 template <class S>
 NOCDYN_ALWAYS_INLINE V2<S> vec(const Vector2& v) {
@@ -85,8 +133,8 @@ NOCDYN_ALWAYS_INLINE V2<S> vec(const Vector2& v) {
         return {splat<S>(v.x()), splat<S>(v.y())};
     }
 }
-template <class S>
-NOCDYN_ALWAYS_INLINE PV vec(const PV& v) {
+template <class S, class P>
+NOCDYN_ALWAYS_INLINE PV<P> vec(const PV<P>& v) {
     return v;
 }
 
@@ -111,21 +159,21 @@ NOCDYN_ALWAYS_INLINE const LimbModel& modelOf(const LaneLimb& limb) { return lim
 NOCDYN_ALWAYS_INLINE const Vector2& pointOf(const LimbModel& limb, int k) {
     return limb.point[static_cast<std::size_t>(k)];
 }
-NOCDYN_ALWAYS_INLINE PV pointOf(const LaneLimb& limb, int k) {
+NOCDYN_ALWAYS_INLINE PackVector2 pointOf(const LaneLimb& limb, int k) {
     const auto kk = static_cast<std::size_t>(k);
     return {lanesOf(limb.lanes.point_x[kk]), lanesOf(limb.lanes.point_y[kk])};
 }
 NOCDYN_ALWAYS_INLINE const Vector2& pointHomeOf(const LimbModel& limb, int k) {
     return limb.point_home[static_cast<std::size_t>(k)];
 }
-NOCDYN_ALWAYS_INLINE PV pointHomeOf(const LaneLimb& limb, int k) {
+NOCDYN_ALWAYS_INLINE PackVector2 pointHomeOf(const LaneLimb& limb, int k) {
     const auto kk = static_cast<std::size_t>(k);
     return {lanesOf(limb.lanes.point_home_x[kk]), lanesOf(limb.lanes.point_home_y[kk])};
 }
 NOCDYN_ALWAYS_INLINE const Vector2& directionOf(const LimbModel& limb, int k) {
     return limb.direction[static_cast<std::size_t>(k)];
 }
-NOCDYN_ALWAYS_INLINE PV directionOf(const LaneLimb& limb, int k) {
+NOCDYN_ALWAYS_INLINE PackVector2 directionOf(const LaneLimb& limb, int k) {
     const auto kk = static_cast<std::size_t>(k);
     return {lanesOf(limb.lanes.direction_x[kk]), lanesOf(limb.lanes.direction_y[kk])};
 }
@@ -141,7 +189,10 @@ NOCDYN_ALWAYS_INLINE fastmath::Pack invLength2SqOf(const LaneLimb& limb) { retur
 NOCDYN_ALWAYS_INLINE int branchOf(const LimbModel& limb) { return limb.branch; }
 NOCDYN_ALWAYS_INLINE fastmath::Pack branchOf(const LaneLimb& limb) { return lanesOf(limb.lanes.branch); }
 NOCDYN_ALWAYS_INLINE double branchSign(int branch) { return static_cast<double>(branch); }
-NOCDYN_ALWAYS_INLINE const fastmath::Pack& branchSign(const fastmath::Pack& branch) { return branch; }
+template <fastmath::Packet P>
+NOCDYN_ALWAYS_INLINE const P& branchSign(const P& branch) {
+    return branch;
+}
 
 /// The platform's displacement from home on S (limb_ik.hpp, PlatformDisplacement):
 /// x -> Rot(dtheta) x + C.

@@ -1,11 +1,13 @@
 // Branch-free elementary functions for the lean and batch kernels, on a double or on a
-// packet of four samples (GCC/Clang vector extension), so that one kernel runs per sample
+// packet of four or eight samples (GCC/Clang vector extension), so that one kernel runs per sample
 // and vectorised across samples. Robot-independent; not part of the API.
 #pragma once
 
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <concepts>
+#include <type_traits>
 
 #if defined(__x86_64__) || defined(_M_X64)
 #include <emmintrin.h>
@@ -39,8 +41,11 @@ using Pack = double __attribute__((vector_size(32)));
 /// A lane-wise truth value of a Pack comparison: all bits set (true) or clear (false).
 using PackMask = std::int64_t __attribute__((vector_size(32)));
 inline constexpr int kLanes = 4;
+/// Eight samples: one AVX-512 register (the batch where the CPU has it), two AVX2 ones.
+using Pack8 = double __attribute__((vector_size(64)));
+using Pack8Mask = std::int64_t __attribute__((vector_size(64)));
 
-/// The truth value of a comparison of S: bool for double, PackMask for Pack.
+/// The truth value of a comparison of S: bool for double, a lane mask for a packet.
 template <class S>
 struct MaskOf {
     using type = bool;
@@ -49,8 +54,26 @@ template <>
 struct MaskOf<Pack> {
     using type = PackMask;
 };
+template <>
+struct MaskOf<Pack8> {
+    using type = Pack8Mask;
+};
 template <class S>
 using Mask = typename MaskOf<S>::type;
+
+/// A packet of samples (four or eight lanes) and its lane masks.
+template <class S>
+concept Packet = std::is_same_v<S, Pack> || std::is_same_v<S, Pack8>;
+/// (Clang's comparisons give vectors of long long, GCC's of int64_t: any integer vector of a
+/// packet's size.)
+template <class M>
+concept PacketMask = (sizeof(M) == sizeof(Pack) || sizeof(M) == sizeof(Pack8)) && !std::is_class_v<M> &&
+                     !std::is_array_v<M> && requires(const M& m) {
+    { m[0] } -> std::convertible_to<std::int64_t>;
+};
+/// The number of samples in an S.
+template <class S>
+inline constexpr int kLanesOf = static_cast<int>(sizeof(S) / sizeof(double));
 
 /// x as an S (every lane x).
 template <class S>
@@ -63,38 +86,63 @@ NOCDYN_ALWAYS_INLINE S splat(double x) {
 }
 
 NOCDYN_ALWAYS_INLINE double select(bool c, double a, double b) { return c ? a : b; }
-NOCDYN_ALWAYS_INLINE Pack select(const PackMask& c, const Pack& a, const Pack& b) { return c ? a : b; }
+template <Packet P>
+NOCDYN_ALWAYS_INLINE P select(const Mask<P>& c, const P& a, const P& b) {
+    return c ? a : b;
+}
 NOCDYN_ALWAYS_INLINE double sqrtOf(double x) { return std::sqrt(x); }
 /// Lane-wise sqrt (NaN for a negative lane, no errno): SSE2 on x86-64, libm elsewhere.
-NOCDYN_ALWAYS_INLINE Pack sqrtOf(const Pack& x) {
+template <Packet P>
+NOCDYN_ALWAYS_INLINE P sqrtOf(const P& x) {
+    P r;
 #if defined(__x86_64__) || defined(_M_X64)
-    const __m128d lo = _mm_sqrt_pd(__m128d{x[0], x[1]});
-    const __m128d hi = _mm_sqrt_pd(__m128d{x[2], x[3]});
-    return Pack{lo[0], lo[1], hi[0], hi[1]};
+    for (int i = 0; i < kLanesOf<P>; i += 2) {
+        const __m128d v = _mm_sqrt_pd(__m128d{x[i], x[i + 1]});
+        r[i] = v[0], r[i + 1] = v[1];
+    }
 #else
-    return Pack{std::sqrt(x[0]), std::sqrt(x[1]), std::sqrt(x[2]), std::sqrt(x[3])};
+    for (int i = 0; i < kLanesOf<P>; ++i) r[i] = std::sqrt(x[i]);
 #endif
+    return r;
 }
 NOCDYN_ALWAYS_INLINE double absOf(double x) { return std::abs(x); }
 /// |x|: the sign bit cleared (one AND).
-NOCDYN_ALWAYS_INLINE Pack absOf(const Pack& x) {
-    return std::bit_cast<Pack>(std::bit_cast<PackMask>(x) & (PackMask{} + INT64_MAX));
+template <Packet P>
+NOCDYN_ALWAYS_INLINE P absOf(const P& x) {
+    return std::bit_cast<P>(std::bit_cast<Mask<P>>(x) & (Mask<P>{} + INT64_MAX));
 }
 /// max and min as std::max and std::min (a NaN in b is ignored, in a is kept).
 NOCDYN_ALWAYS_INLINE double maxOf(double a, double b) { return a < b ? b : a; }
-NOCDYN_ALWAYS_INLINE Pack maxOf(const Pack& a, const Pack& b) { return b > a ? b : a; }
+template <Packet P>
+NOCDYN_ALWAYS_INLINE P maxOf(const P& a, const P& b) {
+    return b > a ? b : a;
+}
 /// copysign(x, y) for x >= 0.
 NOCDYN_ALWAYS_INLINE double withSignOf(double x, double y) { return std::copysign(x, y); }
-NOCDYN_ALWAYS_INLINE Pack withSignOf(const Pack& x, const Pack& y) {
-    const PackMask sign = std::bit_cast<PackMask>(y) & (PackMask{} + INT64_MIN);
-    return std::bit_cast<Pack>(std::bit_cast<PackMask>(x) | sign);
+template <Packet P>
+NOCDYN_ALWAYS_INLINE P withSignOf(const P& x, const P& y) {
+    const Mask<P> sign = std::bit_cast<Mask<P>>(y) & (Mask<P>{} + INT64_MIN);
+    return std::bit_cast<P>(std::bit_cast<Mask<P>>(x) | sign);
 }
 NOCDYN_ALWAYS_INLINE bool notOf(bool m) { return !m; }
-NOCDYN_ALWAYS_INLINE PackMask notOf(const PackMask& m) { return ~m; }
+template <PacketMask M>
+NOCDYN_ALWAYS_INLINE M notOf(const M& m) {
+    return ~m;
+}
 /// Whether every lane (any lane) is true.
 NOCDYN_ALWAYS_INLINE bool all(bool m) { return m; }
-NOCDYN_ALWAYS_INLINE bool all(const PackMask& m) { return (m[0] & m[1] & m[2] & m[3]) != 0; }
-NOCDYN_ALWAYS_INLINE bool any(const PackMask& m) { return (m[0] | m[1] | m[2] | m[3]) != 0; }
+template <PacketMask M>
+NOCDYN_ALWAYS_INLINE bool all(const M& m) {
+    std::int64_t r = m[0];
+    for (int i = 1; i < kLanesOf<M>; ++i) r &= m[i];
+    return r != 0;
+}
+template <PacketMask M>
+NOCDYN_ALWAYS_INLINE bool any(const M& m) {
+    std::int64_t r = m[0];
+    for (int i = 1; i < kLanesOf<M>; ++i) r |= m[i];
+    return r != 0;
+}
 
 /// sin x and cos x without branches or calls, so that a loop over samples vectorises:
 /// Cody-Waite reduction by pi/2 in three parts (exact for |x| < 1.6e6; callers hand larger
