@@ -1,9 +1,10 @@
 // The batch's packet loop (batch.cpp): samples [begin, end) of the lean kernel in packets of
 // four or eight samples, the full path for the samples it rejects, the limits checked on the
 // values in registers. Included by batch.cpp (four-sample packets, an AVX2+FMA clone beside the
-// baseline) and batch_avx512.cpp (eight, built for x86-64-v4). Everything here has internal
-// linkage: each file compiles its own copy for its own instruction set, and no inline
-// function of one can stand in for the other's. Internal (not installed).
+// baseline) and batch_avx512.cpp (eight, built for x86-64-v4). Everything here but the
+// arrays' struct (data only) and chunk8's declaration has internal linkage: each file compiles
+// its own copy for its own instruction set, and no inline function of one can stand in for the
+// other's. Internal (not installed).
 #pragma once
 
 #include <algorithm>
@@ -11,9 +12,9 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
-#include <utility>
 #include <limits>
 #include <type_traits>
+#include <utility>
 
 #include "lean_kernel.hpp"
 #include "limb_lanes.hpp"
@@ -160,7 +161,7 @@ NOCDYN_ALWAYS_INLINE bool uniformPackets(const Model& model, const Make& make, c
 
 /// NumPy's C order of an N x 3 array: a packet's kLanes rows are 3 kLanes values side by side,
 /// three packets A, B, C of the flat values v_f, f = 3 l + i for lane l and column i. Column i
-/// is two shuffles (GCC's __builtin_shuffle: vpermt2pd on AVX-512): lanes whose f falls in A
+/// is two shuffles (vpermt2pd on AVX-512): lanes whose f falls in A
 /// or B from the pair (A, B), then the rest from C. fromRows: the first shuffle's indices
 /// (first = true) or the second's for column i; toRows: the same for output packet v of
 /// columns c_0, c_1 (first) then c_2.
