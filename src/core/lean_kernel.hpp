@@ -1,7 +1,8 @@
 // The lean inverse dynamics of one sample of the general model (dynamics.hpp,
 // inverseDynamicsFast), on a scalar S that stays in registers and inlines into the
 // per-sample entry (S = double) and the batch loop (S = fastmath::Pack or Pack8, four or
-// eight samples in the lanes of one vector, the same arithmetic lane by lane). Internal (not installed).
+// eight samples in the lanes of one vector, the same arithmetic lane by lane). Internal (not
+// installed).
 //
 // The same physics as the stages (kinematics.cpp, dynamics.cpp), one limb at a time:
 //   position   closed-form joint variables (limb_ik_impl.hpp), screws by the product of

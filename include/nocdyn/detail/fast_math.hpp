@@ -1,12 +1,12 @@
 // Branch-free elementary functions for the lean and batch kernels, on a double or on a
-// packet of four or eight samples (GCC/Clang vector extension), so that one kernel runs per sample
-// and vectorised across samples. Robot-independent; not part of the API.
+// packet of four or eight samples (GCC/Clang vector extension), so that one kernel runs per
+// sample and vectorised across samples. Robot-independent; not part of the API.
 #pragma once
 
 #include <bit>
 #include <cmath>
-#include <cstdint>
 #include <concepts>
+#include <cstdint>
 #include <type_traits>
 
 #if defined(__x86_64__) || defined(_M_X64)
