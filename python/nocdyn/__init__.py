@@ -472,9 +472,9 @@ class Robot:
         if p_arr.ndim == 1:
             if out is not None:
                 raise Error("out: only for a batch of (N, 3) arrays")
-            result = self._core._inverse_dynamics_sample(p_arr, dp, ddp, bool(matrices), bool(check_limits))
-            if check:
-                _require_finite(result, "the inverse dynamics")
+            # the compiled part checks that the results are finite (check): no pass here
+            result = self._core._inverse_dynamics_sample(p_arr, dp, ddp, bool(matrices), bool(check_limits),
+                                                         bool(check))
             return InverseDynamicsMatrices(*result) if matrices else InverseDynamics(*result)
         if matrices:
             raise Error("matrices: only for one sample (p of shape (3,))")

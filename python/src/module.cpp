@@ -215,7 +215,7 @@ bool limitsOnActuatedJointsOnly(const Model& model) {
 }
 
 py::tuple inverseDynamicsSample(const Robot& robot, const py::handle& p, const py::handle& dp, const py::handle& ddp,
-                                bool matrices, bool check_limits) {
+                                bool matrices, bool check_limits, bool check) {
     const Model& model = *robot.model;
     const Pose p3 = vector3(p, "p");
     const Twist dp3 = vector3(dp, "dp"), ddp3 = vector3(ddp, "ddp");
@@ -230,6 +230,18 @@ py::tuple inverseDynamicsSample(const Robot& robot, const py::handle& p, const p
         const Status limits =
             actuated_only ? checkActuatorLimits(model, data.u, data.du, data.tau) : sampleLimits(model, data);
         if (!limits) throw Error(describe(limits, model));
+    }
+    // finite input whose results overflow (huge rates or accelerations): an error, as the
+    // batch's failed sample (check=False returns them)
+    if (check) {
+        const int n = model.actuators;
+        bool finite = data.u.head(n).allFinite() && data.du.head(n).allFinite() && data.ddu.head(n).allFinite() &&
+                      data.tau.head(n).allFinite();
+        if (matrices) {
+            finite = finite && data.I.allFinite() && data.C.allFinite();
+            for (int i = 0; finite && i < model.bodies; ++i) finite = data.T[static_cast<std::size_t>(i)].allFinite();
+        }
+        if (!finite) throw Error("the inverse dynamics is not finite (the input is too large)");
     }
     if (!matrices) return py::make_tuple(toArray(data.u), toArray(data.du), toArray(data.ddu), toArray(data.tau));
     // the independent coordinates are the pose when redundant: I, C and T's columns then in
@@ -1120,7 +1132,7 @@ PYBIND11_MODULE(_nocdyn, m) {
              })
         .def("to_yaml", [](const Robot& r) { return io::descriptionToYaml(r.model->description); })
         .def("_inverse_dynamics_sample", &inverseDynamicsSample, py::arg("p"), py::arg("dp"), py::arg("ddp"),
-             py::arg("matrices") = false, py::arg("check_limits") = true)
+             py::arg("matrices") = false, py::arg("check_limits") = true, py::arg("check") = true)
         .def("_inverse_dynamics_batch", &inverseDynamicsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"),
              py::arg("u"), py::arg("du"), py::arg("ddu"), py::arg("tau"), py::arg("threads") = 1,
              py::arg("check_limits") = true)

@@ -146,3 +146,17 @@ def test_trajectory_dynamics_refuses_more_samples_than_memory_holds():
         robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=float("nan"))
     out = robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=10000.0, duration=0.01)
     assert out["tau"].shape == (100, 3) and np.all(np.isfinite(out["tau"]))
+
+
+def test_one_sample_whose_results_overflow_raises_unless_check_is_false():
+    robot = nocdyn.Robot.example("paper-3prr-general")
+    p, z = np.asarray(robot.home, dtype=float), np.zeros(3)
+    huge = np.array([0.0, 0.0, 1e155])  # a rate whose square is beyond the doubles
+    with pytest.raises(nocdyn.Error, match="the inverse dynamics is not finite"):
+        robot.inverse_dynamics(p, huge, z, check_limits=False)
+    with pytest.raises(nocdyn.Error, match="the inverse dynamics is not finite"):
+        robot.inverse_dynamics(p, huge, z, matrices=True, check_limits=False)
+    result = robot.inverse_dynamics(p, huge, z, check_limits=False, check=False)
+    assert not np.all(np.isfinite(result.tau))
+    # a finite sample is unchanged
+    assert np.all(np.isfinite(robot.inverse_dynamics(p, z, z).tau))
