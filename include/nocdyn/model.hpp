@@ -87,11 +87,13 @@ struct LimbModel {
     bool frictionless = true;
 };
 
-/// The constants of up to four limbs side by side, lane l = limb l (lanes past the last
-/// limb repeat limb 0), for the lean per-sample kernel: on a robot whose limbs are uniform
-/// (Model::uniform_limbs) it runs every limb at once in the lanes of one vector.
-struct LimbLanes {
-    static constexpr int kLanes = 4;
+/// The constants of up to kN limbs side by side, lane l = limb l (lanes past the last limb
+/// repeat limb 0), for the lean per-sample kernel: on a robot whose limbs are uniform
+/// (Model::uniform_limbs) it runs every limb at once in the lanes of one vector. The batch
+/// fills every lane with one limb (four or eight lanes, its packet's width).
+template <int kN>
+struct LimbLanesOf {
+    static constexpr int kLanes = kN;
     using Lane = std::array<double, kLanes>;
     std::array<Lane, 3> point_x{}, point_y{};            ///< LimbModel::point
     std::array<Lane, 3> point_home_x{}, point_home_y{};  ///< LimbModel::point_home
@@ -103,6 +105,7 @@ struct LimbLanes {
     Lane length1{}, length2{}, inv_length1_sq{}, inv_length2_sq{};
     Lane branch{};  ///< LimbModel::branch
 };
+using LimbLanes = LimbLanesOf<4>;
 
 /// Constant parameters of a planar parallel robot. Immutable after construction.
 class Model {

@@ -147,8 +147,9 @@ fullPath(const Model& model, Data& data, const Arrays& a, Eigen::Index k) {
 }
 
 /// Every lane of `l` the limb's constant (detail::lean::SplatLimb): once per chunk.
-inline void splatLimb(const LimbModel& limb, LimbLanes& l) {
-    for (std::size_t lane = 0; lane < LimbLanes::kLanes; ++lane) detail::fillLane(l, lane, limb);
+template <int kN>
+void splatLimb(const LimbModel& limb, LimbLanesOf<kN>& l) {
+    for (std::size_t lane = 0; lane < kN; ++lane) detail::fillLane(l, lane, limb);
 }
 
 /// packets(make<kCode>()) with the terms of the robot's uniform limbs, kind * 3 + actuated
@@ -390,28 +391,20 @@ NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Ei
             }
         }
     };
-    if constexpr (std::is_same_v<P, fastmath::Pack>) {
-        std::array<LimbLanes, kMaxLimbs> limb_lanes;
-        for (int j = 0; j < model.limbs; ++j)
-            splatLimb(model.limb[static_cast<std::size_t>(j)], limb_lanes[static_cast<std::size_t>(j)]);
+    // the limbs' constants splatted into packets once per chunk: an arithmetic operand from
+    // memory, no broadcast in the limb loop
+    std::array<LimbLanesOf<kLanes>, kMaxLimbs> limb_lanes;
+    for (int j = 0; j < model.limbs; ++j)
+        splatLimb(model.limb[static_cast<std::size_t>(j)], limb_lanes[static_cast<std::size_t>(j)]);
 #if !defined(__SANITIZE_ADDRESS__)
-        // one dispatch per chunk: kind * 3 + actuated joint of a uniform robot (PPP excluded);
-        // under the sanitizers every robot takes the per-limb dispatch (the fewest instantiations)
-        const auto uniform = [lanes = limb_lanes.data()]<int kCode>()
-                                 NOCDYN_INLINE_LAMBDA { return detail::lean::UniformLimb<kCode>{lanes}; };
-        if (!uniformPackets(model, uniform, packets,
-                            std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
+    // one dispatch per chunk: kind * 3 + actuated joint of a uniform robot (PPP excluded);
+    // under the sanitizers every robot takes the per-limb dispatch (the fewest instantiations)
+    const auto uniform = [lanes = limb_lanes.data()]<int kCode>()
+                             NOCDYN_INLINE_LAMBDA { return detail::lean::UniformLimb<kCode, kLanes>{lanes}; };
+    if (!uniformPackets(model, uniform, packets,
+                        std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
 #endif
-            packets(detail::lean::SplatAny{limb_lanes.data()});
-    } else {
-        // eight lanes: the limbs' constants broadcast from the LimbModel where used
-#if !defined(__SANITIZE_ADDRESS__)
-        const auto uniform = []<int kCode>() NOCDYN_INLINE_LAMBDA { return detail::lean::UniformModelLimb<kCode>{}; };
-        if (!uniformPackets(model, uniform, packets,
-                            std::make_integer_sequence<int, 3 * static_cast<int>(LimbKind::PPP)>{}))
-#endif
-            packets(detail::lean::AnyLimb{});
-    }
+        packets(detail::lean::SplatAny<kLanes>{limb_lanes.data()});
     return result;
 }
 

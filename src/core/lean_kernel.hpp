@@ -173,45 +173,51 @@ template <class S>
 NOCDYN_ALWAYS_INLINE S asS(double x) {
     return splat<S>(x);
 }
-template <class S>
-NOCDYN_ALWAYS_INLINE const Pack& asS(const Pack& x) {
+template <class S, fastmath::Packet P>
+NOCDYN_ALWAYS_INLINE const P& asS(const P& x) {
     return x;
 }
 
 NOCDYN_ALWAYS_INLINE double massOf(const LimbModel& limb, int b) { return limb.M[static_cast<std::size_t>(b)].mass; }
-NOCDYN_ALWAYS_INLINE Pack massOf(const LaneLimb& limb, int b) {
+template <int kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<kN> massOf(const LaneLimbOf<kN>& limb, int b) {
     return lanesOf(limb.lanes.mass[static_cast<std::size_t>(b)]);
 }
 NOCDYN_ALWAYS_INLINE double inertiaOf(const LimbModel& limb, int b) {
     return limb.M[static_cast<std::size_t>(b)].inertia;
 }
-NOCDYN_ALWAYS_INLINE Pack inertiaOf(const LaneLimb& limb, int b) {
+template <int kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<kN> inertiaOf(const LaneLimbOf<kN>& limb, int b) {
     return lanesOf(limb.lanes.inertia[static_cast<std::size_t>(b)]);
 }
 NOCDYN_ALWAYS_INLINE const Vector2& comHomeOf(const LimbModel& limb, int b) {
     return limb.com_home[static_cast<std::size_t>(b)];
 }
-NOCDYN_ALWAYS_INLINE PackVector2 comHomeOf(const LaneLimb& limb, int b) {
+template <int kN>
+NOCDYN_ALWAYS_INLINE PV<PackOfLanes<kN>> comHomeOf(const LaneLimbOf<kN>& limb, int b) {
     const auto bb = static_cast<std::size_t>(b);
     return {lanesOf(limb.lanes.com_x[bb]), lanesOf(limb.lanes.com_y[bb])};
 }
 NOCDYN_ALWAYS_INLINE double dampingOf(const LimbModel& limb, int k) {
     return limb.damping[static_cast<std::size_t>(k)];
 }
-NOCDYN_ALWAYS_INLINE Pack dampingOf(const LaneLimb& limb, int k) {
+template <int kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<kN> dampingOf(const LaneLimbOf<kN>& limb, int k) {
     return lanesOf(limb.lanes.damping[static_cast<std::size_t>(k)]);
 }
 NOCDYN_ALWAYS_INLINE double frictionOf(const LimbModel& limb, int k) {
     return limb.friction[static_cast<std::size_t>(k)];
 }
-NOCDYN_ALWAYS_INLINE Pack frictionOf(const LaneLimb& limb, int k) {
+template <int kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<kN> frictionOf(const LaneLimbOf<kN>& limb, int k) {
     return lanesOf(limb.lanes.friction[static_cast<std::size_t>(k)]);
 }
 /// The linear part of the first joint's home screw, s_1(0) = [w; x; y].
 NOCDYN_ALWAYS_INLINE Vector2 homeScrewLinearOf(const LimbModel& limb) {
     return {limb.screw_home[0](1), limb.screw_home[0](2)};
 }
-NOCDYN_ALWAYS_INLINE PackVector2 homeScrewLinearOf(const LaneLimb& limb) {
+template <int kN>
+NOCDYN_ALWAYS_INLINE PV<PackOfLanes<kN>> homeScrewLinearOf(const LaneLimbOf<kN>& limb) {
     return {lanesOf(limb.lanes.screw_x), lanesOf(limb.lanes.screw_y)};
 }
 /// Where joint k's actuator writes: its actuator index for one limb, -1 when the joint is
@@ -462,17 +468,20 @@ struct AnyLimb {
     }
 };
 
-/// One limb's constants as packets, every lane the same value (the batch: a packet holds
-/// four samples of one limb). Read through LaneLimb's accessors, so that the kernel's
-/// constants are whole registers loaded from memory, broadcast once per chunk rather than at
-/// every packet; its actuated joints write their own actuators (not lane l = limb l).
-struct SplatLimb : LaneLimb {};
-NOCDYN_ALWAYS_INLINE int actuatorOf(const SplatLimb& limb, int k) {
+/// One limb's constants as packets of kN lanes, every lane the same value (the batch: a
+/// packet holds four or eight samples of one limb). Read through LaneLimbOf's accessors, so
+/// that the kernel's constants are whole packets loaded from memory (an arithmetic operand),
+/// splatted once per chunk rather than broadcast at every packet; its actuated joints write
+/// their own actuators (not lane l = limb l).
+template <int kN>
+struct SplatLimb : LaneLimbOf<kN> {};
+template <int kN>
+NOCDYN_ALWAYS_INLINE int actuatorOf(const SplatLimb<kN>& limb, int k) {
     return limb.first.actuator[static_cast<std::size_t>(k)];
 }
 
 /// A limb of a uniform robot (Model::uniform_limbs = kCode = kind * 3 + the actuated joint):
-/// limbTerms compiled for that kind and joint, for UniformLimb and UniformModelLimb alike.
+/// limbTerms compiled for that kind and joint (UniformLimb, four or eight lanes).
 template <int kCode, class LM, class S>
 NOCDYN_ALWAYS_INLINE Mask<S> uniformTerms(const LM& limb, const Frame<S>& f, const Out<S>& out, V3<S>& W, V3<S>* rows,
                                           double* weight, double* scale) {
@@ -482,41 +491,29 @@ NOCDYN_ALWAYS_INLINE Mask<S> uniformTerms(const LM& limb, const Frame<S>& f, con
 /// The batch's limbs when they are uniform (Model::uniform_limbs = kCode = kind * 3 + the
 /// actuated joint): compiled for that kind and joint, no dispatch and no search for the
 /// actuated joint in the limb loop; their constants splatted once per chunk (`lanes`, limb j
-/// at lanes[j]).
-template <int kCode>
+/// at lanes[j], kN lanes).
+template <int kCode, int kN>
 struct UniformLimb {
+    using P = PackOfLanes<kN>;
     static constexpr bool kUnitWeights = revolute<static_cast<LimbKind>(kCode / 3)>(kCode % 3);
-    const LimbLanes* lanes;
-    NOCDYN_ALWAYS_INLINE Mask<Pack> operator()(int j, const LimbModel& model_limb, const Frame<Pack>& f,
-                                               const Out<Pack>& out, V3<Pack>& W, V3<Pack>* rows, double* weight,
-                                               double* scale) const {
-        return uniformTerms<kCode>(SplatLimb{{lanes[j], model_limb}}, f, out, W, rows, weight, scale);
-    }
-};
-
-/// The batch's limbs of a uniform robot on packets of eight (Pack8, one AVX-512 register):
-/// compiled for that kind and actuated joint as UniformLimb, the constants read as doubles from
-/// the LimbModel and broadcast where they are used (an AVX-512 operation takes a broadcast
-/// operand from memory: no register holds them between limbs).
-template <int kCode>
-struct UniformModelLimb {
-    static constexpr bool kUnitWeights = revolute<static_cast<LimbKind>(kCode / 3)>(kCode % 3);
-    template <class S>
-    NOCDYN_ALWAYS_INLINE Mask<S> operator()(int /*j*/, const LimbModel& limb, const Frame<S>& f, const Out<S>& out,
-                                            V3<S>& W, V3<S>* rows, double* weight, double* scale) const {
-        return uniformTerms<kCode>(limb, f, out, W, rows, weight, scale);
+    const LimbLanesOf<kN>* lanes;
+    NOCDYN_ALWAYS_INLINE Mask<P> operator()(int j, const LimbModel& model_limb, const Frame<P>& f, const Out<P>& out,
+                                            V3<P>& W, V3<P>* rows, double* weight, double* scale) const {
+        return uniformTerms<kCode>(SplatLimb<kN>{{lanes[j], model_limb}}, f, out, W, rows, weight, scale);
     }
 };
 
 /// A robot of mixed limbs in the batch: the kind read per limb (once per limb and packet),
-/// each limb through the same template as a uniform robot's.
+/// each limb through the same template as a uniform robot's (kN lanes).
+template <int kN>
 struct SplatAny {
+    using P = PackOfLanes<kN>;
     static constexpr bool kUnitWeights = false;
-    const LimbLanes* lanes;
-    NOCDYN_ALWAYS_INLINE Mask<Pack> operator()(int j, const LimbModel& limb, const Frame<Pack>& f, const Out<Pack>& out,
-                                               V3<Pack>& W, V3<Pack>* rows, double* weight, double* scale) const {
+    const LimbLanesOf<kN>* lanes;
+    NOCDYN_ALWAYS_INLINE Mask<P> operator()(int j, const LimbModel& limb, const Frame<P>& f, const Out<P>& out,
+                                            V3<P>& W, V3<P>* rows, double* weight, double* scale) const {
         const auto terms = [&]<LimbKind K>() NOCDYN_INLINE_LAMBDA {
-            return limbTerms<K, kAnyActuation>(SplatLimb{{lanes[j], limb}}, f, out, W, rows, weight, scale);
+            return limbTerms<K, kAnyActuation>(SplatLimb<kN>{{lanes[j], limb}}, f, out, W, rows, weight, scale);
         };
         switch (limb.kind) {
             case LimbKind::RRR:
@@ -536,7 +533,7 @@ struct SplatAny {
             case LimbKind::PPP:
                 break;  // rejected by validate()
         }
-        return splat<Pack>(0.0) != 0.0;
+        return splat<P>(0.0) != 0.0;
     }
 };
 

@@ -140,54 +140,81 @@ NOCDYN_ALWAYS_INLINE PV<P> vec(const PV<P>& v) {
 
 /// The limbs of a uniform robot lane by lane (Model::lanes, lane l = limb l). The kernels
 /// read a limb's constants through the accessors below: as doubles and Vector2's from a
-/// LimbModel, as packets from a LaneLimb, so that one kernel runs one limb or every limb
-/// of a sample at once.
-struct LaneLimb {
-    const LimbLanes& lanes;
+/// LimbModel, as packets of kN lanes from a LaneLimbOf<kN>, so that one kernel runs one limb
+/// or every limb of a sample at once.
+template <int kN>
+struct LaneLimbOf {
+    const LimbLanesOf<kN>& lanes;
     const LimbModel& first;  ///< limb 0: kind, joint scales and actuated joints, shared by all
 };
+using LaneLimb = LaneLimbOf<4>;
+/// The packet of kN lanes.
+template <int kN>
+using PackOfLanes = std::conditional_t<kN == 8, fastmath::Pack8, fastmath::Pack>;
 
 /// A lane array as a packet.
-NOCDYN_ALWAYS_INLINE fastmath::Pack lanesOf(const LimbLanes::Lane& a) {
-    fastmath::Pack v;
+template <std::size_t kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<static_cast<int>(kN)> lanesOf(const std::array<double, kN>& a) {
+    PackOfLanes<static_cast<int>(kN)> v;
     static_assert(sizeof v == sizeof a);
     std::memcpy(&v, a.data(), sizeof v);
     return v;
 }
 NOCDYN_ALWAYS_INLINE const LimbModel& modelOf(const LimbModel& limb) { return limb; }
-NOCDYN_ALWAYS_INLINE const LimbModel& modelOf(const LaneLimb& limb) { return limb.first; }
+template <int kN>
+NOCDYN_ALWAYS_INLINE const LimbModel& modelOf(const LaneLimbOf<kN>& limb) {
+    return limb.first;
+}
 NOCDYN_ALWAYS_INLINE const Vector2& pointOf(const LimbModel& limb, int k) {
     return limb.point[static_cast<std::size_t>(k)];
 }
-NOCDYN_ALWAYS_INLINE PackVector2 pointOf(const LaneLimb& limb, int k) {
+template <int kN>
+NOCDYN_ALWAYS_INLINE PV<PackOfLanes<kN>> pointOf(const LaneLimbOf<kN>& limb, int k) {
     const auto kk = static_cast<std::size_t>(k);
     return {lanesOf(limb.lanes.point_x[kk]), lanesOf(limb.lanes.point_y[kk])};
 }
 NOCDYN_ALWAYS_INLINE const Vector2& pointHomeOf(const LimbModel& limb, int k) {
     return limb.point_home[static_cast<std::size_t>(k)];
 }
-NOCDYN_ALWAYS_INLINE PackVector2 pointHomeOf(const LaneLimb& limb, int k) {
+template <int kN>
+NOCDYN_ALWAYS_INLINE PV<PackOfLanes<kN>> pointHomeOf(const LaneLimbOf<kN>& limb, int k) {
     const auto kk = static_cast<std::size_t>(k);
     return {lanesOf(limb.lanes.point_home_x[kk]), lanesOf(limb.lanes.point_home_y[kk])};
 }
 NOCDYN_ALWAYS_INLINE const Vector2& directionOf(const LimbModel& limb, int k) {
     return limb.direction[static_cast<std::size_t>(k)];
 }
-NOCDYN_ALWAYS_INLINE PackVector2 directionOf(const LaneLimb& limb, int k) {
+template <int kN>
+NOCDYN_ALWAYS_INLINE PV<PackOfLanes<kN>> directionOf(const LaneLimbOf<kN>& limb, int k) {
     const auto kk = static_cast<std::size_t>(k);
     return {lanesOf(limb.lanes.direction_x[kk]), lanesOf(limb.lanes.direction_y[kk])};
 }
 NOCDYN_ALWAYS_INLINE double length1Of(const LimbModel& limb) { return limb.length1; }
-NOCDYN_ALWAYS_INLINE fastmath::Pack length1Of(const LaneLimb& limb) { return lanesOf(limb.lanes.length1); }
+template <int kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<kN> length1Of(const LaneLimbOf<kN>& limb) {
+    return lanesOf(limb.lanes.length1);
+}
 NOCDYN_ALWAYS_INLINE double length2Of(const LimbModel& limb) { return limb.length2; }
-NOCDYN_ALWAYS_INLINE fastmath::Pack length2Of(const LaneLimb& limb) { return lanesOf(limb.lanes.length2); }
+template <int kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<kN> length2Of(const LaneLimbOf<kN>& limb) {
+    return lanesOf(limb.lanes.length2);
+}
 NOCDYN_ALWAYS_INLINE double invLength1SqOf(const LimbModel& limb) { return limb.inv_length1_sq; }
-NOCDYN_ALWAYS_INLINE fastmath::Pack invLength1SqOf(const LaneLimb& limb) { return lanesOf(limb.lanes.inv_length1_sq); }
+template <int kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<kN> invLength1SqOf(const LaneLimbOf<kN>& limb) {
+    return lanesOf(limb.lanes.inv_length1_sq);
+}
 NOCDYN_ALWAYS_INLINE double invLength2SqOf(const LimbModel& limb) { return limb.inv_length2_sq; }
-NOCDYN_ALWAYS_INLINE fastmath::Pack invLength2SqOf(const LaneLimb& limb) { return lanesOf(limb.lanes.inv_length2_sq); }
+template <int kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<kN> invLength2SqOf(const LaneLimbOf<kN>& limb) {
+    return lanesOf(limb.lanes.inv_length2_sq);
+}
 /// The home branch, as the sign the closed forms take.
 NOCDYN_ALWAYS_INLINE int branchOf(const LimbModel& limb) { return limb.branch; }
-NOCDYN_ALWAYS_INLINE fastmath::Pack branchOf(const LaneLimb& limb) { return lanesOf(limb.lanes.branch); }
+template <int kN>
+NOCDYN_ALWAYS_INLINE PackOfLanes<kN> branchOf(const LaneLimbOf<kN>& limb) {
+    return lanesOf(limb.lanes.branch);
+}
 NOCDYN_ALWAYS_INLINE double branchSign(int branch) { return static_cast<double>(branch); }
 template <fastmath::Packet P>
 NOCDYN_ALWAYS_INLINE const P& branchSign(const P& branch) {

@@ -9,7 +9,10 @@
 
 namespace nocdyn::detail {
 
-/// Lane `lane` of `l` holds `limb`'s constants.
-void fillLane(LimbLanes& l, std::size_t lane, const LimbModel& limb);
+/// Lane `lane` of `l` holds `limb`'s constants (defined in model.cpp for four and eight lanes).
+template <int kN>
+void fillLane(LimbLanesOf<kN>& l, std::size_t lane, const LimbModel& limb);
+extern template void fillLane<4>(LimbLanesOf<4>& l, std::size_t lane, const LimbModel& limb);
+extern template void fillLane<8>(LimbLanesOf<8>& l, std::size_t lane, const LimbModel& limb);
 
 }  // namespace nocdyn::detail

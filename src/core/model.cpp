@@ -73,7 +73,8 @@ void fillLanes(Model& model) {
 
 namespace detail {
 
-void fillLane(LimbLanes& l, std::size_t lane, const LimbModel& limb) {
+template <int kN>
+void fillLane(LimbLanesOf<kN>& l, std::size_t lane, const LimbModel& limb) {
     for (std::size_t k = 0; k < 3; ++k) {
         l.point_x[k][lane] = limb.point[k].x(), l.point_y[k][lane] = limb.point[k].y();
         l.point_home_x[k][lane] = limb.point_home[k].x(), l.point_home_y[k][lane] = limb.point_home[k].y();
@@ -89,6 +90,8 @@ void fillLane(LimbLanes& l, std::size_t lane, const LimbModel& limb) {
     l.inv_length1_sq[lane] = limb.inv_length1_sq, l.inv_length2_sq[lane] = limb.inv_length2_sq;
     l.branch[lane] = static_cast<double>(limb.branch);
 }
+template void fillLane<4>(LimbLanesOf<4>& l, std::size_t lane, const LimbModel& limb);
+template void fillLane<8>(LimbLanesOf<8>& l, std::size_t lane, const LimbModel& limb);
 
 }  // namespace detail
 

@@ -11,6 +11,9 @@
 
 #if defined(__x86_64__) || defined(_M_X64)
 #include <emmintrin.h>
+#if defined(__AVX__)
+#include <immintrin.h>
+#endif
 #endif
 
 // Kernels must be inlined into their loops (and into the loops' AVX2 clones).
@@ -91,9 +94,19 @@ NOCDYN_ALWAYS_INLINE P select(const Mask<P>& c, const P& a, const P& b) {
     return c ? a : b;
 }
 NOCDYN_ALWAYS_INLINE double sqrtOf(double x) { return std::sqrt(x); }
-/// Lane-wise sqrt (NaN for a negative lane, no errno): SSE2 on x86-64, libm elsewhere.
+/// Lane-wise sqrt (NaN for a negative lane, no errno): one instruction where the file is
+/// built for AVX (AVX-512 for eight lanes), else SSE2 on x86-64 two lanes at a time, libm
+/// elsewhere.
 template <Packet P>
 NOCDYN_ALWAYS_INLINE P sqrtOf(const P& x) {
+#if defined(__AVX512F__)
+    // (the masked form with every lane set: _mm512_sqrt_pd's undefined pass-through value
+    // draws GCC 12's maybe-uninitialized warning)
+    if constexpr (kLanesOf<P> == 8) return _mm512_mask_sqrt_pd(x, static_cast<__mmask8>(0xFF), x);
+#endif
+#if defined(__AVX__)
+    if constexpr (kLanesOf<P> == 4) return _mm256_sqrt_pd(x);
+#endif
     P r;
 #if defined(__x86_64__) || defined(_M_X64)
     for (int i = 0; i < kLanesOf<P>; i += 2) {
