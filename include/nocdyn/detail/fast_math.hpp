@@ -108,7 +108,11 @@ NOCDYN_ALWAYS_INLINE P sqrtOf(const P& x) {
     if constexpr (kLanesOf<P> == 4) return _mm256_sqrt_pd(x);
 #endif
     P r;
-#if defined(__x86_64__) || defined(_M_X64)
+#if defined(__NO_MATH_ERRNO__)
+    // no errno to set: lane by lane, which GCC's SLP vectoriser merges into the widest sqrt
+    // of the target (or of a target_clones clone)
+    for (int i = 0; i < kLanesOf<P>; ++i) r[i] = __builtin_sqrt(x[i]);
+#elif defined(__x86_64__) || defined(_M_X64)
     for (int i = 0; i < kLanesOf<P>; i += 2) {
         const __m128d v = _mm_sqrt_pd(__m128d{x[i], x[i + 1]});
         r[i] = v[0], r[i + 1] = v[1];
