@@ -220,6 +220,44 @@ NOCDYN_ALWAYS_INLINE void rowsOfColumns(const P& c0, const P& c1, const P& c2, d
     std::memcpy(at, v, sizeof v);
 }
 
+/// NumPy's C order of an N x 4 array (a robot of four actuators): output packet v holds rows
+/// v kLanes/4 ... (v + 1) kLanes/4 - 1, row by row. Each is three shuffles: the pairs
+/// (c_0, c_1) and (c_2, c_3) of its rows side by side (pairsOfRows' indices), then the two
+/// interleaved row by row (rowsOfPairs').
+template <int N>
+constexpr std::array<std::int64_t, N> pairsOfRows(int v) {
+    std::array<std::int64_t, N> m{};  // past the packet's rows: unused (lane 0)
+    for (int i = 0; i < N / 4; ++i) {
+        const int row = v * (N / 4) + i;
+        m[static_cast<std::size_t>(2 * i)] = row;
+        m[static_cast<std::size_t>(2 * i + 1)] = N + row;
+    }
+    return m;
+}
+template <int N>
+constexpr std::array<std::int64_t, N> rowsOfPairs() {
+    std::array<std::int64_t, N> m{};
+    for (int q = 0; q < N; ++q) {
+        const int i = q / 4, column = q % 4;
+        m[static_cast<std::size_t>(q)] = (column < 2 ? 0 : N) + 2 * i + column % 2;
+    }
+    return m;
+}
+template <int kV, class P, std::size_t... kL>
+NOCDYN_ALWAYS_INLINE P rowsOf4(const P* c, std::index_sequence<kL...> /*lanes*/) {
+    constexpr int kN = fastmath::kLanesOf<P>;
+    return __builtin_shufflevector(__builtin_shufflevector(c[0], c[1], pairsOfRows<kN>(kV)[kL]...),
+                                   __builtin_shufflevector(c[2], c[3], pairsOfRows<kN>(kV)[kL]...),
+                                   rowsOfPairs<kN>()[kL]...);
+}
+/// The kLanes rows of 4 values at `at` from columns c[0..3].
+template <class P>
+NOCDYN_ALWAYS_INLINE void rowsOfColumns4(const P* c, double* at) {
+    constexpr auto kLanes = std::make_index_sequence<fastmath::kLanesOf<P>>{};
+    const P v[4] = {rowsOf4<0>(c, kLanes), rowsOf4<1>(c, kLanes), rowsOf4<2>(c, kLanes), rowsOf4<3>(c, kLanes)};
+    std::memcpy(at, v, sizeof v);
+}
+
 /// Samples [begin, end) in packets of P (four or eight samples, fastmath::Pack or Pack8).
 template <class P>
 NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Eigen::Index begin, Eigen::Index end) {
@@ -237,6 +275,8 @@ NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Ei
                               a.p.outerStride() == 1 && a.dp.outerStride() == 1 && a.ddp.outerStride() == 1;
     const bool rows_of_3_out = n == 3 && a.u.outerStride() == 1 && a.u.innerStride() == 3 && a.du.innerStride() == 3 &&
                                a.ddu.innerStride() == 3 && a.tau.innerStride() == 3;
+    const bool rows_of_4_out = n == 4 && a.u.outerStride() == 1 && a.u.innerStride() == 4 && a.du.innerStride() == 4 &&
+                               a.ddu.innerStride() == 4 && a.tau.innerStride() == 4;
     const bool contiguous_out =
         a.u.innerStride() == 1 && a.du.innerStride() == 1 && a.ddu.innerStride() == 1 && a.tau.innerStride() == 1;
     // pointers and strides read once: a packet's stores (memcpy) may alias any object, and
@@ -356,6 +396,11 @@ NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Ei
                     rowsOfColumns(du[0], du[1], du[2], out_du + k * 3);
                     rowsOfColumns(ddu[0], ddu[1], ddu[2], out_ddu + k * 3);
                     rowsOfColumns(tau[0], tau[1], tau[2], out_tau + k * 3);
+                } else if (rows_of_4_out) {
+                    rowsOfColumns4(u, out_u + k * 4);
+                    rowsOfColumns4(du, out_du + k * 4);
+                    rowsOfColumns4(ddu, out_ddu + k * 4);
+                    rowsOfColumns4(tau, out_tau + k * 4);
                 } else {
                     for (int i = 0; i < n; ++i) {
                         scatter(out_u + k * step_u + i * stride_out, step_u, u[i]);
