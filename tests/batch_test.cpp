@@ -200,14 +200,47 @@ std::vector<RobotCase> uniformRobots() {
     return out;
 }
 
-// Within 3e-14 of each output column's peak on every example robot and on uniform random robots
+/// How far the per-sample path's own output (i: u, du, ddu, tau; column a) moves at sample k
+/// when one of its nine inputs moves by one ulp either way. The exact output moves by about
+/// 1e-16 of itself; the rest is the rounding of the evaluation at that sample, the scale on
+/// which two evaluations of the same formulas, rounded differently, can agree.
+double oneUlpSpread(const Model& model, const Samples& s, Eigen::Index k, int i, int a) {
+    Data data(model);
+    const auto output = [&data, i, a] {
+        const ActuatorVector* out[4] = {&data.u, &data.du, &data.ddu, &data.tau};
+        return (*out[i])(a);
+    };
+    const Pose p0 = s.p.row(k).transpose();
+    const Twist dp0 = s.dp.row(k).transpose(), ddp0 = s.ddp.row(k).transpose();
+    EXPECT_TRUE(inverseDynamicsFast(model, data, p0, dp0, ddp0).ok());
+    const double value = output();
+    double spread = 0.0;
+    for (int q = 0; q < 9; ++q) {
+        for (const double toward : {-1.0e300, 1.0e300}) {
+            Pose p = p0;
+            Twist dp = dp0, ddp = ddp0;
+            double& x = q < 3 ? p(q) : q < 6 ? dp(q - 3) : ddp(q - 6);
+            x = std::nextafter(x, toward);
+            EXPECT_TRUE(inverseDynamicsFast(model, data, p, dp, ddp).ok());
+            spread = std::max(spread, std::abs(output() - value));
+        }
+    }
+    return spread;
+}
+
+// Within 1e-14 of each output column's peak on every example robot and on uniform random robots
 // of every limb type and actuated joint: the batch's terms compiled per kind and actuated joint
-// and the per-sample path (the limbs in lanes) are the same formulas, summed in another order.
-// The worst seen: 1.9e-14 of the peak (the paper robot's tau_3: 1.1e-12 N of 59 N), every other
-// column within 1e-14.
-TEST_P(Batch, UniformRobotsOfEveryKindAndJointAgreeWithThePerSamplePathTo3e14OfThePeak) {
-    constexpr double kTolerance = 3e-14;
-    int columns = 0;
+// and the per-sample path (the limbs in lanes) are the same formulas, summed in another order,
+// their multiply-adds fused by the compiler where each instantiation allows.
+// A column beyond 1e-14 must be within the rounding of the per-sample path at its worst sample
+// (oneUlpSpread), and within 3e-14. The one seen: the paper robot's tau_3, 1.1e-12 N on a peak
+// of 59 N (1.9e-14), at a sample where tau_2 is 889 N and the per-sample path's own tau_3 moves
+// by 5.8e-12 N when x_c moves by one ulp. Bitwise agreement needs the compiler's contraction off
+// in both paths, 28 % slower (docs/performance.md).
+TEST_P(Batch, UniformRobotsOfEveryKindAndJointAgreeWithThePerSamplePathTo1e14OfThePeakOrItsRounding) {
+    constexpr double kTolerance = 1e-14;
+    constexpr double kCap = 3e-14;
+    int columns = 0, within_rounding = 0;
     double worst_seen = 0.0;
     for (const RobotCase& c : uniformRobots()) {
         const Model& model = *c.model;
@@ -233,16 +266,27 @@ TEST_P(Batch, UniformRobotsOfEveryKindAndJointAgreeWithThePerSamplePathTo3e14OfT
         for (int i = 0; i < 4; ++i) {
             for (int a = 0; a < n; ++a, ++columns) {
                 const double peak = ref[i].col(a).abs().maxCoeff();
-                const double worst = (col[i].col(a) - ref[i].col(a)).abs().maxCoeff();
+                Eigen::Index k = 0;
+                const double worst = (col[i].col(a) - ref[i].col(a)).abs().maxCoeff(&k);
                 worst_seen = std::max(worst_seen, worst / peak);
-                EXPECT_LE(worst, kTolerance * peak) << c.name << ": " << names[i] << "_" << a + 1 << " differs by "
-                                                    << worst << " (peak " << peak << ")";
+                if (worst <= kTolerance * peak) continue;
+                const double spread = oneUlpSpread(model, s, k, i, a);
+                ++within_rounding;
+                std::printf(
+                    "%s: %s_%d differs by %.3g (%.3g of its peak) at sample %ld; one ulp of input moves the "
+                    "per-sample path's own value by %.3g\n",
+                    c.name.c_str(), names[i], a + 1, worst, worst / peak, static_cast<long>(k), spread);
+                EXPECT_LE(worst, spread) << c.name << ": " << names[i] << "_" << a + 1 << " differs by " << worst
+                                         << " at sample " << k << ", beyond the per-sample path's own rounding there";
+                EXPECT_LE(worst, kCap * peak) << c.name << ": " << names[i] << "_" << a + 1 << " differs by " << worst
+                                              << " (peak " << peak << ")";
             }
         }
     }
     EXPECT_GE(columns, 4 * 3 * 21);
     RecordProperty("worst_of_peak", std::to_string(worst_seen));
-    std::printf("worst difference: %.3g of the column's peak\n", worst_seen);
+    std::printf("worst difference: %.3g of the column's peak; %d of %d columns beyond 1e-14, within rounding\n",
+                worst_seen, within_rounding, columns);
 }
 
 // Finite input whose results overflow (a rate of 1e155 squared is beyond the doubles): a failed
