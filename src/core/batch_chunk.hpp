@@ -273,10 +273,9 @@ NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Ei
     // NumPy's C order of N x 3 arrays (rows of 3 adjacent values)
     const bool rows_of_3_in = a.p.innerStride() == 3 && a.dp.innerStride() == 3 && a.ddp.innerStride() == 3 &&
                               a.p.outerStride() == 1 && a.dp.outerStride() == 1 && a.ddp.outerStride() == 1;
-    const bool rows_of_3_out = n == 3 && a.u.outerStride() == 1 && a.u.innerStride() == 3 && a.du.innerStride() == 3 &&
-                               a.ddu.innerStride() == 3 && a.tau.innerStride() == 3;
-    const bool rows_of_4_out = n == 4 && a.u.outerStride() == 1 && a.u.innerStride() == 4 && a.du.innerStride() == 4 &&
-                               a.ddu.innerStride() == 4 && a.tau.innerStride() == 4;
+    // the outputs in C order, rows of n = 3 or 4 adjacent values (transposed in packets)
+    const bool rows_out = (n == 3 || n == 4) && a.u.outerStride() == 1 && a.u.innerStride() == n &&
+                          a.du.innerStride() == n && a.ddu.innerStride() == n && a.tau.innerStride() == n;
     const bool contiguous_out =
         a.u.innerStride() == 1 && a.du.innerStride() == 1 && a.ddu.innerStride() == 1 && a.tau.innerStride() == 1;
     // pointers and strides read once: a packet's stores (memcpy) may alias any object, and
@@ -391,12 +390,12 @@ NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Ei
                         std::memcpy(out_ddu + at, &ddu[i], sizeof(P));
                         std::memcpy(out_tau + at, &tau[i], sizeof(P));
                     }
-                } else if (rows_of_3_out) {
+                } else if (rows_out && n == 3) {
                     rowsOfColumns(u[0], u[1], u[2], out_u + k * 3);
                     rowsOfColumns(du[0], du[1], du[2], out_du + k * 3);
                     rowsOfColumns(ddu[0], ddu[1], ddu[2], out_ddu + k * 3);
                     rowsOfColumns(tau[0], tau[1], tau[2], out_tau + k * 3);
-                } else if (rows_of_4_out) {
+                } else if (rows_out) {
                     rowsOfColumns4(u, out_u + k * 4);
                     rowsOfColumns4(du, out_du + k * 4);
                     rowsOfColumns4(ddu, out_ddu + k * 4);
