@@ -83,49 +83,26 @@ void requireFiniteFloats(CLI::App& app) {
 
 namespace {
 
-/// Options that name a file or folder a command reads, and options that name a file it writes
-/// (or, for --figure, the stem of STEM.png and STEM.svg).
+/// Options that name a file or folder a command reads, options that name a file it writes, and
+/// options that name the stem of files it writes (with their suffixes).
 constexpr const char* kInputOptions[] = {"--robot",       "ROBOT",          "--trajectory", "--record",
                                          "--record-y",    "--record-theta", "--forces",     "--prior",
                                          "--calibration", "--data",         "--motion"};
-constexpr const char* kOutputFileOptions[] = {"--output", "--out", "--log", "--png", "--svg"};
-
-bool sameFile(const std::filesystem::path& a, const std::filesystem::path& b) {
-    std::error_code error;
-    return std::filesystem::equivalent(a, b, error) && !error;
-}
-
-/// The kinds of file a command writes into its --out-dir (tables, reports, figures, pages).
-bool outputKind(const std::filesystem::path& path) {
-    std::string extension = path.extension().string();
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-    for (const char* kind : {".csv", ".json", ".md", ".png", ".svg", ".html"}) {
-        if (extension == kind) return true;
-    }
-    return false;
-}
-
-/// Whether `path`, or a folder it is in, is the folder `dir` (by inode, through any link).
-bool isInside(const std::filesystem::path& path, const std::filesystem::path& dir) {
-    std::error_code error;
-    if (!std::filesystem::is_directory(dir, error)) return false;
-    std::filesystem::path at = std::filesystem::absolute(path, error);
-    if (error) return false;
-    for (;;) {
-        if (sameFile(at, dir)) return true;
-        if (!at.has_relative_path() || at.parent_path() == at) return false;
-        at = at.parent_path();
-    }
-}
+constexpr const char* kOutputFileOptions[] = {"--output", "--out", "--log", "--png", "--svg", "--summary"};
 
 std::string optionName(const CLI::Option& option) {
     return option.get_lnames().empty() ? option.get_name() : "--" + option.get_lnames().front();
 }
 
+template <std::size_t N>
+bool among(const std::string& name, const char* const (&names)[N]) {
+    return std::find(std::begin(names), std::end(names), name) != std::end(names);
+}
+
 }  // namespace
 
-void refuseOutputOverInput(const CLI::App& command) {
-    std::vector<std::pair<std::string, std::string>> inputs, files, folders;  // option, path
+app::CommandPaths commandPaths(const CLI::App& command) {
+    app::CommandPaths paths;
     // --out is the old spelling of --out-dir where a command has one, else of --output
     const bool out_is_folder = command.get_option_no_throw("--out-dir") != nullptr;
     for (const CLI::Option* option : command.get_options()) {
@@ -134,38 +111,23 @@ void refuseOutputOverInput(const CLI::App& command) {
         std::vector<std::string> values = option->results();
         if (values.empty() && !option->get_default_str().empty()) values = {option->get_default_str()};
         for (const std::string& value : values) {
-            if (value.empty()) continue;
-            if (std::find(std::begin(kInputOptions), std::end(kInputOptions), name) != std::end(kInputOptions))
-                inputs.emplace_back(name, value);
-            else if (std::find(std::begin(kOutputFileOptions), std::end(kOutputFileOptions), name) !=
-                     std::end(kOutputFileOptions))
-                files.emplace_back(name, value);
+            if (among(name, kInputOptions))
+                paths.input(name, value);
+            else if (among(name, kOutputFileOptions))
+                paths.output(name, value);
             else if (name == "--figure")
-                files.insert(files.end(), {{name, value + ".png"}, {name, value + ".svg"}});
+                paths.outputStem(name, value, {".png", ".svg"});
+            else if (name == "--frequency-map")
+                paths.outputStem(name, value, {".csv", ".png", ".svg"});
             else if (name == "--out-dir")
-                folders.emplace_back(name, value);
+                paths.outputFolder(name, value);
         }
     }
-    for (const auto& [in_option, input] : inputs) {
-        for (const auto& [out_option, output] : files) {
-            if (sameFile(output, input)) {
-                throw Error(command.get_name() + ": " + out_option + " '" + io::terminalText(output) +
-                            "' is an input file (" + in_option + " '" + io::terminalText(input) +
-                            "'): writing it would replace it");
-            }
-        }
-        // in the output folder, a file of a kind the command writes there (a record beside it
-        // is read, not replaced; a folder of inputs holding the output folder is fine)
-        for (const auto& [out_option, folder] : folders) {
-            std::error_code error;
-            const bool a_folder = std::filesystem::is_directory(input, error);
-            if ((a_folder && sameFile(input, folder)) || (!a_folder && outputKind(input) && isInside(input, folder))) {
-                throw Error(command.get_name() + ": " + in_option + " '" + io::terminalText(input) +
-                            "' is inside the output folder " + out_option + " '" + io::terminalText(folder) +
-                            "', where the command writes files of its kind: choose another folder");
-            }
-        }
-    }
+    return paths;
+}
+
+void refuseOutputOverInput(const CLI::App& command) {
+    app::refuseOutputOverInput(command.get_name(), commandPaths(command));
 }
 
 void addRobotOption(CLI::App& command, app::RobotSource& robot) {
@@ -237,20 +199,48 @@ CLI::Option* addPlantOption(CLI::App& command, std::string& plant) {
         ->capture_default_str();
 }
 
-/// An option's message as the command line spells its options: noise_pose -> --noise-pose.
-std::string commandLineMessage(const app::OptionError& e) {
-    static const std::regex snake(R"(\b([a-z]+(_[a-z]+)+)\b)");
-    std::string message;
-    std::regex_replace(std::back_inserter(message), e.message().begin(), e.message().end(), snake, "--$1");
-    for (std::size_t at = 0; (at = message.find("--", at)) != std::string::npos; at += 2) {
-        for (std::size_t k = at + 2;
-             k < message.size() && (std::isalpha(static_cast<unsigned char>(message[k])) || message[k] == '_'); ++k) {
-            if (message[k] == '_') message[k] = '-';
-        }
+namespace {
+
+/// The field name noise_pose as the command line spells it, --noise-pose.
+std::string dashed(const std::string& field) {
+    std::string option = "--";
+    option += field;
+    std::replace(option.begin(), option.end(), '_', '-');
+    return option;
+}
+
+}  // namespace
+
+std::string commandLineText(const std::string& message, const CLI::App* command) {
+    // `name`: an option named by the application layer
+    static const std::regex quoted(R"(`([a-z0-9_]+)`)");
+    // a bare snake_case word: an option when the command has one by that name (or, with no
+    // command known, always)
+    static const std::regex snake(R"(\b[a-z]+(_[a-z]+)+\b)");
+    std::string out;
+    auto at = message.cbegin();
+    for (std::sregex_iterator m(message.begin(), message.end(), quoted), end; m != end; ++m) {
+        out.append(at, (*m)[0].first);
+        out += dashed((*m)[1].str());
+        at = (*m)[0].second;
     }
-    std::string field = e.field();
-    std::replace(field.begin(), field.end(), '_', '-');
-    return "--" + field + ": " + message;
+    out.append(at, message.cend());
+    std::string result;
+    at = out.cbegin();
+    for (std::sregex_iterator m(out.begin(), out.end(), snake), end; m != end; ++m) {
+        result.append(at, (*m)[0].first);
+        const std::string option = dashed((*m)[0].str());
+        const bool is_option = command == nullptr || command->get_option_no_throw(option) != nullptr;
+        const bool already = (*m)[0].first - out.cbegin() >= 2 && *((*m)[0].first - 1) == '-';
+        result += is_option && !already ? option : (*m)[0].str();
+        at = (*m)[0].second;
+    }
+    result.append(at, out.cend());
+    return result;
+}
+
+std::string commandLineMessage(const app::OptionError& e, const CLI::App* command) {
+    return dashed(e.field()) + ": " + commandLineText(e.message(), command);
 }
 
 }  // namespace nocdyn::cli

@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "app/options.hpp"
+#include "app/outputs.hpp"
 #include "app/table.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
@@ -39,12 +40,13 @@ using namespace nocdyn::report;
 /// nan, inf and hexadecimal (no option gives them a meaning).
 void requireFiniteFloats(CLI::App& app);
 
-/// Refuses (nocdyn::Error) a command whose output would replace one of its inputs: an output
-/// file (-o, --log, --png, --svg, --figure's STEM.png and STEM.svg) that is an input file
-/// (--robot, --trajectory, --record, ... the same file by inode, through any path or link), or
-/// an input file of a kind the command writes (.csv .json .md .png .svg .html) inside its output
-/// folder (--out-dir), or an input folder that is the output folder. Called for every command
-/// once parsed.
+/// The paths a command was given, each under its option: inputs (--robot, --trajectory,
+/// --record, ...), output files (-o, --log, --png, --svg, --summary), stems (--figure: STEM.png
+/// and STEM.svg; --frequency-map: also STEM.csv) and the output folder (--out-dir).
+[[nodiscard]] app::CommandPaths commandPaths(const CLI::App& command);
+
+/// app::refuseOutputOverInput over commandPaths: no output over an input or over another output
+/// of the call. Called for every command once parsed.
 void refuseOutputOverInput(const CLI::App& command);
 
 /// A CLI11 check for a file name given on the command line: an empty one is refused (it would
@@ -94,8 +96,13 @@ void writeText(const std::string& text, const std::string& path);
 /// this one definition.
 CLI::Option* addPlantOption(CLI::App& command, std::string& plant);
 
+/// An application-layer message as the command line spells its options: `noise_pose` (an option
+/// the message names) and a bare noise_pose that is an option of `command` (any snake_case word
+/// when no command is given) become --noise-pose.
+[[nodiscard]] std::string commandLineText(const std::string& message, const CLI::App* command = nullptr);
+
 /// An application-layer option error as the command line spells its options: "--noise-u: ...
 /// use --noise-pose and --noise-rate" for the field noise_u naming noise_pose and noise_rate.
-[[nodiscard]] std::string commandLineMessage(const app::OptionError& e);
+[[nodiscard]] std::string commandLineMessage(const app::OptionError& e, const CLI::App* command = nullptr);
 
 }  // namespace nocdyn::cli

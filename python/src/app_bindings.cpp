@@ -6,12 +6,14 @@
 
 #include <memory>
 #include <string>
+#include <tuple>
 #include <utility>
 #include <vector>
 
 #include "app/inverse_dynamics.hpp"
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "app/outputs.hpp"
 #include "app/pose.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/output.hpp"
@@ -85,6 +87,25 @@ py::dict poseDict(const app::PoseResult& r) {
 }  // namespace
 
 void bindApplication(py::module_& m) {
+    m.def(
+        "_refuse_output_over_input",
+        [](const std::string& command, const std::vector<std::tuple<std::string, std::string, std::string>>& paths) {
+            app::CommandPaths gathered;
+            for (const auto& [role, name, path] : paths) {
+                if (role == "input")
+                    gathered.input(name, path);
+                else if (role == "output")
+                    gathered.output(name, path);
+                else if (role == "folder")
+                    gathered.outputFolder(name, path);
+                else
+                    throw Error("_refuse_output_over_input: unknown role '" + role + "'");
+            }
+            app::refuseOutputOverInput(command, gathered);
+        },
+        py::arg("command"), py::arg("paths"),
+        "Raises ValueError when an output of a call (role 'output', or 'folder' for an output folder) would "
+        "replace one of its inputs (role 'input') or another of its outputs");
     py::class_<app::RobotSource>(m, "RobotSource", "The robot of a command: a file and its overrides, or a robot")
         .def(py::init<>())
         .def_readwrite("path", &app::RobotSource::path)
