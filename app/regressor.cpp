@@ -1,6 +1,7 @@
 #include "app/regressor.hpp"
 
 #include <cstdio>
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/text.hpp"
 
 namespace nocdyn::app {
@@ -21,7 +22,8 @@ RegressorResult runRegressor(const RegressorOptions& options, Observer& /*observ
     for (int c = 0; c < parameterCount(model); ++c) {
         out.names.push_back(parameterName(model, c));
         out.units.push_back(parameterUnit(model, c));
-        line = text::format("%-28s %15.9g %s\n", out.names.back().c_str(), out.pi(c), out.units.back().c_str());
+        line = text::format("%-28s %15.9g %s\n", io::terminalText(out.names.back()).c_str(), out.pi(c),
+                            out.units.back().c_str());
         out.text += line;
     }
     out.text += describeBaseParameters(model, out.base);

@@ -12,6 +12,7 @@
 #include "common.hpp"
 #include "progress.hpp"
 #include "nocdyn/analysis/stiffness.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/text.hpp"
 
 namespace nocdyn::cli {
@@ -65,7 +66,8 @@ nlohmann::json complianceJson(const app::PoseCompliance& c) {
     out["stiffness"] = {
         {"coordinates", coordinates}, {"matrix", toJson(c.K)}, {"units", units}, {"free_directions", free}};
     out["natural_frequencies"] = {c.frequencies(0), c.frequencies(1), c.frequencies(2)};
-    out["mode_shapes"] = toJson(c.mode_shapes.transpose());  // one shape per entry
+    // as the text and Python give them: rows x, y, theta; column i the shape of frequency i
+    out["mode_shapes"] = toJson(c.mode_shapes);
     if (c.elastodynamic_frequencies) {
         const Eigen::VectorXd& f = *c.elastodynamic_frequencies;
         out["elastodynamic_frequencies"] = std::vector<double>(f.data(), f.data() + f.size());
@@ -128,8 +130,8 @@ void printCompliance(const app::PoseCompliance& c) {
 }
 
 void printText(const app::PoseResult& r) {
-    std::printf("robot %s, pose x = %.9g m, y = %.9g m, theta = %.9g rad (%.6g deg)\n\n", r.robot.c_str(), r.pose(0),
-                r.pose(1), r.pose(2), r.pose(2) * kDeg);
+    std::printf("robot %s, pose x = %.9g m, y = %.9g m, theta = %.9g rad (%.6g deg)\n\n",
+                io::terminalText(r.robot).c_str(), r.pose(0), r.pose(1), r.pose(2), r.pose(2) * kDeg);
     std::printf("limb  type  q1                q2                q3                cond J_j\n");
     for (const app::PoseLimb& l : r.limbs) {
         std::printf("%-4d  %s  ", l.limb, l.type.c_str());
@@ -160,7 +162,7 @@ void printText(const app::PoseResult& r) {
                     j.f(2));
     }
     if (r.compliance) printCompliance(*r.compliance);
-    if (!r.within_limits) std::printf("\nwarning: %s\n", r.limits.c_str());
+    if (!r.within_limits) std::printf("\nwarning: %s\n", io::terminalText(r.limits).c_str());
 }
 
 }  // namespace

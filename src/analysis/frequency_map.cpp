@@ -10,13 +10,15 @@
 
 #include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/printable.hpp"
 #include "nocdyn/text.hpp"
 
 namespace nocdyn::analysis {
 
 std::string noComplianceMessage(const Model& model, const std::string& what) {
     const std::string& source = model.description.source;
-    return "robot '" + model.description.name + "'" + (source.empty() ? "" : " (" + source + ")") +
+    return "robot '" + text::printable(model.description.name) + "'" +
+           (source.empty() ? "" : " (" + text::printable(source) + ")") +
            " declares no compliance (no joint stiffness, no elastic body): " + what +
            " needs a joint 'stiffness' or a body's 'elastic' (see robots/paper-3prr-compliant.yaml)";
 }

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/printable.hpp"
 
 namespace nocdyn {
 
@@ -110,7 +111,7 @@ void validate(RobotDescription& robot) {
     for (int j = 0; j < limbs; ++j) {
         LimbDescription& limb = robot.limbs[static_cast<std::size_t>(j)];
         if (limb.name.empty()) limb.name = "limb" + std::to_string(j + 1);
-        const std::string prefix = "limbs[" + std::to_string(j) + "] (" + limb.name + ")";
+        const std::string prefix = "limbs[" + std::to_string(j) + "] (" + text::printable(limb.name) + ")";
         if (limb.type() == "PPP") {
             check.fail(limb.line, prefix, "a limb of three prismatic joints cannot carry the platform's rotation");
         }
@@ -159,8 +160,9 @@ void validate(RobotDescription& robot) {
                 const JointDescription& outboard = limb.joints[static_cast<std::size_t>(b) + 1];
                 if (inboard.type != JointType::revolute || outboard.type != JointType::revolute) {
                     check.fail(body.line, field + ".elastic",
-                               "an elastic body is a beam between two revolute joints, but " + limb.name + "'s body " +
-                                   std::to_string(b + 1) + " is carried by a prismatic joint (" + limb.type() + ")");
+                               "an elastic body is a beam between two revolute joints, but " +
+                                   text::printable(limb.name) + "'s body " + std::to_string(b + 1) +
+                                   " is carried by a prismatic joint (" + limb.type() + ")");
                 }
                 if (!((outboard.point - inboard.point).norm() > 1e-9)) {
                     check.fail(body.line, field + ".elastic", "the beam between the body's two joints has zero length");

@@ -7,6 +7,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/limb_ik.hpp"
+#include "nocdyn/printable.hpp"
 #include "limb_lanes.hpp"
 
 namespace nocdyn {
@@ -150,7 +151,7 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
         const std::string type = in.type();
         const bool two_solutions = type == "RRR" || type == "PRR" || type == "RPR" || type == "RRP";
         if (two_solutions && out.branch == 0) {
-            throw Error(where(robot, in.line) + "limbs[" + std::to_string(j) + "] (" + in.name +
+            throw Error(where(robot, in.line) + "limbs[" + std::to_string(j) + "] (" + text::printable(in.name) +
                         "): singular at home: the " + type +
                         " limb is at the boundary of its reach (its two assembly branches meet)");
         }
@@ -191,7 +192,7 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
 std::string Model::limbName(int j) const {
     const std::string& name = description.limbs[static_cast<std::size_t>(j)].name;
     const std::string number = "limb " + std::to_string(j + 1);
-    return name == "limb" + std::to_string(j + 1) ? number : number + " (" + name + ")";
+    return name == "limb" + std::to_string(j + 1) ? number : number + " (" + text::printable(name) + ")";
 }
 
 Data::Data(const Model& model)

@@ -19,6 +19,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "nocdyn/printable.hpp"
 #include "nocdyn/text.hpp"
 
 namespace nocdyn {
@@ -201,7 +202,7 @@ std::string describeBaseParameters(const Model& model, const BaseParameters& bas
     std::ostringstream out;
     const ParameterVector pi = standardParameters(model);
     const int P = parameterCount(model);
-    out << "# " << model.description.name << ": " << P << " standard parameters, " << base.rank
+    out << "# " << text::printable(model.description.name) << ": " << P << " standard parameters, " << base.rank
         << " identifiable combinations (base parameters), condition number " << base.condition << "\n";
     out << "# Standard parameters per body (body frame): m, mc_x, mc_y = m * c.o.m., I_O = inertia about the\n"
            "# frame origin (limb bodies: the base frame at home; platform: C, turning with theta);\n"
@@ -209,12 +210,12 @@ std::string describeBaseParameters(const Model& model, const BaseParameters& bas
     const Eigen::VectorXd beta = base.K * pi;
     std::string buffer;
     for (int k = 0; k < base.rank; ++k) {
-        out << "beta_" << (k + 1) << " = " << parameterName(model, base.independent[at(k)]);
+        out << "beta_" << (k + 1) << " = " << text::printable(parameterName(model, base.independent[at(k)]));
         for (int c = 0; c < P; ++c) {
             const double x = base.K(k, c);
             if (c == base.independent[at(k)] || x == 0.0) continue;
             buffer = text::format(" %c %.6g ", x < 0.0 ? '-' : '+', std::abs(x));
-            out << buffer << parameterName(model, c);
+            out << buffer << text::printable(parameterName(model, c));
         }
         buffer = text::format("%.9g", beta(k));
         out << "   (robot file: " << buffer << " " << parameterUnit(model, base.independent[at(k)]) << ")\n";
@@ -223,7 +224,7 @@ std::string describeBaseParameters(const Model& model, const BaseParameters& bas
         out << "unidentifiable (no effect on the actuator forces): none\n";
     } else {
         out << "unidentifiable (no effect on the actuator forces):";
-        for (const int c : base.unidentifiable) out << " " << parameterName(model, c);
+        for (const int c : base.unidentifiable) out << " " << text::printable(parameterName(model, c));
         out << "\n";
     }
     // standard parameters only identifiable in combination
@@ -235,7 +236,7 @@ std::string describeBaseParameters(const Model& model, const BaseParameters& bas
     }
     out << "identifiable only in the combinations above:";
     if (combined.empty()) out << " none";
-    for (const int c : combined) out << " " << parameterName(model, c);
+    for (const int c : combined) out << " " << text::printable(parameterName(model, c));
     out << "\n";
     return out.str();
 }
@@ -500,7 +501,7 @@ void requireDetermined(const Model& model, const Eigen::MatrixXd& Aw, const Eige
     std::vector<Eigen::Index> keep;
     for (Eigen::Index c = 0; c < k; ++c) {
         if (involved[at(static_cast<int>(c))]) {
-            unknown += (unknown.empty() ? "" : ", ") + names[at(static_cast<int>(c))];
+            unknown += (unknown.empty() ? "" : ", ") + text::printable(names[at(static_cast<int>(c))]);
         } else {
             keep.push_back(c);
         }
@@ -512,7 +513,7 @@ void requireDetermined(const Model& model, const Eigen::MatrixXd& Aw, const Eige
         for (std::size_t j = 0; j < keep.size(); ++j) {
             std::string buffer;
             buffer = text::format(" %.6g ", xk(static_cast<Eigen::Index>(j)));
-            known += (known.empty() ? "" : ", ") + names[at(static_cast<int>(keep[j]))] + buffer +
+            known += (known.empty() ? "" : ", ") + text::printable(names[at(static_cast<int>(keep[j]))]) + buffer +
                      parameterUnit(model, columns[at(static_cast<int>(keep[j]))]);
         }
     }
@@ -531,7 +532,7 @@ LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const E
     const Eigen::VectorXd norms = A.colwise().norm();
     for (Eigen::Index c = 0; c < k; ++c) {
         if (!(norms(c) > 0.0)) {
-            throw Error("identification: " + names[at(static_cast<int>(c))] +
+            throw Error("identification: " + text::printable(names[at(static_cast<int>(c))]) +
                         " has no effect on the actuator forces along this motion: it cannot be identified");
         }
     }
@@ -554,7 +555,7 @@ LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const E
             const Eigen::VectorXd v = svd.matrixV().col(k - 1);
             Eigen::Index worst = 0;
             v.cwiseAbs().maxCoeff(&worst);
-            throw Error("identification: " + names[at(static_cast<int>(worst))] +
+            throw Error("identification: " + text::printable(names[at(static_cast<int>(worst))]) +
                         " is not identifiable from this motion (condition number of the regressor " +
                         std::to_string(result.condition) + ", above 1e7): excite the robot more");
         }
@@ -834,8 +835,8 @@ void checkCalibration(const Model& model, const Calibration& calibration) {
         for (std::size_t c = 0; c < std::min(calibration.independent.size(), base.independent.size()); ++c) {
             if (calibration.independent[c] != base.independent[c]) {
                 which = "base parameter " + std::to_string(c + 1) + " (" +
-                        parameterName(model, calibration.independent[c]) + ", this robot's is " +
-                        parameterName(model, base.independent[c]) + ")";
+                        text::printable(parameterName(model, calibration.independent[c])) + ", this robot's is " +
+                        text::printable(parameterName(model, base.independent[c])) + ")";
                 break;
             }
         }
