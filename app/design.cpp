@@ -15,6 +15,7 @@
 #include <thread>
 #include <utility>
 
+#include "app/outputs.hpp"
 #include "nocdyn/analysis/design.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/io/escape.hpp"
@@ -27,6 +28,16 @@
 namespace nocdyn::app {
 
 namespace {
+
+/// Whether a robot declares any compliance: a joint's stiffness or an elastic body.
+bool declaresCompliance(const RobotDescription& robot) {
+    return std::any_of(robot.limbs.begin(), robot.limbs.end(), [](const LimbDescription& limb) {
+        return std::any_of(limb.joints.begin(), limb.joints.end(),
+                           [](const JointDescription& j) { return j.stiffness.has_value(); }) ||
+               std::any_of(limb.bodies.begin(), limb.bodies.end(),
+                           [](const BodyDescription& b) { return b.elastic.has_value(); });
+    });
+}
 
 /// "NAME=LO:HI" as a range.
 DesignRange parseRange(const std::string& text) {
@@ -255,6 +266,31 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
             throw OptionError("metric", io::terminalText(e.what()));
         }
     }
+    for (std::size_t a = 0; a < metrics.size(); ++a) {
+        for (std::size_t b = 0; b < a; ++b) {
+            if (metrics[a].name() == metrics[b].name())
+                throw OptionError("metric", "'" + io::terminalText(metrics[a].name()) + "' is asked twice");
+        }
+    }
+    const auto points = sweepPoints(family.ranges, options.sweep == "grid" ? SweepKind::grid : SweepKind::random,
+                                    options.samples, options.seed);
+    // whether the family declares compliance is structural (a field present, not its value):
+    // first_frequency_min on a family without any is refused before the first design
+    if (std::any_of(metrics.begin(), metrics.end(),
+                    [](const DesignMetric& m) { return m.kind == DesignMetricKind::first_frequency_min; }) &&
+        !points.empty()) {
+        std::optional<RobotDescription> first;
+        try {
+            first = io::designRobot(family, points.front());
+        } catch (const Error&) {
+            // a design the sweep itself will report
+        }
+        if (first && !declaresCompliance(*first)) {
+            throw OptionError("metric", "first_frequency_min: the family '" + io::terminalText(first->name) +
+                                            "' declares no compliance (no joint 'stiffness', no body 'elastic'), so "
+                                            "no design has a natural frequency");
+        }
+    }
     nocdyn::DesignOptions design;
     design.workspace.resolution = options.resolution;
     design.workspace_theta_at_home = !options.theta;
@@ -267,8 +303,6 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         design.rate = options.rate;
         requireRateAboveNyquist(*design.trajectory, design.rate);
     }
-    const auto points = sweepPoints(family.ranges, options.sweep == "grid" ? SweepKind::grid : SweepKind::random,
-                                    options.samples, options.seed);
 
     DesignResult out;
     for (const DesignRange& r : family.ranges) out.names.push_back(r.name);
@@ -278,7 +312,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     std::optional<io::DesignJournal> journal;
     if (!options.out_dir.empty()) {
         refuseRobotInside(options.robot.path, options.out_dir);
-        std::filesystem::create_directories(dir);
+        createOutputFolder(options.out_dir, "out_dir");
         journal.emplace((dir / "journal.csv").string(), signature(options, family, metrics, design), out.columns,
                         family.ranges.size(), metrics.size());
     }
