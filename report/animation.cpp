@@ -15,6 +15,7 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/analysis/sampling.hpp"
+#include "nocdyn/printable.hpp"
 #include "nocdyn/text.hpp"
 
 namespace nocdyn::report {
@@ -354,6 +355,97 @@ MotionSamples motionFromTrajectory(const Model& model, const PoseTrajectory& tra
     return motion;
 }
 
+namespace {
+
+/// A recorded motion (a file: nothing in it names its robot) against this robot's limits: each
+/// actuator whose recorded force or position leaves its effort or range, and, when every
+/// actuator's force does, the likely cause (another robot's motion: its forces scaled against
+/// the wrong limits).
+std::vector<std::string> recordedLimitWarnings(const Model& model, const MotionSamples& motion) {
+    std::vector<std::string> warnings;
+    const int n = motion.actuators;
+    const std::size_t N = motion.t.size();
+    int over_effort = 0, limited = 0;
+    for (int a = 0; a < n; ++a) {
+        const JointDescription& joint = model.description.limbs[static_cast<std::size_t>(model.actuator_limb[a])]
+                                            .joints[static_cast<std::size_t>(model.actuator_joint[a])];
+        const bool revolute = joint.type == JointType::revolute;
+        double peak = 0.0, u_min = std::numeric_limits<double>::infinity(), u_max = -u_min;
+        for (std::size_t k = 0; k < N; ++k) {
+            const std::size_t at = k * static_cast<std::size_t>(n) + static_cast<std::size_t>(a);
+            peak = std::max(peak, std::abs(motion.tau[at]));
+            u_min = std::min(u_min, motion.u[at]);
+            u_max = std::max(u_max, motion.u[at]);
+        }
+        const std::string name = text::format("tau%d", a + 1);
+        if (std::isfinite(joint.limits.effort)) {
+            ++limited;
+            if (peak > joint.limits.effort) {
+                ++over_effort;
+                warnings.push_back(text::format(
+                    "actuator %d: the recorded %s peaks at %.4g %s, beyond its effort "
+                    "limit %.4g %s",
+                    a + 1, name.c_str(), peak, revolute ? "N m" : "N", joint.limits.effort, revolute ? "N m" : "N"));
+            }
+        }
+        if (u_min < joint.limits.lower || u_max > joint.limits.upper) {
+            warnings.push_back(text::format(
+                "actuator %d: the recorded motion takes u%d to [%.4g, %.4g] %s, beyond "
+                "its range [%.4g, %.4g]",
+                a + 1, a + 1, u_min, u_max, revolute ? "rad" : "m", joint.limits.lower, joint.limits.upper));
+        }
+    }
+    if (limited > 0 && over_effort == limited) {
+        warnings.push_back(
+            "every actuator's recorded force is beyond its effort limit: is the motion another "
+            "robot's? (the file does not name its robot; its forces are drawn against " +
+            text::printable(model.description.name) + "'s limits)");
+    }
+    return warnings;
+}
+
+/// Whether a recorded motion's own actuator columns (u1..un, as every command writes them) are not
+/// this robot's actuator positions at the recorded poses, or the file has more actuators: then
+/// the motion is another robot's. A replay's u may trail its poses by the tracking error, so only
+/// a difference of a fifth of the motion's own span or more counts. Empty when nothing says so.
+std::string otherRobotsMotion(const Model& model, const io::Table& table, const MotionSamples& motion,
+                              const std::string& path) {
+    const int n = motion.actuators;
+    const std::string name = text::printable(model.description.name);
+    if (table.has(text::format("tau%d", n + 1)) || table.has(text::format("u%d", n + 1))) {
+        return text::format("%s holds more than %d actuators: is the motion another robot's? (%s has %d)", path.c_str(),
+                            n, name.c_str(), n);
+    }
+    const std::size_t N = motion.t.size();
+    for (int a = 0; a < n; ++a) {
+        const std::string column = text::format("u%d", a + 1);
+        if (!table.has(column)) return {};
+        const std::size_t c = table.column(column);
+        double lo_file = std::numeric_limits<double>::infinity(), hi_file = -lo_file, lo = lo_file, hi = hi_file,
+               difference = 0.0;
+        for (std::size_t k = 0; k < N; ++k) {
+            const double recorded = table.rows[k][c];
+            const double here = motion.u[k * static_cast<std::size_t>(n) + static_cast<std::size_t>(a)];
+            lo_file = std::min(lo_file, recorded);
+            hi_file = std::max(hi_file, recorded);
+            lo = std::min(lo, here);
+            hi = std::max(hi, here);
+            difference = std::max(difference, std::abs(recorded - here));
+        }
+        if (!std::isfinite(difference)) continue;
+        if (difference > 0.2 * std::max(hi_file - lo_file, hi - lo) + 1e-9) {
+            return text::format(
+                "%s: its %s is not %s's actuator %d at its poses (they differ by up to %.4g, the "
+                "motion spans %.4g): is the motion another robot's? (the file does not name its "
+                "robot)",
+                path.c_str(), column.c_str(), name.c_str(), a + 1, difference, hi_file - lo_file);
+        }
+    }
+    return {};
+}
+
+}  // namespace
+
 MotionSamples motionFromCsv(const Model& model, const std::string& path) {
     MotionSamples motion = motionFromTable(model, io::readCsvFile(path), path);
     motion.source = std::filesystem::path(path).filename().string();
@@ -400,6 +492,9 @@ MotionSamples motionFromTable(const Model& model, const io::Table& table, const 
             motion.tau.push_back(row[ctau[static_cast<std::size_t>(a)]]);
         }
     }
+    motion.warnings = recordedLimitWarnings(model, motion);
+    if (const std::string other = otherRobotsMotion(model, table, motion, path); !other.empty())
+        motion.warnings.push_back(other);
     return motion;
 }
 
