@@ -100,8 +100,8 @@ void validate(const ControlOptions& options) {
         throw OptionError("measure", "'" + options.measure + "' is not one of pose, encoders");
     }
     requireIn(options.natural_frequency, kNaturalFrequencyRange, "natural_frequency");
-    requireIn(options.payload_mass, Range{0.0, 1e6, "kg"}, "payload_mass");
-    requireIn(options.payload_inertia, Range{0.0, 1e12, "kg m^2"}, "payload_inertia");
+    requireIn(options.payload_mass, kPayloadMassRange, "payload_mass");
+    requireIn(options.payload_inertia, kPayloadInertiaRange, "payload_inertia");
     if (!options.payload_com.empty() && options.payload_com.size() != 2) {
         throw OptionError("payload_com", "expected 2 values x, y");
     }
@@ -132,6 +132,7 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     validate(options);
     const bool encoders = options.measure == "encoders";
     const RobotDescription robot = loadRobot(options.robot);
+    if (const std::string rigid = rigidPlantWarning(robot, "control"); !rigid.empty()) observer.warning(rigid);
     const Model model(robot);
     const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
     PoseLoopOptions loop;

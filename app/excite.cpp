@@ -47,6 +47,13 @@ void validate(const ExciteOptions& o) {
     if (!o.payload_guess.empty() && o.payload_guess.size() != 4)
         throw OptionError("payload_guess", "expected 4 numbers: mass, com x, com y, inertia");
     for (double v : o.payload_guess) requireIn(v, kPayloadGuessRange, "payload_guess");
+    if (o.payload_guess.size() == 4) {
+        // each value in its own quantity's range (the range of a payload anywhere else)
+        requireIn(o.payload_guess[0], kPayloadMassRange, "payload_guess");
+        requireIn(o.payload_guess[1], kLengthRange, "payload_guess");
+        requireIn(o.payload_guess[2], kLengthRange, "payload_guess");
+        requireIn(o.payload_guess[3], kPayloadInertiaRange, "payload_guess");
+    }
     if (!o.payload_guess.empty() && o.base)
         throw OptionError("payload_guess", "is for a payload; base designs for the robot without one");
     requireIn(o.duration, kExciteDurationRange, "duration");

@@ -8,6 +8,7 @@
 #include "nocdyn/analysis/linearization.hpp"
 #include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/dynamics.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/pose_order.hpp"
 #include "nocdyn/sim/closed_loop.hpp"
 #include "nocdyn/sim/control.hpp"
@@ -68,11 +69,12 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
                          : positions == std::ssize(system.inputs) ? "the commanded drive positions"
                                                                   : "the drive inputs (uc: commanded "
                                                                     "position, tau: force)";
-    out.summary = "# frequency response of " + out.robot + " from " + inputs + " to " +
+    out.summary = "# frequency response of " + io::terminalText(out.robot) + " from " + inputs + " to " +
                   (acceleration ? "the platform acceleration" : "the actuator variables") +
                   (lumped ? " (lumped compliant model)\n" : " (rigid model)\n");
-    line = text::format("# operating point [x, y, theta] = [%.6g, %.6g, %.6g], its rate = [%.6g, %.6g, %.6g]\n", pu(0),
-                        pu(1), pu(2), dpu(0), dpu(1), dpu(2));
+    line = text::format("# operating point [x, y, theta] = [%.6g, %.6g, %.6g], its rate = [%.6g, %.6g, %.6g]%s\n",
+                        pu(0), pu(1), pu(2), dpu(0), dpu(1), dpu(2),
+                        options.payload > 0.0 ? text::format("; payload %g kg at C", options.payload).c_str() : "");
     out.summary += line;
     if (lumped) {
         analysis::StiffnessData stiffness;
@@ -121,6 +123,15 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
     loop_options.rate = options.controller_rate;
     loop_options.natural_frequency = options.natural_frequency;
     const ShakeLoopLinearization loop = linearizeShakeLoop(model, plant_model, p, loop_options);
+    // a response is a steady state only of a stable loop: every eigenvalue of the one-tick map
+    // inside the unit circle
+    if (const double radius = shakeLoopSpectralRadius(loop); !(radius < 1.0)) {
+        throw OptionError("closed_loop",
+                          text::format("unstable closed loop (spectral radius max |eig F| = %.6g >= 1 at a tick of "
+                                       "%g Hz with f_n = %g Hz): it has no frequency response; lower "
+                                       "`natural_frequency`, raise `controller_rate` or lighten `payload`",
+                                       radius, options.controller_rate, options.natural_frequency));
+    }
     const ShakeLoopFrequencyResponse r =
         shakeLoopFrequencyResponse(loop, logGrid(options.f_min, options.f_max, options.points));
     FrequencyResponseResult out;
@@ -137,9 +148,14 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
         "# (linearised at rest at [x, y, theta] = [%.6g, %.6g, %.6g]; tick %g Hz, f_n = %g Hz, payload "
         "unknown to the controller %g kg)\n",
         pu(0), pu(1), pu(2), options.controller_rate, options.natural_frequency, options.payload);
-    out.summary = "# closed-loop frequency response of " + out.robot +
+    out.summary = "# closed-loop frequency response of " + io::terminalText(out.robot) +
                   " under the shake-table controller, from the reference to the achieved platform acceleration\n" +
                   line;
+    if (analysis::StiffnessModel(model).any) {
+        out.summary +=
+            "# rigid plant: the compliance the robot file declares (joint or drive stiffness, elastic links) is not "
+            "modelled in the closed loop (the open-loop plant models it: frequency-response without --closed-loop)\n";
+    }
     out.summary +=
         "# axis  |H| at f_min [dB]  |H| at f_max [dB]  -3 dB bandwidth [Hz]  crossover [Hz]  phase margin [deg]\n";
     Eigen::Index c_out = 1;
@@ -173,25 +189,37 @@ void validate(const FrequencyResponseOptions& options) {
     if (options.output_kind != "acceleration" && options.output_kind != "actuators") {
         throw OptionError("output_kind", "'" + options.output_kind + "' is not one of acceleration, actuators");
     }
-    requireIn(options.f_min, Range{1e-300, 1e300, "Hz"}, "f_min");
-    requireIn(options.f_max, Range{1e-300, 1e300, "Hz"}, "f_max");
+    requireIn(options.f_min, kResponseFrequencyRange, "f_min");
+    requireIn(options.f_max, kResponseFrequencyRange, "f_max");
     if (!(options.f_max > options.f_min)) throw OptionError("f_max", "must be above f_min");
     if (options.points < kMinPoints || options.points > kMaxPoints) {
         throw OptionError("points", std::to_string(options.points) + " is outside [2, 100000]");
     }
-    requireIn(options.payload, Range{0.0, 1e300, "kg"}, "payload");
-    requireIn(options.controller_rate, Range{1e-300, 1e300, "Hz"}, "controller_rate");
-    requireIn(options.natural_frequency, Range{1e-300, 1e300, "Hz"}, "natural_frequency");
+    requireIn(options.payload, kPayloadMassRange, "payload");
+    requireIn(options.controller_rate, kShakeRateRange, "controller_rate");
+    requireIn(options.natural_frequency, kShakeNaturalFrequencyRange, "natural_frequency");
     if (options.compliance != "auto" && options.compliance != "rigid" && options.compliance != "lumped") {
         throw OptionError("compliance", "'" + options.compliance + "' is not one of auto, rigid, lumped");
     }
+    // the controller's settings do nothing to the open-loop plant: set, they are refused
+    const FrequencyResponseOptions defaults;
+    if (!options.closed_loop) {
+        if (options.controller_rate != defaults.controller_rate)
+            throw OptionError("controller_rate", "does not apply to the plant: it goes with `closed_loop`");
+        if (options.natural_frequency != defaults.natural_frequency)
+            throw OptionError("natural_frequency", "does not apply to the plant: it goes with `closed_loop`");
+    }
     if (options.closed_loop) {
+        if (options.output_kind != defaults.output_kind)
+            throw OptionError("output_kind",
+                              "does not apply to the closed loop (its output is the achieved platform acceleration): "
+                              "it goes with the plant (without `closed_loop`)");
         if (options.compliance == "lumped")
             throw OptionError("compliance", "the closed loop is the rigid model: lumped does not apply");
         if (!options.rate.empty())
             throw OptionError("rate", "the closed loop is linearised at rest: rate does not apply");
         if (!(options.f_max < 0.5 * options.controller_rate)) {
-            throw OptionError("f_max", "must be below half the controller_rate (the Nyquist frequency)");
+            throw OptionError("f_max", "must be below half the `controller_rate` (the Nyquist frequency)");
         }
     }
 }
@@ -199,8 +227,27 @@ void validate(const FrequencyResponseOptions& options) {
 FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& options, Observer& /*observer*/) {
     validate(options);
     const RobotDescription robot = loadRobot(options.robot);
-    const Model model(robot);
-    return options.closed_loop ? closedLoop(options, robot, model) : plant(options, model);
+    // the open-loop plant carries the payload (a point mass at C) itself
+    FrequencyResponseResult out =
+        options.closed_loop
+            ? closedLoop(options, robot, Model(robot))
+            : plant(options,
+                    Model(options.payload > 0.0 ? withPayload(robot, Payload{options.payload, 0.0, Vector2::Zero()})
+                                                : robot));
+    // a grid the options accept may still reach beyond a double (|H| of 1 / w^2 at extreme w):
+    // said at once, naming the end of the grid, not when the table is written
+    for (Eigen::Index k = 0; k < out.table.rows(); ++k) {
+        for (Eigen::Index c = 1; c < out.table.cols(); ++c) {
+            if (std::isfinite(out.table(k, c))) continue;
+            const double f = out.table(k, 0);
+            const bool low = f < std::sqrt(options.f_min) * std::sqrt(options.f_max);
+            throw OptionError(low ? "f_min" : "f_max",
+                              text::format("the response at %g Hz (%s) is beyond the range of a double; choose a "
+                                           "narrower grid",
+                                           f, out.columns[static_cast<std::size_t>(c)].c_str()));
+        }
+    }
+    return out;
 }
 
 report::Figure bodeFigure(const FrequencyResponseResult& result) {

@@ -36,12 +36,16 @@ struct FrequencyResponseOptions {
     double f_min = 1.0, f_max = 1000.0;  ///< [Hz], 0 < f_min < f_max
     int points = 200;                    ///< log-spaced frequencies (kPointsRange)
     bool closed_loop = false;
-    double payload = 0.0;              ///< closed_loop: a point mass at C the controller does not know [kg]
+    /// A point mass at C on the plant [kg] (kPayloadMassRange); closed_loop: one the controller's
+    /// model does not carry.
+    double payload = 0.0;
     double controller_rate = 10000.0;  ///< closed_loop: controller ticks [Hz], above 2 f_max
     double natural_frequency = 6.0;    ///< closed_loop: f_n of the pose feedback [Hz]
 };
 
 inline constexpr int kMinPoints = 2, kMaxPoints = 100000;
+/// The frequencies of a grid (f_min, f_max).
+inline constexpr Range kResponseFrequencyRange{1e-300, 1e9, "Hz"};
 
 /// One curve of the Bode figure: a channel's (or a loop transfer's) magnitude and phase.
 struct BodeCurve {

@@ -4,7 +4,10 @@
 #include <cmath>
 #include <sstream>
 
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::app {
 
@@ -31,6 +34,23 @@ RobotDescription loadRobot(const RobotSource& source) {
         return io::exampleRobot("paper-3prr");
     }
     return io::loadRobotDescription(source.path, source.set);
+}
+
+std::string rigidPlantWarning(const RobotDescription& robot, const std::string& command) {
+    const Model model(robot);
+    const analysis::StiffnessModel compliance(model);
+    if (!compliance.any) return {};
+    // the first lumped natural frequency at home says where the rigid plant stops being the robot
+    std::string first;
+    analysis::StiffnessData stiffness;
+    analysis::LumpedModes modes;
+    Data data(model);
+    if (analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes) &&
+        std::isfinite(modes.frequency(0)) && modes.frequency(0) > 0.0) {
+        first = text::format(" (first resonance at home %.4g Hz)", modes.frequency(0));
+    }
+    return command + ": the compliance the robot file declares (joint or drive stiffness, elastic links)" + first +
+           " is not modelled: the plant is the rigid robot";
 }
 
 void addOverride(io::ParameterSet& set, const io::Parameter& parameter) {

@@ -15,16 +15,22 @@
 namespace nocdyn::app {
 
 /// A value outside what an option accepts. field() is the option's name in the options struct
-/// ("rate", "allow_limits"): the command line shows it as --rate, Python as rate.
+/// ("rate", "allow_limits"): the command line shows it as --rate, Python as rate. Another option
+/// named in the message is written between backquotes (`iterations`): the command line shows it
+/// as --iterations, what() (Python) as iterations.
 class OptionError : public Error {
 public:
     OptionError(std::string field, const std::string& message)
-        : Error(field + ": " + message), field_(std::move(field)), message_(message) {}
+        : Error(field + ": " + withoutQuotes(message)), field_(std::move(field)), message_(message) {}
     [[nodiscard]] const std::string& field() const { return field_; }
     /// The message without the option's name.
     [[nodiscard]] const std::string& message() const { return message_; }
 
 private:
+    static std::string withoutQuotes(std::string text) {
+        std::erase(text, '`');
+        return text;
+    }
     std::string field_, message_;
 };
 
@@ -43,6 +49,14 @@ inline constexpr Range kDurationRange{1e-6, 1e6, "s"};
 /// Positions a user gives (pose, forward kinematics): far beyond any planar robot's size.
 inline constexpr Range kAngleRange{-1e6, 1e6, "rad"};
 inline constexpr Range kLengthRange{-1e3, 1e3, "m"};
+/// The shake-table loop (shake, frequency-response's closed loop): its controller's tick rate
+/// and its pose feedback's natural frequency.
+inline constexpr Range kShakeRateRange{100.0, 1e6, "Hz"};
+inline constexpr Range kShakeNaturalFrequencyRange{0.1, 1e4, "Hz"};
+/// A payload added to a robot (shake, control, frequency-response, excite's guess): its mass, and
+/// its inertia about its centre of mass.
+inline constexpr Range kPayloadMassRange{0.0, 1e4, "kg"};
+inline constexpr Range kPayloadInertiaRange{0.0, 1e6, "kg m^2"};
 
 /// The robot a command works on.
 struct RobotSource {
@@ -57,6 +71,10 @@ struct RobotSource {
 /// The robot a source names, with its overrides. Throws nocdyn::Error for a bad file, and
 /// OptionError("set") for overrides of the built-in prototype or of a robot built in code.
 [[nodiscard]] RobotDescription loadRobot(const RobotSource& source);
+
+/// The warning of a command whose plant is the rigid robot (simulate, control, shake) when the
+/// robot file declares compliance that the plant leaves out; empty when it declares none.
+[[nodiscard]] std::string rigidPlantWarning(const RobotDescription& robot, const std::string& command);
 
 /// Adds NAME=VALUE to a parameter set (a later one for the same name replaces the earlier).
 void addOverride(io::ParameterSet& set, const io::Parameter& parameter);

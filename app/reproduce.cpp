@@ -1,5 +1,6 @@
 #include "app/reproduce.hpp"
 
+#include "app/outputs.hpp"
 #include "report.hpp"
 
 namespace nocdyn::app {
@@ -12,6 +13,7 @@ void validate(const ReproduceOptions& options) {
 
 ReproduceResult runReproduce(const ReproduceOptions& options, Observer& observer) {
     validate(options);
+    requireOutputFolder(options.out_dir, "out_dir");
     report::ReproduceOptions report;
     report.out = options.out_dir;
     report.closed_loop_duration = options.closed_loop_duration;

@@ -10,7 +10,10 @@
 #include <filesystem>
 #include <mutex>
 #include <sstream>
+#include <string_view>
+#include <utility>
 
+#include "app/outputs.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/escape.hpp"
@@ -274,6 +277,54 @@ void requireCount(long long value, long long hi, const char* field) {
     }
 }
 
+/// An option set away from its default where it has no effect is refused, naming the option it
+/// goes with (a value left at its default changes nothing either way).
+void refuseWhatDoesNotApply(const ShakeOptions& o) {
+    const ShakeOptions d;
+    const bool table = o.controller == "table";
+    const auto refuse = [](bool set, const char* field, const std::string& needs) {
+        if (set) throw OptionError(field, "does not apply here: it goes with " + needs);
+    };
+    // the drive iteration's settings: only with passes to iterate
+    refuse(o.drive_model != d.drive_model && o.iterations == 0, "drive_model",
+           "`iterations` 1 or more (the passes whose drive it corrects)");
+    refuse(o.iteration_gain != d.iteration_gain && o.iterations == 0, "iteration_gain", "`iterations` 1 or more");
+    refuse(o.excitation_duration != d.excitation_duration && !o.identify_payload, "excitation_duration",
+           "`identify_payload`");
+    // the table controller's sensing, and the pose controller's noisy sensor
+    const std::pair<bool, const char*> table_only[] = {
+        {o.acceleration_gain != d.acceleration_gain, "acceleration_gain"},
+        {o.encoder_noise != d.encoder_noise, "encoder_noise"},
+        {o.accel_noise_density != d.accel_noise_density, "accel_noise_density"},
+        {o.accel_bandwidth != d.accel_bandwidth, "accel_bandwidth"},
+        {o.accel_baseline != d.accel_baseline, "accel_baseline"},
+        {o.no_accelerometer, "no_accelerometer"}};
+    for (const auto& [set, field] : table_only) refuse(set && !table, field, "`controller` table");
+    for (const auto& [set, field] : table_only) {
+        if (std::string_view(field).starts_with("accel") || std::string_view(field) == "acceleration_gain")
+            refuse(set && o.no_accelerometer, field, "the accelerometers (not `no_accelerometer`)");
+    }
+    refuse(o.noise_pose != d.noise_pose && table, "noise_pose", "`controller` pose");
+    refuse(o.noise_rate != d.noise_rate && table, "noise_rate", "`controller` pose");
+    refuse(o.accuracy != d.accuracy && o.plant != "simbody", "accuracy", "`plant` simbody");
+}
+
+/// A suite's settings on a single record are refused, naming what they go with.
+void refuseSuiteOptions(const ShakeOptions& o) {
+    const ShakeOptions d;
+    const std::pair<bool, const char*> suite_only[] = {
+        {o.jobs != d.jobs, "jobs"},
+        {o.max_rms_percent != d.max_rms_percent, "max_rms_percent"},
+        {o.max_peak_percent != d.max_peak_percent, "max_peak_percent"},
+        {o.min_spectrum_percent != d.min_spectrum_percent, "min_spectrum_percent"}};
+    for (const auto& [set, field] : suite_only) {
+        if (set)
+            throw OptionError(field,
+                              "does not apply to one record: it goes with a suite (`record` repeated, or "
+                              "a folder of records)");
+    }
+}
+
 }  // namespace
 
 void validate(const ShakeOptions& o) {
@@ -303,7 +354,7 @@ void validate(const ShakeOptions& o) {
         throw OptionError("drive_model",
                           o.drive_model + " inverts the table controller's closed loop: needs controller table");
     if (o.drive_specimen && o.drive_model == "identity")
-        throw OptionError("drive_specimen", "goes with drive_model exact or difference");
+        throw OptionError("drive_specimen", "goes with `drive_model` exact or difference");
     requireIn(o.excitation_duration, kExcitationDurationRange, "excitation_duration");
     requireCount(o.jobs, kMaxJobs, "jobs");
     requireIn(o.max_rms_percent, kErrorPercentRange, "max_rms_percent");
@@ -313,12 +364,16 @@ void validate(const ShakeOptions& o) {
     requireIn(o.noise_pose, kNoisePoseRange, "noise_pose");
     requireIn(o.noise_rate, kNoiseRateRange, "noise_rate");
     requireIn(o.accuracy, kAccuracyRange, "accuracy");
-    if (o.identify_payload && o.controller != "table") throw OptionError("identify_payload", "needs controller table");
+    if (o.identify_payload && o.controller != "table")
+        throw OptionError("identify_payload", "needs `controller` table");
+    refuseWhatDoesNotApply(o);
 }
 
 ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     validate(options);
+    requireOutputFolder(options.out_dir, "out_dir");
     const RobotDescription robot = loadRobot(options.robot);
+    if (const std::string rigid = rigidPlantWarning(robot, "shake"); !rigid.empty()) observer.warning(rigid);
     report::ShakeSettings settings = settingsOf(options);
     const std::vector<std::string> records = expandRecords(options.record);
     if (records.size() > 1) {
@@ -326,6 +381,7 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
             throw OptionError("record_y", "record_y and record_theta go with a single record");
         return runSuite(records, options, settings, robot, observer);
     }
+    refuseSuiteOptions(options);
     GroundRecord record;
     record.ax = readAxis(records.front(), options.window, record.dt, false);
     if (!options.record_y.empty()) record.ay = readAxis(options.record_y, options.window, record.dt, false);

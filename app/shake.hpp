@@ -18,8 +18,6 @@ namespace nocdyn::app {
 inline constexpr Range kHighpassRange{0.0, 1e3, "Hz"};
 inline constexpr Range kShareRange{0.0, 0.9, ""};  // margin, acceleration gain
 inline constexpr Range kWindowRange{0.0, 1e5, "s"};
-inline constexpr Range kShakeRateRange{100.0, 1e6, "Hz"};
-inline constexpr Range kShakeNaturalFrequencyRange{0.1, 1e4, "Hz"};
 inline constexpr Range kEncoderNoiseRange{1e-12, 1.0, "m or rad"};
 inline constexpr Range kAccelNoiseDensityRange{0.0, 1e6, "ug/sqrt(Hz)"};
 inline constexpr Range kAccelBandwidthRange{1.0, 1e5, "Hz"};
@@ -29,7 +27,6 @@ inline constexpr Range kIterationGainRange{0.01, 1.0, ""};
 inline constexpr Range kExcitationDurationRange{0.2, 600.0, "s"};
 inline constexpr Range kErrorPercentRange{0.0, 1000.0, "%"};
 inline constexpr Range kPercentRange{0.0, 100.0, "%"};
-inline constexpr Range kPayloadMassRange{0.0, 1e4, "kg"};
 inline constexpr Range kNoisePoseRange{0.0, 1.0, "m, rad"};
 inline constexpr Range kNoiseRateRange{0.0, 1e3, "m/s, rad/s"};
 inline constexpr Range kAccuracyRange{1e-14, 1e-3, ""};

@@ -183,6 +183,8 @@ void validate(const SimulateOptions& options) {
 SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Observer& observer) {
     validate(options);
     const Model model(loadRobot(options.robot));
+    if (const std::string rigid = rigidPlantWarning(model.description, "simulate"); !rigid.empty())
+        observer.warning(rigid);
     const int n = model.actuators;
     const std::string source = options.forces_table ? std::string("forces") : options.forces;
     // a file is read row by row into flat storage: the header and the first row (the initial state) kept

@@ -74,6 +74,15 @@ std::string describeOptions(CLI::App& app) {
     return commands.dump(1);
 }
 
+/// Whether everything written to standard output (iostreams and stdio) reached it; else says so
+/// on standard error (a closed pipe, a full disk).
+bool standardOutputWritten() {
+    std::cout.flush();
+    if (std::cout && std::fflush(stdout) == 0 && !std::ferror(stdout)) return true;
+    std::cerr << "nocdyn: error: cannot write standard output: " << std::strerror(errno) << "\n";
+    return false;
+}
+
 /// Levenshtein distance (insertions, deletions, substitutions), for "did you mean".
 std::size_t editDistance(const std::string& a, const std::string& b) {
     std::vector<std::size_t> row(b.size() + 1);
@@ -197,7 +206,7 @@ std::unique_ptr<CLI::App> makeApp() {
     const std::pair<const char*, std::vector<std::string>> groups[] = {
         {"Model", {"pose", "inverse-dynamics", "forward-kinematics", "loads", "regressor"}},
         {"Motion", {"simulate", "envelope", "workspace", "animate"}},
-        {"Control", {"control", "excite", "identify"}},
+        {"Control", {"control", "frequency-response", "excite", "identify"}},
         {"Purposes", {"shake", "reproduce", "validate", "design"}},
         {"Files", {"convert"}},
     };
@@ -238,6 +247,8 @@ std::unique_ptr<CLI::App> makeApp() {
             command->description(summary(text));
             command->footer(text);
         }
+        // a command in no group would be listed under CLI11's own "Subcommands" heading
+        command->group("Other");
         for (const auto& [group, names] : groups) {
             if (std::find(names.begin(), names.end(), command->get_name()) != names.end()) command->group(group);
         }
@@ -257,16 +268,23 @@ int runCommandLine(int argc, const char* const* argv) {
     // hidden: the options of every command as JSON (tests/python/test_parity.py)
     if (argc == 2 && std::string(argv[1]) == "--help-json") {
         std::cout << describeOptions(app) << "\n";
-        return 0;
+        return standardOutputWritten() ? 0 : 1;
     }
     // hidden: docs/output-formats.md, the CSV layouts from their registry (its test compares)
     if (argc == 2 && std::string(argv[1]) == "--output-formats") {
         std::cout << nocdyn::io::outputFormatsMarkdown();
-        return 0;
+        return standardOutputWritten() ? 0 : 1;
     }
     std::vector<std::string> arguments(argv + 1, argv + argc);
-    // `nocdyn help [COMMAND]`: the same as `nocdyn [COMMAND] --help`
-    if (!arguments.empty() && arguments.front() == "help" && arguments.size() <= 2) {
+    // `nocdyn help [COMMAND]`: the same as `nocdyn [COMMAND] --help`; `help help` is the
+    // top-level help, which says how help is used
+    if (!arguments.empty() && arguments.front() == "help") {
+        if (arguments.size() > 2) {
+            std::cerr << "nocdyn: error: help takes one command name, got " << arguments.size() - 1
+                      << " arguments (nocdyn help COMMAND; see nocdyn --help)\n";
+            return 2;
+        }
+        if (arguments.size() == 2 && arguments[1] == "help") arguments.pop_back();
         if (arguments.size() == 2 && findCommand(app, arguments[1]) == nullptr) {
             const std::string typo = misspelling(app, {arguments[1]});
             std::cerr << "nocdyn: error: "
@@ -291,9 +309,19 @@ int runCommandLine(int argc, const char* const* argv) {
     } catch (const CLI::ParseError& e) {
         // --help and --version exit 0; a malformed argument is one line on stderr and exit 2
         // (README, "Command line").
-        if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) return app.exit(e);
+        if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::Success)) {
+            app.exit(e);
+            // the help or version text is the command's output: a failed write is an error
+            return standardOutputWritten() ? 0 : 1;
+        }
         std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << " (see --help)\n";
         return 2;
+    } catch (const nocdyn::app::OptionError& e) {
+        // a value the command's job refused, under the option's name on the command line
+        const std::vector<CLI::App*> parsed = app.get_subcommands();
+        const std::string message = commandLineMessage(e, parsed.empty() ? nullptr : parsed.front());
+        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(message) << "\n";
+        return 1;
     } catch (const nocdyn::Error& e) {
         std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << "\n";
         return 1;
@@ -302,11 +330,7 @@ int runCommandLine(int argc, const char* const* argv) {
         return 1;
     }
     // What went to stdout through stdio (tables of pose, control, envelope) is checked too.
-    if (std::fflush(stdout) != 0 || std::ferror(stdout)) {
-        std::cerr << "nocdyn: error: cannot write standard output: " << std::strerror(errno) << "\n";
-        return 1;
-    }
-    return 0;
+    return standardOutputWritten() ? 0 : 1;
 }
 
 }  // namespace nocdyn::cli

@@ -7,7 +7,6 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
-#include "option_names.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -20,7 +19,7 @@ struct Options : app::AnimateOptions {
 
 void run(const Options& options) {
     TerminalObserver observer("nocdyn animate");
-    (void)namingOptions([&] { return app::runAnimate(options, observer); });
+    (void)app::runAnimate(options, observer);
     observer.finish();
 }
 

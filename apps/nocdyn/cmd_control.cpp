@@ -21,11 +21,7 @@ void run(Options options) {
     options.sensor_log = !options.log.empty();
     TerminalObserver observer("nocdyn control");
     app::ControlResult result;
-    try {
-        result = app::runControl(options, observer);
-    } catch (const app::OptionError& e) {
-        throw Error(commandLineMessage(e));
-    }
+    result = app::runControl(options, observer);
     observer.finish();
     if (!options.output.empty()) writeTable(result.table, options.output);
     if (!options.log.empty()) io::writeCsvFile(options.log, result.log);

@@ -17,7 +17,7 @@ namespace nocdyn::cli {
 
 namespace {
 
-void run(const app::DesignOptions& options) {
+void run(const app::DesignOptions& options, const CLI::App* command) {
     TerminalObserver observer("nocdyn design");
     const app::DesignResult result = [&] {
         try {
@@ -26,7 +26,7 @@ void run(const app::DesignOptions& options) {
             // a bad --vary, --metric or missing --trajectory: a usage error, as CLI11's own
             std::string option = "--" + e.field();
             std::replace(option.begin(), option.end(), '_', '-');
-            throw CLI::ValidationError(option, e.message());
+            throw CLI::ValidationError(option, commandLineText(e.message(), command));
         }
     }();
     observer.finish();
@@ -88,10 +88,10 @@ void addDesignCommand(CLI::App& app) {
         ->check(within(app::kRateRange))
         ->capture_default_str();
     command->add_flag("--no-figures", options->no_figures, "Write no figures");
-    command->callback([options, out_dir, old_out] {
+    command->callback([options, out_dir, old_out, command] {
         if (out_dir->count() + old_out->count() == 0) throw CLI::RequiredError("--out-dir");
         if (options->robot.path.empty()) throw CLI::ValidationError("--robot", "a parametric robot file is required");
-        run(*options);
+        run(*options, command);
     });
 }
 

@@ -8,7 +8,6 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
-#include "option_names.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -17,7 +16,7 @@ namespace {
 
 void run(const app::ExciteOptions& options) {
     TerminalObserver observer("nocdyn excite");
-    const app::ExciteResult result = namingOptions([&] { return app::runExcite(options, observer); });
+    const app::ExciteResult result = app::runExcite(options, observer);
     observer.finish();
     std::cout << result.text << "wrote " << options.output << "\n";
     std::cout.flush();

@@ -85,7 +85,7 @@ void run(const Options& options) {
     } catch (const app::OptionError& e) {
         // the wrong number of values is a usage error (exit 2), as a malformed one is
         if (e.field() != "u") throw;
-        throw CLI::ValidationError("U", e.message());
+        throw CLI::ValidationError("U", commandLineText(e.message()));
     }
     if (options.json)
         printJson(result);

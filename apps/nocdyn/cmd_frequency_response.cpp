@@ -29,11 +29,7 @@ io::Table toTable(const app::FrequencyResponseResult& r) {
 void run(const Options& options) {
     TerminalObserver observer("nocdyn frequency-response");
     app::FrequencyResponseResult result;
-    try {
-        result = app::runFrequencyResponse(options, observer);
-    } catch (const app::OptionError& e) {
-        throw Error(commandLineMessage(e));
-    }
+    result = app::runFrequencyResponse(options, observer);
     writeTable(toTable(result), options.output);
     // the summary to --summary, or to stdout when the table went to a file (--output)
     if (!options.summary.empty()) {
@@ -58,7 +54,8 @@ void addFrequencyResponseCommand(CLI::App& app) {
         "the lumped compliant model (massless springs, rigid bodies: the model of `nocdyn pose`'s natural\n"
         "frequencies) from each drive's commanded position uc (a drive with a stiffness: its servo's set point)\n"
         "or force tau (stiffness 0) to the platform acceleration; --compliance rigid forces the rigid model.\n"
-        "The shake table's closed loop (always rigid): --closed-loop, e.g.\n"
+        "The shake table's closed loop (always the rigid plant; its summary says so on a compliant robot):\n"
+        "--closed-loop, e.g.\n"
         "  nocdyn frequency-response --closed-loop --payload 5 --f-min 0.1 --f-max 4000 -o loop.csv\n"
         "Example: nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant");
     addRobotOption(*command, options->robot);
@@ -78,10 +75,10 @@ void addFrequencyResponseCommand(CLI::App& app) {
         ->check(CLI::IsMember({"auto", "rigid", "lumped"}))
         ->capture_default_str();
     command->add_option("--f-min", options->f_min, "Lowest frequency [Hz]")
-        ->check(CLI::PositiveNumber)
+        ->check(within(app::kResponseFrequencyRange))
         ->capture_default_str();
     command->add_option("--f-max", options->f_max, "Highest frequency [Hz]")
-        ->check(CLI::PositiveNumber)
+        ->check(within(app::kResponseFrequencyRange))
         ->capture_default_str();
     command->add_option("--points", options->points, "Frequencies, log-spaced")
         ->check(CLI::Range(app::kMinPoints, app::kMaxPoints))
@@ -92,17 +89,20 @@ void addFrequencyResponseCommand(CLI::App& app) {
                       "reference to the achieved platform acceleration per axis, and the loop transfer");
     command
         ->add_option("--payload", options->payload,
-                     "With --closed-loop: a point mass at C on the plant that the "
-                     "controller's model does not carry [kg]")
-        ->check(CLI::NonNegativeNumber)
+                     "A point mass at C on the plant [kg]; with --closed-loop, one the controller's model does not "
+                     "carry")
+        ->check(within(app::kPayloadMassRange))
         ->capture_default_str();
-    command->add_option("--controller-rate", options->controller_rate, "With --closed-loop: controller ticks [Hz]")
-        ->check(CLI::PositiveNumber)
+    command
+        ->add_option("--controller-rate", options->controller_rate,
+                     "With --closed-loop: controller ticks [Hz] (as shake's --rate)")
+        ->check(within(app::kShakeRateRange))
         ->capture_default_str();
     command
         ->add_option("--natural-frequency", options->natural_frequency,
-                     "With --closed-loop: f_n of the pose feedback [Hz]")
-        ->check(CLI::PositiveNumber)
+                     "With --closed-loop: f_n of the pose feedback [Hz] (as shake's); a loop it makes unstable is "
+                     "refused")
+        ->check(within(app::kShakeNaturalFrequencyRange))
         ->capture_default_str();
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
     command->add_option("--summary", options->summary, "Summary text file [default: stdout when -o is given]")

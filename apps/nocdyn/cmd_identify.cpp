@@ -7,7 +7,6 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "option_names.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -16,7 +15,7 @@ namespace {
 
 void run(const app::IdentifyOptions& options) {
     TerminalObserver observer("nocdyn identify");
-    const app::IdentifyResult result = namingOptions([&] { return app::runIdentify(options, observer); });
+    const app::IdentifyResult result = app::runIdentify(options, observer);
     observer.finish();
     printText(result.text);
 }

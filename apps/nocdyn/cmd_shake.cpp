@@ -9,7 +9,6 @@
 #include "common.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "option_names.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -22,7 +21,7 @@ struct Options : app::ShakeOptions {
 
 void run(const Options& options) {
     TerminalObserver observer("nocdyn shake");
-    const app::ShakeResult result = namingOptions([&] { return app::runShake(options, observer); });
+    const app::ShakeResult result = app::runShake(options, observer);
     observer.finish();
     std::cout << result.text;
     if (result.suite) {

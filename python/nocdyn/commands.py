@@ -229,6 +229,32 @@ def _path_argument(value, name):
     return text
 
 
+def _refuse_overwrites(command, inputs=(), outputs=(), stems=(), folders=()):
+    """Raises ValueError, as the command line refuses it, when an output of the call would replace
+    one of its inputs or another of its outputs: inputs, outputs and folders as (argument, value)
+    pairs, stems as (argument, value, suffixes) (a figure's STEM.png and STEM.svg); values that are
+    no path (None, a Table, a nocdyn.Robot) are skipped."""
+    paths = []
+
+    def add(role, name, value, suffixes=("",)):
+        if isinstance(value, (str, os.PathLike)) and os.fspath(value):
+            paths.extend((role, name, os.fspath(value) + suffix) for suffix in suffixes)
+
+    for name, value in inputs:
+        for one in (value if isinstance(value, (list, tuple)) else [value]):
+            add("input", name, one)
+    for name, value in outputs:
+        add("output", name, value)
+    for name, value, suffixes in stems:
+        add("output", name, value, suffixes)
+    for name, value in folders:
+        add("folder", name, value)
+    _nocdyn._refuse_output_over_input(command, paths)
+
+
+_FIGURE = (".png", ".svg")
+
+
 def _write_table(path, columns, data):
     """The table as the command line's CSV, written safely (a unique temporary file renamed)."""
     _nocdyn._write_table(os.fspath(path), list(columns), data)
@@ -263,6 +289,7 @@ def inverse_dynamics(trajectory, *, robot=None, set=None, output=None, progress=
     (t, x, y, theta, ..., u1..un, du1..dun, ddu1..ddun, tau1..taun); output: also write it as CSV."""
     bound = _bound_options(_nocdyn.InverseDynamicsOptions, {"trajectory": trajectory, **options})
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("inverse-dynamics", [("robot", robot), ("trajectory", trajectory)], [("output", output)])
     columns, data = _run(_nocdyn._run_inverse_dynamics, bound, progress, "inverse dynamics")
     table = Table(columns, data, "", "inverse-dynamics")
     if output is not None:
@@ -310,6 +337,7 @@ def simulate(forces, *, robot=None, set=None, output=None, progress=None, **opti
         table = _forces_table(forces)
         bound.use_forces(table.columns, table.data)
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("simulate", [("robot", robot), ("forces", forces)], [("output", output)])
     columns, data, text, stopped = _run(_nocdyn._run_simulate, bound, progress, "simulate")
     if stopped:
         warnings.warn(stopped, RuntimeWarning, stacklevel=2)
@@ -340,6 +368,8 @@ def control(trajectory, *, robot=None, set=None, plant=None, log=None, output=No
         bound.plant = _argument(plant, "plant", "")
     bound.robot = _robot_source(robot, set)
     files = [_path_argument(log, "log"), _path_argument(figure, "figure")]
+    _refuse_overwrites("control", [("robot", robot), ("trajectory", trajectory)], [("output", output), ("log", log)],
+                       [("figure", figure, _FIGURE)])
     columns, data, text = _run(lambda o, p: _nocdyn._run_control(o, *files, p), bound, progress, "control")
     if output is not None:
         _write_table(output, columns, data)
@@ -362,6 +392,7 @@ def envelope(*, robot=None, set=None, output=None, figure=None, progress=None, *
     figure: the figure's stem (STEM.png, STEM.svg)."""
     bound = _bound_options(_nocdyn.EnvelopeOptions, options)
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("envelope", [("robot", robot)], [("output", output)], [("figure", figure, _FIGURE)])
     answer, summary, first = _run(
         lambda o, p: _nocdyn._run_envelope(o, p, _path(output, "output"), _path(figure, "figure")), bound, progress,
         "envelope")
@@ -390,11 +421,14 @@ def frequency_response(*, robot=None, set=None, output=None, summary=None, figur
     _tau<a>), with the lumped natural frequencies in ``text``; "rigid" forces the rigid model,
     "lumped" requires the compliant one.
 
+    payload [kg]: a point mass at C that the plant carries.
+
     closed_loop=True: the shake-table loop linearised at rest (``--closed-loop``), from the
-    reference to the achieved platform acceleration per axis, with a plant ``payload`` [kg] at C
-    unknown to the controller, ``controller_rate`` [Hz] and the pose feedback's
-    ``natural_frequency`` [Hz]; the Table has <axis>_db, _deg, _loop_db, _loop_deg per axis and
-    ``text`` each axis's -3 dB bandwidth, crossover and phase margin."""
+    reference to the achieved platform acceleration per axis, with the plant's ``payload`` [kg]
+    at C unknown to the controller, ``controller_rate`` [Hz] and the pose feedback's
+    ``natural_frequency`` [Hz] (both only with closed_loop; an unstable loop is refused); the
+    Table has <axis>_db, _deg, _loop_db, _loop_deg per axis and ``text`` each axis's -3 dB
+    bandwidth, crossover and phase margin."""
     options = {k: v for k, v in options.items() if not (k in ("pose", "rate") and v is None)}
     for name in ("pose", "rate"):
         if name in options:
@@ -402,6 +436,8 @@ def frequency_response(*, robot=None, set=None, output=None, summary=None, figur
     bound = _bound_options(_nocdyn.FrequencyResponseOptions, options)
     bound.robot = _robot_source(robot, set)
     files = [_path_argument(summary, "summary"), _path_argument(figure, "figure")]
+    _refuse_overwrites("frequency-response", [("robot", robot)], [("output", output), ("summary", summary)],
+                       [("figure", figure, _FIGURE)])
     columns, data, text = _nocdyn._run_frequency_response(bound, *files)
     if output is not None:
         _write_table(output, columns, data)
@@ -425,6 +461,8 @@ def workspace(*, robot=None, set=None, output=None, figure=None, frequency_map=N
     which implies first_frequency."""
     bound = _bound_options(_nocdyn.WorkspaceOptions, options)
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("workspace", [("robot", robot)], [("output", output)],
+                       [("figure", figure, _FIGURE), ("frequency_map", frequency_map, (".csv",) + _FIGURE)])
     answer, summary, frequency = _run(
         lambda o, p: _nocdyn._run_workspace(o, p, _path(output, "output"), _path(figure, "figure"),
                                             _path(frequency_map, "frequency_map")),
@@ -451,6 +489,7 @@ def convert(robot, *, set=None, output=None):
         raise ValueError("robot: a robot file's path or a nocdyn.Robot is required")
     bound = _nocdyn.ConvertOptions()
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("convert", [("robot", robot)], [("output", output)])
     return _run(lambda o, p: _nocdyn._run_convert(o, p, _path(output, "output")), bound, False, "convert")
 
 
@@ -472,6 +511,8 @@ def animate(trajectory=None, *, robot=None, set=None, output=None, png=None, svg
             arguments["motion"] = motion
         bound = _bound_options(_nocdyn.AnimateOptions, arguments)
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("animate", [("robot", robot), ("trajectory", trajectory), ("motion", motion)],
+                       [("output", output), ("png", png), ("svg", svg)])
     for name, value in (("output", output), ("png", png), ("svg", svg)):
         if value is not None:
             setattr(bound, name, _argument(value, name, ""))
@@ -519,6 +560,8 @@ def shake(record, *, robot=None, set=None, out_dir=None, progress=None, **option
         arguments.pop("natural_frequency", None)
     bound = _bound_options(_nocdyn.ShakeOptions, arguments)
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("shake", [("robot", robot), ("record", record), ("record_y", options.get("record_y")),
+                                 ("record_theta", options.get("record_theta"))], folders=[("out_dir", out_dir)])
     if out_dir is not None:
         bound.out_dir = _argument(out_dir, "out_dir", "")
     columns, data, metrics, text = _run(_nocdyn._run_shake, bound, progress, "shake")
@@ -536,6 +579,7 @@ def regressor(*, robot=None, set=None, output=None, **options):
     output: also write it there."""
     bound = _bound_options(_nocdyn.RegressorOptions, options)
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("regressor", [("robot", robot)], [("output", output)])
     return _run(lambda o, p: _nocdyn._run_regressor(o, p, _path(output, "output")), bound, False, "regressor")["text"]
 
 
@@ -553,6 +597,9 @@ def identify(data, *, robot=None, set=None, output=None, figure=None, progress=N
     output: also write that file; figure: STEM of the held-out forces' figure (STEM.png, STEM.svg)."""
     bound = _bound_options(_nocdyn.IdentifyOptions, {"data": data, **options})
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("identify", [("robot", robot), ("data", data), ("calibration", options.get("calibration")),
+                                    ("prior", options.get("prior"))], [("output", output)],
+                       [("figure", figure, _FIGURE)])
     if output is not None:
         bound.output = _argument(output, "output", "")
     if figure is not None:
@@ -581,6 +628,7 @@ def excite(*, robot=None, set=None, output=None, progress=None, **options):
         except (TypeError, ValueError):
             raise ValueError("payload_guess: expected 4 numbers: mass, com_x, com_y, inertia") from None
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("excite", [("robot", robot)], [("output", output)])
     if output is not None:
         bound.output = _argument(output, "output", "")
     text, yaml_text = _run(_nocdyn._run_excite, bound, progress, "excite")
@@ -599,6 +647,8 @@ def loads(trajectory=None, *, robot=None, set=None, output=None, figure=None, pr
     also write the CSV; figure: the robot at the worst pose (STEM.png, STEM.svg)."""
     bound = _bound_options(_nocdyn.LoadsOptions, {"trajectory": "" if trajectory is None else trajectory, **options})
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("loads", [("robot", robot), ("trajectory", trajectory)], [("output", output)],
+                       [("figure", figure, _FIGURE)])
     answer, text = _run(lambda o, p: _nocdyn._run_loads(o, p, _path(output, "output"), _path(figure, "figure")),
                         bound, progress, "loads")
     return _table(answer, "loads", text=text.rstrip("\n"), integers=_NUMBERS)
@@ -619,6 +669,7 @@ def validate(trajectory, *, robot=None, set=None, output=None, progress=None, **
         raise _nocdyn.Error("validate needs the package built with Simbody and MuJoCo")
     bound = _bound_options(_nocdyn.ValidateOptions, {"trajectory": trajectory, **options})
     bound.robot = _robot_source(robot, set)
+    _refuse_overwrites("validate", [("robot", robot), ("trajectory", trajectory)], [("output", output)])
     columns, data, text = _run(_nocdyn._run_validate, bound, progress, "validate")
     if output is not None:
         _write_table(output, columns, data)
@@ -658,6 +709,8 @@ def design(vary, metric, *, robot=None, set=None, out_dir=None, progress=None, *
     bound = _bound_options(_nocdyn.DesignOptions, {"vary": vary, "metric": metric, **options})
     bound.robot = _robot_source(robot, set)
     bound.out_dir = "" if out_dir is None else _path(out_dir, "out_dir")
+    _refuse_overwrites("design", [("robot", robot), ("trajectory", options.get("trajectory"))],
+                       folders=[("out_dir", out_dir)])
     answer = _run(_nocdyn._run_design, bound, progress, "design")
     designs = Designs(answer["names"], answer["metrics"], answer["points"], answer["values"], answer["feasible"],
                       answer["reason"])

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -234,6 +235,14 @@ ShakeLoopResponse shakeLoopResponse(const ShakeLoopLinearization& loop, double f
     // what returns to the break point is the demand less the injection
     for (int i = 0; i < 3; ++i) r.loop(i) = -(demand(i, i) - 1.0) / demand(i, i);
     return r;
+}
+
+double shakeLoopSpectralRadius(const ShakeLoopLinearization& loop) {
+    if (loop.F.size() == 0) return 0.0;
+    return Eigen::EigenSolver<Eigen::MatrixXd>(loop.F, /*computeEigenvectors=*/false)
+        .eigenvalues()
+        .cwiseAbs()
+        .maxCoeff();
 }
 
 ShakeLoopFrequencyResponse shakeLoopFrequencyResponse(const ShakeLoopLinearization& loop,
