@@ -102,9 +102,17 @@ TEST(HostileRound4Cli, AnUnstableClosedLoopIsRefusedAndItsRatesAreShakes) {
     EXPECT_TRUE(has(r.err, "--closed-loop: unstable closed loop (spectral radius")) << r.err;
     EXPECT_TRUE(has(r.err, "lower --natural-frequency")) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
-    // the default loop is stable, and answers
-    r = runCli("frequency-response --closed-loop --points 3");
-    EXPECT_EQ(r.exit_code, 0) << r.err;
+    // the first feedback that diverges at the 10 kHz tick (measured: stable up to 1500 Hz)
+    r = runCli("frequency-response --closed-loop --natural-frequency 2000 --f-max 100 --points 3");
+    EXPECT_EQ(r.exit_code, 1) << r.out;
+    EXPECT_TRUE(has(r.err, "max |eig F| = 1.01377 >= 1")) << r.err;
+    // the default loop is stable (|eig F| = 0.99626; the acceleration correction's sum at gain 0
+    // holds eigenvalue 1 but no input reaches it), with or without a payload, and answers
+    for (const std::string payload : {"0", "2", "100"}) {
+        r = runCli("frequency-response --closed-loop --points 3 --f-max 2000 --payload " + payload);
+        EXPECT_EQ(r.exit_code, 0) << payload << "\n" << r.err;
+    }
+    EXPECT_EQ(runCli("frequency-response --closed-loop --points 3 --natural-frequency 1500").exit_code, 0);
     // the controller rates shake refuses are refused here too, in shake's words
     for (const char* rate : {"50", "2e6"}) {
         r = runCli(std::string("frequency-response --closed-loop --f-max 10 --controller-rate ") + rate);

@@ -7,6 +7,7 @@
 #include <numbers>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
 #include <Eigen/LU>
 #include <unsupported/Eigen/MatrixFunctions>
 
@@ -238,11 +239,26 @@ ShakeLoopResponse shakeLoopResponse(const ShakeLoopLinearization& loop, double f
 }
 
 double shakeLoopSpectralRadius(const ShakeLoopLinearization& loop) {
-    if (loop.F.size() == 0) return 0.0;
-    return Eigen::EigenSolver<Eigen::MatrixXd>(loop.F, /*computeEigenvectors=*/false)
-        .eigenvalues()
-        .cwiseAbs()
-        .maxCoeff();
+    const Eigen::Index n = loop.F.rows();
+    if (n == 0) return 0.0;
+    const Eigen::VectorXcd lambda = Eigen::EigenSolver<Eigen::MatrixXd>(loop.F, false).eigenvalues();
+    const double scale = std::max({1.0, loop.F.norm(), loop.G.norm()});
+    double radius = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+        const double r = std::abs(lambda(i));
+        // a state the loop only holds (|lambda| = 1) that no input reaches, by the PBH test
+        // rank [lambda I - F, G] < n (the acceleration correction's sum at gain 0, with the last
+        // command it feeds): it stays at rest and is no mode of the response
+        if (std::abs(r - 1.0) < 1e-9) {
+            Eigen::MatrixXcd pbh(n, n + loop.G.cols());
+            pbh << lambda(i) * Eigen::MatrixXcd::Identity(n, n) - loop.F.cast<std::complex<double>>(),
+                loop.G.cast<std::complex<double>>();
+            const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(pbh);
+            if (svd.singularValues()(n - 1) <= 1e-9 * scale) continue;
+        }
+        radius = std::max(radius, r);
+    }
+    return radius;
 }
 
 ShakeLoopFrequencyResponse shakeLoopFrequencyResponse(const ShakeLoopLinearization& loop,

@@ -59,9 +59,11 @@ struct ShakeLoopLinearization {
                                                         LoopDerivatives derivatives = LoopDerivatives::exact,
                                                         double step = 1e-6);
 
-/// The spectral radius of the loop's one-tick map F, max |eig F|: below 1 the linearised loop is
-/// stable (every state decays tick by tick); at 1 or above it diverges (or holds a mode that never
-/// decays), and a frequency response of it is no steady state.
+/// The spectral radius of the loop's one-tick map F, max |eig F| over the modes its inputs reach:
+/// below 1 the linearised loop is stable (every such state decays tick by tick); at 1 or above it
+/// diverges (or holds a mode that never decays), and a frequency response of it is no steady
+/// state. A state the loop only holds, eigenvalue 1 with no input reaching it (PBH rank test; the
+/// acceleration correction's sum at gain 0), is left out.
 [[nodiscard]] double shakeLoopSpectralRadius(const ShakeLoopLinearization& loop);
 
 /// The closed loop at frequency f [Hz] (0 < f < rate / 2): H(i, j) = achieved acceleration of
