@@ -4,6 +4,7 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/sim/excitation.hpp"
@@ -101,10 +102,10 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     o.progress = {};
     const std::string what =
         options.base ? "the base parameters" : (o.friction ? "the payload and the actuators' friction" : "the payload");
-    std::string report = "# " + robot.name + ": excitation for " + what + ", " + std::to_string(o.harmonics) +
-                         " harmonics of " + number(o.base_frequency) + " Hz per axis, " + number(options.duration) +
-                         " s, margin " + percent(o.margin) + " %, condition numbers of J_j and A at most " +
-                         number(o.max_condition) + "\n";
+    std::string report = "# " + io::terminalText(robot.name) + ": excitation for " + what + ", " +
+                         std::to_string(o.harmonics) + " harmonics of " + number(o.base_frequency) + " Hz per axis, " +
+                         number(options.duration) + " s, margin " + percent(o.margin) +
+                         " %, condition numbers of J_j and A at most " + number(o.max_condition) + "\n";
     if (!options.payload_guess.empty()) {
         report += "# payload guess: " + number(payload.mass) + " kg at [" + number(payload.com.x()) + ", " +
                   number(payload.com.y()) + "] m, " + number(payload.inertia) + " kg m^2 about its c.o.m.\n";
@@ -121,8 +122,8 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     report += baseline(model, "paper_trajectory_1", paperTrajectory1(), o);
     report += baseline(model, "paper_trajectory_2", paperTrajectory2(), o);
 
-    std::string file = "# Excitation trajectory by `nocdyn excite` for " + what + " of " + robot.name +
-                       ": condition number " + number(result.assessment.condition) +
+    std::string file = "# Excitation trajectory by `nocdyn excite` for " + what + " of " +
+                       io::terminalText(robot.name) + ": condition number " + number(result.assessment.condition) +
                        "; starts and ends each period at home, at rest.\n";
     for (std::size_t start = 0; start < report.size();) {
         const std::size_t end = report.find('\n', start);

@@ -1,6 +1,7 @@
 #include "app/forward_kinematics.hpp"
 
 #include "nocdyn/direct_kinematics.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "nocdyn/model.hpp"
 
 namespace nocdyn::app {
@@ -29,8 +30,8 @@ ForwardKinematicsResult runForwardKinematics(const ForwardKinematicsOptions& opt
     const Model model(loadRobot(options.robot));
     const int n = model.actuators;
     if (static_cast<int>(options.u.size()) != n) {
-        const std::string robot =
-            model.description.name + (options.robot.path.empty() ? "" : " (" + options.robot.path + ")");
+        const std::string robot = io::terminalText(model.description.name) +
+                                  (options.robot.path.empty() ? "" : " (" + io::terminalText(options.robot.path) + ")");
         throw OptionError("u", robot + " has " + std::to_string(n) + " actuators: give " + std::to_string(n) +
                                    " values U1 .. U" + std::to_string(n) + ", not " + std::to_string(options.u.size()));
     }

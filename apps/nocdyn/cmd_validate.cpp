@@ -6,6 +6,7 @@
 #include "app/validate.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/io/escape.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -20,8 +21,8 @@ void run(const Options& options) {
     TerminalObserver observer("nocdyn validate");
     const app::ValidateResult result = app::runValidate(options, observer);
     writeTable(result.table, options.output);
-    std::cerr << "nocdyn validate: " << result.robot << ", " << result.trajectory << ", " << result.samples
-              << " samples\n"
+    std::cerr << "nocdyn validate: " << io::terminalText(result.robot) << ", " << io::terminalText(result.trajectory)
+              << ", " << result.samples << " samples\n"
               << result.agreement;
 }
 
