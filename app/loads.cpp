@@ -5,6 +5,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <utility>
 
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/drawing.hpp"
@@ -208,6 +209,22 @@ void validate(const LoadsOptions& options) {
         if (!options.trajectory.empty()) throw OptionError("trajectory", "not with envelope (its motions are given)");
     } else if (options.trajectory.empty()) {
         throw OptionError("trajectory", "is required (or give envelope)");
+    }
+    // an option set where it has no effect is refused, naming the option it goes with
+    const LoadsOptions defaults;
+    const std::pair<bool, const char*> envelope_only[] = {
+        {options.min_frequency != defaults.min_frequency, "min_frequency"},
+        {options.max_frequency != defaults.max_frequency, "max_frequency"},
+        {options.points != defaults.points, "points"}};
+    for (const auto& [set, field] : envelope_only) {
+        if (set && !options.envelope)
+            throw OptionError(field, "does not apply to a trajectory: it goes with `envelope`");
+    }
+    const std::pair<bool, const char*> trajectory_only[] = {{options.duration.has_value(), "duration"},
+                                                            {options.rate != defaults.rate, "rate"}};
+    for (const auto& [set, field] : trajectory_only) {
+        if (set && options.envelope)
+            throw OptionError(field, "does not apply to the envelope's motions: it goes with `trajectory`");
     }
 }
 

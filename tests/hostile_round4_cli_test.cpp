@@ -292,6 +292,16 @@ TEST(HostileRound4Cli, ShakeRefusesOptionsThatDoNotApplyInTheCommandLinesWords) 
     EXPECT_FALSE(fs::exists(dir / "s"));
 }
 
+TEST(HostileRound4Cli, LoadsRefusesTheOptionsOfItsOtherMode) {
+    CliResult r = runCli("loads --trajectory paper1 --duration 0.01 --min-frequency 5");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(has(r.err, "--min-frequency: does not apply to a trajectory: it goes with --envelope")) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
+    r = runCli("loads --envelope --rate 5000");
+    EXPECT_EQ(r.exit_code, 1);
+    EXPECT_TRUE(has(r.err, "--rate: does not apply to the envelope's motions: it goes with --trajectory")) << r.err;
+}
+
 TEST(HostileRound4Cli, HelpTakesOneCommandAndFailsOnAFullOutput) {
     CliResult r = runCli("help pose extra");
     EXPECT_EQ(r.exit_code, 2);
