@@ -244,6 +244,13 @@ TEST(HostileRound4Cli, OptionErrorsAreShortAndNameTheOption) {
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_TRUE(has(r.err, "--f-max")) << r.err;
     EXPECT_FALSE(has(r.err, "is not a finite number")) << r.err;
+    // a grid within the ranges whose low end leaves a double (|u / tau| ~ 1 / w^2): the end named
+    // before anything is written
+    r = runCli("frequency-response --f-min 1e-300 --f-max 1e9 --points 5 --output-kind actuators");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_TRUE(has(r.err, "--f-min")) << r.err;
+    EXPECT_FALSE(has(r.err, "cannot write")) << r.err;
+    EXPECT_TRUE(r.out.empty()) << r.out;
     // a payload beyond its range blames the option, not the robot file's platform
     r = runCli("frequency-response --closed-loop --payload 1e6 --points 3");
     EXPECT_EQ(r.exit_code, 2);
