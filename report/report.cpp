@@ -25,10 +25,10 @@
 #include "shake_replay.hpp"
 #include "workspace_figure.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/text.hpp"
 #ifdef NOCDYN_HAS_ENGINES
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/validation/agreement.hpp"
-#include "nocdyn/text.hpp"
 #include "simbody_plant.hpp"
 #endif
 

@@ -30,8 +30,9 @@ cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNOCDYN_BUILD_TE
 cmake --build build-sanitize -j"$jobs"
 echo "test-extended.sh: sanitizer build done at $((SECONDS - start)) s"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build-sanitize --output-on-failure --no-tests=error -j"$jobs"
-echo "test-extended.sh: sanitizer tests done at $((SECONDS - start)) s"
+  ctest --test-dir build-sanitize --output-on-failure --no-tests=error -j"$jobs" | tee build-sanitize/ctest-summary.log
+sanitizer_tests=$(grep -Eo 'tests passed, 0 tests failed out of [0-9]+' build-sanitize/ctest-summary.log | grep -Eo '[0-9]+$')
+echo "test-extended.sh: sanitizer tests done at $((SECONDS - start)) s ($sanitizer_tests tests passed)"
 
 mutation_status=0
 wait "$mutation_pid" || mutation_status=$?
@@ -48,5 +49,7 @@ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=
   -DNOCDYN_BUILD_TESTS=OFF -DNOCDYN_BUILD_VALIDATION=OFF -DNOCDYN_BUILD_BENCHMARKS=OFF \
   -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=ON -DNOCDYN_BUILD_PYTHON=OFF
 cmake --build build-fuzz -j"$jobs" --target nocdyn_fuzzers
-ctest --test-dir build-fuzz --output-on-failure --no-tests=error -L fuzz -j"$jobs"
-echo "test-extended.sh: mutation check, sanitizer and fuzz builds passed"
+ctest --test-dir build-fuzz --output-on-failure --no-tests=error -L fuzz -j"$jobs" | tee build-fuzz/ctest-summary.log
+harnesses=$(grep -Eo 'tests passed, 0 tests failed out of [0-9]+' build-fuzz/ctest-summary.log | grep -Eo '[0-9]+$')
+echo "test-extended.sh: fuzz done at $((SECONDS - start)) s ($harnesses harnesses)"
+echo "test-extended.sh: mutation check ($(grep -Eo '^[0-9]+/[0-9]+ mutations caught' "$mutation_log")), lean build, $sanitizer_tests sanitizer tests and $harnesses fuzz harnesses passed"

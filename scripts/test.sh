@@ -18,8 +18,11 @@ command -v ninja >/dev/null && export CMAKE_GENERATOR=Ninja
 
 cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
   -DNOCDYN_BUILD_BENCHMARKS=ON -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=ON
+start=$SECONDS
 cmake --build build -j"$jobs"
+echo "test.sh: release build done in $((SECONDS - start)) s"
 # playwright-core (the driver only; the browser is Debian's chromium) for ctest -L browser
 npm ci --prefix tests/browser --no-audit --no-fund
-ctest --test-dir build --output-on-failure --no-tests=error -j"$jobs"
-echo "test.sh: all tests passed (release build)"
+start=$SECONDS
+ctest --test-dir build --output-on-failure --no-tests=error -j"$jobs" | tee build/ctest-summary.log
+echo "test.sh: $(grep -Eo 'tests passed, 0 tests failed out of [0-9]+' build/ctest-summary.log | grep -Eo '[0-9]+$') tests passed (release build), in $((SECONDS - start)) s"

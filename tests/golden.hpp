@@ -1,4 +1,4 @@
-// The paper's trajectories against the independent golden values in ../shared/golden
+// The paper's trajectories against the independent golden values in tests/data/golden
 // (virtual power with 50-digit finite differences, no NOC): one evaluation per golden row,
 // compared column by column.
 #pragma once

@@ -11,7 +11,7 @@ found exactly once (a mutation whose code has moved must be updated, not skipped
 line printed is "N/N mutations caught".
 
 Usage: scripts/mutation/run.py [--build-dir DIR] [--golden-dir DIR] [--jobs N] [--only SUBSTRING] [--all]
-(--golden-dir: the golden values' folder, by default ../shared/golden beside the repository's parent.)
+(--golden-dir: the golden values' folder, by default tests/data/golden, a copy of the independent references.)
 (--all also runs the extended mutations, of shared headers that rebuild many files: several
 minutes more; their searched texts are checked on every run.)
 """
@@ -126,6 +126,35 @@ def copy_if_changed(source, destination):
     return destination
 
 
+def lean_cli_check(cli, work, log, golden_dir):
+    """The lean build's command line on the paper robot: a pose, an inverse-dynamics table whose forces
+    match the golden file's at t = 0, and `validate` refused with its reason (no engines). Returns the
+    failures, each one line."""
+    failures = []
+    code, out = run([str(cli), "pose", "0", "0", "0"], log=log, timeout=TIMEOUT)
+    if code != 0 or "u" not in out:
+        failures.append(f"`nocdyn pose 0 0 0` exited with {code}")
+    table = work / "lean-paper1.csv"
+    code, out = run([str(cli), "inverse-dynamics", "--trajectory", "paper1", "--duration", "0.01", "--rate", "100",
+                     "-o", str(table)], log=log, timeout=TIMEOUT)
+    if code != 0 or not table.exists():
+        failures.append(f"`nocdyn inverse-dynamics --trajectory paper1` exited with {code}")
+    else:
+        rows = [line.split(",") for line in table.read_text().splitlines() if line and not line.startswith("#")]
+        header, first = rows[0], [float(v) for v in rows[1]]
+        golden_rows = [line.split(",") for line in (golden_dir / "paper_trajectory1.csv").read_text().splitlines()
+                       if line and not line.startswith("#")]
+        golden = dict(zip(golden_rows[0], (float(v) for v in golden_rows[1])))
+        for column in ("tau1", "tau2", "tau3"):
+            ours = first[header.index(column)]
+            if abs(ours - golden[column]) > 1e-9 * max(1.0, abs(golden[column])):
+                failures.append(f"{column} at t = 0 is {ours!r}, the golden value {golden[column]!r}")
+    code, out = run([str(cli), "validate"], log=log, timeout=TIMEOUT)
+    if code == 0:
+        failures.append("`nocdyn validate` succeeded without the engines")
+    return failures
+
+
 def failing_test(output):
     match = re.search(r"^\[  FAILED  \] ([^\s,]+)", output, re.MULTILINE)
     return match.group(1) if match else None
@@ -134,7 +163,7 @@ def failing_test(output):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--build-dir", default=str(ROOT / "build-mutation"))
-    parser.add_argument("--golden-dir", default=str(ROOT.parent / "shared" / "golden"),
+    parser.add_argument("--golden-dir", default=str(ROOT / "tests" / "data" / "golden"),
                         help="folder of the golden values (NOCDYN_GOLDEN_DIR)")
     parser.add_argument("--jobs", type=int, default=os.cpu_count() or 1)
     parser.add_argument("--only", default=None, help="run only the mutations whose description contains this")
@@ -193,11 +222,21 @@ def main():
         print(out)
         print(f"0/{len(mutations)} mutations caught (the configuration failed)")
         return 1
-    code, out = run(build_command, log=log)
+    # This build is also CI's check of the lean configuration (no Simbody, no MuJoCo, no Python):
+    # the command line is built and run in it once, before the mutations.
+    code, out = run([*build_command, "nocdyn_cli"], log=log)
     if code != 0:
         print(out[-5000:])
         print(f"0/{len(mutations)} mutations caught (the unmutated build failed)")
         return 1
+    lean_failures = lean_cli_check(build / "nocdyn", work, log, Path(args.golden_dir))
+    if lean_failures:
+        for failure in lean_failures:
+            print(f"mutation: the lean build's command line: {failure}")
+        print(f"0/{len(mutations)} mutations caught (the lean build's command line fails)")
+        return 1
+    print("mutation: the lean build (-DNOCDYN_BUILD_VALIDATION=OFF -DNOCDYN_BUILD_PYTHON=OFF) built the command line "
+          "and its checks passed", flush=True)
     env_dir = build / "tests" / "scratch"
     env_dir.mkdir(parents=True, exist_ok=True)
     os.environ["TEST_TMPDIR"] = str(env_dir) + "/"

@@ -1,6 +1,6 @@
 // The short form of a robot file: the symmetric 3-PRR of the paper by its parameters (SI
 // units), the paper's prototype as the default, their validation, and their expansion to the
-// general description that every algorithm takes. See ../shared/model-notes.md for where each default
+// general description that every algorithm takes. See docs/model-notes.md for where each default
 // comes from (eq. 32, Table I, footnote 6).
 #pragma once
 
