@@ -317,6 +317,12 @@ std::string describe(const Status& status, const Model& model) {
             }
             return out.str();
         }
+        case StatusCode::stiffness_contrast:
+            out << "stiffness contrast " << status.value
+                << " between the stiffest and the softest direction the platform is held in: double precision "
+                   "leaves the softest direction's stiffness and the lowest natural frequency no correct digit "
+                   "(give the springs, EA and EI values within about 1e12 of each other)";
+            return out.str();
         case StatusCode::integration_too_many_steps:
             out << "the integrator took " << status.value
                 << " steps over one interval without reaching its end (tolerances too tight?)";
