@@ -173,8 +173,8 @@ void validate(const FrequencyResponseOptions& options) {
     if (options.output_kind != "acceleration" && options.output_kind != "actuators") {
         throw OptionError("output_kind", "'" + options.output_kind + "' is not one of acceleration, actuators");
     }
-    requireIn(options.f_min, Range{1e-300, 1e300, "Hz"}, "f_min");
-    requireIn(options.f_max, Range{1e-300, 1e300, "Hz"}, "f_max");
+    requireIn(options.f_min, kResponseFrequencyRange, "f_min");
+    requireIn(options.f_max, kResponseFrequencyRange, "f_max");
     if (!(options.f_max > options.f_min)) throw OptionError("f_max", "must be above f_min");
     if (options.points < kMinPoints || options.points > kMaxPoints) {
         throw OptionError("points", std::to_string(options.points) + " is outside [2, 100000]");

@@ -19,6 +19,10 @@
 
 namespace nocdyn::app {
 
+/// Frequencies a response is evaluated at [Hz]: (2 pi f)^2 neither under- nor overflows, and
+/// the plant's response y = s^2 (s^2 I - s A22 - A21)^-1 B2 keeps its digits over all of it.
+inline constexpr Range kResponseFrequencyRange{1e-9, 1e9, "Hz"};
+
 struct FrequencyResponseOptions {
     RobotSource robot;
     /// Operating pose [x, y, theta] [m, m, rad]; empty: the robot's home.
@@ -33,7 +37,7 @@ struct FrequencyResponseOptions {
     /// are then each drive's commanded position (a drive with a stiffness, or locked) or force
     /// (stiffness 0). The closed loop is always the rigid one.
     std::string compliance = "auto";
-    double f_min = 1.0, f_max = 1000.0;  ///< [Hz], 0 < f_min < f_max
+    double f_min = 1.0, f_max = 1000.0;  ///< [Hz], in kResponseFrequencyRange, f_min < f_max
     int points = 200;                    ///< log-spaced frequencies (kPointsRange)
     bool closed_loop = false;
     double payload = 0.0;              ///< closed_loop: a point mass at C the controller does not know [kg]
