@@ -42,6 +42,7 @@
 #include "nocdyn/model.hpp"
 #include "nocdyn/pose_order.hpp"
 #include "nocdyn/reactions.hpp"
+#include "nocdyn/text.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -479,6 +480,9 @@ py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::han
     const Status status = lumped ? linearizeCompliant(model, stiffness, *robot.data, p3, dp3, tau_n, kind, ss)
                                  : linearize(model, *robot.data, p3, dp3, tau_n, kind, ss);
     if (!status) throw Error(describe(status, model));
+    if (!(ss.A.allFinite() && ss.B.allFinite() && ss.C.allFinite() && ss.D.allFinite())) {
+        throw Error("the linearised model is not finite at this operating point (the input is too large)");
+    }
     py::list inputs;
     for (const LinearInput input : ss.inputs) inputs.append(name(input));
     // the state [p; dp] and the output ddp in Python's pose order
@@ -566,6 +570,9 @@ py::tuple evaluateTrajectory(const PoseTrajectory& trajectory, const ContiguousI
     return py::make_tuple(P, dP, ddP);
 }
 
+/// Most memory trajectory_dynamics holds [bytes].
+constexpr double kMaxHeldBytes = 8e8;
+
 /// The CLI's `inverse-dynamics`: sampleInverseDynamics at the grid of (duration, rate), with
 /// the same checks and messages. Returns a dict of arrays named as the CSV's columns.
 py::dict sampleTrajectory(const Robot& robot, const PoseTrajectory& trajectory, double rate,
@@ -576,6 +583,14 @@ py::dict sampleTrajectory(const Robot& robot, const PoseTrajectory& trajectory, 
     requireRateAboveNyquist(trajectory, grid.rate);
     const auto n = static_cast<py::ssize_t>(grid.count);
     const auto m = static_cast<py::ssize_t>(model.actuators);
+    // every sample held: t, kinetic, p, dp, ddp, u, du, ddu, tau
+    const double bytes = static_cast<double>(grid.count) * static_cast<double>(11 + 4 * m) * 8.0;
+    if (bytes > kMaxHeldBytes) {
+        throw Error(
+            text::format("%.6g samples would hold %.3g GB in memory, more than the %.0f MB allowed: give a "
+                         "shorter duration or a lower rate",
+                         static_cast<double>(grid.count), bytes / 1e9, kMaxHeldBytes / 1e6));
+    }
     py::array_t<double> t(n), kinetic(n);
     RowArray P({n, py::ssize_t{3}}), dP({n, py::ssize_t{3}}), ddP({n, py::ssize_t{3}});
     RowArray u({n, m}), du({n, m}), ddu({n, m}), tau({n, m});
@@ -603,7 +618,11 @@ py::dict sampleTrajectory(const Robot& robot, const PoseTrajectory& trajectory, 
                                           dduu[m * k + i] = s.ddu(i);
                                           taup[m * k + i] = s.tau(i);
                                       }
-                                      ++k;
+                                      // Ctrl-C: every 65536 samples (a few ms), the GIL taken back
+                                      if ((++k & 0xFFFF) == 0) {
+                                          const py::gil_scoped_acquire acquire;
+                                          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+                                      }
                                   });
     }
     py::dict out;
@@ -699,6 +718,11 @@ py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp
     options.relative_tolerance = rtol;
     options.absolute_tolerance = atol;
     options.max_step = max_step;
+    // Ctrl-C: every 1024 steps, the GIL taken back to look for a pending signal
+    options.poll = [] {
+        const py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    };
     Simulator simulator(model, options);
     const auto to = t_out.unchecked<1>();
     const py::ssize_t count = to.shape(0);
@@ -746,8 +770,10 @@ py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp
 // --- stiffness and natural frequencies ----------------------------------------------
 
 /// K, the lumped modes and (when `elastodynamic`) the elastodynamic modes at pose p, every
-/// pose-indexed array in analysis::kReportedCoordinates' order.
-py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic) {
+/// pose-indexed array in analysis::kReportedCoordinates' order. Warns (RuntimeWarning) when
+/// K's contrast costs digits and, when `frequencies` are asked of a robot with elastic bodies,
+/// when the lumped model does not hold at p.
+py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic, bool frequencies) {
     const Model& model = *robot.model;
     const Pose p3 = vector3(p, "p");
     const analysis::StiffnessModel compliance(model);
@@ -761,6 +787,31 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
     analysis::LumpedModes modes;
     if (const Status status = analysis::stiffnessAndModes(model, compliance, data, p3, K, modes); !status) {
         throw Error(describe(status, model));
+    }
+    if (!(K.K.allFinite() && modes.frequency.allFinite() && modes.shape.allFinite())) {
+        throw Error("the stiffness or the natural frequencies are not finite at this pose");
+    }
+    std::vector<std::string> warnings;
+    if (std::string w = analysis::contrastWarning(K); !w.empty()) warnings.push_back(std::move(w));
+    // with elastic bodies the elastodynamic model is computed too: it says whether the lumped
+    // one holds at this pose
+    analysis::ElastodynamicModes e;
+    const bool elastic = elastodynamic || (frequencies && compliance.any_elastic);
+    if (elastic) {
+        if (const Status status = analysis::elastodynamicModes(model, compliance, data, e); !status) {
+            throw Error(describe(status, model));
+        }
+        if (!(e.frequency.allFinite() && e.platform_shape.allFinite())) {
+            throw Error("the elastodynamic frequencies are not finite at this pose");
+        }
+        if (std::string w = analysis::lumpedMismatchWarning(modes, e); !w.empty()) warnings.push_back(std::move(w));
+        if (elastodynamic) {
+            if (std::string w = analysis::elastodynamicPrecisionWarning(e); !w.empty())
+                warnings.push_back(std::move(w));
+        }
+    }
+    for (const std::string& w : warnings) {
+        if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 3) != 0) throw py::error_already_set();
     }
     py::dict out;
     py::list coordinates, free;
@@ -782,10 +833,6 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
     out["mode_shapes"] = toArray(shapes);
     out["mass_matrix"] = toArray(analysis::reported(modes.M));
     if (elastodynamic) {
-        analysis::ElastodynamicModes e;
-        if (const Status status = analysis::elastodynamicModes(model, compliance, data, e); !status) {
-            throw Error(describe(status, model));
-        }
         py::array_t<double> f(e.frequency.size());
         for (Eigen::Index i = 0; i < e.frequency.size(); ++i) f.mutable_at(i) = e.frequency(i);
         py::array_t<double> shapes({py::ssize_t{3}, static_cast<py::ssize_t>(e.dofs)});
@@ -823,6 +870,13 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
         else
             throw Error("axis: '" + a + "' is not one of x, y, theta");
     }
+    // Ctrl-C between the bisection's periods (EnvelopeOptions::poll) and between points
+    const auto interrupted = [] {
+        const py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    };
+    options.poll = interrupted;
+    options.progress = [&interrupted](int, int) { interrupted(); };
     std::vector<EnvelopePoint> points;
     EnvelopeResonance resonance;
     {
@@ -1185,7 +1239,7 @@ PYBIND11_MODULE(_nocdyn, m) {
              py::arg("ddu"), py::arg("friction"), py::arg("held_forces"), py::arg("cutoff"), py::arg("holdout"),
              py::arg("prior"))
         .def_static("_load_prior", &loadPrior, py::arg("path"))
-        .def("_stiffness", &stiffnessAt, py::arg("p"), py::arg("elastodynamic") = false)
+        .def("_stiffness", &stiffnessAt, py::arg("p"), py::arg("elastodynamic") = false, py::arg("frequencies") = false)
         .def("_envelope", &envelope, py::arg("axes"), py::arg("min_frequency"), py::arg("max_frequency"),
              py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"));
 
