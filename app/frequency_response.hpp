@@ -22,6 +22,8 @@ namespace nocdyn::app {
 /// Frequencies a response is evaluated at [Hz]: (2 pi f)^2 neither under- nor overflows, and
 /// the plant's response y = s^2 (s^2 I - s A22 - A21)^-1 B2 keeps its digits over all of it.
 inline constexpr Range kResponseFrequencyRange{1e-9, 1e9, "Hz"};
+/// The closed loop's lowest frequency, as a fraction of its natural_frequency.
+inline constexpr double kClosedLoopLowestFraction = 1e-5;
 
 struct FrequencyResponseOptions {
     RobotSource robot;
