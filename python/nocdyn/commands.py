@@ -696,8 +696,9 @@ def design(vary, metric, *, robot=None, set=None, out_dir=None, progress=None, *
     """Sweep a parametric robot family over its declared parameters (``nocdyn design``): each
     design's metrics (workspace_area, condition_median, condition_worst, envelope_x@F, ...,
     moving_mass, peak_force, rms_force, stroke, peak_reaction), infeasible designs as rows with
-    their reason. vary: "NAME=LOWER:UPPER" strings or a dict {NAME: (LOWER, UPPER)} (as
-    nocdyn.designs.Family takes it); metric: metric names. Returns a
+    their reason. vary: "NAME=LOWER:UPPER" strings (a dict {NAME: (LOWER, UPPER)}, the form
+    nocdyn.designs.Family takes, is refused with the strings it means); metric: metric names.
+    Returns a
     nocdyn.designs.Designs (``front``: the indices of the Pareto front). out_dir: also write
     designs.csv, pareto.csv, the journal and the figures there (the sweep resumes from its
     journal); without it nothing is written. Ctrl-C (or an exception from ``progress``) stops the
@@ -705,14 +706,16 @@ def design(vary, metric, *, robot=None, set=None, out_dir=None, progress=None, *
     and Dask, see nocdyn.designs."""
     from .designs import Designs
     if isinstance(vary, dict):
-        # the form nocdyn.designs.Family takes: {NAME: (LOWER, UPPER)}
+        # the form nocdyn.designs.Family takes, {NAME: (LOWER, UPPER)}: refused, but with the
+        # strings that say the same, so that a dict is never read as its keys
         pairs = []
         for key, pair in vary.items():
             if isinstance(pair, (str, bytes)) or not hasattr(pair, "__len__") or len(pair) != 2:
                 raise ValueError(f"vary: {key!r}: expected (LOWER, UPPER), got {pair!r}"[:200])
             lower, upper = _numbers(pair, f"vary[{key!r}]", 2, "numbers (LOWER, UPPER)")
             pairs.append(f"{key}={lower!r}:{upper!r}")
-        vary = pairs
+        raise ValueError(f"vary: a dict is the form nocdyn.designs.Family takes; nocdyn.design takes "
+                         f"'NAME=LOWER:UPPER' strings: vary={pairs!r}")
     vary = [vary] if isinstance(vary, str) else list(vary)
     metric = [metric] if isinstance(metric, str) else list(metric)
     bound = _bound_options(_nocdyn.DesignOptions, {"vary": vary, "metric": metric, **options})
