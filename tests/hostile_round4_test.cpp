@@ -187,6 +187,27 @@ TEST(HostileRound4, VeryStiffBeamsTendToTheRigidLinks) {
     }
 }
 
+TEST(HostileRound4, VeryStiffBeamsTendToTheRigidLinksBesideAFreeDirection) {
+    // drive 1 a force actuator (stiffness 0): one free direction, two held modes
+    RobotDescription rigid_robot = rrrBeams(2000.0, 0.0);
+    rigid_robot.limbs[0].joints[0].stiffness = 0.0;
+    AtPose rigid(rigid_robot, Pose::Zero());
+    ASSERT_TRUE(rigid.status.ok());
+    ASSERT_EQ(rigid.K.free_directions, 1);
+    for (const double X : {1e10, 1e15}) {
+        RobotDescription robot = rrrBeams(2000.0, X);
+        robot.limbs[0].joints[0].stiffness = 0.0;
+        AtPose at(robot, Pose::Zero());
+        ASSERT_TRUE(at.status.ok()) << describe(at.status, at.model);
+        ElastodynamicModes modes;
+        ASSERT_TRUE(analysis::elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
+        EXPECT_EQ(modes.frequency(0), 0.0);
+        for (int i = 1; i < 3; ++i) {
+            EXPECT_NEAR(modes.frequency(i) / rigid.modes.frequency(i), 1.0, 1e-6) << "X = " << X << " mode " << i;
+        }
+    }
+}
+
 TEST(HostileRound4, TheFrequencyResponseKeepsItsDigitsAtVeryLowFrequency) {
     const Model model(robotDescription("paper-3prr-compliant"));
     const StiffnessModel compliance(model);

@@ -313,10 +313,18 @@ namespace {
 /// The elastodynamic modes in flexibility form (stiffness.hpp): x = F f from the mixed system
 /// [0 P^T A^T; P -C_s 0; A 0 0], then (L^T F L) y = mu y with M_x = L L^T, w^2 = 1 / mu. Replaces
 /// out's lowest modes (frequency, shape in scaled coordinates) where this form is the more
-/// precise; out holds the stiffness form's `dofs` modes on entry. Leaves out as it is when the
-/// mixed system is singular (an internal mechanism without stiffness).
+/// precise; out holds the stiffness form's `dofs` modes on entry, the first `free` of them the
+/// free directions' (0 Hz, kept). Leaves out as it is when the mixed system is singular (an
+/// internal mechanism without stiffness or mass).
 void flexibleModes(const Eigen::MatrixXd& Mx, const Eigen::MatrixXd& A, const std::vector<double>& spring,
-                   const std::vector<std::pair<int, Matrix3>>& beam_flex, ElastodynamicModes& out) {
+                   const std::vector<std::pair<int, Matrix3>>& beam_flex, int free, ElastodynamicModes& out) {
+    const int dofs = out.dofs;
+    if (free >= dofs) return;
+    // with free directions, K + sigma M_x (its x block sigma M_x): mu = 1 / (lambda + sigma), the
+    // free modes at mu = 1 / sigma first; sigma far below the lowest held lambda costs it nothing
+    const double w_held = 2.0 * std::numbers::pi * out.frequency(free);
+    const double sigma = free > 0 ? 1e-6 * w_held * w_held : 0.0;
+    if (free > 0 && !(sigma > 0.0)) return;
     const Eigen::Index n = Mx.rows();
     // spring coordinates: each joint spring (compliance 1/k), each beam's three (C_b)
     std::vector<Eigen::Index> rows;
@@ -341,6 +349,7 @@ void flexibleModes(const Eigen::MatrixXd& Mx, const Eigen::MatrixXd& A, const st
     }
     K.block(n + ns, 0, nc, n) = A;
     K.block(0, n + ns, n, nc) = A.transpose();
+    K.topLeftCorner(n, n) = sigma * Mx;
     const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
     if (!lu.isInvertible()) return;
     // M_x = L L^T on its range
@@ -358,17 +367,15 @@ void flexibleModes(const Eigen::MatrixXd& Mx, const Eigen::MatrixXd& A, const st
     LtFL = 0.5 * (LtFL + LtFL.transpose()).eval();
     const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(LtFL);
     // mu descending: the lowest frequencies first; the stiffness form's lambda range decides
-    const int dofs = out.dofs;
-    const double w_low = 2.0 * std::numbers::pi * out.frequency(0);
     const double w_high = 2.0 * std::numbers::pi * out.frequency(dofs - 1);
-    const double lambda_middle = w_low * w_high;  // sqrt(lambda_min lambda_max)
-    for (int i = 0; i < dofs; ++i) {
+    const double lambda_middle = w_held * w_high;  // sqrt(lambda_min lambda_max) of the held modes
+    for (int i = free; i < dofs; ++i) {
         const double mu = eig.eigenvalues()(rm - 1 - i);
         if (!(mu > 0.0)) break;
-        const double lambda = 1.0 / mu;
-        if (!(lambda <= lambda_middle)) break;
+        const double lambda = 1.0 / mu - sigma;
+        if (!(lambda > 0.0 && lambda <= lambda_middle)) break;
         out.frequency(i) = std::sqrt(lambda) / (2.0 * std::numbers::pi);
-        out.shape.col(i) = FL * eig.eigenvectors().col(rm - 1 - i) * lambda;  // x = F L y / mu, x^T M x = 1
+        out.shape.col(i) = FL * eig.eigenvectors().col(rm - 1 - i) / mu;  // x = F L y / mu, x^T M x = 1
     }
 }
 
@@ -558,14 +565,12 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
     // the low modes again in flexibility form (stiffness.hpp), where they keep their digits when
     // the beams are many decades stiffer than the springs; each mode is taken from the form
     // whose rounding is the smaller for it: flexibility below sqrt(lambda_min lambda_max)
-    if (check.free_directions == 0 && out.dofs > 0) {
-        flexibleModes(Mx, closure, spring, beam_flex, out);
-    }
+    if (out.dofs > 0) flexibleModes(Mx, closure, spring, beam_flex, check.free_directions, out);
     for (Eigen::Index c = 0; c < n; ++c) out.shape.row(c) /= unit[static_cast<std::size_t>(c)];
     out.platform_shape = out.shape.topRows(3);
     out.precision = 0.0;
-    if (out.dofs > 1 && out.frequency(0) > 0.0) {
-        const double ratio = out.frequency(out.dofs - 1) / out.frequency(0);  // sqrt(lambda_max / lambda_min)
+    if (const int f = check.free_directions; out.dofs > f + 1 && out.frequency(f) > 0.0) {
+        const double ratio = out.frequency(out.dofs - 1) / out.frequency(f);  // sqrt(lambda_max / lambda_min)
         out.precision = std::numeric_limits<double>::epsilon() * ratio;
     }
     // static condensation onto dp: W = P Z, W^T = Q [R1; 0], y = Q [a; b], dp = R1^T a

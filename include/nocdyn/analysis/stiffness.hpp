@@ -37,7 +37,7 @@
 // so that a stiff beam (C_b -> 0) tends to a rigid link instead of swamping the soft springs
 // in rounding, and coordinates that carry no mass (a beam tip's rotation at a free pivot) are
 // condensed statically, exactly. With free directions (F unbounded) the mass-proportional
-// shift K + sigma M_x is factored instead (its x block -sigma M_x).
+// shift K + sigma M_x is factored instead (its x block sigma M_x).
 // With rigid bodies the two models are one.
 //
 // Mixed units: rotations are scaled by the model's length_scale L wherever a rank or a
