@@ -278,6 +278,31 @@ std::pair<Eigen::Index, Status> passiveLimits(const Model& model, const ConstStr
     return {-1, Status{}};
 }
 
+/// A batch over rows [0, n) in slices of 65536 rows, the GIL released over each and taken back
+/// between them to look for Ctrl-C (a long batch stops within a slice, tens of milliseconds).
+/// Each row is computed alone, so the rows are those of one call; the outcome is combineChunks'
+/// of the slices, their sample indices made absolute. run(begin, rows) runs one slice.
+template <class Run>
+BatchResult inSlices(Eigen::Index n, Run&& run) {
+    constexpr Eigen::Index kSliceRows = Eigen::Index{1} << 16;
+    std::vector<BatchResult> parts;
+    Eigen::Index begin = 0;
+    do {
+        const Eigen::Index rows = std::min(kSliceRows, n - begin);
+        BatchResult r;
+        {
+            const py::gil_scoped_release release;
+            r = run(begin, rows);
+        }
+        if (r.first_failure != BatchResult::npos) r.first_failure += begin;
+        if (r.first_beyond_limits != BatchResult::npos) r.first_beyond_limits += begin;
+        parts.push_back(r);
+        begin += rows;
+        if (begin < n && PyErr_CheckSignals() != 0) throw py::error_already_set();
+    } while (begin < n);
+    return combineChunks(parts);
+}
+
 /// The batch over arrays viewed in place, the GIL released while it runs. Returns
 /// (failed, first_failure, message of the first failure or "").
 py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp,
@@ -293,15 +318,21 @@ py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, con
     if (vu.col_stride != vdu.col_stride || vu.col_stride != vddu.col_stride || vu.col_stride != vtau.col_stride) {
         throw Error("out: u, du, ddu and tau must have the same memory order (all C- or all F-ordered)");
     }
-    BatchResult result;
     std::pair<Eigen::Index, Status> limits{-1, Status{}};
+    // limits of actuated joints only: checked inside the batch, on the values in registers
+    const bool actuated_only = limitsOnActuatedJointsOnly(model);
+    const ConstStridedMap mp = constMap(vp), mdp = constMap(vdp), mddp = constMap(vddp);
+    StridedMap mu = map(vu), mdu = map(vdu), mddu = map(vddu), mtau = map(vtau);
+    const BatchResult result = inSlices(n, [&](Eigen::Index begin, Eigen::Index rows) {
+        auto u_rows = mu.middleRows(begin, rows), du_rows = mdu.middleRows(begin, rows);
+        auto ddu_rows = mddu.middleRows(begin, rows), tau_rows = mtau.middleRows(begin, rows);
+        return inverseDynamicsBatch(model, mp.middleRows(begin, rows), mdp.middleRows(begin, rows),
+                                    mddp.middleRows(begin, rows), u_rows, du_rows, ddu_rows, tau_rows, threads,
+                                    kPythonPose,
+                                    check_limits && actuated_only ? ActuatorLimits::check : ActuatorLimits::ignore);
+    });
     {
         const py::gil_scoped_release release;
-        // limits of actuated joints only: checked inside the batch, on the values in registers
-        const bool actuated_only = limitsOnActuatedJointsOnly(model);
-        result = inverseDynamicsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vu), map(vdu), map(vddu),
-                                      map(vtau), threads, kPythonPose,
-                                      check_limits && actuated_only ? ActuatorLimits::check : ActuatorLimits::ignore);
         if (check_limits && actuated_only && result.first_beyond_limits != BatchResult::npos) {
             limits = {result.first_beyond_limits, result.limits};
         } else if (check_limits && !actuated_only) {
@@ -419,12 +450,13 @@ py::tuple inverseDynamicsDerivativesBatchArrays(const Robot& robot, const py::ar
     const py::ssize_t n = in.rows;
     const auto a = static_cast<py::ssize_t>(model.actuators);
     RowMajorOutput d_p(n, a, 3), d_dp(n, a, 3), d_ddp(n, a, 3);
-    BatchResult result;
-    {
-        const py::gil_scoped_release release;
-        result = inverseDynamicsDerivativesBatch(model, in.p, in.dp, in.ddp, d_p.map, d_dp.map, d_ddp.map, threads,
-                                                 kPythonPose);
-    }
+    const BatchResult result = inSlices(n, [&](Eigen::Index begin, Eigen::Index rows) {
+        auto a_rows = d_p.map.middleRows(begin, rows), b_rows = d_dp.map.middleRows(begin, rows);
+        auto c_rows = d_ddp.map.middleRows(begin, rows);
+        return inverseDynamicsDerivativesBatch(model, in.p.middleRows(begin, rows), in.dp.middleRows(begin, rows),
+                                               in.ddp.middleRows(begin, rows), a_rows, b_rows, c_rows, threads,
+                                               kPythonPose);
+    });
     return py::make_tuple(d_p.array, d_dp.array, d_ddp.array) + batchOutcome(model, result);
 }
 
@@ -502,11 +534,13 @@ py::tuple reactionsBatchArrays(const Robot& robot, const py::array& p, const py:
     const py::ssize_t n = vp.rows;
     const ArrayView vdp = viewOf(dp, "dp", n, 3, false), vddp = viewOf(ddp, "ddp", n, 3, false);
     const ArrayView vout = viewOf(out, "out", n, 9 * model.limbs, true);
-    BatchResult result;
-    {
-        const py::gil_scoped_release release;
-        result = reactionsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vout), threads, kPythonPose);
-    }
+    const ConstStridedMap mp = constMap(vp), mdp = constMap(vdp), mddp = constMap(vddp);
+    StridedMap mout = map(vout);
+    const BatchResult result = inSlices(n, [&](Eigen::Index begin, Eigen::Index rows) {
+        auto out_rows = mout.middleRows(begin, rows);
+        return reactionsBatch(model, mp.middleRows(begin, rows), mdp.middleRows(begin, rows),
+                              mddp.middleRows(begin, rows), out_rows, threads, kPythonPose);
+    });
     const std::string message = result.ok() ? std::string() : describe(result.status, model);
     return py::make_tuple(static_cast<std::int64_t>(result.failed),
                           result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message);

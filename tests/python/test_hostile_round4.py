@@ -195,3 +195,22 @@ def test_the_closed_loop_refuses_frequencies_where_its_reference_swamps_it_and_h
     for axis in ("x", "y", "theta"):
         # the loop follows a slow reference exactly: 0 dB
         assert np.max(np.abs(t.data[:, t.columns.index(f"{axis}_db")])) < 1e-4, axis
+
+
+@pytest.mark.parametrize("method", ["inverse_dynamics", "inverse_dynamics_derivatives", "reactions"])
+def test_ctrl_c_stops_a_long_batch_within_a_slice(paper_robot, method):
+    N = 4_000_000  # seconds of work: the batch runs in slices of 65536 rows, Ctrl-C looked for between
+    P = np.zeros((N, 3))
+    P[:, 0] = 1e-3 * np.sin(np.arange(N) * 1e-5)
+    late = interrupted_after(0.3, lambda: getattr(paper_robot, method)(P, P, P))
+    assert late < 1.0
+
+
+def test_a_batch_in_slices_names_its_first_failed_sample_in_the_whole_batch(paper_robot):
+    N = 200_000
+    P = np.zeros((N, 3))
+    P[150_000, 0] = 10.0  # out of reach, in the third slice
+    with pytest.raises(nocdyn.Error, match="^sample 150000: "):
+        paper_robot.inverse_dynamics(P, P, P)
+    with pytest.raises(nocdyn.Error, match="^sample 150000: "):
+        paper_robot.reactions(P, P, P)
