@@ -934,14 +934,21 @@ class Trajectory:
         def terms(axis, values):
             out = []
             for h in values:
-                h = tuple(float(v) for v in h)
+                try:
+                    h = tuple(float(v) for v in h)
+                except (TypeError, ValueError):
+                    raise Error(f"{axis}: a harmonic is (amplitude, frequency >= 0, phase), numbers; got {h!r}"[:200]) \
+                        from None
                 if len(h) == 2:
                     h = h + (0.0,)
                 if len(h) != 3 or not all(np.isfinite(h)) or h[1] < 0.0:
                     raise Error(f"{axis}: a harmonic is (amplitude, frequency >= 0, phase), finite; got {h}")
                 out.append(h)
             return out
-        off = [float(v) for v in offset]
+        try:
+            off = [float(v) for v in offset]
+        except (TypeError, ValueError):
+            raise Error(f"offset: expected 3 numbers [x, y, theta], got {offset!r}"[:200]) from None
         if len(off) != 3 or not all(np.isfinite(off)):
             raise Error("offset: expected 3 finite values [x, y, theta]")
         if duration is not None and not (np.isfinite(duration) and duration > 0):

@@ -214,3 +214,15 @@ def test_a_batch_in_slices_names_its_first_failed_sample_in_the_whole_batch(pape
         paper_robot.inverse_dynamics(P, P, P)
     with pytest.raises(nocdyn.Error, match="^sample 150000: "):
         paper_robot.reactions(P, P, P)
+
+
+def test_harmonics_and_family_values_that_are_not_numbers_are_named():
+    with pytest.raises(nocdyn.Error, match=r"^x: a harmonic is"):
+        nocdyn.Trajectory.harmonic(x=[("a", 1.0, 0.0)])
+    with pytest.raises(nocdyn.Error, match=r"^offset: expected 3 numbers"):
+        nocdyn.Trajectory.harmonic(offset=(0.0, "b", 0.0))
+    from nocdyn import designs
+    with pytest.raises(ValueError, match=r"^vary\['k'\] upper: expected a number"):
+        designs.Family(text="name: x\n", vary={"k": (1.0, "z")})
+    with pytest.raises(ValueError, match=r"^vary\['k'\]: expected \(LOWER, UPPER\)"):
+        designs.Family(text="name: x\n", vary={"k": 1.0})
