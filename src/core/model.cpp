@@ -2,6 +2,7 @@
 #include "nocdyn/model.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "nocdyn/error.hpp"
@@ -320,8 +321,10 @@ std::string describe(const Status& status, const Model& model) {
         case StatusCode::stiffness_contrast:
             out << "stiffness contrast " << status.value
                 << " between the stiffest and the softest direction the platform is held in: double precision "
-                   "leaves the softest direction's stiffness and the lowest natural frequency no correct digit "
-                   "(give the springs, EA and EI values within about 1e12 of each other)";
+                   "leaves the softest direction's stiffness and the lowest natural frequency a relative error of "
+                   "about "
+                << std::numeric_limits<double>::epsilon() * status.value
+                << " (at most 1e14 is accepted: give the springs, EA and EI values closer to each other)";
             return out.str();
         case StatusCode::integration_too_many_steps:
             out << "the integrator took " << status.value

@@ -20,8 +20,8 @@
 // wrenches span(N_j), so dp is free when N_j^T S dp = 0 for every limb (a rank decision on unit
 // columns in metres). A direction held by a stiffness 1e10 times softer than the stiffest is
 // held, not free. K's softest held eigenvalue is then known to about eps times the contrast
-// lambda_max / lambda_min (eps = 2.2e-16): above kContrastWarning a named warning says how
-// many digits are lost, above kContrastLimit (none left) cartesianStiffness fails with
+// lambda_max / lambda_min (eps = 2.2e-16): above kContrastWarning a named warning gives the
+// precision left, above kContrastLimit (a digit at most) cartesianStiffness fails with
 // stiffness_contrast.
 //
 // Natural frequencies, lumped model: K v = w^2 M v with M = sum_i T_i^T M_i T_i, the NOC's
@@ -96,8 +96,8 @@ struct StiffnessModel {
 };
 
 /// Contrast lambda_max / lambda_min of the scaled K's held eigenvalues above which the lowest
-/// natural frequency loses more than about six digits (a named warning), and above which it
-/// has no correct digit left (stiffness_contrast).
+/// natural frequency keeps fewer than about six digits (a named warning), and above which it
+/// keeps at most one (stiffness_contrast: a relative error of 2e-2 and more).
 inline constexpr double kContrastWarning = 1e10;
 inline constexpr double kContrastLimit = 1e14;
 
