@@ -29,6 +29,7 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
         observer.progress(done, total, "points");
         stopIfRequested(observer);
     };
+    envelope.poll = [&observer] { stopIfRequested(observer); };
     EnvelopeResult out;
     out.robot = model.description.name;
     out.points = operatingEnvelope(model, envelope);

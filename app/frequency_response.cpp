@@ -221,6 +221,15 @@ void validate(const FrequencyResponseOptions& options) {
         if (!(options.f_max < 0.5 * options.controller_rate)) {
             throw OptionError("f_max", "must be below half the `controller_rate` (the Nyquist frequency)");
         }
+        // the loop's reference position is a / w^2: its rounding, amplified by the gains
+        // (about w_n^2), costs eps (f_n / f)^2 of the response (2e-6 at f = 1e-5 f_n)
+        if (!(options.f_min >= kClosedLoopLowestFraction * options.natural_frequency)) {
+            throw OptionError(
+                "f_min", text::format("must be at least %g Hz with the closed loop (1e-5 times natural_frequency): "
+                                      "below it the rounding of the reference position a / w^2 costs more than "
+                                      "a millionth of the response",
+                                      kClosedLoopLowestFraction * options.natural_frequency));
+        }
     }
 }
 

@@ -19,6 +19,12 @@
 
 namespace nocdyn::app {
 
+/// Frequencies a response is evaluated at [Hz]: (2 pi f)^2 neither under- nor overflows, and
+/// the plant's response y = s^2 (s^2 I - s A22 - A21)^-1 B2 keeps its digits over all of it.
+inline constexpr Range kResponseFrequencyRange{1e-9, 1e9, "Hz"};
+/// The closed loop's lowest frequency, as a fraction of its natural_frequency.
+inline constexpr double kClosedLoopLowestFraction = 1e-5;
+
 struct FrequencyResponseOptions {
     RobotSource robot;
     /// Operating pose [x, y, theta] [m, m, rad]; empty: the robot's home.
@@ -33,7 +39,7 @@ struct FrequencyResponseOptions {
     /// are then each drive's commanded position (a drive with a stiffness, or locked) or force
     /// (stiffness 0). The closed loop is always the rigid one.
     std::string compliance = "auto";
-    double f_min = 1.0, f_max = 1000.0;  ///< [Hz], 0 < f_min < f_max
+    double f_min = 1.0, f_max = 1000.0;  ///< [Hz], in kResponseFrequencyRange, f_min < f_max
     int points = 200;                    ///< log-spaced frequencies (kPointsRange)
     bool closed_loop = false;
     /// A point mass at C on the plant [kg] (kPayloadMassRange); closed_loop: one the controller's

@@ -20,14 +20,18 @@ double rangeUsed(const JointLimits& limits, double q) {
 
 std::size_t at(int i) { return static_cast<std::size_t>(i); }
 
-PoseCompliance compliance(const Model& model, const Data& data) {
+PoseCompliance compliance(const Model& model, const Data& data, Observer& observer) {
     const analysis::StiffnessModel stiffness(model);
     analysis::StiffnessData K;
     if (const Status status = analysis::cartesianStiffness(model, stiffness, data, K); !status) {
         throw Error(describe(status, model));
     }
+    if (const std::string w = analysis::contrastWarning(K); !w.empty()) observer.warning(w);
     analysis::LumpedModes modes;
     analysis::lumpedModes(model, data, K, modes);
+    if (!(K.K.allFinite() && modes.frequency.allFinite() && modes.shape.allFinite())) {
+        throw Error("the stiffness or the natural frequencies are not finite at this pose");
+    }
     PoseCompliance out;
     out.K = analysis::reported(K.K);
     for (int i = 0; i < K.free_directions; ++i) {
@@ -42,6 +46,8 @@ PoseCompliance compliance(const Model& model, const Data& data) {
         if (const Status status = analysis::elastodynamicModes(model, stiffness, data, elastic); !status) {
             throw Error(describe(status, model));
         }
+        if (const std::string w = analysis::elastodynamicPrecisionWarning(elastic); !w.empty()) observer.warning(w);
+        if (const std::string w = analysis::lumpedMismatchWarning(modes, elastic); !w.empty()) observer.warning(w);
         out.elastodynamic_frequencies = elastic.frequency;
         out.elastodynamic_dofs = elastic.dofs;
     }
@@ -119,7 +125,7 @@ PoseResult runPose(const PoseOptions& options, Observer& observer) {
                 {j + 1, k + 1, model.limb[at(j)].type[at(k)] == JointType::revolute, reactions.joint[at(j)][at(k)]});
         }
     }
-    if (model.description.hasCompliance()) out.compliance = compliance(model, data);
+    if (model.description.hasCompliance()) out.compliance = compliance(model, data, observer);
     return out;
 }
 

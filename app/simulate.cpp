@@ -209,6 +209,8 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
     SimulatorOptions simulator_options;
     simulator_options.absolute_tolerance = options.atol;
     simulator_options.relative_tolerance = options.rtol;
+    // a long interval between two output rows still answers a stop (Ctrl-C in Python)
+    simulator_options.poll = [&observer] { stopIfRequested(observer); };
     Simulator simulator(model, simulator_options);
     const InitialState initial = initialState(model, head, source, options.assembly_mode);
     if (const Status status = simulator.reset(initial.p, initial.dp, t0); !status)

@@ -36,6 +36,7 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
             observer.progress(done, total, "grid columns (natural frequencies)");
             stopIfRequested(observer);
         });
+        if (!out.frequency->warning.empty()) observer.warning("first natural frequency: " + out.frequency->warning);
         out.summary += ' ';
         out.summary += report::firstFrequencySummary(*out.frequency);
         out.frequency_table.columns = io::columnNames(io::TableId::first_frequency);

@@ -1,13 +1,17 @@
 // libFuzzer harness of the general robot-file reader (either form): any text either becomes a
 // description from which a Model is built (or is refused by it with nocdyn::Error) and whose
 // inverse dynamics at home are finite on both paths, and whose general form written back reads
-// back the same; or it is refused with nocdyn::Error. Anything else is a finding.
+// back the same; or it is refused with nocdyn::Error. When the file declares compliance (joint
+// stiffness, elastic bodies), K and the lumped and elastodynamic frequencies at home are finite
+// or refused by a Status or nocdyn::Error: accepted compliance never gives NaN or infinity.
+// Anything else is a finding.
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
 #include <optional>
 #include <string>
 
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
@@ -27,6 +31,25 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     const nocdyn::Status b = nocdyn::inverseDynamicsFast(*model, lean, p, dp, ddp);
     if (a.ok() != b.ok()) std::abort();
     if (a && !(full.I.allFinite() && full.C.allFinite() && full.tau.allFinite() && lean.tau.allFinite())) std::abort();
+    const nocdyn::analysis::StiffnessModel compliance(*model);
+    if (compliance.any) {
+        nocdyn::Data data(*model);
+        nocdyn::analysis::StiffnessData K;
+        nocdyn::analysis::LumpedModes modes;
+        if (nocdyn::analysis::stiffnessAndModes(*model, compliance, data, p, K, modes)) {
+            if (!(K.K.allFinite() && modes.frequency.allFinite() && modes.shape.allFinite())) std::abort();
+            if (compliance.any_elastic) {
+                nocdyn::analysis::ElastodynamicModes elastic;
+                try {
+                    if (nocdyn::analysis::elastodynamicModes(*model, compliance, data, elastic) &&
+                        !(elastic.frequency.allFinite() && elastic.shape.allFinite())) {
+                        std::abort();
+                    }
+                } catch (const nocdyn::Error&) {
+                }
+            }
+        }
+    }
     const std::string back = nocdyn::io::descriptionToYaml(model->description);
     if (nocdyn::io::descriptionToYaml(nocdyn::io::parseRobotDescription(back, "back.yaml")) != back) std::abort();
     return 0;

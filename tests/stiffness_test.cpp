@@ -378,12 +378,13 @@ void expectError(const std::string& text, const std::string& fragment) {
 
 TEST(StiffnessFile, RefusesNegativeOrNanStiffnessZeroRigidityAndABeamOnAPJoint) {
     const std::string prr = robotText("paper-3prr-general");
-    expectError(replaceFirst(prr, "actuated: true,", "actuated: true, stiffness: -1,"),
-                "limbs[0] (limb1).joints[0].stiffness: must be a finite number in [0, 1e+15] N/m, got -1");
+    expectError(
+        replaceFirst(prr, "actuated: true,", "actuated: true, stiffness: -1,"),
+        "limbs[0] (limb1).joints[0].stiffness: must be 0 (free) or a finite number in [1e-09, 1e+15] N/m, got -1");
     expectError(replaceFirst(prr, "actuated: true,", "actuated: true, stiffness: .nan,"), "joints[0].stiffness");
     const std::string rrr = robotText("3-rrr");
     expectError(replaceFirst(rrr, "com: [0.04, -0.165875]}", "com: [0.04, -0.165875], elastic: {EA: 0, EI: 1}}"),
-                "limbs[0] (limb1).bodies[0].elastic.EA: must be a finite number in (0");
+                "limbs[0] (limb1).bodies[0].elastic.EA: must be a finite number in [1e-09, 1e+15] N, got 0");
     expectError(replaceFirst(rrr, "com: [0.04, -0.165875]}", "com: [0.04, -0.165875], elastic: {EA: 1e6, EI: 0}}"),
                 "bodies[0].elastic.EI");
     expectError(replaceFirst(prr, "com: [-0.08035283213389613, -0.11547005383792514]}",

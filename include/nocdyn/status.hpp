@@ -48,6 +48,10 @@ enum class StatusCode {
     /// definite: some body has no mass or no inertia where the motion needs one. value = the
     /// smallest diagonal entry of M_p.
     singular_mass_matrix,
+    /// The platform's stiffness spans more decades than double precision resolves: the softest
+    /// direction it is held in is lost in the rounding of the stiffest (stiffness.hpp).
+    /// value = the contrast, the ratio of K's largest to its smallest held eigenvalue.
+    stiffness_contrast,
 };
 
 struct Status {

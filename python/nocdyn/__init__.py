@@ -156,7 +156,9 @@ def _vocabulary(function):
 # overlap nothing, threads within reason, results checked finite.
 
 _MAX_THREADS = 1024  # the compiled batch caps this further at the hardware and the work
-_MAX_SAMPLES = 1e7  # samples of trajectory_dynamics, all held in memory
+# trajectory_dynamics holds every sample: t, kinetic, p, dp, ddp and u, du, ddu, tau, that is
+# (11 + 4 n) float64 values (184 bytes with 3 actuators); a call asking more is refused
+_MAX_HELD_BYTES = 8e8
 
 
 def _number(value, name, lower=-np.inf, upper=np.inf):
@@ -187,9 +189,12 @@ def _integer(value, name, lower, upper):
 
 
 def _floats(x, name):
-    """x as a float64 array: a sequence is converted; an ndarray of another dtype raises
-    TypeError (no silent cast of the caller's data)."""
+    """x as a float64 array: a sequence is converted; a byte-swapped float64 array is copied
+    to the native order (same values); an ndarray of another dtype raises TypeError (no silent
+    cast of the caller's data)."""
     if isinstance(x, np.ndarray):
+        if x.dtype.kind == "f" and x.dtype.itemsize == 8 and not x.dtype.isnative:
+            return x.astype(np.float64)
         if x.dtype != np.float64:
             raise TypeError(f"{name}: expected an array of float64, got dtype {x.dtype} "
                             "(convert it with numpy.asarray(x, dtype=float))")
@@ -619,17 +624,24 @@ class Robot:
         Returns a dict of arrays: t (N,), p, dp, ddp (N, 3) ([x, y, theta], the CSV's column
         order), u, du, ddu, tau (N, n), kinetic (N,) [J], and warnings (the limit violations
         when allow_limits=True or check_limits=False, which record them instead of raising, as
-        `--allow-limits` does)."""
+        `--allow-limits` does).
+
+        Memory: every sample is held, (11 + 4 n) float64 values (184 bytes with 3 actuators: 1e6
+        samples take 184 MB); a call needing more than 800 MB is refused (the command line's
+        inverse-dynamics streams any number to a file). Ctrl-C stops it within a few
+        milliseconds (KeyboardInterrupt)."""
         if not isinstance(trajectory, Trajectory):
             raise TypeError("trajectory: expected a nocdyn.Trajectory")
         rate = _number(rate, "rate", 1.0, 1e8)
         if duration is not None:
             duration = _number(duration, "duration", 1e-6, 1e6)
         span = duration if duration is not None else (trajectory.duration or 0.2)
-        if span * rate > _MAX_SAMPLES:
-            # 19 arrays' worth of 8 bytes a sample: 1e7 samples are about 1.5 GB
-            raise Error(f"duration * rate = {span * rate:.6g} samples: at most {_MAX_SAMPLES:.0e} are held in "
-                        "memory (the command line's inverse-dynamics streams any number to a file)")
+        per_sample = 8 * (11 + 4 * self.actuators)
+        if span * rate * per_sample > _MAX_HELD_BYTES:
+            raise Error(f"duration * rate = {span * rate:.6g} samples of {per_sample} bytes would hold "
+                        f"{span * rate * per_sample / 1e9:.3g} GB in memory, more than the "
+                        f"{_MAX_HELD_BYTES / 1e6:.0f} MB allowed: give a shorter duration or a lower rate "
+                        "(the command line's inverse-dynamics streams any number to a file)")
         return self._core._sample_trajectory(trajectory._core, rate, duration,
                                              bool(allow_limits) or not bool(check_limits))
 
@@ -852,11 +864,16 @@ class Robot:
         is a degree of freedom): one per degree of freedom. With modes=True returns
         (frequencies, shapes): shapes' columns are the platform's displacement in each mode, rows
         in the order Robot.stiffness_coordinates, x, y, theta, as `nocdyn pose` reports them
-        (lumped shapes are mass-normalised)."""
+        (lumped shapes are mass-normalised).
+
+        Warnings (RuntimeWarning, as `nocdyn pose`): when the robot has elastic bodies and the
+        lumped first frequency is more than 5 % from the elastodynamic one ("the lumped model
+        does not hold at this pose": next to a limb singularity the links' inertia, carried
+        rigidly, swamps it), and when the stiffness contrast costs the lowest frequency digits."""
         if model not in ("lumped", "elastodynamic"):
             raise Error("model: expected 'lumped' or 'elastodynamic', got " + repr(model))
         elastodynamic = model == "elastodynamic"
-        result = self._core._stiffness(p, elastodynamic)
+        result = self._core._stiffness(p, elastodynamic, True)
         key = "elastodynamic_" if elastodynamic else ""
         frequencies = result[key + "frequencies"]
         if not modes:
@@ -917,14 +934,21 @@ class Trajectory:
         def terms(axis, values):
             out = []
             for h in values:
-                h = tuple(float(v) for v in h)
+                try:
+                    h = tuple(float(v) for v in h)
+                except (TypeError, ValueError):
+                    raise Error(f"{axis}: a harmonic is (amplitude, frequency >= 0, phase), numbers; got {h!r}"[:200]) \
+                        from None
                 if len(h) == 2:
                     h = h + (0.0,)
                 if len(h) != 3 or not all(np.isfinite(h)) or h[1] < 0.0:
                     raise Error(f"{axis}: a harmonic is (amplitude, frequency >= 0, phase), finite; got {h}")
                 out.append(h)
             return out
-        off = [float(v) for v in offset]
+        try:
+            off = [float(v) for v in offset]
+        except (TypeError, ValueError):
+            raise Error(f"offset: expected 3 numbers [x, y, theta], got {offset!r}"[:200]) from None
         if len(off) != 3 or not all(np.isfinite(off)):
             raise Error("offset: expected 3 finite values [x, y, theta]")
         if duration is not None and not (np.isfinite(duration) and duration > 0):

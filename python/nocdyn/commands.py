@@ -128,6 +128,52 @@ def _argument(value, name, default):
     return value
 
 
+def _numbers(value, name, count=None, what="numbers"):
+    """A sequence of numbers (list, tuple, 1-D array) as floats; ValueError naming the argument
+    and what it takes for a string, a scalar, a nested array, a wrong length or a non-number."""
+    import numpy as np
+    want = f"{count} {what}" if count is not None else what
+    if isinstance(value, (str, bytes)) or not hasattr(value, "__len__") or \
+            (isinstance(value, np.ndarray) and value.ndim != 1):
+        shape = f" of shape {value.shape}" if isinstance(value, np.ndarray) else ""
+        raise ValueError(f"{name}: expected a sequence of {want}, got {type(value).__name__}{shape} {value!r}"[:200])
+    items = list(value)
+    if count is not None and len(items) != count:
+        raise ValueError(f"{name}: expected {want}, got {len(items)} values")
+    out = []
+    for i, v in enumerate(items):
+        v = _argument(v, f"{name}[{i}]", 0.0)
+        if isinstance(v, bool) or not isinstance(v, (int, float)):
+            raise ValueError(f"{name}[{i}]: expected a number, got {v!r}"[:200])
+        try:
+            out.append(float(v))
+        except OverflowError:
+            raise ValueError(f"{name}[{i}]: {v!r} is too large for a float") from None
+    return out
+
+
+def _integer_range(options_type, name):
+    """The integers the struct's field `name` holds: (lowest, highest), probed."""
+    probe = options_type()
+    lowest = 0
+    for low in (-(2 ** 63), -(2 ** 31)):
+        try:
+            setattr(probe, name, low)
+            lowest = low
+            break
+        except TypeError:
+            continue
+    highest = 2 ** 31 - 1
+    for high in (2 ** 64 - 1, 2 ** 63 - 1, 2 ** 32 - 1):
+        try:
+            setattr(probe, name, high)
+            highest = high
+            break
+        except TypeError:
+            continue
+    return lowest, highest
+
+
 def _robot_source(robot, set_, name="robot"):
     """The RobotSource of a robot file's path, a nocdyn.Robot or None (the paper's prototype)."""
     from . import Robot
@@ -167,7 +213,14 @@ def _bound_options(options_type, arguments):
         try:
             setattr(options, name, value)
         except TypeError:
-            raise ValueError(f"{name}: expected {type(default).__name__}, got {type(value).__name__}") from None
+            if isinstance(default, int) and not isinstance(default, bool) and isinstance(value, int):
+                lowest, highest = _integer_range(options_type, name)
+                want = "a non-negative integer" if lowest == 0 and value < 0 else \
+                    f"an integer in [{lowest}, {highest}]"
+                raise ValueError(f"{name}: {value} is out of range: expected {want}") from None
+            want = {"float": "a number", "int": "an integer", "str": "a string", "list": "a list"}
+            raise ValueError(f"{name}: expected {want.get(type(default).__name__, type(default).__name__)}, "
+                             f"got {type(value).__name__} {value!r}"[:200]) from None
     return options
 
 
@@ -362,7 +415,7 @@ def control(trajectory, *, robot=None, set=None, plant=None, log=None, output=No
     if options.get("payload_com") is None:
         options.pop("payload_com", None)
     else:
-        options["payload_com"] = [float(_argument(v, "payload_com", 0.0)) for v in options["payload_com"]]
+        options["payload_com"] = _numbers(options["payload_com"], "payload_com", 2, "numbers [x, y]")
     bound = _bound_options(_nocdyn.ControlOptions, {"trajectory": trajectory, **options})
     if plant is not None:  # None: the build's default (Simbody's when built in)
         bound.plant = _argument(plant, "plant", "")
@@ -430,9 +483,9 @@ def frequency_response(*, robot=None, set=None, output=None, summary=None, figur
     Table has <axis>_db, _deg, _loop_db, _loop_deg per axis and ``text`` each axis's -3 dB
     bandwidth, crossover and phase margin."""
     options = {k: v for k, v in options.items() if not (k in ("pose", "rate") and v is None)}
-    for name in ("pose", "rate"):
+    for name, what in (("pose", "numbers [x, y, theta]"), ("rate", "numbers [dx, dy, dtheta]")):
         if name in options:
-            options[name] = [float(_argument(v, name, 0.0)) for v in options[name]]
+            options[name] = _numbers(options[name], name, 3, what)
     bound = _bound_options(_nocdyn.FrequencyResponseOptions, options)
     bound.robot = _robot_source(robot, set)
     files = [_path_argument(summary, "summary"), _path_argument(figure, "figure")]
@@ -623,10 +676,7 @@ def excite(*, robot=None, set=None, output=None, progress=None, **options):
     guess = options.pop("payload_guess", None)
     bound = _bound_options(_nocdyn.ExciteOptions, options)
     if guess is not None:
-        try:
-            bound.payload_guess = [float(_argument(v, "payload_guess", 0.0)) for v in guess]
-        except (TypeError, ValueError):
-            raise ValueError("payload_guess: expected 4 numbers: mass, com_x, com_y, inertia") from None
+        bound.payload_guess = _numbers(guess, "payload_guess", 4, "numbers: mass, com_x, com_y, inertia")
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("excite", [("robot", robot)], [("output", output)])
     if output is not None:
@@ -697,13 +747,26 @@ def design(vary, metric, *, robot=None, set=None, out_dir=None, progress=None, *
     """Sweep a parametric robot family over its declared parameters (``nocdyn design``): each
     design's metrics (workspace_area, condition_median, condition_worst, envelope_x@F, ...,
     moving_mass, peak_force, rms_force, stroke, peak_reaction), infeasible designs as rows with
-    their reason. vary: "NAME=LOWER:UPPER" strings; metric: metric names. Returns a
+    their reason. vary: "NAME=LOWER:UPPER" strings (a dict {NAME: (LOWER, UPPER)}, the form
+    nocdyn.designs.Family takes, is refused with the strings it means); metric: metric names.
+    Returns a
     nocdyn.designs.Designs (``front``: the indices of the Pareto front). out_dir: also write
     designs.csv, pareto.csv, the journal and the figures there (the sweep resumes from its
     journal); without it nothing is written. Ctrl-C (or an exception from ``progress``) stops the
     sweep once the designs under way finish. For Sobol or Latin-hypercube sweeps, optimisation
     and Dask, see nocdyn.designs."""
     from .designs import Designs
+    if isinstance(vary, dict):
+        # the form nocdyn.designs.Family takes, {NAME: (LOWER, UPPER)}: refused, but with the
+        # strings that say the same, so that a dict is never read as its keys
+        pairs = []
+        for key, pair in vary.items():
+            if isinstance(pair, (str, bytes)) or not hasattr(pair, "__len__") or len(pair) != 2:
+                raise ValueError(f"vary: {key!r}: expected (LOWER, UPPER), got {pair!r}"[:200])
+            lower, upper = _numbers(pair, f"vary[{key!r}]", 2, "numbers (LOWER, UPPER)")
+            pairs.append(f"{key}={lower!r}:{upper!r}")
+        raise ValueError(f"vary: a dict is the form nocdyn.designs.Family takes; nocdyn.design takes "
+                         f"'NAME=LOWER:UPPER' strings: vary={pairs!r}")
     vary = [vary] if isinstance(vary, str) else list(vary)
     metric = [metric] if isinstance(metric, str) else list(metric)
     bound = _bound_options(_nocdyn.DesignOptions, {"vary": vary, "metric": metric, **options})

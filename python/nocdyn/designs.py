@@ -56,8 +56,12 @@ class Family:
             source = str(path) if source is None else source
         self.text = text
         self.source = source or "<string>"
-        self.fixed = [(str(k), float(v)) for k, v in (fixed or {}).items()]
-        self.vary = [(str(k), float(lo), float(hi)) for k, (lo, hi) in (vary or {}).items()]
+        self.fixed = [(str(k), _finite(f"fixed[{k!r}]", v)) for k, v in (fixed or {}).items()]
+        self.vary = []
+        for k, pair in (vary or {}).items():
+            if isinstance(pair, (str, bytes)) or not hasattr(pair, "__len__") or len(pair) != 2:
+                raise ValueError(f"vary[{k!r}]: expected (LOWER, UPPER), got {pair!r}"[:200])
+            self.vary.append((str(k), _finite(f"vary[{k!r}] lower", pair[0]), _finite(f"vary[{k!r}] upper", pair[1])))
         if not self.vary:
             raise Error("Family: vary at least one parameter")
         for name, lo, hi in self.vary:

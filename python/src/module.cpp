@@ -42,6 +42,7 @@
 #include "nocdyn/model.hpp"
 #include "nocdyn/pose_order.hpp"
 #include "nocdyn/reactions.hpp"
+#include "nocdyn/text.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -277,6 +278,31 @@ std::pair<Eigen::Index, Status> passiveLimits(const Model& model, const ConstStr
     return {-1, Status{}};
 }
 
+/// A batch over rows [0, n) in slices of 65536 rows, the GIL released over each and taken back
+/// between them to look for Ctrl-C (a long batch stops within a slice, tens of milliseconds).
+/// Each row is computed alone, so the rows are those of one call; the outcome is combineChunks'
+/// of the slices, their sample indices made absolute. run(begin, rows) runs one slice.
+template <class Run>
+BatchResult inSlices(Eigen::Index n, Run&& run) {
+    constexpr Eigen::Index kSliceRows = Eigen::Index{1} << 16;
+    std::vector<BatchResult> parts;
+    Eigen::Index begin = 0;
+    do {
+        const Eigen::Index rows = std::min(kSliceRows, n - begin);
+        BatchResult r;
+        {
+            const py::gil_scoped_release release;
+            r = run(begin, rows);
+        }
+        if (r.first_failure != BatchResult::npos) r.first_failure += begin;
+        if (r.first_beyond_limits != BatchResult::npos) r.first_beyond_limits += begin;
+        parts.push_back(r);
+        begin += rows;
+        if (begin < n && PyErr_CheckSignals() != 0) throw py::error_already_set();
+    } while (begin < n);
+    return combineChunks(parts);
+}
+
 /// The batch over arrays viewed in place, the GIL released while it runs. Returns
 /// (failed, first_failure, message of the first failure or "").
 py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp,
@@ -292,15 +318,21 @@ py::tuple inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, con
     if (vu.col_stride != vdu.col_stride || vu.col_stride != vddu.col_stride || vu.col_stride != vtau.col_stride) {
         throw Error("out: u, du, ddu and tau must have the same memory order (all C- or all F-ordered)");
     }
-    BatchResult result;
     std::pair<Eigen::Index, Status> limits{-1, Status{}};
+    // limits of actuated joints only: checked inside the batch, on the values in registers
+    const bool actuated_only = limitsOnActuatedJointsOnly(model);
+    const ConstStridedMap mp = constMap(vp), mdp = constMap(vdp), mddp = constMap(vddp);
+    StridedMap mu = map(vu), mdu = map(vdu), mddu = map(vddu), mtau = map(vtau);
+    const BatchResult result = inSlices(n, [&](Eigen::Index begin, Eigen::Index rows) {
+        auto u_rows = mu.middleRows(begin, rows), du_rows = mdu.middleRows(begin, rows);
+        auto ddu_rows = mddu.middleRows(begin, rows), tau_rows = mtau.middleRows(begin, rows);
+        return inverseDynamicsBatch(model, mp.middleRows(begin, rows), mdp.middleRows(begin, rows),
+                                    mddp.middleRows(begin, rows), u_rows, du_rows, ddu_rows, tau_rows, threads,
+                                    kPythonPose,
+                                    check_limits && actuated_only ? ActuatorLimits::check : ActuatorLimits::ignore);
+    });
     {
         const py::gil_scoped_release release;
-        // limits of actuated joints only: checked inside the batch, on the values in registers
-        const bool actuated_only = limitsOnActuatedJointsOnly(model);
-        result = inverseDynamicsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vu), map(vdu), map(vddu),
-                                      map(vtau), threads, kPythonPose,
-                                      check_limits && actuated_only ? ActuatorLimits::check : ActuatorLimits::ignore);
         if (check_limits && actuated_only && result.first_beyond_limits != BatchResult::npos) {
             limits = {result.first_beyond_limits, result.limits};
         } else if (check_limits && !actuated_only) {
@@ -418,12 +450,13 @@ py::tuple inverseDynamicsDerivativesBatchArrays(const Robot& robot, const py::ar
     const py::ssize_t n = in.rows;
     const auto a = static_cast<py::ssize_t>(model.actuators);
     RowMajorOutput d_p(n, a, 3), d_dp(n, a, 3), d_ddp(n, a, 3);
-    BatchResult result;
-    {
-        const py::gil_scoped_release release;
-        result = inverseDynamicsDerivativesBatch(model, in.p, in.dp, in.ddp, d_p.map, d_dp.map, d_ddp.map, threads,
-                                                 kPythonPose);
-    }
+    const BatchResult result = inSlices(n, [&](Eigen::Index begin, Eigen::Index rows) {
+        auto a_rows = d_p.map.middleRows(begin, rows), b_rows = d_dp.map.middleRows(begin, rows);
+        auto c_rows = d_ddp.map.middleRows(begin, rows);
+        return inverseDynamicsDerivativesBatch(model, in.p.middleRows(begin, rows), in.dp.middleRows(begin, rows),
+                                               in.ddp.middleRows(begin, rows), a_rows, b_rows, c_rows, threads,
+                                               kPythonPose);
+    });
     return py::make_tuple(d_p.array, d_dp.array, d_ddp.array) + batchOutcome(model, result);
 }
 
@@ -479,6 +512,9 @@ py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::han
     const Status status = lumped ? linearizeCompliant(model, stiffness, *robot.data, p3, dp3, tau_n, kind, ss)
                                  : linearize(model, *robot.data, p3, dp3, tau_n, kind, ss);
     if (!status) throw Error(describe(status, model));
+    if (!(ss.A.allFinite() && ss.B.allFinite() && ss.C.allFinite() && ss.D.allFinite())) {
+        throw Error("the linearised model is not finite at this operating point (the input is too large)");
+    }
     py::list inputs;
     for (const LinearInput input : ss.inputs) inputs.append(name(input));
     // the state [p; dp] and the output ddp in Python's pose order
@@ -498,11 +534,13 @@ py::tuple reactionsBatchArrays(const Robot& robot, const py::array& p, const py:
     const py::ssize_t n = vp.rows;
     const ArrayView vdp = viewOf(dp, "dp", n, 3, false), vddp = viewOf(ddp, "ddp", n, 3, false);
     const ArrayView vout = viewOf(out, "out", n, 9 * model.limbs, true);
-    BatchResult result;
-    {
-        const py::gil_scoped_release release;
-        result = reactionsBatch(model, constMap(vp), constMap(vdp), constMap(vddp), map(vout), threads, kPythonPose);
-    }
+    const ConstStridedMap mp = constMap(vp), mdp = constMap(vdp), mddp = constMap(vddp);
+    StridedMap mout = map(vout);
+    const BatchResult result = inSlices(n, [&](Eigen::Index begin, Eigen::Index rows) {
+        auto out_rows = mout.middleRows(begin, rows);
+        return reactionsBatch(model, mp.middleRows(begin, rows), mdp.middleRows(begin, rows),
+                              mddp.middleRows(begin, rows), out_rows, threads, kPythonPose);
+    });
     const std::string message = result.ok() ? std::string() : describe(result.status, model);
     return py::make_tuple(static_cast<std::int64_t>(result.failed),
                           result.ok() ? std::int64_t{-1} : static_cast<std::int64_t>(result.first_failure), message);
@@ -566,6 +604,9 @@ py::tuple evaluateTrajectory(const PoseTrajectory& trajectory, const ContiguousI
     return py::make_tuple(P, dP, ddP);
 }
 
+/// Most memory trajectory_dynamics holds [bytes].
+constexpr double kMaxHeldBytes = 8e8;
+
 /// The CLI's `inverse-dynamics`: sampleInverseDynamics at the grid of (duration, rate), with
 /// the same checks and messages. Returns a dict of arrays named as the CSV's columns.
 py::dict sampleTrajectory(const Robot& robot, const PoseTrajectory& trajectory, double rate,
@@ -576,6 +617,14 @@ py::dict sampleTrajectory(const Robot& robot, const PoseTrajectory& trajectory, 
     requireRateAboveNyquist(trajectory, grid.rate);
     const auto n = static_cast<py::ssize_t>(grid.count);
     const auto m = static_cast<py::ssize_t>(model.actuators);
+    // every sample held: t, kinetic, p, dp, ddp, u, du, ddu, tau
+    const double bytes = static_cast<double>(grid.count) * static_cast<double>(11 + 4 * m) * 8.0;
+    if (bytes > kMaxHeldBytes) {
+        throw Error(
+            text::format("%.6g samples would hold %.3g GB in memory, more than the %.0f MB allowed: give a "
+                         "shorter duration or a lower rate",
+                         static_cast<double>(grid.count), bytes / 1e9, kMaxHeldBytes / 1e6));
+    }
     py::array_t<double> t(n), kinetic(n);
     RowArray P({n, py::ssize_t{3}}), dP({n, py::ssize_t{3}}), ddP({n, py::ssize_t{3}});
     RowArray u({n, m}), du({n, m}), ddu({n, m}), tau({n, m});
@@ -603,7 +652,11 @@ py::dict sampleTrajectory(const Robot& robot, const PoseTrajectory& trajectory, 
                                           dduu[m * k + i] = s.ddu(i);
                                           taup[m * k + i] = s.tau(i);
                                       }
-                                      ++k;
+                                      // Ctrl-C: every 65536 samples (a few ms), the GIL taken back
+                                      if ((++k & 0xFFFF) == 0) {
+                                          const py::gil_scoped_acquire acquire;
+                                          if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+                                      }
                                   });
     }
     py::dict out;
@@ -699,6 +752,11 @@ py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp
     options.relative_tolerance = rtol;
     options.absolute_tolerance = atol;
     options.max_step = max_step;
+    // Ctrl-C: every 1024 steps, the GIL taken back to look for a pending signal
+    options.poll = [] {
+        const py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    };
     Simulator simulator(model, options);
     const auto to = t_out.unchecked<1>();
     const py::ssize_t count = to.shape(0);
@@ -746,8 +804,10 @@ py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp
 // --- stiffness and natural frequencies ----------------------------------------------
 
 /// K, the lumped modes and (when `elastodynamic`) the elastodynamic modes at pose p, every
-/// pose-indexed array in analysis::kReportedCoordinates' order.
-py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic) {
+/// pose-indexed array in analysis::kReportedCoordinates' order. Warns (RuntimeWarning) when
+/// K's contrast costs digits and, when `frequencies` are asked of a robot with elastic bodies,
+/// when the lumped model does not hold at p.
+py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic, bool frequencies) {
     const Model& model = *robot.model;
     const Pose p3 = vector3(p, "p");
     const analysis::StiffnessModel compliance(model);
@@ -761,6 +821,31 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
     analysis::LumpedModes modes;
     if (const Status status = analysis::stiffnessAndModes(model, compliance, data, p3, K, modes); !status) {
         throw Error(describe(status, model));
+    }
+    if (!(K.K.allFinite() && modes.frequency.allFinite() && modes.shape.allFinite())) {
+        throw Error("the stiffness or the natural frequencies are not finite at this pose");
+    }
+    std::vector<std::string> warnings;
+    if (std::string w = analysis::contrastWarning(K); !w.empty()) warnings.push_back(std::move(w));
+    // with elastic bodies the elastodynamic model is computed too: it says whether the lumped
+    // one holds at this pose
+    analysis::ElastodynamicModes e;
+    const bool elastic = elastodynamic || (frequencies && compliance.any_elastic);
+    if (elastic) {
+        if (const Status status = analysis::elastodynamicModes(model, compliance, data, e); !status) {
+            throw Error(describe(status, model));
+        }
+        if (!(e.frequency.allFinite() && e.platform_shape.allFinite())) {
+            throw Error("the elastodynamic frequencies are not finite at this pose");
+        }
+        if (std::string w = analysis::lumpedMismatchWarning(modes, e); !w.empty()) warnings.push_back(std::move(w));
+        if (elastodynamic) {
+            if (std::string w = analysis::elastodynamicPrecisionWarning(e); !w.empty())
+                warnings.push_back(std::move(w));
+        }
+    }
+    for (const std::string& w : warnings) {
+        if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 3) != 0) throw py::error_already_set();
     }
     py::dict out;
     py::list coordinates, free;
@@ -782,10 +867,6 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
     out["mode_shapes"] = toArray(shapes);
     out["mass_matrix"] = toArray(analysis::reported(modes.M));
     if (elastodynamic) {
-        analysis::ElastodynamicModes e;
-        if (const Status status = analysis::elastodynamicModes(model, compliance, data, e); !status) {
-            throw Error(describe(status, model));
-        }
         py::array_t<double> f(e.frequency.size());
         for (Eigen::Index i = 0; i < e.frequency.size(); ++i) f.mutable_at(i) = e.frequency(i);
         py::array_t<double> shapes({py::ssize_t{3}, static_cast<py::ssize_t>(e.dofs)});
@@ -823,6 +904,13 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
         else
             throw Error("axis: '" + a + "' is not one of x, y, theta");
     }
+    // Ctrl-C between the bisection's periods (EnvelopeOptions::poll) and between points
+    const auto interrupted = [] {
+        const py::gil_scoped_acquire acquire;
+        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    };
+    options.poll = interrupted;
+    options.progress = [&interrupted](int, int) { interrupted(); };
     std::vector<EnvelopePoint> points;
     EnvelopeResonance resonance;
     {
@@ -1185,7 +1273,7 @@ PYBIND11_MODULE(_nocdyn, m) {
              py::arg("ddu"), py::arg("friction"), py::arg("held_forces"), py::arg("cutoff"), py::arg("holdout"),
              py::arg("prior"))
         .def_static("_load_prior", &loadPrior, py::arg("path"))
-        .def("_stiffness", &stiffnessAt, py::arg("p"), py::arg("elastodynamic") = false)
+        .def("_stiffness", &stiffnessAt, py::arg("p"), py::arg("elastodynamic") = false, py::arg("frequencies") = false)
         .def("_envelope", &envelope, py::arg("axes"), py::arg("min_frequency"), py::arg("max_frequency"),
              py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"));
 

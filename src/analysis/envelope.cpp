@@ -197,9 +197,11 @@ public:
 
     /// Largest feasible amplitude in [lo, hi] (lo feasible, hi not); `failure` = the status at
     /// the final hi.
-    double bisect(double lo, double hi, bool dynamic, double tolerance, Status& failure) {
+    double bisect(double lo, double hi, bool dynamic, double tolerance, Status& failure,
+                  const std::function<void()>& poll) {
         // Each pass halves [lo, hi]: kMaxBisections passes end any interval of doubles.
         for (int pass = 0; pass < kMaxBisections && hi - lo > tolerance * hi; ++pass) {
+            if (poll) poll();
             const double mid = 0.5 * (lo + hi);
             if (const Status status = check(mid, dynamic); status) {
                 lo = mid;
@@ -313,7 +315,8 @@ EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double fre
         if (const Status home = period.checkFull(0.0, false); !home) {
             throw Error("envelope: the robot's home posture is not feasible: " + describe(home, model));
         }
-        point.kinematic_amplitude = period.bisect(0.0, upper, false, options.relative_tolerance, kinematic);
+        point.kinematic_amplitude =
+            period.bisect(0.0, upper, false, options.relative_tolerance, kinematic, options.poll);
     } else {
         point.kinematic_amplitude = upper;
     }
@@ -326,7 +329,8 @@ EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double fre
         if (const Status home = period.checkFull(0.0, true); !home) {
             throw Error("envelope: the robot cannot hold its home posture: " + describe(home, model));
         }
-        point.amplitude = period.bisect(0.0, point.kinematic_amplitude, true, options.relative_tolerance, failure);
+        point.amplitude =
+            period.bisect(0.0, point.kinematic_amplitude, true, options.relative_tolerance, failure, options.poll);
     }
     point.limit = limitOf(failure);
     point.limb = failure.limb;

@@ -34,7 +34,7 @@ FirstFrequencyMap firstFrequencyMap(const Model& model, const WorkspaceMap& map,
     out.lowest = std::numeric_limits<double>::infinity();
     out.highest = -std::numeric_limits<double>::infinity();
     Data data(model);
-    StiffnessData stiffness;
+    StiffnessData stiffness, worst_contrast;
     LumpedModes modes;
     for (int i = 0; i < map.n; ++i) {
         const double x = map.x0 + i * map.step;
@@ -48,6 +48,7 @@ FirstFrequencyMap firstFrequencyMap(const Model& model, const WorkspaceMap& map,
                 where = text::format(" at (x, y, theta) = (%.6g m, %.6g m, %.6g rad)", x, y, map.theta);
                 throw Error("first natural frequency: " + describe(s, model) + where);
             }
+            worst_contrast = stiffness.contrast > worst_contrast.contrast ? stiffness : worst_contrast;
             const double f1 = modes.frequency(0);  // ascending
             out.first[static_cast<std::size_t>(i) * n + static_cast<std::size_t>(k)] = f1;
             ++out.points;
@@ -63,6 +64,20 @@ FirstFrequencyMap firstFrequencyMap(const Model& model, const WorkspaceMap& map,
         if (progress) progress(i + 1, map.n);
     }
     if (out.points == 0) throw Error("first natural frequency: the workspace map has no feasible point");
+    out.warning = contrastWarning(worst_contrast);
+    if (compliance.any_elastic) {
+        // the lowest point is where a limb singularity would make the lumped model fail
+        ElastodynamicModes elastic;
+        const Pose p(map.theta, out.lowest_x, out.lowest_y);
+        if (stiffnessAndModes(model, compliance, data, p, stiffness, modes) &&
+            elastodynamicModes(model, compliance, data, elastic)) {
+            if (const std::string w = lumpedMismatchWarning(modes, elastic); !w.empty()) {
+                out.warning +=
+                    (out.warning.empty() ? "" : "; ") +
+                    text::format("at the lowest point (x, y) = (%.6g m, %.6g m): ", out.lowest_x, out.lowest_y) + w;
+            }
+        }
+    }
     return out;
 }
 

@@ -103,9 +103,39 @@ Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& co
     return {};
 }
 
+namespace {
+
+/// True when the model is a mechanical second-order one, A = [0 I; A21 A22], B = [0; B2]
+/// (linearize and linearizeCompliant build it so), exactly.
+bool secondOrder(const StateSpace& system) {
+    const Eigen::Index m = system.A.rows();
+    if (m % 2 != 0 || system.A.cols() != m || system.B.rows() != m || system.C.cols() != m) return false;
+    const Eigen::Index h = m / 2;
+    return system.A.topLeftCorner(h, h).isZero(0.0) && system.A.topRightCorner(h, h).isIdentity(0.0) &&
+           system.B.topRows(h).isZero(0.0);
+}
+
+}  // namespace
+
 Eigen::MatrixXcd frequencyResponse(const StateSpace& system, double frequency) {
     const std::complex<double> s(0.0, 2.0 * std::numbers::pi * frequency);
     const Eigen::Index m = system.A.rows();
+    if (secondOrder(system)) {
+        // x1 = (s^2 I - s A22 - A21)^-1 B2, x2 = s x1: no cancellation as s -> 0. When y is the
+        // acceleration (C = [A21 A22], D = B2), y = A21 x1 + A22 x2 + B2 = s^2 x1 exactly: the
+        // form C X + D would subtract two terms of the size of D to leave one of s^2.
+        using Complex = std::complex<double>;
+        const Eigen::Index h = m / 2;
+        const Eigen::MatrixXcd A21 = system.A.bottomLeftCorner(h, h).cast<Complex>();
+        const Eigen::MatrixXcd A22 = system.A.bottomRightCorner(h, h).cast<Complex>();
+        const Eigen::MatrixXcd P = s * s * Eigen::MatrixXcd::Identity(h, h) - s * A22 - A21;
+        const Eigen::MatrixXcd x1 = P.fullPivLu().solve(system.B.bottomRows(h).cast<Complex>());
+        const bool acceleration = system.C.rows() == h && system.C == system.A.bottomRows(h) && system.D.rows() == h &&
+                                  system.D == system.B.bottomRows(h);
+        if (acceleration) return s * s * x1;
+        return system.C.leftCols(h).cast<Complex>() * x1 + system.C.rightCols(h).cast<Complex>() * (s * x1) +
+               system.D.cast<Complex>();
+    }
     const Eigen::MatrixXcd sI_A = s * Eigen::MatrixXcd::Identity(m, m) - system.A.cast<std::complex<double>>();
     const Eigen::MatrixXcd X = sI_A.partialPivLu().solve(system.B.cast<std::complex<double>>());
     return system.C.cast<std::complex<double>>() * X + system.D.cast<std::complex<double>>();

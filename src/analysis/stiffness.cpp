@@ -2,12 +2,14 @@
 #include "nocdyn/analysis/stiffness.hpp"
 
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <sstream>
 #include <vector>
 
 #include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
@@ -19,9 +21,10 @@ namespace nocdyn::analysis {
 namespace {
 
 constexpr double kRankTolerance = 1e-9;  // relative, on unit columns in metres
-constexpr double kFreeTolerance = 1e-9;  // relative eigenvalue of the scaled K
 constexpr int kMaxLimbColumns = 9;       // 3 joints + 2 beams of 3 deflections
 using LimbColumns = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxLimbColumns>;
+/// The rows N_j^T S_s of every limb: the platform directions each limb carries a wrench in.
+using CarriedRows = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 3 * kMaxLimbs, 3>;
 
 /// D = diag(L, 1, 1): a twist with its rotation in metres (or a pose with theta in metres).
 Vector3 scaled(const Vector3& v, double L) { return {v(0) * L, v(1), v(2)}; }
@@ -116,9 +119,24 @@ StiffnessModel::StiffnessModel(const Model& model) {
     }
 }
 
+std::string contrastWarning(const StiffnessData& stiffness) {
+    if (!(stiffness.contrast > kContrastWarning)) return {};
+    std::ostringstream out;
+    out.precision(3);
+    out << "stiffness contrast " << stiffness.contrast
+        << " between the stiffest and the softest direction the platform is held in: the softest stiffness and the "
+           "lowest natural frequency are known only to about "
+        << std::numeric_limits<double>::epsilon() * stiffness.contrast << " (relative)";
+    return out.str();
+}
+
 Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, const Data& data, StiffnessData& out) {
     const double L = model.length_scale;
     Matrix3 K_twist = Matrix3::Zero();
+    const Matrix3 S = platformTwistMap(data.p.tail<2>());
+    const Vector3 d(L, 1.0, 1.0), inv_d(1.0 / L, 1.0, 1.0);
+    const Matrix3 S_s = d.asDiagonal() * S * inv_d.asDiagonal();  // scaled twist of a scaled dp
+    CarriedRows carried(0, 3);
     for (int j = 0; j < model.limbs; ++j) {
         const auto J = static_cast<std::size_t>(j);
         const LimbData& limb = data.limb[J];
@@ -177,28 +195,47 @@ Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, 
             if (llt.info() != Eigen::Success) return {StatusCode::rigid_limb, j, 0.0};
             const Small inv = llt.solve(Small::Identity(m, m));
             K_s.noalias() = Nm * inv * Nm.transpose();  // K_j = N (N^T C N)^-1 N^T
+            // the platform directions this limb holds: N_j^T S_s
+            const Eigen::Index rows = carried.rows();
+            carried.conservativeResize(rows + m, Eigen::NoChange);
+            carried.bottomRows(m) = Nm.transpose() * S_s;
         }
         // back to twists referred to O: K_j = D K_s D
-        const Vector3 d(L, 1.0, 1.0);
         out.K_limb[J] = d.asDiagonal() * K_s * d.asDiagonal();
         K_twist += out.K_limb[J];
     }
-    const Matrix3 S = platformTwistMap(data.p.tail<2>());
     out.K = S.transpose() * K_twist * S;
     out.K = 0.5 * (out.K + out.K.transpose()).eval();
-    // free directions: the null space of the scaled K_s = D^-1 K D^-1
-    const Vector3 inv_d(1.0 / L, 1.0, 1.0);
-    const Matrix3 K_scaled = inv_d.asDiagonal() * out.K * inv_d.asDiagonal();
-    const Eigen::SelfAdjointEigenSolver<Matrix3> eig(K_scaled);
-    out.scaled_eigenvalues = eig.eigenvalues();
-    out.scaled_eigenvectors = eig.eigenvectors();
-    const double largest = eig.eigenvalues()(2);
-    out.free_directions = 0;
+    // free directions: dp_s with N_j^T S_s dp_s = 0 for every limb, a rank decision on the
+    // geometry (unit wrench columns), whatever the springs' values
+    Matrix3 basis = Matrix3::Identity();  // [free | held], orthonormal in the scaled pose
+    int held = 0;
+    if (carried.rows() > 0) {
+        const Eigen::JacobiSVD<CarriedRows> svd(carried, Eigen::ComputeFullV);
+        const auto& sigma = svd.singularValues();
+        for (Eigen::Index i = 0; i < sigma.size(); ++i) held += sigma(i) > kRankTolerance * sigma(0) ? 1 : 0;
+        basis = svd.matrixV().rowwise().reverse();  // the smallest singular values first
+    }
+    out.free_directions = 3 - held;
     out.free.setZero();
-    for (int i = 0; i < 3; ++i) {
-        if (largest > 0.0 && eig.eigenvalues()(i) > kFreeTolerance * largest) continue;
-        out.free.col(out.free_directions) = (inv_d.asDiagonal() * eig.eigenvectors().col(i)).normalized();
-        ++out.free_directions;
+    for (int i = 0; i < out.free_directions; ++i) {
+        out.free.col(i) = (inv_d.asDiagonal() * basis.col(i)).normalized();
+    }
+    // the held block's eigen-decomposition, after the free directions (eigenvalue 0)
+    const Matrix3 K_scaled = inv_d.asDiagonal() * out.K * inv_d.asDiagonal();
+    out.scaled_eigenvalues.setZero();
+    out.scaled_eigenvectors = basis;
+    out.contrast = 1.0;
+    if (held > 0) {
+        using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
+        const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3> H = basis.rightCols(held);
+        const Small K_held = H.transpose() * K_scaled * H;
+        const Eigen::SelfAdjointEigenSolver<Small> eig(K_held);
+        out.scaled_eigenvalues.tail(held) = eig.eigenvalues();
+        out.scaled_eigenvectors.rightCols(held) = H * eig.eigenvectors();
+        const double lowest = eig.eigenvalues()(0), highest = eig.eigenvalues()(held - 1);
+        out.contrast = lowest > 0.0 ? highest / lowest : std::numeric_limits<double>::infinity();
+        if (!(out.contrast <= kContrastLimit)) return {StatusCode::stiffness_contrast, -1, out.contrast};
     }
     return {};
 }
@@ -248,17 +285,134 @@ Matrix3 poseMassMatrix(const Data& data) {
 
 }  // namespace
 
+std::string lumpedMismatchWarning(const LumpedModes& lumped, const ElastodynamicModes& elastic) {
+    if (elastic.dofs == 0) return {};
+    const double a = lumped.frequency(0), b = elastic.frequency(0);
+    if (!(a > 0.0) || !(b > 0.0) || std::abs(a / b - 1.0) <= kLumpedMismatch) return {};
+    std::ostringstream out;
+    out.precision(4);
+    out << "the lumped model does not hold at this pose: its first natural frequency " << a
+        << " Hz against the elastodynamic model's " << b
+        << " Hz (it carries the links rigidly with the platform, which fails next to a limb singularity); "
+           "the elastodynamic frequencies are the ones to use here";
+    return out.str();
+}
+
+std::string elastodynamicPrecisionWarning(const ElastodynamicModes& elastic) {
+    if (!(elastic.precision > 1e-6)) return {};
+    std::ostringstream out;
+    out.precision(3);
+    out << "the elastodynamic model spans frequencies from " << elastic.frequency(0) << " to "
+        << elastic.frequency(elastic.dofs - 1) << " Hz: its middle frequencies are known only to about "
+        << elastic.precision << " (relative)";
+    return out.str();
+}
+
+namespace {
+
+/// The elastodynamic modes in flexibility form (stiffness.hpp): x = F f from the mixed system
+/// [0 P^T A^T; P -C_s 0; A 0 0], then (L^T F L) y = mu y with M_x = L L^T, w^2 = 1 / mu. Replaces
+/// out's lowest modes (frequency, shape in scaled coordinates) where this form is the more
+/// precise; out holds the stiffness form's `dofs` modes on entry, the first `free` of them the
+/// free directions' (0 Hz, kept). Leaves out as it is when the mixed system is singular (an
+/// internal mechanism without stiffness or mass).
+void flexibleModes(const Eigen::MatrixXd& Mx, const Eigen::MatrixXd& A, const std::vector<double>& spring,
+                   const std::vector<std::pair<int, Matrix3>>& beam_flex, int free, ElastodynamicModes& out) {
+    const int dofs = out.dofs;
+    if (free >= dofs) return;
+    // with free directions, K + sigma M_x (its x block sigma M_x): mu = 1 / (lambda + sigma), the
+    // free modes at mu = 1 / sigma first; sigma far below the lowest held lambda costs it nothing
+    const double w_held = 2.0 * std::numbers::pi * out.frequency(free);
+    const double sigma = free > 0 ? 1e-6 * w_held * w_held : 0.0;
+    if (free > 0 && !(sigma > 0.0)) return;
+    const Eigen::Index n = Mx.rows();
+    // spring coordinates: each joint spring (compliance 1/k), each beam's three (C_b)
+    std::vector<Eigen::Index> rows;
+    for (std::size_t c = 0; c < spring.size(); ++c) {
+        if (spring[c] > 0.0) rows.push_back(3 + static_cast<Eigen::Index>(c));
+    }
+    const auto joint_springs = static_cast<Eigen::Index>(rows.size());
+    const Eigen::Index ns = joint_springs + 3 * static_cast<Eigen::Index>(beam_flex.size());
+    const Eigen::Index nc = A.rows();
+    const Eigen::Index size = n + ns + nc;
+    Eigen::MatrixXd K = Eigen::MatrixXd::Zero(size, size);
+    for (Eigen::Index i = 0; i < joint_springs; ++i) {
+        const Eigen::Index c = rows[static_cast<std::size_t>(i)];
+        K(n + i, c) = K(c, n + i) = 1.0;
+        K(n + i, n + i) = -1.0 / spring[static_cast<std::size_t>(c - 3)];
+    }
+    Eigen::Index g = n + joint_springs;
+    for (const auto& [first, C] : beam_flex) {
+        for (Eigen::Index k = 0; k < 3; ++k) K(g + k, first + k) = K(first + k, g + k) = 1.0;
+        K.block(g, g, 3, 3) = -C;
+        g += 3;
+    }
+    K.block(n + ns, 0, nc, n) = A;
+    K.block(0, n + ns, n, nc) = A.transpose();
+    K.topLeftCorner(n, n) = sigma * Mx;
+    const Eigen::FullPivLU<Eigen::MatrixXd> lu(K);
+    if (!lu.isInvertible()) return;
+    // M_x = L L^T on its range
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> mass(Mx);
+    const double top = mass.eigenvalues()(n - 1);
+    Eigen::Index first_mass = 0;
+    while (first_mass < n && mass.eigenvalues()(first_mass) <= 1e-12 * top) ++first_mass;
+    const Eigen::Index rm = n - first_mass;
+    if (rm < out.dofs) return;
+    const Eigen::MatrixXd L = mass.eigenvectors().rightCols(rm) * mass.eigenvalues().tail(rm).cwiseSqrt().asDiagonal();
+    Eigen::MatrixXd rhs = Eigen::MatrixXd::Zero(size, rm);
+    rhs.topRows(n) = L;
+    const Eigen::MatrixXd FL = lu.solve(rhs).topRows(n);
+    Eigen::MatrixXd LtFL = L.transpose() * FL;
+    LtFL = 0.5 * (LtFL + LtFL.transpose()).eval();
+    const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(LtFL);
+    // mu descending: the lowest frequencies first; the stiffness form's lambda range decides
+    const double w_high = 2.0 * std::numbers::pi * out.frequency(dofs - 1);
+    const double lambda_middle = w_held * w_high;  // sqrt(lambda_min lambda_max) of the held modes
+    for (int i = free; i < dofs; ++i) {
+        const double mu = eig.eigenvalues()(rm - 1 - i);
+        if (!(mu > 0.0)) break;
+        const double lambda = 1.0 / mu - sigma;
+        if (!(lambda > 0.0 && lambda <= lambda_middle)) break;
+        out.frequency(i) = std::sqrt(lambda) / (2.0 * std::numbers::pi);
+        out.shape.col(i) = FL * eig.eigenvectors().col(rm - 1 - i) / mu;  // x = F L y / mu, x^T M x = 1
+    }
+}
+
+}  // namespace
+
 void lumpedModes(const Model& model, const Data& data, const StiffnessData& stiffness, LumpedModes& out) {
     (void)model;
     out.M = poseMassMatrix(data);
     out.M = 0.5 * (out.M + out.M.transpose()).eval();
-    const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix3> eig(stiffness.K, out.M,
-                                                                Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
-    for (int i = 0; i < 3; ++i) {
-        const double w2 = i < stiffness.free_directions ? 0.0 : std::max(eig.eigenvalues()(i), 0.0);
-        out.frequency(i) = std::sqrt(w2) / (2.0 * std::numbers::pi);
+    const int f = stiffness.free_directions;
+    const auto frequencyOf = [](double w2) { return std::sqrt(std::max(w2, 0.0)) / (2.0 * std::numbers::pi); };
+    if (f == 0) {
+        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix3> eig(stiffness.K, out.M,
+                                                                    Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+        for (int i = 0; i < 3; ++i) out.frequency(i) = frequencyOf(eig.eigenvalues()(i));
+        out.shape = eig.eigenvectors();
+        return;
     }
-    out.shape = eig.eigenvectors();
+    using Cols = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>;
+    using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
+    // the free modes: the free directions F, M-orthonormalised (F R^-1, F^T M F = R^T R)
+    const Cols F = stiffness.free.leftCols(f);
+    const Small FtMF = F.transpose() * out.M * F;
+    const Eigen::LLT<Small> llt(FtMF);
+    const Small R = llt.matrixU();
+    out.shape.leftCols(f) = F * R.inverse();
+    out.frequency.head(f).setZero();
+    // the others on the M-orthogonal complement B, null((M F)^T): K restricted there
+    const int h = 3 - f;
+    if (h == 0) return;
+    const Cols MF = out.M * F;
+    const Eigen::JacobiSVD<Cols> svd(MF, Eigen::ComputeFullU);
+    const Cols B = svd.matrixU().rightCols(h);
+    const Small Kh = B.transpose() * stiffness.K * B, Mh = B.transpose() * out.M * B;
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Small> eig(Kh, Mh, Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+    for (int i = 0; i < h; ++i) out.frequency(f + i) = frequencyOf(eig.eigenvalues()(i));
+    out.shape.rightCols(h) = B * eig.eigenvectors();
 }
 
 Status stiffnessAndModes(const Model& model, const StiffnessModel& compliance, Data& data, const Pose& p,
@@ -286,9 +440,10 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
         Vector3 twist;  // scaled twist (D t / s_x) of a unit scaled coordinate
     };
     std::vector<Column> columns;
-    std::vector<double> spring;                  // per coordinate: stiffness in scaled units, or 0
-    std::vector<std::pair<int, Matrix3>> beams;  // first coordinate, scaled beam stiffness
-    std::vector<double> unit{L, 1.0, 1.0};       // per coordinate: scaled / unscaled
+    std::vector<double> spring;                      // per coordinate: stiffness in scaled units, or 0
+    std::vector<std::pair<int, Matrix3>> beams;      // first coordinate, scaled beam stiffness
+    std::vector<std::pair<int, Matrix3>> beam_flex;  // first coordinate, scaled beam compliance
+    std::vector<double> unit{L, 1.0, 1.0};           // per coordinate: scaled / unscaled
     const Vector3 d(L, 1.0, 1.0);
     for (int j = 0; j < model.limbs; ++j) {
         const auto J = static_cast<std::size_t>(j);
@@ -310,6 +465,9 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
                 const Matrix3 Kb = compliance.beam_compliance[J][static_cast<std::size_t>(b)].inverse();
                 beams.emplace_back(3 + static_cast<int>(columns.size()),
                                    sx.cwiseInverse().asDiagonal() * Kb * sx.cwiseInverse().asDiagonal());
+                beam_flex.emplace_back(
+                    3 + static_cast<int>(columns.size()),
+                    sx.asDiagonal() * compliance.beam_compliance[J][static_cast<std::size_t>(b)] * sx.asDiagonal());
                 for (int c = 0; c < 3; ++c) {
                     columns.push_back({j, stage, d.cwiseProduct(G.col(c)) / sx(c)});
                     spring.push_back(0.0);
@@ -404,8 +562,17 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
         out.frequency(i) = std::sqrt(w2) / (2.0 * std::numbers::pi);
     }
     out.shape = Z * (Va * eig.eigenvectors() + Vb * (back * eig.eigenvectors()));
+    // the low modes again in flexibility form (stiffness.hpp), where they keep their digits when
+    // the beams are many decades stiffer than the springs; each mode is taken from the form
+    // whose rounding is the smaller for it: flexibility below sqrt(lambda_min lambda_max)
+    if (out.dofs > 0) flexibleModes(Mx, closure, spring, beam_flex, check.free_directions, out);
     for (Eigen::Index c = 0; c < n; ++c) out.shape.row(c) /= unit[static_cast<std::size_t>(c)];
     out.platform_shape = out.shape.topRows(3);
+    out.precision = 0.0;
+    if (const int f = check.free_directions; out.dofs > f + 1 && out.frequency(f) > 0.0) {
+        const double ratio = out.frequency(out.dofs - 1) / out.frequency(f);  // sqrt(lambda_max / lambda_min)
+        out.precision = std::numeric_limits<double>::epsilon() * ratio;
+    }
     // static condensation onto dp: W = P Z, W^T = Q [R1; 0], y = Q [a; b], dp = R1^T a
     const Eigen::MatrixXd W = Z.topRows(3);
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(W.transpose());

@@ -58,6 +58,9 @@ constexpr double kMaxInertia = 1.0e9;  // [kg m^2]
 constexpr double kMaxGravity = 1.0e4;  // [m/s^2]
 constexpr double kMaxCoefficient = 1.0e9;
 constexpr double kMaxStiffness = 1.0e15;  // [N/m, N m/rad, N, N m^2]
+// Below it a compliance 1/k (or l^3 / (3 EI)) is so large that the limb's stiffness matrix
+// K_j = N (N^T C_j N)^-1 N^T over- or underflows; no mechanism is that soft.
+constexpr double kMinStiffness = 1.0e-9;  // [N/m, N m/rad, N, N m^2]
 
 class Checker {
 public:
@@ -144,8 +147,14 @@ void validate(RobotDescription& robot) {
             check.finiteIn(joint.damping, 0.0, kMaxCoefficient, joint.line, field + ".damping", "");
             check.finiteIn(joint.friction, 0.0, kMaxCoefficient, joint.line, field + ".friction", "");
             if (joint.stiffness) {
-                check.finiteIn(*joint.stiffness, 0.0, kMaxStiffness, joint.line, field + ".stiffness",
-                               joint.type == JointType::revolute ? "N m/rad" : "N/m");
+                // 0 is a free joint (a force actuator); any other value a spring
+                const double k = *joint.stiffness;
+                if (!std::isfinite(k) || (k != 0.0 && !(k >= kMinStiffness && k <= kMaxStiffness))) {
+                    std::ostringstream msg;
+                    msg << "must be 0 (free) or a finite number in [" << kMinStiffness << ", " << kMaxStiffness << "] "
+                        << (joint.type == JointType::revolute ? "N m/rad" : "N/m") << ", got " << k;
+                    check.fail(joint.line, field + ".stiffness", msg.str());
+                }
             }
         }
         for (int b = 0; b < 2; ++b) {
@@ -168,9 +177,10 @@ void validate(RobotDescription& robot) {
                     check.fail(body.line, field + ".elastic", "the beam between the body's two joints has zero length");
                 }
                 const auto positive = [&](double value, const char* key, const char* unit) {
-                    if (!std::isfinite(value) || !(value > 0.0) || value > kMaxStiffness) {
+                    if (!std::isfinite(value) || !(value >= kMinStiffness) || value > kMaxStiffness) {
                         std::ostringstream msg;
-                        msg << "must be a finite number in (0, " << kMaxStiffness << "] " << unit << ", got " << value;
+                        msg << "must be a finite number in [" << kMinStiffness << ", " << kMaxStiffness << "] " << unit
+                            << ", got " << value;
                         check.fail(body.line, field + ".elastic." + key, msg.str());
                     }
                 };

@@ -2,6 +2,7 @@
 #include "nocdyn/model.hpp"
 
 #include <cmath>
+#include <limits>
 #include <sstream>
 
 #include "nocdyn/error.hpp"
@@ -318,6 +319,14 @@ std::string describe(const Status& status, const Model& model) {
             }
             return out.str();
         }
+        case StatusCode::stiffness_contrast:
+            out << "stiffness contrast " << status.value
+                << " between the stiffest and the softest direction the platform is held in: double precision "
+                   "leaves the softest direction's stiffness and the lowest natural frequency a relative error of "
+                   "about "
+                << std::numeric_limits<double>::epsilon() * status.value
+                << " (at most 1e14 is accepted: give the springs, EA and EI values closer to each other)";
+            return out.str();
         case StatusCode::integration_too_many_steps:
             out << "the integrator took " << status.value
                 << " steps over one interval without reaching its end (tolerances too tight?)";

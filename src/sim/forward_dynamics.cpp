@@ -275,6 +275,7 @@ struct Simulator::Impl {
 
     Model model;
     SimulatorOptions options;
+    unsigned polled = 0;  // steps since the start, for options.poll
     Controlled stepper;
     Data data;     ///< every stage at the current time
     Data scratch;  ///< right-hand-side evaluations
@@ -406,6 +407,11 @@ struct Simulator::Impl {
         }
         std::size_t steps = 0;
         while (t_new < t_end) {
+            if (options.poll && (++polled & 1023U) == 0) {
+                restart = true;  // a throw leaves the step half taken
+                options.poll();
+                restart = false;
+            }
             if (const Status status = takeStep(steps); !status) {
                 // stop at the last state reached
                 x = x_new;

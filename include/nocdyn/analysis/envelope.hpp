@@ -55,6 +55,8 @@ struct EnvelopeOptions {
     double relative_tolerance = 1e-6;  ///< bisection stops when (hi - lo) <= tol * hi
     /// Called after each point with the points done and their total (e.g. a progress line).
     std::function<void(int done, int total)> progress = {};
+    /// Called before each period the bisection checks (a caller's Ctrl-C); it may throw to stop.
+    std::function<void()> poll = {};
 };
 
 /// The largest amplitude at one frequency along one axis.

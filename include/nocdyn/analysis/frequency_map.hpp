@@ -25,6 +25,10 @@ struct FirstFrequencyMap {
     int lowest_i = -1, lowest_k = -1;
     double lowest_x = 0.0, lowest_y = 0.0;
     double highest = 0.0;
+    /// What the user must know of the map's numbers ("" when nothing): the largest stiffness
+    /// contrast when it costs digits (contrastWarning), and with elastic bodies whether the
+    /// lumped model holds at the lowest point (lumpedMismatchWarning, there).
+    std::string warning;
     [[nodiscard]] double at(int i, int k, int n) const {
         return first[static_cast<std::size_t>(i) * static_cast<std::size_t>(n) + static_cast<std::size_t>(k)];
     }

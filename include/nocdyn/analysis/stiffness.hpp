@@ -16,14 +16,28 @@
 // Gravity's preload (the geometric stiffness of the loaded joints) is ignored: K is the
 // stiffness of the unloaded structure.
 //
+// Free directions are decided by the geometry, never by K's values: limb j carries the
+// wrenches span(N_j), so dp is free when N_j^T S dp = 0 for every limb (a rank decision on unit
+// columns in metres). A direction held by a stiffness 1e10 times softer than the stiffest is
+// held, not free. K's softest held eigenvalue is then known to about eps times the contrast
+// lambda_max / lambda_min (eps = 2.2e-16): above kContrastWarning a named warning gives the
+// precision left, above kContrastLimit (a digit at most) cartesianStiffness fails with
+// stiffness_contrast.
+//
 // Natural frequencies, lumped model: K v = w^2 M v with M = sum_i T_i^T M_i T_i, the NOC's
 // inertia mapped to the pose coordinates (the rigid bodies' mass matrix).
 // Elastodynamic model: every body keeps its inertia and every virtual spring (drive,
 // flexure, beam deflection) is a degree of freedom; x = [dp; z_1 ... z_L], closure
-// S dp = G_j z_j per limb, x = Z y on its null space, (Z^T H Z) v = w^2 (Z^T M_x Z) v.
-// An elastic body's inertia rides on its root (inboard joint); its beam adds the tip DOFs.
-// Coordinates that carry no mass (a beam tip's rotation at a free pivot) are condensed
-// statically, which is exact for them.
+// S dp = G_j z_j per limb (A x = 0), stiffness energy z_s^T C_s^-1 z_s / 2 on the spring
+// coordinates z_s = P x (C_s: 1/k per spring, C_b per beam). An elastic body's inertia rides
+// on its root (inboard joint); its beam adds the tip DOFs. The modes are found in flexibility
+// form, mixed in the springs' forces g and the closure's multipliers l:
+//   [0 P^T A^T; P -C_s 0; A 0 0] [x; g; l] = [f; 0; 0]   gives x = F f,
+//   (L^T F L) y = mu y,  M_x = L L^T,  w^2 = 1 / mu,  x = F L y / mu,
+// so that a stiff beam (C_b -> 0) tends to a rigid link instead of swamping the soft springs
+// in rounding, and coordinates that carry no mass (a beam tip's rotation at a free pivot) are
+// condensed statically, exactly. With free directions (F unbounded) the mass-proportional
+// shift K + sigma M_x is factored instead (its x block sigma M_x).
 // With rigid bodies the two models are one.
 //
 // Mixed units: rotations are scaled by the model's length_scale L wherever a rank or a
@@ -81,6 +95,12 @@ struct StiffnessModel {
     bool any_elastic = false;  ///< any elastic body
 };
 
+/// Contrast lambda_max / lambda_min of the scaled K's held eigenvalues above which the lowest
+/// natural frequency keeps fewer than about six digits (a named warning), and above which it
+/// keeps at most one (stiffness_contrast: a relative error of 2e-2 and more).
+inline constexpr double kContrastWarning = 1e10;
+inline constexpr double kContrastLimit = 1e14;
+
 /// Static stiffness at one pose.
 struct StiffnessData {
     /// 3 x 3 stiffness in the pose coordinates (nocdyn::Pose order): dQ = K dp, Q the
@@ -90,13 +110,22 @@ struct StiffnessData {
     /// Eigen-decomposition of the scaled K_s = D^-1 K D^-1, D = diag(L, 1, 1) [N/m].
     Vector3 scaled_eigenvalues = Vector3::Zero();
     Matrix3 scaled_eigenvectors = Matrix3::Identity();
-    int free_directions = 0;  ///< dimension of K's null space
+    /// Dimension of the null space: the directions no limb carries a wrench in (geometry);
+    /// the first free_directions columns of scaled_eigenvectors span it (eigenvalue 0).
+    int free_directions = 0;
     /// The first free_directions columns: unit free directions dp (pose order, scaled unit).
     Matrix3 free = Matrix3::Zero();
+    /// lambda_max / lambda_min of the held scaled eigenvalues (1 when none is held).
+    double contrast = 1.0;
 };
 
+/// "" when contrast <= kContrastWarning, else a one-line warning naming the contrast and the
+/// relative precision left to the lowest natural frequency.
+[[nodiscard]] std::string contrastWarning(const StiffnessData& stiffness);
+
 /// K at the pose of `data` (its position stage done). Fails with rigid_limb naming the
-/// limb when a limb does not yield in some direction. Allocation-free.
+/// limb when a limb does not yield in some direction, with stiffness_contrast when the held
+/// eigenvalues' contrast exceeds kContrastLimit. Allocation-free.
 Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, const Data& data, StiffnessData& out);
 
 /// C_j of limb j at the pose of `data`: sum_springs s s^T / k + sum_elastic G_b C_b G_b^T, on
@@ -117,7 +146,9 @@ struct LumpedModes {
 };
 
 /// Lumped modes K v = w^2 M v at the pose of `data`, which must hold the shaping stage.
-/// Allocation-free.
+/// The free directions are the first modes (0 Hz, their shapes the M-normalised free
+/// directions); the others are solved on the M-orthogonal complement, so that a free
+/// direction's rounding never passes for a soft mode. Allocation-free.
 void lumpedModes(const Model& model, const Data& data, const StiffnessData& stiffness, LumpedModes& out);
 
 /// Every stage needed, at pose p: the position, velocity (at rest) and shaping stages, K
@@ -135,7 +166,22 @@ struct ElastodynamicModes {
     /// The static stiffness of the platform by condensing the model (Schur complement):
     /// an independent computation of K (pose order).
     Matrix3 K_condensed = Matrix3::Zero();
+    /// Estimated relative precision of the least precise frequency reported: each mode comes
+    /// from the stiffness or the flexibility form, whichever rounds less for it, so that the
+    /// worst is about eps sqrt(lambda_max / lambda_min) (0 with a single frequency).
+    double precision = 0.0;
 };
+
+/// Relative difference between the lumped and the elastodynamic first natural frequency above
+/// which the lumped model is said not to hold at the pose (kLumpedMismatch, 5 %).
+inline constexpr double kLumpedMismatch = 0.05;
+
+/// "" when the lumped model's first frequency is within kLumpedMismatch of the elastodynamic
+/// one (or either is 0: a free direction), else a one-line warning naming both.
+[[nodiscard]] std::string lumpedMismatchWarning(const LumpedModes& lumped, const ElastodynamicModes& elastic);
+
+/// "" when elastic.precision <= 1e-6, else a one-line warning naming it.
+[[nodiscard]] std::string elastodynamicPrecisionWarning(const ElastodynamicModes& elastic);
 
 /// At the pose of `data` (position stage done). Fails with rigid_limb; throws nocdyn::Error
 /// when a degree of freedom carries no mass.

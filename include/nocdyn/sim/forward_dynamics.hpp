@@ -23,6 +23,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <limits>
 #include <memory>
 #include <string>
@@ -121,6 +122,9 @@ struct SimulatorOptions {
     double floor_step = 1e-6;
     /// Most steps (accepted and rejected) over one advance(): beyond it integration_too_many_steps.
     std::size_t max_steps = 10'000'000;
+    /// Called every 1024 steps of advance() (a caller's Ctrl-C, a deadline). It may throw to
+    /// stop the integration; the simulator must then be reset before it is used again.
+    std::function<void()> poll = {};
 };
 
 /// Time integration of the forward dynamics of any robot. Holds a copy of the model;

@@ -1,0 +1,228 @@
+"""Hostile input in the Python package, compliance and long calls: each test holds one finding
+with its exact input. Ctrl-C in Robot methods, the memory trajectory_dynamics holds, a stiffness
+contrast, tiny stiffness values, stiff beams, the frequency response at very low frequency, the
+lumped model next to a limb singularity, and the typed layer's messages."""
+
+import os
+import signal
+import threading
+import time
+import warnings
+
+import numpy as np
+import pytest
+
+import nocdyn
+
+
+@pytest.fixture(scope="module")
+def compliant(source_dir):
+    return nocdyn.Robot.load(source_dir / "robots" / "paper-3prr-compliant.yaml")
+
+
+@pytest.fixture(scope="module")
+def compliant_text(source_dir):
+    return (source_dir / "robots" / "paper-3prr-compliant.yaml").read_text()
+
+
+def interrupted_after(seconds, call):
+    """Runs call() with a SIGINT sent to this process after `seconds`; the time from the signal
+    to the KeyboardInterrupt, which must arrive."""
+    sent = []
+    timer = threading.Timer(seconds, lambda: (sent.append(time.monotonic()), os.kill(os.getpid(), signal.SIGINT)))
+    timer.start()
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            call()
+            time.sleep(5.0)  # the call ended before the signal: wait for it, the test then fails below
+    finally:
+        timer.cancel()
+    assert sent, "the call returned before the signal was sent"
+    return time.monotonic() - sent[0]
+
+
+def test_ctrl_c_stops_robot_simulate_at_once(compliant):
+    late = interrupted_after(0.5, lambda: compliant.simulate(np.linspace(0, 100, 1001), np.zeros((1001, 3)),
+                                                             max_step=1e-5))
+    assert late < 2.0
+
+
+def test_ctrl_c_stops_robot_simulate_between_two_distant_output_times(compliant):
+    # one output interval of 100 s at max_step 1e-5: ten million steps without an output row
+    late = interrupted_after(0.5, lambda: compliant.simulate([0.0, 100.0], np.zeros((2, 3)), max_step=1e-5))
+    assert late < 2.0
+
+
+def test_ctrl_c_stops_robot_envelope_within_a_point(compliant):
+    late = interrupted_after(1.0, lambda: compliant.envelope(points=300, max_frequency=1e4,
+                                                             samples_per_period=65536))
+    assert late < 2.0
+
+
+def test_ctrl_c_stops_robot_trajectory_dynamics(paper_robot):
+    late = interrupted_after(0.5, lambda: paper_robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=2e7,
+                                                                          duration=0.2))
+    assert late < 2.0
+
+
+def test_trajectory_dynamics_refuses_what_would_take_more_than_800_mb_and_says_so(paper_robot):
+    with pytest.raises(nocdyn.Error, match=r"GB in memory, more than the 800 MB allowed"):
+        paper_robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=1e8, duration=0.1)
+    r = paper_robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=1e5, duration=0.01)
+    assert r["tau"].shape == (1000, 3) and np.isfinite(r["tau"]).all()
+    assert "184 bytes" in nocdyn.Robot.trajectory_dynamics.__doc__
+
+
+def test_a_stiffness_contrast_above_a_billion_keeps_the_held_modes(compliant_text):
+    text = compliant_text.replace("EA: 1.4e7", "EA: 1e15").replace("stiffness: 2.0e5", "stiffness: 5e14", 1)
+    robot = nocdyn.Robot.from_yaml(text)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # the contrast costs digits: said, not an error
+        f = robot.natural_frequencies([0.0, 0.0, 0.0])
+    assert f[0] == pytest.approx(41.3, abs=0.5) and f[1] == pytest.approx(43.8, abs=0.5)
+    assert robot.envelope(points=2).first_natural_frequency == pytest.approx(f[0], rel=1e-12)
+
+
+def test_a_contrast_beyond_double_precision_is_refused_by_name(compliant_text):
+    text = compliant_text.replace("EA: 1.4e7", "EA: 1e15")
+    for _ in range(2):
+        text = text.replace("stiffness: 2.0e5,", "stiffness: 1e15,", 1)
+    text = text.replace("stiffness: 2.0e5,", "stiffness: 1e-3,", 1)
+    robot = nocdyn.Robot.from_yaml(text)
+    with pytest.raises(nocdyn.Error, match="stiffness contrast"):
+        robot.natural_frequencies([0.0, 0.0, 0.0])
+
+
+@pytest.mark.parametrize("old, new, field", [("stiffness: 2.0e5", "stiffness: 1e-320", "stiffness"),
+                                             ("EI: 466.7", "EI: 1e-300", "EI"),
+                                             ("EA: 1.4e7", "EA: 1e-10", "EA")])
+def test_a_stiffness_too_small_to_invert_is_refused_naming_the_field(compliant_text, old, new, field):
+    with pytest.raises(nocdyn.Error, match=rf"\.{field}: must be .*\[1e-09, 1e\+15\]"):
+        nocdyn.Robot.from_yaml(compliant_text.replace(old, new, 1))
+
+
+def test_stiff_beams_give_the_rigid_links_frequencies(source_dir):
+    text = (source_dir / "robots" / "3-rrr-elastic.yaml").read_text()
+    import re
+    rigid = nocdyn.Robot.from_yaml(re.sub(r", elastic: \{[^}]*\}", "", text)).natural_frequencies([0, 0, 0])
+    for X in ("1e10", "1e13", "1e15"):
+        stiff = nocdyn.Robot.from_yaml(re.sub(r"EA: [0-9.e]+, EI: [0-9.e]+", f"EA: {X}, EI: {X}", text))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            f = stiff.natural_frequencies([0, 0, 0], model="elastodynamic")
+        assert np.all(np.isfinite(f))
+        np.testing.assert_allclose(f[:3], rigid, rtol=1e-6, err_msg=X)
+
+
+def test_the_frequency_response_keeps_its_digits_at_very_low_frequency(compliant, source_dir):
+    A, B, C, D = compliant.linearize(np.zeros(3), np.zeros(3), np.zeros(3), output="acceleration")
+    Q, P = -A[3:, :3], B[3:]
+    t = nocdyn.frequency_response(robot=source_dir / "robots" / "paper-3prr-compliant.yaml", f_min=1e-9, f_max=1e-1,
+                                  points=9)
+    for row in t.data:
+        w = 2 * np.pi * row[0]
+        H = -w ** 2 * np.linalg.solve(Q - w ** 2 * np.eye(3), P)
+        for k, axis in enumerate("x y theta".split()):
+            for a in range(3):
+                got = row[t.columns.index(f"dd{axis}_uc{a + 1}_db")]
+                assert abs(got - 20 * np.log10(abs(H[k, a]))) < 1e-6, (row[0], axis, a)
+
+
+def test_a_frequency_below_the_response_range_is_refused_naming_f_min(source_dir):
+    with pytest.raises(ValueError, match="f_min"):
+        nocdyn.frequency_response(robot=source_dir / "robots" / "paper-3prr-compliant.yaml", f_min=1e-300)
+
+
+def test_next_to_a_limb_singularity_the_lumped_model_warns_that_it_does_not_hold(source_dir):
+    text = (source_dir / "robots" / "3-rrr-elastic.yaml").read_text()
+    import re
+    robot = nocdyn.Robot.from_yaml(re.sub(r"limits: \{[^}]*\}", "limits: {}", text).replace(",\n         limits: {}}", "}"))
+    lo, hi = 0.0, 0.2
+    for _ in range(60):
+        mid = (lo + hi) / 2
+        try:
+            robot.stiffness([0.0, -mid, 0.0])
+            lo = mid
+        except nocdyn.Error:
+            hi = mid
+    with pytest.warns(RuntimeWarning, match="lumped model does not hold at this pose"):
+        robot.natural_frequencies([0.0, -(lo - 1e-9), 0.0])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        robot.natural_frequencies([0.0, 0.0, 0.0])  # at home the two agree: no warning
+
+
+@pytest.mark.parametrize("call, name", [
+    (lambda: nocdyn.shake("x.AT2", jobs=-1), "jobs"),
+    (lambda: nocdyn.frequency_response(points=2 ** 31), "points"),
+    (lambda: nocdyn.frequency_response(pose="abc"), "pose"),
+    (lambda: nocdyn.frequency_response(pose=0.0), "pose"),
+    (lambda: nocdyn.frequency_response(pose=[0.0, "a", 0.0]), r"pose\[1\]"),
+    (lambda: nocdyn.frequency_response(rate=np.zeros((1, 3))), "rate"),
+    (lambda: nocdyn.frequency_response(f_min="abc"), "f_min"),
+])
+def test_a_wrong_argument_is_named_with_what_it_takes(call, name):
+    with pytest.raises(ValueError, match=f"^{name}: ") as e:
+        call()
+    assert "got int" not in str(e.value) and "could not convert" not in str(e.value)
+
+
+def test_design_refuses_the_dict_form_of_vary_with_the_strings_it_means(compliant_text, tmp_path):
+    family = tmp_path / "fam.yaml"
+    family.write_text(compliant_text.replace("max_condition: 10000", "parameters:\n  k: 2.0e5\nmax_condition: 10000")
+                      .replace("stiffness: 2.0e5", "stiffness: k"))
+    with pytest.raises(ValueError, match=r"^vary: a dict .*\['k=100000.0:200000.0'\]") as e:
+        nocdyn.design({"k": (1e5, 2e5)}, ["moving_mass"], robot=family, samples=2)
+    designs = nocdyn.design(eval(str(e.value).split("vary=")[1]), ["moving_mass"], robot=family, samples=2)
+    assert len(designs) == 2
+    with pytest.raises(ValueError, match=r"^vary\['k'\]"):
+        nocdyn.design({"k": (1e5, "x")}, ["moving_mass"], robot=family, samples=2)
+
+
+def test_a_byte_swapped_batch_is_copied_and_gives_the_native_numbers(compliant):
+    P = np.zeros((2, 3))
+    P[:, 1] = [0.001, -0.002]
+    native = compliant.inverse_dynamics_derivatives(P, P, P)
+    swapped = compliant.inverse_dynamics_derivatives(*(P.astype(">f8"),) * 3)
+    for a, b in zip(native, swapped):
+        np.testing.assert_array_equal(a, b)
+
+
+def test_the_closed_loop_refuses_frequencies_where_its_reference_swamps_it_and_holds_above():
+    with pytest.raises(ValueError, match=r"^f_min: .*6e-05 Hz"):
+        nocdyn.frequency_response(closed_loop=True, f_min=1e-7, f_max=1.0)
+    t = nocdyn.frequency_response(closed_loop=True, f_min=1e-4, f_max=1e-2, points=7)
+    for axis in ("x", "y", "theta"):
+        # the loop follows a slow reference exactly: 0 dB
+        assert np.max(np.abs(t.data[:, t.columns.index(f"{axis}_db")])) < 1e-4, axis
+
+
+@pytest.mark.parametrize("method", ["inverse_dynamics", "inverse_dynamics_derivatives", "reactions"])
+def test_ctrl_c_stops_a_long_batch_within_a_slice(paper_robot, method):
+    N = 4_000_000  # seconds of work: the batch runs in slices of 65536 rows, Ctrl-C looked for between
+    P = np.zeros((N, 3))
+    P[:, 0] = 1e-3 * np.sin(np.arange(N) * 1e-5)
+    late = interrupted_after(0.3, lambda: getattr(paper_robot, method)(P, P, P))
+    assert late < 1.0
+
+
+def test_a_batch_in_slices_names_its_first_failed_sample_in_the_whole_batch(paper_robot):
+    N = 200_000
+    P = np.zeros((N, 3))
+    P[150_000, 0] = 10.0  # out of reach, in the third slice
+    with pytest.raises(nocdyn.Error, match="^sample 150000: "):
+        paper_robot.inverse_dynamics(P, P, P)
+    with pytest.raises(nocdyn.Error, match="^sample 150000: "):
+        paper_robot.reactions(P, P, P)
+
+
+def test_harmonics_and_family_values_that_are_not_numbers_are_named():
+    with pytest.raises(nocdyn.Error, match=r"^x: a harmonic is"):
+        nocdyn.Trajectory.harmonic(x=[("a", 1.0, 0.0)])
+    with pytest.raises(nocdyn.Error, match=r"^offset: expected 3 numbers"):
+        nocdyn.Trajectory.harmonic(offset=(0.0, "b", 0.0))
+    from nocdyn import designs
+    with pytest.raises(ValueError, match=r"^vary\['k'\] upper: expected a number"):
+        designs.Family(text="name: x\n", vary={"k": (1.0, "z")})
+    with pytest.raises(ValueError, match=r"^vary\['k'\]: expected \(LOWER, UPPER\)"):
+        designs.Family(text="name: x\n", vary={"k": 1.0})
