@@ -50,8 +50,6 @@ struct FrequencyResponseOptions {
 };
 
 inline constexpr int kMinPoints = 2, kMaxPoints = 100000;
-/// The frequencies of a grid (f_min, f_max).
-inline constexpr Range kResponseFrequencyRange{1e-300, 1e9, "Hz"};
 
 /// One curve of the Bode figure: a channel's (or a loop transfer's) magnitude and phase.
 struct BodeCurve {
