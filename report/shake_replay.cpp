@@ -347,11 +347,17 @@ io::Table shakeTable(const ShakeOutcome& outcome, const Model& model) {
     io::Table table;
     table.columns = io::columnNames(io::TableId::shake, {.actuators = n});
     const auto un = static_cast<std::size_t>(n);
-    const std::size_t samples = un == 0 ? 0 : std::min(fit.t.size(), outcome.u_at_samples.size() / un);
+    const std::size_t samples =
+        un == 0 || outcome.loop.t.empty() ? 0 : std::min(fit.t.size(), outcome.u_at_samples.size() / un);
     Pose p, dp, ddp;
+    const std::vector<double>& ticks = outcome.loop.t;
     for (std::size_t i = 0; i < samples; ++i) {
         const double t = fit.t[i];
         fit.trajectory.evaluate(t, p, dp, ddp);
+        // the achieved pose at the tick nearest t (the loop's ticks are increasing)
+        auto k = static_cast<std::size_t>(std::lower_bound(ticks.begin(), ticks.end(), t) - ticks.begin());
+        if (k == ticks.size() || (k > 0 && t - ticks[k - 1] < ticks[k] - t)) --k;
+        const Pose& achieved = outcome.loop.p[k];
         std::vector<double> row = {t,
                                    p(1),
                                    p(2),
@@ -361,7 +367,10 @@ io::Table shakeTable(const ShakeOutcome& outcome, const Model& model) {
                                    ddp(0),
                                    outcome.achieved[1][i],
                                    outcome.achieved[2][i],
-                                   outcome.achieved[0][i]};
+                                   outcome.achieved[0][i],
+                                   achieved(1),
+                                   achieved(2),
+                                   achieved(0)};
         for (std::size_t a = 0; a < un; ++a) row.push_back(outcome.u_at_samples[i * un + a]);
         for (std::size_t a = 0; a < un; ++a) row.push_back(outcome.tau_at_samples[i * un + a]);
         table.rows.push_back(std::move(row));
