@@ -804,7 +804,7 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
 /// The envelope's points as dicts, and the band's third bound: (points, the first natural
 /// frequency [Hz] or None, the summary line that names it or says why it is unknown).
 py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, double min_frequency, double max_frequency,
-                   int frequencies, int samples_per_period, double relative_tolerance) {
+                   int frequencies, int samples_per_period, double relative_tolerance, double amplification) {
     const Model& model = *robot.model;
     EnvelopeOptions options;
     options.min_frequency = min_frequency;
@@ -812,6 +812,7 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
     options.frequencies = frequencies;
     options.samples_per_period = samples_per_period;
     options.relative_tolerance = relative_tolerance;
+    options.amplification = amplification;
     std::vector<EnvelopeAxis> which;
     for (const std::string& a : axes) {
         if (a == "theta")
@@ -828,7 +829,7 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
     {
         const py::gil_scoped_release release;
         points = operatingEnvelope(model, options);  // as `nocdyn envelope` computes it
-        resonance = envelopeResonance(model);
+        resonance = envelopeResonance(model, amplification);
     }
     py::list out;
     for (const EnvelopePoint& e : points) {
@@ -846,7 +847,14 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
         d["peak_effort_ratio"] = e.peak_effort_ratio;
         out.append(d);
     }
-    const py::object first = resonance.known ? py::object(py::float_(resonance.frequency)) : py::object(py::none());
+    // (f_1, {axis: band end}) when known
+    py::object first = py::none();
+    if (resonance.known) {
+        py::dict band_end;
+        for (const EnvelopeAxis axis : kEnvelopeAxes)
+            band_end[axisName(axis)] = resonance.band_end[static_cast<std::size_t>(axis)];
+        first = py::make_tuple(resonance.frequency, band_end);
+    }
     return py::make_tuple(out, first, resonance.known ? std::string() : resonance.reason);
 }
 
@@ -1187,7 +1195,8 @@ PYBIND11_MODULE(_nocdyn, m) {
         .def_static("_load_prior", &loadPrior, py::arg("path"))
         .def("_stiffness", &stiffnessAt, py::arg("p"), py::arg("elastodynamic") = false)
         .def("_envelope", &envelope, py::arg("axes"), py::arg("min_frequency"), py::arg("max_frequency"),
-             py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"));
+             py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"),
+             py::arg("amplification") = kDefaultAmplification);
 
     py::class_<PoseTrajectory>(m, "Trajectory")
         .def(py::init([](const std::string& name, double theta_offset, const std::vector<std::array<double, 3>>& theta,

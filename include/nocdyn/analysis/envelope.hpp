@@ -61,15 +61,15 @@ inline constexpr double kDefaultAmplification = 1.1;
 inline constexpr double kMinAmplification = 1.001, kMaxAmplification = 100.0;
 
 struct EnvelopeOptions {
-    double min_frequency = 1.0;    ///< [Hz]
-    double max_frequency = 100.0;  ///< [Hz]
-    int frequencies = 41;          ///< log-spaced, both ends included
-    int samples_per_period = 256;  ///< a multiple of 4 puts samples on the sinusoid's peaks
-    /// The band's third bound: the largest dynamic amplification accepted (see the header).
-    double amplification = kDefaultAmplification;
+    double min_frequency = 1.0;        ///< [Hz]
+    double max_frequency = 100.0;      ///< [Hz]
+    int frequencies = 41;              ///< log-spaced, both ends included
+    int samples_per_period = 256;      ///< a multiple of 4 puts samples on the sinusoid's peaks
     double relative_tolerance = 1e-6;  ///< bisection stops when (hi - lo) <= tol * hi
     /// Called after each point with the points done and their total (e.g. a progress line).
     std::function<void(int done, int total)> progress = {};
+    /// The band's third bound: the largest dynamic amplification accepted (see the header).
+    double amplification = kDefaultAmplification;
 };
 
 /// The largest amplitude at one frequency along one axis.
