@@ -587,8 +587,8 @@ Figure frameFigure(const Model& model, const MotionSamples& motion, double t) {
     }
     PlotPanel panel;
     panel.title = literalText(model.description.name + " at t = " + secondsText(motion.t[k]) + " s");
-    panel.xlabel = "x [m]";
-    panel.ylabel = "y [m]";
+    panel.xlabel = "x [mm]";  // millimetres, as every other figure
+    panel.ylabel = "y [mm]";
     panel.equal_axes = true;
     PlotSeries rails{"rails (stroke)", {}, {}, "lines lw 6 lc rgb '#999999'"};
     PlotSeries links{"links", {}, {}, "linespoints lw 3 pt 7 ps 0.8 lc rgb '#1f4e9c'"};
@@ -596,8 +596,8 @@ Figure frameFigure(const Model& model, const MotionSamples& motion, double t) {
     PlotSeries c{"C", {}, {}, "points pt 7 ps 1.5 lc rgb '#ff0000'"};
     PlotSeries ghost{"target (ghost)", {}, {}, "lines dt 2 lw 1.5 lc rgb '#888888'"};
     const auto add = [](PlotSeries& s, const Vector2& x) {
-        s.x.push_back(x.x());
-        s.y.push_back(x.y());
+        s.x.push_back(1e3 * x.x());
+        s.y.push_back(1e3 * x.y());
     };
     const auto gap = [](PlotSeries& s) {  // a blank row: gnuplot breaks the line there
         s.x.push_back(std::numeric_limits<double>::quiet_NaN());

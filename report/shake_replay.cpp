@@ -553,7 +553,7 @@ void reproduceShake(const std::string& out_dir, std::ostream& summary) {
     const RobotDescription robot = io::exampleRobot("paper-3prr-general");
     ShakeSettings settings;
     // nocdyn's own plant keeps the replay within seconds (and under the sanitizers); `nocdyn shake`
-    // plays on the Simbody plant by default, which scores the same motion alike
+    // plays on nocdyn's RK4 plant (nocdyn-rk4) by default, which scores the same motion alike
     settings.plant = "nocdyn";
     // the pose-sensor controller this section has always described
     settings.controller = "pose";
@@ -570,14 +570,15 @@ void reproduceShake(const std::string& out_dir, std::ostream& summary) {
             << " run forward and backward), scaled in time to fit the actuators with a " << 100.0 * settings.fit.margin
             << " % margin, then tracked by computed torque at " << settings.rate / 1000.0
             << " kHz (f_n = " << settings.natural_frequency
-            << " Hz) on nocdyn's own forward dynamics (`--plant nocdyn`; `nocdyn shake` plays on the Simbody plant by"
-            << " default) carrying a " << settings.payload.mass
-            << " kg payload the controller does not know, with pose noise " << settings.noise_pose
-            << " m (rad) and rate noise " << settings.noise_rate << " m/s (rad/s):\n\n```\n"
+            << " Hz) on nocdyn's own forward dynamics (`--plant nocdyn`; `nocdyn shake` plays on its RK4 plant,"
+            << " `nocdyn-rk4`, by default, and `--plant simbody` on the independent Simbody model) carrying a "
+            << settings.payload.mass << " kg payload the controller does not know, with pose noise "
+            << settings.noise_pose << " m (rad) and rate noise " << settings.noise_rate << " m/s (rad/s):\n\n```\n"
             << text.str() << "```\n\n"
             << "Files: `elcentro/shake.csv`, `elcentro/shake.json`, `elcentro/shake_acceleration.{png,svg}`,"
             << " `elcentro/shake_spectrum.{png,svg}`. `nocdyn shake --robot robots/paper-3prr-general.yaml --record"
-            << " data/elcentro_1940_ns.AT2 --window " << kWindow << " --plant nocdyn` reproduces them.\n\n";
+            << " data/elcentro_1940_ns.AT2 --window " << kWindow << " --plant nocdyn --controller pose` reproduces"
+            << " them (the pose-sensor controller; `nocdyn shake`'s default is the table controller).\n\n";
 }
 
 }  // namespace nocdyn::report
