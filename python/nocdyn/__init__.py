@@ -304,16 +304,19 @@ class PayloadEstimate:
     """A payload identified by Robot.identify_payload.
 
     mass [kg], com (2,) [m] (platform frame), inertia [kg m^2] (about the payload's own c.o.m.),
-    each with its standard deviation from the residuals (mass_sd, com_sd, inertia_sd);
+    each with its standard deviation from the residuals, counting their correlation along the
+    samples (mass_sd, com_sd, inertia_sd); covariance: (4 + f, 4 + f) of [mass, com_x, com_y,
+    inertia, then the friction's parameters];
     active_bounds: the bounds the estimate lies on (list of dicts: parameter, side 'lower' or
     'upper', bound, unbounded: the unbounded fit's value); inertia_constrained: the unbounded
     inertia was negative (set to 0); friction: the actuated joints' damping and friction when
     asked (list of dicts: name, value, stddev, unit); fit: dict of the fit on the held-out
     samples (fit_samples, holdout_samples, rms_fit, rms_holdout, rms_measured (n,) [N or N m],
-    condition, t (M,), measured and predicted (M, n) forces).
+    condition, correlation_samples (the residuals' integrated autocorrelation time) and
+    effective_samples, t (M,), measured and predicted (M, n) forces).
     """
 
-    __slots__ = ("mass", "com", "inertia", "mass_sd", "com_sd", "inertia_sd", "active_bounds",
+    __slots__ = ("mass", "com", "inertia", "mass_sd", "com_sd", "inertia_sd", "covariance", "active_bounds",
                  "inertia_constrained", "friction", "fit")
 
     def __init__(self, values):

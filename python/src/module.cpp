@@ -983,6 +983,7 @@ py::dict identifyPayloadArrays(const Robot& robot, const ContiguousInput& t, con
     out["mass_sd"] = r.mass_sd;
     out["com_sd"] = toArray(std::vector<double>{r.com_sd.x(), r.com_sd.y()});
     out["inertia_sd"] = r.inertia_sd;
+    out["covariance"] = toArray(r.covariance);
     out["inertia_constrained"] = r.inertia_constrained;
     py::list active;
     for (const ActiveBound& b : r.active_bounds) {
@@ -1011,6 +1012,8 @@ py::dict identifyPayloadArrays(const Robot& robot, const ContiguousInput& t, con
     fit["rms_holdout"] = toArray(r.fit.rms_holdout);
     fit["rms_measured"] = toArray(r.fit.rms_measured);
     fit["condition"] = r.fit.condition;
+    fit["correlation_samples"] = r.fit.correlation_samples;
+    fit["effective_samples"] = r.fit.effective_samples;
     fit["t"] = toArray(r.fit.t);
     fit["measured"] = toArray(r.fit.measured);
     fit["predicted"] = toArray(r.fit.predicted);
