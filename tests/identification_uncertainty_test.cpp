@@ -6,6 +6,7 @@
 // for its base parameters. The filtered residuals are correlated over about 120 samples: counted
 // as independent samples they gave standard deviations about ten times too small.
 #include <cmath>
+#include <cstdio>
 #include <string>
 #include <vector>
 
