@@ -155,6 +155,28 @@ void evaluateOnPool(std::size_t count, int threads, const std::function<DesignEv
     if (failure) std::rethrow_exception(failure);
 }
 
+/// The best feasible design by the first metric (larger or smaller is better, as the metric says).
+std::optional<std::size_t> bestDesign(const std::vector<io::DesignRecord>& records,
+                                      const std::vector<DesignMetric>& metrics) {
+    std::optional<std::size_t> best;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        if (!records[i].evaluation.feasible) continue;
+        const double v = records[i].evaluation.values[0], b = best ? records[*best].evaluation.values[0] : 0.0;
+        if (!best || (metrics[0].larger_is_better() ? v > b : v < b)) best = i;
+    }
+    return best;
+}
+
+/// "metric: design 30 (a = 0.1, b = 0.2), metric = 5.3".
+std::string bestText(const io::DesignFamily& family, const std::vector<DesignMetric>& metrics,
+                     const io::DesignRecord& record) {
+    std::string text = metrics[0].name() + ": design " + std::to_string(record.index) + " (";
+    for (std::size_t p = 0; p < family.ranges.size() && p < record.point.size(); ++p) {
+        text += (p == 0 ? "" : ", ") + family.ranges[p].name + " = " + text::format("%.6g", record.point[p]);
+    }
+    return text + "), " + metrics[0].name() + " = " + text::format("%.6g", record.evaluation.values[0]);
+}
+
 void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& family,
                   const std::vector<DesignMetric>& metrics, const nocdyn::DesignOptions& design,
                   const std::vector<io::DesignRecord>& records, const std::vector<std::size_t>& front) {
@@ -188,20 +210,14 @@ void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& fami
         report::renderFigure(f, (dir / "pareto").string());
     }
     // the best design by the first metric, drawn with its workspace
-    std::optional<std::size_t> best;
-    for (std::size_t i = 0; i < records.size(); ++i) {
-        if (!records[i].evaluation.feasible) continue;
-        const double v = records[i].evaluation.values[0], b = best ? records[*best].evaluation.values[0] : 0.0;
-        if (!best || (metrics[0].larger_is_better() ? v > b : v < b)) best = i;
-    }
+    const std::optional<std::size_t> best = bestDesign(records, metrics);
     if (!best) return;
     const Model model(io::designRobot(family, records[*best].point));
     WorkspaceOptions ws = design.workspace;
     ws.curves = true;
     if (design.workspace_theta_at_home) ws.theta = model.home(0);
     report::Figure f = report::workspaceFigure(workspaceMap(model, ws), model, {});
-    f.title =
-        "Best design by " + literalText(metrics[0].name()) + " (design " + std::to_string(records[*best].index) + ")";
+    f.title = "Best by " + literalText(bestText(family, metrics, records[*best]));
     report::renderFigure(f, (dir / "best").string());
 }
 
@@ -362,6 +378,8 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         observer.progress(static_cast<double>(k), static_cast<double>(n), "designs");
         stopIfRequested(observer);
     });
+    out.best = bestDesign(out.records, metrics);
+    if (out.best) out.best_text = bestText(family, metrics, out.records[*out.best]);
     if (journal) {
         std::vector<io::DesignRecord> front_records;
         for (const std::size_t i : out.front) front_records.push_back(out.records[i]);

@@ -48,6 +48,10 @@ struct DesignResult {
     std::vector<std::size_t> front;  ///< indices into records of the Pareto front
     std::size_t feasible = 0;
     std::size_t resumed = 0;  ///< designs read back from the journal
+    /// The best feasible design by the first metric (index into records), and it in words:
+    /// "design 30 (a = 0.1, b = 0.2): metric = 5.3" ("" when no design is feasible).
+    std::optional<std::size_t> best;
+    std::string best_text;
 };
 
 /// Throws OptionError naming the field for a bad range, metric, sweep or number.

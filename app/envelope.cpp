@@ -1,5 +1,6 @@
 #include "app/envelope.hpp"
 
+#include <cmath>
 #include <cstdio>
 
 #include "nocdyn/tables/tables.hpp"
@@ -13,6 +14,7 @@ void validate(const EnvelopeOptions& options) {
     requireIn(options.min_frequency, kEnvelopeFrequencyRange, "min_frequency");
     requireIn(options.max_frequency, kEnvelopeFrequencyRange, "max_frequency");
     requireIn(options.points, kEnvelopePointsRange, "points");
+    requireIn(options.amplification, kAmplificationRange, "amplification");
     if (options.max_frequency < options.min_frequency)
         throw OptionError("max_frequency", "must be at least min_frequency");
 }
@@ -24,6 +26,7 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
     envelope.min_frequency = options.min_frequency;
     envelope.max_frequency = options.max_frequency;
     envelope.frequencies = options.points;
+    envelope.amplification = options.amplification;
     // called between points, from this thread
     envelope.progress = [&observer](int done, int total) {
         observer.progress(done, total, "points");
@@ -33,7 +36,7 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
     EnvelopeResult out;
     out.robot = model.description.name;
     out.points = operatingEnvelope(model, envelope);
-    out.resonance = envelopeResonance(model);
+    out.resonance = envelopeResonance(model, options.amplification);
     out.table = io::toTable(out.points, out.resonance);
     out.summary = resonanceSummary(out.resonance);
     return out;
@@ -41,12 +44,16 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
 
 std::string resonanceSummary(const EnvelopeResonance& resonance) {
     if (resonance.known) {
-        std::string text;
-        text = text::format(
-            "third bound: first natural frequency %.6g Hz (lumped model at home); the limit at and above "
-            "it is resonance",
-            resonance.frequency);
-        return text;
+        std::string text = text::format(
+            "third bound: the dynamic amplification of the lumped model at home (damping ratio %.3g, first natural "
+            "frequency %.6g Hz) leaves [1/%.4g, %.4g] at",
+            resonance.damping_ratio, resonance.frequency, resonance.amplification, resonance.amplification);
+        for (const EnvelopeAxis axis : kEnvelopeAxes) {
+            const double f = resonance.band_end[static_cast<std::size_t>(axis)];
+            text += std::string(axis == kEnvelopeAxes.front() ? " " : ", ") + axisName(axis) + " " +
+                    (std::isfinite(f) ? text::format("%.4g Hz", f) : std::string("no frequency"));
+        }
+        return text + "; the limit at and above it is resonance";
     }
     std::string text = "third bound (first natural frequency): unknown, " + resonance.reason;
     if (!resonance.declared) {

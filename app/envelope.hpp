@@ -23,7 +23,12 @@ struct EnvelopeOptions {
     double min_frequency = 1.0;    ///< [Hz] (kEnvelopeFrequencyRange)
     double max_frequency = 100.0;  ///< [Hz], at least min_frequency
     int points = 41;               ///< log-spaced frequencies per axis, both ends included
+    /// The band's third bound: the largest dynamic amplification of an axis accepted
+    /// (kAmplificationRange; envelope.hpp).
+    double amplification = kDefaultAmplification;
 };
+
+inline constexpr Range kAmplificationRange{kMinAmplification, kMaxAmplification, ""};
 
 struct EnvelopeResult {
     std::string robot;

@@ -115,7 +115,25 @@ std::string fitText(const Model& model, const FitReport& fit) {
             fit.rms_measured[aa] > 0.0 ? 100.0 * fit.rms_holdout[aa] / fit.rms_measured[aa] : 0.0);
         text += line;
     }
+    text += text::format(
+        "# residuals correlated over %.3g samples (integrated autocorrelation): %.4g effective samples of %d; "
+        "the standard deviations and covariance count it (batch means of %d samples)\n",
+        fit.correlation_samples, fit.effective_samples, fit.fit_samples, fit.block_samples);
     return text;
+}
+
+/// A covariance matrix as a YAML flow sequence of rows, with the order of its entries.
+std::string covarianceYaml(const Eigen::MatrixXd& covariance, const std::vector<std::string>& order) {
+    std::string text = "covariance:\n  order: [";
+    for (std::size_t i = 0; i < order.size(); ++i) text += (i == 0 ? "" : ", ") + io::yamlQuoted(order[i]);
+    text += "]\n  matrix: [";
+    for (Eigen::Index r = 0; r < covariance.rows(); ++r) {
+        text += r == 0 ? "[" : ", [";
+        for (Eigen::Index c = 0; c < covariance.cols(); ++c)
+            text += (c == 0 ? "" : ", ") + text::format("%.6g", covariance(r, c));
+        text += "]";
+    }
+    return text + "]\n";
 }
 
 void figure(const Model& model, const FitReport& fit, const std::string& stem) {
@@ -194,6 +212,9 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
                     ", stddev: " + number(e.stddev) + ", robot_file: " + number(e.prior) +
                     ", unit: " + io::yamlQuoted(e.unit) + "}\n";
         }
+        std::vector<std::string> order;
+        for (const Estimate& e : result.beta) order.push_back(e.name);
+        text += covarianceYaml(result.covariance, order);
         std::string comment = "# " + io::terminalText(robot.name) + ": calibration (base parameters) identified from " +
                               io::terminalText(options.data) + "; use with nocdyn identify --payload --calibration\n";
         comment += fitText(model, result.fit);
@@ -239,6 +260,9 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
                         ", stddev: " + number(e.stddev) + ", unit: " + io::yamlQuoted(e.unit) + "}\n";
             }
         }
+        std::vector<std::string> order{"mass", "com_x", "com_y", "inertia"};
+        for (const Estimate& e : r.friction) order.push_back(e.name);
+        text += covarianceYaml(r.covariance, order);
         RobotDescription merged = withPayload(robot, Payload{r.mass, r.inertia, r.com});
         for (const Estimate& e : r.friction) {
             // "limbJ.jointK.damping": write the identified value into the robot file

@@ -187,9 +187,10 @@ std::string reportText(const Model& model, const LoadsResult& r, bool envelope) 
     text += line;
     if (r.beyond_resonance > 0) {
         line = text::format(
-            "left out: %d envelope motions at or above the first natural frequency %.6g Hz (limit resonance: the "
-            "platform does not follow the rigid model there)\n",
-            r.beyond_resonance, r.resonance.frequency);
+            "left out: %d envelope motions beyond the band's third bound (limit resonance: the dynamic "
+            "amplification leaves [1/%.4g, %.4g]; first natural frequency %.6g Hz): the platform does not follow the "
+            "rigid model there\n",
+            r.beyond_resonance, r.resonance.amplification, r.resonance.amplification, r.resonance.frequency);
         text += line;
     }
     return text;
@@ -243,8 +244,8 @@ LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
         };
         out.frequency.assign(3 * static_cast<std::size_t>(model.limbs), 0.0);
         const std::vector<EnvelopePoint> points = operatingEnvelope(model, envelope);
-        // at and above the first natural frequency the platform does not follow the rigid
-        // model's motion (the limit `resonance`): its loads there are not the machine's
+        // beyond the band's third bound the platform does not follow the rigid model's motion
+        // (the limit `resonance`): its loads there are not the machine's
         int moving = 0;
         for (const EnvelopePoint& point : points) {
             if (point.limit == EnvelopeLimit::resonance) {
@@ -257,10 +258,10 @@ LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
         if (out.beyond_resonance > 0) out.resonance = envelopeResonance(model);
         if (moving == 0 && out.beyond_resonance > 0) {
             throw OptionError("min_frequency",
-                              text::format("every envelope frequency is at or above the first natural frequency "
-                                           "%.6g Hz (limit resonance), where the rigid model's loads do not hold: "
-                                           "choose a lower one",
-                                           out.resonance.frequency));
+                              text::format("every envelope frequency is beyond the band's third bound (limit "
+                                           "resonance: the dynamic amplification beyond %.4g; first natural frequency "
+                                           "%.6g Hz), where the rigid model's loads do not hold: choose a lower one",
+                                           out.resonance.amplification, out.resonance.frequency));
         }
         for (const EnvelopePoint& point : out.points) {
             if (!(point.amplitude > 0.0)) continue;

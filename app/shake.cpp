@@ -166,6 +166,29 @@ ShakeSuiteRow scoreRow(const report::ShakeOutcome& o, const ShakeOptions& option
     return row;
 }
 
+/// A single replay's verdict: pass, or FAIL naming each goal missed, with the goals.
+std::string verdictLine(const ShakeSuiteRow& row, const ShakeOptions& options) {
+    std::vector<std::string> missed;
+    if (!(row.rms_error_percent <= options.max_rms_percent))
+        missed.push_back(text::format("RMS error %.3g %% > %.3g %%", row.rms_error_percent, options.max_rms_percent));
+    if (!(std::abs(row.peak_error_percent) <= options.max_peak_percent))
+        missed.push_back(
+            text::format("|peak error| %.3g %% > %.3g %%", std::abs(row.peak_error_percent), options.max_peak_percent));
+    if (!(row.within_percent >= options.min_spectrum_percent))
+        missed.push_back(text::format("spectrum within +-10 %% at %.3g %% < %.3g %% of the counted periods",
+                                      row.within_percent, options.min_spectrum_percent));
+    if (!(row.limit_use_percent <= 100.0))
+        missed.push_back(text::format("%s at %.3g %% of its limit", row.binding.c_str(), row.limit_use_percent));
+    std::string line = text::format(
+        "verdict (x, against the goals: RMS <= %.3g %%, |peak| <= %.3g %%, spectrum within +-10 %% at >= %.3g %% "
+        "of the counted periods, every limit <= 100 %%): ",
+        options.max_rms_percent, options.max_peak_percent, options.min_spectrum_percent);
+    if (row.pass) return line + "pass\n";
+    line += "FAIL (";
+    for (std::size_t i = 0; i < missed.size(); ++i) line += (i ? "; " : "") + missed[i];
+    return line + ")\n";
+}
+
 /// summary.md of a suite.
 std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::size_t workers,
                        const std::string& sensing) {
@@ -401,6 +424,12 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     out.metrics_json = report::shakeJson(outcome);
     std::ostringstream text;
     report::printShakeSummary(outcome, text);
+    // the verdict against the suite's goals, as a suite's row would give it
+    ShakeSuiteRow row = scoreRow(outcome, options);
+    row.record = records.front();
+    text << verdictLine(row, options);
+    out.passed = row.pass ? 1 : 0;
+    out.rows.push_back(std::move(row));
     out.text = text.str();
     if (!options.out_dir.empty())
         report::writeShakeOutputs(outcome, model, options.out_dir, robot.name + ": " + records.front());

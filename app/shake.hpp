@@ -100,7 +100,8 @@ struct ShakeResult {
     io::Table table;
     std::string metrics_json;
     std::string text;
-    /// A suite: every record's row, summary.md's text, the number of workers.
+    /// A suite: every record's row, summary.md's text, the number of workers. One record: its
+    /// row (the verdict against the same goals, also the text's last line).
     std::vector<ShakeSuiteRow> rows;
     int passed = 0;
 };

@@ -135,6 +135,7 @@ const char* kPageTail = R"HTML(</script>
 const D = JSON.parse(document.getElementById('nocdyn-data').textContent);
 const $ = (id) => document.getElementById(id);
 const T = D.frames.t, F = T.length, P = D.frames.points, S = D.stride, REF = D.reference;
+const GHOST = D.frames.ghost || null;
 const n = D.actuators.length, TAU = D.frames.tau;
 const COLORS = ['#1f77b4', '#d62728', '#2ca02c', '#9467bd', '#ff7f0e', '#8c564b', '#e377c2', '#17becf', '#7f7f7f'];
 const C_COLOR = '#ff0000';
@@ -151,10 +152,11 @@ $('subtitle').textContent = D.samples + ' samples over ' + D.duration.toPrecisio
   ' frames shown, the plots keep every sample\'s extremes (min and max per ' + D.plots.t.length + ' buckets)';
 if (D.warnings.length) $('warnings').textContent = 'Limits exceeded: ' + D.warnings.join('; ');
 // point o of frame i [m], displacements from the mean pose magnified
-function pt(i, o) {
-  const M = view.magnify, b = i * S + o;
-  return [(REF[o] + M * (P[b] - REF[o])) * 1e-6, (REF[o + 1] + M * (P[b + 1] - REF[o + 1])) * 1e-6];
+function pt(i, o, points) {
+  const M = view.magnify, b = i * S + o, Q = points || P;
+  return [(REF[o] + M * (Q[b] - REF[o])) * 1e-6, (REF[o + 1] + M * (Q[b + 1] - REF[o + 1])) * 1e-6];
 }
+if (GHOST) $('legend').textContent += '; dashed grey: the target (the replay\'s goal), the robot drawn where the table went';
 const canvas = $('robot'), ctx = canvas.getContext('2d');
 function fit() {
   let x0 = Infinity, x1 = -Infinity, y0 = Infinity, y1 = -Infinity;
@@ -189,6 +191,22 @@ function drawRobot() {
   ctx.fillStyle = '#444'; ctx.font = '12px sans-serif';
   ctx.fillRect(10, canvas.height - 12, bar * view.scale, 3);
   ctx.fillText(String(Number((bar * 1000).toPrecision(3))) + ' mm', 14 + bar * view.scale, canvas.height - 8);
+  // the target as a ghost, behind the achieved motion
+  if (GHOST) {
+    ctx.save(); ctx.setLineDash([5, 4]);
+    ctx.beginPath();
+    D.layout.forEach((limb, j) => {
+      const p = pt(i, limb[2].pos, GHOST), q = view.toPixel(p[0], p[1]);
+      if (j === 0) ctx.moveTo(q[0], q[1]); else ctx.lineTo(q[0], q[1]);
+    });
+    ctx.closePath(); ctx.strokeStyle = '#888'; ctx.lineWidth = 1.5; ctx.stroke();
+    for (const limb of D.layout) {
+      line(pt(i, limb[0].pos, GHOST), pt(i, limb[1].pos, GHOST), '#aaa', 2);
+      line(pt(i, limb[1].pos, GHOST), pt(i, limb[2].pos, GHOST), '#aaa', 2);
+    }
+    ctx.restore();
+    view.drawnGhostC = dot(pt(i, S - 2, GHOST), 3, '#888');
+  }
   // platform polygon
   ctx.beginPath();
   D.layout.forEach((limb, j) => {
@@ -459,8 +477,11 @@ MotionSamples motionFromTable(const Model& model, const io::Table& table, const 
                     std::to_string(kMaxAnimationSamples));
     }
     const int n = model.actuators;
-    const std::size_t ct = table.column("t"), ctheta = table.column("theta"), cx = table.column("x"),
-                      cy = table.column("y");
+    // a replay: the achieved pose is the motion, the target (x, y, theta) its ghost
+    const bool replay = table.has("x_achieved") && table.has("y_achieved") && table.has("theta_achieved");
+    const std::size_t ct = table.column("t"), ctheta = table.column(replay ? "theta_achieved" : "theta"),
+                      cx = table.column(replay ? "x_achieved" : "x"), cy = table.column(replay ? "y_achieved" : "y");
+    const std::size_t gtheta = table.column("theta"), gx = table.column("x"), gy = table.column("y");
     std::vector<std::size_t> ctau;
     for (int a = 1; a <= n; ++a) {
         const std::string name = "tau" + std::to_string(a);
@@ -485,6 +506,15 @@ MotionSamples motionFromTable(const Model& model, const io::Table& table, const 
         }
         const Pose p(row[ctheta], row[cx], row[cy]);
         if (const Status status = drawRobot(model, data, p, drawing); !status) throw poseError(where, t, status, model);
+        if (replay) {
+            const Pose target(row[gtheta], row[gx], row[gy]);
+            if (const Status status = drawRobot(model, data, target, drawing); !status)
+                throw poseError(where + "the target: ", t, status, model);
+            // u of the achieved pose below
+            if (const Status status = drawRobot(model, data, p, drawing); !status)
+                throw poseError(where, t, status, model);
+            motion.ghost.push_back(target);
+        }
         motion.t.push_back(t);
         motion.p.push_back(p);
         for (int a = 0; a < n; ++a) {
@@ -514,9 +544,16 @@ std::string animationPage(const Model& model, const MotionSamples& motion, const
     for (std::size_t i = 0; i < F; ++i) frame_sample[i] = F > 1 ? (i * (N - 1) + (F - 1) / 2) / (F - 1) : 0;
     Data data(model);
     RobotDrawing drawing;
-    std::vector<long long> points;
+    std::vector<long long> points, ghost;
     std::vector<double> frame_t, frame_tau;
+    const bool ghosted = motion.ghost.size() == N;
     for (const std::size_t k : frame_sample) {
+        if (ghosted) {
+            if (const Status status = drawRobot(model, data, motion.ghost[k], drawing); !status) {
+                throw poseError(motion.source + ": the target: ", motion.t[k], status, model);
+            }
+            appendPoints(drawing, ghost);
+        }
         if (const Status status = drawRobot(model, data, motion.p[k], drawing); !status) {
             throw poseError(motion.source + ": ", motion.t[k], status, model);
         }
@@ -611,6 +648,10 @@ std::string animationPage(const Model& model, const MotionSamples& motion, const
     appendArray(json, points, 0);
     json += ",\"tau\":";
     appendArray(json, frame_tau, 6);
+    if (ghosted) {
+        json += ",\"ghost\":";
+        appendArray(json, ghost, 0);
+    }
     json += "},\"plots\":{\"t\":";
     appendArray(json, bucket_t, 9);
     for (const bool forces : {false, true}) {
@@ -641,16 +682,17 @@ Figure frameFigure(const Model& model, const MotionSamples& motion, double t) {
     }
     PlotPanel panel;
     panel.title = literalText(model.description.name + " at t = " + secondsText(motion.t[k]) + " s");
-    panel.xlabel = "x [m]";
-    panel.ylabel = "y [m]";
+    panel.xlabel = "x [mm]";  // millimetres, as every other figure
+    panel.ylabel = "y [mm]";
     panel.equal_axes = true;
     PlotSeries rails{"rails (stroke)", {}, {}, "lines lw 6 lc rgb '#999999'"};
     PlotSeries links{"links", {}, {}, "linespoints lw 3 pt 7 ps 0.8 lc rgb '#1f4e9c'"};
     PlotSeries platform{"platform", {}, {}, "lines lw 2 lc rgb '#c77800'"};
     PlotSeries c{"C", {}, {}, "points pt 7 ps 1.5 lc rgb '#ff0000'"};
+    PlotSeries ghost{"target (ghost)", {}, {}, "lines dt 2 lw 1.5 lc rgb '#888888'"};
     const auto add = [](PlotSeries& s, const Vector2& x) {
-        s.x.push_back(x.x());
-        s.y.push_back(x.y());
+        s.x.push_back(1e3 * x.x());
+        s.y.push_back(1e3 * x.y());
     };
     const auto gap = [](PlotSeries& s) {  // a blank row: gnuplot breaks the line there
         s.x.push_back(std::numeric_limits<double>::quiet_NaN());
@@ -670,10 +712,23 @@ Figure frameFigure(const Model& model, const MotionSamples& motion, double t) {
     }
     add(platform, d.platform[0]);
     add(c, d.C);
+    if (motion.ghost.size() == motion.t.size()) {
+        RobotDrawing g;
+        if (const Status status = drawRobot(model, data, motion.ghost[k], g); !status) {
+            throw poseError(motion.source + ": the target: ", motion.t[k], status, model);
+        }
+        for (int j = 0; j < g.limbs; ++j) {
+            for (const JointDrawing& joint : g.limb[static_cast<std::size_t>(j)].joint) add(ghost, joint.position);
+            gap(ghost);
+        }
+        for (int j = 0; j < g.limbs; ++j) add(ghost, g.platform[static_cast<std::size_t>(j)]);
+        add(ghost, g.platform[0]);
+    }
     if (!rails.x.empty()) panel.series.push_back(rails);
     panel.series.push_back(links);
     panel.series.push_back(platform);
     panel.series.push_back(c);
+    if (!ghost.x.empty()) panel.series.push_back(ghost);
     Figure figure{literalText("nocdyn: " + model.description.name), {panel}, 800, 760};
     return figure;
 }

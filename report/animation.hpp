@@ -22,6 +22,9 @@ struct MotionSamples {
     std::vector<Pose> p;      ///< [theta, x, y]
     std::vector<double> u;    ///< u_a of sample k at k * n + a [m or rad]
     std::vector<double> tau;  ///< tau_a of sample k at k * n + a [N or N m]
+    /// The target pose of sample k when p is what a replay achieved (shake.csv's x_achieved..);
+    /// drawn as a ghost behind the robot. Empty otherwise.
+    std::vector<Pose> ghost;
     int actuators = 0;
     std::vector<std::string> warnings;  ///< limits exceeded (shown, not refused)
 };
@@ -38,7 +41,9 @@ inline constexpr std::size_t kMaxPlotBuckets = 800;
                                                  double rate);
 
 /// A CSV written by simulate, control or inverse-dynamics: columns t, theta, x, y and
-/// tau1..taun; u is recomputed from the pose. Throws nocdyn::Error "FILE:LINE: reason".
+/// tau1..taun; u is recomputed from the pose. A replay's shake.csv (x_achieved, y_achieved,
+/// theta_achieved beside the target x, y, theta): the achieved pose is the motion, the target
+/// its ghost. Throws nocdyn::Error "FILE:LINE: reason".
 [[nodiscard]] MotionSamples motionFromCsv(const Model& model, const std::string& path);
 
 /// The same from a table in memory; `name` stands for the file in messages and on the page.

@@ -85,8 +85,9 @@ const char* limitWord(EnvelopeLimit limit) {
 namespace {
 
 /// The band's third bound on a panel: a vertical line at f_1 over the panel's amplitudes, and
-/// the frequencies from f_1 to the last point shaded as beyond the band.
-void drawResonance(PlotPanel& panel, double f1, double last_frequency) {
+/// the frequencies from the band's end (where the panel's axes' dynamic amplification leaves
+/// [1 / A, A]) to the last point shaded as beyond the band.
+void drawResonance(PlotPanel& panel, double f1, double band_end, double amplification, double last_frequency) {
     double low = std::numeric_limits<double>::infinity(), high = 0.0;
     for (const PlotSeries& s : panel.series) {
         for (const double y : s.y) {
@@ -94,9 +95,9 @@ void drawResonance(PlotPanel& panel, double f1, double last_frequency) {
         }
     }
     if (!(high > 0.0)) return;  // nothing on a log axis to span
-    if (f1 < last_frequency) {
-        panel.series.push_back({"beyond the band (above the first resonance)",
-                                {f1, last_frequency},
+    if (band_end < last_frequency) {
+        panel.series.push_back({text::format("beyond the band (amplification beyond %.3g)", amplification),
+                                {band_end, last_frequency},
                                 {low, low},
                                 "filledcurves fs transparent solid 0.15 noborder lc rgb '#d62728'",
                                 {{high, high}}});
@@ -126,8 +127,10 @@ Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::strin
     if (resonance.known) {
         double last = 0.0;
         for (const auto& p : points) last = std::max(last, p.frequency);
-        drawResonance(translation, resonance.frequency, last);
-        drawResonance(rotation, resonance.frequency, last);
+        const auto end = [&](EnvelopeAxis axis) { return resonance.band_end[static_cast<std::size_t>(axis)]; };
+        drawResonance(translation, resonance.frequency, std::min(end(EnvelopeAxis::x), end(EnvelopeAxis::y)),
+                      resonance.amplification, last);
+        drawResonance(rotation, resonance.frequency, end(EnvelopeAxis::theta), resonance.amplification, last);
     }
     Figure figure;
     figure.title = "Operating envelope of " + literalText(robot) + ": " + reading;

@@ -347,11 +347,17 @@ io::Table shakeTable(const ShakeOutcome& outcome, const Model& model) {
     io::Table table;
     table.columns = io::columnNames(io::TableId::shake, {.actuators = n});
     const auto un = static_cast<std::size_t>(n);
-    const std::size_t samples = un == 0 ? 0 : std::min(fit.t.size(), outcome.u_at_samples.size() / un);
+    const std::size_t samples =
+        un == 0 || outcome.loop.t.empty() ? 0 : std::min(fit.t.size(), outcome.u_at_samples.size() / un);
     Pose p, dp, ddp;
+    const std::vector<double>& ticks = outcome.loop.t;
     for (std::size_t i = 0; i < samples; ++i) {
         const double t = fit.t[i];
         fit.trajectory.evaluate(t, p, dp, ddp);
+        // the achieved pose at the tick nearest t (the loop's ticks are increasing)
+        auto k = static_cast<std::size_t>(std::lower_bound(ticks.begin(), ticks.end(), t) - ticks.begin());
+        if (k == ticks.size() || (k > 0 && t - ticks[k - 1] < ticks[k] - t)) --k;
+        const Pose& achieved = outcome.loop.p[k];
         std::vector<double> row = {t,
                                    p(1),
                                    p(2),
@@ -361,7 +367,10 @@ io::Table shakeTable(const ShakeOutcome& outcome, const Model& model) {
                                    ddp(0),
                                    outcome.achieved[1][i],
                                    outcome.achieved[2][i],
-                                   outcome.achieved[0][i]};
+                                   outcome.achieved[0][i],
+                                   achieved(1),
+                                   achieved(2),
+                                   achieved(0)};
         for (std::size_t a = 0; a < un; ++a) row.push_back(outcome.u_at_samples[i * un + a]);
         for (std::size_t a = 0; a < un; ++a) row.push_back(outcome.tau_at_samples[i * un + a]);
         table.rows.push_back(std::move(row));
@@ -544,7 +553,7 @@ void reproduceShake(const std::string& out_dir, std::ostream& summary) {
     const RobotDescription robot = io::exampleRobot("paper-3prr-general");
     ShakeSettings settings;
     // nocdyn's own plant keeps the replay within seconds (and under the sanitizers); `nocdyn shake`
-    // plays on the Simbody plant by default, which scores the same motion alike
+    // plays on nocdyn's RK4 plant (nocdyn-rk4) by default, which scores the same motion alike
     settings.plant = "nocdyn";
     // the pose-sensor controller this section has always described
     settings.controller = "pose";
@@ -561,14 +570,15 @@ void reproduceShake(const std::string& out_dir, std::ostream& summary) {
             << " run forward and backward), scaled in time to fit the actuators with a " << 100.0 * settings.fit.margin
             << " % margin, then tracked by computed torque at " << settings.rate / 1000.0
             << " kHz (f_n = " << settings.natural_frequency
-            << " Hz) on nocdyn's own forward dynamics (`--plant nocdyn`; `nocdyn shake` plays on the Simbody plant by"
-            << " default) carrying a " << settings.payload.mass
-            << " kg payload the controller does not know, with pose noise " << settings.noise_pose
-            << " m (rad) and rate noise " << settings.noise_rate << " m/s (rad/s):\n\n```\n"
+            << " Hz) on nocdyn's own forward dynamics (`--plant nocdyn`; `nocdyn shake` plays on its RK4 plant,"
+            << " `nocdyn-rk4`, by default, and `--plant simbody` on the independent Simbody model) carrying a "
+            << settings.payload.mass << " kg payload the controller does not know, with pose noise "
+            << settings.noise_pose << " m (rad) and rate noise " << settings.noise_rate << " m/s (rad/s):\n\n```\n"
             << text.str() << "```\n\n"
             << "Files: `elcentro/shake.csv`, `elcentro/shake.json`, `elcentro/shake_acceleration.{png,svg}`,"
             << " `elcentro/shake_spectrum.{png,svg}`. `nocdyn shake --robot robots/paper-3prr-general.yaml --record"
-            << " data/elcentro_1940_ns.AT2 --window " << kWindow << " --plant nocdyn` reproduces them.\n\n";
+            << " data/elcentro_1940_ns.AT2 --window " << kWindow << " --plant nocdyn --controller pose` reproduces"
+            << " them (the pose-sensor controller; `nocdyn shake`'s default is the table controller).\n\n";
 }
 
 }  // namespace nocdyn::report

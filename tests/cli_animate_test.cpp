@@ -196,7 +196,10 @@ TEST(CliAnimate, FrameIsDrawnAsPngAndSvgOfTheRobot) {
     EXPECT_NE(drawing.find("<svg"), std::string::npos);
     EXPECT_NE(drawing.find("3-rpr at t = 0.05 s"), std::string::npos);
     EXPECT_NE(drawing.find("rails (stroke)"), std::string::npos);  // the RPR's telescopic legs
-    EXPECT_FALSE(fs::exists("robot.html"));                        // no page without --out
+    // in millimetres, as every other figure
+    EXPECT_NE(drawing.find("x [mm]"), std::string::npos);
+    EXPECT_NE(drawing.find("y [mm]"), std::string::npos);
+    EXPECT_FALSE(fs::exists("robot.html"));  // no page without --out
 }
 
 }  // namespace

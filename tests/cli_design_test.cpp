@@ -70,6 +70,18 @@ TEST(CliDesign, EveryMetricEqualsTheSingleRobotCommandOnTheConvertedDesign) {
               (std::vector<std::string>{"design", "r_b", "l1", "workspace_area", "condition_median", "condition_worst",
                                         "envelope_x@50", "moving_mass", "feasible", "reason"}));
     EXPECT_TRUE(fs::exists(dir / "run" / "pareto.csv"));
+    // the best design by the first metric (workspace_area, larger is better) is named, with its
+    // parameters, as designs.csv has it
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < rows.size(); ++i) {
+        if (rows[i][8] == "true" && (best == 0 || std::stod(rows[i][3]) > std::stod(rows[best][3]))) best = i;
+    }
+    ASSERT_GT(best, 0u);
+    const std::string named = "best by workspace_area: design " + rows[best][0] + " (r_b = ";
+    EXPECT_NE(r.out.find(named), std::string::npos) << r.out;
+    EXPECT_NEAR(summaryNumber(r.out, "best by workspace_area: .*, workspace_area = ([0-9.e+-]+)"),
+                std::stod(rows[best][3]), 1e-5 * std::stod(rows[best][3]))
+        << r.out;
     std::mt19937 pick(11);
     int checked = 0;
     for (int tries = 0; tries < 40 && checked < 2; ++tries) {

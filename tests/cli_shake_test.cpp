@@ -2,6 +2,8 @@
 // columns and numbers, and one-line errors for bad records and bad sampled trajectories.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -84,6 +86,53 @@ TEST(CliShake, ASuiteOfRecordsGivesOneRowEachAndJudgesThemAgainstTheThresholds) 
                                     (dir / "strict").string());
     ASSERT_EQ(strict.exit_code, 0) << strict.err;
     EXPECT_NE(strict.out.find("0 of 2 records pass"), std::string::npos) << strict.out;
+}
+
+// What the table did: shake.csv has the achieved pose beside the target, a single replay prints
+// its verdict against the suite's goals, and animate of the replay draws the achieved motion with
+// the target as a ghost.
+TEST(CliShake, ASingleReplayShowsWhatTheTableDidAndItsVerdict) {
+    const auto dir = freshScratchDirectory("cli_shake_verdict");
+    const std::string replay =
+        "shake --robot " + kRobot + " --record " + kRecord + " --window 2 --plant nocdyn-rk4 --rate 2000";
+    const CliResult r = runCli(replay + " --out " + dir.string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    const io::Table table = io::readCsvFile((dir / "shake.csv").string());
+    const nlohmann::json json = nlohmann::json::parse(readWhole(dir / "shake.json"));
+    const double rms = json["metrics"]["ax"]["rms_error_percent"].get<double>();
+    // the achieved pose follows the target to within the loop's error (well under a millimetre),
+    // yet is not the target itself
+    const std::size_t x = table.column("x"), xa = table.column("x_achieved"), ya = table.column("y_achieved"),
+                      ta = table.column("theta_achieved");
+    double peak = 0.0, largest = 0.0;
+    for (const auto& row : table.rows) {
+        peak = std::max(peak, std::abs(row[xa] - row[x]));
+        largest = std::max(largest, std::abs(row[x]));
+        EXPECT_TRUE(std::isfinite(row[ya]) && std::isfinite(row[ta]));
+    }
+    EXPECT_GT(peak, 0.0);
+    EXPECT_LT(peak, 0.05 * largest) << "largest |x| " << largest;
+    // the verdict, against the default goals (RMS 5 %, |peak| 5 %, spectrum 90 %, limits)
+    const std::size_t at = r.out.find("verdict (x, against the goals: RMS <= 5 %");
+    ASSERT_NE(at, std::string::npos) << r.out;
+    const std::string verdict = r.out.substr(at);
+    EXPECT_EQ(verdict.find("FAIL") == std::string::npos, verdict.find("): pass") != std::string::npos) << verdict;
+    if (rms > 5.0) {
+        EXPECT_NE(verdict.find("RMS error"), std::string::npos) << verdict;
+    }
+    // a goal it cannot meet: FAIL, naming it with the measured number
+    const CliResult strict = runCli(replay + " --max-rms-percent 0.001 --out " + (dir / "strict").string());
+    ASSERT_EQ(strict.exit_code, 0) << strict.err;
+    char missed[80];
+    std::snprintf(missed, sizeof missed, "FAIL (RMS error %.3g %% > 0.001 %%", rms);
+    EXPECT_NE(strict.out.find(missed), std::string::npos) << strict.out;
+    // animate: the achieved motion, the target as its ghost
+    const CliResult page =
+        runCli("animate --robot " + kRobot + " --trajectory " + (dir / "shake.csv").string() + " --out " +
+               (dir / "replay.html").string() + " --frame 1 --svg " + (dir / "frame.svg").string());
+    ASSERT_EQ(page.exit_code, 0) << page.err;
+    EXPECT_NE(readWhole(dir / "replay.html").find("\"ghost\":["), std::string::npos);
+    EXPECT_NE(readWhole(dir / "frame.svg").find("target (ghost)"), std::string::npos);
 }
 
 TEST(CliShake, IdentifiesThePayloadRaisesTheAmplitudeAndIteratesTheDrive) {

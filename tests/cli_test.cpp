@@ -210,6 +210,9 @@ TEST(Cli, PoseJsonCarriesJointsActuationMapAndInertia) {
     const CliRun text = run("pose 0 0 0");
     ASSERT_EQ(text.exit_code, 0);
     EXPECT_NE(text.out.find("joint-space inertia"), std::string::npos);
+    // the joints at home are zero up to rounding: never printed as -0.000000
+    EXPECT_EQ(text.out.find("-0.000000"), std::string::npos) << text.out;
+    EXPECT_NE(text.out.find("+0.000000 deg"), std::string::npos) << text.out;
     const CliRun outside = run("pose 0 -0.3 0");
     EXPECT_EQ(outside.exit_code, 1);
     EXPECT_NE(outside.err.find("out of reach: limb 1"), std::string::npos) << outside.err;

@@ -7,7 +7,10 @@
 // by the first natural frequency at home (stiffnessAndModes), where the limit is resonance.
 #include <gtest/gtest.h>
 
+#include <Eigen/LU>
+
 #include <cmath>
+#include <complex>
 #include <numbers>
 #include <string>
 
@@ -16,6 +19,7 @@
 #include "nocdyn/io/short_form.hpp"
 #include "nocdyn/tables/tables.hpp"
 #include "nocdyn/dynamics.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/analysis/envelope.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
@@ -227,7 +231,10 @@ TEST(GeneralEnvelope, TheFirstNaturalFrequencyAtHomeIsTheBandsThirdBound) {
     for (const EnvelopePoint& p : points) {
         const EnvelopePoint rigid = maximumAmplitude(model, p.axis, p.frequency);
         EXPECT_EQ(p.amplitude, rigid.amplitude);  // the rigid model's number, kept
-        if (p.frequency >= resonance.frequency) {
+        // the band of each axis ends where its dynamic amplification leaves [1 / 1.1, 1.1],
+        // below f_1 (f_1 / 2 is beyond it already: 1 / (1 - 1/4) = 1.33)
+        EXPECT_LT(resonance.band_end[static_cast<std::size_t>(p.axis)], resonance.frequency);
+        if (p.frequency >= resonance.band_end[static_cast<std::size_t>(p.axis)]) {
             EXPECT_EQ(p.limit, EnvelopeLimit::resonance) << axisName(p.axis) << " at " << p.frequency;
             EXPECT_EQ(p.limb, -1);
             EXPECT_EQ(p.joint, -1);
@@ -246,6 +253,62 @@ TEST(GeneralEnvelope, TheFirstNaturalFrequencyAtHomeIsTheBandsThirdBound) {
     EXPECT_EQ(table.columns.back(), "first_natural_frequency");
     for (const auto& row : table.rows) EXPECT_EQ(row.back(), resonance.frequency);
     EXPECT_EQ(table.categories[3][static_cast<std::size_t>(table.rows[1][3])], "resonance");
+}
+
+/// |p_a| of the lumped model M ddp + C dp + K p = K e_a sin(w t) by a direct complex solve at
+/// f [Hz] (C the modal damping of ratio zeta), independent of the modal sum envelope.cpp uses.
+double amplificationBySolve(const analysis::LumpedModes& modes, const Matrix3& K, double zeta, int a, double f) {
+    const double w = 2.0 * std::numbers::pi * f;
+    const Matrix3 MPhi = modes.M * modes.shape;
+    Vector3 two_zeta_w;
+    for (int i = 0; i < 3; ++i) two_zeta_w(i) = 2.0 * zeta * 2.0 * std::numbers::pi * modes.frequency(i);
+    const Matrix3 C = MPhi * two_zeta_w.asDiagonal() * MPhi.transpose();
+    const Eigen::Matrix3cd Z = (K - w * w * modes.M).cast<std::complex<double>>() +
+                               std::complex<double>(0.0, w) * C.cast<std::complex<double>>();
+    const Eigen::Vector3cd p = Z.partialPivLu().solve((K * Vector3::Unit(a)).cast<std::complex<double>>());
+    return std::abs(p(a));
+}
+
+TEST(GeneralEnvelope, NoFrequencyReportedUsableIsAmplifiedBeyondTheLimit) {
+    const Model model(example("paper-3prr-compliant"));
+    const analysis::StiffnessModel compliance(model);
+    Data data(model);
+    analysis::StiffnessData stiffness;
+    analysis::LumpedModes modes;
+    ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes));
+    const double zeta = model.description.damping_ratio;
+    EXPECT_EQ(zeta, 0.02);  // the default: the file sets none
+    for (const double limit : {1.1, 1.5, 3.0}) {
+        EnvelopeOptions options;
+        options.min_frequency = 1.0;
+        options.max_frequency = 200.0;
+        options.frequencies = 41;
+        options.amplification = limit;
+        const EnvelopeResonance resonance = envelopeResonance(model, limit);
+        ASSERT_TRUE(resonance.known);
+        for (const EnvelopePoint& p : operatingEnvelope(model, options)) {
+            const int a = static_cast<int>(p.axis);
+            const double h = amplificationBySolve(modes, stiffness.K, zeta, a, p.frequency);
+            EXPECT_NEAR(dynamicAmplification(resonance, p.axis, p.frequency), h, 1e-9 * h);
+            if (p.limit == EnvelopeLimit::resonance) continue;
+            EXPECT_LE(h, limit) << axisName(p.axis) << " at " << p.frequency << " Hz reported usable";
+            EXPECT_GE(h, 1.0 / limit) << axisName(p.axis) << " at " << p.frequency << " Hz reported usable";
+        }
+        // each axis' band ends where the amplification reaches the limit
+        for (const EnvelopeAxis axis : kEnvelopeAxes) {
+            const double f = resonance.band_end[static_cast<std::size_t>(axis)];
+            ASSERT_TRUE(std::isfinite(f)) << axisName(axis);
+            EXPECT_NEAR(amplificationBySolve(modes, stiffness.K, zeta, static_cast<int>(axis), f), limit, 1e-6 * limit)
+                << axisName(axis);
+        }
+    }
+    // the translation's mode alone along x at home (symmetric machine): 1 / (1 - r^2) = 1.1 at
+    // r^2 = 1 / 11, and 1 / (2 zeta) = 25 at resonance
+    const EnvelopeResonance resonance = envelopeResonance(model);
+    EXPECT_NEAR(resonance.band_end[static_cast<std::size_t>(EnvelopeAxis::x)], resonance.frequency / std::sqrt(11.0),
+                1e-3 * resonance.frequency);
+    EXPECT_NEAR(dynamicAmplification(resonance, EnvelopeAxis::x, resonance.frequency), 25.0, 0.1);
+    EXPECT_THROW((void)envelopeResonance(model, 1.0), Error);
 }
 
 TEST(GeneralEnvelope, WithoutDeclaredComplianceTheEnvelopeIsUnchangedAndTheBoundUnknown) {

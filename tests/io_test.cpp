@@ -412,3 +412,21 @@ TEST(TrajectoryFile, DuplicatesRangesAndSecondDocumentsAreErrors) {
 
 }  // namespace
 }  // namespace nocdyn::test
+
+namespace nocdyn {
+namespace {
+
+TEST(TrajectoryByName, AnUnknownNameSaysWhichNamesAreBuiltIn) {
+    try {
+        (void)io::trajectoryByNameOrFile("paper3");
+        FAIL() << "paper3 is neither a file nor a built-in trajectory";
+    } catch (const Error& e) {
+        const std::string message = e.what();
+        EXPECT_NE(message.find("'paper3'"), std::string::npos) << message;
+        EXPECT_NE(message.find("paper1, paper2"), std::string::npos) << message;
+    }
+    EXPECT_EQ(io::trajectoryByNameOrFile("paper1").name, paperTrajectory1().name);
+}
+
+}  // namespace
+}  // namespace nocdyn

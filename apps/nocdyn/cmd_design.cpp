@@ -33,6 +33,8 @@ void run(const app::DesignOptions& options, const CLI::App* command) {
     std::printf("%zu designs, %zu feasible, %zu on the Pareto front: %s\n", result.records.size(), result.feasible,
                 result.front.size(),
                 io::terminalText((std::filesystem::path(options.out_dir) / "designs.csv").string()).c_str());
+    std::printf("best by %s\n", result.best ? io::terminalText(result.best_text).c_str()
+                                            : "the first metric: none (no design is feasible)");
 }
 
 }  // namespace

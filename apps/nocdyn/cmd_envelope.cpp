@@ -65,8 +65,10 @@ void addEnvelopeCommand(CLI::App& app) {
         "amplitude A of A sin(2 pi f t) about the home posture within every joint's range and velocity limits,\n"
         "every actuator's effort (inverse dynamics over one period, gravity and friction included) and the\n"
         "workspace (reach, limb and actuation singularities), and which limit binds, named with its actuator.\n"
-        "The band's third bound: when the robot file declares compliance, the first natural frequency of the\n"
-        "lumped model at home; at and above it the limit is resonance (the summary line names it, in Hz).\n"
+        "The band's third bound: when the robot file declares compliance, the lumped model at home with its\n"
+        "modal damping (damping_ratio, 0.02 by default): per axis, at and above the lowest frequency where the\n"
+        "dynamic amplification leaves [1/A, A] (--amplification) the limit is resonance (the summary line names\n"
+        "each axis' band end and the first natural frequency, in Hz).\n"
         "Writes CSV (axis x, y or theta; limit range, velocity, effort, workspace, resonance, or none up to\n"
         "the search bound; limb, joint, actuator 1-based, 0 when not applicable; peak_effort_ratio =\n"
         "max |tau|/effort at that amplitude; first_natural_frequency [Hz] when known) and, with --figure, a\n"
@@ -82,6 +84,13 @@ void addEnvelopeCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--points", options->points, "Frequencies per axis")
         ->check(CLI::Range(1, kEnvelopeMaxPoints))
+        ->capture_default_str();
+    command
+        ->add_option("--amplification", options->amplification,
+                     "The band's third bound: the largest dynamic amplification of an axis accepted (the lumped\n"
+                     "compliant model's motion along the axis per unit of the rigid motion commanded); at and above\n"
+                     "the lowest frequency where it leaves [1/A, A] the limit is resonance")
+        ->check(within(app::kAmplificationRange))
         ->capture_default_str();
     command->add_flag("--quiet,-q", options->quiet,
                       "Print nothing (no table, no progress line); errors still go to stderr");

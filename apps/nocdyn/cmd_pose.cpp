@@ -1,6 +1,7 @@
 // nocdyn pose X Y THETA: binds app::PoseOptions and renders the report as text or JSON.
 #include <nlohmann/json.hpp>
 
+#include <cmath>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -137,7 +138,9 @@ void printText(const app::PoseResult& r) {
         std::printf("%-4d  %s  ", l.limb, l.type.c_str());
         for (std::size_t k = 0; k < 3; ++k) {
             const double q = l.q(static_cast<Eigen::Index>(k));
-            std::printf(l.revolute[k] ? "%+11.6f deg   " : "%+11.6f mm    ", l.revolute[k] ? q * kDeg : q * 1e3);
+            // a value that rounds to zero at six decimals (rounding noise, -0) is shown as +0.000000
+            const double shown = l.revolute[k] ? q * kDeg : q * 1e3;
+            std::printf(l.revolute[k] ? "%+11.6f deg   " : "%+11.6f mm    ", std::abs(shown) < 5e-7 ? 0.0 : shown);
         }
         std::printf("%.4g\n", l.cond_J);
     }

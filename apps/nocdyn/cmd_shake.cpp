@@ -163,17 +163,15 @@ void addShakeCommand(CLI::App& app) {
         ->capture_default_str();
     command
         ->add_option("--max-rms-percent", options->max_rms_percent,
-                     "Suite: pass when the RMS error is at most this [%]")
+                     "Pass (a suite's rows, a single replay's verdict) when the RMS error is at most this [%]")
         ->check(within(app::kErrorPercentRange))
         ->capture_default_str();
-    command
-        ->add_option("--max-peak-percent", options->max_peak_percent,
-                     "Suite: pass when |peak error| is at most this [%]")
+    command->add_option("--max-peak-percent", options->max_peak_percent, "Pass when |peak error| is at most this [%]")
         ->check(within(app::kErrorPercentRange))
         ->capture_default_str();
     command
         ->add_option("--min-spectrum-percent", options->min_spectrum_percent,
-                     "Suite: pass when at least this percentage of the counted periods is within +-10 %")
+                     "Pass when at least this percentage of the counted periods is within +-10 %")
         ->check(within(app::kPercentRange))
         ->capture_default_str();
     command->add_option("--payload-mass", options->payload_mass, "Mass on the plant's platform only [kg]")

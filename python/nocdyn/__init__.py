@@ -106,14 +106,17 @@ def _derivative_batch(answer, check):
 
 class EnvelopePoints(list):
     """Robot.envelope's points (a list of dicts) with the band's third bound:
-    ``first_natural_frequency`` [Hz], the lumped model's first natural frequency at home (points
-    at and above it have the limit 'resonance'), or None with ``resonance_reason`` saying why it
-    is unknown (no compliance declared, a rigid limb, a free platform)."""
+    ``first_natural_frequency`` [Hz], the lumped model's first natural frequency at home, and
+    ``band_end`` {"x": f, "y": f, "theta": f} [Hz], per axis the lowest frequency where the damped
+    lumped model's dynamic amplification leaves [1/A, A] (points at and above it have the limit
+    'resonance'; inf when it never does); both None with ``resonance_reason`` saying why it is
+    unknown (no compliance declared, a rigid limb, a free platform)."""
 
-    def __init__(self, points, first_natural_frequency, resonance_reason=""):
+    def __init__(self, points, first_natural_frequency, resonance_reason="", band_end=None):
         super().__init__(points)
         self.first_natural_frequency = first_natural_frequency
         self.resonance_reason = resonance_reason
+        self.band_end = band_end
 
 
 class LinearModel(tuple):
@@ -306,16 +309,19 @@ class PayloadEstimate:
     """A payload identified by Robot.identify_payload.
 
     mass [kg], com (2,) [m] (platform frame), inertia [kg m^2] (about the payload's own c.o.m.),
-    each with its standard deviation from the residuals (mass_sd, com_sd, inertia_sd);
+    each with its standard deviation from the residuals, counting their correlation along the
+    samples (mass_sd, com_sd, inertia_sd); covariance: (4 + f, 4 + f) of [mass, com_x, com_y,
+    inertia, then the friction's parameters];
     active_bounds: the bounds the estimate lies on (list of dicts: parameter, side 'lower' or
     'upper', bound, unbounded: the unbounded fit's value); inertia_constrained: the unbounded
     inertia was negative (set to 0); friction: the actuated joints' damping and friction when
     asked (list of dicts: name, value, stddev, unit); fit: dict of the fit on the held-out
     samples (fit_samples, holdout_samples, rms_fit, rms_holdout, rms_measured (n,) [N or N m],
-    condition, t (M,), measured and predicted (M, n) forces).
+    condition, correlation_samples (the residuals' integrated autocorrelation time) and
+    effective_samples, t (M,), measured and predicted (M, n) forces).
     """
 
-    __slots__ = ("mass", "com", "inertia", "mass_sd", "com_sd", "inertia_sd", "active_bounds",
+    __slots__ = ("mass", "com", "inertia", "mass_sd", "com_sd", "inertia_sd", "covariance", "active_bounds",
                  "inertia_constrained", "friction", "fit")
 
     def __init__(self, values):
@@ -809,7 +815,7 @@ class Robot:
 
     # --- operating envelope ---------------------------------------------------------
     def envelope(self, axes=("x", "y", "theta"), *, min_frequency=1.0, max_frequency=100.0, points=41,
-                 samples_per_period=256, relative_tolerance=1e-6, frequencies=None):
+                 samples_per_period=256, relative_tolerance=1e-6, frequencies=None, amplification=1.1):
         """Largest sinusoid amplitude along each pose axis about home at log-spaced frequencies
         [Hz] (as `nocdyn envelope`), within every joint range, velocity and effort limit and away
         from singularities.
@@ -818,8 +824,9 @@ class Robot:
         call as the command line's, so that the numbers are the same, in the order x, y, theta.
 
         Returns a list of dicts: axis, frequency [Hz], amplitude [rad or m], limit ('range',
-        'velocity', 'effort', 'workspace', 'none', or 'resonance' at and above the first natural
-        frequency when the robot file declares compliance: see nocdyn.envelope), limb, joint,
+        'velocity', 'effort', 'workspace', 'none', or 'resonance' at and above the axis' band end
+        when the robot file declares compliance: where the dynamic amplification leaves
+        [1/amplification, amplification], see nocdyn.envelope), limb, joint,
         actuator (numbered from 1 as the command line's CSV, 0 when not applicable),
         kinematic_amplitude, peak_effort_ratio. points: frequencies per axis (as
         `nocdyn envelope --points`; ``frequencies`` is its old name).
@@ -835,8 +842,10 @@ class Robot:
             list(axes), _number(min_frequency, "min_frequency", 1e-3, 1e4),
             _number(max_frequency, "max_frequency", 1e-3, 1e4), _integer(points, "points", 1, 1000),
             _integer(samples_per_period, "samples_per_period", 8, 65536),
-            _number(relative_tolerance, "relative_tolerance", 1e-15, 0.5))
-        return EnvelopePoints(points, first, reason)
+            _number(relative_tolerance, "relative_tolerance", 1e-15, 0.5),
+            _number(amplification, "amplification", 1.001, 100.0))
+        first, band_end = first if first is not None else (None, None)
+        return EnvelopePoints(points, first, reason, band_end)
 
 
     # --- stiffness and natural frequencies --------------------------------------------

@@ -69,7 +69,8 @@ void bindAnalysis(py::module_& m) {
         .field("robot", &app::EnvelopeOptions::robot)
         .option("min_frequency", &app::EnvelopeOptions::min_frequency)
         .option("max_frequency", &app::EnvelopeOptions::max_frequency)
-        .option("points", &app::EnvelopeOptions::points);
+        .option("points", &app::EnvelopeOptions::points)
+        .option("amplification", &app::EnvelopeOptions::amplification);
     m.def(
         "_run_envelope",
         [](const app::EnvelopeOptions& options, const py::object& progress, const py::object& output,

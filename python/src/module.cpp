@@ -885,7 +885,7 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
 /// The envelope's points as dicts, and the band's third bound: (points, the first natural
 /// frequency [Hz] or None, the summary line that names it or says why it is unknown).
 py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, double min_frequency, double max_frequency,
-                   int frequencies, int samples_per_period, double relative_tolerance) {
+                   int frequencies, int samples_per_period, double relative_tolerance, double amplification) {
     const Model& model = *robot.model;
     EnvelopeOptions options;
     options.min_frequency = min_frequency;
@@ -893,6 +893,7 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
     options.frequencies = frequencies;
     options.samples_per_period = samples_per_period;
     options.relative_tolerance = relative_tolerance;
+    options.amplification = amplification;
     std::vector<EnvelopeAxis> which;
     for (const std::string& a : axes) {
         if (a == "theta")
@@ -916,7 +917,7 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
     {
         const py::gil_scoped_release release;
         points = operatingEnvelope(model, options);  // as `nocdyn envelope` computes it
-        resonance = envelopeResonance(model);
+        resonance = envelopeResonance(model, amplification);
     }
     py::list out;
     for (const EnvelopePoint& e : points) {
@@ -934,7 +935,14 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
         d["peak_effort_ratio"] = e.peak_effort_ratio;
         out.append(d);
     }
-    const py::object first = resonance.known ? py::object(py::float_(resonance.frequency)) : py::object(py::none());
+    // (f_1, {axis: band end}) when known
+    py::object first = py::none();
+    if (resonance.known) {
+        py::dict band_end;
+        for (const EnvelopeAxis axis : kEnvelopeAxes)
+            band_end[axisName(axis)] = resonance.band_end[static_cast<std::size_t>(axis)];
+        first = py::make_tuple(resonance.frequency, band_end);
+    }
     return py::make_tuple(out, first, resonance.known ? std::string() : resonance.reason);
 }
 
@@ -1063,6 +1071,7 @@ py::dict identifyPayloadArrays(const Robot& robot, const ContiguousInput& t, con
     out["mass_sd"] = r.mass_sd;
     out["com_sd"] = toArray(std::vector<double>{r.com_sd.x(), r.com_sd.y()});
     out["inertia_sd"] = r.inertia_sd;
+    out["covariance"] = toArray(r.covariance);
     out["inertia_constrained"] = r.inertia_constrained;
     py::list active;
     for (const ActiveBound& b : r.active_bounds) {
@@ -1091,6 +1100,8 @@ py::dict identifyPayloadArrays(const Robot& robot, const ContiguousInput& t, con
     fit["rms_holdout"] = toArray(r.fit.rms_holdout);
     fit["rms_measured"] = toArray(r.fit.rms_measured);
     fit["condition"] = r.fit.condition;
+    fit["correlation_samples"] = r.fit.correlation_samples;
+    fit["effective_samples"] = r.fit.effective_samples;
     fit["t"] = toArray(r.fit.t);
     fit["measured"] = toArray(r.fit.measured);
     fit["predicted"] = toArray(r.fit.predicted);
@@ -1275,7 +1286,8 @@ PYBIND11_MODULE(_nocdyn, m) {
         .def_static("_load_prior", &loadPrior, py::arg("path"))
         .def("_stiffness", &stiffnessAt, py::arg("p"), py::arg("elastodynamic") = false, py::arg("frequencies") = false)
         .def("_envelope", &envelope, py::arg("axes"), py::arg("min_frequency"), py::arg("max_frequency"),
-             py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"));
+             py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"),
+             py::arg("amplification") = kDefaultAmplification);
 
     py::class_<PoseTrajectory>(m, "Trajectory")
         .def(py::init([](const std::string& name, double theta_offset, const std::vector<std::array<double, 3>>& theta,

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <complex>
 #include <limits>
 #include <numbers>
 #include <sstream>
@@ -347,8 +348,30 @@ EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double fre
     return point;
 }
 
-EnvelopeResonance envelopeResonance(const Model& model) {
+double dynamicAmplification(const EnvelopeResonance& resonance, EnvelopeAxis axis, double frequency) {
+    if (!resonance.known) return 1.0;
+    const auto a = static_cast<Eigen::Index>(axis);
+    const double w = 2.0 * std::numbers::pi * frequency, zeta = resonance.damping_ratio;
+    const analysis::LumpedModes& m = resonance.modes;
+    // H_aa = sum_i phi_i(a) (phi_i^T M)(a) w_i^2 / (w_i^2 - w^2 + 2 j zeta w_i w)
+    std::complex<double> h = 0.0;
+    for (Eigen::Index i = 0; i < 3; ++i) {
+        const double wi = 2.0 * std::numbers::pi * m.frequency(i);
+        const double participation = m.shape(a, i) * (m.shape.col(i).transpose() * m.M)(a);
+        h += participation * wi * wi / std::complex<double>(wi * wi - w * w, 2.0 * zeta * wi * w);
+    }
+    return std::abs(h);
+}
+
+EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
+    if (!(amplification >= kMinAmplification && amplification <= kMaxAmplification)) {
+        throw Error("envelope: the amplification limit must be in [" + std::to_string(kMinAmplification) + ", " +
+                    std::to_string(kMaxAmplification) + "]");
+    }
     EnvelopeResonance out;
+    out.amplification = amplification;
+    out.damping_ratio = model.description.damping_ratio;
+    out.band_end.fill(std::numeric_limits<double>::infinity());
     const analysis::StiffnessModel compliance(model);
     if (!compliance.any) {
         out.reason = "the robot file declares no compliance";
@@ -370,6 +393,33 @@ EnvelopeResonance envelopeResonance(const Model& model) {
     }
     out.known = true;
     out.frequency = modes.frequency(0);  // ascending: the first resonance
+    out.modes = modes;
+    // per axis: scan a log grid from f_1 / 1000 to 10 f_3 for the first frequency out of
+    // [1 / limit, limit] (H rises monotonically from H(0) = 1 until then), then bisect
+    const auto outside = [&](EnvelopeAxis axis, double f) {
+        const double h = dynamicAmplification(out, axis, f);
+        return h > amplification || h < 1.0 / amplification;
+    };
+    const double f_lo = 1e-3 * modes.frequency(0), f_hi = 10.0 * modes.frequency(2);
+    constexpr int kGrid = 4000;
+    for (const EnvelopeAxis axis : kEnvelopeAxes) {
+        double below = f_lo;
+        for (int k = 1; k <= kGrid; ++k) {
+            const double f = f_lo * std::pow(f_hi / f_lo, static_cast<double>(k) / kGrid);
+            if (!outside(axis, f)) {
+                below = f;
+                continue;
+            }
+            double above = f;
+            for (int i = 0; i < 60 && above - below > 1e-12 * above; ++i) {
+                const double mid = 0.5 * (below + above);
+                (outside(axis, mid) ? above : below) = mid;
+            }
+            // the lowest frequency out of the band, to bisection precision
+            out.band_end[static_cast<std::size_t>(axis)] = below;
+            break;
+        }
+    }
     return out;
 }
 
@@ -390,10 +440,10 @@ std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeO
             if (options.progress) options.progress(static_cast<int>(points.size()), 3 * options.frequencies);
         }
     }
-    // f >= f_1: the machine's own resonance binds, whatever the joints allow
-    if (const EnvelopeResonance resonance = envelopeResonance(model); resonance.known) {
+    // at and beyond the axis' band end the machine's own dynamics bind, whatever the joints allow
+    if (const EnvelopeResonance resonance = envelopeResonance(model, options.amplification); resonance.known) {
         for (EnvelopePoint& p : points) {
-            if (p.frequency < resonance.frequency) continue;
+            if (p.frequency < resonance.band_end[static_cast<std::size_t>(p.axis)]) continue;
             p.limit = EnvelopeLimit::resonance;
             p.limb = p.joint = p.actuator = -1;
         }

@@ -6,6 +6,7 @@
 #include <limits>
 #include <numbers>
 
+#include <Eigen/Eigenvalues>
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
@@ -45,6 +46,21 @@ Status linearize(const Model& model, Data& data, const Pose& p, const Twist& dp,
     }
     return {};
 }
+
+namespace {
+
+/// The modal damping of the lumped model, C = M Phi diag(2 zeta w_i) Phi^T M with K Phi = M Phi
+/// Omega^2, Phi^T M Phi = I (a free direction, w_i = 0, is undamped).
+Matrix3 modalDamping(const Matrix3& M, const Matrix3& K, double zeta) {
+    if (!(zeta > 0.0)) return Matrix3::Zero();
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix3> eig(0.5 * (K + K.transpose()), 0.5 * (M + M.transpose()));
+    if (eig.info() != Eigen::Success) return Matrix3::Zero();
+    const Vector3 w = eig.eigenvalues().cwiseMax(0.0).cwiseSqrt();
+    const Matrix3 MPhi = M * eig.eigenvectors();
+    return MPhi * (2.0 * zeta * w).asDiagonal() * MPhi.transpose();
+}
+
+}  // namespace
 
 Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& compliance, Data& data, const Pose& p,
                           const Twist& dp, const ActuatorVector& tau, LinearOutput output, StateSpace& out) {
@@ -89,7 +105,7 @@ Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& co
     out.A = Eigen::MatrixXd::Zero(6, 6);
     out.A.topRightCorner<3, 3>().setIdentity();
     out.A.block<3, 3>(3, 0) = d.d_p - M.solve(stiffness.K);
-    out.A.block<3, 3>(3, 3) = d.d_dp;
+    out.A.block<3, 3>(3, 3) = d.d_dp - M.solve(modalDamping(d.M_p, stiffness.K, model.description.damping_ratio));
     out.B = Eigen::MatrixXd::Zero(6, n);
     out.B.bottomRows<3>() = M.solve(BQ);
     if (output == LinearOutput::platform_acceleration) {

@@ -106,6 +106,9 @@ void validate(RobotDescription& robot) {
     if (!std::isfinite(robot.max_condition) || robot.max_condition <= 1.0 || robot.max_condition > 1.0e12) {
         check.fail(0, "max_condition", "must be a finite number in (1, 1e12]");
     }
+    if (!std::isfinite(robot.damping_ratio) || robot.damping_ratio < 0.0 || robot.damping_ratio >= 1.0) {
+        check.fail(0, "damping_ratio", "must be a number in [0, 1) (the lumped modes' damping ratio)");
+    }
     const PlatformDescription& platform = robot.platform;
     check.finiteIn(platform.mass, 0.0, kMaxMass, platform.line, "platform.mass", "kg");
     check.finiteIn(platform.inertia, 0.0, kMaxInertia, platform.line, "platform.inertia", "kg m^2");

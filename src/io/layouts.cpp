@@ -89,10 +89,12 @@ std::vector<Layout> makeLayouts() {
          "Operating envelope",
          "`nocdyn envelope --output`; `nocdyn reproduce`'s `envelope.csv`; Python `nocdyn.envelope`",
          "One row per axis (x, y, theta) and frequency: the largest amplitude of a sinusoid along the axis about "
-         "the home posture within every limit. When the robot file declares compliance, the band's third bound, "
-         "the first natural frequency of the lumped model at home, is written in `first_natural_frequency` (the "
-         "same in every row; the column is absent otherwise), and rows at or above it have the limit `resonance` "
-         "(the rigid model's amplitude, not trustworthy there; no limb, joint or actuator).",
+         "the home posture within every limit. When the robot file declares compliance, the first natural "
+         "frequency of the lumped model at home is written in `first_natural_frequency` (the same in every row; "
+         "the column is absent otherwise), and the rows at or above the band's third bound, the lowest frequency "
+         "where the axis' dynamic amplification (the damped lumped model's motion per unit of the rigid motion) "
+         "leaves [1/A, A] (`--amplification` A, 1.1 by default), have the limit `resonance` (the rigid model's "
+         "amplitude, not trustworthy there; no limb, joint or actuator).",
          {{"axis", "", "the axis moved: x, y or theta (a word)"},
           {"frequency", "Hz", "frequency of the sinusoid"},
           {"amplitude", "m or rad", "largest amplitude (m for x and y, rad for theta)"},
@@ -138,7 +140,8 @@ std::vector<Layout> makeLayouts() {
         {shake,
          "Earthquake replay",
          "`nocdyn shake`'s `shake.csv`; Python `nocdyn.shake`",
-         "One row per sample of the (scaled) record; u and tau at the nearest controller tick.",
+         "One row per sample of the (scaled) record: the target, what the table achieved (the pose at the "
+         "nearest controller tick), u and tau at the nearest controller tick.",
          {t,
           {"x", "m", "target x"},
           {"y", "m", "target y"},
@@ -149,6 +152,9 @@ std::vector<Layout> makeLayouts() {
           {"ax_achieved", "m/s^2", "achieved acceleration, x"},
           {"ay_achieved", "m/s^2", "achieved acceleration, y"},
           {"alpha_achieved", "rad/s^2", "achieved angular acceleration"},
+          {"x_achieved", "m", "achieved x (the plant's, at the nearest controller tick)"},
+          {"y_achieved", "m", "achieved y"},
+          {"theta_achieved", "rad", "achieved theta"},
           u,
           {"tau{a}", kForceUnit, "actuator a's commanded force or torque", Repeat::actuator}}},
         {validation,

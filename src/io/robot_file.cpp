@@ -98,7 +98,7 @@ BodyDescription parseBody(const Context& context, const YAML::Node& node) {
 
 RobotDescription parseGeneral(const YAML::Node& root, const std::string& source) {
     const Context top{source, ""};
-    detail::requireMap(top, root, {"name", "gravity", "home", "max_condition", "platform", "limbs"});
+    detail::requireMap(top, root, {"name", "gravity", "home", "max_condition", "damping_ratio", "platform", "limbs"});
     RobotDescription robot;
     robot.source = source;
     robot.name = std::filesystem::path(source).stem().string();
@@ -116,6 +116,7 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
         robot.home = corePose(user);
     }
     robot.max_condition = detail::optionalNumber(top, root, "max_condition", robot.max_condition);
+    robot.damping_ratio = detail::optionalNumber(top, root, "damping_ratio", robot.damping_ratio);
     const YAML::Node platform = root["platform"];
     if (!platform.IsDefined()) detail::fail(top / "platform", root, "required section is missing");
     detail::requireMap(top / "platform", platform, {"mass", "inertia", "com"});
@@ -224,6 +225,9 @@ std::string descriptionToYaml(const RobotDescription& robot) {
             << "]  # [theta, x, y] at home\n";
     }
     out << "max_condition: " << number(robot.max_condition) << "\n";
+    if (robot.damping_ratio != RobotDescription{}.damping_ratio) {
+        out << "damping_ratio: " << number(robot.damping_ratio) << "  # of each lumped mode\n";
+    }
     out << "platform: {mass: " << number(robot.platform.mass) << ", inertia: " << number(robot.platform.inertia)
         << ", com: " << pair(robot.platform.com) << "}\n";
     out << "limbs:\n";

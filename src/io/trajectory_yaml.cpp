@@ -200,6 +200,13 @@ PoseTrajectory loadTrajectoryCsv(const std::string& path) {
 PoseTrajectory trajectoryByNameOrFile(const std::string& name_or_path) {
     if (name_or_path == "paper1") return paperTrajectory1();
     if (name_or_path == "paper2") return paperTrajectory2();
+    // neither a built-in name nor a file: say what the names are
+    std::error_code error;
+    if (!std::filesystem::exists(name_or_path, error)) {
+        throw Error("trajectory '" + name_or_path +
+                    "': no such file, and not a built-in trajectory (paper1, paper2: the paper's trajectories 1 "
+                    "and 2)");
+    }
     if (endsWithCsv(name_or_path)) return loadTrajectoryCsv(name_or_path);
     return loadTrajectory(name_or_path);
 }

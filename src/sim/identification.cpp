@@ -423,11 +423,15 @@ Motion reconstructMotion(const Model& model, const Measurements& measured, const
 namespace {
 
 /// Weighted least squares x of b = A x on the fit rows, with per-actuator weights from the
-/// residuals of a first unweighted fit; the covariance from the weighted residuals.
+/// residuals of a first unweighted fit; the covariance from the weighted residuals, counting
+/// their correlation along the samples (residualCovariance).
 struct LeastSquares {
     Eigen::VectorXd x;
     Eigen::MatrixXd covariance;
     double condition = 0.0;
+    double correlation_samples = 1.0;  ///< tau_int of the residuals [samples]
+    int block_samples = 1;             ///< L of the batch means
+    double effective_samples = 0.0;    ///< T / tau_int
     /// The weighted residual's quadratic form about x: |W (b - A x')|^2 = |W (b - A x)|^2 +
     /// |U (x' - x)|^2, U = R P^T D from the QR (W A D^-1) P = Q R of the scaled columns.
     Eigen::MatrixXd U;
@@ -525,6 +529,78 @@ void requireDetermined(const Model& model, const Eigen::MatrixXd& Aw, const Eige
                 ": excite the robot more (rotation, and translation along x and y)");
 }
 
+/// The residuals' integrated autocorrelation time tau_int = 1 + 2 sum_(l >= 1) rho(l) [samples],
+/// rho the autocorrelation of the weighted residual e_a(t) averaged over the actuators, summed
+/// up to the first window W >= 5 tau_int(W) (Sokal's automatic window; at most T / 10). A log
+/// low-pass filtered at f_c and sampled at f_s has tau_int about f_s / (2 B), B the filter's
+/// equivalent noise bandwidth (0.83 f_c for the zero-phase Butterworth): 120 samples at 10 kHz
+/// and 50 Hz, the factor by which white-noise standard deviations are too small squared.
+double integratedAutocorrelation(const Eigen::VectorXd& rw, int n) {
+    const Eigen::Index T = rw.size() / n;
+    if (T < 20) return 1.0;
+    std::vector<double> variance(at(n), 0.0);
+    for (int a = 0; a < n; ++a) {
+        for (Eigen::Index t = 0; t < T; ++t) variance[at(a)] += rw(t * n + a) * rw(t * n + a);
+    }
+    double tau = 1.0;
+    const Eigen::Index max_lag = T / 10;
+    for (Eigen::Index l = 1; l <= max_lag; ++l) {
+        double rho = 0.0;
+        int counted = 0;
+        for (int a = 0; a < n; ++a) {
+            if (!(variance[at(a)] > 0.0)) continue;
+            double sum = 0.0;
+            for (Eigen::Index t = 0; t + l < T; ++t) sum += rw(t * n + a) * rw((t + l) * n + a);
+            rho += sum / variance[at(a)];
+            ++counted;
+        }
+        if (counted == 0) return 1.0;
+        tau += 2.0 * rho / counted;
+        if (static_cast<double>(l) >= 5.0 * tau) break;
+    }
+    return std::max(tau, 1.0);
+}
+
+/// The covariance of the score sum_t g_t, g_t = sum_a Aw_(t,a)^T e_(t,a) (t the samples, a the
+/// actuators), when the residuals are correlated along the samples: overlapping batch means of
+/// L = 10 tau_int samples (at least 1, at most T / 8), the long-run covariance
+///   S = T / (L (T - L + 1)) sum_i B_i B_i^T / (1 - L / T),   B_i = g_i + ... + g_(i+L-1),
+/// (the score sums to zero at the solution, so no mean is subtracted; 1 - L / T undoes the bias
+/// that costs), times T / (T - k) for the k fitted parameters. L = 1 is the white-noise sandwich.
+/// The parameters' covariance is then N^-1 S N^-1, N = Aw^T Aw.
+struct ScoreCovariance {
+    Eigen::MatrixXd S;
+    double tau = 1.0;
+    int block = 1;
+};
+
+ScoreCovariance scoreCovariance(const Eigen::MatrixXd& Aw, const Eigen::VectorXd& rw, int n) {
+    const Eigen::Index T = Aw.rows() / n, k = Aw.cols();
+    ScoreCovariance out;
+    out.tau = integratedAutocorrelation(rw, n);
+    const Eigen::Index L = std::clamp<Eigen::Index>(static_cast<Eigen::Index>(std::ceil(10.0 * out.tau)), 1,
+                                                    std::max<Eigen::Index>(T / 8, 1));
+    out.block = static_cast<int>(L);
+    // prefix sums of the scores
+    Eigen::MatrixXd prefix = Eigen::MatrixXd::Zero(k, T + 1);
+    for (Eigen::Index t = 0; t < T; ++t) {
+        Eigen::VectorXd g = Eigen::VectorXd::Zero(k);
+        for (int a = 0; a < n; ++a) g += Aw.row(t * n + a).transpose() * rw(t * n + a);
+        prefix.col(t + 1) = prefix.col(t) + g;
+    }
+    Eigen::MatrixXd S = Eigen::MatrixXd::Zero(k, k);
+    for (Eigen::Index i = 0; i + L <= T; ++i) {
+        const Eigen::VectorXd B = prefix.col(i + L) - prefix.col(i);
+        S.selfadjointView<Eigen::Lower>().rankUpdate(B);
+    }
+    S = S.selfadjointView<Eigen::Lower>();
+    const double Td = static_cast<double>(T), Ld = static_cast<double>(L);
+    const double scale =
+        Td / (Ld * (Td - Ld + 1.0)) / std::max(1.0 - Ld / Td, 0.5) * Td / std::max(Td - static_cast<double>(k), 1.0);
+    out.S = scale * S;
+    return out;
+}
+
 LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const Eigen::VectorXd& b, int n,
                            const std::vector<std::string>& names, const std::vector<int>* columns = nullptr) {
     const Eigen::Index rows = A.rows(), k = A.cols();
@@ -578,12 +654,14 @@ LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const E
         } else {
             Eigen::VectorXd rw(rows);
             for (Eigen::Index r = 0; r < rows; ++r) rw(r) = weight(r % n) * residual(r);
-            const double dof = static_cast<double>(std::max<Eigen::Index>(rows - k, 1));
-            const double s2 = rw.squaredNorm() / dof;
             const Eigen::MatrixXd N = Aw.transpose() * Aw;
             const Eigen::MatrixXd N_inv = N.ldlt().solve(Eigen::MatrixXd::Identity(k, k));
             const Eigen::VectorXd inv_norms = norms.cwiseInverse();
-            result.covariance = s2 * inv_norms.asDiagonal() * N_inv * inv_norms.asDiagonal();
+            const ScoreCovariance score = scoreCovariance(Aw, rw, n);
+            result.covariance = inv_norms.asDiagonal() * N_inv * score.S * N_inv * inv_norms.asDiagonal();
+            result.correlation_samples = score.tau;
+            result.block_samples = score.block;
+            result.effective_samples = static_cast<double>(rows / n) / score.tau;
             const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(k, k).template triangularView<Eigen::Upper>();
             result.U = (R * qr.colsPermutation().transpose()) * norms.asDiagonal();
         }
@@ -852,6 +930,13 @@ void checkCalibration(const Model& model, const Calibration& calibration) {
 
 namespace {
 
+void fillCorrelation(const LeastSquares& ls, FitReport& fit) {
+    fit.condition = ls.condition;
+    fit.correlation_samples = ls.correlation_samples;
+    fit.block_samples = ls.block_samples;
+    fit.effective_samples = ls.effective_samples;
+}
+
 Eigen::Index fitSamples(const Motion& motion, const IdentificationOptions& options, int parameters, int n) {
     const auto N = static_cast<Eigen::Index>(motion.t.size());
     if (!(options.holdout >= 0.0 && options.holdout < 1.0))
@@ -994,15 +1079,17 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
     result.mass = physical(0);
     result.com = physical.segment<2>(1);
     result.inertia = physical(3);
-    // standard deviations of (m, c, I) from those of pi by the first-order map
-    Eigen::Matrix4d G = Eigen::Matrix4d::Zero();
+    // covariance of (m, c, I, friction) from that of x = (m, m c, I_O, friction) by the
+    // first-order map z(x)
+    Eigen::MatrixXd G = Eigen::MatrixXd::Identity(k, k);
     const double mm = x(0);
     const Vector2 hh = x.segment<2>(1);
-    G.row(0) << 1.0, 0.0, 0.0, 0.0;
-    G.row(1) << -hh.x() / (mm * mm), 1.0 / mm, 0.0, 0.0;
-    G.row(2) << -hh.y() / (mm * mm), 0.0, 1.0 / mm, 0.0;
-    G.row(3) << hh.squaredNorm() / (mm * mm), -2.0 * hh.x() / mm, -2.0 * hh.y() / mm, 1.0;
-    const Eigen::Matrix4d cov = G * ls.covariance.topLeftCorner<4, 4>() * G.transpose();
+    G.topLeftCorner<4, 4>().row(0) << 1.0, 0.0, 0.0, 0.0;
+    G.topLeftCorner<4, 4>().row(1) << -hh.x() / (mm * mm), 1.0 / mm, 0.0, 0.0;
+    G.topLeftCorner<4, 4>().row(2) << -hh.y() / (mm * mm), 0.0, 1.0 / mm, 0.0;
+    G.topLeftCorner<4, 4>().row(3) << hh.squaredNorm() / (mm * mm), -2.0 * hh.x() / mm, -2.0 * hh.y() / mm, 1.0;
+    result.covariance = G * ls.covariance * G.transpose();
+    const Eigen::MatrixXd& cov = result.covariance;
     result.mass_sd = std::sqrt(cov(0, 0));
     result.com_sd = Vector2(std::sqrt(cov(1, 1)), std::sqrt(cov(2, 2)));
     result.inertia_sd = std::sqrt(cov(3, 3));
@@ -1011,13 +1098,13 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
         e.name = names[at(static_cast<int>(c))];
         e.unit = parameterUnit(model, columns[at(static_cast<int>(c))]);
         e.value = x(c);
-        e.stddev = std::sqrt(ls.covariance(c, c));
+        e.stddev = std::sqrt(cov(c, c));
         e.prior = pi(columns[at(static_cast<int>(c))]);
         result.friction.push_back(e);
     }
     // the held-out check uses the platform's own parameters in the known part
     fillFit(model, motion, s, x, fit, result.fit);
-    result.fit.condition = ls.condition;
+    fillCorrelation(ls, result.fit);
     return result;
 }
 
@@ -1042,8 +1129,9 @@ BaseResult identifyBase(const Model& model, const Motion& motion, const Identifi
     }
     result.calibration.independent = base.independent;
     result.calibration.beta = ls.x;
+    result.covariance = ls.covariance;
     fillFit(model, motion, s, ls.x, fit, result.fit);
-    result.fit.condition = ls.condition;
+    fillCorrelation(ls, result.fit);
     return result;
 }
 

@@ -167,6 +167,37 @@ try {
   await tab.screenshot({ path: shot, fullPage: true });
   check(fs.statSync(shot).size > 10000, `screenshot ${shot}`);
 
+  // a replay (shake.csv's achieved pose beside the target): the robot drawn where the table
+  // went, the target as a ghost; here the target is the circle at 80 % of its size
+  {
+    const replayCsv = path.join(work, 'replay.csv'), replayPage = path.join(work, 'replay.html');
+    const taus = header.filter((name) => /^tau[0-9]+$/.test(name));
+    const replayRows = rows.map((r) => [r[col('t')], 0.8 * r[col('x')], 0.8 * r[col('y')], 0.8 * r[col('theta')],
+      r[col('x')], r[col('y')], r[col('theta')], ...taus.map((name) => r[col(name)])].join(','));
+    fs.writeFileSync(replayCsv, ['t,x,y,theta,x_achieved,y_achieved,theta_achieved,' + taus.join(','),
+      ...replayRows, ''].join('\n'));
+    run(['animate', '--robot', robot, '--trajectory', replayCsv, '--out', replayPage]);
+    await tab.goto(pathToFileURL(replayPage).href);
+    await tab.waitForFunction(() => window.nocdynView && window.nocdynView.draws > 0);
+    const state = await tab.evaluate((i) => {
+      const s = document.getElementById('slider');
+      s.value = String(i);
+      s.dispatchEvent(new Event('input'));
+      const v = window.nocdynView;
+      return { time: v.time, scale: v.scale, ox: v.ox, oy: v.oy, drawn: v.drawnC, ghost: v.drawnGhostC,
+        legend: document.getElementById('legend').textContent };
+    }, Math.round(0.3 * (frames - 1)));
+    const pose = poseAt(state.time);
+    const px = state.ox + state.scale * pose.x, py = state.oy - state.scale * pose.y;
+    const gx = state.ox + state.scale * 0.8 * pose.x, gy = state.oy - state.scale * 0.8 * pose.y;
+    check(Math.abs(state.drawn[0] - px) < 0.5 && Math.abs(state.drawn[1] - py) < 0.5,
+      `replay: C drawn at the achieved pose (${state.drawn.map((v) => v.toFixed(2))}), expected (${px.toFixed(2)}, ${py.toFixed(2)})`);
+    check(state.ghost !== undefined && Math.abs(state.ghost[0] - gx) < 0.5 && Math.abs(state.ghost[1] - gy) < 0.5 &&
+      Math.hypot(gx - px, gy - py) > 3,
+      `replay: the target's C drawn as a ghost at (${state.ghost && state.ghost.map((v) => v.toFixed(2))}), expected (${gx.toFixed(2)}, ${gy.toFixed(2)})`);
+    check(state.legend.includes('target'), `replay: the legend names the ghost ("${state.legend}")`);
+  }
+
   await tab.goto(pathToFileURL(hostilePage).href);
   await tab.waitForFunction(() => window.nocdynView && window.nocdynView.draws > 0);
   const hostile = await tab.evaluate(() => ({ pwned: window.pwned, title: document.getElementById('title').textContent }));

@@ -58,7 +58,12 @@ def test_exact_data_identify_the_payload_to_1e_9(name):
     assert fit["fit_samples"] + fit["holdout_samples"] == 200
     assert fit["measured"].shape == fit["predicted"].shape == (fit["holdout_samples"], robot.actuators)
     assert np.all(fit["rms_holdout"] <= 1e-9 * fit["rms_measured"])
-    assert set(est.as_dict()) >= {"mass", "com", "inertia", "mass_sd", "com_sd", "inertia_sd"}
+    assert set(est.as_dict()) >= {"mass", "com", "inertia", "mass_sd", "com_sd", "inertia_sd", "covariance"}
+    # the covariance of [mass, com_x, com_y, inertia]: its diagonal the standard deviations squared
+    assert est.covariance.shape == (4, 4)
+    np.testing.assert_allclose(np.sqrt(np.diag(est.covariance)),
+                               [est.mass_sd, est.com_sd[0], est.com_sd[1], est.inertia_sd], rtol=1e-12, atol=0)
+    assert fit["correlation_samples"] >= 1.0 and fit["effective_samples"] > 0.0
 
 
 def test_a_prior_excluding_the_payload_puts_the_estimate_on_its_bound(tmp_path):

@@ -12,10 +12,18 @@
 // then the dynamic one below it; the smaller binds, and is named with its limb, joint and
 // actuator.
 //
-// The band's third bound is the machine's own first resonance: when the robot file declares
-// compliance, the first natural frequency f_1 of the lumped model K v = w^2 M v at the home
-// posture (stiffness.hpp). At f >= f_1 the rigid model's amplitude is not what the platform
-// does, so the resonance binds there. Elastodynamic modes of elastic links can lie below f_1.
+// The band's third bound is the machine's own dynamics: when the robot file declares
+// compliance, the lumped model K v = w^2 M v at the home posture (stiffness.hpp) with modal
+// damping (the file's damping_ratio zeta, C = M Phi diag(2 zeta w_i) Phi^T M) is driven by the
+// drives' commanded motion, whose quasi-static (rigid) image is the pose displacement p_s:
+//   M ddp + C dp + K p = K p_s,   p = H(w) p_s,
+//   H(w) = sum_i phi_i phi_i^T M w_i^2 / (w_i^2 - w^2 + 2 j zeta w_i w),   H(0) = I.
+// The dynamic amplification of axis a is |H_aa(w)|, the platform's motion along the axis per
+// unit of the commanded (rigid) motion. The band of axis a ends at the lowest frequency where
+// it leaves [1 / limit, limit] (limit the user's, 1.1 by default: the rigid model's amplitude
+// is then within 10 % of what the platform does); from there the limit is `resonance`. The
+// first natural frequency f_1 is reported too; each axis' band ends below the first mode it
+// couples to. Elastodynamic modes of elastic links can lie below f_1.
 #pragma once
 
 #include <array>
@@ -23,6 +31,7 @@
 #include <string>
 #include <vector>
 
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 
@@ -47,6 +56,10 @@ inline constexpr double kEnvelopeMinFrequency = 1e-3;
 inline constexpr double kEnvelopeMaxFrequency = 1e4;
 inline constexpr int kEnvelopeMaxPoints = 1000;
 
+/// The default and accepted range of the amplification limit of the band's third bound.
+inline constexpr double kDefaultAmplification = 1.1;
+inline constexpr double kMinAmplification = 1.001, kMaxAmplification = 100.0;
+
 struct EnvelopeOptions {
     double min_frequency = 1.0;        ///< [Hz]
     double max_frequency = 100.0;      ///< [Hz]
@@ -55,6 +68,8 @@ struct EnvelopeOptions {
     double relative_tolerance = 1e-6;  ///< bisection stops when (hi - lo) <= tol * hi
     /// Called after each point with the points done and their total (e.g. a progress line).
     std::function<void(int done, int total)> progress = {};
+    /// The band's third bound: the largest dynamic amplification accepted (see the header).
+    double amplification = kDefaultAmplification;
     /// Called before each period the bisection checks (a caller's Ctrl-C); it may throw to stop.
     std::function<void()> poll = {};
 };
@@ -82,22 +97,34 @@ struct EnvelopePoint {
 [[nodiscard]] EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double frequency,
                                              const EnvelopeOptions& options = {});
 
-/// The band's third bound: the first natural frequency of the lumped model at home.
+/// The band's third bound: the lumped model at home, its first natural frequency and, per
+/// axis, where its dynamic amplification leaves [1 / limit, limit].
 struct EnvelopeResonance {
     bool declared = false;  ///< the robot file declares compliance (joint stiffness, elastic body)
     bool known = false;
-    double frequency = 0.0;  ///< f_1 [Hz] when known
+    double frequency = 0.0;                        ///< f_1 [Hz] when known
+    double damping_ratio = 0.0;                    ///< zeta of every lumped mode (the robot file's)
+    double amplification = kDefaultAmplification;  ///< the limit
+    /// Per axis (index: EnvelopeAxis), the lowest frequency [Hz] where the amplification leaves
+    /// [1 / limit, limit] (infinity when it never does): the band's end.
+    std::array<double, 3> band_end{};
+    analysis::LumpedModes modes;  ///< at home (known only)
     /// Why it is not known: the robot file declares no compliance, or the compliance it declares
     /// leaves a limb rigid or the platform free at home ("" when known).
     std::string reason;
 };
 
-/// f_1 of `model` at its home posture (stiffnessAndModes), or why there is none.
-[[nodiscard]] EnvelopeResonance envelopeResonance(const Model& model);
+/// f_1 and the band's ends of `model` at its home posture (stiffnessAndModes), or why there is
+/// none. Throws nocdyn::Error for an amplification limit outside [kMinAmplification,
+/// kMaxAmplification].
+[[nodiscard]] EnvelopeResonance envelopeResonance(const Model& model, double amplification = kDefaultAmplification);
+
+/// |H_aa| of the known resonance at frequency f [Hz] (see the file header).
+[[nodiscard]] double dynamicAmplification(const EnvelopeResonance& resonance, EnvelopeAxis axis, double frequency);
 
 /// The whole envelope: for each axis (x, y, theta), each log-spaced frequency. When
-/// envelopeResonance is known, the points at f >= f_1 keep the rigid model's amplitude and peaks
-/// but their limit is `resonance` (no limb, joint or actuator).
+/// envelopeResonance is known, the points at f >= the axis' band end keep the rigid model's
+/// amplitude and peaks but their limit is `resonance` (no limb, joint or actuator).
 [[nodiscard]] std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeOptions& options = {});
 
 }  // namespace nocdyn

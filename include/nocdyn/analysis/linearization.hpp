@@ -22,12 +22,14 @@
 //   M_p ddp + (rigid terms at p, dp, tau0) = S^T sum_j w_j
 // linearised, the joint forces' preload tau0 acting as in the rigid model and the springs by
 // the unloaded structure's K = S^T (sum_j K_j) S (stiffness.hpp: no preload stiffness):
-//   A = [0 I; df/dp - M_p^-1 K, df/d(dp)],  B = [0; M_p^-1 B_Q],
+//   A = [0 I; df/dp - M_p^-1 K, df/d(dp) - M_p^-1 C_d],  B = [0; M_p^-1 B_Q],
+// C_d the modal damping of the robot file's damping_ratio zeta (0.02 by default), C_d = M_p
+// Phi diag(2 zeta w_i) Phi^T M_p with K Phi = M_p Phi Omega^2, Phi^T M_p Phi = I,
 //   B_Q column a = S^T K_j s_a        (position input du_c,a [m or rad]: drive with a
 //                                      stiffness k > 0, or locked),
 //                = S^T (I - K_j C_j) W_j e_a  (force input [N or N m]: stiffness 0).
 // At rest with gravity off df/dp = df/d(dp) = 0: -M_p A_21 = K and the eigenvalues of A are
-// +-j w with K v = w^2 M_p v, the lumped modes. Outputs as the rigid model; "actuators" is
+// w (-zeta +- j sqrt(1 - zeta^2)) with K v = w^2 M_p v, the lumped modes. Outputs as the rigid model; "actuators" is
 // then A_p dp, the actuator variables of the platform's pose (the drives' rigid image), not
 // the deflected drives.
 #pragma once

@@ -154,7 +154,8 @@ struct IdentificationOptions {
     PayloadPrior prior;
 };
 
-/// One identified value with its standard deviation (from the residuals).
+/// One identified value with its standard deviation (from the residuals, counting their
+/// correlation along the samples: FitReport::correlation_samples).
 struct Estimate {
     std::string name;
     std::string unit;
@@ -169,8 +170,17 @@ struct FitReport {
     std::vector<double> rms_fit, rms_holdout;  ///< per actuator [N or N m]
     std::vector<double> rms_measured;          ///< rms of the held-out measured forces
     double condition = 0.0;                    ///< of the weighted, column-scaled regressor
-    std::vector<double> t;                     ///< held-out times
-    Eigen::MatrixXd measured, predicted;       ///< held-out forces (rows: samples)
+    /// The residuals' integrated autocorrelation time tau_int [samples]: a filtered log's
+    /// residuals are correlated over about f_s / (2 B) samples (B the filter's equivalent noise
+    /// bandwidth), so the fit holds fit_samples / tau_int independent ones (effective_samples).
+    /// The covariances count it: the score's long-run covariance by overlapping batch means of
+    /// block_samples = 4 tau_int samples (a sandwich N^-1 S N^-1), not the white-noise s^2 N^-1,
+    /// which is sqrt(tau_int) times too small in standard deviation (about 11 at 10 kHz, 50 Hz).
+    double correlation_samples = 1.0;
+    int block_samples = 1;
+    double effective_samples = 0.0;
+    std::vector<double> t;                ///< held-out times
+    Eigen::MatrixXd measured, predicted;  ///< held-out forces (rows: samples)
 };
 
 /// A bound the payload estimate lies on: the unbounded least-squares solution violates it.
@@ -195,12 +205,16 @@ struct PayloadResult {
     /// stay those of the unbounded solution's linearisation at the estimate.
     std::vector<ActiveBound> active_bounds;
     std::vector<Estimate> friction;  ///< actuated joints' damping and friction, when asked
+    /// Covariance of [m, c_x, c_y, I, then the friction's order] (first-order map from the
+    /// linear parameters' at the estimate) [kg, m, m, kg m^2, friction units; products].
+    Eigen::MatrixXd covariance;
     FitReport fit;
 };
 
 struct BaseResult {
     std::vector<Estimate> beta;
-    Calibration calibration;  ///< the same values, with their base columns
+    Eigen::MatrixXd covariance;  ///< of beta (rank x rank)
+    Calibration calibration;     ///< the same values, with their base columns
     FitReport fit;
 };
 
