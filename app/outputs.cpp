@@ -108,7 +108,11 @@ void refuseOutputOverInput(const std::string& command, const CommandPaths& paths
                     out.option == other.option
                         ? out.option + " names " + quoted(out.path) + " twice"
                         : out.option + " " + quoted(out.path) + " is also written by " + other.option;
-                throw Error(command + ": " + what + ": one output would replace the other; give each its own file");
+                std::string message = command;
+                message += ": ";
+                message += what;
+                message += ": one output would replace the other; give each its own file";
+                throw Error(message);
             }
         }
     }

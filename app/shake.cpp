@@ -332,14 +332,11 @@ void refuseWhatDoesNotApply(const ShakeOptions& o) {
     refuse(o.accuracy != d.accuracy && o.plant != "simbody", "accuracy", "`plant` simbody");
 }
 
-/// A suite's settings on a single record are refused, naming what they go with.
+/// A suite's settings on a single record are refused, naming what they go with. The goals
+/// (max_rms_percent and the like) apply to one record too: its verdict is judged against them.
 void refuseSuiteOptions(const ShakeOptions& o) {
     const ShakeOptions d;
-    const std::pair<bool, const char*> suite_only[] = {
-        {o.jobs != d.jobs, "jobs"},
-        {o.max_rms_percent != d.max_rms_percent, "max_rms_percent"},
-        {o.max_peak_percent != d.max_peak_percent, "max_peak_percent"},
-        {o.min_spectrum_percent != d.min_spectrum_percent, "min_spectrum_percent"}};
+    const std::pair<bool, const char*> suite_only[] = {{o.jobs != d.jobs, "jobs"}};
     for (const auto& [set, field] : suite_only) {
         if (set)
             throw OptionError(field,

@@ -289,7 +289,7 @@ TEST(HostileRound4Cli, ShakeRefusesOptionsThatDoNotApplyInTheCommandLinesWords) 
         {" --noise-pose 1e-5", "--noise-pose: does not apply here: it goes with --controller pose"},
         {" --accuracy 1e-8", "--accuracy: does not apply here: it goes with --plant simbody"},
         {" --no-accelerometer --acceleration-gain 0.1", "--acceleration-gain: does not apply here"},
-        {" --max-rms-percent 3", "--max-rms-percent: does not apply to one record: it goes with a suite"}};
+        {" --jobs 2", "--jobs: does not apply to one record: it goes with a suite"}};
     for (const auto& [option, message] : refused) {
         const CliResult r = runCli(shake + option);
         EXPECT_EQ(r.exit_code, 1) << option;
