@@ -661,7 +661,7 @@ LeastSquares solveWeighted(const Model& model, const Eigen::MatrixXd& A, const E
             result.covariance = inv_norms.asDiagonal() * N_inv * score.S * N_inv * inv_norms.asDiagonal();
             result.correlation_samples = score.tau;
             result.block_samples = score.block;
-            result.effective_samples = static_cast<double>(rows / n) / score.tau;
+            result.effective_samples = static_cast<double>(rows) / static_cast<double>(n) / score.tau;
             const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(k, k).template triangularView<Eigen::Upper>();
             result.U = (R * qr.colsPermutation().transpose()) * norms.asDiagonal();
         }
