@@ -105,7 +105,14 @@ TEST(HostileRound4Cli, AnUnstableClosedLoopIsRefusedAndItsRatesAreShakes) {
     // the first feedback that diverges at the 10 kHz tick (measured: stable up to 1500 Hz)
     r = runCli("frequency-response --closed-loop --natural-frequency 2000 --f-max 100 --points 3");
     EXPECT_EQ(r.exit_code, 1) << r.out;
-    EXPECT_TRUE(has(r.err, "max |eig F| = 1.01377 >= 1")) << r.err;
+    // the radius as printed (1.01377 in the release build, 1.01368 under the sanitizers' -O1:
+    // the eigenvalue of a loop just past its edge moves with the rounding)
+    const std::size_t radius_at = r.err.find("max |eig F| = ");
+    ASSERT_NE(radius_at, std::string::npos) << r.err;
+    const double radius = std::stod(r.err.substr(radius_at + std::string("max |eig F| = ").size()));
+    EXPECT_GT(radius, 1.01) << r.err;
+    EXPECT_LT(radius, 1.02) << r.err;
+    EXPECT_TRUE(has(r.err, " >= 1 at a tick of 10000 Hz with f_n = 2000 Hz")) << r.err;
     // the default loop is stable (|eig F| = 0.99626; the acceleration correction's sum at gain 0
     // holds eigenvalue 1 but no input reaches it), with or without a payload, and answers
     for (const std::string payload : {"0", "2", "100"}) {
