@@ -200,5 +200,36 @@ TEST(CompliantLinearization, PlantFromCommandedPositionsPeaksAtTheLumpedFrequenc
     EXPECT_NEAR(r.modes.frequency(0), 41.0, 1.0);
 }
 
+TEST(CompliantLinearization, BandwidthOfACommandedPositionIsWhereTheMotionFallsThreeDecibelsBelowTheCommand) {
+    // at home the x axis moves on the translation modes alone (41.04 Hz, a double mode on the
+    // symmetric robot), so ddx/uc1 = -w^2 (motion per command) with the motion per command
+    // 1 / (1 - r^2 + 2 j zeta r), r = f / f_1: its asymptote |H(f_min)| (f / f_min)^2 (slope
+    // 40 dB/decade) is the rigid follower's, and |H| falls 3 dB below it where
+    // (1 - r^2)^2 + (2 zeta r)^2 = 10^0.3, r^2 = u: u^2 - (2 - 4 zeta^2) u + 1 - 10^0.3 = 0
+    const Model model(robotFile("paper-3prr-compliant"));
+    const AtRest r = atRest(model, model.home);
+    const FrequencyResponse response = frequencyResponse(r.system, logGrid(1.0, 1000.0, 4001));
+    const int x = 1;                                            // output ddx (core order theta, x, y), input uc1
+    EXPECT_NEAR(lowFrequencySlope(response, x, 0), 2.0, 3e-3);  // 2 + 2 r^2 / (1 - r^2) at r = 1 / 41
+    const double zeta = model.description.damping_ratio, b = 2.0 - 4.0 * zeta * zeta;
+    const double u = 0.5 * (b + std::sqrt(b * b - 4.0 * (1.0 - std::pow(10.0, 0.3))));
+    const double expected = r.modes.frequency(0) * std::sqrt(u);
+    EXPECT_NEAR(bandwidth3dB(response, x, 0), expected, 1e-3 * expected);
+    EXPECT_NEAR(expected, 63.75, 0.05);
+    // every channel from a commanded position has a bandwidth in the grid, above the first mode
+    for (int o = 0; o < 3; ++o) {
+        for (int i = 0; i < 3; ++i) {
+            const double bw = bandwidth3dB(response, o, i);
+            EXPECT_TRUE(bw > r.modes.frequency(0) && bw < 1000.0) << "channel " << o << "/" << i << ": " << bw;
+        }
+    }
+    // a grid that starts on the resonance has no asymptote there: no number
+    const FrequencyResponse late = frequencyResponse(r.system, logGrid(30.0, 1000.0, 100));
+    EXPECT_GT(std::abs(lowFrequencySlope(late, x, 0) - std::round(lowFrequencySlope(late, x, 0))), kSlopeTolerance);
+    EXPECT_TRUE(std::isnan(bandwidth3dB(late, x, 0)));
+    // a grid that ends below the fall: beyond the grid
+    EXPECT_TRUE(std::isnan(bandwidth3dB(frequencyResponse(r.system, logGrid(1.0, 60.0, 400)), x, 0)));
+}
+
 }  // namespace
 }  // namespace nocdyn::test

@@ -192,5 +192,31 @@ TEST(FrequencyResponse, GridAndBandwidthRejectBadInput) {
     EXPECT_NEAR(r.phase_deg(2000, 0), -std::atan(100.0) * 180.0 / std::numbers::pi, 1e-9);
 }
 
+TEST(FrequencyResponse, BandwidthIsMeasuredFromTheLowFrequencyAsymptote) {
+    // a double integrator behind a low-pass, y = w_c / (s^2 (s + w_c)): it falls at 40 dB/decade
+    // from the start (a position per force); below w_c it is its asymptote, so its -3 dB point
+    // is the low-pass's, not the grid's first step
+    const double wc = 2.0 * std::numbers::pi * 10.0;
+    StateSpace system;
+    system.A = Eigen::MatrixXd::Zero(3, 3);
+    system.A(0, 1) = 1.0;
+    system.A(1, 2) = 1.0;
+    system.A(2, 2) = -wc;
+    system.B = Eigen::MatrixXd::Zero(3, 1);
+    system.B(2, 0) = wc;
+    system.C = Eigen::MatrixXd::Zero(1, 3);
+    system.C(0, 0) = 1.0;
+    system.D = Eigen::MatrixXd::Zero(1, 1);
+    const FrequencyResponse r = frequencyResponse(system, logGrid(0.01, 1000.0, 2001));
+    EXPECT_NEAR(lowFrequencySlope(r, 0, 0), -2.0, 1e-3);
+    EXPECT_NEAR(bandwidth3dB(r, 0, 0), 10.0 * std::sqrt(std::pow(10.0, 0.3) - 1.0), 1e-3);
+    // a phase of exactly 180 deg reads 180 whichever sign the rounding gives: -1 + (-0) j
+    EXPECT_EQ(anchoredPhase(std::arg(std::complex<double>(-1.0, -0.0)) * 180.0 / std::numbers::pi), 180.0);
+    EXPECT_EQ(anchoredPhase(-90.0), -90.0);
+    // the double integrator's -180 deg at the first frequency reads 180, continuous after
+    EXPECT_NEAR(r.phase_deg(0, 0), 180.0 - std::atan(0.001) * 180.0 / std::numbers::pi, 1e-6);
+    EXPECT_NEAR(r.phase_deg(2000, 0), 180.0 - std::atan(100.0) * 180.0 / std::numbers::pi, 1e-6);
+}
+
 }  // namespace
 }  // namespace nocdyn::test

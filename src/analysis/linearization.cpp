@@ -179,7 +179,8 @@ FrequencyResponse frequencyResponse(const StateSpace& system, const std::vector<
                 const std::complex<double> h = H(o, i);
                 r.magnitude_db(k, c) = 20.0 * std::log10(std::abs(h));
                 double phase = std::arg(h) * 180.0 / std::numbers::pi;
-                // unwrap: the nearest to the previous frequency's phase
+                // unwrap: the first anchored, each next the nearest to the previous frequency's phase
+                if (k == 0) phase = anchoredPhase(phase);
                 if (k > 0) phase += 360.0 * std::round((r.phase_deg(k - 1, c) - phase) / 360.0);
                 r.phase_deg(k, c) = phase;
             }
@@ -188,20 +189,44 @@ FrequencyResponse frequencyResponse(const StateSpace& system, const std::vector<
     return r;
 }
 
+double anchoredPhase(double phase_deg) {
+    constexpr double kTie = 1e-6;
+    return phase_deg <= -180.0 + kTie ? phase_deg + 360.0 : phase_deg;
+}
+
+double lowFrequencySlope(const FrequencyResponse& response, int o, int i) {
+    const Eigen::Index c = o * response.inputs + i;
+    if (response.magnitude_db.rows() < 2) return std::numeric_limits<double>::quiet_NaN();
+    const double decades = std::log10(response.frequency[1] / response.frequency[0]);
+    return (response.magnitude_db(1, c) - response.magnitude_db(0, c)) / (20.0 * decades);
+}
+
 double bandwidth3dB(const FrequencyResponse& response, int o, int i) {
+    const double nan = std::numeric_limits<double>::quiet_NaN();
     const Eigen::Index c = o * response.inputs + i;
     const Eigen::Index rows = response.magnitude_db.rows();
-    if (rows == 0) return std::numeric_limits<double>::quiet_NaN();
-    const double level = response.magnitude_db(0, c) - 3.0;
-    for (Eigen::Index k = 1; k < rows; ++k) {
-        const double m0 = response.magnitude_db(k - 1, c), m1 = response.magnitude_db(k, c);
-        if (m1 < level) {
-            const double f0 = std::log(response.frequency[static_cast<std::size_t>(k - 1)]);
-            const double f1 = std::log(response.frequency[static_cast<std::size_t>(k)]);
-            return std::exp(f0 + (f1 - f0) * (m0 - level) / (m0 - m1));
+    if (rows == 0) return nan;
+    double k = 0.0;
+    if (rows >= 2) {
+        const double slope = lowFrequencySlope(response, o, i);
+        k = std::round(slope);
+        if (!(std::abs(slope - k) <= kSlopeTolerance)) return nan;
+    }
+    // the magnitude less the asymptote |H(f_1)| (f / f_1)^k, 0 dB at f_1
+    const double f1 = response.frequency[0];
+    const auto drop = [&](Eigen::Index r) {
+        return response.magnitude_db(r, c) - response.magnitude_db(0, c) -
+               20.0 * k * std::log10(response.frequency[static_cast<std::size_t>(r)] / f1);
+    };
+    for (Eigen::Index r = 1; r < rows; ++r) {
+        const double m0 = drop(r - 1), m1 = drop(r);
+        if (m1 < -3.0) {
+            const double f0 = std::log(response.frequency[static_cast<std::size_t>(r - 1)]);
+            const double fr = std::log(response.frequency[static_cast<std::size_t>(r)]);
+            return std::exp(f0 + (fr - f0) * (m0 + 3.0) / (m0 - m1));
         }
     }
-    return std::numeric_limits<double>::quiet_NaN();
+    return nan;
 }
 
 std::vector<double> logGrid(double f_min, double f_max, int count) {

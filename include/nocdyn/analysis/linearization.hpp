@@ -89,9 +89,28 @@ struct FrequencyResponse {
 /// The response over `frequencies` (increasing, positive) [Hz].
 [[nodiscard]] FrequencyResponse frequencyResponse(const StateSpace& system, const std::vector<double>& frequencies);
 
-/// The -3 dB bandwidth of channel (output o, input i): the lowest grid frequency, linearly
-/// interpolated in log frequency, where the magnitude has fallen 3 dB below its value at the
-/// first grid frequency; NaN when it never does within the grid.
+/// The phase at a grid's first frequency [deg], in (-180 + 1e-6, 180 + 1e-6]: a real negative
+/// gain reads 180 whatever the sign its rounding gives the imaginary part; every channel's
+/// phase is then unwrapped from there (each next frequency's phase the nearest, by multiples of
+/// 360, to the previous one).
+[[nodiscard]] double anchoredPhase(double phase_deg);
+
+/// The low-frequency slope of channel (output o, input i) in units of 20 dB per decade, from the
+/// grid's first two frequencies: 0 for a flat channel (acceleration per force), 2 for one that
+/// rises as w^2 (acceleration per commanded position), -2 (a position per force).
+[[nodiscard]] double lowFrequencySlope(const FrequencyResponse& response, int o, int i);
+
+/// The low-frequency slope is that of an asymptote |H| ~ w^k (k an integer) when it is within
+/// this of one.
+inline constexpr double kSlopeTolerance = 0.25;
+
+/// The -3 dB bandwidth of channel (output o, input i): the lowest frequency, linearly
+/// interpolated in log frequency between grid points, where the magnitude has fallen 3 dB
+/// below its low-frequency asymptote |H(f_1)| (f / f_1)^k, f_1 the grid's first frequency and
+/// k the rounded lowFrequencySlope (0 for a flat channel: 3 dB below |H(f_1)|; 2 for an
+/// acceleration per commanded position: the motion 3 dB below the commanded one). NaN when it
+/// never does within the grid, or when the slope at f_1 is no integer (within kSlopeTolerance:
+/// the grid starts above the channel's low-frequency asymptote).
 [[nodiscard]] double bandwidth3dB(const FrequencyResponse& response, int o, int i);
 
 /// `count` frequencies spaced evenly in log between f_min and f_max [Hz].
