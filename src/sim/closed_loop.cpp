@@ -22,30 +22,27 @@ namespace nocdyn {
 
 namespace {
 
-// the columns of z = [s; w]: state s (24), input w (12)
-constexpr int kStates = 24, kInputs = 12, kAll = kStates + kInputs;
-enum Slot : int {
-    P = 0,
-    DP = 3,
-    RB = 6,
-    Y = 9,
-    PH = 12,
-    VH = 15,
-    CORR = 18,
-    CP = 21,
-    AR = 24,
-    DPD = 27,
-    PD = 30,
-    E = 33
+// the columns of z = [s; w]: state s (24, and 6 more for the lumped plant's [p_r, dp_r]),
+// input w (12, after the states)
+constexpr int kBaseStates = 24, kInputs = 12;
+enum Slot : int { P = 0, DP = 3, RB = 6, Y = 9, PH = 12, VH = 15, CORR = 18, CP = 21, PR = 24, DPR = 27 };
+// the inputs' offsets within w
+enum InputSlot : int { AR = 0, DPD = 3, PD = 6, E = 9 };
+
+using Rows = Eigen::Matrix<double, 3, Eigen::Dynamic>;
+
+/// Where each quantity sits in z = [s; w] for a loop of `states` states.
+struct Layout {
+    int states = kBaseStates;
+    [[nodiscard]] int all() const { return states + kInputs; }
+    [[nodiscard]] Rows pick(int column) const {
+        Rows r = Rows::Zero(3, all());
+        r.middleCols<3>(column).setIdentity();
+        return r;
+    }
+    [[nodiscard]] Rows state(Slot slot) const { return pick(slot); }
+    [[nodiscard]] Rows input(InputSlot slot) const { return pick(states + slot); }
 };
-
-using Rows = Eigen::Matrix<double, 3, kAll>;
-
-Rows pick(Slot slot) {
-    Rows r = Rows::Zero();
-    r.middleCols<3>(slot).setIdentity();
-    return r;
-}
 
 /// d2p/dt2 = f(p, dp, tau) by forwardDynamics; throws naming the plant.
 Twist plantAcceleration(const Model& model, Data& data, const Pose& p, const Twist& dp, const ActuatorVector& tau) {
@@ -113,16 +110,65 @@ InverseDynamicsDerivatives differencedLaw(const Model& model, Data& data, const 
     return out;
 }
 
+/// The lumped compliant plant driven through its drives' set points (closed_loop.hpp): state
+/// [p, dp, p_r, dp_r], input tau. Without a drive of stiffness, the lumped model itself
+/// (its inputs are all forces).
+StateSpace lumpedLoopPlant(const Model& plant_model, Data& data, const Pose& p, const ActuatorVector& tau,
+                           const StateSpace& rigid) {
+    const analysis::StiffnessModel compliance(plant_model);
+    if (!compliance.any) {
+        throw Error(
+            "shake loop: the lumped plant needs compliance in the robot file (joint or drive stiffness, "
+            "elastic links)");
+    }
+    StateSpace lumped, image;
+    if (const Status status = linearizeCompliant(plant_model, compliance, data, p, Twist::Zero(), tau,
+                                                 LinearOutput::platform_acceleration, lumped);
+        !status) {
+        throw Error("shake loop: plant: " + describe(status, plant_model));
+    }
+    const bool positions = std::any_of(lumped.inputs.begin(), lumped.inputs.end(),
+                                       [](LinearInput input) { return input == LinearInput::commanded_position; });
+    if (!positions) return lumped;
+    // u_c = A_p S p_r: the set points of the rigid image (linearize's "actuators" output C)
+    if (const Status status =
+            linearize(plant_model, data, p, Twist::Zero(), tau, LinearOutput::actuator_variables, image);
+        !status) {
+        throw Error("shake loop: plant: " + describe(status, plant_model));
+    }
+    const Eigen::Index n = lumped.B.cols();
+    Eigen::MatrixXd position_inputs = Eigen::MatrixXd::Zero(n, n), force_inputs = Eigen::MatrixXd::Zero(n, n);
+    for (Eigen::Index a = 0; a < n; ++a) {
+        (lumped.inputs[static_cast<std::size_t>(a)] == LinearInput::commanded_position ? position_inputs
+                                                                                       : force_inputs)(a, a) = 1.0;
+    }
+    StateSpace out;
+    out.output = LinearOutput::platform_acceleration;
+    out.inputs.assign(static_cast<std::size_t>(n), LinearInput::force);
+    out.A = Eigen::MatrixXd::Zero(12, 12);
+    out.A.topLeftCorner<6, 6>() = lumped.A;
+    out.A.block(0, 6, 6, 6) = lumped.B * position_inputs * image.C;
+    out.A.bottomRightCorner<6, 6>() = rigid.A;
+    out.B = Eigen::MatrixXd::Zero(12, n);
+    out.B.topRows<6>() = lumped.B * force_inputs;
+    out.B.bottomRows<6>() = rigid.B;
+    return out;
+}
+
 }  // namespace
 
 ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant_model, const Pose& p,
-                                          const ShakeLoopOptions& options, LoopDerivatives derivatives, double step) {
+                                          const ShakeLoopOptions& options, LoopDerivatives derivatives, double step,
+                                          LoopPlant plant_kind) {
     const TableSensors& sensors = options.sensors;
     if (!(options.rate > 0.0) || !std::isfinite(options.rate)) throw Error("shake loop: the rate must be positive");
     const double T = 1.0 / options.rate;
     const int n = model.actuators;
     if (plant_model.actuators != n) throw Error("shake loop: the plant and the controller's model differ in actuators");
     if (!(step > 0.0 && step < 1e-2)) throw Error("shake loop: the difference step must be in (0, 0.01)");
+    if (plant_kind == LoopPlant::lumped && derivatives != LoopDerivatives::exact) {
+        throw Error("shake loop: the lumped plant is linearised by exact derivatives only");
+    }
 
     // the plant at rest at p, held by its own forces, discretised exactly under a zero-order hold
     Data plant_data(plant_model);
@@ -140,11 +186,16 @@ ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant
     } else {
         plant = differencedPlant(plant_model, plant_data, p, tau_plant, step);
     }
-    Eigen::MatrixXd augmented = Eigen::MatrixXd::Zero(6 + n, 6 + n);
-    augmented.topLeftCorner(6, 6) = plant.A * T;
-    augmented.topRightCorner(6, n) = plant.B * T;
+    if (plant_kind == LoopPlant::lumped) plant = lumpedLoopPlant(plant_model, plant_data, p, tau_plant, plant);
+    const auto m = static_cast<int>(plant.A.rows());  // the plant's states: 6 or 12
+    Eigen::MatrixXd augmented = Eigen::MatrixXd::Zero(m + n, m + n);
+    augmented.topLeftCorner(m, m) = plant.A * T;
+    augmented.topRightCorner(m, n) = plant.B * T;
     const Eigen::MatrixXd exponential = augmented.exp();
-    const Eigen::MatrixXd Phi = exponential.topLeftCorner(6, 6), Gamma = exponential.topRightCorner(6, n);
+    const Eigen::MatrixXd Phi = exponential.topLeftCorner(m, m), Gamma = exponential.topRightCorner(m, n);
+    const Layout layout{kBaseStates + (m - 6)};
+    const auto pick = [&](Slot slot) { return layout.state(slot); };
+    const auto input = [&](InputSlot slot) { return layout.input(slot); };
 
     // the control law tau = ID(p^, v^, demand) of the controller's model, to first order
     Data data(model);
@@ -184,28 +235,34 @@ ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant
     const Rows correction = pick(CORR) + g * (pick(CP) - y);
     // ddp_cmd = a_r + K_p (p_d - p^) + K_d (dp_d - v^), the demand ddp_cmd + c (+ e)
     const Rows commanded =
-        pick(AR) + gains.kp.asDiagonal() * (pick(PD) - p_hat) + gains.kd.asDiagonal() * (pick(DPD) - v_hat);
-    const Rows demand = commanded + correction + pick(E);
+        input(AR) + gains.kp.asDiagonal() * (input(PD) - p_hat) + gains.kd.asDiagonal() * (input(DPD) - v_hat);
+    const Rows demand = commanded + correction + input(E);
     const Eigen::MatrixXd tau =
         Eigen::MatrixXd(law.d_p) * p_hat + Eigen::MatrixXd(law.d_dp) * v_hat + Eigen::MatrixXd(law.d_ddp) * demand;
     // the plant over the tick under the held forces
-    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(6, kAll);
+    Eigen::MatrixXd x = Eigen::MatrixXd::Zero(m, layout.all());
     x.topRows<3>() = pick(P);
-    x.bottomRows<3>() = pick(DP);
+    x.middleRows<3>(3) = pick(DP);
+    if (m == 12) {
+        x.middleRows<3>(6) = pick(PR);
+        x.middleRows<3>(9) = pick(DPR);
+    }
     const Eigen::MatrixXd x_next = Phi * x + Gamma * tau;
 
-    Eigen::MatrixXd next(kStates, kAll);
-    next << x_next, pick(DP), y, p_hat, v_hat, correction, commanded;
-    const Eigen::MatrixXd achieved = (x_next.bottomRows<3>() - pick(DP)) / T;
+    Eigen::MatrixXd next(layout.states, layout.all());
+    next.topRows(kBaseStates) << x_next.topRows<6>(), pick(DP), y, p_hat, v_hat, correction, commanded;
+    if (m == 12) next.bottomRows<6>() = x_next.bottomRows<6>();
+    const Eigen::MatrixXd achieved = (x_next.middleRows<3>(3) - pick(DP)) / T;
 
     ShakeLoopLinearization out;
     out.dt = T;
-    out.F = next.leftCols<kStates>();
+    out.F = next.leftCols(layout.states);
     out.G = next.rightCols<kInputs>();
-    out.C = achieved.leftCols<kStates>();
+    out.C = achieved.leftCols(layout.states);
     out.D = achieved.rightCols<kInputs>();
-    out.demand_s = demand.leftCols<kStates>();
+    out.demand_s = demand.leftCols(layout.states);
     out.demand_w = demand.rightCols<kInputs>();
+    out.plant_states = m;
     return out;
 }
 
@@ -218,15 +275,16 @@ ShakeLoopResponse shakeLoopResponse(const ShakeLoopLinearization& loop, double f
     const double w = 2.0 * std::numbers::pi * frequency;
     const Complex z = std::exp(Complex(0.0, w * T));
     const Eigen::MatrixXcd Gc = loop.G.cast<Complex>();
-    const auto lu = (z * Eigen::MatrixXcd::Identity(kStates, kStates) - loop.F.cast<Complex>()).partialPivLu();
+    const Eigen::Index states = loop.F.rows();
+    const auto lu = (z * Eigen::MatrixXcd::Identity(states, states) - loop.F.cast<Complex>()).partialPivLu();
     // inputs per unit of each axis: the reference (columns 0-2) and the injection (3-5)
     Eigen::MatrixXcd W = Eigen::MatrixXcd::Zero(kInputs, 6);
     for (int i = 0; i < 3; ++i) {
         const Complex dp_d = T / (z - 1.0);
-        W(AR - kStates + i, i) = 1.0;
-        W(DPD - kStates + i, i) = dp_d;
-        W(PD - kStates + i, i) = dp_d / Complex(0.0, w);
-        W(E - kStates + i, 3 + i) = 1.0;
+        W(AR + i, i) = 1.0;
+        W(DPD + i, i) = dp_d;
+        W(PD + i, i) = dp_d / Complex(0.0, w);
+        W(E + i, 3 + i) = 1.0;
     }
     const Eigen::MatrixXcd S = lu.solve(Gc * W);
     ShakeLoopResponse r;
@@ -282,7 +340,10 @@ ShakeLoopFrequencyResponse shakeLoopFrequencyResponse(const ShakeLoopLinearizati
             r.phase_deg(k, i) = std::arg(h.closed_loop(i, i)) * deg;
             r.loop_magnitude_db(k, i) = 20.0 * std::log10(std::abs(h.loop(i)));
             r.loop_phase_deg(k, i) = std::arg(h.loop(i)) * deg;
-            if (k > 0) {
+            if (k == 0) {
+                r.phase_deg(k, i) = anchoredPhase(r.phase_deg(k, i));
+                r.loop_phase_deg(k, i) = anchoredPhase(r.loop_phase_deg(k, i));
+            } else {
                 r.phase_deg(k, i) = unwrap(r.phase_deg(k, i), r.phase_deg(k - 1, i));
                 r.loop_phase_deg(k, i) = unwrap(r.loop_phase_deg(k, i), r.loop_phase_deg(k - 1, i));
             }
@@ -318,6 +379,47 @@ ShakeLoopFrequencyResponse shakeLoopFrequencyResponse(const ShakeLoopLinearizati
         }
     }
     return r;
+}
+
+ShakeLoopBand shakeLoopBand(const ShakeLoopLinearization& loop, const ShakeLoopFrequencyResponse& response,
+                            double amplification) {
+    if (!(amplification > 1.0) || !std::isfinite(amplification)) {
+        throw Error("shake loop: the amplification limit must be above 1");
+    }
+    ShakeLoopBand out;
+    out.amplification = amplification;
+    const std::vector<double>& f = response.frequency;
+    const auto rows = static_cast<Eigen::Index>(f.size());
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    out.end.setConstant(nan);
+    out.peak_db.setConstant(nan);
+    out.peak_frequency.setConstant(nan);
+    if (rows == 0) return out;
+    const double limit_db = 20.0 * std::log10(amplification);
+    for (int i = 0; i < 3; ++i) {
+        Eigen::Index peak = 0;
+        response.magnitude_db.col(i).maxCoeff(&peak);
+        out.peak_db(i) = response.magnitude_db(peak, i);
+        out.peak_frequency(i) = f[static_cast<std::size_t>(peak)];
+        const auto outside = [&](double gain) { return gain > amplification || gain < 1.0 / amplification; };
+        for (Eigen::Index k = 0; k < rows; ++k) {
+            if (!(std::abs(response.magnitude_db(k, i)) > limit_db)) continue;
+            if (k == 0) {
+                out.end(i) = 0.0;
+                break;
+            }
+            // the crossing between grid points k - 1 (inside) and k (outside), by bisection in log f
+            double below = std::log(f[static_cast<std::size_t>(k - 1)]),
+                   above = std::log(f[static_cast<std::size_t>(k)]);
+            for (int it = 0; it < 60; ++it) {
+                const double mid = 0.5 * (below + above);
+                (outside(std::abs(shakeLoopResponse(loop, std::exp(mid)).closed_loop(i, i))) ? above : below) = mid;
+            }
+            out.end(i) = std::exp(below);
+            break;
+        }
+    }
+    return out;
 }
 
 }  // namespace nocdyn

@@ -24,6 +24,22 @@
 // The loop transfer L_i of axis i is broken at the demand of axis i (the other axes closed):
 // with e_i injected, L_i = -(ddp_cmd,i + c_i - a_r,i) / (ddp_cmd,i + c_i + e_i) returned by the
 // loop; its phase margin is 180 deg + arg L_i at the lowest frequency where |L_i| = 1.
+//
+// The plant may be the lumped compliant model (analysis/linearization.hpp: linearizeCompliant,
+// the model of the open-loop response and of the envelope's amplification band) instead of the
+// rigid one. Its drives with a stiffness are position servos (the spring's rest position u_c is
+// the set point), so the controller's forces reach it as motion: the set points follow the
+// rigid image of the motion those forces give the rigid machine,
+//   M_p ddp_r = (rigid terms) + A_p^T tau,      u_c = A_p S p_r,
+//   M_p ddp + C_d dp + K p = B_Q u_c (+ the forces of drives of stiffness 0) = K p_r at rest,
+// so the platform p follows p_r through the lumped modes (p = H(w) p_r, H(0) = I: the envelope's
+// dynamic amplification) and the sensors see p. The plant's state is then [p, dp, p_r, dp_r]:
+// the loop's state s gains [p_r, dp_r] (30 in all). A robot without a drive of stiffness has
+// no set point to follow: its lumped plant takes the forces directly (6 states). As the
+// stiffness grows, H(w) -> I and the loop tends to the rigid one.
+//
+// The usable band of axis i: from the grid's first frequency up to the lowest where the closed
+// loop's gain |H_ii| leaves [1/A, A] (A the amplification limit, as the envelope's band).
 #pragma once
 
 #include <complex>
@@ -42,22 +58,30 @@ namespace nocdyn {
 /// (forces), the comparison the exact ones are measured against.
 enum class LoopDerivatives { exact, central_difference };
 
+/// The plant of the linearised loop: the rigid robot, or the lumped compliant model driven
+/// through its drives' set points (see above).
+enum class LoopPlant { rigid, lumped };
+
 /// The linearised shake-table loop: s_(k+1) = F s_k + G w_k, a_k = C s_k + D w_k (see above).
 struct ShakeLoopLinearization {
     Eigen::MatrixXd F, G, C, D;
     /// The demand ddp_cmd + c + e in terms of (s, w) (3 x 36), for the loop transfer.
     Eigen::MatrixXd demand_s, demand_w;
     double dt = 0.0;  ///< T [s]
+    /// The plant's states in s: 6 ([p, dp]) or 12 ([p, dp] and [p_r, dp_r], the lumped plant).
+    int plant_states = 6;
 };
 
 /// Linearises the loop of runShakeLoop(model, plant on plant_model, ...) at rest at pose p
 /// with `options` (rate, natural frequency, acceleration gain, sensors: their noise sets the
 /// Kalman gain). `model` is the controller's model; `plant_model` may differ (a payload).
-/// Throws nocdyn::Error when p is out of reach or singular for either model.
+/// `plant` lumped: the compliant plant of plant_model's compliance (exact derivatives only).
+/// Throws nocdyn::Error when p is out of reach or singular for either model, or when a lumped
+/// plant is asked of a model without compliance.
 [[nodiscard]] ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant_model, const Pose& p,
                                                         const ShakeLoopOptions& options,
                                                         LoopDerivatives derivatives = LoopDerivatives::exact,
-                                                        double step = 1e-6);
+                                                        double step = 1e-6, LoopPlant plant = LoopPlant::rigid);
 
 /// The spectral radius of the loop's one-tick map F, max |eig F| over the modes its inputs reach:
 /// below 1 the linearised loop is stable (every such state decays tick by tick); at 1 or above it
@@ -85,5 +109,19 @@ struct ShakeLoopFrequencyResponse {
 };
 [[nodiscard]] ShakeLoopFrequencyResponse shakeLoopFrequencyResponse(const ShakeLoopLinearization& loop,
                                                                     const std::vector<double>& frequencies);
+
+/// Per axis, the closed loop's usable band and its peak over a response's grid:
+///   end: the lowest frequency [Hz] where |H_ii| leaves [1/A, A], the last one inside by
+///        bisection between grid points (shakeLoopResponse); NaN when |H_ii| stays inside over
+///        the whole grid (the band reaches beyond it), 0 when it is outside at the first
+///        grid frequency already;
+///   peak_db, peak_frequency: the largest |H_ii| on the grid [dB] and its frequency [Hz].
+struct ShakeLoopBand {
+    double amplification = 0.0;  ///< A
+    Vector3 end = Vector3::Zero(), peak_db = Vector3::Zero(), peak_frequency = Vector3::Zero();
+};
+/// Throws nocdyn::Error unless A > 1.
+[[nodiscard]] ShakeLoopBand shakeLoopBand(const ShakeLoopLinearization& loop,
+                                          const ShakeLoopFrequencyResponse& response, double amplification);
 
 }  // namespace nocdyn
