@@ -33,6 +33,28 @@ std::vector<double> column(const Eigen::MatrixXd& m, Eigen::Index c) {
     return {m.col(c).data(), m.col(c).data() + m.rows()};
 }
 
+/// True when actuator a drives a prismatic joint (its force in N, its position in m).
+bool prismatic(const Model& model, int a) {
+    const auto j = static_cast<std::size_t>(model.actuator_limb[static_cast<std::size_t>(a)]);
+    const auto q = static_cast<std::size_t>(model.actuator_joint[static_cast<std::size_t>(a)]);
+    return model.description.limbs[j].joints[q].type == JointType::prismatic;
+}
+
+/// A quotient of units, the compound ones in parentheses: "(m/s^2)/N", "m/(N m)".
+std::string perUnit(const std::string& output, const std::string& input) {
+    const auto wrap = [](const std::string& u) {
+        return u.find_first_of("/ ") == std::string::npos ? u : "(" + u + ")";
+    };
+    return wrap(output) + "/" + wrap(input);
+}
+
+/// The bandwidth column: a number, or why there is none.
+std::string bandwidthText(double bandwidth, double slope) {
+    if (!std::isnan(bandwidth)) return text::format("%.4f", bandwidth);
+    if (std::abs(slope - std::round(slope)) <= kSlopeTolerance) return "beyond the grid";
+    return "no asymptote at f_min";
+}
+
 /// The open-loop plant: from each actuator force (or commanded drive position) to each output.
 FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Model& model) {
     Data data(model);
@@ -87,7 +109,13 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
                             modes.frequency(1), modes.frequency(2));
         out.summary += line;
     }
-    out.summary += "# channel  |H| at f_min [dB]  |H| at f_max [dB]  -3 dB bandwidth [Hz]\n";
+    out.summary +=
+        "# -3 dB bandwidth: the lowest frequency where |H| falls 3 dB below its low-frequency asymptote |H(f_min)| "
+        "(f/f_min)^k, k the slope at f_min in 20 dB/decade (k = 2: an acceleration per commanded position, the "
+        "motion 3 dB below the commanded one); beyond the grid: not within [f_min, f_max]\n";
+    out.summary +=
+        "# channel  |H| at f_min [dB]  |H| at f_max [dB]  low-frequency slope [dB/decade]  -3 dB bandwidth [Hz]  unit "
+        "of |H|\n";
     Eigen::Index c_out = 1;
     for (int k = 0; k < r.outputs; ++k) {
         // accelerations per axis in the order x, y, theta; actuator variables in theirs
@@ -103,40 +131,65 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
             out.table.col(c_out++) = r.magnitude_db.col(c);
             out.table.col(c_out++) = r.phase_deg.col(c);
             const double bw = bandwidth3dB(r, o, i);
-            line = text::format("%s/%s  %.4f  %.4f  %s\n", label.c_str(), input.c_str(), r.magnitude_db(0, c),
-                                r.magnitude_db(rows - 1, c),
-                                std::isnan(bw) ? "beyond the grid" : text::format("%f", bw).c_str());
+            const double slope = lowFrequencySlope(r, o, i);
+            const bool force = system.inputs[static_cast<std::size_t>(i)] == LinearInput::force;
+            const bool linear_input = prismatic(model, i);
+            const std::string input_unit = force ? (linear_input ? "N" : "N m") : (linear_input ? "m" : "rad");
+            const bool linear_output = acceleration ? kCoreAxis[k] != 0 : prismatic(model, k);
+            const std::string output_unit =
+                acceleration ? (linear_output ? "m/s^2" : "rad/s^2") : (linear_output ? "m" : "rad");
+            const std::string unit = perUnit(output_unit, input_unit);
+            line = text::format("%s/%s  %.4f  %.4f  %.1f  %s  %s\n", label.c_str(), input.c_str(), r.magnitude_db(0, c),
+                                r.magnitude_db(rows - 1, c), std::abs(slope) < 0.0025 ? 0.0 : 20.0 * slope,
+                                bandwidthText(bw, slope).c_str(), unit.c_str());
             out.summary += line;
             out.curves.push_back({text::format("%s/%s", label.c_str(), input.c_str()), column(r.magnitude_db, c),
-                                  column(r.phase_deg, c)});
+                                  column(r.phase_deg, c), unit});
         }
     }
     return out;
 }
 
-/// The shake-table loop linearised at rest at the pose (see sim/closed_loop.hpp).
+/// "12.3456", "beyond the grid" (NaN) or "none (outside at f_min)" (0): a usable band's end.
+std::string bandEndText(double end) {
+    if (std::isnan(end)) return "beyond the grid";
+    if (end == 0.0) return "none (outside at f_min)";
+    return text::format("%.4f", end);
+}
+
+/// The shake-table loop linearised at rest at the pose (see sim/closed_loop.hpp), on the rigid
+/// plant or the lumped compliant one.
 FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, const RobotDescription& robot,
                                    const Model& model) {
     const Model plant_model(withPayload(robot, Payload{options.payload, 0.0, Vector2::Zero()}));
     const Pose p = options.pose.empty() ? model.home : corePose(threeValues(options.pose));
+    const analysis::StiffnessModel compliance(plant_model);
+    const bool lumped = options.compliance == "lumped" || (options.compliance == "auto" && compliance.any);
+    if (lumped && !compliance.any) {
+        throw OptionError("compliance", "the robot file declares no joint or drive stiffness and no elastic link");
+    }
     ShakeLoopOptions loop_options;
     loop_options.rate = options.controller_rate;
     loop_options.natural_frequency = options.natural_frequency;
-    const ShakeLoopLinearization loop = linearizeShakeLoop(model, plant_model, p, loop_options);
+    const ShakeLoopLinearization loop = linearizeShakeLoop(model, plant_model, p, loop_options, LoopDerivatives::exact,
+                                                           1e-6, lumped ? LoopPlant::lumped : LoopPlant::rigid);
     // a response is a steady state only of a stable loop: every eigenvalue of the one-tick map
     // inside the unit circle
     if (const double radius = shakeLoopSpectralRadius(loop); !(radius < 1.0)) {
         throw OptionError("closed_loop",
                           text::format("unstable closed loop (spectral radius max |eig F| = %.6g >= 1 at a tick of "
-                                       "%g Hz with f_n = %g Hz): it has no frequency response; lower "
+                                       "%g Hz with f_n = %g Hz%s): it has no frequency response; lower "
                                        "`natural_frequency`, raise `controller_rate` or lighten `payload`",
-                                       radius, options.controller_rate, options.natural_frequency));
+                                       radius, options.controller_rate, options.natural_frequency,
+                                       lumped ? ", lumped compliant plant" : ""));
     }
     const ShakeLoopFrequencyResponse r =
         shakeLoopFrequencyResponse(loop, logGrid(options.f_min, options.f_max, options.points));
+    const ShakeLoopBand band = shakeLoopBand(loop, r, options.amplification);
     FrequencyResponseResult out;
     out.robot = model.description.name;
     out.closed_loop = true;
+    out.lumped = lumped;
     out.frequency = r.frequency;
     const auto rows = static_cast<Eigen::Index>(r.frequency.size());
     out.table.resize(rows, 1 + 4 * 3);
@@ -151,11 +204,28 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
     out.summary = "# closed-loop frequency response of " + io::terminalText(out.robot) +
                   " under the shake-table controller, from the reference to the achieved platform acceleration\n" +
                   line;
-    if (analysis::StiffnessModel(model).any) {
+    if (lumped) {
+        analysis::StiffnessData stiffness;
+        analysis::LumpedModes modes;
+        Data at_rest(plant_model);
+        if (const Status st = analysis::stiffnessAndModes(plant_model, compliance, at_rest, p, stiffness, modes); !st) {
+            throw Error("operating point: " + describe(st, plant_model));
+        }
+        line = text::format(
+            "# plant: the lumped compliant model (natural frequencies at the pose %.4f %.4f %.4f Hz, damping ratio "
+            "%g): the drives' set points follow the rigid image of the motion the forces give the rigid machine, "
+            "the platform follows them through the lumped modes; the sensors see the platform\n",
+            modes.frequency(0), modes.frequency(1), modes.frequency(2), plant_model.description.damping_ratio);
+        out.summary += line;
+    } else if (compliance.any) {
         out.summary +=
             "# rigid plant: the compliance the robot file declares (joint or drive stiffness, elastic links) is not "
-            "modelled in the closed loop (the open-loop plant models it: frequency-response without --closed-loop)\n";
+            "modelled in the closed loop (--compliance rigid; auto, the default, models it)\n";
     }
+    out.summary +=
+        "# H: the closed loop, achieved / reference platform acceleration of the axis (columns <axis>_db, _deg; 0 dB "
+        "is a perfect table); L: the loop transfer, the loop broken at the axis' acceleration demand, the other "
+        "axes closed (columns <axis>_loop_db, _loop_deg; it crosses 0 dB at the crossover)\n";
     out.summary +=
         "# axis  |H| at f_min [dB]  |H| at f_max [dB]  -3 dB bandwidth [Hz]  crossover [Hz]  phase margin [deg]\n";
     Eigen::Index c_out = 1;
@@ -171,9 +241,26 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
                             r.magnitude_db(rows - 1, i), numberOrBeyond(r.bandwidth(i)).c_str(),
                             numberOrBeyond(r.crossover(i)).c_str(), numberOrBeyond(r.phase_margin(i)).c_str());
         out.summary += line;
-        out.curves.push_back({std::string("H ") + kAxisNames[k], column(r.magnitude_db, i), column(r.phase_deg, i)});
         out.curves.push_back(
-            {std::string("L ") + kAxisNames[k], column(r.loop_magnitude_db, i), column(r.loop_phase_deg, i)});
+            {std::string("H ") + kAxisNames[k], column(r.magnitude_db, i), column(r.phase_deg, i), "1"});
+        out.curves.push_back(
+            {std::string("L ") + kAxisNames[k], column(r.loop_magnitude_db, i), column(r.loop_phase_deg, i), "1"});
+    }
+    line = text::format(
+        "# usable band: from f_min up to the lowest frequency where |H| leaves [1/A, A] = [%.4f, %.4f] "
+        "(--amplification A = %g, as the envelope's band; beyond the grid: |H| stays within over [f_min, f_max]); "
+        "|H|'s peak on the grid\n",
+        1.0 / options.amplification, options.amplification, options.amplification);
+    out.summary += line;
+    out.summary += "# band  axis  usable up to [Hz]  peak |H| [dB]  at [Hz]\n";
+    for (int k = 0; k < 3; ++k) {
+        const int i = kCoreAxis[k];
+        out.band_end.push_back(band.end(i));
+        out.peak_db.push_back(band.peak_db(i));
+        out.peak_frequency.push_back(band.peak_frequency(i));
+        line = text::format("band  %s  %s  %.4f  %.4f\n", kAxisNames[k], bandEndText(band.end(i)).c_str(),
+                            band.peak_db(i), band.peak_frequency(i));
+        out.summary += line;
     }
     return out;
 }
@@ -198,6 +285,7 @@ void validate(const FrequencyResponseOptions& options) {
     requireIn(options.payload, kPayloadMassRange, "payload");
     requireIn(options.controller_rate, kShakeRateRange, "controller_rate");
     requireIn(options.natural_frequency, kShakeNaturalFrequencyRange, "natural_frequency");
+    requireIn(options.amplification, kAmplificationRange, "amplification");
     if (options.compliance != "auto" && options.compliance != "rigid" && options.compliance != "lumped") {
         throw OptionError("compliance", "'" + options.compliance + "' is not one of auto, rigid, lumped");
     }
@@ -208,14 +296,14 @@ void validate(const FrequencyResponseOptions& options) {
             throw OptionError("controller_rate", "does not apply to the plant: it goes with `closed_loop`");
         if (options.natural_frequency != defaults.natural_frequency)
             throw OptionError("natural_frequency", "does not apply to the plant: it goes with `closed_loop`");
+        if (options.amplification != defaults.amplification)
+            throw OptionError("amplification", "does not apply to the plant: it goes with `closed_loop`");
     }
     if (options.closed_loop) {
         if (options.output_kind != defaults.output_kind)
             throw OptionError("output_kind",
                               "does not apply to the closed loop (its output is the achieved platform acceleration): "
                               "it goes with the plant (without `closed_loop`)");
-        if (options.compliance == "lumped")
-            throw OptionError("compliance", "the closed loop is the rigid model: lumped does not apply");
         if (!options.rate.empty())
             throw OptionError("rate", "the closed loop is linearised at rest: rate does not apply");
         if (!(options.f_max < 0.5 * options.controller_rate)) {
@@ -259,18 +347,61 @@ FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& opt
     return out;
 }
 
+namespace {
+
+/// Distinct colours, one per curve (gnuplot's own cycle repeats after eight); past them the
+/// cycle goes on dashed.
+constexpr const char* kCurveColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b",
+                                         "#e377c2", "#17becf", "#7f7f7f", "#bcbd22", "#000000", "#aec7e8"};
+
+std::string curveStyle(std::size_t index, bool dashed) {
+    constexpr std::size_t colours = std::size(kCurveColours);
+    const bool cycled = index >= colours;
+    return text::format("lines lw 2 lc rgb '%s'%s", kCurveColours[index % colours], dashed || cycled ? " dt 2" : "");
+}
+
+}  // namespace
+
 report::Figure bodeFigure(const FrequencyResponseResult& result) {
     report::Figure figure;
     figure.title = result.closed_loop
-                       ? "Closed loop of " + report::literalText(result.robot) + " (shake-table controller)"
+                       ? "Closed loop of " + report::literalText(result.robot) + " (shake-table controller" +
+                             (result.lumped ? ", lumped compliant plant)" : ")")
                        : "Frequency response of " + report::literalText(result.robot);
-    report::PlotPanel magnitude{"", "frequency [Hz]", "magnitude [dB]", {}, true, false, false};
-    report::PlotPanel phase{"", "frequency [Hz]", "phase [deg]", {}, true, false, false};
+    // one magnitude panel per unit of |H| (in the order the channels first use it), one phase
+    // panel; each curve one colour in both
+    std::vector<std::string> units;
     for (const BodeCurve& curve : result.curves) {
-        magnitude.series.push_back({report::literalText(curve.label), result.frequency, curve.magnitude_db});
-        phase.series.push_back({report::literalText(curve.label), result.frequency, curve.phase_deg});
+        if (std::find(units.begin(), units.end(), curve.unit) == units.end()) units.push_back(curve.unit);
     }
-    figure.panels = {magnitude, phase};
+    std::vector<report::PlotPanel> magnitude;
+    for (const std::string& unit : units) {
+        const std::string title =
+            result.closed_loop
+                ? "H: closed loop, achieved / reference acceleration; L (dashed): loop transfer, broken at the "
+                  "axis' demand"
+                : "channels in " + report::literalText(unit);
+        const std::string ylabel = unit == "1" ? "magnitude [dB] (a ratio of like quantities)"
+                                               : "|H| [dB re 1 " + report::literalText(unit) + "]";
+        magnitude.push_back({title, "frequency [Hz]", ylabel, {}, true, false, false});
+    }
+    report::PlotPanel phase{"phase of every channel, from (-180, 180] at f_min, continuous",
+                            "frequency [Hz]",
+                            "phase [deg]",
+                            {},
+                            true,
+                            false,
+                            false};
+    for (std::size_t k = 0; k < result.curves.size(); ++k) {
+        const BodeCurve& curve = result.curves[k];
+        const bool loop_transfer = result.closed_loop && curve.label.starts_with("L ");
+        const std::string style = curveStyle(k, loop_transfer);
+        const auto u = static_cast<std::size_t>(std::find(units.begin(), units.end(), curve.unit) - units.begin());
+        magnitude[u].series.push_back({report::literalText(curve.label), result.frequency, curve.magnitude_db, style});
+        phase.series.push_back({report::literalText(curve.label), result.frequency, curve.phase_deg, style});
+    }
+    figure.panels = magnitude;
+    figure.panels.push_back(phase);
     return figure;
 }
 

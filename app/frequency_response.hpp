@@ -2,10 +2,12 @@
 // the forward dynamics) and its frequency response H(j w) = C (j w I - A)^-1 B + D from the
 // actuator forces to the platform acceleration or the actuator variables; or, closed_loop, the
 // shake-table loop (sim/closed_loop.hpp) linearised at rest, from the reference to the achieved
-// platform acceleration per axis, with the loop transfer's crossover and phase margin. With
-// compliance declared in the robot file, the open-loop plant is the lumped compliant model
-// (analysis/linearization.hpp: linearizeCompliant), from each drive's commanded position (or
-// force, for a drive of stiffness 0).
+// platform acceleration per axis, with the loop transfer's crossover and phase margin and the
+// closed loop's usable band (where |H| stays within [1/A, A]). With compliance declared in the
+// robot file, the plant (open loop and closed loop alike) is the lumped compliant model
+// (analysis/linearization.hpp: linearizeCompliant), the open loop from each drive's commanded
+// position (or force, for a drive of stiffness 0), the closed loop through the drives' set
+// points (sim/closed_loop.hpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -13,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "app/envelope.hpp"
 #include "app/observer.hpp"
 #include "app/options.hpp"
 #include "report/plot.hpp"
@@ -37,7 +40,8 @@ struct FrequencyResponseOptions {
     /// joint or drive stiffness or elastic links, else the rigid one), "rigid", or "lumped" (the
     /// compliant lumped model, linearizeCompliant; the file must declare compliance). Its inputs
     /// are then each drive's commanded position (a drive with a stiffness, or locked) or force
-    /// (stiffness 0). The closed loop is always the rigid one.
+    /// (stiffness 0). The closed loop's plant likewise (LoopPlant::lumped: the drives' set points
+    /// follow the rigid image of the forces' motion).
     std::string compliance = "auto";
     double f_min = 1.0, f_max = 1000.0;  ///< [Hz], in kResponseFrequencyRange, f_min < f_max
     int points = 200;                    ///< log-spaced frequencies (kPointsRange)
@@ -47,6 +51,9 @@ struct FrequencyResponseOptions {
     double payload = 0.0;
     double controller_rate = 10000.0;  ///< closed_loop: controller ticks [Hz], above 2 f_max
     double natural_frequency = 6.0;    ///< closed_loop: f_n of the pose feedback [Hz]
+    /// closed_loop: the usable band ends where |H| leaves [1/A, A] (as the envelope's third bound;
+    /// kAmplificationRange)
+    double amplification = kDefaultAmplification;
 };
 
 inline constexpr int kMinPoints = 2, kMaxPoints = 100000;
@@ -55,6 +62,9 @@ inline constexpr int kMinPoints = 2, kMaxPoints = 100000;
 struct BodeCurve {
     std::string label;  ///< "ddx/tau1"; closed loop: "H x" (closed), "L x" (loop transfer)
     std::vector<double> magnitude_db, phase_deg;
+    /// The magnitude's unit, output per input: "(m/s^2)/N", "(rad/s^2)/m", "m/(N m)"; closed
+    /// loop: "1" (a ratio of like quantities).
+    std::string unit;
 };
 
 struct FrequencyResponseResult {
@@ -70,6 +80,12 @@ struct FrequencyResponseResult {
     std::string summary;
     std::vector<BodeCurve> curves;
     bool closed_loop = false;
+    /// closed_loop: the plant was the lumped compliant model
+    bool lumped = false;
+    /// closed_loop, per axis x, y, theta: the usable band's end [Hz] (NaN: beyond the grid; 0: |H|
+    /// is outside [1/A, A] at f_min already), and |H|'s largest value on the grid [dB] and its
+    /// frequency [Hz] (shakeLoopBand)
+    std::vector<double> band_end, peak_db, peak_frequency;
 };
 
 /// Throws OptionError naming the option that breaks its range.

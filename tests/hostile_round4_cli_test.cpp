@@ -338,9 +338,20 @@ TEST(HostileRound4Cli, HelpTakesOneCommandAndFailsOnAFullOutput) {
 
 TEST(HostileRound4Cli, ARigidPlantOnACompliantRobotSaysSo) {
     const fs::path dir = freshScratchDirectory("hostile_round4_cli");
-    CliResult r = runCli("frequency-response --closed-loop --points 3 -o /dev/null --robot " + kCompliant);
+    CliResult r =
+        runCli("frequency-response --closed-loop --compliance rigid --points 3 -o /dev/null --robot " + kCompliant);
     EXPECT_EQ(r.exit_code, 0) << r.err;
     EXPECT_TRUE(has(r.out, "# rigid plant: the compliance the robot file declares")) << r.out;
+    // by default the closed loop's plant is the lumped compliant model, said so (a pose feedback
+    // slow enough for its 2 %-damped resonance: the default 6 Hz is refused as unstable)
+    r = runCli("frequency-response --closed-loop --natural-frequency 0.5 --points 3 -o /dev/null --robot " +
+               kCompliant);
+    EXPECT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_TRUE(has(r.out, "# plant: the lumped compliant model")) << r.out;
+    r = runCli("frequency-response --closed-loop --points 3 -o /dev/null --robot " + kCompliant);
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_TRUE(has(r.err, "unstable closed loop")) << r.err;
+    EXPECT_TRUE(has(r.err, "lumped compliant plant")) << r.err;
     // without compliance, no such line
     EXPECT_FALSE(has(runCli("frequency-response --closed-loop --points 3 -o /dev/null").out, "rigid plant"));
     r = runCli("shake --robot " + kCompliant + " --record " + kRecord + kQuick + " --out-dir " + (dir / "s").string());

@@ -54,8 +54,9 @@ void addFrequencyResponseCommand(CLI::App& app) {
         "the lumped compliant model (massless springs, rigid bodies: the model of `nocdyn pose`'s natural\n"
         "frequencies) from each drive's commanded position uc (a drive with a stiffness: its servo's set point)\n"
         "or force tau (stiffness 0) to the platform acceleration; --compliance rigid forces the rigid model.\n"
-        "The shake table's closed loop (always the rigid plant; its summary says so on a compliant robot):\n"
-        "--closed-loop, e.g.\n"
+        "The shake table's closed loop, on the same plant (the lumped one: the drives' set points follow the\n"
+        "forces' rigid motion), with each axis' usable band (|H| within [1/A, A], --amplification): --closed-loop,\n"
+        "e.g.\n"
         "  nocdyn frequency-response --closed-loop --payload 5 --f-min 0.1 --f-max 4000 -o loop.csv\n"
         "Example: nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant");
     addRobotOption(*command, options->robot);
@@ -71,7 +72,8 @@ void addFrequencyResponseCommand(CLI::App& app) {
     command
         ->add_option("--compliance", options->compliance,
                      "The plant's model: auto (lumped when the robot file declares compliance, else rigid), rigid,\n"
-                     "or lumped (inputs: commanded drive positions uc [m or rad], forces tau for stiffness-0 drives)")
+                     "or lumped (inputs: commanded drive positions uc [m or rad], forces tau for stiffness-0 drives;\n"
+                     "with --closed-loop the loop's plant)")
         ->check(CLI::IsMember({"auto", "rigid", "lumped"}))
         ->capture_default_str();
     command->add_option("--f-min", options->f_min, "Lowest frequency [Hz]")
@@ -103,6 +105,12 @@ void addFrequencyResponseCommand(CLI::App& app) {
                      "With --closed-loop: f_n of the pose feedback [Hz] (as shake's); a loop it makes unstable is "
                      "refused")
         ->check(within(app::kShakeNaturalFrequencyRange))
+        ->capture_default_str();
+    command
+        ->add_option("--amplification", options->amplification,
+                     "With --closed-loop: the usable band of an axis ends where |achieved/reference| leaves [1/A, A]\n"
+                     "(as envelope's --amplification)")
+        ->check(within(app::kAmplificationRange))
         ->capture_default_str();
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
     command->add_option("--summary", options->summary, "Summary text file [default: stdout when -o is given]")

@@ -481,7 +481,10 @@ def frequency_response(*, robot=None, set=None, output=None, summary=None, figur
     at C unknown to the controller, ``controller_rate`` [Hz] and the pose feedback's
     ``natural_frequency`` [Hz] (both only with closed_loop; an unstable loop is refused); the
     Table has <axis>_db, _deg, _loop_db, _loop_deg per axis and ``text`` each axis's -3 dB
-    bandwidth, crossover and phase margin."""
+    bandwidth, crossover and phase margin, and its usable band (``band <axis> <end Hz> <peak dB>
+    <at Hz>`` lines: |H| within [1/A, A] up to the end, A = ``amplification``, 1.1 by default). On a
+    robot file that declares compliance the loop's plant is the lumped compliant model
+    (``compliance`` "auto" or "lumped"; "rigid" forces the rigid plant)."""
     options = {k: v for k, v in options.items() if not (k in ("pose", "rate") and v is None)}
     for name, what in (("pose", "numbers [x, y, theta]"), ("rate", "numbers [dx, dy, dtheta]")):
         if name in options:

@@ -97,7 +97,8 @@ void bindSimulation(py::module_& m) {
         .option("closed_loop", &app::FrequencyResponseOptions::closed_loop)
         .option("payload", &app::FrequencyResponseOptions::payload)
         .option("controller_rate", &app::FrequencyResponseOptions::controller_rate)
-        .option("natural_frequency", &app::FrequencyResponseOptions::natural_frequency);
+        .option("natural_frequency", &app::FrequencyResponseOptions::natural_frequency)
+        .option("amplification", &app::FrequencyResponseOptions::amplification);
     m.def(
         "_run_frequency_response",
         [](const app::FrequencyResponseOptions& options, const std::string& summary, const std::string& figure) {
