@@ -385,7 +385,7 @@ report::Figure bodeFigure(const FrequencyResponseResult& result) {
                                                : "|H| [dB re 1 " + report::literalText(unit) + "]";
         magnitude.push_back({title, "frequency [Hz]", ylabel, {}, true, false, false});
     }
-    report::PlotPanel phase{"phase of every channel, from (-180, 180] at f_min, continuous",
+    report::PlotPanel phase{"phase of every channel: in (-180, 180] at the lowest frequency, continuous above",
                             "frequency [Hz]",
                             "phase [deg]",
                             {},

@@ -194,8 +194,8 @@ TEST(HostileRound4Cli, EveryRobotAndLimbNameIsEscapedOnTheTerminal) {
     const std::string robot = " --robot " + (dir / "inj.yaml").string();
     for (const std::string& command :
          {std::string("pose 0 0 0"), std::string("frequency-response --points 3 -o /dev/null"),
-          std::string("frequency-response --closed-loop --points 3 -o /dev/null"), std::string("regressor"),
-          std::string("envelope --points 2"), std::string("workspace --resolution 11")}) {
+          std::string("frequency-response --closed-loop --natural-frequency 0.5 --points 3 -o /dev/null"),
+          std::string("regressor"), std::string("envelope --points 2"), std::string("workspace --resolution 11")}) {
         const CliResult r = runCli(command + robot);
         EXPECT_EQ(r.exit_code, 0) << command << "\n" << r.err;
         EXPECT_FALSE(has(r.out + r.err, "\x1b")) << command << ": a raw ESC reached the terminal";
