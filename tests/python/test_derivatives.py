@@ -151,6 +151,27 @@ def test_closed_loop_response_of_the_paper_robot_is_the_guide_s():
     assert loaded.data[-1, col["y_db"]] == pytest.approx(-5.1516, abs=1e-3)
 
 
+def test_closed_loop_on_the_compliant_robot_has_its_resonance_and_usable_band():
+    robot = str(SOURCE_DIR / "robots" / "paper-3prr-compliant.yaml")
+    # the default pose feedback cannot be closed around the 2 %-damped 41 Hz mode
+    with pytest.raises(ValueError, match="unstable closed loop.*lumped compliant plant"):
+        nocdyn.frequency_response(robot=robot, closed_loop=True, f_min=0.1, f_max=1000.0, points=50)
+    loop = nocdyn.frequency_response(robot=robot, closed_loop=True, natural_frequency=0.5, f_min=0.1,
+                                     f_max=1000.0, points=400)
+    assert "# plant: the lumped compliant model" in loop.text
+    assert "band  x  12.3109  32.6503  41.3563" in loop.text
+    col = {c: i for i, c in enumerate(loop.columns)}
+    assert abs(loop.data[0, col["x_db"]]) < 1e-3
+    wider = nocdyn.frequency_response(robot=robot, closed_loop=True, natural_frequency=0.5, f_min=0.1,
+                                      f_max=1000.0, points=400, amplification=1.5)
+    assert "[0.6667, 1.5000]" in wider.text
+    rigid = nocdyn.frequency_response(robot=robot, closed_loop=True, compliance="rigid", f_min=0.1, f_max=1000.0,
+                                      points=50)
+    assert "band  x  beyond the grid" in rigid.text
+    with pytest.raises(ValueError, match="^amplification: does not apply to the plant"):
+        nocdyn.frequency_response(robot=robot, amplification=1.5, points=3)
+
+
 def _compliant():
     return nocdyn.Robot.load(SOURCE_DIR / "robots" / "paper-3prr-compliant.yaml")
 
