@@ -171,7 +171,8 @@ std::unique_ptr<CLI::App> makeApp() {
         "--out-dir DIR for the folder of a command with several, --figure STEM for a figure (STEM.png,\n"
         "STEM.svg): figures only when asked for.\n"
         "Run `nocdyn <command> --help` (or `nocdyn help <command>`) for a command's details, options and an\n"
-        "example; `nocdyn --version` (-V) for the version.",
+        "example; `nocdyn --version` (-V) for the version and the commit built (the commit of the last\n"
+        "configure).",
         "nocdyn");
     CLI::App& app = *owned;
     app.require_subcommand(1);
@@ -195,7 +196,7 @@ std::unique_ptr<CLI::App> makeApp() {
 #ifdef NOCDYN_HAS_ENGINES
     addValidateCommand(app);
 #endif
-    app.set_version_flag("--version,-V", std::string("nocdyn ") + NOCDYN_VERSION);
+    app.set_version_flag("--version,-V", versionText());
     requireFiniteFloats(app);
     // before the chosen command runs: none may write over its own input
     app.parse_complete_callback([&app] {
