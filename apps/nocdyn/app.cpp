@@ -170,6 +170,7 @@ std::unique_ptr<CLI::App> makeApp() {
         "Output files: -o/--output FILE for a command's one output file (a table: stdout without it),\n"
         "--out-dir DIR for the folder of a command with several, --figure STEM for a figure (STEM.png,\n"
         "STEM.svg): figures only when asked for.\n"
+        "Every command takes --quiet (-q): nothing on standard error but errors and warnings.\n"
         "Run `nocdyn <command> --help` (or `nocdyn help <command>`) for a command's details, options and an\n"
         "example; `nocdyn --version` (-V) for the version and the commit built (the commit of the last\n"
         "configure).",
@@ -197,6 +198,8 @@ std::unique_ptr<CLI::App> makeApp() {
     addValidateCommand(app);
 #endif
     app.set_version_flag("--version,-V", versionText());
+    // one --quiet for every command, read through progress.hpp's quiet()
+    for (CLI::App* command : app.get_subcommands({})) addQuietOption(*command);
     requireFiniteFloats(app);
     // before the chosen command runs: none may write over its own input
     app.parse_complete_callback([&app] {
@@ -229,13 +232,6 @@ std::unique_ptr<CLI::App> makeApp() {
         {"reproduce", "nocdyn reproduce --out-dir results"},
         {"validate", "nocdyn validate --trajectory paper1 --output validation.csv"},
     };
-    // --quiet on every long command (runCommandLine reads it: no progress, no "wrote FILE" lines)
-    for (const char* name : {"control", "shake", "simulate", "inverse-dynamics"}) {
-        CLI::App* command = findCommand(app, name);
-        if (command != nullptr && command->get_option_no_throw("--quiet") == nullptr) {
-            command->add_flag("--quiet,-q")->description("No progress line and no 'wrote FILE' line on standard error");
-        }
-    }
     for (const auto& [name, example] : examples) {
         CLI::App* command = findCommand(app, name);
         if (command != nullptr && command->get_description().find("Example: ") == std::string::npos) {
@@ -303,8 +299,7 @@ int runCommandLine(int argc, const char* const* argv) {
         return 2;
     }
     announceWrittenFiles();
-    setQuiet(std::any_of(arguments.begin(), std::find(arguments.begin(), arguments.end(), "--"),
-                         [](const std::string& a) { return a == "--quiet" || a == "-q"; }));
+    setQuiet(false);  // the command's --quiet sets it while parsed (addQuietOption)
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
