@@ -159,6 +159,14 @@ std::string misspelling(CLI::App& app, const std::vector<std::string>& arguments
     return {};
 }
 
+/// Where an error on this command line points the user: the help of the command named first,
+/// else the top-level help (the list of commands).
+std::string helpPointer(CLI::App& app, const std::vector<std::string>& arguments) {
+    if (!arguments.empty() && findCommand(app, arguments.front()) != nullptr)
+        return "(see nocdyn " + arguments.front() + " --help)";
+    return "(see nocdyn --help)";
+}
+
 }  // namespace
 
 namespace nocdyn::cli {
@@ -295,7 +303,7 @@ int runCommandLine(int argc, const char* const* argv) {
         return runCommandLine(static_cast<int>(help.size()), help.data());
     }
     if (const std::string typo = misspelling(app, arguments); !typo.empty()) {
-        std::cerr << "nocdyn: error: " << typo << " (see nocdyn --help)\n";
+        std::cerr << "nocdyn: error: " << typo << " " << helpPointer(app, arguments) << "\n";
         return 2;
     }
     announceWrittenFiles();
@@ -310,13 +318,15 @@ int runCommandLine(int argc, const char* const* argv) {
             // the help or version text is the command's output: a failed write is an error
             return standardOutputWritten() ? 0 : 1;
         }
-        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << " (see --help)\n";
+        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << " " << helpPointer(app, arguments)
+                  << "\n";
         return 2;
     } catch (const nocdyn::app::OptionError& e) {
         // a value the command's job refused, under the option's name on the command line
         const std::vector<CLI::App*> parsed = app.get_subcommands();
         const std::string message = commandLineMessage(e, parsed.empty() ? nullptr : parsed.front());
-        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(message) << "\n";
+        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(message) << " " << helpPointer(app, arguments)
+                  << "\n";
         return 1;
     } catch (const nocdyn::Error& e) {
         std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << "\n";
