@@ -181,7 +181,7 @@ std::unique_ptr<CLI::App> makeApp() {
         "Every command takes --quiet (-q): nothing on standard error but errors and warnings.\n"
         "Run `nocdyn <command> --help` (or `nocdyn help <command>`) for a command's details, options and an\n"
         "example; `nocdyn --version` (-V) for the version and the commit built (the commit of the last\n"
-        "configure).",
+        "configure). Without arguments, nocdyn prints this help on standard error and exits with status 2.",
         "nocdyn");
     CLI::App& app = *owned;
     app.require_subcommand(1);
@@ -301,6 +301,12 @@ int runCommandLine(int argc, const char* const* argv) {
         if (arguments.size() == 2) help.push_back(argv[2]);
         help.push_back("--help");
         return runCommandLine(static_cast<int>(help.size()), help.data());
+    }
+    // no command: the help (the list of commands) as the usage message, on standard error, and
+    // the status of a malformed command line
+    if (arguments.empty()) {
+        std::cerr << app.help();
+        return 2;
     }
     if (const std::string typo = misspelling(app, arguments); !typo.empty()) {
         std::cerr << "nocdyn: error: " << typo << " " << helpPointer(app, arguments) << "\n";
