@@ -69,9 +69,8 @@ std::string quoted(const std::string& path) {
     return out;
 }
 
-/// Why files cannot be written into `folder` (the folder of an output file, or an output folder
-/// the command creates when `created`): a file on the way, or (`created` false) a folder that does
-/// not exist; empty when they can be.
+/// Why an output file cannot be written into `folder`: a file on the way, or (unless the command
+/// creates the folder: `created`) a folder that does not exist; empty when it can be.
 std::string folderProblem(const fs::path& folder, bool created) {
     std::error_code error;
     fs::path at = fs::absolute(folder.empty() ? fs::path(".") : folder, error);
@@ -126,15 +125,14 @@ void CommandPaths::outputFolder(const std::string& option, const std::string& pa
 void refuseOutputOverInput(const std::string& command, const CommandPaths& paths) {
     using Role = CommandPath::Role;
     const std::vector<CommandPath>& all = paths.paths();
-    // every output's folder exists (or is an output folder the command creates), before any work
+    // every output file's folder exists (or is inside an output folder, which the command creates,
+    // as requireOutputFolder checks), before any work
     for (const CommandPath& out : all) {
-        if (out.role == Role::input) continue;
-        const bool folder = out.role == Role::output_folder;
-        const fs::path where = folder ? fs::path(out.path) : fs::path(out.path).parent_path();
-        const bool created = folder || std::any_of(all.begin(), all.end(), [&](const CommandPath& other) {
-                                 return other.role == Role::output_folder && namedInside(out.path, other.path);
-                             });
-        if (const std::string problem = folderProblem(where, created); !problem.empty()) {
+        if (out.role != Role::output) continue;
+        const bool created = std::any_of(all.begin(), all.end(), [&](const CommandPath& other) {
+            return other.role == Role::output_folder && namedInside(out.path, other.path);
+        });
+        if (const std::string problem = folderProblem(fs::path(out.path).parent_path(), created); !problem.empty()) {
             std::string message = command;
             message += ": ";
             message += out.option;
@@ -142,7 +140,7 @@ void refuseOutputOverInput(const std::string& command, const CommandPaths& paths
             message += quoted(out.path);
             message += ": ";
             message += problem;
-            if (!folder) message += " (create it first)";
+            message += " (create it first)";
             throw Error(message);
         }
     }

@@ -38,9 +38,9 @@ private:
 };
 
 /// Refuses (nocdyn::Error, "command: ...", naming the option and the path) a command that could not
-/// write an output once its work is done: an output file whose folder does not exist (unless it
-/// is inside an output folder of the call, which the command creates) or is a file, or an output
-/// folder with a file on its way. Then refuses one whose output would replace:
+/// write an output file once its work is done: its folder does not exist (unless it is inside an
+/// output folder of the call, which the command creates) or is a file. Then refuses one whose
+/// output would replace:
 ///  - one of its input files (the same file by inode, through any path or link);
 ///  - another of its outputs (the same file by inode, or the same path once resolved: two
 ///    options naming one file, or two stems naming one figure); a device such as /dev/null is
