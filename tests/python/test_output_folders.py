@@ -11,12 +11,14 @@ import nocdyn
 def test_an_output_into_a_missing_folder_is_refused_before_the_work(tmp_path):
     missing = tmp_path / "no-such-folder"
     calls = []
-    with pytest.raises(ValueError, match=re.escape(f"output '{missing}/id.csv': the folder '{missing}' does not exist")):
+    refused = re.escape(f"output '{missing}/id.csv': the folder '{missing}' does not exist")
+    with pytest.raises(ValueError, match=refused):
         # 20 s of trajectory at 10 kHz: refused before any sample (no progress reported)
         nocdyn.inverse_dynamics("paper1", duration=20.0, output=missing / "id.csv",
                                 progress=lambda done, total: calls.append(done))
     assert calls == [] and not missing.exists()
-    with pytest.raises(ValueError, match=re.escape(f"figure '{missing}/envelope.png': the folder '{missing}' does not exist")):
+    refused = re.escape(f"figure '{missing}/envelope.png': the folder '{missing}' does not exist")
+    with pytest.raises(ValueError, match=refused):
         nocdyn.envelope(points=30, figure=missing / "envelope")
     assert not missing.exists()
 
