@@ -1,5 +1,6 @@
 #include "app/outputs.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <system_error>
@@ -68,6 +69,39 @@ std::string quoted(const std::string& path) {
     return out;
 }
 
+/// Why an output file cannot be written into `folder`: a file on the way, or (unless the command
+/// creates the folder: `created`) a folder that does not exist; empty when it can be.
+std::string folderProblem(const fs::path& folder, bool created) {
+    std::error_code error;
+    fs::path at = fs::absolute(folder.empty() ? fs::path(".") : folder, error);
+    if (error) return {};
+    // the folder itself, then each folder on its way, up to the first that exists
+    for (bool first = true;; first = false) {
+        const fs::file_status status = fs::status(at, error);
+        if (!error && fs::exists(status)) {
+            if (fs::is_directory(status)) {
+                return first || created ? std::string() : "the folder " + quoted(folder.string()) + " does not exist";
+            }
+            return first
+                       ? quoted(folder.string()) + " is a file, not a folder"
+                       : quoted(at.string()) + ", on the way to the folder " + quoted(folder.string()) + ", is a file";
+        }
+        if (!at.has_relative_path() || at.parent_path() == at) return {};
+        at = at.parent_path();
+    }
+}
+
+/// Whether `path` is inside `folder` by their names (made absolute and normal): a file the
+/// command writes into an output folder it creates.
+bool namedInside(const fs::path& path, const fs::path& folder) {
+    std::error_code ep, ef;
+    const fs::path p = fs::absolute(path, ep).lexically_normal();
+    const fs::path f = fs::absolute(folder, ef).lexically_normal();
+    if (ep || ef) return false;
+    const fs::path relative = p.lexically_relative(f);
+    return !relative.empty() && *relative.begin() != "..";
+}
+
 }  // namespace
 
 void CommandPaths::input(const std::string& option, const std::string& path) {
@@ -91,6 +125,25 @@ void CommandPaths::outputFolder(const std::string& option, const std::string& pa
 void refuseOutputOverInput(const std::string& command, const CommandPaths& paths) {
     using Role = CommandPath::Role;
     const std::vector<CommandPath>& all = paths.paths();
+    // every output file's folder exists (or is inside an output folder, which the command creates,
+    // as requireOutputFolder checks), before any work
+    for (const CommandPath& out : all) {
+        if (out.role != Role::output) continue;
+        const bool created = std::any_of(all.begin(), all.end(), [&](const CommandPath& other) {
+            return other.role == Role::output_folder && namedInside(out.path, other.path);
+        });
+        if (const std::string problem = folderProblem(fs::path(out.path).parent_path(), created); !problem.empty()) {
+            std::string message = command;
+            message += ": ";
+            message += out.option;
+            message += ' ';
+            message += quoted(out.path);
+            message += ": ";
+            message += problem;
+            message += " (create it first)";
+            throw Error(message);
+        }
+    }
     for (std::size_t a = 0; a < all.size(); ++a) {
         const CommandPath& out = all[a];
         if (out.role != Role::output) continue;

@@ -1,6 +1,7 @@
-// The one check of a command's paths, for the command line and Python alike: no output may
-// replace one of the command's inputs or another of its outputs. A figure's stem stands for
-// each file it names (STEM.png, STEM.svg; a frequency map's also STEM.csv).
+// The one check of a command's paths, for the command line and Python alike, before its work: every
+// output can be written (its folder exists), and no output may replace one of the command's inputs
+// or another of its outputs. A figure's stem stands for each file it names (STEM.png, STEM.svg; a
+// frequency map's also STEM.csv).
 #pragma once
 
 #include <initializer_list>
@@ -36,7 +37,10 @@ private:
     std::vector<CommandPath> paths_;
 };
 
-/// Refuses (nocdyn::Error, "command: ...") a command whose output would replace:
+/// Refuses (nocdyn::Error, "command: ...", naming the option and the path) a command that could not
+/// write an output file once its work is done: its folder does not exist (unless it is inside an
+/// output folder of the call, which the command creates) or is a file. Then refuses one whose
+/// output would replace:
 ///  - one of its input files (the same file by inode, through any path or link);
 ///  - another of its outputs (the same file by inode, or the same path once resolved: two
 ///    options naming one file, or two stems naming one figure); a device such as /dev/null is

@@ -25,9 +25,12 @@ inline std::string readWhole(const std::filesystem::path& path) {
     return text.str();
 }
 
-/// A name private to the running test: ctest runs the tests in parallel processes.
+/// A name private to the running test: ctest runs the tests in parallel processes. A value-
+/// parametrised test's name ("Test/param") becomes one file name ("Test_param").
 inline std::string perTest(const std::string& name) {
-    return std::string(testing::UnitTest::GetInstance()->current_test_info()->name()) + "_" + name;
+    std::string test = testing::UnitTest::GetInstance()->current_test_info()->name();
+    for (char& c : test) c = c == '/' ? '_' : c;
+    return test + "_" + name;
 }
 
 /// An empty directory private to the running test.

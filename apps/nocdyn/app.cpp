@@ -159,6 +159,14 @@ std::string misspelling(CLI::App& app, const std::vector<std::string>& arguments
     return {};
 }
 
+/// Where an error on this command line points the user: the help of the command named first,
+/// else the top-level help (the list of commands).
+std::string helpPointer(CLI::App& app, const std::vector<std::string>& arguments) {
+    if (!arguments.empty() && findCommand(app, arguments.front()) != nullptr)
+        return "(see nocdyn " + arguments.front() + " --help)";
+    return "(see nocdyn --help)";
+}
+
 }  // namespace
 
 namespace nocdyn::cli {
@@ -170,8 +178,10 @@ std::unique_ptr<CLI::App> makeApp() {
         "Output files: -o/--output FILE for a command's one output file (a table: stdout without it),\n"
         "--out-dir DIR for the folder of a command with several, --figure STEM for a figure (STEM.png,\n"
         "STEM.svg): figures only when asked for.\n"
+        "Every command takes --quiet (-q): nothing on standard error but errors and warnings.\n"
         "Run `nocdyn <command> --help` (or `nocdyn help <command>`) for a command's details, options and an\n"
-        "example; `nocdyn --version` (-V) for the version.",
+        "example; `nocdyn --version` (-V) for the version and the commit built (the commit of the last\n"
+        "configure). Without arguments, nocdyn prints this help on standard error and exits with status 2.",
         "nocdyn");
     CLI::App& app = *owned;
     app.require_subcommand(1);
@@ -195,7 +205,9 @@ std::unique_ptr<CLI::App> makeApp() {
 #ifdef NOCDYN_HAS_ENGINES
     addValidateCommand(app);
 #endif
-    app.set_version_flag("--version,-V", std::string("nocdyn ") + NOCDYN_VERSION);
+    app.set_version_flag("--version,-V", versionText());
+    // one --quiet for every command, read through progress.hpp's quiet()
+    for (CLI::App* command : app.get_subcommands({})) addQuietOption(*command);
     requireFiniteFloats(app);
     // before the chosen command runs: none may write over its own input
     app.parse_complete_callback([&app] {
@@ -228,13 +240,6 @@ std::unique_ptr<CLI::App> makeApp() {
         {"reproduce", "nocdyn reproduce --out-dir results"},
         {"validate", "nocdyn validate --trajectory paper1 --output validation.csv"},
     };
-    // --quiet on every long command (runCommandLine reads it: no progress, no "wrote FILE" lines)
-    for (const char* name : {"control", "shake", "simulate", "inverse-dynamics"}) {
-        CLI::App* command = findCommand(app, name);
-        if (command != nullptr && command->get_option_no_throw("--quiet") == nullptr) {
-            command->add_flag("--quiet,-q")->description("No progress line and no 'wrote FILE' line on standard error");
-        }
-    }
     for (const auto& [name, example] : examples) {
         CLI::App* command = findCommand(app, name);
         if (command != nullptr && command->get_description().find("Example: ") == std::string::npos) {
@@ -297,13 +302,18 @@ int runCommandLine(int argc, const char* const* argv) {
         help.push_back("--help");
         return runCommandLine(static_cast<int>(help.size()), help.data());
     }
+    // no command: the help (the list of commands) as the usage message, on standard error, and
+    // the status of a malformed command line
+    if (arguments.empty()) {
+        std::cerr << app.help();
+        return 2;
+    }
     if (const std::string typo = misspelling(app, arguments); !typo.empty()) {
-        std::cerr << "nocdyn: error: " << typo << " (see nocdyn --help)\n";
+        std::cerr << "nocdyn: error: " << typo << " " << helpPointer(app, arguments) << "\n";
         return 2;
     }
     announceWrittenFiles();
-    setQuiet(std::any_of(arguments.begin(), std::find(arguments.begin(), arguments.end(), "--"),
-                         [](const std::string& a) { return a == "--quiet" || a == "-q"; }));
+    setQuiet(false);  // the command's --quiet sets it while parsed (addQuietOption)
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
@@ -314,13 +324,15 @@ int runCommandLine(int argc, const char* const* argv) {
             // the help or version text is the command's output: a failed write is an error
             return standardOutputWritten() ? 0 : 1;
         }
-        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << " (see --help)\n";
+        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << " " << helpPointer(app, arguments)
+                  << "\n";
         return 2;
     } catch (const nocdyn::app::OptionError& e) {
         // a value the command's job refused, under the option's name on the command line
         const std::vector<CLI::App*> parsed = app.get_subcommands();
         const std::string message = commandLineMessage(e, parsed.empty() ? nullptr : parsed.front());
-        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(message) << "\n";
+        std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(message) << " " << helpPointer(app, arguments)
+                  << "\n";
         return 1;
     } catch (const nocdyn::Error& e) {
         std::cerr << "nocdyn: error: " << nocdyn::io::terminalMessage(e.what()) << "\n";

@@ -17,6 +17,10 @@ namespace nocdyn::cli {
 /// prints them; returns the exit status (0, 1 for an error, 2 for a malformed argument).
 int runCommandLine(int argc, const char* const* argv);
 
+/// `nocdyn --version`: "nocdyn VERSION (commit HASH)", HASH the short commit the build was configured
+/// from ("unknown" when the source was not a git checkout).
+[[nodiscard]] std::string versionText();
+
 /// Every command's options as JSON: names, default, flag, positional, hidden (an old spelling).
 [[nodiscard]] std::string optionsJson();
 

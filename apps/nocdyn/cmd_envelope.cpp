@@ -16,7 +16,6 @@ namespace {
 
 struct Options : app::EnvelopeOptions {
     std::string output, figure;  ///< no figure unless asked for
-    bool quiet = false;
 };
 
 /// "actuator 2 (limb 2, joint 1)", "limb 3, joint 2 (passive)", "limb 1", or "-".
@@ -38,11 +37,11 @@ void run(const Options& options) {
         throw CLI::ValidationError("--max-frequency", "must be at least --min-frequency");
     }
     TerminalObserver terminal("nocdyn envelope");
-    const app::EnvelopeResult result = app::runEnvelope(options, options.quiet ? app::silent() : terminal);
+    const app::EnvelopeResult result = app::runEnvelope(options, quiet() ? app::silent() : terminal);
     terminal.finish();
     if (!options.output.empty()) writeTable(result.table, options.output);
     if (!options.figure.empty()) app::writeEnvelopeFigure(result, options.figure);
-    if (options.quiet) return;
+    // the table is the answer when no file is named; the summary line is left out when quiet
     if (options.output.empty()) {
         std::printf("axis   f [Hz]    amplitude        limit      peak |tau|/effort  where\n");
         for (const auto& p : result.points) {
@@ -52,7 +51,7 @@ void run(const Options& options) {
                         limitName(p.limit), p.peak_effort_ratio, where(p).c_str());
         }
     }
-    std::printf("%s\n", result.summary.c_str());
+    if (!quiet()) std::printf("%s\n", result.summary.c_str());
 }
 
 }  // namespace
@@ -92,8 +91,6 @@ void addEnvelopeCommand(CLI::App& app) {
                      "the lowest frequency where it leaves [1/A, A] the limit is resonance")
         ->check(within(app::kAmplificationRange))
         ->capture_default_str();
-    command->add_flag("--quiet,-q", options->quiet,
-                      "Print nothing (no table, no progress line); errors still go to stderr");
     command->callback([options] { run(*options); });
 }
 

@@ -13,17 +13,13 @@ namespace nocdyn::cli {
 
 namespace {
 
-struct Options : app::ReproduceOptions {
-    bool quiet = false;  ///< nothing on stdout, no progress line
-};
-
-void run(const Options& options) {
+void run(const app::ReproduceOptions& options) {
     // about two minutes in all: one progress line on a terminal names the section running
     // (none with --quiet)
     TerminalObserver observer("nocdyn reproduce");
     const app::ReproduceResult result = app::runReproduce(options, observer);
     observer.finish();
-    if (options.quiet) return;
+    if (quiet()) return;
     std::cout << "nocdyn reproduce: wrote " << result.summary.string() << ", CSV files and figures in "
               << result.folder.string() << "/\n";
 }
@@ -31,7 +27,7 @@ void run(const Options& options) {
 }  // namespace
 
 void addReproduceCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<app::ReproduceOptions>();
     CLI::App* command = app.add_subcommand(
         "reproduce",
         "The main job: reproduce the paper's results for its prototype. Both paper trajectories over\n"
@@ -58,8 +54,6 @@ void addReproduceCommand(CLI::App& app) {
                      "is a quick check of the same code, its estimates from less data")
         ->check(within(app::kIdentificationDurationRange))
         ->capture_default_str();
-    command->add_flag("--quiet,-q", options->quiet,
-                      "Print nothing on stdout and no progress line (results in the folder; errors still on stderr)");
     command->callback([options] { run(*options); });
 }
 

@@ -31,7 +31,7 @@ void run(const Options& options) {
         throw Error(result.stopped +
                     (options.output.empty() ? "" : " (" + std::to_string(result.rows) + " rows written)"));
     }
-    std::cerr << "nocdyn: " << app::summaryLine(result) << "\n";
+    if (!quiet()) std::cerr << "nocdyn: " << app::summaryLine(result) << "\n";
 }
 
 }  // namespace

@@ -21,6 +21,7 @@ void run(const Options& options) {
     TerminalObserver observer("nocdyn validate");
     const app::ValidateResult result = app::runValidate(options, observer);
     writeTable(result.table, options.output);
+    if (quiet()) return;
     std::cerr << "nocdyn validate: " << io::terminalText(result.robot) << ", " << io::terminalText(result.trajectory)
               << ", " << result.samples << " samples\n"
               << result.agreement;

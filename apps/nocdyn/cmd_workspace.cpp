@@ -19,7 +19,7 @@ namespace {
 struct Options : app::WorkspaceOptions {
     std::string output, figure;  ///< no figure unless asked for
     std::string frequency_map;   ///< STEM.csv, STEM.png, STEM.svg of the first natural frequency
-    bool quiet = false, json = false;
+    bool json = false;
 };
 
 /// The summary for a script: the grid, the feasible area and the singularity points (SI units).
@@ -48,7 +48,7 @@ nlohmann::json summaryJson(const app::WorkspaceResult& result) {
 void run(Options options) {
     if (!options.frequency_map.empty()) options.first_frequency = true;
     TerminalObserver terminal("nocdyn workspace");
-    const app::WorkspaceResult result = app::runWorkspace(options, options.quiet ? app::silent() : terminal);
+    const app::WorkspaceResult result = app::runWorkspace(options, quiet() ? app::silent() : terminal);
     terminal.finish();
     if (!options.output.empty()) writeTable(result.table, options.output);
     if (!options.figure.empty()) app::writeWorkspaceFigure(result, options.figure);
@@ -58,7 +58,7 @@ void run(Options options) {
     }
     if (options.json) {
         std::cout << summaryJson(result).dump(2) << "\n";
-    } else if (!options.quiet) {
+    } else if (!quiet()) {
         std::printf("%s\n", result.summary.c_str());
     }
 }
@@ -95,15 +95,11 @@ void addWorkspaceCommand(CLI::App& app) {
                      "Stem of the first natural frequency's CSV and heat map (STEM.csv, STEM.png, STEM.svg);\n"
                      "implies --first-frequency [default: none]")
         ->check(nonEmptyPath());
-    command->add_flag("--quiet,-q", options->quiet,
-                      "Print nothing (no summary, no progress line); errors still go to stderr");
-    command
-        ->add_flag(
-            "--json", options->json,
-            "Print the summary as JSON instead (robot, theta [rad], area [m^2], resolution, step [m], x_range and\n"
-            "y_range [m], limb_singular_points, actuation_singular_points; with --first-frequency first_frequency:\n"
-            "points, lowest [Hz], lowest_at {x, y [m], theta [rad]}, highest [Hz])")
-        ->excludes("--quiet");
+    command->add_flag(
+        "--json", options->json,
+        "Print the summary as JSON instead (robot, theta [rad], area [m^2], resolution, step [m], x_range and\n"
+        "y_range [m], limb_singular_points, actuation_singular_points; with --first-frequency first_frequency:\n"
+        "points, lowest [Hz], lowest_at {x, y [m], theta [rad]}, highest [Hz])");
     command->callback([options] { run(*options); });
 }
 

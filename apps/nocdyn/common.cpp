@@ -130,6 +130,13 @@ void refuseOutputOverInput(const CLI::App& command) {
     app::refuseOutputOverInput(command.get_name(), commandPaths(command));
 }
 
+void addQuietOption(CLI::App& command) {
+    command.add_flag_callback(
+        "--quiet,-q", [] { setQuiet(true); },
+        "Nothing on standard error but errors and warnings (no progress line, no 'wrote FILE' line, no\n"
+        "summary line); the results unchanged: every file, and a table or JSON printed on standard output");
+}
+
 void addRobotOption(CLI::App& command, app::RobotSource& robot) {
     command
         .add_option("--robot", robot.path, "Robot file (YAML); default: the paper's prototype (robots/paper-3prr.yaml)")

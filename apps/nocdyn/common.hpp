@@ -49,6 +49,10 @@ void requireFiniteFloats(CLI::App& app);
 /// of the call. Called for every command once parsed.
 void refuseOutputOverInput(const CLI::App& command);
 
+/// Adds --quiet (-q) to a command: the one definition every command shares (progress.hpp's quiet()
+/// reads it): nothing on standard error but errors and warnings, the results unchanged.
+void addQuietOption(CLI::App& command);
+
 /// A CLI11 check for a file name given on the command line: an empty one is refused (it would
 /// otherwise mean standard output, the default when the option is absent).
 [[nodiscard]] CLI::Validator nonEmptyPath();

@@ -4,7 +4,7 @@ A copy of the source tree (nothing is written into the real one) is installed wi
 into a fresh virtual environment made with --system-site-packages (no download: no build
 isolation, no dependencies fetched), reusing the configured build folder given (only
 out-of-date targets of the package are built). Then, from another folder, with no PYTHONPATH:
-`nocdyn --version` prints the CMake project version, `nocdyn pose` runs, and `import nocdyn`
+`nocdyn --version` prints the CMake project version (and the commit), `nocdyn pose` runs, and `import nocdyn`
 gives the same __version__ from the installed package.
 
 Usage: python3 pip_install_check.py SOURCE_DIR BUILD_DIR
@@ -40,8 +40,9 @@ def main():
         command = venv / "bin" / "nocdyn"
         assert command.exists(), "pip did not install the nocdyn command"
         run = subprocess.run([str(command), "--version"], capture_output=True, text=True, env=env, cwd=folder)
-        assert run.returncode == 0 and run.stdout.strip() == f"nocdyn {version}", (run.returncode, run.stdout,
-                                                                                   run.stderr)
+        # the version, then the commit the build was configured from ("unknown" outside a checkout)
+        printed = re.fullmatch(rf"nocdyn {re.escape(version)} \(commit ([0-9a-f]+|unknown)\)\n", run.stdout)
+        assert run.returncode == 0 and printed, (run.returncode, run.stdout, run.stderr)
         run = subprocess.run([str(command), "pose", "0", "0", "0", "--json"], capture_output=True, text=True, env=env,
                              cwd=folder)
         assert run.returncode == 0 and '"cond_A"' in run.stdout, (run.returncode, run.stderr)
