@@ -948,6 +948,10 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
         for (const EnvelopeAxis axis : kEnvelopeAxes)
             band_end[axisName(axis)] = resonance.band_end[static_cast<std::size_t>(axis)];
         first = py::make_tuple(resonance.frequency, band_end);
+        // the elastodynamic model's f_1 and modes where the lumped one does not hold at home
+        if (!resonance.warning.empty() && PyErr_WarnEx(PyExc_RuntimeWarning, resonance.warning.c_str(), 3) != 0) {
+            throw py::error_already_set();
+        }
     }
     return py::make_tuple(out, first, resonance.known ? std::string() : resonance.reason);
 }
