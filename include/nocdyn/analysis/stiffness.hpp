@@ -202,9 +202,10 @@ inline constexpr double kLumpedMismatch = 0.05;
 
 /// The limbs' largest scaled condition number (LimbData::cond) from which a map checks the lumped
 /// model against the elastodynamic one. The lumped M carries every link rigidly at the speeds
-/// J_j^-1 gives it, which diverge as cond grows; on the robots in robots/ the two first
-/// frequencies differ by 0.01-0.2 % up to cond 100 (docs/stiffness.md), so the check is skipped
-/// below it, where it would cost an elastodynamic solve per point for nothing.
+/// J_j^-1 gives it, which diverge as cond grows. Towards the reach boundaries of the 3-RRR with
+/// elastic links and of the compliant 3-PRR the two first frequencies agree to 0.1 % below cond
+/// 100 and to 0.3 % up to 150, and part by 5 % only beyond 480 (docs/stiffness.md), so the check
+/// is skipped below it, where it would cost an elastodynamic solve per point for nothing.
 inline constexpr double kLumpedCheckCondition = 100.0;
 
 /// Whether a limb of the pose of `data` (velocity stage done) is within kLumpedCheckCondition of
