@@ -45,15 +45,18 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
 std::string resonanceSummary(const EnvelopeResonance& resonance) {
     if (resonance.known) {
         std::string text = text::format(
-            "third bound: the dynamic amplification of the lumped model at home (damping ratio %.3g, first natural "
+            "third bound: the dynamic amplification of the %s model at home (damping ratio %.3g, first natural "
             "frequency %.6g Hz) leaves [1/%.4g, %.4g] at",
-            resonance.damping_ratio, resonance.frequency, resonance.amplification, resonance.amplification);
+            resonance.model.c_str(), resonance.damping_ratio, resonance.frequency, resonance.amplification,
+            resonance.amplification);
         for (const EnvelopeAxis axis : kEnvelopeAxes) {
             const double f = resonance.band_end[static_cast<std::size_t>(axis)];
             text += std::string(axis == kEnvelopeAxes.front() ? " " : ", ") + axisName(axis) + " " +
                     (std::isfinite(f) ? text::format("%.4g Hz", f) : std::string("no frequency"));
         }
-        return text + "; the limit at and above it is resonance";
+        text += "; the limit at and above it is resonance";
+        if (!resonance.warning.empty()) text += " (" + resonance.warning + ")";
+        return text;
     }
     std::string text = "third bound (first natural frequency): unknown, " + resonance.reason;
     if (!resonance.declared) {

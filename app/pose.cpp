@@ -40,6 +40,7 @@ PoseCompliance compliance(const Model& model, const Data& data, Observer& observ
         out.free_descriptions.push_back(analysis::describeDirection(v));
     }
     out.frequencies = modes.frequency;
+    out.first_frequency = modes.frequency(0);
     for (int i = 0; i < 3; ++i) out.mode_shapes.col(i) = analysis::reported(Vector3(modes.shape.col(i)));
     if (model.description.hasElasticBody()) {
         analysis::ElastodynamicModes elastic;
@@ -47,7 +48,11 @@ PoseCompliance compliance(const Model& model, const Data& data, Observer& observ
             throw Error(describe(status, model));
         }
         if (const std::string w = analysis::elastodynamicPrecisionWarning(elastic); !w.empty()) observer.warning(w);
-        if (const std::string w = analysis::lumpedMismatchWarning(modes, elastic); !w.empty()) observer.warning(w);
+        if (const std::string w = analysis::lumpedMismatchWarning(modes, elastic); !w.empty()) {
+            observer.warning(w);
+            out.first_frequency = elastic.frequency(0);
+            out.first_frequency_model = "elastodynamic";
+        }
         out.elastodynamic_frequencies = elastic.frequency;
         out.elastodynamic_dofs = elastic.dofs;
     }

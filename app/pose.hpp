@@ -55,6 +55,10 @@ struct PoseCompliance {
     Matrix3 mode_shapes = Matrix3::Zero();                     ///< columns, mass-normalised
     std::optional<Eigen::VectorXd> elastodynamic_frequencies;  ///< [Hz], elastic links only
     int elastodynamic_dofs = 0;
+    /// The first natural frequency to use [Hz]: the lumped one where it holds, else (elastic
+    /// links, the two more than 5 % apart: analysis::firstFrequency) the elastodynamic one.
+    double first_frequency = 0.0;
+    std::string first_frequency_model = "lumped";
 };
 
 struct PoseResult {

@@ -105,11 +105,18 @@ Figure firstFrequencyFigure(const WorkspaceMap& map, const analysis::FirstFreque
 }
 
 std::string firstFrequencySummary(const analysis::FirstFrequencyMap& frequency) {
+    // where the lumped model does not hold, f_1 is the elastodynamic model's (firstFrequency)
+    const std::string models =
+        frequency.elastodynamic_points > 0
+            ? text::format("lumped model; elastodynamic at %d point%s, where the lumped one does not hold",
+                           frequency.elastodynamic_points, frequency.elastodynamic_points == 1 ? "" : "s")
+            : std::string("lumped model");
     std::string text;
     text = text::format(
-        "First natural frequency (lumped model) over its %d feasible points: lowest %.6g Hz at (x, y) = "
+        "First natural frequency (%s) over its %d feasible points: lowest %.6g Hz at (x, y) = "
         "(%.6g, %.6g) mm, highest %.6g Hz.",
-        frequency.points, frequency.lowest, frequency.lowest_x * 1e3, frequency.lowest_y * 1e3, frequency.highest);
+        models.c_str(), frequency.points, frequency.lowest, frequency.lowest_x * 1e3, frequency.lowest_y * 1e3,
+        frequency.highest);
     return text;
 }
 

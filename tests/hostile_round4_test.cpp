@@ -268,6 +268,25 @@ TEST(HostileRound4, NextToALimbSingularityTheLumpedModelIsSaidNotToHold) {
     const std::string warning = analysis::lumpedMismatchWarning(lumped, elastic);
     EXPECT_GT(std::abs(lumped.frequency(0) / elastic.frequency(0) - 1.0), analysis::kLumpedMismatch);
     EXPECT_NE(warning.find("lumped model does not hold"), std::string::npos) << warning;
+    // the first frequency to use there is the elastodynamic one (lumped 9.805 Hz, elastodynamic
+    // 29.905 Hz), with the warning that says so; at home the lumped one, without a word
+    EXPECT_NEAR(lumped.frequency(0), 9.805, 1e-2);
+    EXPECT_NEAR(elastic.frequency(0), 29.905, 3e-2);
+    EXPECT_NEAR(lumped.frequency(0) / elastic.frequency(0), 0.328, 1e-3);
+    EXPECT_NE(warning.find("the elastodynamic frequencies are used here"), std::string::npos) << warning;
+    EXPECT_NE(analysis::lumpedMismatchWarning(lumped, elastic, false).find("are the ones to use here"),
+              std::string::npos);
+    EXPECT_FALSE(analysis::lumpedHolds(lumped, elastic));
+    Data data(model);
+    StiffnessData K;
+    ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, Pose(0.0, 0.0, -(lo - 1e-9)), K, lumped).ok());
+    std::string used;
+    EXPECT_EQ(analysis::firstFrequency(model, compliance, data, lumped, &used), elastic.frequency(0));
+    EXPECT_EQ(used, warning);
+    ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, Pose::Zero(), K, lumped).ok());
+    used.clear();
+    EXPECT_EQ(analysis::firstFrequency(model, compliance, data, lumped, &used), lumped.frequency(0));
+    EXPECT_EQ(used, "");
 }
 
 TEST(HostileRound4, ALongIntegrationAnswersItsPollAndStops) {

@@ -865,29 +865,39 @@ class Robot:
         return self._core._stiffness(p)["matrix"]
 
     @_vocabulary
-    def natural_frequencies(self, p, *, modes=False, model="lumped"):
+    def natural_frequencies(self, p, *, modes=False, model=None):
         """Natural frequencies [Hz], ascending, at pose p = [x, y, theta].
 
         model='lumped' (K v = w^2 M v, M the rigid bodies' mass matrix in the pose coordinates):
         3 frequencies; model='elastodynamic' (every body keeps its inertia, every virtual spring
-        is a degree of freedom): one per degree of freedom. With modes=True returns
-        (frequencies, shapes): shapes' columns are the platform's displacement in each mode, rows
-        in the order Robot.stiffness_coordinates, x, y, theta, as `nocdyn pose` reports them
-        (lumped shapes are mass-normalised).
+        is a degree of freedom): one per degree of freedom. The default (model=None) returns 3
+        frequencies, as model='lumped', and they are the lumped ones wherever that model holds;
+        with elastic bodies, where the lumped first frequency is more than 5 % from the
+        elastodynamic one (next to a limb singularity the links' inertia, carried rigidly, swamps
+        it), they are the 3 lowest elastodynamic frequencies (and their platform shapes) instead,
+        with a RuntimeWarning ("the lumped model does not hold at this pose ... the elastodynamic
+        frequencies are used here"). model='lumped' returns the lumped values there too, with
+        the warning ("... are the ones to use here"). With modes=True returns (frequencies,
+        shapes): shapes' columns are the platform's displacement in each mode, rows in the order
+        Robot.stiffness_coordinates, x, y, theta, as `nocdyn pose` reports them (lumped shapes
+        are mass-normalised).
 
-        Warnings (RuntimeWarning, as `nocdyn pose`): when the robot has elastic bodies and the
-        lumped first frequency is more than 5 % from the elastodynamic one ("the lumped model
-        does not hold at this pose": next to a limb singularity the links' inertia, carried
-        rigidly, swamps it), and when the stiffness contrast costs the lowest frequency digits."""
-        if model not in ("lumped", "elastodynamic"):
+        Also warns (RuntimeWarning, as `nocdyn pose`) when the stiffness contrast costs the
+        lowest frequency digits."""
+        if model not in (None, "lumped", "elastodynamic"):
             raise Error("model: expected 'lumped' or 'elastodynamic', got " + repr(model))
-        elastodynamic = model == "elastodynamic"
-        result = self._core._stiffness(p, elastodynamic, True)
-        key = "elastodynamic_" if elastodynamic else ""
-        frequencies = result[key + "frequencies"]
+        result = self._core._stiffness(p, model == "elastodynamic", True, model == "lumped")
+        if model == "elastodynamic":
+            frequencies, shapes = result["elastodynamic_frequencies"], result["elastodynamic_platform_shapes"]
+        elif model is None and not result["lumped_holds"]:
+            # the same count as the lumped answer: the 3 lowest elastodynamic modes
+            frequencies = result["elastodynamic_frequencies"][:3]
+            shapes = result["elastodynamic_platform_shapes"][:, :3]
+        else:
+            frequencies, shapes = result["frequencies"], result["mode_shapes"]
         if not modes:
             return frequencies
-        return frequencies, result["elastodynamic_platform_shapes" if elastodynamic else "mode_shapes"]
+        return frequencies, shapes
 
 
 class Trajectory:

@@ -134,8 +134,10 @@ class PoseReport(_Record):
     ('actuators', or 'platform': rows and columns x, y, theta); within_limits; at rest under
     gravity, tau (n,) the actuator forces and reactions (limbs, 3, 3) every joint's reaction
     [fx, fy, m] (as Robot.reactions); for a robot whose file declares compliance, stiffness (3, 3),
-    natural_frequencies (3,) [Hz], mode_shapes (3, 3) (columns; rows x, y, theta) and, with
-    elastic links, elastodynamic_frequencies. Limbs, joints and actuators are numbered from 1."""
+    natural_frequencies (3,) [Hz] (lumped model), mode_shapes (3, 3) (columns; rows x, y, theta),
+    first_frequency [Hz] and first_frequency_model ('lumped', or 'elastodynamic' where the lumped
+    model does not hold: more than 5 % from it) and, with elastic links, elastodynamic_frequencies.
+    Limbs, joints and actuators are numbered from 1."""
 
     def __init__(self, fields, text=""):
         fields = dict(fields)

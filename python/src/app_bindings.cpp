@@ -80,6 +80,8 @@ py::dict poseDict(const app::PoseResult& r) {
         out["natural_frequencies"] = Eigen::Vector3d(c.frequencies);
         out["mode_shapes"] = Eigen::Matrix3d(c.mode_shapes);
         if (c.elastodynamic_frequencies) out["elastodynamic_frequencies"] = *c.elastodynamic_frequencies;
+        out["first_frequency"] = c.first_frequency;
+        out["first_frequency_model"] = c.first_frequency_model;
     }
     return out;
 }

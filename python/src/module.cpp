@@ -807,7 +807,11 @@ py::dict simulate(const Robot& robot, const py::handle& p0, const py::handle& dp
 /// pose-indexed array in analysis::kReportedCoordinates' order. Warns (RuntimeWarning) when
 /// K's contrast costs digits and, when `frequencies` are asked of a robot with elastic bodies,
 /// when the lumped model does not hold at p.
-py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic, bool frequencies) {
+/// `lumped_asked`: the lumped model was asked for by name, so the mismatch warning says the
+/// elastodynamic frequencies are the ones to use rather than that they are used. The dict's
+/// "lumped_holds" is false where the lumped model does not hold (then the elastodynamic keys are
+/// there, the default answer's).
+py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic, bool frequencies, bool lumped_asked) {
     const Model& model = *robot.model;
     const Pose p3 = vector3(p, "p");
     const analysis::StiffnessModel compliance(model);
@@ -838,8 +842,9 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
         if (!(e.frequency.allFinite() && e.platform_shape.allFinite())) {
             throw Error("the elastodynamic frequencies are not finite at this pose");
         }
-        if (std::string w = analysis::lumpedMismatchWarning(modes, e); !w.empty()) warnings.push_back(std::move(w));
-        if (elastodynamic) {
+        if (std::string w = analysis::lumpedMismatchWarning(modes, e, !lumped_asked); !w.empty())
+            warnings.push_back(std::move(w));
+        if (elastodynamic || (!lumped_asked && !analysis::lumpedHolds(modes, e))) {
             if (std::string w = analysis::elastodynamicPrecisionWarning(e); !w.empty())
                 warnings.push_back(std::move(w));
         }
@@ -866,7 +871,8 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
     for (int i = 0; i < 3; ++i) shapes.col(i) = analysis::reported(Vector3(modes.shape.col(i)));
     out["mode_shapes"] = toArray(shapes);
     out["mass_matrix"] = toArray(analysis::reported(modes.M));
-    if (elastodynamic) {
+    out["lumped_holds"] = !elastic || analysis::lumpedHolds(modes, e);
+    if (elastic) {
         py::array_t<double> f(e.frequency.size());
         for (Eigen::Index i = 0; i < e.frequency.size(); ++i) f.mutable_at(i) = e.frequency(i);
         py::array_t<double> shapes({py::ssize_t{3}, static_cast<py::ssize_t>(e.dofs)});
@@ -942,6 +948,10 @@ py::tuple envelope(const Robot& robot, const std::vector<std::string>& axes, dou
         for (const EnvelopeAxis axis : kEnvelopeAxes)
             band_end[axisName(axis)] = resonance.band_end[static_cast<std::size_t>(axis)];
         first = py::make_tuple(resonance.frequency, band_end);
+        // the elastodynamic model's f_1 and modes where the lumped one does not hold at home
+        if (!resonance.warning.empty() && PyErr_WarnEx(PyExc_RuntimeWarning, resonance.warning.c_str(), 3) != 0) {
+            throw py::error_already_set();
+        }
     }
     return py::make_tuple(out, first, resonance.known ? std::string() : resonance.reason);
 }
@@ -1284,7 +1294,8 @@ PYBIND11_MODULE(_nocdyn, m) {
              py::arg("ddu"), py::arg("friction"), py::arg("held_forces"), py::arg("cutoff"), py::arg("holdout"),
              py::arg("prior"))
         .def_static("_load_prior", &loadPrior, py::arg("path"))
-        .def("_stiffness", &stiffnessAt, py::arg("p"), py::arg("elastodynamic") = false, py::arg("frequencies") = false)
+        .def("_stiffness", &stiffnessAt, py::arg("p"), py::arg("elastodynamic") = false, py::arg("frequencies") = false,
+             py::arg("lumped_asked") = false)
         .def("_envelope", &envelope, py::arg("axes"), py::arg("min_frequency"), py::arg("max_frequency"),
              py::arg("frequencies"), py::arg("samples_per_period"), py::arg("relative_tolerance"),
              py::arg("amplification") = kDefaultAmplification);

@@ -352,12 +352,11 @@ double dynamicAmplification(const EnvelopeResonance& resonance, EnvelopeAxis axi
     if (!resonance.known) return 1.0;
     const auto a = static_cast<Eigen::Index>(axis);
     const double w = 2.0 * std::numbers::pi * frequency, zeta = resonance.damping_ratio;
-    const analysis::LumpedModes& m = resonance.modes;
-    // H_aa = sum_i phi_i(a) (phi_i^T M)(a) w_i^2 / (w_i^2 - w^2 + 2 j zeta w_i w)
+    // H_aa = sum_i phi_i(a) (phi_i^T M x_a) w_i^2 / (w_i^2 - w^2 + 2 j zeta w_i w)
     std::complex<double> h = 0.0;
-    for (Eigen::Index i = 0; i < 3; ++i) {
-        const double wi = 2.0 * std::numbers::pi * m.frequency(i);
-        const double participation = m.shape(a, i) * (m.shape.col(i).transpose() * m.M)(a);
+    for (Eigen::Index i = 0; i < resonance.modal_frequency.size(); ++i) {
+        const double wi = 2.0 * std::numbers::pi * resonance.modal_frequency(i);
+        const double participation = resonance.modal_shape(a, i) * resonance.modal_participation(i, a);
         h += participation * wi * wi / std::complex<double>(wi * wi - w * w, 2.0 * zeta * wi * w);
     }
     return std::abs(h);
@@ -392,15 +391,34 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
         return out;
     }
     out.known = true;
-    out.frequency = modes.frequency(0);  // ascending: the first resonance
     out.modes = modes;
-    // per axis: scan a log grid from f_1 / 1000 to 10 f_3 for the first frequency out of
+    out.frequency = modes.frequency(0);
+    out.modal_frequency = modes.frequency;
+    out.modal_shape = modes.shape;
+    out.modal_participation = modes.shape.transpose() * modes.M;  // (phi_i^T M)(a)
+    // ascending: the first resonance; where the lumped model does not hold at home, the
+    // elastodynamic model's, and the amplification sums over its modes
+    if (analysis::ElastodynamicModes elastic; analysis::lumpedFailsAt(model, compliance, data, modes, elastic)) {
+        out.model = "elastodynamic";
+        out.warning = analysis::lumpedMismatchWarning(modes, elastic, true);
+        out.frequency = elastic.frequency(0);
+        if (elastic.participation.cols() == 3) {
+            out.modal_frequency = elastic.frequency;
+            out.modal_shape = elastic.platform_shape;
+            out.modal_participation = elastic.participation;
+        } else {
+            out.warning +=
+                "; the band's ends are the lumped model's (a locked joint leaves the elastodynamic model no rigid "
+                "image of the drives' motion)";
+        }
+    }
+    // per axis: scan a log grid from f_1 / 1000 to 10 f_last for the first frequency out of
     // [1 / limit, limit] (H rises monotonically from H(0) = 1 until then), then bisect
     const auto outside = [&](EnvelopeAxis axis, double f) {
         const double h = dynamicAmplification(out, axis, f);
         return h > amplification || h < 1.0 / amplification;
     };
-    const double f_lo = 1e-3 * modes.frequency(0), f_hi = 10.0 * modes.frequency(2);
+    const double f_lo = 1e-3 * out.frequency, f_hi = 10.0 * out.modal_frequency.maxCoeff();
     constexpr int kGrid = 4000;
     for (const EnvelopeAxis axis : kEnvelopeAxes) {
         double below = f_lo;

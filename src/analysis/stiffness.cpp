@@ -285,17 +285,48 @@ Matrix3 poseMassMatrix(const Data& data) {
 
 }  // namespace
 
-std::string lumpedMismatchWarning(const LumpedModes& lumped, const ElastodynamicModes& elastic) {
-    if (elastic.dofs == 0) return {};
+bool lumpedHolds(const LumpedModes& lumped, const ElastodynamicModes& elastic) {
+    if (elastic.dofs == 0) return true;
     const double a = lumped.frequency(0), b = elastic.frequency(0);
-    if (!(a > 0.0) || !(b > 0.0) || std::abs(a / b - 1.0) <= kLumpedMismatch) return {};
+    return !(a > 0.0) || !(b > 0.0) || std::abs(a / b - 1.0) <= kLumpedMismatch;
+}
+
+std::string lumpedMismatchWarning(const LumpedModes& lumped, const ElastodynamicModes& elastic, bool elastic_used) {
+    if (lumpedHolds(lumped, elastic)) return {};
     std::ostringstream out;
     out.precision(4);
-    out << "the lumped model does not hold at this pose: its first natural frequency " << a
-        << " Hz against the elastodynamic model's " << b
+    out << "the lumped model does not hold at this pose: its first natural frequency " << lumped.frequency(0)
+        << " Hz against the elastodynamic model's " << elastic.frequency(0)
         << " Hz (it carries the links rigidly with the platform, which fails next to a limb singularity); "
-           "the elastodynamic frequencies are the ones to use here";
+        << (elastic_used ? "the elastodynamic frequencies are used here"
+                         : "the elastodynamic frequencies are the ones to use here");
     return out.str();
+}
+
+bool lumpedFailsAt(const Model& model, const StiffnessModel& compliance, const Data& data, const LumpedModes& lumped,
+                   ElastodynamicModes& elastic) {
+    if (!compliance.any_elastic) return false;
+    try {
+        if (!elastodynamicModes(model, compliance, data, elastic)) return false;
+    } catch (const Error&) {
+        return false;  // a degree of freedom with neither mass nor stiffness: the lumped model stands
+    }
+    return elastic.frequency.allFinite() && !lumpedHolds(lumped, elastic);
+}
+
+bool nearLimbSingularity(const Model& model, const Data& data) {
+    for (int j = 0; j < model.limbs; ++j) {
+        if (!(data.limb[static_cast<std::size_t>(j)].cond < kLumpedCheckCondition)) return true;
+    }
+    return false;
+}
+
+double firstFrequency(const Model& model, const StiffnessModel& compliance, const Data& data, const LumpedModes& lumped,
+                      std::string* warning) {
+    ElastodynamicModes elastic;
+    if (!lumpedFailsAt(model, compliance, data, lumped, elastic)) return lumped.frequency(0);
+    if (warning) *warning = lumpedMismatchWarning(lumped, elastic, true);
+    return elastic.frequency(0);
 }
 
 std::string elastodynamicPrecisionWarning(const ElastodynamicModes& elastic) {
@@ -566,6 +597,34 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
     // the beams are many decades stiffer than the springs; each mode is taken from the form
     // whose rounding is the smaller for it: flexibility below sqrt(lambda_min lambda_max)
     if (out.dofs > 0) flexibleModes(Mx, closure, spring, beam_flex, check.free_directions, out);
+    // the rigid image x_a of a unit pose displacement along axis a: per limb the joint
+    // coordinates of J_j z = S dp (scaled twists), beams undeformed; phi_i^T M_x x_a, per unscaled
+    // unit (x_a scales with dp_scale(a); the shapes are still scaled here)
+    {
+        Eigen::MatrixXd image = Eigen::MatrixXd::Zero(n, 3);
+        image.topRows(3) = Matrix3(dp_scale.asDiagonal());
+        bool whole = true;
+        for (int j = 0; j < model.limbs && whole; ++j) {
+            Matrix3 T;
+            std::array<Eigen::Index, 3> at{};
+            int joints = 0;
+            for (std::size_t c = 0; c < columns.size(); ++c) {
+                if (columns[c].limb != j || columns[c].stage % 2 != 0) continue;
+                T.col(joints) = columns[c].twist;
+                at[static_cast<std::size_t>(joints)] = 3 + static_cast<Eigen::Index>(c);
+                ++joints;
+            }
+            whole = joints == 3;
+            if (!whole) break;
+            const Matrix3 z = T.fullPivLu().solve(S_s * dp_scale.asDiagonal());
+            for (std::size_t q = 0; q < 3; ++q) image.row(at[q]) = z.row(static_cast<Eigen::Index>(q));
+        }
+        if (whole) {
+            out.participation = out.shape.transpose() * (Mx * image);
+        } else {
+            out.participation.resize(out.dofs, 0);
+        }
+    }
     for (Eigen::Index c = 0; c < n; ++c) out.shape.row(c) /= unit[static_cast<std::size_t>(c)];
     out.platform_shape = out.shape.topRows(3);
     out.precision = 0.0;

@@ -133,10 +133,14 @@ def test_a_frequency_below_the_response_range_is_refused_naming_f_min(source_dir
         nocdyn.frequency_response(robot=source_dir / "robots" / "paper-3prr-compliant.yaml", f_min=1e-300)
 
 
-def test_next_to_a_limb_singularity_the_lumped_model_warns_that_it_does_not_hold(source_dir):
-    text = (source_dir / "robots" / "3-rrr-elastic.yaml").read_text()
+def limitless_3rrr_elastic(source_dir):
     import re
-    robot = nocdyn.Robot.from_yaml(re.sub(r"limits: \{[^}]*\}", "limits: {}", text).replace(",\n         limits: {}}", "}"))
+    text = (source_dir / "robots" / "3-rrr-elastic.yaml").read_text()
+    return re.sub(r"limits: \{[^}]*\}", "limits: {}", text).replace(",\n         limits: {}}", "}")
+
+
+def next_to_the_reach_below_home(robot):
+    """1e-9 m inside the reach boundary below home (bisection on y)."""
     lo, hi = 0.0, 0.2
     for _ in range(60):
         mid = (lo + hi) / 2
@@ -145,11 +149,63 @@ def test_next_to_a_limb_singularity_the_lumped_model_warns_that_it_does_not_hold
             lo = mid
         except nocdyn.Error:
             hi = mid
+    return [0.0, -(lo - 1e-9), 0.0]
+
+
+def test_next_to_a_limb_singularity_the_lumped_model_warns_that_it_does_not_hold(source_dir):
+    robot = nocdyn.Robot.from_yaml(limitless_3rrr_elastic(source_dir))
     with pytest.warns(RuntimeWarning, match="lumped model does not hold at this pose"):
-        robot.natural_frequencies([0.0, -(lo - 1e-9), 0.0])
+        robot.natural_frequencies(next_to_the_reach_below_home(robot))
     with warnings.catch_warnings():
         warnings.simplefilter("error")
         robot.natural_frequencies([0.0, 0.0, 0.0])  # at home the two agree: no warning
+
+
+def test_where_the_lumped_model_does_not_hold_the_default_is_the_elastodynamic_model(source_dir, tmp_path):
+    text = limitless_3rrr_elastic(source_dir)
+    robot = nocdyn.Robot.from_yaml(text)
+    p = next_to_the_reach_below_home(robot)
+    with pytest.warns(RuntimeWarning, match="the elastodynamic frequencies are used here"):
+        elastic = robot.natural_frequencies(p, model="elastodynamic")
+    with pytest.warns(RuntimeWarning, match="the elastodynamic frequencies are the ones to use here"):
+        lumped = robot.natural_frequencies(p, model="lumped")
+    with pytest.warns(RuntimeWarning, match=r"does not hold at this pose: its first natural frequency 9\.80\d Hz "
+                                            r"against the elastodynamic model's 29\.9\d* Hz .* the elastodynamic "
+                                            r"frequencies are used here"):
+        default, shapes = robot.natural_frequencies(p, modes=True)
+    # the lumped f_1 collapses to a third of the elastodynamic one (documented numbers)
+    assert lumped[0] == pytest.approx(9.805, rel=1e-3)
+    assert elastic[0] == pytest.approx(29.905, rel=1e-3)
+    assert lumped[0] / elastic[0] == pytest.approx(0.328, abs=1e-3)
+    # the default answer is the elastodynamic model's, as many as the lumped model gives: its
+    # 3 lowest frequencies and their platform shapes
+    assert len(elastic) > 3
+    assert len(default) == len(lumped) == 3
+    np.testing.assert_array_equal(default, elastic[:3])
+    assert shapes.shape == (3, 3)
+    with pytest.warns(RuntimeWarning):
+        _, elastic_shapes = robot.natural_frequencies(p, model="elastodynamic", modes=True)
+    np.testing.assert_array_equal(shapes, elastic_shapes[:, :3])
+    assert abs(default[0] / elastic[0] - 1) < 0.05
+    # `nocdyn pose` names the first frequency it uses and its model, beside the lumped three
+    path = tmp_path / "3-rrr-elastic-limitless.yaml"
+    path.write_text(text)
+    with pytest.warns(RuntimeWarning, match="the elastodynamic frequencies are used here"):
+        report = nocdyn.pose(*p, robot=path)
+    assert report.first_frequency_model == "elastodynamic"
+    assert report.first_frequency == pytest.approx(elastic[0], rel=1e-12)
+    assert report.natural_frequencies[0] == pytest.approx(lumped[0], rel=1e-12)
+    # at home the lumped model holds (0.01 % from the elastodynamic one) and stays the default
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        home = robot.natural_frequencies([0.0, 0.0, 0.0])
+        home_elastic = robot.natural_frequencies([0.0, 0.0, 0.0], model="elastodynamic")
+        np.testing.assert_array_equal(home, robot.natural_frequencies([0.0, 0.0, 0.0], model="lumped"))
+        report = nocdyn.pose(0.0, 0.0, 0.0, robot=path)
+    assert len(home) == 3
+    assert abs(home[0] / home_elastic[0] - 1) < 0.05
+    assert report.first_frequency_model == "lumped"
+    assert report.first_frequency == pytest.approx(home[0], rel=1e-12)
 
 
 @pytest.mark.parametrize("call, name", [

@@ -97,18 +97,28 @@ struct EnvelopePoint {
 [[nodiscard]] EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double frequency,
                                              const EnvelopeOptions& options = {});
 
-/// The band's third bound: the lumped model at home, its first natural frequency and, per
-/// axis, where its dynamic amplification leaves [1 / limit, limit].
+/// The band's third bound: the lumped model at home (the elastodynamic one where the lumped one
+/// does not hold), its first natural frequency and, per axis, where its dynamic amplification
+/// leaves [1 / limit, limit].
 struct EnvelopeResonance {
     bool declared = false;  ///< the robot file declares compliance (joint stiffness, elastic body)
     bool known = false;
     double frequency = 0.0;                        ///< f_1 [Hz] when known
-    double damping_ratio = 0.0;                    ///< zeta of every lumped mode (the robot file's)
+    double damping_ratio = 0.0;                    ///< zeta of every mode (the robot file's)
     double amplification = kDefaultAmplification;  ///< the limit
     /// Per axis (index: EnvelopeAxis), the lowest frequency [Hz] where the amplification leaves
     /// [1 / limit, limit] (infinity when it never does): the band's end.
     std::array<double, 3> band_end{};
-    analysis::LumpedModes modes;  ///< at home (known only)
+    analysis::LumpedModes modes;  ///< the lumped model at home (known only)
+    /// The model f_1 and the amplification come from: "lumped", or "elastodynamic" where the
+    /// lumped one does not hold at home (analysis::firstFrequency), and then `warning` says so.
+    std::string model = "lumped";
+    std::string warning;
+    /// The modes H sums over (known only): frequencies f_i [Hz], the platform's dp in each
+    /// (3 x m, pose order) and participation (m x 3): phi_i^T M x_a, x_a the rigid image of a unit
+    /// displacement along axis a (lumped: phi_i^T M itself), so that H(0) = shape participation = I.
+    Eigen::VectorXd modal_frequency;
+    Eigen::MatrixXd modal_shape, modal_participation;
     /// Why it is not known: the robot file declares no compliance, or the compliance it declares
     /// leaves a limb rigid or the platform free at home ("" when known).
     std::string reason;

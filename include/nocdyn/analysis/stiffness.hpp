@@ -163,6 +163,11 @@ struct ElastodynamicModes {
     Eigen::MatrixXd platform_shape;  ///< 3 x dofs: the platform's dp in each mode (pose order)
     Eigen::MatrixXd shape;           ///< all coordinates x = [dp; z_1 ... z_L] in each mode
     Eigen::MatrixXd K, M;            ///< stiffness and mass on the dofs coordinates, for checks
+    /// dofs x 3: phi_i^T M_x x_a, x_a the rigid image (links undeformed, springs at rest on the
+    /// drives' commanded motion) of a unit platform displacement along pose axis a; the commanded
+    /// motion drives mode i by w_i^2 times it, and platform_shape * participation = I. No columns
+    /// when a locked joint leaves a limb without that image.
+    Eigen::MatrixXd participation;
     /// The static stiffness of the platform by condensing the model (Schur complement):
     /// an independent computation of K (pose order).
     Matrix3 K_condensed = Matrix3::Zero();
@@ -176,9 +181,42 @@ struct ElastodynamicModes {
 /// which the lumped model is said not to hold at the pose (kLumpedMismatch, 5 %).
 inline constexpr double kLumpedMismatch = 0.05;
 
-/// "" when the lumped model's first frequency is within kLumpedMismatch of the elastodynamic
-/// one (or either is 0: a free direction), else a one-line warning naming both.
-[[nodiscard]] std::string lumpedMismatchWarning(const LumpedModes& lumped, const ElastodynamicModes& elastic);
+/// Whether the lumped model holds at the pose: the robot has no elastic body (elastic.dofs == 0),
+/// either first frequency is 0 (a free direction), or the two are within kLumpedMismatch. Where it
+/// does not (next to a limb singularity the lumped M carries the links rigidly while their speeds
+/// diverge), every default answer and every bound on f_1 uses the elastodynamic frequencies.
+[[nodiscard]] bool lumpedHolds(const LumpedModes& lumped, const ElastodynamicModes& elastic);
+
+/// "" when lumpedHolds, else a one-line warning naming both first frequencies; `elastic_used`
+/// says the elastodynamic frequencies are the ones given (the default answer), else that the
+/// lumped ones were asked for explicitly.
+[[nodiscard]] std::string lumpedMismatchWarning(const LumpedModes& lumped, const ElastodynamicModes& elastic,
+                                                bool elastic_used = true);
+
+/// Whether the lumped model fails at the pose of `data` (stiffnessAndModes done, giving `lumped`):
+/// the robot has elastic bodies, their elastodynamic modes (then in `elastic`) are finite and
+/// !lumpedHolds. False where the elastodynamic model fails at the pose (a rigid limb, a degree of
+/// freedom with neither mass nor stiffness): the lumped answer and its own errors stand there.
+[[nodiscard]] bool lumpedFailsAt(const Model& model, const StiffnessModel& compliance, const Data& data,
+                                 const LumpedModes& lumped, ElastodynamicModes& elastic);
+
+/// The limbs' largest scaled condition number (LimbData::cond) from which a map checks the lumped
+/// model against the elastodynamic one. The lumped M carries every link rigidly at the speeds
+/// J_j^-1 gives it, which diverge as cond grows. Towards the reach boundaries of the 3-RRR with
+/// elastic links and of the compliant 3-PRR the two first frequencies agree to 0.1 % below cond
+/// 100 and to 0.3 % up to 150, and part by 5 % only beyond 480 (docs/stiffness.md), so the check
+/// is skipped below it, where it would cost an elastodynamic solve per point for nothing.
+inline constexpr double kLumpedCheckCondition = 100.0;
+
+/// Whether a limb of the pose of `data` (velocity stage done) is within kLumpedCheckCondition of
+/// a singularity, where the lumped model may fail. Allocation-free.
+[[nodiscard]] bool nearLimbSingularity(const Model& model, const Data& data);
+
+/// The first natural frequency [Hz] to use at the pose of `data` (stiffnessAndModes done, giving
+/// `lumped`): the lumped one where it holds, else (lumpedFailsAt) the elastodynamic one, and then
+/// `warning` (when not null) gets lumpedMismatchWarning. Allocates only with elastic bodies.
+[[nodiscard]] double firstFrequency(const Model& model, const StiffnessModel& compliance, const Data& data,
+                                    const LumpedModes& lumped, std::string* warning = nullptr);
 
 /// "" when elastic.precision <= 1e-6, else a one-line warning naming it.
 [[nodiscard]] std::string elastodynamicPrecisionWarning(const ElastodynamicModes& elastic);
