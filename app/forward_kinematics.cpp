@@ -3,12 +3,13 @@
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/detail/index.hpp"
 
 namespace nocdyn::app {
 
 namespace {
 
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
+using detail::at;
 
 /// 1-based number of the first actuator whose value is outside its joint's range, else 0.
 int outsideRange(const Model& model, const ActuatorVector& u) {

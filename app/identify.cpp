@@ -25,7 +25,7 @@ using report::renderFigure;
 
 namespace {
 
-std::string number(double v) { return text::format("%.12g", v); }
+std::string exactNumber(double v) { return text::format("%.12g", v); }
 
 /// The measurements of the CSV file: named columns, time increasing (errors name the line).
 }  // namespace
@@ -83,8 +83,8 @@ Measurements readMeasurements(const std::string& path, int n) {
         const std::vector<double>& row = table.rows[static_cast<std::size_t>(k)];
         if (k > 0 && !(row[t_col] > m.t.back())) {
             throw Error(path + ":" + std::to_string(table.lines[static_cast<std::size_t>(k)]) +
-                        ": column 't': " + number(row[t_col]) + " s is not after the previous sample's " +
-                        number(m.t.back()) + " s (time must increase)");
+                        ": column 't': " + exactNumber(row[t_col]) + " s is not after the previous sample's " +
+                        exactNumber(m.t.back()) + " s (time must increase)");
         }
         m.t.push_back(row[t_col]);
         for (int a = 0; a < n; ++a) {
@@ -105,7 +105,7 @@ namespace {
 std::string fitText(const Model& model, const FitReport& fit) {
     std::string text = "# fit: " + std::to_string(fit.fit_samples) +
                        " samples, held out: " + std::to_string(fit.holdout_samples) +
-                       ", condition number of the scaled regressor " + number(fit.condition) + "\n";
+                       ", condition number of the scaled regressor " + exactNumber(fit.condition) + "\n";
     for (int a = 0; a < model.actuators; ++a) {
         const auto aa = static_cast<std::size_t>(a);
         std::string line;
@@ -208,8 +208,8 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
         text += fitText(model, result.fit);
         text += "base_parameters:\n";
         for (const Estimate& e : result.beta) {
-            text += "  - {name: " + io::yamlQuoted(e.name) + ", value: " + number(e.value) +
-                    ", stddev: " + number(e.stddev) + ", robot_file: " + number(e.prior) +
+            text += "  - {name: " + io::yamlQuoted(e.name) + ", value: " + exactNumber(e.value) +
+                    ", stddev: " + exactNumber(e.stddev) + ", robot_file: " + exactNumber(e.prior) +
                     ", unit: " + io::yamlQuoted(e.unit) + "}\n";
         }
         std::vector<std::string> order;
@@ -229,15 +229,15 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
             "\n" + fitText(model, r.fit);
         if (r.inertia_constrained) {
             text += "# the unconstrained inertia about the c.o.m. came out negative (" +
-                    number(r.inertia_unconstrained) + " kg m^2): the physically consistent solution has 0\n";
+                    exactNumber(r.inertia_unconstrained) + " kg m^2): the physically consistent solution has 0\n";
         }
         for (const ActiveBound& b : r.active_bounds) {
             if (r.inertia_constrained && b.parameter == "inertia" && !b.upper) continue;  // said above
             const std::string unit = b.parameter == "mass" ? " kg" : b.parameter == "inertia" ? " kg m^2" : " m";
-            text += "# " + b.parameter + " is on its " + (b.upper ? "upper" : "lower") + " bound " + number(b.bound) +
+            text += "# " + b.parameter + " is on its " + (b.upper ? "upper" : "lower") + " bound " + exactNumber(b.bound) +
                     unit +
                     (std::isnan(b.unbounded) ? std::string(" (the unbounded fit has no positive mass)")
-                                             : " (the unbounded fit gives " + number(b.unbounded) + unit + ")") +
+                                             : " (the unbounded fit gives " + exactNumber(b.unbounded) + unit + ")") +
                     "\n";
         }
         if (!options.prior.empty() || !r.active_bounds.empty()) {
@@ -245,19 +245,19 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
             for (std::size_t i = 0; i < r.active_bounds.size(); ++i) {
                 const ActiveBound& b = r.active_bounds[i];
                 text += std::string(i == 0 ? "" : ", ") + "{parameter: " + b.parameter +
-                        ", side: " + (b.upper ? "upper" : "lower") + ", bound: " + number(b.bound) + "}";
+                        ", side: " + (b.upper ? "upper" : "lower") + ", bound: " + exactNumber(b.bound) + "}";
             }
             text += "]\n";
         }
-        text += "payload: {mass: " + number(r.mass) + ", com: [" + number(r.com.x()) + ", " + number(r.com.y()) +
-                "], inertia: " + number(r.inertia) + "}\n";
-        text += "standard_deviation: {mass: " + number(r.mass_sd) + ", com: [" + number(r.com_sd.x()) + ", " +
-                number(r.com_sd.y()) + "], inertia: " + number(r.inertia_sd) + "}\n";
+        text += "payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " + exactNumber(r.com.y()) +
+                "], inertia: " + exactNumber(r.inertia) + "}\n";
+        text += "standard_deviation: {mass: " + exactNumber(r.mass_sd) + ", com: [" + exactNumber(r.com_sd.x()) + ", " +
+                exactNumber(r.com_sd.y()) + "], inertia: " + exactNumber(r.inertia_sd) + "}\n";
         if (!r.friction.empty()) {
             text += "friction:\n";
             for (const Estimate& e : r.friction) {
-                text += "  - {name: " + io::yamlQuoted(e.name) + ", value: " + number(e.value) +
-                        ", stddev: " + number(e.stddev) + ", unit: " + io::yamlQuoted(e.unit) + "}\n";
+                text += "  - {name: " + io::yamlQuoted(e.name) + ", value: " + exactNumber(e.value) +
+                        ", stddev: " + exactNumber(e.stddev) + ", unit: " + io::yamlQuoted(e.unit) + "}\n";
             }
         }
         std::vector<std::string> order{"mass", "com_x", "com_y", "inertia"};
@@ -276,8 +276,8 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
         }
         file = "# " + io::terminalText(robot.name) + " with the payload identified from " +
                io::terminalText(options.data) + " merged into the platform\n";
-        file += "# payload: {mass: " + number(r.mass) + ", com: [" + number(r.com.x()) + ", " + number(r.com.y()) +
-                "], inertia: " + number(r.inertia) + "}\n";
+        file += "# payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " + exactNumber(r.com.y()) +
+                "], inertia: " + exactNumber(r.inertia) + "}\n";
         file += io::descriptionToYaml(merged);
         fit = r.fit;
         out.payload = r;

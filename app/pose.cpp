@@ -7,6 +7,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/reactions.hpp"
+#include "nocdyn/detail/index.hpp"
 
 namespace nocdyn::app {
 
@@ -18,7 +19,7 @@ double rangeUsed(const JointLimits& limits, double q) {
     return std::isfinite(bound) && bound > 0.0 ? std::abs(q) / bound : 0.0;
 }
 
-std::size_t at(int i) { return static_cast<std::size_t>(i); }
+using detail::at;
 
 PoseCompliance compliance(const Model& model, const Data& data, Observer& observer) {
     const analysis::StiffnessModel stiffness(model);

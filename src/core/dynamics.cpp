@@ -6,6 +6,7 @@
 
 #include "lean_kernel.hpp"
 #include "nocdyn/detail/fast_math.hpp"
+#include "nocdyn/detail/index.hpp"
 #include "stages.hpp"
 
 // The lean kernel runs a uniform robot's limbs in the lanes of a packet that lives in
@@ -19,7 +20,7 @@ namespace nocdyn {
 
 namespace {
 
-[[nodiscard]] double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+using detail::sign;
 
 /// Joint friction to overcome, phi_k = damping q'_k + friction sign q'_k, for limb j.
 [[nodiscard]] Vector3 frictionEffort(const LimbModel& limb, const LimbData& ld) {

@@ -13,6 +13,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/parallel.hpp"
+#include "nocdyn/detail/index.hpp"
 #include "stages.hpp"
 
 // the lean kernel's packets appear only in its inlined templates (as in dynamics.cpp)
@@ -24,7 +25,7 @@ namespace nocdyn {
 
 namespace {
 
-[[nodiscard]] double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
+using detail::sign;
 
 /// w = M dt - [0; m g] of a body with c.o.m. x, twist xi and its rate xi_dot (both referred to
 /// O), returned referred to O: f = m (a_c - g), n_O = I dw + x x f.

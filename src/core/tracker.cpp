@@ -24,7 +24,7 @@ constexpr double kRoundOff = 1e-15;
 constexpr double kLastStep = 1e-8;
 
 /// Outcome of the tracker's Newton iteration.
-struct NewtonResult {
+struct CorrectorResult {
     double residual = std::numeric_limits<double>::infinity();  ///< max |F_i| at the last evaluation
     int iterations = 0;
     bool step_too_large = false;  ///< a step beyond max_step (phi [rad], C over L)
@@ -55,8 +55,8 @@ inline Row evaluate(const Equation& e, double phi, double cs, double sn, double 
 /// Newton (three equations: J step = F by cofactors) or Gauss-Newton (more: the normal
 /// equations J^T J step = J^T F, 3 x 3) from z, fixed sizes throughout. With `last_step`, stops
 /// without a further evaluation after a step below it.
-NewtonResult newton(const Equations& eqs, Vector3& z, int max_iterations, double max_step, double last_step) {
-    NewtonResult out;
+CorrectorResult newton(const Equations& eqs, Vector3& z, int max_iterations, double max_step, double last_step) {
+    CorrectorResult out;
     const int n = eqs.count;
     for (;;) {
         double cs = 1.0, sn = 0.0;
@@ -179,7 +179,7 @@ Status track(const Model& model, Data& data, const ActuatorVector& u, const Pose
     // at most twice: after a stop on a round-off-sized step that the verification rejects,
     // Newton resumes until the residual itself is at round-off
     for (int pass = 0; pass < 2; ++pass) {
-        const NewtonResult result =
+        const CorrectorResult result =
             newton(eqs, z, options.max_iterations - out.iterations, options.max_step, pass == 0 ? kLastStep : 0.0);
         out.iterations += result.iterations;
         const Pose next(model.home(0) + z(0), L * z(1), L * z(2));

@@ -21,6 +21,7 @@
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/status.hpp"
 #include "nocdyn/text.hpp"
+#include "nocdyn/detail/index.hpp"
 
 namespace nocdyn {
 
@@ -33,7 +34,7 @@ constexpr double kInfeasible = std::numeric_limits<double>::infinity();
 constexpr int kScalePasses = 14;
 constexpr double kScaleBracket = 1e-4;
 
-[[nodiscard]] std::size_t at(int i) { return static_cast<std::size_t>(i); }
+using detail::at;
 
 std::string formatted(const char* format, double value) { return text::format(format, value); }
 

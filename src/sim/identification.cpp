@@ -21,6 +21,7 @@
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/printable.hpp"
 #include "nocdyn/text.hpp"
+#include "nocdyn/detail/index.hpp"
 
 namespace nocdyn {
 
@@ -29,9 +30,8 @@ namespace {
 using WrenchRegressor = Eigen::Matrix<double, 3, kBodyParameters>;
 using PlatformRegressor = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxParameters>;
 
-[[nodiscard]] double sign(double v) { return v > 0.0 ? 1.0 : (v < 0.0 ? -1.0 : 0.0); }
-
-[[nodiscard]] std::size_t at(int i) { return static_cast<std::size_t>(i); }
+using detail::at;
+using detail::sign;
 
 /// Y_w of one body (see the header): frame at r turned by phi (cos, sin), body twist referred to
 /// O xi = [omega; v_O] and its rate, gravity g.

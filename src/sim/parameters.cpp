@@ -5,12 +5,13 @@
 #include <string>
 
 #include "nocdyn/sim/identification.hpp"
+#include "nocdyn/detail/index.hpp"
 
 namespace nocdyn {
 
 namespace {
 
-[[nodiscard]] std::size_t at(int i) { return static_cast<std::size_t>(i); }
+using detail::at;
 
 }  // namespace
 
