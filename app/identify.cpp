@@ -234,8 +234,8 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
         for (const ActiveBound& b : r.active_bounds) {
             if (r.inertia_constrained && b.parameter == "inertia" && !b.upper) continue;  // said above
             const std::string unit = b.parameter == "mass" ? " kg" : b.parameter == "inertia" ? " kg m^2" : " m";
-            text += "# " + b.parameter + " is on its " + (b.upper ? "upper" : "lower") + " bound " + exactNumber(b.bound) +
-                    unit +
+            text += "# " + b.parameter + " is on its " + (b.upper ? "upper" : "lower") + " bound " +
+                    exactNumber(b.bound) + unit +
                     (std::isnan(b.unbounded) ? std::string(" (the unbounded fit has no positive mass)")
                                              : " (the unbounded fit gives " + exactNumber(b.unbounded) + unit + ")") +
                     "\n";
@@ -249,8 +249,8 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
             }
             text += "]\n";
         }
-        text += "payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " + exactNumber(r.com.y()) +
-                "], inertia: " + exactNumber(r.inertia) + "}\n";
+        text += "payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " +
+                exactNumber(r.com.y()) + "], inertia: " + exactNumber(r.inertia) + "}\n";
         text += "standard_deviation: {mass: " + exactNumber(r.mass_sd) + ", com: [" + exactNumber(r.com_sd.x()) + ", " +
                 exactNumber(r.com_sd.y()) + "], inertia: " + exactNumber(r.inertia_sd) + "}\n";
         if (!r.friction.empty()) {
@@ -276,8 +276,8 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
         }
         file = "# " + io::terminalText(robot.name) + " with the payload identified from " +
                io::terminalText(options.data) + " merged into the platform\n";
-        file += "# payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " + exactNumber(r.com.y()) +
-                "], inertia: " + exactNumber(r.inertia) + "}\n";
+        file += "# payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " +
+                exactNumber(r.com.y()) + "], inertia: " + exactNumber(r.inertia) + "}\n";
         file += io::descriptionToYaml(merged);
         fit = r.fit;
         out.payload = r;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -205,7 +206,7 @@ NOCDYN_ALWAYS_INLINE void columnsOfRows(const double* at, P (&c)[3]) {
     P A, B, C;
     std::memcpy(&A, at, sizeof(P));
     std::memcpy(&B, at + kN, sizeof(P));
-    std::memcpy(&C, at + 2 * kN, sizeof(P));
+    std::memcpy(&C, at + 2 * static_cast<std::ptrdiff_t>(kN), sizeof(P));
     c[0] = shuffled<false, 0>(A, B, C, kLanes);
     c[1] = shuffled<false, 1>(A, B, C, kLanes);
     c[2] = shuffled<false, 2>(A, B, C, kLanes);
@@ -229,8 +230,8 @@ constexpr std::array<std::int64_t, N> pairsOfRows(int v) {
     std::array<std::int64_t, N> m{};  // past the packet's rows: unused (lane 0)
     for (int i = 0; i < N / 4; ++i) {
         const int row = v * (N / 4) + i;
-        m[static_cast<std::size_t>(2 * i)] = row;
-        m[static_cast<std::size_t>(2 * i + 1)] = N + row;
+        m[2 * static_cast<std::size_t>(i)] = row;
+        m[2 * static_cast<std::size_t>(i) + 1] = N + row;
     }
     return m;
 }
