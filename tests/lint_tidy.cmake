@@ -40,6 +40,11 @@ if(MODE STREQUAL "folder")
   if(NOT code EQUAL 0 AND count EQUAL 0)
     message(FATAL_ERROR "clang-tidy failed (exit code ${code}) without a diagnostic:\n${text}")
   endif()
+  # 1: diagnostics (left to the files' tests); anything else (a signal, a crash) may have cut the
+  # run short, so that files after it were never checked
+  if(NOT code EQUAL 0 AND NOT code EQUAL 1)
+    message(FATAL_ERROR "clang-tidy stopped with ${code}: the folder's run is incomplete:\n${text}")
+  endif()
 elseif(MODE STREQUAL "file")
   if(NOT EXISTS ${LOG})
     message(FATAL_ERROR "no clang-tidy log ${LOG}: the folder's run did not complete")
