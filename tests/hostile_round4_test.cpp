@@ -23,6 +23,7 @@
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
+#include "robot_files.hpp"
 
 namespace nocdyn {
 namespace {
@@ -31,10 +32,6 @@ using analysis::ElastodynamicModes;
 using analysis::LumpedModes;
 using analysis::StiffnessData;
 using analysis::StiffnessModel;
-
-RobotDescription robotDescription(const std::string& robot) {
-    return io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
-}
 
 struct AtPose {
     Model model;

@@ -17,6 +17,7 @@
 #include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/analysis/workspace.hpp"
 #include "nocdyn/io/robot_file.hpp"
+#include "robot_files.hpp"
 
 namespace nocdyn {
 namespace {
@@ -25,12 +26,6 @@ using analysis::ElastodynamicModes;
 using analysis::LumpedModes;
 using analysis::StiffnessData;
 using analysis::StiffnessModel;
-
-RobotDescription robotDescription(const std::string& robot) {
-    std::string path = NOCDYN_SOURCE_DIR;
-    path.append("/robots/").append(robot).append(".yaml");
-    return io::loadRobotDescription(path);
-}
 
 /// The 3-RRR with elastic links, its drives' ranges removed (nothing but the reach bounds a pose).
 Model limitless3RrrElastic() {

@@ -50,6 +50,7 @@
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "skip.hpp"
+#include "robot_files.hpp"
 
 extern char** environ;
 
@@ -612,10 +613,6 @@ Comparison compare(RobotDescription robot, const Pose& p, const std::string& job
 
 Agreement compareWithCalculix(RobotDescription robot, const Pose& p, const std::string& job) {
     return compare(std::move(robot), p, job).agreement;
-}
-
-RobotDescription robotDescription(const std::string& robot) {
-    return io::loadRobotDescription((fs::path(NOCDYN_SOURCE_DIR) / "robots" / (robot + ".yaml")).string());
 }
 
 class StiffnessCalculix : public testing::Test {

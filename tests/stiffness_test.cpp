@@ -15,6 +15,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "robot_files.hpp"
 
 namespace nocdyn {
 namespace {
@@ -26,10 +27,6 @@ using analysis::StiffnessModel;
 
 std::string robotText(const std::string& robot) {
     return io::readRobotFileText(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
-}
-
-RobotDescription robotDescription(const std::string& robot) {
-    return io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
 }
 
 /// The paper's 3-PRR with drive springs k on its sliders (links rigid, passive joints free).
