@@ -56,6 +56,27 @@ std::string bandwidthText(double bandwidth, double slope) {
 }
 
 /// The open-loop plant: from each actuator force (or commanded drive position) to each output.
+/// Whether the plant is the lumped compliant model: asked for, or (auto) wherever the robot file
+/// declares compliance.
+bool lumpedPlant(const FrequencyResponseOptions& options, const analysis::StiffnessModel& compliance) {
+    const bool lumped = options.compliance == "lumped" || (options.compliance == "auto" && compliance.any);
+    if (lumped && !compliance.any) {
+        throw OptionError("compliance", "the robot file declares no joint or drive stiffness and no elastic link");
+    }
+    return lumped;
+}
+
+/// The lumped model's modes at the pose p, at rest (the natural frequencies the summaries print).
+analysis::LumpedModes lumpedModesAt(const Model& model, const analysis::StiffnessModel& compliance, const Pose& p) {
+    analysis::StiffnessData stiffness;
+    analysis::LumpedModes modes;
+    Data at_rest(model);
+    if (const Status s = analysis::stiffnessAndModes(model, compliance, at_rest, p, stiffness, modes); !s) {
+        throw Error("operating point: " + describe(s, model));
+    }
+    return modes;
+}
+
 FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Model& model) {
     Data data(model);
     const Pose p = options.pose.empty() ? model.home : corePose(threeValues(options.pose));
@@ -68,10 +89,7 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
     const bool acceleration = options.output_kind == "acceleration";
     const LinearOutput kind = acceleration ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables;
     const analysis::StiffnessModel compliance(model);
-    const bool lumped = options.compliance == "lumped" || (options.compliance == "auto" && compliance.any);
-    if (lumped && !compliance.any) {
-        throw OptionError("compliance", "the robot file declares no joint or drive stiffness and no elastic link");
-    }
+    const bool lumped = lumpedPlant(options, compliance);
     StateSpace system;
     const Status status = lumped ? linearizeCompliant(model, compliance, data, p, dp, tau, kind, system)
                                  : linearize(model, data, p, dp, tau, kind, system);
@@ -99,12 +117,7 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
                         options.payload > 0.0 ? text::format("; payload %g kg at C", options.payload).c_str() : "");
     out.summary += line;
     if (lumped) {
-        analysis::StiffnessData stiffness;
-        analysis::LumpedModes modes;
-        Data at_rest(model);
-        if (const Status s = analysis::stiffnessAndModes(model, compliance, at_rest, p, stiffness, modes); !s) {
-            throw Error("operating point: " + describe(s, model));
-        }
+        const analysis::LumpedModes modes = lumpedModesAt(model, compliance, p);
         line = text::format("# lumped natural frequencies at the pose [Hz]: %.4f %.4f %.4f\n", modes.frequency(0),
                             modes.frequency(1), modes.frequency(2));
         out.summary += line;
@@ -164,10 +177,7 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
     const Model plant_model(withPayload(robot, Payload{options.payload, 0.0, Vector2::Zero()}));
     const Pose p = options.pose.empty() ? model.home : corePose(threeValues(options.pose));
     const analysis::StiffnessModel compliance(plant_model);
-    const bool lumped = options.compliance == "lumped" || (options.compliance == "auto" && compliance.any);
-    if (lumped && !compliance.any) {
-        throw OptionError("compliance", "the robot file declares no joint or drive stiffness and no elastic link");
-    }
+    const bool lumped = lumpedPlant(options, compliance);
     ShakeLoopOptions loop_options;
     loop_options.rate = options.controller_rate;
     loop_options.natural_frequency = options.natural_frequency;
@@ -205,12 +215,7 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
                   " under the shake-table controller, from the reference to the achieved platform acceleration\n" +
                   line;
     if (lumped) {
-        analysis::StiffnessData stiffness;
-        analysis::LumpedModes modes;
-        Data at_rest(plant_model);
-        if (const Status st = analysis::stiffnessAndModes(plant_model, compliance, at_rest, p, stiffness, modes); !st) {
-            throw Error("operating point: " + describe(st, plant_model));
-        }
+        const analysis::LumpedModes modes = lumpedModesAt(plant_model, compliance, p);
         line = text::format(
             "# plant: the lumped compliant model (natural frequencies at the pose %.4f %.4f %.4f Hz, damping ratio "
             "%g): the drives' set points follow the rigid image of the motion the forces give the rigid machine, "
