@@ -122,3 +122,37 @@ def test_bad_logs_raise_nocdyn_errors():
         far = P.copy()
         far[1, 1] += 10.0
         robot.regressor(far, dP, ddP)
+
+
+def test_identify_returns_the_payload_as_numbers_without_pyyaml(tmp_path):
+    """The identified payload is the job's typed result, not its YAML read back: with PyYAML made
+    unimportable (sys.modules["yaml"] = None) in a fresh interpreter, the payload is still there."""
+    import os
+    import subprocess
+    import sys
+    script = tmp_path / "no_yaml.py"
+    script.write_text(
+        "import sys\n"
+        "sys.modules['yaml'] = None  # import yaml now raises ImportError\n"
+        "import numpy as np, nocdyn\n"
+        "robot = nocdyn.Robot.example('paper-3prr-general')\n"
+        "t = np.arange(200) * 0.004\n"
+        "traj = nocdyn.Trajectory.harmonic(theta=[(0.04, 3.0, 0.3), (0.02, 7.0, 1.0)], x=[(0.003, 2.0, 0.0),\n"
+        "    (0.001, 5.0, 1.2)], y=[(0.003, 4.0, 0.7), (0.001, 9.0, 0.2)], offset=tuple(robot.home))\n"
+        "u, du, ddu, tau = robot.with_payload(0.5, (0.012, -0.007), 8e-4).inverse_dynamics(*traj.evaluate(t))\n"
+        "log = {'t': t, **{f'{q}{a + 1}': x[:, a] for q, x in (('u', u), ('tau', tau), ('du', du), ('ddu', ddu))\n"
+        "                  for a in range(3)}}\n"
+        "r = nocdyn.identify(log, robot=robot, progress=False)\n"
+        "try:\n"
+        "    import yaml\n"
+        "    print('yaml importable')\n"
+        "except ImportError:\n"
+        "    pass\n"
+        "assert r.report is None, r.report\n"
+        "print(repr(r.payload['mass']), repr(r.payload_estimate.inertia))\n")
+    done = subprocess.run([sys.executable, str(script)], capture_output=True, text=True, timeout=120,
+                          env={**os.environ})
+    assert done.returncode == 0, done.stderr
+    assert "yaml importable" not in done.stdout
+    mass, inertia = (float(v) for v in done.stdout.split()[:2])
+    assert abs(mass - 0.5) <= 1e-9 * 0.5 and abs(inertia - 8e-4) <= 1e-9 * 8e-4
