@@ -216,14 +216,21 @@ def _finite(name, value, lower=None, upper=None, positive=False):
     return x
 
 
-def _options(theta=None, resolution=201, trajectory=None, duration=None, rate=10000.0):
+# the defaults and ranges of `nocdyn design` (app::DesignOptions, app/design.hpp, app/options.hpp):
+# one definition, in C++
+_DEFAULTS = _nocdyn.DesignOptions()
+_RANGES = _nocdyn._ranges()
+
+
+def _options(theta=None, resolution=_DEFAULTS.resolution, trajectory=None, duration=None, rate=_DEFAULTS.rate):
     if theta is not None:
-        theta = _finite("theta", theta)
-    if isinstance(resolution, bool) or int(resolution) != resolution or not 2 <= int(resolution) <= 10001:
-        raise ValueError(f"resolution: expected a whole number of grid points from 2 to 10001, got {resolution!r}")
-    rate = _finite("rate", rate, 1.0, 1e8)
+        theta = _finite("theta", theta, *_RANGES["design_theta"][:2])
+    low, high = (int(v) for v in _RANGES["design_resolution"][:2])
+    if isinstance(resolution, bool) or int(resolution) != resolution or not low <= int(resolution) <= high:
+        raise ValueError(f"resolution: expected a whole number of grid points from {low} to {high}, got {resolution!r}")
+    rate = _finite("rate", rate, *_RANGES["rate"][:2])
     if duration is not None:
-        duration = _finite("duration", duration, 1e-6, 1e6)
+        duration = _finite("duration", duration, *_RANGES["duration"][:2])
     traj = None
     if trajectory is not None:
         from . import Trajectory

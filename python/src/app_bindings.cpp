@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "app/design.hpp"
 #include "app/inverse_dynamics.hpp"
 #include "app/observer.hpp"
 #include "app/options.hpp"
@@ -160,6 +161,17 @@ void bindApplication(py::module_& m) {
         py::arg("path"), py::arg("columns"), py::arg("data"),
         "Writes a table as the command line's CSV (a unique temporary file, then renamed).");
 
+    // the ranges the jobs accept (app/*.hpp), for what Python checks before a job runs
+    m.def("_ranges", [] {
+        py::dict out;
+        const auto add = [&](const char* name, const app::Range& r) { out[name] = py::make_tuple(r.lo, r.hi, r.unit); };
+        add("rate", app::kRateRange);
+        add("duration", app::kDurationRange);
+        add("design_theta", app::kDesignThetaRange);
+        add("design_resolution", app::kDesignResolutionRange);
+        add("design_threads", app::kDesignThreadsRange);
+        return out;
+    });
     py::class_<app::SamplingOptions>(m, "SamplingOptions")
         .def(py::init<>())
         .def_readwrite("trajectory", &app::SamplingOptions::trajectory)
