@@ -124,10 +124,11 @@ class Designs:
         return self.points.shape[0]
 
     def rows(self):
-        """One dict per design: design (index), each parameter, each metric, feasible, reason."""
+        """One dict per design: design (its number, from 1, as designs.csv; row design - 1), each
+        parameter, each metric, feasible, reason."""
         out = []
         for i in range(len(self)):
-            row = {"design": i}
+            row = {"design": i + 1}
             row.update(zip(self.names, map(float, self.points[i])))
             row.update(zip(self.metrics, map(float, self.values[i])))
             row["feasible"] = bool(self.feasible[i])
@@ -153,7 +154,7 @@ class Designs:
             return text
         lines = [",".join(_nocdyn._column_names("design", parameters=self.names, metrics=self.metrics))]
         for i in range(len(self)):
-            lines.append(",".join([str(i), *(number(v) for v in self.points[i]),
+            lines.append(",".join([str(i + 1), *(number(v) for v in self.points[i]),
                                    *(number(v) for v in self.values[i]),
                                    "true" if self.feasible[i] else "false", field(self.reason[i])]))
         path = pathlib.Path(path)
