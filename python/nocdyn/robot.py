@@ -6,6 +6,7 @@ an identification) are nocdyn.<command>(..., robot=robot) (nocdyn.commands)."""
 
 from __future__ import annotations
 
+import os
 import warnings
 
 from . import _nocdyn
@@ -21,6 +22,37 @@ __all__ = ["Robot"]
 def _deprecated(old, new):
     warnings.warn(f"{old} is deprecated and will be removed in the next release: use {new}", DeprecationWarning,
                   stacklevel=3)
+
+
+def _ignored(method, options, names):
+    """Old keyword arguments without a counterpart in the job: removed from options, said once."""
+    for name in names:
+        if options.pop(name, None) is not None:
+            warnings.warn(f"{method}: {name} is no longer an option and is ignored", UserWarning, stacklevel=4)
+
+
+def _old_simulate(actuators, t, forces, force_times=None, **options):
+    """Robot.simulate's old arguments (output times t, forces (M, n) at force_times, default t)
+    as the job's forces table and options."""
+    import numpy as np
+
+    t = np.asarray(t, dtype=float).reshape(-1)
+    times = t if force_times is None else np.asarray(force_times, dtype=float).reshape(-1)
+    forces = np.asarray(forces, dtype=float).reshape(times.shape[0], -1)
+    if forces.shape[1] != actuators:
+        raise ValueError(f"forces: expected {actuators} columns (one per actuator), got {forces.shape[1]}")
+    if t.shape[0] < 2 or not np.all(np.diff(t) > 0):
+        raise ValueError("t: expected increasing output times [s], at least two")
+    _ignored("Robot.simulate", options, ("max_step",))
+    for name in ("p0", "dp0", "u0", "du0"):
+        if name in options and name != "dp0" or name == "dp0" and any(options.get(name, (0.0,))):
+            raise ValueError(f"Robot.simulate: {name} is no longer an option: give the initial state as "
+                             "u1..un, du1..dun in the forces' first row (nocdyn.simulate)")
+        options.pop(name, None)
+    options.setdefault("duration", float(t[-1] - t[0]))
+    options.setdefault("rate", float((t.shape[0] - 1) / (t[-1] - t[0])))
+    columns = {"t": times, **{f"tau{i + 1}": forces[:, i] for i in range(actuators)}}
+    return columns, options
 
 
 class Robot(RobotDynamics):
@@ -241,16 +273,29 @@ class Robot(RobotDynamics):
         _deprecated("Robot.trajectory_dynamics", "nocdyn.inverse_dynamics(trajectory, robot=robot, ...)")
         return _commands.inverse_dynamics(trajectory, robot=self, progress=False, **options)
 
-    def simulate(self, forces, **options):
+    def simulate(self, forces, *args, **options):
         """Deprecated: ``nocdyn.simulate(forces, robot=robot, ...)`` (forces: columns t,
-        tau1..taun, and u1..un, du1..dun in the first row for the initial state)."""
+        tau1..taun, and u1..un, du1..dun in the first row for the initial state). The old form
+        ``simulate(t, forces[, force_times])`` (arrays) is read as that table, output over the
+        span of t at its mean rate; the old integrator settings without a counterpart in the
+        job (max_step, p0, dp0, u0, du0) are refused or ignored with a warning."""
         _deprecated("Robot.simulate", "nocdyn.simulate(forces, robot=robot, ...)")
+        if args or not isinstance(forces, (str, os.PathLike, dict)) and not hasattr(forces, "columns"):
+            forces, options = _old_simulate(self.actuators, forces, *args, **options)
         return _commands.simulate(forces, robot=self, progress=False, **options)
 
-    def envelope(self, **options):
+    def envelope(self, axes=None, **options):  # noqa: ARG002 (axes: old, ignored)
         """Deprecated: ``nocdyn.envelope(robot=robot, ...)``, an Envelope table whose
-        ``first_natural_frequency`` is the band's third bound."""
+        ``first_natural_frequency`` is the band's third bound. The old arguments are read as the
+        job's: frequencies is points; axes (every axis is returned, the column axis says which),
+        samples_per_period and relative_tolerance have no counterpart (the job's sampling is the
+        command line's) and are ignored with a warning."""
         _deprecated("Robot.envelope", "nocdyn.envelope(robot=robot, ...)")
+        if "frequencies" in options:
+            options["points"] = options.pop("frequencies")
+        _ignored("Robot.envelope", dict(options, axes=axes), ("axes", "samples_per_period", "relative_tolerance"))
+        for name in ("samples_per_period", "relative_tolerance"):
+            options.pop(name, None)
         return _commands.envelope(robot=self, progress=False, **options)
 
     def identify_payload(self, t, u, tau, du=None, ddu=None, **options) -> PayloadEstimate:

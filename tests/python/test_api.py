@@ -6,6 +6,7 @@ import os
 import pydoc
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -171,6 +172,18 @@ def test_simulating_the_inverse_dynamics_forces_follows_the_trajectory(paper_rob
     with pytest.warns(DeprecationWarning, match="nocdyn.simulate"):
         wrapped = paper_robot.simulate(forces_table(t, tau, start), rate=20000.0)
     np.testing.assert_array_equal(wrapped.data, sim.data)
+    # the old form (output times, a force array, max_step) read as the job's table: the same
+    # numbers as the job from home at rest, max_step said to be ignored
+    from_home = nocdyn.simulate({"t": t, **{f"tau{a + 1}": tau[:, a] for a in range(3)}}, robot=paper_robot,
+                                rate=20000.0, progress=False)
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        old = paper_robot.simulate(t, tau, max_step=1e-3)
+    assert [w.category for w in said] == [DeprecationWarning, UserWarning], said
+    assert "max_step is no longer an option" in str(said[1].message)
+    np.testing.assert_array_equal(old.data, from_home.data)
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="p0 is no longer an option"):
+        paper_robot.simulate(t, tau, p0=P[0])
     with pytest.raises(ValueError, match="interpolation"):
         nocdyn.simulate(forces_table(t, tau, start), robot=paper_robot, interpolation="spline")
 
@@ -222,6 +235,13 @@ def test_envelope_equals_the_cli_envelope(tmp_path, cli, paper_robot):
     with pytest.warns(DeprecationWarning, match="nocdyn.envelope"):
         wrapped = paper_robot.envelope(min_frequency=5, max_frequency=50, points=2)
     np.testing.assert_array_equal(wrapped["amplitude"], table["amplitude"])
+    # the old arguments: frequencies is points; samples_per_period said to be ignored
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        old = paper_robot.envelope(min_frequency=5, max_frequency=50, frequencies=2, samples_per_period=64)
+    assert [w.category for w in said] == [DeprecationWarning, UserWarning], said
+    assert "samples_per_period is no longer an option" in str(said[1].message)
+    np.testing.assert_array_equal(old["amplitude"], table["amplitude"])
 
 
 def test_help_documents_units_and_shapes():
