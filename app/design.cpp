@@ -167,10 +167,10 @@ std::optional<std::size_t> bestDesign(const std::vector<io::DesignRecord>& recor
     return best;
 }
 
-/// "metric: design 30 (a = 0.1, b = 0.2), metric = 5.3".
+/// "metric: design 30 (a = 0.1, b = 0.2), metric = 5.3", designs numbered from 1.
 std::string bestText(const io::DesignFamily& family, const std::vector<DesignMetric>& metrics,
                      const io::DesignRecord& record) {
-    std::string text = metrics[0].name() + ": design " + std::to_string(record.index) + " (";
+    std::string text = metrics[0].name() + ": design " + std::to_string(record.index + 1) + " (";
     for (std::size_t p = 0; p < family.ranges.size() && p < record.point.size(); ++p) {
         text += (p == 0 ? "" : ", ") + family.ranges[p].name + " = " + text::format("%.6g", record.point[p]);
     }

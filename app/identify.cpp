@@ -30,8 +30,15 @@ std::string exactNumber(double v) { return text::format("%.12g", v); }
 /// The measurements of the CSV file: named columns, time increasing (errors name the line).
 }  // namespace
 
-Measurements readMeasurements(const std::string& path, int n) {
-    const io::Table table = io::readCsvFile(path);
+Measurements readMeasurements(const std::string& path, int n) { return measurementsOf(io::readCsvFile(path), path, n); }
+
+Measurements measurementsOf(const io::Table& table, const std::string& path, int n) {
+    // where row k is: its line in the file, or its number from 1 in a table built in code
+    const auto at = [&](Eigen::Index k) {
+        const auto kk = static_cast<std::size_t>(k);
+        return kk < table.lines.size() ? path + ":" + std::to_string(table.lines[kk])
+                                       : path + ": row " + std::to_string(k + 1);
+    };
     const auto need = [&](const std::string& name) {
         if (!table.has(name)) {
             throw Error(path + ": no column '" + name + "' (the log needs t, u1..u" + std::to_string(n) +
@@ -81,9 +88,11 @@ Measurements readMeasurements(const std::string& path, int n) {
     }
     for (Eigen::Index k = 0; k < N; ++k) {
         const std::vector<double>& row = table.rows[static_cast<std::size_t>(k)];
+        for (std::size_t c = 0; c < row.size() && c < table.columns.size(); ++c) {
+            if (!std::isfinite(row[c])) throw Error(at(k) + ": column '" + table.columns[c] + "': not a finite number");
+        }
         if (k > 0 && !(row[t_col] > m.t.back())) {
-            throw Error(path + ":" + std::to_string(table.lines[static_cast<std::size_t>(k)]) +
-                        ": column 't': " + exactNumber(row[t_col]) + " s is not after the previous sample's " +
+            throw Error(at(k) + ": column 't': " + exactNumber(row[t_col]) + " s is not after the previous sample's " +
                         exactNumber(m.t.back()) + " s (time must increase)");
         }
         m.t.push_back(row[t_col]);
@@ -162,13 +171,13 @@ void figure(const Model& model, const FitReport& fit, const std::string& stem) {
 }  // namespace
 
 void validate(const IdentifyOptions& o) {
-    if (o.data.empty()) throw OptionError("data", "the measured CSV is required");
+    if (o.data.empty() && !o.data_table) throw OptionError("data", "the measured CSV is required");
     if (o.cutoff != 0.0) requireIn(o.cutoff, kCutoffRange, "cutoff");
     requireIn(o.holdout, kHoldoutRange, "holdout");
     if (o.payload && o.base) throw OptionError("base", "give payload or base, not both");
     if (o.base && !o.calibration.empty())
         throw OptionError("calibration", "is for identifying a payload against the calibrated robot, not with base");
-    if (o.base && !o.prior.empty())
+    if (o.base && (!o.prior.empty() || o.prior_bounds))
         throw OptionError("prior", "bounds a payload's parameters: not with base (base parameters have no bounds)");
 }
 
@@ -189,10 +198,15 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
             throw Error(options.calibration + ": " + e.what());
         }
     }
-    if (!options.prior.empty()) identification.prior = io::loadPayloadPrior(options.prior);
+    if (options.prior_bounds)
+        identification.prior = *options.prior_bounds;
+    else if (!options.prior.empty())
+        identification.prior = io::loadPayloadPrior(options.prior);
     // a log of 10^6 samples or more takes seconds per step: say which step runs
     observer.step("reading " + io::terminalText(options.data), 1, 3);
-    const Measurements measured = readMeasurements(options.data, model.actuators);
+    const Measurements measured = options.data_table
+                                      ? measurementsOf(*options.data_table, options.data, model.actuators)
+                                      : readMeasurements(options.data, model.actuators);
     stopIfRequested(observer);
     observer.step("reconstructing the motion", 2, 3);
     const Motion motion = reconstructMotion(model, measured, identification);
@@ -240,7 +254,7 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
                                              : " (the unbounded fit gives " + exactNumber(b.unbounded) + unit + ")") +
                     "\n";
         }
-        if (!options.prior.empty() || !r.active_bounds.empty()) {
+        if (!options.prior.empty() || options.prior_bounds || !r.active_bounds.empty()) {
             text += "active_bounds: [";
             for (std::size_t i = 0; i < r.active_bounds.size(); ++i) {
                 const ActiveBound& b = r.active_bounds[i];

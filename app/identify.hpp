@@ -8,6 +8,7 @@
 
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "nocdyn/io/csv.hpp"
 #include "nocdyn/sim/identification.hpp"
 
 namespace nocdyn::app {
@@ -17,8 +18,11 @@ inline constexpr Range kHoldoutRange{0.0, 0.9, ""};
 
 struct IdentifyOptions {
     RobotSource robot;
-    /// The log: CSV t,u1..un with tau1..taun (forces at each sample) or tau1_held..taun_held.
+    /// The log: CSV t,u1..un with tau1..taun (forces at each sample) or tau1_held..taun_held
+    /// (and du1..dun, ddu1..ddun when known). With data_table: the log's name in messages.
     std::string data;
+    /// The same log given in code (Python): used instead of the file when set.
+    std::optional<io::Table> data_table;
     bool payload = false;  ///< identify a payload (the default when base is not given)
     bool base = false;     ///< identify the robot's base parameters instead
     bool friction = false;
@@ -28,8 +32,10 @@ struct IdentifyOptions {
     double holdout = 0.2;     ///< share of the samples (the last) held out
     std::string calibration;  ///< payload: a calibration file (identify base's output)
     std::string prior;        ///< payload: bounds on its parameters (YAML)
-    std::string output;       ///< where the YAML goes (none when empty)
-    std::string figure;       ///< STEM of the held-out forces' figure (none when empty)
+    /// The same bounds given in code (Python): used instead of the file when set.
+    std::optional<PayloadPrior> prior_bounds;
+    std::string output;  ///< where the YAML goes (none when empty)
+    std::string figure;  ///< STEM of the held-out forces' figure (none when empty)
 };
 
 /// Throws OptionError naming the field of a value out of range or options that do not go together.
@@ -46,6 +52,10 @@ struct IdentifyResult {
 
 /// The measurements of a log (named columns, time increasing; errors name file, line, column).
 [[nodiscard]] Measurements readMeasurements(const std::string& path, int actuators);
+
+/// The measurements of a log's table, read from `source` (errors name it, and the line of a
+/// row read from a file, else the row's number from 1); every value must be finite.
+[[nodiscard]] Measurements measurementsOf(const io::Table& table, const std::string& source, int actuators);
 
 /// Reads, reconstructs the motion, solves (three steps through the observer); writes output
 /// and figure when given.

@@ -8,7 +8,7 @@ namespace nocdyn::app {
 InverseDynamicsResult runInverseDynamics(const InverseDynamicsOptions& options, TableSink& table, Observer& observer) {
     validate(options);
     const Model model(loadRobot(options.robot));
-    const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
+    const PoseTrajectory trajectory = trajectoryOf(options);
     const SampleGrid grid = sampleGrid(chooseDuration(options.duration, trajectory), options.rate);
     requireRateAboveNyquist(trajectory, grid.rate);
     const auto policy = options.allow_limits ? LimitPolicy::record : LimitPolicy::error;

@@ -6,6 +6,7 @@
 
 #include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/text.hpp"
 
@@ -65,6 +66,10 @@ void addOverride(io::ParameterSet& set, const io::Parameter& parameter) {
 void validate(const SamplingOptions& options) {
     if (options.duration) requireIn(*options.duration, kDurationRange, "duration");
     requireIn(options.rate, kRateRange, "rate");
+}
+
+PoseTrajectory trajectoryOf(const SamplingOptions& options) {
+    return options.given_trajectory ? *options.given_trajectory : io::trajectoryByNameOrFile(options.trajectory);
 }
 
 double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory) {

@@ -83,6 +83,8 @@ void addOverride(io::ParameterSet& set, const io::Parameter& parameter);
 struct SamplingOptions {
     /// paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or samples (.csv).
     std::string trajectory;
+    /// A trajectory built in code (Python's nocdyn.Trajectory): used instead of `trajectory` when given.
+    std::optional<PoseTrajectory> given_trajectory;
     /// Seconds to sample; empty: the trajectory's own duration, else 0.2 s.
     std::optional<double> duration;
     /// Samples per second.
@@ -91,6 +93,9 @@ struct SamplingOptions {
 
 /// Checks duration and rate against their ranges (OptionError naming the field).
 void validate(const SamplingOptions& options);
+
+/// The trajectory to sample: the one given in code, else the one `trajectory` names.
+[[nodiscard]] PoseTrajectory trajectoryOf(const SamplingOptions& options);
 
 /// The duration asked for, else the trajectory's own, else 0.2 s.
 [[nodiscard]] double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory);

@@ -160,5 +160,74 @@ TEST_P(BatchLimits, TheBatchNamesTheFullPathsFirstSampleAndStatus) {
     EXPECT_EQ(inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, 1).first_beyond_limits, BatchResult::npos);
 }
 
+/// The 3-RPR with a range of +-0.01 rad on limb 1's passive base pivot: a limit the
+/// kernel's check from u, du and tau cannot see.
+Model limitedPassivePivot() {
+    RobotDescription robot = io::exampleRobot("3-rpr");
+    robot.limbs[0].joints[0].limits.lower = -0.01;
+    robot.limbs[0].joints[0].limits.upper = 0.01;
+    return Model(robot);
+}
+
+TEST_P(BatchLimits, EveryJointChecksALimitedPassiveJointByTheFullPathAsOneSampleIsChecked) {
+    const Model model = limitedPassivePivot();
+    EXPECT_FALSE(limitsOnActuatedJointsOnly(model));
+    EXPECT_TRUE(limitsOnActuatedJointsOnly(Model(io::exampleRobot("3-rpr"))));
+    const Eigen::Index N = 6;
+    Eigen::ArrayX3d p(N, 3), dp = Eigen::ArrayX3d::Zero(N, 3), ddp = Eigen::ArrayX3d::Zero(N, 3);
+    for (Eigen::Index k = 0; k < N; ++k) p.row(k) = model.home.transpose();
+    p(4, 1) += 0.005;  // x 5 mm off home: limb 1's pivot turns beyond 0.01 rad
+    Eigen::ArrayXXd u(N, model.actuators), du(N, model.actuators), ddu(N, model.actuators), tau(N, model.actuators);
+    // the single sample's own check: the full path's checkJointLimits, then checkEffort
+    Data data(model);
+    ASSERT_TRUE(inverseDynamics(model, data, p.row(4).transpose(), dp.row(4).transpose(), ddp.row(4).transpose()));
+    const Status one = checkSampleLimits(model, data);
+    ASSERT_EQ(one.code, StatusCode::joint_limit_exceeded);
+    EXPECT_EQ(one.limb, 0);
+    EXPECT_EQ(one.joint, 0);
+    // ActuatorLimits::check sees only the actuated joints; every_joint sees the pivot
+    const BatchResult actuated =
+        inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, 1, PoseColumns::theta_x_y, ActuatorLimits::check);
+    EXPECT_EQ(actuated.first_beyond_limits, BatchResult::npos);
+    for (const unsigned threads : {1u, 2u}) {
+        const BatchResult every = inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, threads,
+                                                       PoseColumns::theta_x_y, ActuatorLimits::every_joint);
+        EXPECT_TRUE(every.ok());
+        ASSERT_EQ(every.first_beyond_limits, 4) << threads;
+        EXPECT_EQ(every.limits.code, one.code);
+        EXPECT_EQ(every.limits.value, one.value);
+        // the words both front ends show: the sample numbered from 1
+        EXPECT_EQ(describeLimits(model, every), "sample 5: " + describe(one, model));
+        EXPECT_EQ(describeFailure(model, every, N), "");
+    }
+    // the same numbers as without any check
+    Eigen::ArrayXXd u0(N, model.actuators), du0(N, model.actuators), ddu0(N, model.actuators), tau0(N, model.actuators);
+    ASSERT_TRUE(inverseDynamicsBatch(model, p, dp, ddp, u0, du0, ddu0, tau0).ok());
+    EXPECT_TRUE((tau0 == tau).all());
+}
+
+TEST_P(BatchLimits, EveryJointOnActuatedLimitsIsTheKernelsCheckAndAFailureIsNamedFromOne) {
+    const Model model(io::exampleRobot("paper-3prr"));
+    ASSERT_TRUE(limitsOnActuatedJointsOnly(model));
+    const Eigen::Index N = 8;
+    Eigen::ArrayX3d p(N, 3), dp = Eigen::ArrayX3d::Zero(N, 3), ddp = Eigen::ArrayX3d::Zero(N, 3);
+    for (Eigen::Index k = 0; k < N; ++k) p.row(k) = model.home.transpose();
+    p(2, 1) = 0.5;   // out of reach
+    p(6, 1) = 0.02;  // actuator 1 at 20 mm on a 12.45 mm range
+    Eigen::ArrayXXd u(N, 3), du(N, 3), ddu(N, 3), tau(N, 3);
+    const BatchResult check =
+        inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, 1, PoseColumns::theta_x_y, ActuatorLimits::check);
+    const BatchResult every = inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, 1, PoseColumns::theta_x_y,
+                                                   ActuatorLimits::every_joint);
+    ASSERT_EQ(every.first_beyond_limits, 6);
+    EXPECT_EQ(every.first_beyond_limits, check.first_beyond_limits);
+    EXPECT_EQ(every.limits.code, check.limits.code);
+    EXPECT_EQ(every.limits.value, check.limits.value);
+    ASSERT_EQ(every.first_failure, 2);
+    EXPECT_EQ(describeFailure(model, every, N),
+              "sample 3: " + describe(every.status, model) + " (1 of 8 samples failed)");
+    EXPECT_EQ(describeLimits(model, every), "sample 7: " + describe(every.limits, model));
+}
+
 }  // namespace
 }  // namespace nocdyn::test

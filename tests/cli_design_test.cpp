@@ -69,6 +69,8 @@ TEST(CliDesign, EveryMetricEqualsTheSingleRobotCommandOnTheConvertedDesign) {
     EXPECT_EQ(rows[0],
               (std::vector<std::string>{"design", "r_b", "l1", "workspace_area", "condition_median", "condition_worst",
                                         "envelope_x@50", "moving_mass", "feasible", "reason"}));
+    // designs numbered from 1, as a person reads them
+    for (std::size_t k = 1; k < rows.size(); ++k) EXPECT_EQ(rows[k][0], std::to_string(k));
     EXPECT_TRUE(fs::exists(dir / "run" / "pareto.csv"));
     // the best design by the first metric (workspace_area, larger is better) is named, with its
     // parameters, as designs.csv has it

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <set>
 #include <string>
 
@@ -275,6 +276,11 @@ TEST(DesignSweep, TheParetoFrontHoldsTheUndominatedFeasibleDesigns) {
     EXPECT_EQ(paretoFront(designs, metrics), (std::vector<std::size_t>{0, 1, 4}));
 }
 
+std::string readJournal(const std::string& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
 TEST(DesignJournal, AResumedSweepKeepsTheRecordedDesignsAndDropsAnUnfinishedLine) {
     const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "design_journal";
     std::filesystem::remove_all(dir);
@@ -286,9 +292,14 @@ TEST(DesignJournal, AResumedSweepKeepsTheRecordedDesignsAndDropsAnUnfinishedLine
         journal.append({0, {0.1}, {true, "", {0.1 + 0.2}}});
         journal.append({3, {0.4}, {false, "limb 2, \"out\" of reach", {std::nan("")}}});
     }
-    std::ofstream(path, std::ios::app) << "5,0.5,0.";  // killed mid-line
+    std::ofstream(path, std::ios::app) << "6,0.5,0.";  // killed mid-line
+    // designs numbered from 1 where a person reads them: design 4 is record 3
+    const std::string text = readJournal(path);
+    EXPECT_NE(text.find("\n1,0.1,"), std::string::npos) << text;
+    EXPECT_NE(text.find("\n4,0.4,"), std::string::npos) << text;
     io::DesignJournal again(path, "sig", columns, 1, 1);
     ASSERT_EQ(again.previous().size(), 2u);
+    EXPECT_EQ(again.previous()[0].index, 0u);
     EXPECT_EQ(again.previous()[0].evaluation.values[0], 0.1 + 0.2);
     EXPECT_EQ(again.previous()[1].index, 3u);
     EXPECT_EQ(again.previous()[1].evaluation.reason, "limb 2, \"out\" of reach");

@@ -6,7 +6,6 @@
 #include <iostream>
 #include <memory>
 #include <numbers>
-#include <sstream>
 
 #include "app/pose.hpp"
 #include "commands.hpp"
@@ -14,7 +13,6 @@
 #include "progress.hpp"
 #include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/io/escape.hpp"
-#include "nocdyn/text.hpp"
 
 namespace nocdyn::cli {
 
@@ -25,30 +23,6 @@ struct Options : app::PoseOptions {
 };
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
-
-nlohmann::json toJson(const Eigen::Ref<const Eigen::MatrixXd>& m) {
-    nlohmann::json rows = nlohmann::json::array();
-    for (Eigen::Index i = 0; i < m.rows(); ++i) {
-        nlohmann::json row = nlohmann::json::array();
-        for (Eigen::Index k = 0; k < m.cols(); ++k) row.push_back(m(i, k));
-        rows.push_back(row);
-    }
-    return rows;
-}
-
-std::string formatMatrix(const Eigen::Ref<const Eigen::MatrixXd>& m) {
-    std::ostringstream out;
-    std::string cell;
-    for (Eigen::Index i = 0; i < m.rows(); ++i) {
-        out << "  [";
-        for (Eigen::Index k = 0; k < m.cols(); ++k) {
-            cell = text::format("%s% .9e", k ? "  " : "", m(i, k));
-            out << cell;
-        }
-        out << "]\n";
-    }
-    return out.str();
-}
 
 nlohmann::json complianceJson(const app::PoseCompliance& c) {
     nlohmann::json coordinates = nlohmann::json::array(), units = nlohmann::json::array();
@@ -65,10 +39,10 @@ nlohmann::json complianceJson(const app::PoseCompliance& c) {
     }
     nlohmann::json out;
     out["stiffness"] = {
-        {"coordinates", coordinates}, {"matrix", toJson(c.K)}, {"units", units}, {"free_directions", free}};
+        {"coordinates", coordinates}, {"matrix", matrixJson(c.K)}, {"units", units}, {"free_directions", free}};
     out["natural_frequencies"] = {c.frequencies(0), c.frequencies(1), c.frequencies(2)};
     // as the text and Python give them: rows x, y, theta; column i the shape of frequency i
-    out["mode_shapes"] = toJson(c.mode_shapes);
+    out["mode_shapes"] = matrixJson(c.mode_shapes);
     if (c.elastodynamic_frequencies) {
         const Eigen::VectorXd& f = *c.elastodynamic_frequencies;
         out["elastodynamic_frequencies"] = std::vector<double>(f.data(), f.data() + f.size());
@@ -92,10 +66,10 @@ void printJson(const app::PoseResult& r) {
         out["actuators"].push_back(
             {{"actuator", a.actuator}, {"limb", a.limb}, {"joint", a.joint}, {"u", a.u}, {"range_used", a.range_used}});
     }
-    out["A"] = toJson(r.A);
+    out["A"] = matrixJson(r.A);
     out["cond_A"] = r.cond_A;
     out["coordinates"] = r.coordinates;
-    out["I"] = toJson(r.I);
+    out["I"] = matrixJson(r.I);
     out["within_limits"] = r.within_limits;
     out["tau"] = std::vector<double>(r.tau.data(), r.tau.data() + r.tau.size());
     for (const app::PoseReaction& j : r.reactions) {
@@ -113,7 +87,7 @@ void printJson(const app::PoseResult& r) {
 void printCompliance(const app::PoseCompliance& c) {
     std::printf("\nstiffness K at C (virtual joint method, gravity preload ignored; dQ = K dp, rows and columns:");
     for (int r = 0; r < 3; ++r) std::printf(" %s", analysis::coordinateLabel(r).c_str());
-    std::printf(")\n%sunits:\n", formatMatrix(c.K).c_str());
+    std::printf(")\n%sunits:\n", matrixText(c.K).c_str());
     for (int r = 0; r < 3; ++r) {
         std::printf("  [");
         for (int k = 0; k < 3; ++k) std::printf("%s%-8s", k ? "  " : "", analysis::stiffnessUnit(r, k).c_str());
@@ -123,7 +97,7 @@ void printCompliance(const app::PoseCompliance& c) {
         std::printf("free direction (no stiffness): %s\n", text.c_str());
     std::printf("natural frequencies (lumped model K v = w^2 M v) [Hz]: %.6g %.6g %.6g\n", c.frequencies(0),
                 c.frequencies(1), c.frequencies(2));
-    std::printf("mode shapes (columns, mass-normalised; rows: x, y, theta):\n%s", formatMatrix(c.mode_shapes).c_str());
+    std::printf("mode shapes (columns, mass-normalised; rows: x, y, theta):\n%s", matrixText(c.mode_shapes).c_str());
     if (c.elastodynamic_frequencies) {
         std::printf("elastodynamic frequencies (%d DOF) [Hz]:", c.elastodynamic_dofs);
         for (const double f : *c.elastodynamic_frequencies) std::printf(" %.6g", f);
@@ -152,12 +126,12 @@ void printText(const app::PoseResult& r) {
                     a.revolute ? a.u * kDeg : a.u * 1e3, a.revolute ? "deg" : "mm", 100.0 * a.range_used);
     }
     std::printf("\nactuation map du = A dp/dt (eq. 5 generalised; rows: actuators, columns: x, y, theta):\n%s",
-                formatMatrix(r.A).c_str());
+                matrixText(r.A).c_str());
     std::printf("condition numbers (scaled, limit %.6g): actuation %.6g\n", r.max_condition, r.cond_A);
     std::printf(r.coordinates == "actuators" ? "joint-space inertia I (eq. 23), in the actuator variables:\n%s"
                                              : "inertia I (eq. 23) in the platform pose x, y, theta (redundant "
                                                "actuation):\n%s",
-                formatMatrix(r.I).c_str());
+                matrixText(r.I).c_str());
     std::printf("\nat rest under gravity: tau =");
     for (const double tau : r.tau) std::printf(" %+.6e", tau);
     std::printf("\njoint reactions (base frame, inboard body on outboard body, effort and friction taken out):\n");

@@ -3,6 +3,7 @@
 #include "plants.hpp"
 #include "progress.hpp"
 
+#include <nlohmann/json.hpp>
 #include <unistd.h>
 #include <cstdio>
 #include <algorithm>
@@ -19,6 +20,7 @@
 #include <utility>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/examples.hpp"
@@ -248,6 +250,26 @@ std::string commandLineText(const std::string& message, const CLI::App* command)
 
 std::string commandLineMessage(const app::OptionError& e, const CLI::App* command) {
     return dashed(e.field()) + ": " + commandLineText(e.message(), command);
+}
+
+nlohmann::json matrixJson(const Eigen::Ref<const Eigen::MatrixXd>& m) {
+    nlohmann::json rows = nlohmann::json::array();
+    for (Eigen::Index i = 0; i < m.rows(); ++i) {
+        nlohmann::json row = nlohmann::json::array();
+        for (Eigen::Index k = 0; k < m.cols(); ++k) row.push_back(m(i, k));
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+std::string matrixText(const Eigen::Ref<const Eigen::MatrixXd>& m) {
+    std::string out;
+    for (Eigen::Index i = 0; i < m.rows(); ++i) {
+        out += "  [";
+        for (Eigen::Index k = 0; k < m.cols(); ++k) out += text::format("%s% .9e", k ? "  " : "", m(i, k));
+        out += "]\n";
+    }
+    return out;
 }
 
 }  // namespace nocdyn::cli

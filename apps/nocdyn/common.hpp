@@ -3,6 +3,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json_fwd.hpp>
 
 #include <functional>
 #include <memory>
@@ -10,6 +11,8 @@
 #include <span>
 #include <string>
 #include <string_view>
+
+#include <Eigen/Core>
 
 #include "app/options.hpp"
 #include "app/outputs.hpp"
@@ -108,5 +111,11 @@ CLI::Option* addPlantOption(CLI::App& command, std::string& plant);
 /// An application-layer option error as the command line spells its options: "--noise-u: ...
 /// use --noise-pose and --noise-rate" for the field noise_u naming noise_pose and noise_rate.
 [[nodiscard]] std::string commandLineMessage(const app::OptionError& e, const CLI::App* command = nullptr);
+
+/// A matrix as JSON, an array of its rows (the reports' --json).
+[[nodiscard]] nlohmann::json matrixJson(const Eigen::Ref<const Eigen::MatrixXd>& m);
+
+/// A matrix as text, one "  [a  b  c]" line per row, each entry %.9e (the reports' text).
+[[nodiscard]] std::string matrixText(const Eigen::Ref<const Eigen::MatrixXd>& m);
 
 }  // namespace nocdyn::cli

@@ -17,6 +17,7 @@
 #pragma once
 
 #include <limits>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -45,10 +46,23 @@ struct BatchResult {
 /// the first failure and the first sample beyond limits those of the earliest chunk with one.
 [[nodiscard]] BatchResult combineChunks(const std::vector<BatchResult>& chunks);
 
-/// Whether a batch checks, from each computed sample's u, du and tau, the actuated joints' ranges
-/// and velocity limits (limb by limb, joint by joint, as checkJointLimits) and then every
-/// actuator's effort (as checkEffort). Passive joints' limits need the full path (their q).
-enum class ActuatorLimits { ignore, check };
+/// Which limits a batch checks on each computed sample.
+/// - ignore: none.
+/// - check: from the sample's u, du and tau, the actuated joints' ranges and velocity limits
+///   (limb by limb, joint by joint, as checkJointLimits) and then every actuator's effort (as
+///   checkEffort), inside the kernel. A passive joint's limits are not seen (they need its q).
+/// - every_joint: every joint's range and velocity limit, then every actuator's effort, as
+///   `nocdyn inverse-dynamics` checks a sample: as `check` when every limited joint is actuated
+///   (limitsOnActuatedJointsOnly), else by the full path (checkJointLimits, checkEffort) at each
+///   computed sample after the kernel, on the calling thread.
+enum class ActuatorLimits { ignore, check, every_joint };
+
+/// Whether every joint with a range or velocity limit is actuated: then u, du and tau are all
+/// that the limits of a sample need.
+[[nodiscard]] bool limitsOnActuatedJointsOnly(const Model& model);
+
+/// checkJointLimits, then checkEffort, of a sample the full path computed into `data`.
+[[nodiscard]] Status checkSampleLimits(const Model& model, const Data& data);
 
 /// ActuatorLimits::check of one computed sample (u, du, tau of size n): the first limit
 /// exceeded, or ok.
@@ -81,6 +95,20 @@ BatchResult inverseDynamicsBatch(const Model& model, const BatchInput& p, const 
                                  BatchOutput u, BatchOutput du, BatchOutput ddu, BatchOutput tau, unsigned threads = 1,
                                  PoseColumns order = PoseColumns::theta_x_y,
                                  ActuatorLimits limits = ActuatorLimits::ignore);
+
+/// The first of N samples (p, dp, ddp, N x 3 each in `order`) beyond a limit checkSampleLimits
+/// finds, by the full path at each sample, its Status in `status`; a sample out of reach or
+/// singular is skipped (its own computation reports it). BatchResult::npos: none.
+[[nodiscard]] Eigen::Index firstSampleBeyondLimits(const Model& model, const BatchInput& p, const BatchInput& dp,
+                                                   const BatchInput& ddp, PoseColumns order, Status& status);
+
+/// A batch's failure in words, the same for every front end: "sample K: <reason> (F of N
+/// samples failed)", K numbered from 1 (row K - 1 of the arrays); empty when none failed.
+[[nodiscard]] std::string describeFailure(const Model& model, const BatchResult& result, Eigen::Index samples);
+
+/// A batch's first sample beyond a limit in words: "sample K: <reason>", K numbered from 1;
+/// empty when none.
+[[nodiscard]] std::string describeLimits(const Model& model, const BatchResult& result);
 
 /// How many samples the batch computes at once (a packet, one value per lane of a vector):
 /// eight where the CPU has AVX-512 (x86-64-v4, found at run time), else four. `automatic` is

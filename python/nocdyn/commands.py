@@ -84,8 +84,8 @@ def _progress_callback(progress, description):
     return progress
 
 
-def _forces_table(forces):
-    """The forces given as columns (a dict, a Table, a DataFrame) as a Table."""
+def _forces_table(forces, name="forces"):
+    """Columns given as a dict, a Table or a DataFrame (the forces, a log) as a Table."""
     if isinstance(forces, Table):
         return forces
     if hasattr(forces, "columns") and hasattr(forces, "to_numpy"):  # a pandas DataFrame
@@ -96,8 +96,8 @@ def _forces_table(forces):
             return Table(list(forces), np.column_stack([np.asarray(v, dtype=float).reshape(-1)
                                                         for v in forces.values()]))
         except (TypeError, ValueError) as error:
-            raise ValueError(f"forces: {error}") from None
-    raise ValueError("forces: expected a CSV path, a dict of columns (t, tau1..taun), a Table or a DataFrame")
+            raise ValueError(f"{name}: {error}") from None
+    raise ValueError(f"{name}: expected a CSV path, a dict of columns (t, ...), a Table or a DataFrame")
 
 
 # --- the application layer: options structs in, typed results out ----------------------------
@@ -337,10 +337,16 @@ pose.__signature__ = _signature(_nocdyn.PoseOptions, ("x", "y", "theta"), after=
 def inverse_dynamics(trajectory, *, robot=None, set=None, output=None, progress=None, **options):
     """Actuator variables, rates, accelerations and forces along a trajectory
     (``nocdyn inverse-dynamics``), sampled at ``rate`` [Hz] over ``duration`` [s] (default: the
-    file's duration, else 0.2 s). allow_limits: warn instead of failing at a joint's limits;
-    reactions: the joint reactions as more columns. Returns a Table with the CSV's columns
-    (t, x, y, theta, ..., u1..un, du1..dun, ddu1..ddun, tau1..taun); output: also write it as CSV."""
-    bound = _bound_options(_nocdyn.InverseDynamicsOptions, {"trajectory": trajectory, **options})
+    file's duration, else 0.2 s). trajectory: 'paper1', 'paper2', a trajectory file's path or a
+    nocdyn.Trajectory. allow_limits: warn instead of failing at a joint's limits; reactions: the
+    joint reactions as more columns. Returns a Table with the CSV's columns (t, x, y, theta, ...,
+    u1..un, du1..dun, ddu1..ddun, tau1..taun); output: also write it as CSV."""
+    from .trajectory import Trajectory
+    given = trajectory if isinstance(trajectory, Trajectory) else None
+    bound = _bound_options(_nocdyn.InverseDynamicsOptions,
+                           options if given is not None else {"trajectory": trajectory, **options})
+    if given is not None:
+        bound.use_trajectory(given._core)
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("inverse-dynamics", [("robot", robot), ("trajectory", trajectory)], [("output", output)])
     columns, data = _run(_nocdyn._run_inverse_dynamics, bound, progress, "inverse dynamics")
@@ -441,16 +447,18 @@ def envelope(*, robot=None, set=None, output=None, figure=None, progress=None, *
     every limit and which limit binds. Returns an Envelope (a Table with the CSV's columns: axis
     and limit as words; frequency, amplitude, ...; limb, joint, actuator numbered from 1, 0 when
     none) whose ``first_natural_frequency`` [Hz] is the band's third bound when the robot file
-    declares compliance (None otherwise; ``text`` says which). output: also write the CSV;
+    declares compliance (None otherwise; ``text`` says which), ``band_end`` {"x": f, "y": f,
+    "theta": f} [Hz] the lowest frequency per axis where the dynamic amplification leaves
+    [1/amplification, amplification] (None when unknown; ``resonance_reason`` says why). output: also write the CSV;
     figure: the figure's stem (STEM.png, STEM.svg)."""
     bound = _bound_options(_nocdyn.EnvelopeOptions, options)
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("envelope", [("robot", robot)], [("output", output)], [("figure", figure, _FIGURE)])
-    answer, summary, first = _run(
+    answer, summary, first, band_end, reason = _run(
         lambda o, p: _nocdyn._run_envelope(o, p, _path(output, "output"), _path(figure, "figure")), bound, progress,
         "envelope")
     table = _table(answer, "envelope", Envelope, summary, integers=_NUMBERS)
-    table.first_natural_frequency = first
+    table.first_natural_frequency, table.band_end, table.resonance_reason = first, band_end, reason
     return table
 
 
@@ -645,23 +653,54 @@ regressor.__signature__ = _signature(_nocdyn.RegressorOptions, (), before=(("rob
 
 def identify(data, *, robot=None, set=None, output=None, figure=None, progress=None, **options):
     """Identify a payload (the default) or the robot's base parameters (base) from a log of
-    actuator positions and forces, CSV t,u1..un with tau1..taun (forces at each sample) or
-    tau1_held..taun_held (commands held until the next sample, as control's ``log`` writes them;
-    taken so without held_forces) (``nocdyn identify``). Returns an Identification: the report the command prints (``text``),
-    read as a dict (``report``: payload, standard_deviation, fit, ...), and ``robot_yaml``, the
-    file the command writes (the robot with the payload merged, or with base the calibration).
-    output: also write that file; figure: STEM of the held-out forces' figure (STEM.png, STEM.svg)."""
-    bound = _bound_options(_nocdyn.IdentifyOptions, {"data": data, **options})
+    actuator positions and forces (``nocdyn identify``): a CSV path, or columns (a dict, Table or
+    DataFrame) t, u1..un with tau1..taun (forces at each sample) or tau1_held..taun_held (commands
+    held until the next sample, as control's ``log`` writes them; taken so without held_forces),
+    and du1..dun, ddu1..ddun when known (used as given; else u and tau are low-pass filtered at
+    ``cutoff`` and u differentiated). prior: bounds on the payload, a prior file's path or a dict
+    {"mass": (lower, upper), "com_x": ..., "com_y": ..., "inertia": ...} (None for an open side;
+    see nocdyn.load_prior). Returns an Identification: its numbers typed (``payload``,
+    ``payload_estimate`` with the standard deviations, covariance and fit; ``base``), the report
+    the command prints (``text``) and ``robot_yaml``, the file the command writes (the robot with
+    the payload merged, or with base the calibration). output: also write that file; figure: STEM
+    of the held-out forces' figure (STEM.png, STEM.svg)."""
+    prior = options.pop("prior", None)
+    table = None if isinstance(data, (str, os.PathLike)) else _forces_table(data, "data")
+    bound = _bound_options(_nocdyn.IdentifyOptions, options if table is not None else {"data": data, **options})
+    if table is not None:
+        bound.use_data(table.columns, table.data)
+    if isinstance(prior, dict):
+        bound.use_prior(_prior_bounds(prior))
+    elif prior is not None:
+        bound.prior = _argument(prior, "prior", "")
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("identify", [("robot", robot), ("data", data), ("calibration", options.get("calibration")),
-                                    ("prior", options.get("prior"))], [("output", output)],
-                       [("figure", figure, _FIGURE)])
+                                    ("prior", prior)], [("output", output)], [("figure", figure, _FIGURE)])
     if output is not None:
         bound.output = _argument(output, "output", "")
     if figure is not None:
         bound.figure = _argument(figure, "figure", "")
-    text, robot_yaml = _run(_nocdyn._run_identify, bound, progress, "identify")
-    return Identification(text, robot_yaml)
+    text, robot_yaml, payload, base = _run(_nocdyn._run_identify, bound, progress, "identify")
+    return Identification(text, robot_yaml, payload, base)
+
+
+def _prior_bounds(prior):
+    """The (lower, upper) pairs of mass, com_x, com_y, inertia of a prior given as a dict, infinite
+    where open; ValueError naming an unknown key or a bad pair."""
+    from ._guards import _number
+    from .identification import PRIOR_KEYS
+    unknown = sorted(set(prior) - set(PRIOR_KEYS))
+    if unknown:
+        raise _nocdyn.Error(f"prior: unknown key {unknown[0]!r} (expected one of: {', '.join(PRIOR_KEYS)})")
+    bounds = []
+    for key in PRIOR_KEYS:
+        pair = prior.get(key, (None, None))
+        if pair is None or isinstance(pair, (str, bytes)) or not hasattr(pair, "__len__") or len(pair) != 2:
+            raise _nocdyn.Error(f"prior: {key}: expected (lower, upper), None for an open side")
+        lower = -float("inf") if pair[0] is None else _number(pair[0], f"prior: {key}: lower")
+        upper = float("inf") if pair[1] is None else _number(pair[1], f"prior: {key}: upper")
+        bounds.append((lower, upper))
+    return bounds
 
 
 identify.__signature__ = _signature(_nocdyn.IdentifyOptions, ("data",), before=(("robot", None), ("set", None)),

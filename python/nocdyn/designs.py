@@ -124,10 +124,11 @@ class Designs:
         return self.points.shape[0]
 
     def rows(self):
-        """One dict per design: design (index), each parameter, each metric, feasible, reason."""
+        """One dict per design: design (its number, from 1, as designs.csv; row design - 1), each
+        parameter, each metric, feasible, reason."""
         out = []
         for i in range(len(self)):
-            row = {"design": i}
+            row = {"design": i + 1}
             row.update(zip(self.names, map(float, self.points[i])))
             row.update(zip(self.metrics, map(float, self.values[i])))
             row["feasible"] = bool(self.feasible[i])
@@ -153,7 +154,7 @@ class Designs:
             return text
         lines = [",".join(_nocdyn._column_names("design", parameters=self.names, metrics=self.metrics))]
         for i in range(len(self)):
-            lines.append(",".join([str(i), *(number(v) for v in self.points[i]),
+            lines.append(",".join([str(i + 1), *(number(v) for v in self.points[i]),
                                    *(number(v) for v in self.values[i]),
                                    "true" if self.feasible[i] else "false", field(self.reason[i])]))
         path = pathlib.Path(path)
@@ -216,14 +217,21 @@ def _finite(name, value, lower=None, upper=None, positive=False):
     return x
 
 
-def _options(theta=None, resolution=201, trajectory=None, duration=None, rate=10000.0):
+# the defaults and ranges of `nocdyn design` (app::DesignOptions, app/design.hpp, app/options.hpp):
+# one definition, in C++
+_DEFAULTS = _nocdyn.DesignOptions()
+_RANGES = _nocdyn._ranges()
+
+
+def _options(theta=None, resolution=_DEFAULTS.resolution, trajectory=None, duration=None, rate=_DEFAULTS.rate):
     if theta is not None:
-        theta = _finite("theta", theta)
-    if isinstance(resolution, bool) or int(resolution) != resolution or not 2 <= int(resolution) <= 10001:
-        raise ValueError(f"resolution: expected a whole number of grid points from 2 to 10001, got {resolution!r}")
-    rate = _finite("rate", rate, 1.0, 1e8)
+        theta = _finite("theta", theta, *_RANGES["design_theta"][:2])
+    low, high = (int(v) for v in _RANGES["design_resolution"][:2])
+    if isinstance(resolution, bool) or int(resolution) != resolution or not low <= int(resolution) <= high:
+        raise ValueError(f"resolution: expected a whole number of grid points from {low} to {high}, got {resolution!r}")
+    rate = _finite("rate", rate, *_RANGES["rate"][:2])
     if duration is not None:
-        duration = _finite("duration", duration, 1e-6, 1e6)
+        duration = _finite("duration", duration, *_RANGES["duration"][:2])
     traj = None
     if trajectory is not None:
         from . import Trajectory

@@ -219,43 +219,67 @@ class Envelope(Table):
     """The operating envelope (``nocdyn envelope``): one row per axis (x, y, theta) and frequency,
     the CSV's columns. ``first_natural_frequency``: the band's third bound [Hz], the first
     natural frequency of the lumped model at home, when the robot file declares compliance
-    (rows at or above it have the limit 'resonance'), else None; ``text`` the summary line that
-    names it or says why it is unknown."""
+    (rows at or above it have the limit 'resonance'), else None; ``band_end`` {"x": f, "y": f,
+    "theta": f} [Hz], per axis the lowest frequency where the damped lumped model's dynamic
+    amplification leaves [1/A, A] (inf when it never does; None when unknown, and
+    ``resonance_reason`` says why); ``text`` the summary line that names it or says why it is
+    unknown."""
 
     def __init__(self, columns, data, text="", name="envelope", labels=None, integers=(),
-                 first_natural_frequency=None):
+                 first_natural_frequency=None, band_end=None, resonance_reason=""):
         super().__init__(columns, data, text, name, labels, integers)
         self.first_natural_frequency = first_natural_frequency
+        self.band_end = band_end
+        self.resonance_reason = resonance_reason
 
 
 class Identification:
-    """An identification (``nocdyn identify``): ``text`` the report the command prints (YAML),
-    ``report`` it read as a dict (needs PyYAML, Debian's python3-yaml; else None), ``payload``
-    the estimate {mass, com, inertia} when a payload was identified, ``robot_yaml`` the file the
-    command writes (the robot with the payload merged, or the calibration with base)."""
+    """An identification (``nocdyn identify``), its numbers typed (no YAML parsed back):
 
-    def __init__(self, text, robot_yaml, log=""):
+    ``payload`` {mass [kg], com [x, y] [m], inertia [kg m^2]} when a payload was identified (else
+    None), ``payload_estimate`` the same with its standard deviations, covariance, active bounds,
+    friction and fit (a nocdyn.PayloadEstimate); ``base`` with base: {base_parameters: [{name,
+    value, stddev, robot_file, unit}], covariance, fit}; ``text`` the report the command prints
+    (YAML), ``robot_yaml`` the file the command writes (the robot with the payload merged, or the
+    calibration with base). ``report`` is ``text`` read as a dict, only when PyYAML is installed
+    (Debian's python3-yaml; else None): every number is in ``payload_estimate`` and ``base``
+    without it."""
+
+    def __init__(self, text, robot_yaml, payload=None, base=None, log=""):
+        from .identification import PayloadEstimate
         self.text = text
         self.log = log
         self.robot_yaml = robot_yaml
+        self.payload_estimate = None if payload is None else PayloadEstimate(payload)
+        self.payload = None if payload is None else {
+            "mass": float(payload["mass"]), "com": [float(v) for v in payload["com"]],
+            "inertia": float(payload["inertia"])}
+        self.base = base
+
+    @property
+    def report(self):
+        """The printed report read as a dict (needs PyYAML; None without it)."""
         try:
             import yaml
-            self.report = yaml.safe_load(text)
+            report = yaml.safe_load(self.text)
         except Exception:  # PyYAML missing, or a report that is not a YAML mapping
-            self.report = None
-        self.payload = self.report.get("payload") if isinstance(self.report, dict) else None
+            return None
+        return report if isinstance(report, dict) else None
 
     def to_pandas(self):
-        """The estimates: parameter, value, standard deviation (payload and friction)."""
+        """The estimates: parameter, value, standard deviation (payload and friction, or the base
+        parameters)."""
         rows = []
-        if self.payload:
-            sd = self.report.get("standard_deviation", {})
-            rows += [{"parameter": "mass", "value": self.payload["mass"], "stddev": sd.get("mass")},
-                     {"parameter": "com_x", "value": self.payload["com"][0], "stddev": sd.get("com", [None])[0]},
-                     {"parameter": "com_y", "value": self.payload["com"][1], "stddev": sd.get("com", [None, None])[1]},
-                     {"parameter": "inertia", "value": self.payload["inertia"], "stddev": sd.get("inertia")}]
-        for e in (self.report or {}).get("friction", []) or []:
-            rows.append({"parameter": e["name"], "value": e["value"], "stddev": e["stddev"]})
+        e = self.payload_estimate
+        if e is not None:
+            rows += [{"parameter": "mass", "value": e.mass, "stddev": e.mass_sd},
+                     {"parameter": "com_x", "value": e.com[0], "stddev": e.com_sd[0]},
+                     {"parameter": "com_y", "value": e.com[1], "stddev": e.com_sd[1]},
+                     {"parameter": "inertia", "value": e.inertia, "stddev": e.inertia_sd}]
+            rows += [{"parameter": f["name"], "value": f["value"], "stddev": f["stddev"]} for f in e.friction]
+        if self.base is not None:
+            rows += [{"parameter": b["name"], "value": b["value"], "stddev": b["stddev"]}
+                     for b in self.base["base_parameters"]]
         return _pandas().DataFrame(rows)
 
     def __repr__(self):

@@ -10,15 +10,20 @@
 #include <utility>
 #include <vector>
 
+#include "app/design.hpp"
 #include "app/inverse_dynamics.hpp"
 #include "app/observer.hpp"
 #include "app/options.hpp"
 #include "app/outputs.hpp"
 #include "app/pose.hpp"
+#include "nocdyn/analysis/sampling.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/output.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
+#include "nocdyn/text.hpp"
+#include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::python {
 
@@ -46,6 +51,12 @@ py::array_t<double> rowsArray(const io::Table& table) {
 }
 
 namespace {
+
+/// Most memory a table held for Python takes [bytes], and the least one sample of the inverse
+/// dynamics takes: t, x, y, theta, their rates and accelerations, kinetic and u, du, ddu, tau of
+/// three actuators, float64 each.
+constexpr double kMaxHeldBytes = 8e8;
+constexpr double kHeldBytesPerSample = 8.0 * (11 + 4 * 3);
 
 py::dict poseDict(const app::PoseResult& r) {
     const auto limbs = static_cast<py::ssize_t>(r.limbs.size());
@@ -150,11 +161,25 @@ void bindApplication(py::module_& m) {
         py::arg("path"), py::arg("columns"), py::arg("data"),
         "Writes a table as the command line's CSV (a unique temporary file, then renamed).");
 
+    // the ranges the jobs accept (app/*.hpp), for what Python checks before a job runs
+    m.def("_ranges", [] {
+        py::dict out;
+        const auto add = [&](const char* name, const app::Range& r) { out[name] = py::make_tuple(r.lo, r.hi, r.unit); };
+        add("rate", app::kRateRange);
+        add("duration", app::kDurationRange);
+        add("design_theta", app::kDesignThetaRange);
+        add("design_resolution", app::kDesignResolutionRange);
+        add("design_threads", app::kDesignThreadsRange);
+        return out;
+    });
     py::class_<app::SamplingOptions>(m, "SamplingOptions")
         .def(py::init<>())
         .def_readwrite("trajectory", &app::SamplingOptions::trajectory)
         .def_readwrite("duration", &app::SamplingOptions::duration)
-        .def_readwrite("rate", &app::SamplingOptions::rate);
+        .def_readwrite("rate", &app::SamplingOptions::rate)
+        .def(
+            "use_trajectory", [](app::SamplingOptions& o, const PoseTrajectory& t) { o.given_trajectory = t; },
+            py::arg("trajectory"), "This trajectory (a nocdyn.Trajectory's core) instead of a file");
 
     OptionsClass<app::PoseOptions>(m, "PoseOptions")
         .field("robot", &app::PoseOptions::robot)
@@ -180,6 +205,18 @@ void bindApplication(py::module_& m) {
     m.def(
         "_run_inverse_dynamics",
         [](const app::InverseDynamicsOptions& options, const py::object& progress) {
+            // every sample is held (the command line streams them to a file): what would take more
+            // than kMaxHeldBytes is refused before any is computed
+            app::validate(static_cast<const app::SamplingOptions&>(options));
+            const double samples = static_cast<double>(
+                sampleGrid(app::chooseDuration(options.duration, app::trajectoryOf(options)), options.rate).count);
+            if (samples * kHeldBytesPerSample > kMaxHeldBytes) {
+                throw Error(text::format(
+                    "%.6g samples of at least %.0f bytes would hold %.3g GB in memory, more than "
+                    "the %.0f MB allowed: give a shorter duration or a lower rate (the command "
+                    "line's inverse-dynamics streams any number to a file)",
+                    samples, kHeldBytesPerSample, samples * kHeldBytesPerSample / 1e9, kMaxHeldBytes / 1e6));
+            }
             auto table = std::make_shared<app::TableCollector>();
             (void)runJob(progress,
                          [&](app::Observer& observer) { return app::runInverseDynamics(options, *table, observer); });

@@ -82,10 +82,19 @@ void bindAnalysis(py::module_& m) {
                 if (!stem.empty()) app::writeEnvelopeFigure(r, stem);
                 return r;
             });
-            // (table, summary, first natural frequency [Hz] or None)
-            const py::object first =
-                result.resonance.known ? py::object(py::float_(result.resonance.frequency)) : py::object(py::none());
-            return py::make_tuple(tableTuple(result.table), result.summary, first);
+            // (table, summary, first natural frequency [Hz] or None, {axis: band end [Hz]} or None,
+            // why the resonance is unknown or "")
+            const EnvelopeResonance& resonance = result.resonance;
+            py::object first = py::none(), band_end = py::none();
+            if (resonance.known) {
+                first = py::float_(resonance.frequency);
+                py::dict ends;
+                for (const EnvelopeAxis axis : kEnvelopeAxes)
+                    ends[axisName(axis)] = resonance.band_end[static_cast<std::size_t>(axis)];
+                band_end = ends;
+            }
+            return py::make_tuple(tableTuple(result.table), result.summary, first, band_end,
+                                  resonance.known ? std::string() : resonance.reason);
         },
         py::arg("options"), py::arg("progress") = py::none(), py::arg("output") = py::none(),
         py::arg("figure") = py::none());

@@ -3,7 +3,10 @@
 // as their options structs and run functions (app/).
 #include <pybind11/stl.h>
 
+#include <array>
+#include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "app/animate.hpp"
@@ -11,6 +14,10 @@
 #include "app/identify.hpp"
 #include "app/shake.hpp"
 #include "app_bindings.hpp"
+#include "arrays.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/sim/identification.hpp"
+#include "nocdyn/tables/calibration.hpp"
 
 namespace nocdyn::python {
 
@@ -64,6 +71,75 @@ void bindShake(py::module_& m) {
         py::arg("options"), py::arg("progress") = py::none());
 }
 
+/// The fit of measured against predicted forces on the held-out samples, as numbers.
+py::dict fitDict(const FitReport& fit) {
+    py::dict out;
+    out["fit_samples"] = fit.fit_samples;
+    out["holdout_samples"] = fit.holdout_samples;
+    out["rms_fit"] = toArray(fit.rms_fit);
+    out["rms_holdout"] = toArray(fit.rms_holdout);
+    out["rms_measured"] = toArray(fit.rms_measured);
+    out["condition"] = fit.condition;
+    out["correlation_samples"] = fit.correlation_samples;
+    out["effective_samples"] = fit.effective_samples;
+    out["t"] = toArray(fit.t);
+    out["measured"] = toArray(fit.measured);
+    out["predicted"] = toArray(fit.predicted);
+    return out;
+}
+
+py::list estimatesList(const std::vector<Estimate>& estimates, bool with_prior) {
+    py::list out;
+    for (const Estimate& e : estimates) {
+        py::dict d;
+        d["name"] = e.name;
+        d["value"] = e.value;
+        d["stddev"] = e.stddev;
+        if (with_prior) d["robot_file"] = e.prior;
+        d["unit"] = e.unit;
+        out.append(d);
+    }
+    return out;
+}
+
+/// The identified payload as numbers: mass [kg], com (2,) [m], inertia [kg m^2], their standard
+/// deviations, the covariance of [mass, com_x, com_y, inertia, friction...], the bounds it lies
+/// on, the friction identified alongside and the fit.
+py::dict payloadDict(const PayloadResult& r) {
+    py::dict out;
+    out["mass"] = r.mass;
+    out["com"] = toArray(std::vector<double>{r.com.x(), r.com.y()});
+    out["inertia"] = r.inertia;
+    out["mass_sd"] = r.mass_sd;
+    out["com_sd"] = toArray(std::vector<double>{r.com_sd.x(), r.com_sd.y()});
+    out["inertia_sd"] = r.inertia_sd;
+    out["covariance"] = toArray(r.covariance);
+    out["inertia_constrained"] = r.inertia_constrained;
+    py::list active;
+    for (const ActiveBound& b : r.active_bounds) {
+        py::dict d;
+        d["parameter"] = b.parameter;
+        d["side"] = b.upper ? "upper" : "lower";
+        d["bound"] = b.bound;
+        d["unbounded"] = b.unbounded;
+        active.append(d);
+    }
+    out["active_bounds"] = active;
+    out["friction"] = estimatesList(r.friction, false);
+    out["fit"] = fitDict(r.fit);
+    return out;
+}
+
+/// The identified base parameters as numbers: each with its standard deviation and the robot
+/// file's value, their covariance and the fit.
+py::dict baseDict(const BaseResult& r) {
+    py::dict out;
+    out["base_parameters"] = estimatesList(r.beta, true);
+    out["covariance"] = toArray(r.covariance);
+    out["fit"] = fitDict(r.fit);
+    return out;
+}
+
 void bindIdentify(py::module_& m) {
     using O = app::IdentifyOptions;
     OptionsClass<O>(m, "IdentifyOptions")
@@ -78,13 +154,57 @@ void bindIdentify(py::module_& m) {
         .option("cutoff", &O::cutoff)
         .option("holdout", &O::holdout)
         .option("calibration", &O::calibration)
-        .option("prior", &O::prior);
+        .option("prior", &O::prior)
+        .def(
+            "use_data",
+            [](O& o, const std::vector<std::string>& columns,
+               const py::array_t<double, py::array::c_style | py::array::forcecast>& data) {
+                if (data.ndim() != 2 || data.shape(1) != static_cast<py::ssize_t>(columns.size())) {
+                    throw app::OptionError(
+                        "data", "expected a (rows, " + std::to_string(columns.size()) + ") table of numbers");
+                }
+                io::Table table{columns, {}};
+                for (py::ssize_t i = 0; i < data.shape(0); ++i)
+                    table.rows.emplace_back(data.data(i, 0), data.data(i, 0) + data.shape(1));
+                o.data_table = std::move(table);
+                if (o.data.empty()) o.data = "data";
+            },
+            py::arg("columns"), py::arg("data"),
+            "The log of this table (columns t, u1..un, tau1..taun) instead of a file")
+        .def(
+            "use_prior",
+            [](O& o, const std::array<std::array<double, 2>, 4>& bounds) {
+                PayloadPrior prior;
+                Bounds* each[4] = {&prior.mass, &prior.com_x, &prior.com_y, &prior.inertia};
+                for (std::size_t i = 0; i < 4; ++i) *each[i] = Bounds{bounds[i][0], bounds[i][1]};
+                o.prior_bounds = prior;
+            },
+            py::arg("bounds"), "Bounds (lower, upper) on mass, com_x, com_y, inertia instead of a prior file");
+    m.def(
+        "_load_prior",
+        [](const std::string& path) {
+            // a prior file's bounds as (lower, upper) pairs, None for an open side
+            const PayloadPrior prior = io::loadPayloadPrior(path);
+            py::dict out;
+            const auto side = [](double v) -> py::object {
+                return std::isfinite(v) ? py::object(py::float_(v)) : py::none();
+            };
+            const std::pair<const char*, const Bounds*> items[] = {
+                {"mass", &prior.mass}, {"com_x", &prior.com_x}, {"com_y", &prior.com_y}, {"inertia", &prior.inertia}};
+            for (const auto& [name, b] : items) {
+                if (std::isfinite(b->lower) || std::isfinite(b->upper))
+                    out[name] = py::make_tuple(side(b->lower), side(b->upper));
+            }
+            return out;
+        },
+        py::arg("path"));
     m.def(
         "_run_identify",
         [](const O& options, const py::object& progress) {
             const app::IdentifyResult r =
                 runJob(progress, [&](app::Observer& observer) { return app::runIdentify(options, observer); });
-            return py::make_tuple(r.text, r.yaml);
+            return py::make_tuple(r.text, r.yaml, r.payload ? py::object(payloadDict(*r.payload)) : py::none(),
+                                  r.base ? py::object(baseDict(*r.base)) : py::none());
         },
         py::arg("options"), py::arg("progress") = py::none());
 }

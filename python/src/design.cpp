@@ -16,6 +16,7 @@
 #include "nocdyn/tables/design.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/model.hpp"
+#include "expose.hpp"
 
 namespace py = pybind11;
 
@@ -40,8 +41,9 @@ nocdyn::io::DesignFamily family(const std::string& text, const std::string& sour
 
 }  // namespace
 
-void nocdyn_python_bind_design(py::module_& m) {
-    using namespace nocdyn;
+namespace nocdyn::python {
+
+void exposeDesign(py::module_& m) {
     m.def(
         "_robot_file_parameters",
         [](const std::string& text, const std::string& source,
@@ -123,3 +125,5 @@ void nocdyn_python_bind_design(py::module_& m) {
         py::arg("theta"), py::arg("resolution"), py::arg("trajectory"), py::arg("duration"), py::arg("rate"),
         py::arg("threads"));
 }
+
+}  // namespace nocdyn::python

@@ -93,22 +93,6 @@ double effortRatio(const Model& model, const Data& data) {
     return ratio;
 }
 
-/// Whether every joint with a range or velocity limit is actuated: then u and du (the
-/// actuated q and gamma_dot) are all that checkJointLimits reads that can fail.
-bool limitsOnActuatedJointsOnly(const Model& model) {
-    constexpr double kInf = std::numeric_limits<double>::infinity();
-    for (int j = 0; j < model.limbs; ++j) {
-        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
-        for (std::size_t k = 0; k < 3; ++k) {
-            const JointLimits& lim = limb.limits[k];
-            if (limb.actuator[k] < 0 && !(lim.lower == -kInf && lim.upper == kInf && lim.velocity == kInf)) {
-                return false;
-            }
-        }
-    }
-    return true;
-}
-
 /// An actuated joint and its limits, in checkJointLimits' order (limb j, then joint k).
 struct ActuatedJoint {
     int limb = -1, joint = -1, actuator = -1;

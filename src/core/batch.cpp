@@ -8,11 +8,14 @@
 #include <atomic>
 #include <cmath>
 #include <cstring>
+#include <string>
 #include <type_traits>
 #include <vector>
 
 #include "batch_chunk.hpp"
+#include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/kinematics.hpp"
 #include "nocdyn/parallel.hpp"
 
 // A packet lives in registers inside chunk4 (everything it calls is inlined): the note that a
@@ -92,6 +95,46 @@ Status checkActuatorLimits(const Model& model, const ActuatorVector& u, const Ac
     return LimitTable(model).check(model, u, du, tau);
 }
 
+bool limitsOnActuatedJointsOnly(const Model& model) {
+    for (int j = 0; j < model.limbs; ++j) {
+        const LimbModel& limb = model.limb[static_cast<std::size_t>(j)];
+        for (std::size_t k = 0; k < 3; ++k) {
+            const JointLimits& lim = limb.limits[k];
+            if (limb.actuator[k] < 0 && !(lim.lower == -INFINITY && lim.upper == INFINITY && lim.velocity == INFINITY))
+                return false;
+        }
+    }
+    return true;
+}
+
+Status checkSampleLimits(const Model& model, const Data& data) {
+    if (const Status s = checkJointLimits(model, data); !s) return s;
+    return checkEffort(model, data);
+}
+
+Eigen::Index firstSampleBeyondLimits(const Model& model, const BatchInput& p, const BatchInput& dp,
+                                     const BatchInput& ddp, PoseColumns order, Status& status) {
+    Data data(model);
+    for (Eigen::Index k = 0; k < p.rows(); ++k) {
+        if (!inverseDynamics(model, data, poseRow(p, k, order), poseRow(dp, k, order), poseRow(ddp, k, order)))
+            continue;
+        if (status = checkSampleLimits(model, data); !status) return k;
+    }
+    status = Status{};
+    return BatchResult::npos;
+}
+
+std::string describeFailure(const Model& model, const BatchResult& result, Eigen::Index samples) {
+    if (result.ok()) return {};
+    return "sample " + std::to_string(result.first_failure + 1) + ": " + describe(result.status, model) + " (" +
+           std::to_string(result.failed) + " of " + std::to_string(samples) + " samples failed)";
+}
+
+std::string describeLimits(const Model& model, const BatchResult& result) {
+    if (result.first_beyond_limits == BatchResult::npos) return {};
+    return "sample " + std::to_string(result.first_beyond_limits + 1) + ": " + describe(result.limits, model);
+}
+
 BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const ConstRef& dp, const ConstRef& ddp, Ref u,
                                  Ref du, Ref ddu, Ref tau, unsigned threads, PoseColumns order, ActuatorLimits limits) {
     const Eigen::Index n = p.rows();
@@ -106,15 +149,26 @@ BatchResult inverseDynamicsBatch(const Model& model, const ConstRef& p, const Co
         u.outerStride() != tau.outerStride()) {
         throw Error("inverseDynamicsBatch: u, du, ddu and tau must have the same layout");
     }
-    const Arrays a{p, dp, ddp, u, du, ddu, tau, order, limits};
+    // a limited passive joint: the kernel checks nothing, the full path every sample after it
+    const bool passive = limits == ActuatorLimits::every_joint && !limitsOnActuatedJointsOnly(model);
+    const ActuatorLimits kernel =
+        limits == ActuatorLimits::ignore || passive ? ActuatorLimits::ignore : ActuatorLimits::check;
+    const Arrays a{p, dp, ddp, u, du, ddu, tau, order, kernel};
     // at most one thread per hardware thread and per chunk of 8 samples (more only adds
     // start-up), chunks of multiples of 8 samples so that no two threads share a cache line
     const ParallelSplit split = splitRange(n, threads, 8);
-    if (split.workers == 1) return chunk(model, a, 0, n);
-    std::vector<BatchResult> results(split.workers);
-    parallelFor("inverseDynamicsBatch", split,
-                [&](unsigned w, Eigen::Index begin, Eigen::Index end) { results[w] = chunk(model, a, begin, end); });
-    return combineChunks(results);
+    BatchResult result;
+    if (split.workers == 1) {
+        result = chunk(model, a, 0, n);
+    } else {
+        std::vector<BatchResult> results(split.workers);
+        parallelFor("inverseDynamicsBatch", split, [&](unsigned w, Eigen::Index begin, Eigen::Index end) {
+            results[w] = chunk(model, a, begin, end);
+        });
+        result = combineChunks(results);
+    }
+    if (passive) result.first_beyond_limits = firstSampleBeyondLimits(model, p, dp, ddp, order, result.limits);
+    return result;
 }
 
 BatchResult combineChunks(const std::vector<BatchResult>& chunks) {

@@ -175,7 +175,7 @@ std::vector<Layout> makeLayouts() {
          "`nocdyn design`'s `designs.csv` and `pareto.csv` (the Pareto front); Python "
          "`nocdyn.design`",
          "One row per design. A metric that could not be computed is empty.",
-         {{"design", "", "index of the design (0-based)"},
+         {{"design", "", "number of the design, from 1"},
           {"{parameter}", "as the parameter", "value of each varied parameter (--vary)", Repeat::parameter},
           {"{metric}", "as the metric", "value of each metric (--metric)", Repeat::metric},
           {"feasible", "", "true or false"},

@@ -120,7 +120,8 @@ std::vector<std::string> designColumns(const std::vector<DesignRange>& ranges,
 }
 
 std::string designCsvRow(const DesignRecord& record) {
-    std::string line = std::to_string(record.index);
+    // designs numbered from 1 where a person reads them (record.index is 0-based)
+    std::string line = std::to_string(record.index + 1);
     for (const double v : record.point) line.append(",").append(number(v));
     for (const double v : record.evaluation.values) line.append(",").append(number(v));
     line += record.evaluation.feasible ? ",true," : ",false,";
@@ -173,7 +174,9 @@ DesignJournal::DesignJournal(const std::string& path, const std::string& signatu
                 ok = ok && v.has_value();
                 return v.value_or(0.0);
             };
-            r.index = static_cast<std::size_t>(value(fields[0]));
+            const double number = value(fields[0]);  // from 1, as designs.csv
+            if (!(number >= 1.0)) break;
+            r.index = static_cast<std::size_t>(number) - 1;
             for (std::size_t k = 0; k < parameters; ++k) r.point.push_back(value(fields[1 + k]));
             for (std::size_t k = 0; k < metrics; ++k) r.evaluation.values.push_back(value(fields[1 + parameters + k]));
             r.evaluation.feasible = fields[1 + parameters + metrics] == "true";

@@ -6,6 +6,7 @@ import os
 import pydoc
 import subprocess
 import sys
+import warnings
 
 import numpy as np
 import pytest
@@ -76,7 +77,7 @@ def test_trajectory_errors_have_the_cli_message(tmp_path, cli, paper_robot):
     code, _, err = cli("inverse-dynamics", "--trajectory", far, "--duration", 0.05)
     assert code != 0
     with pytest.raises(nocdyn.Error) as error:
-        paper_robot.trajectory_dynamics(nocdyn.Trajectory.load(far), rate=10000, duration=0.05)
+        nocdyn.inverse_dynamics(nocdyn.Trajectory.load(far), robot=paper_robot, rate=10000, duration=0.05)
     assert str(error.value) == cli_error(err)
 
 
@@ -140,19 +141,51 @@ def test_forward_kinematics_finds_the_pose_that_gave_u_in_the_working_mode(name)
         robot.forward_kinematics(u[:-1])
 
 
+def forces_table(t, tau, first_row):
+    """The forces' columns t, tau1..taun with the initial state's columns (read in the first row)."""
+    columns = {"t": t, **{f"tau{a + 1}": tau[:, a] for a in range(tau.shape[1])}}
+    columns.update({name: np.full(len(t), value) for name, value in first_row.items()})
+    return columns
+
+
+def pose_columns(table):
+    return np.column_stack([table["x"], table["y"], table["theta"]])
+
+
 def test_simulating_the_inverse_dynamics_forces_follows_the_trajectory(paper_robot):
     """Open loop over 20 ms: the forces of trajectory 1 (sampled at 20 kHz, cubic) drive the
-    forward dynamics from the trajectory's own initial state along the trajectory."""
+    forward dynamics (nocdyn.simulate with robot=) from the trajectory's own initial state along
+    the trajectory."""
     traj = nocdyn.Trajectory.paper(1)
     t = np.arange(401) / 20000.0
     P, dP, ddP = traj.evaluate(t)
     tau = paper_robot.inverse_dynamics(P, dP, ddP).tau
-    sim = paper_robot.simulate(t, tau, p0=P[0], dp0=dP[0], interpolation="cubic")
-    assert sim["p"].shape == (401, 3) and sim["tau"].shape == (401, 3)
-    np.testing.assert_allclose(sim["p"], P, rtol=0, atol=1e-6)
-    np.testing.assert_allclose(sim["tau"], tau, rtol=0, atol=1e-9 * np.max(np.abs(tau)))
-    with pytest.raises(nocdyn.Error, match="interpolation"):
-        paper_robot.simulate(t, tau, interpolation="spline")
+    start = dict(zip(("x", "y", "theta", "dx", "dy", "dtheta"), (*P[0], *dP[0])))
+    sim = nocdyn.simulate(forces_table(t, tau, start), robot=paper_robot, rate=20000.0, interpolation="cubic",
+                          progress=False)
+    assert len(sim) == 401
+    np.testing.assert_allclose(sim["t"], t, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(pose_columns(sim), P, rtol=0, atol=1e-6)
+    sim_tau = np.column_stack([sim[f"tau{a + 1}"] for a in range(3)])
+    np.testing.assert_allclose(sim_tau, tau, rtol=0, atol=1e-9 * np.max(np.abs(tau)))
+    # the deprecated wrapper: the same numbers, and a DeprecationWarning
+    with pytest.warns(DeprecationWarning, match="nocdyn.simulate"):
+        wrapped = paper_robot.simulate(forces_table(t, tau, start), rate=20000.0)
+    np.testing.assert_array_equal(wrapped.data, sim.data)
+    # the old form (output times, a force array, max_step) read as the job's table: the same
+    # numbers as the job from home at rest, max_step said to be ignored
+    from_home = nocdyn.simulate({"t": t, **{f"tau{a + 1}": tau[:, a] for a in range(3)}}, robot=paper_robot,
+                                rate=20000.0, progress=False)
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        old = paper_robot.simulate(t, tau, max_step=1e-3)
+    assert [w.category for w in said] == [DeprecationWarning, UserWarning], said
+    assert "max_step is no longer an option" in str(said[1].message)
+    np.testing.assert_array_equal(old.data, from_home.data)
+    with pytest.warns(DeprecationWarning), pytest.raises(ValueError, match="p0 is no longer an option"):
+        paper_robot.simulate(t, tau, p0=P[0])
+    with pytest.raises(ValueError, match="interpolation"):
+        nocdyn.simulate(forces_table(t, tau, start), robot=paper_robot, interpolation="spline")
 
 
 def test_simulating_from_actuator_values_starts_where_the_pose_does(paper_robot):
@@ -166,20 +199,21 @@ def test_simulating_from_actuator_values_starts_where_the_pose_does(paper_robot)
     np.testing.assert_allclose(start["p"], P[0], rtol=0, atol=1e-12)
     np.testing.assert_allclose(start["dp"], dP[0], rtol=0, atol=1e-10)
     assert start["mode"] >= 1 and start["working"] >= start["mode"] and start["modes"] >= start["working"]
-    from_u = paper_robot.simulate(t, result.tau, u0=result.u[0], du0=result.du[0])
-    from_p = paper_robot.simulate(t, result.tau, p0=P[0], dp0=dP[0])
-    np.testing.assert_allclose(from_u["p"], from_p["p"], rtol=0, atol=1e-10)
+    from_u = nocdyn.simulate(forces_table(t, result.tau, {**{f"u{a + 1}": result.u[0, a] for a in range(3)},
+                                                          **{f"du{a + 1}": result.du[0, a] for a in range(3)}}),
+                             robot=paper_robot, rate=20000.0, progress=False)
+    from_p = nocdyn.simulate(forces_table(t, result.tau, dict(zip(("x", "y", "theta", "dx", "dy", "dtheta"),
+                                                                   (*P[0], *dP[0])))),
+                             robot=paper_robot, rate=20000.0, progress=False)
+    np.testing.assert_allclose(pose_columns(from_u), pose_columns(from_p), rtol=0, atol=1e-10)
     with pytest.raises(nocdyn.Error, match="fewer than the one asked for"):
         paper_robot.state_from_actuators(result.u[0], assembly_mode=12)
-    with pytest.raises(ValueError, match="not both"):
-        paper_robot.simulate(t, result.tau, p0=P[0], u0=result.u[0])
 
 
 def test_simulation_out_of_reach_stops_with_the_time():
-    robot = nocdyn.Robot.paper()
     t = np.linspace(0.0, 0.5, 11)
-    with pytest.raises(nocdyn.Error, match=r"^t = [0-9.]+ s: "):
-        robot.simulate(t, np.full((11, 3), 262.0))
+    with pytest.raises(nocdyn.Error, match=r"t = [0-9.e-]+ s: "):
+        nocdyn.simulate(forces_table(t, np.full((11, 3), 262.0), {}), rate=100.0, progress=False)
 
 
 def test_envelope_equals_the_cli_envelope(tmp_path, cli, paper_robot):
@@ -189,17 +223,25 @@ def test_envelope_equals_the_cli_envelope(tmp_path, cli, paper_robot):
     assert code == 0, err
     with open(out, newline="") as f:
         rows = list(csv.DictReader(f))
-    points = paper_robot.envelope(min_frequency=5, max_frequency=50, frequencies=2)
-    assert len(points) == len(rows) == 6
-    for ours, theirs in zip(points, rows):
-        assert ours["frequency"] == float(theirs["frequency"])
-        assert ours["amplitude"] == float(theirs["amplitude"])
+    table = nocdyn.envelope(robot=paper_robot, min_frequency=5, max_frequency=50, points=2, progress=False)
+    assert len(table) == len(rows) == 6
+    for k, theirs in enumerate(rows):
+        assert table["axis"][k] == theirs["axis"]
+        assert table["frequency"][k] == float(theirs["frequency"])
+        assert table["amplitude"][k] == float(theirs["amplitude"])
         # numbered from 1 as the CSV, 0 where not applicable
         for key in ("limb", "joint", "actuator"):
-            assert ours[key] == int(float(theirs[key])), key
-    assert [p["axis"] for p in paper_robot.envelope("x", min_frequency=5, max_frequency=50, frequencies=2)] == ["x"] * 2
-    with pytest.raises(nocdyn.Error, match="axis"):
-        paper_robot.envelope("z")
+            assert table[key][k] == int(float(theirs[key])), key
+    with pytest.warns(DeprecationWarning, match="nocdyn.envelope"):
+        wrapped = paper_robot.envelope(min_frequency=5, max_frequency=50, points=2)
+    np.testing.assert_array_equal(wrapped["amplitude"], table["amplitude"])
+    # the old arguments: frequencies is points; samples_per_period said to be ignored
+    with warnings.catch_warnings(record=True) as said:
+        warnings.simplefilter("always")
+        old = paper_robot.envelope(min_frequency=5, max_frequency=50, frequencies=2, samples_per_period=64)
+    assert [w.category for w in said] == [DeprecationWarning, UserWarning], said
+    assert "samples_per_period is no longer an option" in str(said[1].message)
+    np.testing.assert_array_equal(old["amplitude"], table["amplitude"])
 
 
 def test_help_documents_units_and_shapes():

@@ -85,3 +85,14 @@ def test_the_table_is_written_in_the_command_lines_layout(family, tmp_path):
     assert lines[1].endswith(",true,")
     assert ",false," in lines[2] and "not finite" in lines[2]
     assert designs.pareto_front(table) == [0]
+
+
+def test_designs_are_numbered_from_1_where_a_person_reads_them(tmp_path):
+    """designs.csv's design column and Designs.rows() count from 1 (row k of the arrays is design
+    k + 1), as `nocdyn design` writes it."""
+    table = designs.Designs(["r_b"], ["moving_mass"], [[0.15], [0.2]], [[1.0], [2.0]], [True, False], ["", "x"])
+    assert [row["design"] for row in table.rows()] == [1, 2]
+    table.to_csv(tmp_path / "designs.csv")
+    lines = (tmp_path / "designs.csv").read_text().splitlines()
+    assert lines[0].startswith("design,r_b,moving_mass") and lines[1].startswith("1,0.15,1.0,true")
+    assert lines[2].startswith("2,0.2,2.0,false")

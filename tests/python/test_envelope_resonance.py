@@ -19,29 +19,30 @@ def compliant():
     return nocdyn.Robot.load(COMPLIANT)
 
 
-def test_robot_envelope_gives_the_first_natural_frequency_of_nocdyn_envelope(compliant):
-    points = compliant.envelope(min_frequency=10.0, max_frequency=100.0, points=3)
+def test_the_envelope_gives_the_first_natural_frequency_and_each_axis_band_end(compliant):
     table = nocdyn.envelope(robot=COMPLIANT, min_frequency=10.0, max_frequency=100.0, points=3)
-    f1 = points.first_natural_frequency
-    assert f1 == table.first_natural_frequency
+    f1 = table.first_natural_frequency
+    assert f1 == nocdyn.envelope(robot=compliant, min_frequency=10.0, max_frequency=100.0,
+                                 points=3).first_natural_frequency
     assert f1 == pytest.approx(compliant.natural_frequencies(compliant.home)[0], rel=1e-12)
     assert 30.0 < f1 < 100.0  # the paper robot with its drive loops: near 41 Hz
-    assert isinstance(points, list) and len(points) == 9
+    assert len(table) == 9
     # the band ends at f_1 / sqrt(11) along x and y (|H| = 1 / (1 - r^2) = 1.1), at 13.6 Hz about
     # theta (its mode is at 45.2 Hz), and the limit is resonance exactly at and above it
-    assert points.band_end["x"] == pytest.approx(f1 / np.sqrt(11.0), rel=1e-3)
-    assert 13.0 < points.band_end["theta"] < 14.0
-    for p in points:
-        assert (p["limit"] == "resonance") == (p["frequency"] >= points.band_end[p["axis"]]), p
-    wide = compliant.envelope(min_frequency=10.0, max_frequency=100.0, points=3, amplification=3.0)
+    assert table.band_end["x"] == pytest.approx(f1 / np.sqrt(11.0), rel=1e-3)
+    assert 13.0 < table.band_end["theta"] < 14.0
+    for axis, limit, frequency in zip(table["axis"], table["limit"], table["frequency"]):
+        assert (limit == "resonance") == (frequency >= table.band_end[axis]), (axis, limit, frequency)
+    wide = nocdyn.envelope(robot=COMPLIANT, min_frequency=10.0, max_frequency=100.0, points=3, amplification=3.0)
     assert f1 / np.sqrt(3.0) < wide.band_end["x"] < f1  # 1 / (1 - r^2) = 3 at r^2 = 2/3, 2 % damped
-    rigid = nocdyn.Robot.load(RIGID).envelope(min_frequency=10.0, max_frequency=100.0, points=3)
-    assert rigid.first_natural_frequency is None and "compliance" in rigid.resonance_reason
-    assert all(p["limit"] != "resonance" for p in rigid)
+    rigid = nocdyn.envelope(robot=RIGID, min_frequency=10.0, max_frequency=100.0, points=3)
+    assert rigid.first_natural_frequency is None and rigid.band_end is None
+    assert "compliance" in rigid.resonance_reason
+    assert all(limit != "resonance" for limit in rigid["limit"])
 
 
 def test_envelope_loads_leave_out_the_motions_at_and_above_the_first_natural_frequency(compliant):
-    f1 = compliant.envelope(min_frequency=10.0, max_frequency=10.0, points=1).first_natural_frequency
+    f1 = nocdyn.envelope(robot=compliant, min_frequency=10.0, max_frequency=10.0, points=1).first_natural_frequency
     # 10, 31.6 and 100 Hz per axis: 31.6 and 100 Hz are beyond the band (12.4 Hz along x and y,
     # 13.6 Hz about theta) on each of the three axes
     table = nocdyn.loads(robot=COMPLIANT, envelope=True, min_frequency=10.0, max_frequency=100.0, points=3)

@@ -183,14 +183,16 @@ def test_simulate(data):
     t = data.draw(arrays(3, None)) if data.draw(st.booleans()) else np.array([0.0, 1e-3, 2e-3])
     forces = data.draw(arrays(3, 3))
     options = {k: data.draw(st.sampled_from([v, math.nan, math.inf, -v, 0.0, 1e300, "x"]))
-               for k, v in (("rtol", 1e-8), ("atol", 1e-10), ("max_step", 1e-2)) if data.draw(st.booleans())}
+               for k, v in (("rtol", 1e-8), ("atol", 1e-10), ("rate", 2000.0)) if data.draw(st.booleans())}
     try:
-        out = ROBOT.simulate(t, forces, **options)
+        columns = {"t": np.asarray(t, dtype=float), **{f"tau{a + 1}": np.asarray(forces[:, a], dtype=float)
+                                                       for a in range(3)}}
+        out = nocdyn.simulate(columns, robot=ROBOT, progress=False, **options)
     except ALLOWED:
         OUTCOMES["raised"] += 1
         return
     OUTCOMES["computed"] += 1
-    check_result([out[k] for k in ("p", "dp", "u", "du", "tau")])
+    check_result([out.data])
 
 
 @SETTINGS
@@ -219,7 +221,10 @@ def test_identify_payload(data, n):
         wide[:, 1] = t
         t = wide[:, 1]
     try:
-        est = ROBOT.identify_payload(t, u, tau, du, ddu, **kwargs)
+        columns = {"t": np.asarray(t, dtype=float)}
+        for name, values in (("u", u), ("tau", tau), ("du", du), ("ddu", ddu)):
+            columns.update({f"{name}{a + 1}": values[:, a] for a in range(3)})
+        est = nocdyn.identify(columns, robot=ROBOT, progress=False, **kwargs).payload_estimate
     except ALLOWED:
         OUTCOMES["raised"] += 1
         return
@@ -244,10 +249,11 @@ def test_scalars_of_every_entry(data):
             r = ROBOT.with_payload(x, (0.0, 0.0), 1e-4)
             assert r.actuators == 3
         elif which == "trajectory":
-            out = ROBOT.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=x, duration=0.001)
-            check_result([out["tau"]])
+            out = nocdyn.inverse_dynamics(nocdyn.Trajectory.paper(1), robot=ROBOT, rate=x, duration=0.001,
+                                          progress=False)
+            check_result([out.data])
         elif which == "envelope":
-            ROBOT.envelope("x", min_frequency=x, max_frequency=2.0, frequencies=1, samples_per_period=8)
+            nocdyn.envelope(robot=ROBOT, min_frequency=x, max_frequency=2.0, points=1, progress=False)
         else:
             traj = nocdyn.Trajectory.harmonic(x=[(x, 5.0, 0.0)])
             check_result(traj.evaluate([0.0, 0.01]))

@@ -30,9 +30,9 @@ def assert_close_to_peak(ours, theirs, rel, what):
 
 
 @pytest.mark.parametrize("robot_file", ["paper-3prr.yaml", "3-rrr.yaml", "4-rrr.yaml"])
-def test_trajectory_dynamics_equals_the_cli_csv_exactly_and_the_batch_to_rounding(tmp_path, cli, source_dir,
-                                                                                  robot_file):
-    """trajectory_dynamics runs the CLI's code: every number equal. The batch runs the lean
+def test_the_inverse_dynamics_job_on_a_trajectory_object_equals_the_cli_csv_exactly_and_the_batch_to_rounding(
+        tmp_path, cli, source_dir, robot_file):
+    """nocdyn.inverse_dynamics on a nocdyn.Trajectory runs the CLI's code: every number equal. The batch runs the lean
     kernel (FMA, a branch-free atan2 within 2 ulp of libm's): u within 1e-15 (m or rad, a few ulp
     of joint angles of order 1), du, ddu and tau within 5e-15 of their column's peak."""
     robot_path = source_dir / "robots" / robot_file
@@ -47,13 +47,17 @@ def test_trajectory_dynamics_equals_the_cli_csv_exactly_and_the_batch_to_roundin
     P, dP, ddP = nocdyn.Trajectory.paper(1).evaluate(t)
     np.testing.assert_array_equal(P, np.column_stack([table["x"], table["y"], table["theta"]]))
     batch = robot.inverse_dynamics(P, dP, ddP, check_limits=False)  # as --allow-limits
-    sampled = robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=10000, duration=0.01, allow_limits=True)
-    np.testing.assert_array_equal(sampled["t"], t)
-    np.testing.assert_array_equal(sampled["kinetic"], table["kinetic"])
-    np.testing.assert_array_equal(sampled["p"], P)
+    sampled = nocdyn.inverse_dynamics(nocdyn.Trajectory.paper(1), robot=robot, rate=10000, duration=0.01,
+                                      allow_limits=True, progress=False)
+    assert sampled.columns == list(table.keys())
+    for column in table:
+        np.testing.assert_array_equal(sampled[column], table[column])
+    # the deprecated wrapper: the same Table, and a DeprecationWarning
+    with pytest.warns(DeprecationWarning, match="nocdyn.inverse_dynamics"):
+        wrapped = robot.trajectory_dynamics(nocdyn.Trajectory.paper(1), rate=10000, duration=0.01, allow_limits=True)
+    np.testing.assert_array_equal(wrapped.data, sampled.data)
     for name in ("u", "du", "ddu", "tau"):
         theirs = columns(table, name, n)
-        np.testing.assert_array_equal(sampled[name], theirs)
         if name == "u":
             np.testing.assert_allclose(batch.u, theirs, rtol=0, atol=1e-15)
         else:
@@ -241,7 +245,7 @@ def test_bad_shapes_layouts_and_outputs_raise_nocdyn_error(paper_robot):
 def test_a_sample_out_of_reach_names_it_and_leaves_nan_rows(paper_robot):
     P, dP, ddP = random_motion(paper_robot, 6)
     P[3, 0] = 0.5  # x 0.5 m off: far out of reach
-    with pytest.raises(nocdyn.Error, match=r"^sample 3: .*\(1 of 6 samples failed\)$"):
+    with pytest.raises(nocdyn.Error, match=r"^sample 4: .*\(1 of 6 samples failed\)$"):
         paper_robot.inverse_dynamics(P, dP, ddP)
     result = paper_robot.inverse_dynamics(P, dP, ddP, check=False)
     assert np.all(np.isnan(result.tau[3])) and np.all(np.isfinite(np.delete(result.tau, 3, axis=0)))
@@ -249,7 +253,7 @@ def test_a_sample_out_of_reach_names_it_and_leaves_nan_rows(paper_robot):
         paper_robot.inverse_dynamics(P[3], dP[3], ddP[3])
     assert str(one.value) in str(pytest.raises(nocdyn.Error, paper_robot.inverse_dynamics, P, dP, ddP).value)
     P[2, 0] = np.nan
-    with pytest.raises(nocdyn.Error, match=r"^sample 2: .*\(2 of 6 samples failed\)$"):
+    with pytest.raises(nocdyn.Error, match=r"^sample 3: .*\(2 of 6 samples failed\)$"):
         paper_robot.inverse_dynamics(P, dP, ddP)
 
 

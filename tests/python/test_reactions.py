@@ -82,7 +82,7 @@ def test_a_sample_out_of_reach_is_the_inverse_dynamics_error(source_dir):
         robot.reactions(p, dp, ddp)
     with pytest.raises(nocdyn.Error) as id_error:
         robot.inverse_dynamics(p, dp, ddp)
-    assert str(reactions_error.value).startswith("sample 3: ")
+    assert str(reactions_error.value).startswith("sample 4: ")  # row 3, numbered from 1
     assert str(reactions_error.value) == str(id_error.value)
     r = robot.reactions(p, dp, ddp, check=False)
     assert np.all(np.isnan(r[3])) and np.all(np.isfinite(r[[0, 1, 2, 4]]))
