@@ -173,6 +173,7 @@ void validate(const SimulateOptions& options) {
     requireIn(options.rate, kRateRange, "rate");
     requireIn(options.atol, kAbsoluteToleranceRange, "atol");
     requireIn(options.rtol, kRelativeToleranceRange, "rtol");
+    requireIn(options.max_step, kMaxStepRange, "max_step");
     if (options.assembly_mode < 0 || options.assembly_mode > kMaxAssemblyModes) {
         throw OptionError("assembly_mode", std::to_string(options.assembly_mode) + " is outside [0, " +
                                                std::to_string(kMaxAssemblyModes) + "] (0: the mode nearest home)");
@@ -209,6 +210,7 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
     SimulatorOptions simulator_options;
     simulator_options.absolute_tolerance = options.atol;
     simulator_options.relative_tolerance = options.rtol;
+    simulator_options.max_step = options.max_step;
     // a long interval between two output rows still answers a stop (Ctrl-C in Python)
     simulator_options.poll = [&observer] { stopIfRequested(observer); };
     Simulator simulator(model, simulator_options);

@@ -19,6 +19,8 @@ inline constexpr double kMaxSimulatedSamples = 1e7;
 /// The integrator's tolerances on the pose [rad, m] and its rate, and relative.
 inline constexpr Range kAbsoluteToleranceRange{1e-15, 1e-2, ""};
 inline constexpr Range kRelativeToleranceRange{1e-14, 1e-2, ""};
+/// The integrator's largest step [s].
+inline constexpr Range kMaxStepRange{1e-6, 1.0, "s"};
 
 struct SimulateOptions {
     /// CSV with columns t,tau1..taun [s, N or N m] (and the initial state in its first row).
@@ -33,6 +35,7 @@ struct SimulateOptions {
     double rate = 10000.0;  ///< output samples per second (kRateRange)
     double atol = 1e-12;    ///< kAbsoluteToleranceRange
     double rtol = 1e-10;    ///< kRelativeToleranceRange
+    double max_step = 1e-2;  ///< the integrator's largest step [s] (kMaxStepRange)
     /// Which working assembly mode of the first row's u (1-based, as forward-kinematics lists
     /// them); 0: the one nearest home.
     int assembly_mode = 0;

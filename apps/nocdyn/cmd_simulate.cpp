@@ -73,6 +73,9 @@ void addSimulateCommand(CLI::App& app) {
     command->add_option("--rtol", options->rtol, "Integrator relative tolerance")
         ->check(within(app::kRelativeToleranceRange))
         ->capture_default_str();
+    command->add_option("--max-step", options->max_step, "Integrator's largest step [s]")
+        ->check(within(app::kMaxStepRange))
+        ->capture_default_str();
     command
         ->add_option("--assembly-mode", options->assembly_mode,
                      "When the first row gives u1..un but no pose: start in the K-th assembly mode with every limb\n"

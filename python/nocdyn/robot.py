@@ -43,7 +43,6 @@ def _old_simulate(actuators, t, forces, force_times=None, **options):
         raise ValueError(f"forces: expected {actuators} columns (one per actuator), got {forces.shape[1]}")
     if t.shape[0] < 2 or not np.all(np.diff(t) > 0):
         raise ValueError("t: expected increasing output times [s], at least two")
-    _ignored("Robot.simulate", options, ("max_step",))
     for name in ("p0", "dp0", "u0", "du0"):
         if name in options and name != "dp0" or name == "dp0" and any(options.get(name, (0.0,))):
             raise ValueError(f"Robot.simulate: {name} is no longer an option: give the initial state as "
@@ -277,8 +276,8 @@ class Robot(RobotDynamics):
         """Deprecated: ``nocdyn.simulate(forces, robot=robot, ...)`` (forces: columns t,
         tau1..taun, and u1..un, du1..dun in the first row for the initial state). The old form
         ``simulate(t, forces[, force_times])`` (arrays) is read as that table, output over the
-        span of t at its mean rate; the old integrator settings without a counterpart in the
-        job (max_step, p0, dp0, u0, du0) are refused or ignored with a warning."""
+        span of t at its mean rate; the initial state p0, dp0, u0, du0 is refused (it is the
+        table's first row in the job)."""
         _deprecated("Robot.simulate", "nocdyn.simulate(forces, robot=robot, ...)")
         if args or not isinstance(forces, (str, os.PathLike, dict)) and not hasattr(forces, "columns"):
             forces, options = _old_simulate(self.actuators, forces, *args, **options)

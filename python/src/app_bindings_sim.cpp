@@ -56,6 +56,7 @@ void bindSimulation(py::module_& m) {
         .option("rate", &app::SimulateOptions::rate)
         .option("atol", &app::SimulateOptions::atol)
         .option("rtol", &app::SimulateOptions::rtol)
+        .option("max_step", &app::SimulateOptions::max_step)
         .option("assembly_mode", &app::SimulateOptions::assembly_mode)
         .option("partial", &app::SimulateOptions::partial)
         .option("reactions", &app::SimulateOptions::reactions)
