@@ -5,32 +5,41 @@ cmake_minimum_required(VERSION 3.25)
 #   sim       src/sim, include/nocdyn/sim                             over core, analysis
 #   io        src/io, include/nocdyn/io                               over core only
 #   tables    src/tables, include/nocdyn/tables                       over every layer above
-#   validation  validation/ (the Simbody and MuJoCo models)           over the library
-#   report    report/ (no CLI11, no header of the CLI)                over the library and validation
+#   validation  validation/ (the Simbody and MuJoCo models, SimbodyPlant)  over the library
+#   render    render/ (figures, the animation page; no CLI11)         over core, analysis, io, tables: no sim
 #   app       app/ (each command's options, run and typed result)     over all of the above
 # apps/ (the command line) and python/ stand on all of them.
 # A file may include a library header ("nocdyn/...") only of its own layer or one it stands on. The
-# private headers of a folder (src/core/stages.hpp, ...) count as that folder's layer, and
-# nothing in the library includes report's or the CLI's headers or CLI11.
+# private headers of a folder (src/core/stages.hpp, ...) count as that folder's layer; render's
+# headers ("render/plot.hpp") are render's layer and the application layer's ("app/pose.hpp")
+# app's; nothing in the library includes render's or the CLI's headers or CLI11, and render
+# includes no header of sim/ (its figures take what the layers under it compute) nor of app/.
 # Run with -DSOURCE_DIR=<tree>. With -DPLANT=<scratch folder>, the check instead copies the
-# tree's library folders there, plants an upward include in a core file and must then fail:
-# the test that shows the check can fail.
+# tree's library folders there, plants three upward includes (sim in a core file, sim and the
+# application layer in a render file) and must then fail naming each: the test that shows the
+# check can fail.
 if(PLANT)
   file(REMOVE_RECURSE ${PLANT})
-  foreach(dir src include report app apps validation)
+  foreach(dir src include render app apps validation)
     file(COPY ${SOURCE_DIR}/${dir} DESTINATION ${PLANT})
   endforeach()
   file(APPEND ${PLANT}/src/core/model.cpp "#include \"nocdyn/sim/shake.hpp\"\n")
+  file(APPEND ${PLANT}/render/plot.cpp "#include \"nocdyn/sim/shake_replay.hpp\"\n#include \"app/shake.hpp\"\n")
   execute_process(COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PLANT} -P ${CMAKE_CURRENT_LIST_FILE}
                   RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
   file(REMOVE_RECURSE ${PLANT})
   if(result EQUAL 0)
-    message(FATAL_ERROR "the layer check passed a core file that includes nocdyn/sim/shake.hpp")
+    message(FATAL_ERROR "the layer check passed a core file that includes nocdyn/sim/shake.hpp and a render "
+                        "file that includes nocdyn/sim/shake_replay.hpp and app/shake.hpp")
   endif()
-  if(NOT err MATCHES "src/core/model.cpp: core includes nocdyn/sim/shake.hpp")
-    message(FATAL_ERROR "the layer check failed, but did not name the planted include:\n${err}")
-  endif()
-  message(STATUS "the planted upward include was caught: ${err}")
+  foreach(planted "src/core/model.cpp: core includes nocdyn/sim/shake.hpp"
+                  "render/plot.cpp: render includes nocdyn/sim/shake_replay.hpp"
+                  "render/plot.cpp: render includes the application layer's app/shake.hpp")
+    if(NOT err MATCHES "${planted}")
+      message(FATAL_ERROR "the layer check failed, but did not name the planted include (${planted}):\n${err}")
+    endif()
+  endforeach()
+  message(STATUS "the planted upward includes were caught: ${err}")
   return()
 endif()
 
@@ -41,8 +50,8 @@ set(allowed_sim core analysis sim)
 set(allowed_io core io)
 set(allowed_tables core analysis sim io tables)
 set(allowed_validation core analysis sim io tables validation)
-set(allowed_report core analysis sim io tables validation)
-set(allowed_app core analysis sim io tables validation report app)
+set(allowed_render core analysis io tables render)
+set(allowed_app core analysis sim io tables validation render app)
 # the layer of a library header named in an #include "nocdyn/..."
 function(header_layer header out)
   if(header MATCHES "^nocdyn/(analysis|sim|io|tables|validation)/")
@@ -55,7 +64,7 @@ function(header_layer header out)
 endfunction()
 
 file(GLOB cli_headers RELATIVE ${SOURCE_DIR}/apps/nocdyn ${SOURCE_DIR}/apps/nocdyn/*.hpp)
-file(GLOB report_headers RELATIVE ${SOURCE_DIR}/report ${SOURCE_DIR}/report/*.hpp)
+file(GLOB render_headers RELATIVE ${SOURCE_DIR}/render ${SOURCE_DIR}/render/*.hpp)
 set(failures "")
 set(counts "")
 function(check layer globs)
@@ -77,9 +86,14 @@ function(check layer globs)
           list(APPEND failures "${name}: ${layer} includes ${header}")
         endif()
       elseif(header MATCHES "^app/")
-        # the application layer's headers ("app/pose.hpp"): above the library and report
+        # the application layer's headers ("app/pose.hpp"): above the library and render
         if(NOT "app" IN_LIST allowed_${layer})
           list(APPEND failures "${name}: ${layer} includes the application layer's ${header}")
+        endif()
+      elseif(header MATCHES "^render/")
+        # the rendering layer's headers ("render/plot.hpp"): above the library
+        if(NOT "render" IN_LIST allowed_${layer})
+          list(APPEND failures "${name}: ${layer} includes the rendering layer's ${header}")
         endif()
       elseif(header MATCHES "^nocdyn/")
         header_layer(${header} target)
@@ -88,8 +102,8 @@ function(check layer globs)
         endif()
       elseif(header MATCHES "^CLI/" OR header IN_LIST cli_headers)
         list(APPEND failures "${name}: ${layer} includes the command line's ${header}")
-      elseif(NOT layer MATCHES "^(report|app)$" AND header IN_LIST report_headers)
-        list(APPEND failures "${name}: ${layer} includes report's ${header}")
+      elseif(NOT layer MATCHES "^(render|app)$" AND header IN_LIST render_headers)
+        list(APPEND failures "${name}: ${layer} includes render's ${header}")
       endif()
     endforeach()
   endforeach()
@@ -101,7 +115,7 @@ check(sim "src/sim/*.cpp;src/sim/*.hpp;include/nocdyn/sim/*.hpp")
 check(io "src/io/*.cpp;src/io/*.hpp;include/nocdyn/io/*.hpp")
 check(tables "src/tables/*.cpp;src/tables/*.hpp;include/nocdyn/tables/*.hpp")
 check(validation "validation/src/*.cpp;validation/*/src/*.cpp;validation/*/src/*.hpp;validation/include/nocdyn/validation/*.hpp;validation/include/nocdyn/validation/detail/*.hpp;validation/*/include/nocdyn/validation/*.hpp")
-check(report "report/*.cpp;report/*.hpp")
+check(render "render/*.cpp;render/*.hpp")
 check(app "app/*.cpp;app/*.hpp")
 # Nothing of the library lies outside its layer folders.
 file(GLOB loose ${SOURCE_DIR}/src/*.cpp ${SOURCE_DIR}/src/*.hpp)
