@@ -48,8 +48,8 @@ extern const char* const kElCentroAt2;
 
 namespace {
 
-constexpr double kDuration = 0.2;  // s, as in the paper's figures
-constexpr double kRate = 10000.0;  // Hz
+constexpr double kPaperDuration = 0.2;  // s, as in the paper's figures
+constexpr double kPaperRate = 10000.0;  // Hz
 
 /// Motor displacements [mm] or forces [N] of our model, with an engine's curves overlaid
 /// (dashed) when given.
@@ -118,13 +118,13 @@ void reproduceTrajectories(const RobotDescription& robot, const std::filesystem:
     const Model model(robot);
     const ActuatorLimits limits = actuatorLimits(robot);
     summary << "## Paper trajectories 1 and 2 (eqs. 33-34): inverse dynamics\n\n"
-            << "Sampled over " << kDuration << " s at " << kRate / 1000 << " kHz. Actuator limits: total stroke "
-            << limits.stroke * 1e3 << " mm (+-" << limits.stroke * 0.5e3
+            << "Sampled over " << kPaperDuration << " s at " << kPaperRate / 1000
+            << " kHz. Actuator limits: total stroke " << limits.stroke * 1e3 << " mm (+-" << limits.stroke * 0.5e3
             << " mm about the reference posture), peak force " << limits.peak_force << " N.\n\n"
             << "| trajectory | actuator | u range [mm] | peak abs(u) / half stroke | peak abs(tau) [N] | peak abs(tau) "
                "/ peak force |\n"
             << "| --- | --- | --- | --- | --- | --- |\n";
-    const auto times = sampleTimes(kDuration, kRate);
+    const auto times = sampleTimes(kPaperDuration, kPaperRate);
 #ifdef NOCDYN_HAS_ENGINES
     std::ostringstream agreement;
     double worst_abs = 0.0, worst_rel = 0.0;
@@ -205,10 +205,10 @@ void reproduceTrajectories(const RobotDescription& robot, const std::filesystem:
 #ifdef NOCDYN_HAS_ENGINES
 void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summary, double closed_loop_duration) {
     constexpr double kExampleRate = 2000.0;  // [Hz]: both engines assemble every sample
-    const auto times = sampleTimes(kDuration, kExampleRate);
+    const auto times = sampleTimes(kPaperDuration, kExampleRate);
     summary << "## Other architectures: the example robots against both engines\n\n"
             << "The general model (any limbs of three R/P joints, any actuated joints) on the example robots of"
-            << " `robots/`, along the paper's trajectory 1 over " << kDuration << " s at " << kExampleRate / 1000
+            << " `robots/`, along the paper's trajectory 1 over " << kPaperDuration << " s at " << kExampleRate / 1000
             << " kHz; Simbody and MuJoCo models generated from the same files (loops closed at a revolute joint)."
             << " The 4-RRR has four actuators: its forces are the minimum-norm ones.\n\n"
             << "| robot | limbs | actuators | peak abs(tau) [N or N m] | Simbody: max diff / peak | MuJoCo: max diff / "
@@ -285,7 +285,7 @@ void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::pa
             {},
             {},
             styles[k]};
-        for (const double t : sampleTimes(kDuration, 2000.0)) {
+        for (const double t : sampleTimes(kPaperDuration, 2000.0)) {
             Pose p, dp, ddp;
             trajectory.evaluate(t, p, dp, ddp);
             path.x.push_back(p(1));
