@@ -126,7 +126,8 @@ void reproduceControl(const RobotDescription& robot, const std::filesystem::path
                                           {ControlLaw::pd, false},
                                           {ControlLaw::computed_torque, true}}) {
             PoseController controller(model, law, taskCriticallyDamped(kNaturalFrequency));
-            const std::unique_ptr<RobotPlant> plant = makePlant(plant_kind, loaded ? withPayload(robot, payload) : robot);
+            const std::unique_ptr<RobotPlant> plant =
+                makePlant(plant_kind, loaded ? withPayload(robot, payload) : robot);
             runs.push_back(runPoseLoop(controller, *plant, trajectory, loop));
             const PoseLoopResult& r = runs.back();
             std::string row;
