@@ -72,7 +72,8 @@ PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std
         panel.series.push_back(std::move(line));
         if (!engine_values) continue;
         PlotSeries other;
-        other.label = symbol + std::to_string(j + 1) + " " + engine;
+        other.label = symbol;
+        other.label.append(std::to_string(j + 1)).append(" ").append(engine);
         other.x = t;
         for (const auto& value : *engine_values) other.y.push_back(scale * value(j));
         other.style = "lines dt 2 lw 3 lc " + std::to_string(j + 4);
