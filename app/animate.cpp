@@ -7,7 +7,7 @@
 #include <sstream>
 #include <vector>
 
-#include "animation.hpp"
+#include "render/animation.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 
@@ -73,7 +73,7 @@ AnimateResult runAnimate(const AnimateOptions& options, Observer& observer) {
     validate(options);
     requireNotAnInput(options);
     const Model model(loadRobot(options.robot));
-    report::MotionSamples motion;
+    render::MotionSamples motion;
     // a recorded motion given as the trajectory (a replay's shake.csv): played as a motion, forces and all
     const bool recorded = !options.trajectory.empty() && recordedMotion(options.trajectory);
     if (recorded && (options.duration || options.rate != SamplingOptions{}.rate)) {
@@ -82,20 +82,20 @@ AnimateResult runAnimate(const AnimateOptions& options, Observer& observer) {
                                             "recorded, without duration or rate");
     }
     if (options.motion_table) {
-        motion = report::motionFromTable(model, *options.motion_table, options.motion_name);
+        motion = render::motionFromTable(model, *options.motion_table, options.motion_name);
     } else if (!options.motion.empty() || recorded) {
-        motion = report::motionFromCsv(model, recorded ? options.trajectory : options.motion);
+        motion = render::motionFromCsv(model, recorded ? options.trajectory : options.motion);
     } else {
         const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
         motion =
-            report::motionFromTrajectory(model, trajectory, chooseDuration(options.duration, trajectory), options.rate);
+            render::motionFromTrajectory(model, trajectory, chooseDuration(options.duration, trajectory), options.rate);
     }
     for (const std::string& warning : motion.warnings) observer.warning(warning);
     if (options.frame) {
-        report::renderFigureFiles(report::frameFigure(model, motion, *options.frame), options.png, options.svg);
+        render::renderFigureFiles(render::frameFigure(model, motion, *options.frame), options.png, options.svg);
     }
     AnimateResult out;
-    out.html = report::animationPage(model, motion, {options.slow_motion, options.magnify});
+    out.html = render::animationPage(model, motion, {options.slow_motion, options.magnify});
     if (!options.output.empty()) io::writeTextFile(options.output, out.html);
     return out;
 }

@@ -11,7 +11,7 @@
 #include "nocdyn/sim/identification.hpp"
 #include "nocdyn/tables/tables.hpp"
 #include "nocdyn/text.hpp"
-#include "report/reproduce_dynamics.hpp"
+#include "app/reproduce_dynamics.hpp"
 
 namespace nocdyn::app {
 
@@ -92,10 +92,6 @@ void validate(const ControlOptions& options) {
     if (options.controller != "computed-torque" && options.controller != "pd") {
         throw OptionError("controller", "'" + options.controller + "' is not one of computed-torque, pd");
     }
-    if (std::none_of(std::begin(report::kPlantNames), std::end(report::kPlantNames),
-                     [&](const char* name) { return options.plant == name; })) {
-        throw OptionError("plant", "'" + options.plant + "' is not one of simbody, nocdyn, nocdyn-rk4");
-    }
     if (options.measure != "pose" && options.measure != "encoders") {
         throw OptionError("measure", "'" + options.measure + "' is not one of pose, encoders");
     }
@@ -144,7 +140,7 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     payload.mass = options.payload_mass;
     payload.inertia = options.payload_inertia;
     if (options.payload_com.size() == 2) payload.com = Vector2(options.payload_com[0], options.payload_com[1]);
-    const std::unique_ptr<RobotPlant> plant = report::makePlant(options.plant, withPayload(robot, payload));
+    const std::unique_ptr<RobotPlant> plant = makePlant(options.plant, withPayload(robot, payload));
     PoseController controller(model, options.controller == "pd" ? ControlLaw::pd : ControlLaw::computed_torque,
                               taskCriticallyDamped(options.natural_frequency));
     loop.saturation = !options.no_saturation;
@@ -169,9 +165,8 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     return out;
 }
 
-report::Figure trackingFigure(const ControlResult& result) {
-    return report::trackingErrorFigure(report::literalText(result.trajectory) + ": actuator tracking errors",
-                                       {result.loop});
+render::Figure trackingFigure(const ControlResult& result) {
+    return trackingErrorFigure(render::literalText(result.trajectory) + ": actuator tracking errors", {result.loop});
 }
 
 }  // namespace nocdyn::app

@@ -22,8 +22,8 @@
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/text.hpp"
-#include "plot.hpp"
-#include "workspace_figure.hpp"
+#include "render/plot.hpp"
+#include "render/workspace_figure.hpp"
 
 namespace nocdyn::app {
 
@@ -180,14 +180,14 @@ std::string bestText(const io::DesignFamily& family, const std::vector<DesignMet
 void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& family,
                   const std::vector<DesignMetric>& metrics, const nocdyn::DesignOptions& design,
                   const std::vector<io::DesignRecord>& records, const std::vector<std::size_t>& front) {
-    using report::literalText;
+    using render::literalText;
     // no feasible design: nothing to draw (gnuplot refuses an empty data block)
     if (std::none_of(records.begin(), records.end(), [](const io::DesignRecord& r) { return r.evaluation.feasible; })) {
         return;
     }
     if (metrics.size() >= 2) {
-        report::PlotSeries all{"feasible designs", {}, {}, "points pt 7 ps 0.5 lc rgb '#999999'"};
-        report::PlotSeries best{"Pareto front (over every metric)", {}, {}, "points pt 7 ps 0.9 lc rgb '#c0392b'"};
+        render::PlotSeries all{"feasible designs", {}, {}, "points pt 7 ps 0.5 lc rgb '#999999'"};
+        render::PlotSeries best{"Pareto front (over every metric)", {}, {}, "points pt 7 ps 0.9 lc rgb '#c0392b'"};
         for (const io::DesignRecord& r : records) {
             if (!r.evaluation.feasible) continue;
             all.x.push_back(r.evaluation.values[0]);
@@ -201,13 +201,13 @@ void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& fami
             best.x.push_back(records[i].evaluation.values[0]);
             best.y.push_back(records[i].evaluation.values[1]);
         }
-        report::Figure f;
+        render::Figure f;
         f.title = "Designs of " + literalText(family.source);
-        f.panels = {report::PlotPanel{"Pareto front (the first two metrics)",
+        f.panels = {render::PlotPanel{"Pareto front (the first two metrics)",
                                       literalText(metrics[0].name() + " [" + metrics[0].unit() + "]"),
                                       literalText(metrics[1].name() + " [" + metrics[1].unit() + "]"),
                                       {all, best}}};
-        report::renderFigure(f, (dir / "pareto").string());
+        render::renderFigure(f, (dir / "pareto").string());
     }
     // the best design by the first metric, drawn with its workspace
     const std::optional<std::size_t> best = bestDesign(records, metrics);
@@ -216,9 +216,9 @@ void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& fami
     WorkspaceOptions ws = design.workspace;
     ws.curves = true;
     if (design.workspace_theta_at_home) ws.theta = model.home(0);
-    report::Figure f = report::workspaceFigure(workspaceMap(model, ws), model, {});
+    render::Figure f = render::workspaceFigure(workspaceMap(model, ws), model, {});
     f.title = "Best by " + literalText(bestText(family, metrics, records[*best]));
-    report::renderFigure(f, (dir / "best").string());
+    render::renderFigure(f, (dir / "best").string());
 }
 
 /// A robot file inside the output folder would be overwritten by the tables it writes.

@@ -5,8 +5,7 @@
 
 #include "nocdyn/tables/tables.hpp"
 #include "nocdyn/text.hpp"
-#include "plot.hpp"
-#include "reproduce_dynamics.hpp"
+#include "render/envelope_figure.hpp"
 
 namespace nocdyn::app {
 
@@ -66,8 +65,8 @@ std::string resonanceSummary(const EnvelopeResonance& resonance) {
 }
 
 void writeEnvelopeFigure(const EnvelopeResult& result, const std::string& stem) {
-    report::renderFigure(
-        report::envelopeFigure(result.points, result.robot,
+    render::renderFigure(
+        render::envelopeFigure(result.points, result.robot,
                                "flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound",
                                result.resonance),
         stem);

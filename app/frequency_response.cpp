@@ -367,30 +367,30 @@ std::string curveStyle(std::size_t index, bool dashed) {
 
 }  // namespace
 
-report::Figure bodeFigure(const FrequencyResponseResult& result) {
-    report::Figure figure;
+render::Figure bodeFigure(const FrequencyResponseResult& result) {
+    render::Figure figure;
     figure.title = result.closed_loop
-                       ? "Closed loop of " + report::literalText(result.robot) + " (shake-table controller" +
+                       ? "Closed loop of " + render::literalText(result.robot) + " (shake-table controller" +
                              (result.lumped ? ", lumped compliant plant)" : ")")
-                       : "Frequency response of " + report::literalText(result.robot);
+                       : "Frequency response of " + render::literalText(result.robot);
     // one magnitude panel per unit of |H| (in the order the channels first use it), one phase
     // panel; each curve one colour in both
     std::vector<std::string> units;
     for (const BodeCurve& curve : result.curves) {
         if (std::find(units.begin(), units.end(), curve.unit) == units.end()) units.push_back(curve.unit);
     }
-    std::vector<report::PlotPanel> magnitude;
+    std::vector<render::PlotPanel> magnitude;
     for (const std::string& unit : units) {
         const std::string title =
             result.closed_loop
                 ? "H: closed loop, achieved / reference acceleration; L (dashed): loop transfer, broken at the "
                   "axis' demand"
-                : "channels in " + report::literalText(unit);
+                : "channels in " + render::literalText(unit);
         const std::string ylabel = unit == "1" ? "magnitude [dB] (a ratio of like quantities)"
-                                               : "|H| [dB re 1 " + report::literalText(unit) + "]";
+                                               : "|H| [dB re 1 " + render::literalText(unit) + "]";
         magnitude.push_back({title, "frequency [Hz]", ylabel, {}, true, false, false});
     }
-    report::PlotPanel phase{"phase of every channel: in (-180, 180] at the lowest frequency, continuous above",
+    render::PlotPanel phase{"phase of every channel: in (-180, 180] at the lowest frequency, continuous above",
                             "frequency [Hz]",
                             "phase [deg]",
                             {},
@@ -402,8 +402,8 @@ report::Figure bodeFigure(const FrequencyResponseResult& result) {
         const bool loop_transfer = result.closed_loop && curve.label.starts_with("L ");
         const std::string style = curveStyle(k, loop_transfer);
         const auto u = static_cast<std::size_t>(std::find(units.begin(), units.end(), curve.unit) - units.begin());
-        magnitude[u].series.push_back({report::literalText(curve.label), result.frequency, curve.magnitude_db, style});
-        phase.series.push_back({report::literalText(curve.label), result.frequency, curve.phase_deg, style});
+        magnitude[u].series.push_back({render::literalText(curve.label), result.frequency, curve.magnitude_db, style});
+        phase.series.push_back({render::literalText(curve.label), result.frequency, curve.phase_deg, style});
     }
     figure.panels = magnitude;
     figure.panels.push_back(phase);

@@ -18,7 +18,7 @@
 #include "app/envelope.hpp"
 #include "app/observer.hpp"
 #include "app/options.hpp"
-#include "report/plot.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
@@ -93,7 +93,7 @@ void validate(const FrequencyResponseOptions& options);
 
 [[nodiscard]] FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& options, Observer& observer);
 
-/// The Bode figure (magnitude over phase, log frequency) of a result, for report::renderFigure.
-[[nodiscard]] report::Figure bodeFigure(const FrequencyResponseResult& result);
+/// The Bode figure (magnitude over phase, log frequency) of a result, for render::renderFigure.
+[[nodiscard]] render::Figure bodeFigure(const FrequencyResponseResult& result);
 
 }  // namespace nocdyn::app

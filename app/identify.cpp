@@ -13,15 +13,15 @@
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/tables/calibration.hpp"
 #include "nocdyn/text.hpp"
-#include "plot.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
-using report::Figure;
-using report::literalText;
-using report::PlotPanel;
-using report::PlotSeries;
-using report::renderFigure;
+using render::Figure;
+using render::literalText;
+using render::PlotPanel;
+using render::PlotSeries;
+using render::renderFigure;
 
 namespace {
 

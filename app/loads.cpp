@@ -13,7 +13,7 @@
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/text.hpp"
-#include "plot.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
@@ -98,18 +98,18 @@ double roundUp125(double v) {
 /// from the joint (a round scale, 10 mm for 1, 2 or 5 times a power of ten newtons, that draws
 /// the largest at most a third of the drawing's size), with a reference arrow of a round force
 /// under the drawing and the scale in the panel's title.
-report::Figure worstPoseFigure(const Model& model, const Pose& pose, const Reactions& reactions) {
+render::Figure worstPoseFigure(const Model& model, const Pose& pose, const Reactions& reactions) {
     Data data(model);
     RobotDrawing drawing;
     if (const Status status = drawRobot(model, data, pose, drawing); !status) {
         throw Error("the worst pose cannot be drawn: " + describe(status, model));
     }
-    report::PlotPanel panel{"Joint reaction forces at the worst pose", "x [mm]", "y [mm]", {}, false, false, true};
+    render::PlotPanel panel{"Joint reaction forces at the worst pose", "x [mm]", "y [mm]", {}, false, false, true};
     double size = 0.0, peak = 0.0;
     Vector2 lower = Vector2::Constant(std::numeric_limits<double>::infinity());
     for (int j = 0; j < model.limbs; ++j) {
         const LimbDrawing& limb = drawing.limb[static_cast<std::size_t>(j)];
-        report::PlotSeries line{j == 0 ? "limbs" : "", {}, {}, "linespoints lw 2 pt 7 ps 0.8 lc rgb '#404040'"};
+        render::PlotSeries line{j == 0 ? "limbs" : "", {}, {}, "linespoints lw 2 pt 7 ps 0.8 lc rgb '#404040'"};
         for (const JointDrawing& joint : limb.joint) {
             line.x.push_back(joint.position.x() * 1e3);
             line.y.push_back(joint.position.y() * 1e3);
@@ -119,7 +119,7 @@ report::Figure worstPoseFigure(const Model& model, const Pose& pose, const React
         panel.series.push_back(std::move(line));
         for (const Vector3& r : reactions.joint[static_cast<std::size_t>(j)]) peak = std::max(peak, r.head<2>().norm());
     }
-    report::PlotSeries platform{"platform", {}, {}, "lines lw 3 lc rgb '#1f77b4'"};
+    render::PlotSeries platform{"platform", {}, {}, "lines lw 3 lc rgb '#1f77b4'"};
     for (int j = 0; j <= model.limbs; ++j) {
         const Vector2& v = drawing.platform[static_cast<std::size_t>(j % model.limbs)];
         platform.x.push_back(v.x() * 1e3);
@@ -129,7 +129,7 @@ report::Figure worstPoseFigure(const Model& model, const Pose& pose, const React
     const char* arrow = "vectors head filled size screen 0.014,22 lw 2 lc rgb '#d62728'";
     const double per_10mm = peak > 0.0 ? roundUp125(peak * 0.01 / (size / 3.0)) : 0.0;  // N drawn 10 mm long
     const double scale = peak > 0.0 ? 0.01 / per_10mm : 0.0;                            // m per N
-    report::PlotSeries forces{"reaction force (largest " + shortNumber(peak) + " N)", {}, {}, arrow, {{}, {}}};
+    render::PlotSeries forces{"reaction force (largest " + shortNumber(peak) + " N)", {}, {}, arrow, {{}, {}}};
     for (int j = 0; j < model.limbs; ++j) {
         for (std::size_t k = 0; k < 3; ++k) {
             const Vector2 from = drawing.limb[static_cast<std::size_t>(j)].joint[k].position;
@@ -152,8 +152,8 @@ report::Figure worstPoseFigure(const Model& model, const Pose& pose, const React
                                 {{scale * reference * 1e3}, {0.0}}});
         panel.title += "; arrows: 10 mm = " + shortNumber(per_10mm) + " N";
     }
-    report::Figure f;
-    f.title = report::literalText(model.description.name) + ": joint reactions at the pose of the largest peak force";
+    render::Figure f;
+    f.title = render::literalText(model.description.name) + ": joint reactions at the pose of the largest peak force";
     f.panels = {panel};
     f.width = 820;  // a map: about as wide as high, the legend in rows under it
     f.height = 900;
@@ -320,7 +320,7 @@ void writeLoadsFigure(const LoadsOptions& options, const LoadsResult& result, co
     if (const Status status = inverseDynamicsWithReactions(model, data, p, dp, ddp, reactions); !status) {
         throw Error("the worst pose: " + describe(status, model));
     }
-    report::renderFigure(worstPoseFigure(model, p, reactions), stem);
+    render::renderFigure(worstPoseFigure(model, p, reactions), stem);
 }
 
 }  // namespace nocdyn::app

@@ -1,9 +1,30 @@
 #include "app/reproduce.hpp"
 
+#include <filesystem>
+#include <functional>
+#include <sstream>
+#include <string>
+#include <system_error>
+
 #include "app/outputs.hpp"
-#include "report.hpp"
+#include "app/reproduce_sections.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/examples.hpp"
 
 namespace nocdyn::app {
+
+namespace {
+
+/// How many sections runReproduce runs (8, or 9 with both engines built in).
+constexpr int kReproduceSections =
+#ifdef NOCDYN_HAS_ENGINES
+    9;
+#else
+    8;
+#endif
+
+}  // namespace
 
 void validate(const ReproduceOptions& options) {
     if (options.out_dir.empty()) throw OptionError("out_dir", "expected a folder name");
@@ -14,19 +35,44 @@ void validate(const ReproduceOptions& options) {
 ReproduceResult runReproduce(const ReproduceOptions& options, Observer& observer) {
     validate(options);
     requireOutputFolder(options.out_dir, "out_dir");
-    report::ReproduceOptions report;
-    report.out = options.out_dir;
-    report.closed_loop_duration = options.closed_loop_duration;
-    report.identification_duration = options.identification_duration;
-    ReproduceResult out;
-    const int total = report::reproduceSections();
-    report::reproduce(report, [&](const std::string& section) {
+    ReproduceResult result;
+    const auto next = [&](const std::string& section) {
         stopIfRequested(observer);
-        observer.step(section, ++out.sections, total);
-    });
-    out.folder = options.out_dir;
-    out.summary = out.folder / "summary.md";
-    return out;
+        observer.step(section, ++result.sections, kReproduceSections);
+    };
+    const std::filesystem::path out(options.out_dir);
+    std::error_code error;
+    std::filesystem::create_directories(out, error);
+    if (error || !std::filesystem::is_directory(out))
+        throw Error("cannot create output folder '" + options.out_dir + "'");
+    const RobotDescription robot = io::exampleRobot("paper-3prr");  // the paper's prototype, expanded by io
+    std::ostringstream summary;
+    summary << "# nocdyn reproduce: the paper's 3-PRR results\n\n"
+            << "Robot: the paper's prototype (`robots/paper-3prr.yaml`, eq. 32 and Table I, SI units).\n\n";
+    next("the paper's trajectories");
+    reproduceTrajectories(robot, out, summary);
+    next("animations");
+    reproduceAnimations(out, summary);
+    next("forward-dynamics round trip");
+    reproduceRoundTrip(robot, summary);
+    next("closed-loop control on the Simbody plant");
+    reproduceControl(robot, out, summary, options.closed_loop_duration);
+    next("operating envelope");
+    reproduceEnvelope(robot, out, summary);
+    next("workspace");
+    reproduceWorkspace(robot, out, summary);
+    next("El Centro replay");
+    reproduceShake(out, summary);
+#ifdef NOCDYN_HAS_ENGINES
+    next("example robots against Simbody and MuJoCo");
+    reproduceExampleRobots(out, summary, options.closed_loop_duration);
+#endif
+    next("payload identification experiment");
+    reproduceIdentification(out, summary, options.identification_duration);
+    io::writeTextFile((out / "summary.md").string(), summary.str());
+    result.folder = out;
+    result.summary = out / "summary.md";
+    return result;
 }
 
 }  // namespace nocdyn::app

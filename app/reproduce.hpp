@@ -1,5 +1,8 @@
-// `reproduce`: the paper's results for its prototype and the project's checks on them, as the
-// report module writes them into a folder (report/report.hpp).
+// `reproduce`: the paper's results for its prototype and the project's checks on them, written
+// into one folder with a summary.md: both paper trajectories (CSV, figures like Figs. 5 and 6,
+// with the engines' curves when built in), animations, the forward-dynamics round trip,
+// closed-loop control, the envelope, the workspace, the El Centro replay, the example robots
+// against Simbody and MuJoCo, and the payload identification experiment (reproduce_sections.hpp).
 #pragma once
 
 #include <filesystem>

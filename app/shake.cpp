@@ -14,12 +14,13 @@
 #include <utility>
 
 #include "app/outputs.hpp"
+#include "app/plants.hpp"
+#include "app/shake_outputs.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/parallel.hpp"
 #include "nocdyn/text.hpp"
-#include "plants.hpp"
 
 namespace nocdyn::app {
 
@@ -98,58 +99,31 @@ std::vector<std::string> recordFolders(const std::vector<std::string>& records) 
     return out;
 }
 
-/// The replay's settings from the options (natural frequency by controller, sensors in SI).
-report::ShakeSettings settingsOf(const ShakeOptions& o) {
-    report::ShakeSettings s;
-    s.fit.highpass = o.highpass;
-    s.fit.margin = o.margin;
-    if (o.time_scale != "auto") {
-        // a decimal number only (std::stod would read 0x10 as 16, and nan or inf)
-        double value = 0.0;
-        const std::string& text = o.time_scale;
-        const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
-        if (text.empty() || error != std::errc{} || end != text.data() + text.size() ||
-            !(value >= 1e-3 && value <= 1e4)) {
-            throw OptionError("time_scale", "expected auto or a decimal number from 0.001 to 10000, got '" +
-                                                io::terminalText(text) + "'");
-        }
-        s.fit.time_scale = value;
+/// The replay's options: the command's time scale ("auto" or a decimal L) in time_scale.
+ShakeReplayOptions replayOptions(const ShakeOptions& o) {
+    ShakeReplayOptions replay = o;
+    if (o.time_scale_text == "auto") return replay;
+    // a decimal number only (std::stod would read 0x10 as 16, and nan or inf)
+    double value = 0.0;
+    const std::string& text = o.time_scale_text;
+    const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (text.empty() || error != std::errc{} || end != text.data() + text.size() || !(value >= 1e-3 && value <= 1e4)) {
+        throw OptionError("time_scale", "expected auto or a decimal number from 0.001 to 10000, got '" +
+                                            io::terminalText(text) + "'");
     }
-    s.plant = o.plant;
-    s.controller = o.controller;
-    s.rate = o.rate;
-    s.amplitude = o.amplitude;
-    s.identify_payload = o.identify_payload;
-    s.excitation_duration = o.excitation_duration;
-    s.iterations = o.iterations;
-    s.iteration_gain = o.iteration_gain;
-    s.drive_model = o.drive_model == "exact"        ? DriveModel::exact
-                    : o.drive_model == "difference" ? DriveModel::difference
-                                                    : DriveModel::identity;
-    s.drive_specimen = o.drive_specimen;
-    s.payload.mass = o.payload_mass;
-    s.noise_pose = o.noise_pose;
-    s.noise_rate = o.noise_rate;
-    s.seed = o.seed;
-    s.accuracy = o.accuracy;
-    s.table.acceleration_gain = o.acceleration_gain;
-    s.table.sensors.encoder_noise = o.encoder_noise;
-    s.table.sensors.accel_bandwidth = o.accel_bandwidth;
-    s.table.sensors.accel_baseline = o.accel_baseline;
-    s.table.sensors.accel_noise_density = o.accel_noise_density * 1e-6 * kGravity;  // ug/sqrt(Hz) -> SI
-    s.table.sensors.accelerometer = !o.no_accelerometer;
-    s.table.seed = o.seed;
-    const bool table = o.controller == "table";
-    if (o.natural_frequency) {
-        (table ? s.table.natural_frequency : s.natural_frequency) = *o.natural_frequency;
-    } else if (table && o.identify_payload) {
-        s.table.natural_frequency = 2.0;  // the model carries the payload: the feedback holds the drift only
-    }
-    return s;
+    replay.time_scale = value;
+    return replay;
+}
+
+/// The plant the options name, for the robot it carries.
+PlantFactory plantFactory(const ShakeOptions& o) {
+    return [kind = o.plant, accuracy = o.accuracy](const RobotDescription& robot) {
+        return makePlant(kind, robot, accuracy);
+    };
 }
 
 /// A suite's row from its replay: the scores of x, and whether every threshold holds.
-ShakeSuiteRow scoreRow(const report::ShakeOutcome& o, const ShakeOptions& options) {
+ShakeSuiteRow scoreRow(const ShakeOutcome& o, const ShakeOptions& options) {
     const ShakeScore& s = o.score[1];
     ShakeSuiteRow row;
     row.time_scale = o.fit.time_scale;
@@ -197,8 +171,8 @@ std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::s
     line = text::format(
         "%zu records on %s, controller %s, %zu at a time; pass: RMS <= %.3g %%, |peak| <= %.3g %%, "
         "spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%\n\n",
-        r.rows.size(), options.plant.c_str(), options.controller.c_str(), workers, options.max_rms_percent,
-        options.max_peak_percent, options.min_spectrum_percent);
+        r.rows.size(), std::string(nameOf(options.plant)).c_str(), std::string(nameOf(options.controller)).c_str(),
+        workers, options.max_rms_percent, options.max_peak_percent, options.min_spectrum_percent);
     out << line << "sensors: " << sensing << "\n\n"
         << "| record | folder | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
            "result |\n|---|---|---|---|---|---|---|---|---|\n";
@@ -216,7 +190,7 @@ std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::s
 }
 
 ShakeResult runSuite(const std::vector<std::string>& records, const ShakeOptions& options,
-                     const report::ShakeSettings& base, const RobotDescription& robot, Observer& observer) {
+                     const ShakeReplayOptions& replay, const RobotDescription& robot, Observer& observer) {
     if (options.out_dir.empty()) throw OptionError("out_dir", "a suite of records needs an output folder");
     const std::vector<std::string> folders = recordFolders(records);
     std::vector<GroundRecord> inputs(records.size());
@@ -225,26 +199,26 @@ ShakeResult runSuite(const std::vector<std::string>& records, const ShakeOptions
         inputs[i].ax = readAxis(records[i], options.window, inputs[i].dt, false);
     const std::size_t workers =
         std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardwareThreads(), records.size());
-    std::vector<report::ShakeOutcome> outcomes(records.size());
+    std::vector<ShakeOutcome> outcomes(records.size());
     std::vector<std::string> errors(records.size());
     std::atomic<std::size_t> next{0};
     std::atomic<bool> stop{false};
     std::mutex mutex;  // the outputs (figures) one at a time, and the count of records done
     std::condition_variable finished;
     std::size_t done = 0;
-    report::ShakeSettings settings = base;
+    const PlantFactory make_plant = plantFactory(options);
     // workers never call the observer: a stop reaches each replay at its next tick
-    settings.table.progress = [&stop](double /*t*/) {
+    const std::function<void(double)> stopper = [&stop](double /*t*/) {
         if (stop.load(std::memory_order_relaxed)) throw Cancelled();
     };
     const auto work = [&] {
         for (std::size_t i = next++; i < records.size() && !stop; i = next++) {
             try {
-                outcomes[i] = report::runShake(robot, inputs[i], settings);
+                outcomes[i] = runShakeReplay(robot, inputs[i], replay, make_plant, stopper);
                 const std::lock_guard lock(mutex);
-                report::writeShakeOutputs(outcomes[i], Model(robot),
-                                          (std::filesystem::path(options.out_dir) / folders[i]).string(),
-                                          robot.name + ": " + records[i]);
+                writeShakeOutputs(outcomes[i], Model(robot),
+                                  (std::filesystem::path(options.out_dir) / folders[i]).string(),
+                                  robot.name + ": " + records[i]);
                 outcomes[i].loop = {};  // the ticks are written; keep the scores
                 outcomes[i].achieved = {};
             } catch (const std::exception& e) {
@@ -304,7 +278,7 @@ void requireCount(long long value, long long hi, const char* field) {
 /// goes with (a value left at its default changes nothing either way).
 void refuseWhatDoesNotApply(const ShakeOptions& o) {
     const ShakeOptions d;
-    const bool table = o.controller == "table";
+    const bool table = o.controller == ShakeController::table;
     const auto refuse = [](bool set, const char* field, const std::string& needs) {
         if (set) throw OptionError(field, "does not apply here: it goes with " + needs);
     };
@@ -329,7 +303,7 @@ void refuseWhatDoesNotApply(const ShakeOptions& o) {
     }
     refuse(o.noise_pose != d.noise_pose && table, "noise_pose", "`controller` pose");
     refuse(o.noise_rate != d.noise_rate && table, "noise_rate", "`controller` pose");
-    refuse(o.accuracy != d.accuracy && o.plant != "simbody", "accuracy", "`plant` simbody");
+    refuse(o.accuracy != d.accuracy && o.plant != PlantKind::simbody, "accuracy", "`plant` simbody");
 }
 
 /// A suite's settings on a single record are refused, naming what they go with. The goals
@@ -352,12 +326,7 @@ void validate(const ShakeOptions& o) {
     requireIn(o.highpass, kHighpassRange, "highpass");
     requireIn(o.margin, kShareRange, "margin");
     requireIn(o.window, kWindowRange, "window");
-    if (std::find(std::begin(report::kPlantNames), std::end(report::kPlantNames), o.plant) ==
-        std::end(report::kPlantNames))
-        throw OptionError("plant", "expected simbody, nocdyn or nocdyn-rk4, got '" + io::terminalText(o.plant) + "'");
     requireIn(o.rate, kShakeRateRange, "rate");
-    if (o.controller != "table" && o.controller != "pose")
-        throw OptionError("controller", "expected table or pose, got '" + io::terminalText(o.controller) + "'");
     if (o.natural_frequency) requireIn(*o.natural_frequency, kShakeNaturalFrequencyRange, "natural_frequency");
     requireIn(o.acceleration_gain, kShareRange, "acceleration_gain");
     requireIn(o.encoder_noise, kEncoderNoiseRange, "encoder_noise");
@@ -367,13 +336,10 @@ void validate(const ShakeOptions& o) {
     requireIn(o.amplitude, kAmplitudeRange, "amplitude");
     requireCount(o.iterations, kMaxIterations, "iterations");
     requireIn(o.iteration_gain, kIterationGainRange, "iteration_gain");
-    if (o.drive_model != "identity" && o.drive_model != "exact" && o.drive_model != "difference")
-        throw OptionError("drive_model",
-                          "expected identity, exact or difference, got '" + io::terminalText(o.drive_model) + "'");
-    if (o.drive_model != "identity" && o.controller != "table")
-        throw OptionError("drive_model",
-                          o.drive_model + " inverts the table controller's closed loop: needs controller table");
-    if (o.drive_specimen && o.drive_model == "identity")
+    if (o.drive_model != DriveModel::identity && o.controller != ShakeController::table)
+        throw OptionError("drive_model", std::string(name(o.drive_model)) +
+                                             " inverts the table controller's closed loop: needs controller table");
+    if (o.drive_specimen && o.drive_model == DriveModel::identity)
         throw OptionError("drive_specimen", "goes with `drive_model` exact or difference");
     requireIn(o.excitation_duration, kExcitationDurationRange, "excitation_duration");
     requireCount(o.jobs, kMaxJobs, "jobs");
@@ -384,7 +350,7 @@ void validate(const ShakeOptions& o) {
     requireIn(o.noise_pose, kNoisePoseRange, "noise_pose");
     requireIn(o.noise_rate, kNoiseRateRange, "noise_rate");
     requireIn(o.accuracy, kAccuracyRange, "accuracy");
-    if (o.identify_payload && o.controller != "table")
+    if (o.identify_payload && o.controller != ShakeController::table)
         throw OptionError("identify_payload", "needs `controller` table");
     refuseWhatDoesNotApply(o);
 }
@@ -394,12 +360,12 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     requireOutputFolder(options.out_dir, "out_dir");
     const RobotDescription robot = loadRobot(options.robot);
     if (const std::string rigid = rigidPlantWarning(robot, "shake"); !rigid.empty()) observer.warning(rigid);
-    report::ShakeSettings settings = settingsOf(options);
+    const ShakeReplayOptions replay = replayOptions(options);
     const std::vector<std::string> records = expandRecords(options.record);
     if (records.size() > 1) {
         if (!options.record_y.empty() || !options.record_theta.empty())
             throw OptionError("record_y", "record_y and record_theta go with a single record");
-        return runSuite(records, options, settings, robot, observer);
+        return runSuite(records, options, replay, robot, observer);
     }
     refuseSuiteOptions(options);
     GroundRecord record;
@@ -413,14 +379,14 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     }
     // the length of the replay is known only once fitted: progress in seconds of motion
     Meter meter(observer, 0.0, "s");
-    settings.table.progress = [&meter](double t) { meter(t); };
-    const report::ShakeOutcome outcome = report::runShake(robot, record, settings);
+    const ShakeOutcome outcome =
+        runShakeReplay(robot, record, replay, plantFactory(options), [&meter](double t) { meter(t); });
     const Model model(robot);
     ShakeResult out;
-    out.table = report::shakeTable(outcome, model);
-    out.metrics_json = report::shakeJson(outcome);
+    out.table = shakeTable(outcome, model);
+    out.metrics_json = shakeJson(outcome);
     std::ostringstream text;
-    report::printShakeSummary(outcome, text);
+    printShakeSummary(outcome, text);
     // the verdict against the suite's goals, as a suite's row would give it
     ShakeSuiteRow row = scoreRow(outcome, options);
     row.record = records.front();
@@ -429,7 +395,7 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     out.rows.push_back(std::move(row));
     out.text = text.str();
     if (!options.out_dir.empty())
-        report::writeShakeOutputs(outcome, model, options.out_dir, robot.name + ": " + records.front());
+        writeShakeOutputs(outcome, model, options.out_dir, robot.name + ": " + records.front());
     return out;
 }
 

@@ -1,5 +1,5 @@
 // `shake`: a ground-motion record (PEER AT2) fitted to a robot by similitude and played on a
-// plant with an unknown payload (report/shake_replay.hpp); one record, or a suite of records
+// plant with an unknown payload (nocdyn/sim/shake_replay.hpp); one record, or a suite of records
 // played in parallel and scored against pass thresholds. Every error is in percent, with
 // "_percent" in its name (options, shake.json, the text and the suite's table alike).
 #pragma once
@@ -11,7 +11,7 @@
 #include "app/observer.hpp"
 #include "app/options.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "shake_replay.hpp"
+#include "nocdyn/sim/shake_replay.hpp"
 
 namespace nocdyn::app {
 
@@ -33,48 +33,25 @@ inline constexpr Range kAccuracyRange{1e-14, 1e-3, ""};
 inline constexpr int kMaxIterations = 20;
 inline constexpr unsigned kMaxJobs = 256;
 
-struct ShakeOptions {
+/// The replay's choices (ShakeReplayOptions: fit, plant, controller, sensors, payload, drive
+/// iteration, with their defaults) and the command's own: the records, the window, the suite's
+/// workers and goals, the output folder.
+struct ShakeOptions : ShakeReplayOptions {
     RobotSource robot;
     /// AT2 records driving x (values in g); several, or a folder (its *.AT2 files): a suite.
     std::vector<std::string> record;
     std::string record_y;      ///< AT2 record driving y (values in g), same time step
     std::string record_theta;  ///< AT2-format file driving theta, values in rad/s^2
-    /// "auto" (the least time compression L >= 1 that fits) or a decimal L in [0.001, 10000].
-    std::string time_scale = "auto";
-    double highpass = 0.1;  ///< [Hz] in record time; 0: none
-    double margin = 0.1;    ///< share of each actuator limit kept in reserve
-    double window = 0.0;    ///< [s] of the record played; 0: all
-    std::string plant = "nocdyn-rk4";
-    double rate = 10000.0;  ///< controller rate [Hz]
-    std::string controller = "table";
-    /// f_n of the pose feedback [Hz]; empty: table 6 (2 with identify_payload), pose 30.
-    std::optional<double> natural_frequency;
-    double acceleration_gain = 0.0;
-    double encoder_noise = 1e-6;        ///< [m or rad]
-    double accel_noise_density = 22.5;  ///< [ug/sqrt(Hz)] (ADXL355)
-    double accel_bandwidth = 1000.0;    ///< [Hz]
-    double accel_baseline = 0.1;        ///< [m]
-    bool no_accelerometer = false;
-    double amplitude = 1.0;
-    bool identify_payload = false;
-    int iterations = 0;
-    double iteration_gain = 0.7;
-    /// The drive correction's model: "identity", or the inverse of the linearised closed loop by
-    /// its "exact" derivatives or by central "difference"s (table controller).
-    std::string drive_model = "identity";
-    /// The drive model's loop on the plant carrying the specimen as weighed (payload_mass at C).
-    bool drive_specimen = false;
-    double excitation_duration = 2.0;  ///< [s]
-    unsigned jobs = 0;                 ///< suite: records at once (0: one per core)
-    double max_rms_percent = 5.0;      ///< suite: pass at an RMS error of at most this [%]
-    double max_peak_percent = 5.0;     ///< suite: pass at |peak error| of at most this [%]
+    /// The time scale as a user writes it (the command line's and Python's `time_scale`): "auto"
+    /// (time_scale as set, by default the least compression L >= 1 that fits) or a decimal L in
+    /// [0.001, 10000], which runShake puts in time_scale.
+    std::string time_scale_text = "auto";
+    double window = 0.0;            ///< [s] of the record played; 0: all
+    unsigned jobs = 0;              ///< suite: records at once (0: one per core)
+    double max_rms_percent = 5.0;   ///< suite: pass at an RMS error of at most this [%]
+    double max_peak_percent = 5.0;  ///< suite: pass at |peak error| of at most this [%]
     /// suite: pass when at least this percentage of the counted periods is within +-10 %
     double min_spectrum_percent = 95.0;
-    double payload_mass = 0.5;  ///< [kg] on the plant only
-    double noise_pose = 1e-6;   ///< pose controller [m, rad]
-    double noise_rate = 1e-5;   ///< pose controller [m/s, rad/s]
-    unsigned seed = 1;
-    double accuracy = 1e-10;  ///< Simbody plant
     /// Where the files go (shake.csv, shake.json, figures; a suite: summary.md and one folder per
     /// record); empty: nothing written (a suite needs one).
     std::string out_dir;

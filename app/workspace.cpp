@@ -3,7 +3,7 @@
 #include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/layouts.hpp"
-#include "workspace_figure.hpp"
+#include "render/workspace_figure.hpp"
 
 namespace nocdyn::app {
 
@@ -29,7 +29,7 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
         throw Error(analysis::noComplianceMessage(model, "the first natural frequency map"));
     }
     out.map = workspaceMap(model, ws);
-    out.summary = report::workspaceSummary(out.map);
+    out.summary = render::workspaceSummary(out.map);
     const WorkspaceMap& map = out.map;
     if (options.first_frequency) {
         out.frequency = analysis::firstFrequencyMap(model, map, [&observer](int done, int total) {
@@ -38,7 +38,7 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
         });
         if (!out.frequency->warning.empty()) observer.warning("first natural frequency: " + out.frequency->warning);
         out.summary += ' ';
-        out.summary += report::firstFrequencySummary(*out.frequency);
+        out.summary += render::firstFrequencySummary(*out.frequency);
         out.frequency_table.columns = io::columnNames(io::TableId::first_frequency);
         for (int i = 0; i < map.n; ++i) {
             for (int k = 0; k < map.n; ++k) {
@@ -60,12 +60,12 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
 }
 
 void writeWorkspaceFigure(const WorkspaceResult& result, const std::string& stem) {
-    report::renderFigure(report::workspaceFigure(result.map, *result.model, {}), stem);
+    render::renderFigure(render::workspaceFigure(result.map, *result.model, {}), stem);
 }
 
 void writeFrequencyFigure(const WorkspaceResult& result, const std::string& stem) {
     if (!result.frequency) throw Error("the figure of the first natural frequency needs first_frequency");
-    report::renderFigure(report::firstFrequencyFigure(result.map, *result.frequency, *result.model), stem);
+    render::renderFigure(render::firstFrequencyFigure(result.map, *result.frequency, *result.model), stem);
 }
 
 }  // namespace nocdyn::app

@@ -13,7 +13,7 @@
 #include "nocdyn/sim/shake.hpp"
 #include "nocdyn/sim/shake_control.hpp"
 #ifdef NOCDYN_HAS_ENGINES
-#include "simbody_plant.hpp"
+#include "nocdyn/validation/simbody_plant.hpp"
 #endif
 
 namespace {
@@ -63,7 +63,7 @@ constexpr double kLoopSeconds = 0.02;
 std::unique_ptr<nocdyn::RobotPlant> loadedPlant(const nocdyn::RobotDescription& robot, const std::string& which) {
     const nocdyn::RobotDescription loaded = nocdyn::withPayload(robot, {0.5, 0.0, nocdyn::Vector2::Zero()});
 #ifdef NOCDYN_HAS_ENGINES
-    if (which == "simbody") return std::make_unique<nocdyn::report::SimbodyPlant>(loaded);
+    if (which == "simbody") return std::make_unique<nocdyn::validation::SimbodyPlant>(loaded);
 #endif
     if (which == "nocdyn_rk4") return std::make_unique<nocdyn::RungeKuttaRobotPlant>(nocdyn::Model(loaded));
     return std::make_unique<nocdyn::SimulatorRobotPlant>(nocdyn::Model(loaded));

@@ -1,12 +1,12 @@
 # Under the sanitizers (NOCDYN_SANITIZE), the code that drives the library (the tests in
-# tests/, the application layer in app/, the command line in apps/nocdyn, the report module in
-# report/) is compiled at -Og instead of the library's -O1: the same instrumentation and checks
+# tests/, the application layer in app/, the command line in apps/nocdyn, the rendering module in
+# render/) is compiled at -Og instead of the library's -O1: the same instrumentation and checks
 # (-fsanitize=address,undefined, no recovery), at about half the compile time of -O1 with ASan
 # and UBSan (cmd_shake.cpp: 23 s of CPU at -O1, 12 s at -Og), while the library, where the tests
 # spend their time, keeps -O1. Every target of those folders is covered, so that a new test or
 # command is too. Included by the top-level CMakeLists.txt after those folders.
 get_property(subdirectories DIRECTORY ${PROJECT_SOURCE_DIR} PROPERTY SUBDIRECTORIES)
-foreach(dir tests app apps/nocdyn report)
+foreach(dir tests app apps/nocdyn render)
   if(NOT ${PROJECT_SOURCE_DIR}/${dir} IN_LIST subdirectories)
     continue()  # not built in this configuration
   endif()

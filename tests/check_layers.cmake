@@ -5,36 +5,43 @@ cmake_minimum_required(VERSION 3.25)
 #   sim       src/sim, include/nocdyn/sim                             over core, analysis
 #   io        src/io, include/nocdyn/io                               over core only
 #   tables    src/tables, include/nocdyn/tables                       over every layer above
-#   validation  validation/ (the Simbody and MuJoCo models)           over the library
-#   report    report/ (no CLI11, no header of the CLI)                over the library and validation
+#   validation  validation/ (the Simbody and MuJoCo models, SimbodyPlant)  over the library
+#   render    render/ (figures, the animation page; no CLI11)         over core, analysis, io, tables: no sim
 #   app       app/ (each command's options, run and typed result)     over all of the above
 # apps/ (the command line) and python/ stand on all of them.
 # A file may include a library header ("nocdyn/...") only of its own layer or one it stands on. The
-# private headers of a folder (src/core/stages.hpp, ...) count as that folder's layer, and
-# nothing in the library includes report's or the CLI's headers or CLI11.
+# private headers of a folder (src/core/stages.hpp, ...) count as that folder's layer; render's
+# headers ("render/plot.hpp") are render's layer and the application layer's ("app/pose.hpp")
+# app's; nothing in the library includes render's or the CLI's headers or CLI11, and render
+# includes no header of sim/ (its figures take what the layers under it compute) nor of app/.
 # Run with -DSOURCE_DIR=<tree>. With -DPLANT=<scratch folder>, the check instead copies the
-# tree's library folders there, plants an upward include in a core file and must then fail:
-# the test that shows the check can fail.
+# tree's library folders there, plants four upward includes (sim in a core file, sim and the
+# application layer in a render file, a private header in python/) and must then fail naming each: the test that shows the
+# check can fail.
 if(PLANT)
   file(REMOVE_RECURSE ${PLANT})
-  foreach(dir src include report app apps validation python)
+  foreach(dir src include render app apps validation python)
     file(COPY ${SOURCE_DIR}/${dir} DESTINATION ${PLANT})
   endforeach()
   file(APPEND ${PLANT}/src/core/model.cpp "#include \"nocdyn/sim/shake.hpp\"\n")
+  file(APPEND ${PLANT}/render/plot.cpp "#include \"nocdyn/sim/shake_replay.hpp\"\n#include \"app/shake.hpp\"\n")
   file(APPEND ${PLANT}/python/src/module.cpp "#include \"../../src/core/stages.hpp\"\n")
   execute_process(COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PLANT} -P ${CMAKE_CURRENT_LIST_FILE}
                   RESULT_VARIABLE result OUTPUT_VARIABLE out ERROR_VARIABLE err)
   file(REMOVE_RECURSE ${PLANT})
   if(result EQUAL 0)
-    message(FATAL_ERROR "the layer check passed a core file that includes nocdyn/sim/shake.hpp")
+    message(FATAL_ERROR "the layer check passed a core file that includes nocdyn/sim/shake.hpp and a render "
+                        "file that includes nocdyn/sim/shake_replay.hpp and app/shake.hpp")
   endif()
-  if(NOT err MATCHES "src/core/model.cpp: core includes nocdyn/sim/shake.hpp")
-    message(FATAL_ERROR "the layer check failed, but did not name the planted include:\n${err}")
-  endif()
-  if(NOT err MATCHES "python/src/module.cpp: python includes the private header")
-    message(FATAL_ERROR "the layer check did not name the private header planted in python/:\n${err}")
-  endif()
-  message(STATUS "the planted upward include was caught: ${err}")
+  foreach(planted "src/core/model.cpp: core includes nocdyn/sim/shake.hpp"
+                  "render/plot.cpp: render includes nocdyn/sim/shake_replay.hpp"
+                  "render/plot.cpp: render includes the application layer's app/shake.hpp"
+                  "python/src/module.cpp: python includes the private header")
+    if(NOT err MATCHES "${planted}")
+      message(FATAL_ERROR "the layer check failed, but did not name the planted include (${planted}):\n${err}")
+    endif()
+  endforeach()
+  message(STATUS "the planted upward includes were caught: ${err}")
   return()
 endif()
 
@@ -45,8 +52,8 @@ set(allowed_sim core analysis sim)
 set(allowed_io core io)
 set(allowed_tables core analysis sim io tables)
 set(allowed_validation core analysis sim io tables validation)
-set(allowed_report core analysis sim io tables validation)
-set(allowed_app core analysis sim io tables validation report app)
+set(allowed_render core analysis io tables render)
+set(allowed_app core analysis sim io tables validation render app)
 # the layer of a library header named in an #include "nocdyn/..."
 function(header_layer header out)
   if(header MATCHES "^nocdyn/(analysis|sim|io|tables|validation)/")
@@ -59,7 +66,7 @@ function(header_layer header out)
 endfunction()
 
 file(GLOB cli_headers RELATIVE ${SOURCE_DIR}/apps/nocdyn ${SOURCE_DIR}/apps/nocdyn/*.hpp)
-file(GLOB report_headers RELATIVE ${SOURCE_DIR}/report ${SOURCE_DIR}/report/*.hpp)
+file(GLOB render_headers RELATIVE ${SOURCE_DIR}/render ${SOURCE_DIR}/render/*.hpp)
 set(failures "")
 set(counts "")
 function(check layer globs)
@@ -81,9 +88,14 @@ function(check layer globs)
           list(APPEND failures "${name}: ${layer} includes ${header}")
         endif()
       elseif(header MATCHES "^app/")
-        # the application layer's headers ("app/pose.hpp"): above the library and report
+        # the application layer's headers ("app/pose.hpp"): above the library and render
         if(NOT "app" IN_LIST allowed_${layer})
           list(APPEND failures "${name}: ${layer} includes the application layer's ${header}")
+        endif()
+      elseif(header MATCHES "^render/")
+        # the rendering layer's headers ("render/plot.hpp"): above the library
+        if(NOT "render" IN_LIST allowed_${layer})
+          list(APPEND failures "${name}: ${layer} includes the rendering layer's ${header}")
         endif()
       elseif(header MATCHES "^nocdyn/")
         header_layer(${header} target)
@@ -92,8 +104,8 @@ function(check layer globs)
         endif()
       elseif(header MATCHES "^CLI/" OR header IN_LIST cli_headers)
         list(APPEND failures "${name}: ${layer} includes the command line's ${header}")
-      elseif(NOT layer MATCHES "^(report|app)$" AND header IN_LIST report_headers)
-        list(APPEND failures "${name}: ${layer} includes report's ${header}")
+      elseif(NOT layer MATCHES "^(render|app)$" AND header IN_LIST render_headers)
+        list(APPEND failures "${name}: ${layer} includes render's ${header}")
       endif()
     endforeach()
   endforeach()
@@ -105,10 +117,10 @@ check(sim "src/sim/*.cpp;src/sim/*.hpp;include/nocdyn/sim/*.hpp")
 check(io "src/io/*.cpp;src/io/*.hpp;include/nocdyn/io/*.hpp")
 check(tables "src/tables/*.cpp;src/tables/*.hpp;include/nocdyn/tables/*.hpp")
 check(validation "validation/src/*.cpp;validation/*/src/*.cpp;validation/*/src/*.hpp;validation/include/nocdyn/validation/*.hpp;validation/include/nocdyn/validation/detail/*.hpp;validation/*/include/nocdyn/validation/*.hpp")
-check(report "report/*.cpp;report/*.hpp")
+check(render "render/*.cpp;render/*.hpp")
 check(app "app/*.cpp;app/*.hpp")
 # python/ (the compiled module) binds the library's public headers (nocdyn/...), the application
-# layer (app/) and report's; the command line's headers only in its CLI entry (cli_main.cpp, for
+# layer (app/) and render's; the command line's headers only in its CLI entry (cli_main.cpp, for
 # `python -m nocdyn`); never a private header of a folder (src/..., by a relative path).
 file(GLOB python_files ${SOURCE_DIR}/python/src/*.cpp ${SOURCE_DIR}/python/src/*.hpp)
 file(GLOB python_own RELATIVE ${SOURCE_DIR}/python/src ${SOURCE_DIR}/python/src/*.hpp)
@@ -119,14 +131,14 @@ foreach(file IN LISTS python_files)
   file(STRINGS ${file} includes REGEX "^#include \"")
   foreach(line IN LISTS includes)
     string(REGEX REPLACE "^#include \"([^\"]+)\".*" "\\1" header "${line}")
-    if(header MATCHES "^nocdyn/|^app/|^report/|^pybind11/" OR header IN_LIST python_own)
+    if(header MATCHES "^nocdyn/|^app/|^render/|^pybind11/" OR header IN_LIST python_own)
       continue()
     elseif(header IN_LIST cli_headers AND name STREQUAL "python/src/cli_main.cpp")
       continue()
     elseif(header IN_LIST cli_headers)
       list(APPEND failures "${name}: python includes the command line's ${header} (only cli_main.cpp may)")
-    elseif(header IN_LIST report_headers)
-      continue()  # report's headers by their bare name (report/ is on the module's include path)
+    elseif(header IN_LIST render_headers)
+      continue()  # render's headers by their bare name (render/ is on the module's include path)
     else()
       list(APPEND failures "${name}: python includes the private header ${header}")
     endif()

@@ -10,7 +10,7 @@
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/trajectory.hpp"
-#include "simbody_plant.hpp"
+#include "nocdyn/validation/simbody_plant.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -18,7 +18,7 @@ namespace {
 PoseLoopResult trackOnSimbody(const RobotDescription& robot, const RobotDescription& plant_robot) {
     const Model model(robot);
     PoseController controller(model, ControlLaw::computed_torque, taskCriticallyDamped(50.0));
-    report::SimbodyPlant plant(plant_robot, 1e-8);
+    validation::SimbodyPlant plant(plant_robot, 1e-8);
     PoseLoopOptions options;
     options.rate = 5000.0;
     options.duration = 0.1;

@@ -11,7 +11,7 @@
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"
-#include "simbody_plant.hpp"
+#include "nocdyn/validation/simbody_plant.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -56,7 +56,7 @@ TEST(SimbodyForwardDynamics, ComputedTorqueOnTheSimbodyPlantBeatsPd) {
     options.duration = 0.1;
     PoseController computed_torque(model, ControlLaw::computed_torque, taskCriticallyDamped(50.0));
     PoseController pd(model, ControlLaw::pd, taskCriticallyDamped(50.0));
-    report::SimbodyPlant plant_a(robot), plant_b(robot);
+    validation::SimbodyPlant plant_a(robot), plant_b(robot);
     const auto ct = runPoseLoop(computed_torque, plant_a, paperTrajectory1(), options);
     const auto pd_result = runPoseLoop(pd, plant_b, paperTrajectory1(), options);
     const double ct_rms = *std::max_element(ct.rms_error.begin(), ct.rms_error.end());

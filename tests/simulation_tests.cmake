@@ -11,14 +11,10 @@ endforeach()
 # Against the independent Simbody model, when it is built.
 if(TARGET nocdyn_simbody)
   nocdyn_add_test(simbody_simulation_test simbody_simulation_test.cpp
-    ${PROJECT_SOURCE_DIR}/report/simbody_plant.cpp
-    LABELS validation LIBRARIES nocdyn_simbody)
-  target_include_directories(simbody_simulation_test PRIVATE ${PROJECT_SOURCE_DIR}/report)
+    LABELS validation LIBRARIES nocdyn_simbody_plant)
   nocdyn_add_test(simbody_plant_test simbody_plant_test.cpp LABELS validation LIBRARIES nocdyn_simbody)
   nocdyn_add_test(simbody_control_test simbody_control_test.cpp
-    ${PROJECT_SOURCE_DIR}/report/simbody_plant.cpp
-    LABELS validation LIBRARIES nocdyn_simbody)
-  target_include_directories(simbody_control_test PRIVATE ${PROJECT_SOURCE_DIR}/report)
+    LABELS validation LIBRARIES nocdyn_simbody_plant)
 endif()
 nocdyn_add_test(forward_dynamics_robots_test forward_dynamics_robots_test.cpp)
 nocdyn_add_test(control_robots_test control_robots_test.cpp)

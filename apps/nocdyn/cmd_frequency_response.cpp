@@ -7,7 +7,7 @@
 #include "common.hpp"
 #include "progress.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "plot.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::cli {
 
@@ -37,7 +37,7 @@ void run(const Options& options) {
     } else if (!options.output.empty()) {
         printText(result.summary);
     }
-    if (!options.figure.empty()) report::renderFigure(app::bodeFigure(result), options.figure);
+    if (!options.figure.empty()) render::renderFigure(app::bodeFigure(result), options.figure);
 }
 
 }  // namespace

@@ -71,7 +71,7 @@ void addShakeCommand(CLI::App& app) {
                      "AT2-format file driving theta, its values in rad/s^2 (not g), same time step")
         ->check(CLI::ExistingFile);
     command
-        ->add_option("--time-scale", options->time_scale,
+        ->add_option("--time-scale", options->time_scale_text,
                      "auto (the least time compression L >= 1 that fits) or L (the amplitude is then scaled "
                      "down if the motion does not fit)")
         ->capture_default_str();
@@ -87,13 +87,10 @@ void addShakeCommand(CLI::App& app) {
     command->add_option("--rate", options->rate, "Controller rate [Hz]")
         ->check(within(app::kShakeRateRange))
         ->capture_default_str();
-    command
-        ->add_option("--controller", options->controller,
-                     "table (encoders and platform accelerometers fused by a Kalman filter, model feed-forward, "
-                     "low-gain pose feedback, acceleration correction) or pose (computed torque on a noisy pose and "
-                     "rate sensor, --noise-pose, --noise-rate)")
-        ->check(CLI::IsMember({"table", "pose"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--controller", options->controller,
+                    "table (encoders and platform accelerometers fused by a Kalman filter, model feed-forward, "
+                    "low-gain pose feedback, acceleration correction) or pose (computed torque on a noisy pose and "
+                    "rate sensor, --noise-pose, --noise-rate)");
     command
         ->add_option("--natural-frequency", options->natural_frequency,
                      "f_n of the pose feedback [Hz] (default: table 6, or 2 with --identify-payload; pose 30)")
@@ -143,13 +140,10 @@ void addShakeCommand(CLI::App& app) {
     command->add_option("--iteration-gain", options->iteration_gain, "Drive-signal iteration gain")
         ->check(within(app::kIterationGainRange))
         ->capture_default_str();
-    command
-        ->add_option("--drive-model", options->drive_model,
-                     "Drive-signal iteration: identity (the error itself corrects the drive), or the error through the "
-                     "inverse frequency response of the table controller's closed loop linearised at home, by exact "
-                     "derivatives (exact) or central differences (difference)")
-        ->check(CLI::IsMember({"identity", "exact", "difference"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--drive-model", options->drive_model,
+                    "Drive-signal iteration: identity (the error itself corrects the drive), or the error through the "
+                    "inverse frequency response of the table controller's closed loop linearised at home, by exact "
+                    "derivatives (exact) or central differences (difference)");
     command->add_flag("--drive-specimen", options->drive_specimen,
                       "--drive-model exact or difference: the linearised loop's plant carries the specimen as weighed "
                       "(--payload-mass at the platform's origin), which the controller's model does not");

@@ -1,6 +1,5 @@
 #include "common.hpp"
 
-#include "plants.hpp"
 #include "progress.hpp"
 
 #include <nlohmann/json.hpp>
@@ -196,16 +195,14 @@ void writeText(const std::string& text, const std::string& path) {
     }
 }
 
-CLI::Option* addPlantOption(CLI::App& command, std::string& plant) {
-    // what each plant is (report::makePlant)
+CLI::Option* addPlantOption(CLI::App& command, PlantKind& plant) {
+    // what each plant is (app::makePlant)
     const char* help =
         "simbody (the independent model, integrated to its accuracy: about 0.4 s of motion per CPU "
         "second at 10 kHz), nocdyn (nocdyn's forward dynamics, error-controlled to 1e-10: about 17 s "
         "per CPU second) or nocdyn-rk4 (the same, one Runge-Kutta 4 step per controller tick: about "
         "26 s per CPU second; docs/validation.md, earthquake replay)";
-    return command.add_option("--plant", plant, help)
-        ->check(CLI::IsMember(std::vector<std::string>(std::begin(report::kPlantNames), std::end(report::kPlantNames))))
-        ->capture_default_str();
+    return addChoiceOption(command, "--plant", plant, help);
 }
 
 namespace {

@@ -17,17 +17,20 @@
 #include "app/options.hpp"
 #include "app/outputs.hpp"
 #include "app/table.hpp"
+#include "nocdyn/choice.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/description.hpp"
+#include "nocdyn/sim/plant.hpp"
 #include "nocdyn/trajectory.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::report {}  // namespace nocdyn::report
 
 namespace nocdyn::cli {
 
-/// The commands draw figures, pages and replays with the report module's functions.
-using namespace nocdyn::report;
+/// The commands draw figures and pages with the rendering module's functions.
+using namespace nocdyn::render;
 
 /// A CLI11 check: the argument is a finite decimal number in [lo, hi] (unit named in the
 /// message, e.g. "Hz"); nan, inf and hex are refused. Any failure exits with status 2.
@@ -99,9 +102,20 @@ void printText(std::string_view text);
 /// empty.
 void writeText(const std::string& text, const std::string& path);
 
-/// Adds --plant (report::kPlantNames): every command that chooses a plant offers all three with
-/// this one definition.
-CLI::Option* addPlantOption(CLI::App& command, std::string& plant);
+/// Adds an option choosing a value of the enum E by its name (nocdyn/choice.hpp): the words
+/// accepted and the default shown are E's name table.
+template <class E>
+CLI::Option* addChoiceOption(CLI::App& command, const std::string& name, E& value, const std::string& help) {
+    return command
+        .add_option_function<std::string>(
+            name, [&value](const std::string& word) { value = *choiceNamed<E>(word); }, help)
+        ->check(CLI::IsMember(choiceNames<E>()))
+        ->default_str(std::string(nameOf(value)));
+}
+
+/// Adds --plant (PlantKind): every command that chooses a plant offers all three with this one
+/// definition.
+CLI::Option* addPlantOption(CLI::App& command, PlantKind& plant);
 
 /// An application-layer message as the command line spells its options: `noise_pose` (an option
 /// the message names) and a bare noise_pose that is an option of `command` (any snake_case word

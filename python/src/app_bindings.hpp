@@ -8,14 +8,19 @@
 
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "app/observer.hpp"
+#include "app/options.hpp"
 #include "app/table.hpp"
+#include "nocdyn/choice.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/printable.hpp"
 
 namespace py = pybind11;
 
@@ -73,13 +78,13 @@ public:
     }
     template <class T, class Owner>
     OptionsClass& option(const char* name, T Owner::*member) {
-        class_.def_readwrite(name, member);
+        bind(name, member);
         names_->emplace_back(name);
         return *this;
     }
     template <class T, class Owner>
     OptionsClass& field(const char* name, T Owner::*member) {
-        class_.def_readwrite(name, member);
+        bind(name, member);
         return *this;
     }
     OptionsClass& inherited(const char* name) {
@@ -94,6 +99,26 @@ public:
     }
 
 private:
+    /// A field as a Python attribute; a choice (an enum with a name table, nocdyn/choice.hpp) as
+    /// its name, a name not in the table refused with OptionError naming the field.
+    template <class T, class Owner>
+    void bind(const char* name, T Owner::*member) {
+        if constexpr (std::is_enum_v<T>) {
+            class_.def_property(
+                name, [member](const Options& o) { return std::string(nameOf(o.*member)); },
+                [member, name](Options& o, const std::string& word) {
+                    const std::optional<T> value = choiceNamed<T>(word);
+                    if (!value) {
+                        throw app::OptionError(name,
+                                               "expected " + choiceList<T>() + ", got '" + text::printable(word) + "'");
+                    }
+                    o.*member = *value;
+                });
+        } else {
+            class_.def_readwrite(name, member);
+        }
+    }
+
     py::class_<Options, Bases...> class_;
     std::shared_ptr<std::vector<std::string>> names_;  // shared with the _fields getter
 };

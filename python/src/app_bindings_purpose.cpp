@@ -31,7 +31,7 @@ void bindShake(py::module_& m) {
         .option("record", &O::record)
         .option("record_y", &O::record_y)
         .option("record_theta", &O::record_theta)
-        .option("time_scale", &O::time_scale)
+        .option("time_scale", &O::time_scale_text)
         .option("highpass", &O::highpass)
         .option("margin", &O::margin)
         .option("window", &O::window)

@@ -12,7 +12,7 @@
 #include "app/simulate.hpp"
 #include "app_bindings.hpp"
 #include "nocdyn/io/csv.hpp"
-#include "report/plot.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::python {
 
@@ -107,7 +107,7 @@ void bindSimulation(py::module_& m) {
                 app::FrequencyResponseResult r = app::runFrequencyResponse(options, observer);
                 // the files asked for, written safely (a unique temporary file renamed into place)
                 if (!summary.empty()) io::writeTextFile(summary, r.summary);
-                if (!figure.empty()) report::renderFigure(app::bodeFigure(r), figure);
+                if (!figure.empty()) render::renderFigure(app::bodeFigure(r), figure);
                 return r;
             });
             return py::make_tuple(result.columns, Eigen::MatrixXd(result.table), result.summary);
@@ -142,7 +142,7 @@ void bindSimulation(py::module_& m) {
                 app::ControlResult r = app::runControl(options, observer);
                 // the files asked for, written safely (a unique temporary file renamed into place)
                 if (!log.empty()) io::writeCsvFile(log, r.log);
-                if (!figure.empty()) report::renderFigure(app::trackingFigure(r), figure);
+                if (!figure.empty()) render::renderFigure(app::trackingFigure(r), figure);
                 return r;
             });
             const auto rows = static_cast<py::ssize_t>(result.table.rows.size());

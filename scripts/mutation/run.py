@@ -48,7 +48,7 @@ TIMEOUT = 120
 
 # Folders of the repository the build needs (the copy leaves out build trees and the like).
 IGNORED = shutil.ignore_patterns("node_modules", "__pycache__")
-COPIED = ["CMakeLists.txt", "cmake", "include", "src", "app", "apps", "report", "tests", "bench/baseline", "robots", "trajectories", "data"]
+COPIED = ["CMakeLists.txt", "cmake", "include", "src", "app", "apps", "render", "tests", "bench/baseline", "robots", "trajectories", "data"]
 
 
 class Mutation:

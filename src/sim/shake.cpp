@@ -400,18 +400,6 @@ double relativeRmsError(std::span<const double> target, std::span<const double> 
     return st > 0.0 ? std::sqrt(se / st) : 0.0;
 }
 
-const char* name(DriveModel model) {
-    switch (model) {
-        case DriveModel::identity:
-            return "identity";
-        case DriveModel::exact:
-            return "exact";
-        case DriveModel::difference:
-            return "difference";
-    }
-    return "identity";
-}
-
 DriveInverse driveInverse(DriveModel model, const ShakeLoopLinearization& loop, double dt, std::size_t samples,
                           double band, const std::array<bool, 3>& driven) {
     if (samples < 4) throw Error("drive correction: at least 4 samples are needed");

@@ -1,15 +1,28 @@
 // The robot a closed loop runs on (RobotPlant) and nocdyn's own plants: the error-controlled
 // forward dynamics (SimulatorRobotPlant) and one Runge-Kutta 4 step per controller tick
-// (RungeKuttaRobotPlant). A plant on an independent engine (report/simbody_plant.hpp) implements
-// the same interface where the engines are allowed.
+// (RungeKuttaRobotPlant). A plant on an independent engine (validation/simbody: SimbodyPlant)
+// implements the same interface where the engines are allowed; the plants a user chooses from
+// are named by PlantKind.
 #pragma once
 
+#include <array>
+#include <span>
 #include <string>
 
+#include "nocdyn/choice.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
 
 namespace nocdyn {
+
+/// The plants a closed loop runs on: the independent Simbody model (when built in), nocdyn's
+/// error-controlled forward dynamics (SimulatorRobotPlant), or its Runge-Kutta 4 step per tick
+/// (RungeKuttaRobotPlant).
+enum class PlantKind { simbody, nocdyn, nocdyn_rk4 };
+
+inline constexpr std::array<Choice<PlantKind>, 3> kPlantKinds{
+    {{PlantKind::simbody, "simbody"}, {PlantKind::nocdyn, "nocdyn"}, {PlantKind::nocdyn_rk4, "nocdyn-rk4"}}};
+[[nodiscard]] constexpr std::span<const Choice<PlantKind>> choices(PlantKind) { return kPlantKinds; }
 
 /// The robot being controlled, measured by its platform pose and rate (and actuator
 /// variables, recorded). Not real-time: methods may throw nocdyn::Error.

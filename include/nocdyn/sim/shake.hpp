@@ -56,6 +56,7 @@
 
 #include <Eigen/Core>
 
+#include "nocdyn/choice.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
@@ -159,8 +160,12 @@ struct ShakeScore {
 /// derivatives, or by central differences (closed_loop.hpp, LoopDerivatives).
 enum class DriveModel { identity, exact, difference };
 
+inline constexpr std::array<Choice<DriveModel>, 3> kDriveModels{
+    {{DriveModel::identity, "identity"}, {DriveModel::exact, "exact"}, {DriveModel::difference, "difference"}}};
+[[nodiscard]] constexpr std::span<const Choice<DriveModel>> choices(DriveModel) { return kDriveModels; }
+
 /// "identity", "exact" or "difference".
-[[nodiscard]] const char* name(DriveModel model);
+[[nodiscard]] inline const char* name(DriveModel model) { return nameOf(model).data(); }
 
 /// H^-1 of the driven axes on the correction's frequency grid (see the header comment).
 struct DriveInverse {

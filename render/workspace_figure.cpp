@@ -1,12 +1,12 @@
 // The workspace figure: the feasible region's outline (grid edges where feasibility changes)
 // and the singularity curves as dots, so that the SVG stays small at any resolution.
-#include "workspace_figure.hpp"
+#include "render/workspace_figure.hpp"
 
 #include <cstdio>
 #include <numbers>
 #include "nocdyn/text.hpp"
 
-namespace nocdyn::report {
+namespace nocdyn::render {
 
 Figure workspaceFigure(const WorkspaceMap& map, const Model& model, const std::vector<PlotSeries>& paths) {
     PlotSeries outline{"feasible region (outline)", {}, {}, "points pt 7 ps 0.25 lc rgb '#1f77b4'"};
@@ -134,4 +134,4 @@ std::string workspaceSummary(const WorkspaceMap& map) {
     return text;
 }
 
-}  // namespace nocdyn::report
+}  // namespace nocdyn::render

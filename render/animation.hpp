@@ -3,17 +3,15 @@
 // drawRobot (nocdyn/drawing.hpp).
 #pragma once
 
-#include <filesystem>
-#include <iosfwd>
 #include <string>
 #include <vector>
 
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
-#include "plot.hpp"
+#include "render/plot.hpp"
 
-namespace nocdyn::report {
+namespace nocdyn::render {
 
 /// Samples of a motion: times, poses, actuator variables and forces (n = model.actuators).
 struct MotionSamples {
@@ -64,8 +62,4 @@ struct AnimationOptions {
 /// The robot at the sample nearest to time t, as a gnuplot figure (an equal-axes map).
 [[nodiscard]] Figure frameFigure(const Model& model, const MotionSamples& motion, double t);
 
-/// Writes `stem`.html of the paper's trajectories 1 and 2 on the paper's robot (0.2 s at
-/// 10 kHz) into `out`, and a paragraph naming them in `summary`.
-void reproduceAnimations(const std::filesystem::path& out, std::ostream& summary);
-
-}  // namespace nocdyn::report
+}  // namespace nocdyn::render

@@ -1,19 +1,17 @@
 // The independent Simbody model of any robot file (validation::SimbodyMechanism) as a
 // RobotPlant, so that a controller designed on the NOC model is tested on a plant it shares
-// nothing with but the robot file. Built only when the target nocdyn_simbody exists; the core
-// library never depends on Simbody.
+// nothing with but the robot file (PlantKind::simbody). Built only when the target
+// nocdyn_simbody exists; the library never depends on Simbody.
 #pragma once
 
 #include <memory>
 
 #include "nocdyn/description.hpp"
-#include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/plant.hpp"
 
 namespace nocdyn::validation {
-class SimbodyMechanism;
-}  // namespace nocdyn::validation
 
-namespace nocdyn::report {
+class SimbodyMechanism;
 
 class SimbodyPlant final : public RobotPlant {
 public:
@@ -34,4 +32,4 @@ private:
     std::unique_ptr<validation::SimbodyMechanism> mechanism_;
 };
 
-}  // namespace nocdyn::report
+}  // namespace nocdyn::validation

@@ -7,7 +7,7 @@
 #include <string_view>
 #include <vector>
 
-namespace nocdyn::report {
+namespace nocdyn::render {
 
 struct PlotSeries {
     std::string label;
@@ -58,4 +58,4 @@ void renderFigure(const Figure& figure, const std::string& stem);
 /// The same to the paths given (an empty path: that format is not written).
 void renderFigureFiles(const Figure& figure, const std::string& png, const std::string& svg);
 
-}  // namespace nocdyn::report
+}  // namespace nocdyn::render

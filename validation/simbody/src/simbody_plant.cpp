@@ -1,11 +1,12 @@
-#include "simbody_plant.hpp"
+// The Simbody model as a RobotPlant (see simbody_plant.hpp).
+#include "nocdyn/validation/simbody_plant.hpp"
 
 #include "nocdyn/validation/simbody_mechanism.hpp"
 
-namespace nocdyn::report {
+namespace nocdyn::validation {
 
 SimbodyPlant::SimbodyPlant(const RobotDescription& robot, double accuracy)
-    : mechanism_(std::make_unique<validation::SimbodyMechanism>(robot)) {
+    : mechanism_(std::make_unique<SimbodyMechanism>(robot)) {
     mechanism_->setIntegratorAccuracy(accuracy);
 }
 
@@ -18,4 +19,4 @@ Pose SimbodyPlant::pose() const { return mechanism_->pose(); }
 Twist SimbodyPlant::poseRate() const { return mechanism_->poseRate(); }
 ActuatorVector SimbodyPlant::u() const { return mechanism_->u(); }
 
-}  // namespace nocdyn::report
+}  // namespace nocdyn::validation

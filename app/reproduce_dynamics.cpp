@@ -1,6 +1,6 @@
 // The paper prototype's dynamics results for `nocdyn reproduce`: round trip, closed-loop control,
 // operating envelope, all on the general model.
-#include "reproduce_dynamics.hpp"
+#include "app/reproduce_dynamics.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -18,9 +18,19 @@
 #include "nocdyn/tables/tables.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/text.hpp"
-#include "plants.hpp"
+#include "app/plants.hpp"
+#include "app/reproduce_sections.hpp"
+#include "render/envelope_figure.hpp"
 
-namespace nocdyn::report {
+namespace nocdyn::app {
+
+using render::AxisUnit;
+using render::axisUnit;
+using render::envelopeFigure;
+using render::Figure;
+using render::PlotPanel;
+using render::PlotSeries;
+using render::renderFigure;
 
 ActuatorLimits actuatorLimits(const RobotDescription& robot) {
     for (const LimbDescription& limb : robot.limbs) {
@@ -84,62 +94,6 @@ const char* limitWord(EnvelopeLimit limit) {
 
 namespace {
 
-/// The band's third bound on a panel: a vertical line at f_1 over the panel's amplitudes, and
-/// the frequencies from the band's end (where the panel's axes' dynamic amplification leaves
-/// [1 / A, A]) to the last point shaded as beyond the band.
-void drawResonance(PlotPanel& panel, double f1, double band_end, double amplification, double last_frequency) {
-    double low = std::numeric_limits<double>::infinity(), high = 0.0;
-    for (const PlotSeries& s : panel.series) {
-        for (const double y : s.y) {
-            if (y > 0.0) low = std::min(low, y), high = std::max(high, y);
-        }
-    }
-    if (!(high > 0.0)) return;  // nothing on a log axis to span
-    if (band_end < last_frequency) {
-        panel.series.push_back({text::format("beyond the band (amplification beyond %.3g)", amplification),
-                                {band_end, last_frequency},
-                                {low, low},
-                                "filledcurves fs transparent solid 0.15 noborder lc rgb '#d62728'",
-                                {{high, high}}});
-    }
-    std::string label;
-    label = text::format("first natural frequency %.4g Hz", f1);
-    panel.series.push_back({label, {f1, f1}, {low, high}, "lines dt 2 lw 2 lc rgb '#d62728'"});
-}
-
-}  // namespace
-
-Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot, const std::string& reading,
-                      const EnvelopeResonance& resonance) {
-    PlotPanel translation{"Translation along x and y", "frequency [Hz]", "largest amplitude [mm]", {}, true, true};
-    PlotPanel rotation{"Rotation theta", "frequency [Hz]", "largest amplitude [deg]", {}, true, true};
-    for (const EnvelopeAxis axis : kEnvelopeAxes) {
-        PlotSeries line;
-        line.label = axisName(axis);
-        line.style = "linespoints lw 2 pt 7 ps 0.6";
-        for (const auto& p : points) {
-            if (p.axis != axis) continue;
-            line.x.push_back(p.frequency);
-            line.y.push_back(axis == EnvelopeAxis::theta ? p.amplitude * 180.0 / std::numbers::pi : p.amplitude * 1e3);
-        }
-        (axis == EnvelopeAxis::theta ? rotation : translation).series.push_back(std::move(line));
-    }
-    if (resonance.known) {
-        double last = 0.0;
-        for (const auto& p : points) last = std::max(last, p.frequency);
-        const auto end = [&](EnvelopeAxis axis) { return resonance.band_end[static_cast<std::size_t>(axis)]; };
-        drawResonance(translation, resonance.frequency, std::min(end(EnvelopeAxis::x), end(EnvelopeAxis::y)),
-                      resonance.amplification, last);
-        drawResonance(rotation, resonance.frequency, end(EnvelopeAxis::theta), resonance.amplification, last);
-    }
-    Figure figure;
-    figure.title = "Operating envelope of " + literalText(robot) + ": " + reading;
-    figure.panels = {translation, rotation};
-    return figure;
-}
-
-namespace {
-
 const char* kTrajectories[] = {"paper1", "paper2"};
 
 PoseTrajectory paperTrajectory(int k) { return k == 0 ? paperTrajectory1() : paperTrajectory2(); }
@@ -150,7 +104,7 @@ void reproduceControl(const RobotDescription& robot, const std::filesystem::path
                       double duration) {
     constexpr double kNaturalFrequency = 50.0;  // [Hz]
     const Model model(robot);
-    const std::string plant_name = defaultPlantName();
+    const PlantKind plant_kind = defaultPlant();
     PoseLoopOptions loop;
     loop.duration = duration;
     const Payload payload{0.5, 1e-3, Vector2::Zero()};
@@ -158,7 +112,7 @@ void reproduceControl(const RobotDescription& robot, const std::filesystem::path
             << "Task-space controller (as `nocdyn control`) at " << loop.rate / 1000 << " kHz over " << duration
             << " s, with zero-order hold, pose error critically damped at " << kNaturalFrequency
             << " Hz, each force clipped at its joint's effort (" << actuatorLimits(robot).peak_force << " N), plant: "
-            << (plant_name == "simbody" ? "the independent Simbody model" : "nocdyn's forward dynamics")
+            << (plant_kind == PlantKind::simbody ? "the independent Simbody model" : "nocdyn's forward dynamics")
             << ", pose and rate measured from it. Computed torque: A_p^T tau = M_p(p) (ddp_d + K_d e' + K_p e) + "
                "h_p(p, dp); PD: A_p^T tau = M_p(home) (K_p e + K_d e'). The payload case adds "
             << payload.mass << " kg and " << payload.inertia << " kg m^2 at C to the plant's platform only.\n\n"
@@ -173,7 +127,7 @@ void reproduceControl(const RobotDescription& robot, const std::filesystem::path
                                           {ControlLaw::computed_torque, true}}) {
             PoseController controller(model, law, taskCriticallyDamped(kNaturalFrequency));
             const std::unique_ptr<RobotPlant> plant =
-                makePlant(plant_name, loaded ? withPayload(robot, payload) : robot);
+                makePlant(plant_kind, loaded ? withPayload(robot, payload) : robot);
             runs.push_back(runPoseLoop(controller, *plant, trajectory, loop));
             const PoseLoopResult& r = runs.back();
             std::string row;
@@ -315,4 +269,4 @@ void reproduceRoundTrip(const RobotDescription& robot, std::ostream& summary) {
            "interval (test ForwardDynamics.RoundTripErrorIsSecondOrderInForceSampling).\n\n";
 }
 
-}  // namespace nocdyn::report
+}  // namespace nocdyn::app

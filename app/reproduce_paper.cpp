@@ -1,5 +1,6 @@
-// The report of `nocdyn reproduce`: the paper's results (Section V, Figs. 5 and 6) and the
-// project's own checks on them, written to one folder with a summary.md (report.hpp).
+// Sections of `nocdyn reproduce` (reproduce_sections.hpp): the paper's trajectories (Section V,
+// Figs. 5 and 6), their animations, the workspace, the El Centro replay and the example robots
+// against the engines.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -9,9 +10,10 @@
 #include <numbers>
 #include <sstream>
 
-#include "report.hpp"
-
-#include "animation.hpp"
+#include "app/plants.hpp"
+#include "app/reproduce_dynamics.hpp"
+#include "app/reproduce_sections.hpp"
+#include "app/shake_outputs.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/description.hpp"
@@ -19,25 +21,35 @@
 #include "nocdyn/model.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/analysis/workspace.hpp"
-#include "plot.hpp"
-#include "reproduce_dynamics.hpp"
-#include "reproduce_identification.hpp"
-#include "shake_replay.hpp"
-#include "workspace_figure.hpp"
+#include "nocdyn/sim/shake_replay.hpp"
+#include "render/animation.hpp"
+#include "render/plot.hpp"
+#include "render/workspace_figure.hpp"
+#include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/text.hpp"
 #ifdef NOCDYN_HAS_ENGINES
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/validation/agreement.hpp"
-#include "simbody_plant.hpp"
+#include "nocdyn/validation/simbody_plant.hpp"
 #endif
 
-namespace nocdyn::report {
+namespace nocdyn::app {
+
+using render::AxisUnit;
+using render::axisUnit;
+using render::Figure;
+using render::PlotPanel;
+using render::PlotSeries;
+using render::renderFigure;
+
+/// The El Centro record compiled in (generated from data/elcentro_1940_ns.AT2).
+extern const char* const kElCentroAt2;
 
 namespace {
 
-constexpr double kDuration = 0.2;  // s, as in the paper's figures
-constexpr double kRate = 10000.0;  // Hz
+constexpr double kPaperDuration = 0.2;  // s, as in the paper's figures
+constexpr double kPaperRate = 10000.0;  // Hz
 
 /// Motor displacements [mm] or forces [N] of our model, with an engine's curves overlaid
 /// (dashed) when given.
@@ -60,7 +72,8 @@ PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std
         panel.series.push_back(std::move(line));
         if (!engine_values) continue;
         PlotSeries other;
-        other.label = symbol + std::to_string(j + 1) + " " + engine;
+        other.label = symbol;
+        other.label.append(std::to_string(j + 1)).append(" ").append(engine);
         other.x = t;
         for (const auto& value : *engine_values) other.y.push_back(scale * value(j));
         other.style = "lines dt 2 lw 3 lc " + std::to_string(j + 4);
@@ -100,19 +113,19 @@ PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, cons
 }
 #endif  // NOCDYN_HAS_ENGINES
 
-/// Both paper trajectories: CSV, figures in the spirit of Figs. 5 and 6, and the peak
-/// stroke and force against the actuator limits, on the general model the short form expands to.
+}  // namespace
+
 void reproduceTrajectories(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary) {
     const Model model(robot);
     const ActuatorLimits limits = actuatorLimits(robot);
     summary << "## Paper trajectories 1 and 2 (eqs. 33-34): inverse dynamics\n\n"
-            << "Sampled over " << kDuration << " s at " << kRate / 1000 << " kHz. Actuator limits: total stroke "
-            << limits.stroke * 1e3 << " mm (+-" << limits.stroke * 0.5e3
+            << "Sampled over " << kPaperDuration << " s at " << kPaperRate / 1000
+            << " kHz. Actuator limits: total stroke " << limits.stroke * 1e3 << " mm (+-" << limits.stroke * 0.5e3
             << " mm about the reference posture), peak force " << limits.peak_force << " N.\n\n"
             << "| trajectory | actuator | u range [mm] | peak abs(u) / half stroke | peak abs(tau) [N] | peak abs(tau) "
                "/ peak force |\n"
             << "| --- | --- | --- | --- | --- | --- |\n";
-    const auto times = sampleTimes(kDuration, kRate);
+    const auto times = sampleTimes(kPaperDuration, kPaperRate);
 #ifdef NOCDYN_HAS_ENGINES
     std::ostringstream agreement;
     double worst_abs = 0.0, worst_rel = 0.0;
@@ -191,14 +204,12 @@ void reproduceTrajectories(const RobotDescription& robot, const std::filesystem:
 }
 
 #ifdef NOCDYN_HAS_ENGINES
-/// The example robots of other architectures along the paper's trajectory 1, our general
-/// model against both engines built from the same file.
 void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summary, double closed_loop_duration) {
     constexpr double kExampleRate = 2000.0;  // [Hz]: both engines assemble every sample
-    const auto times = sampleTimes(kDuration, kExampleRate);
+    const auto times = sampleTimes(kPaperDuration, kExampleRate);
     summary << "## Other architectures: the example robots against both engines\n\n"
             << "The general model (any limbs of three R/P joints, any actuated joints) on the example robots of"
-            << " `robots/`, along the paper's trajectory 1 over " << kDuration << " s at " << kExampleRate / 1000
+            << " `robots/`, along the paper's trajectory 1 over " << kPaperDuration << " s at " << kExampleRate / 1000
             << " kHz; Simbody and MuJoCo models generated from the same files (loops closed at a revolute joint)."
             << " The 4-RRR has four actuators: its forces are the minimum-norm ones.\n\n"
             << "| robot | limbs | actuators | peak abs(tau) [N or N m] | Simbody: max diff / peak | MuJoCo: max diff / "
@@ -241,7 +252,7 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
         const Model model(robot);
         const auto peak = [&](ControlLaw law, bool with_payload, std::size_t& saturated) {
             PoseController controller(model, law, taskCriticallyDamped(kNaturalFrequency));
-            SimbodyPlant plant(with_payload ? withPayload(robot, payload) : robot);
+            validation::SimbodyPlant plant(with_payload ? withPayload(robot, payload) : robot);
             const PoseLoopResult r = runPoseLoop(controller, plant, paperTrajectory1(), loop);
             saturated += r.saturated_ticks;
             std::string cell;
@@ -260,7 +271,6 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
 }
 #endif
 
-/// The prototype's workspace at theta = 0 with the paper's trajectories' paths of C over it.
 void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary) {
     const Model model(robot);
     const WorkspaceMap map = workspaceMap(model, {0.0, 301});
@@ -276,7 +286,7 @@ void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::pa
             {},
             {},
             styles[k]};
-        for (const double t : sampleTimes(kDuration, 2000.0)) {
+        for (const double t : sampleTimes(kPaperDuration, 2000.0)) {
             Pose p, dp, ddp;
             trajectory.evaluate(t, p, dp, ddp);
             path.x.push_back(p(1));
@@ -285,59 +295,69 @@ void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::pa
         }
         paths.push_back(std::move(path));
     }
-    renderFigure(workspaceFigure(map, model, paths), (out / "workspace").string());
+    renderFigure(render::workspaceFigure(map, model, paths), (out / "workspace").string());
     std::string line;
     line = text::format(" The trajectories turn the platform by up to %.3g deg as they go.\n\n",
                         peak_theta * 180.0 / std::numbers::pi);
     summary << "## Workspace\n\n"
-            << workspaceSummary(map) << line
+            << render::workspaceSummary(map) << line
             << "`workspace.{png,svg}`: the outline of that region, the singularity curves where they fall in the"
             << " picture, and the paths of C along the paper's trajectories.\n\n";
 }
 
-}  // namespace
-
-int reproduceSections() {
-#ifdef NOCDYN_HAS_ENGINES
-    return 9;
-#else
-    return 8;
-#endif
+void reproduceAnimations(const std::filesystem::path& out, std::ostream& summary) {
+    const Model model(io::exampleRobot("paper-3prr"));
+    summary << "## Animations\n\n";
+    for (const auto& [name, trajectory] :
+         {std::pair<std::string, PoseTrajectory>{"paper1", paperTrajectory1()}, {"paper2", paperTrajectory2()}}) {
+        const render::MotionSamples motion = render::motionFromTrajectory(model, trajectory, 0.2, 10000.0);
+        const std::string file = name + "_animation.html";
+        io::writeTextFile((out / file).string(), render::animationPage(model, motion, render::AnimationOptions{}));
+        summary << "- `" << file << "`: the robot along trajectory " << name.back()
+                << " (0.2 s at 10 kHz), with its actuator forces and the plots of u and tau; open it in any browser.\n";
+    }
+    summary << "\n`nocdyn animate --trajectory paper1 --out paper1_animation.html` writes the same page.\n\n";
 }
 
-void reproduce(const ReproduceOptions& options, const std::function<void(const std::string&)>& section) {
-    const auto next = [&](const std::string& name) {
-        if (section) section(name);
-    };
-    const std::filesystem::path out(options.out);
-    std::error_code error;
-    std::filesystem::create_directories(out, error);
-    if (error || !std::filesystem::is_directory(out)) throw Error("cannot create output folder '" + options.out + "'");
-    const RobotDescription robot = io::exampleRobot("paper-3prr");  // the paper's prototype, expanded by io
-    std::ostringstream summary;
-    summary << "# nocdyn reproduce: the paper's 3-PRR results\n\n"
-            << "Robot: the paper's prototype (`robots/paper-3prr.yaml`, eq. 32 and Table I, SI units).\n\n";
-    next("the paper's trajectories");
-    reproduceTrajectories(robot, out, summary);
-    next("animations");
-    reproduceAnimations(out, summary);
-    next("forward-dynamics round trip");
-    reproduceRoundTrip(robot, summary);
-    next("closed-loop control on the Simbody plant");
-    reproduceControl(robot, out, summary, options.closed_loop_duration);
-    next("operating envelope");
-    reproduceEnvelope(robot, out, summary);
-    next("workspace");
-    reproduceWorkspace(robot, out, summary);
-    next("El Centro replay");
-    reproduceShake(out.string(), summary);
-#ifdef NOCDYN_HAS_ENGINES
-    next("example robots against Simbody and MuJoCo");
-    reproduceExampleRobots(out, summary, options.closed_loop_duration);
-#endif
-    next("payload identification experiment");
-    reproduceIdentification(out, summary, options.identification_duration);
-    io::writeTextFile((out / "summary.md").string(), summary.str());
+void reproduceShake(const std::filesystem::path& out, std::ostream& summary) {
+    summary << "## Earthquake record: El Centro 1940 N-S on the prototype\n\n";
+    const io::GroundMotionRecord record = io::parseAt2(kElCentroAt2, "data/elcentro_1940_ns.AT2");
+    // the strong part only keeps the replay short
+    constexpr double kWindow = 3.0;  // [s] of record time: the onset and the peak (2.1 s)
+    GroundRecord r;
+    r.dt = record.dt;
+    const auto n = std::min(record.acceleration.size(), static_cast<std::size_t>(kWindow / record.dt) + 1);
+    r.ax.assign(record.acceleration.begin(), record.acceleration.begin() + static_cast<std::ptrdiff_t>(n));
+    const RobotDescription robot = io::exampleRobot("paper-3prr-general");
+    ShakeReplayOptions replay;
+    // nocdyn's own plant keeps the replay within seconds (and under the sanitizers); `nocdyn shake`
+    // plays on nocdyn's RK4 plant (nocdyn-rk4) by default, which scores the same motion alike
+    replay.plant = PlantKind::nocdyn;
+    // the pose-sensor controller this section has always described
+    replay.controller = ShakeController::pose;
+    const ShakeOutcome outcome = runShakeReplay(robot, r, replay, [&](const RobotDescription& plant_robot) {
+        return makePlant(replay.plant, plant_robot, replay.accuracy);
+    });
+    writeShakeOutputs(outcome, Model(robot), (out / "elcentro").string(), "El Centro 1940 N-S, x");
+    std::ostringstream text;
+    printShakeSummary(outcome, text, false);
+    // the wall-clock time differs from run to run: on the console only, not in summary.md
+    std::cout << "El Centro replay: " << outcome.loop.t.back() << " s of motion in " << outcome.seconds
+              << " s of wall-clock time\n";
+    summary << "The first " << kWindow << " s of the record along x, high-passed at " << replay.highpass
+            << " Hz (zero-phase Butterworth, order " << kHighPassOrder
+            << " run forward and backward), scaled in time to fit the actuators with a " << 100.0 * replay.margin
+            << " % margin, then tracked by computed torque at " << replay.rate / 1000.0
+            << " kHz (f_n = " << kPoseNaturalFrequency
+            << " Hz) on nocdyn's own forward dynamics (`--plant nocdyn`; `nocdyn shake` plays on its RK4 plant,"
+            << " `nocdyn-rk4`, by default, and `--plant simbody` on the independent Simbody model) carrying a "
+            << replay.payload_mass << " kg payload the controller does not know, with pose noise " << replay.noise_pose
+            << " m (rad) and rate noise " << replay.noise_rate << " m/s (rad/s):\n\n```\n"
+            << text.str() << "```\n\n"
+            << "Files: `elcentro/shake.csv`, `elcentro/shake.json`, `elcentro/shake_acceleration.{png,svg}`,"
+            << " `elcentro/shake_spectrum.{png,svg}`. `nocdyn shake --robot robots/paper-3prr-general.yaml --record"
+            << " data/elcentro_1940_ns.AT2 --window " << kWindow << " --plant nocdyn --controller pose` reproduces"
+            << " them (the pose-sensor controller; `nocdyn shake`'s default is the table controller).\n\n";
 }
 
-}  // namespace nocdyn::report
+}  // namespace nocdyn::app

@@ -1,4 +1,4 @@
-#include "plot.hpp"
+#include "render/plot.hpp"
 
 #include <spawn.h>
 #include <sys/mman.h>
@@ -18,7 +18,7 @@
 
 extern char** environ;
 
-namespace nocdyn::report {
+namespace nocdyn::render {
 
 namespace {
 
@@ -231,4 +231,4 @@ void renderFigureFiles(const Figure& figure, const std::string& png, const std::
     }
 }
 
-}  // namespace nocdyn::report
+}  // namespace nocdyn::render

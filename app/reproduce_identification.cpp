@@ -2,7 +2,7 @@
 // payload bolted to the prototype's platform, shaken under computed-torque control along a
 // designed excitation on the Simbody plant, read from the encoders and force sensors, and
 // identified (identification.hpp), with the paper's trajectories as the naive baseline.
-#include "reproduce_identification.hpp"
+#include "app/reproduce_sections.hpp"
 
 #include <cmath>
 #include <cstdio>
@@ -22,10 +22,17 @@
 #include "nocdyn/tables/tables.hpp"
 #include "nocdyn/sim/shake.hpp"
 #include "nocdyn/text.hpp"
-#include "plants.hpp"
-#include "plot.hpp"
+#include "app/plants.hpp"
+#include "render/plot.hpp"
 
-namespace nocdyn::report {
+namespace nocdyn::app {
+
+using render::AxisUnit;
+using render::axisUnit;
+using render::Figure;
+using render::PlotPanel;
+using render::PlotSeries;
+using render::renderFigure;
 
 namespace {
 
@@ -99,7 +106,7 @@ Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c
     }
     try {
         const std::unique_ptr<RobotPlant> plant =
-            makePlant(defaultPlantName() == "simbody" ? "simbody" : "nocdyn-rk4", plant_robot);
+            makePlant(defaultPlant() == PlantKind::simbody ? PlantKind::simbody : PlantKind::nocdyn_rk4, plant_robot);
         PoseController controller(model, ControlLaw::computed_torque, taskCriticallyDamped(kNaturalFrequency));
         PoseLoopOptions loop;
         loop.rate = kRate;
@@ -283,4 +290,4 @@ void reproduceIdentification(const std::filesystem::path& out, std::ostream& sum
             << " (the designed case). `nocdyn reproduce --identification-duration S` sets the length of each run.\n\n";
 }
 
-}  // namespace nocdyn::report
+}  // namespace nocdyn::app

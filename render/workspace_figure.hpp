@@ -6,9 +6,9 @@
 
 #include "nocdyn/analysis/frequency_map.hpp"
 #include "nocdyn/analysis/workspace.hpp"
-#include "plot.hpp"
+#include "render/plot.hpp"
 
-namespace nocdyn::report {
+namespace nocdyn::render {
 
 /// Outline of the feasible region, the two kinds of singularity curves and the home position,
 /// in mm, equal axes; `paths` (label, x [m], y [m]) drawn as lines on top.
@@ -25,4 +25,4 @@ namespace nocdyn::report {
 /// One paragraph for a summary: the area, the box, the counts of curve points.
 [[nodiscard]] std::string workspaceSummary(const WorkspaceMap& map);
 
-}  // namespace nocdyn::report
+}  // namespace nocdyn::render

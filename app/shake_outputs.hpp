@@ -1,0 +1,32 @@
+// What a replay (nocdyn/sim/shake_replay.hpp) writes and prints: shake.csv's table, shake.json,
+// the figures and the summary, for `shake` and the El Centro section of `reproduce`.
+#pragma once
+
+#include <iosfwd>
+#include <string>
+
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/model.hpp"
+#include "nocdyn/sim/shake_replay.hpp"
+
+namespace nocdyn::app {
+
+/// shake.csv's table: the record's (scaled) samples (io::TableId::shake), u and tau at the tick
+/// nearest each.
+[[nodiscard]] io::Table shakeTable(const ShakeOutcome& outcome, const Model& model);
+
+/// shake.json's text: scales, limit use, and per driven axis the scores, every error in percent
+/// with "_percent" in its name (rms_error_percent: 100 sqrt(sum e^2 / sum a^2);
+/// spectrum_outside_band_percent: of the counted periods, those outside +-10 %), and the spectra.
+[[nodiscard]] std::string shakeJson(const ShakeOutcome& outcome);
+
+/// DIR/shake.csv, DIR/shake.json, DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}.
+void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const std::string& dir,
+                       const std::string& title);
+
+/// The scales, the limit use, the closed loop, then one line per driven axis: RMS error, peak
+/// error, share outside the band. with_timing: also the closed loop's wall-clock time (which
+/// differs from run to run, so it is left out of files meant to be reproducible).
+void printShakeSummary(const ShakeOutcome& outcome, std::ostream& out, bool with_timing = true);
+
+}  // namespace nocdyn::app
