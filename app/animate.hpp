@@ -1,5 +1,5 @@
 // `animate`: the robot moving along a trajectory or a recorded motion as one self-contained HTML
-// page (report/animation.hpp), and a static frame as PNG and SVG.
+// page (render/animation.hpp), and a static frame as PNG and SVG.
 #pragma once
 
 #include <optional>

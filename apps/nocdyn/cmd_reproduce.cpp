@@ -1,5 +1,5 @@
-// nocdyn reproduce: the options, the progress line and the closing line around the report
-// module's reproduce() (report/report.hpp).
+// nocdyn reproduce: the options, the progress line and the closing line around the application
+// layer's runReproduce() (app/reproduce.hpp).
 #include <filesystem>
 #include <iostream>
 #include <memory>
