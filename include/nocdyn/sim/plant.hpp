@@ -7,7 +7,7 @@
 #include <string>
 
 #include "nocdyn/model.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 
 namespace nocdyn {
 
