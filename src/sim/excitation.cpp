@@ -24,6 +24,7 @@
 #include "nocdyn/text.hpp"
 #include "nocdyn/detail/index.hpp"
 
+#include "../core/limb_lanes.hpp"
 #include "minimize.hpp"
 
 namespace nocdyn {
@@ -336,7 +337,8 @@ private:
             limb.frictionless = true;
         }
         robot.platform_M = {};
-        robot.limbs_in_lanes = false;  // the lanes keep the file's inertia; the scalar path reads the above
+        // the lanes keep the file's inertia; the per-limb path reads the above
+        detail::ModelKernel::setLimbsInLanes(robot, false);
         return robot;
     }
 
