@@ -58,7 +58,6 @@ DesignRange parseRange(const std::string& text) {
 
 /// The shortest decimal that reads back as exactly `value`: two options that differ in any bit
 /// differ here (std::to_string keeps six decimals and would take 0.1 and 0.1000001 as one).
-std::string exact(double value) { return text::shortest(value); }
 
 /// What a journal is kept for: the content of every input file (the robot file, a trajectory
 /// file) and every option that changes a design's numbers, each exactly. Any difference makes
@@ -66,8 +65,9 @@ std::string exact(double value) { return text::shortest(value); }
 std::string signature(const DesignOptions& options, const io::DesignFamily& family,
                       const std::vector<DesignMetric>& metrics, const nocdyn::DesignOptions& design) {
     std::string s = "robot " + io::fingerprint(family.text);
-    for (const io::Parameter& p : family.fixed) s += " set " + p.name + "=" + exact(p.value);
-    for (const DesignRange& r : family.ranges) s += " vary " + r.name + "=" + exact(r.lower) + ":" + exact(r.upper);
+    for (const io::Parameter& p : family.fixed) s += " set " + p.name + "=" + text::shortest(p.value);
+    for (const DesignRange& r : family.ranges)
+        s += " vary " + r.name + "=" + text::shortest(r.lower) + ":" + text::shortest(r.upper);
     s += " " + options.sweep + " " + std::to_string(options.samples) + " seed " + std::to_string(options.seed);
     for (const DesignMetric& m : metrics) {
         s += ' ';
@@ -76,7 +76,7 @@ std::string signature(const DesignOptions& options, const io::DesignFamily& fami
     s += " ws " + std::to_string(design.workspace.resolution);
     if (options.theta) {
         s += '@';
-        s += exact(*options.theta);
+        s += text::shortest(*options.theta);
     }
     if (design.trajectory) {
         // a file by its content (an edited file is another sweep), a built-in one by its name
@@ -88,8 +88,8 @@ std::string signature(const DesignOptions& options, const io::DesignFamily& fami
             text << in.rdbuf();
             content = io::fingerprint(text.str());
         }
-        s += " trajectory " + io::fingerprint(options.trajectory) + " " + content + " " + exact(design.duration) + " " +
-             exact(design.rate);
+        s += " trajectory " + io::fingerprint(options.trajectory) + " " + content + " " +
+             text::shortest(design.duration) + " " + text::shortest(design.rate);
     }
     return io::fingerprint(s);
 }

@@ -14,8 +14,6 @@ namespace nocdyn::app {
 
 namespace {
 
-std::string number(double v) { return text::format("%.6g", v); }
-
 std::string percent(double v) { return text::format("%.1f", 100.0 * v); }
 
 std::string useText(const ExcitationLimitUse& use) {
@@ -29,7 +27,7 @@ std::string baseline(const Model& model, const char* key, const PoseTrajectory& 
                      const ExcitationOptions& options) {
     const ExcitationAssessment a =
         assessExcitation(model, aboutHome(model, paper), *paper.duration, options.check_samples, options);
-    std::string text = key + std::string(": {condition_number: ") + number(a.condition) +
+    std::string text = key + std::string(": {condition_number: ") + text::number(a.condition) +
                        ", limit_use_percent: " + useText(a.use) + "}";
     if (!a.feasible) text += "   # outside the limits: " + a.failure;
     return text + "\n";
@@ -103,12 +101,13 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     const std::string what =
         options.base ? "the base parameters" : (o.friction ? "the payload and the actuators' friction" : "the payload");
     std::string report = "# " + io::terminalText(robot.name) + ": excitation for " + what + ", " +
-                         std::to_string(o.harmonics) + " harmonics of " + number(o.base_frequency) + " Hz per axis, " +
-                         number(options.duration) + " s, margin " + percent(o.margin) +
-                         " %, condition numbers of J_j and A at most " + number(o.max_condition) + "\n";
+                         std::to_string(o.harmonics) + " harmonics of " + text::number(o.base_frequency) +
+                         " Hz per axis, " + text::number(options.duration) + " s, margin " + percent(o.margin) +
+                         " %, condition numbers of J_j and A at most " + text::number(o.max_condition) + "\n";
     if (!options.payload_guess.empty()) {
-        report += "# payload guess: " + number(payload.mass) + " kg at [" + number(payload.com.x()) + ", " +
-                  number(payload.com.y()) + "] m, " + number(payload.inertia) + " kg m^2 about its c.o.m.\n";
+        report += "# payload guess: " + text::number(payload.mass) + " kg at [" + text::number(payload.com.x()) + ", " +
+                  text::number(payload.com.y()) + "] m, " + text::number(payload.inertia) +
+                  " kg m^2 about its c.o.m.\n";
     }
     report += "# " + std::to_string(result.evaluations) + " evaluations (" + std::to_string(o.random_shapes) +
               " random shapes, then " +
@@ -117,14 +116,14 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
                    : std::string("Nelder-Mead")) +
               "), seed " + std::to_string(o.seed) +
               "; condition number of the column-scaled stacked regressor (as identify reports it)\n";
-    report += "designed: {condition_number: " + number(result.assessment.condition) +
+    report += "designed: {condition_number: " + text::number(result.assessment.condition) +
               ", limit_use_percent: " + useText(result.assessment.use) + "}\n";
     report += baseline(model, "paper_trajectory_1", paperTrajectory1(), o);
     report += baseline(model, "paper_trajectory_2", paperTrajectory2(), o);
 
     std::string file = "# Excitation trajectory by `nocdyn excite` for " + what + " of " +
-                       io::terminalText(robot.name) + ": condition number " + number(result.assessment.condition) +
-                       "; starts and ends each period at home, at rest.\n";
+                       io::terminalText(robot.name) + ": condition number " +
+                       text::number(result.assessment.condition) + "; starts and ends each period at home, at rest.\n";
     for (std::size_t start = 0; start < report.size();) {
         const std::size_t end = report.find('\n', start);
         const std::string line = report.substr(start, end - start);

@@ -12,6 +12,7 @@
 #include "nocdyn/pose_order.hpp"
 #include "nocdyn/reactions.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/tables/forces.hpp"
 #include "nocdyn/tables/tables.hpp"
 #include "nocdyn/text.hpp"
@@ -239,11 +240,9 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
         const double t = k < count ? t0 + static_cast<double>(k) / options.rate : t0 + duration;
         meter(t - t0);
         if (const Status status = simulator.advance(std::max(0.0, t - simulator.time())); !status) {
-            std::ostringstream message;
-            message.precision(9);
-            message << "t = " << simulator.time() << " s: " << describe(status, model);
-            if (!options.partial) throw Error(message.str());
-            out.stopped = message.str();
+            const std::string message = text::sampleTime(simulator.time()) + ": " + describe(status, model);
+            if (!options.partial) throw Error(message);
+            out.stopped = message;
             break;
         }
         const Pose& p = simulator.pose();

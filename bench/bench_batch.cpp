@@ -9,6 +9,7 @@
 #include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/prr3/batch.hpp"
 

@@ -16,7 +16,7 @@
 
 #include "fixture.hpp"
 #include "simulate_fixture.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"

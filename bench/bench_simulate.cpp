@@ -6,7 +6,7 @@
 // BM_Simulate/<robot>/simbody (bench_engines.cpp).
 #include <benchmark/benchmark.h>
 
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "simulate_fixture.hpp"
 
 namespace nocdyn::bench {

@@ -8,7 +8,7 @@
 #include <random>
 
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/reactions.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"

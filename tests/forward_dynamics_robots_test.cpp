@@ -16,6 +16,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/trajectory.hpp"

@@ -22,7 +22,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "robot_files.hpp"
 
 namespace nocdyn {

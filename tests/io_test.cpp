@@ -16,7 +16,7 @@
 #include "nocdyn/tables/forces.hpp"
 #include "nocdyn/io/robot_yaml.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/description.hpp"
 #include "nocdyn/model.hpp"
 

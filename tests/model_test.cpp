@@ -349,7 +349,7 @@ using UniformRobots = RandomRobots;
 // hand it every sample it must refuse (a pose out of reach) with the full path's Status.
 TEST_P(UniformRobots, LimbsInLanesEqualTheFullPath) {
     forEachRobot([](const Model& model, const PoseTrajectory& trajectory) {
-        EXPECT_TRUE(model.limbs_in_lanes);
+        EXPECT_TRUE(model.limbsInLanes());
         Data full(model), lean(model);
         for (int k = 0; k <= kSamples; ++k) {
             Sample s = at(trajectory, k * kDuration / kSamples);

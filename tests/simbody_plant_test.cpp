@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/trajectory.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"

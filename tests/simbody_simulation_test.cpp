@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "nocdyn/dynamics.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/io/examples.hpp"
 #include "nocdyn/model.hpp"

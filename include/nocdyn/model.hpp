@@ -32,6 +32,7 @@
 #pragma once
 
 #include <array>
+#include <cstddef>
 #include <string>
 
 #include "nocdyn/description.hpp"
@@ -87,25 +88,9 @@ struct LimbModel {
     bool frictionless = true;
 };
 
-/// The constants of up to kN limbs side by side, lane l = limb l (lanes past the last limb
-/// repeat limb 0), for the lean per-sample kernel: on a robot whose limbs are uniform
-/// (Model::uniform_limbs) it runs every limb at once in the lanes of one vector. The batch
-/// fills every lane with one limb (four or eight lanes, its packet's width).
-template <int kN>
-struct LimbLanesOf {
-    static constexpr int kLanes = kN;
-    using Lane = std::array<double, kLanes>;
-    std::array<Lane, 3> point_x{}, point_y{};            ///< LimbModel::point
-    std::array<Lane, 3> point_home_x{}, point_home_y{};  ///< LimbModel::point_home
-    std::array<Lane, 3> direction_x{}, direction_y{};    ///< LimbModel::direction
-    std::array<Lane, 2> com_x{}, com_y{};                ///< LimbModel::com_home
-    std::array<Lane, 2> mass{}, inertia{};               ///< LimbModel::M
-    std::array<Lane, 3> damping{}, friction{};
-    Lane screw_x{}, screw_y{};  ///< LimbModel::screw_home[0](1), (2)
-    Lane length1{}, length2{}, inv_length1_sq{}, inv_length2_sq{};
-    Lane branch{};  ///< LimbModel::branch
-};
-using LimbLanes = LimbLanesOf<4>;
+namespace detail {
+struct ModelKernel;  // the per-sample kernel's view of a Model (src/core, not installed)
+}  // namespace detail
 
 /// Constant parameters of a planar parallel robot. Immutable after construction.
 class Model {
@@ -137,10 +122,9 @@ public:
     /// When every limb has the same kind and exactly one actuated joint, at the same place
     /// in the chain: kind * 3 + that joint (the lean kernel is then compiled for it); else -1.
     int uniform_limbs = -1;
-    /// The limbs lane by lane; in use (limbs_in_lanes) when uniform_limbs >= 0 and there
-    /// are at most LimbLanes::kLanes limbs, all frictionless or none.
-    LimbLanes lanes{};
-    bool limbs_in_lanes = false;
+    /// Whether the per-sample path runs every limb at once, limb l in lane l of one vector:
+    /// when uniform_limbs >= 0 and there are at most four limbs, all frictionless or none.
+    [[nodiscard]] bool limbsInLanes() const { return limbs_in_lanes_; }
 
     /// Body index of body b (0, 1) of limb j, and of the platform.
     [[nodiscard]] int body(int j, int b) const { return b * limbs + j; }
@@ -152,6 +136,13 @@ public:
     }
     /// "limb 2 (left)" style name for messages (1-based).
     [[nodiscard]] std::string limbName(int j) const;
+
+private:
+    friend struct detail::ModelKernel;
+    /// The limbs' constants lane by lane, as the per-sample kernel reads them (its layout is
+    /// the kernel's own, src/core/limb_lanes.hpp): storage of that size, filled at construction.
+    alignas(double) std::array<std::byte, 156 * sizeof(double)> lanes_{};
+    bool limbs_in_lanes_ = false;
 };
 
 /// Per-limb workspace.

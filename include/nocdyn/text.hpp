@@ -23,6 +23,21 @@ namespace nocdyn::text {
 /// The same into [first, last); the number of characters written (at most 32 are needed).
 std::size_t shortest(char* first, char* last, double value);
 
+/// `digits` significant digits, printf's %.<digits>g ("0.1", "1e-07", "12.35" at four).
+[[nodiscard]] std::string significant(double value, int digits);
+
+/// The named precisions, so that one kind of number reads the same wherever it is printed:
+/// six significant digits (%g), a number in a message or a summary;
+[[nodiscard]] std::string number(double value);
+/// ten (%.10g), a value echoed back from the user's file, where six would not tell two apart;
+[[nodiscard]] std::string precise(double value);
+/// seventeen (%.17g), every digit of a double, for a file that is read back;
+[[nodiscard]] std::string allDigits(double value);
+/// nine (%.9g), a time [s]: samples at 10 kHz are told apart over 10^4 s.
+[[nodiscard]] std::string seconds(double t);
+/// "t = 0.0123 s": the sample time at the head of a message (seconds(t)).
+[[nodiscard]] std::string sampleTime(double t);
+
 /// printf-style formatting in the "C" locale, whatever the process's locale: a decimal point,
 /// never a comma. The pattern is the program's own, never read from input.
 [[nodiscard]] std::string format(const char* pattern, ...) NOCDYN_PRINTF_FORMAT(1, 2);

@@ -44,9 +44,8 @@ double highestFrequency(const PoseTrajectory& trajectory) {
 
 namespace {
 
-std::string number(double value) { return text::format("%.10g", value); }
-
-std::string atTime(double t, const std::string& reason) { return "t = " + number(t) + " s: " + reason; }
+/// "t = ... s: reason".
+std::string atTime(double t, const std::string& reason) { return text::sampleTime(t) + ": " + reason; }
 
 /// The per-sample path with every check; holds the scratch Data, the peaks and violations.
 class Sampler {
@@ -74,8 +73,8 @@ public:
             if (!std::isfinite(data_.u(a)) || !std::isfinite(data_.du(a)) || !std::isfinite(data_.ddu(a)) ||
                 !std::isfinite(data_.tau(a))) {
                 throw Error(atTime(t, "actuator " + std::to_string(a + 1) +
-                                          ": the inverse dynamics is not finite (u = " + number(data_.u(a)) +
-                                          ", tau = " + number(data_.tau(a)) + ")" + where));
+                                          ": the inverse dynamics is not finite (u = " + text::precise(data_.u(a)) +
+                                          ", tau = " + text::precise(data_.tau(a)) + ")" + where));
             }
         }
         for (const Status limit : {checkJointLimits(model_, data_), checkEffort(model_, data_)}) {
@@ -133,11 +132,11 @@ void requireBoundedWork(const PoseTrajectory& trajectory, double duration, std::
     if (work > kMaxTrajectoryWork) {
         // about 10 ns a harmonic term and its two derivatives, 1 us a point of inverse dynamics
         const double hours = points * (1e-6 + 1e-8 * harmonics) / 3600.0;
-        throw Error("trajectory '" + trajectory.name + "': " + number(points) +
+        throw Error("trajectory '" + trajectory.name + "': " + text::precise(points) +
                     " points (the samples, and the limit checks at " + std::to_string(kLimitChecksPerPeriod) +
-                    " a period of its highest harmonic, " + number(f) + " Hz) of " + number(harmonics) +
-                    " harmonics: " + number(work) + " harmonic terms, about " + number(hours) +
-                    " h of computing, more than the " + number(kMaxTrajectoryWork) +
+                    " a period of its highest harmonic, " + text::precise(f) + " Hz) of " + text::precise(harmonics) +
+                    " harmonics: " + text::precise(work) + " harmonic terms, about " + text::precise(hours) +
+                    " h of computing, more than the " + text::precise(kMaxTrajectoryWork) +
                     " accepted: shorten the duration, or use fewer or lower harmonics");
     }
 }
@@ -145,9 +144,10 @@ void requireBoundedWork(const PoseTrajectory& trajectory, double duration, std::
 void requireRateAboveNyquist(const PoseTrajectory& trajectory, double rate) {
     const double f = highestFrequency(trajectory);
     if (f > 0.0 && !(rate > 2.0 * f)) {
-        throw Error("sampling rate " + number(rate) + " Hz is not above twice the highest frequency of trajectory '" +
-                    trajectory.name + "' (" + number(f) + " Hz), so its samples would alias: use a rate above " +
-                    number(2.0 * f) + " Hz");
+        throw Error("sampling rate " + text::precise(rate) +
+                    " Hz is not above twice the highest frequency of trajectory '" + trajectory.name + "' (" +
+                    text::precise(f) + " Hz), so its samples would alias: use a rate above " + text::precise(2.0 * f) +
+                    " Hz");
     }
 }
 

@@ -654,7 +654,7 @@ NOCDYN_ALWAYS_INLINE Mask<S> sampleWith(const Model& model, const S& cos_dtheta,
     return ok;
 }
 
-/// The limbs of a uniform robot (Model::limbs_in_lanes) all at once, limb l in lane l of
+/// The limbs of a uniform robot (Model::limbsInLanes) all at once, limb l in lane l of
 /// one packet: the same kernel (limbTerms) as one limb, its constants read lane by lane.
 /// One sample, given cos and sin of dtheta; false where sampleWith would be. Compiled per
 /// limb kind K (the actuated joint read from the first limb: a packet is worth one branch).
@@ -690,8 +690,8 @@ NOCDYN_ALWAYS_INLINE bool sampleLanes(const Model& model, double cos_dtheta, dou
     V3<Pack> W_limbs{Pack{}, Pack{}, Pack{}};
     double weight = 1.0, scale = 1.0;
     const Out<Pack> lane_out{&u, &du, &ddu, nullptr, 0};
-    const Mask<Pack> ok = limbTerms<K, kAnyActuation>(LaneLimb{model.lanes, model.limb[0]}, frame, lane_out, W_limbs,
-                                                      &row, &weight, &scale);
+    const Mask<Pack> ok = limbTerms<K, kAnyActuation>(LaneLimb{detail::ModelKernel::lanes(model), model.limb[0]}, frame,
+                                                      lane_out, W_limbs, &row, &weight, &scale);
     // lanes past the last limb repeat limb 0: neither their test nor their share counts
     const int limbs = model.limbs;
     for (int j = 0; j < limbs; ++j) {
@@ -733,7 +733,7 @@ NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double s
     // The limbs in lanes, else the dispatch (the rare uniform robot with more than four
     // limbs, or friction at some of its limbs only).
     bool ok = false;
-    if (model.limbs_in_lanes && sampleInLanes(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
+    if (model.limbsInLanes() && sampleInLanes(model, cos_dtheta, sin_dtheta, p, dp, ddp, out, W, ok,
                                               std::make_integer_sequence<int, static_cast<int>(LimbKind::PPP)>{}))
         return ok;
 #endif

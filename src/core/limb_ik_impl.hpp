@@ -10,6 +10,7 @@
 #include <type_traits>
 
 #include "nocdyn/detail/fast_math.hpp"
+#include "limb_lanes.hpp"
 #include "nocdyn/limb_ik.hpp"
 
 #if defined(__GNUC__) && !defined(__clang__)
@@ -138,7 +139,7 @@ NOCDYN_ALWAYS_INLINE PV<P> vec(const PV<P>& v) {
     return v;
 }
 
-/// The limbs of a uniform robot lane by lane (Model::lanes, lane l = limb l). The kernels
+/// The limbs of a uniform robot lane by lane (limb_lanes.hpp, lane l = limb l). The kernels
 /// read a limb's constants through the accessors below: as doubles and Vector2's from a
 /// LimbModel, as packets of kN lanes from a LaneLimbOf<kN>, so that one kernel runs one limb
 /// or every limb of a sample at once.

@@ -51,10 +51,10 @@ namespace {
     return code;
 }
 
-/// Model::lanes and Model::limbs_in_lanes. Uniform limbs share their joint scales (1 for R,
+/// The model's lanes (limb_lanes.hpp) and Model::limbsInLanes. Uniform limbs share their joint scales (1 for R,
 /// length_scale for P), which the kernel therefore reads from the first limb.
 void fillLanes(Model& model) {
-    model.limbs_in_lanes = false;
+    LimbLanes& l = detail::ModelKernel::startLanes(model);
     if (model.uniform_limbs < 0 || model.limbs > LimbLanes::kLanes) return;
     bool any_friction = false, all_friction = true;
     for (int j = 0; j < model.limbs; ++j) {
@@ -63,12 +63,11 @@ void fillLanes(Model& model) {
         all_friction = all_friction && !frictionless;
     }
     if (any_friction && !all_friction) return;
-    LimbLanes& l = model.lanes;
     for (std::size_t lane = 0; lane < LimbLanes::kLanes; ++lane) {
         const auto j = static_cast<int>(lane) < model.limbs ? lane : 0;
         detail::fillLane(l, lane, model.limb[j]);
     }
-    model.limbs_in_lanes = true;
+    detail::ModelKernel::setLimbsInLanes(model, true);
 }
 
 }  // namespace

@@ -194,7 +194,7 @@ NOCDYN_ALWAYS_INLINE lean::LimbTerms<double> laneOf(const lean::LimbTerms<fastma
     return out;
 }
 
-/// The limbs of a uniform robot (Model::limbs_in_lanes), limb l in lane l of one packet, as
+/// The limbs of a uniform robot (Model::limbsInLanes), limb l in lane l of one packet, as
 /// inverseDynamicsFast runs them (lean_kernel.hpp, sampleLanes): their share of W_P, rows of A
 /// and actuator values, and each limb's terms. False where a limb is rejected.
 template <LimbKind K>
@@ -222,8 +222,9 @@ NOCDYN_ALWAYS_INLINE bool limbsInLanes(const Model& model, const lean::Frame<dou
     double weight = 1.0, scale = 1.0;
     lean::LimbTerms<Pack> lanes;
     const lean::Out<Pack> lane_out{&u, &du, &ddu, nullptr, 0};
-    const fastmath::Mask<Pack> ok = lean::limbTerms<K, lean::kAnyActuation>(
-        detail::LaneLimb{model.lanes, model.limb[0]}, frame, lane_out, W_limbs, &row, &weight, &scale, &lanes);
+    const fastmath::Mask<Pack> ok =
+        lean::limbTerms<K, lean::kAnyActuation>(detail::LaneLimb{detail::ModelKernel::lanes(model), model.limb[0]},
+                                                frame, lane_out, W_limbs, &row, &weight, &scale, &lanes);
     for (int j = 0; j < model.limbs; ++j) {
         if (ok[j] == 0) return false;
     }
@@ -304,7 +305,7 @@ inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, cons
     double weight[kMaxActuators], scale[kMaxActuators];
     std::array<lean::LimbTerms<double>, kMaxLimbs> terms;
 #if !defined(__SANITIZE_ADDRESS__)
-    if (model.limbs_in_lanes) {
+    if (model.limbsInLanes()) {
         // a uniform robot's limbs in the lanes of one packet, as inverseDynamicsFast
         if (!anyLimbsInLanes(model, frame, out, W, rows, weight, scale, terms,
                              std::make_integer_sequence<int, static_cast<int>(LimbKind::PPP)>{})) [[unlikely]]

@@ -60,4 +60,16 @@ std::string format(const char* pattern, ...) {
     return out;
 }
 
+std::string significant(double value, int digits) { return format("%.*g", digits, value); }
+
+std::string number(double value) { return significant(value, 6); }
+
+std::string precise(double value) { return significant(value, 10); }
+
+std::string allDigits(double value) { return significant(value, 17); }
+
+std::string seconds(double t) { return significant(t, 9); }
+
+std::string sampleTime(double t) { return "t = " + seconds(t) + " s"; }
+
 }  // namespace nocdyn::text

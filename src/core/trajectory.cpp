@@ -48,8 +48,6 @@ void SampledAxis::evaluate(double t, double& q, double& dq, double& ddq) const {
 
 namespace {
 
-std::string numberText(double value) { return text::format("%.10g", value); }
-
 void checkSamples(const std::vector<double>& t, const std::vector<double>& v, const char* what) {
     if (t.size() != v.size()) throw Error(std::string(what) + ": as many times as values are needed");
     if (t.size() < 2) throw Error(std::string(what) + ": at least 2 samples are needed");
@@ -58,8 +56,8 @@ void checkSamples(const std::vector<double>& t, const std::vector<double>& v, co
             throw Error(std::string(what) + ": sample " + std::to_string(i) + " is not finite");
         }
         if (i > 0 && !(t[i] > t[i - 1])) {
-            throw Error(std::string(what) + ": time " + numberText(t[i]) + " s of sample " + std::to_string(i) +
-                        " is not after " + numberText(t[i - 1]) + " s");
+            throw Error(std::string(what) + ": time " + text::precise(t[i]) + " s of sample " + std::to_string(i) +
+                        " is not after " + text::precise(t[i - 1]) + " s");
         }
     }
 }
@@ -121,7 +119,7 @@ void checkFinite(const SampledAxis& axis, const char* what) {
         axis.evaluate(axis.times[i], q, dq, ddq);
         if (!(std::isfinite(q) && std::isfinite(dq) && std::isfinite(ddq))) {
             throw Error(std::string(what) + ": the spline through the samples is not finite at time " +
-                        numberText(axis.times[i]) + " s (values or time steps out of range)");
+                        text::precise(axis.times[i]) + " s (values or time steps out of range)");
         }
     }
 }

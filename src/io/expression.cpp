@@ -34,11 +34,8 @@ constexpr std::array<std::string_view, 13> kFunctions = {"sin",  "cos", "tan", "
 bool isNameStart(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
 bool isNameChar(char c) { return isNameStart(c) || (c >= '0' && c <= '9'); }
 
-/// Shortest decimal that reads back as the same double.
-std::string shortest(double value) { return text::shortest(value); }
-
 /// A value as a message shows it: nan without a sign (x86 gives sqrt(-1) the sign bit).
-std::string shown(double value) { return std::isnan(value) ? std::string("nan") : shortest(value); }
+std::string shown(double value) { return std::isnan(value) ? std::string("nan") : text::shortest(value); }
 
 /// The first sub-expression of the current evaluation whose value is not finite, written with
 /// its operands' values ("sqrt(-1)", "1 / 0"); empty while every value so far is finite. A
@@ -217,7 +214,7 @@ double ExpressionEvaluator::evaluate(const std::string& text, std::string& probl
         problem = "the sub-expression " + first_non_finite + " is not finite";
         return 0.0;
     }
-    if (!std::isfinite(value)) problem = "the result is not finite (" + shortest(value) + ")";
+    if (!std::isfinite(value)) problem = "the result is not finite (" + text::shortest(value) + ")";
     return value;
 }
 

@@ -166,11 +166,10 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
 }
 
 /// Shortest decimal that reads back as the same double.
-std::string number(double value) { return text::shortest(value); }
 
 std::string pair(const Eigen::Vector2d& v) {
     std::string out("[");
-    out.append(number(v.x())).append(", ").append(number(v.y())).append("]");
+    out.append(text::shortest(v.x())).append(", ").append(text::shortest(v.y())).append("]");
     return out;
 }
 
@@ -221,15 +220,15 @@ std::string descriptionToYaml(const RobotDescription& robot) {
     out << "name: " << yamlQuoted(robot.name) << "\n";
     if (!robot.gravity.isZero()) out << "gravity: " << pair(robot.gravity) << "  # [m/s^2]\n";
     if (!robot.home.isZero()) {
-        out << "home: [" << number(robot.home(0)) << ", " << number(robot.home(1)) << ", " << number(robot.home(2))
-            << "]  # [theta, x, y] at home\n";
+        out << "home: [" << text::shortest(robot.home(0)) << ", " << text::shortest(robot.home(1)) << ", "
+            << text::shortest(robot.home(2)) << "]  # [theta, x, y] at home\n";
     }
-    out << "max_condition: " << number(robot.max_condition) << "\n";
+    out << "max_condition: " << text::shortest(robot.max_condition) << "\n";
     if (robot.damping_ratio != RobotDescription{}.damping_ratio) {
-        out << "damping_ratio: " << number(robot.damping_ratio) << "  # of each lumped mode\n";
+        out << "damping_ratio: " << text::shortest(robot.damping_ratio) << "  # of each lumped mode\n";
     }
-    out << "platform: {mass: " << number(robot.platform.mass) << ", inertia: " << number(robot.platform.inertia)
-        << ", com: " << pair(robot.platform.com) << "}\n";
+    out << "platform: {mass: " << text::shortest(robot.platform.mass)
+        << ", inertia: " << text::shortest(robot.platform.inertia) << ", com: " << pair(robot.platform.com) << "}\n";
     out << "limbs:\n";
     for (const LimbDescription& limb : robot.limbs) {
         out << "  - name: " << yamlQuoted(limb.name) << "\n    joints:\n";
@@ -241,24 +240,25 @@ std::string descriptionToYaml(const RobotDescription& robot) {
             std::string limits;
             const auto add = [&](const char* key, double value) {
                 if (std::isfinite(value))
-                    limits += (limits.empty() ? "" : ", ") + std::string(key) + ": " + number(value);
+                    limits += (limits.empty() ? "" : ", ") + std::string(key) + ": " + text::shortest(value);
             };
             add("lower", joint.limits.lower);
             add("upper", joint.limits.upper);
             add("effort", joint.limits.effort);
             add("velocity", joint.limits.velocity);
             if (!limits.empty()) out << ", limits: {" << limits << "}";
-            if (joint.damping != 0.0) out << ", damping: " << number(joint.damping);
-            if (joint.friction != 0.0) out << ", friction: " << number(joint.friction);
-            if (joint.stiffness) out << ", stiffness: " << number(*joint.stiffness);
+            if (joint.damping != 0.0) out << ", damping: " << text::shortest(joint.damping);
+            if (joint.friction != 0.0) out << ", friction: " << text::shortest(joint.friction);
+            if (joint.stiffness) out << ", stiffness: " << text::shortest(*joint.stiffness);
             out << "}\n";
         }
         out << "    bodies:\n";
         for (const BodyDescription& body : limb.bodies) {
-            out << "      - {mass: " << number(body.mass) << ", inertia: " << number(body.inertia)
+            out << "      - {mass: " << text::shortest(body.mass) << ", inertia: " << text::shortest(body.inertia)
                 << ", com: " << pair(body.com);
             if (body.elastic) {
-                out << ", elastic: {EA: " << number(body.elastic->EA) << ", EI: " << number(body.elastic->EI) << "}";
+                out << ", elastic: {EA: " << text::shortest(body.elastic->EA)
+                    << ", EI: " << text::shortest(body.elastic->EI) << "}";
             }
             out << "}\n";
         }

@@ -76,9 +76,9 @@ PoseTrajectory parseTrajectory(const std::string& text, const std::string& sourc
     if (root["duration"].IsDefined()) {
         const double duration = detail::requireNumber(top, root, "duration");
         if (!(duration > 0.0 && duration <= kMaxDuration)) {
-            detail::fail(top / "duration", root["duration"],
-                         "must be > 0 s and at most " + detail::formatted(kMaxDuration) + " s, got " +
-                             detail::formatted(duration));
+            detail::fail(
+                top / "duration", root["duration"],
+                "must be > 0 s and at most " + text::number(kMaxDuration) + " s, got " + text::number(duration));
         }
         traj.duration = duration;
     }
@@ -93,8 +93,6 @@ PoseTrajectory loadTrajectory(const std::string& path) {
 }
 
 namespace {
-
-std::string shortNumber(double value) { return text::format("%.10g", value); }
 
 bool endsWithCsv(const std::string& path) {
     const std::string ext = std::filesystem::path(path).extension().string();
@@ -130,18 +128,18 @@ PoseTrajectory parseTrajectoryCsv(const std::string& text, const std::string& so
     for (std::size_t i = 0; i < n; ++i) t[i] = table.rows[i][ct];
     for (std::size_t i = 0; i < n; ++i) {
         if (!(std::abs(t[i]) <= kMaxDuration)) {
-            throw Error(lineOf(i) + "column 't': time " + shortNumber(t[i]) +
-                        " s is out of range (|t| <= " + shortNumber(kMaxDuration) + " s)");
+            throw Error(lineOf(i) + "column 't': time " + text::precise(t[i]) +
+                        " s is out of range (|t| <= " + text::precise(kMaxDuration) + " s)");
         }
     }
     for (std::size_t i = 1; i < n; ++i) {
         if (!(t[i] > t[i - 1])) {
-            throw Error(lineOf(i) + "column 't': time " + shortNumber(t[i]) + " s is not after the previous " +
-                        shortNumber(t[i - 1]) + " s (times must increase)");
+            throw Error(lineOf(i) + "column 't': time " + text::precise(t[i]) + " s is not after the previous " +
+                        text::precise(t[i - 1]) + " s (times must increase)");
         }
         if (t[i] - t[i - 1] < kMinTimeStep) {
-            throw Error(lineOf(i) + "column 't': time " + shortNumber(t[i]) + " s is less than " +
-                        shortNumber(kMinTimeStep) + " s after the previous " + shortNumber(t[i - 1]) + " s");
+            throw Error(lineOf(i) + "column 't': time " + text::precise(t[i]) + " s is less than " +
+                        text::precise(kMinTimeStep) + " s after the previous " + text::precise(t[i - 1]) + " s");
         }
     }
     std::vector<double> steps(n - 1);
@@ -151,9 +149,9 @@ PoseTrajectory parseTrajectoryCsv(const std::string& text, const std::string& so
     const double median = sorted[sorted.size() / 2];
     for (std::size_t i = 0; i + 1 < n; ++i) {
         if (steps[i] > kMaxTimeStepRatio * median) {
-            throw Error(lineOf(i + 1) + "column 't': gap of " + shortNumber(steps[i]) + " s after " +
-                        shortNumber(t[i]) + " s (more than " + shortNumber(kMaxTimeStepRatio) +
-                        " times the median step " + shortNumber(median) + " s)");
+            throw Error(lineOf(i + 1) + "column 't': gap of " + text::precise(steps[i]) + " s after " +
+                        text::precise(t[i]) + " s (more than " + text::precise(kMaxTimeStepRatio) +
+                        " times the median step " + text::precise(median) + " s)");
         }
     }
     // Samples within the plausibility limits (positions as a harmonic's amplitude).
@@ -163,8 +161,8 @@ PoseTrajectory parseTrajectoryCsv(const std::string& text, const std::string& so
         for (std::size_t i = 0; i < n; ++i) {
             v[i] = table.rows[i][c];
             if (!(std::abs(v[i]) <= limit)) {
-                throw Error(lineOf(i) + "column '" + name + "': " + shortNumber(v[i]) + " is out of range (|" + name +
-                            "| <= " + shortNumber(limit) + " " + unit + ")");
+                throw Error(lineOf(i) + "column '" + name + "': " + text::precise(v[i]) + " is out of range (|" + name +
+                            "| <= " + text::precise(limit) + " " + unit + ")");
             }
         }
         return v;
@@ -213,15 +211,13 @@ PoseTrajectory trajectoryByNameOrFile(const std::string& name_or_path) {
 
 namespace {
 
-std::string roundTrip(double v) { return text::format("%.17g", v); }
-
 std::string axisYaml(const char* name, const AxisMotion& axis) {
-    std::string text = std::string(name) + ": {offset: " + roundTrip(axis.offset) + ", harmonics: [";
+    std::string text = std::string(name) + ": {offset: " + text::allDigits(axis.offset) + ", harmonics: [";
     for (std::size_t k = 0; k < axis.harmonics.size(); ++k) {
         const Harmonic& h = axis.harmonics[k];
         text += (k == 0 ? "\n    " : ",\n    ");
-        text += "{amplitude: " + roundTrip(h.amplitude) + ", frequency: " + roundTrip(h.frequency) +
-                ", phase: " + roundTrip(h.phase) + "}";
+        text += "{amplitude: " + text::allDigits(h.amplitude) + ", frequency: " + text::allDigits(h.frequency) +
+                ", phase: " + text::allDigits(h.phase) + "}";
     }
     return text + "]}\n";
 }
@@ -234,7 +230,7 @@ std::string trajectoryToYaml(const PoseTrajectory& trajectory) {
     std::string name;
     for (const char c : trajectory.name) name += c == '\'' ? std::string("''") : std::string(1, c);
     std::string text = "name: '" + name + "'\n";
-    if (trajectory.duration) text += "duration: " + roundTrip(*trajectory.duration) + "   # [s]\n";
+    if (trajectory.duration) text += "duration: " + text::allDigits(*trajectory.duration) + "   # [s]\n";
     text += axisYaml("theta", trajectory.theta) + axisYaml("x", trajectory.x) + axisYaml("y", trajectory.y);
     return text;
 }

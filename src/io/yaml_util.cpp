@@ -134,10 +134,8 @@ void requireRange(const Context& context, const YAML::Node& map, const char* key
     if (value >= lo && value <= hi) return;
     const YAML::Node node = map[key];
     fail(context / key, node.IsDefined() ? node : map,
-         "must be in [" + formatted(lo) + ", " + formatted(hi) + "] " + unit + ", got " + formatted(value));
+         "must be in [" + text::number(lo) + ", " + text::number(hi) + "] " + unit + ", got " + text::number(value));
 }
-
-std::string formatted(double value) { return text::format("%g", value); }
 
 std::string readFile(const std::string& path, const char* what) { return readRegularFile(path, what, kMaxYamlBytes); }
 

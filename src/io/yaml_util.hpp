@@ -42,9 +42,6 @@ void requireMap(const Context& context, const YAML::Node& node, std::initializer
 void requireRange(const Context& context, const YAML::Node& map, const char* key, double value, double lo, double hi,
                   const char* unit);
 
-/// A number in 6 significant digits, for messages.
-[[nodiscard]] std::string formatted(double value);
-
 /// Reads a whole regular file of at most kMaxYamlBytes (4 MiB); throws nocdyn::Error when it
 /// cannot, naming the file and why (missing, not a regular file, too large).
 [[nodiscard]] std::string readFile(const std::string& path, const char* what);

@@ -3,17 +3,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::detail {
 
 void failTick(const Model& model, double t, const Status& status, const char* what) {
-    std::ostringstream out;
-    out.precision(9);
-    out << "t = " << t << " s: " << what << ": " << describe(status, model);
-    throw Error(out.str());
+    throw Error(text::sampleTime(t) + ": " + what + ": " + describe(status, model));
 }
 
 void runTicks(PoseController& controller, RobotPlant& plant, const PoseTrajectory& trajectory,

@@ -2,22 +2,20 @@
 #include "nocdyn/sim/plant.hpp"
 
 #include <cmath>
-#include <sstream>
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
+#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn {
 
 namespace {
 
-/// "plant: t = <t> s: <status>", t with `digits` significant digits.
-[[noreturn]] void failAt(double t, int digits, const Status& status, const Model& model) {
-    std::ostringstream out;
-    out.precision(digits);
-    out << "plant: t = " << t << " s: " << describe(status, model);
-    throw Error(out.str());
+/// "plant: t = <t> s: <status>".
+[[noreturn]] void failAt(double t, const Status& status, const Model& model) {
+    throw Error("plant: " + text::sampleTime(t) + ": " + describe(status, model));
 }
 
 }  // namespace
@@ -32,7 +30,7 @@ void SimulatorRobotPlant::reset(const Pose& p, const Twist& dp) {
 }
 
 void SimulatorRobotPlant::advance(double dt) {
-    if (const Status status = simulator_.advance(dt); !status) failAt(simulator_.time(), 9, status, simulator_.model());
+    if (const Status status = simulator_.advance(dt); !status) failAt(simulator_.time(), status, simulator_.model());
 }
 
 RungeKuttaRobotPlant::RungeKuttaRobotPlant(const Model& model)
@@ -51,7 +49,7 @@ void RungeKuttaRobotPlant::reset(const Pose& p, const Twist& dp) {
 }
 
 void RungeKuttaRobotPlant::acceleration(const Pose& p, const Twist& dp, Twist& a) {
-    if (const Status status = forwardDynamics(model_, data_, p, dp, tau_); !status) failAt(t_, 9, status, model_);
+    if (const Status status = forwardDynamics(model_, data_, p, dp, tau_); !status) failAt(t_, status, model_);
     a = data_.t_M_dot;
 }
 
@@ -73,7 +71,7 @@ void RungeKuttaRobotPlant::advance(double h) {
 
 ActuatorVector RungeKuttaRobotPlant::u() const {
     // the actuator variables of the current pose (inverse displacement)
-    if (const Status status = inverseDisplacement(model_, pose_data_, p_); !status) failAt(t_, 6, status, model_);
+    if (const Status status = inverseDisplacement(model_, pose_data_, p_); !status) failAt(t_, status, model_);
     return pose_data_.u;
 }
 

@@ -6,7 +6,6 @@
 #include <limits>
 #include <memory>
 #include <numbers>
-#include <sstream>
 
 #include <Eigen/LU>
 #include <unsupported/Eigen/FFT>
@@ -15,8 +14,8 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/closed_loop.hpp"
+#include "nocdyn/sim/filter.hpp"
 #include "nocdyn/text.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/kinematics.hpp"
 
 namespace nocdyn {
@@ -25,62 +24,21 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-std::string num(double value) {
-    std::ostringstream out;
-    out.precision(6);
-    out << value;
-    return out.str();
-}
-
-/// One second-order section y = (b0 + b1 z^-1 + b2 z^-2) / (1 + a1 z^-1 + a2 z^-2) x.
-struct Biquad {
-    double b0, b1, b2, a1, a2;
-    /// Runs over x in place from rest (direct form II transposed).
-    void run(std::vector<double>& x) const {
-        double s1 = 0.0, s2 = 0.0;
-        for (double& v : x) {
-            const double y = b0 * v + s1;
-            s1 = b1 * v - a1 * y + s2;
-            s2 = b2 * v - a2 * y;
-            v = y;
-        }
-    }
-};
-
 }  // namespace
 
 std::vector<double> highPassZeroPhase(std::span<const double> x, double dt, double cutoff) {
-    if (!(dt > 0.0 && std::isfinite(dt))) throw Error("high-pass: the time step must be positive, got " + num(dt));
+    if (!(dt > 0.0 && std::isfinite(dt)))
+        throw Error("high-pass: the time step must be positive, got " + text::number(dt));
     const double fs = 1.0 / dt;
     if (!(cutoff > 0.0 && cutoff < 0.5 * fs)) {
-        throw Error("high-pass: cutoff " + num(cutoff) + " Hz must be above 0 and below the Nyquist frequency " +
-                    num(0.5 * fs) + " Hz");
+        throw Error("high-pass: cutoff " + text::number(cutoff) +
+                    " Hz must be above 0 and below the Nyquist frequency " + text::number(0.5 * fs) + " Hz");
     }
-    const std::size_t n = x.size();
-    if (n < 2) return {x.begin(), x.end()};
-    // bilinear transform with the cutoff prewarped: K = tan(w_c dt / 2)
-    const double k = std::tan(kPi * cutoff * dt);
-    std::vector<Biquad> sections;
-    for (int s = 0; s < kHighPassOrder / 2; ++s) {
-        const double q = 1.0 / (2.0 * std::cos((2.0 * s + 1.0) * kPi / (2.0 * kHighPassOrder)));
-        const double norm = 1.0 + k / q + k * k;
-        const double b0 = 1.0 / norm;
-        sections.push_back({b0, -2.0 * b0, b0, 2.0 * (k * k - 1.0) / norm, (1.0 - k / q + k * k) / norm});
-    }
-    // odd reflection padding at both ends
-    const auto pad =
-        static_cast<std::size_t>(std::min<double>(static_cast<double>(n - 1), std::ceil(3.0 * fs / cutoff)));
-    std::vector<double> y(n + 2 * pad);
-    for (std::size_t i = 0; i < pad; ++i) {
-        y[i] = 2.0 * x[0] - x[pad - i];
-        y[n + pad + i] = 2.0 * x[n - 1] - x[n - 2 - i];
-    }
-    std::copy(x.begin(), x.end(), y.begin() + static_cast<std::ptrdiff_t>(pad));
-    for (const Biquad& b : sections) b.run(y);
-    std::reverse(y.begin(), y.end());
-    for (const Biquad& b : sections) b.run(y);
-    std::reverse(y.begin(), y.end());
-    return {y.begin() + static_cast<std::ptrdiff_t>(pad), y.begin() + static_cast<std::ptrdiff_t>(pad + n)};
+    std::vector<double> y(x.begin(), x.end());
+    filterZeroPhase(butterworth(FilterKind::high_pass, kHighPassOrder, cutoff, fs),
+                    Eigen::Map<Eigen::VectorXd>(y.data(), static_cast<Eigen::Index>(y.size())),
+                    FilterEdges::odd_reflection);
+    return y;
 }
 
 void accumulateLimitUse(const Model& model, double t, const ActuatorVector& u, const ActuatorVector* du,
@@ -249,7 +207,7 @@ FittedRecord fitRecord(const Model& model, const GroundRecord& record, const Fit
     double L = options.time_scale.value_or(1.0);
     double A = 1.0;
     if (options.time_scale) {
-        if (!(L >= 1e-3 && L <= 1e4)) throw Error("record: time scale " + num(L) + " outside [0.001, 10000]");
+        if (!(L >= 1e-3 && L <= 1e4)) throw Error("record: time scale " + text::number(L) + " outside [0.001, 10000]");
     } else if (!fits(1.0, 1.0)) {
         double lo = 1.0, hi = 2.0;
         while (hi < options.max_time_scale && !fits(hi, 1.0)) {
@@ -271,10 +229,10 @@ FittedRecord fitRecord(const Model& model, const GroundRecord& record, const Fit
         LimitUse smallest;
         constexpr double kMinAmplitude = 1e-4;
         if (!fits(L, kMinAmplitude, &smallest)) {
-            throw Error("record: cannot be fitted even at amplitude " + num(kMinAmplitude) + " and time scale " +
-                        num(L) + ": " + smallest.what + " at " + num(100.0 * smallest.ratio) +
-                        " % of its limit (with " + num(100.0 * options.margin) +
-                        " % margin) at t = " + num(smallest.t) + " s");
+            throw Error("record: cannot be fitted even at amplitude " + text::number(kMinAmplitude) +
+                        " and time scale " + text::number(L) + ": " + smallest.what + " at " +
+                        text::number(100.0 * smallest.ratio) + " % of its limit (with " +
+                        text::number(100.0 * options.margin) + " % margin) at " + text::sampleTime(smallest.t));
         }
         double lo = kMinAmplitude, hi = 1.0;
         for (int k = 0; k < 60 && hi - lo > 1e-3 * lo; ++k) {

@@ -18,8 +18,6 @@ namespace {
 
 constexpr std::size_t kMaxBaseParameters = 1000;
 
-std::string roundTrip(double v) { return text::format("%.17g", v); }
-
 std::string quoted(const std::string& text) { return yamlQuoted(text); }
 
 }  // namespace
@@ -29,9 +27,9 @@ std::string calibrationToYaml(const Model& model, const BaseResult& result, cons
     for (std::size_t k = 0; k < result.beta.size(); ++k) {
         const Estimate& e = result.beta[k];
         text += "  - {parameter: " + quoted(parameterName(model, result.calibration.independent[k])) +
-                ", value: " + roundTrip(e.value) + ", stddev: " + roundTrip(e.stddev) +
-                ", robot_file: " + roundTrip(e.prior) + ", unit: " + quoted(e.unit) + ", name: " + quoted(e.name) +
-                "}\n";
+                ", value: " + text::allDigits(e.value) + ", stddev: " + text::allDigits(e.stddev) +
+                ", robot_file: " + text::allDigits(e.prior) + ", unit: " + quoted(e.unit) +
+                ", name: " + quoted(e.name) + "}\n";
     }
     return text;
 }
@@ -88,15 +86,15 @@ Bounds readBounds(const Context& context, const YAML::Node& map, const char* key
     if (!node[0].IsNull()) bounds.lower = detail::toNumber(field / "lower", node[0]);
     if (!node[1].IsNull()) bounds.upper = detail::toNumber(field / "upper", node[1]);
     const auto allowed = [&](double v) { return strict ? v > least : v >= least; };
-    const std::string limit = std::string(strict ? "> " : ">= ") + detail::formatted(least) + " " + unit;
+    const std::string limit = std::string(strict ? "> " : ">= ") + text::number(least) + " " + unit;
     if (std::isfinite(bounds.lower) && !allowed(bounds.lower))
-        detail::fail(field / "lower", node[0], "must be " + limit + ", got " + detail::formatted(bounds.lower));
+        detail::fail(field / "lower", node[0], "must be " + limit + ", got " + text::number(bounds.lower));
     if (std::isfinite(bounds.upper) && !allowed(bounds.upper))
-        detail::fail(field / "upper", node[1], "must be " + limit + ", got " + detail::formatted(bounds.upper));
+        detail::fail(field / "upper", node[1], "must be " + limit + ", got " + text::number(bounds.upper));
     if (bounds.lower > bounds.upper) {
         detail::fail(field, node,
-                     "lower bound " + detail::formatted(bounds.lower) + " is above upper bound " +
-                         detail::formatted(bounds.upper) + " " + unit);
+                     "lower bound " + text::number(bounds.lower) + " is above upper bound " +
+                         text::number(bounds.upper) + " " + unit);
     }
     return bounds;
 }

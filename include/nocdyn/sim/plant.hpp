@@ -11,7 +11,7 @@
 
 #include "nocdyn/choice.hpp"
 #include "nocdyn/model.hpp"
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 
 namespace nocdyn {
 

@@ -4,7 +4,7 @@
 
 #include <string>
 
-#include "nocdyn/sim/forward_dynamics.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/io/csv.hpp"
 
 namespace nocdyn::io {

@@ -1,13 +1,10 @@
-// Regressor, base parameters and least-squares identification (identification.hpp).
-#include "nocdyn/sim/identification.hpp"
+// Least-squares identification of a payload or of the base parameters (least_squares.hpp).
+#include "nocdyn/sim/least_squares.hpp"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
-#include <numbers>
-#include <random>
-#include <sstream>
 #include <utility>
 
 #include <Eigen/Cholesky>
@@ -15,11 +12,12 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
-#include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/kinematics.hpp"
 #include "nocdyn/printable.hpp"
+#include "nocdyn/sim/base_parameters.hpp"
+#include "nocdyn/sim/filter.hpp"
+#include "nocdyn/sim/regressor.hpp"
 #include "nocdyn/text.hpp"
 #include "nocdyn/detail/index.hpp"
 
@@ -27,400 +25,7 @@ namespace nocdyn {
 
 namespace {
 
-using WrenchRegressor = Eigen::Matrix<double, 3, kBodyParameters>;
-using PlatformRegressor = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxParameters>;
-
 using detail::at;
-using detail::sign;
-
-/// Y_w of one body (see the header): frame at r turned by phi (cos, sin), body twist referred to
-/// O xi = [omega; v_O] and its rate, gravity g.
-[[nodiscard]] WrenchRegressor bodyWrenchRegressor(double cos_phi, double sin_phi, const Vector2& r, const Twist& xi,
-                                                  const Twist& xi_dot, const Vector2& g) {
-    const double w = xi(0), dw = xi_dot(0);
-    // acceleration of the body point at r: dv_O + domega E r + omega E v_O - omega^2 r
-    const Vector2 a = xi_dot.tail<2>() + dw * perp(r) + w * perp(xi.tail<2>()) - w * w * r;
-    const Vector2 a_bar = a - g;
-    WrenchRegressor Yw;
-    Yw.col(0) << cross(r, a_bar), a_bar;
-    const Vector2 e[2] = {Vector2(cos_phi, sin_phi), Vector2(-sin_phi, cos_phi)};
-    for (int k = 0; k < 2; ++k) {
-        const Vector2 f = dw * perp(e[k]) - w * w * e[k];
-        Yw.col(1 + k) << cross(e[k], a_bar) + cross(r, f), f;
-    }
-    Yw.col(3) << dw, 0.0, 0.0;
-    return Yw;
-}
-
-}  // namespace
-
-void regressor(const Model& model, const Data& data, RegressorMatrix& Y) {
-    const int P = parameterCount(model);
-    // W: the generalized force on xi_P per parameter (the lean path's W_P, column by column)
-    PlatformRegressor W = PlatformRegressor::Zero(3, P);
-    for (int j = 0; j < model.limbs; ++j) {
-        const LimbModel& limb = model.limb[at(j)];
-        const LimbData& ld = data.limb[at(j)];
-        // body twists xi_b and rates: xi_1 = s_1 q'_1, xi_2 = xi_1 + s_2 q'_2 (ds_1/dt = 0)
-        const Twist xi_dot0 = ld.s[0] * ld.gamma_ddot(0);
-        const Twist xi_dot1 = xi_dot0 + ld.s_dot[1] * ld.gamma_dot(1) + ld.s[1] * ld.gamma_ddot(1);
-        // frame rotations: the R joint angles before each body
-        const double c0 = ld.cos_q(0), s0 = ld.sin_q(0);
-        const double c1 = c0 * ld.cos_q(1) - s0 * ld.sin_q(1), s1 = s0 * ld.cos_q(1) + c0 * ld.sin_q(1);
-        const Vector2 r0 = ld.x[0] - Vector2(c0 * limb.com_home[0].x() - s0 * limb.com_home[0].y(),
-                                             s0 * limb.com_home[0].x() + c0 * limb.com_home[0].y());
-        const Vector2 r1 = ld.x[1] - Vector2(c1 * limb.com_home[1].x() - s1 * limb.com_home[1].y(),
-                                             s1 * limb.com_home[1].x() + c1 * limb.com_home[1].y());
-        const WrenchRegressor Y0 = bodyWrenchRegressor(c0, s0, r0, ld.xi[0], xi_dot0, model.gravity);
-        const WrenchRegressor Y1 = bodyWrenchRegressor(c1, s1, r1, ld.xi[1], xi_dot1, model.gravity);
-        // U_i^T Y_w,i with U_1 = s_1 e_1^T J_j^-1, U_2 = (s_1 e_1^T + s_2 e_2^T) J_j^-1
-        const Vector3 row0 = ld.J_inv.row(0).transpose(), row1 = ld.J_inv.row(1).transpose();
-        W.middleCols<kBodyParameters>(bodyParameterIndex(model.body(j, 0))) = row0 * (ld.s[0].transpose() * Y0);
-        W.middleCols<kBodyParameters>(bodyParameterIndex(model.body(j, 1))) =
-            row0 * (ld.s[0].transpose() * Y1) + row1 * (ld.s[1].transpose() * Y1);
-        // joint friction to overcome: J_j^-T e_k (damping q'_k + friction sign q'_k)
-        for (int k = 0; k < 3; ++k) {
-            const int index = jointParameterIndex(model, j, k);
-            W.col(index) = ld.J_inv.row(k).transpose() * ld.gamma_dot(k);
-            W.col(index + 1) = ld.J_inv.row(k).transpose() * sign(ld.gamma_dot(k));
-        }
-    }
-    W.middleCols<kBodyParameters>(bodyParameterIndex(model.platformBody())) = bodyWrenchRegressor(
-        std::cos(data.p(0)), std::sin(data.p(0)), data.p.tail<2>(), data.xi_P, data.xi_P_dot, model.gravity);
-    // tau from A^T tau = W: A^-T W = Xi^T W, or the minimum-norm A (A^T A)^-1 W
-    Y.resize(model.actuators, P);
-    if (model.coordinates == Coordinates::actuators) {
-        Y.noalias() = data.Xi.transpose() * W;
-    } else {
-        const Matrix3 AtA = data.A.transpose() * data.A;
-        const Matrix3 AtA_inv = AtA.inverse();
-        PlatformRegressor L = AtA_inv * W;
-        Y.noalias() = data.A * L;
-    }
-}
-
-Status inverseDynamicsRegressor(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
-                                RegressorMatrix& Y) {
-    if (const Status status = inverseDisplacement(model, data, p); !status) return status;
-    if (const Status status = velocityFromPlatformTwist(model, data, dp); !status) return status;
-    for (int i = 0; i < 3; ++i) {
-        if (!std::isfinite(ddp(i))) return {StatusCode::not_finite, -1, ddp(i)};
-    }
-    accelerationFromPlatform(model, data, ddp);
-    regressor(model, data, Y);
-    return {};
-}
-
-// ---------------------------------------------------------------------------------------------
-// Base parameters
-
-namespace {
-
-/// Random motions around home (poses, rates, accelerations), each accepted by the stages.
-struct RandomMotion {
-    Pose p;
-    Twist dp, ddp;
-};
-
-std::vector<RandomMotion> randomMotions(const Model& model, int count, unsigned seed, double scale) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<double> unit(-1.0, 1.0);
-    std::vector<RandomMotion> motions;
-    Data data(model);
-    const double L = model.length_scale;
-    for (int attempt = 0; attempt < 50 * count && static_cast<int>(motions.size()) < count; ++attempt) {
-        RandomMotion m;
-        m.p = model.home + scale * Pose(0.05 * unit(rng), 0.05 * L * unit(rng), 0.05 * L * unit(rng));
-        m.dp = Twist(unit(rng), L * unit(rng), L * unit(rng));
-        m.ddp = 20.0 * Twist(unit(rng), L * unit(rng), L * unit(rng));
-        if (!inverseDynamics(model, data, m.p, m.dp, m.ddp)) continue;
-        motions.push_back(m);
-    }
-    return motions;
-}
-
-}  // namespace
-
-BaseParameters baseParameters(const Model& model, const BaseParameterOptions& options) {
-    const std::vector<RandomMotion> motions = randomMotions(model, options.samples, options.seed, options.pose_scale);
-    const int P = parameterCount(model);
-    const int n = model.actuators;
-    if (static_cast<int>(motions.size()) * n < 2 * P) {
-        throw Error("base parameters: only " + std::to_string(motions.size()) +
-                    " random motions around home are valid; the robot may be singular at home");
-    }
-    Eigen::MatrixXd stacked(static_cast<Eigen::Index>(motions.size()) * n, P);
-    Data data(model);
-    RegressorMatrix Y;
-    for (std::size_t s = 0; s < motions.size(); ++s) {
-        (void)inverseDynamicsRegressor(model, data, motions[s].p, motions[s].dp, motions[s].ddp, Y);
-        stacked.middleRows(static_cast<Eigen::Index>(s) * n, n) = Y;
-    }
-    // columns scaled to unit norm; those with no effect on tau are unidentifiable
-    const Eigen::VectorXd norms = stacked.colwise().norm();
-    const double largest = norms.maxCoeff();
-    BaseParameters base;
-    std::vector<int> active;
-    for (int c = 0; c < P; ++c) {
-        if (norms(c) <= options.tolerance * largest) {
-            base.unidentifiable.push_back(c);
-        } else {
-            active.push_back(c);
-        }
-    }
-    const auto m = static_cast<Eigen::Index>(active.size());
-    Eigen::MatrixXd scaled(stacked.rows(), m);
-    for (Eigen::Index c = 0; c < m; ++c)
-        scaled.col(c) = stacked.col(active[at(static_cast<int>(c))]) / norms(active[at(static_cast<int>(c))]);
-    Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(scaled);
-    qr.setThreshold(options.tolerance);
-    const auto r = static_cast<Eigen::Index>(qr.rank());
-    base.rank = static_cast<int>(r);
-    const Eigen::MatrixXd R = qr.matrixR().topLeftCorner(r, m).template triangularView<Eigen::Upper>();
-    const Eigen::MatrixXd R1 = R.leftCols(r);
-    // dependent scaled columns = independent ones X_s: X_s = R1^-1 R2
-    const Eigen::MatrixXd X_s = R1.triangularView<Eigen::Upper>().solve(R.rightCols(m - r));
-    const auto& perm = qr.colsPermutation().indices();
-    base.K = Eigen::MatrixXd::Zero(r, P);
-    for (Eigen::Index k = 0; k < r; ++k) {
-        const int ik = active[at(perm(k))];
-        base.independent.push_back(ik);
-        base.K(k, ik) = 1.0;
-        for (Eigen::Index l = 0; l < m - r; ++l) {
-            const int il = active[at(perm(r + l))];
-            // unscaled: X = D1^-1 X_s D2
-            const double x = X_s(k, l) * norms(il) / norms(ik);
-            if (std::abs(x) > 1e-10) base.K(k, il) = x;
-        }
-    }
-    const Eigen::JacobiSVD<Eigen::MatrixXd> svd(R1);
-    base.condition = svd.singularValues()(0) / svd.singularValues()(r - 1);
-    return base;
-}
-
-std::string describeBaseParameters(const Model& model, const BaseParameters& base) {
-    std::ostringstream out;
-    const ParameterVector pi = standardParameters(model);
-    const int P = parameterCount(model);
-    out << "# " << text::printable(model.description.name) << ": " << P << " standard parameters, " << base.rank
-        << " identifiable combinations (base parameters), condition number " << base.condition << "\n";
-    out << "# Standard parameters per body (body frame): m, mc_x, mc_y = m * c.o.m., I_O = inertia about the\n"
-           "# frame origin (limb bodies: the base frame at home; platform: C, turning with theta);\n"
-           "# per joint: damping and Coulomb friction.\n";
-    const Eigen::VectorXd beta = base.K * pi;
-    std::string buffer;
-    for (int k = 0; k < base.rank; ++k) {
-        out << "beta_" << (k + 1) << " = " << text::printable(parameterName(model, base.independent[at(k)]));
-        for (int c = 0; c < P; ++c) {
-            const double x = base.K(k, c);
-            if (c == base.independent[at(k)] || x == 0.0) continue;
-            buffer = text::format(" %c %.6g ", x < 0.0 ? '-' : '+', std::abs(x));
-            out << buffer << text::printable(parameterName(model, c));
-        }
-        buffer = text::format("%.9g", beta(k));
-        out << "   (robot file: " << buffer << " " << parameterUnit(model, base.independent[at(k)]) << ")\n";
-    }
-    if (base.unidentifiable.empty()) {
-        out << "unidentifiable (no effect on the actuator forces): none\n";
-    } else {
-        out << "unidentifiable (no effect on the actuator forces):";
-        for (const int c : base.unidentifiable) out << " " << text::printable(parameterName(model, c));
-        out << "\n";
-    }
-    // standard parameters only identifiable in combination
-    std::vector<int> combined;
-    for (int c = 0; c < P; ++c) {
-        if (std::find(base.independent.begin(), base.independent.end(), c) != base.independent.end()) continue;
-        if (std::find(base.unidentifiable.begin(), base.unidentifiable.end(), c) != base.unidentifiable.end()) continue;
-        combined.push_back(c);
-    }
-    out << "identifiable only in the combinations above:";
-    if (combined.empty()) out << " none";
-    for (const int c : combined) out << " " << text::printable(parameterName(model, c));
-    out << "\n";
-    return out.str();
-}
-
-// ---------------------------------------------------------------------------------------------
-// Motion from measurements
-
-namespace {
-
-[[nodiscard]] std::string timeText(double t) {
-    std::string buffer;
-    buffer = text::format("t = %.9g s", t);
-    return buffer;
-}
-
-/// Zero-phase low-pass: a second-order Butterworth section run forward then backward, started
-/// at the steady state of the end values (unit gain at DC).
-void filtfilt(Eigen::Ref<Eigen::VectorXd> x, double cutoff, double rate) {
-    const double K = std::tan(std::numbers::pi * cutoff / rate);
-    const double norm = 1.0 / (1.0 + std::numbers::sqrt2 * K + K * K);
-    const double b0 = K * K * norm, b1 = 2.0 * b0, b2 = b0;
-    const double a1 = 2.0 * (K * K - 1.0) * norm, a2 = (1.0 - std::numbers::sqrt2 * K + K * K) * norm;
-    const Eigen::Index N = x.size();
-    const auto pass = [&](auto index) {
-        double x1 = x(index(0)), x2 = x1, y1 = x1, y2 = x1;
-        for (Eigen::Index k = 0; k < N; ++k) {
-            const double xk = x(index(k));
-            const double yk = b0 * xk + b1 * x1 + b2 * x2 - a1 * y1 - a2 * y2;
-            x2 = x1;
-            x1 = xk;
-            y2 = y1;
-            y1 = yk;
-            x(index(k)) = yk;
-        }
-    };
-    pass([](Eigen::Index k) { return k; });
-    pass([N](Eigen::Index k) { return N - 1 - k; });
-}
-
-/// Central differences (one-sided at the ends) of the columns of x over times t.
-Eigen::MatrixXd differentiate(const Eigen::MatrixXd& x, const std::vector<double>& t) {
-    const Eigen::Index N = x.rows();
-    Eigen::MatrixXd dx(N, x.cols());
-    for (Eigen::Index k = 0; k < N; ++k) {
-        const Eigen::Index a = k == 0 ? 0 : k - 1, b = k == N - 1 ? N - 1 : k + 1;
-        dx.row(k) = (x.row(b) - x.row(a)) / (t[at(static_cast<int>(b))] - t[at(static_cast<int>(a))]);
-    }
-    return dx;
-}
-
-/// The platform rates from the actuator rates and accelerations at the pose in `data` (position
-/// stage done): least squares on du = A S(c) dp/dt and ddu = A dxi_P - (rows of
-/// J_j^-1 dJ_j gamma_dot_j), exact with three actuators.
-Status platformRates(const Model& model, Data& data, const Eigen::VectorXd& du, const Eigen::VectorXd& ddu) {
-    // measured rates need not be consistent: any residual is accepted
-    Twist t_M;
-    if (const Status status = velocityFromActuatorRatesLeastSquares(model, data, ActuatorVector(du), t_M,
-                                                                    std::numeric_limits<double>::infinity());
-        !status) {
-        return status;
-    }
-    const Vector2 c = data.p.tail<2>();
-    const Eigen::ColPivHouseholderQR<ActuationMatrix> qr(data.A);
-    Eigen::VectorXd rhs = ddu;
-    for (int a = 0; a < model.actuators; ++a) {
-        const LimbData& ld = data.limb[at(model.actuator_limb[at(a)])];
-        const Twist dJ = ld.s_dot[1] * ld.gamma_dot(1) + ld.s_dot[2] * ld.gamma_dot(2);
-        rhs(a) += ld.J_inv.row(model.actuator_joint[at(a)]).dot(dJ);
-    }
-    const Twist xi_P_dot = qr.solve(rhs);
-    const double w = t_M(0);
-    // S(c)^-1 (dxi_P/dt - dS/dt t_M)
-    const Twist t_M_dot = poseRateOfPlatformTwist(c, xi_P_dot) - Twist(0.0, w * t_M(2), -w * t_M(1));
-    accelerationFromPlatform(model, data, t_M_dot);
-    return {};
-}
-
-}  // namespace
-
-Motion reconstructMotion(const Model& model, const Measurements& measured, const IdentificationOptions& options) {
-    const auto N = static_cast<Eigen::Index>(measured.t.size());
-    const int n = model.actuators;
-    if (measured.u.rows() != N || measured.tau.rows() != N || measured.u.cols() != n || measured.tau.cols() != n) {
-        throw Error("measurements: expected " + std::to_string(n) + " actuator positions and forces per sample");
-    }
-    if (N < 10) throw Error("measurements: " + std::to_string(N) + " samples, too few to identify anything");
-    for (Eigen::Index k = 1; k < N; ++k) {
-        if (!(measured.t[at(static_cast<int>(k))] > measured.t[at(static_cast<int>(k - 1))])) {
-            throw Error("measurements: time is not increasing at sample " + std::to_string(k + 1) + " (" +
-                        timeText(measured.t[at(static_cast<int>(k))]) + " after " +
-                        timeText(measured.t[at(static_cast<int>(k - 1))]) + ")");
-        }
-    }
-    const bool given = measured.du.size() > 0 && measured.ddu.size() > 0;
-    Eigen::MatrixXd u = measured.u, tau = measured.tau, du, ddu;
-    Eigen::Index first = 0, last = N;
-    if (options.held_forces || measured.held_forces) {
-        for (Eigen::Index k = N - 1; k > 0; --k) tau.row(k) = 0.5 * (tau.row(k - 1) + tau.row(k));
-        first = 1;
-    }
-    if (given) {
-        du = measured.du;
-        ddu = measured.ddu;
-    } else {
-        // zero-phase low-pass of u and tau alike (no lag between them), then differences
-        const double duration = measured.t.back() - measured.t.front();
-        const double rate = static_cast<double>(N - 1) / duration;
-        for (Eigen::Index k = 1; k < N; ++k) {
-            const double dt = measured.t[at(static_cast<int>(k))] - measured.t[at(static_cast<int>(k - 1))];
-            if (std::abs(dt * rate - 1.0) > 0.01) {
-                throw Error("measurements: sampling is not uniform at " +
-                            timeText(measured.t[at(static_cast<int>(k))]) +
-                            " (needed to filter u; give du and ddu columns instead)");
-            }
-        }
-        const double cutoff = options.cutoff > 0.0 ? options.cutoff : std::min(50.0, 0.1 * rate);
-        if (!(cutoff < 0.5 * rate)) throw Error("measurements: the cut-off must be below half the sampling rate");
-        for (Eigen::Index c = 0; c < n; ++c) {
-            filtfilt(u.col(c), cutoff, rate);
-            filtfilt(tau.col(c), cutoff, rate);
-        }
-        du = differentiate(u, measured.t);
-        ddu = differentiate(du, measured.t);
-        // the filter's start and end transients: drop two periods of the cut-off at each end
-        const auto trim = static_cast<Eigen::Index>(std::ceil(2.0 * rate / cutoff));
-        first = std::max(first, std::min(trim, N / 4));
-        last = N - first;
-    }
-    Motion motion;
-    Data data(model);
-    Pose p = model.home;
-    // the tracker along the samples: Newton from the pose extrapolated along the motion
-    PoseTracker tracker(p);
-    bool started = false;
-    for (Eigen::Index k = first; k < last; ++k) {
-        const double t = measured.t[at(static_cast<int>(k))];
-        const ActuatorVector uk = u.row(k).transpose();
-        Status status;
-        if (started) {
-            status = tracker.step(model, data, uk);
-            p = tracker.pose();
-        } else {
-            // first sample: the working assembly mode nearest home
-            AssemblyModes modes;
-            status = directKinematics(model, data, uk, modes);
-            double best = std::numeric_limits<double>::infinity();
-            bool found = false;
-            for (const AssemblyMode& mode : modes) {
-                const double d = (mode.p - model.home).norm();
-                if (mode.working && d < best) {
-                    best = d;
-                    p = mode.p;
-                    found = true;
-                }
-            }
-            if (status && !found) {
-                throw Error(
-                    "measurements: no assembly of the robot on its working branches has the actuator "
-                    "positions at " +
-                    timeText(t));
-            }
-            tracker.reset(p);
-            started = true;
-        }
-        if (status) status = inverseDisplacement(model, data, p);
-        if (status) status = platformRates(model, data, du.row(k).transpose(), ddu.row(k).transpose());
-        if (!status) throw Error("measurements at " + timeText(t) + ": " + describe(status, model));
-        motion.t.push_back(t);
-        motion.p.push_back(p);
-        motion.dp.push_back(data.t_M);
-        motion.ddp.push_back(data.t_M_dot);
-    }
-    motion.tau = tau.middleRows(first, last - first);
-    if (!given) {
-        motion.rate = static_cast<double>(N - 1) / (measured.t.back() - measured.t.front());
-        motion.cutoff = options.cutoff > 0.0 ? options.cutoff : std::min(50.0, 0.1 * motion.rate);
-    }
-    return motion;
-}
-
-// ---------------------------------------------------------------------------------------------
-// Least squares
-
-namespace {
 
 /// Weighted least squares x of b = A x on the fit rows, with per-actuator weights from the
 /// residuals of a first unweighted fit; the covariance from the weighted residuals, counting
@@ -704,10 +309,11 @@ void filterCoulombColumns(const Model& model, const Motion& motion, const std::v
     const int n = model.actuators;
     const auto N = static_cast<Eigen::Index>(motion.t.size());
     Eigen::VectorXd series(N);
+    const ButterworthFilter low_pass = butterworth(FilterKind::low_pass, 2, motion.cutoff, motion.rate);
     const auto filterRows = [&](Eigen::VectorXd& x) {
         for (int a = 0; a < n; ++a) {
             for (Eigen::Index k = 0; k < N; ++k) series(k) = x(k * n + a);
-            filtfilt(series, motion.cutoff, motion.rate);
+            filterZeroPhase(low_pass, series, FilterEdges::steady_state);
             for (Eigen::Index k = 0; k < N; ++k) x(k * n + a) = series(k);
         }
     };
@@ -763,7 +369,8 @@ Stacked stack(const Model& model, const Motion& motion, const std::vector<int>& 
     for (Eigen::Index k = 0; k < N; ++k) {
         const std::size_t kk = at(static_cast<int>(k));
         const Status status = inverseDynamicsRegressor(model, data, motion.p[kk], motion.dp[kk], motion.ddp[kk], Y);
-        if (!status) throw Error("identification at " + timeText(motion.t[kk]) + ": " + describe(status, model));
+        if (!status)
+            throw Error("identification at " + text::sampleTime(motion.t[kk]) + ": " + describe(status, model));
         for (std::size_t c = 0; c < columns.size(); ++c)
             s.A.block(k * n, static_cast<Eigen::Index>(c), n, 1) = Y.col(columns[c]);
         if (subtract_known && calibration) {
@@ -1134,32 +741,4 @@ BaseResult identifyBase(const Model& model, const Motion& motion, const Identifi
     fillCorrelation(ls, result.fit);
     return result;
 }
-
-Measurements sensorLog(const PoseLoopResult& run, double noise_u, double noise_tau, unsigned seed) {
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> normal(0.0, 1.0);
-    const auto N = static_cast<Eigen::Index>(run.t.size());
-    const int n = run.actuators;
-    const bool measured = !run.u_measured.empty();
-    if (measured && run.u_measured.size() != run.t.size())
-        throw Error("sensorLog: the run's encoder readings do not match its ticks");
-    Measurements m;
-    m.t = run.t;
-    m.held_forces = true;  // the loop holds each tick's command until the next
-    m.u.resize(N, n);
-    m.tau.resize(N, n);
-    for (Eigen::Index k = 0; k < N; ++k) {
-        const std::size_t kk = at(static_cast<int>(k));
-        for (int a = 0; a < n; ++a) {
-            if (measured) {
-                m.u(k, a) = run.u_measured[kk](a);
-            } else {
-                m.u(k, a) = run.u[kk](a) + (noise_u > 0.0 ? noise_u * normal(rng) : 0.0);
-            }
-            m.tau(k, a) = run.tau[kk](a) + (noise_tau > 0.0 ? noise_tau * normal(rng) : 0.0);
-        }
-    }
-    return m;
-}
-
 }  // namespace nocdyn
