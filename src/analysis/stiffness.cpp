@@ -14,6 +14,7 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 

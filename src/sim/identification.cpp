@@ -15,6 +15,7 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
