@@ -10,6 +10,7 @@
 #include <Eigen/LU>
 #include <Eigen/SVD>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/text.hpp"

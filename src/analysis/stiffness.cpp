@@ -1,6 +1,7 @@
 // Static stiffness and natural frequencies by the virtual joint method (stiffness.hpp).
 #include "nocdyn/analysis/stiffness.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -13,6 +14,7 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 
@@ -22,9 +24,16 @@ namespace {
 
 constexpr double kRankTolerance = 1e-9;  // relative, on unit columns in metres
 constexpr int kMaxLimbColumns = 9;       // 3 joints + 2 beams of 3 deflections
-using LimbColumns = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, kMaxLimbColumns>;
+/// Every small matrix this file decomposes (a limb's columns, the carried rows, a block of K or M)
+/// has this one type: dynamic sizes within a fixed capacity, so that nothing allocates, and one
+/// instantiation of each Eigen decomposition (JacobiSVD and its QR preconditioners, LLT, the
+/// eigensolvers) instead of one per shape, a third of this file's compile time.
+constexpr int kMaxWork = std::max(3 * kMaxLimbs, kMaxLimbColumns);
+using Work = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxWork, kMaxWork>;
+/// A limb's joint and beam twists, column by column (3 x at most kMaxLimbColumns).
+using LimbColumns = Work;
 /// The rows N_j^T S_s of every limb: the platform directions each limb carries a wrench in.
-using CarriedRows = Eigen::Matrix<double, Eigen::Dynamic, 3, 0, 3 * kMaxLimbs, 3>;
+using CarriedRows = Work;
 
 /// D = diag(L, 1, 1): a twist with its rotation in metres (or a pose with theta in metres).
 Vector3 scaled(const Vector3& v, double L) { return {v(0) * L, v(1), v(2)}; }
@@ -188,8 +197,8 @@ Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, 
         const int m = 3 - rank_free;
         Matrix3 K_s = Matrix3::Zero();
         if (m > 0) {
-            using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
-            const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3> Nm = N.rightCols(m);
+            using Small = Work;
+            const Work Nm = N.rightCols(m);
             const Small Kc = Nm.transpose() * C * Nm;
             const Eigen::LLT<Small> llt(Kc);
             if (llt.info() != Eigen::Success) return {StatusCode::rigid_limb, j, 0.0};
@@ -227,8 +236,8 @@ Status cartesianStiffness(const Model& model, const StiffnessModel& compliance, 
     out.scaled_eigenvectors = basis;
     out.contrast = 1.0;
     if (held > 0) {
-        using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
-        const Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3> H = basis.rightCols(held);
+        using Small = Work;
+        const Work H = basis.rightCols(held);
         const Small K_held = H.transpose() * K_scaled * H;
         const Eigen::SelfAdjointEigenSolver<Small> eig(K_held);
         out.scaled_eigenvalues.tail(held) = eig.eigenvalues();
@@ -419,14 +428,14 @@ void lumpedModes(const Model& model, const Data& data, const StiffnessData& stif
     const int f = stiffness.free_directions;
     const auto frequencyOf = [](double w2) { return std::sqrt(std::max(w2, 0.0)) / (2.0 * std::numbers::pi); };
     if (f == 0) {
-        const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix3> eig(stiffness.K, out.M,
-                                                                    Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+        const Eigen::GeneralizedSelfAdjointEigenSolver<Work> eig(Work(stiffness.K), Work(out.M),
+                                                                 Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
         for (int i = 0; i < 3; ++i) out.frequency(i) = frequencyOf(eig.eigenvalues()(i));
         out.shape = eig.eigenvectors();
         return;
     }
-    using Cols = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>;
-    using Small = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
+    using Cols = Work;
+    using Small = Work;
     // the free modes: the free directions F, M-orthonormalised (F R^-1, F^T M F = R^T R)
     const Cols F = stiffness.free.leftCols(f);
     const Small FtMF = F.transpose() * out.M * F;

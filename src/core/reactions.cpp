@@ -250,9 +250,9 @@ NOCDYN_ALWAYS_INLINE bool anyLimbsInLanes(const Model& model, const lean::Frame<
                                           std::integer_sequence<int, kKinds...>) {
     const int kind = model.uniform_limbs / 3;
     bool ok = false;
-    ((kind == kKinds &&
-      (ok = limbsInLanes<static_cast<LimbKind>(kKinds)>(model, f, out, W, rows, weights, scales, terms), true)) ||
-     ...);
+    (void)((kind == kKinds &&
+            (ok = limbsInLanes<static_cast<LimbKind>(kKinds)>(model, f, out, W, rows, weights, scales, terms), true)) ||
+           ...);
     return ok;
 }
 #endif

@@ -11,6 +11,7 @@
 #include <Eigen/LU>
 #include <unsupported/Eigen/MatrixFunctions>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/analysis/linearization.hpp"
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/dynamics.hpp"
@@ -308,10 +309,13 @@ double shakeLoopSpectralRadius(const ShakeLoopLinearization& loop) {
         // rank [lambda I - F, G] < n (the acceleration correction's sum at gain 0, with the last
         // command it feeds): it stays at rest and is no mode of the response
         if (std::abs(r - 1.0) < 1e-9) {
-            Eigen::MatrixXcd pbh(n, n + loop.G.cols());
-            pbh << lambda(i) * Eigen::MatrixXcd::Identity(n, n) - loop.F.cast<std::complex<double>>(),
+            // padded to a square with zero rows, whose singular values are those of the PBH
+            // matrix and m zeros after them: no QR preconditioner is compiled for the rectangle
+            const Eigen::Index m = loop.G.cols();
+            Eigen::MatrixXcd pbh = Eigen::MatrixXcd::Zero(n + m, n + m);
+            pbh.topRows(n) << lambda(i) * Eigen::MatrixXcd::Identity(n, n) - loop.F.cast<std::complex<double>>(),
                 loop.G.cast<std::complex<double>>();
-            const Eigen::JacobiSVD<Eigen::MatrixXcd> svd(pbh);
+            const Eigen::JacobiSVD<Eigen::MatrixXcd, Eigen::NoQRPreconditioner> svd(pbh);
             if (svd.singularValues()(n - 1) <= 1e-9 * scale) continue;
         }
         radius = std::max(radius, r);

@@ -14,6 +14,7 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/derivatives.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"

@@ -12,6 +12,7 @@
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/printable.hpp"

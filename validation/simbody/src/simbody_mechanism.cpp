@@ -27,10 +27,10 @@ constexpr double kMaxJump = 0.05;
 // Subdivision of a failed step into up to 2^kMaxHalvings pieces in pose space.
 constexpr int kMaxHalvings = 8;
 
-SimTK::Vec3 toVec3(const Eigen::Vector2d& v) { return {v.x(), v.y(), 0.0}; }
+SimTK::Vec3 toVec3(const ::Eigen::Vector2d& v) { return {v.x(), v.y(), 0.0}; }
 
 /// Body whose frame coincides with Ground's at home: c.o.m. and central inertia given there.
-SimTK::Body::Rigid rigidBody(double mass, double inertia, const Eigen::Vector2d& com) {
+SimTK::Body::Rigid rigidBody(double mass, double inertia, const ::Eigen::Vector2d& com) {
     using namespace SimTK;
     const Vec3 c = toVec3(com);
     return Body::Rigid(MassProperties(mass, c, Inertia(inertia).shiftFromMassCenter(-c, mass)));
@@ -39,9 +39,9 @@ SimTK::Body::Rigid rigidBody(double mass, double inertia, const Eigen::Vector2d&
 /// The platform's Planar coordinates [theta, x, y] - home, prescribed (values set from outside).
 class PlatformMotion final : public SimTK::Motion::Custom::Implementation {
 public:
-    Eigen::Vector3d q = Eigen::Vector3d::Zero();
-    Eigen::Vector3d qdot = Eigen::Vector3d::Zero();
-    Eigen::Vector3d qdotdot = Eigen::Vector3d::Zero();
+    ::Eigen::Vector3d q = ::Eigen::Vector3d::Zero();
+    ::Eigen::Vector3d qdot = ::Eigen::Vector3d::Zero();
+    ::Eigen::Vector3d qdotdot = ::Eigen::Vector3d::Zero();
 
     SimTK::Motion::Level getLevel(const SimTK::State&) const override { return SimTK::Motion::Position; }
     void calcPrescribedPosition(const SimTK::State&, int nq, SimTK::Real* out) const override {
@@ -99,8 +99,8 @@ public:
     SimTK::Real calcPotentialEnergy(const SimTK::State&) const override { return 0.0; }
 };
 
-Eigen::VectorXd toEigen(const SimTK::Vector& v) {
-    Eigen::VectorXd out(v.size());
+::Eigen::VectorXd toEigen(const SimTK::Vector& v) {
+    ::Eigen::VectorXd out(v.size());
     for (int i = 0; i < v.size(); ++i) out[i] = v[i];
     return out;
 }
@@ -127,7 +127,7 @@ public:
     std::vector<std::array<SimTK::MobilizedBody, 3>> mobilizers;  // per limb and tree joint
     std::vector<SimTK::Constraint::PointOnLine> closures;         // per limb: its loop closure
     detail::TreeIndices tree;
-    Eigen::MatrixXd rows;     // joint rate rows (3 L x nu)
+    ::Eigen::MatrixXd rows;     // joint rate rows (3 L x nu)
     std::vector<int> free_q;  // the passive tree coordinates
     double potential_home = 0.0;
 
@@ -143,34 +143,34 @@ public:
     [[nodiscard]] const SimTK::State& current() const;
     /// Actuator a's joint rate row applied to the tree coordinates or rates x: u_a or du_a.
     [[nodiscard]] double actuatedRate(std::size_t a, const SimTK::Vector& x) const {
-        const auto row = rows.row(static_cast<Eigen::Index>(actuated[a]));
+        const auto row = rows.row(static_cast<::Eigen::Index>(actuated[a]));
         double sum = 0.0;
-        for (Eigen::Index i = 0; i < row.size(); ++i) sum += row[i] * x[static_cast<int>(i)];
+        for (::Eigen::Index i = 0; i < row.size(); ++i) sum += row[i] * x[static_cast<int>(i)];
         return sum;
     }
 
     /// Newton projection of the passive coordinates from `seed` with the platform at pose p;
     /// true when it converged within kMaxJump of the seed.
-    bool tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed);
+    bool tryAssemble(const ::Eigen::Vector3d& p, const ::Eigen::VectorXd& seed);
     /// Assembles at pose p: from `seed`, else by subdividing the way from (p_from, q_from).
-    void assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed, const Eigen::Vector3d& p_from,
-                  const Eigen::VectorXd& q_from);
+    void assemble(double t, const ::Eigen::Vector3d& p, const ::Eigen::VectorXd& seed, const ::Eigen::Vector3d& p_from,
+                  const ::Eigen::VectorXd& q_from);
     /// Velocities with the platform's rate prescribed (the Motion's qdot), after assemble().
     void projectVelocities();
     /// Applies the actuator forces tau (file order) to `s` as the plant does: DiscreteForces.
-    void applyActuatorForces(SimTK::State& s, const Eigen::VectorXd& tau);
+    void applyActuatorForces(SimTK::State& s, const ::Eigen::VectorXd& tau);
     /// Every joint's reaction (MechanismSample::reactions) at the inverse-dynamics state realized
     /// to Acceleration with the actuator forces applied.
-    [[nodiscard]] std::vector<Eigen::Vector3d> jointReactions() const;
+    [[nodiscard]] std::vector<::Eigen::Vector3d> jointReactions() const;
 };
 
 SimbodyMechanism::Impl::Impl(const RobotDescription& description)
     : robot(description), matter(system), forces(system), actuation(forces, matter) {
     using namespace SimTK;
     validate(robot);
-    const Eigen::Vector3d& home = robot.home;
-    const Eigen::Vector2d C(home[1], home[2]);
-    const Eigen::Matrix2d Rh = Eigen::Rotation2Dd(home[0]).toRotationMatrix();
+    const ::Eigen::Vector3d& home = robot.home;
+    const ::Eigen::Vector2d C(home[1], home[2]);
+    const ::Eigen::Matrix2d Rh = ::Eigen::Rotation2Dd(home[0]).toRotationMatrix();
     const Vec3 c_home(home[1], home[2], 0.0);
     platform = MobilizedBody::Planar(
         matter.Ground(), Transform(c_home),
@@ -274,7 +274,7 @@ SimbodyMechanism::Impl::Impl(const RobotDescription& description)
     body_forces.resize(matter.getNumBodies());
 }
 
-bool SimbodyMechanism::Impl::tryAssemble(const Eigen::Vector3d& p, const Eigen::VectorXd& seed) {
+bool SimbodyMechanism::Impl::tryAssemble(const ::Eigen::Vector3d& p, const ::Eigen::VectorXd& seed) {
     using namespace SimTK;
     motion->q = p - robot.home;
     // The prescribed q are evaluated when the Time stage is realized: invalidate it, since
@@ -307,15 +307,15 @@ bool SimbodyMechanism::Impl::tryAssemble(const Eigen::Vector3d& p, const Eigen::
     return jump <= kMaxJump && err < 1e-10;
 }
 
-void SimbodyMechanism::Impl::assemble(double t, const Eigen::Vector3d& p, const Eigen::VectorXd& seed,
-                                      const Eigen::Vector3d& p_from, const Eigen::VectorXd& q_from) {
+void SimbodyMechanism::Impl::assemble(double t, const ::Eigen::Vector3d& p, const ::Eigen::VectorXd& seed,
+                                      const ::Eigen::Vector3d& p_from, const ::Eigen::VectorXd& q_from) {
     if (tryAssemble(p, seed)) return;
     for (int halvings = 1; halvings <= kMaxHalvings; ++halvings) {
         const int pieces = 1 << halvings;
-        Eigen::VectorXd q = q_from;
+        ::Eigen::VectorXd q = q_from;
         bool ok = true;
         for (int s = 1; s <= pieces && ok; ++s) {
-            const Eigen::Vector3d ps = p_from + (p - p_from) * (static_cast<double>(s) / pieces);
+            const ::Eigen::Vector3d ps = p_from + (p - p_from) * (static_cast<double>(s) / pieces);
             ok = tryAssemble(ps, q);
             if (ok) q = toEigen(state.getQ());
         }
@@ -340,7 +340,7 @@ void SimbodyMechanism::Impl::projectVelocities() {
     system.projectU(state, no_error_estimate, forced, results);
 }
 
-void SimbodyMechanism::Impl::applyActuatorForces(SimTK::State& s, const Eigen::VectorXd& tau) {
+void SimbodyMechanism::Impl::applyActuatorForces(SimTK::State& s, const ::Eigen::VectorXd& tau) {
     using namespace SimTK;
     // a mobility force along a tree joint's mobility (sign: reversed joints), equal and opposite
     // torques across a closure joint, as the joint friction
@@ -348,7 +348,7 @@ void SimbodyMechanism::Impl::applyActuatorForces(SimTK::State& s, const Eigen::V
     body_forces = SpatialVec(Vec3(0), Vec3(0));
     for (std::size_t a = 0; a < actuated.size(); ++a) {
         const JointFriction::Joint& j = friction->joints[actuated[a]];
-        const double f = tau[static_cast<Eigen::Index>(a)];
+        const double f = tau[static_cast<::Eigen::Index>(a)];
         if (!j.closure) {
             j.mobilizer.applyOneMobilityForce(s, 0, j.sign * f, mobility_forces);
         } else {
@@ -360,11 +360,11 @@ void SimbodyMechanism::Impl::applyActuatorForces(SimTK::State& s, const Eigen::V
     actuation.setAllBodyForces(s, body_forces);
 }
 
-std::vector<Eigen::Vector3d> SimbodyMechanism::Impl::jointReactions() const {
+std::vector<::Eigen::Vector3d> SimbodyMechanism::Impl::jointReactions() const {
     using namespace SimTK;
     Vector_<SpatialVec> at_M;  // on each mobilized body from its parent, at its M origin, in Ground
     matter.calcMobilizerReactionForces(state, at_M);
-    std::vector<Eigen::Vector3d> out;
+    std::vector<::Eigen::Vector3d> out;
     for (std::size_t j = 0; j < robot.limbs.size(); ++j) {
         const LimbDescription& limb = robot.limbs[j];
         const auto c = static_cast<std::size_t>(closure[j]);
@@ -424,8 +424,8 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
     out.reserve(times.size());
 
     // Continuation from home: the previous solution, extrapolated to second order in time.
-    Eigen::VectorXd q_prev = Eigen::VectorXd::Zero(nv), u_prev = q_prev, a_prev = q_prev;
-    Eigen::Vector3d p_prev = m.robot.home;
+    ::Eigen::VectorXd q_prev = ::Eigen::VectorXd::Zero(nv), u_prev = q_prev, a_prev = q_prev;
+    ::Eigen::Vector3d p_prev = m.robot.home;
     double t_prev = 0.0;
     bool have_prev = false;
     Matrix G;
@@ -433,7 +433,7 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
     for (const double t : times) {
         Pose p, dp, ddp;
         trajectory.evaluate(t, p, dp, ddp);
-        Eigen::VectorXd seed = q_prev;
+        ::Eigen::VectorXd seed = q_prev;
         if (have_prev) {
             const double dt = t - t_prev;
             seed += dt * u_prev + 0.5 * dt * dt * a_prev;
@@ -449,15 +449,15 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
         m.projectVelocities();
         m.system.realize(m.state, Stage::Acceleration);
 
-        const Eigen::VectorXd q = toEigen(m.state.getQ());
-        const Eigen::VectorXd u = toEigen(m.state.getU());
-        const Eigen::VectorXd udot = toEigen(m.state.getUDot());
+        const ::Eigen::VectorXd q = toEigen(m.state.getQ());
+        const ::Eigen::VectorXd u = toEigen(m.state.getU());
+        const ::Eigen::VectorXd udot = toEigen(m.state.getUDot());
         // h = M u' + c - Q_applied (gravity and joint friction); G the closure Jacobian.
         m.matter.calcResidualForceIgnoringConstraints(m.state, m.system.getMobilityForces(m.state, Stage::Dynamics),
                                                       m.system.getRigidBodyForces(m.state, Stage::Dynamics),
                                                       m.state.getUDot(), h);
         m.matter.calcG(m.state, G);
-        Eigen::MatrixXd Ge(G.nrow(), G.ncol());
+        ::Eigen::MatrixXd Ge(G.nrow(), G.ncol());
         for (int r = 0; r < G.nrow(); ++r)
             for (int c = 0; c < G.ncol(); ++c) Ge(r, c) = G(r, c);
         const detail::ForceDistribution forces = detail::distributeForces(m.robot, m.tree, Ge, m.rows, u, toEigen(h), t,
@@ -466,7 +466,7 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
         MechanismSample s;
         s.t = t;
         s.pose =
-            Eigen::Vector3d(q[m.tree.platform_v[0]], q[m.tree.platform_v[1]], q[m.tree.platform_v[2]]) + m.robot.home;
+            ::Eigen::Vector3d(q[m.tree.platform_v[0]], q[m.tree.platform_v[1]], q[m.tree.platform_v[2]]) + m.robot.home;
         s.u.resize(n);
         s.du.resize(n);
         s.ddu.resize(n);
@@ -474,7 +474,7 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
         for (std::size_t j = 0; j < m.robot.limbs.size(); ++j) {
             for (std::size_t k = 0; k < 3; ++k) {
                 if (!m.robot.limbs[j].joints[k].actuated) continue;
-                const auto row = m.rows.row(static_cast<Eigen::Index>(3 * j + k));
+                const auto row = m.rows.row(static_cast<::Eigen::Index>(3 * j + k));
                 s.u[a] = row.dot(q);
                 s.du[a] = row.dot(u);
                 s.ddu[a] = row.dot(udot);
@@ -508,14 +508,14 @@ std::vector<MechanismSample> SimbodyMechanism::inverseDynamics(const PoseTraject
 
 namespace nocdyn::validation {
 
-void SimbodyMechanism::resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d& pose_rate, double t) {
+void SimbodyMechanism::resetPlant(const ::Eigen::Vector3d& pose, const ::Eigen::Vector3d& pose_rate, double t) {
     using namespace SimTK;
     Impl& m = *impl_;
     // assembled with the platform prescribed (the inverse-dynamics State), then copied over
     m.motion->qdot = pose_rate;
     m.motion->qdotdot.setZero();
     m.state.setTime(t);
-    const Eigen::VectorXd home_q = Eigen::VectorXd::Zero(m.tree.nv);
+    const ::Eigen::VectorXd home_q = ::Eigen::VectorXd::Zero(m.tree.nv);
     m.assemble(t, pose, home_q, m.robot.home, home_q);
     m.projectVelocities();
     m.plant.setTime(t);
@@ -526,10 +526,10 @@ void SimbodyMechanism::resetPlant(const Eigen::Vector3d& pose, const Eigen::Vect
     m.system.realize(m.plant, Stage::Velocity);
 }
 
-void SimbodyMechanism::setActuatorForces(const Eigen::VectorXd& tau) {
+void SimbodyMechanism::setActuatorForces(const ::Eigen::VectorXd& tau) {
     using namespace SimTK;
     Impl& m = *impl_;
-    if (tau.size() != static_cast<Eigen::Index>(m.actuated.size())) {
+    if (tau.size() != static_cast<::Eigen::Index>(m.actuated.size())) {
         throw Error("Simbody plant: " + std::to_string(tau.size()) + " actuator forces for " +
                     std::to_string(m.actuated.size()) + " actuators");
     }
@@ -540,7 +540,7 @@ void SimbodyMechanism::setActuatorForces(const Eigen::VectorXd& tau) {
     m.body_forces = SpatialVec(Vec3(0), Vec3(0));
     for (std::size_t a = 0; a < m.actuated.size(); ++a) {
         const JointFriction::Joint& j = m.friction->joints[m.actuated[a]];
-        const double f = tau[static_cast<Eigen::Index>(a)];
+        const double f = tau[static_cast<::Eigen::Index>(a)];
         if (!j.closure) {
             j.mobilizer.applyOneMobilityForce(s, 0, j.sign * f, m.mobility_forces);
         } else {
@@ -566,29 +566,29 @@ const SimTK::State& SimbodyMechanism::Impl::current() const { return run.current
 
 double SimbodyMechanism::time() const { return impl_->current().getTime(); }
 
-Eigen::VectorXd SimbodyMechanism::u() const {
+::Eigen::VectorXd SimbodyMechanism::u() const {
     const SimTK::Vector& q = impl_->current().getQ();
-    Eigen::VectorXd out(static_cast<Eigen::Index>(impl_->actuated.size()));
+    ::Eigen::VectorXd out(static_cast<::Eigen::Index>(impl_->actuated.size()));
     for (std::size_t a = 0; a < impl_->actuated.size(); ++a)
-        out[static_cast<Eigen::Index>(a)] = impl_->actuatedRate(a, q);
+        out[static_cast<::Eigen::Index>(a)] = impl_->actuatedRate(a, q);
     return out;
 }
 
-Eigen::VectorXd SimbodyMechanism::du() const {
+::Eigen::VectorXd SimbodyMechanism::du() const {
     const SimTK::Vector& v = impl_->current().getU();
-    Eigen::VectorXd out(static_cast<Eigen::Index>(impl_->actuated.size()));
+    ::Eigen::VectorXd out(static_cast<::Eigen::Index>(impl_->actuated.size()));
     for (std::size_t a = 0; a < impl_->actuated.size(); ++a)
-        out[static_cast<Eigen::Index>(a)] = impl_->actuatedRate(a, v);
+        out[static_cast<::Eigen::Index>(a)] = impl_->actuatedRate(a, v);
     return out;
 }
 
-Eigen::Vector3d SimbodyMechanism::pose() const {
+::Eigen::Vector3d SimbodyMechanism::pose() const {
     const auto& i = impl_->tree.platform_v;
     const SimTK::Vector& q = impl_->current().getQ();
-    return Eigen::Vector3d(q[i[0]], q[i[1]], q[i[2]]) + impl_->robot.home;
+    return ::Eigen::Vector3d(q[i[0]], q[i[1]], q[i[2]]) + impl_->robot.home;
 }
 
-Eigen::Vector3d SimbodyMechanism::poseRate() const {
+::Eigen::Vector3d SimbodyMechanism::poseRate() const {
     const auto& i = impl_->tree.platform_v;
     const SimTK::Vector& u = impl_->current().getU();
     return {u[i[0]], u[i[1]], u[i[2]]};

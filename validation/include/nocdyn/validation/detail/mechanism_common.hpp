@@ -34,6 +34,7 @@
 #include <Eigen/SVD>
 
 #include "nocdyn/description.hpp"
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/error.hpp"
 
 namespace nocdyn::validation::detail {
