@@ -32,9 +32,9 @@ struct SimulateOptions {
     std::string interpolation = "cubic";
     /// Seconds to simulate; empty: the span of the forces (kSimulatedDurationRange).
     std::optional<double> duration;
-    double rate = 10000.0;  ///< output samples per second (kRateRange)
-    double atol = 1e-12;    ///< kAbsoluteToleranceRange
-    double rtol = 1e-10;    ///< kRelativeToleranceRange
+    double rate = 10000.0;   ///< output samples per second (kRateRange)
+    double atol = 1e-12;     ///< kAbsoluteToleranceRange
+    double rtol = 1e-10;     ///< kRelativeToleranceRange
     double max_step = 1e-2;  ///< the integrator's largest step [s] (kMaxStepRange)
     /// Which working assembly mode of the first row's u (1-based, as forward-kinematics lists
     /// them); 0: the one nearest home.

@@ -127,7 +127,7 @@ public:
     std::vector<std::array<SimTK::MobilizedBody, 3>> mobilizers;  // per limb and tree joint
     std::vector<SimTK::Constraint::PointOnLine> closures;         // per limb: its loop closure
     detail::TreeIndices tree;
-    ::Eigen::MatrixXd rows;     // joint rate rows (3 L x nu)
+    ::Eigen::MatrixXd rows;   // joint rate rows (3 L x nu)
     std::vector<int> free_q;  // the passive tree coordinates
     double potential_home = 0.0;
 
