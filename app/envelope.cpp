@@ -13,6 +13,8 @@ void validate(const EnvelopeOptions& options) {
     requireIn(options.min_frequency, kEnvelopeFrequencyRange, "min_frequency");
     requireIn(options.max_frequency, kEnvelopeFrequencyRange, "max_frequency");
     requireIn(options.points, kEnvelopePointsRange, "points");
+    requireIn(options.samples_per_period, kSamplesPerPeriodRange, "samples_per_period");
+    requireIn(options.relative_tolerance, kEnvelopeToleranceRange, "relative_tolerance");
     requireIn(options.amplification, kAmplificationRange, "amplification");
     if (options.max_frequency < options.min_frequency)
         throw OptionError("max_frequency", "must be at least min_frequency");
@@ -25,6 +27,8 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
     envelope.min_frequency = options.min_frequency;
     envelope.max_frequency = options.max_frequency;
     envelope.frequencies = options.points;
+    envelope.samples_per_period = options.samples_per_period;
+    envelope.relative_tolerance = options.relative_tolerance;
     envelope.amplification = options.amplification;
     // called between points, from this thread
     envelope.progress = [&observer](int done, int total) {

@@ -17,12 +17,18 @@ namespace nocdyn::app {
 /// Frequencies [Hz] and their count per axis the envelope accepts.
 inline constexpr Range kEnvelopeFrequencyRange{kEnvelopeMinFrequency, kEnvelopeMaxFrequency, "Hz"};
 inline constexpr Range kEnvelopePointsRange{1.0, static_cast<double>(kEnvelopeMaxPoints), "points"};
+/// Samples of each period the limits are checked on, and the bisection's relative tolerance.
+inline constexpr Range kSamplesPerPeriodRange{8.0, 65536.0, "samples"};
+inline constexpr Range kEnvelopeToleranceRange{1e-15, 0.5, ""};
 
 struct EnvelopeOptions {
     RobotSource robot;
     double min_frequency = 1.0;    ///< [Hz] (kEnvelopeFrequencyRange)
     double max_frequency = 100.0;  ///< [Hz], at least min_frequency
     int points = 41;               ///< log-spaced frequencies per axis, both ends included
+    int samples_per_period = 256;  ///< samples of each period checked (kSamplesPerPeriodRange)
+    /// The amplitude's bisection stops at (hi - lo) <= tolerance * hi (kEnvelopeToleranceRange).
+    double relative_tolerance = 1e-6;
     /// The band's third bound: the largest dynamic amplification of an axis accepted
     /// (kAmplificationRange; envelope.hpp).
     double amplification = kDefaultAmplification;

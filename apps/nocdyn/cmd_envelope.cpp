@@ -87,6 +87,16 @@ void addEnvelopeCommand(CLI::App& app) {
         ->check(CLI::Range(1, kEnvelopeMaxPoints))
         ->capture_default_str();
     command
+        ->add_option("--samples-per-period", options->samples_per_period,
+                     "Samples of each period the limits are checked on")
+        ->check(within(app::kSamplesPerPeriodRange))
+        ->capture_default_str();
+    command
+        ->add_option("--relative-tolerance", options->relative_tolerance,
+                     "The amplitude's bisection stops at (hi - lo) <= tolerance * hi")
+        ->check(within(app::kEnvelopeToleranceRange))
+        ->capture_default_str();
+    command
         ->add_option("--amplification", options->amplification,
                      "The band's third bound: the largest dynamic amplification of an axis accepted (the lumped\n"
                      "compliant model's motion along the axis per unit of the rigid motion commanded); at and above\n"

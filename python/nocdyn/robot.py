@@ -286,15 +286,12 @@ class Robot(RobotDynamics):
     def envelope(self, axes=None, **options):  # noqa: ARG002 (axes: old, ignored)
         """Deprecated: ``nocdyn.envelope(robot=robot, ...)``, an Envelope table whose
         ``first_natural_frequency`` is the band's third bound. The old arguments are read as the
-        job's: frequencies is points; axes (every axis is returned, the column axis says which),
-        samples_per_period and relative_tolerance have no counterpart (the job's sampling is the
-        command line's) and are ignored with a warning."""
+        job's (frequencies is points); axes is ignored with a warning (every axis is returned,
+        the column axis says which)."""
         _deprecated("Robot.envelope", "nocdyn.envelope(robot=robot, ...)")
         if "frequencies" in options:
             options["points"] = options.pop("frequencies")
-        _ignored("Robot.envelope", dict(options, axes=axes), ("axes", "samples_per_period", "relative_tolerance"))
-        for name in ("samples_per_period", "relative_tolerance"):
-            options.pop(name, None)
+        _ignored("Robot.envelope", {"axes": axes}, ("axes",))
         return _commands.envelope(robot=self, progress=False, **options)
 
     def identify_payload(self, t, u, tau, du=None, ddu=None, **options) -> PayloadEstimate:

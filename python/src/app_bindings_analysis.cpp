@@ -70,6 +70,8 @@ void bindAnalysis(py::module_& m) {
         .option("min_frequency", &app::EnvelopeOptions::min_frequency)
         .option("max_frequency", &app::EnvelopeOptions::max_frequency)
         .option("points", &app::EnvelopeOptions::points)
+        .option("samples_per_period", &app::EnvelopeOptions::samples_per_period)
+        .option("relative_tolerance", &app::EnvelopeOptions::relative_tolerance)
         .option("amplification", &app::EnvelopeOptions::amplification);
     m.def(
         "_run_envelope",

@@ -234,12 +234,15 @@ def test_envelope_equals_the_cli_envelope(tmp_path, cli, paper_robot):
     with pytest.warns(DeprecationWarning, match="nocdyn.envelope"):
         wrapped = paper_robot.envelope(min_frequency=5, max_frequency=50, points=2)
     np.testing.assert_array_equal(wrapped["amplitude"], table["amplitude"])
-    # the old arguments: frequencies is points; samples_per_period said to be ignored
+    # the old arguments: frequencies is points, samples_per_period the job's; axes said to be ignored
     with warnings.catch_warnings(record=True) as said:
         warnings.simplefilter("always")
-        old = paper_robot.envelope(min_frequency=5, max_frequency=50, frequencies=2, samples_per_period=64)
+        old = paper_robot.envelope("x", min_frequency=5, max_frequency=50, frequencies=2, samples_per_period=64)
     assert [w.category for w in said] == [DeprecationWarning, UserWarning], said
-    assert "samples_per_period is no longer an option" in str(said[1].message)
+    assert "axes is no longer an option" in str(said[1].message)
+    coarse = nocdyn.envelope(robot=paper_robot, min_frequency=5, max_frequency=50, points=2, samples_per_period=64,
+                             progress=False)
+    np.testing.assert_array_equal(old["amplitude"], coarse["amplitude"])
     np.testing.assert_array_equal(old["amplitude"], table["amplitude"])
 
 
