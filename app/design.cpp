@@ -298,8 +298,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         std::optional<RobotDescription> first;
         try {
             first = io::designRobot(family, points.front());
-        } catch (const Error&) {
-            // a design the sweep itself will report
+        } catch (const Error&) {  // NOLINT(bugprone-empty-catch): a design the sweep itself will report
         }
         if (first && !declaresCompliance(*first)) {
             throw OptionError("metric", "first_frequency_min: the family '" + io::terminalText(first->name) +
@@ -367,7 +366,10 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         observer);
 
     std::vector<DesignEvaluation> evaluations;
+    evaluations.reserve(done.size());
+    out.records.reserve(done.size());
     for (auto& r : done) {
+        if (!r) throw Error("design: a design was left unevaluated");  // every index not done was in todo
         out.records.push_back(std::move(*r));
         evaluations.push_back(out.records.back().evaluation);
     }
@@ -382,6 +384,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     if (out.best) out.best_text = bestText(family, metrics, out.records[*out.best]);
     if (journal) {
         std::vector<io::DesignRecord> front_records;
+        front_records.reserve(out.front.size());
         for (const std::size_t i : out.front) front_records.push_back(out.records[i]);
         io::writeDesignTable((dir / "pareto.csv").string(), out.columns, front_records);
         if (!options.no_figures) writeFigures(dir, family, metrics, design, out.records, out.front);

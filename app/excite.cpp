@@ -25,6 +25,7 @@ std::string useText(const ExcitationLimitUse& use) {
 /// One baseline line: the paper's trajectory about home, its condition number and limit use.
 std::string baseline(const Model& model, const char* key, const PoseTrajectory& paper,
                      const ExcitationOptions& options) {
+    if (!paper.duration) throw Error(std::string("excite: ") + key + " has no duration");
     const ExcitationAssessment a =
         assessExcitation(model, aboutHome(model, paper), *paper.duration, options.check_samples, options);
     std::string text = key + std::string(": {condition_number: ") + text::number(a.condition) +

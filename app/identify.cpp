@@ -227,6 +227,7 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
                     ", unit: " + io::yamlQuoted(e.unit) + "}\n";
         }
         std::vector<std::string> order;
+        order.reserve(result.beta.size());
         for (const Estimate& e : result.beta) order.push_back(e.name);
         text += covarianceYaml(result.covariance, order);
         std::string comment = "# " + io::terminalText(robot.name) + ": calibration (base parameters) identified from " +

@@ -259,8 +259,8 @@ void reproduceIdentification(const std::filesystem::path& out, std::ostream& sum
     std::vector<Outcome> outcomes;
     outcomes.reserve(cases.size());
     for (const Case& c : cases) outcomes.push_back(runCase(robot, model, c, duration, folder));
-    if (outcomes.front().result) {
-        renderFigure(forcesFigure(cases.front(), outcomes.front().result->fit), (folder / "forces").string());
+    if (const auto& first = outcomes.front().result) {
+        renderFigure(forcesFigure(cases.front(), first->fit), (folder / "forces").string());
     }
 
     const Payload p = truth();

@@ -62,6 +62,7 @@ PlotPanel jointPanel(const InverseDynamicsSeries& series, bool forces, const std
     const double scale = forces ? 1.0 : 1e3;
     const std::string symbol = forces ? "{/Symbol t}_" : "u_";
     std::vector<double> t;
+    t.reserve(series.samples.size());
     for (const InverseDynamicsSample& s : series.samples) t.push_back(s.t);
     for (int j = 0; j < 3; ++j) {
         PlotSeries line;

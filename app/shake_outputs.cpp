@@ -69,6 +69,7 @@ std::string shakeJson(const ShakeOutcome& outcome) {
     const PoseLoopResult& loop = outcome.loop;
     // every error a percentage, with _percent in its name (the text prints the same numbers)
     std::vector<double> pass_percent;
+    pass_percent.reserve(outcome.pass_rms.size());
     for (double e : outcome.pass_rms) pass_percent.push_back(100.0 * e);
     nlohmann::json json;
     json["time_scale"] = fit.time_scale;

@@ -207,6 +207,7 @@ DesignEvaluation evaluateDesign(const RobotDescription& robot, const std::vector
                 case DesignMetricKind::rms_force:
                 case DesignMetricKind::stroke:
                 case DesignMetricKind::peak_reaction: {
+                    if (!options.trajectory) throw Error("design: a trajectory metric needs a trajectory");
                     if (!peaks) {
                         TrajectoryPeaks& p = peaks.emplace();
                         const auto n = static_cast<std::size_t>(model.actuators);
@@ -214,8 +215,8 @@ DesignEvaluation evaluateDesign(const RobotDescription& robot, const std::vector
                         p.u_max.assign(n, -INFINITY);
                         p.sum_tau2.assign(n, 0.0);
                         (void)streamInverseDynamicsWithReactions(
-                            model, options.trajectory.value(), sampleGrid(options.duration, options.rate),
-                            LimitPolicy::error, [&](const InverseDynamicsSample& s, const Reactions& r) {
+                            model, *options.trajectory, sampleGrid(options.duration, options.rate), LimitPolicy::error,
+                            [&](const InverseDynamicsSample& s, const Reactions& r) {
                                 for (std::size_t a = 0; a < n; ++a) {
                                     const auto k = static_cast<Eigen::Index>(a);
                                     p.u_min[a] = std::min(p.u_min[a], s.u(k));

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <sstream>
 
 #include "nocdyn/dynamics.hpp"
@@ -102,8 +103,8 @@ public:
     void checkBetween(double t0, double t1) {
         if (spacing_ <= 0.0 || t1 - t0 <= spacing_) return;
         const double pieces = std::ceil((t1 - t0) / spacing_);
-        for (double i = 1.0; i < pieces; i += 1.0) {
-            evaluate(t0 + (t1 - t0) * (i / pieces), scratch_, true);
+        for (std::int64_t i = 1; static_cast<double>(i) < pieces; ++i) {
+            evaluate(t0 + (t1 - t0) * (static_cast<double>(i) / pieces), scratch_, true);
             ++summary.checks_between_samples;
         }
     }
@@ -157,8 +158,8 @@ void requireReachable(const Model& model, const PoseTrajectory& trajectory, doub
     const double pieces = f > 0.0 ? std::ceil(duration * kLimitChecksPerPeriod * f) : 1.0;
     Data data(model);
     Pose p, dp, ddp;
-    for (double i = 0.0; i <= pieces; i += 1.0) {
-        const double t = duration * (i / pieces);
+    for (std::int64_t i = 0; static_cast<double>(i) <= pieces; ++i) {
+        const double t = duration * (static_cast<double>(i) / pieces);
         trajectory.evaluate(t, p, dp, ddp);
         if (!p.allFinite() || !dp.allFinite() || !ddp.allFinite()) {
             throw Error(atTime(t, "the trajectory's pose or its derivatives are not finite"));

@@ -171,6 +171,7 @@ Status
 inverseDynamicsFast(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp) {
     // x - x is 0 for a finite x and NaN otherwise: one test for the nine inputs
     double zero = 0.0;
+    // NOLINTNEXTLINE(misc-redundant-expression): x - x is the finiteness test
     for (int i = 0; i < 3; ++i) zero += (p(i) - p(i)) + (dp(i) - dp(i)) + (ddp(i) - ddp(i));
     if (!(zero == 0.0)) [[unlikely]]
         return rejected(model, data, p, dp, ddp);

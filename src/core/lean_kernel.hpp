@@ -173,10 +173,12 @@ template <class S>
 NOCDYN_ALWAYS_INLINE S asS(double x) {
     return splat<S>(x);
 }
+// NOLINTBEGIN(bugprone-return-const-ref-from-parameter): identities over lvalues, inlined
 template <class S, fastmath::Packet P>
 NOCDYN_ALWAYS_INLINE const P& asS(const P& x) {
     return x;
 }
+// NOLINTEND(bugprone-return-const-ref-from-parameter)
 
 NOCDYN_ALWAYS_INLINE double massOf(const LimbModel& limb, int b) { return limb.M[static_cast<std::size_t>(b)].mass; }
 template <int kN>

@@ -161,6 +161,7 @@ NOCDYN_ALWAYS_INLINE PackOfLanes<static_cast<int>(kN)> lanesOf(const std::array<
     std::memcpy(&v, a.data(), sizeof v);
     return v;
 }
+// NOLINTNEXTLINE(bugprone-return-const-ref-from-parameter): the identity over one lane, inlined
 NOCDYN_ALWAYS_INLINE const LimbModel& modelOf(const LimbModel& limb) { return limb; }
 template <int kN>
 NOCDYN_ALWAYS_INLINE const LimbModel& modelOf(const LaneLimbOf<kN>& limb) {
@@ -219,7 +220,7 @@ NOCDYN_ALWAYS_INLINE PackOfLanes<kN> branchOf(const LaneLimbOf<kN>& limb) {
 NOCDYN_ALWAYS_INLINE double branchSign(int branch) { return static_cast<double>(branch); }
 template <fastmath::Packet P>
 NOCDYN_ALWAYS_INLINE const P& branchSign(const P& branch) {
-    return branch;
+    return branch;  // NOLINT(bugprone-return-const-ref-from-parameter): the identity over packets
 }
 
 /// The platform's displacement from home on S (limb_ik.hpp, PlatformDisplacement):

@@ -276,6 +276,7 @@ Status
 inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
                              Reactions& reactions) {
     double zero = 0.0;  // 0 for finite inputs, NaN otherwise
+    // NOLINTNEXTLINE(misc-redundant-expression): x - x is the finiteness test
     for (int i = 0; i < 3; ++i) zero += (p(i) - p(i)) + (dp(i) - dp(i)) + (ddp(i) - ddp(i));
     const double dtheta = p(0) - model.home(0);
     if (!(zero == 0.0) || !(std::abs(dtheta) < 1.0e6)) [[unlikely]]

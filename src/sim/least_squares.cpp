@@ -722,6 +722,7 @@ BaseResult identifyBase(const Model& model, const Motion& motion, const Identifi
     const Eigen::Index fit = fitSamples(motion, options, base.rank, n);
     Stacked s = stack(model, motion, base.independent, false);
     std::vector<std::string> names;
+    names.reserve(base.independent.size());
     for (const int c : base.independent) names.push_back(parameterName(model, c));
     const LeastSquares ls = solveWeighted(model, s.A.topRows(fit * n), s.tau.head(fit * n), n, names);
     const Eigen::VectorXd prior = base.K * standardParameters(model);
