@@ -213,7 +213,7 @@ void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& fami
     const std::optional<std::size_t> best = bestDesign(records, metrics);
     if (!best) return;
     const Model model(io::designRobot(family, records[*best].point));
-    WorkspaceOptions ws = design.workspace;
+    nocdyn::WorkspaceOptions ws = design.workspace;
     ws.curves = true;
     if (design.workspace_theta_at_home) ws.theta = model.home(0);
     render::Figure f = render::workspaceFigure(workspaceMap(model, ws), model, {});

@@ -11,7 +11,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace animate_command {
 
 struct Options : app::AnimateOptions {
     Options() { output = "robot.html"; }
@@ -23,10 +24,10 @@ void run(const Options& options) {
     observer.finish();
 }
 
-}  // namespace
+}  // namespace animate_command
 
 void addAnimateCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<animate_command::Options>();
     CLI::App* command = app.add_subcommand(
         "animate",
         "The robot in motion as one self-contained HTML page (inline script and canvas; nothing is fetched\n"
@@ -78,9 +79,9 @@ void addAnimateCommand(CLI::App& app) {
         if (options->frame && options->png.empty() && options->svg.empty())
             throw Error("animate: --frame needs --png or --svg");
         // with --frame the page is written only when --output is given
-        Options run_options = *options;
+        animate_command::Options run_options = *options;
         if (options->frame && out->count() + old_out->count() == 0) run_options.output.clear();
-        run(run_options);
+        animate_command::run(run_options);
     });
 }
 

@@ -11,7 +11,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace control_command {
 
 struct Options : app::ControlOptions {
     std::string output, figure, log;
@@ -29,10 +30,10 @@ void run(Options options) {
     std::fputs(result.text.c_str(), stdout);
 }
 
-}  // namespace
+}  // namespace control_command
 
 void addControlCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<control_command::Options>();
     CLI::App* command = app.add_subcommand(
         "control",
         "Closed-loop tracking of a platform trajectory by any robot (either form of robot file; none: the paper's\n"
@@ -113,7 +114,7 @@ void addControlCommand(CLI::App& app) {
         ->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Tracking-error figure: writes STEM.png and STEM.svg")
         ->check(nonEmptyPath());
-    command->callback([options] { run(*options); });
+    command->callback([options] { control_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

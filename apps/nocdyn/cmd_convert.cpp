@@ -9,7 +9,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace convert_command {
 
 struct Options : app::ConvertOptions {
     std::string output;
@@ -20,10 +21,10 @@ void run(const Options& options) {
     writeText(app::runConvert(options, observer).text, options.output);
 }
 
-}  // namespace
+}  // namespace convert_command
 
 void addConvertCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<convert_command::Options>();
     CLI::App* command =
         app.add_subcommand("convert",
                            "Print a robot file in the general per-limb form (the paper's 3-PRR short form expanded:\n"
@@ -41,7 +42,7 @@ void addConvertCommand(CLI::App& app) {
     command->add_option("--output,-o", options->output, "File to write [default: stdout]")->check(nonEmptyPath());
     command->callback([options, robot, positional] {
         if (robot->count() + positional->count() == 0) throw CLI::RequiredError("--robot");
-        run(*options);
+        convert_command::run(*options);
     });
 }
 

@@ -15,7 +15,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace design_command {
 
 void run(const app::DesignOptions& options, const CLI::App* command) {
     TerminalObserver observer("nocdyn design");
@@ -37,7 +38,7 @@ void run(const app::DesignOptions& options, const CLI::App* command) {
                                             : "the first metric: none (no design is feasible)");
 }
 
-}  // namespace
+}  // namespace design_command
 
 void addDesignCommand(CLI::App& app) {
     auto options = std::make_shared<app::DesignOptions>();
@@ -93,7 +94,7 @@ void addDesignCommand(CLI::App& app) {
     command->callback([options, out_dir, old_out, command] {
         if (out_dir->count() + old_out->count() == 0) throw CLI::RequiredError("--out-dir");
         if (options->robot.path.empty()) throw CLI::ValidationError("--robot", "a parametric robot file is required");
-        run(*options, command);
+        design_command::run(*options, command);
     });
 }
 

@@ -12,7 +12,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace envelope_command {
 
 struct Options : app::EnvelopeOptions {
     std::string output, figure;  ///< no figure unless asked for
@@ -54,10 +55,10 @@ void run(const Options& options) {
     if (!quiet()) std::printf("%s\n", result.summary.c_str());
 }
 
-}  // namespace
+}  // namespace envelope_command
 
 void addEnvelopeCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<envelope_command::Options>();
     CLI::App* command = app.add_subcommand(
         "envelope",
         "Operating envelope of any robot: for each axis (x, y, theta) and log-spaced frequencies, the largest\n"
@@ -103,7 +104,7 @@ void addEnvelopeCommand(CLI::App& app) {
                      "the lowest frequency where it leaves [1/A, A] the limit is resonance")
         ->check(within(app::kAmplificationRange))
         ->capture_default_str();
-    command->callback([options] { run(*options); });
+    command->callback([options] { envelope_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

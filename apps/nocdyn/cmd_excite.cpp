@@ -12,7 +12,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace excite_command {
 
 void run(const app::ExciteOptions& options) {
     TerminalObserver observer("nocdyn excite");
@@ -23,7 +24,7 @@ void run(const app::ExciteOptions& options) {
     if (!std::cout) throw Error("cannot write to standard output");
 }
 
-}  // namespace
+}  // namespace excite_command
 
 void addExciteCommand(CLI::App& app) {
     auto options = std::make_shared<app::ExciteOptions>();
@@ -96,7 +97,7 @@ void addExciteCommand(CLI::App& app) {
     command->callback([options, output, old_output] {
         // either spelling gives the required output (a parse error, exit 2, without one)
         if (output->count() + old_output->count() == 0) throw CLI::RequiredError("--output");
-        run(*options);
+        excite_command::run(*options);
     });
 }
 

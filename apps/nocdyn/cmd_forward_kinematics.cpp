@@ -17,7 +17,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace forward_kinematics_command {
 
 struct Options : app::ForwardKinematicsOptions {
     bool json = false;
@@ -93,10 +94,10 @@ void run(const Options& options) {
         printText(result);
 }
 
-}  // namespace
+}  // namespace forward_kinematics_command
 
 void addForwardKinematicsCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<forward_kinematics_command::Options>();
     CLI::App* command = app.add_subcommand(
         "forward-kinematics",
         "Direct kinematics: every platform pose [x, y, theta] with actuator values U1 .. Un (one per actuated\n"
@@ -116,7 +117,7 @@ void addForwardKinematicsCommand(CLI::App& app) {
     command->add_flag("--json", options->json, "Print JSON");
     command->add_flag("--all-branches", options->all_branches,
                       "Also list the poses with a limb off its working branch");
-    command->callback([options] { run(*options); });
+    command->callback([options] { forward_kinematics_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

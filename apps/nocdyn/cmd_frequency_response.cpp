@@ -11,7 +11,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace frequency_response_command {
 
 struct Options : app::FrequencyResponseOptions {
     std::string output, figure, summary;
@@ -40,10 +41,10 @@ void run(const Options& options) {
     if (!options.figure.empty()) render::renderFigure(app::bodeFigure(result), options.figure);
 }
 
-}  // namespace
+}  // namespace frequency_response_command
 
 void addFrequencyResponseCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<frequency_response_command::Options>();
     CLI::App* command = app.add_subcommand(
         "frequency-response",
         "The rigid robot linearised at an operating point (pose, rate; the forces that hold it) by the exact\n"
@@ -117,7 +118,7 @@ void addFrequencyResponseCommand(CLI::App& app) {
         ->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Bode figure: writes STEM.png and STEM.svg (gnuplot)")
         ->check(nonEmptyPath());
-    command->callback([options] { run(*options); });
+    command->callback([options] { frequency_response_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

@@ -11,7 +11,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace identify_command {
 
 void run(const app::IdentifyOptions& options) {
     TerminalObserver observer("nocdyn identify");
@@ -20,7 +21,7 @@ void run(const app::IdentifyOptions& options) {
     printText(result.text);
 }
 
-}  // namespace
+}  // namespace identify_command
 
 void addIdentifyCommand(CLI::App& app) {
     auto options = std::make_shared<app::IdentifyOptions>();
@@ -79,7 +80,7 @@ void addIdentifyCommand(CLI::App& app) {
         ->check(CLI::ExistingFile);
     command->add_option("--figure", options->figure,
                         "Measured against predicted forces on the held-out samples: writes STEM.png and STEM.svg");
-    command->callback([options] { run(*options); });
+    command->callback([options] { identify_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

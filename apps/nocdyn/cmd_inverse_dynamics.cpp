@@ -10,7 +10,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace inverse_dynamics_command {
 
 struct Options : app::InverseDynamicsOptions {
     std::string output;
@@ -26,10 +27,10 @@ void run(const Options& options) {
     out.commit();
 }
 
-}  // namespace
+}  // namespace inverse_dynamics_command
 
 void addInverseDynamicsCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<inverse_dynamics_command::Options>();
     CLI::App* command = app.add_subcommand(
         "inverse-dynamics",
         "Actuator variables, rates, accelerations and forces of any robot along a platform trajectory\n"
@@ -54,7 +55,7 @@ void addInverseDynamicsCommand(CLI::App& app) {
                       "for limb i and joint k (1-based, file order): the wrench of the joint's inboard body on its\n"
                       "outboard body in the base frame, without the joint's own effort and friction (R: the force at\n"
                       "the axis, m = 0; P: the force normal to the joint and the couple about the outboard c.o.m.)");
-    command->callback([options] { run(*options); });
+    command->callback([options] { inverse_dynamics_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

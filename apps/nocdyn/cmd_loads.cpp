@@ -11,7 +11,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace loads_command {
 
 struct Options : app::LoadsOptions {
     std::string output, figure;
@@ -32,10 +33,10 @@ void run(const Options& options) {
     if (!options.figure.empty()) app::writeLoadsFigure(options, result, options.figure);
 }
 
-}  // namespace
+}  // namespace loads_command
 
 void addLoadsCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<loads_command::Options>();
     CLI::App* command = app.add_subcommand(
         "loads",
         "Design loads of every joint (the bearing loads a designer sizes parts by): along a trajectory, or\n"
@@ -67,7 +68,7 @@ void addLoadsCommand(CLI::App& app) {
     command->add_option("--points", options->points, "--envelope: frequencies per axis")
         ->check(CLI::Range(1, kEnvelopeMaxPoints))
         ->capture_default_str();
-    command->callback([options] { run(*options); });
+    command->callback([options] { loads_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

@@ -16,7 +16,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace pose_command {
 
 struct Options : app::PoseOptions {
     bool json = false;
@@ -144,10 +145,10 @@ void printText(const app::PoseResult& r) {
     if (!r.within_limits) std::printf("\nwarning: %s\n", io::terminalText(r.limits).c_str());
 }
 
-}  // namespace
+}  // namespace pose_command
 
 void addPoseCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<pose_command::Options>();
     CLI::App* command = app.add_subcommand(
         "pose",
         "At one platform pose of any robot: every limb's joint variables and the condition number of\n"
@@ -173,7 +174,7 @@ void addPoseCommand(CLI::App& app) {
     command->callback([options] {
         TerminalObserver observer("nocdyn pose");
         const app::PoseResult result = app::runPose(*options, observer);
-        options->json ? printJson(result) : printText(result);
+        options->json ? pose_command::printJson(result) : pose_command::printText(result);
     });
 }
 

@@ -10,7 +10,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace regressor_command {
 
 struct Options : app::RegressorOptions {
     std::string output;
@@ -21,10 +22,10 @@ void run(const Options& options) {
     writeText(app::runRegressor(options, observer).text, options.output);
 }
 
-}  // namespace
+}  // namespace regressor_command
 
 void addRegressorCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<regressor_command::Options>();
     CLI::App* command = app.add_subcommand(
         "regressor",
         "The dynamics are linear in each body's planar inertial parameters [m, m c_x, m c_y, I_O] (body frame:\n"
@@ -38,7 +39,7 @@ void addRegressorCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--seed", options->seed, "Seed of the random motions")->capture_default_str();
     command->add_option("--output,-o", options->output, "Text file to write [default: stdout]")->check(nonEmptyPath());
-    command->callback([options] { run(*options); });
+    command->callback([options] { regressor_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

@@ -11,7 +11,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace reproduce_command {
 
 void run(const app::ReproduceOptions& options) {
     // about two minutes in all: one progress line on a terminal names the section running
@@ -24,7 +25,7 @@ void run(const app::ReproduceOptions& options) {
               << result.folder.string() << "/\n";
 }
 
-}  // namespace
+}  // namespace reproduce_command
 
 void addReproduceCommand(CLI::App& app) {
     auto options = std::make_shared<app::ReproduceOptions>();
@@ -54,7 +55,7 @@ void addReproduceCommand(CLI::App& app) {
                      "is a quick check of the same code, its estimates from less data")
         ->check(within(app::kIdentificationDurationRange))
         ->capture_default_str();
-    command->callback([options] { run(*options); });
+    command->callback([options] { reproduce_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

@@ -13,7 +13,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace shake_command {
 
 struct Options : app::ShakeOptions {
     Options() { out_dir = "shake"; }
@@ -32,10 +33,10 @@ void run(const Options& options) {
     }
 }
 
-}  // namespace
+}  // namespace shake_command
 
 void addShakeCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<shake_command::Options>();
     CLI::App* command = app.add_subcommand(
         "shake",
         "Play a ground-motion record (PEER AT2, values in g) on a robot. The record is high-passed (zero-phase\n"
@@ -183,7 +184,7 @@ void addShakeCommand(CLI::App& app) {
         ->capture_default_str();
     command->add_option("--out-dir", options->out_dir, "Output folder")->capture_default_str();
     command->add_option("--out", options->out_dir)->group("");  // the old spelling, hidden
-    command->callback([options] { run(*options); });
+    command->callback([options] { shake_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

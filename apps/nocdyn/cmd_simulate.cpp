@@ -12,7 +12,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace simulate_command {
 
 struct Options : app::SimulateOptions {
     std::string output;
@@ -34,10 +35,10 @@ void run(const Options& options) {
     if (!quiet()) std::cerr << "nocdyn: " << app::summaryLine(result) << "\n";
 }
 
-}  // namespace
+}  // namespace simulate_command
 
 void addSimulateCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<simulate_command::Options>();
     CLI::App* command = app.add_subcommand(
         "simulate",
         "Forward dynamics of any robot: integrates M_p(p) d2p/dt2 = A_p^T tau - h_p(p, dp/dt) (eq. 23 in the\n"
@@ -90,7 +91,7 @@ void addSimulateCommand(CLI::App& app) {
         "state and the forces applied: limb{i}_j{k}_fx, _fy [N] and _m [N m] as in inverse-dynamics\n"
         "--reactions (base frame, the inboard body on the outboard body, the joint's effort and friction\n"
         "taken out)");
-    command->callback([options] { run(*options); });
+    command->callback([options] { simulate_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

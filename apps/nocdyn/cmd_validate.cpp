@@ -11,7 +11,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace validate_command {
 
 struct Options : app::ValidateOptions {
     std::string output;
@@ -27,10 +28,10 @@ void run(const Options& options) {
               << result.agreement;
 }
 
-}  // namespace
+}  // namespace validate_command
 
 void addValidateCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<validate_command::Options>();
     CLI::App* command = app.add_subcommand(
         "validate",
         "Actuator forces of our NOC model of any robot against two independent multibody engines\n"
@@ -42,7 +43,7 @@ void addValidateCommand(CLI::App& app) {
     addSamplingOptions(*command, *options);
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
-    command->callback([options] { run(*options); });
+    command->callback([options] { validate_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli

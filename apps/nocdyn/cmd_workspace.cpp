@@ -14,7 +14,8 @@
 
 namespace nocdyn::cli {
 
-namespace {
+// This command's own names, apart from the other commands' (the folder compiles as one unity file).
+namespace workspace_command {
 
 struct Options : app::WorkspaceOptions {
     std::string output, figure;  ///< no figure unless asked for
@@ -63,10 +64,10 @@ void run(Options options) {
     }
 }
 
-}  // namespace
+}  // namespace workspace_command
 
 void addWorkspaceCommand(CLI::App& app) {
-    auto options = std::make_shared<Options>();
+    auto options = std::make_shared<workspace_command::Options>();
     CLI::App* command = app.add_subcommand(
         "workspace",
         "Workspace of any robot at one platform orientation: the region of C reachable with every limb on its\n"
@@ -100,7 +101,7 @@ void addWorkspaceCommand(CLI::App& app) {
         "Print the summary as JSON instead (robot, theta [rad], area [m^2], resolution, step [m], x_range and\n"
         "y_range [m], limb_singular_points, actuation_singular_points; with --first-frequency first_frequency:\n"
         "points, lowest [Hz], lowest_at {x, y [m], theta [rad]}, highest [Hz])");
-    command->callback([options] { run(*options); });
+    command->callback([options] { workspace_command::run(*options); });
 }
 
 }  // namespace nocdyn::cli
