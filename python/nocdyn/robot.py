@@ -128,6 +128,12 @@ class Robot(RobotDynamics):
         return self._core.home
 
     @property
+    def task_dimension(self):
+        """Number of pose coordinates: 3 ([x, y, theta]) or 2 (motion: translation, [x, y] of the
+        tool point: a two-DOF robot such as the five-bar or the biglide)."""
+        return self._core.task_dimension
+
+    @property
     def redundant(self):
         """True when the robot has more than three actuators (minimum-norm forces)."""
         return self._core.redundant
