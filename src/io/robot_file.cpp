@@ -246,8 +246,10 @@ std::string descriptionToYaml(const RobotDescription& robot) {
     if (translation && !robot.home.isZero()) {
         out << "home: " << pair(robot.home.tail<2>()) << "  # [x, y] of the tool point at home\n";
     } else if (!robot.home.isZero()) {
-        out << "home: [" << text::shortest(robot.home(0)) << ", " << text::shortest(robot.home(1)) << ", "
-            << text::shortest(robot.home(2)) << "]  # [theta, x, y] at home\n";
+        // the user's order, as the reader takes it (the core's is [theta, x, y])
+        const Vector3 user = userPose(robot.home);
+        out << "home: [" << text::shortest(user(0)) << ", " << text::shortest(user(1)) << ", "
+            << text::shortest(user(2)) << "]  # [x, y, theta] at home\n";
     }
     out << "max_condition: " << text::shortest(robot.max_condition) << "\n";
     if (robot.damping_ratio != RobotDescription{}.damping_ratio) {
