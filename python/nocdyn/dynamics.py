@@ -45,6 +45,13 @@ def _derivative_inputs(p, dp, ddp):
                   _input(ddp, "ddp", (n, 3), finite=False))
 
 
+def _require_full_motion(robot, method):
+    """Refuses a two-DOF robot (motion: translation) in the methods that do not take it yet."""
+    if robot._core.task_dimension != 3:
+        raise Error(f"{method}: a two-DOF robot (motion: translation, pose [x, y]) is not supported by this method "
+                    "yet (inverse_dynamics is)")
+
+
 def _lift_task(p, dp, ddp):
     """A two-DOF robot's task samples [x, y] (shape (2,) or (N, 2)) as the core's poses
     [x, y, theta] with theta = 0 and its rates 0 (the task map E; the rotation is no
@@ -172,6 +179,7 @@ class RobotDynamics:
         is differentiated with its sign held (at a joint rate of exactly 0 its force and
         derivative are 0). Errors and threads as in inverse_dynamics.
         """
+        _require_full_motion(self, "inverse_dynamics_derivatives")
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         batch, inputs = _derivative_inputs(p, dp, ddp)
         if not batch:
@@ -189,6 +197,7 @@ class RobotDynamics:
         shape (N, n, 3), each row the sample's own values to the bit. Errors, check and threads
         as in inverse_dynamics (check=False: a failed sample's rows are NaN).
         """
+        _require_full_motion(self, "actuator_derivatives")
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         batch, inputs = _derivative_inputs(p, dp, ddp)
         if not batch:
@@ -221,6 +230,7 @@ class RobotDynamics:
         D, ``inputs`` (per column of B "tau" for a force, "uc" for a commanded drive position:
         the command line's channel names) and ``model`` ("rigid" or "lumped").
         """
+        _require_full_motion(self, "linearize")
         if not isinstance(compliance, str):
             raise TypeError("compliance: expected 'auto', 'rigid' or 'lumped'")
         A, B, C, D, inputs, model = self._core._linearize(p, dp, tau, output or "acceleration", compliance)
@@ -245,6 +255,7 @@ class RobotDynamics:
         velocity limit or an actuator's effort (checked by the full path at every sample);
         check_limits=False checks none.
         """
+        _require_full_motion(self, "reactions")
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         p_arr = _floats(p, "p")
         single = p_arr.ndim == 1
@@ -274,6 +285,7 @@ class RobotDynamics:
         rows k * n .. k * n + n - 1 those of sample k (reshape(N, n, P) separates them). A
         sample out of reach or singular, or whose regressor is not finite, raises nocdyn.Error
         ("sample K: <reason>", K from 1)."""
+        _require_full_motion(self, "regressor")
         p_arr = _floats(p, "p")
         if p_arr.ndim == 1:
             Y = self._core._regressor_sample(p_arr, dp, ddp)

@@ -111,3 +111,22 @@ def test_the_stiffness_of_a_two_dof_robot_is_refused_in_one_line(cli, source_dir
     assert code != 0
     assert "stiffness of a two-DOF robot" in err
     assert len(err.strip().splitlines()) == 1, err
+
+
+def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
+    robot = _robot(source_dir, "five-bar")
+    p, z = np.array([0.0, 0.3, 0.0]), np.zeros(3)
+    calls = {
+        "svg": lambda: robot.svg(),
+        "with_payload": lambda: robot.with_payload(0.1),
+        "forward_kinematics": lambda: robot.forward_kinematics(np.zeros(2)),
+        "state_from_actuators": lambda: robot.state_from_actuators(np.zeros(2)),
+        "stiffness": lambda: robot.stiffness(p),
+        "inverse_dynamics_derivatives": lambda: robot.inverse_dynamics_derivatives(p, z, z),
+        "reactions": lambda: robot.reactions(p, z, z),
+        "regressor": lambda: robot.regressor(p, z, z),
+    }
+    for name, call in calls.items():
+        with pytest.raises(nocdyn.Error, match=f"{name}: a two-DOF robot"):
+            call()
+    assert robot._repr_svg_() is None
