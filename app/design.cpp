@@ -290,6 +290,19 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     }
     const auto points = sweepPoints(family.ranges, options.sweep == "grid" ? SweepKind::grid : SweepKind::random,
                                     options.samples, options.seed);
+    // a two-DOF family (motion: translation) is structural too: its metrics are not written yet
+    if (!points.empty()) {
+        std::optional<RobotDescription> first;
+        try {
+            first = io::designRobot(family, points.front());
+        } catch (const Error&) {
+            // a design the sweep itself will report
+        }
+        if (first && first->motion == PlatformMotion::translation) {
+            throw Error(where(*first, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does " +
+                        "not take it yet (nocdyn pose and Python's Robot.inverse_dynamics do)");
+        }
+    }
     // whether the family declares compliance is structural (a field present, not its value):
     // first_frequency_min on a family without any is refused before the first design
     if (std::any_of(metrics.begin(), metrics.end(),

@@ -65,19 +65,32 @@ PoseCompliance compliance(const Model& model, const Data& data, Observer& observ
 void validate(const PoseOptions& options) {
     requireIn(options.x, kLengthRange, "x");
     requireIn(options.y, kLengthRange, "y");
-    requireIn(options.theta, kAngleRange, "theta");
+    if (!std::isnan(options.theta)) requireIn(options.theta, kAngleRange, "theta");
 }
 
 PoseResult runPose(const PoseOptions& options, Observer& observer) {
     validate(options);
-    const Model model(loadRobot(options.robot));
+    const Model model(loadRobotAnyMotion(options.robot));
     Data data(model);
-    const Pose p(options.theta, options.x, options.y);
+    if (model.task_dimension == 3 && std::isnan(options.theta)) {
+        throw OptionError("theta", "required: this robot's platform turns (give X Y THETA)");
+    }
+    if (model.task_dimension == 2 && !std::isnan(options.theta) && options.theta != 0.0) {
+        throw OptionError("theta", "a two-DOF robot (motion: translation) has no theta: give X Y only");
+    }
+    TaskVector p_task(model.task_dimension);
+    if (model.task_dimension == 3) {
+        p_task << options.theta, options.x, options.y;
+    } else {
+        p_task << options.x, options.y;
+    }
+    const Pose p = poseOfTask(model, p_task);
     if (const Status status = inverseDynamics(model, data, p, Twist::Zero(), Twist::Zero()); !status) {
         throw Error(describe(status, model));
     }
     PoseResult out;
     out.robot = model.description.name;
+    out.task_dimension = model.task_dimension;
     out.pose = userPose(p);
     const Status limits = checkJointLimits(model, data);
     out.within_limits = limits.ok();
@@ -111,7 +124,8 @@ PoseResult runPose(const PoseOptions& options, Observer& observer) {
     }
     // du = A xi_P = A S(c) dp/dt: the actuation map in the pose's own rates (eq. 5 generalised)
     const Eigen::MatrixXd A_pose = Eigen::MatrixXd(data.A) * platformTwistMap(p.tail<2>());
-    out.A = A_pose * userToCoreMap();
+    // (a two-DOF robot: A S(c) E, its x and y columns)
+    out.A = (A_pose * userToCoreMap()).leftCols(model.task_dimension);
     out.cond_A = data.cond_A;
     out.max_condition = model.max_condition;
     if (model.coordinates == Coordinates::actuators) {
@@ -119,7 +133,9 @@ PoseResult runPose(const PoseOptions& options, Observer& observer) {
         out.I = data.I;
     } else {
         out.coordinates = "platform";
-        out.I = userToCoreMap().transpose() * Eigen::MatrixXd(data.I) * userToCoreMap();
+        // (a two-DOF robot: E^T I E, over x and y)
+        const Eigen::MatrixXd I_user = userToCoreMap().transpose() * Eigen::MatrixXd(data.I) * userToCoreMap();
+        out.I = I_user.topLeftCorner(model.task_dimension, model.task_dimension);
     }
     out.tau = data.tau.head(model.actuators);
     // at rest (dp = ddp = 0) tau holds the pose against gravity; the reactions that go with it
@@ -131,7 +147,14 @@ PoseResult runPose(const PoseOptions& options, Observer& observer) {
                 {j + 1, k + 1, model.limb[at(j)].type[at(k)] == JointType::revolute, reactions.joint[at(j)][at(k)]});
         }
     }
-    if (model.description.hasCompliance()) out.compliance = compliance(model, data, observer);
+    if (model.description.hasCompliance()) {
+        if (model.task_dimension == 2) {
+            throw Error(where(model.description, 0) +
+                        "the stiffness of a two-DOF robot (motion: translation) is not available yet: remove the "
+                        "file's stiffness and elastic entries to see the rest of the pose");
+        }
+        out.compliance = compliance(model, data, observer);
+    }
     return out;
 }
 

@@ -14,9 +14,11 @@
 namespace nocdyn::app {
 
 struct PoseOptions {
-    double x = 0.0;      ///< x of the platform's operation point C [m] (kLengthRange)
-    double y = 0.0;      ///< y of C [m] (kLengthRange)
-    double theta = 0.0;  ///< platform rotation [rad] (kAngleRange)
+    double x = 0.0;  ///< x of the platform's operation point C [m] (kLengthRange)
+    double y = 0.0;  ///< y of C [m] (kLengthRange)
+    /// Platform rotation [rad] (kAngleRange). NaN: not given, which a two-DOF robot (motion:
+    /// translation, no theta) needs and a turning platform refuses; a two-DOF robot takes 0 too.
+    double theta = 0.0;
     RobotSource robot;
 };
 
@@ -63,6 +65,9 @@ struct PoseCompliance {
 
 struct PoseResult {
     std::string robot;
+    /// 3: pose [x, y, theta]; 2: a two-DOF robot (motion: translation), pose [x, y] (theta 0, no
+    /// coordinate), and A, I over x, y only.
+    int task_dimension = 3;
     Vector3 pose = Vector3::Zero();  ///< [x, y, theta]
     std::vector<PoseLimb> limbs;
     std::vector<PoseActuator> actuators;
@@ -78,7 +83,7 @@ struct PoseResult {
     std::optional<PoseCompliance> compliance;
 };
 
-/// Throws OptionError for a pose outside its ranges.
+/// Throws OptionError for a pose outside its ranges (theta when given).
 void validate(const PoseOptions& options);
 
 /// The pose's report. A pose out of reach or singular is an Error; one outside a joint's range

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <numbers>
 
@@ -55,7 +56,8 @@ nlohmann::json complianceJson(const app::PoseCompliance& c) {
 void printJson(const app::PoseResult& r) {
     nlohmann::json out;
     out["robot"] = r.robot;
-    out["pose"] = {{"x", r.pose(0)}, {"y", r.pose(1)}, {"theta", r.pose(2)}};
+    out["pose"] = {{"x", r.pose(0)}, {"y", r.pose(1)}};
+    if (r.task_dimension == 3) out["pose"]["theta"] = r.pose(2);
     for (const app::PoseLimb& l : r.limbs) {
         out["limbs"].push_back({{"limb", l.limb},
                                 {"name", l.name},
@@ -108,8 +110,14 @@ void printCompliance(const app::PoseCompliance& c) {
 }
 
 void printText(const app::PoseResult& r) {
-    std::printf("robot %s, pose x = %.9g m, y = %.9g m, theta = %.9g rad (%.6g deg)\n\n",
-                io::terminalText(r.robot).c_str(), r.pose(0), r.pose(1), r.pose(2), r.pose(2) * kDeg);
+    if (r.task_dimension == 2) {
+        std::printf("robot %s (motion: translation), pose x = %.9g m, y = %.9g m\n\n",
+                    io::terminalText(r.robot).c_str(), r.pose(0), r.pose(1));
+    } else {
+        std::printf("robot %s, pose x = %.9g m, y = %.9g m, theta = %.9g rad (%.6g deg)\n\n",
+                    io::terminalText(r.robot).c_str(), r.pose(0), r.pose(1), r.pose(2), r.pose(2) * kDeg);
+    }
+    const char* columns = r.task_dimension == 2 ? "x, y" : "x, y, theta";
     std::printf("limb  type  q1                q2                q3                cond J_j\n");
     for (const app::PoseLimb& l : r.limbs) {
         std::printf("%-4d  %s  ", l.limb, l.type.c_str());
@@ -126,13 +134,17 @@ void printText(const app::PoseResult& r) {
         std::printf("%-8d  %-4d  %-5d  %+11.6f %-4s  %6.2f %%\n", a.actuator, a.limb, a.joint,
                     a.revolute ? a.u * kDeg : a.u * 1e3, a.revolute ? "deg" : "mm", 100.0 * a.range_used);
     }
-    std::printf("\nactuation map du = A dp/dt (eq. 5 generalised; rows: actuators, columns: x, y, theta):\n%s",
+    std::printf("\nactuation map du = A dp/dt (eq. 5 generalised; rows: actuators, columns: %s):\n%s", columns,
                 matrixText(r.A).c_str());
     std::printf("condition numbers (scaled, limit %.6g): actuation %.6g\n", r.max_condition, r.cond_A);
-    std::printf(r.coordinates == "actuators" ? "joint-space inertia I (eq. 23), in the actuator variables:\n%s"
-                                             : "inertia I (eq. 23) in the platform pose x, y, theta (redundant "
-                                               "actuation):\n%s",
-                matrixText(r.I).c_str());
+    if (r.task_dimension == 2) {
+        std::printf("inertia I (eq. 23) in the tool point's x, y (E^T I E):\n%s", matrixText(r.I).c_str());
+    } else {
+        std::printf(r.coordinates == "actuators" ? "joint-space inertia I (eq. 23), in the actuator variables:\n%s"
+                                                 : "inertia I (eq. 23) in the platform pose x, y, theta (redundant "
+                                                   "actuation):\n%s",
+                    matrixText(r.I).c_str());
+    }
     std::printf("\nat rest under gravity: tau =");
     for (const double tau : r.tau) std::printf(" %+.6e", tau);
     std::printf("\njoint reactions (base frame, inboard body on outboard body, effort and friction taken out):\n");
@@ -158,7 +170,8 @@ void addPoseCommand(CLI::App& app) {
         "the joint's effort and friction taken out; JSON: \"tau\" and \"reactions\").\n"
         "When the robot file declares compliance (stiffness, elastic), also the stiffness K and the\n"
         "natural frequencies (JSON: \"stiffness\", \"natural_frequencies\", \"elastodynamic_frequencies\").\n"
-        "Every pose vector and matrix is in the order x, y, theta.\n"
+        "Every pose vector and matrix is in the order x, y, theta (a two-DOF robot, motion: translation:\n"
+        "X Y only, and x, y).\n"
         "Example: nocdyn pose 0.001 -0.002 0.05 --robot robots/3-rrr.yaml   (x and y in m, theta in rad)");
     command->add_option("X", options->x, "x of the platform's operation point C [m]")
         ->required()
@@ -166,12 +179,14 @@ void addPoseCommand(CLI::App& app) {
     command->add_option("Y", options->y, "y of the platform's operation point C [m]")
         ->required()
         ->check(within(app::kLengthRange));
-    command->add_option("THETA", options->theta, "Platform rotation [rad]")
-        ->required()
+    // optional: a two-DOF robot (motion: translation) has none, a turning platform needs it
+    command->add_option("THETA", options->theta, "Platform rotation [rad] (not for a two-DOF robot)")
         ->check(within(app::kAngleRange));
     addRobotOption(*command, options->robot);
     command->add_flag("--json", options->json, "Write JSON instead of text");
-    command->callback([options] {
+    CLI::Option* theta = command->get_option("THETA");
+    command->callback([options, theta] {
+        if (theta->count() == 0) options->theta = std::numeric_limits<double>::quiet_NaN();
         TerminalObserver observer("nocdyn pose");
         const app::PoseResult result = app::runPose(*options, observer);
         options->json ? pose_command::printJson(result) : pose_command::printText(result);

@@ -81,12 +81,19 @@ struct PlatformDescription {
     int line = 0;
 };
 
+/// What the platform does (robot file key `motion`): turn and translate (pose [theta, x, y]), or
+/// translate only (pose [x, y]: a point tool where every limb's last R joint meets, the
+/// platform a point mass there, its rotation no coordinate).
+enum class PlatformMotion { full, translation };
+
 struct RobotDescription {
     std::string name = "robot";
+    PlatformMotion motion = PlatformMotion::full;
     std::string source;                                 ///< the file it came from, for messages
     Eigen::Vector2d gravity = Eigen::Vector2d::Zero();  ///< base frame [m/s^2]
-    Eigen::Vector3d home = Eigen::Vector3d::Zero();     ///< platform pose [theta, x, y] at home
-    double max_condition = 1.0e4;                       ///< largest condition number accepted
+    /// Platform pose [theta, x, y] at home (motion translation: theta = 0 and [x, y] the tool point).
+    Eigen::Vector3d home = Eigen::Vector3d::Zero();
+    double max_condition = 1.0e4;  ///< largest condition number accepted
     /// Damping ratio zeta of each mode of the lumped compliant model (stiffness.hpp), modal
     /// damping C = M Phi diag(2 zeta w_i) Phi^T M: 0.02 by default, a bolted aluminium or steel
     /// structure (0.005 to 0.02 welded or monolithic, 0.02 to 0.05 bolted, up to 0.1 and more
@@ -109,10 +116,13 @@ inline constexpr int kMaxActuators = 3 * kMaxLimbs;
 
 /// Throws nocdyn::Error, naming the source file, line, limb, joint and field, when the
 /// description is not a robot nocdyn can model: fewer than 2 or more than kMaxLimbs limbs,
-/// fewer than 3 actuated joints, a zero P direction, non-finite numbers, negative or
+/// fewer than 3 actuated joints (2 with motion translation), a zero P direction, non-finite numbers, negative or
 /// implausible masses and inertias, a zero-mass robot, inconsistent limits, a limb of three
 /// prismatic joints, a negative or non-finite stiffness, an EA or EI not positive, an elastic
-/// body not between two revolute joints (or of zero length). Normalises P directions to unit length. The posture checks
+/// body not between two revolute joints (or of zero length); with motion translation, a limb
+/// whose last joint is not R, last R joints that do not meet at one point (the tool point, at
+/// home), a last joint actuated or with limits, damping, friction or stiffness, a platform with
+/// an inertia or a c.o.m. off the tool point. Normalises P directions to unit length. The posture checks
 /// (every limb closes and is regular at home) are made by the Model.
 void validate(RobotDescription& robot);
 

@@ -101,9 +101,18 @@ public:
     explicit Model(RobotDescription description);
 
     RobotDescription description;  ///< as validated (P directions unit)
-    int limbs = 0;                 ///< number of limbs
-    int actuators = 0;             ///< n, number of actuated joints
-    int bodies = 0;                ///< 2 * limbs + 1
+    /// What the platform does: PlatformMotion::full (task coordinates [theta, x, y]) or
+    /// PlatformMotion::translation (task coordinates [x, y] of the tool point, a point mass where every
+    /// limb's last R joint meets). The core runs every robot in the pose p = [theta, x, y]: for
+    /// translation theta stays at home(0) = 0 and the rates are t_M = E dp_task with the task map
+    /// E = [0 0; 1 0; 0 1] (taskMap below), so that I_task = E^T I E, Q_task = E^T Q and the
+    /// actuation map is A S(c) E (the last R joints take up the fictitious rotation: no body
+    /// moves with it, and the point mass has no rotational inertia).
+    PlatformMotion motion = PlatformMotion::full;
+    int task_dimension = 3;  ///< n_t: 3 (full) or 2 (translation)
+    int limbs = 0;           ///< number of limbs
+    int actuators = 0;       ///< n, number of actuated joints
+    int bodies = 0;          ///< 2 * limbs + 1
     Coordinates coordinates = Coordinates::actuators;
     std::array<LimbModel, kMaxLimbs> limb{};
     std::array<int, kMaxActuators> actuator_limb{};   ///< limb of actuator a
@@ -144,6 +153,22 @@ private:
     alignas(double) std::array<std::byte, 156 * sizeof(double)> lanes_{};
     bool limbs_in_lanes_ = false;
 };
+
+/// A vector over the task coordinates (n_t <= 3): [theta, x, y] or [x, y]. Never allocates.
+using TaskVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+/// The task map E (3 x n_t): dp/dt = E dp_task/dt. Identity for PlatformMotion::full; for
+/// PlatformMotion::translation E = [0 0; 1 0; 0 1] (the pose's theta is no task coordinate).
+using TaskMap = Eigen::Matrix<double, 3, Eigen::Dynamic, 0, 3, 3>;
+[[nodiscard]] TaskMap taskMap(const Model& model);
+/// The core's pose of task coordinates p_task (size model.task_dimension): p_task itself for
+/// PlatformMotion::full, [home(0), x, y] for PlatformMotion::translation.
+[[nodiscard]] inline Pose poseOfTask(const Model& model, const TaskVector& p_task) {
+    return model.task_dimension == 3 ? Pose(p_task) : Pose(model.home(0), p_task(0), p_task(1));
+}
+/// The core's pose rates E dp_task (and accelerations E ddp_task: E is constant).
+[[nodiscard]] inline Twist rateOfTask(const Model& model, const TaskVector& dp_task) {
+    return model.task_dimension == 3 ? Twist(dp_task) : Twist(0.0, dp_task(0), dp_task(1));
+}
 
 /// Per-limb workspace.
 struct LimbData {

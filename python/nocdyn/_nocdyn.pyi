@@ -37,6 +37,7 @@ class Robot:
     bodies: int
     home: np.ndarray
     redundant: bool
+    task_dimension: int
     @staticmethod
     def load(path: str) -> Robot: ...
     @staticmethod

@@ -45,6 +45,30 @@ def _derivative_inputs(p, dp, ddp):
                   _input(ddp, "ddp", (n, 3), finite=False))
 
 
+def _require_full_motion(robot, method):
+    """Refuses a two-DOF robot (motion: translation) in the methods that do not take it yet."""
+    if robot._core.task_dimension != 3:
+        raise Error(f"{method}: a two-DOF robot (motion: translation, pose [x, y]) is not supported by this method "
+                    "yet (inverse_dynamics is)")
+
+
+def _lift_task(p, dp, ddp):
+    """A two-DOF robot's task samples [x, y] (shape (2,) or (N, 2)) as the core's poses
+    [x, y, theta] with theta = 0 and its rates 0 (the task map E; the rotation is no
+    coordinate)."""
+    p_arr = _floats(p, "p")
+    if p_arr.ndim not in (1, 2) or p_arr.shape[-1] != 2:
+        raise Error(f"p: expected shape (2,) or (N, 2) for a two-DOF robot (columns x, y), got {p_arr.shape}")
+    shape = p_arr.shape
+    lifted = []
+    for x, name in ((p_arr, "p"), (dp, "dp"), (ddp, "ddp")):
+        a = _input(x, name, shape if len(shape) == 1 else (shape[0], 2), finite=False)
+        full = np.zeros(shape[:-1] + (3,))
+        full[..., :2] = a
+        lifted.append(full)
+    return lifted
+
+
 class LinearModel(tuple):
     """A linearised model (Robot.linearize): the tuple (A, B), or (A, B, C, D) when an output was
     asked for, with the attributes A, B, C, D, ``inputs`` (per column of B: "tau" an actuator
@@ -78,6 +102,9 @@ class RobotDynamics:
     def inverse_dynamics(self, p, dp, ddp, *, matrices=False, out=None, threads=1, check=True, check_limits=True):
         """Actuator variables, rates, accelerations and forces for platform motions.
 
+        A two-DOF robot (motion: translation) takes p, dp, ddp of shape (2,) or (N, 2), columns
+        x, y of the tool point (matrices=False only).
+
         One sample: p, dp, ddp of shape (3,) ([x, y, theta], its rate and acceleration) give
         InverseDynamics(u, du, ddu, tau), each of shape (n,). With matrices=True (one sample
         only) the full NOC path also returns I, C (3, 3) and T (bodies, 3, 3)
@@ -109,6 +136,11 @@ class RobotDynamics:
         which the batch's kernel does not compute); check_limits=False checks none.
         """
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
+        if self._core.task_dimension == 2:
+            # a two-DOF robot (motion: translation): p, dp, ddp over [x, y], lifted through E
+            if matrices:
+                raise Error("matrices: not available for a two-DOF robot (motion: translation) yet")
+            p, dp, ddp = _lift_task(p, dp, ddp)
         p_arr = _floats(p, "p")
         if p_arr.ndim == 1:
             if out is not None:
@@ -147,6 +179,7 @@ class RobotDynamics:
         is differentiated with its sign held (at a joint rate of exactly 0 its force and
         derivative are 0). Errors and threads as in inverse_dynamics.
         """
+        _require_full_motion(self, "inverse_dynamics_derivatives")
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         batch, inputs = _derivative_inputs(p, dp, ddp)
         if not batch:
@@ -164,6 +197,7 @@ class RobotDynamics:
         shape (N, n, 3), each row the sample's own values to the bit. Errors, check and threads
         as in inverse_dynamics (check=False: a failed sample's rows are NaN).
         """
+        _require_full_motion(self, "actuator_derivatives")
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         batch, inputs = _derivative_inputs(p, dp, ddp)
         if not batch:
@@ -196,6 +230,7 @@ class RobotDynamics:
         D, ``inputs`` (per column of B "tau" for a force, "uc" for a commanded drive position:
         the command line's channel names) and ``model`` ("rigid" or "lumped").
         """
+        _require_full_motion(self, "linearize")
         if not isinstance(compliance, str):
             raise TypeError("compliance: expected 'auto', 'rigid' or 'lumped'")
         A, B, C, D, inputs, model = self._core._linearize(p, dp, tau, output or "acceleration", compliance)
@@ -220,6 +255,7 @@ class RobotDynamics:
         velocity limit or an actuator's effort (checked by the full path at every sample);
         check_limits=False checks none.
         """
+        _require_full_motion(self, "reactions")
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         p_arr = _floats(p, "p")
         single = p_arr.ndim == 1
@@ -249,6 +285,7 @@ class RobotDynamics:
         rows k * n .. k * n + n - 1 those of sample k (reshape(N, n, P) separates them). A
         sample out of reach or singular, or whose regressor is not finite, raises nocdyn.Error
         ("sample K: <reason>", K from 1)."""
+        _require_full_motion(self, "regressor")
         p_arr = _floats(p, "p")
         if p_arr.ndim == 1:
             Y = self._core._regressor_sample(p_arr, dp, ddp)

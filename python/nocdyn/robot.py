@@ -13,7 +13,7 @@ from . import _nocdyn
 from . import commands as _commands
 from ._guards import _input, _integer, _number, _vocabulary
 from ._nocdyn import Error
-from .dynamics import RobotDynamics
+from .dynamics import RobotDynamics, _require_full_motion
 from .identification import PayloadEstimate, log_columns
 
 __all__ = ["Robot"]
@@ -128,6 +128,12 @@ class Robot(RobotDynamics):
         return self._core.home
 
     @property
+    def task_dimension(self):
+        """Number of pose coordinates: 3 ([x, y, theta]) or 2 (motion: translation, [x, y] of the
+        tool point: a two-DOF robot such as the five-bar or the biglide)."""
+        return self._core.task_dimension
+
+    @property
     def redundant(self):
         """True when the robot has more than three actuators (minimum-norm forces)."""
         return self._core.redundant
@@ -153,11 +159,13 @@ class Robot(RobotDynamics):
     def svg(self, pose=None):
         """The robot drawn as SVG text at pose [x, y, theta] (default home): base, limbs, platform,
         C, actuated joints marked (green). Jupyter shows a Robot this way (_repr_svg_)."""
+        _require_full_motion(self, "svg")
         from .drawing import robot_svg
         return robot_svg(self, pose)
 
     def _repr_svg_(self):
-        return self.svg()
+        # a two-DOF robot has no drawing yet: Jupyter then shows its text form
+        return self.svg() if self._core.task_dimension == 3 else None
 
     # --- identification -------------------------------------------------------------
     def parameter_names(self):
@@ -178,6 +186,7 @@ class Robot(RobotDynamics):
     def with_payload(self, mass, com=(0.0, 0.0), inertia=0.0):
         """This robot with a payload merged into its platform: mass [kg], c.o.m. [x, y] in the
         platform frame [m], moment of inertia about its own c.o.m. [kg m^2]."""
+        _require_full_motion(self, "with_payload")
         com = _input(com, "com", (2,))
         return Robot(self._core._with_payload(_number(mass, "mass"), [float(v) for v in com],
                                               _number(inertia, "inertia")))
@@ -193,6 +202,7 @@ class Robot(RobotDynamics):
         robot's working mode: every limb on its home branch), u_error (how well the pose gives
         back u) and condition (large next to a singularity). Empty when u does not assemble.
         """
+        _require_full_motion(self, "forward_kinematics")
         result = self._core._forward_kinematics(_input(u, "u", (self.actuators,)),
                                                 _number(tolerance, "tolerance", 1e-15, 1e-3))
         modes = result["modes"]
@@ -210,6 +220,7 @@ class Robot(RobotDynamics):
 
         Returns a dict: p [x, y, theta], dp (3,) in the same order, mode (1-based), working (how many working modes),
         modes (how many on any branches). Raises nocdyn.Error when no working mode has u."""
+        _require_full_motion(self, "state_from_actuators")
         return self._core._state_from_actuators(_input(u, "u", (self.actuators,)),
                                                 None if du is None else _input(du, "du", (self.actuators,)),
                                                 _integer(assembly_mode, "assembly_mode", 0, 12))
@@ -228,6 +239,7 @@ class Robot(RobotDynamics):
         Q = (f_x [N], f_y [N], moment about C [N m]); units N/m, N/rad, N, N m/rad.
         Raises nocdyn.Error when the robot declares no compliance, a limb is rigid, or the pose is
         out of reach."""
+        _require_full_motion(self, "stiffness")
         return self._core._stiffness(p)["matrix"]
 
     @_vocabulary
@@ -250,6 +262,7 @@ class Robot(RobotDynamics):
 
         Also warns (RuntimeWarning, as `nocdyn pose`) when the stiffness contrast costs the
         lowest frequency digits."""
+        _require_full_motion(self, "natural_frequencies")
         if model not in (None, "lumped", "elastodynamic"):
             raise Error("model: expected 'lumped' or 'elastodynamic', got " + repr(model))
         result = self._core._stiffness(p, model == "elastodynamic", True, model == "lumped")

@@ -113,6 +113,7 @@ void exposeRobot(py::module_& m) {
                                [](const Robot& r) {
                                    return std::array{r.model->gravity(0), r.model->gravity(1)};
                                })
+        .def_property_readonly("task_dimension", [](const Robot& r) { return r.model->task_dimension; })
         .def_property_readonly("redundant",
                                [](const Robot& r) { return r.model->coordinates == Coordinates::platform; })
         .def("limb_info", &limbInfo)

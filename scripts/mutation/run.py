@@ -41,6 +41,7 @@ TESTS = [
     "batch_test",
     "derivatives_test",
     "excitation_gradient_test",
+    "twodof_test",
 ]
 # A test binary that runs longer than this under a mutation (a loop that no longer converges)
 # counts as failing.

@@ -1,6 +1,7 @@
 // General robot descriptions: the 3-PRR short form's expansion and validation (description.hpp).
 #include "nocdyn/description.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <numbers>
@@ -88,6 +89,55 @@ public:
 private:
     const RobotDescription& robot_;
 };
+
+/// Motion translation: every limb ends in an R joint at one common point, the tool point, which
+/// is the home position; that joint's variable is not defined by the pose [x, y] (it takes up
+/// the platform's fictitious rotation), so it is passive and free; the platform is a point mass
+/// at the tool point.
+void validateTranslation(RobotDescription& robot, const Checker& check) {
+    if (robot.home(0) != 0.0) check.fail(0, "home", "a translating platform has no angle in its pose [x, y]");
+    const PlatformDescription& platform = robot.platform;
+    if (platform.inertia != 0.0) {
+        check.fail(platform.line, "platform.inertia",
+                   "a translating point tool is a point mass: its inertia must be 0 (or absent)");
+    }
+    if (!platform.com.isZero()) {
+        check.fail(platform.line, "platform.com", "a translating point tool is a point mass at the tool point: [0, 0]");
+    }
+    const Eigen::Vector2d tool = robot.home.tail<2>();
+    double scale = 0.0;
+    for (const LimbDescription& limb : robot.limbs) {
+        for (const JointDescription& joint : limb.joints) {
+            if (joint.type == JointType::revolute) scale = std::max(scale, (joint.point - tool).norm());
+        }
+    }
+    const double tolerance = 1e-12 * std::max(1.0, scale);
+    for (std::size_t j = 0; j < robot.limbs.size(); ++j) {
+        const LimbDescription& limb = robot.limbs[j];
+        const JointDescription& last = limb.joints[2];
+        const std::string field = "limbs[" + std::to_string(j) + "] (" + text::printable(limb.name) + ").joints[2]";
+        if (last.type != JointType::revolute) {
+            check.fail(last.line, field,
+                       "with motion translation every limb ends in an R joint at the tool point, but this limb is " +
+                           limb.type());
+        }
+        if (!((last.point - tool).norm() <= tolerance)) {
+            std::ostringstream msg;
+            msg.precision(17);
+            msg << "the limbs' last R joints must meet at one point, the tool point at home [" << tool.x() << ", "
+                << tool.y() << "], but this one is at [" << last.point.x() << ", " << last.point.y() << "]";
+            check.fail(last.line, field + ".point", msg.str());
+        }
+        const JointLimits free;
+        if (last.actuated || last.limits.lower != free.lower || last.limits.upper != free.upper ||
+            last.limits.effort != free.effort || last.limits.velocity != free.velocity || last.damping != 0.0 ||
+            last.friction != 0.0 || last.stiffness) {
+            check.fail(last.line, field,
+                       "the last R joint's angle is not set by the pose [x, y]: it cannot be actuated and takes no "
+                       "limits, damping, friction or stiffness");
+        }
+    }
+}
 
 }  // namespace
 
@@ -194,6 +244,14 @@ void validate(RobotDescription& robot) {
     }
     if (!(total_mass > 0.0)) check.fail(0, "platform.mass", "the robot has no mass at all");
     const int actuators = robot.actuatorCount();
+    if (robot.motion == PlatformMotion::translation) {
+        validateTranslation(robot, check);
+        if (actuators < 2) {
+            check.fail(0, "limbs",
+                       "a translating point tool needs at least 2 actuated joints, got " + std::to_string(actuators));
+        }
+        return;
+    }
     if (actuators < 3) {
         check.fail(0, "limbs", "a planar platform needs at least 3 actuated joints, got " + std::to_string(actuators));
     }

@@ -51,6 +51,18 @@ namespace detail {
 void distribute(const Model& model, Data& data, const Vector3& W) {
     if (model.coordinates == Coordinates::actuators) {
         data.tau.noalias() = data.Xi.transpose() * W;
+    } else if (model.task_dimension == 2) {
+        // translation: (A S(c) E)^T tau = E^T S(c)^T W, with S(c) E = [0; I] the force part of W:
+        // the minimum-norm tau = A_E (A_E^T A_E)^-1 f, A_E the x, y columns of A (n x 2)
+        double n00 = 0.0, n01 = 0.0, n11 = 0.0;
+        for (int a = 0; a < model.actuators; ++a) {
+            const double rx = data.A(a, 1), ry = data.A(a, 2);
+            n00 += rx * rx, n01 += rx * ry, n11 += ry * ry;
+        }
+        const double inv_det = 1.0 / (n00 * n11 - n01 * n01);
+        const double lx = (n11 * W(1) - n01 * W(2)) * inv_det;
+        const double ly = (n00 * W(2) - n01 * W(1)) * inv_det;
+        for (int a = 0; a < model.actuators; ++a) data.tau(a) = data.A(a, 1) * lx + data.A(a, 2) * ly;
     } else {
         std::array<Vector3, kMaxActuators> rows;
         for (int a = 0; a < model.actuators; ++a) rows[static_cast<std::size_t>(a)] = data.A.row(a).transpose();

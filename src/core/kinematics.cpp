@@ -2,6 +2,7 @@
 // (kinematics.hpp), written once for every limb type with planar screws.
 #include "nocdyn/kinematics.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 
@@ -76,6 +77,18 @@ Status jacobianStage(const Model& model, Data& data) {
         data.Xi = adj / det;
         const ConditionNorms norms = actuationConditionNorms(rows.data(), w.data(), L, inv_L, adj);
         data.cond_A = norms.norm * norms.adj_norm / std::abs(det);
+    } else if (model.task_dimension == 2) {
+        // translation: the actuation map is A S(c) E = the x, y columns of A (S(c) E = [0; I]);
+        // B = As^T As with As = diag(w) A E L, cond_A = sqrt(cond_1 B), B 2 x 2
+        double b00 = 0.0, b01 = 0.0, b11 = 0.0;
+        for (int a = 0; a < n; ++a) {
+            const auto aa = static_cast<std::size_t>(a);
+            const double rx = w[aa] * L * rows[aa](1), ry = w[aa] * L * rows[aa](2);
+            b00 += rx * rx, b01 += rx * ry, b11 += ry * ry;
+        }
+        const double det = b00 * b11 - b01 * b01;
+        const double norm = std::max(std::abs(b00) + std::abs(b01), std::abs(b01) + std::abs(b11));
+        data.cond_A = std::sqrt(norm * norm / std::abs(det));
     } else {
         // B = As^T As, As = diag(w) A diag(1, L, L): cond_A = sqrt(cond_1 B)
         Matrix3 B = Matrix3::Zero();

@@ -588,9 +588,30 @@ NOCDYN_ALWAYS_INLINE Mask<S> actuation(const Model& model, V3<S>* rows, double* 
         out.tau[2 * out.stride] = dot(b2, W) * inv_det;
         return ok;
     }
+    const S zero = splat<S>(0.0);
+    if (model.task_dimension == 2) {
+        // translation: A_E = A S(c) E, the x, y columns of A; cond_A^2 = cond_1(B) with
+        // B = (L diag(w) A_E)^T (L diag(w) A_E), and the minimum-norm tau = A_E (A_E^T A_E)^-1 f_P,
+        // f_P the force part of W_P (as jacobianStage and distribute)
+        S B00 = zero, B01 = zero, B11 = zero, N00 = zero, N01 = zero, N11 = zero;
+        for (int a = 0; a < n; ++a) {
+            const V3<S>& ra = rows[a];
+            N00 += ra.x * ra.x, N01 += ra.x * ra.y, N11 += ra.y * ra.y;
+            const double wl = weight[a] * L;
+            const S rx = wl * ra.x, ry = wl * ra.y;
+            B00 += rx * rx, B01 += rx * ry, B11 += ry * ry;
+        }
+        const S det_B = B00 * B11 - B01 * B01;
+        const S norm_B = maxOf(absOf(B00) + absOf(B01), absOf(B01) + absOf(B11));
+        if (!pass<S>(ok, norm_B * norm_B <= max_condition * max_condition * absOf(det_B))) return ok;
+        const S inv_det = 1.0 / (N00 * N11 - N01 * N01);
+        const S lx = (N11 * W.x - N01 * W.y) * inv_det;
+        const S ly = (N00 * W.y - N01 * W.x) * inv_det;
+        for (int a = 0; a < n; ++a) out.tau[a * out.stride] = rows[a].x * lx + rows[a].y * ly;
+        return ok;
+    }
     // redundant: cond_A^2 = cond_1(B), B = As^T As, As = diag(w) A diag(1, L, L); and the
     // minimum-norm tau = A (A^T A)^-1 W_P
-    const S zero = splat<S>(0.0);
     S B[6] = {zero, zero, zero, zero, zero, zero};  // upper triangles 00 01 02 11 12 22
     S N[6] = {zero, zero, zero, zero, zero, zero};
     for (int a = 0; a < n; ++a) {

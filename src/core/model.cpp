@@ -102,7 +102,10 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
     limbs = static_cast<int>(robot.limbs.size());
     bodies = 2 * limbs + 1;
     actuators = robot.actuatorCount();
-    coordinates = actuators == 3 ? Coordinates::actuators : Coordinates::platform;
+    motion = robot.motion;
+    task_dimension = motion == PlatformMotion::translation ? 2 : 3;
+    // with a translating point tool the independent coordinates are the pose (task through E)
+    coordinates = actuators == 3 && task_dimension == 3 ? Coordinates::actuators : Coordinates::platform;
     max_condition = robot.max_condition;
     gravity = robot.gravity;
     home = robot.home;
@@ -187,6 +190,17 @@ Model::Model(RobotDescription d) : description(std::move(d)) {
             }
         }
     }
+}
+
+TaskMap taskMap(const Model& model) {
+    TaskMap E = TaskMap::Zero(3, model.task_dimension);
+    if (model.task_dimension == 3) {
+        E.setIdentity();
+    } else {
+        E(1, 0) = 1.0;
+        E(2, 1) = 1.0;
+    }
+    return E;
 }
 
 std::string Model::limbName(int j) const {

@@ -98,7 +98,9 @@ BodyDescription parseBody(const Context& context, const YAML::Node& node) {
 
 RobotDescription parseGeneral(const YAML::Node& root, const std::string& source) {
     const Context top{source, ""};
-    detail::requireMap(top, root, {"name", "gravity", "home", "max_condition", "damping_ratio", "platform", "limbs"});
+    detail::requireMap(
+        top, root,
+        {"name", "space", "motion", "gravity", "home", "max_condition", "damping_ratio", "platform", "limbs"});
     RobotDescription robot;
     robot.source = source;
     robot.name = std::filesystem::path(source).stem().string();
@@ -106,14 +108,32 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
         if (!name.IsScalar() || name.Scalar().empty()) detail::fail(top / "name", name, "expected a non-empty string");
         robot.name = name.Scalar();
     }
+    if (const YAML::Node space = root["space"]; space.IsDefined()) {
+        if (!space.IsScalar() || (space.Scalar() != "planar" && space.Scalar() != "spatial"))
+            detail::fail(top / "space", space, "expected planar or spatial");
+        if (space.Scalar() == "spatial")
+            detail::fail(top / "space", space, "spatial robots are not supported by this version (planar only)");
+    }
+    if (const YAML::Node motion = root["motion"]; motion.IsDefined()) {
+        if (!motion.IsScalar() || (motion.Scalar() != "full" && motion.Scalar() != "translation"))
+            detail::fail(top / "motion", motion, "expected full or translation");
+        robot.motion = motion.Scalar() == "translation" ? PlatformMotion::translation : PlatformMotion::full;
+    }
+    const bool translation = robot.motion == PlatformMotion::translation;
     if (root["gravity"].IsDefined()) robot.gravity = vector2(top, root, "gravity");
     if (const YAML::Node home = root["home"]; home.IsDefined()) {
         // the user's order, as every pose a user writes (pose_order.hpp); the core's inside
-        if (!home.IsSequence() || home.size() != 3) detail::fail(top / "home", home, "expected [x, y, theta]");
-        Vector3 user;
-        for (std::size_t i = 0; i < 3; ++i)
-            user(static_cast<Eigen::Index>(i)) = detail::toNumber(top / "home", home[i]);
-        robot.home = corePose(user);
+        if (translation) {
+            // the tool point [x, y]; the core's pose [theta = 0, x, y]
+            if (!home.IsSequence() || home.size() != 2) detail::fail(top / "home", home, "expected [x, y]");
+            robot.home = Vector3(0.0, detail::toNumber(top / "home", home[0]), detail::toNumber(top / "home", home[1]));
+        } else {
+            if (!home.IsSequence() || home.size() != 3) detail::fail(top / "home", home, "expected [x, y, theta]");
+            Vector3 user;
+            for (std::size_t i = 0; i < 3; ++i)
+                user(static_cast<Eigen::Index>(i)) = detail::toNumber(top / "home", home[i]);
+            robot.home = corePose(user);
+        }
     }
     robot.max_condition = detail::optionalNumber(top, root, "max_condition", robot.max_condition);
     robot.damping_ratio = detail::optionalNumber(top, root, "damping_ratio", robot.damping_ratio);
@@ -122,7 +142,9 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
     detail::requireMap(top / "platform", platform, {"mass", "inertia", "com"});
     robot.platform.line = lineOf(platform);
     robot.platform.mass = detail::requireNumber(top / "platform", platform, "mass");
-    robot.platform.inertia = detail::requireNumber(top / "platform", platform, "inertia");
+    // a translating point tool has no rotational inertia: optional, and 0 if given
+    robot.platform.inertia = translation ? detail::optionalNumber(top / "platform", platform, "inertia", 0.0)
+                                         : detail::requireNumber(top / "platform", platform, "inertia");
     if (platform["com"].IsDefined()) robot.platform.com = vector2(top / "platform", platform, "com");
     const YAML::Node limbs = root["limbs"];
     // (a missing key of a const node is invalid: IsDefined first, before any other question)
@@ -218,17 +240,28 @@ Parameter parseParameterAssignment(const std::string& text) {
 std::string descriptionToYaml(const RobotDescription& robot) {
     std::ostringstream out;
     out << "name: " << yamlQuoted(robot.name) << "\n";
+    const bool translation = robot.motion == PlatformMotion::translation;
+    if (translation) out << "motion: translation  # pose [x, y] of the tool point\n";
     if (!robot.gravity.isZero()) out << "gravity: " << pair(robot.gravity) << "  # [m/s^2]\n";
-    if (!robot.home.isZero()) {
-        out << "home: [" << text::shortest(robot.home(0)) << ", " << text::shortest(robot.home(1)) << ", "
-            << text::shortest(robot.home(2)) << "]  # [theta, x, y] at home\n";
+    if (translation && !robot.home.isZero()) {
+        out << "home: " << pair(robot.home.tail<2>()) << "  # [x, y] of the tool point at home\n";
+    } else if (!robot.home.isZero()) {
+        // the user's order, as the reader takes it (the core's is [theta, x, y])
+        const Vector3 user = userPose(robot.home);
+        out << "home: [" << text::shortest(user(0)) << ", " << text::shortest(user(1)) << ", "
+            << text::shortest(user(2)) << "]  # [x, y, theta] at home\n";
     }
     out << "max_condition: " << text::shortest(robot.max_condition) << "\n";
     if (robot.damping_ratio != RobotDescription{}.damping_ratio) {
         out << "damping_ratio: " << text::shortest(robot.damping_ratio) << "  # of each lumped mode\n";
     }
-    out << "platform: {mass: " << text::shortest(robot.platform.mass)
-        << ", inertia: " << text::shortest(robot.platform.inertia) << ", com: " << pair(robot.platform.com) << "}\n";
+    if (translation) {
+        out << "platform: {mass: " << text::shortest(robot.platform.mass) << "}  # a point mass at the tool point\n";
+    } else {
+        out << "platform: {mass: " << text::shortest(robot.platform.mass)
+            << ", inertia: " << text::shortest(robot.platform.inertia) << ", com: " << pair(robot.platform.com)
+            << "}\n";
+    }
     out << "limbs:\n";
     for (const LimbDescription& limb : robot.limbs) {
         out << "  - name: " << yamlQuoted(limb.name) << "\n    joints:\n";

@@ -1,0 +1,132 @@
+"""Two-DOF planar robots (motion: translation, pose [x, y] of a point tool): the shipped five-bar
+and biglide through Robot.inverse_dynamics with arrays of shape (N, 2), `nocdyn pose X Y`, and
+the one-line refusal of the commands that do not take them yet."""
+
+import numpy as np
+import pytest
+
+import nocdyn
+
+
+def _robot(source_dir, name):
+    return nocdyn.Robot.load(str(source_dir / "robots" / f"{name}.yaml"))
+
+
+def _motion(center, n=200):
+    t = np.linspace(0.0, 0.5, n)
+    a, w = np.array([0.03, 0.04]), np.array([9.0, 13.0])
+    P = center + a * np.sin(np.outer(t, w))
+    dP = a * w * np.cos(np.outer(t, w))
+    ddP = -a * w * w * np.sin(np.outer(t, w))
+    return P, dP, ddP
+
+
+@pytest.mark.parametrize("name, center", [("five-bar", [0.01, 0.32]), ("biglide", [0.0, 0.17])])
+def test_batch_of_shape_n_2_matches_one_sample_at_a_time(source_dir, name, center):
+    robot = _robot(source_dir, name)
+    assert robot.task_dimension == 2
+    assert robot.actuators == 2
+    P, dP, ddP = _motion(np.array(center))
+    u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)
+    assert u.shape == du.shape == ddu.shape == tau.shape == (len(P), 2)
+    assert np.all(np.isfinite(tau)) and np.abs(tau).max() > 0.1
+    for k in (0, 57, 133, 199):
+        one = robot.inverse_dynamics(P[k], dP[k], ddP[k])
+        for batch, sample in zip((u, du, ddu, tau), one):
+            np.testing.assert_allclose(batch[k], sample, rtol=1e-11, atol=1e-12)
+
+
+def test_power_balance_along_a_five_bar_motion(source_dir):
+    # tau . du = dE/dt with no gravity (the horizontal five-bar): the kinetic energy from
+    # E(t) = integral of the power, checked as the power's integral over a period vanishing
+    robot = _robot(source_dir, "five-bar")
+    t = np.linspace(0.0, 2.0 * np.pi / 3.0, 4001)  # one common period of w = 3 and 6
+    a = np.array([0.03, 0.02])
+    c = np.array([0.0, 0.3])
+    P = c + np.stack([a[0] * np.sin(3.0 * t), a[1] * np.sin(6.0 * t)], axis=1)
+    dP = np.stack([3.0 * a[0] * np.cos(3.0 * t), 6.0 * a[1] * np.cos(6.0 * t)], axis=1)
+    ddP = np.stack([-9.0 * a[0] * np.sin(3.0 * t), -36.0 * a[1] * np.sin(6.0 * t)], axis=1)
+    _, du, _, tau = robot.inverse_dynamics(P, dP, ddP)
+    power = np.sum(tau * du, axis=1)
+    # the kinetic energy returns to its start after a period: the work done is zero
+    work = np.trapezoid(power, t) if hasattr(np, "trapezoid") else np.trapz(power, t)
+    assert abs(work) < 1e-6 * np.abs(power).max() * t[-1]
+
+
+def test_biglide_holds_its_weight_as_virtual_work_says(source_dir):
+    robot = _robot(source_dir, "biglide")
+    zero = np.zeros(2)
+    _, _, _, tau = robot.inverse_dynamics(np.array([0.0, 0.2]), zero, zero)
+    expected = 9.81 * (0.5 + 0.2) * 0.15 / (2.0 * 0.2)  # g (m_tool + m_link) s / (2 y)
+    np.testing.assert_allclose(tau, [expected, -expected], rtol=1e-12)
+
+
+def test_wrong_shapes_and_matrices_are_refused(source_dir):
+    robot = _robot(source_dir, "five-bar")
+    with pytest.raises(nocdyn.Error, match=r"\(N, 2\)"):
+        robot.inverse_dynamics(np.zeros((3, 3)), np.zeros((3, 3)), np.zeros((3, 3)))
+    with pytest.raises(nocdyn.Error, match="matrices"):
+        robot.inverse_dynamics(np.array([0.0, 0.3]), np.zeros(2), np.zeros(2), matrices=True)
+    with pytest.raises(nocdyn.Error, match="sample 1"):
+        robot.inverse_dynamics(np.array([[0.0, 0.9]]), np.zeros((1, 2)), np.zeros((1, 2)))
+
+
+def test_pose_prints_x_y(cli, source_dir):
+    code, out, err = cli("pose", "0.05", "0.25", "--robot", source_dir / "robots" / "five-bar.yaml")
+    assert code == 0, err
+    assert "pose x = 0.05 m, y = 0.25 m" in out
+    assert "columns: x, y)" in out
+    code, out, err = cli("pose", "0.0", "0.2", "--robot", source_dir / "robots" / "biglide.yaml", "--json")
+    assert code == 0, err
+    import json
+
+    report = json.loads(out)
+    assert set(report["pose"]) == {"x", "y"}
+    np.testing.assert_allclose(report["tau"], [2.575125, -2.575125], rtol=1e-12)
+    code, _, err = cli("pose", "0.0", "0.3", "0.1", "--robot", source_dir / "robots" / "five-bar.yaml")
+    assert code != 0 and "no theta" in err
+    code, _, err = cli("pose", "0.0", "0.0", "--robot", source_dir / "robots" / "3-rrr.yaml")
+    assert code != 0 and "THETA" in err
+
+
+@pytest.mark.parametrize("command", [["inverse-dynamics", "--trajectory", "paper1"], ["simulate", "--forces", "FORCES"],
+                                     ["loads", "--trajectory", "paper1"], ["control", "--trajectory", "paper1"],
+                                     ["workspace"], ["envelope"], ["frequency-response"], ["regressor"],
+                                     ["forward-kinematics", "0", "0", "0"], ["convert"]])
+def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_path, command):
+    forces = tmp_path / "forces.csv"
+    forces.write_text("t,tau1,tau2\n0,0,0\n0.1,0,0\n")
+    command = [str(forces) if c == "FORCES" else c for c in command]
+    code, out, err = cli(*command, "--robot", source_dir / "robots" / "five-bar.yaml")
+    assert code != 0
+    assert "five-bar.yaml: a two-DOF robot (motion: translation" in err
+    assert len(err.strip().splitlines()) == 1, err
+
+
+def test_the_stiffness_of_a_two_dof_robot_is_refused_in_one_line(cli, source_dir, tmp_path):
+    text = (source_dir / "robots" / "five-bar.yaml").read_text()
+    stiff = tmp_path / "stiff-five-bar.yaml"
+    stiff.write_text(text.replace("effort: 8.0, velocity: 30.0}}", "effort: 8.0, velocity: 30.0}, stiffness: 5000.0}"))
+    code, _, err = cli("pose", "0.0", "0.3", "--robot", stiff)
+    assert code != 0
+    assert "stiffness of a two-DOF robot" in err
+    assert len(err.strip().splitlines()) == 1, err
+
+
+def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
+    robot = _robot(source_dir, "five-bar")
+    p, z = np.array([0.0, 0.3, 0.0]), np.zeros(3)
+    calls = {
+        "svg": lambda: robot.svg(),
+        "with_payload": lambda: robot.with_payload(0.1),
+        "forward_kinematics": lambda: robot.forward_kinematics(np.zeros(2)),
+        "state_from_actuators": lambda: robot.state_from_actuators(np.zeros(2)),
+        "stiffness": lambda: robot.stiffness(p),
+        "inverse_dynamics_derivatives": lambda: robot.inverse_dynamics_derivatives(p, z, z),
+        "reactions": lambda: robot.reactions(p, z, z),
+        "regressor": lambda: robot.regressor(p, z, z),
+    }
+    for name, call in calls.items():
+        with pytest.raises(nocdyn.Error, match=f"{name}: a two-DOF robot"):
+            call()
+    assert robot._repr_svg_() is None
