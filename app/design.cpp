@@ -290,29 +290,23 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     }
     const auto points = sweepPoints(family.ranges, options.sweep == "grid" ? SweepKind::grid : SweepKind::random,
                                     options.samples, options.seed);
-    // a two-DOF family (motion: translation) is structural too: its metrics are not written yet
+    // What the whole family shares is checked on its first design (one that fails, the sweep
+    // reports): a two-DOF family (motion: translation), whose metrics are not written yet, and
+    // whether it declares compliance (a field present, not its value), without which
+    // first_frequency_min is refused before the first design.
+    std::optional<RobotDescription> first;
     if (!points.empty()) {
-        std::optional<RobotDescription> first;
-        try {
-            first = io::designRobot(family, points.front());
-        } catch (const Error&) {
-            // a design the sweep itself will report
-        }
-        if (first && first->motion == PlatformMotion::translation) {
-            throw Error(where(*first, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does " +
-                        "not take it yet (nocdyn pose and Python's Robot.inverse_dynamics do)");
-        }
-    }
-    // whether the family declares compliance is structural (a field present, not its value):
-    // first_frequency_min on a family without any is refused before the first design
-    if (std::any_of(metrics.begin(), metrics.end(),
-                    [](const DesignMetric& m) { return m.kind == DesignMetricKind::first_frequency_min; }) &&
-        !points.empty()) {
-        std::optional<RobotDescription> first;
         try {
             first = io::designRobot(family, points.front());
         } catch (const Error&) {  // NOLINT(bugprone-empty-catch): a design the sweep itself will report
         }
+    }
+    if (first && first->motion == PlatformMotion::translation) {
+        throw Error(where(*first, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does " +
+                    "not take it yet (nocdyn pose and Python's Robot.inverse_dynamics do)");
+    }
+    if (std::any_of(metrics.begin(), metrics.end(),
+                    [](const DesignMetric& m) { return m.kind == DesignMetricKind::first_frequency_min; })) {
         if (first && !declaresCompliance(*first)) {
             throw OptionError("metric", "first_frequency_min: the family '" + io::terminalText(first->name) +
                                             "' declares no compliance (no joint 'stiffness', no body 'elastic'), so "
