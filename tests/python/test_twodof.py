@@ -1,6 +1,7 @@
 """Two-DOF planar robots (motion: translation, pose [x, y] of a point tool): the shipped five-bar
 and biglide through Robot.inverse_dynamics with arrays of shape (N, 2), `nocdyn pose X Y`, and
-the one-line refusal of the commands that do not take them yet."""
+`nocdyn forward-kinematics U1 U2` (poses x, y), and the one-line refusal of the commands that do
+not take them yet."""
 
 import numpy as np
 import pytest
@@ -92,7 +93,7 @@ def test_pose_prints_x_y(cli, source_dir):
 @pytest.mark.parametrize("command", [["inverse-dynamics", "--trajectory", "paper1"], ["simulate", "--forces", "FORCES"],
                                      ["loads", "--trajectory", "paper1"], ["control", "--trajectory", "paper1"],
                                      ["workspace"], ["envelope"], ["frequency-response"], ["regressor"],
-                                     ["forward-kinematics", "0", "0", "0"], ["convert"]])
+                                     ["convert"]])
 def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_path, command):
     forces = tmp_path / "forces.csv"
     forces.write_text("t,tau1,tau2\n0,0,0\n0.1,0,0\n")
@@ -101,6 +102,30 @@ def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_p
     assert code != 0
     assert "five-bar.yaml: a two-DOF robot (motion: translation" in err
     assert len(err.strip().splitlines()) == 1, err
+
+
+@pytest.mark.parametrize("name, tool", [("five-bar", [0.03, 0.31]), ("biglide", [-0.02, 0.18])])
+def test_forward_kinematics_gives_both_tool_points_x_y(cli, source_dir, name, tool):
+    import json
+
+    robot = _robot(source_dir, name)
+    u = robot.inverse_dynamics(np.array(tool), np.zeros(2), np.zeros(2))[0]
+    path = source_dir / "robots" / f"{name}.yaml"
+    code, out, err = cli("forward-kinematics", repr(u[0]), repr(u[1]), "--robot", path, "--all-branches", "--json")
+    assert code == 0, err
+    report = json.loads(out)
+    assert report["solutions_all_branches"] == 2
+    poses = np.array([[s["pose"]["x"], s["pose"]["y"]] for s in report["solutions"]])
+    assert all(set(s["pose"]) == {"x", "y"} for s in report["solutions"])
+    assert tuple(poses[0]) < tuple(poses[1])  # listed by x, then y
+    # the tool point that gave u is one of them, in the working mode
+    hit = np.argmin(np.linalg.norm(poses - tool, axis=1))
+    np.testing.assert_allclose(poses[hit], tool, atol=1e-12)
+    assert report["solutions"][hit]["working"]
+    code, out, err = cli("forward-kinematics", repr(u[0]), repr(u[1]), "--robot", path)
+    assert code == 0, err
+    assert f"x = {tool[0] * 1e3:+.9f} mm, y = {tool[1] * 1e3:+.9f} mm" in out
+    assert "theta" not in out
 
 
 def test_the_stiffness_of_a_two_dof_robot_is_refused_in_one_line(cli, source_dir, tmp_path):
