@@ -37,6 +37,44 @@ def test_batch_of_shape_n_2_matches_one_sample_at_a_time(source_dir, name, cente
             np.testing.assert_allclose(batch[k], sample, rtol=1e-11, atol=1e-12)
 
 
+def test_batch_reads_n_2_arrays_in_place_in_any_order_across_slices(source_dir):
+    # the compiled batch lifts (N, 2) through E slice by slice (65536 rows): a batch longer than
+    # one slice, read C-ordered, F-ordered and as a strided view, into new and preallocated
+    # outputs, gives every row the one-sample result to the last bits
+    robot = _robot(source_dir, "five-bar")
+    P, dP, ddP = _motion(np.array([0.01, 0.32]), n=70001)
+    u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)
+    for k in (0, 65535, 65536, 70000):
+        one = robot.inverse_dynamics(P[k], dP[k], ddP[k])
+        for batch, sample in zip((u, du, ddu, tau), one):
+            np.testing.assert_allclose(batch[k], sample, rtol=1e-11, atol=1e-12)
+    F = [np.asfortranarray(a) for a in (P, dP, ddP)]
+    wide = [np.zeros((len(P), 5)) for _ in range(3)]
+    for w, a in zip(wide, (P, dP, ddP)):
+        w[:, 1:5:2] = a  # columns 1 and 3: a strided view of every other column
+    out = tuple(np.empty((len(P), 2), order="F") for _ in range(4))
+    for inputs, into in ((F, None), ([w[:, 1:5:2] for w in wide], None), ((P, dP, ddP), out)):
+        result = robot.inverse_dynamics(*inputs, out=into)
+        for got, want in zip(result, (u, du, ddu, tau)):
+            np.testing.assert_array_equal(got, want)
+    assert result.tau is out[3]
+    with pytest.raises(nocdyn.Error, match="overlaps the input p"):
+        robot.inverse_dynamics(P, dP, ddP, out=(P, np.empty_like(P), np.empty_like(P), np.empty_like(P)))
+    with pytest.raises(nocdyn.Error, match=r"dp: expected shape \(70001, 2\)"):
+        robot.inverse_dynamics(P, dP[:-1], ddP)
+    # a sample out of reach: its row NaN, the rest computed (check=False), else the error names it
+    P_bad = P.copy()
+    P_bad[40000] = [0.0, 0.9]
+    bad = robot.inverse_dynamics(P_bad, dP, ddP, check=False)
+    assert np.all(np.isnan(bad.tau[40000])) and np.isfinite(bad.tau[39999]).all()
+    with pytest.raises(nocdyn.Error, match="sample 40001"):
+        robot.inverse_dynamics(P_bad, dP, ddP)
+    # an actuator beyond its effort (8 N m): the limit is checked in the kernel
+    with pytest.raises(nocdyn.Error, match="sample 1: .*effort"):
+        robot.inverse_dynamics(P[:3], dP[:3], 1e4 * np.ones((3, 2)))
+    robot.inverse_dynamics(P[:3], dP[:3], 1e4 * np.ones((3, 2)), check_limits=False)
+
+
 def test_power_balance_along_a_five_bar_motion(source_dir):
     # tau . du = dE/dt with no gravity (the horizontal five-bar): the kinetic energy from
     # E(t) = integral of the power, checked as the power's integral over a period vanishing
