@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <memory>
 #include <numbers>
 #include <random>
@@ -165,6 +166,23 @@ TEST(TwoDofEngines, ShippedRobotsAgreeWithSimbodyAndMujoco) {
                 "%s: peak %.3g, difference / peak: forces Simbody %.2g, MuJoCo %.2g; motion Simbody %.2g, "
                 "MuJoCo %.2g; reactions Simbody %.2g\n",
                 what.c_str(), s.peak, s.force, m.force, s.motion, m.motion, reactions);
+        }
+    }
+}
+
+// The engines' forward-dynamics plants free the platform's angle, which has no inertia for a
+// point tool: they refuse a two-DOF robot in words rather than integrate a singular system.
+TEST(TwoDofEngines, PlantsRefuseTwoDofRobots) {
+    const RobotDescription robot = shipped("five-bar");
+    validation::SimbodyMechanism simbody(robot);
+    validation::MujocoMechanism mujoco(robot);
+    for (const auto& reset : {std::function<void()>([&] { simbody.resetPlant(robot.home); }),
+                              std::function<void()>([&] { mujoco.resetPlant(robot.home); })}) {
+        try {
+            reset();
+            ADD_FAILURE() << "a two-DOF plant accepted";
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("does not take a two-DOF robot"), std::string::npos) << e.what();
         }
     }
 }
