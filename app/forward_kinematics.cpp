@@ -28,7 +28,7 @@ void validate(const ForwardKinematicsOptions& options) {
 
 ForwardKinematicsResult runForwardKinematics(const ForwardKinematicsOptions& options, Observer& observer) {
     validate(options);
-    const Model model(loadRobot(options.robot));
+    const Model model(loadRobotAnyMotion(options.robot));
     const int n = model.actuators;
     if (static_cast<int>(options.u.size()) != n) {
         const std::string robot = io::terminalText(model.description.name) +
@@ -38,6 +38,7 @@ ForwardKinematicsResult runForwardKinematics(const ForwardKinematicsOptions& opt
     }
     ForwardKinematicsResult out;
     out.robot = model.description.name;
+    out.task_dimension = model.task_dimension;
     out.u = options.u;
     ActuatorVector u(n);
     for (int a = 0; a < n; ++a) {

@@ -30,6 +30,9 @@ struct ForwardKinematicsSolution {
 
 struct ForwardKinematicsResult {
     std::string robot;
+    /// 3: poses [x, y, theta]; 2: a two-DOF robot (motion: translation), poses [x, y] (theta
+    /// stays at home, 0).
+    int task_dimension = 3;
     std::vector<double> u;
     std::vector<bool> revolute;  ///< per actuator: an R joint (rad), else P (m)
     /// 1-based number of the first actuator whose value is beyond its joint's range; 0: none.
@@ -45,7 +48,7 @@ struct ForwardKinematicsResult {
 /// Throws OptionError("u") for a value outside kLengthRange.
 void validate(const ForwardKinematicsOptions& options);
 
-/// The assembly modes of options.u. Throws OptionError("u") unless there is one value per
+/// The assembly modes of options.u (two-DOF robots included). Throws OptionError("u") unless there is one value per
 /// actuator; a value beyond its joint's range is reported (outside) and warned of. No pose
 /// closing the loops is not an error (no solutions).
 [[nodiscard]] ForwardKinematicsResult runForwardKinematics(const ForwardKinematicsOptions& options, Observer& observer);

@@ -26,11 +26,13 @@
 #include <string>
 #include <vector>
 
+#include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
+#include "point_robots.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -279,54 +281,6 @@ TEST(TwoDofModel, FiveBarInverseDynamicsMatchesHandWrittenLagrangian) {
     }
 }
 
-/// A random two-DOF robot: 2 or 3 limbs of kind RRR or PRR (last joint R at the tool point).
-RobotDescription randomPointRobot(std::mt19937& rng, int limbs, bool prismatic) {
-    std::uniform_real_distribution<double> U(-1.0, 1.0);
-    const auto between = [&](double lo, double hi) { return lo + (hi - lo) * 0.5 * (U(rng) + 1.0); };
-    RobotDescription d;
-    d.name = prismatic ? "random biglide" : "random five-bar";
-    d.motion = PlatformMotion::translation;
-    const Vector2 C(0.03 * U(rng), 0.3 + 0.03 * U(rng));
-    d.home = Vector3(0.0, C.x(), C.y());
-    d.gravity = Vector2(5.0 * U(rng), 10.0 * U(rng));
-    d.platform.mass = between(0.05, 0.6);
-    for (int j = 0; j < limbs; ++j) {
-        LimbDescription limb;
-        limb.name = "limb" + std::to_string(j + 1);
-        // the base joints spread along x below the tool, the elbows out
-        const double base_x = limbs == 2 ? (j == 0 ? -0.1 : 0.1) : -0.12 + 0.12 * j;
-        const Vector2 A(base_x + 0.02 * U(rng), 0.02 * U(rng));
-        Vector2 B;
-        if (prismatic) {
-            const double angle = 0.3 * U(rng);  // the rail about x
-            limb.joints[0].type = JointType::prismatic;
-            limb.joints[0].direction = Vector2(std::cos(angle), std::sin(angle));
-            B = A;
-        } else {
-            limb.joints[0].type = JointType::revolute;
-            limb.joints[0].point = A;
-            const double out =
-                base_x < 0.0 ? between(1.9, 2.6) : (base_x > 0.0 ? between(0.5, 1.2) : between(1.3, 1.8));
-            B = A + between(0.15, 0.25) * Vector2(std::cos(out), std::sin(out));
-        }
-        limb.joints[0].actuated = true;
-        limb.joints[1].type = JointType::revolute;
-        limb.joints[1].point = B;
-        limb.joints[2].type = JointType::revolute;
-        limb.joints[2].point = C;
-        const Vector2 first_end = prismatic ? A + Vector2(0.03, 0.0) : B;
-        const std::array<Vector2, 2> ends0{A, B};
-        const std::array<Vector2, 2> ends1{first_end, C};
-        for (std::size_t b = 0; b < 2; ++b) {
-            limb.bodies[b].mass = between(0.05, 1.0);
-            limb.bodies[b].inertia = between(1e-5, 3e-3);
-            limb.bodies[b].com = 0.5 * (ends0[b] + ends1[b]) + Vector2(0.02 * U(rng), 0.02 * U(rng));
-        }
-        d.limbs.push_back(limb);
-    }
-    return d;
-}
-
 TEST(TwoDofModel, PowerBalanceHoldsOnRandomPointRobots) {
     std::mt19937 rng(53);
     std::uniform_real_distribution<double> U(-1.0, 1.0);
@@ -442,6 +396,104 @@ TEST(TwoDofModel, InverseKinematicsRoundTripsThroughHandDirectKinematics) {
         }
     }
     EXPECT_LT(worst, kClosureTolerance);
+}
+
+/// Both tool points of a two-limb point robot with its actuators at u, in closed form: each
+/// limb's locked first joint puts its elbow (or slider pivot) at B_j = A_j + Rot(u_j) (B_j0 -
+/// A_j) (R) or B_j0 + u_j d_j (P); the tool is on the circle of radius |C_0 - B_j0| about B_j,
+/// and the two circles meet at B_1 + a e +- h n (e along B_1 B_2, n normal to it).
+std::vector<Vector2> circleIntersections(const RobotDescription& d, const ActuatorVector& u) {
+    std::array<Vector2, 2> B;
+    std::array<double, 2> r{};
+    const Vector2 C0 = d.home.tail<2>();
+    for (std::size_t j = 0; j < 2; ++j) {
+        const JointDescription& base = d.limbs[j].joints[0];
+        const Vector2 B0 = d.limbs[j].joints[1].point;
+        const double uj = u(static_cast<Eigen::Index>(j));
+        if (base.type == JointType::revolute) {
+            B[j] = base.point + rotate(uj, B0 - base.point);
+        } else {
+            B[j] = B0 + uj * base.direction.normalized();
+        }
+        r[j] = (C0 - B0).norm();
+    }
+    const Vector2 e = (B[1] - B[0]).normalized();
+    const double D = (B[1] - B[0]).norm();
+    const double a = (r[0] * r[0] - r[1] * r[1] + D * D) / (2.0 * D);
+    const double h2 = r[0] * r[0] - a * a;
+    if (h2 < 0.0) return {};
+    const Vector2 n(-e.y(), e.x());
+    const double h = std::sqrt(h2);
+    return {B[0] + a * e + h * n, B[0] + a * e - h * n};
+}
+
+// Direct kinematics of random five-bars and biglides (and the shipped ones): from the actuator
+// values of a tool point near home, exactly the two closed-form circle intersections, each at
+// theta = home, verified by inverse displacement (u back to round-off); the pose that gave u is
+// among them, on the home branches (the working mode); and stateFromActuators picks it.
+TEST(TwoDofModel, DirectKinematicsGivesBothCircleIntersections) {
+    std::mt19937 rng(61);
+    std::uniform_real_distribution<double> U(-1.0, 1.0);
+    int checked = 0, robots = 0;
+    double worst = 0.0, worst_u = 0.0;
+    for (int r = 0; r < 40; ++r) {
+        RobotDescription d =
+            r == 0 ? shipped("five-bar") : (r == 1 ? shipped("biglide") : randomPointRobot(rng, 2, r % 2 == 1));
+        std::unique_ptr<Model> model;
+        try {
+            model = std::make_unique<Model>(d);
+        } catch (const Error&) {
+            continue;
+        }
+        ++robots;
+        Data data(*model);
+        for (int k = 0; k < 6; ++k) {
+            const TaskVector p = task(d.home(1) + 0.02 * U(rng), d.home(2) + 0.02 * U(rng));
+            if (!inverseDisplacement(*model, data, lift(*model, p)).ok()) continue;
+            const ActuatorVector u = data.u.head(model->actuators);
+            const std::vector<Vector2> closed = circleIntersections(d, u);
+            ASSERT_EQ(closed.size(), 2U) << d.name << " " << r;
+            AssemblyModes modes;
+            ASSERT_TRUE(directKinematics(*model, data, u, modes).ok());
+            ASSERT_EQ(modes.count, 2) << d.name << " " << r << " sample " << k;
+            EXPECT_FALSE(modes.degenerate);
+            const Pose& first = modes.mode[0].p;
+            const Pose& second = modes.mode[1].p;
+            EXPECT_TRUE(first(1) < second(1) || (first(1) == second(1) && first(2) < second(2)))
+                << "listed by x, then y";
+            std::array<bool, 2> found{};
+            for (const AssemblyMode& mode : modes) {
+                EXPECT_EQ(mode.p(0), d.home(0));
+                worst_u = std::max(worst_u, mode.u_error);
+                EXPECT_LT(mode.u_error, 1e-12);
+                for (std::size_t c = 0; c < 2; ++c) {
+                    const double distance = (mode.p.tail<2>() - closed[c]).norm();
+                    if (distance < kClosureTolerance) {
+                        found[c] = true;
+                        worst = std::max(worst, distance);
+                    }
+                }
+                if ((mode.p.tail<2>() - Vector2(p(0), p(1))).norm() < kClosureTolerance) {
+                    EXPECT_TRUE(mode.working) << d.name << " " << r << ": the pose that gave u is on the home branches";
+                }
+            }
+            EXPECT_TRUE(found[0] && found[1]) << d.name << " " << r << " sample " << k << ": closed form "
+                                              << closed[0].transpose() << " and " << closed[1].transpose() << "; modes "
+                                              << modes.mode[0].p.transpose() << " and " << modes.mode[1].p.transpose();
+            const bool has_start = std::any_of(modes.begin(), modes.end(), [&](const AssemblyMode& mode) {
+                return (mode.p.tail<2>() - Vector2(p(0), p(1))).norm() < kClosureTolerance;
+            });
+            EXPECT_TRUE(has_start) << d.name << " " << r;
+            ActuatorStart start;
+            ASSERT_TRUE(stateFromActuators(*model, data, u, ActuatorVector(), 0, start).ok());
+            EXPECT_LT((start.p.tail<2>() - Vector2(p(0), p(1))).norm(), kClosureTolerance) << d.name << " " << r;
+            ++checked;
+        }
+    }
+    std::printf("direct kinematics: %d robots, %d samples, worst |C - closed form| %.3g m, worst u error %.3g\n",
+                robots, checked, worst, worst_u);
+    EXPECT_GT(robots, 20);
+    EXPECT_GT(checked, 100);
 }
 
 TEST(TwoDofModel, JacobiansMatchFiniteDifferencesOfInverseKinematics) {

@@ -1,5 +1,5 @@
 // nocdyn forward-kinematics U...: binds app::ForwardKinematicsOptions and renders the assembly
-// modes as text or JSON (poses x, y, theta).
+// modes as text or JSON (poses x, y, theta; x, y for a two-DOF robot).
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
@@ -34,7 +34,9 @@ void printJson(const app::ForwardKinematicsResult& r) {
     out["degenerate"] = r.degenerate;
     nlohmann::json list = nlohmann::json::array();
     for (const app::ForwardKinematicsSolution& s : r.solutions) {
-        list.push_back({{"pose", {{"x", s.pose(0)}, {"y", s.pose(1)}, {"theta", s.pose(2)}}},
+        nlohmann::json pose = {{"x", s.pose(0)}, {"y", s.pose(1)}};
+        if (r.task_dimension == 3) pose["theta"] = s.pose(2);
+        list.push_back({{"pose", pose},
                         {"working", s.working},
                         {"branch", s.branch},
                         {"u_error", s.u_error},
@@ -63,9 +65,14 @@ void printText(const app::ForwardKinematicsResult& r) {
     }
     int index = 0;
     for (const app::ForwardKinematicsSolution& s : r.solutions) {
-        std::printf("%d. x = %+.9f mm, y = %+.9f mm, theta = %+.12f rad (%+.6f deg)%s\n", ++index, s.pose(0) * 1e3,
-                    s.pose(1) * 1e3, s.pose(2), s.pose(2) * 180.0 / std::numbers::pi,
-                    s.working ? "" : "  [not on the home branches]");
+        if (r.task_dimension == 2) {
+            std::printf("%d. x = %+.9f mm, y = %+.9f mm%s\n", ++index, s.pose(0) * 1e3, s.pose(1) * 1e3,
+                        s.working ? "" : "  [not on the home branches]");
+        } else {
+            std::printf("%d. x = %+.9f mm, y = %+.9f mm, theta = %+.12f rad (%+.6f deg)%s\n", ++index, s.pose(0) * 1e3,
+                        s.pose(1) * 1e3, s.pose(2), s.pose(2) * 180.0 / std::numbers::pi,
+                        s.working ? "" : "  [not on the home branches]");
+        }
         std::printf("   branches [");
         for (std::size_t j = 0; j < s.branch.size(); ++j) std::printf("%s%+d", j == 0 ? "" : " ", s.branch[j]);
         std::printf("], u recomputed from the pose within %.1e, condition %.3g\n", s.u_error, s.condition);
@@ -106,7 +113,9 @@ void addForwardKinematicsCommand(CLI::App& app) {
         "root is polished by Newton and checked by inverse displacement on each limb's branch (+1/-1, 0 for\n"
         "limbs with one solution) to round-off. By default only the working mode is listed: every limb on its\n"
         "home branch (the one it has at home, as the dynamics use); --all-branches lists every assembly mode\n"
-        "(sorted by theta). Values beyond an actuated joint's range are flagged (JSON: within_limits); the poses\n"
+        "(sorted by theta). A two-DOF robot (motion: translation) gives poses [x, y]: the tool point on the\n"
+        "circles of its locked limbs, both assembly modes listed by x. Values beyond an actuated joint's range are "
+        "flagged (JSON: within_limits); the poses\n"
         "are listed all the same. Exit 0 also when no pose closes (zero solutions); exit 2 when the number of\n"
         "values is wrong.");
     command->add_option("U", options->u, "Actuator values u1 .. un [m or rad]")

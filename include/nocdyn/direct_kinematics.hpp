@@ -39,6 +39,13 @@
 // it is reported on its home branch when it reaches the pose on it (its other branch is then
 // another assembly of that limb alone).
 //
+// Two-DOF robots (motion: translation, task map E): no limb fixes phi (every limb's last R
+// joint is at the tool point), and the pose keeps theta at home: phi = 0 is added as an
+// orientation equation, so C solves the rest at phi = 0. For the five-bar and the biglide that
+// is the intersection of two circles (each centred at a locked elbow or slider pivot, radius
+// the forearm): both assembly modes, the tool on either side of the line between the centres.
+// Modes of equal theta are listed by x, then y.
+//
 // Tracker (trackPose): Newton from the previous pose of the working mode on the same locked-limb
 // equations (Gauss-Newton when n > 3), which hold exactly where u(p) = u on some branches, then
 // inverse displacement on the home branches at the converged pose: the pose is accepted only

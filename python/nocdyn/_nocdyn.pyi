@@ -53,6 +53,9 @@ class Robot:
     def _inverse_dynamics_batch(self, p: np.ndarray, dp: np.ndarray, ddp: np.ndarray, u: np.ndarray,
                                 du: np.ndarray, ddu: np.ndarray, tau: np.ndarray, threads: int = ...,
                                 check: bool = ..., check_limits: bool = ...) -> None: ...
+    def _inverse_dynamics_task_batch(self, p: np.ndarray, dp: np.ndarray, ddp: np.ndarray, u: np.ndarray,
+                                     du: np.ndarray, ddu: np.ndarray, tau: np.ndarray, threads: int = ...,
+                                     check: bool = ..., check_limits: bool = ...) -> None: ...
     def _inverse_dynamics_derivatives_sample(self, p: Any, dp: Any,
                                              ddp: Any) -> tuple[np.ndarray, np.ndarray, np.ndarray]: ...
     def _inverse_dynamics_derivatives_batch(self, p: np.ndarray, dp: np.ndarray, ddp: np.ndarray,

@@ -137,9 +137,12 @@ class RobotDynamics:
         """
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         if self._core.task_dimension == 2:
-            # a two-DOF robot (motion: translation): p, dp, ddp over [x, y], lifted through E
+            # a two-DOF robot (motion: translation): p, dp, ddp over [x, y]; one sample lifted
+            # through E here, a batch read in place and lifted in C++ slice by slice
             if matrices:
                 raise Error("matrices: not available for a two-DOF robot (motion: translation) yet")
+            if _floats(p, "p").ndim == 2:
+                return self._task_batch(p, dp, ddp, out, threads, check, check_limits)
             p, dp, ddp = _lift_task(p, dp, ddp)
         p_arr = _floats(p, "p")
         if p_arr.ndim == 1:
@@ -166,6 +169,21 @@ class RobotDynamics:
         # raises the library's words (describeFailure, describeLimits)
         self._core._inverse_dynamics_batch(p_arr, dp_arr, ddp_arr, *out, threads=threads, check=bool(check),
                                            check_limits=bool(check_limits))
+        return InverseDynamics(*out)
+
+    def _task_batch(self, p, dp, ddp, out, threads, check, check_limits):
+        """inverse_dynamics of a two-DOF robot's batch: p, dp, ddp of shape (N, 2)."""
+        p_arr = _input(p, "p", (None, 2), finite=False)
+        n = p_arr.shape[0]
+        dp_arr = _input(dp, "dp", (n, 2), finite=False)
+        ddp_arr = _input(ddp, "ddp", (n, 2), finite=False)
+        shape = (n, self.actuators)
+        if out is None:
+            out = tuple(np.empty(shape) for _ in range(4))
+        else:
+            out = _outputs(out, ("u", "du", "ddu", "tau"), shape, ((p_arr, "p"), (dp_arr, "dp"), (ddp_arr, "ddp")))
+        self._core._inverse_dynamics_task_batch(p_arr, dp_arr, ddp_arr, *out, threads=threads, check=bool(check),
+                                                check_limits=bool(check_limits))
         return InverseDynamics(*out)
 
     @_vocabulary

@@ -18,13 +18,14 @@ namespace nocdyn::python {
 
 namespace {
 
-/// The assembly modes as forward-kinematics --json gives them (poses x, y, theta).
+/// The assembly modes as forward-kinematics --json gives them (poses x, y, theta; x, y for a
+/// two-DOF robot).
 py::dict forwardKinematicsDict(const app::ForwardKinematicsResult& r) {
     py::list solutions;
     for (const app::ForwardKinematicsSolution& s : r.solutions) {
-        solutions.append(py::dict(py::arg("pose") = py::dict(py::arg("x") = s.pose(0), py::arg("y") = s.pose(1),
-                                                             py::arg("theta") = s.pose(2)),
-                                  py::arg("working") = s.working, py::arg("branch") = s.branch,
+        py::dict pose(py::arg("x") = s.pose(0), py::arg("y") = s.pose(1));
+        if (r.task_dimension == 3) pose["theta"] = s.pose(2);
+        solutions.append(py::dict(py::arg("pose") = pose, py::arg("working") = s.working, py::arg("branch") = s.branch,
                                   py::arg("u_error") = s.u_error, py::arg("condition") = s.condition));
     }
     return py::dict(py::arg("robot") = r.robot, py::arg("u") = r.u, py::arg("within_limits") = r.outside == 0,

@@ -90,6 +90,47 @@ void inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, const py
     raiseOutcome(model, result, n, check);
 }
 
+/// The batch of a two-DOF robot (motion: translation) over (N, 2) arrays [x, y] of the tool
+/// point and its rates, read in place whatever their memory order, into the caller's u, du,
+/// ddu, tau: each slice lifted through the task map E into one column-major (rows x 3) buffer
+/// per input ([x, y, theta = home(0)], rates [dx, dy, 0]: the kernel's contiguous layout),
+/// allocated once per call, then the batch as for a three-DOF robot.
+void inverseDynamicsTaskBatchArrays(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp,
+                                    const py::array& u, const py::array& du, const py::array& ddu, const py::array& tau,
+                                    unsigned threads, bool check, bool check_limits) {
+    const Model& model = *robot.model;
+    if (model.task_dimension != 2)
+        throw Error("p: arrays of shape (N, 2) are for a two-DOF robot (motion: translation)");
+    const ArrayView vp = viewOf(p, "p", -1, 2, false);
+    const py::ssize_t n = vp.rows;
+    const ConstStridedMap mp = constMap(vp), mdp = constMap(viewOf(dp, "dp", n, 2, false)),
+                          mddp = constMap(viewOf(ddp, "ddp", n, 2, false));
+    const ArrayView vu = viewOf(u, "u", n, model.actuators, true), vdu = viewOf(du, "du", n, model.actuators, true);
+    const ArrayView vddu = viewOf(ddu, "ddu", n, model.actuators, true),
+                    vtau = viewOf(tau, "tau", n, model.actuators, true);
+    if (vu.col_stride != vdu.col_stride || vu.col_stride != vddu.col_stride || vu.col_stride != vtau.col_stride) {
+        throw Error("out: u, du, ddu and tau must have the same memory order (all C- or all F-ordered)");
+    }
+    StridedMap mu = map(vu), mdu = map(vdu), mddu = map(vddu), mtau = map(vtau);
+    const ActuatorLimits limits = check_limits ? ActuatorLimits::every_joint : ActuatorLimits::ignore;
+    // the lifted slice in Python's pose order [x, y, theta]: theta's column set once
+    const Eigen::Index buffer_rows = std::min<Eigen::Index>(n, Eigen::Index{1} << 16);
+    Eigen::ArrayXXd lp(buffer_rows, 3), ldp(buffer_rows, 3), lddp(buffer_rows, 3);
+    lp.col(2).setConstant(model.home(0));
+    ldp.col(2).setZero();
+    lddp.col(2).setZero();
+    const BatchResult result = inSlices(n, [&](Eigen::Index begin, Eigen::Index rows) {
+        lp.topLeftCorner(rows, 2) = mp.middleRows(begin, rows);
+        ldp.topLeftCorner(rows, 2) = mdp.middleRows(begin, rows);
+        lddp.topLeftCorner(rows, 2) = mddp.middleRows(begin, rows);
+        auto u_rows = mu.middleRows(begin, rows), du_rows = mdu.middleRows(begin, rows);
+        auto ddu_rows = mddu.middleRows(begin, rows), tau_rows = mtau.middleRows(begin, rows);
+        return inverseDynamicsBatch(model, lp.topRows(rows), ldp.topRows(rows), lddp.topRows(rows), u_rows, du_rows,
+                                    ddu_rows, tau_rows, threads, kPythonPose, limits);
+    });
+    raiseOutcome(model, result, n, check);
+}
+
 /// The derivatives of N samples, each (N, n, 3), the GIL released while they run: (d_p, d_dp,
 /// d_ddp); with `check` the first failed sample raises (failed rows are NaN).
 py::tuple inverseDynamicsDerivativesBatchArrays(const Robot& robot, const py::array& p, const py::array& dp,
@@ -229,6 +270,9 @@ void exposeBatch(py::module_& m) {
     py::class_<Robot>(m.attr("Robot"))
         .def("_inverse_dynamics_batch", &inverseDynamicsBatchArrays, py::arg("p"), py::arg("dp"), py::arg("ddp"),
              py::arg("u"), py::arg("du"), py::arg("ddu"), py::arg("tau"), py::arg("threads") = 1,
+             py::arg("check") = true, py::arg("check_limits") = true)
+        .def("_inverse_dynamics_task_batch", &inverseDynamicsTaskBatchArrays, py::arg("p"), py::arg("dp"),
+             py::arg("ddp"), py::arg("u"), py::arg("du"), py::arg("ddu"), py::arg("tau"), py::arg("threads") = 1,
              py::arg("check") = true, py::arg("check_limits") = true)
         .def("_inverse_dynamics_derivatives_batch", &inverseDynamicsDerivativesBatchArrays, py::arg("p"), py::arg("dp"),
              py::arg("ddp"), py::arg("threads") = 1, py::arg("check") = true)

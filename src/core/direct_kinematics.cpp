@@ -469,8 +469,16 @@ Status directKinematics(const Model& model, Data& data, const ActuatorVector& u,
             modes.mode[static_cast<std::size_t>(modes.count++)] = mode;
         }
     }
-    std::sort(modes.mode.begin(), modes.mode.begin() + modes.count,
-              [](const AssemblyMode& a, const AssemblyMode& b) { return a.p(0) < b.p(0); });
+    if (model.task_dimension == 2) {
+        // every mode at theta = home(0): by x, then y
+        std::sort(modes.mode.begin(), modes.mode.begin() + modes.count,
+                  [](const AssemblyMode& a, const AssemblyMode& b) {
+                      return a.p(1) < b.p(1) || (a.p(1) == b.p(1) && a.p(2) < b.p(2));
+                  });
+    } else {
+        std::sort(modes.mode.begin(), modes.mode.begin() + modes.count,
+                  [](const AssemblyMode& a, const AssemblyMode& b) { return a.p(0) < b.p(0); });
+    }
     return {};
 }
 

@@ -237,6 +237,14 @@ inline void lockedLimbEquations(const Model& model, const ActuatorVector& u, Equ
             out.add(orientation(Lf.then(Rt)));
         }
     }
+    if (model.task_dimension == 2) {
+        // a translating point tool (task map E): every limb's last R joint is at the tool point,
+        // so no limb fixes phi; the pose keeps theta at home, phi = 0
+        Equation e{};
+        e.orientation = true;
+        e.phi0 = 0.0;
+        out.add(e);
+    }
 }
 
 }  // namespace nocdyn::detail::locked

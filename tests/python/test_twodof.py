@@ -1,6 +1,7 @@
 """Two-DOF planar robots (motion: translation, pose [x, y] of a point tool): the shipped five-bar
 and biglide through Robot.inverse_dynamics with arrays of shape (N, 2), `nocdyn pose X Y`, and
-the one-line refusal of the commands that do not take them yet."""
+`nocdyn forward-kinematics U1 U2` (poses x, y), and the one-line refusal of the commands that do
+not take them yet."""
 
 import numpy as np
 import pytest
@@ -34,6 +35,44 @@ def test_batch_of_shape_n_2_matches_one_sample_at_a_time(source_dir, name, cente
         one = robot.inverse_dynamics(P[k], dP[k], ddP[k])
         for batch, sample in zip((u, du, ddu, tau), one):
             np.testing.assert_allclose(batch[k], sample, rtol=1e-11, atol=1e-12)
+
+
+def test_batch_reads_n_2_arrays_in_place_in_any_order_across_slices(source_dir):
+    # the compiled batch lifts (N, 2) through E slice by slice (65536 rows): a batch longer than
+    # one slice, read C-ordered, F-ordered and as a strided view, into new and preallocated
+    # outputs, gives every row the one-sample result to the last bits
+    robot = _robot(source_dir, "five-bar")
+    P, dP, ddP = _motion(np.array([0.01, 0.32]), n=70001)
+    u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)
+    for k in (0, 65535, 65536, 70000):
+        one = robot.inverse_dynamics(P[k], dP[k], ddP[k])
+        for batch, sample in zip((u, du, ddu, tau), one):
+            np.testing.assert_allclose(batch[k], sample, rtol=1e-11, atol=1e-12)
+    F = [np.asfortranarray(a) for a in (P, dP, ddP)]
+    wide = [np.zeros((len(P), 5)) for _ in range(3)]
+    for w, a in zip(wide, (P, dP, ddP)):
+        w[:, 1:5:2] = a  # columns 1 and 3: a strided view of every other column
+    out = tuple(np.empty((len(P), 2), order="F") for _ in range(4))
+    for inputs, into in ((F, None), ([w[:, 1:5:2] for w in wide], None), ((P, dP, ddP), out)):
+        result = robot.inverse_dynamics(*inputs, out=into)
+        for got, want in zip(result, (u, du, ddu, tau)):
+            np.testing.assert_array_equal(got, want)
+    assert result.tau is out[3]
+    with pytest.raises(nocdyn.Error, match="overlaps the input p"):
+        robot.inverse_dynamics(P, dP, ddP, out=(P, np.empty_like(P), np.empty_like(P), np.empty_like(P)))
+    with pytest.raises(nocdyn.Error, match=r"dp: expected shape \(70001, 2\)"):
+        robot.inverse_dynamics(P, dP[:-1], ddP)
+    # a sample out of reach: its row NaN, the rest computed (check=False), else the error names it
+    P_bad = P.copy()
+    P_bad[40000] = [0.0, 0.9]
+    bad = robot.inverse_dynamics(P_bad, dP, ddP, check=False)
+    assert np.all(np.isnan(bad.tau[40000])) and np.isfinite(bad.tau[39999]).all()
+    with pytest.raises(nocdyn.Error, match="sample 40001"):
+        robot.inverse_dynamics(P_bad, dP, ddP)
+    # an actuator beyond its effort (8 N m): the limit is checked in the kernel
+    with pytest.raises(nocdyn.Error, match="sample 1: .*effort"):
+        robot.inverse_dynamics(P[:3], dP[:3], 1e4 * np.ones((3, 2)))
+    robot.inverse_dynamics(P[:3], dP[:3], 1e4 * np.ones((3, 2)), check_limits=False)
 
 
 def test_power_balance_along_a_five_bar_motion(source_dir):
@@ -92,7 +131,7 @@ def test_pose_prints_x_y(cli, source_dir):
 @pytest.mark.parametrize("command", [["inverse-dynamics", "--trajectory", "paper1"], ["simulate", "--forces", "FORCES"],
                                      ["loads", "--trajectory", "paper1"], ["control", "--trajectory", "paper1"],
                                      ["workspace"], ["envelope"], ["frequency-response"], ["regressor"],
-                                     ["forward-kinematics", "0", "0", "0"], ["convert"]])
+                                     ["convert"]])
 def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_path, command):
     forces = tmp_path / "forces.csv"
     forces.write_text("t,tau1,tau2\n0,0,0\n0.1,0,0\n")
@@ -101,6 +140,30 @@ def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_p
     assert code != 0
     assert "five-bar.yaml: a two-DOF robot (motion: translation" in err
     assert len(err.strip().splitlines()) == 1, err
+
+
+@pytest.mark.parametrize("name, tool", [("five-bar", [0.03, 0.31]), ("biglide", [-0.02, 0.18])])
+def test_forward_kinematics_gives_both_tool_points_x_y(cli, source_dir, name, tool):
+    import json
+
+    robot = _robot(source_dir, name)
+    u = robot.inverse_dynamics(np.array(tool), np.zeros(2), np.zeros(2))[0]
+    path = source_dir / "robots" / f"{name}.yaml"
+    code, out, err = cli("forward-kinematics", repr(u[0]), repr(u[1]), "--robot", path, "--all-branches", "--json")
+    assert code == 0, err
+    report = json.loads(out)
+    assert report["solutions_all_branches"] == 2
+    poses = np.array([[s["pose"]["x"], s["pose"]["y"]] for s in report["solutions"]])
+    assert all(set(s["pose"]) == {"x", "y"} for s in report["solutions"])
+    assert tuple(poses[0]) < tuple(poses[1])  # listed by x, then y
+    # the tool point that gave u is one of them, in the working mode
+    hit = np.argmin(np.linalg.norm(poses - tool, axis=1))
+    np.testing.assert_allclose(poses[hit], tool, atol=1e-12)
+    assert report["solutions"][hit]["working"]
+    code, out, err = cli("forward-kinematics", repr(u[0]), repr(u[1]), "--robot", path)
+    assert code == 0, err
+    assert f"x = {tool[0] * 1e3:+.9f} mm, y = {tool[1] * 1e3:+.9f} mm" in out
+    assert "theta" not in out
 
 
 def test_the_stiffness_of_a_two_dof_robot_is_refused_in_one_line(cli, source_dir, tmp_path):

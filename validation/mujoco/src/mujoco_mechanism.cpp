@@ -478,6 +478,10 @@ void MujocoMechanism::resetPlant(const Eigen::Vector3d& pose, const Eigen::Vecto
     Impl& s = *impl_;
     mjModel* m = s.m;
     mjData* d = s.d;
+    if (s.robot.motion == PlatformMotion::translation)
+        throw Error(where(s.robot, 0) +
+                    "the forward-dynamics plant does not take a two-DOF robot (motion: translation): its point tool's "
+                    "free angle has no inertia");
     for (std::size_t j = 0; j < s.robot.limbs.size(); ++j) {
         for (std::size_t k = 0; k < 3; ++k) {
             const JointDescription& joint = s.robot.limbs[j].joints[k];

@@ -511,6 +511,10 @@ namespace nocdyn::validation {
 void SimbodyMechanism::resetPlant(const ::Eigen::Vector3d& pose, const ::Eigen::Vector3d& pose_rate, double t) {
     using namespace SimTK;
     Impl& m = *impl_;
+    if (m.robot.motion == ::nocdyn::PlatformMotion::translation)
+        throw Error(where(m.robot, 0) +
+                    "the forward-dynamics plant does not take a two-DOF robot (motion: translation): its point tool's "
+                    "free angle has no inertia");
     // assembled with the platform prescribed (the inverse-dynamics State), then copied over
     m.motion->qdot = pose_rate;
     m.motion->qdotdot.setZero();

@@ -20,6 +20,10 @@
 // (added here from the rows, or already among the engine's applied forces):
 //   N^T (h - sum_k r_k^T f_k) = A^T tau,   A = [r_k N] over the actuated joints (n x 3),
 // and tau = the minimum-norm solution of this 3 x n system (unique when n = 3).
+// A translating point tool (PlatformMotion::translation) has the task rates dp_task = [x', y']:
+// the engines prescribe the platform's angle at home (a point mass, every limb's last R joint
+// at it: the angle moves no body and takes no moment), so only the columns E = [0 0; 1 0; 0 1]
+// of the balance are equations: E^T N^T (h - ...) = (A E)^T tau, a 2 x n system.
 #pragma once
 
 #include <algorithm>
@@ -181,11 +185,15 @@ inline ForceDistribution distributeForces(const RobotDescription& robot, const T
             if (joint.actuated) A.row(a++) = row * N;
         }
     }
-    // N^T (h - Q_friction) = A^T tau, minimum-norm tau.
-    const Eigen::Vector3d F = N.transpose() * (h - Q_friction);
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
+    // N^T (h - Q_friction) = A^T tau over the task columns, minimum-norm tau.
+    const int first_task = robot.motion == PlatformMotion::translation ? 1 : 0;
+    const int task = 3 - first_task;
+    const Eigen::VectorXd F = (N.transpose() * (h - Q_friction)).tail(task);
+    const Eigen::MatrixXd A_task = A.rightCols(task);
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(A_task.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
     const auto& s = svd.singularValues();
-    const double cond_A = s(2) > 0.0 ? s(0) / s(2) : std::numeric_limits<double>::infinity();
+    const double s_min = s(task - 1);
+    const double cond_A = s_min > 0.0 ? s(0) / s_min : std::numeric_limits<double>::infinity();
     out.condition = std::max(cond_G, cond_A);
     if (!(out.condition <= robot.max_condition)) {
         std::ostringstream msg;

@@ -61,8 +61,9 @@ public:
 
     /// Assembles the robot at `pose` with platform twist `pose_rate` (the passive joints
     /// continued from home, as inverseDynamics does) at time t, with zero actuator forces.
-    /// Throws nocdyn::Error when the pose cannot be assembled or a joint has friction (the
-    /// plant does not model it).
+    /// Throws nocdyn::Error when the pose cannot be assembled, a joint has friction (the
+    /// plant does not model it) or the robot is a two-DOF one (motion: translation: its point
+    /// tool's angle, free in the plant, has no inertia).
     void resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d& pose_rate = Eigen::Vector3d::Zero(),
                     double t = 0.0);
     /// Actuator forces along the actuated joint variables, file order, size n; held until changed.

@@ -55,7 +55,9 @@ public:
 
     /// Assembles the robot at `pose` with platform twist `pose_rate` = dp/dt [rad/s, m/s, m/s]
     /// (the passive coordinates continued from home, as inverseDynamics does), at time t, with
-    /// zero actuator forces. Throws nocdyn::Error when the pose cannot be assembled.
+    /// zero actuator forces. Throws nocdyn::Error when the pose cannot be assembled, and for a
+    /// two-DOF robot (motion: translation: its point tool's angle, free in the plant, has no
+    /// inertia).
     void resetPlant(const Eigen::Vector3d& pose, const Eigen::Vector3d& pose_rate = Eigen::Vector3d::Zero(),
                     double t = 0.0);
     /// Actuator forces (torques) along the actuated joint variables, on their outboard bodies,
