@@ -64,6 +64,22 @@ void raiseOutcome(const Model& model, const BatchResult& result, Eigen::Index sa
     if (const std::string limits = describeLimits(model, result); !limits.empty()) throw Error(limits);
 }
 
+/// The caller's u, du, ddu and tau (n rows, one column per actuator), viewed in place; all four
+/// in one memory order.
+struct ActuatorOutputs {
+    StridedMap u, du, ddu, tau;
+};
+ActuatorOutputs actuatorOutputs(const Model& model, py::ssize_t n, const py::array& u, const py::array& du,
+                                const py::array& ddu, const py::array& tau) {
+    const ArrayView vu = viewOf(u, "u", n, model.actuators, true), vdu = viewOf(du, "du", n, model.actuators, true);
+    const ArrayView vddu = viewOf(ddu, "ddu", n, model.actuators, true),
+                    vtau = viewOf(tau, "tau", n, model.actuators, true);
+    if (vu.col_stride != vdu.col_stride || vu.col_stride != vddu.col_stride || vu.col_stride != vtau.col_stride) {
+        throw Error("out: u, du, ddu and tau must have the same memory order (all C- or all F-ordered)");
+    }
+    return {map(vu), map(vdu), map(vddu), map(vtau)};
+}
+
 /// The batch over arrays viewed in place into the caller's u, du, ddu, tau, the GIL released
 /// while it runs. check_limits: ActuatorLimits::every_joint, as `nocdyn inverse-dynamics`.
 void inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, const py::array& dp, const py::array& ddp,
@@ -72,17 +88,11 @@ void inverseDynamicsBatchArrays(const Robot& robot, const py::array& p, const py
     const Model& model = *robot.model;
     const SampleMaps in(p, dp, ddp);
     const py::ssize_t n = in.rows;
-    const ArrayView vu = viewOf(u, "u", n, model.actuators, true), vdu = viewOf(du, "du", n, model.actuators, true);
-    const ArrayView vddu = viewOf(ddu, "ddu", n, model.actuators, true),
-                    vtau = viewOf(tau, "tau", n, model.actuators, true);
-    if (vu.col_stride != vdu.col_stride || vu.col_stride != vddu.col_stride || vu.col_stride != vtau.col_stride) {
-        throw Error("out: u, du, ddu and tau must have the same memory order (all C- or all F-ordered)");
-    }
-    StridedMap mu = map(vu), mdu = map(vdu), mddu = map(vddu), mtau = map(vtau);
+    ActuatorOutputs out = actuatorOutputs(model, n, u, du, ddu, tau);
     const ActuatorLimits limits = check_limits ? ActuatorLimits::every_joint : ActuatorLimits::ignore;
     const BatchResult result = inSlices(n, [&](Eigen::Index begin, Eigen::Index rows) {
-        auto u_rows = mu.middleRows(begin, rows), du_rows = mdu.middleRows(begin, rows);
-        auto ddu_rows = mddu.middleRows(begin, rows), tau_rows = mtau.middleRows(begin, rows);
+        auto u_rows = out.u.middleRows(begin, rows), du_rows = out.du.middleRows(begin, rows);
+        auto ddu_rows = out.ddu.middleRows(begin, rows), tau_rows = out.tau.middleRows(begin, rows);
         return inverseDynamicsBatch(model, in.p.middleRows(begin, rows), in.dp.middleRows(begin, rows),
                                     in.ddp.middleRows(begin, rows), u_rows, du_rows, ddu_rows, tau_rows, threads,
                                     kPythonPose, limits);
@@ -105,13 +115,7 @@ void inverseDynamicsTaskBatchArrays(const Robot& robot, const py::array& p, cons
     const py::ssize_t n = vp.rows;
     const ConstStridedMap mp = constMap(vp), mdp = constMap(viewOf(dp, "dp", n, 2, false)),
                           mddp = constMap(viewOf(ddp, "ddp", n, 2, false));
-    const ArrayView vu = viewOf(u, "u", n, model.actuators, true), vdu = viewOf(du, "du", n, model.actuators, true);
-    const ArrayView vddu = viewOf(ddu, "ddu", n, model.actuators, true),
-                    vtau = viewOf(tau, "tau", n, model.actuators, true);
-    if (vu.col_stride != vdu.col_stride || vu.col_stride != vddu.col_stride || vu.col_stride != vtau.col_stride) {
-        throw Error("out: u, du, ddu and tau must have the same memory order (all C- or all F-ordered)");
-    }
-    StridedMap mu = map(vu), mdu = map(vdu), mddu = map(vddu), mtau = map(vtau);
+    ActuatorOutputs out = actuatorOutputs(model, n, u, du, ddu, tau);
     const ActuatorLimits limits = check_limits ? ActuatorLimits::every_joint : ActuatorLimits::ignore;
     // the lifted slice in Python's pose order [x, y, theta]: theta's column set once
     const Eigen::Index buffer_rows = std::min<Eigen::Index>(n, Eigen::Index{1} << 16);
@@ -123,8 +127,8 @@ void inverseDynamicsTaskBatchArrays(const Robot& robot, const py::array& p, cons
         lp.topLeftCorner(rows, 2) = mp.middleRows(begin, rows);
         ldp.topLeftCorner(rows, 2) = mdp.middleRows(begin, rows);
         lddp.topLeftCorner(rows, 2) = mddp.middleRows(begin, rows);
-        auto u_rows = mu.middleRows(begin, rows), du_rows = mdu.middleRows(begin, rows);
-        auto ddu_rows = mddu.middleRows(begin, rows), tau_rows = mtau.middleRows(begin, rows);
+        auto u_rows = out.u.middleRows(begin, rows), du_rows = out.du.middleRows(begin, rows);
+        auto ddu_rows = out.ddu.middleRows(begin, rows), tau_rows = out.tau.middleRows(begin, rows);
         return inverseDynamicsBatch(model, lp.topRows(rows), ldp.topRows(rows), lddp.topRows(rows), u_rows, du_rows,
                                     ddu_rows, tau_rows, threads, kPythonPose, limits);
     });
