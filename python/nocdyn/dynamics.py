@@ -142,7 +142,8 @@ class RobotDynamics:
             if matrices:
                 raise Error("matrices: not available for a two-DOF robot (motion: translation) yet")
             if _floats(p, "p").ndim == 2:
-                return self._task_batch(p, dp, ddp, out, threads, check, check_limits)
+                return self._batch(self._core._inverse_dynamics_task_batch, 2, p, dp, ddp, out, threads, check,
+                                   check_limits)
             p, dp, ddp = _lift_task(p, dp, ddp)
         p_arr = _floats(p, "p")
         if p_arr.ndim == 1:
@@ -156,10 +157,15 @@ class RobotDynamics:
             raise Error("matrices: only for one sample (p of shape (3,))")
         if p_arr.ndim != 2:
             raise Error(f"p: expected shape (3,) or (N, 3), got {p_arr.shape}")
+        return self._batch(self._core._inverse_dynamics_batch, 3, p_arr, dp, ddp, out, threads, check, check_limits)
+
+    def _batch(self, run, columns, p, dp, ddp, out, threads, check, check_limits):
+        """inverse_dynamics of a batch, p, dp, ddp of shape (N, columns), through the compiled
+        `run`: columns 3 ([x, y, theta]) or 2 (a two-DOF robot's [x, y], lifted in C++)."""
+        p_arr = _input(p, "p", (None, columns), finite=False)
         n = p_arr.shape[0]
-        p_arr = _input(p_arr, "p", (None, 3), finite=False)
-        dp_arr = _input(dp, "dp", (n, 3), finite=False)
-        ddp_arr = _input(ddp, "ddp", (n, 3), finite=False)
+        dp_arr = _input(dp, "dp", (n, columns), finite=False)
+        ddp_arr = _input(ddp, "ddp", (n, columns), finite=False)
         shape = (n, self.actuators)
         if out is None:
             out = tuple(np.empty(shape) for _ in range(4))
@@ -167,23 +173,7 @@ class RobotDynamics:
             out = _outputs(out, ("u", "du", "ddu", "tau"), shape, ((p_arr, "p"), (dp_arr, "dp"), (ddp_arr, "ddp")))
         # the compiled batch counts a sample whose results overflow as failed (its row NaN), and
         # raises the library's words (describeFailure, describeLimits)
-        self._core._inverse_dynamics_batch(p_arr, dp_arr, ddp_arr, *out, threads=threads, check=bool(check),
-                                           check_limits=bool(check_limits))
-        return InverseDynamics(*out)
-
-    def _task_batch(self, p, dp, ddp, out, threads, check, check_limits):
-        """inverse_dynamics of a two-DOF robot's batch: p, dp, ddp of shape (N, 2)."""
-        p_arr = _input(p, "p", (None, 2), finite=False)
-        n = p_arr.shape[0]
-        dp_arr = _input(dp, "dp", (n, 2), finite=False)
-        ddp_arr = _input(ddp, "ddp", (n, 2), finite=False)
-        shape = (n, self.actuators)
-        if out is None:
-            out = tuple(np.empty(shape) for _ in range(4))
-        else:
-            out = _outputs(out, ("u", "du", "ddu", "tau"), shape, ((p_arr, "p"), (dp_arr, "dp"), (ddp_arr, "ddp")))
-        self._core._inverse_dynamics_task_batch(p_arr, dp_arr, ddp_arr, *out, threads=threads, check=bool(check),
-                                                check_limits=bool(check_limits))
+        run(p_arr, dp_arr, ddp_arr, *out, threads=threads, check=bool(check), check_limits=bool(check_limits))
         return InverseDynamics(*out)
 
     @_vocabulary
