@@ -1,7 +1,7 @@
 """Two-DOF planar robots (motion: translation, pose [x, y] of a point tool): the shipped five-bar
 and biglide through Robot.inverse_dynamics with arrays of shape (N, 2), `nocdyn pose X Y`, and
-`nocdyn forward-kinematics U1 U2` (poses x, y), and the one-line refusal of the commands that do
-not take them yet."""
+`nocdyn forward-kinematics U1 U2` (poses x, y), `nocdyn.simulate` (columns t, x, y, ...),
+`nocdyn.workspace`, and the one-line refusal of the commands that do not take them yet."""
 
 import numpy as np
 import pytest
@@ -128,9 +128,9 @@ def test_pose_prints_x_y(cli, source_dir):
     assert code != 0 and "THETA" in err
 
 
-@pytest.mark.parametrize("command", [["inverse-dynamics", "--trajectory", "paper1"], ["simulate", "--forces", "FORCES"],
+@pytest.mark.parametrize("command", [["inverse-dynamics", "--trajectory", "paper1"],
                                      ["loads", "--trajectory", "paper1"], ["control", "--trajectory", "paper1"],
-                                     ["workspace"], ["envelope"], ["frequency-response"], ["regressor"],
+                                     ["envelope"], ["frequency-response"], ["regressor"],
                                      ["convert"]])
 def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_path, command):
     forces = tmp_path / "forces.csv"
@@ -193,3 +193,32 @@ def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
         with pytest.raises(nocdyn.Error, match=f"{name}: a two-DOF robot"):
             call()
     assert robot._repr_svg_() is None
+
+
+def test_simulate_gives_x_y_and_inverse_dynamics_gives_the_forces_back(source_dir):
+    # the biglide under forces about its holding forces at home: the motion's inverse dynamics
+    # (rates and accelerations by differences of the simulated x, y) gives the forces back
+    robot = _robot(source_dir, "biglide")
+    hold = robot.inverse_dynamics(np.array([0.0, 0.2]), np.zeros(2), np.zeros(2))[3]
+    t = np.linspace(0.0, 0.2, 201)
+    tau = hold + np.column_stack([0.8 * np.sin(2 * np.pi * 4 * t), -0.5 * np.sin(2 * np.pi * 6 * t)])
+    motion = nocdyn.simulate({"t": t, "tau1": tau[:, 0], "tau2": tau[:, 1]},
+                             robot=str(source_dir / "robots" / "biglide.yaml"), rate=10000)
+    assert list(motion.columns) == ["t", "x", "y", "u1", "u2", "du1", "du2", "tau1", "tau2", "kinetic"]
+    xy = np.column_stack([motion["x"], motion["y"]])
+    assert np.ptp(xy[:, 0]) > 1e-3 and np.ptp(xy[:, 1]) > 1e-4
+    k, h = np.arange(10, len(xy) - 10, 97), 1e-3  # samples 10 apart at 10 kHz
+    P = xy[k]
+    dP = (xy[k + 10] - xy[k - 10]) / (2 * h)
+    ddP = (xy[k + 10] - 2 * P + xy[k - 10]) / h**2
+    applied = np.column_stack([motion["tau1"], motion["tau2"]])[k]
+    back = robot.inverse_dynamics(P, dP, ddP)[3]
+    np.testing.assert_allclose(back, applied, atol=1e-3 * np.abs(applied).max())
+
+
+def test_workspace_of_the_five_bar_is_its_tool_points_region(source_dir):
+    ws = nocdyn.workspace(robot=str(source_dir / "robots" / "five-bar.yaml"), resolution=41)
+    assert ws.text.startswith("The feasible region of the tool point C")
+    assert 0.1 < ws.area < 0.3  # [m^2]: 0.200 at resolution 201
+    with pytest.raises(nocdyn.Error, match="has no theta"):
+        nocdyn.workspace(robot=str(source_dir / "robots" / "five-bar.yaml"), theta=0.1)
