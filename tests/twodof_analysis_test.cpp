@@ -8,16 +8,21 @@
 //   - Its actuation-singularity points have the two forearms aligned (elbows and C collinear).
 //   - The biglide's limb-singularity points: a link normal to the rail, |y| = l.
 //   - The command line: the summary without theta, --theta refused.
+//   - The stiffness and natural frequencies over [x, y] of a five-bar with springs at its motors
+//     against K_t = A_t^T diag(k) A_t and det(K_t - w^2 M_t) = 0.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <numbers>
 #include <string>
 #include <vector>
 
 #include "cli_support.hpp"
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/analysis/workspace.hpp"
+#include "nocdyn/dynamics.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
@@ -94,7 +99,9 @@ TEST(TwoDofWorkspace, FiveBarRegionIsTheClosedFormReach) {
                         static_cast<int>(std::lround((y - map.y0) / map.step)));
     };
     EXPECT_EQ(nearest(0.0, 0.35), WorkspaceCell::feasible);
-    if (0.6 <= map.y0 + (map.n - 1) * map.step) EXPECT_EQ(nearest(0.0, 0.6), WorkspaceCell::unreachable);
+    if (0.6 <= map.y0 + (map.n - 1) * map.step) {
+        EXPECT_EQ(nearest(0.0, 0.6), WorkspaceCell::unreachable);
+    }
 }
 
 TEST(TwoDofWorkspace, FiveBarLimbCurvesAreStretchedOrFoldedArms) {
@@ -184,6 +191,77 @@ TEST(TwoDofWorkspace, CommandGivesTheToolPointsRegionWithoutTheta) {
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("has no theta"), std::string::npos) << r.err;
     EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+}
+
+TEST(TwoDofStiffness, FiveBarWithMotorSpringsIsAtDiagKA) {
+    // springs k_1, k_2 at the motors, every other joint free: K_t = A_t^T diag(k) A_t with A_t =
+    // du/dp_t by central differences of the inverse kinematics, M_t = A_t^T [tau(e_x) tau(e_y)]
+    // from the inverse dynamics at rest under unit accelerations (no gravity: a horizontal
+    // five-bar), and the natural frequencies from det(K_t - w^2 M_t) = 0 in closed form
+    RobotDescription robot = shipped("five-bar");
+    const double k[2] = {800.0, 1500.0};  // [N m/rad]
+    robot.limbs[0].joints[0].stiffness = k[0];
+    robot.limbs[1].joints[0].stiffness = k[1];
+    const Model model(robot);
+    ASSERT_EQ(model.task_dimension, 2);
+    const analysis::StiffnessModel compliance(model);
+    Data data(model);
+    double worst_K = 0.0, worst_M = 0.0, worst_f = 0.0;
+    for (const Vector2& c : {Vector2(0.0, 0.35), Vector2(0.05, 0.25), Vector2(-0.08, 0.3)}) {
+        const Pose p(0.0, c.x(), c.y());
+        analysis::StiffnessData stiffness;
+        analysis::LumpedModes lumped;
+        ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, p, stiffness, lumped).ok());
+        analysis::TaskModes modes;
+        analysis::taskModes(model, data, stiffness, lumped, modes);
+        ASSERT_EQ(modes.K.rows(), 2);
+        ASSERT_EQ(modes.frequency.size(), 2);
+        // A_t by central differences of u(p_t)
+        Eigen::Matrix2d A_t;
+        const double h = 1e-6;
+        for (int i = 0; i < 2; ++i) {
+            Pose plus = p, minus = p;
+            plus(1 + i) += h;
+            minus(1 + i) -= h;
+            ASSERT_TRUE(inverseDisplacement(model, data, plus).ok());
+            const Vector2 u_plus(data.u(0), data.u(1));
+            ASSERT_TRUE(inverseDisplacement(model, data, minus).ok());
+            A_t.col(i) = (u_plus - Vector2(data.u(0), data.u(1))) / (2.0 * h);
+        }
+        const Eigen::Matrix2d K = A_t.transpose() * Eigen::Vector2d(k[0], k[1]).asDiagonal() * A_t;
+        Eigen::Matrix2d tau;
+        for (int i = 0; i < 2; ++i) {
+            Twist ddp = Twist::Zero();
+            ddp(1 + i) = 1.0;
+            ASSERT_TRUE(inverseDynamics(model, data, p, Twist::Zero(), ddp).ok());
+            tau.col(i) = Vector2(data.tau(0), data.tau(1));
+        }
+        const Eigen::Matrix2d M = A_t.transpose() * tau;
+        // det(K - l M) = det M l^2 - (K00 M11 + K11 M00 - K01 M10 - K10 M01) l + det K
+        const double a = M.determinant();
+        const double b = -(K(0, 0) * M(1, 1) + K(1, 1) * M(0, 0) - K(0, 1) * M(1, 0) - K(1, 0) * M(0, 1));
+        const double d = K.determinant();
+        const double root = std::sqrt(b * b - 4.0 * a * d);
+        const double l_lo = (-b - root) / (2.0 * a), l_hi = (-b + root) / (2.0 * a);
+        const Vector2 f(std::sqrt(l_lo) / (2.0 * std::numbers::pi), std::sqrt(l_hi) / (2.0 * std::numbers::pi));
+        worst_K = std::max(worst_K, (Eigen::Matrix2d(modes.K) - K).cwiseAbs().maxCoeff() / K.cwiseAbs().maxCoeff());
+        worst_M = std::max(worst_M, (Eigen::Matrix2d(modes.M) - M).cwiseAbs().maxCoeff() / M.cwiseAbs().maxCoeff());
+        worst_f = std::max(worst_f, (Vector2(modes.frequency) - f).cwiseAbs().maxCoeff() / f(1));
+        EXPECT_GT(f(0), 1.0) << "x = " << c.x() << ", y = " << c.y();
+        // the modes: M_t-normalised, K_t v = w^2 M_t v
+        for (int i = 0; i < 2; ++i) {
+            const Vector2 v = modes.shape.col(i);
+            const double w = 2.0 * std::numbers::pi * modes.frequency(i);
+            EXPECT_NEAR(v.dot(M * v), 1.0, 1e-6);
+            EXPECT_LE((K * v - w * w * M * v).norm(), 1e-6 * K.norm() * v.norm());
+        }
+    }
+    // measured: K_t to 1.7e-11, M_t to 1.5e-11 (both A_t's central differences), frequencies to 6e-12
+    EXPECT_LE(worst_K, 1e-8);
+    EXPECT_LE(worst_M, 1e-8);
+    EXPECT_LE(worst_f, 1e-8);
+    std::printf("five-bar, springs at the motors: K_t to %.3g, M_t to %.3g, frequencies to %.3g (relative)\n", worst_K,
+                worst_M, worst_f);
 }
 
 }  // namespace

@@ -166,14 +166,28 @@ def test_forward_kinematics_gives_both_tool_points_x_y(cli, source_dir, name, to
     assert "theta" not in out
 
 
-def test_the_stiffness_of_a_two_dof_robot_is_refused_in_one_line(cli, source_dir, tmp_path):
+def test_the_stiffness_of_a_two_dof_robot_is_2_by_2_over_x_y(cli, source_dir, tmp_path):
+    # drive springs k at both motors, every other joint free: K = A^T diag(k) A with A the
+    # report's 2 x 2 actuation map over x, y, and the frequencies from det(K - w^2 I) = 0 with
+    # I = E^T I E the report's inertia (horizontal five-bar: no gravity preload)
+    import json
+
     text = (source_dir / "robots" / "five-bar.yaml").read_text()
     stiff = tmp_path / "stiff-five-bar.yaml"
     stiff.write_text(text.replace("effort: 8.0, velocity: 30.0}}", "effort: 8.0, velocity: 30.0}, stiffness: 5000.0}"))
-    code, _, err = cli("pose", "0.0", "0.3", "--robot", stiff)
-    assert code != 0
-    assert "stiffness of a two-DOF robot" in err
-    assert len(err.strip().splitlines()) == 1, err
+    code, out, err = cli("pose", "0.02", "0.3", "--robot", stiff, "--json")
+    assert code == 0, err
+    report = json.loads(out)
+    A, inertia = np.array(report["A"]), np.array(report["I"])
+    K = np.array(report["stiffness"]["matrix"])
+    assert K.shape == (2, 2) and report["stiffness"]["coordinates"] == ["x [m]", "y [m]"]
+    np.testing.assert_allclose(K, 5000.0 * A.T @ A, rtol=1e-10)
+    w2 = np.sort(np.linalg.eigvals(np.linalg.solve(inertia, K)).real)
+    np.testing.assert_allclose(report["natural_frequencies"], np.sqrt(w2) / (2 * np.pi), rtol=1e-9)
+    assert report["first_frequency"]["value"] == report["natural_frequencies"][0]
+    code, out, err = cli("pose", "0.02", "0.3", "--robot", stiff)
+    assert code == 0, err
+    assert "rows and columns: x [m] y [m])" in out and "rows: x, y)" in out
 
 
 def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
