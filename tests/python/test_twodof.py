@@ -236,3 +236,32 @@ def test_workspace_of_the_five_bar_is_its_tool_points_region(source_dir):
     assert 0.1 < ws.area < 0.3  # [m^2]: 0.200 at resolution 201
     with pytest.raises(nocdyn.Error, match="has no theta"):
         nocdyn.workspace(robot=str(source_dir / "robots" / "five-bar.yaml"), theta=0.1)
+
+
+def test_a_compliant_two_dof_robot_names_its_first_resonance_and_its_refusals(cli, source_dir, tmp_path):
+    import json
+
+    text = (source_dir / "robots" / "five-bar.yaml").read_text()
+    stiff = tmp_path / "stiff-five-bar.yaml"
+    stiff.write_text(text.replace("effort: 8.0, velocity: 30.0}}", "effort: 8.0, velocity: 30.0}, stiffness: 5000.0}"))
+    code, out, err = cli("pose", "0.0", "0.35", "--robot", stiff, "--json")
+    assert code == 0, err
+    first = json.loads(out)["first_frequency"]["value"]
+    assert 10.0 < first < 1000.0
+    # simulate's rigid plant names the first resonance of the task's modes at home
+    forces = tmp_path / "forces.csv"
+    forces.write_text("t,tau1,tau2\n0,0,0\n0.01,0,0\n")
+    code, out, err = cli("simulate", "--robot", stiff, "--forces", forces, "--rate", "100")
+    assert code == 0, err
+    assert f"(first resonance at home {first:.4g} Hz) is not modelled" in err
+    # the first natural frequency map and elastic bodies of a two-DOF robot: refused in one line
+    code, _, err = cli("workspace", "--robot", stiff, "--first-frequency", "--resolution", "21")
+    assert code != 0 and "first natural frequency map of a two-DOF robot" in err
+    assert len(err.strip().splitlines()) == 1, err
+    elastic = tmp_path / "elastic-five-bar.yaml"
+    elastic.write_text(text.replace("{mass: 0.15, inertia: 7.8125e-4, com: [-0.1, 0.275]}",
+                                    "{mass: 0.15, inertia: 7.8125e-4, com: [-0.1, 0.275], "
+                                    "elastic: {EA: 1.0e6, EI: 20.0}}"))
+    code, _, err = cli("pose", "0.0", "0.35", "--robot", elastic)
+    assert code != 0 and "elastic bodies of a two-DOF robot" in err, err
+    assert len(err.strip().splitlines()) == 1, err
