@@ -27,8 +27,7 @@ struct Options : app::PoseOptions {
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
 nlohmann::json complianceJson(const app::PoseCompliance& c) {
-    // over x, y, theta; a two-DOF robot's over x, y (the first two of the reported order)
-    const auto n = static_cast<int>(c.K.rows());
+    const auto n = static_cast<int>(c.K.rows());  // x, y, theta; a two-DOF robot's x, y
     nlohmann::json coordinates = nlohmann::json::array(), units = nlohmann::json::array();
     for (int r = 0; r < n; ++r) {
         coordinates.push_back(analysis::coordinateLabel(r));
