@@ -198,7 +198,6 @@ def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
         "with_payload": lambda: robot.with_payload(0.1),
         "forward_kinematics": lambda: robot.forward_kinematics(np.zeros(2)),
         "state_from_actuators": lambda: robot.state_from_actuators(np.zeros(2)),
-        "stiffness": lambda: robot.stiffness(p),
         "inverse_dynamics_derivatives": lambda: robot.inverse_dynamics_derivatives(p, z, z),
         "reactions": lambda: robot.reactions(p, z, z),
         "regressor": lambda: robot.regressor(p, z, z),
@@ -265,3 +264,26 @@ def test_a_compliant_two_dof_robot_names_its_first_resonance_and_its_refusals(cl
     code, _, err = cli("pose", "0.0", "0.35", "--robot", elastic)
     assert code != 0 and "elastic bodies of a two-DOF robot" in err, err
     assert len(err.strip().splitlines()) == 1, err
+
+
+def test_robot_stiffness_and_natural_frequencies_of_a_two_dof_robot_are_over_x_y(cli, source_dir, tmp_path):
+    import json
+
+    text = (source_dir / "robots" / "five-bar.yaml").read_text()
+    stiff = tmp_path / "stiff-five-bar.yaml"
+    stiff.write_text(text.replace("effort: 8.0, velocity: 30.0}}", "effort: 8.0, velocity: 30.0}, stiffness: 5000.0}"))
+    robot = nocdyn.Robot.load(str(stiff))
+    K = robot.stiffness([0.02, 0.3])
+    f, shapes = robot.natural_frequencies([0.02, 0.3], modes=True)
+    code, out, err = cli("pose", "0.02", "0.3", "--robot", stiff, "--json")
+    assert code == 0, err
+    report = json.loads(out)
+    np.testing.assert_allclose(K, report["stiffness"]["matrix"], rtol=1e-14)
+    np.testing.assert_allclose(f, report["natural_frequencies"], rtol=1e-14)
+    assert K.shape == (2, 2) and f.shape == (2,) and shapes.shape == (2, 2)
+    with pytest.raises(nocdyn.Error, match=r"\[x, y\]"):
+        robot.stiffness([0.02, 0.3, 0.0])
+    with pytest.raises(nocdyn.Error, match="elastodynamic modes of a two-DOF robot"):
+        robot.natural_frequencies([0.02, 0.3], model="elastodynamic")
+    with pytest.raises(nocdyn.Error, match="declares no compliance"):
+        _robot(source_dir, "five-bar").stiffness([0.02, 0.3])
