@@ -26,7 +26,8 @@ RobotDescription loadRobot(const RobotSource& source) {
     RobotDescription robot = loadRobotAnyMotion(source);
     if (robot.motion == PlatformMotion::translation) {
         throw Error(where(robot, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does not " +
-                    "take it yet (nocdyn pose and Python's Robot.inverse_dynamics do)");
+                    "take it yet (pose, forward-kinematics, simulate, workspace and Python's " +
+                    "Robot.inverse_dynamics do)");
     }
     return robot;
 }
@@ -55,9 +56,11 @@ std::string rigidPlantWarning(const RobotDescription& robot, const std::string& 
     analysis::StiffnessData stiffness;
     analysis::LumpedModes modes;
     Data data(model);
-    if (analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes) &&
-        std::isfinite(modes.frequency(0)) && modes.frequency(0) > 0.0) {
-        first = text::format(" (first resonance at home %.4g Hz)", modes.frequency(0));
+    analysis::TaskModes task;  // a two-DOF robot's over x, y (theta is free and massless)
+    if (analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes)) {
+        analysis::taskModes(model, data, stiffness, modes, task);
+        if (std::isfinite(task.frequency(0)) && task.frequency(0) > 0.0)
+            first = text::format(" (first resonance at home %.4g Hz)", task.frequency(0));
     }
     return command + ": the compliance the robot file declares (joint or drive stiffness, elastic links)" + first +
            " is not modelled: the plant is the rigid robot";

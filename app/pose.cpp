@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/SVD>
+
 #include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/kinematics.hpp"
@@ -30,19 +32,45 @@ PoseCompliance compliance(const Model& model, const Data& data, Observer& observ
     if (const std::string w = analysis::contrastWarning(K); !w.empty()) observer.warning(w);
     analysis::LumpedModes modes;
     analysis::lumpedModes(model, data, K, modes);
+    PoseCompliance out;
+    if (model.task_dimension == 2) {
+        // over the task coordinates x, y (theta moves no body and loads no limb: always free)
+        analysis::TaskModes task;
+        analysis::taskModes(model, data, K, modes, task);
+        if (!(task.K.allFinite() && task.frequency.allFinite() && task.shape.allFinite())) {
+            throw Error("the stiffness or the natural frequencies are not finite at this pose");
+        }
+        out.K = task.K;
+        out.frequencies = task.frequency;
+        out.mode_shapes = task.shape;
+        // the free directions in x, y: the free space is theta's plus theirs, so its projection
+        // on x, y spans them (free_directions - 1 of them)
+        if (K.free_directions > 1) {
+            const Eigen::MatrixXd projected = K.free.leftCols(K.free_directions).bottomRows(2);
+            const Eigen::JacobiSVD<Eigen::MatrixXd> svd(projected, Eigen::ComputeFullU);
+            for (int i = 0; i < K.free_directions - 1; ++i) {
+                const Vector2 d = svd.matrixU().col(i);
+                out.free_directions.emplace_back(d);
+                out.free_descriptions.push_back(analysis::describeDirection(Vector3(0.0, d.x(), d.y())));
+            }
+        }
+        out.first_frequency = task.frequency(0);
+        return out;
+    }
     if (!(K.K.allFinite() && modes.frequency.allFinite() && modes.shape.allFinite())) {
         throw Error("the stiffness or the natural frequencies are not finite at this pose");
     }
-    PoseCompliance out;
     out.K = analysis::reported(K.K);
     for (int i = 0; i < K.free_directions; ++i) {
         const Vector3 v = K.free.col(i);
-        out.free_directions.push_back(analysis::reported(v));
+        out.free_directions.emplace_back(analysis::reported(v));
         out.free_descriptions.push_back(analysis::describeDirection(v));
     }
     out.frequencies = modes.frequency;
     out.first_frequency = modes.frequency(0);
-    for (int i = 0; i < 3; ++i) out.mode_shapes.col(i) = analysis::reported(Vector3(modes.shape.col(i)));
+    Matrix3 shapes;
+    for (int i = 0; i < 3; ++i) shapes.col(i) = analysis::reported(Vector3(modes.shape.col(i)));
+    out.mode_shapes = shapes;
     if (model.description.hasElasticBody()) {
         analysis::ElastodynamicModes elastic;
         if (const Status status = analysis::elastodynamicModes(model, stiffness, data, elastic); !status) {
@@ -148,10 +176,10 @@ PoseResult runPose(const PoseOptions& options, Observer& observer) {
         }
     }
     if (model.description.hasCompliance()) {
-        if (model.task_dimension == 2) {
+        if (model.task_dimension == 2 && model.description.hasElasticBody()) {
             throw Error(where(model.description, 0) +
-                        "the stiffness of a two-DOF robot (motion: translation) is not available yet: remove the "
-                        "file's stiffness and elastic entries to see the rest of the pose");
+                        "the elastic bodies of a two-DOF robot (motion: translation) are not modelled yet: remove "
+                        "the file's elastic entries (joint stiffness is)");
         }
         out.compliance = compliance(model, data, observer);
     }

@@ -48,13 +48,14 @@ struct PoseReaction {
 };
 
 /// Stiffness and natural frequencies at the pose (robots whose file declares compliance). Every
-/// vector and matrix over pose coordinates is in the order x, y, theta.
+/// vector and matrix over pose coordinates is in the order x, y, theta; a two-DOF robot's over
+/// x, y (n_t = 2: K_t = E^T K E, M_t = E^T M E, analysis::TaskModes).
 struct PoseCompliance {
-    Matrix3 K = Matrix3::Zero();  ///< dQ = K dp (virtual joint method, gravity preload ignored)
-    std::vector<Vector3> free_directions;
+    Eigen::MatrixXd K = Matrix3::Zero();  ///< n_t x n_t: dQ = K dp (virtual joint method, gravity preload ignored)
+    std::vector<Eigen::VectorXd> free_directions;  ///< n_t each
     std::vector<std::string> free_descriptions;
-    Vector3 frequencies = Vector3::Zero();                     ///< lumped model K v = w^2 M v [Hz], ascending
-    Matrix3 mode_shapes = Matrix3::Zero();                     ///< columns, mass-normalised
+    Eigen::VectorXd frequencies = Vector3::Zero();             ///< n_t: lumped model K v = w^2 M v [Hz], ascending
+    Eigen::MatrixXd mode_shapes = Matrix3::Zero();             ///< n_t x n_t: columns, mass-normalised
     std::optional<Eigen::VectorXd> elastodynamic_frequencies;  ///< [Hz], elastic links only
     int elastodynamic_dofs = 0;
     /// The first natural frequency to use [Hz]: the lumped one where it holds, else (elastic

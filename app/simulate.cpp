@@ -45,7 +45,9 @@ Twist poseRate(const Model& model, Data& data, const ActuatorVector& du, const s
 
 /// The initial state from the first row of the forces: the pose columns x,y,theta (with
 /// dtheta,dx,dy, else du1..dun, else at rest); else u1..un (and du1..dun): the state of a
-/// working assembly mode (stateFromActuators); else the robot's home at rest.
+/// working assembly mode (stateFromActuators); else the robot's home at rest. A two-DOF
+/// robot's pose columns are x,y (with dx,dy): theta stays at home(0), at rest, and a theta or
+/// dtheta column other than 0 is refused.
 InitialState initialState(const Model& model, const io::Table& table, const std::string& source, int assembly_mode) {
     const int n = model.actuators;
     const auto& first = table.rows.front();
@@ -78,14 +80,28 @@ InitialState initialState(const Model& model, const io::Table& table, const std:
     const bool has_u = hasAll("u"), has_du = hasAll("du");
     InitialState state;
     Data data(model);
-    const bool has_pose = table.has("theta") && table.has("x") && table.has("y");
+    const bool task = model.task_dimension == 2;
+    const char* pose_names = task ? "x,y" : "x,y,theta";
+    if (task) {
+        for (const char* name : {"theta", "dtheta"}) {
+            if (table.has(name) && value(name) != 0.0) {
+                std::ostringstream out;
+                out.precision(12);
+                out << where << ": column '" << name << "': " << value(name)
+                    << ", but a two-DOF robot (motion: translation) has no theta: give x,y (and dx,dy)";
+                throw Error(out.str());
+            }
+        }
+    }
+    const bool has_pose = (task || table.has("theta")) && table.has("x") && table.has("y");
     if (assembly_mode > 0 && (has_pose || !has_u)) {
         throw Error(where + ": --assembly-mode " + std::to_string(assembly_mode) +
                     " chooses among the poses of the first row's " + columnList("u", n) + ", but the row gives " +
-                    (has_pose ? "the pose x,y,theta" : "no " + columnList("u", n)));
+                    (has_pose ? std::string("the pose ") + pose_names : "no " + columnList("u", n)));
     }
     if (has_pose) {
-        state.p = corePose(Vector3(value("x"), value("y"), value("theta")));
+        state.p = task ? Pose(model.home(0), value("x"), value("y"))
+                       : corePose(Vector3(value("x"), value("y"), value("theta")));
         if (const Status status = inverseDisplacement(model, data, state.p); !status)
             throw Error(where + ": initial pose: " + describe(status, model));
         if (has_u) {
@@ -94,20 +110,21 @@ InitialState initialState(const Model& model, const io::Table& table, const std:
                 if (!(std::abs(u(a) - data.u(a)) <= kInitialStateTolerance)) {
                     std::ostringstream out;
                     out.precision(12);
-                    out << where << ": column 'u" << a + 1 << "': " << u(a) << " but the pose x,y,theta gives "
-                        << data.u(a);
+                    out << where << ": column 'u" << a + 1 << "': " << u(a) << " but the pose " << pose_names
+                        << " gives " << data.u(a);
                     throw Error(out.str());
                 }
             }
         }
-        if (table.has("dtheta") && table.has("dx") && table.has("dy")) {
-            state.dp = Twist(value("dtheta"), value("dx"), value("dy"));
-            state.origin = "first row's x,y,theta,dx,dy,dtheta";
+        const std::string pose_origin = std::string("first row's ") + pose_names;
+        if ((task || table.has("dtheta")) && table.has("dx") && table.has("dy")) {
+            state.dp = Twist(task ? 0.0 : value("dtheta"), value("dx"), value("dy"));
+            state.origin = pose_origin + (task ? ",dx,dy" : ",dx,dy,dtheta");
         } else if (has_du) {
             state.dp = poseRate(model, data, actuatorColumns("du"), where);
-            state.origin = "first row's x,y,theta and " + columnList("du", n);
+            state.origin = pose_origin + " and " + columnList("du", n);
         } else {
-            state.origin = "first row's x,y,theta, at rest";
+            state.origin = pose_origin + ", at rest";
         }
         return state;
     }
@@ -139,7 +156,8 @@ InitialState initialState(const Model& model, const io::Table& table, const std:
         }
         out << " (assembly mode " << start.mode << " of " << start.working << " with every limb on its home branch"
             << (start.nearest_home ? ", the nearest home" : ", as --assembly-mode chose")
-            << text::format(": x = %.9g m, y = %.9g m, theta = %.9g rad)", start.p(1), start.p(2), start.p(0));
+            << (task ? text::format(": x = %.9g m, y = %.9g m)", start.p(1), start.p(2))
+                     : text::format(": x = %.9g m, y = %.9g m, theta = %.9g rad)", start.p(1), start.p(2), start.p(0)));
         state.origin = out.str();
         return state;
     }
@@ -184,7 +202,8 @@ void validate(const SimulateOptions& options) {
 
 SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Observer& observer) {
     validate(options);
-    const Model model(loadRobot(options.robot));
+    // a two-DOF robot too: its state is [x, y] and their rates (Simulator::reset)
+    const Model model(loadRobotAnyMotion(options.robot));
     if (const std::string rigid = rigidPlantWarning(model.description, "simulate"); !rigid.empty())
         observer.warning(rigid);
     const int n = model.actuators;
@@ -226,12 +245,15 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
 
     // rows at t0 + k / rate, k = 0..count-1, and at t0 + duration
     const auto count = std::max<std::size_t>(1, static_cast<std::size_t>(std::llround(duration * options.rate)));
-    std::vector<std::string> columns = io::columnNames(io::TableId::simulate, {.actuators = n});
+    const bool task = model.task_dimension == 2;
+    std::vector<std::string> columns =
+        io::columnNames(io::TableId::simulate, {.actuators = n, .task_dimension = model.task_dimension});
     if (options.reactions) {
         for (std::string& column : io::reactionColumns(model.limbs)) columns.push_back(std::move(column));
     }
     table.columns(columns);
-    const std::size_t base = 5 + 3 * static_cast<std::size_t>(n);  // t, x, y, theta, u, du, tau, kinetic
+    // t, x, y, theta (not for a two-DOF robot), u, du, tau, kinetic
+    const std::size_t base = (task ? 4 : 5) + 3 * static_cast<std::size_t>(n);
     std::vector<double> row(base);
     row.reserve(columns.size());
     Reactions reactions;
@@ -250,7 +272,7 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
         row[c++] = simulator.time();
         row[c++] = p(1);
         row[c++] = p(2);
-        row[c++] = p(0);
+        if (!task) row[c++] = p(0);
         for (int a = 0; a < n; ++a) row[c++] = simulator.u()(a);
         for (int a = 0; a < n; ++a) row[c++] = simulator.du()(a);
         for (int a = 0; a < n; ++a) row[c++] = simulator.tau()(a);

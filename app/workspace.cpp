@@ -15,8 +15,18 @@ void validate(const WorkspaceOptions& options) {
 WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer) {
     validate(options);
     WorkspaceResult out;
-    out.model = std::make_shared<const Model>(loadRobot(options.robot));
+    // a two-DOF robot too: the region of its tool point, theta no coordinate of it
+    out.model = std::make_shared<const Model>(loadRobotAnyMotion(options.robot));
     const Model& model = *out.model;
+    if (model.task_dimension == 2) {
+        if (options.theta && *options.theta != model.home(0))
+            throw OptionError("theta", "a two-DOF robot (motion: translation) has no theta: leave it out");
+        if (options.first_frequency) {
+            throw Error(where(model.description, 0) +
+                        "the first natural frequency map of a two-DOF robot (motion: translation) is not "
+                        "available yet");
+        }
+    }
     nocdyn::WorkspaceOptions ws;
     ws.theta = options.theta ? *options.theta : model.home(0);
     ws.resolution = options.resolution;

@@ -39,13 +39,13 @@ Figure workspaceFigure(const WorkspaceMap& map, const Model& model, const std::v
         "home position of C", {model.home(1) * 1e3}, {model.home(2) * 1e3}, "points pt 2 ps 2 lc rgb 'black'"};
     std::string theta;
     theta = text::format("%.4g deg", map.theta * 180.0 / std::numbers::pi);
-    PlotPanel panel{
-        "C at theta = " + std::string(theta) + " (grid " + std::to_string(map.n) + " x " + std::to_string(map.n) + ")",
-        "x [mm]",
-        "y [mm]",
-        {},
-        false,
-        false};
+    const std::string where = map.task_dimension == 2 ? std::string("tool point C") : "C at theta = " + theta;
+    PlotPanel panel{where + " (grid " + std::to_string(map.n) + " x " + std::to_string(map.n) + ")",
+                    "x [mm]",
+                    "y [mm]",
+                    {},
+                    false,
+                    false};
     panel.equal_axes = true;
     for (PlotSeries* s : {&outline, &limb, &actuation, &home}) {
         if (!s->x.empty()) panel.series.push_back(std::move(*s));  // gnuplot refuses an empty block
@@ -123,12 +123,16 @@ std::string firstFrequencySummary(const analysis::FirstFrequencyMap& frequency) 
 std::string workspaceSummary(const WorkspaceMap& map) {
     std::string text;
     const Dexterity d = dexterity(map);
+    // a two-DOF robot has no orientation: the region of its tool point
+    const std::string at = map.task_dimension == 2
+                               ? std::string("The feasible region of the tool point C")
+                               : text::format("At theta = %.6g rad the feasible region of C", map.theta);
     text = text::format(
-        "At theta = %.6g rad the feasible region of C (reachable on the home branches, within every "
+        "%s (reachable on the home branches, within every "
         "joint range, regular) has an area of %.6g mm^2 (%d x %d grid, step %.4g mm, over x in "
         "[%.4g, %.4g] mm and y in [%.4g, %.4g] mm); %zu points on limb-singularity curves and %zu on "
         "actuation-singularity curves. Scaled condition number of A over it: median %.6g, worst %.6g.",
-        map.theta, map.area * 1e6, map.n, map.n, map.step * 1e3, map.x0 * 1e3, (map.x0 + (map.n - 1) * map.step) * 1e3,
+        at.c_str(), map.area * 1e6, map.n, map.n, map.step * 1e3, map.x0 * 1e3, (map.x0 + (map.n - 1) * map.step) * 1e3,
         map.y0 * 1e3, (map.y0 + (map.n - 1) * map.step) * 1e3, map.limb_singular.size(), map.actuation_singular.size(),
         d.median, d.worst);
     return text;

@@ -27,22 +27,24 @@ struct Options : app::PoseOptions {
 constexpr double kDeg = 180.0 / std::numbers::pi;
 
 nlohmann::json complianceJson(const app::PoseCompliance& c) {
+    const auto n = static_cast<int>(c.K.rows());  // x, y, theta; a two-DOF robot's x, y
     nlohmann::json coordinates = nlohmann::json::array(), units = nlohmann::json::array();
-    for (int r = 0; r < 3; ++r) {
+    for (int r = 0; r < n; ++r) {
         coordinates.push_back(analysis::coordinateLabel(r));
         nlohmann::json row = nlohmann::json::array();
-        for (int k = 0; k < 3; ++k) row.push_back(analysis::stiffnessUnit(r, k));
+        for (int k = 0; k < n; ++k) row.push_back(analysis::stiffnessUnit(r, k));
         units.push_back(row);
     }
     nlohmann::json free = nlohmann::json::array();
     for (std::size_t i = 0; i < c.free_directions.size(); ++i) {
-        const Vector3& v = c.free_directions[i];
-        free.push_back({{"direction", {v(0), v(1), v(2)}}, {"description", c.free_descriptions[i]}});
+        const Eigen::VectorXd& v = c.free_directions[i];
+        free.push_back({{"direction", std::vector<double>(v.data(), v.data() + v.size())},
+                        {"description", c.free_descriptions[i]}});
     }
     nlohmann::json out;
     out["stiffness"] = {
         {"coordinates", coordinates}, {"matrix", matrixJson(c.K)}, {"units", units}, {"free_directions", free}};
-    out["natural_frequencies"] = {c.frequencies(0), c.frequencies(1), c.frequencies(2)};
+    out["natural_frequencies"] = std::vector<double>(c.frequencies.data(), c.frequencies.data() + c.frequencies.size());
     // as the text and Python give them: rows x, y, theta; column i the shape of frequency i
     out["mode_shapes"] = matrixJson(c.mode_shapes);
     if (c.elastodynamic_frequencies) {
@@ -89,18 +91,20 @@ void printJson(const app::PoseResult& r) {
 
 void printCompliance(const app::PoseCompliance& c) {
     std::printf("\nstiffness K at C (virtual joint method, gravity preload ignored; dQ = K dp, rows and columns:");
-    for (int r = 0; r < 3; ++r) std::printf(" %s", analysis::coordinateLabel(r).c_str());
+    const auto n = static_cast<int>(c.K.rows());  // 2: a two-DOF robot, over x, y
+    for (int r = 0; r < n; ++r) std::printf(" %s", analysis::coordinateLabel(r).c_str());
     std::printf(")\n%sunits:\n", matrixText(c.K).c_str());
-    for (int r = 0; r < 3; ++r) {
+    for (int r = 0; r < n; ++r) {
         std::printf("  [");
-        for (int k = 0; k < 3; ++k) std::printf("%s%-8s", k ? "  " : "", analysis::stiffnessUnit(r, k).c_str());
+        for (int k = 0; k < n; ++k) std::printf("%s%-8s", k ? "  " : "", analysis::stiffnessUnit(r, k).c_str());
         std::printf("]\n");
     }
     for (const std::string& text : c.free_descriptions)
         std::printf("free direction (no stiffness): %s\n", text.c_str());
-    std::printf("natural frequencies (lumped model K v = w^2 M v) [Hz]: %.6g %.6g %.6g\n", c.frequencies(0),
-                c.frequencies(1), c.frequencies(2));
-    std::printf("mode shapes (columns, mass-normalised; rows: x, y, theta):\n%s", matrixText(c.mode_shapes).c_str());
+    std::printf("natural frequencies (lumped model K v = w^2 M v) [Hz]:");
+    for (const double f : c.frequencies) std::printf(" %.6g", f);
+    std::printf("\nmode shapes (columns, mass-normalised; rows: %s):\n%s", n == 2 ? "x, y" : "x, y, theta",
+                matrixText(c.mode_shapes).c_str());
     if (c.elastodynamic_frequencies) {
         std::printf("elastodynamic frequencies (%d DOF) [Hz]:", c.elastodynamic_dofs);
         for (const double f : *c.elastodynamic_frequencies) std::printf(" %.6g", f);

@@ -28,7 +28,7 @@ nlohmann::json summaryJson(const app::WorkspaceResult& result) {
     const WorkspaceMap& map = result.map;
     nlohmann::json out;
     out["robot"] = result.model->description.name;
-    out["theta"] = map.theta;
+    if (map.task_dimension == 3) out["theta"] = map.theta;  // a two-DOF robot has none
     out["area"] = map.area;
     out["resolution"] = map.n;
     out["step"] = map.step;
@@ -80,6 +80,8 @@ void addWorkspaceCommand(CLI::App& app) {
         "With --first-frequency (robot files that declare compliance: joint stiffness, elastic bodies) also the\n"
         "first natural frequency of the lumped model at every feasible point, its lowest and where;\n"
         "--frequency-map STEM writes it as STEM.csv (x, y [m], first_frequency [Hz]) and a heat map.\n"
+        "A two-DOF robot (motion: translation): the region of its tool point, no --theta; the actuation\n"
+        "singularity is det A_t = 0 (the five-bar's forearms aligned).\n"
         "Example: nocdyn workspace --robot robots/3-rrr.yaml --theta 0.1");
     addRobotOption(*command, options->robot);
     command->add_option("--theta", options->theta, "Platform orientation [rad] [default: the robot's home]")
@@ -98,7 +100,8 @@ void addWorkspaceCommand(CLI::App& app) {
         ->check(nonEmptyPath());
     command->add_flag(
         "--json", options->json,
-        "Print the summary as JSON instead (robot, theta [rad], area [m^2], resolution, step [m], x_range and\n"
+        "Print the summary as JSON instead (robot, theta [rad] (not for a two-DOF robot), area [m^2], resolution, step "
+        "[m], x_range and\n"
         "y_range [m], limb_singular_points, actuation_singular_points; with --first-frequency first_frequency:\n"
         "points, lowest [Hz], lowest_at {x, y [m], theta [rad]}, highest [Hz])");
     command->callback([options] { workspace_command::run(*options); });

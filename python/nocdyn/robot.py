@@ -238,8 +238,8 @@ class Robot(RobotDynamics):
         numbers compare one to one with it: dQ = K dp,
         Q = (f_x [N], f_y [N], moment about C [N m]); units N/m, N/rad, N, N m/rad.
         Raises nocdyn.Error when the robot declares no compliance, a limb is rigid, or the pose is
-        out of reach."""
-        _require_full_motion(self, "stiffness")
+        out of reach. A two-DOF robot (motion: translation): p = [x, y] and K is 2 x 2 over x, y
+        (E^T K E; theta moves no body and loads no limb)."""
         return self._core._stiffness(p)["matrix"]
 
     @_vocabulary
@@ -261,8 +261,8 @@ class Robot(RobotDynamics):
         are mass-normalised).
 
         Also warns (RuntimeWarning, as `nocdyn pose`) when the stiffness contrast costs the
-        lowest frequency digits."""
-        _require_full_motion(self, "natural_frequencies")
+        lowest frequency digits. A two-DOF robot (motion: translation): p = [x, y], the 2 lumped
+        frequencies over x, y (K_t v = w^2 M_t v; elastic bodies are not modelled for it)."""
         if model not in (None, "lumped", "elastodynamic"):
             raise Error("model: expected 'lumped' or 'elastodynamic', got " + repr(model))
         result = self._core._stiffness(p, model == "elastodynamic", True, model == "lumped")

@@ -87,9 +87,10 @@ py::dict poseDict(const app::PoseResult& r) {
                  py::arg("actuators") = actuators);
     if (r.compliance) {
         const app::PoseCompliance& c = *r.compliance;
-        out["stiffness"] = Eigen::Matrix3d(c.K);
-        out["natural_frequencies"] = Eigen::Vector3d(c.frequencies);
-        out["mode_shapes"] = Eigen::Matrix3d(c.mode_shapes);
+        // n_t x n_t: a two-DOF robot's over x, y
+        out["stiffness"] = c.K;
+        out["natural_frequencies"] = c.frequencies;
+        out["mode_shapes"] = c.mode_shapes;
         if (c.elastodynamic_frequencies) out["elastodynamic_frequencies"] = *c.elastodynamic_frequencies;
         out["first_frequency"] = c.first_frequency;
         out["first_frequency_model"] = c.first_frequency_model;

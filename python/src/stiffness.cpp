@@ -18,6 +18,47 @@ namespace nocdyn::python {
 
 namespace {
 
+/// A two-DOF robot's (motion: translation) K_t, M_t and lumped modes over x, y at p = [x, y]
+/// (analysis::TaskModes: theta moves no body and loads no limb). Its elastic bodies are refused.
+py::dict taskStiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic) {
+    const Model& model = *robot.model;
+    const auto a = py::array_t<double, py::array::forcecast>::ensure(p);
+    if (!a || a.ndim() != 1 || a.shape(0) != 2) throw Error("p: expected 2 values [x, y] for a two-DOF robot");
+    const analysis::StiffnessModel compliance(model);
+    if (!compliance.any) throw Error("the robot file declares no compliance (a joint's stiffness): the robot is rigid");
+    if (elastodynamic || compliance.any_elastic) {
+        throw Error(
+            "the elastic bodies and elastodynamic modes of a two-DOF robot (motion: translation) are not "
+            "modelled yet");
+    }
+    Data data(model);
+    analysis::StiffnessData K;
+    analysis::LumpedModes lumped;
+    const Pose p3(model.home(0), a.at(0), a.at(1));
+    if (const Status status = analysis::stiffnessAndModes(model, compliance, data, p3, K, lumped); !status) {
+        throw Error(describe(status, model));
+    }
+    analysis::TaskModes modes;
+    analysis::taskModes(model, data, K, lumped, modes);
+    if (!(modes.K.allFinite() && modes.frequency.allFinite() && modes.shape.allFinite())) {
+        throw Error("the stiffness or the natural frequencies are not finite at this pose");
+    }
+    if (const std::string w = analysis::contrastWarning(K); !w.empty()) {
+        if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 3) != 0) throw py::error_already_set();
+    }
+    py::dict out;
+    py::list coordinates;
+    for (int r = 0; r < 2; ++r) coordinates.append(analysis::coordinateLabel(r));
+    out["coordinates"] = coordinates;
+    out["matrix"] = toArray(Eigen::MatrixXd(modes.K));
+    out["free_directions"] = py::list();  // theta's is no direction of the task
+    out["frequencies"] = toArray(std::vector<double>(modes.frequency.begin(), modes.frequency.end()));
+    out["mode_shapes"] = toArray(Eigen::MatrixXd(modes.shape));
+    out["mass_matrix"] = toArray(Eigen::MatrixXd(modes.M));
+    out["lumped_holds"] = true;
+    return out;
+}
+
 /// K, the lumped modes and (when `elastodynamic`) the elastodynamic modes at pose p, every
 /// pose-indexed array in analysis::kReportedCoordinates' order. Warns (RuntimeWarning) when
 /// K's contrast costs digits and, when `frequencies` are asked of a robot with elastic bodies,
@@ -28,6 +69,7 @@ namespace {
 /// there, the default answer's).
 py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic, bool frequencies, bool lumped_asked) {
     const Model& model = *robot.model;
+    if (model.task_dimension == 2) return taskStiffnessAt(robot, p, elastodynamic);
     const Pose p3 = vector3(p, "p");
     const analysis::StiffnessModel compliance(model);
     if (!compliance.any) {

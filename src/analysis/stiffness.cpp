@@ -455,6 +455,29 @@ void lumpedModes(const Model& model, const Data& data, const StiffnessData& stif
     out.shape.rightCols(h) = B * eig.eigenvectors();
 }
 
+void taskModes(const Model& model, const Data& data, const StiffnessData& stiffness, const LumpedModes& lumped,
+               TaskModes& out) {
+    if (model.task_dimension == 3) {
+        out.K = stiffness.K;
+        out.M = lumped.M;
+        out.frequency = lumped.frequency;
+        out.shape = lumped.shape;
+        return;
+    }
+    // translation: E = [0 0; 1 0; 0 1], so E^T X E is X's x, y block
+    const Matrix3 M = poseMassMatrix(data);
+    const Matrix2 K_t = stiffness.K.bottomRightCorner<2, 2>();
+    const Matrix2 M_t = 0.5 * (M.bottomRightCorner<2, 2>() + M.bottomRightCorner<2, 2>().transpose());
+    const Eigen::GeneralizedSelfAdjointEigenSolver<Matrix2> eig(0.5 * (K_t + K_t.transpose()), M_t,
+                                                                Eigen::ComputeEigenvectors | Eigen::Ax_lBx);
+    out.K = K_t;
+    out.M = M_t;
+    out.frequency.resize(2);
+    for (int i = 0; i < 2; ++i)
+        out.frequency(i) = std::sqrt(std::max(eig.eigenvalues()(i), 0.0)) / (2.0 * std::numbers::pi);
+    out.shape = eig.eigenvectors();
+}
+
 Status stiffnessAndModes(const Model& model, const StiffnessModel& compliance, Data& data, const Pose& p,
                          StiffnessData& stiffness, LumpedModes& modes) {
     if (Status s = inverseDisplacement(model, data, p); !s) return s;

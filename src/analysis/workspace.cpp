@@ -49,8 +49,14 @@ public:
         }
         const Status v = velocityFromPlatformTwist(model_, data_, Twist::Zero());
         if (v.ok() || v.code == StatusCode::singular_actuation) {
-            actuation = model_.coordinates == Coordinates::actuators ? Matrix3(data_.A.topRows<3>()).determinant()
-                                                                     : (v.ok() ? 1.0 : -1.0);
+            if (model_.coordinates == Coordinates::actuators) {
+                actuation = Matrix3(data_.A.topRows<3>()).determinant();
+            } else if (model_.task_dimension == 2 && model_.actuators == 2) {
+                // det A_t, A_t = A S(c) E: the x, y columns of A
+                actuation = data_.A(0, 1) * data_.A(1, 2) - data_.A(0, 2) * data_.A(1, 1);
+            } else {
+                actuation = v.ok() ? 1.0 : -1.0;
+            }
         }
         if (!v) return WorkspaceCell::singular;
         if (!checkJointLimits(model_, data_)) return WorkspaceCell::range;
@@ -151,6 +157,7 @@ WorkspaceMap workspaceMap(const Model& model, const WorkspaceOptions& options) {
     const Vector2 middle = 0.5 * (lo + hi);
     WorkspaceMap map;
     map.theta = options.theta;
+    map.task_dimension = model.task_dimension;
     map.n = options.resolution;
     map.step = side / (map.n - 1);
     map.x0 = middle.x() - 0.5 * side;

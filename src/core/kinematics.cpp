@@ -182,9 +182,20 @@ Status velocityFromActuatorRatesLeastSquares(const Model& model, Data& data, con
     if (const Status status = velocityFromPlatformTwist(model, data, Twist::Zero()); !status) return status;
     // A xi_P = du in the least-squares sense; dp/dt = S(c)^-1 xi_P minimises |A S(c) dp/dt - du|
     // too, as S(c) is invertible. Fixed-capacity QR: no allocation.
-    const Eigen::ColPivHouseholderQR<ActuationMatrix> qr(data.A);
-    const Twist xi_P = qr.solve(du);
-    dp = poseRateOfPlatformTwist(data.p.tail<2>(), xi_P);
+    if (model.task_dimension == 2) {
+        // translation: du = A S(c) E dp_t/dt with A S(c) E the x, y columns of A (n x 2);
+        // dp/dt = E dp_t/dt keeps theta's rate at 0 (a rotation about C moves no actuator,
+        // so the three-column problem would leave it free)
+        using TaskActuation = Eigen::Matrix<double, Eigen::Dynamic, 2, 0, kMaxActuators, 2>;
+        const TaskActuation A_t = data.A.rightCols<2>();
+        const Eigen::ColPivHouseholderQR<TaskActuation> qr(A_t);
+        const Vector2 dp_t = qr.solve(du);
+        dp = Twist(0.0, dp_t(0), dp_t(1));
+    } else {
+        const Eigen::ColPivHouseholderQR<ActuationMatrix> qr(data.A);
+        const Twist xi_P = qr.solve(du);
+        dp = poseRateOfPlatformTwist(data.p.tail<2>(), xi_P);
+    }
     if (const Status status = velocityFromPlatformTwist(model, data, dp); !status) return status;
     const double residual = (data.du - du).cwiseAbs().maxCoeff();
     if (!(residual <= tolerance * (1.0 + du.cwiseAbs().maxCoeff()))) {

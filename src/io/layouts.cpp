@@ -44,7 +44,8 @@ std::vector<Layout> makeLayouts() {
         {simulate,
          "Forward dynamics",
          "`nocdyn simulate --output`; Python `nocdyn.simulate`",
-         "One row per output instant t0 + k / rate, and one at the end.",
+         "One row per output instant t0 + k / rate, and one at the end. A two-DOF robot's (motion: translation, "
+         "pose [x, y]) table has no column theta.",
          {t, x, y, theta, u, du, tau, kinetic}},
         {closed_loop,
          "Closed-loop run",
@@ -258,6 +259,7 @@ std::vector<std::string> columnNames(TableId id, const LayoutSizes& sizes) {
     for (std::size_t c = 0; c < columns.size(); ++c) {
         const Column& column = columns[c];
         if (column.optional && !sizes.optional) continue;
+        if (sizes.task_dimension == 2 && column.name == "theta") continue;  // no theta: pose [x, y]
         switch (column.repeat) {
             case Repeat::once:
                 names.emplace_back(column.name);

@@ -42,9 +42,21 @@ Status forwardDynamics(const Model& model, Data& data, const Pose& p, const Twis
     Vector3 w = Vector3::Zero();
     for (int a = 0; a < model.actuators; ++a) w.noalias() += tau(a) * data.A.row(a).transpose();
     const Vector3 rhs = poseForceOfPlatformWrench(data.p.tail<2>(), w) - data.h_p;
-    const Eigen::LLT<Matrix3> llt(data.M_p);
-    if (llt.info() != Eigen::Success) return {StatusCode::singular_mass_matrix, -1, data.M_p.diagonal().minCoeff()};
-    const Twist ddp = llt.solve(rhs);
+    Twist ddp;
+    if (model.task_dimension == 2) {
+        // translation: theta is no coordinate (its row and column of M_p are zero: a rotation
+        // about C moves no body), so M_t ddp_t = E^T (A_p^T tau - h_p), M_t = E^T M_p E, and
+        // ddp = E ddp_t: theta's acceleration is exactly 0
+        const Matrix2 M_t = data.M_p.bottomRightCorner<2, 2>();
+        const Eigen::LLT<Matrix2> llt(M_t);
+        if (llt.info() != Eigen::Success) return {StatusCode::singular_mass_matrix, -1, M_t.diagonal().minCoeff()};
+        const Vector2 ddp_t = llt.solve(rhs.tail<2>());
+        ddp = Twist(0.0, ddp_t(0), ddp_t(1));
+    } else {
+        const Eigen::LLT<Matrix3> llt(data.M_p);
+        if (llt.info() != Eigen::Success) return {StatusCode::singular_mass_matrix, -1, data.M_p.diagonal().minCoeff()};
+        ddp = llt.solve(rhs);
+    }
     for (int i = 0; i < 3; ++i) {
         if (!std::isfinite(ddp(i))) return {StatusCode::not_finite, -1, ddp(i)};
     }

@@ -398,8 +398,12 @@ Simulator::~Simulator() = default;
 Simulator::Simulator(Simulator&&) noexcept = default;
 Simulator& Simulator::operator=(Simulator&&) noexcept = default;
 
-Status Simulator::reset(const Pose& p, const Twist& dp, double t) {
+Status Simulator::reset(const Pose& p_in, const Twist& dp_in, double t) {
     Impl& s = *impl_;
+    // a two-DOF robot's state is [x, y] and its rates: theta at home(0), at rest (E p_t, E dp_t)
+    const bool task = s.model.task_dimension == 2;
+    const Pose p = task ? Pose(s.model.home(0), p_in(1), p_in(2)) : p_in;
+    const Twist dp = task ? Twist(0.0, dp_in(1), dp_in(2)) : dp_in;
     s.held.setZero();
     s.signal.reset();
     if (const Status status = forwardDynamics(s.model, s.scratch, p, dp, s.held); !status) return status;

@@ -1,7 +1,7 @@
 """Two-DOF planar robots (motion: translation, pose [x, y] of a point tool): the shipped five-bar
 and biglide through Robot.inverse_dynamics with arrays of shape (N, 2), `nocdyn pose X Y`, and
-`nocdyn forward-kinematics U1 U2` (poses x, y), and the one-line refusal of the commands that do
-not take them yet."""
+`nocdyn forward-kinematics U1 U2` (poses x, y), `nocdyn.simulate` (columns t, x, y, ...),
+`nocdyn.workspace`, and the one-line refusal of the commands that do not take them yet."""
 
 import numpy as np
 import pytest
@@ -128,9 +128,9 @@ def test_pose_prints_x_y(cli, source_dir):
     assert code != 0 and "THETA" in err
 
 
-@pytest.mark.parametrize("command", [["inverse-dynamics", "--trajectory", "paper1"], ["simulate", "--forces", "FORCES"],
+@pytest.mark.parametrize("command", [["inverse-dynamics", "--trajectory", "paper1"],
                                      ["loads", "--trajectory", "paper1"], ["control", "--trajectory", "paper1"],
-                                     ["workspace"], ["envelope"], ["frequency-response"], ["regressor"],
+                                     ["envelope"], ["frequency-response"], ["regressor"],
                                      ["convert"]])
 def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_path, command):
     forces = tmp_path / "forces.csv"
@@ -166,14 +166,28 @@ def test_forward_kinematics_gives_both_tool_points_x_y(cli, source_dir, name, to
     assert "theta" not in out
 
 
-def test_the_stiffness_of_a_two_dof_robot_is_refused_in_one_line(cli, source_dir, tmp_path):
+def test_the_stiffness_of_a_two_dof_robot_is_2_by_2_over_x_y(cli, source_dir, tmp_path):
+    # drive springs k at both motors, every other joint free: K = A^T diag(k) A with A the
+    # report's 2 x 2 actuation map over x, y, and the frequencies from det(K - w^2 I) = 0 with
+    # I = E^T I E the report's inertia (horizontal five-bar: no gravity preload)
+    import json
+
     text = (source_dir / "robots" / "five-bar.yaml").read_text()
     stiff = tmp_path / "stiff-five-bar.yaml"
     stiff.write_text(text.replace("effort: 8.0, velocity: 30.0}}", "effort: 8.0, velocity: 30.0}, stiffness: 5000.0}"))
-    code, _, err = cli("pose", "0.0", "0.3", "--robot", stiff)
-    assert code != 0
-    assert "stiffness of a two-DOF robot" in err
-    assert len(err.strip().splitlines()) == 1, err
+    code, out, err = cli("pose", "0.02", "0.3", "--robot", stiff, "--json")
+    assert code == 0, err
+    report = json.loads(out)
+    A, inertia = np.array(report["A"]), np.array(report["I"])
+    K = np.array(report["stiffness"]["matrix"])
+    assert K.shape == (2, 2) and report["stiffness"]["coordinates"] == ["x [m]", "y [m]"]
+    np.testing.assert_allclose(K, 5000.0 * A.T @ A, rtol=1e-10)
+    w2 = np.sort(np.linalg.eigvals(np.linalg.solve(inertia, K)).real)
+    np.testing.assert_allclose(report["natural_frequencies"], np.sqrt(w2) / (2 * np.pi), rtol=1e-9)
+    assert report["first_frequency"]["value"] == report["natural_frequencies"][0]
+    code, out, err = cli("pose", "0.02", "0.3", "--robot", stiff)
+    assert code == 0, err
+    assert "rows and columns: x [m] y [m])" in out and "rows: x, y)" in out
 
 
 def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
@@ -184,7 +198,6 @@ def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
         "with_payload": lambda: robot.with_payload(0.1),
         "forward_kinematics": lambda: robot.forward_kinematics(np.zeros(2)),
         "state_from_actuators": lambda: robot.state_from_actuators(np.zeros(2)),
-        "stiffness": lambda: robot.stiffness(p),
         "inverse_dynamics_derivatives": lambda: robot.inverse_dynamics_derivatives(p, z, z),
         "reactions": lambda: robot.reactions(p, z, z),
         "regressor": lambda: robot.regressor(p, z, z),
@@ -193,3 +206,84 @@ def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
         with pytest.raises(nocdyn.Error, match=f"{name}: a two-DOF robot"):
             call()
     assert robot._repr_svg_() is None
+
+
+def test_simulate_gives_x_y_and_inverse_dynamics_gives_the_forces_back(source_dir):
+    # the biglide under forces about its holding forces at home: the motion's inverse dynamics
+    # (rates and accelerations by differences of the simulated x, y) gives the forces back
+    robot = _robot(source_dir, "biglide")
+    hold = robot.inverse_dynamics(np.array([0.0, 0.2]), np.zeros(2), np.zeros(2))[3]
+    t = np.linspace(0.0, 0.2, 201)
+    tau = hold + np.column_stack([0.8 * np.sin(2 * np.pi * 4 * t), -0.5 * np.sin(2 * np.pi * 6 * t)])
+    motion = nocdyn.simulate({"t": t, "tau1": tau[:, 0], "tau2": tau[:, 1]},
+                             robot=str(source_dir / "robots" / "biglide.yaml"), rate=10000)
+    assert list(motion.columns) == ["t", "x", "y", "u1", "u2", "du1", "du2", "tau1", "tau2", "kinetic"]
+    xy = np.column_stack([motion["x"], motion["y"]])
+    assert np.ptp(xy[:, 0]) > 1e-3 and np.ptp(xy[:, 1]) > 1e-4
+    k, h = np.arange(10, len(xy) - 10, 97), 1e-3  # samples 10 apart at 10 kHz
+    P = xy[k]
+    dP = (xy[k + 10] - xy[k - 10]) / (2 * h)
+    ddP = (xy[k + 10] - 2 * P + xy[k - 10]) / h**2
+    applied = np.column_stack([motion["tau1"], motion["tau2"]])[k]
+    back = robot.inverse_dynamics(P, dP, ddP)[3]
+    np.testing.assert_allclose(back, applied, atol=1e-3 * np.abs(applied).max())
+
+
+def test_workspace_of_the_five_bar_is_its_tool_points_region(source_dir):
+    ws = nocdyn.workspace(robot=str(source_dir / "robots" / "five-bar.yaml"), resolution=41)
+    assert ws.text.startswith("The feasible region of the tool point C")
+    assert 0.1 < ws.area < 0.3  # [m^2]: 0.200 at resolution 201
+    with pytest.raises(nocdyn.Error, match="has no theta"):
+        nocdyn.workspace(robot=str(source_dir / "robots" / "five-bar.yaml"), theta=0.1)
+
+
+def test_a_compliant_two_dof_robot_names_its_first_resonance_and_its_refusals(cli, source_dir, tmp_path):
+    import json
+
+    text = (source_dir / "robots" / "five-bar.yaml").read_text()
+    stiff = tmp_path / "stiff-five-bar.yaml"
+    stiff.write_text(text.replace("effort: 8.0, velocity: 30.0}}", "effort: 8.0, velocity: 30.0}, stiffness: 5000.0}"))
+    code, out, err = cli("pose", "0.0", "0.35", "--robot", stiff, "--json")
+    assert code == 0, err
+    first = json.loads(out)["first_frequency"]["value"]
+    assert 10.0 < first < 1000.0
+    # simulate's rigid plant names the first resonance of the task's modes at home
+    forces = tmp_path / "forces.csv"
+    forces.write_text("t,tau1,tau2\n0,0,0\n0.01,0,0\n")
+    code, out, err = cli("simulate", "--robot", stiff, "--forces", forces, "--rate", "100")
+    assert code == 0, err
+    assert f"(first resonance at home {first:.4g} Hz) is not modelled" in err
+    # the first natural frequency map and elastic bodies of a two-DOF robot: refused in one line
+    code, _, err = cli("workspace", "--robot", stiff, "--first-frequency", "--resolution", "21")
+    assert code != 0 and "first natural frequency map of a two-DOF robot" in err
+    assert len(err.strip().splitlines()) == 1, err
+    elastic = tmp_path / "elastic-five-bar.yaml"
+    elastic.write_text(text.replace("{mass: 0.15, inertia: 7.8125e-4, com: [-0.1, 0.275]}",
+                                    "{mass: 0.15, inertia: 7.8125e-4, com: [-0.1, 0.275], "
+                                    "elastic: {EA: 1.0e6, EI: 20.0}}"))
+    code, _, err = cli("pose", "0.0", "0.35", "--robot", elastic)
+    assert code != 0 and "elastic bodies of a two-DOF robot" in err, err
+    assert len(err.strip().splitlines()) == 1, err
+
+
+def test_robot_stiffness_and_natural_frequencies_of_a_two_dof_robot_are_over_x_y(cli, source_dir, tmp_path):
+    import json
+
+    text = (source_dir / "robots" / "five-bar.yaml").read_text()
+    stiff = tmp_path / "stiff-five-bar.yaml"
+    stiff.write_text(text.replace("effort: 8.0, velocity: 30.0}}", "effort: 8.0, velocity: 30.0}, stiffness: 5000.0}"))
+    robot = nocdyn.Robot.load(str(stiff))
+    K = robot.stiffness([0.02, 0.3])
+    f, shapes = robot.natural_frequencies([0.02, 0.3], modes=True)
+    code, out, err = cli("pose", "0.02", "0.3", "--robot", stiff, "--json")
+    assert code == 0, err
+    report = json.loads(out)
+    np.testing.assert_allclose(K, report["stiffness"]["matrix"], rtol=1e-14)
+    np.testing.assert_allclose(f, report["natural_frequencies"], rtol=1e-14)
+    assert K.shape == (2, 2) and f.shape == (2,) and shapes.shape == (2, 2)
+    with pytest.raises(nocdyn.Error, match=r"\[x, y\]"):
+        robot.stiffness([0.02, 0.3, 0.0])
+    with pytest.raises(nocdyn.Error, match="elastodynamic modes of a two-DOF robot"):
+        robot.natural_frequencies([0.02, 0.3], model="elastodynamic")
+    with pytest.raises(nocdyn.Error, match="declares no compliance"):
+        _robot(source_dir, "five-bar").stiffness([0.02, 0.3])

@@ -151,6 +151,27 @@ struct LumpedModes {
 /// direction's rounding never passes for a soft mode. Allocation-free.
 void lumpedModes(const Model& model, const Data& data, const StiffnessData& stiffness, LumpedModes& out);
 
+/// The stiffness and lumped modes over the task coordinates p_t (model.hpp's task map E, n_t =
+/// model.task_dimension, pose order): K_t = E^T K E, M_t = E^T M E, K_t v = w^2 M_t v. For a
+/// two-DOF robot (motion: translation) theta is no coordinate: a rotation about the tool point
+/// C moves no body and loads no limb (every limb's last joint is a free R joint at C), so K's
+/// and M's theta rows and columns are zero and K_t, M_t are their x, y blocks (2 x 2), with
+/// K_t = A_t^T diag(k) A_t for springs k at the actuators alone. For a three-DOF robot these are
+/// K, M and lumpedModes' frequencies and shapes.
+struct TaskModes {
+    using Matrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 3, 3>;
+    using Vector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, 3, 1>;
+    Matrix K;          ///< n_t x n_t stiffness [N/m, N/rad, N m/rad]
+    Matrix M;          ///< n_t x n_t mass matrix
+    Vector frequency;  ///< n_t natural frequencies [Hz], ascending (0 for a free direction)
+    Matrix shape;      ///< columns dp_t, v^T M_t v = 1
+};
+
+/// TaskModes at the pose of `data` (the shaping stage done), from K (cartesianStiffness) and,
+/// for a three-DOF robot, its lumped modes. Allocation-free.
+void taskModes(const Model& model, const Data& data, const StiffnessData& stiffness, const LumpedModes& lumped,
+               TaskModes& out);
+
 /// Every stage needed, at pose p: the position, velocity (at rest) and shaping stages, K
 /// and the lumped modes.
 Status stiffnessAndModes(const Model& model, const StiffnessModel& compliance, Data& data, const Pose& p,

@@ -6,6 +6,10 @@
 //   actuation (parallel, type 2): det A = 0, A the map from the platform twist to the
 //     actuator rates (eq. 5 generalised), with three actuators; with more, the edge of the
 //     region where A's condition number exceeds the model's limit.
+// A two-DOF robot (motion: translation) has no orientation: the map is of its tool point C at
+// theta = home(0), which moves no body (model.hpp's task map), and its actuation singularity
+// with two actuators is det A_t = 0, A_t = A S(c) E the x, y columns of A (the five-bar's
+// forearms aligned); with more actuators, the edge where A_t's condition number exceeds the limit.
 #pragma once
 
 #include <cstdint>
@@ -34,6 +38,7 @@ enum class WorkspaceCell : std::uint8_t {
 
 struct WorkspaceMap {
     double theta = 0.0;
+    int task_dimension = 3;                   ///< the model's: 2 for a two-DOF robot (no theta)
     double x0 = 0.0, y0 = 0.0;                ///< grid point (0, 0) [m]
     double step = 0.0;                        ///< grid spacing [m]
     int n = 0;                                ///< grid points per side

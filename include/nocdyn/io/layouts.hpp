@@ -60,6 +60,9 @@ struct LayoutSizes {
     std::vector<std::string> parameters{};  ///< Repeat::parameter
     std::vector<std::string> metrics{};     ///< Repeat::metric
     bool optional = false;                  ///< include the optional columns
+    /// The robot's task coordinates: 3 ([theta, x, y]) or 2 (a two-DOF robot, motion:
+    /// translation, pose [x, y]: its tables have no column "theta").
+    int task_dimension = 3;
 };
 
 /// Every layout, in the order of docs/output-formats.md.

@@ -16,6 +16,15 @@
 // model defines them. The Coulomb term makes the right-hand side discontinuous where a joint
 // rate changes sign: the integrator's error control then shortens its steps there (there is
 // no stiction model: a joint at rest under a small load does not stick).
+//
+// A two-DOF robot (motion: translation, task coordinates p_t = [x, y], dp/dt = E dp_t/dt with
+// the task map E of model.hpp) has no dynamics in theta: a rotation about the tool point C
+// moves no body (every limb's last joint takes it up) and the point-mass platform has no
+// rotational inertia, so M_p's theta row and column are zero. Its forward dynamics is eq. 23
+// in the task coordinates,
+//   M_t d2p_t/dt2 = A_t^T tau - h_t,   M_t = E^T M_p E,  h_t = E^T h_p,  A_t = A_p E,
+// and d2p/dt2 = E d2p_t/dt2: theta's acceleration is exactly zero, so a motion started at
+// theta = home(0) at rest in theta keeps it exactly (the integrator adds zeros to it).
 #pragma once
 
 #include "nocdyn/model.hpp"
@@ -31,7 +40,8 @@ void platformDynamics(const Model& model, Data& data);
 
 /// Forward dynamics stage from the state (p, dp/dt) and the n actuator forces tau: every
 /// stage from position to platformDynamics, then d2p/dt2 = M_p^-1 (A_p^T tau - h_p) into
-/// data.t_M_dot, with the acceleration stage (joint accelerations, ddu) and data.tau = tau.
+/// data.t_M_dot, with the acceleration stage (joint accelerations, ddu) and data.tau = tau
+/// (a two-DOF robot: d2p/dt2 = E M_t^-1 E^T (A_p^T tau - h_p), as above).
 /// Fails as inverseDisplacement and velocityFromPlatformTwist do (unreachable, singular_limb
 /// naming the limb, singular_actuation), and with not_finite for a non-finite force or
 /// acceleration. Allocation-free.

@@ -110,6 +110,8 @@ public:
 
     /// Starts at pose p with rate dp at time t, under zero forces until advance() gives some.
     /// Fails (leaving the previous state) when p or dp is out of reach, singular or not finite.
+    /// A two-DOF robot (model.task_dimension == 2) starts at [home(0), p(1), p(2)] with rate
+    /// [0, dp(1), dp(2)]: its state is [x, y] and their rates, theta no coordinate of it.
     Status reset(const Pose& p, const Twist& dp = Twist::Zero(), double t = 0.0);
 
     /// From now on, the forces held at tau (n values). Allocation-free.
