@@ -7,6 +7,8 @@
 #pragma once
 
 #include <atomic>
+
+#include "nocdyn/detail/sanitizer.hpp"
 #include <cstdlib>
 #include <new>
 
@@ -15,14 +17,14 @@ inline std::atomic<long> allocation_count{0};
 /// Number of allocations so far in this process (see above for what counts).
 inline long allocationCount() { return allocation_count.load(); }
 /// Whether malloc itself is counted in this build.
-#if defined(__SANITIZE_ADDRESS__)
+#if NOCDYN_ASAN()
 inline constexpr bool kCountsMalloc = false;
 #else
 inline constexpr bool kCountsMalloc = true;
 #endif
 }  // namespace nocdyn::test
 
-#if !defined(__SANITIZE_ADDRESS__)
+#if !NOCDYN_ASAN()
 extern "C" void* __libc_malloc(std::size_t size);
 extern "C" void* malloc(std::size_t size) {
     ++nocdyn::test::allocation_count;

@@ -2,6 +2,7 @@
 // (one-line error on stderr, non-zero exit, no partial CSV).
 #include <gtest/gtest.h>
 
+#include "nocdyn/detail/sanitizer.hpp"
 #include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include <nlohmann/json.hpp>
@@ -365,7 +366,7 @@ TEST(Cli, HelpExplainsEveryCommand) {
     }
 }
 
-#if defined(__SANITIZE_ADDRESS__)
+#if NOCDYN_ASAN()
 // Under the sanitizers (10-20x slower, and most of reproduce is Simbody's plant at ~0.3-0.6 ms
 // per tick in release) the closed loops run 0.02 s instead of 0.2 s and the identification
 // experiment 0.05 s of data instead of 5 s: the same code, fewer ticks.

@@ -3,6 +3,8 @@
 // result.
 #include <gtest/gtest.h>
 
+#include "nocdyn/detail/sanitizer.hpp"
+
 #include <signal.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -239,7 +241,7 @@ TEST(HostileCli, SimulateOnTwoMillionShortRowsPeaksBelow300MB) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     rusage usage{};
     ASSERT_EQ(getrusage(RUSAGE_CHILDREN, &usage), 0);
-#if defined(__SANITIZE_ADDRESS__)
+#if NOCDYN_ASAN()
     // AddressSanitizer's shadow memory, redzones and quarantine triple the resident set (496 MB
     // measured where the release build peaks at 163 MB); the per-row growth this guards against
     // (903 MB in a release build) would be about 2.7 GB here.

@@ -4,6 +4,8 @@
 #pragma once
 
 #include <algorithm>
+
+#include "nocdyn/detail/sanitizer.hpp"
 #include <cmath>
 #include <numbers>
 #include <optional>
@@ -18,7 +20,7 @@
 
 namespace nocdyn::test {
 
-#if defined(__SANITIZE_ADDRESS__)
+#if NOCDYN_ASAN()
 inline constexpr bool kSanitized = true;
 #else
 inline constexpr bool kSanitized = false;

@@ -8,6 +8,8 @@
 #pragma once
 
 #include <algorithm>
+
+#include "nocdyn/detail/sanitizer.hpp"
 #include <array>
 #include <cmath>
 #include <cstddef>
@@ -441,7 +443,7 @@ NOCDYN_ALWAYS_INLINE BatchResult chunkOf(const Model& model, const Arrays& a, Ei
     std::array<LimbLanesOf<kLanes>, kMaxLimbs> limb_lanes;
     for (int j = 0; j < model.limbs; ++j)
         splatLimb(model.limb[static_cast<std::size_t>(j)], limb_lanes[static_cast<std::size_t>(j)]);
-#if !defined(__SANITIZE_ADDRESS__)
+#if !NOCDYN_ASAN()
     // one dispatch per chunk: kind * 3 + actuated joint of a uniform robot (PPP excluded);
     // under the sanitizers every robot takes the per-limb dispatch (the fewest instantiations)
     const auto uniform = [lanes = limb_lanes.data()]<int kCode>()

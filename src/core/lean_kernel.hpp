@@ -20,6 +20,8 @@
 #pragma once
 
 #include <algorithm>
+
+#include "nocdyn/detail/sanitizer.hpp"
 #include <cmath>
 #include <cstddef>
 #include <type_traits>
@@ -750,7 +752,7 @@ NOCDYN_ALWAYS_INLINE bool sampleInLanes(const Model& model, double cos_dtheta, d
 /// packets of four samples through sampleWith, its limbs' terms chosen once per chunk.)
 NOCDYN_ALWAYS_INLINE bool sample(const Model& model, double cos_dtheta, double sin_dtheta, const double* p,
                                  const double* dp, const double* ddp, const Out<double>& out, V3<double>& W) {
-#if !defined(__SANITIZE_ADDRESS__)
+#if !NOCDYN_ASAN()
     // Under the sanitizers every robot takes the per-limb dispatch: the same template, the
     // fewest instantiations (the instrumented compile of the others takes many minutes).
     // The limbs in lanes, else the dispatch (the rare uniform robot with more than four

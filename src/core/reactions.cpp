@@ -1,4 +1,5 @@
 // Joint reaction forces by Newton-Euler back-substitution along each limb (reactions.hpp).
+#include "nocdyn/detail/sanitizer.hpp"
 #include "nocdyn/reactions.hpp"
 
 #include <algorithm>
@@ -171,7 +172,7 @@ NOCDYN_ALWAYS_INLINE bool leanLimb(const LimbModel& limb, const lean::Frame<doub
 
 NOCDYN_ALWAYS_INLINE Wrench wrenchOf(const lean::V3<double>& v) { return {v.w, v.x, v.y}; }
 
-#if !defined(__SANITIZE_ADDRESS__)
+#if !NOCDYN_ASAN()
 /// Lane l of a packet's terms (limb l of a robot run in lanes).
 NOCDYN_ALWAYS_INLINE lean::LimbTerms<double> laneOf(const lean::LimbTerms<fastmath::Pack>& t, int l) {
     const auto v = [l](const lean::V3<fastmath::Pack>& x) NOCDYN_INLINE_LAMBDA {
@@ -305,7 +306,7 @@ inverseDynamicsWithReactions(const Model& model, Data& data, const Pose& p, cons
     lean::V3<double> rows[kMaxActuators];
     double weight[kMaxActuators], scale[kMaxActuators];
     std::array<lean::LimbTerms<double>, kMaxLimbs> terms;
-#if !defined(__SANITIZE_ADDRESS__)
+#if !NOCDYN_ASAN()
     if (model.limbsInLanes()) {
         // a uniform robot's limbs in the lanes of one packet, as inverseDynamicsFast
         if (!anyLimbsInLanes(model, frame, out, W, rows, weight, scale, terms,
