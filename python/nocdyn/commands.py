@@ -317,7 +317,7 @@ def _write_table(path, columns, data):
 # Each function binds its arguments to the command's options struct (_bound_options); only the
 # robot, the files it reads back and the positional arguments are handled one by one.
 
-def pose(x, y, theta, *, robot=None, set=None):
+def pose(x, y, theta=None, *, robot=None, set=None):
     """Everything the model knows at one platform pose (``nocdyn pose X Y THETA``): every limb's
     joint variables and the condition number of its Jacobian, the actuator variables and the
     share of their range they use, the actuation map du = A dp/dt and its condition number, the
@@ -325,13 +325,19 @@ def pose(x, y, theta, *, robot=None, set=None):
 
     x, y [m], theta [rad]: the pose of the platform's operation point C, in the order of every
     table (x, y, theta). Returns a PoseReport; its pose, A's columns and, for compliant robots,
-    the stiffness and mode shapes are in the order x, y, theta."""
-    options = _bound_options(_nocdyn.PoseOptions, {"x": x, "y": y, "theta": theta})
+    the stiffness and mode shapes are in the order x, y, theta. A two-DOF robot (motion:
+    translation) takes x, y of its tool point and no theta (None: not given, which a turning
+    platform refuses, as ``nocdyn pose X Y`` does); its vectors and matrices are over x, y."""
+    given = {"x": x, "y": y, "theta": float("nan") if theta is None else theta}
+    options = _bound_options(_nocdyn.PoseOptions, given)
     options.robot = _robot_source(robot, set)
     return PoseReport(_nocdyn._run_pose(options, None))
 
 
-pose.__signature__ = _signature(_nocdyn.PoseOptions, ("x", "y", "theta"), after=(("robot", None), ("set", None)))
+_parameters = list(_signature(_nocdyn.PoseOptions, ("x", "y", "theta"),
+                              after=(("robot", None), ("set", None))).parameters.values())
+_parameters[2] = _parameters[2].replace(default=None)  # theta: none for a two-DOF robot
+pose.__signature__ = inspect.Signature(_parameters)
 
 
 def inverse_dynamics(trajectory, *, robot=None, set=None, output=None, progress=None, **options):

@@ -13,8 +13,13 @@ _WIDTH, _HEIGHT, _MARGIN = 420, 420, 30
 
 
 def robot_svg(robot, pose=None):
-    """SVG text of the robot at pose [x, y, theta] (default: home)."""
-    pose = robot.home if pose is None else np.asarray(pose, dtype=float).reshape(3)
+    """SVG text of the robot at pose [x, y, theta] ([x, y] for a two-DOF robot; default: home)."""
+    n = robot.task_dimension
+    pose = robot.home if pose is None else np.asarray(pose, dtype=float)
+    if pose.shape != (n,):
+        raise ValueError(f"pose: expected {n} values [{'x, y, theta' if n == 3 else 'x, y'}], got shape {pose.shape}")
+    if n == 2:  # the tool point's x, y; theta is no coordinate of a two-DOF robot (0)
+        pose = np.array([pose[0], pose[1], 0.0])
     d = robot._core._drawing([float(v) for v in pose])
     points = [d["C"]] + list(d["platform"])
     for limb in d["limbs"]:

@@ -154,15 +154,16 @@ class PoseReport(_Record):
 
 class AssemblyModes(_Record):
     """The assembly modes of actuator values u (``nocdyn forward-kinematics``): poses (k, 3)
-    [x, y, theta] sorted by theta, their branches (k, limbs), working (k,) booleans, and the
+    [x, y, theta] sorted by theta ((k, 2) [x, y] for a two-DOF robot), their branches (k, limbs), working (k,) booleans, and the
     JSON's other fields (degenerate, within_limits, solutions_all_branches, ...)."""
 
     def __init__(self, document, text=""):
         solutions = document.get("solutions", [])
         fields = dict(document)
         fields["solutions"] = solutions
-        fields["poses"] = np.array([[s["pose"][k] for k in ("x", "y", "theta")] for s in solutions],
-                                   dtype=np.float64).reshape(-1, 3)
+        axes = ("x", "y", "theta") if not solutions or "theta" in solutions[0]["pose"] else ("x", "y")
+        fields["poses"] = np.array([[s["pose"][k] for k in axes] for s in solutions],
+                                   dtype=np.float64).reshape(-1, len(axes))
         if solutions and "branch" in solutions[0]:
             fields["branches"] = np.array([s["branch"] for s in solutions], dtype=np.int64)
         fields["working"] = np.array([bool(s.get("working", True)) for s in solutions])

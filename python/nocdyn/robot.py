@@ -124,7 +124,8 @@ class Robot(RobotDynamics):
 
     @property
     def home(self):
-        """Platform pose at home [x, y, theta] (m, m, rad), shape (3,)."""
+        """Platform pose at home [x, y, theta] (m, m, rad), shape (3,); for a two-DOF robot the tool
+        point's [x, y] (m), shape (2,)."""
         return self._core.home
 
     @property
@@ -157,15 +158,14 @@ class Robot(RobotDynamics):
         return f"<nocdyn.Robot {self.name!r}: {self.limbs} limbs, {self.actuators} actuators>"
 
     def svg(self, pose=None):
-        """The robot drawn as SVG text at pose [x, y, theta] (default home): base, limbs, platform,
-        C, actuated joints marked (green). Jupyter shows a Robot this way (_repr_svg_)."""
-        _require_full_motion(self, "svg")
+        """The robot drawn as SVG text at pose [x, y, theta] ([x, y] for a two-DOF robot; default
+        home): base, limbs, platform, C, actuated joints marked (green). Jupyter shows a Robot this
+        way (_repr_svg_)."""
         from .drawing import robot_svg
         return robot_svg(self, pose)
 
     def _repr_svg_(self):
-        # a two-DOF robot has no drawing yet: Jupyter then shows its text form
-        return self.svg() if self._core.task_dimension == 3 else None
+        return self.svg()
 
     # --- identification -------------------------------------------------------------
     def parameter_names(self):
@@ -197,12 +197,12 @@ class Robot(RobotDynamics):
     def forward_kinematics(self, u, *, tolerance=1e-9):
         """Every platform pose the robot assembles in with actuator values u (n values, m or rad).
 
-        Returns a list (sorted by theta) of dicts: pose [x, y, theta], branch (each limb's
+        Returns a list (sorted by theta) of dicts: pose [x, y, theta] ([x, y] for a two-DOF
+        robot), branch (each limb's
         inverse-kinematics branch, +1/-1, 0 for limbs with one solution), working (True for the
         robot's working mode: every limb on its home branch), u_error (how well the pose gives
         back u) and condition (large next to a singularity). Empty when u does not assemble.
         """
-        _require_full_motion(self, "forward_kinematics")
         result = self._core._forward_kinematics(_input(u, "u", (self.actuators,)),
                                                 _number(tolerance, "tolerance", 1e-15, 1e-3))
         modes = result["modes"]
@@ -218,9 +218,8 @@ class Robot(RobotDynamics):
         forward_kinematics lists the working ones; dp from du by least squares (exact with three
         actuators; with more, du must be the rates of a platform motion).
 
-        Returns a dict: p [x, y, theta], dp (3,) in the same order, mode (1-based), working (how many working modes),
+        Returns a dict: p [x, y, theta] ([x, y] for a two-DOF robot), dp in the same order, mode (1-based), working (how many working modes),
         modes (how many on any branches). Raises nocdyn.Error when no working mode has u."""
-        _require_full_motion(self, "state_from_actuators")
         return self._core._state_from_actuators(_input(u, "u", (self.actuators,)),
                                                 None if du is None else _input(du, "du", (self.actuators,)),
                                                 _integer(assembly_mode, "assembly_mode", 0, 12))

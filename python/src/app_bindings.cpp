@@ -80,11 +80,12 @@ py::dict poseDict(const app::PoseResult& r) {
     for (const app::PoseReaction& j : r.reactions) {
         for (py::ssize_t c = 0; c < 3; ++c) reactions.mutable_at(j.limb - 1, j.joint - 1, c) = j.f(c);
     }
-    py::dict out(py::arg("robot") = r.robot, py::arg("pose") = Eigen::Vector3d(r.pose), py::arg("q") = q,
-                 py::arg("cond_J") = cond_J, py::arg("u") = u, py::arg("range_used") = range_used, py::arg("A") = r.A,
-                 py::arg("cond_A") = r.cond_A, py::arg("coordinates") = r.coordinates, py::arg("I") = r.I,
-                 py::arg("within_limits") = r.within_limits, py::arg("tau") = r.tau, py::arg("reactions") = reactions,
-                 py::arg("actuators") = actuators);
+    // pose: x, y, theta; a two-DOF robot's x, y (its tool point)
+    const Eigen::VectorXd pose = r.pose.head(r.task_dimension);
+    py::dict out(py::arg("robot") = r.robot, py::arg("pose") = pose, py::arg("q") = q, py::arg("cond_J") = cond_J,
+                 py::arg("u") = u, py::arg("range_used") = range_used, py::arg("A") = r.A, py::arg("cond_A") = r.cond_A,
+                 py::arg("coordinates") = r.coordinates, py::arg("I") = r.I, py::arg("within_limits") = r.within_limits,
+                 py::arg("tau") = r.tau, py::arg("reactions") = reactions, py::arg("actuators") = actuators);
     if (r.compliance) {
         const app::PoseCompliance& c = *r.compliance;
         // n_t x n_t: a two-DOF robot's over x, y

@@ -52,6 +52,15 @@ py::array_t<double> poseArray(const Eigen::Vector3d& v) {
     return a;
 }
 
+py::array_t<double> taskPoseArray(const Model& model, const Eigen::Vector3d& v) {
+    if (model.task_dimension == 3) return poseArray(v);
+    const Vector3 user = userPose(v);
+    py::array_t<double> a(2);
+    a.mutable_at(0) = user(0);
+    a.mutable_at(1) = user(1);
+    return a;
+}
+
 Eigen::MatrixXd inPythonOrder(const Eigen::MatrixXd& m, bool rows, bool cols) {
     const auto at = [](Eigen::Index i) { return i / 3 * 3 + twistIndex(static_cast<int>(i % 3)); };
     Eigen::MatrixXd out(m.rows(), m.cols());

@@ -79,6 +79,9 @@ Eigen::Vector3d vector3(const py::handle& x, const char* name);
 
 /// A pose (or its rate) of the core as Python's [x, y, theta].
 py::array_t<double> poseArray(const Eigen::Vector3d& v);
+/// A pose (or its rate) of the core in the robot's task coordinates: [x, y, theta], or [x, y]
+/// for a two-DOF robot (motion: translation, E^T p: theta is no coordinate of it).
+py::array_t<double> taskPoseArray(const Model& model, const Eigen::Vector3d& v);
 
 /// m with its rows (`rows`) and/or columns (`cols`) that run over pose coordinates, in blocks
 /// of three (p, then dp), put in Python's order.

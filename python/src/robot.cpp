@@ -108,7 +108,7 @@ void exposeRobot(py::module_& m) {
         .def_property_readonly("actuator_count", [](const Robot& r) { return r.model->actuators; })
         .def_property_readonly("limb_count", [](const Robot& r) { return r.model->limbs; })
         .def_property_readonly("bodies", [](const Robot& r) { return r.model->bodies; })
-        .def_property_readonly("home", [](const Robot& r) { return poseArray(r.model->home); })
+        .def_property_readonly("home", [](const Robot& r) { return taskPoseArray(*r.model, r.model->home); })
         .def_property_readonly("gravity",
                                [](const Robot& r) {
                                    return std::array{r.model->gravity(0), r.model->gravity(1)};

@@ -155,7 +155,7 @@ py::dict forwardKinematics(const Robot& robot, const py::handle& u, double toler
     py::list list;
     for (const AssemblyMode& mode : modes) {
         py::dict d;
-        d["pose"] = poseArray(mode.p);
+        d["pose"] = taskPoseArray(model, mode.p);
         std::vector<int> branch(mode.branch.begin(), mode.branch.begin() + model.limbs);
         d["branch"] = branch;
         d["working"] = mode.working;
@@ -183,8 +183,8 @@ py::dict stateFromActuatorValues(const Robot& robot, const py::handle& u, const 
         throw Error(describe(status, model));
     }
     py::dict out;
-    out["p"] = poseArray(start.p);
-    out["dp"] = poseArray(start.dp);
+    out["p"] = taskPoseArray(model, start.p);
+    out["dp"] = taskPoseArray(model, start.dp);
     out["mode"] = start.mode;
     out["working"] = start.working;
     out["modes"] = start.modes;

@@ -10,8 +10,9 @@ import pytest
 import nocdyn
 from nocdyn import _nocdyn, designs
 
-# Python's None for "the build's choice" or "the robot's own": said in the functions' docstrings
-AUTOMATIC = {("control", "plant"), ("loads", "trajectory"), ("animate", "trajectory")}
+# Python's None for "the build's choice", "the robot's own" or "not given" (pose's theta, which a
+# two-DOF robot has none of): said in the functions' docstrings
+AUTOMATIC = {("control", "plant"), ("loads", "trajectory"), ("animate", "trajectory"), ("pose", "theta")}
 
 
 def options_type(command):

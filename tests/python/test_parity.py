@@ -41,7 +41,7 @@ BUILD_DEPENDENT = {("control", "plant")}
 OUTPUTS = {"output", "out_dir", "figure", "log", "png", "svg"}
 # defaults that mean "automatic" on the command line (its default text is a placeholder): the
 # robot's home orientation; Python says so with None
-AUTOMATIC = {("workspace", "theta"), ("design", "theta"), ("shake", "natural_frequency")}
+AUTOMATIC = {("workspace", "theta"), ("design", "theta"), ("shake", "natural_frequency"), ("pose", "theta")}
 
 
 def cli_path():
@@ -121,7 +121,9 @@ def test_options_and_defaults_agree(options, command):
         seen.add(name)
         assert name in signature, f"{command}: option {option['name']} has no Python argument {name}"
         parameter = signature[name]
-        if option["required"] or (option["positional"] and (command, option["name"]) != ("convert", "ROBOT")):
+        # positionals the command line lets go: convert's ROBOT, pose's THETA (a two-DOF robot has none)
+        optional = {("convert", "ROBOT"), ("pose", "THETA")}
+        if option["required"] or (option["positional"] and (command, option["name"]) not in optional):
             assert parameter.default is inspect.Parameter.empty, f"{command}: {name} is required on the command line"
             continue
         if (command, name) in BUILD_DEPENDENT or (command, name) in AUTOMATIC:

@@ -1,7 +1,7 @@
 """Two-DOF planar robots (motion: translation, pose [x, y] of a point tool): the shipped five-bar
 and biglide through Robot.inverse_dynamics with arrays of shape (N, 2), `nocdyn pose X Y`, and
 `nocdyn forward-kinematics U1 U2` (poses x, y), `nocdyn.simulate` (columns t, x, y, ...),
-`nocdyn.workspace`, and the one-line refusal of the commands that do not take them yet."""
+`nocdyn.workspace`, Python's pose and direct kinematics over x, y, the drawing, and the one-line refusal of the commands that do not take them yet."""
 
 import numpy as np
 import pytest
@@ -194,10 +194,7 @@ def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
     robot = _robot(source_dir, "five-bar")
     p, z = np.array([0.0, 0.3, 0.0]), np.zeros(3)
     calls = {
-        "svg": lambda: robot.svg(),
         "with_payload": lambda: robot.with_payload(0.1),
-        "forward_kinematics": lambda: robot.forward_kinematics(np.zeros(2)),
-        "state_from_actuators": lambda: robot.state_from_actuators(np.zeros(2)),
         "inverse_dynamics_derivatives": lambda: robot.inverse_dynamics_derivatives(p, z, z),
         "reactions": lambda: robot.reactions(p, z, z),
         "regressor": lambda: robot.regressor(p, z, z),
@@ -205,7 +202,61 @@ def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
     for name, call in calls.items():
         with pytest.raises(nocdyn.Error, match=f"{name}: a two-DOF robot"):
             call()
-    assert robot._repr_svg_() is None
+
+
+def _circle_intersections(a, ra, b, rb):
+    """The two points at distance ra from a and rb from b (the five-bar's forearms meet there)."""
+    d = np.linalg.norm(b - a)
+    along = (ra**2 - rb**2 + d**2) / (2 * d)
+    h = np.sqrt(ra**2 - along**2)
+    e = (b - a) / d
+    mid = a + along * e
+    n = np.array([-e[1], e[0]])
+    return mid + h * n, mid - h * n
+
+
+def test_python_pose_and_direct_kinematics_of_a_five_bar_are_over_x_y(source_dir):
+    # the two tool points of the motors' angles u: the intersections of the circles of the
+    # forearm's length about the two elbows (closed form), found by Robot.forward_kinematics,
+    # nocdyn.forward_kinematics and nocdyn.pose without theta
+    robot = _robot(source_dir, "five-bar")
+    assert robot.home.shape == (2,)
+    np.testing.assert_allclose(robot.home, [0.0, 0.35])
+    tool = np.array([0.05, 0.25])
+    report = nocdyn.pose(*tool, robot=robot)
+    np.testing.assert_array_equal(report.pose, tool)
+    assert report.A.shape == (2, 2)
+    u = report.u
+    motors, arm, forearm = np.array([[-0.1, 0.0], [0.1, 0.0]]), np.hypot(0.1, 0.2), 0.25
+    elbows = [m + arm * np.array([np.cos(a), np.sin(a)]) for m, a in
+              zip(motors, np.arctan2([0.2, 0.2], [-0.1, 0.1]) + u)]  # the file's elbows at u = 0
+    expected = sorted(tuple(p) for p in _circle_intersections(elbows[0], forearm, elbows[1], forearm))
+    modes = nocdyn.forward_kinematics(u, robot=robot, all_branches=True)
+    assert modes.poses.shape == (2, 2)
+    np.testing.assert_allclose(sorted(map(tuple, modes.poses)), expected, atol=1e-12)
+    found = sorted(tuple(m["pose"]) for m in robot.forward_kinematics(u))
+    np.testing.assert_allclose(found, expected, atol=1e-12)
+    # the state from u and du: the working mode nearest home, and du = A dp
+    du = np.array([0.3, -0.2])
+    state = robot.state_from_actuators(u, du)
+    assert state["p"].shape == state["dp"].shape == (2,)
+    nearest = min(expected, key=lambda p: np.linalg.norm(np.array(p) - robot.home))
+    np.testing.assert_allclose(state["p"], nearest, atol=1e-12)
+    A = nocdyn.pose(*state["p"], robot=robot).A
+    np.testing.assert_allclose(A @ state["dp"], du, rtol=1e-10)
+
+
+def test_a_two_dof_robot_is_drawn_at_its_tool_point(source_dir):
+    for name in ("five-bar", "biglide"):
+        robot = _robot(source_dir, name)
+        svg = robot.svg()
+        assert svg == robot._repr_svg_() and svg.startswith("<svg")
+        assert svg.count('fill="#2ca02c"') == 4  # the two actuated joints and their labels
+        assert ">u1</text>" in svg and ">u2</text>" in svg
+        assert f"{name}: 2 limbs, 2 actuators" in svg
+        assert robot.svg([0.01, robot.home[1] - 0.02]) != svg
+        with pytest.raises(ValueError, match=r"expected 2 values \[x, y\]"):
+            robot.svg([0.0, 0.3, 0.0])
 
 
 def test_simulate_gives_x_y_and_inverse_dynamics_gives_the_forces_back(source_dir):
