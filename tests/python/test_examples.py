@@ -9,7 +9,7 @@ import pytest
 
 from conftest import SOURCE_DIR
 
-EXAMPLES = ["paper_figures.py", "own_robot.py", "identification.py", "el_centro.py"]
+EXAMPLES = ["paper_figures.py", "own_robot.py", "five_bar.py", "identification.py", "el_centro.py"]
 
 
 @pytest.mark.parametrize("name", EXAMPLES)
@@ -29,6 +29,10 @@ def test_example_runs(name, tmp_path):
         assert "trajectory 1: 2000 samples" in done.stdout
     if name == "own_robot.py":
         assert (tmp_path / "3-rrr.svg").read_text().startswith("<svg") and "assembly modes" in done.stdout
+    if name == "five_bar.py":
+        assert (tmp_path / "five-bar.svg").read_text().startswith("<svg")
+        assert (tmp_path / "five-bar-workspace.png").read_bytes()[:4] == b"\x89PNG"
+        assert "checked: the workspace, both tool points, the efforts, the power balance and the motion" in done.stdout
     if name == "identification.py":
         assert "payload: {mass: 0.4" in done.stdout or "payload: {mass: 0.5" in done.stdout, done.stdout
     if name == "el_centro.py":
