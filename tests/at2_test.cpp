@@ -1,5 +1,5 @@
 // PEER AT2 records: the three header forms, the shipped El Centro record, and truncated or
-// malformed files refused with their line.
+// malformed files refused with their line; three-component records on a table's x, y, z.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,6 +11,7 @@
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
+#include "nocdyn/io/ground_motion3.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -133,6 +134,153 @@ TEST(At2, RefusesTruncatedAndMalformedRecordsNamingTheLine) {
     expectAt2Error(kHead + "NPTS= 3, DT= .01\n1\n2 nan 3\n", {"r.AT2:6:", "value 3 'nan'"});
     expectAt2Error(kHead + "NPTS= 3, DT= .01\n1 1e300 3\n", {"r.AT2:5:", "beyond"});
     expectAt2Error(kHead + "NPTS= 99999999999, DT= .01\n1\n", {"r.AT2:4:", "NPTS"});
+}
+
+// --- three-component records ------------------------------------------------------------
+
+TEST(GroundMotion3, ReadsEachComponentsOrientationFromTheSecondHeaderLine) {
+    const auto d = [](const char* line) { return io::componentDirection(line); };
+    ASSERT_TRUE(d("Imperial Valley-02, 5/19/1940, El Centro Array #9, 180"));
+    EXPECT_FALSE(d("Imperial Valley-02, 5/19/1940, El Centro Array #9, 180")->vertical);
+    EXPECT_EQ(d("Imperial Valley-02, 5/19/1940, El Centro Array #9, 180")->azimuth, 180.0);
+    EXPECT_EQ(d("Northridge-05, 1/18/1994, Sylmar, 90")->azimuth, 90.0);
+    EXPECT_EQ(d("X, 090 ")->azimuth, 90.0);
+    EXPECT_EQ(d("CAPE MENDOCINO 04/25/92 1806, EUREKA - MYRTLE & WEST, 090 (CDMG STATION 89509)")->azimuth, 90.0);
+    EXPECT_EQ(d("X, 360")->azimuth, 360.0);
+    EXPECT_TRUE(d("Northridge-05, 1/18/1994, Sylmar, UP")->vertical);
+    EXPECT_EQ(d("X, up")->sign, 1.0);
+    EXPECT_EQ(d("X, DWN")->sign, -1.0);
+    EXPECT_EQ(d("X, Down")->sign, -1.0);
+    for (const char* bad :
+         {"X, 400", "X, 1800", "X, -90", "X, 18O", "X,", "", "X, NS", "X, 90.5", "1559 points at equal"})
+        EXPECT_FALSE(d(bad)) << bad;
+}
+
+std::string records3(const std::string& name) { return std::string(NOCDYN_SOURCE_DIR) + "/data/records3/" + name; }
+
+std::vector<io::GroundMotionRecord> elCentro3() {
+    return {io::readAt2File(records3("RSN6_IMPVALL.I_I-ELC180-hor1.AT2")),
+            io::readAt2File(records3("RSN6_IMPVALL.I_I-ELC270-hor2.AT2")),
+            io::readAt2File(records3("RSN6_IMPVALL.I_I-ELC-UP.AT2"))};
+}
+
+// El Centro 1940, Array #9: 180 (south), 270 (west), UP, of 5372, 5346, 5378 points. x at the
+// first horizontal's azimuth (180) and y 90 degrees counter-clockwise from it seen from above
+// (east): a_x = a_180, a_y = -a_270, a_z = a_UP, the shorter ones padded with zeros; any order.
+TEST(GroundMotion3, ElCentroOnTheTableInAnyOrderWithItsShorterComponentsPadded) {
+    const std::vector<io::GroundMotionRecord> c = elCentro3();
+    std::vector<int> order = {0, 1, 2};
+    do {
+        const io::TableMotion m = io::combineComponents({c[order[0]], c[order[1]], c[order[2]]});
+        EXPECT_EQ(m.name, "RSN6_IMPVALL.I_I-ELC");
+        EXPECT_EQ(m.x_azimuth, 180.0);
+        EXPECT_EQ(m.dt, 0.01);
+        EXPECT_TRUE(m.has_vertical);
+        ASSERT_EQ(m.ax.size(), 5378u);
+        ASSERT_EQ(m.ay.size(), 5378u);
+        ASSERT_EQ(m.az.size(), 5378u);
+        EXPECT_EQ(m.sources, (std::vector<std::string>{c[0].source, c[1].source, c[2].source}));
+        for (std::size_t k = 0; k < 5378; k += 97) {
+            const double a180 = k < 5372 ? c[0].acceleration[k] : 0.0;
+            const double a270 = k < 5346 ? c[1].acceleration[k] : 0.0;
+            EXPECT_NEAR(m.ax[k], a180, 1e-15) << k;
+            EXPECT_NEAR(m.ay[k], -a270, 1e-15) << k;
+            EXPECT_EQ(m.az[k], c[2].acceleration[k]) << k;
+        }
+        EXPECT_EQ(m.ax[5377], 0.0);
+        EXPECT_EQ(m.ay[5346], 0.0);
+        ASSERT_EQ(m.notes.size(), 2u);
+        EXPECT_NE(m.notes[0].find("RSN6_IMPVALL.I_I-ELC180-hor1.AT2 has 5372 samples, the longest 5378: padded with "
+                                  "zeros after 53.71 s"),
+                  std::string::npos)
+            << m.notes[0];
+        EXPECT_NE(m.notes[1].find("ELC270-hor2.AT2 has 5346 samples"), std::string::npos) << m.notes[1];
+    } while (std::next_permutation(order.begin(), order.end()));
+}
+
+// A rotation keeps the horizontal acceleration's magnitude; x at 270 puts a_270 on x and a_180
+// on y (south is 90 degrees counter-clockwise from west seen from above).
+TEST(GroundMotion3, TheTablesXAzimuthRotatesTheHorizontalsRigidly) {
+    const std::vector<io::GroundMotionRecord> c = elCentro3();
+    const io::TableMotion m270 = io::combineComponents(c, 270.0);
+    for (std::size_t k = 0; k < 5346; k += 89) {
+        EXPECT_NEAR(m270.ax[k], c[1].acceleration[k], 1e-15);
+        EXPECT_NEAR(m270.ay[k], c[0].acceleration[k], 1e-15);
+    }
+    for (const double beta : {0.0, 37.5, -120.0, 359.0}) {
+        const io::TableMotion m = io::combineComponents(c, beta);
+        for (std::size_t k = 0; k < 5346; k += 101) {
+            const double a1 = c[0].acceleration[k], a2 = c[1].acceleration[k];
+            EXPECT_NEAR(std::hypot(m.ax[k], m.ay[k]), std::hypot(a1, a2), 1e-14) << beta;
+        }
+    }
+    EXPECT_THROW((void)io::combineComponents(c, 400.0), Error);
+}
+
+// Northridge 1994 at Sylmar: 090 (east) and 360 (north). x east, y north (90 degrees
+// counter-clockwise from east): a_x = a_090, a_y = a_360; a DWN vertical is reversed.
+TEST(GroundMotion3, NorthridgeEastAndNorthAndADownwardVerticalReversed) {
+    io::GroundMotionRecord h1 = io::readAt2File(records3("RSN1690_NORTH151_SYL090-hor1.AT2"));
+    io::GroundMotionRecord h2 = io::readAt2File(records3("RSN1690_NORTH151_SYL360-hor2.AT2"));
+    io::GroundMotionRecord v = io::readAt2File(records3("RSN1690_NORTH151_SYL-UP.AT2"));
+    const io::TableMotion m = io::combineComponents({v, h2, h1});
+    EXPECT_EQ(m.name, "RSN1690_NORTH151_SYL");
+    EXPECT_EQ(m.x_azimuth, 90.0);
+    EXPECT_TRUE(m.notes.empty());
+    for (std::size_t k = 0; k < 1000; k += 37) {
+        EXPECT_NEAR(m.ax[k], h1.acceleration[k], 1e-15);
+        EXPECT_NEAR(m.ay[k], h2.acceleration[k], 1e-15);
+        EXPECT_EQ(m.az[k], v.acceleration[k]);
+    }
+    v.event = "Northridge-05, 1/18/1994, Sylmar - County Hospital Grounds, DWN";
+    const io::TableMotion down = io::combineComponents({h1, h2, v});
+    EXPECT_EQ(down.az[500], -v.acceleration[500]);
+    // two horizontals alone: a two-DOF table's record, z zero
+    const io::TableMotion flat = io::combineComponents({h1, h2});
+    EXPECT_FALSE(flat.has_vertical);
+    EXPECT_EQ(flat.az, std::vector<double>(1000, 0.0));
+}
+
+void expectCombineError(const std::vector<io::GroundMotionRecord>& c, std::initializer_list<const char*> fragments) {
+    try {
+        (void)io::combineComponents(c);
+        ADD_FAILURE() << "accepted";
+    } catch (const Error& e) {
+        for (const char* f : fragments) EXPECT_NE(std::string(e.what()).find(f), std::string::npos) << e.what();
+    }
+}
+
+TEST(GroundMotion3, RefusesComponentsThatDoNotMakeOneRecordNamingTheFile) {
+    const std::vector<io::GroundMotionRecord> c = elCentro3();
+    expectCombineError({c[0], c[2]}, {"two horizontal components, found 1", "ELC180-hor1.AT2"});
+    expectCombineError({c[0], c[1], c[2], c[2]}, {"ELC-UP.AT2: a second vertical component"});
+    expectCombineError({c[0], c[0], c[2]}, {"ELC180-hor1.AT2: azimuth 180 is not at 90 degrees from", "orthogonal"});
+    io::GroundMotionRecord other_step = c[1];
+    other_step.dt = 0.02;
+    expectCombineError({c[0], other_step}, {"ELC270-hor2.AT2: time step 0.02 s differs from", "0.01 s"});
+    const io::GroundMotionRecord old = io::readAt2File(std::string(NOCDYN_SOURCE_DIR) + "/data/elcentro_1940_ns.AT2");
+    expectCombineError(
+        {old, c[1]},
+        {"elcentro_1940_ns.AT2:2: the component's orientation is not at the end of the line", "1559 points at equal"});
+}
+
+TEST(GroundMotion3, ComponentFilesAreGroupedByTheirSharedName) {
+    EXPECT_EQ(io::componentGroup("/x/RSN6_IMPVALL.I_I-ELC180-hor1.AT2"), "RSN6_IMPVALL.I_I-ELC");
+    EXPECT_EQ(io::componentGroup("RSN6_IMPVALL.I_I-ELC-UP.AT2"), "RSN6_IMPVALL.I_I-ELC");
+    EXPECT_EQ(io::componentGroup("quake_090.at2"), "quake");
+    EXPECT_EQ(io::componentGroup("quake-DWN.AT2"), "quake");
+    EXPECT_EQ(io::componentGroup("180.AT2"), "180");  // nothing left: the stem itself
+    const std::vector<std::string> files = {"d/RSN6_IMPVALL.I_I-ELC270-hor2.AT2", "d/RSN1690_NORTH151_SYL-UP.AT2",
+                                            "d/RSN6_IMPVALL.I_I-ELC-UP.AT2",      "d/RSN1690_NORTH151_SYL360-hor2.AT2",
+                                            "d/RSN6_IMPVALL.I_I-ELC180-hor1.AT2", "d/RSN1690_NORTH151_SYL090-hor1.AT2"};
+    const auto groups = io::groupComponents(files);
+    ASSERT_EQ(groups.size(), 2u);
+    EXPECT_EQ(groups[0].first, "RSN1690_NORTH151_SYL");
+    EXPECT_EQ(groups[0].second,
+              (std::vector<std::string>{"d/RSN1690_NORTH151_SYL-UP.AT2", "d/RSN1690_NORTH151_SYL090-hor1.AT2",
+                                        "d/RSN1690_NORTH151_SYL360-hor2.AT2"}));
+    EXPECT_EQ(groups[1].first, "RSN6_IMPVALL.I_I-ELC");
+    EXPECT_EQ(groups[1].second.size(), 3u);
 }
 
 }  // namespace

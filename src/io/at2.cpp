@@ -124,11 +124,12 @@ GroundMotionRecord parseAt2(const std::string& text, const std::string& source) 
             throw Error(at(source, line_number) + "AT2 header cut short: 4 header lines expected, found " +
                         std::to_string(line_number));
         }
-        if (k == 0) {
+        if (k < 2) {
+            std::string& folded = k == 0 ? record.title : record.event;
             const std::vector<std::string_view> w = words(line);
             for (std::size_t i = 0; i < w.size(); ++i) {
-                if (i > 0) record.title += ' ';
-                record.title += w[i];
+                if (i > 0) folded += ' ';
+                folded += w[i];
             }
         }
     }

@@ -30,6 +30,9 @@ inline constexpr double kStandardGravity = 9.80665;
 struct GroundMotionRecord {
     std::string source;                ///< file it was read from
     std::string title;                 ///< the first header line
+    /// The second header line (event, date, station and, in NGA-West2 files, the component's
+    /// orientation last: "Imperial Valley-02, 5/19/1940, El Centro Array #9, 180"), blanks folded.
+    std::string event;
     double dt = 0.0;                   ///< time step [s]
     std::vector<double> acceleration;  ///< [m/s^2] (the file's g times kStandardGravity)
 
