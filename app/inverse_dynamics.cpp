@@ -8,7 +8,8 @@ namespace nocdyn::app {
 InverseDynamicsResult runInverseDynamics(const InverseDynamicsOptions& options, TableSink& table, Observer& observer) {
     validate(options);
     const Model model(loadRobotAnyMotion(options.robot));
-    const PoseTrajectory trajectory = trajectoryFor(model, trajectoryOf(options));
+    const PoseTrajectory trajectory =
+        trajectoryFor(model, trajectoryOf(options), options.given_trajectory ? "" : options.trajectory);
     const SampleGrid grid = sampleGrid(chooseDuration(options.duration, trajectory), options.rate);
     requireRateAboveNyquist(trajectory, grid.rate);
     const auto policy = options.allow_limits ? LimitPolicy::record : LimitPolicy::error;

@@ -286,7 +286,8 @@ LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
             stopIfRequested(observer);
         }
     } else {
-        const PoseTrajectory trajectory = trajectoryFor(model, io::trajectoryByNameOrFile(options.trajectory));
+        const PoseTrajectory trajectory =
+            trajectoryFor(model, io::trajectoryByNameOrFile(options.trajectory), options.trajectory);
         const SampleGrid grid = sampleGrid(chooseDuration(options.duration, trajectory), options.rate);
         loads = loadsAlong(model, trajectory, grid, LimitPolicy::error);
     }

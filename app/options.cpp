@@ -84,7 +84,7 @@ PoseTrajectory trajectoryOf(const SamplingOptions& options) {
     return options.given_trajectory ? *options.given_trajectory : io::trajectoryByNameOrFile(options.trajectory);
 }
 
-PoseTrajectory trajectoryFor(const Model& model, PoseTrajectory trajectory) {
+PoseTrajectory trajectoryFor(const Model& model, PoseTrajectory trajectory, const std::string& source) {
     if (model.task_dimension == 3) return trajectory;
     bool moves = trajectory.theta.offset != 0.0;
     for (const Harmonic& h : trajectory.theta.harmonics) moves = moves || h.amplitude != 0.0;
@@ -94,7 +94,7 @@ PoseTrajectory trajectoryFor(const Model& model, PoseTrajectory trajectory) {
         }
     }
     if (moves) {
-        throw Error("trajectory '" + trajectory.name +
+        throw Error("trajectory '" + (source.empty() ? trajectory.name : source) +
                     "': theta: not 0 throughout, but a two-DOF robot (motion: translation, pose [x, y]) has no "
                     "theta: key the trajectory x, y only");
     }

@@ -107,9 +107,11 @@ void validate(const SamplingOptions& options);
 
 /// `trajectory` as `model` moves along it: unchanged for a three-DOF robot; for a two-DOF robot
 /// (motion: translation, pose [x, y]) a trajectory keyed x, y, its theta held at home(0) = 0.
-/// Throws nocdyn::Error "trajectory 'NAME': theta: ..." for a theta axis that is not 0 throughout
-/// (a YAML key theta, a CSV column theta or alpha): such a robot has no platform rotation.
-[[nodiscard]] PoseTrajectory trajectoryFor(const Model& model, PoseTrajectory trajectory);
+/// Throws nocdyn::Error "trajectory 'SOURCE': theta: ..." for a theta axis that is not 0 throughout
+/// (a YAML key theta, a CSV column theta or alpha): such a robot has no platform rotation. SOURCE
+/// is `source` (the file or name given), else the trajectory's name.
+[[nodiscard]] PoseTrajectory trajectoryFor(const Model& model, PoseTrajectory trajectory,
+                                           const std::string& source = "");
 
 /// The duration asked for, else the trajectory's own, else 0.2 s.
 [[nodiscard]] double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory);

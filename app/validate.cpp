@@ -10,7 +10,8 @@ namespace nocdyn::app {
 ValidateResult runValidate(const ValidateOptions& options, Observer& observer) {
     validate(static_cast<const SamplingOptions&>(options));
     const RobotDescription robot = loadRobotAnyMotion(options.robot);
-    const PoseTrajectory trajectory = trajectoryFor(Model(robot), io::trajectoryByNameOrFile(options.trajectory));
+    const PoseTrajectory trajectory =
+        trajectoryFor(Model(robot), io::trajectoryByNameOrFile(options.trajectory), options.trajectory);
     const auto times = sampleTimes(chooseDuration(options.duration, trajectory), options.rate);
     stopIfRequested(observer);
     const validation::EngineComparison comparison = validation::compareWithEngines(robot, trajectory, times);

@@ -124,7 +124,8 @@ TEST(TwoDofForcesCli, ATrajectoryWhoseThetaMovesIsRefusedInOneLine) {
             const CliResult r =
                 runCli(std::string(command) + " --robot " + robotPath("five-bar") + " --trajectory " + trajectory);
             EXPECT_EQ(r.exit_code, 1) << command;
-            EXPECT_NE(r.err.find("theta: not 0 throughout"), std::string::npos) << r.err;
+            EXPECT_NE(r.err.find("trajectory '" + trajectory + "': theta: not 0 throughout"), std::string::npos)
+                << r.err;
             EXPECT_NE(r.err.find("key the trajectory x, y"), std::string::npos) << r.err;
             EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
         }
