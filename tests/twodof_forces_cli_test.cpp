@@ -108,6 +108,25 @@ TEST(TwoDofForcesCli, InverseDynamicsOfTheFigureEightEqualsTheCore) {
     expectInverseDynamicsOfTheCore("five-bar", kFigureEight, "--rate 400", dir);
     const io::Table table = io::readCsvFile(dir / "forces.csv");
     EXPECT_EQ(table.rows.size(), 200u);  // 0.5 s at 400 Hz
+    // within the workspace with a margin: every 0.5 ms, each limb and the actuation well
+    // conditioned (far from both singularity types), every joint and effort limit kept
+    const Model model(io::loadRobotDescription(robotPath("five-bar")));
+    const PoseTrajectory eight = io::trajectoryByNameOrFile(kFigureEight);
+    Data data(model);
+    double worst_limb = 0.0, worst_actuation = 0.0;
+    for (int k = 0; k <= 1000; ++k) {
+        Pose p, dp, ddp;
+        eight.evaluate(0.5e-3 * k, p, dp, ddp);
+        ASSERT_TRUE(inverseDynamics(model, data, p, dp, ddp).ok()) << "t = " << 0.5e-3 * k;
+        EXPECT_TRUE(checkJointLimits(model, data).ok()) << "t = " << 0.5e-3 * k;
+        EXPECT_TRUE(checkEffort(model, data).ok()) << "t = " << 0.5e-3 * k;
+        worst_actuation = std::max(worst_actuation, data.cond_A);
+        for (int j = 0; j < model.limbs; ++j)
+            worst_limb = std::max(worst_limb, data.limb[static_cast<std::size_t>(j)].cond);
+    }
+    std::printf("figure eight: largest condition number, limbs %.4g, actuation %.4g\n", worst_limb, worst_actuation);
+    EXPECT_LT(worst_limb, 20.0);       // measured 9.4
+    EXPECT_LT(worst_actuation, 10.0);  // measured 2.0
 }
 
 TEST(TwoDofForcesCli, InverseDynamicsOfSamplesTXYEqualsTheCore) {
