@@ -7,12 +7,13 @@ namespace nocdyn::app {
 
 InverseDynamicsResult runInverseDynamics(const InverseDynamicsOptions& options, TableSink& table, Observer& observer) {
     validate(options);
-    const Model model(loadRobot(options.robot));
-    const PoseTrajectory trajectory = trajectoryOf(options);
+    const Model model(loadRobotAnyMotion(options.robot));
+    const PoseTrajectory trajectory =
+        trajectoryFor(model, trajectoryOf(options), options.given_trajectory ? "" : options.trajectory);
     const SampleGrid grid = sampleGrid(chooseDuration(options.duration, trajectory), options.rate);
     requireRateAboveNyquist(trajectory, grid.rate);
     const auto policy = options.allow_limits ? LimitPolicy::record : LimitPolicy::error;
-    std::vector<std::string> columns = io::inverseDynamicsColumns(model.actuators);
+    std::vector<std::string> columns = io::inverseDynamicsColumns(model.actuators, model.task_dimension);
     if (options.reactions) {
         for (std::string& name : io::reactionColumns(model.limbs)) columns.push_back(std::move(name));
     }
@@ -24,13 +25,13 @@ InverseDynamicsResult runInverseDynamics(const InverseDynamicsOptions& options, 
         options.reactions
             ? streamInverseDynamicsWithReactions(model, trajectory, grid, policy,
                                                  [&](const InverseDynamicsSample& sample, const Reactions& r) {
-                                                     io::inverseDynamicsRow(sample, row);
+                                                     io::inverseDynamicsRow(sample, row, model.task_dimension);
                                                      io::appendReactions(r, model.limbs, row);
                                                      table.row(row);
                                                      meter(sample.t);
                                                  })
             : streamInverseDynamics(model, trajectory, grid, policy, [&](const InverseDynamicsSample& sample) {
-                  io::inverseDynamicsRow(sample, row);
+                  io::inverseDynamicsRow(sample, row, model.task_dimension);
                   table.row(row);
                   meter(sample.t);
               });

@@ -54,20 +54,16 @@ const char* jointTypeName(JointType type) { return type == JointType::revolute ?
 
 io::Table loadsTable(const Model& model, const JointLoads& loads, const std::vector<double>& frequency) {
     io::Table t;
-    t.columns = io::columnNames(io::TableId::loads, {.optional = !frequency.empty()});
+    t.columns =
+        io::columnNames(io::TableId::loads, {.optional = !frequency.empty(), .task_dimension = model.task_dimension});
     for (int j = 0; j < model.limbs; ++j) {
         for (int k = 0; k < 3; ++k) {
             const JointLoad& l = loads.joint[static_cast<std::size_t>(j)][static_cast<std::size_t>(k)];
-            std::vector<double> row{static_cast<double>(j + 1),
-                                    static_cast<double>(k + 1),
-                                    l.peak_force,
-                                    l.peak_force_t,
-                                    l.peak_force_pose(1),
-                                    l.peak_force_pose(2),
-                                    l.peak_force_pose(0),
-                                    l.rmsForce(),
-                                    l.peak_moment,
-                                    l.peak_moment_t};
+            std::vector<double> row{
+                static_cast<double>(j + 1), static_cast<double>(k + 1), l.peak_force, l.peak_force_t,
+                l.peak_force_pose(1),       l.peak_force_pose(2)};
+            if (model.task_dimension == 3) row.push_back(l.peak_force_pose(0));  // a two-DOF robot has no theta
+            row.insert(row.end(), {l.rmsForce(), l.peak_moment, l.peak_moment_t});
             if (!frequency.empty())
                 row.push_back(frequency[(3 * static_cast<std::size_t>(j)) + static_cast<std::size_t>(k)]);
             t.rows.push_back(std::move(row));
@@ -165,8 +161,12 @@ JointLoad& at(JointLoads& loads, int i) {
 }
 
 std::string reportText(const Model& model, const LoadsResult& r, bool envelope) {
-    std::string text =
-        "joint              peak |f| [N]  at t [s]   pose x, y [mm], theta [deg]     RMS |f| [N]  peak |m| [N m]\n";
+    const bool theta = model.task_dimension == 3;  // a two-DOF robot's pose is [x, y]
+    std::string text = theta
+                           ? "joint              peak |f| [N]  at t [s]   pose x, y [mm], theta [deg]     RMS |f| [N]  "
+                             "peak |m| [N m]\n"
+                           : "joint              peak |f| [N]  at t [s]   pose x, y [mm]         RMS |f| [N]  "
+                             "peak |m| [N m]\n";
     std::string line;
     for (int j = 0; j < model.limbs; ++j) {
         for (int k = 0; k < 3; ++k) {
@@ -174,9 +174,13 @@ std::string reportText(const Model& model, const LoadsResult& r, bool envelope) 
             const JointLoad& l = r.loads.joint[static_cast<std::size_t>(j)][kk];
             const std::string name = "limb " + std::to_string(j + 1) + " joint " + std::to_string(k + 1) + " (" +
                                      jointTypeName(model.limb[static_cast<std::size_t>(j)].type[kk]) + ")";
-            line = text::format("%-18s %12.4g  %8.4f   %8.3f, %8.3f, %8.3f   %11.4g  %14.4g\n", name.c_str(),
-                                l.peak_force, l.peak_force_t, l.peak_force_pose(1) * 1e3, l.peak_force_pose(2) * 1e3,
-                                l.peak_force_pose(0) * 180.0 / std::numbers::pi, l.rmsForce(), l.peak_moment);
+            line = theta ? text::format("%-18s %12.4g  %8.4f   %8.3f, %8.3f, %8.3f   %11.4g  %14.4g\n", name.c_str(),
+                                        l.peak_force, l.peak_force_t, l.peak_force_pose(1) * 1e3,
+                                        l.peak_force_pose(2) * 1e3, l.peak_force_pose(0) * 180.0 / std::numbers::pi,
+                                        l.rmsForce(), l.peak_moment)
+                         : text::format("%-18s %12.4g  %8.4f   %8.3f, %8.3f   %11.4g  %14.4g\n", name.c_str(),
+                                        l.peak_force, l.peak_force_t, l.peak_force_pose(1) * 1e3,
+                                        l.peak_force_pose(2) * 1e3, l.rmsForce(), l.peak_moment);
             text += line;
         }
     }
@@ -232,10 +236,15 @@ void validate(const LoadsOptions& options) {
 LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
     validate(options);
     LoadsResult out;
-    out.model = std::make_shared<const Model>(loadRobot(options.robot));
+    out.model = std::make_shared<const Model>(loadRobotAnyMotion(options.robot));
     const Model& model = *out.model;
     JointLoads& loads = out.loads;
     loads.limbs = model.limbs;
+    if (options.envelope && model.task_dimension == 2) {
+        throw OptionError("envelope",
+                          "not for a two-DOF robot (motion: translation, pose [x, y]): the operating "
+                          "envelope moves theta too; give a trajectory keyed x, y");
+    }
     if (options.envelope) {
         nocdyn::EnvelopeOptions envelope{options.min_frequency, options.max_frequency, options.points, 256, 1e-6};
         envelope.progress = [&observer](int done, int total) {
@@ -277,7 +286,8 @@ LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
             stopIfRequested(observer);
         }
     } else {
-        const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
+        const PoseTrajectory trajectory =
+            trajectoryFor(model, io::trajectoryByNameOrFile(options.trajectory), options.trajectory);
         const SampleGrid grid = sampleGrid(chooseDuration(options.duration, trajectory), options.rate);
         loads = loadsAlong(model, trajectory, grid, LimitPolicy::error);
     }
@@ -303,7 +313,7 @@ void writeLoadsFigure(const LoadsOptions& options, const LoadsResult& result, co
     // reactions there recomputed from the motion that produced them
     Pose p = w.peak_force_pose, dp = Pose::Zero(), ddp = Pose::Zero();
     if (!options.envelope) {
-        io::trajectoryByNameOrFile(options.trajectory).evaluate(w.peak_force_t, p, dp, ddp);
+        trajectoryFor(model, io::trajectoryByNameOrFile(options.trajectory)).evaluate(w.peak_force_t, p, dp, ddp);
     } else {
         for (const EnvelopePoint& point : result.points) {
             if (point.frequency != result.frequency[static_cast<std::size_t>(worst)] || !(point.amplitude > 0.0))

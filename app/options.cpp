@@ -26,8 +26,8 @@ RobotDescription loadRobot(const RobotSource& source) {
     RobotDescription robot = loadRobotAnyMotion(source);
     if (robot.motion == PlatformMotion::translation) {
         throw Error(where(robot, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does not " +
-                    "take it yet (pose, forward-kinematics, simulate, workspace and Python's " +
-                    "Robot.inverse_dynamics do)");
+                    "take it yet (pose, forward-kinematics, inverse-dynamics, loads, simulate, workspace, validate, " +
+                    "convert and Python's Robot.inverse_dynamics do)");
     }
     return robot;
 }
@@ -82,6 +82,24 @@ void validate(const SamplingOptions& options) {
 
 PoseTrajectory trajectoryOf(const SamplingOptions& options) {
     return options.given_trajectory ? *options.given_trajectory : io::trajectoryByNameOrFile(options.trajectory);
+}
+
+PoseTrajectory trajectoryFor(const Model& model, PoseTrajectory trajectory, const std::string& source) {
+    if (model.task_dimension == 3) return trajectory;
+    bool moves = trajectory.theta.offset != 0.0;
+    for (const Harmonic& h : trajectory.theta.harmonics) moves = moves || h.amplitude != 0.0;
+    if (trajectory.sampled && trajectory.sampled->theta) {
+        for (const auto& piece : trajectory.sampled->theta->pieces) {
+            for (const double c : piece) moves = moves || c != 0.0;
+        }
+    }
+    if (moves) {
+        throw Error("trajectory '" + (source.empty() ? trajectory.name : source) +
+                    "': theta: not 0 throughout, but a two-DOF robot (motion: translation, pose [x, y]) has no "
+                    "theta: key the trajectory x, y only");
+    }
+    trajectory.theta = AxisMotion{model.home(0), {}};  // 0: the core's pose [home(0), x, y]
+    return trajectory;
 }
 
 double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory) {

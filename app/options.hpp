@@ -12,6 +12,10 @@
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/trajectory.hpp"
 
+namespace nocdyn {
+class Model;
+}
+
 namespace nocdyn::app {
 
 /// A value outside what an option accepts. field() is the option's name in the options struct
@@ -100,6 +104,14 @@ void validate(const SamplingOptions& options);
 
 /// The trajectory to sample: the one given in code, else the one `trajectory` names.
 [[nodiscard]] PoseTrajectory trajectoryOf(const SamplingOptions& options);
+
+/// `trajectory` as `model` moves along it: unchanged for a three-DOF robot; for a two-DOF robot
+/// (motion: translation, pose [x, y]) a trajectory keyed x, y, its theta held at home(0) = 0.
+/// Throws nocdyn::Error "trajectory 'SOURCE': theta: ..." for a theta axis that is not 0 throughout
+/// (a YAML key theta, a CSV column theta or alpha): such a robot has no platform rotation. SOURCE
+/// is `source` (the file or name given), else the trajectory's name.
+[[nodiscard]] PoseTrajectory trajectoryFor(const Model& model, PoseTrajectory trajectory,
+                                           const std::string& source = "");
 
 /// The duration asked for, else the trajectory's own, else 0.2 s.
 [[nodiscard]] double chooseDuration(const std::optional<double>& requested, const PoseTrajectory& trajectory);

@@ -43,7 +43,8 @@ void addInverseDynamicsCommand(CLI::App& app) {
             "reach are also checked between samples, at 40 points per period of the trajectory's highest\n"
             "harmonic; a rate at or below twice that frequency is refused. A pose out of reach, a singular\n"
             "posture, or one beyond a joint or effort limit is an error (no CSV file is written; on stdout,\n"
-            "the rows before it).");
+            "the rows before it). A two-DOF robot (motion: translation, pose [x, y]) takes a trajectory keyed\n"
+            "x, y and its table has no theta column.");
     addSamplingOptions(*command, *options);
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());

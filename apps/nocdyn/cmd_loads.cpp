@@ -44,7 +44,8 @@ void addLoadsCommand(CLI::App& app) {
         "largest amplitude within every limit), each joint's peak and RMS reaction force |(fx, fy)| [N] and\n"
         "peak couple |m| [N m], with the time and pose of the peak. Reactions as in `inverse-dynamics\n"
         "--reactions`. Prints a table; --output writes it as CSV (limb and joint 1-based), --figure draws\n"
-        "the robot at the worst pose with each joint's force.\n"
+        "the robot at the worst pose with each joint's force. A two-DOF robot (motion: translation, pose\n"
+        "[x, y]) takes a trajectory keyed x, y (no --envelope).\n"
         "Example: nocdyn loads --robot robots/3-rrr.yaml --trajectory paper1 --figure loads");
     command->add_option("--trajectory", options->trajectory,
                         "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or samples (.csv)");

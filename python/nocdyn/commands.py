@@ -346,7 +346,8 @@ def inverse_dynamics(trajectory, *, robot=None, set=None, output=None, progress=
     file's duration, else 0.2 s). trajectory: 'paper1', 'paper2', a trajectory file's path or a
     nocdyn.Trajectory. allow_limits: warn instead of failing at a joint's limits; reactions: the
     joint reactions as more columns. Returns a Table with the CSV's columns (t, x, y, theta, ...,
-    u1..un, du1..dun, ddu1..ddun, tau1..taun); output: also write it as CSV."""
+    u1..un, du1..dun, ddu1..ddun, tau1..taun); output: also write it as CSV. A two-DOF robot
+    (motion: translation) takes a trajectory keyed x, y, and its table has no theta column."""
     from .trajectory import Trajectory
     given = trajectory if isinstance(trajectory, Trajectory) else None
     bound = _bound_options(_nocdyn.InverseDynamicsOptions,

@@ -29,7 +29,8 @@ std::vector<Layout> makeLayouts() {
          "Inverse dynamics",
          "`nocdyn inverse-dynamics --output`; `nocdyn reproduce`'s `paper1.csv`, `paper2.csv`; Python "
          "`nocdyn.inverse_dynamics`",
-         "One row per sample of the trajectory. With `--reactions` the columns of *Joint reactions* follow.",
+         "One row per sample of the trajectory. With `--reactions` the columns of *Joint reactions* follow. A "
+         "two-DOF robot's (motion: translation, pose [x, y]) table has no column theta.",
          {t, x, y, theta, u, du, ddu, tau, kinetic}},
         {reactions,
          "Joint reactions",
@@ -126,7 +127,8 @@ std::vector<Layout> makeLayouts() {
         {loads,
          "Joint design loads",
          "`nocdyn loads --output`; Python `nocdyn.loads`",
-         "One row per joint. `peak_force_frequency` is written with `--envelope` only.",
+         "One row per joint. `peak_force_frequency` is written with `--envelope` only. A two-DOF robot's table "
+         "has no column peak_force_theta.",
          {{"limb", "", "limb (1-based)"},
           {"joint", "", "joint of the limb (1-based, file order)"},
           {"peak_force", "N", "largest magnitude of the joint's force"},
@@ -214,6 +216,12 @@ std::string replaced(std::string_view pattern, std::string_view key, int value) 
     return replaced(pattern, key, std::to_string(value));
 }
 
+/// A column of the pose's theta: "theta", or one named after it ("theta_d", "e_theta",
+/// "peak_force_theta"), which a two-DOF robot's tables leave out.
+bool isThetaColumn(std::string_view name) {
+    return name == "theta" || name.starts_with("theta_") || name.find("_theta") != std::string_view::npos;
+}
+
 std::string markdownCell(std::string_view text) {
     std::string out;
     for (const char c : text) {
@@ -259,7 +267,7 @@ std::vector<std::string> columnNames(TableId id, const LayoutSizes& sizes) {
     for (std::size_t c = 0; c < columns.size(); ++c) {
         const Column& column = columns[c];
         if (column.optional && !sizes.optional) continue;
-        if (sizes.task_dimension == 2 && column.name == "theta") continue;  // no theta: pose [x, y]
+        if (sizes.task_dimension == 2 && isThetaColumn(column.name)) continue;  // no theta: pose [x, y]
         switch (column.repeat) {
             case Repeat::once:
                 names.emplace_back(column.name);

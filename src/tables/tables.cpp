@@ -11,18 +11,19 @@ std::vector<std::string> numbered(const std::string& prefix, int count) {
     return out;
 }
 
-std::vector<std::string> inverseDynamicsColumns(int actuators) {
-    return columnNames(TableId::inverse_dynamics, {.actuators = actuators});
+std::vector<std::string> inverseDynamicsColumns(int actuators, int task_dimension) {
+    return columnNames(TableId::inverse_dynamics, {.actuators = actuators, .task_dimension = task_dimension});
 }
 
-void inverseDynamicsRow(const InverseDynamicsSample& s, std::vector<double>& row) {
+void inverseDynamicsRow(const InverseDynamicsSample& s, std::vector<double>& row, int task_dimension) {
     const auto n = static_cast<std::size_t>(s.u.size());
-    row.resize(5 + 4 * n);
+    const bool theta = task_dimension == 3;  // a two-DOF robot's pose is [x, y]
+    row.resize((theta ? 5 : 4) + 4 * n);
     row[0] = s.t;
     row[1] = s.p(1);
     row[2] = s.p(2);
-    row[3] = s.p(0);
-    std::size_t c = 4;
+    std::size_t c = 3;
+    if (theta) row[c++] = s.p(0);
     for (const ActuatorVector* v : {&s.u, &s.du, &s.ddu, &s.tau}) {
         for (std::size_t a = 0; a < n; ++a) row[c++] = (*v)(static_cast<Eigen::Index>(a));
     }

@@ -1,7 +1,9 @@
 """Two-DOF planar robots (motion: translation, pose [x, y] of a point tool): the shipped five-bar
 and biglide through Robot.inverse_dynamics with arrays of shape (N, 2), `nocdyn pose X Y`, and
 `nocdyn forward-kinematics U1 U2` (poses x, y), `nocdyn.simulate` (columns t, x, y, ...),
-`nocdyn.workspace`, Python's pose and direct kinematics over x, y, the drawing, and the one-line refusal of the commands that do not take them yet."""
+`nocdyn.workspace`, `nocdyn.inverse_dynamics` (trajectories keyed x, y), `nocdyn.loads`,
+`nocdyn.convert`, Python's pose and direct kinematics over x, y, the drawing, and the one-line
+refusal of the commands that do not take them yet."""
 
 import numpy as np
 import pytest
@@ -128,10 +130,8 @@ def test_pose_prints_x_y(cli, source_dir):
     assert code != 0 and "THETA" in err
 
 
-@pytest.mark.parametrize("command", [["inverse-dynamics", "--trajectory", "paper1"],
-                                     ["loads", "--trajectory", "paper1"], ["control", "--trajectory", "paper1"],
-                                     ["envelope"], ["frequency-response"], ["regressor"],
-                                     ["convert"]])
+@pytest.mark.parametrize("command", [["control", "--trajectory", "paper1"],
+                                     ["envelope"], ["frequency-response"], ["regressor"]])
 def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_path, command):
     forces = tmp_path / "forces.csv"
     forces.write_text("t,tau1,tau2\n0,0,0\n0.1,0,0\n")
@@ -338,3 +338,50 @@ def test_robot_stiffness_and_natural_frequencies_of_a_two_dof_robot_are_over_x_y
         robot.natural_frequencies([0.02, 0.3], model="elastodynamic")
     with pytest.raises(nocdyn.Error, match="declares no compliance"):
         _robot(source_dir, "five-bar").stiffness([0.02, 0.3])
+
+
+def test_inverse_dynamics_job_equals_robot_inverse_dynamics_on_x_y(source_dir):
+    # the job (nocdyn.inverse_dynamics, the command line's) on the shipped figure eight, keyed x, y,
+    # against Robot.inverse_dynamics with (N, 2) arrays at the same samples
+    robot = _robot(source_dir, "five-bar")
+    trajectory = nocdyn.Trajectory.load(str(source_dir / "trajectories" / "five-bar-figure-eight.yaml"))
+    table = nocdyn.inverse_dynamics(trajectory, robot=robot, rate=400.0)
+    assert table.columns == ["t", "x", "y", "u1", "u2", "du1", "du2", "ddu1", "ddu2", "tau1", "tau2", "kinetic"]
+    assert len(table) == 200
+    p, dp, ddp = trajectory.evaluate(table["t"])
+    np.testing.assert_array_equal(table.data[:, 1:3], p[:, :2])
+    u, du, ddu, tau = robot.inverse_dynamics(p[:, :2], dp[:, :2], ddp[:, :2])
+    for name, want in (("u", u), ("du", du), ("ddu", ddu), ("tau", tau)):
+        np.testing.assert_allclose(table.group(name), want, rtol=0, atol=1e-12)
+    assert np.abs(tau).max() > 0.05
+    # a trajectory built in code, keyed x, y, about the biglide's home
+    biglide = _robot(source_dir, "biglide")
+    line = nocdyn.Trajectory.harmonic(x=[(0.03, 3.0, 0.0)], y=[(0.01, 6.0, 0.5)], offset=(0.0, 0.2, 0.0),
+                                      duration=0.2)
+    table = nocdyn.inverse_dynamics(line, robot=biglide, rate=500.0)
+    p, dp, ddp = line.evaluate(table["t"])
+    tau = biglide.inverse_dynamics(p[:, :2], dp[:, :2], ddp[:, :2]).tau
+    np.testing.assert_allclose(table.group("tau"), tau, rtol=0, atol=1e-12)
+    # a theta that moves has no meaning for a two-DOF robot
+    turning = nocdyn.Trajectory.harmonic(x=[(0.01, 2.0, 0.0)], theta=[(0.01, 2.0, 0.0)], offset=(0.0, 0.35, 0.0))
+    with pytest.raises(nocdyn.Error, match="theta: not 0 throughout"):
+        nocdyn.inverse_dynamics(turning, robot=robot, rate=400.0)
+
+
+def test_loads_and_convert_take_the_five_bar(source_dir, tmp_path):
+    path = str(source_dir / "robots" / "five-bar.yaml")
+    eight = str(source_dir / "trajectories" / "five-bar-figure-eight.yaml")
+    loads = nocdyn.loads(eight, robot=path, rate=400.0)
+    assert "peak_force_theta" not in loads.columns and "peak_force_x" in loads.columns
+    assert len(loads) == 6 and np.all(loads["peak_force"] > 0.1)
+    # the peaks: the largest reaction of the same samples' inverse dynamics with --reactions
+    forces = nocdyn.inverse_dynamics(eight, robot=path, rate=400.0, reactions=True)
+    for limb, joint, peak in zip(loads["limb"], loads["joint"], loads["peak_force"]):
+        fx, fy = forces[f"limb{limb}_j{joint}_fx"], forces[f"limb{limb}_j{joint}_fy"]
+        np.testing.assert_allclose(peak, np.hypot(fx, fy).max(), rtol=1e-12)
+    text = nocdyn.convert(path, output=str(tmp_path / "general.yaml"))
+    assert "motion: translation" in text
+    back = nocdyn.Robot.load(str(tmp_path / "general.yaml"))
+    P, dP, ddP = _motion(np.array([0.01, 0.32]))
+    np.testing.assert_array_equal(back.inverse_dynamics(P, dP, ddP).tau,
+                                  _robot(source_dir, "five-bar").inverse_dynamics(P, dP, ddP).tau)

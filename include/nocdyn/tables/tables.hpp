@@ -15,14 +15,15 @@
 namespace nocdyn::io {
 
 /// t,x,y,theta,u1..un,du1..dun,ddu1..ddun,tau1..taun,kinetic (SI; n actuators;
-/// TableId::inverse_dynamics).
-[[nodiscard]] std::vector<std::string> inverseDynamicsColumns(int actuators);
+/// TableId::inverse_dynamics); without theta for a two-DOF robot (task_dimension 2, pose [x, y]).
+[[nodiscard]] std::vector<std::string> inverseDynamicsColumns(int actuators, int task_dimension = 3);
 
 /// `prefix`1..`prefix`n, e.g. "tau1".."tau4".
 [[nodiscard]] std::vector<std::string> numbered(const std::string& prefix, int count);
 
-/// One row of a sample in the order of inverseDynamicsColumns, into `row` (resized).
-void inverseDynamicsRow(const InverseDynamicsSample& sample, std::vector<double>& row);
+/// One row of a sample in the order of inverseDynamicsColumns (of the same task_dimension), into
+/// `row` (resized).
+void inverseDynamicsRow(const InverseDynamicsSample& sample, std::vector<double>& row, int task_dimension = 3);
 
 /// limb{i}_j{k}_fx, limb{i}_j{k}_fy, limb{i}_j{k}_m for every limb i and joint k (1-based,
 /// file order): the joint reactions of reactions.hpp [N, N, N m].
