@@ -177,9 +177,10 @@ std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::s
     std::ostringstream out;
     std::string line;
     line = text::format(
-        "%zu records on %s, controller %s, %zu at a time; pass: RMS <= %.3g %%, |peak| <= %.3g %%, "
+        "%zu records on %s%s, controller %s, %zu at a time; pass: RMS <= %.3g %%, |peak| <= %.3g %%, "
         "spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%\n\n",
-        r.rows.size(), std::string(nameOf(options.plant)).c_str(), std::string(nameOf(options.controller)).c_str(),
+        r.rows.size(), std::string(nameOf(options.plant)).c_str(),
+        options.axis == "y" ? ", each driving and scored on y" : "", std::string(nameOf(options.controller)).c_str(),
         workers, options.max_rms_percent, options.max_peak_percent, options.min_spectrum_percent);
     out << line << "sensors: " << sensing << "\n\n"
         << "| record | folder | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
