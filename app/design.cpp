@@ -221,6 +221,38 @@ void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& fami
     render::renderFigure(f, (dir / "best").string());
 }
 
+/// What refers to theta has no meaning for a two-DOF family (motion: translation, pose [x, y]):
+/// its workspace is the tool point's region in x, y and its envelope has no theta axis.
+void refuseThetaOfTwoDof(const DesignOptions& options, const std::vector<DesignMetric>& metrics) {
+    if (options.theta) {
+        throw OptionError("theta",
+                          "a two-DOF family (motion: translation, pose [x, y]) has no theta: its workspace is over "
+                          "x, y; leave it out");
+    }
+    for (const DesignMetric& m : metrics) {
+        if (m.kind == DesignMetricKind::envelope && m.axis == EnvelopeAxis::theta) {
+            throw OptionError("metric", "'" + m.name() +
+                                            "': a two-DOF family (motion: translation, pose [x, y]) has no theta: "
+                                            "envelope_x@F or envelope_y@F");
+        }
+    }
+}
+
+/// A trajectory of a two-DOF family holds theta at home (0): x, y only.
+void refuseThetaMotion(const PoseTrajectory& trajectory, const std::string& source) {
+    bool sampled = false;  // a sampled theta of zeros holds it at home too
+    if (trajectory.sampled && trajectory.sampled->theta) {
+        for (const auto& piece : trajectory.sampled->theta->pieces) {
+            sampled = sampled || std::any_of(piece.begin(), piece.end(), [](double c) { return c != 0.0; });
+        }
+    }
+    if (trajectory.theta.offset != 0.0 || !trajectory.theta.harmonics.empty() || sampled) {
+        throw OptionError("trajectory", "'" + io::terminalText(source) +
+                                            "' moves theta, and a two-DOF family (motion: translation, pose "
+                                            "[x, y]) has none: give a trajectory of x, y");
+    }
+}
+
 /// A robot file inside the output folder would be overwritten by the tables it writes.
 void refuseRobotInside(const std::string& robot, const std::string& out_dir) {
     std::error_code ec;
@@ -291,7 +323,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     const auto points = sweepPoints(family.ranges, options.sweep == "grid" ? SweepKind::grid : SweepKind::random,
                                     options.samples, options.seed);
     // What the whole family shares is checked on its first design (one that fails, the sweep
-    // reports): a two-DOF family (motion: translation), whose metrics are not written yet, and
+    // reports): whether it is two-DOF (motion: translation), whose metrics are over x, y, and
     // whether it declares compliance (a field present, not its value), without which
     // first_frequency_min is refused before the first design.
     std::optional<RobotDescription> first;
@@ -301,10 +333,8 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         } catch (const Error&) {  // NOLINT(bugprone-empty-catch): a design the sweep itself will report
         }
     }
-    if (first && first->motion == PlatformMotion::translation) {
-        throw Error(where(*first, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does " +
-                    "not take it yet (nocdyn pose and Python's Robot.inverse_dynamics do)");
-    }
+    const bool two_dof = first && first->motion == PlatformMotion::translation;
+    if (two_dof) refuseThetaOfTwoDof(options, metrics);
     if (std::any_of(metrics.begin(), metrics.end(),
                     [](const DesignMetric& m) { return m.kind == DesignMetricKind::first_frequency_min; })) {
         if (first && !declaresCompliance(*first)) {
@@ -321,6 +351,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         if (options.trajectory.empty())
             throw OptionError("trajectory", "is required by peak_force, rms_force, stroke and peak_reaction");
         design.trajectory = io::trajectoryByNameOrFile(options.trajectory);
+        if (two_dof) refuseThetaMotion(*design.trajectory, options.trajectory);
         design.duration = chooseDuration(options.duration, *design.trajectory);
         design.rate = options.rate;
         requireRateAboveNyquist(*design.trajectory, design.rate);

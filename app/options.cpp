@@ -27,7 +27,7 @@ RobotDescription loadRobot(const RobotSource& source) {
     if (robot.motion == PlatformMotion::translation) {
         throw Error(where(robot, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does not " +
                     "take it yet (pose, forward-kinematics, inverse-dynamics, loads, simulate, workspace, validate, " +
-                    "convert and Python's Robot.inverse_dynamics do)");
+                    "convert, shake, design and Python's Robot.inverse_dynamics do)");
     }
     return robot;
 }

@@ -122,9 +122,17 @@ PlantFactory plantFactory(const ShakeOptions& o) {
     };
 }
 
-/// A suite's row from its replay: the scores of x, and whether every threshold holds.
+/// The pose coordinate `record` drives, in the replay's order [theta, x, y]: 1 (x) or 2 (y).
+std::size_t recordAxis(const ShakeOptions& options) { return options.axis == "y" ? 2 : 1; }
+
+/// The acceleration series of the axis `record` drives.
+std::vector<double>& recordTarget(GroundRecord& record, const ShakeOptions& options) {
+    return recordAxis(options) == 2 ? record.ay : record.ax;
+}
+
+/// A suite's row from its replay: the scores of the record's axis, and whether every threshold holds.
 ShakeSuiteRow scoreRow(const ShakeOutcome& o, const ShakeOptions& options) {
-    const ShakeScore& s = o.score[1];
+    const ShakeScore& s = o.score[recordAxis(options)];
     ShakeSuiteRow row;
     row.time_scale = o.fit.time_scale;
     row.amplitude = o.fit.amplitude_scale * o.amplitude;
@@ -154,9 +162,9 @@ std::string verdictLine(const ShakeSuiteRow& row, const ShakeOptions& options) {
     if (!(row.limit_use_percent <= 100.0))
         missed.push_back(text::format("%s at %.3g %% of its limit", row.binding.c_str(), row.limit_use_percent));
     std::string line = text::format(
-        "verdict (x, against the goals: RMS <= %.3g %%, |peak| <= %.3g %%, spectrum within +-10 %% at >= %.3g %% "
-        "of the counted periods, every limit <= 100 %%): ",
-        options.max_rms_percent, options.max_peak_percent, options.min_spectrum_percent);
+        "verdict (%s, against the goals: RMS <= %.3g %%, |peak| <= %.3g %%, spectrum within +-10 %% at >= %.3g "
+        "%% of the counted periods, every limit <= 100 %%): ",
+        options.axis.c_str(), options.max_rms_percent, options.max_peak_percent, options.min_spectrum_percent);
     if (row.pass) return line + "pass\n";
     line += "FAIL (";
     for (std::size_t i = 0; i < missed.size(); ++i) line += (i ? "; " : "") + missed[i];
@@ -169,9 +177,10 @@ std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::s
     std::ostringstream out;
     std::string line;
     line = text::format(
-        "%zu records on %s, controller %s, %zu at a time; pass: RMS <= %.3g %%, |peak| <= %.3g %%, "
+        "%zu records on %s%s, controller %s, %zu at a time; pass: RMS <= %.3g %%, |peak| <= %.3g %%, "
         "spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%\n\n",
-        r.rows.size(), std::string(nameOf(options.plant)).c_str(), std::string(nameOf(options.controller)).c_str(),
+        r.rows.size(), std::string(nameOf(options.plant)).c_str(),
+        options.axis == "y" ? ", each driving and scored on y" : "", std::string(nameOf(options.controller)).c_str(),
         workers, options.max_rms_percent, options.max_peak_percent, options.min_spectrum_percent);
     out << line << "sensors: " << sensing << "\n\n"
         << "| record | folder | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
@@ -196,7 +205,7 @@ ShakeResult runSuite(const std::vector<std::string>& records, const ShakeOptions
     std::vector<GroundRecord> inputs(records.size());
     // every record read (and refused) before any replay
     for (std::size_t i = 0; i < records.size(); ++i)
-        inputs[i].ax = readAxis(records[i], options.window, inputs[i].dt, false);
+        recordTarget(inputs[i], options) = readAxis(records[i], options.window, inputs[i].dt, false);
     const std::size_t workers =
         std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardwareThreads(), records.size());
     std::vector<ShakeOutcome> outcomes(records.size());
@@ -323,6 +332,10 @@ void refuseSuiteOptions(const ShakeOptions& o) {
 
 void validate(const ShakeOptions& o) {
     if (o.record.empty()) throw OptionError("record", "at least one AT2 record is required");
+    if (o.axis != "x" && o.axis != "y")
+        throw OptionError("axis", "expected x or y, got '" + io::terminalText(o.axis) + "'");
+    if (o.axis == "y" && !o.record_y.empty())
+        throw OptionError("record_y", "the record already drives y (`axis` y): give the x record as `record`");
     requireIn(o.highpass, kHighpassRange, "highpass");
     requireIn(o.margin, kShareRange, "margin");
     requireIn(o.window, kWindowRange, "window");
@@ -358,7 +371,30 @@ void validate(const ShakeOptions& o) {
 ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     validate(options);
     requireOutputFolder(options.out_dir, "out_dir");
-    const RobotDescription robot = loadRobot(options.robot);
+    const RobotDescription robot = loadRobotAnyMotion(options.robot);
+    if (robot.motion == PlatformMotion::translation) {
+        // a two-DOF table moves its tool point in x, y: no rotation to drive or to sense
+        if (!options.record_theta.empty())
+            throw OptionError("record_theta",
+                              "a two-DOF robot (motion: translation, pose [x, y]) has no theta to drive");
+        if (options.accel_baseline != ShakeOptions{}.accel_baseline) {
+            throw OptionError("accel_baseline",
+                              "a two-DOF robot (motion: translation, pose [x, y]) has no angular acceleration to "
+                              "sense: there is no accelerometer pair");
+        }
+        if (options.identify_payload) {
+            throw OptionError("identify_payload",
+                              "not for a two-DOF robot (motion: translation, pose [x, y]) yet: the payload "
+                              "identification estimates a platform's mass, c.o.m. and inertia from motions in x, y "
+                              "and theta");
+        }
+        if (options.drive_model != DriveModel::identity) {
+            throw OptionError("drive_model", std::string(name(options.drive_model)) +
+                                                 ": not for a two-DOF robot (motion: translation, pose [x, y]) yet: "
+                                                 "the table's closed loop is linearised over theta, x and y; "
+                                                 "iterate with drive_model identity");
+        }
+    }
     if (const std::string rigid = rigidPlantWarning(robot, "shake"); !rigid.empty()) observer.warning(rigid);
     const ShakeReplayOptions replay = replayOptions(options);
     const std::vector<std::string> records = expandRecords(options.record);
@@ -369,13 +405,16 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     }
     refuseSuiteOptions(options);
     GroundRecord record;
-    record.ax = readAxis(records.front(), options.window, record.dt, false);
+    recordTarget(record, options) = readAxis(records.front(), options.window, record.dt, false);
     if (!options.record_y.empty()) record.ay = readAxis(options.record_y, options.window, record.dt, false);
     if (!options.record_theta.empty()) record.alpha = readAxis(options.record_theta, options.window, record.dt, true);
-    const std::size_t n = std::min({record.ax.size(), record.ay.empty() ? record.ax.size() : record.ay.size(),
-                                    record.alpha.empty() ? record.ax.size() : record.alpha.size()});
+    // the shortest driven axis (records of one event may differ by a few samples)
+    std::size_t n = recordTarget(record, options).size();
+    for (const auto* a : {&record.ax, &record.ay, &record.alpha}) {
+        if (!a->empty()) n = std::min(n, a->size());
+    }
     for (auto* a : {&record.ax, &record.ay, &record.alpha}) {
-        if (!a->empty()) a->resize(n);  // records of one event may differ by a few samples
+        if (!a->empty()) a->resize(n);
     }
     // the length of the replay is known only once fitted: progress in seconds of motion
     Meter meter(observer, 0.0, "s");

@@ -38,8 +38,10 @@ inline constexpr unsigned kMaxJobs = 256;
 /// workers and goals, the output folder.
 struct ShakeOptions : ShakeReplayOptions {
     RobotSource robot;
-    /// AT2 records driving x (values in g); several, or a folder (its *.AT2 files): a suite.
+    /// AT2 records driving `axis` (values in g); several, or a folder (its *.AT2 files): a suite.
     std::vector<std::string> record;
+    /// The pose axis `record` drives: x (the default) or y (then `record_y` is not given).
+    std::string axis = "x";
     std::string record_y;      ///< AT2 record driving y (values in g), same time step
     std::string record_theta;  ///< AT2-format file driving theta, values in rad/s^2
     /// The time scale as a user writes it (the command line's and Python's `time_scale`): "auto"
@@ -78,7 +80,8 @@ struct ShakeResult {
     std::string metrics_json;
     std::string text;
     /// A suite: every record's row, summary.md's text, the number of workers. One record: its
-    /// row (the verdict against the same goals, also the text's last line).
+    /// row (the verdict against the same goals, also the text's last line). Every row is scored
+    /// on `axis`.
     std::vector<ShakeSuiteRow> rows;
     int passed = 0;
 };

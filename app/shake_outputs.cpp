@@ -61,6 +61,16 @@ io::Table shakeTable(const ShakeOutcome& outcome, const Model& model) {
         for (std::size_t a = 0; a < un; ++a) row.push_back(outcome.tau_at_samples[i * un + a]);
         table.rows.push_back(std::move(row));
     }
+    if (model.task_dimension == 2) {
+        // a two-DOF table: the tool point's x, y, no theta or alpha column
+        for (const char* name : {"theta_achieved", "alpha_achieved", "alpha", "theta"}) {
+            const auto at = std::find(table.columns.begin(), table.columns.end(), name);
+            if (at == table.columns.end()) continue;
+            const auto c = at - table.columns.begin();
+            table.columns.erase(at);
+            for (std::vector<double>& row : table.rows) row.erase(row.begin() + c);
+        }
+    }
     return table;
 }
 

@@ -2,7 +2,8 @@
 // example robots on the same cycle of samples as BM_InverseDynamics/<robot>/nocdyn
 // (bench_robots.cpp). Neither engine has a per-sample inverse-dynamics entry for a closed
 // loop: each call covers the cycle, assembling every sample from the previous one, and
-// `per_sample` is the time per sample.
+// `per_sample` is the time per sample. The two-DOF five-bar and biglide run their own tool
+// cycle (fixture.hpp, ToolCycle), as BM_InverseDynamics/<robot>/nocdyn does.
 // BM_Simulate/<robot>/simbody: the Simbody plant (SimbodyMechanism::advance, accuracy 1e-10)
 // under the forces of BM_Simulate/<robot>/nocdyn (bench_simulate.cpp), held for 1 ms each.
 // BM_Simulate/<robot>/mujoco: MuJoCo's plant (MujocoMechanism::advance: mj_step at 0.1 ms,
@@ -34,6 +35,22 @@ void engine(benchmark::State& state, const std::string& robot) {
     }
     state.counters["per_sample"] =
         benchmark::Counter(static_cast<double>(f.times.size()),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+/// The engines on a two-DOF robot's tool cycle (ToolCycle), as BM_InverseDynamics/<robot>/nocdyn.
+template <typename Engine>
+void toolEngine(benchmark::State& state, const std::string& robot) {
+    const RobotDescription description =
+        io::loadRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
+    const ToolCycle cycle(Model(description).home);
+    Engine mechanism(description);
+    for (auto _ : state) {
+        auto out = mechanism.inverseDynamics(cycle.trajectory, cycle.times);
+        benchmark::DoNotOptimize(out.data());
+    }
+    state.counters["per_sample"] =
+        benchmark::Counter(static_cast<double>(cycle.times.size()),
                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
@@ -109,6 +126,15 @@ void simbodyPlant(benchmark::State& state, const std::string& name) {
         })->Unit(benchmark::kMillisecond);
         benchmark::RegisterBenchmark(("BM_Simulate/" + robot + "/mujoco").c_str(), [robot](benchmark::State& s) {
             mujocoPlant(s, robot);
+        })->Unit(benchmark::kMillisecond);
+    }
+    for (const std::string robot : {"five-bar", "biglide"}) {
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/mujoco").c_str(), [robot](benchmark::State& s) {
+            toolEngine<validation::MujocoMechanism>(s, robot);
+        })->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/simbody").c_str(), [robot](
+                                                                                               benchmark::State& s) {
+            toolEngine<validation::SimbodyMechanism>(s, robot);
         })->Unit(benchmark::kMillisecond);
     }
     return true;

@@ -3,7 +3,8 @@
 // nocdyn (the lean path inverseDynamicsFast), nocdyn_full (T_i, I and C stored), and for
 // the paper's robot `baseline`, the hand-specialised 3-PRR path the general one must match.
 // Each runs the paper's trajectory 1 plus a second harmonic per axis, a cycle of 1000
-// samples (fixture.hpp), and reports `per_sample`.
+// samples (fixture.hpp), and reports `per_sample`. The two-DOF five-bar and biglide (nocdyn,
+// nocdyn_full) run their own cycle of the tool point about home (fixture.hpp, ToolCycle).
 // BM_Batch/<robot>/nocdyn: the general batch (batch.hpp, the lean kernel on packets of eight
 // samples where the CPU has AVX-512, else four) over the same cycle on one thread,
 // BM_Batch/<robot>/nocdyn_4lanes the same on packets of four (AVX2),
@@ -53,6 +54,31 @@ void generalModel(benchmark::State& state, const std::string& robot) {
         benchmark::ClobberMemory();
     }
     perSample(state, f.samples.size());
+}
+
+/// A two-DOF robot (the five-bar, the biglide) per sample on its own tool cycle (ToolCycle):
+/// the lean path, or the full one, with the task map E inside.
+template <bool kLean>
+void toolModel(benchmark::State& state, const std::string& robot) {
+    const Model model = loadExample(robot);
+    const ToolCycle cycle(model.home);
+    Data data(model);
+    for (std::size_t k = 0; k < cycle.times.size(); ++k) {
+        if (!inverseDynamics(model, data, cycle.p[k], cycle.dp[k], cycle.ddp[k])) {
+            state.SkipWithError(("the tool cycle leaves the workspace of " + robot).c_str());
+            return;
+        }
+    }
+    for (auto _ : state) {
+        for (std::size_t k = 0; k < cycle.times.size(); ++k) {
+            const Status status = kLean ? inverseDynamicsFast(model, data, cycle.p[k], cycle.dp[k], cycle.ddp[k])
+                                        : inverseDynamics(model, data, cycle.p[k], cycle.dp[k], cycle.ddp[k]);
+            benchmark::DoNotOptimize(status);
+            benchmark::DoNotOptimize(data.tau.data());
+        }
+        benchmark::ClobberMemory();
+    }
+    perSample(state, cycle.times.size());
 }
 
 // The hand-specialised 3-PRR lean path, kept frozen as the baseline.
@@ -160,6 +186,12 @@ void poseOrderBatch(benchmark::State& state, PoseColumns order, bool c_order) {
                                      [robot](benchmark::State& s) { generalModel<true>(s, robot); });
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn_full").c_str(),
                                      [robot](benchmark::State& s) { generalModel<false>(s, robot); });
+    }
+    for (const std::string robot : {"five-bar", "biglide"}) {
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn").c_str(),
+                                     [robot](benchmark::State& s) { toolModel<true>(s, robot); });
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn_full").c_str(),
+                                     [robot](benchmark::State& s) { toolModel<false>(s, robot); });
     }
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
         benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn").c_str(),

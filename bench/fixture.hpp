@@ -78,4 +78,30 @@ inline const Fixture& fixture() {
     return f;
 }
 
+/// A two-DOF robot's cycle (the five-bar, the biglide): the tool point about the robot's home
+/// (theta held there), two harmonics per axis of 10, 20 and 30 Hz (period 0.1 s, kCycle
+/// samples at kRate), amplitudes of 10-15 mm and 3-4 mm: the same cycle for nocdyn and the
+/// engines.
+struct ToolCycle {
+    PoseTrajectory trajectory;
+    std::vector<double> times;
+    std::vector<Pose> p, dp, ddp;
+
+    explicit ToolCycle(const Pose& home) {
+        trajectory.name = "bench tool point";
+        trajectory.duration = kPeriod;
+        trajectory.theta.offset = home(0);
+        trajectory.x = {home(1), {{0.015, 10.0, 0.0}, {0.004, 20.0, 1.0}}};
+        trajectory.y = {home(2), {{0.010, 10.0, 0.7}, {0.003, 30.0, -0.5}}};
+        times.resize(kCycle);
+        p.resize(kCycle);
+        dp.resize(kCycle);
+        ddp.resize(kCycle);
+        for (std::size_t k = 0; k < kCycle; ++k) {
+            times[k] = static_cast<double>(k) / kRate;
+            trajectory.evaluate(times[k], p[k], dp[k], ddp[k]);
+        }
+    }
+};
+
 }  // namespace nocdyn::bench

@@ -59,7 +59,9 @@ void addDesignCommand(CLI::App& app) {
         "smaller is better), DIR/pareto.png/.svg (the first two metrics) and DIR/best.png/.svg (the best\n"
         "design by the first metric with its workspace). DIR/journal.csv holds every design as it is\n"
         "evaluated: run the same command again to resume a stopped sweep. Sobol and Latin-hypercube sweeps,\n"
-        "optimisation and Dask clusters: the Python package (nocdyn.designs).\n"
+        "optimisation and Dask clusters: the Python package (nocdyn.designs). A two-DOF family (motion:\n"
+        "translation: five-bars, biglides) is swept over its tool point's x, y: --theta, envelope_theta@F and a\n"
+        "trajectory that moves theta are refused.\n"
         "Example: nocdyn design --robot examples/design_3rrr/family.yaml --vary r_b=0.15:0.25\n"
         "           --vary l=0.09:0.13 --samples 64 --metric workspace_area --metric envelope_x@50 --out-dir runs/a");
     addRobotOption(*command, options->robot);

@@ -59,12 +59,18 @@ void addShakeCommand(CLI::App& app) {
             "--plant simbody replays on the independent Simbody model, about 70 times slower, as a check.");
     addRobotOption(*command, options->robot);
     command
-        ->add_option("--record", options->record,
-                     "AT2 record driving x (values in g); repeat it, or name a folder (its *.AT2 files), for a suite: "
-                     "one folder of outputs per record under --out-dir, the records in parallel, one summary table "
-                     "(DIR/summary.md)")
+        ->add_option(
+            "--record", options->record,
+            "AT2 record driving x (--axis; values in g); repeat it, or name a folder (its *.AT2 files), for a suite: "
+            "one folder of outputs per record under --out-dir, the records in parallel, one summary table "
+            "(DIR/summary.md)")
         ->required()
         ->check(CLI::ExistingPath);
+    command
+        ->add_option("--axis", options->axis,
+                     "The axis --record drives: x, or y (a two-DOF table's or any robot's; the scores are that axis's)")
+        ->check(CLI::IsMember({"x", "y"}))
+        ->capture_default_str();
     command->add_option("--record-y", options->record_y, "AT2 record driving y (values in g), same time step")
         ->check(CLI::ExistingFile);
     command

@@ -610,7 +610,9 @@ def shake(record, *, robot=None, set=None, out_dir=None, progress=None, **option
     optionally the payload identified first and drive-signal iterations, corrected through
     the identity or the inverse linearised loop: drive_model, drive_specimen), or "pose" (computed
     torque on noisy pose feedback). natural_frequency: None for the controller's own default. window: play only the
-    record's first seconds (0: all). Returns a ShakeResult: the samples (t, x, y, theta, ax, ay,
+    record's first seconds (0: all); axis: "x" (the default) or "y", the axis the record drives
+    (a two-DOF robot's table: its tool point in x, y, no theta or alpha columns). Returns a
+    ShakeResult: the samples (t, x, y, theta, ax, ay,
     alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (shake.json: scales, and per axis
     the errors in percent, ``rms_error_percent``, ``peak_error_percent``, ..., and the spectra).
     out_dir: also write the files and figures there. Ctrl-C (or a KeyboardInterrupt raised by

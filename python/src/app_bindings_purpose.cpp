@@ -29,6 +29,7 @@ void bindShake(py::module_& m) {
         .field("robot", &O::robot)
         .field("out_dir", &O::out_dir)
         .option("record", &O::record)
+        .option("axis", &O::axis)
         .option("record_y", &O::record_y)
         .option("record_theta", &O::record_theta)
         .option("time_scale", &O::time_scale_text)

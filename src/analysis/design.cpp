@@ -193,6 +193,9 @@ DesignEvaluation evaluateDesign(const RobotDescription& robot, const std::vector
                     value = analysis::firstFrequencyMap(model, workspace()).lowest;
                     break;
                 case DesignMetricKind::envelope:
+                    if (model.task_dimension == 2 && m.axis == EnvelopeAxis::theta) {
+                        throw Error(m.name() + ": a two-DOF robot (motion: translation, pose [x, y]) has no theta");
+                    }
                     value = maximumAmplitude(model, m.axis, m.frequency, options.envelope).amplitude;
                     break;
                 case DesignMetricKind::moving_mass: {

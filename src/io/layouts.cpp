@@ -144,7 +144,8 @@ std::vector<Layout> makeLayouts() {
          "Earthquake replay",
          "`nocdyn shake`'s `shake.csv`; Python `nocdyn.shake`",
          "One row per sample of the (scaled) record: the target, what the table achieved (the pose at the "
-         "nearest controller tick), u and tau at the nearest controller tick.",
+         "nearest controller tick), u and tau at the nearest controller tick. A two-DOF robot's (motion: "
+         "translation, pose [x, y]) table has no column theta, alpha, alpha_achieved or theta_achieved.",
          {t,
           {"x", "m", "target x"},
           {"y", "m", "target y"},

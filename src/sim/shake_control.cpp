@@ -68,17 +68,32 @@ Vector3 encoderPoseNoise(const Model& model, const Pose& p, double sigma_u) {
     if (status) status = velocityFromPlatformTwist(model, data, Twist::Zero());
     if (!status) throw Error("encoder pose noise: " + describe(status, model));
     const ActuationMatrix A_p = data.A * platformTwistMap(p.tail<2>());
+    if (model.task_dimension == 2) {
+        // the encoders see x, y only (A_t = A_p E); theta is no coordinate and carries no noise
+        const Eigen::MatrixXd A_t = A_p * taskMap(model);
+        const Eigen::Matrix2d normal = A_t.transpose() * A_t;
+        const Eigen::Vector2d variance = (normal.inverse() * sigma_u * sigma_u).diagonal();
+        return {0.0, std::sqrt(variance(0)), std::sqrt(variance(1))};
+    }
     const Matrix3 normal = A_p.transpose() * A_p;
     const Matrix3 cov = normal.inverse() * sigma_u * sigma_u;
     return cov.diagonal().cwiseSqrt();
 }
 
-Vector3 accelerometerNoise(const TableSensors& sensors) {
+Vector3 accelerometerNoise(const TableSensors& sensors, int task_dimension) {
     const double s = sensors.accel_noise_density * std::sqrt(0.5 * std::numbers::pi * sensors.accel_bandwidth);
-    return {std::sqrt(2.0) * s / sensors.accel_baseline, s, s};
+    return {task_dimension == 2 ? 0.0 : std::sqrt(2.0) * s / sensors.accel_baseline, s, s};
 }
 
 namespace {
+
+/// The estimator's pose noise: a two-DOF robot's theta (no coordinate: it stays at home, its
+/// innovation and its measured acceleration are zero) takes sigma_u, any positive value, since
+/// the estimator's gain of each coordinate is its own.
+Vector3 estimatedPoseNoise(Vector3 sigma_q, double sigma_u) {
+    if (sigma_q(0) == 0.0) sigma_q(0) = sigma_u;
+    return sigma_q;
+}
 
 /// runShakeLoop's sensing: the encoders through the tracker and the accelerometers, fused by the
 /// estimator; the controller sees the estimate (p^, v^) and tracks the servo's demand
@@ -91,13 +106,15 @@ public:
           dt_(1.0 / options.rate),
           gains_(taskCriticallyDamped(options.natural_frequency)),
           sigma_q_(encoderPoseNoise(model, start.p, sensors_.encoder_noise)),
-          sigma_y_(sensors_.accelerometer ? accelerometerNoise(sensors_) : Vector3::Zero()),
-          estimator_(dt_, sigma_q_, sensors_.accelerometer ? sigma_y_ : Vector3::Constant(1e3)),
+          sigma_y_(sensors_.accelerometer ? accelerometerNoise(sensors_, model.task_dimension) : Vector3::Zero()),
+          estimator_(dt_, estimatedPoseNoise(sigma_q_, sensors_.encoder_noise),
+                     sensors_.accelerometer ? sigma_y_ : Vector3::Constant(1e3)),
           g_(sensors_.accelerometer ? options.acceleration_gain : 0.0),
           beta_(1.0 - std::exp(-2.0 * std::numbers::pi * sensors_.accel_bandwidth * dt_)),
           white_(std::sqrt(0.5 * options.rate)),
-          density_(std::sqrt(2.0) * sensors_.accel_noise_density / sensors_.accel_baseline,
-                   sensors_.accel_noise_density, sensors_.accel_noise_density),
+          density_(
+              model.task_dimension == 2 ? 0.0 : std::sqrt(2.0) * sensors_.accel_noise_density / sensors_.accel_baseline,
+              sensors_.accel_noise_density, sensors_.accel_noise_density),
           rng_(options.seed),
           sensor_(model),
           tracker_(start.p),

@@ -257,12 +257,25 @@ void iterateDrive(const Bench& b, const DriveInverse& inverse, ShakeOutcome& out
 }
 
 /// The sensors, their noise and resolution, in words.
-std::string sensingText(const ShakeReplayOptions& o, const EstimatorReport& estimator) {
+std::string sensingText(const ShakeReplayOptions& o, const EstimatorReport& estimator, int task_dimension) {
     if (o.controller != ShakeController::table) {
         return text::format("pose sensor: noise %.3g (m, rad); rate sensor: noise %.3g (m/s, rad/s)", o.noise_pose,
                             o.noise_rate);
     }
     const TableSensors s = tableLoop(o, {}).sensors;
+    if (task_dimension == 2) {
+        // a two-DOF table: the tool point's x, y only, no angular accelerometer pair
+        std::string out = text::format(
+            "encoders: noise %.3g (m or rad) per actuator (pose noise at home %.3g m, %.3g m); accelerometers: %s",
+            s.encoder_noise, estimator.sigma_q(1), estimator.sigma_q(2), s.accelerometer ? "" : "none");
+        if (s.accelerometer) {
+            out += text::format(
+                "noise density %.3g ug/sqrt(Hz) (ADXL355 default 22.5), bandwidth %.4g Hz (first-order), so %.3g "
+                "m/s^2 RMS per axis; rates from the estimator",
+                s.accel_noise_density / kGravity * 1e6, s.accel_bandwidth, estimator.sigma_y(1));
+        }
+        return out;
+    }
     std::string out = text::format(
         "encoders: noise %.3g (m or rad) per actuator (pose noise at home %.3g rad, %.3g m, %.3g m); "
         "accelerometers: %s",
@@ -346,7 +359,7 @@ void playReplay(const RobotDescription& robot, const ShakeReplayOptions& options
     out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     out.pass_rms.push_back(passRms(bench, out.loop, out.achieved));
     iterateDrive(bench, driveInverseOf(bench, robot, known, out.driven), out, kept);
-    out.sensing = sensingText(options, out.estimator);
+    out.sensing = sensingText(options, out.estimator, model.task_dimension);
     out.achieved_use = kept.use;
     out.u_at_samples = std::move(kept.u);
     out.tau_at_samples = std::move(kept.tau);

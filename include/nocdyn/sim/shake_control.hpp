@@ -82,13 +82,15 @@ private:
     Twist v_ = Twist::Zero();
 };
 
-/// Pose noise of an encoder pose at `p`: sqrt(diag(sigma_u^2 (A_p^T A_p)^-1)) [rad, m, m].
-/// Throws nocdyn::Error when p is out of reach or singular.
+/// Pose noise of an encoder pose at `p`: sqrt(diag(sigma_u^2 (A_p^T A_p)^-1)) [rad, m, m]; for a
+/// two-DOF robot (task map E) sqrt(diag(sigma_u^2 (E^T A_p^T A_p E)^-1)) over x, y, and 0 for
+/// theta (held at home, no coordinate). Throws nocdyn::Error when p is out of reach or singular.
 [[nodiscard]] Vector3 encoderPoseNoise(const Model& model, const Pose& p, double sigma_u);
 
 /// Standard deviation of the filtered accelerometer noise per coordinate [rad/s^2, m/s^2, m/s^2]:
-/// rho sqrt(pi f_b / 2), the angular one sqrt(2) / b times it.
-[[nodiscard]] Vector3 accelerometerNoise(const TableSensors& sensors);
+/// rho sqrt(pi f_b / 2), the angular one sqrt(2) / b times it (0 for a two-DOF robot,
+/// task_dimension 2: no angular pair).
+[[nodiscard]] Vector3 accelerometerNoise(const TableSensors& sensors, int task_dimension = 3);
 
 struct ShakeLoopOptions {
     double rate = 10000.0;  ///< controller ticks per second [Hz]
