@@ -16,6 +16,7 @@
 #include "app/outputs.hpp"
 #include "app/plants.hpp"
 #include "app/shake_outputs.hpp"
+#include "app/shake_records.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/escape.hpp"
@@ -25,6 +26,10 @@
 namespace nocdyn::app {
 
 namespace {
+
+/// Why `axis` and `record_y` do not go with a record given as its components.
+constexpr const char* kComponentsDriveBoth =
+    "a record given as its components drives x and y itself (its horizontals rotated onto them)";
 
 /// The record's first `window` seconds (all of it when 0), as accelerations in SI.
 std::vector<double> readAxis(const std::string& path, double window, double& dt, bool angular) {
@@ -74,14 +79,16 @@ std::vector<std::string> expandRecords(const std::vector<std::string>& names) {
 /// letters, digits, '-' and '_' replaced by '_' (no separator, no "." or ".." and no hidden
 /// folder), "record" when nothing is left, and "-2", "-3", ... after a name already taken
 /// ignoring case (quake.AT2 and quake.at2 must not share a folder on any file system).
-std::vector<std::string> recordFolders(const std::vector<std::string>& records) {
+std::vector<std::string> recordFolders(const std::vector<RecordFiles>& records) {
     std::vector<std::string> out, taken;
     const auto lower = [](std::string text) {
         for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
         return text;
     };
-    for (const std::string& record : records) {
-        std::string name = std::filesystem::path(record).stem().string();
+    for (const RecordFiles& record : records) {
+        // a file's stem; the shared name of a record's components as it is
+        std::string name =
+            record.files.size() == 1 ? std::filesystem::path(record.label).stem().string() : record.label;
         bool any = false;
         for (char& c : name) {
             const bool plain = std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_';
@@ -198,14 +205,22 @@ std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::s
     return out.str();
 }
 
-ShakeResult runSuite(const std::vector<std::string>& records, const ShakeOptions& options,
+ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions& options,
                      const ShakeReplayOptions& replay, const RobotDescription& robot, Observer& observer) {
     if (options.out_dir.empty()) throw OptionError("out_dir", "a suite of records needs an output folder");
     const std::vector<std::string> folders = recordFolders(records);
     std::vector<GroundRecord> inputs(records.size());
     // every record read (and refused) before any replay
-    for (std::size_t i = 0; i < records.size(); ++i)
-        recordTarget(inputs[i], options) = readAxis(records[i], options.window, inputs[i].dt, false);
+    std::vector<std::string> notes;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        if (records[i].files.size() > 1) {
+            if (options.axis == "y") throw OptionError("axis", records[i].label + ": " + kComponentsDriveBoth);
+            inputs[i] = readComponents(records[i], options.window, notes);
+        } else {
+            recordTarget(inputs[i], options) = readAxis(records[i].label, options.window, inputs[i].dt, false);
+        }
+    }
+    for (const std::string& note : notes) observer.warning(note);
     const std::size_t workers =
         std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardwareThreads(), records.size());
     std::vector<ShakeOutcome> outcomes(records.size());
@@ -227,7 +242,7 @@ ShakeResult runSuite(const std::vector<std::string>& records, const ShakeOptions
                 const std::lock_guard lock(mutex);
                 writeShakeOutputs(outcomes[i], Model(robot),
                                   (std::filesystem::path(options.out_dir) / folders[i]).string(),
-                                  robot.name + ": " + records[i]);
+                                  robot.name + ": " + records[i].label);
                 outcomes[i].loop = {};  // the ticks are written; keep the scores
                 outcomes[i].achieved = {};
             } catch (const std::exception& e) {
@@ -265,14 +280,24 @@ ShakeResult runSuite(const std::vector<std::string>& records, const ShakeOptions
     ShakeResult out;
     out.suite = true;
     for (std::size_t i = 0; i < records.size(); ++i) {
-        if (!errors[i].empty()) throw Error(records[i] + ": " + errors[i]);
+        if (!errors[i].empty()) throw Error(records[i].label + ": " + errors[i]);
         ShakeSuiteRow row = scoreRow(outcomes[i], options);
-        row.record = records[i];
+        row.record = records[i].label;
         row.folder = folders[i];
         out.passed += row.pass ? 1 : 0;
         out.rows.push_back(std::move(row));
     }
     out.text = suiteTable(out, options, workers, outcomes.front().sensing);
+    std::string grouped;
+    for (const RecordFiles& r : records) {
+        if (r.files.size() > 1)
+            grouped += (grouped.empty() ? "" : ", ") + r.label + " (" + std::to_string(r.files.size()) + " files)";
+    }
+    if (!grouped.empty()) {
+        out.text +=
+            "\nComponents grouped into records by their shared name prefix, the horizontals on x and y: " + grouped +
+            "\n";
+    }
     io::writeTextFile((std::filesystem::path(options.out_dir) / "summary.md").string(), out.text);
     return out;
 }
@@ -397,7 +422,7 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     }
     if (const std::string rigid = rigidPlantWarning(robot, "shake"); !rigid.empty()) observer.warning(rigid);
     const ShakeReplayOptions replay = replayOptions(options);
-    const std::vector<std::string> records = expandRecords(options.record);
+    const std::vector<RecordFiles> records = groupRecordFiles(expandRecords(options.record));
     if (records.size() > 1) {
         if (!options.record_y.empty() || !options.record_theta.empty())
             throw OptionError("record_y", "record_y and record_theta go with a single record");
@@ -405,7 +430,17 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     }
     refuseSuiteOptions(options);
     GroundRecord record;
-    recordTarget(record, options) = readAxis(records.front(), options.window, record.dt, false);
+    if (records.front().files.size() > 1) {
+        // the components of one record: its horizontals drive x and y
+        if (!options.record_y.empty())
+            throw OptionError("record_y", records.front().label + ": " + kComponentsDriveBoth);
+        if (options.axis == "y") throw OptionError("axis", records.front().label + ": " + kComponentsDriveBoth);
+        std::vector<std::string> notes;
+        record = readComponents(records.front(), options.window, notes);
+        for (const std::string& note : notes) observer.warning(note);
+    } else {
+        recordTarget(record, options) = readAxis(records.front().label, options.window, record.dt, false);
+    }
     if (!options.record_y.empty()) record.ay = readAxis(options.record_y, options.window, record.dt, false);
     if (!options.record_theta.empty()) record.alpha = readAxis(options.record_theta, options.window, record.dt, true);
     // the shortest driven axis (records of one event may differ by a few samples)
@@ -428,13 +463,13 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     printShakeSummary(outcome, text);
     // the verdict against the suite's goals, as a suite's row would give it
     ShakeSuiteRow row = scoreRow(outcome, options);
-    row.record = records.front();
+    row.record = records.front().label;
     text << verdictLine(row, options);
     out.passed = row.pass ? 1 : 0;
     out.rows.push_back(std::move(row));
     out.text = text.str();
     if (!options.out_dir.empty())
-        writeShakeOutputs(outcome, model, options.out_dir, robot.name + ": " + records.front());
+        writeShakeOutputs(outcome, model, options.out_dir, robot.name + ": " + records.front().label);
     return out;
 }
 

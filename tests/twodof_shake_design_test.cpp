@@ -8,6 +8,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -23,6 +24,7 @@
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::test {
 namespace {
@@ -252,6 +254,55 @@ TEST(TwoDofDesign, RefusesWhatRefersToTheta) {
         EXPECT_NE(r.err.find(message), std::string::npos) << options << ": " << r.err;
         EXPECT_FALSE(std::filesystem::exists(dir / "o" / "designs.csv")) << options;
     }
+}
+
+// A three-component record given as its files: the horizontals on x and y. El Centro 1940, Array
+// #9: x at the first horizontal's azimuth (180), y 90 degrees counter-clockwise from it (east),
+// so that a_x = a_180 and a_y = -a_270. The replay equals the one of --record 180 --record-y
+// with the 270 component's values negated, byte for byte, over a window both records fill.
+TEST(TwoDofShake, AThreeComponentRecordDrivesXAndYWithItsHorizontalsRotated) {
+    const auto dir = freshScratchDirectory("twodof_shake_components");
+    const std::string r3 = kSource + "/data/records3/";
+    const std::string quick = " --window 1 --plant nocdyn --rate 2000 --robot " + kFiveBar;
+    const CliResult r = runCli("shake" + quick + " --record " + r3 + "RSN6_IMPVALL.I_I-ELC-UP.AT2 --record " + r3 +
+                               "RSN6_IMPVALL.I_I-ELC270-hor2.AT2 --record " + r3 +
+                               "RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --out-dir " + (dir / "components").string());
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.err.find("RSN6_IMPVALL.I_I-ELC: RSN6_IMPVALL.I_I-ELC270-hor2.AT2 has 5346 samples, the longest "
+                         "5378: padded with zeros after 53.45 s"),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("RSN6_IMPVALL.I_I-ELC-UP.AT2: the vertical component is not replayed"), std::string::npos);
+    const nlohmann::json json = readJson(dir / "components" / "shake.json");
+    ASSERT_EQ(json["metrics"].size(), 2U);
+    EXPECT_TRUE(json["metrics"].contains("ax") && json["metrics"].contains("ay"));
+    // the 270 component negated, as an AT2 file of its own
+    std::ifstream in(r3 + "RSN6_IMPVALL.I_I-ELC270-hor2.AT2");
+    std::ofstream negated(dir / "east.AT2");
+    std::string line;
+    for (int k = 0; std::getline(in, line); ++k) {
+        if (k < 4) {
+            negated << line << "\n";
+            continue;
+        }
+        std::istringstream values(line);
+        for (double v = 0.0; values >> v;) negated << ' ' << text::shortest(-v);
+        negated << "\n";
+    }
+    negated.close();
+    const CliResult pair = runCli("shake" + quick + " --record " + r3 + "RSN6_IMPVALL.I_I-ELC180-hor1.AT2 --record-y " +
+                                  (dir / "east.AT2").string() + " --out-dir " + (dir / "pair").string());
+    ASSERT_EQ(pair.exit_code, 0) << pair.err;
+    const std::string components = readWhole(dir / "components" / "shake.csv");
+    EXPECT_GT(components.size(), 1000U);
+    EXPECT_EQ(components, readWhole(dir / "pair" / "shake.csv"));
+    // the components drive both axes: --axis y and --record-y do not go with them
+    const CliResult y = runCli("shake" + quick + " --axis y --record " + r3 +
+                               "RSN1690_NORTH151_SYL090-hor1.AT2 --record " + r3 + "RSN1690_NORTH151_SYL360-hor2.AT2");
+    EXPECT_NE(y.exit_code, 0);
+    EXPECT_NE(y.err.find("RSN1690_NORTH151_SYL: a record given as its components drives x and y itself"),
+              std::string::npos)
+        << y.err;
 }
 
 }  // namespace

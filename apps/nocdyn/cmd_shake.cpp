@@ -63,7 +63,8 @@ void addShakeCommand(CLI::App& app) {
             "--record", options->record,
             "AT2 record driving x (--axis; values in g); repeat it, or name a folder (its *.AT2 files), for a suite: "
             "one folder of outputs per record under --out-dir, the records in parallel, one summary table "
-            "(DIR/summary.md)")
+            "(DIR/summary.md). Component files of one record (a shared name, each header's azimuth or UP) are "
+            "one record: its horizontals drive x and y")
         ->required()
         ->check(CLI::ExistingPath);
     command

@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <map>
 #include <numbers>
+#include <utility>
 
 #include "file_util.hpp"
 #include "nocdyn/error.hpp"
@@ -39,6 +40,27 @@ std::string fileName(const std::string& path) { return std::filesystem::path(pat
 bool orthogonal(double a, double b) {
     const double d = std::fmod(std::abs(a - b), 180.0);
     return std::abs(d - 90.0) <= 1e-6;
+}
+
+/// cos and sin of an angle in degrees, exact at the multiples of 90 degrees (an azimuth of 180
+/// and one of 270 put each component on one table axis, with no 6e-17 of the other).
+std::pair<double, double> cosSinDegrees(double degrees) {
+    const double turn = std::fmod(degrees, 360.0);
+    const double quarter = turn / 90.0;
+    if (quarter == std::round(quarter)) {
+        switch ((static_cast<int>(std::round(quarter)) + 4) % 4) {
+            case 0:
+                return {1.0, 0.0};
+            case 1:
+                return {0.0, 1.0};
+            case 2:
+                return {-1.0, 0.0};
+            default:
+                return {0.0, -1.0};
+        }
+    }
+    const double radians = turn * std::numbers::pi / 180.0;
+    return {std::cos(radians), std::sin(radians)};
 }
 
 }  // namespace
@@ -133,11 +155,9 @@ TableMotion combineComponents(const std::vector<GroundMotionRecord>& components,
         const std::vector<double>& a = f.record->acceleration;
         return k < a.size() ? a[k] : 0.0;
     };
-    constexpr double kDegree = std::numbers::pi / 180.0;
-    const double c1 = std::cos((h1.direction.azimuth - out.x_azimuth) * kDegree);
-    const double c2 = std::cos((h2.direction.azimuth - out.x_azimuth) * kDegree);
-    const double s1 = std::sin((out.x_azimuth - h1.direction.azimuth) * kDegree);
-    const double s2 = std::sin((out.x_azimuth - h2.direction.azimuth) * kDegree);
+    // a_x = a_1 cos(alpha_1 - beta_x) + ..., a_y = a_1 sin(beta_x - alpha_1) + ...
+    const auto [c1, s1] = cosSinDegrees(out.x_azimuth - h1.direction.azimuth);
+    const auto [c2, s2] = cosSinDegrees(out.x_azimuth - h2.direction.azimuth);
     out.ax.resize(n);
     out.ay.resize(n);
     out.az.assign(n, 0.0);
