@@ -616,24 +616,27 @@ def shake(record, *, robot=None, set=None, out_dir=None, progress=None, **option
     alpha, ..._achieved, u1..un, tau1..taun) and ``metrics`` (shake.json: scales, and per axis
     the errors in percent, ``rms_error_percent``, ``peak_error_percent``, ..., and the spectra).
     out_dir: also write the files and figures there. Ctrl-C (or a KeyboardInterrupt raised by
-    ``progress``) stops the replay and writes nothing."""
+    ``progress``) stops the replay and writes nothing. record: an AT2 file, or the list of one
+    record's component files (two horizontals and at most one vertical, each header's azimuth or
+    UP): its horizontals drive x and y, rotated onto the table (``nocdyn shake`` says how)."""
     # a folder (or several records) is a suite, whose results are one folder per record and no
-    # samples to return: refused before anything runs, rather than after
-    several = isinstance(record, (list, tuple)) and len(record) != 1
-    if several or (isinstance(record, (str, os.PathLike)) and os.path.isdir(record)):
+    # samples to return: refused before anything runs, rather than after. The component files of
+    # one record (two horizontals and a vertical sharing a name) are one record.
+    files = list(record) if isinstance(record, (list, tuple)) else [record]
+    if not files or any(not isinstance(f, (str, os.PathLike)) for f in files):
+        raise ValueError(f"record: expected an AT2 file's path or a list of its component files, got {record!r}")
+    files = [_argument(f, "record", "") for f in files]
+    several = len(files) > 1 and len(_nocdyn._record_groups(files)) > 1
+    if several or os.path.isdir(files[0]):
         raise ValueError(f"record: {record!r} is a suite of records, and nocdyn.shake plays one record and "
-                         "returns its samples: call it once per .AT2 file, or run the suite with "
+                         "returns its samples: call it once per record, or run the suite with "
                          "`nocdyn shake --record FOLDER --out-dir DIR` (summary.md and one folder per record)")
-    if isinstance(record, (list, tuple)):
-        record = record[0]
-    if not isinstance(record, (str, os.PathLike)):
-        raise ValueError(f"record: expected an AT2 file's path, got {type(record).__name__}")
-    arguments = {"record": [_argument(record, "record", "")], **options}
+    arguments = {"record": files, **options}
     if arguments.get("natural_frequency", None) is None:
         arguments.pop("natural_frequency", None)
     bound = _bound_options(_nocdyn.ShakeOptions, arguments)
     bound.robot = _robot_source(robot, set)
-    _refuse_overwrites("shake", [("robot", robot), ("record", record), ("record_y", options.get("record_y")),
+    _refuse_overwrites("shake", [("robot", robot), ("record", files), ("record_y", options.get("record_y")),
                                  ("record_theta", options.get("record_theta"))], folders=[("out_dir", out_dir)])
     if out_dir is not None:
         bound.out_dir = _argument(out_dir, "out_dir", "")

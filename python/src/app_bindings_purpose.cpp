@@ -13,6 +13,7 @@
 #include "app/excite.hpp"
 #include "app/identify.hpp"
 #include "app/shake.hpp"
+#include "app/shake_records.hpp"
 #include "app_bindings.hpp"
 #include "arrays.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -70,6 +71,15 @@ void bindShake(py::module_& m) {
             return py::make_tuple(r.table.columns, rowsArray(r.table), r.metrics_json, r.text);
         },
         py::arg("options"), py::arg("progress") = py::none());
+    // the records a list of AT2 files makes (component files of one record grouped), as shake reads them
+    m.def(
+        "_record_groups",
+        [](const std::vector<std::string>& files) {
+            py::list out;
+            for (const app::RecordFiles& r : app::groupRecordFiles(files)) out.append(py::make_tuple(r.label, r.files));
+            return out;
+        },
+        py::arg("files"));
 }
 
 /// The fit of measured against predicted forces on the held-out samples, as numbers.

@@ -418,3 +418,18 @@ def test_design_sweeps_a_five_bar_family_over_x_y(source_dir):
     assert designs.column("moving_mass")[0] == pytest.approx(1.1, rel=1e-12)
     with pytest.raises(nocdyn.Error, match="envelope_theta@20.*has no theta"):
         nocdyn.design(["b=0.2:0.3"], ["envelope_theta@20"], robot=family, samples=2, resolution=21)
+
+
+def test_shake_takes_a_records_component_files_as_one_record(source_dir):
+    folder = source_dir / "data" / "records3"
+    components = [str(folder / f"RSN1690_NORTH151_SYL{c}.AT2") for c in ("-UP", "360-hor2", "090-hor1")]
+    quick = {"window": 1, "plant": "nocdyn", "rate": 2000}
+    with pytest.warns(RuntimeWarning, match="SYL-UP.AT2: the vertical component is not replayed"):
+        r = nocdyn.shake(components, robot=str(source_dir / "robots" / "five-bar.yaml"), **quick)
+    assert set(r.metrics["metrics"]) == {"ax", "ay"}  # x east (090), y north (360): both driven
+    assert np.ptp(r["ax"]) > 0.02 and np.ptp(r["ay"]) > 0.02  # [m/s^2] in the first second
+    # two records' components are a suite, which returns no samples: refused before it runs
+    both = components + [str(folder / "RSN6_IMPVALL.I_I-ELC180-hor1.AT2"),
+                         str(folder / "RSN6_IMPVALL.I_I-ELC270-hor2.AT2")]
+    with pytest.raises(ValueError, match="is a suite of records"):
+        nocdyn.shake(both, robot=str(source_dir / "robots" / "five-bar.yaml"), **quick)
