@@ -469,7 +469,7 @@ envelope.__signature__ = _signature(_nocdyn.EnvelopeOptions, (), before=(("robot
 def frequency_response(*, robot=None, set=None, output=None, summary=None, figure=None, **options):
     """The rigid robot linearised at an operating point and its frequency response
     (``nocdyn frequency-response``): pose [x, y, theta] (default home) and rate [dx, dy, dtheta]
-    (default at rest), held by the inverse dynamics' forces; from each actuator force to each
+    (default at rest; [x, y] and [dx, dy] of a two-DOF robot, whose channels are x, y), held by the inverse dynamics' forces; from each actuator force to each
     platform acceleration (output_kind "acceleration") or actuator variable ("actuators") over
     ``points`` log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then
     <output>_tau<a>_db and _deg per channel, axes x, y, theta); ``text`` holds the summary with
@@ -494,9 +494,12 @@ def frequency_response(*, robot=None, set=None, output=None, summary=None, figur
     robot file that declares compliance the loop's plant is the lumped compliant model
     (``compliance`` "auto" or "lumped"; "rigid" forces the rigid plant)."""
     options = {k: v for k, v in options.items() if not (k in ("pose", "rate") and v is None)}
-    for name, what in (("pose", "numbers [x, y, theta]"), ("rate", "numbers [dx, dy, dtheta]")):
+    for name, what in (("pose", "numbers [x, y, theta] ([x, y] of a two-DOF robot)"),
+                       ("rate", "numbers [dx, dy, dtheta] ([dx, dy] of a two-DOF robot)")):
         if name in options:
-            options[name] = _numbers(options[name], name, 3, what)
+            options[name] = _numbers(options[name], name, None, what)
+            if len(options[name]) not in (2, 3):
+                raise ValueError(f"{name}: expected 3 {what}, got {len(options[name])} values")
     bound = _bound_options(_nocdyn.FrequencyResponseOptions, options)
     bound.robot = _robot_source(robot, set)
     files = [_path_argument(summary, "summary"), _path_argument(figure, "figure")]
