@@ -51,7 +51,8 @@ std::vector<Layout> makeLayouts() {
          "Closed-loop run",
          "`nocdyn control --output`; `nocdyn reproduce`'s `control_paper1.csv`, `control_paper2.csv`; Python "
          "`nocdyn.control`",
-         "One row per controller tick. The errors are desired minus achieved.",
+         "One row per controller tick. The errors are desired minus achieved. A two-DOF robot's (motion: "
+         "translation, pose [x, y]) table has no column theta_d, theta or e_theta.",
          {t,
           {"x_d", "m", "desired x"},
           {"y_d", "m", "desired y"},
@@ -259,7 +260,10 @@ std::vector<std::string> columnNames(TableId id, const LayoutSizes& sizes) {
     for (std::size_t c = 0; c < columns.size(); ++c) {
         const Column& column = columns[c];
         if (column.optional && !sizes.optional) continue;
-        if (sizes.task_dimension == 2 && column.name == "theta") continue;  // no theta: pose [x, y]
+        // no theta: pose [x, y] (nor its desired value and error)
+        if (sizes.task_dimension == 2 &&
+            (column.name == "theta" || column.name == "theta_d" || column.name == "e_theta"))
+            continue;
         switch (column.repeat) {
             case Repeat::once:
                 names.emplace_back(column.name);
