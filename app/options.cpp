@@ -27,8 +27,7 @@ RobotDescription loadRobot(const RobotSource& source) {
     if (robot.motion == PlatformMotion::translation) {
         throw Error(where(robot, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does not " +
                     "take it yet (pose, forward-kinematics, simulate, control, workspace, envelope, frequency-response "
-                    "and Python's " +
-                    "Robot.inverse_dynamics do)");
+                    "and Python's Robot.inverse_dynamics do)");
     }
     return robot;
 }
