@@ -91,7 +91,14 @@ std::string report(const ControlOptions& options, const Model& model, const Pose
                 revolute ? "N m" : "N", limit.c_str());
     }
     appendf(text, "saturated ticks: %zu of %zu\n", result.saturated_ticks, result.t.size());
-    if (loop.encoders) {
+    if (loop.encoders && model.task_dimension == 2) {
+        appendf(text,
+                "measured through the encoders and the tracker: pose error RMS x %.4g um, y %.4g um; peak x %.4g um, "
+                "y %.4g um; at most %d Newton steps per tick\n",
+                result.measurement_rms_error(1) * 1e6, result.measurement_rms_error(2) * 1e6,
+                result.measurement_peak_error(1) * 1e6, result.measurement_peak_error(2) * 1e6,
+                result.tracker_max_iterations);
+    } else if (loop.encoders) {
         appendf(text,
                 "measured through the encoders and the tracker: pose error RMS x %.4g um, y %.4g um, theta %.4g "
                 "urad; peak x %.4g um, y %.4g um, theta %.4g urad; at most %d Newton steps per tick\n",
@@ -150,7 +157,7 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     if (robot.motion == PlatformMotion::translation && options.plant == PlantKind::simbody) {
         throw OptionError("plant",
                           "the Simbody plant does not take a two-DOF robot (motion: translation) yet (it frees the "
-                          "point tool's angle, which has no inertia): give plant nocdyn or nocdyn-rk4");
+                          "point tool's angle, which has no inertia): give `plant` nocdyn or nocdyn-rk4");
     }
     if (const std::string rigid = rigidPlantWarning(robot, "control"); !rigid.empty()) observer.warning(rigid);
     const Model model(robot);

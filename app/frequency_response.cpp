@@ -358,12 +358,12 @@ FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& opt
         if (options.closed_loop)
             throw OptionError("closed_loop",
                               "the shake-table loop of a two-DOF robot (motion: translation) is not built; its "
-                              "open-loop plant is (without closed_loop)");
+                              "open-loop plant is (without `closed_loop`)");
         if (options.compliance == "lumped" ||
             (options.compliance == "auto" && analysis::StiffnessModel(Model(robot)).any))
             throw OptionError("compliance",
                               "the lumped compliant model of a two-DOF robot (motion: translation) is not built: "
-                              "give compliance rigid for its rigid plant");
+                              "give `compliance` rigid for its rigid plant");
     }
     // the open-loop plant carries the payload (a point mass at C) itself
     FrequencyResponseResult out =

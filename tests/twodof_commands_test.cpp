@@ -317,6 +317,13 @@ TEST(TwoDofCommands, ControlTracksACircle) {
         EXPECT_EQ(head, (std::vector<std::string>{"t", "x_d", "y_d", "x", "y", "e_x", "e_y"}));
         EXPECT_EQ(ct.table.rows.front().size(), ct.table.columns.size());
         EXPECT_EQ(ct.text.find("theta"), std::string::npos) << ct.text;
+        // through the encoders: the direct kinematics of the two-DOF robot tracks the pose
+        options.controller = "computed-torque";
+        options.measure = "encoders";
+        const app::ControlResult enc = app::runControl(options, app::silent());
+        EXPECT_LT(std::hypot(enc.loop.pose_rms_error(1), enc.loop.pose_rms_error(2)), c.ct_rms);
+        EXPECT_LT(enc.loop.measurement_peak_error.tail<2>().maxCoeff(), 1e-12);  // measured: 2e-16 m
+        EXPECT_EQ(enc.text.find("theta"), std::string::npos) << enc.text;
     }
     app::ControlOptions options;
     options.robot = source("five-bar");
