@@ -41,6 +41,7 @@ void addControlCommand(CLI::App& app) {
         "--measure encoders). computed-torque: A_p^T tau = M_p(p) (ddp_d + Kd e' + Kp e) + h_p(p, dp), e = p_d - p,\n"
         "Kp = w^2, Kd = 2w, w = 2 pi f_n; pd: A_p^T tau = M_p(home) (Kp e + Kd e'); tau minimum-norm when redundant.\n"
         "Forces held between ticks, each clipped at its joint's effort. Prints RMS and peak errors.\n"
+        "A two-DOF robot (motion: translation): p = [x, y], a trajectory keyed x, y, --plant nocdyn or nocdyn-rk4.\n"
         "CSV: " +
             io::columnList(io::TableId::closed_loop) +
             ".\n"

@@ -417,7 +417,8 @@ def control(trajectory, *, robot=None, set=None, plant=None, log=None, output=No
     noise_* arguments are sensor noise; log: also write the sensors' log for identify. Returns a
     Table with the CSV's columns (t, x_d, y_d, theta_d, ..., e_x, e_y, e_theta, u1..un, ..., tau1..taun);
     its text holds the RMS and peak errors. output, figure: also write the CSV and the
-    tracking-error figure (STEM.png and STEM.svg)."""
+    tracking-error figure (STEM.png and STEM.svg). A two-DOF robot (motion: translation) takes a
+    trajectory keyed x, y and plant 'nocdyn' or 'nocdyn-rk4'; its Table has no theta columns."""
     if options.get("payload_com") is None:
         options.pop("payload_com", None)
     else:
@@ -442,9 +443,9 @@ control.__signature__ = control.__signature__.replace(parameters=[
 
 
 def envelope(*, robot=None, set=None, output=None, figure=None, progress=None, **options):
-    """The operating envelope (``nocdyn envelope``): per axis (x, y, theta) and ``points``
-    log-spaced frequencies in [min_frequency, max_frequency] Hz, the largest amplitude within
-    every limit and which limit binds. Returns an Envelope (a Table with the CSV's columns: axis
+    """The operating envelope (``nocdyn envelope``): per axis (x, y, theta; x, y of a two-DOF
+    robot) and ``points`` log-spaced frequencies in [min_frequency, max_frequency] Hz, the
+    largest amplitude within every limit and which limit binds. Returns an Envelope (a Table with the CSV's columns: axis
     and limit as words; frequency, amplitude, ...; limb, joint, actuator numbered from 1, 0 when
     none) whose ``first_natural_frequency`` [Hz] is the band's third bound when the robot file
     declares compliance (None otherwise; ``text`` says which), ``band_end`` {"x": f, "y": f,
@@ -469,7 +470,8 @@ envelope.__signature__ = _signature(_nocdyn.EnvelopeOptions, (), before=(("robot
 def frequency_response(*, robot=None, set=None, output=None, summary=None, figure=None, **options):
     """The rigid robot linearised at an operating point and its frequency response
     (``nocdyn frequency-response``): pose [x, y, theta] (default home) and rate [dx, dy, dtheta]
-    (default at rest; [x, y] and [dx, dy] of a two-DOF robot, whose channels are x, y), held by the inverse dynamics' forces; from each actuator force to each
+    (default at rest; [x, y] and [dx, dy] of a two-DOF robot, whose channels are x, y), held by
+    the inverse dynamics' forces; from each actuator force to each
     platform acceleration (output_kind "acceleration") or actuator variable ("actuators") over
     ``points`` log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then
     <output>_tau<a>_db and _deg per channel, axes x, y, theta); ``text`` holds the summary with
