@@ -154,7 +154,10 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     validate(options);
     const bool encoders = options.measure == "encoders";
     const RobotDescription robot = loadRobotAnyMotion(options.robot);
-    if (robot.motion == PlatformMotion::translation && options.plant == PlantKind::simbody) {
+    PlantKind plant_kind = options.plant;
+    if (robot.motion == PlatformMotion::translation && plant_kind == PlantKind::simbody && !options.plant_given)
+        plant_kind = PlantKind::nocdyn;  // the default plant of a two-DOF robot
+    if (robot.motion == PlatformMotion::translation && plant_kind == PlantKind::simbody) {
         throw OptionError("plant",
                           "the Simbody plant does not take a two-DOF robot (motion: translation) yet (it frees the "
                           "point tool's angle, which has no inertia): give `plant` nocdyn or nocdyn-rk4");
@@ -172,7 +175,7 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     payload.mass = options.payload_mass;
     payload.inertia = options.payload_inertia;
     if (options.payload_com.size() == 2) payload.com = Vector2(options.payload_com[0], options.payload_com[1]);
-    const std::unique_ptr<RobotPlant> plant = makePlant(options.plant, withPayload(robot, payload));
+    const std::unique_ptr<RobotPlant> plant = makePlant(plant_kind, withPayload(robot, payload));
     PoseController controller(model, options.controller == "pd" ? ControlLaw::pd : ControlLaw::computed_torque,
                               taskCriticallyDamped(options.natural_frequency));
     loop.saturation = !options.no_saturation;

@@ -395,7 +395,13 @@ TEST(TwoDofCommands, ControlTracksACircle) {
         EXPECT_NE(std::string(e.what()).find("theta: a two-DOF robot"), std::string::npos) << e.what();
     }
     options.trajectory = circleFile(dir, 0.35, 0.01, 2.0);
+    // the build's default plant, not chosen: nocdyn's for a two-DOF robot
     options.plant = PlantKind::simbody;
+    options.plant_given = false;
+    const app::ControlResult by_default = app::runControl(options, app::silent());
+    EXPECT_EQ(by_default.loop.plant, "nocdyn forward dynamics");
+    EXPECT_LT(by_default.loop.pose_rms_error.tail<2>().norm(), 5e-8);
+    options.plant_given = true;
     try {
         (void)app::runControl(options, app::silent());
         ADD_FAILURE() << "the Simbody plant accepted";

@@ -418,14 +418,16 @@ def control(trajectory, *, robot=None, set=None, plant=None, log=None, output=No
     Table with the CSV's columns (t, x_d, y_d, theta_d, ..., e_x, e_y, e_theta, u1..un, ..., tau1..taun);
     its text holds the RMS and peak errors. output, figure: also write the CSV and the
     tracking-error figure (STEM.png and STEM.svg). A two-DOF robot (motion: translation) takes a
-    trajectory keyed x, y and plant 'nocdyn' or 'nocdyn-rk4'; its Table has no theta columns."""
+    trajectory keyed x, y and runs on 'nocdyn' by default (plant 'simbody' is refused); its Table
+    has no theta columns."""
     if options.get("payload_com") is None:
         options.pop("payload_com", None)
     else:
         options["payload_com"] = _numbers(options["payload_com"], "payload_com", 2, "numbers [x, y]")
     bound = _bound_options(_nocdyn.ControlOptions, {"trajectory": trajectory, **options})
-    if plant is not None:  # None: the build's default (Simbody's when built in)
+    if plant is not None:  # None: the build's default (Simbody's when built in; nocdyn's for a two-DOF robot)
         bound.plant = _argument(plant, "plant", "")
+    bound.plant_given = plant is not None
     bound.robot = _robot_source(robot, set)
     files = [_path_argument(log, "log"), _path_argument(figure, "figure")]
     _refuse_overwrites("control", [("robot", robot), ("trajectory", trajectory)], [("output", output), ("log", log)],

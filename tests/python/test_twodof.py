@@ -319,3 +319,9 @@ def test_envelope_frequency_response_and_control_of_a_two_dof_robot_are_over_x_y
     assert np.abs(run["e_x"]).max() < 1e-5 and np.abs(run["e_y"]).max() < 1e-5
     with pytest.raises(nocdyn.Error, match="plant nocdyn"):
         nocdyn.control(str(circle), robot=str(five_bar), plant="simbody")
+    # no plant given: nocdyn's, the same run
+    default = nocdyn.control(str(circle), robot=str(five_bar), rate=2000.0, natural_frequency=20.0)
+    np.testing.assert_array_equal(default["e_x"], run["e_x"])
+    code, out, err = cli("control", "--robot", five_bar, "--trajectory", circle, "--rate", "2000")
+    assert code == 0, err
+    assert "on the nocdyn forward dynamics plant" in out
