@@ -44,6 +44,15 @@ void warnReferenceBeyondLimits(const Model& model, const PoseTrajectory& traject
     }
 }
 
+/// A two-DOF robot's reference is keyed x, y: a trajectory that moves theta off home is refused.
+void refuseTheta(const PoseTrajectory& trajectory, const Model& model, const std::string& source) {
+    const bool sampled = trajectory.sampled && trajectory.sampled->theta;
+    if (sampled || !trajectory.theta.harmonics.empty() || trajectory.theta.offset != model.home(0)) {
+        throw Error(io::terminalText(source) +
+                    ": theta: a two-DOF robot (motion: translation) has no theta: its trajectory is keyed x, y");
+    }
+}
+
 void appendf(std::string& text, const char* format, auto... values) { text += text::format(format, values...); }
 
 std::string report(const ControlOptions& options, const Model& model, const PoseController& controller,
@@ -53,12 +62,22 @@ std::string report(const ControlOptions& options, const Model& model, const Pose
             result.plant.c_str(), io::terminalText(model.description.name).c_str(),
             io::terminalText(trajectory).c_str(), loop.duration, loop.rate, options.natural_frequency,
             options.payload_mass > 0.0 || options.payload_inertia > 0.0 ? ", payload unknown to the controller" : "");
-    appendf(text, "pose: RMS error x %.4g um, y %.4g um, theta %.4g urad; peak x %.4g um, y %.4g um, theta %.4g urad\n",
-            result.pose_rms_error(1) * 1e6, result.pose_rms_error(2) * 1e6, result.pose_rms_error(0) * 1e6,
-            result.pose_peak_error(1) * 1e6, result.pose_peak_error(2) * 1e6, result.pose_peak_error(0) * 1e6);
-    appendf(text, "pose, second half: peak x %.4g um, y %.4g um, theta %.4g urad\n",
-            result.pose_late_peak_error(1) * 1e6, result.pose_late_peak_error(2) * 1e6,
-            result.pose_late_peak_error(0) * 1e6);
+    if (model.task_dimension == 2) {
+        // the pose [x, y] of a two-DOF robot: theta is no coordinate
+        appendf(text, "pose: RMS error x %.4g um, y %.4g um; peak x %.4g um, y %.4g um\n",
+                result.pose_rms_error(1) * 1e6, result.pose_rms_error(2) * 1e6, result.pose_peak_error(1) * 1e6,
+                result.pose_peak_error(2) * 1e6);
+        appendf(text, "pose, second half: peak x %.4g um, y %.4g um\n", result.pose_late_peak_error(1) * 1e6,
+                result.pose_late_peak_error(2) * 1e6);
+    } else {
+        appendf(text,
+                "pose: RMS error x %.4g um, y %.4g um, theta %.4g urad; peak x %.4g um, y %.4g um, theta %.4g urad\n",
+                result.pose_rms_error(1) * 1e6, result.pose_rms_error(2) * 1e6, result.pose_rms_error(0) * 1e6,
+                result.pose_peak_error(1) * 1e6, result.pose_peak_error(2) * 1e6, result.pose_peak_error(0) * 1e6);
+        appendf(text, "pose, second half: peak x %.4g um, y %.4g um, theta %.4g urad\n",
+                result.pose_late_peak_error(1) * 1e6, result.pose_late_peak_error(2) * 1e6,
+                result.pose_late_peak_error(0) * 1e6);
+    }
     for (int a = 0; a < model.actuators; ++a) {
         const auto ia = static_cast<std::size_t>(a);
         const LimbModel& limb = model.limb[static_cast<std::size_t>(model.actuator_limb[ia])];
@@ -72,7 +91,14 @@ std::string report(const ControlOptions& options, const Model& model, const Pose
                 revolute ? "N m" : "N", limit.c_str());
     }
     appendf(text, "saturated ticks: %zu of %zu\n", result.saturated_ticks, result.t.size());
-    if (loop.encoders) {
+    if (loop.encoders && model.task_dimension == 2) {
+        appendf(text,
+                "measured through the encoders and the tracker: pose error RMS x %.4g um, y %.4g um; peak x %.4g um, "
+                "y %.4g um; at most %d Newton steps per tick\n",
+                result.measurement_rms_error(1) * 1e6, result.measurement_rms_error(2) * 1e6,
+                result.measurement_peak_error(1) * 1e6, result.measurement_peak_error(2) * 1e6,
+                result.tracker_max_iterations);
+    } else if (loop.encoders) {
         appendf(text,
                 "measured through the encoders and the tracker: pose error RMS x %.4g um, y %.4g um, theta %.4g "
                 "urad; peak x %.4g um, y %.4g um, theta %.4g urad; at most %d Newton steps per tick\n",
@@ -127,10 +153,19 @@ void validate(const ControlOptions& options) {
 ControlResult runControl(const ControlOptions& options, Observer& observer) {
     validate(options);
     const bool encoders = options.measure == "encoders";
-    const RobotDescription robot = loadRobot(options.robot);
+    const RobotDescription robot = loadRobotAnyMotion(options.robot);
+    PlantKind plant_kind = options.plant;
+    if (robot.motion == PlatformMotion::translation && plant_kind == PlantKind::simbody && !options.plant_given)
+        plant_kind = PlantKind::nocdyn;  // the default plant of a two-DOF robot
+    if (robot.motion == PlatformMotion::translation && plant_kind == PlantKind::simbody) {
+        throw OptionError("plant",
+                          "the Simbody plant does not take a two-DOF robot (motion: translation) yet (it frees the "
+                          "point tool's angle, which has no inertia): give `plant` nocdyn or nocdyn-rk4");
+    }
     if (const std::string rigid = rigidPlantWarning(robot, "control"); !rigid.empty()) observer.warning(rigid);
     const Model model(robot);
     const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
+    if (model.task_dimension == 2) refuseTheta(trajectory, model, options.trajectory);
     PoseLoopOptions loop;
     loop.rate = options.rate;
     loop.duration = chooseDuration(options.duration, trajectory);
@@ -140,7 +175,7 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     payload.mass = options.payload_mass;
     payload.inertia = options.payload_inertia;
     if (options.payload_com.size() == 2) payload.com = Vector2(options.payload_com[0], options.payload_com[1]);
-    const std::unique_ptr<RobotPlant> plant = makePlant(options.plant, withPayload(robot, payload));
+    const std::unique_ptr<RobotPlant> plant = makePlant(plant_kind, withPayload(robot, payload));
     PoseController controller(model, options.controller == "pd" ? ControlLaw::pd : ControlLaw::computed_torque,
                               taskCriticallyDamped(options.natural_frequency));
     loop.saturation = !options.no_saturation;
@@ -157,7 +192,7 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     out.loop = runPoseLoop(controller, *plant, trajectory, loop);
     meter.report(loop.duration);
     out.trajectory = trajectory.name;
-    out.table = io::toTable(out.loop);
+    out.table = io::toTable(out.loop, model.task_dimension);
     if (options.sensor_log) {
         out.log = io::toTable(sensorLog(out.loop, options.noise_u, options.noise_tau, options.seed + 1));
     }

@@ -23,18 +23,21 @@ struct ControlOptions : SamplingOptions {
     RobotSource robot;
     std::string controller = "computed-torque";  ///< "computed-torque" or "pd"
     PlantKind plant = defaultPlant();            ///< the plant the loop runs on
-    double natural_frequency = 50.0;             ///< f_n of the error dynamics [Hz] (kNaturalFrequencyRange)
-    double payload_mass = 0.0;                   ///< [kg], on the plant's platform only (model mismatch)
-    double payload_inertia = 0.0;                ///< about the payload's c.o.m. [kg m^2]
-    std::vector<double> payload_com;             ///< [x, y] in the platform frame [m]; empty: at C
-    double noise_pose = 0.0;                     ///< pose sensor noise [m and rad]
-    double noise_rate = 0.0;                     ///< its rate's [m/s and rad/s]
-    double noise_tau = 0.0;                      ///< force measurement noise in the sensors' log [N or N m]
-    std::string measure = "pose";                ///< pose (a pose sensor) or encoders (u, du and the tracker)
-    double noise_u = 0.0;                        ///< encoder noise [m or rad] (log, measure encoders)
-    double noise_du = 0.0;                       ///< encoder rate noise [m/s or rad/s] (measure encoders)
-    unsigned seed = 1;                           ///< noise seed
-    bool no_saturation = false;                  ///< do not clip the forces at each joint's effort
+    /// False: `plant` is the build's default, not the caller's choice; a two-DOF robot, which
+    /// the Simbody plant does not take, then runs on nocdyn's (a chosen Simbody plant is refused).
+    bool plant_given = true;
+    double natural_frequency = 50.0;  ///< f_n of the error dynamics [Hz] (kNaturalFrequencyRange)
+    double payload_mass = 0.0;        ///< [kg], on the plant's platform only (model mismatch)
+    double payload_inertia = 0.0;     ///< about the payload's c.o.m. [kg m^2]
+    std::vector<double> payload_com;  ///< [x, y] in the platform frame [m]; empty: at C
+    double noise_pose = 0.0;          ///< pose sensor noise [m and rad]
+    double noise_rate = 0.0;          ///< its rate's [m/s and rad/s]
+    double noise_tau = 0.0;           ///< force measurement noise in the sensors' log [N or N m]
+    std::string measure = "pose";     ///< pose (a pose sensor) or encoders (u, du and the tracker)
+    double noise_u = 0.0;             ///< encoder noise [m or rad] (log, measure encoders)
+    double noise_du = 0.0;            ///< encoder rate noise [m/s or rad/s] (measure encoders)
+    unsigned seed = 1;                ///< noise seed
+    bool no_saturation = false;       ///< do not clip the forces at each joint's effort
     /// Also the sensors' log t,u1..un,tau1..taun (ControlResult::log), for identify.
     bool sensor_log = false;
 };

@@ -22,7 +22,7 @@ void validate(const EnvelopeOptions& options) {
 
 EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
     validate(options);
-    const Model model(loadRobot(options.robot));
+    const Model model(loadRobotAnyMotion(options.robot));
     nocdyn::EnvelopeOptions envelope;
     envelope.min_frequency = options.min_frequency;
     envelope.max_frequency = options.max_frequency;
@@ -53,6 +53,7 @@ std::string resonanceSummary(const EnvelopeResonance& resonance) {
             resonance.model.c_str(), resonance.damping_ratio, resonance.frequency, resonance.amplification,
             resonance.amplification);
         for (const EnvelopeAxis axis : kEnvelopeAxes) {
+            if (!hasAxis(resonance.task_dimension, axis)) continue;
             const double f = resonance.band_end[static_cast<std::size_t>(axis)];
             text += std::string(axis == kEnvelopeAxes.front() ? " " : ", ") + axisName(axis) + " " +
                     (std::isfinite(f) ? text::format("%.4g Hz", f) : std::string("no frequency"));

@@ -77,10 +77,25 @@ analysis::LumpedModes lumpedModesAt(const Model& model, const analysis::Stiffnes
     return modes;
 }
 
+/// The operating pose (or rate) of the options' values: x, y, theta in the user's order, or x, y
+/// of a two-DOF robot (theta at home, its rate 0).
+Vector3 operatingValues(const Model& model, const std::vector<double>& values, const char* option) {
+    const auto n = static_cast<std::size_t>(model.task_dimension);
+    if (values.size() != n) {
+        throw OptionError(option, model.task_dimension == 2
+                                      ? "a two-DOF robot (motion: translation) takes 2 values x, y: it has no theta"
+                                      : "expected 3 values x, y, theta");
+    }
+    return n == 3 ? threeValues(values) : Vector3(values[0], values[1], 0.0);
+}
+
 FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Model& model) {
     Data data(model);
-    const Pose p = options.pose.empty() ? model.home : corePose(threeValues(options.pose));
-    const Twist dp = options.rate.empty() ? Twist::Zero() : Twist(corePose(threeValues(options.rate)));
+    const bool task = model.task_dimension == 2;
+    Pose p = options.pose.empty() ? model.home : corePose(operatingValues(model, options.pose, "pose"));
+    if (task) p(0) = model.home(0);
+    const Twist dp =
+        options.rate.empty() ? Twist::Zero() : Twist(corePose(operatingValues(model, options.rate, "rate")));
     // the operating point: the forces that hold the state without acceleration
     if (const Status status = inverseDynamics(model, data, p, dp, Twist::Zero()); !status) {
         throw Error("operating point: " + describe(status, model));
@@ -112,9 +127,14 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
     out.summary = "# frequency response of " + io::terminalText(out.robot) + " from " + inputs + " to " +
                   (acceleration ? "the platform acceleration" : "the actuator variables") +
                   (lumped ? " (lumped compliant model)\n" : " (rigid model)\n");
-    line = text::format("# operating point [x, y, theta] = [%.6g, %.6g, %.6g], its rate = [%.6g, %.6g, %.6g]%s\n",
-                        pu(0), pu(1), pu(2), dpu(0), dpu(1), dpu(2),
-                        options.payload > 0.0 ? text::format("; payload %g kg at C", options.payload).c_str() : "");
+    const std::string payload =
+        options.payload > 0.0 ? text::format("; payload %g kg at C", options.payload) : std::string();
+    line = task ? text::format("# operating point [x, y] = [%.6g, %.6g], its rate = [%.6g, %.6g]%s\n", pu(0), pu(1),
+                               dpu(0), dpu(1), payload.c_str())
+                : text::format(
+                      "# operating point [x, y, theta] = [%.6g, %.6g, %.6g], its rate = [%.6g, %.6g, "
+                      "%.6g]%s\n",
+                      pu(0), pu(1), pu(2), dpu(0), dpu(1), dpu(2), payload.c_str());
     out.summary += line;
     if (lumped) {
         const analysis::LumpedModes modes = lumpedModesAt(model, compliance, p);
@@ -131,8 +151,9 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
         "of |H|\n";
     Eigen::Index c_out = 1;
     for (int k = 0; k < r.outputs; ++k) {
-        // accelerations per axis in the order x, y, theta; actuator variables in theirs
-        const int o = acceleration ? kCoreAxis[k] : k;
+        // accelerations per axis in the order x, y, theta (a two-DOF robot's x, y: its outputs'
+        // own order); actuator variables in theirs
+        const int o = acceleration && !task ? kCoreAxis[k] : k;
         std::string label = acceleration ? "dd" : "u";
         label += acceleration ? std::string(kAxisNames[k]) : std::to_string(k + 1);
         for (int i = 0; i < r.inputs; ++i) {
@@ -148,7 +169,7 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
             const bool force = system.inputs[static_cast<std::size_t>(i)] == LinearInput::force;
             const bool linear_input = prismatic(model, i);
             const std::string input_unit = force ? (linear_input ? "N" : "N m") : (linear_input ? "m" : "rad");
-            const bool linear_output = acceleration ? kCoreAxis[k] != 0 : prismatic(model, k);
+            const bool linear_output = acceleration ? kCoreAxis[k] != 0 : prismatic(model, k);  // k < 2: x, y
             const std::string output_unit =
                 acceleration ? (linear_output ? "m/s^2" : "rad/s^2") : (linear_output ? "m" : "rad");
             const std::string unit = perUnit(output_unit, input_unit);
@@ -175,7 +196,7 @@ std::string bandEndText(double end) {
 FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, const RobotDescription& robot,
                                    const Model& model) {
     const Model plant_model(withPayload(robot, Payload{options.payload, 0.0, Vector2::Zero()}));
-    const Pose p = options.pose.empty() ? model.home : corePose(threeValues(options.pose));
+    const Pose p = options.pose.empty() ? model.home : corePose(operatingValues(model, options.pose, "pose"));
     const analysis::StiffnessModel compliance(plant_model);
     const bool lumped = lumpedPlant(options, compliance);
     ShakeLoopOptions loop_options;
@@ -273,9 +294,11 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
 }  // namespace
 
 void validate(const FrequencyResponseOptions& options) {
-    if (!options.pose.empty() && options.pose.size() != 3) throw OptionError("pose", "expected 3 values x, y, theta");
-    if (!options.rate.empty() && options.rate.size() != 3)
-        throw OptionError("rate", "expected 3 values dx, dy, dtheta");
+    // 3 values x, y, theta, or 2 of a two-DOF robot (checked against the robot when it is loaded)
+    if (!options.pose.empty() && options.pose.size() != 3 && options.pose.size() != 2)
+        throw OptionError("pose", "expected 3 values x, y, theta (2, x, y, for a two-DOF robot)");
+    if (!options.rate.empty() && options.rate.size() != 3 && options.rate.size() != 2)
+        throw OptionError("rate", "expected 3 values dx, dy, dtheta (2, dx, dy, for a two-DOF robot)");
     for (const double v : options.pose) requireIn(v, kLengthRange, "pose");
     for (const double v : options.rate) requireIn(v, Range{-1e6, 1e6, "m/s or rad/s"}, "rate");
     if (options.output_kind != "acceleration" && options.output_kind != "actuators") {
@@ -328,7 +351,20 @@ void validate(const FrequencyResponseOptions& options) {
 
 FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& options, Observer& /*observer*/) {
     validate(options);
-    const RobotDescription robot = loadRobot(options.robot);
+    const RobotDescription robot = loadRobotAnyMotion(options.robot);
+    if (robot.motion == PlatformMotion::translation) {
+        // the open-loop rigid plant over x, y; the shake-table loop and the lumped compliant
+        // model are built for three-DOF robots only
+        if (options.closed_loop)
+            throw OptionError("closed_loop",
+                              "the shake-table loop of a two-DOF robot (motion: translation) is not built; its "
+                              "open-loop plant is (without `closed_loop`)");
+        if (options.compliance == "lumped" ||
+            (options.compliance == "auto" && analysis::StiffnessModel(Model(robot)).any))
+            throw OptionError("compliance",
+                              "the lumped compliant model of a two-DOF robot (motion: translation) is not built: "
+                              "give `compliance` rigid for its rigid plant");
+    }
     // the open-loop plant carries the payload (a point mass at C) itself
     FrequencyResponseResult out =
         options.closed_loop

@@ -26,8 +26,9 @@ RobotDescription loadRobot(const RobotSource& source) {
     RobotDescription robot = loadRobotAnyMotion(source);
     if (robot.motion == PlatformMotion::translation) {
         throw Error(where(robot, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does not " +
-                    "take it yet (pose, forward-kinematics, inverse-dynamics, loads, simulate, workspace, validate, " +
-                    "convert, shake, design and Python's Robot.inverse_dynamics do)");
+                    "take it yet (pose, forward-kinematics, inverse-dynamics, loads, simulate, control, workspace, "
+                    "envelope, frequency-response, validate, convert, shake, design and Python's "
+                    "Robot.inverse_dynamics do)");
     }
     return robot;
 }

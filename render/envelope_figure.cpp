@@ -61,7 +61,11 @@ Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::strin
     }
     Figure figure;
     figure.title = "Operating envelope of " + literalText(robot) + ": " + reading;
-    figure.panels = {translation, rotation};
+    // a two-DOF robot's envelope has no theta points: no rotation panel
+    const bool rotates =
+        std::any_of(points.begin(), points.end(), [](const EnvelopePoint& p) { return p.axis == EnvelopeAxis::theta; });
+    figure.panels = {translation};
+    if (rotates) figure.panels.push_back(rotation);
     return figure;
 }
 

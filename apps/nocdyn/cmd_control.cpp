@@ -41,6 +41,7 @@ void addControlCommand(CLI::App& app) {
         "--measure encoders). computed-torque: A_p^T tau = M_p(p) (ddp_d + Kd e' + Kp e) + h_p(p, dp), e = p_d - p,\n"
         "Kp = w^2, Kd = 2w, w = 2 pi f_n; pd: A_p^T tau = M_p(home) (Kp e + Kd e'); tau minimum-norm when redundant.\n"
         "Forces held between ticks, each clipped at its joint's effort. Prints RMS and peak errors.\n"
+        "A two-DOF robot (motion: translation): p = [x, y], a trajectory keyed x, y, the plant nocdyn by default.\n"
         "CSV: " +
             io::columnList(io::TableId::closed_loop) +
             ".\n"
@@ -54,7 +55,7 @@ void addControlCommand(CLI::App& app) {
     command->add_option("--controller", options->controller, "computed-torque or pd")
         ->check(CLI::IsMember({"computed-torque", "pd"}))
         ->capture_default_str();
-    addPlantOption(*command, options->plant);
+    CLI::Option* plant = addPlantOption(*command, options->plant);
     command->add_option("--rate", options->rate, "Controller rate [Hz]")
         ->check(within(app::kControllerRateRange))
         ->capture_default_str();
@@ -114,7 +115,10 @@ void addControlCommand(CLI::App& app) {
         ->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Tracking-error figure: writes STEM.png and STEM.svg")
         ->check(nonEmptyPath());
-    command->callback([options] { control_command::run(*options); });
+    command->callback([options, plant] {
+        options->plant_given = plant->count() > 0;
+        control_command::run(*options);
+    });
 }
 
 }  // namespace nocdyn::cli

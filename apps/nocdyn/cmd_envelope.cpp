@@ -61,8 +61,9 @@ void addEnvelopeCommand(CLI::App& app) {
     auto options = std::make_shared<envelope_command::Options>();
     CLI::App* command = app.add_subcommand(
         "envelope",
-        "Operating envelope of any robot: for each axis (x, y, theta) and log-spaced frequencies, the largest\n"
-        "amplitude A of A sin(2 pi f t) about the home posture within every joint's range and velocity limits,\n"
+        "Operating envelope of any robot: for each axis (x, y, theta; x, y of a two-DOF robot) and log-spaced\n"
+        "frequencies, the largest amplitude A of A sin(2 pi f t) about the home posture within every joint's\n"
+        "range and velocity limits,\n"
         "every actuator's effort (inverse dynamics over one period, gravity and friction included) and the\n"
         "workspace (reach, limb and actuation singularities), and which limit binds, named with its actuator.\n"
         "The band's third bound: when the robot file declares compliance, the lumped model at home with its\n"

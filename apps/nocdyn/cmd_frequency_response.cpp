@@ -61,12 +61,15 @@ void addFrequencyResponseCommand(CLI::App& app) {
         "  nocdyn frequency-response --closed-loop --payload 5 --f-min 0.1 --f-max 4000 -o loop.csv\n"
         "Example: nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant");
     addRobotOption(*command, options->robot);
-    command->add_option("--pose", options->pose, "Operating pose X Y THETA [m, m, rad] (default: home)")
-        ->expected(3)
+    command
+        ->add_option("--pose", options->pose,
+                     "Operating pose X Y THETA [m, m, rad], X Y of a two-DOF robot (default: home)")
+        ->expected(2, 3)
         ->check(within(app::kLengthRange));
     command
-        ->add_option("--rate", options->rate, "Operating pose rate DX DY DTHETA [m/s, m/s, rad/s] (default: at rest)")
-        ->expected(3);
+        ->add_option("--rate", options->rate,
+                     "Operating pose rate DX DY DTHETA [m/s, m/s, rad/s], DX DY of a two-DOF robot (default: at rest)")
+        ->expected(2, 3);
     command->add_option("--output-kind", options->output_kind, "What the output is")
         ->check(CLI::IsMember({"acceleration", "actuators"}))
         ->capture_default_str();

@@ -424,14 +424,17 @@ def control(trajectory, *, robot=None, set=None, plant=None, log=None, output=No
     noise_* arguments are sensor noise; log: also write the sensors' log for identify. Returns a
     Table with the CSV's columns (t, x_d, y_d, theta_d, ..., e_x, e_y, e_theta, u1..un, ..., tau1..taun);
     its text holds the RMS and peak errors. output, figure: also write the CSV and the
-    tracking-error figure (STEM.png and STEM.svg)."""
+    tracking-error figure (STEM.png and STEM.svg). A two-DOF robot (motion: translation) takes a
+    trajectory keyed x, y and runs on 'nocdyn' by default (plant 'simbody' is refused); its Table
+    has no theta columns."""
     if options.get("payload_com") is None:
         options.pop("payload_com", None)
     else:
         options["payload_com"] = _numbers(options["payload_com"], "payload_com", 2, "numbers [x, y]")
     bound = _bound_options(_nocdyn.ControlOptions, {"trajectory": trajectory, **options})
-    if plant is not None:  # None: the build's default (Simbody's when built in)
+    if plant is not None:  # None: the build's default (Simbody's when built in; nocdyn's for a two-DOF robot)
         bound.plant = _argument(plant, "plant", "")
+    bound.plant_given = plant is not None
     bound.robot = _robot_source(robot, set)
     files = [_path_argument(log, "log"), _path_argument(figure, "figure")]
     _refuse_overwrites("control", [("robot", robot), ("trajectory", trajectory)], [("output", output), ("log", log)],
@@ -449,9 +452,9 @@ control.__signature__ = control.__signature__.replace(parameters=[
 
 
 def envelope(*, robot=None, set=None, output=None, figure=None, progress=None, **options):
-    """The operating envelope (``nocdyn envelope``): per axis (x, y, theta) and ``points``
-    log-spaced frequencies in [min_frequency, max_frequency] Hz, the largest amplitude within
-    every limit and which limit binds. Returns an Envelope (a Table with the CSV's columns: axis
+    """The operating envelope (``nocdyn envelope``): per axis (x, y, theta; x, y of a two-DOF
+    robot) and ``points`` log-spaced frequencies in [min_frequency, max_frequency] Hz, the
+    largest amplitude within every limit and which limit binds. Returns an Envelope (a Table with the CSV's columns: axis
     and limit as words; frequency, amplitude, ...; limb, joint, actuator numbered from 1, 0 when
     none) whose ``first_natural_frequency`` [Hz] is the band's third bound when the robot file
     declares compliance (None otherwise; ``text`` says which), ``band_end`` {"x": f, "y": f,
@@ -476,7 +479,8 @@ envelope.__signature__ = _signature(_nocdyn.EnvelopeOptions, (), before=(("robot
 def frequency_response(*, robot=None, set=None, output=None, summary=None, figure=None, **options):
     """The rigid robot linearised at an operating point and its frequency response
     (``nocdyn frequency-response``): pose [x, y, theta] (default home) and rate [dx, dy, dtheta]
-    (default at rest), held by the inverse dynamics' forces; from each actuator force to each
+    (default at rest; [x, y] and [dx, dy] of a two-DOF robot, whose channels are x, y), held by
+    the inverse dynamics' forces; from each actuator force to each
     platform acceleration (output_kind "acceleration") or actuator variable ("actuators") over
     ``points`` log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then
     <output>_tau<a>_db and _deg per channel, axes x, y, theta); ``text`` holds the summary with
@@ -501,9 +505,12 @@ def frequency_response(*, robot=None, set=None, output=None, summary=None, figur
     robot file that declares compliance the loop's plant is the lumped compliant model
     (``compliance`` "auto" or "lumped"; "rigid" forces the rigid plant)."""
     options = {k: v for k, v in options.items() if not (k in ("pose", "rate") and v is None)}
-    for name, what in (("pose", "numbers [x, y, theta]"), ("rate", "numbers [dx, dy, dtheta]")):
+    for name, what in (("pose", "numbers [x, y, theta] ([x, y] of a two-DOF robot)"),
+                       ("rate", "numbers [dx, dy, dtheta] ([dx, dy] of a two-DOF robot)")):
         if name in options:
-            options[name] = _numbers(options[name], name, 3, what)
+            options[name] = _numbers(options[name], name, None, what)
+            if len(options[name]) not in (2, 3):
+                raise ValueError(f"{name}: expected 3 {what}, got {len(options[name])} values")
     bound = _bound_options(_nocdyn.FrequencyResponseOptions, options)
     bound.robot = _robot_source(robot, set)
     files = [_path_argument(summary, "summary"), _path_argument(figure, "figure")]

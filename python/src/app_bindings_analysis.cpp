@@ -92,7 +92,8 @@ void bindAnalysis(py::module_& m) {
                 first = py::float_(resonance.frequency);
                 py::dict ends;
                 for (const EnvelopeAxis axis : kEnvelopeAxes)
-                    ends[axisName(axis)] = resonance.band_end[static_cast<std::size_t>(axis)];
+                    if (hasAxis(resonance.task_dimension, axis))
+                        ends[axisName(axis)] = resonance.band_end[static_cast<std::size_t>(axis)];
                 band_end = ends;
             }
             return py::make_tuple(tableTuple(result.table), result.summary, first, band_end,

@@ -118,6 +118,7 @@ void bindSimulation(py::module_& m) {
     OptionsClass<app::ControlOptions, app::SamplingOptions>(m, "ControlOptions")
         .field("robot", &app::ControlOptions::robot)
         .field("sensor_log", &app::ControlOptions::sensor_log)
+        .field("plant_given", &app::ControlOptions::plant_given)
         .inherited("trajectory")
         .option("controller", &app::ControlOptions::controller)
         .option("plant", &app::ControlOptions::plant)

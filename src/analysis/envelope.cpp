@@ -282,6 +282,9 @@ private:
 EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double frequency,
                                const EnvelopeOptions& options) {
     checkFrequency(frequency, "frequency");
+    if (!hasAxis(model.task_dimension, axis)) {
+        throw Error("envelope: a two-DOF robot (motion: translation) has no theta axis: its pose is [x, y]");
+    }
     if (options.samples_per_period < 8 || options.samples_per_period > 65536) {
         throw Error("envelope: samples_per_period must be in [8, 65536]");
     }
@@ -354,6 +357,7 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
     EnvelopeResonance out;
     out.amplification = amplification;
     out.damping_ratio = model.description.damping_ratio;
+    out.task_dimension = model.task_dimension;
     out.band_end.fill(std::numeric_limits<double>::infinity());
     const analysis::StiffnessModel compliance(model);
     if (!compliance.any) {
@@ -361,6 +365,10 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
         return out;
     }
     out.declared = true;
+    if (model.task_dimension == 2 && model.description.hasElasticBody()) {
+        out.reason = "the elastic links of a two-DOF robot are not modelled (joint and drive stiffness are)";
+        return out;
+    }
     Data data(model);
     analysis::StiffnessData stiffness;
     analysis::LumpedModes modes;
@@ -369,20 +377,36 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
         out.reason = "at home: " + describe(status, model);
         return out;
     }
-    if (stiffness.free_directions > 0) {
+    // a two-DOF robot's theta is always free (a rotation about C loads no limb): x, y are its
+    // coordinates, and its modes the task's, K_t v = w^2 M_t v (analysis::taskModes)
+    const bool task = model.task_dimension == 2;
+    if (stiffness.free_directions > (task ? 1 : 0)) {
         out.reason = "the declared compliance leaves the platform free at home (" +
-                     analysis::describeDirection(stiffness.free.col(0)) + ")";
+                     analysis::describeDirection(stiffness.free.col(task ? 1 : 0)) + ")";
         return out;
     }
     out.known = true;
     out.modes = modes;
-    out.frequency = modes.frequency(0);
-    out.modal_frequency = modes.frequency;
-    out.modal_shape = modes.shape;
-    out.modal_participation = modes.shape.transpose() * modes.M;  // (phi_i^T M)(a)
+    if (task) {
+        // the pose-order shapes E v_i and participations v_i^T M_t E^T (theta's row and column zero)
+        analysis::TaskModes t;
+        analysis::taskModes(model, data, stiffness, modes, t);
+        out.modal_frequency = t.frequency;
+        out.modal_shape = Eigen::MatrixXd::Zero(3, 2);
+        out.modal_shape.bottomRows(2) = t.shape;
+        out.modal_participation = Eigen::MatrixXd::Zero(2, 3);
+        out.modal_participation.rightCols(2) = t.shape.transpose() * t.M;
+        out.frequency = t.frequency(0);
+    } else {
+        out.frequency = modes.frequency(0);
+        out.modal_frequency = modes.frequency;
+        out.modal_shape = modes.shape;
+        out.modal_participation = modes.shape.transpose() * modes.M;  // (phi_i^T M)(a)
+    }
     // ascending: the first resonance; where the lumped model does not hold at home, the
     // elastodynamic model's, and the amplification sums over its modes
-    if (analysis::ElastodynamicModes elastic; analysis::lumpedFailsAt(model, compliance, data, modes, elastic)) {
+    if (analysis::ElastodynamicModes elastic;
+        !task && analysis::lumpedFailsAt(model, compliance, data, modes, elastic)) {
         out.model = "elastodynamic";
         out.warning = analysis::lumpedMismatchWarning(modes, elastic, true);
         out.frequency = elastic.frequency(0);
@@ -405,6 +429,7 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
     const double f_lo = 1e-3 * out.frequency, f_hi = 10.0 * out.modal_frequency.maxCoeff();
     constexpr int kGrid = 4000;
     for (const EnvelopeAxis axis : kEnvelopeAxes) {
+        if (!hasAxis(model.task_dimension, axis)) continue;
         double below = f_lo;
         for (int k = 1; k <= kGrid; ++k) {
             const double f = f_lo * std::pow(f_hi / f_lo, static_cast<double>(k) / kGrid);
@@ -435,11 +460,13 @@ std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeO
     }
     std::vector<EnvelopePoint> points;
     for (const EnvelopeAxis axis : kEnvelopeAxes) {
+        if (!hasAxis(model.task_dimension, axis)) continue;  // a two-DOF robot: x and y
         for (int k = 0; k < options.frequencies; ++k) {
             const double s = options.frequencies > 1 ? static_cast<double>(k) / (options.frequencies - 1) : 0.0;
             const double f = options.min_frequency * std::pow(options.max_frequency / options.min_frequency, s);
             points.push_back(maximumAmplitude(model, axis, f, options));
-            if (options.progress) options.progress(static_cast<int>(points.size()), 3 * options.frequencies);
+            if (options.progress)
+                options.progress(static_cast<int>(points.size()), model.task_dimension * options.frequencies);
         }
     }
     // at and beyond the axis' band end the machine's own dynamics bind, whatever the joints allow

@@ -30,6 +30,25 @@ Status linearize(const Model& model, Data& data, const Pose& p, const Twist& dp,
     const int n = model.actuators;
     out.output = output;
     out.inputs.assign(static_cast<std::size_t>(n), LinearInput::force);
+    if (model.task_dimension == 2) {
+        // translation: the state is [p_t; dp_t] over the task coordinates [x, y] (p = E p_t):
+        // A = [0 I; E^T df/dp E, E^T df/d(dp) E], B = [0; E^T df/dtau], C of the actuators A_p E
+        out.A = Eigen::MatrixXd::Zero(4, 4);
+        out.A.topRightCorner<2, 2>().setIdentity();
+        out.A.block<2, 2>(2, 0) = d.d_p.bottomRightCorner<2, 2>();
+        out.A.block<2, 2>(2, 2) = d.d_dp.bottomRightCorner<2, 2>();
+        out.B = Eigen::MatrixXd::Zero(4, n);
+        out.B.bottomRows<2>() = d.d_tau.bottomRows<2>();
+        if (output == LinearOutput::platform_acceleration) {
+            out.C = out.A.bottomRows<2>();
+            out.D = out.B.bottomRows<2>();
+        } else {
+            out.C = Eigen::MatrixXd::Zero(n, 4);
+            out.C.leftCols<2>() = (Eigen::MatrixXd(data.A) * platformTwistMap(p.tail<2>())).rightCols<2>();
+            out.D = Eigen::MatrixXd::Zero(n, n);
+        }
+        return {};
+    }
     out.A = Eigen::MatrixXd::Zero(6, 6);
     out.A.topRightCorner<3, 3>().setIdentity();
     out.A.block<3, 3>(3, 0) = d.d_p;
@@ -66,6 +85,11 @@ Matrix3 modalDamping(const Matrix3& M, const Matrix3& K, double zeta) {
 Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& compliance, Data& data, const Pose& p,
                           const Twist& dp, const ActuatorVector& tau, LinearOutput output, StateSpace& out) {
     if (!compliance.any) return linearize(model, data, p, dp, tau, output, out);
+    if (model.task_dimension == 2) {
+        throw Error(
+            "the lumped compliant model of a two-DOF robot (motion: translation) is not built: its rigid "
+            "model is");
+    }
     using analysis::JointSpring;
     ForwardDynamicsDerivatives d;
     if (const Status status = forwardDynamicsDerivatives(model, data, p, dp, tau, d); !status) return status;

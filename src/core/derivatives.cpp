@@ -343,6 +343,30 @@ Status seedNineDirections(const Model& model, Data& data, const Pose& p, const T
     return {};
 }
 
+/// de/d(p, dp) (3 x 6) of the residual e = W_P(p, dp, ddp) - A(p)^T tau at the motion ddp, tau
+/// held: the second pass of forwardDynamicsDerivatives (its kinematics at p, dp done).
+Eigen::Matrix<double, 3, 6> residualDerivatives(const Model& model, const Data& data, const Twist& dp, const Twist& ddp,
+                                                const ActuatorVector& tau) {
+    constexpr int N = 6;
+    SampleIn<Dual<N>> in;
+    seedPositions<N>(model, data, 0, in);
+    in.dp = seedVector<N>(dp, 3);
+    in.ddp = seedVector<N>(ddp, -1);
+    S3<Dual<N>> W;
+    std::array<S3<Dual<N>>, kMaxActuators> A;
+    platformWrench(model, in, W, A);
+    Eigen::Matrix<double, 3, 6> de;
+    const std::array<const Dual<N>*, 3> w{&W.w, &W.x, &W.y};
+    for (int r = 0; r < 3; ++r) de.row(r) = w[static_cast<std::size_t>(r)]->d.transpose().matrix();
+    for (int a = 0; a < model.actuators; ++a) {
+        const S3<Dual<N>>& row = A[static_cast<std::size_t>(a)];
+        de.row(0) -= tau(a) * row.w.d.transpose().matrix();
+        de.row(1) -= tau(a) * row.x.d.transpose().matrix();
+        de.row(2) -= tau(a) * row.y.d.transpose().matrix();
+    }
+    return de;
+}
+
 }  // namespace
 
 Status inverseDynamicsDerivatives(const Model& model, Data& data, const Pose& p, const Twist& dp, const Twist& ddp,
@@ -401,31 +425,34 @@ Status forwardDynamicsDerivatives(const Model& model, Data& data, const Pose& p,
             K.row(r) = e[static_cast<std::size_t>(r)]->d.transpose().matrix();
         }
     }
-    // K = S(c)^-T M_p: M_p = S(c)^T K, K^-1 by its LU (3 x 3, fixed size: no allocation)
+    // K = S(c)^-T M_p: M_p = S(c)^T K
+    const Matrix3 S = platformTwistMap(data.p.tail<2>());
+    out.M_p = S.transpose() * K;
+    if (model.task_dimension == 2) {
+        // translation: theta is no coordinate (ddp = E ddp_t, and a rotation about C moves no
+        // body: K's theta column is zero), so the motion solves G e = 0 with G = E^T S(c)^T,
+        // M_t = G K E (2 x 2); d(ddp_t) = -M_t^-1 G de, d(ddp_t)/d tau = M_t^-1 G A^T. The
+        // derivatives by theta and theta's own acceleration are zero.
+        const Eigen::Matrix<double, 2, 3> G = S.transpose().bottomRows<2>();
+        const Eigen::PartialPivLU<Matrix2> lu(G * K.rightCols<2>());
+        const Vector2 ddp_t = -lu.solve(G * e0);
+        out.ddp = Twist(0.0, ddp_t(0), ddp_t(1));
+        if (!out.ddp.allFinite()) return {StatusCode::not_finite, -1, ddp_t(0)};
+        const Eigen::Matrix<double, 3, 6> de = residualDerivatives(model, data, dp, out.ddp, tau);
+        const Eigen::Matrix<double, 2, 6> dddp = -lu.solve(G * de);
+        out.d_p.setZero();
+        out.d_dp.setZero();
+        out.d_p.bottomRightCorner<2, 2>() = dddp.block<2, 2>(0, 1);
+        out.d_dp.bottomRightCorner<2, 2>() = dddp.block<2, 2>(0, 4);
+        out.d_tau.setZero(3, n);
+        for (int a = 0; a < n; ++a) out.d_tau.col(a).tail<2>() = lu.solve(G * Vector3(data.A.row(a).transpose()));
+        return {};
+    }
     const Eigen::PartialPivLU<Matrix3> lu(K);
     out.ddp = -lu.solve(e0);
     if (!out.ddp.allFinite()) return {StatusCode::not_finite, -1, out.ddp(0)};
-    out.M_p = platformTwistMap(data.p.tail<2>()).transpose() * K;
-    // second pass at the motion: de/d(p, dp), tau held
-    constexpr int N = 6;
-    SampleIn<Dual<N>> in;
-    seedPositions<N>(model, data, 0, in);
-    in.dp = seedVector<N>(dp, 3);
-    in.ddp = seedVector<N>(out.ddp, -1);
-    S3<Dual<N>> W;
-    std::array<S3<Dual<N>>, kMaxActuators> A;
-    platformWrench(model, in, W, A);
-    Eigen::Matrix<double, 3, 6> de;
-    const std::array<const Dual<N>*, 3> w{&W.w, &W.x, &W.y};
-    for (int r = 0; r < 3; ++r) de.row(r) = w[static_cast<std::size_t>(r)]->d.transpose().matrix();
-    for (int a = 0; a < n; ++a) {
-        const S3<Dual<N>>& row = A[static_cast<std::size_t>(a)];
-        de.row(0) -= tau(a) * row.w.d.transpose().matrix();
-        de.row(1) -= tau(a) * row.x.d.transpose().matrix();
-        de.row(2) -= tau(a) * row.y.d.transpose().matrix();
-    }
     // K d(ddp) + de = 0; de/d tau = -A^T
-    const Eigen::Matrix<double, 3, 6> dddp = -lu.solve(de);
+    const Eigen::Matrix<double, 3, 6> dddp = -lu.solve(residualDerivatives(model, data, dp, out.ddp, tau));
     out.d_p = dddp.leftCols<3>();
     out.d_dp = dddp.rightCols<3>();
     out.d_tau.resize(3, n);

@@ -52,7 +52,8 @@ std::vector<Layout> makeLayouts() {
          "Closed-loop run",
          "`nocdyn control --output`; `nocdyn reproduce`'s `control_paper1.csv`, `control_paper2.csv`; Python "
          "`nocdyn.control`",
-         "One row per controller tick. The errors are desired minus achieved.",
+         "One row per controller tick. The errors are desired minus achieved. A two-DOF robot's (motion: "
+         "translation, pose [x, y]) table has no column theta_d, theta or e_theta.",
          {t,
           {"x_d", "m", "desired x"},
           {"y_d", "m", "desired y"},

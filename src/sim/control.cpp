@@ -25,6 +25,16 @@ namespace {
 /// tau = minimum-norm solution of A_p^T tau = Q with A_p = A S(c) (n x 3, full column rank at
 /// a regular pose): A_p (A_p^T A_p)^-1 Q, which is A_p^-T Q for n = 3. Needs the velocity stage.
 void minimumNormForces(const Model& model, const Data& data, const Vector3& Q, ActuatorVector& tau) {
+    tau.resize(model.actuators);
+    if (model.task_dimension == 2) {
+        // translation: A_p E = the x, y columns of A (S(c) E = [0; I]), tau = A_E (A_E^T A_E)^-1 E^T Q
+        Matrix2 G = Matrix2::Zero();
+        for (int a = 0; a < model.actuators; ++a)
+            G.noalias() += data.A.row(a).tail<2>().transpose() * data.A.row(a).tail<2>();
+        const Vector2 lambda = G.ldlt().solve(Q.tail<2>());
+        for (int a = 0; a < model.actuators; ++a) tau(a) = data.A.row(a).tail<2>().dot(lambda);
+        return;
+    }
     const double cx = data.p(1), cy = data.p(2);
     Matrix3 G = Matrix3::Zero();  // A_p^T A_p
     for (int a = 0; a < model.actuators; ++a) {
@@ -34,7 +44,6 @@ void minimumNormForces(const Model& model, const Data& data, const Vector3& Q, A
         G.noalias() += r * r.transpose();
     }
     const Vector3 lambda = G.ldlt().solve(Q);
-    tau.resize(model.actuators);
     for (int a = 0; a < model.actuators; ++a) {
         const Vector3 row = data.A.row(a).transpose();
         tau(a) = (row(0) + cy * row(1) - cx * row(2)) * lambda(0) + row(1) * lambda(1) + row(2) * lambda(2);

@@ -50,14 +50,22 @@ Table toTable(const InverseDynamicsSeries& series, int actuators) {
     return table;
 }
 
-Table toTable(const PoseLoopResult& result) {
+Table toTable(const PoseLoopResult& result, int task_dimension) {
     Table table;
-    table.columns = columnNames(TableId::closed_loop, {.actuators = result.actuators});
+    table.columns =
+        columnNames(TableId::closed_loop, {.actuators = result.actuators, .task_dimension = task_dimension});
     table.rows.reserve(result.t.size());
     for (std::size_t k = 0; k < result.t.size(); ++k) {
         const Pose& d = result.p_d[k];  // (theta, x, y)
         const Pose& p = result.p[k];
-        std::vector<double> row{result.t[k], d(1), d(2), d(0), p(1), p(2), p(0), d(1) - p(1), d(2) - p(2), d(0) - p(0)};
+        // x, y, then theta (none for a two-DOF robot) of the desired pose, the pose and the error
+        const bool theta = task_dimension == 3;
+        std::vector<double> row{result.t[k], d(1), d(2)};
+        if (theta) row.push_back(d(0));
+        row.insert(row.end(), {p(1), p(2)});
+        if (theta) row.push_back(p(0));
+        row.insert(row.end(), {d(1) - p(1), d(2) - p(2)});
+        if (theta) row.push_back(d(0) - p(0));
         for (const auto* v : {&result.u, &result.u_d, &result.tau}) {
             for (int a = 0; a < result.actuators; ++a) row.push_back((*v)[k](a));
         }

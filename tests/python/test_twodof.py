@@ -130,8 +130,7 @@ def test_pose_prints_x_y(cli, source_dir):
     assert code != 0 and "THETA" in err
 
 
-@pytest.mark.parametrize("command", [["control", "--trajectory", "paper1"],
-                                     ["envelope"], ["frequency-response"], ["regressor"]])
+@pytest.mark.parametrize("command", [["regressor"]])
 def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_path, command):
     forces = tmp_path / "forces.csv"
     forces.write_text("t,tau1,tau2\n0,0,0\n0.1,0,0\n")
@@ -433,3 +432,42 @@ def test_shake_takes_a_records_component_files_as_one_record(source_dir):
                          str(folder / "RSN6_IMPVALL.I_I-ELC270-hor2.AT2")]
     with pytest.raises(ValueError, match="is a suite of records"):
         nocdyn.shake(both, robot=str(source_dir / "robots" / "five-bar.yaml"), **quick)
+
+
+def test_envelope_frequency_response_and_control_of_a_two_dof_robot_are_over_x_y(cli, source_dir, tmp_path):
+    import json
+
+    five_bar = source_dir / "robots" / "five-bar.yaml"
+    table = nocdyn.envelope(robot=str(five_bar), points=2, min_frequency=1.0, max_frequency=50.0)
+    assert sorted(set(table["axis"])) == ["x", "y"] and len(table["axis"]) == 4
+    # with springs at the motors the band's third bound is the task's first mode (pose's number)
+    text = five_bar.read_text()
+    stiff = tmp_path / "stiff-five-bar.yaml"
+    stiff.write_text(text.replace("effort: 8.0, velocity: 30.0}}", "effort: 8.0, velocity: 30.0}, stiffness: 5000.0}"))
+    code, out, err = cli("pose", "0.0", "0.35", "--robot", stiff, "--json")
+    assert code == 0, err
+    first = json.loads(out)["first_frequency"]["value"]
+    band = nocdyn.envelope(robot=str(stiff), points=2, min_frequency=1.0, max_frequency=50.0)
+    assert band.first_natural_frequency == pytest.approx(first, rel=1e-12)
+    assert sorted(band.band_end) == ["x", "y"]
+    assert all(0.0 < f < first for f in band.band_end.values())
+    # the plant over x, y: 2 x 2 channels; a theta value refused
+    plant = nocdyn.frequency_response(robot=str(five_bar), pose=[0.02, 0.3], points=3, compliance="rigid")
+    assert [c for c in plant.columns if c.endswith("_db")] == ["ddx_tau1_db", "ddx_tau2_db", "ddy_tau1_db",
+                                                                "ddy_tau2_db"]
+    with pytest.raises(nocdyn.Error, match="no theta"):
+        nocdyn.frequency_response(robot=str(five_bar), pose=[0.0, 0.3, 0.0], points=3)
+    circle = tmp_path / "circle.yaml"
+    circle.write_text("duration: 0.2\nx: {harmonics: [{amplitude: 0.01, frequency: 2, phase: 1.5707963267948966}]}\n"
+                      "y: {offset: 0.35, harmonics: [{amplitude: 0.01, frequency: 2}]}\n")
+    run = nocdyn.control(str(circle), robot=str(five_bar), plant="nocdyn", rate=2000.0, natural_frequency=20.0)
+    assert list(run.columns[:7]) == ["t", "x_d", "y_d", "x", "y", "e_x", "e_y"]
+    assert np.abs(run["e_x"]).max() < 1e-5 and np.abs(run["e_y"]).max() < 1e-5
+    with pytest.raises(nocdyn.Error, match="plant nocdyn"):
+        nocdyn.control(str(circle), robot=str(five_bar), plant="simbody")
+    # no plant given: nocdyn's, the same run
+    default = nocdyn.control(str(circle), robot=str(five_bar), rate=2000.0, natural_frequency=20.0)
+    np.testing.assert_array_equal(default["e_x"], run["e_x"])
+    code, out, err = cli("control", "--robot", five_bar, "--trajectory", circle, "--rate", "2000")
+    assert code == 0, err
+    assert "on the nocdyn forward dynamics plant" in out

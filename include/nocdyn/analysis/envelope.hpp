@@ -45,6 +45,12 @@ enum class EnvelopeAxis { theta = 0, x = 1, y = 2 };
 /// points, tables and figures.
 inline constexpr std::array<EnvelopeAxis, 3> kEnvelopeAxes{EnvelopeAxis::x, EnvelopeAxis::y, EnvelopeAxis::theta};
 
+/// Whether a robot of task dimension n_t (model.hpp) moves along `axis`: every axis for n_t = 3;
+/// x and y for a two-DOF robot (motion: translation), whose pose [x, y] has no theta.
+[[nodiscard]] constexpr bool hasAxis(int task_dimension, EnvelopeAxis axis) {
+    return task_dimension == 3 || axis != EnvelopeAxis::theta;
+}
+
 /// Which limit stops a larger amplitude. `none`: nothing up to the search bound (the robot's
 /// joints are unlimited along this axis). `resonance`: the frequency is at or above the first
 /// natural frequency (operatingEnvelope only).
@@ -93,7 +99,8 @@ struct EnvelopePoint {
 };
 
 /// Largest amplitude along `axis` at `frequency` (see the file header). Throws nocdyn::Error
-/// for a frequency or option out of range, or a home posture that is not feasible.
+/// for a frequency or option out of range, a home posture that is not feasible, or theta on a
+/// two-DOF robot (no such axis).
 [[nodiscard]] EnvelopePoint maximumAmplitude(const Model& model, EnvelopeAxis axis, double frequency,
                                              const EnvelopeOptions& options = {});
 
@@ -101,7 +108,8 @@ struct EnvelopePoint {
 /// does not hold), its first natural frequency and, per axis, where its dynamic amplification
 /// leaves [1 / limit, limit].
 struct EnvelopeResonance {
-    bool declared = false;  ///< the robot file declares compliance (joint stiffness, elastic body)
+    bool declared = false;   ///< the robot file declares compliance (joint stiffness, elastic body)
+    int task_dimension = 3;  ///< the robot's n_t: its axes are those hasAxis accepts
     bool known = false;
     double frequency = 0.0;                        ///< f_1 [Hz] when known
     double damping_ratio = 0.0;                    ///< zeta of every mode (the robot file's)
@@ -132,7 +140,8 @@ struct EnvelopeResonance {
 /// |H_aa| of the known resonance at frequency f [Hz] (see the file header).
 [[nodiscard]] double dynamicAmplification(const EnvelopeResonance& resonance, EnvelopeAxis axis, double frequency);
 
-/// The whole envelope: for each axis (x, y, theta), each log-spaced frequency. When
+/// The whole envelope: for each axis (x, y, theta; x, y of a two-DOF robot), each log-spaced
+/// frequency. When
 /// envelopeResonance is known, the points at f >= the axis' band end keep the rigid model's
 /// amplitude and peaks but their limit is `resonance` (no limb, joint or actuator).
 [[nodiscard]] std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const EnvelopeOptions& options = {});

@@ -67,11 +67,14 @@ struct StateSpace {
 };
 
 /// The linearised model at (p, dp/dt, tau) (see above). Fails as forwardDynamicsDerivatives.
+/// For a two-DOF robot (motion: translation) the state is [p_t; dp_t] over the task coordinates
+/// [x, y] (model.hpp's task map E) and the acceleration output ddp_t (2 rows).
 Status linearize(const Model& model, Data& data, const Pose& p, const Twist& dp, const ActuatorVector& tau,
                  LinearOutput output, StateSpace& out);
 
 /// The compliant (lumped) linearised model (see above) when compliance.any, else linearize's.
-/// Fails as forwardDynamicsDerivatives and cartesianStiffness (rigid_limb).
+/// Fails as forwardDynamicsDerivatives and cartesianStiffness (rigid_limb). Throws nocdyn::Error
+/// for a two-DOF robot with compliance (its lumped model is not built).
 Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& compliance, Data& data, const Pose& p,
                           const Twist& dp, const ActuatorVector& tau, LinearOutput output, StateSpace& out);
 

@@ -36,8 +36,9 @@ void appendReactions(const Reactions& reactions, int limbs, std::vector<double>&
 [[nodiscard]] Table toTable(const InverseDynamicsSeries& series, int actuators);
 
 /// A closed-loop run: t, x_d, y_d, theta_d, x, y, theta, e_x, e_y, e_theta, u1..un, u1_d..un_d,
-/// tau1..taun (SI; TableId::closed_loop).
-[[nodiscard]] Table toTable(const PoseLoopResult& result);
+/// tau1..taun (SI; TableId::closed_loop); with task_dimension 2 (a two-DOF robot) no theta_d,
+/// theta or e_theta.
+[[nodiscard]] Table toTable(const PoseLoopResult& result, int task_dimension = 3);
 
 /// An experiment's log: t,u1..un,tau1..taun, then du1..dun,ddu1..ddun when it has them (what
 /// identify reads).
