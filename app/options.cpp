@@ -26,7 +26,8 @@ RobotDescription loadRobot(const RobotSource& source) {
     RobotDescription robot = loadRobotAnyMotion(source);
     if (robot.motion == PlatformMotion::translation) {
         throw Error(where(robot, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does not " +
-                    "take it yet (pose, forward-kinematics, simulate, workspace and Python's " +
+                    "take it yet (pose, forward-kinematics, simulate, workspace, regressor, identify, excite, animate "
+                    "and Python's " +
                     "Robot.inverse_dynamics do)");
     }
     return robot;

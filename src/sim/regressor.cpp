@@ -77,6 +77,13 @@ void regressor(const Model& model, const Data& data, RegressorMatrix& Y) {
     Y.resize(model.actuators, P);
     if (model.coordinates == Coordinates::actuators) {
         Y.noalias() = data.Xi.transpose() * W;
+    } else if (model.task_dimension == 2) {
+        // translation: as detail::distribute, tau = A_E (A_E^T A_E)^-1 E^T S(c)^T W with S(c) E = [0; I]:
+        // the force rows of W, A_E the x, y columns of A (the moment row is taken up by the last R joints)
+        const Eigen::Matrix<double, Eigen::Dynamic, 2, 0, kMaxActuators, 2> A_E = data.A.rightCols<2>();
+        const Eigen::Matrix2d N = A_E.transpose() * A_E;
+        const Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, kMaxParameters> L = N.inverse() * W.bottomRows<2>();
+        Y.noalias() = A_E * L;
     } else {
         const Matrix3 AtA = data.A.transpose() * data.A;
         const Matrix3 AtA_inv = AtA.inverse();
