@@ -65,7 +65,9 @@ void regressor(const Model& model, const Data& data, RegressorMatrix& Y) {
         W.middleCols<kBodyParameters>(bodyParameterIndex(model.body(j, 1))) =
             row0 * (ld.s[0].transpose() * Y1) + row1 * (ld.s[1].transpose() * Y1);
         // joint friction to overcome: J_j^-T e_k (damping q'_k + friction sign q'_k)
-        for (int k = 0; k < 3; ++k) {
+        // (a two-DOF robot's last R joint turns with the fictitious theta, which the pose [x, y]
+        // does not set: it takes no friction, and its columns stay zero)
+        for (int k = 0; k < (model.task_dimension == 2 ? 2 : 3); ++k) {
             const int index = jointParameterIndex(model, j, k);
             W.col(index) = ld.J_inv.row(k).transpose() * ld.gamma_dot(k);
             W.col(index + 1) = ld.J_inv.row(k).transpose() * sign(ld.gamma_dot(k));

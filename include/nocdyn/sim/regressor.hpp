@@ -19,7 +19,8 @@
 // minimum-norm A (A^T A)^-1 W (redundant), exactly as inverse dynamics applies them. For a
 // two-DOF robot (motion: translation, task map E) only the force rows count, E^T S(c)^T W = [W_x; W_y]:
 // tau = A_E (A_E^T A_E)^-1 [W_x; W_y], A_E = A S(c) E the x, y columns of A. Its platform is a point
-// mass at the tool point that never turns, so the platform's m c_x, m c_y and I_O columns are zero.
+// mass at the tool point that never turns, so the platform's m c_x, m c_y and I_O columns are zero,
+// as are the friction columns of each limb's last R joint (it turns with the fictitious theta).
 #pragma once
 
 #include <string>
