@@ -229,22 +229,27 @@ MotionSamples motionFromTable(const Model& model, const io::Table& table, const 
                     std::to_string(kMaxAnimationSamples));
     }
     const int n = model.actuators;
-    // a two-DOF robot's pose is [x, y]: no theta columns, theta stays at home(0)
+    // a two-DOF robot's pose is [x, y]: theta stays at home(0), and a theta column, when there is
+    // one, must hold that value
     const bool two_dof = model.task_dimension == 2;
-    if (two_dof && (table.has("theta") || table.has("theta_achieved"))) {
-        throw Error(path +
-                    ": a theta column, but a two-DOF robot (motion: translation) has no theta: animate reads "
-                    "t,x,y,tau1..tau" +
-                    std::to_string(n));
-    }
     // a replay: the achieved pose is the motion, the target (x, y, theta) its ghost
     const bool replay = table.has("x_achieved") && table.has("y_achieved") && (two_dof || table.has("theta_achieved"));
     const std::size_t ct = table.column("t"), cx = table.column(replay ? "x_achieved" : "x"),
                       cy = table.column(replay ? "y_achieved" : "y");
-    const std::size_t ctheta = two_dof ? 0 : table.column(replay ? "theta_achieved" : "theta");
-    const std::size_t gtheta = two_dof ? 0 : table.column("theta"), gx = table.column("x"), gy = table.column("y");
-    const auto thetaOf = [&](const std::vector<double>& row, std::size_t column) {
-        return two_dof ? model.home(0) : row[column];
+    const char* const theta_name = replay ? "theta_achieved" : "theta";
+    const bool theta_given = !two_dof || table.has(theta_name), target_theta_given = !two_dof || table.has("theta");
+    const std::size_t ctheta = theta_given ? table.column(theta_name) : 0;
+    const std::size_t gtheta = target_theta_given ? table.column("theta") : 0, gx = table.column("x"),
+                      gy = table.column("y");
+    const auto thetaOf = [&](const std::vector<double>& row, bool given, std::size_t column, const char* name,
+                             const std::string& where) {
+        if (!two_dof) return row[column];
+        if (given && row[column] != model.home(0)) {
+            throw Error(where + "column '" + name + "': " + secondsText(row[column]) +
+                        ", but a two-DOF robot (motion: translation) has no theta: it stays at " +
+                        secondsText(model.home(0)));
+        }
+        return model.home(0);
     };
     std::vector<std::size_t> ctau;
     for (int a = 1; a <= n; ++a) {
@@ -269,10 +274,10 @@ MotionSamples motionFromTable(const Model& model, const io::Table& table, const 
             throw Error(where + "t = " + secondsText(t) + " s does not follow the previous row's " +
                         secondsText(motion.t.back()) + " s");
         }
-        const Pose p(thetaOf(row, ctheta), row[cx], row[cy]);
+        const Pose p(thetaOf(row, theta_given, ctheta, theta_name, where), row[cx], row[cy]);
         if (const Status status = drawRobot(model, data, p, drawing); !status) throw poseError(where, t, status, model);
         if (replay) {
-            const Pose target(thetaOf(row, gtheta), row[gx], row[gy]);
+            const Pose target(thetaOf(row, target_theta_given, gtheta, "theta", where), row[gx], row[gy]);
             if (const Status status = drawRobot(model, data, target, drawing); !status)
                 throw poseError(where + "the target: ", t, status, model);
             // u of the achieved pose below

@@ -10,7 +10,8 @@
 //   - excite: the designed trajectory moves x, y only, stays within every joint range, velocity
 //     and effort limit with the margin, and its condition number is finite and reported.
 //   - animate: the page's frames hold the five-bar's drawing at the trajectory's samples (the
-//     tool point at x, y, each arm and forearm its length), and a theta motion is refused.
+//     tool point at x, y, each arm and forearm its length) and at a recorded motion's; a theta
+//     motion is refused.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -326,6 +327,26 @@ TEST(TwoDofCommands, AnimateDrawsTheFiveBarsArmsForearmsAndToolPoint) {
             EXPECT_NEAR((at(f, 3 * j + 2) - at(f, 3 * j + 1)).norm(), forearm, 2e-6) << "frame " << f;
         }
     }
+    // a recorded motion: t, x, y, tau1, tau2 (a theta column only at home)
+    io::Table recorded;
+    recorded.columns = {"t", "x", "y", "theta", "tau1", "tau2"};
+    recorded.rows = {{0.0, 0.0, 0.35, 0.0, 0.1, -0.1}, {0.1, 0.01, 0.34, 0.0, 0.2, -0.2}};
+    options.trajectory.clear();
+    options.motion_table = recorded;
+    const std::string replayed = app::runAnimate(options, app::silent()).html;
+    const std::vector<long long> drawn = jsonIntegers(replayed, "points", replayed.find("\"frames\":{\"t\":"));
+    ASSERT_EQ(drawn.size(), 2U * 14U);
+    EXPECT_EQ(drawn[14 + 12], 10000);  // the second sample's tool point [um]
+    EXPECT_EQ(drawn[14 + 13], 340000);
+    options.motion_table->rows[1][3] = 0.1;
+    try {
+        (void)app::runAnimate(options, app::silent());
+        FAIL() << "a turning theta was animated on a two-DOF robot";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("column 'theta': 0.1, but a two-DOF robot"), std::string::npos)
+            << e.what();
+    }
+    options.motion_table.reset();
     // theta is no coordinate: a trajectory that turns it is refused
     const std::string turning = (dir / "turning.yaml").string();
     {
