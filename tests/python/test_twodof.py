@@ -1,7 +1,8 @@
 """Two-DOF planar robots (motion: translation, pose [x, y] of a point tool): the shipped five-bar
 and biglide through Robot.inverse_dynamics with arrays of shape (N, 2), `nocdyn pose X Y`, and
 `nocdyn forward-kinematics U1 U2` (poses x, y), `nocdyn.simulate` (columns t, x, y, ...),
-`nocdyn.workspace`, and the one-line refusal of the commands that do not take them yet."""
+`nocdyn.workspace`, `nocdyn.identify` (a point payload: its mass), and the one-line refusal of the
+commands that do not take them yet."""
 
 import numpy as np
 import pytest
@@ -130,8 +131,7 @@ def test_pose_prints_x_y(cli, source_dir):
 
 @pytest.mark.parametrize("command", [["inverse-dynamics", "--trajectory", "paper1"],
                                      ["loads", "--trajectory", "paper1"], ["control", "--trajectory", "paper1"],
-                                     ["envelope"], ["frequency-response"], ["regressor"],
-                                     ["convert"]])
+                                     ["envelope"], ["frequency-response"], ["convert"]])
 def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_path, command):
     forces = tmp_path / "forces.csv"
     forces.write_text("t,tau1,tau2\n0,0,0\n0.1,0,0\n")
@@ -287,3 +287,33 @@ def test_robot_stiffness_and_natural_frequencies_of_a_two_dof_robot_are_over_x_y
         robot.natural_frequencies([0.02, 0.3], model="elastodynamic")
     with pytest.raises(nocdyn.Error, match="declares no compliance"):
         _robot(source_dir, "five-bar").stiffness([0.02, 0.3])
+
+
+def test_identify_gives_a_point_payloads_mass_within_its_standard_deviation(source_dir, tmp_path):
+    # the five-bar's log with 0.2 kg more at its tool point (exact u, du, ddu from the loaded
+    # robot's inverse dynamics, forces with Gaussian noise), identified against the shipped file
+    text = (source_dir / "robots" / "five-bar.yaml").read_text()
+    assert "platform: {mass: 0.3}" in text
+    loaded = tmp_path / "five-bar-loaded.yaml"
+    loaded.write_text(text.replace("platform: {mass: 0.3}", "platform: {mass: 0.5}"))
+    robot = nocdyn.Robot.load(str(loaded))
+    t = np.linspace(0.0, 0.5, 1000)  # the times of _motion's samples
+    P, dP, ddP = _motion(np.array([0.0, 0.35]), len(t))
+    P, dP, ddP = (np.ascontiguousarray(a) for a in (P, dP, ddP))
+    u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)
+    tau = tau + 2e-3 * np.random.default_rng(5).standard_normal(tau.shape)
+    columns = {"t": t}
+    for name, values in (("u", u), ("du", du), ("ddu", ddu), ("tau", tau)):
+        for a in range(2):
+            columns[f"{name}{a + 1}"] = values[:, a]
+    result = nocdyn.identify(columns, robot=str(source_dir / "robots" / "five-bar.yaml"))
+    e = result.payload_estimate
+    assert 0.0 < e.mass_sd < 2e-3
+    assert abs(e.mass - 0.2) <= 3 * e.mass_sd, (e.mass, e.mass_sd)
+    assert result.payload["mass"] == e.mass
+    assert list(e.com) == [0.0, 0.0] and e.inertia == 0.0  # a point mass: not identified
+    assert e.covariance.shape == (1, 1)
+    assert "payload: {mass: " in result.text and "com:" not in result.text
+    assert "point mass at the tool point" in result.text
+    with pytest.raises(nocdyn.Error, match="only its mass is identified"):
+        nocdyn.identify(columns, robot=str(source_dir / "robots" / "five-bar.yaml"), prior={"com_x": (-0.01, 0.01)})
