@@ -715,7 +715,8 @@ def excite(*, robot=None, set=None, output=None, progress=None, **options):
     ``margin`` to spare), minimising the condition number of the payload's (or with base, the
     robot's base parameters') regressor. payload_guess: (mass, com_x, com_y, inertia) or None.
     Returns an Excitation (yaml, trajectory, text); output: also write the trajectory file.
-    Ctrl-C (or a KeyboardInterrupt raised by ``progress``) stops the design."""
+    Ctrl-C (or a KeyboardInterrupt raised by ``progress``) stops the design. A two-DOF robot
+    (motion: translation) moves on x, y only; its payload is a point mass (guess: (mass, 0, 0, 0))."""
     from . import Trajectory
     guess = options.pop("payload_guess", None)
     bound = _bound_options(_nocdyn.ExciteOptions, options)

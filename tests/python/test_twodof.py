@@ -317,3 +317,19 @@ def test_identify_gives_a_point_payloads_mass_within_its_standard_deviation(sour
     assert "point mass at the tool point" in result.text
     with pytest.raises(nocdyn.Error, match="only its mass is identified"):
         nocdyn.identify(columns, robot=str(source_dir / "robots" / "five-bar.yaml"), prior={"com_x": (-0.01, 0.01)})
+
+
+def test_excite_moves_x_y_and_animate_draws_it(source_dir, tmp_path):
+    # the design for the five-bar's point payload and its motors' friction: x, y harmonics only,
+    # a finite condition number reported; its animation's frames hold 2 limbs x 3 joints + C
+    path = str(source_dir / "robots" / "five-bar.yaml")
+    e = nocdyn.excite(robot=path, friction=True, duration=1, frequency=1, harmonics=3, random=10, evaluations=30)
+    assert e.trajectory.harmonics("theta") == (0.0, [])  # (offset, harmonics): at home, still
+    assert len(e.trajectory.harmonics("x")[1]) > 0 and len(e.trajectory.harmonics("y")[1]) > 0
+    designed = [line for line in e.text.splitlines() if line.startswith("designed: {condition_number: ")]
+    assert len(designed) == 1
+    assert 1.0 <= float(designed[0].split("condition_number: ")[1].split(",")[0]) < 100.0
+    trajectory = tmp_path / "excitation.yaml"
+    trajectory.write_text(e.yaml)
+    page = nocdyn.animate(str(trajectory), robot=path, rate=100).html
+    assert '"stride":14' in page
