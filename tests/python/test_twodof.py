@@ -200,7 +200,6 @@ def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
         "state_from_actuators": lambda: robot.state_from_actuators(np.zeros(2)),
         "inverse_dynamics_derivatives": lambda: robot.inverse_dynamics_derivatives(p, z, z),
         "reactions": lambda: robot.reactions(p, z, z),
-        "regressor": lambda: robot.regressor(p, z, z),
     }
     for name, call in calls.items():
         with pytest.raises(nocdyn.Error, match=f"{name}: a two-DOF robot"):
@@ -317,6 +316,19 @@ def test_identify_gives_a_point_payloads_mass_within_its_standard_deviation(sour
     assert "point mass at the tool point" in result.text
     with pytest.raises(nocdyn.Error, match="only its mass is identified"):
         nocdyn.identify(columns, robot=str(source_dir / "robots" / "five-bar.yaml"), prior={"com_x": (-0.01, 0.01)})
+
+
+@pytest.mark.parametrize("name, center", [("five-bar", [0.01, 0.32]), ("biglide", [0.0, 0.17])])
+def test_regressor_times_the_standard_parameters_is_the_inverse_dynamics(source_dir, name, center):
+    robot = _robot(source_dir, name)
+    P, dP, ddP = _motion(np.array(center), 50)
+    tau = robot.inverse_dynamics(P, dP, ddP)[3]
+    Y = robot.regressor(P, dP, ddP)
+    assert Y.shape == (50 * 2, len(robot.parameter_names()))
+    np.testing.assert_allclose(Y @ robot.standard_parameters(), tau.reshape(-1), rtol=0, atol=1e-12 * np.abs(tau).max())
+    np.testing.assert_array_equal(robot.regressor(P[7], dP[7], ddP[7]), Y[14:16])
+    inert = [robot.parameter_names().index(f"platform.{c}") for c in ("mc_x", "mc_y", "I_O")]
+    assert np.all(Y[:, inert] == 0.0)
 
 
 def test_excite_moves_x_y_and_animate_draws_it(source_dir, tmp_path):
