@@ -35,8 +35,9 @@ void requireNotAnInput(const AnimateOptions& options) {
 }
 
 /// Whether `path` is a CSV of a recorded motion with its forces (its header has t, x, y, theta
-/// and tau1: what simulate, control, inverse-dynamics and shake write), not a trajectory's samples.
-bool recordedMotion(const std::string& path) {
+/// and tau1: what simulate, control, inverse-dynamics and shake write; a two-DOF robot's has no
+/// theta), not a trajectory's samples.
+bool recordedMotion(const std::string& path, bool two_dof) {
     std::string extension = std::filesystem::path(path).extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
@@ -51,7 +52,18 @@ bool recordedMotion(const std::string& path) {
         names.push_back(name);
     }
     const auto has = [&](const char* name) { return std::find(names.begin(), names.end(), name) != names.end(); };
-    return has("t") && has("x") && has("y") && has("theta") && has("tau1");
+    return has("t") && has("x") && has("y") && (two_dof || has("theta")) && has("tau1");
+}
+
+/// A two-DOF robot's pose is [x, y]: a trajectory that moves theta (no coordinate) is refused.
+void requireFixedTheta(const Model& model, const PoseTrajectory& trajectory, const std::string& source) {
+    const bool moves = !trajectory.theta.harmonics.empty() || trajectory.theta.offset != model.home(0) ||
+                       (trajectory.sampled && trajectory.sampled->theta);
+    if (moves) {
+        throw OptionError("trajectory", source +
+                                            " moves theta, but a two-DOF robot (motion: translation) has no theta: its "
+                                            "pose is [x, y] (give x and y only)");
+    }
 }
 
 }  // namespace
@@ -72,10 +84,12 @@ void validate(const AnimateOptions& o) {
 AnimateResult runAnimate(const AnimateOptions& options, Observer& observer) {
     validate(options);
     requireNotAnInput(options);
+    // a two-DOF robot too: the tool point, arms and forearms along x, y
     const Model model(loadRobot(options.robot));
+    const bool two_dof = model.task_dimension == 2;
     render::MotionSamples motion;
     // a recorded motion given as the trajectory (a replay's shake.csv): played as a motion, forces and all
-    const bool recorded = !options.trajectory.empty() && recordedMotion(options.trajectory);
+    const bool recorded = !options.trajectory.empty() && recordedMotion(options.trajectory, two_dof);
     if (recorded && (options.duration || options.rate != SamplingOptions{}.rate)) {
         throw OptionError("trajectory", options.trajectory +
                                             " is a recorded motion (t, x, y, theta, tau1..): it is played as "
@@ -87,6 +101,7 @@ AnimateResult runAnimate(const AnimateOptions& options, Observer& observer) {
         motion = render::motionFromCsv(model, recorded ? options.trajectory : options.motion);
     } else {
         const PoseTrajectory trajectory = io::trajectoryByNameOrFile(options.trajectory);
+        if (two_dof) requireFixedTheta(model, trajectory, options.trajectory);
         motion =
             render::motionFromTrajectory(model, trajectory, chooseDuration(options.duration, trajectory), options.rate);
     }

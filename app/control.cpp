@@ -153,7 +153,7 @@ void validate(const ControlOptions& options) {
 ControlResult runControl(const ControlOptions& options, Observer& observer) {
     validate(options);
     const bool encoders = options.measure == "encoders";
-    const RobotDescription robot = loadRobotAnyMotion(options.robot);
+    const RobotDescription robot = loadRobot(options.robot);
     PlantKind plant_kind = options.plant;
     if (robot.motion == PlatformMotion::translation && plant_kind == PlantKind::simbody && !options.plant_given)
         plant_kind = PlantKind::nocdyn;  // the default plant of a two-DOF robot

@@ -13,7 +13,7 @@ void validate(const ConvertOptions& options) {
 
 ConvertResult runConvert(const ConvertOptions& options, Observer& /*observer*/) {
     validate(options);
-    const RobotDescription robot = loadRobotAnyMotion(options.robot);
+    const RobotDescription robot = loadRobot(options.robot);
     const Model model(robot);  // the home posture must be regular, as for every command
     ConvertResult out;
     out.robot = robot.name;

@@ -22,7 +22,7 @@ void validate(const EnvelopeOptions& options) {
 
 EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
     validate(options);
-    const Model model(loadRobotAnyMotion(options.robot));
+    const Model model(loadRobot(options.robot));
     nocdyn::EnvelopeOptions envelope;
     envelope.min_frequency = options.min_frequency;
     envelope.max_frequency = options.max_frequency;

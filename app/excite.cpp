@@ -26,8 +26,9 @@ std::string useText(const ExcitationLimitUse& use) {
 std::string baseline(const Model& model, const char* key, const PoseTrajectory& paper,
                      const ExcitationOptions& options) {
     if (!paper.duration) throw Error(std::string("excite: ") + key + " has no duration");
-    const ExcitationAssessment a =
-        assessExcitation(model, aboutHome(model, paper), *paper.duration, options.check_samples, options);
+    PoseTrajectory about = aboutHome(model, paper);
+    if (model.task_dimension == 2) about.theta = AxisMotion{model.home(0), {}};  // x, y only: no theta
+    const ExcitationAssessment a = assessExcitation(model, about, *paper.duration, options.check_samples, options);
     std::string text = key + std::string(": {condition_number: ") + text::number(a.condition) +
                        ", limit_use_percent: " + useText(a.use) + "}";
     if (!a.feasible) text += "   # outside the limits: " + a.failure;
@@ -71,10 +72,16 @@ void validate(const ExciteOptions& o) {
 
 ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     validate(options);
+    // a two-DOF robot too: the excitation moves x, y (theta stays at home)
     RobotDescription robot = loadRobot(options.robot);
     Payload payload;
     if (!options.payload_guess.empty()) {
         const std::vector<double>& g = options.payload_guess;
+        if (robot.motion == PlatformMotion::translation && (g[1] != 0.0 || g[2] != 0.0 || g[3] != 0.0)) {
+            throw OptionError("payload_guess",
+                              "a two-DOF robot's payload is a point mass at the tool point: give its mass with com "
+                              "0 0 and inertia 0");
+        }
         payload = Payload{g[0], g[3], Vector2(g[1], g[2])};
         robot = withPayload(robot, payload);
     }
@@ -99,11 +106,15 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     const Model model(robot);
     const ExcitationResult result = designExcitation(model, options.duration, o);
     o.progress = {};
-    const std::string what =
-        options.base ? "the base parameters" : (o.friction ? "the payload and the actuators' friction" : "the payload");
+    // a two-DOF robot's payload: a point mass at the tool point, its mass the one unknown
+    const std::string payload_text =
+        model.task_dimension == 2 ? "the payload mass (a point mass at the tool point)" : "the payload";
+    const std::string what = options.base ? "the base parameters"
+                                          : (o.friction ? payload_text + " and the actuators' friction" : payload_text);
     std::string report = "# " + io::terminalText(robot.name) + ": excitation for " + what + ", " +
                          std::to_string(o.harmonics) + " harmonics of " + text::number(o.base_frequency) +
-                         " Hz per axis, " + text::number(options.duration) + " s, margin " + percent(o.margin) +
+                         (model.task_dimension == 2 ? " Hz per axis (x, y), " : " Hz per axis, ") +
+                         text::number(options.duration) + " s, margin " + percent(o.margin) +
                          " %, condition numbers of J_j and A at most " + text::number(o.max_condition) + "\n";
     if (!options.payload_guess.empty()) {
         report += "# payload guess: " + text::number(payload.mass) + " kg at [" + text::number(payload.com.x()) + ", " +

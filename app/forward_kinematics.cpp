@@ -28,7 +28,7 @@ void validate(const ForwardKinematicsOptions& options) {
 
 ForwardKinematicsResult runForwardKinematics(const ForwardKinematicsOptions& options, Observer& observer) {
     validate(options);
-    const Model model(loadRobotAnyMotion(options.robot));
+    const Model model(loadRobot(options.robot));
     const int n = model.actuators;
     if (static_cast<int>(options.u.size()) != n) {
         const std::string robot = io::terminalText(model.description.name) +

@@ -351,7 +351,7 @@ void validate(const FrequencyResponseOptions& options) {
 
 FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& options, Observer& /*observer*/) {
     validate(options);
-    const RobotDescription robot = loadRobotAnyMotion(options.robot);
+    const RobotDescription robot = loadRobot(options.robot);
     if (robot.motion == PlatformMotion::translation) {
         // the open-loop rigid plant over x, y; the shake-table loop and the lumped compliant
         // model are built for three-DOF robots only

@@ -183,8 +183,10 @@ void validate(const IdentifyOptions& o) {
 
 IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
     validate(options);
+    // a two-DOF robot too: its payload is a point mass at the tool point (its mass only)
     const RobotDescription robot = loadRobot(options.robot);
     const Model model(robot);
+    const bool point = model.task_dimension == 2;
     IdentificationOptions identification;
     identification.cutoff = options.cutoff;
     identification.holdout = options.holdout;
@@ -264,10 +266,18 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
             }
             text += "]\n";
         }
-        text += "payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " +
-                exactNumber(r.com.y()) + "], inertia: " + exactNumber(r.inertia) + "}\n";
-        text += "standard_deviation: {mass: " + exactNumber(r.mass_sd) + ", com: [" + exactNumber(r.com_sd.x()) + ", " +
-                exactNumber(r.com_sd.y()) + "], inertia: " + exactNumber(r.inertia_sd) + "}\n";
+        if (point) {
+            text +=
+                "# a two-DOF robot: the payload is a point mass at the tool point, its mass only (no c.o.m. "
+                "offset, no inertia: they have no effect on the forces)\n";
+            text += "payload: {mass: " + exactNumber(r.mass) + "}\n";
+            text += "standard_deviation: {mass: " + exactNumber(r.mass_sd) + "}\n";
+        } else {
+            text += "payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " +
+                    exactNumber(r.com.y()) + "], inertia: " + exactNumber(r.inertia) + "}\n";
+            text += "standard_deviation: {mass: " + exactNumber(r.mass_sd) + ", com: [" + exactNumber(r.com_sd.x()) +
+                    ", " + exactNumber(r.com_sd.y()) + "], inertia: " + exactNumber(r.inertia_sd) + "}\n";
+        }
         if (!r.friction.empty()) {
             text += "friction:\n";
             for (const Estimate& e : r.friction) {
@@ -276,6 +286,7 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
             }
         }
         std::vector<std::string> order{"mass", "com_x", "com_y", "inertia"};
+        if (point) order.resize(1);
         for (const Estimate& e : r.friction) order.push_back(e.name);
         text += covarianceYaml(r.covariance, order);
         RobotDescription merged = withPayload(robot, Payload{r.mass, r.inertia, r.com});
@@ -291,8 +302,9 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
         }
         file = "# " + io::terminalText(robot.name) + " with the payload identified from " +
                io::terminalText(options.data) + " merged into the platform\n";
-        file += "# payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " +
-                exactNumber(r.com.y()) + "], inertia: " + exactNumber(r.inertia) + "}\n";
+        file += point ? "# payload: {mass: " + exactNumber(r.mass) + "} (a point mass at the tool point)\n"
+                      : "# payload: {mass: " + exactNumber(r.mass) + ", com: [" + exactNumber(r.com.x()) + ", " +
+                            exactNumber(r.com.y()) + "], inertia: " + exactNumber(r.inertia) + "}\n";
         file += io::descriptionToYaml(merged);
         fit = r.fit;
         out.payload = r;

@@ -7,7 +7,7 @@ namespace nocdyn::app {
 
 InverseDynamicsResult runInverseDynamics(const InverseDynamicsOptions& options, TableSink& table, Observer& observer) {
     validate(options);
-    const Model model(loadRobotAnyMotion(options.robot));
+    const Model model(loadRobot(options.robot));
     const PoseTrajectory trajectory =
         trajectoryFor(model, trajectoryOf(options), options.given_trajectory ? "" : options.trajectory);
     const SampleGrid grid = sampleGrid(chooseDuration(options.duration, trajectory), options.rate);

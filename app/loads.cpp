@@ -236,7 +236,7 @@ void validate(const LoadsOptions& options) {
 LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
     validate(options);
     LoadsResult out;
-    out.model = std::make_shared<const Model>(loadRobotAnyMotion(options.robot));
+    out.model = std::make_shared<const Model>(loadRobot(options.robot));
     const Model& model = *out.model;
     JointLoads& loads = out.loads;
     loads.limbs = model.limbs;

@@ -23,17 +23,6 @@ void requireIn(double value, const Range& range, const std::string& field) {
 }
 
 RobotDescription loadRobot(const RobotSource& source) {
-    RobotDescription robot = loadRobotAnyMotion(source);
-    if (robot.motion == PlatformMotion::translation) {
-        throw Error(where(robot, 0) + "a two-DOF robot (motion: translation, pose [x, y]): this command does not " +
-                    "take it yet (pose, forward-kinematics, inverse-dynamics, loads, simulate, control, workspace, "
-                    "envelope, frequency-response, validate, convert, shake, design and Python's "
-                    "Robot.inverse_dynamics do)");
-    }
-    return robot;
-}
-
-RobotDescription loadRobotAnyMotion(const RobotSource& source) {
     if (source.description) {
         if (!source.set.empty()) {
             throw OptionError("set", "a robot built in code has no file parameters: change the robot itself");

@@ -72,13 +72,10 @@ struct RobotSource {
     std::optional<RobotDescription> description;
 };
 
-/// The robot a source names, with its overrides. Throws nocdyn::Error for a bad file, and
-/// OptionError("set") for overrides of the built-in prototype or of a robot built in code, and
-/// nocdyn::Error for a two-DOF robot (motion: translation), which only the commands that load it
-/// with loadRobotAnyMotion take.
+/// The robot a source names, with its overrides: a three-DOF robot or a two-DOF one (motion:
+/// translation), which every command takes. Throws nocdyn::Error for a bad file, and
+/// OptionError("set") for overrides of the built-in prototype or of a robot built in code.
 [[nodiscard]] RobotDescription loadRobot(const RobotSource& source);
-/// loadRobot, two-DOF robots (motion: translation) included.
-[[nodiscard]] RobotDescription loadRobotAnyMotion(const RobotSource& source);
 
 /// The warning of a command whose plant is the rigid robot (simulate, control, shake) when the
 /// robot file declares compliance that the plant leaves out; empty when it declares none.

@@ -98,7 +98,7 @@ void validate(const PoseOptions& options) {
 
 PoseResult runPose(const PoseOptions& options, Observer& observer) {
     validate(options);
-    const Model model(loadRobotAnyMotion(options.robot));
+    const Model model(loadRobot(options.robot));
     Data data(model);
     if (model.task_dimension == 3 && std::isnan(options.theta)) {
         throw OptionError("theta", "required: this robot's platform turns (give X Y THETA)");

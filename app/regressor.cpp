@@ -10,6 +10,7 @@ void validate(const RegressorOptions& options) { requireIn(options.samples, kReg
 
 RegressorResult runRegressor(const RegressorOptions& options, Observer& /*observer*/) {
     validate(options);
+    // a two-DOF robot too: tau = Y pi over its two actuators (regressor.hpp)
     const Model model(loadRobot(options.robot));
     BaseParameterOptions base_options;
     base_options.samples = options.samples;
@@ -18,6 +19,11 @@ RegressorResult runRegressor(const RegressorOptions& options, Observer& /*observ
     out.base = baseParameters(model, base_options);
     out.pi = standardParameters(model);
     out.text = "# standard parameters (robot file values)\n";
+    if (model.task_dimension == 2) {
+        out.text +=
+            "# a two-DOF robot (motion: translation): the platform is a point mass at the tool point that never "
+            "turns, so of its parameters only platform.m acts on the forces (a payload: its mass only)\n";
+    }
     std::string line;
     for (int c = 0; c < parameterCount(model); ++c) {
         out.names.push_back(parameterName(model, c));

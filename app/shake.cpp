@@ -396,7 +396,7 @@ void validate(const ShakeOptions& o) {
 ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     validate(options);
     requireOutputFolder(options.out_dir, "out_dir");
-    const RobotDescription robot = loadRobotAnyMotion(options.robot);
+    const RobotDescription robot = loadRobot(options.robot);
     if (robot.motion == PlatformMotion::translation) {
         // a two-DOF table moves its tool point in x, y: no rotation to drive or to sense
         if (!options.record_theta.empty())

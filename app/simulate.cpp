@@ -203,7 +203,7 @@ void validate(const SimulateOptions& options) {
 SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Observer& observer) {
     validate(options);
     // a two-DOF robot too: its state is [x, y] and their rates (Simulator::reset)
-    const Model model(loadRobotAnyMotion(options.robot));
+    const Model model(loadRobot(options.robot));
     if (const std::string rigid = rigidPlantWarning(model.description, "simulate"); !rigid.empty())
         observer.warning(rigid);
     const int n = model.actuators;

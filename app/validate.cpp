@@ -9,7 +9,7 @@ namespace nocdyn::app {
 
 ValidateResult runValidate(const ValidateOptions& options, Observer& observer) {
     validate(static_cast<const SamplingOptions&>(options));
-    const RobotDescription robot = loadRobotAnyMotion(options.robot);
+    const RobotDescription robot = loadRobot(options.robot);
     const PoseTrajectory trajectory =
         trajectoryFor(Model(robot), io::trajectoryByNameOrFile(options.trajectory), options.trajectory);
     const auto times = sampleTimes(chooseDuration(options.duration, trajectory), options.rate);

@@ -16,7 +16,7 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
     validate(options);
     WorkspaceResult out;
     // a two-DOF robot too: the region of its tool point, theta no coordinate of it
-    out.model = std::make_shared<const Model>(loadRobotAnyMotion(options.robot));
+    out.model = std::make_shared<const Model>(loadRobot(options.robot));
     const Model& model = *out.model;
     if (model.task_dimension == 2) {
         if (options.theta && *options.theta != model.home(0))

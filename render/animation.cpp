@@ -229,17 +229,35 @@ MotionSamples motionFromTable(const Model& model, const io::Table& table, const 
                     std::to_string(kMaxAnimationSamples));
     }
     const int n = model.actuators;
+    // a two-DOF robot's pose is [x, y]: theta stays at home(0), and a theta column, when there is
+    // one, must hold that value
+    const bool two_dof = model.task_dimension == 2;
     // a replay: the achieved pose is the motion, the target (x, y, theta) its ghost
-    const bool replay = table.has("x_achieved") && table.has("y_achieved") && table.has("theta_achieved");
-    const std::size_t ct = table.column("t"), ctheta = table.column(replay ? "theta_achieved" : "theta"),
-                      cx = table.column(replay ? "x_achieved" : "x"), cy = table.column(replay ? "y_achieved" : "y");
-    const std::size_t gtheta = table.column("theta"), gx = table.column("x"), gy = table.column("y");
+    const bool replay = table.has("x_achieved") && table.has("y_achieved") && (two_dof || table.has("theta_achieved"));
+    const std::size_t ct = table.column("t"), cx = table.column(replay ? "x_achieved" : "x"),
+                      cy = table.column(replay ? "y_achieved" : "y");
+    const char* const theta_name = replay ? "theta_achieved" : "theta";
+    const bool theta_given = !two_dof || table.has(theta_name), target_theta_given = !two_dof || table.has("theta");
+    const std::size_t ctheta = theta_given ? table.column(theta_name) : 0;
+    const std::size_t gtheta = target_theta_given ? table.column("theta") : 0, gx = table.column("x"),
+                      gy = table.column("y");
+    const auto thetaOf = [&](const std::vector<double>& row, bool given, std::size_t column, const char* name,
+                             const std::string& where) {
+        if (!two_dof) return row[column];
+        if (given && row[column] != model.home(0)) {
+            throw Error(where + "column '" + name + "': " + secondsText(row[column]) +
+                        ", but a two-DOF robot (motion: translation) has no theta: it stays at " +
+                        secondsText(model.home(0)));
+        }
+        return model.home(0);
+    };
     std::vector<std::size_t> ctau;
     for (int a = 1; a <= n; ++a) {
         const std::string name = "tau" + std::to_string(a);
         if (!table.has(name)) {
             throw Error(path + ": no column '" + name + "' (the robot has " + std::to_string(n) +
-                        " actuators; animate reads t,x,y,theta,tau1..tau" + std::to_string(n) + ")");
+                        " actuators; animate reads " + (two_dof ? "t,x,y" : "t,x,y,theta") + ",tau1..tau" +
+                        std::to_string(n) + ")");
         }
         ctau.push_back(table.column(name));
     }
@@ -256,10 +274,10 @@ MotionSamples motionFromTable(const Model& model, const io::Table& table, const 
             throw Error(where + "t = " + secondsText(t) + " s does not follow the previous row's " +
                         secondsText(motion.t.back()) + " s");
         }
-        const Pose p(row[ctheta], row[cx], row[cy]);
+        const Pose p(thetaOf(row, theta_given, ctheta, theta_name, where), row[cx], row[cy]);
         if (const Status status = drawRobot(model, data, p, drawing); !status) throw poseError(where, t, status, model);
         if (replay) {
-            const Pose target(row[gtheta], row[gx], row[gy]);
+            const Pose target(thetaOf(row, target_theta_given, gtheta, "theta", where), row[gx], row[gy]);
             if (const Status status = drawRobot(model, data, target, drawing); !status)
                 throw poseError(where + "the target: ", t, status, model);
             // u of the achieved pose below

@@ -38,13 +38,15 @@ void addAnimateCommand(CLI::App& app) {
         "time. The motion is a trajectory (inverse dynamics at --rate over --duration) or a CSV written by\n"
         "simulate, control or inverse-dynamics (--motion). At most 2000 frames are embedded; 0.2 s at 10 kHz\n"
         "gives a page of about 0.4 MB. --frame T draws the sample nearest to T with gnuplot instead (--png,\n"
-        "--svg); the page is then written only when --output is given.");
+        "--svg); the page is then written only when --output is given. A two-DOF robot (motion: translation):\n"
+        "the arms, forearms and the tool point along x, y (no theta column or motion).");
     addRobotOption(*command, options->robot);
     auto* trajectory = command->add_option("--trajectory", options->trajectory,
                                            "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or "
                                            "samples (.csv: t and x,y,theta or ax,ay,alpha)");
     auto* motion = command->add_option("--motion", options->motion,
-                                       "CSV with columns t,x,y,theta,tau1..taun (SI; other columns ignored), as "
+                                       "CSV with columns t,x,y,theta,tau1..taun (t,x,y,tau1..taun for a two-DOF "
+                                       "robot; SI; other columns ignored), as "
                                        "written by simulate, control, inverse-dynamics or shake; u is recomputed "
                                        "from the pose. A --trajectory CSV with these columns is played so too");
     trajectory->excludes(motion);

@@ -40,14 +40,15 @@ void addExciteCommand(CLI::App& app) {
         "--optimizer gradient, a descent on the exact gradient), bounded by\n"
         "--evaluations. Prints the condition number reached next to the paper's trajectories 1 and 2 (moved to\n"
         "the robot's home) and each one's use of the limits (percent of the allowed value), and writes the\n"
-        "trajectory file (YAML, usable as --trajectory).");
+        "trajectory file (YAML, usable as --trajectory). A two-DOF robot (motion: translation) moves on x, y\n"
+        "only (theta stays at home) and its payload is a point mass at the tool point (its mass the one unknown).");
     addRobotOption(*command, options->robot);
     auto* output = command->add_option("--output,-o", options->output, "Trajectory YAML file to write (required)");
     auto* old_output = command->add_option("--out", options->output)->group("");  // the old spelling, hidden
     command
         ->add_option("--payload-guess", options->payload_guess,
                      "Guessed payload: MASS [kg] COM_X COM_Y [m, platform frame] INERTIA [kg m^2, about its c.o.m.]; "
-                     "the actuators must carry it within their effort")
+                     "the actuators must carry it within their effort (a two-DOF robot's: MASS 0 0 0, a point mass)")
         ->expected(4)
         ->check(within(app::kPayloadGuessRange));
     command->add_flag("--base", options->base,

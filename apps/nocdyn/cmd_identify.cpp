@@ -37,7 +37,9 @@ void addIdentifyCommand(CLI::App& app) {
         "direct-kinematics tracker; weighted least squares (weights from each actuator's residual), then the\n"
         "physically consistent solution (mass > 0, inertia about the c.o.m. >= 0, and the bounds of --prior: the\n"
         "bounded least-squares solution, the bounds it lies on reported as active_bounds); standard deviations\n"
-        "from the residuals; the last --holdout of the samples is held out to check the fit. Prints YAML.\n"
+        "from the residuals; the last --holdout of the samples is held out to check the fit. Prints YAML. A\n"
+        "two-DOF robot's (motion: translation) payload is a point mass at the tool point: its mass only (no c.o.m.\n"
+        "offset, no inertia; --prior may bound only the mass).\n"
         "Example: nocdyn control --trajectory paper2 --payload-mass 0.5 --log log.csv && nocdyn identify --data "
         "log.csv");
     addRobotOption(*command, options->robot);

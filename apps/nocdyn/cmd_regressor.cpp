@@ -32,7 +32,9 @@ void addRegressorCommand(CLI::App& app) {
         "a limb body's is the base frame at home, moving with it; the platform's has its origin at C) and in each\n"
         "joint's damping and Coulomb friction: tau = Y(q, dq, ddq) pi. Prints pi from the robot file, then the\n"
         "base parameters (the combinations the actuator forces identify) found by a column-pivoted QR of Y over\n"
-        "random motions around home, and the parameters that have no effect or only act in combination.");
+        "random motions around home, and the parameters that have no effect or only act in combination. A\n"
+        "two-DOF robot's (motion: translation) platform is a point mass at the tool point: of its parameters only\n"
+        "m acts.");
     addRobotOption(*command, options->robot);
     command->add_option("--samples", options->samples, "Random motions stacked")
         ->check(CLI::Range(20, 100000))

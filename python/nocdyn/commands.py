@@ -682,7 +682,9 @@ def identify(data, *, robot=None, set=None, output=None, figure=None, progress=N
     ``payload_estimate`` with the standard deviations, covariance and fit; ``base``), the report
     the command prints (``text``) and ``robot_yaml``, the file the command writes (the robot with
     the payload merged, or with base the calibration). output: also write that file; figure: STEM
-    of the held-out forces' figure (STEM.png, STEM.svg)."""
+    of the held-out forces' figure (STEM.png, STEM.svg). A two-DOF robot's (motion: translation)
+    payload is a point mass at the tool point: its mass only (com [0, 0] and inertia 0 are not
+    identified; a prior may bound only the mass)."""
     prior = options.pop("prior", None)
     table = None if isinstance(data, (str, os.PathLike)) else _forces_table(data, "data")
     bound = _bound_options(_nocdyn.IdentifyOptions, options if table is not None else {"data": data, **options})
@@ -732,7 +734,8 @@ def excite(*, robot=None, set=None, output=None, progress=None, **options):
     ``margin`` to spare), minimising the condition number of the payload's (or with base, the
     robot's base parameters') regressor. payload_guess: (mass, com_x, com_y, inertia) or None.
     Returns an Excitation (yaml, trajectory, text); output: also write the trajectory file.
-    Ctrl-C (or a KeyboardInterrupt raised by ``progress``) stops the design."""
+    Ctrl-C (or a KeyboardInterrupt raised by ``progress``) stops the design. A two-DOF robot
+    (motion: translation) moves on x, y only; its payload is a point mass (guess: (mass, 0, 0, 0))."""
     from . import Trajectory
     guess = options.pop("payload_guess", None)
     bound = _bound_options(_nocdyn.ExciteOptions, options)

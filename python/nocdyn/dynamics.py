@@ -292,8 +292,11 @@ class RobotDynamics:
         arrays (read in place, any memory order) give the stacked regressor of shape (N * n, P),
         rows k * n .. k * n + n - 1 those of sample k (reshape(N, n, P) separates them). A
         sample out of reach or singular, or whose regressor is not finite, raises nocdyn.Error
-        ("sample K: <reason>", K from 1)."""
-        _require_full_motion(self, "regressor")
+        ("sample K: <reason>", K from 1). A two-DOF robot (motion: translation) takes p, dp, ddp of
+        shape (2,) or (N, 2), columns x, y; its platform is a point mass at the tool point, so the
+        columns platform.mc_x, platform.mc_y and platform.I_O (and the last R joints' friction) are 0."""
+        if self._core.task_dimension == 2:
+            p, dp, ddp = _lift_task(p, dp, ddp)  # [x, y, 0]: theta is no coordinate
         p_arr = _floats(p, "p")
         if p_arr.ndim == 1:
             Y = self._core._regressor_sample(p_arr, dp, ddp)

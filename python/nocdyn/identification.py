@@ -32,7 +32,9 @@ class PayloadEstimate:
     asked (list of dicts: name, value, stddev, unit); fit: dict of the fit on the held-out
     samples (fit_samples, holdout_samples, rms_fit, rms_holdout, rms_measured (n,) [N or N m],
     condition, correlation_samples (the residuals' integrated autocorrelation time) and
-    effective_samples, t (M,), measured and predicted (M, n) forces).
+    effective_samples, t (M,), measured and predicted (M, n) forces). A two-DOF robot's payload
+    is a point mass at the tool point: mass only, com [0, 0] and inertia 0 (with standard
+    deviations 0) are not identified, and covariance is (1 + f, 1 + f) of [mass, friction...].
     """
 
     __slots__ = ("mass", "com", "inertia", "mass_sd", "com_sd", "inertia_sd", "covariance", "active_bounds",

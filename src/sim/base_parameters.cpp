@@ -39,6 +39,12 @@ std::vector<RandomMotion> randomMotions(const Model& model, int count, unsigned 
         m.p = model.home + scale * Pose(0.05 * unit(rng), 0.05 * L * unit(rng), 0.05 * L * unit(rng));
         m.dp = Twist(unit(rng), L * unit(rng), L * unit(rng));
         m.ddp = 20.0 * Twist(unit(rng), L * unit(rng), L * unit(rng));
+        if (model.task_dimension == 2) {
+            // translation: theta is no coordinate (it stays at home(0), its rates 0)
+            m.p(0) = model.home(0);
+            m.dp(0) = 0.0;
+            m.ddp(0) = 0.0;
+        }
         if (!inverseDynamics(model, data, m.p, m.dp, m.ddp)) continue;
         motions.push_back(m);
     }

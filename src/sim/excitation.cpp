@@ -218,8 +218,10 @@ PoseTrajectory trajectoryOf(const Model& model, const Eigen::VectorXd& z, double
     AxisMotion* axes[3] = {&trajectory.theta, &trajectory.x, &trajectory.y};
     std::vector<double> a, b;
     for (int axis = 0; axis < 3; ++axis) {
-        coefficients(z, axis, options.harmonics, axis == 0 ? 1.0 : model.length_scale, a, b);
         axes[axis]->offset = model.home(axis);
+        // a two-DOF robot: theta is no coordinate, it stays at home (its coefficients are inert)
+        if (axis == 0 && model.task_dimension == 2) continue;
+        coefficients(z, axis, options.harmonics, axis == 0 ? 1.0 : model.length_scale, a, b);
         for (int k = 1; k <= options.harmonics; ++k) {
             const double amplitude = s * std::hypot(a[at(k)], b[at(k)]);
             if (amplitude == 0.0) continue;
@@ -631,7 +633,9 @@ std::vector<int> excitedColumns(const Model& model, const ExcitationOptions& opt
     }
     const int platform = bodyParameterIndex(model.platformBody());
     columns.reserve(static_cast<std::size_t>(kBodyParameters) + 2 * static_cast<std::size_t>(model.actuators));
-    for (int c = 0; c < kBodyParameters; ++c) columns.push_back(platform + c);
+    // a two-DOF robot's payload is a point mass at the tool point: its mass only (identifyPayload)
+    const int inertial = model.task_dimension == 2 ? 1 : kBodyParameters;
+    for (int c = 0; c < inertial; ++c) columns.push_back(platform + c);
     if (options.friction) {
         for (int a = 0; a < model.actuators; ++a) {
             const int index = jointParameterIndex(model, model.actuator_limb[at(a)], model.actuator_joint[at(a)]);

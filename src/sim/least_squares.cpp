@@ -545,6 +545,21 @@ void fillCorrelation(const LeastSquares& ls, FitReport& fit) {
     fit.effective_samples = ls.effective_samples;
 }
 
+/// The friction estimates of a payload fit: unknowns `first`.. of x, their covariance that of
+/// result.covariance.
+void frictionEstimates(const Model& model, const std::vector<std::string>& names, const std::vector<int>& columns,
+                       const Eigen::VectorXd& x, const ParameterVector& pi, Eigen::Index first, PayloadResult& result) {
+    for (Eigen::Index c = first; c < x.size(); ++c) {
+        Estimate e;
+        e.name = names[at(static_cast<int>(c))];
+        e.unit = parameterUnit(model, columns[at(static_cast<int>(c))]);
+        e.value = x(c);
+        e.stddev = std::sqrt(result.covariance(c, c));
+        e.prior = pi(columns[at(static_cast<int>(c))]);
+        result.friction.push_back(e);
+    }
+}
+
 Eigen::Index fitSamples(const Motion& motion, const IdentificationOptions& options, int parameters, int n) {
     const auto N = static_cast<Eigen::Index>(motion.t.size());
     if (!(options.holdout >= 0.0 && options.holdout < 1.0))
@@ -562,12 +577,17 @@ Eigen::Index fitSamples(const Motion& motion, const IdentificationOptions& optio
 
 PayloadResult identifyPayload(const Model& model, const Motion& motion, const IdentificationOptions& options) {
     const int n = model.actuators;
+    // a two-DOF robot's payload is a point mass at the tool point, which never turns: its c.o.m.
+    // offset and inertia have no effect on the forces (zero regressor columns), only its mass
+    const bool point = model.task_dimension == 2;
+    const int inertial = point ? 1 : kBodyParameters;
     std::vector<int> columns;
     std::vector<std::string> names{"payload mass", "payload c.o.m. x (mass times)", "payload c.o.m. y (mass times)",
                                    "payload inertia"};
+    names.resize(static_cast<std::size_t>(inertial));
     const int platform = bodyParameterIndex(model.platformBody());
     columns.reserve(static_cast<std::size_t>(kBodyParameters) + 2 * static_cast<std::size_t>(n));
-    for (int c = 0; c < kBodyParameters; ++c) columns.push_back(platform + c);
+    for (int c = 0; c < inertial; ++c) columns.push_back(platform + c);
     if (options.friction) {
         for (int a = 0; a < n; ++a) {
             const int index = jointParameterIndex(model, model.actuator_limb[at(a)], model.actuator_joint[at(a)]);
@@ -592,7 +612,7 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
     const ParameterVector pi = standardParameters(model);
     const Eigen::Vector4d platform_pi = pi.segment<kBodyParameters>(platform);
     if (!calibration) {
-        for (int c = 0; c < kBodyParameters; ++c) s.known += s.A.col(c) * platform_pi(c);
+        for (int c = 0; c < inertial; ++c) s.known += s.A.col(c) * platform_pi(c);
     }
     const Eigen::VectorXd b = (s.tau - s.known).head(fit * n);
     const LeastSquares ls = solveWeighted(model, s.A.topRows(fit * n), b, n, names, &columns);
@@ -610,6 +630,15 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
     }
     if (!(prior.mass.upper > 0.0))
         throw Error("identification: the prior's upper bound on the payload mass is not positive");
+    if (point) {
+        for (int i = 1; i < kPhysical; ++i) {
+            if (std::isfinite(bounds[i].lower) || std::isfinite(bounds[i].upper)) {
+                throw Error(std::string("identification: the prior bounds the payload ") + bound_names[i] +
+                            ", but a two-DOF robot's payload is a point mass at the tool point: only its mass is "
+                            "identified (no c.o.m. offset, no inertia)");
+            }
+        }
+    }
     const double m = x(0);
     if (!(m > 0.0) && !(prior.mass.lower > 0.0)) {
         std::string buffer;
@@ -618,6 +647,25 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
             "positive: no payload, or the robot file's parameters do not match the robot",
             m, std::sqrt(ls.covariance(0, 0)));
         throw Error(buffer);
+    }
+    if (point) {
+        // the mass enters linearly: outside its bounds the estimate is on the bound it crosses,
+        // the friction refitted there (the minimiser of |U (x' - x_ls)|^2 with x'_0 fixed)
+        if (m < prior.mass.lower || m > prior.mass.upper) {
+            const bool upper = m > prior.mass.upper;
+            const double bound = upper ? prior.mass.upper : prior.mass.lower;
+            const double step = bound - m;
+            if (k > 1) x.tail(k - 1) += ls.U.rightCols(k - 1).colPivHouseholderQr().solve(-ls.U.col(0) * step);
+            x(0) = bound;
+            result.active_bounds.push_back({"mass", upper, bound, m});
+        }
+        result.mass = x(0);
+        result.covariance = ls.covariance;
+        result.mass_sd = std::sqrt(ls.covariance(0, 0));
+        frictionEstimates(model, names, columns, x, pi, 1, result);
+        fillFit(model, motion, s, x, fit, result.fit);
+        fillCorrelation(ls, result.fit);
+        return result;
     }
     const double nan = std::numeric_limits<double>::quiet_NaN();
     Eigen::VectorXd z_ls = x;  // the unbounded solution's physical parameters (NaN without a mass)
@@ -701,15 +749,7 @@ PayloadResult identifyPayload(const Model& model, const Motion& motion, const Id
     result.mass_sd = std::sqrt(cov(0, 0));
     result.com_sd = Vector2(std::sqrt(cov(1, 1)), std::sqrt(cov(2, 2)));
     result.inertia_sd = std::sqrt(cov(3, 3));
-    for (Eigen::Index c = 4; c < k; ++c) {
-        Estimate e;
-        e.name = names[at(static_cast<int>(c))];
-        e.unit = parameterUnit(model, columns[at(static_cast<int>(c))]);
-        e.value = x(c);
-        e.stddev = std::sqrt(cov(c, c));
-        e.prior = pi(columns[at(static_cast<int>(c))]);
-        result.friction.push_back(e);
-    }
+    frictionEstimates(model, names, columns, x, pi, kPhysical, result);
     // the held-out check uses the platform's own parameters in the known part
     fillFit(model, motion, s, x, fit, result.fit);
     fillCorrelation(ls, result.fit);

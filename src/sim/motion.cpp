@@ -45,13 +45,22 @@ Status platformRates(const Model& model, Data& data, const Eigen::VectorXd& du, 
         return status;
     }
     const Vector2 c = data.p.tail<2>();
-    const Eigen::ColPivHouseholderQR<ActuationMatrix> qr(data.A);
     Eigen::VectorXd rhs = ddu;
     for (int a = 0; a < model.actuators; ++a) {
         const LimbData& ld = data.limb[at(model.actuator_limb[at(a)])];
         const Twist dJ = ld.s_dot[1] * ld.gamma_dot(1) + ld.s_dot[2] * ld.gamma_dot(2);
         rhs(a) += ld.J_inv.row(model.actuator_joint[at(a)]).dot(dJ);
     }
+    if (model.task_dimension == 2) {
+        // translation: omega = 0 throughout, so dxi_P/dt = [0; a_C] and ddu = A_E a_C + ...
+        // (A_E the x, y columns of A); the acceleration in x, y by least squares on them
+        using TaskActuation = Eigen::Matrix<double, Eigen::Dynamic, 2, 0, kMaxActuators, 2>;
+        const TaskActuation A_E = data.A.rightCols<2>();
+        const Vector2 a_C = Eigen::ColPivHouseholderQR<TaskActuation>(A_E).solve(rhs);
+        accelerationFromPlatform(model, data, Twist(0.0, a_C(0), a_C(1)));
+        return {};
+    }
+    const Eigen::ColPivHouseholderQR<ActuationMatrix> qr(data.A);
     const Twist xi_P_dot = qr.solve(rhs);
     const double w = t_M(0);
     // S(c)^-1 (dxi_P/dt - dS/dt t_M)

@@ -65,7 +65,9 @@ void regressor(const Model& model, const Data& data, RegressorMatrix& Y) {
         W.middleCols<kBodyParameters>(bodyParameterIndex(model.body(j, 1))) =
             row0 * (ld.s[0].transpose() * Y1) + row1 * (ld.s[1].transpose() * Y1);
         // joint friction to overcome: J_j^-T e_k (damping q'_k + friction sign q'_k)
-        for (int k = 0; k < 3; ++k) {
+        // (a two-DOF robot's last R joint turns with the fictitious theta, which the pose [x, y]
+        // does not set: it takes no friction, and its columns stay zero)
+        for (int k = 0; k < (model.task_dimension == 2 ? 2 : 3); ++k) {
             const int index = jointParameterIndex(model, j, k);
             W.col(index) = ld.J_inv.row(k).transpose() * ld.gamma_dot(k);
             W.col(index + 1) = ld.J_inv.row(k).transpose() * sign(ld.gamma_dot(k));
@@ -77,6 +79,13 @@ void regressor(const Model& model, const Data& data, RegressorMatrix& Y) {
     Y.resize(model.actuators, P);
     if (model.coordinates == Coordinates::actuators) {
         Y.noalias() = data.Xi.transpose() * W;
+    } else if (model.task_dimension == 2) {
+        // translation: as detail::distribute, tau = A_E (A_E^T A_E)^-1 E^T S(c)^T W with S(c) E = [0; I]:
+        // the force rows of W, A_E the x, y columns of A (the moment row is taken up by the last R joints)
+        const Eigen::Matrix<double, Eigen::Dynamic, 2, 0, kMaxActuators, 2> A_E = data.A.rightCols<2>();
+        const Eigen::Matrix2d N = A_E.transpose() * A_E;
+        const Eigen::Matrix<double, 2, Eigen::Dynamic, 0, 2, kMaxParameters> L = N.inverse() * W.bottomRows<2>();
+        Y.noalias() = A_E * L;
     } else {
         const Matrix3 AtA = data.A.transpose() * data.A;
         const Matrix3 AtA_inv = AtA.inverse();

@@ -2,8 +2,8 @@
 and biglide through Robot.inverse_dynamics with arrays of shape (N, 2), `nocdyn pose X Y`, and
 `nocdyn forward-kinematics U1 U2` (poses x, y), `nocdyn.simulate` (columns t, x, y, ...),
 `nocdyn.workspace`, `nocdyn.inverse_dynamics` (trajectories keyed x, y), `nocdyn.loads`,
-`nocdyn.convert`, Python's pose and direct kinematics over x, y, the drawing, and the one-line
-refusal of the commands that do not take them yet."""
+`nocdyn.convert`, `nocdyn.identify` (a point payload: its mass), Python's pose and direct
+kinematics over x, y, the drawing, and the other commands over x, y."""
 
 import numpy as np
 import pytest
@@ -130,17 +130,6 @@ def test_pose_prints_x_y(cli, source_dir):
     assert code != 0 and "THETA" in err
 
 
-@pytest.mark.parametrize("command", [["regressor"]])
-def test_other_commands_refuse_two_dof_robots_in_one_line(cli, source_dir, tmp_path, command):
-    forces = tmp_path / "forces.csv"
-    forces.write_text("t,tau1,tau2\n0,0,0\n0.1,0,0\n")
-    command = [str(forces) if c == "FORCES" else c for c in command]
-    code, out, err = cli(*command, "--robot", source_dir / "robots" / "five-bar.yaml")
-    assert code != 0
-    assert "five-bar.yaml: a two-DOF robot (motion: translation" in err
-    assert len(err.strip().splitlines()) == 1, err
-
-
 @pytest.mark.parametrize("name, tool", [("five-bar", [0.03, 0.31]), ("biglide", [-0.02, 0.18])])
 def test_forward_kinematics_gives_both_tool_points_x_y(cli, source_dir, name, tool):
     import json
@@ -196,7 +185,6 @@ def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
         "with_payload": lambda: robot.with_payload(0.1),
         "inverse_dynamics_derivatives": lambda: robot.inverse_dynamics_derivatives(p, z, z),
         "reactions": lambda: robot.reactions(p, z, z),
-        "regressor": lambda: robot.regressor(p, z, z),
     }
     for name, call in calls.items():
         with pytest.raises(nocdyn.Error, match=f"{name}: a two-DOF robot"):
@@ -471,3 +459,62 @@ def test_envelope_frequency_response_and_control_of_a_two_dof_robot_are_over_x_y
     code, out, err = cli("control", "--robot", five_bar, "--trajectory", circle, "--rate", "2000")
     assert code == 0, err
     assert "on the nocdyn forward dynamics plant" in out
+
+
+def test_identify_gives_a_point_payloads_mass_within_its_standard_deviation(source_dir, tmp_path):
+    # the five-bar's log with 0.2 kg more at its tool point (exact u, du, ddu from the loaded
+    # robot's inverse dynamics, forces with Gaussian noise), identified against the shipped file
+    text = (source_dir / "robots" / "five-bar.yaml").read_text()
+    assert "platform: {mass: 0.3}" in text
+    loaded = tmp_path / "five-bar-loaded.yaml"
+    loaded.write_text(text.replace("platform: {mass: 0.3}", "platform: {mass: 0.5}"))
+    robot = nocdyn.Robot.load(str(loaded))
+    t = np.linspace(0.0, 0.5, 1000)  # the times of _motion's samples
+    P, dP, ddP = _motion(np.array([0.0, 0.35]), len(t))
+    P, dP, ddP = (np.ascontiguousarray(a) for a in (P, dP, ddP))
+    u, du, ddu, tau = robot.inverse_dynamics(P, dP, ddP)
+    tau = tau + 2e-3 * np.random.default_rng(5).standard_normal(tau.shape)
+    columns = {"t": t}
+    for name, values in (("u", u), ("du", du), ("ddu", ddu), ("tau", tau)):
+        for a in range(2):
+            columns[f"{name}{a + 1}"] = values[:, a]
+    result = nocdyn.identify(columns, robot=str(source_dir / "robots" / "five-bar.yaml"))
+    e = result.payload_estimate
+    assert 0.0 < e.mass_sd < 2e-3
+    assert abs(e.mass - 0.2) <= 3 * e.mass_sd, (e.mass, e.mass_sd)
+    assert result.payload["mass"] == e.mass
+    assert list(e.com) == [0.0, 0.0] and e.inertia == 0.0  # a point mass: not identified
+    assert e.covariance.shape == (1, 1)
+    assert "payload: {mass: " in result.text and "com:" not in result.text
+    assert "point mass at the tool point" in result.text
+    with pytest.raises(nocdyn.Error, match="only its mass is identified"):
+        nocdyn.identify(columns, robot=str(source_dir / "robots" / "five-bar.yaml"), prior={"com_x": (-0.01, 0.01)})
+
+
+@pytest.mark.parametrize("name, center", [("five-bar", [0.01, 0.32]), ("biglide", [0.0, 0.17])])
+def test_regressor_times_the_standard_parameters_is_the_inverse_dynamics(source_dir, name, center):
+    robot = _robot(source_dir, name)
+    P, dP, ddP = _motion(np.array(center), 50)
+    tau = robot.inverse_dynamics(P, dP, ddP)[3]
+    Y = robot.regressor(P, dP, ddP)
+    assert Y.shape == (50 * 2, len(robot.parameter_names()))
+    np.testing.assert_allclose(Y @ robot.standard_parameters(), tau.reshape(-1), rtol=0, atol=1e-12 * np.abs(tau).max())
+    np.testing.assert_array_equal(robot.regressor(P[7], dP[7], ddP[7]), Y[14:16])
+    inert = [robot.parameter_names().index(f"platform.{c}") for c in ("mc_x", "mc_y", "I_O")]
+    assert np.all(Y[:, inert] == 0.0)
+
+
+def test_excite_moves_x_y_and_animate_draws_it(source_dir, tmp_path):
+    # the design for the five-bar's point payload and its motors' friction: x, y harmonics only,
+    # a finite condition number reported; its animation's frames hold 2 limbs x 3 joints + C
+    path = str(source_dir / "robots" / "five-bar.yaml")
+    e = nocdyn.excite(robot=path, friction=True, duration=1, frequency=1, harmonics=3, random=10, evaluations=30)
+    assert e.trajectory.harmonics("theta") == (0.0, [])  # (offset, harmonics): at home, still
+    assert len(e.trajectory.harmonics("x")[1]) > 0 and len(e.trajectory.harmonics("y")[1]) > 0
+    designed = [line for line in e.text.splitlines() if line.startswith("designed: {condition_number: ")]
+    assert len(designed) == 1
+    assert 1.0 <= float(designed[0].split("condition_number: ")[1].split(",")[0]) < 100.0
+    trajectory = tmp_path / "excitation.yaml"
+    trajectory.write_text(e.yaml)
+    page = nocdyn.animate(str(trajectory), robot=path, rate=100).html
+    assert '"stride":14' in page

@@ -6,6 +6,8 @@
 //   q(t) = q_home + s sum_{k=1..H} (a_k sin(k omega t) + b_k cos(k omega t))
 // with the coefficients tied so that the motion starts (and every period returns) at home at
 // rest: sum b_k = 0 (q(0) = home), sum k a_k = 0 (dq(0) = 0), sum k^2 b_k = 0 (ddq(0) = 0).
+// A two-DOF robot (motion: translation) moves on x, y only: theta stays at home and its
+// coefficients are inert; its payload is a point mass at the tool point (the mass column only).
 // The free coefficients (2H - 3 per axis) give the shape; for each shape the scale s is the
 // largest for which, at every sample of one period,
 //   - every joint is within its range, |q - mid| <= (1 - margin) half-range,

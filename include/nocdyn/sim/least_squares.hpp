@@ -71,7 +71,8 @@ struct PayloadResult {
     std::vector<ActiveBound> active_bounds;
     std::vector<Estimate> friction;  ///< actuated joints' damping and friction, when asked
     /// Covariance of [m, c_x, c_y, I, then the friction's order] (first-order map from the
-    /// linear parameters' at the estimate) [kg, m, m, kg m^2, friction units; products].
+    /// linear parameters' at the estimate) [kg, m, m, kg m^2, friction units; products]. For a
+    /// two-DOF robot (a point payload at the tool point: com and inertia stay 0) of [m, friction..].
     Eigen::MatrixXd covariance;
     FitReport fit;
 };
@@ -82,7 +83,8 @@ struct BaseResult {
     Calibration calibration;     ///< the same values, with their base columns
     FitReport fit;
 };
-/// Payload [mass, com, inertia] fixed to the platform, the robot's own parameters taken from
+/// Payload [mass, com, inertia] fixed to the platform (a two-DOF robot's: a point mass at the tool
+/// point, its mass only; a prior bounding its com or inertia is refused), the robot's own parameters taken from
 /// the model: weighted least squares on tau - Y pi_robot = Y_platform delta_pi, then the
 /// physically consistent solution within the prior's bounds (options.prior): when the
 /// unbounded solution is outside them, the bounded least-squares solution over the physical

@@ -16,7 +16,11 @@
 // platform coordinates with the body's twist shaping referred to O, xi_i = U_i xi_P (U_i =
 // [s_1 .. s_k] rows of J_j^-1, identity for the platform), W = sum_i U_i^T Y_w,i, plus the
 // friction columns J_j^-T e_k (q'_k, sign q'_k); then tau = A^-T W (three actuators) or the
-// minimum-norm A (A^T A)^-1 W (redundant), exactly as inverse dynamics applies them.
+// minimum-norm A (A^T A)^-1 W (redundant), exactly as inverse dynamics applies them. For a
+// two-DOF robot (motion: translation, task map E) only the force rows count, E^T S(c)^T W = [W_x; W_y]:
+// tau = A_E (A_E^T A_E)^-1 [W_x; W_y], A_E = A S(c) E the x, y columns of A. Its platform is a point
+// mass at the tool point that never turns, so the platform's m c_x, m c_y and I_O columns are zero,
+// as are the friction columns of each limb's last R joint (it turns with the fictitious theta).
 #pragma once
 
 #include <string>
