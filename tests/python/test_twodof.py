@@ -518,3 +518,13 @@ def test_excite_moves_x_y_and_animate_draws_it(source_dir, tmp_path):
     trajectory.write_text(e.yaml)
     page = nocdyn.animate(str(trajectory), robot=path, rate=100).html
     assert '"stride":14' in page
+
+
+def test_the_docs_table_of_commands_by_family_names_every_command(source_dir):
+    import re
+
+    text = (source_dir / "docs" / "commands" / "index.md").read_text()
+    table = text[text.index("## Commands by robot family"):text.index("```{toctree}")]
+    listed = {name for row in table.splitlines() if row.startswith("| `")
+              for name in re.findall(r"`([a-z-]+)`", row.split("|")[1])}
+    assert listed == set(nocdyn.COMMANDS)
