@@ -366,15 +366,21 @@ inline SpatialRobotDescription parse(const YAML::Node& root, const std::string& 
         // the limbs keep the platform's orientation at home: no twist every limb allows turns it
         const Eigen::Matrix<double, 3, Eigen::Dynamic> free = freeRotationsAtHome(robot);
         if (free.cols() > 0) {
-            std::string axes;
-            for (Eigen::Index c = 0; c < free.cols(); ++c) {
-                Eigen::Vector3d axis = free.col(c);
-                // a readable sign: the largest component positive; round-off cleaned
+            // a readable axis: the largest component positive, round-off cleared
+            const auto readable = [](Eigen::Vector3d axis) {
                 Eigen::Index largest = 0;
                 axis.cwiseAbs().maxCoeff(&largest);
                 if (axis(largest) < 0.0) axis = -axis;
                 for (Eigen::Index i = 0; i < 3; ++i) axis(i) = std::abs(axis(i)) < 1e-12 ? 0.0 : axis(i);
-                axes += (axes.empty() ? "" : " and ") + text::format("[%.6g, %.6g, %.6g]", axis(0), axis(1), axis(2));
+                return text::format("[%.6g, %.6g, %.6g]", axis(0), axis(1), axis(2));
+            };
+            std::string axes;
+            if (free.cols() == 1) {
+                axes = readable(free.col(0));
+            } else if (free.cols() == 2) {
+                axes = "any axis normal to " + readable(free.col(0).cross(free.col(1)));
+            } else {
+                axes = "any axis";
             }
             fail(top / "motion", motion,
                  "translation, but at home the limbs leave the platform free to turn about " + axes +
