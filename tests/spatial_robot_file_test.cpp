@@ -14,6 +14,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial_description.hpp"
+#include "skip.hpp"
 
 namespace nocdyn {
 namespace {
@@ -342,6 +343,39 @@ TEST(SpatialRobotFile, EveryCommandRefusesASpatialRobotInOneLine) {
     EXPECT_EQ(result.err, "nocdyn: error: " + shipped("delta.yaml") +
                               ": a spatial robot (space: spatial): read and checked; no command computes spatial "
                               "robots yet\n");
+}
+
+TEST(SpatialRobotFile, ValidateReadsChecksAndSummarisesASpatialRobot) {
+    if (test::runCli("validate --help > /dev/null").exit_code != 0) {
+        NOCDYN_SKIP_OR_FAIL_IN_CI("nocdyn validate is built with Simbody and MuJoCo only");
+    }
+    const test::CliResult stewart = test::runCli("validate --robot " + shipped("stewart.yaml"));
+    EXPECT_EQ(stewart.exit_code, 0) << stewart.err;
+    EXPECT_EQ(stewart.out,
+              "stewart: a spatial robot (motion full, pose [x, y, z, roll, pitch, yaw]), read and checked\n"
+              "  limbs: 6 (6 UPS)\n"
+              "  joints: 18 (6 P, 6 U, 6 S), 36 joint freedoms\n"
+              "  actuators: 6 (6 P)\n"
+              "  mass: 498 kg (platform 300 kg)\n"
+              "no command computes spatial robots yet: nothing was compared with the engines\n");
+    const test::CliResult delta = test::runCli("validate --robot " + shipped("delta.yaml"));
+    EXPECT_EQ(delta.exit_code, 0) << delta.err;
+    EXPECT_NE(delta.out.find("  joints: 9 (3 R, 6 U), 15 joint freedoms\n  actuators: 3 (3 R)\n  mass: 3.15 kg"),
+              std::string::npos)
+        << delta.out;
+    // an error in the file: one line naming it, its line and the joint; nothing on stdout
+    const std::filesystem::path dir = test::freshScratchDirectory("spatial_robot_file");
+    const std::string bad = (dir / "bad.yaml").string();
+    std::ofstream(bad) << edited("axis: [0.0, 0.0, 3.0]", "axis: [0.0, 0.0, 0.0]");
+    const test::CliResult refused = test::runCli("validate --robot " + bad);
+    EXPECT_EQ(refused.exit_code, 1);
+    EXPECT_EQ(refused.out, "");
+    EXPECT_EQ(refused.err, "nocdyn: error: " + bad +
+                               ":18: limbs[1] (guide).joints[0].axis: must be a non-zero vector, got [0, 0, 0]\n");
+    // a planar robot still needs its trajectory
+    const test::CliResult planar = test::runCli("validate --robot " + shipped("3-rrr.yaml"));
+    EXPECT_EQ(planar.exit_code, 2);
+    EXPECT_EQ(planar.err, "nocdyn: error: --trajectory is required (see nocdyn validate --help)\n");
 }
 
 }  // namespace
