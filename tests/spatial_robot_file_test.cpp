@@ -6,6 +6,7 @@
 #include <Eigen/Geometry>
 
 #include <cmath>
+#include <cstdio>
 #include <initializer_list>
 #include <regex>
 #include <string>
@@ -318,6 +319,46 @@ TEST(SpatialRobotFile, ATranslationRobotThatLeavesARotationFreeIsRefused) {
                   std::string::npos)
             << message;
     }
+}
+
+TEST(SpatialRobotFile, TwoFreeRotationsAreNamedByTheirPlanesNormal) {
+    // balls at the platform on arms 1 and 2: only arm 3's constraint is left, a couple along
+    // u_3 x w_3 (normal to both its cross axes), so the platform turns about any axis normal to it
+    std::string text = io::readRobotFileText(shipped("delta.yaml"));
+    text = std::regex_replace(
+        text, std::regex(R"(\{type: U, point: (\[[^\]]*\]), axes: \[\[[^\]]*\], \[[^\]]*\]\]\}   # platform)"),
+        "{type: S, point: $1}   # platform", std::regex_constants::format_first_only);
+    text = std::regex_replace(
+        text, std::regex(R"(\{type: U, point: (\[[^\]]*\]), axes: \[\[[^\]]*\], \[[^\]]*\]\]\}   # platform)"),
+        "{type: S, point: $1}   # platform", std::regex_constants::format_first_only);
+    const SpatialRobotDescription delta = io::loadSpatialRobotDescription(shipped("delta.yaml"));
+    const SpatialJointDescription& elbow = delta.limbs[2].joints[1];
+    Eigen::Vector3d normal = elbow.axis1.cross(elbow.axis2).normalized();
+    Eigen::Index largest = 0;
+    normal.cwiseAbs().maxCoeff(&largest);
+    if (normal(largest) < 0.0) normal = -normal;
+    char expected[128];
+    std::snprintf(expected, sizeof expected, "free to turn about any axis normal to [%.6g, %.6g, %.6g]", normal(0),
+                  normal(1), normal(2));
+    try {
+        (void)io::parseSpatialRobotDescription(text, "delta-2rus.yaml");
+        ADD_FAILURE() << "a Delta with two ball-jointed arms accepted as a translation robot";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find(std::string("delta-2rus.yaml:11: motion: translation, but at home the "
+                                                         "limbs leave the platform ") +
+                                             expected),
+                  std::string::npos)
+            << e.what() << "\nexpected " << expected;
+    }
+}
+
+TEST(SpatialRobotFile, ParametersAndTheirOverridesWorkAsInThePlanarForm) {
+    const std::string text = edited("home: [0.0, 0.0, 0.5]", "parameters: {h: 0.5}\nhome: [0.0, 0.0, h]",
+                                    edited("{type: S, point: [0.0, 0.0, 0.5]}", "{type: S, point: [0.0, 0.0, h]}"));
+    EXPECT_EQ(io::parseSpatialRobotDescription(text, "p.yaml").home(2), 0.5);
+    const SpatialRobotDescription lower = io::parseSpatialRobotDescription(text, "p.yaml", {{"h", 0.4}});
+    EXPECT_EQ(lower.home(2), 0.4);
+    EXPECT_EQ(lower.limbs[1].joints[2].point.z(), 0.4);
 }
 
 TEST(SpatialRobotFile, EveryCommandRefusesASpatialRobotInOneLine) {
