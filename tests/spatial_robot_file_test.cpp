@@ -15,6 +15,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial_description.hpp"
+#include "nocdyn/text.hpp"
 #include "skip.hpp"
 
 namespace nocdyn {
@@ -349,6 +350,61 @@ TEST(SpatialRobotFile, TwoFreeRotationsAreNamedByTheirPlanesNormal) {
                                              expected),
                   std::string::npos)
             << e.what() << "\nexpected " << expected;
+    }
+}
+
+enum class PlatformAxes { tsai, same_order, radial };
+
+/// Tsai's 3-UPU: base U (a1 tangent, a2 across the leg), the leg's P, platform U with the same
+/// two axes in the other order; or in the same order; or with a radial axis instead of a1.
+std::string tsai(PlatformAxes platform) {
+    const auto vec = [](const Eigen::Vector3d& v) {
+        return "[" + text::shortest(v.x()) + ", " + text::shortest(v.y()) + ", " + text::shortest(v.z()) + "]";
+    };
+    const Eigen::Vector3d home(0.0, 0.0, 0.4);
+    std::string out = "space: spatial\nmotion: translation\nhome: " + vec(home) + "\nplatform: {mass: 1.0}\nlimbs:\n";
+    for (int i = 0; i < 3; ++i) {
+        const double phi = 2.0 * 3.14159265358979 * i / 3.0;
+        const Eigen::Vector3d radial(std::cos(phi), std::sin(phi), 0.0), tangent(-std::sin(phi), std::cos(phi), 0.0);
+        const Eigen::Vector3d base = 0.3 * radial, top = home + 0.1 * radial;
+        const Eigen::Vector3d leg = (top - base).normalized();
+        const Eigen::Vector3d a1 = tangent, a2 = leg.cross(a1).normalized();
+        const Eigen::Vector3d mid = 0.5 * (base + top);
+        out += "  - joints:\n";
+        out += "      - {type: U, point: " + vec(base) + ", axes: [" + vec(a1) + ", " + vec(a2) + "]}\n";
+        out += "      - {type: P, direction: " + vec(leg) + ", actuated: true}\n";
+        const std::string axes = platform == PlatformAxes::tsai         ? vec(a2) + ", " + vec(a1)
+                                 : platform == PlatformAxes::same_order ? vec(a1) + ", " + vec(a2)
+                                                                        : vec(a2) + ", " + vec(radial);
+        out += "      - {type: U, point: " + vec(top) + ", axes: [" + axes + "]}\n";
+        out += "    bodies:\n";
+        for (int b = 0; b < 2; ++b) {
+            out += "      - {mass: 0.5, com: " + vec(b == 0 ? 0.5 * (base + mid) : 0.5 * (mid + top)) +
+                   ", inertia: [[0.001, 0.0, 0.0], [0.0, 0.001, 0.0], [0.0, 0.0, 0.001]]}\n";
+        }
+    }
+    return out;
+}
+
+TEST(SpatialRobotFile, TsaisThreeUpuKeepsTheOrientationAndATwistedOneDoesNot) {
+    const SpatialRobotDescription robot = io::parseSpatialRobotDescription(tsai(PlatformAxes::tsai), "3-upu.yaml");
+    EXPECT_EQ(robot.limbs[0].type(), "UPU");
+    EXPECT_EQ(robot.limbs[0].freedoms(), 5);
+    EXPECT_EQ(freeRotationsAtHome(robot).cols(), 0);
+    // the check sees the joint screws at home, not which body carries which U axis: the same
+    // lines in the other order pass it (keeping the orientation away from home is the model's
+    // check at every sample)
+    EXPECT_EQ(
+        freeRotationsAtHome(io::parseSpatialRobotDescription(tsai(PlatformAxes::same_order), "3-upu.yaml")).cols(), 0);
+    // a radial platform axis instead of the base's tangent one: the limbs' screws span rotations
+    try {
+        (void)io::parseSpatialRobotDescription(tsai(PlatformAxes::radial), "3-upu.yaml");
+        ADD_FAILURE() << "a 3-UPU with radial platform axes accepted as a translation robot";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("3-upu.yaml:2: motion: translation, but at home the limbs leave the "
+                                             "platform free to turn about"),
+                  std::string::npos)
+            << e.what();
     }
 }
 
