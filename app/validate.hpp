@@ -2,6 +2,7 @@
 // each engine's model generated from the same robot file (built with both engines only).
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "app/observer.hpp"
@@ -25,5 +26,10 @@ struct ValidateResult {
 };
 
 [[nodiscard]] ValidateResult runValidate(const ValidateOptions& options, Observer& observer);
+
+/// When `source` is a spatial robot file (`space: spatial`): reads and checks it and returns a
+/// short summary (limbs, joints by type, actuators, mass); nothing computes it yet. std::nullopt
+/// for any other robot. Throws nocdyn::Error naming the file, line and field of an error in it.
+[[nodiscard]] std::optional<std::string> checkSpatialRobot(const RobotSource& source);
 
 }  // namespace nocdyn::app

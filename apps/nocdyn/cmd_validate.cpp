@@ -6,7 +6,9 @@
 #include "app/validate.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/io/escape.hpp"
+#include "nocdyn/io/robot_file.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -19,6 +21,16 @@ struct Options : app::ValidateOptions {
 };
 
 void run(const Options& options) {
+    // a spatial robot file: read, checked and summarised (nothing computes it yet)
+    if (const std::optional<std::string> summary = app::checkSpatialRobot(options.robot)) {
+        if (!options.output.empty()) {
+            throw Error(options.robot.path + ": " + io::kSpatialNotComputed +
+                        " (validate only summarises it: --output " + "takes nothing)");
+        }
+        std::cout << *summary;
+        return;
+    }
+    if (options.trajectory.empty()) throw CLI::RequiredError("--trajectory");
     TerminalObserver observer("nocdyn validate");
     const app::ValidateResult result = app::runValidate(options, observer);
     writeTable(result.table, options.output);
@@ -39,8 +51,11 @@ void addValidateCommand(CLI::App& app) {
         "revolute joint; gravity and joint friction included) and driven by the same platform\n"
         "trajectory. Writes CSV with the columns t,u1..un,tau1..taun,simbody_u1..n,simbody_tau1..n,\n"
         "mujoco_u1..n,mujoco_tau1..n,simbody_dtau1..n,mujoco_dtau1..n and prints on stderr the largest\n"
-        "absolute and relative difference per actuator and engine.");
+        "absolute and relative difference per actuator and engine. A spatial robot file (space: spatial)\n"
+        "is only read, checked and summarised on stdout (limbs, joints by type, actuators, mass).");
     addSamplingOptions(*command, *options);
+    // required unless the robot is a spatial one, which is only read and checked (run)
+    command->get_option("--trajectory")->required(false);
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
     command->callback([options] { validate_command::run(*options); });

@@ -7,8 +7,12 @@
 #include <numbers>
 #include <sstream>
 
+#include <Eigen/Geometry>
+
 #include "nocdyn/error.hpp"
 #include "nocdyn/printable.hpp"
+#include "nocdyn/spatial_description.hpp"
+#include "nocdyn/detail/eigen_instances.hpp"
 
 namespace nocdyn {
 
@@ -255,6 +259,165 @@ void validate(RobotDescription& robot) {
     if (actuators < 3) {
         check.fail(0, "limbs", "a planar platform needs at least 3 actuated joints, got " + std::to_string(actuators));
     }
+}
+
+}  // namespace nocdyn
+
+// Spatial robot descriptions (spatial_description.hpp): the joint screws at home and the checks
+// the reader makes with them.
+
+namespace nocdyn {
+
+int SpatialJointDescription::freedoms() const {
+    switch (type) {
+        case SpatialJointType::universal:
+            return 2;
+        case SpatialJointType::spherical:
+            return 3;
+        default:
+            return 1;
+    }
+}
+
+char SpatialJointDescription::letter() const {
+    switch (type) {
+        case SpatialJointType::revolute:
+            return 'R';
+        case SpatialJointType::prismatic:
+            return 'P';
+        case SpatialJointType::universal:
+            return 'U';
+        case SpatialJointType::spherical:
+            return 'S';
+    }
+    return '?';
+}
+
+std::string SpatialLimbDescription::type() const {
+    std::string out;
+    for (const SpatialJointDescription& joint : joints) out += joint.letter();
+    return out;
+}
+
+int SpatialLimbDescription::freedoms() const {
+    int count = 0;
+    for (const SpatialJointDescription& joint : joints) count += joint.freedoms();
+    return count;
+}
+
+int SpatialRobotDescription::actuatorCount() const {
+    int count = 0;
+    for (const SpatialLimbDescription& limb : limbs) {
+        for (const SpatialJointDescription& joint : limb.joints) count += joint.actuated ? 1 : 0;
+    }
+    return count;
+}
+
+double SpatialRobotDescription::totalMass() const {
+    double mass = platform.mass;
+    for (const SpatialLimbDescription& limb : limbs) {
+        for (const SpatialBodyDescription& body : limb.bodies) mass += body.mass;
+    }
+    return mass;
+}
+
+Eigen::Matrix<double, 6, Eigen::Dynamic> limbScrews(const SpatialLimbDescription& limb) {
+    Eigen::Matrix<double, 6, Eigen::Dynamic> screws(6, limb.freedoms());
+    Eigen::Index column = 0;
+    // an R screw [a; p x a]: the axis a through the point p
+    const auto revolute = [&](const Eigen::Vector3d& point, const Eigen::Vector3d& axis) {
+        screws.col(column).head<3>() = axis;
+        screws.col(column).tail<3>() = point.cross(axis);
+        ++column;
+    };
+    for (const SpatialJointDescription& joint : limb.joints) {
+        switch (joint.type) {
+            case SpatialJointType::revolute:
+                revolute(joint.point, joint.axis);
+                break;
+            case SpatialJointType::prismatic:
+                screws.col(column).head<3>().setZero();
+                screws.col(column).tail<3>() = joint.direction;
+                ++column;
+                break;
+            case SpatialJointType::universal:
+                revolute(joint.point, joint.axis1);
+                revolute(joint.point, joint.axis2);
+                break;
+            case SpatialJointType::spherical:
+                for (int e = 0; e < 3; ++e) revolute(joint.point, Eigen::Vector3d::Unit(e));
+                break;
+        }
+    }
+    return screws;
+}
+
+Eigen::Matrix<double, 3, Eigen::Dynamic> freeRotationsAtHome(const SpatialRobotDescription& robot) {
+    // The twists every limb allows are the intersection of the spans of their screws, i.e. the
+    // orthogonal complement of the sum of the spans' complements: stack each limb's complement
+    // basis (the left singular vectors past its rank) and take the null space of the stack.
+    // Rank decisions relative to the largest singular value: the linear rows scale with the
+    // lengths, the angular rows are unit.
+    Eigen::Matrix<double, Eigen::Dynamic, 6> complements(0, 6);
+    for (const SpatialLimbDescription& limb : robot.limbs) {
+        const Eigen::Matrix<double, 6, Eigen::Dynamic> screws = limbScrews(limb);
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(screws, Eigen::ComputeFullU);
+        const Eigen::VectorXd& sigma = svd.singularValues();
+        const double tolerance = 1e-9 * std::max(1.0, sigma.size() > 0 ? sigma(0) : 0.0);
+        Eigen::Index rank = 0;
+        while (rank < sigma.size() && sigma(rank) > tolerance) ++rank;
+        const Eigen::Index extra = 6 - rank;
+        if (extra == 0) continue;
+        complements.conservativeResize(complements.rows() + extra, 6);
+        complements.bottomRows(extra) = svd.matrixU().rightCols(extra).transpose();
+    }
+    Eigen::Matrix<double, 6, Eigen::Dynamic> common;
+    if (complements.rows() == 0) {
+        common = Eigen::Matrix<double, 6, 6>::Identity();
+    } else {
+        const Eigen::JacobiSVD<Eigen::MatrixXd> svd(complements, Eigen::ComputeFullV);
+        const Eigen::VectorXd& sigma = svd.singularValues();
+        Eigen::Index rank = 0;
+        while (rank < sigma.size() && sigma(rank) > 1e-9) ++rank;
+        common = svd.matrixV().rightCols(6 - rank);
+    }
+    if (common.cols() == 0) return Eigen::Matrix<double, 3, Eigen::Dynamic>(3, 0);
+    // the rotations: the range of the intersection's angular rows
+    const Eigen::JacobiSVD<Eigen::MatrixXd> angular(common.topRows<3>(), Eigen::ComputeFullU);
+    const Eigen::VectorXd& sigma = angular.singularValues();
+    Eigen::Index rank = 0;
+    while (rank < sigma.size() && sigma(rank) > 1e-9) ++rank;
+    return angular.matrixU().leftCols(rank);
+}
+
+std::string inertiaProblem(const Eigen::Matrix3d& inertia) {
+    std::ostringstream msg;
+    msg.precision(17);
+    if (!inertia.allFinite()) return "the tensor's entries must be finite numbers";
+    const Eigen::Matrix3d symmetric = 0.5 * (inertia + inertia.transpose());
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(symmetric, Eigen::EigenvaluesOnly);
+    const Eigen::Vector3d moments = eigen.eigenvalues();  // ascending
+    const double tolerance = 1e-12 * moments.cwiseAbs().maxCoeff();
+    for (int i = 0; i < 3; ++i) {
+        for (int j = i + 1; j < 3; ++j) {
+            if (std::abs(inertia(i, j) - inertia(j, i)) > tolerance) {
+                msg << "the tensor must be symmetric, but entry [" << i << "][" << j << "] = " << inertia(i, j)
+                    << " and [" << j << "][" << i << "] = " << inertia(j, i);
+                return msg.str();
+            }
+        }
+    }
+    if (moments(0) < -tolerance) {
+        msg << "the tensor must be positive semi-definite, but a principal moment is " << moments(0);
+        return msg.str();
+    }
+    // the largest principal moment at most the sum of the other two (the others follow)
+    if (moments(2) > moments(0) + moments(1) + tolerance) {
+        msg << "the principal moments " << moments(0) << ", " << moments(1) << ", " << moments(2)
+            << " break the triangle inequality (the largest exceeds the sum of the other two): no body has them";
+        return msg.str();
+    }
+    return {};
 }
 
 }  // namespace nocdyn

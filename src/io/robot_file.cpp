@@ -13,6 +13,7 @@
 #include "nocdyn/text.hpp"
 #include "expression.hpp"
 #include "file_util.hpp"
+#include "spatial_robot_file.hpp"
 #include "yaml_util.hpp"
 
 namespace nocdyn::io {
@@ -111,8 +112,6 @@ RobotDescription parseGeneral(const YAML::Node& root, const std::string& source)
     if (const YAML::Node space = root["space"]; space.IsDefined()) {
         if (!space.IsScalar() || (space.Scalar() != "planar" && space.Scalar() != "spatial"))
             detail::fail(top / "space", space, "expected planar or spatial");
-        if (space.Scalar() == "spatial")
-            detail::fail(top / "space", space, "spatial robots are not supported by this version (planar only)");
     }
     if (const YAML::Node motion = root["motion"]; motion.IsDefined()) {
         if (!motion.IsScalar() || (motion.Scalar() != "full" && motion.Scalar() != "translation"))
@@ -195,9 +194,36 @@ std::string pair(const Eigen::Vector2d& v) {
     return out;
 }
 
+/// Whether a parsed root is a spatial robot file (`space: spatial`).
+bool spatialRoot(const YAML::Node& root) {
+    if (!root.IsMap()) return false;
+    const YAML::Node space = root["space"];
+    return space.IsDefined() && space.IsScalar() && space.Scalar() == "spatial";
+}
+
 }  // namespace
 
 std::string readRobotFileText(const std::string& path) { return detail::readFile(path, "robot file"); }
+
+bool isSpatial(const std::string& text, const std::string& source) {
+    return spatialRoot(detail::loadDocument(text, source));
+}
+
+SpatialRobotDescription parseSpatialRobotDescription(const std::string& text, const std::string& source,
+                                                     const ParameterSet& overrides) {
+    const YAML::Node root = detail::loadDocument(text, source);
+    detail::ExpressionEvaluator evaluator;
+    (void)detail::declareParameters(root, source, overrides, evaluator);
+    const detail::ExpressionScope expressions(evaluator);
+    if (!spatialRoot(root)) {
+        throw Error(source + ": not a spatial robot file (it has no `space: spatial`)");
+    }
+    return detail::spatial::parse(root, source);
+}
+
+SpatialRobotDescription loadSpatialRobotDescription(const std::string& path, const ParameterSet& overrides) {
+    return parseSpatialRobotDescription(readRobotFileText(path), path, overrides);
+}
 
 bool isGeneralForm(const std::string& text, const std::string& source) {
     const YAML::Node root = detail::loadDocument(text, source);
@@ -210,6 +236,11 @@ RobotDescription parseRobotDescription(const std::string& text, const std::strin
     detail::ExpressionEvaluator evaluator;
     (void)detail::declareParameters(root, source, overrides, evaluator);
     const detail::ExpressionScope expressions(evaluator);
+    if (spatialRoot(root)) {
+        // read and checked in full, so that its errors come first; then refused in one line
+        (void)detail::spatial::parse(root, source);
+        throw Error(source + ": " + kSpatialNotComputed);
+    }
     if (root.IsMap() && root["limbs"].IsDefined()) return parseGeneral(root, source);
     RobotDescription robot = expand(detail::parseShortForm(root, source));
     robot.source = source;

@@ -35,6 +35,7 @@
 #include <vector>
 
 #include "nocdyn/description.hpp"
+#include "nocdyn/spatial_description.hpp"
 
 namespace nocdyn::io {
 
@@ -46,10 +47,26 @@ struct Parameter {
 /// Parameters in the order they are declared (or given).
 using ParameterSet = std::vector<Parameter>;
 
-/// Reads a robot file of either form and validates it, each parameter in `overrides`
+/// The refusal of a spatial robot file by every command (after the file is read and checked).
+inline constexpr const char* kSpatialNotComputed =
+    "a spatial robot (space: spatial): read and checked; no command computes spatial robots yet";
+
+/// Reads a robot file of either form and validates it (a spatial file is read and checked, then
+/// refused with kSpatialNotComputed), each parameter in `overrides`
 /// replacing the file's value (a name the file does not declare is an error). Throws
 /// nocdyn::Error.
 [[nodiscard]] RobotDescription loadRobotDescription(const std::string& path, const ParameterSet& overrides = {});
+
+/// Reads a spatial robot file (`space: spatial`, ../shared/robot-files-spatial.md) and checks
+/// it: every error names the file, line, limb, joint or body and field. Throws nocdyn::Error
+/// (also for a planar file).
+[[nodiscard]] SpatialRobotDescription loadSpatialRobotDescription(const std::string& path,
+                                                                  const ParameterSet& overrides = {});
+[[nodiscard]] SpatialRobotDescription parseSpatialRobotDescription(const std::string& text, const std::string& source,
+                                                                   const ParameterSet& overrides = {});
+
+/// Whether robot YAML text is a spatial robot file (`space: spatial`).
+[[nodiscard]] bool isSpatial(const std::string& text, const std::string& source);
 
 /// Parses robot YAML text of either form; `source` names it in messages.
 [[nodiscard]] RobotDescription parseRobotDescription(const std::string& text, const std::string& source,
