@@ -49,7 +49,7 @@ def _require_full_motion(robot, method):
     """Refuses a two-DOF robot (motion: translation) in the methods that do not take it yet."""
     if robot._core.task_dimension != 3:
         raise Error(f"{method}: a two-DOF robot (motion: translation, pose [x, y]) is not supported by this method "
-                    "yet (inverse_dynamics is)")
+                    "yet (inverse_dynamics, reactions, regressor, stiffness and forward_kinematics are)")
 
 
 def _lift_task(p, dp, ddp):
@@ -261,9 +261,11 @@ class RobotDynamics:
         returns instead. check_limits=True (the default, as `nocdyn inverse-dynamics
         --reactions`) raises nocdyn.Error at the first sample beyond a joint's range or
         velocity limit or an actuator's effort (checked by the full path at every sample);
-        check_limits=False checks none.
+        check_limits=False checks none. A two-DOF robot (motion: translation) takes p, dp, ddp of
+        shape (2,) or (N, 2), columns x, y.
         """
-        _require_full_motion(self, "reactions")
+        if self._core.task_dimension == 2:
+            p, dp, ddp = _lift_task(p, dp, ddp)  # [x, y, 0]: theta is no coordinate
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         p_arr = _floats(p, "p")
         single = p_arr.ndim == 1

@@ -185,9 +185,13 @@ class Robot(RobotDynamics):
 
     def with_payload(self, mass, com=(0.0, 0.0), inertia=0.0):
         """This robot with a payload merged into its platform: mass [kg], c.o.m. [x, y] in the
-        platform frame [m], moment of inertia about its own c.o.m. [kg m^2]."""
-        _require_full_motion(self, "with_payload")
+        platform frame [m], moment of inertia about its own c.o.m. [kg m^2]. A two-DOF robot's
+        platform is a point mass at the tool point: its payload is a mass there (com [0, 0],
+        inertia 0)."""
         com = _input(com, "com", (2,))
+        if self._core.task_dimension == 2 and (any(c != 0.0 for c in com) or _number(inertia, "inertia") != 0.0):
+            raise Error("with_payload: a two-DOF robot's payload is a point mass at its tool point: "
+                        "com must be [0, 0] and inertia 0")
         return Robot(self._core._with_payload(_number(mass, "mass"), [float(v) for v in com],
                                               _number(inertia, "inertia")))
 

@@ -182,13 +182,37 @@ def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
     robot = _robot(source_dir, "five-bar")
     p, z = np.array([0.0, 0.3, 0.0]), np.zeros(3)
     calls = {
-        "with_payload": lambda: robot.with_payload(0.1),
         "inverse_dynamics_derivatives": lambda: robot.inverse_dynamics_derivatives(p, z, z),
-        "reactions": lambda: robot.reactions(p, z, z),
+        "actuator_derivatives": lambda: robot.actuator_derivatives(p, z, z),
+        "linearize": lambda: robot.linearize(p, z, np.zeros(2)),
     }
     for name, call in calls.items():
         with pytest.raises(nocdyn.Error, match=f"{name}: a two-DOF robot"):
             call()
+
+
+def test_robot_reactions_and_payload_of_a_five_bar_over_x_y(source_dir):
+    # reactions on (N, 2) samples: those of the command line's --reactions columns (which the
+    # Newton-Euler balance of tests/twodof_forces_cli_test.cpp checks)
+    robot = _robot(source_dir, "five-bar")
+    eight = str(source_dir / "trajectories" / "five-bar-figure-eight.yaml")
+    forces = nocdyn.inverse_dynamics(eight, robot=robot, rate=400.0, reactions=True)
+    p, dp, ddp = (a[:, :2] for a in nocdyn.Trajectory.load(eight).evaluate(forces["t"]))
+    reactions = robot.reactions(p, dp, ddp)
+    assert reactions.shape == (len(p), 2, 3, 3)
+    for limb in (1, 2):
+        for joint in (1, 2, 3):
+            for k, axis in enumerate(("fx", "fy", "m")):
+                np.testing.assert_allclose(reactions[:, limb - 1, joint - 1, k],
+                                           forces[f"limb{limb}_j{joint}_{axis}"], rtol=0, atol=1e-12)
+    np.testing.assert_array_equal(robot.reactions(p[7], dp[7], ddp[7]), reactions[7])
+    # a payload is a point mass at the tool: the same as a heavier tool in the file
+    heavier = nocdyn.Robot.from_yaml((source_dir / "robots" / "five-bar.yaml").read_text().replace(
+        "platform: {mass: 0.3}", "platform: {mass: 0.5}"))
+    np.testing.assert_allclose(robot.with_payload(0.2).inverse_dynamics(p, dp, ddp).tau,
+                               heavier.inverse_dynamics(p, dp, ddp).tau, rtol=1e-13, atol=1e-13)
+    with pytest.raises(nocdyn.Error, match="a point mass at its tool point: com must be"):
+        robot.with_payload(0.2, com=(0.01, 0.0))
 
 
 def _circle_intersections(a, ra, b, rb):
