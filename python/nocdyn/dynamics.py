@@ -49,7 +49,8 @@ def _require_full_motion(robot, method):
     """Refuses a two-DOF robot (motion: translation) in the methods that do not take it yet."""
     if robot._core.task_dimension != 3:
         raise Error(f"{method}: a two-DOF robot (motion: translation, pose [x, y]) is not supported by this method "
-                    "yet (inverse_dynamics, reactions, regressor, stiffness and forward_kinematics are)")
+                    "yet (inverse_dynamics and its derivatives, reactions, regressor, stiffness and forward_kinematics "
+                    "are)")
 
 
 def _lift_task(p, dp, ddp):
@@ -185,14 +186,20 @@ class RobotDynamics:
         order [x, y, theta] of inverse_dynamics; d tau/d ddp is the mass matrix mapped to the
         actuators. Forward-mode automatic differentiation: exact to rounding. Coulomb friction
         is differentiated with its sign held (at a joint rate of exactly 0 its force and
-        derivative are 0). Errors and threads as in inverse_dynamics.
+        derivative are 0). Errors and threads as in inverse_dynamics. A two-DOF robot (motion:
+        translation) takes shape (2,) or (N, 2), columns x, y, and its derivatives have the
+        columns x, y (the task map E: d tau/d p_t = d tau/d p E).
         """
-        _require_full_motion(self, "inverse_dynamics_derivatives")
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
+        two_dof = self._core.task_dimension == 2
+        if two_dof:
+            p, dp, ddp = _lift_task(p, dp, ddp)  # [x, y, 0]: theta is no coordinate
         batch, inputs = _derivative_inputs(p, dp, ddp)
         if not batch:
-            return self._core._inverse_dynamics_derivatives_sample(*inputs)
-        return self._core._inverse_dynamics_derivatives_batch(*inputs, threads=threads, check=bool(check))
+            result = self._core._inverse_dynamics_derivatives_sample(*inputs)
+        else:
+            result = self._core._inverse_dynamics_derivatives_batch(*inputs, threads=threads, check=bool(check))
+        return tuple(d[..., :2] for d in result) if two_dof else result
 
     @_vocabulary
     def actuator_derivatives(self, p, dp, ddp, *, threads=1, check=True):
@@ -203,15 +210,22 @@ class RobotDynamics:
         automatic differentiation as inverse_dynamics_derivatives: exact to rounding. A batch,
         p, dp, ddp of shape (N, 3), gives u, du, ddu of shape (N, n) and the derivatives of
         shape (N, n, 3), each row the sample's own values to the bit. Errors, check and threads
-        as in inverse_dynamics (check=False: a failed sample's rows are NaN).
+        as in inverse_dynamics (check=False: a failed sample's rows are NaN). A two-DOF robot
+        (motion: translation) takes shape (2,) or (N, 2), columns x, y, and its derivatives have
+        the columns x, y.
         """
-        _require_full_motion(self, "actuator_derivatives")
         threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
+        two_dof = self._core.task_dimension == 2
+        if two_dof:
+            p, dp, ddp = _lift_task(p, dp, ddp)  # [x, y, 0]: theta is no coordinate
         batch, inputs = _derivative_inputs(p, dp, ddp)
         if not batch:
-            return ActuatorDerivatives(*self._core._actuator_derivatives_sample(*inputs))
-        return ActuatorDerivatives(*self._core._actuator_derivatives_batch(*inputs, threads=threads,
-                                                                           check=bool(check)))
+            result = self._core._actuator_derivatives_sample(*inputs)
+        else:
+            result = self._core._actuator_derivatives_batch(*inputs, threads=threads, check=bool(check))
+        if two_dof:  # u, du, ddu as they are; the derivatives over x, y
+            result = tuple(r if k < 3 else r[..., :2] for k, r in enumerate(result))
+        return ActuatorDerivatives(*result)
 
     @_vocabulary
     def linearize(self, p, dp, tau, *, output=None, compliance="auto"):

@@ -223,6 +223,38 @@ void platformWrench(const Model& model, const SampleIn<T>& in, S3<T>& W, std::ar
     }
 }
 
+/// tau from the force rows of a two-DOF robot (motion: translation): A_t^T tau = W_t with
+/// A_t = A E and W_t = E^T W, E = [0 0; 1 0; 0 1] (the x, y rows); A_t^-T W_t with two
+/// actuators, else the minimum-norm A_t (A_t^T A_t)^-1 W_t.
+template <class T>
+void distributeTask(int n, const std::array<S3<T>, kMaxActuators>& A, const S3<T>& W,
+                    std::array<T, kMaxActuators>& tau) {
+    if (n == 2) {
+        // [r_0 r_1] tau = W_t by Cramer's rule
+        const S3<T>& r0 = A[0];
+        const S3<T>& r1 = A[1];
+        const T det = r0.x * r1.y - r1.x * r0.y;
+        tau[0] = (W.x * r1.y - r1.x * W.y) / det;
+        tau[1] = (r0.x * W.y - W.x * r0.y) / det;
+        return;
+    }
+    // B = A_t^T A_t = sum_a r_a r_a^T over x, y; lambda = B^-1 W_t; tau_a = r_a . lambda
+    T bxx = constant<T>(0.0), bxy = constant<T>(0.0), byy = constant<T>(0.0);
+    for (int a = 0; a < n; ++a) {
+        const S3<T>& r = A[static_cast<std::size_t>(a)];
+        bxx = bxx + r.x * r.x;
+        bxy = bxy + r.x * r.y;
+        byy = byy + r.y * r.y;
+    }
+    const T det = bxx * byy - bxy * bxy;
+    const T lx = (byy * W.x - bxy * W.y) / det;
+    const T ly = (bxx * W.y - bxy * W.x) / det;
+    for (int a = 0; a < n; ++a) {
+        const S3<T>& r = A[static_cast<std::size_t>(a)];
+        tau[static_cast<std::size_t>(a)] = r.x * lx + r.y * ly;
+    }
+}
+
 /// tau from A^T tau = W (eq. 20): A^-T W with three actuators, else the minimum-norm
 /// A (A^T A)^-1 W.
 template <class T>
@@ -379,7 +411,11 @@ Status inverseDynamicsDerivatives(const Model& model, Data& data, const Pose& p,
     std::array<S3<Dual<N>>, kMaxActuators> A;
     platformWrench(model, in, W, A);
     std::array<Dual<N>, kMaxActuators> tau;
-    distribute(model.actuators, A, W, tau);
+    if (model.task_dimension == 2) {
+        distributeTask(model.actuators, A, W, tau);
+    } else {
+        distribute(model.actuators, A, W, tau);
+    }
     const int n = model.actuators;
     out.tau.resize(n);
     out.d_p.resize(n, 3);

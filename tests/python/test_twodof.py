@@ -181,14 +181,8 @@ def test_the_stiffness_of_a_two_dof_robot_is_2_by_2_over_x_y(cli, source_dir, tm
 def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
     robot = _robot(source_dir, "five-bar")
     p, z = np.array([0.0, 0.3, 0.0]), np.zeros(3)
-    calls = {
-        "inverse_dynamics_derivatives": lambda: robot.inverse_dynamics_derivatives(p, z, z),
-        "actuator_derivatives": lambda: robot.actuator_derivatives(p, z, z),
-        "linearize": lambda: robot.linearize(p, z, np.zeros(2)),
-    }
-    for name, call in calls.items():
-        with pytest.raises(nocdyn.Error, match=f"{name}: a two-DOF robot"):
-            call()
+    with pytest.raises(nocdyn.Error, match="linearize: a two-DOF robot"):
+        robot.linearize(p, z, np.zeros(2))
 
 
 def test_robot_reactions_and_payload_of_a_five_bar_over_x_y(source_dir):
@@ -552,3 +546,50 @@ def test_the_docs_table_of_commands_by_family_names_every_command(source_dir):
     listed = {name for row in table.splitlines() if row.startswith("| `")
               for name in re.findall(r"`([a-z-]+)`", row.split("|")[1])}
     assert listed == set(nocdyn.COMMANDS)
+
+
+def _three_armed_five_bar(source_dir):
+    """The five-bar with a third arm on a motor below the tool: three actuators on two
+    coordinates (minimum-norm torques)."""
+    text = (source_dir / "robots" / "five-bar.yaml").read_text()
+    third = """  - name: middle
+    joints:
+      - {type: R, point: [0.0, -0.1], actuated: true,
+         limits: {lower: -1.5, upper: 1.5, effort: 8.0, velocity: 30.0}}
+      - {type: R, point: [0.15, 0.15]}
+      - {type: R, point: [0.0, 0.35]}
+    bodies:
+      - {mass: 0.25, inertia: 2.0e-3, com: [0.075, 0.025]}
+      - {mass: 0.15, inertia: 7.8125e-4, com: [0.075, 0.25]}
+"""
+    return nocdyn.Robot.from_yaml(text.rstrip("\n") + "\n" + third)
+
+
+@pytest.mark.parametrize("name", ["five-bar", "biglide", "three-armed"])
+def test_derivatives_of_a_two_dof_robot_are_its_finite_differences_over_x_y(source_dir, name):
+    robot = _three_armed_five_bar(source_dir) if name == "three-armed" else _robot(source_dir, name)
+    center = np.array([0.0, 0.17]) if name == "biglide" else np.array([0.02, 0.3])
+    P, dP, ddP = _motion(center, n=5)
+    d_p, d_dp, d_ddp = robot.inverse_dynamics_derivatives(P, dP, ddP)
+    n = robot.actuators
+    assert d_p.shape == d_dp.shape == d_ddp.shape == (5, n, 2)
+    actuators = robot.actuator_derivatives(P[2], dP[2], ddP[2])
+    assert actuators.u_p.shape == (n, 2)
+    h = 1e-6
+    for k in range(5):
+        one = robot.inverse_dynamics_derivatives(P[k], dP[k], ddP[k])
+        for batch, sample in zip((d_p, d_dp, d_ddp), one):
+            np.testing.assert_array_equal(batch[k], sample)
+        for which, exact in enumerate((d_p[k], d_dp[k], d_ddp[k])):
+            for j in range(2):
+                step = np.zeros(2)
+                step[j] = h
+                plus = [P[k].copy(), dP[k].copy(), ddP[k].copy()]
+                minus = [P[k].copy(), dP[k].copy(), ddP[k].copy()]
+                plus[which] += step
+                minus[which] -= step
+                difference = (robot.inverse_dynamics(*plus).tau - robot.inverse_dynamics(*minus).tau) / (2 * h)
+                scale = max(1.0, np.abs(difference).max())
+                np.testing.assert_allclose(exact[:, j], difference, rtol=0, atol=1e-6 * scale)
+    # d u/d p of the actuator variables: A over x, y (du = A dp)
+    np.testing.assert_allclose(actuators.u_p, nocdyn.pose(*P[2], robot=robot).A, rtol=1e-12, atol=1e-12)
