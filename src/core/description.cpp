@@ -396,7 +396,7 @@ std::string inertiaProblem(const Eigen::Matrix3d& inertia) {
     if (!inertia.allFinite()) return "the tensor's entries must be finite numbers";
     const Eigen::Matrix3d symmetric = 0.5 * (inertia + inertia.transpose());
     const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eigen(symmetric, Eigen::EigenvaluesOnly);
-    const Eigen::Vector3d moments = eigen.eigenvalues();  // ascending
+    const Eigen::Vector3d& moments = eigen.eigenvalues();  // ascending
     const double tolerance = 1e-12 * moments.cwiseAbs().maxCoeff();
     for (int i = 0; i < 3; ++i) {
         for (int j = i + 1; j < 3; ++j) {

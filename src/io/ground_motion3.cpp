@@ -18,7 +18,7 @@ namespace nocdyn::io {
 
 namespace {
 
-std::string upper(std::string_view text) {
+std::string upperCase(std::string_view text) {
     std::string out(text);
     for (char& c : out) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
     return out;
@@ -73,7 +73,7 @@ std::optional<ComponentDirection> componentDirection(std::string_view event_line
     // the older files' station note after it: "090 (CDMG STATION 89509)"
     if (const std::size_t open = last.find('('); open != std::string_view::npos && last.back() == ')')
         last = trimmed(last.substr(0, open));
-    const std::string field = upper(last);
+    const std::string field = upperCase(last);
     if (field == "UP") return ComponentDirection{true, 0.0, 1.0};
     if (field == "DWN" || field == "DOWN") return ComponentDirection{true, 0.0, -1.0};
     // an azimuth: digits only ("90", "090", "360"), as the database writes it
@@ -175,7 +175,7 @@ TableMotion combineComponents(const std::vector<GroundMotionRecord>& components,
 
 std::string componentGroup(const std::string& path) {
     std::string stem = std::filesystem::path(path).stem().string();
-    const std::string up = upper(stem);
+    const std::string up = upperCase(stem);
     // a trailing -hor1, -hor2, -ver (the repository's labels), then the orientation
     std::size_t end = up.size();
     for (const std::string_view label : {"-HOR1", "-HOR2", "_HOR1", "_HOR2", "-VER", "_VER"}) {

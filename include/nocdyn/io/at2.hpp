@@ -28,8 +28,8 @@ inline constexpr double kStandardGravity = 9.80665;
 
 /// One component of a ground-motion record, uniformly sampled from t = 0.
 struct GroundMotionRecord {
-    std::string source;                ///< file it was read from
-    std::string title;                 ///< the first header line
+    std::string source;  ///< file it was read from
+    std::string title;   ///< the first header line
     /// The second header line (event, date, station and, in NGA-West2 files, the component's
     /// orientation last: "Imperial Valley-02, 5/19/1940, El Centro Array #9, 180"), blanks folded.
     std::string event;
