@@ -288,10 +288,12 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
         out.rows.push_back(std::move(row));
     }
     out.text = suiteTable(out, options, workers, outcomes.front().sensing);
+    // the records made of components, their names through the Markdown escaper as in the table
     std::string grouped;
     for (const RecordFiles& r : records) {
-        if (r.files.size() > 1)
-            grouped += (grouped.empty() ? "" : ", ") + r.label + " (" + std::to_string(r.files.size()) + " files)";
+        if (r.files.size() == 1) continue;
+        const std::string files = " (" + std::to_string(r.files.size()) + " files)";
+        grouped += (grouped.empty() ? "" : ", ") + io::markdownText(r.label) + files;
     }
     if (!grouped.empty()) {
         out.text +=
