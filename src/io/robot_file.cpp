@@ -19,10 +19,10 @@
 namespace nocdyn::io {
 
 using detail::Context;
+using detail::flag;
+using detail::lineOf;
 
 namespace {
-
-int lineOf(const YAML::Node& node) { return node.IsDefined() && node.Mark().line >= 0 ? node.Mark().line + 1 : 0; }
 
 Eigen::Vector2d vector2(const Context& context, const YAML::Node& map, const char* key) {
     const YAML::Node node = map[key];
@@ -30,17 +30,6 @@ Eigen::Vector2d vector2(const Context& context, const YAML::Node& map, const cha
     if (!node.IsSequence() || node.size() != 2)
         detail::fail(context / key, node, "expected a list of 2 numbers [x, y]");
     return {detail::toNumber(context / key, node[0]), detail::toNumber(context / key, node[1])};
-}
-
-bool flag(const Context& context, const YAML::Node& map, const char* key) {
-    const YAML::Node node = map[key];
-    if (!node.IsDefined()) return false;
-    if (node.IsScalar()) {
-        const std::string& s = node.Scalar();
-        if (s == "true") return true;
-        if (s == "false") return false;
-    }
-    detail::fail(context / key, node, "expected true or false");
 }
 
 JointDescription parseJoint(const Context& context, const YAML::Node& node) {

@@ -33,8 +33,6 @@ inline constexpr double kMinStiffness = 1.0e-9;
 /// Below it a vector is zero, and a U's axes parallel (the sine of their angle).
 inline constexpr double kTiny = 1.0e-9;
 
-int lineOf(const YAML::Node& node) { return node.IsDefined() && node.Mark().line >= 0 ? node.Mark().line + 1 : 0; }
-
 std::string vectorText(const Eigen::Vector3d& v) {
     return "[" + text::shortest(v.x()) + ", " + text::shortest(v.y()) + ", " + text::shortest(v.z()) + "]";
 }
@@ -99,17 +97,6 @@ double mass(const Context& context, const YAML::Node& map) {
     const double m = requireNumber(context, map, "mass");
     requireRange(context, map, "mass", m, 0.0, kMaxMass, "kg");
     return m;
-}
-
-bool flag(const Context& context, const YAML::Node& map, const char* key) {
-    const YAML::Node node = map[key];
-    if (!node.IsDefined()) return false;
-    if (node.IsScalar()) {
-        const std::string& s = node.Scalar();
-        if (s == "true") return true;
-        if (s == "false") return false;
-    }
-    fail(context / key, node, "expected true or false");
 }
 
 /// The keys only R and P joints take (the drive and its friction).

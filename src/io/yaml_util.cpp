@@ -139,4 +139,17 @@ void requireRange(const Context& context, const YAML::Node& map, const char* key
 
 std::string readFile(const std::string& path, const char* what) { return readRegularFile(path, what, kMaxYamlBytes); }
 
+int lineOf(const YAML::Node& node) { return node.IsDefined() && node.Mark().line >= 0 ? node.Mark().line + 1 : 0; }
+
+bool flag(const Context& context, const YAML::Node& map, const char* key) {
+    const YAML::Node node = map[key];
+    if (!node.IsDefined()) return false;
+    if (node.IsScalar()) {
+        const std::string& s = node.Scalar();
+        if (s == "true") return true;
+        if (s == "false") return false;
+    }
+    fail(context / key, node, "expected true or false");
+}
+
 }  // namespace nocdyn::io::detail

@@ -38,6 +38,12 @@ void requireMap(const Context& context, const YAML::Node& node, std::initializer
 /// An optional finite number at node[key], else `fallback`.
 [[nodiscard]] double optionalNumber(const Context& context, const YAML::Node& map, const char* key, double fallback);
 
+/// The 1-based file line of a node, 0 when it has none.
+[[nodiscard]] int lineOf(const YAML::Node& node);
+
+/// An optional boolean at map[key] (false when absent); anything but true or false fails.
+[[nodiscard]] bool flag(const Context& context, const YAML::Node& map, const char* key);
+
 /// Fails "FIELD: must be in [lo, hi] UNIT, got V" at map[key] unless lo <= value <= hi.
 void requireRange(const Context& context, const YAML::Node& map, const char* key, double value, double lo, double hi,
                   const char* unit);
