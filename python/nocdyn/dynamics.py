@@ -45,14 +45,6 @@ def _derivative_inputs(p, dp, ddp):
                   _input(ddp, "ddp", (n, 3), finite=False))
 
 
-def _require_full_motion(robot, method):
-    """Refuses a two-DOF robot (motion: translation) in the methods that do not take it yet."""
-    if robot._core.task_dimension != 3:
-        raise Error(f"{method}: a two-DOF robot (motion: translation, pose [x, y]) is not supported by this method "
-                    "yet (inverse_dynamics and its derivatives, reactions, regressor, stiffness and forward_kinematics "
-                    "are)")
-
-
 def _lift_task(p, dp, ddp):
     """A two-DOF robot's task samples [x, y] (shape (2,) or (N, 2)) as the core's poses
     [x, y, theta] with theta = 0 and its rates 0 (the task map E; the rotation is no
@@ -251,8 +243,17 @@ class RobotDynamics:
         The result is a LinearModel: a tuple (A, B) or (A, B, C, D) with the attributes A, B, C,
         D, ``inputs`` (per column of B "tau" for a force, "uc" for a commanded drive position:
         the command line's channel names) and ``model`` ("rigid" or "lumped").
+
+        A two-DOF robot (motion: translation) takes p and dp of shape (2,) ([x, y] and its rate):
+        its state is x = [x, y, dx/dt, dy/dt], A (4, 4), B (4, n), the output "acceleration"
+        [d2x/dt2, d2y/dt2]; its model is rigid (a lumped compliant two-DOF model is not built:
+        compliance="lumped", or "auto" on a file that declares compliance, raises nocdyn.Error).
         """
-        _require_full_motion(self, "linearize")
+        if self._core.task_dimension == 2:  # the state [x, y, dx/dt, dy/dt]: theta is no coordinate
+            p_arr = _floats(p, "p")
+            if p_arr.shape != (2,):
+                raise Error(f"p: expected shape (2,) for a two-DOF robot ([x, y]), got {p_arr.shape}")
+            p, dp, _ = _lift_task(p_arr, dp, np.zeros(2))
         if not isinstance(compliance, str):
             raise TypeError("compliance: expected 'auto', 'rigid' or 'lumped'")
         A, B, C, D, inputs, model = self._core._linearize(p, dp, tau, output or "acceleration", compliance)

@@ -13,7 +13,7 @@ from . import _nocdyn
 from . import commands as _commands
 from ._guards import _input, _integer, _number, _vocabulary
 from ._nocdyn import Error
-from .dynamics import RobotDynamics, _require_full_motion
+from .dynamics import RobotDynamics
 from .identification import PayloadEstimate, log_columns
 
 __all__ = ["Robot"]

@@ -134,10 +134,12 @@ py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::han
     }
     py::list inputs;
     for (const LinearInput input : ss.inputs) inputs.append(name(input));
-    // the state [p; dp] and the output ddp in Python's pose order
-    const bool pose_output = output == "acceleration";
-    return py::make_tuple(toArray(inPythonOrder(ss.A, true, true)), toArray(inPythonOrder(ss.B, true, false)),
-                          toArray(inPythonOrder(ss.C, pose_output, true)),
+    // the state [p; dp] and the output ddp in Python's pose order; a two-DOF robot's state
+    // [x, y, dx/dt, dy/dt] is in that order already
+    const bool pose = model.task_dimension == 3;
+    const bool pose_output = pose && output == "acceleration";
+    return py::make_tuple(toArray(inPythonOrder(ss.A, pose, pose)), toArray(inPythonOrder(ss.B, pose, false)),
+                          toArray(inPythonOrder(ss.C, pose_output, pose)),
                           toArray(inPythonOrder(ss.D, pose_output, false)), py::tuple(inputs),
                           lumped ? "lumped" : "rigid");
 }

@@ -178,11 +178,48 @@ def test_the_stiffness_of_a_two_dof_robot_is_2_by_2_over_x_y(cli, source_dir, tm
     assert "rows and columns: x [m] y [m])" in out and "rows: x, y)" in out
 
 
-def test_robot_methods_that_do_not_take_two_dof_robots_refuse_them(source_dir):
-    robot = _robot(source_dir, "five-bar")
-    p, z = np.array([0.0, 0.3, 0.0]), np.zeros(3)
-    with pytest.raises(nocdyn.Error, match="linearize: a two-DOF robot"):
-        robot.linearize(p, z, np.zeros(2))
+@pytest.mark.parametrize("name, center", [("five-bar", [0.01, 0.32]), ("biglide", [0.0, 0.17])])
+def test_linearize_over_x_y_agrees_with_finite_differences_of_the_inverse_dynamics(source_dir, name, center):
+    # the state [x, y, dx/dt, dy/dt]; with square actuation, tau_id(p, dp, ddp) = tau gives
+    # d(ddp)/d(tau) = (d tau_id / d ddp)^-1 and d(ddp)/d(p, dp) = -B_l d tau_id / d(p, dp)
+    robot = _robot(source_dir, name)
+    p, dp = np.array(center), np.array([0.2, -0.3])
+    tau = robot.inverse_dynamics(p, dp, np.array([1.0, -2.0])).tau
+    A, B, C, D = robot.linearize(p, dp, tau, output="acceleration")
+    assert A.shape == (4, 4) and B.shape == (4, 2) and C.shape == (2, 4) and D.shape == (2, 2)
+    np.testing.assert_array_equal(A[:2], np.hstack([np.zeros((2, 2)), np.eye(2)]))
+    np.testing.assert_array_equal(B[:2], np.zeros((2, 2)))
+    np.testing.assert_array_equal(C, A[2:])
+    np.testing.assert_array_equal(D, B[2:])
+
+    def tau_id(p_, dp_, ddp_):
+        return robot.inverse_dynamics(p_, dp_, ddp_).tau
+
+    ddp = np.array([1.0, -2.0])
+    h = 1e-6
+    dtau = {"ddp": np.zeros((2, 2)), "p": np.zeros((2, 2)), "dp": np.zeros((2, 2))}
+    for i in range(2):
+        e = h * np.eye(2)[i]
+        dtau["ddp"][:, i] = (tau_id(p, dp, ddp + e) - tau_id(p, dp, ddp - e)) / (2 * h)
+        dtau["p"][:, i] = (tau_id(p + e, dp, ddp) - tau_id(p - e, dp, ddp)) / (2 * h)
+        dtau["dp"][:, i] = (tau_id(p, dp + e, ddp) - tau_id(p, dp - e, ddp)) / (2 * h)
+    B_l = np.linalg.inv(dtau["ddp"])
+    np.testing.assert_allclose(B[2:], B_l, rtol=1e-6, atol=1e-9 * np.abs(B_l).max())
+    for block, key in ((A[2:, :2], "p"), (A[2:, 2:], "dp")):
+        expected = -B_l @ dtau[key]
+        np.testing.assert_allclose(block, expected, rtol=1e-5, atol=1e-6 * np.abs(expected).max())
+    # the actuators' output: du = A_p E dp, so C's rate columns vanish and its position columns
+    # are the actuation Jacobian over x, y (finite differences of u)
+    _, _, C_u, D_u = robot.linearize(p, dp, tau, output="actuators")
+    J = np.column_stack([(robot.inverse_dynamics(p + h * e, dp, ddp).u - robot.inverse_dynamics(p - h * e, dp, ddp).u)
+                         / (2 * h) for e in np.eye(2)])
+    np.testing.assert_allclose(C_u[:, :2], J, rtol=1e-6, atol=1e-9)
+    np.testing.assert_array_equal(C_u[:, 2:], np.zeros((2, 2)))
+    np.testing.assert_array_equal(D_u, np.zeros((2, 2)))
+    with pytest.raises(nocdyn.Error, match="expected shape \\(2,\\) for a two-DOF robot"):
+        robot.linearize(np.array([0.0, 0.3, 0.0]), np.zeros(3), tau)
+    with pytest.raises(nocdyn.Error, match="declares no joint or drive stiffness"):
+        robot.linearize(p, dp, tau, compliance="lumped")
 
 
 def test_robot_reactions_and_payload_of_a_five_bar_over_x_y(source_dir):
