@@ -4,7 +4,7 @@
 // the paper's robot `baseline`, the hand-specialised 3-PRR path the general one must match.
 // Each runs the paper's trajectory 1 plus a second harmonic per axis, a cycle of 1000
 // samples (fixture.hpp), and reports `per_sample`. The two-DOF five-bar and biglide (nocdyn,
-// nocdyn_full) run their own cycle of the tool point about home (fixture.hpp, ToolCycle).
+// nocdyn_full, and the batch) run their own cycle of the tool point about home (fixture.hpp, ToolCycle).
 // BM_Batch/<robot>/nocdyn: the general batch (batch.hpp, the lean kernel on packets of eight
 // samples where the CPU has AVX-512, else four) over the same cycle on one thread,
 // BM_Batch/<robot>/nocdyn_4lanes the same on packets of four (AVX2),
@@ -131,6 +131,41 @@ void generalBatch(benchmark::State& state, const std::string& robot, std::size_t
     perSample(state, static_cast<std::size_t>(N));
 }
 
+/// The batch on a two-DOF robot's tool cycle (ToolCycle), one thread, in the packet layout
+/// `packets`: the same kernel as the per-sample lean path, as generalBatch.
+void toolBatch(benchmark::State& state, const std::string& robot, BatchPackets packets) {
+    struct Width {  // the packet width for this benchmark only
+        explicit Width(BatchPackets p) { setBatchPackets(p); }
+        ~Width() { setBatchPackets(BatchPackets::automatic); }
+        Width(const Width&) = delete;
+        Width& operator=(const Width&) = delete;
+    } width(packets);
+    state.counters["lanes"] = batchPacketWidth();
+    const Model model = loadExample(robot);
+    const ToolCycle cycle(model.home);
+    const auto N = static_cast<Eigen::Index>(cycle.times.size());
+    Eigen::ArrayX3d p(N, 3), dp(N, 3), ddp(N, 3);
+    for (Eigen::Index k = 0; k < N; ++k) {
+        const auto kk = static_cast<std::size_t>(k);
+        p.row(k) = cycle.p[kk].transpose();
+        dp.row(k) = cycle.dp[kk].transpose();
+        ddp.row(k) = cycle.ddp[kk].transpose();
+    }
+    const int n = model.actuators;
+    Eigen::ArrayXXd u(N, n), du(N, n), ddu(N, n), tau(N, n);
+    if (!inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, 1).ok()) {
+        state.SkipWithError(("the tool cycle leaves the workspace of " + robot).c_str());
+        return;
+    }
+    for (auto _ : state) {
+        const BatchResult result = inverseDynamicsBatch(model, p, dp, ddp, u, du, ddu, tau, 1);
+        benchmark::DoNotOptimize(result);
+        benchmark::DoNotOptimize(tau.data());
+        benchmark::ClobberMemory();
+    }
+    perSample(state, static_cast<std::size_t>(N));
+}
+
 /// The one-thread batch of 100 cycles on the paper's robot with the pose columns in `order`
 /// (the core's [theta, x, y] or Python's [x, y, theta]: the same gathers, another column
 /// index), inputs and outputs column-major (Eigen's) or row-major (NumPy's C order, viewed in
@@ -192,6 +227,10 @@ void poseOrderBatch(benchmark::State& state, PoseColumns order, bool c_order) {
                                      [robot](benchmark::State& s) { toolModel<true>(s, robot); });
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn_full").c_str(),
                                      [robot](benchmark::State& s) { toolModel<false>(s, robot); });
+        benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn").c_str(),
+                                     [robot](benchmark::State& s) { toolBatch(s, robot, BatchPackets::automatic); });
+        benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn_4lanes").c_str(),
+                                     [robot](benchmark::State& s) { toolBatch(s, robot, BatchPackets::four); });
     }
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
         benchmark::RegisterBenchmark(("BM_Batch/" + robot + "/nocdyn").c_str(),
