@@ -42,6 +42,7 @@ TESTS = [
     "derivatives_test",
     "excitation_gradient_test",
     "twodof_test",
+    "spatial_dynamics_test",
 ]
 # A test binary that runs longer than this under a mutation (a loop that no longer converges)
 # counts as failing.

@@ -1,0 +1,425 @@
+#include "nocdyn/spatial.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+#include <sstream>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
+#include <Eigen/QR>
+
+#include "nocdyn/error.hpp"
+
+namespace nocdyn::spatial {
+
+namespace {
+
+constexpr int kNewtonIterations = 50;
+constexpr double kClosure = 1e-13;  ///< Newton's residual [m, rad]
+/// The small matrices decomposed here (Gram matrices, at most 6 x 6): one instantiation each.
+using Work = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+
+/// A rigid displacement x -> R x + t.
+struct Move {
+    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
+    Eigen::Vector3d t = Eigen::Vector3d::Zero();
+    [[nodiscard]] Move then(const Move& o) const { return {R * o.R, R * o.t + t}; }
+};
+
+/// exp(s q) of one freedom: a rotation by q about the axis through its point, or a translation
+/// by q along its direction.
+Move freedomMove(const Freedom& f, double q) {
+    if (!f.revolute) return {Eigen::Matrix3d::Identity(), q * f.axis};
+    const Eigen::Matrix3d R = Eigen::AngleAxisd(q, f.axis).toRotationMatrix();
+    return {R, f.point - R * f.point};
+}
+
+/// The screw of freedom f carried by the displacement g: Ad_g s.
+Vector6 carriedScrew(const Freedom& f, const Move& g) {
+    Vector6 s;
+    if (f.revolute) {
+        const Eigen::Vector3d a = g.R * f.axis;
+        const Eigen::Vector3d r = g.R * f.point + g.t;
+        s << a, r.cross(a);
+    } else {
+        s << Eigen::Vector3d::Zero(), g.R * f.axis;
+    }
+    return s;
+}
+
+/// The motion cross product t x s = [w x a; w x m + v x a] (the rate of a screw s carried by a
+/// body of twist t).
+Vector6 cross(const Vector6& t, const Vector6& s) {
+    Vector6 out;
+    out << t.head<3>().cross(s.head<3>()), t.head<3>().cross(s.tail<3>()) + t.tail<3>().cross(s.head<3>());
+    return out;
+}
+
+/// The inertia wrench less gravity of a body (mass m, c.o.m. c, inertia I about it, base frame)
+/// of twist t and twist rate a referred to O, itself referred to O: [n_c + c x f; f].
+Vector6 bodyWrench(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& I, const Vector6& t, const Vector6& a,
+                   const Eigen::Vector3d& g) {
+    const Eigen::Vector3d w = t.head<3>();
+    const Eigen::Vector3d v_c = t.tail<3>() + w.cross(c);
+    const Eigen::Vector3d a_c = a.tail<3>() + a.head<3>().cross(c) + w.cross(v_c);
+    const Eigen::Vector3d f = m * (a_c - g);
+    const Eigen::Vector3d n = I * a.head<3>() + w.cross(I * w);
+    Vector6 out;
+    out << n + c.cross(f), f;
+    return out;
+}
+
+double kinetic(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& I, const Vector6& t) {
+    const Eigen::Vector3d w = t.head<3>();
+    const Eigen::Vector3d v_c = t.tail<3>() + w.cross(c);
+    return 0.5 * (m * v_c.squaredNorm() + w.dot(I * w));
+}
+
+/// The largest over the smallest singular value of a matrix from the eigenvalues of its Gram
+/// matrix (infinity when singular).
+double conditionOf(const Work& gram) {
+    const Eigen::SelfAdjointEigenSolver<Work> eig(gram, Eigen::EigenvaluesOnly);
+    const double lo = eig.eigenvalues()(0), hi = eig.eigenvalues()(eig.eigenvalues().size() - 1);
+    if (!(lo > 0.0)) return std::numeric_limits<double>::infinity();
+    return std::sqrt(hi / lo);
+}
+
+/// The platform's angular velocity and its rate from the Euler angles' rates (R = Rz Ry Rx):
+/// w = roll' u1 + pitch' u2 + yaw' e_z with u1 = Rz Ry e_x, u2 = Rz e_y.
+void angularRates(const TaskVector& p, const TaskVector& dp, const TaskVector& ddp, Eigen::Vector3d& w,
+                  Eigen::Vector3d& dw) {
+    const double pitch = p(4), yaw = p(5);
+    const double cp = std::cos(pitch), sp = std::sin(pitch), cy = std::cos(yaw), sy = std::sin(yaw);
+    const Eigen::Vector3d u1(cy * cp, sy * cp, -sp), u2(-sy, cy, 0.0), ez = Eigen::Vector3d::UnitZ();
+    w = dp(3) * u1 + dp(4) * u2 + dp(5) * ez;
+    const Eigen::Vector3d w_zy = dp(5) * ez + dp(4) * u2;  // the frame Rz Ry's angular velocity
+    dw = ddp(3) * u1 + ddp(4) * u2 + ddp(5) * ez + dp(3) * w_zy.cross(u1) + dp(4) * (dp(5) * ez.cross(u2));
+}
+
+bool finite(const TaskVector& v) { return v.allFinite(); }
+
+/// One limb closed at the platform displacement D by Newton from q (J_j's left inverse for five
+/// freedoms); false when it does not converge. On success, the current screws in ld.J.
+bool closeLimb(const Limb& limb, const Move& D, LimbData& ld, double& residual) {
+    const int n = limb.size();
+    for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
+        Move g;
+        for (int k = 0; k < n; ++k) {
+            ld.J.col(k) = carriedScrew(limb.freedoms[static_cast<std::size_t>(k)], g);
+            g = g.then(freedomMove(limb.freedoms[static_cast<std::size_t>(k)], ld.q(k)));
+        }
+        // the error twist d with exp(d) g = D: w = log(R_D R_g^T), v = t_D - t_g - w x t_g
+        const Eigen::AngleAxisd rotation_error(D.R * g.R.transpose());
+        Vector6 d;
+        d.head<3>() = rotation_error.angle() * rotation_error.axis();
+        d.tail<3>() = D.t - g.t - d.head<3>().cross(g.t);
+        residual = d.cwiseAbs().maxCoeff();
+        if (!std::isfinite(residual)) return false;
+        if (residual <= kClosure) return true;
+        const Eigen::HouseholderQR<LimbJacobian> qr(ld.J);
+        const FreedomVector step = qr.solve(d);
+        if (!step.allFinite()) return false;
+        ld.q += step;
+    }
+    return false;
+}
+
+}  // namespace
+
+Eigen::Matrix3d rotation(double roll, double pitch, double yaw) {
+    return (Eigen::AngleAxisd(yaw, Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(pitch, Eigen::Vector3d::UnitY()) *
+            Eigen::AngleAxisd(roll, Eigen::Vector3d::UnitX()))
+        .toRotationMatrix();
+}
+
+Model::Model(const SpatialRobotDescription& d)
+    : name(d.name),
+      motion(d.motion),
+      task_dimension(d.taskDimension()),
+      max_condition(d.max_condition),
+      gravity(d.gravity),
+      platform_mass(d.platform.mass),
+      platform_com(d.platform.com),
+      platform_inertia(d.platform.inertia) {
+    home = d.home.head(task_dimension);
+    home_rotation = rotation(d.home(3), d.home(4), d.home(5));
+    for (std::size_t j = 0; j < d.limbs.size(); ++j) {
+        const SpatialLimbDescription& ld = d.limbs[j];
+        Limb limb;
+        limb.name = ld.name;
+        const auto add = [&](bool revolute, const Eigen::Vector3d& axis, const Eigen::Vector3d& point, int joint,
+                             const SpatialJointDescription* source) {
+            Freedom f;
+            f.revolute = revolute;
+            f.axis = axis.normalized();
+            f.point = point;
+            f.joint = joint;
+            f.screw = carriedScrew(f, Move{});
+            if (source != nullptr) {
+                f.damping = source->damping;
+                f.friction = source->friction;
+                f.limits = source->limits;
+                if (source->actuated) {
+                    f.actuator = static_cast<int>(actuator.size());
+                    actuator.emplace_back(static_cast<int>(j), static_cast<int>(limb.freedoms.size()));
+                }
+            }
+            limb.freedoms.push_back(f);
+        };
+        for (std::size_t k = 0; k < ld.joints.size(); ++k) {
+            const SpatialJointDescription& joint = ld.joints[k];
+            const int jk = static_cast<int>(k);
+            switch (joint.type) {
+                case SpatialJointType::revolute:
+                    add(true, joint.axis, joint.point, jk, &joint);
+                    break;
+                case SpatialJointType::prismatic:
+                    add(false, joint.direction, Eigen::Vector3d::Zero(), jk, &joint);
+                    break;
+                case SpatialJointType::universal:
+                    add(true, joint.axis1, joint.point, jk, nullptr);
+                    add(true, joint.axis2, joint.point, jk, nullptr);
+                    break;
+                case SpatialJointType::spherical:
+                    for (int e = 0; e < 3; ++e) add(true, Eigen::Vector3d::Unit(e), joint.point, jk, nullptr);
+                    break;
+            }
+            if (k + 1 < ld.joints.size()) {  // body k moves with every freedom of joints 0..k
+                const SpatialBodyDescription& b = ld.bodies[k];
+                limb.bodies.push_back({b.mass, b.com, b.inertia, static_cast<int>(limb.freedoms.size()) - 1});
+            }
+        }
+        if (limb.size() > kMaxFreedoms || static_cast<int>(limb.bodies.size()) > kMaxBodies) {
+            throw Error(d.source + ": " + ld.name + ": more than " + std::to_string(kMaxFreedoms) + " joint freedoms");
+        }
+        this->limb.push_back(std::move(limb));
+    }
+    actuators = static_cast<int>(actuator.size());
+    if (actuators > kMaxActuators) {
+        throw Error(d.source + ": more than " + std::to_string(kMaxActuators) + " actuators");
+    }
+    if (actuators < task_dimension) {
+        throw Error(d.source + ": " + std::to_string(actuators) + " actuators for " + std::to_string(task_dimension) +
+                    " pose coordinates");
+    }
+}
+
+std::vector<std::string> Model::coordinates() const {
+    if (task_dimension == 3) return {"x", "y", "z"};
+    return {"x", "y", "z", "roll", "pitch", "yaw"};
+}
+
+Data::Data(const Model& model)
+    : limb(static_cast<std::size_t>(model.limbs())),
+      A(model.actuators, 6),
+      u(model.actuators),
+      du(model.actuators),
+      ddu(model.actuators),
+      tau(model.actuators) {
+    for (int j = 0; j < model.limbs(); ++j) {
+        const int n = model.limb[static_cast<std::size_t>(j)].size();
+        LimbData& ld = limb[static_cast<std::size_t>(j)];
+        ld.q = FreedomVector::Zero(n);
+        ld.gd = FreedomVector::Zero(n);
+        ld.gdd = FreedomVector::Zero(n);
+        ld.J = LimbJacobian::Zero(6, n);
+        ld.J_plus = LimbInverse::Zero(n, 6);
+    }
+    A.setZero();
+    u.setZero();
+    du.setZero();
+    ddu.setZero();
+    tau.setZero();
+}
+
+Status inverseKinematics(const Model& model, Data& data, const TaskVector& p) {
+    if (p.size() != model.task_dimension || !finite(p)) return {StatusCode::not_finite, -1, p.sum()};
+    const bool full = model.task_dimension == 6;
+    if (full && !(std::abs(std::cos(p(4))) > 1e-9)) return {StatusCode::not_finite, -1, p(4)};
+    data.R = full ? rotation(p(3), p(4), p(5)) : Eigen::Matrix3d::Identity();
+    data.position = p.head<3>();
+    // D: the platform's displacement from home, x -> R R_h^T (x - p_h) + p
+    Move D;
+    D.R = data.R * model.home_rotation.transpose();
+    D.t = data.position - D.R * model.home.head<3>();
+    for (int j = 0; j < model.limbs(); ++j) {
+        const Limb& limb = model.limb[static_cast<std::size_t>(j)];
+        LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+        double residual = 0.0;
+        if (!ld.closed || !closeLimb(limb, D, ld, residual)) {
+            ld.q.setZero();  // again from home
+            if (!closeLimb(limb, D, ld, residual)) {
+                ld.closed = false;
+                return {StatusCode::unreachable, j, residual};
+            }
+        }
+        ld.closed = true;
+        // J^+ = (J^T J)^-1 J^T, and the condition number of J
+        const Work gram = ld.J.transpose() * ld.J;
+        ld.condition = conditionOf(gram);
+        if (!(ld.condition <= model.max_condition)) return {StatusCode::singular_limb, j, ld.condition};
+        ld.J_plus = Eigen::PartialPivLU<Work>(gram).solve(Work(ld.J.transpose()));
+        // the bodies' c.o.m. and inertia: body b moves with the freedoms up to its last
+        Move g;
+        int k = 0;
+        for (std::size_t b = 0; b < limb.bodies.size(); ++b) {
+            const Body& body = limb.bodies[b];
+            for (; k <= body.last_freedom; ++k)
+                g = g.then(freedomMove(limb.freedoms[static_cast<std::size_t>(k)], ld.q(k)));
+            ld.com[b] = g.R * body.com + g.t;
+            ld.inertia[b] = g.R * body.inertia * g.R.transpose();
+        }
+    }
+    for (int a = 0; a < model.actuators; ++a) {
+        const auto [j, k] = model.actuator[static_cast<std::size_t>(a)];
+        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+        data.u(a) = ld.q(k);
+        data.A.row(a) = ld.J_plus.row(k);
+    }
+    // the actuation map over the task coordinates, A E, and its condition number
+    const int d = model.task_dimension;
+    const ActuationMatrix AE = data.A.rightCols(d);
+    data.actuation_condition = conditionOf(Work(AE.transpose() * AE));
+    if (!(data.actuation_condition <= model.max_condition)) {
+        return {StatusCode::singular_actuation, -1, data.actuation_condition};
+    }
+    return {};
+}
+
+Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
+                       const TaskVector& ddp) {
+    const int d = model.task_dimension;
+    if (dp.size() != d || ddp.size() != d || !finite(dp) || !finite(ddp)) {
+        return {StatusCode::not_finite, -1, dp.sum() + ddp.sum()};
+    }
+    if (const Status status = inverseKinematics(model, data, p); !status) return status;
+    // the platform twist t_P = [w; v_O] and its rate, v_O = dp - w x p the velocity of the
+    // platform point at O
+    Eigen::Vector3d w = Eigen::Vector3d::Zero(), dw = Eigen::Vector3d::Zero();
+    if (d == 6) angularRates(p, dp, ddp, w, dw);
+    const Eigen::Vector3d r = p.head<3>(), v = dp.head<3>(), a = ddp.head<3>();
+    data.t_P << w, v - w.cross(r);
+    data.dt_P << dw, a - dw.cross(r) - w.cross(v);
+    // the platform's own wrench
+    const Eigen::Vector3d c_P = r + data.R * model.platform_com;
+    const Eigen::Matrix3d I_P = data.R * model.platform_inertia * data.R.transpose();
+    data.platform_wrench = bodyWrench(model.platform_mass, c_P, I_P, data.t_P, data.dt_P, model.gravity);
+    data.W_P = data.platform_wrench;
+    for (int j = 0; j < model.limbs(); ++j) {
+        const Limb& limb = model.limb[static_cast<std::size_t>(j)];
+        LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+        const int n = limb.size();
+        // rates (eq. 3) and the screws' rates ds_k = t_(k-1) x s_k
+        ld.gd = ld.J_plus * data.t_P;
+        Vector6 t = Vector6::Zero();
+        Vector6 bias = Vector6::Zero();  // sum_k ds_k gd_k
+        std::array<Vector6, kMaxFreedoms> ds_gd;
+        for (int k = 0; k < n; ++k) {
+            ds_gd[static_cast<std::size_t>(k)] = cross(t, ld.J.col(k)) * ld.gd(k);
+            bias += ds_gd[static_cast<std::size_t>(k)];
+            t += ld.J.col(k) * ld.gd(k);
+        }
+        ld.gdd = ld.J_plus * (data.dt_P - bias);
+        // the bodies' twists, twist rates and wrenches
+        t.setZero();
+        Vector6 alpha = Vector6::Zero();
+        int k = 0;
+        for (std::size_t b = 0; b < limb.bodies.size(); ++b) {
+            const Body& body = limb.bodies[b];
+            for (; k <= body.last_freedom; ++k) {
+                t += ld.J.col(k) * ld.gd(k);
+                alpha += ld.J.col(k) * ld.gdd(k) + ds_gd[static_cast<std::size_t>(k)];
+            }
+            ld.twist[b] = t;
+            ld.twist_rate[b] = alpha;
+            ld.wrench[b] = bodyWrench(body.mass, ld.com[b], ld.inertia[b], t, alpha, model.gravity);
+        }
+        // the joints' efforts: freedom k carries every body after it, plus its friction
+        FreedomVector f = FreedomVector::Zero(n);
+        Vector6 outboard = Vector6::Zero();
+        int b = static_cast<int>(limb.bodies.size()) - 1;
+        for (int kk = n - 1; kk >= 0; --kk) {
+            while (b >= 0 && limb.bodies[static_cast<std::size_t>(b)].last_freedom >= kk) {
+                outboard += ld.wrench[static_cast<std::size_t>(b)];
+                --b;
+            }
+            const Freedom& freedom = limb.freedoms[static_cast<std::size_t>(kk)];
+            const double sign = ld.gd(kk) > 0.0 ? 1.0 : (ld.gd(kk) < 0.0 ? -1.0 : 0.0);
+            f(kk) = ld.J.col(kk).dot(outboard) + freedom.damping * ld.gd(kk) + freedom.friction * sign;
+        }
+        data.W_P.noalias() += ld.J_plus.transpose() * f;
+    }
+    for (int a2 = 0; a2 < model.actuators; ++a2) {
+        const auto [j, k] = model.actuator[static_cast<std::size_t>(a2)];
+        data.du(a2) = data.limb[static_cast<std::size_t>(j)].gd(k);
+        data.ddu(a2) = data.limb[static_cast<std::size_t>(j)].gdd(k);
+    }
+    // A_E^T tau = E^T W_P: the minimum-norm forces A_E (A_E^T A_E)^-1 E^T W_P (A_E^-T E^T W_P
+    // when square)
+    const ActuationMatrix AE = data.A.rightCols(d);
+    const TaskVector b = data.W_P.tail(d);
+    const Work gram = AE.transpose() * AE;
+    const TaskVector lambda = Eigen::PartialPivLU<Work>(gram).solve(b);
+    data.tau.noalias() = AE * lambda;
+    if (!data.tau.allFinite()) return {StatusCode::effort_exceeded, -1, data.tau.sum()};
+    return {};
+}
+
+double kineticEnergy(const Model& model, const Data& data) {
+    const Eigen::Vector3d c_P = data.position + data.R * model.platform_com;
+    const Eigen::Matrix3d I_P = data.R * model.platform_inertia * data.R.transpose();
+    double energy = kinetic(model.platform_mass, c_P, I_P, data.t_P);
+    for (int j = 0; j < model.limbs(); ++j) {
+        const Limb& limb = model.limb[static_cast<std::size_t>(j)];
+        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+        for (std::size_t b = 0; b < limb.bodies.size(); ++b) {
+            energy += kinetic(limb.bodies[b].mass, ld.com[b], ld.inertia[b], ld.twist[b]);
+        }
+    }
+    return energy;
+}
+
+double potentialEnergy(const Model& model, const Data& data) {
+    double energy = -model.platform_mass * model.gravity.dot(data.position + data.R * model.platform_com);
+    for (int j = 0; j < model.limbs(); ++j) {
+        const Limb& limb = model.limb[static_cast<std::size_t>(j)];
+        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+        for (std::size_t b = 0; b < limb.bodies.size(); ++b)
+            energy -= limb.bodies[b].mass * model.gravity.dot(ld.com[b]);
+    }
+    return energy;
+}
+
+std::string describe(const Status& status, const Model& model) {
+    std::ostringstream out;
+    out.precision(6);
+    const std::string limb = status.limb >= 0 && status.limb < model.limbs()
+                                 ? "limb " + std::to_string(status.limb + 1) + " (" +
+                                       model.limb[static_cast<std::size_t>(status.limb)].name + ")"
+                                 : std::string("the robot");
+    switch (status.code) {
+        case StatusCode::ok:
+            return "ok";
+        case StatusCode::unreachable:
+            out << "pose out of reach: " << limb << " cannot close (residual " << status.value << " m or rad)";
+            return out.str();
+        case StatusCode::singular_limb:
+            out << "singular posture: " << limb << ": its Jacobian J has condition number " << status.value
+                << " (limit " << model.max_condition << ")";
+            return out.str();
+        case StatusCode::singular_actuation:
+            out << "actuation singularity: the map from the platform twist to the actuator rates has condition number "
+                << status.value << " (limit " << model.max_condition << ")";
+            return out.str();
+        case StatusCode::not_finite:
+            return "a pose, rate or acceleration is not finite, or the pitch is at +-90 degrees";
+        default:
+            out << "the inverse dynamics failed (" << status.value << ")";
+            return out.str();
+    }
+}
+
+}  // namespace nocdyn::spatial
