@@ -55,9 +55,10 @@ from .identification import PayloadEstimate, load_prior
 from .results import (Animation, AssemblyModes, Envelope, Excitation, Identification, PoseReport, Report, ShakeResult,
                       Table, Workspace)
 from .robot import Robot
+from .spatial import SpatialRobot
 from .trajectory import Trajectory
 
-__all__ = ["Error", "Robot", "Trajectory", "InverseDynamics", "InverseDynamicsMatrices", "ActuatorDerivatives",
+__all__ = ["Error", "Robot", "SpatialRobot", "Trajectory", "InverseDynamics", "InverseDynamicsMatrices", "ActuatorDerivatives",
            "LinearModel", "PayloadEstimate", "load_prior",
            # every command of the command line (nocdyn.commands), and their results (nocdyn.results)
            "pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace", "convert",

@@ -11,6 +11,7 @@ import warnings
 
 from . import _nocdyn
 from . import commands as _commands
+from . import spatial as _spatial
 from ._guards import _input, _integer, _number, _vocabulary
 from ._nocdyn import Error
 from .dynamics import RobotDynamics
@@ -78,13 +79,16 @@ class Robot(RobotDynamics):
     @classmethod
     def load(cls, path):
         """Reads and validates a robot file of either form (general per-limb, or the paper's
-        3-PRR short form). Raises nocdyn.Error naming the file, line, limb, joint and field."""
-        return cls(_nocdyn.Robot.load(str(path)))
+        3-PRR short form). Raises nocdyn.Error naming the file, line, limb, joint and field.
+        A spatial robot file (``space: spatial``) gives a nocdyn.SpatialRobot (its inverse
+        dynamics; nocdyn.spatial)."""
+        return _spatial._load_any(path, lambda: cls(_nocdyn.Robot.load(str(path))))
 
     @classmethod
     def from_yaml(cls, text, source="<string>"):
-        """Parses robot YAML text of either form; `source` names it in error messages."""
-        return cls(_nocdyn.Robot.from_yaml(text, source))
+        """Parses robot YAML text of either form; `source` names it in error messages. Spatial
+        text gives a nocdyn.SpatialRobot."""
+        return _spatial._from_yaml_any(text, source, lambda: cls(_nocdyn.Robot.from_yaml(text, source)))
 
     @classmethod
     def example(cls, name):

@@ -31,4 +31,7 @@ void exposeTrajectory(py::module_& m);
 /// The design sweeps' chunks (design.cpp).
 void exposeDesign(py::module_& m);
 
+/// Spatial robots and their inverse dynamics over sample arrays (spatial.cpp).
+void exposeSpatial(py::module_& m);
+
 }  // namespace nocdyn::python

@@ -1,9 +1,9 @@
 // The compiled part of the Python package `nocdyn` (pybind11), one file per concept: arrays.cpp
 // (NumPy to the library's types), robot.cpp (the model), robot_algorithms.cpp and stiffness.cpp
 // (its algorithms at one sample), batch.cpp (over sample arrays), trajectory.cpp, design.cpp
-// (the design sweeps' chunks), app_bindings*.cpp (every command's job: options, run, typed
-// result) and cli_main.cpp (the command line, for `python -m nocdyn`). The Pythonic layer and
-// the docstrings users read are in ../nocdyn/.
+// (the design sweeps' chunks), spatial.cpp (spatial robots), app_bindings*.cpp (every command's job: options, run,
+// typed result) and cli_main.cpp (the command line, for `python -m nocdyn`). The Pythonic layer and the docstrings
+// users read are in ../nocdyn/.
 #include <pybind11/pybind11.h>
 
 #include "app_bindings.hpp"
@@ -28,6 +28,7 @@ PYBIND11_MODULE(_nocdyn, m) {
     exposeBatch(m);
     exposeTrajectory(m);
     exposeDesign(m);
+    exposeSpatial(m);
     bindApplication(m);
     bindCommandLine(m);
 }

@@ -18,7 +18,7 @@ namespace nocdyn::spatial {
 namespace {
 
 constexpr int kNewtonIterations = 50;
-constexpr double kClosure = 1e-13;  ///< Newton's residual [m, rad]
+constexpr double kClosure = 1e-13;  ///< Newton's residual [m, rad], for displacements within 1 m
 /// The small matrices decomposed here (Gram matrices, at most 6 x 6): one instantiation each.
 using Work = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
 
@@ -105,12 +105,17 @@ bool finite(const TaskVector& v) { return v.allFinite(); }
 /// freedoms); false when it does not converge. On success, the current screws in ld.J.
 bool closeLimb(const Limb& limb, const Move& D, LimbData& ld, double& residual) {
     const int n = limb.size();
-    for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
+    // the current screws into J, and the chain's displacement g(q)
+    const auto chain = [&]() {
         Move g;
         for (int k = 0; k < n; ++k) {
             ld.J.col(k) = carriedScrew(limb.freedoms[static_cast<std::size_t>(k)], g);
             g = g.then(freedomMove(limb.freedoms[static_cast<std::size_t>(k)], ld.q(k)));
         }
+        return g;
+    };
+    for (int iteration = 0; iteration < kNewtonIterations; ++iteration) {
+        const Move g = chain();
         // the error twist d with exp(d) g = D: w = log(R_D R_g^T), v = t_D - t_g - w x t_g
         const Eigen::AngleAxisd rotation_error(D.R * g.R.transpose());
         Vector6 d;
@@ -118,11 +123,18 @@ bool closeLimb(const Limb& limb, const Move& D, LimbData& ld, double& residual) 
         d.tail<3>() = D.t - g.t - d.head<3>().cross(g.t);
         residual = d.cwiseAbs().maxCoeff();
         if (!std::isfinite(residual)) return false;
-        if (residual <= kClosure) return true;
+        // relative to the size of the displacement (rounding grows with it)
+        const bool converged = residual <= kClosure * (1.0 + D.t.cwiseAbs().maxCoeff());
         const Eigen::HouseholderQR<LimbJacobian> qr(ld.J);
         const FreedomVector step = qr.solve(d);
         if (!step.allFinite()) return false;
         ld.q += step;
+        // one step past convergence: q to rounding whatever the start (the previous sample's or
+        // home), so that a sample's result does not depend on the samples before it
+        if (converged) {
+            (void)chain();
+            return true;
+        }
     }
     return false;
 }

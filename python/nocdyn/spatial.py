@@ -1,0 +1,124 @@
+"""Spatial parallel robots (robot files with ``space: spatial``): the Delta (pose [x, y, z]) and
+the Gough-Stewart hexapods (pose [x, y, z, roll, pitch, yaw], R = Rz(yaw) Ry(pitch) Rx(roll)),
+and their inverse dynamics by the natural orthogonal complement in six dimensions.
+
+``nocdyn.Robot.load(path)`` returns a SpatialRobot for a spatial file; it has the inverse
+dynamics on sample arrays (the other Robot methods and the commands are planar for now)."""
+
+from __future__ import annotations
+
+import numpy as np
+
+from . import _nocdyn
+from ._guards import _floats, _input
+from .dynamics import InverseDynamics
+
+__all__ = ["SpatialRobot"]
+
+
+class SpatialRobot:
+    """A spatial parallel robot built from a robot file (``space: spatial``,
+    ``motion: full | translation``).
+
+    Vocabulary: a pose is [x, y, z, roll, pitch, yaw] (m and rad; R = Rz(yaw) Ry(pitch)
+    Rx(roll)) for motion full, [x, y, z] for motion translation (the platform keeps the base
+    frame's orientation); dp and ddp are the time derivatives of these numbers (Euler-angle
+    rates, not the angular velocity). Actuators are numbered in file order.
+    """
+
+    __slots__ = ("_core",)
+
+    def __init__(self, core):
+        """Internal: use nocdyn.Robot.load(path) or SpatialRobot.load(path)."""
+        if not isinstance(core, _nocdyn.SpatialRobot):
+            raise TypeError("use nocdyn.Robot.load(path) or nocdyn.SpatialRobot.load(path)")
+        self._core = core
+
+    @classmethod
+    def load(cls, path):
+        """Reads and checks a spatial robot file; raises nocdyn.Error naming the file, line,
+        limb, joint or body and field."""
+        return cls(_nocdyn.SpatialRobot.load(str(path)))
+
+    @classmethod
+    def from_yaml(cls, text, source="<string>"):
+        """Parses spatial robot YAML text; `source` names it in error messages."""
+        return cls(_nocdyn.SpatialRobot.from_yaml(text, source))
+
+    @property
+    def name(self):
+        """The robot's name (from its file)."""
+        return self._core.name
+
+    @property
+    def actuators(self):
+        """Number n of actuated joints (the columns of u, du, ddu, tau)."""
+        return self._core.actuator_count
+
+    @property
+    def limbs(self):
+        """Number of limbs."""
+        return self._core.limb_count
+
+    @property
+    def limb_names(self):
+        """The limbs' names, in file order."""
+        return list(self._core.limb_names)
+
+    @property
+    def task_dimension(self):
+        """6 (motion full) or 3 (motion translation): the columns of a pose array."""
+        return self._core.task_dimension
+
+    @property
+    def coordinates(self):
+        """The pose coordinates' names: ['x', 'y', 'z'] and, for motion full, 'roll', 'pitch', 'yaw'."""
+        return list(self._core.coordinates)
+
+    @property
+    def home(self):
+        """The platform pose at home, shape (task_dimension,)."""
+        return np.array(self._core.home)
+
+    def inverse_dynamics(self, p, dp, ddp, *, check=True):
+        """Actuator variables, rates, accelerations and forces for platform motions.
+
+        p, dp, ddp of shape (N, d) or (d,) with d = task_dimension (columns in the order of
+        ``coordinates``; float64) give InverseDynamics(u, du, ddu, tau), each of shape (N, n)
+        (or (n,) for one sample): u the joint variables of the actuated joints (m or rad, 0 at
+        home), tau the actuator forces (N or N m) along them, gravity and joint friction
+        included; the minimum-norm forces when there are more actuators than pose coordinates.
+        A sample out of reach or singular raises nocdyn.Error "sample K: <reason>" (K from 1);
+        check=False returns it as a NaN row instead. The GIL is released during the computation.
+        """
+        d = self.task_dimension
+        p_arr = _floats(p, "p")
+        single = p_arr.ndim == 1
+        shape = (d,) if single else (None, d)
+        p_arr = _input(p_arr, "p", shape, finite=False)
+        n = p_arr.shape[0] if not single else None
+        dp_arr = _input(dp, "dp", (d,) if single else (n, d), finite=False)
+        ddp_arr = _input(ddp, "ddp", (d,) if single else (n, d), finite=False)
+        rows = [np.ascontiguousarray(a.reshape(-1, d)) for a in (p_arr, dp_arr, ddp_arr)]
+        u, du, ddu, tau = self._core._inverse_dynamics(*rows, bool(check))
+        if single:
+            return InverseDynamics(u[0], du[0], ddu[0], tau[0])
+        return InverseDynamics(u, du, ddu, tau)
+
+    def __repr__(self):
+        return (f"SpatialRobot('{self.name}': {self.limbs} limbs, {self.actuators} actuators, "
+                f"pose {', '.join(self.coordinates)})")
+
+
+def _load_any(path, planar):
+    """Robot.load's dispatch: a spatial file gives a SpatialRobot, any other the planar Robot."""
+    if _nocdyn.is_spatial_file(str(path)):
+        return SpatialRobot.load(path)
+    return planar()
+
+
+def _from_yaml_any(text, source, planar):
+    if _nocdyn.is_spatial_text(text, source):
+        return SpatialRobot.from_yaml(text, source)
+    return planar()
+

@@ -1,0 +1,124 @@
+// The spatial robots of the compiled module (nocdyn/spatial.hpp): a model read from a spatial
+// robot file (`space: spatial`) and its inverse dynamics over arrays of samples.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <array>
+#include <cmath>
+#include <limits>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "expose.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/spatial.hpp"
+
+namespace nocdyn::python {
+
+namespace {
+
+struct SpatialRobot {
+    std::shared_ptr<const spatial::Model> model;
+};
+
+using Rows = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// (N, d) samples of p, dp, ddp (d the task dimension) as C-ordered float64 arrays.
+Rows samples(const py::handle& x, const char* name, int d, py::ssize_t n) {
+    Rows a = Rows::ensure(x);
+    if (!a || a.ndim() != 2 || a.shape(1) != d || (n >= 0 && a.shape(0) != n)) {
+        throw Error(std::string(name) + ": expected shape (N, " + std::to_string(d) + ")" +
+                    (n >= 0 ? " with N = " + std::to_string(n) : std::string()));
+    }
+    return a;
+}
+
+/// u, du, ddu, tau of shape (N, n); a sample the model refuses raises "sample K: reason" (K from
+/// 1) when `check`, else its row is NaN.
+py::tuple inverseDynamics(const SpatialRobot& robot, const py::handle& p, const py::handle& dp, const py::handle& ddp,
+                          bool check) {
+    const spatial::Model& model = *robot.model;
+    const int d = model.task_dimension;
+    const Rows P = samples(p, "p", d, -1);
+    const py::ssize_t N = P.shape(0);
+    const Rows dP = samples(dp, "dp", d, N), ddP = samples(ddp, "ddp", d, N);
+    const int n = model.actuators;
+    std::array<Rows, 4> out{Rows({N, static_cast<py::ssize_t>(n)}), Rows({N, static_cast<py::ssize_t>(n)}),
+                            Rows({N, static_cast<py::ssize_t>(n)}), Rows({N, static_cast<py::ssize_t>(n)})};
+    std::array<double*, 4> to{};
+    for (std::size_t i = 0; i < 4; ++i) to[i] = out[i].mutable_data();
+    const double *x = P.data(), *dx = dP.data(), *ddx = ddP.data();
+    py::ssize_t failed = -1;
+    Status failure;
+    {
+        const py::gil_scoped_release release;
+        spatial::Data data(model);
+        spatial::TaskVector pk(d), dpk(d), ddpk(d);
+        for (py::ssize_t k = 0; k < N; ++k) {
+            for (int i = 0; i < d; ++i) pk(i) = x[k * d + i], dpk(i) = dx[k * d + i], ddpk(i) = ddx[k * d + i];
+            const Status status = spatial::inverseDynamics(model, data, pk, dpk, ddpk);
+            for (int a = 0; a < n; ++a) {
+                const double nan = std::numeric_limits<double>::quiet_NaN();
+                to[0][k * n + a] = status ? data.u(a) : nan;
+                to[1][k * n + a] = status ? data.du(a) : nan;
+                to[2][k * n + a] = status ? data.ddu(a) : nan;
+                to[3][k * n + a] = status ? data.tau(a) : nan;
+            }
+            if (!status && failed < 0) {
+                failed = k;
+                failure = status;
+                if (check) break;
+            }
+        }
+    }
+    if (failed >= 0 && check) {
+        throw Error("sample " + std::to_string(failed + 1) + ": " + spatial::describe(failure, model));
+    }
+    return py::make_tuple(out[0], out[1], out[2], out[3]);
+}
+
+SpatialRobot make(const SpatialRobotDescription& description) {
+    return SpatialRobot{std::make_shared<const spatial::Model>(description)};
+}
+
+}  // namespace
+
+void exposeSpatial(py::module_& m) {
+    m.def(
+        "is_spatial_file", [](const std::string& path) { return io::isSpatial(io::readRobotFileText(path), path); },
+        py::arg("path"));
+    m.def("is_spatial_text", &io::isSpatial, py::arg("text"), py::arg("source"));
+    py::class_<SpatialRobot>(m, "SpatialRobot")
+        .def_static(
+            "load", [](const std::string& path) { return make(io::loadSpatialRobotDescription(path)); },
+            py::arg("path"))
+        .def_static(
+            "from_yaml",
+            [](const std::string& text, const std::string& source) {
+                return make(io::parseSpatialRobotDescription(text, source));
+            },
+            py::arg("text"), py::arg("source") = "<string>")
+        .def_property_readonly("name", [](const SpatialRobot& r) { return r.model->name; })
+        .def_property_readonly("actuator_count", [](const SpatialRobot& r) { return r.model->actuators; })
+        .def_property_readonly("limb_count", [](const SpatialRobot& r) { return r.model->limbs(); })
+        .def_property_readonly("task_dimension", [](const SpatialRobot& r) { return r.model->task_dimension; })
+        .def_property_readonly("coordinates", [](const SpatialRobot& r) { return r.model->coordinates(); })
+        .def_property_readonly("home",
+                               [](const SpatialRobot& r) {
+                                   const spatial::TaskVector& h = r.model->home;
+                                   return std::vector<double>(h.data(), h.data() + h.size());
+                               })
+        .def_property_readonly("limb_names",
+                               [](const SpatialRobot& r) {
+                                   std::vector<std::string> names;
+                                   for (const spatial::Limb& limb : r.model->limb) names.push_back(limb.name);
+                                   return names;
+                               })
+        .def("_inverse_dynamics", &inverseDynamics, py::arg("p"), py::arg("dp"), py::arg("ddp"),
+             py::arg("check") = true);
+}
+
+}  // namespace nocdyn::python

@@ -1,0 +1,108 @@
+"""Spatial robots from Python: nocdyn.Robot.load of a spatial file gives a SpatialRobot whose
+inverse_dynamics takes (N, 6) or (N, 3) samples (the identities themselves are checked in C++,
+tests/spatial_dynamics_test.cpp)."""
+
+import re
+
+import numpy as np
+import pytest
+
+import nocdyn
+
+
+def _load(source_dir, name):
+    return nocdyn.Robot.load(source_dir / "robots" / f"{name}.yaml")
+
+
+@pytest.mark.parametrize("name, d", [("stewart", 6), ("6-rus", 6), ("delta", 3)])
+def test_a_spatial_file_loads_as_a_spatial_robot_with_its_pose_coordinates(source_dir, name, d):
+    robot = _load(source_dir, name)
+    assert isinstance(robot, nocdyn.SpatialRobot)
+    assert robot.task_dimension == d and robot.actuators == d
+    assert robot.coordinates == ["x", "y", "z", "roll", "pitch", "yaw"][:d]
+    assert robot.home.shape == (d,)
+    text = (source_dir / "robots" / f"{name}.yaml").read_text()
+    assert nocdyn.Robot.from_yaml(text, "x.yaml").limb_names == robot.limb_names
+    # the planar files still give the planar Robot
+    assert isinstance(nocdyn.Robot.load(source_dir / "robots" / "3-rrr.yaml"), nocdyn.Robot)
+
+
+def _motion(home, n, rng):
+    d = home.shape[0]
+    t = np.linspace(0.0, 0.5, n)[:, None]
+    amp = np.where(np.arange(d) < 3, 0.02, 0.03) * (1.0 + rng.random(d))
+    w = 2.0 * np.pi * (1.0 + rng.random(d))
+    P = home + amp * np.sin(w * t)
+    return P, amp * w * np.cos(w * t), -amp * w * w * np.sin(w * t)
+
+
+@pytest.mark.parametrize("name", ["stewart", "6-rus", "delta"])
+def test_a_batch_equals_one_sample_at_a_time(source_dir, name):
+    robot = _load(source_dir, name)
+    P, dP, ddP = _motion(robot.home, 40, np.random.default_rng(3))
+    batch = robot.inverse_dynamics(P, dP, ddP)
+    assert all(x.shape == (40, robot.actuators) for x in batch)
+    for k in (0, 17, 39):
+        one = robot.inverse_dynamics(P[k], dP[k], ddP[k])
+        for a, b in zip(one, batch):
+            np.testing.assert_allclose(a, b[k], rtol=1e-12, atol=1e-12)
+    assert np.all(np.isfinite(batch.tau))
+
+
+def test_the_legs_of_a_hexapod_with_massless_legs_hold_its_table_by_virtual_work(source_dir):
+    # legs of no mass: at rest, tau . du/dz = m g (the table rises by dz), and the same for a
+    # roll: tau . du/droll = the weight's moment about the x axis through the pose point
+    text = (source_dir / "robots" / "stewart.yaml").read_text()
+    text = re.sub(r"\{mass: (25|8)\.0, com", "{mass: 0.0, com", text)
+    robot = nocdyn.Robot.from_yaml(text, "massless-legs.yaml")
+    p = robot.home + np.array([0.01, -0.02, 0.03, 0.02, -0.01, 0.05])
+    zero = np.zeros(6)
+    tau = robot.inverse_dynamics(p, zero, zero).tau
+    h = 1e-6
+
+    def du(i):
+        e = np.zeros(6)
+        e[i] = h
+        return (robot.inverse_dynamics(p + e, zero, zero).u - robot.inverse_dynamics(p - e, zero, zero).u) / (2 * h)
+
+    m, g = 300.0, 9.81
+    np.testing.assert_allclose(tau @ du(2), m * g, rtol=1e-7)
+    np.testing.assert_allclose(tau @ du(0), 0.0, atol=1e-6 * m * g)
+    # the c.o.m. (0, 0, 0.05) in the platform frame: its height changes with roll and pitch
+    def com_z(q):
+        c, s = np.cos, np.sin
+        roll, pitch, yaw = q[3:]
+        R = (np.array([[c(yaw), -s(yaw), 0], [s(yaw), c(yaw), 0], [0, 0, 1]])
+             @ np.array([[c(pitch), 0, s(pitch)], [0, 1, 0], [-s(pitch), 0, c(pitch)]])
+             @ np.array([[1, 0, 0], [0, c(roll), -s(roll)], [0, s(roll), c(roll)]]))
+        return q[2] + (R @ np.array([0.0, 0.0, 0.05]))[2]
+    for i in (3, 4, 5):
+        e = np.zeros(6)
+        e[i] = h
+        dz = (com_z(p + e) - com_z(p - e)) / (2 * h)
+        np.testing.assert_allclose(tau @ du(i), m * g * dz, atol=1e-6 * m * g * 0.05)
+
+
+def test_the_delta_at_home_shares_its_weight_equally(source_dir):
+    robot = _load(source_dir, "delta")
+    out = robot.inverse_dynamics(robot.home, np.zeros(3), np.zeros(3))
+    np.testing.assert_allclose(out.tau, out.tau[0], rtol=1e-12)
+    assert out.tau[0] != 0.0
+    np.testing.assert_array_equal(out.u, np.zeros(3))
+
+
+def test_wrong_shapes_and_unreachable_samples_are_refused_with_their_number(source_dir):
+    robot = _load(source_dir, "delta")
+    P = np.tile(robot.home, (4, 1))
+    Z = np.zeros_like(P)
+    with pytest.raises(nocdyn.Error, match=r"p: expected shape \(N, 3\)"):
+        robot.inverse_dynamics(np.zeros((4, 6)), Z, Z)
+    with pytest.raises(nocdyn.Error, match=r"dp: expected shape \(4, 3\)"):
+        robot.inverse_dynamics(P, Z[:3], Z)
+    P[2, 2] -= 0.6  # 1.4 m below the base: beyond the arms
+    with pytest.raises(nocdyn.Error, match=r"^sample 3: pose out of reach: limb 1 \(arm1\) cannot close"):
+        robot.inverse_dynamics(P, Z, Z)
+    out = robot.inverse_dynamics(P, Z, Z, check=False)
+    assert np.isnan(out.tau[2]).all() and np.isfinite(out.tau[[0, 1, 3]]).all()
+    with pytest.raises(TypeError):
+        robot.inverse_dynamics(P.astype(np.float32), Z, Z)
