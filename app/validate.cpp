@@ -73,7 +73,7 @@ std::optional<std::string> checkSpatialRobot(const RobotSource& source) {
     out += "  actuators: " + std::to_string(robot.actuatorCount()) + " (" + byType(actuated) + ")\n";
     out +=
         "  mass: " + text::number(robot.totalMass()) + " kg (platform " + text::number(robot.platform.mass) + " kg)\n";
-    out += "no command computes spatial robots yet: nothing was compared with the engines\n";
+    out += "the engines' spatial models are not built yet: nothing was compared with them\n";
     return out;
 }
 

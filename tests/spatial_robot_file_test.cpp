@@ -11,6 +11,8 @@
 #include <regex>
 #include <string>
 
+#include <nlohmann/json.hpp>
+
 #include "cli_support.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
@@ -434,12 +436,45 @@ TEST(SpatialRobotFile, EveryCommandRefusesASpatialRobotInOneLine) {
         EXPECT_NE(std::string(e.what()).find("cartesian.yaml:14: limbs[0] (gantry).bodies[0].mass"), std::string::npos)
             << e.what();
     }
-    const test::CliResult result = test::runCli("pose 0 0 0 --robot " + shipped("delta.yaml"));
+    const test::CliResult result = test::runCli("loads --envelope --robot " + shipped("delta.yaml"));
     EXPECT_NE(result.exit_code, 0);
     EXPECT_EQ(result.out, "");
     EXPECT_EQ(result.err, "nocdyn: error: " + shipped("delta.yaml") +
-                              ": a spatial robot (space: spatial): read and checked; no command computes spatial "
-                              "robots yet\n");
+                              ": a spatial robot (space: spatial): this command is planar for now (nocdyn pose and "
+                              "Robot.load take it)\n");
+}
+
+TEST(SpatialRobotFile, PoseReportsASpatialRobotsJointsActuationAndForcesAtRest) {
+    // the hexapod at home: its six legs alike (the design's symmetry), each at 0 of its stroke
+    const test::CliResult home =
+        test::runCli("pose 0 0 1.0579369000754848 0 0 0 --json --robot " + shipped("stewart.yaml"));
+    ASSERT_EQ(home.exit_code, 0) << home.err;
+    const nlohmann::json j = nlohmann::json::parse(home.out);
+    ASSERT_EQ(j["tau"].size(), 6u);
+    for (const auto& tau : j["tau"]) EXPECT_NEAR(tau.get<double>(), j["tau"][0].get<double>(), 1e-9);
+    EXPECT_GT(j["tau"][0].get<double>(), 0.0);
+    for (const auto& a : j["actuators"]) EXPECT_NEAR(a["u"].get<double>(), 0.0, 1e-12);
+    EXPECT_EQ(j["A"].size(), 6u);
+    EXPECT_EQ(j["limbs"][0]["type"], "UPS");
+    EXPECT_EQ(j["limbs"][0]["q"].size(), 6u);
+    // the Delta over x, y, z, as text
+    const test::CliResult delta = test::runCli("pose 0 0 -0.85 --robot " + shipped("delta.yaml"));
+    ASSERT_EQ(delta.exit_code, 0) << delta.err;
+    EXPECT_NE(delta.out.find("robot delta (spatial), pose x = 0 m, y = 0 m, z = -0.85 m\n"), std::string::npos)
+        << delta.out;
+    EXPECT_NE(delta.out.find("columns: v_x v_y v_z):"), std::string::npos) << delta.out;
+    // a pose of the wrong length, and angles for a planar robot, in one line each
+    const test::CliResult short_pose = test::runCli("pose 0 0 1.05 --robot " + shipped("stewart.yaml"));
+    EXPECT_NE(short_pose.exit_code, 0);
+    EXPECT_EQ(short_pose.err,
+              "nocdyn: error: pose: the robot stewart takes 6 pose coordinates (X Y Z ROLL PITCH YAW), got 3\n");
+    const test::CliResult planar = test::runCli("pose 0 0 0 0.1 --robot " + shipped("3-rrr.yaml"));
+    EXPECT_NE(planar.exit_code, 0);
+    EXPECT_EQ(planar.err, "nocdyn: error: pose: ROLL PITCH YAW are for a spatial robot\n");
+    const test::CliResult far = test::runCli("pose 0 0 -1.6 --robot " + shipped("delta.yaml"));
+    EXPECT_NE(far.exit_code, 0);
+    EXPECT_EQ(far.err.rfind("nocdyn: error: " + shipped("delta.yaml") + ": pose out of reach: limb 1 (arm1)", 0), 0u)
+        << far.err;
 }
 
 TEST(SpatialRobotFile, ValidateReadsChecksAndSummarisesASpatialRobot) {
@@ -454,7 +489,7 @@ TEST(SpatialRobotFile, ValidateReadsChecksAndSummarisesASpatialRobot) {
               "  joints: 18 (6 P, 6 U, 6 S), 36 joint freedoms\n"
               "  actuators: 6 (6 P)\n"
               "  mass: 498 kg (platform 300 kg)\n"
-              "no command computes spatial robots yet: nothing was compared with the engines\n");
+              "the engines' spatial models are not built yet: nothing was compared with them\n");
     const test::CliResult delta = test::runCli("validate --robot " + shipped("delta.yaml"));
     EXPECT_EQ(delta.exit_code, 0) << delta.err;
     EXPECT_NE(delta.out.find("  joints: 9 (3 R, 6 U), 15 joint freedoms\n  actuators: 3 (3 R)\n  mass: 3.15 kg"),

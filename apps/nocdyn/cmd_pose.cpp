@@ -11,8 +11,8 @@
 #include "app/pose.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "pose_output.hpp"
 #include "progress.hpp"
-#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/io/escape.hpp"
 
 namespace nocdyn::cli {
@@ -22,38 +22,10 @@ namespace pose_command {
 
 struct Options : app::PoseOptions {
     bool json = false;
+    std::vector<double> angles;  ///< a spatial robot's ROLL PITCH YAW, after X Y Z
 };
 
 constexpr double kDeg = 180.0 / std::numbers::pi;
-
-nlohmann::json complianceJson(const app::PoseCompliance& c) {
-    const auto n = static_cast<int>(c.K.rows());  // x, y, theta; a two-DOF robot's x, y
-    nlohmann::json coordinates = nlohmann::json::array(), units = nlohmann::json::array();
-    for (int r = 0; r < n; ++r) {
-        coordinates.push_back(analysis::coordinateLabel(r));
-        nlohmann::json row = nlohmann::json::array();
-        for (int k = 0; k < n; ++k) row.push_back(analysis::stiffnessUnit(r, k));
-        units.push_back(row);
-    }
-    nlohmann::json free = nlohmann::json::array();
-    for (std::size_t i = 0; i < c.free_directions.size(); ++i) {
-        const Eigen::VectorXd& v = c.free_directions[i];
-        free.push_back({{"direction", std::vector<double>(v.data(), v.data() + v.size())},
-                        {"description", c.free_descriptions[i]}});
-    }
-    nlohmann::json out;
-    out["stiffness"] = {
-        {"coordinates", coordinates}, {"matrix", matrixJson(c.K)}, {"units", units}, {"free_directions", free}};
-    out["natural_frequencies"] = std::vector<double>(c.frequencies.data(), c.frequencies.data() + c.frequencies.size());
-    // as the text and Python give them: rows x, y, theta; column i the shape of frequency i
-    out["mode_shapes"] = matrixJson(c.mode_shapes);
-    if (c.elastodynamic_frequencies) {
-        const Eigen::VectorXd& f = *c.elastodynamic_frequencies;
-        out["elastodynamic_frequencies"] = std::vector<double>(f.data(), f.data() + f.size());
-    }
-    out["first_frequency"] = {{"value", c.first_frequency}, {"model", c.first_frequency_model}};
-    return out;
-}
 
 void printJson(const app::PoseResult& r) {
     nlohmann::json out;
@@ -85,32 +57,8 @@ void printJson(const app::PoseResult& r) {
                                     {"fy", j.f(1)},
                                     {"m", j.f(2)}});
     }
-    if (r.compliance) out.update(complianceJson(*r.compliance));
+    if (r.compliance) out.update(poseComplianceJson(*r.compliance));
     std::cout << out.dump(2) << "\n";
-}
-
-void printCompliance(const app::PoseCompliance& c) {
-    std::printf("\nstiffness K at C (virtual joint method, gravity preload ignored; dQ = K dp, rows and columns:");
-    const auto n = static_cast<int>(c.K.rows());  // 2: a two-DOF robot, over x, y
-    for (int r = 0; r < n; ++r) std::printf(" %s", analysis::coordinateLabel(r).c_str());
-    std::printf(")\n%sunits:\n", matrixText(c.K).c_str());
-    for (int r = 0; r < n; ++r) {
-        std::printf("  [");
-        for (int k = 0; k < n; ++k) std::printf("%s%-8s", k ? "  " : "", analysis::stiffnessUnit(r, k).c_str());
-        std::printf("]\n");
-    }
-    for (const std::string& text : c.free_descriptions)
-        std::printf("free direction (no stiffness): %s\n", text.c_str());
-    std::printf("natural frequencies (lumped model K v = w^2 M v) [Hz]:");
-    for (const double f : c.frequencies) std::printf(" %.6g", f);
-    std::printf("\nmode shapes (columns, mass-normalised; rows: %s):\n%s", n == 2 ? "x, y" : "x, y, theta",
-                matrixText(c.mode_shapes).c_str());
-    if (c.elastodynamic_frequencies) {
-        std::printf("elastodynamic frequencies (%d DOF) [Hz]:", c.elastodynamic_dofs);
-        for (const double f : *c.elastodynamic_frequencies) std::printf(" %.6g", f);
-        std::printf("\n");
-    }
-    std::printf("first natural frequency [Hz]: %.6g (%s model)\n", c.first_frequency, c.first_frequency_model.c_str());
 }
 
 void printText(const app::PoseResult& r) {
@@ -157,7 +105,7 @@ void printText(const app::PoseResult& r) {
         std::printf("%-4d  %d %s    %+.9e  %+.9e  %+.9e\n", j.limb, j.joint, j.revolute ? "R" : "P", j.f(0), j.f(1),
                     j.f(2));
     }
-    if (r.compliance) printCompliance(*r.compliance);
+    if (r.compliance) printPoseCompliance(*r.compliance);
     if (!r.within_limits) std::printf("\nwarning: %s\n", io::terminalText(r.limits).c_str());
 }
 
@@ -184,7 +132,12 @@ void addPoseCommand(CLI::App& app) {
         ->required()
         ->check(within(app::kLengthRange));
     // optional: a two-DOF robot (motion: translation) has none, a turning platform needs it
-    command->add_option("THETA", options->theta, "Platform rotation [rad] (not for a two-DOF robot)")
+    command
+        ->add_option("THETA", options->theta,
+                     "Platform rotation [rad] (not for a two-DOF robot); a spatial robot's Z [m]")
+        ->check(within(app::kAngleRange));
+    command->add_option("ANGLES", options->angles, "A spatial robot's ROLL PITCH YAW [rad] (motion: full)")
+        ->expected(0, 3)
         ->check(within(app::kAngleRange));
     addRobotOption(*command, options->robot);
     command->add_flag("--json", options->json, "Write JSON instead of text");
@@ -192,6 +145,13 @@ void addPoseCommand(CLI::App& app) {
     command->callback([options, theta] {
         if (theta->count() == 0) options->theta = std::numeric_limits<double>::quiet_NaN();
         TerminalObserver observer("nocdyn pose");
+        if (app::isSpatialRobot(options->robot)) {  // X Y Z [ROLL PITCH YAW]
+            std::vector<double> pose{options->x, options->y};
+            if (theta->count() > 0) pose.push_back(options->theta);
+            pose.insert(pose.end(), options->angles.begin(), options->angles.end());
+            return printSpatialPose(app::runSpatialPose(options->robot, pose, observer), options->json);
+        }
+        if (!options->angles.empty()) throw Error("pose: ROLL PITCH YAW are for a spatial robot");
         const app::PoseResult result = app::runPose(*options, observer);
         options->json ? pose_command::printJson(result) : pose_command::printText(result);
     });

@@ -55,7 +55,8 @@ struct Freedom {
     Vector6 screw = Vector6::Zero();                  ///< s_k at home
     int joint = 0;                                    ///< the listed joint it belongs to
     int actuator = -1;                                ///< its actuator, or -1
-    double damping = 0.0, friction = 0.0;
+    double damping = 0.0;                             ///< its viscous coefficient, N s/m or N m s/rad
+    double friction = 0.0;                            ///< its Coulomb force, N or N m
     JointLimits limits;
 };
 
@@ -103,13 +104,17 @@ public:
 
 /// One limb's per-sample quantities.
 struct LimbData {
-    FreedomVector q, gd, gdd;                         ///< joint variables, rates, accelerations
+    FreedomVector q;                                  ///< joint variables
+    FreedomVector gd;                                 ///< their rates
+    FreedomVector gdd;                                ///< their accelerations
     LimbJacobian J;                                   ///< current screws s_k, column by column
     LimbInverse J_plus;                               ///< J^+ (J^-1 when square)
     std::array<Eigen::Vector3d, kMaxBodies> com;      ///< current c.o.m.
     std::array<Eigen::Matrix3d, kMaxBodies> inertia;  ///< about the c.o.m., base frame
-    std::array<Vector6, kMaxBodies> twist, twist_rate, wrench;
-    double condition = 1.0;  ///< of J (largest over smallest singular value)
+    std::array<Vector6, kMaxBodies> twist;            ///< referred to O
+    std::array<Vector6, kMaxBodies> twist_rate;       ///< referred to O
+    std::array<Vector6, kMaxBodies> wrench;           ///< inertia wrench less gravity, about O
+    double condition = 1.0;  ///< of J at the platform's point (largest over smallest singular value)
     bool closed = false;     ///< q holds a solution (the next Newton starts there)
 };
 
@@ -119,12 +124,18 @@ struct Data {
     std::vector<LimbData> limb;
     Eigen::Matrix3d R = Eigen::Matrix3d::Identity();  ///< the platform's orientation
     Eigen::Vector3d position = Eigen::Vector3d::Zero();
-    Vector6 t_P = Vector6::Zero(), dt_P = Vector6::Zero();  ///< the platform twist and its rate
-    Vector6 W_P = Vector6::Zero();                          ///< sum_i T_i^T w_i
+    Vector6 t_P = Vector6::Zero();   ///< the platform twist
+    Vector6 dt_P = Vector6::Zero();  ///< its rate
+    Vector6 W_P = Vector6::Zero();   ///< sum_i T_i^T w_i
     Vector6 platform_wrench = Vector6::Zero();
     ActuationMatrix A;  ///< n x 6: the actuator rates du = A t_P
-    ActuatorVector u, du, ddu, tau;
-    double actuation_condition = 1.0;  ///< of A E
+    /// n x d: du = A_task (v, w), v the platform point's velocity and w the angular velocity
+    ActuationMatrix A_task;
+    ActuatorVector u;                  ///< actuator variables
+    ActuatorVector du;                 ///< their rates
+    ActuatorVector ddu;                ///< their accelerations
+    ActuatorVector tau;                ///< actuator forces
+    double actuation_condition = 1.0;  ///< of A_task (lengths in metres)
 };
 
 /// The platform's orientation R = Rz(yaw) Ry(pitch) Rx(roll).

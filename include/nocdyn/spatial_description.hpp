@@ -12,7 +12,7 @@
 // orientation).
 //
 // Nothing here computes kinematics or dynamics: the description is read and checked
-// (io/robot_file.hpp); no command computes spatial robots yet.
+// (io/robot_file.hpp); nocdyn/spatial.hpp computes them.
 #pragma once
 
 #include <optional>

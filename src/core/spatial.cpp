@@ -227,6 +227,7 @@ std::vector<std::string> Model::coordinates() const {
 Data::Data(const Model& model)
     : limb(static_cast<std::size_t>(model.limbs())),
       A(model.actuators, 6),
+      A_task(model.actuators, model.task_dimension),
       u(model.actuators),
       du(model.actuators),
       ddu(model.actuators),
@@ -269,9 +270,14 @@ Status inverseKinematics(const Model& model, Data& data, const TaskVector& p) {
             }
         }
         ld.closed = true;
-        // J^+ = (J^T J)^-1 J^T, and the condition number of J
+        // J^+ = (J^T J)^-1 J^T, and the condition number of J with its twists referred to the
+        // platform's point (s = [a; m - p x a]), which does not depend on where O is
         const Work gram = ld.J.transpose() * ld.J;
-        ld.condition = conditionOf(gram);
+        LimbJacobian at_point = ld.J;
+        for (int k = 0; k < at_point.cols(); ++k) {
+            at_point.col(k).tail<3>() -= data.position.cross(Eigen::Vector3d(ld.J.col(k).head<3>()));
+        }
+        ld.condition = conditionOf(at_point.transpose() * at_point);
         if (!(ld.condition <= model.max_condition)) return {StatusCode::singular_limb, j, ld.condition};
         ld.J_plus = Eigen::PartialPivLU<Work>(gram).solve(Work(ld.J.transpose()));
         // the bodies' c.o.m. and inertia: body b moves with the freedoms up to its last
@@ -291,10 +297,16 @@ Status inverseKinematics(const Model& model, Data& data, const TaskVector& p) {
         data.u(a) = ld.q(k);
         data.A.row(a) = ld.J_plus.row(k);
     }
-    // the actuation map over the task coordinates, A E, and its condition number
+    // the actuation map over the task's rates at the platform's point, and its condition number:
+    // t_P = [w; v - w x p] gives du = A_v . v + (A_w + A_v x p) . w
     const int d = model.task_dimension;
-    const ActuationMatrix AE = data.A.rightCols(d);
-    data.actuation_condition = conditionOf(Work(AE.transpose() * AE));
+    data.A_task.resize(model.actuators, d);
+    for (int a = 0; a < model.actuators; ++a) {
+        const Eigen::Vector3d A_w = data.A.row(a).head<3>().transpose(), A_v = data.A.row(a).tail<3>().transpose();
+        data.A_task.row(a).head<3>() = A_v.transpose();
+        if (d == 6) data.A_task.row(a).tail<3>() = (A_w + A_v.cross(data.position)).transpose();
+    }
+    data.actuation_condition = conditionOf(Work(data.A_task.transpose() * data.A_task));
     if (!(data.actuation_condition <= model.max_condition)) {
         return {StatusCode::singular_actuation, -1, data.actuation_condition};
     }

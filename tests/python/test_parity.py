@@ -25,14 +25,16 @@ from conftest import SOURCE_DIR, skip_or_fail_in_ci
 # The documented exceptions (docs/python-parity.md), kept short:
 # options of the command line with no Python argument: the output format of the printed answer, or
 # none (Python always gets the structured answer, and the printed text in .text)
-CLI_ONLY = {("pose", "json"), ("forward-kinematics", "json"), ("workspace", "json")}
+# pose's ANGLES (a spatial robot's roll, pitch, yaw): Python takes a spatial robot through
+# nocdyn.SpatialRobot, not nocdyn.pose
+CLI_ONLY = {("pose", "json"), ("forward-kinematics", "json"), ("workspace", "json"), ("pose", "angles")}
 # the options every command has on the command line only: --quiet (Python prints nothing)
 CLI_ONLY_EVERYWHERE = {"quiet"}
 # Python arguments with no option: the progress callback of the long commands
 PYTHON_ONLY = {"progress"}
 # positional arguments of the command line (upper case) and their Python names
 POSITIONAL = {("pose", "X"): "x", ("pose", "Y"): "y", ("pose", "THETA"): "theta",
-              ("forward-kinematics", "U"): "u", ("convert", "ROBOT"): "robot"}
+              ("pose", "ANGLES"): "angles", ("forward-kinematics", "U"): "u", ("convert", "ROBOT"): "robot"}
 # defaults that depend on the build: the plant is Simbody's when built in, else nocdyn's; Python
 # leaves the choice to the command (None)
 BUILD_DEPENDENT = {("control", "plant")}

@@ -49,7 +49,7 @@ using ParameterSet = std::vector<Parameter>;
 
 /// The refusal of a spatial robot file by every command (after the file is read and checked).
 inline constexpr const char* kSpatialNotComputed =
-    "a spatial robot (space: spatial): read and checked; no command computes spatial robots yet";
+    "a spatial robot (space: spatial): this command is planar for now (nocdyn pose and Robot.load take it)";
 
 /// Reads a robot file of either form and validates it (a spatial file is read and checked, then
 /// refused with kSpatialNotComputed), each parameter in `overrides`
