@@ -1,0 +1,88 @@
+// nocdyn's spatial inverse dynamics (nocdyn/spatial.hpp) against the independent Simbody model
+// (SimbodySpatialMechanism) on the shipped Delta (3-RUU), 6-UPS and 6-RUS, gravity on and the
+// joints' damping and friction as in the files, along a smooth two-harmonic motion about home.
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <numbers>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/spatial.hpp"
+#include "nocdyn/validation/simbody_spatial.hpp"
+
+namespace {
+
+// Agreement asked of the actuator forces, relative to their peak over the samples.
+constexpr double kRelativeTolerance = 1e-9;
+constexpr int kSamples = 50;
+
+nocdyn::SpatialRobotDescription shipped(const std::string& name) {
+    return nocdyn::io::loadSpatialRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + name + ".yaml");
+}
+
+struct Path {
+    std::vector<Eigen::VectorXd> p, dp, ddp;
+};
+
+/// p_i(t) = home_i + A_i (sin(w1 t + a_i) + 0.5 sin(w2 t + b_i)) over one second, A_i = `length`
+/// for x, y, z and `angle` for roll, pitch, yaw; w1 = 2 pi 1.5 / s, w2 = 2 pi 2.5 / s, so that
+/// the accelerations are a few m/s^2 for a few cm.
+Path twoHarmonics(const nocdyn::SpatialRobotDescription& robot, double length, double angle) {
+    const int n = robot.taskDimension();
+    const double w1 = 2.0 * std::numbers::pi * 1.5, w2 = 2.0 * std::numbers::pi * 2.5;
+    Path path;
+    for (int s = 0; s < kSamples; ++s) {
+        const double t = static_cast<double>(s) / kSamples;
+        Eigen::VectorXd p(n), dp(n), ddp(n);
+        for (int i = 0; i < n; ++i) {
+            const double A = i < 3 ? length : angle;
+            const double a = 0.7 * i + 0.3, b = 1.9 * i + 1.1;
+            p[i] = robot.home[i] + A * (std::sin(w1 * t + a) + 0.5 * std::sin(w2 * t + b));
+            dp[i] = A * (w1 * std::cos(w1 * t + a) + 0.5 * w2 * std::cos(w2 * t + b));
+            ddp[i] = -A * (w1 * w1 * std::sin(w1 * t + a) + 0.5 * w2 * w2 * std::sin(w2 * t + b));
+        }
+        path.p.push_back(p);
+        path.dp.push_back(dp);
+        path.ddp.push_back(ddp);
+    }
+    return path;
+}
+
+/// The largest difference of nocdyn's tau from Simbody's over the path, relative to the peak
+/// |tau|; also checks that the forces are not trivially small.
+double relativeDifference(const std::string& name, double length, double angle, double min_peak) {
+    const nocdyn::SpatialRobotDescription robot = shipped(name);
+    const Path path = twoHarmonics(robot, length, angle);
+    nocdyn::validation::SimbodySpatialMechanism engine(robot);
+    const Eigen::MatrixXd reference = engine.actuatorForces(path.p, path.dp, path.ddp);
+
+    const nocdyn::spatial::Model model(robot);
+    nocdyn::spatial::Data data(model);
+    EXPECT_EQ(reference.cols(), model.actuators);
+    double peak = 0.0, diff = 0.0;
+    for (int s = 0; s < kSamples; ++s) {
+        const auto status = nocdyn::spatial::inverseDynamics(model, data, path.p[static_cast<std::size_t>(s)],
+                                                             path.dp[static_cast<std::size_t>(s)],
+                                                             path.ddp[static_cast<std::size_t>(s)]);
+        EXPECT_TRUE(status.ok()) << nocdyn::spatial::describe(status, model);
+        peak = std::max(peak, reference.row(s).cwiseAbs().maxCoeff());
+        diff = std::max(diff, (data.tau.transpose() - reference.row(s)).cwiseAbs().maxCoeff());
+    }
+    EXPECT_GT(peak, min_peak);
+    std::printf("%s: peak |tau| %.6g, max |tau_nocdyn - tau_simbody| / peak %.3e\n", name.c_str(), peak, diff / peak);
+    return diff / peak;
+}
+
+TEST(SpatialSimbody, StewartPlatformAgrees) {
+    EXPECT_LT(relativeDifference("stewart", 0.02, 0.04, 1000.0), kRelativeTolerance);
+}
+
+TEST(SpatialSimbody, SixRusAgrees) { EXPECT_LT(relativeDifference("6-rus", 0.01, 0.04, 0.1), kRelativeTolerance); }
+
+TEST(SpatialSimbody, DeltaAgrees) { EXPECT_LT(relativeDifference("delta", 0.03, 0.0, 1.0), kRelativeTolerance); }
+
+}  // namespace
