@@ -52,12 +52,13 @@ Path twoHarmonics(const nocdyn::SpatialRobotDescription& robot, double length, d
     return path;
 }
 
-/// The largest difference of nocdyn's tau from Simbody's over the path, relative to the peak
-/// |tau|; also checks that the forces are not trivially small.
-double relativeDifference(const std::string& name, double length, double angle, double min_peak) {
-    const nocdyn::SpatialRobotDescription robot = shipped(name);
+/// The largest difference of nocdyn's tau for `robot` from Simbody's for `engine_robot` over the
+/// path, relative to the peak |tau|; also checks that the forces are not trivially small.
+double relativeDifference(const nocdyn::SpatialRobotDescription& robot,
+                          const nocdyn::SpatialRobotDescription& engine_robot, double length, double angle,
+                          double min_peak) {
     const Path path = twoHarmonics(robot, length, angle);
-    nocdyn::validation::SimbodySpatialMechanism engine(robot);
+    nocdyn::validation::SimbodySpatialMechanism engine(engine_robot);
     const Eigen::MatrixXd reference = engine.actuatorForces(path.p, path.dp, path.ddp);
 
     const nocdyn::spatial::Model model(robot);
@@ -73,8 +74,14 @@ double relativeDifference(const std::string& name, double length, double angle, 
         diff = std::max(diff, (data.tau.transpose() - reference.row(s)).cwiseAbs().maxCoeff());
     }
     EXPECT_GT(peak, min_peak);
-    std::printf("%s: peak |tau| %.6g, max |tau_nocdyn - tau_simbody| / peak %.3e\n", name.c_str(), peak, diff / peak);
+    std::printf("%s: peak |tau| %.6g, max |tau_nocdyn - tau_simbody| / peak %.3e\n", robot.name.c_str(), peak,
+                diff / peak);
     return diff / peak;
+}
+
+double relativeDifference(const std::string& name, double length, double angle, double min_peak) {
+    const nocdyn::SpatialRobotDescription robot = shipped(name);
+    return relativeDifference(robot, robot, length, angle, min_peak);
 }
 
 TEST(SpatialSimbody, StewartPlatformAgrees) {
@@ -84,5 +91,35 @@ TEST(SpatialSimbody, StewartPlatformAgrees) {
 TEST(SpatialSimbody, SixRusAgrees) { EXPECT_LT(relativeDifference("6-rus", 0.01, 0.04, 0.1), kRelativeTolerance); }
 
 TEST(SpatialSimbody, DeltaAgrees) { EXPECT_LT(relativeDifference("delta", 0.03, 0.0, 1.0), kRelativeTolerance); }
+
+}  // namespace
+
+namespace {
+
+// The comparison sees small changes of the Simbody model's data: the cylinders' friction and
+// damping left out, a product of inertia of the table, 2 % of the Delta's platform mass, the
+// sign of a product of inertia of a 6-RUS rod.
+TEST(SpatialSimbody, TheComparisonSeesSmallChangesOfTheEnginesData) {
+    const nocdyn::SpatialRobotDescription stewart = shipped("stewart");
+    nocdyn::SpatialRobotDescription changed = stewart;
+    for (nocdyn::SpatialLimbDescription& limb : changed.limbs) {
+        for (nocdyn::SpatialJointDescription& joint : limb.joints) joint.damping = joint.friction = 0.0;
+    }
+    EXPECT_GT(relativeDifference(stewart, changed, 0.02, 0.04, 1000.0), 1e-3);
+    changed = stewart;
+    changed.platform.inertia(0, 1) = changed.platform.inertia(1, 0) = 1.0;
+    EXPECT_GT(relativeDifference(stewart, changed, 0.02, 0.04, 1000.0), 1e-5);
+
+    const nocdyn::SpatialRobotDescription delta = shipped("delta");
+    changed = delta;
+    changed.platform.mass *= 1.02;
+    EXPECT_GT(relativeDifference(delta, changed, 0.03, 0.0, 1.0), 1e-4);
+
+    const nocdyn::SpatialRobotDescription rus = shipped("6-rus");
+    changed = rus;
+    Eigen::Matrix3d& I = changed.limbs[2].bodies[1].inertia;
+    I(0, 2) = I(2, 0) = -I(0, 2);
+    EXPECT_GT(relativeDifference(rus, changed, 0.01, 0.04, 0.1), 1e-6);
+}
 
 }  // namespace
