@@ -5,9 +5,11 @@
 #include <cmath>
 #include <cstdio>
 #include <numbers>
+#include <random>
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
 #include "nocdyn/io/robot_file.hpp"
@@ -120,6 +122,108 @@ TEST(SpatialSimbody, TheComparisonSeesSmallChangesOfTheEnginesData) {
     Eigen::Matrix3d& I = changed.limbs[2].bodies[1].inertia;
     I(0, 2) = I(2, 0) = -I(0, 2);
     EXPECT_GT(relativeDifference(rus, changed, 0.01, 0.04, 0.1), 1e-6);
+}
+
+}  // namespace
+
+namespace {
+
+/// A random physically possible inertia tensor: principal moments obeying the triangle
+/// inequalities, turned by a random rotation.
+Eigen::Matrix3d randomInertia(std::mt19937& rng, double scale) {
+    std::uniform_real_distribution<double> u(0.2, 1.0);
+    std::normal_distribution<double> n(0.0, 1.0);
+    const double a = u(rng), b = u(rng);
+    const Eigen::Vector3d moments = scale * Eigen::Vector3d(a, b, 0.5 * (a + b) + 0.4 * std::abs(a - b));
+    const Eigen::Matrix3d R = Eigen::Quaterniond(n(rng), n(rng), n(rng), n(rng)).normalized().toRotationMatrix();
+    return R * moments.asDiagonal() * R.transpose();
+}
+
+/// A random hexapod: base points near a circle of radius 1, platform points on one of 0.6 about
+/// a home pose with non-zero angles, each leg a UPS (its U's second axis 20 degrees off the
+/// normal of the first, the actuated P along the leg) or an RUS (an actuated crank of 0.3 m
+/// about a horizontal axis); random masses, c.o.m. and inertias, gravity tilted, damping and
+/// friction on every actuated joint.
+nocdyn::SpatialRobotDescription randomHexapod(std::mt19937& rng, bool rus) {
+    using namespace nocdyn;
+    constexpr double deg = std::numbers::pi / 180.0;
+    std::uniform_real_distribution<double> jitter(-0.08, 0.08);
+    std::uniform_real_distribution<double> mass(0.5, 5.0);
+    SpatialRobotDescription d;
+    d.name = rus ? "random-6rus" : "random-6ups";
+    d.motion = PlatformMotion::full;
+    d.gravity = {0.3, -0.2, -9.81};
+    d.home << jitter(rng), jitter(rng), 1.0 + jitter(rng), jitter(rng), jitter(rng), jitter(rng);
+    d.platform.mass = 20.0 + 10.0 * mass(rng);
+    d.platform.com = {jitter(rng), jitter(rng), 0.05 + jitter(rng)};
+    d.platform.inertia = randomInertia(rng, 5.0);
+    const Eigen::Matrix3d R_home = spatial::rotation(d.home(3), d.home(4), d.home(5));
+    for (int i = 0; i < 6; ++i) {
+        const double base_angle = (120.0 * (i / 2) + (i % 2 == 0 ? -15.0 : 15.0)) * deg + jitter(rng);
+        const double top_angle = (60.0 + 120.0 * ((i + 1) / 2 % 3) + (i % 2 == 0 ? 15.0 : -15.0)) * deg + jitter(rng);
+        const Eigen::Vector3d b(std::cos(base_angle) * (1.0 + jitter(rng)), std::sin(base_angle) * (1.0 + jitter(rng)),
+                                jitter(rng));
+        const Eigen::Vector3d top =
+            d.home.head<3>() + R_home * Eigen::Vector3d(0.6 * std::cos(top_angle), 0.6 * std::sin(top_angle), 0.0);
+        SpatialLimbDescription limb;
+        limb.name = "leg" + std::to_string(i + 1);
+        SpatialJointDescription s;
+        s.type = SpatialJointType::spherical;
+        s.point = top;
+        SpatialBodyDescription body1, body2;
+        body1.mass = mass(rng);
+        body2.mass = mass(rng);
+        body1.inertia = randomInertia(rng, 0.05);
+        body2.inertia = randomInertia(rng, 0.05);
+        SpatialJointDescription actuator;
+        actuator.actuated = true;
+        actuator.damping = 10.0 * (1.0 + jitter(rng));
+        actuator.friction = 5.0 * (1.0 + jitter(rng));
+        if (!rus) {
+            const Eigen::Vector3d e = (top - b).normalized();
+            SpatialJointDescription u;
+            u.type = SpatialJointType::universal;
+            u.point = b;
+            u.axis1 = e.cross(Eigen::Vector3d::UnitZ()).normalized();
+            u.axis2 =
+                (std::cos(20.0 * deg) * e.cross(u.axis1).normalized() + std::sin(20.0 * deg) * u.axis1).normalized();
+            actuator.type = SpatialJointType::prismatic;
+            actuator.direction = e;
+            limb.joints = {u, actuator, s};
+            body1.com = b + 0.3 * (top - b) + 0.02 * Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng));
+            body2.com = b + 0.7 * (top - b) + 0.02 * Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng));
+        } else {
+            const Eigen::Vector3d radial(std::cos(base_angle), std::sin(base_angle), 0.0);
+            const Eigen::Vector3d axis = Eigen::Vector3d::UnitZ().cross(radial).normalized();
+            const Eigen::Vector3d elbow = b + 0.3 * (0.6 * radial + 0.8 * Eigen::Vector3d::UnitZ()).normalized();
+            actuator.type = SpatialJointType::revolute;
+            actuator.point = b;
+            actuator.axis = axis;
+            actuator.damping *= 0.1;
+            actuator.friction *= 0.1;
+            SpatialJointDescription u;
+            u.type = SpatialJointType::universal;
+            u.point = elbow;
+            u.axis1 = axis;
+            u.axis2 = (top - elbow).normalized().cross(axis).normalized();
+            limb.joints = {actuator, u, s};
+            body1.com = 0.5 * (b + elbow);
+            body2.com = 0.5 * (elbow + top) + 0.01 * Eigen::Vector3d(jitter(rng), jitter(rng), jitter(rng));
+        }
+        limb.bodies = {body1, body2};
+        d.limbs.push_back(limb);
+    }
+    return d;
+}
+
+TEST(SpatialSimbody, RandomHexapodsAgree) {
+    std::mt19937 rng(2026);
+    for (const bool rus : {false, true}) {
+        for (int robot = 0; robot < 3; ++robot) {
+            const nocdyn::SpatialRobotDescription d = randomHexapod(rng, rus);
+            EXPECT_LT(relativeDifference(d, d, 0.02, 0.03, 1.0), kRelativeTolerance) << d.name << " " << robot;
+        }
+    }
 }
 
 }  // namespace
