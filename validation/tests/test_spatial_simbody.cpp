@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <functional>
 #include <numbers>
 #include <random>
 #include <string>
@@ -12,6 +13,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 
+#include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial.hpp"
 #include "nocdyn/validation/simbody_spatial.hpp"
@@ -224,6 +226,33 @@ TEST(SpatialSimbody, RandomHexapodsAgree) {
             EXPECT_LT(relativeDifference(d, d, 0.02, 0.03, 1.0), kRelativeTolerance) << d.name << " " << robot;
         }
     }
+}
+
+}  // namespace
+
+namespace {
+
+std::string messageOf(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const nocdyn::Error& e) {
+        return e.what();
+    }
+    return "no error";
+}
+
+TEST(SpatialSimbody, WhatTheModelCannotTakeIsNamed) {
+    nocdyn::SpatialRobotDescription delta = shipped("delta");
+    const std::vector<Eigen::VectorXd> out_of_reach{Eigen::Vector3d(0.0, 0.0, -2.0)}, zero{Eigen::Vector3d::Zero()};
+    nocdyn::validation::SimbodySpatialMechanism engine(delta);
+    EXPECT_NE(
+        messageOf([&] { (void)engine.actuatorForces(out_of_reach, zero, zero); }).find("cannot assemble sample 0"),
+        std::string::npos);
+    delta.limbs[1].joints[2].type = nocdyn::SpatialJointType::revolute;
+    const std::string message = messageOf([&] { nocdyn::validation::SimbodySpatialMechanism closed_at_r(delta); });
+    EXPECT_NE(message.find("delta.yaml: limb arm2: the Simbody model closes a limb at an S or U joint only"),
+              std::string::npos)
+        << message;
 }
 
 }  // namespace

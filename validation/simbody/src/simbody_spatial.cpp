@@ -83,10 +83,11 @@ class SimbodySpatialMechanism::Impl {
 public:
     explicit Impl(const SpatialRobotDescription& description);
 
-    /// One R or P joint of a limb's tree: its mobility and what it carries.
+    /// One R or P joint of a limb's tree: its mobilizer and generalized speed.
     struct Joint {
         const SpatialJointDescription* joint = nullptr;
-        int v = -1;  ///< its generalized speed
+        SimTK::MobilizedBody mobilizer;
+        int v = -1;
     };
 
     SpatialRobotDescription robot;
@@ -107,6 +108,8 @@ public:
     bool tryAssemble(const ::Eigen::VectorXd& p, const ::Eigen::VectorXd& seed);
     void assemble(std::size_t sample, const ::Eigen::VectorXd& p, const ::Eigen::VectorXd& seed,
                   const ::Eigen::VectorXd& p_from, const ::Eigen::VectorXd& q_from);
+    /// "<file>: " or nothing, to begin a message.
+    [[nodiscard]] std::string origin() const { return robot.source.empty() ? std::string() : robot.source + ": "; }
     void setPose(const ::Eigen::VectorXd& p) {
         for (int i = 0; i < task; ++i) pose[static_cast<std::size_t>(i)] = p[i];
     }
@@ -161,7 +164,7 @@ SimbodySpatialMechanism::Impl::Impl(const SpatialRobotDescription& description)
             switch (joint.type) {
                 case SpatialJointType::revolute:
                     parent = pin(parent, joint.axis, joint.point, info);
-                    joints.push_back({&joint, -1});
+                    joints.push_back({&joint, parent, -1});
                     if (joint.actuated) actuated.push_back(parent);
                     break;
                 case SpatialJointType::prismatic: {
@@ -170,7 +173,7 @@ SimbodySpatialMechanism::Impl::Impl(const SpatialRobotDescription& description)
                     MobilizedBody::Slider mob(parent, X, info, X);
                     limb_mobilizers.push_back(mob);
                     parent = mob;
-                    joints.push_back({&joint, -1});
+                    joints.push_back({&joint, parent, -1});
                     if (joint.actuated) actuated.push_back(parent);
                     break;
                 }
@@ -200,8 +203,8 @@ SimbodySpatialMechanism::Impl::Impl(const SpatialRobotDescription& description)
                 break;
             }
             default:
-                throw Error(robot.source + ": limb " + limb.name +
-                            ": the Simbody model closes a limb at an S or U joint only");
+                throw Error(origin() + "limb " + limb.name +
+                            ": the Simbody model closes a limb at an S or U joint only, not at an R or P");
         }
     }
     Force::UniformGravity(forces, matter, vec3(robot.gravity));
@@ -212,19 +215,7 @@ SimbodySpatialMechanism::Impl::Impl(const SpatialRobotDescription& description)
     if (state.getNQ() != state.getNU()) throw Error("Simbody spatial model: nq != nu");
 
     for (const MobilizedBody& mob : actuated) actuated_v.push_back(mob.getFirstUIndex(state));
-    // the R and P joints' speeds: their mobilizers in the order they were made
-    std::size_t next = 0;
-    std::size_t mob_index = 0;
-    for (const SpatialLimbDescription& limb : robot.limbs) {
-        for (std::size_t k = 0; k + 1 < limb.joints.size(); ++k) {
-            const SpatialJointDescription& joint = limb.joints[k];
-            const std::size_t count = joint.type == SpatialJointType::universal   ? 2
-                                      : joint.type == SpatialJointType::spherical ? 3
-                                                                                  : 1;
-            if (count == 1) joints[next++].v = limb_mobilizers[mob_index].getFirstUIndex(state);
-            mob_index += count;
-        }
-    }
+    for (Joint& joint : joints) joint.v = joint.mobilizer.getFirstUIndex(state);
     for (const MobilizedBody& m : limb_mobilizers) {
         if (m.getFirstQIndex(state) != m.getFirstUIndex(state)) throw Error("Simbody spatial model: q/u order");
     }
@@ -257,7 +248,7 @@ SimbodySpatialMechanism::Impl::Impl(const SpatialRobotDescription& description)
     const double err = state.getQErr().size() > 0 ? SimTK::max(SimTK::abs(state.getQErr())) : 0.0;
     if (!(err < 1e-9)) {
         std::ostringstream msg;
-        msg << robot.source << ": Simbody spatial model: the home posture is not assembled (loop error " << err << ")";
+        msg << origin() << "Simbody spatial model: the home posture is not assembled (loop error " << err << ")";
         throw Error(msg.str());
     }
 }
@@ -308,7 +299,7 @@ void SimbodySpatialMechanism::Impl::assemble(std::size_t sample, const ::Eigen::
         }
         if (ok) return;
     }
-    throw Error(robot.source + ": Simbody spatial model: cannot assemble sample " + std::to_string(sample) +
+    throw Error(origin() + "Simbody spatial model: cannot assemble sample " + std::to_string(sample) +
                 " on the home branch");
 }
 
@@ -347,6 +338,18 @@ int SimbodySpatialMechanism::actuatorCount() const { return static_cast<int>(imp
             m.pose_acc[static_cast<std::size_t>(i)] = ddp[s][i];
         }
         m.assemble(s, p[s], seed, p_prev, q_prev);
+        if (task == 3) {
+            // the limbs' U constraints, not a mobilizer, hold the platform's angles at 0
+            for (std::size_t i = 1; i < 4; ++i) {
+                const double angle = m.state.getQ()[m.platform_chain[i].getFirstQIndex(m.state)];
+                if (!(std::abs(angle) < 1e-9)) {
+                    std::ostringstream msg;
+                    msg << m.origin() << "Simbody spatial model: the limbs turn the platform by " << angle
+                        << " rad at sample " << s;
+                    throw Error(msg.str());
+                }
+            }
+        }
 
         // v = N dp: G_f v_f + G_p dp = 0
         m.matter.calcG(m.state, G);
