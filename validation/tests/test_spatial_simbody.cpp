@@ -1,6 +1,7 @@
 // nocdyn's spatial inverse dynamics (nocdyn/spatial.hpp) against the independent Simbody model
 // (SimbodySpatialMechanism) on the shipped Delta (3-RUU), 6-UPS and 6-RUS, gravity on and the
-// joints' damping and friction as in the files, along a smooth two-harmonic motion about home.
+// joints' damping and friction as in the files, along a smooth two-harmonic motion about home;
+// and on random 6-UPS, 6-RUS and 6-SPU hexapods (an S in a tree, a U closure at 70 degrees).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -218,6 +219,26 @@ nocdyn::SpatialRobotDescription randomHexapod(std::mt19937& rng, bool rus) {
     return d;
 }
 
+/// A random 6-SPU: the random 6-UPS's legs with an S at the base (three R freedoms, a body
+/// after them) and a U at the platform whose axes, a1 in the rod and a2 in the platform, both
+/// across the leg, are 70 degrees apart.
+nocdyn::SpatialRobotDescription randomSpu(std::mt19937& rng) {
+    using namespace nocdyn;
+    constexpr double deg = std::numbers::pi / 180.0;
+    SpatialRobotDescription d = randomHexapod(rng, false);
+    d.name = "random-6spu";
+    for (SpatialLimbDescription& limb : d.limbs) {
+        const Eigen::Vector3d b = limb.joints[0].point, top = limb.joints[2].point;
+        const Eigen::Vector3d e = (top - b).normalized();
+        limb.joints[0].type = SpatialJointType::spherical;
+        SpatialJointDescription& u = limb.joints[2];
+        u.type = SpatialJointType::universal;
+        u.axis1 = e.cross(Eigen::Vector3d::UnitZ()).normalized();
+        u.axis2 = std::cos(70.0 * deg) * u.axis1 + std::sin(70.0 * deg) * e.cross(u.axis1).normalized();
+    }
+    return d;
+}
+
 TEST(SpatialSimbody, RandomHexapodsAgree) {
     std::mt19937 rng(2026);
     for (const bool rus : {false, true}) {
@@ -225,6 +246,10 @@ TEST(SpatialSimbody, RandomHexapodsAgree) {
             const nocdyn::SpatialRobotDescription d = randomHexapod(rng, rus);
             EXPECT_LT(relativeDifference(d, d, 0.02, 0.03, 1.0), kRelativeTolerance) << d.name << " " << robot;
         }
+    }
+    for (int robot = 0; robot < 3; ++robot) {
+        const nocdyn::SpatialRobotDescription d = randomSpu(rng);
+        EXPECT_LT(relativeDifference(d, d, 0.02, 0.03, 1.0), kRelativeTolerance) << d.name << " " << robot;
     }
 }
 
