@@ -20,6 +20,9 @@
 #include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
+#include "nocdyn/validation/simbody_spatial.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/spatial.hpp"
 #include "nocdyn/validation/simbody_mechanism.hpp"
 
 namespace nocdyn::bench {
@@ -112,6 +115,68 @@ void simbodyPlant(benchmark::State& state, const std::string& name) {
     state.counters["end_error_um"] = endErrorMicro(plant.pose(), referenceEndPose(f));
 }
 
+/// A spatial robot's cycle: 1000 samples over one 0.1 s period about home, two harmonics per
+/// coordinate (1-2 cm, 0.02-0.04 rad), as ToolCycle for the planar tool robots.
+struct SpatialCycle {
+    std::vector<Eigen::VectorXd> p, dp, ddp;
+    explicit SpatialCycle(const spatial::Model& model) {
+        const int d = model.task_dimension;
+        for (int k = 0; k < 1000; ++k) {
+            const double t = 1e-4 * k;
+            Eigen::VectorXd x = model.home, v = Eigen::VectorXd::Zero(d), a = Eigen::VectorXd::Zero(d);
+            for (int i = 0; i < d; ++i) {
+                const double amplitude = i < 3 ? 0.01 + 0.003 * i : 0.02 + 0.005 * (i - 3);
+                for (const double f : {10.0 + i, 20.0 + 2.0 * i}) {
+                    const double w = 2.0 * M_PI * f, phase = 0.3 * i;
+                    x(i) += amplitude * std::sin(w * t + phase) / (f / 10.0);
+                    v(i) += amplitude * w * std::cos(w * t + phase) / (f / 10.0);
+                    a(i) -= amplitude * w * w * std::sin(w * t + phase) / (f / 10.0);
+                }
+            }
+            p.push_back(x);
+            dp.push_back(v);
+            ddp.push_back(a);
+        }
+    }
+};
+
+/// BM_InverseDynamics/<spatial robot>/nocdyn: nocdyn::spatial::inverseDynamics per sample;
+/// /simbody: the independent Simbody model on the same samples.
+void spatialNocdyn(benchmark::State& state, const std::string& robot) {
+    const spatial::Model model(
+        io::loadSpatialRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
+    const SpatialCycle cycle(model);
+    spatial::Data data(model);
+    for (auto _ : state) {
+        for (std::size_t k = 0; k < cycle.p.size(); ++k) {
+            const Status status = spatial::inverseDynamics(model, data, cycle.p[k], cycle.dp[k], cycle.ddp[k]);
+            if (!status) {
+                state.SkipWithError(("the cycle leaves the workspace of " + robot).c_str());
+                return;
+            }
+            benchmark::DoNotOptimize(data.tau.data());
+        }
+        benchmark::ClobberMemory();
+    }
+    state.counters["per_sample"] =
+        benchmark::Counter(static_cast<double>(cycle.p.size()),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
+void spatialSimbody(benchmark::State& state, const std::string& robot) {
+    const SpatialRobotDescription description =
+        io::loadSpatialRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
+    const SpatialCycle cycle{spatial::Model(description)};
+    validation::SimbodySpatialMechanism mechanism(description);
+    for (auto _ : state) {
+        const Eigen::MatrixXd tau = mechanism.actuatorForces(cycle.p, cycle.dp, cycle.ddp);
+        benchmark::DoNotOptimize(tau.data());
+    }
+    state.counters["per_sample"] =
+        benchmark::Counter(static_cast<double>(cycle.p.size()),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 [[maybe_unused]] const bool registered = [] {
     for (const std::string robot : {"paper-3prr", "3-rrr", "3-rpr", "4-rrr"}) {
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/mujoco").c_str(), [robot](benchmark::State& s) {
@@ -126,6 +191,14 @@ void simbodyPlant(benchmark::State& state, const std::string& name) {
         })->Unit(benchmark::kMillisecond);
         benchmark::RegisterBenchmark(("BM_Simulate/" + robot + "/mujoco").c_str(), [robot](benchmark::State& s) {
             mujocoPlant(s, robot);
+        })->Unit(benchmark::kMillisecond);
+    }
+    for (const std::string robot : {"delta", "stewart", "6-rus"}) {
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn").c_str(),
+                                     [robot](benchmark::State& s) { spatialNocdyn(s, robot); });
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/simbody").c_str(), [robot](
+                                                                                               benchmark::State& s) {
+            spatialSimbody(s, robot);
         })->Unit(benchmark::kMillisecond);
     }
     for (const std::string robot : {"five-bar", "biglide"}) {
