@@ -96,15 +96,18 @@ void baseline(benchmark::State& state) {
     perSample(state, f.samples.size());
 }
 
+/// The batch's packet width for one benchmark's lifetime, back to automatic after it.
+struct PacketWidth {
+    explicit PacketWidth(BatchPackets p) { setBatchPackets(p); }
+    ~PacketWidth() { setBatchPackets(BatchPackets::automatic); }
+    PacketWidth(const PacketWidth&) = delete;
+    PacketWidth& operator=(const PacketWidth&) = delete;
+};
+
 /// The general batch over `cycles` repetitions of the cycle, on `threads` threads.
 void generalBatch(benchmark::State& state, const std::string& robot, std::size_t cycles, unsigned threads,
                   BatchPackets packets = BatchPackets::automatic) {
-    struct Width {  // the packet width for this benchmark only
-        explicit Width(BatchPackets p) { setBatchPackets(p); }
-        ~Width() { setBatchPackets(BatchPackets::automatic); }
-        Width(const Width&) = delete;
-        Width& operator=(const Width&) = delete;
-    } width(packets);
+    const PacketWidth width(packets);
     state.counters["lanes"] = batchPacketWidth();
     const Fixture& f = fixture();
     const Model model = loadExample(robot);
@@ -134,12 +137,7 @@ void generalBatch(benchmark::State& state, const std::string& robot, std::size_t
 /// The batch on a two-DOF robot's tool cycle (ToolCycle), one thread, in the packet layout
 /// `packets`: the same kernel as the per-sample lean path, as generalBatch.
 void toolBatch(benchmark::State& state, const std::string& robot, BatchPackets packets) {
-    struct Width {  // the packet width for this benchmark only
-        explicit Width(BatchPackets p) { setBatchPackets(p); }
-        ~Width() { setBatchPackets(BatchPackets::automatic); }
-        Width(const Width&) = delete;
-        Width& operator=(const Width&) = delete;
-    } width(packets);
+    const PacketWidth width(packets);
     state.counters["lanes"] = batchPacketWidth();
     const Model model = loadExample(robot);
     const ToolCycle cycle(model.home);
