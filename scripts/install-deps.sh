@@ -31,6 +31,7 @@ packages=(
   locales                                      # a decimal-comma locale built by the tests (numbers as text)
   calculix-ccx                                 # finite-element check of the stiffness and modes (ctest -L validation)
   doxygen python3-breathe                      # its C++ API page (docs/cpp-api.md, docs/Doxyfile)
+  phcpack                                      # every assembly mode of a hexapod (polynomial homotopy, `phc`)
 )
 # npm fetches playwright-core for the browser tests: Debian's package, unless the installed
 # Node.js already brings its own (NodeSource's nodejs provides and conflicts with Debian's npm)

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <Eigen/Geometry>
 
@@ -277,6 +278,59 @@ TEST(SpatialDynamics, ThePowerOfTheActuatorsIsTheRateOfEnergyPlusTheFrictionsLos
         const double power = data.tau.dot(data.du);
         EXPECT_NEAR(power, dE + loss, 1e-7 * (std::abs(power) + std::abs(loss))) << name;
     }
+}
+
+TEST(SpatialForwardDynamics, GivesBackTheAccelerationsWhoseForcesTheInverseDynamicsComputed) {
+    // tau = ID(p, dp, ddp), then FD(p, dp, tau) = ddp: friction on (the shipped robots), the
+    // Delta's translation task, and random 6-UPS and 6-RUS hexapods
+    std::mt19937 rng(17);
+    std::vector<SpatialRobotDescription> robots{shipped("delta"), shipped("stewart"), shipped("6-rus")};
+    for (const bool rus : {false, true}) robots.push_back(randomHexapod(rng, rus));
+    for (const SpatialRobotDescription& description : robots) {
+        const Model model(description);
+        const int d = model.task_dimension;
+        Data data(model), back(model);
+        for (int trial = 0; trial < 3; ++trial) {
+            const TaskVector p = model.home + randomTask(rng, d, 0.03, 0.05);
+            const TaskVector dp = randomTask(rng, d, 0.4, 0.6), ddp = randomTask(rng, d, 4.0, 6.0);
+            ASSERT_TRUE(inverseDynamics(model, data, p, dp, ddp).ok()) << model.name;
+            TaskVector found;
+            const Status status = forwardDynamics(model, back, p, dp, data.tau, found);
+            ASSERT_TRUE(status.ok()) << model.name << ": " << describe(status, model);
+            EXPECT_LT((found - ddp).cwiseAbs().maxCoeff(), 1e-9 * ddp.cwiseAbs().maxCoeff())
+                << model.name << " trial " << trial;
+            EXPECT_LT((back.ddu - data.ddu).cwiseAbs().maxCoeff(), 1e-9 * data.ddu.cwiseAbs().maxCoeff());
+            EXPECT_EQ(back.tau, data.tau);
+        }
+    }
+}
+
+TEST(SpatialForwardDynamics, RefusesForcesOfTheWrongCountOrNotFinite) {
+    const Model model(shipped("stewart"));
+    Data data(model);
+    TaskVector ddp;
+    const TaskVector rest = TaskVector::Zero(6);
+    EXPECT_EQ(forwardDynamics(model, data, model.home, rest, ActuatorVector::Zero(5), ddp).code,
+              StatusCode::not_finite);
+    ActuatorVector tau = ActuatorVector::Zero(6);
+    tau(2) = std::nan("");
+    EXPECT_EQ(forwardDynamics(model, data, model.home, rest, tau, ddp).code, StatusCode::not_finite);
+    TaskVector tilted = model.home;
+    tilted(4) = std::acos(0.0);  // pitch at 90 degrees: the Euler angles' singularity
+    EXPECT_EQ(forwardDynamics(model, data, tilted, rest, ActuatorVector::Zero(6), ddp).code, StatusCode::not_finite);
+    const Model delta(shipped("delta"));
+    Data delta_data(delta);
+    TaskVector far = delta.home;
+    far(0) += 2.0;  // beyond the arms' reach
+    EXPECT_EQ(forwardDynamics(delta, delta_data, far, TaskVector::Zero(3), ActuatorVector::Zero(3), ddp).code,
+              StatusCode::unreachable);
+    // the forces that hold the table at rest hold it; without them it falls
+    ASSERT_TRUE(inverseDynamics(model, data, model.home, rest, rest).ok());
+    const ActuatorVector holding = data.tau;
+    ASSERT_TRUE(forwardDynamics(model, data, model.home, rest, holding, ddp).ok());
+    EXPECT_LT(ddp.cwiseAbs().maxCoeff(), 1e-10);
+    ASSERT_TRUE(forwardDynamics(model, data, model.home, rest, ActuatorVector::Zero(6), ddp).ok());
+    EXPECT_LT(ddp(2), -1.0);
 }
 
 TEST(SpatialDynamics, TheDeltaKeepsItsOrientationAndAnUnreachablePoseIsNamed) {

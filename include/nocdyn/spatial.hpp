@@ -150,6 +150,15 @@ struct Data {
 [[nodiscard]] Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
                                      const TaskVector& ddp);
 
+/// Forward dynamics: the pose accelerations ddp under the actuator forces tau at the state
+/// (p, dp), from E^T W_P(p, dp, ddp) = A_E^T tau, W_P affine in ddp: M ddp = A_E^T tau - h with
+/// M's columns the inertia wrenches of unit accelerations (no gravity, at rest) and h the
+/// wrench of (p, dp) at rest in acceleration (gravity, friction, the rates' terms). Every limb
+/// follows from p (inverseKinematics), so a motion integrated in (p, dp) stays closed. Leaves
+/// every stage at (p, dp, ddp) in data and data.tau = tau. Allocation-free.
+[[nodiscard]] Status forwardDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
+                                     const ActuatorVector& tau, TaskVector& ddp);
+
 /// The kinetic energy of every body and of the platform, and their potential energy in
 /// gravity, after inverseDynamics (or inverseKinematics and the twists of a velocity pass).
 [[nodiscard]] double kineticEnergy(const Model& model, const Data& data);

@@ -313,13 +313,15 @@ Status inverseKinematics(const Model& model, Data& data, const TaskVector& p) {
     return {};
 }
 
-Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
-                       const TaskVector& ddp) {
+namespace {
+
+/// The velocity, acceleration and force stages at (p, dp, ddp), after inverseKinematics(p):
+/// the platform twist and its rate, every limb's rates, accelerations, bodies' twists and
+/// wrenches, and W_P = w_P + sum_j J_j^+T f_j, with the weights of gravity g. With dp = 0 and
+/// g = 0 (no friction at rest either), W_P is the inertia wrench of ddp alone: E^T W_P = M ddp.
+void motionAndForces(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp, const TaskVector& ddp,
+                     const Eigen::Vector3d& g) {
     const int d = model.task_dimension;
-    if (dp.size() != d || ddp.size() != d || !finite(dp) || !finite(ddp)) {
-        return {StatusCode::not_finite, -1, dp.sum() + ddp.sum()};
-    }
-    if (const Status status = inverseKinematics(model, data, p); !status) return status;
     // the platform twist t_P = [w; v_O] and its rate, v_O = dp - w x p the velocity of the
     // platform point at O
     Eigen::Vector3d w = Eigen::Vector3d::Zero(), dw = Eigen::Vector3d::Zero();
@@ -330,7 +332,7 @@ Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, cons
     // the platform's own wrench
     const Eigen::Vector3d c_P = r + data.R * model.platform_com;
     const Eigen::Matrix3d I_P = data.R * model.platform_inertia * data.R.transpose();
-    data.platform_wrench = bodyWrench(model.platform_mass, c_P, I_P, data.t_P, data.dt_P, model.gravity);
+    data.platform_wrench = bodyWrench(model.platform_mass, c_P, I_P, data.t_P, data.dt_P, g);
     data.W_P = data.platform_wrench;
     for (int j = 0; j < model.limbs(); ++j) {
         const Limb& limb = model.limb[static_cast<std::size_t>(j)];
@@ -359,7 +361,7 @@ Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, cons
             }
             ld.twist[b] = t;
             ld.twist_rate[b] = alpha;
-            ld.wrench[b] = bodyWrench(body.mass, ld.com[b], ld.inertia[b], t, alpha, model.gravity);
+            ld.wrench[b] = bodyWrench(body.mass, ld.com[b], ld.inertia[b], t, alpha, g);
         }
         // the joints' efforts: freedom k carries every body after it, plus its friction
         FreedomVector f = FreedomVector::Zero(n);
@@ -381,6 +383,18 @@ Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, cons
         data.du(a2) = data.limb[static_cast<std::size_t>(j)].gd(k);
         data.ddu(a2) = data.limb[static_cast<std::size_t>(j)].gdd(k);
     }
+}
+
+}  // namespace
+
+Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
+                       const TaskVector& ddp) {
+    const int d = model.task_dimension;
+    if (dp.size() != d || ddp.size() != d || !finite(dp) || !finite(ddp)) {
+        return {StatusCode::not_finite, -1, dp.sum() + ddp.sum()};
+    }
+    if (const Status status = inverseKinematics(model, data, p); !status) return status;
+    motionAndForces(model, data, p, dp, ddp, model.gravity);
     // A_E^T tau = E^T W_P: the minimum-norm forces A_E (A_E^T A_E)^-1 E^T W_P (A_E^-T E^T W_P
     // when square)
     const ActuationMatrix AE = data.A.rightCols(d);
@@ -389,6 +403,35 @@ Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, cons
     const TaskVector lambda = Eigen::PartialPivLU<Work>(gram).solve(b);
     data.tau.noalias() = AE * lambda;
     if (!data.tau.allFinite()) return {StatusCode::effort_exceeded, -1, data.tau.sum()};
+    return {};
+}
+
+Status forwardDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
+                       const ActuatorVector& tau, TaskVector& ddp) {
+    const int d = model.task_dimension;
+    if (dp.size() != d || !finite(dp) || tau.size() != model.actuators || !tau.allFinite()) {
+        return {StatusCode::not_finite, -1, dp.sum() + tau.sum()};
+    }
+    if (const Status status = inverseKinematics(model, data, p); !status) return status;
+    // M = E^T W_P(p, 0, e_i) column by column without gravity (pure inertia), then the bias
+    // h = E^T W_P(p, dp, 0) with gravity and friction: E^T W_P(p, dp, ddp) = M ddp + h
+    TaskVector e = TaskVector::Zero(d);
+    const TaskVector rest = TaskVector::Zero(d);
+    Work M(d, d);
+    for (int i = 0; i < d; ++i) {
+        e(i) = 1.0;
+        motionAndForces(model, data, p, rest, e, Eigen::Vector3d::Zero());
+        M.col(i) = data.W_P.tail(d);
+        e(i) = 0.0;
+    }
+    motionAndForces(model, data, p, dp, rest, model.gravity);
+    const TaskVector h = data.W_P.tail(d);
+    // M ddp = A_E^T tau - h
+    const ActuationMatrix AE = data.A.rightCols(d);
+    ddp = Eigen::PartialPivLU<Work>(M).solve(AE.transpose() * tau - h);
+    if (!ddp.allFinite()) return {StatusCode::not_finite, -1, ddp.sum()};
+    motionAndForces(model, data, p, dp, ddp, model.gravity);
+    data.tau = tau;
     return {};
 }
 
