@@ -4,6 +4,7 @@
 // friction; on the shipped Delta, 6-UPS and 6-RUS and on random 6-UPS and 6-RUS hexapods.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
@@ -12,6 +13,7 @@
 #include <Eigen/Geometry>
 
 #include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/sim/spatial_simulator.hpp"
 #include "nocdyn/spatial.hpp"
 
 namespace nocdyn::spatial {
@@ -331,6 +333,66 @@ TEST(SpatialForwardDynamics, RefusesForcesOfTheWrongCountOrNotFinite) {
     EXPECT_LT(ddp.cwiseAbs().maxCoeff(), 1e-10);
     ASSERT_TRUE(forwardDynamics(model, data, model.home, rest, ActuatorVector::Zero(6), ddp).ok());
     EXPECT_LT(ddp(2), -1.0);
+}
+
+TEST(SpatialSimulation, ConservesTheEnergyUnderConstantForcesWithoutFriction) {
+    // constant forces are conservative (potential -tau . u): H = T + V - tau . u stays constant;
+    // the loops close exactly at every evaluation, so H's drift is the integrator's error
+    std::mt19937 rng(23);
+    for (const std::string name : {"delta", "stewart", "6-rus"}) {
+        const Model model(frictionless(shipped(name)));
+        const int d = model.task_dimension;
+        Data data(model);
+        const TaskVector rest = TaskVector::Zero(d);
+        ASSERT_TRUE(inverseDynamics(model, data, model.home, rest, rest).ok());
+        const nocdyn::ActuatorVector holding = data.tau;
+        Simulator simulator(model);
+        ASSERT_TRUE(simulator.reset(model.home, randomTask(rng, d, 0.05, 0.1)).ok()) << name;
+        simulator.setForces(holding);
+        const auto H = [&] {
+            return simulator.kineticEnergy() + simulator.potentialEnergy() - holding.dot(simulator.data().u);
+        };
+        const double H0 = H(), T0 = simulator.kineticEnergy();
+        double drift = 0.0, travel = 0.0;
+        for (int k = 1; k <= 50; ++k) {
+            const Status status = simulator.advance(0.01);
+            ASSERT_TRUE(status.ok()) << name << " at " << simulator.time() << ": " << describe(status, model);
+            drift = std::max(drift, std::abs(H() - H0));
+            travel = std::max(travel, (simulator.pose() - model.home).cwiseAbs().maxCoeff());
+        }
+        EXPECT_LT(drift, 1e-8 * T0) << name;
+        EXPECT_GT(travel, 1e-3) << name;  // it moved
+    }
+}
+
+TEST(SpatialSimulation, ReplaysTheMotionWhoseForcesTheInverseDynamicsComputed) {
+    // tau(t) from the inverse dynamics of p(t) = home + a sin(2 pi f t) sampled at 1 kHz, then
+    // simulated from p(0), dp(0) under the cubic spline of those forces: the motion comes back
+    // (without friction, whose Coulomb jumps no spline of samples follows)
+    for (const std::string name : {"delta", "stewart"}) {
+        const Model model(frictionless(shipped(name)));
+        const int d = model.task_dimension;
+        Data data(model);
+        TaskVector amplitude(d);
+        for (int i = 0; i < d; ++i) amplitude(i) = i < 3 ? 0.01 : 0.02;
+        const double w = 2.0 * std::acos(-1.0) * 2.0;
+        std::vector<double> times;
+        std::vector<nocdyn::ActuatorVector> forces;
+        for (int k = 0; k <= 300; ++k) {
+            const double t = 1e-3 * k;
+            const TaskVector p = model.home + amplitude * std::sin(w * t), dp = amplitude * w * std::cos(w * t),
+                             ddp = -amplitude * w * w * std::sin(w * t);
+            ASSERT_TRUE(inverseDynamics(model, data, p, dp, ddp).ok()) << name;
+            times.push_back(t);
+            forces.emplace_back(data.tau);
+        }
+        Simulator simulator(model);
+        ASSERT_TRUE(simulator.reset(model.home, amplitude * w).ok());
+        simulator.setForces(ForceSignal(times, forces, Interpolation::cubic));
+        ASSERT_TRUE(simulator.advance(0.3).ok()) << name;
+        const TaskVector expected = model.home + amplitude * std::sin(w * 0.3);
+        EXPECT_LT((simulator.pose() - expected).cwiseAbs().maxCoeff(), 1e-9 * amplitude.maxCoeff()) << name;
+    }
 }
 
 TEST(SpatialDynamics, TheDeltaKeepsItsOrientationAndAnUnreachablePoseIsNamed) {

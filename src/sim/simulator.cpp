@@ -8,12 +8,12 @@
 #include <sstream>
 
 #include <boost/math/interpolators/cardinal_cubic_b_spline.hpp>
-#include <boost/numeric/odeint.hpp>
 
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
+#include "integrator.hpp"
 
 namespace nocdyn {
 
@@ -205,188 +205,42 @@ ActuatorVector ForceSignal::at(double t) const {
 
 namespace {
 
-namespace odeint = boost::numeric::odeint;
-/// Integrator state x = [theta, x_c, y_c, dtheta, dx_c, dy_c] (fixed size: no allocation).
-using State = std::array<double, 6>;
-using Dopri5 = odeint::runge_kutta_dopri5<State>;
-using Controlled = odeint::controlled_runge_kutta<Dopri5>;
+/// The planar robot's forward dynamics as the integrator's plant: x = [theta, x_c, y_c,
+/// dtheta, dx_c, dy_c] (fixed size: no allocation).
+struct PlanarPlant {
+    using State = std::array<double, 6>;
+    explicit PlanarPlant(const Model& m) : model(m), data(model), scratch(model) {}
+    PlanarPlant(PlanarPlant&& o) noexcept : model(std::move(o.model)), data(model), scratch(model) {}
+    PlanarPlant(const PlanarPlant&) = delete;
+    PlanarPlant& operator=(const PlanarPlant&) = delete;
+    PlanarPlant& operator=(PlanarPlant&&) = delete;
+    ~PlanarPlant() = default;
 
-Pose poseOf(const State& x) { return {x[0], x[1], x[2]}; }
-Twist rateOf(const State& x) { return {x[3], x[4], x[5]}; }
+    Model model;
+    Data data;     ///< every stage at the current time
+    Data scratch;  ///< right-hand-side evaluations
+
+    static Pose poseOf(const State& x) { return {x[0], x[1], x[2]}; }
+    static Twist rateOf(const State& x) { return {x[3], x[4], x[5]}; }
+    [[nodiscard]] int actuators() const { return model.actuators; }
+    Status derivative(const State& xs, const ActuatorVector& tau, State& dxdt) {
+        const Status status = forwardDynamics(model, scratch, poseOf(xs), rateOf(xs), tau);
+        if (!status) return status;
+        for (std::size_t i = 0; i < 3; ++i) {
+            dxdt[i] = xs[i + 3];
+            dxdt[i + 3] = scratch.t_M_dot(static_cast<Eigen::Index>(i));
+        }
+        return {};
+    }
+    Status current(const State& x, const ActuatorVector& tau) {
+        return forwardDynamics(model, data, poseOf(x), rateOf(x), tau);
+    }
+};
 
 }  // namespace
 
-// The integrator runs ahead of the simulator's time: its last accepted step goes from
-// (x_old, t_old) to (x_new, t_new), and the state at any time in between is the stepper's
-// dense output (4th order), so that the steps are the error control's and not the output
-// rate's. New forces (setForces, reset) restart it at the current time.
-struct Simulator::Impl {
-    Impl(const Model& m, const SimulatorOptions& o)
-        : model(m),
-          options(o),
-          stepper(odeint::make_controlled(o.absolute_tolerance, o.relative_tolerance, Dopri5())),
-          data(model),
-          scratch(model),
-          held(ActuatorVector::Zero(m.actuators)),
-          force(ActuatorVector::Zero(m.actuators)),
-          step(o.initial_step) {}
-
-    Model model;
-    SimulatorOptions options;
-    unsigned polled = 0;  // steps since the start, for options.poll
-    Controlled stepper;
-    Data data;     ///< every stage at the current time
-    Data scratch;  ///< right-hand-side evaluations
-    ActuatorVector held;
-    ActuatorVector force;                 ///< scratch for the forces at one evaluation
-    std::unique_ptr<ForceSignal> signal;  ///< forces from samples, else `held`
-    std::size_t piece = 0;                ///< piece of `signal` of the step being taken
-
-    double t = 0.0;  ///< current time
-    State x{};       ///< state at t
-    double t_old = 0.0, t_new = 0.0;
-    State x_old{}, d_old{}, x_new{}, d_new{};
-    std::size_t d_new_piece = 0;  ///< piece under which d_new was evaluated
-    bool restart = true;          ///< (x_new, d_new) must be re-evaluated at t
-    double step;                  ///< step size proposed by the controller [s]
-    Status failure;
-    std::size_t accepted = 0, rejected = 0, evaluations = 0;
-    std::size_t forced = 0;  ///< accepted steps taken at the floor without the error test
-
-    void forcesAt(double time, std::size_t k, ActuatorVector& tau) const {
-        if (signal) {
-            signal->evaluate(time, k, tau);
-        } else {
-            tau = held;
-        }
-    }
-
-    /// dx/dt = [dp; d2p]; on failure records it (the step is then retried smaller).
-    void rhs(const State& xs, State& dxdt, double time) {
-        ++evaluations;
-        forcesAt(time, piece, force);
-        const Status status = forwardDynamics(model, scratch, poseOf(xs), rateOf(xs), force);
-        for (std::size_t i = 0; i < 3; ++i) dxdt[i] = xs[i + 3];
-        if (!status) {
-            if (failure.ok()) failure = status;
-            for (std::size_t i = 3; i < 6; ++i) dxdt[i] = 0.0;
-            return;
-        }
-        for (std::size_t i = 0; i < 3; ++i) dxdt[i + 3] = scratch.t_M_dot(static_cast<Eigen::Index>(i));
-    }
-
-    [[nodiscard]] std::size_t pieceAt(double time) const { return signal ? signal->piece(time) : 0; }
-    [[nodiscard]] double pieceEnd(std::size_t k) const {
-        return signal ? signal->pieceEnd(k) : std::numeric_limits<double>::infinity();
-    }
-
-    /// Every stage at the current time and state into `data`.
-    Status evaluateCurrent() {
-        forcesAt(t, pieceAt(t), force);
-        return forwardDynamics(model, data, poseOf(x), rateOf(x), force);
-    }
-
-    /// Derivative at the end of the last step under the forces of the piece that follows.
-    Status refreshDerivative() {
-        piece = pieceAt(t_new);
-        failure = {};
-        rhs(x_new, d_new, t_new);
-        d_new_piece = piece;
-        return failure;
-    }
-
-    /// One accepted step from (x_new, t_new), not past the end of the current piece.
-    Status takeStep(std::size_t& steps) {
-        if (d_new_piece != pieceAt(t_new)) {
-            if (const Status status = refreshDerivative(); !status) return status;
-        }
-        piece = d_new_piece;
-        const double end = pieceEnd(piece);
-        for (;;) {
-            if (++steps > options.max_steps) {
-                return {StatusCode::integration_too_many_steps, -1, static_cast<double>(steps - 1)};
-            }
-            const double room = end - t_new;
-            const bool clipped = std::min(step, options.max_step) >= room;
-            bool lands = clipped;  // the step ends on the piece's end
-            double h = clipped ? room : std::min(step, options.max_step);
-            double time = t_new;
-            State x_next{}, d_next{};
-            failure = {};
-            const auto result = stepper.try_step([this](const State& xs, State& d, double tt) { rhs(xs, d, tt); },
-                                                 x_new, d_new, time, x_next, d_next, h);
-            if (!failure.ok()) {
-                // a trial state out of reach or singular: retry much shorter, down to min_step
-                ++rejected;
-                step = 0.25 * std::min(step, room);
-                if (step < options.min_step) return failure;
-                continue;
-            }
-            if (result != odeint::success) {
-                ++rejected;
-                step = h;  // reduced by the controller
-                if (h < options.floor_step) {
-                    // at the floor (SimulatorOptions::floor_step): the step is taken untested
-                    lands = options.floor_step >= room;
-                    h = std::min(options.floor_step, room);
-                    time = t_new;
-                    failure = {};
-                    stepper.stepper().do_step([this](const State& xs, State& d, double tt) { rhs(xs, d, tt); }, x_new,
-                                              d_new, time, x_next, d_next, h);
-                    if (!failure.ok()) return failure;
-                    ++forced;
-                    time += h;
-                    step = options.floor_step;
-                } else {
-                    if (step < options.min_step) return {StatusCode::integration_step_too_small, -1, step};
-                    continue;
-                }
-            }
-            ++accepted;
-            if (!clipped && result == odeint::success) step = h;  // the controller's proposal for the next step
-            x_old = x_new;
-            d_old = d_new;
-            t_old = t_new;
-            x_new = x_next;
-            d_new = d_next;
-            // land exactly on the end of a piece, so that the next piece starts there
-            t_new = lands ? end : time;
-            return {};
-        }
-    }
-
-    Status advanceTo(double t_end) {
-        if (restart) {
-            x_new = x_old = x;
-            t_new = t_old = t;
-            if (const Status status = refreshDerivative(); !status) return status;
-            d_old = d_new;
-            restart = false;
-        }
-        std::size_t steps = 0;
-        while (t_new < t_end) {
-            if (options.poll && (++polled & 1023U) == 0) {
-                restart = true;  // a throw leaves the step half taken
-                options.poll();
-                restart = false;
-            }
-            if (const Status status = takeStep(steps); !status) {
-                // stop at the last state reached
-                x = x_new;
-                t = t_new;
-                (void)evaluateCurrent();
-                restart = true;
-                return status;
-            }
-        }
-        if (t_end == t_new) {
-            x = x_new;
-        } else {
-            stepper.stepper().calc_state(t_end, x, x_old, d_old, t_old, x_new, d_new, t_new);
-        }
-        t = t_end;
-        return evaluateCurrent();
-    }
+struct Simulator::Impl : detail::Integrator<PlanarPlant> {
+    Impl(const Model& m, const SimulatorOptions& o) : Integrator(PlanarPlant(m), o) {}
 };
 
 Simulator::Simulator(const Model& model, const SimulatorOptions& options)
@@ -401,42 +255,19 @@ Simulator& Simulator::operator=(Simulator&&) noexcept = default;
 Status Simulator::reset(const Pose& p_in, const Twist& dp_in, double t) {
     Impl& s = *impl_;
     // a two-DOF robot's state is [x, y] and its rates: theta at home(0), at rest (E p_t, E dp_t)
-    const bool task = s.model.task_dimension == 2;
-    const Pose p = task ? Pose(s.model.home(0), p_in(1), p_in(2)) : p_in;
+    const Model& model = s.plant.model;
+    const bool task = model.task_dimension == 2;
+    const Pose p = task ? Pose(model.home(0), p_in(1), p_in(2)) : p_in;
     const Twist dp = task ? Twist(0.0, dp_in(1), dp_in(2)) : dp_in;
     s.held.setZero();
-    s.signal.reset();
-    if (const Status status = forwardDynamics(s.model, s.scratch, p, dp, s.held); !status) return status;
-    s.x = {p(0), p(1), p(2), dp(0), dp(1), dp(2)};
-    s.t = t;
-    s.step = s.options.initial_step;
-    s.restart = true;
+    if (const Status status = forwardDynamics(model, s.plant.scratch, p, dp, s.held); !status) return status;
+    s.start({p(0), p(1), p(2), dp(0), dp(1), dp(2)}, t);
     return s.evaluateCurrent();
 }
 
-void Simulator::setForces(const ActuatorVector& tau) {
-    impl_->signal.reset();
-    impl_->held = tau;
-    impl_->restart = true;
-}
-
-void Simulator::setForces(ForceSignal forces) {
-    impl_->signal = std::make_unique<ForceSignal>(std::move(forces));
-    impl_->restart = true;
-}
-
-Status Simulator::advance(double dt) {
-    Impl& s = *impl_;
-    if (s.signal ? s.signal->actuators() != s.model.actuators : s.held.size() != s.model.actuators) {
-        return {StatusCode::not_finite, -1, static_cast<double>(s.signal ? s.signal->actuators() : s.held.size())};
-    }
-    if (!(dt >= 0.0) || !std::isfinite(dt)) return {StatusCode::not_finite, -1, dt};
-    if (dt == 0.0) {
-        s.restart = true;  // the forces may have changed at t
-        return s.evaluateCurrent();
-    }
-    return s.advanceTo(s.t + dt);
-}
+void Simulator::setForces(const ActuatorVector& tau) { impl_->setForces(tau); }
+void Simulator::setForces(ForceSignal forces) { impl_->setForces(std::move(forces)); }
+Status Simulator::advance(double dt) { return impl_->advance(dt); }
 
 Status Simulator::advance(double dt, const ActuatorVector& tau) {
     setForces(tau);
@@ -444,16 +275,16 @@ Status Simulator::advance(double dt, const ActuatorVector& tau) {
 }
 
 double Simulator::time() const { return impl_->t; }
-const Pose& Simulator::pose() const { return impl_->data.p; }
-const Twist& Simulator::poseRate() const { return impl_->data.t_M; }
-const Twist& Simulator::poseAcceleration() const { return impl_->data.t_M_dot; }
-const ActuatorVector& Simulator::u() const { return impl_->data.u; }
-const ActuatorVector& Simulator::du() const { return impl_->data.du; }
-const ActuatorVector& Simulator::tau() const { return impl_->data.tau; }
-double Simulator::kineticEnergy() const { return nocdyn::kineticEnergy(impl_->model, impl_->data); }
-double Simulator::potentialEnergy() const { return nocdyn::potentialEnergy(impl_->model, impl_->data); }
-const Data& Simulator::data() const { return impl_->data; }
-const Model& Simulator::model() const { return impl_->model; }
+const Pose& Simulator::pose() const { return impl_->plant.data.p; }
+const Twist& Simulator::poseRate() const { return impl_->plant.data.t_M; }
+const Twist& Simulator::poseAcceleration() const { return impl_->plant.data.t_M_dot; }
+const ActuatorVector& Simulator::u() const { return impl_->plant.data.u; }
+const ActuatorVector& Simulator::du() const { return impl_->plant.data.du; }
+const ActuatorVector& Simulator::tau() const { return impl_->plant.data.tau; }
+double Simulator::kineticEnergy() const { return nocdyn::kineticEnergy(impl_->plant.model, impl_->plant.data); }
+double Simulator::potentialEnergy() const { return nocdyn::potentialEnergy(impl_->plant.model, impl_->plant.data); }
+const Data& Simulator::data() const { return impl_->plant.data; }
+const Model& Simulator::model() const { return impl_->plant.model; }
 const SimulatorOptions& Simulator::options() const { return impl_->options; }
 std::size_t Simulator::acceptedSteps() const { return impl_->accepted; }
 std::size_t Simulator::rejectedSteps() const { return impl_->rejected; }
