@@ -6,6 +6,8 @@
 #include <sstream>
 #include <vector>
 
+#include "app/pose_spatial.hpp"
+#include "app/simulate_spatial.hpp"
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/kinematics.hpp"
@@ -166,6 +168,8 @@ InitialState initialState(const Model& model, const io::Table& table, const std:
     return state;
 }
 
+}  // namespace
+
 Interpolation interpolationNamed(const std::string& name) {
     const std::map<std::string, Interpolation> interpolations{
         {"hold", Interpolation::hold}, {"linear", Interpolation::linear}, {"cubic", Interpolation::cubic}};
@@ -175,8 +179,6 @@ Interpolation interpolationNamed(const std::string& name) {
     }
     return found->second;
 }
-
-}  // namespace
 
 std::string summaryLine(const SimulateResult& result) {
     std::ostringstream out;
@@ -201,6 +203,7 @@ void validate(const SimulateOptions& options) {
 }
 
 SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Observer& observer) {
+    if (isSpatialRobot(options.robot)) return runSpatialSimulate(options, table, observer);
     validate(options);
     // a two-DOF robot too: its state is [x, y] and their rates (Simulator::reset)
     const Model model(loadRobot(options.robot));

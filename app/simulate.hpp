@@ -9,6 +9,7 @@
 #include "app/options.hpp"
 #include "app/table.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "nocdyn/sim/simulator.hpp"
 
 namespace nocdyn::app {
 
@@ -63,6 +64,10 @@ struct SimulateResult {
 /// Throws OptionError for an option outside its range or choices.
 void validate(const SimulateOptions& options);
 
+/// The interpolation named hold, linear or cubic; throws OptionError("interpolation") else.
+[[nodiscard]] Interpolation interpolationNamed(const std::string& name);
+
+/// A spatial robot (space: spatial) is simulated by runSpatialSimulate (app/simulate_spatial.hpp).
 /// Rows at t0 + k / rate, k = 0..round(duration * rate) - 1, and at t0 + duration, into `table`
 /// with the columns of io::TableId::simulate (and the reactions'), as computed. A state out of
 /// reach or singular is an Error "t = ... s: ..." (with partial: returned in `stopped`).

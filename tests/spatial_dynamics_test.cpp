@@ -6,12 +6,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <filesystem>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Geometry>
 
+#include "cli_support.hpp"
+#include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/sim/spatial_simulator.hpp"
 #include "nocdyn/spatial.hpp"
@@ -393,6 +398,111 @@ TEST(SpatialSimulation, ReplaysTheMotionWhoseForcesTheInverseDynamicsComputed) {
         const TaskVector expected = model.home + amplitude * std::sin(w * 0.3);
         EXPECT_LT((simulator.pose() - expected).cwiseAbs().maxCoeff(), 1e-9 * amplitude.maxCoeff()) << name;
     }
+}
+
+/// A forces CSV for `nocdyn simulate`: the inverse dynamics of p(t) = home + a sin(2 pi 2 t)
+/// at 1 kHz over 0.1 s, with the first row's pose and either its rates or the actuators' rates.
+std::string writeForces(const Model& model, const std::filesystem::path& path, bool pose_rates) {
+    const int d = model.task_dimension, n = model.actuators;
+    const std::vector<std::string> names = model.coordinates();
+    Data data(model);
+    std::ofstream out(path);
+    out.precision(17);
+    out << "t";
+    for (const std::string& c : names) out << "," << c;
+    for (int i = 0; i < d; ++i) out << (pose_rates ? ",d" + names[static_cast<std::size_t>(i)] : "");
+    for (int a = 1; a <= n; ++a) out << (pose_rates ? "" : ",du" + std::to_string(a));
+    for (int a = 1; a <= n; ++a) out << ",tau" << a;
+    out << "\n";
+    const TaskVector amplitude = TaskVector::Constant(d, 0.01);
+    const double w = 4.0 * std::acos(-1.0);
+    for (int k = 0; k <= 100; ++k) {
+        const double t = 1e-3 * k;
+        const TaskVector p = model.home + amplitude * std::sin(w * t), dp = amplitude * w * std::cos(w * t);
+        EXPECT_TRUE(inverseDynamics(model, data, p, dp, -amplitude * w * w * std::sin(w * t)).ok());
+        out << t;
+        for (int i = 0; i < d; ++i) out << "," << p(i);
+        for (int i = 0; i < (pose_rates ? d : n); ++i) out << "," << (pose_rates ? dp(i) : data.du(i));
+        for (int a = 0; a < n; ++a) out << "," << data.tau(a);
+        out << "\n";
+    }
+    return path.string();
+}
+
+TEST(SpatialSimulation, TheCommandLineWritesTheSimulatorsMotionFromTheFirstRowsState) {
+    // the Delta over a shorter span: its Coulomb friction's jumps cost many steps
+    const std::filesystem::path dir = test::freshScratchDirectory("spatial_simulate");
+    for (const auto& [name, duration] : {std::pair<std::string, double>{"stewart", 0.1}, {"delta", 0.02}}) {
+        const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/" + name + ".yaml";
+        const Model model(shipped(name));
+        const int d = model.task_dimension, n = model.actuators;
+        const auto rows = static_cast<std::size_t>(std::lround(duration * 1000.0)) + 1;  // t = 0, 1 ms, ..
+        std::vector<double> last;
+        for (const bool pose_rates : {true, false}) {
+            const std::string forces = writeForces(model, dir / (name + "-forces.csv"), pose_rates);
+            const std::string output = (dir / (name + "-motion.csv")).string();
+            const test::CliResult r =
+                test::runCli("simulate --robot " + robot + " --forces " + forces + " --rate 1000 --duration " +
+                             std::to_string(duration) + " -o " + output);
+            ASSERT_EQ(r.exit_code, 0) << r.err;
+            EXPECT_NE(r.err.find(pose_rates ? "first row's " : "and du1..du"), std::string::npos) << r.err;
+            const io::Table motion = io::readCsvFile(output);
+            ASSERT_EQ(motion.rows.size(), rows);
+            ASSERT_EQ(motion.columns.size(), static_cast<std::size_t>(1 + d + 3 * n + 1));
+            EXPECT_EQ(motion.columns[static_cast<std::size_t>(d)], d == 6 ? "yaw" : "z");
+            const std::vector<double>& row = motion.rows.back();
+            if (!last.empty()) {
+                // the first row's rates given by du1..dun give the motion given by dx..
+                for (int i = 0; i <= d; ++i) {
+                    EXPECT_NEAR(row[static_cast<std::size_t>(i)], last[static_cast<std::size_t>(i)], 1e-8) << name;
+                }
+            }
+            last = row;
+        }
+        // the in-process simulator from the same state under the same forces
+        const io::Table table = io::readCsvFile((dir / (name + "-forces.csv")).string());
+        std::vector<double> times;
+        std::vector<nocdyn::ActuatorVector> forces;
+        for (const std::vector<double>& row : table.rows) {
+            times.push_back(row[0]);
+            nocdyn::ActuatorVector tau(n);
+            for (int a = 0; a < n; ++a) tau(a) = row[static_cast<std::size_t>(1 + d + n + a)];
+            forces.push_back(tau);
+        }
+        Simulator simulator(model);
+        const double w = 4.0 * std::acos(-1.0);
+        ASSERT_TRUE(simulator.reset(model.home, TaskVector::Constant(d, 0.01 * w)).ok());
+        simulator.setForces(ForceSignal(times, forces, Interpolation::cubic));
+        ASSERT_TRUE(simulator.advance(duration).ok());
+        for (int i = 0; i < d; ++i) {
+            EXPECT_NEAR(last[static_cast<std::size_t>(1 + i)], simulator.pose()(i), 1e-8) << name;
+        }
+        // with friction the motion is near the inverse dynamics' one, not on it (Coulomb's jumps)
+        EXPECT_NEAR(last[1], model.home(0) + 0.01 * std::sin(w * duration), 2e-4) << name;
+    }
+}
+
+TEST(SpatialSimulation, TheCommandLineRefusesAPlanarRowOrActuatorsAloneNamingTheFile) {
+    const std::filesystem::path dir = test::freshScratchDirectory("spatial_simulate_bad");
+    const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/stewart.yaml";
+    const auto run = [&](const std::string& name, const std::string& text, const std::string& more = "") {
+        const std::filesystem::path path = dir / name;
+        std::ofstream(path) << text;
+        return test::runCli("simulate --robot " + robot + " --forces " + path.string() + more);
+    };
+    const std::string taus = "tau1,tau2,tau3,tau4,tau5,tau6";
+    test::CliResult r = run("theta.csv", "t,x,y,theta," + taus + "\n0,0,0,0,1,1,1,1,1,1\n0.1,0,0,0,1,1,1,1,1,1\n");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("theta.csv:2: column 'theta'"), std::string::npos) << r.err;
+    r = run("u.csv", "t,u1,u2,u3,u4,u5,u6," + taus + "\n0,1,1,1,1,1,1,1,1,1,1,1,1\n0.1,1,1,1,1,1,1,1,1,1,1,1,1\n");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("a spatial robot starts from a pose"), std::string::npos) << r.err;
+    r = run("part.csv", "t,x,y,z," + taus + "\n0,0,0,1,1,1,1,1,1,1\n0.1,0,0,1,1,1,1,1,1,1\n");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("the pose needs every column of x,y,z,roll,pitch,yaw"), std::string::npos) << r.err;
+    r = run("ok.csv", "t," + taus + "\n0,1,1,1,1,1,1\n0.1,1,1,1,1,1,1\n", " --reactions");
+    EXPECT_NE(r.exit_code, 0);
+    EXPECT_NE(r.err.find("planar for now"), std::string::npos) << r.err;
 }
 
 TEST(SpatialDynamics, TheDeltaKeepsItsOrientationAndAnUnreachablePoseIsNamed) {

@@ -51,7 +51,9 @@ void addSimulateCommand(CLI::App& app) {
         "t,x,y,theta,u1..un,du1..dun,tau1..taun,kinetic (SI) at t0 + k / rate up to t0 + duration. A pose out of\n"
         "reach or singular stops it with the time and the limb, and no file unless --partial. A two-DOF robot\n"
         "(motion: translation) moves in x, y only: M_t d2p_t/dt2 = A_t^T tau - h_t with p_t = [x, y], its first\n"
-        "row's pose x,y (with dx,dy), and no theta column.");
+        "row's pose x,y (with dx,dy), and no theta column. A spatial robot (space: spatial) starts from its first\n"
+        "row's x,y,z,roll,pitch,yaw (x,y,z for motion: translation) with their rates dx.. (else du1..dun, else\n"
+        "at rest), or home, and writes t,x,y,z,roll,pitch,yaw,u1..un,du1..dun,tau1..taun,kinetic.");
     addRobotOption(*command, options->robot);
     command->add_option("--forces", options->forces, "CSV file with columns t,tau1..taun [s, N or N m]")
         ->required()
