@@ -20,6 +20,7 @@
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/sim/spatial_simulator.hpp"
 #include "nocdyn/spatial.hpp"
+#include "nocdyn/spatial_reactions.hpp"
 
 namespace nocdyn::spatial {
 namespace {
@@ -503,6 +504,86 @@ TEST(SpatialSimulation, TheCommandLineRefusesAPlanarRowOrActuatorsAloneNamingThe
     r = run("ok.csv", "t," + taus + "\n0,1,1,1,1,1,1\n0.1,1,1,1,1,1,1\n", " --reactions");
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("planar for now"), std::string::npos) << r.err;
+}
+
+TEST(SpatialReactions, EveryFreedomPassesItsEffortAndThePlatformBalances) {
+    // s_k . W_k = tau_k - phi_k for every freedom k (its actuator's force, less its friction
+    // phi_k = damping gd_k + friction sign gd_k; 0 on the U and S joints' freedoms), and
+    // sum_j F_j = w_P: on the shipped robots (friction on) and random 6-UPS and 6-RUS
+    std::mt19937 rng(31);
+    std::vector<SpatialRobotDescription> robots{shipped("delta"), shipped("stewart"), shipped("6-rus")};
+    for (const bool rus : {false, true}) robots.push_back(randomHexapod(rng, rus));
+    for (const SpatialRobotDescription& description : robots) {
+        const Model model(description);
+        const int d = model.task_dimension;
+        Data data(model);
+        Reactions reactions(model);
+        for (int trial = 0; trial < 3; ++trial) {
+            const TaskVector p = model.home + randomTask(rng, d, 0.03, 0.05);
+            ASSERT_TRUE(
+                inverseDynamics(model, data, p, randomTask(rng, d, 0.4, 0.6), randomTask(rng, d, 4.0, 6.0)).ok());
+            ASSERT_TRUE(jointReactions(model, data, reactions).ok()) << model.name;
+            const double scale = data.platform_wrench.cwiseAbs().maxCoeff() + data.tau.cwiseAbs().maxCoeff();
+            EXPECT_LT(reactions.balance_residual, 1e-10 * scale) << model.name;
+            for (int j = 0; j < model.limbs(); ++j) {
+                const Limb& limb = model.limb[static_cast<std::size_t>(j)];
+                const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+                for (int k = 0; k < limb.size(); ++k) {
+                    const Freedom& f = limb.freedoms[static_cast<std::size_t>(k)];
+                    const double gd = ld.gd(k);
+                    double expected = -(f.damping * gd + f.friction * (gd > 0.0 ? 1.0 : (gd < 0.0 ? -1.0 : 0.0)));
+                    if (f.actuator >= 0) expected += data.tau(f.actuator);
+                    const Vector6& W =
+                        reactions.joint[static_cast<std::size_t>(j)][static_cast<std::size_t>(f.joint)].wrench;
+                    EXPECT_NEAR(ld.J.col(k).dot(W), expected, 1e-10 * scale)
+                        << model.name << " limb " << j << " freedom " << k;
+                }
+                // no moment through an S joint, none about a U's axes; no force along a P
+                for (const JointReaction& r : reactions.joint[static_cast<std::size_t>(j)]) {
+                    if (r.type == 'S') {
+                        EXPECT_LT(r.moment.norm(), 1e-10 * scale) << model.name;
+                    }
+                    const Eigen::Vector3d raw = r.wrench.head<3>() - r.point.cross(r.wrench.tail<3>());
+                    if (r.type == 'S' || r.type == 'U') {
+                        EXPECT_LT((raw - r.moment).norm(), 1e-10 * scale) << model.name;
+                    }
+                }
+            }
+        }
+    }
+}
+
+TEST(SpatialReactions, AHexapodWithMasslessLegsPushesAlongEachLegWithItsActuatorsForce) {
+    // two-force members: at rest each massless leg's S joint passes a force along the leg, of
+    // the cylinder's force (a closed form), and the base U joint the same
+    SpatialRobotDescription description = frictionless(shipped("stewart"));
+    for (SpatialLimbDescription& limb : description.limbs) {
+        for (SpatialBodyDescription& body : limb.bodies) {
+            body.mass = 0.0;
+            body.inertia.setZero();
+        }
+    }
+    const Model model(description);
+    Data data(model);
+    Reactions reactions(model);
+    const TaskVector p = model.home + TaskVector::Constant(6, 0.02);
+    ASSERT_TRUE(inverseDynamics(model, data, p, TaskVector::Zero(6), TaskVector::Zero(6)).ok());
+    ASSERT_TRUE(jointReactions(model, data, reactions).ok());
+    for (int j = 0; j < 6; ++j) {
+        const auto& joints = reactions.joint[static_cast<std::size_t>(j)];
+        ASSERT_EQ(joints.size(), 3U);
+        EXPECT_EQ(joints[0].type, 'U');
+        EXPECT_EQ(joints[1].type, 'P');
+        EXPECT_EQ(joints[2].type, 'S');
+        const Eigen::Vector3d leg = (joints[2].point - joints[0].point).normalized();
+        const double tau = data.tau(j);
+        // the base pushes the leg out along +leg with the cylinder's force
+        EXPECT_NEAR(joints[2].force.dot(leg), tau, 1e-9 * std::abs(tau)) << j;
+        EXPECT_LT((joints[2].force - tau * leg).norm(), 1e-9 * std::abs(tau)) << j;
+        EXPECT_LT((joints[0].force - tau * leg).norm(), 1e-9 * std::abs(tau)) << j;
+        EXPECT_LT(joints[0].moment.norm(), 1e-9 * std::abs(tau)) << j;
+        EXPECT_LT(joints[1].force.norm(), 1e-9 * std::abs(tau)) << j;  // the P passes tau along itself
+    }
 }
 
 TEST(SpatialDynamics, TheDeltaKeepsItsOrientationAndAnUnreachablePoseIsNamed) {

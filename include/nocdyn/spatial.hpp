@@ -114,6 +114,12 @@ struct LimbData {
     std::array<Vector6, kMaxBodies> twist;            ///< referred to O
     std::array<Vector6, kMaxBodies> twist_rate;       ///< referred to O
     std::array<Vector6, kMaxBodies> wrench;           ///< inertia wrench less gravity, about O
+    /// The effort each freedom needs to move the limb's own bodies, with its friction (no
+    /// platform): f_k = s_k . (the wrenches outboard of k) + damping gd_k + friction sign gd_k.
+    FreedomVector effort;
+    /// The listed joints' points (R, U, S; a P joint's entry is unused): joint 0 on the base,
+    /// joint b + 1 moving with body b.
+    std::array<Eigen::Vector3d, kMaxBodies + 1> joint_point;
     double condition = 1.0;  ///< of J at the platform's point (largest over smallest singular value)
     bool closed = false;     ///< q holds a solution (the next Newton starts there)
 };

@@ -240,6 +240,8 @@ Data::Data(const Model& model)
         ld.gdd = FreedomVector::Zero(n);
         ld.J = LimbJacobian::Zero(6, n);
         ld.J_plus = LimbInverse::Zero(n, 6);
+        ld.effort = FreedomVector::Zero(n);
+        ld.joint_point.fill(Eigen::Vector3d::Zero());
     }
     A.setZero();
     u.setZero();
@@ -280,15 +282,18 @@ Status inverseKinematics(const Model& model, Data& data, const TaskVector& p) {
         ld.condition = conditionOf(at_point.transpose() * at_point);
         if (!(ld.condition <= model.max_condition)) return {StatusCode::singular_limb, j, ld.condition};
         ld.J_plus = Eigen::PartialPivLU<Work>(gram).solve(Work(ld.J.transpose()));
-        // the bodies' c.o.m. and inertia: body b moves with the freedoms up to its last
+        // the bodies' c.o.m. and inertia: body b moves with the freedoms up to its last, and
+        // so does the point of the joint after it
         Move g;
         int k = 0;
+        ld.joint_point[0] = limb.freedoms.front().point;
         for (std::size_t b = 0; b < limb.bodies.size(); ++b) {
             const Body& body = limb.bodies[b];
             for (; k <= body.last_freedom; ++k)
                 g = g.then(freedomMove(limb.freedoms[static_cast<std::size_t>(k)], ld.q(k)));
             ld.com[b] = g.R * body.com + g.t;
             ld.inertia[b] = g.R * body.inertia * g.R.transpose();
+            ld.joint_point[b + 1] = g.R * limb.freedoms[static_cast<std::size_t>(k)].point + g.t;
         }
     }
     for (int a = 0; a < model.actuators; ++a) {
@@ -377,6 +382,7 @@ void motionAndForces(const Model& model, Data& data, const TaskVector& p, const 
             f(kk) = ld.J.col(kk).dot(outboard) + freedom.damping * ld.gd(kk) + freedom.friction * sign;
         }
         data.W_P.noalias() += ld.J_plus.transpose() * f;
+        ld.effort = f;
     }
     for (int a2 = 0; a2 < model.actuators; ++a2) {
         const auto [j, k] = model.actuator[static_cast<std::size_t>(a2)];
