@@ -204,8 +204,9 @@ InverseDynamicsResult runSpatialInverseDynamics(const InverseDynamicsOptions& op
                                                 Observer& observer) {
     validate(static_cast<const SamplingOptions&>(options));
     if (options.reactions) {
-        throw OptionError("reactions", "the joint reactions are computed for planar robots only, not for a spatial "
-                                       "robot (space: spatial)");
+        throw OptionError("reactions",
+                          "the joint reactions are computed for planar robots only, not for a spatial "
+                          "robot (space: spatial)");
     }
     const spatial::Model model(io::loadSpatialRobotDescription(options.robot.path, options.robot.set));
     const spatial::Trajectory trajectory = spatialTrajectoryOf(options, model.task_dimension);

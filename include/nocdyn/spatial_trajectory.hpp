@@ -21,9 +21,9 @@ inline constexpr std::array<const char*, 6> kCoordinateNames = {"x", "y", "z", "
 /// p(t) for a spatial robot: dimension axes, each harmonic or sampled.
 struct Trajectory {
     std::string name;
-    int dimension = 6;                  ///< 6 (motion full) or 3 (motion translation)
-    std::array<AxisMotion, 6> axis;     ///< [m or rad], pose order; those past dimension unused
-    std::optional<double> duration;     ///< [s], when the description gives one
+    int dimension = 6;               ///< 6 (motion full) or 3 (motion translation)
+    std::array<AxisMotion, 6> axis;  ///< [m or rad], pose order; those past dimension unused
+    std::optional<double> duration;  ///< [s], when the description gives one
     /// Per axis, when set, the samples' spline that replaces axis[i] (shared: copies stay cheap).
     std::array<std::shared_ptr<const SampledAxis>, 6> sampled{};
 

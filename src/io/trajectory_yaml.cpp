@@ -343,7 +343,8 @@ spatial::Trajectory parseSpatialTrajectoryCsv(const std::string& text, const std
             throw Error(header + "column '" + c + "': " + reason);
         }
         bool known = false;
-        for (int i = 0; i < dimension; ++i) known = known || c == spatial::kCoordinateNames[static_cast<std::size_t>(i)];
+        for (int i = 0; i < dimension; ++i)
+            known = known || c == spatial::kCoordinateNames[static_cast<std::size_t>(i)];
         if (!known) throw Error(header + "column '" + c + "': unknown (expected t, " + coordinateList(dimension) + ")");
     }
     for (int i = 0; i < dimension; ++i) {
