@@ -339,13 +339,16 @@ spatial::Trajectory parseSpatialTrajectoryCsv(const std::string& text, const std
     const std::string header = source + ":1: ";
     for (const std::string& c : table.columns) {
         if (c == "t") continue;
-        if (const std::string reason = misplacedCoordinate(c, dimension); !reason.empty()) {
-            throw Error(header + "column '" + c + "': " + reason);
-        }
+        const auto refuse = [&](const std::string& reason) {
+            std::string message = header;
+            message.append("column '").append(c).append("': ").append(reason);
+            throw Error(message);
+        };
+        if (const std::string reason = misplacedCoordinate(c, dimension); !reason.empty()) refuse(reason);
         bool known = false;
         for (int i = 0; i < dimension; ++i)
             known = known || c == spatial::kCoordinateNames[static_cast<std::size_t>(i)];
-        if (!known) throw Error(header + "column '" + c + "': unknown (expected t, " + coordinateList(dimension) + ")");
+        if (!known) refuse("unknown (expected t, " + coordinateList(dimension) + ")");
     }
     for (int i = 0; i < dimension; ++i) {
         const char* name = spatial::kCoordinateNames[static_cast<std::size_t>(i)];
