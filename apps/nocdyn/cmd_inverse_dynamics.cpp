@@ -3,6 +3,8 @@
 #include <memory>
 
 #include "app/inverse_dynamics.hpp"
+#include "app/inverse_dynamics_spatial.hpp"
+#include "app/pose_spatial.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "progress.hpp"
@@ -21,7 +23,11 @@ void run(const Options& options) {
     io::OutputFile out = openOutput(options.output);
     CsvSink csv(out);
     TerminalObserver observer("nocdyn inverse-dynamics");
-    (void)app::runInverseDynamics(options, csv, observer);
+    if (app::isSpatialRobot(options.robot)) {  // space: spatial, a trajectory keyed x, y, z (roll, pitch, yaw)
+        (void)app::runSpatialInverseDynamics(options, csv, observer);
+    } else {
+        (void)app::runInverseDynamics(options, csv, observer);
+    }
     observer.finish();
     csv.finish();
     out.commit();
@@ -44,7 +50,13 @@ void addInverseDynamicsCommand(CLI::App& app) {
             "harmonic; a rate at or below twice that frequency is refused. A pose out of reach, a singular\n"
             "posture, or one beyond a joint or effort limit is an error (no CSV file is written; on stdout,\n"
             "the rows before it). A two-DOF robot (motion: translation, pose [x, y]) takes a trajectory keyed\n"
-            "x, y and its table has no theta column.");
+            "x, y and its table has no theta column.\n"
+            "A spatial robot (space: spatial) takes a trajectory file keyed x, y, z, roll, pitch, yaw (motion:\n"
+            "translation: x, y, z), every coordinate given (absolute, m and rad, R = Rz(yaw) Ry(pitch)\n"
+            "Rx(roll)), or a CSV of samples with the columns t and those coordinates; its table has the\n"
+            "columns t, x, y, z, roll, pitch, yaw (or x, y, z), u1..un, du1..dun, ddu1..ddun, tau1..taun,\n"
+            "kinetic. Example: nocdyn inverse-dynamics --robot robots/stewart.yaml --trajectory\n"
+            "trajectories/stewart-sway.yaml --output sway.csv");
     addSamplingOptions(*command, *options);
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());

@@ -347,16 +347,25 @@ def inverse_dynamics(trajectory, *, robot=None, set=None, output=None, progress=
     nocdyn.Trajectory. allow_limits: warn instead of failing at a joint's limits; reactions: the
     joint reactions as more columns. Returns a Table with the CSV's columns (t, x, y, theta, ...,
     u1..un, du1..dun, ddu1..ddun, tau1..taun); output: also write it as CSV. A two-DOF robot
-    (motion: translation) takes a trajectory keyed x, y, and its table has no theta column."""
+    (motion: translation) takes a trajectory keyed x, y, and its table has no theta column.
+    A spatial robot (a nocdyn.SpatialRobot or a spatial robot file's path) takes a trajectory
+    file keyed x, y, z, roll, pitch, yaw (motion translation: x, y, z) or a CSV of samples of
+    them; its table's columns are t, x, y, z[, roll, pitch, yaw], u1..un, du1..dun, ddu1..ddun,
+    tau1..taun, kinetic."""
+    from .spatial import SpatialRobot
     from .trajectory import Trajectory
     given = trajectory if isinstance(trajectory, Trajectory) else None
     bound = _bound_options(_nocdyn.InverseDynamicsOptions,
                            options if given is not None else {"trajectory": trajectory, **options})
     if given is not None:
         bound.use_trajectory(given._core)
-    bound.robot = _robot_source(robot, set)
+    spatial = isinstance(robot, SpatialRobot)
+    if spatial and set:
+        raise ValueError("set: overrides a robot file's parameters; give the file's path instead of a SpatialRobot")
+    bound.robot = _robot_source(None if spatial else robot, set)
     _refuse_overwrites("inverse-dynamics", [("robot", robot), ("trajectory", trajectory)], [("output", output)])
-    columns, data = _run(_nocdyn._run_inverse_dynamics, bound, progress, "inverse dynamics")
+    run = robot._core._run_inverse_dynamics if spatial else _nocdyn._run_inverse_dynamics
+    columns, data = _run(run, bound, progress, "inverse dynamics")
     table = Table(columns, data, "", "inverse-dynamics")
     if output is not None:
         _write_table(output, columns, data)

@@ -3,7 +3,9 @@ the Gough-Stewart hexapods (pose [x, y, z, roll, pitch, yaw], R = Rz(yaw) Ry(pit
 and their inverse dynamics by the natural orthogonal complement in six dimensions.
 
 ``nocdyn.Robot.load(path)`` returns a SpatialRobot for a spatial file; it has the inverse
-dynamics on sample arrays (the other Robot methods and the commands are planar for now)."""
+dynamics on sample arrays, and ``nocdyn.inverse_dynamics(trajectory, robot=...)`` takes it (or
+the file's path) with a spatial trajectory file (the other Robot methods and the other commands
+are planar for now)."""
 
 from __future__ import annotations
 

@@ -12,6 +12,9 @@
 
 #include "app/design.hpp"
 #include "app/inverse_dynamics.hpp"
+#include "app/pose_spatial.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/spatial.hpp"
 #include "app/observer.hpp"
 #include "app/options.hpp"
 #include "app/outputs.hpp"
@@ -52,10 +55,8 @@ py::array_t<double> rowsArray(const io::Table& table) {
 
 namespace {
 
-/// Most memory a table held for Python takes [bytes], and the least one sample of the inverse
-/// dynamics takes: t, x, y, theta, their rates and accelerations, kinetic and u, du, ddu, tau of
-/// three actuators, float64 each.
-constexpr double kMaxHeldBytes = 8e8;
+/// The least one sample of the inverse dynamics takes: t, x, y, theta, their rates and
+/// accelerations, kinetic and u, du, ddu, tau of three actuators, float64 each.
 constexpr double kHeldBytesPerSample = 8.0 * (11 + 4 * 3);
 
 py::dict poseDict(const app::PoseResult& r) {
@@ -210,6 +211,10 @@ void bindApplication(py::module_& m) {
             // every sample is held (the command line streams them to a file): what would take more
             // than kMaxHeldBytes is refused before any is computed
             app::validate(static_cast<const app::SamplingOptions&>(options));
+            if (app::isSpatialRobot(options.robot)) {  // a spatial robot file (space: spatial)
+                const spatial::Model model(io::loadSpatialRobotDescription(options.robot.path, options.robot.set));
+                return runSpatialInverseDynamics(model, options, progress);
+            }
             const double samples = static_cast<double>(
                 sampleGrid(app::chooseDuration(options.duration, app::trajectoryOf(options)), options.rate).count);
             if (samples * kHeldBytesPerSample > kMaxHeldBytes) {

@@ -15,12 +15,14 @@
 #include <utility>
 #include <vector>
 
+#include "app/inverse_dynamics.hpp"
 #include "app/observer.hpp"
 #include "app/options.hpp"
 #include "app/table.hpp"
 #include "nocdyn/choice.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/printable.hpp"
+#include "nocdyn/spatial.hpp"
 
 namespace py = pybind11;
 
@@ -140,6 +142,16 @@ py::array_t<double> tableArray(app::TableCollector& table);
 
 /// An io::Table's rows as a (rows, columns) float64 array.
 py::array_t<double> rowsArray(const io::Table& table);
+
+/// Most memory a table held for Python takes [bytes] (every sample is held; the command line
+/// streams them to a file).
+inline constexpr double kMaxHeldBytes = 8e8;
+
+/// The inverse dynamics of a spatial robot along options.trajectory (a spatial trajectory file),
+/// sampled as options says: (columns, (rows, columns) array). What would hold more than
+/// kMaxHeldBytes is refused before any sample is computed (spatial.cpp).
+py::tuple runSpatialInverseDynamics(const spatial::Model& model, const app::InverseDynamicsOptions& options,
+                                    const py::object& progress);
 
 /// Adds the options types, _run_<command> functions and helpers to the compiled module.
 void bindApplication(py::module_& m);

@@ -11,10 +11,14 @@
 #include <string>
 #include <vector>
 
+#include "app/inverse_dynamics_spatial.hpp"
+#include "app_bindings.hpp"
 #include "expose.hpp"
+#include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial.hpp"
+#include "nocdyn/text.hpp"
 
 namespace nocdyn::python {
 
@@ -86,6 +90,33 @@ SpatialRobot make(const SpatialRobotDescription& description) {
 
 }  // namespace
 
+py::tuple runSpatialInverseDynamics(const spatial::Model& model, const app::InverseDynamicsOptions& options,
+                                    const py::object& progress) {
+    app::validate(static_cast<const app::SamplingOptions&>(options));
+    if (options.reactions) {
+        throw app::OptionError("reactions",
+                               "the joint reactions are computed for planar robots only, not for a "
+                               "spatial robot (space: spatial)");
+    }
+    const spatial::Trajectory trajectory = app::spatialTrajectoryOf(options, model.task_dimension);
+    // every sample is held: what would take more than kMaxHeldBytes is refused before any is computed
+    const double duration = options.duration ? *options.duration : trajectory.duration.value_or(0.2);
+    const double samples = static_cast<double>(sampleGrid(duration, options.rate).count);
+    const double bytes = 8.0 * static_cast<double>(2 + model.task_dimension + 4 * model.actuators);
+    if (samples * bytes > kMaxHeldBytes) {
+        throw Error(
+            text::format("%.6g samples of %.0f bytes would hold %.3g GB in memory, more than the %.0f MB "
+                         "allowed: give a shorter duration or a lower rate (the command line's "
+                         "inverse-dynamics streams any number to a file)",
+                         samples, bytes, samples * bytes / 1e9, kMaxHeldBytes / 1e6));
+    }
+    auto table = std::make_shared<app::TableCollector>();
+    (void)runJob(progress, [&](app::Observer& observer) {
+        return app::runSpatialInverseDynamics(model, trajectory, options, options.allow_limits, *table, observer);
+    });
+    return py::make_tuple(table->names(), tableArray(*table));
+}
+
 void exposeSpatial(py::module_& m) {
     m.def(
         "is_spatial_file", [](const std::string& path) { return io::isSpatial(io::readRobotFileText(path), path); },
@@ -118,7 +149,14 @@ void exposeSpatial(py::module_& m) {
                                    return names;
                                })
         .def("_inverse_dynamics", &inverseDynamics, py::arg("p"), py::arg("dp"), py::arg("ddp"),
-             py::arg("check") = true);
+             py::arg("check") = true)
+        .def(
+            "_run_inverse_dynamics",
+            [](const SpatialRobot& r, const app::InverseDynamicsOptions& options, const py::object& progress) {
+                return runSpatialInverseDynamics(*r.model, options, progress);
+            },
+            py::arg("options"), py::arg("progress") = py::none(),
+            "nocdyn.inverse_dynamics of this robot: (columns, rows) along options.trajectory");
 }
 
 }  // namespace nocdyn::python

@@ -106,3 +106,83 @@ def test_wrong_shapes_and_unreachable_samples_are_refused_with_their_number(sour
     assert np.isnan(out.tau[2]).all() and np.isfinite(out.tau[[0, 1, 3]]).all()
     with pytest.raises(TypeError):
         robot.inverse_dynamics(P.astype(np.float32), Z, Z)
+
+
+# --- nocdyn.inverse_dynamics of a spatial robot along a trajectory file -----------------------
+
+def _pick(t):
+    """trajectories/delta-pick.yaml and its exact derivatives: x = 0.1 sin(2 pi t),
+    z = -0.8 + 0.025 sin(4 pi t + pi/2)."""
+    w, v = 2.0 * np.pi, 4.0 * np.pi
+    zero = np.zeros_like(t)
+    p = np.column_stack([0.1 * np.sin(w * t), zero, -0.8 + 0.025 * np.sin(v * t + np.pi / 2)])
+    dp = np.column_stack([0.1 * w * np.cos(w * t), zero, 0.025 * v * np.cos(v * t + np.pi / 2)])
+    ddp = np.column_stack([-0.1 * w * w * np.sin(w * t), zero, -0.025 * v * v * np.sin(v * t + np.pi / 2)])
+    return p, dp, ddp
+
+
+def test_the_trajectory_job_of_a_spatial_robot_equals_its_inverse_dynamics(source_dir):
+    robot = _load(source_dir, "delta")
+    trajectory = source_dir / "trajectories" / "delta-pick.yaml"
+    table = nocdyn.inverse_dynamics(trajectory, robot=robot, duration=0.3, rate=100, progress=False)
+    assert table.columns == ["t", "x", "y", "z", "u1", "u2", "u3", "du1", "du2", "du3", "ddu1", "ddu2", "ddu3",
+                             "tau1", "tau2", "tau3", "kinetic"]
+    t = table["t"]
+    assert len(t) == 30 and np.array_equal(t, np.arange(30) / 100.0)
+    p, dp, ddp = _pick(t)
+    np.testing.assert_allclose(np.column_stack([table["x"], table["y"], table["z"]]), p, rtol=0, atol=1e-15)
+    expected = robot.inverse_dynamics(p, dp, ddp)
+    for name in ("u", "du", "ddu", "tau"):
+        got = np.column_stack([table[f"{name}{a}"] for a in (1, 2, 3)])
+        np.testing.assert_allclose(got, getattr(expected, name), rtol=1e-12, atol=1e-12, err_msg=name)
+    # the file's path does the same as the loaded robot
+    by_path = nocdyn.inverse_dynamics(trajectory, robot=source_dir / "robots" / "delta.yaml", duration=0.3, rate=100,
+                                      progress=False)
+    assert by_path.columns == table.columns and np.array_equal(by_path.data, table.data)
+
+
+def test_a_hexapod_takes_a_csv_of_samples_and_its_table_has_six_pose_columns(source_dir, tmp_path):
+    robot = _load(source_dir, "stewart")
+    t = np.linspace(0.0, 0.2, 41)
+    z = robot.home[2] + 0.003 * np.sin(2 * np.pi * 2 * t)
+    roll = 0.01 * np.sin(2 * np.pi * 3 * t)
+    lines = ["t,x,y,z,roll,pitch,yaw"] + [f"{a!r},0,0,{b!r},{c!r},0,0" for a, b, c in zip(t, z, roll)]
+    samples = tmp_path / "samples.csv"
+    samples.write_text("\n".join(lines) + "\n")
+    table = nocdyn.inverse_dynamics(samples, robot=robot, rate=100, progress=False)
+    assert table.columns[:7] == ["t", "x", "y", "z", "roll", "pitch", "yaw"] and table.columns[-1] == "kinetic"
+    assert len(table) == 20 and np.isfinite(table.data).all()
+    # every output time is a sample's (0.01 s apart, samples 0.005 s apart): the spline goes through it
+    np.testing.assert_allclose(table["z"], z[::2][:20], rtol=0, atol=1e-15)
+    np.testing.assert_allclose(table["roll"], roll[::2][:20], rtol=0, atol=1e-15)
+    # a few mm and 0.6 degree at 2-3 Hz: the legs' forces stay within 20 % of their static ones
+    # at home (inertia, and the cylinders' friction of 50 N and damping)
+    zero = np.zeros(6)
+    at_rest = robot.inverse_dynamics(robot.home, zero, zero).tau
+    np.testing.assert_allclose(table.data[:, -7:-1].mean(axis=0), at_rest, rtol=0.2)
+
+
+def test_bad_spatial_trajectories_are_refused_naming_file_and_field(source_dir, tmp_path):
+    robot = _load(source_dir, "delta")
+    theta = tmp_path / "theta.yaml"
+    theta.write_text("x: {offset: 0}\ny: {offset: 0}\nz: {offset: -0.8}\ntheta: {offset: 0.1}\n")
+    with pytest.raises(nocdyn.Error, match=re.escape(f"{theta}:4: theta: a planar robot's coordinate")):
+        nocdyn.inverse_dynamics(theta, robot=robot, progress=False)
+    roll = tmp_path / "roll.yaml"
+    roll.write_text("x: {offset: 0}\ny: {offset: 0}\nz: {offset: -0.8}\nroll: {offset: 0}\n")
+    with pytest.raises(nocdyn.Error, match=re.escape(f"{roll}:4: roll: a translation robot")):
+        nocdyn.inverse_dynamics(roll, robot=source_dir / "robots" / "delta.yaml", progress=False)
+    with pytest.raises(nocdyn.Error, match="trajectory 'paper1'.*planar"):
+        nocdyn.inverse_dynamics("paper1", robot=robot, progress=False)
+    with pytest.raises(ValueError, match="trajectory: a trajectory built in code is planar"):
+        nocdyn.inverse_dynamics(nocdyn.Trajectory.paper(1), robot=robot, progress=False)
+    with pytest.raises(ValueError, match="reactions"):
+        nocdyn.inverse_dynamics(source_dir / "trajectories" / "delta-pick.yaml", robot=robot, reactions=True,
+                                progress=False)
+    far = tmp_path / "far.yaml"
+    far.write_text("duration: 0.25\nx: {offset: 0}\ny: {offset: 0}\n"
+                   "z: {offset: -0.8, harmonics: [{amplitude: 0.6, frequency: 1}]}\n")
+    with pytest.raises(nocdyn.Error, match=r"^t = 0\.\d+ s: pose out of reach: limb \d \(arm\d\) cannot close"):
+        nocdyn.inverse_dynamics(far, robot=robot, allow_limits=True, progress=False)
+    with pytest.raises(nocdyn.Error, match=r"^t = 0\.\d+ s: joint range exceeded: limb \d \(arm\d\), joint 1: q = "):
+        nocdyn.inverse_dynamics(far, robot=robot, progress=False)

@@ -11,6 +11,7 @@
 
 #include <string>
 
+#include "nocdyn/spatial_trajectory.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::io {
@@ -41,5 +42,30 @@ inline constexpr double kMaxTimeStepRatio = 10.0;
 /// `paper1` or `paper2` (eqs. 33-34), else a trajectory file path: CSV (sampled) when the name
 /// ends in .csv, else YAML (harmonic).
 [[nodiscard]] PoseTrajectory trajectoryByNameOrFile(const std::string& name_or_path);
+
+/// A spatial robot's trajectory file (spatial_trajectory.hpp) of `dimension` coordinates (6:
+/// x, y, z, roll, pitch, yaw; 3: x, y, z for motion translation), every one given:
+///
+///   duration: 1.0
+///   x:    {offset: 0.0, harmonics: [{amplitude: 0.005, frequency: 2}]}
+///   z:    {offset: 1.0579369}          # absolute, not from home
+///   roll: {harmonics: [{amplitude: 0.02, frequency: 3, phase: 0.5}]}
+///   ...
+///
+/// each axis as the planar file's (offset, harmonics of amplitude, frequency, phase; m, rad,
+/// Hz). A missing coordinate, an unknown key, a planar key (theta) or, for dimension 3, roll,
+/// pitch or yaw are errors. Throws nocdyn::Error "FILE:LINE: field: reason".
+[[nodiscard]] spatial::Trajectory parseSpatialTrajectory(const std::string& text, const std::string& source,
+                                                         int dimension);
+
+/// A spatial robot's samples (CSV): columns t [s] and every coordinate (positions, m and rad),
+/// interpolated by the C2 spline of parseTrajectoryCsv with the same checks of the times; the
+/// duration is the last time. Throws nocdyn::Error "FILE:LINE: column 'NAME': reason".
+[[nodiscard]] spatial::Trajectory parseSpatialTrajectoryCsv(const std::string& text, const std::string& source,
+                                                            int dimension);
+
+/// A spatial trajectory file: samples when the name ends in .csv, else YAML. The built-in
+/// names paper1 and paper2 (planar) are refused.
+[[nodiscard]] spatial::Trajectory loadSpatialTrajectory(const std::string& path, int dimension);
 
 }  // namespace nocdyn::io
