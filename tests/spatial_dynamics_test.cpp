@@ -18,6 +18,8 @@
 #include "cli_support.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/io/trajectory_yaml.hpp"
+#include "nocdyn/sim/spatial_control.hpp"
 #include "nocdyn/sim/spatial_simulator.hpp"
 #include "nocdyn/spatial.hpp"
 #include "nocdyn/spatial_reactions.hpp"
@@ -583,6 +585,28 @@ TEST(SpatialReactions, AHexapodWithMasslessLegsPushesAlongEachLegWithItsActuator
         EXPECT_LT((joints[0].force - tau * leg).norm(), 1e-9 * std::abs(tau)) << j;
         EXPECT_LT(joints[0].moment.norm(), 1e-9 * std::abs(tau)) << j;
         EXPECT_LT(joints[1].force.norm(), 1e-9 * std::abs(tau)) << j;  // the P passes tau along itself
+    }
+}
+
+TEST(SpatialControl, ComputedTorqueTracksTheExampleTrajectoriesAndPdLags) {
+    // the plant is the controller's model: computed torque leaves only the hold's error; PD,
+    // without the model's gravity and dynamics, an error orders of magnitude larger
+    for (const auto& [name, file] :
+         {std::pair<std::string, std::string>{"stewart", "stewart-sway"}, {"delta", "delta-pick"}}) {
+        const Model model(shipped(name));
+        const Trajectory trajectory = io::loadSpatialTrajectory(
+            std::string(NOCDYN_SOURCE_DIR) + "/trajectories/" + file + ".yaml", model.task_dimension);
+        LoopOptions options;
+        options.rate = 2000.0;
+        options.duration = 0.1;
+        const LoopResult ct = runPoseLoop(model, trajectory, options);
+        ASSERT_EQ(ct.t.size(), 200U);
+        options.law = ControlLaw::pd;
+        const LoopResult pd = runPoseLoop(model, trajectory, options);
+        // measured 1.7e-7 m (Stewart) and 1.9e-8 m (Delta); PD 1.0e-4 and 9.6e-5 m
+        EXPECT_LT(ct.peak_error.head<3>().maxCoeff(), 1e-6) << name;
+        EXPECT_GT(pd.peak_error.head<3>().maxCoeff(), 100.0 * ct.peak_error.head<3>().maxCoeff()) << name;
+        EXPECT_EQ(ct.saturated_ticks, 0U);
     }
 }
 

@@ -46,6 +46,7 @@ using LimbInverse = Eigen::Matrix<double, Eigen::Dynamic, 6, 0, kMaxFreedoms, 6>
 using FreedomVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxFreedoms, 1>;
 using ActuatorVector = Eigen::Matrix<double, Eigen::Dynamic, 1, 0, kMaxActuators, 1>;
 using ActuationMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, kMaxActuators, 6>;
+using TaskMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;  ///< d x d
 
 /// One freedom of a limb: a revolute or prismatic screw at home.
 struct Freedom {
@@ -155,6 +156,10 @@ struct Data {
 /// Inverse dynamics: u, du, ddu and the actuator forces tau at (p, dp, ddp).
 [[nodiscard]] Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
                                      const TaskVector& ddp);
+
+/// The mass matrix M of the pose coordinates at p: E^T W_P(p, 0, ddp) = M ddp without gravity
+/// (column i the inertia wrench of the unit acceleration e_i). Allocation-free.
+[[nodiscard]] Status massMatrix(const Model& model, Data& data, const TaskVector& p, TaskMatrix& M);
 
 /// Forward dynamics: the pose accelerations ddp under the actuator forces tau at the state
 /// (p, dp), from E^T W_P(p, dp, ddp) = A_E^T tau, W_P affine in ddp: M ddp = A_E^T tau - h with

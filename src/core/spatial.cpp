@@ -412,29 +412,38 @@ Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, cons
     return {};
 }
 
-Status forwardDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
-                       const ActuatorVector& tau, TaskVector& ddp) {
-    const int d = model.task_dimension;
-    if (dp.size() != d || !finite(dp) || tau.size() != model.actuators || !tau.allFinite()) {
-        return {StatusCode::not_finite, -1, dp.sum() + tau.sum()};
-    }
+Status massMatrix(const Model& model, Data& data, const TaskVector& p, TaskMatrix& M) {
     if (const Status status = inverseKinematics(model, data, p); !status) return status;
-    // M = E^T W_P(p, 0, e_i) column by column without gravity (pure inertia), then the bias
-    // h = E^T W_P(p, dp, 0) with gravity and friction: E^T W_P(p, dp, ddp) = M ddp + h
+    // M = E^T W_P(p, 0, e_i) column by column without gravity: pure inertia
+    const int d = model.task_dimension;
     TaskVector e = TaskVector::Zero(d);
     const TaskVector rest = TaskVector::Zero(d);
-    Work M(d, d);
+    M.resize(d, d);
     for (int i = 0; i < d; ++i) {
         e(i) = 1.0;
         motionAndForces(model, data, p, rest, e, Eigen::Vector3d::Zero());
         M.col(i) = data.W_P.tail(d);
         e(i) = 0.0;
     }
+    return {};
+}
+
+Status forwardDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
+                       const ActuatorVector& tau, TaskVector& ddp) {
+    const int d = model.task_dimension;
+    if (dp.size() != d || !finite(dp) || tau.size() != model.actuators || !tau.allFinite()) {
+        return {StatusCode::not_finite, -1, dp.sum() + tau.sum()};
+    }
+    // M, then the bias h = E^T W_P(p, dp, 0) with gravity and friction: E^T W_P(p, dp, ddp) =
+    // M ddp + h
+    TaskMatrix M;
+    if (const Status status = massMatrix(model, data, p, M); !status) return status;
+    const TaskVector rest = TaskVector::Zero(d);
     motionAndForces(model, data, p, dp, rest, model.gravity);
     const TaskVector h = data.W_P.tail(d);
     // M ddp = A_E^T tau - h
     const ActuationMatrix AE = data.A.rightCols(d);
-    ddp = Eigen::PartialPivLU<Work>(M).solve(AE.transpose() * tau - h);
+    ddp = Eigen::PartialPivLU<TaskMatrix>(M).solve(AE.transpose() * tau - h);
     if (!ddp.allFinite()) return {StatusCode::not_finite, -1, ddp.sum()};
     motionAndForces(model, data, p, dp, ddp, model.gravity);
     data.tau = tau;

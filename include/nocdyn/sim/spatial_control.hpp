@@ -1,0 +1,53 @@
+// Computed-torque and PD control of a spatial robot in its pose coordinates, and the closed
+// loop on its simulated forward dynamics (spatial_simulator.hpp): the planar controllers
+// (sim/control.hpp) in six (or three) coordinates.
+//   computed torque: tau = inverse dynamics at the measured (p, dp) with
+//                    ddp_cmd = ddp_d + K_d (dp_d - dp) + K_p (p_d - p);
+//   PD:              A_E(p)^T tau = M(home) (K_p (p_d - p) + K_d (dp_d - dp)),
+// tau the minimum-norm forces when redundant, K_p = w^2, K_d = 2 w, w = 2 pi f_n (critically
+// damped error dynamics with a perfect model), each force clipped at its joint's effort.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "nocdyn/sim/control.hpp"
+#include "nocdyn/spatial.hpp"
+#include "nocdyn/spatial_trajectory.hpp"
+
+namespace nocdyn::spatial {
+
+struct LoopOptions {
+    double rate = 10000.0;  ///< controller ticks per second [Hz]
+    double duration = 0.2;  ///< [s]
+    ControlLaw law = ControlLaw::computed_torque;
+    double natural_frequency = 50;  ///< f_n of the error dynamics [Hz]
+    bool saturation = true;         ///< clip at each actuator's effort
+    double noise_position = 0.0;    ///< std. dev. of the measured x, y, z [m]
+    double noise_angle = 0.0;       ///< of roll, pitch, yaw [rad]
+    double noise_rate = 0.0;        ///< of each component of dp/dt
+    unsigned seed = 1;
+    /// Called at each tick with its time [s]; none by default.
+    std::function<void(double t)> progress = {};
+};
+
+/// One row per controller tick (the state at the tick, before its forces act).
+struct LoopResult {
+    std::vector<double> t;
+    std::vector<TaskVector> p, p_d;
+    std::vector<ActuatorVector> u, u_d, tau;
+    TaskVector rms_error, peak_error;  ///< of p_d - p per coordinate
+    TaskVector late_peak_error;        ///< over the second half of the run
+    std::vector<double> peak_tau;      ///< max |tau| per actuator (after clipping)
+    std::size_t saturated_ticks = 0;
+};
+
+/// The plant (spatial::Simulator on `model`) starts on the reference (p_d(0), dp_d(0)); each
+/// tick measures (p, dp) (+ noise), computes and clips the forces and holds them for 1 / rate.
+/// The feedforward acceleration is the reference's mean over the hold. Throws nocdyn::Error
+/// "t = ... s: reason" when the reference, the controller or the plant fails.
+[[nodiscard]] LoopResult runPoseLoop(const Model& model, const Trajectory& trajectory, const LoopOptions& options);
+
+}  // namespace nocdyn::spatial
