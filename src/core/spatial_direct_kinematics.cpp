@@ -153,6 +153,41 @@ bool samePose(const Model& model, const TaskVector& a, const TaskVector& b) {
     return (rotation(a(3), a(4), a(5)) - rotation(b(3), b(4), b(5))).cwiseAbs().maxCoeff() <= kSame;
 }
 
+/// Newton on u(p) - u from p, at most `iterations` steps; it gives up when the residual grows
+/// tenfold over the first (a step towards another branch).
+Status newton(const Model& model, Data& data, const ActuatorVector& u, TaskVector& p, int iterations) {
+    const int d = model.task_dimension, n = model.actuators;
+    if (u.size() != n || p.size() != d || !u.allFinite() || !p.allFinite()) {
+        return {StatusCode::not_finite, -1, u.sum() + p.sum()};
+    }
+    const double tolerance = kTrackerTolerance * (1.0 + u.cwiseAbs().maxCoeff());
+    TaskVector x = p;
+    double residual = std::numeric_limits<double>::infinity();
+    double first = -1.0;
+    for (int iteration = 0; iteration < iterations; ++iteration) {
+        if (const Status status = inverseKinematics(model, data, x); !status) return status;
+        residual = (data.u - u).cwiseAbs().maxCoeff();
+        if (residual <= tolerance) {
+            p = x;
+            return {};
+        }
+        if (first < 0.0) first = residual;
+        if (residual > 10.0 * first) break;
+        // du/dp = A_task diag(I, E): w = E [roll'; pitch'; yaw']
+        ActuationMatrix J = data.A_task;
+        if (d == 6) {
+            const double cp = std::cos(x(4)), sp = std::sin(x(4)), cy = std::cos(x(5)), sy = std::sin(x(5));
+            Eigen::Matrix3d E;
+            E << cy * cp, -sy, 0.0, sy * cp, cy, 0.0, -sp, 0.0, 1.0;
+            J.rightCols<3>() = data.A_task.rightCols<3>() * E;
+        }
+        const TaskVector step = Eigen::HouseholderQR<ActuationMatrix>(J).solve(ActuatorVector(u - data.u));
+        if (!step.allFinite()) return {StatusCode::singular_actuation, -1, data.actuation_condition};
+        x += step;
+    }
+    return {StatusCode::assembly_mode_lost, -1, residual};
+}
+
 /// Continuation in u from data's pose x (actuator values data.u) to u: the tracker on
 /// u(t) = u_0 + t (u - u_0), the step in t doubled after a success and halved after a failure
 /// (the limbs put back as they were). True when t reaches 1.
@@ -160,14 +195,14 @@ bool continuation(const Model& model, Data& data, const ActuatorVector& u, TaskV
     const ActuatorVector u0 = data.u;
     std::vector<FreedomVector> saved(static_cast<std::size_t>(model.limbs()));
     double t = 0.0, h = 0.125;
-    for (int step = 0; step < 400 && t < 1.0; ++step) {
+    for (int step = 0; step < 200 && t < 1.0; ++step) {
         for (int j = 0; j < model.limbs(); ++j)
             saved[static_cast<std::size_t>(j)] = data.limb[static_cast<std::size_t>(j)].q;
         h = std::min(h, 1.0 - t);
         const double next = t + h >= 1.0 - 1e-12 ? 1.0 : t + h;
         const ActuatorVector target = u0 + next * (u - u0);
         TaskVector y = x;
-        if (directKinematics(model, data, target, y)) {
+        if (newton(model, data, target, y, 8)) {
             x = y;
             t = next;
             h = std::min(2.0 * h, 0.25);
@@ -178,7 +213,7 @@ bool continuation(const Model& model, Data& data, const ActuatorVector& u, TaskV
             data.limb[static_cast<std::size_t>(j)].closed = true;
         }
         h *= 0.5;
-        if (h < 1e-4) return false;
+        if (h < 1e-3) return false;
     }
     return t >= 1.0;
 }
@@ -224,33 +259,7 @@ std::vector<TaskVector> seeds(const Model& model, const ManyStarts& bounds) {
 }  // namespace
 
 Status directKinematics(const Model& model, Data& data, const ActuatorVector& u, TaskVector& p) {
-    const int d = model.task_dimension, n = model.actuators;
-    if (u.size() != n || p.size() != d || !u.allFinite() || !p.allFinite()) {
-        return {StatusCode::not_finite, -1, u.sum() + p.sum()};
-    }
-    const double tolerance = kTrackerTolerance * (1.0 + u.cwiseAbs().maxCoeff());
-    TaskVector x = p;
-    double residual = std::numeric_limits<double>::infinity();
-    for (int iteration = 0; iteration < kTrackerIterations; ++iteration) {
-        if (const Status status = inverseKinematics(model, data, x); !status) return status;
-        residual = (data.u - u).cwiseAbs().maxCoeff();
-        if (residual <= tolerance) {
-            p = x;
-            return {};
-        }
-        // du/dp = A_task diag(I, E): w = E [roll'; pitch'; yaw']
-        ActuationMatrix J = data.A_task;
-        if (d == 6) {
-            const double cp = std::cos(x(4)), sp = std::sin(x(4)), cy = std::cos(x(5)), sy = std::sin(x(5));
-            Eigen::Matrix3d E;
-            E << cy * cp, -sy, 0.0, sy * cp, cy, 0.0, -sp, 0.0, 1.0;
-            J.rightCols<3>() = data.A_task.rightCols<3>() * E;
-        }
-        const TaskVector step = Eigen::HouseholderQR<ActuationMatrix>(J).solve(ActuatorVector(u - data.u));
-        if (!step.allFinite()) return {StatusCode::singular_actuation, -1, data.actuation_condition};
-        x += step;
-    }
-    return {StatusCode::assembly_mode_lost, -1, residual};
+    return newton(model, data, u, p, kTrackerIterations);
 }
 
 std::optional<ThreeSpheres> threeSpheres(const Model& model, std::string& why) {
