@@ -80,11 +80,11 @@ double poseGap(const Model& model, const TaskVector& a, const TaskVector& b) {
 }
 
 /// p -> u -> every mode -> u: each mode closes the limbs to 1e-10 (their distances, and its own
-/// inverse-kinematics round trip), and p is among them, marked working.
-void expectRoundTrip(const Model& model, const TaskVector& p, const ManyStarts& bounds = {}) {
+/// inverse-kinematics round trip), and p is among them, marked working. Returns the modes.
+std::vector<AssemblyMode> expectRoundTrip(const Model& model, const TaskVector& p, const ManyStarts& bounds = {}) {
     const ActuatorVector u = actuatorsAt(model, p);
     const AssemblyModes modes = assemblyModes(model, u, bounds);
-    ASSERT_FALSE(modes.modes.empty()) << model.name;
+    EXPECT_FALSE(modes.modes.empty()) << model.name;
     int found = 0;
     for (const AssemblyMode& mode : modes.modes) {
         EXPECT_LE(mode.u_error, 1e-10) << model.name;
@@ -102,21 +102,41 @@ void expectRoundTrip(const Model& model, const TaskVector& p, const ManyStarts& 
             EXPECT_GT(poseGap(model, modes.modes[i].p, modes.modes[k].p), 1e-7);
         }
     }
+    return modes.modes;
 }
 
-TEST(SpatialDirectKinematics, RoundTripsOnTheShippedRobots) {
-    for (const char* name : {"delta", "stewart", "6-rus"}) {
+TaskVector nearHome(const Model& model) {
+    TaskVector p = model.home;
+    p(0) += 0.02, p(1) -= 0.01, p(2) += 0.03;
+    if (p.size() == 6) p(3) += 0.05, p(4) -= 0.04, p(5) += 0.1;
+    return p;
+}
+
+TEST(SpatialDirectKinematics, RoundTripsOnTheShippedDeltaAnd6Rus) {
+    for (const char* name : {"delta", "6-rus"}) {
         const Model model = shipped(name);
-        TaskVector p = model.home;
-        p(0) += 0.02, p(1) -= 0.01, p(2) += 0.03;
-        if (p.size() == 6) p(3) += 0.05, p(4) -= 0.04, p(5) += 0.1;
-        expectRoundTrip(model, p);
-        expectRoundTrip(model, model.home);
+        EXPECT_GE(expectRoundTrip(model, nearHome(model)).size(), 2u) << name;
+        EXPECT_GE(expectRoundTrip(model, model.home).size(), 2u) << name;
     }
-    // more than one mode on the hexapods (the many starts find others than the working one)
-    for (const char* name : {"stewart", "6-rus"}) {
-        const Model model = shipped(name);
-        EXPECT_GE(assemblyModes(model, ActuatorVector::Zero(6)).modes.size(), 2u) << name;
+}
+
+TEST(SpatialDirectKinematics, TheStewartPlatformsModesComeInPairsMirroredAboutItsBase) {
+    // base joints at z = 0, platform joints in the platform frame's plane z = 0: reflecting the
+    // whole robot in the base plane keeps every leg's length, so (x, y, -z, M R M), M =
+    // diag(1, 1, -1), is a mode whenever (x, y, z, R) is
+    const Model model = shipped("stewart");
+    const std::vector<AssemblyMode> modes = expectRoundTrip(model, nearHome(model));
+    ASSERT_GE(modes.size(), 4u);
+    const Eigen::Matrix3d M = Eigen::Vector3d(1.0, 1.0, -1.0).asDiagonal();
+    for (const AssemblyMode& mode : modes) {
+        const Eigen::Matrix3d R = M * rotation(mode.p(3), mode.p(4), mode.p(5)) * M;
+        const Eigen::Vector3d c(mode.p(0), mode.p(1), -mode.p(2));
+        const bool paired = std::any_of(modes.begin(), modes.end(), [&](const AssemblyMode& other) {
+            return (other.p.head<3>() - c).cwiseAbs().maxCoeff() < 1e-9 &&
+                   (rotation(other.p(3), other.p(4), other.p(5)) - R).cwiseAbs().maxCoeff() < 1e-9;
+        });
+        EXPECT_TRUE(paired) << mode.p.transpose();
+        EXPECT_EQ(mode.home_branches, mode.p(2) > 0.0);  // the legs point up on their home branches
     }
 }
 

@@ -60,11 +60,11 @@ double wrap(double a) {
     return a <= -kPi ? a + 2.0 * kPi : a;
 }
 
-/// Limb closure at D with its actuated freedom k_a held at u_a: Gauss-Newton on the error twist
-/// and q_(k_a) - u_a from q (its value at k_a replaced by u_a). True when both vanish.
-bool closePinned(const Limb& limb, const Move& D, int k_a, double u_a, FreedomVector& q) {
+/// Limb closure at D from q by Gauss-Newton on the error twist and, when `pin`, on
+/// q_(k_a) - u_a with the actuated freedom k_a started at u_a. True when they vanish.
+bool closeFrom(const Limb& limb, const Move& D, int k_a, double u_a, bool pin, FreedomVector& q) {
     const int n = limb.size();
-    q(k_a) = u_a;
+    if (pin) q(k_a) = u_a;
     Eigen::Matrix<double, 7, Eigen::Dynamic, 0, 7, kMaxFreedoms> J(7, n);
     Eigen::Matrix<double, 7, 1> r;
     const double tolerance = 1e-13 * (1.0 + D.t.cwiseAbs().maxCoeff());
@@ -75,11 +75,11 @@ bool closePinned(const Limb& limb, const Move& D, int k_a, double u_a, FreedomVe
             J.block<6, 1>(0, k) = carriedScrew(limb.freedoms[static_cast<std::size_t>(k)], g);
             g = g.then(freedomMove(limb.freedoms[static_cast<std::size_t>(k)], q(k)));
         }
-        J(6, k_a) = 1.0;
+        J(6, k_a) = pin ? 1.0 : 0.0;
         const Eigen::AngleAxisd rotation_error(D.R * g.R.transpose());
         r.head<3>() = rotation_error.angle() * rotation_error.axis();
         r.segment<3>(3) = D.t - g.t - r.head<3>().cross(g.t);
-        r(6) = u_a - q(k_a);
+        r(6) = pin ? u_a - q(k_a) : 0.0;
         const double residual = r.cwiseAbs().maxCoeff();
         if (!std::isfinite(residual)) return false;
         if (residual <= tolerance) return true;
@@ -90,9 +90,10 @@ bool closePinned(const Limb& limb, const Move& D, int k_a, double u_a, FreedomVe
     return false;
 }
 
-/// Every limb closed at p with its actuated freedoms at u (data's limbs marked closed there);
-/// false when some limb cannot.
-bool pinLimbs(const Model& model, Data& data, const ActuatorVector& u, const TaskVector& p) {
+/// Every limb closed at p (data's limbs marked closed there), from the home branch's variables
+/// and passive turns of 0, pi/2, -pi/2 and pi: with its actuated freedom held at u_a (`pin`),
+/// or on the branch whose actuated variable is nearest u_a. False when some limb cannot.
+bool closeLimbs(const Model& model, Data& data, const ActuatorVector& u, const TaskVector& p, bool pin) {
     const Move D = displacement(model, p);
     // the home branches' variables as a first start, where inverse kinematics reaches p
     Data home(model);
@@ -109,7 +110,8 @@ bool pinLimbs(const Model& model, Data& data, const ActuatorVector& u, const Tas
             }
         }
         bool closed = false;
-        for (int start = 0; start < 5 && !closed; ++start) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (int start = 0; start < 5 && !(pin && closed); ++start) {
             FreedomVector q = FreedomVector::Zero(limb.size());
             if (start == 0) {
                 const LimbData& h = home.limb[static_cast<std::size_t>(j)];
@@ -127,7 +129,8 @@ bool pinLimbs(const Model& model, Data& data, const ActuatorVector& u, const Tas
                 closed = true;
                 break;
             }
-            if (closePinned(limb, D, k_a, u_a, q)) {
+            if (closeFrom(limb, D, k_a, u_a, pin, q) && std::abs(q(k_a) - u_a) < nearest) {
+                nearest = pin ? 0.0 : std::abs(q(k_a) - u_a);
                 ld.q = q;
                 closed = true;
             }
@@ -347,7 +350,7 @@ TaskVector canonicalPose(const TaskVector& p) {
 
 std::optional<AssemblyMode> verifyMode(const Model& model, const ActuatorVector& u, const TaskVector& p) {
     Data data(model);
-    if (!p.allFinite() || !pinLimbs(model, data, u, p)) return std::nullopt;
+    if (!p.allFinite() || !closeLimbs(model, data, u, p, true)) return std::nullopt;
     AssemblyMode mode;
     TaskVector x = p;
     const Status status = directKinematics(model, data, u, x);
@@ -358,7 +361,7 @@ std::optional<AssemblyMode> verifyMode(const Model& model, const ActuatorVector&
     } else if (status.code == StatusCode::singular_limb || status.code == StatusCode::singular_actuation) {
         // singular at p: the closures with the actuated variables held at u stand for the round trip
         Data pinned(model);
-        if (!pinLimbs(model, pinned, u, p)) return std::nullopt;
+        if (!closeLimbs(model, pinned, u, p, true)) return std::nullopt;
         mode.u_error = 0.0;
         mode.condition = status.value;
         x = p;
@@ -390,8 +393,10 @@ AssemblyModes assemblyModes(const Model& model, const ActuatorVector& u, const M
         }
     } else {
         for (const TaskVector& seed : seeds(model, bounds)) {
-            ++out.starts;
+            // the limbs on their home branches at even seeds, on the branches nearest u at odd
+            // ones (the mirrored seeds: a leg pointing down rather than through its base joint)
             Data data(model);
+            if (out.starts++ % 2 == 1 && !closeLimbs(model, data, u, seed, false)) continue;
             if (!inverseKinematics(model, data, seed)) continue;
             TaskVector x = seed;
             if (continuation(model, data, u, x)) candidates.push_back(x);
