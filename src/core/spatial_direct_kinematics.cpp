@@ -22,6 +22,10 @@ constexpr double kAccept = 1e-9;             ///< a mode's u_error at most this 
 constexpr double kSame = 1e-7;               ///< two modes closer than this are one [m, and R's entries]
 constexpr double kPi = std::numbers::pi;
 
+/// The limb chain's product of exponentials, as the inverse kinematics' (apart from spatial.cpp's:
+/// clang-tidy reads the folder as one translation unit).
+namespace chain {
+
 /// A rigid displacement x -> R x + t (as the inverse kinematics' product of exponentials).
 struct Move {
     Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
@@ -46,9 +50,11 @@ Vector6 carriedScrew(const Freedom& f, const Move& g) {
     return s;
 }
 
+}  // namespace chain
+
 /// The platform's displacement from home at pose p.
-Move displacement(const Model& model, const TaskVector& p) {
-    Move D;
+chain::Move displacement(const Model& model, const TaskVector& p) {
+    chain::Move D;
     D.R = (model.task_dimension == 6 ? rotation(p(3), p(4), p(5)) : Eigen::Matrix3d::Identity()) *
           model.home_rotation.transpose();
     D.t = p.head<3>() - D.R * model.home.head<3>();
@@ -62,18 +68,18 @@ double wrap(double a) {
 
 /// Limb closure at D from q by Gauss-Newton on the error twist and, when `pin`, on
 /// q_(k_a) - u_a with the actuated freedom k_a started at u_a. True when they vanish.
-bool closeFrom(const Limb& limb, const Move& D, int k_a, double u_a, bool pin, FreedomVector& q) {
+bool closeFrom(const Limb& limb, const chain::Move& D, int k_a, double u_a, bool pin, FreedomVector& q) {
     const int n = limb.size();
     if (pin) q(k_a) = u_a;
     Eigen::Matrix<double, 7, Eigen::Dynamic, 0, 7, kMaxFreedoms> J(7, n);
     Eigen::Matrix<double, 7, 1> r;
     const double tolerance = 1e-13 * (1.0 + D.t.cwiseAbs().maxCoeff());
     for (int iteration = 0; iteration < 60; ++iteration) {
-        Move g;
+        chain::Move g;
         J.setZero();
         for (int k = 0; k < n; ++k) {
-            J.block<6, 1>(0, k) = carriedScrew(limb.freedoms[static_cast<std::size_t>(k)], g);
-            g = g.then(freedomMove(limb.freedoms[static_cast<std::size_t>(k)], q(k)));
+            J.block<6, 1>(0, k) = chain::carriedScrew(limb.freedoms[static_cast<std::size_t>(k)], g);
+            g = g.then(chain::freedomMove(limb.freedoms[static_cast<std::size_t>(k)], q(k)));
         }
         J(6, k_a) = pin ? 1.0 : 0.0;
         const Eigen::AngleAxisd rotation_error(D.R * g.R.transpose());
@@ -94,7 +100,7 @@ bool closeFrom(const Limb& limb, const Move& D, int k_a, double u_a, bool pin, F
 /// and passive turns of 0, pi/2, -pi/2 and pi: with its actuated freedom held at u_a (`pin`),
 /// or on the branch whose actuated variable is nearest u_a. False when some limb cannot.
 bool closeLimbs(const Model& model, Data& data, const ActuatorVector& u, const TaskVector& p, bool pin) {
-    const Move D = displacement(model, p);
+    const chain::Move D = displacement(model, p);
     // the home branches' variables as a first start, where inverse kinematics reaches p
     Data home(model);
     const bool reached = inverseKinematics(model, home, p).code != StatusCode::unreachable;
