@@ -257,6 +257,7 @@ TEST(SpatialDirectKinematics, TheTrackerSaysWhyItStops) {
     far(5) = -1.0;
     const Status status = directKinematics(model, data, far, p);
     EXPECT_FALSE(status);
+    EXPECT_FALSE(describeDirect(status, model).empty());
     EXPECT_EQ(p, model.home);
     EXPECT_THROW((void)assemblyModes(model, ActuatorVector::Zero(3)), Error);
     // the wrap of the angles keeps the rotation

@@ -16,10 +16,12 @@
 // plane of their centres (the two assembly modes), one when tangent, none when u is out of
 // reach.
 //
-// Many starts (any robot): from deterministic seed poses (home, then poses spread about home
-// and mirrored about the base), continuation in u from u(seed) to u by the tracker, halving the
-// step when it fails; the poses reached are verified and duplicates dropped. It lists the modes
-// it finds, not necessarily every real one.
+// Many starts (any robot): from deterministic seed poses (home, home mirrored about the base
+// joints' mean height, then poses spread about both), continuation in u from u(seed) to u by
+// the tracker (at most 8 Newton steps each), halving the step in u when it fails; the limbs
+// start on their home branches at even seeds and on the branches whose actuated variables are
+// nearest u at odd ones. The poses reached are verified and duplicates dropped. It lists the
+// modes it finds, not necessarily every real one.
 //
 // Verification (every listed mode): each limb is closed at p with its actuated variable held
 // at u_a (Gauss-Newton from a few passive starts), then the tracker polishes p from there and
@@ -39,9 +41,14 @@ namespace nocdyn::spatial {
 
 /// Tracker: Newton on u(p) - u = 0 from p (the previous pose), at most 20 iterations, to
 /// max_a |u_a(p) - u_a| <= 1e-13 (1 + max |u|). On success p is the pose and data holds its
-/// inverse kinematics; else assembly_mode_lost (value: the residual), not_finite (u or p of
-/// the wrong size or not finite), or inverse kinematics' own status (out of reach, singular).
+/// inverse kinematics; else p is left as it was and the status says why: assembly_mode_lost
+/// (no convergence, or the residual grew tenfold over the first; value: the residual),
+/// not_finite (u or p of the wrong size or not finite), or inverse kinematics' own status (out
+/// of reach, singular).
 [[nodiscard]] Status directKinematics(const Model& model, Data& data, const ActuatorVector& u, TaskVector& p);
+
+/// One line for a status of directKinematics (describe() for inverse kinematics' own).
+[[nodiscard]] std::string describeDirect(const Status& status, const Model& model);
 
 /// A translation robot of three R-U-U limbs, the R actuated: per limb the motor's axis a_j
 /// through B_j, the elbow E_j0 and the platform's point P_j0 at home, and the forearm length.

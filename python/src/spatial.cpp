@@ -140,10 +140,7 @@ Rows track(const SpatialRobot& robot, const py::handle& u, const std::vector<dou
         }
     }
     if (failed >= 0) {
-        const std::string reason = failure.code == StatusCode::assembly_mode_lost
-                                       ? "the tracker lost the assembly mode (Newton did not converge)"
-                                       : spatial::describe(failure, model);
-        throw Error("sample " + std::to_string(failed + 1) + ": " + reason);
+        throw Error("sample " + std::to_string(failed + 1) + ": " + spatial::describeDirect(failure, model));
     }
     return out;
 }

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <string>
 
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -269,6 +270,16 @@ std::vector<TaskVector> seeds(const Model& model, const ManyStarts& bounds) {
 
 Status directKinematics(const Model& model, Data& data, const ActuatorVector& u, TaskVector& p) {
     return newton(model, data, u, p, kTrackerIterations);
+}
+
+std::string describeDirect(const Status& status, const Model& model) {
+    if (status.code == StatusCode::assembly_mode_lost) {
+        return "the direct kinematics' Newton did not converge (max |u(p) - u| = " + std::to_string(status.value) +
+               "): the actuator values moved too far from the previous pose's, or out of reach";
+    }
+    if (status.code == StatusCode::not_finite)
+        return "an actuator value or the starting pose is not finite, or of the wrong size";
+    return describe(status, model);
 }
 
 std::optional<ThreeSpheres> threeSpheres(const Model& model, std::string& why) {
