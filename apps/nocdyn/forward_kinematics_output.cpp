@@ -2,6 +2,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <iostream>
 #include <numbers>
@@ -57,6 +58,9 @@ void printSpatialForwardKinematics(const app::SpatialForwardKinematicsResult& r,
         }
         std::printf("%s\n", s.working ? "  [working mode]" : (s.home_branches ? "" : "  [not on the home branches]"));
         std::printf("   u recomputed from the pose within %.1e, condition %.3g\n", s.u_error, s.condition);
+    }
+    if (std::none_of(r.solutions.begin(), r.solutions.end(), [](const auto& s) { return s.working; })) {
+        std::printf("no working mode: none of these has every limb on its home branch\n");
     }
 }
 
