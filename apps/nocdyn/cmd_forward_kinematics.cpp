@@ -8,8 +8,10 @@
 #include <numbers>
 
 #include "app/forward_kinematics.hpp"
+#include "app/pose_spatial.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "forward_kinematics_output.hpp"
 #include "progress.hpp"
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/io/escape.hpp"
@@ -89,6 +91,10 @@ void run(const Options& options) {
     TerminalObserver observer("nocdyn forward-kinematics");
     app::ForwardKinematicsResult result;
     try {
+        if (app::isSpatialRobot(options.robot)) {  // every mode found, poses x y z (roll pitch yaw)
+            return printSpatialForwardKinematics(app::runSpatialForwardKinematics(options.robot, options.u, observer),
+                                                 options.json);
+        }
         result = app::runForwardKinematics(options, observer);
     } catch (const app::OptionError& e) {
         // the wrong number of values is a usage error (exit 2), as a malformed one is
@@ -117,7 +123,11 @@ void addForwardKinematicsCommand(CLI::App& app) {
         "circles of its locked limbs, both assembly modes listed by x. Values beyond an actuated joint's range are "
         "flagged (JSON: within_limits); the poses\n"
         "are listed all the same. Exit 0 also when no pose closes (zero solutions); exit 2 when the number of\n"
-        "values is wrong.");
+        "values is wrong.\n"
+        "A spatial robot (space: spatial) gives poses [x, y, z] (motion: translation) or [x, y, z, roll, pitch,\n"
+        "yaw]: the Delta's (three R-U-U limbs) two assembly modes in closed form (three spheres), other robots'\n"
+        "modes found by many-start continuation; every mode is listed, the working one (limbs on their home\n"
+        "branches, nearest home) marked; no pose (out of reach) is an error.");
     command->add_option("U", options->u, "Actuator values u1 .. un [m or rad]")
         ->required()
         ->expected(1, kMaxActuators)

@@ -107,6 +107,43 @@ class SpatialRobot:
             return InverseDynamics(u[0], du[0], ddu[0], tau[0])
         return InverseDynamics(u, du, ddu, tau)
 
+    def forward_kinematics(self, u):
+        """Every platform pose found with actuator values u (n values, m or rad, in file order).
+
+        Returns a list of dicts, nearest home first: pose (np.ndarray in the order of
+        ``coordinates``: [x, y, z] or [x, y, z, roll, pitch, yaw]; roll, yaw in (-pi, pi],
+        pitch in [-pi/2, pi/2]), working (True for the working mode: its limbs on their home
+        branches, the nearest such mode to home), home_branches (inverse kinematics from home
+        gives back u), u_error (max |u(p) - u|) and condition (the largest of the limbs' and the
+        actuation map's condition numbers), and method ("three spheres": a Delta of three
+        R-U-U limbs, both modes in closed form; "many starts": the modes continuation from
+        deterministic seeds finds, perhaps not every one). Empty when no pose closes the loops.
+        """
+        values = _input(u, "u", (self.actuators,))
+        result = self._core._forward_kinematics([float(v) for v in values])
+        modes = []
+        for mode in result["modes"]:
+            mode = dict(mode)
+            mode["pose"] = np.array(mode["pose"], dtype=np.float64)
+            mode["method"] = result["method"]
+            modes.append(mode)
+        return modes
+
+    def track(self, u, p0=None):
+        """The platform poses of actuator samples u (N, n) (or one sample (n,)), each by Newton on
+        u(p) - u from the previous pose (the first from p0, default home): the tracker a
+        controller or a simulation runs, converging to 1e-13 in u and keeping the assembly mode
+        of p0. Returns poses (N, d) (or (d,)) in the order of ``coordinates``; a sample where
+        Newton does not converge, out of reach or singular raises nocdyn.Error "sample K: ..."."""
+        d = self.task_dimension
+        u_arr = _floats(u, "u")
+        single = u_arr.ndim == 1
+        u_arr = _input(u_arr, "u", (self.actuators,) if single else (None, self.actuators))
+        start = self.home if p0 is None else _input(p0, "p0", (d,))
+        poses = self._core._track(np.ascontiguousarray(u_arr.reshape(-1, self.actuators)),
+                                  [float(v) for v in start])
+        return poses[0] if single else poses
+
     def __repr__(self):
         return (f"SpatialRobot('{self.name}': {self.limbs} limbs, {self.actuators} actuators, "
                 f"pose {', '.join(self.coordinates)})")

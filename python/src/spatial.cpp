@@ -19,6 +19,7 @@
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial.hpp"
 #include "nocdyn/text.hpp"
+#include "nocdyn/spatial_direct_kinematics.hpp"
 
 namespace nocdyn::python {
 
@@ -82,6 +83,70 @@ py::tuple inverseDynamics(const SpatialRobot& robot, const py::handle& p, const 
         throw Error("sample " + std::to_string(failed + 1) + ": " + spatial::describe(failure, model));
     }
     return py::make_tuple(out[0], out[1], out[2], out[3]);
+}
+
+/// Every assembly mode found for u (spatial_direct_kinematics.hpp): a dict of the method,
+/// complete, starts and the modes (pose in the coordinates' order, working, home_branches,
+/// u_error, condition), nearest home first.
+py::dict forwardKinematics(const SpatialRobot& robot, const std::vector<double>& values) {
+    const spatial::Model& model = *robot.model;
+    spatial::ActuatorVector u(static_cast<Eigen::Index>(values.size()));
+    for (std::size_t a = 0; a < values.size(); ++a) u(static_cast<Eigen::Index>(a)) = values[a];
+    spatial::AssemblyModes modes;
+    {
+        const py::gil_scoped_release release;
+        modes = spatial::assemblyModes(model, u);
+    }
+    py::list list;
+    for (const spatial::AssemblyMode& mode : modes.modes) {
+        py::dict m;
+        m["pose"] = std::vector<double>(mode.p.data(), mode.p.data() + mode.p.size());
+        m["working"] = mode.working;
+        m["home_branches"] = mode.home_branches;
+        m["u_error"] = mode.u_error;
+        m["condition"] = mode.condition;
+        list.append(m);
+    }
+    py::dict out;
+    out["method"] = modes.method == spatial::DirectMethod::three_spheres ? "three spheres" : "many starts";
+    out["complete"] = modes.complete;
+    out["starts"] = modes.starts;
+    out["modes"] = list;
+    return out;
+}
+
+/// The tracker over samples of u (N, n) from the pose p0: the poses (N, d); a sample where it
+/// stops raises "sample K: reason" (K from 1).
+Rows track(const SpatialRobot& robot, const py::handle& u, const std::vector<double>& p0) {
+    const spatial::Model& model = *robot.model;
+    const int d = model.task_dimension, n = model.actuators;
+    const Rows U = samples(u, "u", n, -1);
+    if (static_cast<int>(p0.size()) != d) throw Error("p0: expected " + std::to_string(d) + " values");
+    const py::ssize_t N = U.shape(0);
+    Rows out({N, static_cast<py::ssize_t>(d)});
+    double* to = out.mutable_data();
+    const double* from = U.data();
+    py::ssize_t failed = -1;
+    Status failure;
+    {
+        const py::gil_scoped_release release;
+        spatial::Data data(model);
+        spatial::TaskVector p(d);
+        for (int i = 0; i < d; ++i) p(i) = p0[static_cast<std::size_t>(i)];
+        spatial::ActuatorVector uk(n);
+        for (py::ssize_t k = 0; k < N && failed < 0; ++k) {
+            for (int a = 0; a < n; ++a) uk(a) = from[k * n + a];
+            if (const Status status = spatial::directKinematics(model, data, uk, p); !status) {
+                failed = k;
+                failure = status;
+            }
+            for (int i = 0; i < d; ++i) to[k * d + i] = p(i);
+        }
+    }
+    if (failed >= 0) {
+        throw Error("sample " + std::to_string(failed + 1) + ": " + spatial::describeDirect(failure, model));
+    }
+    return out;
 }
 
 SpatialRobot make(const SpatialRobotDescription& description) {
@@ -148,6 +213,8 @@ void exposeSpatial(py::module_& m) {
                                    for (const spatial::Limb& limb : r.model->limb) names.push_back(limb.name);
                                    return names;
                                })
+        .def("_forward_kinematics", &forwardKinematics, py::arg("u"))
+        .def("_track", &track, py::arg("u"), py::arg("p0"))
         .def("_inverse_dynamics", &inverseDynamics, py::arg("p"), py::arg("dp"), py::arg("ddp"),
              py::arg("check") = true)
         .def(

@@ -186,3 +186,47 @@ def test_bad_spatial_trajectories_are_refused_naming_file_and_field(source_dir, 
         nocdyn.inverse_dynamics(far, robot=robot, allow_limits=True, progress=False)
     with pytest.raises(nocdyn.Error, match=r"^t = 0\.\d+ s: joint range exceeded: limb \d \(arm\d\), joint 1: q = "):
         nocdyn.inverse_dynamics(far, robot=robot, progress=False)
+
+
+@pytest.mark.parametrize("name", ["stewart", "6-rus", "delta"])
+def test_forward_kinematics_gives_back_the_pose_of_u_among_its_modes(source_dir, name):
+    robot = _load(source_dir, name)
+    d = robot.task_dimension
+    p = robot.home + np.array([0.01, -0.005, 0.008, 0.02, -0.03, 0.04])[:d]
+    u = robot.inverse_dynamics(p, np.zeros(d), np.zeros(d)).u
+    modes = robot.forward_kinematics(u)
+    assert modes and all(m["u_error"] <= 1e-10 for m in modes)
+    # the working mode (first: nearest home) is p, in the coordinates' order
+    assert modes[0]["working"] and modes[0]["pose"].shape == (d,)
+    np.testing.assert_allclose(modes[0]["pose"], p, atol=1e-10)
+    assert sum(m["working"] for m in modes) == 1
+    # every mode gives u back through the inverse kinematics of its own branches (checked in
+    # C++); the ones on the home branches give it back from home too
+    for m in modes:
+        if m["home_branches"]:
+            np.testing.assert_allclose(robot.inverse_dynamics(m["pose"], np.zeros(d), np.zeros(d)).u, u, atol=1e-10)
+    if name == "delta":
+        assert [m["method"] for m in modes] == ["three spheres"] * 2
+        assert modes[1]["pose"][2] > modes[0]["pose"][2]  # the other mode above the elbows
+
+
+def test_the_tracker_follows_sampled_actuator_values(source_dir):
+    robot = _load(source_dir, "stewart")
+    t = np.arange(0.0, 0.2, 1e-3)[:, None]  # 1 kHz
+    P = robot.home + np.array([0.02, 0.01, -0.02, 0.03, 0.02, -0.05]) * np.sin(2 * np.pi * 3 * t)
+    U = robot.inverse_dynamics(P, np.zeros_like(P), np.zeros_like(P)).u
+    np.testing.assert_allclose(robot.track(U), P, atol=1e-11)
+    np.testing.assert_allclose(robot.track(U[5], p0=P[4]), P[5], atol=1e-11)
+    U[7, 2] = 5.0  # one leg 5 m longer at sample 8
+    with pytest.raises(nocdyn.Error, match=r"^sample 8: "):
+        robot.track(U)
+
+
+def test_forward_kinematics_refuses_bad_values(source_dir):
+    robot = _load(source_dir, "delta")
+    with pytest.raises(nocdyn.Error, match=r"u: expected shape \(3,\)"):
+        robot.forward_kinematics([0.1, 0.2])
+    with pytest.raises(nocdyn.Error, match=r"u\[1\]: not a finite number"):
+        robot.forward_kinematics([0.1, np.nan, 0.2])
+    stewart = _load(source_dir, "stewart")
+    assert stewart.forward_kinematics([3.0, 3.0, 3.0, 3.0, 3.0, -1.0]) == []  # out of reach
