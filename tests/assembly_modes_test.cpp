@@ -187,7 +187,8 @@ TEST(AssemblyModes, TheHomePoseIsAModeOfTheShippedStewartAtItsHomeLegLengths) {
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "stewart at home: " << result.paths << " paths, " << result.solutions << " finite solutions, "
               << result.real_solutions << " real, " << result.modes.size() << " modes, " << result.rejected
-              << " rejected; phc " << result.seconds << " s, the call " << seconds << " s\n";
+              << " rejected; phc " << result.seconds << " s (CPU " << result.cpu_seconds << " s), the call " << seconds
+              << " s\n";
     EXPECT_EQ(result.paths, 128);  // 2^7, the mixed volume
     // this symmetric design has fewer than a general platform's 40
     EXPECT_EQ(result.solutions, 28);
@@ -220,7 +221,8 @@ TEST(AssemblyModes, EveryManyStartNewtonPoseOfRandomHexapodsIsAmongPhcsModes) {
         const ActuatorVector u = actuatorValues(model, p);
         const AssemblyModes result = assemblyModes(model, u, seeded());
         std::cout << "random hexapod " << design << ": " << result.solutions << " finite solutions, "
-                  << result.modes.size() << " modes; phc " << result.seconds << " s\n";
+                  << result.modes.size() << " modes; phc " << result.seconds << " s (CPU " << result.cpu_seconds
+                  << " s)\n";
         EXPECT_EQ(result.solutions, 40) << "design " << design;  // a general platform's count
         EXPECT_EQ(result.rejected, 0) << "design " << design;    // its U joints reach every direction
         EXPECT_TRUE(among(p, result.modes)) << "design " << design << ": the pose " << p.transpose();

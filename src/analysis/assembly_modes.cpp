@@ -7,6 +7,7 @@
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -187,8 +188,9 @@ std::string lastLine(const fs::path& log) {
     return out;
 }
 
-/// Runs `phc -b [-0seed] input output` in `folder`; returns its wall time.
-double runPhc(const std::string& executable, const fs::path& folder, const AssemblyModeOptions& options) {
+/// Runs `phc -b [-t1] [-0seed] input output` in `folder`; its wall and CPU time into `result`.
+void runPhc(const std::string& executable, const fs::path& folder, const AssemblyModeOptions& options,
+            AssemblyModes& result) {
     std::vector<std::string> arguments = {executable, "-b"};
     if (options.polyhedral) arguments.emplace_back("-t1");
     if (options.seed != 0) arguments.push_back("-0" + std::to_string(options.seed));
@@ -216,8 +218,9 @@ double runPhc(const std::string& executable, const fs::path& folder, const Assem
         return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     };
     int status = 0;
+    struct rusage usage {};
     for (;;) {
-        const pid_t done = ::waitpid(pid, &status, WNOHANG);
+        const pid_t done = ::wait4(pid, &status, WNOHANG, &usage);
         if (done == pid) break;
         if (done < 0 && errno == EINTR) continue;
         if (done < 0) {  // SIGCHLD ignored by the host process: the child is reaped already
@@ -234,7 +237,9 @@ double runPhc(const std::string& executable, const fs::path& folder, const Assem
         }
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
     }
-    const double seconds = elapsed();
+    result.seconds = elapsed();
+    result.cpu_seconds = static_cast<double>(usage.ru_utime.tv_sec + usage.ru_stime.tv_sec) +
+                         1e-6 * static_cast<double>(usage.ru_utime.tv_usec + usage.ru_stime.tv_usec);
     if (WIFSIGNALED(status)) {
         throw Error("assembly modes: phc ended by signal " + std::to_string(WTERMSIG(status)));
     }
@@ -243,7 +248,6 @@ double runPhc(const std::string& executable, const fs::path& folder, const Assem
         throw Error("assembly modes: phc failed (exit status " + std::to_string(WEXITSTATUS(status)) + ")" +
                     (last.empty() ? std::string() : ": " + last));
     }
-    return seconds;
 }
 
 std::string trim(const std::string& s) {
@@ -525,7 +529,7 @@ AssemblyModes assemblyModes(const Model& model, const ActuatorVector& u, const A
             input << polynomialSystem(legs);
             if (!input.flush()) throw Error("assembly modes: cannot write phc's input in " + folder.path().string());
         }
-        result.seconds = runPhc(result.executable, folder.path(), options);
+        runPhc(result.executable, folder.path(), options, result);
         solutions = parseSolutions(readBounded(folder.path() / "input", "solution list"));
         result.paths = trackedPaths(readBounded(folder.path() / "output", "output"), options.polyhedral);
     }

@@ -60,8 +60,9 @@ struct AssemblyModes {
     /// Real solutions of the leg lengths that the limbs cannot take with these u: a U joint that
     /// cannot point its leg there, or the inverse kinematics not giving back u.
     int rejected = 0;
-    double seconds = 0.0;    ///< phc's wall time
-    std::string executable;  ///< the phc that ran
+    double seconds = 0.0;      ///< phc's wall time
+    double cpu_seconds = 0.0;  ///< phc's processor time (user and system)
+    std::string executable;    ///< the phc that ran
 };
 
 /// The phc executable: `executable` when not empty (it must be an executable file), else the
