@@ -203,6 +203,13 @@ TEST(AssemblyModes, TheHomePoseIsAModeOfTheShippedStewartAtItsHomeLegLengths) {
         EXPECT_LE(mode.u_error, kRoundTrip) << mode.pose.transpose();
         EXPECT_LT(geometry.residual(mode.pose).cwiseAbs().maxCoeff(), 1e-12) << mode.pose.transpose();
     }
+    // every pose a many-start Newton finds (its U joints reach every direction)
+    const std::vector<TaskVector> newton = manyStartNewton(geometry, 11, 300);
+    std::cout << "  many-start Newton: " << newton.size() << " poses\n";
+    EXPECT_GE(newton.size(), 2u);
+    for (const TaskVector& q : newton) {
+        EXPECT_TRUE(among(q, result.modes)) << "Newton's pose " << q.transpose();
+    }
     // base points at z = 0 and platform points in one plane: the table reflected in the base
     // plane, which for a plane of points is the translation to z -> -z, has the same leg lengths
     TaskVector mirrored = model.home;
