@@ -1,7 +1,8 @@
 // The real assembly modes of 6-UPS robots by PHCpack (nocdyn/analysis/assembly_modes.hpp): the
 // pose the leg lengths came from is among them; every mode gives back u by the inverse
 // kinematics; on random hexapods, every pose a many-start Newton finds is among them and phc
-// finds the 40 complex solutions of a general platform; robots of other kinds, a missing phc, a
+// finds the 40 complex solutions of a general platform; Dietmaier's platform has 40 real modes
+// and all are found; robots of other kinds, a missing phc, a
 // phc that fails, writes nonsense or runs too long give one clear error and leave no folder.
 // Without phc (Debian package phcpack) the tests that need it skip, and fail under CI=true.
 #include <gtest/gtest.h>
@@ -240,6 +241,83 @@ TEST(AssemblyModes, EveryManyStartNewtonPoseOfRandomHexapodsIsAmongPhcsModes) {
         for (const TaskVector& q : newton) {
             EXPECT_TRUE(among(q, result.modes)) << "design " << design << ": Newton's pose " << q.transpose();
         }
+    }
+}
+
+/// P. Dietmaier's platform with 40 real assembly modes ("The Stewart-Gough platform of general
+/// geometry can have 40 real postures", ARK 1998; the numbers as E. Martyushev's fkSGP tests give
+/// them): base points A_i, platform points B_i (platform frame), leg lengths L_i. Built as a 6-UPS
+/// robot whose home puts the platform frame at `home`; each leg's P along the leg at home, so
+/// that u_i = L_i - |leg i at home|.
+struct Dietmaier {
+    SpatialRobotDescription description;
+    ActuatorVector u = ActuatorVector::Zero(6);
+    Dietmaier() {
+        const double A[6][3] = {{0, 0, 0},
+                                {1.107915, 0, 0},
+                                {0.549094, 0.756063, 0},
+                                {0.735077, -0.223935, 0.525991},
+                                {0.514188, -0.526063, -0.368418},
+                                {0.590473, 0.094733, -0.205018}};
+        const double B[6][3] = {{0, 0, 0},
+                                {0.542805, 0, 0},
+                                {0.956919, -0.528915, 0},
+                                {0.665885, -0.353482, 1.402538},
+                                {0.478359, 1.158742, 0.107672},
+                                {-0.137087, -0.235121, 0.353913}};
+        const double L[6] = {1, 0.645275, 1.086284, 1.503439, 1.281933, 0.771071};
+        SpatialRobotDescription& d = description;
+        d.name = "dietmaier-40";
+        d.motion = PlatformMotion::full;
+        d.home << 0.3, -0.2, 2.0, 0.1, 0.2, 0.3;
+        d.platform.mass = 30.0;
+        d.platform.inertia = Eigen::Vector3d(2.0, 2.5, 4.0).asDiagonal();
+        const Eigen::Matrix3d R_home = rotation(d.home(3), d.home(4), d.home(5));
+        for (int i = 0; i < 6; ++i) {
+            const Eigen::Vector3d a(A[i][0], A[i][1], A[i][2]);
+            const Eigen::Vector3d top = d.home.head<3>() + R_home * Eigen::Vector3d(B[i][0], B[i][1], B[i][2]);
+            const Eigen::Vector3d e = (top - a).normalized();
+            u(i) = L[i] - (top - a).norm();
+            SpatialJointDescription uj, p, s;
+            uj.type = SpatialJointType::universal;
+            uj.point = a;
+            uj.axis1 = e.cross(Eigen::Vector3d::UnitZ()).normalized();
+            uj.axis2 = e.cross(uj.axis1).normalized();
+            p.type = SpatialJointType::prismatic;
+            p.direction = e;
+            p.actuated = true;
+            s.type = SpatialJointType::spherical;
+            s.point = top;
+            SpatialBodyDescription body1, body2;
+            body1.mass = body2.mass = 1.0;
+            body1.com = a + 0.3 * (top - a);
+            body2.com = a + 0.7 * (top - a);
+            body1.inertia = body2.inertia = 0.01 * Eigen::Matrix3d::Identity();
+            SpatialLimbDescription limb;
+            limb.name = "leg" + std::to_string(i + 1);
+            limb.joints = {uj, p, s};
+            limb.bodies = {body1, body2};
+            d.limbs.push_back(limb);
+        }
+    }
+};
+
+TEST(AssemblyModes, DietmaiersPlatformHasFortyRealAssemblyModes) {
+    NOCDYN_REQUIRE_PHC();
+    const Dietmaier dietmaier;
+    const Model model(dietmaier.description);
+    const AssemblyModes result = assemblyModes(model, dietmaier.u, seeded());
+    std::cout << "Dietmaier's platform: " << result.solutions << " finite solutions, " << result.real_solutions
+              << " real, " << result.modes.size() << " modes; phc " << result.seconds << " s (CPU "
+              << result.cpu_seconds << " s)\n";
+    EXPECT_EQ(result.solutions, 40);
+    EXPECT_EQ(result.real_solutions, 40);
+    EXPECT_EQ(result.rejected, 0);
+    EXPECT_EQ(result.modes.size(), 40u);
+    const Geometry geometry(model, dietmaier.u);
+    for (const AssemblyMode& mode : result.modes) {
+        EXPECT_LE(mode.u_error, kRoundTrip) << mode.pose.transpose();
+        EXPECT_LT(geometry.residual(mode.pose).cwiseAbs().maxCoeff(), 1e-12) << mode.pose.transpose();
     }
 }
 
