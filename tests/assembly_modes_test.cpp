@@ -1,9 +1,9 @@
 // The real assembly modes of 6-UPS robots by PHCpack (nocdyn/analysis/assembly_modes.hpp): the
 // pose the leg lengths came from is among them; every mode gives back u by the inverse
 // kinematics; on random hexapods, every pose a many-start Newton finds is among them and phc
-// finds the 40 complex solutions of a general platform; Dietmaier's platform has 40 real modes
-// and all are found; robots of other kinds, a missing phc, a
-// phc that fails, writes nonsense or runs too long give one clear error and leave no folder.
+// finds the 40 complex solutions of a general platform; all 40 real modes of Dietmaier's platform
+// are found; robots of other kinds, a missing phc, a phc that fails, writes nonsense or runs too
+// long give one clear error and leave no folder.
 // Without phc (Debian package phcpack) the tests that need it skip, and fail under CI=true.
 #include <gtest/gtest.h>
 
@@ -350,6 +350,13 @@ TEST(AssemblyModes, BadActuatorValuesAreRefused) {
         FAIL() << "a leg of length 0 was taken";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("limb 1 (leg1) has length 0"), std::string::npos) << e.what();
+    }
+    u(0) = 1e200;
+    try {
+        (void)assemblyModes(model, u);
+        FAIL() << "a leg of 1e200 m was taken";
+    } catch (const Error& e) {
+        EXPECT_NE(std::string(e.what()).find("limb 1 (leg1) is too long"), std::string::npos) << e.what();
     }
 }
 

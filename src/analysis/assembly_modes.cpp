@@ -510,6 +510,11 @@ AssemblyModes assemblyModes(const Model& model, const ActuatorVector& u, const A
             throw Error("assembly modes: limb " + std::to_string(j + 1) + " (" + limb.name +
                         ") has length 0 at u = " + number(u(a)));
         }
+        // the equations hold L^2 |e|^2 and their squares stay finite
+        if (!std::isfinite(leg.L * leg.L * leg.L * leg.L)) {
+            throw Error("assembly modes: limb " + std::to_string(j + 1) + " (" + limb.name +
+                        ") is too long at u = " + number(u(a)));
+        }
     }
 
     AssemblyModes result;
