@@ -389,7 +389,7 @@ std::string fakePhc(const std::string& name, const std::string& body) {
     const fs::path folder = fs::path(scratch != nullptr ? scratch : fs::temp_directory_path().string()) / "fake-phc";
     fs::create_directories(folder);
     const fs::path script = folder / name;
-    std::ofstream(script) << "#!/bin/sh\n" << body << "\n";
+    std::ofstream(script) << "#!/bin/sh\nPATH=/usr/bin:/bin\n" << body << "\n";
     ::chmod(script.c_str(), 0755);
     return script.string();
 }
