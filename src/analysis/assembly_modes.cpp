@@ -33,8 +33,6 @@
 
 #include "nocdyn/error.hpp"
 
-extern char** environ;
-
 namespace nocdyn::spatial {
 
 namespace {
@@ -197,6 +195,7 @@ void runPhc(const std::string& executable, const fs::path& folder, const Assembl
     arguments.emplace_back("input");
     arguments.emplace_back("output");
     std::vector<char*> argv;
+    argv.reserve(arguments.size() + 1);
     for (std::string& a : arguments) argv.push_back(a.data());
     argv.push_back(nullptr);
     const std::string log = (folder / "log").string();
@@ -327,9 +326,14 @@ std::vector<Solution> parseSolutions(const std::string& input_text) {
             if (colon == std::string::npos) throw Error("assembly modes: " + where + ": expected 'name : re im'");
             const std::string name = trim(line.substr(0, colon));
             const auto it = std::find_if(kNames.begin(), kNames.end(), [&](const char* n) { return name == n; });
-            if (it == kNames.end()) throw Error("assembly modes: " + where + ": unknown variable '" + name + "'");
+            if (it == kNames.end()) {
+                std::string message = "assembly modes: " + where + ": unknown variable '";
+                message += name.substr(0, 40);
+                message += "'";
+                throw Error(message);
+            }
             const auto index = static_cast<std::size_t>(it - kNames.begin());
-            if (seen[index]) throw Error("assembly modes: " + where + ": " + name + " given twice");
+            if (seen[index]) throw Error(("assembly modes: " + where + ": ").append(name).append(" given twice"));
             seen[index] = true;
             std::istringstream values(line.substr(colon + 1));
             std::string re, im, rest;
