@@ -10,12 +10,11 @@
 //   Study:     e . g = 0
 //   scale:     c . e = 1   (a fixed generic c: (e, g) is projective)
 // with a_i, b_i as pure quaternions and L_i = |r_i + u_i d_i| the distance from the U point to
-// the S point (r_i that vector at home, d_i the P joint's direction). Eight quadrics and a linear
+// the S point (r_i that vector at home, d_i the P joint's direction). Seven quadrics and a linear
 // equation in eight unknowns: 2^7 = 128 paths (the total degree and the mixed volume), 40 of
 // which end at the finite solutions of a general platform, the others diverging to the
 // exceptional set e = 0. (Subtracting leg 1's equation from the others lowers the mixed volume
-// to 84, Wampler's count, but phc then loses finite solutions: 13 to 20 of 40 on random
-// platforms.)
+// to 84, but phc then loses finite solutions: it found 13 to 20 of 40 on random platforms.)
 // Each real solution is polished by Newton on the pose, checked by spatial::inverseKinematics
 // (the actuator values come back to u) and kept once.
 #pragma once
