@@ -44,8 +44,8 @@ Model shipped(const std::string& name) {
     return Model(io::loadSpatialRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + name + ".yaml"));
 }
 
-AssemblyModeOptions seeded() {
-    AssemblyModeOptions options;
+HomotopyOptions seeded() {
+    HomotopyOptions options;
     options.seed = kSeed;
     return options;
 }
@@ -63,8 +63,8 @@ bool samePose(const TaskVector& x, const TaskVector& y) {
            (Rx - Ry).cwiseAbs().maxCoeff() <= kSamePose;
 }
 
-bool among(const TaskVector& p, const std::vector<AssemblyMode>& modes) {
-    return std::any_of(modes.begin(), modes.end(), [&](const AssemblyMode& m) { return samePose(p, m.pose); });
+bool among(const TaskVector& p, const std::vector<HomotopyMode>& modes) {
+    return std::any_of(modes.begin(), modes.end(), [&](const HomotopyMode& m) { return samePose(p, m.pose); });
 }
 
 /// The leg geometry, read from the model's freedoms independently of the solver: base point a,
@@ -179,12 +179,12 @@ int temporaryFolders() {
     return count;
 }
 
-TEST(AssemblyModes, TheHomePoseIsAModeOfTheShippedStewartAtItsHomeLegLengths) {
+TEST(HomotopyModes, TheHomePoseIsAModeOfTheShippedStewartAtItsHomeLegLengths) {
     NOCDYN_REQUIRE_PHC();
     const Model model = shipped("stewart");
     const ActuatorVector u = actuatorValues(model, model.home);
     const auto start = std::chrono::steady_clock::now();
-    const AssemblyModes result = assemblyModes(model, u, seeded());
+    const HomotopyModes result = homotopyModes(model, u, seeded());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::cout << "stewart at home: " << result.paths << " paths, " << result.solutions << " finite solutions, "
               << result.real_solutions << " real, " << result.modes.size() << " modes, " << result.rejected
@@ -200,7 +200,7 @@ TEST(AssemblyModes, TheHomePoseIsAModeOfTheShippedStewartAtItsHomeLegLengths) {
     EXPECT_TRUE(samePose(result.modes.front().pose, model.home)) << result.modes.front().pose.transpose();
     EXPECT_LE((actuatorValues(model, result.modes.front().pose) - u).cwiseAbs().maxCoeff(), kRoundTrip);
     const Geometry geometry(model, u);
-    for (const AssemblyMode& mode : result.modes) {
+    for (const HomotopyMode& mode : result.modes) {
         EXPECT_LE(mode.u_error, kRoundTrip) << mode.pose.transpose();
         EXPECT_LT(geometry.residual(mode.pose).cwiseAbs().maxCoeff(), 1e-12) << mode.pose.transpose();
     }
@@ -218,7 +218,7 @@ TEST(AssemblyModes, TheHomePoseIsAModeOfTheShippedStewartAtItsHomeLegLengths) {
     EXPECT_TRUE(among(mirrored, result.modes)) << "no mode at " << mirrored.transpose();
 }
 
-TEST(AssemblyModes, EveryManyStartNewtonPoseOfRandomHexapodsIsAmongPhcsModes) {
+TEST(HomotopyModes, EveryManyStartNewtonPoseOfRandomHexapodsIsAmongPhcsModes) {
     NOCDYN_REQUIRE_PHC();
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> offset(-1.0, 1.0);
@@ -227,14 +227,14 @@ TEST(AssemblyModes, EveryManyStartNewtonPoseOfRandomHexapodsIsAmongPhcsModes) {
         TaskVector p = model.home;
         for (int k = 0; k < 6; ++k) p(k) += (k < 3 ? 0.05 : 0.08) * offset(rng);
         const ActuatorVector u = actuatorValues(model, p);
-        const AssemblyModes result = assemblyModes(model, u, seeded());
+        const HomotopyModes result = homotopyModes(model, u, seeded());
         std::cout << "random hexapod " << design << ": " << result.solutions << " finite solutions, "
                   << result.modes.size() << " modes; phc " << result.seconds << " s (CPU " << result.cpu_seconds
                   << " s)\n";
         EXPECT_EQ(result.solutions, 40) << "design " << design;  // a general platform's count
         EXPECT_EQ(result.rejected, 0) << "design " << design;    // its U joints reach every direction
         EXPECT_TRUE(among(p, result.modes)) << "design " << design << ": the pose " << p.transpose();
-        for (const AssemblyMode& mode : result.modes) EXPECT_LE(mode.u_error, kRoundTrip);
+        for (const HomotopyMode& mode : result.modes) EXPECT_LE(mode.u_error, kRoundTrip);
         const std::vector<TaskVector> newton = manyStartNewton(Geometry(model, u), 100 + design, 300);
         std::cout << "  many-start Newton: " << newton.size() << " poses\n";
         EXPECT_GE(newton.size(), 2u);
@@ -302,11 +302,11 @@ struct Dietmaier {
     }
 };
 
-TEST(AssemblyModes, DietmaiersPlatformHasFortyRealAssemblyModes) {
+TEST(HomotopyModes, DietmaiersPlatformHasFortyRealAssemblyModes) {
     NOCDYN_REQUIRE_PHC();
     const Dietmaier dietmaier;
     const Model model(dietmaier.description);
-    const AssemblyModes result = assemblyModes(model, dietmaier.u, seeded());
+    const HomotopyModes result = homotopyModes(model, dietmaier.u, seeded());
     std::cout << "Dietmaier's platform: " << result.solutions << " finite solutions, " << result.real_solutions
               << " real, " << result.modes.size() << " modes; phc " << result.seconds << " s (CPU "
               << result.cpu_seconds << " s)\n";
@@ -315,57 +315,57 @@ TEST(AssemblyModes, DietmaiersPlatformHasFortyRealAssemblyModes) {
     EXPECT_EQ(result.rejected, 0);
     EXPECT_EQ(result.modes.size(), 40u);
     const Geometry geometry(model, dietmaier.u);
-    for (const AssemblyMode& mode : result.modes) {
+    for (const HomotopyMode& mode : result.modes) {
         EXPECT_LE(mode.u_error, kRoundTrip) << mode.pose.transpose();
         EXPECT_LT(geometry.residual(mode.pose).cwiseAbs().maxCoeff(), 1e-12) << mode.pose.transpose();
     }
 }
 
-TEST(AssemblyModes, RobotsOfOtherKindsAreRefusedNamingTheLimb) {
+TEST(HomotopyModes, RobotsOfOtherKindsAreRefusedNamingTheLimb) {
     const Model rus = shipped("6-rus");
     try {
-        (void)assemblyModes(rus, ActuatorVector::Zero(6));
+        (void)homotopyModes(rus, ActuatorVector::Zero(6));
         FAIL() << "a 6-RUS was taken";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("is not a 6-UPS robot"), std::string::npos) << e.what();
         EXPECT_NE(std::string(e.what()).find("limb 1"), std::string::npos) << e.what();
     }
     const Model delta = shipped("delta");
-    EXPECT_THROW((void)assemblyModes(delta, ActuatorVector::Zero(3)), Error);
+    EXPECT_THROW((void)homotopyModes(delta, ActuatorVector::Zero(3)), Error);
     std::string reason;
     EXPECT_TRUE(isUpsHexapod(shipped("stewart"), &reason)) << reason;
 }
 
-TEST(AssemblyModes, BadActuatorValuesAreRefused) {
+TEST(HomotopyModes, BadActuatorValuesAreRefused) {
     const Model model = shipped("stewart");
-    EXPECT_THROW((void)assemblyModes(model, ActuatorVector::Zero(5)), Error);
+    EXPECT_THROW((void)homotopyModes(model, ActuatorVector::Zero(5)), Error);
     ActuatorVector u = ActuatorVector::Zero(6);
     u(2) = std::nan("");
-    EXPECT_THROW((void)assemblyModes(model, u), Error);
+    EXPECT_THROW((void)homotopyModes(model, u), Error);
     // leg 1 of length 0: u = -1.2 m
     u.setZero();
     u(0) = -1.2;
     try {
-        (void)assemblyModes(model, u);
+        (void)homotopyModes(model, u);
         FAIL() << "a leg of length 0 was taken";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("limb 1 (leg1) has length 0"), std::string::npos) << e.what();
     }
     u(0) = 1e200;
     try {
-        (void)assemblyModes(model, u);
+        (void)homotopyModes(model, u);
         FAIL() << "a leg of 1e200 m was taken";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("limb 1 (leg1) is too long"), std::string::npos) << e.what();
     }
 }
 
-TEST(AssemblyModes, AMissingPhcIsNamedWithItsPackage) {
+TEST(HomotopyModes, AMissingPhcIsNamedWithItsPackage) {
     const Model model = shipped("stewart");
-    AssemblyModeOptions options;
+    HomotopyOptions options;
     options.executable = "/nonexistent/phc";
     try {
-        (void)assemblyModes(model, ActuatorVector::Zero(6), options);
+        (void)homotopyModes(model, ActuatorVector::Zero(6), options);
         FAIL() << "no error without phc";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("phcpack"), std::string::npos) << e.what();
@@ -374,7 +374,7 @@ TEST(AssemblyModes, AMissingPhcIsNamedWithItsPackage) {
     ::setenv("PATH", "/nonexistent", 1);
     EXPECT_TRUE(findPhc().empty());
     try {
-        (void)assemblyModes(model, ActuatorVector::Zero(6));
+        (void)homotopyModes(model, ActuatorVector::Zero(6));
         ADD_FAILURE() << "no error without phc on PATH";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("Debian package phcpack"), std::string::npos) << e.what();
@@ -394,15 +394,15 @@ std::string fakePhc(const std::string& name, const std::string& body) {
     return script.string();
 }
 
-TEST(AssemblyModes, APhcThatFailsOrWritesNonsenseGivesOneErrorAndLeavesNoFolder) {
+TEST(HomotopyModes, APhcThatFailsOrWritesNonsenseGivesOneErrorAndLeavesNoFolder) {
     const Model model = shipped("stewart");
     const int before = temporaryFolders();
     const auto message = [&](const std::string& executable, double timeout = 120.0) {
-        AssemblyModeOptions options;
+        HomotopyOptions options;
         options.executable = executable;
         options.timeout = timeout;
         try {
-            (void)assemblyModes(model, ActuatorVector::Zero(6), options);
+            (void)homotopyModes(model, ActuatorVector::Zero(6), options);
         } catch (const Error& e) {
             return std::string(e.what());
         }

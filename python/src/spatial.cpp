@@ -83,7 +83,7 @@ py::tuple inverseDynamics(const SpatialRobot& robot, const py::handle& p, const 
 
 /// The real assembly modes of a 6-UPS robot at the actuator values u (nocdyn/analysis/
 /// assembly_modes.hpp): (poses (m, 6), u_error (m,), a dict of the counts and phc's times).
-py::tuple assemblyModes(const SpatialRobot& robot, const py::handle& u, double timeout, unsigned seed,
+py::tuple homotopyModes(const SpatialRobot& robot, const py::handle& u, double timeout, unsigned seed,
                         const std::string& executable) {
     const spatial::Model& model = *robot.model;
     const Rows values = Rows::ensure(u);
@@ -92,20 +92,20 @@ py::tuple assemblyModes(const SpatialRobot& robot, const py::handle& u, double t
     }
     spatial::ActuatorVector u_k(model.actuators);
     for (int a = 0; a < model.actuators; ++a) u_k(a) = values.data()[a];
-    spatial::AssemblyModeOptions options;
+    spatial::HomotopyOptions options;
     options.timeout = timeout;
     options.seed = seed;
     options.executable = executable;
-    spatial::AssemblyModes result;
+    spatial::HomotopyModes result;
     {
         const py::gil_scoped_release release;
-        result = spatial::assemblyModes(model, u_k, options);
+        result = spatial::homotopyModes(model, u_k, options);
     }
     const auto m = static_cast<py::ssize_t>(result.modes.size());
     Rows poses({m, static_cast<py::ssize_t>(6)}), errors({m});
     double *to = poses.mutable_data(), *error = errors.mutable_data();
     for (py::ssize_t k = 0; k < m; ++k) {
-        const spatial::AssemblyMode& mode = result.modes[static_cast<std::size_t>(k)];
+        const spatial::HomotopyMode& mode = result.modes[static_cast<std::size_t>(k)];
         for (int i = 0; i < 6; ++i) to[k * 6 + i] = mode.pose(i);
         error[k] = mode.u_error;
     }
@@ -159,7 +159,7 @@ void exposeSpatial(py::module_& m) {
                                })
         .def("_inverse_dynamics", &inverseDynamics, py::arg("p"), py::arg("dp"), py::arg("ddp"),
              py::arg("check") = true)
-        .def("_assembly_modes", &assemblyModes, py::arg("u"), py::arg("timeout"), py::arg("seed"),
+        .def("_assembly_modes", &homotopyModes, py::arg("u"), py::arg("timeout"), py::arg("seed"),
              py::arg("executable"));
 }
 

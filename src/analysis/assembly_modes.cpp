@@ -187,8 +187,8 @@ std::string lastLine(const fs::path& log) {
 }
 
 /// Runs `phc -b [-t1] [-0seed] input output` in `folder`; its wall and CPU time into `result`.
-void runPhc(const std::string& executable, const fs::path& folder, const AssemblyModeOptions& options,
-            AssemblyModes& result) {
+void runPhc(const std::string& executable, const fs::path& folder, const HomotopyOptions& options,
+            HomotopyModes& result) {
     std::vector<std::string> arguments = {executable, "-b"};
     if (options.polyhedral) arguments.emplace_back("-t1");
     if (options.seed != 0) arguments.push_back("-0" + std::to_string(options.seed));
@@ -486,7 +486,7 @@ bool isUpsHexapod(const Model& model, std::string* reason) {
     return true;
 }
 
-AssemblyModes assemblyModes(const Model& model, const ActuatorVector& u, const AssemblyModeOptions& options) {
+HomotopyModes homotopyModes(const Model& model, const ActuatorVector& u, const HomotopyOptions& options) {
     std::string reason;
     if (!isUpsHexapod(model, &reason)) {
         throw Error("assembly modes: " + model.name + " is not a 6-UPS robot (a U at the base, the actuated P, an S " +
@@ -521,7 +521,7 @@ AssemblyModes assemblyModes(const Model& model, const ActuatorVector& u, const A
         }
     }
 
-    AssemblyModes result;
+    HomotopyModes result;
     result.executable = findPhc(options.executable);
     if (result.executable.empty()) {
         throw Error(options.executable.empty()
@@ -597,7 +597,7 @@ AssemblyModes assemblyModes(const Model& model, const ActuatorVector& u, const A
             ++result.rejected;
             continue;
         }
-        const bool known = std::any_of(result.modes.begin(), result.modes.end(), [&](const AssemblyMode& m) {
+        const bool known = std::any_of(result.modes.begin(), result.modes.end(), [&](const HomotopyMode& m) {
             const Eigen::Matrix3d R_m = rotation(m.pose(3), m.pose(4), m.pose(5));
             return (m.pose.head<3>() - p).cwiseAbs().maxCoeff() <= kSameMode * (1.0 + p.norm()) &&
                    (R_m - R).cwiseAbs().maxCoeff() <= kSameMode;
@@ -605,12 +605,12 @@ AssemblyModes assemblyModes(const Model& model, const ActuatorVector& u, const A
         if (!known) result.modes.push_back({pose, u_error, data.actuation_condition});
     }
     // nearest to home first: position distance plus the rotation angle from home
-    const auto distance = [&](const AssemblyMode& m) {
+    const auto distance = [&](const HomotopyMode& m) {
         const Eigen::Matrix3d turn = rotation(m.pose(3), m.pose(4), m.pose(5)) * model.home_rotation.transpose();
         return (m.pose.head<3>() - p_home).norm() + Eigen::AngleAxisd(turn).angle();
     };
     std::sort(result.modes.begin(), result.modes.end(),
-              [&](const AssemblyMode& x, const AssemblyMode& y) { return distance(x) < distance(y); });
+              [&](const HomotopyMode& x, const HomotopyMode& y) { return distance(x) < distance(y); });
     return result;
 }
 

@@ -26,7 +26,7 @@
 
 namespace nocdyn::spatial {
 
-struct AssemblyModeOptions {
+struct HomotopyOptions {
     /// The phc executable: empty to look for `phc` in the folders of PATH.
     std::string executable;
     /// phc is killed after this many seconds (an Error says so).
@@ -43,7 +43,7 @@ struct AssemblyModeOptions {
     bool polyhedral = true;
 };
 
-struct AssemblyMode {
+struct HomotopyMode {
     TaskVector pose;  ///< [x, y, z, roll, pitch, yaw]
     /// max_k |u_k(pose) - u_k|, u(pose) by spatial::inverseKinematics
     double u_error = 0.0;
@@ -51,8 +51,8 @@ struct AssemblyMode {
     double actuation_condition = 1.0;
 };
 
-struct AssemblyModes {
-    std::vector<AssemblyMode> modes;  ///< every real assembly mode once, by increasing distance from home
+struct HomotopyModes {
+    std::vector<HomotopyMode> modes;  ///< every real assembly mode once, by increasing distance from home
     int paths = 0;                    ///< the paths phc tracked
     int solutions = 0;                ///< the finite complex solutions phc found (40 for a general platform)
     int real_solutions = 0;           ///< of them real (before the polish and the check)
@@ -76,7 +76,7 @@ struct AssemblyModes {
 /// in actuator order). Throws nocdyn::Error for a robot of another kind, a u of the wrong size or
 /// not finite, a leg of zero length, a missing phc (naming the package phcpack), a phc that fails,
 /// times out or writes what cannot be read.
-[[nodiscard]] AssemblyModes assemblyModes(const Model& model, const ActuatorVector& u,
-                                          const AssemblyModeOptions& options = {});
+[[nodiscard]] HomotopyModes homotopyModes(const Model& model, const ActuatorVector& u,
+                                          const HomotopyOptions& options = {});
 
 }  // namespace nocdyn::spatial
