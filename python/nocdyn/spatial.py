@@ -144,6 +144,28 @@ class SpatialRobot:
                                   [float(v) for v in start])
         return poses[0] if single else poses
 
+    def assembly_modes(self, u, *, timeout=120.0, seed=0, executable="", details=False):
+        """Every real assembly mode of a 6-UPS hexapod (each limb a U at the base, the actuated
+        P, an S at the platform) at the actuator values u: the poses at which the legs have the
+        lengths that u gives, by polynomial homotopy continuation (PHCpack's ``phc -b``, Debian
+        package phcpack, run as a separate program).
+
+        u of shape (6,) (m, actuator order) gives an array of shape (m, 6) of poses
+        [x, y, z, roll, pitch, yaw], nearest to home first, each checked by the inverse
+        kinematics (its u back to 1e-9 m). ``timeout`` [s] stops phc; ``seed`` fixes phc's
+        random numbers (0: from the clock); ``executable`` is phc's path (empty: ``phc`` on
+        PATH). details=True returns (poses, u_error, info) with info the counts (paths,
+        finite complex solutions, real ones, rejected ones) and phc's wall and CPU seconds.
+        Raises nocdyn.Error for another kind of robot, a missing phc (naming phcpack), a phc
+        that fails or runs too long. The GIL is released while phc runs.
+        """
+        u_arr = _input(u, "u", (self.actuators,))
+        poses, errors, info = self._core._assembly_modes(np.ascontiguousarray(u_arr), float(timeout), int(seed),
+                                                         str(executable))
+        if details:
+            return poses, errors, info
+        return poses
+
     def __repr__(self):
         return (f"SpatialRobot('{self.name}': {self.limbs} limbs, {self.actuators} actuators, "
                 f"pose {', '.join(self.coordinates)})")

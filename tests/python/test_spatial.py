@@ -2,12 +2,16 @@
 inverse_dynamics takes (N, 6) or (N, 3) samples (the identities themselves are checked in C++,
 tests/spatial_dynamics_test.cpp)."""
 
+import pathlib
 import re
+import shutil
+import tempfile
 
 import numpy as np
 import pytest
 
 import nocdyn
+from conftest import skip_or_fail_in_ci
 
 
 def _load(source_dir, name):
@@ -230,3 +234,40 @@ def test_forward_kinematics_refuses_bad_values(source_dir):
         robot.forward_kinematics([0.1, np.nan, 0.2])
     stewart = _load(source_dir, "stewart")
     assert stewart.forward_kinematics([3.0, 3.0, 3.0, 3.0, 3.0, -1.0]) == []  # out of reach
+
+
+def _phc_folders():
+    return {p.name for p in pathlib.Path(tempfile.gettempdir()).glob("nocdyn-phc-*")}
+
+
+def test_the_assembly_modes_at_the_home_leg_lengths_hold_the_home_pose_and_give_back_u(source_dir):
+    if shutil.which("phc") is None:
+        skip_or_fail_in_ci("phc is not installed (Debian package phcpack)")
+    robot = _load(source_dir, "stewart")
+    u = robot.inverse_dynamics(robot.home, np.zeros(6), np.zeros(6)).u
+    before = _phc_folders()
+    poses, u_error, info = robot.assembly_modes(u, seed=20261129, details=True)
+    assert poses.shape == (8, 6) and u_error.shape == (8,)
+    assert info["paths"] == 128 and info["solutions"] == 28 and info["real_solutions"] == 8
+    np.testing.assert_allclose(poses[0], robot.home, atol=1e-9)  # nearest to home first
+    assert np.all(u_error <= 1e-9)
+    # the table translated to z -> -z (base and platform points each in one plane)
+    mirrored = robot.home * np.array([1, 1, -1, 1, 1, 1])
+    assert np.min(np.max(np.abs(poses - mirrored), axis=1)) < 1e-9
+    # a pose near home: the inverse dynamics there gives back u
+    near = robot.home + np.array([0.01, -0.02, 0.03, 0.02, -0.01, 0.05])
+    u_near = robot.inverse_dynamics(near, np.zeros(6), np.zeros(6)).u
+    modes = robot.assembly_modes(u_near)
+    np.testing.assert_allclose(modes[0], near, atol=1e-9)
+    np.testing.assert_allclose(robot.inverse_dynamics(modes[0], np.zeros(6), np.zeros(6)).u, u_near, atol=1e-9)
+    assert _phc_folders() <= before, "a temporary folder was left behind"
+
+
+def test_assembly_modes_refuse_other_robots_and_bad_u(source_dir):
+    with pytest.raises(nocdyn.Error, match="is not a 6-UPS robot"):
+        _load(source_dir, "6-rus").assembly_modes(np.zeros(6))
+    stewart = _load(source_dir, "stewart")
+    with pytest.raises(nocdyn.Error, match=r"u: expected shape \(6,\)"):
+        stewart.assembly_modes(np.zeros(5))
+    with pytest.raises(nocdyn.Error, match="phcpack"):
+        stewart.assembly_modes(np.zeros(6), executable="/nonexistent/phc")
