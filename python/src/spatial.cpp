@@ -148,48 +148,50 @@ Rows track(const SpatialRobot& robot, const py::handle& u, const std::vector<dou
         throw Error("sample " + std::to_string(failed + 1) + ": " + spatial::describeDirect(failure, model));
     }
     return out;
-    /// The real assembly modes of a 6-UPS robot at the actuator values u (nocdyn/analysis/
-    /// assembly_modes.hpp): (poses (m, 6), u_error (m,), a dict of the counts and phc's times).
-    py::tuple homotopyModes(const SpatialRobot& robot, const py::handle& u, double timeout, unsigned seed,
-                            const std::string& executable) {
-        const spatial::Model& model = *robot.model;
-        const Rows values = Rows::ensure(u);
-        if (!values || values.ndim() != 1 || values.shape(0) != model.actuators) {
-            throw Error("u: expected shape (" + std::to_string(model.actuators) + ",)");
-        }
-        spatial::ActuatorVector u_k(model.actuators);
-        for (int a = 0; a < model.actuators; ++a) u_k(a) = values.data()[a];
-        spatial::HomotopyOptions options;
-        options.timeout = timeout;
-        options.seed = seed;
-        options.executable = executable;
-        spatial::HomotopyModes result;
-        {
-            const py::gil_scoped_release release;
-            result = spatial::homotopyModes(model, u_k, options);
-        }
-        const auto m = static_cast<py::ssize_t>(result.modes.size());
-        Rows poses({m, static_cast<py::ssize_t>(6)}), errors({m});
-        double *to = poses.mutable_data(), *error = errors.mutable_data();
-        for (py::ssize_t k = 0; k < m; ++k) {
-            const spatial::HomotopyMode& mode = result.modes[static_cast<std::size_t>(k)];
-            for (int i = 0; i < 6; ++i) to[k * 6 + i] = mode.pose(i);
-            error[k] = mode.u_error;
-        }
-        py::dict info;
-        info["paths"] = result.paths;
-        info["solutions"] = result.solutions;
-        info["real_solutions"] = result.real_solutions;
-        info["rejected"] = result.rejected;
-        info["seconds"] = result.seconds;
-        info["cpu_seconds"] = result.cpu_seconds;
-        info["executable"] = result.executable;
-        return py::make_tuple(poses, errors, info);
-    }
+}
 
-    SpatialRobot make(const SpatialRobotDescription& description) {
-        return SpatialRobot{std::make_shared<const spatial::Model>(description)};
+/// The real assembly modes of a 6-UPS robot at the actuator values u (nocdyn/analysis/
+/// assembly_modes.hpp): (poses (m, 6), u_error (m,), a dict of the counts and phc's times).
+py::tuple homotopyModes(const SpatialRobot& robot, const py::handle& u, double timeout, unsigned seed,
+                        const std::string& executable) {
+    const spatial::Model& model = *robot.model;
+    const Rows values = Rows::ensure(u);
+    if (!values || values.ndim() != 1 || values.shape(0) != model.actuators) {
+        throw Error("u: expected shape (" + std::to_string(model.actuators) + ",)");
     }
+    spatial::ActuatorVector u_k(model.actuators);
+    for (int a = 0; a < model.actuators; ++a) u_k(a) = values.data()[a];
+    spatial::HomotopyOptions options;
+    options.timeout = timeout;
+    options.seed = seed;
+    options.executable = executable;
+    spatial::HomotopyModes result;
+    {
+        const py::gil_scoped_release release;
+        result = spatial::homotopyModes(model, u_k, options);
+    }
+    const auto m = static_cast<py::ssize_t>(result.modes.size());
+    Rows poses({m, static_cast<py::ssize_t>(6)}), errors({m});
+    double *to = poses.mutable_data(), *error = errors.mutable_data();
+    for (py::ssize_t k = 0; k < m; ++k) {
+        const spatial::HomotopyMode& mode = result.modes[static_cast<std::size_t>(k)];
+        for (int i = 0; i < 6; ++i) to[k * 6 + i] = mode.pose(i);
+        error[k] = mode.u_error;
+    }
+    py::dict info;
+    info["paths"] = result.paths;
+    info["solutions"] = result.solutions;
+    info["real_solutions"] = result.real_solutions;
+    info["rejected"] = result.rejected;
+    info["seconds"] = result.seconds;
+    info["cpu_seconds"] = result.cpu_seconds;
+    info["executable"] = result.executable;
+    return py::make_tuple(poses, errors, info);
+}
+
+SpatialRobot make(const SpatialRobotDescription& description) {
+    return SpatialRobot{std::make_shared<const spatial::Model>(description)};
+}
 
 }  // namespace
 
@@ -261,8 +263,9 @@ void exposeSpatial(py::module_& m) {
                 return runSpatialInverseDynamics(*r.model, options, progress);
             },
             py::arg("options"), py::arg("progress") = py::none(),
-            "nocdyn.inverse_dynamics of this robot: (columns, rows) along options.trajectory");
-    .def("_assembly_modes", &homotopyModes, py::arg("u"), py::arg("timeout"), py::arg("seed"), py::arg("executable"));
+            "nocdyn.inverse_dynamics of this robot: (columns, rows) along options.trajectory")
+        .def("_assembly_modes", &homotopyModes, py::arg("u"), py::arg("timeout"), py::arg("seed"),
+             py::arg("executable"));
 }
 
 }  // namespace nocdyn::python
