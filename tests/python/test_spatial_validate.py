@@ -12,9 +12,12 @@ pytestmark = pytest.mark.skipif(not hasattr(_nocdyn, "_run_validate"),
                                 reason="validate is built with Simbody and MuJoCo only")
 
 
-def test_a_spatial_robot_path_gives_the_clis_table_and_agrees_with_simbody(source_dir, tmp_path, cli):
-    robot = str(source_dir / "robots" / "delta.yaml")
-    trajectory = str(source_dir / "trajectories" / "delta-pick.yaml")
+def _delta(source_dir):
+    return str(source_dir / "robots" / "delta.yaml"), str(source_dir / "trajectories" / "delta-pick.yaml")
+
+
+def test_a_spatial_robot_path_agrees_with_simbody(source_dir):
+    robot, trajectory = _delta(source_dir)
     table = nocdyn.validate(trajectory, robot=robot, rate=100)
     n = 3
     prefixes = ("u", "tau", "simbody_tau", "simbody_dtau")
@@ -36,13 +39,21 @@ def test_a_spatial_robot_path_gives_the_clis_table_and_agrees_with_simbody(sourc
     for name in ("t", "x", "z", "u1", "u3", "tau1", "tau2", "tau3"):
         assert np.allclose(data[:, table.columns.index(name)], ours[:, columns.index(name)], rtol=0.0,
                            atol=1e-12 * max(1.0, np.max(np.abs(ours[:, columns.index(name)]))))
-    # the command line's table, number for number
+
+
+def test_python_gives_the_command_lines_table(source_dir, tmp_path, cli):
+    robot, trajectory = _delta(source_dir)
+    table = nocdyn.validate(trajectory, robot=robot, rate=100)
+    data = np.asarray(table.data)
     code, _, err = cli("validate", "--robot", robot, "--trajectory", trajectory, "--rate", 100, "-o",
                        tmp_path / "v.csv")
     assert code == 0, err
     written = np.loadtxt(tmp_path / "v.csv", delimiter=",", skiprows=1)
     assert (tmp_path / "v.csv").read_text().splitlines()[0] == ",".join(table.columns)
     assert np.allclose(written, data, rtol=1e-15, atol=0.0)
+    # and its report: the samples and the agreement table
+    assert table.text.startswith("nocdyn validate: delta, delta-pick, 100 samples\n| engine | actuator |")
+    assert table.text in err
 
 
 def test_a_bad_spatial_trajectory_is_one_clear_error(source_dir):
