@@ -56,12 +56,12 @@ ValidateResult runSpatialValidate(const ValidateOptions& options, Observer& obse
         dp[k] = dpk;
         ddp[k] = ddpk;
     }
+    validation::SimbodySpatialMechanism engine(description);
     Eigen::MatrixXd theirs;
     try {
-        validation::SimbodySpatialMechanism engine(description);
         theirs = engine.actuatorForces(p, dp, ddp);
     } catch (const Error& e) {
-        // the engine numbers its samples from 0: name the time too
+        // the engine numbers its samples from 0: say at which times they are
         throw Error(std::string(e.what()) + " (sample k is at t = k / " + text::precise(options.rate) + " Hz)");
     }
     stopIfRequested(observer);
