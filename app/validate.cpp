@@ -3,6 +3,8 @@
 #include <array>
 #include <map>
 
+#include "app/pose_spatial.hpp"
+#include "app/validate_spatial.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/printable.hpp"
@@ -14,6 +16,7 @@
 namespace nocdyn::app {
 
 ValidateResult runValidate(const ValidateOptions& options, Observer& observer) {
+    if (isSpatialRobot(options.robot)) return runSpatialValidate(options, observer);
     validate(static_cast<const SamplingOptions&>(options));
     const RobotDescription robot = loadRobot(options.robot);
     const PoseTrajectory trajectory =
@@ -73,7 +76,7 @@ std::optional<std::string> checkSpatialRobot(const RobotSource& source) {
     out += "  actuators: " + std::to_string(robot.actuatorCount()) + " (" + byType(actuated) + ")\n";
     out +=
         "  mass: " + text::number(robot.totalMass()) + " kg (platform " + text::number(robot.platform.mass) + " kg)\n";
-    out += "the engines' spatial models are not built yet: nothing was compared with them\n";
+    out += "give --trajectory to compare its actuator forces with Simbody's spatial model along it\n";
     return out;
 }
 

@@ -25,11 +25,14 @@ struct ValidateResult {
     std::string agreement;
 };
 
+/// A spatial robot file (space: spatial) goes to runSpatialValidate (app/validate_spatial.hpp:
+/// Simbody only).
 [[nodiscard]] ValidateResult runValidate(const ValidateOptions& options, Observer& observer);
 
 /// When `source` is a spatial robot file (`space: spatial`): reads and checks it and returns a
-/// short summary (limbs, joints by type, actuators, mass); nothing computes it yet. std::nullopt
-/// for any other robot. Throws nocdyn::Error naming the file, line and field of an error in it.
+/// short summary (limbs, joints by type, actuators, mass), what `validate` says of it without a
+/// trajectory. std::nullopt for any other robot. Throws nocdyn::Error naming the file, line and field of an error in
+/// it.
 [[nodiscard]] std::optional<std::string> checkSpatialRobot(const RobotSource& source);
 
 }  // namespace nocdyn::app

@@ -8,7 +8,6 @@
 #include "common.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/escape.hpp"
-#include "nocdyn/io/robot_file.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -21,16 +20,18 @@ struct Options : app::ValidateOptions {
 };
 
 void run(const Options& options) {
-    // a spatial robot file: read, checked and summarised (nothing computes it yet)
-    if (const std::optional<std::string> summary = app::checkSpatialRobot(options.robot)) {
-        if (!options.output.empty()) {
-            throw Error(options.robot.path + ": " + io::kSpatialNotComputed +
-                        " (validate only summarises it: --output " + "takes nothing)");
+    if (options.trajectory.empty()) {
+        // a spatial robot file without a trajectory: read, checked and summarised
+        if (const std::optional<std::string> summary = app::checkSpatialRobot(options.robot)) {
+            if (!options.output.empty()) {
+                throw Error(options.robot.path +
+                            ": --output takes the comparison along a trajectory: give --trajectory");
+            }
+            std::cout << *summary;
+            return;
         }
-        std::cout << *summary;
-        return;
+        throw CLI::RequiredError("--trajectory");
     }
-    if (options.trajectory.empty()) throw CLI::RequiredError("--trajectory");
     TerminalObserver observer("nocdyn validate");
     const app::ValidateResult result = app::runValidate(options, observer);
     writeTable(result.table, options.output);
@@ -51,10 +52,12 @@ void addValidateCommand(CLI::App& app) {
         "revolute joint; gravity and joint friction included) and driven by the same platform\n"
         "trajectory. Writes CSV with the columns t,u1..un,tau1..taun,simbody_u1..n,simbody_tau1..n,\n"
         "mujoco_u1..n,mujoco_tau1..n,simbody_dtau1..n,mujoco_dtau1..n and prints on stderr the largest\n"
-        "absolute and relative difference per actuator and engine. A spatial robot file (space: spatial)\n"
-        "is only read, checked and summarised on stdout (limbs, joints by type, actuators, mass).");
+        "absolute and relative difference per actuator and engine. A spatial robot (space: spatial) is\n"
+        "compared with Simbody's spatial model only (MuJoCo's are planar for now), in the columns\n"
+        "t,x,y,z[,roll,pitch,yaw],u1..n,tau1..n,simbody_tau1..n,simbody_dtau1..n; without --trajectory\n"
+        "it is read, checked and summarised on stdout.");
     addSamplingOptions(*command, *options);
-    // required unless the robot is a spatial one, which is only read and checked (run)
+    // required unless the robot is a spatial one, then only read, checked and summarised (run)
     command->get_option("--trajectory")->required(false);
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());

@@ -787,9 +787,15 @@ def validate(trajectory, *, robot=None, set=None, output=None, progress=None, **
     """Our actuator forces against Simbody's and MuJoCo's (``nocdyn validate``; only when the
     package was built with both engines). Returns a Table with the CSV's columns
     (t, u1..un, tau1..taun, simbody_..., mujoco_..., simbody_dtau1..n, mujoco_dtau1..n); its text
-    holds the largest differences. output: also write the CSV."""
+    holds the largest differences. output: also write the CSV. A spatial robot file's path
+    (space: spatial) with a spatial trajectory file is compared with Simbody only (MuJoCo's
+    models are planar for now): columns t, x, y, z[, roll, pitch, yaw], u1..un, tau1..taun,
+    simbody_tau1..n, simbody_dtau1..n."""
+    from .spatial import SpatialRobot
     if not hasattr(_nocdyn, "_run_validate"):
         raise _nocdyn.Error("validate needs the package built with Simbody and MuJoCo")
+    if isinstance(robot, SpatialRobot):
+        raise ValueError("robot: validate takes a spatial robot file's path, not a SpatialRobot")
     bound = _bound_options(_nocdyn.ValidateOptions, {"trajectory": trajectory, **options})
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("validate", [("robot", robot), ("trajectory", trajectory)], [("output", output)])

@@ -80,21 +80,26 @@ io::Table toTable(const EngineComparison& c) {
     return table;
 }
 
-std::string agreementTable(const EngineComparison& c) {
+std::string agreementRows(const std::vector<const EngineAgreement*>& engines) {
     std::string text =
         "| engine | actuator | max abs(tau - tau_engine) [N or N m] | relative to our peak abs(tau) |\n"
         "| --- | --- | --- | --- |\n";
     char row[200];
-    for (const EngineAgreement* a : {&c.simbody_agreement, &c.mujoco_agreement}) {
+    for (const EngineAgreement* a : engines) {
         for (std::size_t j = 0; j < a->max_abs.size(); ++j) {
             std::snprintf(row, sizeof row, "| %s | %zu | %.3e | %.3e |\n", a->engine.c_str(), j + 1, a->max_abs[j],
                           a->max_rel_peak[j]);
             text += row;
         }
     }
+    return text;
+}
+
+std::string agreementTable(const EngineComparison& c) {
+    char row[200];
     std::snprintf(row, sizeof row, "\nLargest actuator-variable difference: Simbody %.3e, MuJoCo %.3e (m or rad).\n",
                   c.simbody_agreement.max_u_abs, c.mujoco_agreement.max_u_abs);
-    return text + row;
+    return agreementRows({&c.simbody_agreement, &c.mujoco_agreement}) + row;
 }
 
 }  // namespace nocdyn::validation

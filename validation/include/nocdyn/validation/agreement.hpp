@@ -43,4 +43,8 @@ struct EngineComparison {
 /// A Markdown table of the largest differences per actuator and engine.
 [[nodiscard]] std::string agreementTable(const EngineComparison& comparison);
 
+/// The Markdown table of agreementTable for these engines' agreements alone (header and one
+/// row per engine and actuator), for a comparison made elsewhere (a spatial robot's).
+[[nodiscard]] std::string agreementRows(const std::vector<const EngineAgreement*>& engines);
+
 }  // namespace nocdyn::validation
