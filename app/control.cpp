@@ -5,6 +5,8 @@
 #include <cstdio>
 #include <iterator>
 
+#include "app/control_spatial.hpp"
+#include "app/pose_spatial.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
@@ -151,6 +153,7 @@ void validate(const ControlOptions& options) {
 }
 
 ControlResult runControl(const ControlOptions& options, Observer& observer) {
+    if (isSpatialRobot(options.robot)) return runSpatialControl(options, observer);
     validate(options);
     const bool encoders = options.measure == "encoders";
     const RobotDescription robot = loadRobot(options.robot);
@@ -201,6 +204,7 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
 }
 
 render::Figure trackingFigure(const ControlResult& result) {
+    if (result.loop.t.empty()) throw Error("the tracking figure of a spatial robot is planar for now (--figure)");
     return trackingErrorFigure(render::literalText(result.trajectory) + ": actuator tracking errors", {result.loop});
 }
 

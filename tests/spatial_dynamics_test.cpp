@@ -598,15 +598,46 @@ TEST(SpatialControl, ComputedTorqueTracksTheExampleTrajectoriesAndPdLags) {
             std::string(NOCDYN_SOURCE_DIR) + "/trajectories/" + file + ".yaml", model.task_dimension);
         LoopOptions options;
         options.rate = 2000.0;
-        options.duration = 0.1;
+        options.duration = 0.05;
         const LoopResult ct = runPoseLoop(model, trajectory, options);
-        ASSERT_EQ(ct.t.size(), 200U);
+        ASSERT_EQ(ct.t.size(), 100U);
         options.law = ControlLaw::pd;
         const LoopResult pd = runPoseLoop(model, trajectory, options);
         // measured 1.7e-7 m (Stewart) and 1.9e-8 m (Delta); PD 1.0e-4 and 9.6e-5 m
         EXPECT_LT(ct.peak_error.head<3>().maxCoeff(), 1e-6) << name;
         EXPECT_GT(pd.peak_error.head<3>().maxCoeff(), 100.0 * ct.peak_error.head<3>().maxCoeff()) << name;
         EXPECT_EQ(ct.saturated_ticks, 0U);
+    }
+}
+
+TEST(SpatialControl, TheCommandLineTracksAndRefusesWhatIsPlanarForNow) {
+    const std::filesystem::path dir = test::freshScratchDirectory("spatial_control");
+    const std::string robot = std::string(NOCDYN_SOURCE_DIR) + "/robots/delta.yaml";
+    const std::string trajectory = std::string(NOCDYN_SOURCE_DIR) + "/trajectories/delta-pick.yaml";
+    const std::string output = (dir / "loop.csv").string();
+    const test::CliResult r = test::runCli("control --robot " + robot + " --trajectory " + trajectory +
+                                           " --duration 0.05 --rate 2000 -o " + output);
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_NE(r.out.find("computed-torque on the nocdyn plant, delta, delta-pick"), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("saturated ticks: 0 of 100"), std::string::npos) << r.out;
+    const io::Table loop = io::readCsvFile(output);
+    ASSERT_EQ(loop.rows.size(), 100U);
+    ASSERT_EQ(loop.columns.size(), 1U + 3U + 3U + 3U + 3U);
+    EXPECT_EQ(loop.columns[1], "x_d");
+    EXPECT_EQ(loop.columns[4], "x");
+    // the table's tracking error is the loop's: below a micrometre
+    double peak = 0.0;
+    for (const std::vector<double>& row : loop.rows) {
+        for (std::size_t i = 0; i < 3; ++i) peak = std::max(peak, std::abs(row[1 + i] - row[4 + i]));
+    }
+    EXPECT_GT(peak, 0.0);
+    EXPECT_LT(peak, 1e-6);
+    for (const std::string& more : {std::string(" --plant simbody"), std::string(" --payload-mass 1"),
+                                    std::string(" --figure ") + (dir / "f").string()}) {
+        const test::CliResult bad =
+            test::runCli("control --robot " + robot + " --trajectory " + trajectory + " --duration 0.01" + more);
+        EXPECT_NE(bad.exit_code, 0) << more;
+        EXPECT_NE(bad.err.find("planar for now"), std::string::npos) << more << ": " << bad.err;
     }
 }
 

@@ -4,6 +4,7 @@
 #include <memory>
 
 #include "app/control.hpp"
+#include "app/pose_spatial.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "progress.hpp"
@@ -20,6 +21,9 @@ struct Options : app::ControlOptions {
 
 void run(Options options) {
     options.sensor_log = !options.log.empty();
+    if (!options.figure.empty() && app::isSpatialRobot(options.robot)) {
+        throw Error(options.robot.path + ": the tracking figure of a spatial robot is planar for now (--figure)");
+    }
     TerminalObserver observer("nocdyn control");
     app::ControlResult result;
     result = app::runControl(options, observer);
@@ -42,6 +46,8 @@ void addControlCommand(CLI::App& app) {
         "Kp = w^2, Kd = 2w, w = 2 pi f_n; pd: A_p^T tau = M_p(home) (Kp e + Kd e'); tau minimum-norm when redundant.\n"
         "Forces held between ticks, each clipped at its joint's effort. Prints RMS and peak errors.\n"
         "A two-DOF robot (motion: translation): p = [x, y], a trajectory keyed x, y, the plant nocdyn by default.\n"
+        "A spatial robot (space: spatial): p = [x, y, z, roll, pitch, yaw] (or [x, y, z]) from a spatial trajectory\n"
+        "file, on nocdyn's plant; CSV t, x_d.., x.., u1..un, tau1..taun.\n"
         "CSV: " +
             io::columnList(io::TableId::closed_loop) +
             ".\n"
