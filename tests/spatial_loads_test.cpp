@@ -246,6 +246,26 @@ TEST(SpatialLoads, TheEnvelopeAndAPlanarTrajectoryAreRefusedInOneLineWithNoFile)
             "planar robots only");
 }
 
+TEST(SpatialLoads, AFailingSampleIsNamedByItsTimeAndLimbWithNoFile) {
+    const std::filesystem::path dir = test::freshScratchDirectory("spatial_loads_failing");
+    const std::filesystem::path csv = dir / "loads.csv";
+    const auto refused = [&](const std::string& z, const std::string& expected) {
+        const std::filesystem::path path = dir / "reach.yaml";
+        std::ofstream(path) << "name: reach\nx: {offset: 0.0}\ny: {offset: 0.0}\nz: " << z << "\n";
+        const test::CliResult r = test::runCli("loads --robot " + source("robots/delta.yaml") + " --trajectory " +
+                                               path.string() + " --duration 0.5 --rate 100 --output " + csv.string());
+        EXPECT_NE(r.exit_code, 0) << z;
+        EXPECT_EQ(r.err.rfind("nocdyn: error: " + expected, 0), 0U) << r.err;
+        EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+        EXPECT_FALSE(std::filesystem::exists(csv)) << z;
+    };
+    // 1.4 m below the base: beyond the 0.35 + 0.8 m arms
+    refused("{offset: -1.4}", "t = 0 s: pose out of reach: limb 1 (arm1) cannot close");
+    // down from -0.8 m: the first arm's motor leaves its range at the ninth sample
+    refused("{offset: -0.8, harmonics: [{amplitude: 0.6, frequency: 1}]}",
+            "t = 0.08 s: joint range exceeded: limb 1 (arm1), joint 1: q = -0.835554, range [-0.8, 1.2]");
+}
+
 TEST(SpatialLoads, TheDeltasUJointsPassMomentsAboutTheirCrossesNormalsOnly) {
     // a U passes no moment about either of its axes: its moment is along a1 x a2 (the cross's
     // normal), and not zero: the parallelogram's U joints carry the arm's bending
