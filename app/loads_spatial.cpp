@@ -8,6 +8,7 @@
 #include "app/inverse_dynamics_spatial.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/printable.hpp"
 #include "nocdyn/spatial_reactions.hpp"
 #include "nocdyn/text.hpp"
 
@@ -44,7 +45,9 @@ io::Table spatialLoadsTable(const spatial::Model& model, const SpatialLoadsResul
 }
 
 std::string spatialJointName(const SpatialLoadsResult& r, std::size_t j, std::size_t k) {
-    return "limb " + std::to_string(j + 1) + " (" + r.limb_names[j] + ") joint " + std::to_string(k + 1);
+    // a limb's name from the file, its control bytes escaped: it cannot drive the terminal
+    return "limb " + std::to_string(j + 1) + " (" + text::printable(r.limb_names[j]) + ") joint " +
+           std::to_string(k + 1);
 }
 
 std::string spatialLoadsText(const SpatialLoadsResult& r) {
@@ -59,8 +62,8 @@ std::string spatialLoadsText(const SpatialLoadsResult& r) {
     }
     const auto wj = static_cast<std::size_t>(r.worst_limb - 1), wk = static_cast<std::size_t>(r.worst_joint - 1);
     const SpatialJointLoad& w = r.joint[wj][wk];
-    text += text::format("largest: %s (%c), %.4g N at t = %.4f s\n", spatialJointName(r, wj, wk).c_str(), w.type, w.peak_force,
-                         w.peak_force_t);
+    text += text::format("largest: %s (%c), %.4g N at t = %.4f s\n", spatialJointName(r, wj, wk).c_str(), w.type,
+                         w.peak_force, w.peak_force_t);
     return text;
 }
 

@@ -266,6 +266,24 @@ TEST(SpatialLoads, AFailingSampleIsNamedByItsTimeAndLimbWithNoFile) {
             "t = 0.08 s: joint range exceeded: limb 1 (arm1), joint 1: q = -0.835554, range [-0.8, 1.2]");
 }
 
+TEST(SpatialLoads, ALimbsNameReachesTheReportWithItsControlBytesEscaped) {
+    const std::filesystem::path dir = test::freshScratchDirectory("spatial_loads_name");
+    std::ifstream in(source("robots/delta.yaml"));
+    std::ostringstream text;
+    text << in.rdbuf();
+    const std::string original = text.str();
+    const std::size_t at = original.find("name: arm1");
+    ASSERT_NE(at, std::string::npos);
+    const std::filesystem::path robot = dir / "delta.yaml";
+    std::ofstream(robot) << original.substr(0, at) << R"(name: "arm\u001b[2J\nnocdyn: forged")"
+                         << original.substr(at + 10);
+    const test::CliResult r = test::runCli("loads --robot " + robot.string() + " --trajectory " +
+                                           source("trajectories/delta-pick.yaml") + " --duration 0.05 --rate 100");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    EXPECT_EQ(r.out.find('\x1b'), std::string::npos) << r.out;
+    EXPECT_NE(r.out.find("limb 1 (arm\\x1B[2J\\x0Anocdyn: forged) joint 1"), std::string::npos) << r.out;
+}
+
 TEST(SpatialLoads, TheDeltasUJointsPassMomentsAboutTheirCrossesNormalsOnly) {
     // a U passes no moment about either of its axes: its moment is along a1 x a2 (the cross's
     // normal), and not zero: the parallelogram's U joints carry the arm's bending
