@@ -162,9 +162,10 @@ spatial::Trajectory spatialTrajectoryOf(const SamplingOptions& options, int dime
     return io::loadSpatialTrajectory(options.trajectory, dimension);
 }
 
-InverseDynamicsResult runSpatialInverseDynamics(const spatial::Model& model, const spatial::Trajectory& trajectory,
-                                                const SamplingOptions& sampling, bool allow_limits, TableSink& table,
-                                                Observer& observer) {
+InverseDynamicsResult streamSpatialTrajectory(const spatial::Model& model, const spatial::Trajectory& trajectory,
+                                              const SamplingOptions& sampling, bool allow_limits, Observer& observer,
+                                              const std::function<void()>& start,
+                                              const std::function<void(const SpatialSample&)>& sink) {
     validate(sampling);
     if (trajectory.dimension != model.task_dimension) {
         throw Error("trajectory '" + trajectory.name + "': " + std::to_string(trajectory.dimension) +
@@ -173,24 +174,14 @@ InverseDynamicsResult runSpatialInverseDynamics(const spatial::Model& model, con
     const double duration = sampling.duration ? *sampling.duration : trajectory.duration.value_or(0.2);
     const SampleGrid grid = sampleGrid(duration, sampling.rate);
     requireSampling(trajectory, grid);
-    table.columns(spatialInverseDynamicsColumns(model));
-    const int d = model.task_dimension, n = model.actuators;
-    std::vector<double> row(static_cast<std::size_t>(1 + d + 4 * n + 1));
+    if (start) start();
     SpatialSampler sampler(model, trajectory, allow_limits);
     Meter meter(observer, static_cast<double>(grid.count) / grid.rate, "s");
     for (std::size_t k = 0; k < grid.count; ++k) {
         const double t = grid.time(k);
         if (k > 0) sampler.checkBetween(grid.time(k - 1), t);
         sampler.evaluate(t, false);
-        const spatial::Data& data = sampler.data();
-        std::size_t c = 0;
-        row[c++] = t;
-        for (int i = 0; i < d; ++i) row[c++] = sampler.p(i);
-        for (const spatial::ActuatorVector* v : {&data.u, &data.du, &data.ddu, &data.tau}) {
-            for (int a = 0; a < n; ++a) row[c++] = (*v)(a);
-        }
-        row[c] = sampler.kinetic;
-        table.row(row);
+        sink(SpatialSample{t, sampler.p, sampler.data(), sampler.kinetic});
         meter(t);
     }
     InverseDynamicsResult out;
@@ -198,6 +189,26 @@ InverseDynamicsResult runSpatialInverseDynamics(const spatial::Model& model, con
     out.summary = std::move(sampler.summary);
     for (const std::string& violation : out.summary.limit_violations) observer.warning(violation);
     return out;
+}
+
+InverseDynamicsResult runSpatialInverseDynamics(const spatial::Model& model, const spatial::Trajectory& trajectory,
+                                                const SamplingOptions& sampling, bool allow_limits, TableSink& table,
+                                                Observer& observer) {
+    const int d = model.task_dimension, n = model.actuators;
+    std::vector<double> row(static_cast<std::size_t>(1 + d + 4 * n + 1));
+    return streamSpatialTrajectory(
+        model, trajectory, sampling, allow_limits, observer,
+        [&] { table.columns(spatialInverseDynamicsColumns(model)); },
+        [&](const SpatialSample& s) {
+            std::size_t c = 0;
+            row[c++] = s.t;
+            for (int i = 0; i < d; ++i) row[c++] = s.p(i);
+            for (const spatial::ActuatorVector* v : {&s.data.u, &s.data.du, &s.data.ddu, &s.data.tau}) {
+                for (int a = 0; a < n; ++a) row[c++] = (*v)(a);
+            }
+            row[c] = s.kinetic;
+            table.row(row);
+        });
 }
 
 InverseDynamicsResult runSpatialInverseDynamics(const InverseDynamicsOptions& options, TableSink& table,

@@ -7,6 +7,8 @@
 #include <numbers>
 #include <utility>
 
+#include "app/loads_spatial.hpp"
+#include "app/pose_spatial.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/drawing.hpp"
 #include "nocdyn/error.hpp"
@@ -234,6 +236,7 @@ void validate(const LoadsOptions& options) {
 }
 
 LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
+    if (isSpatialRobot(options.robot)) return runSpatialLoads(options, observer);
     validate(options);
     LoadsResult out;
     out.model = std::make_shared<const Model>(loadRobot(options.robot));
@@ -303,7 +306,17 @@ LoadsResult runLoads(const LoadsOptions& options, Observer& observer) {
     return out;
 }
 
+void requireLoadsFigure(const LoadsOptions& options) {
+    if (isSpatialRobot(options.robot)) {
+        throw OptionError("figure", "is drawn for planar robots only, not for a spatial robot (space: spatial)");
+    }
+}
+
 void writeLoadsFigure(const LoadsOptions& options, const LoadsResult& result, const std::string& stem) {
+    if (!result.model) {
+        requireLoadsFigure(options);
+        throw Error("loads: no planar robot to draw");
+    }
     const Model& model = *result.model;
     const int worst = 3 * (result.worst_limb - 1) + result.worst_joint - 1;
     const JointLoad& w = result.loads.joint[static_cast<std::size_t>(worst / 3)][static_cast<std::size_t>(worst % 3)];

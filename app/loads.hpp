@@ -27,6 +27,8 @@ struct LoadsOptions : SamplingOptions {
     int points = 9;                ///< envelope: frequencies per axis
 };
 
+/// A spatial robot's (space: spatial, loads_spatial.hpp) has no model nor loads: its table,
+/// text and worst joint only.
 struct LoadsResult {
     std::shared_ptr<const Model> model;
     /// Per joint (limb j, joint k at joint[j][k], 0-based inside; numbered from 1 in the table).
@@ -51,14 +53,19 @@ struct LoadsResult {
 /// envelope or none without it.
 void validate(const LoadsOptions& options);
 
-/// The loads; a pose out of reach or beyond a limit along the trajectory is an Error (the
-/// envelope's motions are within every limit by construction). The envelope's points at or
+/// The loads (of a spatial robot file: runSpatialLoads); a pose out of reach or beyond a limit
+/// along the trajectory is an Error (the envelope's motions are within every limit by
+/// construction). The envelope's points at or
 /// above the first natural frequency (robot files with compliance) are left out, and counted in
 /// the text; OptionError("min_frequency") when that leaves none. A stop between envelope points.
 [[nodiscard]] LoadsResult runLoads(const LoadsOptions& options, Observer& observer);
 
+/// Throws OptionError("figure") for a spatial robot (the figure is planar): before the run, so
+/// that no output is written for a figure that cannot be drawn.
+void requireLoadsFigure(const LoadsOptions& options);
+
 /// The robot at the pose of the largest peak force with each joint's force as an arrow:
-/// STEM.png and STEM.svg.
+/// STEM.png and STEM.svg (planar robots only).
 void writeLoadsFigure(const LoadsOptions& options, const LoadsResult& result, const std::string& stem);
 
 }  // namespace nocdyn::app

@@ -25,6 +25,7 @@ void run(const Options& options) {
     if (!options.envelope && options.trajectory.empty()) {
         throw CLI::ValidationError("--trajectory", "is required (or give --envelope)");
     }
+    if (!options.figure.empty()) app::requireLoadsFigure(options);
     TerminalObserver observer("nocdyn loads");
     const app::LoadsResult result = app::runLoads(options, observer);
     observer.finish();
@@ -45,7 +46,9 @@ void addLoadsCommand(CLI::App& app) {
         "peak couple |m| [N m], with the time and pose of the peak. Reactions as in `inverse-dynamics\n"
         "--reactions`. Prints a table; --output writes it as CSV (limb and joint 1-based), --figure draws\n"
         "the robot at the worst pose with each joint's force. A two-DOF robot (motion: translation, pose\n"
-        "[x, y]) takes a trajectory keyed x, y (no --envelope).\n"
+        "[x, y]) takes a trajectory keyed x, y (no --envelope). A spatial robot (space: spatial) takes a\n"
+        "trajectory file keyed x, y, z (roll, pitch, yaw): each listed joint's |force| and |moment| about its\n"
+        "point, with its type (R, P, U, S) in the table (no --envelope, no --figure).\n"
         "Example: nocdyn loads --robot robots/3-rrr.yaml --trajectory paper1 --figure loads");
     command->add_option("--trajectory", options->trajectory,
                         "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or samples (.csv)");

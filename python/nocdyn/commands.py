@@ -767,7 +767,9 @@ def loads(trajectory=None, *, robot=None, set=None, output=None, figure=None, pr
     """Joint reactions and design loads (``nocdyn loads``) along a trajectory, or over the
     operating envelope's motions (envelope=True). Returns a Table with the CSV's columns (limb and
     joint numbered from 1, peak and RMS forces, ...); ``text`` the command line's report. output:
-    also write the CSV; figure: the robot at the worst pose (STEM.png, STEM.svg)."""
+    also write the CSV; figure: the robot at the worst pose (STEM.png, STEM.svg). A spatial
+    robot file (space: spatial) takes a trajectory file keyed x, y, z (roll, pitch, yaw): one row
+    per listed joint with its ``type`` (R, P, U or S), no envelope, no figure."""
     bound = _bound_options(_nocdyn.LoadsOptions, {"trajectory": "" if trajectory is None else trajectory, **options})
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("loads", [("robot", robot), ("trajectory", trajectory)], [("output", output)],

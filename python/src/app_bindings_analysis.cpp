@@ -191,6 +191,7 @@ void bindAnalysis(py::module_& m) {
            const py::object& figure) {
             const std::string csv = pathOrEmpty(output), stem = pathOrEmpty(figure);
             const app::LoadsResult result = runJob(progress, [&](app::Observer& observer) {
+                if (!stem.empty()) app::requireLoadsFigure(options);
                 app::LoadsResult r = app::runLoads(options, observer);
                 if (!csv.empty()) writeCsvFile(r.table, csv);
                 if (!stem.empty()) app::writeLoadsFigure(options, r, stem);

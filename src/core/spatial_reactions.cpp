@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
+#include <Eigen/Geometry>
 #include <Eigen/QR>
 
 namespace nocdyn::spatial {
