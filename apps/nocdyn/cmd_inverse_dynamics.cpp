@@ -55,8 +55,9 @@ void addInverseDynamicsCommand(CLI::App& app) {
             "translation: x, y, z), every coordinate given (absolute, m and rad, R = Rz(yaw) Ry(pitch)\n"
             "Rx(roll)), or a CSV of samples with the columns t and those coordinates; its table has the\n"
             "columns t, x, y, z, roll, pitch, yaw (or x, y, z), u1..un, du1..dun, ddu1..ddun, tau1..taun,\n"
-            "kinetic. Example: nocdyn inverse-dynamics --robot robots/stewart.yaml --trajectory\n"
-            "trajectories/stewart-sway.yaml --output sway.csv");
+            "kinetic.\n"
+            "Example: nocdyn inverse-dynamics --robot robots/stewart.yaml --trajectory trajectories/stewart-sway.yaml "
+            "-o sway.csv");
     addSamplingOptions(*command, *options);
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());

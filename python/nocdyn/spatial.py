@@ -114,7 +114,7 @@ class SpatialRobot:
         ``coordinates``: [x, y, z] or [x, y, z, roll, pitch, yaw]; roll, yaw in (-pi, pi],
         pitch in [-pi/2, pi/2]), working (True for the working mode: its limbs on their home
         branches, the nearest such mode to home), home_branches (inverse kinematics from home
-        gives back u), u_error (max |u(p) - u|) and condition (the largest of the limbs' and the
+        gives back u), u_error (the largest abs(u(p) - u)) and condition (the largest of the limbs' and the
         actuation map's condition numbers), and method ("three spheres": a Delta of three
         R-U-U limbs, both modes in closed form; "many starts": the modes continuation from
         deterministic seeds finds, perhaps not every one). Empty when no pose closes the loops.
