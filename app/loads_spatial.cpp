@@ -2,6 +2,7 @@
 #include "app/loads_spatial.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <utility>
 
@@ -17,10 +18,10 @@ namespace nocdyn::app {
 namespace {
 
 /// The table's words for a joint's type, its code the index.
-const std::vector<std::string> kSpatialJointTypes{"R", "P", "U", "S"};
+constexpr std::array<char, 4> kSpatialJointTypes{'R', 'P', 'U', 'S'};
 
 double spatialTypeCode(char type) {
-    const auto at = std::find(kSpatialJointTypes.begin(), kSpatialJointTypes.end(), std::string(1, type));
+    const auto* at = std::find(kSpatialJointTypes.begin(), kSpatialJointTypes.end(), type);
     return static_cast<double>(at - kSpatialJointTypes.begin());
 }
 
@@ -30,7 +31,7 @@ io::Table spatialLoadsTable(const spatial::Model& model, const SpatialLoadsResul
     for (const std::string& c : model.coordinates()) t.columns.push_back("peak_force_" + c);
     t.columns.insert(t.columns.end(), {"rms_force", "peak_moment", "peak_moment_t"});
     t.categories.assign(t.columns.size(), {});
-    t.categories[2] = kSpatialJointTypes;
+    for (const char type : kSpatialJointTypes) t.categories[2].emplace_back(1, type);
     for (std::size_t j = 0; j < r.joint.size(); ++j) {
         for (std::size_t k = 0; k < r.joint[j].size(); ++k) {
             const SpatialJointLoad& l = r.joint[j][k];
