@@ -12,43 +12,20 @@
 #include <Eigen/QR>
 
 #include "nocdyn/error.hpp"
+#include "spatial_chain.hpp"
 
 namespace nocdyn::spatial {
 
 namespace {
 
+using chain::carriedScrew;
+using chain::freedomMove;
+using chain::Move;
+
 constexpr int kNewtonIterations = 50;
 constexpr double kClosure = 1e-13;  ///< Newton's residual [m, rad], for displacements within 1 m
 /// The small matrices decomposed here (Gram matrices, at most 6 x 6): one instantiation each.
 using Work = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
-
-/// A rigid displacement x -> R x + t.
-struct Move {
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d t = Eigen::Vector3d::Zero();
-    [[nodiscard]] Move then(const Move& o) const { return {R * o.R, R * o.t + t}; }
-};
-
-/// exp(s q) of one freedom: a rotation by q about the axis through its point, or a translation
-/// by q along its direction.
-Move freedomMove(const Freedom& f, double q) {
-    if (!f.revolute) return {Eigen::Matrix3d::Identity(), q * f.axis};
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(q, f.axis).toRotationMatrix();
-    return {R, f.point - R * f.point};
-}
-
-/// The screw of freedom f carried by the displacement g: Ad_g s.
-Vector6 carriedScrew(const Freedom& f, const Move& g) {
-    Vector6 s;
-    if (f.revolute) {
-        const Eigen::Vector3d a = g.R * f.axis;
-        const Eigen::Vector3d r = g.R * f.point + g.t;
-        s << a, r.cross(a);
-    } else {
-        s << Eigen::Vector3d::Zero(), g.R * f.axis;
-    }
-    return s;
-}
 
 /// The motion cross product t x s = [w x a; w x m + v x a] (the rate of a screw s carried by a
 /// body of twist t).

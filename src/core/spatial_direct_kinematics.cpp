@@ -12,6 +12,7 @@
 #include <Eigen/QR>
 
 #include "nocdyn/error.hpp"
+#include "spatial_chain.hpp"
 
 namespace nocdyn::spatial {
 
@@ -22,36 +23,6 @@ constexpr double kTrackerTolerance = 1e-13;  ///< on max |u(p) - u|, times (1 + 
 constexpr double kAccept = 1e-9;             ///< a mode's u_error at most this [m or rad]
 constexpr double kSame = 1e-7;               ///< two modes closer than this are one [m, and R's entries]
 constexpr double kPi = std::numbers::pi;
-
-/// The limb chain's product of exponentials, as the inverse kinematics' (apart from spatial.cpp's:
-/// clang-tidy reads the folder as one translation unit).
-namespace chain {
-
-/// A rigid displacement x -> R x + t (as the inverse kinematics' product of exponentials).
-struct Move {
-    Eigen::Matrix3d R = Eigen::Matrix3d::Identity();
-    Eigen::Vector3d t = Eigen::Vector3d::Zero();
-    [[nodiscard]] Move then(const Move& o) const { return {R * o.R, R * o.t + t}; }
-};
-
-Move freedomMove(const Freedom& f, double q) {
-    if (!f.revolute) return {Eigen::Matrix3d::Identity(), q * f.axis};
-    const Eigen::Matrix3d R = Eigen::AngleAxisd(q, f.axis).toRotationMatrix();
-    return {R, f.point - R * f.point};
-}
-
-Vector6 carriedScrew(const Freedom& f, const Move& g) {
-    Vector6 s;
-    if (f.revolute) {
-        const Eigen::Vector3d a = g.R * f.axis;
-        s << a, (g.R * f.point + g.t).cross(a);
-    } else {
-        s << Eigen::Vector3d::Zero(), g.R * f.axis;
-    }
-    return s;
-}
-
-}  // namespace chain
 
 /// The platform's displacement from home at pose p.
 chain::Move displacement(const Model& model, const TaskVector& p) {
