@@ -6,6 +6,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial.hpp"
+#include "nocdyn/spatial_reactions.hpp"
 
 namespace nocdyn::app {
 
@@ -25,7 +26,11 @@ bool isSpatialRobot(const RobotSource& source) {
 }
 
 SpatialPoseResult runSpatialPose(const RobotSource& source, const std::vector<double>& pose, Observer& observer) {
-    const SpatialRobotDescription description = io::loadSpatialRobotDescription(source.path, source.set);
+    return runSpatialPose(io::loadSpatialRobotDescription(source.path, source.set), source.path, pose, observer);
+}
+
+SpatialPoseResult runSpatialPose(const SpatialRobotDescription& description, const std::string& source,
+                                 const std::vector<double>& pose, Observer& observer) {
     const spatial::Model model(description);
     const int d = model.task_dimension;
     if (static_cast<int>(pose.size()) != d) {
@@ -37,7 +42,7 @@ SpatialPoseResult runSpatialPose(const RobotSource& source, const std::vector<do
     spatial::Data data(model);
     const spatial::TaskVector zero = spatial::TaskVector::Zero(d);
     if (const Status status = spatial::inverseDynamics(model, data, p, zero, zero); !status) {
-        throw Error(source.path + ": " + spatial::describe(status, model));
+        throw Error(source + ": " + spatial::describe(status, model));
     }
     SpatialPoseResult out;
     out.robot = model.name;
@@ -83,6 +88,18 @@ SpatialPoseResult runSpatialPose(const RobotSource& source, const std::vector<do
     out.A = data.A_task;  // du = A [v; w] at the platform point
     out.cond_A = data.actuation_condition;
     out.tau = data.tau;
+    spatial::Reactions reactions(model);
+    if (const Status status = spatial::jointReactions(model, data, reactions); !status) {
+        throw Error(source + ": joint reactions at rest: " + spatial::describe(status, model));
+    }
+    out.balance_residual = reactions.balance_residual;
+    for (std::size_t j = 0; j < reactions.joint.size(); ++j) {
+        for (std::size_t k = 0; k < reactions.joint[j].size(); ++k) {
+            const spatial::JointReaction& r = reactions.joint[j][k];
+            out.reactions.push_back(
+                {static_cast<int>(j) + 1, static_cast<int>(k) + 1, r.type, r.point, r.force, r.moment});
+        }
+    }
     return out;
 }
 

@@ -84,6 +84,17 @@ void spatialJson(const app::SpatialPoseResult& r) {
     out["cond_A"] = r.cond_A;
     out["within_limits"] = r.within_limits;
     out["tau"] = std::vector<double>(r.tau.data(), r.tau.data() + r.tau.size());
+    const auto vec = [](const Eigen::Vector3d& v) { return std::vector<double>{v(0), v(1), v(2)}; };
+    out["reactions"] = nlohmann::json::array();
+    for (const app::SpatialPoseReaction& j : r.reactions) {
+        out["reactions"].push_back({{"limb", j.limb},
+                                    {"joint", j.joint},
+                                    {"type", std::string(1, j.type)},
+                                    {"point", vec(j.point)},
+                                    {"force", vec(j.force)},
+                                    {"moment", vec(j.moment)}});
+    }
+    out["balance_residual"] = r.balance_residual;
     std::cout << out.dump(2) << "\n";
 }
 
@@ -122,7 +133,15 @@ void printSpatialPose(const app::SpatialPoseResult& r, bool json) {
     std::printf("condition numbers (lengths in metres, limit %.6g): actuation %.6g\n", r.max_condition, r.cond_A);
     std::printf("\nat rest under gravity: tau =");
     for (const double tau : r.tau) std::printf(" %+.6e", tau);
-    std::printf("\n");
+    std::printf(
+        "\n\njoint reactions at rest (the inboard body on the outboard one, base frame; the moment about "
+        "the joint's point, its efforts taken out):\nlimb  joint  force [N]: x, y, z                      "
+        "moment [N m]: x, y, z\n");
+    for (const app::SpatialPoseReaction& j : r.reactions) {
+        std::printf("%-4d  %c%-4d  %+11.4e %+11.4e %+11.4e   %+11.4e %+11.4e %+11.4e\n", j.limb, j.type, j.joint,
+                    j.force(0), j.force(1), j.force(2), j.moment(0), j.moment(1), j.moment(2));
+    }
+    std::printf("platform balance residual: %.3g\n", r.balance_residual);
     if (!r.within_limits) std::printf("\nwarning: %s\n", io::terminalText(r.limits).c_str());
 }
 

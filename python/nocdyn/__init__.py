@@ -53,7 +53,7 @@ from .commands import (COMMANDS, animate, control, convert, design, envelope, ex
 from .dynamics import ActuatorDerivatives, InverseDynamics, InverseDynamicsMatrices, LinearModel
 from .identification import PayloadEstimate, load_prior
 from .results import (Animation, AssemblyModes, Envelope, Excitation, Identification, PoseReport, Report, ShakeResult,
-                      Table, Workspace)
+                      SpatialPoseReport, Table, Workspace)
 from .robot import Robot
 from .spatial import SpatialRobot
 from .trajectory import Trajectory
@@ -64,7 +64,7 @@ __all__ = ["Error", "Robot", "SpatialRobot", "Trajectory", "InverseDynamics", "I
            "pose", "inverse_dynamics", "forward_kinematics", "simulate", "control", "envelope", "workspace", "convert",
            "animate", "shake", "regressor", "identify", "excite", "loads", "validate", "reproduce", "design", "COMMANDS",
            "frequency_response",
-           "Table", "PoseReport", "AssemblyModes", "Workspace", "Envelope", "Identification", "Excitation",
+           "Table", "PoseReport", "SpatialPoseReport", "AssemblyModes", "Workspace", "Envelope", "Identification", "Excitation",
            "ShakeResult", "Animation", "Report"]
 __version__ = _nocdyn.__version__  # the CMake project version, as `nocdyn --version`
 

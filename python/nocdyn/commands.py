@@ -317,7 +317,7 @@ def _write_table(path, columns, data):
 # Each function binds its arguments to the command's options struct (_bound_options); only the
 # robot, the files it reads back and the positional arguments are handled one by one.
 
-def pose(x, y, theta=None, *, robot=None, set=None):
+def pose(x, y, theta=None, *angles, robot=None, set=None):
     """Everything the model knows at one platform pose (``nocdyn pose X Y THETA``): every limb's
     joint variables and the condition number of its Jacobian, the actuator variables and the
     share of their range they use, the actuation map du = A dp/dt and its condition number, the
@@ -327,7 +327,21 @@ def pose(x, y, theta=None, *, robot=None, set=None):
     table (x, y, theta). Returns a PoseReport; its pose, A's columns and, for compliant robots,
     the stiffness and mode shapes are in the order x, y, theta. A two-DOF robot (motion:
     translation) takes x, y of its tool point and no theta (None: not given, which a turning
-    platform refuses, as ``nocdyn pose X Y`` does); its vectors and matrices are over x, y."""
+    platform refuses, as ``nocdyn pose X Y`` does); its vectors and matrices are over x, y.
+    A spatial robot (a nocdyn.SpatialRobot or a spatial file's path) takes x, y, z and, for
+    motion full, roll, pitch, yaw, and returns a SpatialPoseReport (SpatialRobot.pose)."""
+    from .spatial import SpatialRobot
+    spatial = robot if isinstance(robot, SpatialRobot) else None
+    if spatial is None and robot is not None and isinstance(robot, (str, os.PathLike)):
+        path = os.fspath(robot)
+        if "\0" not in path and os.path.isfile(path) and _nocdyn.is_spatial_file(path):
+            if set:
+                raise ValueError("set: not taken by a spatial robot's pose")
+            spatial = SpatialRobot.load(path)
+    if spatial is not None:
+        return spatial.pose([x, y] + ([] if theta is None else [theta]) + list(angles))
+    if angles:
+        raise ValueError("pose: ROLL PITCH YAW are for a spatial robot")
     given = {"x": x, "y": y, "theta": float("nan") if theta is None else theta}
     options = _bound_options(_nocdyn.PoseOptions, given)
     options.robot = _robot_source(robot, set)
@@ -337,6 +351,8 @@ def pose(x, y, theta=None, *, robot=None, set=None):
 _parameters = list(_signature(_nocdyn.PoseOptions, ("x", "y", "theta"),
                               after=(("robot", None), ("set", None))).parameters.values())
 _parameters[2] = _parameters[2].replace(default=None)  # theta: none for a two-DOF robot
+# a spatial robot's roll, pitch, yaw after x, y, z (z in theta's place)
+_parameters.insert(3, inspect.Parameter("angles", inspect.Parameter.VAR_POSITIONAL))
 pose.__signature__ = inspect.Signature(_parameters)
 
 

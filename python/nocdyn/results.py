@@ -152,6 +152,34 @@ class PoseReport(_Record):
         return f"<nocdyn.PoseReport {self.robot!r} at {self.pose.tolist()}: cond_A {self.cond_A:.4g}>"
 
 
+class SpatialPoseReport(_Record):
+    """Everything the model knows at one pose of a spatial robot (``nocdyn pose X Y Z [ROLL PITCH
+    YAW]``): pose (d,) in the order of ``coordinates``; limbs, a list of dicts (limb, name, type,
+    q every freedom's variable base to platform [rad or m], joints the listed joint of each
+    freedom, cond_J); u (n,) the actuator variables and range_used (n,); A (n, d) the actuation
+    map du = A [v; w] (v the platform point's velocity, w the angular velocity); cond_A,
+    max_condition; within_limits and limits (the first range passed); at rest under gravity, tau
+    (n,) the actuator forces and reactions, a list of dicts (limb, joint, type R/P/U/S, point,
+    force [N], moment [N m] about point: the inboard body on the outboard one, base frame, its
+    efforts taken out), with balance_residual, how well the platform balances. Limbs, joints and
+    actuators are numbered from 1."""
+
+    def __init__(self, fields, text=""):
+        fields = dict(fields)
+        self.actuator_table = fields.pop("actuators")
+        fields["pose"] = np.asarray(fields["pose"], dtype=np.float64)
+        fields["u"] = np.array([a["u"] for a in self.actuator_table], dtype=np.float64)
+        fields["range_used"] = np.array([a["range_used"] for a in self.actuator_table], dtype=np.float64)
+        super().__init__(fields, text)
+
+    def to_pandas(self):
+        """Per actuator: actuator, limb, joint, u, range_used."""
+        return _pandas().DataFrame(self.actuator_table)
+
+    def __repr__(self):
+        return f"<nocdyn.SpatialPoseReport {self.robot!r} at {self.pose.tolist()}: cond_A {self.cond_A:.4g}>"
+
+
 class AssemblyModes(_Record):
     """The assembly modes of actuator values u (``nocdyn forward-kinematics``): poses (k, 3)
     [x, y, theta] sorted by theta ((k, 2) [x, y] for a two-DOF robot), their branches (k, limbs), working (k,) booleans, and the

@@ -107,6 +107,19 @@ class SpatialRobot:
             return InverseDynamics(u[0], du[0], ddu[0], tau[0])
         return InverseDynamics(u, du, ddu, tau)
 
+    def pose(self, p):
+        """Everything the model knows at pose p (d numbers in the order of ``coordinates``), as
+        ``nocdyn pose`` prints it: a SpatialPoseReport (every limb's joint variables and
+        condition number, the actuators and the share of their range used, the actuation map,
+        and at rest under gravity the actuator forces and every joint's reaction). A pose out of
+        reach or singular raises nocdyn.Error; a joint beyond its range is reported
+        (within_limits False, limits) and warned of."""
+        from .results import SpatialPoseReport
+        values = _floats(p, "pose")
+        if values.ndim != 1:
+            raise ValueError(f"pose: expected one pose of {self.task_dimension} numbers, got shape {values.shape}")
+        return SpatialPoseReport(self._core._pose([float(v) for v in values]))  # the count checked there
+
     def forward_kinematics(self, u):
         """Every platform pose found with actuator values u (n values, m or rad, in file order).
 

@@ -1,5 +1,6 @@
 // The spatial robots of the compiled module (nocdyn/spatial.hpp): a model read from a spatial
 // robot file (`space: spatial`) and its inverse dynamics over arrays of samples.
+#include <pybind11/eigen.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "app/inverse_dynamics_spatial.hpp"
+#include "app/pose_spatial.hpp"
 #include "app_bindings.hpp"
 #include "expose.hpp"
 #include "nocdyn/analysis/sampling.hpp"
@@ -28,6 +30,8 @@ namespace {
 
 struct SpatialRobot {
     std::shared_ptr<const spatial::Model> model;
+    std::shared_ptr<const SpatialRobotDescription> description;
+    std::string source;  ///< the file's path or "<string>", for errors
 };
 
 using Rows = py::array_t<double, py::array::c_style | py::array::forcecast>;
@@ -189,8 +193,37 @@ py::tuple homotopyModes(const SpatialRobot& robot, const py::handle& u, double t
     return py::make_tuple(poses, errors, info);
 }
 
-SpatialRobot make(const SpatialRobotDescription& description) {
-    return SpatialRobot{std::make_shared<const spatial::Model>(description)};
+SpatialRobot make(const SpatialRobotDescription& description, const std::string& source) {
+    return SpatialRobot{std::make_shared<const spatial::Model>(description),
+                        std::make_shared<const SpatialRobotDescription>(description), source};
+}
+
+/// `nocdyn pose` of a spatial robot as a dict (pose, limbs' joint variables, actuators, A,
+/// forces and every joint's reaction at rest under gravity).
+py::dict pose(const SpatialRobot& robot, const std::vector<double>& p, const py::object& progress) {
+    const app::SpatialPoseResult r = runJob(progress, [&](app::Observer& observer) {
+        return app::runSpatialPose(*robot.description, robot.source, p, observer);
+    });
+    py::list limbs, actuators, reactions;
+    for (const app::SpatialPoseLimb& l : r.limbs) {
+        limbs.append(py::dict(py::arg("limb") = l.limb, py::arg("name") = l.name, py::arg("type") = l.type,
+                              py::arg("q") = l.q, py::arg("joints") = l.of, py::arg("cond_J") = l.cond_J));
+    }
+    for (const app::SpatialPoseActuator& a : r.actuators) {
+        actuators.append(py::dict(py::arg("actuator") = a.actuator, py::arg("limb") = a.limb,
+                                  py::arg("joint") = a.joint, py::arg("u") = a.u,
+                                  py::arg("range_used") = a.range_used));
+    }
+    for (const app::SpatialPoseReaction& j : r.reactions) {
+        reactions.append(py::dict(py::arg("limb") = j.limb, py::arg("joint") = j.joint,
+                                  py::arg("type") = std::string(1, j.type), py::arg("point") = j.point,
+                                  py::arg("force") = j.force, py::arg("moment") = j.moment));
+    }
+    return py::dict(py::arg("robot") = r.robot, py::arg("coordinates") = r.coordinates, py::arg("pose") = r.pose,
+                    py::arg("limbs") = limbs, py::arg("actuators") = actuators, py::arg("A") = r.A,
+                    py::arg("cond_A") = r.cond_A, py::arg("max_condition") = r.max_condition, py::arg("tau") = r.tau,
+                    py::arg("reactions") = reactions, py::arg("balance_residual") = r.balance_residual,
+                    py::arg("within_limits") = r.within_limits, py::arg("limits") = r.limits);
 }
 
 }  // namespace
@@ -229,12 +262,12 @@ void exposeSpatial(py::module_& m) {
     m.def("is_spatial_text", &io::isSpatial, py::arg("text"), py::arg("source"));
     py::class_<SpatialRobot>(m, "SpatialRobot")
         .def_static(
-            "load", [](const std::string& path) { return make(io::loadSpatialRobotDescription(path)); },
+            "load", [](const std::string& path) { return make(io::loadSpatialRobotDescription(path), path); },
             py::arg("path"))
         .def_static(
             "from_yaml",
             [](const std::string& text, const std::string& source) {
-                return make(io::parseSpatialRobotDescription(text, source));
+                return make(io::parseSpatialRobotDescription(text, source), source);
             },
             py::arg("text"), py::arg("source") = "<string>")
         .def_property_readonly("name", [](const SpatialRobot& r) { return r.model->name; })
@@ -264,6 +297,7 @@ void exposeSpatial(py::module_& m) {
             },
             py::arg("options"), py::arg("progress") = py::none(),
             "nocdyn.inverse_dynamics of this robot: (columns, rows) along options.trajectory")
+        .def("_pose", &pose, py::arg("pose"), py::arg("progress") = py::none())
         .def("_assembly_modes", &homotopyModes, py::arg("u"), py::arg("timeout"), py::arg("seed"),
              py::arg("executable"));
 }

@@ -9,7 +9,8 @@ import pytest
 
 from conftest import SOURCE_DIR
 
-EXAMPLES = ["paper_figures.py", "own_robot.py", "five_bar.py", "identification.py", "el_centro.py"]
+EXAMPLES = ["paper_figures.py", "own_robot.py", "five_bar.py", "hexapod.py", "identification.py",
+            "el_centro.py"]
 
 
 @pytest.mark.parametrize("name", EXAMPLES)
@@ -33,6 +34,8 @@ def test_example_runs(name, tmp_path):
         assert (tmp_path / "five-bar.svg").read_text().startswith("<svg")
         assert (tmp_path / "five-bar-workspace.png").read_bytes()[:4] == b"\x89PNG"
         assert "checked: the workspace, both tool points, the efforts, the power balance and the motion" in done.stdout
+    if name == "hexapod.py":
+        assert "every check passed" in done.stdout and "real assembly modes" in done.stdout, done.stdout
     if name == "identification.py":
         assert "payload: {mass: 0.4" in done.stdout or "payload: {mass: 0.5" in done.stdout, done.stdout
     if name == "el_centro.py":

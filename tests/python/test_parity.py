@@ -25,9 +25,7 @@ from conftest import SOURCE_DIR, skip_or_fail_in_ci
 # The documented exceptions (docs/python-parity.md), kept short:
 # options of the command line with no Python argument: the output format of the printed answer, or
 # none (Python always gets the structured answer, and the printed text in .text)
-# pose's ANGLES (a spatial robot's roll, pitch, yaw): Python takes a spatial robot through
-# nocdyn.SpatialRobot, not nocdyn.pose
-CLI_ONLY = {("pose", "json"), ("forward-kinematics", "json"), ("workspace", "json"), ("pose", "angles")}
+CLI_ONLY = {("pose", "json"), ("forward-kinematics", "json"), ("workspace", "json")}
 # the options every command has on the command line only: --quiet (Python prints nothing)
 CLI_ONLY_EVERYWHERE = {"quiet"}
 # Python arguments with no option: the progress callback of the long commands

@@ -271,3 +271,40 @@ def test_assembly_modes_refuse_other_robots_and_bad_u(source_dir):
         stewart.assembly_modes(np.zeros(5))
     with pytest.raises(nocdyn.Error, match="phcpack"):
         stewart.assembly_modes(np.zeros(6), executable="/nonexistent/phc")
+
+
+@pytest.mark.parametrize("name, pose", [("stewart", [0.02, -0.01, 1.08, 0.05, -0.03, 0.1]), ("delta", [0.05, -0.03, -0.9])])
+def test_the_pose_report_is_the_command_lines_and_its_platform_balances(source_dir, cli, name, pose):
+    import json
+    path = source_dir / "robots" / f"{name}.yaml"
+    report = nocdyn.pose(*pose, robot=str(path))
+    assert isinstance(report, nocdyn.SpatialPoseReport)
+    same = nocdyn.Robot.load(path).pose(pose)
+    np.testing.assert_array_equal(report.tau, same.tau)
+    code, out, err = cli("pose", *pose, "--robot", path, "--json")
+    assert code == 0, err
+    document = json.loads(out)
+    np.testing.assert_allclose(report.tau, document["tau"], rtol=1e-15)
+    np.testing.assert_allclose(report.u, [a["u"] for a in document["actuators"]], rtol=1e-15, atol=1e-18)
+    assert [(r["limb"], r["joint"], r["type"]) for r in report.reactions] == \
+        [(r["limb"], r["joint"], r["type"]) for r in document["reactions"]]
+    for mine, theirs in zip(report.reactions, document["reactions"]):
+        np.testing.assert_allclose(mine["force"], theirs["force"], rtol=1e-15, atol=1e-12)
+    # every joint's reaction is reported; the platform balances under the limbs' wrenches
+    joints = {"stewart": ["U", "P", "S"], "delta": ["R", "U", "U"]}[name]
+    assert [r["type"] for r in report.reactions] == joints * len(report.limbs)
+    # the whole robot's weight: the table or the Delta's plate, and each limb's bodies
+    weight = {"stewart": 300.0 + 6 * (25.0 + 8.0), "delta": 0.6 + 3 * (0.6 + 0.25)}[name] * 9.81
+    assert report.balance_residual < 1e-9 * weight
+    # an S passes no moment; at rest the base joints together carry the whole robot's weight
+    assert all(np.max(np.abs(r["moment"])) < 1e-9 for r in report.reactions if r["type"] == "S")
+    lifted = sum(np.array(r["force"]) for r in report.reactions if r["joint"] == 1)
+    np.testing.assert_allclose(lifted, [0.0, 0.0, weight], rtol=1e-12, atol=1e-9 * weight)
+
+
+def test_the_pose_of_a_spatial_robot_needs_its_coordinates(source_dir):
+    path = str(source_dir / "robots" / "stewart.yaml")
+    with pytest.raises(nocdyn.Error, match="takes 6 pose coordinates"):
+        nocdyn.pose(0.0, 0.0, 1.06, robot=path)
+    with pytest.raises(ValueError, match="ROLL PITCH YAW are for a spatial robot"):
+        nocdyn.pose(0.0, 0.0, 0.0, 0.1, 0.2, 0.3)
