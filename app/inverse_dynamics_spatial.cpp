@@ -9,6 +9,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
+#include "nocdyn/spatial_limits.hpp"
 #include "nocdyn/text.hpp"
 
 namespace nocdyn::app {
@@ -17,12 +18,6 @@ namespace {
 
 /// "t = ... s: reason".
 std::string atTime(double t, const std::string& reason) { return text::sampleTime(t) + ": " + reason; }
-
-/// "limb 2 (leg2), joint 2".
-std::string jointName(const spatial::Model& model, int j, const spatial::Freedom& f) {
-    return "limb " + std::to_string(j + 1) + " (" + model.limb[static_cast<std::size_t>(j)].name + "), joint " +
-           std::to_string(f.joint + 1);
-}
 
 /// The per-sample path with every check: holds the scratch Data, the peaks and the violations.
 class SpatialSampler {
@@ -77,33 +72,11 @@ public:
     double kinetic = 0.0;            ///< of the last output sample [J]
 
 private:
-    /// A listed R or P joint's range and velocity, an actuator's effort (a U's or an S's
-    /// freedoms have no limits: their bounds are infinite).
+    /// A listed R or P joint's range and velocity, an actuator's effort (spatial_limits.hpp):
+    /// the first limit passed at this sample.
     void checkLimits(double t, const char* where) {
-        for (int j = 0; j < model_.limbs(); ++j) {
-            const spatial::Limb& limb = model_.limb[static_cast<std::size_t>(j)];
-            const spatial::LimbData& ld = data_.limb[static_cast<std::size_t>(j)];
-            for (int k = 0; k < limb.size(); ++k) {
-                const spatial::Freedom& f = limb.freedoms[static_cast<std::size_t>(k)];
-                const double q = ld.q(k), v = ld.gd(k);
-                if (q < f.limits.lower || q > f.limits.upper) {
-                    violation(t, where,
-                              "joint range exceeded: " + jointName(model_, j, f) + ": q = " + text::number(q) +
-                                  ", range [" + text::number(f.limits.lower) + ", " + text::number(f.limits.upper) +
-                                  "]");
-                }
-                if (std::abs(v) > f.limits.velocity) {
-                    violation(t, where,
-                              "joint velocity exceeded: " + jointName(model_, j, f) + ": q' = " + text::number(v) +
-                                  ", limit " + text::number(f.limits.velocity));
-                }
-                if (f.actuator >= 0 && std::abs(data_.tau(f.actuator)) > f.limits.effort) {
-                    violation(t, where,
-                              "effort exceeded: actuator " + std::to_string(f.actuator + 1) + ", " +
-                                  jointName(model_, j, f) + ": tau = " + text::number(data_.tau(f.actuator)) +
-                                  ", limit " + text::number(f.limits.effort));
-                }
-            }
+        if (const Status status = spatial::checkLimits(model_, data_); !status) {
+            violation(t, where, spatial::describeLimit(status, model_));
         }
     }
 

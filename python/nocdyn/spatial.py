@@ -82,7 +82,7 @@ class SpatialRobot:
         """The platform pose at home, shape (task_dimension,)."""
         return np.array(self._core.home)
 
-    def inverse_dynamics(self, p, dp, ddp, *, check=True):
+    def inverse_dynamics(self, p, dp, ddp, *, check=True, check_limits=True):
         """Actuator variables, rates, accelerations and forces for platform motions.
 
         p, dp, ddp of shape (N, d) or (d,) with d = task_dimension (columns in the order of
@@ -91,7 +91,11 @@ class SpatialRobot:
         home), tau the actuator forces (N or N m) along them, gravity and joint friction
         included; the minimum-norm forces when there are more actuators than pose coordinates.
         A sample out of reach or singular raises nocdyn.Error "sample K: <reason>" (K from 1);
-        check=False returns it as a NaN row instead. The GIL is released during the computation.
+        check=False returns it as a NaN row instead. With check_limits=True (the default) the
+        first sample where an R or P joint leaves its range or exceeds its velocity, or an actuator
+        its effort (the file's ``limits``; U and S joints take none), raises nocdyn.Error with the
+        command line's reason ("sample K: joint range exceeded: limb 1 (arm1), joint 1: q = ...");
+        check_limits=False checks none. The GIL is released during the computation.
         """
         d = self.task_dimension
         p_arr = _floats(p, "p")
@@ -102,7 +106,7 @@ class SpatialRobot:
         dp_arr = _input(dp, "dp", (d,) if single else (n, d), finite=False)
         ddp_arr = _input(ddp, "ddp", (d,) if single else (n, d), finite=False)
         rows = [np.ascontiguousarray(a.reshape(-1, d)) for a in (p_arr, dp_arr, ddp_arr)]
-        u, du, ddu, tau = self._core._inverse_dynamics(*rows, bool(check))
+        u, du, ddu, tau = self._core._inverse_dynamics(*rows, bool(check), bool(check_limits))
         if single:
             return InverseDynamics(u[0], du[0], ddu[0], tau[0])
         return InverseDynamics(u, du, ddu, tau)

@@ -21,6 +21,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial.hpp"
+#include "nocdyn/spatial_limits.hpp"
 #include "nocdyn/text.hpp"
 #include "nocdyn/spatial_direct_kinematics.hpp"
 
@@ -47,9 +48,11 @@ Rows samples(const py::handle& x, const char* name, int d, py::ssize_t n) {
 }
 
 /// u, du, ddu, tau of shape (N, n); a sample the model refuses raises "sample K: reason" (K from
-/// 1) when `check`, else its row is NaN.
+/// 1) when `check`, else its row is NaN; with `check_limits`, the first sample beyond a joint's
+/// range or velocity or an actuator's effort raises "sample K: joint range exceeded: ..." after
+/// the batch is computed.
 py::tuple inverseDynamics(const SpatialRobot& robot, const py::handle& p, const py::handle& dp, const py::handle& ddp,
-                          bool check) {
+                          bool check, bool check_limits) {
     const spatial::Model& model = *robot.model;
     const int d = model.task_dimension;
     const Rows P = samples(p, "p", d, -1);
@@ -61,8 +64,10 @@ py::tuple inverseDynamics(const SpatialRobot& robot, const py::handle& p, const 
     std::array<double*, 4> to{};
     for (std::size_t i = 0; i < 4; ++i) to[i] = out[i].mutable_data();
     const double *x = P.data(), *dx = dP.data(), *ddx = ddP.data();
-    py::ssize_t failed = -1;
-    Status failure;
+    // the first sample the model refuses (raised when `check`, else a NaN row), and the first
+    // computed one beyond a joint's limits (raised when `check_limits`)
+    py::ssize_t failed = -1, limited = -1;
+    Status failure, limit;
     {
         const py::gil_scoped_release release;
         spatial::Data data(model);
@@ -82,11 +87,19 @@ py::tuple inverseDynamics(const SpatialRobot& robot, const py::handle& p, const 
                 failure = status;
                 if (check) break;
             }
+            if (status && check_limits && limited < 0) {
+                if (const Status passed = spatial::checkLimits(model, data); !passed) {
+                    limited = k;
+                    limit = passed;
+                }
+            }
         }
     }
-    if (failed >= 0 && check) {
+    if (failed >= 0 && check && (limited < 0 || failed < limited)) {
         throw Error("sample " + std::to_string(failed + 1) + ": " + spatial::describe(failure, model));
     }
+    if (limited >= 0)
+        throw Error("sample " + std::to_string(limited + 1) + ": " + spatial::describeLimit(limit, model));
     return py::make_tuple(out[0], out[1], out[2], out[3]);
 }
 
@@ -289,7 +302,7 @@ void exposeSpatial(py::module_& m) {
         .def("_forward_kinematics", &forwardKinematics, py::arg("u"))
         .def("_track", &track, py::arg("u"), py::arg("p0"))
         .def("_inverse_dynamics", &inverseDynamics, py::arg("p"), py::arg("dp"), py::arg("ddp"),
-             py::arg("check") = true)
+             py::arg("check") = true, py::arg("check_limits") = true)
         .def(
             "_run_inverse_dynamics",
             [](const SpatialRobot& r, const app::InverseDynamicsOptions& options, const py::object& progress) {

@@ -12,6 +12,7 @@
 #include <Eigen/QR>
 
 #include "nocdyn/error.hpp"
+#include "nocdyn/spatial_limits.hpp"
 #include "spatial_chain.hpp"
 
 namespace nocdyn::spatial {
@@ -475,6 +476,10 @@ std::string describe(const Status& status, const Model& model) {
             return out.str();
         case StatusCode::not_finite:
             return "a pose, rate or acceleration is not finite, or the pitch is at +-90 degrees";
+        case StatusCode::joint_limit_exceeded:
+        case StatusCode::velocity_exceeded:
+        case StatusCode::effort_exceeded:
+            return describeLimit(status, model);  // spatial_limits.hpp
         default:
             out << "the inverse dynamics failed (" << status.value << ")";
             return out.str();

@@ -44,10 +44,11 @@ def _motion(home, n, rng):
 def test_a_batch_equals_one_sample_at_a_time(source_dir, name):
     robot = _load(source_dir, name)
     P, dP, ddP = _motion(robot.home, 40, np.random.default_rng(3))
-    batch = robot.inverse_dynamics(P, dP, ddP)
+    # a brisk motion: the Stewart table's legs pass their 0.5 m/s, which is not the point here
+    batch = robot.inverse_dynamics(P, dP, ddP, check_limits=False)
     assert all(x.shape == (40, robot.actuators) for x in batch)
     for k in (0, 17, 39):
-        one = robot.inverse_dynamics(P[k], dP[k], ddP[k])
+        one = robot.inverse_dynamics(P[k], dP[k], ddP[k], check_limits=False)
         for a, b in zip(one, batch):
             np.testing.assert_allclose(a, b[k], rtol=1e-12, atol=1e-12)
     assert np.all(np.isfinite(batch.tau))
@@ -308,3 +309,24 @@ def test_the_pose_of_a_spatial_robot_needs_its_coordinates(source_dir):
         nocdyn.pose(0.0, 0.0, 1.06, robot=path)
     with pytest.raises(ValueError, match="ROLL PITCH YAW are for a spatial robot"):
         nocdyn.pose(0.0, 0.0, 0.0, 0.1, 0.2, 0.3)
+
+
+def test_the_batch_checks_the_joints_limits_as_the_trajectory_job_does(source_dir):
+    # the Stewart table's cylinders: +-0.15 m, 0.5 m/s and 10 kN; its U and S joints take no limits
+    robot = _load(source_dir, "stewart")
+    home, zero = robot.home, np.zeros(6)
+    P = np.tile(home, (3, 1))
+    P[2, 2] += 0.2  # 20 cm up: every leg beyond its +0.15 m stroke
+    with pytest.raises(nocdyn.Error, match=r"^sample 3: joint range exceeded: limb 1 \(leg1\), joint 2: q = 0\.1"):
+        robot.inverse_dynamics(P, np.zeros_like(P), np.zeros_like(P))
+    out = robot.inverse_dynamics(P, np.zeros_like(P), np.zeros_like(P), check_limits=False)
+    assert np.all(out.u[2] > 0.15) and np.all(np.isfinite(out.tau))
+    fast = np.zeros(6)
+    fast[2] = 0.6  # 0.6 m/s up: each leg faster than its 0.5 m/s
+    with pytest.raises(nocdyn.Error, match=r"^sample 1: joint velocity exceeded: limb 1 \(leg1\), joint 2: q' = 0\.5"):
+        robot.inverse_dynamics(home, fast, zero)
+    hard = np.zeros(6)
+    hard[2] = 200.0  # 20 g up under 300 kg: every cylinder beyond 10 kN
+    with pytest.raises(nocdyn.Error, match=r"effort exceeded: actuator 1, limb 1 \(leg1\), joint 2: tau = 1\d{4}"):
+        robot.inverse_dynamics(home, zero, hard)
+    assert robot.inverse_dynamics(home, zero, hard, check_limits=False).tau.min() > 1e4
