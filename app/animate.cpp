@@ -7,6 +7,8 @@
 #include <sstream>
 #include <vector>
 
+#include "app/animate_spatial.hpp"
+#include "app/pose_spatial.hpp"
 #include "render/animation.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
@@ -84,6 +86,7 @@ void validate(const AnimateOptions& o) {
 AnimateResult runAnimate(const AnimateOptions& options, Observer& observer) {
     validate(options);
     requireNotAnInput(options);
+    if (isSpatialRobot(options.robot)) return runSpatialAnimate(options, observer);
     // a two-DOF robot too: the tool point, arms and forearms along x, y
     const Model model(loadRobot(options.robot));
     const bool two_dof = model.task_dimension == 2;

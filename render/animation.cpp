@@ -16,6 +16,7 @@
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/printable.hpp"
 #include "nocdyn/text.hpp"
+#include "render/page_data.hpp"
 
 namespace nocdyn::render {
 
@@ -51,27 +52,10 @@ void appendPoints(const RobotDrawing& d, std::vector<long long>& out) {
     um(d.C);
 }
 
-/// Writes a JSON array of numbers in the shortest %g form of `digits` significant digits.
-template <class Range>
-void appendArray(std::string& out, const Range& values, int digits) {
-    out += '[';
-    std::string number;
-    bool first = true;
-    for (const auto v : values) {
-        if (!first) out += ',';
-        first = false;
-        if constexpr (std::is_integral_v<std::decay_t<decltype(v)>>) {
-            number = text::format("%lld", static_cast<long long>(v));
-        } else {
-            number = text::format("%.*g", digits, static_cast<double>(v));
-        }
-        out += number;
-    }
-    out += ']';
-}
+}  // namespace
 
-/// JSON text safe inside a <script> element: '<', '>' and '&' only occur in JSON strings,
-/// where their \u escapes mean the same, so no "</script>" or "<!--" can appear.
+namespace detail {
+
 std::string scriptSafe(const std::string& json) {
     std::string out;
     out.reserve(json.size());
@@ -89,7 +73,52 @@ std::string scriptSafe(const std::string& json) {
     return out;
 }
 
-}  // namespace
+std::string plotsJson(const std::vector<double>& t, const std::vector<double>& u, const std::vector<double>& tau, int n,
+                      std::vector<double>& peak_tau) {
+    const std::size_t N = t.size(), nn = static_cast<std::size_t>(n);
+    const std::size_t B = std::min(N, kMaxPlotBuckets);
+    std::vector<double> bucket_t(B);
+    std::vector<std::vector<double>> u_lo(nn), u_hi(nn), f_lo(nn), f_hi(nn);
+    peak_tau.assign(nn, 0.0);
+    for (std::size_t b = 0; b < B; ++b) {
+        const std::size_t k0 = b * N / B, k1 = (b + 1) * N / B;
+        bucket_t[b] = t[k0];
+        for (std::size_t a = 0; a < nn; ++a) {
+            double ul = std::numeric_limits<double>::infinity(), uh = -ul, fl = ul, fh = -ul;
+            for (std::size_t k = k0; k < k1; ++k) {
+                ul = std::min(ul, u[k * nn + a]);
+                uh = std::max(uh, u[k * nn + a]);
+                fl = std::min(fl, tau[k * nn + a]);
+                fh = std::max(fh, tau[k * nn + a]);
+            }
+            u_lo[a].push_back(ul);
+            u_hi[a].push_back(uh);
+            f_lo[a].push_back(fl);
+            f_hi[a].push_back(fh);
+            peak_tau[a] = std::max({peak_tau[a], std::abs(fl), std::abs(fh)});
+        }
+    }
+    std::string json = "{\"t\":";
+    detail::appendArray(json, bucket_t, 9);
+    for (const bool forces : {false, true}) {
+        json += forces ? ",\"tau\":[" : ",\"u\":[";
+        for (std::size_t a = 0; a < nn; ++a) {
+            json += a ? ",{\"name\":\"" : "{\"name\":\"";
+            json += forces ? "tau" : "u";
+            json += std::to_string(a + 1);
+            json += "\",\"lo\":";
+            detail::appendArray(json, forces ? f_lo[a] : u_lo[a], 6);
+            json += ",\"hi\":";
+            detail::appendArray(json, forces ? f_hi[a] : u_hi[a], 6);
+            json += '}';
+        }
+        json += ']';
+    }
+    json += '}';
+    return json;
+}
+
+}  // namespace detail
 
 // The page around its data (render/animation.html with render/animation.js in its script),
 // embedded at build time (render/CMakeLists.txt): the page is kPageHead, the data's JSON, kPageTail.
@@ -344,28 +373,8 @@ std::string animationPage(const Model& model, const MotionSamples& motion, const
     }
 
     // plots: min and max of every bucket of samples, so that no peak is lost
-    const std::size_t B = std::min(N, kMaxPlotBuckets);
-    std::vector<double> bucket_t(B);
-    std::vector<std::vector<double>> u_lo(nn), u_hi(nn), f_lo(nn), f_hi(nn);
-    std::vector<double> peak_tau(nn, 0.0);
-    for (std::size_t b = 0; b < B; ++b) {
-        const std::size_t k0 = b * N / B, k1 = (b + 1) * N / B;
-        bucket_t[b] = motion.t[k0];
-        for (std::size_t a = 0; a < nn; ++a) {
-            double ul = std::numeric_limits<double>::infinity(), uh = -ul, fl = ul, fh = -ul;
-            for (std::size_t k = k0; k < k1; ++k) {
-                ul = std::min(ul, motion.u[k * nn + a]);
-                uh = std::max(uh, motion.u[k * nn + a]);
-                fl = std::min(fl, motion.tau[k * nn + a]);
-                fh = std::max(fh, motion.tau[k * nn + a]);
-            }
-            u_lo[a].push_back(ul);
-            u_hi[a].push_back(uh);
-            f_lo[a].push_back(fl);
-            f_hi[a].push_back(fh);
-            peak_tau[a] = std::max({peak_tau[a], std::abs(fl), std::abs(fh)});
-        }
-    }
+    std::vector<double> peak_tau;
+    const std::string plots = detail::plotsJson(motion.t, motion.u, motion.tau, n, peak_tau);
 
     // what comes from files (names) goes through nlohmann::json, then scriptSafe
     nlohmann::json meta;
@@ -408,35 +417,24 @@ std::string animationPage(const Model& model, const MotionSamples& motion, const
     meta["actuators"] = actuators;
     meta["stride"] = stride;
 
-    std::string json = scriptSafe(meta.dump(-1, ' ', /*ensure_ascii=*/true, nlohmann::json::error_handler_t::replace));
+    std::string json =
+        detail::scriptSafe(meta.dump(-1, ' ', /*ensure_ascii=*/true, nlohmann::json::error_handler_t::replace));
     json.pop_back();  // the closing brace: the numeric arrays follow
     json += ",\"reference\":";
-    appendArray(json, reference, 0);
+    detail::appendArray(json, reference, 0);
     json += ",\"frames\":{\"t\":";
-    appendArray(json, frame_t, 9);
+    detail::appendArray(json, frame_t, 9);
     json += ",\"points\":";
-    appendArray(json, points, 0);
+    detail::appendArray(json, points, 0);
     json += ",\"tau\":";
-    appendArray(json, frame_tau, 6);
+    detail::appendArray(json, frame_tau, 6);
     if (ghosted) {
         json += ",\"ghost\":";
-        appendArray(json, ghost, 0);
+        detail::appendArray(json, ghost, 0);
     }
-    json += "},\"plots\":{\"t\":";
-    appendArray(json, bucket_t, 9);
-    for (const bool forces : {false, true}) {
-        json += forces ? ",\"tau\":[" : ",\"u\":[";
-        for (std::size_t a = 0; a < nn; ++a) {
-            json += (a ? ",{\"name\":\"" : "{\"name\":\"") + std::string(forces ? "tau" : "u") + std::to_string(a + 1) +
-                    "\",\"lo\":";
-            appendArray(json, forces ? f_lo[a] : u_lo[a], 6);
-            json += ",\"hi\":";
-            appendArray(json, forces ? f_hi[a] : u_hi[a], 6);
-            json += '}';
-        }
-        json += ']';
-    }
-    json += "}}";
+    json += "},\"plots\":";
+    json += plots;
+    json += '}';
     return std::string(kPageHead) + json + kPageTail;
 }
 

@@ -17,6 +17,7 @@ packages=(
   libgtest-dev libgmock-dev            # tests
   libbenchmark-dev                     # benchmarks
   chromium nodejs                      # browser tests of the animation page (ctest -L browser; npm ci)
+  libjs-three                          # three.js, inlined into the 3-D animation page of a spatial robot
   gnuplot-nox                          # figures (PNG via pngcairo, SVG)
   clang libclang-rt-dev                # libFuzzer harnesses of the file readers (fuzz/)
   clang-format clang-tidy              # style and static checks (ctest -L lint)

@@ -39,7 +39,10 @@ void addAnimateCommand(CLI::App& app) {
         "simulate, control or inverse-dynamics (--motion). At most 2000 frames are embedded; 0.2 s at 10 kHz\n"
         "gives a page of about 0.4 MB. --frame T draws the sample nearest to T with gnuplot instead (--png,\n"
         "--svg); the page is then written only when --output is given. A two-DOF robot (motion: translation):\n"
-        "the arms, forearms and the tool point along x, y (no theta column or motion).");
+        "the arms, forearms and the tool point along x, y (no theta column or motion). A spatial robot (space:\n"
+        "spatial) is drawn in 3-D (three.js inlined; drag rotates, the wheel zooms): each limb through its joints,\n"
+        "coloured by its actuator's force, the platform and the path of its point, along a trajectory file\n"
+        "(--motion, --frame, --png and --svg are planar only).");
     addRobotOption(*command, options->robot);
     auto* trajectory = command->add_option("--trajectory", options->trajectory,
                                            "paper1, paper2 (eqs. 33-34), a trajectory file (YAML, harmonics) or "

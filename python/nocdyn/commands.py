@@ -601,7 +601,12 @@ def animate(trajectory=None, *, robot=None, set=None, output=None, png=None, svg
     trajectory (inverse dynamics at ``rate`` over ``duration``) or a motion CSV written by
     simulate, control or inverse-dynamics (``motion``, a path or a Table). Returns an Animation,
     shown inline in Jupyter; output: also write the page. frame (with png or svg): also draw
-    the robot at that time."""
+    the robot at that time. A spatial robot (a spatial robot file's path) is drawn in 3-D along
+    a trajectory file keyed x, y, z (, roll, pitch, yaw); motion, frame, png and svg are planar
+    only."""
+    from .spatial import SpatialRobot
+    if isinstance(robot, SpatialRobot):
+        raise ValueError("robot: animate takes a spatial robot file's path, not a SpatialRobot")
     motion = options.pop("motion", None)
     arguments = {name: value for name, value in options.items() if value is not None or name == "frame"}
     if trajectory is not None:
