@@ -47,7 +47,7 @@ LoopResult runPoseLoop(const Model& model, const Trajectory& trajectory, const L
     }
     TaskVector p_d, dp_d, ddp_d, p_next, dp_next, ddp_next;
     trajectory.evaluate(0.0, p_d, dp_d, ddp_d);
-    Simulator plant(model);
+    Simulator plant(model, options.simulator);
     if (const Status status = plant.reset(p_d, dp_d); !status) fail(0.0, status, model, "the reference's start");
     std::mt19937 rng(options.seed);
     std::normal_distribution<double> unit(0.0, 1.0);

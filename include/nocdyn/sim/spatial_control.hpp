@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/spatial.hpp"
 #include "nocdyn/spatial_trajectory.hpp"
 
@@ -29,6 +30,8 @@ struct LoopOptions {
     double noise_angle = 0.0;       ///< of roll, pitch, yaw [rad]
     double noise_rate = 0.0;        ///< of each component of dp/dt
     unsigned seed = 1;
+    /// The plant's integration (its tolerances, steps); the defaults are spatial::Simulator's.
+    SimulatorOptions simulator = {};
     /// Called at each tick with its time [s]; none by default.
     std::function<void(double t)> progress = {};
 };
