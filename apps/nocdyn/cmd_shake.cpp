@@ -93,7 +93,7 @@ void addShakeCommand(CLI::App& app) {
     command->add_option("--window", options->window, "Play only the record's first seconds [s]; 0: all")
         ->check(within(app::kWindowRange));
     addPlantOption(*command, options->plant);
-    command->add_option("--rate", options->rate, "Controller rate [Hz] (a six-DOF table: 2000 unless given)")
+    command->add_option("--rate", options->rate, "Controller rate [Hz] (a six-DOF table: 1000 unless given)")
         ->check(within(app::kShakeRateRange))
         ->capture_default_str();
     addChoiceOption(*command, "--controller", options->controller,

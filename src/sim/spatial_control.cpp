@@ -74,6 +74,11 @@ LoopResult runPoseLoop(const Model& model, const Trajectory& trajectory, const L
         if (options.law == ControlLaw::computed_torque) {
             // the reference's mean acceleration over the hold, and the error feedback
             cmd = (dp_next - dp_d) / dt + kd * de + kp * e;
+            if (options.mid_hold) {
+                // the state at the middle of the hold, under cmd
+                p += (0.5 * dt) * dp + (0.125 * dt * dt) * cmd;
+                dp += (0.5 * dt) * cmd;
+            }
             const Status status = inverseDynamics(model, controller, p, dp, cmd);
             if (!status) fail(t, status, model, "the controller");
             tau = controller.tau;

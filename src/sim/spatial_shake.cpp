@@ -129,7 +129,7 @@ FittedRecord3 fitRecord(const Model& model, const GroundRecord3& record, const F
     }
     const auto use = [&](double L, const std::array<double, 3>& A) {
         const Scaled s = scale(model, filtered, L, A);
-        return limitUse(model, s.trajectory, s.t.back(), 0.5 * record.dt / L, options.margin);  // two per sample
+        return limitUse(model, s.trajectory, s.t.back(), record.dt / L, options.margin);  // at each sample
     };
     const auto fits = [&](double L, const std::array<double, 3>& A) { return use(L, A).ratio <= 1.0; };
     constexpr std::array<double, 3> kOne{1.0, 1.0, 1.0};
@@ -190,7 +190,7 @@ FittedRecord3 fitRecord(const Model& model, const GroundRecord3& record, const F
     fit.amplitude = A;
     fit.per_axis = per_axis;
     fit.dt = record.dt / L;
-    fit.use = limitUse(model, s.trajectory, s.t.back(), 0.5 * fit.dt, options.margin);
+    fit.use = limitUse(model, s.trajectory, s.t.back(), fit.dt, options.margin);
     fit.t = std::move(s.t);
     fit.a = std::move(s.a);
     fit.trajectory = std::move(s.trajectory);

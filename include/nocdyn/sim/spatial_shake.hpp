@@ -8,12 +8,13 @@
 // pose is p(t) = home + [d_x, d_y, d_z, 0, 0, 0], each d_i the baseline-corrected double integral
 // of its acceleration spline (baselineCorrectedAxis). L is the least L >= 1 at which every leg
 // stays within (1 - margin) of its stroke, rate and force (inverse dynamics of the fitted
-// motion, the specimen on the platform); when none up to max_time_scale fits, A < 1 at that L.
+// motion at each sample, the specimen on the platform); when none up to max_time_scale fits, A < 1 at that L.
 // Per-axis scaling: A_i = c min(1, B_i), B_i the largest amplitude at which axis i alone fits,
 // c <= 1 the largest common factor at which the three together fit.
 //
 // Replay (replayRecord): computed torque on the simulated hexapod (spatial::runPoseLoop; the
-// controller's model is the plant's, the specimen included), from the target's start. The
+// controller's model is the plant's, the specimen included), from the target's start; the
+// caller chooses the loop's options (the shake command: the forces of the hold's middle state). The
 // achieved accelerations are the central second differences of the achieved poses over a span
 // of about 0.5 ms, at the record's instants. Scores per translational axis as shake.hpp's
 // scoreShake; the rotations' parasitic motion is their peak |angle| over the replay.
