@@ -674,8 +674,6 @@ def shake(record=None, *, robot=None, set=None, out_dir=None, progress=None, rec
 
 shake.__signature__ = _signature(_nocdyn.ShakeOptions, ("record",), before=(("robot", None), ("set", None)),
                                  after=(("out_dir", None), ("progress", None), ("records", None)))
-shake.__signature__ = shake.__signature__.replace(
-    parameters=[p.replace(default=None) if p.name == "record" else p for p in shake.__signature__.parameters.values()])
 
 
 def regressor(*, robot=None, set=None, output=None, **options):
