@@ -60,6 +60,7 @@ spatial::GroundRecord3 readRecord3(const RecordFiles& files, const ShakeOptions&
                                         "component's file with --record");
     }
     std::vector<io::GroundMotionRecord> components;
+    components.reserve(files.files.size());
     for (const std::string& f : files.files) components.push_back(io::readAt2File(f));
     motion = io::combineComponents(components, options.x_azimuth);
     for (const std::string& note : motion.notes) observer.warning(files.label + ": " + note);
@@ -90,6 +91,7 @@ io::Table replayTable(const spatial::ShakeReplay3& r, const spatial::Model& mode
     const std::vector<double>& ticks = r.loop.t;
     const std::size_t n = std::min(r.fit.t.size(), static_cast<std::size_t>(ticks.back() / r.fit.dt) + 1);
     spatial::TaskVector p, dp, ddp;
+    table.rows.reserve(n);
     for (std::size_t i = 0; i < n; ++i) {
         const double t = r.fit.t[i];
         r.fit.trajectory.evaluate(t, p, dp, ddp);
