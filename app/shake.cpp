@@ -17,6 +17,8 @@
 #include "app/plants.hpp"
 #include "app/shake_outputs.hpp"
 #include "app/shake_records.hpp"
+#include "app/shake_spatial.hpp"
+#include "app/pose_spatial.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/escape.hpp"
@@ -215,7 +217,7 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
     for (std::size_t i = 0; i < records.size(); ++i) {
         if (records[i].files.size() > 1) {
             if (options.axis == "y") throw OptionError("axis", records[i].label + ": " + kComponentsDriveBoth);
-            inputs[i] = readComponents(records[i], options.window, notes);
+            inputs[i] = readComponents(records[i], options.window, notes, options.x_azimuth);
         } else {
             recordTarget(inputs[i], options) = readAxis(records[i].label, options.window, inputs[i].dt, false);
         }
@@ -390,6 +392,7 @@ void validate(const ShakeOptions& o) {
     requireIn(o.noise_pose, kNoisePoseRange, "noise_pose");
     requireIn(o.noise_rate, kNoiseRateRange, "noise_rate");
     requireIn(o.accuracy, kAccuracyRange, "accuracy");
+    if (o.x_azimuth) requireIn(*o.x_azimuth, kAzimuthRange, "x_azimuth");
     if (o.identify_payload && o.controller != ShakeController::table)
         throw OptionError("identify_payload", "needs `controller` table");
     refuseWhatDoesNotApply(o);
@@ -398,6 +401,13 @@ void validate(const ShakeOptions& o) {
 ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     validate(options);
     requireOutputFolder(options.out_dir, "out_dir");
+    if (isSpatialRobot(options.robot)) {
+        ShakeOptions six = options;
+        six.time_scale = replayOptions(options).time_scale;  // "auto" or L, read as for a planar table
+        return runSpatialShake(six, observer);
+    }
+    if (options.per_axis_scale)
+        throw OptionError("per_axis_scale", "goes with a six-DOF table (a spatial robot with motion: full)");
     const RobotDescription robot = loadRobot(options.robot);
     if (robot.motion == PlatformMotion::translation) {
         // a two-DOF table moves its tool point in x, y: no rotation to drive or to sense
@@ -438,7 +448,7 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
             throw OptionError("record_y", records.front().label + ": " + kComponentsDriveBoth);
         if (options.axis == "y") throw OptionError("axis", records.front().label + ": " + kComponentsDriveBoth);
         std::vector<std::string> notes;
-        record = readComponents(records.front(), options.window, notes);
+        record = readComponents(records.front(), options.window, notes, options.x_azimuth);
         for (const std::string& note : notes) observer.warning(note);
     } else {
         recordTarget(record, options) = readAxis(records.front().label, options.window, record.dt, false);

@@ -23,6 +23,7 @@ inline constexpr Range kAccelNoiseDensityRange{0.0, 1e6, "ug/sqrt(Hz)"};
 inline constexpr Range kAccelBandwidthRange{1.0, 1e5, "Hz"};
 inline constexpr Range kAccelBaselineRange{1e-3, 10.0, "m"};
 inline constexpr Range kAmplitudeRange{1e-3, 1e3, ""};
+inline constexpr Range kAzimuthRange{-360.0, 360.0, "deg"};
 inline constexpr Range kIterationGainRange{0.01, 1.0, ""};
 inline constexpr Range kExcitationDurationRange{0.2, 600.0, "s"};
 inline constexpr Range kErrorPercentRange{0.0, 1000.0, "%"};
@@ -48,7 +49,13 @@ struct ShakeOptions : ShakeReplayOptions {
     /// (time_scale as set, by default the least compression L >= 1 that fits) or a decimal L in
     /// [0.001, 10000], which runShake puts in time_scale.
     std::string time_scale_text = "auto";
-    double window = 0.0;            ///< [s] of the record played; 0: all
+    double window = 0.0;  ///< [s] of the record played; 0: all
+    /// A record given as its components: the table's x azimuth [deg, clockwise from north];
+    /// none: the first horizontal's (io::combineComponents).
+    std::optional<double> x_azimuth;
+    /// A six-DOF table: each axis scaled to its own limit (then the three by one factor), not
+    /// one amplitude scale for all three.
+    bool per_axis_scale = false;
     unsigned jobs = 0;              ///< suite: records at once (0: one per core)
     double max_rms_percent = 5.0;   ///< suite: pass at an RMS error of at most this [%]
     double max_peak_percent = 5.0;  ///< suite: pass at |peak error| of at most this [%]

@@ -12,7 +12,6 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/text.hpp"
-#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
@@ -25,6 +24,38 @@ const std::vector<double>& replayTarget(const FittedRecord& fit, int axis) {
 }
 
 }  // namespace
+
+render::PlotPanel accelerationPanel(const std::string& name, const char* unit, std::span<const double> t,
+                                    std::span<const double> target, std::span<const double> achieved,
+                                    const std::string& plant) {
+    render::PlotPanel panel{name, "t [s]", name + " [" + unit + "]", {}};
+    render::PlotSeries tgt{
+        "target", {t.begin(), t.end()}, {target.begin(), target.end()}, "lines lw 2 lc rgb '#1f4e79'"};
+    render::PlotSeries ach{std::string("achieved (").append(plant).append(" plant)"),
+                           {t.begin(), t.end()},
+                           {achieved.begin(), achieved.end()},
+                           "lines dt 2 lw 2 lc rgb '#d62728'"};
+    panel.series = {tgt, ach};
+    panel.key_below = true;  // the plant's long name in one row under the plot, not beside it
+    return panel;
+}
+
+render::PlotPanel spectrumPanel(const std::string& name, const char* unit, const ShakeScore& s) {
+    render::PlotPanel sp{name, "period T [s] (replay time)", std::string("S_a [") + unit + "]", {}};
+    sp.log_x = true;
+    sp.key_below = true;
+    // the tolerance band 0.9 S_a to 1.1 S_a of the target, shaded under both curves
+    render::PlotSeries band{"target \u00b110 %", s.periods, {}, "filledcurves fs solid 0.35 noborder lc rgb '#9ecae1'"};
+    band.extra.emplace_back();
+    for (double v : s.target_sa) {
+        band.y.push_back(0.9 * v);
+        band.extra[0].push_back(1.1 * v);
+    }
+    render::PlotSeries st{"target", s.periods, s.target_sa, "lines lw 2 lc rgb '#1f4e79'"};
+    render::PlotSeries sa{"achieved", s.periods, s.achieved_sa, "lines dt 2 lw 2 lc rgb '#d62728'"};
+    sp.series = {band, st, sa};
+    return sp;
+}
 
 io::Table shakeTable(const ShakeOutcome& outcome, const Model& model) {
     const FittedRecord& fit = outcome.fit;
@@ -145,35 +176,11 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
         if (!outcome.driven[axis]) continue;
         const std::vector<double>& a = replayTarget(fit, static_cast<int>(axis));
         const char* unit = axis == 0 ? "rad/s^2" : "m/s^2";
-        render::PlotPanel panel{kReplayAxes[axis], "t [s]", std::string(kReplayAxes[axis]) + " [" + unit + "]", {}};
-        render::PlotSeries tgt{"target", {}, {}, "lines lw 2 lc rgb '#1f4e79'"};
-        render::PlotSeries ach{
-            std::string("achieved (").append(loop.plant).append(" plant)"), {}, {}, "lines dt 2 lw 2 lc rgb '#d62728'"};
-        for (std::size_t i = 0; i < table.rows.size(); ++i) {
-            tgt.x.push_back(fit.t[i]);
-            tgt.y.push_back(a[i]);
-            ach.x.push_back(fit.t[i]);
-            ach.y.push_back(outcome.achieved[axis][i]);
-        }
-        panel.series = {tgt, ach};
-        panel.key_below = true;  // the plant's long name in one row under the plot, not beside it
-        accel.panels.push_back(panel);
-        const ShakeScore& s = outcome.score[axis];
-        render::PlotPanel sp{kReplayAxes[axis], "period T [s] (replay time)", std::string("S_a [") + unit + "]", {}};
-        sp.log_x = true;
-        sp.key_below = true;
-        // the tolerance band 0.9 S_a to 1.1 S_a of the target, shaded under both curves
-        render::PlotSeries band{
-            "target \u00b110 %", s.periods, {}, "filledcurves fs solid 0.35 noborder lc rgb '#9ecae1'"};
-        band.extra.emplace_back();
-        for (double v : s.target_sa) {
-            band.y.push_back(0.9 * v);
-            band.extra[0].push_back(1.1 * v);
-        }
-        render::PlotSeries st{"target", s.periods, s.target_sa, "lines lw 2 lc rgb '#1f4e79'"};
-        render::PlotSeries sa{"achieved", s.periods, s.achieved_sa, "lines dt 2 lw 2 lc rgb '#d62728'"};
-        sp.series = {band, st, sa};
-        spectra.panels.push_back(sp);
+        const std::size_t n = table.rows.size();
+        accel.panels.push_back(accelerationPanel(kReplayAxes[axis], unit, std::span(fit.t).first(n),
+                                                 std::span(a).first(n), std::span(outcome.achieved[axis]).first(n),
+                                                 loop.plant));
+        spectra.panels.push_back(spectrumPanel(kReplayAxes[axis], unit, outcome.score[axis]));
     }
     render::renderFigure(accel, (folder / "shake_acceleration").string());
     render::renderFigure(spectra, (folder / "shake_spectrum").string());

@@ -3,13 +3,25 @@
 #pragma once
 
 #include <iosfwd>
+#include <span>
 #include <string>
 
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/sim/shake_replay.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
+
+/// A figure's panel `name` [unit]: the target and the achieved acceleration against t, the
+/// achieved labelled with the plant's name.
+[[nodiscard]] render::PlotPanel accelerationPanel(const std::string& name, const char* unit, std::span<const double> t,
+                                                  std::span<const double> target, std::span<const double> achieved,
+                                                  const std::string& plant);
+
+/// A figure's panel `name` [unit]: the 5 %-damped pseudo-acceleration spectra of the target
+/// (with its +-10 % band) and of the achieved motion, on a log period axis.
+[[nodiscard]] render::PlotPanel spectrumPanel(const std::string& name, const char* unit, const ShakeScore& s);
 
 /// shake.csv's table: the record's (scaled) samples (io::TableId::shake), u and tau at the tick
 /// nearest each.

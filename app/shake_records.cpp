@@ -35,11 +35,12 @@ std::vector<RecordFiles> groupRecordFiles(const std::vector<std::string>& files)
     return out;
 }
 
-GroundRecord readComponents(const RecordFiles& record, double window, std::vector<std::string>& notes) {
+GroundRecord readComponents(const RecordFiles& record, double window, std::vector<std::string>& notes,
+                            std::optional<double> x_azimuth) {
     std::vector<io::GroundMotionRecord> components;
     components.reserve(record.files.size());
     for (const std::string& f : record.files) components.push_back(io::readAt2File(f));
-    io::TableMotion motion = io::combineComponents(components);
+    io::TableMotion motion = io::combineComponents(components, x_azimuth);
     for (std::string& note : motion.notes) notes.push_back(record.label + ": " + note);
     if (motion.has_vertical) {
         notes.push_back(record.label + ": " + std::filesystem::path(motion.sources.back()).filename().string() +

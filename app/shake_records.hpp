@@ -2,6 +2,7 @@
 // (two horizontals and a vertical, each file's orientation in its header) read onto the table.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -21,10 +22,11 @@ struct RecordFiles {
 [[nodiscard]] std::vector<RecordFiles> groupRecordFiles(const std::vector<std::string>& files);
 
 /// A record of several components on a planar table: its horizontals rotated onto x and y (the
-/// table's x at the first horizontal's azimuth, io::combineComponents), its first `window`
+/// table's x at x_azimuth, by default the first horizontal's, io::combineComponents), its first `window`
 /// seconds (all when 0). What was done beyond reading (padding; the vertical, which a planar
 /// table does not move along, left out) is appended to `notes`. Throws nocdyn::Error naming the
 /// file or the record.
-[[nodiscard]] GroundRecord readComponents(const RecordFiles& record, double window, std::vector<std::string>& notes);
+[[nodiscard]] GroundRecord readComponents(const RecordFiles& record, double window, std::vector<std::string>& notes,
+                                          std::optional<double> x_azimuth = std::nullopt);
 
 }  // namespace nocdyn::app

@@ -217,6 +217,22 @@ TEST(GroundMotion3, TheTablesXAzimuthRotatesTheHorizontalsRigidly) {
     EXPECT_THROW((void)io::combineComponents(c, 400.0), Error);
 }
 
+// Turning the table's x by +90 degrees of azimuth (clockwise seen from above) puts the new x
+// where -y was and the new y where x was: x' = -y, y' = x, at any x azimuth; z is untouched.
+TEST(GroundMotion3, TurningTheTablesXAzimuthBy90DegreesGivesXPrimeMinusYAndYPrimeX) {
+    const std::vector<io::GroundMotionRecord> c = elCentro3();
+    for (const double beta : {180.0, 0.0, 37.5, -120.0, 250.0}) {
+        const io::TableMotion m = io::combineComponents(c, beta);
+        const io::TableMotion turned = io::combineComponents({c[2], c[0], c[1]}, beta + 90.0);
+        EXPECT_EQ(turned.x_azimuth, beta + 90.0);
+        for (std::size_t k = 0; k < 5378; k += 83) {
+            EXPECT_NEAR(turned.ax[k], -m.ay[k], 1e-14) << beta << " " << k;
+            EXPECT_NEAR(turned.ay[k], m.ax[k], 1e-14) << beta << " " << k;
+            EXPECT_EQ(turned.az[k], m.az[k]);
+        }
+    }
+}
+
 // Northridge 1994 at Sylmar: 090 (east) and 360 (north). x east, y north (90 degrees
 // counter-clockwise from east): a_x = a_090, a_y = a_360; a DWN vertical is reversed.
 TEST(GroundMotion3, NorthridgeEastAndNorthAndADownwardVerticalReversed) {

@@ -64,7 +64,7 @@ void addShakeCommand(CLI::App& app) {
             "AT2 record driving x (--axis; values in g); repeat it, or name a folder (its *.AT2 files), for a suite: "
             "one folder of outputs per record under --out-dir, the records in parallel, one summary table "
             "(DIR/summary.md). Component files of one record (a shared name, each header's azimuth or UP) are "
-            "one record: its horizontals drive x and y")
+            "one record: its horizontals drive x and y (a six-DOF table's: x, y, z)")
         ->required()
         ->check(CLI::ExistingPath);
     command
@@ -89,10 +89,11 @@ void addShakeCommand(CLI::App& app) {
     command->add_option("--margin", options->margin, "Share of each actuator limit kept in reserve")
         ->check(within(app::kShareRange))
         ->capture_default_str();
+    addShakeComponentOptions(*command, *options);
     command->add_option("--window", options->window, "Play only the record's first seconds [s]; 0: all")
         ->check(within(app::kWindowRange));
     addPlantOption(*command, options->plant);
-    command->add_option("--rate", options->rate, "Controller rate [Hz]")
+    command->add_option("--rate", options->rate, "Controller rate [Hz] (a six-DOF table: 1000 unless given)")
         ->check(within(app::kShakeRateRange))
         ->capture_default_str();
     addChoiceOption(*command, "--controller", options->controller,

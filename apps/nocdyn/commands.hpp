@@ -4,6 +4,10 @@
 
 #include <CLI/CLI.hpp>
 
+namespace nocdyn::app {
+struct ShakeOptions;
+}  // namespace nocdyn::app
+
 namespace nocdyn::cli {
 
 void addPoseCommand(CLI::App& app);
@@ -17,6 +21,8 @@ void addWorkspaceCommand(CLI::App& app);
 void addConvertCommand(CLI::App& app);
 void addAnimateCommand(CLI::App& app);
 void addShakeCommand(CLI::App& app);
+/// shake's --x-azimuth and --per-axis-scale (shake_six_dof_options.cpp).
+void addShakeComponentOptions(CLI::App& command, app::ShakeOptions& options);
 void addRegressorCommand(CLI::App& app);
 void addIdentifyCommand(CLI::App& app);
 void addExciteCommand(CLI::App& app);

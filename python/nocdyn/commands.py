@@ -639,7 +639,7 @@ def _animate_signature():
 animate.__signature__ = _animate_signature()
 
 
-def shake(record, *, robot=None, set=None, out_dir=None, progress=None, **options):
+def shake(record=None, *, robot=None, set=None, out_dir=None, progress=None, records=None, **options):
     """Play a ground-motion record (PEER AT2, values in g) on a robot (``nocdyn shake``):
     high-passed, integrated, scaled by similitude to fit every actuator, and played on the plant
     with an unknown payload, as a shake table plays it: controller "table" (model feed-forward,
@@ -655,7 +655,18 @@ def shake(record, *, robot=None, set=None, out_dir=None, progress=None, **option
     out_dir: also write the files and figures there. Ctrl-C (or a KeyboardInterrupt raised by
     ``progress``) stops the replay and writes nothing. record: an AT2 file, or the list of one
     record's component files (two horizontals and at most one vertical, each header's azimuth or
-    UP): its horizontals drive x and y, rotated onto the table (``nocdyn shake`` says how)."""
+    UP): its horizontals drive x and y, rotated onto the table (``nocdyn shake`` says how; x_azimuth
+    turns the table's x). records: the same list of component files, by another name. On a
+    six-DOF table (a spatial robot such as robots/stewart.yaml) the three components drive x, y
+    and z in computed torque with the rotations held at zero; the samples are t, x_d, y_d, z_d,
+    ax, ay, az, ..._achieved, x .. yaw, u1..u6, tau1..tau6, the metrics keyed ax, ay, az, and
+    per_axis_scale scales each axis to its own limit."""
+    if records is not None:
+        if record is not None:
+            raise ValueError("record, records: give one of them (records is the list of a record's component files)")
+        record = records
+    if record is None:
+        raise ValueError("record: expected an AT2 file's path or a list of its component files (or records=[...])")
     # a folder (or several records) is a suite, whose results are one folder per record and no
     # samples to return: refused before anything runs, rather than after. The component files of
     # one record (two horizontals and a vertical sharing a name) are one record.
@@ -683,7 +694,7 @@ def shake(record, *, robot=None, set=None, out_dir=None, progress=None, **option
 
 
 shake.__signature__ = _signature(_nocdyn.ShakeOptions, ("record",), before=(("robot", None), ("set", None)),
-                                 after=(("out_dir", None), ("progress", None)))
+                                 after=(("out_dir", None), ("progress", None), ("records", None)))
 
 
 def regressor(*, robot=None, set=None, output=None, **options):

@@ -37,6 +37,8 @@ void bindShake(py::module_& m) {
         .option("highpass", &O::highpass)
         .option("margin", &O::margin)
         .option("window", &O::window)
+        .option("x_azimuth", &O::x_azimuth)
+        .option("per_axis_scale", &O::per_axis_scale)
         .option("plant", &O::plant)
         .option("rate", &O::rate)
         .option("controller", &O::controller)

@@ -103,10 +103,9 @@ double strokeWithRate(const std::vector<double>& t, const std::vector<double>& d
     return hi - lo;
 }
 
-/// A displacement axis from accelerations: the exact double integral of their spline with the
-/// two constants of integration chosen as the baseline correction (see shake.hpp): the initial
-/// rate v0 that gives the least stroke, then the offset that centres the extremes on `home`.
-SampledAxis centredAxis(const std::vector<double>& t, const std::vector<double>& a, double home) {
+}  // namespace
+
+SampledAxis baselineCorrectedAxis(const std::vector<double>& t, const std::vector<double>& a, double home) {
     const SampledAxis rest = splineOfAccelerations(t, a);
     std::vector<double> d(t.size());
     double dq = 0.0, ddq = 0.0;
@@ -145,6 +144,8 @@ SampledAxis centredAxis(const std::vector<double>& t, const std::vector<double>&
     return splineOfAccelerations(t, a, v0, home - 0.5 * (d_lo + d_hi));
 }
 
+namespace {
+
 Scaled scaleRecord(const Model& model, const GroundRecord& filtered, double L, double A) {
     Scaled s;
     const std::size_t n = std::max({filtered.ax.size(), filtered.ay.size(), filtered.alpha.size()});
@@ -156,7 +157,7 @@ Scaled scaleRecord(const Model& model, const GroundRecord& filtered, double L, d
         if (a.empty()) return;
         out.resize(n);
         for (std::size_t i = 0; i < n; ++i) out[i] = A * a[i];
-        slot = centredAxis(s.t, out, home);
+        slot = baselineCorrectedAxis(s.t, out, home);
     };
     axis(filtered.alpha, s.alpha, sampled->theta, model.home(0));
     axis(filtered.ax, s.ax, sampled->x, model.home(1));

@@ -47,7 +47,7 @@ LoopResult runPoseLoop(const Model& model, const Trajectory& trajectory, const L
     }
     TaskVector p_d, dp_d, ddp_d, p_next, dp_next, ddp_next;
     trajectory.evaluate(0.0, p_d, dp_d, ddp_d);
-    Simulator plant(model);
+    Simulator plant(model, options.simulator);
     if (const Status status = plant.reset(p_d, dp_d); !status) fail(0.0, status, model, "the reference's start");
     std::mt19937 rng(options.seed);
     std::normal_distribution<double> unit(0.0, 1.0);
@@ -74,6 +74,11 @@ LoopResult runPoseLoop(const Model& model, const Trajectory& trajectory, const L
         if (options.law == ControlLaw::computed_torque) {
             // the reference's mean acceleration over the hold, and the error feedback
             cmd = (dp_next - dp_d) / dt + kd * de + kp * e;
+            if (options.mid_hold) {
+                // the state at the middle of the hold, under cmd
+                p += (0.5 * dt) * dp + (0.125 * dt * dt) * cmd;
+                dp += (0.5 * dt) * cmd;
+            }
             const Status status = inverseDynamics(model, controller, p, dp, cmd);
             if (!status) fail(t, status, model, "the controller");
             tau = controller.tau;

@@ -105,6 +105,13 @@ void accumulateLimitUse(const Model& model, double t, const ActuatorVector& u, c
 [[nodiscard]] LimitUse limitUse(const Model& model, const PoseTrajectory& trajectory, double duration, double step,
                                 double margin);
 
+/// A displacement axis from accelerations a at instants t: the exact double integral of their
+/// spline with the two constants of integration chosen as the baseline correction (see the
+/// header comment): the initial rate v0 that gives the least stroke, then the offset that
+/// centres the extremes on `home`.
+[[nodiscard]] SampledAxis baselineCorrectedAxis(const std::vector<double>& t, const std::vector<double>& a,
+                                                double home);
+
 struct FittedRecord {
     double time_scale = 1.0;            ///< L
     double amplitude_scale = 1.0;       ///< A

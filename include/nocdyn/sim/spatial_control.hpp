@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "nocdyn/sim/control.hpp"
+#include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/spatial.hpp"
 #include "nocdyn/spatial_trajectory.hpp"
 
@@ -29,6 +30,13 @@ struct LoopOptions {
     double noise_angle = 0.0;       ///< of roll, pitch, yaw [rad]
     double noise_rate = 0.0;        ///< of each component of dp/dt
     unsigned seed = 1;
+    /// Computed torque: the forces of the state predicted at the middle of the hold,
+    /// (p + dp dt / 2 + ddp_cmd dt^2 / 8, dp + ddp_cmd dt / 2), not of the tick's state: the
+    /// forces held over the tick then match its mean motion to O(dt^2) (the rate-dependent
+    /// terms, and the sign of each joint's Coulomb friction where its rate is about to turn).
+    bool mid_hold = false;
+    /// The plant's integration (its tolerances, steps); the defaults are spatial::Simulator's.
+    SimulatorOptions simulator = {};
     /// Called at each tick with its time [s]; none by default.
     std::function<void(double t)> progress = {};
 };

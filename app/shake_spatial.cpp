@@ -1,0 +1,283 @@
+#include "app/shake_spatial.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <numbers>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "app/shake_outputs.hpp"
+#include "app/shake_records.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/at2.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/escape.hpp"
+#include "nocdyn/io/ground_motion3.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/sim/spatial_shake.hpp"
+#include "nocdyn/text.hpp"
+#include "render/plot.hpp"
+
+namespace nocdyn::app {
+
+// this file's helpers under their own name (the folder compiles as unity files)
+namespace six_dof_shake {
+
+constexpr double kDegree = 180.0 / std::numbers::pi;
+constexpr double kPlantAbsoluteTolerance = 1e-9;
+constexpr double kPlantRelativeTolerance = 1e-7;
+constexpr double kPlantFloorStep = 5e-5;
+constexpr double kSixDofRate = 1000.0;  ///< [Hz] the controller's rate unless given
+
+/// What the six-DOF replay does not do (yet), refused by the option's name when set.
+void refusePlanarOnly(const ShakeOptions& o, std::size_t records) {
+    const ShakeOptions d;
+    const char* planar = ": planar tables only for now (a six-DOF table replays one record in computed torque)";
+    const auto refuse = [planar](bool set, const char* field, const char* what) {
+        if (set) throw OptionError(field, std::string(what) + planar);
+    };
+    refuse(records > 1, "record", "a suite of records");
+    refuse(o.plant == PlantKind::simbody, "plant", "the Simbody plant");
+    refuse(o.identify_payload, "identify_payload", "the payload identification");
+    refuse(o.iterations > 0, "iterations", "drive-signal iteration");
+    refuse(!o.record_y.empty(), "record_y", "a record on y alone");
+    refuse(!o.record_theta.empty(), "record_theta", "a record on theta");
+    refuse(o.axis != d.axis, "axis", "a record on one axis");
+    refuse(o.jobs != d.jobs, "jobs", "a suite's workers");
+}
+
+/// The record's components on the table's x, y, z (in g, read as m/s^2), its first `window` seconds.
+spatial::GroundRecord3 readRecord3(const RecordFiles& files, const ShakeOptions& options, Observer& observer,
+                                   io::TableMotion& motion) {
+    if (files.files.size() < 2) {
+        throw OptionError("record", io::terminalText(files.label) +
+                                        ": a six-DOF table replays a record given as its components (two "
+                                        "horizontals and a vertical, each header's azimuth or UP): give each "
+                                        "component's file with --record");
+    }
+    std::vector<io::GroundMotionRecord> components;
+    components.reserve(files.files.size());
+    for (const std::string& f : files.files) components.push_back(io::readAt2File(f));
+    motion = io::combineComponents(components, options.x_azimuth);
+    for (const std::string& note : motion.notes) observer.warning(files.label + ": " + note);
+    spatial::GroundRecord3 record;
+    record.dt = motion.dt;
+    record.a = {motion.ax, motion.ay, motion.az};
+    for (std::vector<double>& a : record.a) {
+        for (double& v : a) v *= options.amplitude;
+        if (options.window > 0.0)
+            a.resize(std::min(a.size(), static_cast<std::size_t>(options.window / record.dt) + 1));
+    }
+    if (std::all_of(record.a.begin(), record.a.end(), [](const std::vector<double>& a) {
+            return std::all_of(a.begin(), a.end(), [](double v) { return v == 0.0; });
+        })) {
+        throw Error(files.label + ": every acceleration" + (options.window > 0.0 ? " of the window" : "") +
+                    " is zero: no ground motion to replay");
+    }
+    return record;
+}
+
+io::Table replayTable(const spatial::ShakeReplay3& r, const spatial::Model& model) {
+    io::Table table;
+    table.columns = {"t", "x_d", "y_d", "z_d", "ax", "ay", "az", "ax_achieved", "ay_achieved", "az_achieved"};
+    for (const char* c : spatial::kCoordinateNames) table.columns.emplace_back(c);
+    for (const char* prefix : {"u", "tau"}) {
+        for (int a = 1; a <= model.actuators; ++a) table.columns.push_back(prefix + std::to_string(a));
+    }
+    const std::vector<double>& ticks = r.loop.t;
+    const std::size_t n = std::min(r.fit.t.size(), static_cast<std::size_t>(ticks.back() / r.fit.dt) + 1);
+    spatial::TaskVector p, dp, ddp;
+    table.rows.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const double t = r.fit.t[i];
+        r.fit.trajectory.evaluate(t, p, dp, ddp);
+        // the tick nearest t
+        auto k = static_cast<std::size_t>(std::lower_bound(ticks.begin(), ticks.end(), t) - ticks.begin());
+        if (k == ticks.size() || (k > 0 && t - ticks[k - 1] < ticks[k] - t)) --k;
+        std::vector<double> row{t, p(0), p(1), p(2)};
+        for (std::size_t axis = 0; axis < 3; ++axis) row.push_back(r.fit.a[axis][i]);
+        for (std::size_t axis = 0; axis < 3; ++axis) row.push_back(r.achieved[axis][i]);
+        for (int c = 0; c < 6; ++c) row.push_back(r.loop.p[k](c));
+        for (int a = 0; a < model.actuators; ++a) row.push_back(r.loop.u[k](a));
+        for (int a = 0; a < model.actuators; ++a) row.push_back(r.loop.tau[k](a));
+        table.rows.push_back(std::move(row));
+    }
+    return table;
+}
+
+nlohmann::json useJson(const LimitUse& u) { return {{"ratio", u.ratio}, {"what", u.what}, {"t", u.t}}; }
+
+std::string replayJson(const spatial::ShakeReplay3& r, const io::TableMotion& motion, const ShakeOptions& options,
+                       const std::string& controller) {
+    nlohmann::json json;
+    json["time_scale"] = r.fit.time_scale;
+    json["amplitude_scale"] = r.fit.amplitude;  // [x, y, z]
+    json["per_axis_scale"] = r.fit.per_axis;
+    json["x_azimuth"] = motion.x_azimuth;
+    json["sources"] = motion.sources;
+    json["margin"] = options.margin;
+    json["specimen_mass"] = options.payload_mass;
+    json["fitted_limit_use"] = useJson(r.fit.use);
+    json["achieved_limit_use"] = useJson(r.achieved_use);
+    json["passband_periods"] = {r.period_min, r.period_max};
+    json["saturated_ticks"] = r.loop.saturated_ticks;
+    json["duration"] = r.loop.t.back();
+    json["amplitude_requested"] = options.amplitude;
+    json["controller"] = controller;
+    json["parasitic_rotation_deg"] = {
+        {"roll", kDegree * r.parasitic[0]}, {"pitch", kDegree * r.parasitic[1]}, {"yaw", kDegree * r.parasitic[2]}};
+    nlohmann::json metrics = nlohmann::json::object();
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        const ShakeScore& s = r.score[axis];
+        if (s.periods.empty()) continue;  // an axis that does not move
+        metrics[spatial::kShakeAxes[axis]] = {{"rms_error_percent", 100.0 * s.rms_error},
+                                              {"peak_error_percent", 100.0 * s.peak_error},
+                                              {"spectrum_outside_band_percent", 100.0 * s.share_outside},
+                                              {"spectrum_periods_counted", s.counted},
+                                              {"displacement_error_percent", 100.0 * s.displacement_error},
+                                              {"periods", s.periods},
+                                              {"target_sa", s.target_sa},
+                                              {"achieved_sa", s.achieved_sa}};
+    }
+    json["metrics"] = metrics;
+    return json.dump(2) + "\n";
+}
+
+void writeFigures(const spatial::ShakeReplay3& r, const io::Table& table, const std::string& dir,
+                  const std::string& title) {
+    const std::filesystem::path folder(dir);
+    render::Figure accel{render::literalText(title) + ": target and achieved acceleration", {}};
+    render::Figure spectra{render::literalText(title) + ": 5 %-damped pseudo-acceleration spectra", {}};
+    const std::size_t n = table.rows.size();
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        if (r.score[axis].periods.empty()) continue;
+        accel.panels.push_back(accelerationPanel(spatial::kShakeAxes[axis], "m/s^2", std::span(r.fit.t).first(n),
+                                                 std::span(r.fit.a[axis]).first(n),
+                                                 std::span(r.achieved[axis]).first(n), "nocdyn"));
+        spectra.panels.push_back(spectrumPanel(spatial::kShakeAxes[axis], "m/s^2", r.score[axis]));
+    }
+    render::renderFigure(accel, (folder / "shake_acceleration").string());
+    render::renderFigure(spectra, (folder / "shake_spectrum").string());
+}
+
+std::string summary(const spatial::ShakeReplay3& r, const io::TableMotion& motion, const ShakeOptions& options,
+                    const std::string& controller, ShakeResult& out) {
+    const spatial::FittedRecord3& fit = r.fit;
+    std::string text = text::format(
+        "components: x at azimuth %g deg, y at %g deg, z up; time scale L = %.4g, amplitude scale A = %.4g, %.4g, "
+        "%.4g (x, y, z; %s)\n",
+        motion.x_azimuth, std::fmod(motion.x_azimuth + 630.0, 360.0), fit.time_scale, fit.amplitude[0],
+        fit.amplitude[1], fit.amplitude[2], fit.per_axis ? "per axis" : "one for all three");
+    text += text::format(
+        "fitted motion (specimen %g kg on the platform): worst limit use %.1f %% of the allowed (%s at "
+        "t = %.4g s)\n",
+        options.payload_mass, 100.0 * fit.use.ratio, fit.use.what.c_str(), fit.use.t);
+    text += "controller: " + controller + "\n";
+    text += text::format(
+        "closed loop: %.4g s of motion in %.3g s, %zu saturated ticks; worst use of a limit %.1f %% (%s)\n",
+        r.loop.t.back(), r.seconds, r.loop.saturated_ticks, 100.0 * r.achieved_use.ratio, r.achieved_use.what.c_str());
+    text += text::format("rotations (held at zero): peak |roll| %.3g deg, |pitch| %.3g deg, |yaw| %.3g deg\n",
+                         kDegree * r.parasitic[0], kDegree * r.parasitic[1], kDegree * r.parasitic[2]);
+    out.passed = 1;
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        const ShakeScore& s = r.score[axis];
+        if (s.periods.empty()) continue;
+        ShakeSuiteRow row;
+        row.record = motion.name + " " + spatial::kShakeAxes[axis];
+        row.time_scale = fit.time_scale;
+        row.amplitude = fit.amplitude[axis] * options.amplitude;
+        row.amplitude_asked = options.amplitude != 1.0;
+        row.rms_error_percent = 100.0 * s.rms_error;
+        row.peak_error_percent = 100.0 * s.peak_error;
+        row.within_percent = 100.0 * (1.0 - s.share_outside);
+        row.limit_use_percent = 100.0 * r.achieved_use.ratio;
+        row.binding = r.achieved_use.what;
+        row.pass = row.rms_error_percent <= options.max_rms_percent &&
+                   std::abs(row.peak_error_percent) <= options.max_peak_percent &&
+                   row.within_percent >= options.min_spectrum_percent && r.achieved_use.ratio <= 1.0;
+        text += text::format(
+            "%s: RMS error %.2f %% of the target RMS, peak error %+.2f %%, spectrum: %.0f %% of the %d periods "
+            "%.3g-%.3g s within +-10 %%; displacement error %.2f %%; %s\n",
+            spatial::kShakeAxes[axis], row.rms_error_percent, row.peak_error_percent, row.within_percent, s.counted,
+            r.period_min, r.period_max, 100.0 * s.displacement_error, row.pass ? "pass" : "FAIL");
+        out.passed = out.passed != 0 && row.pass ? 1 : 0;
+        out.rows.push_back(std::move(row));
+    }
+    text += text::format(
+        "verdict (every axis against the goals: RMS <= %.3g %%, |peak| <= %.3g %%, spectrum within +-10 %% at >= "
+        "%.3g %% of the counted periods, every limit <= 100 %%): %s\n",
+        options.max_rms_percent, options.max_peak_percent, options.min_spectrum_percent, out.passed ? "pass" : "FAIL");
+    return text;
+}
+
+}  // namespace six_dof_shake
+
+ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
+    if (options.x_azimuth) requireIn(*options.x_azimuth, kAzimuthRange, "x_azimuth");
+    const std::vector<RecordFiles> records = groupRecordFiles(options.record);
+    six_dof_shake::refusePlanarOnly(options, records.size());
+    const SpatialRobotDescription description = io::loadSpatialRobotDescription(options.robot.path, options.robot.set);
+    // the specimen on the platform, in the fit's inverse dynamics and in the plant (the
+    // controller's model carries it too)
+    const spatial::Model model(spatial::withSpecimen(description, options.payload_mass));
+    io::TableMotion motion;
+    const spatial::GroundRecord3 record = six_dof_shake::readRecord3(records.front(), options, observer, motion);
+    FitOptions fit_options;
+    fit_options.highpass = options.highpass;
+    fit_options.margin = options.margin;
+    fit_options.time_scale = options.time_scale;
+    spatial::FittedRecord3 fit = spatial::fitRecord(model, record, fit_options, options.per_axis_scale);
+    spatial::LoopOptions loop;
+    // a six-DOF table's plant costs some 20 times a planar one's per tick: 1 kHz unless given (the
+    // forces of the hold's middle state keep the error O(dt^2): El Centro's z within 2 % at 1 kHz)
+    loop.rate = options.rate == ShakeOptions{}.rate ? six_dof_shake::kSixDofRate : options.rate;
+    loop.law = ControlLaw::computed_torque;
+    loop.mid_hold = true;
+    loop.natural_frequency = options.natural_frequency.value_or(kPoseNaturalFrequency);
+    // the plant integrated to 1e-9 m (rad) and 1e-7 relative, a step the error test rejects
+    // taken anyway at 50 us: where a leg's rate changes sign its Coulomb friction jumps, and the
+    // error control would shrink the step to the 1 us floor at each jump (taking most of the
+    // time); such a step errs by about the jump in acceleration times h^2 / 2 (~1e-9 m)
+    loop.simulator.absolute_tolerance = six_dof_shake::kPlantAbsoluteTolerance;
+    loop.simulator.relative_tolerance = six_dof_shake::kPlantRelativeTolerance;
+    loop.simulator.floor_step = six_dof_shake::kPlantFloorStep;
+    const bool noisy = options.controller == ShakeController::pose;
+    if (noisy) {
+        loop.noise_position = options.noise_pose;
+        loop.noise_angle = options.noise_pose;
+        loop.noise_rate = options.noise_rate;
+        loop.seed = options.seed;
+    }
+    const std::string controller = text::format(
+        "computed torque on the %s pose and rate (f_n = %g Hz, %g Hz), the rotations' targets zero; the model "
+        "carries the specimen",
+        noisy ? "noisy" : "exact", loop.natural_frequency, loop.rate);
+    if (!(fit.t.back() * loop.rate <= 1e7)) {
+        throw OptionError("rate", text::format("%g s of replay at %g Hz: at most 1e7 ticks (give --window)",
+                                               fit.t.back(), loop.rate));
+    }
+    Meter meter(observer, fit.t.back(), "s");
+    loop.progress = [&meter](double t) { meter(t); };
+    const spatial::ShakeReplay3 r = spatial::replayRecord(model, std::move(fit), loop, options.highpass);
+    meter.report(r.loop.t.back());
+    ShakeResult out;
+    out.table = six_dof_shake::replayTable(r, model);
+    out.metrics_json = six_dof_shake::replayJson(r, motion, options, controller);
+    out.text = six_dof_shake::summary(r, motion, options, controller, out);
+    if (!options.out_dir.empty()) {
+        std::error_code error;
+        std::filesystem::create_directories(options.out_dir, error);
+        if (error) throw Error("cannot create the folder '" + options.out_dir + "': " + error.message());
+        const std::filesystem::path folder(options.out_dir);
+        io::writeCsvFile((folder / "shake.csv").string(), out.table);
+        io::writeTextFile((folder / "shake.json").string(), out.metrics_json);
+        six_dof_shake::writeFigures(r, out.table, options.out_dir, model.name + ": " + records.front().label);
+    }
+    return out;
+}
+
+}  // namespace nocdyn::app

@@ -1,0 +1,174 @@
+// A three-component record on a six-DOF table (nocdyn/sim/spatial_shake.hpp): the specimen on
+// the platform, the fit within every leg's limits, the closed-loop replay and its scores, and
+// `nocdyn shake` on robots/stewart.yaml.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "cli_support.hpp"
+#include "nocdyn/error.hpp"
+#include "nocdyn/io/at2.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "nocdyn/io/ground_motion3.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/sim/spatial_shake.hpp"
+
+namespace nocdyn {
+namespace {
+
+const std::string kSource = NOCDYN_SOURCE_DIR;
+
+SpatialRobotDescription stewart() { return io::loadSpatialRobotDescription(kSource + "/robots/stewart.yaml"); }
+
+std::string component(const std::string& name) { return kSource + "/data/records3/RSN6_IMPVALL.I_I-ELC" + name; }
+
+/// El Centro 1940 (Array #9) on the table's x, y, z: its first `seconds`.
+spatial::GroundRecord3 elCentro(double seconds) {
+    const io::TableMotion m =
+        io::combineComponents({io::readAt2File(component("180-hor1.AT2")), io::readAt2File(component("270-hor2.AT2")),
+                               io::readAt2File(component("-UP.AT2"))});
+    spatial::GroundRecord3 r;
+    r.dt = m.dt;
+    r.a = {m.ax, m.ay, m.az};
+    for (auto& a : r.a) a.resize(static_cast<std::size_t>(seconds / m.dt) + 1);
+    return r;
+}
+
+Eigen::Matrix3d shift(const Eigen::Vector3d& r) {
+    return r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose();
+}
+
+// A point mass at the platform's origin: the mass adds, the c.o.m. is the weighted mean, and the
+// inertia about the origin is the platform's about the origin (parallel axes: the point adds none).
+TEST(SpatialShake, TheSpecimenIsAPointMassAtThePlatformsOrigin) {
+    const SpatialRobotDescription d = stewart();
+    const SpatialRobotDescription s = spatial::withSpecimen(d, 100.0);
+    const SpatialBodyDescription &p = d.platform, &q = s.platform;
+    EXPECT_DOUBLE_EQ(q.mass, p.mass + 100.0);
+    EXPECT_TRUE(q.com.isApprox(p.mass * p.com / (p.mass + 100.0), 1e-15));
+    const Eigen::Matrix3d about_origin = q.inertia + q.mass * shift(q.com);
+    EXPECT_TRUE(about_origin.isApprox(p.inertia + p.mass * shift(p.com), 1e-13)) << about_origin;
+    EXPECT_EQ(spatial::withSpecimen(d, 0.0).platform.mass, p.mass);
+    EXPECT_THROW((void)spatial::withSpecimen(d, -1.0), Error);
+    // the heavier platform needs the more force to hold at home
+    const spatial::Model light(d), heavy(s);
+    spatial::Data a(light), b(heavy);
+    const spatial::TaskVector zero = spatial::TaskVector::Zero(6);
+    ASSERT_TRUE(spatial::inverseDynamics(light, a, light.home, zero, zero).ok());
+    ASSERT_TRUE(spatial::inverseDynamics(heavy, b, heavy.home, zero, zero).ok());
+    // at home the six legs share the weight equally (the hexapod's symmetry): 100 g more in all
+    const double extra = (b.tau - a.tau).sum() * heavy.limb[0].freedoms[2].axis.z();
+    EXPECT_NEAR(extra, 100.0 * 9.81, 1e-6 * 100.0 * 9.81);
+}
+
+// The fit: one time scale and one amplitude for the three axes; the target's accelerations
+// are the filtered record's times A, the trajectory's second derivative at each sample; the
+// rotations stay at home; the fitted motion uses at most the allowed share of every limit.
+TEST(SpatialShake, TheFitKeepsTheMotionsShapeWithinEveryLegsLimits) {
+    const spatial::Model model(stewart());
+    const spatial::GroundRecord3 record = elCentro(6.0);
+    FitOptions options;
+    const spatial::FittedRecord3 fit = spatial::fitRecord(model, record, options);
+    EXPECT_GE(fit.time_scale, 1.0);
+    EXPECT_EQ(fit.amplitude[0], fit.amplitude[1]);
+    EXPECT_EQ(fit.amplitude[1], fit.amplitude[2]);
+    EXPECT_LE(fit.use.ratio, 1.0);
+    EXPECT_GT(fit.use.ratio, 0.5);  // the least compression that fits uses the limits
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        const std::vector<double> filtered = highPassZeroPhase(record.a[axis], record.dt, options.highpass);
+        ASSERT_EQ(fit.a[axis].size(), filtered.size());
+        spatial::TaskVector p, dp, ddp;
+        for (std::size_t i = 0; i < filtered.size(); i += 37) {
+            EXPECT_NEAR(fit.a[axis][i], fit.amplitude[axis] * filtered[i], 1e-12);
+            fit.trajectory.evaluate(fit.t[i], p, dp, ddp);
+            EXPECT_NEAR(ddp(static_cast<Eigen::Index>(axis)), fit.a[axis][i], 1e-9);
+            for (int c = 3; c < 6; ++c) EXPECT_EQ(p(c), 0.0);
+        }
+    }
+    // a time scale given too small to fit: the amplitude is lowered, the same for the three
+    FitOptions fast = options;
+    fast.time_scale = 1.0;
+    const spatial::FittedRecord3 lowered = spatial::fitRecord(model, record, fast);
+    if (fit.time_scale > 1.0) {
+        EXPECT_LT(lowered.amplitude[0], 1.0);
+        EXPECT_EQ(lowered.amplitude[0], lowered.amplitude[2]);
+        EXPECT_LE(lowered.use.ratio, 1.0);
+        // per axis: another shape, the limits used as fully, some axis larger than the common scale
+        const spatial::FittedRecord3 each = spatial::fitRecord(model, record, fast, true);
+        EXPECT_LE(each.use.ratio, 1.0);
+        EXPECT_GT(each.use.ratio, 0.99);
+        EXPECT_GT(lowered.use.ratio, 0.99);
+        EXPECT_GT(*std::max_element(each.amplitude.begin(), each.amplitude.end()), lowered.amplitude[0]);
+        EXPECT_NE(each.amplitude[0], each.amplitude[2]);
+    }
+    spatial::GroundRecord3 bad = record;
+    bad.a[2].pop_back();
+    EXPECT_THROW((void)spatial::fitRecord(model, bad, options), Error);
+}
+
+// Computed torque on the exact model: each axis's acceleration within 5 % RMS of the target
+// and its spectrum within +-10 %; the rotations held near zero.
+TEST(SpatialShake, TheReplayFollowsEachAxisAndHoldsTheRotations) {
+    const spatial::Model model(spatial::withSpecimen(stewart(), 50.0));
+    FitOptions options;
+    spatial::LoopOptions loop;
+    loop.rate = 1000.0;
+    loop.natural_frequency = 30.0;
+    loop.mid_hold = true;
+    const spatial::ShakeReplay3 r =
+        spatial::replayRecord(model, spatial::fitRecord(model, elCentro(3.0), options), loop, options.highpass);
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        EXPECT_LT(r.score[axis].rms_error, 0.05) << axis;
+        EXPECT_GT(r.score[axis].rms_error, 0.0) << axis;
+        EXPECT_GT(r.score[axis].counted, 5) << axis;
+        EXPECT_EQ(r.score[axis].share_outside, 0.0) << axis;
+    }
+    for (double angle : r.parasitic) EXPECT_LT(angle, 1e-3);
+    EXPECT_LE(r.achieved_use.ratio, 1.0);
+    EXPECT_EQ(r.loop.saturated_ticks, 0u);
+    // the forces of the tick's state rather than of the hold's middle: an O(dt) error, larger
+    loop.mid_hold = false;
+    const spatial::ShakeReplay3 start = spatial::replayRecord(model, r.fit, loop, options.highpass);
+    for (std::size_t axis = 0; axis < 3; ++axis) EXPECT_GT(start.score[axis].rms_error, 2.0 * r.score[axis].rms_error);
+}
+
+// `nocdyn shake` with the three components on the hexapod: the files, the columns and the
+// metrics keyed ax, ay, az; the padding said on stderr.
+TEST(SpatialShake, TheCommandReplaysAThreeComponentRecordOnTheHexapod) {
+    const std::filesystem::path out = test::freshScratchDirectory("spatial_shake");
+    const std::string robot = " --robot " + kSource + "/robots/stewart.yaml";
+    const std::string records = " --record " + component("-UP.AT2") + " --record " + component("270-hor2.AT2") +
+                                " --record " + component("180-hor1.AT2");
+    const test::CliResult run =
+        test::runCli("shake" + robot + records + " --window 3 --out-dir " + (out / "a").string());
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.out.find("az: RMS error"), std::string::npos) << run.out;
+    EXPECT_NE(run.out.find("x at azimuth 180 deg, y at 90 deg"), std::string::npos) << run.out;
+    EXPECT_NE(run.err.find("padded with zeros"), std::string::npos) << run.err;
+    const io::Table table = io::readCsvFile((out / "a" / "shake.csv").string());
+    for (const char* c : {"ax", "ay", "az", "ax_achieved", "ay_achieved", "az_achieved", "roll", "tau6"})
+        EXPECT_NE(std::find(table.columns.begin(), table.columns.end(), c), table.columns.end()) << c;
+    std::ifstream file(out / "a" / "shake.json");
+    const nlohmann::json json = nlohmann::json::parse(file);
+    for (const char* axis : {"ax", "ay", "az"}) {
+        EXPECT_LT(json["metrics"][axis]["rms_error_percent"].get<double>(), 5.0) << axis;
+    }
+    EXPECT_EQ(json["x_azimuth"].get<double>(), 180.0);
+    for (const char* f : {"shake_acceleration.png", "shake_spectrum.svg"})
+        EXPECT_TRUE(std::filesystem::exists(out / "a" / f)) << f;
+    // a planar-only option is refused by name
+    const test::CliResult refused =
+        test::runCli("shake" + robot + records + " --iterations 2 --out-dir " + (out / "b").string());
+    EXPECT_NE(refused.exit_code, 0);
+    EXPECT_NE(refused.err.find("iterations"), std::string::npos) << refused.err;
+}
+
+}  // namespace
+}  // namespace nocdyn
