@@ -94,9 +94,13 @@ TEST(SpatialMujoco, AgreesWithSimbody) {
          {std::tuple{"stewart", 0.02, 0.04}, std::tuple{"6-rus", 0.01, 0.04}, std::tuple{"delta", 0.03, 0.0}}) {
         const nocdyn::SpatialRobotDescription robot = shipped(name);
         const Path path = twoHarmonics(robot, length, angle);
-        const Eigen::MatrixXd mujoco = MujocoSpatialMechanism(robot).actuatorForces(path.p, path.dp, path.ddp);
-        const Eigen::MatrixXd simbody =
-            nocdyn::validation::SimbodySpatialMechanism(robot).actuatorForces(path.p, path.dp, path.ddp);
+        MujocoSpatialMechanism mujoco_engine(robot);
+        nocdyn::validation::SimbodySpatialMechanism simbody_engine(robot);
+        const Eigen::MatrixXd mujoco = mujoco_engine.actuatorForces(path.p, path.dp, path.ddp);
+        const Eigen::MatrixXd simbody = simbody_engine.actuatorForces(path.p, path.dp, path.ddp);
+        // a second call starts from home again, not from where the first ended
+        EXPECT_EQ(mujoco_engine.actuatorForces(path.p, path.dp, path.ddp), mujoco) << name;
+        EXPECT_EQ(simbody_engine.actuatorForces(path.p, path.dp, path.ddp), simbody) << name;
         const double peak = simbody.cwiseAbs().maxCoeff();
         const double relative = (mujoco - simbody).cwiseAbs().maxCoeff() / peak;
         std::printf("%s: max |tau_mujoco - tau_simbody| / peak %.3e\n", name, relative);
