@@ -18,6 +18,8 @@ namespace nocdyn::app {
 ValidateResult runValidate(const ValidateOptions& options, Observer& observer) {
     if (isSpatialRobot(options.robot)) return runSpatialValidate(options, observer);
     validate(static_cast<const SamplingOptions&>(options));
+    if (options.engine != "both")
+        throw OptionError("engine", "a planar robot is compared with both engines: give --engine both or leave it out");
     const RobotDescription robot = loadRobot(options.robot);
     const PoseTrajectory trajectory =
         trajectoryFor(Model(robot), io::trajectoryByNameOrFile(options.trajectory), options.trajectory);
@@ -76,7 +78,7 @@ std::optional<std::string> checkSpatialRobot(const RobotSource& source) {
     out += "  actuators: " + std::to_string(robot.actuatorCount()) + " (" + byType(actuated) + ")\n";
     out +=
         "  mass: " + text::number(robot.totalMass()) + " kg (platform " + text::number(robot.platform.mass) + " kg)\n";
-    out += "give --trajectory to compare its actuator forces with Simbody's spatial model along it\n";
+    out += "give --trajectory to compare its actuator forces with Simbody's and MuJoCo's spatial models along it\n";
     return out;
 }
 

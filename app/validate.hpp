@@ -14,6 +14,9 @@ namespace nocdyn::app {
 struct ValidateOptions : SamplingOptions {
     ValidateOptions() { rate = 1000.0; }
     RobotSource robot;
+    /// The engines a spatial robot is compared with: "both" (Simbody and MuJoCo), "simbody" or
+    /// "mujoco". A planar robot is always compared with both (only "both" is taken).
+    std::string engine = "both";
 };
 
 struct ValidateResult {
@@ -25,8 +28,7 @@ struct ValidateResult {
     std::string agreement;
 };
 
-/// A spatial robot file (space: spatial) goes to runSpatialValidate (app/validate_spatial.hpp:
-/// Simbody only).
+/// A spatial robot file (space: spatial) goes to runSpatialValidate (app/validate_spatial.hpp).
 [[nodiscard]] ValidateResult runValidate(const ValidateOptions& options, Observer& observer);
 
 /// When `source` is a spatial robot file (`space: spatial`): reads and checks it and returns a

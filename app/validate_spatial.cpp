@@ -6,27 +6,58 @@
 #include <cstdio>
 
 #include "app/inverse_dynamics_spatial.hpp"
+#include "app/options.hpp"
 #include "app/table.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial_trajectory.hpp"
 #include "nocdyn/text.hpp"
 #include "nocdyn/validation/agreement.hpp"
+#include "nocdyn/validation/mujoco_spatial.hpp"
 #include "nocdyn/validation/simbody_spatial.hpp"
 
 namespace nocdyn::app {
 
-std::vector<std::string> spatialValidateColumns(const spatial::Model& model) {
+std::vector<std::string> spatialValidateEngines(const std::string& engine) {
+    if (engine == "both") return {"simbody", "mujoco"};
+    if (engine == "simbody" || engine == "mujoco") return {engine};
+    throw OptionError("engine", "`" + engine + "`: expected both, simbody or mujoco");
+}
+
+std::vector<std::string> spatialValidateColumns(const spatial::Model& model, const std::vector<std::string>& engines) {
     std::vector<std::string> columns{"t"};
     for (const std::string& c : model.coordinates()) columns.push_back(c);
-    for (const char* prefix : {"u", "tau", "simbody_tau", "simbody_dtau"}) {
+    std::vector<std::string> prefixes{"u", "tau"};
+    for (const std::string& e : engines) prefixes.push_back(e + "_tau");
+    for (const std::string& e : engines) prefixes.push_back(e + "_dtau");
+    for (const std::string& prefix : prefixes) {
         for (int a = 1; a <= model.actuators; ++a) columns.push_back(prefix + std::to_string(a));
     }
     return columns;
 }
 
+namespace {
+
+/// One engine's actuator forces along the samples (one row each).
+Eigen::MatrixXd engineForces(const std::string& engine, const SpatialRobotDescription& description,
+                             const std::vector<Eigen::VectorXd>& p, const std::vector<Eigen::VectorXd>& dp,
+                             const std::vector<Eigen::VectorXd>& ddp, double rate) {
+    try {
+        if (engine == "mujoco") return validation::MujocoSpatialMechanism(description).actuatorForces(p, dp, ddp);
+        return validation::SimbodySpatialMechanism(description).actuatorForces(p, dp, ddp);
+    } catch (const OptionError&) {
+        throw;
+    } catch (const Error& e) {
+        // the engines number their samples from 0: say at which times they are
+        throw Error(std::string(e.what()) + " (sample k is at t = k / " + text::precise(rate) + " Hz)");
+    }
+}
+
+}  // namespace
+
 ValidateResult runSpatialValidate(const ValidateOptions& options, Observer& observer) {
     validate(static_cast<const SamplingOptions&>(options));
+    const std::vector<std::string> engines = spatialValidateEngines(options.engine);
     if (options.trajectory.empty() && !options.given_trajectory) {
         throw OptionError("trajectory",
                           "give the spatial robot's trajectory file (keyed x, y, z and, for motion full, roll, "
@@ -47,7 +78,7 @@ ValidateResult runSpatialValidate(const ValidateOptions& options, Observer& obse
     const auto at = [&](std::size_t k, int column) { return values[k * width + static_cast<std::size_t>(column)]; };
     const int u_column = 1 + d, tau_column = 1 + d + 3 * n;
 
-    // Simbody's along the same path: p, dp, ddp of the trajectory at every row's t
+    // the engines' along the same path: p, dp, ddp of the trajectory at every row's t
     std::vector<Eigen::VectorXd> p(samples), dp(samples), ddp(samples);
     spatial::TaskVector pk, dpk, ddpk;
     for (std::size_t k = 0; k < samples; ++k) {
@@ -56,57 +87,66 @@ ValidateResult runSpatialValidate(const ValidateOptions& options, Observer& obse
         dp[k] = dpk;
         ddp[k] = ddpk;
     }
-    validation::SimbodySpatialMechanism engine(description);
-    Eigen::MatrixXd theirs;
-    try {
-        theirs = engine.actuatorForces(p, dp, ddp);
-    } catch (const Error& e) {
-        // the engine numbers its samples from 0: say at which times they are
-        throw Error(std::string(e.what()) + " (sample k is at t = k / " + text::precise(options.rate) + " Hz)");
+    std::vector<Eigen::MatrixXd> theirs;
+    std::vector<validation::EngineAgreement> agreements(engines.size());
+    for (std::size_t e = 0; e < engines.size(); ++e) {
+        theirs.push_back(engineForces(engines[e], description, p, dp, ddp, options.rate));
+        stopIfRequested(observer);
+        agreements[e].engine = engines[e] == "mujoco" ? "MuJoCo" : "Simbody";
+        agreements[e].max_abs.assign(static_cast<std::size_t>(n), 0.0);
+        agreements[e].max_rel_peak.assign(static_cast<std::size_t>(n), 0.0);
     }
-    stopIfRequested(observer);
 
-    validation::EngineAgreement simbody;
-    simbody.engine = "Simbody";
-    simbody.max_abs.assign(static_cast<std::size_t>(n), 0.0);
-    simbody.max_rel_peak.assign(static_cast<std::size_t>(n), 0.0);
     std::vector<double> peak(static_cast<std::size_t>(n), 0.0);
     ValidateResult out;
     out.robot = model.name;
     out.trajectory = trajectory.name;
     out.samples = samples;
-    out.table.columns = spatialValidateColumns(model);
+    out.table.columns = spatialValidateColumns(model, engines);
     out.table.rows.reserve(samples);
     for (std::size_t k = 0; k < samples; ++k) {
         std::vector<double> row;
         row.reserve(out.table.columns.size());
         for (int c = 0; c < 1 + d; ++c) row.push_back(at(k, c));
         for (int a = 0; a < n; ++a) row.push_back(at(k, u_column + a));
-        for (int a = 0; a < n; ++a) row.push_back(at(k, tau_column + a));
-        for (int a = 0; a < n; ++a) row.push_back(theirs(static_cast<Eigen::Index>(k), a));
         for (int a = 0; a < n; ++a) {
-            const double tau = at(k, tau_column + a), engine = theirs(static_cast<Eigen::Index>(k), a);
-            if (!std::isfinite(engine)) {
-                throw Error(text::sampleTime(at(k, 0)) +
-                            ": Simbody's spatial model gives a non-finite force of "
-                            "actuator " +
-                            std::to_string(a + 1));
+            const double tau = at(k, tau_column + a);
+            row.push_back(tau);
+            peak[static_cast<std::size_t>(a)] = std::max(peak[static_cast<std::size_t>(a)], std::abs(tau));
+        }
+        for (std::size_t e = 0; e < engines.size(); ++e) {
+            for (int a = 0; a < n; ++a) {
+                const double engine = theirs[e](static_cast<Eigen::Index>(k), a);
+                if (!std::isfinite(engine)) {
+                    throw Error(text::sampleTime(at(k, 0)) + ": " + agreements[e].engine +
+                                "'s spatial model gives a non-finite force of actuator " + std::to_string(a + 1));
+                }
+                row.push_back(engine);
             }
-            row.push_back(engine - tau);
-            const auto aa = static_cast<std::size_t>(a);
-            peak[aa] = std::max(peak[aa], std::abs(tau));
-            simbody.max_abs[aa] = std::max(simbody.max_abs[aa], std::abs(engine - tau));
+        }
+        for (std::size_t e = 0; e < engines.size(); ++e) {
+            for (int a = 0; a < n; ++a) {
+                const double difference = theirs[e](static_cast<Eigen::Index>(k), a) - at(k, tau_column + a);
+                row.push_back(difference);
+                double& worst = agreements[e].max_abs[static_cast<std::size_t>(a)];
+                worst = std::max(worst, std::abs(difference));
+            }
         }
         out.table.rows.push_back(std::move(row));
     }
-    for (std::size_t a = 0; a < peak.size(); ++a)
-        simbody.max_rel_peak[a] = peak[a] > 0.0 ? simbody.max_abs[a] / peak[a] : simbody.max_abs[a];
-    char line[200];
-    std::snprintf(line, sizeof line,
-                  "\nLargest difference over the actuators, relative to our peak abs(tau): Simbody %.3e.\n",
-                  simbody.worstRelative());
-    out.agreement = validation::agreementRows({&simbody}) + line +
-                    "MuJoCo's models are planar for now: a spatial robot is compared with Simbody only.\n";
+    std::vector<const validation::EngineAgreement*> rows;
+    std::string worst;
+    for (validation::EngineAgreement& agreement : agreements) {
+        for (std::size_t a = 0; a < peak.size(); ++a) {
+            agreement.max_rel_peak[a] = peak[a] > 0.0 ? agreement.max_abs[a] / peak[a] : agreement.max_abs[a];
+        }
+        rows.push_back(&agreement);
+        char value[64];
+        std::snprintf(value, sizeof value, "%.3e", agreement.worstRelative());
+        worst += (worst.empty() ? " " : ", ") + agreement.engine + " " + value;
+    }
+    out.agreement = validation::agreementRows(rows) +
+                    "\nLargest difference over the actuators, relative to our peak abs(tau):" + worst + ".\n";
     return out;
 }
 

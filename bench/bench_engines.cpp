@@ -18,8 +18,10 @@
 #include "fixture.hpp"
 #include "simulate_fixture.hpp"
 #include "nocdyn/sim/simulator.hpp"
+#include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/validation/mujoco_mechanism.hpp"
+#include "nocdyn/validation/mujoco_spatial.hpp"
 #include "nocdyn/validation/simbody_spatial.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial.hpp"
@@ -141,7 +143,8 @@ struct SpatialCycle {
 };
 
 /// BM_InverseDynamics/<spatial robot>/nocdyn: nocdyn::spatial::inverseDynamics per sample;
-/// /simbody: the independent Simbody model on the same samples.
+/// /simbody and /mujoco: the independent engines' models on the same samples (each call the
+/// whole cycle, every sample assembled from the previous one; `per_sample` per sample).
 void spatialNocdyn(benchmark::State& state, const std::string& robot) {
     const spatial::Model model(
         io::loadSpatialRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
@@ -163,14 +166,20 @@ void spatialNocdyn(benchmark::State& state, const std::string& robot) {
                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
-void spatialSimbody(benchmark::State& state, const std::string& robot) {
+template <typename Engine>
+void spatialEngine(benchmark::State& state, const std::string& robot) {
     const SpatialRobotDescription description =
         io::loadSpatialRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
     const SpatialCycle cycle{spatial::Model(description)};
-    validation::SimbodySpatialMechanism mechanism(description);
+    Engine mechanism(description);
     for (auto _ : state) {
-        const Eigen::MatrixXd tau = mechanism.actuatorForces(cycle.p, cycle.dp, cycle.ddp);
-        benchmark::DoNotOptimize(tau.data());
+        try {
+            const Eigen::MatrixXd tau = mechanism.actuatorForces(cycle.p, cycle.dp, cycle.ddp);
+            benchmark::DoNotOptimize(tau.data());
+        } catch (const Error& e) {
+            state.SkipWithError(e.what());  // the other benchmarks still run
+            return;
+        }
     }
     state.counters["per_sample"] =
         benchmark::Counter(static_cast<double>(cycle.p.size()),
@@ -198,7 +207,10 @@ void spatialSimbody(benchmark::State& state, const std::string& robot) {
                                      [robot](benchmark::State& s) { spatialNocdyn(s, robot); });
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/simbody").c_str(), [robot](
                                                                                                benchmark::State& s) {
-            spatialSimbody(s, robot);
+            spatialEngine<validation::SimbodySpatialMechanism>(s, robot);
+        })->Unit(benchmark::kMillisecond);
+        benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/mujoco").c_str(), [robot](benchmark::State& s) {
+            spatialEngine<validation::MujocoSpatialMechanism>(s, robot);
         })->Unit(benchmark::kMillisecond);
     }
     for (const std::string robot : {"five-bar", "biglide"}) {

@@ -489,7 +489,7 @@ TEST(SpatialRobotFile, ValidateReadsChecksAndSummarisesASpatialRobot) {
               "  joints: 18 (6 P, 6 U, 6 S), 36 joint freedoms\n"
               "  actuators: 6 (6 P)\n"
               "  mass: 498 kg (platform 300 kg)\n"
-              "give --trajectory to compare its actuator forces with Simbody's spatial model along it\n");
+              "give --trajectory to compare its actuator forces with Simbody's and MuJoCo's spatial models along it\n");
     const test::CliResult delta = test::runCli("validate --robot " + shipped("delta.yaml"));
     EXPECT_EQ(delta.exit_code, 0) << delta.err;
     EXPECT_NE(delta.out.find("  joints: 9 (3 R, 6 U), 15 joint freedoms\n  actuators: 3 (3 R)\n  mass: 3.15 kg"),

@@ -53,13 +53,18 @@ void addValidateCommand(CLI::App& app) {
         "trajectory. Writes CSV with the columns t,u1..un,tau1..taun,simbody_u1..n,simbody_tau1..n,\n"
         "mujoco_u1..n,mujoco_tau1..n,simbody_dtau1..n,mujoco_dtau1..n and prints on stderr the largest\n"
         "absolute and relative difference per actuator and engine. A spatial robot (space: spatial) is\n"
-        "compared with Simbody's spatial model only (MuJoCo's are planar for now), in the columns\n"
-        "t,x,y,z[,roll,pitch,yaw],u1..n,tau1..n,simbody_tau1..n,simbody_dtau1..n; without --trajectory\n"
-        "it is read, checked and summarised on stdout.");
+        "compared with Simbody's and MuJoCo's spatial models (or the one --engine names), in the columns\n"
+        "t,x,y,z[,roll,pitch,yaw],u1..n,tau1..n,simbody_tau1..n,mujoco_tau1..n,simbody_dtau1..n,\n"
+        "mujoco_dtau1..n; without --trajectory it is read, checked and summarised on stdout.");
     addSamplingOptions(*command, *options);
     // required unless the robot is a spatial one, then only read, checked and summarised (run)
     command->get_option("--trajectory")->required(false);
     addRobotOption(*command, options->robot);
+    command
+        ->add_option("--engine", options->engine,
+                     "Engines a spatial robot is compared with: both, simbody or mujoco (a planar robot: both)")
+        ->check(CLI::IsMember({"both", "simbody", "mujoco"}))
+        ->capture_default_str();
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
     command->callback([options] { validate_command::run(*options); });
 }

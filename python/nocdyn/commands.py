@@ -822,9 +822,10 @@ def validate(trajectory, *, robot=None, set=None, output=None, progress=None, **
     package was built with both engines). Returns a Table with the CSV's columns
     (t, u1..un, tau1..taun, simbody_..., mujoco_..., simbody_dtau1..n, mujoco_dtau1..n); its text
     holds the largest differences. output: also write the CSV. A spatial robot file's path
-    (space: spatial) with a spatial trajectory file is compared with Simbody only (MuJoCo's
-    models are planar for now): columns t, x, y, z[, roll, pitch, yaw], u1..un, tau1..taun,
-    simbody_tau1..n, simbody_dtau1..n."""
+    (space: spatial) with a spatial trajectory file is compared with Simbody's and MuJoCo's
+    spatial models, or the one engine ("simbody" or "mujoco") names: columns t, x, y, z[, roll,
+    pitch, yaw], u1..un, tau1..taun, then each engine's <engine>_tau1..n, then its
+    <engine>_dtau1..n."""
     from .spatial import SpatialRobot
     if not hasattr(_nocdyn, "_run_validate"):
         raise _nocdyn.Error("validate needs the package built with Simbody and MuJoCo")

@@ -30,6 +30,7 @@ void bindReport(py::module_& m) {
     using V = app::ValidateOptions;
     OptionsClass<V, app::SamplingOptions>(m, "ValidateOptions")
         .field("robot", &V::robot)
+        .option("engine", &V::engine)
         .inherited("trajectory")
         .inherited("duration")
         .inherited("rate");

@@ -95,6 +95,7 @@ public:
     SimTK::SimbodyMatterSubsystem matter;
     SimTK::GeneralForceSubsystem forces;
     SimTK::State state;
+    SimTK::Vector q_home;  // the assembled home posture, where every call's path starts
     std::array<double, 6> pose{}, pose_rate{}, pose_acc{};  // the prescribed values, nocdyn's order
 
     std::vector<SimTK::MobilizedBody> platform_chain;  // Translation, yaw, pitch, roll (= the platform)
@@ -251,6 +252,7 @@ SimbodySpatialMechanism::Impl::Impl(const SpatialRobotDescription& description)
         msg << origin() << "Simbody spatial model: the home posture is not assembled (loop error " << err << ")";
         throw Error(msg.str());
     }
+    q_home = state.getQ();
 }
 
 bool SimbodySpatialMechanism::Impl::tryAssemble(const ::Eigen::VectorXd& p, const ::Eigen::VectorXd& seed) {
@@ -323,7 +325,9 @@ int SimbodySpatialMechanism::actuatorCount() const { return static_cast<int>(imp
         throw Error("Simbody spatial model: p, dp and ddp differ in length");
     ::Eigen::MatrixXd tau(static_cast<::Eigen::Index>(p.size()), n);
 
-    // continuation from home: the previous solution extrapolated linearly in the sample
+    // continuation from home (not from where the previous call ended): the previous solution
+    // extrapolated linearly in the sample
+    m.state.updQ() = m.q_home;
     ::Eigen::VectorXd q_prev = toEigen(m.state.getQ()), step = ::Eigen::VectorXd::Zero(nv);
     ::Eigen::VectorXd p_prev = m.robot.home.head(task);
     Matrix G;
