@@ -165,7 +165,11 @@ std::vector<Layout> makeLayouts() {
         {validation,
          "Engine comparison",
          "`nocdyn validate --output`; `nocdyn reproduce`'s `*_validation.csv`; Python `nocdyn.validate`",
-         "One row per sample: nocdyn's inverse dynamics against Simbody's and MuJoCo's.",
+         "One row per sample: nocdyn's inverse dynamics against Simbody's and MuJoCo's. A spatial robot's "
+         "comparison (`space: spatial`) has the columns `t,x,y,z[,roll,pitch,yaw],u1..un,tau1..taun,"
+         "simbody_tau1..n,mujoco_tau1..n,simbody_dtau1..n,mujoco_dtau1..n` (no engine u columns: every engine "
+         "is driven by the same pose); with `--engine simbody` or `--engine mujoco` only that engine's tau and "
+         "dtau columns.",
          {t,
           u,
           tau,
