@@ -39,6 +39,7 @@ SpatialPoseResult runSpatialPose(const RobotSource& source, const std::vector<do
     if (const Status status = spatial::inverseDynamics(model, data, p, zero, zero); !status) {
         throw Error(source.path + ": " + spatial::describe(status, model));
     }
+    spatial::conditionNumbers(model, data);  // reported: the exact values
     SpatialPoseResult out;
     out.robot = model.name;
     out.coordinates = model.coordinates();
