@@ -44,6 +44,7 @@ SpatialPoseResult runSpatialPose(const SpatialRobotDescription& description, con
     if (const Status status = spatial::inverseDynamics(model, data, p, zero, zero); !status) {
         throw Error(source + ": " + spatial::describe(status, model));
     }
+    spatial::conditionNumbers(model, data);  // reported: the exact values
     SpatialPoseResult out;
     out.robot = model.name;
     out.coordinates = model.coordinates();

@@ -233,6 +233,82 @@ TEST(SpatialKinematics, EachLimbsChainReachesThePlatformPointsItJoins) {
     }
 }
 
+TEST(SpatialKinematics, TheClosedFormsAreNewtonsHomeBranch) {
+    // every shipped limb has a closed form (Delta R-U-U, 6-UPS U-P-S, 6-RUS R-U-S), as the random
+    // hexapods' legs; at random poses it solves every limb and gives Newton's joint variables,
+    // Newton from home (a fresh Data) and Newton along the samples
+    std::mt19937 rng(11);
+    std::vector<std::pair<SpatialRobotDescription, LimbSolver>> robots{{shipped("delta"), LimbSolver::ruu},
+                                                                       {shipped("stewart"), LimbSolver::ups},
+                                                                       {shipped("6-rus"), LimbSolver::rus}};
+    for (int i = 0; i < 3; ++i) {
+        for (const bool rus : {false, true})
+            robots.emplace_back(randomHexapod(rng, rus), rus ? LimbSolver::rus : LimbSolver::ups);
+    }
+    for (const auto& [description, solver] : robots) {
+        const Model model(description);
+        Model newton = model;
+        for (Limb& limb : newton.limb) {
+            EXPECT_EQ(limb.solver, solver) << model.name << " " << limb.name;
+            limb.solver = LimbSolver::newton;
+        }
+        Data data(model), along(newton);
+        const double reach = model.task_dimension == 6 ? 0.04 : 0.08;
+        for (int trial = 0; trial < 30; ++trial) {
+            const TaskVector p = model.home + randomTask(rng, model.task_dimension, reach, 1.5 * reach);
+            Data fresh(newton);
+            data = Data(model);  // from home: the closed form (a random jump follows Newton's branch)
+            ASSERT_TRUE(inverseKinematics(model, data, p).ok()) << model.name;
+            ASSERT_TRUE(inverseKinematics(newton, fresh, p).ok()) << model.name;
+            ASSERT_TRUE(inverseKinematics(newton, along, p).ok()) << model.name;
+            for (int j = 0; j < model.limbs(); ++j) {
+                const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+                EXPECT_TRUE(ld.closed_form) << model.name << " limb " << j;
+                EXPECT_FALSE(fresh.limb[static_cast<std::size_t>(j)].closed_form);
+                EXPECT_LT((ld.q - fresh.limb[static_cast<std::size_t>(j)].q).cwiseAbs().maxCoeff(), 1e-12)
+                    << model.name << " limb " << j;
+                EXPECT_LT((ld.q - along.limb[static_cast<std::size_t>(j)].q).cwiseAbs().maxCoeff(), 1e-12)
+                    << model.name << " limb " << j;
+            }
+            // the condition numbers left by the inverse kinematics bound the exact ones
+            Data exact = data;
+            conditionNumbers(model, exact);
+            EXPECT_GE(data.actuation_condition, exact.actuation_condition * (1.0 - 1e-12)) << model.name;
+            EXPECT_LT(exact.actuation_condition, model.max_condition) << model.name;
+            for (int j = 0; j < model.limbs(); ++j) {
+                EXPECT_GE(data.limb[static_cast<std::size_t>(j)].condition,
+                          exact.limb[static_cast<std::size_t>(j)].condition * (1.0 - 1e-12));
+            }
+        }
+    }
+}
+
+TEST(SpatialKinematics, APoseBeyondAClosedFormsReachIsRefusedAsByNewton) {
+    // 3 m up: the cranks cannot reach (the same unreachable status naming the same limb as
+    // Newton's); the Stewart platform's legs, prismatic without limits, can (Newton's lengths)
+    for (const std::string name : {"delta", "6-rus", "stewart"}) {
+        const Model model(shipped(name));
+        Model newton = model;
+        for (Limb& limb : newton.limb) limb.solver = LimbSolver::newton;
+        Data data(model), reference(newton);
+        TaskVector p = model.home;
+        p(2) += 3.0;
+        const Status status = inverseKinematics(model, data, p), expected = inverseKinematics(newton, reference, p);
+        EXPECT_EQ(status.code, expected.code) << name;
+        EXPECT_EQ(status.limb, expected.limb) << name;
+        if (name != "stewart") {
+            EXPECT_EQ(status.code, StatusCode::unreachable) << name;
+            continue;
+        }
+        for (int j = 0; j < model.limbs(); ++j) {
+            EXPECT_LT((data.limb[static_cast<std::size_t>(j)].q - reference.limb[static_cast<std::size_t>(j)].q)
+                          .cwiseAbs()
+                          .maxCoeff(),
+                      1e-12);
+        }
+    }
+}
+
 TEST(SpatialDynamics, ShippedRobotsSatisfyLagrangesEquations) {
     std::mt19937 rng(11);
     for (const std::string name : {"delta", "stewart", "6-rus"}) {

@@ -69,10 +69,17 @@ struct Body {
     int last_freedom = 0;
 };
 
+/// How a limb's inverse kinematics is solved, from its joints when the model is built: in
+/// closed form on the home branch (U-P-S, R-U-S, R-U-U), or by Newton.
+enum class LimbSolver { newton, ups, rus, ruu };
+
 struct Limb {
     std::string name;
     std::vector<Freedom> freedoms;
     std::vector<Body> bodies;
+    LimbSolver solver = LimbSolver::newton;
+    double branch = 1.0;  ///< the sign of the home root of the leg's length or the crank's angle
+    double elbow = 1.0;   ///< the sign of the home root of the (first) U's two angles
     [[nodiscard]] int size() const { return static_cast<int>(freedoms.size()); }
 };
 
@@ -121,8 +128,12 @@ struct LimbData {
     /// The listed joints' points (R, U, S; a P joint's entry is unused): joint 0 on the base,
     /// joint b + 1 moving with body b.
     std::array<Eigen::Vector3d, kMaxBodies + 1> joint_point;
-    double condition = 1.0;  ///< of J at the platform's point (largest over smallest singular value)
-    bool closed = false;     ///< q holds a solution (the next Newton starts there)
+    /// of J at the platform's point (largest over smallest singular value): after
+    /// inverseKinematics an upper bound (exact when above the model's limit), exact after
+    /// conditionNumbers
+    double condition = 1.0;
+    bool closed = false;       ///< q holds a solution (the next Newton starts there)
+    bool closed_form = false;  ///< q came from the limb's closed form (not from Newton)
 };
 
 /// Every per-sample quantity; sized once from the model.
@@ -138,20 +149,28 @@ struct Data {
     ActuationMatrix A;  ///< n x 6: the actuator rates du = A t_P
     /// n x d: du = A_task (v, w), v the platform point's velocity and w the angular velocity
     ActuationMatrix A_task;
-    ActuatorVector u;                  ///< actuator variables
-    ActuatorVector du;                 ///< their rates
-    ActuatorVector ddu;                ///< their accelerations
-    ActuatorVector tau;                ///< actuator forces
-    double actuation_condition = 1.0;  ///< of A_task (lengths in metres)
+    ActuatorVector u;    ///< actuator variables
+    ActuatorVector du;   ///< their rates
+    ActuatorVector ddu;  ///< their accelerations
+    ActuatorVector tau;  ///< actuator forces
+    /// of A_task (lengths in metres): an upper bound or exact, as LimbData::condition
+    double actuation_condition = 1.0;
 };
 
 /// The platform's orientation R = Rz(yaw) Ry(pitch) Rx(roll).
 [[nodiscard]] Eigen::Matrix3d rotation(double roll, double pitch, double yaw);
 
 /// Inverse kinematics: every limb's joint variables at pose p, the current screws, the bodies'
-/// c.o.m. and inertia, J_j^+, the actuator values u and the actuation map A. Newton from the
-/// previous solution (from home when there is none or it fails).
+/// c.o.m. and inertia, J_j^+, the actuator values u and the actuation map A. In closed form on
+/// the home branch for the limbs that have one (Limb::solver), otherwise (or when it finds no
+/// root) Newton from the previous solution (from home when there is none or it fails).
 [[nodiscard]] Status inverseKinematics(const Model& model, Data& data, const TaskVector& p);
+
+/// The exact condition numbers LimbData::condition and Data::actuation_condition after
+/// inverseKinematics (which leaves upper bounds there: ||J_P||_F ||L||_F for a left inverse L, and
+/// sqrt(trace G trace G^-1) for G = A_task^T A_task, needing no eigenvalues), by the
+/// eigenvalues of their Gram matrices.
+void conditionNumbers(const Model& model, Data& data);
 
 /// Inverse dynamics: u, du, ddu and the actuator forces tau at (p, dp, ddp).
 [[nodiscard]] Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,

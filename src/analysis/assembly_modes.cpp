@@ -602,7 +602,10 @@ HomotopyModes homotopyModes(const Model& model, const ActuatorVector& u, const H
             return (m.pose.head<3>() - p).cwiseAbs().maxCoeff() <= kSameMode * (1.0 + p.norm()) &&
                    (R_m - R).cwiseAbs().maxCoeff() <= kSameMode;
         });
-        if (!known) result.modes.push_back({pose, u_error, data.actuation_condition});
+        if (!known) {
+            conditionNumbers(check, data);
+            result.modes.push_back({pose, u_error, data.actuation_condition});
+        }
     }
     // nearest to home first: position distance plus the rotation angle from home
     const auto distance = [&](const HomotopyMode& m) {

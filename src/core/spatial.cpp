@@ -6,6 +6,7 @@
 #include <limits>
 #include <sstream>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -14,6 +15,7 @@
 #include "nocdyn/error.hpp"
 #include "nocdyn/spatial_limits.hpp"
 #include "spatial_chain.hpp"
+#include "spatial_closed_form.hpp"
 
 namespace nocdyn::spatial {
 
@@ -24,6 +26,11 @@ using chain::freedomMove;
 using chain::Move;
 
 constexpr int kNewtonIterations = 50;
+/// The largest change of a joint variable [rad, m] from the previous solution still taken as the
+/// same branch of a closed form (a sample's step is far smaller, another branch far larger)
+constexpr double kBranchJump = 0.5;
+/// The same from home when there is no previous solution [rad, m]
+constexpr double kHomeReach = 1.5;
 constexpr double kClosure = 1e-13;  ///< Newton's residual [m, rad], for displacements within 1 m
 /// The small matrices decomposed here (Gram matrices, at most 6 x 6): one instantiation each.
 using Work = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
@@ -63,6 +70,15 @@ double conditionOf(const Work& gram) {
     const double lo = eig.eigenvalues()(0), hi = eig.eigenvalues()(eig.eigenvalues().size() - 1);
     if (!(lo > 0.0)) return std::numeric_limits<double>::infinity();
     return std::sqrt(hi / lo);
+}
+
+/// The condition number of a limb's J with its twists referred to the platform's point p.
+double limbCondition(const LimbData& ld, const Eigen::Vector3d& p) {
+    LimbJacobian at_point = ld.J;
+    for (int k = 0; k < at_point.cols(); ++k) {
+        at_point.col(k).tail<3>() -= p.cross(Eigen::Vector3d(ld.J.col(k).head<3>()));
+    }
+    return conditionOf(at_point.transpose() * at_point);
 }
 
 /// The platform's angular velocity and its rate from the Euler angles' rates (R = Rz Ry Rx):
@@ -182,6 +198,10 @@ Model::Model(const SpatialRobotDescription& d)
                 limb.bodies.push_back({b.mass, b.com, b.inertia, static_cast<int>(limb.freedoms.size()) - 1});
             }
         }
+        std::vector<SpatialJointType> types(ld.joints.size());
+        std::transform(ld.joints.begin(), ld.joints.end(), types.begin(),
+                       [](const SpatialJointDescription& joint) { return joint.type; });
+        closed_form::detect(limb, types);
         if (limb.size() > kMaxFreedoms || static_cast<int>(limb.bodies.size()) > kMaxBodies) {
             throw Error(d.source + ": " + ld.name + ": more than " + std::to_string(kMaxFreedoms) + " joint freedoms");
         }
@@ -241,37 +261,78 @@ Status inverseKinematics(const Model& model, Data& data, const TaskVector& p) {
     for (int j = 0; j < model.limbs(); ++j) {
         const Limb& limb = model.limb[static_cast<std::size_t>(j)];
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        double residual = 0.0;
-        if (!ld.closed || !closeLimb(limb, D, ld, residual)) {
-            ld.q.setZero();  // again from home
-            if (!closeLimb(limb, D, ld, residual)) {
-                ld.closed = false;
-                return {StatusCode::unreachable, j, residual};
+        const int n = limb.size();
+        // the closed form where the limb has one; it must close the chain as Newton would
+        const FreedomVector previous = ld.q;
+        bool closed = limb.solver != LimbSolver::newton && closed_form::solve(limb, D, ld.q);
+        // Newton's branch decides where the closed form's root may not be it: away from the
+        // previous solution (another assembly or working mode), or with no previous solution a
+        // quarter turn or more from home
+        if (closed) {
+            const double distance = ld.closed ? (ld.q - previous).cwiseAbs().maxCoeff() : ld.q.cwiseAbs().maxCoeff();
+            if (!(distance < (ld.closed ? kBranchJump : kHomeReach))) closed = false;
+        }
+        for (int pass = 0; pass < 2; ++pass) {
+            if (!closed) {
+                ld.q = previous;
+                double residual = 0.0;
+                if (!ld.closed || !closeLimb(limb, D, ld, residual)) {
+                    ld.q.setZero();  // again from home
+                    if (!closeLimb(limb, D, ld, residual)) {
+                        ld.closed = false;
+                        return {StatusCode::unreachable, j, residual};
+                    }
+                }
             }
+            // one pass down the chain: the current screws s_k into J, the bodies' c.o.m. and
+            // inertia (body b moves with the freedoms up to its last, and so does the point of
+            // the joint after it)
+            Move g;
+            std::size_t b = 0;
+            ld.joint_point[0] = limb.freedoms.front().point;
+            for (int k = 0; k < n; ++k) {
+                const Freedom& f = limb.freedoms[static_cast<std::size_t>(k)];
+                ld.J.col(k) = carriedScrew(f, g);
+                g = g.then(freedomMove(f, ld.q(k)));
+                if (b < limb.bodies.size() && limb.bodies[b].last_freedom == k) {
+                    const Body& body = limb.bodies[b];
+                    ld.com[b] = g.R * body.com + g.t;
+                    ld.inertia[b] = g.R * body.inertia * g.R.transpose();
+                    ld.joint_point[b + 1] = g.R * limb.freedoms[static_cast<std::size_t>(k) + 1].point + g.t;
+                    ++b;
+                }
+            }
+            if (!closed) break;
+            // the closed form's chain closes at D to Newton's tolerance, or Newton takes over
+            const double error = std::max((g.R - D.R).cwiseAbs().maxCoeff(), (g.t - D.t).cwiseAbs().maxCoeff());
+            if (error <= kClosure * (1.0 + D.t.cwiseAbs().maxCoeff())) break;
+            closed = false;
         }
         ld.closed = true;
-        // J^+ = (J^T J)^-1 J^T, and the condition number of J with its twists referred to the
-        // platform's point (s = [a; m - p x a]), which does not depend on where O is
-        const Work gram = ld.J.transpose() * ld.J;
-        LimbJacobian at_point = ld.J;
-        for (int k = 0; k < at_point.cols(); ++k) {
-            at_point.col(k).tail<3>() -= data.position.cross(Eigen::Vector3d(ld.J.col(k).head<3>()));
+        ld.closed_form = closed;
+        // J^+ = J^-1 for six freedoms, (J^T J)^-1 J^T for fewer
+        if (n == 6) {
+            ld.J_plus = Eigen::Matrix<double, 6, 6>(ld.J).partialPivLu().inverse();
+        } else {
+            const Work gram = ld.J.transpose() * ld.J;
+            ld.J_plus = Eigen::PartialPivLU<Work>(gram).solve(Work(ld.J.transpose()));
         }
-        ld.condition = conditionOf(at_point.transpose() * at_point);
-        if (!(ld.condition <= model.max_condition)) return {StatusCode::singular_limb, j, ld.condition};
-        ld.J_plus = Eigen::PartialPivLU<Work>(gram).solve(Work(ld.J.transpose()));
-        // the bodies' c.o.m. and inertia: body b moves with the freedoms up to its last, and
-        // so does the point of the joint after it
-        Move g;
-        int k = 0;
-        ld.joint_point[0] = limb.freedoms.front().point;
-        for (std::size_t b = 0; b < limb.bodies.size(); ++b) {
-            const Body& body = limb.bodies[b];
-            for (; k <= body.last_freedom; ++k)
-                g = g.then(freedomMove(limb.freedoms[static_cast<std::size_t>(k)], ld.q(k)));
-            ld.com[b] = g.R * body.com + g.t;
-            ld.inertia[b] = g.R * body.inertia * g.R.transpose();
-            ld.joint_point[b + 1] = g.R * limb.freedoms[static_cast<std::size_t>(k)].point + g.t;
+        // the condition number of J with its twists referred to the platform's point
+        // (J_P = X J, s = [a; m - p x a]), which does not depend on where O is: at most
+        // ||J_P||_F ||L||_F for its left inverse L = J^+ X^-1 (rows [l_w + l_v x p, l_v]); the
+        // exact value only when that bound exceeds the limit
+        double J_norm = 0.0, L_norm = 0.0;
+        for (int k = 0; k < n; ++k) {
+            const Eigen::Vector3d a = ld.J.col(k).head<3>(), m = ld.J.col(k).tail<3>();
+            const Eigen::Vector3d l_w = ld.J_plus.row(k).head<3>().transpose();
+            const Eigen::Vector3d l_v = ld.J_plus.row(k).tail<3>().transpose();
+            J_norm += a.squaredNorm() + (m - data.position.cross(a)).squaredNorm();
+            L_norm += (l_w + l_v.cross(data.position)).squaredNorm() + l_v.squaredNorm();
+        }
+        ld.condition = std::sqrt(J_norm * L_norm);
+        if (!(ld.condition <= model.max_condition)) {
+            ld.condition = limbCondition(ld, data.position);
+            if (!(ld.condition <= model.max_condition)) return {StatusCode::singular_limb, j, ld.condition};
         }
     }
     for (int a = 0; a < model.actuators; ++a) {
@@ -289,11 +350,26 @@ Status inverseKinematics(const Model& model, Data& data, const TaskVector& p) {
         data.A_task.row(a).head<3>() = A_v.transpose();
         if (d == 6) data.A_task.row(a).tail<3>() = (A_w + A_v.cross(data.position)).transpose();
     }
-    data.actuation_condition = conditionOf(Work(data.A_task.transpose() * data.A_task));
-    if (!(data.actuation_condition <= model.max_condition)) {
-        return {StatusCode::singular_actuation, -1, data.actuation_condition};
+    // its condition number at most sqrt(trace G trace G^-1), G = A_task^T A_task = L L^T and
+    // trace G^-1 = ||L^-1||_F^2; the exact value only when that bound exceeds the limit
+    const Work G = data.A_task.transpose() * data.A_task;
+    const Eigen::LLT<Work> llt(G);
+    Work L_inv = Work::Identity(d, d);
+    llt.matrixL().solveInPlace(L_inv);
+    data.actuation_condition = std::sqrt(G.trace() * L_inv.squaredNorm());
+    if (llt.info() != Eigen::Success || !(data.actuation_condition <= model.max_condition)) {
+        data.actuation_condition = conditionOf(G);
+        if (!(data.actuation_condition <= model.max_condition)) {
+            return {StatusCode::singular_actuation, -1, data.actuation_condition};
+        }
     }
     return {};
+}
+
+void conditionNumbers(const Model& model, Data& data) {
+    for (LimbData& ld : data.limb) ld.condition = limbCondition(ld, data.position);
+    data.actuation_condition = conditionOf(Work(data.A_task.transpose() * data.A_task));
+    (void)model;
 }
 
 namespace {

@@ -163,7 +163,10 @@ Status newton(const Model& model, Data& data, const ActuatorVector& u, TaskVecto
             J.rightCols<3>() = data.A_task.rightCols<3>() * E;
         }
         const TaskVector step = Eigen::HouseholderQR<ActuationMatrix>(J).solve(ActuatorVector(u - data.u));
-        if (!step.allFinite()) return {StatusCode::singular_actuation, -1, data.actuation_condition};
+        if (!step.allFinite()) {
+            conditionNumbers(model, data);
+            return {StatusCode::singular_actuation, -1, data.actuation_condition};
+        }
         x += step;
     }
     return {StatusCode::assembly_mode_lost, -1, residual};
@@ -344,6 +347,7 @@ std::optional<AssemblyMode> verifyMode(const Model& model, const ActuatorVector&
     const Status status = directKinematics(model, data, u, x);
     if (status) {
         mode.u_error = (data.u - u).cwiseAbs().maxCoeff();
+        conditionNumbers(model, data);
         mode.condition = data.actuation_condition;
         for (const LimbData& ld : data.limb) mode.condition = std::max(mode.condition, ld.condition);
     } else if (status.code == StatusCode::singular_limb || status.code == StatusCode::singular_actuation) {
