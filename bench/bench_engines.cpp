@@ -202,7 +202,7 @@ void spatialEngine(benchmark::State& state, const std::string& robot) {
             mujocoPlant(s, robot);
         })->Unit(benchmark::kMillisecond);
     }
-    for (const std::string robot : {"delta", "stewart", "6-rus"}) {
+    for (const std::string robot : {"delta", "stewart", "hexa-6rus"}) {
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn").c_str(),
                                      [robot](benchmark::State& s) { spatialNocdyn(s, robot); });
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/simbody").c_str(), [robot](

@@ -322,7 +322,7 @@ TEST(HomotopyModes, DietmaiersPlatformHasFortyRealAssemblyModes) {
 }
 
 TEST(HomotopyModes, RobotsOfOtherKindsAreRefusedNamingTheLimb) {
-    const Model rus = shipped("6-rus");
+    const Model rus = shipped("hexa-6rus");
     try {
         (void)homotopyModes(rus, ActuatorVector::Zero(6));
         FAIL() << "a 6-RUS was taken";

@@ -68,7 +68,7 @@ TEST(CliAnimate3d, PageOfEverySpatialRobotIsSelfContainedWithItsLimbsAndFrames) 
     };
     const Case cases[] = {{"delta", trajectoryFile("delta-pick"), "500", "RUU", 3, 500},
                           {"stewart", trajectoryFile("stewart-sway"), "1500", "US", 6, 3000},
-                          {"6-rus", rusSway(dir).string(), "300", "RUS", 6, 300}};
+                          {"hexa-6rus", rusSway(dir).string(), "300", "RUS", 6, 300}};
     for (const Case& c : cases) {
         const fs::path page = dir / (c.robot + ".html");
         const CliResult r = runCli("animate --robot " + robotFile(c.robot) + " --trajectory " + c.trajectory +

@@ -141,7 +141,7 @@ TEST(SpatialValidation, SixRusAgreesWithBothEnginesAlongASway) {
                                  "roll: {harmonics: [{amplitude: 0.0175, frequency: 2}]}\n"
                                  "pitch: {harmonics: [{amplitude: 0.0175, frequency: 1, phase: 1.0}]}\n"
                                  "yaw: {harmonics: [{amplitude: 0.026, frequency: 3, phase: -0.3}]}\n";
-    EXPECT_LT(spatialAgreement("6-rus", trajectory, 200, kFull, 6, 200, 0.1), 1e-9);
+    EXPECT_LT(spatialAgreement("hexa-6rus", trajectory, 200, kFull, 6, 200, 0.1), 1e-9);
 }
 
 TEST(SpatialValidation, NocdynsColumnsAreInverseDynamicsOwn) {

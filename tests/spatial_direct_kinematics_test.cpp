@@ -113,7 +113,7 @@ TaskVector nearHome(const Model& model) {
 }
 
 TEST(SpatialDirectKinematics, RoundTripsOnTheShippedDeltaAnd6Rus) {
-    for (const char* name : {"delta", "6-rus"}) {
+    for (const char* name : {"delta", "hexa-6rus"}) {
         const Model model = shipped(name);
         EXPECT_GE(expectRoundTrip(model, nearHome(model)).size(), 2u) << name;
         EXPECT_GE(expectRoundTrip(model, model.home).size(), 2u) << name;
@@ -144,9 +144,9 @@ TEST(SpatialDirectKinematics, RoundTripsAtRandomPoses) {
     std::mt19937 rng(7);
     std::uniform_real_distribution<double> offset(-1.0, 1.0);
     const ManyStarts few{8, 11u};
-    for (const char* name : {"delta", "stewart", "6-rus"}) {
+    for (const char* name : {"delta", "stewart", "hexa-6rus"}) {
         const Model model = shipped(name);
-        const double reach = std::string(name) == "6-rus" ? 0.03 : 0.1;  // the RUS's workspace is small
+        const double reach = std::string(name) == "hexa-6rus" ? 0.03 : 0.1;  // the RUS's workspace is small
         for (int trial = 0; trial < 4; ++trial) {
             TaskVector p = model.home;
             for (int i = 0; i < 3; ++i) p(i) += reach * offset(rng);
@@ -213,12 +213,12 @@ TEST(SpatialDirectKinematics, TheDeltasTwoModesAreMirroredAboutThePlaneOfTheSphe
 }
 
 TEST(SpatialDirectKinematics, TheTrackerFollowsAOneKilohertzTrajectoryWithoutAllocating) {
-    for (const char* name : {"stewart", "6-rus", "delta"}) {
+    for (const char* name : {"stewart", "hexa-6rus", "delta"}) {
         const Model model = shipped(name);
         Data truth(model), data(model);
         const int d = model.task_dimension;
         TaskVector p = model.home, q = model.home;
-        const double scale = std::string(name) == "6-rus" ? 0.01 : 0.05;  // the RUS's workspace is small
+        const double scale = std::string(name) == "hexa-6rus" ? 0.01 : 0.05;  // the RUS's workspace is small
         double worst = 0.0;
         for (int k = 0; k <= 500; ++k) {  // 0.5 s at 1 kHz: a circle at 2 Hz, a bob and a wobble
             const double t = 1e-3 * k, w = 4.0 * M_PI;

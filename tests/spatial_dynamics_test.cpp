@@ -188,7 +188,7 @@ TaskVector randomTask(std::mt19937& rng, int d, double linear, double angular) {
 }
 
 TEST(SpatialKinematics, EveryShippedRobotClosesAtHomeWithItsJointsAtZero) {
-    for (const std::string name : {"delta", "stewart", "6-rus"}) {
+    for (const std::string name : {"delta", "stewart", "hexa-6rus"}) {
         const Model model(shipped(name));
         Data data(model);
         ASSERT_TRUE(inverseKinematics(model, data, model.home).ok()) << name;
@@ -200,7 +200,7 @@ TEST(SpatialKinematics, EveryShippedRobotClosesAtHomeWithItsJointsAtZero) {
 TEST(SpatialKinematics, EachLimbsChainReachesThePlatformPointsItJoins) {
     // the last joint's point, carried by the chain, is where the platform carries it
     std::mt19937 rng(7);
-    for (const std::string name : {"delta", "stewart", "6-rus"}) {
+    for (const std::string name : {"delta", "stewart", "hexa-6rus"}) {
         const SpatialRobotDescription d = shipped(name);
         const Model model(d);
         Data data(model);
@@ -240,7 +240,7 @@ TEST(SpatialKinematics, TheClosedFormsAreNewtonsHomeBranch) {
     std::mt19937 rng(11);
     std::vector<std::pair<SpatialRobotDescription, LimbSolver>> robots{{shipped("delta"), LimbSolver::ruu},
                                                                        {shipped("stewart"), LimbSolver::ups},
-                                                                       {shipped("6-rus"), LimbSolver::rus}};
+                                                                       {shipped("hexa-6rus"), LimbSolver::rus}};
     for (int i = 0; i < 3; ++i) {
         for (const bool rus : {false, true})
             robots.emplace_back(randomHexapod(rng, rus), rus ? LimbSolver::rus : LimbSolver::ups);
@@ -286,7 +286,7 @@ TEST(SpatialKinematics, TheClosedFormsAreNewtonsHomeBranch) {
 TEST(SpatialKinematics, APoseBeyondAClosedFormsReachIsRefusedAsByNewton) {
     // 3 m up: the cranks cannot reach (the same unreachable status naming the same limb as
     // Newton's); the Stewart platform's legs, prismatic without limits, can (Newton's lengths)
-    for (const std::string name : {"delta", "6-rus", "stewart"}) {
+    for (const std::string name : {"delta", "hexa-6rus", "stewart"}) {
         const Model model(shipped(name));
         Model newton = model;
         for (Limb& limb : newton.limb) limb.solver = LimbSolver::newton;
@@ -311,7 +311,7 @@ TEST(SpatialKinematics, APoseBeyondAClosedFormsReachIsRefusedAsByNewton) {
 
 TEST(SpatialDynamics, ShippedRobotsSatisfyLagrangesEquations) {
     std::mt19937 rng(11);
-    for (const std::string name : {"delta", "stewart", "6-rus"}) {
+    for (const std::string name : {"delta", "stewart", "hexa-6rus"}) {
         const Model model(frictionless(shipped(name)));
         for (int trial = 0; trial < 4; ++trial) {
             const int d = model.task_dimension;
@@ -339,7 +339,7 @@ TEST(SpatialDynamics, RandomHexapodsSatisfyLagrangesEquations) {
 TEST(SpatialDynamics, ThePowerOfTheActuatorsIsTheRateOfEnergyPlusTheFrictionsLoss) {
     // tau . du = dE/dt + sum_k f_friction,k gd_k along p(t) = p0 + v t + a t^2 / 2
     std::mt19937 rng(5);
-    for (const std::string name : {"delta", "stewart", "6-rus"}) {
+    for (const std::string name : {"delta", "stewart", "hexa-6rus"}) {
         const Model model(shipped(name));
         const int d = model.task_dimension;
         const TaskVector p0 = model.home + randomTask(rng, d, 0.04, 0.06);
@@ -370,7 +370,7 @@ TEST(SpatialForwardDynamics, GivesBackTheAccelerationsWhoseForcesTheInverseDynam
     // tau = ID(p, dp, ddp), then FD(p, dp, tau) = ddp: friction on (the shipped robots), the
     // Delta's translation task, and random 6-UPS and 6-RUS hexapods
     std::mt19937 rng(17);
-    std::vector<SpatialRobotDescription> robots{shipped("delta"), shipped("stewart"), shipped("6-rus")};
+    std::vector<SpatialRobotDescription> robots{shipped("delta"), shipped("stewart"), shipped("hexa-6rus")};
     for (const bool rus : {false, true}) robots.push_back(randomHexapod(rng, rus));
     for (const SpatialRobotDescription& description : robots) {
         const Model model(description);
@@ -423,7 +423,7 @@ TEST(SpatialSimulation, ConservesTheEnergyUnderConstantForcesWithoutFriction) {
     // constant forces are conservative (potential -tau . u): H = T + V - tau . u stays constant;
     // the loops close exactly at every evaluation, so H's drift is the integrator's error
     std::mt19937 rng(23);
-    for (const std::string name : {"delta", "stewart", "6-rus"}) {
+    for (const std::string name : {"delta", "stewart", "hexa-6rus"}) {
         const Model model(frictionless(shipped(name)));
         const int d = model.task_dimension;
         Data data(model);
@@ -589,7 +589,7 @@ TEST(SpatialReactions, EveryFreedomPassesItsEffortAndThePlatformBalances) {
     // phi_k = damping gd_k + friction sign gd_k; 0 on the U and S joints' freedoms), and
     // sum_j F_j = w_P: on the shipped robots (friction on) and random 6-UPS and 6-RUS
     std::mt19937 rng(31);
-    std::vector<SpatialRobotDescription> robots{shipped("delta"), shipped("stewart"), shipped("6-rus")};
+    std::vector<SpatialRobotDescription> robots{shipped("delta"), shipped("stewart"), shipped("hexa-6rus")};
     for (const bool rus : {false, true}) robots.push_back(randomHexapod(rng, rus));
     for (const SpatialRobotDescription& description : robots) {
         const Model model(description);

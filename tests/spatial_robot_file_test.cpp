@@ -149,7 +149,7 @@ TEST(SpatialRobotFile, TheStewartPlatformReadsAndClosesAtHome) {
 }
 
 TEST(SpatialRobotFile, TheSixRusReadsAndClosesAtHome) {
-    const SpatialRobotDescription robot = io::loadSpatialRobotDescription(shipped("6-rus.yaml"));
+    const SpatialRobotDescription robot = io::loadSpatialRobotDescription(shipped("hexa-6rus.yaml"));
     ASSERT_EQ(robot.limbs.size(), 6u);
     EXPECT_EQ(robot.actuatorCount(), 6);
     EXPECT_NEAR(robot.totalMass(), 1.0 + 6.0 * (0.3 + 0.1), 1e-12);

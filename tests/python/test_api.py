@@ -266,7 +266,7 @@ def test_quickstart_example_writes_its_png(tmp_path, source_dir):
 @pytest.mark.parametrize(
     "name, first_actuator",
     [("delta", "19: limbs[0] (arm1).joints[0]"), ("stewart", "19: limbs[0] (leg1).joints[1]"),
-     ("6-rus", "17: limbs[0] (leg1).joints[0]")],
+     ("hexa-6rus", "17: limbs[0] (leg1).joints[0]")],
 )
 def test_a_spatial_robot_file_is_read_checked_and_loads_as_a_spatial_robot(source_dir, name, first_actuator):
     path = str(source_dir / "robots" / f"{name}.yaml")

@@ -41,7 +41,7 @@ TEST(SpatialMujoco, StewartPlatformAgrees) {
     EXPECT_LT(mujocoDifference("stewart", 0.02, 0.04, 1000.0), kMujocoTolerance);
 }
 
-TEST(SpatialMujoco, SixRusAgrees) { EXPECT_LT(mujocoDifference("6-rus", 0.01, 0.04, 0.1), kMujocoTolerance); }
+TEST(SpatialMujoco, SixRusAgrees) { EXPECT_LT(mujocoDifference("hexa-6rus", 0.01, 0.04, 0.1), kMujocoTolerance); }
 
 TEST(SpatialMujoco, DeltaAgrees) { EXPECT_LT(mujocoDifference("delta", 0.03, 0.0, 1.0), kMujocoTolerance); }
 
@@ -50,7 +50,7 @@ TEST(SpatialMujoco, DeltaAgrees) { EXPECT_LT(mujocoDifference("delta", 0.03, 0.0
 // 6-RUS rod of the other sign.
 TEST(SpatialMujoco, TheComparisonSeesSmallChangesOfTheEnginesData) {
     for (const auto& [name, length, angle, min_peak] :
-         {std::tuple{"stewart", 0.02, 0.04, 1000.0}, std::tuple{"6-rus", 0.01, 0.04, 0.1},
+         {std::tuple{"stewart", 0.02, 0.04, 1000.0}, std::tuple{"hexa-6rus", 0.01, 0.04, 0.1},
           std::tuple{"delta", 0.03, 0.0, 1.0}}) {
         const nocdyn::SpatialRobotDescription robot = shipped(name);
         nocdyn::SpatialRobotDescription changed = robot;
@@ -63,7 +63,7 @@ TEST(SpatialMujoco, TheComparisonSeesSmallChangesOfTheEnginesData) {
         for (nocdyn::SpatialJointDescription& joint : limb.joints) joint.damping = joint.friction = 0.0;
     }
     EXPECT_GT(mujocoDifference(stewart, changed, 0.02, 0.04, 1000.0), 1e-3);
-    const nocdyn::SpatialRobotDescription rus = shipped("6-rus");
+    const nocdyn::SpatialRobotDescription rus = shipped("hexa-6rus");
     changed = rus;
     Eigen::Matrix3d& I = changed.limbs[2].bodies[1].inertia;
     I(0, 2) = I(2, 0) = -I(0, 2);
@@ -91,7 +91,7 @@ TEST(SpatialMujoco, RandomRobotsAgree) {
 // The two engines alone, without nocdyn: MuJoCo's forces against Simbody's on the shipped robots.
 TEST(SpatialMujoco, AgreesWithSimbody) {
     for (const auto& [name, length, angle] :
-         {std::tuple{"stewart", 0.02, 0.04}, std::tuple{"6-rus", 0.01, 0.04}, std::tuple{"delta", 0.03, 0.0}}) {
+         {std::tuple{"stewart", 0.02, 0.04}, std::tuple{"hexa-6rus", 0.01, 0.04}, std::tuple{"delta", 0.03, 0.0}}) {
         const nocdyn::SpatialRobotDescription robot = shipped(name);
         const Path path = twoHarmonics(robot, length, angle);
         MujocoSpatialMechanism mujoco_engine(robot);

@@ -40,7 +40,7 @@ TEST(SpatialSimbody, StewartPlatformAgrees) {
     EXPECT_LT(relativeDifference("stewart", 0.02, 0.04, 1000.0), kRelativeTolerance);
 }
 
-TEST(SpatialSimbody, SixRusAgrees) { EXPECT_LT(relativeDifference("6-rus", 0.01, 0.04, 0.1), kRelativeTolerance); }
+TEST(SpatialSimbody, SixRusAgrees) { EXPECT_LT(relativeDifference("hexa-6rus", 0.01, 0.04, 0.1), kRelativeTolerance); }
 
 TEST(SpatialSimbody, DeltaAgrees) { EXPECT_LT(relativeDifference("delta", 0.03, 0.0, 1.0), kRelativeTolerance); }
 
@@ -67,7 +67,7 @@ TEST(SpatialSimbody, TheComparisonSeesSmallChangesOfTheEnginesData) {
     changed.platform.mass *= 1.02;
     EXPECT_GT(relativeDifference(delta, changed, 0.03, 0.0, 1.0), 1e-4);
 
-    const nocdyn::SpatialRobotDescription rus = shipped("6-rus");
+    const nocdyn::SpatialRobotDescription rus = shipped("hexa-6rus");
     changed = rus;
     Eigen::Matrix3d& I = changed.limbs[2].bodies[1].inertia;
     I(0, 2) = I(2, 0) = -I(0, 2);
