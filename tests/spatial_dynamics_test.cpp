@@ -22,6 +22,7 @@
 #include "nocdyn/sim/spatial_control.hpp"
 #include "nocdyn/sim/spatial_simulator.hpp"
 #include "nocdyn/spatial.hpp"
+#include "nocdyn/spatial_limits.hpp"
 #include "nocdyn/spatial_reactions.hpp"
 
 namespace nocdyn::spatial {
@@ -758,6 +759,26 @@ TEST(SpatialDynamics, AHexapodHoldsItsTableAsStaticsSays) {
     }
     EXPECT_NEAR(data.tau.dot(du), weight_power, 1e-9 * weight_power);
     EXPECT_GT(data.tau.minCoeff(), 0.0);  // every leg pushes
+}
+
+TEST(SpatialLimits, EachLimitNamesItsJointAndAStatusOfNoJointStillReads) {
+    const Model model(shipped("stewart"));
+    Data data(model);
+    TaskVector p = model.home;
+    p(2) += 0.2;  // every leg 0.2 m longer or so: beyond the cylinders' +0.15 m
+    ASSERT_TRUE(inverseDynamics(model, data, p, TaskVector::Zero(6), TaskVector::Zero(6)).ok());
+    const Status passed = checkLimits(model, data);
+    ASSERT_EQ(passed.code, StatusCode::joint_limit_exceeded);
+    EXPECT_EQ(passed.limb, 0);
+    EXPECT_EQ(passed.joint, 1);  // the P, the second listed joint
+    EXPECT_GT(passed.value, 0.15);
+    EXPECT_EQ(describe(passed, model).rfind("joint range exceeded: limb 1 (leg1), joint 2: q = 0.1", 0), 0U)
+        << describe(passed, model);
+    // a status naming no joint of this model reads as one line instead of going round describe()
+    const Status stray{StatusCode::effort_exceeded, -1, 2.0, -1};
+    EXPECT_EQ(describe(stray, model), "a joint's limit passed (limb 0, joint 0, value 2)");
+    ASSERT_TRUE(inverseDynamics(model, data, model.home, TaskVector::Zero(6), TaskVector::Zero(6)).ok());
+    EXPECT_TRUE(checkLimits(model, data).ok());
 }
 
 }  // namespace

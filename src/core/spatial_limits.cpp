@@ -40,7 +40,16 @@ Status checkLimits(const Model& model, const Data& data) {
 
 std::string describeLimit(const Status& status, const Model& model) {
     const Freedom* f = freedomOf(model, status.limb, status.joint);
-    if (f == nullptr) return describe(status, model);
+    if (f == nullptr) {  // not a limit of this model's joints (describe() would come back here)
+        std::string out = "a joint's limit passed (limb ";
+        out += std::to_string(status.limb + 1);
+        out += ", joint ";
+        out += std::to_string(status.joint + 1);
+        out += ", value ";
+        out += text::number(status.value);
+        out += ")";
+        return out;
+    }
     std::string joint = "limb ";
     joint += std::to_string(status.limb + 1);
     joint += " (";
