@@ -15,8 +15,9 @@ jobs="$(nproc)"
 # as soon as their inputs exist, where make waits for every library below it to be linked, so
 # that both cores stay busy through the layered library.
 command -v ninja >/dev/null && export CMAKE_GENERATOR=Ninja
+source scripts/ccache.sh
 
-cmake -S . -B build -DCMAKE_BUILD_TYPE=Release -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
+cmake -S . -B build "${ccache_args[@]}" -DCMAKE_BUILD_TYPE=Release -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
   -DNOCDYN_BUILD_BENCHMARKS=ON -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=ON
 start=$SECONDS
 cmake --build build -j"$jobs"

@@ -2,9 +2,11 @@
 """Mutation check: does the test suite catch deliberate errors in the core formulas?
 
 Each mutation of mutations.txt (a textual search and replace in one source file) is applied to
-a copy of the source tree, which is built once without Simbody and MuJoCo (-O1, one clone of
-the lean kernels: it is the tests' verdict that matters here, not the speed of the code), and
-rebuilt for each mutation (only what the changed file touches). The core test binaries then
+a copy of the source tree, which is built once without Simbody and MuJoCo (Release, with the flags of
+scripts/test.sh's build, so that with ccache and the checkout's cache .ccache/ every file that the
+release build compiled is a cache hit: the copy is laid out as the checkout, its build folder
+inside it, and ccache's base_dir makes both paths the same), and rebuilt for each mutation (only
+what the changed file touches). The core test binaries then
 run in turn, each stopping at its first failing test: the first failing test (in the order of
 TESTS) caught the mutation, and the binaries after it are not run. The check passes only when every mutation is caught, and when every searched text is
 found exactly once (a mutation whose code has moved must be updated, not skipped). The last
@@ -29,7 +31,7 @@ ROOT = Path(__file__).resolve().parents[2]
 LIST = Path(__file__).resolve().parent / "mutations.txt"
 
 # The core test binaries of the general model, each run until its first failing test
-# (--gtest_fail_fast): about 1 s for all of them unmutated at -O1. None needs Simbody, MuJoCo or
+# (--gtest_fail_fast): a few seconds for all of them unmutated. None needs Simbody, MuJoCo or
 # the CLI. (The tests of the hand-derived 3-PRR model, src/prr3, see none of the mutated files.)
 TESTS = [
     "lagrange_test",
@@ -179,7 +181,7 @@ def main():
     mutations = parse(LIST.read_text())
     work = Path(args.build_dir).resolve()
     source = work / "source"
-    build = work / "build"
+    build = source / "build"  # as build/ in the checkout: the same relative paths for ccache
     copy_tree(source)
     log = open(work / "mutation.log", "w")
 
@@ -205,17 +207,19 @@ def main():
     mutations = [m for m in mutations if m not in left_out and (not args.only or args.only in m.description)]
 
     generator = ["-G", "Ninja"] if shutil.which("ninja") else []
-    # A file mutated and then put back is compiled again, as it was in the unmutated build: with
-    # ccache (a cache of this build folder's own, empty at first) that second compile is a copy.
+    # ccache with the checkout's cache (scripts/ccache.sh: .ccache/, base_dir the checkout): the
+    # unmutated build takes what scripts/test.sh's release build compiled, and a file mutated and
+    # then put back is compiled again as a copy.
     launcher = []
     if shutil.which("ccache"):
         launcher = ["-DCMAKE_CXX_COMPILER_LAUNCHER=ccache"]
-        os.environ["CCACHE_DIR"] = str(work / "ccache")
+        os.environ["CCACHE_DIR"] = str(ROOT / ".ccache")  # as scripts/ccache.sh
+        os.environ["CCACHE_BASEDIR"] = str(ROOT)
         os.environ.pop("CCACHE_DISABLE", None)
         os.environ["CCACHE_DEPEND"] = "1"  # no preprocessor run on a miss: the compiler's -MD list
-    configure = ["cmake", "-S", str(source), "-B", str(build), *generator, *launcher, "-DCMAKE_BUILD_TYPE=None",
-                 "-DCMAKE_CXX_FLAGS=-O1 -DNDEBUG -DNOCDYN_NO_TARGET_CLONES",
-                 "-DNOCDYN_BUILD_TESTS=ON", "-DNOCDYN_BUILD_VALIDATION=OFF", "-DNOCDYN_BUILD_BENCHMARKS=OFF",
+        os.environ["CCACHE_NOHASHDIR"] = "1"
+    configure = ["cmake", "-S", str(source), "-B", str(build), *generator, *launcher, "-DCMAKE_BUILD_TYPE=Release",
+                 "-DCMAKE_CXX_FLAGS=", "-DNOCDYN_BUILD_TESTS=ON", "-DNOCDYN_BUILD_VALIDATION=OFF", "-DNOCDYN_BUILD_BENCHMARKS=OFF",
                  "-DNOCDYN_BUILD_PYTHON=OFF", "-DNOCDYN_SANITIZE=OFF", "-DNOCDYN_FUZZ=OFF",
                  f"-DNOCDYN_GOLDEN_DIR={Path(args.golden_dir).resolve()}"]
     build_command = ["cmake", "--build", str(build), "-j", str(args.jobs), "--target", *TESTS]

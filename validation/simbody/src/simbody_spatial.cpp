@@ -402,7 +402,7 @@ int SimbodySpatialMechanism::actuatorCount() const { return static_cast<int>(imp
         ::Eigen::MatrixXd A(n, task);
         for (int a = 0; a < n; ++a) A.row(a) = N.row(m.actuated_v[static_cast<std::size_t>(a)]);
         const ::Eigen::VectorXd F = N.transpose() * he;
-        Eigen::JacobiSVD<::Eigen::MatrixXd> svd(A.transpose(), Eigen::ComputeThinU | Eigen::ComputeThinV);
+        ::Eigen::JacobiSVD<::Eigen::MatrixXd> svd(A.transpose(), ::Eigen::ComputeThinU | ::Eigen::ComputeThinV);
         const auto& sv = svd.singularValues();
         const double cond_A = sv(task - 1) > 0.0 ? sv(0) / sv(task - 1) : std::numeric_limits<double>::infinity();
         if (!(cond_A <= m.robot.max_condition)) {
