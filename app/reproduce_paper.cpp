@@ -348,7 +348,7 @@ void reproduceShake(const std::filesystem::path& out, std::ostream& summary) {
     summary << "The first " << kWindow << " s of the record along x, high-passed at " << replay.highpass
             << " Hz (zero-phase Butterworth, order " << kHighPassOrder
             << " run forward and backward), scaled in time to fit the actuators with a " << 100.0 * replay.margin
-            << " % margin, then tracked by computed torque at " << replay.rate / 1000.0
+            << " % margin, then tracked by computed torque at " << planarRate(replay) / 1000.0
             << " kHz (f_n = " << kPoseNaturalFrequency
             << " Hz) on nocdyn's own forward dynamics (`--plant nocdyn`; `nocdyn shake` plays on its RK4 plant,"
             << " `nocdyn-rk4`, by default, and `--plant simbody` on the independent Simbody model) carrying a "

@@ -368,7 +368,7 @@ void validate(const ShakeOptions& o) {
     requireIn(o.highpass, kHighpassRange, "highpass");
     requireIn(o.margin, kShareRange, "margin");
     requireIn(o.window, kWindowRange, "window");
-    requireIn(o.rate, kShakeRateRange, "rate");
+    if (o.rate) requireIn(*o.rate, kShakeRateRange, "rate");
     if (o.natural_frequency) requireIn(*o.natural_frequency, kShakeNaturalFrequencyRange, "natural_frequency");
     requireIn(o.acceleration_gain, kShareRange, "acceleration_gain");
     requireIn(o.encoder_noise, kEncoderNoiseRange, "encoder_noise");

@@ -128,6 +128,7 @@ std::string replayJson(const spatial::ShakeReplay3& r, const io::TableMotion& mo
     json["duration"] = r.loop.t.back();
     json["amplitude_requested"] = options.amplitude;
     json["controller"] = controller;
+    json["controller_rate"] = options.rate.value_or(six_dof_shake::kSixDofRate);  // [Hz]
     json["parasitic_rotation_deg"] = {
         {"roll", kDegree * r.parasitic[0]}, {"pitch", kDegree * r.parasitic[1]}, {"yaw", kDegree * r.parasitic[2]}};
     nlohmann::json metrics = nlohmann::json::object();
@@ -234,7 +235,7 @@ ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
     spatial::LoopOptions loop;
     // a six-DOF table's plant costs some 20 times a planar one's per tick: 1 kHz unless given (the
     // forces of the hold's middle state keep the error O(dt^2): El Centro's z within 2 % at 1 kHz)
-    loop.rate = options.rate == ShakeOptions{}.rate ? six_dof_shake::kSixDofRate : options.rate;
+    loop.rate = options.rate.value_or(six_dof_shake::kSixDofRate);
     loop.law = ControlLaw::computed_torque;
     loop.mid_hold = true;
     loop.natural_frequency = options.natural_frequency.value_or(kPoseNaturalFrequency);

@@ -161,8 +161,15 @@ TEST(SpatialShake, TheCommandReplaysAThreeComponentRecordOnTheHexapod) {
         EXPECT_LT(json["metrics"][axis]["rms_error_percent"].get<double>(), 5.0) << axis;
     }
     EXPECT_EQ(json["x_azimuth"].get<double>(), 180.0);
+    EXPECT_EQ(json["controller_rate"].get<double>(), 1000.0);  // a hexapod's own rate, none given
     for (const char* f : {"shake_acceleration.png", "shake_spectrum.svg"})
         EXPECT_TRUE(std::filesystem::exists(out / "a" / f)) << f;
+    // a rate given is kept, even when it equals the planar table's default
+    const test::CliResult fast =
+        test::runCli("shake" + robot + records + " --window 0.5 --rate 10000 --out-dir " + (out / "c").string());
+    ASSERT_EQ(fast.exit_code, 0) << fast.err;
+    std::ifstream fast_file(out / "c" / "shake.json");
+    EXPECT_EQ(nlohmann::json::parse(fast_file)["controller_rate"].get<double>(), 10000.0);
     // a planar-only option is refused by name
     const test::CliResult refused =
         test::runCli("shake" + robot + records + " --iterations 2 --out-dir " + (out / "b").string());

@@ -93,9 +93,10 @@ void addShakeCommand(CLI::App& app) {
     command->add_option("--window", options->window, "Play only the record's first seconds [s]; 0: all")
         ->check(within(app::kWindowRange));
     addPlantOption(*command, options->plant);
-    command->add_option("--rate", options->rate, "Controller rate [Hz] (a six-DOF table: 1000 unless given)")
-        ->check(within(app::kShakeRateRange))
-        ->capture_default_str();
+    command
+        ->add_option("--rate", options->rate,
+                     "Controller rate [Hz] (default: 10000 on a planar table, 1000 on a hexapod)")
+        ->check(within(app::kShakeRateRange));
     addChoiceOption(*command, "--controller", options->controller,
                     "table (encoders and platform accelerometers fused by a Kalman filter, model feed-forward, "
                     "low-gain pose feedback, acceleration correction) or pose (computed torque on a noisy pose and "

@@ -39,7 +39,7 @@ double naturalFrequency(const ShakeReplayOptions& o) {
 /// The table controller's loop: rate, feedback, sensors in SI (the noise density from ug/sqrt(Hz)).
 ShakeLoopOptions tableLoop(const ShakeReplayOptions& o, const std::function<void(double)>& progress) {
     ShakeLoopOptions loop;
-    loop.rate = o.rate;
+    loop.rate = planarRate(o);
     loop.natural_frequency = naturalFrequency(o);
     loop.acceleration_gain = o.acceleration_gain;
     loop.sensors.encoder_noise = o.encoder_noise;
@@ -137,14 +137,14 @@ PoseLoopResult playPass(const Bench& b, const PoseTrajectory& drive, EstimatorRe
         loop.seed = o.seed + static_cast<unsigned>(pass);
         loop.keep_actuators = false;
         loop.on_tick = [&](std::size_t k, double t, const ActuatorVector& u, const ActuatorVector& tau) {
-            actuators.tick(b.model, b.fit.t, o.rate, k, t, u, tau);
+            actuators.tick(b.model, b.fit.t, planarRate(o), k, t, u, tau);
         };
         return runShakeLoop(b.controller_model, b.plant, drive, loop, report);
     }
     if (o.identify_payload) throw Error("--identify-payload needs --controller table");
     PoseController controller(b.model, ControlLaw::computed_torque, taskCriticallyDamped(naturalFrequency(o)));
     PoseLoopOptions loop;
-    loop.rate = o.rate;
+    loop.rate = planarRate(o);
     loop.duration = b.fit.t.back();
     loop.noise_angle = o.noise_pose;
     loop.noise_position = o.noise_pose;
@@ -153,7 +153,7 @@ PoseLoopResult playPass(const Bench& b, const PoseTrajectory& drive, EstimatorRe
     loop.progress = b.progress;
     PoseLoopResult result = runPoseLoop(controller, b.plant, drive, loop);
     for (std::size_t k = 0; k < result.t.size(); ++k)
-        actuators.tick(b.model, b.fit.t, o.rate, k, result.t[k], result.u[k], result.tau[k]);
+        actuators.tick(b.model, b.fit.t, planarRate(o), k, result.t[k], result.u[k], result.tau[k]);
     for (auto* v : {&result.u, &result.u_d, &result.tau, &result.u_measured}) std::vector<ActuatorVector>().swap(*v);
     return result;
 }
@@ -162,7 +162,7 @@ PoseLoopResult playPass(const Bench& b, const PoseTrajectory& drive, EstimatorRe
 /// the samples the loop covered.
 double passRms(const Bench& b, const PoseLoopResult& loop, std::array<std::vector<double>, 3>& achieved) {
     const FittedRecord& fit = b.fit;
-    achieved = poseAcceleration(loop.p, 1.0 / b.options.rate, fit.t, b.options.difference_span);
+    achieved = poseAcceleration(loop.p, 1.0 / planarRate(b.options), fit.t, b.options.difference_span);
     const std::size_t n = std::min(fit.t.size(), static_cast<std::size_t>(loop.t.back() / fit.dt) + 1);
     return relativeRmsError(std::span(target(fit, b.scored_axis)).first(n),
                             std::span(achieved[static_cast<std::size_t>(b.scored_axis)]).first(n));
@@ -325,7 +325,7 @@ void fitReplay(const Model& model, const GroundRecord& record, const ShakeReplay
     out.margin = options.margin;
     const FittedRecord& fit = out.fit;
     // the memory the closed loop will hold, refused before it is taken
-    const double ticks = std::floor(fit.t.back() * options.rate) + 1.0;
+    const double ticks = std::floor(fit.t.back() * planarRate(options)) + 1.0;
     const double bytes = ticks * replayBytesPerTick(options.controller);
     if (!(bytes <= kMaxReplayBytes)) {
         const double record_seconds = record.dt * static_cast<double>(fit.t.size() - 1);
@@ -333,7 +333,7 @@ void fitReplay(const Model& model, const GroundRecord& record, const ShakeReplay
             text::format("the replay of this %.6g s record is too long to hold: time scale L = %.4g gives %.6g s "
                          "of replay, %.4g million ticks at %.6g Hz, about %.0f MB (%.3g MB per second of record); "
                          "the limit is %.0f MB per replay: play part of the record (--window) or lower --rate",
-                         record_seconds, fit.time_scale, fit.t.back(), ticks / 1e6, options.rate, bytes / 1e6,
+                         record_seconds, fit.time_scale, fit.t.back(), ticks / 1e6, planarRate(options), bytes / 1e6,
                          bytes / 1e6 / record_seconds, kMaxReplayBytes / 1e6));
     }
     out.driven = {!fit.alpha.empty(), !fit.ax.empty(), !fit.ay.empty()};
@@ -376,7 +376,7 @@ void scoreReplay(const Model& model, const ShakeReplayOptions& options, ShakeOut
     out.period_max = 1.0 / (fit.time_scale * f_lo);
     // the samples the loop covered (its last tick is before the record's end)
     const std::size_t n = std::min(fit.t.size(), static_cast<std::size_t>(out.loop.t.back() / fit.dt) + 1);
-    const double tick = 1.0 / options.rate;
+    const double tick = 1.0 / planarRate(options);
     for (int axis = 0; axis < 3; ++axis) {
         if (!out.driven[static_cast<std::size_t>(axis)]) continue;
         const std::vector<double>& a = target(fit, axis);

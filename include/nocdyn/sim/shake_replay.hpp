@@ -62,7 +62,9 @@ struct ShakeReplayOptions {
     double payload_mass = 0.5;  ///< [kg] at C, on the plant only
     // --- the controller
     ShakeController controller = ShakeController::table;
-    double rate = ShakeLoopOptions{}.rate;  ///< controller ticks per second [Hz]
+    /// controller ticks per second [Hz]; none: the table's own (ShakeLoopOptions' 10 kHz on a
+    /// planar table, 1 kHz on a hexapod), so that a rate given equal to one default is kept
+    std::optional<double> rate;
     /// f_n of the pose feedback [Hz]; none: table 6 (kIdentifiedNaturalFrequency with
     /// identify_payload), pose kPoseNaturalFrequency
     std::optional<double> natural_frequency;
@@ -93,6 +95,9 @@ struct ShakeReplayOptions {
     double iteration_tolerance = 0.02;
     int difference_span = 5;  ///< ticks of the achieved-acceleration difference
 };
+
+/// A planar table's controller rate: the one given, else ShakeLoopOptions' default (10 kHz).
+[[nodiscard]] inline double planarRate(const ShakeReplayOptions& o) { return o.rate.value_or(ShakeLoopOptions{}.rate); }
 
 /// The plant of a replay, built from the robot it carries (the robot with the payload).
 using PlantFactory = std::function<std::unique_ptr<RobotPlant>(const RobotDescription& robot)>;
