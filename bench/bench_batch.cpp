@@ -2,16 +2,20 @@
 // arithmetic peak that the bound in README.md is measured against.
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "fixture.hpp"
+#include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/io/short_form.hpp"
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
 #include "nocdyn/sim/simulator.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/prr3/batch.hpp"
+#include "nocdyn/spatial_batch.hpp"
 
 namespace nocdyn::bench {
 namespace {
@@ -62,6 +66,52 @@ void batchThreads(benchmark::State& state) {
         benchmark::ClobberMemory();
     }
     perSample(state, static_cast<double>(batch.size()));
+}
+
+/// 10 000 samples of the Stewart table (robots/stewart.yaml) about home, two harmonics per
+/// coordinate (1-2 cm, 0.02-0.04 rad), by spatial::inverseDynamicsBatch over state.range(0)
+/// threads; C-ordered (N, 6) arrays as from NumPy; wall-clock time.
+void spatialBatchThreads(benchmark::State& state) {
+    using Strided = Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>;
+    using RowMajor = Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    static const spatial::Model model(
+        io::loadSpatialRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/stewart.yaml"));
+    constexpr Eigen::Index kSamples = 10000;
+    const int d = model.task_dimension, n = model.actuators;
+    RowMajor p(kSamples, d), dp(kSamples, d), ddp(kSamples, d), out(kSamples, 4 * n);
+    for (Eigen::Index k = 0; k < kSamples; ++k) {
+        const double t = 1e-4 * static_cast<double>(k);
+        for (int i = 0; i < d; ++i) {
+            const double amplitude = i < 3 ? 0.01 + 0.003 * i : 0.02 + 0.005 * (i - 3);
+            p(k, i) = model.home(i), dp(k, i) = 0.0, ddp(k, i) = 0.0;
+            for (const double f : {1.0 + i, 2.0 + 2.0 * i}) {
+                const double w = 2.0 * M_PI * f, phase = 0.3 * i;
+                p(k, i) += amplitude * std::sin(w * t + phase) / f;
+                dp(k, i) += amplitude * w * std::cos(w * t + phase) / f;
+                ddp(k, i) -= amplitude * w * w * std::sin(w * t + phase) / f;
+            }
+        }
+    }
+    const auto in = [&](const RowMajor& a) {
+        return Eigen::Map<const Eigen::ArrayXXd, 0, Strided>(a.data(), kSamples, d, Strided(1, d));
+    };
+    // u, du, ddu, tau side by side in one C-ordered (N, 4n) buffer
+    const auto to = [&](int i) {
+        return Eigen::Map<Eigen::ArrayXXd, 0, Strided>(out.data() + i * n, kSamples, n, Strided(1, 4 * n));
+    };
+    spatial::BatchOptions options;
+    options.threads = static_cast<unsigned>(state.range(0));
+    for (auto _ : state) {
+        const BatchResult result =
+            spatial::inverseDynamicsBatch(model, in(p), in(dp), in(ddp), to(0), to(1), to(2), to(3), options);
+        if (!result.ok()) {
+            state.SkipWithError("the motion leaves the Stewart table's workspace");
+            return;
+        }
+        benchmark::DoNotOptimize(out.data());
+        benchmark::ClobberMemory();
+    }
+    perSample(state, static_cast<double>(kSamples));
 }
 
 /// The paper's robot as the general model (the short form expanded), as the simulator runs it.
@@ -181,6 +231,12 @@ NOCDYN_AVX2 void peakDivSqrt(benchmark::State& state) {
 [[maybe_unused]] const bool registered = [] {
     benchmark::RegisterBenchmark("BM_Batch/nocdyn/cycle_1thread", batchCycle);
     benchmark::RegisterBenchmark("BM_Batch/nocdyn/100k_samples", batchThreads)
+        ->ArgName("threads")
+        ->Arg(1)
+        ->Arg(2)
+        ->UseRealTime()
+        ->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark("BM_SpatialBatch/stewart/10k_samples", spatialBatchThreads)
         ->ArgName("threads")
         ->Arg(1)
         ->Arg(2)

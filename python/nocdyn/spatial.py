@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from . import _nocdyn
-from ._guards import _floats, _input
+from ._guards import _MAX_THREADS, _floats, _input, _integer
 from .dynamics import InverseDynamics
 
 __all__ = ["SpatialRobot"]
@@ -82,7 +82,7 @@ class SpatialRobot:
         """The platform pose at home, shape (task_dimension,)."""
         return np.array(self._core.home)
 
-    def inverse_dynamics(self, p, dp, ddp, *, check=True, check_limits=True):
+    def inverse_dynamics(self, p, dp, ddp, *, threads=1, check=True, check_limits=True):
         """Actuator variables, rates, accelerations and forces for platform motions.
 
         p, dp, ddp of shape (N, d) or (d,) with d = task_dimension (columns in the order of
@@ -95,8 +95,13 @@ class SpatialRobot:
         first sample where an R or P joint leaves its range or exceeds its velocity, or an actuator
         its effort (the file's ``limits``; U and S joints take none), raises nocdyn.Error with the
         command line's reason ("sample K: joint range exceeded: limb 1 (arm1), joint 1: q = ...");
-        check_limits=False checks none. The GIL is released during the computation.
+        check_limits=False checks none. The GIL is released during the computation. threads
+        (0..1024) > 1 splits the samples over that many C++ threads, at most one per hardware
+        thread and 8 samples (0: one per hardware thread); the sample K raised is that of
+        threads=1, and so are the results (to Newton's tolerance for a limb with no closed form,
+        which each thread's first sample solves from home).
         """
+        threads = min(_integer(threads, "threads", 0, 2**63), _MAX_THREADS)
         d = self.task_dimension
         p_arr = _floats(p, "p")
         single = p_arr.ndim == 1
@@ -106,7 +111,7 @@ class SpatialRobot:
         dp_arr = _input(dp, "dp", (d,) if single else (n, d), finite=False)
         ddp_arr = _input(ddp, "ddp", (d,) if single else (n, d), finite=False)
         rows = [np.ascontiguousarray(a.reshape(-1, d)) for a in (p_arr, dp_arr, ddp_arr)]
-        u, du, ddu, tau = self._core._inverse_dynamics(*rows, bool(check), bool(check_limits))
+        u, du, ddu, tau = self._core._inverse_dynamics(*rows, bool(check), bool(check_limits), threads)
         if single:
             return InverseDynamics(u[0], du[0], ddu[0], tau[0])
         return InverseDynamics(u, du, ddu, tau)

@@ -7,7 +7,6 @@
 
 #include <array>
 #include <cmath>
-#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,12 +14,14 @@
 #include "app/inverse_dynamics_spatial.hpp"
 #include "app/pose_spatial.hpp"
 #include "app_bindings.hpp"
+#include "arrays.hpp"
 #include "expose.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/analysis/assembly_modes.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/spatial.hpp"
+#include "nocdyn/spatial_batch.hpp"
 #include "nocdyn/spatial_limits.hpp"
 #include "nocdyn/text.hpp"
 #include "nocdyn/spatial_direct_kinematics.hpp"
@@ -47,12 +48,14 @@ Rows samples(const py::handle& x, const char* name, int d, py::ssize_t n) {
     return a;
 }
 
-/// u, du, ddu, tau of shape (N, n); a sample the model refuses raises "sample K: reason" (K from
-/// 1) when `check`, else its row is NaN; with `check_limits`, the first sample beyond a joint's
-/// range or velocity or an actuator's effort raises "sample K: joint range exceeded: ..." after
-/// the batch is computed.
+/// u, du, ddu, tau of shape (N, n) by spatial::inverseDynamicsBatch over `threads` (as the
+/// planar batch: 1 the calling thread, 0 one per hardware thread), the GIL released; a sample the
+/// model refuses raises "sample K: reason" (K from 1) when `check` (the first in index order,
+/// whatever the split), else its row is NaN; with `check_limits`, the first sample beyond a
+/// joint's range or velocity or an actuator's effort raises "sample K: joint range exceeded: ..."
+/// after the batch is computed.
 py::tuple inverseDynamics(const SpatialRobot& robot, const py::handle& p, const py::handle& dp, const py::handle& ddp,
-                          bool check, bool check_limits) {
+                          bool check, bool check_limits, unsigned threads) {
     const spatial::Model& model = *robot.model;
     const int d = model.task_dimension;
     const Rows P = samples(p, "p", d, -1);
@@ -61,45 +64,32 @@ py::tuple inverseDynamics(const SpatialRobot& robot, const py::handle& p, const 
     const int n = model.actuators;
     std::array<Rows, 4> out{Rows({N, static_cast<py::ssize_t>(n)}), Rows({N, static_cast<py::ssize_t>(n)}),
                             Rows({N, static_cast<py::ssize_t>(n)}), Rows({N, static_cast<py::ssize_t>(n)})};
-    std::array<double*, 4> to{};
-    for (std::size_t i = 0; i < 4; ++i) to[i] = out[i].mutable_data();
-    const double *x = P.data(), *dx = dP.data(), *ddx = ddP.data();
-    // the first sample the model refuses (raised when `check`, else a NaN row), and the first
-    // computed one beyond a joint's limits (raised when `check_limits`)
-    py::ssize_t failed = -1, limited = -1;
-    Status failure, limit;
+    // C-ordered (N, m) arrays as column-major maps: row stride m, column stride 1
+    const auto in = [N](const Rows& a, int m) {
+        return ConstStridedMap(a.data(), N, m, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(1, m));
+    };
+    const auto to = [N, n](Rows& a) {
+        return StridedMap(a.mutable_data(), N, n, Eigen::Stride<Eigen::Dynamic, Eigen::Dynamic>(1, n));
+    };
+    StridedMap u = to(out[0]), du = to(out[1]), ddu = to(out[2]), tau = to(out[3]);
+    spatial::BatchOptions options;
+    options.threads = threads;
+    options.check_limits = check_limits;
+    options.stop_at_failure = check;
+    BatchResult result;
     {
         const py::gil_scoped_release release;
-        spatial::Data data(model);
-        spatial::TaskVector pk(d), dpk(d), ddpk(d);
-        for (py::ssize_t k = 0; k < N; ++k) {
-            for (int i = 0; i < d; ++i) pk(i) = x[k * d + i], dpk(i) = dx[k * d + i], ddpk(i) = ddx[k * d + i];
-            const Status status = spatial::inverseDynamics(model, data, pk, dpk, ddpk);
-            for (int a = 0; a < n; ++a) {
-                const double nan = std::numeric_limits<double>::quiet_NaN();
-                to[0][k * n + a] = status ? data.u(a) : nan;
-                to[1][k * n + a] = status ? data.du(a) : nan;
-                to[2][k * n + a] = status ? data.ddu(a) : nan;
-                to[3][k * n + a] = status ? data.tau(a) : nan;
-            }
-            if (!status && failed < 0) {
-                failed = k;
-                failure = status;
-                if (check) break;
-            }
-            if (status && check_limits && limited < 0) {
-                if (const Status passed = spatial::checkLimits(model, data); !passed) {
-                    limited = k;
-                    limit = passed;
-                }
-            }
-        }
+        result = spatial::inverseDynamicsBatch(model, in(P, d), in(dP, d), in(ddP, d), u, du, ddu, tau, options);
     }
-    if (failed >= 0 && check && (limited < 0 || failed < limited)) {
-        throw Error("sample " + std::to_string(failed + 1) + ": " + spatial::describe(failure, model));
+    // a failure raised first unless a sample before it is beyond a limit
+    if (!result.ok() && check && result.first_failure < result.first_beyond_limits) {
+        throw Error("sample " + std::to_string(result.first_failure + 1) + ": " +
+                    spatial::describe(result.status, model));
     }
-    if (limited >= 0)
-        throw Error("sample " + std::to_string(limited + 1) + ": " + spatial::describeLimit(limit, model));
+    if (result.first_beyond_limits != BatchResult::npos) {
+        throw Error("sample " + std::to_string(result.first_beyond_limits + 1) + ": " +
+                    spatial::describeLimit(result.limits, model));
+    }
     return py::make_tuple(out[0], out[1], out[2], out[3]);
 }
 
@@ -302,7 +292,7 @@ void exposeSpatial(py::module_& m) {
         .def("_forward_kinematics", &forwardKinematics, py::arg("u"))
         .def("_track", &track, py::arg("u"), py::arg("p0"))
         .def("_inverse_dynamics", &inverseDynamics, py::arg("p"), py::arg("dp"), py::arg("ddp"),
-             py::arg("check") = true, py::arg("check_limits") = true)
+             py::arg("check") = true, py::arg("check_limits") = true, py::arg("threads") = 1)
         .def(
             "_run_inverse_dynamics",
             [](const SpatialRobot& r, const app::InverseDynamicsOptions& options, const py::object& progress) {

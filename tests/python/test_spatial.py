@@ -54,6 +54,30 @@ def test_a_batch_equals_one_sample_at_a_time(source_dir, name):
     assert np.all(np.isfinite(batch.tau))
 
 
+
+@pytest.mark.parametrize("threads", [2, 0])
+def test_a_threaded_batch_gives_the_arrays_of_one_thread_and_the_same_first_failure(source_dir, threads):
+    robot = _load(source_dir, "hexa-6rus")  # cranks and rods of fixed lengths: a reach
+    P, dP, ddP = _motion(robot.home, 203, np.random.default_rng(5))
+    one = robot.inverse_dynamics(P, dP, ddP, check_limits=False, threads=1)
+    many = robot.inverse_dynamics(P, dP, ddP, check_limits=False, threads=threads)
+    assert np.all(np.isfinite(one.tau)) and np.abs(one.tau).max() > 1.0
+    for a, b in zip(one, many):
+        np.testing.assert_array_equal(a, b)
+    # two samples 10 m out of reach, one in each half of threads=2's split: the first is raised
+    P[[100, 180], 0] += 10.0
+    with pytest.raises(nocdyn.Error, match=r"^sample 101: pose out of reach"):
+        robot.inverse_dynamics(P, dP, ddP, check_limits=False, threads=threads)
+    loose = robot.inverse_dynamics(P, dP, ddP, check=False, check_limits=False, threads=threads)
+    assert np.isnan(loose.tau[[100, 180]]).all()
+    rows = np.ones(203, bool)
+    rows[[100, 180]] = False
+    np.testing.assert_array_equal(loose.u[rows], one.u[rows])
+    with pytest.raises(TypeError):
+        robot.inverse_dynamics(P, dP, ddP, threads=True)
+    with pytest.raises(nocdyn.Error, match=r"threads: -1 is not in"):
+        robot.inverse_dynamics(P, dP, ddP, threads=-1)
+
 def test_the_legs_of_a_hexapod_with_massless_legs_hold_its_table_by_virtual_work(source_dir):
     # legs of no mass: at rest, tau . du/dz = m g (the table rises by dz), and the same for a
     # roll: tau . du/droll = the weight's moment about the x axis through the pose point
