@@ -275,7 +275,7 @@ std::string where(const RandomRobotSpec& spec, const Sample& s) {
 }
 
 TEST_P(LagrangeRandomRobots, LagrangeEquationsHoldByFiniteDifferences) {
-    forEachRobot([this](const RobotDescription& robot, const Model& model, const std::vector<Sample>& samples) {
+    forEachRobot([](const RobotDescription& robot, const Model& model, const std::vector<Sample>& samples) {
         IndependentMechanics mechanics(robot, model);
         Data full(model), lean(model);
         int checked = 0;
@@ -358,7 +358,7 @@ TEST_P(LagrangeRandomRobots, LagrangeEquationsHoldByFiniteDifferences) {
 TEST_P(LagrangeRandomRobots, EnergiesAndFrictionPowerEqualIndependentSums) {
     // The model's kinetic and potential energy and friction power against dp^T M dp / 2, V and
     // sum (damping q'^2 + friction |q'|) from the description's coefficients.
-    forEachRobot([this](const RobotDescription& robot, const Model& model, const std::vector<Sample>& samples) {
+    forEachRobot([](const RobotDescription& robot, const Model& model, const std::vector<Sample>& samples) {
         IndependentMechanics mechanics(robot, model);
         Data data(model);
         int checked = 0;
