@@ -4,8 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
-#include <optional>
 #include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -386,31 +388,68 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
     const spatial::LoopOptions loop = loopOptions(options, controller);
     const std::size_t workers =
         std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardwareThreads(), records.size());
-    std::vector<std::optional<spatial::ShakeReplay3>> replays(records.size());
+    std::vector<ShakeResult> results(records.size());  // each record's rows and verdict
     std::vector<std::string> errors(records.size());
     std::atomic<std::size_t> next{0};
-    // workers never call the observer
-    runWorkers("shake", static_cast<unsigned>(workers), [&](unsigned /*w*/) {
-        for (std::size_t i = next++; i < records.size(); i = next++) {
+    std::atomic<bool> stop{false};
+    std::mutex mutex;  // the outputs (figures) one at a time, and the count of records done
+    std::condition_variable finished;
+    std::size_t done = 0;
+    // workers never call the observer: a stop reaches each replay at its next tick
+    spatial::LoopOptions stoppable = loop;
+    stoppable.progress = [&stop](double /*t*/) {
+        if (stop.load(std::memory_order_relaxed)) throw Cancelled();
+    };
+    const auto work = [&] {
+        for (std::size_t i = next++; i < records.size() && !stop; i = next++) {
             try {
-                replays[i].emplace(
-                    spatial::replayRecord(model, fitOf(model, read[i].record, options, loop), loop, options.highpass));
+                const spatial::ShakeReplay3 r = spatial::replayRecord(
+                    model, fitOf(model, read[i].record, options, loop), stoppable, options.highpass);
+                ShakeResult& one = results[i];
+                one.table = replayTable(r, model);
+                one.metrics_json = replayJson(r, read[i].motion, options, controller);
+                (void)summary(r, read[i].motion, options, controller, one);
+                const std::lock_guard lock(mutex);
+                writeOutputs(r, model, one, (std::filesystem::path(options.out_dir) / folders[i]).string(),
+                             records[i].label);
+                one.table = {};  // written; keep the scores
             } catch (const std::exception& e) {
                 errors[i] = e.what();
             }
+            const std::lock_guard lock(mutex);
+            ++done;
+            finished.notify_all();
+        }
+    };
+    // the calling thread watches (worker 0): the progress, and a stop asked by the observer
+    const auto watch = [&] {
+        try {
+            std::unique_lock lock(mutex);
+            while (done < records.size()) {
+                finished.wait_for(lock, std::chrono::milliseconds(200));
+                const auto count = static_cast<double>(done);
+                lock.unlock();
+                observer.progress(count, static_cast<double>(records.size()), "records");
+                stopIfRequested(observer);
+                lock.lock();
+            }
+        } catch (...) {
+            stop = true;
+            throw;
+        }
+    };
+    runWorkers("shake", static_cast<unsigned>(workers) + 1, [&](unsigned w) {
+        if (w == 0) {
+            watch();
+        } else {
+            work();
         }
     });
     ShakeResult out;
     out.suite = true;
     for (std::size_t i = 0; i < records.size(); ++i) {
         if (!errors[i].empty()) throw Error(records[i].label + ": " + errors[i]);
-        ShakeResult one;
-        one.table = replayTable(*replays[i], model);
-        one.metrics_json = replayJson(*replays[i], read[i].motion, options, controller);
-        (void)summary(*replays[i], read[i].motion, options, controller, one);
-        writeOutputs(*replays[i], model, one, (std::filesystem::path(options.out_dir) / folders[i]).string(),
-                     records[i].label);
-        replays[i].reset();  // the ticks are written; keep the scores
+        ShakeResult& one = results[i];
         out.passed += one.passed;
         for (ShakeSuiteRow& row : one.rows) {
             row.folder = folders[i];
