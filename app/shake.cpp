@@ -54,60 +54,6 @@ std::vector<double> readAxis(const std::string& path, double window, double& dt,
     return a;
 }
 
-/// The records named: files, and the *.AT2 files of folders (sorted by name).
-std::vector<std::string> expandRecords(const std::vector<std::string>& names) {
-    std::vector<std::string> out;
-    for (const std::string& name : names) {
-        std::error_code error;
-        if (!std::filesystem::is_directory(name, error)) {
-            out.push_back(name);
-            continue;
-        }
-        std::vector<std::string> found;
-        for (const auto& entry : std::filesystem::directory_iterator(name, error)) {
-            std::string ext = entry.path().extension().string();
-            for (char& c : ext) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
-            if (entry.is_regular_file() && ext == ".AT2") found.push_back(entry.path().string());
-        }
-        if (error) throw OptionError("record", name + ": cannot list the folder: " + error.message());
-        if (found.empty()) throw OptionError("record", name + ": the folder holds no .AT2 file");
-        std::sort(found.begin(), found.end());
-        out.insert(out.end(), found.begin(), found.end());
-    }
-    return out;
-}
-
-/// One folder name per record, safe and unique: the record's stem with every character but
-/// letters, digits, '-' and '_' replaced by '_' (no separator, no "." or ".." and no hidden
-/// folder), "record" when nothing is left, and "-2", "-3", ... after a name already taken
-/// ignoring case (quake.AT2 and quake.at2 must not share a folder on any file system).
-std::vector<std::string> recordFolders(const std::vector<RecordFiles>& records) {
-    std::vector<std::string> out, taken;
-    const auto lower = [](std::string text) {
-        for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-        return text;
-    };
-    for (const RecordFiles& record : records) {
-        // a file's stem; the shared name of a record's components as it is
-        std::string name =
-            record.files.size() == 1 ? std::filesystem::path(record.label).stem().string() : record.label;
-        bool any = false;
-        for (char& c : name) {
-            const bool plain = std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '-' || c == '_';
-            if (!plain) c = '_';
-            any = any || std::isalnum(static_cast<unsigned char>(c)) != 0;
-        }
-        if (!any) name = "record";
-        if (name.size() > 100) name.resize(100);
-        std::string chosen = name;
-        for (int k = 2; std::find(taken.begin(), taken.end(), lower(chosen)) != taken.end(); ++k)
-            chosen = name + "-" + std::to_string(k);
-        taken.push_back(lower(chosen));
-        out.push_back(chosen);
-    }
-    return out;
-}
-
 /// The replay's options: the command's time scale ("auto" or a decimal L) in time_scale.
 ShakeReplayOptions replayOptions(const ShakeOptions& o) {
     ShakeReplayOptions replay = o;
@@ -403,6 +349,7 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     requireOutputFolder(options.out_dir, "out_dir");
     if (isSpatialRobot(options.robot)) {
         ShakeOptions six = options;
+        six.record = expandRecords(options.record);          // a folder's *.AT2 files
         six.time_scale = replayOptions(options).time_scale;  // "auto" or L, read as for a planar table
         return runSpatialShake(six, observer);
     }

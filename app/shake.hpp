@@ -86,6 +86,7 @@ struct ShakeResult {
     io::Table table;
     std::string metrics_json;
     std::string text;
+    bool animation = false;  ///< shake_animation.html written too (a six-DOF table's replay in 3-D)
     /// A suite: every record's row, summary.md's text, the number of workers. One record: its
     /// row (the verdict against the same goals, also the text's last line). Every row is scored
     /// on `axis`.

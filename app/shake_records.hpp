@@ -16,6 +16,15 @@ struct RecordFiles {
     std::vector<std::string> files;  ///< one file, or two or three components
 };
 
+/// The records named: files, and the *.AT2 files of folders (sorted by name). Throws
+/// OptionError("record") for a folder that cannot be listed or holds no .AT2 file.
+[[nodiscard]] std::vector<std::string> expandRecords(const std::vector<std::string>& names);
+
+/// One folder name per record, safe and unique: the record's stem (a file's; the components'
+/// shared name) with every character but letters, digits, '-' and '_' replaced by '_', "record"
+/// when nothing is left, "-2", "-3", ... after a name already taken ignoring case.
+[[nodiscard]] std::vector<std::string> recordFolders(const std::vector<RecordFiles>& records);
+
 /// The files as records, in the order given: files that share a name (io::componentGroup), two
 /// or three of them, each with its orientation at the end of its second header line, are the
 /// components of one record; every other file is a record of its own.

@@ -4,6 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <numbers>
+#include <atomic>
+#include <chrono>
+#include <condition_variable>
+#include <mutex>
 #include <string>
 #include <utility>
 #include <vector>
@@ -18,8 +22,10 @@
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/ground_motion3.hpp"
 #include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/parallel.hpp"
 #include "nocdyn/sim/spatial_shake.hpp"
 #include "nocdyn/text.hpp"
+#include "render/animation3d.hpp"
 #include "render/plot.hpp"
 
 namespace nocdyn::app {
@@ -36,18 +42,18 @@ constexpr double kSixDofRate = 1000.0;  ///< [Hz] the controller's rate unless g
 /// What the six-DOF replay does not do (yet), refused by the option's name when set.
 void refusePlanarOnly(const ShakeOptions& o, std::size_t records) {
     const ShakeOptions d;
-    const char* planar = ": planar tables only for now (a six-DOF table replays one record in computed torque)";
+    const char* planar = ": planar tables only for now (a six-DOF table replays in computed torque)";
     const auto refuse = [planar](bool set, const char* field, const char* what) {
         if (set) throw OptionError(field, std::string(what) + planar);
     };
-    refuse(records > 1, "record", "a suite of records");
     refuse(o.plant == PlantKind::simbody, "plant", "the Simbody plant");
     refuse(o.identify_payload, "identify_payload", "the payload identification");
     refuse(o.iterations > 0, "iterations", "drive-signal iteration");
     refuse(!o.record_y.empty(), "record_y", "a record on y alone");
     refuse(!o.record_theta.empty(), "record_theta", "a record on theta");
     refuse(o.axis != d.axis, "axis", "a record on one axis");
-    refuse(o.jobs != d.jobs, "jobs", "a suite's workers");
+    if (records == 1 && o.jobs != d.jobs)
+        throw OptionError("jobs", "does not apply to one record: it goes with a suite (a folder of records)");
 }
 
 /// The record's components on the table's x, y, z (in g, read as m/s^2), its first `window` seconds.
@@ -165,6 +171,29 @@ void writeFigures(const spatial::ShakeReplay3& r, const io::Table& table, const 
     render::renderFigure(spectra, (folder / "shake_spectrum").string());
 }
 
+/// The achieved motion on the 3-D page (render/animation3d.hpp): shake.csv's rows, the loop's
+/// pose, u and tau at the tick nearest each record instant; the page keeps at most
+/// render::kMaxAnimationFrames of them as frames (evenly spread) and every row's extremes in its plots.
+std::string animationPage(const spatial::Model& model, const io::Table& table, const std::string& source) {
+    render::SpatialMotionSamples motion;
+    motion.source = source;
+    motion.actuators = model.actuators;
+    const std::size_t pose = table.column(spatial::kCoordinateNames[0]);
+    const std::size_t u = table.column("u1"), tau = table.column("tau1");
+    const auto n = static_cast<std::size_t>(model.actuators);
+    for (const std::vector<double>& row : table.rows) {
+        motion.t.push_back(row[0]);
+        spatial::TaskVector p(6);
+        for (std::size_t c = 0; c < 6; ++c) p(static_cast<Eigen::Index>(c)) = row[pose + c];
+        motion.p.push_back(p);
+        for (std::size_t a = 0; a < n; ++a) {
+            motion.u.push_back(row[u + a]);
+            motion.tau.push_back(row[tau + a]);
+        }
+    }
+    return render::spatialAnimationPage(model, motion, {});
+}
+
 std::string summary(const spatial::ShakeReplay3& r, const io::TableMotion& motion, const ShakeOptions& options,
                     const std::string& controller, ShakeResult& out) {
     const spatial::FittedRecord3& fit = r.fit;
@@ -215,6 +244,223 @@ std::string summary(const spatial::ShakeReplay3& r, const io::TableMotion& motio
     return text;
 }
 
+/// The closed loop's settings from the options, and the controller's description.
+spatial::LoopOptions loopOptions(const ShakeOptions& options, std::string& controller) {
+    spatial::LoopOptions loop;
+    // a six-DOF table's plant costs some 20 times a planar one's per tick: 1 kHz unless given (the
+    // forces of the hold's middle state keep the error O(dt^2): El Centro's z within 2 % at 1 kHz)
+    loop.rate = options.rate.value_or(kSixDofRate);
+    loop.law = ControlLaw::computed_torque;
+    loop.mid_hold = true;
+    loop.natural_frequency = options.natural_frequency.value_or(kPoseNaturalFrequency);
+    // the plant integrated to 1e-9 m (rad) and 1e-7 relative, a step the error test rejects
+    // taken anyway at 50 us: where a leg's rate changes sign its Coulomb friction jumps, and the
+    // error control would shrink the step to the 1 us floor at each jump (taking most of the
+    // time); such a step errs by about the jump in acceleration times h^2 / 2 (~1e-9 m)
+    loop.simulator.absolute_tolerance = kPlantAbsoluteTolerance;
+    loop.simulator.relative_tolerance = kPlantRelativeTolerance;
+    loop.simulator.floor_step = kPlantFloorStep;
+    const bool noisy = options.controller == ShakeController::pose;
+    if (noisy) {
+        loop.noise_position = options.noise_pose;
+        loop.noise_angle = options.noise_pose;
+        loop.noise_rate = options.noise_rate;
+        loop.seed = options.seed;
+    }
+    controller = text::format(
+        "computed torque on the %s pose and rate (f_n = %g Hz, %g Hz), the rotations' targets zero; the model "
+        "carries the specimen",
+        noisy ? "noisy" : "exact", loop.natural_frequency, loop.rate);
+    return loop;
+}
+
+/// The record fitted to the table's limits (nocdyn/sim/spatial_shake.hpp, fitRecord).
+spatial::FittedRecord3 fitOf(const spatial::Model& model, const spatial::GroundRecord3& record,
+                             const ShakeOptions& options, const spatial::LoopOptions& loop) {
+    FitOptions fit_options;
+    fit_options.highpass = options.highpass;
+    fit_options.margin = options.margin;
+    fit_options.time_scale = options.time_scale;
+    spatial::FittedRecord3 fit = spatial::fitRecord(model, record, fit_options, options.per_axis_scale);
+    if (!(fit.t.back() * loop.rate <= 1e7)) {
+        throw OptionError("rate", text::format("%g s of replay at %g Hz: at most 1e7 ticks (give --window)",
+                                               fit.t.back(), loop.rate));
+    }
+    return fit;
+}
+
+/// One record's files in `dir`: shake.csv, shake.json, the figures and the 3-D page (built
+/// before any file is written: a pose out of reach leaves no partial output).
+void writeOutputs(const spatial::ShakeReplay3& r, const spatial::Model& model, const ShakeResult& out,
+                  const std::string& dir, const std::string& label) {
+    const std::string title = model.name + ": " + label;
+    const std::string page = animationPage(model, out.table, title);
+    std::error_code error;
+    std::filesystem::create_directories(dir, error);
+    if (error) throw Error("cannot create the folder '" + dir + "': " + error.message());
+    const std::filesystem::path folder(dir);
+    io::writeCsvFile((folder / "shake.csv").string(), out.table);
+    io::writeTextFile((folder / "shake.json").string(), out.metrics_json);
+    writeFigures(r, out.table, dir, title);
+    io::writeTextFile((folder / "shake_animation.html").string(), page);
+}
+
+/// A record of a suite, read: its files and its components on the table's x, y, z.
+struct SuiteRecord {
+    io::TableMotion motion;
+    spatial::GroundRecord3 record;
+};
+
+/// A suite's record must be three components, two horizontals and a vertical; anything else is
+/// refused naming its file (a lone component) or its files.
+SuiteRecord readSuiteRecord(const RecordFiles& files, const ShakeOptions& options, Observer& observer) {
+    const char* want =
+        "a six-DOF table's suite groups the files by their shared name prefix into records of three "
+        "components (two horizontals and a vertical, each header's azimuth or UP)";
+    if (files.files.size() == 1) {
+        throw OptionError("record", io::terminalText(files.label) +
+                                        ": cannot be grouped with other components (no two other files of the suite "
+                                        "share its name prefix '" +
+                                        io::terminalText(io::componentGroup(files.label)) +
+                                        "', or a header lacks "
+                                        "its orientation): " +
+                                        want);
+    }
+    SuiteRecord out;
+    out.record = readRecord3(files, options, observer, out.motion);
+    if (files.files.size() != 3 || !out.motion.has_vertical) {
+        std::string names;
+        for (const std::string& f : files.files)
+            names += (names.empty() ? "" : ", ") + io::terminalText(std::filesystem::path(f).filename().string());
+        throw OptionError("record", io::terminalText(files.label) + " (" + names + "): no vertical component: " + want);
+    }
+    return out;
+}
+
+/// The suite's summary.md: one row per record and axis, then the grouping of the files.
+std::string suiteTable(const ShakeResult& r, std::size_t records, const std::vector<SuiteRecord>& read,
+                       const std::vector<std::string>& folders, const ShakeOptions& options,
+                       const std::string& controller, std::size_t workers) {
+    std::string text = text::format(
+        "%zu records (three components each) on a six-DOF table, %s, %zu at a time; pass: RMS <= %.3g %%, "
+        "|peak| <= %.3g %%, spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%, "
+        "on every axis\n\n",
+        records, controller.c_str(), workers, options.max_rms_percent, options.max_peak_percent,
+        options.min_spectrum_percent);
+    text +=
+        "| record | folder | axis | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use "
+        "(binding) | result |\n|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const ShakeSuiteRow& row : r.rows) {
+        // the record's name and the axis (rows are "NAME ax")
+        const std::size_t space = row.record.rfind(' ');
+        text += "| " + io::markdownText(row.record.substr(0, space)) + " | " + io::markdownText(row.folder) + " | " +
+                row.record.substr(space + 1) + " |";
+        text += text::format(" %.4g | %.4g%s | %.2f %% | %+.2f %% | %.0f %% | %.0f %% (%s) | %s |\n", row.time_scale,
+                             row.amplitude, row.amplitude_asked ? " (asked)" : "", row.rms_error_percent,
+                             row.peak_error_percent, row.within_percent, row.limit_use_percent, row.binding.c_str(),
+                             row.pass ? "pass" : "FAIL");
+    }
+    text += "\n" + std::to_string(r.passed) + " of " + std::to_string(records) + " records pass (every axis)\n";
+    text +=
+        "\nComponents grouped into records by their shared name prefix (x, y: the horizontals rotated onto the "
+        "table; z: the vertical):\n";
+    for (std::size_t i = 0; i < read.size(); ++i) {
+        const io::TableMotion& m = read[i].motion;
+        text += "- " + io::markdownText(m.name) + " (folder " + io::markdownText(folders[i]) + "):";
+        for (std::size_t c = 0; c < m.sources.size(); ++c) {
+            text += (c ? ", " : " ") + io::markdownText(std::filesystem::path(m.sources[c]).filename().string());
+        }
+        text += "\n";
+    }
+    return text;
+}
+
+/// A suite: every record read (and refused) before any replay, then replayed on `jobs` workers
+/// from a queue; one folder per record and summary.md under out_dir.
+ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions& options, const spatial::Model& model,
+                     Observer& observer) {
+    if (options.out_dir.empty()) throw OptionError("out_dir", "a suite of records needs an output folder");
+    std::vector<SuiteRecord> read;
+    read.reserve(records.size());
+    for (const RecordFiles& r : records) read.push_back(readSuiteRecord(r, options, observer));
+    const std::vector<std::string> folders = recordFolders(records);
+    std::string controller;
+    const spatial::LoopOptions loop = loopOptions(options, controller);
+    const std::size_t workers =
+        std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardwareThreads(), records.size());
+    std::vector<ShakeResult> results(records.size());  // each record's rows and verdict
+    std::vector<std::string> errors(records.size());
+    std::atomic<std::size_t> next{0};
+    std::atomic<bool> stop{false};
+    std::mutex mutex;  // the outputs (figures) one at a time, and the count of records done
+    std::condition_variable finished;
+    std::size_t done = 0;
+    // workers never call the observer: a stop reaches each replay at its next tick
+    spatial::LoopOptions stoppable = loop;
+    stoppable.progress = [&stop](double /*t*/) {
+        if (stop.load(std::memory_order_relaxed)) throw Cancelled();
+    };
+    const auto work = [&] {
+        for (std::size_t i = next++; i < records.size() && !stop; i = next++) {
+            try {
+                const spatial::ShakeReplay3 r = spatial::replayRecord(
+                    model, fitOf(model, read[i].record, options, loop), stoppable, options.highpass);
+                ShakeResult& one = results[i];
+                one.table = replayTable(r, model);
+                one.metrics_json = replayJson(r, read[i].motion, options, controller);
+                (void)summary(r, read[i].motion, options, controller, one);
+                const std::lock_guard lock(mutex);
+                writeOutputs(r, model, one, (std::filesystem::path(options.out_dir) / folders[i]).string(),
+                             records[i].label);
+                one.table = {};  // written; keep the scores
+            } catch (const std::exception& e) {
+                errors[i] = e.what();
+            }
+            const std::lock_guard lock(mutex);
+            ++done;
+            finished.notify_all();
+        }
+    };
+    // the calling thread watches (worker 0): the progress, and a stop asked by the observer
+    const auto watch = [&] {
+        try {
+            std::unique_lock lock(mutex);
+            while (done < records.size()) {
+                finished.wait_for(lock, std::chrono::milliseconds(200));
+                const auto count = static_cast<double>(done);
+                lock.unlock();
+                observer.progress(count, static_cast<double>(records.size()), "records");
+                stopIfRequested(observer);
+                lock.lock();
+            }
+        } catch (...) {
+            stop = true;
+            throw;
+        }
+    };
+    runWorkers("shake", static_cast<unsigned>(workers) + 1, [&](unsigned w) {
+        if (w == 0) {
+            watch();
+        } else {
+            work();
+        }
+    });
+    ShakeResult out;
+    out.suite = true;
+    for (std::size_t i = 0; i < records.size(); ++i) {
+        if (!errors[i].empty()) throw Error(records[i].label + ": " + errors[i]);
+        ShakeResult& one = results[i];
+        out.passed += one.passed;
+        for (ShakeSuiteRow& row : one.rows) {
+            row.folder = folders[i];
+            out.rows.push_back(std::move(row));
+        }
+    }
+    out.text = suiteTable(out, records.size(), read, folders, options, controller, workers);
+    io::writeTextFile((std::filesystem::path(options.out_dir) / "summary.md").string(), out.text);
+    return out;
+}
+
 }  // namespace six_dof_shake
 
 ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
@@ -225,58 +471,24 @@ ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
     // the specimen on the platform, in the fit's inverse dynamics and in the plant (the
     // controller's model carries it too)
     const spatial::Model model(spatial::withSpecimen(description, options.payload_mass));
+    if (records.size() > 1) return six_dof_shake::runSuite(records, options, model, observer);
     io::TableMotion motion;
     const spatial::GroundRecord3 record = six_dof_shake::readRecord3(records.front(), options, observer, motion);
-    FitOptions fit_options;
-    fit_options.highpass = options.highpass;
-    fit_options.margin = options.margin;
-    fit_options.time_scale = options.time_scale;
-    spatial::FittedRecord3 fit = spatial::fitRecord(model, record, fit_options, options.per_axis_scale);
-    spatial::LoopOptions loop;
-    // a six-DOF table's plant costs some 20 times a planar one's per tick: 1 kHz unless given (the
-    // forces of the hold's middle state keep the error O(dt^2): El Centro's z within 2 % at 1 kHz)
-    loop.rate = options.rate.value_or(six_dof_shake::kSixDofRate);
-    loop.law = ControlLaw::computed_torque;
-    loop.mid_hold = true;
-    loop.natural_frequency = options.natural_frequency.value_or(kPoseNaturalFrequency);
-    // the plant integrated to 1e-9 m (rad) and 1e-7 relative, a step the error test rejects
-    // taken anyway at 50 us: where a leg's rate changes sign its Coulomb friction jumps, and the
-    // error control would shrink the step to the 1 us floor at each jump (taking most of the
-    // time); such a step errs by about the jump in acceleration times h^2 / 2 (~1e-9 m)
-    loop.simulator.absolute_tolerance = six_dof_shake::kPlantAbsoluteTolerance;
-    loop.simulator.relative_tolerance = six_dof_shake::kPlantRelativeTolerance;
-    loop.simulator.floor_step = six_dof_shake::kPlantFloorStep;
-    const bool noisy = options.controller == ShakeController::pose;
-    if (noisy) {
-        loop.noise_position = options.noise_pose;
-        loop.noise_angle = options.noise_pose;
-        loop.noise_rate = options.noise_rate;
-        loop.seed = options.seed;
-    }
-    const std::string controller = text::format(
-        "computed torque on the %s pose and rate (f_n = %g Hz, %g Hz), the rotations' targets zero; the model "
-        "carries the specimen",
-        noisy ? "noisy" : "exact", loop.natural_frequency, loop.rate);
-    if (!(fit.t.back() * loop.rate <= 1e7)) {
-        throw OptionError("rate", text::format("%g s of replay at %g Hz: at most 1e7 ticks (give --window)",
-                                               fit.t.back(), loop.rate));
-    }
+    std::string controller;
+    const spatial::LoopOptions loop = six_dof_shake::loopOptions(options, controller);
+    spatial::FittedRecord3 fit = six_dof_shake::fitOf(model, record, options, loop);
     Meter meter(observer, fit.t.back(), "s");
-    loop.progress = [&meter](double t) { meter(t); };
-    const spatial::ShakeReplay3 r = spatial::replayRecord(model, std::move(fit), loop, options.highpass);
+    spatial::LoopOptions metered = loop;
+    metered.progress = [&meter](double t) { meter(t); };
+    const spatial::ShakeReplay3 r = spatial::replayRecord(model, std::move(fit), metered, options.highpass);
     meter.report(r.loop.t.back());
     ShakeResult out;
     out.table = six_dof_shake::replayTable(r, model);
     out.metrics_json = six_dof_shake::replayJson(r, motion, options, controller);
     out.text = six_dof_shake::summary(r, motion, options, controller, out);
     if (!options.out_dir.empty()) {
-        std::error_code error;
-        std::filesystem::create_directories(options.out_dir, error);
-        if (error) throw Error("cannot create the folder '" + options.out_dir + "': " + error.message());
-        const std::filesystem::path folder(options.out_dir);
-        io::writeCsvFile((folder / "shake.csv").string(), out.table);
-        io::writeTextFile((folder / "shake.json").string(), out.metrics_json);
-        six_dof_shake::writeFigures(r, out.table, options.out_dir, model.name + ": " + records.front().label);
+        six_dof_shake::writeOutputs(r, model, out, options.out_dir, records.front().label);
+        out.animation = true;
     }
     return out;
 }

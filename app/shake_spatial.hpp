@@ -1,4 +1,4 @@
-// `shake` on a six-DOF table (a spatial robot with motion: full, a hexapod): one record given as
+// `shake` on a six-DOF table (a spatial robot with motion: full, a hexapod): a record given as
 // its components (two horizontals and a vertical), rotated onto the table's x, y, z
 // (io::combineComponents), fitted to every leg's stroke, rate and force and replayed in closed
 // loop with the rotations held at zero (nocdyn/sim/spatial_shake.hpp).
@@ -13,8 +13,10 @@ namespace nocdyn::app {
 /// ax_achieved, ay_achieved, az_achieved, the achieved pose x .. yaw, u1..u6, tau1..tau6 at the
 /// record's instants), shake.json (scales, limit use, metrics keyed ax, ay, az, the rotations'
 /// parasitic peaks) and the text with one verdict per axis; written to options.out_dir with
-/// the figures per axis. Refuses what is planar only (a suite, the Simbody plant, the payload
-/// identification, drive iteration, theta and y records) with the option's name.
+/// the figures per axis and shake_animation.html (the achieved motion in 3-D). Several records
+/// (a folder) are a suite: the files grouped into three-component records by their shared name
+/// prefix, one folder each and summary.md. Refuses what is planar only (the Simbody plant, the
+/// payload identification, drive iteration, theta and y records) with the option's name.
 [[nodiscard]] ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer);
 
 }  // namespace nocdyn::app

@@ -1,10 +1,11 @@
 // A three-component record on a six-DOF table (nocdyn/sim/spatial_shake.hpp): the specimen on
 // the platform, the fit within every leg's limits, the closed-loop replay and its scores, and
-// `nocdyn shake` on robots/stewart.yaml.
+// `nocdyn shake` on robots/stewart.yaml: one record (its replay drawn in 3-D) and a suite.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -175,6 +176,134 @@ TEST(SpatialShake, TheCommandReplaysAThreeComponentRecordOnTheHexapod) {
         test::runCli("shake" + robot + records + " --iterations 2 --out-dir " + (out / "b").string());
     EXPECT_NE(refused.exit_code, 0);
     EXPECT_NE(refused.err.find("iterations"), std::string::npos) << refused.err;
+}
+
+/// The 3-D page's embedded data, parsed as the page's script does.
+nlohmann::json pageData(const std::string& page) {
+    const std::string open = "<script type=\"application/json\" id=\"nocdyn-data\">";
+    const std::size_t begin = page.find(open);
+    EXPECT_NE(begin, std::string::npos);
+    const std::size_t start = begin + open.size();
+    return nlohmann::json::parse(page.substr(start, page.find("</script>", start) - start));
+}
+
+// The replay drawn in 3-D: shake_animation.html's frames are shake.csv's rows (every one up to
+// 2000), their times and leg forces those of the table and their platform point its achieved
+// x, y, z (the page holds micrometres).
+TEST(SpatialShake, TheReplayIsAnimatedIn3dAlongTheAchievedMotion) {
+    const std::filesystem::path out = test::freshScratchDirectory("spatial_shake_animation");
+    const test::CliResult run = test::runCli(
+        "shake --robot " + kSource + "/robots/stewart.yaml --record " + component("180-hor1.AT2") + " --record " +
+        component("270-hor2.AT2") + " --record " + component("-UP.AT2") + " --window 3 --out-dir " + out.string());
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    EXPECT_NE(run.out.find("shake_animation.html"), std::string::npos) << run.out;
+    const io::Table table = io::readCsvFile((out / "shake.csv").string());
+    const std::string page = test::readWhole(out / "shake_animation.html");
+    EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
+    const nlohmann::json data = pageData(page);
+    const auto& t = data["frames"]["t"];
+    const auto& tau = data["frames"]["tau"];
+    const auto& points = data["frames"]["points"];
+    const std::size_t n = data["actuators"].size(), stride = data["stride"];
+    ASSERT_EQ(n, 6u);
+    EXPECT_EQ(data["samples"], table.rows.size());
+    ASSERT_GT(table.rows.size(), 250u);  // 3 s at 0.01 s
+    ASSERT_LE(table.rows.size(), 2000u);
+    ASSERT_EQ(t.size(), table.rows.size());
+    ASSERT_EQ(points.size(), t.size() * stride);
+    double moved = 0.0;
+    for (std::size_t k = 0; k < table.rows.size(); ++k) {
+        const auto& row = table.rows[k];
+        EXPECT_NEAR(t[k].get<double>(), row[table.column("t")], 1e-12) << k;
+        for (std::size_t a = 0; a < n; ++a) {
+            const double expected = row[table.column("tau" + std::to_string(a + 1))];
+            EXPECT_NEAR(tau[k * n + a].get<double>(), expected, 1e-9 * std::max(1.0, std::abs(expected))) << k;
+        }
+        // the platform point, last in the frame, in micrometres: the achieved x, y, z
+        const char* axes[] = {"x", "y", "z"};
+        for (std::size_t c = 0; c < 3; ++c) {
+            const double expected = 1e6 * row[table.column(axes[c])];
+            EXPECT_NEAR(points[k * stride + stride - 3 + c].get<double>(), expected, 0.5) << k << " " << axes[c];
+            moved = std::max(moved, std::abs(row[table.column(axes[c])] - table.rows[0][table.column(axes[c])]));
+        }
+    }
+    EXPECT_GT(moved, 1e-3);  // the platform moves by millimetres: a check that cannot pass on a still table
+}
+
+// A suite on the hexapod: a folder's files grouped by their shared name prefix into records of
+// three components, each replayed and scored on ax, ay, az in its own folder, and a summary
+// naming the grouping; a component that cannot be grouped is refused naming its file.
+TEST(SpatialShake, AFolderOfComponentsIsASuiteOfThreeComponentRecords) {
+    const std::filesystem::path out = test::freshScratchDirectory("spatial_shake_suite");
+    const std::string robot = "shake --robot " + kSource + "/robots/stewart.yaml";
+    const test::CliResult run = test::runCli(robot + " --record " + kSource + "/data/records3 --window 3 --out-dir " +
+                                             (out / "suite").string());
+    ASSERT_EQ(run.exit_code, 0) << run.err;
+    const std::string summary = test::readWhole(out / "suite" / "summary.md");
+    EXPECT_EQ(summary, run.out.substr(0, summary.size()));  // printed as written
+    EXPECT_NE(summary.find("2 records (three components each)"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("grouped into records by their shared name prefix"), std::string::npos) << summary;
+    EXPECT_NE(summary.find("RSN1690_NORTH151_SYL090-hor1.AT2, RSN1690_NORTH151_SYL360-hor2.AT2, "
+                           "RSN1690_NORTH151_SYL-UP.AT2"),
+              std::string::npos)
+        << summary;
+    EXPECT_NE(
+        summary.find("RSN6_IMPVALL.I_I-ELC180-hor1.AT2, RSN6_IMPVALL.I_I-ELC270-hor2.AT2, RSN6_IMPVALL.I_I-ELC-UP.AT2"),
+        std::string::npos)
+        << summary;
+    for (const std::string folder : {"RSN1690_NORTH151_SYL", "RSN6_IMPVALL_I_I-ELC"}) {
+        std::ifstream file(out / "suite" / folder / "shake.json");
+        ASSERT_TRUE(file.good()) << folder;
+        const nlohmann::json json = nlohmann::json::parse(file);
+        for (const char* axis : {"ax", "ay", "az"}) {
+            const double rms = json["metrics"][axis]["rms_error_percent"].get<double>();
+            EXPECT_GT(rms, 0.0) << folder << " " << axis;
+            EXPECT_LT(rms, 5.0) << folder << " " << axis;
+            // the summary's row of this record and axis carries the same score
+            const std::string row = "| " + folder + " | " + axis + " |";
+            const std::size_t at = summary.find(row);
+            ASSERT_NE(at, std::string::npos) << row << "\n" << summary;
+            char printed[32];
+            std::snprintf(printed, sizeof printed, "| %.2f %% |", rms);
+            EXPECT_NE(summary.substr(at, summary.find('\n', at) - at).find(printed), std::string::npos)
+                << printed << " in " << summary.substr(at, summary.find('\n', at) - at);
+        }
+        EXPECT_TRUE(std::filesystem::exists(out / "suite" / folder / "shake_animation.html")) << folder;
+    }
+    // the same record alone gives the same scores
+    const test::CliResult alone =
+        test::runCli(robot + " --record " + component("180-hor1.AT2") + " --record " + component("270-hor2.AT2") +
+                     " --record " + component("-UP.AT2") + " --window 3 --out-dir " + (out / "alone").string());
+    ASSERT_EQ(alone.exit_code, 0) << alone.err;
+    EXPECT_EQ(test::readWhole(out / "alone" / "shake.json"),
+              test::readWhole(out / "suite" / "RSN6_IMPVALL_I_I-ELC" / "shake.json"));
+    // a stray component with no record to join: refused naming it, nothing written
+    const std::filesystem::path stray = out / "stray";
+    std::filesystem::create_directories(stray);
+    for (const char* c : {"180-hor1.AT2", "270-hor2.AT2", "-UP.AT2"})
+        std::filesystem::copy_file(component(c), stray / ("RSN6_IMPVALL.I_I-ELC" + std::string(c)));
+    std::filesystem::copy_file(kSource + "/data/records3/RSN1690_NORTH151_SYL090-hor1.AT2",
+                               stray / "RSN1690_NORTH151_SYL090-hor1.AT2");
+    const test::CliResult refused =
+        test::runCli(robot + " --record " + stray.string() + " --window 3 --out-dir " + (out / "refused").string());
+    EXPECT_NE(refused.exit_code, 0);
+    EXPECT_EQ(std::count(refused.err.begin(), refused.err.end(), '\n'), 1) << refused.err;
+    EXPECT_NE(refused.err.find("RSN1690_NORTH151_SYL090-hor1.AT2: cannot be grouped"), std::string::npos)
+        << refused.err;
+    EXPECT_FALSE(std::filesystem::exists(out / "refused"));
+    // two horizontals without their vertical: refused naming the record and its files
+    std::filesystem::remove(stray / "RSN6_IMPVALL.I_I-ELC-UP.AT2");
+    for (const char* c : {"-UP.AT2", "360-hor2.AT2"}) {
+        std::filesystem::copy_file(kSource + "/data/records3/RSN1690_NORTH151_SYL" + c,
+                                   stray / ("RSN1690_NORTH151_SYL" + std::string(c)));
+    }
+    const test::CliResult no_vertical =
+        test::runCli(robot + " --record " + stray.string() + " --window 3 --out-dir " + (out / "refused").string());
+    EXPECT_NE(no_vertical.exit_code, 0);
+    EXPECT_NE(no_vertical.err.find("RSN6_IMPVALL.I_I-ELC180-hor1.AT2, RSN6_IMPVALL.I_I-ELC270-hor2.AT2): no vertical"),
+              std::string::npos)
+        << no_vertical.err;
+    EXPECT_FALSE(std::filesystem::exists(out / "refused"));
 }
 
 }  // namespace

@@ -28,8 +28,9 @@ void run(const Options& options) {
     if (result.suite) {
         std::cout << "wrote " << io::terminalText(options.out_dir) << "/summary.md and one folder per record\n";
     } else {
+        const char* page = result.animation ? ", shake_animation.html\n" : "\n";
         std::cout << "wrote " << io::terminalText(options.out_dir)
-                  << "/shake.csv, shake.json, shake_acceleration.{png,svg}, shake_spectrum.{png,svg}\n";
+                  << "/shake.csv, shake.json, shake_acceleration.{png,svg}, shake_spectrum.{png,svg}" << page;
     }
 }
 
@@ -54,8 +55,8 @@ void addShakeCommand(CLI::App& app) {
             "DIR/shake.json (time_scale, amplitude_scale, metrics: RMS and peak acceleration errors in percent,\n"
             "rms_error_percent ..., 5 %-damped pseudo-acceleration spectra) and figures "
             "DIR/shake_acceleration.{png,svg},\n"
-            "DIR/shake_spectrum.{png,svg} (DIR: --out-dir). The default plant is nocdyn-rk4 (a 40 s record in "
-            "seconds);\n"
+            "DIR/shake_spectrum.{png,svg}, a six-DOF table's replay in 3-D DIR/shake_animation.html (DIR: --out-dir).\n"
+            "The default plant is nocdyn-rk4 (a 40 s record in seconds);\n"
             "--plant simbody replays on the independent Simbody model, about 70 times slower, as a check.");
     addRobotOption(*command, options->robot);
     command
@@ -64,7 +65,7 @@ void addShakeCommand(CLI::App& app) {
             "AT2 record driving x (--axis; values in g); repeat it, or name a folder (its *.AT2 files), for a suite: "
             "one folder of outputs per record under --out-dir, the records in parallel, one summary table "
             "(DIR/summary.md). Component files of one record (a shared name, each header's azimuth or UP) are "
-            "one record: its horizontals drive x and y (a six-DOF table's: x, y, z)")
+            "one record: its horizontals drive x and y (a six-DOF table's suite: three components per record, x, y, z)")
         ->required()
         ->check(CLI::ExistingPath);
     command
