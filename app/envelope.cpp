@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "app/pose_spatial.hpp"
 #include "nocdyn/tables/tables.hpp"
 #include "nocdyn/text.hpp"
 #include "render/envelope_figure.hpp"
@@ -22,6 +23,7 @@ void validate(const EnvelopeOptions& options) {
 
 EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
     validate(options);
+    if (isSpatialRobot(options.robot)) return runSpatialEnvelope(options, observer);
     const Model model(loadRobot(options.robot));
     nocdyn::EnvelopeOptions envelope;
     envelope.min_frequency = options.min_frequency;
@@ -70,6 +72,11 @@ std::string resonanceSummary(const EnvelopeResonance& resonance) {
 }
 
 void writeEnvelopeFigure(const EnvelopeResult& result, const std::string& stem) {
+    if (!result.spatial_points.empty()) {
+        render::renderFigure(render::spatialEnvelopeFigure(result.spatial_points, result.coordinates, result.robot),
+                             stem);
+        return;
+    }
     render::renderFigure(
         render::envelopeFigure(result.points, result.robot,
                                "flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound",

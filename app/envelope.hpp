@@ -10,6 +10,7 @@
 #include "app/observer.hpp"
 #include "app/options.hpp"
 #include "nocdyn/analysis/envelope.hpp"
+#include "nocdyn/analysis/spatial_envelope.hpp"
 #include "nocdyn/io/csv.hpp"
 
 namespace nocdyn::app {
@@ -38,8 +39,12 @@ inline constexpr Range kAmplificationRange{kMinAmplification, kMaxAmplification,
 
 struct EnvelopeResult {
     std::string robot;
-    /// Axis after axis (x, y, theta), frequency after frequency.
+    /// Axis after axis (x, y, theta), frequency after frequency (a planar robot).
     std::vector<EnvelopePoint> points;
+    /// A spatial robot's points (points is then empty), axis after axis (x, y, z, and roll,
+    /// pitch, yaw for motion full), frequency after frequency, and its pose coordinates' names.
+    std::vector<spatial::EnvelopePoint> spatial_points;
+    std::vector<std::string> coordinates;
     /// The band's third bound: the first natural frequency of the lumped model at home, or why
     /// it is unknown.
     EnvelopeResonance resonance;
@@ -57,11 +62,21 @@ void validate(const EnvelopeOptions& options);
 /// The envelope; progress in points (3 * options.points), a stop between points.
 [[nodiscard]] EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer);
 
+/// The envelope of a spatial robot file (options.robot; spatial_envelope.hpp): its table has
+/// the planar columns (axis x, y, z, roll, pitch or yaw; peak_effort_ratio, peak_u, peak_tau at
+/// the amplitude), the resonance is unknown (a spatial robot file declares no compliance).
+/// Throws OptionError("amplification") for an amplification other than the default.
+[[nodiscard]] EnvelopeResult runSpatialEnvelope(const EnvelopeOptions& options, Observer& observer);
+
+/// A spatial envelope as text: one line per point (axis, f [Hz], amplitude [mm or deg], the
+/// limit, its actuator or limb and joint, the peak effort ratio).
+[[nodiscard]] std::string spatialEnvelopeText(const EnvelopeResult& result);
+
 /// The summary line of a resonance.
 [[nodiscard]] std::string resonanceSummary(const EnvelopeResonance& resonance);
 
 /// The figure (amplitude versus frequency, log axes; the first natural frequency as a vertical
-/// line when known): STEM.png and STEM.svg.
+/// line when known; a spatial robot's binding limits as markers): STEM.png and STEM.svg.
 void writeEnvelopeFigure(const EnvelopeResult& result, const std::string& stem);
 
 }  // namespace nocdyn::app

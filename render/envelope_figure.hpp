@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "nocdyn/analysis/envelope.hpp"
+#include "nocdyn/analysis/spatial_envelope.hpp"
 #include "render/plot.hpp"
 
 namespace nocdyn::render {
@@ -15,5 +16,11 @@ namespace nocdyn::render {
 [[nodiscard]] Figure envelopeFigure(const std::vector<EnvelopePoint>& points, const std::string& robot,
                                     const std::string& reading = "flat = stroke-bound, slope -2 = peak-force-bound",
                                     const EnvelopeResonance& resonance = {});
+
+/// A spatial robot's envelope: one panel for x, y, z [mm], one for roll, pitch, yaw [deg] (motion
+/// full), one curve per axis, log axes, each point's binding limit as a marker (range, velocity,
+/// effort, workspace). `coordinates` names the pose coordinates (spatial::Model::coordinates).
+[[nodiscard]] Figure spatialEnvelopeFigure(const std::vector<spatial::EnvelopePoint>& points,
+                                           const std::vector<std::string>& coordinates, const std::string& robot);
 
 }  // namespace nocdyn::render

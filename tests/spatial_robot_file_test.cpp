@@ -436,7 +436,7 @@ TEST(SpatialRobotFile, EveryCommandRefusesASpatialRobotInOneLine) {
         EXPECT_NE(std::string(e.what()).find("cartesian.yaml:14: limbs[0] (gantry).bodies[0].mass"), std::string::npos)
             << e.what();
     }
-    const test::CliResult result = test::runCli("envelope --robot " + shipped("delta.yaml"));
+    const test::CliResult result = test::runCli("workspace --robot " + shipped("delta.yaml"));
     EXPECT_NE(result.exit_code, 0);
     EXPECT_EQ(result.out, "");
     EXPECT_EQ(result.err, "nocdyn: error: " + shipped("delta.yaml") +

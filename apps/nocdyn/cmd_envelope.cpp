@@ -43,7 +43,9 @@ void run(const Options& options) {
     if (!options.output.empty()) writeTable(result.table, options.output);
     if (!options.figure.empty()) app::writeEnvelopeFigure(result, options.figure);
     // the table is the answer when no file is named; the summary line is left out when quiet
-    if (options.output.empty()) {
+    if (options.output.empty() && !result.spatial_points.empty()) {
+        std::fputs(app::spatialEnvelopeText(result).c_str(), stdout);
+    } else if (options.output.empty()) {
         std::printf("axis   f [Hz]    amplitude        limit      peak |tau|/effort  where\n");
         for (const auto& p : result.points) {
             const bool angle = p.axis == EnvelopeAxis::theta;
@@ -61,7 +63,8 @@ void addEnvelopeCommand(CLI::App& app) {
     auto options = std::make_shared<envelope_command::Options>();
     CLI::App* command = app.add_subcommand(
         "envelope",
-        "Operating envelope of any robot: for each axis (x, y, theta; x, y of a two-DOF robot) and log-spaced\n"
+        "Operating envelope of any robot: for each axis (x, y, theta; x, y of a two-DOF robot; x, y, z, roll,\n"
+        "pitch, yaw of a spatial robot, x, y, z for motion translation) and log-spaced\n"
         "frequencies, the largest amplitude A of A sin(2 pi f t) about the home posture within every joint's\n"
         "range and velocity limits,\n"
         "every actuator's effort (inverse dynamics over one period, gravity and friction included) and the\n"
@@ -75,7 +78,8 @@ void addEnvelopeCommand(CLI::App& app) {
         "Writes CSV (axis x, y or theta; limit range, velocity, effort, workspace, resonance, or none up to\n"
         "the search bound; limb, joint, actuator 1-based, 0 when not applicable; peak_effort_ratio =\n"
         "max |tau|/effort at that amplitude; first_natural_frequency [Hz] when known) and, with --figure, a\n"
-        "figure (amplitude versus frequency, log axes, the first natural frequency as a vertical line).");
+        "figure (amplitude versus frequency, log axes, the first natural frequency as a vertical line; a spatial\n"
+        "robot's binding limits as markers). A spatial robot has no resonance bound (--amplification is refused).");
     addRobotOption(*command, options->robot);
     command->add_option("--output,-o", options->output, "CSV file [default: a table on stdout]")->check(nonEmptyPath());
     command->add_option("--figure", options->figure, "Figure stem (STEM.png, STEM.svg) [default: none]");

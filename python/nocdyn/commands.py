@@ -478,14 +478,16 @@ control.__signature__ = control.__signature__.replace(parameters=[
 
 def envelope(*, robot=None, set=None, output=None, figure=None, progress=None, **options):
     """The operating envelope (``nocdyn envelope``): per axis (x, y, theta; x, y of a two-DOF
-    robot) and ``points`` log-spaced frequencies in [min_frequency, max_frequency] Hz, the
+    robot; x, y, z, roll, pitch, yaw of a spatial robot file, x, y, z for motion translation) and
+    ``points`` log-spaced frequencies in [min_frequency, max_frequency] Hz, the
     largest amplitude within every limit and which limit binds. Returns an Envelope (a Table with the CSV's columns: axis
     and limit as words; frequency, amplitude, ...; limb, joint, actuator numbered from 1, 0 when
     none) whose ``first_natural_frequency`` [Hz] is the band's third bound when the robot file
     declares compliance (None otherwise; ``text`` says which), ``band_end`` {"x": f, "y": f,
     "theta": f} [Hz] the lowest frequency per axis where the dynamic amplification leaves
     [1/amplification, amplification] (None when unknown; ``resonance_reason`` says why). output: also write the CSV;
-    figure: the figure's stem (STEM.png, STEM.svg)."""
+    figure: the figure's stem (STEM.png, STEM.svg). A spatial robot
+    has no resonance bound (amplification other than 1.1 is refused)."""
     bound = _bound_options(_nocdyn.EnvelopeOptions, options)
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("envelope", [("robot", robot)], [("output", output)], [("figure", figure, _FIGURE)])

@@ -91,16 +91,18 @@ std::vector<Layout> makeLayouts() {
         {envelope,
          "Operating envelope",
          "`nocdyn envelope --output`; `nocdyn reproduce`'s `envelope.csv`; Python `nocdyn.envelope`",
-         "One row per axis (x, y, theta) and frequency: the largest amplitude of a sinusoid along the axis about "
-         "the home posture within every limit. When the robot file declares compliance, the first natural "
+         "One row per axis (x, y, theta; a spatial robot's x, y, z, roll, pitch, yaw, or x, y, z for motion "
+         "translation) and frequency: the largest amplitude of a sinusoid along the axis about "
+         "the home posture within every limit. A spatial robot has no `first_natural_frequency`. When the robot file "
+         "declares compliance, the first natural "
          "frequency of the lumped model at home is written in `first_natural_frequency` (the same in every row; "
          "the column is absent otherwise), and the rows at or above the band's third bound, the lowest frequency "
          "where the axis' dynamic amplification (the damped lumped model's motion per unit of the rigid motion) "
          "leaves [1/A, A] (`--amplification` A, 1.1 by default), have the limit `resonance` (the rigid model's "
          "amplitude, not trustworthy there; no limb, joint or actuator).",
-         {{"axis", "", "the axis moved: x, y or theta (a word)"},
+         {{"axis", "", "the axis moved: x, y or theta; x, y, z, roll, pitch or yaw (a word)"},
           {"frequency", "Hz", "frequency of the sinusoid"},
-          {"amplitude", "m or rad", "largest amplitude (m for x and y, rad for theta)"},
+          {"amplitude", "m or rad", "largest amplitude (m for x, y and z, rad for the angles)"},
           {"limit", "", "the limit that binds: range, velocity, effort, workspace, none or resonance (a word)"},
           {"limb", "", "limb that reaches the limit first (1-based; 0: none)"},
           {"joint", "", "joint of that limb (1-based; 0: not joint-specific)"},
