@@ -54,22 +54,34 @@ inline std::optional<RobotDescription> randomRobot(const RandomRobotSpec& spec, 
     const auto rot = [](double a, const Eigen::Vector2d& v) {
         return Eigen::Vector2d(std::cos(a) * v.x() - std::sin(a) * v.y(), std::sin(a) * v.x() + std::cos(a) * v.y());
     };
+    // One draw a statement: the arguments of a call are evaluated in an unspecified order (GCC
+    // takes the last first, clang the first), and the robots must not depend on the compiler.
+    // The order is the one GCC 12 gave the former one-line forms (Vector2d(s u, s u): y before
+    // x; home: y, x, theta), so that these are the robots the tests' tolerances were set on.
+    const auto draw2 = [&](double scale) {
+        const double y = scale * unit(rng);
+        const double x = scale * unit(rng);
+        return Eigen::Vector2d(x, y);
+    };
     RobotDescription robot;
     robot.name = "random";
-    robot.home = Eigen::Vector3d(0.2 * unit(rng), 0.01 * unit(rng), 0.01 * unit(rng));
-    const Eigen::Vector2d C0 = robot.home.tail<2>();
-    robot.platform = {mass(rng), inertia(rng), Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0};
+    const Eigen::Vector2d C0 = draw2(0.01);
+    const double theta0 = 0.2 * unit(rng);
+    robot.home = Eigen::Vector3d(theta0, C0.x(), C0.y());
+    robot.platform = {mass(rng), inertia(rng), draw2(0.01), 0};  // a braced list: drawn in order
     if (spec.gravity) robot.gravity = Eigen::Vector2d(3.0 * unit(rng), -9.81);
     const int n = static_cast<int>(spec.limb_types.size());
     for (int j = 0; j < n; ++j) {
         const double phi = 2.0 * std::numbers::pi * j / n + 0.2 * unit(rng);
         const Eigen::Vector2d radial(std::cos(phi), std::sin(phi));
         const Eigen::Vector2d base = (0.25 + 0.03 * unit(rng)) * radial;
-        const Eigen::Vector2d anchor =
-            C0 + rot(robot.home(0), (0.06 + 0.01 * unit(rng)) * rot(0.3 * unit(rng), radial));
+        const double turn = 0.3 * unit(rng);  // before the reach, as GCC 12 drew them
+        const double reach = 0.06 + 0.01 * unit(rng);
+        const Eigen::Vector2d anchor = C0 + rot(robot.home(0), reach * rot(turn, radial));
         // elbow off the base-anchor line so that no limb starts at the edge of its reach
-        const Eigen::Vector2d mid = 0.5 * (base + anchor) + (0.04 + 0.02 * unit(rng)) * (unit(rng) > 0 ? 1.0 : -1.0) *
-                                                                Eigen::Vector2d(-radial.y(), radial.x());
+        const double offset = 0.04 + 0.02 * unit(rng);
+        const double side = unit(rng) > 0 ? 1.0 : -1.0;
+        const Eigen::Vector2d mid = 0.5 * (base + anchor) + offset * side * Eigen::Vector2d(-radial.y(), radial.x());
         const std::array<Eigen::Vector2d, 3> points{base, mid, anchor};
         LimbDescription limb;
         limb.name = "limb" + std::to_string(j + 1);
@@ -86,10 +98,8 @@ inline std::optional<RobotDescription> randomRobot(const RandomRobotSpec& spec, 
                 joint.friction = 0.5 * (unit(rng) + 1.0);
             }
         }
-        limb.bodies[0] = {
-            mass(rng), inertia(rng), 0.5 * (base + mid) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0, {}};
-        limb.bodies[1] = {
-            mass(rng), inertia(rng), 0.5 * (mid + anchor) + Eigen::Vector2d(0.01 * unit(rng), 0.01 * unit(rng)), 0, {}};
+        limb.bodies[0] = {mass(rng), inertia(rng), 0.5 * (base + mid) + draw2(0.01), 0, {}};
+        limb.bodies[1] = {mass(rng), inertia(rng), 0.5 * (mid + anchor) + draw2(0.01), 0, {}};
         robot.limbs.push_back(limb);
     }
     // actuators: a random choice among all joints

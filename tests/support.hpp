@@ -60,7 +60,13 @@ public:
     /// Next pose accepted by the position and velocity stages (home when none is found).
     Pose next() {
         for (int attempt = 0; attempt < kMaxAttempts; ++attempt) {
-            const Pose p = model_.home + Pose(angle_(rng_), position_(rng_), position_(rng_));
+            // one draw a statement: a call's arguments are evaluated in an order GCC and clang
+            // do not share, and the poses must not depend on the compiler (y, x, theta: GCC 12's
+            // order for the former Pose(angle, position, position))
+            const double y = position_(rng_);
+            const double x = position_(rng_);
+            const double theta = angle_(rng_);
+            const Pose p = model_.home + Pose(theta, x, y);
             if (!inverseDisplacement(model_, data_, p)) continue;
             if (!velocityFromPlatformTwist(model_, data_, Twist::Zero())) continue;
             if (data_.cond_A > 1e3) continue;
