@@ -14,6 +14,8 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
+#include <stdexcept>
 #include <random>
 #include <string>
 #include <vector>
@@ -178,6 +180,35 @@ int temporaryFolders() {
     }
     return count;
 }
+
+/// Points TMPDIR at a folder of this test's own while it lives, so that the phc folders other
+/// tests running beside it create and remove are not counted as this test's.
+class PrivateTemporaryFolder {
+public:
+    PrivateTemporaryFolder() {
+        const char* previous = std::getenv("TMPDIR");
+        if (previous != nullptr) previous_ = previous;
+        std::string pattern = (fs::temp_directory_path() / "nocdyn-modes-test-XXXXXX").string();
+        if (::mkdtemp(pattern.data()) == nullptr) throw std::runtime_error("mkdtemp failed");
+        folder_ = pattern;
+        ::setenv("TMPDIR", folder_.c_str(), 1);
+    }
+    ~PrivateTemporaryFolder() {
+        if (previous_) {
+            ::setenv("TMPDIR", previous_->c_str(), 1);
+        } else {
+            ::unsetenv("TMPDIR");
+        }
+        std::error_code ec;
+        fs::remove_all(folder_, ec);
+    }
+    PrivateTemporaryFolder(const PrivateTemporaryFolder&) = delete;
+    PrivateTemporaryFolder& operator=(const PrivateTemporaryFolder&) = delete;
+
+private:
+    fs::path folder_;
+    std::optional<std::string> previous_;
+};
 
 TEST(HomotopyModes, TheHomePoseIsAModeOfTheShippedStewartAtItsHomeLegLengths) {
     NOCDYN_REQUIRE_PHC();
@@ -396,7 +427,9 @@ std::string fakePhc(const std::string& name, const std::string& body) {
 
 TEST(HomotopyModes, APhcThatFailsOrWritesNonsenseGivesOneErrorAndLeavesNoFolder) {
     const Model model = shipped("stewart");
+    const PrivateTemporaryFolder privateFolder;
     const int before = temporaryFolders();
+    ASSERT_EQ(before, 0);
     const auto message = [&](const std::string& executable, double timeout = 120.0) {
         HomotopyOptions options;
         options.executable = executable;
