@@ -21,23 +21,28 @@ void validate(const EnvelopeOptions& options) {
         throw OptionError("max_frequency", "must be at least min_frequency");
 }
 
-EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
-    validate(options);
-    if (isSpatialRobot(options.robot)) return runSpatialEnvelope(options, observer);
-    const Model model(loadRobot(options.robot));
+nocdyn::EnvelopeOptions libraryEnvelopeOptions(const EnvelopeOptions& options, Observer& observer) {
     nocdyn::EnvelopeOptions envelope;
     envelope.min_frequency = options.min_frequency;
     envelope.max_frequency = options.max_frequency;
     envelope.frequencies = options.points;
     envelope.samples_per_period = options.samples_per_period;
     envelope.relative_tolerance = options.relative_tolerance;
-    envelope.amplification = options.amplification;
     // called between points, from this thread
     envelope.progress = [&observer](int done, int total) {
         observer.progress(done, total, "points");
         stopIfRequested(observer);
     };
     envelope.poll = [&observer] { stopIfRequested(observer); };
+    return envelope;
+}
+
+EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
+    validate(options);
+    if (isSpatialRobot(options.robot)) return runSpatialEnvelope(options, observer);
+    const Model model(loadRobot(options.robot));
+    nocdyn::EnvelopeOptions envelope = libraryEnvelopeOptions(options, observer);
+    envelope.amplification = options.amplification;
     EnvelopeResult out;
     out.robot = model.description.name;
     out.points = operatingEnvelope(model, envelope);

@@ -59,6 +59,10 @@ struct EnvelopeResult {
 /// Throws OptionError for a frequency or count out of range, or max below min.
 void validate(const EnvelopeOptions& options);
 
+/// The library's envelope options from the job's (all but the amplification, a planar bound):
+/// progress in points and a stop between points through `observer`, which must outlive them.
+[[nodiscard]] nocdyn::EnvelopeOptions libraryEnvelopeOptions(const EnvelopeOptions& options, Observer& observer);
+
 /// The envelope; progress in points (3 * options.points), a stop between points.
 [[nodiscard]] EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer);
 

@@ -37,17 +37,7 @@ EnvelopeResult runSpatialEnvelope(const EnvelopeOptions& options, Observer& obse
                           "envelope has no resonance bound)");
     }
     const spatial::Model model(io::loadSpatialRobotDescription(options.robot.path, options.robot.set));
-    nocdyn::EnvelopeOptions envelope;
-    envelope.min_frequency = options.min_frequency;
-    envelope.max_frequency = options.max_frequency;
-    envelope.frequencies = options.points;
-    envelope.samples_per_period = options.samples_per_period;
-    envelope.relative_tolerance = options.relative_tolerance;
-    envelope.progress = [&observer](int done, int total) {
-        observer.progress(done, total, "points");
-        stopIfRequested(observer);
-    };
-    envelope.poll = [&observer] { stopIfRequested(observer); };
+    const nocdyn::EnvelopeOptions envelope = libraryEnvelopeOptions(options, observer);
     EnvelopeResult out;
     out.robot = model.name;
     out.coordinates = model.coordinates();

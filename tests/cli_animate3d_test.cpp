@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
+#include "page_data.hpp"
 #include "nocdyn/io/csv.hpp"
 
 namespace nocdyn::test {
@@ -24,21 +25,6 @@ namespace fs = std::filesystem;
 std::string robotFile(const std::string& name) { return std::string(NOCDYN_SOURCE_DIR) + "/robots/" + name + ".yaml"; }
 std::string trajectoryFile(const std::string& name) {
     return std::string(NOCDYN_SOURCE_DIR) + "/trajectories/" + name + ".yaml";
-}
-
-std::size_t count(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-    return n;
-}
-
-/// The page's embedded data, parsed as the page's script does.
-nlohmann::json pageData(const std::string& page) {
-    const std::string open = "<script type=\"application/json\" id=\"nocdyn-data\">";
-    const std::size_t begin = page.find(open);
-    EXPECT_NE(begin, std::string::npos);
-    const std::size_t start = begin + open.size();
-    return nlohmann::json::parse(page.substr(start, page.find("</script>", start) - start));
 }
 
 /// A sway of the 6-RUS about its home (z = 0.308 m): a few mm and about a degree.
@@ -77,8 +63,8 @@ TEST(CliAnimate3d, PageOfEverySpatialRobotIsSelfContainedWithItsLimbsAndFrames) 
         std::string text = readWhole(page);
         EXPECT_EQ(text.rfind("<!DOCTYPE html>", 0), 0u) << c.robot;
         EXPECT_EQ(text.substr(text.size() - 8), "</html>\n") << c.robot;
-        EXPECT_EQ(count(text, "<script"), 3u);  // the data, three.js, the page's program
-        EXPECT_EQ(count(text, "</script>"), 3u);
+        EXPECT_EQ(occurrences(text, "<script"), 3u);  // the data, three.js, the page's program
+        EXPECT_EQ(occurrences(text, "</script>"), 3u);
         EXPECT_LT(text.size(), 3'000'000u) << c.robot;
         const nlohmann::json data = pageData(text);
         // three.js is inlined as Debian ships it; apart from its text (where URLs are XML
@@ -152,7 +138,7 @@ TEST(CliAnimate3d, LegForcesAndPlatformPointAreThoseOfInverseDynamics) {
 void expectRefused(const std::string& arguments, const std::vector<std::string>& expected, const fs::path& out) {
     const CliResult r = runCli("animate " + arguments + " --out " + out.string());
     EXPECT_NE(r.exit_code, 0) << arguments;
-    EXPECT_EQ(count(r.err, "\n"), 1u) << r.err;
+    EXPECT_EQ(occurrences(r.err, "\n"), 1u) << r.err;
     for (const std::string& piece : expected) EXPECT_NE(r.err.find(piece), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out)) << arguments;
 }

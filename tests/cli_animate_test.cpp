@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
+#include "page_data.hpp"
 #include "nocdyn/io/csv.hpp"
 
 namespace nocdyn::test {
@@ -24,26 +25,11 @@ fs::path scratchDirectory() { return freshScratchDirectory("nocdyn_cli_animate_t
 
 std::string robotFile(const std::string& name) { return std::string(NOCDYN_SOURCE_DIR) + "/robots/" + name + ".yaml"; }
 
-std::size_t count(const std::string& text, const std::string& what) {
-    std::size_t n = 0;
-    for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + 1)) ++n;
-    return n;
-}
-
-/// The page's embedded data, parsed as the page's script does.
-nlohmann::json pageData(const std::string& page) {
-    const std::string open = "<script type=\"application/json\" id=\"nocdyn-data\">";
-    const std::size_t begin = page.find(open);
-    EXPECT_NE(begin, std::string::npos);
-    const std::size_t start = begin + open.size();
-    return nlohmann::json::parse(page.substr(start, page.find("</script>", start) - start));
-}
-
 void expectSelfContained(const std::string& page) {
     EXPECT_EQ(page.rfind("<!DOCTYPE html>", 0), 0u);
     EXPECT_EQ(page.substr(page.size() - 8), "</html>\n");
-    EXPECT_EQ(count(page, "<script"), 2u);  // the data and the inline program
-    EXPECT_EQ(count(page, "</script>"), 2u);
+    EXPECT_EQ(occurrences(page, "<script"), 2u);  // the data and the inline program
+    EXPECT_EQ(occurrences(page, "</script>"), 2u);
     EXPECT_EQ(page.find(" src="), std::string::npos);
     EXPECT_EQ(page.find("http://"), std::string::npos);
     EXPECT_EQ(page.find("https://"), std::string::npos);
@@ -154,7 +140,7 @@ TEST(CliAnimate, RobotNameCannotLeaveTheDataScript) {
 void expectRefused(const std::string& arguments, const std::vector<std::string>& expected, const fs::path& out) {
     const CliResult r = runCli("animate " + arguments + " --out " + out.string());
     EXPECT_NE(r.exit_code, 0) << arguments;
-    EXPECT_EQ(count(r.err, "\n"), 1u) << r.err;
+    EXPECT_EQ(occurrences(r.err, "\n"), 1u) << r.err;
     for (const std::string& piece : expected) EXPECT_NE(r.err.find(piece), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out)) << arguments;
 }
