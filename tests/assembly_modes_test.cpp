@@ -127,6 +127,33 @@ std::vector<TaskVector> manyStartNewton(const Geometry& geometry, unsigned seed,
     return found;
 }
 
+/// Leg i + 1 of a 6-UPS hexapod from its base point b to its platform point `top`: a U (a1
+/// horizontal across the leg, a2 across both), the actuated P along the leg, an S; two bodies of
+/// `mass` each, their c.o.m. at 0.3 and 0.7 of the leg.
+SpatialLimbDescription upsLeg(int i, const Eigen::Vector3d& b, const Eigen::Vector3d& top, double mass) {
+    const Eigen::Vector3d e = (top - b).normalized();
+    SpatialJointDescription u, p, s;
+    u.type = SpatialJointType::universal;
+    u.point = b;
+    u.axis1 = e.cross(Eigen::Vector3d::UnitZ()).normalized();
+    u.axis2 = e.cross(u.axis1).normalized();
+    p.type = SpatialJointType::prismatic;
+    p.direction = e;
+    p.actuated = true;
+    s.type = SpatialJointType::spherical;
+    s.point = top;
+    SpatialBodyDescription body1, body2;
+    body1.mass = body2.mass = mass;
+    body1.com = b + 0.3 * (top - b);
+    body2.com = b + 0.7 * (top - b);
+    body1.inertia = body2.inertia = 0.01 * Eigen::Matrix3d::Identity();
+    SpatialLimbDescription limb;
+    limb.name = "leg" + std::to_string(i + 1);
+    limb.joints = {u, p, s};
+    limb.bodies = {body1, body2};
+    return limb;
+}
+
 /// A random 6-UPS hexapod as tests/spatial_dynamics_test.cpp builds them: base points near a
 /// circle of radius 1 at z ~ 0, platform points near a circle of 0.6 at z ~ 1, each leg a U (a1
 /// horizontal across the leg, a2 across both), the actuated P along the leg, an S.
@@ -147,27 +174,7 @@ SpatialRobotDescription randomHexapod(std::mt19937& rng) {
                                 jitter(rng));
         const Eigen::Vector3d top =
             d.home.head<3>() + R_home * Eigen::Vector3d(0.6 * std::cos(top_angle), 0.6 * std::sin(top_angle), 0.0);
-        const Eigen::Vector3d e = (top - b).normalized();
-        SpatialJointDescription u, p, s;
-        u.type = SpatialJointType::universal;
-        u.point = b;
-        u.axis1 = e.cross(Eigen::Vector3d::UnitZ()).normalized();
-        u.axis2 = e.cross(u.axis1).normalized();
-        p.type = SpatialJointType::prismatic;
-        p.direction = e;
-        p.actuated = true;
-        s.type = SpatialJointType::spherical;
-        s.point = top;
-        SpatialBodyDescription body1, body2;
-        body1.mass = body2.mass = 2.0;
-        body1.com = b + 0.3 * (top - b);
-        body2.com = b + 0.7 * (top - b);
-        body1.inertia = body2.inertia = 0.01 * Eigen::Matrix3d::Identity();
-        SpatialLimbDescription limb;
-        limb.name = "leg" + std::to_string(i + 1);
-        limb.joints = {u, p, s};
-        limb.bodies = {body1, body2};
-        d.limbs.push_back(limb);
+        d.limbs.push_back(upsLeg(i, b, top, 2.0));
     }
     return d;
 }
@@ -307,28 +314,8 @@ struct Dietmaier {
         for (int i = 0; i < 6; ++i) {
             const Eigen::Vector3d a(A[i][0], A[i][1], A[i][2]);
             const Eigen::Vector3d top = d.home.head<3>() + R_home * Eigen::Vector3d(B[i][0], B[i][1], B[i][2]);
-            const Eigen::Vector3d e = (top - a).normalized();
             u(i) = L[i] - (top - a).norm();
-            SpatialJointDescription uj, p, s;
-            uj.type = SpatialJointType::universal;
-            uj.point = a;
-            uj.axis1 = e.cross(Eigen::Vector3d::UnitZ()).normalized();
-            uj.axis2 = e.cross(uj.axis1).normalized();
-            p.type = SpatialJointType::prismatic;
-            p.direction = e;
-            p.actuated = true;
-            s.type = SpatialJointType::spherical;
-            s.point = top;
-            SpatialBodyDescription body1, body2;
-            body1.mass = body2.mass = 1.0;
-            body1.com = a + 0.3 * (top - a);
-            body2.com = a + 0.7 * (top - a);
-            body1.inertia = body2.inertia = 0.01 * Eigen::Matrix3d::Identity();
-            SpatialLimbDescription limb;
-            limb.name = "leg" + std::to_string(i + 1);
-            limb.joints = {uj, p, s};
-            limb.bodies = {body1, body2};
-            d.limbs.push_back(limb);
+            d.limbs.push_back(upsLeg(i, a, top, 1.0));
         }
     }
 };
