@@ -223,7 +223,9 @@ TEST(SpatialPayload, TheHexapodReplayIdentifiesTheSpecimenFirst) {
         test::runCli("shake --robot " + kSource + "/robots/stewart.yaml --record " + kSource +
                      "/data/records3 --window 1 --identify-payload --out-dir " + (out / "b").string());
     EXPECT_NE(suite.exit_code, 0);
-    EXPECT_NE(suite.err.find("identify_payload"), std::string::npos) << suite.err;
+    EXPECT_NE(suite.err.find("identify-payload: a six-DOF table identifies the specimen before one record"),
+              std::string::npos)
+        << suite.err;
 }
 
 }  // namespace
