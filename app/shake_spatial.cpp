@@ -8,6 +8,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -16,6 +17,7 @@
 
 #include "app/shake_outputs.hpp"
 #include "app/shake_records.hpp"
+#include "app/shake_spatial_payload.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -47,7 +49,6 @@ void refusePlanarOnly(const ShakeOptions& o, std::size_t records) {
         if (set) throw OptionError(field, std::string(what) + planar);
     };
     refuse(o.plant == PlantKind::simbody, "plant", "the Simbody plant");
-    refuse(o.identify_payload, "identify_payload", "the payload identification");
     refuse(o.iterations > 0, "iterations", "drive-signal iteration");
     refuse(!o.record_y.empty(), "record_y", "a record on y alone");
     refuse(!o.record_theta.empty(), "record_theta", "a record on theta");
@@ -471,11 +472,22 @@ ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
     // the specimen on the platform, in the fit's inverse dynamics and in the plant (the
     // controller's model carries it too)
     const spatial::Model model(spatial::withSpecimen(description, options.payload_mass));
+    if (records.size() > 1 && options.identify_payload)
+        throw OptionError("identify_payload", "a six-DOF table identifies the specimen before one record, not a suite");
     if (records.size() > 1) return six_dof_shake::runSuite(records, options, model, observer);
     io::TableMotion motion;
     const spatial::GroundRecord3 record = six_dof_shake::readRecord3(records.front(), options, observer, motion);
     std::string controller;
-    const spatial::LoopOptions loop = six_dof_shake::loopOptions(options, controller);
+    spatial::LoopOptions loop = six_dof_shake::loopOptions(options, controller);
+    // the specimen identified first: the controller's model the robot carrying it as identified
+    std::optional<SpatialSpecimen> specimen;
+    std::optional<spatial::Model> identified;
+    if (options.identify_payload) {
+        specimen = identifySpatialSpecimen(description, model, options, loop);
+        identified.emplace(spatial::withPayload(description, specimen->estimate.payload));
+        loop.controller_model = &*identified;
+        controller += " as identified first";
+    }
     spatial::FittedRecord3 fit = six_dof_shake::fitOf(model, record, options, loop);
     Meter meter(observer, fit.t.back(), "s");
     spatial::LoopOptions metered = loop;
@@ -486,6 +498,10 @@ ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
     out.table = six_dof_shake::replayTable(r, model);
     out.metrics_json = six_dof_shake::replayJson(r, motion, options, controller);
     out.text = six_dof_shake::summary(r, motion, options, controller, out);
+    if (specimen) {
+        out.metrics_json = withPayloadJson(out.metrics_json, *specimen);
+        out.text = payloadSummary(*specimen) + out.text;
+    }
     if (!options.out_dir.empty()) {
         six_dof_shake::writeOutputs(r, model, out, options.out_dir, records.front().label);
         out.animation = true;

@@ -15,8 +15,10 @@ namespace nocdyn::app {
 /// parasitic peaks) and the text with one verdict per axis; written to options.out_dir with
 /// the figures per axis and shake_animation.html (the achieved motion in 3-D). Several records
 /// (a folder) are a suite: the files grouped into three-component records by their shared name
-/// prefix, one folder each and summary.md. Refuses what is planar only (the Simbody plant, the
-/// payload identification, drive iteration, theta and y records) with the option's name.
+/// prefix, one folder each and summary.md. With identify_payload the specimen is identified
+/// first (app/shake_spatial_payload.hpp; one record, not a suite) and the controller's model
+/// carries it as identified. Refuses what is planar only (the Simbody plant, drive iteration,
+/// theta and y records) with the option's name.
 [[nodiscard]] ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer);
 
 }  // namespace nocdyn::app

@@ -11,6 +11,8 @@
 #include "nocdyn/sim/control.hpp"
 #include "nocdyn/sim/identification.hpp"
 #include "nocdyn/io/examples.hpp"
+#include "nocdyn/io/robot_file.hpp"
+#include "nocdyn/sim/spatial_payload.hpp"
 
 namespace {
 
@@ -65,6 +67,45 @@ void BM_Identify(benchmark::State& state) {
     state.SetLabel(rates ? "paper-3prr, 5 s at 10 kHz, du and ddu given" : "paper-3prr, 5 s at 10 kHz, u filtered");
 }
 BENCHMARK(BM_Identify)->Arg(1)->Arg(0)->Unit(benchmark::kMillisecond);
+
+nocdyn::SpatialRobotDescription stewart() {
+    std::string path = NOCDYN_SOURCE_DIR;
+    path.append("/robots/stewart.yaml");
+    return nocdyn::io::loadSpatialRobotDescription(path);
+}
+
+/// One sample of the hexapod payload's regressor: inverse dynamics of the robot alone and Y (6 x 10).
+void BM_SpatialPayloadRegressor(benchmark::State& state) {
+    using namespace nocdyn::spatial;
+    const Model model(stewart());
+    Data data(model);
+    PayloadRegressor Y(model.actuators, kPayloadParameters);
+    TaskVector p = model.home, dp = TaskVector::Zero(6), ddp = TaskVector::Zero(6);
+    p(3) = 0.02;
+    dp << 0.1, -0.05, 0.2, 0.3, -0.2, 0.1;
+    ddp << 1.0, 2.0, -1.0, 3.0, 1.0, -2.0;
+    for (auto _ : state) {
+        benchmark::DoNotOptimize(payloadRegressor(model, data, p, dp, ddp, Y));
+        benchmark::DoNotOptimize(Y.data());
+    }
+}
+BENCHMARK(BM_SpatialPayloadRegressor);
+
+/// The least squares of a 2 s, 1 kHz log of the shake command's excitation (2000 samples, 12000 rows).
+void BM_SpatialPayloadFit(benchmark::State& state) {
+    using namespace nocdyn::spatial;
+    const nocdyn::SpatialRobotDescription d = stewart();
+    SpatialPayload specimen;
+    specimen.mass = 0.5;
+    const Model alone(d), carrying(withPayload(d, specimen));
+    PayloadExcitationOptions o;
+    o.simulator.absolute_tolerance = 1e-9;
+    o.simulator.relative_tolerance = 1e-7;
+    o.simulator.floor_step = 5e-5;
+    const PayloadLog log = excitePayload(carrying, alone, payloadExcitation(carrying, o), o);
+    for (auto _ : state) benchmark::DoNotOptimize(identifySpatialPayload(alone, log));
+}
+BENCHMARK(BM_SpatialPayloadFit)->Unit(benchmark::kMillisecond);
 
 }  // namespace
 

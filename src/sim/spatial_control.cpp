@@ -38,11 +38,14 @@ LoopResult runPoseLoop(const Model& model, const Trajectory& trajectory, const L
     const double kp = w * w, kd = 2.0 * w;
     const auto ticks = static_cast<std::size_t>(std::llround(options.duration * options.rate));
     const ActuatorVector effort = effortLimits(model);
-    Data controller(model), reference(model);
+    const Model& known = options.controller_model != nullptr ? *options.controller_model : model;
+    if (known.task_dimension != d || known.actuators != n)
+        throw Error("the controller's model and the plant differ in pose coordinates or actuators");
+    Data controller(known), reference(model);
     TaskMatrix M_home;
     if (options.law == ControlLaw::pd) {
-        if (const Status status = massMatrix(model, controller, model.home, M_home); !status) {
-            throw Error("pd: the mass matrix at home: " + describe(status, model));
+        if (const Status status = massMatrix(known, controller, model.home, M_home); !status) {
+            throw Error("pd: the mass matrix at home: " + describe(status, known));
         }
     }
     TaskVector p_d, dp_d, ddp_d, p_next, dp_next, ddp_next;
@@ -79,12 +82,12 @@ LoopResult runPoseLoop(const Model& model, const Trajectory& trajectory, const L
                 p += (0.5 * dt) * dp + (0.125 * dt * dt) * cmd;
                 dp += (0.5 * dt) * cmd;
             }
-            const Status status = inverseDynamics(model, controller, p, dp, cmd);
-            if (!status) fail(t, status, model, "the controller");
+            const Status status = inverseDynamics(known, controller, p, dp, cmd);
+            if (!status) fail(t, status, known, "the controller");
             tau = controller.tau;
         } else {
-            if (const Status status = inverseKinematics(model, controller, p); !status) {
-                fail(t, status, model, "the controller");
+            if (const Status status = inverseKinematics(known, controller, p); !status) {
+                fail(t, status, known, "the controller");
             }
             const TaskVector lambda = M_home * (kp * e + kd * de);
             const ActuationMatrix AE = controller.A.rightCols(d);

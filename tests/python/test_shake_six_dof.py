@@ -47,3 +47,23 @@ def test_turning_the_tables_x_azimuth_by_90_degrees(tmp_path):
     np.testing.assert_array_equal(turned["az"], base["az"])
     with pytest.raises(ValueError, match="record"):
         nocdyn.shake(COMPONENTS, records=COMPONENTS, robot=ROBOT, **QUICK)
+
+
+def test_the_specimen_identified_first_comes_back_as_numbers():
+    # a 40 kg specimen, a point mass at the platform origin: the 10 parameters and the mass,
+    # c.o.m. and inertia with their standard deviations, the true values beside them
+    run = nocdyn.shake(records=COMPONENTS, robot=ROBOT, identify_payload=True, payload_mass=40.0,
+                       excitation_duration=1.0, **QUICK)
+    e = run.metrics["payload_estimate"]
+    assert e["true"]["mass"] == 40.0
+    assert e["true"]["parameters"] == [40.0] + [0.0] * 9
+    assert 0.0 < e["mass_sd"] < 1.0
+    assert abs(e["mass"] - 40.0) < 5 * e["mass_sd"]
+    for c, sd in zip(e["com"], e["com_sd"]):
+        assert abs(c) < 5 * sd
+    assert np.shape(e["inertia"]) == (3, 3) and np.shape(e["inertia_sd"]) == (3, 3)
+    assert len(e["parameters"]) == len(e["parameters_sd"]) == len(e["parameter_names"]) == 10
+    assert e["samples"] == 1000
+    assert e["excitation_limit_use"]["ratio"] <= 1.0
+    for axis in ("ax", "ay", "az"):
+        assert run.metrics["metrics"][axis]["rms_error_percent"] < 5.0

@@ -37,6 +37,10 @@ struct LoopOptions {
     bool mid_hold = false;
     /// The plant's integration (its tolerances, steps); the defaults are spatial::Simulator's.
     SimulatorOptions simulator = {};
+    /// The controller's model when it is not the plant's (the plant carrying a payload the
+    /// controller knows only as identified); the same actuators and pose coordinates. nullptr:
+    /// the plant's.
+    const Model* controller_model = nullptr;
     /// Called at each tick with its time [s]; none by default.
     std::function<void(double t)> progress = {};
 };
