@@ -662,7 +662,9 @@ def shake(record=None, *, robot=None, set=None, out_dir=None, progress=None, rec
     six-DOF table (a spatial robot such as robots/stewart.yaml) the three components drive x, y
     and z in computed torque with the rotations held at zero; the samples are t, x_d, y_d, z_d,
     ax, ay, az, ..._achieved, x .. yaw, u1..u6, tau1..tau6, the metrics keyed ax, ay, az, and
-    per_axis_scale scales each axis to its own limit."""
+    per_axis_scale scales each axis to its own limit; iterations iterate the drive on x, y, z
+    (the identity drive model, a pass's error its worst axis's; metrics pass_rms_error_percent,
+    pass_rms_error_percent_axes, pass_kept, iteration_stop)."""
     if records is not None:
         if record is not None:
             raise ValueError("record, records: give one of them (records is the list of a record's component files)")
