@@ -13,9 +13,8 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
+#include "spatial_shake_support.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/io/at2.hpp"
-#include "nocdyn/io/ground_motion3.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/sim/spatial_shake.hpp"
 
@@ -24,19 +23,10 @@ namespace {
 
 const std::string kSource = NOCDYN_SOURCE_DIR;
 
-std::string component(const std::string& name) { return kSource + "/data/records3/RSN6_IMPVALL.I_I-ELC" + name; }
+std::string component(const std::string& name) { return test::elCentroComponent(name); }
 
 /// El Centro 1940 (Array #9) on the table's x, y, z: its first `seconds`.
-spatial::GroundRecord3 elCentro(double seconds) {
-    const io::TableMotion m =
-        io::combineComponents({io::readAt2File(component("180-hor1.AT2")), io::readAt2File(component("270-hor2.AT2")),
-                               io::readAt2File(component("-UP.AT2"))});
-    spatial::GroundRecord3 r;
-    r.dt = m.dt;
-    r.a = {m.ax, m.ay, m.az};
-    for (auto& a : r.a) a.resize(static_cast<std::size_t>(seconds / m.dt) + 1);
-    return r;
-}
+spatial::GroundRecord3 elCentro(double seconds) { return test::elCentro3(seconds); }
 
 /// The shake command's loop on the hexapod: computed torque at 1 kHz, the hold's middle state.
 spatial::LoopOptions hexapodLoop() {
