@@ -82,10 +82,12 @@ spatial::DriveIterationOptions iterationOptions(const ShakeOptions& options) {
 /// worst axis's) and the pass kept, with each axis's errors and why it stopped.
 void addIterationJson(const spatial::DriveIterationPasses& passes, nlohmann::json& json) {
     std::vector<double> worst;
+    worst.reserve(passes.worst.size());
     nlohmann::json axes = nlohmann::json::object();
     for (double e : passes.worst) worst.push_back(100.0 * e);
     for (std::size_t axis = 0; axis < 3; ++axis) {
         std::vector<double> rms;
+        rms.reserve(passes.rms.size());
         for (const std::array<double, 3>& p : passes.rms) rms.push_back(100.0 * p[axis]);
         axes[spatial::kShakeAxes[axis]] = rms;
     }
