@@ -270,6 +270,8 @@ void refuseWhatDoesNotApply(const ShakeOptions& o) {
     refuse(o.drive_model != d.drive_model && o.iterations == 0, "drive_model",
            "`iterations` 1 or more (the passes whose drive it corrects)");
     refuse(o.iteration_gain != d.iteration_gain && o.iterations == 0, "iteration_gain", "`iterations` 1 or more");
+    refuse(o.iteration_tolerance != d.iteration_tolerance && o.iterations == 0, "iteration_tolerance",
+           "`iterations` 1 or more");
     refuse(o.excitation_duration != d.excitation_duration && !o.identify_payload, "excitation_duration",
            "`identify_payload`");
     // the table controller's sensing, and the pose controller's noisy sensor
@@ -324,6 +326,7 @@ void validate(const ShakeOptions& o) {
     requireIn(o.amplitude, kAmplitudeRange, "amplitude");
     requireCount(o.iterations, kMaxIterations, "iterations");
     requireIn(o.iteration_gain, kIterationGainRange, "iteration_gain");
+    requireIn(o.iteration_tolerance, kIterationToleranceRange, "iteration_tolerance");
     if (o.drive_model != DriveModel::identity && o.controller != ShakeController::table)
         throw OptionError("drive_model", std::string(name(o.drive_model)) +
                                              " inverts the table controller's closed loop: needs controller table");

@@ -25,6 +25,7 @@ inline constexpr Range kAccelBaselineRange{1e-3, 10.0, "m"};
 inline constexpr Range kAmplitudeRange{1e-3, 1e3, ""};
 inline constexpr Range kAzimuthRange{-360.0, 360.0, "deg"};
 inline constexpr Range kIterationGainRange{0.01, 1.0, ""};
+inline constexpr Range kIterationToleranceRange{0.0, 0.9, ""};
 inline constexpr Range kExcitationDurationRange{0.2, 600.0, "s"};
 inline constexpr Range kErrorPercentRange{0.0, 1000.0, "%"};
 inline constexpr Range kPercentRange{0.0, 100.0, "%"};

@@ -49,12 +49,73 @@ void refusePlanarOnly(const ShakeOptions& o, std::size_t records) {
         if (set) throw OptionError(field, std::string(what) + planar);
     };
     refuse(o.plant == PlantKind::simbody, "plant", "the Simbody plant");
-    refuse(o.iterations > 0, "iterations", "drive-signal iteration");
     refuse(!o.record_y.empty(), "record_y", "a record on y alone");
     refuse(!o.record_theta.empty(), "record_theta", "a record on theta");
     refuse(o.axis != d.axis, "axis", "a record on one axis");
     if (records == 1 && o.jobs != d.jobs)
         throw OptionError("jobs", "does not apply to one record: it goes with a suite (a folder of records)");
+}
+
+/// The drive-signal iteration of a six-DOF table corrects by the identity: the drive models
+/// invert the planar table controller's closed loop.
+void refuseDriveModel(const ShakeOptions& o) {
+    if (o.drive_model != DriveModel::identity) {
+        throw OptionError("drive_model", std::string(name(o.drive_model)) +
+                                             ": planar tables only for now (it inverts the planar table "
+                                             "controller's closed loop); a six-DOF table iterates with identity");
+    }
+}
+
+/// The options of the drive-signal iteration (spatial::iterateReplay): the gain, the tolerance,
+/// and the fit's options, whose margin the drive keeps half of.
+spatial::DriveIterationOptions iterationOptions(const ShakeOptions& options) {
+    spatial::DriveIterationOptions out;
+    out.iterations = options.iterations;
+    out.gain = options.iteration_gain;
+    out.tolerance = options.iteration_tolerance;
+    out.fit.highpass = options.highpass;
+    out.fit.margin = options.margin;
+    out.fit.time_scale = options.time_scale;
+    return out;
+}
+
+/// shake.json's keys of the iteration, as a planar table's: the RMS error of each pass (its
+/// worst axis's) and the pass kept, with each axis's errors and why it stopped.
+void addIterationJson(const spatial::DriveIterationPasses& passes, nlohmann::json& json) {
+    std::vector<double> worst;
+    worst.reserve(passes.worst.size());
+    nlohmann::json axes = nlohmann::json::object();
+    for (double e : passes.worst) worst.push_back(100.0 * e);
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        std::vector<double> rms;
+        rms.reserve(passes.rms.size());
+        for (const std::array<double, 3>& p : passes.rms) rms.push_back(100.0 * p[axis]);
+        axes[spatial::kShakeAxes[axis]] = rms;
+    }
+    json["pass_rms_error_percent"] = worst;
+    json["pass_kept"] = passes.best_pass;
+    if (passes.stop.empty()) return;
+    json["pass_rms_error_percent_axes"] = axes;
+    json["iteration_stop"] = passes.stop;
+}
+
+/// The summary's line of the iteration: each pass's RMS error per axis and its worst, why it
+/// stopped, the pass kept (empty without iteration).
+std::string iterationText(const spatial::DriveIterationPasses& passes) {
+    if (passes.stop.empty()) return {};
+    std::string text = "drive iteration (identity drive model; a pass's error is its worst axis's): RMS error per pass";
+    for (std::size_t k = 0; k < passes.rms.size(); ++k) {
+        const std::array<double, 3>& p = passes.rms[k];
+        text += k > 0 ? "," : "";
+        text += text::format(" %zu: %.2f %% (ax %.2f %%, ay %.2f %%, az %.2f %%)", k, 100.0 * passes.worst[k],
+                             100.0 * p[0], 100.0 * p[1], 100.0 * p[2]);
+    }
+    text += "; stopped: ";
+    text += passes.stop;
+    text += "; pass ";
+    text += std::to_string(passes.best_pass);
+    text += " kept\n";
+    return text;
 }
 
 /// The record's components on the table's x, y, z (in g, read as m/s^2), its first `window` seconds.
@@ -118,8 +179,8 @@ io::Table replayTable(const spatial::ShakeReplay3& r, const spatial::Model& mode
 
 nlohmann::json useJson(const LimitUse& u) { return {{"ratio", u.ratio}, {"what", u.what}, {"t", u.t}}; }
 
-std::string replayJson(const spatial::ShakeReplay3& r, const io::TableMotion& motion, const ShakeOptions& options,
-                       const std::string& controller) {
+std::string replayJson(const spatial::ShakeReplay3& r, const spatial::DriveIterationPasses& passes,
+                       const io::TableMotion& motion, const ShakeOptions& options, const std::string& controller) {
     nlohmann::json json;
     json["time_scale"] = r.fit.time_scale;
     json["amplitude_scale"] = r.fit.amplitude;  // [x, y, z]
@@ -152,6 +213,7 @@ std::string replayJson(const spatial::ShakeReplay3& r, const io::TableMotion& mo
                                               {"achieved_sa", s.achieved_sa}};
     }
     json["metrics"] = metrics;
+    addIterationJson(passes, json);
     return json.dump(2) + "\n";
 }
 
@@ -195,8 +257,9 @@ std::string animationPage(const spatial::Model& model, const io::Table& table, c
     return render::spatialAnimationPage(model, motion, {});
 }
 
-std::string summary(const spatial::ShakeReplay3& r, const io::TableMotion& motion, const ShakeOptions& options,
-                    const std::string& controller, ShakeResult& out) {
+std::string summary(const spatial::ShakeReplay3& r, const spatial::DriveIterationPasses& passes,
+                    const io::TableMotion& motion, const ShakeOptions& options, const std::string& controller,
+                    ShakeResult& out) {
     const spatial::FittedRecord3& fit = r.fit;
     std::string text = text::format(
         "components: x at azimuth %g deg, y at %g deg, z up; time scale L = %.4g, amplitude scale A = %.4g, %.4g, "
@@ -213,6 +276,7 @@ std::string summary(const spatial::ShakeReplay3& r, const io::TableMotion& motio
         r.loop.t.back(), r.seconds, r.loop.saturated_ticks, 100.0 * r.achieved_use.ratio, r.achieved_use.what.c_str());
     text += text::format("rotations (held at zero): peak |roll| %.3g deg, |pitch| %.3g deg, |yaw| %.3g deg\n",
                          kDegree * r.parasitic[0], kDegree * r.parasitic[1], kDegree * r.parasitic[2]);
+    text += iterationText(passes);
     out.passed = 1;
     for (std::size_t axis = 0; axis < 3; ++axis) {
         const ShakeScore& s = r.score[axis];
@@ -404,12 +468,14 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
     const auto work = [&] {
         for (std::size_t i = next++; i < records.size() && !stop; i = next++) {
             try {
-                const spatial::ShakeReplay3 r = spatial::replayRecord(
-                    model, fitOf(model, read[i].record, options, loop), stoppable, options.highpass);
+                spatial::DriveIterationPasses passes;
+                const spatial::ShakeReplay3 r =
+                    spatial::iterateReplay(model, fitOf(model, read[i].record, options, loop), stoppable,
+                                           options.highpass, iterationOptions(options), passes);
                 ShakeResult& one = results[i];
                 one.table = replayTable(r, model);
-                one.metrics_json = replayJson(r, read[i].motion, options, controller);
-                (void)summary(r, read[i].motion, options, controller, one);
+                one.metrics_json = replayJson(r, passes, read[i].motion, options, controller);
+                (void)summary(r, passes, read[i].motion, options, controller, one);
                 const std::lock_guard lock(mutex);
                 writeOutputs(r, model, one, (std::filesystem::path(options.out_dir) / folders[i]).string(),
                              records[i].label);
@@ -468,6 +534,7 @@ ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
     if (options.x_azimuth) requireIn(*options.x_azimuth, kAzimuthRange, "x_azimuth");
     const std::vector<RecordFiles> records = groupRecordFiles(options.record);
     six_dof_shake::refusePlanarOnly(options, records.size());
+    six_dof_shake::refuseDriveModel(options);
     const SpatialRobotDescription description = io::loadSpatialRobotDescription(options.robot.path, options.robot.set);
     // the specimen on the platform, in the fit's inverse dynamics and in the plant (the
     // controller's model carries it too)
@@ -489,15 +556,19 @@ ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
         controller += " as identified first";
     }
     spatial::FittedRecord3 fit = six_dof_shake::fitOf(model, record, options, loop);
-    Meter meter(observer, fit.t.back(), "s");
+    // every pass's seconds of motion (the first, and at most `iterations` more)
+    const double total = fit.t.back() * (1.0 + options.iterations);
+    Meter meter(observer, total, "s");
     spatial::LoopOptions metered = loop;
     metered.progress = [&meter](double t) { meter(t); };
-    const spatial::ShakeReplay3 r = spatial::replayRecord(model, std::move(fit), metered, options.highpass);
-    meter.report(r.loop.t.back());
+    spatial::DriveIterationPasses passes;
+    const spatial::ShakeReplay3 r = spatial::iterateReplay(model, std::move(fit), metered, options.highpass,
+                                                           six_dof_shake::iterationOptions(options), passes);
+    meter.report(total);
     ShakeResult out;
     out.table = six_dof_shake::replayTable(r, model);
-    out.metrics_json = six_dof_shake::replayJson(r, motion, options, controller);
-    out.text = six_dof_shake::summary(r, motion, options, controller, out);
+    out.metrics_json = six_dof_shake::replayJson(r, passes, motion, options, controller);
+    out.text = six_dof_shake::summary(r, passes, motion, options, controller, out);
     if (specimen) {
         out.metrics_json = withPayloadJson(out.metrics_json, *specimen);
         out.text = payloadSummary(*specimen) + out.text;

@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli_support.hpp"
+#include "spatial_shake_support.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/at2.hpp"
 #include "nocdyn/io/csv.hpp"
@@ -28,19 +29,10 @@ const std::string kSource = NOCDYN_SOURCE_DIR;
 
 SpatialRobotDescription stewart() { return io::loadSpatialRobotDescription(kSource + "/robots/stewart.yaml"); }
 
-std::string component(const std::string& name) { return kSource + "/data/records3/RSN6_IMPVALL.I_I-ELC" + name; }
+std::string component(const std::string& name) { return test::elCentroComponent(name); }
 
 /// El Centro 1940 (Array #9) on the table's x, y, z: its first `seconds`.
-spatial::GroundRecord3 elCentro(double seconds) {
-    const io::TableMotion m =
-        io::combineComponents({io::readAt2File(component("180-hor1.AT2")), io::readAt2File(component("270-hor2.AT2")),
-                               io::readAt2File(component("-UP.AT2"))});
-    spatial::GroundRecord3 r;
-    r.dt = m.dt;
-    r.a = {m.ax, m.ay, m.az};
-    for (auto& a : r.a) a.resize(static_cast<std::size_t>(seconds / m.dt) + 1);
-    return r;
-}
+spatial::GroundRecord3 elCentro(double seconds) { return test::elCentro3(seconds); }
 
 Eigen::Matrix3d shift(const Eigen::Vector3d& r) {
     return r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose();
@@ -173,9 +165,9 @@ TEST(SpatialShake, TheCommandReplaysAThreeComponentRecordOnTheHexapod) {
     EXPECT_EQ(nlohmann::json::parse(fast_file)["controller_rate"].get<double>(), 10000.0);
     // a planar-only option is refused by name
     const test::CliResult refused =
-        test::runCli("shake" + robot + records + " --iterations 2 --out-dir " + (out / "b").string());
+        test::runCli("shake" + robot + records + " --axis y --out-dir " + (out / "b").string());
     EXPECT_NE(refused.exit_code, 0);
-    EXPECT_NE(refused.err.find("iterations"), std::string::npos) << refused.err;
+    EXPECT_NE(refused.err.find("axis"), std::string::npos) << refused.err;
 }
 
 /// The 3-D page's embedded data, parsed as the page's script does.

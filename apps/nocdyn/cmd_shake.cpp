@@ -145,12 +145,11 @@ void addShakeCommand(CLI::App& app) {
         ->add_option("--iterations", options->iterations,
                      "Drive-signal iteration: at most N passes after the first, each correcting the drive by "
                      "--iteration-gain times the last pass's acceleration error; stops when a pass improves the RMS "
-                     "error by less than 2 % or its drive would leave the limits; the best pass is kept")
+                     "error by less than --iteration-tolerance or its drive would leave the limits; the best pass is "
+                     "kept (a six-DOF table: x, y, z, a pass's error its worst axis's)")
         ->check(CLI::Range(0, app::kMaxIterations))
         ->capture_default_str();
-    command->add_option("--iteration-gain", options->iteration_gain, "Drive-signal iteration gain")
-        ->check(within(app::kIterationGainRange))
-        ->capture_default_str();
+    addDriveIterationOptions(*command, *options);
     addChoiceOption(*command, "--drive-model", options->drive_model,
                     "Drive-signal iteration: identity (the error itself corrects the drive), or the error through the "
                     "inverse frequency response of the table controller's closed loop linearised at home, by exact "

@@ -23,6 +23,7 @@ void addAnimateCommand(CLI::App& app);
 void addShakeCommand(CLI::App& app);
 /// shake's --x-azimuth and --per-axis-scale (shake_six_dof_options.cpp).
 void addShakeComponentOptions(CLI::App& command, app::ShakeOptions& options);
+void addDriveIterationOptions(CLI::App& command, app::ShakeOptions& options);
 void addRegressorCommand(CLI::App& app);
 void addIdentifyCommand(CLI::App& app);
 void addExciteCommand(CLI::App& app);

@@ -664,7 +664,10 @@ def shake(record=None, *, robot=None, set=None, out_dir=None, progress=None, rec
     ax, ay, az, ..._achieved, x .. yaw, u1..u6, tau1..tau6, the metrics keyed ax, ay, az, and
     per_axis_scale scales each axis to its own limit; identify_payload identifies the specimen's
     mass, c.o.m. and inertia tensor first (``metrics["payload_estimate"]``: each value with its
-    standard deviation, the true values under ``"true"``) and the controller's model carries it."""
+    standard deviation, the true values under ``"true"``) and the controller's model carries it;
+    iterations iterate the drive on x, y, z (the identity drive model, a pass's error its worst
+    axis's; metrics pass_rms_error_percent, pass_rms_error_percent_axes, pass_kept,
+    iteration_stop)."""
     if records is not None:
         if record is not None:
             raise ValueError("record, records: give one of them (records is the list of a record's component files)")

@@ -53,6 +53,7 @@ void bindShake(py::module_& m) {
         .option("identify_payload", &O::identify_payload)
         .option("iterations", &O::iterations)
         .option("iteration_gain", &O::iteration_gain)
+        .option("iteration_tolerance", &O::iteration_tolerance)
         .option("drive_model", &O::drive_model)
         .option("drive_specimen", &O::drive_specimen)
         .option("excitation_duration", &O::excitation_duration)

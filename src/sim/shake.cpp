@@ -455,4 +455,36 @@ Status correctDrive(const DriveInverse& inverse, const std::array<std::vector<do
     return {};
 }
 
+FitOptions driveFitOptions(FitOptions target, double time_scale) {
+    target.time_scale = time_scale;
+    target.margin *= 0.5;
+    target.highpass = 0.0;
+    return target;
+}
+
+void addDriveCorrection(std::span<double> drive, std::span<const double> target, std::span<const double> achieved,
+                        double gain) {
+    if (target.size() != drive.size() || achieved.size() != drive.size())
+        throw Error("drive correction: the drive, target and achieved accelerations differ in length");
+    for (std::size_t i = 0; i < drive.size(); ++i) drive[i] += gain * (target[i] - achieved[i]);
+}
+
+PassJudgement judgePass(int pass, double rms, double best, double tolerance) {
+    PassJudgement out;
+    out.kept = rms < best;
+    if (!(rms < (1.0 - tolerance) * best)) {
+        out.stop = "pass ";
+        out.stop += std::to_string(pass);
+        out.stop += text::format(" improved the RMS error by less than %g %%", 100.0 * tolerance);
+    }
+    return out;
+}
+
+std::string driveLeavesLimits(int pass) {
+    std::string out = "pass ";
+    out += std::to_string(pass);
+    out += "'s drive would leave the limits";
+    return out;
+}
+
 }  // namespace nocdyn

@@ -197,7 +197,7 @@ void nextDrive(const Bench& b, const DriveInverse& inverse, const std::array<boo
         if (!driven[ia]) continue;
         const std::vector<double>& a = target(b.fit, axis);
         if (b.options.drive_model == DriveModel::identity) {
-            for (std::size_t i = 0; i < drive[ia].size(); ++i) drive[ia][i] += gain * (a[i] - last_achieved[ia][i]);
+            addDriveCorrection(drive[ia], a, last_achieved[ia], gain);
             continue;
         }
         error[ia].resize(a.size());
@@ -223,15 +223,9 @@ void iterateDrive(const Bench& b, const DriveInverse& inverse, ShakeOutcome& out
         next.alpha = drive[0];
         next.ax = drive[1];
         next.ay = drive[2];
-        // the drive may use half of the reserve the target keeps (margin): its corrections make up
-        // for what the plant does not follow
-        FitOptions options = fitOptions(o);
-        options.time_scale = fit.time_scale;
-        options.margin = 0.5 * o.margin;
-        options.highpass = 0.0;  // the target is filtered already
-        const FittedRecord refit = fitRecord(b.model, next, options);
+        const FittedRecord refit = fitRecord(b.model, next, driveFitOptions(fitOptions(o), fit.time_scale));
         if (refit.amplitude_scale < 1.0) {
-            out.iteration_stop = "pass " + std::to_string(pass) + "'s drive would leave the limits";
+            out.iteration_stop = driveLeavesLimits(pass);
             break;
         }
         PassActuators actuators;
@@ -239,21 +233,21 @@ void iterateDrive(const Bench& b, const DriveInverse& inverse, ShakeOutcome& out
         std::array<std::vector<double>, 3> achieved;
         const double rms = passRms(b, loop, achieved);
         out.pass_rms.push_back(rms);
-        const double best = out.pass_rms[static_cast<std::size_t>(out.best_pass)];
-        if (rms < best) {
+        const PassJudgement judged =
+            judgePass(pass, rms, out.pass_rms[static_cast<std::size_t>(out.best_pass)], o.iteration_tolerance);
+        if (judged.kept) {
             out.best_pass = pass;
             out.loop = std::move(loop);
             out.achieved = achieved;
             kept = std::move(actuators);
         }
         last_achieved = std::move(achieved);
-        if (!(rms < (1.0 - o.iteration_tolerance) * best)) {
-            out.iteration_stop = "pass " + std::to_string(pass) + " improved the RMS error by less than " +
-                                 std::to_string(static_cast<int>(100.0 * o.iteration_tolerance)) + " %";
+        if (!judged.stop.empty()) {
+            out.iteration_stop = judged.stop;
             break;
         }
     }
-    if (o.iterations > 0 && out.iteration_stop.empty()) out.iteration_stop = "the last pass asked";
+    if (o.iterations > 0 && out.iteration_stop.empty()) out.iteration_stop = kLastPassAsked;
 }
 
 /// The sensors, their noise and resolution, in words.

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <span>
+#include <string>
 
 #include "nocdyn/error.hpp"
 #include "nocdyn/text.hpp"
@@ -197,14 +199,12 @@ FittedRecord3 fitRecord(const Model& model, const GroundRecord3& record, const F
     return fit;
 }
 
-ShakeReplay3 replayRecord(const Model& model, FittedRecord3 fit, LoopOptions loop, double highpass) {
-    ShakeReplay3 out;
-    out.fit = std::move(fit);
+namespace {
+
+/// The replay's loop scored against out.fit (see the header comment): the achieved
+/// accelerations, each moving axis's scores, the rotations' parasitic motion, the limits' use.
+void scoreLoop(const Model& model, const LoopOptions& loop, double highpass, ShakeReplay3& out) {
     const FittedRecord3& f = out.fit;
-    loop.duration = f.t.back();
-    const auto start = std::chrono::steady_clock::now();
-    out.loop = runPoseLoop(model, f.trajectory, loop);
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     const LoopResult& r = out.loop;
     if (r.t.size() < 3) throw Error("replay: the record is shorter than three controller ticks");
     // the achieved accelerations: (p(t + h) - 2 p(t) + p(t - h)) / h^2 over ~0.5 ms, at f.t
@@ -249,7 +249,109 @@ ShakeReplay3 replayRecord(const Model& model, FittedRecord3 fit, LoopOptions loo
         data.du = (r.u[b] - r.u[a]) / (r.t[b] - r.t[a]);
         accumulate(model, r.t[k], data, 0.0, out.achieved_use);
     }
+}
+
+/// The closed loop of `loop` along `drive` for the fit's duration, timed into out.seconds.
+LoopResult playDrive(const Model& model, const Trajectory& drive, LoopOptions loop, double duration, double& seconds) {
+    loop.duration = duration;
+    const auto start = std::chrono::steady_clock::now();
+    LoopResult result = runPoseLoop(model, drive, loop);
+    seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return result;
+}
+
+}  // namespace
+
+ShakeReplay3 replayRecord(const Model& model, FittedRecord3 fit, LoopOptions loop, double highpass) {
+    ShakeReplay3 out;
+    out.fit = std::move(fit);
+    out.loop = playDrive(model, out.fit.trajectory, loop, out.fit.t.back(), out.seconds);
+    scoreLoop(model, loop, highpass, out);
     return out;
+}
+
+namespace {
+
+/// A pass's relative RMS error per axis [x, y, z] (0 on a still axis) and its worst.
+double passErrors(const ShakeReplay3& r, DriveIterationPasses& passes) {
+    std::array<double, 3> rms{};
+    for (std::size_t axis = 0; axis < 3; ++axis) rms[axis] = r.score[axis].rms_error;
+    passes.rms.push_back(rms);
+    passes.worst.push_back(*std::max_element(rms.begin(), rms.end()));
+    return passes.worst.back();
+}
+
+/// The drive of the next pass: d += g (a_target - a_achieved) on each moving axis over the
+/// samples the last loop covered.
+void correctDrive3(const ShakeReplay3& last, double gain, std::array<std::vector<double>, 3>& drive) {
+    const FittedRecord3& f = last.fit;
+    const std::size_t n = std::min(f.t.size(), static_cast<std::size_t>(last.loop.t.back() / f.dt) + 1);
+    for (std::size_t axis = 0; axis < 3; ++axis) {
+        if (last.score[axis].periods.empty()) continue;  // still
+        addDriveCorrection(std::span(drive[axis]).first(n), std::span(f.a[axis]).first(n),
+                           std::span(last.achieved[axis]).first(n), gain);
+    }
+}
+
+}  // namespace
+
+ShakeReplay3 iterateReplay(const Model& model, FittedRecord3 fit, const LoopOptions& loop, double highpass,
+                           const DriveIterationOptions& options, DriveIterationPasses& passes) {
+    if (!(options.gain > 0.0 && options.gain <= 1.0)) throw Error("drive iteration: the gain must be in (0, 1]");
+    passes = {};
+    const double duration = fit.t.back();
+    // the passes' progress one after the other: pass i reports i duration + t
+    const auto passLoop = [&loop, duration](int pass) {
+        LoopOptions l = loop;
+        if (loop.progress) {
+            l.progress = [&loop, offset = duration * pass](double t) { loop.progress(offset + t); };
+        }
+        return l;
+    };
+    ShakeReplay3 best = replayRecord(model, std::move(fit), passLoop(0), highpass);
+    passErrors(best, passes);
+    std::array<std::vector<double>, 3> drive = best.fit.a;
+    ShakeReplay3 last_pass;  // the last pass when it is not the best (its achieved accelerations)
+    const ShakeReplay3* last = &best;
+    for (int pass = 1; pass <= options.iterations; ++pass) {
+        correctDrive3(*last, options.gain, drive);
+        const FittedRecord3& target = best.fit;
+        GroundRecord3 next;
+        next.dt = target.dt * target.time_scale;
+        next.a = drive;
+        const FittedRecord3 refit = fitRecord(model, next, driveFitOptions(options.fit, target.time_scale));
+        if (std::any_of(refit.amplitude.begin(), refit.amplitude.end(), [](double a) { return a < 1.0; })) {
+            passes.stop = driveLeavesLimits(pass);
+            break;
+        }
+        ShakeReplay3 r;
+        r.fit = target;
+        r.loop = playDrive(model, refit.trajectory, passLoop(pass), duration, r.seconds);
+        // scored against the target: its pose at each tick is the reference the displacement is scored on
+        TaskVector p, dp, ddp;
+        for (std::size_t k = 0; k < r.loop.t.size(); ++k) {
+            target.trajectory.evaluate(r.loop.t[k], p, dp, ddp);
+            r.loop.p_d[k] = p;
+        }
+        scoreLoop(model, loop, highpass, r);
+        const double best_error = passes.worst[static_cast<std::size_t>(passes.best_pass)];
+        const PassJudgement judged = judgePass(pass, passErrors(r, passes), best_error, options.tolerance);
+        if (judged.kept) {
+            r.seconds = best.seconds;  // the first pass's wall time, as the replay reports it
+            best = std::move(r);
+            passes.best_pass = pass;
+            last = &best;
+        } else {
+            last_pass = std::move(r);
+            last = &last_pass;
+        }
+        if (!judged.stop.empty()) {
+            passes.stop = judged.stop;
+            break;
+        }
+    }
+    if (options.iterations > 0 && passes.stop.empty()) passes.stop = kLastPassAsked;
+    return best;
 }
 
 }  // namespace nocdyn::spatial

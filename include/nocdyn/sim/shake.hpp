@@ -198,4 +198,30 @@ struct DriveInverse {
 Status correctDrive(const DriveInverse& inverse, const std::array<std::vector<double>, 3>& error, double gain,
                     std::array<std::vector<double>, 3>& drive);
 
+// --- drive-signal iteration's bookkeeping, the same on a planar and a six-DOF table
+
+/// The fit of a pass's drive: the target's time scale L kept, no high-pass (the target is
+/// filtered already) and half the target's margin (the drive's corrections may use half the
+/// reserve the target keeps: they make up for what the plant does not follow).
+[[nodiscard]] FitOptions driveFitOptions(FitOptions target, double time_scale);
+
+/// d_(i+1) = d_i + g (a_target - a_i), sample by sample (the identity drive model); the three
+/// spans of equal length.
+void addDriveCorrection(std::span<double> drive, std::span<const double> target, std::span<const double> achieved,
+                        double gain);
+
+/// A pass's RMS error `rms` against the best pass's `best`: kept when below it; `stop` says why
+/// the iteration stops after pass `pass` when it fell by less than `tolerance` (relative), else empty.
+struct PassJudgement {
+    bool kept = false;
+    std::string stop;
+};
+[[nodiscard]] PassJudgement judgePass(int pass, double rms, double best, double tolerance);
+
+/// Why the iteration stopped before pass `pass`: its drive would leave the limits.
+[[nodiscard]] std::string driveLeavesLimits(int pass);
+
+/// Why the iteration stopped when every pass asked was played.
+inline constexpr const char* kLastPassAsked = "the last pass asked";
+
 }  // namespace nocdyn

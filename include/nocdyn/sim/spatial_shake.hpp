@@ -85,4 +85,35 @@ struct ShakeReplay3 {
 /// scored (see the header comment). `highpass` is the fit's cutoff [Hz], for the passband.
 [[nodiscard]] ShakeReplay3 replayRecord(const Model& model, FittedRecord3 fit, LoopOptions loop, double highpass);
 
+/// Drive-signal iteration (time waveform replication) on x, y, z, the identity drive model
+/// (shake.hpp): after the first pass, each pass's drive is d_(i+1) = d_i + g (a_target - a_i)
+/// per axis (as a planar table's identity correction), refitted at the target's L within half
+/// its margin (driveFitOptions; the iteration stops when the drive would need A < 1), played
+/// from the start by the same loop and scored against the target. A pass's error is its worst
+/// axis's relative RMS error (the criterion of the pass kept and of the stop): a pass is kept
+/// when it is the best so far, and the iteration stops after a pass that improves it by less
+/// than `tolerance` (relative).
+struct DriveIterationOptions {
+    int iterations = 0;  ///< at most this many passes after the first
+    double gain = 0.7;   ///< g
+    double tolerance = 0.02;
+    FitOptions fit;  ///< the target's (its margin halved for the drive)
+};
+
+struct DriveIterationPasses {
+    std::vector<std::array<double, 3>> rms;  ///< each pass's relative RMS error [x, y, z] (0: an axis still)
+    std::vector<double> worst;               ///< each pass's worst axis's (the criterion)
+    int best_pass = 0;                       ///< the pass kept (0: the first)
+    std::string stop;                        ///< why the iteration stopped (empty: no iteration)
+};
+
+/// The first pass (replayRecord), then up to options.iterations passes of the corrected drive
+/// (see DriveIterationOptions); returns the kept pass, scored against the target (its `fit` the
+/// target's, its loop's p_d the target's pose at each tick, the drive's kept nowhere). `loop`'s
+/// progress is called with the time since the first pass's start, summed over the passes.
+/// Throws nocdyn::Error as replayRecord does, or for a gain outside (0, 1].
+[[nodiscard]] ShakeReplay3 iterateReplay(const Model& model, FittedRecord3 fit, const LoopOptions& loop,
+                                         double highpass, const DriveIterationOptions& options,
+                                         DriveIterationPasses& passes);
+
 }  // namespace nocdyn::spatial
