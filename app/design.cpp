@@ -1,18 +1,10 @@
 #include "app/design.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <charconv>
-#include <chrono>
-#include <condition_variable>
-#include <deque>
-#include <exception>
 #include <filesystem>
 #include <fstream>
-#include <functional>
-#include <mutex>
 #include <sstream>
-#include <thread>
 #include <utility>
 
 #include "app/outputs.hpp"
@@ -21,6 +13,7 @@
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/model.hpp"
+#include "nocdyn/parallel.hpp"
 #include "nocdyn/text.hpp"
 #include "render/plot.hpp"
 #include "render/workspace_figure.hpp"
@@ -92,67 +85,6 @@ std::string signature(const DesignOptions& options, const io::DesignFamily& fami
              text::shortest(design.duration) + " " + text::shortest(design.rate);
     }
     return io::fingerprint(s);
-}
-
-/// Runs evaluate(i), i in [0, count), on `threads` worker threads, each index once; the calling
-/// thread calls record(i, result) for each in completion order and polls the observer at least
-/// every 0.1 s (worker threads never call it). A failure in a worker or an exception from record
-/// or the observer stops new designs; the designs under way finish; then it is rethrown.
-void evaluateOnPool(std::size_t count, int threads, const std::function<DesignEvaluation(std::size_t)>& evaluate,
-                    const std::function<void(std::size_t, DesignEvaluation&&)>& record, Observer& observer) {
-    std::mutex mutex;
-    std::condition_variable ready_cv;
-    std::deque<std::pair<std::size_t, DesignEvaluation>> ready;
-    std::exception_ptr failure;
-    std::atomic<std::size_t> next{0};
-    std::atomic<bool> stopping{false};
-    const int n = std::clamp(threads, 1, 256);
-    int running = n;
-    const auto worker = [&] {
-        while (!stopping.load()) {
-            const std::size_t i = next.fetch_add(1);
-            if (i >= count) break;
-            try {
-                DesignEvaluation result = evaluate(i);
-                const std::lock_guard<std::mutex> lock(mutex);
-                ready.emplace_back(i, std::move(result));
-            } catch (...) {
-                const std::lock_guard<std::mutex> lock(mutex);
-                if (!failure) failure = std::current_exception();
-                stopping = true;
-                break;
-            }
-            ready_cv.notify_one();
-        }
-        const std::lock_guard<std::mutex> lock(mutex);
-        --running;
-        ready_cv.notify_one();
-    };
-    std::vector<std::jthread> pool;
-    // on any exit (an exception included): no new design starts, and every worker is joined
-    struct Join {
-        std::atomic<bool>& stopping;
-        std::vector<std::jthread>& pool;
-        ~Join() {
-            stopping = true;
-            pool.clear();
-        }
-    } join{stopping, pool};
-    for (int t = 0; t < n; ++t) pool.emplace_back(worker);
-    for (;;) {
-        std::deque<std::pair<std::size_t, DesignEvaluation>> batch;
-        bool finished = false;
-        {
-            std::unique_lock<std::mutex> lock(mutex);
-            ready_cv.wait_for(lock, std::chrono::milliseconds(100), [&] { return !ready.empty() || running == 0; });
-            batch.swap(ready);
-            finished = running == 0;
-        }
-        for (auto& [i, result] : batch) record(i, std::move(result));
-        if (finished) break;
-        stopIfRequested(observer);
-    }
-    if (failure) std::rethrow_exception(failure);
 }
 
 /// The best feasible design by the first metric (larger or smaller is better, as the metric says).
@@ -387,11 +319,11 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         observer.warning("resuming: " + std::to_string(count) + " of " + std::to_string(points.size()) +
                          " designs already evaluated (" + io::terminalText((dir / "journal.csv").string()) + ")");
     }
-    const int threads =
-        options.threads > 0 ? options.threads : static_cast<int>(std::max(1U, std::thread::hardware_concurrency()));
+    const int threads = options.threads > 0 ? options.threads : static_cast<int>(hardwareThreads());
     const auto total = static_cast<double>(points.size());
     observer.progress(static_cast<double>(count), total, "designs");
-    evaluateOnPool(
+    // the library's work queue; this thread records each design and polls the observer
+    (void)evaluateInParallel(
         todo.size(), threads,
         [&](std::size_t k) { return io::evaluateFamilyDesign(family, points[todo[k]], metrics, design); },
         [&](std::size_t k, DesignEvaluation&& e) {
@@ -401,7 +333,10 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
             done[todo[k]] = std::move(r);
             observer.progress(static_cast<double>(++count), total, "designs");
         },
-        observer);
+        [&] {
+            stopIfRequested(observer);
+            return false;
+        });
 
     std::vector<DesignEvaluation> evaluations;
     evaluations.reserve(done.size());

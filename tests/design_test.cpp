@@ -3,12 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <set>
 #include <string>
+#include <thread>
 
 #include "nocdyn/analysis/design.hpp"
 #include "nocdyn/error.hpp"
@@ -267,6 +270,66 @@ TEST(DesignSweep, ParallelEvaluationRecordsEveryDesignOnce) {
     EXPECT_EQ(std::set<int>(seen.begin(), seen.end()), std::set<int>{1});
 }
 
+TEST(DesignSweep, TheQueueRecordsOnTheCallingThreadAndStopsWhenAsked) {
+    const std::thread::id caller = std::this_thread::get_id();
+    std::vector<std::atomic<int>> evaluated(1000);
+    std::vector<int> recorded(evaluated.size(), 0);
+    std::size_t stops = 0;
+    const std::size_t n = evaluateInParallel(
+        evaluated.size(), 3,
+        [&](std::size_t i) {
+            EXPECT_NE(std::this_thread::get_id(), caller);
+            ++evaluated[i];
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+            return DesignEvaluation{true, "", {static_cast<double>(i)}};
+        },
+        [&](std::size_t i, DesignEvaluation&& e) {
+            EXPECT_EQ(std::this_thread::get_id(), caller);
+            EXPECT_EQ(e.values.at(0), static_cast<double>(i));
+            ++recorded[i];
+        },
+        [&] {
+            EXPECT_EQ(std::this_thread::get_id(), caller);
+            return ++stops == 2;  // asked once more, then no new design starts
+        });
+    EXPECT_EQ(stops, 2U);
+    // about 1 ms a design on 3 threads: the stop comes long before the 1000th
+    EXPECT_LT(n, 200U);
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < recorded.size(); ++i) {
+        EXPECT_EQ(recorded[i], evaluated[i].load()) << i;  // every design evaluated is recorded, once
+        total += static_cast<std::size_t>(recorded[i]);
+    }
+    EXPECT_EQ(total, n);
+}
+
+TEST(DesignSweep, TheQueueRecordsWhatFinishedThenRethrowsAFailure) {
+    std::vector<int> recorded(50, 0);
+    // one thread: designs 0..6 finish, 7 throws, no design after it starts
+    EXPECT_THROW((void)evaluateInParallel(
+                     recorded.size(), 1,
+                     [](std::size_t i) {
+                         if (i == 7) throw Error("design 7");
+                         return DesignEvaluation{true, "", {1.0}};
+                     },
+                     [&](std::size_t i, DesignEvaluation&&) { ++recorded[i]; }),
+                 Error);
+    for (std::size_t i = 0; i < recorded.size(); ++i) EXPECT_EQ(recorded[i], i < 7 ? 1 : 0) << i;
+
+    // an exception from record (an observer's stop) stops new designs and reaches the caller
+    std::atomic<std::size_t> started{0};
+    EXPECT_THROW((void)evaluateInParallel(
+                     1000, 2,
+                     [&](std::size_t) {
+                         ++started;
+                         std::this_thread::sleep_for(std::chrono::milliseconds(1));
+                         return DesignEvaluation{true, "", {1.0}};
+                     },
+                     [](std::size_t, DesignEvaluation&&) { throw Error("stopped"); }),
+                 Error);
+    EXPECT_LT(started.load(), 100U);
+}
+
 TEST(DesignSweep, TheParetoFrontHoldsTheUndominatedFeasibleDesigns) {
     const std::vector<DesignMetric> metrics{parseDesignMetric("workspace_area"), parseDesignMetric("moving_mass")};
     // maximise the area, minimise the mass
@@ -274,6 +337,30 @@ TEST(DesignSweep, TheParetoFrontHoldsTheUndominatedFeasibleDesigns) {
                                                 {true, "", {1.5, 2.5}}, {false, "x", {9.0, 0.0}},
                                                 {true, "", {2.0, 2.0}}, {true, "", {0.5, 1.0}}};
     EXPECT_EQ(paretoFront(designs, metrics), (std::vector<std::size_t>{0, 1, 4}));
+    // the same by the senses alone, and with the mass maximised too: (2, 2) twice and (1.5, 2.5)
+    EXPECT_EQ(paretoFront(designs, std::vector<bool>{true, false}), (std::vector<std::size_t>{0, 1, 4}));
+    EXPECT_EQ(paretoFront(designs, std::vector<bool>{true, true}), (std::vector<std::size_t>{1, 2, 4}));
+}
+
+TEST(DesignSweep, ADesignWithANaNValueIsOnTheFrontAndDominatesNone) {
+    // a NaN compares neither way: (NaN, 7) is not dominated by (3, 6), nor does it dominate
+    // (1, 5), which (3, 6) does not dominate either; (0.5, 9) is dominated by (1, 5)
+    const double nan = std::nan("");
+    const std::vector<bool> larger{true, false, true};  // area, mass, a third metric
+    for (const std::size_t metrics : {1U, 2U, 3U}) {
+        std::vector<DesignEvaluation> designs{{true, "", {3.0, 6.0, 0.0}},
+                                              {true, "", {nan, 7.0, 0.0}},
+                                              {true, "", {1.0, 5.0, 0.0}},
+                                              {true, "", {0.5, 9.0, 0.0}},
+                                              {true, "", {nan, nan, nan}}};
+        for (DesignEvaluation& d : designs) d.values.resize(metrics);
+        const std::vector<bool> senses(larger.begin(), larger.begin() + static_cast<std::ptrdiff_t>(metrics));
+        const std::vector<std::size_t> expected =
+            metrics == 1 ? std::vector<std::size_t>{0, 1, 4} : std::vector<std::size_t>{0, 1, 2, 4};
+        EXPECT_EQ(paretoFront(designs, senses), expected) << metrics << " metrics";
+    }
+    // a feasible design whose values are not one per metric is refused, not read past its end
+    EXPECT_THROW((void)paretoFront({{true, "", {1.0}}}, std::vector<bool>{true, true}), Error);
 }
 
 std::string readJournal(const std::string& path) {

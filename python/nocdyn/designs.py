@@ -372,8 +372,9 @@ def sweep(family, metrics, samples=64, method="sobol", seed=0, *, client=None, c
 def pareto_front(table, senses=None):
     """Indices of the feasible designs no other feasible design dominates; senses: {metric:
     'maximize' | 'minimize'} for metrics of the table (default: workspace, first frequency and
-    envelope maximised, the rest minimised); ValueError for any other key or value. O(n log n) for one
-    or two metrics (a sort and a running maximum), O(n |front|) for more."""
+    envelope maximised, the rest minimised); ValueError for any other key or value. The library's
+    front (nocdyn::paretoFront), the one `nocdyn design` writes to pareto.csv: O(n log n) for one
+    or two metrics (a sort and one pass), O(n |front|) for more."""
     larger = {name: better for name, _, better in _nocdyn._design_metric_names(table.metrics)}
     senses = dict(senses or {})
     for metric, sense in senses.items():
@@ -381,36 +382,9 @@ def pareto_front(table, senses=None):
             raise ValueError(f"senses: {metric!r} is not a metric of the table ({', '.join(table.metrics)})")
         if sense not in ("maximize", "minimize"):
             raise ValueError(f"senses: {metric}: expected 'maximize' or 'minimize', got {sense!r}")
-    sign = np.array([1.0 if senses.get(m, "maximize" if larger[m] else "minimize") == "maximize" else -1.0
-                     for m in table.metrics])
-    idx = np.flatnonzero(table.feasible)
-    if len(idx) == 0 or len(table.metrics) == 0:
-        return [int(i) for i in idx]
-    scores = table.values[idx] * sign  # larger is better in every column
-    m = scores.shape[1]
-    # decreasing lexicographic order: a design's dominators all come before it
-    order = np.lexsort(tuple(-scores[:, k] for k in reversed(range(m))))
-    s = scores[order]
-    if m <= 2:
-        s0 = s[:, 0]
-        s1 = s[:, 1] if m == 2 else np.zeros(len(s))
-        # groups of equal s0: dominated by a design of larger s0 with s1 >= s1(i), or one of
-        # equal s0 with s1 > s1(i) (the group's first holds its largest s1)
-        start = np.r_[True, s0[1:] != s0[:-1]]
-        group = np.cumsum(start) - 1
-        group_best = s1[start][group]
-        best_of_group = s1[start]
-        best_before = np.r_[-np.inf, np.maximum.accumulate(best_of_group)[:-1]][group]
-        keep = ~((best_before >= s1) | (group_best > s1))
-        return sorted(int(i) for i in idx[order[keep]])
-    front = []
-    for k in range(len(s)):
-        if front:
-            f = s[front]
-            if np.any(np.all(f >= s[k], axis=1) & np.any(f > s[k], axis=1)):
-                continue
-        front.append(k)
-    return sorted(int(i) for i in idx[order[front]])
+    larger_is_better = [senses.get(m, "maximize" if larger[m] else "minimize") == "maximize" for m in table.metrics]
+    front = _nocdyn._pareto_front(table.values, table.feasible, larger_is_better)
+    return [int(i) for i in front]
 
 
 def optimize(family, objectives, n_trials=100, seed=0, *, constraints=None, sampler=None, storage=None,

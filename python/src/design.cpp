@@ -1,12 +1,14 @@
 // Bindings of the design sweeps (design.hpp, io/design.hpp) for nocdyn.designs: a chunk of
 // designs of a parametric robot file evaluated on C++ threads with the GIL released, so that
-// Python threads, processes and Dask workers evaluate in parallel.
+// Python threads, processes and Dask workers evaluate in parallel, and the Pareto front of a
+// table by the library's paretoFront, the one the command line writes.
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <cmath>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -106,7 +108,7 @@ void exposeDesign(py::module_& m) {
                 const py::gil_scoped_release release;
                 (void)evaluateInParallel(
                     n, threads, [&](std::size_t i) { return io::evaluateFamilyDesign(f, rows[i], metrics, options); },
-                    [&](std::size_t i, const DesignEvaluation& e) { results[i] = e; });
+                    [&](std::size_t i, DesignEvaluation&& e) { results[i] = std::move(e); });
             }
             py::array_t<double> values({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(metrics.size())});
             auto out = values.mutable_unchecked<2>();
@@ -124,6 +126,22 @@ void exposeDesign(py::module_& m) {
         py::arg("text"), py::arg("source"), py::arg("fixed"), py::arg("names"), py::arg("points"), py::arg("metrics"),
         py::arg("theta"), py::arg("resolution"), py::arg("trajectory"), py::arg("duration"), py::arg("rate"),
         py::arg("threads"));
+    m.def(
+        "_pareto_front",
+        [](const py::array_t<double, py::array::c_style | py::array::forcecast>& values,
+           const py::array_t<bool, py::array::c_style | py::array::forcecast>& feasible,
+           const std::vector<bool>& larger_is_better) {
+            const auto metrics = larger_is_better.size();
+            if (values.ndim() != 2 || static_cast<std::size_t>(values.shape(1)) != metrics)
+                throw Error("values: expected shape (N, " + std::to_string(metrics) + ")");
+            if (feasible.ndim() != 1 || feasible.shape(0) != values.shape(0))
+                throw Error("feasible: expected shape (" + std::to_string(values.shape(0)) + ",)");
+            const std::span<const double> v(values.data(), static_cast<std::size_t>(values.size()));
+            const std::span<const bool> ok(feasible.data(), static_cast<std::size_t>(feasible.size()));
+            const py::gil_scoped_release release;
+            return paretoFront(v, ok, larger_is_better);
+        },
+        py::arg("values"), py::arg("feasible"), py::arg("larger_is_better"));
 }
 
 }  // namespace nocdyn::python

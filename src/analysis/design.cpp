@@ -4,11 +4,15 @@
 
 #include <algorithm>
 #include <atomic>
+#include <chrono>
 #include <cmath>
+#include <condition_variable>
+#include <deque>
 #include <exception>
 #include <limits>
 #include <mutex>
 #include <random>
+#include <utility>
 
 #include "nocdyn/analysis/frequency_map.hpp"
 #include "nocdyn/analysis/stiffness.hpp"
@@ -317,74 +321,130 @@ std::vector<std::vector<double>> sweepPoints(const std::vector<DesignRange>& ran
 
 std::size_t evaluateInParallel(std::size_t count, int threads,
                                const std::function<DesignEvaluation(std::size_t)>& evaluate,
-                               const std::function<void(std::size_t, const DesignEvaluation&)>& record,
+                               const std::function<void(std::size_t, DesignEvaluation&&)>& record,
                                const std::function<bool()>& stop) {
+    std::mutex mutex;
+    std::condition_variable ready_cv;
+    std::deque<std::pair<std::size_t, DesignEvaluation>> ready;  // evaluated, not yet recorded
+    std::exception_ptr failure;
     std::atomic<std::size_t> next{0};
     std::atomic<bool> stopping{false};
-    std::mutex mutex;
+    const unsigned evaluators = static_cast<unsigned>(std::clamp(threads, 1, 256));
+    unsigned running = evaluators;
     std::size_t recorded = 0;
-    std::exception_ptr failure;
-    const auto worker = [&] {
-        for (;;) {
-            if (stopping.load()) return;
+    const auto evaluator = [&] {
+        while (!stopping.load()) {
             const std::size_t i = next.fetch_add(1);
-            if (i >= count) return;
+            if (i >= count) break;
             try {
-                const DesignEvaluation result = evaluate(i);
+                DesignEvaluation result = evaluate(i);
                 const std::lock_guard<std::mutex> lock(mutex);
-                record(i, result);
-                ++recorded;
-                if (stop && stop()) stopping = true;
+                ready.emplace_back(i, std::move(result));
             } catch (...) {
                 const std::lock_guard<std::mutex> lock(mutex);
                 if (!failure) failure = std::current_exception();
                 stopping = true;
-                return;
+                break;
             }
+            ready_cv.notify_one();
+        }
+        const std::lock_guard<std::mutex> lock(mutex);
+        --running;
+        ready_cv.notify_one();
+    };
+    // the calling thread (worker 0) records and asks stop(); an exception of its own ends the
+    // recording, and runWorkers rethrows it once the designs under way have finished
+    const auto recorder = [&] {
+        try {
+            for (;;) {
+                std::deque<std::pair<std::size_t, DesignEvaluation>> batch;
+                bool finished = false;
+                {
+                    std::unique_lock<std::mutex> lock(mutex);
+                    ready_cv.wait_for(lock, std::chrono::milliseconds(100),
+                                      [&] { return !ready.empty() || running == 0; });
+                    batch.swap(ready);
+                    finished = running == 0;
+                }
+                for (auto& [i, result] : batch) {
+                    record(i, std::move(result));
+                    ++recorded;
+                }
+                if (finished) return;
+                if (stop && !stopping.load() && stop()) stopping = true;
+            }
+        } catch (...) {
+            stopping = true;
+            throw;
         }
     };
-    runWorkers("design", static_cast<unsigned>(std::clamp(threads, 1, 256)), [&](unsigned) { worker(); });
+    runWorkers("design", evaluators + 1, [&](unsigned w) {
+        if (w == 0)
+            recorder();
+        else
+            evaluator();
+    });
     if (failure) std::rethrow_exception(failure);
     return recorded;
 }
 
-std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& designs,
-                                     const std::vector<DesignMetric>& metrics,
-                                     const std::function<void(std::size_t, std::size_t)>& progress) {
-    // each metric in its better-is-larger sense
-    const auto score = [&](std::size_t i, std::size_t m) {
-        return metrics[m].larger_is_better() ? designs[i].values[m] : -designs[i].values[m];
-    };
+namespace {
+
+/// Feasible designs as rows of scores, each metric in its larger-is-better sense: row r is
+/// design index[r]. A design with a NaN value compares neither way in that metric, so it
+/// neither dominates nor is dominated: it goes straight to `front`, and is not sorted.
+struct ScoreTable {
+    std::size_t metrics = 0;
+    std::vector<std::size_t> index, front;
+    std::vector<double> scores;
+
+    template <class Value>
+    void add(std::size_t design, const std::vector<bool>& larger_is_better, const Value& value) {
+        const std::size_t at = scores.size();
+        bool nan = false;
+        for (std::size_t m = 0; m < metrics; ++m) {
+            const double v = value(m);
+            nan = nan || std::isnan(v);
+            scores.push_back(larger_is_better[m] ? v : -v);
+        }
+        if (nan) {
+            scores.resize(at);
+            front.push_back(design);
+        } else {
+            index.push_back(design);
+        }
+    }
+};
+
+std::vector<std::size_t> frontOf(ScoreTable table, const std::function<void(std::size_t, std::size_t)>& progress) {
+    const std::size_t metrics = table.metrics;
+    std::vector<std::size_t>& front = table.front;
+    if (metrics == 0) return table.index;  // nothing to compare: no design dominates another
+    const auto score = [&](std::size_t r, std::size_t m) { return table.scores[r * metrics + m]; };
     // a >= b in every metric, and > in one
     const auto dominates = [&](std::size_t a, std::size_t b) {
         bool better = false;
-        for (std::size_t m = 0; m < metrics.size(); ++m) {
+        for (std::size_t m = 0; m < metrics; ++m) {
             if (score(a, m) < score(b, m)) return false;
             better = better || score(a, m) > score(b, m);
         }
         return better;
     };
-    std::vector<std::size_t> order;
-    for (std::size_t i = 0; i < designs.size(); ++i) {
-        if (designs[i].feasible) order.push_back(i);
-    }
-    if (metrics.empty()) {
-        std::sort(order.begin(), order.end());
-        return order;  // nothing to compare: no design dominates another
-    }
-    // In decreasing lexicographic order of the scores a design's dominators all come before it.
+    // In decreasing lexicographic order of the scores a design's dominators all come before it
+    // (rows are in design order, so equal rows stay in it).
+    std::vector<std::size_t> order(table.index.size());
+    for (std::size_t r = 0; r < order.size(); ++r) order[r] = r;
     std::sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) {
-        for (std::size_t m = 0; m < metrics.size(); ++m) {
+        for (std::size_t m = 0; m < metrics; ++m) {
             if (score(a, m) != score(b, m)) return score(a, m) > score(b, m);
         }
         return a < b;
     });
-    std::vector<std::size_t> front;
-    if (metrics.size() <= 2) {
+    if (metrics <= 2) {
         // One pass, O(n log n) with the sort: i is dominated when a design of strictly larger
         // s0 has s1 >= s1(i) (best_before), or one of equal s0 has s1 > s1(i) (the group's
         // first, which has its largest s1). With one metric, s1 is taken as 0 for every design.
-        const auto second = [&](std::size_t i) { return metrics.size() == 2 ? score(i, 1) : 0.0; };
+        const auto second = [&](std::size_t r) { return metrics == 2 ? score(r, 1) : 0.0; };
         double best_before = -std::numeric_limits<double>::infinity();
         bool any_before = false;
         for (std::size_t g = 0; g < order.size();) {
@@ -394,7 +454,7 @@ std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& design
             for (std::size_t k = g; k < end; ++k) {
                 const double s1 = second(order[k]);
                 if ((any_before && best_before >= s1) || group_best > s1) continue;
-                front.push_back(order[k]);
+                front.push_back(table.index[order[k]]);
             }
             best_before = any_before ? std::max(best_before, group_best) : group_best;
             any_before = true;
@@ -405,17 +465,64 @@ std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& design
         // Three metrics or more: each design compared with the front found so far; one of the
         // front dominates it when any design does (dominance is transitive and the front
         // holds every undominated design before it). O(n |front|).
+        std::vector<std::size_t> rows;  // the front's rows
         for (std::size_t k = 0; k < order.size(); ++k) {
-            const std::size_t i = order[k];
+            const std::size_t r = order[k];
             bool dominated = false;
-            for (std::size_t f = 0; f < front.size() && !dominated; ++f) dominated = dominates(front[f], i);
-            if (!dominated) front.push_back(i);
+            for (std::size_t f = 0; f < rows.size() && !dominated; ++f) dominated = dominates(rows[f], r);
+            if (!dominated) {
+                rows.push_back(r);
+                front.push_back(table.index[r]);
+            }
             if (progress && (k + 1) % 4096 == 0) progress(k + 1, order.size());
         }
         if (progress) progress(order.size(), order.size());
     }
     std::sort(front.begin(), front.end());
-    return front;
+    return std::move(front);
+}
+
+}  // namespace
+
+std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& designs,
+                                     const std::vector<DesignMetric>& metrics,
+                                     const std::function<void(std::size_t, std::size_t)>& progress) {
+    std::vector<bool> larger;
+    larger.reserve(metrics.size());
+    for (const DesignMetric& m : metrics) larger.push_back(m.larger_is_better());
+    return paretoFront(designs, larger, progress);
+}
+
+std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& designs,
+                                     const std::vector<bool>& larger_is_better,
+                                     const std::function<void(std::size_t, std::size_t)>& progress) {
+    ScoreTable table;
+    table.metrics = larger_is_better.size();
+    for (std::size_t i = 0; i < designs.size(); ++i) {
+        const DesignEvaluation& d = designs[i];
+        if (!d.feasible) continue;
+        if (d.values.size() != table.metrics) {
+            throw Error("design: design " + std::to_string(i) + " has " + std::to_string(d.values.size()) +
+                        " values, not one per metric (" + std::to_string(table.metrics) + ")");
+        }
+        table.add(i, larger_is_better, [&](std::size_t m) { return d.values[m]; });
+    }
+    return frontOf(std::move(table), progress);
+}
+
+std::vector<std::size_t> paretoFront(std::span<const double> values, std::span<const bool> feasible,
+                                     const std::vector<bool>& larger_is_better,
+                                     const std::function<void(std::size_t, std::size_t)>& progress) {
+    ScoreTable table;
+    table.metrics = larger_is_better.size();
+    if (values.size() != feasible.size() * table.metrics) {
+        throw Error("design: " + std::to_string(values.size()) + " values are not " + std::to_string(table.metrics) +
+                    " for each of " + std::to_string(feasible.size()) + " designs");
+    }
+    for (std::size_t i = 0; i < feasible.size(); ++i) {
+        if (feasible[i]) table.add(i, larger_is_better, [&](std::size_t m) { return values[i * table.metrics + m]; });
+    }
+    return frontOf(std::move(table), progress);
 }
 
 }  // namespace nocdyn

@@ -96,3 +96,39 @@ def test_designs_are_numbered_from_1_where_a_person_reads_them(tmp_path):
     lines = (tmp_path / "designs.csv").read_text().splitlines()
     assert lines[0].startswith("design,r_b,moving_mass") and lines[1].startswith("1,0.15,1.0,true")
     assert lines[2].startswith("2,0.2,2.0,false")
+
+
+def test_the_front_is_the_one_the_command_line_writes_to_pareto_csv(source_dir, cli, tmp_path):
+    """pareto_front is the library's, so a table read back from designs.csv has the command
+    line's pareto.csv as its front, design for design."""
+    import csv
+    metrics = ["workspace_area", "condition_median", "moving_mass"]
+    args = ["design", "--robot", source_dir / "examples" / "design_3rrr" / "family.yaml", "--vary", "r_b=0.15:0.25",
+            "--vary", "l1=0.08:0.14", "--set", "l2=0.11", "--samples", "40", "--seed", "2", "--resolution", "21",
+            "--no-figures", "--out-dir", tmp_path / "o"]
+    for m in metrics:
+        args += ["--metric", m]
+    code, _, err = cli(*args)
+    assert code == 0, err
+    rows = list(csv.DictReader((tmp_path / "o" / "designs.csv").open()))
+    points = np.array([[float(r[k]) for k in ("r_b", "l1")] for r in rows])
+    values = np.array([[float(r[m]) if r[m] else np.nan for m in metrics] for r in rows])
+    table = designs.Designs(["r_b", "l1"], metrics, points, values, [r["feasible"] == "true" for r in rows],
+                            [r["reason"] for r in rows])
+    written = [int(r["design"]) - 1 for r in csv.DictReader((tmp_path / "o" / "pareto.csv").open())]
+    assert 2 <= len(written) < table.feasible.sum()
+    assert designs.pareto_front(table) == written
+    # two metrics: the first two's front, from every design compared with every other
+    two = designs.Designs(table.names, metrics[:2], points, values[:, :2], table.feasible, table.reason)
+    s = values[:, :2] * [1.0, -1.0]
+    brute = [i for i in np.flatnonzero(table.feasible)
+             if not any(np.all(s[j] >= s[i]) and np.any(s[j] > s[i]) for j in np.flatnonzero(table.feasible))]
+    assert designs.pareto_front(two) == brute
+
+
+def test_the_design_of_the_largest_first_metric_is_on_the_front_whatever_its_second():
+    # an infinite mass is the worst mass, but no design has as large a workspace: undominated
+    table = designs.Designs(["r_b"], ["workspace_area", "moving_mass"], [[0.1], [0.2], [0.3]],
+                            [[2.0, np.inf], [1.0, 1.0], [0.5, 1.0]], [True] * 3, [""] * 3)
+    assert designs.pareto_front(table) == [0, 1]
+    assert designs.pareto_front(table, {"moving_mass": "maximize"}) == [0]

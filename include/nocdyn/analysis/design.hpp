@@ -21,6 +21,7 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -105,18 +106,35 @@ enum class SweepKind { grid, random };
 [[nodiscard]] std::vector<std::vector<double>> sweepPoints(const std::vector<DesignRange>& ranges, SweepKind kind,
                                                            std::size_t samples, std::uint64_t seed);
 
-/// Calls evaluate(i) for i in [0, count) on `threads` threads (at least 1; each index once)
-/// and record(i, result) for each, one call at a time, in completion order. `stop()` is asked
-/// between designs; once it returns true no new design starts. Returns how many were recorded.
+/// The one work queue of a sweep: evaluate(i) for i in [0, count) on `threads` worker threads
+/// (at least 1; each index once), while the calling thread calls record(i, result) for each,
+/// one at a time, in completion order, and stop() after each batch of records and at least
+/// every 0.1 s (worker threads call neither). Once stop() returns true no new design starts;
+/// those under way finish and are recorded. An exception from evaluate does the same and is
+/// then rethrown; one from record or stop stops new designs, lets those under way finish and
+/// is rethrown. Returns how many were recorded.
 std::size_t evaluateInParallel(std::size_t count, int threads,
                                const std::function<DesignEvaluation(std::size_t)>& evaluate,
-                               const std::function<void(std::size_t, const DesignEvaluation&)>& record,
+                               const std::function<void(std::size_t, DesignEvaluation&&)>& record,
                                const std::function<bool()>& stop = {});
 
 /// Indices of the feasible designs no other feasible design dominates (at least as good in
-/// every metric, better in one), each metric's sense from larger_is_better(); in index order.
-/// O(n log n) for one or two metrics (a sort and one pass), O(n |front|) for more.
-/// `progress(done, total)`, when given, is called as the feasible designs are passed.
+/// every metric, better in one), metric m read as larger-is-better when larger_is_better[m],
+/// else smaller-is-better; in index order. A design with a NaN value neither dominates nor is
+/// dominated (it compares neither way), so it is on the front. O(n log n) for one or two
+/// metrics (a sort and one pass), O(n |front|) for more. `progress(done, total)`, when given, is called as the
+/// feasible designs are passed.
+[[nodiscard]] std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& designs,
+                                                   const std::vector<bool>& larger_is_better,
+                                                   const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+/// The same over a table: values row by row, larger_is_better.size() to a row, and one
+/// feasible flag a row; throws nocdyn::Error when the sizes disagree.
+[[nodiscard]] std::vector<std::size_t> paretoFront(std::span<const double> values, std::span<const bool> feasible,
+                                                   const std::vector<bool>& larger_is_better,
+                                                   const std::function<void(std::size_t, std::size_t)>& progress = {});
+
+/// The same, each metric's sense from its larger_is_better().
 [[nodiscard]] std::vector<std::size_t> paretoFront(const std::vector<DesignEvaluation>& designs,
                                                    const std::vector<DesignMetric>& metrics,
                                                    const std::function<void(std::size_t, std::size_t)>& progress = {});
