@@ -38,7 +38,7 @@ start=$SECONDS
 # (src/analysis/stiffness.cpp: 72 s against 121 s) but its -O1 code ran the suite 2.5 times
 # slower (DirectKinematics.EverySolutionIsVerifiedAndNoneIsMissed: 180 s against 12 s).
 cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=RelWithDebInfo -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
-  -DNOCDYN_BUILD_BENCHMARKS=OFF -DNOCDYN_SANITIZE=ON -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=OFF
+  -DNOCDYN_BUILD_BENCHMARKS=OFF -DNOCDYN_SANITIZE=ON -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=OFF -DNOCDYN_CPU_DISPATCH=ON
 cmake --build build-sanitize -j"$jobs"
 echo "test-extended.sh: sanitizer build done at $((SECONDS - start)) s"
 stage "the sanitizer build" $((SECONDS - start)) 900
@@ -64,7 +64,7 @@ fi
 # harnesses are built; each harness runs briefly over its committed seed corpus (fuzz/).
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DNOCDYN_BUILD_TESTS=OFF -DNOCDYN_BUILD_VALIDATION=OFF -DNOCDYN_BUILD_BENCHMARKS=OFF \
-  -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=ON -DNOCDYN_BUILD_PYTHON=OFF
+  -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=ON -DNOCDYN_BUILD_PYTHON=OFF -DNOCDYN_CPU_DISPATCH=ON
 cmake --build build-fuzz -j"$jobs" --target nocdyn_fuzzers
 ctest --test-dir build-fuzz --output-on-failure --no-tests=error -L fuzz -j"$jobs" | tee build-fuzz/ctest-summary.log
 harnesses=$(grep -Eo 'tests passed, 0 tests failed out of [0-9]+' build-fuzz/ctest-summary.log | grep -Eo '[0-9]+$')

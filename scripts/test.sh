@@ -18,7 +18,7 @@ command -v ninja >/dev/null && export CMAKE_GENERATOR=Ninja
 source scripts/ccache.sh
 
 cmake -S . -B build "${ccache_args[@]}" -DCMAKE_BUILD_TYPE=Release -DNOCDYN_BUILD_TESTS=ON -DNOCDYN_BUILD_VALIDATION=ON \
-  -DNOCDYN_BUILD_BENCHMARKS=ON -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=ON
+  -DNOCDYN_BUILD_BENCHMARKS=ON -DNOCDYN_SANITIZE=OFF -DNOCDYN_FUZZ=OFF -DNOCDYN_BUILD_PYTHON=ON -DNOCDYN_CPU_DISPATCH=ON
 start=$SECONDS
 cmake --build build -j"$jobs"
 echo "test.sh: release build done in $((SECONDS - start)) s"
