@@ -44,10 +44,7 @@ SpatialSpecimen identifySpatialSpecimen(const SpatialRobotDescription& descripti
     spatial::PayloadExcitationOptions o;
     o.duration = options.excitation_duration;
     o.margin = options.margin;
-    o.rate = loop.rate;
-    o.natural_frequency = loop.natural_frequency;
-    o.mid_hold = loop.mid_hold;
-    o.simulator = loop.simulator;
+    o.loop = loop;  // the replay's controller rate, error dynamics, hold and integration
     o.seed = options.seed;
     o.force_noise = spatial_specimen::forceNoise(alone);
     SpatialSpecimen out;

@@ -109,9 +109,9 @@ TEST(SpatialPayload, TheRegressorIsTheDifferenceOfInverseDynamicsWithAndWithoutT
 PayloadExcitationOptions quick(double duration) {
     PayloadExcitationOptions o;
     o.duration = duration;
-    o.simulator.absolute_tolerance = 1e-9;
-    o.simulator.relative_tolerance = 1e-7;
-    o.simulator.floor_step = 5e-5;
+    o.loop.simulator.absolute_tolerance = 1e-9;
+    o.loop.simulator.relative_tolerance = 1e-7;
+    o.loop.simulator.floor_step = 5e-5;
     return o;
 }
 

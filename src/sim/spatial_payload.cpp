@@ -151,7 +151,7 @@ Trajectory payloadExcitation(const Model& model, const PayloadExcitationOptions&
             axis.harmonics.push_back({unit / (2.0 * std::numbers::pi * f), f, phase(rng)});  // 1 m/s (rad/s) each
         }
     }
-    const double step = 1.0 / std::max(options.rate, 200.0);
+    const double step = 1.0 / std::max(options.loop.rate, 200.0);
     const auto scaled = [&](double c) {
         Trajectory t = shape;
         for (AxisMotion& axis : t.axis) {
@@ -179,15 +179,15 @@ PayloadLog excitePayload(const Model& plant_model, const Model& controller_model
         plant_model.actuators != controller_model.actuators)
         throw Error("excitation: the controller's model and the plant differ in structure");
     const int d = plant_model.task_dimension, n = plant_model.actuators;
-    const double dt = 1.0 / options.rate, w = 2.0 * std::numbers::pi * options.natural_frequency;
+    const double dt = 1.0 / options.loop.rate, w = 2.0 * std::numbers::pi * options.loop.natural_frequency;
     const double kp = w * w, kd = 2.0 * w;
-    const auto ticks = static_cast<std::size_t>(std::llround(options.duration * options.rate));
+    const auto ticks = static_cast<std::size_t>(std::llround(options.duration * options.loop.rate));
     const auto fail = [](double t, const Status& status, const Model& model, const char* what) {
         throw Error(text::sampleTime(t) + ": " + what + ": " + describe(status, model));
     };
     TaskVector p_d, dp_d, ddp_d, p_next, dp_next, ddp_next, p(d), dp(d), cmd(d), ddp(d);
     trajectory.evaluate(0.0, p_d, dp_d, ddp_d);
-    Simulator plant(plant_model, options.simulator);
+    Simulator plant(plant_model, options.loop.simulator);
     if (const Status status = plant.reset(p_d, dp_d); !status) fail(0.0, status, plant_model, "the excitation's start");
     Data controller(controller_model), sensor(plant_model);
     std::mt19937 rng(options.seed);
@@ -198,7 +198,7 @@ PayloadLog excitePayload(const Model& plant_model, const Model& controller_model
     log.tau.reserve(ticks);
     for (std::size_t k = 0; k < ticks; ++k) {
         const double t = static_cast<double>(k) * dt;
-        if (options.progress) options.progress(t);
+        if (options.loop.progress) options.loop.progress(t);
         trajectory.evaluate(t, p_d, dp_d, ddp_d);
         trajectory.evaluate(t + dt, p_next, dp_next, ddp_next);
         p = plant.pose();
@@ -206,7 +206,7 @@ PayloadLog excitePayload(const Model& plant_model, const Model& controller_model
         // computed torque on the robot alone (the payload unknown), as LoopOptions::mid_hold
         cmd = (dp_next - dp_d) / dt + kd * (dp_d - dp) + kp * (p_d - p);
         TaskVector p_c = p, dp_c = dp;
-        if (options.mid_hold) {
+        if (options.loop.mid_hold) {
             p_c += (0.5 * dt) * dp + (0.125 * dt * dt) * cmd;
             dp_c += (0.5 * dt) * cmd;
         }

@@ -24,6 +24,7 @@
 
 #include "nocdyn/sim/shake.hpp"
 #include "nocdyn/sim/simulator.hpp"
+#include "nocdyn/sim/spatial_control.hpp"
 #include "nocdyn/spatial.hpp"
 #include "nocdyn/spatial_description.hpp"
 #include "nocdyn/spatial_trajectory.hpp"
@@ -64,16 +65,17 @@ struct SpatialPayload {
 
 /// The excitation and its run on the simulated table.
 struct PayloadExcitationOptions {
-    double duration = 2.0;            ///< [s]
-    int harmonics = 3;                ///< sines per pose coordinate
-    double margin = 0.1;              ///< of each leg's stroke, rate and force kept free
-    double rate = 1000.0;             ///< controller ticks (and log samples) per second [Hz]
-    double natural_frequency = 30;    ///< f_n of the computed-torque error dynamics [Hz]
-    bool mid_hold = true;             ///< the forces of the hold's middle state (LoopOptions)
-    double force_noise = 1.0;         ///< std. dev. of each logged actuator force [N or N m]
-    unsigned seed = 1;                ///< of the phases and the force noise
-    SimulatorOptions simulator = {};  ///< the plant's integration
-    std::function<void(double t)> progress = {};
+    double duration = 2.0;     ///< [s]
+    int harmonics = 3;         ///< sines per pose coordinate
+    double margin = 0.1;       ///< of each leg's stroke, rate and force kept free
+    double force_noise = 1.0;  ///< std. dev. of each logged actuator force [N or N m]
+    unsigned seed = 1;         ///< of the phases and the force noise
+    /// The run on the table: its controller rate (and log samples) [Hz], the error dynamics'
+    /// natural frequency [Hz], the mid-hold forces, the plant's integration and the progress
+    /// callback. The run lasts `duration` and is computed torque on the robot alone, unsaturated,
+    /// on the true state: the loop's duration, seed, law, saturation, sensor noise and
+    /// controller model are not used.
+    LoopOptions loop = {.rate = 1000.0, .natural_frequency = 30, .mid_hold = true};
 };
 
 /// A multi-sine in the six pose coordinates about home: coordinate i the sum of `harmonics`
