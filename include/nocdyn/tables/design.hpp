@@ -2,8 +2,9 @@
 // parameters varied, each design the robot file that parameter set means; the designs table
 // (designs.csv) and the journal that lets a stopped sweep resume without losing a design.
 //
-// Table columns: design (0-based index in the sweep), one per varied parameter (its name),
-// one per metric (its name, SI units), feasible (true/false), reason (empty when feasible).
+// Table columns: design (its number in the sweep, from 1; DesignRecord::index is 0-based), one
+// per varied parameter (its name), one per metric (its name, SI units), feasible (true/false),
+// reason (empty when feasible).
 #pragma once
 
 #include <cstdint>
