@@ -37,6 +37,8 @@ struct EmbeddingOptions {
     double g = 9.81;  ///< [m/s^2] with EmbeddedGravity::vertical
     /// Added to the first limb's first body's c.o.m. (a deliberately wrong file).
     Eigen::Vector3d com_shift = Eigen::Vector3d::Zero();
+    /// Added to the platform's c.o.m. (platform frame).
+    Eigen::Vector3d platform_com_shift = Eigen::Vector3d::Zero();
 };
 
 /// The spatial robot file's text, and where its actuators are.
@@ -113,7 +115,8 @@ inline SpatialEmbedding spatialEmbedding(const RobotDescription& planar, const E
     y.append("platform: {mass: ")
         .append(number(planar.platform.mass))
         .append(", com: ")
-        .append(vector3(planar.platform.com.x(), planar.platform.com.y(), 0.0))
+        .append(vector3(planar.platform.com.x() + options.platform_com_shift.x(),
+                        planar.platform.com.y() + options.platform_com_shift.y(), options.platform_com_shift.z()))
         .append(", inertia: ")
         .append(embedding_detail::planarInertia(planar.platform.inertia))
         .append("}\n");

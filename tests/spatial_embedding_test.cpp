@@ -202,5 +202,37 @@ TEST(SpatialEmbedding, AComMovedByOneMillimetreIsSeen) {
     EXPECT_LT(a.u, kAgreement);  // the kinematics does not see it
 }
 
+// The same for the z actuators: the platform's c.o.m. 1 mm off along x in the spatial file moves
+// their forces away from the closed form of the file's planar robot.
+TEST(SpatialEmbedding, APlatformComMovedByOneMillimetreIsSeenOnTheZActuators) {
+    EmbeddingOptions options;
+    options.gravity = EmbeddedGravity::vertical;
+    options.platform_com_shift = Eigen::Vector3d(0.001, 0.0, 0.0);
+    const Agreement a = compare(robotDescription("3-rrr"), options);
+    std::printf("3-rrr, platform com 1 mm off: z actuators %.2e of m g\n", a.lift);
+    EXPECT_GT(a.lift, 1e4 * kAgreement);
+}
+
+// The file has the planar robot's structure: six freedoms a limb, its planar joints first, the
+// same masses (the added bodies massless), one z actuator a limb after its planar ones.
+TEST(SpatialEmbedding, TheFileKeepsThePlanarRobot) {
+    const RobotDescription planar = robotDescription("4-rrr");
+    const SpatialEmbedding embedding = spatialEmbedding(planar);
+    const SpatialRobotDescription spatial = io::parseSpatialRobotDescription(embedding.yaml, "4-rrr-spatial.yaml");
+    ASSERT_EQ(spatial.limbs.size(), planar.limbs.size());
+    double planar_mass = planar.platform.mass;
+    for (std::size_t j = 0; j < planar.limbs.size(); ++j) {
+        EXPECT_EQ(spatial.limbs[j].type(), planar.limbs[j].type() + "PU");
+        EXPECT_EQ(spatial.limbs[j].freedoms(), 6);
+        for (const BodyDescription& body : planar.limbs[j].bodies) planar_mass += body.mass;
+        EXPECT_EQ(spatial.limbs[j].bodies[2].mass + spatial.limbs[j].bodies[3].mass, 0.0);
+    }
+    EXPECT_NEAR(spatial.totalMass(), planar_mass, 1e-15 * planar_mass);
+    EXPECT_EQ(spatial.actuatorCount(), 8);
+    EXPECT_EQ(embedding.in_plane, (std::vector<int>{0, 2, 4, 6}));
+    EXPECT_EQ(embedding.lift, (std::vector<int>{1, 3, 5, 7}));
+    EXPECT_EQ(spatial.home(5), planar.home(0));
+}
+
 }  // namespace
 }  // namespace nocdyn::test
