@@ -6,7 +6,6 @@
 #include <limits>
 #include <sstream>
 
-#include <Eigen/Cholesky>
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
 #include <Eigen/LU>
@@ -94,6 +93,100 @@ void angularRates(const TaskVector& p, const TaskVector& dp, const TaskVector& d
 }
 
 bool finite(const TaskVector& v) { return v.allFinite(); }
+
+/// The inverse of a small fixed-size matrix in place by Gauss-Jordan elimination with partial
+/// pivoting (a row swap of a is a column swap of a^-1, undone in reverse order); false when a
+/// pivot is zero or not finite. Unrolled at these sizes, where Eigen's dynamic LU and triangular
+/// solves go through their blocked general paths.
+template <int N>
+bool invertInPlace(Eigen::Matrix<double, N, N, Eigen::RowMajor>& a) {
+    std::array<int, N> swapped{};
+    for (int k = 0; k < N; ++k) {
+        int pivot = k;
+        double largest = std::abs(a(k, k));
+        for (int i = k + 1; i < N; ++i) {
+            if (std::abs(a(i, k)) > largest) {
+                largest = std::abs(a(i, k));
+                pivot = i;
+            }
+        }
+        if (!(largest > 0.0) || !std::isfinite(largest)) return false;
+        swapped[static_cast<std::size_t>(k)] = pivot;
+        if (pivot != k) a.row(k).swap(a.row(pivot));
+        const double inverse = 1.0 / a(k, k);
+        a(k, k) = 1.0;
+        a.row(k) *= inverse;
+        for (int i = 0; i < N; ++i) {
+            if (i == k) continue;
+            const double factor = a(i, k);
+            a(i, k) = 0.0;
+            a.row(i) -= factor * a.row(k);
+        }
+    }
+    for (int k = N - 1; k >= 0; --k) {
+        const int pivot = swapped[static_cast<std::size_t>(k)];
+        if (pivot != k) a.col(k).swap(a.col(pivot));
+    }
+    return true;
+}
+
+/// The Gram matrix G = B^T B of an m x D matrix (m at most kMaxActuators), by rows.
+template <int D, typename Matrix>
+Eigen::Matrix<double, D, D, Eigen::RowMajor> gramOf(const Matrix& B) {
+    Eigen::Matrix<double, D, D, Eigen::RowMajor> G = Eigen::Matrix<double, D, D, Eigen::RowMajor>::Zero();
+    for (Eigen::Index r = 0; r < B.rows(); ++r) {
+        const Eigen::Matrix<double, 1, D> row = B.row(r);
+        G.noalias() += row.transpose() * row;
+    }
+    return G;
+}
+
+/// J^+ of a limb of N freedoms: J^-1 for six, (J^T J)^-1 J^T for fewer; NaN when singular (the
+/// condition check then takes the exact value).
+template <int N>
+void leftInverse(LimbData& ld) {
+    const Eigen::Map<const Eigen::Matrix<double, 6, N>> J(ld.J.data());
+    Eigen::Matrix<double, N, N, Eigen::RowMajor> G;
+    if constexpr (N == 6) {
+        G = J;
+    } else {
+        G.noalias() = J.transpose() * J;
+    }
+    if (!invertInPlace<N>(G)) {
+        ld.J_plus.setConstant(std::numeric_limits<double>::quiet_NaN());
+        return;
+    }
+    if constexpr (N == 6) {
+        ld.J_plus = G;
+    } else {
+        ld.J_plus.noalias() = G * J.transpose();
+    }
+}
+
+/// The upper bound sqrt(trace G trace G^-1) of the condition number of the m x D actuation
+/// map, G = A_task^T A_task; NaN when G is singular.
+template <int D>
+double actuationBound(const ActuationMatrix& A_task) {
+    Eigen::Matrix<double, D, D, Eigen::RowMajor> G = gramOf<D>(A_task);
+    const double trace = G.trace();
+    if (!invertInPlace<D>(G)) return std::numeric_limits<double>::quiet_NaN();
+    return std::sqrt(trace * G.trace());
+}
+
+/// The minimum-norm actuator forces A_E (A_E^T A_E)^-1 b of A_E^T tau = b (A_E^-T b when
+/// square), A_E the last D columns of A; false when A_E^T A_E is singular.
+template <int D>
+bool actuatorForces(const ActuationMatrix& A, const Vector6& W_P, ActuatorVector& tau) {
+    const auto AE = A.rightCols<D>();
+    Eigen::Matrix<double, D, D, Eigen::RowMajor> G = gramOf<D>(AE);
+    if (!invertInPlace<D>(G)) {
+        tau.setConstant(std::numeric_limits<double>::quiet_NaN());
+        return false;
+    }
+    const Eigen::Matrix<double, D, 1> lambda = G * W_P.tail<D>();
+    tau.noalias() = AE * lambda;
+    return true;
+}
 
 /// One limb closed at the platform displacement D by Newton from q (J_j's left inverse for five
 /// freedoms); false when it does not converge. On success, the current screws in ld.J.
@@ -312,7 +405,9 @@ Status inverseKinematics(const Model& model, Data& data, const TaskVector& p) {
         ld.closed_form = closed;
         // J^+ = J^-1 for six freedoms, (J^T J)^-1 J^T for fewer
         if (n == 6) {
-            ld.J_plus = Eigen::Matrix<double, 6, 6>(ld.J).partialPivLu().inverse();
+            leftInverse<6>(ld);
+        } else if (n == 5) {
+            leftInverse<5>(ld);
         } else {
             const Work gram = ld.J.transpose() * ld.J;
             ld.J_plus = Eigen::PartialPivLU<Work>(gram).solve(Work(ld.J.transpose()));
@@ -350,15 +445,12 @@ Status inverseKinematics(const Model& model, Data& data, const TaskVector& p) {
         data.A_task.row(a).head<3>() = A_v.transpose();
         if (d == 6) data.A_task.row(a).tail<3>() = (A_w + A_v.cross(data.position)).transpose();
     }
-    // its condition number at most sqrt(trace G trace G^-1), G = A_task^T A_task = L L^T and
-    // trace G^-1 = ||L^-1||_F^2; the exact value only when that bound exceeds the limit
-    const Work G = data.A_task.transpose() * data.A_task;
-    const Eigen::LLT<Work> llt(G);
-    Work L_inv = Work::Identity(d, d);
-    llt.matrixL().solveInPlace(L_inv);
-    data.actuation_condition = std::sqrt(G.trace() * L_inv.squaredNorm());
-    if (llt.info() != Eigen::Success || !(data.actuation_condition <= model.max_condition)) {
-        data.actuation_condition = conditionOf(G);
+    // its condition number at most sqrt(trace G trace G^-1), G = A_task^T A_task (the sum of
+    // the squared singular values times that of their inverses); the exact value only when
+    // that bound exceeds the limit
+    data.actuation_condition = d == 6 ? actuationBound<6>(data.A_task) : actuationBound<3>(data.A_task);
+    if (!(data.actuation_condition <= model.max_condition)) {
+        data.actuation_condition = conditionOf(Work(data.A_task.transpose() * data.A_task));
         if (!(data.actuation_condition <= model.max_condition)) {
             return {StatusCode::singular_actuation, -1, data.actuation_condition};
         }
@@ -373,6 +465,54 @@ void conditionNumbers(const Model& model, Data& data) {
 }
 
 namespace {
+
+/// One limb of N freedoms at fixed size: its rates, accelerations, bodies' twists and wrenches,
+/// the joints' efforts f, and its part J^+T f of W_P.
+template <int N>
+void limbMotionAndForces(const Limb& limb, LimbData& ld, Data& data, const Eigen::Vector3d& g) {
+    const Eigen::Map<const Eigen::Matrix<double, 6, N>> J(ld.J.data());
+    const Eigen::Map<const Eigen::Matrix<double, N, 6>> J_plus(ld.J_plus.data());
+    Eigen::Map<Eigen::Matrix<double, N, 1>> gd(ld.gd.data()), gdd(ld.gdd.data());
+    // rates (eq. 3) and the screws' rates ds_k = t_(k-1) x s_k
+    gd.noalias() = J_plus * data.t_P;
+    Vector6 t = Vector6::Zero();
+    Vector6 bias = Vector6::Zero();  // sum_k ds_k gd_k
+    std::array<Vector6, N> ds_gd;
+    for (int k = 0; k < N; ++k) {
+        ds_gd[static_cast<std::size_t>(k)] = cross(t, J.col(k)) * gd(k);
+        bias += ds_gd[static_cast<std::size_t>(k)];
+        t += J.col(k) * gd(k);
+    }
+    gdd.noalias() = J_plus * (data.dt_P - bias);
+    // the bodies' twists, twist rates and wrenches
+    t.setZero();
+    Vector6 alpha = Vector6::Zero();
+    int k = 0;
+    for (std::size_t b = 0; b < limb.bodies.size(); ++b) {
+        const Body& body = limb.bodies[b];
+        for (; k <= body.last_freedom; ++k) {
+            t += J.col(k) * gd(k);
+            alpha += J.col(k) * gdd(k) + ds_gd[static_cast<std::size_t>(k)];
+        }
+        ld.twist[b] = t;
+        ld.twist_rate[b] = alpha;
+        ld.wrench[b] = bodyWrench(body.mass, ld.com[b], ld.inertia[b], t, alpha, g);
+    }
+    // the joints' efforts: freedom k carries every body after it, plus its friction
+    Eigen::Map<Eigen::Matrix<double, N, 1>> f(ld.effort.data());
+    Vector6 outboard = Vector6::Zero();
+    int b = static_cast<int>(limb.bodies.size()) - 1;
+    for (int kk = N - 1; kk >= 0; --kk) {
+        while (b >= 0 && limb.bodies[static_cast<std::size_t>(b)].last_freedom >= kk) {
+            outboard += ld.wrench[static_cast<std::size_t>(b)];
+            --b;
+        }
+        const Freedom& freedom = limb.freedoms[static_cast<std::size_t>(kk)];
+        const double sign = gd(kk) > 0.0 ? 1.0 : (gd(kk) < 0.0 ? -1.0 : 0.0);
+        f(kk) = J.col(kk).dot(outboard) + freedom.damping * gd(kk) + freedom.friction * sign;
+    }
+    data.W_P.noalias() += J_plus.transpose() * f;
+}
 
 /// The velocity, acceleration and force stages at (p, dp, ddp), after inverseKinematics(p):
 /// the platform twist and its rate, every limb's rates, accelerations, bodies' twists and
@@ -396,47 +536,26 @@ void motionAndForces(const Model& model, Data& data, const TaskVector& p, const 
     for (int j = 0; j < model.limbs(); ++j) {
         const Limb& limb = model.limb[static_cast<std::size_t>(j)];
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        const int n = limb.size();
-        // rates (eq. 3) and the screws' rates ds_k = t_(k-1) x s_k
-        ld.gd = ld.J_plus * data.t_P;
-        Vector6 t = Vector6::Zero();
-        Vector6 bias = Vector6::Zero();  // sum_k ds_k gd_k
-        std::array<Vector6, kMaxFreedoms> ds_gd;
-        for (int k = 0; k < n; ++k) {
-            ds_gd[static_cast<std::size_t>(k)] = cross(t, ld.J.col(k)) * ld.gd(k);
-            bias += ds_gd[static_cast<std::size_t>(k)];
-            t += ld.J.col(k) * ld.gd(k);
+        switch (limb.size()) {
+            case 6:
+                limbMotionAndForces<6>(limb, ld, data, g);
+                break;
+            case 5:
+                limbMotionAndForces<5>(limb, ld, data, g);
+                break;
+            case 4:
+                limbMotionAndForces<4>(limb, ld, data, g);
+                break;
+            case 3:
+                limbMotionAndForces<3>(limb, ld, data, g);
+                break;
+            case 2:
+                limbMotionAndForces<2>(limb, ld, data, g);
+                break;
+            default:
+                limbMotionAndForces<1>(limb, ld, data, g);
+                break;
         }
-        ld.gdd = ld.J_plus * (data.dt_P - bias);
-        // the bodies' twists, twist rates and wrenches
-        t.setZero();
-        Vector6 alpha = Vector6::Zero();
-        int k = 0;
-        for (std::size_t b = 0; b < limb.bodies.size(); ++b) {
-            const Body& body = limb.bodies[b];
-            for (; k <= body.last_freedom; ++k) {
-                t += ld.J.col(k) * ld.gd(k);
-                alpha += ld.J.col(k) * ld.gdd(k) + ds_gd[static_cast<std::size_t>(k)];
-            }
-            ld.twist[b] = t;
-            ld.twist_rate[b] = alpha;
-            ld.wrench[b] = bodyWrench(body.mass, ld.com[b], ld.inertia[b], t, alpha, g);
-        }
-        // the joints' efforts: freedom k carries every body after it, plus its friction
-        FreedomVector f = FreedomVector::Zero(n);
-        Vector6 outboard = Vector6::Zero();
-        int b = static_cast<int>(limb.bodies.size()) - 1;
-        for (int kk = n - 1; kk >= 0; --kk) {
-            while (b >= 0 && limb.bodies[static_cast<std::size_t>(b)].last_freedom >= kk) {
-                outboard += ld.wrench[static_cast<std::size_t>(b)];
-                --b;
-            }
-            const Freedom& freedom = limb.freedoms[static_cast<std::size_t>(kk)];
-            const double sign = ld.gd(kk) > 0.0 ? 1.0 : (ld.gd(kk) < 0.0 ? -1.0 : 0.0);
-            f(kk) = ld.J.col(kk).dot(outboard) + freedom.damping * ld.gd(kk) + freedom.friction * sign;
-        }
-        data.W_P.noalias() += ld.J_plus.transpose() * f;
-        ld.effort = f;
     }
     for (int a2 = 0; a2 < model.actuators; ++a2) {
         const auto [j, k] = model.actuator[static_cast<std::size_t>(a2)];
@@ -457,12 +576,9 @@ Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, cons
     motionAndForces(model, data, p, dp, ddp, model.gravity);
     // A_E^T tau = E^T W_P: the minimum-norm forces A_E (A_E^T A_E)^-1 E^T W_P (A_E^-T E^T W_P
     // when square)
-    const ActuationMatrix AE = data.A.rightCols(d);
-    const TaskVector b = data.W_P.tail(d);
-    const Work gram = AE.transpose() * AE;
-    const TaskVector lambda = Eigen::PartialPivLU<Work>(gram).solve(b);
-    data.tau.noalias() = AE * lambda;
-    if (!data.tau.allFinite()) return {StatusCode::effort_exceeded, -1, data.tau.sum()};
+    const bool solved =
+        d == 6 ? actuatorForces<6>(data.A, data.W_P, data.tau) : actuatorForces<3>(data.A, data.W_P, data.tau);
+    if (!solved || !data.tau.allFinite()) return {StatusCode::effort_exceeded, -1, data.tau.sum()};
     return {};
 }
 
