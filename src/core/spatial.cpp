@@ -94,39 +94,15 @@ void angularRates(const TaskVector& p, const TaskVector& dp, const TaskVector& d
 
 bool finite(const TaskVector& v) { return v.allFinite(); }
 
-/// The inverse of a small fixed-size matrix in place by Gauss-Jordan elimination with partial
-/// pivoting (a row swap of a is a column swap of a^-1, undone in reverse order); false when a
-/// pivot is zero or not finite. Unrolled at these sizes, where Eigen's dynamic LU and triangular
-/// solves go through their blocked general paths.
+/// The inverse of a small fixed-size matrix in place by Eigen's partial-pivoting LU at its fixed
+/// size (no allocation; the dynamic-size LU and triangular solves go through their blocked
+/// general paths); false when a pivot is zero or not finite.
 template <int N>
 bool invertInPlace(Eigen::Matrix<double, N, N, Eigen::RowMajor>& a) {
-    std::array<int, N> swapped{};
-    for (int k = 0; k < N; ++k) {
-        int pivot = k;
-        double largest = std::abs(a(k, k));
-        for (int i = k + 1; i < N; ++i) {
-            if (std::abs(a(i, k)) > largest) {
-                largest = std::abs(a(i, k));
-                pivot = i;
-            }
-        }
-        if (!(largest > 0.0) || !std::isfinite(largest)) return false;
-        swapped[static_cast<std::size_t>(k)] = pivot;
-        if (pivot != k) a.row(k).swap(a.row(pivot));
-        const double inverse = 1.0 / a(k, k);
-        a(k, k) = 1.0;
-        a.row(k) *= inverse;
-        for (int i = 0; i < N; ++i) {
-            if (i == k) continue;
-            const double factor = a(i, k);
-            a(i, k) = 0.0;
-            a.row(i) -= factor * a.row(k);
-        }
-    }
-    for (int k = N - 1; k >= 0; --k) {
-        const int pivot = swapped[static_cast<std::size_t>(k)];
-        if (pivot != k) a.col(k).swap(a.col(pivot));
-    }
+    const Eigen::PartialPivLU<Eigen::Matrix<double, N, N>> lu(a);
+    const auto pivots = lu.matrixLU().diagonal().array();
+    if (!pivots.isFinite().all() || !(pivots.abs() > 0.0).all()) return false;
+    a = lu.inverse();
     return true;
 }
 
