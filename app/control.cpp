@@ -117,12 +117,6 @@ std::string report(const ControlOptions& options, const Model& model, const Pose
 void validate(const ControlOptions& options) {
     if (options.duration) requireIn(*options.duration, kSimulatedDurationRange, "duration");
     requireIn(options.rate, kControllerRateRange, "rate");
-    if (options.controller != "computed-torque" && options.controller != "pd") {
-        throw OptionError("controller", "'" + options.controller + "' is not one of computed-torque, pd");
-    }
-    if (options.measure != "pose" && options.measure != "encoders") {
-        throw OptionError("measure", "'" + options.measure + "' is not one of pose, encoders");
-    }
     requireIn(options.natural_frequency, kNaturalFrequencyRange, "natural_frequency");
     requireIn(options.payload_mass, kPayloadMassRange, "payload_mass");
     requireIn(options.payload_inertia, kPayloadInertiaRange, "payload_inertia");
@@ -135,7 +129,7 @@ void validate(const ControlOptions& options) {
     requireIn(options.noise_tau, Range{0.0, 1e6, "N"}, "noise_tau");
     requireIn(options.noise_u, Range{0.0, 1.0, "m"}, "noise_u");
     requireIn(options.noise_du, Range{0.0, 1e3, "m/s"}, "noise_du");
-    const bool encoders = options.measure == "encoders";
+    const bool encoders = options.measure == ControlMeasure::encoders;
     if (encoders && (options.noise_pose > 0.0 || options.noise_rate > 0.0)) {
         throw OptionError("measure",
                           "encoders measures u and du: use noise_u and noise_du, not noise_pose and noise_rate");
@@ -155,7 +149,7 @@ void validate(const ControlOptions& options) {
 ControlResult runControl(const ControlOptions& options, Observer& observer) {
     if (isSpatialRobot(options.robot)) return runSpatialControl(options, observer);
     validate(options);
-    const bool encoders = options.measure == "encoders";
+    const bool encoders = options.measure == ControlMeasure::encoders;
     const RobotDescription robot = loadRobot(options.robot);
     PlantKind plant_kind = options.plant;
     if (robot.motion == PlatformMotion::translation && plant_kind == PlantKind::simbody && !options.plant_given)
@@ -179,8 +173,7 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     payload.inertia = options.payload_inertia;
     if (options.payload_com.size() == 2) payload.com = Vector2(options.payload_com[0], options.payload_com[1]);
     const std::unique_ptr<RobotPlant> plant = makePlant(plant_kind, withPayload(robot, payload));
-    PoseController controller(model, options.controller == "pd" ? ControlLaw::pd : ControlLaw::computed_torque,
-                              taskCriticallyDamped(options.natural_frequency));
+    PoseController controller(model, options.controller, taskCriticallyDamped(options.natural_frequency));
     loop.saturation = !options.no_saturation;
     loop.noise_angle = options.noise_pose;
     loop.noise_position = options.noise_pose;

@@ -24,7 +24,7 @@ void refusePlanarOnly(const ControlOptions& options) {
     if (options.payload_mass > 0.0 || options.payload_inertia > 0.0 || !options.payload_com.empty()) {
         throw OptionError("payload_mass", std::string("a payload unknown to the controller") + planar);
     }
-    if (options.measure != "pose" || options.noise_u > 0.0 || options.noise_du > 0.0) {
+    if (options.measure != ControlMeasure::pose || options.noise_u > 0.0 || options.noise_du > 0.0) {
         throw OptionError("measure", std::string("the encoders and the tracker in the loop") + planar);
     }
     if (options.sensor_log || options.noise_tau > 0.0) {
@@ -37,7 +37,7 @@ std::string report(const ControlOptions& options, const spatial::Model& model, c
     const std::vector<std::string> names = model.coordinates();
     const int d = model.task_dimension;
     std::string text =
-        text::format("%s on the nocdyn plant, %s, %s, %g s at %g Hz (f_n = %g Hz)\n", options.controller.c_str(),
+        text::format("%s on the nocdyn plant, %s, %s, %g s at %g Hz (f_n = %g Hz)\n", name(options.controller),
                      io::terminalText(model.name).c_str(), io::terminalText(trajectory).c_str(), loop.duration,
                      loop.rate, options.natural_frequency);
     const auto errors = [&](const char* what, const spatial::TaskVector& e) {
@@ -84,7 +84,7 @@ ControlResult runSpatialControl(const ControlOptions& options, Observer& observe
         throw OptionError("rate", text::format("%g Hz is not above twice the trajectory's highest frequency (%g Hz)",
                                                loop.rate, trajectory.highestFrequency()));
     }
-    loop.law = options.controller == "pd" ? ControlLaw::pd : ControlLaw::computed_torque;
+    loop.law = options.controller;
     loop.natural_frequency = options.natural_frequency;
     loop.saturation = !options.no_saturation;
     loop.noise_position = options.noise_pose;

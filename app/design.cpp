@@ -61,7 +61,8 @@ std::string signature(const DesignOptions& options, const io::DesignFamily& fami
     for (const io::Parameter& p : family.fixed) s += " set " + p.name + "=" + text::shortest(p.value);
     for (const DesignRange& r : family.ranges)
         s += " vary " + r.name + "=" + text::shortest(r.lower) + ":" + text::shortest(r.upper);
-    s += " " + options.sweep + " " + std::to_string(options.samples) + " seed " + std::to_string(options.seed);
+    s.append(" ").append(nameOf(options.sweep));
+    s += " " + std::to_string(options.samples) + " seed " + std::to_string(options.seed);
     for (const DesignMetric& m : metrics) {
         s += ' ';
         s += m.name();
@@ -206,9 +207,6 @@ void validate(const DesignOptions& options) {
     if (options.robot.path.empty()) throw OptionError("robot", "a parametric robot file is required");
     if (options.vary.empty()) throw OptionError("vary", "at least one NAME=LOWER:UPPER is required");
     if (options.metric.empty()) throw OptionError("metric", "at least one metric is required");
-    if (options.sweep != "grid" && options.sweep != "random") {
-        throw OptionError("sweep", "'" + io::terminalText(options.sweep) + "': expected grid or random");
-    }
     if (options.samples < 1 || options.samples > kMaxDesigns) {
         throw OptionError("samples", std::to_string(options.samples) + " is outside [1, " +
                                          std::to_string(kMaxDesigns) + "] designs");
@@ -252,8 +250,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
                 throw OptionError("metric", "'" + io::terminalText(metrics[a].name()) + "' is asked twice");
         }
     }
-    const auto points = sweepPoints(family.ranges, options.sweep == "grid" ? SweepKind::grid : SweepKind::random,
-                                    options.samples, options.seed);
+    const auto points = sweepPoints(family.ranges, options.sweep, options.samples, options.seed);
     // What the whole family shares is checked on its first design (one that fails, the sweep
     // reports): whether it is two-DOF (motion: translation), whose metrics are over x, y, and
     // whether it declares compliance (a field present, not its value), without which

@@ -26,12 +26,12 @@ struct DesignOptions {
     /// designs.csv, pareto.csv, the figures and journal.csv (a stopped sweep resumes from it);
     /// empty: nothing is written and nothing resumed.
     std::string out_dir;
-    std::string sweep = "random";  ///< grid or random
-    std::size_t samples = 64;      ///< designs (grid: round(N^(1/d)) values per parameter)
-    std::uint64_t seed = 1;        ///< of the random sweep
-    int threads = 0;               ///< worker threads; 0: every core
-    std::optional<double> theta;   ///< workspace orientation [rad]; empty: each design's home
-    int resolution = 201;          ///< workspace grid points per side
+    SweepKind sweep = SweepKind::random;  ///< grid or random
+    std::size_t samples = 64;             ///< designs (grid: round(N^(1/d)) values per parameter)
+    std::uint64_t seed = 1;               ///< of the random sweep
+    int threads = 0;                      ///< worker threads; 0: every core
+    std::optional<double> theta;          ///< workspace orientation [rad]; empty: each design's home
+    int resolution = 201;                 ///< workspace grid points per side
     /// The trajectory of the force metrics (peak_force, rms_force, stroke, peak_reaction).
     std::string trajectory;
     std::optional<double> duration;  ///< [s]; empty: the trajectory's own, else 0.2

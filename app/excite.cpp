@@ -66,8 +66,6 @@ void validate(const ExciteOptions& o) {
     requireCount(o.random, 1, 1000000, "random");
     requireCount(o.samples, 0, 100000, "samples");
     requireCount(o.check_samples, 24, 1000000, "check_samples");
-    if (o.optimizer != "nelder-mead" && o.optimizer != "gradient")
-        throw OptionError("optimizer", "'" + o.optimizer + "' is not nelder-mead or gradient");
 }
 
 ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
@@ -97,7 +95,7 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     o.evaluations = options.evaluations;
     o.random_shapes = options.random;
     o.seed = options.seed;
-    o.optimizer = parseOptimizer(options.optimizer);
+    o.optimizer = options.optimizer;
     const auto total = static_cast<double>(options.evaluations);
     o.progress = [&observer, total](int done) {
         observer.progress(static_cast<double>(done), total, "evaluations");

@@ -7,6 +7,7 @@
 
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "nocdyn/sim/excitation.hpp"
 #include "nocdyn/trajectory.hpp"
 
 namespace nocdyn::app {
@@ -34,8 +35,8 @@ struct ExciteOptions {
     int samples = 0;
     int check_samples = 2000;
     unsigned seed = 1;
-    /// The refinement after the random search: "nelder-mead" or "gradient" (excitation.hpp).
-    std::string optimizer = "nelder-mead";
+    /// The refinement after the random search: nelder-mead or gradient (excitation.hpp).
+    ExcitationOptimizer optimizer = ExcitationOptimizer::nelder_mead;
     /// The trajectory file to write (none when empty).
     std::string output;
 };

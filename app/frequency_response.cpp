@@ -59,7 +59,8 @@ std::string bandwidthText(double bandwidth, double slope) {
 /// Whether the plant is the lumped compliant model: asked for, or (auto) wherever the robot file
 /// declares compliance.
 bool lumpedPlant(const FrequencyResponseOptions& options, const analysis::StiffnessModel& compliance) {
-    const bool lumped = options.compliance == "lumped" || (options.compliance == "auto" && compliance.any);
+    const bool lumped = options.compliance == PlantCompliance::lumped ||
+                        (options.compliance == PlantCompliance::automatic && compliance.any);
     if (lumped && !compliance.any) {
         throw OptionError("compliance", "the robot file declares no joint or drive stiffness and no elastic link");
     }
@@ -101,8 +102,8 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
         throw Error("operating point: " + describe(status, model));
     }
     const ActuatorVector tau = data.tau;
-    const bool acceleration = options.output_kind == "acceleration";
-    const LinearOutput kind = acceleration ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables;
+    const bool acceleration = options.output_kind == LinearOutput::platform_acceleration;
+    const LinearOutput kind = options.output_kind;
     const analysis::StiffnessModel compliance(model);
     const bool lumped = lumpedPlant(options, compliance);
     StateSpace system;
@@ -301,9 +302,6 @@ void validate(const FrequencyResponseOptions& options) {
         throw OptionError("rate", "expected 3 values dx, dy, dtheta (2, dx, dy, for a two-DOF robot)");
     for (const double v : options.pose) requireIn(v, kLengthRange, "pose");
     for (const double v : options.rate) requireIn(v, Range{-1e6, 1e6, "m/s or rad/s"}, "rate");
-    if (options.output_kind != "acceleration" && options.output_kind != "actuators") {
-        throw OptionError("output_kind", "'" + options.output_kind + "' is not one of acceleration, actuators");
-    }
     requireIn(options.f_min, kResponseFrequencyRange, "f_min");
     requireIn(options.f_max, kResponseFrequencyRange, "f_max");
     if (!(options.f_max > options.f_min)) throw OptionError("f_max", "must be above f_min");
@@ -314,9 +312,6 @@ void validate(const FrequencyResponseOptions& options) {
     requireIn(options.controller_rate, kShakeRateRange, "controller_rate");
     requireIn(options.natural_frequency, kShakeNaturalFrequencyRange, "natural_frequency");
     requireIn(options.amplification, kAmplificationRange, "amplification");
-    if (options.compliance != "auto" && options.compliance != "rigid" && options.compliance != "lumped") {
-        throw OptionError("compliance", "'" + options.compliance + "' is not one of auto, rigid, lumped");
-    }
     // the controller's settings do nothing to the open-loop plant: set, they are refused
     const FrequencyResponseOptions defaults;
     if (!options.closed_loop) {
@@ -359,8 +354,8 @@ FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& opt
             throw OptionError("closed_loop",
                               "the shake-table loop of a two-DOF robot (motion: translation) is not built; its "
                               "open-loop plant is (without `closed_loop`)");
-        if (options.compliance == "lumped" ||
-            (options.compliance == "auto" && analysis::StiffnessModel(Model(robot)).any))
+        if (options.compliance == PlantCompliance::lumped ||
+            (options.compliance == PlantCompliance::automatic && analysis::StiffnessModel(Model(robot)).any))
             throw OptionError("compliance",
                               "the lumped compliant model of a two-DOF robot (motion: translation) is not built: "
                               "give `compliance` rigid for its rigid plant");

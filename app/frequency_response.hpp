@@ -12,12 +12,16 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "app/envelope.hpp"
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "nocdyn/analysis/linearization.hpp"
+#include "nocdyn/choice.hpp"
 #include "render/plot.hpp"
 
 namespace nocdyn::app {
@@ -28,21 +32,29 @@ inline constexpr Range kResponseFrequencyRange{1e-9, 1e9, "Hz"};
 /// The closed loop's lowest frequency, as a fraction of its natural_frequency.
 inline constexpr double kClosedLoopLowestFraction = 1e-5;
 
+/// The plant's model: the lumped compliant one wherever the robot file declares compliance
+/// (automatic), the rigid one, or the lumped one (the file must declare compliance).
+enum class PlantCompliance { automatic, rigid, lumped };
+
+inline constexpr std::array<Choice<PlantCompliance>, 3> kPlantCompliances{
+    {{PlantCompliance::automatic, "auto"}, {PlantCompliance::rigid, "rigid"}, {PlantCompliance::lumped, "lumped"}}};
+[[nodiscard]] constexpr std::span<const Choice<PlantCompliance>> choices(PlantCompliance) { return kPlantCompliances; }
+
 struct FrequencyResponseOptions {
     RobotSource robot;
     /// Operating pose [x, y, theta] [m, m, rad]; empty: the robot's home.
     std::vector<double> pose;
     /// Operating pose rate [dx, dy, dtheta] [m/s, m/s, rad/s]; empty: at rest (closed_loop: empty).
     std::vector<double> rate;
-    /// "acceleration" (the platform's, per axis) or "actuators" (the actuator variables).
-    std::string output_kind = "acceleration";
-    /// The open-loop plant's model: "auto" (the compliant one when the robot file declares
-    /// joint or drive stiffness or elastic links, else the rigid one), "rigid", or "lumped" (the
+    /// acceleration (the platform's, per axis) or actuators (the actuator variables).
+    LinearOutput output_kind = LinearOutput::platform_acceleration;
+    /// The open-loop plant's model: auto (the compliant one when the robot file declares
+    /// joint or drive stiffness or elastic links, else the rigid one), rigid, or lumped (the
     /// compliant lumped model, linearizeCompliant; the file must declare compliance). Its inputs
     /// are then each drive's commanded position (a drive with a stiffness, or locked) or force
     /// (stiffness 0). The closed loop's plant likewise (LoopPlant::lumped: the drives' set points
     /// follow the rigid image of the forces' motion).
-    std::string compliance = "auto";
+    PlantCompliance compliance = PlantCompliance::automatic;
     double f_min = 1.0, f_max = 1000.0;  ///< [Hz], in kResponseFrequencyRange, f_min < f_max
     int points = 200;                    ///< log-spaced frequencies (kPointsRange)
     bool closed_loop = false;

@@ -78,7 +78,7 @@ PlantFactory plantFactory(const ShakeOptions& o) {
 }
 
 /// The pose coordinate `record` drives, in the replay's order [theta, x, y]: 1 (x) or 2 (y).
-std::size_t recordAxis(const ShakeOptions& options) { return options.axis == "y" ? 2 : 1; }
+std::size_t recordAxis(const ShakeOptions& options) { return options.axis == ShakeAxis::y ? 2 : 1; }
 
 /// The acceleration series of the axis `record` drives.
 std::vector<double>& recordTarget(GroundRecord& record, const ShakeOptions& options) {
@@ -119,7 +119,8 @@ std::string verdictLine(const ShakeSuiteRow& row, const ShakeOptions& options) {
     std::string line = text::format(
         "verdict (%s, against the goals: RMS <= %.3g %%, |peak| <= %.3g %%, spectrum within +-10 %% at >= %.3g "
         "%% of the counted periods, every limit <= 100 %%): ",
-        options.axis.c_str(), options.max_rms_percent, options.max_peak_percent, options.min_spectrum_percent);
+        std::string(nameOf(options.axis)).c_str(), options.max_rms_percent, options.max_peak_percent,
+        options.min_spectrum_percent);
     if (row.pass) return line + "pass\n";
     line += "FAIL (";
     for (std::size_t i = 0; i < missed.size(); ++i) line += (i ? "; " : "") + missed[i];
@@ -135,8 +136,9 @@ std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::s
         "%zu records on %s%s, controller %s, %zu at a time; pass: RMS <= %.3g %%, |peak| <= %.3g %%, "
         "spectrum within +-10 %% at >= %.3g %% of the counted periods, every limit <= 100 %%\n\n",
         r.rows.size(), std::string(nameOf(options.plant)).c_str(),
-        options.axis == "y" ? ", each driving and scored on y" : "", std::string(nameOf(options.controller)).c_str(),
-        workers, options.max_rms_percent, options.max_peak_percent, options.min_spectrum_percent);
+        options.axis == ShakeAxis::y ? ", each driving and scored on y" : "",
+        std::string(nameOf(options.controller)).c_str(), workers, options.max_rms_percent, options.max_peak_percent,
+        options.min_spectrum_percent);
     out << line << "sensors: " << sensing << "\n\n"
         << "| record | folder | L | A | RMS error | peak error | spectrum within +-10 % | worst limit use (binding) | "
            "result |\n|---|---|---|---|---|---|---|---|---|\n";
@@ -162,7 +164,7 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
     std::vector<std::string> notes;
     for (std::size_t i = 0; i < records.size(); ++i) {
         if (records[i].files.size() > 1) {
-            if (options.axis == "y") throw OptionError("axis", records[i].label + ": " + kComponentsDriveBoth);
+            if (options.axis == ShakeAxis::y) throw OptionError("axis", records[i].label + ": " + kComponentsDriveBoth);
             inputs[i] = readComponents(records[i], options.window, notes, options.x_azimuth);
         } else {
             recordTarget(inputs[i], options) = readAxis(records[i].label, options.window, inputs[i].dt, false);
@@ -309,9 +311,7 @@ void refuseSuiteOptions(const ShakeOptions& o) {
 
 void validate(const ShakeOptions& o) {
     if (o.record.empty()) throw OptionError("record", "at least one AT2 record is required");
-    if (o.axis != "x" && o.axis != "y")
-        throw OptionError("axis", "expected x or y, got '" + io::terminalText(o.axis) + "'");
-    if (o.axis == "y" && !o.record_y.empty())
+    if (o.axis == ShakeAxis::y && !o.record_y.empty())
         throw OptionError("record_y", "the record already drives y (`axis` y): give the x record as `record`");
     requireIn(o.highpass, kHighpassRange, "highpass");
     requireIn(o.margin, kShareRange, "margin");
@@ -396,7 +396,8 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
         // the components of one record: its horizontals drive x and y
         if (!options.record_y.empty())
             throw OptionError("record_y", records.front().label + ": " + kComponentsDriveBoth);
-        if (options.axis == "y") throw OptionError("axis", records.front().label + ": " + kComponentsDriveBoth);
+        if (options.axis == ShakeAxis::y)
+            throw OptionError("axis", records.front().label + ": " + kComponentsDriveBoth);
         std::vector<std::string> notes;
         record = readComponents(records.front(), options.window, notes, options.x_azimuth);
         for (const std::string& note : notes) observer.warning(note);

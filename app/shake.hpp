@@ -4,12 +4,15 @@
 // "_percent" in its name (options, shake.json, the text and the suite's table alike).
 #pragma once
 
+#include <array>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "nocdyn/choice.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/sim/shake_replay.hpp"
 
@@ -35,6 +38,12 @@ inline constexpr Range kAccuracyRange{1e-14, 1e-3, ""};
 inline constexpr int kMaxIterations = 20;
 inline constexpr unsigned kMaxJobs = 256;
 
+/// The pose axis a single record drives (and is scored on).
+enum class ShakeAxis { x, y };
+
+inline constexpr std::array<Choice<ShakeAxis>, 2> kShakeAxes{{{ShakeAxis::x, "x"}, {ShakeAxis::y, "y"}}};
+[[nodiscard]] constexpr std::span<const Choice<ShakeAxis>> choices(ShakeAxis) { return kShakeAxes; }
+
 /// The replay's choices (ShakeReplayOptions: fit, plant, controller, sensors, payload, drive
 /// iteration, with their defaults) and the command's own: the records, the window, the suite's
 /// workers and goals, the output folder.
@@ -43,7 +52,7 @@ struct ShakeOptions : ShakeReplayOptions {
     /// AT2 records driving `axis` (values in g); several, or a folder (its *.AT2 files): a suite.
     std::vector<std::string> record;
     /// The pose axis `record` drives: x (the default) or y (then `record_y` is not given).
-    std::string axis = "x";
+    ShakeAxis axis = ShakeAxis::x;
     std::string record_y;      ///< AT2 record driving y (values in g), same time step
     std::string record_theta;  ///< AT2-format file driving theta, values in rad/s^2
     /// The time scale as a user writes it (the command line's and Python's `time_scale`): "auto"

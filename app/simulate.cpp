@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <sstream>
 #include <vector>
 
@@ -170,16 +169,6 @@ InitialState initialState(const Model& model, const io::Table& table, const std:
 
 }  // namespace
 
-Interpolation interpolationNamed(const std::string& name) {
-    const std::map<std::string, Interpolation> interpolations{
-        {"hold", Interpolation::hold}, {"linear", Interpolation::linear}, {"cubic", Interpolation::cubic}};
-    const auto found = interpolations.find(name);
-    if (found == interpolations.end()) {
-        throw OptionError("interpolation", "'" + name + "' is not one of hold, linear, cubic");
-    }
-    return found->second;
-}
-
 std::string summaryLine(const SimulateResult& result) {
     std::ostringstream out;
     out << "simulated " << result.duration << " s from the " << result.origin << " (" << result.interpolation
@@ -189,7 +178,6 @@ std::string summaryLine(const SimulateResult& result) {
 }
 
 void validate(const SimulateOptions& options) {
-    (void)interpolationNamed(options.interpolation);
     if (options.duration) requireIn(*options.duration, kSimulatedDurationRange, "duration");
     requireIn(options.rate, kRateRange, "rate");
     requireIn(options.atol, kAbsoluteToleranceRange, "atol");
@@ -213,10 +201,9 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
     const std::string source = options.forces_table ? std::string("forces") : options.forces;
     // a file is read row by row into flat storage: the header and the first row (the initial state) kept
     io::Table first;
-    ForceSignal forces =
-        options.forces_table
-            ? io::forcesFromTable(*options.forces_table, n, interpolationNamed(options.interpolation), source)
-            : io::forcesFromCsvFile(options.forces, n, interpolationNamed(options.interpolation), first);
+    ForceSignal forces = options.forces_table
+                             ? io::forcesFromTable(*options.forces_table, n, options.interpolation, source)
+                             : io::forcesFromCsvFile(options.forces, n, options.interpolation, first);
     const io::Table& head = options.forces_table ? *options.forces_table : first;
     const double t0 = forces.firstTime();
     const double duration = options.duration ? *options.duration : forces.lastTime() - t0;

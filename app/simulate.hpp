@@ -30,7 +30,7 @@ struct SimulateOptions {
     std::optional<io::Table> forces_table;
     RobotSource robot;
     /// Forces between samples: hold, linear or cubic.
-    std::string interpolation = "cubic";
+    Interpolation interpolation = Interpolation::cubic;
     /// Seconds to simulate; empty: the span of the forces (kSimulatedDurationRange).
     std::optional<double> duration;
     double rate = 10000.0;   ///< output samples per second (kRateRange)
@@ -63,9 +63,6 @@ struct SimulateResult {
 
 /// Throws OptionError for an option outside its range or choices.
 void validate(const SimulateOptions& options);
-
-/// The interpolation named hold, linear or cubic; throws OptionError("interpolation") else.
-[[nodiscard]] Interpolation interpolationNamed(const std::string& name);
 
 /// A spatial robot (space: spatial) is simulated by runSpatialSimulate (app/simulate_spatial.hpp).
 /// Rows at t0 + k / rate, k = 0..round(duration * rate) - 1, and at t0 + duration, into `table`

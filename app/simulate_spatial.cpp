@@ -130,7 +130,7 @@ SimulateResult runSpatialSimulate(const SimulateOptions& options, TableSink& tab
     const int n = model.actuators, d = model.task_dimension;
     const std::string source = options.forces_table ? std::string("forces") : options.forces;
     io::Table first;
-    const Interpolation interpolation = interpolationNamed(options.interpolation);
+    const Interpolation interpolation = options.interpolation;
     ForceSignal forces = options.forces_table ? io::forcesFromTable(*options.forces_table, n, interpolation, source)
                                               : io::forcesFromCsvFile(options.forces, n, interpolation, first);
     const io::Table& head = options.forces_table ? *options.forces_table : first;

@@ -18,7 +18,7 @@ namespace nocdyn::app {
 ValidateResult runValidate(const ValidateOptions& options, Observer& observer) {
     if (isSpatialRobot(options.robot)) return runSpatialValidate(options, observer);
     validate(static_cast<const SamplingOptions&>(options));
-    if (options.engine != "both")
+    if (options.engine != ValidateEngine::both)
         throw OptionError("engine", "a planar robot is compared with both engines: give --engine both or leave it out");
     const RobotDescription robot = loadRobot(options.robot);
     const PoseTrajectory trajectory =

@@ -2,21 +2,31 @@
 // each engine's model generated from the same robot file (built with both engines only).
 #pragma once
 
+#include <array>
 #include <optional>
+#include <span>
 #include <string>
 
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "nocdyn/choice.hpp"
 #include "nocdyn/io/csv.hpp"
 
 namespace nocdyn::app {
 
+/// The engines a robot's forces are compared with: Simbody and MuJoCo, or the one named.
+enum class ValidateEngine { both, simbody, mujoco };
+
+inline constexpr std::array<Choice<ValidateEngine>, 3> kValidateEngines{
+    {{ValidateEngine::both, "both"}, {ValidateEngine::simbody, "simbody"}, {ValidateEngine::mujoco, "mujoco"}}};
+[[nodiscard]] constexpr std::span<const Choice<ValidateEngine>> choices(ValidateEngine) { return kValidateEngines; }
+
 struct ValidateOptions : SamplingOptions {
     ValidateOptions() { rate = 1000.0; }
     RobotSource robot;
-    /// The engines a spatial robot is compared with: "both" (Simbody and MuJoCo), "simbody" or
-    /// "mujoco". A planar robot is always compared with both (only "both" is taken).
-    std::string engine = "both";
+    /// The engines a spatial robot is compared with: both (Simbody and MuJoCo), simbody or
+    /// mujoco. A planar robot is always compared with both (only both is taken).
+    ValidateEngine engine = ValidateEngine::both;
 };
 
 struct ValidateResult {

@@ -18,10 +18,10 @@
 
 namespace nocdyn::app {
 
-std::vector<std::string> spatialValidateEngines(const std::string& engine) {
-    if (engine == "both") return {"simbody", "mujoco"};
-    if (engine == "simbody" || engine == "mujoco") return {engine};
-    throw OptionError("engine", "`" + engine + "`: expected both, simbody or mujoco");
+std::vector<std::string> spatialValidateEngines(ValidateEngine engine) {
+    if (engine == ValidateEngine::both)
+        return {std::string(nameOf(ValidateEngine::simbody)), std::string(nameOf(ValidateEngine::mujoco))};
+    return {std::string(nameOf(engine))};
 }
 
 std::vector<std::string> spatialValidateColumns(const spatial::Model& model, const std::vector<std::string>& engines) {

@@ -15,9 +15,8 @@
 
 namespace nocdyn::app {
 
-/// The engines of options.engine: "both" is {"simbody", "mujoco"}, "simbody" or "mujoco" itself;
-/// OptionError("engine") for any other.
-[[nodiscard]] std::vector<std::string> spatialValidateEngines(const std::string& engine);
+/// The names of options.engine's engines: both is {"simbody", "mujoco"}, simbody or mujoco itself.
+[[nodiscard]] std::vector<std::string> spatialValidateEngines(ValidateEngine engine);
 
 /// The table's columns: t, the pose coordinates (x, y, z and, for motion full, roll, pitch,
 /// yaw), u1..un, tau1..taun (nocdyn's), then <engine>_tau1..n of each engine and

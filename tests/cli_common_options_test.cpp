@@ -289,6 +289,31 @@ TEST(CommonOptions, OptionErrorsPointToTheCommandsHelp) {
     }
 }
 
+// Every choice takes exactly its table's words, in the table's order; another word is refused
+// naming them all, and the default is shown in the help.
+TEST(CommonOptions, EveryChoiceTakesItsTablesWordsAndRefusesAnother) {
+    const struct {
+        std::string command, option, words, fallback;
+    } cases[] = {
+        {"control --trajectory paper1", "--controller", "computed-torque,pd", "computed-torque"},
+        {"control --trajectory paper1", "--measure", "pose,encoders", "pose"},
+        {"design", "--sweep", "grid,random", "random"},
+        {"excite", "--optimizer", "nelder-mead,gradient", "nelder-mead"},
+        {"frequency-response", "--output-kind", "acceleration,actuators", "acceleration"},
+        {"frequency-response", "--compliance", "auto,rigid,lumped", "auto"},
+        {"shake", "--axis", "x,y", "x"},
+        {"simulate", "--interpolation", "hold,linear,cubic", "cubic"},
+        {"validate", "--engine", "both,simbody,mujoco", "both"},
+    };
+    for (const auto& c : cases) {
+        const CliResult r = runCli(c.command + " " + c.option + " bogus");
+        EXPECT_EQ(r.exit_code, 2) << c.option << "\n" << r.err;
+        EXPECT_TRUE(has(r.err, c.option + ": bogus not in {" + c.words + "}")) << c.option << "\n" << r.err;
+        const CliResult help = runCli(c.command.substr(0, c.command.find(' ')) + " --help");
+        EXPECT_TRUE(has(help.out, c.option + " TEXT:{" + c.words + "}=" + c.fallback)) << c.option;
+    }
+}
+
 // --- a bare `nocdyn` ----------------------------------------------------------------------------
 
 TEST(CommonOptions, NoArgumentsShowTheHelpOnStandardErrorAndExit2) {

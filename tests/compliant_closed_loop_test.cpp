@@ -222,7 +222,7 @@ TEST(CompliantClosedLoop, TheCommandsSummaryGivesTheBandPerAxis) {
         EXPECT_NE(r.summary.find(text::format("%.4f", r.band_end[k])), std::string::npos) << r.summary;
     }
     // --compliance rigid: the rigid loop, said so, flat within the limit over the grid
-    options.compliance = "rigid";
+    options.compliance = app::PlantCompliance::rigid;
     const app::FrequencyResponseResult rigid = app::runFrequencyResponse(options, observer);
     EXPECT_FALSE(rigid.lumped);
     EXPECT_NE(rigid.summary.find("# rigid plant"), std::string::npos);

@@ -291,7 +291,7 @@ TEST(TwoDofCommands, FrequencyResponseOverXYAtRest) {
         }
     }
     EXPECT_NE(acc.summary.find("# operating point [x, y] = [0, 0.35]"), std::string::npos) << acc.summary;
-    options.output_kind = "actuators";
+    options.output_kind = LinearOutput::actuator_variables;
     const app::FrequencyResponseResult u = app::runFrequencyResponse(options, app::silent());
     const Eigen::Matrix2d G = J * D;  // u = A_t ddp_t / s^2
     for (Eigen::Index k = 0; k < 3; ++k) {
@@ -303,7 +303,7 @@ TEST(TwoDofCommands, FrequencyResponseOverXYAtRest) {
         }
     }
     // theta is no coordinate; the shake-table loop is not built for a two-DOF robot
-    options.output_kind = "acceleration";
+    options.output_kind = LinearOutput::platform_acceleration;
     options.pose = {0.0, 0.3, 0.0};
     EXPECT_THROW((void)app::runFrequencyResponse(options, app::silent()), app::OptionError);
     options.pose = {0.02, 0.3};
@@ -362,7 +362,7 @@ TEST(TwoDofCommands, ControlTracksACircle) {
         options.natural_frequency = 20.0;
         const app::ControlResult ct = app::runControl(options, app::silent());
         const double ct_rms = std::hypot(ct.loop.pose_rms_error(1), ct.loop.pose_rms_error(2));
-        options.controller = "pd";
+        options.controller = ControlLaw::pd;
         const app::ControlResult pd = app::runControl(options, app::silent());
         const double pd_rms = std::hypot(pd.loop.pose_rms_error(1), pd.loop.pose_rms_error(2));
         std::printf("%s: RMS position error computed torque %.4g m, PD %.4g m; theta's %.3g\n", c.robot.c_str(), ct_rms,
@@ -376,8 +376,8 @@ TEST(TwoDofCommands, ControlTracksACircle) {
         EXPECT_EQ(ct.table.rows.front().size(), ct.table.columns.size());
         EXPECT_EQ(ct.text.find("theta"), std::string::npos) << ct.text;
         // through the encoders: the direct kinematics of the two-DOF robot tracks the pose
-        options.controller = "computed-torque";
-        options.measure = "encoders";
+        options.controller = ControlLaw::computed_torque;
+        options.measure = app::ControlMeasure::encoders;
         const app::ControlResult enc = app::runControl(options, app::silent());
         EXPECT_LT(std::hypot(enc.loop.pose_rms_error(1), enc.loop.pose_rms_error(2)), c.ct_rms);
         EXPECT_LT(enc.loop.measurement_peak_error.tail<2>().maxCoeff(), 1e-12);  // measured: 2e-16 m

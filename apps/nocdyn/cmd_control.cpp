@@ -58,9 +58,7 @@ void addControlCommand(CLI::App& app) {
                      "x,y,theta or ax,ay,alpha)")
         ->required();
     addRobotOption(*command, options->robot);
-    command->add_option("--controller", options->controller, "computed-torque or pd")
-        ->check(CLI::IsMember({"computed-torque", "pd"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--controller", options->controller, "computed-torque or pd");
     CLI::Option* plant = addPlantOption(*command, options->plant);
     command->add_option("--rate", options->rate, "Controller rate [Hz]")
         ->check(within(app::kControllerRateRange))
@@ -92,14 +90,11 @@ void addControlCommand(CLI::App& app) {
     command
         ->add_option("--noise-tau", options->noise_tau, "Std. dev. of the force measurement noise in --log [N or N m]")
         ->check(finiteIn(0.0, 1e6, "N"));
-    command
-        ->add_option("--measure", options->measure,
-                     "What the controller measures. pose: the plant's pose and rate (a pose\n"
-                     "sensor, + --noise-pose, --noise-rate); encoders: u and du (+ --noise-u, --noise-du) as a robot\n"
-                     "without a pose sensor, the pose by the direct-kinematics tracker (the working mode, from the\n"
-                     "reference's start) and dp/dt from A_p dp/dt = du (least squares when redundant)")
-        ->check(CLI::IsMember({"pose", "encoders"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--measure", options->measure,
+                    "What the controller measures. pose: the plant's pose and rate (a pose\n"
+                    "sensor, + --noise-pose, --noise-rate); encoders: u and du (+ --noise-u, --noise-du) as a robot\n"
+                    "without a pose sensor, the pose by the direct-kinematics tracker (the working mode, from the\n"
+                    "reference's start) and dp/dt from A_p dp/dt = du (least squares when redundant)");
     command
         ->add_option("--log", options->log,
                      "The experiment's log as the sensors see it, CSV t,u1..un,tau1..taun "

@@ -73,9 +73,7 @@ void addDesignCommand(CLI::App& app) {
                         ->check(nonEmptyPath());
     auto* old_out = command->add_option("--out", options->out_dir)->group("")->check(nonEmptyPath());  // old spelling
 
-    command->add_option("--sweep", options->sweep, "grid or random")
-        ->check(CLI::IsMember({"grid", "random"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--sweep", options->sweep, "grid or random");
     command->add_option("--samples", options->samples, "Designs (grid: round(N^(1/d)) values per parameter)")
         ->check(CLI::Range(std::size_t{1}, kMaxDesigns))
         ->capture_default_str();

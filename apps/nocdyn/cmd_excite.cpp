@@ -89,12 +89,9 @@ void addExciteCommand(CLI::App& app) {
         ->check(CLI::Range(24, 1000000))
         ->capture_default_str();
     command->add_option("--seed", options->seed, "Seed of the random search")->capture_default_str();
-    command
-        ->add_option("--optimizer", options->optimizer,
-                     "Refinement after the random search: nelder-mead (derivative-free) or gradient (descent on the "
-                     "exact gradient of the log condition number, from the inverse dynamics' derivatives)")
-        ->check(CLI::IsMember({"nelder-mead", "gradient"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--optimizer", options->optimizer,
+                    "Refinement after the random search: nelder-mead (derivative-free) or gradient (descent on the "
+                    "exact gradient of the log condition number, from the inverse dynamics' derivatives)");
     command->callback([options, output, old_output] {
         // either spelling gives the required output (a parse error, exit 2, without one)
         if (output->count() + old_output->count() == 0) throw CLI::RequiredError("--output");

@@ -70,16 +70,11 @@ void addFrequencyResponseCommand(CLI::App& app) {
         ->add_option("--rate", options->rate,
                      "Operating pose rate DX DY DTHETA [m/s, m/s, rad/s], DX DY of a two-DOF robot (default: at rest)")
         ->expected(2, 3);
-    command->add_option("--output-kind", options->output_kind, "What the output is")
-        ->check(CLI::IsMember({"acceleration", "actuators"}))
-        ->capture_default_str();
-    command
-        ->add_option("--compliance", options->compliance,
-                     "The plant's model: auto (lumped when the robot file declares compliance, else rigid), rigid,\n"
-                     "or lumped (inputs: commanded drive positions uc [m or rad], forces tau for stiffness-0 drives;\n"
-                     "with --closed-loop the loop's plant)")
-        ->check(CLI::IsMember({"auto", "rigid", "lumped"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--output-kind", options->output_kind, "What the output is");
+    addChoiceOption(*command, "--compliance", options->compliance,
+                    "The plant's model: auto (lumped when the robot file declares compliance, else rigid), rigid,\n"
+                    "or lumped (inputs: commanded drive positions uc [m or rad], forces tau for stiffness-0 drives;\n"
+                    "with --closed-loop the loop's plant)");
     command->add_option("--f-min", options->f_min, "Lowest frequency [Hz]")
         ->check(within(app::kResponseFrequencyRange))
         ->capture_default_str();

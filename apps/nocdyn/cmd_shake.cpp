@@ -68,11 +68,8 @@ void addShakeCommand(CLI::App& app) {
             "one record: its horizontals drive x and y (a six-DOF table's suite: three components per record, x, y, z)")
         ->required()
         ->check(CLI::ExistingPath);
-    command
-        ->add_option("--axis", options->axis,
-                     "The axis --record drives: x, or y (a two-DOF table's or any robot's; the scores are that axis's)")
-        ->check(CLI::IsMember({"x", "y"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--axis", options->axis,
+                    "The axis --record drives: x, or y (a two-DOF table's or any robot's; the scores are that axis's)");
     command->add_option("--record-y", options->record_y, "AT2 record driving y (values in g), same time step")
         ->check(CLI::ExistingFile);
     command

@@ -58,12 +58,9 @@ void addSimulateCommand(CLI::App& app) {
     command->add_option("--forces", options->forces, "CSV file with columns t,tau1..taun [s, N or N m]")
         ->required()
         ->check(CLI::ExistingFile);
-    command
-        ->add_option("--interpolation", options->interpolation,
-                     "Forces between samples: hold (zero-order, as a DAC), linear, or cubic (C2 spline through\n"
-                     "uniformly spaced samples; fewer than 5 samples are interpolated linearly)")
-        ->check(CLI::IsMember({"hold", "linear", "cubic"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--interpolation", options->interpolation,
+                    "Forces between samples: hold (zero-order, as a DAC), linear, or cubic (C2 spline through\n"
+                    "uniformly spaced samples; fewer than 5 samples are interpolated linearly)");
     command->add_option("--duration", options->duration, "Seconds to simulate [default: the span of the force file]")
         ->check(within(app::kSimulatedDurationRange));
     command->add_option("--rate", options->rate, "Output samples per second")

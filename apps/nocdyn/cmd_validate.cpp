@@ -60,11 +60,8 @@ void addValidateCommand(CLI::App& app) {
     // required unless the robot is a spatial one, then only read, checked and summarised (run)
     command->get_option("--trajectory")->required(false);
     addRobotOption(*command, options->robot);
-    command
-        ->add_option("--engine", options->engine,
-                     "Engines a spatial robot is compared with: both, simbody or mujoco (a planar robot: both)")
-        ->check(CLI::IsMember({"both", "simbody", "mujoco"}))
-        ->capture_default_str();
+    addChoiceOption(*command, "--engine", options->engine,
+                    "Engines a spatial robot is compared with: both, simbody or mujoco (a planar robot: both)");
     command->add_option("--output,-o", options->output, "CSV file to write [default: stdout]")->check(nonEmptyPath());
     command->callback([options] { validate_command::run(*options); });
 }

@@ -8,9 +8,11 @@
 #include <pybind11/stl.h>
 
 #include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "app/frequency_response.hpp"
 #include "arrays.hpp"
 #include "expose.hpp"
 #include "nocdyn/analysis/linearization.hpp"
@@ -101,6 +103,14 @@ py::tuple actuatorDerivativesSample(const Robot& robot, const py::handle& p, con
                           poseColumns(d.du_dp), poseColumns(d.ddu_p), poseColumns(d.ddu_dp), poseColumns(d.ddu_ddp));
 }
 
+/// "field: expected a, b or c, got 'word'" for a word E's table does not list.
+template <class E>
+std::string unknownChoice(const char* field, const std::string& word) {
+    std::string message = field;
+    message.append(": expected ").append(choiceList<E>()).append(", got '").append(word).append("'");
+    return message;
+}
+
 /// The linearised model at (p, dp, tau): (A, B, C, D, inputs, model), the output "acceleration"
 /// or "actuators"; compliance "auto" (the lumped compliant model, linearizeCompliant, when the
 /// robot file declares compliance), "rigid" or "lumped" as `nocdyn frequency-response
@@ -109,25 +119,22 @@ py::tuple actuatorDerivativesSample(const Robot& robot, const py::handle& p, con
 py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::handle& dp, const py::handle& tau,
                           const std::string& output, const std::string& compliance) {
     const Model& model = *robot.model;
-    if (output != "acceleration" && output != "actuators") {
-        throw Error("output: expected 'acceleration' or 'actuators', got '" + output + "'");
-    }
-    if (compliance != "auto" && compliance != "rigid" && compliance != "lumped") {
-        throw Error("compliance: expected 'auto', 'rigid' or 'lumped', got '" + compliance + "'");
-    }
+    const std::optional<LinearOutput> kind = choiceNamed<LinearOutput>(output);
+    if (!kind) throw Error(unknownChoice<LinearOutput>("output", output));
+    const std::optional<app::PlantCompliance> plant = choiceNamed<app::PlantCompliance>(compliance);
+    if (!plant) throw Error(unknownChoice<app::PlantCompliance>("compliance", compliance));
     const analysis::StiffnessModel stiffness(model);
-    const bool lumped = compliance == "lumped" || (compliance == "auto" && stiffness.any);
+    const bool lumped =
+        *plant == app::PlantCompliance::lumped || (*plant == app::PlantCompliance::automatic && stiffness.any);
     if (lumped && !stiffness.any) {
         throw Error("compliance: the robot file declares no joint or drive stiffness and no elastic link");
     }
-    const LinearOutput kind =
-        output == "acceleration" ? LinearOutput::platform_acceleration : LinearOutput::actuator_variables;
     const Pose p3 = vector3(p, "p");
     const Twist dp3 = vector3(dp, "dp");
     const ActuatorVector tau_n = actuatorVector(model, tau, "tau");
     StateSpace ss;
-    const Status status = lumped ? linearizeCompliant(model, stiffness, *robot.data, p3, dp3, tau_n, kind, ss)
-                                 : linearize(model, *robot.data, p3, dp3, tau_n, kind, ss);
+    const Status status = lumped ? linearizeCompliant(model, stiffness, *robot.data, p3, dp3, tau_n, *kind, ss)
+                                 : linearize(model, *robot.data, p3, dp3, tau_n, *kind, ss);
     if (!status) throw Error(describe(status, model));
     if (!(ss.A.allFinite() && ss.B.allFinite() && ss.C.allFinite() && ss.D.allFinite())) {
         throw Error("the linearised model is not finite at this operating point (the input is too large)");
@@ -137,7 +144,7 @@ py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::han
     // the state [p; dp] and the output ddp in Python's pose order; a two-DOF robot's state
     // [x, y, dx/dt, dy/dt] is in that order already
     const bool pose = model.task_dimension == 3;
-    const bool pose_output = pose && output == "acceleration";
+    const bool pose_output = pose && *kind == LinearOutput::platform_acceleration;
     return py::make_tuple(toArray(inPythonOrder(ss.A, pose, pose)), toArray(inPythonOrder(ss.B, pose, false)),
                           toArray(inPythonOrder(ss.C, pose_output, pose)),
                           toArray(inPythonOrder(ss.D, pose_output, false)), py::tuple(inputs),

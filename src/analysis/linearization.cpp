@@ -17,10 +17,6 @@
 
 namespace nocdyn {
 
-const char* name(LinearOutput output) {
-    return output == LinearOutput::platform_acceleration ? "acceleration" : "actuators";
-}
-
 const char* name(LinearInput input) { return input == LinearInput::force ? "tau" : "uc"; }
 
 Status linearize(const Model& model, Data& data, const Pose& p, const Twist& dp, const ActuatorVector& tau,

@@ -157,8 +157,6 @@ TaskGains taskCriticallyDamped(double natural_frequency) {
     return {Vector3::Constant(w * w), Vector3::Constant(2.0 * w)};
 }
 
-const char* name(ControlLaw law) { return law == ControlLaw::computed_torque ? "computed-torque" : "pd"; }
-
 PoseController::PoseController(const Model& model, ControlLaw law, const TaskGains& gains)
     : model_(model), data_(model_), law_(law), gains_(gains) {
     effort_.resize(model_.actuators);

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <random>
 #include <utility>
 
@@ -588,14 +589,13 @@ private:
 
 }  // namespace
 
-std::string optimizerName(ExcitationOptimizer optimizer) {
-    return optimizer == ExcitationOptimizer::gradient ? "gradient" : "nelder-mead";
-}
+std::string optimizerName(ExcitationOptimizer optimizer) { return std::string(nameOf(optimizer)); }
 
 ExcitationOptimizer parseOptimizer(const std::string& name) {
-    if (name == "nelder-mead") return ExcitationOptimizer::nelder_mead;
-    if (name == "gradient") return ExcitationOptimizer::gradient;
-    throw Error("excitation: unknown optimizer '" + name + "' (nelder-mead or gradient)");
+    if (const std::optional<ExcitationOptimizer> optimizer = choiceNamed<ExcitationOptimizer>(name)) return *optimizer;
+    std::string message = "excitation: unknown optimizer '";
+    message.append(name).append("' (").append(choiceList<ExcitationOptimizer>()).append(")");
+    throw Error(message);
 }
 
 PoseTrajectory excitationTrajectory(const Model& model, const Eigen::VectorXd& shape, double scale,

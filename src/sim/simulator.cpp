@@ -19,18 +19,6 @@ namespace nocdyn {
 
 // ---- interpolated forces ------------------------------------------------------------
 
-const char* name(Interpolation interpolation) {
-    switch (interpolation) {
-        case Interpolation::hold:
-            return "hold";
-        case Interpolation::linear:
-            return "linear";
-        case Interpolation::cubic:
-            break;
-    }
-    return "cubic";
-}
-
 struct ForceSignal::Impl {
     std::vector<double> t;
     /// The forces sample by sample, n to a sample (flat: 8 n bytes a sample, nothing more).

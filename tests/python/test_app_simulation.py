@@ -88,7 +88,7 @@ def test_simulate_bad_values_name_the_argument():
     forces = {"t": [0.0, 0.01], "tau1": [0.0, 0.0], "tau2": [0.0, 0.0], "tau3": [0.0, 0.0]}
     with pytest.raises(ValueError, match="^rate: "):
         nocdyn.simulate(forces, rate=-1.0, progress=False)
-    with pytest.raises(ValueError, match="^interpolation: 'cubical'"):
+    with pytest.raises(ValueError, match="^interpolation: expected hold, linear or cubic, got 'cubical'"):
         nocdyn.simulate(forces, interpolation="cubical", progress=False)
     with pytest.raises(ValueError, match="^atol: "):
         nocdyn.simulate(forces, atol=1.0, progress=False)

@@ -102,3 +102,35 @@ def test_the_type_stub_names_only_what_the_compiled_module_has_with_its_argument
                     check(cls, item, node.name)
                     checked += 1
     assert checked >= 15
+
+
+def test_every_choice_takes_the_command_lines_words_and_refuses_another(cli):
+    """A choice (an enum with one name table) accepts in Python exactly the words its command-line
+    option lists (`nocdyn --help-json`, type TEXT:{a,b}), its default is the option's, and another
+    word is refused naming them all in the table's order."""
+    import json
+    import re
+    code, out, err = cli("--help-json")
+    assert code == 0, err
+    checked = []
+    for command, options in json.loads(out).items():
+        kind = options_type(command)
+        for option in options:
+            words = re.fullmatch(r"TEXT:\{([a-z0-9,-]+)\}", option["type"])
+            field = option["name"].replace("-", "_")
+            if kind is None or words is None or field not in kind._fields:
+                continue
+            words = words.group(1).split(",")
+            struct = kind()
+            assert getattr(struct, field) == option["default"], f"{command} --{option['name']}"
+            for word in words:
+                setattr(struct, field, word)
+                assert getattr(struct, field) == word
+            listed = ", ".join(words[:-1]) + " or " + words[-1]
+            with pytest.raises(ValueError, match=f"^{field}: expected {re.escape(listed)}, got 'bogus'$"):
+                setattr(struct, field, "bogus")
+            checked.append(f"{command} {field}")
+    for converted in ["control controller", "control measure", "design sweep", "excite optimizer",
+                      "frequency-response output_kind", "frequency-response compliance", "shake axis",
+                      "simulate interpolation", "validate engine", "shake plant", "shake drive_model"]:
+        assert converted in checked

@@ -25,5 +25,5 @@ def test_the_gradient_refinement_reaches_its_measured_condition_number_and_beats
 
 
 def test_an_unknown_optimizer_is_refused_naming_the_argument():
-    with pytest.raises(ValueError, match="^optimizer: 'bfgs' is not nelder-mead or gradient$"):
+    with pytest.raises(ValueError, match="^optimizer: expected nelder-mead or gradient, got 'bfgs'$"):
         nocdyn.excite(optimizer="bfgs", **SMALL)

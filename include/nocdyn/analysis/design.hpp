@@ -18,6 +18,7 @@
 // infeasible: its evaluation names the reason instead of throwing.
 #pragma once
 
+#include <array>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -25,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "nocdyn/choice.hpp"
 #include "nocdyn/description.hpp"
 #include "nocdyn/analysis/envelope.hpp"
 #include "nocdyn/analysis/sampling.hpp"
@@ -103,6 +105,9 @@ inline constexpr std::size_t kMaxDesigns = 1'000'000;
 ///   random: `samples` uniform draws (std::mt19937_64 from `seed`)
 /// Throws nocdyn::Error for an empty or reversed range, or more than kMaxDesigns designs.
 enum class SweepKind { grid, random };
+inline constexpr std::array<Choice<SweepKind>, 2> kSweepKinds{
+    {{SweepKind::grid, "grid"}, {SweepKind::random, "random"}}};
+[[nodiscard]] constexpr std::span<const Choice<SweepKind>> choices(SweepKind) { return kSweepKinds; }
 [[nodiscard]] std::vector<std::vector<double>> sweepPoints(const std::vector<DesignRange>& ranges, SweepKind kind,
                                                            std::size_t samples, std::uint64_t seed);
 

@@ -34,13 +34,16 @@
 // the deflected drives.
 #pragma once
 
+#include <array>
 #include <complex>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
 #include "nocdyn/analysis/stiffness.hpp"
+#include "nocdyn/choice.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 
@@ -49,8 +52,12 @@ namespace nocdyn {
 /// What the linearised model's output y is.
 enum class LinearOutput { platform_acceleration, actuator_variables };
 
+inline constexpr std::array<Choice<LinearOutput>, 2> kLinearOutputs{
+    {{LinearOutput::platform_acceleration, "acceleration"}, {LinearOutput::actuator_variables, "actuators"}}};
+[[nodiscard]] constexpr std::span<const Choice<LinearOutput>> choices(LinearOutput) { return kLinearOutputs; }
+
 /// "acceleration" or "actuators".
-[[nodiscard]] const char* name(LinearOutput output);
+[[nodiscard]] inline const char* name(LinearOutput output) { return nameOf(output).data(); }
 
 /// What an input column of the linearised model is: an actuator force [N or N m] or a drive's
 /// commanded position (its spring's rest position) [m or rad].

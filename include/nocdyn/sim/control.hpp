@@ -25,11 +25,14 @@
 // description (withPayload); the controller keeps the nominal model.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "nocdyn/choice.hpp"
 #include "nocdyn/direct_kinematics.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/sim/forward_dynamics.hpp"
@@ -65,8 +68,12 @@ struct TaskGains {
 
 enum class ControlLaw { computed_torque, pd };
 
+inline constexpr std::array<Choice<ControlLaw>, 2> kControlLaws{
+    {{ControlLaw::computed_torque, "computed-torque"}, {ControlLaw::pd, "pd"}}};
+[[nodiscard]] constexpr std::span<const Choice<ControlLaw>> choices(ControlLaw) { return kControlLaws; }
+
 /// "computed-torque" or "pd".
-[[nodiscard]] const char* name(ControlLaw law);
+[[nodiscard]] inline const char* name(ControlLaw law) { return nameOf(law).data(); }
 
 /// Task-space controller of one robot (see the header comment). Holds a copy of the model.
 class PoseController {

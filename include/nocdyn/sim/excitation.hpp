@@ -26,12 +26,15 @@
 // information matrix (see excitationConditionGradient).
 #pragma once
 
+#include <array>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "nocdyn/choice.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/trajectory.hpp"
 
@@ -52,7 +55,13 @@ enum class ExcitationOptimizer {
     gradient,
 };
 
-/// "nelder-mead" / "gradient", and back; the parse throws nocdyn::Error on another name.
+inline constexpr std::array<Choice<ExcitationOptimizer>, 2> kExcitationOptimizers{
+    {{ExcitationOptimizer::nelder_mead, "nelder-mead"}, {ExcitationOptimizer::gradient, "gradient"}}};
+[[nodiscard]] constexpr std::span<const Choice<ExcitationOptimizer>> choices(ExcitationOptimizer) {
+    return kExcitationOptimizers;
+}
+
+/// "nelder-mead" / "gradient" (the table's), and back; the parse throws nocdyn::Error on another name.
 [[nodiscard]] std::string optimizerName(ExcitationOptimizer optimizer);
 [[nodiscard]] ExcitationOptimizer parseOptimizer(const std::string& name);
 

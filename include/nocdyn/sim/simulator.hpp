@@ -7,12 +7,15 @@
 // jump, and reads the state between steps from the stepper's dense output.
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <span>
 #include <string>
 #include <vector>
 
+#include "nocdyn/choice.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 
@@ -25,8 +28,12 @@ enum class Interpolation {
     cubic,   ///< interpolating cubic B-spline (C2) through uniformly spaced samples
 };
 
+inline constexpr std::array<Choice<Interpolation>, 3> kInterpolations{
+    {{Interpolation::hold, "hold"}, {Interpolation::linear, "linear"}, {Interpolation::cubic, "cubic"}}};
+[[nodiscard]] constexpr std::span<const Choice<Interpolation>> choices(Interpolation) { return kInterpolations; }
+
 /// "hold", "linear" or "cubic".
-[[nodiscard]] const char* name(Interpolation interpolation);
+[[nodiscard]] inline const char* name(Interpolation interpolation) { return nameOf(interpolation).data(); }
 
 /// Actuator forces given at increasing times and interpolated in between; held at the first
 /// sample before it and at the last one after it. Built once (allocates, throws nocdyn::Error);
