@@ -63,6 +63,15 @@ struct SpatialPayload {
 [[nodiscard]] Status payloadRegressor(const Model& model, Data& data, const TaskVector& p, const TaskVector& dp,
                                       const TaskVector& ddp, PayloadRegressor& Y);
 
+/// The excitation run's loop: 1 kHz, error dynamics at 30 Hz, the forces of the hold's middle.
+[[nodiscard]] inline LoopOptions excitationLoop() {
+    LoopOptions loop;
+    loop.rate = 1000.0;
+    loop.natural_frequency = 30;
+    loop.mid_hold = true;
+    return loop;
+}
+
 /// The excitation and its run on the simulated table.
 struct PayloadExcitationOptions {
     double duration = 2.0;     ///< [s]
@@ -75,7 +84,7 @@ struct PayloadExcitationOptions {
     /// callback. The run lasts `duration` and is computed torque on the robot alone, unsaturated,
     /// on the true state: the loop's duration, seed, law, saturation, sensor noise and
     /// controller model are not used.
-    LoopOptions loop = {.rate = 1000.0, .natural_frequency = 30, .mid_hold = true};
+    LoopOptions loop = excitationLoop();
 };
 
 /// A multi-sine in the six pose coordinates about home: coordinate i the sum of `harmonics`
