@@ -1,5 +1,5 @@
 // A planar robot written as a spatial robot file (space: spatial, motion: full;
-// ../shared/robot-files-spatial.md), for the tests that check the spatial model gives the planar
+// docs/robot-files-spatial.md), for the tests that check the spatial model gives the planar
 // results on a motion that stays in the plane.
 //
 // Each planar limb J1 J2 J3 (R about z through the same point, P along the same in-plane
