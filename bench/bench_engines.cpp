@@ -166,6 +166,37 @@ void spatialNocdyn(benchmark::State& state, const std::string& robot) {
                            benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
+/// BM_ForwardDynamics/<spatial robot>/nocdyn: nocdyn::spatial::forwardDynamics per sample, from the
+/// forces that the inverse dynamics gives on the same cycle (the simulators' right-hand side).
+void spatialForwardNocdyn(benchmark::State& state, const std::string& robot) {
+    const spatial::Model model(
+        io::loadSpatialRobotDescription(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml"));
+    const SpatialCycle cycle(model);
+    spatial::Data data(model);
+    std::vector<spatial::ActuatorVector> tau;
+    for (std::size_t k = 0; k < cycle.p.size(); ++k) {
+        if (!spatial::inverseDynamics(model, data, cycle.p[k], cycle.dp[k], cycle.ddp[k])) {
+            state.SkipWithError(("the cycle leaves the workspace of " + robot).c_str());
+            return;
+        }
+        tau.push_back(data.tau);
+    }
+    spatial::TaskVector ddp(model.task_dimension);
+    for (auto _ : state) {
+        for (std::size_t k = 0; k < cycle.p.size(); ++k) {
+            if (!spatial::forwardDynamics(model, data, cycle.p[k], cycle.dp[k], tau[k], ddp)) {
+                state.SkipWithError(("the forward dynamics failed on " + robot).c_str());
+                return;
+            }
+            benchmark::DoNotOptimize(ddp.data());
+        }
+        benchmark::ClobberMemory();
+    }
+    state.counters["per_sample"] =
+        benchmark::Counter(static_cast<double>(cycle.p.size()),
+                           benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+}
+
 template <typename Engine>
 void spatialEngine(benchmark::State& state, const std::string& robot) {
     const SpatialRobotDescription description =
@@ -205,6 +236,8 @@ void spatialEngine(benchmark::State& state, const std::string& robot) {
     for (const std::string robot : {"delta", "stewart", "hexa-6rus"}) {
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/nocdyn").c_str(),
                                      [robot](benchmark::State& s) { spatialNocdyn(s, robot); });
+        benchmark::RegisterBenchmark(("BM_ForwardDynamics/" + robot + "/nocdyn").c_str(),
+                                     [robot](benchmark::State& s) { spatialForwardNocdyn(s, robot); });
         benchmark::RegisterBenchmark(("BM_InverseDynamics/" + robot + "/simbody").c_str(), [robot](
                                                                                                benchmark::State& s) {
             spatialEngine<validation::SimbodySpatialMechanism>(s, robot);

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <type_traits>
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
@@ -33,12 +34,14 @@ constexpr double kHomeReach = 1.5;
 constexpr double kClosure = 1e-13;  ///< Newton's residual [m, rad], for displacements within 1 m
 /// The small matrices decomposed here (Gram matrices, at most 6 x 6): one instantiation each.
 using Work = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>;
+using Matrix6 = Eigen::Matrix<double, 6, 6>;
 
 /// The motion cross product t x s = [w x a; w x m + v x a] (the rate of a screw s carried by a
 /// body of twist t).
 Vector6 cross(const Vector6& t, const Vector6& s) {
     Vector6 out;
-    out << t.head<3>().cross(s.head<3>()), t.head<3>().cross(s.tail<3>()) + t.tail<3>().cross(s.head<3>());
+    out.head<3>() = t.head<3>().cross(s.head<3>());
+    out.tail<3>() = t.head<3>().cross(s.tail<3>()) + t.tail<3>().cross(s.head<3>());
     return out;
 }
 
@@ -52,7 +55,22 @@ Vector6 bodyWrench(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& I,
     const Eigen::Vector3d f = m * (a_c - g);
     const Eigen::Vector3d n = I * a.head<3>() + w.cross(I * w);
     Vector6 out;
-    out << n + c.cross(f), f;
+    out.head<3>() = n + c.cross(f);
+    out.tail<3>() = f;
+    return out;
+}
+
+/// The spatial inertia about O of a body (mass m, c.o.m. c, inertia I about it, base frame): its
+/// wrench [n_O; f] = M_b a at rest for a twist rate a = [dw; dv_O], with [c] the cross-product
+/// matrix: f = m (dv_O - [c] dw), n_O = I dw + c x f.
+Matrix6 spatialInertia(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& I) {
+    Eigen::Matrix3d C;
+    C << 0.0, -c.z(), c.y(), c.z(), 0.0, -c.x(), -c.y(), c.x(), 0.0;
+    Matrix6 out;
+    out.topLeftCorner<3, 3>() = I - m * C * C;
+    out.topRightCorner<3, 3>() = m * C;
+    out.bottomLeftCorner<3, 3>() = -m * C;
+    out.bottomRightCorner<3, 3>() = m * Eigen::Matrix3d::Identity();
     return out;
 }
 
@@ -82,11 +100,17 @@ double limbCondition(const LimbData& ld, const Eigen::Vector3d& p) {
 
 /// The platform's angular velocity and its rate from the Euler angles' rates (R = Rz Ry Rx):
 /// w = roll' u1 + pitch' u2 + yaw' e_z with u1 = Rz Ry e_x, u2 = Rz e_y.
-void angularRates(const TaskVector& p, const TaskVector& dp, const TaskVector& ddp, Eigen::Vector3d& w,
-                  Eigen::Vector3d& dw) {
+void eulerAxes(const TaskVector& p, Eigen::Vector3d& u1, Eigen::Vector3d& u2) {
     const double pitch = p(4), yaw = p(5);
     const double cp = std::cos(pitch), sp = std::sin(pitch), cy = std::cos(yaw), sy = std::sin(yaw);
-    const Eigen::Vector3d u1(cy * cp, sy * cp, -sp), u2(-sy, cy, 0.0), ez = Eigen::Vector3d::UnitZ();
+    u1 = Eigen::Vector3d(cy * cp, sy * cp, -sp);
+    u2 = Eigen::Vector3d(-sy, cy, 0.0);
+}
+void angularRates(const TaskVector& p, const TaskVector& dp, const TaskVector& ddp, Eigen::Vector3d& w,
+                  Eigen::Vector3d& dw) {
+    Eigen::Vector3d u1, u2;
+    eulerAxes(p, u1, u2);
+    const Eigen::Vector3d ez = Eigen::Vector3d::UnitZ();
     w = dp(3) * u1 + dp(4) * u2 + dp(5) * ez;
     const Eigen::Vector3d w_zy = dp(5) * ez + dp(4) * u2;  // the frame Rz Ry's angular velocity
     dw = ddp(3) * u1 + ddp(4) * u2 + ddp(5) * ez + dp(3) * w_zy.cross(u1) + dp(4) * (dp(5) * ez.cross(u2));
@@ -442,6 +466,48 @@ void conditionNumbers(const Model& model, Data& data) {
 
 namespace {
 
+/// f(std::integral_constant<int, N>) for a limb of N freedoms (1 to 6): the per-limb stages at
+/// fixed size.
+template <class F>
+void byFreedoms(int n, F&& f) {
+    switch (n) {
+        case 6:
+            f(std::integral_constant<int, 6>{});
+            break;
+        case 5:
+            f(std::integral_constant<int, 5>{});
+            break;
+        case 4:
+            f(std::integral_constant<int, 4>{});
+            break;
+        case 3:
+            f(std::integral_constant<int, 3>{});
+            break;
+        case 2:
+            f(std::integral_constant<int, 2>{});
+            break;
+        default:
+            f(std::integral_constant<int, 1>{});
+            break;
+    }
+}
+
+/// A limb's bodies' inertia at rest seen from the platform: K += sum_b T_b^T M_b T_b, with
+/// T_b = J_(<=b) J^+ the body's twist per platform twist (eq. 3: the freedoms up to the body's last).
+template <int N>
+void addLimbInertia(const Limb& limb, const LimbData& ld, Matrix6& K) {
+    const Eigen::Map<const Eigen::Matrix<double, 6, N>> J(ld.J.data());
+    const Eigen::Map<const Eigen::Matrix<double, N, 6>> J_plus(ld.J_plus.data());
+    Matrix6 T = Matrix6::Zero();
+    int k = 0;
+    for (std::size_t b = 0; b < limb.bodies.size(); ++b) {
+        const Body& body = limb.bodies[b];
+        for (; k <= body.last_freedom; ++k) T.noalias() += J.col(k) * J_plus.row(k);
+        const Matrix6 MT = spatialInertia(body.mass, ld.com[b], ld.inertia[b]) * T;
+        K.noalias() += T.transpose() * MT;
+    }
+}
+
 /// One limb of N freedoms at fixed size: its rates, accelerations, bodies' twists and wrenches,
 /// the joints' efforts f, and its part J^+T f of W_P.
 template <int N>
@@ -512,26 +578,7 @@ void motionAndForces(const Model& model, Data& data, const TaskVector& p, const 
     for (int j = 0; j < model.limbs(); ++j) {
         const Limb& limb = model.limb[static_cast<std::size_t>(j)];
         LimbData& ld = data.limb[static_cast<std::size_t>(j)];
-        switch (limb.size()) {
-            case 6:
-                limbMotionAndForces<6>(limb, ld, data, g);
-                break;
-            case 5:
-                limbMotionAndForces<5>(limb, ld, data, g);
-                break;
-            case 4:
-                limbMotionAndForces<4>(limb, ld, data, g);
-                break;
-            case 3:
-                limbMotionAndForces<3>(limb, ld, data, g);
-                break;
-            case 2:
-                limbMotionAndForces<2>(limb, ld, data, g);
-                break;
-            default:
-                limbMotionAndForces<1>(limb, ld, data, g);
-                break;
-        }
+        byFreedoms(limb.size(), [&](auto n) { limbMotionAndForces<decltype(n)::value>(limb, ld, data, g); });
     }
     for (int a2 = 0; a2 < model.actuators; ++a2) {
         const auto [j, k] = model.actuator[static_cast<std::size_t>(a2)];
@@ -560,17 +607,31 @@ Status inverseDynamics(const Model& model, Data& data, const TaskVector& p, cons
 
 Status massMatrix(const Model& model, Data& data, const TaskVector& p, TaskMatrix& M) {
     if (const Status status = inverseKinematics(model, data, p); !status) return status;
-    // M = E^T W_P(p, 0, e_i) column by column without gravity: pure inertia
+    // At rest and without gravity W_P is linear in the platform's twist rate: W_P = K dt_P, with
+    // K = M_P + sum_b T_b^T M_b T_b over every limb's bodies, and dt_P = E ddp =
+    // [dw; a - dw x r], dw = ddp_3 u1 + ddp_4 u2 + ddp_5 e_z. Column i of M is W_P(p, 0, e_i)'s
+    // last d rows: M = K E's.
     const int d = model.task_dimension;
-    TaskVector e = TaskVector::Zero(d);
-    const TaskVector rest = TaskVector::Zero(d);
-    M.resize(d, d);
-    for (int i = 0; i < d; ++i) {
-        e(i) = 1.0;
-        motionAndForces(model, data, p, rest, e, Eigen::Vector3d::Zero());
-        M.col(i) = data.W_P.tail(d);
-        e(i) = 0.0;
+    const Eigen::Vector3d r = p.head<3>();
+    Matrix6 K = spatialInertia(model.platform_mass, r + data.R * model.platform_com,
+                               data.R * model.platform_inertia * data.R.transpose());
+    for (int j = 0; j < model.limbs(); ++j) {
+        const Limb& limb = model.limb[static_cast<std::size_t>(j)];
+        const LimbData& ld = data.limb[static_cast<std::size_t>(j)];
+        byFreedoms(limb.size(), [&](auto n) { addLimbInertia<decltype(n)::value>(limb, ld, K); });
     }
+    Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6> E = Eigen::Matrix<double, 6, Eigen::Dynamic, 0, 6, 6>::Zero(6, d);
+    E.bottomLeftCorner<3, 3>().setIdentity();
+    if (d == 6) {
+        std::array<Eigen::Vector3d, 3> u;
+        eulerAxes(p, u[0], u[1]);
+        u[2] = Eigen::Vector3d::UnitZ();
+        for (std::size_t k = 0; k < 3; ++k) {
+            E.col(3 + static_cast<int>(k)).head<3>() = u[k];
+            E.col(3 + static_cast<int>(k)).tail<3>() = r.cross(u[k]);
+        }
+    }
+    M.noalias() = K.bottomRows(d) * E;
     return {};
 }
 
