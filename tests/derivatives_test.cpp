@@ -34,7 +34,11 @@ namespace {
 // both below 1e-9 of the derivatives' size on most samples of these robots (poses over
 // centimetres and tenths of a radian, rates of a few rad/s and tens of mm/s).
 constexpr double kStep = 2e-5;
-constexpr double kTolerance = 1e-7;  // relative, per matrix: |AD - FD| <= kTolerance (|AD| + floor)
+// relative, per matrix: |AD - FD| <= kTolerance (|AD| + floor). The worst matrix, on the random
+// four-limb PPR robot, is at 8.8e-8 in the release build (-O3) and 1.04e-7 at -O1 (the mutation
+// check's build): the differences' rounding moves with the compiled code at that level, while a
+// wrong term is off by 1e-3 or more.
+constexpr double kTolerance = 2e-7;
 constexpr double kConditionLimit = 1e3;
 
 std::vector<RandomRobotSpec> specs() {
