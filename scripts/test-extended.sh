@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The slower checks, after scripts/test.sh (which built build/ and ran every test there):
 # - the mutation check (scripts/mutation/): deliberate errors in the core formulas, each of
-#   which some test must catch; its own build without Simbody and MuJoCo, at -O1 (a mutated file
-#   compiles in about 40 % of -O3's time) and with the cloned kernels' files once, for AVX2
-#   (-DNOCDYN_CPU_DISPATCH=OFF), one file rebuilt per error;
+#   which some test must catch; its own build without Simbody and MuJoCo (the release build's
+#   flags, so that ccache gives it what scripts/test.sh compiled, but the cloned kernels' files
+#   once, for AVX2: -DNOCDYN_CPU_DISPATCH=OFF), one file rebuilt per error;
 # - the whole suite again under AddressSanitizer and UndefinedBehaviorSanitizer;
 # - a short libFuzzer run (clang, ASan, UBSan) of each file reader over its committed corpus.
 # .ci/run runs both scripts. Every option is set explicitly, and ctest fails when it finds no test.
