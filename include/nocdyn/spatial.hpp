@@ -160,6 +160,13 @@ struct Data {
 /// The platform's orientation R = Rz(yaw) Ry(pitch) Rx(roll).
 [[nodiscard]] Eigen::Matrix3d rotation(double roll, double pitch, double yaw);
 
+/// The cross-product matrix [v]: [v] x = v x x.
+[[nodiscard]] inline Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
+    Eigen::Matrix3d s;
+    s << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+    return s;
+}
+
 /// Inverse kinematics: every limb's joint variables at pose p, the current screws, the bodies'
 /// c.o.m. and inertia, J_j^+, the actuator values u and the actuation map A. In closed form on
 /// the home branch for the limbs that have one (Limb::solver), otherwise (or when it finds no

@@ -64,8 +64,7 @@ Vector6 bodyWrench(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& I,
 /// wrench [n_O; f] = M_b a at rest for a twist rate a = [dw; dv_O], with [c] the cross-product
 /// matrix: f = m (dv_O - [c] dw), n_O = I dw + c x f.
 Matrix6 spatialInertia(double m, const Eigen::Vector3d& c, const Eigen::Matrix3d& I) {
-    Eigen::Matrix3d C;
-    C << 0.0, -c.z(), c.y(), c.z(), 0.0, -c.x(), -c.y(), c.x(), 0.0;
+    const Eigen::Matrix3d C = skew(c);
     Matrix6 out;
     out.topLeftCorner<3, 3>() = I - m * C * C;
     out.topRightCorner<3, 3>() = m * C;

@@ -24,12 +24,6 @@ namespace {
 using Matrix6 = Eigen::Matrix<double, 6, 6>;
 using Wrenches = Eigen::Matrix<double, 6, kPayloadParameters>;  // Y_w
 
-Eigen::Matrix3d skew(const Eigen::Vector3d& v) {
-    Eigen::Matrix3d s;
-    s << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-    return s;
-}
-
 /// S(r) = |r|^2 1 - r r^T: the inertia of a unit point mass at r about the origin.
 Eigen::Matrix3d shift(const Eigen::Vector3d& r) {
     return r.squaredNorm() * Eigen::Matrix3d::Identity() - r * r.transpose();
