@@ -85,7 +85,9 @@ def test_the_type_stub_names_only_what_the_compiled_module_has_with_its_argument
         assert bound is not None, f"{where}.{function.name} is in the stub, not in the module"
         declared = [a.arg for a in function.args.posonlyargs + function.args.args if a.arg != "self"]
         # pybind11's docstring starts with name(arg: type, ...) -> result
-        first = (bound.__doc__ or "").splitlines()[0]
+        lines = (bound.__doc__ or "").splitlines()
+        assert lines, f"{where}.{function.name} has no pybind11 signature to compare"
+        first = lines[0]
         actual = [name for name in re.findall(r"(\w+): ", first.split("->")[0]) if name != "self"]
         assert declared == actual, f"{where}.{function.name}: stub {declared}, module {actual}"
 
@@ -95,7 +97,8 @@ def test_the_type_stub_names_only_what_the_compiled_module_has_with_its_argument
             check(_nocdyn, node, "_nocdyn")
             checked += 1
         elif isinstance(node, ast.ClassDef):
-            cls = getattr(_nocdyn, node.name)
+            cls = getattr(_nocdyn, node.name, None)
+            assert cls is not None, f"class {node.name} is in the stub, not in the module"
             for item in node.body:
                 if isinstance(item, ast.FunctionDef) and not any(
                         isinstance(d, ast.Name) and d.id == "staticmethod" for d in item.decorator_list):
