@@ -55,15 +55,15 @@ void validate(const ExciteOptions& o) {
         requireIn(o.payload_guess[2], kLengthRange, "payload_guess");
         requireIn(o.payload_guess[3], kPayloadInertiaRange, "payload_guess");
     }
-    if (!o.payload_guess.empty() && o.base)
+    if (!o.payload_guess.empty() && o.parameters == ExcitedParameters::base)
         throw OptionError("payload_guess", "is for a payload; base designs for the robot without one");
     requireIn(o.duration, kExciteDurationRange, "duration");
-    requireIn(o.frequency, kExciteFrequencyRange, "frequency");
+    requireIn(o.base_frequency, kExciteFrequencyRange, "frequency");
     requireCount(o.harmonics, 3, 20, "harmonics");
     requireIn(o.margin, kExciteMarginRange, "margin");
     requireIn(o.max_condition, kMaxConditionRange, "max_condition");
     requireCount(o.evaluations, 1, 1000000, "evaluations");
-    requireCount(o.random, 1, 1000000, "random");
+    requireCount(o.random_shapes, 1, 1000000, "random");
     requireCount(o.samples, 0, 100000, "samples");
     requireCount(o.check_samples, 24, 1000000, "check_samples");
 }
@@ -83,19 +83,8 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
         payload = Payload{g[0], g[3], Vector2(g[1], g[2])};
         robot = withPayload(robot, payload);
     }
-    ExcitationOptions o;
-    o.parameters = options.base ? ExcitedParameters::base : ExcitedParameters::payload;
-    o.friction = options.friction;
-    o.base_frequency = options.frequency;
-    o.harmonics = options.harmonics;
-    o.margin = options.margin;
-    o.max_condition = options.max_condition;
-    o.samples = options.samples;
-    o.check_samples = options.check_samples;
-    o.evaluations = options.evaluations;
-    o.random_shapes = options.random;
-    o.seed = options.seed;
-    o.optimizer = options.optimizer;
+    // the design's own part of the options, with the progress added
+    ExcitationOptions o = static_cast<const ExcitationOptions&>(options);
     const auto total = static_cast<double>(options.evaluations);
     o.progress = [&observer, total](int done) {
         observer.progress(static_cast<double>(done), total, "evaluations");
@@ -107,8 +96,9 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
     // a two-DOF robot's payload: a point mass at the tool point, its mass the one unknown
     const std::string payload_text =
         model.task_dimension == 2 ? "the payload mass (a point mass at the tool point)" : "the payload";
-    const std::string what = options.base ? "the base parameters"
-                                          : (o.friction ? payload_text + " and the actuators' friction" : payload_text);
+    const std::string what = o.parameters == ExcitedParameters::base
+                                 ? "the base parameters"
+                                 : (o.friction ? payload_text + " and the actuators' friction" : payload_text);
     std::string report = "# " + io::terminalText(robot.name) + ": excitation for " + what + ", " +
                          std::to_string(o.harmonics) + " harmonics of " + text::number(o.base_frequency) +
                          (model.task_dimension == 2 ? " Hz per axis (x, y), " : " Hz per axis, ") +

@@ -18,25 +18,14 @@ inline constexpr Range kExciteMarginRange{0.0, 0.9, ""};
 inline constexpr Range kMaxConditionRange{1.0001, 1e8, ""};
 inline constexpr Range kPayloadGuessRange{-1e6, 1e6, ""};
 
-struct ExciteOptions {
+/// The design's own options (sim/excitation.hpp: the excited parameters, f0, H, margin, limits,
+/// search), with the robot, the guessed payload, the duration and the file to write.
+struct ExciteOptions : ExcitationOptions {
     RobotSource robot;
     /// The guessed payload: mass [kg], c.o.m. x, y [m, platform frame], inertia about its c.o.m.
     /// [kg m^2]; empty: none.
     std::vector<double> payload_guess;
-    bool base = false;       ///< design for the robot's base parameters (no payload)
-    bool friction = false;   ///< with the payload: the actuated joints' friction too
-    double duration = 5.0;   ///< [s], a whole number of base periods
-    double frequency = 5.0;  ///< f0 [Hz]
-    int harmonics = 4;
-    double margin = 0.1;
-    double max_condition = 100.0;
-    int evaluations = 400;
-    int random = 60;
-    int samples = 0;
-    int check_samples = 2000;
-    unsigned seed = 1;
-    /// The refinement after the random search: nelder-mead or gradient (excitation.hpp).
-    ExcitationOptimizer optimizer = ExcitationOptimizer::nelder_mead;
+    double duration = 5.0;  ///< [s], a whole number of base periods
     /// The trajectory file to write (none when empty).
     std::string output;
 };

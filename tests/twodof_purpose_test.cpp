@@ -224,10 +224,10 @@ TEST(TwoDofCommands, ExciteMovesXYWithinTheLimitsWithAFiniteCondition) {
     options.robot = sourceOf(robot);
     options.friction = true;  // the mass and both motors' damping and Coulomb friction: 5 unknowns
     options.duration = 1.0;
-    options.frequency = 1.0;
+    options.base_frequency = 1.0;
     options.harmonics = 3;
     options.evaluations = 40;
-    options.random = 20;
+    options.random_shapes = 20;
     options.check_samples = 400;
     const app::ExciteResult result = app::runExcite(options, app::silent());
     ASSERT_TRUE(std::isfinite(result.condition));

@@ -51,14 +51,15 @@ void addExciteCommand(CLI::App& app) {
                      "the actuators must carry it within their effort (a two-DOF robot's: MASS 0 0 0, a point mass)")
         ->expected(4)
         ->check(within(app::kPayloadGuessRange));
-    command->add_flag("--base", options->base,
-                      "Design for the robot's base parameters (calibration without payload; see nocdyn regressor)");
+    command->add_flag_callback(
+        "--base", [options] { options->parameters = ExcitedParameters::base; },
+        "Design for the robot's base parameters (calibration without payload; see nocdyn regressor)");
     command->add_flag("--friction", options->friction,
                       "With the payload: also the actuated joints' damping and Coulomb friction (identify --friction)");
     command->add_option("--duration", options->duration, "Duration [s]: a whole number of base periods")
         ->check(within(app::kExciteDurationRange))
         ->capture_default_str();
-    command->add_option("--frequency", options->frequency, "Base frequency f0 [Hz]")
+    command->add_option("--frequency", options->base_frequency, "Base frequency f0 [Hz]")
         ->check(within(app::kExciteFrequencyRange))
         ->capture_default_str();
     command->add_option("--harmonics", options->harmonics, "Harmonics per axis (k f0, k = 1..H)")
@@ -77,7 +78,9 @@ void addExciteCommand(CLI::App& app) {
     command->add_option("--evaluations", options->evaluations, "Objective evaluations in all")
         ->check(CLI::Range(1, 1000000))
         ->capture_default_str();
-    command->add_option("--random", options->random, "Random shapes tried before Nelder-Mead (at most --evaluations)")
+    command
+        ->add_option("--random", options->random_shapes,
+                     "Random shapes tried before Nelder-Mead (at most --evaluations)")
         ->check(CLI::Range(1, 1000000))
         ->capture_default_str();
     command->add_option("--samples", options->samples, "Samples per period in the design (0: 25 per harmonic)")

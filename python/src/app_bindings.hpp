@@ -65,7 +65,8 @@ private:
 /// An application options struct as a Python class, each field bound once: `option` binds a
 /// field and records its name in the class's `_fields` (the keywords the Python functions take,
 /// in this order; python/nocdyn/commands.py), `field` binds one that is not such a keyword (the
-/// robot, the output paths), `inherited` records a field that a base's class binds.
+/// robot, the output paths), `property` binds a keyword through a getter and a setter,
+/// `inherited` records a field that a base's class binds.
 template <class Options, class... Bases>
 class OptionsClass {
 public:
@@ -87,6 +88,14 @@ public:
     template <class T, class Owner>
     OptionsClass& field(const char* name, T Owner::*member) {
         bind(name, member);
+        return *this;
+    }
+    /// A keyword whose Python value is not a field's own (a flag that sets a choice): bound
+    /// through getter and setter, recorded in `_fields` as `option` records a field.
+    template <class Getter, class Setter>
+    OptionsClass& property(const char* name, Getter&& getter, Setter&& setter) {
+        class_.def_property(name, std::forward<Getter>(getter), std::forward<Setter>(setter));
+        names_->emplace_back(name);
         return *this;
     }
     OptionsClass& inherited(const char* name) {
