@@ -110,7 +110,8 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
     const Status status = lumped ? linearizeCompliant(model, compliance, data, p, dp, tau, kind, system)
                                  : linearize(model, data, p, dp, tau, kind, system);
     if (!status) throw Error("operating point: " + describe(status, model));
-    const FrequencyResponse r = frequencyResponse(system, logGrid(options.f_min, options.f_max, options.points));
+    const FrequencyResponse r =
+        frequencyResponse(system, logGrid(options.min_frequency, options.max_frequency, options.points));
     FrequencyResponseResult out;
     out.robot = model.description.name;
     out.frequency = r.frequency;
@@ -129,7 +130,7 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
                   (acceleration ? "the platform acceleration" : "the actuator variables") +
                   (lumped ? " (lumped compliant model)\n" : " (rigid model)\n");
     const std::string payload =
-        options.payload > 0.0 ? text::format("; payload %g kg at C", options.payload) : std::string();
+        options.payload_mass > 0.0 ? text::format("; payload %g kg at C", options.payload_mass) : std::string();
     line = task ? text::format("# operating point [x, y] = [%.6g, %.6g], its rate = [%.6g, %.6g]%s\n", pu(0), pu(1),
                                dpu(0), dpu(1), payload.c_str())
                 : text::format(
@@ -196,7 +197,7 @@ std::string bandEndText(double end) {
 /// plant or the lumped compliant one.
 FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, const RobotDescription& robot,
                                    const Model& model) {
-    const Model plant_model(withPayload(robot, Payload{options.payload, 0.0, Vector2::Zero()}));
+    const Model plant_model(withPayload(robot, Payload{options.payload_mass, 0.0, Vector2::Zero()}));
     const Pose p = options.pose.empty() ? model.home : corePose(operatingValues(model, options.pose, "pose"));
     const analysis::StiffnessModel compliance(plant_model);
     const bool lumped = lumpedPlant(options, compliance);
@@ -211,12 +212,12 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
         throw OptionError("closed_loop",
                           text::format("unstable closed loop (spectral radius max |eig F| = %.6g >= 1 at a tick of "
                                        "%g Hz with f_n = %g Hz%s): it has no frequency response; lower "
-                                       "`natural_frequency`, raise `controller_rate` or lighten `payload`",
+                                       "`natural_frequency`, raise `controller_rate` or lighten `payload_mass`",
                                        radius, options.controller_rate, options.natural_frequency,
                                        lumped ? ", lumped compliant plant" : ""));
     }
     const ShakeLoopFrequencyResponse r =
-        shakeLoopFrequencyResponse(loop, logGrid(options.f_min, options.f_max, options.points));
+        shakeLoopFrequencyResponse(loop, logGrid(options.min_frequency, options.max_frequency, options.points));
     const ShakeLoopBand band = shakeLoopBand(loop, r, options.amplification);
     FrequencyResponseResult out;
     out.robot = model.description.name;
@@ -232,7 +233,7 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
     line = text::format(
         "# (linearised at rest at [x, y, theta] = [%.6g, %.6g, %.6g]; tick %g Hz, f_n = %g Hz, payload "
         "unknown to the controller %g kg)\n",
-        pu(0), pu(1), pu(2), options.controller_rate, options.natural_frequency, options.payload);
+        pu(0), pu(1), pu(2), options.controller_rate, options.natural_frequency, options.payload_mass);
     out.summary = "# closed-loop frequency response of " + io::terminalText(out.robot) +
                   " under the shake-table controller, from the reference to the achieved platform acceleration\n" +
                   line;
@@ -302,13 +303,14 @@ void validate(const FrequencyResponseOptions& options) {
         throw OptionError("rate", "expected 3 values dx, dy, dtheta (2, dx, dy, for a two-DOF robot)");
     for (const double v : options.pose) requireIn(v, kLengthRange, "pose");
     for (const double v : options.rate) requireIn(v, Range{-1e6, 1e6, "m/s or rad/s"}, "rate");
-    requireIn(options.f_min, kResponseFrequencyRange, "f_min");
-    requireIn(options.f_max, kResponseFrequencyRange, "f_max");
-    if (!(options.f_max > options.f_min)) throw OptionError("f_max", "must be above f_min");
+    requireIn(options.min_frequency, kResponseFrequencyRange, "min_frequency");
+    requireIn(options.max_frequency, kResponseFrequencyRange, "max_frequency");
+    if (!(options.max_frequency > options.min_frequency))
+        throw OptionError("max_frequency", "must be above min_frequency");
     if (options.points < kMinPoints || options.points > kMaxPoints) {
         throw OptionError("points", std::to_string(options.points) + " is outside [2, 100000]");
     }
-    requireIn(options.payload, kPayloadMassRange, "payload");
+    requireIn(options.payload_mass, kPayloadMassRange, "payload_mass");
     requireIn(options.controller_rate, kShakeRateRange, "controller_rate");
     requireIn(options.natural_frequency, kShakeNaturalFrequencyRange, "natural_frequency");
     requireIn(options.amplification, kAmplificationRange, "amplification");
@@ -329,17 +331,18 @@ void validate(const FrequencyResponseOptions& options) {
                               "it goes with the plant (without `closed_loop`)");
         if (!options.rate.empty())
             throw OptionError("rate", "the closed loop is linearised at rest: rate does not apply");
-        if (!(options.f_max < 0.5 * options.controller_rate)) {
-            throw OptionError("f_max", "must be below half the `controller_rate` (the Nyquist frequency)");
+        if (!(options.max_frequency < 0.5 * options.controller_rate)) {
+            throw OptionError("max_frequency", "must be below half the `controller_rate` (the Nyquist frequency)");
         }
         // the loop's reference position is a / w^2: its rounding, amplified by the gains
         // (about w_n^2), costs eps (f_n / f)^2 of the response (2e-6 at f = 1e-5 f_n)
-        if (!(options.f_min >= kClosedLoopLowestFraction * options.natural_frequency)) {
+        if (!(options.min_frequency >= kClosedLoopLowestFraction * options.natural_frequency)) {
             throw OptionError(
-                "f_min", text::format("must be at least %g Hz with the closed loop (1e-5 times natural_frequency): "
-                                      "below it the rounding of the reference position a / w^2 costs more than "
-                                      "a millionth of the response",
-                                      kClosedLoopLowestFraction * options.natural_frequency));
+                "min_frequency",
+                text::format("must be at least %g Hz with the closed loop (1e-5 times natural_frequency): "
+                             "below it the rounding of the reference position a / w^2 costs more than "
+                             "a millionth of the response",
+                             kClosedLoopLowestFraction * options.natural_frequency));
         }
     }
 }
@@ -364,17 +367,17 @@ FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& opt
     FrequencyResponseResult out =
         options.closed_loop
             ? closedLoop(options, robot, Model(robot))
-            : plant(options,
-                    Model(options.payload > 0.0 ? withPayload(robot, Payload{options.payload, 0.0, Vector2::Zero()})
-                                                : robot));
+            : plant(options, Model(options.payload_mass > 0.0
+                                       ? withPayload(robot, Payload{options.payload_mass, 0.0, Vector2::Zero()})
+                                       : robot));
     // a grid the options accept may still reach beyond a double (|H| of 1 / w^2 at extreme w):
     // said at once, naming the end of the grid, not when the table is written
     for (Eigen::Index k = 0; k < out.table.rows(); ++k) {
         for (Eigen::Index c = 1; c < out.table.cols(); ++c) {
             if (std::isfinite(out.table(k, c))) continue;
             const double f = out.table(k, 0);
-            const bool low = f < std::sqrt(options.f_min) * std::sqrt(options.f_max);
-            throw OptionError(low ? "f_min" : "f_max",
+            const bool low = f < std::sqrt(options.min_frequency) * std::sqrt(options.max_frequency);
+            throw OptionError(low ? "min_frequency" : "max_frequency",
                               text::format("the response at %g Hz (%s) is beyond the range of a double; choose a "
                                            "narrower grid",
                                            f, out.columns[static_cast<std::size_t>(c)].c_str()));

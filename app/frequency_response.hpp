@@ -55,12 +55,13 @@ struct FrequencyResponseOptions {
     /// (stiffness 0). The closed loop's plant likewise (LoopPlant::lumped: the drives' set points
     /// follow the rigid image of the forces' motion).
     PlantCompliance compliance = PlantCompliance::automatic;
-    double f_min = 1.0, f_max = 1000.0;  ///< [Hz], in kResponseFrequencyRange, f_min < f_max
-    int points = 200;                    ///< log-spaced frequencies (kPointsRange)
+    double min_frequency = 1.0;     ///< f_min [Hz], in kResponseFrequencyRange
+    double max_frequency = 1000.0;  ///< f_max [Hz], in kResponseFrequencyRange, above f_min
+    int points = 200;               ///< log-spaced frequencies (kPointsRange)
     bool closed_loop = false;
     /// A point mass at C on the plant [kg] (kPayloadMassRange); closed_loop: one the controller's
     /// model does not carry.
-    double payload = 0.0;
+    double payload_mass = 0.0;
     double controller_rate = 10000.0;  ///< closed_loop: controller ticks [Hz], above 2 f_max
     double natural_frequency = 6.0;    ///< closed_loop: f_n of the pose feedback [Hz]
     /// closed_loop: the usable band ends where |H| leaves [1/A, A] (as the envelope's third bound;

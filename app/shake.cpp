@@ -172,7 +172,7 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
     }
     for (const std::string& note : notes) observer.warning(note);
     const std::size_t workers =
-        std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardwareThreads(), records.size());
+        std::min<std::size_t>(options.threads > 0 ? options.threads : hardwareThreads(), records.size());
     std::vector<ShakeOutcome> outcomes(records.size());
     std::vector<std::string> errors(records.size());
     std::atomic<std::size_t> next{0};
@@ -279,7 +279,7 @@ void refuseWhatDoesNotApply(const ShakeOptions& o) {
     // the table controller's sensing, and the pose controller's noisy sensor
     const std::pair<bool, const char*> table_only[] = {
         {o.acceleration_gain != d.acceleration_gain, "acceleration_gain"},
-        {o.encoder_noise != d.encoder_noise, "encoder_noise"},
+        {o.noise_u != d.noise_u, "noise_u"},
         {o.accel_noise_density != d.accel_noise_density, "accel_noise_density"},
         {o.accel_bandwidth != d.accel_bandwidth, "accel_bandwidth"},
         {o.accel_baseline != d.accel_baseline, "accel_baseline"},
@@ -298,7 +298,7 @@ void refuseWhatDoesNotApply(const ShakeOptions& o) {
 /// (max_rms_percent and the like) apply to one record too: its verdict is judged against them.
 void refuseSuiteOptions(const ShakeOptions& o) {
     const ShakeOptions d;
-    const std::pair<bool, const char*> suite_only[] = {{o.jobs != d.jobs, "jobs"}};
+    const std::pair<bool, const char*> suite_only[] = {{o.threads != d.threads, "threads"}};
     for (const auto& [set, field] : suite_only) {
         if (set)
             throw OptionError(field,
@@ -319,7 +319,7 @@ void validate(const ShakeOptions& o) {
     if (o.rate) requireIn(*o.rate, kShakeRateRange, "rate");
     if (o.natural_frequency) requireIn(*o.natural_frequency, kShakeNaturalFrequencyRange, "natural_frequency");
     requireIn(o.acceleration_gain, kShareRange, "acceleration_gain");
-    requireIn(o.encoder_noise, kEncoderNoiseRange, "encoder_noise");
+    requireIn(o.noise_u, kEncoderNoiseRange, "noise_u");
     requireIn(o.accel_noise_density, kAccelNoiseDensityRange, "accel_noise_density");
     requireIn(o.accel_bandwidth, kAccelBandwidthRange, "accel_bandwidth");
     requireIn(o.accel_baseline, kAccelBaselineRange, "accel_baseline");
@@ -333,7 +333,7 @@ void validate(const ShakeOptions& o) {
     if (o.drive_specimen && o.drive_model == DriveModel::identity)
         throw OptionError("drive_specimen", "goes with `drive_model` exact or difference");
     requireIn(o.excitation_duration, kExcitationDurationRange, "excitation_duration");
-    requireCount(o.jobs, kMaxJobs, "jobs");
+    requireCount(o.threads, kMaxThreads, "threads");
     requireIn(o.max_rms_percent, kErrorPercentRange, "max_rms_percent");
     requireIn(o.max_peak_percent, kErrorPercentRange, "max_peak_percent");
     requireIn(o.min_spectrum_percent, kPercentRange, "min_spectrum_percent");

@@ -36,7 +36,7 @@ inline constexpr Range kNoisePoseRange{0.0, 1.0, "m, rad"};
 inline constexpr Range kNoiseRateRange{0.0, 1e3, "m/s, rad/s"};
 inline constexpr Range kAccuracyRange{1e-14, 1e-3, ""};
 inline constexpr int kMaxIterations = 20;
-inline constexpr unsigned kMaxJobs = 256;
+inline constexpr unsigned kMaxThreads = 256;
 
 /// The pose axis a single record drives (and is scored on).
 enum class ShakeAxis { x, y };
@@ -66,7 +66,7 @@ struct ShakeOptions : ShakeReplayOptions {
     /// A six-DOF table: each axis scaled to its own limit (then the three by one factor), not
     /// one amplitude scale for all three.
     bool per_axis_scale = false;
-    unsigned jobs = 0;              ///< suite: records at once (0: one per core)
+    unsigned threads = 0;           ///< suite: records at once (0: one per core)
     double max_rms_percent = 5.0;   ///< suite: pass at an RMS error of at most this [%]
     double max_peak_percent = 5.0;  ///< suite: pass at |peak error| of at most this [%]
     /// suite: pass when at least this percentage of the counted periods is within +-10 %
@@ -105,7 +105,7 @@ struct ShakeResult {
 };
 
 /// Reads the records (every one before any replay), plays them, scores them; writes to
-/// options.out_dir when given. A suite plays its records on `jobs` threads; progress (records
+/// options.out_dir when given. A suite plays its records on `threads` threads; progress (records
 /// done) and a stop are handled on the calling thread, a stop ending every replay at its next tick.
 ShakeResult runShake(const ShakeOptions& options, Observer& observer);
 

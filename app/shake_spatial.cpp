@@ -52,8 +52,8 @@ void refusePlanarOnly(const ShakeOptions& o, std::size_t records) {
     refuse(!o.record_y.empty(), "record_y", "a record on y alone");
     refuse(!o.record_theta.empty(), "record_theta", "a record on theta");
     refuse(o.axis != d.axis, "axis", "a record on one axis");
-    if (records == 1 && o.jobs != d.jobs)
-        throw OptionError("jobs", "does not apply to one record: it goes with a suite (a folder of records)");
+    if (records == 1 && o.threads != d.threads)
+        throw OptionError("threads", "does not apply to one record: it goes with a suite (a folder of records)");
 }
 
 /// The drive-signal iteration of a six-DOF table corrects by the identity: the drive models
@@ -440,7 +440,7 @@ std::string suiteTable(const ShakeResult& r, std::size_t records, const std::vec
     return text;
 }
 
-/// A suite: every record read (and refused) before any replay, then replayed on `jobs` workers
+/// A suite: every record read (and refused) before any replay, then replayed on `threads` workers
 /// from a queue; one folder per record and summary.md under out_dir.
 ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions& options, const spatial::Model& model,
                      Observer& observer) {
@@ -452,7 +452,7 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
     std::string controller;
     const spatial::LoopOptions loop = loopOptions(options, controller);
     const std::size_t workers =
-        std::min<std::size_t>(options.jobs > 0 ? options.jobs : hardwareThreads(), records.size());
+        std::min<std::size_t>(options.threads > 0 ? options.threads : hardwareThreads(), records.size());
     std::vector<ShakeResult> results(records.size());  // each record's rows and verdict
     std::vector<std::string> errors(records.size());
     std::atomic<std::size_t> next{0};

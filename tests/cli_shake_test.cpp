@@ -66,7 +66,7 @@ TEST(CliShake, ASuiteOfRecordsGivesOneRowEachAndJudgesThemAgainstTheThresholds) 
     }
     const CliResult r =
         runCli("shake --robot " + kRobot + " --record " + kRecord + " --record " + other.string() +
-               " --window 1.5 --plant nocdyn-rk4 --rate 4000 --jobs 2 --max-rms-percent 20 --out " + dir.string());
+               " --window 1.5 --plant nocdyn-rk4 --rate 4000 --threads 2 --max-rms-percent 20 --out " + dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string summary = readWhole(dir / "summary.md");
     EXPECT_NE(summary.find("| elcentro_1940_ns.AT2 |"), std::string::npos) << summary;

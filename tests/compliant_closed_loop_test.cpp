@@ -198,8 +198,8 @@ TEST(CompliantClosedLoop, TheCommandsSummaryGivesTheBandPerAxis) {
     app::FrequencyResponseOptions options;
     options.robot.path = kCompliantFile;
     options.closed_loop = true;
-    options.f_min = 0.1;
-    options.f_max = 1000.0;
+    options.min_frequency = 0.1;
+    options.max_frequency = 1000.0;
     options.points = 400;
     app::Observer& observer = app::silent();
     // the default f_n: refused, naming the radius and the plant

@@ -9,6 +9,7 @@
 
 #include <Eigen/Dense>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -96,14 +97,14 @@ TEST(HostileRound4Cli, NoOutputReplacesAnInputOrAnotherOutput) {
 
 TEST(HostileRound4Cli, AnUnstableClosedLoopIsRefusedAndItsRatesAreShakes) {
     CliResult r = runCli(
-        "frequency-response --closed-loop --natural-frequency 10000 --f-min 0.1 --f-max 4000 "
+        "frequency-response --closed-loop --natural-frequency 10000 --min-frequency 0.1 --max-frequency 4000 "
         "--points 50");
     EXPECT_EQ(r.exit_code, 1) << r.out;
     EXPECT_TRUE(has(r.err, "--closed-loop: unstable closed loop (spectral radius")) << r.err;
     EXPECT_TRUE(has(r.err, "lower --natural-frequency")) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
     // the first feedback that diverges at the 10 kHz tick (measured: stable up to 1500 Hz)
-    r = runCli("frequency-response --closed-loop --natural-frequency 2000 --f-max 100 --points 3");
+    r = runCli("frequency-response --closed-loop --natural-frequency 2000 --max-frequency 100 --points 3");
     EXPECT_EQ(r.exit_code, 1) << r.out;
     // the radius as printed (1.01377 in the release build, 1.01368 under the sanitizers' -O1:
     // the eigenvalue of a loop just past its edge moves with the rounding)
@@ -116,13 +117,13 @@ TEST(HostileRound4Cli, AnUnstableClosedLoopIsRefusedAndItsRatesAreShakes) {
     // the default loop is stable (|eig F| = 0.99626; the acceleration correction's sum at gain 0
     // holds eigenvalue 1 but no input reaches it), with or without a payload, and answers
     for (const std::string payload : {"0", "2", "100"}) {
-        r = runCli("frequency-response --closed-loop --points 3 --f-max 2000 --payload " + payload);
+        r = runCli("frequency-response --closed-loop --points 3 --max-frequency 2000 --payload-mass " + payload);
         EXPECT_EQ(r.exit_code, 0) << payload << "\n" << r.err;
     }
     EXPECT_EQ(runCli("frequency-response --closed-loop --points 3 --natural-frequency 1500").exit_code, 0);
     // the controller rates shake refuses are refused here too, in shake's words
     for (const char* rate : {"50", "2e6"}) {
-        r = runCli(std::string("frequency-response --closed-loop --f-max 10 --controller-rate ") + rate);
+        r = runCli(std::string("frequency-response --closed-loop --max-frequency 10 --controller-rate ") + rate);
         EXPECT_EQ(r.exit_code, 2) << rate;
         EXPECT_TRUE(has(r.err, "--controller-rate: must be a finite number in [100, 1e+06] Hz")) << r.err;
         EXPECT_EQ(runCli("shake --record " + kRecord + " --rate " + std::string(rate)).exit_code, 2) << rate;
@@ -147,7 +148,8 @@ TEST(HostileRound4Cli, ControllerOptionsWithoutTheClosedLoopAreRefusedAndThePayl
     // the payload is on the plant: a rigid 3-PRR's acceleration per force at rest is 1 / mass
     // along x, so 5 kg more lowers |ddx/tau| by 20 log10((m + 5) / m) at every frequency
     const auto gain = [](const std::string& options) {
-        const CliResult r = runCli("frequency-response --points 2 --f-min 1 --f-max 2 --compliance rigid" + options);
+        const CliResult r =
+            runCli("frequency-response --points 2 --min-frequency 1 --max-frequency 2 --compliance rigid" + options);
         EXPECT_EQ(r.exit_code, 0) << r.err;
         std::istringstream lines(r.out);
         std::string header, row;
@@ -156,7 +158,7 @@ TEST(HostileRound4Cli, ControllerOptionsWithoutTheClosedLoopAreRefusedAndThePayl
         EXPECT_TRUE(header.starts_with("f,ddx_tau1_db")) << header;
         return std::stod(row.substr(row.find(',') + 1));
     };
-    const double unloaded = gain(""), loaded = gain(" --payload 5");
+    const double unloaded = gain(""), loaded = gain(" --payload-mass 5");
     EXPECT_LT(loaded, unloaded - 1.0) << "the payload changes nothing";
     const CliResult summary = runCli("frequency-response --points 3 --payload 5 -o /dev/null");
     EXPECT_TRUE(has(summary.out, "payload 5 kg at C")) << summary.out;
@@ -240,28 +242,69 @@ TEST(HostileRound4Cli, FirstFrequencyOfAFamilyWithoutComplianceIsRefusedUpFront)
     EXPECT_FALSE(fs::exists(dir / "e" / "designs.csv"));
 }
 
+TEST(HostileRound4Cli, OldOptionSpellingsWarnAndMeanTheNewOnes) {
+    // one name per concept across the commands: --min-frequency (envelope, loads), --payload-mass
+    // (control, shake), --noise-u (control), --threads (design); the old spellings go in the next
+    // release
+    const std::string grid = "frequency-response --points 3 --compliance rigid";
+    const CliResult current = runCli(grid + " --min-frequency 2 --max-frequency 20 --payload-mass 1");
+    ASSERT_EQ(current.exit_code, 0) << current.err;
+    EXPECT_TRUE(current.err.empty()) << current.err;
+    const CliResult old = runCli(grid + " --f-min 2 --f-max 20 --payload 1");
+    ASSERT_EQ(old.exit_code, 0) << old.err;
+    EXPECT_EQ(old.out, current.out);
+    for (const char* warning : {"nocdyn: warning: --f-min is deprecated: use --min-frequency",
+                                "nocdyn: warning: --f-max is deprecated: use --max-frequency",
+                                "nocdyn: warning: --payload is deprecated: use --payload-mass"}) {
+        EXPECT_TRUE(has(old.err, warning)) << old.err;
+    }
+    EXPECT_EQ(std::count(old.err.begin(), old.err.end(), '\n'), 3) << old.err;
+    // both spellings at once: refused, nothing computed
+    const CliResult both = runCli(grid + " --f-min 2 --min-frequency 2");
+    EXPECT_EQ(both.exit_code, 2);
+    EXPECT_TRUE(has(both.err, "--f-min excludes --min-frequency")) << both.err;
+    EXPECT_TRUE(both.out.empty()) << both.out;
+    // shake's: the same check and the same meaning as the new spelling (its refusal names it)
+    const CliResult jobs = runCli("shake --record " + kRecord + kQuick + " --jobs 2");
+    EXPECT_EQ(jobs.exit_code, 1);
+    EXPECT_TRUE(has(jobs.err, "nocdyn: warning: --jobs is deprecated: use --threads")) << jobs.err;
+    EXPECT_TRUE(has(jobs.err, "--threads: does not apply to one record")) << jobs.err;
+    const CliResult noise = runCli("shake --record " + kRecord + kQuick + " --encoder-noise 2");
+    EXPECT_EQ(noise.exit_code, 2);
+    EXPECT_TRUE(has(noise.err, "--encoder-noise: must be a finite number in [1e-12, 1] m or rad")) << noise.err;
+    // the old spellings are not offered in --help
+    const CliResult help = runCli("frequency-response --help");
+    EXPECT_FALSE(has(help.out, "--f-min")) << help.out;
+    EXPECT_TRUE(has(help.out, "--min-frequency")) << help.out;
+}
+
 TEST(HostileRound4Cli, OptionErrorsAreShortAndNameTheOption) {
     const fs::path dir = freshScratchDirectory("hostile_round4_cli");
-    CliResult r = runCli("frequency-response --f-min 0");
+    CliResult r = runCli("frequency-response --min-frequency 0");
+    EXPECT_EQ(r.exit_code, 2);
+    EXPECT_LT(r.err.size(), 200u) << r.err;
+    EXPECT_TRUE(has(r.err, "--min-frequency: must be a finite number in [1e-09, 1e+09] Hz, got '0'")) << r.err;
+    // the old spelling, under the same check
+    r = runCli("frequency-response --f-min 0");
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_LT(r.err.size(), 200u) << r.err;
     EXPECT_TRUE(has(r.err, "--f-min: must be a finite number in [1e-09, 1e+09] Hz, got '0'")) << r.err;
     // an extreme grid is refused up front, not at the table's write
-    r = runCli("frequency-response --robot " + kCompliant + " --f-min 1e-9 --f-max 1e300 --points 5");
+    r = runCli("frequency-response --robot " + kCompliant + " --min-frequency 1e-9 --max-frequency 1e300 --points 5");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_TRUE(has(r.err, "--f-max")) << r.err;
+    EXPECT_TRUE(has(r.err, "--max-frequency")) << r.err;
     EXPECT_FALSE(has(r.err, "is not a finite number")) << r.err;
     // a grid whose low end is below the range (|u / tau| ~ 1 / w^2 would leave a double): the end
     // named before anything is written
-    r = runCli("frequency-response --f-min 1e-300 --f-max 1e9 --points 5 --output-kind actuators");
+    r = runCli("frequency-response --min-frequency 1e-300 --max-frequency 1e9 --points 5 --output-kind actuators");
     EXPECT_NE(r.exit_code, 0);
-    EXPECT_TRUE(has(r.err, "--f-min")) << r.err;
+    EXPECT_TRUE(has(r.err, "--min-frequency")) << r.err;
     EXPECT_FALSE(has(r.err, "cannot write")) << r.err;
     EXPECT_TRUE(r.out.empty()) << r.out;
     // a payload beyond its range blames the option, not the robot file's platform
-    r = runCli("frequency-response --closed-loop --payload 1e6 --points 3");
+    r = runCli("frequency-response --closed-loop --payload-mass 1e6 --points 3");
     EXPECT_EQ(r.exit_code, 2);
-    EXPECT_TRUE(has(r.err, "--payload: must be a finite number in [0, 10000] kg")) << r.err;
+    EXPECT_TRUE(has(r.err, "--payload-mass: must be a finite number in [0, 10000] kg")) << r.err;
     EXPECT_FALSE(has(r.err, "platform.mass")) << r.err;
     r = runCli("excite --payload-guess 1e6 0 0 0 -o " + (dir / "e.yaml").string());
     EXPECT_EQ(r.exit_code, 1);
@@ -291,12 +334,11 @@ TEST(HostileRound4Cli, ShakeRefusesOptionsThatDoNotApplyInTheCommandLinesWords) 
         {" --iteration-gain 0.5", "--iteration-gain: does not apply here: it goes with --iterations"},
         {" --drive-specimen", "--drive-specimen: goes with --drive-model exact or difference"},
         {" --excitation-duration 4", "--excitation-duration: does not apply here: it goes with --identify-payload"},
-        {" --controller pose --encoder-noise 1e-5",
-         "--encoder-noise: does not apply here: it goes with --controller table"},
+        {" --controller pose --noise-u 1e-5", "--noise-u: does not apply here: it goes with --controller table"},
         {" --noise-pose 1e-5", "--noise-pose: does not apply here: it goes with --controller pose"},
         {" --accuracy 1e-8", "--accuracy: does not apply here: it goes with --plant simbody"},
         {" --no-accelerometer --acceleration-gain 0.1", "--acceleration-gain: does not apply here"},
-        {" --jobs 2", "--jobs: does not apply to one record: it goes with a suite"}};
+        {" --threads 2", "--threads: does not apply to one record: it goes with a suite"}};
     for (const auto& [option, message] : refused) {
         const CliResult r = runCli(shake + option);
         EXPECT_EQ(r.exit_code, 1) << option;

@@ -273,8 +273,8 @@ TEST(TwoDofCommands, FrequencyResponseOverXYAtRest) {
     const Eigen::Matrix2d J = actuationJacobian(model);
     app::FrequencyResponseOptions options;
     options.robot = source("five-bar");
-    options.f_min = 1.0;
-    options.f_max = 100.0;
+    options.min_frequency = 1.0;
+    options.max_frequency = 100.0;
     options.points = 3;
     const app::FrequencyResponseResult acc = app::runFrequencyResponse(options, app::silent());
     const std::vector<std::string> columns{"f",           "ddx_tau1_db",  "ddx_tau1_deg", "ddx_tau2_db", "ddx_tau2_deg",

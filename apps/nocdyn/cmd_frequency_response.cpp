@@ -58,8 +58,10 @@ void addFrequencyResponseCommand(CLI::App& app) {
         "The shake table's closed loop, on the same plant (the lumped one: the drives' set points follow the\n"
         "forces' rigid motion), with each axis' usable band (|H| within [1/A, A], --amplification): --closed-loop,\n"
         "e.g.\n"
-        "  nocdyn frequency-response --closed-loop --payload 5 --f-min 0.1 --f-max 4000 -o loop.csv\n"
-        "Example: nocdyn frequency-response --f-min 1 --f-max 1000 --points 100 -o plant.csv --figure plant");
+        "  nocdyn frequency-response --closed-loop --payload-mass 5 --min-frequency 0.1 --max-frequency 4000 -o "
+        "loop.csv\n"
+        "Example: nocdyn frequency-response --min-frequency 1 --max-frequency 1000 --points 100 -o plant.csv --figure "
+        "plant");
     addRobotOption(*command, options->robot);
     command
         ->add_option("--pose", options->pose,
@@ -75,12 +77,15 @@ void addFrequencyResponseCommand(CLI::App& app) {
                     "The plant's model: auto (lumped when the robot file declares compliance, else rigid), rigid,\n"
                     "or lumped (inputs: commanded drive positions uc [m or rad], forces tau for stiffness-0 drives;\n"
                     "with --closed-loop the loop's plant)");
-    command->add_option("--f-min", options->f_min, "Lowest frequency [Hz]")
-        ->check(within(app::kResponseFrequencyRange))
-        ->capture_default_str();
-    command->add_option("--f-max", options->f_max, "Highest frequency [Hz]")
-        ->check(within(app::kResponseFrequencyRange))
-        ->capture_default_str();
+    const CLI::Validator frequency = within(app::kResponseFrequencyRange);
+    auto* min_frequency = command->add_option("--min-frequency", options->min_frequency, "Lowest frequency [Hz]")
+                              ->check(frequency)
+                              ->capture_default_str();
+    auto* max_frequency = command->add_option("--max-frequency", options->max_frequency, "Highest frequency [Hz]")
+                              ->check(frequency)
+                              ->capture_default_str();
+    addOldSpelling(*command, "--f-min", min_frequency, options->min_frequency, frequency);
+    addOldSpelling(*command, "--f-max", max_frequency, options->max_frequency, frequency);
     command->add_option("--points", options->points, "Frequencies, log-spaced")
         ->check(CLI::Range(app::kMinPoints, app::kMaxPoints))
         ->capture_default_str();
@@ -88,12 +93,14 @@ void addFrequencyResponseCommand(CLI::App& app) {
                       "The shake-table loop instead (encoders, accelerometers, Kalman estimator, model feed-forward,\n"
                       "pose feedback; discrete at the controller's tick, forces held) linearised at rest: from the\n"
                       "reference to the achieved platform acceleration per axis, and the loop transfer");
-    command
-        ->add_option("--payload", options->payload,
-                     "A point mass at C on the plant [kg]; with --closed-loop, one the controller's model does not "
-                     "carry")
-        ->check(within(app::kPayloadMassRange))
-        ->capture_default_str();
+    auto* payload_mass =
+        command
+            ->add_option("--payload-mass", options->payload_mass,
+                         "A point mass at C on the plant [kg]; with --closed-loop, one the controller's model does not "
+                         "carry")
+            ->check(within(app::kPayloadMassRange))
+            ->capture_default_str();
+    addOldSpelling(*command, "--payload", payload_mass, options->payload_mass, within(app::kPayloadMassRange));
     command
         ->add_option("--controller-rate", options->controller_rate,
                      "With --closed-loop: controller ticks [Hz] (as shake's --rate)")

@@ -108,10 +108,11 @@ void addShakeCommand(CLI::App& app) {
                      "table: gain g per tick of the acceleration correction (bandwidth about g rate / 2 pi)")
         ->check(within(app::kShareRange))
         ->capture_default_str();
-    command
-        ->add_option("--encoder-noise", options->encoder_noise, "table: std. dev. of each actuator encoder [m or rad]")
-        ->check(within(app::kEncoderNoiseRange))
-        ->capture_default_str();
+    auto* noise_u =
+        command->add_option("--noise-u", options->noise_u, "table: std. dev. of each actuator encoder [m or rad]")
+            ->check(within(app::kEncoderNoiseRange))
+            ->capture_default_str();
+    addOldSpelling(*command, "--encoder-noise", noise_u, options->noise_u, within(app::kEncoderNoiseRange));
     command
         ->add_option("--accel-noise-density", options->accel_noise_density,
                      "table: accelerometer noise density [ug/sqrt(Hz)] (ADXL355: 22.5)")
@@ -159,9 +160,11 @@ void addShakeCommand(CLI::App& app) {
                      "--identify-payload: length of the excitation [s] (whole periods of its 5 Hz base)")
         ->check(within(app::kExcitationDurationRange))
         ->capture_default_str();
-    command->add_option("--jobs", options->jobs, "Suite: records played at once (0: one per core)")
-        ->check(CLI::Range(0u, app::kMaxJobs))
-        ->capture_default_str();
+    auto* threads =
+        command->add_option("--threads", options->threads, "Suite: records played at once (0: one per core)")
+            ->check(CLI::Range(0u, app::kMaxThreads))
+            ->capture_default_str();
+    addOldSpelling(*command, "--jobs", threads, options->threads, CLI::Range(0u, app::kMaxThreads));
     command
         ->add_option("--max-rms-percent", options->max_rms_percent,
                      "Pass (a suite's rows, a single replay's verdict) when the RMS error is at most this [%]")

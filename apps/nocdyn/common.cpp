@@ -131,6 +131,12 @@ void refuseOutputOverInput(const CLI::App& command) {
     app::refuseOutputOverInput(command.get_name(), commandPaths(command));
 }
 
+void warnOldSpelling(const std::string& old_name, const std::string& new_name) {
+    std::fprintf(stderr, "nocdyn: warning: %s is deprecated: use %s (the old spelling goes in the next release)\n",
+                 old_name.c_str(), new_name.c_str());
+    std::fflush(stderr);
+}
+
 void addQuietOption(CLI::App& command) {
     command.add_flag_callback(
         "--quiet,-q", [] { setQuiet(true); },

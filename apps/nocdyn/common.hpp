@@ -113,6 +113,30 @@ CLI::Option* addChoiceOption(CLI::App& command, const std::string& name, E& valu
         ->default_str(std::string(nameOf(value)));
 }
 
+/// The deprecation warning of addOldSpelling (also when --quiet: it is a warning).
+void warnOldSpelling(const std::string& old_name, const std::string& new_name);
+
+/// Adds `old_name`, the old spelling of the option `current` (one concept, one name across the
+/// commands), accepted until the next release: hidden from --help, it sets the same variable
+/// under the same `check`, warns "nocdyn: warning: --f-min is deprecated: use --min-frequency"
+/// on standard error, and is refused together with `current`. Its errors name it themselves
+/// (CLI11 gives a hidden option no name in its own messages).
+template <class T>
+CLI::Option* addOldSpelling(CLI::App& command, const std::string& old_name, CLI::Option* current, T& variable,
+                            const CLI::Validator& check) {
+    const std::string new_name = "--" + current->get_lnames().front();
+    return command.add_option(old_name, variable, "old spelling of " + new_name)
+        ->group("")
+        ->each([old_name, new_name, current, check](const std::string& value) {
+            if (current->count() > 0) throw CLI::ExcludesError(old_name, new_name);
+            std::string word = value;
+            if (const std::string error = check(word); !error.empty()) {
+                throw CLI::ConversionError(old_name + ": " + error);
+            }
+            warnOldSpelling(old_name, new_name);
+        });
+}
+
 /// Adds --plant (PlantKind): every command that chooses a plant offers all three with this one
 /// definition.
 CLI::Option* addPlantOption(CLI::App& command, PlantKind& plant);

@@ -200,9 +200,36 @@ def _robot_source(robot, set_, name="robot"):
     return source
 
 
+# Old keyword spellings, accepted until the next release with a DeprecationWarning: one name per
+# concept across the commands (the command line's old spellings are the same, dashed).
+_OLD_SPELLINGS = {
+    "FrequencyResponseOptions": {"f_min": "min_frequency", "f_max": "max_frequency", "payload": "payload_mass"},
+    "ShakeOptions": {"encoder_noise": "noise_u", "jobs": "threads"},
+}
+
+
+def _current_spellings(options_type, arguments):
+    """`arguments` with each old keyword spelling replaced by its name, warned of; both refused."""
+    old = _OLD_SPELLINGS.get(options_type.__name__, {})
+    if not old.keys() & arguments.keys():
+        return arguments
+    import warnings
+    renamed = {}
+    for name, value in arguments.items():
+        if name in old:
+            if old[name] in arguments:
+                raise TypeError(f"{name} is the old spelling of {old[name]}: give {old[name]} only")
+            warnings.warn(f"{name} is deprecated and will be removed in the next release: use {old[name]}",
+                          DeprecationWarning, stacklevel=4)
+            name = old[name]
+        renamed[name] = value
+    return renamed
+
+
 def _bound_options(options_type, arguments):
     """The options struct of a call: every field the call's arguments name, checked by type."""
     options = options_type()
+    arguments = _current_spellings(options_type, arguments)
     for name, value in arguments.items():
         if name not in options_type._fields:
             import difflib
@@ -509,7 +536,7 @@ def frequency_response(*, robot=None, set=None, output=None, summary=None, figur
     (default at rest; [x, y] and [dx, dy] of a two-DOF robot, whose channels are x, y), held by
     the inverse dynamics' forces; from each actuator force to each
     platform acceleration (output_kind "acceleration") or actuator variable ("actuators") over
-    ``points`` log-spaced frequencies in [f_min, f_max] Hz. Returns a Table (f, then
+    ``points`` log-spaced frequencies in [min_frequency, max_frequency] Hz. Returns a Table (f, then
     <output>_tau<a>_db and _deg per channel, axes x, y, theta); ``text`` holds the summary with
     each channel's -3 dB bandwidth. output, summary, figure: also write the CSV, the summary and
     the Bode figure (STEM.png and STEM.svg).
@@ -520,10 +547,10 @@ def frequency_response(*, robot=None, set=None, output=None, summary=None, figur
     _tau<a>), with the lumped natural frequencies in ``text``; "rigid" forces the rigid model,
     "lumped" requires the compliant one.
 
-    payload [kg]: a point mass at C that the plant carries.
+    payload_mass [kg]: a point mass at C that the plant carries.
 
     closed_loop=True: the shake-table loop linearised at rest (``--closed-loop``), from the
-    reference to the achieved platform acceleration per axis, with the plant's ``payload`` [kg]
+    reference to the achieved platform acceleration per axis, with the plant's ``payload_mass`` [kg]
     at C unknown to the controller, ``controller_rate`` [Hz] and the pose feedback's
     ``natural_frequency`` [Hz] (both only with closed_loop; an unstable loop is refused); the
     Table has <axis>_db, _deg, _loop_db, _loop_deg per axis and ``text`` each axis's -3 dB

@@ -36,6 +36,9 @@ One vocabulary for the command line, the Python package and every file nocdyn wr
 - **One name per thing**: an option `--foo-bar` of `nocdyn <command>` is the keyword argument
   `foo_bar` of `nocdyn.<command>()`, with the same default (one definition: the command's
   options struct in app/) and the same unit. Positional arguments keep their order.
+- **One option name per concept** across the commands (`--min-frequency`, `--payload-mass`,
+  `--noise-u`, `--threads`). An old spelling stays one release, hidden from `--help` and listed
+  under its command below; it warns (a `DeprecationWarning` in Python) and means the new one.
 - **Scores** say their unit in their name: `_percent` for percent; a score without it is a
   fraction.
 - **Joint ranges** are checked by every command that computes joint variables (a motion beyond
@@ -62,6 +65,8 @@ def main():
     for command in sorted(options):
         function = nocdyn.COMMANDS.get(command)
         parameters = inspect.signature(function).parameters if function else {}
+        old = [(option["long"][0], option["help"][len("old spelling of "):]) for option in options[command]
+               if option["hidden"] and option["long"] and option["help"].startswith("old spelling of ")]
         out.append(f"\n### {command}\n")
         out.append("| command line | Python | default | type, range, unit | meaning |")
         out.append("| --- | --- | --- | --- | --- |")
@@ -80,6 +85,9 @@ def main():
             kind = "flag" if option["flag"] else option["type"]
             out.append(f"| `{cli_name}` | {f'`{python_name}`' if python_name else '-'} | {default} | "
                        f"{kind.replace('|', '/')} | {first_sentence(option['help'])} |")
+        if old:
+            out.append("\nOld spellings, until the next release: " +
+                       ", ".join(f"`--{name}` (`{name.replace('-', '_')}`): `{new}`" for name, new in old) + ".")
     sys.stdout.write("\n".join(out) + "\n")
 
 

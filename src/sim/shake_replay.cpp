@@ -42,7 +42,7 @@ ShakeLoopOptions tableLoop(const ShakeReplayOptions& o, const std::function<void
     loop.rate = planarRate(o);
     loop.natural_frequency = naturalFrequency(o);
     loop.acceleration_gain = o.acceleration_gain;
-    loop.sensors.encoder_noise = o.encoder_noise;
+    loop.sensors.encoder_noise = o.noise_u;
     loop.sensors.accel_bandwidth = o.accel_bandwidth;
     loop.sensors.accel_baseline = o.accel_baseline;
     loop.sensors.accel_noise_density = o.accel_noise_density * 1e-6 * kGravity;

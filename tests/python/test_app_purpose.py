@@ -50,7 +50,7 @@ def test_shake_set_reaches_the_robot_file():
                                              (dict(controller="bang-bang"), "^controller: expected table or pose"),
                                              (dict(time_scale="0x10"), "^time_scale: expected auto"),
                                              (dict(iterations=21), "^iterations: 21 is outside"),
-                                             (dict(jobs=-1), "^jobs: -1 is out of range: expected a non-negative integer"),
+                                             (dict(threads=-1), "^threads: -1 is out of range: expected a non-negative integer"),
                                              (dict(max_peak_percent=-1.0), "^max_peak_percent: -1 is outside")])
 def test_shake_refuses_a_bad_value_naming_its_argument(option, message, tmp_path):
     arguments = {**QUICK, **option}

@@ -225,7 +225,7 @@ def test_frequency_response_honours_set_and_its_axes_are_x_y_theta(source_dir, t
     assert np.max(np.abs(plain.data - longer.data)) > 1e-6
     assert plain.columns[1:7] == ["ddx_tau1_db", "ddx_tau1_deg", "ddx_tau2_db", "ddx_tau2_deg", "ddx_tau3_db",
                                   "ddx_tau3_deg"]
-    loop = nocdyn.frequency_response(closed_loop=True, points=3, f_max=100.0, summary=tmp_path / "s.txt")
+    loop = nocdyn.frequency_response(closed_loop=True, points=3, max_frequency=100.0, summary=tmp_path / "s.txt")
     assert [c for c in loop.columns if c.endswith("_loop_db")] == ["x_loop_db", "y_loop_db", "theta_loop_db"]
     assert (tmp_path / "s.txt").read_text() == loop.text
 
@@ -241,8 +241,8 @@ def test_frequency_response_pose_is_x_y_theta(paper_robot):
 def test_frequency_response_bad_values_name_the_argument():
     with pytest.raises(ValueError, match="^points: "):
         nocdyn.frequency_response(points=1)
-    with pytest.raises(ValueError, match="^f_max: "):
-        nocdyn.frequency_response(f_min=10.0, f_max=5.0)
+    with pytest.raises(ValueError, match="^max_frequency: "):
+        nocdyn.frequency_response(min_frequency=10.0, max_frequency=5.0)
     with pytest.raises(ValueError, match="^pose: "):
         nocdyn.frequency_response(pose=[0.0, 0.0])
     with pytest.raises(ValueError, match="^output_kind: "):

@@ -132,7 +132,7 @@ def test_linearize_is_the_forward_dynamics_jacobian(robots):
 
 
 def test_frequency_response_of_the_paper_robot_is_the_guide_s(tmp_path):
-    result = nocdyn.frequency_response(f_min=1.0, f_max=1000.0, points=4)
+    result = nocdyn.frequency_response(min_frequency=1.0, max_frequency=1000.0, points=4)
     assert result.columns[0] == "f"
     col = {c: i for i, c in enumerate(result.columns)}
     assert np.allclose(result.data[:, col["ddtheta_tau1_db"]], 6.2490, atol=5e-4)
@@ -141,11 +141,12 @@ def test_frequency_response_of_the_paper_robot_is_the_guide_s(tmp_path):
 
 
 def test_closed_loop_response_of_the_paper_robot_is_the_guide_s():
-    nominal = nocdyn.frequency_response(closed_loop=True, f_min=0.1, f_max=4000.0, points=400)
+    nominal = nocdyn.frequency_response(closed_loop=True, min_frequency=0.1, max_frequency=4000.0, points=400)
     col = {c: i for i, c in enumerate(nominal.columns)}
     assert np.all(np.abs(nominal.data[:, col["x_db"]]) < 0.1)
     assert "beyond the grid  12.4481  75.9941" in nominal.text
-    loaded = nocdyn.frequency_response(closed_loop=True, payload=5.0, f_min=0.1, f_max=4000.0, points=400)
+    loaded = nocdyn.frequency_response(closed_loop=True, payload_mass=5.0, min_frequency=0.1, max_frequency=4000.0,
+                                       points=400)
     assert "x  0.0019  -5.1516  10.5627  7.2248  67.3268" in loaded.text
     col = {c: i for i, c in enumerate(loaded.columns)}
     assert loaded.data[-1, col["y_db"]] == pytest.approx(-5.1516, abs=1e-3)
@@ -155,18 +156,18 @@ def test_closed_loop_on_the_compliant_robot_has_its_resonance_and_usable_band():
     robot = str(SOURCE_DIR / "robots" / "paper-3prr-compliant.yaml")
     # the default pose feedback cannot be closed around the 2 %-damped 41 Hz mode
     with pytest.raises(ValueError, match="unstable closed loop.*lumped compliant plant"):
-        nocdyn.frequency_response(robot=robot, closed_loop=True, f_min=0.1, f_max=1000.0, points=50)
-    loop = nocdyn.frequency_response(robot=robot, closed_loop=True, natural_frequency=0.5, f_min=0.1,
-                                     f_max=1000.0, points=400)
+        nocdyn.frequency_response(robot=robot, closed_loop=True, min_frequency=0.1, max_frequency=1000.0, points=50)
+    loop = nocdyn.frequency_response(robot=robot, closed_loop=True, natural_frequency=0.5, min_frequency=0.1,
+                                     max_frequency=1000.0, points=400)
     assert "# plant: the lumped compliant model" in loop.text
     assert "band  x  12.3109  32.6503  41.3563" in loop.text
     col = {c: i for i, c in enumerate(loop.columns)}
     assert abs(loop.data[0, col["x_db"]]) < 1e-3
-    wider = nocdyn.frequency_response(robot=robot, closed_loop=True, natural_frequency=0.5, f_min=0.1,
-                                      f_max=1000.0, points=400, amplification=1.5)
+    wider = nocdyn.frequency_response(robot=robot, closed_loop=True, natural_frequency=0.5, min_frequency=0.1,
+                                      max_frequency=1000.0, points=400, amplification=1.5)
     assert "[0.6667, 1.5000]" in wider.text
-    rigid = nocdyn.frequency_response(robot=robot, closed_loop=True, compliance="rigid", f_min=0.1, f_max=1000.0,
-                                      points=50)
+    rigid = nocdyn.frequency_response(robot=robot, closed_loop=True, compliance="rigid", min_frequency=0.1,
+                                      max_frequency=1000.0, points=50)
     assert "band  x  beyond the grid" in rigid.text
     with pytest.raises(ValueError, match="^amplification: does not apply to the plant"):
         nocdyn.frequency_response(robot=robot, amplification=1.5, points=3)
@@ -188,7 +189,7 @@ def test_compliant_linearize_is_the_command_line_s_lumped_plant():
     assert lin.model == "lumped" and lin.inputs == ("uc", "uc", "uc")
     A, B, C, D = lin
     assert A.shape == (6, 6) and B.shape == (6, 3) and C.shape == (3, 6) and D.shape == (3, 3)
-    table = nocdyn.frequency_response(robot=robot, f_min=5.0, f_max=500.0, points=7)
+    table = nocdyn.frequency_response(robot=robot, min_frequency=5.0, max_frequency=500.0, points=7)
     assert "(lumped compliant model)" in table.text
     col = {c: i for i, c in enumerate(table.columns)}
     for k, f in enumerate(table.data[:, 0]):

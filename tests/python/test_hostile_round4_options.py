@@ -2,6 +2,7 @@
 (tests/hostile_round4_cli_test.cpp). No output of a call replaces an input or another output;
 an option that does not apply is refused, naming what it goes with; a payload is on the plant;
 an unstable loop has no frequency response; the mode shapes have one layout."""
+import inspect
 import json
 
 import numpy as np
@@ -42,8 +43,9 @@ def test_controller_options_without_the_closed_loop_are_refused_and_the_payload_
     with pytest.raises(ValueError, match="^output_kind: does not apply to the closed loop"):
         nocdyn.frequency_response(points=3, closed_loop=True, output_kind="actuators")
     # the rigid 3-PRR at rest: |ddx/tau1| scales as 1 / (platform and carried mass) along x
-    plain = nocdyn.frequency_response(points=2, f_min=1.0, f_max=2.0, compliance="rigid")
-    loaded = nocdyn.frequency_response(points=2, f_min=1.0, f_max=2.0, compliance="rigid", payload=5.0)
+    plain = nocdyn.frequency_response(points=2, min_frequency=1.0, max_frequency=2.0, compliance="rigid")
+    loaded = nocdyn.frequency_response(points=2, min_frequency=1.0, max_frequency=2.0, compliance="rigid",
+                                       payload_mass=5.0)
     drop = plain.data[:, 1] - loaded.data[:, 1]
     assert np.all(drop > 1.0), drop
     assert "payload 5 kg at C" in loaded.text
@@ -51,10 +53,35 @@ def test_controller_options_without_the_closed_loop_are_refused_and_the_payload_
 
 def test_an_unstable_closed_loop_has_no_frequency_response():
     with pytest.raises(ValueError, match="^closed_loop: unstable closed loop \\(spectral radius"):
-        nocdyn.frequency_response(closed_loop=True, natural_frequency=10000.0, f_min=0.1, f_max=4000.0, points=50)
+        nocdyn.frequency_response(closed_loop=True, natural_frequency=10000.0, min_frequency=0.1,
+                                  max_frequency=4000.0, points=50)
     # the rates shake refuses are refused here
     with pytest.raises(ValueError, match="^controller_rate: 50 is outside \\[100, 1000000\\] Hz"):
-        nocdyn.frequency_response(closed_loop=True, controller_rate=50.0, f_max=10.0)
+        nocdyn.frequency_response(closed_loop=True, controller_rate=50.0, max_frequency=10.0)
+
+
+def test_old_keyword_spellings_warn_and_mean_the_new_ones():
+    # one name per concept across the commands (as on the command line): f_min, f_max and
+    # frequency_response's payload, shake's encoder_noise and jobs go in the next release
+    current = nocdyn.frequency_response(points=3, min_frequency=2.0, max_frequency=20.0, compliance="rigid",
+                                        payload_mass=1.0)
+    with pytest.warns(DeprecationWarning) as caught:
+        old = nocdyn.frequency_response(points=3, f_min=2.0, f_max=20.0, compliance="rigid", payload=1.0)
+    assert sorted(str(w.message) for w in caught) == [
+        f"{old} is deprecated and will be removed in the next release: use {new}"
+        for old, new in (("f_max", "max_frequency"), ("f_min", "min_frequency"), ("payload", "payload_mass"))]
+    assert all(w.filename == __file__ for w in caught), [w.filename for w in caught]  # the caller's line
+    np.testing.assert_array_equal(old.data, current.data)
+    with pytest.raises(TypeError, match="^f_min is the old spelling of min_frequency: give min_frequency only$"):
+        nocdyn.frequency_response(points=3, f_min=2.0, min_frequency=2.0)
+    # shake's: the value is checked and refused under the new name
+    with pytest.warns(DeprecationWarning, match="^jobs is deprecated"):
+        with pytest.raises(ValueError, match="^threads: -1 is out of range"):
+            nocdyn.shake("x.AT2", jobs=-1)
+    with pytest.warns(DeprecationWarning, match="^encoder_noise is deprecated.*use noise_u$"):
+        with pytest.raises(ValueError, match="^noise_u: 2 is outside"):
+            nocdyn.shake("x.AT2", encoder_noise=2.0)
+    assert "f_min" not in inspect.signature(nocdyn.frequency_response).parameters
 
 
 def test_shake_options_that_do_not_apply_are_refused_naming_what_they_go_with(source_dir, tmp_path):

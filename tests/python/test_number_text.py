@@ -38,8 +38,8 @@ def decimal_comma(tmp_path):
 
 
 def summaries():
-    plant = nocdyn.frequency_response(pose=[0.002, -0.001, 0.01], f_min=1.5, f_max=250.0, points=7)
-    loop = nocdyn.frequency_response(closed_loop=True, f_min=0.5, f_max=200.0, points=7)
+    plant = nocdyn.frequency_response(pose=[0.002, -0.001, 0.01], min_frequency=1.5, max_frequency=250.0, points=7)
+    loop = nocdyn.frequency_response(closed_loop=True, min_frequency=0.5, max_frequency=200.0, points=7)
     return {"plant": plant.text, "closed loop": loop.text}
 
 

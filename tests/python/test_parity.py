@@ -244,8 +244,8 @@ def test_frequency_response_open_and_closed_loop(tmp_path):
                                     {"pose": [0.002, -0.001, 0.01], "output_kind": "actuators"}),
                          (["--robot", compliant], {"robot": compliant}),
                          (["--robot", compliant, "--compliance", "rigid"], {"robot": compliant, "compliance": "rigid"}),
-                         (["--closed-loop", "--payload", 2, "--f-max", 2000], {"closed_loop": True, "payload": 2.0,
-                                                                              "f_max": 2000.0})):
+                         (["--closed-loop", "--payload-mass", 2, "--max-frequency", 2000],
+                          {"closed_loop": True, "payload_mass": 2.0, "max_frequency": 2000.0})):
         out, summary = tmp_path / "fr.csv", tmp_path / "fr.txt"
         printed = run_cli("frequency-response", "--points", 7, *args, "-o", out)
         run_cli("frequency-response", "--points", 7, *args, "-o", out, "--summary", summary)

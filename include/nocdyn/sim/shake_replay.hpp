@@ -69,7 +69,7 @@ struct ShakeReplayOptions {
     /// identify_payload), pose kPoseNaturalFrequency
     std::optional<double> natural_frequency;
     double acceleration_gain = ShakeLoopOptions{}.acceleration_gain;  ///< table: g per tick
-    double encoder_noise = TableSensors{}.encoder_noise;              ///< table [m or rad]
+    double noise_u = TableSensors{}.encoder_noise;                    ///< table: encoder sigma_u [m or rad]
     double accel_noise_density = 22.5;                                ///< table [ug/sqrt(Hz)] (ADXL355)
     double accel_bandwidth = TableSensors{}.accel_bandwidth;          ///< table [Hz]
     double accel_baseline = TableSensors{}.accel_baseline;            ///< table [m]
