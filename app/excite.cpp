@@ -3,7 +3,6 @@
 #include <cstdio>
 
 #include "nocdyn/error.hpp"
-#include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/escape.hpp"
 #include "nocdyn/io/trajectory_yaml.hpp"
 #include "nocdyn/sim/control.hpp"
@@ -131,7 +130,6 @@ ExciteResult runExcite(const ExciteOptions& options, Observer& observer) {
         start = end == std::string::npos ? report.size() : end + 1;
     }
     file += io::trajectoryToYaml(result.trajectory);
-    if (!options.output.empty()) io::writeTextFile(options.output, file);
     ExciteResult out;
     out.text = std::move(report);
     out.yaml = std::move(file);

@@ -19,15 +19,13 @@ inline constexpr Range kMaxConditionRange{1.0001, 1e8, ""};
 inline constexpr Range kPayloadGuessRange{-1e6, 1e6, ""};
 
 /// The design's own options (sim/excitation.hpp: the excited parameters, f0, H, margin, limits,
-/// search), with the robot, the guessed payload, the duration and the file to write.
+/// search), with the robot, the guessed payload and the duration.
 struct ExciteOptions : ExcitationOptions {
     RobotSource robot;
     /// The guessed payload: mass [kg], c.o.m. x, y [m, platform frame], inertia about its c.o.m.
     /// [kg m^2]; empty: none.
     std::vector<double> payload_guess;
     double duration = 5.0;  ///< [s], a whole number of base periods
-    /// The trajectory file to write (none when empty).
-    std::string output;
 };
 
 /// Throws OptionError naming the field of a value out of range.
@@ -42,8 +40,8 @@ struct ExciteResult {
     int gradients = 0;  ///< of the evaluations, exact gradients (optimizer "gradient")
 };
 
-/// Designs the excitation (progress: evaluations; a stop ends it at the next evaluation);
-/// writes options.output when given.
+/// Designs the excitation (progress: evaluations; a stop ends it at the next evaluation). Writes
+/// no file: the front ends write `yaml` where their caller asks.
 ExciteResult runExcite(const ExciteOptions& options, Observer& observer);
 
 }  // namespace nocdyn::app

@@ -21,7 +21,6 @@ using render::Figure;
 using render::literalText;
 using render::PlotPanel;
 using render::PlotSeries;
-using render::renderFigure;
 
 namespace {
 
@@ -145,7 +144,7 @@ std::string covarianceYaml(const Eigen::MatrixXd& covariance, const std::vector<
     return text + "]\n";
 }
 
-void figure(const Model& model, const FitReport& fit, const std::string& stem) {
+Figure forcesFigure(const Model& model, const FitReport& fit) {
     Figure f;
     f.title = literalText(model.description.name) + ": measured and predicted actuator forces (held-out data)";
     for (int a = 0; a < model.actuators; ++a) {
@@ -165,7 +164,7 @@ void figure(const Model& model, const FitReport& fit, const std::string& stem) {
         panel.series = {measured, predicted};
         f.panels.push_back(panel);
     }
-    renderFigure(f, stem);
+    return f;
 }
 
 }  // namespace
@@ -309,8 +308,7 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
         fit = r.fit;
         out.payload = r;
     }
-    if (!options.output.empty()) io::writeTextFile(options.output, file);
-    if (!options.figure.empty()) figure(model, fit, options.figure);
+    out.figure = forcesFigure(model, fit);
     out.text = std::move(text);
     out.yaml = std::move(file);
     return out;

@@ -10,6 +10,7 @@
 #include "app/options.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/sim/identification.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
@@ -34,8 +35,6 @@ struct IdentifyOptions {
     std::string prior;        ///< payload: bounds on its parameters (YAML)
     /// The same bounds given in code (Python): used instead of the file when set.
     std::optional<PayloadPrior> prior_bounds;
-    std::string output;  ///< where the YAML goes (none when empty)
-    std::string figure;  ///< STEM of the held-out forces' figure (none when empty)
 };
 
 /// Throws OptionError naming the field of a value out of range or options that do not go together.
@@ -48,6 +47,8 @@ struct IdentifyResult {
     std::string yaml;
     std::optional<PayloadResult> payload;
     std::optional<BaseResult> base;
+    /// Measured against predicted forces on the held-out samples, one panel per actuator.
+    render::Figure figure;
 };
 
 /// The measurements of a log (named columns, time increasing; errors name file, line, column).
@@ -57,8 +58,8 @@ struct IdentifyResult {
 /// row read from a file, else the row's number from 1); every value must be finite.
 [[nodiscard]] Measurements measurementsOf(const io::Table& table, const std::string& source, int actuators);
 
-/// Reads, reconstructs the motion, solves (three steps through the observer); writes output
-/// and figure when given.
+/// Reads, reconstructs the motion, solves (three steps through the observer). Writes no file:
+/// the front ends write `yaml` and render `figure` where their caller asks.
 IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer);
 
 }  // namespace nocdyn::app

@@ -8,6 +8,7 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/io/csv.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -15,10 +16,15 @@ namespace nocdyn::cli {
 // This command's own names, apart from the other commands' (the folder compiles as one unity file).
 namespace excite_command {
 
-void run(const app::ExciteOptions& options) {
+struct Options : app::ExciteOptions {
+    std::string output;  ///< the trajectory file
+};
+
+void run(const Options& options) {
     TerminalObserver observer("nocdyn excite");
     const app::ExciteResult result = app::runExcite(options, observer);
     observer.finish();
+    io::writeTextFile(options.output, result.yaml);
     std::cout << result.text << "wrote " << options.output << "\n";
     std::cout.flush();
     if (!std::cout) throw Error("cannot write to standard output");
@@ -27,7 +33,7 @@ void run(const app::ExciteOptions& options) {
 }  // namespace excite_command
 
 void addExciteCommand(CLI::App& app) {
-    auto options = std::make_shared<app::ExciteOptions>();
+    auto options = std::make_shared<excite_command::Options>();
     CLI::App* command = app.add_subcommand(
         "excite",
         "Design an excitation trajectory for `nocdyn identify`: per pose axis a Fourier series of --harmonics\n"

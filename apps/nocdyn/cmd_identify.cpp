@@ -1,12 +1,14 @@
-// nocdyn identify: binds app::IdentifyOptions and prints the identification's report (YAML);
-// the application layer reads the log, solves, and writes --output and --figure.
+// nocdyn identify: binds app::IdentifyOptions and prints the identification's report (YAML); the
+// application layer reads the log and solves, and this command writes --output and --figure.
 #include <memory>
 #include <string>
 
 #include "app/identify.hpp"
 #include "commands.hpp"
 #include "common.hpp"
+#include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/layouts.hpp"
+#include "render/plot.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -14,17 +16,24 @@ namespace nocdyn::cli {
 // This command's own names, apart from the other commands' (the folder compiles as one unity file).
 namespace identify_command {
 
-void run(const app::IdentifyOptions& options) {
+struct Options : app::IdentifyOptions {
+    std::string output;  ///< the robot with the payload merged, or the calibration (YAML)
+    std::string figure;  ///< STEM of the held-out forces' figure
+};
+
+void run(const Options& options) {
     TerminalObserver observer("nocdyn identify");
     const app::IdentifyResult result = app::runIdentify(options, observer);
     observer.finish();
+    if (!options.output.empty()) io::writeTextFile(options.output, result.yaml);
+    if (!options.figure.empty()) render::renderFigure(result.figure, options.figure);
     printText(result.text);
 }
 
 }  // namespace identify_command
 
 void addIdentifyCommand(CLI::App& app) {
-    auto options = std::make_shared<app::IdentifyOptions>();
+    auto options = std::make_shared<identify_command::Options>();
     CLI::App* command = app.add_subcommand(
         "identify",
         "Identify a payload fixed to the platform (mass, c.o.m. [x, y] in the platform frame, moment of inertia\n"

@@ -772,11 +772,11 @@ def identify(data, *, robot=None, set=None, output=None, figure=None, progress=N
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("identify", [("robot", robot), ("data", data), ("calibration", options.get("calibration")),
                                     ("prior", prior)], [("output", output)], [("figure", figure, _FIGURE)])
-    if output is not None:
-        bound.output = _argument(output, "output", "")
-    if figure is not None:
-        bound.figure = _argument(figure, "figure", "")
-    text, robot_yaml, payload, base = _run(_nocdyn._run_identify, bound, progress, "identify")
+    path, stem = _path_argument(output, "output"), _path_argument(figure, "figure")
+    text, robot_yaml, payload, base = _run(lambda o, callback: _nocdyn._run_identify(o, callback, stem), bound,
+                                           progress, "identify")
+    if path:
+        _nocdyn._write_text(path, robot_yaml)
     return Identification(text, robot_yaml, payload, base)
 
 
@@ -818,9 +818,10 @@ def excite(*, robot=None, set=None, output=None, progress=None, **options):
         bound.payload_guess = _numbers(guess, "payload_guess", 4, "numbers: mass, com_x, com_y, inertia")
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("excite", [("robot", robot)], [("output", output)])
-    if output is not None:
-        bound.output = _argument(output, "output", "")
+    path = _path_argument(output, "output")
     text, yaml_text = _run(_nocdyn._run_excite, bound, progress, "excite")
+    if path:
+        _nocdyn._write_text(path, yaml_text)
     return Excitation({"yaml": yaml_text, "trajectory": Trajectory.from_yaml(yaml_text, "<excite>" if output is None else os.fspath(output)),
                        "path": None if output is None else pathlib.Path(output)}, text.rstrip("\n"))
 

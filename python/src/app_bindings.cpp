@@ -164,6 +164,14 @@ void bindApplication(py::module_& m) {
         py::arg("path"), py::arg("columns"), py::arg("data"),
         "Writes a table as the command line's CSV (a unique temporary file, then renamed).");
 
+    m.def(
+        "_write_text",
+        [](const std::string& path, const std::string& text) {
+            const py::gil_scoped_release release;
+            io::writeTextFile(path, text);
+        },
+        py::arg("path"), py::arg("text"), "Writes text to a file (a unique temporary file, then renamed).");
+
     // the ranges the jobs accept (app/*.hpp), for what Python checks before a job runs
     m.def("_ranges", [] {
         py::dict out;

@@ -19,6 +19,7 @@
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/sim/identification.hpp"
 #include "nocdyn/tables/calibration.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::python {
 
@@ -158,8 +159,6 @@ void bindIdentify(py::module_& m) {
     using O = app::IdentifyOptions;
     OptionsClass<O>(m, "IdentifyOptions")
         .field("robot", &O::robot)
-        .field("output", &O::output)
-        .field("figure", &O::figure)
         .option("data", &O::data)
         .option("payload", &O::payload)
         .option("base", &O::base)
@@ -214,20 +213,23 @@ void bindIdentify(py::module_& m) {
         py::arg("path"));
     m.def(
         "_run_identify",
-        [](const O& options, const py::object& progress) {
+        [](const O& options, const py::object& progress, const std::string& figure) {
             const app::IdentifyResult r =
                 runJob(progress, [&](app::Observer& observer) { return app::runIdentify(options, observer); });
+            if (!figure.empty()) {
+                const py::gil_scoped_release release;
+                render::renderFigure(r.figure, figure);
+            }
             return py::make_tuple(r.text, r.yaml, r.payload ? py::object(payloadDict(*r.payload)) : py::none(),
                                   r.base ? py::object(baseDict(*r.base)) : py::none());
         },
-        py::arg("options"), py::arg("progress") = py::none());
+        py::arg("options"), py::arg("progress") = py::none(), py::arg("figure") = std::string());
 }
 
 void bindExcite(py::module_& m) {
     using O = app::ExciteOptions;
     OptionsClass<O>(m, "ExciteOptions")
         .field("robot", &O::robot)
-        .field("output", &O::output)
         .option("payload_guess", &O::payload_guess)
         .property(
             "base", [](const O& o) { return o.parameters == ExcitedParameters::base; },
