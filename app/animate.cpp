@@ -17,25 +17,6 @@ namespace nocdyn::app {
 
 namespace {
 
-/// Refuses an output that is one of the inputs (the same file by any path or link): writing it
-/// would replace the very data it is drawn from.
-void requireNotAnInput(const AnimateOptions& options) {
-    const std::pair<const char*, std::string> outputs[] = {
-        {"png", options.png}, {"svg", options.svg}, {"output", options.output}};
-    for (const auto& [field, path] : outputs) {
-        if (path.empty()) continue;
-        for (const std::string& input : {options.robot.path, options.trajectory, options.motion}) {
-            std::error_code error;
-            if (!input.empty() && std::filesystem::equivalent(path, input, error)) {
-                std::string message = "'";
-                message.append(path).append("' is an input file (").append(input);
-                message += "): writing it would replace it";
-                throw OptionError(field, message);
-            }
-        }
-    }
-}
-
 /// Whether `path` is a CSV of a recorded motion with its forces (its header has t, x, y, theta
 /// and tau1: what simulate, control, inverse-dynamics and shake write; a two-DOF robot's has no
 /// theta), not a trajectory's samples.
@@ -78,14 +59,10 @@ void validate(const AnimateOptions& o) {
     if (o.slow_motion != 0.0) requireIn(o.slow_motion, kSlowMotionRange, "slow_motion");
     requireIn(o.magnify, kMagnifyRange, "magnify");
     if (o.frame) requireIn(*o.frame, kFrameRange, "frame");
-    if (o.frame && o.png.empty() && o.svg.empty()) throw OptionError("frame", "needs png or svg");
-    if (!o.frame && (!o.png.empty() || !o.svg.empty()))
-        throw OptionError(o.png.empty() ? "svg" : "png", "needs frame (the time to draw)");
 }
 
 AnimateResult runAnimate(const AnimateOptions& options, Observer& observer) {
     validate(options);
-    requireNotAnInput(options);
     if (isSpatialRobot(options.robot)) return runSpatialAnimate(options, observer);
     // a two-DOF robot too: the tool point, arms and forearms along x, y
     const Model model(loadRobot(options.robot));
@@ -109,12 +86,9 @@ AnimateResult runAnimate(const AnimateOptions& options, Observer& observer) {
             render::motionFromTrajectory(model, trajectory, chooseDuration(options.duration, trajectory), options.rate);
     }
     for (const std::string& warning : motion.warnings) observer.warning(warning);
-    if (options.frame) {
-        render::renderFigureFiles(render::frameFigure(model, motion, *options.frame), options.png, options.svg);
-    }
     AnimateResult out;
+    if (options.frame) out.frame = render::frameFigure(model, motion, *options.frame);
     out.html = render::animationPage(model, motion, {options.slow_motion, options.magnify});
-    if (!options.output.empty()) io::writeTextFile(options.output, out.html);
     return out;
 }
 

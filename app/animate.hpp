@@ -1,5 +1,5 @@
 // `animate`: the robot moving along a trajectory or a recorded motion as one self-contained HTML
-// page (render/animation.hpp), and a static frame as PNG and SVG.
+// page (render/animation.hpp), and a static frame as a figure (render/plot.hpp).
 #pragma once
 
 #include <optional>
@@ -8,6 +8,7 @@
 #include "app/observer.hpp"
 #include "app/options.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
@@ -25,20 +26,20 @@ struct AnimateOptions : SamplingOptions {
     std::string motion_name = "motion";
     double slow_motion = 0.0;     ///< K: 1 s of motion plays in K s; 0: the whole motion in about 10 s
     double magnify = 1.0;         ///< displacements about the mean pose drawn this many times larger
-    std::optional<double> frame;  ///< draw the sample nearest to this time [s] into png / svg
-    std::string output;           ///< the HTML page (none when empty)
-    std::string png, svg;         ///< with frame
+    std::optional<double> frame;  ///< also draw the sample nearest to this time [s] (planar)
 };
 
 /// Throws OptionError naming the field of a value out of range or options that do not go together.
 void validate(const AnimateOptions& options);
 
 struct AnimateResult {
-    std::string html;  ///< the page
+    std::string html;                     ///< the page
+    std::optional<render::Figure> frame;  ///< with options.frame: the robot at that sample
 };
 
 /// Samples the motion (warnings through the observer), draws the frame when asked, builds the
-/// page; writes output, png and svg when given (never over an input file).
+/// page. Writes no file: the front ends write the page and render the frame where their caller
+/// asks (never over an input file).
 AnimateResult runAnimate(const AnimateOptions& options, Observer& observer);
 
 }  // namespace nocdyn::app

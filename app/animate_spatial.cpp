@@ -4,7 +4,6 @@
 #include "app/inverse_dynamics_spatial.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 #include "nocdyn/error.hpp"
-#include "nocdyn/io/csv.hpp"
 #include "nocdyn/io/robot_file.hpp"
 #include "nocdyn/text.hpp"
 #include "render/animation3d.hpp"
@@ -49,7 +48,6 @@ AnimateResult runSpatialAnimate(const AnimateOptions& options, Observer& observe
     motion.warnings = run.summary.limit_violations;  // the observer has warned of them
     AnimateResult out;
     out.html = render::spatialAnimationPage(model, motion, {options.slow_motion, options.magnify});
-    if (!options.output.empty()) io::writeTextFile(options.output, out.html);
     return out;
 }
 

@@ -1,5 +1,5 @@
-// nocdyn animate: binds app::AnimateOptions; the application layer samples the motion and writes
-// the page (--output) and the frame (--png, --svg).
+// nocdyn animate: binds app::AnimateOptions; the application layer samples the motion and builds
+// the page and the frame, and this command writes them (--output; --png, --svg).
 #include <memory>
 #include <string>
 
@@ -7,6 +7,8 @@
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/error.hpp"
+#include "nocdyn/io/csv.hpp"
+#include "render/plot.hpp"
 #include "progress.hpp"
 
 namespace nocdyn::cli {
@@ -15,13 +17,16 @@ namespace nocdyn::cli {
 namespace animate_command {
 
 struct Options : app::AnimateOptions {
-    Options() { output = "robot.html"; }
+    std::string output = "robot.html";  ///< the page; none with --frame unless given
+    std::string png, svg;               ///< with --frame
 };
 
 void run(const Options& options) {
     TerminalObserver observer("nocdyn animate");
-    (void)app::runAnimate(options, observer);
+    const app::AnimateResult result = app::runAnimate(options, observer);
     observer.finish();
+    if (result.frame) render::renderFigureFiles(*result.frame, options.png, options.svg);
+    if (!options.output.empty()) io::writeTextFile(options.output, result.html);
 }
 
 }  // namespace animate_command

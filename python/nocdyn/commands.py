@@ -650,10 +650,15 @@ def animate(trajectory=None, *, robot=None, set=None, output=None, png=None, svg
     bound.robot = _robot_source(robot, set)
     _refuse_overwrites("animate", [("robot", robot), ("trajectory", trajectory), ("motion", motion)],
                        [("output", output), ("png", png), ("svg", svg)])
-    for name, value in (("output", output), ("png", png), ("svg", svg)):
-        if value is not None:
-            setattr(bound, name, _argument(value, name, ""))
-    html = _run(_nocdyn._run_animate, bound, False, "animate")
+    path, png_path, svg_path = (_path_argument(output, "output"), _path_argument(png, "png"),
+                                _path_argument(svg, "svg"))
+    if bound.frame is not None and not (png_path or svg_path):
+        raise ValueError("frame: needs png or svg")
+    if bound.frame is None and (png_path or svg_path):
+        raise ValueError(f"{'png' if png_path else 'svg'}: needs frame (the time to draw)")
+    html = _run(lambda o, callback: _nocdyn._run_animate(o, callback, png_path, svg_path), bound, False, "animate")
+    if path:
+        _nocdyn._write_text(path, html)
     return Animation(html, None if output is None else pathlib.Path(output))
 
 

@@ -260,9 +260,6 @@ void bindAnimate(py::module_& m) {
     using O = app::AnimateOptions;
     OptionsClass<O, app::SamplingOptions>(m, "AnimateOptions")
         .field("robot", &O::robot)
-        .field("output", &O::output)
-        .field("png", &O::png)
-        .field("svg", &O::svg)
         .inherited("trajectory")
         .option("motion", &O::motion)
         .inherited("duration")
@@ -287,12 +284,17 @@ void bindAnimate(py::module_& m) {
             py::arg("columns"), py::arg("data"), py::arg("name"), "The motion as a table in memory");
     m.def(
         "_run_animate",
-        [](const O& options, const py::object& progress) {
+        [](const O& options, const py::object& progress, const std::string& png, const std::string& svg) {
             const app::AnimateResult r =
                 runJob(progress, [&](app::Observer& observer) { return app::runAnimate(options, observer); });
+            if (r.frame) {
+                const py::gil_scoped_release release;
+                render::renderFigureFiles(*r.frame, png, svg);
+            }
             return r.html;
         },
-        py::arg("options"), py::arg("progress") = py::none());
+        py::arg("options"), py::arg("progress") = py::none(), py::arg("png") = std::string(),
+        py::arg("svg") = std::string());
 }
 
 }  // namespace
