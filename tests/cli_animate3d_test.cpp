@@ -58,7 +58,7 @@ TEST(CliAnimate3d, PageOfEverySpatialRobotIsSelfContainedWithItsLimbsAndFrames) 
     for (const Case& c : cases) {
         const fs::path page = dir / (c.robot + ".html");
         const CliResult r = runCli("animate --robot " + robotFile(c.robot) + " --trajectory " + c.trajectory +
-                                   " --rate " + c.rate + " --out " + page.string());
+                                   " --rate " + c.rate + " --output " + page.string());
         ASSERT_EQ(r.exit_code, 0) << c.robot << ": " << r.err;
         std::string text = readWhole(page);
         EXPECT_EQ(text.rfind("<!DOCTYPE html>", 0), 0u) << c.robot;
@@ -105,7 +105,7 @@ TEST(CliAnimate3d, LegForcesAndPlatformPointAreThoseOfInverseDynamics) {
         const std::string common = "--robot " + robotFile(robot) + " --trajectory " + trajectoryFile(trajectory) +
                                    " --rate 400 --duration 0.5";
         ASSERT_EQ(runCli("inverse-dynamics " + common + " -o " + csv.string()).exit_code, 0) << robot;
-        const CliResult r = runCli("animate " + common + " --out " + page.string());
+        const CliResult r = runCli("animate " + common + " --output " + page.string());
         ASSERT_EQ(r.exit_code, 0) << r.err;
         const io::Table table = io::readCsvFile(csv.string());
         const nlohmann::json data = pageData(readWhole(page));
@@ -136,7 +136,7 @@ TEST(CliAnimate3d, LegForcesAndPlatformPointAreThoseOfInverseDynamics) {
 
 /// Runs animate expecting a one-line error containing every piece of `expected`, and no output.
 void expectRefused(const std::string& arguments, const std::vector<std::string>& expected, const fs::path& out) {
-    const CliResult r = runCli("animate " + arguments + " --out " + out.string());
+    const CliResult r = runCli("animate " + arguments + " --output " + out.string());
     EXPECT_NE(r.exit_code, 0) << arguments;
     EXPECT_EQ(occurrences(r.err, "\n"), 1u) << r.err;
     for (const std::string& piece : expected) EXPECT_NE(r.err.find(piece), std::string::npos) << r.err;

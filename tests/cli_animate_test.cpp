@@ -43,7 +43,7 @@ TEST(CliAnimate, PageOfEveryExampleRobotIsSelfContainedAndUnder2MBFor02sAt10kHz)
     for (const std::string robot : {"paper-3prr", "paper-3prr-general", "3-rrr", "3-rpr", "4-rrr"}) {
         const fs::path page = dir / (robot + ".html");
         const CliResult r = runCli("animate --robot " + robotFile(robot) +
-                                   " --trajectory paper1 --duration 0.2 --rate 10000 --out " + page.string());
+                                   " --trajectory paper1 --duration 0.2 --rate 10000 --output " + page.string());
         ASSERT_EQ(r.exit_code, 0) << robot << ": " << r.err;
         const std::string text = readWhole(page);
         expectSelfContained(text);
@@ -62,7 +62,8 @@ TEST(CliAnimate, PlotsKeepEverySamplesExtremesOfTheInverseDynamics) {
     ASSERT_EQ(
         runCli("inverse-dynamics --robot " + robot + " --trajectory paper2 --rate 10000 -o " + csv.string()).exit_code,
         0);
-    const CliResult r = runCli("animate --robot " + robot + " --trajectory paper2 --rate 10000 --out " + page.string());
+    const CliResult r =
+        runCli("animate --robot " + robot + " --trajectory paper2 --rate 10000 --output " + page.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Table table = io::readCsvFile(csv.string());
     const nlohmann::json data = pageData(readWhole(page));
@@ -100,7 +101,7 @@ TEST(CliAnimate, MotionsWrittenByInverseDynamicsSimulateAndControlAreAnimated) {
     ASSERT_EQ(c.exit_code, 0) << c.err;
     for (const fs::path& motion : {id, sim, ctl}) {
         const fs::path page = dir / (motion.stem().string() + ".html");
-        const CliResult r = runCli("animate --robot " + robot + " --motion " + motion.string() + " --out " +
+        const CliResult r = runCli("animate --robot " + robot + " --motion " + motion.string() + " --output " +
                                    page.string() + " --slow-motion 20 --magnify 5");
         ASSERT_EQ(r.exit_code, 0) << motion << ": " << r.err;
         const std::string text = readWhole(page);
@@ -128,7 +129,7 @@ TEST(CliAnimate, RobotNameCannotLeaveTheDataScript) {
     std::ofstream(dir / "robot.yaml") << text;
     const fs::path page = dir / "page.html";
     const CliResult r = runCli("animate --robot " + (dir / "robot.yaml").string() +
-                               " --trajectory paper1 --rate 1000 --out " + page.string());
+                               " --trajectory paper1 --rate 1000 --output " + page.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string html = readWhole(page);
     expectSelfContained(html);
@@ -138,7 +139,7 @@ TEST(CliAnimate, RobotNameCannotLeaveTheDataScript) {
 
 /// Runs animate expecting a one-line error containing every piece of `expected`, and no output.
 void expectRefused(const std::string& arguments, const std::vector<std::string>& expected, const fs::path& out) {
-    const CliResult r = runCli("animate " + arguments + " --out " + out.string());
+    const CliResult r = runCli("animate " + arguments + " --output " + out.string());
     EXPECT_NE(r.exit_code, 0) << arguments;
     EXPECT_EQ(occurrences(r.err, "\n"), 1u) << r.err;
     for (const std::string& piece : expected) EXPECT_NE(r.err.find(piece), std::string::npos) << r.err;
@@ -185,7 +186,7 @@ TEST(CliAnimate, FrameIsDrawnAsPngAndSvgOfTheRobot) {
     // in millimetres, as every other figure
     EXPECT_NE(drawing.find("x [mm]"), std::string::npos);
     EXPECT_NE(drawing.find("y [mm]"), std::string::npos);
-    EXPECT_FALSE(fs::exists("robot.html"));  // no page without --out
+    EXPECT_FALSE(fs::exists("robot.html"));  // no page without --output
 }
 
 }  // namespace

@@ -39,7 +39,7 @@ TEST(CliExcite, WritesATrajectoryFileBetterConditionedThanThePaperTrajectories) 
     const fs::path dir = scratch();
     const std::string out = (dir / "excitation.yaml").string();
     const CliResult r = runCli("excite --robot " + kRobot + " --payload-guess 0.5 0.012 -0.007 8e-4 --duration 1" +
-                               kSmall + " --out " + out);
+                               kSmall + " --output " + out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const double designed = after(r.out, "designed: {condition_number: ");
     EXPECT_LT(designed, after(r.out, "paper_trajectory_1: {condition_number: ")) << r.out;
@@ -56,14 +56,14 @@ TEST(CliExcite, WritesATrajectoryFileBetterConditionedThanThePaperTrajectories) 
 TEST(CliExcite, RefusesADurationThatIsNotWholePeriodsAndAPayloadWithBase) {
     const fs::path dir = scratch();
     const std::string out = (dir / "e.yaml").string();
-    CliResult r = runCli("excite --robot " + kRobot + " --duration 0.3" + kSmall + " --out " + out);
+    CliResult r = runCli("excite --robot " + kRobot + " --duration 0.3" + kSmall + " --output " + out);
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("not a whole number of base periods"), std::string::npos) << r.err;
-    r = runCli("excite --robot " + kRobot + " --base --payload-guess 0.5 0 0 1e-4 --duration 1" + kSmall + " --out " +
-               out);
+    r = runCli("excite --robot " + kRobot + " --base --payload-guess 0.5 0 0 1e-4 --duration 1" + kSmall +
+               " --output " + out);
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("--payload-guess"), std::string::npos) << r.err;
-    r = runCli("excite --robot " + kRobot + " --payload-guess 0.5 0.01 --duration 1 --out " + out);
+    r = runCli("excite --robot " + kRobot + " --payload-guess 0.5 0.01 --duration 1 --output " + out);
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("payload-guess"), std::string::npos) << r.err;
     EXPECT_FALSE(fs::exists(out));
@@ -73,12 +73,12 @@ TEST(CliExcite, TheGradientOptimizerRunsAndAnUnknownOneIsRefusedInOneLine) {
     const fs::path dir = scratch();
     const std::string out = (dir / "e.yaml").string();
     CliResult r = runCli("excite --robot " + kRobot + " --payload-guess 0.5 0.012 -0.007 8e-4 --duration 1" + kSmall +
-                         " --optimizer gradient --out " + out);
+                         " --optimizer gradient --output " + out);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("then BFGS on the exact gradient"), std::string::npos) << r.out;
     EXPECT_TRUE(fs::exists(out));
     fs::remove(out);
-    r = runCli("excite --robot " + kRobot + " --optimizer bfgs --out " + out);
+    r = runCli("excite --robot " + kRobot + " --optimizer bfgs --output " + out);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.err.find("--optimizer: bfgs not in {nelder-mead,gradient}"), std::string::npos) << r.err;
     EXPECT_EQ(r.err.find('\n'), r.err.size() - 1) << r.err;

@@ -23,7 +23,7 @@ TEST(CliShake, WritesTheTargetAndAchievedAccelerationAndTheScales) {
     const auto dir = freshScratchDirectory("cli_shake");
     // a short window on nocdyn's own plant at 2 kHz keeps the test fast
     const CliResult r = runCli("shake --robot " + kRobot + " --record " + kRecord +
-                               " --window 3 --plant nocdyn --rate 2000 --out " + dir.string());
+                               " --window 3 --plant nocdyn --rate 2000 --out-dir " + dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("time scale L = "), std::string::npos) << r.out;
     const io::Table table = io::readCsvFile((dir / "shake.csv").string());
@@ -64,9 +64,9 @@ TEST(CliShake, ASuiteOfRecordsGivesOneRowEachAndJudgesThemAgainstTheThresholds) 
         }
         std::ofstream(other, std::ios::binary) << converted;
     }
-    const CliResult r =
-        runCli("shake --robot " + kRobot + " --record " + kRecord + " --record " + other.string() +
-               " --window 1.5 --plant nocdyn-rk4 --rate 4000 --threads 2 --max-rms-percent 20 --out " + dir.string());
+    const CliResult r = runCli(
+        "shake --robot " + kRobot + " --record " + kRecord + " --record " + other.string() +
+        " --window 1.5 --plant nocdyn-rk4 --rate 4000 --threads 2 --max-rms-percent 20 --out-dir " + dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const std::string summary = readWhole(dir / "summary.md");
     EXPECT_NE(summary.find("| elcentro_1940_ns.AT2 |"), std::string::npos) << summary;
@@ -82,7 +82,7 @@ TEST(CliShake, ASuiteOfRecordsGivesOneRowEachAndJudgesThemAgainstTheThresholds) 
     // a threshold no replay meets fails them all
     const CliResult strict = runCli("shake --robot " + kRobot + " --record " + kRecord + " --record " + other.string() +
                                     " --window 1.5 --plant nocdyn-rk4 --rate 4000 --max-rms-percent 1e-4 "
-                                    "--out " +
+                                    "--out-dir " +
                                     (dir / "strict").string());
     ASSERT_EQ(strict.exit_code, 0) << strict.err;
     EXPECT_NE(strict.out.find("0 of 2 records pass"), std::string::npos) << strict.out;
@@ -95,7 +95,7 @@ TEST(CliShake, ASingleReplayShowsWhatTheTableDidAndItsVerdict) {
     const auto dir = freshScratchDirectory("cli_shake_verdict");
     const std::string replay =
         "shake --robot " + kRobot + " --record " + kRecord + " --window 2 --plant nocdyn-rk4 --rate 2000";
-    const CliResult r = runCli(replay + " --out " + dir.string());
+    const CliResult r = runCli(replay + " --out-dir " + dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Table table = io::readCsvFile((dir / "shake.csv").string());
     const nlohmann::json json = nlohmann::json::parse(readWhole(dir / "shake.json"));
@@ -121,14 +121,14 @@ TEST(CliShake, ASingleReplayShowsWhatTheTableDidAndItsVerdict) {
         EXPECT_NE(verdict.find("RMS error"), std::string::npos) << verdict;
     }
     // a goal it cannot meet: FAIL, naming it with the measured number
-    const CliResult strict = runCli(replay + " --max-rms-percent 0.001 --out " + (dir / "strict").string());
+    const CliResult strict = runCli(replay + " --max-rms-percent 0.001 --out-dir " + (dir / "strict").string());
     ASSERT_EQ(strict.exit_code, 0) << strict.err;
     char missed[80];
     std::snprintf(missed, sizeof missed, "FAIL (RMS error %.3g %% > 0.001 %%", rms);
     EXPECT_NE(strict.out.find(missed), std::string::npos) << strict.out;
     // animate: the achieved motion, the target as its ghost
     const CliResult page =
-        runCli("animate --robot " + kRobot + " --trajectory " + (dir / "shake.csv").string() + " --out " +
+        runCli("animate --robot " + kRobot + " --trajectory " + (dir / "shake.csv").string() + " --output " +
                (dir / "replay.html").string() + " --frame 1 --svg " + (dir / "frame.svg").string());
     ASSERT_EQ(page.exit_code, 0) << page.err;
     EXPECT_NE(readWhole(dir / "replay.html").find("\"ghost\":["), std::string::npos);
@@ -139,7 +139,7 @@ TEST(CliShake, IdentifiesThePayloadRaisesTheAmplitudeAndIteratesTheDrive) {
     const auto dir = freshScratchDirectory("cli_shake_identify");
     const CliResult r = runCli("shake --robot " + kRobot + " --record " + kRecord +
                                " --window 1.5 --plant nocdyn-rk4 --rate 4000 --identify-payload --amplitude 1.5 "
-                               "--iterations 2 --excitation-duration 1 --out " +
+                               "--iterations 2 --excitation-duration 1 --out-dir " +
                                dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     EXPECT_NE(r.out.find("times 1.5 before the fit, as asked (--amplitude)"), std::string::npos) << r.out;
@@ -163,7 +163,7 @@ TEST(CliShake, AWeakRealRecordMeetsEveryGoalWithTheDefaults) {
     if (!std::filesystem::exists(record)) GTEST_SKIP() << "no " << record;
     const auto dir = freshScratchDirectory("cli_shake_weak");
     const CliResult r = runCli("shake --robot " + kRobot + " --record " + record +
-                               " --window 8 --plant nocdyn-rk4 --out " + dir.string());
+                               " --window 8 --plant nocdyn-rk4 --out-dir " + dir.string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const nlohmann::json json = nlohmann::json::parse(readWhole(dir / "shake.json"));
     const nlohmann::json& ax = json["metrics"]["ax"];
@@ -180,7 +180,7 @@ TEST(CliShake, RefusesATruncatedRecordNamingTheLine) {
     const auto dir = freshScratchDirectory("cli_shake");
     const std::filesystem::path bad = dir / "short.AT2";
     std::ofstream(bad) << "title\nevent\nunits g\nNPTS=  10, DT= .02 SEC\n0.1 0.2\n0.3\n";
-    const CliResult r = runCli("shake --record " + bad.string() + " --out " + (dir / "o").string());
+    const CliResult r = runCli("shake --record " + bad.string() + " --out-dir " + (dir / "o").string());
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("short.AT2:6:"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "o" / "shake.csv"));
@@ -192,7 +192,7 @@ TEST(CliShake, ASuiteRefusesABadRecordBeforeAnyReplayNamingItsFileAndLine) {
     std::filesystem::create_directories(bad.parent_path());
     std::filesystem::copy_file(kRecord, dir / "records" / "a.AT2");
     std::ofstream(bad) << "title\nevent\nunits g\nNPTS=  3, DT= .02 SEC\n0.1 0.2x 0.3\n";
-    const CliResult r = runCli("shake --record " + (dir / "records").string() + " --out " + (dir / "o").string());
+    const CliResult r = runCli("shake --record " + (dir / "records").string() + " --out-dir " + (dir / "o").string());
     EXPECT_NE(r.exit_code, 0);
     EXPECT_NE(r.err.find("bad.AT2:5: value 2 '0.2x'"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir / "o" / "a" / "shake.json"));

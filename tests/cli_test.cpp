@@ -379,7 +379,7 @@ constexpr const char* kClosedLoop = " --identification-duration 0.5";
 TEST(Cli, ReproduceWritesCsvFiguresAndSummary) {
     const fs::path out = scratch("reproduce");
     fs::remove_all(out);
-    const CliRun r = run("reproduce --out " + out.string() + kClosedLoop);
+    const CliRun r = run("reproduce --out-dir " + out.string() + kClosedLoop);
     ASSERT_EQ(r.exit_code, 0) << r.err;
     for (const char* file :
          {"paper1.csv", "paper2.csv", "paper1_displacements.png", "paper1_displacements.svg", "paper1_forces.png",

@@ -75,7 +75,7 @@ TEST(HostileCli, ShakeRefusesAnAllZeroRecord) {
     for (int k = 0; k < 8; ++k)
         record += "   0.00000   0.00000   0.00000   0.00000   0.00000   0.00000   0.00000   0.00000\n";
     writeFile(dir / "zero.AT2", record);
-    const CliResult r = runCli("shake --robot " + kRobot + " --record " + (dir / "zero.AT2").string() + " --out " +
+    const CliResult r = runCli("shake --robot " + kRobot + " --record " + (dir / "zero.AT2").string() + " --out-dir " +
                                (dir / "out").string());
     EXPECT_EQ(r.exit_code, 1) << r.out;
     EXPECT_NE(r.err.find("zero.AT2: every acceleration is zero"), std::string::npos) << r.err;

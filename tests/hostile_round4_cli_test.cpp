@@ -272,6 +272,17 @@ TEST(HostileRound4Cli, OldOptionSpellingsWarnAndMeanTheNewOnes) {
     const CliResult noise = runCli("shake --record " + kRecord + kQuick + " --encoder-noise 2");
     EXPECT_EQ(noise.exit_code, 2);
     EXPECT_TRUE(has(noise.err, "--encoder-noise: must be a finite number in [1e-12, 1] m or rad")) << noise.err;
+    // --out, the old spelling of --output (animate, excite) and of --out-dir (design, shake,
+    // reproduce)
+    const fs::path dir = freshScratchDirectory("hostile_round4_cli");
+    const CliResult page =
+        runCli("animate --trajectory paper1 --duration 0.05 --rate 1000 --out " + (dir / "p.html").string());
+    EXPECT_EQ(page.exit_code, 0) << page.err;
+    EXPECT_TRUE(fs::exists(dir / "p.html"));
+    EXPECT_TRUE(has(page.err, "nocdyn: warning: --out is deprecated: use --output")) << page.err;
+    const CliResult sweep = runCli("design --robot " + kCompliant + " --out " + (dir / "d").string());
+    EXPECT_EQ(sweep.exit_code, 2);
+    EXPECT_TRUE(has(sweep.err, "nocdyn: warning: --out is deprecated: use --out-dir")) << sweep.err;
     // the old spellings are not offered in --help
     const CliResult help = runCli("frequency-response --help");
     EXPECT_FALSE(has(help.out, "--f-min")) << help.out;

@@ -78,7 +78,7 @@ void addAnimateCommand(CLI::App& app) {
         ->check(within(app::kMagnifyRange))
         ->capture_default_str();
     auto* out = command->add_option("--output,-o", options->output, "HTML file to write")->capture_default_str();
-    auto* old_out = command->add_option("--out", options->output)->group("");  // the old spelling, hidden
+    auto* old_out = addOldSpelling(*command, "--out", out, options->output);
     auto* frame = command->add_option("--frame", options->frame, "Draw the robot at this time [s] (nearest sample)")
                       ->check(within(app::kFrameRange));
     command->add_option("--png", options->png, "With --frame: PNG file to write")->needs(frame);

@@ -50,7 +50,7 @@ void addExciteCommand(CLI::App& app) {
         "only (theta stays at home) and its payload is a point mass at the tool point (its mass the one unknown).");
     addRobotOption(*command, options->robot);
     auto* output = command->add_option("--output,-o", options->output, "Trajectory YAML file to write (required)");
-    auto* old_output = command->add_option("--out", options->output)->group("");  // the old spelling, hidden
+    auto* old_output = addOldSpelling(*command, "--out", output, options->output);
     command
         ->add_option("--payload-guess", options->payload_guess,
                      "Guessed payload: MASS [kg] COM_X COM_Y [m, platform frame] INERTIA [kg m^2, about its c.o.m.]; "

@@ -39,8 +39,9 @@ void addReproduceCommand(CLI::App& app) {
         "computed-torque and PD control on the Simbody plant; the operating envelope (stroke and force);\n"
         "and the example robots of other architectures (3-RRR, 3-RPR, redundant 4-RRR) against both engines;\n"
         "and the payload identification experiment, simulated on the Simbody plant (identification/).");
-    command->add_option("--out-dir", options->out_dir, "Output folder (created if missing)")->capture_default_str();
-    command->add_option("--out", options->out_dir)->group("");  // the old spelling, hidden
+    auto* out_dir =
+        command->add_option("--out-dir", options->out_dir, "Output folder (created if missing)")->capture_default_str();
+    addOldSpelling(*command, "--out", out_dir, options->out_dir);
     command
         ->add_option("--closed-loop-duration", options->closed_loop_duration,
                      "Seconds of each closed-loop run on a Simbody plant (the paper's trajectories and the\n"

@@ -191,8 +191,8 @@ void addShakeCommand(CLI::App& app) {
     command->add_option("--accuracy", options->accuracy, "Simbody plant: integrator accuracy")
         ->check(within(app::kAccuracyRange))
         ->capture_default_str();
-    command->add_option("--out-dir", options->out_dir, "Output folder")->capture_default_str();
-    command->add_option("--out", options->out_dir)->group("");  // the old spelling, hidden
+    auto* out_dir = command->add_option("--out-dir", options->out_dir, "Output folder")->capture_default_str();
+    addOldSpelling(*command, "--out", out_dir, options->out_dir);
     command->callback([options] { shake_command::run(*options); });
 }
 

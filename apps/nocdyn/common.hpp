@@ -123,7 +123,7 @@ void warnOldSpelling(const std::string& old_name, const std::string& new_name);
 /// (CLI11 gives a hidden option no name in its own messages).
 template <class T>
 CLI::Option* addOldSpelling(CLI::App& command, const std::string& old_name, CLI::Option* current, T& variable,
-                            const CLI::Validator& check) {
+                            const CLI::Validator& check = CLI::Validator()) {
     const std::string new_name = "--" + current->get_lnames().front();
     return command.add_option(old_name, variable, "old spelling of " + new_name)
         ->group("")

@@ -38,7 +38,8 @@ One vocabulary for the command line, the Python package and every file nocdyn wr
   options struct in app/) and the same unit. Positional arguments keep their order.
 - **One option name per concept** across the commands (`--min-frequency`, `--payload-mass`,
   `--noise-u`, `--threads`). An old spelling stays one release, hidden from `--help` and listed
-  under its command below; it warns (a `DeprecationWarning` in Python) and means the new one.
+  under its command below (Python's old keywords: [python-parity](python-parity.md)); it warns
+  (a `DeprecationWarning` in Python) and means the new one.
 - **Scores** say their unit in their name: `_percent` for percent; a score without it is a
   fraction.
 - **Joint ranges** are checked by every command that computes joint variables (a motion beyond
@@ -87,7 +88,7 @@ def main():
                        f"{kind.replace('|', '/')} | {first_sentence(option['help'])} |")
         if old:
             out.append("\nOld spellings, until the next release: " +
-                       ", ".join(f"`--{name}` (`{name.replace('-', '_')}`): `{new}`" for name, new in old) + ".")
+                       ", ".join(f"`--{name}` for `{new}`" for name, new in old) + ".")
     sys.stdout.write("\n".join(out) + "\n")
 
 
