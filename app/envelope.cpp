@@ -22,12 +22,7 @@ void validate(const EnvelopeOptions& options) {
 }
 
 nocdyn::EnvelopeOptions libraryEnvelopeOptions(const EnvelopeOptions& options, Observer& observer) {
-    nocdyn::EnvelopeOptions envelope;
-    envelope.min_frequency = options.min_frequency;
-    envelope.max_frequency = options.max_frequency;
-    envelope.frequencies = options.points;
-    envelope.samples_per_period = options.samples_per_period;
-    envelope.relative_tolerance = options.relative_tolerance;
+    nocdyn::EnvelopeOptions envelope = static_cast<const nocdyn::EnvelopeOptions&>(options);
     // called between points, from this thread
     envelope.progress = [&observer](int done, int total) {
         observer.progress(done, total, "points");
@@ -41,8 +36,7 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
     validate(options);
     if (isSpatialRobot(options.robot)) return runSpatialEnvelope(options, observer);
     const Model model(loadRobot(options.robot));
-    nocdyn::EnvelopeOptions envelope = libraryEnvelopeOptions(options, observer);
-    envelope.amplification = options.amplification;
+    const nocdyn::EnvelopeOptions envelope = libraryEnvelopeOptions(options, observer);
     EnvelopeResult out;
     out.robot = model.description.name;
     out.points = operatingEnvelope(model, envelope);

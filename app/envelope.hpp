@@ -22,17 +22,12 @@ inline constexpr Range kEnvelopePointsRange{1.0, static_cast<double>(kEnvelopeMa
 inline constexpr Range kSamplesPerPeriodRange{8.0, 65536.0, "samples"};
 inline constexpr Range kEnvelopeToleranceRange{1e-15, 0.5, ""};
 
-struct EnvelopeOptions {
+/// The search's own options (analysis/envelope.hpp: min_frequency and max_frequency in
+/// kEnvelopeFrequencyRange, points per axis, samples_per_period in kSamplesPerPeriodRange, the
+/// bisection's relative_tolerance in kEnvelopeToleranceRange, the third bound's amplification in
+/// kAmplificationRange), with the robot. Progress and polling are the job's own (the observer).
+struct EnvelopeOptions : nocdyn::EnvelopeOptions {
     RobotSource robot;
-    double min_frequency = 1.0;    ///< [Hz] (kEnvelopeFrequencyRange)
-    double max_frequency = 100.0;  ///< [Hz], at least min_frequency
-    int points = 41;               ///< log-spaced frequencies per axis, both ends included
-    int samples_per_period = 256;  ///< samples of each period checked (kSamplesPerPeriodRange)
-    /// The amplitude's bisection stops at (hi - lo) <= tolerance * hi (kEnvelopeToleranceRange).
-    double relative_tolerance = 1e-6;
-    /// The band's third bound: the largest dynamic amplification of an axis accepted
-    /// (kAmplificationRange; envelope.hpp).
-    double amplification = kDefaultAmplification;
 };
 
 inline constexpr Range kAmplificationRange{kMinAmplification, kMaxAmplification, ""};
@@ -59,8 +54,8 @@ struct EnvelopeResult {
 /// Throws OptionError for a frequency or count out of range, or max below min.
 void validate(const EnvelopeOptions& options);
 
-/// The library's envelope options from the job's (all but the amplification, a planar bound):
-/// progress in points and a stop between points through `observer`, which must outlive them.
+/// The library's envelope options: the job's, with progress in points and a stop between points
+/// through `observer`, which must outlive them.
 [[nodiscard]] nocdyn::EnvelopeOptions libraryEnvelopeOptions(const EnvelopeOptions& options, Observer& observer);
 
 /// The envelope; progress in points (3 * options.points), a stop between points.

@@ -141,7 +141,7 @@ TEST(GeneralEnvelope, RangeVelocityAndEffortEachBindWithTheirSlopeAndAreReached)
 
 TEST(GeneralEnvelope, EveryExampleRobotHasAnEnvelopeNamingItsLimits) {
     EnvelopeOptions options;
-    options.frequencies = 3;
+    options.points = 3;
     options.min_frequency = 1.0;
     options.max_frequency = 100.0;
     for (const char* name : {"3-rrr", "3-rpr", "4-rrr"}) {
@@ -196,7 +196,7 @@ TEST(GeneralEnvelope, APassiveJointsLimitsAreCheckedAndWideOnesChangeNothing) {
 
 TEST(GeneralEnvelope, PointsComeAxisAfterAxisInTheOrderXYTheta) {
     EnvelopeOptions options;
-    options.frequencies = 2;
+    options.points = 2;
     const auto points = operatingEnvelope(Model(example("3-rrr")), options);
     ASSERT_EQ(points.size(), 6u);
     const EnvelopeAxis expected[] = {EnvelopeAxis::x, EnvelopeAxis::x,     EnvelopeAxis::y,
@@ -223,7 +223,7 @@ TEST(GeneralEnvelope, TheFirstNaturalFrequencyAtHomeIsTheBandsThirdBound) {
 
     // f_1 / 2, f_1 and 2 f_1 (log-spaced: the middle one is f_1 to the last bit)
     EnvelopeOptions options;
-    options.frequencies = 3;
+    options.points = 3;
     options.min_frequency = 0.5 * resonance.frequency;
     options.max_frequency = 2.0 * resonance.frequency;
     const auto points = operatingEnvelope(model, options);
@@ -282,7 +282,7 @@ TEST(GeneralEnvelope, NoFrequencyReportedUsableIsAmplifiedBeyondTheLimit) {
         EnvelopeOptions options;
         options.min_frequency = 1.0;
         options.max_frequency = 200.0;
-        options.frequencies = 41;
+        options.points = 41;
         options.amplification = limit;
         const EnvelopeResonance resonance = envelopeResonance(model, limit);
         ASSERT_TRUE(resonance.known);
@@ -318,7 +318,7 @@ TEST(GeneralEnvelope, WithoutDeclaredComplianceTheEnvelopeIsUnchangedAndTheBound
     EXPECT_FALSE(resonance.declared);
     EXPECT_EQ(resonance.reason, "the robot file declares no compliance");
     EnvelopeOptions options;
-    options.frequencies = 2;
+    options.points = 2;
     options.min_frequency = 10.0;
     options.max_frequency = 1000.0;
     const auto points = operatingEnvelope(model, options);
@@ -345,7 +345,7 @@ TEST(GeneralEnvelope, ComplianceThatLeavesALimbRigidGivesNoBoundAndSaysWhy) {
     EXPECT_EQ(resonance.reason.rfind("at home: ", 0), 0u) << resonance.reason;
     EXPECT_NE(resonance.reason.find("limb 2"), std::string::npos) << resonance.reason;
     EnvelopeOptions options;
-    options.frequencies = 1;
+    options.points = 1;
     options.min_frequency = options.max_frequency = 500.0;
     for (const EnvelopePoint& p : operatingEnvelope(model, options)) EXPECT_NE(p.limit, EnvelopeLimit::resonance);
 }
@@ -355,7 +355,7 @@ TEST(GeneralEnvelope, RefusesFrequenciesOutOfRange) {
     EXPECT_THROW((void)maximumAmplitude(model, EnvelopeAxis::x, 0.0), Error);
     EXPECT_THROW((void)maximumAmplitude(model, EnvelopeAxis::x, 1e5), Error);
     EnvelopeOptions options;
-    options.frequencies = 0;
+    options.points = 0;
     EXPECT_THROW((void)operatingEnvelope(model, options), Error);
 }
 

@@ -116,7 +116,7 @@ TEST(Envelope, PaperTrajectoriesLieInsideTheEnvelope) {
 TEST(Envelope, SweepIsLogSpacedOverEveryAxis) {
     const Model model{io::expand(kPaper)};
     EnvelopeOptions options;
-    options.frequencies = 5;
+    options.points = 5;
     const auto points = operatingEnvelope(model, options);
     ASSERT_EQ(points.size(), 15u);
     EXPECT_DOUBLE_EQ(points.front().frequency, 1.0);
@@ -136,7 +136,7 @@ TEST(Envelope, FrequenciesAndCountsOutsideTheirRangeAreRefusedNotIterated) {
     options.max_frequency = 1e300;
     EXPECT_THROW((void)operatingEnvelope(model, options), Error);
     options = {};
-    options.frequencies = 100000000;
+    options.points = 100000000;
     EXPECT_THROW((void)operatingEnvelope(model, options), Error);
     options = {};
     options.min_frequency = std::numeric_limits<double>::quiet_NaN();

@@ -304,7 +304,7 @@ TEST(HostileRound4, ALongIntegrationAnswersItsPollAndStops) {
 TEST(HostileRound4, TheEnvelopeAnswersItsPollWithinAPoint) {
     const Model model(robotDescription("3-rrr"));
     EnvelopeOptions options;
-    options.frequencies = 1;
+    options.points = 1;
     options.samples_per_period = 64;
     int polls = 0;
     options.poll = [&polls] {

@@ -93,7 +93,7 @@ TEST(SpatialEnvelope, ATranslationRobotHasThreeAxesAndEveryPointWithinItsLimits)
     nocdyn::EnvelopeOptions options;
     options.min_frequency = 0.1;
     options.max_frequency = 100.0;
-    options.frequencies = 3;
+    options.points = 3;
     const std::vector<EnvelopePoint> points = operatingEnvelope(model, options);
     ASSERT_EQ(points.size(), 9U);
     Data data(model);

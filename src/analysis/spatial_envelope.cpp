@@ -186,16 +186,16 @@ std::vector<EnvelopePoint> operatingEnvelope(const Model& model, const nocdyn::E
     checkFrequency(options.min_frequency, "min_frequency");
     checkFrequency(options.max_frequency, "max_frequency");
     if (options.max_frequency < options.min_frequency) throw Error("envelope: max_frequency is below min_frequency");
-    if (options.frequencies < 1 || options.frequencies > kEnvelopeMaxPoints) {
+    if (options.points < 1 || options.points > kEnvelopeMaxPoints) {
         throw Error("envelope: the number of frequencies must be in [1, " + std::to_string(kEnvelopeMaxPoints) +
-                    "], got " + std::to_string(options.frequencies));
+                    "], got " + std::to_string(options.points));
     }
     std::vector<EnvelopePoint> points;
-    const int total = model.task_dimension * options.frequencies;
+    const int total = model.task_dimension * options.points;
     for (int axis = 0; axis < model.task_dimension; ++axis) {
         double hint = 0.0;
-        for (int k = 0; k < options.frequencies; ++k) {
-            const double s = options.frequencies > 1 ? static_cast<double>(k) / (options.frequencies - 1) : 0.0;
+        for (int k = 0; k < options.points; ++k) {
+            const double s = options.points > 1 ? static_cast<double>(k) / (options.points - 1) : 0.0;
             const double f = options.min_frequency * std::pow(options.max_frequency / options.min_frequency, s);
             points.push_back(maximumAmplitude(model, axis, f, options, hint));
             hint = points.back().amplitude;

@@ -69,7 +69,7 @@ inline constexpr double kMinAmplification = 1.001, kMaxAmplification = 100.0;
 struct EnvelopeOptions {
     double min_frequency = 1.0;        ///< [Hz]
     double max_frequency = 100.0;      ///< [Hz]
-    int frequencies = 41;              ///< log-spaced, both ends included
+    int points = 41;                   ///< log-spaced frequencies, both ends included
     int samples_per_period = 256;      ///< a multiple of 4 puts samples on the sinusoid's peaks
     double relative_tolerance = 1e-6;  ///< bisection stops when (hi - lo) <= tol * hi
     /// Called after each point with the points done and their total (e.g. a progress line).
