@@ -71,7 +71,7 @@ void addDesignCommand(CLI::App& app) {
         ->required();
     auto* out_dir = command->add_option("--out-dir", options->out_dir, "Output folder (created if missing; required)")
                         ->check(nonEmptyPath());
-    auto* old_out = addOldSpelling(*command, "--out", out_dir, options->out_dir, nonEmptyPath());
+    auto* old_out = addOldSpelling(*command, "--out", out_dir, options->out_dir);
 
     addChoiceOption(*command, "--sweep", options->sweep, "grid or random");
     command->add_option("--samples", options->samples, "Designs (grid: round(N^(1/d)) values per parameter)")

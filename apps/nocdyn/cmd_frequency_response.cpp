@@ -84,8 +84,8 @@ void addFrequencyResponseCommand(CLI::App& app) {
     auto* max_frequency = command->add_option("--max-frequency", options->max_frequency, "Highest frequency [Hz]")
                               ->check(frequency)
                               ->capture_default_str();
-    addOldSpelling(*command, "--f-min", min_frequency, options->min_frequency, frequency);
-    addOldSpelling(*command, "--f-max", max_frequency, options->max_frequency, frequency);
+    addOldSpelling(*command, "--f-min", min_frequency, options->min_frequency);
+    addOldSpelling(*command, "--f-max", max_frequency, options->max_frequency);
     command->add_option("--points", options->points, "Frequencies, log-spaced")
         ->check(CLI::Range(app::kMinPoints, app::kMaxPoints))
         ->capture_default_str();
@@ -100,7 +100,7 @@ void addFrequencyResponseCommand(CLI::App& app) {
                          "carry")
             ->check(within(app::kPayloadMassRange))
             ->capture_default_str();
-    addOldSpelling(*command, "--payload", payload_mass, options->payload_mass, within(app::kPayloadMassRange));
+    addOldSpelling(*command, "--payload", payload_mass, options->payload_mass);
     command
         ->add_option("--controller-rate", options->controller_rate,
                      "With --closed-loop: controller ticks [Hz] (as shake's --rate)")

@@ -112,7 +112,7 @@ void addShakeCommand(CLI::App& app) {
         command->add_option("--noise-u", options->noise_u, "table: std. dev. of each actuator encoder [m or rad]")
             ->check(within(app::kEncoderNoiseRange))
             ->capture_default_str();
-    addOldSpelling(*command, "--encoder-noise", noise_u, options->noise_u, within(app::kEncoderNoiseRange));
+    addOldSpelling(*command, "--encoder-noise", noise_u, options->noise_u);
     command
         ->add_option("--accel-noise-density", options->accel_noise_density,
                      "table: accelerometer noise density [ug/sqrt(Hz)] (ADXL355: 22.5)")
@@ -164,7 +164,7 @@ void addShakeCommand(CLI::App& app) {
         command->add_option("--threads", options->threads, "Suite: records played at once (0: one per core)")
             ->check(CLI::Range(0u, app::kMaxThreads))
             ->capture_default_str();
-    addOldSpelling(*command, "--jobs", threads, options->threads, CLI::Range(0u, app::kMaxThreads));
+    addOldSpelling(*command, "--jobs", threads, options->threads);
     command
         ->add_option("--max-rms-percent", options->max_rms_percent,
                      "Pass (a suite's rows, a single replay's verdict) when the RMS error is at most this [%]")

@@ -11,6 +11,7 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -118,20 +119,32 @@ void warnOldSpelling(const std::string& old_name, const std::string& new_name);
 
 /// Adds `old_name`, the old spelling of the option `current` (one concept, one name across the
 /// commands), accepted until the next release: hidden from --help, it sets the same variable
-/// under the same `check`, warns "nocdyn: warning: --f-min is deprecated: use --min-frequency"
-/// on standard error, and is refused together with `current`. Its errors name it themselves
-/// (CLI11 gives a hidden option no name in its own messages).
+/// under the checks `current` has when this is called (so call it after them), warns
+/// "nocdyn: warning: --f-min is deprecated: use --min-frequency" on standard error, and is refused
+/// together with `current`. Its errors name it themselves (CLI11 gives a hidden option no name in
+/// its own messages).
 template <class T>
-CLI::Option* addOldSpelling(CLI::App& command, const std::string& old_name, CLI::Option* current, T& variable,
-                            const CLI::Validator& check = CLI::Validator()) {
+CLI::Option* addOldSpelling(CLI::App& command, const std::string& old_name, CLI::Option* current, T& variable) {
     const std::string new_name = "--" + current->get_lnames().front();
+    // CLI11 2.1 lists an option's validators by index, in the order it runs them, and throws
+    // past the last one
+    std::vector<CLI::Validator> checks;
+    for (int i = 0; i < 64; ++i) {
+        try {
+            checks.push_back(*current->get_validator(i));
+        } catch (const CLI::OptionNotFound&) {
+            break;
+        }
+    }
     return command.add_option(old_name, variable, "old spelling of " + new_name)
         ->group("")
-        ->each([old_name, new_name, current, check](const std::string& value) {
+        ->each([old_name, new_name, current, checks](const std::string& value) {
             if (current->count() > 0) throw CLI::ExcludesError(old_name, new_name);
             std::string word = value;
-            if (const std::string error = check(word); !error.empty()) {
-                throw CLI::ConversionError(old_name + ": " + error);
+            for (const CLI::Validator& check : checks) {
+                if (const std::string error = check(word); !error.empty()) {
+                    throw CLI::ConversionError(old_name + ": " + error);
+                }
             }
             warnOldSpelling(old_name, new_name);
         });
