@@ -187,10 +187,7 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
     const Model model(robot);
     const bool point = model.task_dimension == 2;
     IdentificationOptions identification;
-    identification.cutoff = options.cutoff;
-    identification.holdout = options.holdout;
-    identification.friction = options.friction;
-    identification.held_forces = options.held_forces;
+    static_cast<IdentificationSettings&>(identification) = options;
     if (!options.calibration.empty()) {
         identification.calibration = io::loadCalibration(options.calibration, model);
         try {

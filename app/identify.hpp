@@ -17,20 +17,16 @@ namespace nocdyn::app {
 inline constexpr Range kCutoffRange{1e-3, 1e6, "Hz"};
 inline constexpr Range kHoldoutRange{0.0, 0.9, ""};
 
-struct IdentifyOptions {
+/// The fit's settings (cutoff, holdout, friction, held_forces) are the library's.
+struct IdentifyOptions : IdentificationSettings {
     RobotSource robot;
     /// The log: CSV t,u1..un with tau1..taun (forces at each sample) or tau1_held..taun_held
     /// (and du1..dun, ddu1..ddun when known). With data_table: the log's name in messages.
     std::string data;
     /// The same log given in code (Python): used instead of the file when set.
     std::optional<io::Table> data_table;
-    bool payload = false;  ///< identify a payload (the default when base is not given)
-    bool base = false;     ///< identify the robot's base parameters instead
-    bool friction = false;
-    bool held_forces = false;
-    /// Low-pass cut-off when du and ddu are derived [Hz]; 0: a tenth of the rate, at most 50 Hz.
-    double cutoff = 0.0;
-    double holdout = 0.2;     ///< share of the samples (the last) held out
+    bool payload = false;     ///< identify a payload (the default when base is not given)
+    bool base = false;        ///< identify the robot's base parameters instead
     std::string calibration;  ///< payload: a calibration file (identify base's output)
     std::string prior;        ///< payload: bounds on its parameters (YAML)
     /// The same bounds given in code (Python): used instead of the file when set.

@@ -12,11 +12,8 @@ RegressorResult runRegressor(const RegressorOptions& options, Observer& /*observ
     validate(options);
     // a two-DOF robot too: tau = Y pi over its two actuators (regressor.hpp)
     const Model model(loadRobot(options.robot));
-    BaseParameterOptions base_options;
-    base_options.samples = options.samples;
-    base_options.seed = options.seed;
     RegressorResult out;
-    out.base = baseParameters(model, base_options);
+    out.base = baseParameters(model, options);
     out.pi = standardParameters(model);
     out.text = "# standard parameters (robot file values)\n";
     if (model.task_dimension == 2) {

@@ -15,10 +15,10 @@ namespace nocdyn::app {
 
 inline constexpr Range kRegressorSamplesRange{20.0, 100000.0, "motions"};
 
-struct RegressorOptions {
+/// The random motions stacked (samples, within kRegressorSamplesRange, and their seed) and the
+/// rank test are the library's (baseParameters).
+struct RegressorOptions : BaseParameterOptions {
     RobotSource robot;
-    int samples = 200;  ///< random motions stacked (kRegressorSamplesRange)
-    unsigned seed = 1;  ///< of the random motions
 };
 
 struct RegressorResult {

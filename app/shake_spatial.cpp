@@ -73,9 +73,7 @@ spatial::DriveIterationOptions iterationOptions(const ShakeOptions& options) {
     out.iterations = options.iterations;
     out.gain = options.iteration_gain;
     out.tolerance = options.iteration_tolerance;
-    out.fit.highpass = options.highpass;
-    out.fit.margin = options.margin;
-    out.fit.time_scale = options.time_scale;
+    static_cast<FitSettings&>(out.fit) = options;
     return out;
 }
 
@@ -343,9 +341,7 @@ spatial::LoopOptions loopOptions(const ShakeOptions& options, std::string& contr
 spatial::FittedRecord3 fitOf(const spatial::Model& model, const spatial::GroundRecord3& record,
                              const ShakeOptions& options, const spatial::LoopOptions& loop) {
     FitOptions fit_options;
-    fit_options.highpass = options.highpass;
-    fit_options.margin = options.margin;
-    fit_options.time_scale = options.time_scale;
+    static_cast<FitSettings&>(fit_options) = options;
     spatial::FittedRecord3 fit = spatial::fitRecord(model, record, fit_options, options.per_axis_scale);
     if (!(fit.t.back() * loop.rate <= 1e7)) {
         throw OptionError("rate", text::format("%g s of replay at %g Hz: at most 1e7 ticks (give --window)",

@@ -23,9 +23,7 @@ const std::vector<double>& target(const FittedRecord& fit, int axis) {
 /// The fit's options: the high-pass, the time scale asked (if any), the margin.
 FitOptions fitOptions(const ShakeReplayOptions& o) {
     FitOptions fit;
-    fit.highpass = o.highpass;
-    fit.time_scale = o.time_scale;
-    fit.margin = o.margin;
+    static_cast<FitSettings&>(fit) = o;
     return fit;
 }
 

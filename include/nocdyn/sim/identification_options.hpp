@@ -34,7 +34,9 @@ struct PayloadPrior {
     Bounds inertia;       ///< about the payload's own c.o.m. [kg m^2], lower >= 0 when given
 };
 
-struct IdentificationOptions {
+/// How the measured motion is reconstructed and fitted: the settings a user chooses, shared by
+/// the library's options and the application's (app::IdentifyOptions).
+struct IdentificationSettings {
     /// Zero-phase low-pass cut-off when du and ddu are derived from u [Hz] (0: a tenth of the
     /// sampling rate, at most 50 Hz).
     double cutoff = 0.0;
@@ -46,6 +48,9 @@ struct IdentificationOptions {
     /// control` logs them): the force at t_k is then the mean of the two holds around it,
     /// (tau_(k-1) + tau_k) / 2, so that it matches the accelerations the differences of u give.
     bool held_forces = false;
+};
+
+struct IdentificationOptions : IdentificationSettings {
     /// With a payload: the robot's calibrated base parameters in place of the robot file's
     /// (its base columns must be those baseParameters(model) finds). Not with `friction`: the
     /// calibration holds the joints' friction already.

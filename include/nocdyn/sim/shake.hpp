@@ -78,11 +78,16 @@ struct GroundRecord {
     std::vector<double> alpha;   ///< [rad/s^2]
 };
 
-struct FitOptions {
+/// The fit's settings a user chooses, shared by the fit's options and the replay's
+/// (ShakeReplayOptions).
+struct FitSettings {
+    std::optional<double> time_scale;  ///< L given; none: the least time compression L >= 1 that fits
     double highpass = 0.1;             ///< cutoff [Hz] (record time); 0: no filter
-    std::optional<double> time_scale;  ///< L given; otherwise chosen
     double margin = 0.1;               ///< share of each limit kept in reserve
-    double max_time_scale = 100.0;     ///< largest L tried
+};
+
+struct FitOptions : FitSettings {
+    double max_time_scale = 100.0;  ///< largest L tried
 };
 
 /// The worst use of any limit over a motion: ratio = used / allowed ((1 - margin) limit).

@@ -48,12 +48,8 @@ inline constexpr double kIdentifiedNaturalFrequency = 2.0;
 
 /// Every choice of a replay, in the units a user writes them. The fit's, the table loop's and
 /// the sensors' defaults are those of FitOptions, ShakeLoopOptions and TableSensors.
-struct ShakeReplayOptions {
-    // --- the fit (fitRecord)
-    std::optional<double> time_scale;         ///< L given; none: the least time compression L >= 1 that fits
-    double highpass = FitOptions{}.highpass;  ///< [Hz] in record time; 0: none
-    double margin = FitOptions{}.margin;      ///< share of each actuator limit kept in reserve
-    double amplitude = 1.0;                   ///< the record's accelerations times this before the fit
+struct ShakeReplayOptions : FitSettings {  // the fit (fitRecord): time_scale, highpass, margin
+    double amplitude = 1.0;                ///< the record's accelerations times this before the fit
     // --- the plant
     /// nocdyn-rk4 (a 40 s record in seconds), nocdyn, or simbody (the independent check, about
     /// 70 times slower); the caller's factory builds it (playReplay)
