@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -138,6 +139,8 @@ TEST(SpatialPayload, AnExactLogRecoversARandomPayload) {
 // The printed standard deviations are the spread's: 20 runs of one excitation, each its own
 // force noise; the sample standard deviation of each parameter within a factor 1.5 of the mean
 // printed one, and the estimates unbiased (their mean within 3 standard errors of the truth).
+// The noise enters the logged forces only, so the motion is simulated once and measured with
+// each seed (withForceNoise, as excitePayload measures it).
 TEST(SpatialPayload, ThePrintedUncertaintyIsTheSpreadOverNoiseSeeds) {
     const SpatialRobotDescription d = shipped("stewart");
     SpatialPayload truth;
@@ -146,12 +149,21 @@ TEST(SpatialPayload, ThePrintedUncertaintyIsTheSpreadOverNoiseSeeds) {
     PayloadExcitationOptions o = quick(0.5);
     o.force_noise = 2.0;
     const Trajectory excitation = payloadExcitation(carrying, o);
+    PayloadExcitationOptions exact = o;
+    exact.force_noise = 0.0;
+    const PayloadLog run_log = excitePayload(carrying, alone, excitation, exact);
+    // one seed measured both ways: the same log
+    o.seed = 100;
+    const PayloadLog simulated = excitePayload(carrying, alone, excitation, o);
+    const PayloadLog measured = withForceNoise(run_log, o.force_noise, o.seed);
+    ASSERT_EQ(simulated.tau.size(), measured.tau.size());
+    for (std::size_t k = 0; k < simulated.tau.size(); ++k) ASSERT_EQ(simulated.tau[k], measured.tau[k]) << k;
     constexpr int kRuns = 20;
     std::vector<PayloadVector> estimates;
     PayloadVector printed = PayloadVector::Zero();
     for (int run = 0; run < kRuns; ++run) {
         o.seed = 100 + static_cast<unsigned>(run);
-        const SpatialPayloadEstimate e = identifySpatialPayload(alone, excitePayload(carrying, alone, excitation, o));
+        const SpatialPayloadEstimate e = identifySpatialPayload(alone, withForceNoise(run_log, o.force_noise, o.seed));
         estimates.push_back(e.parameters);
         printed += e.parameters_sd / kRuns;
         EXPECT_NEAR(e.residual_rms, o.force_noise, 0.05 * o.force_noise);
@@ -166,6 +178,29 @@ TEST(SpatialPayload, ThePrintedUncertaintyIsTheSpreadOverNoiseSeeds) {
         EXPECT_GT(spread(i), printed(i) / 1.5) << name;
         EXPECT_LT(spread(i), printed(i) * 1.5) << name;
         EXPECT_LT(std::abs(mean(i) - pi(i)), 3.0 * printed(i) / std::sqrt(kRuns)) << name;
+    }
+}
+
+// The measurement's noise: none for 0, refused when negative or not a number.
+TEST(SpatialPayload, ForceNoiseIsAddedOnlyToTheForcesAndRefusedWhenNegative) {
+    PayloadLog log;
+    log.t = {0.0, 0.001};
+    log.p = log.dp = log.ddp = {TaskVector::Zero(6), TaskVector::Zero(6)};
+    log.tau = {ActuatorVector::Constant(6, 1.0), ActuatorVector::Constant(6, 2.0)};
+    const PayloadLog same = withForceNoise(log, 0.0, 3);
+    EXPECT_EQ(same.tau[1], log.tau[1]);
+    const PayloadLog noisy = withForceNoise(log, 0.5, 3);
+    EXPECT_EQ(noisy.p[1], log.p[1]);
+    EXPECT_NE(noisy.tau[0], log.tau[0]);
+    EXPECT_EQ(withForceNoise(log, 0.5, 3).tau[1], noisy.tau[1]);  // the seed's draws
+    EXPECT_NE(withForceNoise(log, 0.5, 4).tau[1], noisy.tau[1]);
+    for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+        try {
+            (void)withForceNoise(log, bad, 1);
+            FAIL() << bad;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("force noise"), std::string::npos) << e.what();
+        }
     }
 }
 

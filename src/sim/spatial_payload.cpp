@@ -172,7 +172,7 @@ PayloadLog excitePayload(const Model& plant_model, const Model& controller_model
     if (plant_model.task_dimension != controller_model.task_dimension ||
         plant_model.actuators != controller_model.actuators)
         throw Error("excitation: the controller's model and the plant differ in structure");
-    const int d = plant_model.task_dimension, n = plant_model.actuators;
+    const int d = plant_model.task_dimension;
     const double dt = 1.0 / options.loop.rate, w = 2.0 * std::numbers::pi * options.loop.natural_frequency;
     const double kp = w * w, kd = 2.0 * w;
     const auto ticks = static_cast<std::size_t>(std::llround(options.duration * options.loop.rate));
@@ -184,8 +184,6 @@ PayloadLog excitePayload(const Model& plant_model, const Model& controller_model
     Simulator plant(plant_model, options.loop.simulator);
     if (const Status status = plant.reset(p_d, dp_d); !status) fail(0.0, status, plant_model, "the excitation's start");
     Data controller(controller_model), sensor(plant_model);
-    std::mt19937 rng(options.seed);
-    std::normal_distribution<double> noise(0.0, options.force_noise);
     PayloadLog log;
     for (auto* v : {&log.p, &log.dp, &log.ddp}) v->reserve(ticks);
     log.t.reserve(ticks);
@@ -210,15 +208,24 @@ PayloadLog excitePayload(const Model& plant_model, const Model& controller_model
         // what the table measures: the state, its acceleration under the held forces, the forces
         if (const Status status = forwardDynamics(plant_model, sensor, p, dp, tau, ddp); !status)
             fail(t, status, plant_model, "the plant");
-        ActuatorVector measured = tau;
-        for (int a = 0; a < n; ++a) measured(a) += noise(rng);
         log.t.push_back(t);
         log.p.push_back(p);
         log.dp.push_back(dp);
         log.ddp.push_back(ddp);
-        log.tau.push_back(measured);
+        log.tau.push_back(tau);
         plant.setForces(nocdyn::ActuatorVector(tau));
         if (const Status status = plant.advance(dt); !status) fail(plant.time(), status, plant_model, "the plant");
+    }
+    return withForceNoise(std::move(log), options.force_noise, options.seed);
+}
+
+PayloadLog withForceNoise(PayloadLog log, double sigma, unsigned seed) {
+    if (!(sigma >= 0.0) || !std::isfinite(sigma)) throw Error("force noise: expected a finite value >= 0");
+    if (sigma == 0.0) return log;
+    std::mt19937 rng(seed);
+    std::normal_distribution<double> noise(0.0, sigma);
+    for (ActuatorVector& tau : log.tau) {
+        for (Eigen::Index a = 0; a < tau.size(); ++a) tau(a) += noise(rng);
     }
     return log;
 }

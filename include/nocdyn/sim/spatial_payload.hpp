@@ -112,6 +112,12 @@ struct PayloadLog {
 [[nodiscard]] PayloadLog excitePayload(const Model& plant, const Model& controller, const Trajectory& trajectory,
                                        const PayloadExcitationOptions& options);
 
+/// The table's measurement of a run's forces: `log` with seeded white noise of standard deviation
+/// `sigma` [N or N m] added to each force, drawn tick by tick, actuator by actuator (excitePayload
+/// logs its forces so). A noise-free log (force_noise 0) measured with many seeds gives the
+/// spread of the estimates over noise draws without simulating the same motion again.
+[[nodiscard]] PayloadLog withForceNoise(PayloadLog log, double sigma, unsigned seed);
+
 struct SpatialPayloadEstimate {
     SpatialPayload payload;    ///< the estimate
     PayloadVector parameters;  ///< pi
