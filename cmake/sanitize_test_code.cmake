@@ -29,7 +29,8 @@ foreach(dir IN LISTS test_code_dirs)
     get_target_property(type ${target} TYPE)
     if(type STREQUAL "EXECUTABLE" OR type STREQUAL "STATIC_LIBRARY")
       # after the directory's -O1 on the command line, so that it takes effect
-      set_property(TARGET ${target} APPEND PROPERTY COMPILE_OPTIONS $<IF:$<CXX_COMPILER_ID:Clang>,-O0,-Og>)
+      set_property(TARGET ${target} APPEND PROPERTY COMPILE_OPTIONS $<IF:$<CXX_COMPILER_ID:Clang>,-O0,-Og>
+                                                                    $<$<CXX_COMPILER_ID:GNU>:-fno-inline-small-functions>)
     endif()
   endforeach()
 endforeach()

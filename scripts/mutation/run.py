@@ -5,7 +5,8 @@ Each mutation of mutations.txt (a textual search and replace in one source file)
 a copy of the source tree, which is built once without Simbody and MuJoCo (Release, with the flags of
 scripts/test.sh's build, so that with ccache and the checkout's cache .ccache/ every file that the
 release build compiled is a cache hit: the copy is laid out as the checkout, its build folder
-inside it, and ccache's base_dir makes both paths the same), and rebuilt for each mutation (only
+inside it, and ccache's base_dir makes both paths the same; the files it mutates are compiled at
+-O1 instead, since each is compiled again for every mutation), and rebuilt for each mutation (only
 what the changed file touches). The core test binaries then
 run in turn, each stopping at its first failing test: the first failing test (in the order of
 TESTS) caught the mutation, and the binaries after it are not run. The check passes only when every mutation is caught, and when every searched text is
@@ -159,6 +160,26 @@ def lean_cli_check(cli, work, log, golden_dir):
     return failures
 
 
+def mutated_sources(mutations):
+    """The library's source files (src/*/*.cpp) that the mutations recompile: each mutated .cpp,
+    and those that include a mutated header, directly or through another of src/'s headers."""
+    paths = {m.path for m in mutations}
+    headers = {Path(p).name for p in paths if p.endswith(".hpp")}
+    sources = {p for p in paths if p.endswith(".cpp")}
+    files = {f: f.read_text(errors="replace") for f in sorted((ROOT / "src").glob("*/*.[ch]pp"))}
+
+    def includes(text, names):
+        return any(re.search(rf'^#include "(?:[^"]*/)?{re.escape(n)}"', text, re.MULTILINE) for n in names)
+
+    for _ in range(len(files)):  # the headers that include a mutated one, to a fixed point
+        more = {f.name for f, text in files.items() if f.suffix == ".hpp" and includes(text, headers)} - headers
+        if not more:
+            break
+        headers |= more
+    sources |= {str(f.relative_to(ROOT)) for f, text in files.items() if f.suffix == ".cpp" and includes(text, headers)}
+    return sorted(sources)
+
+
 def failing_test(output):
     match = re.search(r"^\[  FAILED  \] ([^\s,]+)", output, re.MULTILINE)
     return match.group(1) if match else None
@@ -238,6 +259,8 @@ def main():
                  # those files, which no release object stands for, at -O1: a mutation in them
                  # (batch_chunk.hpp, the lean kernel) recompiles in about 40 % of -O3's time
                  "-DNOCDYN_CHECK_FLAGS=-O1",
+                 # and the library's files mutated here, which each mutation recompiles
+                 f"-DNOCDYN_CHECK_SOURCES={';'.join(mutated_sources(mutations))}",
                  f"-DNOCDYN_GOLDEN_DIR={Path(args.golden_dir).resolve()}"]
     build_command = ["cmake", "--build", str(build), "-j", str(args.jobs), "--target", *TESTS]
     code, out = run(configure, log=log)
