@@ -320,8 +320,8 @@ spatial::LoopOptions loopOptions(const ShakeOptions& options, std::string& contr
     // taken anyway at 50 us: where a leg's rate changes sign its Coulomb friction jumps, and the
     // error control would shrink the step to the 1 us floor at each jump (taking most of the
     // time); such a step errs by about the jump in acceleration times h^2 / 2 (~1e-9 m)
-    loop.simulator.absolute_tolerance = kPlantAbsoluteTolerance;
-    loop.simulator.relative_tolerance = kPlantRelativeTolerance;
+    loop.simulator.atol = kPlantAbsoluteTolerance;
+    loop.simulator.rtol = kPlantRelativeTolerance;
     loop.simulator.floor_step = kPlantFloorStep;
     const bool noisy = options.controller == ShakeController::pose;
     if (noisy) {

@@ -218,9 +218,7 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
     }
 
     SimulatorOptions simulator_options;
-    simulator_options.absolute_tolerance = options.atol;
-    simulator_options.relative_tolerance = options.rtol;
-    simulator_options.max_step = options.max_step;
+    static_cast<IntegrationTolerances&>(simulator_options) = options;
     // a long interval between two output rows still answers a stop (Ctrl-C in Python)
     simulator_options.poll = [&observer] { stopIfRequested(observer); };
     Simulator simulator(model, simulator_options);

@@ -23,7 +23,9 @@ inline constexpr Range kRelativeToleranceRange{1e-14, 1e-2, ""};
 /// The integrator's largest step [s].
 inline constexpr Range kMaxStepRange{1e-6, 1.0, "s"};
 
-struct SimulateOptions {
+/// The integrator's tolerances (atol in kAbsoluteToleranceRange, rtol in kRelativeToleranceRange,
+/// max_step in kMaxStepRange) are the simulator's.
+struct SimulateOptions : IntegrationTolerances {
     /// CSV with columns t,tau1..taun [s, N or N m] (and the initial state in its first row).
     std::string forces;
     /// The same table given in code (Python): used instead of the file when set.
@@ -33,10 +35,7 @@ struct SimulateOptions {
     Interpolation interpolation = Interpolation::cubic;
     /// Seconds to simulate; empty: the span of the forces (kSimulatedDurationRange).
     std::optional<double> duration;
-    double rate = 10000.0;   ///< output samples per second (kRateRange)
-    double atol = 1e-12;     ///< kAbsoluteToleranceRange
-    double rtol = 1e-10;     ///< kRelativeToleranceRange
-    double max_step = 1e-2;  ///< the integrator's largest step [s] (kMaxStepRange)
+    double rate = 10000.0;  ///< output samples per second (kRateRange)
     /// Which working assembly mode of the first row's u (1-based, as forward-kinematics lists
     /// them); 0: the one nearest home.
     int assembly_mode = 0;

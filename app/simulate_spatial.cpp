@@ -142,9 +142,7 @@ SimulateResult runSpatialSimulate(const SimulateOptions& options, TableSink& tab
                     " Hz: simulate takes at most 1000 s and 1e7 output samples (give a shorter --duration)");
     }
     SimulatorOptions simulator_options;
-    simulator_options.absolute_tolerance = options.atol;
-    simulator_options.relative_tolerance = options.rtol;
-    simulator_options.max_step = options.max_step;
+    static_cast<IntegrationTolerances&>(simulator_options) = options;
     simulator_options.poll = [&observer] { stopIfRequested(observer); };
     spatial::Simulator simulator(model, simulator_options);
     const SpatialStart initial = initialState(model, head, source);

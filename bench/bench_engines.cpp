@@ -63,8 +63,8 @@ void toolEngine(benchmark::State& state, const std::string& robot) {
 Pose referenceEndPose(const SimulateFixture& f) {
     const Model model(f.robot);
     SimulatorOptions options;
-    options.absolute_tolerance = 1e-14;
-    options.relative_tolerance = 1e-13;
+    options.atol = 1e-14;
+    options.rtol = 1e-13;
     Simulator simulator(model, options);
     if (!simulator.reset(f.p0, f.dp0)) throw std::runtime_error("reference simulation: reset failed");
     for (const ActuatorVector& tau : f.tau) {

@@ -99,8 +99,8 @@ void BM_SpatialPayloadFit(benchmark::State& state) {
     specimen.mass = 0.5;
     const Model alone(d), carrying(withPayload(d, specimen));
     PayloadExcitationOptions o;
-    o.loop.simulator.absolute_tolerance = 1e-9;
-    o.loop.simulator.relative_tolerance = 1e-7;
+    o.loop.simulator.atol = 1e-9;
+    o.loop.simulator.rtol = 1e-7;
     o.loop.simulator.floor_step = 5e-5;
     const PayloadLog log = excitePayload(carrying, alone, payloadExcitation(carrying, o), o);
     for (auto _ : state) benchmark::DoNotOptimize(identifySpatialPayload(alone, log));

@@ -147,8 +147,8 @@ TEST_P(ExampleRobot, TheRoundTripIsLimitedByTheInterpolationOfTheForces) {
 TEST_P(ExampleRobot, WithoutForcesGravityOrFrictionKineticEnergyIsConserved) {
     const Model model(conservative(io::exampleRobot(GetParam())));
     SimulatorOptions options;
-    options.relative_tolerance = 1e-12;
-    options.absolute_tolerance = 1e-14;
+    options.rtol = 1e-12;
+    options.atol = 1e-14;
     Simulator simulator(model, options);
     ASSERT_TRUE(simulator.reset(model.home, Twist(0.2, 0.006, -0.004)).ok());
     const double energy = simulator.kineticEnergy();

@@ -105,8 +105,8 @@ TEST(Simulator, ImpossibleTolerancesEndWithAnErrorInsteadOfCrawling) {
         return simulator.advance(1e-3, tau);
     };
     SimulatorOptions tight;
-    tight.absolute_tolerance = 1e-22;
-    tight.relative_tolerance = 1e-22;
+    tight.atol = 1e-22;
+    tight.rtol = 1e-22;
     tight.floor_step = 0.0;  // no untested steps: the error test alone decides
     ASSERT_TRUE(advanceWith(SimulatorOptions{}).ok());
 

@@ -110,8 +110,8 @@ TEST(SpatialPayload, TheRegressorIsTheDifferenceOfInverseDynamicsWithAndWithoutT
 PayloadExcitationOptions quick(double duration) {
     PayloadExcitationOptions o;
     o.duration = duration;
-    o.loop.simulator.absolute_tolerance = 1e-9;
-    o.loop.simulator.relative_tolerance = 1e-7;
+    o.loop.simulator.atol = 1e-9;
+    o.loop.simulator.rtol = 1e-7;
     o.loop.simulator.floor_step = 5e-5;
     return o;
 }

@@ -40,7 +40,7 @@ struct Integrator {
     Integrator(Plant p, const SimulatorOptions& o)
         : plant(std::move(p)),
           options(o),
-          stepper(boost::numeric::odeint::make_controlled(o.absolute_tolerance, o.relative_tolerance, Dopri5())),
+          stepper(boost::numeric::odeint::make_controlled(o.atol, o.rtol, Dopri5())),
           held(ActuatorVector::Zero(plant.actuators())),
           force(ActuatorVector::Zero(plant.actuators())),
           step(o.initial_step) {}

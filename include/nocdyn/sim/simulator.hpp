@@ -83,11 +83,16 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
-struct SimulatorOptions {
-    double absolute_tolerance = 1e-12;  ///< per component of (p [rad, m], dp/dt [rad/s, m/s])
-    double relative_tolerance = 1e-10;
+/// The integrator's error control as a user chooses it (the command line's and Python's `atol`,
+/// `rtol` and `max_step`), shared by SimulatorOptions and the simulate job's options.
+struct IntegrationTolerances {
+    double atol = 1e-12;     ///< absolute, per component of (p [rad, m], dp/dt [rad/s, m/s])
+    double rtol = 1e-10;     ///< relative
+    double max_step = 1e-2;  ///< the largest step [s]
+};
+
+struct SimulatorOptions : IntegrationTolerances {
     double initial_step = 1e-5;  ///< [s]
-    double max_step = 1e-2;      ///< [s]
     /// Smallest step the controller may take [s]: below it advance() fails with
     /// integration_step_too_small instead of crawling forever.
     double min_step = 1e-12;
