@@ -175,10 +175,7 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     const std::unique_ptr<RobotPlant> plant = makePlant(plant_kind, withPayload(robot, payload));
     PoseController controller(model, options.controller, taskCriticallyDamped(options.natural_frequency));
     loop.saturation = !options.no_saturation;
-    loop.noise_angle = options.noise_pose;
-    loop.noise_position = options.noise_pose;
-    loop.noise_rate = options.noise_rate;
-    loop.seed = options.seed;
+    static_cast<PoseSensorNoise&>(loop) = poseSensorNoise(options.noise_pose, options.noise_rate, options.seed);
     loop.encoders = encoders;
     loop.noise_u = encoders ? options.noise_u : 0.0;
     loop.noise_du = options.noise_du;

@@ -87,10 +87,7 @@ ControlResult runSpatialControl(const ControlOptions& options, Observer& observe
     loop.law = options.controller;
     loop.natural_frequency = options.natural_frequency;
     loop.saturation = !options.no_saturation;
-    loop.noise_position = options.noise_pose;
-    loop.noise_angle = options.noise_pose;
-    loop.noise_rate = options.noise_rate;
-    loop.seed = options.seed;
+    static_cast<PoseSensorNoise&>(loop) = poseSensorNoise(options.noise_pose, options.noise_rate, options.seed);
     Meter meter(observer, loop.duration, "s");
     loop.progress = [&meter](double t) { meter(t); };
     const spatial::LoopResult r = spatial::runPoseLoop(model, trajectory, loop);

@@ -51,8 +51,8 @@ std::string resonanceSummary(const EnvelopeResonance& resonance) {
         std::string text = text::format(
             "third bound: the dynamic amplification of the %s model at home (damping ratio %.3g, first natural "
             "frequency %.6g Hz) leaves [1/%.4g, %.4g] at",
-            resonance.model.c_str(), resonance.damping_ratio, resonance.frequency, resonance.amplification,
-            resonance.amplification);
+            std::string(nameOf(resonance.model)).c_str(), resonance.damping_ratio, resonance.frequency,
+            resonance.amplification, resonance.amplification);
         for (const EnvelopeAxis axis : kEnvelopeAxes) {
             if (!hasAxis(resonance.task_dimension, axis)) continue;
             const double f = resonance.band_end[static_cast<std::size_t>(axis)];

@@ -57,12 +57,12 @@ void validate(const ExciteOptions& o) {
     if (!o.payload_guess.empty() && o.parameters == ExcitedParameters::base)
         throw OptionError("payload_guess", "is for a payload; base designs for the robot without one");
     requireIn(o.duration, kExciteDurationRange, "duration");
-    requireIn(o.base_frequency, kExciteFrequencyRange, "frequency");
+    requireIn(o.base_frequency, kExciteFrequencyRange, "base_frequency");
     requireCount(o.harmonics, 3, 20, "harmonics");
     requireIn(o.margin, kExciteMarginRange, "margin");
     requireIn(o.max_condition, kMaxConditionRange, "max_condition");
     requireCount(o.evaluations, 1, 1000000, "evaluations");
-    requireCount(o.random_shapes, 1, 1000000, "random");
+    requireCount(o.random_shapes, 1, 1000000, "random_shapes");
     requireCount(o.samples, 0, 100000, "samples");
     requireCount(o.check_samples, 24, 1000000, "check_samples");
 }

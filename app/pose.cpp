@@ -80,7 +80,7 @@ PoseCompliance compliance(const Model& model, const Data& data, Observer& observ
         if (const std::string w = analysis::lumpedMismatchWarning(modes, elastic); !w.empty()) {
             observer.warning(w);
             out.first_frequency = elastic.frequency(0);
-            out.first_frequency_model = "elastodynamic";
+            out.first_frequency_model = analysis::FrequencyModel::elastodynamic;
         }
         out.elastodynamic_frequencies = elastic.frequency;
         out.elastodynamic_dofs = elastic.dofs;

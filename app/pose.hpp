@@ -9,6 +9,7 @@
 
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "nocdyn/analysis/stiffness.hpp"
 #include "nocdyn/pose_order.hpp"
 
 namespace nocdyn::app {
@@ -61,7 +62,7 @@ struct PoseCompliance {
     /// The first natural frequency to use [Hz]: the lumped one where it holds, else (elastic
     /// links, the two more than 5 % apart: analysis::firstFrequency) the elastodynamic one.
     double first_frequency = 0.0;
-    std::string first_frequency_model = "lumped";
+    analysis::FrequencyModel first_frequency_model = analysis::FrequencyModel::lumped;
 };
 
 struct PoseResult {

@@ -70,9 +70,7 @@ void refuseDriveModel(const ShakeOptions& o) {
 /// and the fit's options, whose margin the drive keeps half of.
 spatial::DriveIterationOptions iterationOptions(const ShakeOptions& options) {
     spatial::DriveIterationOptions out;
-    out.iterations = options.iterations;
-    out.gain = options.iteration_gain;
-    out.tolerance = options.iteration_tolerance;
+    static_cast<DriveIterationSettings&>(out) = options;
     static_cast<FitSettings&>(out.fit) = options;
     return out;
 }
@@ -325,10 +323,7 @@ spatial::LoopOptions loopOptions(const ShakeOptions& options, std::string& contr
     loop.simulator.floor_step = kPlantFloorStep;
     const bool noisy = options.controller == ShakeController::pose;
     if (noisy) {
-        loop.noise_position = options.noise_pose;
-        loop.noise_angle = options.noise_pose;
-        loop.noise_rate = options.noise_rate;
-        loop.seed = options.seed;
+        static_cast<PoseSensorNoise&>(loop) = poseSensorNoise(options.noise_pose, options.noise_rate, options.seed);
     }
     controller = text::format(
         "computed torque on the %s pose and rate (f_n = %g Hz, %g Hz), the rotations' targets zero; the model "

@@ -95,7 +95,8 @@ const std::map<std::string, NormalRun>& normalRuns() {
         {"identify", {"--data {in}/log.csv --holdout 0 -o {out}/estimates.csv", "estimates.csv"}},
         {"excite",
          {"--robot " + kRrr +
-              " --evaluations 12 --random 6 --samples 48 --check-samples 300 --duration 0.4 -o {out}/excite.yaml",
+              " --evaluations 12 --random-shapes 6 --samples 48 --check-samples 300 --duration 0.4 -o "
+              "{out}/excite.yaml",
           "excite.yaml"}},
         {"loads", {"--trajectory paper1 --duration 0.005 --rate 2000 -o {out}/loads.csv", "loads.csv"}},
         {"design",

@@ -24,7 +24,7 @@ namespace {
 namespace fs = std::filesystem;
 
 const std::string kRobot = std::string(NOCDYN_SOURCE_DIR) + "/robots/paper-3prr-general.yaml";
-const std::string kSmall = " --evaluations 30 --random 15 --samples 48 --check-samples 300";
+const std::string kSmall = " --evaluations 30 --random-shapes 15 --samples 48 --check-samples 300";
 
 fs::path scratch() { return freshScratchDirectory("nocdyn_cli_excite_test"); }
 

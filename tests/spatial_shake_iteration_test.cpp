@@ -48,8 +48,8 @@ spatial::ShakeReplay3 iterate(const Bench& b, int iterations, double gain, doubl
                               spatial::DriveIterationPasses& passes) {
     spatial::DriveIterationOptions options;
     options.iterations = iterations;
-    options.gain = gain;
-    options.tolerance = tolerance;
+    options.iteration_gain = gain;
+    options.iteration_tolerance = tolerance;
     options.fit = b.fit;
     return spatial::iterateReplay(b.model, b.target, hexapodLoop(), b.fit.highpass, options, passes);
 }

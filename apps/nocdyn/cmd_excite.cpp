@@ -65,9 +65,10 @@ void addExciteCommand(CLI::App& app) {
     command->add_option("--duration", options->duration, "Duration [s]: a whole number of base periods")
         ->check(within(app::kExciteDurationRange))
         ->capture_default_str();
-    command->add_option("--frequency", options->base_frequency, "Base frequency f0 [Hz]")
-        ->check(within(app::kExciteFrequencyRange))
-        ->capture_default_str();
+    auto* base_frequency = command->add_option("--base-frequency", options->base_frequency, "Base frequency f0 [Hz]")
+                               ->check(within(app::kExciteFrequencyRange))
+                               ->capture_default_str();
+    addOldSpelling(*command, "--frequency", base_frequency, options->base_frequency);
     command->add_option("--harmonics", options->harmonics, "Harmonics per axis (k f0, k = 1..H)")
         ->check(CLI::Range(3, 20))
         ->capture_default_str();
@@ -84,11 +85,12 @@ void addExciteCommand(CLI::App& app) {
     command->add_option("--evaluations", options->evaluations, "Objective evaluations in all")
         ->check(CLI::Range(1, 1000000))
         ->capture_default_str();
-    command
-        ->add_option("--random", options->random_shapes,
-                     "Random shapes tried before Nelder-Mead (at most --evaluations)")
-        ->check(CLI::Range(1, 1000000))
-        ->capture_default_str();
+    auto* random_shapes = command
+                              ->add_option("--random-shapes", options->random_shapes,
+                                           "Random shapes tried before Nelder-Mead (at most --evaluations)")
+                              ->check(CLI::Range(1, 1000000))
+                              ->capture_default_str();
+    addOldSpelling(*command, "--random", random_shapes, options->random_shapes);
     command->add_option("--samples", options->samples, "Samples per period in the design (0: 25 per harmonic)")
         ->check(CLI::Range(0, 100000))
         ->capture_default_str();

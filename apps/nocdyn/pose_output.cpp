@@ -36,7 +36,7 @@ nlohmann::json poseComplianceJson(const app::PoseCompliance& c) {
         const Eigen::VectorXd& f = *c.elastodynamic_frequencies;
         out["elastodynamic_frequencies"] = std::vector<double>(f.data(), f.data() + f.size());
     }
-    out["first_frequency"] = {{"value", c.first_frequency}, {"model", c.first_frequency_model}};
+    out["first_frequency"] = {{"value", c.first_frequency}, {"model", nameOf(c.first_frequency_model)}};
     return out;
 }
 
@@ -61,7 +61,8 @@ void printPoseCompliance(const app::PoseCompliance& c) {
         for (const double f : *c.elastodynamic_frequencies) std::printf(" %.6g", f);
         std::printf("\n");
     }
-    std::printf("first natural frequency [Hz]: %.6g (%s model)\n", c.first_frequency, c.first_frequency_model.c_str());
+    std::printf("first natural frequency [Hz]: %.6g (%s model)\n", c.first_frequency,
+                std::string(nameOf(c.first_frequency_model)).c_str());
 }
 
 namespace {

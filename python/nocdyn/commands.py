@@ -205,6 +205,7 @@ def _robot_source(robot, set_, name="robot"):
 _OLD_SPELLINGS = {
     "FrequencyResponseOptions": {"f_min": "min_frequency", "f_max": "max_frequency", "payload": "payload_mass"},
     "ShakeOptions": {"encoder_noise": "noise_u", "jobs": "threads"},
+    "ExciteOptions": {"frequency": "base_frequency", "random": "random_shapes"},
 }
 
 

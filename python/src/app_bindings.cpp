@@ -95,7 +95,7 @@ py::dict poseDict(const app::PoseResult& r) {
         out["mode_shapes"] = c.mode_shapes;
         if (c.elastodynamic_frequencies) out["elastodynamic_frequencies"] = *c.elastodynamic_frequencies;
         out["first_frequency"] = c.first_frequency;
-        out["first_frequency_model"] = c.first_frequency_model;
+        out["first_frequency_model"] = std::string(nameOf(c.first_frequency_model));
     }
     return out;
 }

@@ -407,7 +407,7 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
     // elastodynamic model's, and the amplification sums over its modes
     if (analysis::ElastodynamicModes elastic;
         !task && analysis::lumpedFailsAt(model, compliance, data, modes, elastic)) {
-        out.model = "elastodynamic";
+        out.model = analysis::FrequencyModel::elastodynamic;
         out.warning = analysis::lumpedMismatchWarning(modes, elastic, true);
         out.frequency = elastic.frequency(0);
         if (elastic.participation.cols() == 3) {

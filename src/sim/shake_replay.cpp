@@ -144,10 +144,9 @@ PoseLoopResult playPass(const Bench& b, const PoseTrajectory& drive, EstimatorRe
     PoseLoopOptions loop;
     loop.rate = planarRate(o);
     loop.duration = b.fit.t.back();
-    loop.noise_angle = o.noise_pose;
-    loop.noise_position = o.noise_pose;
-    loop.noise_rate = o.noise_rate;
-    loop.seed = o.seed + static_cast<unsigned>(pass);
+    // each pass of the drive iteration draws its own noise
+    static_cast<PoseSensorNoise&>(loop) =
+        poseSensorNoise(o.noise_pose, o.noise_rate, o.seed + static_cast<unsigned>(pass));
     loop.progress = b.progress;
     PoseLoopResult result = runPoseLoop(controller, b.plant, drive, loop);
     for (std::size_t k = 0; k < result.t.size(); ++k)

@@ -297,7 +297,8 @@ void correctDrive3(const ShakeReplay3& last, double gain, std::array<std::vector
 
 ShakeReplay3 iterateReplay(const Model& model, FittedRecord3 fit, const LoopOptions& loop, double highpass,
                            const DriveIterationOptions& options, DriveIterationPasses& passes) {
-    if (!(options.gain > 0.0 && options.gain <= 1.0)) throw Error("drive iteration: the gain must be in (0, 1]");
+    if (!(options.iteration_gain > 0.0 && options.iteration_gain <= 1.0))
+        throw Error("drive iteration: the gain must be in (0, 1]");
     passes = {};
     const double duration = fit.t.back();
     // the passes' progress one after the other: pass i reports i duration + t
@@ -314,7 +315,7 @@ ShakeReplay3 iterateReplay(const Model& model, FittedRecord3 fit, const LoopOpti
     ShakeReplay3 last_pass;  // the last pass when it is not the best (its achieved accelerations)
     const ShakeReplay3* last = &best;
     for (int pass = 1; pass <= options.iterations; ++pass) {
-        correctDrive3(*last, options.gain, drive);
+        correctDrive3(*last, options.iteration_gain, drive);
         const FittedRecord3& target = best.fit;
         GroundRecord3 next;
         next.dt = target.dt * target.time_scale;
@@ -335,7 +336,7 @@ ShakeReplay3 iterateReplay(const Model& model, FittedRecord3 fit, const LoopOpti
         }
         scoreLoop(model, loop, highpass, r);
         const double best_error = passes.worst[static_cast<std::size_t>(passes.best_pass)];
-        const PassJudgement judged = judgePass(pass, passErrors(r, passes), best_error, options.tolerance);
+        const PassJudgement judged = judgePass(pass, passErrors(r, passes), best_error, options.iteration_tolerance);
         if (judged.kept) {
             r.seconds = best.seconds;  // the first pass's wall time, as the replay reports it
             best = std::move(r);

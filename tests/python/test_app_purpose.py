@@ -95,7 +95,7 @@ def test_two_threads_replay_at_once_with_the_numbers_of_one():
 
 # --- identify, excite, animate -------------------------------------------------------------------
 
-SMALL = dict(evaluations=12, random=6, samples=48, check_samples=300, duration=0.4)
+SMALL = dict(evaluations=12, random_shapes=6, samples=48, check_samples=300, duration=0.4)
 
 
 @pytest.fixture(scope="module")

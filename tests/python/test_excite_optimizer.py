@@ -7,7 +7,7 @@ import pytest
 
 import nocdyn
 
-SMALL = dict(evaluations=40, random=10, samples=48, check_samples=300, duration=0.4)
+SMALL = dict(evaluations=40, random_shapes=10, samples=48, check_samples=300, duration=0.4)
 
 
 def condition(result):
@@ -27,3 +27,16 @@ def test_the_gradient_refinement_reaches_its_measured_condition_number_and_beats
 def test_an_unknown_optimizer_is_refused_naming_the_argument():
     with pytest.raises(ValueError, match="^optimizer: expected nelder-mead or gradient, got 'bfgs'$"):
         nocdyn.excite(optimizer="bfgs", **SMALL)
+
+
+def test_the_old_spellings_frequency_and_random_warn_and_mean_base_frequency_and_random_shapes():
+    # one name across C++, the command line and Python: base_frequency, random_shapes
+    small = {k: v for k, v in SMALL.items() if k != "random_shapes"}
+    with pytest.warns(DeprecationWarning, match="frequency is deprecated .*: use base_frequency"), \
+            pytest.raises(ValueError, match="^base_frequency: "):
+        nocdyn.excite(frequency=1e6, **SMALL)
+    with pytest.warns(DeprecationWarning, match="random is deprecated .*: use random_shapes"), \
+            pytest.raises(ValueError, match="^random_shapes: "):
+        nocdyn.excite(random=0, **small)
+    with pytest.raises(TypeError, match="random is the old spelling of random_shapes"):
+        nocdyn.excite(random=6, **SMALL)

@@ -323,7 +323,7 @@ def test_design_and_loads_over_the_envelope(tmp_path):
 
 
 def test_excite(tmp_path):
-    small = dict(evaluations=12, random=6, samples=48, check_samples=300, duration=0.4)
+    small = dict(evaluations=12, random_shapes=6, samples=48, check_samples=300, duration=0.4)
     args = [a for k, v in small.items() for a in ("--" + k.replace("_", "-"), v)]
     text = run_cli("excite", "--robot", ROBOT, *args, "-o", tmp_path / "x.yaml")
     py = nocdyn.excite(robot=ROBOT, **small)

@@ -563,7 +563,7 @@ def test_excite_moves_x_y_and_animate_draws_it(source_dir, tmp_path):
     # the design for the five-bar's point payload and its motors' friction: x, y harmonics only,
     # a finite condition number reported; its animation's frames hold 2 limbs x 3 joints + C
     path = str(source_dir / "robots" / "five-bar.yaml")
-    e = nocdyn.excite(robot=path, friction=True, duration=1, frequency=1, harmonics=3, random=10, evaluations=30)
+    e = nocdyn.excite(robot=path, friction=True, duration=1, base_frequency=1, harmonics=3, random_shapes=10, evaluations=30)
     assert e.trajectory.harmonics("theta") == (0.0, [])  # (offset, harmonics): at home, still
     assert len(e.trajectory.harmonics("x")[1]) > 0 and len(e.trajectory.harmonics("y")[1]) > 0
     designed = [line for line in e.text.splitlines() if line.startswith("designed: {condition_number: ")]

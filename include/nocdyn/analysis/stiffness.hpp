@@ -45,10 +45,12 @@
 #pragma once
 
 #include <array>
+#include <span>
 #include <string>
 
 #include <Eigen/Core>
 
+#include "nocdyn/choice.hpp"
 #include "nocdyn/kinematics.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
@@ -232,6 +234,14 @@ inline constexpr double kLumpedCheckCondition = 100.0;
 /// Whether a limb of the pose of `data` (velocity stage done) is within kLumpedCheckCondition of
 /// a singularity, where the lumped model may fail. Allocation-free.
 [[nodiscard]] bool nearLimbSingularity(const Model& model, const Data& data);
+
+/// The model a reported first natural frequency comes from: the lumped one (K v = w^2 M v at the
+/// platform), or the elastodynamic one where the lumped one does not hold (lumpedFailsAt).
+enum class FrequencyModel { lumped, elastodynamic };
+
+inline constexpr std::array<Choice<FrequencyModel>, 2> kFrequencyModels{
+    {{FrequencyModel::lumped, "lumped"}, {FrequencyModel::elastodynamic, "elastodynamic"}}};
+[[nodiscard]] constexpr std::span<const Choice<FrequencyModel>> choices(FrequencyModel) { return kFrequencyModels; }
 
 /// The first natural frequency [Hz] to use at the pose of `data` (stiffnessAndModes done, giving
 /// `lumped`): the lumped one where it holds, else (lumpedFailsAt) the elastodynamic one, and then

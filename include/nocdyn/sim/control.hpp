@@ -115,14 +115,25 @@ struct Payload {
 /// non-finite values.
 [[nodiscard]] RobotDescription withPayload(RobotDescription robot, const Payload& payload);
 
-struct PoseLoopOptions {
-    double rate = 10000.0;        ///< controller ticks per second [Hz]
-    double duration = 0.2;        ///< [s]
-    bool saturation = true;       ///< clip at each actuator's effort
-    double noise_angle = 0.0;     ///< std. dev. of the theta measurement noise [rad]
-    double noise_position = 0.0;  ///< of x_c and y_c [m]
+/// A pose sensor's noise: zero-mean Gaussian draws added to each measured pose coordinate and
+/// rate, planar (theta; x_c, y_c) or spatial (roll, pitch, yaw; x, y, z).
+struct PoseSensorNoise {
+    double noise_angle = 0.0;     ///< std. dev. of each measured angle [rad]
+    double noise_position = 0.0;  ///< of each measured position coordinate [m]
     double noise_rate = 0.0;      ///< of each component of dp/dt [rad/s, m/s]
     unsigned seed = 1;            ///< noise generator seed
+};
+
+/// The sensor a user describes by one sigma for every pose coordinate (`noise_pose`, in m and rad
+/// alike, as the command line's --noise-pose) and one for every rate.
+[[nodiscard]] constexpr PoseSensorNoise poseSensorNoise(double noise_pose, double noise_rate, unsigned seed) {
+    return {noise_pose, noise_pose, noise_rate, seed};
+}
+
+struct PoseLoopOptions : PoseSensorNoise {
+    double rate = 10000.0;   ///< controller ticks per second [Hz]
+    double duration = 0.2;   ///< [s]
+    bool saturation = true;  ///< clip at each actuator's effort
     /// Measure as a robot without a pose sensor does: its encoders' u (+ noise_u) and their
     /// rates du (+ noise_du), the pose p by the direct-kinematics tracker (PoseTracker, the
     /// working mode from the reference's start) and dp/dt from A_p(p) dp/dt = du (least

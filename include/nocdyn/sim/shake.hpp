@@ -205,6 +205,16 @@ Status correctDrive(const DriveInverse& inverse, const std::array<std::vector<do
 
 // --- drive-signal iteration's bookkeeping, the same on a planar and a six-DOF table
 
+/// The drive-signal iteration a user chooses: at most `iterations` passes after the first, each
+/// playing the last drive corrected by `iteration_gain` times its error (correctDrive,
+/// addDriveCorrection); it stops when the RMS error falls by less than `iteration_tolerance`
+/// (relative: judgePass) or the drive would leave the limits, and keeps the best pass.
+struct DriveIterationSettings {
+    int iterations = 0;
+    double iteration_gain = 0.7;  ///< g, in (0, 1]
+    double iteration_tolerance = 0.02;
+};
+
 /// The fit of a pass's drive: the target's time scale L kept, no high-pass (the target is
 /// filtered already) and half the target's margin (the drive's corrections may use half the
 /// reserve the target keeps: they make up for what the plant does not follow).

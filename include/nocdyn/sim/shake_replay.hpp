@@ -48,8 +48,9 @@ inline constexpr double kIdentifiedNaturalFrequency = 2.0;
 
 /// Every choice of a replay, in the units a user writes them. The fit's, the table loop's and
 /// the sensors' defaults are those of FitOptions, ShakeLoopOptions and TableSensors.
-struct ShakeReplayOptions : FitSettings {  // the fit (fitRecord): time_scale, highpass, margin
-    double amplitude = 1.0;                ///< the record's accelerations times this before the fit
+// the fit (fitRecord): time_scale, highpass, margin; the drive-signal iteration
+struct ShakeReplayOptions : FitSettings, DriveIterationSettings {
+    double amplitude = 1.0;  ///< the record's accelerations times this before the fit
     // --- the plant
     /// nocdyn-rk4 (a 40 s record in seconds), nocdyn, or simbody (the independent check, about
     /// 70 times slower); the caller's factory builds it (playReplay)
@@ -76,19 +77,13 @@ struct ShakeReplayOptions : FitSettings {  // the fit (fitRecord): time_scale, h
     // --- the payload identified before the replay (table controller)
     bool identify_payload = false;
     double excitation_duration = 2.0;  ///< [s] of the payload excitation
-    // --- drive-signal iteration: at most `iterations` passes after the first, each playing the
-    // drive a_drive + gain (a_target - a_achieved) of the last (through the drive model's
-    // inverse closed loop, shake.hpp correctDrive); stops when the RMS error falls by less than
-    // iteration_tolerance (relative) or the drive would leave the limits less half the margin;
-    // the best pass is kept.
-    int iterations = 0;
-    double iteration_gain = 0.7;
+    // --- drive-signal iteration (DriveIterationSettings: iterations, iteration_gain,
+    // iteration_tolerance), through the drive model's inverse closed loop (shake.hpp correctDrive)
     /// identity, or the inverse of the table controller's closed loop linearised at home on the
     /// controller's model, by its exact derivatives or by central differences (table only)
     DriveModel drive_model = DriveModel::identity;
     /// the linearised loop's plant is the robot carrying the payload (the specimen as weighed)
     bool drive_specimen = false;
-    double iteration_tolerance = 0.02;
     int difference_span = 5;  ///< ticks of the achieved-acceleration difference
 };
 

@@ -20,16 +20,13 @@
 
 namespace nocdyn::spatial {
 
-struct LoopOptions {
+/// The pose sensor's noise (PoseSensorNoise: the measured x, y, z, roll, pitch, yaw and rates).
+struct LoopOptions : PoseSensorNoise {
     double rate = 10000.0;  ///< controller ticks per second [Hz]
     double duration = 0.2;  ///< [s]
     ControlLaw law = ControlLaw::computed_torque;
     double natural_frequency = 50;  ///< f_n of the error dynamics [Hz]
     bool saturation = true;         ///< clip at each actuator's effort
-    double noise_position = 0.0;    ///< std. dev. of the measured x, y, z [m]
-    double noise_angle = 0.0;       ///< of roll, pitch, yaw [rad]
-    double noise_rate = 0.0;        ///< of each component of dp/dt
-    unsigned seed = 1;
     /// Computed torque: the forces of the state predicted at the middle of the hold,
     /// (p + dp dt / 2 + ddp_cmd dt^2 / 8, dp + ddp_cmd dt / 2), not of the tick's state: the
     /// forces held over the tick then match its mean motion to O(dt^2) (the rate-dependent

@@ -92,11 +92,8 @@ struct ShakeReplay3 {
 /// from the start by the same loop and scored against the target. A pass's error is its worst
 /// axis's relative RMS error (the criterion of the pass kept and of the stop): a pass is kept
 /// when it is the best so far, and the iteration stops after a pass that improves it by less
-/// than `tolerance` (relative).
-struct DriveIterationOptions {
-    int iterations = 0;  ///< at most this many passes after the first
-    double gain = 0.7;   ///< g
-    double tolerance = 0.02;
+/// than `iteration_tolerance` (relative).
+struct DriveIterationOptions : DriveIterationSettings {
     FitOptions fit;  ///< the target's (its margin halved for the drive)
 };
 
