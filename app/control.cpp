@@ -185,9 +185,9 @@ ControlResult runControl(const ControlOptions& options, Observer& observer) {
     out.loop = runPoseLoop(controller, *plant, trajectory, loop);
     meter.report(loop.duration);
     out.trajectory = trajectory.name;
-    out.table = io::toTable(out.loop, model.task_dimension);
+    out.table = tables::toTable(out.loop, model.task_dimension);
     if (options.sensor_log) {
-        out.log = io::toTable(sensorLog(out.loop, options.noise_u, options.noise_tau, options.seed + 1));
+        out.log = tables::toTable(sensorLog(out.loop, options.noise_u, options.noise_tau, options.seed + 1));
     }
     out.text = report(options, model, controller, out.loop, loop, trajectory.name);
     return out;

@@ -55,9 +55,9 @@ DesignRange parseRange(const std::string& text) {
 /// What a journal is kept for: the content of every input file (the robot file, a trajectory
 /// file) and every option that changes a design's numbers, each exactly. Any difference makes
 /// the journal another sweep's, which is refused rather than reused.
-std::string signature(const DesignOptions& options, const io::DesignFamily& family,
+std::string signature(const DesignOptions& options, const tables::DesignFamily& family,
                       const std::vector<DesignMetric>& metrics, const nocdyn::DesignOptions& design) {
-    std::string s = "robot " + io::fingerprint(family.text);
+    std::string s = "robot " + tables::fingerprint(family.text);
     for (const io::Parameter& p : family.fixed) s += " set " + p.name + "=" + text::shortest(p.value);
     for (const DesignRange& r : family.ranges)
         s += " vary " + r.name + "=" + text::shortest(r.lower) + ":" + text::shortest(r.upper);
@@ -80,16 +80,16 @@ std::string signature(const DesignOptions& options, const io::DesignFamily& fami
             std::ifstream in(options.trajectory, std::ios::binary);
             std::ostringstream text;
             text << in.rdbuf();
-            content = io::fingerprint(text.str());
+            content = tables::fingerprint(text.str());
         }
-        s += " trajectory " + io::fingerprint(options.trajectory) + " " + content + " " +
+        s += " trajectory " + tables::fingerprint(options.trajectory) + " " + content + " " +
              text::shortest(design.duration) + " " + text::shortest(design.rate);
     }
-    return io::fingerprint(s);
+    return tables::fingerprint(s);
 }
 
 /// The best feasible design by the first metric (larger or smaller is better, as the metric says).
-std::optional<std::size_t> bestDesign(const std::vector<io::DesignRecord>& records,
+std::optional<std::size_t> bestDesign(const std::vector<tables::DesignRecord>& records,
                                       const std::vector<DesignMetric>& metrics) {
     std::optional<std::size_t> best;
     for (std::size_t i = 0; i < records.size(); ++i) {
@@ -101,8 +101,8 @@ std::optional<std::size_t> bestDesign(const std::vector<io::DesignRecord>& recor
 }
 
 /// "metric: design 30 (a = 0.1, b = 0.2), metric = 5.3", designs numbered from 1.
-std::string bestText(const io::DesignFamily& family, const std::vector<DesignMetric>& metrics,
-                     const io::DesignRecord& record) {
+std::string bestText(const tables::DesignFamily& family, const std::vector<DesignMetric>& metrics,
+                     const tables::DesignRecord& record) {
     std::string text = metrics[0].name() + ": design " + std::to_string(record.index + 1) + " (";
     for (std::size_t p = 0; p < family.ranges.size() && p < record.point.size(); ++p) {
         text += (p == 0 ? "" : ", ") + family.ranges[p].name + " = " + text::format("%.6g", record.point[p]);
@@ -110,18 +110,18 @@ std::string bestText(const io::DesignFamily& family, const std::vector<DesignMet
     return text + "), " + metrics[0].name() + " = " + text::format("%.6g", record.evaluation.values[0]);
 }
 
-void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& family,
+void writeFigures(const std::filesystem::path& dir, const tables::DesignFamily& family,
                   const std::vector<DesignMetric>& metrics, const nocdyn::DesignOptions& design,
-                  const std::vector<io::DesignRecord>& records, const std::vector<std::size_t>& front) {
+                  const std::vector<tables::DesignRecord>& records, const std::vector<std::size_t>& front) {
     using render::literalText;
     // no feasible design: nothing to draw (gnuplot refuses an empty data block)
-    if (std::none_of(records.begin(), records.end(), [](const io::DesignRecord& r) { return r.evaluation.feasible; })) {
+    if (std::none_of(records.begin(), records.end(), [](const tables::DesignRecord& r) { return r.evaluation.feasible; })) {
         return;
     }
     if (metrics.size() >= 2) {
         render::PlotSeries all{"feasible designs", {}, {}, "points pt 7 ps 0.5 lc rgb '#999999'"};
         render::PlotSeries best{"Pareto front (over every metric)", {}, {}, "points pt 7 ps 0.9 lc rgb '#c0392b'"};
-        for (const io::DesignRecord& r : records) {
+        for (const tables::DesignRecord& r : records) {
             if (!r.evaluation.feasible) continue;
             all.x.push_back(r.evaluation.values[0]);
             all.y.push_back(r.evaluation.values[1]);
@@ -145,7 +145,7 @@ void writeFigures(const std::filesystem::path& dir, const io::DesignFamily& fami
     // the best design by the first metric, drawn with its workspace
     const std::optional<std::size_t> best = bestDesign(records, metrics);
     if (!best) return;
-    const Model model(io::designRobot(family, records[*best].point));
+    const Model model(tables::designRobot(family, records[*best].point));
     nocdyn::WorkspaceOptions ws = design.workspace;
     ws.curves = true;
     if (design.workspace_theta_at_home) ws.theta = model.home(0);
@@ -220,7 +220,7 @@ void validate(const DesignOptions& options) {
 
 DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     validate(options);
-    io::DesignFamily family;
+    tables::DesignFamily family;
     family.text = io::readRobotFileText(options.robot.path);
     family.source = options.robot.path;
     family.fixed = options.robot.set;
@@ -235,7 +235,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
                 throw OptionError("vary", "'" + p.name + "' is both varied and fixed by set");
         }
     }
-    io::checkDesignFamily(family);
+    tables::checkDesignFamily(family);
     std::vector<DesignMetric> metrics;
     for (const std::string& m : options.metric) {
         try {
@@ -258,7 +258,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     std::optional<RobotDescription> first;
     if (!points.empty()) {
         try {
-            first = io::designRobot(family, points.front());
+            first = tables::designRobot(family, points.front());
         } catch (const Error&) {  // NOLINT(bugprone-empty-catch): a design the sweep itself will report
         }
     }
@@ -289,18 +289,18 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     DesignResult out;
     for (const DesignRange& r : family.ranges) out.names.push_back(r.name);
     for (const DesignMetric& m : metrics) out.metrics.push_back(m.name());
-    out.columns = io::designColumns(family.ranges, metrics);
+    out.columns = tables::designColumns(family.ranges, metrics);
     const std::filesystem::path dir(options.out_dir);
-    std::optional<io::DesignJournal> journal;
+    std::optional<tables::DesignJournal> journal;
     if (!options.out_dir.empty()) {
         refuseRobotInside(options.robot.path, options.out_dir);
         createOutputFolder(options.out_dir, "out_dir");
         journal.emplace((dir / "journal.csv").string(), signature(options, family, metrics, design), out.columns,
                         family.ranges.size(), metrics.size());
     }
-    std::vector<std::optional<io::DesignRecord>> done(points.size());
+    std::vector<std::optional<tables::DesignRecord>> done(points.size());
     std::size_t count = 0;
-    for (const io::DesignRecord& r : journal ? journal->previous() : std::vector<io::DesignRecord>{}) {
+    for (const tables::DesignRecord& r : journal ? journal->previous() : std::vector<tables::DesignRecord>{}) {
         if (r.index < done.size() && !done[r.index]) {
             done[r.index] = r;
             ++count;
@@ -322,9 +322,9 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     // the library's work queue; this thread records each design and polls the observer
     (void)evaluateInParallel(
         todo.size(), threads,
-        [&](std::size_t k) { return io::evaluateFamilyDesign(family, points[todo[k]], metrics, design); },
+        [&](std::size_t k) { return tables::evaluateFamilyDesign(family, points[todo[k]], metrics, design); },
         [&](std::size_t k, DesignEvaluation&& e) {
-            io::DesignRecord r{todo[k], points[todo[k]], std::move(e)};
+            tables::DesignRecord r{todo[k], points[todo[k]], std::move(e)};
             if (journal) journal->append(r);
             out.feasible += r.evaluation.feasible ? 1 : 0;
             done[todo[k]] = std::move(r);
@@ -343,7 +343,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         out.records.push_back(std::move(*r));
         evaluations.push_back(out.records.back().evaluation);
     }
-    if (journal) io::writeDesignTable((dir / "designs.csv").string(), out.columns, out.records);
+    if (journal) tables::writeDesignTable((dir / "designs.csv").string(), out.columns, out.records);
     observer.step("Pareto front", 1, 1);
     out.front = paretoFront(evaluations, metrics, [&](std::size_t k, std::size_t n) {
         if ((k & 1023U) != 0 && k != n) return;  // the observer at a price that does not show
@@ -353,10 +353,10 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     out.best = bestDesign(out.records, metrics);
     if (out.best) out.best_text = bestText(family, metrics, out.records[*out.best]);
     if (journal) {
-        std::vector<io::DesignRecord> front_records;
+        std::vector<tables::DesignRecord> front_records;
         front_records.reserve(out.front.size());
         for (const std::size_t i : out.front) front_records.push_back(out.records[i]);
-        io::writeDesignTable((dir / "pareto.csv").string(), out.columns, front_records);
+        tables::writeDesignTable((dir / "pareto.csv").string(), out.columns, front_records);
         if (!options.no_figures) writeFigures(dir, family, metrics, design, out.records, out.front);
     }
     return out;

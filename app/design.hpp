@@ -44,7 +44,7 @@ struct DesignResult {
     std::vector<std::string> metrics;  ///< the metrics' names
     std::vector<std::string> columns;  ///< designs.csv's
     /// Every design in sweep order (index 0-based as in designs.csv).
-    std::vector<io::DesignRecord> records;
+    std::vector<tables::DesignRecord> records;
     std::vector<std::size_t> front;  ///< indices into records of the Pareto front
     std::size_t feasible = 0;
     std::size_t resumed = 0;  ///< designs read back from the journal

@@ -41,7 +41,7 @@ EnvelopeResult runEnvelope(const EnvelopeOptions& options, Observer& observer) {
     out.robot = model.description.name;
     out.points = operatingEnvelope(model, envelope);
     out.resonance = envelopeResonance(model, options.amplification);
-    out.table = io::toTable(out.points, out.resonance);
+    out.table = tables::toTable(out.points, out.resonance);
     out.summary = resonanceSummary(out.resonance);
     return out;
 }

@@ -58,7 +58,7 @@ std::string bandwidthText(double bandwidth, double slope) {
 /// The open-loop plant: from each actuator force (or commanded drive position) to each output.
 /// Whether the plant is the lumped compliant model: asked for, or (auto) wherever the robot file
 /// declares compliance.
-bool lumpedPlant(const FrequencyResponseOptions& options, const analysis::StiffnessModel& compliance) {
+bool lumpedPlant(const FrequencyResponseOptions& options, const StiffnessModel& compliance) {
     const bool lumped = options.compliance == PlantCompliance::lumped ||
                         (options.compliance == PlantCompliance::automatic && compliance.any);
     if (lumped && !compliance.any) {
@@ -68,11 +68,11 @@ bool lumpedPlant(const FrequencyResponseOptions& options, const analysis::Stiffn
 }
 
 /// The lumped model's modes at the pose p, at rest (the natural frequencies the summaries print).
-analysis::LumpedModes lumpedModesAt(const Model& model, const analysis::StiffnessModel& compliance, const Pose& p) {
-    analysis::StiffnessData stiffness;
-    analysis::LumpedModes modes;
+LumpedModes lumpedModesAt(const Model& model, const StiffnessModel& compliance, const Pose& p) {
+    StiffnessData stiffness;
+    LumpedModes modes;
     Data at_rest(model);
-    if (const Status s = analysis::stiffnessAndModes(model, compliance, at_rest, p, stiffness, modes); !s) {
+    if (const Status s = stiffnessAndModes(model, compliance, at_rest, p, stiffness, modes); !s) {
         throw Error("operating point: " + describe(s, model));
     }
     return modes;
@@ -104,7 +104,7 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
     const ActuatorVector tau = data.tau;
     const bool acceleration = options.output_kind == LinearOutput::platform_acceleration;
     const LinearOutput kind = options.output_kind;
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     const bool lumped = lumpedPlant(options, compliance);
     StateSpace system;
     const Status status = lumped ? linearizeCompliant(model, compliance, data, p, dp, tau, kind, system)
@@ -139,7 +139,7 @@ FrequencyResponseResult plant(const FrequencyResponseOptions& options, const Mod
                       pu(0), pu(1), pu(2), dpu(0), dpu(1), dpu(2), payload.c_str());
     out.summary += line;
     if (lumped) {
-        const analysis::LumpedModes modes = lumpedModesAt(model, compliance, p);
+        const LumpedModes modes = lumpedModesAt(model, compliance, p);
         line = text::format("# lumped natural frequencies at the pose [Hz]: %.4f %.4f %.4f\n", modes.frequency(0),
                             modes.frequency(1), modes.frequency(2));
         out.summary += line;
@@ -199,7 +199,7 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
                                    const Model& model) {
     const Model plant_model(withPayload(robot, Payload{options.payload_mass, 0.0, Vector2::Zero()}));
     const Pose p = options.pose.empty() ? model.home : corePose(operatingValues(model, options.pose, "pose"));
-    const analysis::StiffnessModel compliance(plant_model);
+    const StiffnessModel compliance(plant_model);
     const bool lumped = lumpedPlant(options, compliance);
     ShakeLoopOptions loop_options;
     loop_options.rate = options.controller_rate;
@@ -238,7 +238,7 @@ FrequencyResponseResult closedLoop(const FrequencyResponseOptions& options, cons
                   " under the shake-table controller, from the reference to the achieved platform acceleration\n" +
                   line;
     if (lumped) {
-        const analysis::LumpedModes modes = lumpedModesAt(plant_model, compliance, p);
+        const LumpedModes modes = lumpedModesAt(plant_model, compliance, p);
         line = text::format(
             "# plant: the lumped compliant model (natural frequencies at the pose %.4f %.4f %.4f Hz, damping ratio "
             "%g): the drives' set points follow the rigid image of the motion the forces give the rigid machine, "
@@ -358,7 +358,7 @@ FrequencyResponseResult runFrequencyResponse(const FrequencyResponseOptions& opt
                               "the shake-table loop of a two-DOF robot (motion: translation) is not built; its "
                               "open-loop plant is (without `closed_loop`)");
         if (options.compliance == PlantCompliance::lumped ||
-            (options.compliance == PlantCompliance::automatic && analysis::StiffnessModel(Model(robot)).any))
+            (options.compliance == PlantCompliance::automatic && StiffnessModel(Model(robot)).any))
             throw OptionError("compliance",
                               "the lumped compliant model of a two-DOF robot (motion: translation) is not built: "
                               "give `compliance` rigid for its rigid plant");

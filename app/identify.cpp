@@ -189,7 +189,7 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
     IdentificationOptions identification;
     static_cast<IdentificationSettings&>(identification) = options;
     if (!options.calibration.empty()) {
-        identification.calibration = io::loadCalibration(options.calibration, model);
+        identification.calibration = tables::loadCalibration(options.calibration, model);
         try {
             checkCalibration(model, *identification.calibration);
         } catch (const Error& e) {
@@ -199,7 +199,7 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
     if (options.prior_bounds)
         identification.prior = *options.prior_bounds;
     else if (!options.prior.empty())
-        identification.prior = io::loadPayloadPrior(options.prior);
+        identification.prior = tables::loadPayloadPrior(options.prior);
     // a log of 10^6 samples or more takes seconds per step: say which step runs
     observer.step("reading " + io::terminalText(options.data), 1, 3);
     const Measurements measured = options.data_table
@@ -231,7 +231,7 @@ IdentifyResult runIdentify(const IdentifyOptions& options, Observer& observer) {
         std::string comment = "# " + io::terminalText(robot.name) + ": calibration (base parameters) identified from " +
                               io::terminalText(options.data) + "; use with nocdyn identify --payload --calibration\n";
         comment += fitText(model, result.fit);
-        file = io::calibrationToYaml(model, result, comment);
+        file = tables::calibrationToYaml(model, result, comment);
         fit = result.fit;
         out.base = result;
     } else {

@@ -13,9 +13,9 @@ InverseDynamicsResult runInverseDynamics(const InverseDynamicsOptions& options, 
     const SampleGrid grid = sampleGrid(chooseDuration(options.duration, trajectory), options.rate);
     requireRateAboveNyquist(trajectory, grid.rate);
     const auto policy = options.allow_limits ? LimitPolicy::record : LimitPolicy::error;
-    std::vector<std::string> columns = io::inverseDynamicsColumns(model.actuators, model.task_dimension);
+    std::vector<std::string> columns = tables::inverseDynamicsColumns(model.actuators, model.task_dimension);
     if (options.reactions) {
-        for (std::string& name : io::reactionColumns(model.limbs)) columns.push_back(std::move(name));
+        for (std::string& name : tables::reactionColumns(model.limbs)) columns.push_back(std::move(name));
     }
     table.columns(columns);
     std::vector<double> row;
@@ -25,13 +25,13 @@ InverseDynamicsResult runInverseDynamics(const InverseDynamicsOptions& options, 
         options.reactions
             ? streamInverseDynamicsWithReactions(model, trajectory, grid, policy,
                                                  [&](const InverseDynamicsSample& sample, const Reactions& r) {
-                                                     io::inverseDynamicsRow(sample, row, model.task_dimension);
-                                                     io::appendReactions(r, model.limbs, row);
+                                                     tables::inverseDynamicsRow(sample, row, model.task_dimension);
+                                                     tables::appendReactions(r, model.limbs, row);
                                                      table.row(row);
                                                      meter(sample.t);
                                                  })
             : streamInverseDynamics(model, trajectory, grid, policy, [&](const InverseDynamicsSample& sample) {
-                  io::inverseDynamicsRow(sample, row, model.task_dimension);
+                  tables::inverseDynamicsRow(sample, row, model.task_dimension);
                   table.row(row);
                   meter(sample.t);
               });

@@ -39,16 +39,16 @@ RobotDescription loadRobot(const RobotSource& source) {
 
 std::string rigidPlantWarning(const RobotDescription& robot, const std::string& command) {
     const Model model(robot);
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     if (!compliance.any) return {};
     // the first lumped natural frequency at home says where the rigid plant stops being the robot
     std::string first;
-    analysis::StiffnessData stiffness;
-    analysis::LumpedModes modes;
+    StiffnessData stiffness;
+    LumpedModes modes;
     Data data(model);
-    analysis::TaskModes task;  // a two-DOF robot's over x, y (theta is free and massless)
-    if (analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes)) {
-        analysis::taskModes(model, data, stiffness, modes, task);
+    TaskModes task;  // a two-DOF robot's over x, y (theta is free and massless)
+    if (stiffnessAndModes(model, compliance, data, model.home, stiffness, modes)) {
+        taskModes(model, data, stiffness, modes, task);
         if (std::isfinite(task.frequency(0)) && task.frequency(0) > 0.0)
             first = text::format(" (first resonance at home %.4g Hz)", task.frequency(0));
     }

@@ -24,19 +24,19 @@ double rangeUsed(const JointLimits& limits, double q) {
 using detail::at;
 
 PoseCompliance compliance(const Model& model, const Data& data, Observer& observer) {
-    const analysis::StiffnessModel stiffness(model);
-    analysis::StiffnessData K;
-    if (const Status status = analysis::cartesianStiffness(model, stiffness, data, K); !status) {
+    const StiffnessModel stiffness(model);
+    StiffnessData K;
+    if (const Status status = cartesianStiffness(model, stiffness, data, K); !status) {
         throw Error(describe(status, model));
     }
-    if (const std::string w = analysis::contrastWarning(K); !w.empty()) observer.warning(w);
-    analysis::LumpedModes modes;
-    analysis::lumpedModes(model, data, K, modes);
+    if (const std::string w = contrastWarning(K); !w.empty()) observer.warning(w);
+    LumpedModes modes;
+    lumpedModes(model, data, K, modes);
     PoseCompliance out;
     if (model.task_dimension == 2) {
         // over the task coordinates x, y (theta moves no body and loads no limb: always free)
-        analysis::TaskModes task;
-        analysis::taskModes(model, data, K, modes, task);
+        TaskModes task;
+        taskModes(model, data, K, modes, task);
         if (!(task.K.allFinite() && task.frequency.allFinite() && task.shape.allFinite())) {
             throw Error("the stiffness or the natural frequencies are not finite at this pose");
         }
@@ -51,7 +51,7 @@ PoseCompliance compliance(const Model& model, const Data& data, Observer& observ
             for (int i = 0; i < K.free_directions - 1; ++i) {
                 const Vector2 d = svd.matrixU().col(i);
                 out.free_directions.emplace_back(d);
-                out.free_descriptions.push_back(analysis::describeDirection(Vector3(0.0, d.x(), d.y())));
+                out.free_descriptions.push_back(describeDirection(Vector3(0.0, d.x(), d.y())));
             }
         }
         out.first_frequency = task.frequency(0);
@@ -60,27 +60,27 @@ PoseCompliance compliance(const Model& model, const Data& data, Observer& observ
     if (!(K.K.allFinite() && modes.frequency.allFinite() && modes.shape.allFinite())) {
         throw Error("the stiffness or the natural frequencies are not finite at this pose");
     }
-    out.K = analysis::reported(K.K);
+    out.K = reported(K.K);
     for (int i = 0; i < K.free_directions; ++i) {
         const Vector3 v = K.free.col(i);
-        out.free_directions.emplace_back(analysis::reported(v));
-        out.free_descriptions.push_back(analysis::describeDirection(v));
+        out.free_directions.emplace_back(reported(v));
+        out.free_descriptions.push_back(describeDirection(v));
     }
     out.frequencies = modes.frequency;
     out.first_frequency = modes.frequency(0);
     Matrix3 shapes;
-    for (int i = 0; i < 3; ++i) shapes.col(i) = analysis::reported(Vector3(modes.shape.col(i)));
+    for (int i = 0; i < 3; ++i) shapes.col(i) = reported(Vector3(modes.shape.col(i)));
     out.mode_shapes = shapes;
     if (model.description.hasElasticBody()) {
-        analysis::ElastodynamicModes elastic;
-        if (const Status status = analysis::elastodynamicModes(model, stiffness, data, elastic); !status) {
+        ElastodynamicModes elastic;
+        if (const Status status = elastodynamicModes(model, stiffness, data, elastic); !status) {
             throw Error(describe(status, model));
         }
-        if (const std::string w = analysis::elastodynamicPrecisionWarning(elastic); !w.empty()) observer.warning(w);
-        if (const std::string w = analysis::lumpedMismatchWarning(modes, elastic); !w.empty()) {
+        if (const std::string w = elastodynamicPrecisionWarning(elastic); !w.empty()) observer.warning(w);
+        if (const std::string w = lumpedMismatchWarning(modes, elastic); !w.empty()) {
             observer.warning(w);
             out.first_frequency = elastic.frequency(0);
-            out.first_frequency_model = analysis::FrequencyModel::elastodynamic;
+            out.first_frequency_model = FrequencyModel::elastodynamic;
         }
         out.elastodynamic_frequencies = elastic.frequency;
         out.elastodynamic_dofs = elastic.dofs;

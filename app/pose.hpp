@@ -50,7 +50,7 @@ struct PoseReaction {
 
 /// Stiffness and natural frequencies at the pose (robots whose file declares compliance). Every
 /// vector and matrix over pose coordinates is in the order x, y, theta; a two-DOF robot's over
-/// x, y (n_t = 2: K_t = E^T K E, M_t = E^T M E, analysis::TaskModes).
+/// x, y (n_t = 2: K_t = E^T K E, M_t = E^T M E, TaskModes).
 struct PoseCompliance {
     Eigen::MatrixXd K = Matrix3::Zero();  ///< n_t x n_t: dQ = K dp (virtual joint method, gravity preload ignored)
     std::vector<Eigen::VectorXd> free_directions;  ///< n_t each
@@ -60,9 +60,9 @@ struct PoseCompliance {
     std::optional<Eigen::VectorXd> elastodynamic_frequencies;  ///< [Hz], elastic links only
     int elastodynamic_dofs = 0;
     /// The first natural frequency to use [Hz]: the lumped one where it holds, else (elastic
-    /// links, the two more than 5 % apart: analysis::firstFrequency) the elastodynamic one.
+    /// links, the two more than 5 % apart: firstFrequency) the elastodynamic one.
     double first_frequency = 0.0;
-    analysis::FrequencyModel first_frequency_model = analysis::FrequencyModel::lumped;
+    FrequencyModel first_frequency_model = FrequencyModel::lumped;
 };
 
 struct PoseResult {

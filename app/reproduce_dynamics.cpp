@@ -139,7 +139,7 @@ void reproduceControl(const RobotDescription& robot, const std::filesystem::path
             summary << row;
         }
         const std::string stem = std::string("control_") + kTrajectories[k];
-        io::writeCsvFile((out / (stem + ".csv")).string(), io::toTable(runs[0]));
+        io::writeCsvFile((out / (stem + ".csv")).string(), tables::toTable(runs[0]));
         renderFigure(trackingErrorFigure(std::string(kTrajectories[k]) + ": actuator tracking errors", runs,
                                          {"no payload", "no payload", "payload unknown to the controller"}),
                      (out / (stem + "_errors")).string());
@@ -155,7 +155,7 @@ void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::pat
     const ActuatorLimits limits = actuatorLimits(robot);
     const auto points = operatingEnvelope(model);
     const EnvelopeResonance resonance = envelopeResonance(model);
-    io::writeCsvFile((out / "envelope.csv").string(), io::toTable(points, resonance));
+    io::writeCsvFile((out / "envelope.csv").string(), tables::toTable(points, resonance));
     renderFigure(envelopeFigure(points, robot.name, "flat = stroke-bound, slope -2 = peak-force-bound", resonance),
                  (out / "envelope").string());
 

@@ -122,7 +122,7 @@ Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c
         // every kDecimation-th sample: each force is then the one at its sample's instant, not a hold
         Measurements shown = log;
         shown.held_forces = false;
-        io::writeCsvFile((folder / (c.key + "_log.csv")).string(), decimated(io::toTable(shown)));
+        io::writeCsvFile((folder / (c.key + "_log.csv")).string(), decimated(tables::toTable(shown)));
         IdentificationOptions options;
         options.held_forces = true;  // the log's forces are the commands held over each tick
         options.friction = c.friction;

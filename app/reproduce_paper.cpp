@@ -138,7 +138,7 @@ void reproduceTrajectories(const RobotDescription& robot, const std::filesystem:
     };
     for (const Case& c : {Case{"paper1", paperTrajectory1(), "Fig. 5"}, Case{"paper2", paperTrajectory2(), "Fig. 6"}}) {
         const auto series = sampleInverseDynamics(model, c.trajectory, times, LimitPolicy::record);
-        io::writeCsvFile((out / (std::string(c.name) + ".csv")).string(), io::toTable(series, model.actuators));
+        io::writeCsvFile((out / (std::string(c.name) + ".csv")).string(), tables::toTable(series, model.actuators));
         Figure displacements{std::string(c.name) + ": motor displacements (cf. the paper's " + c.figure + "a)", {}};
         Figure forces{std::string(c.name) + ": motor forces (cf. the paper's " + c.figure + "b)", {}};
 #ifdef NOCDYN_HAS_ENGINES

@@ -202,8 +202,8 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
     // a file is read row by row into flat storage: the header and the first row (the initial state) kept
     io::Table first;
     ForceSignal forces = options.forces_table
-                             ? io::forcesFromTable(*options.forces_table, n, options.interpolation, source)
-                             : io::forcesFromCsvFile(options.forces, n, options.interpolation, first);
+                             ? tables::forcesFromTable(*options.forces_table, n, options.interpolation, source)
+                             : tables::forcesFromCsvFile(options.forces, n, options.interpolation, first);
     const io::Table& head = options.forces_table ? *options.forces_table : first;
     const double t0 = forces.firstTime();
     const double duration = options.duration ? *options.duration : forces.lastTime() - t0;
@@ -237,7 +237,7 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
     std::vector<std::string> columns =
         io::columnNames(io::TableId::simulate, {.actuators = n, .task_dimension = model.task_dimension});
     if (options.reactions) {
-        for (std::string& column : io::reactionColumns(model.limbs)) columns.push_back(std::move(column));
+        for (std::string& column : tables::reactionColumns(model.limbs)) columns.push_back(std::move(column));
     }
     table.columns(columns);
     // t, x, y, theta (not for a two-DOF robot), u, du, tau, kinetic
@@ -269,7 +269,7 @@ SimulateResult runSimulate(const SimulateOptions& options, TableSink& table, Obs
             // the simulated state's every stage and the forces applied (forwardDynamics sets them)
             jointReactions(model, simulator.data(), reactions);
             row.resize(base);
-            io::appendReactions(reactions, model.limbs, row);
+            tables::appendReactions(reactions, model.limbs, row);
         }
         table.row(row);
         ++out.rows;

@@ -131,8 +131,8 @@ SimulateResult runSpatialSimulate(const SimulateOptions& options, TableSink& tab
     const std::string source = options.forces_table ? std::string("forces") : options.forces;
     io::Table first;
     const Interpolation interpolation = options.interpolation;
-    ForceSignal forces = options.forces_table ? io::forcesFromTable(*options.forces_table, n, interpolation, source)
-                                              : io::forcesFromCsvFile(options.forces, n, interpolation, first);
+    ForceSignal forces = options.forces_table ? tables::forcesFromTable(*options.forces_table, n, interpolation, source)
+                                              : tables::forcesFromCsvFile(options.forces, n, interpolation, first);
     const io::Table& head = options.forces_table ? *options.forces_table : first;
     const double t0 = forces.firstTime();
     const double duration = options.duration ? *options.duration : forces.lastTime() - t0;

@@ -35,14 +35,14 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
         observer.progress(done, total, "grid columns");
         stopIfRequested(observer);
     };
-    if (options.first_frequency && !analysis::StiffnessModel(model).any) {
-        throw Error(analysis::noComplianceMessage(model, "the first natural frequency map"));
+    if (options.first_frequency && !StiffnessModel(model).any) {
+        throw Error(noComplianceMessage(model, "the first natural frequency map"));
     }
     out.map = workspaceMap(model, ws);
     out.summary = render::workspaceSummary(out.map);
     const WorkspaceMap& map = out.map;
     if (options.first_frequency) {
-        out.frequency = analysis::firstFrequencyMap(model, map, [&observer](int done, int total) {
+        out.frequency = firstFrequencyMap(model, map, [&observer](int done, int total) {
             observer.progress(done, total, "grid columns (natural frequencies)");
             stopIfRequested(observer);
         });

@@ -36,7 +36,7 @@ struct WorkspaceResult {
     io::Table table;
     /// With options.first_frequency: f_1 per grid point [Hz] (NaN where not feasible), its
     /// lowest and where, and the feasible points as a table (io::TableId::first_frequency).
-    std::optional<analysis::FirstFrequencyMap> frequency;
+    std::optional<FirstFrequencyMap> frequency;
     io::Table frequency_table;
 };
 

@@ -32,8 +32,8 @@ namespace {
 
 constexpr std::size_t kDesigns = 6;
 
-io::DesignFamily family() {
-    io::DesignFamily f;
+tables::DesignFamily family() {
+    tables::DesignFamily f;
     f.text = io::readRobotFileText(std::string(NOCDYN_SOURCE_DIR) + "/examples/design_3rrr/family.yaml");
     f.source = "family.yaml";
     f.ranges = {{"r_b", 0.15, 0.25}, {"l1", 0.09, 0.13}};
@@ -61,14 +61,14 @@ struct Lanes {
 
 void BM_DesignEvaluation(benchmark::State& state) {
     const Lanes lanes(state, state.range(1));
-    const io::DesignFamily f = family();
+    const tables::DesignFamily f = family();
     const std::vector<DesignMetric> m = metrics();
     DesignOptions options;
     options.workspace.resolution = static_cast<int>(state.range(0));
     const auto points = sweepPoints(f.ranges, SweepKind::random, 16, 1);
     std::size_t k = 0;
     for (auto _ : state) {
-        const DesignEvaluation e = io::evaluateFamilyDesign(f, points[k++ % points.size()], m, options);
+        const DesignEvaluation e = tables::evaluateFamilyDesign(f, points[k++ % points.size()], m, options);
         benchmark::DoNotOptimize(e.values.data());
     }
     state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()));
@@ -83,16 +83,16 @@ BENCHMARK(BM_DesignEvaluation)
 /// x and y at 50 Hz (maximumAmplitude). Each on packets of four and of eight.
 void BM_DesignParts(benchmark::State& state) {
     const Lanes lanes(state, state.range(1));
-    const io::DesignFamily f = family();
+    const tables::DesignFamily f = family();
     const auto points = sweepPoints(f.ranges, SweepKind::random, 16, 1);
     std::vector<Model> models;
-    for (const auto& point : points) models.emplace_back(io::designRobot(f, point));
+    for (const auto& point : points) models.emplace_back(tables::designRobot(f, point));
     const auto part = state.range(0);
     std::size_t k = 0;
     for (auto _ : state) {
         const std::size_t i = k++ % points.size();
         if (part == 0) {
-            const Model model(io::designRobot(f, points[i]));
+            const Model model(tables::designRobot(f, points[i]));
             benchmark::DoNotOptimize(&model);
         } else if (part == 1) {
             const WorkspaceMap map = workspaceMap(models[i], {models[i].home(0), 61, false});
@@ -109,16 +109,16 @@ BENCHMARK(BM_DesignParts)
     ->Unit(benchmark::kMillisecond);
 
 /// Evaluates designs [first, first + count) of `points`.
-void evaluateRange(const io::DesignFamily& f, const std::vector<std::vector<double>>& points, std::size_t first,
+void evaluateRange(const tables::DesignFamily& f, const std::vector<std::vector<double>>& points, std::size_t first,
                    std::size_t count, const std::vector<DesignMetric>& m, const DesignOptions& options) {
     for (std::size_t i = first; i < first + count; ++i) {
-        const DesignEvaluation e = io::evaluateFamilyDesign(f, points[i], m, options);
+        const DesignEvaluation e = tables::evaluateFamilyDesign(f, points[i], m, options);
         benchmark::DoNotOptimize(e.values.data());
     }
 }
 
 /// Wall time [s] of the designs split over `processes` forked processes.
-double wallTime(int processes, const io::DesignFamily& f, const std::vector<std::vector<double>>& points,
+double wallTime(int processes, const tables::DesignFamily& f, const std::vector<std::vector<double>>& points,
                 const std::vector<DesignMetric>& m, const DesignOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     const std::size_t share = points.size() / static_cast<std::size_t>(processes);
@@ -136,7 +136,7 @@ double wallTime(int processes, const io::DesignFamily& f, const std::vector<std:
 }
 
 void BM_DesignProcesses(benchmark::State& state) {
-    const io::DesignFamily f = family();
+    const tables::DesignFamily f = family();
     const std::vector<DesignMetric> m = metrics();
     DesignOptions options;
     options.workspace.resolution = 101;

@@ -37,7 +37,7 @@ void run(benchmark::State& state, const std::string& robot, int resolution, bool
     int points = 0;
     for (auto _ : state) {
         if (frequency) {
-            const analysis::FirstFrequencyMap f = analysis::firstFrequencyMap(model, map);
+            const FirstFrequencyMap f = firstFrequencyMap(model, map);
             points = f.points;
             benchmark::DoNotOptimize(f.lowest);
         } else {

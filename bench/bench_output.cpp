@@ -34,10 +34,10 @@ void BM_WriteCsv(benchmark::State& state) {
         sample.ddu = data.ddu;
         sample.tau = data.tau;
         sample.kinetic = prr3::kineticEnergy(f.model, data);
-        io::inverseDynamicsRow(sample, rows.emplace_back());
+        tables::inverseDynamicsRow(sample, rows.emplace_back());
     }
     io::OutputFile out("/dev/null");
-    io::CsvWriter csv(out, io::inverseDynamicsColumns(3));
+    io::CsvWriter csv(out, tables::inverseDynamicsColumns(3));
     for (auto _ : state) {
         for (const auto& row : rows) csv.row(row);
     }
@@ -59,10 +59,10 @@ void BM_StreamInverseDynamics(benchmark::State& state) {
     std::vector<double> row;
     for (auto _ : state) {
         io::OutputFile out("/dev/null");
-        io::CsvWriter csv(out, io::inverseDynamicsColumns(model.actuators), state.range(1) != 0);
+        io::CsvWriter csv(out, tables::inverseDynamicsColumns(model.actuators), state.range(1) != 0);
         const auto summary = streamInverseDynamics(model, trajectory, grid, LimitPolicy::error,
                                                    [&](const InverseDynamicsSample& sample) {
-                                                       io::inverseDynamicsRow(sample, row);
+                                                       tables::inverseDynamicsRow(sample, row);
                                                        csv.row(row);
                                                    });
         csv.finish();

@@ -34,11 +34,11 @@ enum class What { inverse_dynamics, stiffness, lumped_modes, elastodynamic };
 
 void run(benchmark::State& state, const std::string& robot, What what) {
     const Model model(withCompliance(robot));
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     Data data(model);
-    analysis::StiffnessData K;
-    analysis::LumpedModes modes;
-    analysis::ElastodynamicModes elastic;
+    StiffnessData K;
+    LumpedModes modes;
+    ElastodynamicModes elastic;
     std::vector<Pose> poses;
     for (int k = 0; k < 100; ++k) {
         const double s = 0.0628 * k;
@@ -53,15 +53,15 @@ void run(benchmark::State& state, const std::string& robot, What what) {
                     break;
                 case What::stiffness:
                     status = inverseDisplacement(model, data, p);
-                    if (status) status = analysis::cartesianStiffness(model, compliance, data, K);
+                    if (status) status = cartesianStiffness(model, compliance, data, K);
                     break;
                 case What::lumped_modes:
-                    status = analysis::stiffnessAndModes(model, compliance, data, p, K, modes);
+                    status = stiffnessAndModes(model, compliance, data, p, K, modes);
                     break;
                 case What::elastodynamic:
                     status = inverseDisplacement(model, data, p);
                     if (status) status = velocityFromPlatformTwist(model, data, Twist::Zero());
-                    if (status) status = analysis::elastodynamicModes(model, compliance, data, elastic);
+                    if (status) status = elastodynamicModes(model, compliance, data, elastic);
                     break;
             }
             if (!status) {

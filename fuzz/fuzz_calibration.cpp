@@ -16,7 +16,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     const std::string text(reinterpret_cast<const char*>(bytes), size);
     nocdyn::Calibration calibration;
     try {
-        calibration = nocdyn::io::parseCalibration(text, "fuzz.yaml", model);
+        calibration = nocdyn::tables::parseCalibration(text, "fuzz.yaml", model);
     } catch (const nocdyn::Error&) {
         return 0;
     }

@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     const std::string text(reinterpret_cast<const char*>(bytes), size);
     nocdyn::PayloadPrior prior;
     try {
-        prior = nocdyn::io::parsePayloadPrior(text, "fuzz.yaml");
+        prior = nocdyn::tables::parsePayloadPrior(text, "fuzz.yaml");
     } catch (const nocdyn::Error&) {
         return 0;
     }

@@ -31,17 +31,17 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* bytes, std::size_t siz
     const nocdyn::Status b = nocdyn::inverseDynamicsFast(*model, lean, p, dp, ddp);
     if (a.ok() != b.ok()) std::abort();
     if (a && !(full.I.allFinite() && full.C.allFinite() && full.tau.allFinite() && lean.tau.allFinite())) std::abort();
-    const nocdyn::analysis::StiffnessModel compliance(*model);
+    const nocdyn::StiffnessModel compliance(*model);
     if (compliance.any) {
         nocdyn::Data data(*model);
-        nocdyn::analysis::StiffnessData K;
-        nocdyn::analysis::LumpedModes modes;
-        if (nocdyn::analysis::stiffnessAndModes(*model, compliance, data, p, K, modes)) {
+        nocdyn::StiffnessData K;
+        nocdyn::LumpedModes modes;
+        if (nocdyn::stiffnessAndModes(*model, compliance, data, p, K, modes)) {
             if (!(K.K.allFinite() && modes.frequency.allFinite() && modes.shape.allFinite())) std::abort();
             if (compliance.any_elastic) {
-                nocdyn::analysis::ElastodynamicModes elastic;
+                nocdyn::ElastodynamicModes elastic;
                 try {
-                    if (nocdyn::analysis::elastodynamicModes(*model, compliance, data, elastic) &&
+                    if (nocdyn::elastodynamicModes(*model, compliance, data, elastic) &&
                         !(elastic.frequency.allFinite() && elastic.shape.allFinite())) {
                         std::abort();
                     }

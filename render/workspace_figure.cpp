@@ -63,7 +63,7 @@ Figure workspaceFigure(const WorkspaceMap& map, const Model& model, const std::v
     return figure;
 }
 
-Figure firstFrequencyFigure(const WorkspaceMap& map, const analysis::FirstFrequencyMap& frequency, const Model& model) {
+Figure firstFrequencyFigure(const WorkspaceMap& map, const FirstFrequencyMap& frequency, const Model& model) {
     // one pixel per grid point ("with image" needs the whole grid; NaN is drawn blank)
     PlotSeries heat{"first natural frequency f_1 [Hz] (colour; blank: not feasible)", {}, {}, "image", {{}}};
     const auto cells = static_cast<std::size_t>(map.n) * static_cast<std::size_t>(map.n);
@@ -104,7 +104,7 @@ Figure firstFrequencyFigure(const WorkspaceMap& map, const analysis::FirstFreque
     return figure;
 }
 
-std::string firstFrequencySummary(const analysis::FirstFrequencyMap& frequency) {
+std::string firstFrequencySummary(const FirstFrequencyMap& frequency) {
     // where the lumped model does not hold, f_1 is the elastodynamic model's (firstFrequency)
     const std::string models =
         frequency.elastodynamic_points > 0

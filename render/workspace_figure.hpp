@@ -16,11 +16,11 @@ namespace nocdyn::render {
 
 /// The first natural frequency over the map as a heat map (blank where not feasible) with its
 /// lowest point and the home position, in mm, equal axes.
-[[nodiscard]] Figure firstFrequencyFigure(const WorkspaceMap& map, const analysis::FirstFrequencyMap& frequency,
+[[nodiscard]] Figure firstFrequencyFigure(const WorkspaceMap& map, const FirstFrequencyMap& frequency,
                                           const Model& model);
 
 /// One sentence: the lowest first natural frequency and where (x, y), the highest.
-[[nodiscard]] std::string firstFrequencySummary(const analysis::FirstFrequencyMap& frequency);
+[[nodiscard]] std::string firstFrequencySummary(const FirstFrequencyMap& frequency);
 
 /// One paragraph for a summary: the area, the box, the counts of curve points.
 [[nodiscard]] std::string workspaceSummary(const WorkspaceMap& map);

@@ -97,14 +97,14 @@ TEST(Calibration, APayloadAgainstTheCalibratedRobotIsExactWhereTheFileIsWrong) {
 
 TEST(Calibration, TheFileRoundTripsAndAForeignOneIsRefused) {
     const Calibrated& c = calibrated();
-    const std::string text = io::calibrationToYaml(c.nominal, c.base, "# test\n");
-    const Calibration back = io::parseCalibration(text, "cal.yaml", c.nominal);
+    const std::string text = tables::calibrationToYaml(c.nominal, c.base, "# test\n");
+    const Calibration back = tables::parseCalibration(text, "cal.yaml", c.nominal);
     EXPECT_EQ(back.independent, c.base.calibration.independent);
     EXPECT_EQ(back.beta, c.base.calibration.beta);  // round-trip precision
     // made for the 3-RRR: its parameter names exist there but not its base columns
     const Model rrr(io::exampleRobot("3-rrr"));
     try {
-        (void)io::parseCalibration("base_parameters:\n  - {parameter: 'limb9.body1.m', value: 1}\n", "bad.yaml",
+        (void)tables::parseCalibration("base_parameters:\n  - {parameter: 'limb9.body1.m', value: 1}\n", "bad.yaml",
                                    c.nominal);
         FAIL() << "unknown parameter accepted";
     } catch (const Error& e) {
@@ -154,7 +154,7 @@ TEST(PhysicalConsistency, ANegativeInertiaFallsBackToTheBestFitWithNone) {
 }
 
 TEST(PriorFile, ReadsBoundsWithOpenSidesAndLeavesAbsentOnesOpen) {
-    const PayloadPrior prior = io::parsePayloadPrior(
+    const PayloadPrior prior = tables::parsePayloadPrior(
         "# bounds\npayload:\n  mass: [0.4, 0.6]\n  com_x: [-0.02, ~]\n  inertia: [0, 2e-3]\n", "prior.yaml");
     EXPECT_EQ(prior.mass.lower, 0.4);
     EXPECT_EQ(prior.mass.upper, 0.6);
@@ -164,7 +164,7 @@ TEST(PriorFile, ReadsBoundsWithOpenSidesAndLeavesAbsentOnesOpen) {
     EXPECT_EQ(prior.com_y.upper, std::numeric_limits<double>::infinity());
     EXPECT_EQ(prior.inertia.lower, 0.0);
     EXPECT_EQ(prior.inertia.upper, 2e-3);
-    const PayloadPrior flow = io::parsePayloadPrior("payload: {mass: [0.5, 0.5]}", "p.yaml");
+    const PayloadPrior flow = tables::parsePayloadPrior("payload: {mass: [0.5, 0.5]}", "p.yaml");
     EXPECT_EQ(flow.mass.lower, 0.5);
     EXPECT_EQ(flow.mass.upper, 0.5);
 }
@@ -184,7 +184,7 @@ TEST(PriorFile, BadFilesNameTheLineAndTheField) {
     };
     for (const auto& [text, expected] : cases) {
         try {
-            (void)io::parsePayloadPrior(text, "prior.yaml");
+            (void)tables::parsePayloadPrior(text, "prior.yaml");
             ADD_FAILURE() << "accepted: " << text;
         } catch (const Error& e) {
             const std::string message = e.what();

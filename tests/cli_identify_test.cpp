@@ -41,7 +41,7 @@ double after(const std::string& text, const std::string& key) {
 
 TEST(CliIdentify, RecoversThePayloadFromAnExactLogAndMergesItIntoTheRobotFile) {
     const fs::path dir = scratch();
-    io::writeCsvFile((dir / "log.csv").string(), io::toTable(exactLog(300)));
+    io::writeCsvFile((dir / "log.csv").string(), tables::toTable(exactLog(300)));
     const CliResult r = runCli("identify --robot " + kRobot + " --data " + (dir / "log.csv").string() +
                                " --payload --output " + (dir / "identified.yaml").string());
     ASSERT_EQ(r.exit_code, 0) << r.err;
@@ -57,7 +57,7 @@ TEST(CliIdentify, RecoversThePayloadFromAnExactLogAndMergesItIntoTheRobotFile) {
 
 TEST(CliIdentify, APriorExcludingThePayloadGivesTheBoundedFitAndNamesTheActiveBound) {
     const fs::path dir = scratch();
-    io::writeCsvFile((dir / "log.csv").string(), io::toTable(exactLog(120)));
+    io::writeCsvFile((dir / "log.csv").string(), tables::toTable(exactLog(120)));
     {
         std::ofstream prior(dir / "prior.yaml");
         prior << "payload:\n  mass: [0.3, 0.45]\n  com_x: [-0.02, 0.02]\n";
@@ -117,7 +117,7 @@ TEST(CliIdentify, NamesTheLineOfANaNCellAndOfTimeGoingBack) {
 
 TEST(CliIdentify, RefusesTooFewSamples) {
     const fs::path dir = scratch();
-    io::writeCsvFile((dir / "log.csv").string(), io::toTable(exactLog(5)));
+    io::writeCsvFile((dir / "log.csv").string(), tables::toTable(exactLog(5)));
     const CliResult r = runCli("identify --robot " + kRobot + " --data " + (dir / "log.csv").string());
     EXPECT_EQ(r.exit_code, 1);
     EXPECT_NE(r.err.find("too few"), std::string::npos) << r.err;

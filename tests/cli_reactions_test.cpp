@@ -57,8 +57,8 @@ TEST(CliReactions, ColumnsFollowTheOthersAndEqualTheLibrarysReactions) {
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Table table = io::readCsvFile((dir / "id.csv").string());
     const Model model(io::loadRobotDescription(kRobot));
-    const std::vector<std::string> first = io::inverseDynamicsColumns(model.actuators);
-    const std::vector<std::string> reactions = io::reactionColumns(model.limbs);
+    const std::vector<std::string> first = tables::inverseDynamicsColumns(model.actuators);
+    const std::vector<std::string> reactions = tables::reactionColumns(model.limbs);
     ASSERT_EQ(table.columns.size(), first.size() + reactions.size());
     for (std::size_t c = 0; c < first.size(); ++c) EXPECT_EQ(table.columns[c], first[c]);
     EXPECT_EQ(table.columns[first.size()], "limb1_j1_fx");
@@ -104,7 +104,7 @@ TEST(CliReactions, SimulateColumnsAreTheLibrarysReactionsAndBalanceThePlatform) 
     ASSERT_EQ(r.exit_code, 0) << r.err;
     const io::Table table = io::readCsvFile((dir / "sim.csv").string());
     const Model model(io::loadRobotDescription(robot));
-    const std::vector<std::string> reactions = io::reactionColumns(model.limbs);
+    const std::vector<std::string> reactions = tables::reactionColumns(model.limbs);
     const std::size_t first = 4 + 3 * static_cast<std::size_t>(model.actuators) + 1;  // t,x,y,theta,u,du,tau,kinetic
     ASSERT_EQ(table.columns.size(), first + reactions.size());
     EXPECT_EQ(table.columns[first - 1], "kinetic");

@@ -30,12 +30,12 @@ RobotDescription robotFile(const std::string& name) {
 /// The compliant model at rest at p, with K and the lumped modes at the same pose.
 struct AtRest {
     StateSpace system;
-    analysis::StiffnessData stiffness;
-    analysis::LumpedModes modes;
+    StiffnessData stiffness;
+    LumpedModes modes;
 };
 
 AtRest atRest(const Model& model, const Pose& p) {
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     Data data(model);
     AtRest r;
     const ActuatorVector tau0 = ActuatorVector::Zero(model.actuators);
@@ -43,7 +43,7 @@ AtRest atRest(const Model& model, const Pose& p) {
                                    r.system)
                     .ok());
     Data fresh(model);
-    EXPECT_TRUE(analysis::stiffnessAndModes(model, compliance, fresh, p, r.stiffness, r.modes).ok());
+    EXPECT_TRUE(stiffnessAndModes(model, compliance, fresh, p, r.stiffness, r.modes).ok());
     return r;
 }
 
@@ -116,7 +116,7 @@ TEST(CompliantLinearization, AllForceDrivesGiveTheRigidInputsThroughElasticLinks
     RobotDescription robot = robotFile("paper-3prr-compliant");
     for (LimbDescription& limb : robot.limbs) limb.joints[0].stiffness = 0.0;
     const Model model(robot);
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     ASSERT_TRUE(compliance.any);
     Data data(model);
     const ActuatorVector tau0 = ActuatorVector::Constant(model.actuators, 3.0);
@@ -153,7 +153,7 @@ TEST(CompliantLinearization, AForceInputIsTheLimitOfAVanishingDriveSpringDrivenB
 
 TEST(CompliantLinearization, WithoutComplianceItIsTheRigidModel) {
     const Model model(robotFile("paper-3prr"));
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     ASSERT_FALSE(compliance.any);
     Data data(model);
     const ActuatorVector tau0 = ActuatorVector::Constant(model.actuators, 5.0);

@@ -211,7 +211,7 @@ TEST(ControlRobots, TableHasEveryActuator) {
     PoseLoopOptions options;
     options.duration = 0.01;
     const PoseLoopResult result = track(robot, robot, ControlLaw::pd, options);
-    const io::Table table = io::toTable(result);
+    const io::Table table = tables::toTable(result);
     ASSERT_EQ(table.columns.size(), 10U + 3U * 4U);
     EXPECT_EQ(table.columns[10], "u1");
     EXPECT_EQ(table.columns[14], "u1_d");

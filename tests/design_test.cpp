@@ -158,8 +158,8 @@ TEST(ParametricRobotFile, ThePlainFormOfADesignReadsBackAsTheSameRobot) {
     EXPECT_DOUBLE_EQ(robot.limbs[1].joints[0].point.x(), 0.25 * std::cos(M_PI / 6.0));
 }
 
-io::DesignFamily threeRrrFamily() {
-    io::DesignFamily family;
+tables::DesignFamily threeRrrFamily() {
+    tables::DesignFamily family;
     family.text = text("examples/design_3rrr/family.yaml");
     family.source = "family.yaml";
     family.ranges = {{"r_b", 0.15, 0.25}, {"l1", 0.08, 0.14}};
@@ -167,7 +167,7 @@ io::DesignFamily threeRrrFamily() {
 }
 
 TEST(DesignMetrics, EachMetricIsTheSingleRobotComputation) {
-    const io::DesignFamily family = threeRrrFamily();
+    const tables::DesignFamily family = threeRrrFamily();
     const std::vector<double> point{0.21, 0.11};
     std::vector<DesignMetric> metrics;
     for (const char* name :
@@ -175,9 +175,9 @@ TEST(DesignMetrics, EachMetricIsTheSingleRobotComputation) {
         metrics.push_back(parseDesignMetric(name));
     DesignOptions options;
     options.workspace.resolution = 41;
-    const DesignEvaluation e = io::evaluateFamilyDesign(family, point, metrics, options);
+    const DesignEvaluation e = tables::evaluateFamilyDesign(family, point, metrics, options);
     ASSERT_TRUE(e.feasible) << e.reason;
-    const Model model(io::designRobot(family, point));
+    const Model model(tables::designRobot(family, point));
     const WorkspaceMap map = workspaceMap(model, {model.home(0), 41});
     EXPECT_EQ(e.values[0], map.area);
     EXPECT_EQ(e.values[1], dexterity(map).median);
@@ -223,12 +223,12 @@ TEST(DesignMetrics, TrajectoryMetricsArePeaksOfTheInverseDynamics) {
 }
 
 TEST(DesignMetrics, ADesignThatDoesNotAssembleIsARowWithItsReason) {
-    const io::DesignFamily family = threeRrrFamily();
+    const tables::DesignFamily family = threeRrrFamily();
     const std::vector<DesignMetric> metrics{parseDesignMetric("workspace_area")};
     // links of 2 x 0.03 m cannot span r_b - r_p = 0.1365 m: h = sqrt(negative)
-    io::DesignFamily shorter = family;
+    tables::DesignFamily shorter = family;
     shorter.fixed = {{"l2", 0.03}};
-    const DesignEvaluation e = io::evaluateFamilyDesign(shorter, {0.2, 0.03}, metrics, {});
+    const DesignEvaluation e = tables::evaluateFamilyDesign(shorter, {0.2, 0.03}, metrics, {});
     EXPECT_FALSE(e.feasible);
     EXPECT_NE(e.reason.find("expression 'sqrt(l1^2 - ea^2)': the sub-expression sqrt("), std::string::npos) << e.reason;
     EXPECT_NE(e.reason.find(") = nan is not finite"), std::string::npos) << e.reason;
@@ -375,7 +375,7 @@ TEST(DesignJournal, AResumedSweepKeepsTheRecordedDesignsAndDropsAnUnfinishedLine
     const std::string path = (dir / "journal.csv").string();
     const std::vector<std::string> columns{"design", "a", "workspace_area", "feasible", "reason"};
     {
-        io::DesignJournal journal(path, "sig", columns, 1, 1);
+        tables::DesignJournal journal(path, "sig", columns, 1, 1);
         journal.append({0, {0.1}, {true, "", {0.1 + 0.2}}});
         journal.append({3, {0.4}, {false, "limb 2, \"out\" of reach", {std::nan("")}}});
     }
@@ -384,14 +384,14 @@ TEST(DesignJournal, AResumedSweepKeepsTheRecordedDesignsAndDropsAnUnfinishedLine
     const std::string text = readJournal(path);
     EXPECT_NE(text.find("\n1,0.1,"), std::string::npos) << text;
     EXPECT_NE(text.find("\n4,0.4,"), std::string::npos) << text;
-    io::DesignJournal again(path, "sig", columns, 1, 1);
+    tables::DesignJournal again(path, "sig", columns, 1, 1);
     ASSERT_EQ(again.previous().size(), 2u);
     EXPECT_EQ(again.previous()[0].index, 0u);
     EXPECT_EQ(again.previous()[0].evaluation.values[0], 0.1 + 0.2);
     EXPECT_EQ(again.previous()[1].index, 3u);
     EXPECT_EQ(again.previous()[1].evaluation.reason, "limb 2, \"out\" of reach");
     EXPECT_TRUE(std::isnan(again.previous()[1].evaluation.values[0]));
-    EXPECT_THROW(io::DesignJournal(path, "another sweep", columns, 1, 1), Error);
+    EXPECT_THROW(tables::DesignJournal(path, "another sweep", columns, 1, 1), Error);
 }
 
 }  // namespace

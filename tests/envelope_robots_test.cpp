@@ -202,7 +202,7 @@ TEST(GeneralEnvelope, PointsComeAxisAfterAxisInTheOrderXYTheta) {
     const EnvelopeAxis expected[] = {EnvelopeAxis::x, EnvelopeAxis::x,     EnvelopeAxis::y,
                                      EnvelopeAxis::y, EnvelopeAxis::theta, EnvelopeAxis::theta};
     for (std::size_t k = 0; k < points.size(); ++k) EXPECT_EQ(points[k].axis, expected[k]) << k;
-    const io::Table table = io::toTable(points);
+    const io::Table table = tables::toTable(points);
     EXPECT_EQ(table.categories[0][static_cast<std::size_t>(table.rows[0][0])], "x");
     EXPECT_EQ(table.categories[0][static_cast<std::size_t>(table.rows[5][0])], "theta");
 }
@@ -213,11 +213,11 @@ TEST(GeneralEnvelope, TheFirstNaturalFrequencyAtHomeIsTheBandsThirdBound) {
     ASSERT_TRUE(resonance.known) << resonance.reason;
     EXPECT_TRUE(resonance.declared);
     // the lumped model at home, as `nocdyn pose` reports it
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     Data data(model);
-    analysis::StiffnessData stiffness;
-    analysis::LumpedModes modes;
-    ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes));
+    StiffnessData stiffness;
+    LumpedModes modes;
+    ASSERT_TRUE(stiffnessAndModes(model, compliance, data, model.home, stiffness, modes));
     EXPECT_EQ(resonance.frequency, modes.frequency(0));
     EXPECT_NEAR(resonance.frequency, kCompliantFirstFrequency, 1e-9 * kCompliantFirstFrequency);
 
@@ -248,7 +248,7 @@ TEST(GeneralEnvelope, TheFirstNaturalFrequencyAtHomeIsTheBandsThirdBound) {
     EXPECT_STREQ(limitName(EnvelopeLimit::resonance), "resonance");
 
     // the CSV names it in its optional last column, in every row
-    const io::Table table = io::toTable(points, resonance);
+    const io::Table table = tables::toTable(points, resonance);
     ASSERT_EQ(table.columns, io::columnNames(io::TableId::envelope, {.optional = true}));
     EXPECT_EQ(table.columns.back(), "first_natural_frequency");
     for (const auto& row : table.rows) EXPECT_EQ(row.back(), resonance.frequency);
@@ -257,7 +257,7 @@ TEST(GeneralEnvelope, TheFirstNaturalFrequencyAtHomeIsTheBandsThirdBound) {
 
 /// |p_a| of the lumped model M ddp + C dp + K p = K e_a sin(w t) by a direct complex solve at
 /// f [Hz] (C the modal damping of ratio zeta), independent of the modal sum envelope.cpp uses.
-double amplificationBySolve(const analysis::LumpedModes& modes, const Matrix3& K, double zeta, int a, double f) {
+double amplificationBySolve(const LumpedModes& modes, const Matrix3& K, double zeta, int a, double f) {
     const double w = 2.0 * std::numbers::pi * f;
     const Matrix3 MPhi = modes.M * modes.shape;
     Vector3 two_zeta_w;
@@ -271,11 +271,11 @@ double amplificationBySolve(const analysis::LumpedModes& modes, const Matrix3& K
 
 TEST(GeneralEnvelope, NoFrequencyReportedUsableIsAmplifiedBeyondTheLimit) {
     const Model model(example("paper-3prr-compliant"));
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     Data data(model);
-    analysis::StiffnessData stiffness;
-    analysis::LumpedModes modes;
-    ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes));
+    StiffnessData stiffness;
+    LumpedModes modes;
+    ASSERT_TRUE(stiffnessAndModes(model, compliance, data, model.home, stiffness, modes));
     const double zeta = model.description.damping_ratio;
     EXPECT_EQ(zeta, 0.02);  // the default: the file sets none
     for (const double limit : {1.1, 1.5, 3.0}) {
@@ -328,7 +328,7 @@ TEST(GeneralEnvelope, WithoutDeclaredComplianceTheEnvelopeIsUnchangedAndTheBound
         EXPECT_EQ(p.limb, rigid.limb);
         EXPECT_EQ(p.amplitude, rigid.amplitude);
     }
-    EXPECT_EQ(io::toTable(points, resonance).columns, io::columnNames(io::TableId::envelope));
+    EXPECT_EQ(tables::toTable(points, resonance).columns, io::columnNames(io::TableId::envelope));
 }
 
 TEST(GeneralEnvelope, ComplianceThatLeavesALimbRigidGivesNoBoundAndSaysWhy) {

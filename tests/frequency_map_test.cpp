@@ -27,12 +27,12 @@ WorkspaceMap mapAtHome(const Model& model, int resolution) {
 TEST(FirstFrequencyMap, EveryFeasiblePointHoldsStiffnessAndModesAndTheLowestIsWhereReported) {
     const Model model(robotFile("paper-3prr-compliant"));
     const WorkspaceMap map = mapAtHome(model, 41);
-    const analysis::FirstFrequencyMap f = analysis::firstFrequencyMap(model, map);
+    const FirstFrequencyMap f = firstFrequencyMap(model, map);
     ASSERT_EQ(f.first.size(), map.cells.size());
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     Data data(model);
-    analysis::StiffnessData K;
-    analysis::LumpedModes modes;
+    StiffnessData K;
+    LumpedModes modes;
     int feasible = 0;
     double lowest = std::numeric_limits<double>::infinity(), highest = 0.0;
     for (int i = 0; i < map.n; ++i) {
@@ -43,7 +43,7 @@ TEST(FirstFrequencyMap, EveryFeasiblePointHoldsStiffnessAndModesAndTheLowestIsWh
                 continue;
             }
             ++feasible;
-            ASSERT_TRUE(analysis::stiffnessAndModes(
+            ASSERT_TRUE(stiffnessAndModes(
                 model, compliance, data, Pose(map.theta, map.x0 + i * map.step, map.y0 + k * map.step), K, modes));
             EXPECT_EQ(value, modes.frequency(0));
             lowest = std::min(lowest, value);
@@ -59,7 +59,7 @@ TEST(FirstFrequencyMap, EveryFeasiblePointHoldsStiffnessAndModesAndTheLowestIsWh
     EXPECT_EQ(f.lowest_y, map.y0 + f.lowest_k * map.step);
     // the reported point, recomputed from its (x, y) alone
     ASSERT_TRUE(
-        analysis::stiffnessAndModes(model, compliance, data, Pose(map.theta, f.lowest_x, f.lowest_y), K, modes));
+        stiffnessAndModes(model, compliance, data, Pose(map.theta, f.lowest_x, f.lowest_y), K, modes));
     EXPECT_EQ(modes.frequency(0), f.lowest);
     // the voice coils' 2e5 N/m under about 3 kg each: near 40 Hz (the file's comment), and it varies
     EXPECT_GT(f.lowest, 35.0);
@@ -71,11 +71,11 @@ TEST(FirstFrequencyMap, AllocatesNothingPerGridPoint) {
     // elastic links: the elastodynamic model (which allocates) checks only the points next to
     // a limb singularity (nearLimbSingularity), and this map has none
     const Model model(robotFile("paper-3prr-compliant"));
-    ASSERT_TRUE(analysis::StiffnessModel(model).any_elastic);
+    ASSERT_TRUE(StiffnessModel(model).any_elastic);
     const WorkspaceMap small = mapAtHome(model, 21), large = mapAtHome(model, 81);
     const auto allocations = [&](const WorkspaceMap& map) {
         const long before = test::allocationCount();
-        const analysis::FirstFrequencyMap f = analysis::firstFrequencyMap(model, map);
+        const FirstFrequencyMap f = firstFrequencyMap(model, map);
         const long count = test::allocationCount() - before;
         EXPECT_GT(f.points, 0);
         EXPECT_EQ(f.elastodynamic_checks, 0);
@@ -90,7 +90,7 @@ TEST(FirstFrequencyMap, ReportsProgressPerColumnAndStopsWhenProgressThrows) {
     const Model model(robotFile("paper-3prr-compliant"));
     const WorkspaceMap map = mapAtHome(model, 21);
     int calls = 0, last = 0;
-    (void)analysis::firstFrequencyMap(model, map, [&](int done, int total) {
+    (void)firstFrequencyMap(model, map, [&](int done, int total) {
         ++calls;
         last = done;
         EXPECT_EQ(total, 21);
@@ -99,7 +99,7 @@ TEST(FirstFrequencyMap, ReportsProgressPerColumnAndStopsWhenProgressThrows) {
     EXPECT_EQ(last, 21);
     struct Stop {};
     calls = 0;
-    EXPECT_THROW((void)analysis::firstFrequencyMap(model, map,
+    EXPECT_THROW((void)firstFrequencyMap(model, map,
                                                    [&](int, int) {
                                                        if (++calls == 3) throw Stop{};
                                                    }),
@@ -111,7 +111,7 @@ TEST(FirstFrequencyMap, ARobotWithoutComplianceIsRefusedByName) {
     const Model model(robotFile("3-rrr"));
     const WorkspaceMap map = mapAtHome(model, 21);
     try {
-        (void)analysis::firstFrequencyMap(model, map);
+        (void)firstFrequencyMap(model, map);
         FAIL() << "a robot without compliance was mapped";
     } catch (const Error& e) {
         const std::string message = e.what();
@@ -138,7 +138,7 @@ TEST(FirstFrequencyMinMetric, IsTheMapsLowestOnTheSameGrid) {
     const Model model(robot);
     const WorkspaceMap map = mapAtHome(model, 41);
     EXPECT_EQ(e.values[0], map.area);
-    EXPECT_EQ(e.values[1], analysis::firstFrequencyMap(model, map).lowest);
+    EXPECT_EQ(e.values[1], firstFrequencyMap(model, map).lowest);
     EXPECT_EQ(e.values[2], dexterity(map).worst);
     EXPECT_GT(e.values[1], 35.0);
 }

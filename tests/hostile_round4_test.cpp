@@ -28,10 +28,6 @@
 namespace nocdyn {
 namespace {
 
-using analysis::ElastodynamicModes;
-using analysis::LumpedModes;
-using analysis::StiffnessData;
-using analysis::StiffnessModel;
 
 struct AtPose {
     Model model;
@@ -41,7 +37,7 @@ struct AtPose {
     LumpedModes modes;
     Status status;
     AtPose(RobotDescription robot, const Pose& p) : model(std::move(robot)), compliance(model), data(model) {
-        status = analysis::stiffnessAndModes(model, compliance, data, p, K, modes);
+        status = stiffnessAndModes(model, compliance, data, p, K, modes);
     }
 };
 
@@ -100,7 +96,7 @@ TEST(HostileRound4, AStiffnessContrastAboveOneBillionKeepsTheHeldDirectionsHeld)
         // the soft modes stay where the soft drives put them: about 41 and 44 Hz
         EXPECT_NEAR(at.modes.frequency(0), 41.3, 0.5) << k1;
         EXPECT_NEAR(at.modes.frequency(1), 43.8, 0.5) << k1;
-        EXPECT_EQ(analysis::contrastWarning(at.K).empty(), at.K.contrast <= analysis::kContrastWarning);
+        EXPECT_EQ(contrastWarning(at.K).empty(), at.K.contrast <= kContrastWarning);
     }
     // and the envelope keeps its third bound
     const EnvelopeResonance resonance = envelopeResonance(Model(contrast(5e14, 1e15)));
@@ -116,7 +112,7 @@ TEST(HostileRound4, AContrastBeyondDoublePrecisionIsRefusedByName) {
     for (LimbDescription& limb : robot.limbs) limb.bodies[1].elastic->EA = 1e15;
     AtPose at(robot, Pose::Zero());
     ASSERT_EQ(at.status.code, StatusCode::stiffness_contrast);
-    EXPECT_GT(at.status.value, analysis::kContrastLimit);
+    EXPECT_GT(at.status.value, kContrastLimit);
     EXPECT_NE(describe(at.status, at.model).find("stiffness contrast"), std::string::npos);
     EXPECT_FALSE(envelopeResonance(at.model).known);
 }
@@ -171,7 +167,7 @@ TEST(HostileRound4, VeryStiffBeamsTendToTheRigidLinks) {
         AtPose at(rrrBeams(2000.0, X), Pose::Zero());
         ASSERT_TRUE(at.status.ok()) << describe(at.status, at.model);
         ElastodynamicModes modes;
-        ASSERT_TRUE(analysis::elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
+        ASSERT_TRUE(elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
         for (int i = 0; i < 3; ++i) {
             EXPECT_NEAR(modes.frequency(i) / rigid.modes.frequency(i), 1.0, 1e-6) << "X = " << X << " mode " << i;
         }
@@ -197,7 +193,7 @@ TEST(HostileRound4, VeryStiffBeamsTendToTheRigidLinksBesideAFreeDirection) {
         AtPose at(robot, Pose::Zero());
         ASSERT_TRUE(at.status.ok()) << describe(at.status, at.model);
         ElastodynamicModes modes;
-        ASSERT_TRUE(analysis::elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
+        ASSERT_TRUE(elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
         EXPECT_EQ(modes.frequency(0), 0.0);
         for (int i = 1; i < 3; ++i) {
             EXPECT_NEAR(modes.frequency(i) / rigid.modes.frequency(i), 1.0, 1e-6) << "X = " << X << " mode " << i;
@@ -247,14 +243,14 @@ TEST(HostileRound4, NextToALimbSingularityTheLumpedModelIsSaidNotToHold) {
     const auto lumpedAndElastic = [&](const Pose& p, LumpedModes& lumped, ElastodynamicModes& elastic) {
         Data data(model);
         StiffnessData K;
-        Status s = analysis::stiffnessAndModes(model, compliance, data, p, K, lumped);
-        if (s) s = analysis::elastodynamicModes(model, compliance, data, elastic);
+        Status s = stiffnessAndModes(model, compliance, data, p, K, lumped);
+        if (s) s = elastodynamicModes(model, compliance, data, elastic);
         return s;
     };
     LumpedModes lumped;
     ElastodynamicModes elastic;
     ASSERT_TRUE(lumpedAndElastic(Pose::Zero(), lumped, elastic).ok());
-    EXPECT_EQ(analysis::lumpedMismatchWarning(lumped, elastic), "");
+    EXPECT_EQ(lumpedMismatchWarning(lumped, elastic), "");
     // the reach boundary below home, by bisection on y
     double lo = 0.0, hi = 0.2;
     for (int k = 0; k < 60; ++k) {
@@ -262,8 +258,8 @@ TEST(HostileRound4, NextToALimbSingularityTheLumpedModelIsSaidNotToHold) {
         (lumpedAndElastic(Pose(0.0, 0.0, -mid), lumped, elastic).ok() ? lo : hi) = mid;
     }
     ASSERT_TRUE(lumpedAndElastic(Pose(0.0, 0.0, -(lo - 1e-9)), lumped, elastic).ok());
-    const std::string warning = analysis::lumpedMismatchWarning(lumped, elastic);
-    EXPECT_GT(std::abs(lumped.frequency(0) / elastic.frequency(0) - 1.0), analysis::kLumpedMismatch);
+    const std::string warning = lumpedMismatchWarning(lumped, elastic);
+    EXPECT_GT(std::abs(lumped.frequency(0) / elastic.frequency(0) - 1.0), kLumpedMismatch);
     EXPECT_NE(warning.find("lumped model does not hold"), std::string::npos) << warning;
     // the first frequency to use there is the elastodynamic one (lumped 9.805 Hz, elastodynamic
     // 29.905 Hz), with the warning that says so; at home the lumped one, without a word
@@ -271,18 +267,18 @@ TEST(HostileRound4, NextToALimbSingularityTheLumpedModelIsSaidNotToHold) {
     EXPECT_NEAR(elastic.frequency(0), 29.905, 3e-2);
     EXPECT_NEAR(lumped.frequency(0) / elastic.frequency(0), 0.328, 1e-3);
     EXPECT_NE(warning.find("the elastodynamic frequencies are used here"), std::string::npos) << warning;
-    EXPECT_NE(analysis::lumpedMismatchWarning(lumped, elastic, false).find("are the ones to use here"),
+    EXPECT_NE(lumpedMismatchWarning(lumped, elastic, false).find("are the ones to use here"),
               std::string::npos);
-    EXPECT_FALSE(analysis::lumpedHolds(lumped, elastic));
+    EXPECT_FALSE(lumpedHolds(lumped, elastic));
     Data data(model);
     StiffnessData K;
-    ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, Pose(0.0, 0.0, -(lo - 1e-9)), K, lumped).ok());
+    ASSERT_TRUE(stiffnessAndModes(model, compliance, data, Pose(0.0, 0.0, -(lo - 1e-9)), K, lumped).ok());
     std::string used;
-    EXPECT_EQ(analysis::firstFrequency(model, compliance, data, lumped, &used), elastic.frequency(0));
+    EXPECT_EQ(firstFrequency(model, compliance, data, lumped, &used), elastic.frequency(0));
     EXPECT_EQ(used, warning);
-    ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, Pose::Zero(), K, lumped).ok());
+    ASSERT_TRUE(stiffnessAndModes(model, compliance, data, Pose::Zero(), K, lumped).ok());
     used.clear();
-    EXPECT_EQ(analysis::firstFrequency(model, compliance, data, lumped, &used), lumped.frequency(0));
+    EXPECT_EQ(firstFrequency(model, compliance, data, lumped, &used), lumped.frequency(0));
     EXPECT_EQ(used, "");
 }
 

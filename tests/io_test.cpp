@@ -271,7 +271,7 @@ TEST(Csv, ErrorsNameTheRealLineAfterBlankLines) {
     // forcesFromTable reports the file's line of a time that does not increase
     const io::Table table = io::parseCsv("t,tau1,tau2,tau3\n\n0,1,2,3\n\n0.1,1,2,3\n0.1,1,2,3\n", "f.csv");
     EXPECT_EQ(table.lines, (std::vector<std::size_t>{3, 5, 6}));
-    expectFileError([&] { (void)io::forcesFromTable(table, 3, Interpolation::linear, "f.csv"); },
+    expectFileError([&] { (void)tables::forcesFromTable(table, 3, Interpolation::linear, "f.csv"); },
                     {"f.csv:6:", "column 't'", "does not increase"});
 }
 

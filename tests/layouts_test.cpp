@@ -125,7 +125,7 @@ TEST(Layouts, ClosedLoopRowsHoldThePoseUnderItsNames) {
     run.u = {u};
     run.u_d = {u_d};
     run.tau = {tau};
-    const io::Table table = io::toTable(run);
+    const io::Table table = tables::toTable(run);
     ASSERT_EQ(table.columns, columnNames(TableId::closed_loop, {.actuators = 1}));
     ASSERT_EQ(table.rows.size(), 1U);
     const auto at = [&](const char* name) { return table.rows[0][table.column(name)]; };
@@ -157,7 +157,7 @@ TEST(Layouts, EnvelopeRowsHoldEveryFieldUnderItsName) {
     p.peak_effort_ratio = 1.0;
     p.peak_u = 3e-3;
     p.peak_tau = 40.0;
-    const io::Table table = io::toTable(std::vector<EnvelopePoint>{p});
+    const io::Table table = tables::toTable(std::vector<EnvelopePoint>{p});
     ASSERT_EQ(table.columns, columnNames(TableId::envelope));
     const std::vector<double>& row = table.rows.at(0);
     ASSERT_EQ(row.size(), table.columns.size());

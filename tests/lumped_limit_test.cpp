@@ -1,6 +1,6 @@
 // Where the lumped model K v = w^2 M v does not hold (elastic links next to a limb singularity,
 // its first frequency more than kLumpedMismatch from the elastodynamic one), the first natural
-// frequency every bound uses is the elastodynamic one (analysis::firstFrequency): the pose's,
+// frequency every bound uses is the elastodynamic one (firstFrequency): the pose's,
 // the envelope's band (its amplification summed over the elastodynamic modes) and the
 // workspace map's; far from singularities nothing changes.
 #include <gtest/gtest.h>
@@ -22,10 +22,6 @@
 namespace nocdyn {
 namespace {
 
-using analysis::ElastodynamicModes;
-using analysis::LumpedModes;
-using analysis::StiffnessData;
-using analysis::StiffnessModel;
 
 /// The 3-RRR with elastic links, its drives' ranges removed (nothing but the reach bounds a pose).
 Model limitless3RrrElastic() {
@@ -44,7 +40,7 @@ Pose nextToTheReachBelowHome(const Model& model) {
     double lo = 0.0, hi = 0.2;
     for (int k = 0; k < 60; ++k) {
         const double mid = 0.5 * (lo + hi);
-        (analysis::stiffnessAndModes(model, compliance, data, Pose(0.0, 0.0, -mid), K, modes).ok() ? lo : hi) = mid;
+        (stiffnessAndModes(model, compliance, data, Pose(0.0, 0.0, -mid), K, modes).ok() ? lo : hi) = mid;
     }
     return {0.0, 0.0, -(lo - 1e-9)};
 }
@@ -61,9 +57,9 @@ Both bothAt(const Model& model, const Pose& p) {
     Data data(model);
     StiffnessData K;
     Both out;
-    EXPECT_TRUE(analysis::stiffnessAndModes(model, compliance, data, p, K, out.lumped).ok());
-    EXPECT_TRUE(analysis::elastodynamicModes(model, compliance, data, out.elastic).ok());
-    out.first = analysis::firstFrequency(model, compliance, data, out.lumped, &out.warning);
+    EXPECT_TRUE(stiffnessAndModes(model, compliance, data, p, K, out.lumped).ok());
+    EXPECT_TRUE(elastodynamicModes(model, compliance, data, out.elastic).ok());
+    out.first = firstFrequency(model, compliance, data, out.lumped, &out.warning);
     return out;
 }
 
@@ -73,7 +69,7 @@ TEST(LumpedLimit, NextToALimbSingularityTheFirstFrequencyIsTheElastodynamicOne) 
     // the lumped f_1 collapses to a third of the elastodynamic one (9.805 against 29.905 Hz) ...
     EXPECT_NEAR(near.lumped.frequency(0) / near.elastic.frequency(0), 0.328, 1e-3);
     // ... and the one reported is within kLumpedMismatch of the elastodynamic model (it is it)
-    EXPECT_LT(std::abs(near.first / near.elastic.frequency(0) - 1.0), analysis::kLumpedMismatch);
+    EXPECT_LT(std::abs(near.first / near.elastic.frequency(0) - 1.0), kLumpedMismatch);
     EXPECT_EQ(near.first, near.elastic.frequency(0));
     EXPECT_NE(near.warning.find("the elastodynamic frequencies are used here"), std::string::npos) << near.warning;
     // far from singularities the lumped f_1 stands, bit for bit and without a word
@@ -170,7 +166,7 @@ TEST(LumpedLimit, AnEnvelopeWhoseHomeIsNextToALimbSingularityUsesTheElastodynami
 TEST(LumpedLimit, TheMapChecksThePointsNextToALimbSingularityAndReplacesWhereTheLumpedModelFails) {
     const Model model = limitless3RrrElastic();
     const WorkspaceMap map = workspaceMap(model, WorkspaceOptions{model.home(0), 41, false});
-    const analysis::FirstFrequencyMap f = analysis::firstFrequencyMap(model, map);
+    const FirstFrequencyMap f = firstFrequencyMap(model, map);
     const StiffnessModel compliance(model);
     Data data(model);
     StiffnessData K;
@@ -179,13 +175,13 @@ TEST(LumpedLimit, TheMapChecksThePointsNextToALimbSingularityAndReplacesWhereThe
     for (int i = 0; i < map.n; ++i) {
         for (int k = 0; k < map.n; ++k) {
             if (map.cell(i, k) != WorkspaceCell::feasible) continue;
-            ASSERT_TRUE(analysis::stiffnessAndModes(
+            ASSERT_TRUE(stiffnessAndModes(
                 model, compliance, data, Pose(map.theta, map.x0 + i * map.step, map.y0 + k * map.step), K, modes));
             // the exhaustive answer: firstFrequency at every point
-            const double first = analysis::firstFrequency(model, compliance, data, modes);
+            const double first = firstFrequency(model, compliance, data, modes);
             EXPECT_EQ(f.at(i, k, map.n), first) << i << ", " << k;
             replaced += first != modes.frequency(0) ? 1 : 0;
-            checked += analysis::nearLimbSingularity(model, data) ? 1 : 0;
+            checked += nearLimbSingularity(model, data) ? 1 : 0;
         }
     }
     EXPECT_EQ(f.elastodynamic_points, replaced);
@@ -204,7 +200,7 @@ TEST(LumpedLimit, AMapNextToALimbSingularityGivesTheElastodynamicFirstFrequency)
     map.x0 = -map.step;
     map.y0 = near(2);
     map.cells.assign(9, WorkspaceCell::feasible);
-    const analysis::FirstFrequencyMap f = analysis::firstFrequencyMap(model, map);
+    const FirstFrequencyMap f = firstFrequencyMap(model, map);
     EXPECT_EQ(f.points, 9);
     EXPECT_EQ(f.elastodynamic_checks, 9);
     EXPECT_EQ(f.elastodynamic_points, 9);
@@ -212,7 +208,7 @@ TEST(LumpedLimit, AMapNextToALimbSingularityGivesTheElastodynamicFirstFrequency)
     EXPECT_NEAR(f.at(1, 0, 3), at.elastic.frequency(0), 1e-12 * at.elastic.frequency(0));
     for (const double first : f.first) {
         // the lumped model gives 9.8 to 12 Hz here
-        EXPECT_LT(std::abs(first / at.elastic.frequency(0) - 1.0), analysis::kLumpedMismatch) << first;
+        EXPECT_LT(std::abs(first / at.elastic.frequency(0) - 1.0), kLumpedMismatch) << first;
     }
     EXPECT_NE(f.warning.find("the elastodynamic first frequency is used at 9 of 9 points"), std::string::npos)
         << f.warning;

@@ -141,19 +141,19 @@ TEST(Sampling, StreamedSamplesEqualTheStoredSeries) {
     const Model model{io::expand(kPaper)};
     const PoseTrajectory trajectory = paperTrajectory1();
     const InverseDynamicsSeries series = sampleInverseDynamics(model, trajectory, sampleTimes(0.05, 2000.0));
-    const io::Table table = io::toTable(series, model.actuators);
+    const io::Table table = tables::toTable(series, model.actuators);
     std::size_t k = 0;
     std::vector<double> row;
     const LimitSummary summary = streamInverseDynamics(
         model, trajectory, sampleGrid(0.05, 2000.0), LimitPolicy::error, [&](const InverseDynamicsSample& sample) {
-            io::inverseDynamicsRow(sample, row);
+            tables::inverseDynamicsRow(sample, row);
             ASSERT_LT(k, table.rows.size());
             for (std::size_t c = 0; c < row.size(); ++c)
                 EXPECT_EQ(row[c], table.rows[k][c]) << "row " << k << " column " << c;
             ++k;
         });
     EXPECT_EQ(k, 100u);
-    EXPECT_EQ(table.columns, io::inverseDynamicsColumns(3));
+    EXPECT_EQ(table.columns, tables::inverseDynamicsColumns(3));
     EXPECT_EQ(summary.peak_tau, series.summary.peak_tau);
 }
 

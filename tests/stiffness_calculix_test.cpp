@@ -58,7 +58,6 @@ namespace nocdyn {
 namespace {
 
 namespace fs = std::filesystem;
-using analysis::JointSpring;
 
 constexpr const char* kCcx = "/usr/bin/ccx";
 
@@ -85,7 +84,7 @@ public:
     using SegmentCompliance = std::function<Matrix3(double, double, double)>;
 
     /// `segment`: the beams' segment compliance (needed when a body is elastic).
-    CalculixModel(const Model& model, const analysis::StiffnessModel& compliance, const Data& data,
+    CalculixModel(const Model& model, const StiffnessModel& compliance, const Data& data,
                   MassModel mass_model = MassModel::root, int beam_elements = 1, SegmentCompliance segment = {})
         : segment_(std::move(segment)) {
         const int bodies = model.bodies;
@@ -550,16 +549,16 @@ struct Comparison {
 Comparison compare(RobotDescription robot, const Pose& p, const std::string& job,
                    MassModel mass_model = MassModel::root, int beam_elements = 1, int modes = 0) {
     const Model model(std::move(robot));
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     Data data(model);
-    analysis::StiffnessData K;
-    analysis::LumpedModes lumped;
+    StiffnessData K;
+    LumpedModes lumped;
     Comparison out;
-    const Status status = analysis::stiffnessAndModes(model, compliance, data, p, K, lumped);
+    const Status status = stiffnessAndModes(model, compliance, data, p, K, lumped);
     EXPECT_TRUE(status.ok()) << describe(status, model);
     out.lumped = lumped.frequency;
-    analysis::ElastodynamicModes elastic;
-    EXPECT_TRUE(analysis::elastodynamicModes(model, compliance, data, elastic).ok());
+    ElastodynamicModes elastic;
+    EXPECT_TRUE(elastodynamicModes(model, compliance, data, elastic).ok());
     out.elastodynamic = elastic.frequency;
     const Eigen::VectorXd reference = compliance.any_elastic ? out.elastodynamic : Eigen::VectorXd(out.lumped);
     const int n = modes > 0 ? modes : static_cast<int>(reference.size());
@@ -583,7 +582,7 @@ Comparison compare(RobotDescription robot, const Pose& p, const std::string& job
     Matrix3 C;
     for (int c = 0; c < 3; ++c) {
         Vector3 dp;
-        EXPECT_TRUE(analysis::displacementUnderWrench(K, model.length_scale, Vector3::Unit(c), dp));
+        EXPECT_TRUE(displacementUnderWrench(K, model.length_scale, Vector3::Unit(c), dp));
         C.col(c) = dp;
     }
     // compared with theta in metres (times L), every entry in m/N

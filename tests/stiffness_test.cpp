@@ -20,10 +20,6 @@
 namespace nocdyn {
 namespace {
 
-using analysis::ElastodynamicModes;
-using analysis::LumpedModes;
-using analysis::StiffnessData;
-using analysis::StiffnessModel;
 
 std::string robotText(const std::string& robot) {
     return io::readRobotFileText(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
@@ -66,7 +62,7 @@ struct AtPose {
     LumpedModes modes;
     Status status;
     AtPose(RobotDescription robot, const Pose& p) : model(std::move(robot)), compliance(model), data(model) {
-        status = analysis::stiffnessAndModes(model, compliance, data, p, K, modes);
+        status = stiffnessAndModes(model, compliance, data, p, K, modes);
     }
 };
 
@@ -131,17 +127,17 @@ TEST(Stiffness, AForceActuatorLeavesItsDirectionFreeAndNamed) {
     // a load along the free direction has no equilibrium; one orthogonal to it has
     Vector3 dp;
     const Vector3 loading = free;  // f . dp_free != 0
-    EXPECT_FALSE(analysis::displacementUnderWrench(at.K, at.model.length_scale, loading, dp));
+    EXPECT_FALSE(displacementUnderWrench(at.K, at.model.length_scale, loading, dp));
     const Vector3 reachable = at.K.K * Vector3(0.001, 1e-4, -2e-4);
-    ASSERT_TRUE(analysis::displacementUnderWrench(at.K, at.model.length_scale, reachable, dp));
+    ASSERT_TRUE(displacementUnderWrench(at.K, at.model.length_scale, reachable, dp));
     EXPECT_LT((at.K.K * dp - reachable).norm(), 1e-9 * reachable.norm());
-    EXPECT_NE(analysis::describeDirection(free).find("rotation about the point"), std::string::npos)
-        << analysis::describeDirection(free);
+    EXPECT_NE(describeDirection(free).find("rotation about the point"), std::string::npos)
+        << describeDirection(free);
 }
 
 TEST(Stiffness, ATranslationIsDescribedAsOne) {
-    EXPECT_EQ(analysis::describeDirection(Vector3(0.0, 0.6, 0.8)), "a translation along (x, y) = (0.6, 0.8)");
-    EXPECT_EQ(analysis::describeDirection(Vector3(1.0, 0.0, 0.0)),
+    EXPECT_EQ(describeDirection(Vector3(0.0, 0.6, 0.8)), "a translation along (x, y) = (0.6, 0.8)");
+    EXPECT_EQ(describeDirection(Vector3(1.0, 0.0, 0.0)),
               "a rotation about the point (x, y) = (0, 0) m from the platform's reference point");
 }
 
@@ -150,7 +146,7 @@ TEST(Stiffness, DisplacementUnderAWrenchSolvesKDpEqualsF) {
     ASSERT_TRUE(at.status.ok());
     const Vector3 f(0.3, 5.0, -2.0);  // [N m, N, N]
     Vector3 dp;
-    ASSERT_TRUE(analysis::displacementUnderWrench(at.K, at.model.length_scale, f, dp));
+    ASSERT_TRUE(displacementUnderWrench(at.K, at.model.length_scale, f, dp));
     EXPECT_LT((at.K.K * dp - f).norm(), 1e-12 * f.norm());
 }
 
@@ -163,7 +159,7 @@ double springEnergy(const Model& model, const StiffnessModel& compliance, Data& 
         for (int k = 0; k < 3; ++k) {
             const auto J = static_cast<std::size_t>(j);
             const auto K = static_cast<std::size_t>(k);
-            if (compliance.joint[J][K] != analysis::JointSpring::spring) continue;
+            if (compliance.joint[J][K] != JointSpring::spring) continue;
             const double dq = data.limb[J].q(k) - q0[J](k);
             energy += 0.5 * compliance.k[J][K] * dq * dq;
         }
@@ -232,7 +228,7 @@ TEST(Stiffness, TheElastodynamicModelCondensedOntoThePlatformGivesK) {
         AtPose at(std::move(robot), p);
         ASSERT_TRUE(at.status.ok());
         ElastodynamicModes modes;
-        ASSERT_TRUE(analysis::elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
+        ASSERT_TRUE(elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
         EXPECT_LT(
             relativeError(scaledK(modes.K_condensed, at.model.length_scale), scaledK(at.K.K, at.model.length_scale)),
             1e-9)
@@ -246,7 +242,7 @@ TEST(Stiffness, LumpedAndElastodynamicFrequenciesAreOneWithRigidBodies) {
         AtPose at(std::move(robot), p);
         ASSERT_TRUE(at.status.ok());
         ElastodynamicModes modes;
-        ASSERT_TRUE(analysis::elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
+        ASSERT_TRUE(elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
         ASSERT_EQ(modes.dofs, 3);
         for (int i = 0; i < 3; ++i) EXPECT_NEAR(modes.frequency(i) / at.modes.frequency(i), 1.0, 1e-10);
         // the mode shapes are the same platform motions, to sign
@@ -275,7 +271,7 @@ TEST(Stiffness, ElasticLinksAddModesAndStiffLinksTendToTheLumpedModel) {
     AtPose at(rrrWithElasticLinks(), Pose(0.0, 0.0, 0.0));
     ASSERT_TRUE(at.status.ok());
     ElastodynamicModes modes;
-    ASSERT_TRUE(analysis::elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
+    ASSERT_TRUE(elastodynamicModes(at.model, at.compliance, at.data, modes).ok());
     // per limb: 2 beams of 3 deflections and 2 free pivots, less 3 closure equations: 5 internal,
     // of which the two beam tips' rotations at the free pivots carry no mass (condensed)
     EXPECT_EQ(modes.dofs, 3 + 3 * 3);
@@ -289,7 +285,7 @@ TEST(Stiffness, ElasticLinksAddModesAndStiffLinksTendToTheLumpedModel) {
     }
     AtPose stiff(robot, Pose(0.01, 0.001, -0.002));
     ASSERT_TRUE(stiff.status.ok());
-    ASSERT_TRUE(analysis::elastodynamicModes(stiff.model, stiff.compliance, stiff.data, modes).ok());
+    ASSERT_TRUE(elastodynamicModes(stiff.model, stiff.compliance, stiff.data, modes).ok());
     for (LimbDescription& limb : robot.limbs) limb.bodies = {limb.bodies[0], limb.bodies[1]};
     for (LimbDescription& limb : robot.limbs) limb.bodies[0].elastic.reset(), limb.bodies[1].elastic.reset();
     AtPose rigid(robot, Pose(0.01, 0.001, -0.002));
@@ -306,7 +302,7 @@ TEST(Stiffness, ALockedLimbWithNothingElseToYieldIsRigidAndNamed) {
     Data data(model);
     StiffnessData K;
     LumpedModes modes;
-    const Status status = analysis::stiffnessAndModes(model, compliance, data, Pose::Zero(), K, modes);
+    const Status status = stiffnessAndModes(model, compliance, data, Pose::Zero(), K, modes);
     ASSERT_EQ(status.code, StatusCode::rigid_limb);
     EXPECT_EQ(status.limb, 0);
     EXPECT_NE(describe(status, model).find("limb 1"), std::string::npos) << describe(status, model);
@@ -318,13 +314,13 @@ TEST(Stiffness, APoseOutOfReachIsTheKinematicsError) {
 }
 
 TEST(Stiffness, ReportedCoordinatesAreNamedWithUnits) {
-    EXPECT_EQ(analysis::coordinateLabel(0), "x [m]");
-    EXPECT_EQ(analysis::coordinateLabel(1), "y [m]");
-    EXPECT_EQ(analysis::coordinateLabel(2), "theta [rad]");
-    EXPECT_EQ(analysis::stiffnessUnit(2, 2), "N m/rad");
-    EXPECT_EQ(analysis::stiffnessUnit(0, 0), "N/m");
-    EXPECT_EQ(analysis::stiffnessUnit(0, 2), "N/rad");
-    EXPECT_EQ(analysis::stiffnessUnit(2, 1), "N");
+    EXPECT_EQ(coordinateLabel(0), "x [m]");
+    EXPECT_EQ(coordinateLabel(1), "y [m]");
+    EXPECT_EQ(coordinateLabel(2), "theta [rad]");
+    EXPECT_EQ(stiffnessUnit(2, 2), "N m/rad");
+    EXPECT_EQ(stiffnessUnit(0, 0), "N/m");
+    EXPECT_EQ(stiffnessUnit(0, 2), "N/rad");
+    EXPECT_EQ(stiffnessUnit(2, 1), "N");
 }
 
 // ---- the robot file ----

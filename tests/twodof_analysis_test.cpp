@@ -204,16 +204,16 @@ TEST(TwoDofStiffness, FiveBarWithMotorSpringsIsAtDiagKA) {
     robot.limbs[1].joints[0].stiffness = k[1];
     const Model model(robot);
     ASSERT_EQ(model.task_dimension, 2);
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     Data data(model);
     double worst_K = 0.0, worst_M = 0.0, worst_f = 0.0;
     for (const Vector2& c : {Vector2(0.0, 0.35), Vector2(0.05, 0.25), Vector2(-0.08, 0.3)}) {
         const Pose p(0.0, c.x(), c.y());
-        analysis::StiffnessData stiffness;
-        analysis::LumpedModes lumped;
-        ASSERT_TRUE(analysis::stiffnessAndModes(model, compliance, data, p, stiffness, lumped).ok());
-        analysis::TaskModes modes;
-        analysis::taskModes(model, data, stiffness, lumped, modes);
+        StiffnessData stiffness;
+        LumpedModes lumped;
+        ASSERT_TRUE(stiffnessAndModes(model, compliance, data, p, stiffness, lumped).ok());
+        TaskModes modes;
+        taskModes(model, data, stiffness, lumped, modes);
         ASSERT_EQ(modes.K.rows(), 2);
         ASSERT_EQ(modes.frequency.size(), 2);
         // A_t by central differences of u(p_t)

@@ -37,7 +37,7 @@ nlohmann::json summaryJson(const app::WorkspaceResult& result) {
     out["limb_singular_points"] = map.limb_singular.size();
     out["actuation_singular_points"] = map.actuation_singular.size();
     if (result.frequency) {
-        const analysis::FirstFrequencyMap& f = *result.frequency;
+        const FirstFrequencyMap& f = *result.frequency;
         out["first_frequency"] = {{"points", f.points},
                                   {"lowest", f.lowest},
                                   {"lowest_at", {{"x", f.lowest_x}, {"y", f.lowest_y}, {"theta", map.theta}}},

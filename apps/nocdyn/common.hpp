@@ -26,8 +26,6 @@
 #include "nocdyn/trajectory.hpp"
 #include "render/plot.hpp"
 
-namespace nocdyn::report {}  // namespace nocdyn::report
-
 namespace nocdyn::cli {
 
 /// The commands draw figures and pages with the rendering module's functions.

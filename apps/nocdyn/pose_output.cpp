@@ -15,9 +15,9 @@ nlohmann::json poseComplianceJson(const app::PoseCompliance& c) {
     const auto n = static_cast<int>(c.K.rows());  // x, y, theta; a two-DOF robot's x, y
     nlohmann::json coordinates = nlohmann::json::array(), units = nlohmann::json::array();
     for (int r = 0; r < n; ++r) {
-        coordinates.push_back(analysis::coordinateLabel(r));
+        coordinates.push_back(coordinateLabel(r));
         nlohmann::json row = nlohmann::json::array();
-        for (int k = 0; k < n; ++k) row.push_back(analysis::stiffnessUnit(r, k));
+        for (int k = 0; k < n; ++k) row.push_back(stiffnessUnit(r, k));
         units.push_back(row);
     }
     nlohmann::json free = nlohmann::json::array();
@@ -43,11 +43,11 @@ nlohmann::json poseComplianceJson(const app::PoseCompliance& c) {
 void printPoseCompliance(const app::PoseCompliance& c) {
     std::printf("\nstiffness K at C (virtual joint method, gravity preload ignored; dQ = K dp, rows and columns:");
     const auto n = static_cast<int>(c.K.rows());  // 2: a two-DOF robot, over x, y
-    for (int r = 0; r < n; ++r) std::printf(" %s", analysis::coordinateLabel(r).c_str());
+    for (int r = 0; r < n; ++r) std::printf(" %s", coordinateLabel(r).c_str());
     std::printf(")\n%sunits:\n", matrixText(c.K).c_str());
     for (int r = 0; r < n; ++r) {
         std::printf("  [");
-        for (int k = 0; k < n; ++k) std::printf("%s%-8s", k ? "  " : "", analysis::stiffnessUnit(r, k).c_str());
+        for (int k = 0; k < n; ++k) std::printf("%s%-8s", k ? "  " : "", stiffnessUnit(r, k).c_str());
         std::printf("]\n");
     }
     for (const std::string& text : c.free_descriptions)

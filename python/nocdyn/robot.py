@@ -233,7 +233,7 @@ class Robot(RobotDynamics):
                                                 _integer(assembly_mode, "assembly_mode", 0, 12))
 
     # --- stiffness and natural frequencies --------------------------------------------
-    # the order of the command line's stiffness report (analysis::kReportedCoordinates)
+    # the order of the command line's stiffness report (kReportedCoordinates)
     stiffness_coordinates = ("x [m]", "y [m]", "theta [rad]")
 
     @_vocabulary

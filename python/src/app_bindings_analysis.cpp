@@ -128,7 +128,7 @@ void bindAnalysis(py::module_& m) {
             // f_1 per grid point as an (n, n) array indexed [ix, iy] (NaN where not feasible)
             py::object frequency = py::none();
             if (result.frequency) {
-                const analysis::FirstFrequencyMap& f = *result.frequency;
+                const FirstFrequencyMap& f = *result.frequency;
                 const auto n = static_cast<py::ssize_t>(result.map.n);
                 py::array_t<double> first({n, n});
                 std::copy(f.first.begin(), f.first.end(), first.mutable_data());
@@ -229,7 +229,7 @@ void bindAnalysis(py::module_& m) {
             py::array_t<bool> feasible(n);
             py::list reason;
             for (py::ssize_t i = 0; i < n; ++i) {
-                const io::DesignRecord& record = r.records[static_cast<std::size_t>(i)];
+                const tables::DesignRecord& record = r.records[static_cast<std::size_t>(i)];
                 for (py::ssize_t c = 0; c < d; ++c) points.mutable_at(i, c) = record.point[static_cast<std::size_t>(c)];
                 for (py::ssize_t c = 0; c < k; ++c) {
                     values.mutable_at(i, c) = record.evaluation.feasible

@@ -197,7 +197,7 @@ void bindIdentify(py::module_& m) {
         "_load_prior",
         [](const std::string& path) {
             // a prior file's bounds as (lower, upper) pairs, None for an open side
-            const PayloadPrior prior = io::loadPayloadPrior(path);
+            const PayloadPrior prior = tables::loadPayloadPrior(path);
             py::dict out;
             const auto side = [](double v) -> py::object {
                 return std::isfinite(v) ? py::object(py::float_(v)) : py::none();

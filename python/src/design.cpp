@@ -30,10 +30,10 @@ nocdyn::io::ParameterSet parameterSet(const std::vector<std::pair<std::string, d
     return set;
 }
 
-nocdyn::io::DesignFamily family(const std::string& text, const std::string& source,
+nocdyn::tables::DesignFamily family(const std::string& text, const std::string& source,
                                 const std::vector<std::pair<std::string, double>>& fixed,
                                 const std::vector<std::string>& names) {
-    nocdyn::io::DesignFamily f;
+    nocdyn::tables::DesignFamily f;
     f.text = text;
     f.source = source;
     f.fixed = parameterSet(fixed);
@@ -87,7 +87,7 @@ void exposeDesign(py::module_& m) {
                 throw Error("points: expected shape (N, " + std::to_string(names.size()) + ")");
             const auto n = static_cast<std::size_t>(points.shape(0));
             if (n > kMaxDesigns) throw Error("points: at most " + std::to_string(kMaxDesigns) + " designs at once");
-            const io::DesignFamily f = family(text, source, fixed, names);
+            const tables::DesignFamily f = family(text, source, fixed, names);
             std::vector<DesignMetric> metrics;
             for (const std::string& t : metric_names) metrics.push_back(parseDesignMetric(t));
             DesignOptions options;
@@ -107,7 +107,7 @@ void exposeDesign(py::module_& m) {
             {
                 const py::gil_scoped_release release;
                 (void)evaluateInParallel(
-                    n, threads, [&](std::size_t i) { return io::evaluateFamilyDesign(f, rows[i], metrics, options); },
+                    n, threads, [&](std::size_t i) { return tables::evaluateFamilyDesign(f, rows[i], metrics, options); },
                     [&](std::size_t i, DesignEvaluation&& e) { results[i] = std::move(e); });
             }
             py::array_t<double> values({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(metrics.size())});

@@ -123,7 +123,7 @@ py::tuple linearizeSample(const Robot& robot, const py::handle& p, const py::han
     if (!kind) throw Error(unknownChoice<LinearOutput>("output", output));
     const std::optional<app::PlantCompliance> plant = choiceNamed<app::PlantCompliance>(compliance);
     if (!plant) throw Error(unknownChoice<app::PlantCompliance>("compliance", compliance));
-    const analysis::StiffnessModel stiffness(model);
+    const StiffnessModel stiffness(model);
     const bool lumped =
         *plant == app::PlantCompliance::lumped || (*plant == app::PlantCompliance::automatic && stiffness.any);
     if (lumped && !stiffness.any) {

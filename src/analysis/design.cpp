@@ -191,10 +191,10 @@ DesignEvaluation evaluateDesign(const RobotDescription& robot, const std::vector
                     break;
                 case DesignMetricKind::first_frequency_min:
                     // the same function as `nocdyn workspace --first-frequency`, over the same map
-                    if (!analysis::StiffnessModel(model).any) {
-                        throw Error(analysis::noComplianceMessage(model, "first_frequency_min"));
+                    if (!StiffnessModel(model).any) {
+                        throw Error(noComplianceMessage(model, "first_frequency_min"));
                     }
-                    value = analysis::firstFrequencyMap(model, workspace()).lowest;
+                    value = firstFrequencyMap(model, workspace()).lowest;
                     break;
                 case DesignMetricKind::envelope:
                     if (model.task_dimension == 2 && m.axis == EnvelopeAxis::theta) {

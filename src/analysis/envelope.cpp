@@ -359,7 +359,7 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
     out.damping_ratio = model.description.damping_ratio;
     out.task_dimension = model.task_dimension;
     out.band_end.fill(std::numeric_limits<double>::infinity());
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     if (!compliance.any) {
         out.reason = "the robot file declares no compliance";
         return out;
@@ -370,27 +370,27 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
         return out;
     }
     Data data(model);
-    analysis::StiffnessData stiffness;
-    analysis::LumpedModes modes;
-    if (const Status status = analysis::stiffnessAndModes(model, compliance, data, model.home, stiffness, modes);
+    StiffnessData stiffness;
+    LumpedModes modes;
+    if (const Status status = stiffnessAndModes(model, compliance, data, model.home, stiffness, modes);
         !status) {
         out.reason = "at home: " + describe(status, model);
         return out;
     }
     // a two-DOF robot's theta is always free (a rotation about C loads no limb): x, y are its
-    // coordinates, and its modes the task's, K_t v = w^2 M_t v (analysis::taskModes)
+    // coordinates, and its modes the task's, K_t v = w^2 M_t v (taskModes)
     const bool task = model.task_dimension == 2;
     if (stiffness.free_directions > (task ? 1 : 0)) {
         out.reason = "the declared compliance leaves the platform free at home (" +
-                     analysis::describeDirection(stiffness.free.col(task ? 1 : 0)) + ")";
+                     describeDirection(stiffness.free.col(task ? 1 : 0)) + ")";
         return out;
     }
     out.known = true;
     out.modes = modes;
     if (task) {
         // the pose-order shapes E v_i and participations v_i^T M_t E^T (theta's row and column zero)
-        analysis::TaskModes t;
-        analysis::taskModes(model, data, stiffness, modes, t);
+        TaskModes t;
+        taskModes(model, data, stiffness, modes, t);
         out.modal_frequency = t.frequency;
         out.modal_shape = Eigen::MatrixXd::Zero(3, 2);
         out.modal_shape.bottomRows(2) = t.shape;
@@ -405,10 +405,10 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
     }
     // ascending: the first resonance; where the lumped model does not hold at home, the
     // elastodynamic model's, and the amplification sums over its modes
-    if (analysis::ElastodynamicModes elastic;
-        !task && analysis::lumpedFailsAt(model, compliance, data, modes, elastic)) {
-        out.model = analysis::FrequencyModel::elastodynamic;
-        out.warning = analysis::lumpedMismatchWarning(modes, elastic, true);
+    if (ElastodynamicModes elastic;
+        !task && lumpedFailsAt(model, compliance, data, modes, elastic)) {
+        out.model = FrequencyModel::elastodynamic;
+        out.warning = lumpedMismatchWarning(modes, elastic, true);
         out.frequency = elastic.frequency(0);
         if (elastic.participation.cols() == 3) {
             out.modal_frequency = elastic.frequency;

@@ -13,7 +13,7 @@
 #include "nocdyn/printable.hpp"
 #include "nocdyn/text.hpp"
 
-namespace nocdyn::analysis {
+namespace nocdyn {
 
 std::string noComplianceMessage(const Model& model, const std::string& what) {
     const std::string& source = model.description.source;
@@ -102,4 +102,4 @@ FirstFrequencyMap firstFrequencyMap(const Model& model, const WorkspaceMap& map,
     return out;
 }
 
-}  // namespace nocdyn::analysis
+}  // namespace nocdyn

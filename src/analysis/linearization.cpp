@@ -78,7 +78,7 @@ Matrix3 modalDamping(const Matrix3& M, const Matrix3& K, double zeta) {
 
 }  // namespace
 
-Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& compliance, Data& data, const Pose& p,
+Status linearizeCompliant(const Model& model, const StiffnessModel& compliance, Data& data, const Pose& p,
                           const Twist& dp, const ActuatorVector& tau, LinearOutput output, StateSpace& out) {
     if (!compliance.any) return linearize(model, data, p, dp, tau, output, out);
     if (model.task_dimension == 2) {
@@ -86,11 +86,10 @@ Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& co
             "the lumped compliant model of a two-DOF robot (motion: translation) is not built: its rigid "
             "model is");
     }
-    using analysis::JointSpring;
     ForwardDynamicsDerivatives d;
     if (const Status status = forwardDynamicsDerivatives(model, data, p, dp, tau, d); !status) return status;
-    analysis::StiffnessData stiffness;
-    if (const Status status = analysis::cartesianStiffness(model, compliance, data, stiffness); !status) return status;
+    StiffnessData stiffness;
+    if (const Status status = cartesianStiffness(model, compliance, data, stiffness); !status) return status;
     const int n = model.actuators;
     const Matrix3 S = platformTwistMap(data.p.tail<2>());
     const Eigen::PartialPivLU<Matrix3> M(d.M_p);
@@ -119,7 +118,7 @@ Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& co
             e(e.rows() - 1) = r == q ? 1.0 : 0.0;
         }
         const Vector3 w = Eigen::JacobiSVD<decltype(Gft)>(Gft, Eigen::ComputeFullU | Eigen::ComputeFullV).solve(e);
-        const Matrix3 C_j = analysis::limbCompliance(compliance, data, j);
+        const Matrix3 C_j = limbCompliance(compliance, data, j);
         BQ.col(a) = S.transpose() * ((Matrix3::Identity() - K_j * C_j) * w);
     }
     out.output = output;

@@ -18,7 +18,7 @@
 #include "nocdyn/dynamics.hpp"
 #include "nocdyn/error.hpp"
 
-namespace nocdyn::analysis {
+namespace nocdyn {
 
 namespace {
 
@@ -682,4 +682,4 @@ Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, 
     return {};
 }
 
-}  // namespace nocdyn::analysis
+}  // namespace nocdyn

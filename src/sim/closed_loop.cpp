@@ -116,7 +116,7 @@ InverseDynamicsDerivatives differencedLaw(const Model& model, Data& data, const 
 /// (its inputs are all forces).
 StateSpace lumpedLoopPlant(const Model& plant_model, Data& data, const Pose& p, const ActuatorVector& tau,
                            const StateSpace& rigid) {
-    const analysis::StiffnessModel compliance(plant_model);
+    const StiffnessModel compliance(plant_model);
     if (!compliance.any) {
         throw Error(
             "shake loop: the lumped plant needs compliance in the robot file (joint or drive stiffness, "

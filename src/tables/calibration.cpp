@@ -10,7 +10,10 @@
 #include "nocdyn/text.hpp"
 #include "../io/yaml_util.hpp"
 
-namespace nocdyn::io {
+namespace nocdyn::tables {
+
+// the io layer's tables, files and quoting, below this one
+using io::yamlQuoted;
 
 using detail::Context;
 
@@ -122,4 +125,4 @@ PayloadPrior loadPayloadPrior(const std::string& path) {
     return parsePayloadPrior(detail::readFile(path, "prior file"), path);
 }
 
-}  // namespace nocdyn::io
+}  // namespace nocdyn::tables

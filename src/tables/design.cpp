@@ -13,7 +13,17 @@
 #include "nocdyn/io/layouts.hpp"
 #include "nocdyn/text.hpp"
 
-namespace nocdyn::io {
+namespace nocdyn::tables {
+
+// the io layer's tables, files and quoting, below this one
+using io::LayoutSizes;
+using io::Parameter;
+using io::ParameterSet;
+using io::TableId;
+using io::columnNames;
+using io::parseRobotDescription;
+using io::robotFileParameters;
+using io::writeTextFile;
 
 namespace {
 
@@ -198,4 +208,4 @@ void DesignJournal::append(const DesignRecord& record) {
     if (!out_) throw Error("cannot append to the design journal '" + path_ + "'");
 }
 
-}  // namespace nocdyn::io
+}  // namespace nocdyn::tables

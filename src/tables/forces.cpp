@@ -8,7 +8,11 @@
 
 #include "nocdyn/error.hpp"
 
-namespace nocdyn::io {
+namespace nocdyn::tables {
+
+// the io layer's tables, files and quoting, below this one
+using io::Table;
+using io::readCsvFileRows;
 
 namespace {
 
@@ -110,4 +114,4 @@ ForceSignal forcesFromTable(const Table& table, int actuators, Interpolation int
     return {std::move(times), tau, interpolation, source};
 }
 
-}  // namespace nocdyn::io
+}  // namespace nocdyn::tables

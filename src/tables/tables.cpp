@@ -3,7 +3,12 @@
 
 #include "nocdyn/io/layouts.hpp"
 
-namespace nocdyn::io {
+namespace nocdyn::tables {
+
+// the io layer's tables, files and quoting, below this one
+using io::Table;
+using io::TableId;
+using io::columnNames;
 
 std::vector<std::string> numbered(const std::string& prefix, int count) {
     std::vector<std::string> out;
@@ -122,4 +127,4 @@ Table toTable(const std::vector<EnvelopePoint>& points, const EnvelopeResonance&
     return table;
 }
 
-}  // namespace nocdyn::io
+}  // namespace nocdyn::tables

@@ -31,11 +31,11 @@ RobotDescription robotDescription(const std::string& robot) {
 /// The relative differences of the three lowest MuJoCo modes from nocdyn's lumped ones.
 std::vector<double> differences(const RobotDescription& robot, const Pose& p, double timestep) {
     const Model model(robot);
-    const analysis::StiffnessModel compliance(model);
+    const StiffnessModel compliance(model);
     Data data(model);
-    analysis::StiffnessData K;
-    analysis::LumpedModes lumped;
-    EXPECT_TRUE(analysis::stiffnessAndModes(model, compliance, data, p, K, lumped).ok());
+    StiffnessData K;
+    LumpedModes lumped;
+    EXPECT_TRUE(stiffnessAndModes(model, compliance, data, p, K, lumped).ok());
     validation::MujocoMechanism mujoco(robot);
     const std::vector<validation::MujocoMechanism::LinearMode> modes = mujoco.linearModes(p, timestep);
     EXPECT_GE(modes.size(), 3U);

@@ -117,11 +117,11 @@ struct EnvelopeResonance {
     /// Per axis (index: EnvelopeAxis), the lowest frequency [Hz] where the amplification leaves
     /// [1 / limit, limit] (infinity when it never does): the band's end.
     std::array<double, 3> band_end{};
-    analysis::LumpedModes modes;  ///< the lumped model at home (known only)
+    LumpedModes modes;  ///< the lumped model at home (known only)
     /// The model f_1 and the amplification come from: the lumped one, or the elastodynamic one
-    /// where the lumped one does not hold at home (analysis::firstFrequency), and then `warning`
+    /// where the lumped one does not hold at home (firstFrequency), and then `warning`
     /// says so.
-    analysis::FrequencyModel model = analysis::FrequencyModel::lumped;
+    FrequencyModel model = FrequencyModel::lumped;
     std::string warning;
     /// The modes H sums over (known only): frequencies f_i [Hz], the platform's dp in each
     /// (3 x m, pose order) and participation (m x 3): phi_i^T M x_a, x_a the rigid image of a unit

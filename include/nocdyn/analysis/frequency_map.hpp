@@ -12,7 +12,7 @@
 #include "nocdyn/analysis/workspace.hpp"
 #include "nocdyn/model.hpp"
 
-namespace nocdyn::analysis {
+namespace nocdyn {
 
 struct FirstFrequencyMap {
     /// Per grid point, as WorkspaceMap::cells (row-major, point (i, k) at x0 + i step,
@@ -55,4 +55,4 @@ struct FirstFrequencyMap {
 /// needs a joint stiffness or an elastic body".
 [[nodiscard]] std::string noComplianceMessage(const Model& model, const std::string& what);
 
-}  // namespace nocdyn::analysis
+}  // namespace nocdyn

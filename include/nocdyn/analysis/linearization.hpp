@@ -82,7 +82,7 @@ Status linearize(const Model& model, Data& data, const Pose& p, const Twist& dp,
 /// The compliant (lumped) linearised model (see above) when compliance.any, else linearize's.
 /// Fails as forwardDynamicsDerivatives and cartesianStiffness (rigid_limb). Throws nocdyn::Error
 /// for a two-DOF robot with compliance (its lumped model is not built).
-Status linearizeCompliant(const Model& model, const analysis::StiffnessModel& compliance, Data& data, const Pose& p,
+Status linearizeCompliant(const Model& model, const StiffnessModel& compliance, Data& data, const Pose& p,
                           const Twist& dp, const ActuatorVector& tau, LinearOutput output, StateSpace& out);
 
 /// H(j 2 pi f) = C (j 2 pi f I - A)^-1 B + D, outputs x inputs, at the frequency f [Hz].

@@ -55,7 +55,7 @@
 #include "nocdyn/model.hpp"
 #include "nocdyn/status.hpp"
 
-namespace nocdyn::analysis {
+namespace nocdyn {
 
 /// One pose coordinate as reported: its name, unit and index in nocdyn::Pose.
 struct PoseCoordinate {
@@ -257,4 +257,4 @@ inline constexpr std::array<Choice<FrequencyModel>, 2> kFrequencyModels{
 Status elastodynamicModes(const Model& model, const StiffnessModel& compliance, const Data& data,
                           ElastodynamicModes& out);
 
-}  // namespace nocdyn::analysis
+}  // namespace nocdyn

@@ -28,7 +28,7 @@
 #include "nocdyn/sim/identification.hpp"
 #include "nocdyn/model.hpp"
 
-namespace nocdyn::io {
+namespace nocdyn::tables {
 
 /// The calibration file text (as above) of identified base parameters.
 [[nodiscard]] std::string calibrationToYaml(const Model& model, const BaseResult& result, const std::string& comment);
@@ -42,4 +42,4 @@ namespace nocdyn::io {
 [[nodiscard]] PayloadPrior parsePayloadPrior(const std::string& text, const std::string& source);
 [[nodiscard]] PayloadPrior loadPayloadPrior(const std::string& path);
 
-}  // namespace nocdyn::io
+}  // namespace nocdyn::tables

@@ -15,13 +15,13 @@
 #include "nocdyn/analysis/design.hpp"
 #include "nocdyn/io/robot_file.hpp"
 
-namespace nocdyn::io {
+namespace nocdyn::tables {
 
 /// A parametric robot file and which of its parameters a sweep varies.
 struct DesignFamily {
     std::string text;                 ///< the robot file's YAML text
     std::string source;               ///< its name in messages
-    ParameterSet fixed;               ///< parameters set for every design (--set)
+    io::ParameterSet fixed;              ///< parameters set for every design (--set)
     std::vector<DesignRange> ranges;  ///< the varied parameters, each declared by the file
 };
 
@@ -30,7 +30,7 @@ struct DesignFamily {
 void checkDesignFamily(const DesignFamily& family);
 
 /// The robot of one design: the family's file with `point` (one value per range) and the
-/// fixed parameters set. Throws nocdyn::Error as parseRobotDescription.
+/// fixed parameters set. Throws nocdyn::Error as io::parseRobotDescription.
 [[nodiscard]] RobotDescription designRobot(const DesignFamily& family, const std::vector<double>& point);
 
 /// evaluateDesign on designRobot; a parameter set the robot file refuses (a negative mass, a
@@ -79,4 +79,4 @@ private:
     std::ofstream out_;
 };
 
-}  // namespace nocdyn::io
+}  // namespace nocdyn::tables

@@ -12,10 +12,10 @@
 #include "nocdyn/reactions.hpp"
 #include "nocdyn/analysis/sampling.hpp"
 
-namespace nocdyn::io {
+namespace nocdyn::tables {
 
 /// t,x,y,theta,u1..un,du1..dun,ddu1..ddun,tau1..taun,kinetic (SI; n actuators;
-/// TableId::inverse_dynamics); without theta for a two-DOF robot (task_dimension 2, pose [x, y]).
+/// io::TableId::inverse_dynamics); without theta for a two-DOF robot (task_dimension 2, pose [x, y]).
 [[nodiscard]] std::vector<std::string> inverseDynamicsColumns(int actuators, int task_dimension = 3);
 
 /// `prefix`1..`prefix`n, e.g. "tau1".."tau4".
@@ -33,19 +33,19 @@ void inverseDynamicsRow(const InverseDynamicsSample& sample, std::vector<double>
 void appendReactions(const Reactions& reactions, int limbs, std::vector<double>& row);
 
 /// The whole series as a table.
-[[nodiscard]] Table toTable(const InverseDynamicsSeries& series, int actuators);
+[[nodiscard]] io::Table toTable(const InverseDynamicsSeries& series, int actuators);
 
 /// A closed-loop run: t, x_d, y_d, theta_d, x, y, theta, e_x, e_y, e_theta, u1..un, u1_d..un_d,
-/// tau1..taun (SI; TableId::closed_loop); with task_dimension 2 (a two-DOF robot) no theta_d,
+/// tau1..taun (SI; io::TableId::closed_loop); with task_dimension 2 (a two-DOF robot) no theta_d,
 /// theta or e_theta.
-[[nodiscard]] Table toTable(const PoseLoopResult& result, int task_dimension = 3);
+[[nodiscard]] io::Table toTable(const PoseLoopResult& result, int task_dimension = 3);
 
 /// An experiment's log: t,u1..un,tau1..taun, then du1..dun,ddu1..ddun when it has them (what
 /// identify reads).
-[[nodiscard]] Table toTable(const Measurements& measurements);
+[[nodiscard]] io::Table toTable(const Measurements& measurements);
 
-/// An operating envelope, one row per point (TableId::envelope; axis and limit as words); with a
+/// An operating envelope, one row per point (io::TableId::envelope; axis and limit as words); with a
 /// known resonance, its first_natural_frequency column.
-[[nodiscard]] Table toTable(const std::vector<EnvelopePoint>& points, const EnvelopeResonance& resonance = {});
+[[nodiscard]] io::Table toTable(const std::vector<EnvelopePoint>& points, const EnvelopeResonance& resonance = {});
 
-}  // namespace nocdyn::io
+}  // namespace nocdyn::tables
