@@ -99,7 +99,7 @@ TEST(LumpedLimit, WhereTheLumpedModelHoldsBothModelsGiveTheSameAmplification) {
     const Model model = limitless3RrrElastic();
     const EnvelopeResonance lumped = envelopeResonance(model);
     ASSERT_TRUE(lumped.known);
-    EXPECT_EQ(lumped.model, "lumped");
+    EXPECT_EQ(lumped.model, FrequencyModel::lumped);
     EXPECT_EQ(lumped.warning, "");
     EXPECT_EQ(lumped.frequency, lumped.modes.frequency(0));
     const Both home = bothAt(model, model.home);
@@ -132,7 +132,7 @@ TEST(LumpedLimit, AnEnvelopeWhoseHomeIsNextToALimbSingularityUsesTheElastodynami
     const Both near = bothAt(model, model.home);
     const EnvelopeResonance r = envelopeResonance(model);
     ASSERT_TRUE(r.known);
-    EXPECT_EQ(r.model, "elastodynamic");
+    EXPECT_EQ(r.model, FrequencyModel::elastodynamic);
     EXPECT_EQ(r.frequency, near.elastic.frequency(0));
     EXPECT_NE(r.warning.find("lumped model does not hold"), std::string::npos) << r.warning;
     EXPECT_EQ(r.modal_frequency.size(), near.elastic.dofs);
@@ -160,7 +160,7 @@ TEST(LumpedLimit, AnEnvelopeWhoseHomeIsNextToALimbSingularityUsesTheElastodynami
     EXPECT_NEAR(r.band_end[static_cast<std::size_t>(EnvelopeAxis::x)], 12.96, 0.01);
     EXPECT_NEAR(r.band_end[static_cast<std::size_t>(EnvelopeAxis::theta)], 7.717, 0.001);
     // the regular home is untouched
-    EXPECT_EQ(envelopeResonance(regular).model, "lumped");
+    EXPECT_EQ(envelopeResonance(regular).model, FrequencyModel::lumped);
 }
 
 TEST(LumpedLimit, TheMapChecksThePointsNextToALimbSingularityAndReplacesWhereTheLumpedModelFails) {

@@ -15,7 +15,7 @@ namespace nocdyn::tables {
 // the io layer's tables, files and quoting, below this one
 using io::yamlQuoted;
 
-using detail::Context;
+using io::detail::Context;
 
 namespace {
 
@@ -38,40 +38,40 @@ std::string calibrationToYaml(const Model& model, const BaseResult& result, cons
 }
 
 Calibration parseCalibration(const std::string& text, const std::string& source, const Model& model) {
-    const YAML::Node root = detail::loadDocument(text, source);
+    const YAML::Node root = io::detail::loadDocument(text, source);
     const Context top{source, ""};
-    detail::requireMap(top, root, {"robot", "base_parameters"});
+    io::detail::requireMap(top, root, {"robot", "base_parameters"});
     const YAML::Node list = root["base_parameters"];
     if (!list.IsDefined() || !list.IsSequence() || list.size() == 0)
-        detail::fail(top / "base_parameters", list, "expected a non-empty list of base parameters");
+        io::detail::fail(top / "base_parameters", list, "expected a non-empty list of base parameters");
     if (list.size() > kMaxBaseParameters)
-        detail::fail(top / "base_parameters", list, "more than " + std::to_string(kMaxBaseParameters) + " items");
+        io::detail::fail(top / "base_parameters", list, "more than " + std::to_string(kMaxBaseParameters) + " items");
     Calibration calibration;
     calibration.beta.resize(static_cast<Eigen::Index>(list.size()));
     const int P = parameterCount(model);
     for (std::size_t k = 0; k < list.size(); ++k) {
         const Context item = top / ("base_parameters[" + std::to_string(k) + "]");
         const YAML::Node node = list[k];
-        detail::requireMap(item, node, {"parameter", "value", "stddev", "robot_file", "unit", "name"});
+        io::detail::requireMap(item, node, {"parameter", "value", "stddev", "robot_file", "unit", "name"});
         const YAML::Node name = node["parameter"];
-        if (!name.IsDefined() || !name.IsScalar()) detail::fail(item / "parameter", node, "expected a parameter name");
+        if (!name.IsDefined() || !name.IsScalar()) io::detail::fail(item / "parameter", node, "expected a parameter name");
         int index = -1;
         for (int c = 0; c < P && index < 0; ++c) {
             if (parameterName(model, c) == name.Scalar()) index = c;
         }
         if (index < 0) {
-            detail::fail(item / "parameter", name,
+            io::detail::fail(item / "parameter", name,
                          "'" + name.Scalar() + "' is not a parameter of robot '" + model.description.name +
                              "' (see nocdyn regressor)");
         }
         calibration.independent.push_back(index);
-        calibration.beta(static_cast<Eigen::Index>(k)) = detail::requireNumber(item, node, "value");
+        calibration.beta(static_cast<Eigen::Index>(k)) = io::detail::requireNumber(item, node, "value");
     }
     return calibration;
 }
 
 Calibration loadCalibration(const std::string& path, const Model& model) {
-    return parseCalibration(detail::readFile(path, "calibration file"), path, model);
+    return parseCalibration(io::detail::readFile(path, "calibration file"), path, model);
 }
 
 namespace {
@@ -85,17 +85,17 @@ Bounds readBounds(const Context& context, const YAML::Node& map, const char* key
     if (!node.IsDefined()) return bounds;
     const Context field = context / key;
     if (!node.IsSequence() || node.size() != 2)
-        detail::fail(field, node, "expected [lower, upper] in " + std::string(unit) + " (~ for an open side)");
-    if (!node[0].IsNull()) bounds.lower = detail::toNumber(field / "lower", node[0]);
-    if (!node[1].IsNull()) bounds.upper = detail::toNumber(field / "upper", node[1]);
+        io::detail::fail(field, node, "expected [lower, upper] in " + std::string(unit) + " (~ for an open side)");
+    if (!node[0].IsNull()) bounds.lower = io::detail::toNumber(field / "lower", node[0]);
+    if (!node[1].IsNull()) bounds.upper = io::detail::toNumber(field / "upper", node[1]);
     const auto allowed = [&](double v) { return strict ? v > least : v >= least; };
     const std::string limit = std::string(strict ? "> " : ">= ") + text::number(least) + " " + unit;
     if (std::isfinite(bounds.lower) && !allowed(bounds.lower))
-        detail::fail(field / "lower", node[0], "must be " + limit + ", got " + text::number(bounds.lower));
+        io::detail::fail(field / "lower", node[0], "must be " + limit + ", got " + text::number(bounds.lower));
     if (std::isfinite(bounds.upper) && !allowed(bounds.upper))
-        detail::fail(field / "upper", node[1], "must be " + limit + ", got " + text::number(bounds.upper));
+        io::detail::fail(field / "upper", node[1], "must be " + limit + ", got " + text::number(bounds.upper));
     if (bounds.lower > bounds.upper) {
-        detail::fail(field, node,
+        io::detail::fail(field, node,
                      "lower bound " + text::number(bounds.lower) + " is above upper bound " +
                          text::number(bounds.upper) + " " + unit);
     }
@@ -105,13 +105,13 @@ Bounds readBounds(const Context& context, const YAML::Node& map, const char* key
 }  // namespace
 
 PayloadPrior parsePayloadPrior(const std::string& text, const std::string& source) {
-    const YAML::Node root = detail::loadDocument(text, source);
+    const YAML::Node root = io::detail::loadDocument(text, source);
     const Context top{source, ""};
-    detail::requireMap(top, root, {"payload"});
+    io::detail::requireMap(top, root, {"payload"});
     const YAML::Node payload = root["payload"];
-    if (!payload.IsDefined()) detail::fail(top / "payload", root, "required: the bounds on the payload's parameters");
+    if (!payload.IsDefined()) io::detail::fail(top / "payload", root, "required: the bounds on the payload's parameters");
     const Context context = top / "payload";
-    detail::requireMap(context, payload, {"mass", "com_x", "com_y", "inertia"});
+    io::detail::requireMap(context, payload, {"mass", "com_x", "com_y", "inertia"});
     PayloadPrior prior;
     prior.mass = readBounds(context, payload, "mass", 0.0, true, "kg");
     const double inf = std::numeric_limits<double>::infinity();
@@ -122,7 +122,7 @@ PayloadPrior parsePayloadPrior(const std::string& text, const std::string& sourc
 }
 
 PayloadPrior loadPayloadPrior(const std::string& path) {
-    return parsePayloadPrior(detail::readFile(path, "prior file"), path);
+    return parsePayloadPrior(io::detail::readFile(path, "prior file"), path);
 }
 
 }  // namespace nocdyn::tables

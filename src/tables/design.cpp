@@ -161,7 +161,7 @@ DesignJournal::DesignJournal(const std::string& path, const std::string& signatu
     const std::string first = "# nocdyn design journal " + signature + "\n";
     std::string kept = first + header(columns);
     if (std::filesystem::exists(path)) {
-        const std::string text = detail::readRegularFile(path, "design journal", std::size_t{1} << 30);
+        const std::string text = io::detail::readRegularFile(path, "design journal", std::size_t{1} << 30);
         if (text.compare(0, kept.size(), kept) != 0) {
             throw Error(path +
                         ": a journal of another sweep (robot file, ranges, metrics or options differ); "
@@ -180,7 +180,7 @@ DesignJournal::DesignJournal(const std::string& path, const std::string& signatu
             bool ok = true;
             const auto value = [&](const std::string& s) {
                 if (s.empty()) return std::nan("");
-                const auto v = detail::parseDecimal(s);
+                const auto v = io::detail::parseDecimal(s);
                 ok = ok && v.has_value();
                 return v.value_or(0.0);
             };
