@@ -54,15 +54,16 @@ Calibration parseCalibration(const std::string& text, const std::string& source,
         const YAML::Node node = list[k];
         io::detail::requireMap(item, node, {"parameter", "value", "stddev", "robot_file", "unit", "name"});
         const YAML::Node name = node["parameter"];
-        if (!name.IsDefined() || !name.IsScalar()) io::detail::fail(item / "parameter", node, "expected a parameter name");
+        if (!name.IsDefined() || !name.IsScalar())
+            io::detail::fail(item / "parameter", node, "expected a parameter name");
         int index = -1;
         for (int c = 0; c < P && index < 0; ++c) {
             if (parameterName(model, c) == name.Scalar()) index = c;
         }
         if (index < 0) {
             io::detail::fail(item / "parameter", name,
-                         "'" + name.Scalar() + "' is not a parameter of robot '" + model.description.name +
-                             "' (see nocdyn regressor)");
+                             "'" + name.Scalar() + "' is not a parameter of robot '" + model.description.name +
+                                 "' (see nocdyn regressor)");
         }
         calibration.independent.push_back(index);
         calibration.beta(static_cast<Eigen::Index>(k)) = io::detail::requireNumber(item, node, "value");
@@ -96,8 +97,8 @@ Bounds readBounds(const Context& context, const YAML::Node& map, const char* key
         io::detail::fail(field / "upper", node[1], "must be " + limit + ", got " + text::number(bounds.upper));
     if (bounds.lower > bounds.upper) {
         io::detail::fail(field, node,
-                     "lower bound " + text::number(bounds.lower) + " is above upper bound " +
-                         text::number(bounds.upper) + " " + unit);
+                         "lower bound " + text::number(bounds.lower) + " is above upper bound " +
+                             text::number(bounds.upper) + " " + unit);
     }
     return bounds;
 }
@@ -109,7 +110,8 @@ PayloadPrior parsePayloadPrior(const std::string& text, const std::string& sourc
     const Context top{source, ""};
     io::detail::requireMap(top, root, {"payload"});
     const YAML::Node payload = root["payload"];
-    if (!payload.IsDefined()) io::detail::fail(top / "payload", root, "required: the bounds on the payload's parameters");
+    if (!payload.IsDefined())
+        io::detail::fail(top / "payload", root, "required: the bounds on the payload's parameters");
     const Context context = top / "payload";
     io::detail::requireMap(context, payload, {"mass", "com_x", "com_y", "inertia"});
     PayloadPrior prior;

@@ -16,13 +16,13 @@
 namespace nocdyn::tables {
 
 // the io layer's tables, files and quoting, below this one
+using io::columnNames;
 using io::LayoutSizes;
 using io::Parameter;
 using io::ParameterSet;
-using io::TableId;
-using io::columnNames;
 using io::parseRobotDescription;
 using io::robotFileParameters;
+using io::TableId;
 using io::writeTextFile;
 
 namespace {
