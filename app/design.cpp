@@ -110,9 +110,10 @@ std::string bestText(const tables::DesignFamily& family, const std::vector<Desig
     return text + "), " + metrics[0].name() + " = " + text::format("%.6g", record.evaluation.values[0]);
 }
 
-void writeFigures(const std::filesystem::path& dir, const tables::DesignFamily& family,
-                  const std::vector<DesignMetric>& metrics, const nocdyn::DesignOptions& design,
-                  const std::vector<tables::DesignRecord>& records, const std::vector<std::size_t>& front) {
+/// pareto (the first two metrics) and best (the best design with its workspace), handed to `files`.
+void designFigureFiles(DesignSink& files, const tables::DesignFamily& family, const std::vector<DesignMetric>& metrics,
+                       const nocdyn::DesignOptions& design, const std::vector<tables::DesignRecord>& records,
+                       const std::vector<std::size_t>& front) {
     using render::literalText;
     // no feasible design: nothing to draw (gnuplot refuses an empty data block)
     if (std::none_of(records.begin(), records.end(), [](const tables::DesignRecord& r) { return r.evaluation.feasible; })) {
@@ -140,7 +141,7 @@ void writeFigures(const std::filesystem::path& dir, const tables::DesignFamily& 
                                       literalText(metrics[0].name() + " [" + metrics[0].unit() + "]"),
                                       literalText(metrics[1].name() + " [" + metrics[1].unit() + "]"),
                                       {all, best}}};
-        render::renderFigure(f, (dir / "pareto").string());
+        files.figure("pareto", f);
     }
     // the best design by the first metric, drawn with its workspace
     const std::optional<std::size_t> best = bestDesign(records, metrics);
@@ -151,7 +152,7 @@ void writeFigures(const std::filesystem::path& dir, const tables::DesignFamily& 
     if (design.workspace_theta_at_home) ws.theta = model.home(0);
     render::Figure f = render::workspaceFigure(workspaceMap(model, ws), model, {});
     f.title = "Best by " + literalText(bestText(family, metrics, records[*best]));
-    render::renderFigure(f, (dir / "best").string());
+    files.figure("best", f);
 }
 
 /// What refers to theta has no meaning for a two-DOF family (motion: translation, pose [x, y]):
@@ -218,7 +219,7 @@ void validate(const DesignOptions& options) {
     requireIn(options.rate, kRateRange, "rate");
 }
 
-DesignResult runDesign(const DesignOptions& options, Observer& observer) {
+DesignResult runDesign(const DesignOptions& options, Observer& observer, DesignSink& files) {
     validate(options);
     tables::DesignFamily family;
     family.text = io::readRobotFileText(options.robot.path);
@@ -290,17 +291,16 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     for (const DesignRange& r : family.ranges) out.names.push_back(r.name);
     for (const DesignMetric& m : metrics) out.metrics.push_back(m.name());
     out.columns = tables::designColumns(family.ranges, metrics);
-    const std::filesystem::path dir(options.out_dir);
-    std::optional<tables::DesignJournal> journal;
-    if (!options.out_dir.empty()) {
+    const bool journal = !options.out_dir.empty();  // the files handed over (and a sweep resumed)
+    std::vector<tables::DesignRecord> previous;
+    if (journal) {
         refuseRobotInside(options.robot.path, options.out_dir);
-        createOutputFolder(options.out_dir, "out_dir");
-        journal.emplace((dir / "journal.csv").string(), signature(options, family, metrics, design), out.columns,
-                        family.ranges.size(), metrics.size());
+        previous =
+            files.open(signature(options, family, metrics, design), out.columns, family.ranges.size(), metrics.size());
     }
     std::vector<std::optional<tables::DesignRecord>> done(points.size());
     std::size_t count = 0;
-    for (const tables::DesignRecord& r : journal ? journal->previous() : std::vector<tables::DesignRecord>{}) {
+    for (const tables::DesignRecord& r : previous) {
         if (r.index < done.size() && !done[r.index]) {
             done[r.index] = r;
             ++count;
@@ -314,7 +314,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
     }
     if (count > 0) {
         observer.warning("resuming: " + std::to_string(count) + " of " + std::to_string(points.size()) +
-                         " designs already evaluated (" + io::terminalText((dir / "journal.csv").string()) + ")");
+                         " designs already evaluated (" + io::terminalText(files.journal()) + ")");
     }
     const int threads = options.threads > 0 ? options.threads : static_cast<int>(hardwareThreads());
     const auto total = static_cast<double>(points.size());
@@ -325,7 +325,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         [&](std::size_t k) { return tables::evaluateFamilyDesign(family, points[todo[k]], metrics, design); },
         [&](std::size_t k, DesignEvaluation&& e) {
             tables::DesignRecord r{todo[k], points[todo[k]], std::move(e)};
-            if (journal) journal->append(r);
+            if (journal) files.append(r);
             out.feasible += r.evaluation.feasible ? 1 : 0;
             done[todo[k]] = std::move(r);
             observer.progress(static_cast<double>(++count), total, "designs");
@@ -343,7 +343,7 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         out.records.push_back(std::move(*r));
         evaluations.push_back(out.records.back().evaluation);
     }
-    if (journal) tables::writeDesignTable((dir / "designs.csv").string(), out.columns, out.records);
+    if (journal) files.designs("designs.csv", out.columns, out.records);
     observer.step("Pareto front", 1, 1);
     out.front = paretoFront(evaluations, metrics, [&](std::size_t k, std::size_t n) {
         if ((k & 1023U) != 0 && k != n) return;  // the observer at a price that does not show
@@ -356,8 +356,8 @@ DesignResult runDesign(const DesignOptions& options, Observer& observer) {
         std::vector<tables::DesignRecord> front_records;
         front_records.reserve(out.front.size());
         for (const std::size_t i : out.front) front_records.push_back(out.records[i]);
-        tables::writeDesignTable((dir / "pareto.csv").string(), out.columns, front_records);
-        if (!options.no_figures) writeFigures(dir, family, metrics, design, out.records, out.front);
+        files.designs("pareto.csv", out.columns, front_records);
+        if (!options.no_figures) designFigureFiles(files, family, metrics, design, out.records, out.front);
     }
     return out;
 }

@@ -1,6 +1,7 @@
 // `design`: a sweep over a family of robots (a parametric robot file with some of its parameters
-// varied), every design's metrics (design.hpp) on a pool of threads, the Pareto front, and in an
-// output folder the tables, the figures and a journal from which a stopped sweep resumes.
+// varied), every design's metrics (design.hpp) on a pool of threads, the Pareto front, and
+// handed to a DesignSink (written by app/design_outputs.hpp into an output folder) the tables,
+// the figures and a journal from which a stopped sweep resumes.
 #pragma once
 
 #include <cstdint>
@@ -11,6 +12,7 @@
 #include "app/observer.hpp"
 #include "app/options.hpp"
 #include "nocdyn/tables/design.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
@@ -54,12 +56,40 @@ struct DesignResult {
     std::string best_text;
 };
 
+/// Receives a sweep's files as it runs: the journal, read back before the first design and
+/// appended to design by design (so that a stopped sweep resumes), then the tables and the
+/// figures. The front ends pass a DesignFolder of out_dir (app/design_outputs.hpp).
+class DesignSink {
+public:
+    DesignSink() = default;
+    DesignSink(const DesignSink&) = default;
+    DesignSink& operator=(const DesignSink&) = default;
+    DesignSink(DesignSink&&) = default;
+    DesignSink& operator=(DesignSink&&) = default;
+    virtual ~DesignSink() = default;
+    /// Before the first design: opens the journal of the sweep `signature` (every input and
+    /// option that changes a design's numbers: another sweep's journal is refused) with
+    /// designs.csv's columns, and returns the designs it already holds.
+    virtual std::vector<tables::DesignRecord> open(const std::string& signature, const std::vector<std::string>& columns,
+                                               std::size_t parameters, std::size_t metrics) = 0;
+    /// Where the journal is, as the warning of a resumed sweep names it.
+    [[nodiscard]] virtual std::string journal() const = 0;
+    /// One design evaluated, recorded before the next is.
+    virtual void append(const tables::DesignRecord& record) = 0;
+    /// A table of designs: designs.csv (every one), pareto.csv (the front).
+    virtual void designs(const std::string& name, const std::vector<std::string>& columns,
+                         const std::vector<tables::DesignRecord>& records) = 0;
+    /// A figure: STEM.png and STEM.svg.
+    virtual void figure(const std::string& stem, const render::Figure& figure) = 0;
+};
+
 /// Throws OptionError naming the field for a bad range, metric, sweep or number.
 void validate(const DesignOptions& options);
 
-/// The sweep. Worker threads evaluate designs; this thread records each (journal), reports
-/// progress in designs and polls the observer at least every 0.1 s: a stop (or an exception
-/// from the observer) lets the designs under way finish, keeps the journal, and throws.
-[[nodiscard]] DesignResult runDesign(const DesignOptions& options, Observer& observer);
+/// The sweep. Worker threads evaluate designs; this thread records each (the journal, handed
+/// to `files` when options.out_dir is given, as the tables and figures are), reports progress
+/// in designs and polls the observer at least every 0.1 s: a stop (or an exception from the
+/// observer) lets the designs under way finish, keeps the journal, and throws.
+[[nodiscard]] DesignResult runDesign(const DesignOptions& options, Observer& observer, DesignSink& files);
 
 }  // namespace nocdyn::app

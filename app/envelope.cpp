@@ -70,17 +70,13 @@ std::string resonanceSummary(const EnvelopeResonance& resonance) {
     return text;
 }
 
-void writeEnvelopeFigure(const EnvelopeResult& result, const std::string& stem) {
+render::Figure envelopeResultFigure(const EnvelopeResult& result) {
     if (!result.spatial_points.empty()) {
-        render::renderFigure(render::spatialEnvelopeFigure(result.spatial_points, result.coordinates, result.robot),
-                             stem);
-        return;
+        return render::spatialEnvelopeFigure(result.spatial_points, result.coordinates, result.robot);
     }
-    render::renderFigure(
-        render::envelopeFigure(result.points, result.robot,
-                               "flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound",
-                               result.resonance),
-        stem);
+    return render::envelopeFigure(result.points, result.robot,
+                                  "flat = range-bound, slope -1 = velocity-bound, slope -2 = effort-bound",
+                                  result.resonance);
 }
 
 }  // namespace nocdyn::app

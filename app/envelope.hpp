@@ -12,6 +12,7 @@
 #include "nocdyn/analysis/envelope.hpp"
 #include "nocdyn/analysis/spatial_envelope.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
@@ -75,7 +76,8 @@ void validate(const EnvelopeOptions& options);
 [[nodiscard]] std::string resonanceSummary(const EnvelopeResonance& resonance);
 
 /// The figure (amplitude versus frequency, log axes; the first natural frequency as a vertical
-/// line when known; a spatial robot's binding limits as markers): STEM.png and STEM.svg.
-void writeEnvelopeFigure(const EnvelopeResult& result, const std::string& stem);
+/// line when known; a spatial robot's binding limits as markers), written by
+/// writeEnvelopeFigure (app/outputs.hpp).
+[[nodiscard]] render::Figure envelopeResultFigure(const EnvelopeResult& result);
 
 }  // namespace nocdyn::app

@@ -312,7 +312,7 @@ void requireLoadsFigure(const LoadsOptions& options) {
     }
 }
 
-void writeLoadsFigure(const LoadsOptions& options, const LoadsResult& result, const std::string& stem) {
+render::Figure loadsResultFigure(const LoadsOptions& options, const LoadsResult& result) {
     if (!result.model) {
         requireLoadsFigure(options);
         throw Error("loads: no planar robot to draw");
@@ -343,7 +343,7 @@ void writeLoadsFigure(const LoadsOptions& options, const LoadsResult& result, co
     if (const Status status = inverseDynamicsWithReactions(model, data, p, dp, ddp, reactions); !status) {
         throw Error("the worst pose: " + describe(status, model));
     }
-    render::renderFigure(worstPoseFigure(model, p, reactions), stem);
+    return worstPoseFigure(model, p, reactions);
 }
 
 }  // namespace nocdyn::app

@@ -64,8 +64,8 @@ void validate(const LoadsOptions& options);
 /// that no output is written for a figure that cannot be drawn.
 void requireLoadsFigure(const LoadsOptions& options);
 
-/// The robot at the pose of the largest peak force with each joint's force as an arrow:
-/// STEM.png and STEM.svg (planar robots only).
-void writeLoadsFigure(const LoadsOptions& options, const LoadsResult& result, const std::string& stem);
+/// The robot at the pose of the largest peak force with each joint's force as an arrow (planar
+/// robots only), written by writeLoadsFigure (app/outputs.hpp).
+[[nodiscard]] render::Figure loadsResultFigure(const LoadsOptions& options, const LoadsResult& result);
 
 }  // namespace nocdyn::app

@@ -8,6 +8,7 @@
 #include "app/options.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/io/escape.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
@@ -214,6 +215,33 @@ void createOutputFolder(const std::string& path, const std::string& field) {
         throw OptionError(
             field, "cannot create the folder " + quoted(path) + (error ? ": " + error.message() : std::string()));
     }
+}
+
+std::string inFolder(const std::string& folder, const std::string& name) {
+    return folder.empty() ? name : (fs::path(folder) / name).string();
+}
+
+std::string OutputFolder::path(const std::string& name) const {
+    return name.empty() ? root_ : (fs::path(root_) / name).string();
+}
+
+void OutputFolder::folder(const std::string& name) {
+    const std::string dir = path(name);
+    std::error_code error;
+    fs::create_directories(dir, error);
+    if (wording_ == Wording::folder) {
+        if (error) throw Error("cannot create the folder '" + dir + "': " + error.message());
+    } else if (error || !fs::is_directory(dir)) {
+        throw Error("cannot create output folder '" + dir + "'");
+    }
+}
+
+void OutputFolder::table(const std::string& name, const io::Table& table) { io::writeCsvFile(path(name), table); }
+
+void OutputFolder::text(const std::string& name, const std::string& text) { io::writeTextFile(path(name), text); }
+
+void OutputFolder::figure(const std::string& stem, const render::Figure& figure) {
+    render::renderFigure(figure, path(stem));
 }
 
 }  // namespace nocdyn::app

@@ -32,7 +32,7 @@ void validate(const ReproduceOptions& options) {
     requireIn(options.identification_duration, kIdentificationDurationRange, "identification_duration");
 }
 
-ReproduceResult runReproduce(const ReproduceOptions& options, Observer& observer) {
+ReproduceResult runReproduce(const ReproduceOptions& options, Observer& observer, FileSink& out) {
     validate(options);
     requireOutputFolder(options.out_dir, "out_dir");
     ReproduceResult result;
@@ -40,11 +40,7 @@ ReproduceResult runReproduce(const ReproduceOptions& options, Observer& observer
         stopIfRequested(observer);
         observer.step(section, ++result.sections, kReproduceSections);
     };
-    const std::filesystem::path out(options.out_dir);
-    std::error_code error;
-    std::filesystem::create_directories(out, error);
-    if (error || !std::filesystem::is_directory(out))
-        throw Error("cannot create output folder '" + options.out_dir + "'");
+    out.folder("");
     const RobotDescription robot = io::exampleRobot("paper-3prr");  // the paper's prototype, expanded by io
     std::ostringstream summary;
     summary << "# nocdyn reproduce: the paper's 3-PRR results\n\n"
@@ -69,9 +65,9 @@ ReproduceResult runReproduce(const ReproduceOptions& options, Observer& observer
 #endif
     next("payload identification experiment");
     reproduceIdentification(out, summary, options.identification_duration);
-    io::writeTextFile((out / "summary.md").string(), summary.str());
-    result.folder = out;
-    result.summary = out / "summary.md";
+    out.text("summary.md", summary.str());
+    result.folder = options.out_dir;
+    result.summary = result.folder / "summary.md";
     return result;
 }
 

@@ -10,6 +10,7 @@
 
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "app/outputs.hpp"
 
 namespace nocdyn::app {
 
@@ -31,7 +32,9 @@ struct ReproduceResult {
 /// Throws OptionError for a duration outside its range or an empty folder name.
 void validate(const ReproduceOptions& options);
 
-/// Runs every section, each announced to the observer as a step (and a stop between them).
-[[nodiscard]] ReproduceResult runReproduce(const ReproduceOptions& options, Observer& observer);
+/// Runs every section, each announced to the observer as a step (and a stop between them), each
+/// handing its files to `files` as it makes them (the front ends pass an OutputFolder of
+/// options.out_dir with OutputFolder::Wording::output_folder: app/outputs.hpp).
+[[nodiscard]] ReproduceResult runReproduce(const ReproduceOptions& options, Observer& observer, FileSink& files);
 
 }  // namespace nocdyn::app

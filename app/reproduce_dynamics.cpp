@@ -30,7 +30,6 @@ using render::envelopeFigure;
 using render::Figure;
 using render::PlotPanel;
 using render::PlotSeries;
-using render::renderFigure;
 
 ActuatorLimits actuatorLimits(const RobotDescription& robot) {
     for (const LimbDescription& limb : robot.limbs) {
@@ -100,8 +99,7 @@ PoseTrajectory paperTrajectory(int k) { return k == 0 ? paperTrajectory1() : pap
 
 }  // namespace
 
-void reproduceControl(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary,
-                      double duration) {
+void reproduceControl(const RobotDescription& robot, FileSink& out, std::ostream& summary, double duration) {
     constexpr double kNaturalFrequency = 50.0;  // [Hz]
     const Model model(robot);
     const PlantKind plant_kind = defaultPlant();
@@ -139,10 +137,10 @@ void reproduceControl(const RobotDescription& robot, const std::filesystem::path
             summary << row;
         }
         const std::string stem = std::string("control_") + kTrajectories[k];
-        io::writeCsvFile((out / (stem + ".csv")).string(), tables::toTable(runs[0]));
-        renderFigure(trackingErrorFigure(std::string(kTrajectories[k]) + ": actuator tracking errors", runs,
-                                         {"no payload", "no payload", "payload unknown to the controller"}),
-                     (out / (stem + "_errors")).string());
+        out.table(stem + ".csv", tables::toTable(runs[0]));
+        out.figure(stem + "_errors",
+                   trackingErrorFigure(std::string(kTrajectories[k]) + ": actuator tracking errors", runs,
+                                       {"no payload", "no payload", "payload unknown to the controller"}));
     }
     summary << "\nFigures: `control_paper1_errors.png`, `control_paper2_errors.png` (panels: computed torque, PD, "
                "computed torque with the unknown payload); CSV of the computed-torque runs: `control_paper{1,2}.csv`. "
@@ -150,14 +148,14 @@ void reproduceControl(const RobotDescription& robot, const std::filesystem::path
                "reproduces each row.\n\n";
 }
 
-void reproduceEnvelope(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary) {
+void reproduceEnvelope(const RobotDescription& robot, FileSink& out, std::ostream& summary) {
     const Model model(robot);
     const ActuatorLimits limits = actuatorLimits(robot);
     const auto points = operatingEnvelope(model);
     const EnvelopeResonance resonance = envelopeResonance(model);
-    io::writeCsvFile((out / "envelope.csv").string(), tables::toTable(points, resonance));
-    renderFigure(envelopeFigure(points, robot.name, "flat = stroke-bound, slope -2 = peak-force-bound", resonance),
-                 (out / "envelope").string());
+    out.table("envelope.csv", tables::toTable(points, resonance));
+    out.figure("envelope",
+               envelopeFigure(points, robot.name, "flat = stroke-bound, slope -2 = peak-force-bound", resonance));
 
     summary
         << "## Operating envelope\n\n"

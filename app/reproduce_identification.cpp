@@ -32,7 +32,6 @@ using render::axisUnit;
 using render::Figure;
 using render::PlotPanel;
 using render::PlotSeries;
-using render::renderFigure;
 
 namespace {
 
@@ -90,9 +89,9 @@ io::Table forcesTable(const FitReport& fit) {
 }
 
 /// One experiment: closed loop on the plant (payload, and friction when asked), the sensors'
-/// log, the identification. Writes KEY_log.csv and KEY_forces.csv in `folder`.
+/// log, the identification. Hands over KEY_log.csv and KEY_forces.csv in `folder`.
 Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c, double duration,
-                const std::filesystem::path& folder) {
+                const std::string& folder, FileSink& out) {
     Outcome outcome;
     RobotDescription plant_robot = withPayload(robot, truth());
     if (c.friction) {
@@ -122,13 +121,13 @@ Outcome runCase(const RobotDescription& robot, const Model& model, const Case& c
         // every kDecimation-th sample: each force is then the one at its sample's instant, not a hold
         Measurements shown = log;
         shown.held_forces = false;
-        io::writeCsvFile((folder / (c.key + "_log.csv")).string(), decimated(tables::toTable(shown)));
+        out.table(inFolder(folder, c.key + "_log.csv"), decimated(tables::toTable(shown)));
         IdentificationOptions options;
         options.held_forces = true;  // the log's forces are the commands held over each tick
         options.friction = c.friction;
         const Motion motion = reconstructMotion(model, log, options);
         outcome.result = identifyPayload(model, motion, options);
-        io::writeCsvFile((folder / (c.key + "_forces.csv")).string(), forcesTable(outcome.result->fit));
+        out.table(inFolder(folder, c.key + "_forces.csv"), forcesTable(outcome.result->fit));
     } catch (const Error& e) {
         outcome.failure = e.what();
     }
@@ -220,13 +219,9 @@ Figure forcesFigure(const Case& c, const FitReport& fit) {
 
 }  // namespace
 
-void reproduceIdentification(const std::filesystem::path& out, std::ostream& summary, double duration) {
-    const std::filesystem::path folder = out / "identification";
-    std::error_code error;
-    std::filesystem::create_directories(folder, error);
-    if (error || !std::filesystem::is_directory(folder)) {
-        throw Error("cannot create output folder '" + folder.string() + "'");
-    }
+void reproduceIdentification(FileSink& out, std::ostream& summary, double duration) {
+    const std::string folder = "identification";
+    out.folder(folder);
     const RobotDescription robot = io::exampleRobot("paper-3prr-general");
     const Model model(robot);
     const Model guessed(withPayload(robot, guess()));
@@ -258,9 +253,9 @@ void reproduceIdentification(const std::filesystem::path& out, std::ostream& sum
 
     std::vector<Outcome> outcomes;
     outcomes.reserve(cases.size());
-    for (const Case& c : cases) outcomes.push_back(runCase(robot, model, c, duration, folder));
+    for (const Case& c : cases) outcomes.push_back(runCase(robot, model, c, duration, folder, out));
     if (const auto& first = outcomes.front().result) {
-        renderFigure(forcesFigure(cases.front(), first->fit), (folder / "forces").string());
+        out.figure(inFolder(folder, "forces"), forcesFigure(cases.front(), first->fit));
     }
 
     const Payload p = truth();

@@ -41,7 +41,6 @@ using render::axisUnit;
 using render::Figure;
 using render::PlotPanel;
 using render::PlotSeries;
-using render::renderFigure;
 
 /// The El Centro record compiled in (generated from data/elcentro_1940_ns.AT2).
 extern const char* const kElCentroAt2;
@@ -116,7 +115,7 @@ PlotPanel differencePanel(const InverseDynamicsSeries& series, bool forces, cons
 
 }  // namespace
 
-void reproduceTrajectories(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary) {
+void reproduceTrajectories(const RobotDescription& robot, FileSink& out, std::ostream& summary) {
     const Model model(robot);
     const ActuatorLimits limits = actuatorLimits(robot);
     summary << "## Paper trajectories 1 and 2 (eqs. 33-34): inverse dynamics\n\n"
@@ -138,13 +137,13 @@ void reproduceTrajectories(const RobotDescription& robot, const std::filesystem:
     };
     for (const Case& c : {Case{"paper1", paperTrajectory1(), "Fig. 5"}, Case{"paper2", paperTrajectory2(), "Fig. 6"}}) {
         const auto series = sampleInverseDynamics(model, c.trajectory, times, LimitPolicy::record);
-        io::writeCsvFile((out / (std::string(c.name) + ".csv")).string(), tables::toTable(series, model.actuators));
+        out.table(std::string(c.name) + ".csv", tables::toTable(series, model.actuators));
         Figure displacements{std::string(c.name) + ": motor displacements (cf. the paper's " + c.figure + "a)", {}};
         Figure forces{std::string(c.name) + ": motor forces (cf. the paper's " + c.figure + "b)", {}};
 #ifdef NOCDYN_HAS_ENGINES
         // The paper's figures overlay ADAMS; ours overlay Simbody, with their difference.
         const validation::EngineComparison comparison = validation::compareWithEngines(robot, c.trajectory, times);
-        io::writeCsvFile((out / (std::string(c.name) + "_validation.csv")).string(), validation::toTable(comparison));
+        out.table(std::string(c.name) + "_validation.csv", validation::toTable(comparison));
         std::vector<Eigen::VectorXd> simbody_u, simbody_tau;
         for (const validation::MechanismSample& s : comparison.simbody) {
             simbody_u.push_back(s.u);
@@ -165,8 +164,8 @@ void reproduceTrajectories(const RobotDescription& robot, const std::filesystem:
         displacements.panels = {jointPanel(series, false)};
         forces.panels = {jointPanel(series, true)};
 #endif
-        renderFigure(displacements, (out / (std::string(c.name) + "_displacements")).string());
-        renderFigure(forces, (out / (std::string(c.name) + "_forces")).string());
+        out.figure(std::string(c.name) + "_displacements", displacements);
+        out.figure(std::string(c.name) + "_forces", forces);
         for (int j = 0; j < 3; ++j) {
             double lo = 0.0, hi = 0.0;
             for (const InverseDynamicsSample& s : series.samples) {
@@ -205,7 +204,7 @@ void reproduceTrajectories(const RobotDescription& robot, const std::filesystem:
 }
 
 #ifdef NOCDYN_HAS_ENGINES
-void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summary, double closed_loop_duration) {
+void reproduceExampleRobots(FileSink& out, std::ostream& summary, double closed_loop_duration) {
     constexpr double kExampleRate = 2000.0;  // [Hz]: both engines assemble every sample
     const auto times = sampleTimes(kPaperDuration, kExampleRate);
     summary << "## Other architectures: the example robots against both engines\n\n"
@@ -220,7 +219,7 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
     for (const char* name : {"3-rrr", "3-rpr", "4-rrr"}) {
         const RobotDescription robot = io::exampleRobot(name);
         const validation::EngineComparison c = validation::compareWithEngines(robot, paperTrajectory1(), times);
-        io::writeCsvFile((out / (std::string("example_") + name + "_validation.csv")).string(), validation::toTable(c));
+        out.table(std::string("example_") + name + "_validation.csv", validation::toTable(c));
         std::string types;
         for (const LimbDescription& limb : robot.limbs) {
             if (!types.empty()) types += ' ';
@@ -272,7 +271,7 @@ void reproduceExampleRobots(const std::filesystem::path& out, std::ostream& summ
 }
 #endif
 
-void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::path& out, std::ostream& summary) {
+void reproduceWorkspace(const RobotDescription& robot, FileSink& out, std::ostream& summary) {
     const Model model(robot);
     const WorkspaceMap map = workspaceMap(model, {0.0, 301});
     std::vector<PlotSeries> paths;
@@ -296,7 +295,7 @@ void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::pa
         }
         paths.push_back(std::move(path));
     }
-    renderFigure(render::workspaceFigure(map, model, paths), (out / "workspace").string());
+    out.figure("workspace", render::workspaceFigure(map, model, paths));
     std::string line;
     line = text::format(" The trajectories turn the platform by up to %.3g deg as they go.\n\n",
                         peak_theta * 180.0 / std::numbers::pi);
@@ -306,21 +305,21 @@ void reproduceWorkspace(const RobotDescription& robot, const std::filesystem::pa
             << " picture, and the paths of C along the paper's trajectories.\n\n";
 }
 
-void reproduceAnimations(const std::filesystem::path& out, std::ostream& summary) {
+void reproduceAnimations(FileSink& out, std::ostream& summary) {
     const Model model(io::exampleRobot("paper-3prr"));
     summary << "## Animations\n\n";
     for (const auto& [name, trajectory] :
          {std::pair<std::string, PoseTrajectory>{"paper1", paperTrajectory1()}, {"paper2", paperTrajectory2()}}) {
         const render::MotionSamples motion = render::motionFromTrajectory(model, trajectory, 0.2, 10000.0);
         const std::string file = name + "_animation.html";
-        io::writeTextFile((out / file).string(), render::animationPage(model, motion, render::AnimationOptions{}));
+        out.text(file, render::animationPage(model, motion, render::AnimationOptions{}));
         summary << "- `" << file << "`: the robot along trajectory " << name.back()
                 << " (0.2 s at 10 kHz), with its actuator forces and the plots of u and tau; open it in any browser.\n";
     }
     summary << "\n`nocdyn animate --trajectory paper1 --out paper1_animation.html` writes the same page.\n\n";
 }
 
-void reproduceShake(const std::filesystem::path& out, std::ostream& summary) {
+void reproduceShake(FileSink& out, std::ostream& summary) {
     summary << "## Earthquake record: El Centro 1940 N-S on the prototype\n\n";
     const io::GroundMotionRecord record = io::parseAt2(kElCentroAt2, "data/elcentro_1940_ns.AT2");
     // the strong part only keeps the replay short
@@ -339,7 +338,7 @@ void reproduceShake(const std::filesystem::path& out, std::ostream& summary) {
     const ShakeOutcome outcome = runShakeReplay(robot, r, replay, [&](const RobotDescription& plant_robot) {
         return makePlant(replay.plant, plant_robot, replay.accuracy);
     });
-    writeShakeOutputs(outcome, Model(robot), (out / "elcentro").string(), "El Centro 1940 N-S, x");
+    shakeFiles(outcome, Model(robot), "elcentro", "El Centro 1940 N-S, x", out);
     std::ostringstream text;
     printShakeSummary(outcome, text, false);
     // the wall-clock time differs from run to run: on the console only, not in summary.md

@@ -156,7 +156,8 @@ std::string suiteTable(const ShakeResult& r, const ShakeOptions& options, std::s
 }
 
 ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions& options,
-                     const ShakeReplayOptions& replay, const RobotDescription& robot, Observer& observer) {
+                     const ShakeReplayOptions& replay, const RobotDescription& robot, Observer& observer,
+                     FileSink& files) {
     if (options.out_dir.empty()) throw OptionError("out_dir", "a suite of records needs an output folder");
     const std::vector<std::string> folders = recordFolders(records);
     std::vector<GroundRecord> inputs(records.size());
@@ -190,9 +191,7 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
             try {
                 outcomes[i] = runShakeReplay(robot, inputs[i], replay, make_plant, stopper);
                 const std::lock_guard lock(mutex);
-                writeShakeOutputs(outcomes[i], Model(robot),
-                                  (std::filesystem::path(options.out_dir) / folders[i]).string(),
-                                  robot.name + ": " + records[i].label);
+                shakeFiles(outcomes[i], Model(robot), folders[i], robot.name + ": " + records[i].label, files);
                 outcomes[i].loop = {};  // the ticks are written; keep the scores
                 outcomes[i].achieved = {};
             } catch (const std::exception& e) {
@@ -250,7 +249,7 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
             "\nComponents grouped into records by their shared name prefix, the horizontals on x and y: " + grouped +
             "\n";
     }
-    io::writeTextFile((std::filesystem::path(options.out_dir) / "summary.md").string(), out.text);
+    files.text("summary.md", out.text);
     return out;
 }
 
@@ -347,14 +346,14 @@ void validate(const ShakeOptions& o) {
     refuseWhatDoesNotApply(o);
 }
 
-ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
+ShakeResult runShake(const ShakeOptions& options, Observer& observer, FileSink& files) {
     validate(options);
     requireOutputFolder(options.out_dir, "out_dir");
     if (isSpatialRobot(options.robot)) {
         ShakeOptions six = options;
         six.record = expandRecords(options.record);          // a folder's *.AT2 files
         six.time_scale = replayOptions(options).time_scale;  // "auto" or L, read as for a planar table
-        return runSpatialShake(six, observer);
+        return runSpatialShake(six, observer, files);
     }
     if (options.per_axis_scale)
         throw OptionError("per_axis_scale", "goes with a six-DOF table (a spatial robot with motion: full)");
@@ -388,7 +387,7 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     if (records.size() > 1) {
         if (!options.record_y.empty() || !options.record_theta.empty())
             throw OptionError("record_y", "record_y and record_theta go with a single record");
-        return runSuite(records, options, replay, robot, observer);
+        return runSuite(records, options, replay, robot, observer, files);
     }
     refuseSuiteOptions(options);
     GroundRecord record;
@@ -431,8 +430,7 @@ ShakeResult runShake(const ShakeOptions& options, Observer& observer) {
     out.passed = row.pass ? 1 : 0;
     out.rows.push_back(std::move(row));
     out.text = text.str();
-    if (!options.out_dir.empty())
-        writeShakeOutputs(outcome, model, options.out_dir, robot.name + ": " + records.front().label);
+    if (!options.out_dir.empty()) shakeFiles(outcome, model, "", robot.name + ": " + records.front().label, files);
     return out;
 }
 

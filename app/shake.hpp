@@ -12,6 +12,7 @@
 
 #include "app/observer.hpp"
 #include "app/options.hpp"
+#include "app/outputs.hpp"
 #include "nocdyn/choice.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/sim/shake_replay.hpp"
@@ -104,9 +105,12 @@ struct ShakeResult {
     int passed = 0;
 };
 
-/// Reads the records (every one before any replay), plays them, scores them; writes to
-/// options.out_dir when given. A suite plays its records on `threads` threads; progress (records
-/// done) and a stop are handled on the calling thread, a stop ending every replay at its next tick.
-ShakeResult runShake(const ShakeOptions& options, Observer& observer);
+/// Reads the records (every one before any replay), plays them, scores them; when options.out_dir
+/// is given, hands each record's files to `files` as the record finishes (a suite: one folder
+/// per record, then summary.md), so that a long suite's finished records survive a stop; the
+/// front ends pass an OutputFolder of out_dir (app/outputs.hpp). A suite plays its records on
+/// `threads` threads; progress (records done) and a stop are handled on the calling thread, a
+/// stop ending every replay at its next tick.
+ShakeResult runShake(const ShakeOptions& options, Observer& observer, FileSink& files);
 
 }  // namespace nocdyn::app

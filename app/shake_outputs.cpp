@@ -2,9 +2,7 @@
 #include "app/shake_outputs.hpp"
 
 #include <algorithm>
-#include <filesystem>
 #include <ostream>
-#include <system_error>
 
 #include <nlohmann/json.hpp>
 
@@ -157,17 +155,14 @@ std::string shakeJson(const ShakeOutcome& outcome) {
     return json.dump(2) + "\n";
 }
 
-void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const std::string& dir,
-                       const std::string& title) {
-    std::error_code error;
-    std::filesystem::create_directories(dir, error);
-    if (error) throw Error("cannot create the folder '" + dir + "': " + error.message());
-    const std::filesystem::path folder(dir);
+void shakeFiles(const ShakeOutcome& outcome, const Model& model, const std::string& folder, const std::string& title,
+                FileSink& files) {
+    files.folder(folder);
     const FittedRecord& fit = outcome.fit;
     const PoseLoopResult& loop = outcome.loop;
     const io::Table table = shakeTable(outcome, model);
-    io::writeCsvFile((folder / "shake.csv").string(), table);
-    io::writeTextFile((folder / "shake.json").string(), shakeJson(outcome));
+    files.table(inFolder(folder, "shake.csv"), table);
+    files.text(inFolder(folder, "shake.json"), shakeJson(outcome));
 
     // figures: target against achieved acceleration, and both spectra, per driven axis
     render::Figure accel{render::literalText(title) + ": target and achieved acceleration", {}};
@@ -182,8 +177,8 @@ void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const st
                                                  loop.plant));
         spectra.panels.push_back(spectrumPanel(kReplayAxes[axis], unit, outcome.score[axis]));
     }
-    render::renderFigure(accel, (folder / "shake_acceleration").string());
-    render::renderFigure(spectra, (folder / "shake_spectrum").string());
+    files.figure(inFolder(folder, "shake_acceleration"), accel);
+    files.figure(inFolder(folder, "shake_spectrum"), spectra);
 }
 
 void printShakeSummary(const ShakeOutcome& outcome, std::ostream& out, bool with_timing) {

@@ -1,11 +1,13 @@
 // What a replay (nocdyn/sim/shake_replay.hpp) writes and prints: shake.csv's table, shake.json,
-// the figures and the summary, for `shake` and the El Centro section of `reproduce`.
+// the figures and the summary, for `shake` and the El Centro section of `reproduce`; the files
+// go through a FileSink (app/outputs.hpp).
 #pragma once
 
 #include <iosfwd>
 #include <span>
 #include <string>
 
+#include "app/outputs.hpp"
 #include "nocdyn/io/csv.hpp"
 #include "nocdyn/model.hpp"
 #include "nocdyn/sim/shake_replay.hpp"
@@ -32,9 +34,10 @@ namespace nocdyn::app {
 /// spectrum_outside_band_percent: of the counted periods, those outside +-10 %), and the spectra.
 [[nodiscard]] std::string shakeJson(const ShakeOutcome& outcome);
 
-/// DIR/shake.csv, DIR/shake.json, DIR/shake_acceleration.{png,svg}, DIR/shake_spectrum.{png,svg}.
-void writeShakeOutputs(const ShakeOutcome& outcome, const Model& model, const std::string& dir,
-                       const std::string& title);
+/// A replay's files, handed to `files` in `folder` ("": the output folder itself): shake.csv,
+/// shake.json, shake_acceleration.{png,svg}, shake_spectrum.{png,svg}.
+void shakeFiles(const ShakeOutcome& outcome, const Model& model, const std::string& folder, const std::string& title,
+                FileSink& files);
 
 /// The scales, the limit use, the closed loop, then one line per driven axis: RMS error, peak
 /// error, share outside the band. with_timing: also the closed loop's wall-clock time (which

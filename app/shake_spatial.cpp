@@ -213,9 +213,8 @@ std::string replayJson(const spatial::ShakeReplay3& r, const spatial::DriveItera
     return json.dump(2) + "\n";
 }
 
-void writeFigures(const spatial::ShakeReplay3& r, const io::Table& table, const std::string& dir,
-                  const std::string& title) {
-    const std::filesystem::path folder(dir);
+void figureFiles(const spatial::ShakeReplay3& r, const io::Table& table, const std::string& folder,
+                 const std::string& title, FileSink& files) {
     render::Figure accel{render::literalText(title) + ": target and achieved acceleration", {}};
     render::Figure spectra{render::literalText(title) + ": 5 %-damped pseudo-acceleration spectra", {}};
     const std::size_t n = table.rows.size();
@@ -226,8 +225,8 @@ void writeFigures(const spatial::ShakeReplay3& r, const io::Table& table, const 
                                                  std::span(r.achieved[axis]).first(n), "nocdyn"));
         spectra.panels.push_back(spectrumPanel(spatial::kShakeAxes[axis], "m/s^2", r.score[axis]));
     }
-    render::renderFigure(accel, (folder / "shake_acceleration").string());
-    render::renderFigure(spectra, (folder / "shake_spectrum").string());
+    files.figure(inFolder(folder, "shake_acceleration"), accel);
+    files.figure(inFolder(folder, "shake_spectrum"), spectra);
 }
 
 /// The achieved motion on the 3-D page (render/animation3d.hpp): shake.csv's rows, the loop's
@@ -345,20 +344,18 @@ spatial::FittedRecord3 fitOf(const spatial::Model& model, const spatial::GroundR
     return fit;
 }
 
-/// One record's files in `dir`: shake.csv, shake.json, the figures and the 3-D page (built
-/// before any file is written: a pose out of reach leaves no partial output).
-void writeOutputs(const spatial::ShakeReplay3& r, const spatial::Model& model, const ShakeResult& out,
-                  const std::string& dir, const std::string& label) {
+/// One record's files, handed to `files` in `folder` ("": the output folder itself): shake.csv,
+/// shake.json, the figures and the 3-D page (built before any file is handed over: a pose out of
+/// reach leaves no partial output).
+void recordFiles(const spatial::ShakeReplay3& r, const spatial::Model& model, const ShakeResult& out,
+                 const std::string& folder, const std::string& label, FileSink& files) {
     const std::string title = model.name + ": " + label;
     const std::string page = animationPage(model, out.table, title);
-    std::error_code error;
-    std::filesystem::create_directories(dir, error);
-    if (error) throw Error("cannot create the folder '" + dir + "': " + error.message());
-    const std::filesystem::path folder(dir);
-    io::writeCsvFile((folder / "shake.csv").string(), out.table);
-    io::writeTextFile((folder / "shake.json").string(), out.metrics_json);
-    writeFigures(r, out.table, dir, title);
-    io::writeTextFile((folder / "shake_animation.html").string(), page);
+    files.folder(folder);
+    files.table(inFolder(folder, "shake.csv"), out.table);
+    files.text(inFolder(folder, "shake.json"), out.metrics_json);
+    figureFiles(r, out.table, folder, title, files);
+    files.text(inFolder(folder, "shake_animation.html"), page);
 }
 
 /// A record of a suite, read: its files and its components on the table's x, y, z.
@@ -434,7 +431,7 @@ std::string suiteTable(const ShakeResult& r, std::size_t records, const std::vec
 /// A suite: every record read (and refused) before any replay, then replayed on `threads` workers
 /// from a queue; one folder per record and summary.md under out_dir.
 ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions& options, const spatial::Model& model,
-                     Observer& observer) {
+                     Observer& observer, FileSink& files) {
     if (options.out_dir.empty()) throw OptionError("out_dir", "a suite of records needs an output folder");
     std::vector<SuiteRecord> read;
     read.reserve(records.size());
@@ -468,8 +465,7 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
                 one.metrics_json = replayJson(r, passes, read[i].motion, options, controller);
                 (void)summary(r, passes, read[i].motion, options, controller, one);
                 const std::lock_guard lock(mutex);
-                writeOutputs(r, model, one, (std::filesystem::path(options.out_dir) / folders[i]).string(),
-                             records[i].label);
+                recordFiles(r, model, one, folders[i], records[i].label, files);
                 one.table = {};  // written; keep the scores
             } catch (const std::exception& e) {
                 errors[i] = e.what();
@@ -515,13 +511,13 @@ ShakeResult runSuite(const std::vector<RecordFiles>& records, const ShakeOptions
         }
     }
     out.text = suiteTable(out, records.size(), read, folders, options, controller, workers);
-    io::writeTextFile((std::filesystem::path(options.out_dir) / "summary.md").string(), out.text);
+    files.text("summary.md", out.text);
     return out;
 }
 
 }  // namespace six_dof_shake
 
-ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
+ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer, FileSink& files) {
     if (options.x_azimuth) requireIn(*options.x_azimuth, kAzimuthRange, "x_azimuth");
     const std::vector<RecordFiles> records = groupRecordFiles(options.record);
     six_dof_shake::refusePlanarOnly(options, records.size());
@@ -532,7 +528,7 @@ ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
     const spatial::Model model(spatial::withSpecimen(description, options.payload_mass));
     if (records.size() > 1 && options.identify_payload)
         throw OptionError("identify_payload", "a six-DOF table identifies the specimen before one record, not a suite");
-    if (records.size() > 1) return six_dof_shake::runSuite(records, options, model, observer);
+    if (records.size() > 1) return six_dof_shake::runSuite(records, options, model, observer, files);
     io::TableMotion motion;
     const spatial::GroundRecord3 record = six_dof_shake::readRecord3(records.front(), options, observer, motion);
     std::string controller;
@@ -565,7 +561,7 @@ ShakeResult runSpatialShake(const ShakeOptions& options, Observer& observer) {
         out.text = payloadSummary(*specimen) + out.text;
     }
     if (!options.out_dir.empty()) {
-        six_dof_shake::writeOutputs(r, model, out, options.out_dir, records.front().label);
+        six_dof_shake::recordFiles(r, model, out, "", records.front().label, files);
         out.animation = true;
     }
     return out;

@@ -69,13 +69,13 @@ WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer
     return out;
 }
 
-void writeWorkspaceFigure(const WorkspaceResult& result, const std::string& stem) {
-    render::renderFigure(render::workspaceFigure(result.map, *result.model, {}), stem);
+render::Figure workspaceResultFigure(const WorkspaceResult& result) {
+    return render::workspaceFigure(result.map, *result.model, {});
 }
 
-void writeFrequencyFigure(const WorkspaceResult& result, const std::string& stem) {
+render::Figure frequencyResultFigure(const WorkspaceResult& result) {
     if (!result.frequency) throw Error("the figure of the first natural frequency needs first_frequency");
-    render::renderFigure(render::firstFrequencyFigure(result.map, *result.frequency, *result.model), stem);
+    return render::firstFrequencyFigure(result.map, *result.frequency, *result.model);
 }
 
 }  // namespace nocdyn::app

@@ -11,6 +11,7 @@
 #include "nocdyn/analysis/frequency_map.hpp"
 #include "nocdyn/analysis/workspace.hpp"
 #include "nocdyn/io/csv.hpp"
+#include "render/plot.hpp"
 
 namespace nocdyn::app {
 
@@ -47,11 +48,13 @@ void validate(const WorkspaceOptions& options);
 /// declares no compliance); progress in grid columns, a stop between columns.
 [[nodiscard]] WorkspaceResult runWorkspace(const WorkspaceOptions& options, Observer& observer);
 
-/// The map as a figure (feasible region, singularity curves): STEM.png and STEM.svg.
-void writeWorkspaceFigure(const WorkspaceResult& result, const std::string& stem);
+/// The map as a figure (feasible region, singularity curves), written by writeWorkspaceFigure
+/// (app/outputs.hpp).
+[[nodiscard]] render::Figure workspaceResultFigure(const WorkspaceResult& result);
 
-/// The first natural frequency over the map as a heat map with its lowest point: STEM.png and
-/// STEM.svg. Throws nocdyn::Error when the result holds no frequency map.
-void writeFrequencyFigure(const WorkspaceResult& result, const std::string& stem);
+/// The first natural frequency over the map as a heat map with its lowest point, written by
+/// writeFrequencyFigure (app/outputs.hpp). Throws nocdyn::Error when the result holds no
+/// frequency map.
+[[nodiscard]] render::Figure frequencyResultFigure(const WorkspaceResult& result);
 
 }  // namespace nocdyn::app

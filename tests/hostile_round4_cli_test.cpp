@@ -285,13 +285,17 @@ TEST(HostileRound4Cli, OldOptionSpellingsWarnAndMeanTheNewOnes) {
     EXPECT_TRUE(has(sweep.err, "nocdyn: warning: --out is deprecated: use --out-dir")) << sweep.err;
     // excite's --frequency and --random, now --base-frequency and --random-shapes as the library
     // and Python name them: refused under the new spelling's checks, naming the old one
-    const CliResult base = runCli("excite --frequency 1e6");
-    EXPECT_EQ(base.exit_code, 2);
+    // (a value the new spelling accepts warns; the output folder missing then stops the run early)
+    const CliResult base = runCli("excite --frequency 2 --output " + (dir / "missing" / "e.yaml").string());
+    EXPECT_EQ(base.exit_code, 1);
     EXPECT_TRUE(has(base.err, "nocdyn: warning: --frequency is deprecated: use --base-frequency")) << base.err;
-    EXPECT_TRUE(has(base.err, "--frequency: must be a finite number in")) << base.err;
+    EXPECT_TRUE(has(base.err, "the folder")) << base.err;
+    const CliResult refused = runCli("excite --frequency 1e6");
+    EXPECT_EQ(refused.exit_code, 2);
+    EXPECT_TRUE(has(refused.err, "--frequency: must be a finite number in [0.001, 1000] Hz")) << refused.err;
     const CliResult shapes = runCli("excite --random 0");
     EXPECT_EQ(shapes.exit_code, 2);
-    EXPECT_TRUE(has(shapes.err, "--random: Value 0 not in range [1 - 1000000]")) << shapes.err;
+    EXPECT_TRUE(has(shapes.err, "--random: Value 0 not in range 1 to 1000000")) << shapes.err;
     // the old spellings are not offered in --help
     const CliResult help = runCli("frequency-response --help");
     EXPECT_FALSE(has(help.out, "--f-min")) << help.out;

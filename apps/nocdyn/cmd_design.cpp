@@ -1,5 +1,6 @@
-// nocdyn design: binds app::DesignOptions; the sweep (its thread pool, journal, tables and
-// figures in --out-dir) runs in the application layer; prints the one-line summary.
+// nocdyn design: binds app::DesignOptions; the sweep (its thread pool) runs in the application
+// layer, its journal, tables and figures go to --out-dir through app::DesignFolder
+// (app/design_outputs.hpp); prints the one-line summary.
 #include <algorithm>
 #include <cstdio>
 #include <filesystem>
@@ -7,6 +8,7 @@
 #include <string>
 
 #include "app/design.hpp"
+#include "app/design_outputs.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "nocdyn/analysis/design.hpp"
@@ -20,9 +22,10 @@ namespace design_command {
 
 void run(const app::DesignOptions& options, const CLI::App* command) {
     TerminalObserver observer("nocdyn design");
+    app::DesignFolder files(options.out_dir);
     const app::DesignResult result = [&] {
         try {
-            return app::runDesign(options, observer);
+            return app::runDesign(options, observer, files);
         } catch (const app::OptionError& e) {
             // a bad --vary, --metric or missing --trajectory: a usage error, as CLI11's own
             std::string option = "--" + e.field();

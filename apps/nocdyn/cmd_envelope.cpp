@@ -6,6 +6,7 @@
 #include <string>
 
 #include "app/envelope.hpp"
+#include "app/outputs.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "progress.hpp"

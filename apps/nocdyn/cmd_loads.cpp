@@ -5,6 +5,7 @@
 #include <string>
 
 #include "app/loads.hpp"
+#include "app/outputs.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "progress.hpp"

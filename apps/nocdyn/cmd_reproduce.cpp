@@ -18,7 +18,8 @@ void run(const app::ReproduceOptions& options) {
     // about two minutes in all: one progress line on a terminal names the section running
     // (none with --quiet)
     TerminalObserver observer("nocdyn reproduce");
-    const app::ReproduceResult result = app::runReproduce(options, observer);
+    app::OutputFolder files(options.out_dir, app::OutputFolder::Wording::output_folder);
+    const app::ReproduceResult result = app::runReproduce(options, observer, files);
     observer.finish();
     if (quiet()) return;
     std::cout << "nocdyn reproduce: wrote " << result.summary.string() << ", CSV files and figures in "

@@ -1,5 +1,5 @@
-// nocdyn shake: binds app::ShakeOptions and prints the replay's summary (one record) or the
-// suite's table (several records); the files are written by the application layer.
+// nocdyn shake: binds app::ShakeOptions, prints the replay's summary (one record) or the suite's
+// table (several records); the files go to the output module's folder (app/outputs.hpp).
 #include <iostream>
 #include <memory>
 #include <string>
@@ -22,7 +22,8 @@ struct Options : app::ShakeOptions {
 
 void run(const Options& options) {
     TerminalObserver observer("nocdyn shake");
-    const app::ShakeResult result = app::runShake(options, observer);
+    app::OutputFolder files(options.out_dir);
+    const app::ShakeResult result = app::runShake(options, observer, files);
     observer.finish();
     std::cout << result.text;
     if (result.suite) {

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "app/workspace.hpp"
+#include "app/outputs.hpp"
 #include "commands.hpp"
 #include "common.hpp"
 #include "progress.hpp"

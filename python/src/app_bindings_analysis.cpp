@@ -12,8 +12,10 @@
 
 #include "app/convert.hpp"
 #include "app/design.hpp"
+#include "app/design_outputs.hpp"
 #include "app/envelope.hpp"
 #include "app/loads.hpp"
+#include "app/outputs.hpp"
 #include "app/regressor.hpp"
 #include "app/workspace.hpp"
 #include "app_bindings.hpp"
@@ -220,8 +222,9 @@ void bindAnalysis(py::module_& m) {
     m.def(
         "_run_design",
         [](const app::DesignOptions& options, const py::object& progress) {
+            app::DesignFolder files(options.out_dir);
             const app::DesignResult r =
-                runJob(progress, [&](app::Observer& observer) { return app::runDesign(options, observer); });
+                runJob(progress, [&](app::Observer& observer) { return app::runDesign(options, observer, files); });
             const auto n = static_cast<py::ssize_t>(r.records.size());
             const auto d = static_cast<py::ssize_t>(r.names.size());
             const auto k = static_cast<py::ssize_t>(r.metrics.size());

@@ -70,8 +70,9 @@ void bindShake(py::module_& m) {
     m.def(
         "_run_shake",
         [](const O& options, const py::object& progress) {
+            app::OutputFolder files(options.out_dir);
             const app::ShakeResult r =
-                runJob(progress, [&](app::Observer& observer) { return app::runShake(options, observer); });
+                runJob(progress, [&](app::Observer& observer) { return app::runShake(options, observer, files); });
             return py::make_tuple(r.table.columns, rowsArray(r.table), r.metrics_json, r.text);
         },
         py::arg("options"), py::arg("progress") = py::none());

@@ -21,8 +21,9 @@ void bindReport(py::module_& m) {
     m.def(
         "_run_reproduce",
         [](const R& options, const py::object& progress) {
+            app::OutputFolder files(options.out_dir, app::OutputFolder::Wording::output_folder);
             const app::ReproduceResult result =
-                runJob(progress, [&](app::Observer& observer) { return app::runReproduce(options, observer); });
+                runJob(progress, [&](app::Observer& observer) { return app::runReproduce(options, observer, files); });
             return result.folder.string();
         },
         py::arg("options"), py::arg("progress") = py::none());
