@@ -116,7 +116,8 @@ void designFigureFiles(DesignSink& files, const tables::DesignFamily& family, co
                        const std::vector<std::size_t>& front) {
     using render::literalText;
     // no feasible design: nothing to draw (gnuplot refuses an empty data block)
-    if (std::none_of(records.begin(), records.end(), [](const tables::DesignRecord& r) { return r.evaluation.feasible; })) {
+    if (std::none_of(records.begin(), records.end(),
+                     [](const tables::DesignRecord& r) { return r.evaluation.feasible; })) {
         return;
     }
     if (metrics.size() >= 2) {

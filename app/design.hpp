@@ -70,8 +70,9 @@ public:
     /// Before the first design: opens the journal of the sweep `signature` (every input and
     /// option that changes a design's numbers: another sweep's journal is refused) with
     /// designs.csv's columns, and returns the designs it already holds.
-    virtual std::vector<tables::DesignRecord> open(const std::string& signature, const std::vector<std::string>& columns,
-                                               std::size_t parameters, std::size_t metrics) = 0;
+    virtual std::vector<tables::DesignRecord> open(const std::string& signature,
+                                                   const std::vector<std::string>& columns, std::size_t parameters,
+                                                   std::size_t metrics) = 0;
     /// Where the journal is, as the warning of a resumed sweep names it.
     [[nodiscard]] virtual std::string journal() const = 0;
     /// One design evaluated, recorded before the next is.

@@ -12,8 +12,9 @@ namespace nocdyn::app {
 
 std::string DesignFolder::path(const std::string& name) const { return (std::filesystem::path(dir_) / name).string(); }
 
-std::vector<tables::DesignRecord> DesignFolder::open(const std::string& signature, const std::vector<std::string>& columns,
-                                                 std::size_t parameters, std::size_t metrics) {
+std::vector<tables::DesignRecord> DesignFolder::open(const std::string& signature,
+                                                     const std::vector<std::string>& columns, std::size_t parameters,
+                                                     std::size_t metrics) {
     createOutputFolder(dir_, "out_dir");
     journal_.emplace(journal(), signature, columns, parameters, metrics);
     return journal_->previous();

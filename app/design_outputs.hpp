@@ -16,7 +16,7 @@ class DesignFolder final : public DesignSink {
 public:
     explicit DesignFolder(std::string dir) : dir_(std::move(dir)) {}
     std::vector<tables::DesignRecord> open(const std::string& signature, const std::vector<std::string>& columns,
-                                       std::size_t parameters, std::size_t metrics) override;
+                                           std::size_t parameters, std::size_t metrics) override;
     [[nodiscard]] std::string journal() const override;
     void append(const tables::DesignRecord& record) override;
     void designs(const std::string& name, const std::vector<std::string>& columns,

@@ -22,7 +22,6 @@
 namespace nocdyn {
 namespace {
 
-
 /// The 3-RRR with elastic links, its drives' ranges removed (nothing but the reach bounds a pose).
 Model limitless3RrrElastic() {
     RobotDescription robot = robotDescription("3-rrr-elastic");
@@ -175,8 +174,8 @@ TEST(LumpedLimit, TheMapChecksThePointsNextToALimbSingularityAndReplacesWhereThe
     for (int i = 0; i < map.n; ++i) {
         for (int k = 0; k < map.n; ++k) {
             if (map.cell(i, k) != WorkspaceCell::feasible) continue;
-            ASSERT_TRUE(stiffnessAndModes(
-                model, compliance, data, Pose(map.theta, map.x0 + i * map.step, map.y0 + k * map.step), K, modes));
+            ASSERT_TRUE(stiffnessAndModes(model, compliance, data,
+                                          Pose(map.theta, map.x0 + i * map.step, map.y0 + k * map.step), K, modes));
             // the exhaustive answer: firstFrequency at every point
             const double first = firstFrequency(model, compliance, data, modes);
             EXPECT_EQ(f.at(i, k, map.n), first) << i << ", " << k;
