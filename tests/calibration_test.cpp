@@ -105,7 +105,7 @@ TEST(Calibration, TheFileRoundTripsAndAForeignOneIsRefused) {
     const Model rrr(io::exampleRobot("3-rrr"));
     try {
         (void)tables::parseCalibration("base_parameters:\n  - {parameter: 'limb9.body1.m', value: 1}\n", "bad.yaml",
-                                   c.nominal);
+                                       c.nominal);
         FAIL() << "unknown parameter accepted";
     } catch (const Error& e) {
         EXPECT_NE(std::string(e.what()).find("bad.yaml:2"), std::string::npos) << e.what();

@@ -92,7 +92,8 @@ TEST(CliIdentify, CalibratesTheRobotThenIdentifiesThePayloadAgainstIt) {
     built.platform.mass += 0.2;
     const Payload payload{0.5, 8e-4, Vector2(0.012, -0.007)};
     io::writeCsvFile((dir / "tare.csv").string(), tables::toTable(exactLog(Model(built), 3, 300)));
-    io::writeCsvFile((dir / "load.csv").string(), tables::toTable(exactLog(Model(withPayload(built, payload)), 4, 300)));
+    io::writeCsvFile((dir / "load.csv").string(),
+                     tables::toTable(exactLog(Model(withPayload(built, payload)), 4, 300)));
     const std::string cal = (dir / "cal.yaml").string();
     const CliResult base =
         runCli("identify --robot " + kRobot + " --data " + (dir / "tare.csv").string() + " --base --output " + cal);

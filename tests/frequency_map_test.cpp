@@ -43,8 +43,8 @@ TEST(FirstFrequencyMap, EveryFeasiblePointHoldsStiffnessAndModesAndTheLowestIsWh
                 continue;
             }
             ++feasible;
-            ASSERT_TRUE(stiffnessAndModes(
-                model, compliance, data, Pose(map.theta, map.x0 + i * map.step, map.y0 + k * map.step), K, modes));
+            ASSERT_TRUE(stiffnessAndModes(model, compliance, data,
+                                          Pose(map.theta, map.x0 + i * map.step, map.y0 + k * map.step), K, modes));
             EXPECT_EQ(value, modes.frequency(0));
             lowest = std::min(lowest, value);
             highest = std::max(highest, value);
@@ -58,8 +58,7 @@ TEST(FirstFrequencyMap, EveryFeasiblePointHoldsStiffnessAndModesAndTheLowestIsWh
     EXPECT_EQ(f.lowest_x, map.x0 + f.lowest_i * map.step);
     EXPECT_EQ(f.lowest_y, map.y0 + f.lowest_k * map.step);
     // the reported point, recomputed from its (x, y) alone
-    ASSERT_TRUE(
-        stiffnessAndModes(model, compliance, data, Pose(map.theta, f.lowest_x, f.lowest_y), K, modes));
+    ASSERT_TRUE(stiffnessAndModes(model, compliance, data, Pose(map.theta, f.lowest_x, f.lowest_y), K, modes));
     EXPECT_EQ(modes.frequency(0), f.lowest);
     // the voice coils' 2e5 N/m under about 3 kg each: near 40 Hz (the file's comment), and it varies
     EXPECT_GT(f.lowest, 35.0);
@@ -100,9 +99,9 @@ TEST(FirstFrequencyMap, ReportsProgressPerColumnAndStopsWhenProgressThrows) {
     struct Stop {};
     calls = 0;
     EXPECT_THROW((void)firstFrequencyMap(model, map,
-                                                   [&](int, int) {
-                                                       if (++calls == 3) throw Stop{};
-                                                   }),
+                                         [&](int, int) {
+                                             if (++calls == 3) throw Stop{};
+                                         }),
                  Stop);
     EXPECT_EQ(calls, 3);
 }

@@ -28,7 +28,6 @@
 namespace nocdyn {
 namespace {
 
-
 struct AtPose {
     Model model;
     StiffnessModel compliance;
@@ -267,8 +266,7 @@ TEST(HostileRound4, NextToALimbSingularityTheLumpedModelIsSaidNotToHold) {
     EXPECT_NEAR(elastic.frequency(0), 29.905, 3e-2);
     EXPECT_NEAR(lumped.frequency(0) / elastic.frequency(0), 0.328, 1e-3);
     EXPECT_NE(warning.find("the elastodynamic frequencies are used here"), std::string::npos) << warning;
-    EXPECT_NE(lumpedMismatchWarning(lumped, elastic, false).find("are the ones to use here"),
-              std::string::npos);
+    EXPECT_NE(lumpedMismatchWarning(lumped, elastic, false).find("are the ones to use here"), std::string::npos);
     EXPECT_FALSE(lumpedHolds(lumped, elastic));
     Data data(model);
     StiffnessData K;

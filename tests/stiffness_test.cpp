@@ -20,7 +20,6 @@
 namespace nocdyn {
 namespace {
 
-
 std::string robotText(const std::string& robot) {
     return io::readRobotFileText(std::string(NOCDYN_SOURCE_DIR) + "/robots/" + robot + ".yaml");
 }
@@ -131,8 +130,7 @@ TEST(Stiffness, AForceActuatorLeavesItsDirectionFreeAndNamed) {
     const Vector3 reachable = at.K.K * Vector3(0.001, 1e-4, -2e-4);
     ASSERT_TRUE(displacementUnderWrench(at.K, at.model.length_scale, reachable, dp));
     EXPECT_LT((at.K.K * dp - reachable).norm(), 1e-9 * reachable.norm());
-    EXPECT_NE(describeDirection(free).find("rotation about the point"), std::string::npos)
-        << describeDirection(free);
+    EXPECT_NE(describeDirection(free).find("rotation about the point"), std::string::npos) << describeDirection(free);
 }
 
 TEST(Stiffness, ATranslationIsDescribedAsOne) {

@@ -31,8 +31,8 @@ nocdyn::io::ParameterSet parameterSet(const std::vector<std::pair<std::string, d
 }
 
 nocdyn::tables::DesignFamily family(const std::string& text, const std::string& source,
-                                const std::vector<std::pair<std::string, double>>& fixed,
-                                const std::vector<std::string>& names) {
+                                    const std::vector<std::pair<std::string, double>>& fixed,
+                                    const std::vector<std::string>& names) {
     nocdyn::tables::DesignFamily f;
     f.text = text;
     f.source = source;
@@ -107,7 +107,8 @@ void exposeDesign(py::module_& m) {
             {
                 const py::gil_scoped_release release;
                 (void)evaluateInParallel(
-                    n, threads, [&](std::size_t i) { return tables::evaluateFamilyDesign(f, rows[i], metrics, options); },
+                    n, threads,
+                    [&](std::size_t i) { return tables::evaluateFamilyDesign(f, rows[i], metrics, options); },
                     [&](std::size_t i, DesignEvaluation&& e) { results[i] = std::move(e); });
             }
             py::array_t<double> values({static_cast<py::ssize_t>(n), static_cast<py::ssize_t>(metrics.size())});

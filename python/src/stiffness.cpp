@@ -102,8 +102,7 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
         if (std::string w = lumpedMismatchWarning(modes, e, !lumped_asked); !w.empty())
             warnings.push_back(std::move(w));
         if (elastodynamic || (!lumped_asked && !lumpedHolds(modes, e))) {
-            if (std::string w = elastodynamicPrecisionWarning(e); !w.empty())
-                warnings.push_back(std::move(w));
+            if (std::string w = elastodynamicPrecisionWarning(e); !w.empty()) warnings.push_back(std::move(w));
         }
     }
     for (const std::string& w : warnings) {
@@ -135,8 +134,7 @@ py::dict stiffnessAt(const Robot& robot, const py::handle& p, bool elastodynamic
         py::array_t<double> shapes({py::ssize_t{3}, static_cast<py::ssize_t>(e.dofs)});
         for (int r = 0; r < 3; ++r) {
             for (int c = 0; c < e.dofs; ++c) {
-                shapes.mutable_at(r, c) =
-                    e.platform_shape(kReportedCoordinates[static_cast<std::size_t>(r)].index, c);
+                shapes.mutable_at(r, c) = e.platform_shape(kReportedCoordinates[static_cast<std::size_t>(r)].index, c);
             }
         }
         out["elastodynamic_frequencies"] = f;

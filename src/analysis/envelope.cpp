@@ -372,8 +372,7 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
     Data data(model);
     StiffnessData stiffness;
     LumpedModes modes;
-    if (const Status status = stiffnessAndModes(model, compliance, data, model.home, stiffness, modes);
-        !status) {
+    if (const Status status = stiffnessAndModes(model, compliance, data, model.home, stiffness, modes); !status) {
         out.reason = "at home: " + describe(status, model);
         return out;
     }
@@ -405,8 +404,7 @@ EnvelopeResonance envelopeResonance(const Model& model, double amplification) {
     }
     // ascending: the first resonance; where the lumped model does not hold at home, the
     // elastodynamic model's, and the amplification sums over its modes
-    if (ElastodynamicModes elastic;
-        !task && lumpedFailsAt(model, compliance, data, modes, elastic)) {
+    if (ElastodynamicModes elastic; !task && lumpedFailsAt(model, compliance, data, modes, elastic)) {
         out.model = FrequencyModel::elastodynamic;
         out.warning = lumpedMismatchWarning(modes, elastic, true);
         out.frequency = elastic.frequency(0);

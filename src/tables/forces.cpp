@@ -11,8 +11,8 @@
 namespace nocdyn::tables {
 
 // the io layer's tables, files and quoting, below this one
-using io::Table;
 using io::readCsvFileRows;
+using io::Table;
 
 namespace {
 

@@ -6,9 +6,9 @@
 namespace nocdyn::tables {
 
 // the io layer's tables, files and quoting, below this one
+using io::columnNames;
 using io::Table;
 using io::TableId;
-using io::columnNames;
 
 std::vector<std::string> numbered(const std::string& prefix, int count) {
     std::vector<std::string> out;

@@ -21,7 +21,7 @@ namespace nocdyn::tables {
 struct DesignFamily {
     std::string text;                 ///< the robot file's YAML text
     std::string source;               ///< its name in messages
-    io::ParameterSet fixed;              ///< parameters set for every design (--set)
+    io::ParameterSet fixed;           ///< parameters set for every design (--set)
     std::vector<DesignRange> ranges;  ///< the varied parameters, each declared by the file
 };
 
