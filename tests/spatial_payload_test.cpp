@@ -204,6 +204,25 @@ TEST(SpatialPayload, ForceNoiseIsAddedOnlyToTheForcesAndRefusedWhenNegative) {
     }
 }
 
+// A bad noise is refused before the excitation runs, not after the whole simulation.
+TEST(SpatialPayload, ABadForceNoiseIsRefusedBeforeTheFirstTick) {
+    const Model alone(shipped("stewart"));
+    PayloadExcitationOptions o = quick(1.0);
+    const Trajectory excitation = payloadExcitation(alone, o, nullptr);
+    int ticks = 0;
+    o.loop.progress = [&ticks](double) { ++ticks; };
+    for (const double bad : {-1.0, std::numeric_limits<double>::quiet_NaN()}) {
+        o.force_noise = bad;
+        try {
+            (void)excitePayload(alone, alone, excitation, o);
+            FAIL() << bad;
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("force noise"), std::string::npos) << e.what();
+        }
+    }
+    EXPECT_EQ(ticks, 0);
+}
+
 TEST(SpatialPayload, AMotionWithoutRotationsDoesNotDetermineTheInertia) {
     const SpatialRobotDescription d = shipped("stewart");
     const Model alone(d);

@@ -289,11 +289,7 @@ PoseLoopResult runPoseLoop(PoseController& controller, RobotPlant& plant, const 
     plant.reset(start != nullptr ? *start : reference.p, reference.dp);
     // encoders: the tracker from the plant's start (the working mode it starts in)
     PoseSensing sensing(model, options, start != nullptr ? *start : reference.p, result);
-    detail::TickOptions ticks;
-    ticks.dt = 1.0 / options.rate;
-    ticks.saturation = options.saturation;
-    ticks.progress = options.progress;
-    detail::runTicks(controller, plant, trajectory, times, data, sensing, ticks, result);
+    detail::runTicks(controller, plant, trajectory, times, data, sensing, options, {}, result);
     result.measurement_rms_error = (sensing.measurementSquares() / static_cast<double>(result.t.size())).cwiseSqrt();
     return result;
 }

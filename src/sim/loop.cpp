@@ -14,13 +14,13 @@ void failTick(const Model& model, double t, const Status& status, const char* wh
 }
 
 void runTicks(PoseController& controller, RobotPlant& plant, const PoseTrajectory& trajectory,
-              const std::vector<double>& times, Data& data, LoopSensing& sensing, const TickOptions& options,
-              PoseLoopResult& result) {
+              const std::vector<double>& times, Data& data, LoopSensing& sensing, const LoopClock& clock,
+              const TickKeeping& keeping, PoseLoopResult& result) {
     const Model& model = controller.model();
-    const double dt = options.dt;
+    const double dt = 1.0 / clock.rate;
     const int n = model.actuators;
     for (auto* v : {&result.p, &result.p_d}) v->reserve(times.size());
-    if (options.keep_actuators) {
+    if (keeping.keep_actuators) {
         for (auto* v : {&result.u, &result.u_d, &result.tau}) v->reserve(times.size());
         if (sensing.readsEncoders()) result.u_measured.reserve(times.size());
     }
@@ -34,7 +34,7 @@ void runTicks(PoseController& controller, RobotPlant& plant, const PoseTrajector
     ActuatorVector tau(n);
     Pose next_p, next_dp, next_ddp;
     for (const double t : times) {
-        if (options.progress) options.progress(t);
+        if (clock.progress) clock.progress(t);
         if (const Status status = poseReference(model, data, trajectory, t, reference); !status) {
             failTick(model, t, status, "reference");
         }
@@ -49,13 +49,13 @@ void runTicks(PoseController& controller, RobotPlant& plant, const PoseTrajector
         if (const Status status = controller.compute(sensed.p, sensed.dp, sensed.command, tau); !status) {
             failTick(model, t, status, "controller");
         }
-        if (options.saturation && controller.saturate(tau)) ++result.saturated_ticks;
+        if (clock.saturation && controller.saturate(tau)) ++result.saturated_ticks;
         const ActuatorVector u_now = plant.u();
-        if (options.on_tick) options.on_tick(result.t.size(), t, u_now, tau);
+        if (keeping.on_tick != nullptr && *keeping.on_tick) (*keeping.on_tick)(result.t.size(), t, u_now, tau);
         result.t.push_back(t);
         result.p.push_back(p);
         result.p_d.push_back(reference.p);
-        if (options.keep_actuators) {
+        if (keeping.keep_actuators) {
             result.u.push_back(u_now);
             result.u_d.push_back(reference.u);
             result.tau.push_back(tau);
@@ -74,7 +74,7 @@ void runTicks(PoseController& controller, RobotPlant& plant, const PoseTrajector
     }
 
     summarizeLoop(result);
-    if (!options.keep_actuators && !result.t.empty()) {
+    if (!keeping.keep_actuators && !result.t.empty()) {
         result.rms_error.resize(un);
         for (std::size_t a = 0; a < un; ++a)
             result.rms_error[a] = std::sqrt(sum_sq[a] / static_cast<double>(result.t.size()));

@@ -38,20 +38,18 @@ public:
     [[nodiscard]] virtual bool readsEncoders() const = 0;
 };
 
-struct TickOptions {
-    double dt = 0.0;
-    bool saturation = true;
-    /// false: u, u_d, tau and u_measured only in the summaries and on_tick (ShakeLoopOptions)
+/// What the shake table's loop adds to the clock (ShakeLoopOptions): keep_actuators false keeps
+/// u, u_d, tau and u_measured only in the summaries and hands each tick's to on_tick.
+struct TickKeeping {
     bool keep_actuators = true;
-    std::function<void(double)> progress;
-    std::function<void(std::size_t, double, const ActuatorVector&, const ActuatorVector&)> on_tick;
+    const std::function<void(std::size_t, double, const ActuatorVector&, const ActuatorVector&)>* on_tick = nullptr;
 };
 
 /// Runs the ticks at `times` on a plant already reset (data: the workspace of the reference at
 /// t = 0), then the summaries of `result` (summarizeLoop; without kept ticks, the actuators'
 /// summaries accumulated here).
 void runTicks(PoseController& controller, RobotPlant& plant, const PoseTrajectory& trajectory,
-              const std::vector<double>& times, Data& data, LoopSensing& sensing, const TickOptions& options,
-              PoseLoopResult& result);
+              const std::vector<double>& times, Data& data, LoopSensing& sensing, const LoopClock& clock,
+              const TickKeeping& keeping, PoseLoopResult& result);
 
 }  // namespace nocdyn::detail

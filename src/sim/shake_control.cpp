@@ -234,13 +234,8 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
     }
     plant.reset(reference.p, reference.dp);
     TableSensing sensing(model, options, reference);
-    detail::TickOptions ticks;
-    ticks.dt = 1.0 / options.rate;
-    ticks.saturation = options.saturation;
-    ticks.keep_actuators = options.keep_actuators;
-    ticks.progress = options.progress;
-    ticks.on_tick = options.on_tick;
-    detail::runTicks(controller, plant, trajectory, times, data, sensing, ticks, result);
+    detail::runTicks(controller, plant, trajectory, times, data, sensing, options,
+                     {options.keep_actuators, &options.on_tick}, result);
     if (report != nullptr) sensing.report(static_cast<double>(result.t.size()), *report);
     return result;
 }

@@ -52,6 +52,11 @@ Eigen::Matrix3d tensor(const Eigen::Matrix<double, 6, 1>& e) {
 
 bool finite(const SpatialPayload& p) { return std::isfinite(p.mass) && p.com.allFinite() && p.inertia.allFinite(); }
 
+/// The force sensor's sigma [N or N m]: finite and >= 0.
+void checkForceNoise(double sigma) {
+    if (!(sigma >= 0.0) || !std::isfinite(sigma)) throw Error("force noise: expected a finite value >= 0");
+}
+
 }  // namespace
 
 const std::array<const char*, kPayloadParameters>& payloadParameterNames() {
@@ -169,6 +174,7 @@ Trajectory payloadExcitation(const Model& model, const PayloadExcitationOptions&
 
 PayloadLog excitePayload(const Model& plant_model, const Model& controller_model, const Trajectory& trajectory,
                          const PayloadExcitationOptions& options) {
+    checkForceNoise(options.force_noise);  // before the run, not after it
     if (plant_model.task_dimension != controller_model.task_dimension ||
         plant_model.actuators != controller_model.actuators)
         throw Error("excitation: the controller's model and the plant differ in structure");
@@ -220,7 +226,7 @@ PayloadLog excitePayload(const Model& plant_model, const Model& controller_model
 }
 
 PayloadLog withForceNoise(PayloadLog log, double sigma, unsigned seed) {
-    if (!(sigma >= 0.0) || !std::isfinite(sigma)) throw Error("force noise: expected a finite value >= 0");
+    checkForceNoise(sigma);
     if (sigma == 0.0) return log;
     std::mt19937 rng(seed);
     std::normal_distribution<double> noise(0.0, sigma);

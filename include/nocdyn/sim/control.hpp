@@ -130,10 +130,17 @@ struct PoseSensorNoise {
     return {noise_pose, noise_pose, noise_rate, seed};
 }
 
-struct PoseLoopOptions : PoseSensorNoise {
+/// What every closed loop (planar, shake table, spatial) is run by: the controller's clock, the
+/// run's length, the clipping of the forces and a progress callback.
+struct LoopClock {
     double rate = 10000.0;   ///< controller ticks per second [Hz]
     double duration = 0.2;   ///< [s]
     bool saturation = true;  ///< clip at each actuator's effort
+    /// Called at each tick with its time [s] (e.g. a progress line); none by default.
+    std::function<void(double t)> progress = {};
+};
+
+struct PoseLoopOptions : LoopClock, PoseSensorNoise {
     /// Measure as a robot without a pose sensor does: its encoders' u (+ noise_u) and their
     /// rates du (+ noise_du), the pose p by the direct-kinematics tracker (PoseTracker, the
     /// working mode from the reference's start) and dp/dt from A_p(p) dp/dt = du (least
@@ -141,8 +148,6 @@ struct PoseLoopOptions : PoseSensorNoise {
     bool encoders = false;
     double noise_u = 0.0;   ///< std. dev. of each encoder [m or rad]
     double noise_du = 0.0;  ///< of each encoder rate [m/s or rad/s]
-    /// Called at each tick with its time [s] (e.g. a progress line); none by default.
-    std::function<void(double t)> progress = {};
 };
 
 /// One closed-loop run, one row per controller tick (state at the tick, before its forces act).

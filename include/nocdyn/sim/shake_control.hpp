@@ -92,9 +92,7 @@ private:
 /// task_dimension 2: no angular pair).
 [[nodiscard]] Vector3 accelerometerNoise(const TableSensors& sensors, int task_dimension = 3);
 
-struct ShakeLoopOptions {
-    double rate = 10000.0;  ///< controller ticks per second [Hz]
-    double duration = 0.2;  ///< [s]
+struct ShakeLoopOptions : LoopClock {
     /// f_n of the pose feedback [Hz]; 6 Hz measured best on five real records with a payload the
     /// model does not know, 2 Hz when the model carries it (docs/earthquake-replay.md)
     double natural_frequency = 6.0;
@@ -103,7 +101,6 @@ struct ShakeLoopOptions {
     double acceleration_gain = 0.0;
     TableSensors sensors;
     unsigned seed = 1;
-    bool saturation = true;  ///< clip at each actuator's effort
     /// Keep u, u_d, tau and u_measured of every tick in the result. false: only their summaries
     /// (rms_error, peak_error, peak_tau) are kept, and each tick's u and tau go to on_tick; the
     /// result then holds t, p and p_d only, 56 bytes a tick instead of 664 (a long record's
@@ -111,8 +108,6 @@ struct ShakeLoopOptions {
     bool keep_actuators = true;
     /// Called once per tick with its index, time, u and the applied tau (may be empty).
     std::function<void(std::size_t, double, const ActuatorVector&, const ActuatorVector&)> on_tick;
-    /// Called at each tick with its time [s] (e.g. a progress line); none by default.
-    std::function<void(double t)> progress = {};
 };
 
 /// What the estimator achieved over a run, against the plant's true state (kept for the report;

@@ -21,12 +21,9 @@
 namespace nocdyn::spatial {
 
 /// The pose sensor's noise (PoseSensorNoise: the measured x, y, z, roll, pitch, yaw and rates).
-struct LoopOptions : PoseSensorNoise {
-    double rate = 10000.0;  ///< controller ticks per second [Hz]
-    double duration = 0.2;  ///< [s]
+struct LoopOptions : LoopClock, PoseSensorNoise {
     ControlLaw law = ControlLaw::computed_torque;
     double natural_frequency = 50;  ///< f_n of the error dynamics [Hz]
-    bool saturation = true;         ///< clip at each actuator's effort
     /// Computed torque: the forces of the state predicted at the middle of the hold,
     /// (p + dp dt / 2 + ddp_cmd dt^2 / 8, dp + ddp_cmd dt / 2), not of the tick's state: the
     /// forces held over the tick then match its mean motion to O(dt^2) (the rate-dependent
@@ -38,8 +35,6 @@ struct LoopOptions : PoseSensorNoise {
     /// controller knows only as identified); the same actuators and pose coordinates. nullptr:
     /// the plant's.
     const Model* controller_model = nullptr;
-    /// Called at each tick with its time [s]; none by default.
-    std::function<void(double t)> progress = {};
 };
 
 /// One row per controller tick (the state at the tick, before its forces act).
