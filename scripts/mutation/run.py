@@ -8,8 +8,10 @@ release build compiled is a cache hit: the copy is laid out as the checkout, its
 inside it, and ccache's base_dir makes both paths the same; the files it mutates are compiled at
 -O1 instead, since each is compiled again for every mutation), and rebuilt for each mutation (only
 what the changed file touches). The core test binaries then
-run in turn, each stopping at its first failing test: the first failing test (in the order of
-TESTS) caught the mutation, and the binaries after it are not run. The check passes only when every mutation is caught, and when every searched text is
+run in turn, each stopping at its first failing test: the first failing test caught the mutation,
+and the binaries after it are neither relinked nor run. The binary named by the mutation's
+"test:" line (or the one that caught the previous mutation of its file) goes first, then the
+others in the order of TESTS. The check passes only when every mutation is caught, and when every searched text is
 found exactly once (a mutation whose code has moved must be updated, not skipped). The last
 line printed is "N/N mutations caught".
 
@@ -62,6 +64,8 @@ class Mutation:
         self.path = path
         self.pairs = []  # (search, replace)
         self.extended = False  # run only with --all
+        self.first = None  # the test binary run (and relinked) first: "test: <binary> [<gtest filter>]"
+        self.filter = None  # the tests of that binary run before the rest of it
 
 
 def parse(text):
@@ -73,6 +77,12 @@ def parse(text):
             mutations[-1].path = line[5:].strip()
         elif line.strip() == "run: extended":
             mutations[-1].extended = True
+        elif line.startswith("test:"):
+            words = line[5:].split()
+            if not words or len(words) > 2 or words[0] not in TESTS:
+                sys.exit(f"{LIST}:{number}: '{line}' does not name one of the core test binaries (and a filter)")
+            mutations[-1].first = words[0]
+            mutations[-1].filter = words[1] if len(words) == 2 else None
         elif line.startswith("- "):
             mutations[-1].pairs.append([line[2:].strip(), None])
         elif line.startswith("+ "):
@@ -262,7 +272,8 @@ def main():
                  # and the library's files mutated here, which each mutation recompiles
                  f"-DNOCDYN_CHECK_SOURCES={';'.join(mutated_sources(mutations))}",
                  f"-DNOCDYN_GOLDEN_DIR={Path(args.golden_dir).resolve()}"]
-    build_command = ["cmake", "--build", str(build), "-j", str(args.jobs), "--target", *TESTS]
+    build_targets = ["cmake", "--build", str(build), "-j", str(args.jobs), "--target"]
+    build_command = [*build_targets, *TESTS]
     code, out = run(configure, log=log)
     if code != 0:
         print(out)
@@ -287,15 +298,16 @@ def main():
     env_dir.mkdir(parents=True, exist_ok=True)
     os.environ["TEST_TMPDIR"] = str(env_dir) + "/"
 
-    def run_tests(first_only=False):
-        """The first failing test of each binary that fails (binary -> test), in TESTS order; with
-        first_only, the binaries after the first that fails are not run (one suffices to catch a
-        mutation)."""
+    def run_tests(binaries=TESTS, first_only=False, gtest_filter=None):
+        """The first failing test of each binary that fails (binary -> test), in the order given;
+        with first_only, the binaries after the first that fails are not run (one suffices to
+        catch a mutation); with gtest_filter, only those tests of each binary run."""
         failures = {}
-        for test in TESTS:
+        for test in binaries:
             if first_only and failures:
                 break
-            code, out = run([str(build / "tests" / test), "--gtest_fail_fast", "--gtest_brief=1"],
+            selected = [f"--gtest_filter={gtest_filter}"] if gtest_filter else []
+            code, out = run([str(build / "tests" / test), "--gtest_fail_fast", "--gtest_brief=1", *selected],
                             cwd=build / "tests", log=log, timeout=TIMEOUT)
             if code is None:
                 failures[test] = f"{test} (timed out after {TIMEOUT} s)"
@@ -313,6 +325,7 @@ def main():
     print(f"mutation: build {baseline - start:.0f} s, unmutated tests {time.monotonic() - baseline:.0f} s", flush=True)
 
     caught = 0
+    catcher = {}  # file -> the binary that caught the last mutation of it
     originals = {}
     try:
         for number, m in enumerate(mutations, 1):
@@ -328,16 +341,34 @@ def main():
             for search, replace in m.pairs:
                 mutated = mutated.replace(search, replace, 1)
             path.write_text(mutated)
-            code, out = run(build_command, log=log)
+            # The binary named by the block's "test:" line (its tests that the line names first,
+            # then the others), or the one that caught the previous mutation of this file, is
+            # relinked and run first: when it catches the mutation the other binaries are neither
+            # relinked nor run. Otherwise every binary is, in order.
+            first = m.first or catcher.get(m.path)
+            failures = {}
+            code, out = run([*build_targets, first] if first else build_command, log=log)
+            if code == 0 and first and m.filter:
+                failures = run_tests([first], gtest_filter=m.filter)
+                if not failures:
+                    failures = run_tests([first], gtest_filter=f"-{m.filter}")
+            elif code == 0 and first:
+                failures = run_tests([first])
+            if code == 0 and first and not failures:
+                code, out = run(build_command, log=log)
+            if code == 0 and not failures:
+                failures = run_tests([t for t in TESTS if t != first], first_only=True)
             if code != 0:
                 verdict = "DOES NOT COMPILE (fix the mutation)"
+            elif failures:
+                caught += 1
+                binary, test = next(iter(failures.items()))
+                catcher[m.path] = binary
+                verdict = f"caught by {test}"
+                if m.first and binary != m.first:
+                    verdict += f" (not by {m.first}, its 'test:' line: update it)"
             else:
-                failures = run_tests(first_only=True)
-                if failures:
-                    caught += 1
-                    verdict = f"caught by {next(iter(failures.values()))}"
-                else:
-                    verdict = "NOT CAUGHT"
+                verdict = "NOT CAUGHT"
             print(f"mutation {number:2d} [{m.path}] {m.description}: {verdict} ({time.monotonic() - t0:.0f} s)",
                   flush=True)
     finally:
