@@ -348,14 +348,12 @@ def main():
             first = m.first or catcher.get(m.path)
             failures = {}
             code, out = run([*build_targets, first] if first else build_command, log=log)
-            if code == 0 and first and m.filter:
+            if code == 0 and first:
                 failures = run_tests([first], gtest_filter=m.filter)
-                if not failures:
+                if not failures and m.filter:
                     failures = run_tests([first], gtest_filter=f"-{m.filter}")
-            elif code == 0 and first:
-                failures = run_tests([first])
-            if code == 0 and first and not failures:
-                code, out = run(build_command, log=log)
+                if not failures:
+                    code, out = run(build_command, log=log)
             if code == 0 and not failures:
                 failures = run_tests([t for t in TESTS if t != first], first_only=True)
             if code != 0:
