@@ -152,7 +152,7 @@ TEST(ShakeTable, TheAccelerationCorrectionRemovesTheErrorOfAnUnknownPayload) {
         RungeKuttaRobotPlant plant(plant_model);
         ShakeLoopOptions options;
         options.duration = fit.t.back();
-        options.sensors.encoder_noise = 1e-9;
+        options.sensors.noise_u = 1e-9;
         options.sensors.accel_noise_density = 0.0;
         options.acceleration_gain = g;
         return rmsError(model, fit, runShakeLoop(model, plant, fit.trajectory, options), options.rate);

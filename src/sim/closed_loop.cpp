@@ -211,8 +211,8 @@ ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant
     }
 
     // the estimator's steady-state gains and the sensors, as runShakeLoop sets them
-    const Vector3 sigma_q = encoderPoseNoise(model, p, sensors.encoder_noise);
-    const Vector3 sigma_y = sensors.accelerometer ? accelerometerNoise(sensors) : Vector3::Constant(1e3);
+    const Vector3 sigma_q = encoderPoseNoise(model, p, sensors.noise_u);
+    const Vector3 sigma_y = sensors.accelerometer() ? accelerometerNoise(sensors) : Vector3::Constant(1e3);
     const PoseEstimator estimator(T, sigma_q, sigma_y);
     Vector3 Kq, Kv;
     for (int i = 0; i < 3; ++i) {
@@ -220,12 +220,12 @@ ShakeLoopLinearization linearizeShakeLoop(const Model& model, const Model& plant
         Kv(i) = estimator.gain(i)(1);
     }
     const double beta = 1.0 - std::exp(-2.0 * std::numbers::pi * sensors.accel_bandwidth * T);
-    const double g = sensors.accelerometer ? options.acceleration_gain : 0.0;
+    const double g = sensors.accelerometer() ? options.acceleration_gain : 0.0;
     const TaskGains gains = taskCriticallyDamped(options.natural_frequency);
 
     // one tick, in runShakeLoop's order; every quantity is a linear map of z = [s; w]
     // accelerometers: y = y + beta ((dp - dp_(k-1)) / T - y)
-    const Rows y = sensors.accelerometer ? Rows(pick(Y) + beta * ((pick(DP) - pick(RB)) / T - pick(Y))) : pick(Y);
+    const Rows y = sensors.accelerometer() ? Rows(pick(Y) + beta * ((pick(DP) - pick(RB)) / T - pick(Y))) : pick(Y);
     // estimator: predict x = F x + G y, correct with the encoder pose q_m = p
     const Rows p_pred = pick(PH) + T * pick(VH) + 0.5 * T * T * y;
     const Rows v_pred = pick(VH) + T * y;

@@ -81,7 +81,7 @@ Vector3 encoderPoseNoise(const Model& model, const Pose& p, double sigma_u) {
 }
 
 Vector3 accelerometerNoise(const TableSensors& sensors, int task_dimension) {
-    const double s = sensors.accel_noise_density * std::sqrt(0.5 * std::numbers::pi * sensors.accel_bandwidth);
+    const double s = sensors.rho() * std::sqrt(0.5 * std::numbers::pi * sensors.accel_bandwidth);
     return {task_dimension == 2 ? 0.0 : std::sqrt(2.0) * s / sensors.accel_baseline, s, s};
 }
 
@@ -105,20 +105,19 @@ public:
           sensors_(options.sensors),
           dt_(1.0 / options.rate),
           gains_(taskCriticallyDamped(options.natural_frequency)),
-          sigma_q_(encoderPoseNoise(model, start.p, sensors_.encoder_noise)),
-          sigma_y_(sensors_.accelerometer ? accelerometerNoise(sensors_, model.task_dimension) : Vector3::Zero()),
-          estimator_(dt_, estimatedPoseNoise(sigma_q_, sensors_.encoder_noise),
-                     sensors_.accelerometer ? sigma_y_ : Vector3::Constant(1e3)),
-          g_(sensors_.accelerometer ? options.acceleration_gain : 0.0),
+          sigma_q_(encoderPoseNoise(model, start.p, sensors_.noise_u)),
+          sigma_y_(sensors_.accelerometer() ? accelerometerNoise(sensors_, model.task_dimension) : Vector3::Zero()),
+          estimator_(dt_, estimatedPoseNoise(sigma_q_, sensors_.noise_u),
+                     sensors_.accelerometer() ? sigma_y_ : Vector3::Constant(1e3)),
+          g_(sensors_.accelerometer() ? options.acceleration_gain : 0.0),
           beta_(1.0 - std::exp(-2.0 * std::numbers::pi * sensors_.accel_bandwidth * dt_)),
           white_(std::sqrt(0.5 * options.rate)),
-          density_(
-              model.task_dimension == 2 ? 0.0 : std::sqrt(2.0) * sensors_.accel_noise_density / sensors_.accel_baseline,
-              sensors_.accel_noise_density, sensors_.accel_noise_density),
+          density_(model.task_dimension == 2 ? 0.0 : std::sqrt(2.0) * sensors_.rho() / sensors_.accel_baseline,
+                   sensors_.rho(), sensors_.rho()),
           rng_(options.seed),
           sensor_(model),
           tracker_(start.p),
-          tracker_options_(noisyEncoderTrackerOptions(model, sensors_.encoder_noise)),
+          tracker_options_(noisyEncoderTrackerOptions(model, sensors_.noise_u)),
           u_measured_(model.actuators),
           rate_before_(start.dp) {
         estimator_.reset(start.p, start.dp);
@@ -127,14 +126,14 @@ public:
     void sense(double t, const RobotPlant& plant, const Pose& p, const Twist& dp, const PoseReference& reference,
                const Twist& ddp_ff, detail::Sensed& out) override {
         // accelerometers: the mean acceleration of the last tick, noise, the sensor's low-pass
-        if (sensors_.accelerometer && !first_) {
+        if (sensors_.accelerometer() && !first_) {
             const Twist a = (dp - rate_before_) / dt_;
             for (int i = 0; i < 3; ++i) y_(i) += beta_ * (a(i) + density_(i) * white_ * normal_(rng_) - y_(i));
         }
         rate_before_ = dp;
         // encoders and the tracker
         u_measured_ = plant.u();
-        for (int a = 0; a < model_.actuators; ++a) u_measured_(a) += sensors_.encoder_noise * normal_(rng_);
+        for (int a = 0; a < model_.actuators; ++a) u_measured_(a) += sensors_.noise_u * normal_(rng_);
         TrackerReport tracked;
         if (const Status status = tracker_.step(model_, sensor_, u_measured_, tracker_options_, &tracked); !status) {
             detail::failTick(model_, t, status, "direct kinematics of the encoders (tracker)");
@@ -201,7 +200,7 @@ private:
 PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTrajectory& trajectory,
                             const ShakeLoopOptions& options, EstimatorReport* report) {
     const TableSensors& sensors = options.sensors;
-    if (!(sensors.encoder_noise > 0.0) || !(sensors.accel_noise_density >= 0.0) || !(sensors.accel_bandwidth > 0.0) ||
+    if (!(sensors.noise_u > 0.0) || !(sensors.accel_noise_density >= 0.0) || !(sensors.accel_bandwidth > 0.0) ||
         !(sensors.accel_baseline > 0.0)) {
         throw Error(
             "shake table: encoder noise, accelerometer bandwidth and baseline must be positive, the noise "
@@ -217,9 +216,9 @@ PoseLoopResult runShakeLoop(const Model& model, RobotPlant& plant, const PoseTra
     PoseLoopResult result;
     {
         std::ostringstream name;
-        name << "shake table: Kalman estimator of encoders" << (sensors.accelerometer ? " and accelerometers" : "")
+        name << "shake table: Kalman estimator of encoders" << (sensors.accelerometer() ? " and accelerometers" : "")
              << ", model feed-forward, pose feedback f_n = " << options.natural_frequency << " Hz";
-        if (sensors.accelerometer && options.acceleration_gain > 0.0) {
+        if (sensors.accelerometer() && options.acceleration_gain > 0.0) {
             name << ", acceleration correction g = " << options.acceleration_gain;
         }
         result.controller = name.str();

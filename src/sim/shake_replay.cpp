@@ -34,17 +34,13 @@ double naturalFrequency(const ShakeReplayOptions& o) {
     return o.identify_payload ? kIdentifiedNaturalFrequency : ShakeLoopOptions{}.natural_frequency;
 }
 
-/// The table controller's loop: rate, feedback, sensors in SI (the noise density from ug/sqrt(Hz)).
+/// The table controller's loop: rate, feedback, sensors.
 ShakeLoopOptions tableLoop(const ShakeReplayOptions& o, const std::function<void(double)>& progress) {
     ShakeLoopOptions loop;
     loop.rate = planarRate(o);
     loop.natural_frequency = naturalFrequency(o);
     loop.acceleration_gain = o.acceleration_gain;
-    loop.sensors.encoder_noise = o.noise_u;
-    loop.sensors.accel_bandwidth = o.accel_bandwidth;
-    loop.sensors.accel_baseline = o.accel_baseline;
-    loop.sensors.accel_noise_density = o.accel_noise_density * 1e-6 * kGravity;
-    loop.sensors.accelerometer = !o.no_accelerometer;
+    loop.sensors = o;  // the table's sensors as given (TableSensors)
     loop.seed = o.seed;
     loop.progress = progress;
     return loop;
@@ -258,27 +254,25 @@ std::string sensingText(const ShakeReplayOptions& o, const EstimatorReport& esti
         // a two-DOF table: the tool point's x, y only, no angular accelerometer pair
         std::string out = text::format(
             "encoders: noise %.3g (m or rad) per actuator (pose noise at home %.3g m, %.3g m); accelerometers: %s",
-            s.encoder_noise, estimator.sigma_q(1), estimator.sigma_q(2), s.accelerometer ? "" : "none");
-        if (s.accelerometer) {
+            s.noise_u, estimator.sigma_q(1), estimator.sigma_q(2), s.accelerometer() ? "" : "none");
+        if (s.accelerometer()) {
             out += text::format(
                 "noise density %.3g ug/sqrt(Hz) (ADXL355 default 22.5), bandwidth %.4g Hz (first-order), so %.3g "
                 "m/s^2 RMS per axis; rates from the estimator",
-                s.accel_noise_density / kGravity * 1e6, s.accel_bandwidth, estimator.sigma_y(1));
+                s.accel_noise_density, s.accel_bandwidth, estimator.sigma_y(1));
         }
         return out;
     }
     std::string out = text::format(
         "encoders: noise %.3g (m or rad) per actuator (pose noise at home %.3g rad, %.3g m, %.3g m); "
         "accelerometers: %s",
-        s.encoder_noise, estimator.sigma_q(0), estimator.sigma_q(1), estimator.sigma_q(2),
-        s.accelerometer ? "" : "none");
-    if (s.accelerometer) {
+        s.noise_u, estimator.sigma_q(0), estimator.sigma_q(1), estimator.sigma_q(2), s.accelerometer() ? "" : "none");
+    if (s.accelerometer()) {
         out += text::format(
             "noise density %.3g ug/sqrt(Hz) (ADXL355 default 22.5), bandwidth %.4g Hz (first-order), "
             "so %.3g m/s^2 RMS per axis; a pair %.3g m apart for alpha (%.3g rad/s^2 RMS); rates from "
             "the estimator",
-            s.accel_noise_density / kGravity * 1e6, s.accel_bandwidth, estimator.sigma_y(1), s.accel_baseline,
-            estimator.sigma_y(0));
+            s.accel_noise_density, s.accel_bandwidth, estimator.sigma_y(1), s.accel_baseline, estimator.sigma_y(0));
     }
     return out;
 }

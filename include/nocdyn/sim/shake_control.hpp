@@ -53,11 +53,14 @@ inline constexpr double kGravity = 9.80665;
 /// the accelerometer Analog Devices ADXL355 (datasheet rev. A: noise density 22.5 ug/sqrt(Hz) at
 /// the +-2 g range, output data rate 4 kHz with its digital low-pass at ODR / 4 = 1 kHz).
 struct TableSensors {
-    double encoder_noise = 1e-6;                      ///< sigma_u [m or rad]
-    double accel_noise_density = 22.5e-6 * kGravity;  ///< rho [m/s^2 / sqrt(Hz)]
-    double accel_bandwidth = 1000.0;                  ///< f_b [Hz]
-    double accel_baseline = 0.1;                      ///< b of the angular pair [m]
-    bool accelerometer = true;                        ///< false: encoders only (y = 0, g = 0)
+    double noise_u = 1e-6;              ///< sigma_u of each actuator encoder [m or rad]
+    double accel_noise_density = 22.5;  ///< rho [ug/sqrt(Hz)] (ADXL355)
+    double accel_bandwidth = 1000.0;    ///< f_b [Hz]
+    double accel_baseline = 0.1;        ///< b of the angular pair [m]
+    bool no_accelerometer = false;      ///< encoders only (y = 0, g = 0)
+    /// rho in SI [m/s^2 / sqrt(Hz)]
+    [[nodiscard]] double rho() const { return accel_noise_density * 1e-6 * kGravity; }
+    [[nodiscard]] bool accelerometer() const { return !no_accelerometer; }
 };
 
 /// Steady-state Kalman filter of the platform pose from encoder poses and accelerometers

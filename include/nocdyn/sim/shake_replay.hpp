@@ -49,7 +49,7 @@ inline constexpr double kIdentifiedNaturalFrequency = 2.0;
 /// Every choice of a replay, in the units a user writes them. The fit's, the table loop's and
 /// the sensors' defaults are those of FitOptions, ShakeLoopOptions and TableSensors.
 // the fit (fitRecord): time_scale, highpass, margin; the drive-signal iteration
-struct ShakeReplayOptions : FitSettings, DriveIterationSettings {
+struct ShakeReplayOptions : FitSettings, DriveIterationSettings, TableSensors {
     double amplitude = 1.0;  ///< the record's accelerations times this before the fit
     // --- the plant
     /// nocdyn-rk4 (a 40 s record in seconds), nocdyn, or simbody (the independent check, about
@@ -66,14 +66,11 @@ struct ShakeReplayOptions : FitSettings, DriveIterationSettings {
     /// identify_payload), pose kPoseNaturalFrequency
     std::optional<double> natural_frequency;
     double acceleration_gain = ShakeLoopOptions{}.acceleration_gain;  ///< table: g per tick
-    double noise_u = TableSensors{}.encoder_noise;                    ///< table: encoder sigma_u [m or rad]
-    double accel_noise_density = 22.5;                                ///< table [ug/sqrt(Hz)] (ADXL355)
-    double accel_bandwidth = TableSensors{}.accel_bandwidth;          ///< table [Hz]
-    double accel_baseline = TableSensors{}.accel_baseline;            ///< table [m]
-    bool no_accelerometer = false;                                    ///< table: encoders only
-    double noise_pose = 1e-6;                                         ///< pose [m, rad]
-    double noise_rate = 1e-5;                                         ///< pose [m/s, rad/s]
-    unsigned seed = 1;                                                ///< sensor noise
+    // the table's sensors (TableSensors): noise_u, accel_noise_density, accel_bandwidth,
+    // accel_baseline, no_accelerometer
+    double noise_pose = 1e-6;  ///< pose [m, rad]
+    double noise_rate = 1e-5;  ///< pose [m/s, rad/s]
+    unsigned seed = 1;         ///< sensor noise
     // --- the payload identified before the replay (table controller)
     bool identify_payload = false;
     double excitation_duration = 2.0;  ///< [s] of the payload excitation
