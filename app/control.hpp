@@ -30,14 +30,14 @@ inline constexpr std::array<Choice<ControlMeasure>, 2> kControlMeasures{
     {{ControlMeasure::pose, "pose"}, {ControlMeasure::encoders, "encoders"}}};
 [[nodiscard]] constexpr std::span<const Choice<ControlMeasure>> choices(ControlMeasure) { return kControlMeasures; }
 
-struct ControlOptions : SamplingOptions {
+struct ControlOptions : SamplingOptions, FeedbackSettings {
     RobotSource robot;
-    ControlLaw controller = ControlLaw::computed_torque;  ///< computed-torque or pd
-    PlantKind plant = defaultPlant();                     ///< the plant the loop runs on
+    // the feedback (FeedbackSettings): controller (computed-torque or pd), natural_frequency
+    // (kNaturalFrequencyRange)
+    PlantKind plant = defaultPlant();  ///< the plant the loop runs on
     /// False: `plant` is the build's default, not the caller's choice; a two-DOF robot, which
     /// the Simbody plant does not take, then runs on nocdyn's (a chosen Simbody plant is refused).
     bool plant_given = true;
-    double natural_frequency = 50.0;                ///< f_n of the error dynamics [Hz] (kNaturalFrequencyRange)
     double payload_mass = 0.0;                      ///< [kg], on the plant's platform only (model mismatch)
     double payload_inertia = 0.0;                   ///< about the payload's c.o.m. [kg m^2]
     std::vector<double> payload_com;                ///< [x, y] in the platform frame [m]; empty: at C

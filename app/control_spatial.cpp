@@ -84,8 +84,7 @@ ControlResult runSpatialControl(const ControlOptions& options, Observer& observe
         throw OptionError("rate", text::format("%g Hz is not above twice the trajectory's highest frequency (%g Hz)",
                                                loop.rate, trajectory.highestFrequency()));
     }
-    loop.law = options.controller;
-    loop.natural_frequency = options.natural_frequency;
+    static_cast<FeedbackSettings&>(loop) = options;
     loop.saturation = !options.no_saturation;
     static_cast<PoseSensorNoise&>(loop) = poseSensorNoise(options.noise_pose, options.noise_rate, options.seed);
     Meter meter(observer, loop.duration, "s");

@@ -310,7 +310,7 @@ spatial::LoopOptions loopOptions(const ShakeOptions& options, std::string& contr
     // a six-DOF table's plant costs some 20 times a planar one's per tick: 1 kHz unless given (the
     // forces of the hold's middle state keep the error O(dt^2): El Centro's z within 2 % at 1 kHz)
     loop.rate = options.rate.value_or(kSixDofRate);
-    loop.law = ControlLaw::computed_torque;
+    loop.controller = ControlLaw::computed_torque;
     loop.mid_hold = true;
     loop.natural_frequency = options.natural_frequency.value_or(kPoseNaturalFrequency);
     // the plant integrated to 1e-9 m (rad) and 1e-7 relative, a step the error test rejects

@@ -678,7 +678,7 @@ TEST(SpatialControl, ComputedTorqueTracksTheExampleTrajectoriesAndPdLags) {
         options.duration = 0.05;
         const LoopResult ct = runPoseLoop(model, trajectory, options);
         ASSERT_EQ(ct.t.size(), 100U);
-        options.law = ControlLaw::pd;
+        options.controller = ControlLaw::pd;
         const LoopResult pd = runPoseLoop(model, trajectory, options);
         // measured 1.7e-7 m (Stewart) and 1.9e-8 m (Delta); PD 1.0e-4 and 9.6e-5 m
         EXPECT_LT(ct.peak_error.head<3>().maxCoeff(), 1e-6) << name;

@@ -43,7 +43,7 @@ LoopResult runPoseLoop(const Model& model, const Trajectory& trajectory, const L
         throw Error("the controller's model and the plant differ in pose coordinates or actuators");
     Data controller(known), reference(model);
     TaskMatrix M_home;
-    if (options.law == ControlLaw::pd) {
+    if (options.controller == ControlLaw::pd) {
         if (const Status status = massMatrix(known, controller, model.home, M_home); !status) {
             throw Error("pd: the mass matrix at home: " + describe(status, known));
         }
@@ -74,7 +74,7 @@ LoopResult runPoseLoop(const Model& model, const Trajectory& trajectory, const L
             dp(i) += options.noise_rate * unit(rng);
         }
         const TaskVector e = p_d - p, de = dp_d - dp;
-        if (options.law == ControlLaw::computed_torque) {
+        if (options.controller == ControlLaw::computed_torque) {
             // the reference's mean acceleration over the hold, and the error feedback
             cmd = (dp_next - dp_d) / dt + kd * de + kp * e;
             if (options.mid_hold) {

@@ -75,6 +75,13 @@ inline constexpr std::array<Choice<ControlLaw>, 2> kControlLaws{
 /// "computed-torque" or "pd".
 [[nodiscard]] inline const char* name(ControlLaw law) { return nameOf(law).data(); }
 
+/// The feedback a user chooses: the law, and the natural frequency f_n of the critically damped
+/// pose error (taskCriticallyDamped).
+struct FeedbackSettings {
+    ControlLaw controller = ControlLaw::computed_torque;  ///< computed-torque or pd
+    double natural_frequency = 50.0;                      ///< f_n of the error dynamics [Hz]
+};
+
 /// Task-space controller of one robot (see the header comment). Holds a copy of the model.
 class PoseController {
 public:

@@ -21,9 +21,7 @@
 namespace nocdyn::spatial {
 
 /// The pose sensor's noise (PoseSensorNoise: the measured x, y, z, roll, pitch, yaw and rates).
-struct LoopOptions : LoopClock, PoseSensorNoise {
-    ControlLaw law = ControlLaw::computed_torque;
-    double natural_frequency = 50;  ///< f_n of the error dynamics [Hz]
+struct LoopOptions : LoopClock, PoseSensorNoise, FeedbackSettings {
     /// Computed torque: the forces of the state predicted at the middle of the hold,
     /// (p + dp dt / 2 + ddp_cmd dt^2 / 8, dp + ddp_cmd dt / 2), not of the tick's state: the
     /// forces held over the tick then match its mean motion to O(dt^2) (the rate-dependent
