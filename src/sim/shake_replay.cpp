@@ -249,7 +249,7 @@ std::string sensingText(const ShakeReplayOptions& o, const EstimatorReport& esti
         return text::format("pose sensor: noise %.3g (m, rad); rate sensor: noise %.3g (m/s, rad/s)", o.noise_pose,
                             o.noise_rate);
     }
-    const TableSensors s = tableLoop(o, {}).sensors;
+    const TableSensors& s = o;  // the sensors the table loop takes whole (tableLoop)
     if (task_dimension == 2) {
         // a two-DOF table: the tool point's x, y only, no angular accelerometer pair
         std::string out = text::format(
