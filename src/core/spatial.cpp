@@ -14,6 +14,7 @@
 #include <Eigen/LU>
 #include <Eigen/QR>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/spatial_limits.hpp"
 #include "spatial_chain.hpp"

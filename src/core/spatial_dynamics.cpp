@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "spatial_small.hpp"
 
 namespace nocdyn::spatial {

@@ -8,6 +8,7 @@
 
 #include <Eigen/LU>
 
+#include "nocdyn/detail/eigen_instances.hpp"
 #include "nocdyn/error.hpp"
 #include "nocdyn/sim/spatial_simulator.hpp"
 #include "nocdyn/text.hpp"
