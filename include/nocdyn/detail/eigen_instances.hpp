@@ -1,8 +1,8 @@
 // The Eigen decompositions of dynamic-size (real and complex) and of the spatial model's bounded
 // double matrices, instantiated once in the library (src/core/eigen_instances.cpp) instead of in
-// every translation unit that solves with one: a
-// file that includes this header compiles calls to them, not their bodies (a JacobiSVD with its
-// QR preconditioners is about 10 s of compile CPU per file at -O3). Not part of the API.
+// every translation unit that solves with one: a file that includes this header compiles calls
+// to them, not their bodies (a JacobiSVD with its QR preconditioners is about 10 s of compile CPU
+// per file at -O3). Not part of the API.
 #pragma once
 
 #include <Eigen/Cholesky>
@@ -47,7 +47,8 @@ NOCDYN_EIGEN_INSTANCE Eigen::EigenSolver<Eigen::MatrixXd>&
 Eigen::EigenSolver<Eigen::MatrixXd>::compute<Eigen::MatrixXd>(const Eigen::EigenBase<Eigen::MatrixXd>&, bool);
 
 // The spatial model's bounded matrices (nocdyn/spatial.hpp): the Gram matrices of the task space
-// (TaskMatrix, at most 6 x 6) and a limb's Jacobian (LimbJacobian, 6 x at most 6 freedoms).
+// (TaskMatrix, at most 6 x 6) and a limb's Jacobian (LimbJacobian, 6 x at most kMaxFreedoms = 6).
+// Should those bounds change, these declarations no longer match and each file compiles its own.
 NOCDYN_EIGEN_INSTANCE class Eigen::SelfAdjointEigenSolver<
     Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>>;
 NOCDYN_EIGEN_INSTANCE Eigen::SelfAdjointEigenSolver<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, 0, 6, 6>>&
