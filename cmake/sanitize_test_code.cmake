@@ -31,6 +31,15 @@ foreach(dir IN LISTS test_code_dirs)
       # after the directory's -O1 on the command line, so that it takes effect
       set_property(TARGET ${target} APPEND PROPERTY COMPILE_OPTIONS $<IF:$<CXX_COMPILER_ID:Clang>,-O0,-Og>
                                                                     $<$<CXX_COMPILER_ID:GNU>:-fno-inline-small-functions>)
+      # The tests and the engines' models without line tables (-g0 after the directory's -g1):
+      # a sanitizer's report names their frames by function, and keeps file:line in the
+      # library's, the application layer's and the command line's frames, where the code under
+      # test is. GCC compiles a test file in 10-20 % less CPU without them
+      # (tests/cli_reactions_test.cpp 15.3 s -> 12.2 s, tests/spatial_dynamics_test.cpp
+      # 18.6 s -> 16.5 s).
+      if(dir STREQUAL "tests" OR dir MATCHES "^validation")
+        set_property(TARGET ${target} APPEND PROPERTY COMPILE_OPTIONS -g0)
+      endif()
     endif()
   endforeach()
 endforeach()
