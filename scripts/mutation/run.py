@@ -271,6 +271,9 @@ def main():
                  "-DNOCDYN_CHECK_FLAGS=-O1",
                  # and the library's files mutated here, which each mutation recompiles
                  f"-DNOCDYN_CHECK_SOURCES={';'.join(mutated_sources(mutations))}",
+                 # the glue (application layer, command line, rendering) at -O0: only the lean
+                 # check below runs it, three short commands (CMakeLists.txt: NOCDYN_GLUE_FLAGS)
+                 "-DNOCDYN_GLUE_FLAGS=-O0",
                  f"-DNOCDYN_GOLDEN_DIR={Path(args.golden_dir).resolve()}"]
     build_targets = ["cmake", "--build", str(build), "-j", str(args.jobs), "--target"]
     build_command = [*build_targets, *TESTS]
